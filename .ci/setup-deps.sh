@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs everything pftrack needs on a fresh Debian/Ubuntu machine (as root, or with sudo).
+# Idempotent: packages already present are skipped by apt; Unity is fetched once into .deps/.
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+
+pkgs=(cmake ninja-build gcc g++ make pkg-config
+      gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+      gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
+      libopencv-dev libcli11-dev nlohmann-json3-dev
+      valgrind binutils dpkg-dev)
+missing=()
+for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+# deb-src entries are needed for Unity (see TOOLCHAIN.md: Debian's cjson source ships Unity 2.4.3)
+need_src=0
+[ -f "$here/.deps/unity/src/unity.c" ] || need_src=1
+if [ "$need_src" = 1 ] && [ -f /etc/apt/sources.list.d/debian.sources ] && \
+   ! grep -q 'deb-src' /etc/apt/sources.list.d/debian.sources; then
+  $SUDO sed -i 's/^Types: deb$/Types: deb deb-src/' /etc/apt/sources.list.d/debian.sources
+  missing+=(__update__)
+fi
+if [ ${#missing[@]} -gt 0 ]; then
+  $SUDO apt-get update -qq
+  real=(); for p in "${missing[@]}"; do [ "$p" = __update__ ] || real+=("$p"); done
+  [ ${#real[@]} -eq 0 ] || $SUDO apt-get install -y -qq --no-install-recommends "${real[@]}"
+fi
+
+if [ "$need_src" = 1 ]; then
+  tmp=$(mktemp -d)
+  (cd "$tmp" && apt-get source -qq --download-only cjson >/dev/null && dpkg-source -x --no-check ./*.dsc src >/dev/null)
+  mkdir -p "$here/.deps/unity"
+  cp -r "$tmp/src/tests/unity/src" "$here/.deps/unity/"
+  rm -rf "$tmp"
+  echo "Unity sources in $here/.deps/unity/src (from Debian's cjson source package)"
+fi
+
+# Debian's copy of unity_internals.h includes ../examples/unity_config.h unconditionally:
+# give it pftrack's own configuration there.
+if [ ! -f "$here/.deps/unity/examples/unity_config.h" ]; then
+  mkdir -p "$here/.deps/unity/examples"
+  cp "$here/tests/support/unity_config.h" "$here/.deps/unity/examples/unity_config.h"
+fi

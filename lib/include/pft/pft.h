@@ -1,0 +1,14 @@
+/**
+ * @file pft.h
+ * @brief Umbrella header: everything a firmware needs from pftrack.
+ */
+#ifndef PFT_H
+#define PFT_H
+#include "pft/pft_config.h"
+#include "pft/pft_types.h"
+#include "pft/pft_real.h"
+#include "pft/pft_rng.h"
+#include "pft/pft_resample.h"
+#include "pft/pft_workspace.h"
+#include "pft/pft_kalman.h"
+#endif

@@ -1,0 +1,202 @@
+/**
+ * @file pft_real.h
+ * @brief The number layer: pft_real_t (float or Q16.16) and its saturating helpers.
+ *
+ * One algorithm source serves both builds. All arithmetic on pft_real_t goes through these
+ * helpers; plain `+`/`-` are allowed only where the operands are known not to overflow
+ * (document it at the call site). Comparisons (`<`, `==`) work directly in both builds.
+ *
+ * Formats (q16 build):
+ * - pft_real_t: Q16.16 in int32_t, range [-32768, 32768 - 2^-16], LSB 1.52e-5.
+ *   Every helper saturates to [PFT_REAL_MIN, PFT_REAL_MAX] and never invokes undefined
+ *   behaviour; products and quotients use a 64-bit intermediate and round to nearest.
+ * - pft_weight_t: unsigned Q2.30 in uint32_t (PFT_W_ONE = 2^30 is 1.0). Unnormalised particle
+ *   weights are exp(lw - max lw) in (0, 1]; normalised weights sum to PFT_W_ONE (up to
+ *   rounding). Sums go into pft_wacc_t (uint64_t): with at most 2^22 particles
+ *   (PFT_CFG_MAX_PARTICLES) a sum cannot overflow, and a weighted sum of Q16.16 values
+ *   (|w x| < 2^61) cannot either.
+ * - Log-likelihoods and log-weights are plain pft_real_t (Q16.16): per-frame TBD
+ *   log-likelihood ratios stay within +-32768 by orders of magnitude; accumulators that could
+ *   exceed it saturate (pft_add) and say so in their module's docs.
+ *
+ * In the float build the same names are IEEE single (float) and the helpers map to libm's
+ * single-precision functions; pft_weight_t and pft_wacc_t are float.
+ */
+#ifndef PFT_REAL_H
+#define PFT_REAL_H
+
+#include "pft/pft_types.h"
+
+#ifdef PFT_NUMERIC_FLOAT
+#include <math.h>
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------ */
+#ifdef PFT_NUMERIC_Q16
+
+typedef int32_t pft_real_t;
+typedef uint32_t pft_weight_t;
+typedef uint64_t pft_wacc_t;
+
+#define PFT_Q_FRAC 16
+#define PFT_REAL_ONE ((pft_real_t)65536)
+#define PFT_REAL_MAX ((pft_real_t)INT32_MAX)
+#define PFT_REAL_MIN ((pft_real_t)(-INT32_MAX)) /* symmetric: -MIN is representable */
+#define PFT_REAL_EPS ((pft_real_t)1)            /* one LSB */
+/** Compile-time constant from a decimal literal, rounded to nearest (folded by the compiler). */
+#define PFT_C(x) ((pft_real_t)((x) >= 0 ? (x) * 65536.0 + 0.5 : (x) * 65536.0 - 0.5))
+#define PFT_W_ONE ((pft_weight_t)1073741824u)
+#define PFT_NUMERIC_NAME "q16"
+
+static inline pft_real_t pft_sat64_(int64_t v)
+{
+    return v > (int64_t)INT32_MAX ? PFT_REAL_MAX
+         : v < -(int64_t)INT32_MAX ? PFT_REAL_MIN : (pft_real_t)v;
+}
+static inline pft_real_t pft_add(pft_real_t a, pft_real_t b) { return pft_sat64_((int64_t)a + b); }
+static inline pft_real_t pft_sub(pft_real_t a, pft_real_t b) { return pft_sat64_((int64_t)a - b); }
+static inline pft_real_t pft_neg(pft_real_t a) { return a == INT32_MIN ? PFT_REAL_MAX : -a; }
+static inline pft_real_t pft_abs(pft_real_t a) { return a < 0 ? pft_neg(a) : a; }
+/** a*b rounded to nearest (ties away from zero), saturating. */
+static inline pft_real_t pft_mul(pft_real_t a, pft_real_t b)
+{
+    int64_t p = (int64_t)a * b;
+    p += p >= 0 ? (int64_t)32768 : (int64_t)32767;
+    return pft_sat64_(p >> 16); /* arithmetic shift (gcc/clang/armcc); rounds to nearest */
+}
+/** a/b rounded to nearest, saturating; b == 0 gives +-PFT_REAL_MAX (0/0 gives 0). */
+pft_real_t pft_div(pft_real_t a, pft_real_t b);
+/** real times integer, saturating. */
+static inline pft_real_t pft_mul_i(pft_real_t a, int32_t k) { return pft_sat64_((int64_t)a * k); }
+/** real divided by a positive integer, rounded to nearest. k <= 0 gives PFT_ERR-free saturation. */
+pft_real_t pft_div_i(pft_real_t a, int32_t k);
+static inline pft_real_t pft_from_int(int32_t i) { return pft_sat64_((int64_t)i * 65536); }
+/** floor(a) as an integer. */
+static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)(a >> 16); }
+/** round(a) to nearest integer, ties up. */
+static inline int32_t pft_round_int(pft_real_t a) { return (int32_t)(((int64_t)a + 32768) >> 16); }
+/** Ratio num/den of integers as a real, rounded (den > 0). */
+static inline pft_real_t pft_ratio(int32_t num, int32_t den)
+{
+    int64_t n = (int64_t)num * 65536;
+    int64_t q = (n >= 0 ? n + den / 2 : n - den / 2) / den;
+    return pft_sat64_(q);
+}
+/** Uniform u32 fraction u/2^32 in [0,1) as a real (top 16 bits, truncating). */
+static inline pft_real_t pft_from_u32_frac(uint32_t u) { return (pft_real_t)(u >> 16); }
+
+#else /* ---------------------------------- float ----------------------------------------- */
+
+typedef float pft_real_t;
+typedef float pft_weight_t;
+typedef float pft_wacc_t;
+
+#define PFT_REAL_ONE 1.0f
+#define PFT_REAL_MAX 3.402823466e+38f
+#define PFT_REAL_MIN (-3.402823466e+38f)
+#define PFT_REAL_EPS 1.1920929e-07f
+#define PFT_C(x) ((pft_real_t)(x))
+#define PFT_W_ONE 1.0f
+#define PFT_NUMERIC_NAME "float"
+
+static inline pft_real_t pft_add(pft_real_t a, pft_real_t b) { return a + b; }
+static inline pft_real_t pft_sub(pft_real_t a, pft_real_t b) { return a - b; }
+static inline pft_real_t pft_neg(pft_real_t a) { return -a; }
+static inline pft_real_t pft_abs(pft_real_t a) { return fabsf(a); }
+static inline pft_real_t pft_mul(pft_real_t a, pft_real_t b) { return a * b; }
+static inline pft_real_t pft_div(pft_real_t a, pft_real_t b)
+{
+    if (b == 0.0f) {
+        return a > 0.0f ? PFT_REAL_MAX : (a < 0.0f ? PFT_REAL_MIN : 0.0f);
+    }
+    return a / b;
+}
+static inline pft_real_t pft_mul_i(pft_real_t a, int32_t k) { return a * (float)k; }
+static inline pft_real_t pft_div_i(pft_real_t a, int32_t k)
+{
+    return k > 0 ? a / (float)k : pft_div(a, 0.0f);
+}
+static inline pft_real_t pft_from_int(int32_t i) { return (float)i; }
+static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)floorf(a); }
+static inline int32_t pft_round_int(pft_real_t a) { return (int32_t)floorf(a + 0.5f); }
+static inline pft_real_t pft_ratio(int32_t num, int32_t den) { return (float)num / (float)den; }
+/** Uniform u32 fraction u/2^32 in [0,1): top 24 bits, exact in a float. */
+static inline pft_real_t pft_from_u32_frac(uint32_t u) { return (float)(u >> 8) * 5.9604645e-08f; }
+
+#endif /* PFT_NUMERIC_Q16 */
+/* ------------------------------------------------------------------------------------------ */
+
+static inline pft_real_t pft_min(pft_real_t a, pft_real_t b) { return a < b ? a : b; }
+static inline pft_real_t pft_max(pft_real_t a, pft_real_t b) { return a > b ? a : b; }
+static inline pft_real_t pft_clamp(pft_real_t a, pft_real_t lo, pft_real_t hi)
+{
+    return a < lo ? lo : (a > hi ? hi : a);
+}
+static inline pft_real_t pft_sq(pft_real_t a) { return pft_mul(a, a); }
+
+/*
+ * Transcendental helpers. Domains and q16 error bounds (measured against a double reference
+ * by tests/unit/test_real.c, which asserts them):
+ *   pft_recip(a)     1/a; a == 0 saturates.
+ *   pft_sqrt(a)      a >= 0 (negative gives 0).
+ *   pft_exp(a)       saturates to PFT_REAL_MAX above ln(32768); tends to 0 below -11.1.
+ *   pft_log(a)       a > 0; a <= 0 gives PFT_REAL_MIN.
+ *   pft_atan2(y, x)  in (-pi, pi]; atan2(0, 0) = 0.
+ *   pft_sin, pft_cos any argument (reduced modulo 2 pi).
+ * The bounds in LSB are documented in docs/fixed_point.md.
+ */
+#ifdef PFT_NUMERIC_Q16
+pft_real_t pft_recip(pft_real_t a);
+pft_real_t pft_sqrt(pft_real_t a);
+pft_real_t pft_exp(pft_real_t a);
+pft_real_t pft_log(pft_real_t a);
+pft_real_t pft_atan2(pft_real_t y, pft_real_t x);
+pft_real_t pft_sin(pft_real_t a);
+pft_real_t pft_cos(pft_real_t a);
+#else
+static inline pft_real_t pft_recip(pft_real_t a) { return pft_div(1.0f, a); }
+static inline pft_real_t pft_sqrt(pft_real_t a) { return a > 0.0f ? sqrtf(a) : 0.0f; }
+static inline pft_real_t pft_exp(pft_real_t a) { return expf(a); }
+static inline pft_real_t pft_log(pft_real_t a) { return a > 0.0f ? logf(a) : PFT_REAL_MIN; }
+static inline pft_real_t pft_atan2(pft_real_t y, pft_real_t x) { return atan2f(y, x); }
+static inline pft_real_t pft_sin(pft_real_t a) { return sinf(a); }
+static inline pft_real_t pft_cos(pft_real_t a) { return cosf(a); }
+#endif
+
+#define PFT_PI PFT_C(3.14159265358979)
+#define PFT_TWO_PI PFT_C(6.28318530717959)
+
+/* Pixel conversions: U8 and U16 raw values to reals, with an optional gain/offset applied by
+ * the caller (pft_mul/pft_add). Values up to 32767 convert exactly in q16. */
+static inline pft_real_t pft_from_u8(uint8_t v) { return pft_from_int((int32_t)v); }
+static inline pft_real_t pft_from_u16(uint16_t v) { return pft_from_int((int32_t)v); }
+/** F32 pixel to real; in q16 this is a float conversion: q16 trackers refuse F32 frames on
+ *  targets without an FPU at configuration time, not here. Host/FPU use only. */
+pft_real_t pft_from_f32(float v);
+
+/* ---------------------------------- weights ----------------------------------------------- */
+/** exp(x) for x <= 0 as a weight in (0, 1] (q16: Q2.30; x > 0 is clamped to 0 -> 1.0). */
+pft_weight_t pft_wexp(pft_real_t x);
+/** Weight as a real (q16: Q2.30 -> Q16.16, truncating). */
+pft_real_t pft_weight_to_real(pft_weight_t w);
+
+/** Largest element of a real array (n >= 1). */
+pft_real_t pft_real_max_n(const pft_real_t *v, size_t n);
+/**
+ * Log-sum-exp normalisation of log-weights: w[i] = exp(lw[i] - max) / sum, so that the w sum
+ * to PFT_W_ONE. Returns log(sum_i exp(lw[i])) (the log of the unnormalised total), which
+ * callers use for likelihood statistics (e.g. log mean weight = result - log N).
+ * lw and w may not alias. n >= 1.
+ */
+pft_real_t pft_lognormalize(const pft_real_t *lw, pft_weight_t *w, size_t n);
+/** Effective sample size 1 / sum(w^2) of normalised weights, as a real (at most n). */
+pft_real_t pft_ess(const pft_weight_t *w, size_t n);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,41 @@
+/**
+ * @file pft_rng.h
+ * @brief Deterministic per-instance random numbers (xoshiro128**, seeded by splitmix).
+ *
+ * The integer stream is identical in float and q16 builds and on every target; uniform and
+ * Gaussian reals are derived from it by the same integer path, so the two builds differ only
+ * in arithmetic. Gaussian draws use Box-Muller on two 32-bit draws and cache the second value.
+ */
+#ifndef PFT_RNG_H
+#define PFT_RNG_H
+
+#include "pft/pft_real.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    uint32_t s[4];
+    pft_real_t spare;   /**< cached second Box-Muller value */
+    uint8_t has_spare;
+} pft_rng_t;
+
+/** Seeds the generator (any seed, 0 included). */
+void pft_rng_seed(pft_rng_t *rng, uint64_t seed);
+/** Next 32-bit draw. */
+uint32_t pft_rng_u32(pft_rng_t *rng);
+/** Uniform integer in [0, n), n >= 1, without modulo bias. */
+uint32_t pft_rng_below(pft_rng_t *rng, uint32_t n);
+/** Uniform real in [0, 1). */
+pft_real_t pft_rng_uniform(pft_rng_t *rng);
+/** Uniform real in [lo, hi). */
+pft_real_t pft_rng_uniform_range(pft_rng_t *rng, pft_real_t lo, pft_real_t hi);
+/** Standard normal draw. Tails are truncated where the uniform's resolution ends
+ *  (q16: |g| <= 4.71; float: |g| <= 5.64), documented in docs/fixed_point.md. */
+pft_real_t pft_rng_gauss(pft_rng_t *rng);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

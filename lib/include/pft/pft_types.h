@@ -1,0 +1,85 @@
+/**
+ * @file pft_types.h
+ * @brief Status codes, pixel formats and the frame descriptor shared by every pftrack module.
+ */
+#ifndef PFT_TYPES_H
+#define PFT_TYPES_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdbool.h>
+
+#include "pft/pft_config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Result of every fallible call. PFT_OK is zero, errors are negative. */
+typedef enum {
+    PFT_OK = 0,
+    PFT_ERR_INVAL = -1,   /**< NULL pointer or argument out of its documented domain */
+    PFT_ERR_NOMEM = -2,   /**< caller workspace too short */
+    PFT_ERR_FORMAT = -3,  /**< frame of the wrong pixel format, size, or with NaN/Inf pixels */
+    PFT_ERR_TIMEOUT = -4, /**< no frame within the timeout */
+    PFT_ERR_IO = -5,      /**< device, file or transport error */
+    PFT_ERR_STATE = -6,   /**< call not valid in the current state (e.g. frame not released) */
+    PFT_ERR_RANGE = -7,   /**< value outside the representable or configured range */
+    PFT_ERR_EOF = -8      /**< end of a finite sequence */
+} pft_status_t;
+
+/** Human-readable name of a status code (static string, never NULL). */
+const char *pft_status_str(pft_status_t s);
+
+/** Pixel formats a frame can carry. */
+typedef enum {
+    PFT_PIX_U8 = 1,     /**< 8-bit grey */
+    PFT_PIX_U16 = 2,    /**< 16-bit container, significant bits in frame.bit_depth (e.g. 14-bit IR) */
+    PFT_PIX_F32 = 3,    /**< IEEE single, intensity units (host or FPU targets) */
+    PFT_PIX_RGB888 = 4, /**< packed R,G,B bytes */
+    PFT_PIX_BGR888 = 5  /**< packed B,G,R bytes (OpenCV order) */
+} pft_pixfmt_t;
+
+/** Bytes per pixel of a format, 0 for an unknown format. */
+uint32_t pft_pixfmt_bytes(pft_pixfmt_t f);
+
+/**
+ * A frame lent by a source to a consumer. The library never owns or copies the pixels:
+ * `data` stays valid until the frame is released to its source.
+ */
+typedef struct {
+    const void *data;      /**< first pixel of the first row */
+    uint16_t width;        /**< pixels per row */
+    uint16_t height;       /**< rows */
+    uint32_t stride_bytes; /**< bytes from one row to the next (>= width * bytes per pixel) */
+    pft_pixfmt_t format;   /**< pixel format */
+    uint8_t bit_depth;     /**< significant bits for U16 (1..16); 0 means 16 */
+    uint64_t timestamp_us; /**< capture time */
+    uint32_t seq;          /**< sequence number from the source */
+} pft_frame_t;
+
+/**
+ * Checks a frame descriptor: non-NULL data, known format, stride large enough,
+ * and, when width/height are non-zero, the exact expected size.
+ * @param fmt_mask bit (1u << format) set for every accepted format.
+ * Returns PFT_ERR_INVAL for a NULL frame or data, PFT_ERR_FORMAT otherwise.
+ * Does not look at pixel values (see pft_frame_check_finite for F32 frames).
+ */
+pft_status_t pft_frame_check(const pft_frame_t *frame, uint16_t width, uint16_t height,
+                             uint32_t fmt_mask);
+
+/** PFT_ERR_FORMAT if an F32 frame holds a NaN or infinity (other formats always pass). */
+pft_status_t pft_frame_check_finite(const pft_frame_t *frame);
+
+/** Pointer to row y of a frame (no checks). */
+static inline const uint8_t *pft_frame_row(const pft_frame_t *f, uint32_t y)
+{
+    return (const uint8_t *)f->data + (size_t)y * f->stride_bytes;
+}
+
+#define PFT_FMT_BIT(f) (1u << (unsigned)(f))
+
+#ifdef __cplusplus
+}
+#endif
+#endif

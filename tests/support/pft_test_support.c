@@ -1,0 +1,54 @@
+#include "pft_test_support.h"
+#include <math.h>
+#include <string.h>
+
+double pft_test_to_double(pft_real_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return (double)v / 65536.0;
+#else
+    return (double)v;
+#endif
+}
+
+pft_real_t pft_test_from_double(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    double s = floor(v * 65536.0 + 0.5);
+    if (s > 2147483647.0) {
+        s = 2147483647.0;
+    }
+    if (s < -2147483647.0) {
+        s = -2147483647.0;
+    }
+    return (pft_real_t)s;
+#else
+    return (pft_real_t)v;
+#endif
+}
+
+double pft_test_lsb(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    (void)v;
+    return 1.0 / 65536.0;
+#else
+    float f = (float)fabs(v);
+    return (double)(nextafterf(f, INFINITY) - f);
+#endif
+}
+
+void pft_test_guard_fill(uint8_t *buf, size_t len)
+{
+    memset(buf, (int)PFT_TEST_GUARD, len);
+}
+
+int pft_test_guard_intact(const uint8_t *buf, size_t len, size_t lo, size_t hi)
+{
+    for (size_t i = 0; i < len; ++i) {
+        if ((i < lo || i >= hi) && buf[i] != PFT_TEST_GUARD) {
+            return 0;
+        }
+    }
+    return 1;
+}

@@ -1,0 +1,17 @@
+/* Helpers shared by the unit tests (host, qemu-user and bare metal alike). */
+#ifndef PFT_TEST_SUPPORT_H
+#define PFT_TEST_SUPPORT_H
+#include "unity.h"
+#include "pft/pft.h"
+
+/* Real <-> double for assertions (tests may use double; the library never does). */
+double pft_test_to_double(pft_real_t v);
+pft_real_t pft_test_from_double(double v);
+/* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
+double pft_test_lsb(double v);
+
+/* Guard words around a workspace: fill, then check nothing outside [lo, hi) changed. */
+#define PFT_TEST_GUARD 0xA5u
+void pft_test_guard_fill(uint8_t *buf, size_t len);
+int pft_test_guard_intact(const uint8_t *buf, size_t len, size_t lo, size_t hi);
+#endif
