@@ -1,0 +1,325 @@
+/**
+ * @file pft_tbd.h
+ * @brief Track-before-detect of dim infrared point targets: RBPF-TBD (Li & Ji 2009) and the
+ *        bootstrap PF-TBD baseline (Ristic ch. 11), as a single-target filter and as the
+ *        multi-target two-layer manager (one search layer plus one track layer per target).
+ *
+ * The implementable reading of the algorithms, with its corrections, is ALGORITHMS.md
+ * sections 1, 2 and 6; this header states the choices a user sees.
+ *
+ * Coordinates. Pixel (i, j) is 1-based, i indexes x (columns) and j indexes y (rows); its
+ * centre is at (i*dx, j*dy). Frame column c (0-based) and row r (0-based) is pixel
+ * (c + 1, r + 1), so a target centred on frame pixel (c, r) has x = (c + 1)*dx,
+ * y = (r + 1)*dy. Velocities are in position units per frame period T.
+ *
+ * Measurement model (per frame, per filter): z(i,j) = h(i,j; x) + noise, with
+ *   h(i,j; x) = dx*dy*I/(2*pi*S^2) * exp(-((i*dx - x)^2 + (j*dy - y)^2)/(2*S^2))   (S = psf_sigma)
+ * and the per-pixel log likelihood ratio lambda = h*(2z - h)/(2*noise_sigma^2), summed over
+ * the (2p+1)^2 window around (round(x/dx), round(y/dy)) clipped to the image.
+ *
+ * Pixels: U8 and U16 frames are converted as z = pixel_gain*raw + pixel_offset (U16: only the
+ * low bit_depth bits are significant; higher bits are ignored). F32 frames are taken as
+ * intensities as they are (no gain/offset); in the q16 build F32 is converted with
+ * pft_from_f32 (meant for host or FPU targets). Q16 saturates pixel values at +-32768.
+ *
+ * Bad input (NULL, wrong size, unsupported format, NaN/Inf in an F32 frame) is refused with
+ * a status code before any state is touched: a refused update leaves the instance and its
+ * workspace byte-for-byte unchanged.
+ *
+ * Determinism: each filter owns a pft_rng_t seeded from cfg.seed (+ layer index in the
+ * manager). Random decisions are made on integers (probabilities are quantised to 1/65536 in
+ * both builds), so float and q16 builds consume the same integer stream.
+ *
+ * Memory: everything lives in a caller workspace; see the *_WORKSPACE_BYTES macros, which
+ * equal the *_workspace_size functions exactly.
+ */
+#ifndef PFT_TBD_H
+#define PFT_TBD_H
+
+#include "pft/pft_real.h"
+#include "pft/pft_rng.h"
+#include "pft/pft_workspace.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest window half-size p accepted (window (2p+1)^2 pixels). */
+#define PFT_TBD_MAX_WINDOW 4u
+/** Largest disappearance window length r (the window holds r + 1 frames). */
+#define PFT_TBD_MAX_DIS_R 15u
+/** Largest number of previous windows compared against in the disappearance test. */
+#define PFT_TBD_MAX_DIS_PREV 15u
+
+/** Filter algorithm. */
+typedef enum {
+    PFT_TBD_RBPF = 0, /**< Rao-Blackwellized: particles on (x, y, I), a Kalman filter on velocity */
+    PFT_TBD_PF = 1    /**< bootstrap PF-TBD baseline: the full 5-D state is sampled */
+} pft_tbd_kind_t;
+
+/** Kalman time-update variant of the RBPF (ALGORITHMS.md 2.3 step 3). */
+typedef enum {
+    PFT_TBD_KF_EXACT = 0, /**< decorrelated, calibrated (default) */
+    PFT_TBD_KF_PAPER = 1  /**< as printed: ignores the position/velocity noise correlation */
+} pft_tbd_kf_variant_t;
+
+/**
+ * Every parameter of the TBD filters. pft_tbd_config_default() fills the paper's values
+ * ([P] in ALGORITHMS.md 2.8) and the documented defaults of the assumptions ([A]).
+ */
+typedef struct {
+    /* image and sensor */
+    uint16_t width;          /**< image columns (default 20) */
+    uint16_t height;         /**< image rows (default 20) */
+    pft_real_t dx;           /**< pixel size along x (default 1) */
+    pft_real_t dy;           /**< pixel size along y (default 1) */
+    pft_real_t psf_sigma;    /**< PSF spread Sigma, position units (default 0.7) */
+    pft_real_t noise_sigma;  /**< pixel noise standard deviation sigma (default 3.2, i.e. 6.15 dB) */
+    pft_real_t pixel_gain;   /**< U8/U16 conversion z = gain*raw + offset (default 1) */
+    pft_real_t pixel_offset; /**< (default 0) */
+    uint8_t window;          /**< likelihood window half-size p, 0..PFT_TBD_MAX_WINDOW (default 1: 3x3) */
+    /* dynamics */
+    pft_real_t T;            /**< frame period (default 1) */
+    pft_real_t q1;           /**< position/velocity process noise intensity (default 0.005) */
+    pft_real_t q2;           /**< intensity process noise (default 0.01) */
+    /* existence */
+    pft_real_t pb;           /**< birth probability Pb (default 0.05) */
+    pft_real_t pd;           /**< death probability Pd (default 0.05) */
+    pft_real_t eta;          /**< initial existence probability P(E_1 = 1) (default 0.05) */
+    /* births */
+    pft_real_t gamma;        /**< birth candidate threshold on z (default 2) */
+    pft_real_t i_min;        /**< birth intensity ~ U[i_min, i_max] (default 10) */
+    pft_real_t i_max;        /**< (default 30) */
+    pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A] */
+    pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A] */
+    bool birth_correction;   /**< add log(|B_k|/A_allow) to born particles' log-weights [A] (default false: the paper's eq. 20) */
+    /* decisions */
+    pft_real_t theta1;       /**< appearance threshold on the existence probability (default 0.6) */
+    uint8_t dis_r;           /**< disappearance window: r + 1 frames (default r = 2), 0..PFT_TBD_MAX_DIS_R */
+    uint8_t dis_prev;        /**< previous windows compared against (default 5), 1..PFT_TBD_MAX_DIS_PREV */
+    pft_real_t dis_ratio;    /**< gone when L(W_k) < dis_ratio * L_max (default 0.8, i.e. theta2 = L_max/5); in (0, 1] */
+    bool force_constraint;   /**< force E = 0 for search particles whose window centre enters a constraint region [A] (default true) */
+    /* sizes */
+    uint32_t n_search;       /**< search-layer particles Ns (default 6000) */
+    uint32_t n_track;        /**< particles per track layer Nt (default 500) */
+    uint16_t max_targets;    /**< track layers available (default 4) */
+    pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline */
+    pft_tbd_kf_variant_t kf_variant; /**< RBPF Kalman variant (default exact) */
+    uint64_t seed;           /**< RNG seed; layer l of the manager uses seed + l (default 1) */
+} pft_tbd_config_t;
+
+/** Fills cfg with the defaults listed in pft_tbd_config_t. */
+void pft_tbd_config_default(pft_tbd_config_t *cfg);
+/** PFT_OK if cfg is usable (sizes, ranges, positivity), PFT_ERR_INVAL otherwise. */
+pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg);
+
+/** A pixel box, 1-based inclusive pixel indices (i: x/columns, j: y/rows). Parts outside
+ *  the image are ignored. */
+typedef struct {
+    int32_t i_lo, i_hi, j_lo, j_hi;
+} pft_tbd_region_t;
+
+/** The (2p+1)^2 window C(x) around position (x, y) (not clipped to the image): the
+ *  constraint region D of a target estimated at (x, y). */
+pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
+
+/** Estimates of one filter at the last frame, from the normalised weights before resampling. */
+typedef struct {
+    pft_real_t p_exist;     /**< existence probability sum_s w_s E_s */
+    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles */
+    pft_real_t vx, vy;      /**< weighted mean velocity (RBPF: of the Kalman means) */
+    pft_real_t intensity;   /**< weighted mean intensity */
+    pft_real_t pos_cov[3];  /**< weighted spread of the E = 1 positions: xx, xy, yy */
+    pft_real_t log_mean_lr; /**< log of the mean unnormalised weight (frame likelihood ratio) */
+    pft_real_t n_eff;       /**< effective sample size of the weights */
+    bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
+} pft_tbd_estimate_t;
+
+/** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
+typedef struct {
+    pft_real_t *x, *y, *in; /**< position and intensity */
+    pft_real_t *mx, *my;    /**< RBPF: Kalman velocity means; PF: sampled velocities */
+    pft_real_t *px, *py;    /**< RBPF: Kalman velocity variances (P stays diagonal) */
+    uint8_t *e;             /**< existence E */
+} pft_tbd_particles_t;
+
+/**
+ * One TBD filter (a single target with existence). Fields are private; read results with
+ * pft_tbd_filter_estimate(). Used directly for a single target (the paper's Exp. 1) and as
+ * the search and track layers of pft_tbd_t.
+ */
+typedef struct {
+    pft_tbd_config_t cfg;
+    pft_tbd_kind_t kind;
+    uint32_t n;              /**< particles */
+    bool births;             /**< births from E = 0 allowed (false in track layers) */
+    bool constrain;          /**< force E = 0 inside the exclusion mask (search layer) */
+    pft_tbd_particles_t cur, nxt;
+    pft_real_t *lw;
+    pft_weight_t *w;
+    uint32_t *idx;
+    pft_real_t *img;         /**< standalone only: converted frame */
+    uint8_t *mask;           /**< standalone only: exclusion mask */
+    uint32_t *cand;          /**< standalone only: birth candidate pixels */
+    /* derived constants */
+    pft_real_t c0;           /**< dx*dy/(2 pi S^2) */
+    pft_real_t inv_2s2;      /**< 1/(2 S^2) */
+    pft_real_t inv_s2n;      /**< 1/sigma^2 */
+    pft_real_t inv_dx, inv_dy;
+    pft_real_t log_n;        /**< log N */
+    pft_real_t log_ratio;    /**< log dis_ratio */
+    pft_real_t kf_qpos;      /**< q1 T^3 / 3 */
+    pft_real_t kf_qvel;      /**< q1 T (paper) or q1 T / 4 (exact) */
+    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /**< PF: chol(V) per axis, sqrt(q2 T) */
+    pft_real_t vel_sd[2];    /**< PF: sqrt(P0) */
+    uint32_t thr_b, thr_d, thr_eta; /**< probabilities as u32 thresholds (1/65536 steps) */
+    pft_rng_t rng;
+    uint32_t frames;         /**< accepted updates */
+    pft_tbd_estimate_t est;
+    /* disappearance statistic */
+    pft_real_t lr_hist[PFT_TBD_MAX_DIS_R + 1u];   /**< last log mean LRs (ring) */
+    pft_real_t win_hist[PFT_TBD_MAX_DIS_PREV];    /**< previous window statistics (ring) */
+    uint32_t n_lr, n_win;
+    bool gone;               /**< disappearance declared at the last update */
+} pft_tbd_filter_t;
+
+/* ---- workspace sizes (constant expressions; equal to the functions below) ---- */
+/** @cond internal */
+#define PFT_TBD_NSTATE_(kind) ((kind) == PFT_TBD_RBPF ? 7u : 5u)
+#define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
+    (2u * PFT_TBD_NSTATE_(kind) * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) +              \
+     2u * PFT_WS_ROUND((size_t)(n)) + PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) +          \
+     PFT_WS_ROUND((size_t)(n) * sizeof(pft_weight_t)) + PFT_WS_ROUND((size_t)(n) * sizeof(uint32_t)))
+#define PFT_TBD_IMAGE_BYTES_(w, h)                                                              \
+    (PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)) +                              \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h)) +                                                   \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
+/** @endcond */
+
+/** Workspace bytes of a standalone filter with n particles on a w x h image. */
+#define PFT_TBD_FILTER_WORKSPACE_BYTES(n, kind, w, h)                                           \
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_PARTICLE_BYTES_(n, kind))
+
+/** Workspace bytes a standalone filter with n particles needs for cfg (image size from cfg). */
+size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg, uint32_t n_particles,
+                                     pft_tbd_kind_t kind);
+
+/**
+ * Initialises a standalone filter with births (cfg.kind is ignored; `kind` is used).
+ * All particles start with E = 0; the first update draws births with probability eta.
+ * @return PFT_ERR_INVAL for a bad config or n_particles outside 1..PFT_CFG_MAX_PARTICLES,
+ *         PFT_ERR_NOMEM when work_len is short (nothing written outside the instance).
+ */
+pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg,
+                                 uint32_t n_particles, pft_tbd_kind_t kind, void *work,
+                                 size_t work_len);
+
+/** One frame: existence prediction, propagation and births, weighting, estimates,
+ *  systematic resampling. Same as pft_tbd_filter_update_ex with no exclusion regions. */
+pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame);
+
+/**
+ * One frame with exclusion regions: births are not drawn inside any region (the importance
+ * correction counts only allowed pixels) and, when cfg.force_constraint is set, particles
+ * whose window centre falls inside a region get E = 0. regions may be NULL when n_regions
+ * is 0. Refused input (PFT_ERR_INVAL / PFT_ERR_FORMAT) leaves the filter untouched.
+ */
+pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *frame,
+                                      const pft_tbd_region_t *regions, size_t n_regions);
+
+/** Estimates of the last update (all zero and valid == false before the first). */
+pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out);
+
+/* --------------------------------- multi-target manager ------------------------------------ */
+
+/** A confirmed track. */
+typedef struct {
+    uint32_t id;            /**< 1, 2, ...: stable for the track's life, never reused */
+    pft_real_t x, y;        /**< position estimate at the last frame */
+    pft_real_t vx, vy;      /**< velocity estimate */
+    pft_real_t intensity;   /**< intensity estimate */
+    pft_real_t pos_cov[3];  /**< position spread xx, xy, yy */
+    pft_real_t p_exist;     /**< track layer existence probability */
+    pft_real_t log_mean_lr; /**< track layer frame log likelihood ratio */
+    uint32_t first_frame;   /**< frame number at which it was confirmed */
+    uint32_t age;           /**< frames since confirmation (0 at the confirmation frame) */
+} pft_tbd_track_t;
+
+typedef enum {
+    PFT_TBD_EV_CONFIRMED = 1, /**< the search layer's P > theta1: a new track */
+    PFT_TBD_EV_ENDED = 2      /**< disappearance declared: the track was removed */
+} pft_tbd_event_kind_t;
+
+/** Something that happened during the last update. */
+typedef struct {
+    pft_tbd_event_kind_t kind;
+    uint32_t id;            /**< track id */
+    uint32_t frame;         /**< frame number of the update */
+    pft_real_t x, y;        /**< position at the event (ENDED: the last estimate) */
+} pft_tbd_event_t;
+
+/**
+ * The multi-target manager (ALGORITHMS.md 2.7): one search layer (cfg.n_search particles,
+ * births outside the constraint regions) and up to cfg.max_targets track layers
+ * (cfg.n_track particles each, no births). Fields are private.
+ */
+typedef struct {
+    pft_tbd_config_t cfg;
+    pft_tbd_filter_t search;
+    pft_tbd_filter_t *tracks;    /**< max_targets slots (workspace) */
+    pft_tbd_track_t *records;    /**< max_targets slots (workspace); id 0 marks a free slot */
+    pft_tbd_event_t *events;     /**< max_targets + 1 (workspace) */
+    uint32_t n_events;
+    pft_real_t *img;
+    uint8_t *mask;
+    uint32_t *cand;
+    uint32_t frame;              /**< frames accepted so far (the last frame number) */
+    uint32_t next_id;
+    uint16_t n_tracks;           /**< active tracks */
+} pft_tbd_t;
+
+/** @cond internal */
+#define PFT_TBD_EVENT_BYTES_(maxt) PFT_WS_ROUND((size_t)((maxt) + 1u) * sizeof(pft_tbd_event_t))
+/** @endcond */
+
+/** Workspace bytes of the manager (kind: cfg.kind; w x h: cfg.width x cfg.height). */
+#define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) +                                 \
+     PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                                                  \
+     (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
+     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
+     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
+     PFT_TBD_EVENT_BYTES_(max_targets))
+
+/** Workspace bytes pft_tbd_init needs for cfg. */
+size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
+
+/** Initialises the manager: no tracks, the search layer all E = 0.
+ *  PFT_ERR_INVAL for a bad config, PFT_ERR_NOMEM for a short workspace. */
+pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
+
+/**
+ * One frame (ALGORITHMS.md 2.7): update every track layer and test disappearance, rebuild
+ * the constraint regions from the remaining tracks' previous estimates, update the search
+ * layer, and confirm a new track when its existence probability exceeds theta1 (if a track
+ * slot is free; otherwise the search layer keeps running without confirming).
+ * Refused input leaves everything untouched.
+ */
+pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
+
+/** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist. */
+size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
+
+/** Copies up to max events of the last update into out; returns how many happened. */
+size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
+
+/** The search layer's estimate at the last frame (p_exist is the appearance statistic). */
+pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out);
+
+/** Frame number of the last accepted update (1-based; 0 before the first). */
+static inline uint32_t pft_tbd_frame(const pft_tbd_t *t) { return t->frame; }
+
+#ifdef __cplusplus
+}
+#endif
+#endif
