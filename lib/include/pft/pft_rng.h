@@ -21,18 +21,21 @@ typedef struct {
     uint8_t has_spare;
 } pft_rng_t;
 
-/** Seeds the generator (any seed, 0 included). */
+/** Seeds the generator (any seed, 0 included): two splitmix64 outputs a, b give the state
+ *  s = {lo32(a), hi32(a), lo32(b), hi32(b)}; clears the cached Gaussian. */
 void pft_rng_seed(pft_rng_t *rng, uint64_t seed);
 /** Next 32-bit draw. */
 uint32_t pft_rng_u32(pft_rng_t *rng);
-/** Uniform integer in [0, n), n >= 1, without modulo bias. */
+/** Uniform integer in [0, n), n >= 1, without modulo bias (Lemire's multiply-shift with
+ *  rejection; at most 64 rejection rounds, each taken with probability < 1/2). n == 0 gives 0. */
 uint32_t pft_rng_below(pft_rng_t *rng, uint32_t n);
-/** Uniform real in [0, 1). */
+/** Uniform real in [0, 1): pft_from_u32_frac of one draw (q16: 2^-16 steps, float: 2^-24). */
 pft_real_t pft_rng_uniform(pft_rng_t *rng);
-/** Uniform real in [lo, hi). */
+/** Uniform real in [lo, hi) (one draw); returns lo when hi <= lo. */
 pft_real_t pft_rng_uniform_range(pft_rng_t *rng, pft_real_t lo, pft_real_t hi);
-/** Standard normal draw. Tails are truncated where the uniform's resolution ends
- *  (q16: |g| <= 4.71; float: |g| <= 5.64), documented in docs/fixed_point.md. */
+/** Standard normal draw (Box-Muller: radius from u1 = 1 - frac(a) in (0, 1], angle from b).
+ *  Tails are truncated where the uniform's resolution ends (q16: |g| <= sqrt(-2 ln 2^-16)
+ *  = 4.71; float: |g| <= sqrt(-2 ln 2^-24) = 5.77), documented in docs/fixed_point.md. */
 pft_real_t pft_rng_gauss(pft_rng_t *rng);
 
 #ifdef __cplusplus
