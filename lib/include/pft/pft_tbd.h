@@ -20,7 +20,8 @@
  * Pixels: U8 and U16 frames are converted as z = pixel_gain*raw + pixel_offset (U16: only the
  * low bit_depth bits are significant; higher bits are ignored). F32 frames are taken as
  * intensities as they are (no gain/offset); in the q16 build F32 is converted with
- * pft_from_f32 (meant for host or FPU targets). Q16 saturates pixel values at +-32768.
+ * pft_from_f32 (meant for host or FPU targets). Converted pixel values are clamped to
+ * [-32767, 32767] in both builds (the q16 range).
  *
  * Bad input (NULL, wrong size, unsupported format, NaN/Inf in an F32 frame) is refused with
  * a status code before any state is touched: a refused update leaves the instance and its
@@ -135,6 +136,37 @@ typedef struct {
     bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
 } pft_tbd_estimate_t;
 
+/**
+ * Derived constants of the measurement model for one configuration (pft_tbd_model_init).
+ * Public so the model can be evaluated and tested on its own; fields are read-only.
+ */
+typedef struct {
+    uint16_t width, height;
+    uint8_t p;               /**< window half-size */
+    pft_real_t dx, dy;
+    pft_real_t inv_dx, inv_dy;
+    pft_real_t c0;           /**< dx*dy/(2 pi S^2): h = I*c0*gx*gy */
+    pft_real_t inv_2s2;      /**< 1/(2 S^2) */
+    pft_real_t inv_s2n;      /**< 1/sigma^2 */
+} pft_tbd_model_t;
+
+/** Fills m from cfg (cfg must pass pft_tbd_config_check). */
+void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg);
+
+/** PSF contribution h(i, j; x, y, I) of a target at (x, y) with intensity I to pixel
+ *  (i, j) (1-based). */
+pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_real_t x,
+                           pft_real_t y, pft_real_t intensity);
+
+/**
+ * Log likelihood ratio of a target (x, y, I) against noise only: sum over the window C(x),
+ * clipped to the image, of h*(2z - h)/(2 sigma^2). img is the converted frame, row-major,
+ * width*height intensities (img[(j-1)*width + (i-1)] is pixel (i, j)). The Gaussian is
+ * evaluated separably: 2(2p+1) exponentials per call. Q16: pixel sums saturate at +-32768.
+ */
+pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
+                             pft_real_t y, pft_real_t intensity);
+
 /** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
 typedef struct {
     pft_real_t *x, *y, *in; /**< position and intensity */
@@ -162,17 +194,15 @@ typedef struct {
     uint8_t *mask;           /**< standalone only: exclusion mask */
     uint32_t *cand;          /**< standalone only: birth candidate pixels */
     /* derived constants */
-    pft_real_t c0;           /**< dx*dy/(2 pi S^2) */
-    pft_real_t inv_2s2;      /**< 1/(2 S^2) */
-    pft_real_t inv_s2n;      /**< 1/sigma^2 */
-    pft_real_t inv_dx, inv_dy;
+    pft_tbd_model_t model;
     pft_real_t log_n;        /**< log N */
     pft_real_t log_ratio;    /**< log dis_ratio */
     pft_real_t kf_qpos;      /**< q1 T^3 / 3 */
     pft_real_t kf_qvel;      /**< q1 T (paper) or q1 T / 4 (exact) */
     pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /**< PF: chol(V) per axis, sqrt(q2 T) */
     pft_real_t vel_sd[2];    /**< PF: sqrt(P0) */
-    uint32_t thr_b, thr_d, thr_eta; /**< probabilities as u32 thresholds (1/65536 steps) */
+    pft_real_t birth_lw;     /**< birth log-weight correction of the current frame */
+    uint32_t p16_b, p16_d, p16_eta; /**< probabilities in 1/65536 steps (0..65536) */
     pft_rng_t rng;
     uint32_t frames;         /**< accepted updates */
     pft_tbd_estimate_t est;

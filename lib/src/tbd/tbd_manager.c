@@ -1,0 +1,262 @@
+/* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (ALGORITHMS.md 2.6-2.7). */
+#include <string.h>
+
+#include "tbd_internal_.h"
+
+size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return 0u;
+    }
+    return PFT_TBD_WORKSPACE_BYTES(cfg->n_search, cfg->n_track, cfg->max_targets, cfg->kind,
+                                   cfg->width, cfg->height);
+}
+
+/* Carves every buffer of the manager from ws. With commit == false nothing is written
+ * anywhere (a dry run that only checks the size). */
+static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, bool commit)
+{
+    size_t npix = (size_t)cfg->width * cfg->height;
+    pft_real_t *img = (pft_real_t *)pft_ws_take(ws, npix * sizeof(pft_real_t));
+    uint8_t *mask = (uint8_t *)pft_ws_take(ws, npix);
+    uint32_t *cand = (uint32_t *)pft_ws_take(ws, npix * sizeof(uint32_t));
+    pft_tbd_filter_t *tracks =
+        (pft_tbd_filter_t *)pft_ws_take(ws, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
+    pft_tbd_track_t *records =
+        (pft_tbd_track_t *)pft_ws_take(ws, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
+    pft_tbd_event_t *events = (pft_tbd_event_t *)pft_ws_take(
+        ws, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
+    pft_tbd_filter_t scratch;
+    pft_tbd_filter_t *sf = commit ? &t->search : &scratch;
+    sf->n = cfg->n_search;
+    sf->kind = cfg->kind;
+    pft_tbd_particles_carve_(sf, ws);
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        pft_tbd_filter_t *tf = commit ? &tracks[k] : &scratch;
+        tf->n = cfg->n_track;
+        tf->kind = cfg->kind;
+        pft_tbd_particles_carve_(tf, ws);
+    }
+    if (commit) {
+        t->img = img;
+        t->mask = mask;
+        t->cand = cand;
+        t->tracks = tracks;
+        t->records = records;
+        t->events = events;
+    }
+}
+
+pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
+{
+    if (t == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_config_check(cfg) != PFT_OK) {
+        return PFT_ERR_INVAL;
+    }
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    carve_all_(t, cfg, &ws, false);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(t, 0, sizeof(*t));
+    t->cfg = *cfg;
+    /* setup_ clears a filter's buffer pointers: set up first, carve after. */
+    pft_tbd_filter_setup_(&t->search, cfg, cfg->n_search, cfg->kind, true,
+                          cfg->force_constraint, cfg->seed);
+    pft_ws_t ws2;
+    pft_ws_init(&ws2, work, work_len);
+    size_t npix = (size_t)cfg->width * cfg->height;
+    (void)pft_ws_take(&ws2, npix * sizeof(pft_real_t));
+    (void)pft_ws_take(&ws2, npix);
+    (void)pft_ws_take(&ws2, npix * sizeof(uint32_t));
+    pft_tbd_filter_t *tracks =
+        (pft_tbd_filter_t *)pft_ws_take(&ws2, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        pft_tbd_filter_setup_(&tracks[k], cfg, cfg->n_track, cfg->kind, false, false,
+                              cfg->seed + 1u + k);
+    }
+    pft_ws_init(&ws2, work, work_len);
+    carve_all_(t, cfg, &ws2, true);
+    memset(t->img, 0, npix * sizeof(pft_real_t));
+    memset(t->mask, 0, npix);
+    memset(t->cand, 0, npix * sizeof(uint32_t));
+    memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
+    memset(t->events, 0, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
+    pft_tbd_filter_clear_(&t->search);
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        pft_tbd_filter_clear_(&t->tracks[k]);
+    }
+    t->next_id = 1u;
+    return PFT_OK;
+}
+
+static uint32_t count_alive_(const pft_tbd_filter_t *f)
+{
+    uint32_t a = 0;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        a += f->cur.e[s] != 0u ? 1u : 0u;
+    }
+    return a;
+}
+
+static void record_from_est_(pft_tbd_track_t *r, const pft_tbd_estimate_t *e)
+{
+    r->x = e->x;
+    r->y = e->y;
+    r->vx = e->vx;
+    r->vy = e->vy;
+    r->intensity = e->intensity;
+    r->pos_cov[0] = e->pos_cov[0];
+    r->pos_cov[1] = e->pos_cov[1];
+    r->pos_cov[2] = e->pos_cov[2];
+    r->p_exist = e->p_exist;
+    r->log_mean_lr = e->log_mean_lr;
+}
+
+static void push_event_(pft_tbd_t *t, pft_tbd_event_kind_t kind, uint32_t id, pft_real_t x,
+                        pft_real_t y)
+{
+    if (t->n_events > t->cfg.max_targets) {
+        return; /* cannot happen: at most max_targets endings and one confirmation */
+    }
+    pft_tbd_event_t *ev = &t->events[t->n_events++];
+    ev->kind = kind;
+    ev->id = id;
+    ev->frame = t->frame;
+    ev->x = x;
+    ev->y = y;
+}
+
+pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
+{
+    if (t == NULL || frame == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->img == NULL) {
+        return PFT_ERR_STATE;
+    }
+    const pft_tbd_config_t *cfg = &t->cfg;
+    pft_status_t st = pft_tbd_frame_check_(cfg, frame);
+    if (st != PFT_OK) {
+        return st;
+    }
+    pft_tbd_frame_convert_(cfg, frame, t->img);
+    if (t->frame < UINT32_MAX) {
+        ++t->frame;
+    }
+    t->n_events = 0u;
+    size_t npix = (size_t)cfg->width * cfg->height;
+    memset(t->mask, 0, npix);
+
+    /* 1. track layers (no births), disappearance test; 2. constraint regions from the
+     *    surviving tracks' estimates at k - 1. */
+    pft_tbd_scene_t_ tsc;
+    tsc.img = t->img;
+    tsc.mask = NULL;
+    tsc.cand = t->cand;
+    tsc.n_cand = 0u;
+    tsc.n_allowed = 0u;
+    tsc.cand_is_b = false;
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        pft_tbd_track_t *rec = &t->records[k];
+        if (rec->id == 0u) {
+            continue;
+        }
+        pft_tbd_filter_t *tf = &t->tracks[k];
+        pft_tbd_region_t d = pft_tbd_window_region(cfg, rec->x, rec->y);
+        pft_tbd_filter_step_(tf, &tsc);
+        if (tf->gone || count_alive_(tf) == 0u) {
+            push_event_(t, PFT_TBD_EV_ENDED, rec->id, tf->est.x, tf->est.y);
+            memset(rec, 0, sizeof(*rec));
+            --t->n_tracks;
+            continue;
+        }
+        record_from_est_(rec, &tf->est);
+        if (rec->age < UINT32_MAX) {
+            ++rec->age;
+        }
+        pft_tbd_mask_add_(cfg, t->mask, &d);
+    }
+
+    /* 3. search layer, births outside the regions */
+    pft_tbd_scene_t_ ssc;
+    pft_tbd_scene_build_(cfg, t->img, t->mask, t->cand, &ssc);
+    pft_tbd_filter_step_(&t->search, &ssc);
+
+    /* 4. appearance: hand over to a new track layer and reset the search layer */
+    if (t->search.est.p_exist > cfg->theta1 && t->n_tracks < cfg->max_targets) {
+        uint32_t k = 0;
+        while (k < cfg->max_targets && t->records[k].id != 0u) {
+            ++k;
+        }
+        pft_tbd_filter_t *tf = &t->tracks[k];
+        pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
+        pft_tbd_filter_reset_stats_(tf);
+        if (pft_tbd_filter_handover_(tf, &t->search)) {
+            pft_tbd_track_t *rec = &t->records[k];
+            memset(rec, 0, sizeof(*rec));
+            rec->id = t->next_id++;
+            record_from_est_(rec, &t->search.est);
+            rec->first_frame = t->frame;
+            rec->age = 0u;
+            tf->est = t->search.est;
+            tf->frames = 0u;
+            memset(t->search.cur.e, 0, t->search.n);
+            ++t->n_tracks;
+            push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+        }
+    }
+    return PFT_OK;
+}
+
+size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
+{
+    if (t == NULL || t->records == NULL) {
+        return 0u;
+    }
+    size_t n = 0;
+    uint32_t last = 0;
+    for (uint32_t pass = 0; pass < t->cfg.max_targets && n < max && out != NULL; ++pass) {
+        /* next smallest id above `last` */
+        uint32_t best = UINT32_MAX;
+        uint32_t bk = 0;
+        bool found = false;
+        for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
+            uint32_t id = t->records[k].id;
+            if (id != 0u && id > last && id <= best) {
+                best = id;
+                bk = k;
+                found = true;
+            }
+        }
+        if (!found) {
+            break;
+        }
+        out[n++] = t->records[bk];
+        last = best;
+    }
+    return t->n_tracks;
+}
+
+size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max)
+{
+    if (t == NULL || t->events == NULL) {
+        return 0u;
+    }
+    for (size_t i = 0; i < t->n_events && i < max && out != NULL; ++i) {
+        out[i] = t->events[i];
+    }
+    return t->n_events;
+}
+
+pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out)
+{
+    if (t == NULL || out == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    *out = t->search.est;
+    return PFT_OK;
+}

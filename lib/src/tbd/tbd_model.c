@@ -1,0 +1,264 @@
+/* TBD configuration, measurement model (PSF, windowed LLR) and frame preparation. */
+#include <string.h>
+
+#include "tbd_internal_.h"
+
+void pft_tbd_config_default(pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->width = 20u;
+    cfg->height = 20u;
+    cfg->dx = PFT_C(1.0);
+    cfg->dy = PFT_C(1.0);
+    cfg->psf_sigma = PFT_C(0.7);
+    cfg->noise_sigma = PFT_C(3.2);
+    cfg->pixel_gain = PFT_C(1.0);
+    cfg->pixel_offset = PFT_C(0.0);
+    cfg->window = 1u;
+    cfg->T = PFT_C(1.0);
+    cfg->q1 = PFT_C(0.005);
+    cfg->q2 = PFT_C(0.01);
+    cfg->pb = PFT_C(0.05);
+    cfg->pd = PFT_C(0.05);
+    cfg->eta = PFT_C(0.05);
+    cfg->gamma = PFT_C(2.0);
+    cfg->i_min = PFT_C(10.0);
+    cfg->i_max = PFT_C(30.0);
+    cfg->vel_mean[0] = PFT_C(0.0);
+    cfg->vel_mean[1] = PFT_C(0.0);
+    cfg->vel_var[0] = PFT_C(0.333333333333);
+    cfg->vel_var[1] = PFT_C(0.333333333333);
+    cfg->birth_correction = false;
+    cfg->theta1 = PFT_C(0.6);
+    cfg->dis_r = 2u;
+    cfg->dis_prev = 5u;
+    cfg->dis_ratio = PFT_C(0.8);
+    cfg->force_constraint = true;
+    cfg->n_search = 6000u;
+    cfg->n_track = 500u;
+    cfg->max_targets = 4u;
+    cfg->kind = PFT_TBD_RBPF;
+    cfg->kf_variant = PFT_TBD_KF_EXACT;
+    cfg->seed = 1u;
+}
+
+static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
+
+pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
+{
+    if (c == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    bool ok = c->width >= 1u && c->height >= 1u && c->width <= PFT_CFG_MAX_IMAGE_SIDE &&
+              c->height <= PFT_CFG_MAX_IMAGE_SIDE;
+    ok = ok && c->dx > PFT_C(0.0) && c->dy > PFT_C(0.0);
+    ok = ok && c->psf_sigma > PFT_C(0.0) && c->noise_sigma > PFT_C(0.0);
+    ok = ok && c->window <= PFT_TBD_MAX_WINDOW;
+    ok = ok && c->T > PFT_C(0.0) && c->q1 >= PFT_C(0.0) && c->q2 >= PFT_C(0.0);
+    ok = ok && in01_(c->pb) && in01_(c->pd) && in01_(c->eta) && in01_(c->theta1);
+    ok = ok && c->i_min <= c->i_max;
+    ok = ok && c->vel_var[0] >= PFT_C(0.0) && c->vel_var[1] >= PFT_C(0.0);
+    ok = ok && c->dis_r <= PFT_TBD_MAX_DIS_R && c->dis_prev >= 1u &&
+         c->dis_prev <= PFT_TBD_MAX_DIS_PREV;
+    ok = ok && c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0);
+    ok = ok && c->n_search >= 1u && c->n_search <= PFT_CFG_MAX_PARTICLES;
+    ok = ok && c->n_track >= 1u && c->n_track <= PFT_CFG_MAX_PARTICLES;
+    ok = ok && c->max_targets >= 1u;
+    ok = ok && (c->kind == PFT_TBD_RBPF || c->kind == PFT_TBD_PF);
+    ok = ok && (c->kf_variant == PFT_TBD_KF_EXACT || c->kf_variant == PFT_TBD_KF_PAPER);
+#ifdef PFT_NUMERIC_Q16
+    /* Positions must stay well inside the Q16.16 range. */
+    ok = ok && (int64_t)c->width * c->dx < ((int64_t)16384 << 16) &&
+         (int64_t)c->height * c->dy < ((int64_t)16384 << 16);
+#endif
+    return ok ? PFT_OK : PFT_ERR_INVAL;
+}
+
+uint32_t pft_tbd_p16_(pft_real_t p)
+{
+    p = pft_clamp(p, PFT_C(0.0), PFT_C(1.0));
+#ifdef PFT_NUMERIC_Q16
+    return (uint32_t)p;
+#else
+    return (uint32_t)(p * 65536.0f + 0.5f);
+#endif
+}
+
+int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
+{
+    pft_real_t r = pft_clamp(pft_mul(v, inv_d), PFT_C(-30000.0), PFT_C(30000.0));
+    return pft_round_int(r);
+}
+
+pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+{
+    pft_tbd_region_t r = {0, -1, 0, -1};
+    if (cfg == NULL || cfg->dx <= PFT_C(0.0) || cfg->dy <= PFT_C(0.0)) {
+        return r;
+    }
+    int32_t i0 = pft_tbd_pix_(x, pft_recip(cfg->dx));
+    int32_t j0 = pft_tbd_pix_(y, pft_recip(cfg->dy));
+    int32_t p = (int32_t)cfg->window;
+    r.i_lo = i0 - p;
+    r.i_hi = i0 + p;
+    r.j_lo = j0 - p;
+    r.j_hi = j0 + p;
+    return r;
+}
+
+void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg)
+{
+    m->width = cfg->width;
+    m->height = cfg->height;
+    m->p = cfg->window;
+    m->dx = cfg->dx;
+    m->dy = cfg->dy;
+    m->inv_dx = pft_recip(cfg->dx);
+    m->inv_dy = pft_recip(cfg->dy);
+    pft_real_t s2 = pft_sq(cfg->psf_sigma);
+    m->c0 = pft_div(pft_mul(cfg->dx, cfg->dy), pft_mul(PFT_TWO_PI, s2));
+    m->inv_2s2 = pft_recip(pft_mul_i(s2, 2));
+    m->inv_s2n = pft_recip(pft_sq(cfg->noise_sigma));
+}
+
+pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_real_t x,
+                           pft_real_t y, pft_real_t intensity)
+{
+    pft_real_t ddx = pft_sub(pft_mul_i(m->dx, i), x);
+    pft_real_t ddy = pft_sub(pft_mul_i(m->dy, j), y);
+    pft_real_t gx = pft_exp(pft_neg(pft_mul(pft_sq(ddx), m->inv_2s2)));
+    pft_real_t gy = pft_exp(pft_neg(pft_mul(pft_sq(ddy), m->inv_2s2)));
+    return pft_mul(pft_mul(pft_mul(intensity, m->c0), gx), gy);
+}
+
+pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
+                             pft_real_t y, pft_real_t intensity)
+{
+    int32_t p = (int32_t)m->p;
+    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
+    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
+    int32_t ilo = i0 - p < 1 ? 1 : i0 - p;
+    int32_t ihi = i0 + p > (int32_t)m->width ? (int32_t)m->width : i0 + p;
+    int32_t jlo = j0 - p < 1 ? 1 : j0 - p;
+    int32_t jhi = j0 + p > (int32_t)m->height ? (int32_t)m->height : j0 + p;
+    if (ilo > ihi || jlo > jhi) {
+        return PFT_C(0.0);
+    }
+    /* Separable PSF: h(i,j) = (I c0 gx(i)) * gy(j). */
+    pft_real_t ax[2u * PFT_TBD_MAX_WINDOW + 1u];
+    pft_real_t gy[2u * PFT_TBD_MAX_WINDOW + 1u];
+    pft_real_t amp = pft_mul(intensity, m->c0);
+    for (int32_t i = ilo; i <= ihi; ++i) {
+        pft_real_t d = pft_sub(pft_mul_i(m->dx, i), x);
+        ax[i - ilo] = pft_mul(amp, pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2))));
+    }
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        pft_real_t d = pft_sub(pft_mul_i(m->dy, j), y);
+        gy[j - jlo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    }
+    /* sum h (z - h/2), then times 1/sigma^2 once. */
+    pft_real_t acc = PFT_C(0.0);
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        const pft_real_t *row = img + (size_t)(j - 1) * m->width;
+        pft_real_t g = gy[j - jlo];
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            pft_real_t h = pft_mul(ax[i - ilo], g);
+            pft_real_t z = row[i - 1];
+            acc = pft_add(acc, pft_mul(h, pft_sub(z, pft_mul(h, PFT_C(0.5)))));
+        }
+    }
+    return pft_mul(acc, m->inv_s2n);
+}
+
+/* ------------------------------------ frames ---------------------------------------------- */
+
+pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame)
+{
+    uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32);
+    pft_status_t st = pft_frame_check(frame, cfg->width, cfg->height, fmts);
+    if (st != PFT_OK) {
+        return st;
+    }
+    return pft_frame_check_finite(frame);
+}
+
+static pft_real_t clamp_pix_(pft_real_t v)
+{
+    return pft_clamp(v, PFT_C(-32767.0), PFT_C(32767.0));
+}
+
+void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
+                            pft_real_t *img)
+{
+    uint32_t w = cfg->width;
+    uint32_t h = cfg->height;
+    uint32_t bd = frame->bit_depth == 0u ? 16u : frame->bit_depth;
+    uint32_t mask16 = bd >= 16u ? 0xFFFFu : ((1u << bd) - 1u);
+    for (uint32_t r = 0; r < h; ++r) {
+        const uint8_t *row = pft_frame_row(frame, r);
+        pft_real_t *out = img + (size_t)r * w;
+        for (uint32_t c = 0; c < w; ++c) {
+            pft_real_t v;
+            if (frame->format == PFT_PIX_U8) {
+                v = pft_add(pft_mul_i(cfg->pixel_gain, (int32_t)row[c]), cfg->pixel_offset);
+            } else if (frame->format == PFT_PIX_U16) {
+                uint16_t raw;
+                memcpy(&raw, row + 2u * c, 2u);
+                v = pft_add(pft_mul_i(cfg->pixel_gain, (int32_t)((uint32_t)raw & mask16)),
+                            cfg->pixel_offset);
+            } else {
+                float f;
+                memcpy(&f, row + 4u * c, 4u);
+                v = pft_from_f32(f);
+            }
+            out[c] = clamp_pix_(v);
+        }
+    }
+}
+
+void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r)
+{
+    int32_t ilo = r->i_lo < 1 ? 1 : r->i_lo;
+    int32_t ihi = r->i_hi > (int32_t)cfg->width ? (int32_t)cfg->width : r->i_hi;
+    int32_t jlo = r->j_lo < 1 ? 1 : r->j_lo;
+    int32_t jhi = r->j_hi > (int32_t)cfg->height ? (int32_t)cfg->height : r->j_hi;
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            mask[(size_t)(j - 1) * cfg->width + (size_t)(i - 1)] = 1u;
+        }
+    }
+}
+
+void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, const pft_real_t *img,
+                          const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc)
+{
+    uint32_t npix = (uint32_t)cfg->width * cfg->height;
+    uint32_t nb = 0;
+    uint32_t na = 0;
+    for (uint32_t k = 0; k < npix; ++k) {
+        if (mask != NULL && mask[k] != 0u) {
+            continue;
+        }
+        ++na;
+        if (img[k] > cfg->gamma) {
+            cand[nb++] = k;
+        }
+    }
+    sc->img = img;
+    sc->mask = mask;
+    sc->cand = cand;
+    sc->n_allowed = na;
+    sc->cand_is_b = nb > 0u;
+    if (nb == 0u && na > 0u) {
+        /* No pixel above gamma: propose uniformly over the allowed pixels, correction 0. */
+        for (uint32_t k = 0; k < npix; ++k) {
+            if (mask == NULL || mask[k] == 0u) {
+                cand[nb++] = k;
+            }
+        }
+    }
+    sc->n_cand = nb;
+}

@@ -1,0 +1,281 @@
+/*
+ * TBD measurement model (ALGORITHMS.md 1): PSF contribution h and the windowed per-pixel log
+ * likelihood ratio against a double reference; frame conversion (U8/U16 gain, offset, bit
+ * depth; F32), window regions and configuration checks.
+ *
+ * Tolerances: float: 1e-5 relative (+1e-5 absolute). q16: h within 2e-4 + 1e-3 relative (exp is
+ * good to a few LSB, the products round each step); the 3x3 LLR sums 9 such terms times z of a
+ * few tens over sigma^2 ~ 10: within 3e-3 + 2e-3 relative.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_tbd.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 10
+#define H 8
+#define PI_D 3.14159265358979323846
+
+static double ref_h(double dx, double dy, double S, int i, int j, double x, double y, double I)
+{
+    double r2 = (i * dx - x) * (i * dx - x) + (j * dy - y) * (j * dy - y);
+    return dx * dy * I / (2.0 * PI_D * S * S) * exp(-r2 / (2.0 * S * S));
+}
+
+static double ref_llr(const double *img, int w, int h, int p, double dx, double dy, double S,
+                      double sn, double x, double y, double I)
+{
+    int i0 = (int)floor(x / dx + 0.5);
+    int j0 = (int)floor(y / dy + 0.5);
+    double acc = 0.0;
+    for (int j = j0 - p; j <= j0 + p; ++j) {
+        for (int i = i0 - p; i <= i0 + p; ++i) {
+            if (i < 1 || j < 1 || i > w || j > h) {
+                continue;
+            }
+            double hv = ref_h(dx, dy, S, i, j, x, y, I);
+            double z = img[(j - 1) * w + (i - 1)];
+            acc += hv * (2.0 * z - hv) / (2.0 * sn * sn);
+        }
+    }
+    return acc;
+}
+
+static double tol_h(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return 2e-4 + 1e-3 * fabs(v);
+#else
+    return 1e-5 + 1e-5 * fabs(v);
+#endif
+}
+static double tol_llr(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return 3e-3 + 2e-3 * fabs(v);
+#else
+    return 1e-4 + 1e-5 * fabs(v);
+#endif
+}
+
+static pft_real_t R(double v) { return pft_test_from_double(v); }
+static double D(pft_real_t v) { return pft_test_to_double(v); }
+
+static void base_cfg(pft_tbd_config_t *c)
+{
+    pft_tbd_config_default(c);
+    c->width = W;
+    c->height = H;
+}
+
+static void test_defaults_are_the_papers(void)
+{
+    pft_tbd_config_t c;
+    pft_tbd_config_default(&c);
+    TEST_ASSERT_EQUAL_UINT(20, c.width);
+    TEST_ASSERT_EQUAL_UINT(1, c.window);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.7, D(c.psf_sigma));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.005, D(c.q1));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.01, D(c.q2));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.05, D(c.pb));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.6, D(c.theta1));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-4, 0.8, D(c.dis_ratio));
+    TEST_ASSERT_EQUAL_UINT(6000, c.n_search);
+    TEST_ASSERT_EQUAL_UINT(500, c.n_track);
+    TEST_ASSERT_EQUAL_UINT(2, c.dis_r);
+    TEST_ASSERT_EQUAL_UINT(5, c.dis_prev);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_RBPF, c.kind);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_KF_EXACT, c.kf_variant);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c));
+}
+
+static void test_config_check_rejects(void)
+{
+    pft_tbd_config_t c;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(NULL));
+    base_cfg(&c); c.width = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.psf_sigma = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.noise_sigma = R(-1.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.window = PFT_TBD_MAX_WINDOW + 1u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.pb = R(1.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.i_min = R(40.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.dis_prev = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.dis_ratio = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.n_search = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.max_targets = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.kind = (pft_tbd_kind_t)7;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+}
+
+static void test_psf_h_matches_reference(void)
+{
+    static const double S[] = {0.7, 1.3};
+    static const double dxs[] = {1.0, 0.5};
+    for (int a = 0; a < 2; ++a) {
+        pft_tbd_config_t c;
+        base_cfg(&c);
+        c.psf_sigma = R(S[a]);
+        c.dx = R(dxs[a]);
+        c.dy = R(1.0);
+        pft_tbd_model_t m;
+        pft_tbd_model_init(&m, &c);
+        for (int k = 0; k < 40; ++k) {
+            double x = 2.0 + 0.137 * k, y = 3.0 + 0.071 * k, I = 10.0 + 0.5 * k;
+            int i = (int)floor(x / dxs[a] + 0.5) + (k % 3) - 1;
+            int j = (int)floor(y + 0.5) + (k % 2);
+            double ref = ref_h(dxs[a], 1.0, S[a], i, j, D(R(x)), D(R(y)), D(R(I)));
+            double got = D(pft_tbd_model_h(&m, i, j, R(x), R(y), R(I)));
+            TEST_ASSERT_DOUBLE_WITHIN(tol_h(ref), ref, got);
+        }
+    }
+    /* the peak amplitude of the paper's target: I = 20, Sigma = 0.7 gives A = 6.4961 */
+    pft_tbd_config_t c;
+    base_cfg(&c);
+    pft_tbd_model_t m;
+    pft_tbd_model_init(&m, &c);
+    TEST_ASSERT_DOUBLE_WITHIN(tol_h(6.4961), 6.4961,
+                              D(pft_tbd_model_h(&m, 3, 4, R(3.0), R(4.0), R(20.0))));
+}
+
+static void test_llr_matches_reference(void)
+{
+    static double dimg[W * H];
+    static pft_real_t img[W * H];
+    pft_rng_t rng;
+    pft_rng_seed(&rng, 99u);
+    for (int k = 0; k < W * H; ++k) {
+        double u = (double)pft_rng_u32(&rng) / 4294967296.0;
+        dimg[k] = 12.0 * u - 3.0; /* pixels in [-3, 9) */
+        img[k] = R(dimg[k]);
+        dimg[k] = D(img[k]);
+    }
+    for (int p = 0; p <= 2; ++p) {
+        pft_tbd_config_t c;
+        base_cfg(&c);
+        c.window = (uint8_t)p;
+        c.noise_sigma = R(2.586);
+        pft_tbd_model_t m;
+        pft_tbd_model_init(&m, &c);
+        for (int k = 0; k < 60; ++k) {
+            /* includes windows clipped at every border and fully outside */
+            double x = -0.8 + 0.197 * k, y = -0.4 + 0.163 * k, I = 8.0 + 0.4 * k;
+            double ref = ref_llr(dimg, W, H, p, 1.0, 1.0, 0.7, D(R(2.586)), D(R(x)), D(R(y)),
+                                 D(R(I)));
+            double got = D(pft_tbd_model_llr(&m, img, R(x), R(y), R(I)));
+            TEST_ASSERT_DOUBLE_WITHIN(tol_llr(ref), ref, got);
+        }
+    }
+    /* Sign: a target on a bright pixel has a positive LLR, on a dark one negative. */
+    pft_tbd_config_t c;
+    base_cfg(&c);
+    pft_tbd_model_t m;
+    pft_tbd_model_init(&m, &c);
+    for (int k = 0; k < W * H; ++k) {
+        img[k] = R(0.0);
+    }
+    img[3 * W + 4] = R(7.0); /* pixel (5, 4) */
+    TEST_ASSERT_TRUE(D(pft_tbd_model_llr(&m, img, R(5.0), R(4.0), R(20.0))) > 1.0);
+    TEST_ASSERT_TRUE(D(pft_tbd_model_llr(&m, img, R(2.0), R(7.0), R(20.0))) < -1.0);
+}
+
+static void test_window_region(void)
+{
+    pft_tbd_config_t c;
+    base_cfg(&c);
+    pft_tbd_region_t r = pft_tbd_window_region(&c, R(4.4), R(6.6));
+    TEST_ASSERT_EQUAL_INT(3, r.i_lo);
+    TEST_ASSERT_EQUAL_INT(5, r.i_hi);
+    TEST_ASSERT_EQUAL_INT(6, r.j_lo);
+    TEST_ASSERT_EQUAL_INT(8, r.j_hi);
+    c.window = 2;
+    r = pft_tbd_window_region(&c, R(1.0), R(1.0));
+    TEST_ASSERT_EQUAL_INT(-1, r.i_lo);
+    TEST_ASSERT_EQUAL_INT(3, r.i_hi);
+}
+
+/* Frame conversion, observed through a standalone filter's converted image. */
+static uint8_t g_ws[PFT_TBD_FILTER_WORKSPACE_BYTES(16, PFT_TBD_RBPF, W, H)];
+
+static void test_frame_conversion(void)
+{
+    pft_tbd_config_t c;
+    base_cfg(&c);
+    c.pixel_gain = R(0.5);
+    c.pixel_offset = R(-3.0);
+    pft_tbd_filter_t f;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, 16, PFT_TBD_RBPF, g_ws, sizeof g_ws));
+
+    static uint8_t u8[H][W + 3]; /* stride larger than the width */
+    static uint16_t u16[H][W];
+    for (int r = 0; r < H; ++r) {
+        for (int k = 0; k < W; ++k) {
+            u8[r][k] = (uint8_t)(r * 31 + k * 7);
+            u16[r][k] = (uint16_t)(0xC000u | (unsigned)(r * 1000 + k * 3)); /* junk above bit 14 */
+        }
+    }
+    pft_frame_t fr = {u8, W, H, W + 3, PFT_PIX_U8, 0, 0, 0};
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &fr));
+    for (int r = 0; r < H; ++r) {
+        for (int k = 0; k < W; ++k) {
+            double want = 0.5 * u8[r][k] - 3.0;
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6, want, D(f.img[r * W + k]));
+        }
+    }
+    pft_frame_t f16 = {u16, W, H, 2 * W, PFT_PIX_U16, 14, 0, 0};
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));
+    for (int r = 0; r < H; ++r) {
+        for (int k = 0; k < W; ++k) {
+            double want = 0.5 * (double)(u16[r][k] & 0x3FFFu) - 3.0;
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6, want, D(f.img[r * W + k]));
+        }
+    }
+    /* gain large enough to exceed the q16 range: clamped to 32767 in both builds (q16 saturates
+     * gain*raw before the offset is added, so the offset is 0 here) */
+    c.pixel_gain = R(4.0);
+    c.pixel_offset = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, 16, PFT_TBD_RBPF, g_ws, sizeof g_ws));
+    u16[0][0] = 0xFFFFu;
+    f16.bit_depth = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 32767.0, D(f.img[0]));
+
+    static float f32[H][W];
+    for (int r = 0; r < H; ++r) {
+        for (int k = 0; k < W; ++k) {
+            f32[r][k] = (float)(r - k) * 0.25f;
+        }
+    }
+    pft_frame_t ff = {f32, W, H, 4 * W, PFT_PIX_F32, 0, 0, 0};
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &ff));
+    for (int r = 0; r < H; ++r) {
+        for (int k = 0; k < W; ++k) {
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6, (double)f32[r][k], D(f.img[r * W + k]));
+        }
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_defaults_are_the_papers);
+    RUN_TEST(test_config_check_rejects);
+    RUN_TEST(test_psf_h_matches_reference);
+    RUN_TEST(test_llr_matches_reference);
+    RUN_TEST(test_window_region);
+    RUN_TEST(test_frame_conversion);
+    return UNITY_END();
+}
