@@ -4,6 +4,11 @@
  *
  * Covariances are stored full (row-major n*n) and every operation writes an exactly symmetric
  * result (the upper triangle is computed, the lower copied), so rounding never breaks symmetry.
+ * Dot products accumulate exactly (q16: Q32.32 in int64) and round once. The 2x2 innovation
+ * covariance S is checked for positive definiteness with an exact determinant in q16, and the
+ * gain is computed as P H' adj(S) / det(S) with a single rounding. Outputs are written last,
+ * so on an error nothing changes (and outputs may alias inputs). NULL arguments give
+ * PFT_ERR_INVAL (the predictions, which return nothing, then do nothing).
  */
 #ifndef PFT_KALMAN_H
 #define PFT_KALMAN_H
@@ -25,9 +30,12 @@ pft_status_t pft_kf2_update_scalar(pft_real_t x[2], pft_real_t P[4], const pft_r
 void pft_kf4_predict(pft_real_t x[4], pft_real_t P[16], const pft_real_t F[16], const pft_real_t Q[16]);
 /** Update of a 4-D state with a 2-D measurement z = H x + v, v ~ N(0, R), H 2x4. */
 pft_status_t pft_kf4_update2(pft_real_t x[4], pft_real_t P[16], const pft_real_t H[8], const pft_real_t z[2], const pft_real_t R[4]);
-/** Inverse of a symmetric 2x2 matrix; PFT_ERR_RANGE if singular or not positive definite. */
+/** Inverse of a symmetric 2x2 matrix (reads A[0], A[1], A[3]); PFT_ERR_RANGE if singular, not
+ *  positive definite, or (q16) with an inverse entry beyond the real range; Ainv then untouched. */
 pft_status_t pft_mat2_inv_sym(const pft_real_t A[4], pft_real_t Ainv[4]);
-/** Lower Cholesky factor of a symmetric positive definite 2x2 matrix. */
+/** Lower Cholesky factor L = [[l00, 0], [l10, l11]] (row-major) of a symmetric positive
+ *  definite 2x2 matrix (reads A[0], A[1], A[3]), L L' = A; PFT_ERR_RANGE (L untouched) if A is
+ *  not positive definite. */
 pft_status_t pft_mat2_chol(const pft_real_t A[4], pft_real_t L[4]);
 
 #ifdef __cplusplus
