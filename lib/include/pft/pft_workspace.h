@@ -30,9 +30,12 @@ typedef struct {
     bool short_; /**< set once any carve failed */
 } pft_ws_t;
 
-/** Starts carving from buf[0..len); the start is aligned up to PFT_WS_ALIGN. */
+/** Starts carving from buf[0..len); the start is aligned up to PFT_WS_ALIGN. A NULL buf, or
+ *  one shorter than its alignment padding, gives an empty workspace. */
 void pft_ws_init(pft_ws_t *ws, void *buf, size_t len);
-/** Next buffer of `bytes` (rounded up), or NULL (and ws->short_ set) when it does not fit. */
+/** Next buffer of `bytes` (rounded up to PFT_WS_ALIGN), or NULL (and ws->short_ set) when it
+ *  does not fit. A failure is sticky for pft_ws_status, later takes that fit still succeed.
+ *  A zero-byte take never fails; it returns NULL when the workspace has no buffer. */
 void *pft_ws_take(pft_ws_t *ws, size_t bytes);
 /** PFT_OK if every carve fitted, else PFT_ERR_NOMEM. */
 static inline pft_status_t pft_ws_status(const pft_ws_t *ws)
