@@ -72,18 +72,28 @@ static inline pft_real_t pft_mul(pft_real_t a, pft_real_t b)
 pft_real_t pft_div(pft_real_t a, pft_real_t b);
 /** real times integer, saturating. */
 static inline pft_real_t pft_mul_i(pft_real_t a, int32_t k) { return pft_sat64_((int64_t)a * k); }
-/** real divided by a positive integer, rounded to nearest. k <= 0 gives PFT_ERR-free saturation. */
+/** real divided by a positive integer, rounded to nearest (ties away from zero). k <= 0 is
+ *  outside the domain and behaves like a division by zero: +-PFT_REAL_MAX by the sign of a,
+ *  0 for a == 0 (same in both builds). */
 pft_real_t pft_div_i(pft_real_t a, int32_t k);
 static inline pft_real_t pft_from_int(int32_t i) { return pft_sat64_((int64_t)i * 65536); }
 /** floor(a) as an integer. */
 static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)(a >> 16); }
 /** round(a) to nearest integer, ties up. */
 static inline int32_t pft_round_int(pft_real_t a) { return (int32_t)(((int64_t)a + 32768) >> 16); }
-/** Ratio num/den of integers as a real, rounded (den > 0). */
+/** Ratio num/den of integers as a real, rounded to nearest (ties away from zero), saturating.
+ *  den == 0 behaves like pft_div by zero (+-PFT_REAL_MAX, 0/0 gives 0). */
 static inline pft_real_t pft_ratio(int32_t num, int32_t den)
 {
-    int64_t n = (int64_t)num * 65536;
-    int64_t q = (n >= 0 ? n + den / 2 : n - den / 2) / den;
+    int64_t n = (int64_t)num * 65536, d = den, q;
+    if (d == 0) {
+        return num > 0 ? PFT_REAL_MAX : (num < 0 ? PFT_REAL_MIN : 0);
+    }
+    if (d < 0) {
+        n = -n;
+        d = -d;
+    }
+    q = (n >= 0 ? n + d / 2 : n - d / 2) / d;
     return pft_sat64_(q);
 }
 /** Uniform u32 fraction u/2^32 in [0,1) as a real (top 16 bits, truncating). */
@@ -122,8 +132,14 @@ static inline pft_real_t pft_div_i(pft_real_t a, int32_t k)
 }
 static inline pft_real_t pft_from_int(int32_t i) { return (float)i; }
 static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)floorf(a); }
-static inline int32_t pft_round_int(pft_real_t a) { return (int32_t)floorf(a + 0.5f); }
-static inline pft_real_t pft_ratio(int32_t num, int32_t den) { return (float)num / (float)den; }
+/* floorf(a + 0.5f) would round 0.49999997f up (the sum rounds to 1.0f): compare the exact
+ * fractional part a - floorf(a) instead. */
+static inline int32_t pft_round_int(pft_real_t a)
+{
+    float f = floorf(a);
+    return (int32_t)f + (a - f >= 0.5f ? 1 : 0);
+}
+static inline pft_real_t pft_ratio(int32_t num, int32_t den) { return pft_div((float)num, (float)den); }
 /** Uniform u32 fraction u/2^32 in [0,1): top 24 bits, exact in a float. */
 static inline pft_real_t pft_from_u32_frac(uint32_t u) { return (float)(u >> 8) * 5.9604645e-08f; }
 
@@ -174,13 +190,20 @@ static inline pft_real_t pft_cos(pft_real_t a) { return cosf(a); }
  * the caller (pft_mul/pft_add). Values up to 32767 convert exactly in q16. */
 static inline pft_real_t pft_from_u8(uint8_t v) { return pft_from_int((int32_t)v); }
 static inline pft_real_t pft_from_u16(uint16_t v) { return pft_from_int((int32_t)v); }
-/** F32 pixel to real; in q16 this is a float conversion: q16 trackers refuse F32 frames on
- *  targets without an FPU at configuration time, not here. Host/FPU use only. */
+/** F32 pixel to real. float build: the identity. q16 build: decodes the IEEE bits with integer
+ *  operations only (no FPU or soft-float helper needed), rounds to nearest (ties away from
+ *  zero), saturates to [PFT_REAL_MIN, PFT_REAL_MAX] (infinities included); NaN gives 0,
+ *  subnormals give 0. */
 pft_real_t pft_from_f32(float v);
 
 /* ---------------------------------- weights ----------------------------------------------- */
-/** exp(x) for x <= 0 as a weight in (0, 1] (q16: Q2.30; x > 0 is clamped to 0 -> 1.0). */
+/** exp(x) for x <= 0 as a weight in [0, 1]; x >= 0 gives exactly PFT_W_ONE.
+ *  q16: Q2.30 rounded to nearest, error <= 0.6 LSB (2^-30) over the whole domain; exp(x) below
+ *  half an LSB (x < -21.5) gives 0. */
 pft_weight_t pft_wexp(pft_real_t x);
+/** log(acc / PFT_W_ONE) of a weight accumulator (e.g. a sum of pft_wexp values), as a real;
+ *  acc == 0 gives PFT_REAL_MIN. q16: any uint64 value, error <= 0.5 LSB + 2^-14 LSB. */
+pft_real_t pft_wacc_log(pft_wacc_t acc);
 /** Weight as a real (q16: Q2.30 -> Q16.16, truncating). */
 pft_real_t pft_weight_to_real(pft_weight_t w);
 
@@ -190,11 +213,22 @@ pft_real_t pft_real_max_n(const pft_real_t *v, size_t n);
  * Log-sum-exp normalisation of log-weights: w[i] = exp(lw[i] - max) / sum, so that the w sum
  * to PFT_W_ONE. Returns log(sum_i exp(lw[i])) (the log of the unnormalised total), which
  * callers use for likelihood statistics (e.g. log mean weight = result - log N).
- * lw and w may not alias. n >= 1.
+ * lw and w may not alias. n >= 1 (n == 0 returns PFT_REAL_MIN and writes nothing).
+ * q16: the w sum to exactly PFT_W_ONE (the rounding residue is carried from one weight to the
+ * next, so each w[i] is within 1 LSB of its exact quotient); cost one 64-bit division per
+ * particle. Log-weights more than 21.5 below the max get weight 0.
+ * float: sums are compensated (Kahan), each w[i] is one correctly rounded division.
  */
 pft_real_t pft_lognormalize(const pft_real_t *lw, pft_weight_t *w, size_t n);
-/** Effective sample size 1 / sum(w^2) of normalised weights, as a real (at most n). */
+/** Effective sample size 1 / sum(w^2) of normalised weights, as a real (at most n).
+ *  q16: the sum of squares is exact in uint64 and the quotient is rounded once, but the result
+ *  saturates at PFT_REAL_MAX (32768) for larger ESS: use pft_ess_ratio to compare with a
+ *  fraction of n when n may exceed 32767. All weights zero gives 0. */
 pft_real_t pft_ess(const pft_weight_t *w, size_t n);
+/** ESS / n in [1/n, 1] as a real (no saturation for any n <= PFT_CFG_MAX_PARTICLES); the
+ *  resampling test "ESS < theta N" is pft_ess_ratio(w, n) < theta. n == 0 or all weights zero
+ *  gives 0. */
+pft_real_t pft_ess_ratio(const pft_weight_t *w, size_t n);
 
 #ifdef __cplusplus
 }
