@@ -99,6 +99,10 @@ typedef struct {
     uint8_t dis_r;           /**< disappearance window: r + 1 frames (default r = 2), 0..PFT_TBD_MAX_DIS_R */
     uint8_t dis_prev;        /**< previous windows compared against (default 5), 1..PFT_TBD_MAX_DIS_PREV */
     pft_real_t dis_ratio;    /**< gone when L(W_k) < dis_ratio * L_max (default 0.8, i.e. theta2 = L_max/5); in (0, 1] */
+    bool dis_ratio_test;     /**< apply the windowed likelihood-ratio test above (default true, the paper) */
+    pft_real_t theta_end;    /**< a track also ends when its layer's existence probability falls below this [A] (default 0: off; the paper uses only the ratio test, which is a hair-trigger at 6 dB, see ALGORITHMS.md 2.6) */
+    uint8_t d_margin;        /**< constraint region D = C(x) grown by this many pixels on each side [A] (default 0: the paper's C(x)) */
+    bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, ALGORITHMS.md 2.7, default) [A] */
     bool force_constraint;   /**< force E = 0 for search particles whose window centre enters a constraint region [A] (default true) */
     /* sizes */
     uint32_t n_search;       /**< search-layer particles Ns (default 6000) */
@@ -109,8 +113,21 @@ typedef struct {
     uint64_t seed;           /**< RNG seed; layer l of the manager uses seed + l (default 1) */
 } pft_tbd_config_t;
 
-/** Fills cfg with the defaults listed in pft_tbd_config_t. */
+/**
+ * Fills cfg with the defaults listed in pft_tbd_config_t: the paper's values.
+ *
+ * Note (measured by tests/scenario/test_tbd_scenario.c, two targets at 6 dB): the paper's
+ * disappearance test (ratio 0.8 on 3-frame windows) ends tracks that are still present, and
+ * D = C(x_{k-1}) lets the search layer re-detect a confirmed target at the edge of its region.
+ * pft_tbd_config_recommended() changes three [A] options that fix both.
+ */
 void pft_tbd_config_default(pft_tbd_config_t *cfg);
+/**
+ * The defaults with the multi-target decisions made robust [A]: dis_ratio_test = false
+ * (tracks end on the existence probability instead), theta_end = 0.5, d_current = true.
+ */
+void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
+
 /** PFT_OK if cfg is usable (sizes, ranges, positivity), PFT_ERR_INVAL otherwise. */
 pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg);
 

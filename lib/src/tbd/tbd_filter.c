@@ -286,7 +286,7 @@ static void disappearance_(pft_tbd_filter_t *f)
     for (uint32_t q = 0; q < r1; ++q) {
         win = pft_add(win, f->lr_hist[q]);
     }
-    if (f->n_win > 0u) {
+    if (f->n_win > 0u && f->cfg.dis_ratio_test) {
         pft_real_t lmax = f->win_hist[0];
         for (uint32_t q = 1; q < f->n_win; ++q) {
             lmax = pft_max(lmax, f->win_hist[q]);
@@ -387,12 +387,15 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
             e = 1u;
             born = true;
         }
-        /* constraint: the window centre inside a confirmed target's region forces E = 0 */
-        if (e != 0u && mask != NULL) {
+        /* A particle whose window centre leaves the image leaves the surveillance region: E = 0
+         * [A]. The constraint: a window centre inside a confirmed target's region forces E = 0. */
+        if (e != 0u) {
             int32_t i0 = pft_tbd_pix_(P->x[s], f->model.inv_dx);
             int32_t j0 = pft_tbd_pix_(P->y[s], f->model.inv_dy);
-            if (i0 >= 1 && j0 >= 1 && i0 <= (int32_t)c->width && j0 <= (int32_t)c->height &&
-                mask[(size_t)(j0 - 1) * c->width + (size_t)(i0 - 1)] != 0u) {
+            if (i0 < 1 || j0 < 1 || i0 > (int32_t)c->width || j0 > (int32_t)c->height) {
+                e = 0u;
+            } else if (mask != NULL &&
+                       mask[(size_t)(j0 - 1) * c->width + (size_t)(i0 - 1)] != 0u) {
                 e = 0u;
             }
         }

@@ -168,7 +168,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         pft_tbd_filter_t *tf = &t->tracks[k];
         pft_tbd_region_t d = pft_tbd_window_region(cfg, rec->x, rec->y);
         pft_tbd_filter_step_(tf, &tsc);
-        if (tf->gone || count_alive_(tf) == 0u) {
+        if (tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u) {
             push_event_(t, PFT_TBD_EV_ENDED, rec->id, tf->est.x, tf->est.y);
             memset(rec, 0, sizeof(*rec));
             --t->n_tracks;
@@ -178,6 +178,13 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         if (rec->age < UINT32_MAX) {
             ++rec->age;
         }
+        if (cfg->d_current) {
+            d = pft_tbd_window_region(cfg, rec->x, rec->y);
+        }
+        d.i_lo -= cfg->d_margin;
+        d.i_hi += cfg->d_margin;
+        d.j_lo -= cfg->d_margin;
+        d.j_hi += cfg->d_margin;
         pft_tbd_mask_add_(cfg, t->mask, &d);
     }
 

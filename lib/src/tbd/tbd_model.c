@@ -36,6 +36,10 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->dis_r = 2u;
     cfg->dis_prev = 5u;
     cfg->dis_ratio = PFT_C(0.8);
+    cfg->dis_ratio_test = true;
+    cfg->theta_end = PFT_C(0.0);
+    cfg->d_margin = 0u;
+    cfg->d_current = false;
     cfg->force_constraint = true;
     cfg->n_search = 6000u;
     cfg->n_track = 500u;
@@ -43,6 +47,17 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->kind = PFT_TBD_RBPF;
     cfg->kf_variant = PFT_TBD_KF_EXACT;
     cfg->seed = 1u;
+}
+
+void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    pft_tbd_config_default(cfg);
+    cfg->dis_ratio_test = false;
+    cfg->theta_end = PFT_C(0.5);
+    cfg->d_current = true;
 }
 
 static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
@@ -58,11 +73,12 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
     ok = ok && c->psf_sigma > PFT_C(0.0) && c->noise_sigma > PFT_C(0.0);
     ok = ok && c->window <= PFT_TBD_MAX_WINDOW;
     ok = ok && c->T > PFT_C(0.0) && c->q1 >= PFT_C(0.0) && c->q2 >= PFT_C(0.0);
-    ok = ok && in01_(c->pb) && in01_(c->pd) && in01_(c->eta) && in01_(c->theta1);
+    ok = ok && in01_(c->pb) && in01_(c->pd) && in01_(c->eta) && in01_(c->theta1) && in01_(c->theta_end);
     ok = ok && c->i_min <= c->i_max;
     ok = ok && c->vel_var[0] >= PFT_C(0.0) && c->vel_var[1] >= PFT_C(0.0);
     ok = ok && c->dis_r <= PFT_TBD_MAX_DIS_R && c->dis_prev >= 1u &&
          c->dis_prev <= PFT_TBD_MAX_DIS_PREV;
+    ok = ok && c->d_margin <= 16u;
     ok = ok && c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0);
     ok = ok && c->n_search >= 1u && c->n_search <= PFT_CFG_MAX_PARTICLES;
     ok = ok && c->n_track >= 1u && c->n_track <= PFT_CFG_MAX_PARTICLES;
