@@ -1,0 +1,75 @@
+// The per-kind handler registry. A scenario file's top-level "kind" selects the module that
+// implements `sim`, `run`, `eval`, `bench`, `demo` and `selftest` for it ("tbd" now; other
+// issues add "bearings", "vis", "radar"). A module registers itself with PFT_REGISTER_KIND in
+// one of its .cpp files, which are compiled directly into the `pft` executable.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pft::host {
+
+/** Command-line options shared by all subcommands; a handler ignores what it does not use
+ *  and rejects what makes no sense for it (InputError). */
+struct Options {
+    std::string command;        ///< sim | run | eval | bench | demo | selftest
+    std::string scenario_path;  ///< --scenario
+    nlohmann::json scenario;    ///< parsed scenario (null for selftest)
+    std::string out;            ///< --out: output directory
+    std::string sequence;       ///< --sequence: input (run, demo)
+    std::string truth;          ///< --truth: ground-truth CSV (run)
+    unsigned runs = 0;          ///< --runs (0: scenario or default)
+    unsigned threads = 0;       ///< --threads (0: hardware concurrency)
+    std::optional<uint64_t> seed;  ///< --seed (sim: the sequence, eval: base seed)
+    std::string filter_kind;    ///< --filter rbpf|pf (empty: scenario)
+    uint32_t particles = 0;     ///< --particles (0: scenario)
+    uint32_t frames = 0;        ///< --frames (bench: frames per timed run)
+    bool single = false;        ///< --single: single-target filter instead of the manager
+    bool progress = false;      ///< --progress: draw the bar even when stderr is no terminal
+    bool no_video = false;      ///< --no-video (run)
+    bool quiet = false;         ///< --quiet
+    std::string format;         ///< --format pgm|raw (sim)
+    int scale = 0;              ///< --scale: overlay upscale factor (run)
+    std::string tag;            ///< --tag: label stored in eval summaries (plots group by it)
+};
+
+class KindHandler {
+public:
+    virtual ~KindHandler() = default;
+    virtual int sim(const Options &o);
+    virtual int run(const Options &o);
+    virtual int eval(const Options &o);
+    virtual int bench(const Options &o);
+    virtual int demo(const Options &o);
+    /** Self-checks of the module's formulas; returns 0 when they all hold. */
+    virtual int selftest(const Options &o);
+    /** Scenario file used by `pft demo` when none is given (absolute path or empty). */
+    virtual std::string default_scenario() const { return {}; }
+
+protected:
+    [[noreturn]] void unsupported(const Options &o) const;
+    std::string kind_;
+    friend std::unique_ptr<KindHandler> make_handler(const std::string &kind);
+};
+
+using KindFactory = std::function<std::unique_ptr<KindHandler>()>;
+
+void register_kind(const std::string &kind, KindFactory factory);
+/** InputError naming the known kinds when `kind` is not registered. */
+std::unique_ptr<KindHandler> make_handler(const std::string &kind);
+std::vector<std::string> registered_kinds();
+
+struct KindRegistrar {
+    KindRegistrar(const char *kind, KindFactory f) { register_kind(kind, std::move(f)); }
+};
+
+#define PFT_REGISTER_KIND(name, type)                                                       \
+    static const ::pft::host::KindRegistrar pft_kind_registrar_##type(                      \
+        name, [] { return std::unique_ptr<::pft::host::KindHandler>(new type()); })
+
+}  // namespace pft::host

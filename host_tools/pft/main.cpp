@@ -1,0 +1,239 @@
+// pft: the host tool. Subcommands sim, run, eval, bench, demo (dispatched to the handler of
+// the scenario's "kind"), selftest (every registered kind), and plot (merges eval summaries).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
+
+#include "../common/errors.hpp"
+#include "../common/json_field.hpp"
+#include "../common/plot.hpp"
+#include "../common/registry.hpp"
+
+using namespace pft::host;
+
+namespace {
+
+struct PlotOptions {
+    std::vector<std::string> files;
+    std::string out = "plot.png", x = "/snr_db", y = "/averaged/rmse", group = "/tag",
+                floor = "/averaged/pcrlb", title, xlabel, ylabel;
+};
+
+json pointer_value(const json &j, const std::string &ptr, const std::string &file)
+{
+    try {
+        return j.at(json::json_pointer(ptr));
+    } catch (const std::exception &) {
+        throw InputError(file + ": no value at JSON pointer " + ptr);
+    }
+}
+
+int cmd_plot(const PlotOptions &p)
+{
+    std::map<std::string, std::vector<std::pair<double, double>>> groups;
+    std::map<double, double> floor;
+    std::vector<std::string> order;
+    for (const auto &f : p.files) {
+        json j = load_json_file(f);
+        json xv = pointer_value(j, p.x, f), yv = pointer_value(j, p.y, f);
+        if (!xv.is_number())
+            throw InputError(f + ": " + p.x + " is not a number");
+        double y = yv.is_number() ? yv.get<double>() : NAN;
+        json gv = p.group.empty() ? json("") : pointer_value(j, p.group, f);
+        std::string g = gv.is_string() ? gv.get<std::string>() : gv.dump();
+        if (!groups.count(g))
+            order.push_back(g);
+        groups[g].push_back({xv.get<double>(), y});
+        if (!p.floor.empty()) {
+            json fv = pointer_value(j, p.floor, f);
+            if (fv.is_number())
+                floor[xv.get<double>()] = fv.get<double>();
+        }
+    }
+    PlotSpec spec;
+    spec.title = p.title;
+    spec.xlabel = p.xlabel.empty() ? p.x : p.xlabel;
+    spec.ylabel = p.ylabel.empty() ? p.y : p.ylabel;
+    spec.ymin = 0.0;
+    for (const auto &g : order) {
+        auto pts = groups[g];
+        std::sort(pts.begin(), pts.end());
+        PlotSeries s;
+        s.label = g;
+        s.markers = true;
+        for (auto &pt : pts) {
+            s.x.push_back(pt.first);
+            s.y.push_back(pt.second);
+        }
+        spec.series.push_back(s);
+    }
+    if (!floor.empty()) {
+        PlotSeries s;
+        s.label = "PCRLB floor";
+        s.dashed = true;
+        s.color = cv::Scalar(0, 0, 0);
+        for (auto &kv : floor) {
+            s.x.push_back(kv.first);
+            s.y.push_back(kv.second);
+        }
+        spec.series.push_back(s);
+    }
+    save_plot_png(spec, p.out);
+    std::printf("pft plot: %zu summaries, %zu series -> %s\n", p.files.size(), order.size(), p.out.c_str());
+    return 0;
+}
+
+void add_scenario(CLI::App *c, Options &o, bool required)
+{
+    auto *opt = c->add_option("--scenario", o.scenario_path, "scenario file (JSON; its \"kind\" selects the module)");
+    if (required)
+        opt->required();
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_WARNING);
+    CLI::App app{"pft - host tools of pftrack: simulate, run, evaluate and benchmark trackers"};
+    app.require_subcommand(1);
+    Options o;
+    PlotOptions po;
+    std::string kind_filter;
+    uint64_t seed = 0;
+
+    auto common = [&](CLI::App *c) {
+        c->add_flag("--progress", o.progress, "draw the progress bar even when stderr is not a terminal");
+        c->add_flag("-q,--quiet", o.quiet, "print less");
+    };
+    auto filter_opts = [&](CLI::App *c) {
+        c->add_option("--filter", o.filter_kind, "override the filter kind")->check(CLI::IsMember({"rbpf", "pf"}));
+        c->add_option("--particles", o.particles, "override the particle count (search layer / single filter)")
+            ->check(CLI::Range(1u, 4194304u));
+        c->add_flag("--single", o.single, "single-target filter (existence decision P > theta1) instead of the manager");
+        c->add_option("--seed", seed, "seed (sim/demo/bench: the sequence; eval: base seed, run i uses seed + i)");
+    };
+
+    CLI::App *sim = app.add_subcommand("sim", "simulate a scenario: frames (16-bit PGM or raw float32), truth CSV, sidecar JSON");
+    add_scenario(sim, o, true);
+    sim->add_option("--out", o.out, "output directory")->required();
+    sim->add_option("--format", o.format, "pgm (16-bit, default) or raw (float32)")->check(CLI::IsMember({"pgm", "raw"}));
+    filter_opts(sim);
+    common(sim);
+
+    CLI::App *run = app.add_subcommand("run", "track a recorded sequence; write tracks CSV/JSON and an overlay video");
+    add_scenario(run, o, false);
+    run->add_option("--sequence", o.sequence, "pft sim directory, PGM pattern (dir/f%04u.pgm), video file or image folder")->required();
+    run->add_option("--truth", o.truth, "ground-truth CSV (frame,target,x,y,vx,vy,I,present)");
+    run->add_option("--out", o.out, "output directory (default pft_run_out)");
+    run->add_option("--scale", o.scale, "overlay upscale factor (default: about 480 px)")->check(CLI::Range(1, 64));
+    run->add_flag("--no-video", o.no_video, "do not write the overlay video");
+    filter_opts(run);
+    common(run);
+
+    CLI::App *ev = app.add_subcommand("eval", "Monte Carlo evaluation: JSON summary and PNG plots");
+    add_scenario(ev, o, true);
+    ev->add_option("--runs", o.runs, "Monte Carlo runs (default: the scenario's, else 100)")->check(CLI::Range(1u, 10000000u));
+    ev->add_option("--threads", o.threads, "worker threads (default: hardware concurrency)")->check(CLI::Range(1u, 1024u));
+    ev->add_option("--out", o.out, "output directory");
+    ev->add_option("--tag", o.tag, "label of this configuration in merged plots");
+    filter_opts(ev);
+    common(ev);
+
+    CLI::App *be = app.add_subcommand("bench", "per-frame time, particles/s and workspace bytes (not a test)");
+    add_scenario(be, o, true);
+    be->add_option("--frames", o.frames, "frames per timed run (default: the scenario's)")->check(CLI::Range(1u, 10000000u));
+    be->add_option("--runs", o.runs, "timed runs (default 1)")->check(CLI::Range(1u, 100000u));
+    be->add_option("--out", o.out, "directory for bench.json");
+    filter_opts(be);
+    common(be);
+
+    CLI::App *de = app.add_subcommand("demo", "simulate the default two-target scenario (or take --sequence), track it, print tracks and summary");
+    add_scenario(de, o, false);
+    de->add_option("--sequence", o.sequence, "track this sequence instead of simulating");
+    de->add_option("--out", o.out, "output directory when --sequence is given");
+    filter_opts(de);
+    common(de);
+
+    CLI::App *st = app.add_subcommand("selftest", "self-checks of the modules' formulas (e.g. the PCRLB table)");
+    st->add_option("--kind", kind_filter, "only this kind");
+    common(st);
+
+    CLI::App *pl = app.add_subcommand("plot", "merge eval summaries into one figure (e.g. RMSE vs SNR, paper Fig. 5)");
+    pl->add_option("summaries", po.files, "summary.json files")->required()->check(CLI::ExistingFile);
+    pl->add_option("--out", po.out, "PNG file");
+    pl->add_option("--x", po.x, "JSON pointer of the x value");
+    pl->add_option("--y", po.y, "JSON pointer of the y value");
+    pl->add_option("--group", po.group, "JSON pointer of the series label");
+    pl->add_option("--floor", po.floor, "JSON pointer of a floor curve ('' for none)");
+    pl->add_option("--title", po.title);
+    pl->add_option("--xlabel", po.xlabel);
+    pl->add_option("--ylabel", po.ylabel);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        return app.exit(e);
+    }
+
+    try {
+        CLI::App *sub = app.get_subcommands().front();
+        o.command = sub->get_name();
+        if (const CLI::Option *so = sub->get_option_no_throw("--seed"); so && so->count())
+            o.seed = seed;
+        if (o.command == "plot")
+            return cmd_plot(po);
+        if (o.command == "selftest") {
+            int fails = 0;
+            for (const auto &k : registered_kinds())
+                if (kind_filter.empty() || kind_filter == k)
+                    fails += make_handler(k)->selftest(o) ? 1 : 0;
+            return fails ? 1 : 0;
+        }
+        if (o.scenario_path.empty() && o.command == "demo")
+            o.scenario_path = make_handler("tbd")->default_scenario();
+        std::string kind;
+        if (!o.scenario_path.empty()) {
+            o.scenario = load_json_file(o.scenario_path);
+            Field root(o.scenario, o.scenario_path);
+            kind = root.string("kind");
+        } else {
+            // run on a pft sim directory: the sidecar carries the scenario and its kind
+            std::string side = o.sequence + "/sequence.json";
+            std::FILE *fp = std::fopen(side.c_str(), "r");
+            if (!fp)
+                throw InputError("--scenario FILE.json is required (no " + side + ")");
+            std::fclose(fp);
+            json sj = load_json_file(side);
+            Field f(sj, side);
+            kind = f.at("scenario").string("kind");
+        }
+        auto h = make_handler(kind);
+        if (o.command == "sim")
+            return h->sim(o);
+        if (o.command == "run")
+            return h->run(o);
+        if (o.command == "eval")
+            return h->eval(o);
+        if (o.command == "bench")
+            return h->bench(o);
+        if (o.command == "demo")
+            return h->demo(o);
+        throw InputError("unknown command " + o.command);
+    } catch (const InputError &e) {
+        std::fprintf(stderr, "pft: error: %s\n", e.what());
+        return 2;
+    } catch (const cv::Exception &e) {
+        std::fprintf(stderr, "pft: OpenCV error: %s\n", e.what());
+        return 3;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "pft: error: %s\n", e.what());
+        return 3;
+    }
+}

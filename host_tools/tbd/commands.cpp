@@ -1,0 +1,868 @@
+// The "tbd" kind: sim, run, eval, bench, demo and selftest for track-before-detect scenarios
+// (RBPF-TBD / PF-TBD of lib/include/pft/pft_tbd.h).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+extern "C" {
+#include "pft/pft_port_file.h"
+}
+
+#include "../common/errors.hpp"
+#include "../common/json_field.hpp"
+#include "../common/output.hpp"
+#include "../common/parallel.hpp"
+#include "../common/plot.hpp"
+#include "../common/progress.hpp"
+#include "../common/registry.hpp"
+#include "../common/sequence_input.hpp"
+#include "metrics.hpp"
+#include "overlay.hpp"
+#include "pcrlb.hpp"
+#include "scenario.hpp"
+#include "sim.hpp"
+#include "tracker.hpp"
+
+#ifndef PFT_HOST_SCENARIO_DIR
+#define PFT_HOST_SCENARIO_DIR ""
+#endif
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace pft::host::tbd {
+
+namespace {
+
+const double kPaperSecondsPerFrame = 0.3287;  // [P1] body text (abstract: 0.0387)
+
+Scenario load(const Options &o)
+{
+    Scenario s = parse_scenario(o.scenario, o.scenario_path);
+    if (!o.filter_kind.empty())
+        s.filter.kind = o.filter_kind;
+    if (o.particles)
+        s.filter.particles = o.particles;
+    if (o.single)
+        s.filter.mode = "single";
+    return s;
+}
+
+std::string fmt(double v, int prec = 2)
+{
+    if (!std::isfinite(v))
+        return "-";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*f", prec, v);
+    return b;
+}
+
+double jnum(const json &j, const char *key)
+{
+    auto it = j.find(key);
+    return (it != j.end() && it->is_number()) ? it->get<double>() : NAN;
+}
+
+std::string describe(const Scenario &s)
+{
+    std::ostringstream os;
+    bool single = s.filter.mode == "single";
+    os << (s.name.empty() ? s.file : s.name) << ": " << s.width << "x" << s.height << ", "
+       << s.frames << " frames, SNR " << fmt(s.snr_db) << " dB (sigma " << fmt(s.noise_sigma, 3)
+       << "), " << s.targets.size() << " target(s); " << (single ? "single filter " : "manager ")
+       << (s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") << " N=" << s.filter.particles;
+    if (!single)
+        os << " Nt=" << s.filter.track_particles;
+    os << ", " << numeric_name();
+    return os.str();
+}
+
+/** Runs the tracker over an in-memory sequence. */
+std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint64_t seed)
+{
+    Tracker tr(make_config(s, seed), s.filter.mode == "single");
+    std::vector<FrameOut> out;
+    out.reserve(q.frames);
+    for (int k = 0; k < q.frames; ++k)
+        out.push_back(tr.update_f32(q.images[k].data(), static_cast<uint32_t>(k + 1)));
+    return out;
+}
+
+// ------------------------------------------------------------------------- tables
+void print_summary(const Scenario &s, const json &sum, bool with_reference)
+{
+    std::printf("\n  %-8s %8s %8s %8s %6s %8s %8s %7s %6s %7s\n", "target", "appear", "disapp.",
+                "correct", "of", "RMSE", "PCRLB", "ratio", "false", "det.");
+    for (const json &t : sum["targets"]) {
+        double rmse = jnum(t, "rmse"), fl = jnum(t, "pcrlb");
+        std::printf("  %-8s %8s %8s %8s %6d %8s %8s %7s %6s %7s\n",
+                    ("T" + std::to_string(t["id"].get<int>())).c_str(),
+                    fmt(jnum(t, "appearance_delay")).c_str(),
+                    fmt(jnum(t, "disappearance_delay")).c_str(),
+                    fmt(jnum(t, "correct_frames")).c_str(), t["true_frames"].get<int>(),
+                    fmt(rmse, 4).c_str(), fmt(fl, 4).c_str(), fmt(rmse / fl, 2).c_str(),
+                    fmt(jnum(t, "false_tracks")).c_str(),
+                    t.contains("detected_runs") ? std::to_string(t["detected_runs"].get<int>()).c_str() : "-");
+    }
+    const json &a = sum["averaged"];
+    std::printf("  %-8s %8s %8s %8s %6s %8s %8s %7s %6s\n", "mean", fmt(jnum(a, "appearance_delay")).c_str(),
+                fmt(jnum(a, "disappearance_delay")).c_str(), fmt(jnum(a, "correct_frames")).c_str(),
+                fmt(jnum(a, "true_frames"), 0).c_str(), fmt(jnum(a, "rmse"), 4).c_str(),
+                fmt(jnum(a, "pcrlb"), 4).c_str(), fmt(jnum(a, "rmse") / jnum(a, "pcrlb"), 2).c_str(),
+                fmt(jnum(a, "false_tracks")).c_str());
+    if (with_reference && s.reference.is_object() && s.reference.contains("targets")) {
+        std::string src = s.reference.value("source", std::string("paper"));
+        std::printf("  reference (%s):\n", src.c_str());
+        for (const json &t : s.reference["targets"])
+            std::printf("  %-8s %8s %8s %8s %6s %8s\n",
+                        ("T" + std::to_string(t.value("id", 0))).c_str(),
+                        fmt(jnum(t, "appearance_delay")).c_str(),
+                        fmt(jnum(t, "disappearance_delay")).c_str(),
+                        fmt(jnum(t, "correct_frames")).c_str(), "16", fmt(jnum(t, "rmse"), 4).c_str());
+    }
+}
+
+// ------------------------------------------------------------------------- truth CSV
+struct TruthTable {
+    std::vector<int> ids;                                // target ids in column order
+    std::vector<std::vector<TruthState>> frames;         // [frame-1][target]
+};
+
+void write_truth_csv(const std::string &path, const Scenario &s,
+                     const std::vector<std::vector<TruthState>> &truth)
+{
+    write_text_atomic(path, [&](std::ostream &os) {
+        CsvWriter w(os);
+        w.field("frame").field("target").field("x").field("y").field("vx").field("vy").field("I").field("present");
+        w.end_row();
+        for (std::size_t k = 0; k < truth.size(); ++k)
+            for (std::size_t t = 0; t < s.targets.size(); ++t) {
+                const TruthState &st = truth[k][t];
+                w.field(static_cast<int>(k + 1)).field(s.targets[t].id);
+                if (st.present)
+                    w.field(st.x).field(st.y).field(st.vx).field(st.vy).field(st.I);
+                else
+                    w.field("").field("").field("").field("").field("");
+                w.field(st.present);
+                w.end_row();
+            }
+    });
+}
+
+TruthTable read_truth_csv(const std::string &path)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path + ": cannot open truth file");
+    TruthTable tt;
+    std::string line;
+    int ln = 0;
+    std::map<int, std::size_t> col;
+    std::vector<std::tuple<int, int, TruthState>> rows;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (ln == 1 || line.empty())
+            continue;
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ','))
+            f.push_back(cell);
+        if (f.size() < 8)
+            f.resize(8);
+        try {
+            int frame = std::stoi(f[0]), id = std::stoi(f[1]);
+            TruthState st;
+            st.present = std::stoi(f[7]) != 0;
+            if (st.present) {
+                st.x = std::stod(f[2]);
+                st.y = std::stod(f[3]);
+                st.vx = std::stod(f[4]);
+                st.vy = std::stod(f[5]);
+                st.I = std::stod(f[6]);
+            }
+            if (frame < 1 || frame > 10000000)
+                throw std::out_of_range("frame");
+            if (!col.count(id)) {
+                col[id] = tt.ids.size();
+                tt.ids.push_back(id);
+            }
+            rows.emplace_back(frame, id, st);
+        } catch (const std::exception &) {
+            throw InputError(path + ":" + std::to_string(ln) +
+                             ": expected frame,target,x,y,vx,vy,I,present");
+        }
+    }
+    int nf = 0;
+    for (auto &r : rows)
+        nf = std::max(nf, std::get<0>(r));
+    tt.frames.assign(nf, std::vector<TruthState>(tt.ids.size()));
+    for (auto &r : rows)
+        tt.frames[std::get<0>(r) - 1][col[std::get<1>(r)]] = std::get<2>(r);
+    return tt;
+}
+
+/** Scenario targets rebuilt from a truth table (birth/death from presence), keeping the
+ *  motion of scenario targets with the same id. */
+void targets_from_truth(Scenario &s, const TruthTable &tt)
+{
+    std::vector<Target> v;
+    for (std::size_t c = 0; c < tt.ids.size(); ++c) {
+        Target t;
+        t.id = tt.ids[c];
+        t.birth = 0;
+        for (std::size_t k = 0; k < tt.frames.size(); ++k)
+            if (tt.frames[k][c].present) {
+                if (!t.birth) {
+                    t.birth = static_cast<int>(k + 1);
+                    const TruthState &st = tt.frames[k][c];
+                    t.x0 = {st.x, st.vx, st.y, st.vy, st.I};
+                }
+                t.death = static_cast<int>(k + 1);
+            }
+        if (!t.birth)
+            continue;
+        if (const Target *o = s.target_by_id(t.id))
+            t.motion = o->motion;
+        v.push_back(t);
+    }
+    s.targets = v;
+}
+
+// ------------------------------------------------------------------------- track output
+void write_tracks(const std::string &dir, const std::vector<FrameOut> &out, const json &meta)
+{
+    write_text_atomic(join_path(dir, "tracks.csv"), [&](std::ostream &os) {
+        CsvWriter w(os);
+        w.field("frame").field("track").field("x").field("y").field("vx").field("vy")
+            .field("intensity").field("p_exist").field("first_frame");
+        w.end_row();
+        for (const FrameOut &f : out)
+            for (const TrackOut &t : f.tracks) {
+                w.field(static_cast<long long>(f.frame)).field(static_cast<long long>(t.id)).field(t.x)
+                    .field(t.y).field(t.vx).field(t.vy).field(t.intensity).field(t.p_exist)
+                    .field(static_cast<long long>(t.first_frame));
+                w.end_row();
+            }
+    });
+    json tracks = json::array();
+    for (const TrackHist &h : collect_tracks(out)) {
+        json pts = json::array();
+        for (std::size_t k = 0; k < h.frames.size(); ++k)
+            pts.push_back({h.frames[k], h.xs[k], h.ys[k], h.ps[k]});
+        tracks.push_back({{"id", h.id}, {"first_frame", h.first}, {"last_frame", h.last},
+                          {"ended_frame", h.end_frame ? json(h.end_frame) : json(nullptr)},
+                          {"points", pts}});
+    }
+    json events = json::array(), sp = json::array();
+    for (const FrameOut &f : out) {
+        sp.push_back(f.search_p);
+        for (const EventOut &e : f.events)
+            events.push_back({{"frame", e.frame}, {"id", e.id},
+                              {"event", e.kind == PFT_TBD_EV_CONFIRMED ? "confirmed" : "ended"},
+                              {"x", e.x}, {"y", e.y}});
+    }
+    json j = meta;
+    j["tracks"] = tracks;
+    j["events"] = events;
+    j["existence_probability"] = sp;
+    j["tracks_point_format"] = "[frame, x, y, p_exist]";
+    write_json_atomic(join_path(dir, "tracks.json"), j);
+}
+
+void print_tracks(const std::vector<FrameOut> &out, const RunEval *ev, const Scenario *s)
+{
+    auto hs = collect_tracks(out);
+    std::printf("\nTracks found: %zu\n", hs.size());
+    for (std::size_t i = 0; i < hs.size(); ++i) {
+        const TrackHist &h = hs[i];
+        std::string tgt;
+        if (ev && s) {
+            const TrackHist &eh = ev->tracks[i];
+            tgt = eh.assigned >= 0 ? "-> target T" + std::to_string(s->targets[eh.assigned].id)
+                                   : "-> no target (false track)";
+        }
+        std::printf("  #%-3u frames %3d-%-3d %-13s (%6.2f,%6.2f) .. (%6.2f,%6.2f)  %s\n", h.id,
+                    h.first, h.last,
+                    h.end_frame ? ("ended @" + std::to_string(h.end_frame)).c_str() : "still alive",
+                    h.xs.front(), h.ys.front(), h.xs.back(), h.ys.back(), tgt.c_str());
+    }
+}
+
+// ------------------------------------------------------------------------- plots
+void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool single)
+{
+    const int nf = static_cast<int>(sum["averaged"]["existence_probability"].size());
+    std::vector<double> frames(nf);
+    for (int k = 0; k < nf; ++k)
+        frames[k] = k + 1;
+    std::string title_tail = " - " + (s.name.empty() ? std::string("tbd") : s.name) + ", " +
+                             (s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") + " N=" +
+                             std::to_string(s.filter.particles) + ", " + numeric_name() + ", " +
+                             std::to_string(sum["runs"].get<int>()) + " runs";
+    // existence probability (paper Fig. 4)
+    PlotSpec ex;
+    ex.title = "Existence probability" + title_tail;
+    ex.xlabel = "frame";
+    ex.ylabel = "mean existence probability";
+    ex.ymin = 0.0;
+    ex.ymax = 1.05;
+    for (const json &t : sum["targets"]) {
+        PlotSeries p;
+        p.label = single ? "filter P (mean)" : "track P, T" + std::to_string(t["id"].get<int>());
+        p.x = frames;
+        p.y = t["existence_probability"].get<std::vector<double>>();
+        ex.series.push_back(p);
+        if (single)
+            break;
+    }
+    if (!single) {
+        PlotSeries p;
+        p.label = "search layer P";
+        p.x = frames;
+        p.y = sum["search_existence_probability"].get<std::vector<double>>();
+        p.dashed = true;
+        ex.series.push_back(p);
+    }
+    for (const Target &t : s.targets) {
+        PlotSeries p;
+        p.label = "truth T" + std::to_string(t.id) + " present";
+        for (int k = 1; k <= nf; ++k) {
+            p.x.push_back(k);
+            p.y.push_back(k >= t.birth && k <= t.death ? 1.0 : 0.0);
+        }
+        p.color = cv::Scalar(150, 150, 150);
+        p.dashed = true;
+        p.thickness = 1;
+        ex.series.push_back(p);
+    }
+    PlotSeries th;
+    th.label = "theta1";
+    th.x = {1.0, static_cast<double>(nf)};
+    th.y = {s.filter.theta1, s.filter.theta1};
+    th.color = cv::Scalar(0, 0, 0);
+    th.thickness = 1;
+    th.dashed = true;
+    ex.series.push_back(th);
+    save_plot_png(ex, join_path(dir, "existence.png"));
+
+    // RMSE per frame with the PCRLB
+    PlotSpec rm;
+    rm.title = "RMSE over correct points" + title_tail;
+    rm.xlabel = "frame";
+    rm.ylabel = "radial RMSE (px)";
+    rm.ymin = 0.0;
+    for (const json &t : sum["targets"]) {
+        std::string id = std::to_string(t["id"].get<int>());
+        auto to_vec = [](const json &a) {
+            std::vector<double> v;
+            for (const json &x : a)
+                v.push_back(x.is_number() ? x.get<double>() : NAN);
+            return v;
+        };
+        PlotSeries p;
+        p.label = "RMSE T" + id;
+        p.x = frames;
+        p.y = to_vec(t["rmse_per_frame"]);
+        p.markers = true;
+        rm.series.push_back(p);
+        PlotSeries f;
+        f.label = "PCRLB T" + id;
+        f.x = frames;
+        f.y = to_vec(t["pcrlb_per_frame"]);
+        f.dashed = true;
+        f.color = rm.series.size() == 1 ? cv::Scalar(0, 0, 0) : cv::Scalar(90, 90, 90);
+        rm.series.push_back(f);
+    }
+    save_plot_png(rm, join_path(dir, "rmse.png"));
+}
+
+// ------------------------------------------------------------------------- handler
+class TbdHandler : public KindHandler {
+public:
+    std::string default_scenario() const override
+    {
+        return std::string(PFT_HOST_SCENARIO_DIR) + "/tbd/two_case1.json";
+    }
+
+    int sim(const Options &o) override
+    {
+        Scenario s = load(o);
+        if (o.out.empty())
+            throw InputError("sim: --out DIR is required");
+        std::string format = o.format.empty() ? s.output.format : o.format;
+        if (format != "pgm" && format != "raw")
+            throw InputError("sim: --format must be pgm or raw");
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        ensure_dir(o.out);
+        Sequence q = simulate(s, seed);
+        long clipped = 0;
+        json side;
+        if (format == "pgm") {
+            std::vector<uint16_t> px(static_cast<std::size_t>(q.width) * q.height);
+            for (int k = 0; k < q.frames; ++k) {
+                for (std::size_t i = 0; i < px.size(); ++i) {
+                    double v = std::nearbyint(s.output.offset + s.output.gain * q.images[k][i]);
+                    if (v < 0 || v > 65535) {
+                        ++clipped;
+                        v = v < 0 ? 0 : 65535;
+                    }
+                    px[i] = static_cast<uint16_t>(v);
+                }
+                pft_frame_t f{};
+                f.data = px.data();
+                f.width = static_cast<uint16_t>(q.width);
+                f.height = static_cast<uint16_t>(q.height);
+                f.stride_bytes = static_cast<uint32_t>(q.width * 2);
+                f.format = PFT_PIX_U16;
+                f.bit_depth = 16;
+                char name[64];
+                std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
+                AtomicPath ap(join_path(o.out, name));
+                pft_status_t st = pft_pnm_write(ap.tmp().c_str(), &f);
+                if (st != PFT_OK)
+                    throw InputError(ap.final_path() + ": cannot write PGM (" + pft_status_str(st) + ")");
+                ap.commit();
+            }
+            side = {{"format", "pgm16"}, {"pattern", "frame_%04u.pgm"},
+                    {"raw_gain", s.output.gain}, {"raw_offset", s.output.offset},
+                    {"pixel_gain", 1.0 / s.output.gain}, {"pixel_offset", -s.output.offset / s.output.gain},
+                    {"clipped_pixels", clipped}};
+        } else {
+            AtomicPath ap(join_path(o.out, "frames.f32"));
+            for (int k = 0; k < q.frames; ++k) {
+                pft_frame_t f{};
+                f.data = q.images[k].data();
+                f.width = static_cast<uint16_t>(q.width);
+                f.height = static_cast<uint16_t>(q.height);
+                f.stride_bytes = static_cast<uint32_t>(q.width * 4);
+                f.format = PFT_PIX_F32;
+                pft_status_t st = pft_raw_write(ap.tmp().c_str(), &f, k > 0);
+                if (st != PFT_OK)
+                    throw InputError(ap.final_path() + ": cannot write (" + pft_status_str(st) + ")");
+            }
+            ap.commit();
+            side = {{"format", "raw_f32"}, {"file", "frames.f32"}, {"pixel_gain", 1.0}, {"pixel_offset", 0.0}};
+        }
+        write_truth_csv(join_path(o.out, "truth.csv"), s, q.truth);
+        side["first_index"] = 1;
+        side["frames"] = q.frames;
+        side["width"] = q.width;
+        side["height"] = q.height;
+        side["truth"] = "truth.csv";
+        side["seed"] = seed;
+        side["noise_sigma"] = s.noise_sigma;
+        side["snr_db"] = s.snr_db;
+        side["generator"] = "pft sim (std::mt19937_64, truth and noise streams from seed)";
+        side["scenario_file"] = s.file;
+        side["scenario"] = s.raw;
+        write_json_atomic(join_path(o.out, "sequence.json"), side);
+        if (!o.quiet) {
+            std::printf("pft sim: %s\n", describe(s).c_str());
+            std::printf("  seed %llu -> %s: %d frames (%s), truth.csv, sequence.json", 
+                        static_cast<unsigned long long>(seed), o.out.c_str(), q.frames,
+                        format == "pgm" ? "16-bit PGM" : "float32 raw");
+            if (format == "pgm")
+                std::printf("; raw = %.0f + %.0f * z, %ld pixels clipped", s.output.offset, s.output.gain, clipped);
+            std::printf("\n");
+        }
+        return 0;
+    }
+
+    int run(const Options &o) override
+    {
+        if (o.sequence.empty())
+            throw InputError("run: --sequence PATH is required (pft sim output directory, PGM "
+                             "pattern, video file or image folder)");
+        auto rd = open_sequence(o.sequence);
+        const SequenceInfo &info = rd->info();
+        json scen = o.scenario;
+        std::string scen_path = o.scenario_path;
+        if (scen.is_null()) {
+            if (!info.sidecar.contains("scenario"))
+                throw InputError("run: --scenario FILE.json is required for " + o.sequence);
+            scen = info.sidecar["scenario"];
+            scen_path = o.sequence + "/sequence.json:scenario";
+        }
+        Options o2 = o;
+        o2.scenario = scen;
+        o2.scenario_path = scen_path;
+        Scenario s = load(o2);
+        bool single = s.filter.mode == "single";
+        std::string out_dir = o.out.empty() ? "pft_run_out" : o.out;
+        ensure_dir(out_dir);
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+
+        // truth
+        std::string truth_path = !o.truth.empty() ? o.truth : info.truth_csv;
+        TruthTable tt;
+        bool have_truth = !truth_path.empty() && fs::exists(truth_path);
+        if (!o.truth.empty() && !have_truth)
+            throw InputError(o.truth + ": no such truth file");
+        if (have_truth) {
+            tt = read_truth_csv(truth_path);
+            targets_from_truth(s, tt);
+        }
+
+        std::unique_ptr<Tracker> tr;
+        std::unique_ptr<OverlayWriter> ov;
+        std::vector<FrameOut> out;
+        pft_frame_t f{};
+        std::vector<float> conv;
+        while (rd->next(f)) {
+            if (!tr) {
+                s.width = f.width;
+                s.height = f.height;
+                pft_tbd_config_t c = make_config(s, seed);
+                c.pixel_gain = to_real(info.pixel_gain);
+                c.pixel_offset = to_real(info.pixel_offset);
+                tr = std::make_unique<Tracker>(c, single);
+                if (!o.no_video) {
+                    double A = s.peak(s.ref_intensity);
+                    double lo = info.kind == "pft-sim" ? -2.0 * s.noise_sigma : 0.0;
+                    double hi = info.kind == "pft-sim" ? A + 2.0 * s.noise_sigma : 0.0;
+                    ov = std::make_unique<OverlayWriter>(join_path(out_dir, "overlay.avi"), f.width,
+                                                         f.height, o.scale, lo, hi, s.dx, s.dy);
+                }
+            }
+            pft_frame_t g = f;
+            cv::Mat m;
+            if (ov || (f.format != PFT_PIX_U8 && f.format != PFT_PIX_U16 && f.format != PFT_PIX_F32))
+                m = frame_to_mat(f, info.pixel_gain, info.pixel_offset);
+            if (f.format == PFT_PIX_RGB888 || f.format == PFT_PIX_BGR888) {
+                conv.assign(m.ptr<float>(0), m.ptr<float>(0) + m.total());
+                g.data = conv.data();
+                g.format = PFT_PIX_F32;
+                g.stride_bytes = static_cast<uint32_t>(f.width * 4);
+            }
+            out.push_back(tr->update(g));
+            if (ov) {
+                std::size_t k = out.size() - 1;
+                std::vector<TruthState> truth = have_truth && k < tt.frames.size() ? tt.frames[k]
+                                                                                    : std::vector<TruthState>();
+                ov->add(m, truth, tt.ids, out.back());
+            }
+        }
+        if (!tr)
+            throw InputError(o.sequence + ": no frames");
+        if (ov)
+            ov->close();
+        json meta = {{"tool", "pft run"}, {"sequence", o.sequence}, {"scenario", s.name},
+                     {"mode", single ? "single" : "multi"}, {"filter", s.filter.kind},
+                     {"particles", s.filter.particles}, {"numeric", numeric_name()},
+                     {"frames", out.size()}, {"skipped_frames", rd->skipped()}, {"seed", seed},
+                     {"workspace_bytes", tr->workspace_bytes()}};
+        write_tracks(out_dir, out, meta);
+        std::unique_ptr<RunEval> ev;
+        if (have_truth) {
+            tt.frames.resize(out.size(), std::vector<TruthState>(tt.ids.size()));
+            ev = std::make_unique<RunEval>(evaluate_run(s, tt.frames, out, single));
+        }
+        if (!o.quiet) {
+            std::printf("pft run: %s (%s, %zu frames, %d skipped)\n  %s\n", o.sequence.c_str(),
+                        info.kind.c_str(), out.size(), rd->skipped(), describe(s).c_str());
+            print_tracks(out, ev.get(), &s);
+            if (ev) {
+                std::vector<RunEval> one{*ev};
+                json sum = summarize(s, one, single);
+                sum["runs"] = 1;
+                std::printf("\nVersus truth (%s):", truth_path.c_str());
+                print_summary(s, sum, false);
+            }
+            std::printf("\nWrote %s/tracks.csv, tracks.json%s\n", out_dir.c_str(),
+                        o.no_video ? "" : ", overlay.avi");
+        }
+        return 0;
+    }
+
+    int eval(const Options &o) override
+    {
+        Scenario s = load(o);
+        bool single = s.filter.mode == "single";
+        unsigned runs = o.runs ? o.runs : s.eval.runs;
+        uint64_t base = o.seed ? *o.seed : s.eval.base_seed;
+        unsigned threads = resolve_threads(o.threads);
+        std::string out_dir = o.out;
+        if (out_dir.empty())
+            out_dir = "pft_eval_" + (s.name.empty() ? std::string("tbd") : s.name) + "_" +
+                      s.filter.kind + "_" + std::to_string(s.filter.particles) + "_" + numeric_name();
+        ensure_dir(out_dir);
+        if (!o.quiet)
+            std::printf("pft eval: %s\n  %u runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(),
+                        runs, static_cast<unsigned long long>(base),
+                        static_cast<unsigned long long>(base + runs - 1), threads);
+        std::vector<RunEval> res(runs);
+        Progress bar(runs, "eval", progress_wanted(o.progress));
+        auto t0 = std::chrono::steady_clock::now();
+        std::atomic<double> cpu_s{0.0};
+        parallel_for(runs, threads, [&](std::size_t i) {
+            auto c0 = std::chrono::steady_clock::now();
+            uint64_t seed = base + i;
+            Sequence q = simulate(s, seed);
+            std::vector<FrameOut> out = track_sequence(s, q, seed);
+            res[i] = evaluate_run(s, q.truth, out, single);
+            res[i].seed = seed;
+            double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+            double cur = cpu_s.load();
+            while (!cpu_s.compare_exchange_weak(cur, cur + dt)) {
+            }
+            bar.tick();
+        });
+        bar.finish();
+        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+        json sum = summarize(s, res, single);
+        json seeds = json::array();
+        for (unsigned i = 0; i < runs; ++i)
+            seeds.push_back(base + i);
+        json head = {
+            {"tool", "pft eval"},
+            {"kind", "tbd"},
+            {"scenario", s.name},
+            {"scenario_file", s.file},
+            {"description", s.description},
+            {"tag", o.tag.empty() ? s.filter.kind + " N=" + std::to_string(s.filter.particles) : o.tag},
+            {"snr_db", s.snr_db},
+            {"noise_sigma", s.noise_sigma},
+            {"frames", s.frames},
+            {"image", {s.width, s.height}},
+            {"runs", runs},
+            {"base_seed", base},
+            {"seeds", seeds},
+            {"threads", threads},
+            {"particles", s.filter.particles},
+            {"numeric", numeric_name()},
+            {"filter", s.filter.kind},
+            {"mode", single ? "single" : "multi"},
+            {"d_c", s.eval.d_c},
+            {"d_assoc", s.eval.d_assoc},
+            {"timing", {{"wall_s", wall}, {"run_s_mean", cpu_s.load() / runs}}},
+        };
+        if (!single)
+            head["track_particles"] = s.filter.track_particles;
+        head["filter_settings"] = make_filter_json(s);
+        if (!s.reference.is_null())
+            head["reference"] = s.reference;
+        for (auto it = sum.begin(); it != sum.end(); ++it)
+            head[it.key()] = it.value();
+        head["scenario_json"] = s.raw;
+        write_json_atomic(join_path(out_dir, "summary.json"), head);
+        eval_plots(s, head, out_dir, single);
+        if (!o.quiet) {
+            print_summary(s, head, true);
+            std::printf("\n  %.1f s wall, %.2f s per run; wrote %s/summary.json, existence.png, rmse.png\n",
+                        wall, cpu_s.load() / runs, out_dir.c_str());
+        }
+        return 0;
+    }
+
+    int bench(const Options &o) override
+    {
+        Scenario s = load(o);
+        bool single = s.filter.mode == "single";
+        int frames = o.frames ? static_cast<int>(o.frames) : s.frames;
+        unsigned reps = o.runs ? o.runs : 1;
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        std::vector<double> times;
+        uint64_t particle_frames = 0;
+        std::size_t ws = 0;
+        for (unsigned r = 0; r < reps; ++r) {
+            Sequence q = simulate(s, seed + r, frames);
+            Tracker tr(make_config(s, seed + r), single);
+            ws = tr.workspace_bytes();
+            for (int k = 0; k < q.frames; ++k) {
+                auto t0 = std::chrono::steady_clock::now();
+                tr.update_f32(q.images[k].data(), static_cast<uint32_t>(k + 1));
+                auto t1 = std::chrono::steady_clock::now();
+                times.push_back(std::chrono::duration<double>(t1 - t0).count());
+                particle_frames += tr.active_particles();
+            }
+        }
+        std::vector<double> sorted = times;
+        std::sort(sorted.begin(), sorted.end());
+        double med = sorted[sorted.size() / 2], p90 = sorted[std::min(sorted.size() - 1, sorted.size() * 9 / 10)];
+        double total = 0;
+        for (double t : times)
+            total += t;
+        double mean = total / times.size();
+        double ppf = static_cast<double>(particle_frames) / times.size();
+        json j = {{"tool", "pft bench"}, {"scenario", s.name}, {"mode", single ? "single" : "multi"},
+                  {"filter", s.filter.kind}, {"particles", s.filter.particles},
+                  {"numeric", numeric_name()}, {"frames", times.size()}, {"repeats", reps},
+                  {"workspace_bytes", ws}, {"median_s_per_frame", med}, {"mean_s_per_frame", mean},
+                  {"p90_s_per_frame", p90}, {"max_s_per_frame", sorted.back()},
+                  {"particles_per_frame_mean", ppf}, {"particle_updates", particle_frames},
+                  {"particle_updates_per_s", particle_frames / total},
+                  {"paper_s_per_frame", kPaperSecondsPerFrame},
+                  {"paper_hardware", "Pentium 4 3.0 GHz, MATLAB 6.5 (abstract says 0.0387 s/frame)"}};
+        if (!single)
+            j["track_particles"] = s.filter.track_particles;
+        if (!o.out.empty()) {
+            ensure_dir(o.out);
+            write_json_atomic(join_path(o.out, "bench.json"), j);
+        }
+        if (!o.quiet) {
+            std::printf("pft bench: %s\n", describe(s).c_str());
+            std::printf("  %zu frames (%u x %d), workspace %zu bytes\n", times.size(), reps, frames, ws);
+            std::printf("  per frame: median %.3f ms, mean %.3f ms, p90 %.3f ms, max %.3f ms\n",
+                        med * 1e3, mean * 1e3, p90 * 1e3, sorted.back() * 1e3);
+            std::printf("  particles per frame %.0f, %.2f M particle updates/s\n", ppf,
+                        particle_frames / total / 1e6);
+            std::printf("  paper: %.4f s/frame (Pentium 4 3 GHz, MATLAB 6.5) -> %.0fx faster here\n",
+                        kPaperSecondsPerFrame, kPaperSecondsPerFrame / med);
+        }
+        return 0;
+    }
+
+    int demo(const Options &o) override
+    {
+        Scenario s = load(o);
+        if (!o.sequence.empty()) {
+            Options o2 = o;
+            if (o2.out.empty())
+                o2.out = "pft_demo_out";
+            return run(o2);
+        }
+        bool single = s.filter.mode == "single";
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        std::printf("pft demo: %s\n  simulated in memory with seed %llu (truth: ", describe(s).c_str(),
+                    static_cast<unsigned long long>(seed));
+        for (std::size_t i = 0; i < s.targets.size(); ++i)
+            std::printf("%sT%d frames %d-%d", i ? ", " : "", s.targets[i].id, s.targets[i].birth,
+                        s.targets[i].death);
+        std::printf(")\n\n");
+        Sequence q = simulate(s, seed);
+        auto t0 = std::chrono::steady_clock::now();
+        std::vector<FrameOut> out = track_sequence(s, q, seed);
+        double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("frame | truth                            | tracks                                       | %s\n",
+                    single ? "filter P" : "search P");
+        for (std::size_t k = 0; k < out.size(); ++k) {
+            std::string tru, trk, ev;
+            char b[96];
+            for (std::size_t t = 0; t < s.targets.size(); ++t)
+                if (q.truth[k][t].present) {
+                    std::snprintf(b, sizeof b, "T%d(%5.2f,%5.2f) ", s.targets[t].id, q.truth[k][t].x, q.truth[k][t].y);
+                    tru += b;
+                }
+            for (const TrackOut &t : out[k].tracks) {
+                std::snprintf(b, sizeof b, "#%u(%5.2f,%5.2f) P%.2f ", t.id, t.x, t.y, t.p_exist);
+                trk += b;
+            }
+            for (const EventOut &e : out[k].events) {
+                std::snprintf(b, sizeof b, " %s #%u", e.kind == PFT_TBD_EV_CONFIRMED ? "+confirmed" : "-ended", e.id);
+                ev += b;
+            }
+            std::printf(" %4zu | %-32s | %-44s | %.2f%s\n", k + 1, tru.c_str(), trk.c_str(),
+                        out[k].search_p, ev.c_str());
+        }
+        RunEval ev = evaluate_run(s, q.truth, out, single);
+        print_tracks(out, &ev, &s);
+        std::vector<RunEval> one{ev};
+        json sum = summarize(s, one, single);
+        sum["runs"] = 1;
+        std::printf("\nSummary versus truth (this run; appear/disappear delays in frames, correct = "
+                    "frames within %.1f px, RMSE eq. 25 over them, PCRLB floor of ALGORITHMS.md 7):",
+                    s.eval.d_c);
+        print_summary(s, sum, true);
+        std::printf("\n  tracking time %.1f ms for %zu frames (%.2f ms/frame), %s build\n", dt * 1e3,
+                    out.size(), dt * 1e3 / out.size(), numeric_name());
+        std::printf("  Monte Carlo over 100 seeds: pft eval --scenario %s\n", s.file.c_str());
+        return 0;
+    }
+
+    int selftest(const Options &o) override
+    {
+        int fails = 0;
+        std::printf("tbd selftest: PCRLB against ALGORITHMS.md 7.2 (3 digits)\n");
+        fails += pcrlb_selftest(!o.quiet);
+        fails += metrics_selftest(!o.quiet);
+        std::printf("tbd selftest: %s (%d failure%s)\n", fails ? "FAILED" : "passed", fails,
+                    fails == 1 ? "" : "s");
+        return fails ? 1 : 0;
+    }
+
+private:
+    static json make_filter_json(const Scenario &s)
+    {
+        const FilterSettings &F = s.filter;
+        return {{"mode", F.mode}, {"kind", F.kind}, {"particles", F.particles},
+                {"track_particles", F.track_particles}, {"max_targets", F.max_targets},
+                {"pb", F.pb}, {"pd", F.pd}, {"eta", F.eta}, {"gamma", F.gamma},
+                {"i_min", F.i_min}, {"i_max", F.i_max}, {"vel_mean", F.vel_mean},
+                {"vel_var", F.vel_var}, {"birth_correction", F.birth_correction},
+                {"theta1", F.theta1}, {"dis_r", F.dis_r}, {"dis_prev", F.dis_prev},
+                {"dis_ratio", F.dis_ratio}, {"force_constraint", F.force_constraint},
+                {"window", F.window}, {"kf_variant", F.kf_variant},
+                {"q1", F.q1 >= 0 ? F.q1 : s.q1}, {"q2", F.q2 >= 0 ? F.q2 : s.q2},
+                {"noise_sigma", F.noise_sigma > 0 ? F.noise_sigma : s.noise_sigma}};
+    }
+
+    /** Checks of the simulator's SNR mapping and of the metrics on hand-made outputs. */
+    static int metrics_selftest(bool verbose)
+    {
+        int fails = 0;
+        auto check = [&](const char *what, bool ok) {
+            fails += ok ? 0 : 1;
+            if (verbose || !ok)
+                std::printf("  %-4s %s\n", ok ? "ok" : "FAIL", what);
+        };
+        json j = {{"kind", "tbd"}, {"noise", {{"snr_db", 6}}}, {"frames", 30},
+                  {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {6, 0.45, 7, 0.25, 20}}, {"motion", "line"}}}}};
+        Scenario s = parse_scenario(j, "<selftest>");
+        check("SNR 6 dB -> sigma 3.256 (ALGORITHMS.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
+        check("peak amplitude A = 6.4961", std::fabs(s.peak(20) - 6.4961) < 5e-5);
+        Sequence q = simulate(s, 7, 0, false);
+        check("line truth: x at frame 22 = 6 + 15*0.45", std::fabs(q.truth[21][0].x - 12.75) < 1e-12 &&
+                                                          q.truth[21][0].present && !q.truth[22][0].present);
+        // a perfect tracker confirming 2 frames late, offset 0.3 px, declared gone 1 frame late
+        std::vector<FrameOut> out(30);
+        for (int k = 1; k <= 30; ++k) {
+            out[k - 1].frame = static_cast<uint32_t>(k);
+            if (k >= 9 && k <= 22) {
+                TrackOut t;
+                t.id = 1;
+                t.x = q.truth[k - 1][0].x + 0.3;
+                t.y = q.truth[k - 1][0].y;
+                t.p_exist = 0.9;
+                out[k - 1].tracks.push_back(t);
+            }
+            if (k == 23)
+                out[k - 1].events.push_back({PFT_TBD_EV_ENDED, 1, 23, 0, 0});
+            if (k == 3) {  // a false track far away for frames 3..4
+                out[k - 1].tracks.push_back({2, 18, 18, 0, 0, 20, 0.7, 3});
+                out[k].tracks.push_back({2, 18, 18, 0, 0, 20, 0.7, 3});
+                out[k + 1].events.push_back({PFT_TBD_EV_ENDED, 2, 5, 18, 18});
+            }
+        }
+        RunEval ev = evaluate_run(s, q.truth, out, false);
+        const TargetRun &t = ev.targets[0];
+        check("metrics: appearance delay 2", t.detected && t.appear_delay == 2);
+        check("metrics: disappearance delay 1", !t.censored && t.disappear_delay == 1);
+        check("metrics: 14 correct of 16 true frames", t.correct == 14 && t.true_frames == 16);
+        check("metrics: RMSE 0.3 over correct points", std::fabs(std::sqrt(t.sq_correct / t.correct) - 0.3) < 1e-12);
+        check("metrics: one unassigned (false) track", ev.unassigned == 1);
+        json sum = summarize(s, {ev}, false);
+        check("summary: contract fields present",
+              sum["averaged"].contains("appearance_delay") && sum["averaged"].contains("pcrlb") &&
+                  sum["targets"][0].contains("disappearance_delay") &&
+                  sum["targets"][0].contains("correct_frames") && sum["targets"][0].contains("true_frames") &&
+                  sum["targets"][0].contains("rmse") && sum["targets"][0].contains("false_tracks") &&
+                  sum["averaged"]["existence_probability"].size() == 30);
+        check("summary: line floor 0.386 at 6 dB", std::fabs(sum["targets"][0]["pcrlb"].get<double>() - 0.386) < 5e-4);
+        return fails;
+    }
+};
+
+}  // namespace
+
+PFT_REGISTER_KIND("tbd", TbdHandler);
+
+}  // namespace pft::host::tbd

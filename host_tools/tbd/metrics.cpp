@@ -1,0 +1,340 @@
+#include "metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace pft::host::tbd {
+
+namespace {
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double dist(double x, double y, const TruthState &t) { return std::hypot(x - t.x, y - t.y); }
+
+nlohmann::json num_or_null(double v)
+{
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+}  // namespace
+
+std::vector<TrackHist> collect_tracks(const std::vector<FrameOut> &out)
+{
+    std::map<uint32_t, TrackHist> m;
+    for (const FrameOut &f : out) {
+        for (const TrackOut &t : f.tracks) {
+            TrackHist &h = m[t.id];
+            if (!h.id) {
+                h.id = t.id;
+                h.first = static_cast<int>(f.frame);
+            }
+            h.last = static_cast<int>(f.frame);
+            h.frames.push_back(static_cast<int>(f.frame));
+            h.xs.push_back(t.x);
+            h.ys.push_back(t.y);
+            h.ps.push_back(t.p_exist);
+        }
+        for (const EventOut &e : f.events)
+            if (e.kind == PFT_TBD_EV_ENDED && m.count(e.id))
+                m[e.id].end_frame = static_cast<int>(e.frame);
+    }
+    std::vector<TrackHist> v;
+    for (auto &kv : m)
+        v.push_back(std::move(kv.second));
+    return v;
+}
+
+PcrlbResult target_floor(const Scenario &s, const Target &t)
+{
+    PcrlbInput in;
+    in.peak = s.peak(t.x0[4]);
+    in.sigma = s.noise_sigma;
+    in.psf_sigma = s.psf_sigma;
+    in.intensity = t.x0[4];
+    in.dx = s.dx;
+    in.dy = s.dy;
+    in.T = s.T;
+    in.q1 = s.q1;
+    in.q2 = s.q2;
+    in.stochastic = t.motion == Motion::StochasticCV;
+    in.vel_info = 2.0 / (s.filter.vel_var[0] + s.filter.vel_var[1]);
+    double w = s.filter.i_max - s.filter.i_min;
+    in.int_info = 12.0 / (w * w);
+    in.frames = t.death - t.birth + 1;
+    return pcrlb(in);
+}
+
+RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState>> &truth,
+                     const std::vector<FrameOut> &out, bool single)
+{
+    const double d_c = s.eval.d_c, d_as = s.eval.d_assoc;
+    const int nf = static_cast<int>(out.size());
+    const std::size_t nt = s.targets.size();
+    RunEval r;
+    r.tracks = collect_tracks(out);
+    r.targets.resize(nt);
+    for (const FrameOut &f : out)
+        r.search_p.push_back(f.search_p);
+
+    auto truth_at = [&](int frame, std::size_t ti) -> const TruthState * {
+        if (frame < 1 || frame > static_cast<int>(truth.size()))
+            return nullptr;
+        const TruthState &t = truth[frame - 1][ti];
+        return t.present ? &t : nullptr;
+    };
+
+    // association
+    for (TrackHist &h : r.tracks) {
+        int best = -1, best_n = 0;
+        double best_d = 0;
+        for (std::size_t ti = 0; ti < nt; ++ti) {
+            int n = 0;
+            double sd = 0;
+            for (std::size_t k = 0; k < h.frames.size(); ++k) {
+                const TruthState *t = truth_at(h.frames[k], ti);
+                if (!t)
+                    continue;
+                double d = dist(h.xs[k], h.ys[k], *t);
+                if (d <= d_as) {
+                    ++n;
+                    sd += d;
+                }
+            }
+            if (n > best_n || (n == best_n && n > 0 && sd / n < best_d)) {
+                best = static_cast<int>(ti);
+                best_n = n;
+                best_d = sd / n;
+            }
+        }
+        h.assigned = best;
+        if (best < 0)
+            ++r.unassigned;
+    }
+
+    for (std::size_t ti = 0; ti < nt; ++ti) {
+        const Target &tg = s.targets[ti];
+        TargetRun &tr = r.targets[ti];
+        tr.true_frames = 0;
+        tr.err2.assign(nf, kNaN);
+        tr.p_exist.assign(nf, 0.0);
+        std::vector<const TrackHist *> mine;
+        for (const TrackHist &h : r.tracks)
+            if (h.assigned == static_cast<int>(ti))
+                mine.push_back(&h);
+        tr.tracks = static_cast<int>(mine.size());
+        // per frame: the closest assigned track
+        for (int k = 1; k <= nf; ++k) {
+            const TruthState *t = truth_at(k, ti);
+            double best_d = std::numeric_limits<double>::infinity(), best_p = 0;
+            bool any = false;
+            for (const TrackHist *h : mine) {
+                auto it = std::lower_bound(h->frames.begin(), h->frames.end(), k);
+                if (it == h->frames.end() || *it != k)
+                    continue;
+                std::size_t idx = static_cast<std::size_t>(it - h->frames.begin());
+                double d = t ? dist(h->xs[idx], h->ys[idx], *t) : 0.0;
+                if (!any || d < best_d) {
+                    best_d = d;
+                    best_p = h->ps[idx];
+                }
+                any = true;
+            }
+            tr.p_exist[k - 1] = single ? out[k - 1].search_p : best_p;
+            if (!t)
+                continue;
+            ++tr.true_frames;
+            if (!any)
+                continue;
+            if (!tr.detected && k >= tg.birth) {
+                tr.detected = true;
+                tr.appear_frame = k;
+                tr.appear_delay = k - tg.birth;
+            }
+            tr.sq_all += best_d * best_d;
+            ++tr.n_all;
+            if (best_d <= d_c) {
+                ++tr.correct;
+                tr.sq_correct += best_d * best_d;
+                tr.err2[k - 1] = best_d * best_d;
+            }
+        }
+        if (tr.detected) {
+            const TrackHist *lastT = nullptr;
+            for (const TrackHist *h : mine)
+                if (!lastT || h->last > lastT->last)
+                    lastT = h;
+            if (lastT->end_frame > 0) {
+                tr.disappear_delay = lastT->end_frame - tg.death;
+            } else {
+                tr.censored = true;
+                tr.disappear_delay = nf + 1 - tg.death;
+            }
+        }
+    }
+
+    // declared points against their own target (Deng's false-track probability)
+    for (const TrackHist &h : r.tracks) {
+        for (std::size_t k = 0; k < h.frames.size(); ++k) {
+            ++r.declared_points;
+            const TruthState *t = h.assigned >= 0 ? truth_at(h.frames[k], h.assigned) : nullptr;
+            if (!t || dist(h.xs[k], h.ys[k], *t) > d_c)
+                ++r.incorrect_points;
+        }
+    }
+    return r;
+}
+
+nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bool single)
+{
+    using nlohmann::json;
+    const std::size_t nt = s.targets.size();
+    const std::size_t R = runs.size();
+    const int nf = R ? static_cast<int>(runs[0].search_p.size()) : s.frames;
+    json targets = json::array();
+    double sum_app = 0, sum_dis = 0, sum_cor = 0, sum_true = 0, sum_rmse = 0, sum_floor = 0,
+           sum_fm = 0, sum_ra = 0, sum_false_t = 0;
+    int n_app = 0, n_dis = 0, n_rmse = 0;
+    std::vector<double> mean_p(nf, 0.0);
+
+    for (std::size_t ti = 0; ti < nt; ++ti) {
+        const Target &tg = s.targets[ti];
+        PcrlbResult fl = target_floor(s, tg);
+        double app = 0, dis = 0, cor = 0, sqc = 0, sqa = 0, extra = 0;
+        long nc = 0, na = 0;
+        int det = 0, ndis = 0, cens = 0;
+        std::vector<double> p(nf, 0.0), e2(nf, 0.0), floor_w(nf, 0.0);
+        std::vector<int> ne2(nf, 0);
+        for (const RunEval &r : runs) {
+            const TargetRun &t = r.targets[ti];
+            if (t.detected) {
+                ++det;
+                app += t.appear_delay;
+                if (t.censored)
+                    ++cens;
+                else {
+                    dis += t.disappear_delay;
+                    ++ndis;
+                }
+            }
+            cor += t.correct;
+            sqc += t.sq_correct;
+            nc += t.correct;
+            sqa += t.sq_all;
+            na += t.n_all;
+            extra += t.tracks > 1 ? t.tracks - 1 : 0;
+            for (int k = 0; k < nf && k < static_cast<int>(t.p_exist.size()); ++k) {
+                p[k] += t.p_exist[k];
+                if (std::isfinite(t.err2[k])) {
+                    e2[k] += t.err2[k];
+                    ++ne2[k];
+                }
+            }
+        }
+        double Rd = R ? static_cast<double>(R) : 1.0;
+        json pf = json::array(), rf = json::array(), ff = json::array(), cf = json::array();
+        double matched_num = 0;
+        for (int k = 0; k < nf; ++k) {
+            p[k] /= Rd;
+            mean_p[k] += p[k] / static_cast<double>(nt ? nt : 1);
+            pf.push_back(p[k]);
+            rf.push_back(num_or_null(ne2[k] ? std::sqrt(e2[k] / ne2[k]) : kNaN));
+            cf.push_back(ne2[k] / Rd);
+            int life = k + 1 - tg.birth;
+            double fk = (life >= 0 && life < static_cast<int>(fl.radial.size())) ? fl.radial[life] : kNaN;
+            ff.push_back(num_or_null(fk));
+            if (std::isfinite(fk))
+                matched_num += ne2[k] * fk * fk;
+        }
+        double rmse = nc ? std::sqrt(sqc / nc) : kNaN;
+        double rmse_all = na ? std::sqrt(sqa / na) : kNaN;
+        double matched = nc ? std::sqrt(matched_num / nc) : kNaN;
+        double app_m = det ? app / det : kNaN, dis_m = ndis ? dis / ndis : kNaN;
+        json tj = {
+            {"id", tg.id},
+            {"birth_frame", tg.birth},
+            {"death_frame", tg.death},
+            {"motion", tg.motion == Motion::Line ? "line" : "cv"},
+            {"appearance_delay", num_or_null(app_m)},
+            {"disappearance_delay", num_or_null(dis_m)},
+            {"correct_frames", cor / Rd},
+            {"true_frames", tg.death - tg.birth + 1},
+            {"rmse", num_or_null(rmse)},
+            {"pcrlb", fl.track_rmse},
+            {"false_tracks", extra / Rd},
+            {"detected_runs", det},
+            {"censored_disappearances", cens},
+            {"rmse_all_assigned", num_or_null(rmse_all)},
+            {"pcrlb_matched", num_or_null(matched)},
+            {"rmse_over_pcrlb", num_or_null(rmse / fl.track_rmse)},
+            {"existence_probability", pf},
+            {"rmse_per_frame", rf},
+            {"correct_fraction_per_frame", cf},
+            {"pcrlb_per_frame", ff},
+        };
+        targets.push_back(tj);
+        if (std::isfinite(app_m)) {
+            sum_app += app_m;
+            ++n_app;
+        }
+        if (std::isfinite(dis_m)) {
+            sum_dis += dis_m;
+            ++n_dis;
+        }
+        sum_cor += cor / Rd;
+        sum_true += tg.death - tg.birth + 1;
+        if (std::isfinite(rmse)) {
+            sum_rmse += rmse;
+            sum_fm += matched;
+            sum_ra += rmse_all;
+            ++n_rmse;
+        }
+        sum_floor += fl.track_rmse;
+        sum_false_t += extra / Rd;
+    }
+    double unassigned = 0, decl = 0, incorrect = 0;
+    std::vector<double> sp(nf, 0.0);
+    for (const RunEval &r : runs) {
+        unassigned += r.unassigned;
+        decl += r.declared_points;
+        incorrect += r.incorrect_points;
+        for (int k = 0; k < nf && k < static_cast<int>(r.search_p.size()); ++k)
+            sp[k] += r.search_p[k] / static_cast<double>(R ? R : 1);
+    }
+    double Rd = R ? static_cast<double>(R) : 1.0, ntd = nt ? static_cast<double>(nt) : 1.0;
+    json avg = {
+        {"appearance_delay", num_or_null(n_app ? sum_app / n_app : kNaN)},
+        {"disappearance_delay", num_or_null(n_dis ? sum_dis / n_dis : kNaN)},
+        {"correct_frames", sum_cor / ntd},
+        {"true_frames", sum_true / ntd},
+        {"rmse", num_or_null(n_rmse ? sum_rmse / n_rmse : kNaN)},
+        {"pcrlb", sum_floor / ntd},
+        {"false_tracks", (unassigned + 0.0) / Rd + sum_false_t},
+        {"unassigned_tracks", unassigned / Rd},
+        {"false_point_fraction", num_or_null(decl > 0 ? incorrect / decl : kNaN)},
+        {"rmse_all_assigned", num_or_null(n_rmse ? sum_ra / n_rmse : kNaN)},
+        {"pcrlb_matched", num_or_null(n_rmse ? sum_fm / n_rmse : kNaN)},
+        {"existence_probability", mean_p},
+    };
+    json j;
+    j["targets"] = targets;
+    j["averaged"] = avg;
+    j[single ? "filter_existence_probability" : "search_existence_probability"] = sp;
+    json per_run = json::array();
+    for (const RunEval &r : runs) {
+        json pr = {{"seed", r.seed}, {"unassigned_tracks", r.unassigned}};
+        json tt = json::array();
+        for (const TargetRun &t : r.targets)
+            tt.push_back({{"detected", t.detected},
+                          {"appearance_delay", t.detected ? json(t.appear_delay) : json(nullptr)},
+                          {"disappearance_delay", t.detected ? json(t.disappear_delay) : json(nullptr)},
+                          {"censored", t.censored},
+                          {"correct_frames", t.correct},
+                          {"tracks", t.tracks}});
+        pr["targets"] = tt;
+        per_run.push_back(pr);
+    }
+    j["per_run"] = per_run;
+    return j;
+}
+
+}  // namespace pft::host::tbd

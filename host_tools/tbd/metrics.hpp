@@ -1,0 +1,73 @@
+// Performance measures of ALGORITHMS.md section 6 ([P1] metrics) for one run and their
+// Monte Carlo aggregate with the contract field names of `pft eval`.
+//
+// Association: a confirmed track belongs to the target it stays within d_assoc of for the most
+// frames (ties: the smaller mean distance); a track never within d_assoc of a present target
+// is unassigned. Per target (1-based frames, life birth..death):
+//   appearance delay    = first frame >= birth at which an assigned track is reported - birth
+//   disappearance delay = frame at which the last assigned track was declared gone - death
+//                         (censored when it survives the sequence; negative when lost early)
+//   correct frames      = frames of the life with an assigned track within d_c of the truth
+//   RMSE                = eq. 25 over the correct points, pooled over runs
+//   false tracks        = per target: assigned tracks beyond the first (re-acquisitions,
+//                         duplicates); overall: those plus the unassigned tracks, per run.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pcrlb.hpp"
+#include "scenario.hpp"
+#include "sim.hpp"
+#include "tracker.hpp"
+
+namespace pft::host::tbd {
+
+struct TrackHist {
+    uint32_t id = 0;
+    int first = 0;          ///< first frame reported
+    int last = 0;           ///< last frame reported
+    int end_frame = 0;      ///< frame at which it was declared gone (0: alive at the end)
+    std::vector<int> frames;
+    std::vector<double> xs, ys, ps;
+    int assigned = -1;      ///< target index, -1: unassigned
+};
+
+struct TargetRun {
+    bool detected = false;
+    int appear_frame = 0;
+    double appear_delay = 0;
+    bool censored = false;  ///< last assigned track still alive at the end of the sequence
+    double disappear_delay = 0;
+    int correct = 0;
+    int true_frames = 0;
+    double sq_correct = 0;  ///< sum of squared radial errors over correct points
+    double sq_all = 0;      ///< ... over every assigned point in the life
+    int n_all = 0;
+    int tracks = 0;         ///< assigned tracks
+    std::vector<double> err2;     ///< per frame: squared error of a correct point, NaN if none
+    std::vector<double> p_exist;  ///< per frame
+};
+
+struct RunEval {
+    uint64_t seed = 0;
+    std::vector<TargetRun> targets;
+    std::vector<TrackHist> tracks;
+    int unassigned = 0;
+    int declared_points = 0, incorrect_points = 0;
+    std::vector<double> search_p;  ///< per frame
+};
+
+std::vector<TrackHist> collect_tracks(const std::vector<FrameOut> &out);
+
+RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState>> &truth,
+                     const std::vector<FrameOut> &out, bool single);
+
+/** Floor of section 7 for one target of the scenario (its motion, intensity, life length). */
+PcrlbResult target_floor(const Scenario &s, const Target &t);
+
+/** The eval summary (contract names, see docs/host_tools.md) from the runs. */
+nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bool single);
+
+}  // namespace pft::host::tbd

@@ -1,0 +1,87 @@
+// TBD scenario files (kind "tbd"): image, PSF, noise, frames, targets with birth/death,
+// initial state and motion, filter settings, evaluation settings. See docs/host_tools.md.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pft::host::tbd {
+
+enum class Motion { StochasticCV, Line };
+
+struct Target {
+    int id = 0;
+    int birth = 1;                    ///< first frame present (1-based, inclusive)
+    int death = 1;                    ///< last frame present (inclusive)
+    std::array<double, 5> x0{};       ///< state at the birth frame: x, vx, y, vy, I
+    Motion motion = Motion::StochasticCV;
+    int spawn_from = 0;               ///< id of a target whose true position at `birth` replaces x0's position
+};
+
+struct FilterSettings {
+    std::string mode = "multi";       ///< "multi" (two-layer manager) or "single" (one filter)
+    std::string kind = "rbpf";        ///< "rbpf" or "pf"
+    uint32_t particles = 6000;        ///< search layer (multi) or the single filter
+    uint32_t track_particles = 500;   ///< per track layer (multi)
+    uint32_t max_targets = 4;
+    double pb = 0.05, pd = 0.05, eta = 0.05;
+    double gamma = 2.0, i_min = 10.0, i_max = 30.0;
+    std::array<double, 2> vel_mean{0.0, 0.0};
+    std::array<double, 2> vel_var{1.0 / 3.0, 1.0 / 3.0};
+    bool birth_correction = false;
+    double theta1 = 0.6;
+    int dis_r = 2, dis_prev = 5;
+    double dis_ratio = 0.8;
+    bool force_constraint = true;
+    int window = 1;
+    std::string kf_variant = "exact";
+    double q1 = -1, q2 = -1;          ///< filter's model; < 0: the scenario's model
+    double noise_sigma = -1;          ///< filter's assumed sigma; < 0: the scenario's
+    uint64_t seed_offset = 0;         ///< filter seed = run seed + seed_offset
+};
+
+struct EvalSettings {
+    unsigned runs = 100;
+    uint64_t base_seed = 1;
+    double d_c = 1.0;                 ///< correct-point distance (pixels)
+    double d_assoc = 3.0;             ///< track-to-target association gate (pixels)
+};
+
+struct OutputSettings {
+    std::string format = "pgm";       ///< "pgm" (16-bit) or "raw" (float32)
+    double gain = 256.0;              ///< PGM: raw = offset + gain * z
+    double offset = 32768.0;
+};
+
+struct Scenario {
+    std::string file, name, description;
+    int width = 20, height = 20;
+    double dx = 1.0, dy = 1.0;
+    double psf_sigma = 0.7;
+    double snr_db = 6.0;              ///< derived from sigma when the file gives sigma
+    double noise_sigma = 0.0;
+    double ref_intensity = 20.0;
+    int frames = 30;
+    double T = 1.0, q1 = 0.005, q2 = 0.01;
+    std::vector<Target> targets;
+    FilterSettings filter;
+    EvalSettings eval;
+    OutputSettings output;
+    nlohmann::json reference;         ///< paper figures to print beside ours (optional)
+    nlohmann::json raw;               ///< the file as read
+
+    /** Peak pixel amplitude A = I dx dy / (2 pi Sigma^2) for intensity I. */
+    double peak(double intensity) const;
+    const Target *target_by_id(int id) const;
+};
+
+/** Parses and validates; InputError naming the bad field. */
+Scenario parse_scenario(const nlohmann::json &j, const std::string &file);
+
+/** sigma = A 10^(-SNR/20) */
+double sigma_from_snr(double peak, double snr_db);
+double snr_from_sigma(double peak, double sigma);
+
+}  // namespace pft::host::tbd

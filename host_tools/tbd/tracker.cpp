@@ -1,0 +1,196 @@
+#include "tracker.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "../common/errors.hpp"
+
+namespace pft::host::tbd {
+
+pft_real_t to_real(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    double s = std::nearbyint(v * 65536.0);
+    if (s > 2147483647.0)
+        s = 2147483647.0;
+    if (s < -2147483647.0)
+        s = -2147483647.0;
+    return static_cast<pft_real_t>(s);
+#else
+    return static_cast<pft_real_t>(v);
+#endif
+}
+
+double from_real(pft_real_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return static_cast<double>(v) / 65536.0;
+#else
+    return static_cast<double>(v);
+#endif
+}
+
+const char *numeric_name() { return PFT_NUMERIC_NAME; }
+
+pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
+{
+    const FilterSettings &F = s.filter;
+    pft_tbd_config_t c;
+    pft_tbd_config_default(&c);
+    c.width = static_cast<uint16_t>(s.width);
+    c.height = static_cast<uint16_t>(s.height);
+    c.dx = to_real(s.dx);
+    c.dy = to_real(s.dy);
+    c.psf_sigma = to_real(s.psf_sigma);
+    c.noise_sigma = to_real(F.noise_sigma > 0 ? F.noise_sigma : s.noise_sigma);
+    c.pixel_gain = to_real(1.0);
+    c.pixel_offset = to_real(0.0);
+    c.window = static_cast<uint8_t>(F.window);
+    c.T = to_real(s.T);
+    c.q1 = to_real(F.q1 >= 0 ? F.q1 : s.q1);
+    c.q2 = to_real(F.q2 >= 0 ? F.q2 : s.q2);
+    c.pb = to_real(F.pb);
+    c.pd = to_real(F.pd);
+    c.eta = to_real(F.eta);
+    c.gamma = to_real(F.gamma);
+    c.i_min = to_real(F.i_min);
+    c.i_max = to_real(F.i_max);
+    c.vel_mean[0] = to_real(F.vel_mean[0]);
+    c.vel_mean[1] = to_real(F.vel_mean[1]);
+    c.vel_var[0] = to_real(F.vel_var[0]);
+    c.vel_var[1] = to_real(F.vel_var[1]);
+    c.birth_correction = F.birth_correction;
+    c.theta1 = to_real(F.theta1);
+    c.dis_r = static_cast<uint8_t>(F.dis_r);
+    c.dis_prev = static_cast<uint8_t>(F.dis_prev);
+    c.dis_ratio = to_real(F.dis_ratio);
+    c.force_constraint = F.force_constraint;
+    c.n_search = F.particles;
+    c.n_track = F.track_particles;
+    c.max_targets = static_cast<uint16_t>(F.max_targets);
+    c.kind = F.kind == "pf" ? PFT_TBD_PF : PFT_TBD_RBPF;
+    c.kf_variant = F.kf_variant == "paper" ? PFT_TBD_KF_PAPER : PFT_TBD_KF_EXACT;
+    c.seed = seed + F.seed_offset;
+    return c;
+}
+
+namespace {
+[[noreturn]] void lib_error(const char *what, pft_status_t st)
+{
+    throw InputError(std::string(what) + ": " + pft_status_str(st) + " (" +
+                     std::to_string(static_cast<int>(st)) + ")");
+}
+}  // namespace
+
+Tracker::Tracker(const pft_tbd_config_t &cfg, bool single) : cfg_(cfg), single_(single)
+{
+    pft_status_t st = pft_tbd_config_check(&cfg_);
+    if (st != PFT_OK)
+        lib_error("filter configuration rejected by pft_tbd_config_check", st);
+    ws_bytes_ = single_ ? pft_tbd_filter_workspace_size(&cfg_, cfg_.n_search, cfg_.kind)
+                        : pft_tbd_workspace_size(&cfg_);
+    work_.assign((ws_bytes_ + 7) / 8, 0);
+    st = single_ ? pft_tbd_filter_init(&flt_, &cfg_, cfg_.n_search, cfg_.kind, work_.data(), ws_bytes_)
+                 : pft_tbd_init(&mgr_, &cfg_, work_.data(), ws_bytes_);
+    if (st != PFT_OK)
+        lib_error(single_ ? "pft_tbd_filter_init" : "pft_tbd_init", st);
+}
+
+FrameOut Tracker::update_f32(const float *img, uint32_t seq)
+{
+    pft_frame_t f{};
+    f.data = img;
+    f.width = cfg_.width;
+    f.height = cfg_.height;
+    f.stride_bytes = static_cast<uint32_t>(cfg_.width * sizeof(float));
+    f.format = PFT_PIX_F32;
+    f.seq = seq;
+    f.timestamp_us = static_cast<uint64_t>(seq) * 1000000u;
+    return update(f);
+}
+
+FrameOut Tracker::update(const pft_frame_t &frame)
+{
+    FrameOut out;
+    if (single_) {
+        pft_status_t st = pft_tbd_filter_update(&flt_, &frame);
+        if (st != PFT_OK)
+            lib_error("pft_tbd_filter_update", st);
+        ++frame_;
+        out.frame = frame_;
+        active_ = cfg_.n_search;
+        pft_tbd_estimate_t e;
+        pft_tbd_filter_estimate(&flt_, &e);
+        out.search_p = from_real(e.p_exist);
+        out.search_x = from_real(e.x);
+        out.search_y = from_real(e.y);
+        out.search_valid = e.valid;
+        bool now = e.valid && e.p_exist > cfg_.theta1;
+        if (now && !present_) {
+            cur_id_ = next_id_++;
+            cur_first_ = frame_;
+            out.events.push_back({PFT_TBD_EV_CONFIRMED, cur_id_, frame_, out.search_x, out.search_y});
+        } else if (!now && present_) {
+            out.events.push_back({PFT_TBD_EV_ENDED, cur_id_, frame_, out.search_x, out.search_y});
+        }
+        present_ = now;
+        if (now) {
+            TrackOut t;
+            t.id = cur_id_;
+            t.x = out.search_x;
+            t.y = out.search_y;
+            t.vx = from_real(e.vx);
+            t.vy = from_real(e.vy);
+            t.intensity = from_real(e.intensity);
+            t.p_exist = out.search_p;
+            t.first_frame = cur_first_;
+            out.tracks.push_back(t);
+        }
+        return out;
+    }
+
+    pft_status_t st = pft_tbd_update(&mgr_, &frame);
+    if (st != PFT_OK)
+        lib_error("pft_tbd_update", st);
+    out.frame = pft_tbd_frame(&mgr_);
+    pft_tbd_estimate_t e;
+    pft_tbd_search_estimate(&mgr_, &e);
+    out.search_p = from_real(e.p_exist);
+    out.search_x = from_real(e.x);
+    out.search_y = from_real(e.y);
+    out.search_valid = e.valid;
+    std::vector<pft_tbd_track_t> tr(cfg_.max_targets);
+    std::size_t n = pft_tbd_tracks(&mgr_, tr.data(), tr.size());
+    if (n > tr.size())
+        n = tr.size();
+    active_ = cfg_.n_search;
+    for (std::size_t i = 0; i < n; ++i) {
+        TrackOut t;
+        t.id = tr[i].id;
+        t.x = from_real(tr[i].x);
+        t.y = from_real(tr[i].y);
+        t.vx = from_real(tr[i].vx);
+        t.vy = from_real(tr[i].vy);
+        t.intensity = from_real(tr[i].intensity);
+        t.p_exist = from_real(tr[i].p_exist);
+        t.first_frame = tr[i].first_frame;
+        out.tracks.push_back(t);
+    }
+    std::vector<pft_tbd_event_t> ev(static_cast<std::size_t>(cfg_.max_targets) + 1u);
+    std::size_t ne = pft_tbd_events(&mgr_, ev.data(), ev.size());
+    std::size_t layers = n;
+    if (ne > ev.size())
+        ne = ev.size();
+    for (std::size_t i = 0; i < ne; ++i) {
+        out.events.push_back({static_cast<int>(ev[i].kind), ev[i].id, ev[i].frame,
+                              from_real(ev[i].x), from_real(ev[i].y)});
+        if (ev[i].kind == PFT_TBD_EV_ENDED)
+            ++layers;  // that layer was updated this frame before it ended
+        else if (ev[i].kind == PFT_TBD_EV_CONFIRMED && layers > 0)
+            --layers;  // created after the search update: not updated yet
+    }
+    active_ += static_cast<uint64_t>(layers) * cfg_.n_track;
+    return out;
+}
+
+}  // namespace pft::host::tbd

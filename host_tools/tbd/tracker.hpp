@@ -1,0 +1,80 @@
+// C++ wrapper over the library's TBD API: the multi-target manager (pft_tbd_*) or one
+// single-target filter (pft_tbd_filter_*), with its workspace, giving per-frame results in
+// double precision. In single mode a "track" is a maximal run of frames with P > theta1
+// (the paper's Exp. 1 decision rule), numbered 1, 2, ... in order.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "pft/pft_tbd.h"
+}
+
+#include "scenario.hpp"
+
+namespace pft::host::tbd {
+
+/** double -> pft_real_t of this build (q16: rounded, saturating). */
+pft_real_t to_real(double v);
+/** pft_real_t -> double. */
+double from_real(pft_real_t v);
+/** "float" or "q16". */
+const char *numeric_name();
+
+struct TrackOut {
+    uint32_t id = 0;
+    double x = 0, y = 0, vx = 0, vy = 0, intensity = 0, p_exist = 0;
+    uint32_t first_frame = 0;
+};
+
+struct EventOut {
+    int kind = 0;  ///< PFT_TBD_EV_CONFIRMED or PFT_TBD_EV_ENDED
+    uint32_t id = 0, frame = 0;
+    double x = 0, y = 0;
+};
+
+struct FrameOut {
+    uint32_t frame = 0;
+    std::vector<TrackOut> tracks;
+    std::vector<EventOut> events;
+    double search_p = 0;  ///< multi: search layer P; single: the filter's P
+    double search_x = 0, search_y = 0;
+    bool search_valid = false;
+};
+
+/** Library configuration from a scenario (filter settings, model, sigma, image size). */
+pft_tbd_config_t make_config(const Scenario &s, uint64_t seed);
+
+class Tracker {
+public:
+    /** single: one filter with `particles`, kind from cfg.kind; else the manager. */
+    Tracker(const pft_tbd_config_t &cfg, bool single);
+    Tracker(const Tracker &) = delete;
+    Tracker &operator=(const Tracker &) = delete;
+
+    /** Pushes one frame; InputError with the library's status on refusal. */
+    FrameOut update(const pft_frame_t &frame);
+    /** Same, for an F32 image of the configured size. */
+    FrameOut update_f32(const float *img, uint32_t seq);
+
+    std::size_t workspace_bytes() const { return ws_bytes_; }
+    bool single() const { return single_; }
+    const pft_tbd_config_t &config() const { return cfg_; }
+    /** Particles updated at the last frame (multi: search + active tracks). */
+    uint64_t active_particles() const { return active_; }
+
+private:
+    pft_tbd_config_t cfg_;
+    bool single_;
+    std::vector<uint64_t> work_;  // 8-byte aligned workspace
+    std::size_t ws_bytes_ = 0;
+    pft_tbd_t mgr_{};
+    pft_tbd_filter_t flt_{};
+    // single-mode track bookkeeping
+    bool present_ = false;
+    uint32_t next_id_ = 1, cur_id_ = 0, cur_first_ = 0, frame_ = 0;
+    uint64_t active_ = 0;
+};
+
+}  // namespace pft::host::tbd
