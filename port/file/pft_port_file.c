@@ -57,11 +57,19 @@ static bool pattern_ok(const char *p)
     return conversions == 1u;
 }
 
+/* The pattern is the user's, checked by pattern_ok to hold one integer conversion. */
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+#endif
 static bool make_name(char *dst, const char *pattern, uint32_t index)
 {
     int n = snprintf(dst, PFT_FILE_NAME_MAX, pattern, (unsigned)index);
     return n > 0 && (unsigned)n < PFT_FILE_NAME_MAX;
 }
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 /* Converts n 16-bit samples stored with the given byte order to host order, in place. */
 static void u16_to_host(uint8_t *p, size_t n, bool big_endian)
