@@ -409,6 +409,11 @@ static void test_exp_error(void)
         pft_real_t a = in_real(urand(9.0, 10.3972), &x);
         err_add(&e, pft_exp(a), exp(x), x);
     }
+#if defined(PFT_NUMERIC_Q16) && PFT_TEST_DENSE >= 64
+    for (int32_t a = -13 * 65536; a < 681392; ++a) { /* every input below saturation */
+        err_add(&e, pft_exp(a), exp((double)a / 65536.0), (double)a / 65536.0);
+    }
+#endif
     err_report("pft_exp", &e, B_EXP);
     TEST_ASSERT_REAL_EQ(PFT_REAL_ONE, pft_exp(R(0.0)));
 #ifdef PFT_NUMERIC_Q16
