@@ -1,0 +1,43 @@
+# Installs this build into a scratch prefix, then builds and runs tests/install/ against it
+# twice: through find_package(pftrack) and through pkg-config.
+# Usage: cmake -DBUILD=<build dir> -DSRC=<source dir> -DSCRATCH=<dir> -DCC=<c compiler> -P check_install.cmake
+file(REMOVE_RECURSE "${SCRATCH}")
+execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD}" --prefix "${SCRATCH}/prefix"
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cmake --install failed")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${SRC}/tests/install" -B "${SCRATCH}/consumer"
+                -DCMAKE_PREFIX_PATH=${SCRATCH}/prefix -DCMAKE_C_COMPILER=${CC} RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "find_package(pftrack) consumer failed to configure")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build "${SCRATCH}/consumer" RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "find_package(pftrack) consumer failed to build")
+endif()
+execute_process(COMMAND "${SCRATCH}/consumer/consumer" RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "consumer (find_package) failed: ${rc} ${out}")
+endif()
+message(STATUS "find_package: ${out}")
+find_program(PKG_CONFIG pkg-config)
+if(PKG_CONFIG)
+  set(ENV{PKG_CONFIG_PATH} "${SCRATCH}/prefix/lib/pkgconfig")
+  execute_process(COMMAND ${PKG_CONFIG} --cflags --libs pftrack OUTPUT_VARIABLE flags
+                  RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config does not know pftrack (${rc}): ${flags}")
+  endif()
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  execute_process(COMMAND ${CC} "${SRC}/tests/install/main.c" ${flags} -o "${SCRATCH}/consumer_pc"
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pkg-config consumer failed to build with: ${flags}")
+  endif()
+  execute_process(COMMAND "${SCRATCH}/consumer_pc" RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "consumer (pkg-config) failed: ${rc}")
+  endif()
+  message(STATUS "pkg-config: ${out}")
+endif()
