@@ -119,12 +119,14 @@ typedef struct {
  * Note (measured by tests/scenario/test_tbd_scenario.c, two targets at 6 dB): the paper's
  * disappearance test (ratio 0.8 on 3-frame windows) ends tracks that are still present, and
  * D = C(x_{k-1}) lets the search layer re-detect a confirmed target at the edge of its region.
- * pft_tbd_config_recommended() changes three [A] options that fix both.
+ * pft_tbd_config_recommended() changes four [A] options that fix both.
  */
 void pft_tbd_config_default(pft_tbd_config_t *cfg);
 /**
  * The defaults with the multi-target decisions made robust [A]: dis_ratio_test = false
- * (tracks end on the existence probability instead), theta_end = 0.5, d_current = true.
+ * (tracks end on the existence probability instead), theta_end = 0.5, d_current = true and
+ * d_margin = 1 (a particle whose window overlaps a confirmed target's core would otherwise
+ * re-detect it as a ghost beside it at high SNR).
  */
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
 

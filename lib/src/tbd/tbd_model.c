@@ -58,6 +58,7 @@ void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
     cfg->dis_ratio_test = false;
     cfg->theta_end = PFT_C(0.5);
     cfg->d_current = true;
+    cfg->d_margin = 1u;
 }
 
 static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
