@@ -9,7 +9,7 @@ export DEBIAN_FRONTEND=noninteractive
 pkgs=(cmake ninja-build gcc g++ make pkg-config
       gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
       gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
-      libopencv-dev libcli11-dev nlohmann-json3-dev
+      libopencv-dev libcli11-dev nlohmann-json3-dev libopencv-contrib-dev opencv-doc
       valgrind binutils dpkg-dev)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
