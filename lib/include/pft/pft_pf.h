@@ -1,0 +1,233 @@
+/**
+ * @file pft_pf.h
+ * @brief Generic particle-filter engine: SIS, SIR and the auxiliary particle filter (APF)
+ *        over one model interface (ALGORITHMS.md 3; Gordon, Salmond & Smith 1993; Pitt &
+ *        Shephard 1999; Wang 2010).
+ *
+ * A model is a struct of function pointers plus a context (pft_pf_model_t): propagate one
+ * particle through the dynamics, log likelihood of a measurement, the predicted point used
+ * by the APF's first stage, and optional hooks (prior draw, per-measurement preparation,
+ * state-estimate reduction). The engine owns the particle set, the log-weights, the RNG and
+ * the resampling; the model owns nothing of the particle set. pft_models.h has three
+ * models: the bearings-only constant-velocity benchmark, a linear-Gaussian model (tests,
+ * Kalman comparisons) and the TBD pixel likelihood of pft_tbd.h.
+ *
+ * One update (pft_pf_update), with z the measurement of this step:
+ *  0. model->begin(ctx, z) if set (may refuse z: then nothing at all has changed);
+ *  1. a resampling decided at the end of the previous update is carried out now (SIR, and
+ *     APF with a post-resampling policy): indices from the normalised weights with
+ *     cfg.scheme, states copied, log-weights reset to -log N;
+ *  2. SIS / SIR: every particle is propagated in place and its log-weight increased by
+ *     loglik(x, z) (the bootstrap proposal).
+ *     APF: first stage mu_i = predict(x_i), fl_i = loglik_first(mu_i, z) (loglik when
+ *     NULL), first-stage weights lambda_i ~ w_i exp(fl_i); N indices j_m ~ lambda by
+ *     cfg.scheme; x_m = propagate(copy of x_{j_m}); second stage
+ *     log w_m = loglik(x_m, z) - fl_{j_m}. The previous weight w_{j_m} is NOT applied again
+ *     (it is already in lambda): the second-stage weight is the likelihood ratio only.
+ *  3. log-sum-exp normalisation; the log-weights are kept normalised (log sum exp = 0) and
+ *     floored at PFT_PF_LW_FLOOR, far below anything that yields a non-zero weight;
+ *  4. the estimate (model->estimate, or the weighted mean of each state component) from the
+ *     weighted set, before any resampling;
+ *  5. the ESS / N ratio, and the resampling decision for the next update:
+ *     PFT_PF_RESAMPLE_ALWAYS (every step), _ESS (when ESS / N < cfg.ess_threshold), _NEVER.
+ *     SIS never resamples whatever the policy.
+ * Deferring the resampling (step 1) means that between updates the engine always holds the
+ * weighted particle set of the last update, so pft_pf_mean_cov sees the lower-variance
+ * pre-resampling weights; the sequence of operations is the textbook one.
+ *
+ * Log evidence: every update also returns log p^(z_k | z_1..k-1), the engine's estimate of
+ * the measurement's predictive likelihood (SIS / SIR: log sum_i W_i exp(ll_i); APF:
+ * log sum_i W_i exp(fl_i) + log mean_m exp(ll_m - fl_{j_m})), in the model's log-likelihood
+ * units (constants the model drops are dropped here too).
+ *
+ * Number formats (q16 build): states and log-likelihoods are Q16.16 pft_real_t, weights
+ * Q2.30 (pft_weight_t). Log-weights are normalised every step, so they stay <= 0; a model's
+ * log-likelihood must stay within +-32768 (bearings and TBD models saturate by design, see
+ * pft_models.h). The weighted mean is accumulated in int64 (weight x state, < 2^61) and
+ * rounded once; covariances square Q16.16 differences with pft_mul, so an entry saturates
+ * at 32768 (state units squared): choose state units accordingly (pft_models.h).
+ *
+ * Determinism: the engine owns one pft_rng_t, seeded from cfg.seed (pft_pf_reset reseeds);
+ * the model draws from it through the rng argument. Float and q16 builds consume the same
+ * integer stream as long as the model draws the same number of values.
+ *
+ * Memory: all buffers live in the caller workspace (PFT_PF_WORKSPACE_BYTES, equal to
+ * pft_pf_workspace_size). No callback may keep pointers to the particle arrays.
+ */
+#ifndef PFT_PF_H
+#define PFT_PF_H
+
+#include "pft/pft_real.h"
+#include "pft/pft_rng.h"
+#include "pft/pft_resample.h"
+#include "pft/pft_workspace.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest state dimension the engine accepts (bounds the per-particle scratch). */
+#define PFT_PF_MAX_DIM 16u
+/** Floor of the normalised log-weights (weights below exp(-21.5) are already 0 in q16 and
+ *  below exp(-104) in float; the floor only keeps sums away from saturation). */
+#define PFT_PF_LW_FLOOR PFT_C(-16384.0)
+
+/**
+ * The model interface. State vectors are dim consecutive pft_real_t. Every callback gets
+ * ctx first. Required: propagate and loglik. predict is required by the APF only.
+ */
+typedef struct {
+    uint16_t dim; /**< state dimension, 1..PFT_PF_MAX_DIM */
+    void *ctx;    /**< the model's own data (configuration, precomputed constants, buffers) */
+    /** Optional: called once per update, before anything else, with the measurement. May
+     *  precompute measurement-dependent data in ctx, or refuse z (a negative status is
+     *  returned by pft_pf_update; the particle set is then untouched). */
+    pft_status_t (*begin)(void *ctx, const void *z);
+    /** Optional: draws x from the prior (pft_pf_init / pft_pf_reset). NULL: all states 0. */
+    void (*sample_prior)(void *ctx, pft_real_t *x, pft_rng_t *rng);
+    /** Required: x <- a draw from p(x_k | x_{k-1} = x), in place. */
+    void (*propagate)(void *ctx, pft_real_t *x, pft_rng_t *rng);
+    /** Required: log p(z | x) up to a constant independent of x (<= 0 preferred; q16: within
+     *  +-32768). */
+    pft_real_t (*loglik)(void *ctx, const pft_real_t *x, const void *z);
+    /** APF: the predicted point mu = E[x_k | x_{k-1} = x] (or another characteristic point;
+     *  any choice gives a consistent filter since the second stage divides it out). */
+    void (*predict)(void *ctx, const pft_real_t *x, pft_real_t *mu);
+    /** Optional, APF: first-stage log-likelihood at mu (e.g. with a widened noise); NULL uses
+     *  loglik. The same value is divided out in the second stage. */
+    pft_real_t (*loglik_first)(void *ctx, const pft_real_t *mu, const void *z);
+    /** Optional: reduces the weighted set (n particles at x[i*dim], normalised weights w)
+     *  to an estimate of dim values in est. NULL: the weighted mean of each component. */
+    void (*estimate)(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
+                     pft_real_t *est);
+} pft_pf_model_t;
+
+/** Engine. */
+typedef enum {
+    PFT_PF_SIS = 0, /**< sequential importance sampling, no resampling ("basic PF") */
+    PFT_PF_SIR = 1, /**< sampling importance resampling, bootstrap proposal ("resampling PF") */
+    PFT_PF_APF = 2  /**< auxiliary particle filter (first stage at the predicted point) */
+} pft_pf_kind_t;
+
+/** When the set is resampled after an update (carried out at the start of the next). */
+typedef enum {
+    PFT_PF_RESAMPLE_ALWAYS = 0, /**< every update */
+    PFT_PF_RESAMPLE_ESS = 1,    /**< when ESS / N < ess_threshold */
+    PFT_PF_RESAMPLE_NEVER = 2   /**< never (APF: the first-stage index sampling only) */
+} pft_pf_policy_t;
+
+/** Engine configuration; pft_pf_config_default fills it. */
+typedef struct {
+    pft_pf_kind_t kind;            /**< engine */
+    uint32_t n_particles;          /**< N, 1..PFT_CFG_MAX_PARTICLES */
+    pft_resample_scheme_t scheme;  /**< resampling and APF index sampling (default systematic) */
+    pft_pf_policy_t policy;        /**< SIR: ALWAYS (default); APF: ESS (default, ALGORITHMS.md 3.2
+                                        step 7); SIS: ignored (never) */
+    pft_real_t ess_threshold;      /**< fraction of N for PFT_PF_RESAMPLE_ESS, in (0, 1] (default 0.5) */
+    uint64_t seed;                 /**< RNG seed (default 1) */
+} pft_pf_config_t;
+
+/** Statistics of the last update. */
+typedef struct {
+    uint32_t step;            /**< updates accepted so far */
+    pft_real_t ess_ratio;     /**< ESS / N of the weights after the update, in [1/N, 1] */
+    pft_real_t ess_first;     /**< APF: ESS / N of the first-stage weights lambda (the index
+                                   sampling's diversity); SIS / SIR: equal to ess_ratio */
+    pft_real_t log_evidence;  /**< log p^(z_k | z_1..k-1) (see the file comment) */
+    bool resampled;           /**< a pending resampling was carried out at the start of it */
+    bool resample_pending;    /**< the next update starts with a resampling */
+} pft_pf_stats_t;
+
+/**
+ * The engine instance. Fields are private (read through the functions below).
+ */
+typedef struct {
+    pft_pf_config_t cfg;
+    pft_pf_model_t model;
+    uint32_t n;
+    uint16_t dim;
+    pft_real_t *x;         /**< n * dim states (current set) */
+    pft_real_t *x_alt;     /**< n * dim states (next set) */
+    pft_real_t *lw;        /**< normalised log-weights */
+    pft_real_t *fl;        /**< APF first-stage log-likelihoods */
+    pft_weight_t *w;       /**< normalised weights */
+    pft_weight_t *scratch; /**< resampling scratch (residual) */
+    uint32_t *idx;         /**< resampling indices */
+    pft_real_t log_n;      /**< log N */
+    pft_rng_t rng;
+    pft_pf_stats_t stats;
+    pft_real_t est[PFT_PF_MAX_DIM];
+} pft_pf_t;
+
+/** Workspace bytes for n particles of dimension dim (constant expression). */
+#define PFT_PF_WORKSPACE_BYTES(n, dim)                                                          \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     2u * PFT_WS_ROUND((size_t)(n) * (size_t)(dim) * sizeof(pft_real_t)) +                      \
+     2u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) +                                      \
+     2u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_weight_t)) +                                    \
+     PFT_WS_ROUND((size_t)(n) * sizeof(uint32_t)))
+
+/** Fills cfg with the defaults for an engine of n particles (see pft_pf_config_t). */
+void pft_pf_config_default(pft_pf_config_t *cfg, pft_pf_kind_t kind, uint32_t n);
+
+/** Workspace bytes pft_pf_init needs (0 for NULL or dim == 0). Equals
+ *  PFT_PF_WORKSPACE_BYTES(cfg->n_particles, dim). */
+size_t pft_pf_workspace_size(const pft_pf_config_t *cfg, uint16_t dim);
+
+/**
+ * Initialises the engine: checks cfg and the model (dim range, required callbacks, predict
+ * for the APF), carves the workspace, seeds the RNG and draws the prior (pft_pf_reset).
+ * The model struct is copied; its ctx must outlive the engine.
+ * @return PFT_ERR_INVAL for NULL arguments, a bad config or model; PFT_ERR_NOMEM for a short
+ *         workspace (the instance is then zeroed).
+ */
+pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, const pft_pf_model_t *model,
+                         void *work, size_t work_len);
+
+/** Reseeds the RNG with seed, draws every particle from the model's prior (zeros without
+ *  sample_prior), sets uniform weights and clears the statistics. */
+pft_status_t pft_pf_reset(pft_pf_t *pf, uint64_t seed);
+
+/**
+ * One step with measurement z (its type is the model's business; it is passed through to
+ * begin, loglik and loglik_first). Returns the model's begin status when it refuses z (the
+ * engine is then unchanged), PFT_ERR_INVAL for NULL pf.
+ */
+pft_status_t pft_pf_update(pft_pf_t *pf, const void *z);
+
+/** Copies the estimate of the last update (dim values; the prior's weighted mean before the
+ *  first update). */
+pft_status_t pft_pf_estimate(const pft_pf_t *pf, pft_real_t *est);
+
+/**
+ * Weighted mean (dim values) and, when cov is not NULL, weighted covariance (dim * dim,
+ * row-major, exactly symmetric) of the current particle set, sum_i w_i (x_i - m)(x_i - m)'.
+ * q16: entries saturate at +-32768.
+ */
+pft_status_t pft_pf_mean_cov(const pft_pf_t *pf, pft_real_t *mean, pft_real_t *cov);
+
+/** Statistics of the last update. */
+pft_status_t pft_pf_stats(const pft_pf_t *pf, pft_pf_stats_t *out);
+
+/** The current states (n * dim, particle i at [i * dim]): read or overwrite (e.g. a known
+ *  initial set). NULL for NULL pf. */
+pft_real_t *pft_pf_states(pft_pf_t *pf);
+/** The current normalised weights (n). */
+const pft_weight_t *pft_pf_weights(const pft_pf_t *pf);
+
+/**
+ * Replaces the weights by the normalisation of the log-weights lw[0..n) (e.g. a non-uniform
+ * initial set) and cancels a pending resampling. PFT_ERR_INVAL for NULL arguments.
+ */
+pft_status_t pft_pf_set_logweights(pft_pf_t *pf, const pft_real_t *lw);
+
+/** Weighted mean of each of the dim components of n states (x[i * dim + c]) with normalised
+ *  weights w (sum PFT_W_ONE), into mean; the default estimate, usable by model reductions.
+ *  q16: int64 accumulation, one rounding. */
+void pft_pf_weighted_mean(const pft_real_t *x, const pft_weight_t *w, uint32_t n, uint16_t dim,
+                          pft_real_t *mean);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
