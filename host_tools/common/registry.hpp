@@ -27,6 +27,7 @@ struct Options {
     unsigned threads = 0;       ///< --threads (0: hardware concurrency)
     std::optional<uint64_t> seed;  ///< --seed (sim: the sequence, eval: base seed)
     std::string filter_kind;    ///< --filter rbpf|pf (empty: scenario)
+    std::string preset;         ///< --preset (kind-specific parameter preset; empty: scenario)
     uint32_t particles = 0;     ///< --particles (0: scenario)
     uint32_t frames = 0;        ///< --frames (bench: frames per timed run)
     bool single = false;        ///< --single: single-target filter instead of the manager

@@ -52,6 +52,8 @@ Scenario load(const Options &o)
         s.filter.particles = o.particles;
     if (o.single)
         s.filter.mode = "single";
+    if (!o.preset.empty())
+        s.filter.preset = o.preset;
     return s;
 }
 
@@ -80,7 +82,7 @@ std::string describe(const Scenario &s)
        << (s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") << " N=" << s.filter.particles;
     if (!single)
         os << " Nt=" << s.filter.track_particles;
-    os << ", " << numeric_name();
+    os << ", " << s.filter.preset << " preset, " << numeric_name();
     return os.str();
 }
 
@@ -346,7 +348,8 @@ void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool
     PlotSeries th;
     th.label = "theta1";
     th.x = {1.0, static_cast<double>(nf)};
-    th.y = {s.filter.theta1, s.filter.theta1};
+    double theta1 = from_real(make_config(s, 0).theta1);
+    th.y = {theta1, theta1};
     th.color = cv::Scalar(0, 0, 0);
     th.thickness = 1;
     th.dashed = true;
@@ -628,7 +631,8 @@ public:
             {"scenario", s.name},
             {"scenario_file", s.file},
             {"description", s.description},
-            {"tag", o.tag.empty() ? s.filter.kind + " N=" + std::to_string(s.filter.particles) : o.tag},
+            {"tag", o.tag.empty() ? std::string(s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") +
+                                        " N=" + std::to_string(s.filter.particles) : o.tag},
             {"snr_db", s.snr_db},
             {"noise_sigma", s.noise_sigma},
             {"frames", s.frames},
@@ -640,6 +644,7 @@ public:
             {"particles", s.filter.particles},
             {"numeric", numeric_name()},
             {"filter", s.filter.kind},
+            {"preset", s.filter.preset},
             {"mode", single ? "single" : "multi"},
             {"d_c", s.eval.d_c},
             {"d_assoc", s.eval.d_assoc},
@@ -792,17 +797,12 @@ public:
 private:
     static json make_filter_json(const Scenario &s)
     {
-        const FilterSettings &F = s.filter;
-        return {{"mode", F.mode}, {"kind", F.kind}, {"particles", F.particles},
-                {"track_particles", F.track_particles}, {"max_targets", F.max_targets},
-                {"pb", F.pb}, {"pd", F.pd}, {"eta", F.eta}, {"gamma", F.gamma},
-                {"i_min", F.i_min}, {"i_max", F.i_max}, {"vel_mean", F.vel_mean},
-                {"vel_var", F.vel_var}, {"birth_correction", F.birth_correction},
-                {"theta1", F.theta1}, {"dis_r", F.dis_r}, {"dis_prev", F.dis_prev},
-                {"dis_ratio", F.dis_ratio}, {"force_constraint", F.force_constraint},
-                {"window", F.window}, {"kf_variant", F.kf_variant},
-                {"q1", F.q1 >= 0 ? F.q1 : s.q1}, {"q2", F.q2 >= 0 ? F.q2 : s.q2},
-                {"noise_sigma", F.noise_sigma > 0 ? F.noise_sigma : s.noise_sigma}};
+        json j = config_to_json(make_config(s, 0));
+        j.erase("n_search");
+        j["preset"] = s.filter.preset;
+        j["mode"] = s.filter.mode;
+        j["seed"] = "run seed + " + std::to_string(s.filter.seed_offset);
+        return j;
     }
 
     /** Checks of the simulator's SNR mapping and of the metrics on hand-made outputs. */

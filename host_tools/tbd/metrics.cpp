@@ -57,8 +57,10 @@ PcrlbResult target_floor(const Scenario &s, const Target &t)
     in.q1 = s.q1;
     in.q2 = s.q2;
     in.stochastic = t.motion == Motion::StochasticCV;
-    in.vel_info = 2.0 / (s.filter.vel_var[0] + s.filter.vel_var[1]);
-    double w = s.filter.i_max - s.filter.i_min;
+    // birth prior of the filter's configuration (defaults: P0 = 1/3 -> 3; U[10, 30] -> 0.03)
+    pft_tbd_config_t c = make_config(s, 0);
+    in.vel_info = 2.0 / (from_real(c.vel_var[0]) + from_real(c.vel_var[1]));
+    double w = from_real(c.i_max) - from_real(c.i_min);
     in.int_info = 12.0 / (w * w);
     in.frames = t.death - t.birth + 1;
     return pcrlb(in);
@@ -145,7 +147,7 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
             ++tr.true_frames;
             if (!any)
                 continue;
-            if (!tr.detected && k >= tg.birth) {
+            if (!tr.detected && k >= tg.birth && best_d <= d_as) {
                 tr.detected = true;
                 tr.appear_frame = k;
                 tr.appear_delay = k - tg.birth;
@@ -209,12 +211,10 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
             if (t.detected) {
                 ++det;
                 app += t.appear_delay;
-                if (t.censored)
-                    ++cens;
-                else {
-                    dis += t.disappear_delay;
-                    ++ndis;
-                }
+                // a track alive at the end counts with its lower bound frames + 1 - death
+                cens += t.censored ? 1 : 0;
+                dis += t.disappear_delay;
+                ++ndis;
             }
             cor += t.correct;
             sqc += t.sq_correct;

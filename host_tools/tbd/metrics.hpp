@@ -4,9 +4,12 @@
 // Association: a confirmed track belongs to the target it stays within d_assoc of for the most
 // frames (ties: the smaller mean distance); a track never within d_assoc of a present target
 // is unassigned. Per target (1-based frames, life birth..death):
-//   appearance delay    = first frame >= birth at which an assigned track is reported - birth
+//   appearance delay    = first frame >= birth at which an assigned track is reported within
+//                         d_assoc of the target - birth
 //   disappearance delay = frame at which the last assigned track was declared gone - death
-//                         (censored when it survives the sequence; negative when lost early)
+//                         (negative when lost early; a track alive at the end of the sequence
+//                         counts with the lower bound frames + 1 - death and is reported in
+//                         censored_disappearances)
 //   correct frames      = frames of the life with an assigned track within d_c of the truth
 //   RMSE                = eq. 25 over the correct points, pooled over runs
 //   false tracks        = per target: assigned tracks beyond the first (re-acquisitions,

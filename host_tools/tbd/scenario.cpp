@@ -119,46 +119,65 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
 
     if (root.has("filter")) {
         Field f = root.at("filter");
-        f.only({"mode", "kind", "particles", "track_particles", "max_targets", "pb", "pd", "eta",
-                "gamma", "i_min", "i_max", "vel_mean", "vel_var", "birth_correction", "theta1",
-                "dis_r", "dis_prev", "dis_ratio", "force_constraint", "window", "kf_variant",
-                "q1", "q2", "noise_sigma", "seed_offset"});
+        f.only({"mode", "kind", "preset", "particles", "track_particles", "max_targets", "pb", "pd",
+                "eta", "gamma", "i_min", "i_max", "vel_mean", "vel_var", "birth_correction", "theta1",
+                "dis_r", "dis_prev", "dis_ratio", "dis_ratio_test", "theta_end", "d_margin",
+                "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
+                "seed_offset"});
         FilterSettings &F = s.filter;
         F.mode = f.choice_or("mode", "multi", {"multi", "single"});
         F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
+        F.preset = f.choice_or("preset", "paper", {"paper", "recommended"});
         F.particles = static_cast<uint32_t>(f.integer_in("particles", 6000, 1, 4194304));
         F.track_particles = static_cast<uint32_t>(f.integer_in("track_particles", 500, 1, 4194304));
         F.max_targets = static_cast<uint32_t>(f.integer_in("max_targets", 4, 1, 1000));
-        F.pb = f.number_in("pb", 0.05, 0.0, 1.0);
-        F.pd = f.number_in("pd", 0.05, 0.0, 1.0);
-        F.eta = f.number_in("eta", 0.05, 0.0, 1.0);
-        F.gamma = f.number_in("gamma", 2.0, -1e6, 1e6);
-        F.i_min = f.number_in("i_min", 10.0, 0.0, 1e6);
-        F.i_max = f.number_in("i_max", 30.0, 0.0, 1e6);
-        if (F.i_max <= F.i_min)
-            f.at("i_max").fail("must exceed i_min");
-        if (f.has("vel_mean")) {
-            auto v = f.numbers("vel_mean", 2);
-            F.vel_mean = {v[0], v[1]};
-        }
-        if (f.has("vel_var")) {
-            auto v = f.numbers("vel_var", 2);
-            if (v[0] <= 0 || v[1] <= 0)
-                f.at("vel_var").fail("variances must be positive");
-            F.vel_var = {v[0], v[1]};
-        }
-        F.birth_correction = f.boolean_or("birth_correction", false);
-        F.theta1 = f.number_in("theta1", 0.6, 0.0, 1.0);
-        F.dis_r = static_cast<int>(f.integer_in("dis_r", 2, 0, 15));
-        F.dis_prev = static_cast<int>(f.integer_in("dis_prev", 5, 1, 15));
-        F.dis_ratio = f.number_in("dis_ratio", 0.8, 1e-6, 1.0);
-        F.force_constraint = f.boolean_or("force_constraint", true);
-        F.window = static_cast<int>(f.integer_in("window", 1, 0, 4));
-        F.kf_variant = f.choice_or("kf_variant", "exact", {"exact", "paper"});
-        F.q1 = f.number_in("q1", -1.0, 0.0, 1e6);
-        F.q2 = f.number_in("q2", -1.0, 0.0, 1e6);
-        F.noise_sigma = f.number_in("noise_sigma", -1.0, 1e-9, 1e9);
         F.seed_offset = static_cast<uint64_t>(f.integer_in("seed_offset", 0, 0, INT64_MAX));
+        auto num = [&](const char *k, double lo, double hi, std::optional<double> &dst) {
+            if (f.has(k))
+                dst = f.number_req_in(k, lo, hi);
+        };
+        auto integer = [&](const char *k, int lo, int hi, std::optional<int> &dst) {
+            if (f.has(k))
+                dst = static_cast<int>(f.integer_in(k, 0, lo, hi));
+        };
+        auto flag = [&](const char *k, std::optional<bool> &dst) {
+            if (f.has(k))
+                dst = f.at(k).as_bool();
+        };
+        auto pair = [&](const char *k, bool positive, std::optional<std::array<double, 2>> &dst) {
+            if (!f.has(k))
+                return;
+            auto v = f.numbers(k, 2);
+            if (positive && (v[0] <= 0 || v[1] <= 0))
+                f.at(k).fail("values must be positive");
+            dst = std::array<double, 2>{v[0], v[1]};
+        };
+        num("pb", 0.0, 1.0, F.pb);
+        num("pd", 0.0, 1.0, F.pd);
+        num("eta", 0.0, 1.0, F.eta);
+        num("gamma", -1e4, 1e4, F.gamma);
+        num("i_min", 0.0, 1e4, F.i_min);
+        num("i_max", 0.0, 1e4, F.i_max);
+        if (F.i_min && F.i_max && *F.i_max <= *F.i_min)
+            f.at("i_max").fail("must exceed i_min");
+        num("theta1", 0.0, 1.0, F.theta1);
+        num("dis_ratio", 1e-6, 1.0, F.dis_ratio);
+        num("theta_end", 0.0, 1.0, F.theta_end);
+        num("q1", 0.0, 1e4, F.q1);
+        num("q2", 0.0, 1e4, F.q2);
+        num("noise_sigma", 1e-6, 1e4, F.noise_sigma);
+        pair("vel_mean", false, F.vel_mean);
+        pair("vel_var", true, F.vel_var);
+        flag("birth_correction", F.birth_correction);
+        flag("dis_ratio_test", F.dis_ratio_test);
+        flag("d_current", F.d_current);
+        flag("force_constraint", F.force_constraint);
+        integer("dis_r", 0, 15, F.dis_r);
+        integer("dis_prev", 1, 15, F.dis_prev);
+        integer("d_margin", 0, 255, F.d_margin);
+        integer("window", 0, 4, F.window);
+        if (f.has("kf_variant"))
+            F.kf_variant = f.choice_or("kf_variant", "exact", {"exact", "paper"});
     }
     if (root.has("eval")) {
         Field e = root.at("eval");

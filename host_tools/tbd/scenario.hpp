@@ -2,6 +2,7 @@
 // initial state and motion, filter settings, evaluation settings. See docs/host_tools.md.
 #pragma once
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,26 +21,23 @@ struct Target {
     int spawn_from = 0;               ///< id of a target whose true position at `birth` replaces x0's position
 };
 
+/** Filter settings: the library's defaults of the chosen preset (pft_tbd_config_default for
+ *  "paper", pft_tbd_config_recommended for "recommended"), then every field the file gives. */
 struct FilterSettings {
     std::string mode = "multi";       ///< "multi" (two-layer manager) or "single" (one filter)
     std::string kind = "rbpf";        ///< "rbpf" or "pf"
+    std::string preset = "paper";     ///< "paper" or "recommended" (library defaults to start from)
     uint32_t particles = 6000;        ///< search layer (multi) or the single filter
     uint32_t track_particles = 500;   ///< per track layer (multi)
     uint32_t max_targets = 4;
-    double pb = 0.05, pd = 0.05, eta = 0.05;
-    double gamma = 2.0, i_min = 10.0, i_max = 30.0;
-    std::array<double, 2> vel_mean{0.0, 0.0};
-    std::array<double, 2> vel_var{1.0 / 3.0, 1.0 / 3.0};
-    bool birth_correction = false;
-    double theta1 = 0.6;
-    int dis_r = 2, dis_prev = 5;
-    double dis_ratio = 0.8;
-    bool force_constraint = true;
-    int window = 1;
-    std::string kf_variant = "exact";
-    double q1 = -1, q2 = -1;          ///< filter's model; < 0: the scenario's model
-    double noise_sigma = -1;          ///< filter's assumed sigma; < 0: the scenario's
     uint64_t seed_offset = 0;         ///< filter seed = run seed + seed_offset
+    // overrides of the preset (absent: the library's value)
+    std::optional<double> pb, pd, eta, gamma, i_min, i_max, theta1, dis_ratio, theta_end;
+    std::optional<double> q1, q2, noise_sigma;  ///< model mismatch studies (absent: the scenario's)
+    std::optional<std::array<double, 2>> vel_mean, vel_var;
+    std::optional<bool> birth_correction, dis_ratio_test, d_current, force_constraint;
+    std::optional<int> dis_r, dis_prev, d_margin, window;
+    std::optional<std::string> kf_variant;
 };
 
 struct EvalSettings {

@@ -31,6 +31,8 @@ std::vector<std::vector<TruthState>> simulate_truth(const Scenario &s, uint64_t 
     std::vector<std::vector<TruthState>> truth(frames, std::vector<TruthState>(s.targets.size()));
     for (std::size_t ti = 0; ti < s.targets.size(); ++ti) {
         const Target &t = s.targets[ti];
+        if (t.birth > frames)
+            continue;  // a short sequence (bench --frames) ends before this target is born
         TruthState st;
         st.x = t.x0[0];
         st.vx = t.x0[1];

@@ -36,42 +36,89 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
 {
     const FilterSettings &F = s.filter;
     pft_tbd_config_t c;
-    pft_tbd_config_default(&c);
+    if (F.preset == "recommended")
+        pft_tbd_config_recommended(&c);
+    else
+        pft_tbd_config_default(&c);
+    // the scenario's sensor and model
     c.width = static_cast<uint16_t>(s.width);
     c.height = static_cast<uint16_t>(s.height);
     c.dx = to_real(s.dx);
     c.dy = to_real(s.dy);
     c.psf_sigma = to_real(s.psf_sigma);
-    c.noise_sigma = to_real(F.noise_sigma > 0 ? F.noise_sigma : s.noise_sigma);
+    c.noise_sigma = to_real(F.noise_sigma.value_or(s.noise_sigma));
     c.pixel_gain = to_real(1.0);
     c.pixel_offset = to_real(0.0);
-    c.window = static_cast<uint8_t>(F.window);
     c.T = to_real(s.T);
-    c.q1 = to_real(F.q1 >= 0 ? F.q1 : s.q1);
-    c.q2 = to_real(F.q2 >= 0 ? F.q2 : s.q2);
-    c.pb = to_real(F.pb);
-    c.pd = to_real(F.pd);
-    c.eta = to_real(F.eta);
-    c.gamma = to_real(F.gamma);
-    c.i_min = to_real(F.i_min);
-    c.i_max = to_real(F.i_max);
-    c.vel_mean[0] = to_real(F.vel_mean[0]);
-    c.vel_mean[1] = to_real(F.vel_mean[1]);
-    c.vel_var[0] = to_real(F.vel_var[0]);
-    c.vel_var[1] = to_real(F.vel_var[1]);
-    c.birth_correction = F.birth_correction;
-    c.theta1 = to_real(F.theta1);
-    c.dis_r = static_cast<uint8_t>(F.dis_r);
-    c.dis_prev = static_cast<uint8_t>(F.dis_prev);
-    c.dis_ratio = to_real(F.dis_ratio);
-    c.force_constraint = F.force_constraint;
+    c.q1 = to_real(F.q1.value_or(s.q1));
+    c.q2 = to_real(F.q2.value_or(s.q2));
+    // sizes and algorithm
     c.n_search = F.particles;
     c.n_track = F.track_particles;
     c.max_targets = static_cast<uint16_t>(F.max_targets);
     c.kind = F.kind == "pf" ? PFT_TBD_PF : PFT_TBD_RBPF;
-    c.kf_variant = F.kf_variant == "paper" ? PFT_TBD_KF_PAPER : PFT_TBD_KF_EXACT;
     c.seed = seed + F.seed_offset;
+    // overrides of the preset
+    auto R = [](const std::optional<double> &v, pft_real_t &dst) {
+        if (v)
+            dst = to_real(*v);
+    };
+    R(F.pb, c.pb);
+    R(F.pd, c.pd);
+    R(F.eta, c.eta);
+    R(F.gamma, c.gamma);
+    R(F.i_min, c.i_min);
+    R(F.i_max, c.i_max);
+    R(F.theta1, c.theta1);
+    R(F.dis_ratio, c.dis_ratio);
+    R(F.theta_end, c.theta_end);
+    if (F.vel_mean) {
+        c.vel_mean[0] = to_real((*F.vel_mean)[0]);
+        c.vel_mean[1] = to_real((*F.vel_mean)[1]);
+    }
+    if (F.vel_var) {
+        c.vel_var[0] = to_real((*F.vel_var)[0]);
+        c.vel_var[1] = to_real((*F.vel_var)[1]);
+    }
+    if (F.birth_correction)
+        c.birth_correction = *F.birth_correction;
+    if (F.dis_ratio_test)
+        c.dis_ratio_test = *F.dis_ratio_test;
+    if (F.d_current)
+        c.d_current = *F.d_current;
+    if (F.force_constraint)
+        c.force_constraint = *F.force_constraint;
+    if (F.dis_r)
+        c.dis_r = static_cast<uint8_t>(*F.dis_r);
+    if (F.dis_prev)
+        c.dis_prev = static_cast<uint8_t>(*F.dis_prev);
+    if (F.d_margin)
+        c.d_margin = static_cast<uint8_t>(*F.d_margin);
+    if (F.window)
+        c.window = static_cast<uint8_t>(*F.window);
+    if (F.kf_variant)
+        c.kf_variant = *F.kf_variant == "paper" ? PFT_TBD_KF_PAPER : PFT_TBD_KF_EXACT;
     return c;
+}
+
+nlohmann::json config_to_json(const pft_tbd_config_t &c)
+{
+    return {{"width", c.width}, {"height", c.height}, {"dx", from_real(c.dx)}, {"dy", from_real(c.dy)},
+            {"psf_sigma", from_real(c.psf_sigma)}, {"noise_sigma", from_real(c.noise_sigma)},
+            {"pixel_gain", from_real(c.pixel_gain)}, {"pixel_offset", from_real(c.pixel_offset)},
+            {"window", c.window}, {"T", from_real(c.T)}, {"q1", from_real(c.q1)}, {"q2", from_real(c.q2)},
+            {"pb", from_real(c.pb)}, {"pd", from_real(c.pd)}, {"eta", from_real(c.eta)},
+            {"gamma", from_real(c.gamma)}, {"i_min", from_real(c.i_min)}, {"i_max", from_real(c.i_max)},
+            {"vel_mean", {from_real(c.vel_mean[0]), from_real(c.vel_mean[1])}},
+            {"vel_var", {from_real(c.vel_var[0]), from_real(c.vel_var[1])}},
+            {"birth_correction", c.birth_correction}, {"theta1", from_real(c.theta1)},
+            {"dis_r", c.dis_r}, {"dis_prev", c.dis_prev}, {"dis_ratio", from_real(c.dis_ratio)},
+            {"dis_ratio_test", c.dis_ratio_test}, {"theta_end", from_real(c.theta_end)},
+            {"d_margin", c.d_margin}, {"d_current", c.d_current},
+            {"force_constraint", c.force_constraint}, {"n_search", c.n_search},
+            {"n_track", c.n_track}, {"max_targets", c.max_targets},
+            {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},
+            {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"}};
 }
 
 namespace {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 extern "C" {
 #include "pft/pft_tbd.h"
 }
@@ -45,6 +47,8 @@ struct FrameOut {
 
 /** Library configuration from a scenario (filter settings, model, sigma, image size). */
 pft_tbd_config_t make_config(const Scenario &s, uint64_t seed);
+/** Every field of a configuration (reals as doubles), for summaries. */
+nlohmann::json config_to_json(const pft_tbd_config_t &c);
 
 class Tracker {
 public:
