@@ -23,6 +23,7 @@ struct PlotOptions {
     std::vector<std::string> files;
     std::string out = "plot.png", x = "/snr_db", y = "/averaged/rmse", group = "/tag",
                 floor = "/averaged/pcrlb", title, xlabel, ylabel;
+    double ymax = 0.0;
 };
 
 json pointer_value(const json &j, const std::string &ptr, const std::string &file)
@@ -39,13 +40,27 @@ int cmd_plot(const PlotOptions &p)
     std::map<std::string, std::vector<std::pair<double, double>>> groups;
     std::map<double, double> floor;
     std::vector<std::string> order;
+    std::vector<PlotSeries> curves;
     for (const auto &f : p.files) {
         json j = load_json_file(f);
-        json xv = pointer_value(j, p.x, f), yv = pointer_value(j, p.y, f);
+        json yv = pointer_value(j, p.y, f);
+        json gv0 = p.group.empty() ? json(f) : pointer_value(j, p.group, f);
+        if (yv.is_array()) {
+            // a per-frame curve (e.g. /averaged/existence_probability): one series per file
+            PlotSeries s;
+            s.label = gv0.is_string() ? gv0.get<std::string>() : gv0.dump();
+            for (std::size_t k = 0; k < yv.size(); ++k) {
+                s.x.push_back(static_cast<double>(k + 1));
+                s.y.push_back(yv[k].is_number() ? yv[k].get<double>() : NAN);
+            }
+            curves.push_back(s);
+            continue;
+        }
+        json xv = pointer_value(j, p.x, f);
         if (!xv.is_number())
             throw InputError(f + ": " + p.x + " is not a number");
         double y = yv.is_number() ? yv.get<double>() : NAN;
-        json gv = p.group.empty() ? json("") : pointer_value(j, p.group, f);
+        const json &gv = gv0;
         std::string g = gv.is_string() ? gv.get<std::string>() : gv.dump();
         if (!groups.count(g))
             order.push_back(g);
@@ -61,6 +76,18 @@ int cmd_plot(const PlotOptions &p)
     spec.xlabel = p.xlabel.empty() ? p.x : p.xlabel;
     spec.ylabel = p.ylabel.empty() ? p.y : p.ylabel;
     spec.ymin = 0.0;
+    if (p.ymax > 0)
+        spec.ymax = p.ymax;
+    if (!curves.empty()) {
+        if (!order.empty())
+            throw InputError("plot: --y must be a number in every summary or an array in every one");
+        spec.series = curves;
+        if (p.xlabel.empty())
+            spec.xlabel = "frame";
+        save_plot_png(spec, p.out);
+        std::printf("pft plot: %zu curves -> %s\n", curves.size(), p.out.c_str());
+        return 0;
+    }
     for (const auto &g : order) {
         auto pts = groups[g];
         std::sort(pts.begin(), pts.end());
@@ -171,10 +198,11 @@ int main(int argc, char **argv)
     pl->add_option("summaries", po.files, "summary.json files")->required()->check(CLI::ExistingFile);
     pl->add_option("--out", po.out, "PNG file");
     pl->add_option("--x", po.x, "JSON pointer of the x value");
-    pl->add_option("--y", po.y, "JSON pointer of the y value");
+    pl->add_option("--y", po.y, "JSON pointer of the y value (an array: one curve per summary, x = frame)");
     pl->add_option("--group", po.group, "JSON pointer of the series label");
     pl->add_option("--floor", po.floor, "JSON pointer of a floor curve ('' for none)");
     pl->add_option("--title", po.title);
+    pl->add_option("--ymax", po.ymax, "upper y limit");
     pl->add_option("--xlabel", po.xlabel);
     pl->add_option("--ylabel", po.ylabel);
 

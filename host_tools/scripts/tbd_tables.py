@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""Markdown tables from the summary.json files written by tbd_figures.sh (stdlib only).
+Usage: tbd_tables.py OUT_DIR [OTHER_OUT_DIR]  (a second directory adds a 'vs' column set,
+e.g. float against q16)."""
+import json
+import os
+import sys
+
+
+def load(d):
+    res = {}
+    for name in sorted(os.listdir(d)):
+        p = os.path.join(d, name, "summary.json")
+        if os.path.isfile(p):
+            with open(p) as f:
+                res[name] = json.load(f)
+    return res
+
+
+def f(v, p=2):
+    return "-" if v is None else f"{v:.{p}f}"
+
+
+def main():
+    a = load(sys.argv[1])
+    if not a:
+        sys.exit("no summaries in " + sys.argv[1])
+    num = next(iter(a.values()))["numeric"]
+    print(f"### Single target ({num})\n")
+    print("| SNR dB | filter | N | appear | disappear | correct /16 | RMSE | floor (16-fr) | RMSE/floor | "
+          "floor matched | RMSE all | false tracks/run | detected |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    singles = [s for k, s in a.items() if k.startswith("single_")]
+    singles.sort(key=lambda s: (s["snr_db"], s["filter"] != "rbpf", s["particles"]))
+    for s in singles:
+        t = s["targets"][0]
+        print(f"| {s['snr_db']:.0f} | {s['filter'].upper()}-TBD | {s['particles']} | {f(t['appearance_delay'])} | "
+              f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} | {f(t['pcrlb'], 3)} | "
+              f"{f(t['rmse_over_pcrlb'])} | {f(t['pcrlb_matched'], 3)} | {f(t['rmse_all_assigned'], 3)} | "
+              f"{f(s['averaged']['false_tracks'])} | {t['detected_runs']}/{s['runs']} |")
+    print(f"\n### Two targets, 6 dB ({num})\n")
+    print("| case | preset | target | appear | disappear | correct /16 | RMSE | floor | RMSE/floor | "
+          "floor matched | false tracks/run | detected | censored | paper appear/disapp./correct/RMSE |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for k in sorted(a):
+        if not k.startswith("two_"):
+            continue
+        s = a[k]
+        ref = {r["id"]: r for r in s.get("reference", {}).get("targets", [])}
+        rows = list(s["targets"]) + [dict(s["averaged"], id="mean")]
+        for t in rows:
+            r = ref.get(t["id"])
+            paper = (f"{r['appearance_delay']} / {r['disappearance_delay']} / {r['correct_frames']} / {r['rmse']}"
+                     if r else "")
+            ratio = (t["rmse"] / t["pcrlb"]) if t.get("rmse") and t.get("pcrlb") else None
+            print(f"| {s['scenario'][-1]} | {s['preset']} | {t['id']} | {f(t['appearance_delay'])} | "
+                  f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} | "
+                  f"{f(t['pcrlb'], 3)} | {f(ratio)} | {f(t.get('pcrlb_matched'), 3)} | {f(t['false_tracks'])} | "
+                  f"{t.get('detected_runs', '')} | {t.get('censored_disappearances', '')} | {paper} |")
+    # means over the three cases, per preset (the paper's "mean" row)
+    print(f"\n### Two targets, mean over cases 1-3 and both targets ({num})\n")
+    print("| preset | appear | disappear | correct /16 | RMSE | floor | false tracks/run |")
+    print("|---|---|---|---|---|---|---|")
+    for preset in ("paper", "recommended"):
+        ss = [s for k, s in a.items() if k.startswith("two_") and s["preset"] == preset]
+        if not ss:
+            continue
+        def mean(key):
+            v = [s["averaged"][key] for s in ss if s["averaged"][key] is not None]
+            return sum(v) / len(v) if v else None
+        print(f"| {preset} | {f(mean('appearance_delay'))} | {f(mean('disappearance_delay'))} | "
+              f"{f(mean('correct_frames'))} | {f(mean('rmse'), 3)} | {f(mean('pcrlb'), 3)} | "
+              f"{f(mean('false_tracks'))} |")
+    print("| paper Table 1 | 2.74 | 1.13 | 12.12 | 0.1772 | (floor 0.386) | - |")
+    if len(sys.argv) > 2:
+        b = load(sys.argv[2])
+        num_b = next(iter(b.values()))["numeric"]
+        print(f"\n### {num} against {num_b} (relative difference of the averaged measures)\n")
+        print(f"| configuration | measure | {num} | {num_b} | diff % |")
+        print("|---|---|---|---|---|")
+        for k in sorted(a):
+            if k not in b:
+                continue
+            for m in ("appearance_delay", "disappearance_delay", "correct_frames", "rmse"):
+                x, y = a[k]["averaged"][m], b[k]["averaged"][m]
+                d = None if (x in (None, 0) or y is None) else 100.0 * (y - x) / abs(x)
+                print(f"| {k} | {m} | {f(x, 3)} | {f(y, 3)} | {f(d, 1)} |")
+
+
+if __name__ == "__main__":
+    main()
