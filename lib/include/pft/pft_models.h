@@ -134,7 +134,8 @@ enum {
  * engine model: existence Markov chain (pb, pd; eta on the first frame), births proposed
  * uniformly from the pixels above gamma (all pixels when none is) with uniform sub-pixel
  * position, intensity ~ U[i_min, i_max], velocity ~ N(vel_mean, vel_var); survivors move with
- * the full CV process noise chol(V) and the intensity random walk. The log-likelihood is
+ * the full CV process noise chol(V) and the intensity random walk; a target whose window
+ * centre leaves the image gets E = 0 (it left the surveillance region). The log-likelihood is
  * pft_tbd_model_llr (the windowed pixel log likelihood ratio of pft_tbd.h) for E != 0 and 0
  * for E = 0 (plus log(|B_k| / A_allow) for births when cfg.birth_correction). The APF's
  * predicted point keeps E and moves the kinematic part by Phi. The estimate is
