@@ -228,6 +228,17 @@ std::unique_ptr<SequenceReader> open_sequence(const std::string &path)
         SequenceInfo info;
         info.source = path;
         info.kind = "pgm-pattern";
+        // a pattern inside a pft sim directory: take its pixel scaling and truth
+        fs::path side = fs::path(path).parent_path() / "sequence.json";
+        if (fs::exists(side, ec)) {
+            json j = load_json_file(side.string());
+            Field f(j, side.string());
+            info.sidecar = j;
+            info.pixel_gain = f.number_or("pixel_gain", 1.0);
+            info.pixel_offset = f.number_or("pixel_offset", 0.0);
+            if (f.has("truth"))
+                info.truth_csv = (side.parent_path() / f.string("truth")).string();
+        }
         return std::make_unique<PortFileReader>(path, PFT_FILE_PER_FRAME, PFT_FILE_PNM, 0, 0,
                                                 PFT_PIX_U16, 1, info);
     }

@@ -501,7 +501,13 @@ public:
         bool single = s.filter.mode == "single";
         std::string out_dir = o.out.empty() ? "pft_run_out" : o.out;
         ensure_dir(out_dir);
-        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        // filter seed: --seed, else the seed the sequence was simulated with (so sim + run
+        // reproduces the in-memory eval/demo run of that seed), else the scenario's base seed
+        uint64_t seed = s.eval.base_seed;
+        if (o.seed)
+            seed = *o.seed;
+        else if (info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned())
+            seed = info.sidecar["seed"].get<uint64_t>();
 
         // truth
         std::string truth_path = !o.truth.empty() ? o.truth : info.truth_csv;
@@ -519,7 +525,7 @@ public:
         std::vector<FrameOut> out;
         pft_frame_t f{};
         std::vector<float> conv;
-        while (rd->next(f)) {
+        while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
             if (!tr) {
                 s.width = f.width;
                 s.height = f.height;
