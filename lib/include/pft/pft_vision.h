@@ -1,0 +1,325 @@
+/**
+ * @file pft_vision.h
+ * @brief TSA-AK visual tracker (Song, Zhang & Yin 2014; ALGORITHMS.md 4.3-4.4) and its
+ *        appearance model: greedy snake with balloon force and corner relaxation, polygon
+ *        rasterisation and distance to the contour, the asymmetric kernel, the 30-bin
+ *        kernel-weighted RGB histogram and the Bhattacharyya coefficient. The dynamics
+ *        (TSA, and the NCV / TS baselines) are in pft_tsa.h.
+ *
+ * Coordinates: x is the column, y the row, pixel (x, y) has its centre at the integer point
+ * (x, y) (0-based). Contour points are integer pixel positions (the greedy snake moves on the
+ * pixel grid). The tracked state is the position of the kernel origin: the rounded area
+ * centroid of the contour's interior when the kernel was built.
+ *
+ * Frames: PFT_PIX_RGB888 and PFT_PIX_BGR888 (the histogram is R, G, B in that order either
+ * way), and PFT_PIX_U8 grey, which degrades gracefully: the grey value stands for all three
+ * channels (the 30 bins hold three copies of a 10-bin grey histogram, rho is the 10-bin grey
+ * Bhattacharyya coefficient). Other formats get PFT_ERR_FORMAT.
+ *
+ * Integer arithmetic (both builds, so float and q16 agree exactly here): grey conversion
+ * (77 R + 150 G + 29 B) >> 8, Sobel magnitude isqrt(gx^2 + gy^2) / 4 clamped to 255, every snake
+ * energy (Q16 fractions), the distance transform (exact rational comparison, one square root per
+ * pixel), kernel weights (Q4: round(16 (c + d))), histograms (uint32 sums) and the
+ * Bhattacharyya coefficient (64-bit integer square roots). Only the dynamics, the estimates
+ * and the configuration use pft_real_t.
+ *
+ * Memory: pft_vis_workspace_size(cfg) / PFT_VIS_WORKSPACE_BYTES(...) bytes of caller
+ * workspace, sized by the particle count, the largest target box and the snake's point count
+ * and margin. No malloc; the instance struct is the caller's.
+ */
+#ifndef PFT_VISION_H
+#define PFT_VISION_H
+
+#include "pft/pft_real.h"
+#include "pft/pft_rng.h"
+#include "pft/pft_tsa.h"
+#include "pft/pft_workspace.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Histogram bins: 10 per channel, R then G then B. */
+#define PFT_VIS_BINS 30u
+/** Largest side of the target box (kernel weights and histogram sums are sized for it). */
+#define PFT_VIS_MAX_SIDE 255u
+/** Snake point count limits. */
+#define PFT_VIS_MIN_POINTS 8u
+#define PFT_VIS_MAX_POINTS 255u
+
+/** An integer pixel position. */
+typedef struct {
+    int16_t x, y;
+} pft_vis_pt_t;
+
+/* ===================================== histogram ========================================== */
+
+/** Kernel-weighted colour histogram: bin[b] sums the Q4 kernel weights of the pixels whose
+ *  channel value falls in bin b ((v * 10) >> 8 per channel); total sums the weights of the
+ *  in-image pixels (so the bins sum to 3 * total). Normalisation is implicit. */
+typedef struct {
+    uint32_t bin[PFT_VIS_BINS];
+    uint32_t total;
+} pft_vis_hist_t;
+
+/** One kernel pixel: offset from the kernel origin and Q4 weight round(16 (c + d)). */
+typedef struct {
+    int16_t dx, dy;
+    uint16_t w;
+} pft_vis_kpix_t;
+
+/** Asymmetric kernel (eqs. 19-20): pixels of the contour's interior R with weight c + d(p). */
+typedef struct {
+    pft_vis_kpix_t *pix;  /**< caller storage, cap entries, row-major order */
+    uint32_t n;           /**< pixels in R */
+    uint32_t cap;         /**< capacity of pix */
+    uint32_t sum;         /**< sum of the weights */
+    int16_t x0, y0, x1, y1; /**< bounding box of the offsets (inclusive) */
+} pft_vis_kernel_t;
+
+/**
+ * Histogram of the kernel placed with its origin at pixel (cx, cy). Pixels outside the frame
+ * are dropped (a kernel wholly outside gives total 0). PFT_ERR_INVAL on NULL,
+ * PFT_ERR_FORMAT for a frame that is not RGB888 / BGR888 / U8 (h untouched).
+ */
+pft_status_t pft_vis_hist(const pft_frame_t *frame, const pft_vis_kernel_t *k, int32_t cx,
+                          int32_t cy, pft_vis_hist_t *h);
+
+/**
+ * Bhattacharyya coefficient rho = sum_u sqrt(p_u q_u) of the normalised histograms (eq. 21),
+ * in [0, 1]; 0 when either histogram is empty. Computed as
+ * sum_u isqrt(256 P_u Q_u) / (3 isqrt(256 P Q)) in 64-bit integers (identical histograms give
+ * exactly 1 up to the integer square roots: |rho - 1| <= 2^-12).
+ */
+pft_real_t pft_vis_bhattacharyya(const pft_vis_hist_t *p, const pft_vis_hist_t *q);
+
+/* ================================ polygon and kernel ====================================== */
+
+/** Twice the signed area of a closed polygon (positive when counter-clockwise in x-right,
+ *  y-up axes; i.e. clockwise on screen). */
+int64_t pft_vis_poly_area2(const pft_vis_pt_t *poly, uint32_t n);
+
+/** Even-odd test of pixel centre (x, y) against the closed polygon (half-open in y, so
+ *  adjacent polygons never both claim a pixel). */
+bool pft_vis_poly_inside(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_t y);
+
+/** Euclidean distance from (x, y) to the nearest edge of the closed polygon, in 1/16 px,
+ *  rounded down (exact integer comparison of squared distances, one 64-bit square root). */
+uint32_t pft_vis_poly_dist_q4(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_t y);
+
+/**
+ * Builds the asymmetric kernel of polygon poly[0..n): rasterises the interior (pixel centres,
+ * even-odd rule), weights each pixel c + d(p) (c = c_q4 / 16), and stores the offsets from
+ * the rounded area centroid of R, which is returned in *origin (frame coordinates).
+ * @param cross scratch of n int32 (row crossings)
+ * PFT_ERR_INVAL: NULL, n < 3, zero area; PFT_ERR_RANGE: empty interior (no pixel centre
+ * inside) or a bounding box wider or taller than PFT_VIS_MAX_SIDE; PFT_ERR_NOMEM: more pixels
+ * than k->cap. On error k is left unchanged.
+ */
+pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly, uint32_t n,
+                                  uint16_t c_q4, int32_t *cross, pft_vis_pt_t *origin);
+
+/* ======================================== snake =========================================== */
+
+/** Greedy snake parameters (Williams & Shah 1992, balloon of Cohen 1991). */
+typedef struct {
+    pft_real_t alpha;    /**< continuity weight (default 1) */
+    pft_real_t beta;     /**< curvature weight (default 1; 0 at detected corners) */
+    pft_real_t gamma;    /**< image (edge) weight (default 1.2) */
+    pft_real_t kb;       /**< balloon weight k_b (default 0.3; negative shrinks) */
+    pft_real_t corner_c; /**< corner curvature threshold (default 0.25) */
+    uint8_t corner_g;    /**< corner edge-strength threshold (default 100) */
+    uint8_t margin;      /**< gradient patch margin around the contour box (default 6, >= 3) */
+    uint16_t max_w, max_h; /**< largest contour box the work buffer was sized for */
+} pft_vis_snake_params_t;
+
+/** Fills the defaults above for a work buffer sized for max_w x max_h boxes. */
+void pft_vis_snake_params_default(pft_vis_snake_params_t *p, uint16_t max_w, uint16_t max_h);
+
+/** Work bytes of pft_vis_snake for boxes up to max_w x max_h and the given margin: a grey
+ *  patch and a gradient patch, (max_w + 2 margin + 2)(max_h + 2 margin + 2) + (max_w + 2
+ *  margin)(max_h + 2 margin). */
+#define PFT_VIS_SNAKE_WORK_BYTES(max_w, max_h, margin)                                        \
+    ((size_t)((max_w) + 2u * (margin) + 2u) * (size_t)((max_h) + 2u * (margin) + 2u) +        \
+     (size_t)((max_w) + 2u * (margin)) * (size_t)((max_h) + 2u * (margin)))
+size_t pft_vis_snake_work_size(uint16_t max_w, uint16_t max_h, uint8_t margin);
+
+/**
+ * Runs up to max_passes greedy passes on the closed contour pts[0..n) (frame coordinates,
+ * updated in place). Per pass every point moves to the best of its 3x3 neighbourhood under
+ * alpha e_cont + beta_i e_curv + gamma e_img + kb e_bal (ALGORITHMS.md 4.3); then corners
+ * (local maxima of the turning |u_i/|u_i| - u_{i+1}/|u_{i+1}||^2 above corner_c on an edge
+ * above corner_g) get beta_i = 0. Stops early when fewer than 10% of the points moved.
+ * Points stay inside the frame (1 px from its border). The gradient is recomputed around the
+ * contour every margin - 2 passes.
+ * @param bflags scratch of n bytes (per-point curvature switch)
+ * @param passes_done passes run (may be NULL)
+ * PFT_ERR_INVAL: NULL or n < PFT_VIS_MIN_POINTS or n > PFT_VIS_MAX_POINTS or margin < 3;
+ * PFT_ERR_FORMAT: bad frame; PFT_ERR_NOMEM: work too short; PFT_ERR_RANGE: the contour box
+ * exceeds max_w x max_h (pts then holds the last valid pass).
+ */
+pft_status_t pft_vis_snake(const pft_frame_t *frame, pft_vis_pt_t *pts, uint32_t n,
+                           const pft_vis_snake_params_t *prm, uint32_t max_passes,
+                           uint8_t *bflags, void *work, size_t work_len, uint32_t *passes_done);
+
+/** Resamples the closed polygon in[0..n_in) to n_out points equally spaced along its
+ *  perimeter (rounded to pixels). PFT_ERR_INVAL on NULL, n_in < 3 or zero perimeter. */
+pft_status_t pft_vis_poly_resample(const pft_vis_pt_t *in, uint32_t n_in, pft_vis_pt_t *out,
+                                   uint32_t n_out);
+
+/* ======================================== tracker ========================================= */
+
+/** Tracker configuration; pft_vis_config_default() fills the documented defaults. */
+typedef struct {
+    uint16_t width, height;          /**< frame size (required, no default) */
+    uint16_t max_target_w;           /**< largest contour box width (default 64, <= 255) */
+    uint16_t max_target_h;           /**< largest contour box height (default 64, <= 255) */
+    uint32_t n_particles;            /**< N normal particles (default 100); TSA adds the pioneer */
+    pft_motion_kind_t motion;        /**< TSA (default), TS or NCV */
+    pft_real_t beta0;                /**< TSA: beta_1; TS: the fixed beta (default 2) [A] */
+    pft_real_t beta_max;             /**< eq. 24 scale (default 6) [P] */
+    pft_real_t q;                    /**< OU spectral density (default 4.07: sqrt(Q22) = 1 px/frame at beta 2) [A] */
+    pft_real_t pos_sd;               /**< extra isotropic position diffusion, px (default 2) [A] */
+    uint8_t fit_k;                   /**< K reference points, 1..PFT_MOTION_MAX_K (default 10) [A] */
+    pft_real_t fit_sigma;            /**< sigma_G (default K/2 = 5) [A] */
+    bool fit_rho_weights;            /**< pi_i = rho of the reference point (default false: pi_i = 1) [A] */
+    pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
+    pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
+    pft_real_t k_s;                  /**< N_iter = min(ceil(k_s / rho), update_max_passes) (default 1.5) [A] */
+    uint8_t update_max_passes;       /**< (default 3) [P] */
+    uint8_t init_passes;             /**< snake passes on the initial contour, 0 = none (default 50) [A] */
+    uint8_t snake_points;            /**< contour points n (default 40) */
+    pft_vis_snake_params_t snake;    /**< snake weights (defaults of pft_vis_snake_params_default) */
+    pft_real_t kernel_c;             /**< kernel value c on the contour (default 1) [A] */
+    pft_real_t max_area_change;      /**< a snake result whose area changes by more than this
+                                          factor (or its inverse) is rejected (default 2) [A] */
+    uint16_t lost_frames;            /**< frames with rho(estimate) < rho_min before LOST (default 10) */
+    uint64_t seed;                   /**< RNG seed (default 1) */
+} pft_vis_config_t;
+
+/** Tracker state reported with each estimate. */
+typedef enum {
+    PFT_VIS_IDLE = 0,         /**< initialised, not started */
+    PFT_VIS_TRACKING = 1,     /**< some normal particle has rho >= rho_min */
+    PFT_VIS_PIONEER_ONLY = 2, /**< every normal particle discarded, the pioneer carried the frame */
+    PFT_VIS_WEAK = 3,         /**< every particle (and the pioneer) below rho_min: weights fall
+                                   back to rho itself */
+    PFT_VIS_LOST = 4,         /**< WEAK for lost_frames consecutive frames (tracking goes on) */
+    PFT_VIS_OUT_OF_VIEW = 5   /**< the estimate left the frame */
+} pft_vis_state_t;
+
+/** Results of the last frame. */
+typedef struct {
+    pft_vis_state_t state;
+    uint32_t frame;                 /**< frames consumed, the start frame included */
+    pft_real_t x, y, vx, vy;        /**< estimate X_hat (kernel origin) and mean velocity */
+    pft_real_t pioneer_x, pioneer_y;/**< pioneer X_tilde (TSA; TS: the fit's prediction) */
+    pft_real_t pioneer_vx, pioneer_vy; /**< conservative velocity v_hat */
+    pft_real_t rho;                 /**< rho(X_hat) */
+    pft_real_t rho_pioneer;         /**< rho(X_tilde) (TSA) */
+    pft_real_t beta;                /**< beta used for this frame's propagation */
+    pft_real_t beta_next;           /**< beta for the next frame (eq. 24) */
+    uint32_t n_alive;               /**< normal particles with rho >= rho_min */
+    bool ref_is_estimate;           /**< eq. 25 took X_hat (else X_tilde) as reference point */
+    bool template_updated;          /**< the template was rebuilt this frame */
+    uint8_t snake_passes;           /**< snake passes run this frame */
+    uint8_t fit_order;              /**< order of the conservative fit (x axis) */
+    int16_t box_x0, box_y0, box_x1, box_y1; /**< contour bounding box at the estimate */
+} pft_vis_estimate_t;
+
+/** The tracker instance (fields private). */
+typedef struct {
+    pft_vis_config_t cfg;
+    pft_rng_t rng;
+    pft_real_t *px, *py, *pvx, *pvy;  /* N + 1 (index N: pioneer) */
+    pft_real_t *tx, *ty, *tvx, *tvy;  /* resampling copies, N */
+    pft_real_t *rho;                  /* N + 1 */
+    pft_weight_t *w;                  /* N + 1 */
+    uint32_t *idx;                    /* N */
+    pft_vis_kernel_t kern, kern_alt;
+    int32_t *cross;
+    pft_vis_pt_t *contour;            /* offsets from the kernel origin */
+    pft_vis_pt_t *cwork;              /* frame coordinates, snake work */
+    uint8_t *bflags;
+    void *snake_ws;
+    size_t snake_ws_len;
+    pft_vis_hist_t q;                 /* template */
+    pft_vis_hist_t h;                 /* scratch */
+    pft_real_t ref_x[PFT_MOTION_MAX_K], ref_y[PFT_MOTION_MAX_K], ref_w[PFT_MOTION_MAX_K];
+    uint32_t ref_n;
+    pft_real_t beta;
+    int64_t area2;                    /* twice the contour area */
+    uint32_t n_state;                 /* particles in the state arrays: N, or N + 1 with the pioneer */
+    uint32_t weak_run;
+    pft_vis_estimate_t est;
+    bool started;
+} pft_vis_t;
+
+/** Fills cfg with the defaults listed in pft_vis_config_t for a width x height frame. */
+void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t height);
+/** PFT_OK if cfg is usable, PFT_ERR_INVAL otherwise. */
+pft_status_t pft_vis_config_check(const pft_vis_config_t *cfg);
+
+/**
+ * Workspace bytes, as a constant expression: N particles, box max_w x max_h, n_pts snake
+ * points, snake margin m. Equal to pft_vis_workspace_size() for the same values.
+ */
+#define PFT_VIS_WORKSPACE_BYTES(N, max_w, max_h, n_pts, m)                                     \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                            \
+     4u * PFT_WS_ROUND(((size_t)(N) + 1u) * sizeof(pft_real_t)) +                             \
+     4u * PFT_WS_ROUND((size_t)(N) * sizeof(pft_real_t)) +                                    \
+     PFT_WS_ROUND(((size_t)(N) + 1u) * sizeof(pft_real_t)) +                                  \
+     PFT_WS_ROUND(((size_t)(N) + 1u) * sizeof(pft_weight_t)) +                                \
+     PFT_WS_ROUND((size_t)(N) * sizeof(uint32_t)) +                                           \
+     2u * PFT_WS_ROUND((size_t)(max_w) * (size_t)(max_h) * sizeof(pft_vis_kpix_t)) +          \
+     PFT_WS_ROUND((size_t)(n_pts) * sizeof(int32_t)) +                                        \
+     2u * PFT_WS_ROUND((size_t)(n_pts) * sizeof(pft_vis_pt_t)) + PFT_WS_ROUND((size_t)(n_pts)) + \
+     PFT_WS_ROUND(PFT_VIS_SNAKE_WORK_BYTES(max_w, max_h, m)))
+
+/** Exact workspace bytes for cfg (0 if cfg is invalid). */
+size_t pft_vis_workspace_size(const pft_vis_config_t *cfg);
+
+/** Checks cfg, carves the workspace and seeds the RNG; the tracker is IDLE until
+ *  pft_vis_start. PFT_ERR_INVAL (bad cfg / NULL), PFT_ERR_NOMEM (short workspace). */
+pft_status_t pft_vis_init(pft_vis_t *t, const pft_vis_config_t *cfg, void *work, size_t work_len);
+
+/**
+ * Starts (or restarts) tracking on frame 1 from the closed polygon poly[0..n) (a box is 4
+ * corners): resamples it to snake_points points, runs init_passes snake passes (a result
+ * whose area changed by more than max_area_change, or which outgrew the box limit, is
+ * replaced by the given polygon), builds the kernel and the template, and places all
+ * particles at the kernel origin with zero velocity.
+ * Errors (tracker left as it was): PFT_ERR_INVAL NULL / n < 3 / degenerate (zero-area)
+ * polygon; PFT_ERR_FORMAT bad frame (size or format); PFT_ERR_RANGE polygon bounding box
+ * not inside the frame, larger than max_target_w x max_target_h, an empty kernel (no pixel
+ * centre inside) or an empty template histogram.
+ */
+pft_status_t pft_vis_start(pft_vis_t *t, const pft_frame_t *frame, const pft_vis_pt_t *poly,
+                           uint32_t n);
+
+/**
+ * One frame (ALGORITHMS.md 4.4 steps 1-7). PFT_ERR_STATE before pft_vis_start,
+ * PFT_ERR_FORMAT / PFT_ERR_INVAL for a bad frame (state untouched). Losing the target is not
+ * an error: see pft_vis_estimate_t.state.
+ */
+pft_status_t pft_vis_update(pft_vis_t *t, const pft_frame_t *frame);
+
+/** Results of the last frame (never NULL for an initialised tracker). */
+const pft_vis_estimate_t *pft_vis_estimate(const pft_vis_t *t);
+
+/** The contour placed at the estimate, in frame coordinates; returns the point count
+ *  (writes at most max points). */
+uint32_t pft_vis_contour(const pft_vis_t *t, pft_vis_pt_t *out, uint32_t max);
+
+/** The particles of the last frame (x, y, rho; n_state entries, the pioneer last for TSA). */
+uint32_t pft_vis_particles(const pft_vis_t *t, const pft_real_t **x, const pft_real_t **y,
+                           const pft_real_t **rho);
+
+/** The template histogram and the kernel in use (for tests and tools). */
+const pft_vis_hist_t *pft_vis_template(const pft_vis_t *t);
+const pft_vis_kernel_t *pft_vis_kernel(const pft_vis_t *t);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
