@@ -185,6 +185,8 @@ typedef struct {
     bool fit_rho_weights;            /**< pi_i = rho of the reference point (default false: pi_i = 1) [A] */
     pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
     pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
+    pft_real_t update_rho_min;       /**< ... but only when rho(estimate) >= this: a misaligned estimate
+                                          would teach the template the background (default 0.85) [A] */
     pft_real_t k_s;                  /**< N_iter = min(ceil(k_s / rho), update_max_passes) (default 1.5) [A] */
     uint8_t update_max_passes;       /**< (default 3) [P] */
     uint8_t init_passes;             /**< snake passes on the initial contour, 0 = none (default 50) [A] */

@@ -30,6 +30,7 @@ void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t heig
     cfg->fit_rho_weights = false;
     cfg->rho_min = PFT_C(0.75);
     cfg->theta_u = PFT_C(0.9);
+    cfg->update_rho_min = PFT_C(0.85);
     cfg->k_s = PFT_C(1.5);
     cfg->update_max_passes = 3u;
     cfg->init_passes = 50u;
@@ -60,7 +61,8 @@ pft_status_t pft_vis_config_check(const pft_vis_config_t *c)
         return PFT_ERR_INVAL;
     }
     if (!(c->rho_min >= 0) || c->rho_min > PFT_REAL_ONE || !(c->theta_u >= 0) ||
-        c->theta_u > PFT_REAL_ONE || !(c->k_s > 0) || c->k_s > PFT_C(100.0) ||
+        c->theta_u > PFT_REAL_ONE || !(c->update_rho_min >= 0) || c->update_rho_min > PFT_REAL_ONE ||
+        !(c->k_s > 0) || c->k_s > PFT_C(100.0) ||
         c->snake_points < PFT_VIS_MIN_POINTS || c->snake.margin < 3u ||
         !(c->kernel_c >= 0) || c->kernel_c > PFT_C(1000.0) || !(c->max_area_change >= PFT_REAL_ONE) ||
         c->max_area_change > PFT_C(1000.0)) {
@@ -552,8 +554,8 @@ pft_status_t pft_vis_update(pft_vis_t *t, const pft_frame_t *frame)
         }
     }
     t->est.state = state;
-    /* 7. template update (only on a trustworthy estimate, rho >= rho_min [A]) */
-    if (rho_e < t->cfg.theta_u && rho_e >= t->cfg.rho_min && state != PFT_VIS_OUT_OF_VIEW) {
+    /* 7. template update (only on a trustworthy estimate, rho >= update_rho_min [A]) */
+    if (rho_e < t->cfg.theta_u && rho_e >= t->cfg.update_rho_min && state != PFT_VIS_OUT_OF_VIEW) {
         template_update(t, frame, rho_e);
     }
     contour_box(t, pft_round_int(t->est.x), pft_round_int(t->est.y));
