@@ -14,6 +14,7 @@
 #include "../common/json_field.hpp"
 #include "../common/plot.hpp"
 #include "../common/registry.hpp"
+#include "../vis/track.hpp"
 
 using namespace pft::host;
 
@@ -207,6 +208,9 @@ int main(int argc, char **argv)
     pl->add_option("--xlabel", po.xlabel);
     pl->add_option("--ylabel", po.ylabel);
 
+    pft::host::vis::TrackCli track_cli;
+    pft::host::vis::add_track_command(app, track_cli);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
@@ -220,6 +224,8 @@ int main(int argc, char **argv)
             o.seed = seed;
         if (o.command == "plot")
             return cmd_plot(po);
+        if (o.command == "track")
+            return pft::host::vis::run_track(track_cli);
         if (o.command == "selftest") {
             int fails = 0;
             for (const auto &k : registered_kinds())
