@@ -35,8 +35,8 @@ def main():
     for s in singles:
         t = s["targets"][0]
         print(f"| {s['snr_db']:.0f} | {s['filter'].upper()}-TBD | {s['particles']} | {f(t['appearance_delay'])} | "
-              f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} | {f(t['pcrlb'], 3)} | "
-              f"{f(t['rmse_over_pcrlb'])} | {f(t['pcrlb_matched'], 3)} | {f(t['rmse_all_assigned'], 3)} | "
+              f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} ± {f(t.get('rmse_se'), 3)} | "
+              f"{f(t['pcrlb'], 3)} | {f(t['rmse_over_pcrlb'])} | {f(t['pcrlb_matched'], 3)} | {f(t['rmse_all_assigned'], 3)} | "
               f"{f(s['averaged']['false_tracks'])} | {t['detected_runs']}/{s['runs']} |")
     print(f"\n### Two targets, 6 dB ({num})\n")
     print("| case | preset | target | appear | disappear | correct /16 | RMSE | floor | RMSE/floor | "
@@ -54,7 +54,8 @@ def main():
                      if r else "")
             ratio = (t["rmse"] / t["pcrlb"]) if t.get("rmse") and t.get("pcrlb") else None
             print(f"| {s['scenario'][-1]} | {s['preset']} | {t['id']} | {f(t['appearance_delay'])} | "
-                  f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} | "
+                  f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)}"
+                  f"{(' ± ' + f(t['rmse_se'], 3)) if t.get('rmse_se') is not None else ''} | "
                   f"{f(t['pcrlb'], 3)} | {f(ratio)} | {f(t.get('pcrlb_matched'), 3)} | {f(t['false_tracks'])} | "
                   f"{t.get('detected_runs', '')} | {t.get('censored_disappearances', '')} | {paper} |")
     # means over the three cases, per preset (the paper's "mean" row)
@@ -75,16 +76,34 @@ def main():
     if len(sys.argv) > 2:
         b = load(sys.argv[2])
         num_b = next(iter(b.values()))["numeric"]
-        print(f"\n### {num} against {num_b} (relative difference of the averaged measures)\n")
-        print(f"| configuration | measure | {num} | {num_b} | diff % |")
-        print("|---|---|---|---|---|")
+        print(f"\n### {num} against {num_b}, per target (diff % of {num_b}; z = diff / combined "
+              "standard error)\n")
+        print(f"| configuration | target | appear {num} / {num_b} (z) | disappear (z) | correct (diff %, z) | "
+              "RMSE (diff %, z) |")
+        print("|---|---|---|---|---|---|")
+        worst = {"correct_frames": 0.0, "rmse": 0.0}
         for k in sorted(a):
             if k not in b:
                 continue
-            for m in ("appearance_delay", "disappearance_delay", "correct_frames", "rmse"):
-                x, y = a[k]["averaged"][m], b[k]["averaged"][m]
-                d = None if (x in (None, 0) or y is None) else 100.0 * (y - x) / abs(x)
-                print(f"| {k} | {m} | {f(x, 3)} | {f(y, 3)} | {f(d, 1)} |")
+            for ta, tb in zip(a[k]["targets"], b[k]["targets"]):
+                cells = []
+                for m in ("appearance_delay", "disappearance_delay", "correct_frames", "rmse"):
+                    x, y = ta[m], tb[m]
+                    sx, sy = ta.get(m + "_se"), tb.get(m + "_se")
+                    z = None
+                    if None not in (x, y, sx, sy) and (sx * sx + sy * sy) > 0:
+                        z = (x - y) / (sx * sx + sy * sy) ** 0.5
+                    d = None if (x is None or y in (None, 0)) else 100.0 * (x - y) / abs(y)
+                    if m in worst and d is not None:
+                        worst[m] = max(worst[m], abs(d))
+                    if m in ("correct_frames", "rmse"):
+                        p = 3 if m == "rmse" else 2
+                        cells.append(f"{f(x, p)} / {f(y, p)} ({f(d, 1)}%, {f(z, 1)})")
+                    else:
+                        cells.append(f"{f(x)} / {f(y)} ({f(z, 1)})")
+                print(f"| {k} | {ta['id']} | " + " | ".join(cells) + " |")
+        print(f"\nLargest |difference|: correct frames {worst['correct_frames']:.1f}%, "
+              f"RMSE {worst['rmse']:.1f}%.")
 
 
 if __name__ == "__main__":

@@ -85,88 +85,104 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
         return t.present ? &t : nullptr;
     };
 
-    // association
-    for (TrackHist &h : r.tracks) {
-        int best = -1, best_n = 0;
-        double best_d = 0;
-        for (std::size_t ti = 0; ti < nt; ++ti) {
-            int n = 0;
-            double sd = 0;
-            for (std::size_t k = 0; k < h.frames.size(); ++k) {
-                const TruthState *t = truth_at(h.frames[k], ti);
-                if (!t)
-                    continue;
-                double d = dist(h.xs[k], h.ys[k], *t);
-                if (d <= d_as) {
-                    ++n;
-                    sd += d;
-                }
-            }
-            if (n > best_n || (n == best_n && n > 0 && sd / n < best_d)) {
-                best = static_cast<int>(ti);
-                best_n = n;
-                best_d = sd / n;
-            }
+    // per-frame association: greedy on distance within d_assoc, one track per target and one
+    // target per track (a track may follow different targets in different frames)
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> at_frame(nf + 1);  // (track, point)
+    for (std::size_t h = 0; h < r.tracks.size(); ++h) {
+        r.tracks[h].assoc.assign(r.tracks[h].frames.size(), -1);
+        for (std::size_t k = 0; k < r.tracks[h].frames.size(); ++k) {
+            int f = r.tracks[h].frames[k];
+            if (f >= 1 && f <= nf)
+                at_frame[f].push_back({h, k});
         }
-        h.assigned = best;
-        if (best < 0)
+    }
+    struct Cand {
+        double d;
+        std::size_t ti, h, k;
+    };
+    // assoc_pt[ti][frame] = (track, point) or none
+    std::vector<std::vector<std::pair<long, std::size_t>>> assoc_pt(
+        nt, std::vector<std::pair<long, std::size_t>>(nf + 1, {-1L, 0}));
+    for (int f = 1; f <= nf; ++f) {
+        std::vector<Cand> c;
+        for (auto [h, k] : at_frame[f])
+            for (std::size_t ti = 0; ti < nt; ++ti)
+                if (const TruthState *t = truth_at(f, ti)) {
+                    double d = dist(r.tracks[h].xs[k], r.tracks[h].ys[k], *t);
+                    if (d <= d_as)
+                        c.push_back({d, ti, h, k});
+                }
+        std::sort(c.begin(), c.end(), [](const Cand &a, const Cand &b) { return a.d < b.d; });
+        std::vector<bool> used_t(nt, false), used_h(r.tracks.size(), false);
+        for (const Cand &x : c) {
+            if (used_t[x.ti] || used_h[x.h])
+                continue;
+            used_t[x.ti] = used_h[x.h] = true;
+            r.tracks[x.h].assoc[x.k] = static_cast<int>(x.ti);
+            assoc_pt[x.ti][f] = {static_cast<long>(x.h), x.k};
+        }
+    }
+    for (TrackHist &h : r.tracks) {
+        std::vector<int> cnt(nt, 0);
+        for (int a : h.assoc)
+            if (a >= 0)
+                ++cnt[a];
+        h.assigned = -1;
+        for (std::size_t ti = 0; ti < nt; ++ti)
+            if (cnt[ti] > 0 && (h.assigned < 0 || cnt[ti] > cnt[h.assigned]))
+                h.assigned = static_cast<int>(ti);
+        if (h.assigned < 0)
             ++r.unassigned;
     }
 
     for (std::size_t ti = 0; ti < nt; ++ti) {
         const Target &tg = s.targets[ti];
         TargetRun &tr = r.targets[ti];
-        tr.true_frames = 0;
         tr.err2.assign(nf, kNaN);
         tr.p_exist.assign(nf, 0.0);
-        std::vector<const TrackHist *> mine;
-        for (const TrackHist &h : r.tracks)
-            if (h.assigned == static_cast<int>(ti))
-                mine.push_back(&h);
-        tr.tracks = static_cast<int>(mine.size());
-        // per frame: the closest assigned track
-        for (int k = 1; k <= nf; ++k) {
-            const TruthState *t = truth_at(k, ti);
-            double best_d = std::numeric_limits<double>::infinity(), best_p = 0;
-            bool any = false;
-            for (const TrackHist *h : mine) {
-                auto it = std::lower_bound(h->frames.begin(), h->frames.end(), k);
-                if (it == h->frames.end() || *it != k)
-                    continue;
-                std::size_t idx = static_cast<std::size_t>(it - h->frames.begin());
-                double d = t ? dist(h->xs[idx], h->ys[idx], *t) : 0.0;
-                if (!any || d < best_d) {
-                    best_d = d;
-                    best_p = h->ps[idx];
-                }
-                any = true;
-            }
-            tr.p_exist[k - 1] = single ? out[k - 1].search_p : best_p;
+        std::vector<long> ids;
+        int last_f = 0;
+        for (int f = 1; f <= nf; ++f) {
+            const TruthState *t = truth_at(f, ti);
+            auto [h, k] = assoc_pt[ti][f];
+            tr.p_exist[f - 1] = single ? out[f - 1].search_p : (h >= 0 ? r.tracks[h].ps[k] : 0.0);
             if (!t)
                 continue;
             ++tr.true_frames;
-            if (!any)
+            if (h < 0)
                 continue;
-            if (!tr.detected && k >= tg.birth && best_d <= d_as) {
+            if (std::find(ids.begin(), ids.end(), h) == ids.end())
+                ids.push_back(h);
+            double d = dist(r.tracks[h].xs[k], r.tracks[h].ys[k], *t);
+            if (!tr.detected) {
                 tr.detected = true;
-                tr.appear_frame = k;
-                tr.appear_delay = k - tg.birth;
+                tr.appear_frame = f;
+                tr.appear_delay = f - tg.birth;
             }
-            tr.sq_all += best_d * best_d;
+            tr.sq_all += d * d;
             ++tr.n_all;
-            if (best_d <= d_c) {
+            if (d <= d_c) {
                 ++tr.correct;
-                tr.sq_correct += best_d * best_d;
-                tr.err2[k - 1] = best_d * best_d;
+                tr.sq_correct += d * d;
+                tr.err2[f - 1] = d * d;
             }
+            last_f = f;
         }
+        tr.tracks = static_cast<int>(ids.size());
         if (tr.detected) {
-            const TrackHist *lastT = nullptr;
-            for (const TrackHist *h : mine)
-                if (!lastT || h->last > lastT->last)
-                    lastT = h;
-            if (lastT->end_frame > 0) {
-                tr.disappear_delay = lastT->end_frame - tg.death;
+            // the track that followed the target last: declared gone when it ends or when it
+            // is associated with another target
+            const TrackHist &h = r.tracks[assoc_pt[ti][last_f].first];
+            int declared = 0;
+            for (std::size_t k = 0; k < h.frames.size(); ++k)
+                if (h.frames[k] > last_f && h.assoc[k] >= 0 && h.assoc[k] != static_cast<int>(ti)) {
+                    declared = h.frames[k];
+                    break;
+                }
+            if (!declared)
+                declared = h.end_frame;
+            if (declared) {
+                tr.disappear_delay = declared - tg.death;
             } else {
                 tr.censored = true;
                 tr.disappear_delay = nf + 1 - tg.death;
@@ -174,11 +190,11 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
         }
     }
 
-    // declared points against their own target (Deng's false-track probability)
+    // declared points against the truth (Deng's false-track probability)
     for (const TrackHist &h : r.tracks) {
         for (std::size_t k = 0; k < h.frames.size(); ++k) {
             ++r.declared_points;
-            const TruthState *t = h.assigned >= 0 ? truth_at(h.frames[k], h.assigned) : nullptr;
+            const TruthState *t = h.assoc[k] >= 0 ? truth_at(h.frames[k], h.assoc[k]) : nullptr;
             if (!t || dist(h.xs[k], h.ys[k], *t) > d_c)
                 ++r.incorrect_points;
         }
@@ -246,6 +262,48 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
                 matched_num += ne2[k] * fk * fk;
         }
         double rmse = nc ? std::sqrt(sqc / nc) : kNaN;
+        // standard errors over runs: sd/sqrt(n) for the per-run means, jackknife for the RMSE
+        auto se_of = [&](auto get, auto use) {
+            double m = 0, m2 = 0;
+            int n = 0;
+            for (const RunEval &r : runs) {
+                const TargetRun &t = r.targets[ti];
+                if (!use(t))
+                    continue;
+                double v = get(t);
+                m += v;
+                m2 += v * v;
+                ++n;
+            }
+            if (n < 2)
+                return kNaN;
+            double var = (m2 - m * m / n) / (n - 1);
+            return std::sqrt(std::max(0.0, var) / n);
+        };
+        auto detected = [](const TargetRun &t) { return t.detected; };
+        auto always = [](const TargetRun &) { return true; };
+        double app_se = se_of([](const TargetRun &t) { return t.appear_delay; }, detected);
+        double dis_se = se_of([](const TargetRun &t) { return t.disappear_delay; }, detected);
+        double cor_se = se_of([](const TargetRun &t) { return static_cast<double>(t.correct); }, always);
+        double rmse_se = kNaN;
+        if (R >= 2 && nc > 0) {
+            std::vector<double> jk;
+            for (const RunEval &r : runs) {
+                const TargetRun &t = r.targets[ti];
+                long n = nc - t.correct;
+                if (n > 0)
+                    jk.push_back(std::sqrt((sqc - t.sq_correct) / n));
+            }
+            if (jk.size() >= 2) {
+                double m = 0, ss = 0;
+                for (double v : jk)
+                    m += v;
+                m /= jk.size();
+                for (double v : jk)
+                    ss += (v - m) * (v - m);
+                rmse_se = std::sqrt(ss * (jk.size() - 1.0) / jk.size());
+            }
+        }
         double rmse_all = na ? std::sqrt(sqa / na) : kNaN;
         double matched = nc ? std::sqrt(matched_num / nc) : kNaN;
         double app_m = det ? app / det : kNaN, dis_m = ndis ? dis / ndis : kNaN;
@@ -262,6 +320,10 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
             {"pcrlb", fl.track_rmse},
             {"false_tracks", extra / Rd},
             {"detected_runs", det},
+            {"appearance_delay_se", num_or_null(app_se)},
+            {"disappearance_delay_se", num_or_null(dis_se)},
+            {"correct_frames_se", num_or_null(cor_se)},
+            {"rmse_se", num_or_null(rmse_se)},
             {"censored_disappearances", cens},
             {"rmse_all_assigned", num_or_null(rmse_all)},
             {"pcrlb_matched", num_or_null(matched)},

@@ -1,19 +1,22 @@
 // Performance measures of ALGORITHMS.md section 6 ([P1] metrics) for one run and their
 // Monte Carlo aggregate with the contract field names of `pft eval`.
 //
-// Association: a confirmed track belongs to the target it stays within d_assoc of for the most
-// frames (ties: the smaller mean distance); a track never within d_assoc of a present target
-// is unassigned. Per target (1-based frames, life birth..death):
-//   appearance delay    = first frame >= birth at which an assigned track is reported within
-//                         d_assoc of the target - birth
-//   disappearance delay = frame at which the last assigned track was declared gone - death
-//                         (negative when lost early; a track alive at the end of the sequence
-//                         counts with the lower bound frames + 1 - death and is reported in
-//                         censored_disappearances)
-//   correct frames      = frames of the life with an assigned track within d_c of the truth
+// Association, per frame: every reported track point within d_assoc of a present target is a
+// candidate; pairs are taken greedily by increasing distance, one track per target and one
+// target per track. A track may thus follow different targets in different frames (a swap when
+// targets cross); a track never associated with any target is a false track.
+// Per target (1-based frames, life birth..death):
+//   appearance delay    = first frame of the life with an associated track - birth
+//   disappearance delay = frame at which the track that followed the target last was declared
+//                         gone (or first associated with another target) - death; negative
+//                         when the target was lost early; a track still alive at the end of the
+//                         sequence counts with the lower bound frames + 1 - death and is
+//                         reported in censored_disappearances
+//   correct frames      = frames of the life whose associated track is within d_c of the truth
 //   RMSE                = eq. 25 over the correct points, pooled over runs
-//   false tracks        = per target: assigned tracks beyond the first (re-acquisitions,
-//                         duplicates); overall: those plus the unassigned tracks, per run.
+//   false tracks        = per target: distinct tracks associated with it beyond the first
+//                         (re-acquisitions, swaps); overall: those plus the never-associated
+//                         tracks, per run.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -34,7 +37,8 @@ struct TrackHist {
     int end_frame = 0;      ///< frame at which it was declared gone (0: alive at the end)
     std::vector<int> frames;
     std::vector<double> xs, ys, ps;
-    int assigned = -1;      ///< target index, -1: unassigned
+    std::vector<int> assoc; ///< per point: target index it was associated with, -1: none
+    int assigned = -1;      ///< target it was associated with most often, -1: never (false track)
 };
 
 struct TargetRun {
