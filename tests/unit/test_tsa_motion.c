@@ -229,7 +229,8 @@ static void test_beta_adaptation_and_reference_rule(void)
     TEST_ASSERT_DOUBLE_WITHIN(1e-6, 1.5, D_(pft_motion_beta_adapt(0, 0, bm, R_(1.5)))); /* keeps beta */
     TEST_ASSERT_TRUE(pft_motion_ref_is_estimate(R_(0.9), R_(0.8)));
     TEST_ASSERT_FALSE(pft_motion_ref_is_estimate(R_(0.8), R_(0.9)));
-    TEST_ASSERT_FALSE(pft_motion_ref_is_estimate(R_(0.8), R_(0.8))); /* tie: the pioneer */
+    TEST_ASSERT_TRUE(pft_motion_ref_is_estimate(R_(0.8), R_(0.8))); /* tie: the estimate [C] */
+    TEST_ASSERT_TRUE(pft_motion_ref_is_estimate(0, 0));
 }
 
 int main(void)

@@ -97,11 +97,13 @@ pft_status_t pft_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t 
 pft_real_t pft_motion_beta_adapt(pft_real_t rho_e, pft_real_t rho_p, pft_real_t beta_max,
                                  pft_real_t beta_prev);
 
-/** Reference-point rule (eq. 25): true when the estimate is the next reference point
- *  (rho(pioneer) < rho(estimate)), false when the pioneer is. */
+/** Reference-point rule (eq. 25): true when the estimate is the next reference point, false
+ *  when the pioneer is. Eq. 25 takes the estimate when rho(pioneer) < rho(estimate); on a tie
+ *  it would take the pioneer, which lets a pioneer that left the target (both rho 0) feed the
+ *  fit with its own extrapolation: here a tie keeps the estimate [C]. */
 static inline bool pft_motion_ref_is_estimate(pft_real_t rho_e, pft_real_t rho_p)
 {
-    return rho_p < rho_e;
+    return !(rho_p > rho_e);
 }
 
 #ifdef __cplusplus

@@ -187,6 +187,9 @@ typedef struct {
     pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
     pft_real_t update_rho_min;       /**< ... but only when rho(estimate) >= this: a misaligned estimate
                                           would teach the template the background (default 0.85) [A] */
+    pft_real_t anchor_rho_min;       /**< ... and only when the new template keeps rho >= this against
+                                          the first one (stops drift onto the background; 0: off;
+                                          default 0.8) [A] */
     pft_real_t k_s;                  /**< N_iter = min(ceil(k_s / rho), update_max_passes) (default 1.5) [A] */
     uint8_t update_max_passes;       /**< (default 3) [P] */
     uint8_t init_passes;             /**< snake passes on the initial contour, 0 = none (default 50) [A] */
@@ -246,6 +249,7 @@ typedef struct {
     void *snake_ws;
     size_t snake_ws_len;
     pft_vis_hist_t q;                 /* template */
+    pft_vis_hist_t q0;                /* first template (drift anchor) */
     pft_vis_hist_t h;                 /* scratch */
     pft_real_t ref_x[PFT_MOTION_MAX_K], ref_y[PFT_MOTION_MAX_K], ref_w[PFT_MOTION_MAX_K];
     uint32_t ref_n;

@@ -31,6 +31,7 @@ void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t heig
     cfg->rho_min = PFT_C(0.75);
     cfg->theta_u = PFT_C(0.9);
     cfg->update_rho_min = PFT_C(0.85);
+    cfg->anchor_rho_min = PFT_C(0.8);
     cfg->k_s = PFT_C(1.5);
     cfg->update_max_passes = 3u;
     cfg->init_passes = 50u;
@@ -62,6 +63,7 @@ pft_status_t pft_vis_config_check(const pft_vis_config_t *c)
     }
     if (!(c->rho_min >= 0) || c->rho_min > PFT_REAL_ONE || !(c->theta_u >= 0) ||
         c->theta_u > PFT_REAL_ONE || !(c->update_rho_min >= 0) || c->update_rho_min > PFT_REAL_ONE ||
+        !(c->anchor_rho_min >= 0) || c->anchor_rho_min > PFT_REAL_ONE ||
         !(c->k_s > 0) || c->k_s > PFT_C(100.0) ||
         c->snake_points < PFT_VIS_MIN_POINTS || c->snake.margin < 3u ||
         !(c->kernel_c >= 0) || c->kernel_c > PFT_C(1000.0) || !(c->max_area_change >= PFT_REAL_ONE) ||
@@ -198,7 +200,7 @@ static bool contour_acceptable(const pft_vis_t *t, const pft_vis_pt_t *p, int64_
 
 /* Builds kernel and template from cwork (frame coordinates) into the alternate kernel and
  * commits them; returns the new origin. */
-static pft_status_t rebuild(pft_vis_t *t, const pft_frame_t *f, pft_vis_pt_t *origin)
+static pft_status_t rebuild(pft_vis_t *t, const pft_frame_t *f, pft_vis_pt_t *origin, bool anchor)
 {
     pft_vis_hist_t hq;
     pft_vis_kernel_t tmp;
@@ -214,6 +216,10 @@ static pft_status_t rebuild(pft_vis_t *t, const pft_frame_t *f, pft_vis_pt_t *or
     }
     if (hq.total == 0u) {
         return PFT_ERR_RANGE;
+    }
+    if (anchor && t->cfg.anchor_rho_min > 0 &&
+        pft_vis_bhattacharyya(&hq, &t->q0) < t->cfg.anchor_rho_min) {
+        return PFT_ERR_RANGE; /* the new template drifted away from the first one */
     }
     tmp = t->kern;
     t->kern = t->kern_alt;
@@ -276,10 +282,11 @@ pft_status_t pft_vis_start(pft_vis_t *t, const pft_frame_t *frame, const pft_vis
         }
         t->est.snake_passes = (uint8_t)(done > 255u ? 255u : done);
     }
-    st = rebuild(t, frame, &origin);
+    st = rebuild(t, frame, &origin, false);
     if (st != PFT_OK) {
         return st;
     }
+    t->q0 = t->q;
     ox = pft_from_int(origin.x);
     oy = pft_from_int(origin.y);
     t->n_state = t->cfg.n_particles + (t->cfg.motion == PFT_MOTION_TSA ? 1u : 0u);
@@ -354,7 +361,7 @@ static void template_update(pft_vis_t *t, const pft_frame_t *f, pft_real_t rho_e
         }
     }
     t->est.snake_passes = (uint8_t)done;
-    if (rebuild(t, f, &origin) != PFT_OK) {
+    if (rebuild(t, f, &origin, true) != PFT_OK) {
         return;
     }
     t->est.template_updated = true;
