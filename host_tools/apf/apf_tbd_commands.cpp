@@ -97,7 +97,7 @@ ApfTbdScenario parse(const json &j, const std::string &file)
             (void)it;
         }
     }
-    s.calibration_runs = static_cast<unsigned>(root.integer_in("calibration_runs", 3, 1, 1000));
+    s.calibration_runs = static_cast<unsigned>(root.integer_in("calibration_runs", 10, 1, 1000));
     if (root.has("eval")) {
         Field e = root.at("eval");
         e.only({"runs", "base_seed"});
@@ -219,21 +219,53 @@ double jnum(const json &j, const char *key)
     return (it != j.end() && it->is_number()) ? it->get<double>() : NAN;
 }
 
-/** Mean time per frame (ns) of a filter over `runs` sequences, one thread. */
-double time_per_frame(const ApfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs, int frames = 0)
+/** Time per frame (ns) of a filter on each of `runs` sequences, one thread. */
+std::vector<double> times_per_frame(const ApfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs,
+                                    int frames = 0)
 {
     TbdFilter f(s.base, e, n);
-    double ns = 0;
-    int total = 0;
+    std::vector<double> t;
     for (unsigned r = 0; r < runs; ++r) {
         tbd::Sequence q = tbd::simulate(s.base, s.base_seed + 1000 + r, frames);
+        double ns = 0;
         f.pass(q, s.base_seed + 1000 + r, ns);
-        total += q.frames;
+        t.push_back(ns / q.frames);
     }
-    return ns / total;
+    return t;
 }
 
-/** Fills the particle counts of "match_time_of" filters: N = N_ref t_ref / t_this(N_ref). */
+double median_of(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    return n == 0 ? NAN : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double time_per_frame(const ApfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs, int frames = 0)
+{
+    return median_of(times_per_frame(s, e, n, runs, frames));
+}
+
+/** Median time per frame of two filters measured alternately (A, B, A, B, ... one sequence
+ *  each), so that load changes on a shared machine hit both alike. */
+std::pair<double, double> paired_times(const ApfTbdScenario &s, const EngineSpec &a, uint32_t na,
+                                       const EngineSpec &b, uint32_t nb, unsigned runs)
+{
+    TbdFilter fa(s.base, a, na), fb(s.base, b, nb);
+    std::vector<double> ta, tb;
+    for (unsigned r = 0; r < runs; ++r) {
+        tbd::Sequence q = tbd::simulate(s.base, s.base_seed + 1000 + r);
+        double x = 0, y = 0;
+        fa.pass(q, s.base_seed + 1000 + r, x);
+        fb.pass(q, s.base_seed + 1000 + r, y);
+        ta.push_back(x / q.frames);
+        tb.push_back(y / q.frames);
+    }
+    return {median_of(ta), median_of(tb)};
+}
+
+/** Fills the particle counts of "match_time_of" filters: N = N_ref t_ref / t_this(N_ref),
+ *  then one refinement at that N (time is not exactly linear in N). */
 json calibrate(ApfTbdScenario &s, bool quiet)
 {
     json cal = json::object();
@@ -244,21 +276,21 @@ json calibrate(ApfTbdScenario &s, bool quiet)
         for (const auto &r : s.filters)
             if (r.label == e.match_time_of)
                 ref = &r;
-        double t_ref = time_per_frame(s, *ref, ref->particles, s.calibration_runs);
-        double t_this = time_per_frame(s, e, ref->particles, s.calibration_runs);
+        auto [t_ref, t_this] = paired_times(s, *ref, ref->particles, e, ref->particles, s.calibration_runs);
         double n = std::round(ref->particles * t_ref / t_this);
-        e.particles = static_cast<uint32_t>(std::clamp(n, 1.0, static_cast<double>(PFT_CFG_MAX_PARTICLES)));
-        // one refinement at the calibrated count (time is not exactly linear in N)
-        double t_new = time_per_frame(s, e, e.particles, s.calibration_runs);
-        n = std::round(e.particles * t_ref / t_new);
+        uint32_t n1 = static_cast<uint32_t>(std::clamp(n, 1.0, static_cast<double>(PFT_CFG_MAX_PARTICLES)));
+        auto [t_ref2, t_new] = paired_times(s, *ref, ref->particles, e, n1, s.calibration_runs);
+        n = std::round(n1 * t_ref2 / t_new);
         e.particles = static_cast<uint32_t>(std::clamp(n, 1.0, static_cast<double>(PFT_CFG_MAX_PARTICLES)));
         cal[e.label] = {{"match_time_of", ref->label}, {"reference_particles", ref->particles},
                         {"reference_ns_per_frame", t_ref}, {"ns_per_frame_at_reference_n", t_this},
-                        {"ns_per_frame_first_guess", t_new}, {"particles", e.particles},
-                        {"calibration_runs", s.calibration_runs}};
+                        {"first_guess_particles", n1}, {"reference_ns_per_frame_2", t_ref2},
+                        {"ns_per_frame_at_first_guess", t_new}, {"particles", e.particles},
+                        {"calibration_runs", s.calibration_runs},
+                        {"method", "median per-frame time over calibration_runs sequences, the two filters alternating"}};
         if (!quiet)
-            std::printf("  equal compute: %s ~ %s: %.0f us/frame at N=%u -> N = %u\n", e.label.c_str(),
-                        ref->label.c_str(), t_ref / 1000.0, ref->particles, e.particles);
+            std::printf("  equal compute: %s ~ %s: %.0f vs %.0f us/frame at N=%u -> N = %u\n", e.label.c_str(),
+                        ref->label.c_str(), t_ref / 1000.0, t_this / 1000.0, ref->particles, e.particles);
     }
     return cal;
 }
@@ -360,8 +392,35 @@ public:
         bar.finish();
         double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+        // per-run statistics for standard errors and paired differences against filter 0
+        auto mean_se = [](const std::vector<double> &v) {
+            double m = 0, q = 0;
+            for (double x : v)
+                m += x / v.size();
+            for (double x : v)
+                q += (x - m) * (x - m);
+            double se = v.size() > 1 ? std::sqrt(q / (v.size() - 1) / v.size()) : NAN;
+            return std::make_pair(v.empty() ? NAN : m, se);
+        };
         json filters = json::array();
         for (std::size_t f = 0; f < nf; ++f) {
+            std::vector<double> app, cor, dcor, dapp;
+            for (unsigned r = 0; r < runs; ++r) {
+                const tbd::TargetRun &t = res[f][r].targets[0];
+                const tbd::TargetRun &t0 = res[0][r].targets[0];
+                cor.push_back(t.correct);
+                dcor.push_back(static_cast<double>(t.correct) - t0.correct);
+                if (t.detected)
+                    app.push_back(t.appear_delay);
+                if (t.detected && t0.detected)
+                    dapp.push_back(t.appear_delay - t0.appear_delay);
+            }
+            auto [app_m, app_se] = mean_se(app);
+            auto [cor_m, cor_se] = mean_se(cor);
+            auto [dcor_m, dcor_se] = mean_se(dcor);
+            auto [dapp_m, dapp_se] = mean_se(dapp);
+            (void)app_m;
+            (void)cor_m;
             json sm = tbd::summarize(s.base, res[f], true);
             const json &t = sm["targets"][0];
             double tot = 0;
@@ -388,6 +447,13 @@ public:
                 {"existence_probability", t["existence_probability"]},
                 {"rmse_per_frame", t["rmse_per_frame"]},
                 {"pcrlb_per_frame", t["pcrlb_per_frame"]},
+                {"appearance_delay_se", std::isfinite(app_se) ? json(app_se) : json(nullptr)},
+                {"correct_frames_se", std::isfinite(cor_se) ? json(cor_se) : json(nullptr)},
+                {"paired_vs", s.filters[0].label},
+                {"correct_frames_minus_first", f ? json(dcor_m) : json(nullptr)},
+                {"correct_frames_minus_first_se", f && std::isfinite(dcor_se) ? json(dcor_se) : json(nullptr)},
+                {"appearance_delay_minus_first", f && std::isfinite(dapp_m) ? json(dapp_m) : json(nullptr)},
+                {"appearance_delay_minus_first_se", f && std::isfinite(dapp_se) ? json(dapp_se) : json(nullptr)},
                 {"engine_settings", s.filters[f].engine == "rbpf" ? json(nullptr) : engine_json(s.filters[f])},
             });
         }
@@ -428,6 +494,16 @@ public:
                             fmt(jnum(f, "rmse")).c_str(), fmt(jnum(f, "pcrlb")).c_str(),
                             fmt(jnum(f, "pcrlb_matched")).c_str(), fmt(jnum(f, "false_tracks"), 2).c_str(),
                             fmt(jnum(f, "ns_per_step") / 1000.0, 0).c_str());
+            std::printf("\n  paired against %s (same sequences; mean difference +- standard error):\n",
+                        s.filters[0].label.c_str());
+            for (std::size_t f = 1; f < nf; ++f) {
+                const json &j = filters[f];
+                std::printf("  %-22s correct frames %+.2f +- %.2f, appearance delay %s +- %s\n",
+                            j["label"].get<std::string>().c_str(), jnum(j, "correct_frames_minus_first"),
+                            jnum(j, "correct_frames_minus_first_se"),
+                            fmt(jnum(j, "appearance_delay_minus_first"), 2).c_str(),
+                            fmt(jnum(j, "appearance_delay_minus_first_se"), 2).c_str());
+            }
             std::printf("\n  %.1f s wall; wrote %s/summary.json, existence.png, rmse.png\n", wall, out_dir.c_str());
         }
         return 0;

@@ -249,6 +249,11 @@ void print_tables(const BearingsScenario &s, const json &sum)
                     fmt(f["ns_per_step"].get<double>() / 1000.0, 1).c_str(),
                     fmt(f["mean_ess_ratio"].get<double>(), 3).c_str(),
                     fmt(f["mean_ess_first_ratio"].get<double>(), 3).c_str());
+    if (sum["reference_filter"].is_object())
+        std::printf("  reference %s N=%u: RMSE to truth %s (the floor the others approach)\n",
+                    sum["reference_filter"]["label"].get<std::string>().c_str(),
+                    sum["reference_filter"]["particles"].get<uint32_t>(),
+                    fmt(sum["reference_filter"]["rmse"].get<double>()).c_str());
     if (sum.contains("paired")) {
         std::printf("\n  paired: fraction of runs where A's run RMSE < B's (same sequences)\n");
         for (const json &p : sum["paired"])
@@ -278,6 +283,7 @@ public:
         // res[run][filter * nn + n]
         std::vector<std::vector<PassResult>> res(runs, std::vector<PassResult>(nf * nn));
         std::vector<std::size_t> ws(nf * nn, 0);
+        std::vector<double> ref_se(runs, 0.0);  // reference filter: squared radial error per run
         Progress bar(runs, "eval", progress_wanted(o.progress));
         auto t0 = std::chrono::steady_clock::now();
         parallel_for(runs, threads, [&](std::size_t i) {
@@ -294,6 +300,8 @@ public:
                 // the reference runs with its own seed stream (not shared with the filters)
                 BearingsFilter rf(s, s.reference_filter, s.reference_filter.particles);
                 PassResult pr = rf.pass(q, seed ^ 0x5245465245465245ull);
+                for (int k = 0; k < s.steps; ++k)
+                    ref_se[i] += pr.ex[k] * pr.ex[k] + pr.ey[k] * pr.ey[k];
                 for (auto &p : res[i]) {
                     p.dref.resize(s.steps);
                     for (int k = 0; k < s.steps; ++k) {
@@ -385,6 +393,10 @@ public:
         if (s.has_reference_filter) {
             ref_json = engine_json(s.reference_filter);
             ref_json["particles"] = s.reference_filter.particles;
+            double t = 0;
+            for (double v : ref_se)
+                t += v;
+            ref_json["rmse"] = std::sqrt(t / (static_cast<double>(runs) * s.steps));
         }
         json engines = json::array();
         for (const auto &e : s.filters)
