@@ -236,7 +236,7 @@ void save_plot_png(const PlotSpec &spec, const std::string &path)
     AtomicPath ap(path);
     bool ok = false;
     try {
-        ok = cv::imwrite(ap.tmp(), img);
+        ok = cv::imwrite(ap.tmp(), img, {cv::IMWRITE_PNG_COMPRESSION, 9});
     } catch (const cv::Exception &e) {
         throw InputError(path + ": cannot write PNG (" + e.what() + ")");
     }

@@ -8,7 +8,8 @@
 # Usage: host_tools/scripts/tbd_figures.sh BUILD_DIR OUT_DIR [RUNS] [THREADS]
 #   e.g. host_tools/scripts/tbd_figures.sh build/h6-host-float results/float 100 2
 # Seeds: every eval uses the scenario's base seed (1), run i uses seed 1 + i (recorded in each
-# summary.json). PF_SIZES and SNRS may be overridden from the environment.
+# summary.json). PF_SIZES and SNRS may be overridden from the environment; SKIP_SINGLE=1 reruns
+# only the two-target cases (the figures are then merged from the summaries already in OUT).
 set -euo pipefail
 BUILD=${1:?usage: tbd_figures.sh BUILD_DIR OUT_DIR [RUNS] [THREADS]}
 OUT=${2:?usage: tbd_figures.sh BUILD_DIR OUT_DIR [RUNS] [THREADS]}
@@ -28,12 +29,14 @@ ev() { # name scenario [pft eval options...]
   "$PFT" eval --scenario "$sc" --runs "$RUNS" --threads "$THREADS" --out "$OUT/$name" -q "$@"
 }
 
+if [ -z "${SKIP_SINGLE:-}" ]; then
 for snr in $SNRS; do
   ev "single_${snr}db_rbpf_6000" "$SCEN/single_${snr}db.json" --filter rbpf --particles 6000
   for n in $PF_SIZES; do
     ev "single_${snr}db_pf_${n}" "$SCEN/single_${snr}db.json" --filter pf --particles "$n"
   done
 done
+fi
 for c in 1 2 3; do
   for preset in paper recommended; do
     ev "two_case${c}_${preset}" "$SCEN/two_case${c}.json" --preset "$preset"

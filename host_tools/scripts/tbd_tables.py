@@ -39,9 +39,9 @@ def main():
               f"{f(t['pcrlb'], 3)} | {f(t['rmse_over_pcrlb'])} | {f(t['pcrlb_matched'], 3)} | {f(t['rmse_all_assigned'], 3)} | "
               f"{f(s['averaged']['false_tracks'])} | {t['detected_runs']}/{s['runs']} |")
     print(f"\n### Two targets, 6 dB ({num})\n")
-    print("| case | preset | target | appear | disappear | correct /16 | RMSE | floor | RMSE/floor | "
+    print("| case | preset | target | appear | confirm | disappear | correct /16 | RMSE | floor | RMSE/floor | "
           "floor matched | false tracks/run | detected | censored | paper appear/disapp./correct/RMSE |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for k in sorted(a):
         if not k.startswith("two_"):
             continue
@@ -54,6 +54,7 @@ def main():
                      if r else "")
             ratio = (t["rmse"] / t["pcrlb"]) if t.get("rmse") and t.get("pcrlb") else None
             print(f"| {s['scenario'][-1]} | {s['preset']} | {t['id']} | {f(t['appearance_delay'])} | "
+                  f"{f(t.get('confirmation_delay'))} | "
                   f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)}"
                   f"{(' ± ' + f(t['rmse_se'], 3)) if t.get('rmse_se') is not None else ''} | "
                   f"{f(t['pcrlb'], 3)} | {f(ratio)} | {f(t.get('pcrlb_matched'), 3)} | {f(t['false_tracks'])} | "

@@ -169,6 +169,12 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
             last_f = f;
         }
         tr.tracks = static_cast<int>(ids.size());
+        for (const TrackHist &h : r.tracks)
+            if (h.first >= tg.birth && h.first <= tg.death && !h.assoc.empty() &&
+                h.assoc[0] == static_cast<int>(ti) && (!tr.confirmed || h.first - tg.birth < tr.confirm_delay)) {
+                tr.confirmed = true;
+                tr.confirm_delay = h.first - tg.birth;
+            }
         if (tr.detected) {
             // the track that followed the target last: declared gone when it ends or when it
             // is associated with another target
@@ -181,6 +187,15 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
                 }
             if (!declared)
                 declared = h.end_frame;
+            // after the target's last associated frame, its existence curve follows that track
+            // until it is declared gone (so the curves show how fast tracks end)
+            if (!single)
+                for (std::size_t k = 0; k < h.frames.size(); ++k) {
+                    int f = h.frames[k];
+                    if (f > last_f && (!declared || f < declared) && f >= 1 && f <= nf &&
+                        tr.p_exist[f - 1] == 0.0)
+                        tr.p_exist[f - 1] = h.ps[k];
+                }
             if (declared) {
                 tr.disappear_delay = declared - tg.death;
             } else {
@@ -217,7 +232,8 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
     for (std::size_t ti = 0; ti < nt; ++ti) {
         const Target &tg = s.targets[ti];
         PcrlbResult fl = target_floor(s, tg);
-        double app = 0, dis = 0, cor = 0, sqc = 0, sqa = 0, extra = 0;
+        double app = 0, dis = 0, cor = 0, sqc = 0, sqa = 0, extra = 0, conf = 0;
+        int nconf = 0;
         long nc = 0, na = 0;
         int det = 0, ndis = 0, cens = 0;
         std::vector<double> p(nf, 0.0), e2(nf, 0.0), floor_w(nf, 0.0);
@@ -231,6 +247,10 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
                 cens += t.censored ? 1 : 0;
                 dis += t.disappear_delay;
                 ++ndis;
+            }
+            if (t.confirmed) {
+                conf += t.confirm_delay;
+                ++nconf;
             }
             cor += t.correct;
             sqc += t.sq_correct;
@@ -320,6 +340,8 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
             {"pcrlb", fl.track_rmse},
             {"false_tracks", extra / Rd},
             {"detected_runs", det},
+            {"confirmation_delay", num_or_null(nconf ? conf / nconf : kNaN)},
+            {"confirmed_runs", nconf},
             {"appearance_delay_se", num_or_null(app_se)},
             {"disappearance_delay_se", num_or_null(dis_se)},
             {"correct_frames_se", num_or_null(cor_se)},

@@ -12,6 +12,9 @@
 //                         when the target was lost early; a track still alive at the end of the
 //                         sequence counts with the lower bound frames + 1 - death and is
 //                         reported in censored_disappearances
+//   confirmation delay  = first frame of the life at which a new track is confirmed whose first
+//                         point is associated with the target - birth (differs from the
+//                         appearance delay when an existing track moves onto a spawned target)
 //   correct frames      = frames of the life whose associated track is within d_c of the truth
 //   RMSE                = eq. 25 over the correct points, pooled over runs
 //   false tracks        = per target: distinct tracks associated with it beyond the first
@@ -45,6 +48,8 @@ struct TargetRun {
     bool detected = false;
     int appear_frame = 0;
     double appear_delay = 0;
+    bool confirmed = false; ///< a new track was confirmed on this target during its life
+    double confirm_delay = 0; ///< first such confirmation frame - birth
     bool censored = false;  ///< last assigned track still alive at the end of the sequence
     double disappear_delay = 0;
     int correct = 0;
