@@ -290,12 +290,12 @@ static pft_status_t update_(pft_dbt_t *b, const pft_frame_t *frame, const pft_re
             for (uint32_t a = 0; a < na; ++a) {
                 (void)pft_kf2_update_scalar(tr->x[a], tr->P[a], H, pl->pos[a], pft_sq(c->sigma_r[a]));
             }
-            tr->hist = (uint8_t)((tr->hist << 1) | 1u);
+            tr->hist = (uint8_t)(((uint32_t)tr->hist << 1) | 1u);
             tr->misses = 0u;
             tr->detected = true;
             tr->score = pl->peak;
         } else {
-            tr->hist = (uint8_t)(tr->hist << 1);
+            tr->hist = (uint8_t)((uint32_t)tr->hist << 1);
             tr->misses++;
             tr->detected = false;
         }
