@@ -515,13 +515,12 @@ public:
         bool have_truth = !truth_path.empty() && fs::exists(truth_path);
         if (!o.truth.empty() && !have_truth)
             throw InputError(o.truth + ": no such truth file");
-        if (have_truth) {
+        if (have_truth)
             tt = read_truth_csv(truth_path);
-            targets_from_truth(s, tt);
-        }
 
         std::unique_ptr<Tracker> tr;
         std::unique_ptr<OverlayWriter> ov;
+        std::vector<std::vector<TruthState>> seen_truth;  // truth of the frames tracked
         std::vector<FrameOut> out;
         pft_frame_t f{};
         std::vector<float> conv;
@@ -552,10 +551,14 @@ public:
                 g.stride_bytes = static_cast<uint32_t>(f.width * 4);
             }
             out.push_back(tr->update(g));
+            // truth row of this frame: by the source's sequence number, so that frames the
+            // source had to skip do not shift the truth (seq is 1-based for pft sim output)
+            std::size_t ti = f.seq >= 1 ? f.seq - 1 : out.size() - 1;
+            std::vector<TruthState> truth = have_truth && ti < tt.frames.size()
+                                                ? tt.frames[ti]
+                                                : std::vector<TruthState>(tt.ids.size());
+            seen_truth.push_back(truth);
             if (ov) {
-                std::size_t k = out.size() - 1;
-                std::vector<TruthState> truth = have_truth && k < tt.frames.size() ? tt.frames[k]
-                                                                                    : std::vector<TruthState>();
                 ov->add(m, truth, tt.ids, out.back());
             }
         }
@@ -571,8 +574,11 @@ public:
         write_tracks(out_dir, out, meta);
         std::unique_ptr<RunEval> ev;
         if (have_truth) {
-            tt.frames.resize(out.size(), std::vector<TruthState>(tt.ids.size()));
-            ev = std::make_unique<RunEval>(evaluate_run(s, tt.frames, out, single));
+            // metrics over the frames actually tracked (birth/death renumbered if the source
+            // skipped unreadable frames)
+            TruthTable seen{tt.ids, seen_truth};
+            targets_from_truth(s, seen);
+            ev = std::make_unique<RunEval>(evaluate_run(s, seen_truth, out, single));
         }
         if (!o.quiet) {
             std::printf("pft run: %s (%s, %zu frames, %d skipped)\n  %s\n", o.sequence.c_str(),
