@@ -43,7 +43,7 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
 {
     PftParams p;
     Field f(j, file, path);
-    f.only({"motion", "particles", "beta0", "q", "pos_sd", "rho_min", "theta_u", "update_rho_min", "fit_k",
+    f.only({"motion", "particles", "beta0", "q", "pos_sd", "rho_min", "lik_lambda", "theta_u", "update_rho_min", "fit_k",
             "fit_sigma", "snake_points", "init_passes", "max_target", "seed"});
     p.motion = f.choice_or("motion", p.motion, {"tsa", "ts", "ncv"});
     p.particles = (int)f.integer_in("particles", p.particles, 1, 65535);
@@ -51,6 +51,7 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
     p.q = f.number_in("q", p.q, 0, 10000);
     p.pos_sd = f.number_in("pos_sd", p.pos_sd, 0, 1000);
     p.rho_min = f.number_in("rho_min", p.rho_min, 0, 1);
+    p.lik_lambda = f.number_in("lik_lambda", p.lik_lambda, 0, 1000);
     p.theta_u = f.number_in("theta_u", p.theta_u, 0, 1);
     p.update_rho_min = f.number_in("update_rho_min", p.update_rho_min, 0, 1);
     p.fit_k = (int)f.integer_in("fit_k", p.fit_k, 1, PFT_MOTION_MAX_K);
@@ -65,7 +66,7 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
 nlohmann::json pft_params_json(const PftParams &p)
 {
     return {{"motion", p.motion}, {"particles", p.particles}, {"beta0", p.beta0}, {"q", p.q}, {"pos_sd", p.pos_sd},
-            {"rho_min", p.rho_min}, {"theta_u", p.theta_u}, {"update_rho_min", p.update_rho_min},
+            {"rho_min", p.rho_min}, {"lik_lambda", p.lik_lambda}, {"theta_u", p.theta_u}, {"update_rho_min", p.update_rho_min},
             {"fit_k", p.fit_k}, {"fit_sigma", p.fit_sigma}, {"snake_points", p.snake_points},
             {"init_passes", p.init_passes}, {"max_target", p.max_target}, {"seed", p.seed}};
 }
@@ -86,6 +87,7 @@ public:
         cfg_.q = R(p.q);
         cfg_.pos_sd = R(p.pos_sd);
         cfg_.rho_min = R(p.rho_min);
+        cfg_.lik_lambda = R(p.lik_lambda);
         cfg_.theta_u = R(p.theta_u);
         cfg_.update_rho_min = R(p.update_rho_min);
         cfg_.fit_k = (uint8_t)p.fit_k;

@@ -29,6 +29,7 @@ void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t heig
     cfg->fit_sigma = PFT_C(5.0);
     cfg->fit_rho_weights = false;
     cfg->rho_min = PFT_C(0.75);
+    cfg->lik_lambda = 0;
     cfg->theta_u = PFT_C(0.9);
     cfg->update_rho_min = PFT_C(0.85);
     cfg->anchor_rho_min = PFT_C(0.8);
@@ -61,7 +62,8 @@ pft_status_t pft_vis_config_check(const pft_vis_config_t *c)
         c->fit_k > PFT_MOTION_MAX_K || !(c->fit_sigma > 0)) {
         return PFT_ERR_INVAL;
     }
-    if (!(c->rho_min >= 0) || c->rho_min > PFT_REAL_ONE || !(c->theta_u >= 0) ||
+    if (!(c->rho_min >= 0) || c->rho_min > PFT_REAL_ONE || !(c->lik_lambda >= 0) ||
+        c->lik_lambda > PFT_C(1000.0) || !(c->theta_u >= 0) ||
         c->theta_u > PFT_REAL_ONE || !(c->update_rho_min >= 0) || c->update_rho_min > PFT_REAL_ONE ||
         !(c->anchor_rho_min >= 0) || c->anchor_rho_min > PFT_REAL_ONE ||
         !(c->k_s > 0) || c->k_s > PFT_C(100.0) ||
@@ -143,6 +145,28 @@ static pft_real_t rho_at(pft_vis_t *t, const pft_frame_t *f, pft_real_t x, pft_r
         return 0;
     }
     return pft_vis_bhattacharyya(&t->h, &t->q);
+}
+
+/* Particle weight from its similarity: rho itself (eq. 22, lik_lambda = 0) or
+ * exp(lambda (rho - rho_best)) (lik_lambda > 0), on the scale of rho (q16: at most 2^16, so
+ * the 64-bit sums of wmean cannot overflow). */
+static pft_weight_t weight_of(const pft_vis_t *t, pft_real_t rho, pft_real_t rho_best)
+{
+    if (!(rho > 0)) {
+        return 0;
+    }
+    if (!(t->cfg.lik_lambda > 0)) {
+#ifdef PFT_NUMERIC_Q16
+        return (pft_weight_t)rho;
+#else
+        return rho;
+#endif
+    }
+#ifdef PFT_NUMERIC_Q16
+    return pft_wexp(pft_mul(t->cfg.lik_lambda, pft_sub(rho, rho_best))) >> 14;
+#else
+    return pft_wexp(pft_mul(t->cfg.lik_lambda, pft_sub(rho, rho_best)));
+#endif
 }
 
 /* Weighted mean of v[0..n) with weights w (any scale, sum > 0). */
@@ -456,46 +480,47 @@ pft_status_t pft_vis_update(pft_vis_t *t, const pft_frame_t *frame)
         t->pvx[N] = vbx;
         t->pvy[N] = vby;
     }
-    /* 4. similarities, discard below rho_min, weights proportional to rho */
-    for (uint32_t i = 0; i < M; ++i) {
-        t->rho[i] = rho_at(t, frame, t->px[i], t->py[i]);
-#ifdef PFT_NUMERIC_Q16
-        t->w[i] = t->rho[i] >= t->cfg.rho_min && t->rho[i] > 0 ? (pft_weight_t)t->rho[i] : 0u;
-#else
-        t->w[i] = t->rho[i] >= t->cfg.rho_min && t->rho[i] > 0.0f ? t->rho[i] : 0.0f;
-#endif
-        if (i < N && t->w[i] > 0) {
-            ++alive;
+    /* 4. similarities, discard below rho_min, weights proportional to rho (or exp(lambda rho)) */
+    {
+        pft_real_t best_alive = 0, best_any = 0;
+        for (uint32_t i = 0; i < M; ++i) {
+            t->rho[i] = rho_at(t, frame, t->px[i], t->py[i]);
+            best_any = pft_max(best_any, t->rho[i]);
+            if (t->rho[i] >= t->cfg.rho_min) {
+                best_alive = pft_max(best_alive, t->rho[i]);
+            }
         }
-    }
-    if (tsa) {
-        rho_p = t->rho[N];
-    }
-    state = PFT_VIS_TRACKING;
-    if (alive == 0u) {
+        for (uint32_t i = 0; i < M; ++i) {
+            t->w[i] = t->rho[i] >= t->cfg.rho_min ? weight_of(t, t->rho[i], best_alive) : 0;
+            if (i < N && t->w[i] > 0) {
+                ++alive;
+            }
+        }
         if (tsa) {
-            /* pioneer only: X_hat = X_tilde; the normal particles recover at the resampling */
-            for (uint32_t i = 0; i < N; ++i) {
-                t->w[i] = 0;
-            }
-            t->w[N] = PFT_W_ONE;
-            state = rho_p >= t->cfg.rho_min ? PFT_VIS_PIONEER_ONLY : PFT_VIS_WEAK;
-        } else {
-            bool any = false;
-            for (uint32_t i = 0; i < M; ++i) {
-#ifdef PFT_NUMERIC_Q16
-                t->w[i] = t->rho[i] > 0 ? (pft_weight_t)t->rho[i] : 0u;
-#else
-                t->w[i] = t->rho[i] > 0.0f ? t->rho[i] : 0.0f;
-#endif
-                any = any || t->w[i] > 0;
-            }
-            if (!any) {
-                for (uint32_t i = 0; i < M; ++i) {
-                    t->w[i] = PFT_W_ONE;
+            rho_p = t->rho[N];
+        }
+        state = PFT_VIS_TRACKING;
+        if (alive == 0u) {
+            if (tsa) {
+                /* pioneer only: X_hat = X_tilde; the normal particles recover at the resampling */
+                for (uint32_t i = 0; i < N; ++i) {
+                    t->w[i] = 0;
                 }
+                t->w[N] = PFT_W_ONE;
+                state = rho_p >= t->cfg.rho_min ? PFT_VIS_PIONEER_ONLY : PFT_VIS_WEAK;
+            } else {
+                bool any = false;
+                for (uint32_t i = 0; i < M; ++i) {
+                    t->w[i] = weight_of(t, t->rho[i], best_any);
+                    any = any || t->w[i] > 0;
+                }
+                if (!any) {
+                    for (uint32_t i = 0; i < M; ++i) {
+                        t->w[i] = PFT_W_ONE;
+                    }
+                }
+                state = PFT_VIS_WEAK;
             }
-            state = PFT_VIS_WEAK;
         }
     }
     /* 5. estimate */
