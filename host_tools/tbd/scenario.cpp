@@ -123,7 +123,8 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
                 "eta", "gamma", "i_min", "i_max", "vel_mean", "vel_var", "birth_correction", "theta1",
                 "dis_r", "dis_prev", "dis_ratio", "dis_ratio_test", "theta_end", "d_margin",
                 "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
-                "seed_offset"});
+                "seed_offset", "d_region", "residual_search", "residual_tracks",
+                "residual_margin", "end_lr_frames", "end_lr_max"});
         FilterSettings &F = s.filter;
         F.mode = f.choice_or("mode", "multi", {"multi", "single"});
         F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
@@ -176,6 +177,13 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
         integer("dis_prev", 1, 15, F.dis_prev);
         integer("d_margin", 0, 255, F.d_margin);
         integer("window", 0, 4, F.window);
+        flag("residual_search", F.residual_search);
+        flag("residual_tracks", F.residual_tracks);
+        integer("residual_margin", 0, 8, F.residual_margin);
+        integer("end_lr_frames", 0, 16, F.end_lr_frames);
+        num("end_lr_max", -1e4, 1e4, F.end_lr_max);
+        if (f.has("d_region"))
+            F.d_region = f.choice_or("d_region", "window", {"window", "pixel", "none"});
         if (f.has("kf_variant"))
             F.kf_variant = f.choice_or("kf_variant", "exact", {"exact", "paper"});
     }

@@ -98,6 +98,19 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
         c.window = static_cast<uint8_t>(*F.window);
     if (F.kf_variant)
         c.kf_variant = *F.kf_variant == "paper" ? PFT_TBD_KF_PAPER : PFT_TBD_KF_EXACT;
+    if (F.d_region)
+        c.d_region = *F.d_region == "none"    ? PFT_TBD_D_NONE
+                     : *F.d_region == "pixel" ? PFT_TBD_D_PIXEL
+                                              : PFT_TBD_D_WINDOW;
+    if (F.residual_search)
+        c.residual_search = *F.residual_search;
+    if (F.residual_tracks)
+        c.residual_tracks = *F.residual_tracks;
+    if (F.residual_margin)
+        c.residual_margin = static_cast<uint8_t>(*F.residual_margin);
+    if (F.end_lr_frames)
+        c.end_lr_frames = static_cast<uint8_t>(*F.end_lr_frames);
+    R(F.end_lr_max, c.end_lr_max);
     return c;
 }
 
@@ -115,7 +128,13 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
             {"dis_r", c.dis_r}, {"dis_prev", c.dis_prev}, {"dis_ratio", from_real(c.dis_ratio)},
             {"dis_ratio_test", c.dis_ratio_test}, {"theta_end", from_real(c.theta_end)},
             {"d_margin", c.d_margin}, {"d_current", c.d_current},
-            {"force_constraint", c.force_constraint}, {"n_search", c.n_search},
+            {"force_constraint", c.force_constraint},
+            {"d_region", c.d_region == PFT_TBD_D_NONE    ? "none"
+                         : c.d_region == PFT_TBD_D_PIXEL ? "pixel"
+                                                         : "window"},
+            {"residual_search", c.residual_search}, {"residual_tracks", c.residual_tracks},
+            {"residual_margin", c.residual_margin}, {"end_lr_frames", c.end_lr_frames},
+            {"end_lr_max", from_real(c.end_lr_max)}, {"n_search", c.n_search},
             {"n_track", c.n_track}, {"max_targets", c.max_targets},
             {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},
             {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"}};

@@ -64,6 +64,16 @@ typedef enum {
     PFT_TBD_KF_PAPER = 1  /**< as printed: ignores the position/velocity noise correlation */
 } pft_tbd_kf_variant_t;
 
+/** Shape of a confirmed track's constraint region D (ALGORITHMS.md 2.4, 2.7), before it is
+ *  grown by d_margin pixels on each side. */
+typedef enum {
+    PFT_TBD_D_WINDOW = 0, /**< the (2p+1)^2 window C(x) around the estimate (the paper) */
+    PFT_TBD_D_PIXEL = 1,  /**< the estimate's pixel only */
+    PFT_TBD_D_NONE = 2    /**< no constraint regions (d_margin ignored); with the residual
+                               likelihood the search layer explains a confirmed target away
+                               instead of being barred from it */
+} pft_tbd_dregion_t;
+
 /**
  * Every parameter of the TBD filters. pft_tbd_config_default() fills the paper's values
  * ([P] in ALGORITHMS.md 2.8) and the documented defaults of the assumptions ([A]).
@@ -104,6 +114,12 @@ typedef struct {
     uint8_t d_margin;        /**< constraint region D = C(x) grown by this many pixels on each side [A] (default 0: the paper's C(x)) */
     bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, ALGORITHMS.md 2.7, default) [A] */
     bool force_constraint;   /**< force E = 0 for search particles whose window centre enters a constraint region [A] (default true) */
+    pft_tbd_dregion_t d_region; /**< shape of D (default PFT_TBD_D_WINDOW, the paper) [A] */
+    bool residual_search;    /**< joint likelihood in the search layer: its particles are weighed on the frame minus the PSF h of every confirmed track at its current estimate (position and intensity) [A] (default false: the paper's single-target likelihood) */
+    bool residual_tracks;    /**< joint likelihood in the track layers: track t is weighed on the frame minus the PSF of every other track at its predicted position x + v T (estimates of the previous frame) [A] (default false) */
+    uint8_t residual_margin; /**< the subtracted PSF covers the window C(x) grown by this many pixels, half-size p + margin <= 2 PFT_TBD_MAX_WINDOW (default 1) */
+    uint8_t end_lr_frames;   /**< a track also ends when the frame log likelihood ratio of its layer (log_mean_lr) was below end_lr_max in each of the last end_lr_frames frames; 0 turns it off (default), at most PFT_TBD_MAX_DIS_R + 1 [A] */
+    pft_real_t end_lr_max;   /**< threshold of the test above (default 0: the frame favours absence) */
     /* sizes */
     uint32_t n_search;       /**< search-layer particles Ns (default 6000) */
     uint32_t n_track;        /**< particles per track layer Nt (default 500) */
@@ -185,6 +201,19 @@ pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_r
  */
 pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
                              pft_real_t y, pft_real_t intensity);
+
+/** Largest half-size accepted by pft_tbd_model_add_psf. */
+#define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
+
+/**
+ * img += h(i, j; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
+ * round(y/dy)), clipped to the image (half is capped at PFT_TBD_MAX_PSF_HALF). A negative
+ * intensity subtracts the target: the log likelihood ratio of a second target s on the result,
+ * pft_tbd_model_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)
+ * of the pixels where h_t was subtracted. Q16: pixels saturate at +-32768.
+ */
+void pft_tbd_model_add_psf(const pft_tbd_model_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+                           pft_real_t intensity, uint8_t half);
 
 /** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
 typedef struct {
@@ -322,6 +351,7 @@ typedef struct {
     pft_real_t *img;
     uint8_t *mask;
     uint32_t *cand;
+    pft_real_t *res;             /**< residual frame (joint likelihood, cfg.residual_*) */
     uint32_t frame;              /**< frames accepted so far (the last frame number) */
     uint32_t next_id;
     uint16_t n_tracks;           /**< active tracks */
@@ -338,7 +368,7 @@ typedef struct {
      (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
-     PFT_TBD_EVENT_BYTES_(max_targets))
+     PFT_TBD_EVENT_BYTES_(max_targets) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)))
 
 /** Workspace bytes pft_tbd_init needs for cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
@@ -348,10 +378,12 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
 
 /**
- * One frame (ALGORITHMS.md 2.7): update every track layer and test disappearance, rebuild
- * the constraint regions from the remaining tracks' previous estimates, update the search
- * layer, and confirm a new track when its existence probability exceeds theta1 (if a track
- * slot is free; otherwise the search layer keeps running without confirming).
+ * One frame (ALGORITHMS.md 2.7): update every track layer (with residual_tracks, each on the
+ * frame minus the other tracks' PSFs at their predicted positions) and test disappearance,
+ * rebuild the constraint regions from the remaining tracks' estimates, update the search
+ * layer (with residual_search, on the frame minus every remaining track's PSF at its current
+ * estimate), and confirm a new track when its existence probability exceeds theta1 (if a
+ * track slot is free; otherwise the search layer keeps running without confirming).
  * Refused input leaves everything untouched.
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);

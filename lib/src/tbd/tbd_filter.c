@@ -271,11 +271,12 @@ static void disappearance_(pft_tbd_filter_t *f)
 {
     uint32_t r1 = (uint32_t)f->cfg.dis_r + 1u;
     uint32_t np = f->cfg.dis_prev;
-    for (uint32_t q = r1 - 1u; q > 0u; --q) {
+    /* the whole history is kept: the manager's end_lr_frames test reads it too */
+    for (uint32_t q = PFT_TBD_MAX_DIS_R; q > 0u; --q) {
         f->lr_hist[q] = f->lr_hist[q - 1u];
     }
     f->lr_hist[0] = f->est.log_mean_lr;
-    if (f->n_lr < r1) {
+    if (f->n_lr < PFT_TBD_MAX_DIS_R + 1u) {
         ++f->n_lr;
     }
     f->gone = false;

@@ -27,6 +27,7 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
     pft_tbd_event_t *events = (pft_tbd_event_t *)pft_ws_take(
         ws, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
     pft_tbd_filter_t scratch;
+    pft_real_t *res = NULL;
     pft_tbd_filter_t *sf = commit ? &t->search : &scratch;
     sf->n = cfg->n_search;
     sf->kind = cfg->kind;
@@ -37,7 +38,9 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         tf->kind = cfg->kind;
         pft_tbd_particles_carve_(tf, ws);
     }
+    res = (pft_real_t *)pft_ws_take(ws, npix * sizeof(pft_real_t));
     if (commit) {
+        t->res = res;
         t->img = img;
         t->mask = mask;
         t->cand = cand;
@@ -81,6 +84,7 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
     pft_ws_init(&ws2, work, work_len);
     carve_all_(t, cfg, &ws2, true);
     memset(t->img, 0, npix * sizeof(pft_real_t));
+    memset(t->res, 0, npix * sizeof(pft_real_t));
     memset(t->mask, 0, npix);
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
@@ -130,6 +134,74 @@ static void push_event_(pft_tbd_t *t, pft_tbd_event_kind_t kind, uint32_t id, pf
     ev->y = y;
 }
 
+/* Half-size of the subtracted PSF window. */
+static uint8_t psf_half_(const pft_tbd_config_t *cfg)
+{
+    return (uint8_t)(cfg->window + cfg->residual_margin);
+}
+
+/* res = img on the pixels pft_tbd_model_add_psf(.., x, y, .., half) touched. */
+static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
+                         pft_real_t x, pft_real_t y, uint8_t half)
+{
+    pft_tbd_region_t r = pft_tbd_window_region(cfg, x, y);
+    int32_t dp = (int32_t)half - (int32_t)cfg->window;
+    int32_t ilo = r.i_lo - dp < 1 ? 1 : r.i_lo - dp;
+    int32_t ihi = r.i_hi + dp > (int32_t)cfg->width ? (int32_t)cfg->width : r.i_hi + dp;
+    int32_t jlo = r.j_lo - dp < 1 ? 1 : r.j_lo - dp;
+    int32_t jhi = r.j_hi + dp > (int32_t)cfg->height ? (int32_t)cfg->height : r.j_hi + dp;
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        size_t o = (size_t)(j - 1) * cfg->width;
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            res[o + (size_t)(i - 1)] = img[o + (size_t)(i - 1)];
+        }
+    }
+}
+
+/* Predicted position of a track record one frame ahead (x + v T). */
+static void predict_(const pft_tbd_config_t *cfg, const pft_tbd_track_t *r, pft_real_t *x,
+                     pft_real_t *y)
+{
+    *x = pft_add(r->x, pft_mul(r->vx, cfg->T));
+    *y = pft_add(r->y, pft_mul(r->vy, cfg->T));
+}
+
+/* The short-window evidence test: log_mean_lr < end_lr_max in each of the last n frames. */
+static bool lr_says_gone_(const pft_tbd_config_t *cfg, const pft_tbd_filter_t *tf)
+{
+    uint32_t n = cfg->end_lr_frames;
+    if (n == 0u || tf->n_lr < n) {
+        return false;
+    }
+    for (uint32_t q = 0; q < n; ++q) {
+        if (!(tf->lr_hist[q] < cfg->end_lr_max)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Constraint region D of a track at (x, y) into the mask. */
+static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x, pft_real_t y)
+{
+    if (cfg->d_region == PFT_TBD_D_NONE) {
+        return;
+    }
+    pft_tbd_region_t d = pft_tbd_window_region(cfg, x, y);
+    if (cfg->d_region == PFT_TBD_D_PIXEL) {
+        int32_t p = (int32_t)cfg->window;
+        d.i_lo += p;
+        d.i_hi -= p;
+        d.j_lo += p;
+        d.j_hi -= p;
+    }
+    d.i_lo -= cfg->d_margin;
+    d.i_hi += cfg->d_margin;
+    d.j_lo -= cfg->d_margin;
+    d.j_hi += cfg->d_margin;
+    pft_tbd_mask_add_(cfg, mask, &d);
+}
+
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
 {
     if (t == NULL || frame == NULL) {
@@ -150,9 +222,16 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     t->n_events = 0u;
     size_t npix = (size_t)cfg->width * cfg->height;
     memset(t->mask, 0, npix);
+    const pft_tbd_model_t *model = &t->search.model;
+    uint8_t half = psf_half_(cfg);
+    bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
+    bool res_search = cfg->residual_search && t->n_tracks > 0u;
+    if (res_tracks || res_search) {
+        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
+    }
 
-    /* 1. track layers (no births), disappearance test; 2. constraint regions from the
-     *    surviving tracks' estimates at k - 1. */
+    /* 1a. track layers (no births). With residual_tracks, track k sees the frame minus the
+     *     other tracks' PSFs at their predicted positions (records still hold frame k - 1). */
     pft_tbd_scene_t_ tsc;
     tsc.img = t->img;
     tsc.mask = NULL;
@@ -161,14 +240,45 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     tsc.n_allowed = 0u;
     tsc.cand_is_b = false;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        if (t->records[k].id == 0u) {
+            continue;
+        }
+        tsc.img = t->img;
+        if (res_tracks) {
+            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
+                if (u != k && t->records[u].id != 0u) {
+                    pft_real_t px, py;
+                    predict_(cfg, &t->records[u], &px, &py);
+                    pft_tbd_model_add_psf(model, t->res, px, py,
+                                          pft_neg(t->records[u].intensity), half);
+                }
+            }
+            tsc.img = t->res;
+        }
+        pft_tbd_filter_step_(&t->tracks[k], &tsc);
+        if (res_tracks) {
+            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
+                if (u != k && t->records[u].id != 0u) {
+                    pft_real_t px, py;
+                    predict_(cfg, &t->records[u], &px, &py);
+                    restore_psf_(cfg, t->res, t->img, px, py, half);
+                }
+            }
+        }
+    }
+
+    /* 1b. disappearance; 2. constraint regions from the surviving tracks' estimates (of the
+     *     previous frame, or of this one with d_current). */
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         pft_tbd_track_t *rec = &t->records[k];
         if (rec->id == 0u) {
             continue;
         }
         pft_tbd_filter_t *tf = &t->tracks[k];
-        pft_tbd_region_t d = pft_tbd_window_region(cfg, rec->x, rec->y);
-        pft_tbd_filter_step_(tf, &tsc);
-        if (tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u) {
+        pft_real_t dx0 = rec->x;
+        pft_real_t dy0 = rec->y;
+        if (tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u ||
+            lr_says_gone_(cfg, tf)) {
             push_event_(t, PFT_TBD_EV_ENDED, rec->id, tf->est.x, tf->est.y);
             memset(rec, 0, sizeof(*rec));
             --t->n_tracks;
@@ -179,18 +289,26 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
             ++rec->age;
         }
         if (cfg->d_current) {
-            d = pft_tbd_window_region(cfg, rec->x, rec->y);
+            dx0 = rec->x;
+            dy0 = rec->y;
         }
-        d.i_lo -= cfg->d_margin;
-        d.i_hi += cfg->d_margin;
-        d.j_lo -= cfg->d_margin;
-        d.j_hi += cfg->d_margin;
-        pft_tbd_mask_add_(cfg, t->mask, &d);
+        add_region_(cfg, t->mask, dx0, dy0);
     }
 
-    /* 3. search layer, births outside the regions */
+    /* 3. search layer, births outside the regions; with residual_search on the frame minus
+     *    every remaining track's PSF at its current estimate. */
+    const pft_real_t *simg = t->img;
+    if (res_search && t->n_tracks > 0u) {
+        for (uint32_t u = 0; u < cfg->max_targets; ++u) {
+            if (t->records[u].id != 0u) {
+                pft_tbd_model_add_psf(model, t->res, t->records[u].x, t->records[u].y,
+                                      pft_neg(t->records[u].intensity), half);
+            }
+        }
+        simg = t->res;
+    }
     pft_tbd_scene_t_ ssc;
-    pft_tbd_scene_build_(cfg, t->img, t->mask, t->cand, &ssc);
+    pft_tbd_scene_build_(cfg, simg, t->mask, t->cand, &ssc);
     pft_tbd_filter_step_(&t->search, &ssc);
 
     /* 4. appearance: hand over to a new track layer and reset the search layer */

@@ -41,6 +41,12 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->d_margin = 0u;
     cfg->d_current = false;
     cfg->force_constraint = true;
+    cfg->d_region = PFT_TBD_D_WINDOW;
+    cfg->residual_search = false;
+    cfg->residual_tracks = false;
+    cfg->residual_margin = 1u;
+    cfg->end_lr_frames = 0u;
+    cfg->end_lr_max = PFT_C(0.0);
     cfg->n_search = 6000u;
     cfg->n_track = 500u;
     cfg->max_targets = 4u;
@@ -80,6 +86,10 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
     ok = ok && c->dis_r <= PFT_TBD_MAX_DIS_R && c->dis_prev >= 1u &&
          c->dis_prev <= PFT_TBD_MAX_DIS_PREV;
     ok = ok && c->d_margin <= 16u;
+    ok = ok && (c->d_region == PFT_TBD_D_WINDOW || c->d_region == PFT_TBD_D_PIXEL ||
+                c->d_region == PFT_TBD_D_NONE);
+    ok = ok && (uint32_t)c->window + c->residual_margin <= PFT_TBD_MAX_PSF_HALF;
+    ok = ok && c->end_lr_frames <= PFT_TBD_MAX_DIS_R + 1u;
     ok = ok && c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0);
     ok = ok && c->n_search >= 1u && c->n_search <= PFT_CFG_MAX_PARTICLES;
     ok = ok && c->n_track >= 1u && c->n_track <= PFT_CFG_MAX_PARTICLES;
@@ -188,6 +198,35 @@ pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pf
         }
     }
     return pft_mul(acc, m->inv_s2n);
+}
+
+void pft_tbd_model_add_psf(const pft_tbd_model_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+                           pft_real_t intensity, uint8_t half)
+{
+    int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;
+    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
+    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
+    int32_t ilo = i0 - p < 1 ? 1 : i0 - p;
+    int32_t ihi = i0 + p > (int32_t)m->width ? (int32_t)m->width : i0 + p;
+    int32_t jlo = j0 - p < 1 ? 1 : j0 - p;
+    int32_t jhi = j0 + p > (int32_t)m->height ? (int32_t)m->height : j0 + p;
+    if (ilo > ihi || jlo > jhi) {
+        return;
+    }
+    pft_real_t ax[2u * PFT_TBD_MAX_PSF_HALF + 1u];
+    pft_real_t amp = pft_mul(intensity, m->c0);
+    for (int32_t i = ilo; i <= ihi; ++i) {
+        pft_real_t d = pft_sub(pft_mul_i(m->dx, i), x);
+        ax[i - ilo] = pft_mul(amp, pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2))));
+    }
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        pft_real_t d = pft_sub(pft_mul_i(m->dy, j), y);
+        pft_real_t g = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+        pft_real_t *row = img + (size_t)(j - 1) * m->width;
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            row[i - 1] = pft_add(row[i - 1], pft_mul(ax[i - ilo], g));
+        }
+    }
 }
 
 /* ------------------------------------ frames ---------------------------------------------- */
