@@ -28,7 +28,7 @@ struct PftParams {
     std::string motion = "tsa";  ///< tsa | ts | ncv
     int particles = 100;
     double beta0 = 2.0, q = 4.07, pos_sd = 2.0, rho_min = 0.75, theta_u = 0.9, update_rho_min = 0.85;
-    double lik_lambda = 0.0;  ///< 0: w = rho (paper eq. 22); > 0: w = exp(lik_lambda (rho - 1))
+    double lik_lambda = 300.0;  ///< 0: w = rho (paper eq. 22); > 0: w = exp(lik_lambda (rho - rho_best))
     int fit_k = 10;
     double fit_sigma = 5.0;
     int snake_points = 40, init_passes = 50, max_target = 96;

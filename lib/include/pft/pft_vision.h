@@ -184,10 +184,13 @@ typedef struct {
     pft_real_t fit_sigma;            /**< sigma_G (default K/2 = 5) [A] */
     bool fit_rho_weights;            /**< pi_i = rho of the reference point (default false: pi_i = 1) [A] */
     pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
-    pft_real_t lik_lambda;           /**< weight of a kept particle: 0 = rho itself (eq. 22, the paper);
-                                          > 0 = exp(lik_lambda (rho - 1)) (Perez et al. 2002, sharper
-                                          against similar backgrounds; see docs/results/tsa_ak.md)
-                                          (default 0) [A] */
+    pft_real_t lik_lambda;           /**< weight of a kept particle: 0 = rho itself (eq. 22, the paper's
+                                          linear weight); > 0 = exp(lik_lambda (rho - rho_best))
+                                          (Perez et al. 2002). The 30-bin histogram gives rho 0.8-0.95
+                                          on aerial background and 0.99+ within 10 px of the target, so
+                                          w = rho hardly localises and TS/TSA's fit of their own
+                                          estimates drifts or oscillates; see docs/results/tsa_ak.md
+                                          (default 300) [A] */
     pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
     pft_real_t update_rho_min;       /**< ... but only when rho(estimate) >= this: a misaligned estimate
                                           would teach the template the background (default 0.85) [A] */

@@ -29,7 +29,7 @@ void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t heig
     cfg->fit_sigma = PFT_C(5.0);
     cfg->fit_rho_weights = false;
     cfg->rho_min = PFT_C(0.75);
-    cfg->lik_lambda = 0;
+    cfg->lik_lambda = PFT_C(300.0);
     cfg->theta_u = PFT_C(0.9);
     cfg->update_rho_min = PFT_C(0.85);
     cfg->anchor_rho_min = PFT_C(0.8);
