@@ -249,7 +249,9 @@ typedef enum {
                                  8 cells the first time an operator needs it, and kept beside zeta
                                  in the ring; an operator is then one table read per frame (path position rounded to the
                                  grid, error <= c_step/2). The width is sigma_r (the covariance
-                                 part of sigma_w is dropped) [A] */
+                                 part of sigma_w is dropped) [A]. Requires zeta_clip <= 64 (the
+                                 operator sums then cannot overflow q16 and use plain additions).
+                                 Memory: ring.len * (n_range + 8) * Q more reals than EXACT */
 } pft_mftbd_op_t;
 
 /** Motion model of a PTE-TBD track, per axis. */
