@@ -124,7 +124,7 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
                 "dis_r", "dis_prev", "dis_ratio", "dis_ratio_test", "theta_end", "d_margin",
                 "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
                 "seed_offset", "d_region", "residual_search", "residual_tracks",
-                "residual_margin", "end_lr_frames", "end_lr_max"});
+                "residual_margin", "end_lr_frames", "end_lr_max", "handover_gate"});
         FilterSettings &F = s.filter;
         F.mode = f.choice_or("mode", "multi", {"multi", "single"});
         F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
@@ -181,6 +181,7 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
         flag("residual_tracks", F.residual_tracks);
         integer("residual_margin", 0, 8, F.residual_margin);
         integer("end_lr_frames", 0, 16, F.end_lr_frames);
+        integer("handover_gate", 0, 64, F.handover_gate);
         num("end_lr_max", -1e4, 1e4, F.end_lr_max);
         if (f.has("d_region"))
             F.d_region = f.choice_or("d_region", "window", {"window", "pixel", "none"});

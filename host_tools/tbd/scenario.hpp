@@ -37,7 +37,7 @@ struct FilterSettings {
     std::optional<std::array<double, 2>> vel_mean, vel_var;
     std::optional<bool> birth_correction, dis_ratio_test, d_current, force_constraint;
     std::optional<bool> residual_search, residual_tracks;
-    std::optional<int> dis_r, dis_prev, d_margin, window, residual_margin, end_lr_frames;
+    std::optional<int> dis_r, dis_prev, d_margin, window, residual_margin, end_lr_frames, handover_gate;
     std::optional<std::string> d_region;  ///< "window" | "pixel" | "none"
     std::optional<std::string> kf_variant;
 };

@@ -108,6 +108,8 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
         c.residual_tracks = *F.residual_tracks;
     if (F.residual_margin)
         c.residual_margin = static_cast<uint8_t>(*F.residual_margin);
+    if (F.handover_gate)
+        c.handover_gate = static_cast<uint8_t>(*F.handover_gate);
     if (F.end_lr_frames)
         c.end_lr_frames = static_cast<uint8_t>(*F.end_lr_frames);
     R(F.end_lr_max, c.end_lr_max);
@@ -133,7 +135,7 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
                          : c.d_region == PFT_TBD_D_PIXEL ? "pixel"
                                                          : "window"},
             {"residual_search", c.residual_search}, {"residual_tracks", c.residual_tracks},
-            {"residual_margin", c.residual_margin}, {"end_lr_frames", c.end_lr_frames},
+            {"residual_margin", c.residual_margin}, {"end_lr_frames", c.end_lr_frames}, {"handover_gate", c.handover_gate},
             {"end_lr_max", from_real(c.end_lr_max)}, {"n_search", c.n_search},
             {"n_track", c.n_track}, {"max_targets", c.max_targets},
             {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},

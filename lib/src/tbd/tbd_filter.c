@@ -423,11 +423,18 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     }
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src)
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
 {
     uint32_t alive = 0;
     for (uint32_t s = 0; s < src->n; ++s) {
         bool a = src->cur.e[s] != 0u;
+        if (a && gate != NULL) {
+            int32_t i0 = pft_tbd_pix_(src->cur.x[s], src->model.inv_dx);
+            int32_t j0 = pft_tbd_pix_(src->cur.y[s], src->model.inv_dy);
+            a = i0 >= 1 && j0 >= 1 && i0 <= (int32_t)src->cfg.width &&
+                j0 <= (int32_t)src->cfg.height &&
+                gate[(size_t)(j0 - 1) * src->cfg.width + (size_t)(i0 - 1)] != 0u;
+        }
         src->w[s] = a ? PFT_W_ONE : (pft_weight_t)0;
         alive += a ? 1u : 0u;
     }
@@ -454,6 +461,15 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src)
         }
         b->e[s] = 1u;
     }
+    /* estimates of the handed-over set (equal weights) */
+    for (uint32_t s = 0; s < dst->n; ++s) {
+        dst->w[s] = PFT_W_ONE;
+    }
+    pft_real_t lmlr = src->est.log_mean_lr;
+    pft_real_t pex = src->est.p_exist;
+    estimate_(dst);
+    dst->est.log_mean_lr = lmlr;
+    dst->est.p_exist = pex;
     return true;
 }
 

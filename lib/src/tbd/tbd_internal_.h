@@ -41,8 +41,10 @@ void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f);
 /* One iteration on a prepared scene (ALGORITHMS.md 2.5). */
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
 /* Hand-over: fills dst (E = 1 everywhere) by systematic resampling of the E = 1 particles of
- * src with dst's RNG. Returns false (dst untouched) if src has no E = 1 particle. */
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src);
+ * src (only those whose window centre pixel is set in gate, when gate is not NULL) with dst's
+ * RNG, and sets dst->est from the handed-over set (p_exist and log_mean_lr: src's). Returns
+ * false (dst untouched) if no particle qualifies. */
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
 
 /* Probability (real in [0, 1]) in 1/65536 steps, same integer in both builds. */
 uint32_t pft_tbd_p16_(pft_real_t p);

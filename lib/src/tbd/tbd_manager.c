@@ -202,6 +202,54 @@ static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x
     pft_tbd_mask_add_(cfg, mask, &d);
 }
 
+/* Hand-over gate into t->mask: the square of half-size handover_gate around the pixel whose
+ * (2p+1)^2 neighbourhood holds the most E = 1 search particles (window centres); t->cand is
+ * the histogram scratch. Bounded: one pass over the particles, (2p+1)^2 per pixel. */
+static void build_gate_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    const pft_tbd_filter_t *sf = &t->search;
+    uint32_t w = cfg->width;
+    uint32_t h = cfg->height;
+    size_t npix = (size_t)w * h;
+    memset(t->cand, 0, npix * sizeof(uint32_t));
+    memset(t->mask, 0, npix);
+    for (uint32_t s = 0; s < sf->n; ++s) {
+        if (sf->cur.e[s] == 0u) {
+            continue;
+        }
+        int32_t i0 = pft_tbd_pix_(sf->cur.x[s], sf->model.inv_dx);
+        int32_t j0 = pft_tbd_pix_(sf->cur.y[s], sf->model.inv_dy);
+        if (i0 >= 1 && j0 >= 1 && i0 <= (int32_t)w && j0 <= (int32_t)h) {
+            ++t->cand[(size_t)(j0 - 1) * w + (size_t)(i0 - 1)];
+        }
+    }
+    int32_t p = (int32_t)cfg->window;
+    uint32_t best = 0;
+    int32_t bi = 1;
+    int32_t bj = 1;
+    for (int32_t j = 1; j <= (int32_t)h; ++j) {
+        for (int32_t i = 1; i <= (int32_t)w; ++i) {
+            uint32_t acc = 0;
+            for (int32_t b = j - p; b <= j + p; ++b) {
+                for (int32_t a = i - p; a <= i + p; ++a) {
+                    if (a >= 1 && b >= 1 && a <= (int32_t)w && b <= (int32_t)h) {
+                        acc += t->cand[(size_t)(b - 1) * w + (size_t)(a - 1)];
+                    }
+                }
+            }
+            if (acc > best) {
+                best = acc;
+                bi = i;
+                bj = j;
+            }
+        }
+    }
+    int32_t g = (int32_t)cfg->handover_gate;
+    pft_tbd_region_t r = {bi - g, bi + g, bj - g, bj + g};
+    pft_tbd_mask_add_(cfg, t->mask, &r);
+}
+
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
 {
     if (t == NULL || frame == NULL) {
@@ -320,14 +368,21 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         pft_tbd_filter_t *tf = &t->tracks[k];
         pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
         pft_tbd_filter_reset_stats_(tf);
-        if (pft_tbd_filter_handover_(tf, &t->search)) {
+        const uint8_t *gate = NULL;
+        if (cfg->handover_gate > 0u) {
+            build_gate_(t);
+            gate = t->mask;
+        }
+        if (pft_tbd_filter_handover_(tf, &t->search, gate)) {
             pft_tbd_track_t *rec = &t->records[k];
             memset(rec, 0, sizeof(*rec));
             rec->id = t->next_id++;
-            record_from_est_(rec, &t->search.est);
+            if (gate == NULL) {
+                tf->est = t->search.est; /* ALGORITHMS.md 2.7: the search layer's estimate */
+            }
+            record_from_est_(rec, &tf->est);
             rec->first_frame = t->frame;
             rec->age = 0u;
-            tf->est = t->search.est;
             tf->frames = 0u;
             memset(t->search.cur.e, 0, t->search.n);
             ++t->n_tracks;

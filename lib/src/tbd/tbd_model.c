@@ -45,6 +45,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->residual_search = false;
     cfg->residual_tracks = false;
     cfg->residual_margin = 1u;
+    cfg->handover_gate = 0u;
     cfg->end_lr_frames = 0u;
     cfg->end_lr_max = PFT_C(0.0);
     cfg->n_search = 6000u;
@@ -65,6 +66,10 @@ void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
     cfg->theta_end = PFT_C(0.5);
     cfg->d_current = true;
     cfg->d_margin = 1u;
+    cfg->residual_search = true;
+    cfg->residual_tracks = true;
+    cfg->d_region = PFT_TBD_D_NONE;
+    cfg->handover_gate = 2u;
 }
 
 static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
@@ -89,7 +94,7 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
     ok = ok && (c->d_region == PFT_TBD_D_WINDOW || c->d_region == PFT_TBD_D_PIXEL ||
                 c->d_region == PFT_TBD_D_NONE);
     ok = ok && (uint32_t)c->window + c->residual_margin <= PFT_TBD_MAX_PSF_HALF;
-    ok = ok && c->end_lr_frames <= PFT_TBD_MAX_DIS_R + 1u;
+    ok = ok && c->end_lr_frames <= PFT_TBD_MAX_DIS_R + 1u && c->handover_gate <= 64u;
     ok = ok && c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0);
     ok = ok && c->n_search >= 1u && c->n_search <= PFT_CFG_MAX_PARTICLES;
     ok = ok && c->n_track >= 1u && c->n_track <= PFT_CFG_MAX_PARTICLES;
