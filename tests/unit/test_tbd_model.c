@@ -8,6 +8,7 @@
  * few tens over sigma^2 ~ 10: within 3e-3 + 2e-3 relative.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pft_test_support.h"
@@ -90,6 +91,19 @@ static void test_defaults_are_the_papers(void)
     TEST_ASSERT_EQUAL_UINT(5, c.dis_prev);
     TEST_ASSERT_EQUAL_INT(PFT_TBD_RBPF, c.kind);
     TEST_ASSERT_EQUAL_INT(PFT_TBD_KF_EXACT, c.kf_variant);
+    /* the multi-target extensions are off: the paper's single-target likelihood and D = C(x) */
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_D_WINDOW, c.d_region);
+    TEST_ASSERT_FALSE(c.residual_search);
+    TEST_ASSERT_FALSE(c.residual_tracks);
+    TEST_ASSERT_EQUAL_UINT(0, c.handover_gate);
+    TEST_ASSERT_EQUAL_UINT(0, c.end_lr_frames);
+    TEST_ASSERT_TRUE(c.dis_ratio_test);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c));
+    pft_tbd_config_recommended(&c);
+    TEST_ASSERT_TRUE(c.residual_search && c.residual_tracks);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_D_NONE, c.d_region);
+    TEST_ASSERT_EQUAL_UINT(2, c.handover_gate);
+    TEST_ASSERT_FALSE(c.dis_ratio_test);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c));
 }
 
@@ -119,6 +133,83 @@ static void test_config_check_rejects(void)
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
     base_cfg(&c); c.kind = (pft_tbd_kind_t)7;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.d_region = (pft_tbd_dregion_t)3;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.window = PFT_TBD_MAX_WINDOW; c.residual_margin = PFT_TBD_MAX_WINDOW + 1u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.end_lr_frames = PFT_TBD_MAX_DIS_R + 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    base_cfg(&c); c.handover_gate = 65u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+}
+
+/* pft_tbd_model_add_psf with a negative intensity subtracts h exactly on its window (and
+ * nowhere else, clipped at the borders); the LLR of a second target s on the result is the
+ * joint log likelihood ratio log p(z | s, t) - log p(z | t) = sum over C(s) of
+ * h_s (2 (z - h_t) - h_s) / (2 sigma^2), when C(s) lies inside the subtracted window. */
+static void test_add_psf_and_joint_llr(void)
+{
+    static double dimg[W * H];
+    static pft_real_t img[W * H];
+    static pft_real_t res[W * H];
+    pft_rng_t rng;
+    pft_rng_seed(&rng, 7u);
+    for (int k = 0; k < W * H; ++k) {
+        double u = (double)pft_rng_u32(&rng) / 4294967296.0;
+        img[k] = R(12.0 * u - 3.0);
+        dimg[k] = D(img[k]);
+    }
+    pft_tbd_config_t c;
+    base_cfg(&c);
+    c.noise_sigma = R(3.256);
+    pft_tbd_model_t m;
+    pft_tbd_model_init(&m, &c);
+    const double sn = D(R(3.256));
+    int checked = 0;
+    for (int k = 0; k < 24; ++k) {
+        /* t walks over the image including its borders; s sits within 1 px of t */
+        double xt = 0.7 + 0.41 * k, yt = 0.9 + 0.29 * k, It = 15.0 + 0.5 * k;
+        double xs = xt + 0.9 * cos(0.7 * k), ys = yt + 0.9 * sin(0.7 * k), Is = 20.0;
+        xt = D(R(xt)); yt = D(R(yt)); xs = D(R(xs)); ys = D(R(ys));
+        memcpy(res, img, sizeof img);
+        pft_tbd_model_add_psf(&m, res, R(xt), R(yt), R(-It), 2u);
+        int it0 = (int)floor(xt + 0.5), jt0 = (int)floor(yt + 0.5);
+        for (int j = 1; j <= H; ++j) {
+            for (int i = 1; i <= W; ++i) {
+                int in = abs(i - it0) <= 2 && abs(j - jt0) <= 2;
+                double want = dimg[(j - 1) * W + (i - 1)] -
+                              (in ? ref_h(1.0, 1.0, 0.7, i, j, xt, yt, It) : 0.0);
+                TEST_ASSERT_DOUBLE_WITHIN(tol_h(want), want, D(res[(j - 1) * W + (i - 1)]));
+            }
+        }
+        /* joint LLR reference in double, over C(s) clipped (p = 1) */
+        int is0 = (int)floor(xs + 0.5), js0 = (int)floor(ys + 0.5);
+        double ref = 0.0;
+        for (int j = js0 - 1; j <= js0 + 1; ++j) {
+            for (int i = is0 - 1; i <= is0 + 1; ++i) {
+                if (i < 1 || j < 1 || i > W || j > H) {
+                    continue;
+                }
+                double z = dimg[(j - 1) * W + (i - 1)];
+                double ht = ref_h(1.0, 1.0, 0.7, i, j, xt, yt, It);
+                double hs = ref_h(1.0, 1.0, 0.7, i, j, xs, ys, Is);
+                /* log p(z | s, t) - log p(z | t) */
+                ref += ((z - ht) * (z - ht) - (z - ht - hs) * (z - ht - hs)) / (2.0 * sn * sn);
+            }
+        }
+        double got = D(pft_tbd_model_llr(&m, res, R(xs), R(ys), R(Is)));
+        TEST_ASSERT_DOUBLE_WITHIN(tol_llr(ref), ref, got);
+        /* and it differs from the single-target LLR on z when the PSFs overlap */
+        double single = D(pft_tbd_model_llr(&m, img, R(xs), R(ys), R(Is)));
+        if (fabs(single - ref) > 0.5) {
+            ++checked;
+        }
+    }
+    TEST_ASSERT_TRUE_MESSAGE(checked > 12, "the subtraction changes the LLR");
+    /* a window entirely outside the image leaves it untouched */
+    memcpy(res, img, sizeof img);
+    pft_tbd_model_add_psf(&m, res, R(-5.0), R(3.0), R(-20.0), 2u);
+    TEST_ASSERT_EQUAL_MEMORY(img, res, sizeof img);
 }
 
 static void test_psf_h_matches_reference(void)
@@ -275,6 +366,7 @@ int main(void)
     RUN_TEST(test_config_check_rejects);
     RUN_TEST(test_psf_h_matches_reference);
     RUN_TEST(test_llr_matches_reference);
+    RUN_TEST(test_add_psf_and_joint_llr);
     RUN_TEST(test_window_region);
     RUN_TEST(test_frame_conversion);
     return UNITY_END();
