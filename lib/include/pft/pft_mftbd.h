@@ -380,7 +380,6 @@ typedef struct {
     uint16_t since_search;
     uint8_t n_rep;
     uint8_t naxes;
-    uint8_t n_scan_max[2];       /**< scan positions per axis (workspace bound) */
     uint8_t period;              /**< 1/c_step when an integer <= 8 (tap reuse), else 0 */
 } pft_mftbd_pte_t;
 

@@ -309,8 +309,7 @@ static pft_status_t update_(pft_dbt_t *b, const pft_frame_t *frame, const pft_re
         uint32_t win = span >= 8u ? 0xFFu : ((1u << span) - 1u);
         if (popcount_(tr->hist & win) >= c->confirm_m) {
             tr->confirmed = true;
-            tr->id = b->next_id;
-            b->next_id = (uint16_t)(b->next_id == 0xFFFFu ? 1u : b->next_id + 1u);
+            tr->id = pft_mftbd_new_id_(&b->next_id);
         } else if (tr->age + 1u >= c->confirm_n) {
             tr->live = false;
         }
@@ -340,8 +339,7 @@ static pft_status_t update_(pft_dbt_t *b, const pft_frame_t *frame, const pft_re
         tr->score = b->plots[p].peak;
         if (c->confirm_m <= 1u) {
             tr->confirmed = true;
-            tr->id = b->next_id;
-            b->next_id = (uint16_t)(b->next_id == 0xFFFFu ? 1u : b->next_id + 1u);
+            tr->id = pft_mftbd_new_id_(&b->next_id);
         }
     }
     /* reports */

@@ -107,13 +107,6 @@ void pft_mftbd_dp_reset(pft_mftbd_dp_t *dp)
     dp->peak = PFT_REAL_MIN;
 }
 
-static uint16_t new_id_(uint16_t *next)
-{
-    uint16_t id = *next;
-    *next = (uint16_t)(*next == 0xFFFFu ? 1u : *next + 1u);
-    return id;
-}
-
 static void batch_(pft_mftbd_dp_t *dp)
 {
     pft_mftbd_dpcore_t_ c;
@@ -170,7 +163,7 @@ static void batch_(pft_mftbd_dp_t *dp)
             r->id = dp->prev[bi].id;
             r->age = dp->prev[bi].age + 1u;
         } else {
-            r->id = new_id_(&dp->next_id);
+            r->id = pft_mftbd_new_id_(&dp->next_id);
             r->age = 0u;
         }
         dp->n_rep++;

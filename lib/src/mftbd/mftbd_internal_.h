@@ -62,6 +62,14 @@ pft_status_t pft_mftbd_dp_mc_(const pft_mftbd_input_t *in, pft_mftbd_dpcore_t_ *
                               pft_mftbd_ring_t *ring, pft_real_t *row, pft_real_t pfa,
                               uint32_t runs, uint64_t seed, pft_real_t *vt);
 
+/* Returns the next track id and advances it (1, 2, ..., 65535, 1, ...). */
+static inline uint16_t pft_mftbd_new_id_(uint16_t *next)
+{
+    uint16_t id = *next;
+    *next = (uint16_t)(*next == 0xFFFFu ? 1u : *next + 1u);
+    return id;
+}
+
 /* 3-point parabola vertex offset in (-0.5, 0.5) for values ym, y0, yp with y0 the largest;
  * 0 when the curvature is not negative. */
 pft_real_t pft_mftbd_parabola_(pft_real_t ym, pft_real_t y0, pft_real_t yp);

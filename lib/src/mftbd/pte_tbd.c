@@ -263,8 +263,6 @@ pft_status_t pft_mftbd_pte_init(pft_mftbd_pte_t *p, const pft_mftbd_pte_config_t
     p->dres = dres;
     p->dw = dw;
     p->naxes = two ? 2u : 1u;
-    p->n_scan_max[0] = (uint8_t)ns0;
-    p->n_scan_max[1] = (uint8_t)ns1;
     /* scan positions one cell apart share their tap weights when c_step = 1/period */
     p->period = period_(cfg->c_step);
     /* g(t) = exp(-t^2/2), t = i/64 */
@@ -297,13 +295,6 @@ void pft_mftbd_pte_reset(pft_mftbd_pte_t *p)
     p->next_id = 1u;
     p->since_search = 0u;
     p->n_rep = 0u;
-}
-
-static uint16_t new_id_(uint16_t *next)
-{
-    uint16_t id = *next;
-    *next = (uint16_t)(*next == 0xFFFFu ? 1u : *next + 1u);
-    return id;
 }
 
 static void core_(const pft_mftbd_pte_t *p, pft_mftbd_dpcore_t_ *c)
@@ -931,7 +922,7 @@ static void track_new_(pft_mftbd_pte_t *p, pft_mftbd_pte_track_t *t, const pft_r
     t->n_acc = n_acc;
     t->live = true;
     t->detected = true;
-    t->id = new_id_(&p->next_id);
+    t->id = pft_mftbd_new_id_(&p->next_id);
 }
 
 static uint32_t n_live_(const pft_mftbd_pte_t *p)
