@@ -196,6 +196,15 @@ static inline pft_real_t pft_from_u16(uint16_t v) { return pft_from_int((int32_t
  *  subnormals give 0. */
 pft_real_t pft_from_f32(float v);
 
+/**
+ * Converts the first n pixels of row y of a U8, U16 or F32 frame (already validated with
+ * pft_frame_check) to reals: z = gain*raw + offset for U8 and U16 (U16: only the low
+ * bit_depth bits are significant), F32 as it is (pft_from_f32). Results are clamped to
+ * [-32767, 32767], the q16 range, in both builds.
+ */
+void pft_frame_row_to_real(const pft_frame_t *frame, uint32_t y, uint32_t n, pft_real_t gain,
+                           pft_real_t offset, pft_real_t *out);
+
 /* ---------------------------------- weights ----------------------------------------------- */
 /** exp(x) for x <= 0 as a weight in [0, 1]; x >= 0 gives exactly PFT_W_ONE.
  *  q16: Q2.30 rounded to nearest, error <= 0.6 LSB (2^-30) over the whole domain; exp(x) below

@@ -48,25 +48,7 @@ pft_status_t pft_mftbd_frame_check_(const pft_mftbd_input_t *in, const pft_frame
 void pft_mftbd_frame_row_(const pft_mftbd_input_t *in, const pft_frame_t *frame, uint32_t d,
                           pft_real_t *z)
 {
-    const uint8_t *row = pft_frame_row(frame, d);
-    uint32_t bd = frame->bit_depth == 0u ? 16u : frame->bit_depth;
-    uint32_t mask16 = bd >= 16u ? 0xFFFFu : ((1u << bd) - 1u);
-    for (uint32_t c = 0; c < in->n_range; ++c) {
-        pft_real_t v;
-        if (frame->format == PFT_PIX_U8) {
-            v = pft_add(pft_mul_i(in->pixel_gain, (int32_t)row[c]), in->pixel_offset);
-        } else if (frame->format == PFT_PIX_U16) {
-            uint16_t raw;
-            memcpy(&raw, row + 2u * c, 2u);
-            v = pft_add(pft_mul_i(in->pixel_gain, (int32_t)((uint32_t)raw & mask16)),
-                        in->pixel_offset);
-        } else {
-            float f;
-            memcpy(&f, row + 4u * c, 4u);
-            v = pft_from_f32(f);
-        }
-        z[c] = pft_clamp(v, PFT_C(-32767.0), PFT_C(32767.0));
-    }
+    pft_frame_row_to_real(frame, d, in->n_range, in->pixel_gain, in->pixel_offset, z);
 }
 
 /* |z| / ref: one CFAR term (the same expression when a cell enters and leaves a window, so

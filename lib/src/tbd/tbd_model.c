@@ -246,37 +246,12 @@ pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t
     return pft_frame_check_finite(frame);
 }
 
-static pft_real_t clamp_pix_(pft_real_t v)
-{
-    return pft_clamp(v, PFT_C(-32767.0), PFT_C(32767.0));
-}
-
 void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
                             pft_real_t *img)
 {
-    uint32_t w = cfg->width;
-    uint32_t h = cfg->height;
-    uint32_t bd = frame->bit_depth == 0u ? 16u : frame->bit_depth;
-    uint32_t mask16 = bd >= 16u ? 0xFFFFu : ((1u << bd) - 1u);
-    for (uint32_t r = 0; r < h; ++r) {
-        const uint8_t *row = pft_frame_row(frame, r);
-        pft_real_t *out = img + (size_t)r * w;
-        for (uint32_t c = 0; c < w; ++c) {
-            pft_real_t v;
-            if (frame->format == PFT_PIX_U8) {
-                v = pft_add(pft_mul_i(cfg->pixel_gain, (int32_t)row[c]), cfg->pixel_offset);
-            } else if (frame->format == PFT_PIX_U16) {
-                uint16_t raw;
-                memcpy(&raw, row + 2u * c, 2u);
-                v = pft_add(pft_mul_i(cfg->pixel_gain, (int32_t)((uint32_t)raw & mask16)),
-                            cfg->pixel_offset);
-            } else {
-                float f;
-                memcpy(&f, row + 4u * c, 4u);
-                v = pft_from_f32(f);
-            }
-            out[c] = clamp_pix_(v);
-        }
+    for (uint32_t r = 0; r < cfg->height; ++r) {
+        pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset,
+                              img + (size_t)r * cfg->width);
     }
 }
 
