@@ -43,7 +43,7 @@ enum { PFT_BRG_X = 0, PFT_BRG_VX = 1, PFT_BRG_Y = 2, PFT_BRG_VY = 3, PFT_BRG_DIM
  * sqrt(r) = 0.005, velocities 0.001..0.05) against the Q16.16 resolution of 1.5e-5, so the
  * model works in scaled position units: pft_bearings_config_default(cfg, scale) expresses all
  * positions and velocities in benchmark units times `scale` (e.g. 1000: "km -> m"). Bearings
- * are scale free (atan2 of the scaled position is the same angle) and stay in radians. The
+ * are scale-invariant (atan2 of the scaled position is the same angle) and stay in radians. The
  * scale must keep every position within +-32768: for the benchmark's prior (sd 0.5) and 24
  * steps, scale <= 4000; 1000 is the documented choice (docs/results/apf.md measures the
  * q16-vs-float difference at scale 1 and 1000).

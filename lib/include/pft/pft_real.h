@@ -155,7 +155,7 @@ static inline pft_real_t pft_clamp(pft_real_t a, pft_real_t lo, pft_real_t hi)
 static inline pft_real_t pft_sq(pft_real_t a) { return pft_mul(a, a); }
 
 /*
- * Transcendental helpers. Domains and q16 error bounds (measured against a double reference
+ * Transcendental helpers. Domains and q16 error bounds (measured against a 64-bit floating-point reference
  * by tests/unit/test_real.c, which asserts them):
  *   pft_recip(a)     1/a; a == 0 saturates.
  *   pft_sqrt(a)      a >= 0 (negative gives 0).

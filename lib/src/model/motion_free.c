@@ -1,5 +1,5 @@
 /*
- * Kristan's free (liberal) model (ALGORITHMS.md 4.1) with beta = 0 giving NCV, its noise
+ * Kristan's liberal ("free") model (ALGORITHMS.md 4.1) with beta = 0 giving NCV, its noise
  * covariance (integrated Ornstein-Uhlenbeck) and the beta adaptation of TSA (eq. 24).
  * Small beta uses power series so the limits are exact and q16 has no cancellation.
  */
