@@ -91,6 +91,17 @@ pft_status_t pft_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t 
                             pft_real_t sigma_g, uint8_t max_order, pft_motion_fit_t *out);
 
 /**
+ * Bounds on a conservative fit (not in the paper [A]). With only a few reference points, or
+ * when the reference points follow the pioneer where the likelihood is flat, the fitted a and
+ * v_hat can grow from frame to frame without limit (docs/results/tsa_ak.md, "Real videos").
+ * a_max > 0: a is clamped to [-a_max, a_max] (a as fitted, i.e. half the physical
+ * acceleration, px/frame^2) and v_pred, x_pred are recomputed from the clamped a.
+ * v_max > 0: v_pred and the pioneer step x_pred - s are clamped to [-v_max, v_max] (px/frame).
+ * A bound of 0 is off; a fit inside its bounds is left bit-for-bit unchanged. NULL: no-op.
+ */
+void pft_motion_fit_bound(pft_motion_fit_t *f, pft_real_t a_max, pft_real_t v_max);
+
+/**
  * Beta adaptation (eq. 24): beta_{k+1} = beta_max * rho_p / (rho_e + rho_p) from the
  * similarities of the pioneer (rho_p) and of the estimate (rho_e). Both zero: beta_prev.
  */

@@ -183,6 +183,14 @@ typedef struct {
     uint8_t fit_k;                   /**< K reference points, 1..PFT_MOTION_MAX_K (default 10) [A] */
     pft_real_t fit_sigma;            /**< sigma_G (default K/2 = 5) [A] */
     bool fit_rho_weights;            /**< pi_i = rho of the reference point (default false: pi_i = 1) [A] */
+    pft_real_t fit_a_max;            /**< TSA/TS: bound on |a| of the conservative fit per axis, px/frame^2
+                                          (a as fitted: half the physical acceleration); 0 = off, the
+                                          paper's unbounded fit (default 0.5: a physical 1 px/frame^2,
+                                          the synthetic swing's camera acceleration) [A] */
+    pft_real_t fit_v_max;            /**< TSA/TS: bound on |v_hat| and on the pioneer step per axis,
+                                          px/frame; 0 = off (default 12: above accel_exp2's 10.6
+                                          px/frame) [A]. See pft_motion_fit_bound() and
+                                          docs/results/tsa_ak.md "Real videos" */
     pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
     pft_real_t lik_lambda;           /**< weight of a kept particle: 0 = rho itself (eq. 22, the paper's
                                           linear weight); > 0 = exp(lik_lambda (rho - rho_best))

@@ -108,3 +108,24 @@ pft_status_t pft_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t 
     out->x_pred = pft_add(pft_add(out->s, out->v), out->a);
     return PFT_OK;
 }
+
+void pft_motion_fit_bound(pft_motion_fit_t *f, pft_real_t a_max, pft_real_t v_max)
+{
+    if (f == NULL) {
+        return;
+    }
+    if (a_max > 0 && (f->a > a_max || f->a < pft_neg(a_max))) {
+        f->a = pft_clamp(f->a, pft_neg(a_max), a_max);
+        f->v_pred = pft_add(f->v, pft_add(f->a, f->a));
+        f->x_pred = pft_add(pft_add(f->s, f->v), f->a);
+    }
+    if (v_max > 0) {
+        const pft_real_t step = pft_sub(f->x_pred, f->s);
+        if (step > v_max || step < pft_neg(v_max)) {
+            f->x_pred = pft_add(f->s, pft_clamp(step, pft_neg(v_max), v_max));
+        }
+        if (f->v_pred > v_max || f->v_pred < pft_neg(v_max)) {
+            f->v_pred = pft_clamp(f->v_pred, pft_neg(v_max), v_max);
+        }
+    }
+}

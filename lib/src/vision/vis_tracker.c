@@ -28,6 +28,8 @@ void pft_vis_config_default(pft_vis_config_t *cfg, uint16_t width, uint16_t heig
     cfg->fit_k = 10u;
     cfg->fit_sigma = PFT_C(5.0);
     cfg->fit_rho_weights = false;
+    cfg->fit_a_max = PFT_C(0.5);
+    cfg->fit_v_max = PFT_C(12.0);
     cfg->rho_min = PFT_C(0.75);
     cfg->lik_lambda = PFT_C(300.0);
     cfg->theta_u = PFT_C(0.9);
@@ -59,7 +61,8 @@ pft_status_t pft_vis_config_check(const pft_vis_config_t *c)
     if ((unsigned)c->motion > (unsigned)PFT_MOTION_TSA || !(c->beta0 >= 0) || c->beta0 > PFT_C(64.0) ||
         !(c->beta_max > 0) || c->beta_max > PFT_C(64.0) || !(c->q >= 0) || c->q > PFT_C(10000.0) ||
         !(c->pos_sd >= 0) || c->pos_sd > PFT_C(1000.0) || c->fit_k == 0u ||
-        c->fit_k > PFT_MOTION_MAX_K || !(c->fit_sigma > 0)) {
+        c->fit_k > PFT_MOTION_MAX_K || !(c->fit_sigma > 0) || !(c->fit_a_max >= 0) ||
+        c->fit_a_max > PFT_C(1000.0) || !(c->fit_v_max >= 0) || c->fit_v_max > PFT_C(1000.0)) {
         return PFT_ERR_INVAL;
     }
     if (!(c->rho_min >= 0) || c->rho_min > PFT_REAL_ONE || !(c->lik_lambda >= 0) ||
@@ -459,6 +462,8 @@ pft_status_t pft_vis_update(pft_vis_t *t, const pft_frame_t *frame)
             (void)pft_motion_fit(t->ref_x, NULL, t->ref_n, t->cfg.fit_sigma, order, &fx);
             (void)pft_motion_fit(t->ref_y, NULL, t->ref_n, t->cfg.fit_sigma, order, &fy);
         }
+        pft_motion_fit_bound(&fx, t->cfg.fit_a_max, t->cfg.fit_v_max);
+        pft_motion_fit_bound(&fy, t->cfg.fit_a_max, t->cfg.fit_v_max);
         vbx = fx.v_pred;
         vby = fy.v_pred;
     }
