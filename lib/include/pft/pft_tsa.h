@@ -22,7 +22,7 @@
  * tau = i - (k-1) in {-(n-1) .. 0}, weights G_i = pi_i exp(-tau^2 / (2 sigma_G^2)). The normal
  * equations are solved by weighted orthogonal polynomials in tau (P0 = 1, P1 = tau - alpha1,
  * P2 = (tau - alpha2) P1 - b1): the same least-squares solution as the adjugate of
- * ALGORITHMS.md 4.2 (tests/unit/test_tsa_fit.c checks both against a 64-bit floating-point solve), but with
+ * ALGORITHMS.md 4.2 (tests/unit/test_tsa_motion.c checks both against a 64-bit floating-point solve), but with
  * no determinant to cancel, so the Q16.16 build keeps sub-millipixel accuracy. Positions are
  * taken relative to the newest point; sums that can exceed the Q16.16 range (tau^4 moments,
  * projections) accumulate in 64 bits in the q16 build.
