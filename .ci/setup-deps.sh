@@ -16,9 +16,14 @@ for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 # deb-src entries are needed for Unity (see TOOLCHAIN.md: Debian's cjson source ships Unity 2.4.3)
 need_src=0
 [ -f "$here/.deps/unity/src/unity.c" ] || need_src=1
-if [ "$need_src" = 1 ] && [ -f /etc/apt/sources.list.d/debian.sources ] && \
-   ! grep -q 'deb-src' /etc/apt/sources.list.d/debian.sources; then
-  $SUDO sed -i 's/^Types: deb$/Types: deb deb-src/' /etc/apt/sources.list.d/debian.sources
+if [ "$need_src" = 1 ] && ! grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  # deb822 files (Debian 12: debian.sources, Ubuntu 24.04: ubuntu.sources) and one-line lists
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [ -f "$f" ] && $SUDO sed -i 's/^Types: deb$/Types: deb deb-src/' "$f"
+  done
+  if [ -f /etc/apt/sources.list ] && grep -qE '^deb ' /etc/apt/sources.list; then
+    grep -E '^deb ' /etc/apt/sources.list | sed 's/^deb /deb-src /' | $SUDO tee -a /etc/apt/sources.list >/dev/null
+  fi
   missing+=(__update__)
 fi
 if [ ${#missing[@]} -gt 0 ]; then
