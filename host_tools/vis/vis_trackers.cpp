@@ -44,7 +44,7 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
     PftParams p;
     Field f(j, file, path);
     f.only({"motion", "particles", "beta0", "q", "pos_sd", "rho_min", "lik_lambda", "theta_u", "update_rho_min", "fit_k",
-            "fit_sigma", "snake_points", "init_passes", "max_target", "seed"});
+            "fit_sigma", "fit_a_max", "fit_v_max", "snake_points", "init_passes", "max_target", "seed"});
     p.motion = f.choice_or("motion", p.motion, {"tsa", "ts", "ncv"});
     p.particles = (int)f.integer_in("particles", p.particles, 1, 65535);
     p.beta0 = f.number_in("beta0", p.beta0, 0, 64);
@@ -56,6 +56,8 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
     p.update_rho_min = f.number_in("update_rho_min", p.update_rho_min, 0, 1);
     p.fit_k = (int)f.integer_in("fit_k", p.fit_k, 1, PFT_MOTION_MAX_K);
     p.fit_sigma = f.number_in("fit_sigma", p.fit_sigma, 0.1, 100);
+    p.fit_a_max = f.number_in("fit_a_max", p.fit_a_max, 0, 1000);
+    p.fit_v_max = f.number_in("fit_v_max", p.fit_v_max, 0, 1000);
     p.snake_points = (int)f.integer_in("snake_points", p.snake_points, PFT_VIS_MIN_POINTS, PFT_VIS_MAX_POINTS);
     p.init_passes = (int)f.integer_in("init_passes", p.init_passes, 0, 255);
     p.max_target = (int)f.integer_in("max_target", p.max_target, 8, PFT_VIS_MAX_SIDE);
@@ -67,7 +69,7 @@ nlohmann::json pft_params_json(const PftParams &p)
 {
     return {{"motion", p.motion}, {"particles", p.particles}, {"beta0", p.beta0}, {"q", p.q}, {"pos_sd", p.pos_sd},
             {"rho_min", p.rho_min}, {"lik_lambda", p.lik_lambda}, {"theta_u", p.theta_u}, {"update_rho_min", p.update_rho_min},
-            {"fit_k", p.fit_k}, {"fit_sigma", p.fit_sigma}, {"snake_points", p.snake_points},
+            {"fit_k", p.fit_k}, {"fit_sigma", p.fit_sigma}, {"fit_a_max", p.fit_a_max}, {"fit_v_max", p.fit_v_max}, {"snake_points", p.snake_points},
             {"init_passes", p.init_passes}, {"max_target", p.max_target}, {"seed", p.seed}};
 }
 
@@ -92,6 +94,8 @@ public:
         cfg_.update_rho_min = R(p.update_rho_min);
         cfg_.fit_k = (uint8_t)p.fit_k;
         cfg_.fit_sigma = R(p.fit_sigma);
+        cfg_.fit_a_max = R(p.fit_a_max);
+        cfg_.fit_v_max = R(p.fit_v_max);
         cfg_.snake_points = (uint8_t)p.snake_points;
         cfg_.init_passes = (uint8_t)p.init_passes;
         cfg_.seed = p.seed;

@@ -31,6 +31,7 @@ struct PftParams {
     double lik_lambda = 300.0;  ///< 0: w = rho (paper eq. 22); > 0: w = exp(lik_lambda (rho - rho_best))
     int fit_k = 10;
     double fit_sigma = 5.0;
+    double fit_a_max = 0.5, fit_v_max = 12.0;  ///< bounds on the conservative fit (0: off, the paper)
     int snake_points = 40, init_passes = 50, max_target = 96;
     uint64_t seed = 1;
 };
