@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "pft_test_support.h"
+#include "pft_tbd_sim.h"
 #include "pft/pft_tbd.h"
 
 void setUp(void) {}
@@ -46,54 +47,15 @@ void tearDown(void) {}
 #define NS 2000u
 #define NT 300u
 #define MAXT 3u
-#define PI_D 3.14159265358979323846
 #define GAIN_INV 256.0
 #define OFFSET 64.0
 
 /* ------------------------------- simulator ------------------------------------------------ */
-typedef struct {
-    int first, last;       /* frames of presence, 1-based inclusive */
-    double x0, y0, vx, vy; /* position at `first`, velocity */
-    double I;
-} truth_t;
-
-static int alive(const truth_t *t, int k) { return k >= t->first && k <= t->last; }
-static double tx(const truth_t *t, int k) { return t->x0 + t->vx * (k - t->first); }
-static double ty(const truth_t *t, int k) { return t->y0 + t->vy * (k - t->first); }
-
-static double sim_gauss(pft_rng_t *r)
-{
-    double u1 = ((double)pft_rng_u32(r) + 1.0) / 4294967297.0;
-    double u2 = (double)pft_rng_u32(r) / 4294967296.0;
-    return sqrt(-2.0 * log(u1)) * cos(2.0 * PI_D * u2);
-}
-
 static uint16_t g_raw[IMG * IMG];
 
-static void render(pft_rng_t *r, const truth_t *t, int nt, int k, double sigma, pft_frame_t *f)
+static void render(pft_rng_t *r, const pft_sim_truth_t *t, int nt, int k, double sigma, pft_frame_t *f)
 {
-    for (int j = 1; j <= IMG; ++j) {
-        for (int i = 1; i <= IMG; ++i) {
-            double z = sigma * sim_gauss(r);
-            for (int q = 0; q < nt; ++q) {
-                if (alive(&t[q], k)) {
-                    double dx = i - tx(&t[q], k), dy = j - ty(&t[q], k);
-                    z += t[q].I / (2.0 * PI_D * 0.49) * exp(-(dx * dx + dy * dy) / (2.0 * 0.49));
-                }
-            }
-            double raw = floor((z + OFFSET) * GAIN_INV + 0.5);
-            raw = raw < 0.0 ? 0.0 : (raw > 65535.0 ? 65535.0 : raw);
-            g_raw[(j - 1) * IMG + (i - 1)] = (uint16_t)raw;
-        }
-    }
-    memset(f, 0, sizeof(*f));
-    f->data = g_raw;
-    f->width = IMG;
-    f->height = IMG;
-    f->stride_bytes = 2u * IMG;
-    f->format = PFT_PIX_U16;
-    f->bit_depth = 16;
-    f->seq = (uint32_t)k;
+    pft_sim_render_u16(r, t, nt, k, sigma, IMG, IMG, g_raw, f);
 }
 
 #ifndef SCN_SEED_BASE
@@ -126,7 +88,7 @@ static uint8_t g_fws[PFT_TBD_FILTER_WORKSPACE_BYTES(NS, PFT_TBD_RBPF, IMG, IMG)]
 static void test_single_target_8db(void)
 {
     const double sigma = 2.586; /* 8 dB */
-    const truth_t tr = {7, 22, 6.0, 7.0, 0.45, 0.25, 20.0};
+    const pft_sim_truth_t tr = {7, 22, 6.0, 7.0, 0.45, 0.25, 20.0};
     double sum_delay = 0.0, sum_correct = 0.0, se = 0.0, n_pts = 0.0, false_decl = 0.0;
     for (int run = 0; run < SCN_RUNS; ++run) {
         pft_tbd_config_t c;
@@ -147,9 +109,9 @@ static void test_single_target_8db(void)
             if (!decl) {
                 continue;
             }
-            if (alive(&tr, k)) {
-                double dx = pft_test_to_double(e.x) - tx(&tr, k);
-                double dy = pft_test_to_double(e.y) - ty(&tr, k);
+            if (pft_sim_alive(&tr, k)) {
+                double dx = pft_test_to_double(e.x) - pft_sim_x(&tr, k);
+                double dy = pft_test_to_double(e.y) - pft_sim_y(&tr, k);
                 double d2 = dx * dx + dy * dy;
                 if (d2 <= 1.0) {
                     ++correct;
@@ -189,7 +151,7 @@ static uint8_t g_mws[PFT_TBD_WORKSPACE_BYTES(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IM
 static void test_two_targets_case1_6db(void)
 {
     const double sigma = 3.256; /* 6 dB */
-    const truth_t tr[2] = {{7, 22, 2.0, 2.0, 0.70, 0.35, 20.0}, {17, 32, 3.0, 4.0, 0.55, 0.55, 20.0}};
+    const pft_sim_truth_t tr[2] = {{7, 22, 2.0, 2.0, 0.70, 0.35, 20.0}, {17, 32, 3.0, 4.0, 0.55, 0.55, 20.0}};
     const int nframes = 35;
     double sum_delay[2] = {0, 0}, sum_dis[2] = {0, 0}, sum_correct[2] = {0, 0};
     double se = 0.0, n_pts = 0.0, false_pts = 0.0, n_ids = 0.0;
@@ -214,14 +176,14 @@ static void test_two_targets_case1_6db(void)
             TEST_ASSERT_TRUE(n <= MAXT);
             int used[MAXT] = {0};
             for (int q = 0; q < 2; ++q) {
-                if (!alive(&tr[q], k)) {
+                if (!pft_sim_alive(&tr[q], k)) {
                     continue;
                 }
                 int best = -1;
                 double bd = 1.0;
                 for (size_t a = 0; a < n; ++a) {
-                    double dx = pft_test_to_double(trk[a].x) - tx(&tr[q], k);
-                    double dy = pft_test_to_double(trk[a].y) - ty(&tr[q], k);
+                    double dx = pft_test_to_double(trk[a].x) - pft_sim_x(&tr[q], k);
+                    double dy = pft_test_to_double(trk[a].y) - pft_sim_y(&tr[q], k);
                     if (!used[a] && dx * dx + dy * dy <= bd) {
                         bd = dx * dx + dy * dy;
                         best = (int)a;

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "pft_test_support.h"
+#include "pft_tbd_sim.h"
 #include "pft/pft_tbd.h"
 
 void setUp(void) {}
@@ -18,7 +19,6 @@ void tearDown(void) {}
 
 #define IMG 10
 #define NF 300u
-#define PI_D 3.14159265358979323846
 
 static pft_real_t R(double v) { return pft_test_from_double(v); }
 static double D(pft_real_t v) { return pft_test_to_double(v); }
@@ -33,46 +33,12 @@ static void note(const char *name, double v)
 }
 
 /* ----------------------------------- simulator -------------------------------------------- */
-typedef struct {
-    int first, last;
-    double x0, y0, vx, vy, I;
-} truth_t;
-
-static int alive(const truth_t *t, int k) { return k >= t->first && k <= t->last; }
-static double tx(const truth_t *t, int k) { return t->x0 + t->vx * (k - t->first); }
-static double ty(const truth_t *t, int k) { return t->y0 + t->vy * (k - t->first); }
-
-static double sim_gauss(pft_rng_t *r)
-{
-    double u1 = ((double)pft_rng_u32(r) + 1.0) / 4294967297.0;
-    double u2 = (double)pft_rng_u32(r) / 4294967296.0;
-    return sqrt(-2.0 * log(u1)) * cos(2.0 * PI_D * u2);
-}
-
 static uint16_t g_raw[IMG * IMG];
 
 /* U16 frame, z = raw/256 - 64; t may be NULL (noise only). */
-static void render(pft_rng_t *r, const truth_t *t, int k, double sigma, pft_frame_t *f)
+static void render(pft_rng_t *r, const pft_sim_truth_t *t, int k, double sigma, pft_frame_t *f)
 {
-    for (int j = 1; j <= IMG; ++j) {
-        for (int i = 1; i <= IMG; ++i) {
-            double z = sigma * sim_gauss(r);
-            if (t != NULL && alive(t, k)) {
-                double dx = i - tx(t, k), dy = j - ty(t, k);
-                z += t->I / (2.0 * PI_D * 0.49) * exp(-(dx * dx + dy * dy) / (2.0 * 0.49));
-            }
-            double raw = floor((z + 64.0) * 256.0 + 0.5);
-            raw = raw < 0.0 ? 0.0 : (raw > 65535.0 ? 65535.0 : raw);
-            g_raw[(j - 1) * IMG + (i - 1)] = (uint16_t)raw;
-        }
-    }
-    memset(f, 0, sizeof(*f));
-    f->data = g_raw;
-    f->width = IMG;
-    f->height = IMG;
-    f->stride_bytes = 2u * IMG;
-    f->format = PFT_PIX_U16;
-    f->bit_depth = 16;
+    pft_sim_render_u16(r, t, t != NULL ? 1 : 0, k, sigma, IMG, IMG, g_raw, f);
 }
 
 static void small_cfg(pft_tbd_config_t *c, double sigma, uint64_t seed)
@@ -155,7 +121,7 @@ static void test_manager_workspace_size_is_exact(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf + off, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 4u);
-    const truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 6; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -220,7 +186,7 @@ static void test_filter_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);
-    const truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 5; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -250,7 +216,7 @@ static void test_manager_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 6u);
-    const truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -277,7 +243,7 @@ static void test_filter_is_deterministic(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 8u);
-    const truth_t tr = {3, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {3, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_6DB, &fr);
@@ -341,7 +307,7 @@ static void bright_target(pft_tbd_kind_t kind)
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 12u + seed);
-        const truth_t tr = {3, 40, 3.0, 3.5, 0.3, 0.2, 20.0};
+        const pft_sim_truth_t tr = {3, 40, 3.0, 3.5, 0.3, 0.2, 20.0};
         int detected = -1;
         for (int k = 1; k <= 16; ++k) {
             pft_frame_t fr;
@@ -357,7 +323,7 @@ static void bright_target(pft_tbd_kind_t kind)
             if (detected < 0 && decl) {
                 detected = k;
             }
-            double dx = D(e.x) - tx(&tr, k), dy = D(e.y) - ty(&tr, k);
+            double dx = D(e.x) - pft_sim_x(&tr, k), dy = D(e.y) - pft_sim_y(&tr, k);
             double err = sqrt(dx * dx + dy * dy);
             ++frames;
             if (decl && err < 1.0) {
@@ -418,7 +384,7 @@ static void test_kf_exact_variance_matches_reference(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 13u);
-    const truth_t tr = {1, 40, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 40, 3.0, 3.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 16; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -450,13 +416,13 @@ static void test_manager_ids_and_events(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 14u);
-    const truth_t tr1 = {2, 9, 3.0, 3.0, 0.3, 0.2, 20.0};
-    const truth_t tr2 = {16, 40, 7.0, 6.0, -0.2, 0.1, 20.0};
+    const pft_sim_truth_t tr1 = {2, 9, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr2 = {16, 40, 7.0, 6.0, -0.2, 0.1, 20.0};
     uint32_t confirmed[4] = {0}, ended[4] = {0};
     int nc = 0, ne = 0;
     for (int k = 1; k <= 24; ++k) {
         pft_frame_t fr;
-        render(&sim, alive(&tr1, k) ? &tr1 : &tr2, k, SIGMA_15DB, &fr);
+        render(&sim, pft_sim_alive(&tr1, k) ? &tr1 : &tr2, k, SIGMA_15DB, &fr);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &fr));
         TEST_ASSERT_EQUAL_UINT32((uint32_t)k, pft_tbd_frame(&t));
         pft_tbd_event_t ev[3];
@@ -474,9 +440,9 @@ static void test_manager_ids_and_events(void)
         TEST_ASSERT_TRUE(nt <= 1u);
         if (nt == 1u) {
             TEST_ASSERT_EQUAL_UINT32((uint32_t)k - trk[0].first_frame, trk[0].age);
-            const truth_t *tt = alive(&tr1, k) ? &tr1 : &tr2;
-            if (alive(tt, k) && trk[0].age >= 2u) {
-                double dx = D(trk[0].x) - tx(tt, k), dy = D(trk[0].y) - ty(tt, k);
+            const pft_sim_truth_t *tt = pft_sim_alive(&tr1, k) ? &tr1 : &tr2;
+            if (pft_sim_alive(tt, k) && trk[0].age >= 2u) {
+                double dx = D(trk[0].x) - pft_sim_x(tt, k), dy = D(trk[0].y) - pft_sim_y(tt, k);
                 TEST_ASSERT_TRUE_MESSAGE(dx * dx + dy * dy < 0.25, "track position");
             }
         }
@@ -501,31 +467,18 @@ static void test_manager_ids_and_events(void)
 }
 
 /* Renders up to two targets (either may be NULL) into one U16 frame. */
-static void render2(pft_rng_t *r, const truth_t *a, const truth_t *b, int k, double sigma,
+static void render2(pft_rng_t *r, const pft_sim_truth_t *a, const pft_sim_truth_t *b, int k, double sigma,
                     pft_frame_t *f)
 {
-    for (int j = 1; j <= IMG; ++j) {
-        for (int i = 1; i <= IMG; ++i) {
-            double z = sigma * sim_gauss(r);
-            const truth_t *ts[2] = {a, b};
-            for (int q = 0; q < 2; ++q) {
-                if (ts[q] != NULL && alive(ts[q], k)) {
-                    double dx = i - tx(ts[q], k), dy = j - ty(ts[q], k);
-                    z += ts[q]->I / (2.0 * PI_D * 0.49) * exp(-(dx * dx + dy * dy) / (2.0 * 0.49));
-                }
-            }
-            double raw = floor((z + 64.0) * 256.0 + 0.5);
-            raw = raw < 0.0 ? 0.0 : (raw > 65535.0 ? 65535.0 : raw);
-            g_raw[(j - 1) * IMG + (i - 1)] = (uint16_t)raw;
-        }
+    pft_sim_truth_t ts[2];
+    int n = 0;
+    if (a != NULL) {
+        ts[n++] = *a;
     }
-    memset(f, 0, sizeof(*f));
-    f->data = g_raw;
-    f->width = IMG;
-    f->height = IMG;
-    f->stride_bytes = 2u * IMG;
-    f->format = PFT_PIX_U16;
-    f->bit_depth = 16;
+    if (b != NULL) {
+        ts[n++] = *b;
+    }
+    pft_sim_render_u16(r, ts, n, k, sigma, IMG, IMG, g_raw, f);
 }
 
 /* Runs the manager on T1 (frames 1-20, at rest at (4, 5)) and T2 spawned 2.06 px beside it at
@@ -538,8 +491,8 @@ static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 23u + c->seed);
-    const truth_t t1 = {1, 20, 4.0, 5.0, 0.0, 0.0, 20.0};
-    const truth_t t2 = {6, 20, 6.0, 5.5, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t1 = {1, 20, 4.0, 5.0, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t2 = {6, 20, 6.0, 5.5, 0.0, 0.0, 20.0};
     int both = 0;
     *held = 0;
     for (int k = 1; k <= 20; ++k) {
@@ -550,10 +503,10 @@ static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
         size_t n = pft_tbd_tracks(&t, trk, 2);
         int on[2] = {0, 0};
         for (size_t a = 0; a < n && a < 2u; ++a) {
-            const truth_t *ts[2] = {&t1, &t2};
+            const pft_sim_truth_t *ts[2] = {&t1, &t2};
             for (int q = 0; q < 2; ++q) {
-                double dx = D(trk[a].x) - tx(ts[q], k), dy = D(trk[a].y) - ty(ts[q], k);
-                on[q] |= alive(ts[q], k) && dx * dx + dy * dy <= 1.0;
+                double dx = D(trk[a].x) - pft_sim_x(ts[q], k), dy = D(trk[a].y) - pft_sim_y(ts[q], k);
+                on[q] |= pft_sim_alive(ts[q], k) && dx * dx + dy * dy <= 1.0;
             }
             *ids = trk[a].id > *ids ? trk[a].id : *ids;
         }
