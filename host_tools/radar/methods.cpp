@@ -13,22 +13,6 @@
 
 namespace pft::host::radar {
 
-#ifdef PFT_NUMERIC_Q16
-pft_real_t to_real(double v)
-{
-    double q = std::nearbyint(v * 65536.0);
-    if (q > 2147483647.0)
-        return PFT_REAL_MAX;
-    if (q < -2147483647.0)
-        return PFT_REAL_MIN;
-    return static_cast<pft_real_t>(q);
-}
-double from_real(pft_real_t v) { return static_cast<double>(v) / 65536.0; }
-#else
-pft_real_t to_real(double v) { return static_cast<pft_real_t>(v); }
-double from_real(pft_real_t v) { return static_cast<double>(v); }
-#endif
-const char *numeric_name() { return PFT_NUMERIC_NAME; }
 
 std::string method_label(const std::string &name)
 {

@@ -14,13 +14,14 @@ extern "C" {
 #include "pft/pft_mftbd.h"
 }
 
+#include "../common/real.hpp"
 #include "scenario.hpp"
 
 namespace pft::host::radar {
 
-pft_real_t to_real(double v);
-double from_real(pft_real_t v);
-const char *numeric_name();
+using ::pft::host::from_real;
+using ::pft::host::numeric_name;
+using ::pft::host::to_real;
 
 /** Method names in evaluation order and their labels. */
 std::string method_label(const std::string &name);  // "PTE-TBD", "DP-TBD", "Kalman DBT"

@@ -7,31 +7,6 @@
 
 namespace pft::host::tbd {
 
-pft_real_t to_real(double v)
-{
-#ifdef PFT_NUMERIC_Q16
-    double s = std::nearbyint(v * 65536.0);
-    if (s > 2147483647.0)
-        s = 2147483647.0;
-    if (s < -2147483647.0)
-        s = -2147483647.0;
-    return static_cast<pft_real_t>(s);
-#else
-    return static_cast<pft_real_t>(v);
-#endif
-}
-
-double from_real(pft_real_t v)
-{
-#ifdef PFT_NUMERIC_Q16
-    return static_cast<double>(v) / 65536.0;
-#else
-    return static_cast<double>(v);
-#endif
-}
-
-const char *numeric_name() { return PFT_NUMERIC_NAME; }
-
 pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
 {
     const FilterSettings &F = s.filter;

@@ -13,16 +13,14 @@ extern "C" {
 #include "pft/pft_tbd.h"
 }
 
+#include "../common/real.hpp"
 #include "scenario.hpp"
 
 namespace pft::host::tbd {
 
-/** double -> pft_real_t of this build (q16: rounded, saturating). */
-pft_real_t to_real(double v);
-/** pft_real_t -> double. */
-double from_real(pft_real_t v);
-/** "float" or "q16". */
-const char *numeric_name();
+using ::pft::host::from_real;
+using ::pft::host::numeric_name;
+using ::pft::host::to_real;
 
 struct TrackOut {
     uint32_t id = 0;

@@ -16,6 +16,7 @@
 
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
+#include "../common/real.hpp"
 #include "../common/output.hpp"
 #include "../common/parallel.hpp"
 #include "../common/plot.hpp"
@@ -241,7 +242,7 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                        {"success_vs_iou", curve}});
     }
     return {{"kind", "vis"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
-            {"numeric", pft_numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
+            {"numeric", numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
             {"seed_last", seed_base + (uint64_t)runs - 1}, {"frames_per_run", s.scene.frames},
             {"success", {{"iou", s.iou_thr}, {"center_px", s.center_thr}, {"run_min_fraction", s.run_min_fraction}}},
             {"tracker_params", pft_params_json(s.tracker)}, {"scene", scene_to_json(s.scene)},
@@ -358,7 +359,7 @@ void print_table(const Scenario &s, const json &sum)
 {
     std::printf("%s (%s build): %d runs x %d frames, seeds %llu..%llu; success = IoU > %.2f and centre error < %.0f px"
                 " on >= %.0f%% of frames\n",
-                s.name.c_str(), pft_numeric_name(), sum["runs"].get<int>(), s.scene.frames,
+                s.name.c_str(), numeric_name(), sum["runs"].get<int>(), s.scene.frames,
                 (unsigned long long)sum["seed_first"].get<uint64_t>(), (unsigned long long)sum["seed_last"].get<uint64_t>(),
                 s.iou_thr, s.center_thr, 100 * s.run_min_fraction);
     std::printf("%-8s %10s %14s %12s %10s %12s\n", "tracker", "runs ok", "frame success", "centre err", "us/frame",
@@ -540,7 +541,7 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
     static const char *names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view"};
     for (auto &kv : states)
         st[kv.first >= 0 && kv.first <= 5 ? names[kv.first] : "other"] = kv.second;
-    json j = {{"source", source}, {"tracker", t->name()}, {"numeric", pft_numeric_name()},
+    json j = {{"source", source}, {"tracker", t->name()}, {"numeric", numeric_name()},
               {"frames", k + 1}, {"width", f0.cols}, {"height", f0.rows},
               {"us_per_frame_mean", mean}, {"us_per_frame_median", med},
               {"fps_equivalent", mean > 0 ? 1e6 / mean : 0.0}, {"states", st},

@@ -15,29 +15,10 @@ extern "C" {
 
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
+#include "../common/real.hpp"
 
 namespace pft::host::vis {
 
-namespace {
-pft_real_t R(double v)
-{
-#ifdef PFT_NUMERIC_Q16
-    return (pft_real_t)std::llround(v * 65536.0);
-#else
-    return (pft_real_t)v;
-#endif
-}
-double D(pft_real_t v)
-{
-#ifdef PFT_NUMERIC_Q16
-    return v / 65536.0;
-#else
-    return (double)v;
-#endif
-}
-}  // namespace
-
-const char *pft_numeric_name() { return PFT_NUMERIC_NAME; }
 
 PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, const std::string &path)
 {
@@ -85,17 +66,17 @@ public:
         pft_vis_snake_params_default(&cfg_.snake, cfg_.max_target_w, cfg_.max_target_h);
         cfg_.n_particles = (uint32_t)p.particles;
         cfg_.motion = p.motion == "tsa" ? PFT_MOTION_TSA : (p.motion == "ts" ? PFT_MOTION_TS : PFT_MOTION_NCV);
-        cfg_.beta0 = R(p.beta0);
-        cfg_.q = R(p.q);
-        cfg_.pos_sd = R(p.pos_sd);
-        cfg_.rho_min = R(p.rho_min);
-        cfg_.lik_lambda = R(p.lik_lambda);
-        cfg_.theta_u = R(p.theta_u);
-        cfg_.update_rho_min = R(p.update_rho_min);
+        cfg_.beta0 = to_real(p.beta0);
+        cfg_.q = to_real(p.q);
+        cfg_.pos_sd = to_real(p.pos_sd);
+        cfg_.rho_min = to_real(p.rho_min);
+        cfg_.lik_lambda = to_real(p.lik_lambda);
+        cfg_.theta_u = to_real(p.theta_u);
+        cfg_.update_rho_min = to_real(p.update_rho_min);
         cfg_.fit_k = (uint8_t)p.fit_k;
-        cfg_.fit_sigma = R(p.fit_sigma);
-        cfg_.fit_a_max = R(p.fit_a_max);
-        cfg_.fit_v_max = R(p.fit_v_max);
+        cfg_.fit_sigma = to_real(p.fit_sigma);
+        cfg_.fit_a_max = to_real(p.fit_a_max);
+        cfg_.fit_v_max = to_real(p.fit_v_max);
         cfg_.snake_points = (uint8_t)p.snake_points;
         cfg_.init_passes = (uint8_t)p.init_passes;
         cfg_.seed = p.seed;
@@ -133,7 +114,7 @@ public:
         const pft_vis_estimate_t *e = pft_vis_estimate(&t_);
         // the kernel origin is the contour's area centroid: report centres relative to the
         // initial box centre so they compare with box-centre ground truth
-        off_ = cv::Point2d(D(e->x) - (br.x + (br.width - 1) / 2.0), D(e->y) - (br.y + (br.height - 1) / 2.0));
+        off_ = cv::Point2d(from_real(e->x) - (br.x + (br.width - 1) / 2.0), from_real(e->y) - (br.y + (br.height - 1) / 2.0));
     }
 
     void update(const cv::Mat &bgr, TrackOut &out) override
@@ -148,16 +129,16 @@ public:
     void fill(TrackOut &out) const
     {
         const pft_vis_estimate_t *e = pft_vis_estimate(&t_);
-        out.center = cv::Point2d(D(e->x), D(e->y)) - off_;
+        out.center = cv::Point2d(from_real(e->x), from_real(e->y)) - off_;
         out.box = cv::Rect2d(e->box_x0, e->box_y0, e->box_x1 - e->box_x0 + 1, e->box_y1 - e->box_y0 + 1);
         out.ok = e->state == PFT_VIS_TRACKING || e->state == PFT_VIS_PIONEER_ONLY;
-        out.beta = D(e->beta);
-        out.rho = D(e->rho);
-        out.rho_pioneer = D(e->rho_pioneer);
+        out.beta = from_real(e->beta);
+        out.rho = from_real(e->rho);
+        out.rho_pioneer = from_real(e->rho_pioneer);
         out.state = (int)e->state;
         out.alive = (int)e->n_alive;
         out.template_updated = e->template_updated;
-        out.pioneer = cv::Point2d(D(e->pioneer_x), D(e->pioneer_y));
+        out.pioneer = cv::Point2d(from_real(e->pioneer_x), from_real(e->pioneer_y));
         pft_vis_pt_t c[PFT_VIS_MAX_POINTS];
         uint32_t n = pft_vis_contour(&t_, c, PFT_VIS_MAX_POINTS);
         out.contour.clear();
@@ -167,7 +148,7 @@ public:
         uint32_t m = pft_vis_particles(&t_, &x, &y, &rho);
         out.particles.clear();
         for (uint32_t i = 0; i < m; ++i)
-            out.particles.emplace_back((float)D(x[i]), (float)D(y[i]));
+            out.particles.emplace_back((float)from_real(x[i]), (float)from_real(y[i]));
     }
 
 private:

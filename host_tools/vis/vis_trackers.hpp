@@ -56,7 +56,4 @@ bool have_cv_tracking();
 /** A named tracker of the bench list: tsa, ts, ncv, ncv200, kcf, csrt, mosse, mil. */
 std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &base, int width, int height);
 
-/** pftrack's number type ("float" / "q16"). */
-const char *pft_numeric_name();
-
 }  // namespace pft::host::vis
