@@ -52,3 +52,15 @@ int pft_test_guard_intact(const uint8_t *buf, size_t len, size_t lo, size_t hi)
     }
     return 1;
 }
+
+double pft_test_gauss(uint64_t *state)
+{
+    double u[2];
+    for (int i = 0; i < 2; ++i) {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        u[i] = ((double)(*state >> 11) + 0.5) / 9007199254740992.0;
+    }
+    return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
+}

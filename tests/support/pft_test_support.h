@@ -10,6 +10,10 @@ pft_real_t pft_test_from_double(double v);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
 double pft_test_lsb(double v);
 
+/* Deterministic N(0,1) from a xorshift64 state (Box-Muller on two 53-bit uniforms); the
+ * state must be non-zero. Independent of the library's RNG, for test inputs. */
+double pft_test_gauss(uint64_t *state);
+
 /* Guard words around a workspace: fill, then check nothing outside [lo, hi) changed. */
 #define PFT_TEST_GUARD 0xA5u
 void pft_test_guard_fill(uint8_t *buf, size_t len);

@@ -23,17 +23,7 @@ static uint64_t g_copy[sizeof(g_work) / 8];
 static pft_real_t g_z[NR * 8];
 
 static uint64_t g_s;
-static double gauss(void)
-{
-    double u[2];
-    for (int i = 0; i < 2; ++i) {
-        g_s ^= g_s << 13;
-        g_s ^= g_s >> 7;
-        g_s ^= g_s << 17;
-        u[i] = ((double)(g_s >> 11) + 0.5) / 9007199254740992.0;
-    }
-    return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
-}
+static double gauss(void) { return pft_test_gauss(&g_s); }
 
 static void init_dbt(pft_dbt_t *b, const pft_dbt_config_t *c)
 {

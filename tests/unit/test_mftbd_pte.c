@@ -32,17 +32,7 @@ static pft_real_t g_z[NR2 * ND2 > NR ? NR2 * ND2 : NR];
 
 /* deterministic N(0,1) */
 static uint64_t g_s;
-static double gauss(void)
-{
-    double u[2];
-    for (int i = 0; i < 2; ++i) {
-        g_s ^= g_s << 13;
-        g_s ^= g_s >> 7;
-        g_s ^= g_s << 17;
-        u[i] = ((double)(g_s >> 11) + 0.5) / 9007199254740992.0;
-    }
-    return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
-}
+static double gauss(void) { return pft_test_gauss(&g_s); }
 
 /* range profile with unit noise and n targets (psf 0.6 cells) */
 static void profile(int n, const double *pos, const double *amp)
