@@ -98,6 +98,11 @@ static inline pft_real_t pft_ratio(int32_t num, int32_t den)
 }
 /** Uniform u32 fraction u/2^32 in [0,1) as a real (top 16 bits, truncating). */
 static inline pft_real_t pft_from_u32_frac(uint32_t u) { return (pft_real_t)(u >> 16); }
+/** For logging and host code: the value as a float. Never called inside the library (a q16
+ *  firmware that calls it links soft-float helpers on a core without FPU). */
+static inline float pft_to_float(pft_real_t a) { return (float)a * (1.0f / 65536.0f); }
+/** For logging: a Q2.30 weight as a float (same caveat). */
+static inline float pft_weight_to_float(pft_weight_t w) { return (float)w * (1.0f / 1073741824.0f); }
 
 #else /* ---------------------------------- float ----------------------------------------- */
 
@@ -142,6 +147,8 @@ static inline int32_t pft_round_int(pft_real_t a)
 static inline pft_real_t pft_ratio(int32_t num, int32_t den) { return pft_div((float)num, (float)den); }
 /** Uniform u32 fraction u/2^32 in [0,1): top 24 bits, exact in a float. */
 static inline pft_real_t pft_from_u32_frac(uint32_t u) { return (float)(u >> 8) * 5.9604645e-08f; }
+static inline float pft_to_float(pft_real_t a) { return a; }
+static inline float pft_weight_to_float(pft_weight_t w) { return w; }
 
 #endif /* PFT_NUMERIC_Q16 */
 /* ------------------------------------------------------------------------------------------ */

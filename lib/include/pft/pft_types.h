@@ -24,8 +24,13 @@ typedef enum {
     PFT_ERR_TIMEOUT = -4, /**< no frame within the timeout */
     PFT_ERR_IO = -5,      /**< device, file or transport error */
     PFT_ERR_STATE = -6,   /**< call not valid in the current state (e.g. frame not released) */
-    PFT_ERR_RANGE = -7,   /**< value outside the representable or configured range */
-    PFT_ERR_EOF = -8      /**< end of a finite sequence */
+    PFT_ERR_RANGE = -7,   /**< a number outside what the arithmetic can represent (e.g. Q16.16 overflow) */
+    PFT_ERR_EOF = -8,     /**< end of a finite sequence */
+    PFT_ERR_CONFIG = -9,  /**< configuration refused by its config_check (which names the field) */
+    PFT_ERR_SINGULAR = -10,  /**< matrix singular or not positive definite */
+    PFT_ERR_DEGENERATE = -11, /**< nothing to work on: all weights zero, empty set, box or polygon too small */
+    PFT_ERR_SEQ = -12,    /**< frame sequence number repeated or going backwards */
+    PFT_ERR_LOST = -13    /**< the tracker has no hypothesis that passes its gate (target lost) */
 } pft_status_t;
 
 /** Human-readable name of a status code (static string, never NULL). */

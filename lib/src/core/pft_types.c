@@ -15,6 +15,11 @@ const char *pft_status_str(pft_status_t s)
     case PFT_ERR_STATE: return "invalid state";
     case PFT_ERR_RANGE: return "out of range";
     case PFT_ERR_EOF: return "end of sequence";
+    case PFT_ERR_CONFIG: return "bad configuration";
+    case PFT_ERR_SINGULAR: return "singular matrix";
+    case PFT_ERR_DEGENERATE: return "degenerate input";
+    case PFT_ERR_SEQ: return "frame out of sequence";
+    case PFT_ERR_LOST: return "target lost";
     default: return "unknown status";
     }
 }
