@@ -1,5 +1,6 @@
 #include "registry.hpp"
 
+#include <cstdio>
 #include <map>
 
 #include "errors.hpp"
@@ -12,7 +13,14 @@ std::map<std::string, KindFactory> &table()
     static std::map<std::string, KindFactory> t;  // filled by static registrars before main
     return t;
 }
+std::map<std::string, std::string> &aliases()
+{
+    static std::map<std::string, std::string> a;  // old kind name -> current name
+    return a;
+}
 }  // namespace
+
+void register_kind_alias(const std::string &old_name, const std::string &kind) { aliases()[old_name] = kind; }
 
 void register_kind(const std::string &kind, KindFactory factory) { table()[kind] = std::move(factory); }
 
@@ -24,8 +32,15 @@ std::vector<std::string> registered_kinds()
     return v;
 }
 
-std::unique_ptr<KindHandler> make_handler(const std::string &kind)
+std::unique_ptr<KindHandler> make_handler(const std::string &requested)
 {
+    std::string kind = requested;
+    auto al = aliases().find(requested);
+    if (al != aliases().end() && table().find(requested) == table().end()) {
+        kind = al->second;
+        std::fprintf(stderr, "pft: note: scenario kind \"%s\" is now called \"%s\"\n", requested.c_str(),
+                     kind.c_str());
+    }
     auto it = table().find(kind);
     if (it == table().end()) {
         std::string list;

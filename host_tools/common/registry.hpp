@@ -61,6 +61,9 @@ protected:
 using KindFactory = std::function<std::unique_ptr<KindHandler>()>;
 
 void register_kind(const std::string &kind, KindFactory factory);
+/** A scenario written with an earlier kind name (e.g. "vis") selects `kind` (e.g. "tsa"), with
+ *  a note on stderr. */
+void register_kind_alias(const std::string &old_name, const std::string &kind);
 /** InputError naming the known kinds when `kind` is not registered. */
 std::unique_ptr<KindHandler> make_handler(const std::string &kind);
 std::vector<std::string> registered_kinds();
@@ -68,6 +71,14 @@ std::vector<std::string> registered_kinds();
 struct KindRegistrar {
     KindRegistrar(const char *kind, KindFactory f) { register_kind(kind, std::move(f)); }
 };
+
+struct KindAliasRegistrar {
+    KindAliasRegistrar(const char *old_name, const char *kind) { register_kind_alias(old_name, kind); }
+};
+
+/** PFT_REGISTER_KIND_ALIAS("vis", "tsa", tsa_vis): the old name "vis" selects kind "tsa". */
+#define PFT_REGISTER_KIND_ALIAS(old_name, kind, tag)                                        \
+    static const ::pft::host::KindAliasRegistrar pft_kind_alias_##tag(old_name, kind)
 
 #define PFT_REGISTER_KIND(name, type)                                                       \
     static const ::pft::host::KindRegistrar pft_kind_registrar_##type(                      \
