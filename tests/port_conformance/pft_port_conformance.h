@@ -59,8 +59,8 @@ typedef struct {
                                   allowed; else a violation */
     uint32_t timeout_ms;     /**< passed to every acquire (default 0: poll) */
     uint32_t ticks_while_lent; /**< tick calls while each stream frame is lent (default 2) */
-    uint32_t max_attempts;   /**< bound on acquire calls in all (0: 8 * frames + 256, or
-                                  8 * endless_frames + 256) */
+    uint32_t max_attempts;   /**< bound on acquire calls in all (0: 8 * n + 256, n being
+                                  frames, endless_frames, or 8192 for PFT_CONF_FINITE) */
     void *hook_ctx;          /**< passed to the hooks */
     /** Optional: time passes (a simulated ISR delivers a frame, a producer pushes one). It is
      *  called while frames are lent, so a source that writes into lent memory is caught. */
