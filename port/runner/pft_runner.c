@@ -78,6 +78,226 @@ static uint64_t now(const pft_runner_hooks_t *hooks)
     return (hooks != NULL && hooks->now_us != NULL) ? hooks->now_us(hooks->ctx) : 0u;
 }
 
+/* State of one run, shared by its steps. */
+typedef struct {
+    const pft_frame_source_t *src;
+    pft_consumer_fn consumer;
+    void *consumer_ctx;
+    const pft_runner_hooks_t *hooks;
+    pft_runner_config_t c;
+    pft_runner_stats_t *stats;
+    uint32_t mask;          /* accepted formats */
+    uint32_t attempt_limit; /* 0: none */
+    uint16_t exp_w, exp_h;  /* expected geometry (0: not locked yet) */
+    bool have_seq, have_ts;
+    uint32_t last_seq;
+    uint64_t last_ts;
+    uint32_t consecutive;   /* failed iterations in a row */
+    pft_status_t ret;       /* returned by pft_runner_run */
+    pft_status_t stop;      /* stats->stop */
+} run_t;
+
+/* What the loop does after a step. */
+typedef enum { STEP_GO_ON = 0, STEP_NEXT = 1, STEP_STOP = 2 } step_t;
+
+/* Copies the configuration and derives the format mask and the acquire bound. */
+static void run_setup(run_t *r, const pft_runner_config_t *cfg)
+{
+    if (cfg != NULL) {
+        r->c = *cfg;
+    } else {
+        memset(&r->c, 0, sizeof r->c);
+    }
+    r->mask = (r->c.fmt_mask != 0u) ? r->c.fmt_mask : known_formats();
+    r->attempt_limit = r->c.max_attempts;
+    if (r->attempt_limit == 0u && r->c.max_frames != 0u) {
+        uint64_t lim = 16u * (uint64_t)r->c.max_frames + 64u;
+        r->attempt_limit = (lim > 0xFFFFFFFFu) ? 0xFFFFFFFFu : (uint32_t)lim;
+    }
+    r->exp_w = r->c.width;
+    r->exp_h = r->c.height;
+    r->ret = PFT_OK;
+    r->stop = PFT_OK;
+}
+
+/* max_frames, max_attempts or the counter bound reached: a normal end. */
+static bool run_limit_reached(const run_t *r)
+{
+    const pft_runner_stats_t *s = r->stats;
+    if (r->c.max_frames != 0u && s->frames >= r->c.max_frames) {
+        return true;
+    }
+    if (r->attempt_limit != 0u && s->attempts >= r->attempt_limit) {
+        return true;
+    }
+    return s->attempts == 0xFFFFFFFFu; /* counters would wrap: the loop is bounded */
+}
+
+/* One more failed iteration; stops the run with `st` when max_consecutive_errors is reached. */
+static step_t run_count_failure(run_t *r, pft_status_t st)
+{
+    r->consecutive++;
+    if (r->c.max_consecutive_errors != 0u && r->consecutive >= r->c.max_consecutive_errors) {
+        r->stop = st;
+        r->ret = st;
+        return STEP_STOP;
+    }
+    return STEP_NEXT;
+}
+
+/* Acquires one frame. EOF ends the run; TIMEOUT/IO/FORMAT are counted (next iteration);
+ * anything else is fatal. */
+static step_t run_acquire(run_t *r, pft_frame_t *f)
+{
+    r->stats->attempts++;
+    pft_status_t st = pft_source_acquire(r->src, f, r->c.timeout_ms);
+    if (st == PFT_OK) {
+        r->stats->acquired++;
+        return STEP_GO_ON;
+    }
+    if (st == PFT_ERR_EOF) {
+        r->stop = PFT_ERR_EOF;
+        return STEP_STOP;
+    }
+    if (st == PFT_ERR_TIMEOUT) {
+        r->stats->timeouts++;
+    } else if (st == PFT_ERR_IO) {
+        r->stats->io_errors++;
+    } else if (st == PFT_ERR_FORMAT) {
+        r->stats->format_errors++;
+    } else {
+        r->stop = st; /* INVAL, STATE, NOMEM, RANGE, unknown: the port is misused */
+        r->ret = st;
+        return STEP_STOP;
+    }
+    fault(r->hooks, st, 0u);
+    return run_count_failure(r, st);
+}
+
+/* Sequence check: gaps are dropped frames, repeats and steps back are seq errors (an unsigned
+ * difference handles wrap-around). */
+static void run_check_seq(run_t *r, const pft_frame_t *f)
+{
+    if (!r->have_seq) {
+        r->have_seq = true;
+        r->last_seq = f->seq;
+        return;
+    }
+    uint32_t d = f->seq - r->last_seq;
+    if (d == 0u || d > 0x80000000u) {
+        r->stats->seq_errors++;
+        fault(r->hooks, PFT_ERR_RANGE, f->seq);
+        return;
+    }
+    if (d > 1u) {
+        r->stats->dropped += d - 1u;
+        fault(r->hooks, PFT_ERR_RANGE, f->seq);
+    }
+    r->last_seq = f->seq;
+}
+
+/* Descriptor check. A rejected frame is counted and released here (next iteration); a good
+ * one locks the geometry if it was not given. */
+static step_t run_check_frame(run_t *r, pft_frame_t *f)
+{
+    int verdict = classify(f, r->exp_w, r->exp_h, r->mask, r->c.check_finite);
+    if (verdict != VERDICT_OK) {
+        if (verdict == VERDICT_SHORT) {
+            r->stats->short_frames++;
+        } else {
+            r->stats->corrupt++;
+        }
+        uint32_t seq = f->seq;
+        r->src->release(r->src->ctx, f); /* always, even for a NULL-data descriptor */
+        r->stats->released++;
+        fault(r->hooks, PFT_ERR_FORMAT, seq);
+        return run_count_failure(r, PFT_ERR_FORMAT);
+    }
+    if (r->exp_w == 0u) {
+        r->exp_w = f->width;
+    }
+    if (r->exp_h == 0u) {
+        r->exp_h = f->height;
+    }
+    r->consecutive = 0u;
+    return STEP_GO_ON;
+}
+
+/* Timestamp check: a step above max_interval_us is late; a step back is counted apart, and
+ * either way the clock follows the newest frame, so one odd timestamp costs one count. */
+static void run_check_time(run_t *r, const pft_frame_t *f)
+{
+    if (r->have_ts) {
+        if (f->timestamp_us < r->last_ts) {
+            r->stats->ts_backwards++;
+            fault(r->hooks, PFT_ERR_TIMEOUT, f->seq);
+        } else if (r->c.max_interval_us != 0u &&
+                   f->timestamp_us - r->last_ts > r->c.max_interval_us) {
+            r->stats->late++;
+            fault(r->hooks, PFT_ERR_TIMEOUT, f->seq);
+        }
+    }
+    r->last_ts = f->timestamp_us;
+    r->have_ts = true;
+}
+
+/* Hands the frame to the consumer between the hooks, times it, releases it and counts it.
+ * The consumer's PFT_ERR_EOF ends the run; its other errors are counted. */
+static step_t run_consume(run_t *r, pft_frame_t *f)
+{
+    const pft_runner_hooks_t *hooks = r->hooks;
+    pft_runner_stats_t *s = r->stats;
+    if (hooks != NULL && hooks->on_frame_begin != NULL) {
+        hooks->on_frame_begin(hooks->ctx, f);
+    }
+    uint64_t t0 = now(hooks);
+    pft_status_t cs = r->consumer(r->consumer_ctx, f);
+    uint64_t t1 = now(hooks);
+    uint64_t dt = (t1 >= t0) ? t1 - t0 : 0u;
+    if (hooks != NULL && hooks->on_frame_end != NULL) {
+        hooks->on_frame_end(hooks->ctx, f, cs, dt);
+    }
+    uint32_t seq = f->seq;
+    r->src->release(r->src->ctx, f); /* always, even for a NULL-data descriptor */
+    s->released++;
+
+    if (s->frames == 0u || dt < s->time_min_us) {
+        s->time_min_us = dt;
+    }
+    if (dt > s->time_max_us) {
+        s->time_max_us = dt;
+    }
+    s->time_total_us += dt;
+    s->frames++;
+
+    if (cs == PFT_ERR_EOF) {
+        r->stop = PFT_ERR_EOF;
+        return STEP_STOP;
+    }
+    if (cs != PFT_OK) {
+        s->consumer_errors++;
+        fault(hooks, cs, seq);
+    }
+    return STEP_GO_ON;
+}
+
+/* One iteration: acquire -> sequence -> descriptor -> timestamp -> consumer + release. */
+static step_t run_iteration(run_t *r)
+{
+    pft_frame_t f;
+    step_t k = run_acquire(r, &f);
+    if (k != STEP_GO_ON) {
+        return k;
+    }
+    run_check_seq(r, &f);
+    k = run_check_frame(r, &f);
+    if (k != STEP_GO_ON) {
+        return k;
+    }
+    run_check_time(r, &f);
+    return run_consume(r, &f);
+}
+
 pft_status_t pft_runner_run(const pft_frame_source_t *src, pft_consumer_fn consumer,
                             void *consumer_ctx, const pft_runner_hooks_t *hooks,
                             const pft_runner_config_t *cfg, pft_runner_stats_t *stats)
@@ -90,165 +310,23 @@ pft_status_t pft_runner_run(const pft_frame_source_t *src, pft_consumer_fn consu
         stats->stop = PFT_ERR_INVAL;
         return PFT_ERR_INVAL;
     }
-    pft_runner_config_t c;
-    if (cfg != NULL) {
-        c = *cfg;
-    } else {
-        memset(&c, 0, sizeof c);
-    }
-    uint32_t mask = (c.fmt_mask != 0u) ? c.fmt_mask : known_formats();
-    uint32_t attempt_limit = c.max_attempts;
-    if (attempt_limit == 0u && c.max_frames != 0u) {
-        uint64_t lim = 16u * (uint64_t)c.max_frames + 64u;
-        attempt_limit = (lim > 0xFFFFFFFFu) ? 0xFFFFFFFFu : (uint32_t)lim;
-    }
-    uint16_t exp_w = c.width;
-    uint16_t exp_h = c.height;
-    bool have_seq = false;
-    bool have_ts = false;
-    uint32_t last_seq = 0u;
-    uint64_t last_ts = 0u;
-    uint32_t consecutive = 0u;
-    pft_status_t ret = PFT_OK;
-    pft_status_t stop = PFT_OK;
-
-    for (;;) {
-        if (c.max_frames != 0u && stats->frames >= c.max_frames) {
-            stop = PFT_OK;
+    run_t r;
+    memset(&r, 0, sizeof r);
+    r.src = src;
+    r.consumer = consumer;
+    r.consumer_ctx = consumer_ctx;
+    r.hooks = hooks;
+    r.stats = stats;
+    run_setup(&r, cfg);
+    /* bounded: every iteration makes one acquire, and run_limit_reached stops at the attempt
+     * limit (or at the counter's maximum when there is none) */
+    while (!run_limit_reached(&r)) {
+        if (run_iteration(&r) == STEP_STOP) {
             break;
-        }
-        if (attempt_limit != 0u && stats->attempts >= attempt_limit) {
-            stop = PFT_OK;
-            break;
-        }
-        if (stats->attempts == 0xFFFFFFFFu) { /* counters would wrap: the loop is bounded */
-            stop = PFT_OK;
-            break;
-        }
-        stats->attempts++;
-
-        pft_frame_t f;
-        pft_status_t st = pft_source_acquire(src, &f, c.timeout_ms);
-        if (st == PFT_ERR_EOF) {
-            stop = PFT_ERR_EOF;
-            break;
-        }
-        if (st != PFT_OK) {
-            if (st == PFT_ERR_TIMEOUT) {
-                stats->timeouts++;
-            } else if (st == PFT_ERR_IO) {
-                stats->io_errors++;
-            } else if (st == PFT_ERR_FORMAT) {
-                stats->format_errors++;
-            } else {
-                stop = st; /* INVAL, STATE, NOMEM, RANGE, unknown: the port is misused */
-                ret = st;
-                break;
-            }
-            fault(hooks, st, 0u);
-            consecutive++;
-            if (c.max_consecutive_errors != 0u && consecutive >= c.max_consecutive_errors) {
-                stop = st;
-                ret = st;
-                break;
-            }
-            continue;
-        }
-        stats->acquired++;
-
-        /* sequence: unsigned difference handles wrap-around */
-        if (have_seq) {
-            uint32_t d = f.seq - last_seq;
-            if (d == 0u || d > 0x80000000u) {
-                stats->seq_errors++;
-                fault(hooks, PFT_ERR_RANGE, f.seq);
-            } else {
-                if (d > 1u) {
-                    stats->dropped += d - 1u;
-                    fault(hooks, PFT_ERR_RANGE, f.seq);
-                }
-                last_seq = f.seq;
-            }
-        } else {
-            have_seq = true;
-            last_seq = f.seq;
-        }
-
-        int verdict = classify(&f, exp_w, exp_h, mask, c.check_finite);
-        if (verdict != VERDICT_OK) {
-            if (verdict == VERDICT_SHORT) {
-                stats->short_frames++;
-            } else {
-                stats->corrupt++;
-            }
-            uint32_t seq = f.seq;
-            src->release(src->ctx, &f); /* always, even for a NULL-data descriptor */
-            stats->released++;
-            fault(hooks, PFT_ERR_FORMAT, seq);
-            consecutive++;
-            if (c.max_consecutive_errors != 0u && consecutive >= c.max_consecutive_errors) {
-                stop = PFT_ERR_FORMAT;
-                ret = PFT_ERR_FORMAT;
-                break;
-            }
-            continue;
-        }
-        if (exp_w == 0u) {
-            exp_w = f.width;
-        }
-        if (exp_h == 0u) {
-            exp_h = f.height;
-        }
-        consecutive = 0u;
-
-        /* a step above max_interval_us is late; a step back is counted apart, and either way
-         * the clock follows the newest frame, so one odd timestamp costs one count */
-        if (have_ts) {
-            if (f.timestamp_us < last_ts) {
-                stats->ts_backwards++;
-                fault(hooks, PFT_ERR_TIMEOUT, f.seq);
-            } else if (c.max_interval_us != 0u && f.timestamp_us - last_ts > c.max_interval_us) {
-                stats->late++;
-                fault(hooks, PFT_ERR_TIMEOUT, f.seq);
-            }
-        }
-        last_ts = f.timestamp_us;
-        have_ts = true;
-
-        if (hooks != NULL && hooks->on_frame_begin != NULL) {
-            hooks->on_frame_begin(hooks->ctx, &f);
-        }
-        uint64_t t0 = now(hooks);
-        pft_status_t cs = consumer(consumer_ctx, &f);
-        uint64_t t1 = now(hooks);
-        uint64_t dt = (t1 >= t0) ? t1 - t0 : 0u;
-        if (hooks != NULL && hooks->on_frame_end != NULL) {
-            hooks->on_frame_end(hooks->ctx, &f, cs, dt);
-        }
-        uint32_t seq = f.seq;
-        src->release(src->ctx, &f); /* always, even for a NULL-data descriptor */
-        stats->released++;
-
-        if (stats->frames == 0u || dt < stats->time_min_us) {
-            stats->time_min_us = dt;
-        }
-        if (dt > stats->time_max_us) {
-            stats->time_max_us = dt;
-        }
-        stats->time_total_us += dt;
-        stats->frames++;
-
-        if (cs == PFT_ERR_EOF) {
-            stop = PFT_ERR_EOF;
-            break;
-        }
-        if (cs != PFT_OK) {
-            stats->consumer_errors++;
-            fault(hooks, cs, seq);
         }
     }
-    stats->width = exp_w;
-    stats->height = exp_h;
-    stats->stop = stop;
-    return ret;
+    stats->width = r.exp_w;
+    stats->height = r.exp_h;
+    stats->stop = r.stop;
+    return r.ret;
 }
