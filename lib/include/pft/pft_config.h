@@ -4,10 +4,10 @@
  *
  * To override, define PFT_USER_CONFIG as a header name (e.g. -DPFT_USER_CONFIG='"my_pft.h"')
  * and set PFT_CFG_* macros in it. The number type is fixed by the build: pft_build_config.h,
- * written by CMake (installed per number type as include/pftrack_<numeric>/pft/) or, without
- * CMake, a one-line header `#define PFT_NUMERIC_Q16 1` (or PFT_NUMERIC_FLOAT). An application
- * compiled for one number type and linked with the library of the other fails to link
- * (PFT_LINK_NAME).
+ * written by CMake (installed per number type, in include/pftrack_q16/pft or
+ * include/pftrack_float/pft) or, without CMake, a one-line header `#define PFT_NUMERIC_Q16 1`
+ * (or PFT_NUMERIC_FLOAT). An application compiled for one number type and linked with the
+ * library of the other fails to link (PFT_LINK_NAME).
  */
 #ifndef PFT_CONFIG_H
 #define PFT_CONFIG_H
