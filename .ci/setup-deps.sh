@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs everything pftrack needs on a fresh Debian/Ubuntu machine (as root, or with sudo).
-# Idempotent: packages already present are skipped by apt; Unity is fetched once into .deps/.
+# Installs everything pftrack needs on a fresh Debian/Ubuntu machine (as root, or with sudo;
+# never reads stdin). Idempotent: when every package is present and Unity is in .deps/, it
+# changes nothing and uses no network; otherwise it runs apt-get update before installing.
+# doxygen: the ctest docs_doxygen; gcc-arm-none-eabi also runs the recipe check (.ci/check-recipe).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -10,7 +12,7 @@ pkgs=(cmake ninja-build gcc g++ make pkg-config
       gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
       gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
       libopencv-dev libcli11-dev nlohmann-json3-dev libopencv-contrib-dev opencv-doc
-      valgrind binutils dpkg-dev)
+      valgrind binutils dpkg-dev doxygen)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 # deb-src entries are needed for Unity (see TOOLCHAIN.md: Debian's cjson source ships Unity 2.4.3)
@@ -24,17 +26,18 @@ if [ "$need_src" = 1 ] && ! grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/so
   if [ -f /etc/apt/sources.list ] && grep -qE '^deb ' /etc/apt/sources.list; then
     grep -E '^deb ' /etc/apt/sources.list | sed 's/^deb /deb-src /' | $SUDO tee -a /etc/apt/sources.list >/dev/null
   fi
-  missing+=(__update__)
 fi
+# apt-get source needs current package lists
+[ "$need_src" = 0 ] || missing+=(__update__)
 if [ ${#missing[@]} -gt 0 ]; then
-  $SUDO apt-get update -qq
+  $SUDO apt-get update -qq </dev/null
   real=(); for p in "${missing[@]}"; do [ "$p" = __update__ ] || real+=("$p"); done
-  [ ${#real[@]} -eq 0 ] || $SUDO apt-get install -y -qq --no-install-recommends "${real[@]}"
+  [ ${#real[@]} -eq 0 ] || $SUDO apt-get install -y -qq --no-install-recommends "${real[@]}" </dev/null
 fi
 
 if [ "$need_src" = 1 ]; then
   tmp=$(mktemp -d)
-  (cd "$tmp" && apt-get source -qq --download-only cjson >/dev/null && dpkg-source -x --no-check ./*.dsc src >/dev/null)
+  (cd "$tmp" && apt-get source -qq --download-only cjson </dev/null >/dev/null && dpkg-source -x --no-check ./*.dsc src >/dev/null)
   mkdir -p "$here/.deps/unity"
   cp -r "$tmp/src/tests/unity/src" "$here/.deps/unity/"
   rm -rf "$tmp"

@@ -24,6 +24,7 @@ extern "C" {
 #include "../common/plot.hpp"
 #include "../common/progress.hpp"
 #include "../common/registry.hpp"
+#include "../common/scenario_dir.hpp"
 #include "image.hpp"
 #include "methods.hpp"
 #include "metrics.hpp"
@@ -298,7 +299,7 @@ class RadarHandler : public KindHandler {
 public:
     std::string default_scenario() const override
     {
-        return std::string(PFT_HOST_SCENARIO_DIR) + "/radar/air_turn_6db.json";
+        return scenario_file("radar/air_turn_6db.json");
     }
 
     int sim(const Options &o) override

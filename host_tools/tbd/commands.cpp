@@ -22,6 +22,7 @@ extern "C" {
 #include "../common/plot.hpp"
 #include "../common/progress.hpp"
 #include "../common/registry.hpp"
+#include "../common/scenario_dir.hpp"
 #include "../common/sequence_input.hpp"
 #include "metrics.hpp"
 #include "overlay.hpp"
@@ -392,7 +393,7 @@ class TbdHandler : public KindHandler {
 public:
     std::string default_scenario() const override
     {
-        return std::string(PFT_HOST_SCENARIO_DIR) + "/tbd/two_case1.json";
+        return scenario_file("tbd/two_case1.json");
     }
 
     int sim(const Options &o) override

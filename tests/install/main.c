@@ -1,6 +1,8 @@
-/* Uses the installed headers and library: a workspace-sized resampling round trip. */
+/* Uses the installed headers and libraries: a resampling round trip (library) and a refused
+ * call into the memory port (port library). Prints the number type it was compiled for. */
 #include <stdio.h>
 #include "pft/pft.h"
+#include "pft/pft_port_mem.h"
 
 int main(void)
 {
@@ -11,6 +13,10 @@ int main(void)
     if (pft_resample(PFT_RESAMPLE_SYSTEMATIC, w, 4, idx, 8, &rng, NULL, 0) != PFT_OK) {
         return 1;
     }
-    printf("pftrack %s (%s): idx[7] = %u\n", PFT_VERSION_STRING, PFT_LIBRARY_NAME, (unsigned)idx[7]);
+    if (pft_mem_source_init(NULL, NULL) == PFT_OK) {
+        return 3;
+    }
+    printf("pftrack %s (%s, numeric %s): idx[7] = %u\n", PFT_VERSION_STRING, PFT_LIBRARY_NAME,
+           PFT_NUMERIC_NAME, (unsigned)idx[7]);
     return idx[7] == 3u ? 0 : 2;
 }

@@ -38,18 +38,28 @@ extern "C" {
 /* ------------------------------------------------------------------------------------------ */
 #ifdef PFT_NUMERIC_Q16
 
+/** The library's real number: Q16.16 in int32_t (q16 build) or float (float build). */
 typedef int32_t pft_real_t;
+/** A particle weight: unsigned Q2.30 in uint32_t, 1.0 = PFT_W_ONE (q16) or float. */
 typedef uint32_t pft_weight_t;
+/** Sum of weights: uint64_t (q16, cannot overflow for PFT_CFG_MAX_PARTICLES) or float. */
 typedef uint64_t pft_wacc_t;
 
+/** Fraction bits of pft_real_t in the q16 build (no float counterpart). */
 #define PFT_Q_FRAC 16
+/** 1.0 as a pft_real_t. */
 #define PFT_REAL_ONE ((pft_real_t)65536)
+/** Largest pft_real_t (q16: 32768 - 2^-16; float: FLT_MAX); helpers saturate to it. */
 #define PFT_REAL_MAX ((pft_real_t)INT32_MAX)
-#define PFT_REAL_MIN ((pft_real_t)(-INT32_MAX)) /* symmetric: -MIN is representable */
-#define PFT_REAL_EPS ((pft_real_t)1)            /* one LSB */
+/** Smallest pft_real_t, -PFT_REAL_MAX (symmetric, so negation and abs cannot overflow). */
+#define PFT_REAL_MIN ((pft_real_t)(-INT32_MAX))
+/** Resolution: one LSB, 2^-16 (q16); FLT_EPSILON (float). */
+#define PFT_REAL_EPS ((pft_real_t)1)
 /** Compile-time constant from a decimal literal, rounded to nearest (folded by the compiler). */
 #define PFT_C(x) ((pft_real_t)((x) >= 0 ? (x) * 65536.0 + 0.5 : (x) * 65536.0 - 0.5))
+/** Weight 1.0: 2^30 (q16) or 1.0f (float); normalised weights sum to it. */
 #define PFT_W_ONE ((pft_weight_t)1073741824u)
+/** Name of the build's number type as a string: "q16" or "float". */
 #define PFT_NUMERIC_NAME "q16"
 
 static inline pft_real_t pft_sat64_(int64_t v)
@@ -57,9 +67,13 @@ static inline pft_real_t pft_sat64_(int64_t v)
     return v > (int64_t)INT32_MAX ? PFT_REAL_MAX
          : v < -(int64_t)INT32_MAX ? PFT_REAL_MIN : (pft_real_t)v;
 }
+/** a + b, saturating. */
 static inline pft_real_t pft_add(pft_real_t a, pft_real_t b) { return pft_sat64_((int64_t)a + b); }
+/** a - b, saturating. */
 static inline pft_real_t pft_sub(pft_real_t a, pft_real_t b) { return pft_sat64_((int64_t)a - b); }
+/** -a (never overflows: the range is symmetric). */
 static inline pft_real_t pft_neg(pft_real_t a) { return a == INT32_MIN ? PFT_REAL_MAX : -a; }
+/** |a| (never overflows). */
 static inline pft_real_t pft_abs(pft_real_t a) { return a < 0 ? pft_neg(a) : a; }
 /** a*b rounded to nearest (ties away from zero), saturating. */
 static inline pft_real_t pft_mul(pft_real_t a, pft_real_t b)
@@ -76,6 +90,7 @@ static inline pft_real_t pft_mul_i(pft_real_t a, int32_t k) { return pft_sat64_(
  *  outside the domain and behaves like a division by zero: +-PFT_REAL_MAX by the sign of a,
  *  0 for a == 0 (same in both builds). */
 pft_real_t pft_div_i(pft_real_t a, int32_t k);
+/** Integer to real, saturating (q16: |i| above 32767 saturates). */
 static inline pft_real_t pft_from_int(int32_t i) { return pft_sat64_((int64_t)i * 65536); }
 /** floor(a) as an integer. */
 static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)(a >> 16); }
@@ -153,12 +168,16 @@ static inline float pft_weight_to_float(pft_weight_t w) { return w; }
 #endif /* PFT_NUMERIC_Q16 */
 /* ------------------------------------------------------------------------------------------ */
 
+/** The smaller of a and b. */
 static inline pft_real_t pft_min(pft_real_t a, pft_real_t b) { return a < b ? a : b; }
+/** The larger of a and b. */
 static inline pft_real_t pft_max(pft_real_t a, pft_real_t b) { return a > b ? a : b; }
+/** a limited to [lo, hi] (lo <= hi). */
 static inline pft_real_t pft_clamp(pft_real_t a, pft_real_t lo, pft_real_t hi)
 {
     return a < lo ? lo : (a > hi ? hi : a);
 }
+/** a * a, saturating. */
 static inline pft_real_t pft_sq(pft_real_t a) { return pft_mul(a, a); }
 
 /*
@@ -173,12 +192,19 @@ static inline pft_real_t pft_sq(pft_real_t a) { return pft_mul(a, a); }
  * The bounds in LSB are documented in docs/fixed_point.md.
  */
 #ifdef PFT_NUMERIC_Q16
+/** 1/a; a == 0 saturates. */
 pft_real_t pft_recip(pft_real_t a);
+/** Square root of a >= 0 (a negative a gives 0). */
 pft_real_t pft_sqrt(pft_real_t a);
+/** exp(a); saturates to PFT_REAL_MAX above ln(32768), tends to 0 below -11.1 (q16). */
 pft_real_t pft_exp(pft_real_t a);
+/** Natural logarithm of a > 0; a <= 0 gives PFT_REAL_MIN. */
 pft_real_t pft_log(pft_real_t a);
+/** atan2(y, x) in (-pi, pi]; atan2(0, 0) = 0. */
 pft_real_t pft_atan2(pft_real_t y, pft_real_t x);
+/** sin(a), any argument (reduced modulo 2 pi). */
 pft_real_t pft_sin(pft_real_t a);
+/** cos(a), any argument (reduced modulo 2 pi). */
 pft_real_t pft_cos(pft_real_t a);
 #else
 static inline pft_real_t pft_recip(pft_real_t a) { return pft_div(1.0f, a); }
@@ -190,12 +216,16 @@ static inline pft_real_t pft_sin(pft_real_t a) { return sinf(a); }
 static inline pft_real_t pft_cos(pft_real_t a) { return cosf(a); }
 #endif
 
+/** pi as a pft_real_t. */
 #define PFT_PI PFT_C(3.14159265358979)
+/** 2 pi as a pft_real_t. */
 #define PFT_TWO_PI PFT_C(6.28318530717959)
 
 /* Pixel conversions: U8 and U16 raw values to reals, with an optional gain/offset applied by
  * the caller (pft_mul/pft_add). Values up to 32767 convert exactly in q16. */
+/** U8 pixel value to real (exact). */
 static inline pft_real_t pft_from_u8(uint8_t v) { return pft_from_int((int32_t)v); }
+/** U16 pixel value to real (q16: exact up to 32767, saturating above). */
 static inline pft_real_t pft_from_u16(uint16_t v) { return pft_from_int((int32_t)v); }
 /** F32 pixel to real. float build: the identity. q16 build: decodes the IEEE bits with integer
  *  operations only (no FPU or soft-float helper needed), rounds to nearest (ties away from

@@ -27,11 +27,12 @@
 extern "C" {
 #endif
 
+/** Resampling scheme of pft_resample. */
 typedef enum {
-    PFT_RESAMPLE_SYSTEMATIC = 0,
-    PFT_RESAMPLE_STRATIFIED = 1,
-    PFT_RESAMPLE_RESIDUAL = 2,
-    PFT_RESAMPLE_MULTINOMIAL = 3
+    PFT_RESAMPLE_SYSTEMATIC = 0,  /**< one draw: targets W (k + u0) / N */
+    PFT_RESAMPLE_STRATIFIED = 1,  /**< N draws: targets W (k + u_k) / N */
+    PFT_RESAMPLE_RESIDUAL = 2,    /**< floor(N w_i / W) copies, then systematic over the residuals (needs scratch) */
+    PFT_RESAMPLE_MULTINOMIAL = 3  /**< N draws: targets W u over the sorted uniforms */
 } pft_resample_scheme_t;
 
 /** Scratch bytes a scheme needs for M inputs and N outputs: M * sizeof(pft_weight_t) for

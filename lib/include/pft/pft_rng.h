@@ -15,10 +15,11 @@
 extern "C" {
 #endif
 
+/** Generator state: one per instance (no global state); seed it with pft_rng_seed. */
 typedef struct {
-    uint32_t s[4];
+    uint32_t s[4];      /**< xoshiro128** state */
     pft_real_t spare;   /**< cached second Box-Muller value */
-    uint8_t has_spare;
+    uint8_t has_spare;  /**< 1 when spare holds an unused Gaussian */
 } pft_rng_t;
 
 /** Seeds the generator (any seed, 0 included): two splitmix64 outputs a, b give the state

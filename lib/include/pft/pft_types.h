@@ -66,7 +66,10 @@ typedef struct {
 /**
  * Checks a frame descriptor: non-NULL data, known format, stride large enough,
  * and, when width/height are non-zero, the exact expected size.
- * @param fmt_mask bit (1u << format) set for every accepted format.
+ * @param frame the descriptor to check.
+ * @param width expected width in pixels, 0 for any.
+ * @param height expected height in rows, 0 for any.
+ * @param fmt_mask bit (1u << format) set for every accepted format (PFT_FMT_BIT).
  * Returns PFT_ERR_INVAL for a NULL frame or data, PFT_ERR_FORMAT otherwise.
  * Does not look at pixel values (see pft_frame_check_finite for F32 frames).
  */
@@ -82,6 +85,7 @@ static inline const uint8_t *pft_frame_row(const pft_frame_t *f, uint32_t y)
     return (const uint8_t *)f->data + (size_t)y * f->stride_bytes;
 }
 
+/** Bit of pixel format f in a format mask (pft_frame_check's fmt_mask). */
 #define PFT_FMT_BIT(f) (1u << (unsigned)(f))
 
 #ifdef __cplusplus

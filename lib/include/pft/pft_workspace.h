@@ -20,13 +20,16 @@
 extern "C" {
 #endif
 
+/** Alignment of every buffer carved from a workspace (bytes). */
 #define PFT_WS_ALIGN 8u
+/** bytes rounded up to a multiple of PFT_WS_ALIGN (a constant expression for constants). */
 #define PFT_WS_ROUND(bytes) ((((size_t)(bytes)) + (PFT_WS_ALIGN - 1u)) & ~(size_t)(PFT_WS_ALIGN - 1u))
 
+/** A workspace being carved: set up by pft_ws_init, consumed by pft_ws_take. */
 typedef struct {
-    uint8_t *base;
-    size_t len;
-    size_t used;
+    uint8_t *base; /**< aligned start of the usable buffer (NULL: empty workspace) */
+    size_t len;    /**< usable bytes from base */
+    size_t used;   /**< bytes already carved */
     bool short_; /**< set once any carve failed */
 } pft_ws_t;
 
