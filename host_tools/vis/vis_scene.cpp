@@ -107,7 +107,7 @@ std::string find_data_file(const std::string &name)
         if (fs::exists(p))
             return found(p.string());
         if (fs::exists(gz)) {
-            fs::path out = fs::temp_directory_path() / "pft_vis_data";
+            fs::path out = fs::temp_directory_path() / "pft_tsa_data";
             fs::create_directories(out);
             out /= name;
             if (!fs::exists(out)) {

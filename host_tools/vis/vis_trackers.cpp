@@ -10,7 +10,7 @@
 #endif
 
 extern "C" {
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 }
 
 #include "../common/errors.hpp"
@@ -35,13 +35,13 @@ PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, con
     p.lik_lambda = f.number_in("lik_lambda", p.lik_lambda, 0, 1000);
     p.theta_u = f.number_in("theta_u", p.theta_u, 0, 1);
     p.update_rho_min = f.number_in("update_rho_min", p.update_rho_min, 0, 1);
-    p.fit_k = (int)f.integer_in("fit_k", p.fit_k, 1, PFT_MOTION_MAX_K);
+    p.fit_k = (int)f.integer_in("fit_k", p.fit_k, 1, PFT_TSA_MOTION_MAX_K);
     p.fit_sigma = f.number_in("fit_sigma", p.fit_sigma, 0.1, 100);
     p.fit_a_max = f.number_in("fit_a_max", p.fit_a_max, 0, 1000);
     p.fit_v_max = f.number_in("fit_v_max", p.fit_v_max, 0, 1000);
-    p.snake_points = (int)f.integer_in("snake_points", p.snake_points, PFT_VIS_MIN_POINTS, PFT_VIS_MAX_POINTS);
+    p.snake_points = (int)f.integer_in("snake_points", p.snake_points, PFT_TSA_MIN_POINTS, PFT_TSA_MAX_POINTS);
     p.init_passes = (int)f.integer_in("init_passes", p.init_passes, 0, 255);
-    p.max_target = (int)f.integer_in("max_target", p.max_target, 8, PFT_VIS_MAX_SIDE);
+    p.max_target = (int)f.integer_in("max_target", p.max_target, 8, PFT_TSA_MAX_SIDE);
     p.seed = (uint64_t)f.integer_in("seed", (int64_t)p.seed, 0, INT64_MAX);
     return p;
 }
@@ -60,12 +60,12 @@ class PftTracker : public Tracker {
 public:
     PftTracker(std::string label, const PftParams &p, int w, int h) : label_(std::move(label)), p_(p)
     {
-        pft_vis_config_default(&cfg_, (uint16_t)w, (uint16_t)h);
+        pft_tsa_config_default(&cfg_, (uint16_t)w, (uint16_t)h);
         cfg_.max_target_w = (uint16_t)p.max_target;
         cfg_.max_target_h = (uint16_t)p.max_target;
-        pft_vis_snake_params_default(&cfg_.snake, cfg_.max_target_w, cfg_.max_target_h);
+        pft_tsa_snake_params_default(&cfg_.snake, cfg_.max_target_w, cfg_.max_target_h);
         cfg_.n_particles = (uint32_t)p.particles;
-        cfg_.motion = p.motion == "tsa" ? PFT_MOTION_TSA : (p.motion == "ts" ? PFT_MOTION_TS : PFT_MOTION_NCV);
+        cfg_.motion = p.motion == "tsa" ? PFT_TSA_MOTION_TSA : (p.motion == "ts" ? PFT_TSA_MOTION_TS : PFT_TSA_MOTION_NCV);
         cfg_.beta0 = to_real(p.beta0);
         cfg_.q = to_real(p.q);
         cfg_.pos_sd = to_real(p.pos_sd);
@@ -80,12 +80,12 @@ public:
         cfg_.snake_points = (uint8_t)p.snake_points;
         cfg_.init_passes = (uint8_t)p.init_passes;
         cfg_.seed = p.seed;
-        if (pft_vis_config_check(&cfg_) != PFT_OK)
+        if (pft_tsa_config_check(&cfg_) != PFT_OK)
             throw InputError("tracker " + label_ + ": invalid pftrack configuration");
-        work_.resize(pft_vis_workspace_size(&cfg_));
-        pft_status_t st = pft_vis_init(&t_, &cfg_, work_.data(), work_.size());
+        work_.resize(pft_tsa_workspace_size(&cfg_));
+        pft_status_t st = pft_tsa_init(&t_, &cfg_, work_.data(), work_.size());
         if (st != PFT_OK)
-            throw InputError("tracker " + label_ + ": pft_vis_init: " + pft_status_str(st));
+            throw InputError("tracker " + label_ + ": pft_tsa_init: " + pft_status_str(st));
     }
     std::string name() const override { return label_; }
     std::size_t memory_bytes() const override { return work_.size() + sizeof t_; }
@@ -103,15 +103,15 @@ public:
 
     void init(const cv::Mat &bgr, const std::vector<cv::Point> &poly) override
     {
-        std::vector<pft_vis_pt_t> pp;
+        std::vector<pft_tsa_pt_t> pp;
         cv::Rect br = cv::boundingRect(poly);
         for (auto &q : poly)
             pp.push_back({(int16_t)q.x, (int16_t)q.y});
         pft_frame_t f = wrap(bgr);
-        pft_status_t st = pft_vis_start(&t_, &f, pp.data(), (uint32_t)pp.size());
+        pft_status_t st = pft_tsa_start(&t_, &f, pp.data(), (uint32_t)pp.size());
         if (st != PFT_OK)
-            throw InputError("tracker " + label_ + ": pft_vis_start: " + pft_status_str(st));
-        const pft_vis_estimate_t *e = pft_vis_estimate(&t_);
+            throw InputError("tracker " + label_ + ": pft_tsa_start: " + pft_status_str(st));
+        const pft_tsa_estimate_t *e = pft_tsa_estimate(&t_);
         // the kernel origin is the contour's area centroid: report centres relative to the
         // initial box centre so they compare with box-centre ground truth
         off_ = cv::Point2d(from_real(e->x) - (br.x + (br.width - 1) / 2.0), from_real(e->y) - (br.y + (br.height - 1) / 2.0));
@@ -120,18 +120,18 @@ public:
     void update(const cv::Mat &bgr, TrackOut &out) override
     {
         pft_frame_t f = wrap(bgr);
-        pft_status_t st = pft_vis_update(&t_, &f);
+        pft_status_t st = pft_tsa_update(&t_, &f);
         if (st != PFT_OK)
-            throw InputError("tracker " + label_ + ": pft_vis_update: " + pft_status_str(st));
+            throw InputError("tracker " + label_ + ": pft_tsa_update: " + pft_status_str(st));
         fill(out);
     }
 
     void fill(TrackOut &out) const
     {
-        const pft_vis_estimate_t *e = pft_vis_estimate(&t_);
+        const pft_tsa_estimate_t *e = pft_tsa_estimate(&t_);
         out.center = cv::Point2d(from_real(e->x), from_real(e->y)) - off_;
         out.box = cv::Rect2d(e->box_x0, e->box_y0, e->box_x1 - e->box_x0 + 1, e->box_y1 - e->box_y0 + 1);
-        out.ok = e->state == PFT_VIS_TRACKING || e->state == PFT_VIS_PIONEER_ONLY;
+        out.ok = e->state == PFT_TSA_TRACKING || e->state == PFT_TSA_PIONEER_ONLY;
         out.beta = from_real(e->beta);
         out.rho = from_real(e->rho);
         out.rho_pioneer = from_real(e->rho_pioneer);
@@ -139,13 +139,13 @@ public:
         out.alive = (int)e->n_alive;
         out.template_updated = e->template_updated;
         out.pioneer = cv::Point2d(from_real(e->pioneer_x), from_real(e->pioneer_y));
-        pft_vis_pt_t c[PFT_VIS_MAX_POINTS];
-        uint32_t n = pft_vis_contour(&t_, c, PFT_VIS_MAX_POINTS);
+        pft_tsa_pt_t c[PFT_TSA_MAX_POINTS];
+        uint32_t n = pft_tsa_contour(&t_, c, PFT_TSA_MAX_POINTS);
         out.contour.clear();
         for (uint32_t i = 0; i < n; ++i)
             out.contour.emplace_back(c[i].x, c[i].y);
         const pft_real_t *x, *y, *rho;
-        uint32_t m = pft_vis_particles(&t_, &x, &y, &rho);
+        uint32_t m = pft_tsa_particles(&t_, &x, &y, &rho);
         out.particles.clear();
         for (uint32_t i = 0; i < m; ++i)
             out.particles.emplace_back((float)from_real(x[i]), (float)from_real(y[i]));
@@ -154,8 +154,8 @@ public:
 private:
     std::string label_;
     PftParams p_;
-    pft_vis_config_t cfg_{};
-    pft_vis_t t_{};
+    pft_tsa_config_t cfg_{};
+    pft_tsa_t t_{};
     std::vector<uint8_t> work_;
     cv::Point2d off_;
 };

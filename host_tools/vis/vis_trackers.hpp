@@ -1,5 +1,5 @@
 // Trackers behind one interface for the "vis" kind: pftrack's TSA-AK and its NCV / TS
-// baselines (lib/include/pft/pft_vision.h), and OpenCV's KCF, CSRT, MOSSE and MIL.
+// baselines (lib/include/pft/pft_tsa.h), and OpenCV's KCF, CSRT, MOSSE and MIL.
 #pragma once
 #include <memory>
 #include <string>

@@ -12,7 +12,7 @@
 #define PFT_TSA_VECTORS_SPEC_H
 #include <string.h>
 #include "pft/pft.h"
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 #include "core_vectors_spec.h"
 
 #define TSA_GV_W 64
@@ -118,7 +118,7 @@ static inline pft_frame_t tsa_gv_frame(const uint8_t *data, pft_pixfmt_t fmt)
 }
 
 /* The initial box of the target at frame k: one pixel around it. */
-static inline void tsa_gv_box(uint32_t k, pft_vis_pt_t *b)
+static inline void tsa_gv_box(uint32_t k, pft_tsa_pt_t *b)
 {
     int32_t cx, cy;
     tsa_gv_truth(k, &cx, &cy);
@@ -130,7 +130,7 @@ static inline void tsa_gv_box(uint32_t k, pft_vis_pt_t *b)
     b[3].x = (int16_t)x0; b[3].y = (int16_t)y1;
 }
 
-static inline int32_t tsa_gv_hash_pts(const pft_vis_pt_t *p, uint32_t n)
+static inline int32_t tsa_gv_hash_pts(const pft_tsa_pt_t *p, uint32_t n)
 {
     uint32_t h = TSA_GV_HASH0;
     for (uint32_t i = 0; i < n; ++i) {
@@ -140,16 +140,16 @@ static inline int32_t tsa_gv_hash_pts(const pft_vis_pt_t *p, uint32_t n)
     return (int32_t)h;
 }
 
-static inline int32_t tsa_gv_hash_hist(const pft_vis_hist_t *hh)
+static inline int32_t tsa_gv_hash_hist(const pft_tsa_hist_t *hh)
 {
     uint32_t h = TSA_GV_HASH0;
-    for (uint32_t b = 0; b < PFT_VIS_BINS; ++b) {
+    for (uint32_t b = 0; b < PFT_TSA_BINS; ++b) {
         h = tsa_gv_hash(h, (int32_t)hh->bin[b]);
     }
     return (int32_t)tsa_gv_hash(h, (int32_t)hh->total);
 }
 
-static inline int32_t tsa_gv_hash_kernel(const pft_vis_kernel_t *k)
+static inline int32_t tsa_gv_hash_kernel(const pft_tsa_kernel_t *k)
 {
     uint32_t h = TSA_GV_HASH0;
     for (uint32_t i = 0; i < k->n; ++i) {
@@ -164,22 +164,22 @@ static inline int32_t tsa_gv_hash_kernel(const pft_vis_kernel_t *k)
 static inline void tsa_gv_blocks(tsa_gv_results_t *r, const uint8_t *rgb0, const uint8_t *grey0,
                                  const uint8_t *rgb5)
 {
-    static pft_vis_kpix_t kpix[TSA_GV_NKERN][TSA_GV_MAXT * TSA_GV_MAXT];
+    static pft_tsa_kpix_t kpix[TSA_GV_NKERN][TSA_GV_MAXT * TSA_GV_MAXT];
     static uint8_t bgr0[TSA_GV_W * TSA_GV_H * 3];
-    static uint8_t snake_work[PFT_VIS_SNAKE_WORK_BYTES(TSA_GV_MAXT, TSA_GV_MAXT, 6)];
+    static uint8_t snake_work[PFT_TSA_SNAKE_WORK_BYTES(TSA_GV_MAXT, TSA_GV_MAXT, 6)];
     int32_t cross[TSA_GV_PTS];
-    pft_vis_kernel_t k[TSA_GV_NKERN];
-    pft_vis_pt_t origin[TSA_GV_NKERN];
-    pft_vis_pt_t box[4];
+    pft_tsa_kernel_t k[TSA_GV_NKERN];
+    pft_tsa_pt_t origin[TSA_GV_NKERN];
+    pft_tsa_pt_t box[4];
     /* a non-convex polygon (an L with a slanted edge) */
-    static const pft_vis_pt_t ell[7] = {{20, 8}, {34, 8}, {34, 14}, {27, 16}, {27, 26}, {20, 26}, {18, 17}};
-    const pft_vis_pt_t *polys[TSA_GV_NKERN] = {box, ell};
+    static const pft_tsa_pt_t ell[7] = {{20, 8}, {34, 8}, {34, 14}, {27, 16}, {27, 26}, {20, 26}, {18, 17}};
+    const pft_tsa_pt_t *polys[TSA_GV_NKERN] = {box, ell};
     const uint32_t npoly[TSA_GV_NKERN] = {4u, 7u};
     pft_frame_t f0 = tsa_gv_frame(rgb0, PFT_PIX_RGB888);
     pft_frame_t fb = tsa_gv_frame(bgr0, PFT_PIX_BGR888);
     pft_frame_t fg = tsa_gv_frame(grey0, PFT_PIX_U8);
     pft_frame_t f5 = tsa_gv_frame(rgb5, PFT_PIX_RGB888);
-    pft_vis_hist_t h[TSA_GV_NHIST];
+    pft_tsa_hist_t h[TSA_GV_NHIST];
 
     tsa_gv_box(0u, box);
     for (uint32_t i = 0; i < (uint32_t)(TSA_GV_W * TSA_GV_H); ++i) {
@@ -191,7 +191,7 @@ static inline void tsa_gv_blocks(tsa_gv_results_t *r, const uint8_t *rgb0, const
         memset(&k[j], 0, sizeof k[j]);
         k[j].pix = kpix[j];
         k[j].cap = TSA_GV_MAXT * TSA_GV_MAXT;
-        r->kern[j][0] = (int32_t)pft_vis_kernel_build(&k[j], polys[j], npoly[j], (uint16_t)(16u + 8u * j),
+        r->kern[j][0] = (int32_t)pft_tsa_kernel_build(&k[j], polys[j], npoly[j], (uint16_t)(16u + 8u * j),
                                                       cross, &origin[j]);
         r->kern[j][1] = (int32_t)k[j].n;
         r->kern[j][2] = (int32_t)k[j].sum;
@@ -217,45 +217,45 @@ static inline void tsa_gv_blocks(tsa_gv_results_t *r, const uint8_t *rgb0, const
                 cx = -30; /* wholly outside */
             }
             memset(&h[i], 0, sizeof h[i]);
-            r->hist[i][0] = (int32_t)pft_vis_hist(fr[i], &k[kj[i]], cx, cy, &h[i]);
+            r->hist[i][0] = (int32_t)pft_tsa_hist(fr[i], &k[kj[i]], cx, cy, &h[i]);
             r->hist[i][1] = (int32_t)h[i].total;
             r->hist[i][2] = tsa_gv_hash_hist(&h[i]);
         }
     }
-    r->rho[0] = PFT_GV_RAW(pft_vis_bhattacharyya(&h[0], &h[0]));
-    r->rho[1] = PFT_GV_RAW(pft_vis_bhattacharyya(&h[0], &h[1]));
-    r->rho[2] = PFT_GV_RAW(pft_vis_bhattacharyya(&h[0], &h[2]));
-    r->rho[3] = PFT_GV_RAW(pft_vis_bhattacharyya(&h[0], &h[5]));
-    r->rho[4] = PFT_GV_RAW(pft_vis_bhattacharyya(&h[6], &h[1]));
+    r->rho[0] = PFT_GV_RAW(pft_tsa_bhattacharyya(&h[0], &h[0]));
+    r->rho[1] = PFT_GV_RAW(pft_tsa_bhattacharyya(&h[0], &h[1]));
+    r->rho[2] = PFT_GV_RAW(pft_tsa_bhattacharyya(&h[0], &h[2]));
+    r->rho[3] = PFT_GV_RAW(pft_tsa_bhattacharyya(&h[0], &h[5]));
+    r->rho[4] = PFT_GV_RAW(pft_tsa_bhattacharyya(&h[6], &h[1]));
     {
-        pft_vis_pt_t pts[TSA_GV_PTS];
+        pft_tsa_pt_t pts[TSA_GV_PTS];
         uint8_t flags[TSA_GV_PTS];
-        pft_vis_snake_params_t prm;
+        pft_tsa_snake_params_t prm;
         uint32_t done = 0u;
-        r->resample[0][0] = (int32_t)pft_vis_poly_resample(box, 4u, pts, TSA_GV_PTS);
+        r->resample[0][0] = (int32_t)pft_tsa_poly_resample(box, 4u, pts, TSA_GV_PTS);
         r->resample[0][1] = tsa_gv_hash_pts(pts, TSA_GV_PTS);
-        pft_vis_snake_params_default(&prm, TSA_GV_MAXT, TSA_GV_MAXT);
-        r->snake[0][0] = (int32_t)pft_vis_snake(&f0, pts, TSA_GV_PTS, &prm, 30u, flags, snake_work,
+        pft_tsa_snake_params_default(&prm, TSA_GV_MAXT, TSA_GV_MAXT);
+        r->snake[0][0] = (int32_t)pft_tsa_snake(&f0, pts, TSA_GV_PTS, &prm, 30u, flags, snake_work,
                                                 sizeof snake_work, &done);
         r->snake[0][1] = (int32_t)done;
         r->snake[0][2] = tsa_gv_hash_pts(pts, TSA_GV_PTS);
-        r->resample[1][0] = (int32_t)pft_vis_poly_resample(ell, 7u, pts, 17u);
+        r->resample[1][0] = (int32_t)pft_tsa_poly_resample(ell, 7u, pts, 17u);
         r->resample[1][1] = tsa_gv_hash_pts(pts, 17u);
         prm.alpha = PFT_GV_REAL(32768);   /* 0.5 */
         prm.kb = PFT_GV_REAL(-13107);     /* -0.2 */
         prm.corner_c = PFT_GV_REAL(6554); /* 0.1 */
         prm.corner_g = 40u;
         done = 0u;
-        r->snake[1][0] = (int32_t)pft_vis_snake(&f5, pts, 17u, &prm, 12u, flags, snake_work,
+        r->snake[1][0] = (int32_t)pft_tsa_snake(&f5, pts, 17u, &prm, 12u, flags, snake_work,
                                                 sizeof snake_work, &done);
         r->snake[1][1] = (int32_t)done;
         r->snake[1][2] = tsa_gv_hash_pts(pts, 17u);
     }
     for (uint32_t i = 0; i < TSA_GV_NDIST; ++i) {
         const int32_t x = 14 + (int32_t)((i * 7u) % 26u), y = 4 + (int32_t)((i * 5u) % 27u);
-        r->poly[i][0] = (int32_t)pft_vis_poly_dist_q4(ell, 7u, x, y);
-        r->poly[i][1] = pft_vis_poly_inside(ell, 7u, x, y) ? 1 : 0;
-        r->poly[i][2] = (int32_t)pft_vis_poly_area2(i % 2u ? ell : box, i % 2u ? 7u : 4u);
+        r->poly[i][0] = (int32_t)pft_tsa_poly_dist_q4(ell, 7u, x, y);
+        r->poly[i][1] = pft_tsa_poly_inside(ell, 7u, x, y) ? 1 : 0;
+        r->poly[i][2] = (int32_t)pft_tsa_poly_area2(i % 2u ? ell : box, i % 2u ? 7u : 4u);
     }
 }
 
@@ -264,10 +264,10 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
     static const int32_t betas[TSA_GV_NBETA] = {0, 19661, 65470, 65536, 163840, 393216};
     const pft_real_t q = PFT_GV_REAL(266731); /* 4.07 */
     for (uint32_t i = 0; i < TSA_GV_NBETA; ++i) {
-        pft_motion_free_t c;
+        pft_tsa_motion_free_t c;
         pft_real_t x = PFT_GV_REAL(10 * 65536), v = PFT_GV_REAL(65536);
         memset(&c, 0, sizeof c);
-        r->coef[i][0] = (int32_t)pft_motion_free_coef(&c, PFT_GV_REAL(betas[i]), q);
+        r->coef[i][0] = (int32_t)pft_tsa_motion_free_coef(&c, PFT_GV_REAL(betas[i]), q);
         r->coef[i][1] = PFT_GV_RAW(c.beta);
         r->coef[i][2] = PFT_GV_RAW(c.phi12);
         r->coef[i][3] = PFT_GV_RAW(c.phi22);
@@ -279,7 +279,7 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
         r->coef[i][9] = PFT_GV_RAW(c.l11);
         r->coef[i][10] = PFT_GV_RAW(c.l21);
         r->coef[i][11] = PFT_GV_RAW(c.l22);
-        pft_motion_free_step(&c, &x, &v, PFT_GV_REAL(2 * 65536), PFT_GV_REAL(45875), PFT_GV_REAL(-85197));
+        pft_tsa_motion_free_step(&c, &x, &v, PFT_GV_REAL(2 * 65536), PFT_GV_REAL(45875), PFT_GV_REAL(-85197));
         r->step[i][0] = PFT_GV_RAW(x);
         r->step[i][1] = PFT_GV_RAW(v);
     }
@@ -289,7 +289,7 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
         static const int32_t piw[10] = {65536, 32768, 65536, 0, 65536, 49152, 65536, 16384, 65536, 65536};
         static const int32_t lone[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 65536};
         pft_real_t o[10], pi[10], pz[10];
-        pft_motion_fit_t f[TSA_GV_NFIT];
+        pft_tsa_motion_fit_t f[TSA_GV_NFIT];
         for (int32_t i = 0; i < 10; ++i) {
             const int32_t t = i - 9;
             o[i] = PFT_GV_REAL(100 * 65536 + 3 * 65536 * t + 26214 * t * t + noise[i]);
@@ -297,13 +297,13 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
             pz[i] = PFT_GV_REAL(lone[i]);
         }
         memset(f, 0, sizeof f);
-        r->fit[0][0] = (int32_t)pft_motion_fit(o, NULL, 10u, PFT_GV_REAL(5 * 65536), 2u, &f[0]);
-        r->fit[1][0] = (int32_t)pft_motion_fit(o, NULL, 10u, PFT_GV_REAL(5 * 65536), 1u, &f[1]);
-        r->fit[2][0] = (int32_t)pft_motion_fit(o, pi, 10u, PFT_GV_REAL(163840), 2u, &f[2]);
-        r->fit[3][0] = (int32_t)pft_motion_fit(&o[8], NULL, 2u, PFT_GV_REAL(5 * 65536), 2u, &f[3]);
-        r->fit[4][0] = (int32_t)pft_motion_fit(&o[9], NULL, 1u, PFT_GV_REAL(5 * 65536), 2u, &f[4]);
-        r->fit[5][0] = (int32_t)pft_motion_fit(o, pz, 10u, PFT_GV_REAL(5 * 65536), 2u, &f[5]);
-        r->fit[6][0] = (int32_t)pft_motion_fit(&o[4], NULL, 6u, PFT_GV_REAL(98304), 2u, &f[6]);
+        r->fit[0][0] = (int32_t)pft_tsa_motion_fit(o, NULL, 10u, PFT_GV_REAL(5 * 65536), 2u, &f[0]);
+        r->fit[1][0] = (int32_t)pft_tsa_motion_fit(o, NULL, 10u, PFT_GV_REAL(5 * 65536), 1u, &f[1]);
+        r->fit[2][0] = (int32_t)pft_tsa_motion_fit(o, pi, 10u, PFT_GV_REAL(163840), 2u, &f[2]);
+        r->fit[3][0] = (int32_t)pft_tsa_motion_fit(&o[8], NULL, 2u, PFT_GV_REAL(5 * 65536), 2u, &f[3]);
+        r->fit[4][0] = (int32_t)pft_tsa_motion_fit(&o[9], NULL, 1u, PFT_GV_REAL(5 * 65536), 2u, &f[4]);
+        r->fit[5][0] = (int32_t)pft_tsa_motion_fit(o, pz, 10u, PFT_GV_REAL(5 * 65536), 2u, &f[5]);
+        r->fit[6][0] = (int32_t)pft_tsa_motion_fit(&o[4], NULL, 6u, PFT_GV_REAL(98304), 2u, &f[6]);
         for (uint32_t i = 0; i < TSA_GV_NFIT; ++i) {
             r->fit[i][1] = PFT_GV_RAW(f[i].s);
             r->fit[i][2] = PFT_GV_RAW(f[i].v);
@@ -316,8 +316,8 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
             static const int32_t amax[TSA_GV_NBOUND] = {32768, 13107, 0};
             static const int32_t vmax[TSA_GV_NBOUND] = {12 * 65536, 2 * 65536, 0};
             for (uint32_t i = 0; i < TSA_GV_NBOUND; ++i) {
-                pft_motion_fit_t g = f[0];
-                pft_motion_fit_bound(&g, PFT_GV_REAL(amax[i]), PFT_GV_REAL(vmax[i]));
+                pft_tsa_motion_fit_t g = f[0];
+                pft_tsa_motion_fit_bound(&g, PFT_GV_REAL(amax[i]), PFT_GV_REAL(vmax[i]));
                 r->bound[i][0] = PFT_GV_RAW(g.s);
                 r->bound[i][1] = PFT_GV_RAW(g.v);
                 r->bound[i][2] = PFT_GV_RAW(g.a);
@@ -330,25 +330,25 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
         static const int32_t re[TSA_GV_NADAPT] = {62259, 52429, 0, 65536, 45875, 58982};
         static const int32_t rp[TSA_GV_NADAPT] = {32768, 62259, 0, 65536, 0, 58982};
         for (uint32_t i = 0; i < TSA_GV_NADAPT; ++i) {
-            r->adapt[i][0] = PFT_GV_RAW(pft_motion_beta_adapt(PFT_GV_REAL(re[i]), PFT_GV_REAL(rp[i]),
+            r->adapt[i][0] = PFT_GV_RAW(pft_tsa_motion_beta_adapt(PFT_GV_REAL(re[i]), PFT_GV_REAL(rp[i]),
                                                               PFT_GV_REAL(6 * 65536), PFT_GV_REAL(131072)));
-            r->adapt[i][1] = pft_motion_ref_is_estimate(PFT_GV_REAL(re[i]), PFT_GV_REAL(rp[i])) ? 1 : 0;
+            r->adapt[i][1] = pft_tsa_motion_ref_is_estimate(PFT_GV_REAL(re[i]), PFT_GV_REAL(rp[i])) ? 1 : 0;
         }
     }
 }
 
 /* ------------------------------------------------------------------------------- trackers */
-#define TSA_GV_WORK_BYTES PFT_VIS_WORKSPACE_BYTES(TSA_GV_NP, TSA_GV_MAXT, TSA_GV_MAXT, TSA_GV_PTS, 6)
+#define TSA_GV_WORK_BYTES PFT_TSA_WORKSPACE_BYTES(TSA_GV_NP, TSA_GV_MAXT, TSA_GV_MAXT, TSA_GV_PTS, 6)
 
 /* Case c: 0 TSA with exponential weights (lik_lambda 300), 1 TSA with w = rho, 2 TS, 3 NCV,
  * 4 TSA on the grey frames with rho-weighted reference points and the paper's unbounded fit.
  * theta_u 1 updates the template (snake passes) on most frames. */
-static inline void tsa_gv_config(pft_vis_config_t *c, uint32_t cs)
+static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
 {
-    pft_vis_config_default(c, TSA_GV_W, TSA_GV_H);
+    pft_tsa_config_default(c, TSA_GV_W, TSA_GV_H);
     c->max_target_w = TSA_GV_MAXT;
     c->max_target_h = TSA_GV_MAXT;
-    pft_vis_snake_params_default(&c->snake, TSA_GV_MAXT, TSA_GV_MAXT);
+    pft_tsa_snake_params_default(&c->snake, TSA_GV_MAXT, TSA_GV_MAXT);
     c->n_particles = TSA_GV_NP;
     c->snake_points = TSA_GV_PTS;
     c->init_passes = 20u;
@@ -356,7 +356,7 @@ static inline void tsa_gv_config(pft_vis_config_t *c, uint32_t cs)
     c->fit_k = 8u;
     c->fit_sigma = PFT_GV_REAL(163840); /* 2.5 */
     c->seed = 7u + cs;
-    c->motion = cs == 2u ? PFT_MOTION_TS : (cs == 3u ? PFT_MOTION_NCV : PFT_MOTION_TSA);
+    c->motion = cs == 2u ? PFT_TSA_MOTION_TS : (cs == 3u ? PFT_TSA_MOTION_NCV : PFT_TSA_MOTION_TSA);
     if (cs == 1u) {
         c->lik_lambda = 0;
     }
@@ -370,13 +370,13 @@ static inline void tsa_gv_config(pft_vis_config_t *c, uint32_t cs)
 
 /* One frame's results: the estimate, a hash of the particles (x, y, rho) and a hash of the
  * shape (contour at the estimate, template histogram, kernel). */
-static inline void tsa_gv_record(const pft_vis_t *t, int32_t *v)
+static inline void tsa_gv_record(const pft_tsa_t *t, int32_t *v)
 {
-    static pft_vis_pt_t contour[TSA_GV_PTS];
-    const pft_vis_estimate_t *e = pft_vis_estimate(t);
+    static pft_tsa_pt_t contour[TSA_GV_PTS];
+    const pft_tsa_estimate_t *e = pft_tsa_estimate(t);
     const pft_real_t *px, *py, *prho;
-    const uint32_t n = pft_vis_particles(t, &px, &py, &prho);
-    const uint32_t nc = pft_vis_contour(t, contour, TSA_GV_PTS);
+    const uint32_t n = pft_tsa_particles(t, &px, &py, &prho);
+    const uint32_t nc = pft_tsa_contour(t, contour, TSA_GV_PTS);
     uint32_t hp = TSA_GV_HASH0;
     uint32_t hs = (uint32_t)tsa_gv_hash_pts(contour, nc);
     v[0] = (int32_t)e->state;
@@ -406,8 +406,8 @@ static inline void tsa_gv_record(const pft_vis_t *t, int32_t *v)
         hp = tsa_gv_hash(hp, PFT_GV_RAW(prho[i]));
     }
     v[20] = (int32_t)tsa_gv_hash(hp, (int32_t)n);
-    hs = tsa_gv_hash(hs, tsa_gv_hash_hist(pft_vis_template(t)));
-    v[21] = (int32_t)tsa_gv_hash(hs, tsa_gv_hash_kernel(pft_vis_kernel(t)));
+    hs = tsa_gv_hash(hs, tsa_gv_hash_hist(pft_tsa_template(t)));
+    v[21] = (int32_t)tsa_gv_hash(hs, tsa_gv_hash_kernel(pft_tsa_kernel(t)));
 }
 
 static inline void tsa_gv_compute(tsa_gv_results_t *r)
@@ -415,26 +415,26 @@ static inline void tsa_gv_compute(tsa_gv_results_t *r)
     static uint8_t rgb[TSA_GV_FRAMES][TSA_GV_W * TSA_GV_H * 3];
     static uint8_t grey[TSA_GV_FRAMES][TSA_GV_W * TSA_GV_H];
     static uint8_t work[TSA_GV_WORK_BYTES];
-    static pft_vis_t trk;
+    static pft_tsa_t trk;
     for (uint32_t k = 0; k < TSA_GV_FRAMES; ++k) {
         tsa_gv_render(k, rgb[k], grey[k]);
     }
     tsa_gv_blocks(r, rgb[0], grey[0], rgb[5]);
     tsa_gv_motion(r);
     for (uint32_t cs = 0; cs < TSA_GV_CASES; ++cs) {
-        pft_vis_config_t c;
-        pft_vis_pt_t box[4];
+        pft_tsa_config_t c;
+        pft_tsa_pt_t box[4];
         const pft_pixfmt_t fmt = cs == 4u ? PFT_PIX_U8 : PFT_PIX_RGB888;
         tsa_gv_config(&c, cs);
         tsa_gv_box(0u, box);
         memset(&trk, 0, sizeof trk);
-        if (pft_vis_init(&trk, &c, work, sizeof work) != PFT_OK) {
+        if (pft_tsa_init(&trk, &c, work, sizeof work) != PFT_OK) {
             r->status[cs][0] = -1000;
             continue;
         }
         for (uint32_t k = 0; k < TSA_GV_FRAMES; ++k) {
             const pft_frame_t f = tsa_gv_frame(fmt == PFT_PIX_U8 ? grey[k] : rgb[k], fmt);
-            r->status[cs][k] = (int32_t)(k == 0u ? pft_vis_start(&trk, &f, box, 4u) : pft_vis_update(&trk, &f));
+            r->status[cs][k] = (int32_t)(k == 0u ? pft_tsa_start(&trk, &f, box, 4u) : pft_tsa_update(&trk, &f));
             tsa_gv_record(&trk, r->trk[cs][k]);
         }
     }

@@ -6,9 +6,9 @@
  */
 #include <string.h>
 
-#include "vis_int_.h"
+#include "tsa_int.h"
 
-void pft_vis_snake_params_default(pft_vis_snake_params_t *p, uint16_t max_w, uint16_t max_h)
+void pft_tsa_snake_params_default(pft_tsa_snake_params_t *p, uint16_t max_w, uint16_t max_h)
 {
     if (p == NULL) {
         return;
@@ -24,9 +24,9 @@ void pft_vis_snake_params_default(pft_vis_snake_params_t *p, uint16_t max_w, uin
     p->max_h = max_h;
 }
 
-size_t pft_vis_snake_work_size(uint16_t max_w, uint16_t max_h, uint8_t margin)
+size_t pft_tsa_snake_work_size(uint16_t max_w, uint16_t max_h, uint8_t margin)
 {
-    return PFT_VIS_SNAKE_WORK_BYTES((size_t)max_w, (size_t)max_h, (size_t)margin);
+    return PFT_TSA_SNAKE_WORK_BYTES((size_t)max_w, (size_t)max_h, (size_t)margin);
 }
 
 typedef struct {
@@ -65,7 +65,7 @@ static void patch_fill(patch_t *pt)
             const uint8_t *g = &pt->grey[(y + 1) * gw + (x + 1)];
             const int32_t gx = (g[-gw + 1] + 2 * g[1] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-1] + g[gw - 1]);
             const int32_t gy = (g[gw - 1] + 2 * g[gw] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-gw] + g[-gw + 1]);
-            uint32_t m = vis_isqrt32_((uint32_t)(gx * gx + gy * gy)) / 4u;
+            uint32_t m = tsa_isqrt32_((uint32_t)(gx * gx + gy * gy)) / 4u;
             pt->grad[y * pt->pw + x] = (uint8_t)(m > 255u ? 255u : m);
         }
     }
@@ -84,7 +84,7 @@ static uint8_t grad_at(const patch_t *pt, int32_t x, int32_t y)
 /* |(dx, dy)| in Q8 */
 static int32_t len_q8(int32_t dx, int32_t dy)
 {
-    return (int32_t)vis_isqrt32_((uint32_t)(dx * dx + dy * dy) << 16);
+    return (int32_t)tsa_isqrt32_((uint32_t)(dx * dx + dy * dy) << 16);
 }
 
 /* Q16 fraction a / b (b > 0), a >= 0 */
@@ -94,20 +94,20 @@ static int32_t frac_q16(int64_t a, int64_t b)
 }
 
 /* One greedy pass; returns the number of points moved. */
-static uint32_t snake_pass(const patch_t *pt, pft_vis_pt_t *p, uint32_t n, const uint8_t *bflags,
+static uint32_t snake_pass(const patch_t *pt, pft_tsa_pt_t *p, uint32_t n, const uint8_t *bflags,
                            const int32_t wq[4], int32_t xlo, int32_t xhi, int32_t ylo, int32_t yhi)
 {
     int64_t dsum = 0;
     int32_t dbar;
     uint32_t moved = 0u;
-    const int32_t sgn = pft_vis_poly_area2(p, n) >= 0 ? 1 : -1;
+    const int32_t sgn = pft_tsa_poly_area2(p, n) >= 0 ? 1 : -1;
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t *a = &p[(i + n - 1u) % n];
+        const pft_tsa_pt_t *a = &p[(i + n - 1u) % n];
         dsum += len_q8(p[i].x - a->x, p[i].y - a->y);
     }
     dbar = (int32_t)(dsum / (int64_t)n);
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t prev = p[(i + n - 1u) % n], next = p[(i + 1u) % n], cur = p[i];
+        const pft_tsa_pt_t prev = p[(i + n - 1u) % n], next = p[(i + 1u) % n], cur = p[i];
         int32_t econt[9], ecurv[9], ebal[9], g[9], valid[9];
         int32_t maxc = 0, maxk = 0, gmin = 255, gmax = 0, best = -1;
         int64_t ebest = 0;
@@ -165,7 +165,7 @@ static uint32_t snake_pass(const patch_t *pt, pft_vis_pt_t *p, uint32_t n, const
 }
 
 /* Corner relaxation: curvature off at local maxima of the turning above the thresholds. */
-static void corners(const patch_t *pt, const pft_vis_pt_t *p, uint32_t n, uint8_t *bflags,
+static void corners(const patch_t *pt, const pft_tsa_pt_t *p, uint32_t n, uint8_t *bflags,
                     int32_t cth, uint8_t gth)
 {
     /* turning c_i = |u_i/|u_i| - u_{i+1}/|u_{i+1}||^2 (Q16), computed on the fly */
@@ -177,7 +177,7 @@ static void corners(const patch_t *pt, const pft_vis_pt_t *p, uint32_t n, uint8_
     for (k = 0; k < n + 2u; ++k) {
         /* c for point index (k % n) */
         const uint32_t i = k % n;
-        const pft_vis_pt_t *a = &p[(i + n - 1u) % n], *b = &p[i], *d = &p[(i + 1u) % n];
+        const pft_tsa_pt_t *a = &p[(i + n - 1u) % n], *b = &p[i], *d = &p[(i + 1u) % n];
         const int32_t ux = b->x - a->x, uy = b->y - a->y, wx = d->x - b->x, wy = d->y - b->y;
         const int32_t lu = len_q8(ux, uy), lw = len_q8(wx, wy);
         int64_t ex, ey;
@@ -199,8 +199,8 @@ static void corners(const patch_t *pt, const pft_vis_pt_t *p, uint32_t n, uint8_
     }
 }
 
-pft_status_t pft_vis_snake(const pft_frame_t *frame, pft_vis_pt_t *pts, uint32_t n,
-                           const pft_vis_snake_params_t *prm, uint32_t max_passes,
+pft_status_t pft_tsa_snake(const pft_frame_t *frame, pft_tsa_pt_t *pts, uint32_t n,
+                           const pft_tsa_snake_params_t *prm, uint32_t max_passes,
                            uint8_t *bflags, void *work, size_t work_len, uint32_t *passes_done)
 {
     patch_t pt;
@@ -210,15 +210,15 @@ pft_status_t pft_vis_snake(const pft_frame_t *frame, pft_vis_pt_t *pts, uint32_t
     if (passes_done != NULL) {
         *passes_done = 0u;
     }
-    if (pts == NULL || prm == NULL || bflags == NULL || work == NULL || n < PFT_VIS_MIN_POINTS ||
-        n > PFT_VIS_MAX_POINTS || prm->margin < 3u || prm->max_w == 0u || prm->max_h == 0u) {
+    if (pts == NULL || prm == NULL || bflags == NULL || work == NULL || n < PFT_TSA_MIN_POINTS ||
+        n > PFT_TSA_MAX_POINTS || prm->margin < 3u || prm->max_w == 0u || prm->max_h == 0u) {
         return PFT_ERR_INVAL;
     }
-    st = pft_frame_check(frame, 0u, 0u, VIS_FMT_MASK_);
+    st = pft_frame_check(frame, 0u, 0u, TSA_FMT_MASK_);
     if (st != PFT_OK) {
         return st;
     }
-    if (work_len < pft_vis_snake_work_size(prm->max_w, prm->max_h, prm->margin)) {
+    if (work_len < pft_tsa_snake_work_size(prm->max_w, prm->max_h, prm->margin)) {
         return PFT_ERR_NOMEM;
     }
     pt.f = frame;
@@ -226,11 +226,11 @@ pft_status_t pft_vis_snake(const pft_frame_t *frame, pft_vis_pt_t *pts, uint32_t
     pt.ph = (int32_t)prm->max_h + 2 * (int32_t)prm->margin;
     pt.grey = (uint8_t *)work;
     pt.grad = pt.grey + (size_t)(pt.pw + 2) * (size_t)(pt.ph + 2);
-    wq[0] = vis_to_q16_(prm->alpha);
-    wq[1] = vis_to_q16_(prm->beta);
-    wq[2] = vis_to_q16_(prm->gamma);
-    wq[3] = vis_to_q16_(prm->kb);
-    cth = vis_to_q16_(prm->corner_c);
+    wq[0] = tsa_to_q16_(prm->alpha);
+    wq[1] = tsa_to_q16_(prm->beta);
+    wq[2] = tsa_to_q16_(prm->gamma);
+    wq[3] = tsa_to_q16_(prm->kb);
+    cth = tsa_to_q16_(prm->corner_c);
     memset(bflags, 1, n);
     while (done < max_passes) {
         int32_t xmin = INT16_MAX, xmax = INT16_MIN, ymin = INT16_MAX, ymax = INT16_MIN;

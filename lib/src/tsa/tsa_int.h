@@ -1,11 +1,11 @@
 /* Internals shared by the vision sources: integer square roots and Q16 conversions. */
-#ifndef PFT_VIS_INT_H_
-#define PFT_VIS_INT_H_
+#ifndef PFT_TSA_INT_H_
+#define PFT_TSA_INT_H_
 
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 
 /* floor(sqrt(v)), bit by bit (32 rounds). */
-static inline uint32_t vis_isqrt64_(uint64_t v)
+static inline uint32_t tsa_isqrt64_(uint64_t v)
 {
     uint64_t r = 0u, bit = (uint64_t)1u << 62;
     while (bit > v) {
@@ -23,7 +23,7 @@ static inline uint32_t vis_isqrt64_(uint64_t v)
     return (uint32_t)r;
 }
 
-static inline uint32_t vis_isqrt32_(uint32_t v)
+static inline uint32_t tsa_isqrt32_(uint32_t v)
 {
     uint32_t r = 0u, bit = (uint32_t)1u << 30;
     while (bit > v) {
@@ -43,10 +43,10 @@ static inline uint32_t vis_isqrt32_(uint32_t v)
 
 /* pft_real_t <-> Q16.16 integer (identity in the q16 build). */
 #ifdef PFT_NUMERIC_Q16
-static inline int32_t vis_to_q16_(pft_real_t a) { return a; }
-static inline pft_real_t vis_from_q16_(int32_t a) { return a; }
+static inline int32_t tsa_to_q16_(pft_real_t a) { return a; }
+static inline pft_real_t tsa_from_q16_(int32_t a) { return a; }
 #else
-static inline int32_t vis_to_q16_(pft_real_t a)
+static inline int32_t tsa_to_q16_(pft_real_t a)
 {
     float s = a * 65536.0f;
     if (s >= 2147483520.0f) {
@@ -57,11 +57,11 @@ static inline int32_t vis_to_q16_(pft_real_t a)
     }
     return (int32_t)(s >= 0.0f ? s + 0.5f : s - 0.5f);
 }
-static inline pft_real_t vis_from_q16_(int32_t a) { return (float)a * (1.0f / 65536.0f); }
+static inline pft_real_t tsa_from_q16_(int32_t a) { return (float)a * (1.0f / 65536.0f); }
 #endif
 
 /* Channel offsets (R, G, B) of a pixel of format fmt; bytes per pixel in *bpp. */
-static inline void vis_channels_(pft_pixfmt_t fmt, uint32_t *o0, uint32_t *o1, uint32_t *o2,
+static inline void tsa_channels_(pft_pixfmt_t fmt, uint32_t *o0, uint32_t *o1, uint32_t *o2,
                                  uint32_t *bpp)
 {
     if (fmt == PFT_PIX_RGB888) {
@@ -73,6 +73,6 @@ static inline void vis_channels_(pft_pixfmt_t fmt, uint32_t *o0, uint32_t *o1, u
     }
 }
 
-#define VIS_FMT_MASK_ (PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_RGB888) | PFT_FMT_BIT(PFT_PIX_BGR888))
+#define TSA_FMT_MASK_ (PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_RGB888) | PFT_FMT_BIT(PFT_PIX_BGR888))
 
 #endif

@@ -8,7 +8,7 @@
 #include <math.h>
 #include <string.h>
 #include "pft_test_support.h"
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -16,7 +16,7 @@ void tearDown(void) {}
 #define W 72
 #define H 56
 static uint8_t img[H][W][3];
-static uint8_t work[PFT_VIS_SNAKE_WORK_BYTES(64, 64, 6)];
+static uint8_t work[PFT_TSA_SNAKE_WORK_BYTES(64, 64, 6)];
 /* the rectangle covers pixels x 22..45, y 18..35: its edges lie at x 21.5 / 45.5, y 17.5 / 35.5 */
 #define RX0 22
 #define RX1 45
@@ -53,10 +53,10 @@ static double edge_dist(double x, double y)
 static void run_from_box(int x0, int y0, int x1, int y1, double kb, const char *label)
 {
     pft_frame_t f;
-    pft_vis_snake_params_t prm;
-    const pft_vis_pt_t box[4] = {{(int16_t)x0, (int16_t)y0}, {(int16_t)x1, (int16_t)y0},
+    pft_tsa_snake_params_t prm;
+    const pft_tsa_pt_t box[4] = {{(int16_t)x0, (int16_t)y0}, {(int16_t)x1, (int16_t)y0},
                                  {(int16_t)x1, (int16_t)y1}, {(int16_t)x0, (int16_t)y1}};
-    pft_vis_pt_t pts[40];
+    pft_tsa_pt_t pts[40];
     uint8_t flags[40];
     uint32_t done = 0;
     double worst = 0;
@@ -66,10 +66,10 @@ static void run_from_box(int x0, int y0, int x1, int y1, double kb, const char *
     f.height = H;
     f.stride_bytes = 3 * W;
     f.format = PFT_PIX_RGB888;
-    pft_vis_snake_params_default(&prm, 64, 64);
+    pft_tsa_snake_params_default(&prm, 64, 64);
     prm.kb = pft_test_from_double(kb);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_poly_resample(box, 4, pts, 40));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_snake(&f, pts, 40, &prm, 60, flags, work, sizeof work, &done));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_poly_resample(box, 4, pts, 40));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_snake(&f, pts, 40, &prm, 60, flags, work, sizeof work, &done));
     for (int i = 0; i < 40; ++i) {
         const double d = edge_dist(pts[i].x, pts[i].y);
         worst = d > worst ? d : worst;
@@ -105,12 +105,12 @@ static void test_snake_from_loose_box(void)
 
 static void test_resample_and_errors(void)
 {
-    const pft_vis_pt_t sq[4] = {{0, 0}, {40, 0}, {40, 40}, {0, 40}};
-    pft_vis_pt_t out[16];
+    const pft_tsa_pt_t sq[4] = {{0, 0}, {40, 0}, {40, 40}, {0, 40}};
+    pft_tsa_pt_t out[16];
     uint8_t flags[16];
-    pft_vis_snake_params_t prm;
+    pft_tsa_snake_params_t prm;
     pft_frame_t f;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_poly_resample(sq, 4, out, 16));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_poly_resample(sq, 4, out, 16));
     for (int i = 0; i < 16; ++i) { /* every 10 px along the perimeter */
         const int s = 10 * i;
         const int ex = s <= 40 ? s : (s <= 80 ? 40 : (s <= 120 ? 120 - s : 0));
@@ -118,21 +118,21 @@ static void test_resample_and_errors(void)
         TEST_ASSERT_EQUAL_INT(ex, out[i].x);
         TEST_ASSERT_EQUAL_INT(ey, out[i].y);
     }
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_poly_resample(sq, 2, out, 16));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_poly_resample(sq, 2, out, 16));
     memset(&f, 0, sizeof f);
     f.data = img;
     f.width = W;
     f.height = H;
     f.stride_bytes = 3 * W;
     f.format = PFT_PIX_RGB888;
-    pft_vis_snake_params_default(&prm, 64, 64);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_snake(&f, out, 4, &prm, 5, flags, work, sizeof work, NULL));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_vis_snake(&f, out, 16, &prm, 5, flags, work, sizeof work - 1, NULL));
+    pft_tsa_snake_params_default(&prm, 64, 64);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_snake(&f, out, 4, &prm, 5, flags, work, sizeof work, NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tsa_snake(&f, out, 16, &prm, 5, flags, work, sizeof work - 1, NULL));
     f.format = PFT_PIX_F32;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_vis_snake(&f, out, 16, &prm, 5, flags, work, sizeof work, NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_snake(&f, out, 16, &prm, 5, flags, work, sizeof work, NULL));
     f.format = PFT_PIX_RGB888;
     prm.max_w = 20; /* contour box 41 wide: too big for this work sizing */
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_vis_snake(&f, out, 16, &prm, 5, flags, work, sizeof work, NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_tsa_snake(&f, out, 16, &prm, 5, flags, work, sizeof work, NULL));
 }
 
 int main(void)

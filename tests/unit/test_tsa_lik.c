@@ -1,5 +1,5 @@
 /*
- * Particle weights of the TSA-AK tracker (pft_vis_config_t.lik_lambda):
+ * Particle weights of the TSA-AK tracker (pft_tsa_config_t.lik_lambda):
  * - the estimate is exactly the weighted mean of the particles (pioneer included for TSA)
  *   with w = rho (lik_lambda = 0, the paper's eq. 22) or w = exp(lambda (rho - rho_best))
  *   (lik_lambda > 0), particles below rho_min discarded; checked against a double
@@ -14,7 +14,7 @@
 #include <math.h>
 #include <string.h>
 #include "pft_test_support.h"
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -37,8 +37,8 @@ void tearDown(void) {}
 
 static uint8_t img[H][W][3];
 static uint8_t bg[H][W][3];
-static uint8_t work[PFT_VIS_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
-static pft_vis_t trk;
+static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
+static pft_tsa_t trk;
 
 static double truth_x(int k)
 {
@@ -101,9 +101,9 @@ static pft_frame_t frame(void)
     return f;
 }
 
-static void config(pft_vis_config_t *c, pft_motion_kind_t m, double lambda, uint64_t seed)
+static void config(pft_tsa_config_t *c, pft_tsa_motion_kind_t m, double lambda, uint64_t seed)
 {
-    pft_vis_config_default(c, W, H);
+    pft_tsa_config_default(c, W, H);
     c->max_target_w = 32;
     c->max_target_h = 32;
     c->n_particles = NP;
@@ -111,10 +111,10 @@ static void config(pft_vis_config_t *c, pft_motion_kind_t m, double lambda, uint
     c->motion = m;
     c->seed = seed;
     c->lik_lambda = pft_test_from_double(lambda);
-    pft_vis_snake_params_default(&c->snake, 32, 32);
+    pft_tsa_snake_params_default(&c->snake, 32, 32);
 }
 
-static void box_at(double cx, double cy, pft_vis_pt_t *b)
+static void box_at(double cx, double cy, pft_tsa_pt_t *b)
 {
     const int x0 = (int)floor(cx - TW / 2.0 + 0.5), y0 = (int)floor(cy - TH / 2.0 + 0.5);
     b[0].x = (int16_t)(x0 - 1); b[0].y = (int16_t)(y0 - 1);
@@ -127,8 +127,8 @@ static void box_at(double cx, double cy, pft_vis_pt_t *b)
 static void check_estimate(double lambda, double rho_min, const char *what)
 {
     const pft_real_t *x, *y, *rho;
-    const uint32_t n = pft_vis_particles(&trk, &x, &y, &rho);
-    const pft_vis_estimate_t *e = pft_vis_estimate(&trk);
+    const uint32_t n = pft_tsa_particles(&trk, &x, &y, &rho);
+    const pft_tsa_estimate_t *e = pft_tsa_estimate(&trk);
     double best = 0, sw = 0, sx = 0, sy = 0, ex, ey;
     uint32_t kept = 0;
     TEST_ASSERT_TRUE(n >= NP);
@@ -160,21 +160,21 @@ static void check_estimate(double lambda, double rho_min, const char *what)
 static void test_estimate_is_the_weighted_mean(void)
 {
     static const double lambdas[3] = {0.0, 30.0, 300.0};
-    static const pft_motion_kind_t kinds[2] = {PFT_MOTION_NCV, PFT_MOTION_TSA};
+    static const pft_tsa_motion_kind_t kinds[2] = {PFT_TSA_MOTION_NCV, PFT_TSA_MOTION_TSA};
     make_background();
     for (int m = 0; m < 2; ++m) {
         for (int l = 0; l < 3; ++l) {
-            pft_vis_config_t c;
-            pft_vis_pt_t b[4];
+            pft_tsa_config_t c;
+            pft_tsa_pt_t b[4];
             pft_frame_t f = frame();
             config(&c, kinds[m], lambdas[l], 3u);
-            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_init(&trk, &c, work, sizeof work));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
             render(truth_x(0), 24.0, false);
             box_at(truth_x(0), 24.0, b);
-            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_start(&trk, &f, b, 4));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
             for (int k = 1; k <= 3; ++k) {
                 render(truth_x(k) + 1.0, 24.0, false);
-                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &f));
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
                 check_estimate(lambdas[l], pft_test_to_double(c.rho_min),
                                m == 0 ? "NCV estimate != weighted mean" : "TSA estimate != weighted mean");
             }
@@ -184,23 +184,23 @@ static void test_estimate_is_the_weighted_mean(void)
 
 static double run(double lambda, uint64_t seed)
 {
-    pft_vis_config_t c;
-    pft_vis_pt_t b[4];
+    pft_tsa_config_t c;
+    pft_tsa_pt_t b[4];
     pft_frame_t f = frame();
     double worst = 0, off_x, off_y;
-    config(&c, PFT_MOTION_TSA, lambda, seed);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_init(&trk, &c, work, sizeof work));
+    config(&c, PFT_TSA_MOTION_TSA, lambda, seed);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     render(truth_x(0), 24.0, true);
     box_at(truth_x(0), 24.0, b);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_start(&trk, &f, b, 4));
-    off_x = pft_test_to_double(pft_vis_estimate(&trk)->x) - truth_x(0);
-    off_y = pft_test_to_double(pft_vis_estimate(&trk)->y) - 24.0;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
+    off_x = pft_test_to_double(pft_tsa_estimate(&trk)->x) - truth_x(0);
+    off_y = pft_test_to_double(pft_tsa_estimate(&trk)->y) - 24.0;
     for (int k = 1; k < FRAMES; ++k) {
-        const pft_vis_estimate_t *e;
+        const pft_tsa_estimate_t *e;
         double ex, ey, err;
         render(truth_x(k), 24.0, true);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &f));
-        e = pft_vis_estimate(&trk);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
+        e = pft_tsa_estimate(&trk);
         ex = pft_test_to_double(e->x) - off_x - truth_x(k);
         ey = pft_test_to_double(e->y) - off_y - 24.0;
         err = sqrt(ex * ex + ey * ey);

@@ -4,27 +4,27 @@
  * asymmetric kernel K(p) = c + d(p) stored as offsets from the rounded area centroid.
  * Integer arithmetic only.
  */
-#include "vis_int_.h"
+#include "tsa_int.h"
 
-int64_t pft_vis_poly_area2(const pft_vis_pt_t *poly, uint32_t n)
+int64_t pft_tsa_poly_area2(const pft_tsa_pt_t *poly, uint32_t n)
 {
     int64_t a = 0;
     if (poly == NULL || n < 3u) {
         return 0;
     }
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t *p = &poly[i], *q = &poly[(i + 1u) % n];
+        const pft_tsa_pt_t *p = &poly[i], *q = &poly[(i + 1u) % n];
         a += (int64_t)p->x * q->y - (int64_t)q->x * p->y;
     }
     return a;
 }
 
 /* Crossings (Q16 x) of row y with the polygon edges, half-open in y; returns the count. */
-static uint32_t row_crossings(const pft_vis_pt_t *poly, uint32_t n, int32_t y, int32_t *cross)
+static uint32_t row_crossings(const pft_tsa_pt_t *poly, uint32_t n, int32_t y, int32_t *cross)
 {
     uint32_t m = 0u;
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
+        const pft_tsa_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
         if ((a->y > y) != (b->y > y)) {
             const int64_t num = (int64_t)(y - a->y) * (b->x - a->x) * 65536;
             const int64_t den = (int64_t)(b->y - a->y);
@@ -35,7 +35,7 @@ static uint32_t row_crossings(const pft_vis_pt_t *poly, uint32_t n, int32_t y, i
             cross[m++] = (int32_t)(q + (int64_t)a->x * 65536);
         }
     }
-    /* insertion sort (m <= n <= PFT_VIS_MAX_POINTS) */
+    /* insertion sort (m <= n <= PFT_TSA_MAX_POINTS) */
     for (uint32_t i = 1; i < m; ++i) {
         int32_t v = cross[i];
         uint32_t j = i;
@@ -48,14 +48,14 @@ static uint32_t row_crossings(const pft_vis_pt_t *poly, uint32_t n, int32_t y, i
     return m;
 }
 
-bool pft_vis_poly_inside(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_t y)
+bool pft_tsa_poly_inside(const pft_tsa_pt_t *poly, uint32_t n, int32_t x, int32_t y)
 {
     uint32_t cnt = 0u;
     if (poly == NULL || n < 3u) {
         return false;
     }
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
+        const pft_tsa_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
         if ((a->y > y) != (b->y > y)) {
             /* crossing x_c = a.x + (y - a.y)(b.x - a.x)/(b.y - a.y); count x_c > x exactly */
             const int64_t lhs = (int64_t)(x - a->x) * (b->y - a->y);
@@ -69,11 +69,11 @@ bool pft_vis_poly_inside(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_
 
 /* Squared distance times 256 (floor) from (x, y) to the polygon's nearest edge. Coordinates
  * are taken relative to the first vertex, so any frame-sized polygon stays in range. */
-static uint64_t dist2_q8(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_t y)
+static uint64_t dist2_q8(const pft_tsa_pt_t *poly, uint32_t n, int32_t x, int32_t y)
 {
     uint64_t best = UINT64_MAX;
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_vis_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
+        const pft_tsa_pt_t *a = &poly[i], *b = &poly[(i + 1u) % n];
         const int64_t ex = b->x - a->x, ey = b->y - a->y;
         const int64_t wx = x - a->x, wy = y - a->y;
         const int64_t t = wx * ex + wy * ey, L = ex * ex + ey * ey;
@@ -94,12 +94,12 @@ static uint64_t dist2_q8(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_
     return best;
 }
 
-uint32_t pft_vis_poly_dist_q4(const pft_vis_pt_t *poly, uint32_t n, int32_t x, int32_t y)
+uint32_t pft_tsa_poly_dist_q4(const pft_tsa_pt_t *poly, uint32_t n, int32_t x, int32_t y)
 {
     if (poly == NULL || n == 0u) {
         return 0u;
     }
-    return vis_isqrt64_(dist2_q8(poly, n, x, y));
+    return tsa_isqrt64_(dist2_q8(poly, n, x, y));
 }
 
 static int64_t floordiv(int64_t a, int64_t b) /* b > 0 */
@@ -108,8 +108,8 @@ static int64_t floordiv(int64_t a, int64_t b) /* b > 0 */
     return (a % b != 0 && a < 0) ? q - 1 : q;
 }
 
-pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly, uint32_t n,
-                                  uint16_t c_q4, int32_t *cross, pft_vis_pt_t *origin)
+pft_status_t pft_tsa_kernel_build(pft_tsa_kernel_t *k, const pft_tsa_pt_t *poly, uint32_t n,
+                                  uint16_t c_q4, int32_t *cross, pft_tsa_pt_t *origin)
 {
     int32_t xmin = INT16_MAX, xmax = INT16_MIN, ymin = INT16_MAX, ymax = INT16_MIN;
     int64_t sx = 0, sy = 0;
@@ -118,10 +118,10 @@ pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly,
     int16_t bx0 = INT16_MAX, by0 = INT16_MAX, bx1 = INT16_MIN, by1 = INT16_MIN;
 
     if (k == NULL || poly == NULL || cross == NULL || origin == NULL || n < 3u ||
-        n > PFT_VIS_MAX_POINTS) {
+        n > PFT_TSA_MAX_POINTS) {
         return PFT_ERR_INVAL;
     }
-    if (pft_vis_poly_area2(poly, n) == 0) {
+    if (pft_tsa_poly_area2(poly, n) == 0) {
         return PFT_ERR_INVAL;
     }
     for (uint32_t i = 0; i < n; ++i) {
@@ -130,7 +130,7 @@ pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly,
         ymin = poly[i].y < ymin ? poly[i].y : ymin;
         ymax = poly[i].y > ymax ? poly[i].y : ymax;
     }
-    if (xmax - xmin + 1 > (int32_t)PFT_VIS_MAX_SIDE || ymax - ymin + 1 > (int32_t)PFT_VIS_MAX_SIDE) {
+    if (xmax - xmin + 1 > (int32_t)PFT_TSA_MAX_SIDE || ymax - ymin + 1 > (int32_t)PFT_TSA_MAX_SIDE) {
         return PFT_ERR_RANGE;
     }
     /* pass 1: count and centroid */
@@ -162,8 +162,8 @@ pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly,
             const int32_t x0 = (int32_t)((cross[j] + 65535) >> 16);
             const int32_t x1 = (int32_t)((cross[j + 1u] + 65535) >> 16);
             for (int32_t x = x0; x < x1; ++x) {
-                uint32_t w = (uint32_t)c_q4 + vis_isqrt64_(dist2_q8(poly, n, x, y));
-                pft_vis_kpix_t *kp = &k->pix[count++];
+                uint32_t w = (uint32_t)c_q4 + tsa_isqrt64_(dist2_q8(poly, n, x, y));
+                pft_tsa_kpix_t *kp = &k->pix[count++];
                 w = w > 65535u ? 65535u : (w == 0u ? 1u : w);
                 kp->dx = (int16_t)(x - cx);
                 kp->dy = (int16_t)(y - cy);
@@ -187,7 +187,7 @@ pft_status_t pft_vis_kernel_build(pft_vis_kernel_t *k, const pft_vis_pt_t *poly,
     return PFT_OK;
 }
 
-pft_status_t pft_vis_poly_resample(const pft_vis_pt_t *in, uint32_t n_in, pft_vis_pt_t *out,
+pft_status_t pft_tsa_poly_resample(const pft_tsa_pt_t *in, uint32_t n_in, pft_tsa_pt_t *out,
                                    uint32_t n_out)
 {
     uint64_t total = 0u, seg_start = 0u;
@@ -196,9 +196,9 @@ pft_status_t pft_vis_poly_resample(const pft_vis_pt_t *in, uint32_t n_in, pft_vi
         return PFT_ERR_INVAL;
     }
     for (uint32_t i = 0; i < n_in; ++i) {
-        const pft_vis_pt_t *a = &in[i], *b = &in[(i + 1u) % n_in];
+        const pft_tsa_pt_t *a = &in[i], *b = &in[(i + 1u) % n_in];
         const int64_t dx = b->x - a->x, dy = b->y - a->y;
-        total += vis_isqrt64_((uint64_t)(dx * dx + dy * dy) << 16); /* Q8 */
+        total += tsa_isqrt64_((uint64_t)(dx * dx + dy * dy) << 16); /* Q8 */
     }
     if (total == 0u) {
         return PFT_ERR_INVAL;
@@ -206,14 +206,14 @@ pft_status_t pft_vis_poly_resample(const pft_vis_pt_t *in, uint32_t n_in, pft_vi
     for (uint32_t j = 0; j < n_out; ++j) {
         const uint64_t s = total * j / n_out;
         uint64_t len;
-        const pft_vis_pt_t *a, *b;
+        const pft_tsa_pt_t *a, *b;
         int64_t dx, dy, f;
         for (;;) { /* bounded: e < n_in */
             a = &in[e];
             b = &in[(e + 1u) % n_in];
             dx = b->x - a->x;
             dy = b->y - a->y;
-            len = vis_isqrt64_((uint64_t)(dx * dx + dy * dy) << 16);
+            len = tsa_isqrt64_((uint64_t)(dx * dx + dy * dy) << 16);
             if (s < seg_start + len || e + 1u >= n_in) {
                 break;
             }

@@ -28,18 +28,18 @@ static pft_real_t macc_div(macc_t num, macc_t den) { return den > 0.0f ? num / d
 /* 2^-10: the det / (A0 A2 A4) and N1 / A2 thresholds of the fallbacks. */
 #define FIT_EPS PFT_C(0.0009765625)
 
-pft_status_t pft_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t n,
-                            pft_real_t sigma_g, uint8_t max_order, pft_motion_fit_t *out)
+pft_status_t pft_tsa_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t n,
+                            pft_real_t sigma_g, uint8_t max_order, pft_tsa_motion_fit_t *out)
 {
-    pft_real_t g[PFT_MOTION_MAX_K], tau[PFT_MOTION_MAX_K], p1[PFT_MOTION_MAX_K];
-    pft_real_t p2[PFT_MOTION_MAX_K], d[PFT_MOTION_MAX_K];
+    pft_real_t g[PFT_TSA_MOTION_MAX_K], tau[PFT_TSA_MOTION_MAX_K], p1[PFT_TSA_MOTION_MAX_K];
+    pft_real_t p2[PFT_TSA_MOTION_MAX_K], d[PFT_TSA_MOTION_MAX_K];
     pft_real_t inv2s2, n0 = 0, st = 0, n1 = 0, a2 = 0, stp = 0, alpha1, alpha2 = 0, b1 = 0;
     pft_real_t c0, c1 = 0, c2 = 0, last;
     macc_t a4 = 0, n2 = 0, s0 = 0, s1 = 0, s2 = 0;
     uint8_t order;
     uint32_t i;
 
-    if (o == NULL || out == NULL || n == 0u || n > PFT_MOTION_MAX_K || !(sigma_g > 0) ||
+    if (o == NULL || out == NULL || n == 0u || n > PFT_TSA_MOTION_MAX_K || !(sigma_g > 0) ||
         max_order > 2u) {
         return PFT_ERR_INVAL;
     }
@@ -109,7 +109,7 @@ pft_status_t pft_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t 
     return PFT_OK;
 }
 
-void pft_motion_fit_bound(pft_motion_fit_t *f, pft_real_t a_max, pft_real_t v_max)
+void pft_tsa_motion_fit_bound(pft_tsa_motion_fit_t *f, pft_real_t a_max, pft_real_t v_max)
 {
     if (f == NULL) {
         return;

@@ -12,12 +12,12 @@
  * reported as a state, not an error.
  */
 #include <math.h>
-#ifdef VIS_DEBUG
+#ifdef TSA_DEBUG
 #include <stdio.h>
 #endif
 #include <string.h>
 #include "pft_test_support.h"
-#include "pft/pft_vision.h"
+#include "pft/pft_tsa.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -39,8 +39,8 @@ void tearDown(void) {}
 
 static uint8_t img[H][W][3];
 static uint8_t bg[H][W][3];
-static uint8_t work[PFT_VIS_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
-static pft_vis_t trk;
+static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
+static pft_tsa_t trk;
 
 static double truth_x(int k)
 {
@@ -96,9 +96,9 @@ static pft_frame_t frame(void)
     return f;
 }
 
-static void config(pft_vis_config_t *c, pft_motion_kind_t m)
+static void config(pft_tsa_config_t *c, pft_tsa_motion_kind_t m)
 {
-    pft_vis_config_default(c, W, H);
+    pft_tsa_config_default(c, W, H);
     c->max_target_w = 32;
     c->max_target_h = 32;
     c->n_particles = NP;
@@ -109,10 +109,10 @@ static void config(pft_vis_config_t *c, pft_motion_kind_t m)
      * against 4/8 successes on this scenario (the default window lags the acceleration) */
     c->fit_k = 8;
     c->fit_sigma = pft_test_from_double(2.5);
-    pft_vis_snake_params_default(&c->snake, 32, 32);
+    pft_tsa_snake_params_default(&c->snake, 32, 32);
 }
 
-static void box_at(double cx, double cy, pft_vis_pt_t *b)
+static void box_at(double cx, double cy, pft_tsa_pt_t *b)
 {
     const int x0 = (int)floor(cx - TW / 2.0 + 0.5), y0 = (int)floor(cy - TH / 2.0 + 0.5);
     b[0].x = (int16_t)(x0 - 1); b[0].y = (int16_t)(y0 - 1);
@@ -122,39 +122,39 @@ static void box_at(double cx, double cy, pft_vis_pt_t *b)
 }
 
 /* Runs the sequence; returns the worst centre error, *last the final one. */
-static double run(pft_motion_kind_t m, uint64_t seed, double *last, int *pioneer_only, double *beta_peak)
+static double run(pft_tsa_motion_kind_t m, uint64_t seed, double *last, int *pioneer_only, double *beta_peak)
 {
-    pft_vis_config_t c;
-    pft_vis_pt_t b[4];
+    pft_tsa_config_t c;
+    pft_tsa_pt_t b[4];
     pft_frame_t f = frame();
     double worst = 0, off_x, off_y;
     config(&c, m);
     c.seed = seed;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_init(&trk, &c, work, sizeof work));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     render(truth_x(0), 24.0);
     box_at(truth_x(0), 24.0, b);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_start(&trk, &f, b, 4));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
     /* the kernel origin is the contour's centroid: measure errors relative to its offset */
-    off_x = pft_test_to_double(pft_vis_estimate(&trk)->x) - truth_x(0);
-    off_y = pft_test_to_double(pft_vis_estimate(&trk)->y) - 24.0;
+    off_x = pft_test_to_double(pft_tsa_estimate(&trk)->x) - truth_x(0);
+    off_y = pft_test_to_double(pft_tsa_estimate(&trk)->y) - 24.0;
     TEST_ASSERT_TRUE(fabs(off_x) <= 1.5 && fabs(off_y) <= 1.5);
     *pioneer_only = 0;
     *beta_peak = 0;
     for (int k = 1; k < FRAMES; ++k) {
-        const pft_vis_estimate_t *e;
+        const pft_tsa_estimate_t *e;
         double ex, ey, err;
         render(truth_x(k), 24.0);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &f));
-        e = pft_vis_estimate(&trk);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
+        e = pft_tsa_estimate(&trk);
         ex = pft_test_to_double(e->x) - off_x - truth_x(k);
         ey = pft_test_to_double(e->y) - off_y - 24.0;
         err = sqrt(ex * ex + ey * ey);
         worst = err > worst ? err : worst;
         *last = err;
-#ifdef VIS_DEBUG
+#ifdef TSA_DEBUG
         printf("k %d truth %.1f est %.1f pio %.1f rho %.2f rp %.2f beta %.2f alive %u st %d\n", k, truth_x(k), pft_test_to_double(e->x) - off_x, pft_test_to_double(e->pioneer_x) - off_x, pft_test_to_double(e->rho), pft_test_to_double(e->rho_pioneer), pft_test_to_double(e->beta), e->n_alive, e->state);
 #endif
-        *pioneer_only += e->state == PFT_VIS_PIONEER_ONLY;
+        *pioneer_only += e->state == PFT_TSA_PIONEER_ONLY;
         if (pft_test_to_double(e->beta_next) > *beta_peak) {
             *beta_peak = pft_test_to_double(e->beta_next);
         }
@@ -169,8 +169,8 @@ static void test_tsa_and_ncv_follow_acceleration(void)
     for (uint64_t seed = 1; seed <= SEEDS; ++seed) {
         double last_tsa, last_ncv, beta_tsa, beta_ncv, worst_tsa, worst_ncv;
         int po_tsa, po_ncv;
-        worst_tsa = run(PFT_MOTION_TSA, seed, &last_tsa, &po_tsa, &beta_tsa);
-        worst_ncv = run(PFT_MOTION_NCV, seed, &last_ncv, &po_ncv, &beta_ncv);
+        worst_tsa = run(PFT_TSA_MOTION_TSA, seed, &last_tsa, &po_tsa, &beta_tsa);
+        worst_ncv = run(PFT_TSA_MOTION_NCV, seed, &last_ncv, &po_ncv, &beta_ncv);
         ok_tsa += worst_tsa <= TRACK_TOL;
         ok_ncv += worst_ncv <= TRACK_TOL;
         UnityPrint("seed ");
@@ -190,7 +190,7 @@ static void test_tsa_and_ncv_follow_acceleration(void)
     UnityPrint(" NCV ");
     UnityPrintNumber(ok_ncv);
     UNITY_PRINT_EOL();
-#ifndef VIS_DEBUG
+#ifndef TSA_DEBUG
     TEST_ASSERT_TRUE_MESSAGE(ok_tsa >= TSA_MIN_OK, "TSA lost the accelerating target too often");
     TEST_ASSERT_TRUE_MESSAGE(ok_ncv >= NCV_MIN_OK, "the NCV baseline lost the target too often");
 #endif
@@ -198,82 +198,82 @@ static void test_tsa_and_ncv_follow_acceleration(void)
 
 static void test_workspace_and_config(void)
 {
-    pft_vis_config_t c;
-    config(&c, PFT_MOTION_TSA);
-    TEST_ASSERT_EQUAL_UINT64((uint64_t)(sizeof work), (uint64_t)(pft_vis_workspace_size(&c)));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_vis_init(&trk, &c, work, sizeof work - 1));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_init(&trk, &c, work, sizeof work));
-    TEST_ASSERT_EQUAL_INT(PFT_VIS_IDLE, pft_vis_estimate(&trk)->state);
+    pft_tsa_config_t c;
+    config(&c, PFT_TSA_MOTION_TSA);
+    TEST_ASSERT_EQUAL_UINT64((uint64_t)(sizeof work), (uint64_t)(pft_tsa_workspace_size(&c)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tsa_init(&trk, &c, work, sizeof work - 1));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
+    TEST_ASSERT_EQUAL_INT(PFT_TSA_IDLE, pft_tsa_estimate(&trk)->state);
     c.n_particles = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_config_check(&c));
-    TEST_ASSERT_EQUAL_UINT64((uint64_t)(0), (uint64_t)(pft_vis_workspace_size(&c)));
-    config(&c, PFT_MOTION_TSA);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_config_check(&c));
+    TEST_ASSERT_EQUAL_UINT64((uint64_t)(0), (uint64_t)(pft_tsa_workspace_size(&c)));
+    config(&c, PFT_TSA_MOTION_TSA);
     c.max_target_w = 300;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_config_check(&c));
-    config(&c, PFT_MOTION_TSA);
-    c.fit_k = PFT_MOTION_MAX_K + 1;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_config_check(&c));
+    config(&c, PFT_TSA_MOTION_TSA);
+    c.fit_k = PFT_TSA_MOTION_MAX_K + 1;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_config_check(&c));
 }
 
 static void test_bad_input(void)
 {
-    pft_vis_config_t c;
-    pft_vis_pt_t b[4];
+    pft_tsa_config_t c;
+    pft_tsa_pt_t b[4];
     pft_frame_t f = frame();
-    pft_vis_estimate_t before;
+    pft_tsa_estimate_t before;
     make_background();
     render(60, 24);
-    config(&c, PFT_MOTION_TSA);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_init(&trk, &c, work, sizeof work));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_vis_update(&trk, &f)); /* before start */
+    config(&c, PFT_TSA_MOTION_TSA);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_tsa_update(&trk, &f)); /* before start */
     box_at(60, 24, b);
     {   /* target outside the frame */
-        pft_vis_pt_t o[4];
+        pft_tsa_pt_t o[4];
         memcpy(o, b, sizeof o);
         for (int i = 0; i < 4; ++i) {
             o[i].x = (int16_t)(o[i].x + 200);
         }
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_vis_start(&trk, &f, o, 4));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_tsa_start(&trk, &f, o, 4));
     }
     {   /* degenerate contour: collinear points */
-        const pft_vis_pt_t line[3] = {{10, 10}, {20, 20}, {30, 30}};
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_start(&trk, &f, line, 3));
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_start(&trk, &f, line, 2));
+        const pft_tsa_pt_t line[3] = {{10, 10}, {20, 20}, {30, 30}};
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, line, 3));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, line, 2));
     }
     {   /* larger than the configured box */
-        const pft_vis_pt_t big[4] = {{10, 2}, {60, 2}, {60, 40}, {10, 40}};
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_vis_start(&trk, &f, big, 4));
+        const pft_tsa_pt_t big[4] = {{10, 2}, {60, 2}, {60, 40}, {10, 40}};
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_tsa_start(&trk, &f, big, 4));
     }
     {   /* wrong format and size */
         pft_frame_t g = f;
         g.format = PFT_PIX_U16;
         g.stride_bytes = 2 * W;
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_vis_start(&trk, &g, b, 4));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4));
         g = f;
         g.width = W - 1;
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_vis_start(&trk, &g, b, 4));
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_start(&trk, NULL, b, 4));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, NULL, b, 4));
     }
-    TEST_ASSERT_EQUAL_INT(PFT_VIS_IDLE, pft_vis_estimate(&trk)->state); /* still idle */
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_start(&trk, &f, b, 4));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &f));
-    before = *pft_vis_estimate(&trk);
+    TEST_ASSERT_EQUAL_INT(PFT_TSA_IDLE, pft_tsa_estimate(&trk)->state); /* still idle */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
+    before = *pft_tsa_estimate(&trk);
     {   /* a bad frame mid-track leaves the state untouched */
         pft_frame_t g = f;
         g.format = PFT_PIX_F32;
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_vis_update(&trk, &g));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_update(&trk, &g));
         g = f;
         g.height = H / 2;
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_vis_update(&trk, &g));
-        TEST_ASSERT_EQUAL_MEMORY(&before, pft_vis_estimate(&trk), sizeof before);
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_update(&trk, &g));
+        TEST_ASSERT_EQUAL_MEMORY(&before, pft_tsa_estimate(&trk), sizeof before);
     }
     /* the target vanishes: reported as a state (WEAK / LOST), never an error */
     memcpy(img, bg, sizeof img);
     for (int k = 0; k < 14; ++k) {
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &f));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
     }
-    TEST_ASSERT_TRUE(pft_vis_estimate(&trk)->state == PFT_VIS_LOST ||
-                     pft_vis_estimate(&trk)->state == PFT_VIS_OUT_OF_VIEW);
+    TEST_ASSERT_TRUE(pft_tsa_estimate(&trk)->state == PFT_TSA_LOST ||
+                     pft_tsa_estimate(&trk)->state == PFT_TSA_OUT_OF_VIEW);
     /* grey frames are accepted (graceful degradation) */
     {
         static uint8_t grey[H][W];
@@ -295,12 +295,12 @@ static void test_bad_input(void)
         g.stride_bytes = W;
         g.format = PFT_PIX_U8;
         {
-            const pft_vis_pt_t gb[4] = {{54, 19}, {69, 19}, {69, 30}, {54, 30}};
-            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_start(&trk, &g, gb, 4));
+            const pft_tsa_pt_t gb[4] = {{54, 19}, {69, 19}, {69, 30}, {54, 30}};
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &g, gb, 4));
         }
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_update(&trk, &g));
-        TEST_ASSERT_TRUE(pft_test_to_double(pft_vis_estimate(&trk)->rho) > 0.9);
-        TEST_ASSERT_EQUAL_INT(PFT_VIS_TRACKING, pft_vis_estimate(&trk)->state);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &g));
+        TEST_ASSERT_TRUE(pft_test_to_double(pft_tsa_estimate(&trk)->rho) > 0.9);
+        TEST_ASSERT_EQUAL_INT(PFT_TSA_TRACKING, pft_tsa_estimate(&trk)->state);
     }
 }
 

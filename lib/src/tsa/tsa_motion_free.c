@@ -33,7 +33,7 @@ static pft_real_t q11_series(pft_real_t b)
     return acc;
 }
 
-pft_status_t pft_motion_free_coef(pft_motion_free_t *c, pft_real_t beta, pft_real_t q)
+pft_status_t pft_tsa_motion_free_coef(pft_tsa_motion_free_t *c, pft_real_t beta, pft_real_t q)
 {
     pft_real_t f1, f2, g11;
     if (c == NULL || !(beta >= 0) || beta > PFT_C(64.0) || !(q >= 0) || q > PFT_C(10000.0)) {
@@ -60,7 +60,7 @@ pft_status_t pft_motion_free_coef(pft_motion_free_t *c, pft_real_t beta, pft_rea
     return PFT_OK;
 }
 
-void pft_motion_free_step(const pft_motion_free_t *c, pft_real_t *x, pft_real_t *v,
+void pft_tsa_motion_free_step(const pft_tsa_motion_free_t *c, pft_real_t *x, pft_real_t *v,
                           pft_real_t vbar, pft_real_t g1, pft_real_t g2)
 {
     const pft_real_t v0 = *v;
@@ -70,7 +70,7 @@ void pft_motion_free_step(const pft_motion_free_t *c, pft_real_t *x, pft_real_t 
                  pft_add(pft_mul(c->l21, g1), pft_mul(c->l22, g2)));
 }
 
-pft_real_t pft_motion_beta_adapt(pft_real_t rho_e, pft_real_t rho_p, pft_real_t beta_max,
+pft_real_t pft_tsa_motion_beta_adapt(pft_real_t rho_e, pft_real_t rho_p, pft_real_t beta_max,
                                  pft_real_t beta_prev)
 {
     pft_real_t den;
