@@ -60,7 +60,9 @@ class PftTracker : public Tracker {
 public:
     PftTracker(std::string label, const PftParams &p, int w, int h) : label_(std::move(label)), p_(p)
     {
-        pft_tsa_config_default(&cfg_, (uint16_t)w, (uint16_t)h);
+        pft_tsa_config_default(&cfg_);
+        cfg_.width = (uint16_t)w;
+        cfg_.height = (uint16_t)h;
         cfg_.max_target_w = (uint16_t)p.max_target;
         cfg_.max_target_h = (uint16_t)p.max_target;
         pft_tsa_snake_params_default(&cfg_.snake, cfg_.max_target_w, cfg_.max_target_h);
@@ -80,8 +82,10 @@ public:
         cfg_.snake_points = (uint8_t)p.snake_points;
         cfg_.init_passes = (uint8_t)p.init_passes;
         cfg_.seed = p.seed;
-        if (pft_tsa_config_check(&cfg_) != PFT_OK)
-            throw InputError("tracker " + label_ + ": invalid pftrack configuration");
+        const char *field = nullptr;
+        if (pft_tsa_config_check(&cfg_, &field) != PFT_OK)
+            throw InputError("tracker " + label_ + ": invalid pftrack configuration (" +
+                             (field ? field : "?") + ")");
         work_.resize(pft_tsa_workspace_size(&cfg_));
         pft_status_t st = pft_tsa_init(&t_, &cfg_, work_.data(), work_.size());
         if (st != PFT_OK)
@@ -111,10 +115,11 @@ public:
         pft_status_t st = pft_tsa_start(&t_, &f, pp.data(), (uint32_t)pp.size());
         if (st != PFT_OK)
             throw InputError("tracker " + label_ + ": pft_tsa_start: " + pft_status_str(st));
-        const pft_tsa_estimate_t *e = pft_tsa_estimate(&t_);
+        pft_tsa_estimate_t e;
+        pft_tsa_estimate(&t_, &e);
         // the kernel origin is the contour's area centroid: report centres relative to the
         // initial box centre so they compare with box-centre ground truth
-        off_ = cv::Point2d(from_real(e->x) - (br.x + (br.width - 1) / 2.0), from_real(e->y) - (br.y + (br.height - 1) / 2.0));
+        off_ = cv::Point2d(from_real(e.x) - (br.x + (br.width - 1) / 2.0), from_real(e.y) - (br.y + (br.height - 1) / 2.0));
     }
 
     void update(const cv::Mat &bgr, TrackOut &out) override
@@ -128,27 +133,28 @@ public:
 
     void fill(TrackOut &out) const
     {
-        const pft_tsa_estimate_t *e = pft_tsa_estimate(&t_);
-        out.center = cv::Point2d(from_real(e->x), from_real(e->y)) - off_;
-        out.box = cv::Rect2d(e->box_x0, e->box_y0, e->box_x1 - e->box_x0 + 1, e->box_y1 - e->box_y0 + 1);
-        out.ok = e->state == PFT_TSA_TRACKING || e->state == PFT_TSA_PIONEER_ONLY;
-        out.beta = from_real(e->beta);
-        out.rho = from_real(e->rho);
-        out.rho_pioneer = from_real(e->rho_pioneer);
-        out.state = (int)e->state;
-        out.alive = (int)e->n_alive;
-        out.template_updated = e->template_updated;
-        out.pioneer = cv::Point2d(from_real(e->pioneer_x), from_real(e->pioneer_y));
+        pft_tsa_estimate_t e;
+        pft_tsa_estimate(&t_, &e);
+        out.center = cv::Point2d(from_real(e.x), from_real(e.y)) - off_;
+        out.box = cv::Rect2d(e.box_x0, e.box_y0, e.box_x1 - e.box_x0 + 1, e.box_y1 - e.box_y0 + 1);
+        out.ok = e.state == PFT_TSA_TRACKING || e.state == PFT_TSA_PIONEER_ONLY;
+        out.beta = from_real(e.beta);
+        out.rho = from_real(e.rho);
+        out.rho_pioneer = from_real(e.rho_pioneer);
+        out.state = (int)e.state;
+        out.alive = (int)e.n_alive;
+        out.template_updated = e.template_updated;
+        out.pioneer = cv::Point2d(from_real(e.pioneer_x), from_real(e.pioneer_y));
         pft_tsa_pt_t c[PFT_TSA_MAX_POINTS];
-        uint32_t n = pft_tsa_contour(&t_, c, PFT_TSA_MAX_POINTS);
+        const std::size_t n = pft_tsa_contour(&t_, c, PFT_TSA_MAX_POINTS);
         out.contour.clear();
-        for (uint32_t i = 0; i < n; ++i)
+        for (std::size_t i = 0; i < n; ++i)
             out.contour.emplace_back(c[i].x, c[i].y);
-        const pft_real_t *x, *y, *rho;
-        uint32_t m = pft_tsa_particles(&t_, &x, &y, &rho);
+        std::vector<pft_tsa_particle_t> parts(pft_tsa_particles(&t_, nullptr, 0));
+        const std::size_t m = pft_tsa_particles(&t_, parts.data(), parts.size());
         out.particles.clear();
-        for (uint32_t i = 0; i < m; ++i)
-            out.particles.emplace_back((float)from_real(x[i]), (float)from_real(y[i]));
+        for (std::size_t i = 0; i < m && i < parts.size(); ++i)
+            out.particles.emplace_back((float)from_real(parts[i].x), (float)from_real(parts[i].y));
     }
 
 private:

@@ -145,17 +145,22 @@ static void test_closed_loop_runaway_is_bounded(void)
 static void test_config_bounds(void)
 {
     pft_tsa_config_t c;
-    pft_tsa_config_default(&c, 160u, 120u);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c));
+    const char *field = NULL;
+    pft_tsa_config_default(&c);
+    c.width = 160u;
+    c.height = 120u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c, NULL));
     TEST_ASSERT_TRUE(c.fit_a_max >= 0 && c.fit_v_max >= 0);
     c.fit_a_max = 0;
     c.fit_v_max = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c, NULL));
     c.fit_a_max = R_(-0.5);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("fit_a_max", field);
     c.fit_a_max = 0;
     c.fit_v_max = R_(-1.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("fit_v_max", field);
 }
 
 int main(void)

@@ -94,10 +94,11 @@ static void test_kernel_of_rectangle(void)
         pft_tsa_kpix_t small[8];
         pft_tsa_kernel_t ks = {small, 0, 8, 0, 0, 0, 0, 0};
         const pft_tsa_pt_t thin[3] = {{5, 5}, {6, 6}, {5, 6}};
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, line, 3, 16, cross, &o));
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, sliver, 3, 16, cross, &o));
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, tiny, 3, 16, cross, &o));
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_tsa_kernel_build(&k, thin, 3, 16, cross, &o)); /* no centre inside */
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_tsa_kernel_build(&k, line, 3, 16, cross, &o));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_tsa_kernel_build(&k, sliver, 3, 16, cross, &o));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_tsa_kernel_build(&k, tiny, 3, 16, cross, &o));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_tsa_kernel_build(&k, thin, 3, 16, cross, &o)); /* no centre inside */
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, rect, 2, 16, cross, &o));
         TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tsa_kernel_build(&ks, rect, 4, 16, cross, &o));
         TEST_ASSERT_EQUAL_UINT32(60, k.n); /* unchanged by the failures */
     }

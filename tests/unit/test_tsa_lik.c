@@ -39,6 +39,14 @@ static uint8_t img[H][W][3];
 static uint8_t bg[H][W][3];
 static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
 static pft_tsa_t trk;
+static pft_tsa_particle_t part[NP + 1];
+
+static pft_tsa_estimate_t estimate(void)
+{
+    pft_tsa_estimate_t e;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_estimate(&trk, &e));
+    return e;
+}
 
 static double truth_x(int k)
 {
@@ -103,7 +111,9 @@ static pft_frame_t frame(void)
 
 static void config(pft_tsa_config_t *c, pft_tsa_motion_kind_t m, double lambda, uint64_t seed)
 {
-    pft_tsa_config_default(c, W, H);
+    pft_tsa_config_default(c);
+    c->width = W;
+    c->height = H;
     c->max_target_w = 32;
     c->max_target_h = 32;
     c->n_particles = NP;
@@ -126,35 +136,34 @@ static void box_at(double cx, double cy, pft_tsa_pt_t *b)
 /* Recomputes the estimate of the last update from the reported particles and similarities. */
 static void check_estimate(double lambda, double rho_min, const char *what)
 {
-    const pft_real_t *x, *y, *rho;
-    const uint32_t n = pft_tsa_particles(&trk, &x, &y, &rho);
-    const pft_tsa_estimate_t *e = pft_tsa_estimate(&trk);
+    const size_t n = pft_tsa_particles(&trk, part, NP + 1);
+    const pft_tsa_estimate_t e = estimate();
     double best = 0, sw = 0, sx = 0, sy = 0, ex, ey;
     uint32_t kept = 0;
-    TEST_ASSERT_TRUE(n >= NP);
-    for (uint32_t i = 0; i < n; ++i) {
-        const double r = pft_test_to_double(rho[i]);
+    TEST_ASSERT_TRUE(n >= NP && n <= NP + 1);
+    for (size_t i = 0; i < n; ++i) {
+        const double r = pft_test_to_double(part[i].rho);
         if (r >= rho_min && r > best) {
             best = r;
         }
     }
-    for (uint32_t i = 0; i < n; ++i) {
-        const double r = pft_test_to_double(rho[i]);
+    for (size_t i = 0; i < n; ++i) {
+        const double r = pft_test_to_double(part[i].rho);
         double w;
         if (r < rho_min || r <= 0) {
             continue;
         }
         w = lambda > 0 ? exp(lambda * (r - best)) : r;
         sw += w;
-        sx += w * pft_test_to_double(x[i]);
-        sy += w * pft_test_to_double(y[i]);
+        sx += w * pft_test_to_double(part[i].x);
+        sy += w * pft_test_to_double(part[i].y);
         ++kept;
     }
     TEST_ASSERT_TRUE_MESSAGE(kept > 1u, what);
     ex = sx / sw;
     ey = sy / sw;
-    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(EST_TOL, ex, pft_test_to_double(e->x), what);
-    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(EST_TOL, ey, pft_test_to_double(e->y), what);
+    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(EST_TOL, ex, pft_test_to_double(e.x), what);
+    TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(EST_TOL, ey, pft_test_to_double(e.y), what);
 }
 
 static void test_estimate_is_the_weighted_mean(void)
@@ -193,16 +202,16 @@ static double run(double lambda, uint64_t seed)
     render(truth_x(0), 24.0, true);
     box_at(truth_x(0), 24.0, b);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
-    off_x = pft_test_to_double(pft_tsa_estimate(&trk)->x) - truth_x(0);
-    off_y = pft_test_to_double(pft_tsa_estimate(&trk)->y) - 24.0;
+    off_x = pft_test_to_double(estimate().x) - truth_x(0);
+    off_y = pft_test_to_double(estimate().y) - 24.0;
     for (int k = 1; k < FRAMES; ++k) {
-        const pft_tsa_estimate_t *e;
+        pft_tsa_estimate_t e;
         double ex, ey, err;
         render(truth_x(k), 24.0, true);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&trk, &f));
-        e = pft_tsa_estimate(&trk);
-        ex = pft_test_to_double(e->x) - off_x - truth_x(k);
-        ey = pft_test_to_double(e->y) - off_y - 24.0;
+        e = estimate();
+        ex = pft_test_to_double(e.x) - off_x - truth_x(k);
+        ey = pft_test_to_double(e.y) - off_y - 24.0;
         err = sqrt(ex * ex + ey * ey);
         worst = err > worst ? err : worst;
     }

@@ -345,7 +345,9 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
  * theta_u 1 updates the template (snake passes) on most frames. */
 static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
 {
-    pft_tsa_config_default(c, TSA_GV_W, TSA_GV_H);
+    pft_tsa_config_default(c);
+    c->width = TSA_GV_W;
+    c->height = TSA_GV_H;
     c->max_target_w = TSA_GV_MAXT;
     c->max_target_h = TSA_GV_MAXT;
     pft_tsa_snake_params_default(&c->snake, TSA_GV_MAXT, TSA_GV_MAXT);
@@ -373,41 +375,52 @@ static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
 static inline void tsa_gv_record(const pft_tsa_t *t, int32_t *v)
 {
     static pft_tsa_pt_t contour[TSA_GV_PTS];
-    const pft_tsa_estimate_t *e = pft_tsa_estimate(t);
-    const pft_real_t *px, *py, *prho;
-    const uint32_t n = pft_tsa_particles(t, &px, &py, &prho);
-    const uint32_t nc = pft_tsa_contour(t, contour, TSA_GV_PTS);
+    static pft_tsa_particle_t part[TSA_GV_NP + 1u];
+    static pft_tsa_kpix_t kpix[TSA_GV_MAXT * TSA_GV_MAXT];
+    pft_tsa_estimate_t e;
+    pft_tsa_hist_t q;
+    pft_tsa_kernel_t k;
+    memset(&e, 0, sizeof e);
+    memset(&q, 0, sizeof q);
+    memset(&k, 0, sizeof k);
+    k.pix = kpix;
+    k.cap = TSA_GV_MAXT * TSA_GV_MAXT;
+    (void)pft_tsa_estimate(t, &e);
+    (void)pft_tsa_template(t, &q);
+    (void)pft_tsa_kernel(t, &k);
+    const uint32_t n = (uint32_t)pft_tsa_particles(t, part, TSA_GV_NP + 1u);
+    const uint32_t nc = (uint32_t)pft_tsa_contour(t, contour, TSA_GV_PTS);
     uint32_t hp = TSA_GV_HASH0;
     uint32_t hs = (uint32_t)tsa_gv_hash_pts(contour, nc);
-    v[0] = (int32_t)e->state;
-    v[1] = (int32_t)e->frame;
-    v[2] = PFT_GV_RAW(e->x);
-    v[3] = PFT_GV_RAW(e->y);
-    v[4] = PFT_GV_RAW(e->vx);
-    v[5] = PFT_GV_RAW(e->vy);
-    v[6] = PFT_GV_RAW(e->pioneer_x);
-    v[7] = PFT_GV_RAW(e->pioneer_y);
-    v[8] = PFT_GV_RAW(e->pioneer_vx);
-    v[9] = PFT_GV_RAW(e->pioneer_vy);
-    v[10] = PFT_GV_RAW(e->rho);
-    v[11] = PFT_GV_RAW(e->rho_pioneer);
-    v[12] = PFT_GV_RAW(e->beta);
-    v[13] = PFT_GV_RAW(e->beta_next);
-    v[14] = (int32_t)e->n_alive;
-    v[15] = (e->ref_is_estimate ? 1 : 0) | (e->template_updated ? 2 : 0) | ((int32_t)e->snake_passes << 8) |
-            ((int32_t)e->fit_order << 16);
-    v[16] = e->box_x0;
-    v[17] = e->box_y0;
-    v[18] = e->box_x1;
-    v[19] = e->box_y1;
+    v[0] = (int32_t)e.state;
+    v[1] = (int32_t)e.frame;
+    v[2] = PFT_GV_RAW(e.x);
+    v[3] = PFT_GV_RAW(e.y);
+    v[4] = PFT_GV_RAW(e.vx);
+    v[5] = PFT_GV_RAW(e.vy);
+    v[6] = PFT_GV_RAW(e.pioneer_x);
+    v[7] = PFT_GV_RAW(e.pioneer_y);
+    v[8] = PFT_GV_RAW(e.pioneer_vx);
+    v[9] = PFT_GV_RAW(e.pioneer_vy);
+    v[10] = PFT_GV_RAW(e.rho);
+    v[11] = PFT_GV_RAW(e.rho_pioneer);
+    v[12] = PFT_GV_RAW(e.beta);
+    v[13] = PFT_GV_RAW(e.beta_next);
+    v[14] = (int32_t)e.n_alive;
+    v[15] = (e.ref_is_estimate ? 1 : 0) | (e.template_updated ? 2 : 0) | ((int32_t)e.snake_passes << 8) |
+            ((int32_t)e.fit_order << 16);
+    v[16] = e.box_x0;
+    v[17] = e.box_y0;
+    v[18] = e.box_x1;
+    v[19] = e.box_y1;
     for (uint32_t i = 0; i < n; ++i) {
-        hp = tsa_gv_hash(hp, PFT_GV_RAW(px[i]));
-        hp = tsa_gv_hash(hp, PFT_GV_RAW(py[i]));
-        hp = tsa_gv_hash(hp, PFT_GV_RAW(prho[i]));
+        hp = tsa_gv_hash(hp, PFT_GV_RAW(part[i].x));
+        hp = tsa_gv_hash(hp, PFT_GV_RAW(part[i].y));
+        hp = tsa_gv_hash(hp, PFT_GV_RAW(part[i].rho));
     }
     v[20] = (int32_t)tsa_gv_hash(hp, (int32_t)n);
-    hs = tsa_gv_hash(hs, tsa_gv_hash_hist(pft_tsa_template(t)));
-    v[21] = (int32_t)tsa_gv_hash(hs, tsa_gv_hash_kernel(pft_tsa_kernel(t)));
+    hs = tsa_gv_hash(hs, tsa_gv_hash_hist(&q));
+    v[21] = (int32_t)tsa_gv_hash(hs, tsa_gv_hash_kernel(&k));
 }
 
 static inline void tsa_gv_compute(tsa_gv_results_t *r)
