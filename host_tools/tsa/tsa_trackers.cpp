@@ -1,4 +1,4 @@
-#include "vis_trackers.hpp"
+#include "tsa_trackers.hpp"
 
 #include <cmath>
 
@@ -17,7 +17,7 @@ extern "C" {
 #include "../common/json_field.hpp"
 #include "../common/real.hpp"
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 
 PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, const std::string &path)
@@ -266,4 +266,4 @@ std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &
     return make_pft_tracker(name, p, width, height);
 }
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa

@@ -1,4 +1,4 @@
-// Semi-synthetic airborne sequences for the "vis" kind: a textured vehicle driving over a real
+// Semi-synthetic airborne sequences for the "tsa" kind: a textured vehicle driving over a real
 // aerial photograph (opencv-doc's aero1.jpg / aero3.jpg), seen by a camera that swings,
 // reverses and zooms, with sensor noise and blur, and exact ground truth.
 #pragma once
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 struct SceneSpec {
     std::string name, description;
@@ -54,4 +54,4 @@ std::string find_data_file(const std::string &name);
 void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &frames,
                      std::vector<TruthRow> &truth, int max_frames = -1);
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa

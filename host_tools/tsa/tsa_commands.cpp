@@ -1,5 +1,5 @@
-// The "vis" kind: sim / run / eval / bench / demo / selftest for the semi-synthetic airborne
-// sequences, and the `pft track` subcommand (TSA-AK, ALGORITHMS.md 4).
+// The "tsa" kind (formerly "vis"): sim / run / eval / bench / demo / selftest for the
+// semi-synthetic airborne sequences, and the `pft track` subcommand (TSA-AK, ALGORITHMS.md 4).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,13 +23,13 @@
 #include "../common/progress.hpp"
 #include "../common/registry.hpp"
 #include "track.hpp"
-#include "vis_scene.hpp"
-#include "vis_trackers.hpp"
+#include "tsa_scene.hpp"
+#include "tsa_trackers.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 namespace {
 
@@ -182,7 +182,7 @@ EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, in
     std::vector<std::vector<RunTrace>> all(runs, std::vector<RunTrace>(names.size()));
     std::vector<std::size_t> mem(names.size(), 0);
     std::vector<TruthRow> truth0;
-    Progress bar((std::size_t)runs, "vis " + s.name, progress);
+    Progress bar((std::size_t)runs, "tsa " + s.name, progress);
     parallel_for((std::size_t)runs, threads, [&](std::size_t i) {
         std::vector<cv::Mat> frames;
         std::vector<TruthRow> truth;
@@ -241,7 +241,7 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                        {"workspace_bytes", a.memory},
                        {"success_vs_iou", curve}});
     }
-    return {{"kind", "vis"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
+    return {{"kind", "tsa"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
             {"numeric", numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
             {"seed_last", seed_base + (uint64_t)runs - 1}, {"frames_per_run", s.scene.frames},
             {"success", {{"iou", s.iou_thr}, {"center_px", s.center_thr}, {"run_min_fraction", s.run_min_fraction}}},
@@ -555,7 +555,7 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
 }
 
 // --------------------------------------------------------------------------- the handler
-class VisHandler : public KindHandler {
+class TsaHandler : public KindHandler {
 public:
     int sim(const Options &o) override
     {
@@ -588,7 +588,7 @@ public:
                      {"format", "png"}, {"pattern", "frame_%04u.png"}, {"truth", "truth.csv"}};
         write_json_atomic(join_path(o.out, "sequence.json"), side);
         if (!o.quiet)
-            std::printf("pft sim (vis): %zu frames %dx%d, seed %llu -> %s\n", frames.size(), s.scene.width,
+            std::printf("pft sim (tsa): %zu frames %dx%d, seed %llu -> %s\n", frames.size(), s.scene.width,
                         s.scene.height, (unsigned long long)seed, o.out.c_str());
         return 0;
     }
@@ -608,7 +608,7 @@ public:
         if (truth_csv.empty() && fs::exists(join_path(o.sequence, "truth.csv")))
             truth_csv = join_path(o.sequence, "truth.csv");
         if (truth_csv.empty())
-            throw InputError("vis run needs a `pft sim` directory (truth.csv gives the initial box) or --truth CSV; "
+            throw InputError("tsa run needs a `pft sim` directory (truth.csv gives the initial box) or --truth CSV; "
                              "for a video with a box use `pft track`");
         std::ifstream is(truth_csv);
         if (!is)
@@ -659,13 +659,13 @@ public:
             for (std::size_t k = 0; same && k < a.size(); ++k)
                 same = cv::norm(a[k], b[k], cv::NORM_INF) == 0;
             if (!same) {
-                std::printf("FAIL: vis sim is not deterministic for a fixed seed\n");
+                std::printf("FAIL: tsa sim is not deterministic for a fixed seed\n");
                 ++fails;
             }
             for (auto &t : ta)
                 if (t.box.width < 20 || t.box.width > 40 || t.box.height < 20 || t.box.height > 40 ||
                     std::abs(t.cx - (t.box.x + t.box.width / 2)) > 1.0) {
-                    std::printf("FAIL: vis truth box implausible at frame %d\n", t.frame);
+                    std::printf("FAIL: tsa truth box implausible at frame %d\n", t.frame);
                     ++fails;
                     break;
                 }
@@ -681,10 +681,10 @@ public:
                 ++fails;
             }
         } catch (const std::exception &e) {
-            std::printf("FAIL: vis selftest: %s\n", e.what());
+            std::printf("FAIL: tsa selftest: %s\n", e.what());
             ++fails;
         }
-        std::printf("vis selftest: %s\n", fails ? "FAILED" : "passed");
+        std::printf("tsa selftest: %s\n", fails ? "FAILED" : "passed");
         return fails ? 1 : 0;
     }
 
@@ -744,7 +744,9 @@ private:
     }
 };
 
-PFT_REGISTER_KIND("vis", VisHandler);
+PFT_REGISTER_KIND("tsa", TsaHandler);
+// scenario files written with the earlier kind name
+PFT_REGISTER_KIND_ALIAS("vis", "tsa", tsa_vis);
 
 }  // namespace
 
@@ -815,4 +817,4 @@ int run_track(const TrackCli &t)
     return do_track(in, tr, t.sequence);
 }
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa

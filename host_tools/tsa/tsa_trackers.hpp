@@ -1,4 +1,4 @@
-// Trackers behind one interface for the "vis" kind: pftrack's TSA-AK and its NCV / TS
+// Trackers behind one interface for the "tsa" kind: pftrack's TSA-AK and its NCV / TS
 // baselines (lib/include/pft/pft_tsa.h), and OpenCV's KCF, CSRT, MOSSE and MIL.
 #pragma once
 #include <memory>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 struct TrackOut {
     cv::Rect2d box;                     ///< reported box
@@ -56,4 +56,4 @@ bool have_cv_tracking();
 /** A named tracker of the bench list: tsa, ts, ncv, ncv200, kcf, csrt, mosse, mil. */
 std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &base, int width, int height);
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa

@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 struct TrackCli {
     std::string sequence, box, polygon, init, out = "pft_track_out", motion = "tsa";
@@ -19,4 +19,4 @@ CLI::App *add_track_command(CLI::App &app, TrackCli &t);
 /** Runs it; returns the exit status (InputError on bad input). */
 int run_track(const TrackCli &t);
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa

@@ -1,4 +1,4 @@
-#include "vis_scene.hpp"
+#include "tsa_scene.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -16,7 +16,7 @@
 
 namespace fs = std::filesystem;
 
-namespace pft::host::vis {
+namespace pft::host::tsa {
 
 SceneSpec parse_scene(const nlohmann::json &j, const std::string &file)
 {
@@ -246,4 +246,4 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
     }
 }
 
-}  // namespace pft::host::vis
+}  // namespace pft::host::tsa
