@@ -6,7 +6,7 @@
  *   recomputation from the particles and similarities the tracker reports;
  * - on a low-contrast scene (a grey target on grey texture: background placements reach
  *   rho 0.8-0.95 against the template, the situation of the aerial sequences in
- *   docs/results/tsa_ak.md) TSA with the default lik_lambda = 300 follows a target that
+ *   docs/results/tsa.md) TSA with the default lik_lambda = 300 follows a target that
  *   cruises at 1 px/frame and then accelerates at 1 px/frame^2, in at least 6 of 8 seeds,
  *   every frame within 7 px. With the paper's w = rho the same runs are printed for reference
  *   (on the aerial sequences that variant lost the target in every run).

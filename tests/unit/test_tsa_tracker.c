@@ -10,7 +10,7 @@
  * NOTE: the issue asked for a scenario where TSA follows and NCV fails; on these synthetic
  * scenes the NCV baseline (velocity noise sqrt(q) = 2 px/frame at beta = 0) was never worse
  * than TSA over the accelerations tried (1-6 px/frame^2, several q, sigma_G, rho_min), see
- * docs/results/tsa_ak.md, so that claim is not asserted. Also checks that a lost target is
+ * docs/results/tsa.md, so that claim is not asserted. Also checks that a lost target is
  * reported as a state, not an error.
  */
 #include <math.h>

@@ -139,14 +139,14 @@ typedef struct {
     pft_real_t fit_v_max;            /**< TSA/TS: bound on |v_hat| and on the pioneer step per axis,
                                           px/frame; 0 = off (default 12: above accel_exp2's 10.6
                                           px/frame) [A]. See pft_tsa_motion_fit_bound() and
-                                          docs/results/tsa_ak.md "Real videos" */
+                                          docs/results/tsa.md "Real videos" */
     pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
     pft_real_t lik_lambda;           /**< weight of a kept particle: 0 = rho itself (eq. 22, the paper's
                                           linear weight); > 0 = exp(lik_lambda (rho - rho_best))
                                           (Perez et al. 2002). The 30-bin histogram gives rho 0.8-0.95
                                           on aerial background and 0.99+ within 10 px of the target, so
                                           w = rho hardly localises and TS/TSA's fit of their own
-                                          estimates drifts or oscillates; see docs/results/tsa_ak.md
+                                          estimates drifts or oscillates; see docs/results/tsa.md
                                           (default 300) [A] */
     pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
     pft_real_t update_rho_min;       /**< ... but only when rho(estimate) >= this: a misaligned estimate
@@ -445,7 +445,7 @@ pft_status_t pft_tsa_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint3
 /**
  * Bounds on a conservative fit (not in the paper [A]). With only a few reference points, or
  * when the reference points follow the pioneer where the likelihood is flat, the fitted a and
- * v_hat can grow from frame to frame without limit (docs/results/tsa_ak.md, "Real videos").
+ * v_hat can grow from frame to frame without limit (docs/results/tsa.md, "Real videos").
  * a_max > 0: a is clamped to [-a_max, a_max] (a as fitted, i.e. half the physical
  * acceleration, px/frame^2) and v_pred, x_pred are recomputed from the clamped a.
  * v_max > 0: v_pred and the pioneer step x_pred - s are clamped to [-v_max, v_max] (px/frame).
