@@ -1,5 +1,5 @@
 // The "tsa" kind (formerly "vis"): sim / run / eval / bench / demo / selftest for the
-// semi-synthetic airborne sequences, and the `pft track` subcommand (TSA-AK, ALGORITHMS.md 4).
+// semi-synthetic airborne sequences, and the `pft track` subcommand (TSA-AK, docs/algorithms.md 4).
 #include <algorithm>
 #include <chrono>
 #include <cmath>

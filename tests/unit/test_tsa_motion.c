@@ -1,5 +1,5 @@
 /*
- * TSA dynamics (ALGORITHMS.md 4.1, 4.2, eq. 24-25): free-model coefficients against the
+ * TSA dynamics (docs/algorithms.md 4.1, 4.2, eq. 24-25): free-model coefficients against the
  * closed forms in double (and the exact NCV limits at beta = 0), the conservative fit
  * recovering a known quadratic exactly and agreeing with a double solve of the adjugate
  * normal equations on noisy data, its fallbacks, the beta adaptation formula and the
@@ -123,7 +123,7 @@ static void test_fit_recovers_quadratic(void)
     }
 }
 
-/* Double reference: weighted normal equations solved by the adjugate (ALGORITHMS.md 4.2). */
+/* Double reference: weighted normal equations solved by the adjugate (docs/algorithms.md 4.2). */
 static void ref_fit(const double *o, const double *pi, unsigned n, double sg, int order,
                     double *s, double *v, double *a)
 {

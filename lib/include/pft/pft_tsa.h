@@ -1,11 +1,11 @@
 /**
  * @file pft_tsa.h
- * @brief TSA-AK visual tracker (Song, Zhang & Yin 2014; ALGORITHMS.md 4) with its NCV and TS
- *        baselines: the tracker (ALGORITHMS.md 4.4), its appearance model (greedy snake with
+ * @brief TSA-AK visual tracker (Song, Zhang & Yin 2014; docs/algorithms.md 4) with its NCV and TS
+ *        baselines: the tracker (docs/algorithms.md 4.4), its appearance model (greedy snake with
  *        balloon force and corner relaxation, polygon rasterisation and distance to the
  *        contour, the asymmetric kernel, the 30-bin kernel-weighted RGB histogram and the
- *        Bhattacharyya coefficient, ALGORITHMS.md 4.3) and its motion models (ALGORITHMS.md
- *        4.1, 4.2, 4.4 step 6).
+ *        Bhattacharyya coefficient, docs/algorithms.md 4.3) and its motion models
+ *        (docs/algorithms.md 4.1, 4.2, 4.4 step 6).
  *
  * Use (the calls every pftrack tracker has, in this order):
  *   pft_tsa_config_default(&cfg); cfg.width = W; cfg.height = H; ...change what differs...
@@ -61,11 +61,11 @@
  * tau = i - (k-1) in {-(n-1) .. 0}, weights G_i = pi_i exp(-tau^2 / (2 sigma_G^2)). The normal
  * equations are solved by weighted orthogonal polynomials in tau (P0 = 1, P1 = tau - alpha1,
  * P2 = (tau - alpha2) P1 - b1): the same least-squares solution as the adjugate of
- * ALGORITHMS.md 4.2 (tests/unit/test_tsa_motion.c checks both against a 64-bit floating-point
+ * docs/algorithms.md 4.2 (tests/unit/test_tsa_motion.c checks both against a 64-bit floating-point
  * solve), but with no determinant to cancel, so the Q16.16 build keeps sub-millipixel
  * accuracy. Positions are taken relative to the newest point; sums that can exceed the Q16.16
  * range (tau^4 moments, projections) accumulate in 64 bits in the q16 build.
- * Fallbacks (ALGORITHMS.md 4.2): fewer than 3 points, max_order < 2, or
+ * Fallbacks (docs/algorithms.md 4.2): fewer than 3 points, max_order < 2, or
  * det / (A0 A2 A4) = (N1 / A2)(N2 / A4) < 2^-10 gives the weighted constant-velocity fit (a = 0);
  * one point (or N1 / A2 < 2^-10: all weight on one point) gives v = a = 0.
  */
@@ -100,9 +100,13 @@ typedef struct {
 
 /** Dynamics of the visual tracker. */
 typedef enum {
-    PFT_TSA_MOTION_NCV = 0, /**< near constant velocity: the free model at beta = 0 (no pioneer) */
-    PFT_TSA_MOTION_TS = 1,  /**< Kristan's two-stage model: fixed beta, vbar from a constant-velocity fit of the estimates */
-    PFT_TSA_MOTION_TSA = 2  /**< two-stage acceleration: constant-acceleration fit, pioneer particle, adaptive beta */
+    /** near constant velocity: the free model at beta = 0 (no pioneer) */
+    PFT_TSA_MOTION_NCV = 0,
+    /** Kristan's two-stage model: fixed beta, vbar from a constant-velocity fit of the
+     *  estimates */
+    PFT_TSA_MOTION_TS = 1,
+    /** two-stage acceleration: constant-acceleration fit, pioneer particle, adaptive beta */
+    PFT_TSA_MOTION_TSA = 2
 } pft_tsa_motion_kind_t;
 
 /** Greedy snake parameters (Williams & Shah 1992, balloon of Cohen 1991). */
@@ -119,53 +123,61 @@ typedef struct {
 
 /** Tracker configuration; pft_tsa_config_default() fills the documented defaults. */
 typedef struct {
-    uint16_t width, height;          /**< frame size, 8..PFT_CFG_MAX_IMAGE_SIDE (required: the
-                                          default 0 is refused) */
-    uint16_t max_target_w;           /**< largest contour box width (default 64, 4..255) */
-    uint16_t max_target_h;           /**< largest contour box height (default 64, 4..255) */
-    uint32_t n_particles;            /**< N normal particles (default 100); TSA adds the pioneer */
-    pft_tsa_motion_kind_t motion;    /**< TSA (default), TS or NCV */
-    pft_real_t beta0;                /**< TSA: beta_1; TS: the fixed beta (default 2) [A] */
-    pft_real_t beta_max;             /**< eq. 24 scale (default 6) [P] */
-    pft_real_t q;                    /**< OU spectral density (default 4.07: sqrt(Q22) = 1 px/frame at beta 2) [A] */
-    pft_real_t pos_sd;               /**< extra isotropic position diffusion, px (default 2) [A] */
-    uint8_t fit_k;                   /**< K reference points, 1..PFT_TSA_MOTION_MAX_K (default 10) [A] */
-    pft_real_t fit_sigma;            /**< sigma_G (default K/2 = 5) [A] */
-    bool fit_rho_weights;            /**< pi_i = rho of the reference point (default false: pi_i = 1) [A] */
-    pft_real_t fit_a_max;            /**< TSA/TS: bound on |a| of the conservative fit per axis, px/frame^2
-                                          (a as fitted: half the physical acceleration); 0 = off, the
-                                          paper's unbounded fit (default 0.5: a physical 1 px/frame^2,
-                                          the synthetic swing's camera acceleration) [A] */
-    pft_real_t fit_v_max;            /**< TSA/TS: bound on |v_hat| and on the pioneer step per axis,
-                                          px/frame; 0 = off (default 12: above accel_exp2's 10.6
-                                          px/frame) [A]. See pft_tsa_motion_fit_bound() and
-                                          docs/results/tsa.md "Real videos" */
-    pft_real_t rho_min;              /**< particles with rho below are discarded (default 0.75) [A] */
-    pft_real_t lik_lambda;           /**< weight of a kept particle: 0 = rho itself (eq. 22, the paper's
-                                          linear weight); > 0 = exp(lik_lambda (rho - rho_best))
-                                          (Perez et al. 2002). The 30-bin histogram gives rho 0.8-0.95
-                                          on aerial background and 0.99+ within 10 px of the target, so
-                                          w = rho hardly localises and TS/TSA's fit of their own
-                                          estimates drifts or oscillates; see docs/results/tsa.md
-                                          (default 300) [A] */
-    pft_real_t theta_u;              /**< template update when rho(estimate) < theta_u (default 0.9) [A] */
-    pft_real_t update_rho_min;       /**< ... but only when rho(estimate) >= this: a misaligned estimate
-                                          would teach the template the background (default 0.85) [A] */
-    pft_real_t anchor_rho_min;       /**< ... and only when the new template keeps rho >= this against
-                                          the first one (stops drift onto the background; 0: off;
-                                          default 0.8) [A] */
-    pft_real_t k_s;                  /**< N_iter = min(ceil(k_s / rho), update_max_passes) (default 1.5) [A] */
-    uint8_t update_max_passes;       /**< (default 3) [P] */
-    uint8_t init_passes;             /**< snake passes on the initial contour, 0 = none (default 50) [A] */
-    uint8_t snake_points;            /**< contour points n (default 40, >= PFT_TSA_MIN_POINTS) */
-    pft_tsa_snake_params_t snake;    /**< snake weights (defaults of pft_tsa_snake_params_default);
-                                          max_w / max_h are set from max_target_w / max_target_h
-                                          by pft_tsa_init */
-    pft_real_t kernel_c;             /**< kernel value c on the contour (default 1) [A] */
-    pft_real_t max_area_change;      /**< a snake result whose area changes by more than this
-                                          factor (or its inverse) is rejected (default 2) [A] */
-    uint16_t lost_frames;            /**< frames with rho(estimate) < rho_min before LOST (default 10) */
-    uint64_t seed;                   /**< RNG seed (default 1) */
+    /** frame size, 8..PFT_CFG_MAX_IMAGE_SIDE (required: the default 0 is refused) */
+    uint16_t width, height;
+    uint16_t max_target_w;        /**< largest contour box width (default 64, 4..255) */
+    uint16_t max_target_h;        /**< largest contour box height (default 64, 4..255) */
+    uint32_t n_particles;         /**< N normal particles (default 100); TSA adds the pioneer */
+    pft_tsa_motion_kind_t motion; /**< TSA (default), TS or NCV */
+    pft_real_t beta0;             /**< TSA: beta_1; TS: the fixed beta (default 2) [A] */
+    pft_real_t beta_max;          /**< eq. 24 scale (default 6) [P] */
+    /** OU spectral density (default 4.07: sqrt(Q22) = 1 px/frame at beta 2) [A] */
+    pft_real_t q;
+    pft_real_t pos_sd;            /**< extra isotropic position diffusion, px (default 2) [A] */
+    /** K reference points, 1..PFT_TSA_MOTION_MAX_K (default 10) [A] */
+    uint8_t fit_k;
+    pft_real_t fit_sigma;         /**< sigma_G (default K/2 = 5) [A] */
+    /** pi_i = rho of the reference point (default false: pi_i = 1) [A] */
+    bool fit_rho_weights;
+    /** TSA/TS: bound on |a| of the conservative fit per axis, px/frame^2 (a as fitted: half the
+     *  physical acceleration); 0 = off, the paper's unbounded fit (default 0.5: a physical
+     *  1 px/frame^2, the synthetic swing's camera acceleration) [A] */
+    pft_real_t fit_a_max;
+    /** TSA/TS: bound on |v_hat| and on the pioneer step per axis, px/frame; 0 = off (default 12:
+     *  above accel_exp2's 10.6 px/frame) [A]. See pft_tsa_motion_fit_bound() and
+     *  docs/results/tsa.md "Real videos" */
+    pft_real_t fit_v_max;
+    pft_real_t rho_min;           /**< particles with rho below are discarded (default 0.75) [A] */
+    /** weight of a kept particle: 0 = rho itself (eq. 22, the paper's linear weight); > 0 =
+     *  exp(lik_lambda (rho - rho_best)) (Perez et al. 2002). The 30-bin histogram gives rho
+     *  0.8-0.95 on aerial background and 0.99+ within 10 px of the target, so w = rho hardly
+     *  localises and TS/TSA's fit of their own estimates drifts or oscillates; see
+     *  docs/results/tsa.md (default 300) [A] */
+    pft_real_t lik_lambda;
+    /** template update when rho(estimate) < theta_u (default 0.9) [A] */
+    pft_real_t theta_u;
+    /** ... but only when rho(estimate) >= this: a misaligned estimate would teach the template
+     *  the background (default 0.85) [A] */
+    pft_real_t update_rho_min;
+    /** ... and only when the new template keeps rho >= this against the first one (stops drift
+     *  onto the background; 0: off; default 0.8) [A] */
+    pft_real_t anchor_rho_min;
+    /** N_iter = min(ceil(k_s / rho), update_max_passes) (default 1.5) [A] */
+    pft_real_t k_s;
+    uint8_t update_max_passes;    /**< (default 3) [P] */
+    /** snake passes on the initial contour, 0 = none (default 50) [A] */
+    uint8_t init_passes;
+    uint8_t snake_points;         /**< contour points n (default 40, >= PFT_TSA_MIN_POINTS) */
+    /** snake weights (defaults of pft_tsa_snake_params_default); max_w / max_h are set from
+     *  max_target_w / max_target_h by pft_tsa_init */
+    pft_tsa_snake_params_t snake;
+    pft_real_t kernel_c;          /**< kernel value c on the contour (default 1) [A] */
+    /** a snake result whose area changes by more than this factor (or its inverse) is rejected
+     *  (default 2) [A] */
+    pft_real_t max_area_change;
+    /** frames with rho(estimate) < rho_min before LOST (default 10) */
+    uint16_t lost_frames;
+    uint64_t seed;                /**< RNG seed (default 1) */
 } pft_tsa_config_t;
 
 /** Tracker state reported with each estimate. */
@@ -294,7 +306,7 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
                            uint32_t n);
 
 /**
- * One frame (ALGORITHMS.md 4.4 steps 1-7). PFT_ERR_INVAL (NULL, not initialised),
+ * One frame (docs/algorithms.md 4.4 steps 1-7). PFT_ERR_INVAL (NULL, not initialised),
  * PFT_ERR_STATE before pft_tsa_start, PFT_ERR_FORMAT for a bad frame; refusals leave instance
  * and workspace unchanged. Losing the target is not an error: see pft_tsa_estimate_t.state.
  */
@@ -381,7 +393,7 @@ size_t pft_tsa_snake_work_size(uint16_t max_w, uint16_t max_h, uint8_t margin);
 /**
  * Runs up to max_passes greedy passes on the closed contour pts[0..n) (frame coordinates,
  * updated in place). Per pass every point moves to the best of its 3x3 neighbourhood under
- * alpha e_cont + beta_i e_curv + gamma e_img + kb e_bal (ALGORITHMS.md 4.3); then corners
+ * alpha e_cont + beta_i e_curv + gamma e_img + kb e_bal (docs/algorithms.md 4.3); then corners
  * (local maxima of the turning |u_i/|u_i| - u_{i+1}/|u_{i+1}||^2 above corner_c on an edge
  * above corner_g) get beta_i = 0. Stops early when fewer than 10% of the points moved.
  * Points stay inside the frame (1 px from its border). The gradient is recomputed around the

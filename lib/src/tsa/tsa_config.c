@@ -62,7 +62,8 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     if (c->max_target_h < 4u || c->max_target_h > PFT_TSA_MAX_SIDE) {
         return "max_target_h";
     }
-    if (c->n_particles == 0u || c->n_particles > 65535u || c->n_particles > PFT_CFG_MAX_PARTICLES - 1u) {
+    if (c->n_particles == 0u || c->n_particles > 65535u ||
+        c->n_particles > PFT_CFG_MAX_PARTICLES - 1u) {
         return "n_particles";
     }
     if ((unsigned)c->motion > (unsigned)PFT_TSA_MOTION_TSA) {

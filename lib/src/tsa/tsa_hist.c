@@ -1,5 +1,5 @@
 /*
- * Kernel-weighted 30-bin RGB histogram and Bhattacharyya coefficient (ALGORITHMS.md 4.3,
+ * Kernel-weighted 30-bin RGB histogram and Bhattacharyya coefficient (docs/algorithms.md 4.3,
  * eq. 21), in integer arithmetic in both builds.
  */
 #include <string.h>

@@ -1,5 +1,5 @@
 /*
- * Polygon geometry of the appearance model (ALGORITHMS.md 4.3): signed area, even-odd
+ * Polygon geometry of the appearance model (docs/algorithms.md 4.3): signed area, even-odd
  * rasterisation of pixel centres, distance to the contour, perimeter resampling, and the
  * asymmetric kernel K(p) = c + d(p) stored as offsets from the rounded area centroid.
  * Integer arithmetic only.
@@ -207,7 +207,8 @@ pft_status_t pft_tsa_kernel_build(pft_tsa_kernel_t *k, const pft_tsa_pt_t *poly,
         return PFT_ERR_DEGENERATE;
     }
     const pft_tsa_box_t_ bb = pft_tsa_bbox_(poly, n);
-    if (bb.x1 - bb.x0 + 1 > (int32_t)PFT_TSA_MAX_SIDE || bb.y1 - bb.y0 + 1 > (int32_t)PFT_TSA_MAX_SIDE) {
+    if (bb.x1 - bb.x0 + 1 > (int32_t)PFT_TSA_MAX_SIDE ||
+        bb.y1 - bb.y0 + 1 > (int32_t)PFT_TSA_MAX_SIDE) {
         return PFT_ERR_RANGE;
     }
     int64_t sx;

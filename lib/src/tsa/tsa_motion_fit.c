@@ -1,6 +1,6 @@
 /*
  * Conservative weighted least-squares fit of TS (constant velocity) and TSA (constant
- * acceleration), ALGORITHMS.md 4.2, solved with weighted orthogonal polynomials in the
+ * acceleration), docs/algorithms.md 4.2, solved with weighted orthogonal polynomials in the
  * centred time tau (see pft_tsa.h). Sums that may leave the Q16.16 range are accumulated with
  * the core's pft_macc_* helpers: exact 64-bit products (Q32) in the q16 build, floats in the
  * float build.
@@ -75,8 +75,8 @@ static void fit_second_order_(const fit_sums_t_ *m, uint32_t n, pft_real_t alpha
 pft_status_t pft_tsa_motion_fit(const pft_real_t *o, const pft_real_t *pi, uint32_t n,
                                 pft_real_t sigma_g, uint8_t max_order, pft_tsa_motion_fit_t *out)
 {
-    if (o == NULL || out == NULL || n == 0u || n > PFT_TSA_MOTION_MAX_K || !(sigma_g > PFT_C(0.0)) ||
-        max_order > 2u) {
+    if (o == NULL || out == NULL || n == 0u || n > PFT_TSA_MOTION_MAX_K ||
+        !(sigma_g > PFT_C(0.0)) || max_order > 2u) {
         return PFT_ERR_INVAL;
     }
     fit_sums_t_ m;

@@ -1,5 +1,5 @@
 /*
- * Kristan's liberal ("free") model (ALGORITHMS.md 4.1) with beta = 0 giving NCV, its noise
+ * Kristan's liberal ("free") model (docs/algorithms.md 4.1) with beta = 0 giving NCV, its noise
  * covariance (integrated Ornstein-Uhlenbeck) and the beta adaptation of TSA (eq. 24).
  * Small beta uses power series so the limits are exact and q16 has no cancellation.
  */
@@ -36,7 +36,8 @@ static pft_real_t q11_series_(pft_real_t b)
 
 pft_status_t pft_tsa_motion_free_coef(pft_tsa_motion_free_t *c, pft_real_t beta, pft_real_t q)
 {
-    if (c == NULL || !(beta >= PFT_C(0.0)) || beta > PFT_C(64.0) || !(q >= PFT_C(0.0)) || q > PFT_C(10000.0)) {
+    if (c == NULL || !(beta >= PFT_C(0.0)) || beta > PFT_C(64.0) || !(q >= PFT_C(0.0)) ||
+        q > PFT_C(10000.0)) {
         return PFT_ERR_INVAL;
     }
     const pft_real_t f1 = phi_f_(beta);
@@ -47,9 +48,10 @@ pft_status_t pft_tsa_motion_free_coef(pft_tsa_motion_free_t *c, pft_real_t beta,
     c->gamma1 = pft_sub(PFT_REAL_ONE, f1);
     c->gamma2 = pft_sub(PFT_REAL_ONE, c->phi22);
     /* Q11 / q */
-    const pft_real_t g11 = beta < PFT_REAL_ONE
-                               ? q11_series_(beta)
-                               : pft_div(pft_add(pft_sub(PFT_REAL_ONE, pft_add(f1, f1)), f2), pft_sq(beta));
+    const pft_real_t g11 =
+        beta < PFT_REAL_ONE
+            ? q11_series_(beta)
+            : pft_div(pft_add(pft_sub(PFT_REAL_ONE, pft_add(f1, f1)), f2), pft_sq(beta));
     c->q11 = pft_mul(q, g11);
     c->q12 = pft_mul(pft_div_i(q, 2), pft_sq(f1));
     c->q22 = pft_mul(q, f2);

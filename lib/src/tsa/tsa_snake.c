@@ -1,6 +1,6 @@
 /*
  * Greedy snake (Williams & Shah 1992) with a balloon force (Cohen 1991) and corner
- * relaxation, ALGORITHMS.md 4.3. Integer arithmetic in both builds: energies are Q16
+ * relaxation, docs/algorithms.md 4.3. Integer arithmetic in both builds: energies are Q16
  * fractions, distances Q8, the gradient an 8-bit Sobel magnitude on a patch around the
  * contour that is recomputed every margin - 2 passes.
  */
@@ -78,8 +78,10 @@ static void patch_fill_(patch_t_ *pt)
     for (int32_t y = 0; y < pt->ph; ++y) {
         for (int32_t x = 0; x < pt->pw; ++x) {
             const uint8_t *g = &pt->grey[(y + 1) * gw + (x + 1)];
-            const int32_t gx = (g[-gw + 1] + 2 * g[1] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-1] + g[gw - 1]);
-            const int32_t gy = (g[gw - 1] + 2 * g[gw] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-gw] + g[-gw + 1]);
+            const int32_t gx =
+                (g[-gw + 1] + 2 * g[1] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-1] + g[gw - 1]);
+            const int32_t gy =
+                (g[gw - 1] + 2 * g[gw] + g[gw + 1]) - (g[-gw - 1] + 2 * g[-gw] + g[-gw + 1]);
             const uint32_t m = pft_tsa_isqrt32_((uint32_t)(gx * gx + gy * gy)) / 4u;
             pt->grad[y * pt->pw + x] = (uint8_t)(m > 255u ? 255u : m);
         }
@@ -131,8 +133,9 @@ static void candidates_(const patch_t_ *pt, pft_tsa_pt_t prev, pft_tsa_pt_t cur,
         const int32_t dy = (j / 3) - 1;
         const int32_t cx = cur.x + dx;
         const int32_t cy = cur.y + dy;
+        const bool on_neighbour = (cx == prev.x && cy == prev.y) || (cx == next.x && cy == next.y);
         c->valid[j] = (cx >= lim->x0 && cx <= lim->x1 && cy >= lim->y0 && cy <= lim->y1) &&
-                      (j == 4 || !((cx == prev.x && cy == prev.y) || (cx == next.x && cy == next.y)));
+                      (j == 4 || !on_neighbour);
         const int32_t ec = dbar - len_q8_(cx - prev.x, cy - prev.y);
         c->econt[j] = ec < 0 ? -ec : ec;
         const int32_t kx = prev.x - 2 * cx + next.x;
@@ -233,7 +236,8 @@ static void corners_(const patch_t_ *pt, const pft_tsa_pt_t *p, uint32_t n, uint
         const int32_t lw = len_q8_(wx, wy);
         int32_t ci = 0;
         if (lu > 0 && lw > 0) {
-            const int64_t ex = ((int64_t)ux * 16777216) / lu - ((int64_t)wx * 16777216) / lw; /* Q16 */
+            /* u/|u| - w/|w| in Q16 */
+            const int64_t ex = ((int64_t)ux * 16777216) / lu - ((int64_t)wx * 16777216) / lw;
             const int64_t ey = ((int64_t)uy * 16777216) / lu - ((int64_t)wy * 16777216) / lw;
             ci = (int32_t)((ex * ex + ey * ey) >> 16);
         }
@@ -299,8 +303,10 @@ pft_status_t pft_tsa_snake(const pft_frame_t *frame, pft_tsa_pt_t *pts, uint32_t
         pft_tsa_box_t_ lim;
         lim.x0 = pt.ox + 1 > 1 ? pt.ox + 1 : 1;
         lim.y0 = pt.oy + 1 > 1 ? pt.oy + 1 : 1;
-        lim.x1 = pt.ox + pt.pw - 2 < (int32_t)frame->width - 2 ? pt.ox + pt.pw - 2 : (int32_t)frame->width - 2;
-        lim.y1 = pt.oy + pt.ph - 2 < (int32_t)frame->height - 2 ? pt.oy + pt.ph - 2 : (int32_t)frame->height - 2;
+        const int32_t fx1 = (int32_t)frame->width - 2;
+        const int32_t fy1 = (int32_t)frame->height - 2;
+        lim.x1 = pt.ox + pt.pw - 2 < fx1 ? pt.ox + pt.pw - 2 : fx1;
+        lim.y1 = pt.oy + pt.ph - 2 < fy1 ? pt.oy + pt.ph - 2 : fy1;
         for (uint32_t c = 0; c < chunk && done < max_passes; ++c) {
             const uint32_t moved = snake_pass_(&pt, pts, n, bflags, &wq, &lim);
             corners_(&pt, pts, n, bflags, wq.corner_c, prm->corner_g);

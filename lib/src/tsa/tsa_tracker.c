@@ -1,5 +1,5 @@
 /*
- * The TSA-AK particle filter (ALGORITHMS.md 4.4) and its NCV / TS baselines: resampling,
+ * The TSA-AK particle filter (docs/algorithms.md 4.4) and its NCV / TS baselines: resampling,
  * conservative fit and pioneer, free-model propagation, kernel-histogram weights with the
  * rho_min discard, estimate, beta adaptation and reference-point rule, template update with
  * bounded snake passes.
@@ -59,7 +59,8 @@ pft_status_t pft_tsa_init(pft_tsa_t *t, const pft_tsa_config_t *cfg, void *work,
     t->contour = (pft_tsa_pt_t *)pft_ws_take(&ws, np * sizeof(pft_tsa_pt_t));
     t->cwork = (pft_tsa_pt_t *)pft_ws_take(&ws, np * sizeof(pft_tsa_pt_t));
     t->bflags = (uint8_t *)pft_ws_take(&ws, np);
-    t->snake_ws_len = pft_tsa_snake_work_size(cfg->max_target_w, cfg->max_target_h, cfg->snake.margin);
+    t->snake_ws_len =
+        pft_tsa_snake_work_size(cfg->max_target_w, cfg->max_target_h, cfg->snake.margin);
     t->snake_ws = pft_ws_take(&ws, t->snake_ws_len);
     st = pft_ws_status(&ws);
     if (st != PFT_OK) {
@@ -136,7 +137,8 @@ static void contour_box_(pft_tsa_t *t, int32_t cx, int32_t cy)
     const int32_t v[4] = {b.x0 + cx, b.y0 + cy, b.x1 + cx, b.y1 + cy};
     int16_t c[4];
     for (uint32_t i = 0; i < 4u; ++i) {
-        c[i] = (int16_t)(v[i] < -BOX_LIMIT_ ? -BOX_LIMIT_ : (v[i] > BOX_LIMIT_ ? BOX_LIMIT_ : v[i]));
+        const int32_t lo = v[i] < -BOX_LIMIT_ ? -BOX_LIMIT_ : v[i];
+        c[i] = (int16_t)(lo > BOX_LIMIT_ ? BOX_LIMIT_ : lo);
     }
     t->est.box_x0 = c[0];
     t->est.box_y0 = c[1];
@@ -168,8 +170,8 @@ static bool contour_acceptable_(const pft_tsa_t *t, const pft_tsa_pt_t *p, int64
 static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *origin, bool anchor)
 {
     const uint16_t cq4 = (uint16_t)pft_round_int(pft_mul_i(t->cfg.kernel_c, 16));
-    pft_status_t st = pft_tsa_kernel_build(&t->kern_alt, t->cwork, t->cfg.snake_points, cq4, t->cross,
-                                           origin);
+    pft_status_t st =
+        pft_tsa_kernel_build(&t->kern_alt, t->cwork, t->cfg.snake_points, cq4, t->cross, origin);
     if (st != PFT_OK) {
         return st;
     }
@@ -257,8 +259,11 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
         return PFT_ERR_DEGENERATE;
     }
     const pft_tsa_box_t_ bb = pft_tsa_bbox_(poly, n);
-    if (bb.x0 < 0 || bb.y0 < 0 || bb.x1 >= (int32_t)frame->width || bb.y1 >= (int32_t)frame->height ||
-        bb.x1 - bb.x0 + 1 > (int32_t)t->cfg.max_target_w || bb.y1 - bb.y0 + 1 > (int32_t)t->cfg.max_target_h) {
+    const bool in_frame = bb.x0 >= 0 && bb.y0 >= 0 && bb.x1 < (int32_t)frame->width &&
+                          bb.y1 < (int32_t)frame->height;
+    const bool fits = bb.x1 - bb.x0 + 1 <= (int32_t)t->cfg.max_target_w &&
+                      bb.y1 - bb.y0 + 1 <= (int32_t)t->cfg.max_target_h;
+    if (!in_frame || !fits) {
         return PFT_ERR_INVAL;
     }
     const int32_t passes = initial_contour_(t, frame, poly, n, a0);
@@ -320,7 +325,8 @@ static void resample_(pft_tsa_t *t, uint32_t N, uint32_t M)
 
 /* Step 2 (TS, TSA): the conservative fit of the reference points per axis, bounded; zero for
  * NCV. */
-static void conservative_fit_(const pft_tsa_t *t, pft_tsa_motion_fit_t *fx, pft_tsa_motion_fit_t *fy)
+static void conservative_fit_(const pft_tsa_t *t, pft_tsa_motion_fit_t *fx,
+                              pft_tsa_motion_fit_t *fy)
 {
     memset(fx, 0, sizeof(*fx));
     memset(fy, 0, sizeof(*fy));
@@ -357,8 +363,10 @@ static void propagate_(pft_tsa_t *t, uint32_t N, pft_real_t beta, const pft_tsa_
         const pft_real_t g6 = pft_rng_gauss(&t->rng);
         pft_tsa_motion_free_step(&coef, &t->px[i], &t->pvx[i], vbx, g1, g2);
         pft_tsa_motion_free_step(&coef, &t->py[i], &t->pvy[i], vby, g3, g4);
-        t->px[i] = pft_clamp(pft_add(t->px[i], pft_mul(t->cfg.pos_sd, g5)), pft_neg(POS_LIMIT_), POS_LIMIT_);
-        t->py[i] = pft_clamp(pft_add(t->py[i], pft_mul(t->cfg.pos_sd, g6)), pft_neg(POS_LIMIT_), POS_LIMIT_);
+        t->px[i] = pft_clamp(pft_add(t->px[i], pft_mul(t->cfg.pos_sd, g5)), pft_neg(POS_LIMIT_),
+                             POS_LIMIT_);
+        t->py[i] = pft_clamp(pft_add(t->py[i], pft_mul(t->cfg.pos_sd, g6)), pft_neg(POS_LIMIT_),
+                             POS_LIMIT_);
     }
     if (t->cfg.motion == PFT_TSA_MOTION_TSA) {
         t->px[N] = pft_clamp(fx->x_pred, pft_neg(POS_LIMIT_), POS_LIMIT_);
@@ -429,7 +437,8 @@ static weigh_out_t_ weigh_(pft_tsa_t *t, const pft_frame_t *frame, uint32_t N, u
 
 /* Step 5: the estimate is the weighted mean of the particles; the pioneer fields report the
  * fit (NCV: the estimate). */
-static void estimate_(pft_tsa_t *t, uint32_t M, const pft_tsa_motion_fit_t *fx, const pft_tsa_motion_fit_t *fy)
+static void estimate_(pft_tsa_t *t, uint32_t M, const pft_tsa_motion_fit_t *fx,
+                      const pft_tsa_motion_fit_t *fy)
 {
     t->est.x = wmean_(t->w, t->px, M);
     t->est.y = wmean_(t->w, t->py, M);
@@ -545,8 +554,8 @@ static void template_update_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t rho_
     }
     uint32_t done = 0u;
     if (passes > 0) {
-        const pft_status_t st = pft_tsa_snake(f, t->cwork, np, &t->cfg.snake, (uint32_t)passes, t->bflags,
-                                              t->snake_ws, t->snake_ws_len, &done);
+        const pft_status_t st = pft_tsa_snake(f, t->cwork, np, &t->cfg.snake, (uint32_t)passes,
+                                              t->bflags, t->snake_ws, t->snake_ws_len, &done);
         if (st != PFT_OK || !contour_acceptable_(t, t->cwork, t->area2)) {
             t->est.snake_passes = (uint8_t)done;
             return;
@@ -586,7 +595,8 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     pft_tsa_motion_fit_t fx;
     pft_tsa_motion_fit_t fy;
     conservative_fit_(t, &fx, &fy);
-    const pft_real_t beta_used = t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : (tsa ? t->beta : t->cfg.beta0);
+    const pft_real_t beta_used =
+        t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : (tsa ? t->beta : t->cfg.beta0);
     propagate_(t, N, beta_used, &fx, &fy);
     const weigh_out_t_ wo = weigh_(t, frame, N, M);
     estimate_(t, M, &fx, &fy);
@@ -603,7 +613,8 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     t->est.snake_passes = 0u;
     t->est.state = track_state_(t, frame, wo.state, rho_e);
     /* only on a trustworthy estimate, rho >= update_rho_min [A] */
-    if (rho_e < t->cfg.theta_u && rho_e >= t->cfg.update_rho_min && t->est.state != PFT_TSA_OUT_OF_VIEW) {
+    if (rho_e < t->cfg.theta_u && rho_e >= t->cfg.update_rho_min &&
+        t->est.state != PFT_TSA_OUT_OF_VIEW) {
         template_update_(t, frame, rho_e);
     }
     contour_box_(t, pft_round_int(t->est.x), pft_round_int(t->est.y));

@@ -29,11 +29,13 @@ typedef struct {
     pft_tsa_hist_t q;                 /* template */
     pft_tsa_hist_t q0;                /* first template (drift anchor) */
     pft_tsa_hist_t h;                 /* scratch */
-    pft_real_t ref_x[PFT_TSA_MOTION_MAX_K], ref_y[PFT_TSA_MOTION_MAX_K], ref_w[PFT_TSA_MOTION_MAX_K];
+    pft_real_t ref_x[PFT_TSA_MOTION_MAX_K]; /* reference points of the fit, oldest first */
+    pft_real_t ref_y[PFT_TSA_MOTION_MAX_K];
+    pft_real_t ref_w[PFT_TSA_MOTION_MAX_K];
     uint32_t ref_n;
     pft_real_t beta;
     int64_t area2;                    /* twice the contour area */
-    uint32_t n_state;                 /* particles in the state arrays: N, or N + 1 with the pioneer */
+    uint32_t n_state;                 /* particles in the state arrays: N, or N + 1 (pioneer) */
     uint32_t weak_run;
     pft_tsa_estimate_t est;
     bool started;
