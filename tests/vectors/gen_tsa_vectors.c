@@ -8,18 +8,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "gen_vectors_emit.h"
 #include "tsa_vectors_spec.h"
 
-static void emit(const char *name, const int32_t *v, size_t n)
-{
-    printf("static const int32_t %s[%u] = {", name, (unsigned)n);
-    for (size_t i = 0; i < n; ++i) {
-        printf("%s%ld", i == 0 ? "\n    " : (i % 8u) ? ", " : ",\n    ", (long)v[i]);
-    }
-    printf("\n};\n");
-}
-
-#define EMIT(field) emit("tsa_gv_" #field, (const int32_t *)r.field, sizeof r.field / sizeof(int32_t))
+#define EMIT(field)                                                                           \
+    pft_gv_emit_i32("tsa_gv_" #field, (const int32_t *)r.field, sizeof r.field / sizeof(int32_t))
 
 int main(void)
 {
