@@ -14,7 +14,7 @@
 #include "../common/json_field.hpp"
 #include "../common/plot.hpp"
 #include "../common/registry.hpp"
-#include "../vis/track.hpp"
+#include "../tsa/track.hpp"
 
 using namespace pft::host;
 
@@ -208,8 +208,8 @@ int main(int argc, char **argv)
     pl->add_option("--xlabel", po.xlabel);
     pl->add_option("--ylabel", po.ylabel);
 
-    pft::host::vis::TrackCli track_cli;
-    pft::host::vis::add_track_command(app, track_cli);
+    pft::host::tsa::TrackCli track_cli;
+    pft::host::tsa::add_track_command(app, track_cli);
 
     try {
         app.parse(argc, argv);
@@ -225,7 +225,7 @@ int main(int argc, char **argv)
         if (o.command == "plot")
             return cmd_plot(po);
         if (o.command == "track")
-            return pft::host::vis::run_track(track_cli);
+            return pft::host::tsa::run_track(track_cli);
         if (o.command == "selftest") {
             int fails = 0;
             for (const auto &k : registered_kinds())

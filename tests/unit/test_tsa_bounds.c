@@ -1,5 +1,5 @@
 /*
- * Bounds on the conservative fit (pft_motion_fit_bound, pft_vis_config_t.fit_a_max /
+ * Bounds on the conservative fit (pft_tsa_motion_fit_bound, pft_tsa_config_t.fit_a_max /
  * fit_v_max): a quadratic with a = 2 is clamped to a_max and its v_hat / pioneer step to
  * v_max in both directions; bounds of 0 (and bounds the fit stays inside) leave the fit
  * bit-for-bit unchanged; a closed loop that feeds the pioneer back as the next reference
@@ -11,7 +11,6 @@
 #include <string.h>
 #include "pft_test_support.h"
 #include "pft/pft_tsa.h"
-#include "pft/pft_vision.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -33,17 +32,17 @@ static void quad(pft_real_t *o, uint32_t n, double s, double v, double a)
     }
 }
 
-static void fit_of(const pft_real_t *o, uint32_t n, pft_motion_fit_t *f)
+static void fit_of(const pft_real_t *o, uint32_t n, pft_tsa_motion_fit_t *f)
 {
     memset(f, 0, sizeof *f);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_motion_fit(o, NULL, n, R_(5.0), 2u, f));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_motion_fit(o, NULL, n, R_(5.0), 2u, f));
 }
 
 static void test_bound_clamps_runaway_fit(void)
 {
     for (int sign = -1; sign <= 1; sign += 2) {
         pft_real_t o[10];
-        pft_motion_fit_t f, g;
+        pft_tsa_motion_fit_t f, g;
         const double sg = (double)sign;
         quad(o, 10u, 100.0, sg * 3.0, sg * 2.0);
         fit_of(o, 10u, &f);
@@ -53,7 +52,7 @@ static void test_bound_clamps_runaway_fit(void)
 
         /* a bound only: a clamped, v_pred and x_pred recomputed from it */
         g = f;
-        pft_motion_fit_bound(&g, R_(0.5), 0);
+        pft_tsa_motion_fit_bound(&g, R_(0.5), 0);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, sg * 0.5, D_(g.a));
         TEST_ASSERT_TRUE(f.s == g.s);
         TEST_ASSERT_TRUE(f.v == g.v);
@@ -62,14 +61,14 @@ static void test_bound_clamps_runaway_fit(void)
 
         /* v bound only: v_hat and the pioneer step clamped, a untouched */
         g = f;
-        pft_motion_fit_bound(&g, 0, R_(4.0));
+        pft_tsa_motion_fit_bound(&g, 0, R_(4.0));
         TEST_ASSERT_TRUE(f.a == g.a);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, sg * 4.0, D_(g.v_pred));
         TEST_ASSERT_DOUBLE_WITHIN(FIT_TOL * 4, 100.0 + sg * 4.0, D_(g.x_pred));
 
         /* both */
         g = f;
-        pft_motion_fit_bound(&g, R_(0.5), R_(2.0));
+        pft_tsa_motion_fit_bound(&g, R_(0.5), R_(2.0));
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, sg * 0.5, D_(g.a));
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, sg * 2.0, D_(g.v_pred));
         TEST_ASSERT_DOUBLE_WITHIN(FIT_TOL * 4, 100.0 + sg * 2.0, D_(g.x_pred));
@@ -81,18 +80,18 @@ static void test_zero_or_loose_bounds_leave_fit_unchanged(void)
     static const double cases[][3] = {{100.0, 3.0, 2.0}, {50.0, -1.5, 0.3}, {7.0, 0.25, -0.1}};
     for (unsigned c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         pft_real_t o[10];
-        pft_motion_fit_t f, g;
+        pft_tsa_motion_fit_t f, g;
         quad(o, 10u, cases[c][0], cases[c][1], cases[c][2]);
         o[4] = pft_add(o[4], R_(0.75)); /* a little noise */
         fit_of(o, 10u, &f);
         g = f;
-        pft_motion_fit_bound(&g, 0, 0);
+        pft_tsa_motion_fit_bound(&g, 0, 0);
         TEST_ASSERT_EQUAL_MEMORY(&f, &g, sizeof f);
         g = f;
-        pft_motion_fit_bound(&g, R_(100.0), R_(500.0));
+        pft_tsa_motion_fit_bound(&g, R_(100.0), R_(500.0));
         TEST_ASSERT_EQUAL_MEMORY(&f, &g, sizeof f);
     }
-    pft_motion_fit_bound(NULL, R_(1.0), R_(1.0)); /* no-op, no crash */
+    pft_tsa_motion_fit_bound(NULL, R_(1.0), R_(1.0)); /* no-op, no crash */
 }
 
 /* The pioneer fed back as the next reference point, K = 10, from a history at rest with
@@ -105,10 +104,10 @@ static double closed_loop(pft_real_t a_max, pft_real_t v_max, double *v_last)
         o[i] = R_(i >= 9u ? 6.0 : 0.0);
     }
     for (int k = 0; k < 40; ++k) {
-        pft_motion_fit_t f;
+        pft_tsa_motion_fit_t f;
         double step;
         fit_of(o, 10u, &f);
-        pft_motion_fit_bound(&f, a_max, v_max);
+        pft_tsa_motion_fit_bound(&f, a_max, v_max);
         step = fabs(D_(f.x_pred) - D_(f.s));
         max_step = step > max_step ? step : max_step;
         *v_last = fabs(D_(f.v_pred));
@@ -145,18 +144,23 @@ static void test_closed_loop_runaway_is_bounded(void)
 
 static void test_config_bounds(void)
 {
-    pft_vis_config_t c;
-    pft_vis_config_default(&c, 160u, 120u);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_config_check(&c));
+    pft_tsa_config_t c;
+    const char *field = NULL;
+    pft_tsa_config_default(&c);
+    c.width = 160u;
+    c.height = 120u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c, NULL));
     TEST_ASSERT_TRUE(c.fit_a_max >= 0 && c.fit_v_max >= 0);
     c.fit_a_max = 0;
     c.fit_v_max = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_vis_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c, NULL));
     c.fit_a_max = R_(-0.5);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("fit_a_max", field);
     c.fit_a_max = 0;
     c.fit_v_max = R_(-1.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_vis_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("fit_v_max", field);
 }
 
 int main(void)

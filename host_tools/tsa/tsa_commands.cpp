@@ -1,0 +1,820 @@
+// The "tsa" kind (formerly "vis"): sim / run / eval / bench / demo / selftest for the
+// semi-synthetic airborne sequences, and the `pft track` subcommand (TSA-AK, docs/algorithms.md 4).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "../common/errors.hpp"
+#include "../common/json_field.hpp"
+#include "../common/real.hpp"
+#include "../common/output.hpp"
+#include "../common/parallel.hpp"
+#include "../common/plot.hpp"
+#include "../common/progress.hpp"
+#include "../common/registry.hpp"
+#include "track.hpp"
+#include "tsa_scene.hpp"
+#include "tsa_trackers.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace pft::host::tsa {
+
+namespace {
+
+struct Scenario {
+    std::string name, description, file;
+    SceneSpec scene;
+    PftParams tracker;
+    std::vector<std::string> eval_trackers{"tsa", "ncv", "ncv200", "ts"};
+    std::vector<std::string> bench_trackers{"tsa", "ncv", "ncv200", "ts", "kcf", "csrt", "mosse", "mil"};
+    int runs = 50;
+    double iou_thr = 0.5, center_thr = 10.0, run_min_fraction = 0.9;
+    json reference;
+};
+
+Scenario load_scenario(const Options &o)
+{
+    Scenario s;
+    s.file = o.scenario_path;
+    Field r(o.scenario, o.scenario_path);
+    r.only({"kind", "name", "description", "scene", "tracker", "eval", "bench", "reference"});
+    s.name = r.string_or("name", fs::path(o.scenario_path).stem().string());
+    s.description = r.string_or("description", "");
+    s.scene = parse_scene(o.scenario, o.scenario_path);
+    if (r.has("tracker"))
+        s.tracker = parse_pft_params(o.scenario.at("tracker"), o.scenario_path, "tracker");
+    auto names = [&](const Field &f, std::vector<std::string> &v) {
+        if (!f.has("trackers"))
+            return;
+        Field t = f.at("trackers");
+        v.clear();
+        for (std::size_t i = 0; i < t.size(); ++i)
+            v.push_back(t.at(i).as_string());
+    };
+    if (r.has("eval")) {
+        Field e = r.at("eval");
+        e.only({"trackers", "runs", "iou", "center_px", "run_min_fraction"});
+        names(e, s.eval_trackers);
+        s.runs = (int)e.integer_in("runs", s.runs, 1, 100000);
+        s.iou_thr = e.number_in("iou", s.iou_thr, 0, 1);
+        s.center_thr = e.number_in("center_px", s.center_thr, 0, 10000);
+        s.run_min_fraction = e.number_in("run_min_fraction", s.run_min_fraction, 0, 1);
+    }
+    if (r.has("bench")) {
+        Field b = r.at("bench");
+        b.only({"trackers"});
+        names(b, s.bench_trackers);
+    }
+    if (r.has("reference"))
+        s.reference = o.scenario.at("reference");
+    if (o.particles)
+        s.tracker.particles = (int)o.particles;
+    return s;
+}
+
+double iou(const cv::Rect2d &a, const cv::Rect2d &b)
+{
+    const double i = (a & b).area();
+    const double u = a.area() + b.area() - i;
+    return u > 0 ? i / u : 0.0;
+}
+
+std::vector<cv::Point> box_poly(const cv::Rect2d &b)
+{
+    const int x0 = (int)std::floor(b.x), y0 = (int)std::floor(b.y);
+    const int x1 = (int)std::ceil(b.x + b.width), y1 = (int)std::ceil(b.y + b.height);
+    return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+void draw_overlay(cv::Mat &img, const TrackOut &t, const cv::Rect2d *truth, int frame, const std::string &label)
+{
+    if (truth)
+        cv::rectangle(img, *truth, cv::Scalar(255, 255, 255), 1);
+    for (const auto &p : t.particles)
+        cv::circle(img, cv::Point((int)std::lround(p.x), (int)std::lround(p.y)), 1, cv::Scalar(0, 0, 255), -1);
+    if (!t.contour.empty())
+        cv::polylines(img, t.contour, true, cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+    else
+        cv::rectangle(img, t.box, cv::Scalar(0, 255, 0), 1);
+    if (!std::isnan(t.pioneer.x))
+        cv::drawMarker(img, cv::Point((int)std::lround(t.pioneer.x), (int)std::lround(t.pioneer.y)),
+                       cv::Scalar(255, 128, 0), cv::MARKER_CROSS, 9, 2);
+    cv::drawMarker(img, cv::Point((int)std::lround(t.center.x), (int)std::lround(t.center.y)), cv::Scalar(0, 255, 255),
+                   cv::MARKER_TILTED_CROSS, 7, 1);
+    char buf[160];
+    if (!std::isnan(t.rho))
+        std::snprintf(buf, sizeof buf, "%s #%d rho %.2f beta %.2f alive %d", label.c_str(), frame, t.rho, t.beta, t.alive);
+    else
+        std::snprintf(buf, sizeof buf, "%s #%d", label.c_str(), frame);
+    cv::putText(img, buf, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+    cv::putText(img, buf, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
+}
+
+// ------------------------------------------------------------------------------ evaluation
+struct RunTrace {
+    std::vector<double> err, iou, us, beta, x;
+    std::vector<int> ok;
+    bool success = false;
+};
+
+struct Agg {
+    std::string name;
+    double err_sum = 0, us_sum = 0;
+    long frames = 0, ok_frames = 0;
+    int runs = 0, runs_ok = 0;
+    std::vector<long> iou_ge = std::vector<long>(21, 0);  // frames with IoU >= t/20
+    std::size_t memory = 0;
+    std::vector<RunTrace> traces;                          // kept for plots (first runs)
+};
+
+RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vector<TruthRow> &truth,
+                 const Scenario &s)
+{
+    RunTrace r;
+    t.init(frames[0], box_poly(truth[0].box));
+    long good = 0;
+    for (std::size_t k = 1; k < frames.size(); ++k) {
+        TrackOut out;
+        auto t0 = std::chrono::steady_clock::now();
+        t.update(frames[k], out);
+        auto t1 = std::chrono::steady_clock::now();
+        const double e = std::hypot(out.center.x - truth[k].cx, out.center.y - truth[k].cy);
+        const double ov = iou(out.box, truth[k].box);
+        const int ok = ov > s.iou_thr && e < s.center_thr;
+        r.err.push_back(e);
+        r.iou.push_back(ov);
+        r.us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+        r.beta.push_back(out.beta);
+        r.x.push_back(out.center.x);
+        r.ok.push_back(ok);
+        good += ok;
+    }
+    r.success = !r.ok.empty() && good >= (long)std::ceil(s.run_min_fraction * (double)r.ok.size());
+    return r;
+}
+
+struct EvalResult {
+    std::vector<Agg> aggs;
+    std::vector<TruthRow> truth0;  // truth of the first run
+};
+
+EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, int runs, uint64_t seed_base,
+                    unsigned threads, int max_frames, bool progress, std::size_t keep_traces)
+{
+    EvalResult res;
+    for (auto &n : names) {
+        Agg a;
+        a.name = n;
+        res.aggs.push_back(a);
+    }
+    std::vector<std::vector<RunTrace>> all(runs, std::vector<RunTrace>(names.size()));
+    std::vector<std::size_t> mem(names.size(), 0);
+    std::vector<TruthRow> truth0;
+    Progress bar((std::size_t)runs, "tsa " + s.name, progress);
+    parallel_for((std::size_t)runs, threads, [&](std::size_t i) {
+        std::vector<cv::Mat> frames;
+        std::vector<TruthRow> truth;
+        const uint64_t seed = seed_base + i;
+        render_sequence(s.scene, seed, frames, truth, max_frames);
+        for (std::size_t j = 0; j < names.size(); ++j) {
+            PftParams p = s.tracker;
+            p.seed = seed;
+            auto t = make_tracker(names[j], p, s.scene.width, s.scene.height);
+            all[i][j] = run_one(*t, frames, truth, s);
+            if (i == 0)
+                mem[j] = t->memory_bytes();
+        }
+        if (i == 0)
+            truth0 = truth;
+        bar.tick();
+    });
+    bar.finish();
+    for (std::size_t j = 0; j < names.size(); ++j) {
+        Agg &a = res.aggs[j];
+        a.memory = mem[j];
+        for (int i = 0; i < runs; ++i) {
+            const RunTrace &r = all[i][j];
+            a.runs++;
+            a.runs_ok += r.success;
+            for (std::size_t k = 0; k < r.err.size(); ++k) {
+                a.err_sum += r.err[k];
+                a.us_sum += r.us[k];
+                a.ok_frames += r.ok[k];
+                a.frames++;
+                for (int t = 0; t <= 20; ++t)
+                    a.iou_ge[t] += r.iou[k] >= t / 20.0;
+            }
+            if ((std::size_t)i < keep_traces)
+                a.traces.push_back(r);
+        }
+    }
+    res.truth0 = truth0;
+    return res;
+}
+
+json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t seed_base, const std::string &what)
+{
+    json trk = json::array();
+    for (const auto &a : r.aggs) {
+        std::vector<double> curve;
+        for (int t = 0; t <= 20; ++t)
+            curve.push_back(a.frames ? (double)a.iou_ge[t] / a.frames : 0.0);
+        trk.push_back({{"tracker", a.name},
+                       {"success_rate", a.frames ? (double)a.ok_frames / a.frames : 0.0},
+                       {"mean_center_error", a.frames ? a.err_sum / a.frames : 0.0},
+                       {"us_per_frame", a.frames ? a.us_sum / a.frames : 0.0},
+                       {"runs_succeeded", a.runs_ok},
+                       {"runs", a.runs},
+                       {"frames", a.frames},
+                       {"workspace_bytes", a.memory},
+                       {"success_vs_iou", curve}});
+    }
+    return {{"kind", "tsa"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
+            {"numeric", numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
+            {"seed_last", seed_base + (uint64_t)runs - 1}, {"frames_per_run", s.scene.frames},
+            {"success", {{"iou", s.iou_thr}, {"center_px", s.center_thr}, {"run_min_fraction", s.run_min_fraction}}},
+            {"tracker_params", pft_params_json(s.tracker)}, {"scene", scene_to_json(s.scene)},
+            {"trackers", trk}, {"reference", s.reference}};
+}
+
+void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
+{
+    PlotSpec sp;
+    sp.title = s.name + ": success rate vs IoU threshold";
+    sp.xlabel = "IoU threshold";
+    sp.ylabel = "fraction of frames";
+    sp.ymin = 0;
+    sp.ymax = 1;
+    for (const auto &a : r.aggs) {
+        PlotSeries ps;
+        ps.label = a.name;
+        for (int t = 0; t <= 20; ++t) {
+            ps.x.push_back(t / 20.0);
+            ps.y.push_back(a.frames ? (double)a.iou_ge[t] / a.frames : 0.0);
+        }
+        sp.series.push_back(ps);
+    }
+    save_plot_png(sp, join_path(out, "success_iou.png"));
+
+    PlotSpec ce;
+    ce.title = s.name + ": centre error, first run";
+    ce.xlabel = "frame";
+    ce.ylabel = "centre error (px)";
+    ce.ymin = 0;
+    ce.ymax = 60;
+    for (const auto &a : r.aggs) {
+        if (a.traces.empty())
+            continue;
+        PlotSeries ps;
+        ps.label = a.name;
+        for (std::size_t k = 0; k < a.traces[0].err.size(); ++k) {
+            ps.x.push_back((double)k + 1);
+            ps.y.push_back(std::min(a.traces[0].err[k], 60.0));
+        }
+        ce.series.push_back(ps);
+    }
+    save_plot_png(ce, join_path(out, "center_error.png"));
+
+    PlotSpec tx;
+    tx.title = s.name + ": x trajectory, first run (Fig. 7a / 9a)";
+    tx.xlabel = "frame";
+    tx.ylabel = "x (px)";
+    {
+        PlotSeries ps;
+        ps.label = "truth";
+        ps.color = cv::Scalar(0, 0, 0);
+        ps.dashed = true;
+        for (std::size_t k = 1; k < r.truth0.size(); ++k) {
+            ps.x.push_back((double)k);
+            ps.y.push_back(r.truth0[k].cx);
+        }
+        tx.series.push_back(ps);
+    }
+    for (const auto &a : r.aggs) {
+        if (a.traces.empty())
+            continue;
+        PlotSeries ps;
+        ps.label = a.name;
+        ps.thickness = 1;
+        for (std::size_t k = 0; k < a.traces[0].x.size(); ++k) {
+            ps.x.push_back((double)k + 1);
+            ps.y.push_back(a.traces[0].x[k]);
+        }
+        tx.series.push_back(ps);
+    }
+    save_plot_png(tx, join_path(out, "trajectory_x.png"));
+
+    for (const auto &a : r.aggs) {
+        if (a.name != "tsa" || a.traces.empty())
+            continue;
+        PlotSpec bp;
+        bp.title = s.name + ": TSA beta per frame (Fig. 7-like)";
+        bp.xlabel = "frame";
+        bp.ylabel = "beta";
+        bp.ymin = 0;
+        bp.ymax = 6.2;
+        const std::size_t nshow = std::min<std::size_t>(a.traces.size(), 3);
+        for (std::size_t i = 0; i < nshow; ++i) {
+            PlotSeries ps;
+            ps.label = "run " + std::to_string(i);
+            ps.thickness = 1;
+            for (std::size_t k = 0; k < a.traces[i].beta.size(); ++k) {
+                ps.x.push_back((double)k + 1);
+                ps.y.push_back(a.traces[i].beta[k]);
+            }
+            bp.series.push_back(ps);
+        }
+        PlotSeries mean;
+        mean.label = "mean over runs";
+        mean.color = cv::Scalar(0, 0, 0);
+        for (std::size_t k = 0; k < a.traces[0].beta.size(); ++k) {
+            double sum = 0;
+            int n = 0;
+            for (const auto &t : a.traces)
+                if (k < t.beta.size()) {
+                    sum += t.beta[k];
+                    ++n;
+                }
+            mean.x.push_back((double)k + 1);
+            mean.y.push_back(n ? sum / n : NAN);
+        }
+        bp.series.push_back(mean);
+        save_plot_png(bp, join_path(out, "beta.png"));
+    }
+}
+
+void print_table(const Scenario &s, const json &sum)
+{
+    std::printf("%s (%s build): %d runs x %d frames, seeds %llu..%llu; success = IoU > %.2f and centre error < %.0f px"
+                " on >= %.0f%% of frames\n",
+                s.name.c_str(), numeric_name(), sum["runs"].get<int>(), s.scene.frames,
+                (unsigned long long)sum["seed_first"].get<uint64_t>(), (unsigned long long)sum["seed_last"].get<uint64_t>(),
+                s.iou_thr, s.center_thr, 100 * s.run_min_fraction);
+    std::printf("%-8s %10s %14s %12s %10s %12s\n", "tracker", "runs ok", "frame success", "centre err", "us/frame",
+                "workspace");
+    for (const auto &t : sum["trackers"])
+        std::printf("%-8s %6d/%-3d %14.3f %12.2f %10.0f %12zu\n", t["tracker"].get<std::string>().c_str(),
+                    t["runs_succeeded"].get<int>(), t["runs"].get<int>(), t["success_rate"].get<double>(),
+                    t["mean_center_error"].get<double>(), t["us_per_frame"].get<double>(),
+                    t["workspace_bytes"].get<std::size_t>());
+}
+
+// ------------------------------------------------------------------------- colour sequences
+class ColourInput {
+public:
+    explicit ColourInput(const std::string &path)
+    {
+        if (fs::is_directory(path)) {
+            for (auto &e : fs::directory_iterator(path)) {
+                std::string ext = e.path().extension().string();
+                std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+                if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".ppm" || ext == ".tif")
+                    files_.push_back(e.path().string());
+            }
+            std::sort(files_.begin(), files_.end());
+            if (files_.empty())
+                throw InputError(path + ": no images in the folder");
+        } else {
+            std::string p = path;
+            if (!fs::exists(p)) {
+                try {
+                    p = find_data_file(path);  // e.g. "vtest.avi" from opencv-doc
+                } catch (const InputError &) {
+                    throw InputError(path + ": no such file or directory");
+                }
+            }
+            if (!cap_.open(p))
+                throw InputError(p + ": cannot open video");
+            fps_ = cap_.get(cv::CAP_PROP_FPS);
+        }
+    }
+    bool next(cv::Mat &bgr)
+    {
+        if (!files_.empty()) {
+            if (idx_ >= files_.size())
+                return false;
+            bgr = cv::imread(files_[idx_++], cv::IMREAD_COLOR);
+            if (bgr.empty())
+                throw InputError(files_[idx_ - 1] + ": cannot read image");
+            return true;
+        }
+        return cap_.read(bgr) && !bgr.empty();
+    }
+    double fps() const { return fps_ > 0 ? fps_ : 25.0; }
+
+private:
+    std::vector<std::string> files_;
+    std::size_t idx_ = 0;
+    cv::VideoCapture cap_;
+    double fps_ = 0;
+};
+
+std::vector<cv::Point> parse_points(const std::string &text, bool is_box, const std::string &what)
+{
+    std::vector<double> v;
+    std::string t = text;
+    for (char &c : t)
+        if (c == ',' || c == ';' || c == '[' || c == ']' || c == '(' || c == ')')
+            c = ' ';
+    std::istringstream is(t);
+    double d;
+    while (is >> d)
+        v.push_back(d);
+    if (!is.eof())
+        throw InputError(what + ": expected numbers, got \"" + text + "\"");
+    if (is_box) {
+        if (v.size() != 4 || v[2] <= 0 || v[3] <= 0)
+            throw InputError(what + ": expected x,y,w,h with w, h > 0");
+        return box_poly(cv::Rect2d(v[0], v[1], v[2], v[3]));
+    }
+    if (v.size() < 6 || v.size() % 2)
+        throw InputError(what + ": expected at least 3 x,y pairs");
+    std::vector<cv::Point> p;
+    for (std::size_t i = 0; i < v.size(); i += 2)
+        p.emplace_back((int)std::lround(v[i]), (int)std::lround(v[i + 1]));
+    return p;
+}
+
+struct TrackRun {
+    std::vector<cv::Point> init;
+    PftParams params;
+    std::string label = "tsa";
+    std::string out;
+    int frames = 0;
+    bool video = true;
+    int snapshots = 4;
+    bool quiet = false;
+    std::vector<TruthRow> truth;  // optional
+};
+
+int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
+{
+    ensure_dir(tr.out);
+    cv::Mat f0;
+    if (!in.next(f0))
+        throw InputError(source + ": no frames");
+    auto t = make_tracker(tr.label, tr.params, f0.cols, f0.rows);
+    t->init(f0, tr.init);
+    AtomicPath vid(join_path(tr.out, "overlay.avi"));
+    cv::VideoWriter vw;
+    if (tr.video) {
+        vw.open(vid.tmp(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), in.fps(), f0.size());
+        if (!vw.isOpened())
+            throw InputError(vid.final_path() + ": cannot write video");
+    }
+    std::vector<std::string> rows;
+    std::vector<double> us;
+    std::map<int, int> states;
+    int k = 0;
+    cv::Mat f;
+    std::vector<int> snap_at;
+    const int total = tr.frames > 0 ? tr.frames : -1;
+    {
+        TrackOut o0;
+        o0.center = cv::Point2d(NAN, NAN);
+        cv::Mat ov = f0.clone();
+        cv::polylines(ov, tr.init, true, cv::Scalar(0, 255, 0), 1);
+        if (tr.video)
+            vw.write(ov);
+    }
+    std::vector<std::pair<int, cv::Mat>> snaps;
+    while ((total < 0 || k + 1 < total) && in.next(f)) {
+        ++k;
+        TrackOut o;
+        auto t0 = std::chrono::steady_clock::now();
+        t->update(f, o);
+        auto t1 = std::chrono::steady_clock::now();
+        us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+        states[o.state]++;
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.1f,%.1f,%.1f,%.1f,%.4f,%.4f,%.4f,%d,%d,%d,%.1f", k + 1, o.center.x,
+                      o.center.y, o.box.x, o.box.y, o.box.width, o.box.height, o.rho, o.rho_pioneer, o.beta, o.state,
+                      o.alive, o.template_updated ? 1 : 0, us.back());
+        rows.push_back(buf);
+        cv::Mat ov = f.clone();
+        const cv::Rect2d *tb = (std::size_t)k < tr.truth.size() ? &tr.truth[k].box : nullptr;
+        draw_overlay(ov, o, tb, k + 1, t->name());
+        if (tr.video)
+            vw.write(ov);
+        snaps.emplace_back(k + 1, ov);
+        if (snaps.size() > 4096)
+            snaps.erase(snaps.begin());  // bounded memory; snapshots come from the last frames kept
+    }
+    if (tr.video) {
+        vw.release();
+        vid.commit();
+    }
+    // snapshots: evenly spaced over the frames kept
+    if (tr.snapshots > 0 && !snaps.empty()) {
+        for (int i = 0; i < tr.snapshots; ++i) {
+            std::size_t idx = (snaps.size() - 1) * (std::size_t)(i + 1) / (std::size_t)tr.snapshots;
+            char name[64];
+            std::snprintf(name, sizeof name, "snap_%04d.png", snaps[idx].first);
+            AtomicPath p(join_path(tr.out, name));
+            if (!cv::imwrite(p.tmp(), snaps[idx].second))
+                throw InputError(p.final_path() + ": cannot write");
+            p.commit();
+        }
+    }
+    write_text_atomic(join_path(tr.out, "tracks.csv"), [&](std::ostream &os) {
+        os << "frame,x,y,box_x,box_y,box_w,box_h,rho,rho_pioneer,beta,state,alive,template_updated,us\n";
+        for (auto &r : rows)
+            os << r << "\n";
+    });
+    std::vector<double> sorted = us;
+    std::sort(sorted.begin(), sorted.end());
+    const double mean = us.empty() ? 0 : std::accumulate(us.begin(), us.end(), 0.0) / us.size();
+    const double med = sorted.empty() ? 0 : sorted[sorted.size() / 2];
+    json st = json::object();
+    static const char *names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view"};
+    for (auto &kv : states)
+        st[kv.first >= 0 && kv.first <= 5 ? names[kv.first] : "other"] = kv.second;
+    json j = {{"source", source}, {"tracker", t->name()}, {"numeric", numeric_name()},
+              {"frames", k + 1}, {"width", f0.cols}, {"height", f0.rows},
+              {"us_per_frame_mean", mean}, {"us_per_frame_median", med},
+              {"fps_equivalent", mean > 0 ? 1e6 / mean : 0.0}, {"states", st},
+              {"workspace_bytes", t->memory_bytes()}, {"params", pft_params_json(tr.params)}};
+    write_json_atomic(join_path(tr.out, "tracks.json"), j);
+    if (!tr.quiet)
+        std::printf("pft track: %s, %d frames %dx%d, %s: %.0f us/frame mean (%.0f median), states %s -> %s\n",
+                    source.c_str(), k + 1, f0.cols, f0.rows, t->name().c_str(), mean, med, st.dump().c_str(),
+                    tr.out.c_str());
+    return 0;
+}
+
+// --------------------------------------------------------------------------- the handler
+class TsaHandler : public KindHandler {
+public:
+    int sim(const Options &o) override
+    {
+        Scenario s = load_scenario(o);
+        const uint64_t seed = o.seed.value_or(s.scene.seed_base);
+        std::vector<cv::Mat> frames;
+        std::vector<TruthRow> truth;
+        render_sequence(s.scene, seed, frames, truth, o.frames ? (int)o.frames : -1);
+        ensure_dir(o.out);
+        for (std::size_t k = 0; k < frames.size(); ++k) {
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%04zu.png", k + 1);
+            AtomicPath p(join_path(o.out, name));
+            if (!cv::imwrite(p.tmp(), frames[k]))
+                throw InputError(p.final_path() + ": cannot write");
+            p.commit();
+        }
+        write_text_atomic(join_path(o.out, "truth.csv"), [&](std::ostream &os) {
+            CsvWriter w(os);
+            for (const char *h : {"frame", "cx", "cy", "box_x", "box_y", "box_w", "box_h", "camera_vx"})
+                w.field(h);
+            w.end_row();
+            for (auto &t : truth) {
+                w.field(t.frame + 1).field(t.cx).field(t.cy).field(t.box.x).field(t.box.y).field(t.box.width)
+                    .field(t.box.height).field(t.cam_vx);
+                w.end_row();
+            }
+        });
+        json side = {{"scenario", o.scenario}, {"seed", seed}, {"frames", frames.size()},
+                     {"format", "png"}, {"pattern", "frame_%04u.png"}, {"truth", "truth.csv"}};
+        write_json_atomic(join_path(o.out, "sequence.json"), side);
+        if (!o.quiet)
+            std::printf("pft sim (tsa): %zu frames %dx%d, seed %llu -> %s\n", frames.size(), s.scene.width,
+                        s.scene.height, (unsigned long long)seed, o.out.c_str());
+        return 0;
+    }
+
+    int run(const Options &o) override
+    {
+        Scenario s = load_scenario(o);
+        TrackRun tr;
+        tr.params = s.tracker;
+        tr.label = s.tracker.motion;
+        tr.out = o.out.empty() ? "pft_run_out" : o.out;
+        tr.frames = (int)o.frames;
+        tr.video = !o.no_video;
+        tr.quiet = o.quiet;
+        // truth: the sim sidecar, else --truth
+        std::string truth_csv = o.truth;
+        if (truth_csv.empty() && fs::exists(join_path(o.sequence, "truth.csv")))
+            truth_csv = join_path(o.sequence, "truth.csv");
+        if (truth_csv.empty())
+            throw InputError("tsa run needs a `pft sim` directory (truth.csv gives the initial box) or --truth CSV; "
+                             "for a video with a box use `pft track`");
+        std::ifstream is(truth_csv);
+        if (!is)
+            throw InputError(truth_csv + ": cannot open");
+        std::string line;
+        std::getline(is, line);
+        while (std::getline(is, line)) {
+            std::vector<double> v;
+            std::string cell;
+            std::istringstream ls(line);
+            while (std::getline(ls, cell, ','))
+                v.push_back(std::atof(cell.c_str()));
+            if (v.size() < 7)
+                throw InputError(truth_csv + ": expected frame,cx,cy,box_x,box_y,box_w,box_h");
+            tr.truth.push_back({(int)v[0] - 1, v[1], v[2], cv::Rect2d(v[3], v[4], v[5], v[6]), v.size() > 7 ? v[7] : 0});
+        }
+        if (tr.truth.empty())
+            throw InputError(truth_csv + ": no rows");
+        tr.init = box_poly(tr.truth[0].box);
+        ColourInput in(o.sequence);
+        return do_track(in, tr, o.sequence);
+    }
+
+    int eval(const Options &o) override { return evaluate_cmd(o, false); }
+    int bench(const Options &o) override { return evaluate_cmd(o, true); }
+
+    int demo(const Options &o) override
+    {
+        Options d = o;
+        d.runs = 1;
+        return evaluate_cmd(d, false);
+    }
+
+    int selftest(const Options &) override
+    {
+        int fails = 0;
+        // sim determinism and truth sanity on a short sequence (needs opencv-doc's aero1.jpg)
+        try {
+            SceneSpec s;
+            s.frames = 12;
+            s.swing_speed = 4;
+            s.swing_accel = 1;
+            std::vector<cv::Mat> a, b;
+            std::vector<TruthRow> ta, tb;
+            render_sequence(s, 3, a, ta);
+            render_sequence(s, 3, b, tb);
+            bool same = a.size() == b.size();
+            for (std::size_t k = 0; same && k < a.size(); ++k)
+                same = cv::norm(a[k], b[k], cv::NORM_INF) == 0;
+            if (!same) {
+                std::printf("FAIL: tsa sim is not deterministic for a fixed seed\n");
+                ++fails;
+            }
+            for (auto &t : ta)
+                if (t.box.width < 20 || t.box.width > 40 || t.box.height < 20 || t.box.height > 40 ||
+                    std::abs(t.cx - (t.box.x + t.box.width / 2)) > 1.0) {
+                    std::printf("FAIL: tsa truth box implausible at frame %d\n", t.frame);
+                    ++fails;
+                    break;
+                }
+            // the TSA tracker follows the first frames of the default scene
+            PftParams p;
+            auto trk = make_tracker("tsa", p, s.width, s.height);
+            Scenario sc;
+            sc.scene = s;
+            RunTrace r = run_one(*trk, a, ta, sc);
+            double worst = *std::max_element(r.err.begin(), r.err.end());
+            if (worst > 8.0) {
+                std::printf("FAIL: TSA centre error %.1f px on the first frames of the default scene\n", worst);
+                ++fails;
+            }
+        } catch (const std::exception &e) {
+            std::printf("FAIL: tsa selftest: %s\n", e.what());
+            ++fails;
+        }
+        std::printf("tsa selftest: %s\n", fails ? "FAILED" : "passed");
+        return fails ? 1 : 0;
+    }
+
+private:
+    int evaluate_cmd(const Options &o, bool bench)
+    {
+        Scenario s = load_scenario(o);
+        const std::vector<std::string> &names = bench ? s.bench_trackers : s.eval_trackers;
+        std::vector<std::string> use;
+        for (auto &n : names)
+            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200")
+                use.push_back(n);
+            else if (!o.quiet)
+                std::printf("(skipping %s: OpenCV contrib tracking module not built in)\n", n.c_str());
+        const int runs = o.runs ? (int)o.runs : (bench ? 1 : s.runs);
+        const uint64_t seed = o.seed.value_or(s.scene.seed_base);
+        // bench times trackers one run after another on one thread; eval runs in parallel
+        const unsigned threads = bench ? 1u : resolve_threads(o.threads);
+        EvalResult r = evaluate(s, use, runs, seed, threads, o.frames ? (int)o.frames + 1 : -1,
+                                progress_wanted(o.progress) && !o.quiet, 8);
+        json sum = summary_json(s, r, runs, seed, bench ? "bench" : "eval");
+        if (!o.tag.empty())
+            sum["tag"] = o.tag;
+        if (!o.quiet)
+            print_table(s, sum);
+        if (!o.out.empty()) {
+            ensure_dir(o.out);
+            write_json_atomic(join_path(o.out, bench ? "bench.json" : "summary.json"), sum);
+            write_plots(s, r, o.out);
+            // overlay snapshots of the first run of TSA (frames 1/4, 1/2, 3/4, last)
+            if (!bench || true) {
+                std::vector<cv::Mat> frames;
+                std::vector<TruthRow> truth;
+                render_sequence(s.scene, seed, frames, truth, o.frames ? (int)o.frames + 1 : -1);
+                PftParams p = s.tracker;
+                p.seed = seed;
+                auto t = make_tracker(s.eval_trackers.empty() ? "tsa" : s.eval_trackers[0], p, s.scene.width,
+                                      s.scene.height);
+                t->init(frames[0], box_poly(truth[0].box));
+                const std::size_t n = frames.size();
+                for (std::size_t k = 1; k < n; ++k) {
+                    TrackOut out;
+                    t->update(frames[k], out);
+                    if (k == n / 4 || k == n / 2 || k == 3 * n / 4 || k == n - 1) {
+                        cv::Mat ov = frames[k].clone();
+                        draw_overlay(ov, out, &truth[k].box, (int)k + 1, t->name());
+                        char name[64];
+                        std::snprintf(name, sizeof name, "overlay_%04zu.png", k + 1);
+                        AtomicPath pth(join_path(o.out, name));
+                        cv::imwrite(pth.tmp(), ov);
+                        pth.commit();
+                    }
+                }
+            }
+        }
+        return 0;
+    }
+};
+
+PFT_REGISTER_KIND("tsa", TsaHandler);
+// scenario files written with the earlier kind name
+PFT_REGISTER_KIND_ALIAS("vis", "tsa", tsa_vis);
+
+}  // namespace
+
+CLI::App *add_track_command(CLI::App &app, TrackCli &t)
+{
+    CLI::App *c = app.add_subcommand("track", "pftrack TSA-AK (or ncv/ts) on a video or image folder from a box or polygon");
+    c->add_option("--sequence", t.sequence, "video file, image folder, or an opencv-doc name (vtest.avi, Megamind.avi)")
+        ->required();
+    c->add_option("--box", t.box, "initial box x,y,w,h (pixels)");
+    c->add_option("--polygon", t.polygon, "initial polygon x1,y1;x2,y2;...");
+    c->add_option("--init", t.init, "file with {\"box\": [x,y,w,h]} or {\"polygon\": [[x,y],...]} (JSON)");
+    c->add_option("--out", t.out, "output directory (default pft_track_out)");
+    c->add_option("--motion", t.motion, "tsa (default), ncv or ts")->check(CLI::IsMember({"tsa", "ncv", "ts"}));
+    c->add_option("--particles", t.particles, "normal particles (default 100)")->check(CLI::Range(1, 65535));
+    c->add_option("--frames", t.frames, "stop after this many frames (default: all)")->check(CLI::Range(0, 10000000));
+    c->add_option("--max-target", t.max_target, "largest target side in px (default: 2x the initial box, <= 255)")
+        ->check(CLI::Range(0, 255));
+    c->add_option("--snapshots", t.snapshots, "overlay PNG snapshots to write (default 4)")->check(CLI::Range(0, 100));
+    c->add_flag("--no-video", t.no_video, "do not write overlay.avi");
+    c->add_flag("-q,--quiet", t.quiet, "print less");
+    return c;
+}
+
+int run_track(const TrackCli &t)
+{
+    TrackRun tr;
+    int given = !t.box.empty() + !t.polygon.empty() + !t.init.empty();
+    if (given != 1)
+        throw InputError("track: give exactly one of --box, --polygon, --init");
+    if (!t.box.empty())
+        tr.init = parse_points(t.box, true, "--box");
+    else if (!t.polygon.empty())
+        tr.init = parse_points(t.polygon, false, "--polygon");
+    else {
+        json j = load_json_file(t.init);
+        Field f(j, t.init);
+        f.only({"box", "polygon"});
+        if (f.has("box")) {
+            auto v = f.numbers("box", 4);
+            tr.init = parse_points(std::to_string(v[0]) + "," + std::to_string(v[1]) + "," + std::to_string(v[2]) + "," +
+                                       std::to_string(v[3]),
+                                   true, t.init + ": box");
+        } else if (f.has("polygon")) {
+            Field p = f.at("polygon");
+            for (std::size_t i = 0; i < p.size(); ++i) {
+                Field q = p.at(i);
+                if (q.size() != 2)
+                    q.fail("expected [x, y]");
+                tr.init.emplace_back((int)std::lround(q.at(0).as_number()), (int)std::lround(q.at(1).as_number()));
+            }
+            if (tr.init.size() < 3)
+                p.fail("expected at least 3 points");
+        } else {
+            f.fail("expected \"box\" or \"polygon\"");
+        }
+    }
+    cv::Rect br = cv::boundingRect(tr.init);
+    tr.params.motion = t.motion;
+    tr.params.particles = t.particles;
+    tr.params.max_target = t.max_target > 0 ? t.max_target : std::min(255, std::max(16, 2 * std::max(br.width, br.height)));
+    tr.label = t.motion;
+    tr.out = t.out;
+    tr.frames = t.frames;
+    tr.video = !t.no_video;
+    tr.snapshots = t.snapshots;
+    tr.quiet = t.quiet;
+    ColourInput in(t.sequence);
+    return do_track(in, tr, t.sequence);
+}
+
+}  // namespace pft::host::tsa

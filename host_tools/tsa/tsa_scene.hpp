@@ -1,0 +1,57 @@
+// Semi-synthetic airborne sequences for the "tsa" kind: a textured vehicle driving over a real
+// aerial photograph (opencv-doc's aero1.jpg / aero3.jpg), seen by a camera that swings,
+// reverses and zooms, with sensor noise and blur, and exact ground truth.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+
+namespace pft::host::tsa {
+
+struct SceneSpec {
+    std::string name, description;
+    std::vector<std::string> backgrounds{"aero1.jpg", "aero3.jpg"};  ///< run i uses [i % n]
+    int width = 640, height = 480, frames = 250;
+    double world_scale = 2.0;       ///< background upscaled by this to make the ground plane
+    // target (ground vehicle), sizes in image pixels at zoom 1
+    double target_w = 25, target_h = 30;
+    double speed = 0.5;             ///< ground speed, image px/frame at zoom 1
+    double heading_deg = -90;       ///< direction of travel (image axes, -90 = up)
+    int accel_frame = -1;           ///< sudden acceleration starts here (-1: none)
+    int accel_frames = 20;          ///< ... and lasts this many frames
+    double accel = 0;               ///< px/frame^2 along the heading
+    // camera
+    double swing_speed = 12;        ///< max swing speed, image px/frame (x)
+    int reversals = 9;              ///< direction reversals of the swing over the sequence
+    double swing_accel = 2.0;       ///< max swing acceleration, px/frame^2
+    double swing_y = 0.15;          ///< y swing as a fraction of the x swing
+    double jitter = 0.4;            ///< camera vibration, px (sd per frame)
+    double zoom = 0.1;              ///< relative zoom amplitude (1 +- zoom over the sequence)
+    // sensor
+    double noise_sigma = 4;         ///< additive Gaussian noise, grey levels
+    double blur_sigma = 0.7;        ///< Gaussian blur, px (0: none)
+    uint64_t seed_base = 1;
+};
+
+struct TruthRow {
+    int frame;
+    double cx, cy;                  ///< target centre in the image
+    cv::Rect2d box;                 ///< axis-aligned box of the target in the image
+    double cam_vx;                  ///< camera swing velocity (px/frame), for plots
+};
+
+SceneSpec parse_scene(const nlohmann::json &j, const std::string &file);
+nlohmann::json scene_to_json(const SceneSpec &s);
+
+/** Finds a data file shipped by opencv-doc (plain or .gz, decompressed to a temp dir) or given
+ *  as a path; InputError naming the places searched. */
+std::string find_data_file(const std::string &name);
+
+/** Renders the whole sequence of run `seed` (BGR frames) and its truth. */
+void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &frames,
+                     std::vector<TruthRow> &truth, int max_frames = -1);
+
+}  // namespace pft::host::tsa
