@@ -12,20 +12,20 @@
 
 #include "pte_vectors_spec.h"
 
-static void emit_i32(const char *name, const int32_t *v, size_t n)
+/* One array, eight values a line, in the layout of gen_core_vectors.c: signed values as
+ * int32_t, unsigned ones (is_u) as uint32_t with a u suffix. */
+static void emit(const char *name, const void *values, size_t n, int is_u)
 {
-    printf("static const int32_t %s[%u] = {", name, (unsigned)n);
+    const int32_t *sv = (const int32_t *)values;
+    const uint32_t *uv = (const uint32_t *)values;
+    printf("static const %s %s[%u] = {", is_u ? "uint32_t" : "int32_t", name, (unsigned)n);
     for (size_t i = 0; i < n; ++i) {
-        printf("%s%ld", i == 0 ? "\n    " : (i % 8u) ? ", " : ",\n    ", (long)v[i]);
-    }
-    printf("\n};\n");
-}
-
-static void emit_u32(const char *name, const uint32_t *v, size_t n)
-{
-    printf("static const uint32_t %s[%u] = {", name, (unsigned)n);
-    for (size_t i = 0; i < n; ++i) {
-        printf("%s%luu", i == 0 ? "\n    " : (i % 8u) ? ", " : ",\n    ", (unsigned long)v[i]);
+        const char *sep = i == 0 ? "\n    " : (i % 8u) != 0u ? ", " : ",\n    ";
+        if (is_u) {
+            printf("%s%luu", sep, (unsigned long)uv[i]);
+        } else {
+            printf("%s%ld", sep, (long)sv[i]);
+        }
     }
     printf("\n};\n");
 }
@@ -43,15 +43,15 @@ int main(void)
            " * Regenerate: build/host-q16/tests/gen_pte_vectors > tests/vectors/pte_q16_vectors.h\n"
            " * Arrays [instance][frame] flattened, instances as in pte_vectors_spec.h. */\n");
     printf("#ifndef PFT_PTE_Q16_VECTORS_H\n#define PFT_PTE_Q16_VECTORS_H\n#include <stdint.h>\n");
-    emit_i32("pv_status", r.status, PFT_PV_N_INST);
-    emit_i32("pv_count", &r.count[0][0], n);
-    emit_u32("pv_hash", &r.hash[0][0], n);
-    emit_i32("pv_id0", &r.id0[0][0], n);
-    emit_i32("pv_pos0", &r.pos0[0][0], n);
-    emit_i32("pv_vel0", &r.vel0[0][0], n);
-    emit_i32("pv_score0", &r.score0[0][0], n);
-    emit_i32("pv_thr", r.thr, 2);
-    emit_i32("pv_cue", (const int32_t[2]){r.cue_status, r.cue_id}, 2);
+    emit("pv_status", r.status, PFT_PV_N_INST, 0);
+    emit("pv_count", &r.count[0][0], n, 0);
+    emit("pv_hash", &r.hash[0][0], n, 1);
+    emit("pv_id0", &r.id0[0][0], n, 0);
+    emit("pv_pos0", &r.pos0[0][0], n, 0);
+    emit("pv_vel0", &r.vel0[0][0], n, 0);
+    emit("pv_score0", &r.score0[0][0], n, 0);
+    emit("pv_thr", r.thr, 2, 0);
+    emit("pv_cue", (const int32_t[2]){r.cue_status, r.cue_id}, 2, 0);
     printf("#endif\n");
     return 0;
 #endif

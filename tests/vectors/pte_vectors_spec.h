@@ -18,8 +18,7 @@
 #define PFT_PTE_VECTORS_SPEC_H
 #include <string.h>
 #include "pft/pft.h"
-#include "pft/pft_mftbd.h"
-#include "pft/pft_dbt.h"
+#include "pft/pft_pte.h"
 #include "core_vectors_spec.h" /* PFT_GV_REAL / PFT_GV_RAW (Q16.16 raw <-> pft_real_t) */
 
 #define PFT_PV_NR 64u      /* range-time scene */
@@ -129,6 +128,22 @@ static inline void pft_pv_frame(pft_frame_t *f, const uint16_t *pix, uint16_t w,
     f->format = PFT_PIX_U16;
 }
 
+/* pixels of the current frame (both scenes) */
+#define PFT_PV_PIX (PFT_PV_NR2 * PFT_PV_ND2 > PFT_PV_NR ? PFT_PV_NR2 * PFT_PV_ND2 : PFT_PV_NR)
+static uint16_t pft_pv_pix[PFT_PV_PIX];
+
+/* frame k of the range-time (rd false) or range-Doppler scene into pft_pv_pix and *f */
+static inline void pft_pv_next(uint32_t *s, uint32_t k, bool rd, pft_frame_t *f)
+{
+    if (rd) {
+        pft_pv_scene2(s, k, pft_pv_pix);
+        pft_pv_frame(f, pft_pv_pix, PFT_PV_NR2, PFT_PV_ND2);
+    } else {
+        pft_pv_scene1(s, k, pft_pv_pix);
+        pft_pv_frame(f, pft_pv_pix, PFT_PV_NR, 1);
+    }
+}
+
 /* the same frame as values in input units (z = raw/64 - 67.4375, exact) */
 static inline void pft_pv_values(const uint16_t *pix, uint32_t n, pft_real_t *z)
 {
@@ -137,7 +152,7 @@ static inline void pft_pv_values(const uint16_t *pix, uint32_t n, pft_real_t *z)
     }
 }
 
-static inline void pft_pv_input(pft_mftbd_input_t *in)
+static inline void pft_pv_input(pft_pte_input_t *in)
 {
     in->pixel_gain = PFT_C(0.015625);
     in->pixel_offset = PFT_C(-67.4375);
@@ -155,7 +170,7 @@ static inline uint32_t pft_pv_fnv(uint32_t h, int32_t v)
     return h;
 }
 
-static inline uint32_t pft_pv_hash_rep(uint32_t h, const pft_mftbd_report_t *r)
+static inline uint32_t pft_pv_hash_rep(uint32_t h, const pft_pte_report_t *r)
 {
     h = pft_pv_fnv(h, (int32_t)r->id);
     h = pft_pv_fnv(h, r->detected ? 1 : 0);
@@ -171,7 +186,7 @@ static inline uint32_t pft_pv_hash_rep(uint32_t h, const pft_mftbd_report_t *r)
 
 /* records reports rep[0..n) of instance i at frame k; h0: hash of extra values */
 static inline void pft_pv_record(pft_pv_results_t *res, uint32_t i, uint32_t k, pft_status_t st,
-                                 const pft_mftbd_report_t *rep, uint32_t n, uint32_t h0)
+                                 const pft_pte_report_t *rep, uint32_t n, uint32_t h0)
 {
     uint32_t h = h0;
     for (uint32_t j = 0; j < n; ++j) {
@@ -190,20 +205,24 @@ static inline void pft_pv_record(pft_pv_results_t *res, uint32_t i, uint32_t k, 
 
 /* ------------------------------------------------------------------- configurations */
 
-static inline void pft_pv_cfg_pte_table(pft_mftbd_pte_config_t *c)
+static inline void pft_pv_cfg_pte_table(pft_pte_config_t *c)
 {
-    pft_mftbd_pte_config_default(c, PFT_PV_NR, 1);
+    pft_pte_config_default(c);
+    c->in.n_range = PFT_PV_NR;
+    c->in.n_doppler = 1;
     pft_pv_input(&c->in);
     c->init_threshold = PFT_C(18.0);
     c->max_len = 20u;
 }
 
-static inline void pft_pv_cfg_pte_exact(pft_mftbd_pte_config_t *c)
+static inline void pft_pv_cfg_pte_exact(pft_pte_config_t *c)
 {
-    pft_mftbd_pte_config_default(c, PFT_PV_NR, 1);
+    pft_pte_config_default(c);
+    c->in.n_range = PFT_PV_NR;
+    c->in.n_doppler = 1;
     pft_pv_input(&c->in);
-    c->op = PFT_MFTBD_OP_EXACT;
-    c->motion = PFT_MFTBD_MOTION_CV;
+    c->op = PFT_PTE_OP_EXACT;
+    c->motion = PFT_PTE_MOTION_CV;
     c->q_sd[0] = PFT_C(0.014);
     c->n_dir[0] = 3u;
     c->max_len = 12u;
@@ -213,18 +232,22 @@ static inline void pft_pv_cfg_pte_exact(pft_mftbd_pte_config_t *c)
     c->max_tracks = 3u;
 }
 
-static inline void pft_pv_cfg_dp_slide(pft_mftbd_dp_config_t *c)
+static inline void pft_pv_cfg_dp_slide(pft_pte_dp_config_t *c)
 {
-    pft_mftbd_dp_config_default(c, PFT_PV_NR, 1);
+    pft_pte_dp_config_default(c);
+    c->in.n_range = PFT_PV_NR;
+    c->in.n_doppler = 1;
     pft_pv_input(&c->in);
     c->threshold = PFT_C(18.0);
 }
 
-static inline void pft_pv_cfg_dp_batch(pft_mftbd_dp_config_t *c)
+static inline void pft_pv_cfg_dp_batch(pft_pte_dp_config_t *c)
 {
-    pft_mftbd_dp_config_default(c, PFT_PV_NR, 1);
+    pft_pte_dp_config_default(c);
+    c->in.n_range = PFT_PV_NR;
+    c->in.n_doppler = 1;
     pft_pv_input(&c->in);
-    c->in.noise = PFT_MFTBD_NOISE_CFAR;
+    c->in.noise = PFT_PTE_NOISE_CFAR;
     c->in.cfar_ref = 8u;
     c->in.noise_sigma = PFT_C(0.25);
     c->frames = 6u;
@@ -234,12 +257,14 @@ static inline void pft_pv_cfg_dp_batch(pft_mftbd_dp_config_t *c)
     c->max_targets = 3u;
 }
 
-static inline void pft_pv_cfg_dbt(pft_dbt_config_t *c, bool cfar)
+static inline void pft_pv_cfg_dbt(pft_pte_dbt_config_t *c, bool cfar)
 {
-    pft_dbt_config_default(c, PFT_PV_NR, 1);
+    pft_pte_dbt_config_default(c);
+    c->in.n_range = PFT_PV_NR;
+    c->in.n_doppler = 1;
     pft_pv_input(&c->in);
     if (cfar) {
-        c->in.noise = PFT_MFTBD_NOISE_CFAR;
+        c->in.noise = PFT_PTE_NOISE_CFAR;
         c->in.cfar_ref = 6u;
         c->in.cfar_guard = 1u;
         c->threshold = PFT_C(2.8);
@@ -248,9 +273,11 @@ static inline void pft_pv_cfg_dbt(pft_dbt_config_t *c, bool cfar)
     }
 }
 
-static inline void pft_pv_cfg_pte_rd(pft_mftbd_pte_config_t *c)
+static inline void pft_pv_cfg_pte_rd(pft_pte_config_t *c)
 {
-    pft_mftbd_pte_config_default(c, PFT_PV_NR2, PFT_PV_ND2);
+    pft_pte_config_default(c);
+    c->in.n_range = PFT_PV_NR2;
+    c->in.n_doppler = PFT_PV_ND2;
     pft_pv_input(&c->in);
     c->max_len = 10u;
     c->init_frames = 6u;
@@ -261,9 +288,11 @@ static inline void pft_pv_cfg_pte_rd(pft_mftbd_pte_config_t *c)
     c->init_threshold = PFT_C(20.0);
 }
 
-static inline void pft_pv_cfg_dp_rd(pft_mftbd_dp_config_t *c)
+static inline void pft_pv_cfg_dp_rd(pft_pte_dp_config_t *c)
 {
-    pft_mftbd_dp_config_default(c, PFT_PV_NR2, PFT_PV_ND2);
+    pft_pte_dp_config_default(c);
+    c->in.n_range = PFT_PV_NR2;
+    c->in.n_doppler = PFT_PV_ND2;
     pft_pv_input(&c->in);
     c->frames = 6u;
     c->threshold = PFT_C(20.0);
@@ -276,142 +305,165 @@ static inline void pft_pv_cfg_dp_rd(pft_mftbd_dp_config_t *c)
 #define PFT_PV_WS_WORDS 24000u
 static uint64_t pft_pv_ws[PFT_PV_WS_WORDS];
 
-static inline void pft_pv_run_pte(pft_pv_results_t *res, uint32_t inst,
-                                  const pft_mftbd_pte_config_t *c, bool values, bool cue)
+/* What one tracker does with frame k: update, then its reports into rep (count in *n) and
+ * the hash of anything else to record into *h. */
+typedef pft_status_t (*pft_pv_step_t)(void *ctx, uint32_t k, const pft_frame_t *f,
+                                      pft_pte_report_t *rep, uint32_t *n, uint32_t *h);
+
+static pft_pte_report_t pft_pv_rep[PFT_PTE_DBT_MAX_TRACKS];
+
+/* Runs a tracker over its scene (range-Doppler when rd) and records every frame. */
+static inline void pft_pv_loop(pft_pv_results_t *res, uint32_t inst, bool rd, pft_pv_step_t step,
+                               void *ctx)
 {
-    static pft_mftbd_pte_t p;
-    static uint16_t pix[PFT_PV_NR2 * PFT_PV_ND2 > PFT_PV_NR ? PFT_PV_NR2 * PFT_PV_ND2 : PFT_PV_NR];
-    static pft_real_t z[sizeof(pix) / sizeof(pix[0])];
-    const bool rd = c->in.n_doppler > 1u;
     const uint32_t frames = rd ? PFT_PV_FRAMES2 : PFT_PV_FRAMES;
-    if (pft_mftbd_pte_init(&p, c, pft_pv_ws, sizeof(pft_pv_ws)) != PFT_OK) {
-        return;
-    }
     uint32_t s = rd ? 0x2D0B1E5u : 0x1234567u;
     for (uint32_t k = 0; k < frames; ++k) {
         pft_frame_t f;
-        if (rd) {
-            pft_pv_scene2(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR2, PFT_PV_ND2);
-        } else {
-            pft_pv_scene1(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR, 1);
-        }
-        pft_status_t st;
-        if (values) {
-            pft_pv_values(pix, (uint32_t)c->in.n_range * c->in.n_doppler, z);
-            st = pft_mftbd_pte_update_real(&p, z);
-        } else {
-            st = pft_mftbd_pte_update(&p, &f);
-        }
-        if (cue && k == 30u) {
-            /* a cue on target B (cell 50 - 1.75 - 0.77 at frame 30) */
-            pft_real_t pos[2] = {PFT_C(47.5), PFT_C(0.0)};
-            pft_real_t vel[2] = {PFT_C(-0.2), PFT_C(0.0)};
-            pft_real_t pv[2] = {PFT_C(0.2), PFT_C(1.0)};
-            pft_real_t vv[2] = {PFT_C(0.01), PFT_C(1.0)};
-            uint16_t id = 0;
-            res->cue_status = (int32_t)pft_mftbd_pte_start(&p, pos, vel, pv, vv, PFT_C(3.0), 10u, &id);
-            res->cue_id = (int32_t)id;
-        }
-        const pft_mftbd_report_t *rep = NULL;
-        uint32_t n = pft_mftbd_pte_reports(&p, &rep);
-        pft_pv_record(res, inst, k, st, rep, n, 2166136261u);
+        pft_pv_next(&s, k, rd, &f);
+        uint32_t n = 0;
+        uint32_t h = 2166136261u;
+        pft_status_t st = step(ctx, k, &f, pft_pv_rep, &n, &h);
+        pft_pv_record(res, inst, k, st, pft_pv_rep, n, h);
     }
+}
+
+typedef struct {
+    pft_pte_t p;
+    bool values;     /* frames as values in input units (update_real) */
+    bool cue;        /* a cue at frame 30 */
+    pft_pv_results_t *res;
+} pft_pv_pte_ctx_t;
+
+static inline pft_status_t pft_pv_pte_step(void *ctx, uint32_t k, const pft_frame_t *f,
+                                           pft_pte_report_t *rep, uint32_t *n, uint32_t *h)
+{
+    static pft_real_t z[PFT_PV_PIX];
+    pft_pv_pte_ctx_t *c = (pft_pv_pte_ctx_t *)ctx;
+    pft_status_t st;
+    (void)h;
+    if (c->values) {
+        pft_pv_values(pft_pv_pix, (uint32_t)f->width * f->height, z);
+        st = pft_pte_update_real(&c->p, z);
+    } else {
+        st = pft_pte_update(&c->p, f);
+    }
+    if (c->cue && k == 30u) {
+        /* a cue on target B (cell 50 - 1.75 - 0.77 at frame 30) */
+        pft_real_t pos[2] = {PFT_C(47.5), PFT_C(0.0)};
+        pft_real_t vel[2] = {PFT_C(-0.2), PFT_C(0.0)};
+        pft_real_t pv[2] = {PFT_C(0.2), PFT_C(1.0)};
+        pft_real_t vv[2] = {PFT_C(0.01), PFT_C(1.0)};
+        uint16_t id = 0;
+        c->res->cue_status = (int32_t)pft_pte_start(&c->p, pos, vel, pv, vv, PFT_C(3.0), 10u, &id);
+        c->res->cue_id = (int32_t)id;
+    }
+    *n = (uint32_t)pft_pte_reports(&c->p, rep, PFT_PTE_MAX_TRACKS);
+    return st;
+}
+
+static inline void pft_pv_run_pte(pft_pv_results_t *res, uint32_t inst,
+                                  const pft_pte_config_t *c, bool values, bool cue)
+{
+    static pft_pv_pte_ctx_t ctx;
+    ctx.values = values;
+    ctx.cue = cue;
+    ctx.res = res;
+    if (pft_pte_init(&ctx.p, c, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK) {
+        pft_pv_loop(res, inst, c->in.n_doppler > 1u, pft_pv_pte_step, &ctx);
+    }
+}
+
+typedef struct {
+    pft_pte_dp_t dp;
+    bool batch;      /* disjoint batches: reset every K frames */
+    uint32_t k;      /* K */
+} pft_pv_dp_ctx_t;
+
+static inline pft_status_t pft_pv_dp_step(void *ctx, uint32_t k, const pft_frame_t *f,
+                                          pft_pte_report_t *rep, uint32_t *n, uint32_t *h)
+{
+    static int16_t path[2u * PFT_PTE_MAX_FRAMES];
+    pft_pv_dp_ctx_t *c = (pft_pv_dp_ctx_t *)ctx;
+    if (c->batch && k % c->k == 0u) {
+        (void)pft_pte_dp_reset(&c->dp);
+    }
+    pft_status_t st = pft_pte_dp_update(&c->dp, f);
+    *n = (uint32_t)pft_pte_dp_reports(&c->dp, rep, PFT_PTE_MAX_TRACKS);
+    pft_real_t peak = PFT_C(0.0);
+    (void)pft_pte_dp_peak(&c->dp, &peak);
+    *h = pft_pv_fnv(*h, PFT_GV_RAW(peak));
+    for (uint32_t j = 0; j < *n; ++j) {
+        uint32_t len = (uint32_t)pft_pte_dp_path(&c->dp, j, path, 2u * PFT_PTE_MAX_FRAMES);
+        for (uint32_t q = 0; q < len; ++q) {
+            *h = pft_pv_fnv(*h, path[q]);
+        }
+    }
+    return st;
 }
 
 static inline void pft_pv_run_dp(pft_pv_results_t *res, uint32_t inst,
-                                 const pft_mftbd_dp_config_t *c, bool batch)
+                                 const pft_pte_dp_config_t *c, bool batch)
 {
-    static pft_mftbd_dp_t dp;
-    static uint16_t pix[PFT_PV_NR2 * PFT_PV_ND2 > PFT_PV_NR ? PFT_PV_NR2 * PFT_PV_ND2 : PFT_PV_NR];
-    const bool rd = c->in.n_doppler > 1u;
-    const uint32_t frames = rd ? PFT_PV_FRAMES2 : PFT_PV_FRAMES;
-    if (pft_mftbd_dp_init(&dp, c, pft_pv_ws, sizeof(pft_pv_ws)) != PFT_OK) {
-        return;
-    }
-    uint32_t s = rd ? 0x2D0B1E5u : 0x1234567u;
-    for (uint32_t k = 0; k < frames; ++k) {
-        pft_frame_t f;
-        if (rd) {
-            pft_pv_scene2(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR2, PFT_PV_ND2);
-        } else {
-            pft_pv_scene1(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR, 1);
-        }
-        if (batch && k % c->frames == 0u) {
-            pft_mftbd_dp_reset(&dp);
-        }
-        pft_status_t st = pft_mftbd_dp_update(&dp, &f);
-        const pft_mftbd_report_t *rep = NULL;
-        uint32_t n = pft_mftbd_dp_reports(&dp, &rep);
-        uint32_t h = pft_pv_fnv(2166136261u, PFT_GV_RAW(pft_mftbd_dp_peak(&dp)));
-        for (uint32_t j = 0; j < n; ++j) {
-            const int16_t *path = pft_mftbd_dp_path(&dp, j);
-            for (uint32_t q = 0; path != NULL && q < 2u * c->frames; ++q) {
-                h = pft_pv_fnv(h, path[q]);
-            }
-        }
-        pft_pv_record(res, inst, k, st, rep, n, h);
+    static pft_pv_dp_ctx_t ctx;
+    ctx.batch = batch;
+    ctx.k = c->frames;
+    if (pft_pte_dp_init(&ctx.dp, c, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK) {
+        pft_pv_loop(res, inst, c->in.n_doppler > 1u, pft_pv_dp_step, &ctx);
     }
 }
 
-static inline void pft_pv_run_dbt(pft_pv_results_t *res, uint32_t inst, const pft_dbt_config_t *c)
+static inline pft_status_t pft_pv_dbt_step(void *ctx, uint32_t k, const pft_frame_t *f,
+                                           pft_pte_report_t *rep, uint32_t *n, uint32_t *h)
 {
-    static pft_dbt_t b;
-    static uint16_t pix[PFT_PV_NR2 * PFT_PV_ND2 > PFT_PV_NR ? PFT_PV_NR2 * PFT_PV_ND2 : PFT_PV_NR];
-    const bool rd = c->in.n_doppler > 1u;
-    const uint32_t frames = rd ? PFT_PV_FRAMES2 : PFT_PV_FRAMES;
-    if (pft_dbt_init(&b, c, pft_pv_ws, sizeof(pft_pv_ws)) != PFT_OK) {
-        return;
+    static pft_pte_dbt_plot_t pl[PFT_PTE_DBT_MAX_DETS];
+    pft_pte_dbt_t *b = (pft_pte_dbt_t *)ctx;
+    (void)k;
+    pft_status_t st = pft_pte_dbt_update(b, f);
+    uint32_t np = (uint32_t)pft_pte_dbt_plots(b, pl, PFT_PTE_DBT_MAX_DETS);
+    *h = pft_pv_fnv(*h, (int32_t)np);
+    for (uint32_t j = 0; j < np; ++j) {
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(pl[j].pos[0]));
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(pl[j].pos[1]));
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(pl[j].peak));
     }
-    uint32_t s = rd ? 0x2D0B1E5u : 0x1234567u;
-    for (uint32_t k = 0; k < frames; ++k) {
-        pft_frame_t f;
-        if (rd) {
-            pft_pv_scene2(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR2, PFT_PV_ND2);
-        } else {
-            pft_pv_scene1(&s, k, pix);
-            pft_pv_frame(&f, pix, PFT_PV_NR, 1);
-        }
-        pft_status_t st = pft_dbt_update(&b, &f);
-        const pft_dbt_plot_t *pl = NULL;
-        uint32_t np = pft_dbt_plots(&b, &pl);
-        uint32_t h = pft_pv_fnv(2166136261u, (int32_t)np);
-        for (uint32_t j = 0; j < np; ++j) {
-            h = pft_pv_fnv(h, PFT_GV_RAW(pl[j].pos[0]));
-            h = pft_pv_fnv(h, PFT_GV_RAW(pl[j].pos[1]));
-            h = pft_pv_fnv(h, PFT_GV_RAW(pl[j].peak));
-        }
-        const pft_mftbd_report_t *rep = NULL;
-        uint32_t n = pft_dbt_reports(&b, &rep);
-        pft_pv_record(res, inst, k, st, rep, n, h);
+    *n = (uint32_t)pft_pte_dbt_reports(b, rep, PFT_PTE_DBT_MAX_TRACKS);
+    return st;
+}
+
+static inline void pft_pv_run_dbt(pft_pv_results_t *res, uint32_t inst, const pft_pte_dbt_config_t *c)
+{
+    static pft_pte_dbt_t b;
+    if (pft_pte_dbt_init(&b, c, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK) {
+        pft_pv_loop(res, inst, c->in.n_doppler > 1u, pft_pv_dbt_step, &b);
     }
 }
 
 /* noise-only Monte Carlo thresholds of a small DP and of a PTE initiation (32 cells) */
 static inline void pft_pv_thresholds(pft_pv_results_t *res)
 {
-    static pft_mftbd_dp_t dp;
-    static pft_mftbd_pte_t p;
-    pft_mftbd_dp_config_t dc;
-    pft_mftbd_dp_config_default(&dc, 32u, 1u);
+    static pft_pte_dp_t dp;
+    static pft_pte_t p;
+    pft_pte_dp_config_t dc;
+    pft_pte_dp_config_default(&dc);
+    dc.in.n_range = 32u;
+    dc.in.n_doppler = 1u;
     dc.frames = 6u;
     pft_real_t vt = PFT_C(0.0);
-    if (pft_mftbd_dp_init(&dp, &dc, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK &&
-        pft_mftbd_dp_threshold(&dp, PFT_C(0.05), 60u, 11u, &vt) == PFT_OK) {
+    if (pft_pte_dp_init(&dp, &dc, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK &&
+        pft_pte_dp_threshold(&dp, PFT_C(0.05), 60u, 11u, &vt) == PFT_OK) {
         res->thr[0] = PFT_GV_RAW(vt);
     }
-    pft_mftbd_pte_config_t pc;
-    pft_mftbd_pte_config_default(&pc, 32u, 1u);
+    pft_pte_config_t pc;
+    pft_pte_config_default(&pc);
+    pc.in.n_range = 32u;
+    pc.in.n_doppler = 1u;
     pc.init_frames = 6u;
-    pc.in.noise = PFT_MFTBD_NOISE_CFAR;
+    pc.in.noise = PFT_PTE_NOISE_CFAR;
     pc.in.cfar_ref = 4u;
     vt = PFT_C(0.0);
-    if (pft_mftbd_pte_init(&p, &pc, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK &&
-        pft_mftbd_pte_threshold(&p, PFT_C(0.05), 60u, 12u, &vt) == PFT_OK) {
+    if (pft_pte_init(&p, &pc, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK &&
+        pft_pte_threshold(&p, PFT_C(0.05), 60u, 12u, &vt) == PFT_OK) {
         res->thr[1] = PFT_GV_RAW(vt);
     }
 }
@@ -419,9 +471,9 @@ static inline void pft_pv_thresholds(pft_pv_results_t *res)
 static inline void pft_pv_compute(pft_pv_results_t *res)
 {
     memset(res, 0, sizeof(*res));
-    pft_mftbd_pte_config_t pc;
-    pft_mftbd_dp_config_t dc;
-    pft_dbt_config_t bc;
+    pft_pte_config_t pc;
+    pft_pte_dp_config_t dc;
+    pft_pte_dbt_config_t bc;
     pft_pv_cfg_pte_table(&pc);
     pft_pv_run_pte(res, PFT_PV_PTE_TABLE, &pc, false, false);
     pft_pv_cfg_pte_exact(&pc);
@@ -438,7 +490,9 @@ static inline void pft_pv_compute(pft_pv_results_t *res)
     pft_pv_run_pte(res, PFT_PV_PTE_RD, &pc, false, false);
     pft_pv_cfg_dp_rd(&dc);
     pft_pv_run_dp(res, PFT_PV_DP_RD, &dc, false);
-    pft_dbt_config_default(&bc, PFT_PV_NR2, PFT_PV_ND2);
+    pft_pte_dbt_config_default(&bc);
+    bc.in.n_range = PFT_PV_NR2;
+    bc.in.n_doppler = PFT_PV_ND2;
     pft_pv_input(&bc.in);
     pft_pv_run_dbt(res, PFT_PV_DBT_RD, &bc);
     pft_pv_thresholds(res);

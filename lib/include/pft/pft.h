@@ -11,4 +11,5 @@
 #include "pft/pft_resample.h"
 #include "pft/pft_workspace.h"
 #include "pft/pft_kalman.h"
+#include "pft/pft_pte.h"
 #endif
