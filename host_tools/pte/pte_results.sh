@@ -41,29 +41,32 @@ for b in float q16; do
   # tracked range-time images (seed 1)
   "$PFT" demo --scenario "$SC/air_turn_6db.json" --out "$OUT/$b/demo_air" > "$OUT/$b/demo_air.txt"
   "$PFT" demo --scenario "$SC/sea_boat_6db.json" --out "$OUT/$b/demo_boat" > "$OUT/$b/demo_boat.txt"
-  if [ $b = float ]; then  # the q16 images stay in OUT_DIR (about 1 MB each)
+  if [ $b = float ]; then  # the q16 images stay in OUT_DIR
     cp "$OUT/$b/demo_air/tracked.png" "$IMG/air_turn_6db_tracked_$b.png"
     cp "$OUT/$b/demo_boat/tracked.png" "$IMG/sea_boat_6db_tracked_$b.png"
   fi
 done
 
 # Fig. 5: the four measures against SNR, every method in one figure per measure and build
-# (the q16 curves lie on the float ones; the tables give both)
+# (the q16 curves lie on the float ones; the tables give both). The page shows the float
+# figures (IMG_DIR); the q16 figures and the per-frame times stay in OUT_DIR/figures.
 PFT="$FB/host_tools/pft"
+mkdir -p "$OUT/figures"
 for b in float q16; do
   pts=("$OUT/$b"/snr_sweep/points/*.json "$OUT/$b"/snr_sweep_dp10/points/*.json)
   [ $b = float ] && pts+=("$OUT/$b"/snr_sweep_pte_exact/points/*.json)
+  D="$([ $b = float ] && echo "$IMG" || echo "$OUT/figures")"
   plot() { "$PFT" plot "${pts[@]}" --x /snr_db --group /tag --floor '' --xlabel "SNR (dB)" "$@"; }
   plot --y /rmse_cells --ylabel "RMSE of correct points (cells)" --title "Fig. 5(a) RMSE, $RUNS runs, $b" \
-    --out "$IMG/fig5a_rmse_$b.png"
+    --out "$D/fig5a_rmse_$b.png"
   plot --y /detection_prob --ylabel "detection probability" --title "Fig. 5(b) detection probability, $RUNS runs, $b" \
-    --out "$IMG/fig5b_detection_$b.png"
+    --out "$D/fig5b_detection_$b.png"
   plot --y /reliable3_prob --ylabel "3-frame reliable tracking probability" \
-    --title "Fig. 5(c) 3-frame reliable tracking, $RUNS runs, $b" --out "$IMG/fig5c_reliable3_$b.png"
+    --title "Fig. 5(c) 3-frame reliable tracking, $RUNS runs, $b" --out "$D/fig5c_reliable3_$b.png"
   plot --y /false_track_prob --ylabel "false-track probability" \
-    --title "Fig. 5(d) false-track probability, $RUNS runs, $b" --out "$IMG/fig5d_false_$b.png"
+    --title "Fig. 5(d) false-track probability, $RUNS runs, $b" --out "$D/fig5d_false_$b.png"
   plot --y /us_per_frame --ylabel "us per frame (wall, 2 shared cores)" \
-    --title "Per-frame time in the sweep, $RUNS runs, $b" --out "$IMG/time_per_frame_$b.png"
+    --title "Per-frame time in the sweep, $RUNS runs, $b" --out "$OUT/figures/time_per_frame_$b.png"
 done
 python3 "$HERE/pte_tables.py" "$OUT" > "$OUT/tables.md"
-echo "wrote $OUT/tables.md and $IMG/*.png"
+echo "wrote $OUT/tables.md, $IMG/*.png and $OUT/figures/*.png"
