@@ -259,7 +259,7 @@ pft_status_t pft_pte_dp_peak(const pft_pte_dp_t *dp, pft_real_t *peak)
 }
 
 pft_status_t pft_pte_dp_threshold(pft_pte_dp_t *dp, pft_real_t pfa, uint32_t runs,
-                                    uint64_t seed, pft_real_t *vt)
+                                  uint64_t seed, pft_real_t *vt)
 {
     if (dp == NULL || dp->ring.buf == NULL) {
         return PFT_ERR_INVAL;

@@ -190,7 +190,7 @@ void pft_pte_core_cancel_(const pft_pte_core_t_ *c, const int16_t *path, int32_t
 }
 
 pft_real_t pft_pte_core_refine_(const pft_pte_core_t_ *c, const int16_t *path, uint32_t j,
-                             uint32_t axis)
+                                uint32_t axis)
 {
     const int32_t nr = (int32_t)c->nr;
     const int32_t n = axis == 0u ? nr : (int32_t)c->nd;
@@ -214,7 +214,7 @@ pft_real_t pft_pte_core_refine_(const pft_pte_core_t_ *c, const int16_t *path, u
 }
 
 void pft_pte_core_fit_(const pft_pte_core_t_ *c, const int16_t *path, uint32_t axis,
-                         pft_real_t *pos, pft_real_t *vel)
+                       pft_real_t *pos, pft_real_t *vel)
 {
     const uint32_t k = c->k;
     /* positions relative to the newest cell keep q16 sums small */

@@ -68,7 +68,7 @@ pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *
 }
 
 void pft_pte_frame_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
-                          pft_real_t *z)
+                        pft_real_t *z)
 {
     pft_frame_row_to_real(frame, d, in->n_range, in->pixel_gain, in->pixel_offset, z);
 }
@@ -131,7 +131,7 @@ void pft_pte_norm_row_(const pft_pte_input_t *in, const pft_real_t *z, pft_real_
 }
 
 pft_status_t pft_pte_normalize(const pft_pte_input_t *in, const pft_frame_t *frame,
-                                 pft_real_t *zeta, pft_real_t *scratch)
+                               pft_real_t *zeta, pft_real_t *scratch)
 {
     if (in == NULL || zeta == NULL) {
         return PFT_ERR_INVAL;
@@ -160,7 +160,7 @@ pft_status_t pft_pte_normalize(const pft_pte_input_t *in, const pft_frame_t *fra
 }
 
 pft_status_t pft_pte_normalize_real(const pft_pte_input_t *in, const pft_real_t *z,
-                                      pft_real_t *zeta)
+                                    pft_real_t *zeta)
 {
     if (in == NULL || z == NULL || zeta == NULL || z == zeta) {
         return PFT_ERR_INVAL;
@@ -206,7 +206,7 @@ const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back)
 }
 
 pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
-                             pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
+                           pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
 {
     if (frame != NULL) {
         pft_status_t st = pft_pte_frame_check_(in, frame);

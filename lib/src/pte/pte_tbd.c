@@ -282,7 +282,8 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     memset(p, 0, sizeof(*p));
     p->cfg = *cfg;
     p->cfg.op = op_of_(cfg);
-    pft_pte_ring_setup_(&p->ring, l.ring, (uint16_t)(cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames),
+    const uint32_t nring = cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames;
+    pft_pte_ring_setup_(&p->ring, l.ring, (uint16_t)nring,
                         (uint32_t)cfg->in.n_range * cfg->in.n_doppler);
     p->row = l.row;
     p->ma = l.ma;
@@ -587,9 +588,9 @@ size_t pft_pte_reports(const pft_pte_t *p, pft_pte_report_t *out, size_t max)
 }
 
 pft_status_t pft_pte_start(pft_pte_t *p, const pft_real_t pos[2],
-                                 const pft_real_t vel[2], const pft_real_t pos_var[2],
-                                 const pft_real_t vel_var[2], pft_real_t amp, uint8_t n_acc,
-                                 uint16_t *id)
+                           const pft_real_t vel[2], const pft_real_t pos_var[2],
+                           const pft_real_t vel_var[2], pft_real_t amp, uint8_t n_acc,
+                           uint16_t *id)
 {
     if (p == NULL || p->ring.buf == NULL || pos == NULL || vel == NULL || pos_var == NULL ||
         vel_var == NULL || id == NULL || n_acc == 0u) {
@@ -620,7 +621,7 @@ pft_status_t pft_pte_start(pft_pte_t *p, const pft_real_t pos[2],
 }
 
 pft_status_t pft_pte_threshold(pft_pte_t *p, pft_real_t pfa, uint32_t runs,
-                                     uint64_t seed, pft_real_t *vt)
+                               uint64_t seed, pft_real_t *vt)
 {
     if (p == NULL || p->ring.buf == NULL) {
         return PFT_ERR_INVAL;
