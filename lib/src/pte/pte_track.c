@@ -178,30 +178,38 @@ static int32_t gw_setup_(const pft_pte_t *p, uint32_t a, const pft_pte_axis_t *a
     return R;
 }
 
-/* Taps of scan phase ph of one axis for a path displaced by -shift cells at this frame:
- * weights into w[], their first cell into *lo, the sum of their squares into *g2; returns the
- * number of taps. */
-static int32_t phase_taps_(const pft_pte_t *p, const pft_real_t *gw, const pft_pte_axis_t *ap,
-                           int32_t R, pft_real_t shift, int32_t ph, pft_real_t *w, int32_t *lo,
-                           pft_real_t *g2)
+/* The taps of one scan phase: first cell, count, sum of the squared weights. */
+typedef struct {
+    int32_t lo, cnt;
+    pft_real_t g2;
+} phase_taps_t_;
+
+/* Taps of scan phase ph of one axis (weight table gw, reach R in 1/64 cells) for a path
+ * displaced by -shift cells at this frame; the weights go to w[]. */
+static inline phase_taps_t_ phase_taps_(const pft_pte_t *p, const pft_real_t *gw,
+                                        const pft_pte_axis_t *ap, int32_t R, pft_real_t shift,
+                                        int32_t ph, pft_real_t *w)
 {
+    phase_taps_t_ t;
     pft_real_t pos = pft_sub(pft_add(ap->c0, pft_mul_i(p->cfg.c_step, ph)), shift);
     int32_t q = pft_round_int(pft_mul_i(pft_clamp(pos, PFT_C(-30000.0), PFT_C(30000.0)), 64));
-    int32_t l = -fdiv64_(R - q); /* ceil((q - R) / 64) */
     int32_t hi = fdiv64_(q + R);
-    if (hi - l + 1 > (int32_t)PFT_PTE_MAX_TAPS) {
-        hi = l + (int32_t)PFT_PTE_MAX_TAPS - 1;
+    t.lo = -fdiv64_(R - q); /* ceil((q - R) / 64) */
+    if (hi - t.lo + 1 > (int32_t)PFT_PTE_MAX_TAPS) {
+        hi = t.lo + (int32_t)PFT_PTE_MAX_TAPS - 1;
     }
-    int32_t cnt = hi >= l ? hi - l + 1 : 0;
-    pft_real_t s = PFT_C(0.0);
+    t.cnt = hi >= t.lo ? hi - t.lo + 1 : 0;
+    const int32_t lo = t.lo;
+    const int32_t cnt = t.cnt;
+    pft_real_t g2 = PFT_C(0.0);
     for (int32_t i = 0; i < cnt; ++i) {
-        int32_t k = (l + i) * 64 - q;
-        w[i] = gw[k < 0 ? -k : k];
-        s = pft_add(s, pft_sq(w[i]));
+        int32_t k = (lo + i) * 64 - q;
+        pft_real_t g = gw[k < 0 ? -k : k];
+        w[i] = g;
+        g2 = pft_add(g2, pft_sq(g));
     }
-    *lo = l;
-    *g2 = s;
-    return cnt;
+    t.g2 = g2;
+    return t;
 }
 
 /* Scan phases of an axis: positions one cell apart have the same weights, so when
@@ -223,8 +231,10 @@ static void taps_(const pft_pte_t *p, uint32_t a, const pft_pte_axis_t *ap, int3
     pft_pte_scratch_t *s = p->scr;
     int32_t np = phases_(p, ap);
     for (int32_t ph = 0; ph < np; ++ph) {
-        s->bcnt[ph] = phase_taps_(p, p->gw[a], ap, R, shift, ph, tw + (size_t)ph * PFT_PTE_MAX_TAPS,
-                                  &s->blo[ph], &s->bg[ph]);
+        phase_taps_t_ t = phase_taps_(p, p->gw[a], ap, R, shift, ph, tw + (size_t)ph * PFT_PTE_MAX_TAPS);
+        s->blo[ph] = t.lo;
+        s->bcnt[ph] = t.cnt;
+        s->bg[ph] = t.g2;
     }
     for (int32_t j = 0; j < ap->ns; ++j) {
         int32_t ph = j % np;
@@ -265,12 +275,14 @@ static void taps_(const pft_pte_t *p, uint32_t a, const pft_pte_axis_t *ap, int3
 static void accum_1d_(const pft_pte_t *p, const pft_pte_axis_t *ap, int32_t R, pft_real_t shift,
                       const pft_real_t *zf)
 {
+    const pft_real_t *gw = p->gw[0];
     pft_real_t w[PFT_PTE_MAX_TAPS];
     int32_t np = phases_(p, ap);
     for (int32_t ph = 0; ph < np; ++ph) {
-        int32_t lo;
-        pft_real_t g2;
-        int32_t cnt = phase_taps_(p, p->gw[0], ap, R, shift, ph, w, &lo, &g2);
+        phase_taps_t_ t = phase_taps_(p, gw, ap, R, shift, ph, w);
+        const int32_t lo = t.lo;
+        const int32_t cnt = t.cnt;
+        const pft_real_t g2 = t.g2;
         for (int32_t j = ph, u = lo; j < ap->ns; j += np, ++u) {
             pft_real_t e = PFT_C(0.0);
             pft_real_t g = g2;
@@ -545,18 +557,25 @@ static void dir_accumulate_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ 
         p->sE[j] = PFT_C(0.0);
         p->sG[j] = PFT_C(0.0);
     }
-    const int64_t tfix = p->yq > 0u ? fix16_(d->th[0]) : 0;
-    for (int32_t tau = 0; tau < g->M; ++tau) {
-        if (p->yq > 0u) {
+    const int32_t M = g->M;
+    if (p->yq > 0u) {
+        const int64_t tfix = fix16_(d->th[0]);
+        for (int32_t tau = 0; tau < M; ++tau) {
             accum_table_(p, g, tfix, tau);
-            continue;
         }
+        return;
+    }
+    const pft_pte_axis_t *ap0 = &p->scr->ap[0];
+    const int32_t R0 = g->reach64[0];
+    const pft_real_t th0 = d->th[0];
+    const bool one = p->naxes == 1u;
+    for (int32_t tau = 0; tau < M; ++tau) {
         const pft_real_t *zf = pft_pte_ring_get_(&p->ring, (uint32_t)tau);
-        if (p->naxes == 1u) {
-            accum_1d_(p, &p->scr->ap[0], g->reach64[0], line_shift_(d->th[0], tau), zf);
-            continue;
+        if (one) {
+            accum_1d_(p, ap0, R0, line_shift_(th0, tau), zf);
+        } else {
+            accum_2d_(p, g, d->th, tau, zf);
         }
-        accum_2d_(p, g, d->th, tau, zf);
     }
 }
 
