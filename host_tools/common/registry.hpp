@@ -1,6 +1,6 @@
 // The per-kind handler registry. A scenario file's top-level "kind" selects the module that
 // implements `sim`, `run`, `eval`, `bench`, `demo` and `selftest` for it ("tbd" now; other
-// issues add "bearings", "vis", "radar"). A module registers itself with PFT_REGISTER_KIND in
+// and the other families: "pf_bearings", "pf_tbd", "tsa", "pte"). A module registers itself with PFT_REGISTER_KIND in
 // one of its .cpp files, which are compiled directly into the `pft` executable.
 #pragma once
 #include <cstdint>

@@ -12,4 +12,5 @@
 #include "pft/pft_workspace.h"
 #include "pft/pft_kalman.h"
 #include "pft/pft_tsa.h"
+#include "pft/pft_pte.h"
 #endif

@@ -1,0 +1,76 @@
+#include "metrics.hpp"
+
+#include <cmath>
+
+namespace pft::host::pte {
+
+void Counts::add(const Counts &o)
+{
+    true_frames += o.true_frames;
+    correct += o.correct;
+    declared += o.declared;
+    false_points += o.false_points;
+    rel_num += o.rel_num;
+    rel_den += o.rel_den;
+    frames += o.frames;
+    sq += o.sq;
+    time_s += o.time_s;
+}
+
+double Counts::detection_prob() const { return true_frames ? double(correct) / true_frames : NAN; }
+double Counts::reliable3_prob() const { return rel_den ? double(rel_num) / rel_den : NAN; }
+double Counts::false_track_prob() const { return declared ? double(false_points) / declared : 0.0; }
+double Counts::rmse() const { return correct ? std::sqrt(sq / correct) : NAN; }
+double Counts::us_per_frame() const { return frames ? time_s * 1e6 / frames : NAN; }
+
+nlohmann::json Counts::to_json() const
+{
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return {{"detection_prob", num(detection_prob())}, {"reliable3_prob", num(reliable3_prob())},
+            {"false_track_prob", num(false_track_prob())}, {"rmse_cells", num(rmse())},
+            {"us_per_frame", num(us_per_frame())}, {"true_frames", true_frames}, {"correct_points", correct},
+            {"declared_points", declared}, {"false_points", false_points}, {"reliable_frames", rel_num},
+            {"reliable_den", rel_den}, {"frames", frames}};
+}
+
+Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
+                 int cells, double d_c, std::vector<char> *correct, bool with_coasting)
+{
+    Counts c;
+    std::size_t n = std::min(truth.size(), out.size());
+    std::vector<char> ok(n, 0), present(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+        present[k] = truth[k].r >= 0.0 && truth[k].r <= cells - 1.0;
+        long long nd = 0;
+        double best = INFINITY;
+        for (const Report &r : out[k])
+            if (r.detected || with_coasting) {
+                ++nd;
+                best = std::min(best, std::fabs(r.pos - truth[k].r));
+            }
+        c.declared += nd;
+        if (!present[k]) {
+            c.false_points += nd;
+            continue;
+        }
+        c.true_frames++;
+        if (best <= d_c) {
+            ok[k] = 1;
+            c.correct++;
+            c.sq += best * best;
+            c.false_points += nd - 1;
+        } else {
+            c.false_points += nd;
+        }
+    }
+    for (std::size_t k = 2; k < n; ++k)
+        if (present[k] && present[k - 1] && present[k - 2]) {
+            c.rel_den++;
+            c.rel_num += ok[k] && ok[k - 1] && ok[k - 2];
+        }
+    if (correct)
+        *correct = ok;
+    return c;
+}
+
+}  // namespace pft::host::pte

@@ -1,0 +1,177 @@
+/*
+ * NOT API. Layouts of the pte family's instances (PTE-TBD, DP-TBD, Kalman DBT), here only so
+ * that a firmware can declare instances statically (sizeof) and the workspace macros of
+ * pft_pte.h can be evaluated. Fields may change in any release: read results through the
+ * calls of pft_pte.h. Included by pft_pte.h; including it alone includes pft_pte.h.
+ */
+#ifndef PFT_INTERNAL_PTE_TYPES_H
+#define PFT_INTERNAL_PTE_TYPES_H
+
+#include "pft/pft_pte.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** @cond internal */
+#define PFT_PTE_CELLS_(nr, nd) ((size_t)(nr) * (size_t)(nd))
+#define PFT_PTE_DPCORE_BYTES_(nr, nd, k)                                                        \
+    (2u * PFT_WS_ROUND(PFT_PTE_CELLS_(nr, nd) * sizeof(pft_real_t)) +                           \
+     2u * PFT_WS_ROUND((size_t)(k) * PFT_PTE_CELLS_(nr, nd)))
+#define PFT_PTE_MAXU_(a, b) ((a) > (b) ? (a) : (b))
+#define PFT_PTE_NSCAN_(nd, steps, axis) ((axis) == 0 || (nd) > 1 ? 2u * (size_t)(steps) + 1u : 1u)
+#define PFT_PTE_NDIR_(nd, l1) ((nd) > 1 ? (size_t)(l1) : 1u)
+/** Largest number of scan positions per axis. */
+#define PFT_PTE_MAX_SCAN_ (2u * PFT_PTE_MAX_SCAN_STEPS + 1u)
+/** @endcond */
+
+/* Ring of the last frames (normalised). */
+typedef struct {
+    pft_real_t *buf; /* len * cells */
+    uint32_t cells;  /* n_range * n_doppler */
+    uint16_t len;    /* capacity in frames */
+    uint16_t count;  /* frames held (<= len) */
+    uint16_t head;   /* slot of the newest frame */
+} pft_pte_ring_t;
+
+/* ------------------------------------------------------------------------------ PTE-TBD */
+
+/* One PTE track. */
+typedef struct {
+    pft_real_t x[2][4];  /* per axis [r, 16 r', 256 r'', 0] (scaled, see pft_pte.h) */
+    pft_real_t P[2][16]; /* per axis 4x4 covariance of the scaled state, row-major */
+    pft_real_t amp, amp_var;
+    pft_real_t score;    /* max_l T_l* of the last frame */
+    uint32_t age;
+    uint16_t id;
+    uint8_t n_acc;       /* accumulation count (capped at max_len) */
+    uint8_t misses;
+    bool live;
+    bool detected;
+} pft_pte_track_t;
+
+/* Result of one operator direction within a track step (also the fused state). */
+typedef struct {
+    pft_real_t x[2][4];  /* per axis state after the direction's Kalman update */
+    pft_real_t P[2][16]; /* per axis covariance */
+    pft_real_t amp;      /* amplitude after the update with E/G */
+    pft_real_t amp_var;
+    pft_real_t logw;     /* log direction likelihood (prior + log-sum over scan positions) */
+    pft_real_t t;        /* T of the best scan position */
+} pft_pte_dir_t;
+
+/* Per-axis operator parameters of one track at one frame. */
+typedef struct {
+    pft_real_t H[8];                   /* measurement matrix of [c*, SV theta*] (scaled state) */
+    pft_real_t zc, zt;                 /* predicted measurement (end position, scaled slope) */
+    pft_real_t sw2, sw, inv_sw, reach; /* sigma_w^2, sigma_w, 1/sigma_w, 3 sigma_w */
+    pft_real_t dth;                    /* direction step, scaled (SV cells/frame) */
+    pft_real_t prior_k;                /* dth^2 / (2 (S_tt + dth^2/12)): prior per k^2 */
+    pft_real_t c0;                     /* first scan position */
+    pft_real_t sc2;                    /* S_cc + sigma_r^2 */
+    int32_t ns;                        /* scan positions */
+    int32_t L;                         /* directions */
+    int32_t ncell;                     /* cells along the axis */
+} pft_pte_axis_t;
+
+/* Scratch of one track step (one track at a time), in the workspace. */
+typedef struct {
+    pft_pte_axis_t ap[2];                        /* operator parameters per axis */
+    pft_real_t lc[2][PFT_PTE_MAX_SCAN_];         /* log prior of each scan position per axis */
+    pft_real_t gs[2][PFT_PTE_MAX_SCAN_];         /* sum of squared tap weights per position */
+    pft_real_t lw[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS]; /* log weight of each direction */
+    const pft_real_t *yrow[PFT_PTE_MAX_FRAMES];  /* TABLE: response of each frame of the window */
+    int32_t blo[PFT_PTE_MAX_SCAN_];              /* EXACT 2-D taps per phase: first cell, */
+    int32_t bcnt[PFT_PTE_MAX_SCAN_];             /* count, */
+    pft_real_t bg[PFT_PTE_MAX_SCAN_];            /* and sum of squared weights */
+    pft_pte_dir_t fused;                         /* fusion accumulators */
+} pft_pte_scratch_t;
+
+struct pft_pte_s {
+    pft_pte_config_t cfg;
+    pft_pte_ring_t ring;
+    pft_real_t *row;
+    pft_real_t *ma, *mb;
+    uint8_t *psi, *mask;
+    int16_t *path;               /* init_frames * 2 */
+    pft_real_t *gtab;            /* PFT_PTE_GTAB_SIZE */
+    pft_real_t *gw[2];           /* per-axis weight tables, PFT_PTE_GW_SIZE each (axis 1 only for range-Doppler) */
+    pft_real_t *yring;           /* TABLE: matched responses, ring.len * ny */
+    pft_real_t *gq;              /* TABLE: sum of g^2 of each response point, ny */
+    uint8_t *yflag;              /* TABLE: computed blocks of 8 cells, ring.len * nyblk */
+    uint16_t nyblk;              /* TABLE: blocks per response row */
+    pft_real_t ytap[8][PFT_PTE_MAX_TAPS]; /* TABLE: tap weights per grid phase */
+    int16_t ytap_lo[8];          /* TABLE: first tap offset per phase (cells from floor(p)) */
+    uint8_t ytap_n[8];           /* TABLE: taps per phase */
+    pft_real_t sigma_y;          /* TABLE: operator width */
+    uint32_t ny;                 /* TABLE: response points (n_range + 2 PFT_PTE_YPAD) * yq */
+    uint8_t yq;                  /* TABLE: grid points per cell (0: EXACT mode) */
+    pft_pte_track_t *tracks;
+    pft_pte_report_t *rep;
+    pft_real_t *sE, *sG, *sL;    /* scan accumulators (n_scan0 * n_scan1) */
+    pft_real_t *tw[2];           /* tap weights per axis (n_scan * TAPS) */
+    int16_t *tlo[2];             /* first tap cell, count, weight offset per axis (n_scan * 4) */
+    pft_pte_dir_t *dir;          /* per-direction results (n_dir0 * n_dir1) */
+    pft_weight_t *dw;            /* per-direction weights */
+    pft_pte_scratch_t *scr;      /* track-step scratch */
+    uint32_t frames_in;
+    uint16_t next_id;
+    uint16_t since_search;
+    uint8_t n_rep;
+    uint8_t naxes;
+    uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
+};
+
+/* ------------------------------------------------------------------------------ DP-TBD */
+
+struct pft_pte_dp_s {
+    pft_pte_dp_config_t cfg;
+    pft_pte_ring_t ring;
+    pft_real_t *row;              /* input scratch (one range row) */
+    pft_real_t *ma, *mb;          /* merit rows */
+    uint8_t *psi;                 /* back-pointers, K * cells (neighbour index) */
+    uint8_t *mask;                /* cancelled cells, K * cells */
+    int16_t *paths;               /* max_targets * K * 2 cells */
+    pft_pte_report_t *rep;        /* reports of the last frame */
+    pft_pte_report_t *prev;       /* reports of the frame before (id association) */
+    uint32_t frames_in;           /* accepted frames */
+    uint16_t next_id;
+    uint8_t n_rep, n_prev;
+    pft_real_t peak;              /* best merit of the last batch (first extraction) */
+};
+
+/* -------------------------------------------------------------------------------- DBT */
+
+/* One DBT track. */
+typedef struct {
+    pft_real_t x[2][2];
+    pft_real_t P[2][4];
+    pft_real_t score;
+    uint32_t age;
+    uint16_t id;      /* 0 while tentative */
+    uint8_t hist;     /* hit history, newest in bit 0 */
+    uint8_t misses;
+    bool live;
+    bool confirmed;
+    bool detected;
+} pft_pte_dbt_track_t;
+
+struct pft_pte_dbt_s {
+    pft_pte_dbt_config_t cfg;
+    pft_pte_ring_t ring;     /* one frame */
+    pft_real_t *row;
+    pft_pte_dbt_plot_t *plots;
+    pft_pte_dbt_track_t *tracks;
+    pft_pte_report_t *rep;
+    pft_real_t *d2;          /* max_tracks * max_dets gating distances */
+    uint32_t frames_in;
+    uint16_t n_plots;
+    uint16_t next_id;
+    uint8_t n_rep;
+    uint8_t naxes;
+};
+
+#ifdef __cplusplus
+}
+#endif
+#endif

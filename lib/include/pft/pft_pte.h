@@ -1,0 +1,507 @@
+/**
+ * @file pft_pte.h
+ * @brief Multi-frame track-before-detect on radar range-time (or range-Doppler) images:
+ *        PTE-TBD (He, Liao, Yang & Sun 2015, parameterized track enhancement) with its two
+ *        baselines, DP-TBD (dynamic programming, Yi et al. 2013 style; batch and sliding) and
+ *        the Kalman detect-before-track (DBT).
+ *
+ * The implementable reading of the paper is docs/algorithms.md section 5 (the paper's
+ * equations did not survive; section 5.3 is a reconstruction) and section 6 (measures). This
+ * header states the choices a user sees. The three trackers share the input stage
+ * (pft_pte_input_t) and the report type (pft_pte_report_t).
+ *
+ * Calls. Every tracker (prefixes pft_pte_, pft_pte_dp_, pft_pte_dbt_) has the same calls in
+ * the same order: config_default, config_check (names the offending field), workspace_size
+ * (0 for a refused configuration) and its constant-expression macro, init, reset, update /
+ * update_real (one frame), and results copied out into caller memory.
+ *
+ * Coordinates. One frame is one range profile: a 1-row pft_frame_t of n_range cells
+ * (range-time image, the paper's experiments), or an n_range x n_doppler range-Doppler map
+ * whose rows are Doppler cells. Range cells are the image columns, Doppler cells (or, in a
+ * range-time image, frames) the rows, with the library's one pixel convention: 0-based, the
+ * centre of cell u is at coordinate u, so a profile covers [-0.5, n_range - 0.5]. Positions
+ * are reported in these cell coordinates (axis 0 range, axis 1 Doppler; axis 1 is 0 for
+ * range-time); velocities are cells per frame.
+ *
+ * Input stage (pft_pte_input_t). U8/U16 pixels become z = pixel_gain*raw + pixel_offset
+ * (U16: low bit_depth bits), F32 pixels are taken as z (q16 build: pft_from_f32, integer
+ * only). Every algorithm then works on the normalised profile zeta = z/sigma, with
+ *  - PFT_PTE_NOISE_FIXED: sigma = noise_sigma (Gaussian background);
+ *  - PFT_PTE_NOISE_CFAR: sigma per cell from a cell-averaging CFAR along range (one row at a
+ *    time): sigma^ = sqrt(pi/2) * mean |z| over cfar_ref reference cells on each side beyond
+ *    cfar_guard guard cells (a side that leaves the profile is dropped, the other side kept),
+ *    floored at noise_sigma. This is the sea-clutter mode (K-distributed clutter is modelled
+ *    host-side, docs/algorithms.md 5.3 [A]). Under Gaussian noise sigma^ is unbiased.
+ * zeta is clamped to +-zeta_clip (default 20). The zero-mean data model of
+ * docs/algorithms.md 5.1 is assumed: remove any mean level with pixel_offset.
+ *
+ * Fixed point (q16 build). zeta and every merit are Q16.16. DP merits accumulate at most
+ * PFT_PTE_MAX_FRAMES frames of |zeta| <= zeta_clip (default: 64 * 20 = 1280, far inside
+ * +-32768); all sums use the saturating pft_add, so a pathological configuration saturates
+ * instead of wrapping. Operator sums E stay below M_max * sum(g) * zeta_clip (1-D: about
+ * 40 * 5 * 20 = 4000). The test statistic T is clamped to +-PFT_PTE_T_CLIP so that T^2/2
+ * fits. The Gaussian operator weights g = exp(-t^2/2) are tabulated at init for
+ * t = 0, 1/64, ..., 3 (nearest entry: |error| <= 0.005); operator paths are quantised to 1/64
+ * cell, so each tap is an integer distance looked up in a per-frame table (same in both
+ * builds). Very small velocity variances (1e-5 cells^2/frame^2 is 0.66 LSB) are coarse in
+ * q16; the defaults keep them >= 2e-4.
+ *
+ * Memory: everything lives in a caller workspace (ring of the last frames, DP scratch, track
+ * table, operator scratch); the *_WORKSPACE_BYTES macros equal the *_workspace_size
+ * functions. Per-frame work is bounded by the configuration (see each update function).
+ *
+ * Refused input (NULL, wrong frame size or format, NaN/Inf in an F32 frame, bad arguments)
+ * returns a status code before anything changes: the instance and its workspace stay
+ * byte-for-byte as they were.
+ */
+#ifndef PFT_PTE_H
+#define PFT_PTE_H
+
+#include "pft/pft_real.h"
+#include "pft/pft_rng.h"
+#include "pft/pft_workspace.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Longest frame memory (ring length, DP batch K, initiation batch N, operator length M). */
+#define PFT_PTE_MAX_FRAMES 64u
+/** Largest per-frame DP velocity gate |du| (cells per frame, per axis). */
+#define PFT_PTE_MAX_GATE 7u
+/** Largest number of operator directions L per axis (odd). */
+#define PFT_PTE_MAX_DIRS 9u
+/** Largest scan half-width in steps (scan positions per axis <= 2*16 + 1). */
+#define PFT_PTE_MAX_SCAN_STEPS 16u
+/** Largest operator width: taps per axis (sigma_w is clamped to (TAPS - 1)/6 cells). */
+#define PFT_PTE_MAX_TAPS 15u
+/** Largest number of tracks / targets per PTE-TBD or DP-TBD instance. */
+#define PFT_PTE_MAX_TRACKS 16u
+/** Largest CFAR reference window per side. */
+#define PFT_PTE_MAX_CFAR_REF 32u
+/** Clamp of the operator test statistic T (T^2/2 stays in Q16.16). */
+#define PFT_PTE_T_CLIP 150
+/** Largest k = floor(pfa * runs) + 1 of the threshold Monte Carlo (top-k kept). */
+#define PFT_PTE_MC_TOPK 64u
+/** Entries of the tabulated Gaussian exp(-t^2/2), t = 0 .. 3 in steps of 1/64. */
+#define PFT_PTE_GTAB_SIZE 193u
+/** Entries of a per-frame weight table in 1/64 cells up to 3 sigma_w (sigma_w <= 7/3). */
+#define PFT_PTE_GW_SIZE 449u
+/** TABLE operators: cells of response kept beyond each end of the profile. */
+#define PFT_PTE_YPAD 4u
+/** DBT: largest number of plots kept per frame. */
+#define PFT_PTE_DBT_MAX_DETS 256u
+/** DBT: largest number of tracks (tentative and confirmed). */
+#define PFT_PTE_DBT_MAX_TRACKS 64u
+/** DBT: chi-square gate (99%) of one axis (range-time), the default there. */
+#define PFT_PTE_DBT_GATE_1AXIS PFT_C(6.63)
+/** DBT: chi-square gate (99%) of two axes (range-Doppler), the default there. */
+#define PFT_PTE_DBT_GATE_2AXES PFT_C(9.21)
+
+/* Instances (layouts in pft/internal/pft_pte_types.h, not API: read them through the calls). */
+typedef struct pft_pte_s pft_pte_t;         /**< PTE-TBD instance */
+typedef struct pft_pte_dp_s pft_pte_dp_t;   /**< DP-TBD instance */
+typedef struct pft_pte_dbt_s pft_pte_dbt_t; /**< Kalman DBT instance */
+
+/* ====================================== shared input stage ==================================== */
+
+/** Noise level estimate of the input stage. */
+typedef enum {
+    PFT_PTE_NOISE_FIXED = 0, /**< known sigma (Gaussian background) */
+    PFT_PTE_NOISE_CFAR = 1   /**< cell-averaging CFAR along range (clutter) */
+} pft_pte_noise_t;
+
+/** Input stage shared by PTE-TBD, DP-TBD and the DBT. */
+typedef struct {
+    uint16_t n_range;        /**< range cells per frame (frame width), 2..PFT_CFG_MAX_IMAGE_SIDE (default 150) */
+    uint16_t n_doppler;      /**< Doppler cells (frame height), 1..PFT_CFG_MAX_IMAGE_SIDE: 1 for range-time profiles (default 1) */
+    pft_real_t pixel_gain;   /**< U8/U16: z = gain * raw + offset (default 1) */
+    pft_real_t pixel_offset; /**< (default 0) */
+    pft_pte_noise_t noise;   /**< FIXED (default) or CFAR */
+    pft_real_t noise_sigma;  /**< FIXED: sigma; CFAR: floor of sigma^ (default 1), > 0 */
+    uint8_t cfar_ref;        /**< CFAR reference cells per side, 1..PFT_PTE_MAX_CFAR_REF (default 16) */
+    uint8_t cfar_guard;      /**< CFAR guard cells per side (default 2) */
+    pft_real_t zeta_clip;    /**< |zeta| clamp, in (0, 1000] (default 20) */
+} pft_pte_input_t;
+
+/** Fills the input stage defaults (150 x 1 range-time profiles: set n_range, n_doppler after). */
+void pft_pte_input_default(pft_pte_input_t *in);
+/**
+ * PFT_OK if the input stage is usable; PFT_ERR_INVAL for NULL; PFT_ERR_CONFIG for a refused
+ * value, and then *field (when field is not NULL) names it ("n_range", "noise_sigma", ...).
+ */
+pft_status_t pft_pte_input_check(const pft_pte_input_t *in, const char **field);
+/**
+ * Normalises one frame: zeta[d*n_range + r] = z/sigma (see the file comment).
+ * scratch: n_range reals (CFAR only; may be NULL in FIXED mode). PFT_ERR_INVAL (NULL),
+ * PFT_ERR_CONFIG (refused input stage), PFT_ERR_FORMAT (frame): nothing written.
+ */
+pft_status_t pft_pte_normalize(const pft_pte_input_t *in, const pft_frame_t *frame,
+                               pft_real_t *zeta, pft_real_t *scratch);
+/** Same from values already in input units (z, n_range * n_doppler; z and zeta distinct). */
+pft_status_t pft_pte_normalize_real(const pft_pte_input_t *in, const pft_real_t *z,
+                                    pft_real_t *zeta);
+
+/** One reported track (or DP detection) at the last frame; same type for PTE, DP and DBT. */
+typedef struct {
+    uint16_t id;          /**< track id within the instance (1, 2, ...; wraps after 65535 to 1) */
+    bool detected;        /**< the method's detection test passed at this frame */
+    pft_real_t pos[2];    /**< range cell, Doppler cell (cell centres at integers, 0-based) */
+    pft_real_t vel[2];    /**< cells per frame */
+    pft_real_t var[2];    /**< position variance per axis (DP: 0) */
+    pft_real_t amplitude; /**< amplitude estimate in sigma units (A / sigma; DBT: 0) */
+    pft_real_t score;     /**< PTE: max_l T_l*; DP: path merit; DBT: peak zeta of the detection */
+    uint32_t age;         /**< frames since the track started (0 at its first report) */
+} pft_pte_report_t;
+
+/* ========================================== PTE-TBD ========================================= */
+
+/** How PTE-TBD evaluates its operators. */
+typedef enum {
+    PFT_PTE_OP_EXACT = 0, /**< Gaussian taps of width sigma_w = sqrt(sigma_r^2 + P_rr) evaluated per
+                               direction, scan position and frame (docs/algorithms.md 5.3 as written) */
+    PFT_PTE_OP_TABLE = 1, /**< range-time only: each frame's matched response
+                               y(p) = sum_u g((u - p)/sigma_r) zeta(u) is computed on a grid of
+                               c_step cells (c_step = 1/Q, Q integer <= 8), lazily in blocks of
+                               8 cells the first time an operator needs it, and kept beside zeta
+                               in the ring; an operator is then one table read per frame (path
+                               position rounded to the grid, error <= c_step/2). The width is
+                               sigma_r (the covariance part of sigma_w is dropped) [A]. Requires
+                               zeta_clip <= 64 (the operator sums then cannot overflow q16 and
+                               use plain additions). Memory: ring.len * (n_range + 8) * Q more
+                               reals than EXACT */
+    PFT_PTE_OP_AUTO = 2   /**< TABLE for range-time frames (n_doppler 1), EXACT for range-Doppler */
+} pft_pte_op_t;
+
+/** Motion model of a PTE-TBD track, per axis. */
+typedef enum {
+    PFT_PTE_MOTION_CV = 0, /**< constant velocity, white acceleration of intensity q (docs/algorithms.md 5.1) */
+    PFT_PTE_MOTION_CA = 1  /**< constant acceleration, white jerk of intensity q; the operators'
+                                measurement model accounts for the acceleration (docs/algorithms.md 5.3 step 3) */
+} pft_pte_motion_t;
+
+/**
+ * PTE-TBD (docs/algorithms.md 5.2-5.3). Per track the state is [r, r', r''] per axis (Kalman;
+ * r'' stays 0 in the CV model) plus the amplitude (random walk, scalar Kalman). Per frame:
+ *  1. predict; 2. operator parameters: length M = min(n_acc, max_len), width
+ *     sigma_w = sqrt(sigma_r^2 + P_rr), directions theta_l = r' + (l - (L+1)/2) * dtheta with
+ *     dtheta = max(4 sqrt(P_vv)/(L-1), dtheta_min);
+ *  3. for each direction, matched operators ending at scan positions
+ *     c = r +- scan_sigmas * sqrt(P_rr + sigma_r^2) (step c_step, at most scan_steps steps)
+ *     along the straight path u(tau) = c + theta*tau (tau = 0, -1, .., -(M-1)):
+ *     E = sum over the last M frames of g * zeta, G = sum g^2,
+ *     T = E / sqrt(G) (N(0,1) under noise);
+ *  4. direction likelihood W_l proportional to N(theta_l; r', P_vv + dtheta^2/12) times
+ *     sum_c N(c; r, P_rr + sigma_r^2) exp(max(T, 0)^2 / 2); c_l* the best summand (parabola
+ *     refined), T_l* its T;
+ *  5. per direction a Kalman update with the measurement [c_l*, theta_l] (R from sigma_w,
+ *     T_l*, M; docs/algorithms.md 5.3 step 5) and an amplitude update with E/G;
+ *  6. fusion X = sum W_l X_l, P = sum W_l (P_l + spread);
+ *  7. detection if max_l T_l* >= eta_t, else a miss; max_misses consecutive misses end the
+ *     track. The fused state sets the next frame's operators (closed loop).
+ * A straight operator over M = 40 frames measures the velocity averaged over its window, so a
+ * CV track lags a manoeuvre by about M/2 frames of acceleration (measured: 1.4 cells in the
+ * turn of the air scenario at 15 dB); in the CA model the measurement of a straight operator
+ * is modelled as the least-squares line of the quadratic path (end position r - a(M-1)(M-2)/12,
+ * slope v - a(M-1)/2), which removes that lag (docs/results/pte.md) [A].
+ * Range-Doppler frames use the same operator over both axes: L0 x L1 directions, a 2-D scan
+ * grid and separable weights g0*g1; the axes are filtered independently (block-diagonal P,
+ * cross-axis terms of the fusion spread dropped [A]).
+ *
+ * Internally the state per axis is scaled to [r, 16 r', 256 r'', 0] so that the small
+ * velocity and acceleration variances stay well above the q16 LSB; reports are in cells and
+ * cells per frame.
+ *
+ * Initiation (Step 2) is a DP-TBD batch over the last init_frames frames (gate init_gate, no
+ * motion model) with threshold init_threshold; the backtracked path is refined to sub-cell
+ * positions (3-point parabola on zeta) and fitted by least squares, giving [r, r'] and
+ * P = sigma_r^2 (H'H)^-1 (r'' = 0 with standard deviation acc_sd0); the amplitude is the mean
+ * zeta along the path; n_acc = N. Cells within +-3 sigma_w of live tracks (their state
+ * extrapolated back over the batch) are cancelled, and further targets are extracted after
+ * cancelling each new path. The initiation runs at every frame while no track is live, else
+ * every init_period frames while a track slot is free. Two live tracks closer than dup_cells
+ * (axis 0, and axis 1 when 2-D) are duplicates: the one with the lower score ends [A].
+ */
+typedef struct {
+    pft_pte_input_t in;        /**< input stage */
+    /* Step 2: initiation */
+    uint8_t init_frames;       /**< N, 2..PFT_PTE_MAX_FRAMES (default 10) */
+    uint8_t init_gate[2];      /**< DP gate per axis, 0..PFT_PTE_MAX_GATE (default 1, 1) */
+    pft_real_t init_threshold; /**< V_T of the N-frame DP (default 18.9: 1e-3 per batch for 150 range cells, see pft_pte_threshold) */
+    uint8_t init_period;       /**< search period while tracks are live, >= 1 (default 10) */
+    /* Step 3: track enhancement */
+    uint8_t max_len;           /**< M_max, 2..PFT_PTE_MAX_FRAMES (default 40: the paper's template) */
+    uint8_t n_dir[2];          /**< L per axis, odd, 1..PFT_PTE_MAX_DIRS (default 5, 5) */
+    pft_pte_motion_t motion;   /**< CV or CA (default CA) */
+    pft_real_t sigma_r[2];     /**< measurement error sigma_R per axis, cells, in (0, 100] (default 0.5) */
+    pft_real_t q_sd[2];        /**< process noise per axis as sqrt of its intensity q, in [0, 1]: CV white acceleration (q in cells^2/frame^3) or CA white jerk (cells^2/frame^5) (default CA: 0.002, q = 4e-6; given as a square root because q is below the q16 LSB) */
+    pft_real_t acc_sd0[2];     /**< CA: initial acceleration standard deviation, cells/frame^2, in [0, 0.1] (default 0.003) */
+    pft_real_t q_amp;          /**< amplitude random-walk variance per frame, >= 0 (default 0.01) */
+    pft_real_t dtheta_min;     /**< smallest direction step, cells/frame, > 0 (default 0.02) */
+    pft_real_t c_step;         /**< scan step, cells, in (0, 4] (default 0.25) */
+    uint8_t scan_steps;        /**< largest scan half-width in steps, 1..PFT_PTE_MAX_SCAN_STEPS (default 16) */
+    pft_real_t scan_sigmas;    /**< scan half-width in standard deviations, > 0 (default 3) */
+    pft_real_t sigma_w_max;    /**< operator width clamp, in (0, (PFT_PTE_MAX_TAPS - 1)/6] (default 2) */
+    pft_real_t eta_t;          /**< detection threshold on max_l T_l* (default 3.5) */
+    uint8_t max_misses;        /**< consecutive misses that end a track, >= 1 (default 3) */
+    uint8_t max_tracks;        /**< 1..PFT_PTE_MAX_TRACKS (default 4) */
+    pft_real_t dup_cells;      /**< duplicate-track distance, >= 0 (default 1.0; 0 disables) */
+    pft_pte_op_t op;           /**< operator evaluation (default AUTO: TABLE for range-time, EXACT for range-Doppler) */
+} pft_pte_config_t;
+
+/** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */
+void pft_pte_config_default(pft_pte_config_t *cfg);
+/**
+ * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL; PFT_ERR_CONFIG for a refused value, and
+ * then *field (when field is not NULL) names the first offending field as written in the
+ * struct ("in.n_range", "n_dir[1]", "op", ...). *field is NULL on success.
+ */
+pft_status_t pft_pte_config_check(const pft_pte_config_t *cfg, const char **field);
+
+/* ============================================ DP-TBD ======================================== */
+
+/**
+ * DP-TBD (docs/algorithms.md 5.4): merit I_1(u) = l_1(u), I_k(u) = l_k(u) + max over the gate
+ * |u - u'| <= gate of I_{k-1}(u') (each axis), with l = zeta (unknown amplitude) or the
+ * known-amplitude log-likelihood ratio a*zeta - a^2/2. A target is declared when the best
+ * final merit exceeds V_T; its path is backtracked; cells within +-cancel of the path are
+ * cancelled in every frame and the DP repeated for the next target (up to max_targets).
+ * Sliding mode: pft_pte_dp_update re-runs the batch over the last K frames at every frame
+ * and reports the last state of each path; batch mode: call pft_pte_dp_reset every K frames.
+ */
+typedef struct {
+    pft_pte_input_t in;   /**< input stage */
+    uint8_t frames;       /**< batch length K, 2..PFT_PTE_MAX_FRAMES (default 10) */
+    uint8_t gate[2];      /**< velocity gate per axis, 0..PFT_PTE_MAX_GATE (default 1, 1; axis 1 unused for range-time) */
+    pft_real_t amplitude; /**< known normalised amplitude a for l = a*zeta - a^2/2, in [0, 100]; 0: unknown, l = zeta (default 0) */
+    pft_real_t threshold; /**< V_T on the final merit (default 17.0; the measured 1e-3 per-batch value for 150 range-time cells, K = 10, gate 1 is 18.9: set it with pft_pte_dp_threshold for the geometry and false-alarm probability at hand) */
+    uint8_t max_targets;  /**< paths per batch, 1..PFT_PTE_MAX_TRACKS (default 4) */
+    uint8_t cancel;       /**< cancellation half-width d in cells (default 3) */
+} pft_pte_dp_config_t;
+
+/** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */
+void pft_pte_dp_config_default(pft_pte_dp_config_t *cfg);
+/** As pft_pte_config_check ("in.n_range", "frames", "gate[0]", ...). */
+pft_status_t pft_pte_dp_config_check(const pft_pte_dp_config_t *cfg, const char **field);
+
+/* ========================================= Kalman DBT ======================================= */
+
+/**
+ * Kalman detect-before-track baseline (docs/algorithms.md 5.5): per-frame threshold, centroid
+ * plots, CV Kalman filters, nearest-neighbour gating, M-of-N confirmation, deletion after
+ * missed frames. Per frame:
+ *  1. plots: cells with zeta > threshold (default Q^-1(1e-2) = 2.326). Range-time: each run
+ *     of adjacent cells above the threshold is one plot at its zeta-weighted centroid.
+ *     Range-Doppler [A]: each local maximum (8-neighbourhood) above the threshold is one plot
+ *     at the centroid of the cells above the threshold in its 3x3 block. At most max_dets
+ *     plots are kept (the strongest).
+ *  2. predict every track (CV per axis, T = 1 frame, noise q: Q = q [[1/3, 1/2], [1/2, 1]]);
+ *  3. gate: d^2 = sum over axes of nu^2 / S <= gate (chi-square); global nearest neighbour,
+ *     greedy by d^2, confirmed tracks first;
+ *  4. update (R = sigma_r^2 per axis) or count a miss;
+ *  5. a tentative track is confirmed with confirm_m hits in its first confirm_n frames
+ *     (default 2 of 3), else deleted; a confirmed track is deleted after max_misses
+ *     consecutive misses (default 3);
+ *  6. every plot left over starts a tentative track at the plot with velocity 0 and
+ *     covariance diag(sigma_r^2, vel_var0) while slots are free.
+ * Reports are the confirmed tracks (ids given at confirmation); `detected` says whether the
+ * track was updated with a plot at this frame, `score` is that plot's peak zeta.
+ * Per-frame work: one pass over the cells plus max_tracks * max_dets gating tests and at most
+ * min(max_tracks, max_dets) greedy selection rounds over them.
+ */
+typedef struct {
+    pft_pte_input_t in;     /**< input stage */
+    pft_real_t threshold;   /**< plot threshold on zeta (default 2.3263, P_fa = 1e-2 per cell) */
+    pft_real_t sigma_r[2];  /**< measurement standard deviation per axis, cells, > 0 (default 0.5) */
+    pft_real_t q[2];        /**< CV process noise intensity per axis, >= 0 (default 2e-4) */
+    pft_real_t vel_var0[2]; /**< initial velocity variance per axis, > 0 (default 0.04) */
+    pft_real_t gate;        /**< chi-square gate, >= 0; 0 (default): PFT_PTE_DBT_GATE_1AXIS (6.63) for range-time, PFT_PTE_DBT_GATE_2AXES (9.21) for range-Doppler */
+    uint8_t confirm_m;      /**< hits needed, 1..confirm_n ... (default 2) */
+    uint8_t confirm_n;      /**< ... within the first n frames, 1..8 (default 3) */
+    uint8_t max_misses;     /**< consecutive misses deleting a confirmed track, >= 1 (default 3) */
+    uint8_t max_tracks;     /**< track slots, 1..PFT_PTE_DBT_MAX_TRACKS (default 32) */
+    uint16_t max_dets;      /**< plots kept per frame, 1..PFT_PTE_DBT_MAX_DETS (default 64) */
+} pft_pte_dbt_config_t;
+
+/** One plot of the current frame. */
+typedef struct {
+    pft_real_t pos[2]; /**< centroid (range, Doppler), cell coordinates */
+    pft_real_t peak;   /**< largest zeta of the plot */
+} pft_pte_dbt_plot_t;
+
+/** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */
+void pft_pte_dbt_config_default(pft_pte_dbt_config_t *cfg);
+/** As pft_pte_config_check ("in.noise_sigma", "confirm_m", "q[1]", ...). */
+pft_status_t pft_pte_dbt_config_check(const pft_pte_dbt_config_t *cfg, const char **field);
+
+#ifdef __cplusplus
+}
+#endif
+
+/* Layouts of the instances, for sizeof and the workspace macros (not API). */
+#include "pft/internal/pft_pte_types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ===================================== PTE-TBD: workspace and calls ========================== */
+
+/**
+ * Workspace bytes of a PTE-TBD instance: frames n_range x n_doppler, max_len M_max,
+ * init_frames N, max_tracks, scan_steps, n_dir[0], n_dir[1], and yq = 1/c_step in TABLE mode
+ * (0 in EXACT mode; AUTO is TABLE for n_doppler 1).
+ */
+#define PFT_PTE_WORKSPACE_BYTES(nr, nd, mlen, ninit, tmax, steps, l0, l1, yq)                   \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) * PFT_PTE_CELLS_(nr, nd) *                 \
+                  sizeof(pft_real_t)) +                                                         \
+     PFT_WS_ROUND((size_t)(nr) * sizeof(pft_real_t)) + PFT_PTE_DPCORE_BYTES_(nr, nd, ninit) +   \
+     PFT_WS_ROUND((size_t)(ninit) * 2u * sizeof(int16_t)) +                                     \
+     PFT_WS_ROUND((size_t)PFT_PTE_GTAB_SIZE * sizeof(pft_real_t)) +                            \
+     ((nd) > 1 ? 2u : 1u) * PFT_WS_ROUND((size_t)PFT_PTE_GW_SIZE * sizeof(pft_real_t)) +        \
+     PFT_WS_ROUND((size_t)(tmax) * sizeof(pft_pte_track_t)) +                                   \
+     PFT_WS_ROUND((size_t)(tmax) * sizeof(pft_pte_report_t)) +                                  \
+     3u * PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 0) * PFT_PTE_NSCAN_(nd, steps, 1) *            \
+                       sizeof(pft_real_t)) +                                                    \
+     PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 0) * PFT_PTE_MAX_TAPS * sizeof(pft_real_t)) +       \
+     PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 1) * PFT_PTE_MAX_TAPS * sizeof(pft_real_t)) +       \
+     PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 0) * 4u * sizeof(int16_t)) +                        \
+     PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 1) * 4u * sizeof(int16_t)) +                        \
+     PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_pte_dir_t)) +              \
+     PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_weight_t)) +               \
+     PFT_WS_ROUND(sizeof(pft_pte_scratch_t)) +                                                  \
+     (PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) * ((size_t)(nr) + 2u * PFT_PTE_YPAD) *    \
+                   (size_t)(yq) * sizeof(pft_real_t)) +                                         \
+      PFT_WS_ROUND(((size_t)(nr) + 2u * PFT_PTE_YPAD) * (size_t)(yq) * sizeof(pft_real_t)) +     \
+      ((yq) > 0 ? PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) *                             \
+                               (((size_t)(nr) + 2u * PFT_PTE_YPAD + 7u) / 8u)) : 0u)))
+
+/** Exact workspace bytes for cfg (0 if cfg is NULL or refused). */
+size_t pft_pte_workspace_size(const pft_pte_config_t *cfg);
+/**
+ * Initialises pte in work[0..work_len): PFT_ERR_INVAL (NULL), PFT_ERR_CONFIG (refused cfg),
+ * PFT_ERR_NOMEM (short work). The configuration is copied (AUTO resolved).
+ */
+pft_status_t pft_pte_init(pft_pte_t *pte, const pft_pte_config_t *cfg, void *work,
+                          size_t work_len);
+/** Back to the state right after init: frames and tracks forgotten, ids restart at 1. */
+pft_status_t pft_pte_reset(pft_pte_t *pte);
+/**
+ * Pushes one frame: updates every live track (Step 3), then runs the initiation when due.
+ * Work per frame is bounded by max_tracks * L0*L1 * M_max * (2*scan_steps+1)^naxes *
+ * TAPS^naxes operator taps plus (max_tracks + 1) DP passes of N * cells * gate steps.
+ */
+pft_status_t pft_pte_update(pft_pte_t *pte, const pft_frame_t *frame);
+/** Same with a frame given as n_range * n_doppler values in input units. */
+pft_status_t pft_pte_update_real(pft_pte_t *pte, const pft_real_t *z);
+/**
+ * Live tracks after the last update, in slot order: copies at most max of them into out and
+ * returns how many there are (out may be NULL with max 0 to ask the count; 0 for NULL pte).
+ */
+size_t pft_pte_reports(const pft_pte_t *pte, pft_pte_report_t *out, size_t max);
+/**
+ * Starts a track by hand (a cue from another sensor, or a test), as if initiated now:
+ * state pos/vel per axis, diagonal covariance pos_var/vel_var (> 0), amplitude amp, n_acc
+ * (>= 1, capped at max_len). Returns the new id in *id. PFT_ERR_INVAL on bad arguments,
+ * PFT_ERR_STATE if every track slot is live (nothing changed in either case).
+ */
+pft_status_t pft_pte_start(pft_pte_t *pte, const pft_real_t pos[2], const pft_real_t vel[2],
+                           const pft_real_t pos_var[2], const pft_real_t vel_var[2],
+                           pft_real_t amp, uint8_t n_acc, uint16_t *id);
+/**
+ * Noise-only Monte Carlo threshold of the initiation DP (N frames, init_gate), as
+ * pft_pte_dp_threshold. Resets the instance (frames and tracks forgotten).
+ */
+pft_status_t pft_pte_threshold(pft_pte_t *pte, pft_real_t pfa, uint32_t runs, uint64_t seed,
+                               pft_real_t *vt);
+
+/* ===================================== DP-TBD: workspace and calls =========================== */
+
+/** Workspace bytes of a DP-TBD instance (n_range, n_doppler, frames K, max_targets). */
+#define PFT_PTE_DP_WORKSPACE_BYTES(nr, nd, k, tmax)                                             \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     PFT_WS_ROUND((size_t)(k) * PFT_PTE_CELLS_(nr, nd) * sizeof(pft_real_t)) +                 \
+     PFT_WS_ROUND((size_t)(nr) * sizeof(pft_real_t)) + PFT_PTE_DPCORE_BYTES_(nr, nd, k) +       \
+     PFT_WS_ROUND((size_t)(tmax) * (size_t)(k) * 2u * sizeof(int16_t)) +                        \
+     2u * PFT_WS_ROUND((size_t)(tmax) * sizeof(pft_pte_report_t)))
+
+/** Exact workspace bytes for cfg (0 if cfg is NULL or refused). */
+size_t pft_pte_dp_workspace_size(const pft_pte_dp_config_t *cfg);
+/** As pft_pte_init. */
+pft_status_t pft_pte_dp_init(pft_pte_dp_t *dp, const pft_pte_dp_config_t *cfg, void *work,
+                             size_t work_len);
+/** Back to the state right after init: frames and reports forgotten, ids restart at 1. */
+pft_status_t pft_pte_dp_reset(pft_pte_dp_t *dp);
+/**
+ * Pushes one frame; once K frames are held, runs the batch over the last K frames and
+ * replaces the reports (ids follow a path whose last cell stays within +-cancel cells of a
+ * previous report). Work per frame: at most (max_targets + 1) DP passes of
+ * K * cells * (2*gate0 + 1) * (2*gate1 + 1) steps.
+ */
+pft_status_t pft_pte_dp_update(pft_pte_dp_t *dp, const pft_frame_t *frame);
+/** Same with a frame given as n_range * n_doppler values in input units. */
+pft_status_t pft_pte_dp_update_real(pft_pte_dp_t *dp, const pft_real_t *z);
+/**
+ * Reports of the last frame (declared targets, best merit first): copies at most max into
+ * out, returns how many there are (out may be NULL with max 0; 0 for NULL dp).
+ */
+size_t pft_pte_dp_reports(const pft_pte_dp_t *dp, pft_pte_report_t *out, size_t max);
+/**
+ * Backtracked path of report i of the last batch: cells[2*k + a] for frame k = 0 (oldest of
+ * the batch) .. K-1 (newest), axis a. Copies at most max values and returns 2 K, the number
+ * of values of the path (0 if dp is NULL or i is not a report of the last frame).
+ */
+size_t pft_pte_dp_path(const pft_pte_dp_t *dp, size_t i, int16_t *cells, size_t max);
+/**
+ * Best final merit of the last batch, declared or not, into *peak (PFT_REAL_MIN before the
+ * first batch). PFT_ERR_INVAL for NULL arguments.
+ */
+pft_status_t pft_pte_dp_peak(const pft_pte_dp_t *dp, pft_real_t *peak);
+/**
+ * Noise-only Monte Carlo threshold: runs batches of K frames of Gaussian noise through the
+ * input stage and the DP (first extraction only) and returns in *vt the k-th largest best
+ * merit, k = floor(pfa * runs) + 1, so that a fraction pfa of the runs exceeded it.
+ * FIXED mode draws noise of sigma = noise_sigma; CFAR mode draws sigma = 16 * noise_sigma (the
+ * floor then rarely binds). Uses dp's workspace: the instance is reset (frames forgotten).
+ * PFT_ERR_INVAL if pfa is not in (0, 1), runs == 0 or k > PFT_PTE_MC_TOPK.
+ * Work: runs * (K frames of draws + one DP pass).
+ */
+pft_status_t pft_pte_dp_threshold(pft_pte_dp_t *dp, pft_real_t pfa, uint32_t runs,
+                                  uint64_t seed, pft_real_t *vt);
+
+/* ===================================== DBT: workspace and calls ============================== */
+
+/** Workspace bytes of a DBT instance (n_range, n_doppler, max_tracks, max_dets). */
+#define PFT_PTE_DBT_WORKSPACE_BYTES(nr, nd, tmax, dmax)                                         \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     PFT_WS_ROUND((size_t)(nr) * (size_t)(nd) * sizeof(pft_real_t)) +                           \
+     PFT_WS_ROUND((size_t)(nr) * sizeof(pft_real_t)) +                                          \
+     PFT_WS_ROUND((size_t)(dmax) * sizeof(pft_pte_dbt_plot_t)) +                                \
+     PFT_WS_ROUND((size_t)(tmax) * sizeof(pft_pte_dbt_track_t)) +                               \
+     PFT_WS_ROUND((size_t)(tmax) * sizeof(pft_pte_report_t)) +                                  \
+     PFT_WS_ROUND((size_t)(tmax) * (size_t)(dmax) * sizeof(pft_real_t)))
+
+/** Exact workspace bytes for cfg (0 if cfg is NULL or refused). */
+size_t pft_pte_dbt_workspace_size(const pft_pte_dbt_config_t *cfg);
+/** As pft_pte_init (gate 0 resolved). */
+pft_status_t pft_pte_dbt_init(pft_pte_dbt_t *dbt, const pft_pte_dbt_config_t *cfg, void *work,
+                              size_t work_len);
+/** Back to the state right after init: tracks forgotten, ids restart at 1. */
+pft_status_t pft_pte_dbt_reset(pft_pte_dbt_t *dbt);
+/** Processes one frame (steps 1-6 above). */
+pft_status_t pft_pte_dbt_update(pft_pte_dbt_t *dbt, const pft_frame_t *frame);
+/** Same with a frame given as n_range * n_doppler values in input units. */
+pft_status_t pft_pte_dbt_update_real(pft_pte_dbt_t *dbt, const pft_real_t *z);
+/**
+ * Confirmed tracks after the last update: copies at most max into out, returns how many
+ * there are (out may be NULL with max 0; 0 for NULL dbt).
+ */
+size_t pft_pte_dbt_reports(const pft_pte_dbt_t *dbt, pft_pte_report_t *out, size_t max);
+/** Plots of the last frame, copied out as pft_pte_dbt_reports. */
+size_t pft_pte_dbt_plots(const pft_pte_dbt_t *dbt, pft_pte_dbt_plot_t *out, size_t max);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,239 @@
+/* Input stage of the pte family: frame conversion, noise normalisation (fixed or CA-CFAR)
+ * and the ring of the last normalised frames. */
+#include <string.h>
+
+#include "pte_int.h"
+
+void pft_pte_input_default(pft_pte_input_t *in)
+{
+    if (in == NULL) {
+        return;
+    }
+    memset(in, 0, sizeof(*in));
+    in->n_range = 150u;
+    in->n_doppler = 1u;
+    in->pixel_gain = PFT_C(1.0);
+    in->pixel_offset = PFT_C(0.0);
+    in->noise = PFT_PTE_NOISE_FIXED;
+    in->noise_sigma = PFT_C(1.0);
+    in->cfar_ref = 16u;
+    in->cfar_guard = 2u;
+    in->zeta_clip = PFT_C(20.0);
+}
+
+const char *pft_pte_input_bad_(const pft_pte_input_t *in)
+{
+    if (in->n_range < 2u || in->n_range > PFT_CFG_MAX_IMAGE_SIDE) {
+        return "in.n_range";
+    }
+    if (in->n_doppler < 1u || in->n_doppler > PFT_CFG_MAX_IMAGE_SIDE) {
+        return "in.n_doppler";
+    }
+    if (in->noise != PFT_PTE_NOISE_FIXED && in->noise != PFT_PTE_NOISE_CFAR) {
+        return "in.noise";
+    }
+    if (!(in->noise_sigma > PFT_C(0.0))) {
+        return "in.noise_sigma";
+    }
+    if (!(in->zeta_clip > PFT_C(0.0)) || in->zeta_clip > PFT_C(1000.0)) {
+        return "in.zeta_clip";
+    }
+    if (in->cfar_ref < 1u || in->cfar_ref > PFT_PTE_MAX_CFAR_REF) {
+        return "in.cfar_ref";
+    }
+    return NULL;
+}
+
+pft_status_t pft_pte_input_check(const pft_pte_input_t *in, const char **field)
+{
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (in == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const char *bad = pft_pte_input_bad_(in);
+    /* the names without the "in." of a tracker configuration */
+    return pft_pte_check_done_(bad == NULL ? NULL : bad + 3, field);
+}
+
+pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *frame)
+{
+    uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32);
+    pft_status_t st = pft_frame_check(frame, in->n_range, in->n_doppler, fmts);
+    if (st != PFT_OK) {
+        return st;
+    }
+    return pft_frame_check_finite(frame);
+}
+
+void pft_pte_frame_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
+                        pft_real_t *z)
+{
+    pft_frame_row_to_real(frame, d, in->n_range, in->pixel_gain, in->pixel_offset, z);
+}
+
+/* |z| / ref: one CFAR term (the same expression when a cell enters and leaves a window, so
+ * the q16 running sums are exact). */
+static pft_real_t cfar_term_(const pft_real_t *z, int32_t i, pft_real_t inv_ref)
+{
+    return pft_mul(pft_abs(z[i]), inv_ref);
+}
+
+void pft_pte_norm_row_(const pft_pte_input_t *in, const pft_real_t *z, pft_real_t *out)
+{
+    int32_t n = (int32_t)in->n_range;
+    pft_real_t clip = in->zeta_clip;
+    if (in->noise == PFT_PTE_NOISE_FIXED) {
+        pft_real_t inv = pft_recip(in->noise_sigma);
+        for (int32_t u = 0; u < n; ++u) {
+            out[u] = pft_clamp(pft_mul(z[u], inv), pft_neg(clip), clip);
+        }
+        return;
+    }
+    /* CA-CFAR on |z|: left window [u-G-R, u-G-1], right window [u+G+1, u+G+R], clipped. */
+    int32_t R = (int32_t)in->cfar_ref;
+    int32_t G = (int32_t)in->cfar_guard;
+    pft_real_t inv_ref = pft_ratio(1, R);
+    pft_real_t lsum = PFT_C(0.0);
+    pft_real_t rsum = PFT_C(0.0);
+    const pft_real_t k_gauss = PFT_C(1.2533141373155); /* sqrt(pi/2): sigma from mean |z| */
+    for (int32_t i = G + 1; i <= G + R && i < n; ++i) {
+        rsum = pft_add(rsum, cfar_term_(z, i, inv_ref));
+    }
+    for (int32_t u = 0; u < n; ++u) {
+        int32_t llo = u - G - R < 0 ? 0 : u - G - R;
+        int32_t lhi = u - G - 1;
+        int32_t rlo = u + G + 1;
+        int32_t rhi = u + G + R > n - 1 ? n - 1 : u + G + R;
+        int32_t cnt = (lhi >= llo ? lhi - llo + 1 : 0) + (rhi >= rlo ? rhi - rlo + 1 : 0);
+        pft_real_t sigma = in->noise_sigma;
+        if (cnt > 0) {
+            pft_real_t s = pft_max(pft_add(lsum, rsum), PFT_C(0.0));
+            pft_real_t mean = pft_mul(s, pft_ratio(R, cnt));
+            sigma = pft_max(pft_mul(mean, k_gauss), in->noise_sigma);
+        }
+        out[u] = pft_clamp(pft_div(z[u], sigma), pft_neg(clip), clip);
+        /* slide to u + 1: subtract first, then add (partial sums stay <= a full window) */
+        if (u - G - R >= 0) {
+            lsum = pft_sub(lsum, cfar_term_(z, u - G - R, inv_ref));
+        }
+        if (u - G >= 0) {
+            lsum = pft_add(lsum, cfar_term_(z, u - G, inv_ref));
+        }
+        if (u + G + 1 < n) {
+            rsum = pft_sub(rsum, cfar_term_(z, u + G + 1, inv_ref));
+        }
+        if (u + G + R + 1 < n) {
+            rsum = pft_add(rsum, cfar_term_(z, u + G + R + 1, inv_ref));
+        }
+    }
+}
+
+pft_status_t pft_pte_normalize(const pft_pte_input_t *in, const pft_frame_t *frame,
+                               pft_real_t *zeta, pft_real_t *scratch)
+{
+    if (in == NULL || zeta == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pte_input_bad_(in) != NULL) {
+        return PFT_ERR_CONFIG;
+    }
+    if (in->noise == PFT_PTE_NOISE_CFAR && scratch == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    pft_status_t st = pft_pte_frame_check_(in, frame);
+    if (st != PFT_OK) {
+        return st;
+    }
+    for (uint32_t d = 0; d < in->n_doppler; ++d) {
+        pft_real_t *out = zeta + (size_t)d * in->n_range;
+        if (in->noise == PFT_PTE_NOISE_CFAR) {
+            pft_pte_frame_row_(in, frame, d, scratch);
+            pft_pte_norm_row_(in, scratch, out);
+        } else {
+            pft_pte_frame_row_(in, frame, d, out);
+            pft_pte_norm_row_(in, out, out); /* fixed mode works element-wise in place */
+        }
+    }
+    return PFT_OK;
+}
+
+pft_status_t pft_pte_normalize_real(const pft_pte_input_t *in, const pft_real_t *z,
+                                    pft_real_t *zeta)
+{
+    if (in == NULL || z == NULL || zeta == NULL || z == zeta) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pte_input_bad_(in) != NULL) {
+        return PFT_ERR_CONFIG;
+    }
+    for (uint32_t d = 0; d < in->n_doppler; ++d) {
+        pft_pte_norm_row_(in, z + (size_t)d * in->n_range, zeta + (size_t)d * in->n_range);
+    }
+    return PFT_OK;
+}
+
+/* --------------------------------------------------------------------------------- ring */
+
+void pft_pte_ring_setup_(pft_pte_ring_t *r, pft_real_t *buf, uint16_t len, uint32_t cells)
+{
+    r->buf = buf;
+    r->len = len;
+    r->cells = cells;
+    r->count = 0u;
+    r->head = (uint16_t)(len - 1u);
+}
+
+pft_real_t *pft_pte_ring_next_(const pft_pte_ring_t *r)
+{
+    uint32_t slot = ((uint32_t)r->head + 1u) % r->len;
+    return r->buf + (size_t)slot * r->cells;
+}
+
+void pft_pte_ring_commit_(pft_pte_ring_t *r)
+{
+    r->head = (uint16_t)(((uint32_t)r->head + 1u) % r->len);
+    if (r->count < r->len) {
+        r->count++;
+    }
+}
+
+const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back)
+{
+    uint32_t slot = ((uint32_t)r->head + r->len - (back % r->len)) % r->len;
+    return r->buf + (size_t)slot * r->cells;
+}
+
+pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                           pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
+{
+    if (frame != NULL) {
+        pft_status_t st = pft_pte_frame_check_(in, frame);
+        if (st != PFT_OK) {
+            return st;
+        }
+    } else if (z == NULL) {
+        return PFT_ERR_INVAL;
+    } else {
+        /* float build: refuse NaN/Inf values (the comparison is false for them); q16: no-op */
+        uint32_t cells = (uint32_t)in->n_range * in->n_doppler;
+        for (uint32_t i = 0; i < cells; ++i) {
+            if (!(z[i] >= PFT_REAL_MIN && z[i] <= PFT_REAL_MAX)) {
+                return PFT_ERR_FORMAT;
+            }
+        }
+    }
+    pft_real_t *dst = pft_pte_ring_next_(ring);
+    for (uint32_t d = 0; d < in->n_doppler; ++d) {
+        pft_real_t *out = dst + (size_t)d * in->n_range;
+        if (frame != NULL) {
+            pft_pte_frame_row_(in, frame, d, row);
+            pft_pte_norm_row_(in, row, out);
+        } else {
+            pft_pte_norm_row_(in, z + (size_t)d * in->n_range, out);
+        }
+    }
+    pft_pte_ring_commit_(ring);
+    return PFT_OK;
+}

@@ -1,0 +1,636 @@
+/* PTE-TBD: parameterized track enhancement (He, Liao, Yang & Sun 2015) as reconstructed in
+ * docs/algorithms.md 5.2-5.3: batch DP initiation, L matched line operators per axis set by
+ * the track state (the track step is in pte_track.c), per-direction Kalman updates,
+ * likelihood-weighted fusion, closed-loop feedback, termination and re-initiation, several
+ * targets with cancellation. This file: configuration, workspace, initiation, reports. */
+#include "pte_int.h"
+
+#define SV_ PFT_PTE_SV_
+#define SA_ PFT_PTE_SA_
+
+void pft_pte_config_default(pft_pte_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    pft_pte_input_default(&cfg->in);
+    cfg->init_frames = 10u;
+    cfg->init_gate[0] = 1u;
+    cfg->init_gate[1] = 1u;
+    cfg->init_threshold = PFT_C(18.9);
+    cfg->init_period = 10u;
+    cfg->max_len = 40u;
+    cfg->n_dir[0] = 5u;
+    cfg->n_dir[1] = 5u;
+    cfg->motion = PFT_PTE_MOTION_CA;
+    cfg->sigma_r[0] = PFT_C(0.5);
+    cfg->sigma_r[1] = PFT_C(0.5);
+    cfg->q_sd[0] = PFT_C(0.002);
+    cfg->q_sd[1] = PFT_C(0.002);
+    cfg->acc_sd0[0] = PFT_C(0.003);
+    cfg->acc_sd0[1] = PFT_C(0.003);
+    cfg->q_amp = PFT_C(0.01);
+    cfg->dtheta_min = PFT_C(0.02);
+    cfg->c_step = PFT_C(0.25);
+    cfg->scan_steps = 16u;
+    cfg->scan_sigmas = PFT_C(3.0);
+    cfg->sigma_w_max = PFT_C(2.0);
+    cfg->eta_t = PFT_C(3.5);
+    cfg->max_misses = 3u;
+    cfg->max_tracks = 4u;
+    cfg->dup_cells = PFT_C(1.0);
+    cfg->op = PFT_PTE_OP_AUTO;
+}
+
+/* 1/c_step when it is an integer 1..8, else 0. */
+static uint8_t period_(pft_real_t c_step)
+{
+    for (int32_t k = 1; k <= 8; ++k) {
+        if (pft_mul_i(c_step, k) == PFT_REAL_ONE) {
+            return (uint8_t)k;
+        }
+    }
+    return 0u;
+}
+
+/* The operator evaluation AUTO stands for. */
+static pft_pte_op_t op_of_(const pft_pte_config_t *c)
+{
+    if (c->op == PFT_PTE_OP_AUTO) {
+        return c->in.n_doppler > 1u ? PFT_PTE_OP_EXACT : PFT_PTE_OP_TABLE;
+    }
+    return c->op;
+}
+
+/* Per-axis fields (struct order), NULL when both axes are usable. */
+static const char *bad_axis_field_(const pft_pte_config_t *c)
+{
+    static const char *const nd[2] = {"n_dir[0]", "n_dir[1]"};
+    static const char *const sr[2] = {"sigma_r[0]", "sigma_r[1]"};
+    static const char *const qs[2] = {"q_sd[0]", "q_sd[1]"};
+    static const char *const as[2] = {"acc_sd0[0]", "acc_sd0[1]"};
+    for (uint32_t a = 0; a < 2u; ++a) {
+        if (c->n_dir[a] < 1u || c->n_dir[a] > PFT_PTE_MAX_DIRS || (c->n_dir[a] & 1u) == 0u) {
+            return nd[a];
+        }
+    }
+    if (c->motion != PFT_PTE_MOTION_CV && c->motion != PFT_PTE_MOTION_CA) {
+        return "motion";
+    }
+    for (uint32_t a = 0; a < 2u; ++a) {
+        if (!(c->sigma_r[a] > PFT_C(0.0)) || c->sigma_r[a] > PFT_C(100.0)) {
+            return sr[a];
+        }
+    }
+    for (uint32_t a = 0; a < 2u; ++a) {
+        if (!(c->q_sd[a] >= PFT_C(0.0)) || c->q_sd[a] > PFT_C(1.0)) {
+            return qs[a];
+        }
+    }
+    for (uint32_t a = 0; a < 2u; ++a) {
+        if (!(c->acc_sd0[a] >= PFT_C(0.0)) || c->acc_sd0[a] > PFT_C(0.1)) {
+            return as[a];
+        }
+    }
+    return NULL;
+}
+
+/* Operator fields (struct order), NULL when usable. */
+static const char *bad_operator_field_(const pft_pte_config_t *c)
+{
+    if (!(c->q_amp >= PFT_C(0.0))) {
+        return "q_amp";
+    }
+    if (!(c->dtheta_min > PFT_C(0.0))) {
+        return "dtheta_min";
+    }
+    if (!(c->c_step > PFT_C(0.0)) || c->c_step > PFT_C(4.0)) {
+        return "c_step";
+    }
+    if (c->scan_steps < 1u || c->scan_steps > PFT_PTE_MAX_SCAN_STEPS) {
+        return "scan_steps";
+    }
+    if (!(c->scan_sigmas > PFT_C(0.0))) {
+        return "scan_sigmas";
+    }
+    if (!(c->sigma_w_max > PFT_C(0.0)) ||
+        c->sigma_w_max > pft_ratio((int32_t)PFT_PTE_MAX_TAPS - 1, 6)) {
+        return "sigma_w_max";
+    }
+    return NULL;
+}
+
+/* First refused field in struct order (TABLE's requirements name op, c_step, in.zeta_clip). */
+static const char *bad_field_(const pft_pte_config_t *c)
+{
+    const char *bad = pft_pte_input_bad_(&c->in);
+    if (bad != NULL) {
+        return bad;
+    }
+    if (c->init_frames < 2u || c->init_frames > PFT_PTE_MAX_FRAMES) {
+        return "init_frames";
+    }
+    if (c->init_gate[0] > PFT_PTE_MAX_GATE) {
+        return "init_gate[0]";
+    }
+    if (c->init_gate[1] > PFT_PTE_MAX_GATE) {
+        return "init_gate[1]";
+    }
+    if (c->init_period < 1u) {
+        return "init_period";
+    }
+    if (c->max_len < 2u || c->max_len > PFT_PTE_MAX_FRAMES) {
+        return "max_len";
+    }
+    bad = bad_axis_field_(c);
+    if (bad == NULL) {
+        bad = bad_operator_field_(c);
+    }
+    if (bad != NULL) {
+        return bad;
+    }
+    if (c->max_misses < 1u) {
+        return "max_misses";
+    }
+    if (c->max_tracks < 1u || c->max_tracks > PFT_PTE_MAX_TRACKS) {
+        return "max_tracks";
+    }
+    if (!(c->dup_cells >= PFT_C(0.0))) {
+        return "dup_cells";
+    }
+    if (c->op != PFT_PTE_OP_EXACT && c->op != PFT_PTE_OP_TABLE && c->op != PFT_PTE_OP_AUTO) {
+        return "op";
+    }
+    if (op_of_(c) == PFT_PTE_OP_TABLE) {
+        if (c->in.n_doppler != 1u) {
+            return "op"; /* TABLE operators are range-time only */
+        }
+        if (period_(c->c_step) == 0u) {
+            return "c_step"; /* TABLE needs c_step = 1/Q, Q = 1..8 */
+        }
+        if (c->in.zeta_clip > PFT_C(64.0)) {
+            return "in.zeta_clip"; /* TABLE's plain sums need zeta_clip <= 64 */
+        }
+    }
+    return NULL;
+}
+
+pft_status_t pft_pte_config_check(const pft_pte_config_t *cfg, const char **field)
+{
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    return pft_pte_check_done_(bad_field_(cfg), field);
+}
+
+/* Grid points per cell of the TABLE operators (0: EXACT). */
+static uint32_t yq_of_(const pft_pte_config_t *c)
+{
+    return op_of_(c) == PFT_PTE_OP_TABLE ? period_(c->c_step) : 0u;
+}
+
+size_t pft_pte_workspace_size(const pft_pte_config_t *c)
+{
+    if (pft_pte_config_check(c, NULL) != PFT_OK) {
+        return 0u;
+    }
+    return PFT_PTE_WORKSPACE_BYTES(c->in.n_range, c->in.n_doppler, c->max_len, c->init_frames,
+                                   c->max_tracks, c->scan_steps, c->n_dir[0], c->n_dir[1],
+                                   yq_of_(c));
+}
+
+/* The buffers of an instance, carved from its workspace in the order of
+ * PFT_PTE_WORKSPACE_BYTES. */
+typedef struct {
+    pft_real_t *ring, *row, *ma, *mb;
+    uint8_t *psi, *mask;
+    int16_t *path;
+    pft_real_t *gtab, *gw[2];
+    pft_pte_track_t *tracks;
+    pft_pte_report_t *rep;
+    pft_real_t *sE, *sG, *sL, *tw[2];
+    int16_t *tlo[2];
+    pft_pte_dir_t *dir;
+    pft_weight_t *dw;
+    pft_pte_scratch_t *scr;
+    pft_real_t *yring, *gq;
+    uint8_t *yflag;
+} layout_;
+
+static pft_status_t carve_(const pft_pte_config_t *cfg, uint32_t yq, void *work, size_t len,
+                           layout_ *l)
+{
+    const uint32_t cells = (uint32_t)cfg->in.n_range * cfg->in.n_doppler;
+    const uint32_t nring = cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames;
+    const uint32_t n = cfg->init_frames;
+    const bool two = cfg->in.n_doppler > 1u;
+    const uint32_t ns0 = 2u * cfg->scan_steps + 1u;
+    const uint32_t ns1 = two ? ns0 : 1u;
+    const uint32_t nd = (uint32_t)cfg->n_dir[0] * (two ? cfg->n_dir[1] : 1u);
+    const uint32_t ny = ((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD) * yq;
+    const uint32_t nyblk = ((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD + 7u) / 8u;
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, len);
+    memset(l, 0, sizeof(*l));
+    l->ring = pft_ws_take(&ws, (size_t)nring * cells * sizeof(pft_real_t));
+    l->row = pft_ws_take(&ws, (size_t)cfg->in.n_range * sizeof(pft_real_t));
+    l->ma = pft_ws_take(&ws, (size_t)cells * sizeof(pft_real_t));
+    l->mb = pft_ws_take(&ws, (size_t)cells * sizeof(pft_real_t));
+    l->psi = pft_ws_take(&ws, (size_t)n * cells);
+    l->mask = pft_ws_take(&ws, (size_t)n * cells);
+    l->path = pft_ws_take(&ws, (size_t)n * 2u * sizeof(int16_t));
+    l->gtab = pft_ws_take(&ws, (size_t)PFT_PTE_GTAB_SIZE * sizeof(pft_real_t));
+    l->gw[0] = pft_ws_take(&ws, (size_t)PFT_PTE_GW_SIZE * sizeof(pft_real_t));
+    l->gw[1] = two ? pft_ws_take(&ws, (size_t)PFT_PTE_GW_SIZE * sizeof(pft_real_t)) : l->gw[0];
+    l->tracks = pft_ws_take(&ws, (size_t)cfg->max_tracks * sizeof(pft_pte_track_t));
+    l->rep = pft_ws_take(&ws, (size_t)cfg->max_tracks * sizeof(pft_pte_report_t));
+    l->sE = pft_ws_take(&ws, (size_t)ns0 * ns1 * sizeof(pft_real_t));
+    l->sG = pft_ws_take(&ws, (size_t)ns0 * ns1 * sizeof(pft_real_t));
+    l->sL = pft_ws_take(&ws, (size_t)ns0 * ns1 * sizeof(pft_real_t));
+    l->tw[0] = pft_ws_take(&ws, (size_t)ns0 * PFT_PTE_MAX_TAPS * sizeof(pft_real_t));
+    l->tw[1] = pft_ws_take(&ws, (size_t)ns1 * PFT_PTE_MAX_TAPS * sizeof(pft_real_t));
+    l->tlo[0] = pft_ws_take(&ws, (size_t)ns0 * 4u * sizeof(int16_t));
+    l->tlo[1] = pft_ws_take(&ws, (size_t)ns1 * 4u * sizeof(int16_t));
+    l->dir = pft_ws_take(&ws, (size_t)nd * sizeof(pft_pte_dir_t));
+    l->dw = pft_ws_take(&ws, (size_t)nd * sizeof(pft_weight_t));
+    l->scr = pft_ws_take(&ws, sizeof(pft_pte_scratch_t));
+    if (yq > 0u) {
+        l->yring = pft_ws_take(&ws, (size_t)nring * ny * sizeof(pft_real_t));
+        l->gq = pft_ws_take(&ws, (size_t)ny * sizeof(pft_real_t));
+        l->yflag = pft_ws_take(&ws, (size_t)nring * nyblk);
+    }
+    return pft_ws_status(&ws);
+}
+
+pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work, size_t work_len)
+{
+    if (p == NULL || cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pte_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    const uint32_t yq = yq_of_(cfg);
+    layout_ l;
+    if (carve_(cfg, yq, work, work_len, &l) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(p, 0, sizeof(*p));
+    p->cfg = *cfg;
+    p->cfg.op = op_of_(cfg);
+    const uint32_t nring = cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames;
+    pft_pte_ring_setup_(&p->ring, l.ring, (uint16_t)nring,
+                        (uint32_t)cfg->in.n_range * cfg->in.n_doppler);
+    p->row = l.row;
+    p->ma = l.ma;
+    p->mb = l.mb;
+    p->psi = l.psi;
+    p->mask = l.mask;
+    p->path = l.path;
+    p->gtab = l.gtab;
+    p->gw[0] = l.gw[0];
+    p->gw[1] = l.gw[1];
+    p->tracks = l.tracks;
+    p->rep = l.rep;
+    p->sE = l.sE;
+    p->sG = l.sG;
+    p->sL = l.sL;
+    p->tw[0] = l.tw[0];
+    p->tw[1] = l.tw[1];
+    p->tlo[0] = l.tlo[0];
+    p->tlo[1] = l.tlo[1];
+    p->dir = l.dir;
+    p->dw = l.dw;
+    p->scr = l.scr;
+    p->naxes = cfg->in.n_doppler > 1u ? 2u : 1u;
+    /* scan positions one cell apart share their tap weights when c_step = 1/period */
+    p->period = period_(cfg->c_step);
+    /* g(t) = exp(-t^2/2), t = i/64 */
+    for (uint32_t i = 0; i < PFT_PTE_GTAB_SIZE; ++i) {
+        pft_real_t t = pft_ratio((int32_t)i, 64);
+        p->gtab[i] = pft_exp(pft_neg(pft_mul(pft_sq(t), PFT_C(0.5))));
+    }
+    p->yq = (uint8_t)yq;
+    p->ny = ((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD) * yq;
+    p->yring = l.yring;
+    p->gq = l.gq;
+    p->yflag = l.yflag;
+    p->nyblk = (uint16_t)(((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD + 7u) / 8u);
+    if (yq > 0u) {
+        pft_pte_ytable_setup_(p);
+    }
+    return pft_pte_reset(p);
+}
+
+pft_status_t pft_pte_reset(pft_pte_t *p)
+{
+    if (p == NULL || p->ring.buf == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    p->ring.count = 0u;
+    p->ring.head = (uint16_t)(p->ring.len - 1u);
+    memset(p->tracks, 0, (size_t)p->cfg.max_tracks * sizeof(pft_pte_track_t));
+    p->frames_in = 0u;
+    p->next_id = 1u;
+    p->since_search = 0u;
+    p->n_rep = 0u;
+    return PFT_OK;
+}
+
+static void core_(const pft_pte_t *p, pft_pte_core_t_ *c)
+{
+    c->ring = &p->ring;
+    c->nr = p->cfg.in.n_range;
+    c->nd = p->cfg.in.n_doppler;
+    c->k = p->cfg.init_frames;
+    c->g0 = p->cfg.init_gate[0];
+    c->g1 = p->cfg.init_gate[1];
+    c->amp = PFT_C(0.0);
+    c->ma = p->ma;
+    c->mb = p->mb;
+    c->psi = p->psi;
+    c->mask = p->mask;
+}
+
+/* ----------------------------------------------------------------------- initiation */
+
+static int32_t half_cells_(pft_real_t sw)
+{
+    /* ceil(3 sigma_w) */
+    return -pft_floor_int(pft_neg(pft_mul_i(sw, 3)));
+}
+
+/* New track from unscaled position/velocity moments per axis (na axes used). */
+static void track_new_(pft_pte_t *p, pft_pte_track_t *t, const pft_real_t pos[2],
+                       const pft_real_t vel[2], const pft_real_t pv[2], const pft_real_t vv[2],
+                       const pft_real_t cv[2], pft_real_t amp, uint8_t n_acc)
+{
+    memset(t, 0, sizeof(*t));
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        t->x[a][0] = pos[a];
+        t->x[a][1] = pft_mul_i(vel[a], SV_);
+        t->P[a][0] = pv[a];
+        t->P[a][1] = pft_mul_i(cv[a], SV_);
+        t->P[a][4] = t->P[a][1];
+        t->P[a][5] = pft_mul_i(vv[a], SV_ * SV_);
+        if (p->cfg.motion == PFT_PTE_MOTION_CA) {
+            t->P[a][10] = pft_sq(pft_mul_i(p->cfg.acc_sd0[a], SA_));
+        }
+    }
+    t->amp = amp;
+    t->amp_var = PFT_C(1.0);
+    t->n_acc = n_acc;
+    t->live = true;
+    t->detected = true;
+    t->id = pft_pte_new_id_(&p->next_id);
+}
+
+static uint32_t n_live_(const pft_pte_t *p)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
+        n += p->tracks[i].live ? 1u : 0u;
+    }
+    return n;
+}
+
+/* Cancels the cells of every live track, its state extrapolated back over the batch. */
+static void cancel_live_(pft_pte_t *p, const pft_pte_core_t_ *core)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    const uint32_t N = c->init_frames;
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        const pft_pte_track_t *t = &p->tracks[i];
+        if (!t->live) {
+            continue;
+        }
+        int32_t h[2] = {0, 0};
+        for (uint32_t a = 0; a < p->naxes; ++a) {
+            pft_real_t sw = pft_min(pft_sqrt(pft_add(pft_sq(c->sigma_r[a]), t->P[a][0])),
+                                    c->sigma_w_max);
+            h[a] = half_cells_(sw);
+        }
+        for (uint32_t j = 0; j < N; ++j) {
+            int32_t back = (int32_t)N - 1 - (int32_t)j;
+            for (uint32_t a = 0; a < 2u; ++a) {
+                int32_t u = a < p->naxes
+                                ? pft_round_int(pft_sub(t->x[a][0], pft_pte_shift_(t->x[a][1], t->x[a][2], back)))
+                                : 0;
+                u = u < -30000 ? -30000 : (u > 30000 ? 30000 : u);
+                p->path[2u * j + a] = (int16_t)u;
+            }
+        }
+        pft_pte_core_cancel_(core, p->path, h[0], h[1]);
+    }
+}
+
+/* Step 2: DP batch over the last init_frames frames outside the live tracks; every path
+ * above init_threshold starts a track in a free slot and is cancelled for the next one. */
+static void initiate_(pft_pte_t *p)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    pft_pte_core_t_ core;
+    core_(p, &core);
+    const uint32_t N = c->init_frames;
+    const uint32_t cells = (uint32_t)c->in.n_range * c->in.n_doppler;
+    const bool two = p->naxes == 2u;
+    memset(p->mask, 0, (size_t)N * cells);
+    cancel_live_(p, &core);
+    uint32_t live = n_live_(p);
+    for (uint32_t guard = 0; guard < c->max_tracks && live < c->max_tracks; ++guard) {
+        int32_t cell;
+        pft_real_t best = pft_pte_core_run_(&core, &cell);
+        if (cell < 0 || !(best > c->init_threshold)) {
+            break;
+        }
+        pft_pte_core_backtrack_(&core, cell, p->path);
+        pft_real_t pos[2] = {PFT_C(0.0), PFT_C(0.0)};
+        pft_real_t vel[2] = {PFT_C(0.0), PFT_C(0.0)};
+        pft_real_t pv[2] = {PFT_C(1.0), PFT_C(1.0)};
+        pft_real_t vv[2] = {PFT_C(1.0), PFT_C(1.0)};
+        pft_real_t cv[2] = {PFT_C(0.0), PFT_C(0.0)};
+        int32_t h[2] = {0, 0};
+        int32_t n = (int32_t)N;
+        for (uint32_t a = 0; a < p->naxes; ++a) {
+            pft_pte_core_fit_(&core, p->path, a, &pos[a], &vel[a]);
+            pft_real_t s2 = pft_sq(c->sigma_r[a]);
+            pv[a] = pft_mul(s2, pft_ratio(2 * (2 * n - 1), n * (n + 1)));
+            cv[a] = pft_mul(s2, pft_ratio(6, n * (n + 1)));
+            vv[a] = pft_mul(s2, pft_ratio(12, n * (n * n - 1)));
+            pft_real_t sw = pft_min(pft_sqrt(pft_add(s2, pv[a])), c->sigma_w_max);
+            h[a] = half_cells_(sw);
+        }
+        if (!two) {
+            pv[1] = PFT_C(1.0);
+            vv[1] = PFT_C(1.0);
+        }
+        for (uint32_t i = 0; i < c->max_tracks; ++i) {
+            if (!p->tracks[i].live) {
+                track_new_(p, &p->tracks[i], pos, vel, pv, vv, cv,
+                           pft_pte_core_amp_(&core, p->path), (uint8_t)N);
+                p->tracks[i].score = best;
+                live++;
+                break;
+            }
+        }
+        pft_pte_core_cancel_(&core, p->path, h[0], h[1]);
+    }
+}
+
+static void dedup_(pft_pte_t *p)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    if (!(c->dup_cells > PFT_C(0.0))) {
+        return;
+    }
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        for (uint32_t j = i + 1u; j < c->max_tracks; ++j) {
+            pft_pte_track_t *a = &p->tracks[i];
+            pft_pte_track_t *b = &p->tracks[j];
+            if (!a->live || !b->live) {
+                continue;
+            }
+            bool near = pft_abs(pft_sub(a->x[0][0], b->x[0][0])) < c->dup_cells;
+            if (p->naxes == 2u) {
+                near = near && pft_abs(pft_sub(a->x[1][0], b->x[1][0])) < c->dup_cells;
+            }
+            if (near) {
+                /* the lower score ends; on a tie the younger */
+                bool drop_b = b->score < a->score || (b->score == a->score && b->age <= a->age);
+                (drop_b ? b : a)->live = false;
+            }
+        }
+    }
+}
+
+static void reports_(pft_pte_t *p)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
+        const pft_pte_track_t *t = &p->tracks[i];
+        if (!t->live) {
+            continue;
+        }
+        pft_pte_report_t *r = &p->rep[n++];
+        memset(r, 0, sizeof(*r));
+        r->id = t->id;
+        r->detected = t->detected;
+        for (uint32_t a = 0; a < p->naxes; ++a) {
+            r->pos[a] = t->x[a][0];
+            r->vel[a] = pft_div_i(t->x[a][1], SV_);
+            r->var[a] = t->P[a][0];
+        }
+        r->amplitude = t->amp;
+        r->score = t->score;
+        r->age = t->age;
+    }
+    p->n_rep = (uint8_t)n;
+}
+
+static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_real_t *z)
+{
+    if (p == NULL || p->ring.buf == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    pft_status_t st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
+    if (st != PFT_OK) {
+        return st;
+    }
+    if (p->yq > 0u) {
+        memset(p->yflag + (size_t)p->ring.head * p->nyblk, 0, p->nyblk);
+    }
+    p->frames_in++;
+    for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
+        if (p->tracks[i].live) {
+            pft_pte_track_step_(p, &p->tracks[i]);
+        }
+    }
+    dedup_(p);
+    if (p->since_search < 0xFFFFu) {
+        p->since_search++;
+    }
+    uint32_t live = n_live_(p);
+    if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
+        (live == 0u || p->since_search >= p->cfg.init_period)) {
+        p->since_search = 0u;
+        initiate_(p);
+    }
+    reports_(p);
+    return PFT_OK;
+}
+
+pft_status_t pft_pte_update(pft_pte_t *p, const pft_frame_t *frame)
+{
+    if (frame == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    return update_(p, frame, NULL);
+}
+
+pft_status_t pft_pte_update_real(pft_pte_t *p, const pft_real_t *z)
+{
+    if (z == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    return update_(p, NULL, z);
+}
+
+size_t pft_pte_reports(const pft_pte_t *p, pft_pte_report_t *out, size_t max)
+{
+    if (p == NULL || p->ring.buf == NULL) {
+        return 0u;
+    }
+    return pft_pte_copy_out_(p->rep, p->n_rep, sizeof(pft_pte_report_t), out, max);
+}
+
+pft_status_t pft_pte_start(pft_pte_t *p, const pft_real_t pos[2],
+                           const pft_real_t vel[2], const pft_real_t pos_var[2],
+                           const pft_real_t vel_var[2], pft_real_t amp, uint8_t n_acc,
+                           uint16_t *id)
+{
+    if (p == NULL || p->ring.buf == NULL || pos == NULL || vel == NULL || pos_var == NULL ||
+        vel_var == NULL || id == NULL || n_acc == 0u) {
+        return PFT_ERR_INVAL;
+    }
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        if (!(pos_var[a] > PFT_C(0.0)) || !(vel_var[a] > PFT_C(0.0)) ||
+            !(pos[a] >= PFT_REAL_MIN && pos[a] <= PFT_REAL_MAX) ||
+            !(vel[a] >= PFT_REAL_MIN && vel[a] <= PFT_REAL_MAX)) {
+            return PFT_ERR_INVAL;
+        }
+    }
+    for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
+        if (!p->tracks[i].live) {
+            pft_real_t ps[2] = {pos[0], p->naxes == 2u ? pos[1] : PFT_C(0.0)};
+            pft_real_t vs[2] = {vel[0], p->naxes == 2u ? vel[1] : PFT_C(0.0)};
+            pft_real_t pv[2] = {pos_var[0], p->naxes == 2u ? pos_var[1] : PFT_C(1.0)};
+            pft_real_t vv[2] = {vel_var[0], p->naxes == 2u ? vel_var[1] : PFT_C(1.0)};
+            pft_real_t cv[2] = {PFT_C(0.0), PFT_C(0.0)};
+            track_new_(p, &p->tracks[i], ps, vs, pv, vv, cv, amp,
+                       n_acc > p->cfg.max_len ? p->cfg.max_len : n_acc);
+            *id = p->tracks[i].id;
+            reports_(p);
+            return PFT_OK;
+        }
+    }
+    return PFT_ERR_STATE; /* every slot is live */
+}
+
+pft_status_t pft_pte_threshold(pft_pte_t *p, pft_real_t pfa, uint32_t runs,
+                               uint64_t seed, pft_real_t *vt)
+{
+    if (p == NULL || p->ring.buf == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    pft_pte_core_t_ c;
+    core_(p, &c);
+    pft_status_t st = pft_pte_core_mc_(&p->cfg.in, &c, &p->ring, p->row, pfa, runs, seed, vt);
+    if (st == PFT_OK) {
+        (void)pft_pte_reset(p);
+    }
+    return st;
+}
