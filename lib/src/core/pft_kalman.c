@@ -55,15 +55,19 @@ static inline pft_real_t pft_kacc_to_(pft_kacc_t a)
 
 /* ------------------------------- 2x2 symmetric -------------------------------------------- */
 /* Determinant of [[a, b], [b, d]] as an accumulator (q16: exact Q32.32, each product below
- * 2^62 in magnitude); true if the matrix is positive definite (a > 0 and det > 0). */
-static bool pft_det2_pd_(pft_real_t a, pft_real_t b, pft_real_t d, pft_kacc_t *det)
+ * 2^62 in magnitude). PFT_OK if the matrix is positive definite (a > 0 and det > 0),
+ * PFT_ERR_SINGULAR if it is not, PFT_ERR_RANGE if (float) the determinant overflowed. */
+static pft_status_t pft_det2_pd_(pft_real_t a, pft_real_t b, pft_real_t d, pft_kacc_t *det)
 {
 #ifdef PFT_NUMERIC_Q16
     *det = (int64_t)a * d - (int64_t)b * b;
-    return a > 0 && *det > 0;
+    return a > 0 && *det > 0 ? PFT_OK : PFT_ERR_SINGULAR;
 #else
     *det = a * d - b * b;
-    return a > 0.0f && *det > 0.0f && *det <= PFT_REAL_MAX;
+    if (!(a > 0.0f && *det > 0.0f)) {
+        return PFT_ERR_SINGULAR;
+    }
+    return *det <= PFT_REAL_MAX ? PFT_OK : PFT_ERR_RANGE;
 #endif
 }
 
@@ -108,23 +112,25 @@ static bool pft_kdiv_(pft_kacc_t num, pft_kacc_t det, pft_real_t *out)
 #endif
 }
 
-/* Inverse of [[a, b], [b, d]] if positive definite and representable. */
-static bool pft_inv2_(pft_real_t a, pft_real_t b, pft_real_t d, pft_real_t out[4])
+/* Inverse of [[a, b], [b, d]]: PFT_ERR_SINGULAR if not positive definite, PFT_ERR_RANGE if an
+ * entry is not representable; out untouched then. */
+static pft_status_t pft_inv2_(pft_real_t a, pft_real_t b, pft_real_t d, pft_real_t out[4])
 {
     pft_kacc_t det;
     pft_real_t r[3];
-    if (!pft_det2_pd_(a, b, d, &det)) {
-        return false;
+    pft_status_t st = pft_det2_pd_(a, b, d, &det);
+    if (st != PFT_OK) {
+        return st;
     }
     if (!pft_kdiv_(pft_kacc_from_(d), det, &r[0]) || !pft_kdiv_(pft_kacc_from_(pft_neg(b)), det, &r[1]) ||
         !pft_kdiv_(pft_kacc_from_(a), det, &r[2])) {
-        return false;
+        return PFT_ERR_RANGE;
     }
     out[0] = r[0];
     out[1] = r[1];
     out[2] = r[1];
     out[3] = r[2];
-    return true;
+    return PFT_OK;
 }
 
 pft_status_t pft_mat2_inv_sym(const pft_real_t A[4], pft_real_t Ainv[4])
@@ -134,8 +140,9 @@ pft_status_t pft_mat2_inv_sym(const pft_real_t A[4], pft_real_t Ainv[4])
     if (A == NULL || Ainv == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (!pft_inv2_(A[0], A[1], A[3], r)) {
-        return PFT_ERR_RANGE;
+    pft_status_t st = pft_inv2_(A[0], A[1], A[3], r);
+    if (st != PFT_OK) {
+        return st;
     }
     for (i = 0u; i < 4u; ++i) {
         Ainv[i] = r[i];
@@ -154,8 +161,9 @@ pft_status_t pft_mat2_chol(const pft_real_t A[4], pft_real_t L[4])
     {
         pft_kacc_t det;
         pft_real_t schur;
-        if (!pft_det2_pd_(A[0], A[1], A[3], &det)) {
-            return PFT_ERR_RANGE;
+        pft_status_t st = pft_det2_pd_(A[0], A[1], A[3], &det);
+        if (st != PFT_OK) {
+            return st;
         }
         /* Schur complement a11 - a01^2 / a00 = det / a00, in (0, a11]: one rounding. */
         (void)pft_kdiv_(det, pft_kacc_from_(A[0]), &schur);
@@ -261,8 +269,11 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
             s[i] = pft_kacc_to_(acc);
         }
     }
-    if (!pft_det2_pd_(s[0], s[1], s[2], &det)) {
-        return PFT_ERR_RANGE;
+    {
+        pft_status_t st = pft_det2_pd_(s[0], s[1], s[2], &det);
+        if (st != PFT_OK) {
+            return st;
+        }
     }
     /* K = P H' adj(S) / det: the numerator is one exact accumulation, then one rounding
      * (q16: better than rounding S^-1 first, whose entries have few significant bits when S
@@ -371,12 +382,11 @@ pft_status_t pft_kf2_update_scalar(pft_real_t x[2], pft_real_t P[4], const pft_r
     acc = pft_kacc_mac_(acc, h[0], ph[0]);
     acc = pft_kacc_mac_(acc, h[1], ph[1]);
     s = pft_kacc_to_(acc);
-#ifdef PFT_NUMERIC_FLOAT
-    if (!(s > 0.0f) || !(s <= PFT_REAL_MAX)) {
-        return PFT_ERR_RANGE;
+    if (!(s > PFT_C(0.0))) {
+        return PFT_ERR_SINGULAR; /* the innovation variance is not positive */
     }
-#else
-    if (s <= 0) {
+#ifdef PFT_NUMERIC_FLOAT
+    if (!(s <= PFT_REAL_MAX)) {
         return PFT_ERR_RANGE;
     }
 #endif
