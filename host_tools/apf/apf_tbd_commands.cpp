@@ -1,5 +1,5 @@
 // The "apf_tbd" kind: the particle-filter engines of pft_pf.h over the TBD pixel likelihood
-// (pft_tbdm_model_t) on a single-target TBD scenario of the tbd module, against each other and
+// (pft_pf_tbd_model_t) on a single-target TBD scenario of the tbd module, against each other and
 // against the tbd module's RBPF-TBD, at equal particle counts and at equal compute.
 //
 // Scenario file:
@@ -35,7 +35,7 @@
 #include "pf_runner.hpp"
 
 extern "C" {
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 }
 
 using nlohmann::json;
@@ -133,13 +133,13 @@ public:
         }
         pft_tbd_config_t cfg = tbd::make_config(s_, seed);
         if (!model_) {
-            model_ = std::make_unique<pft_tbdm_model_t>();
-            mwork_.assign(pft_tbdm_model_workspace_size(&cfg) / 8 + 1, 0);
-            if (pft_tbdm_model_init(model_.get(), &cfg, mwork_.data(), mwork_.size() * 8, &iface_) != PFT_OK)
-                throw InputError("pft_tbdm_model_init refused the configuration of " + s_.file);
+            model_ = std::make_unique<pft_pf_tbd_model_t>();
+            mwork_.assign(pft_pf_tbd_model_workspace_size(&cfg) / 8 + 1, 0);
+            if (pft_pf_tbd_model_init(model_.get(), &cfg, mwork_.data(), mwork_.size() * 8, &iface_) != PFT_OK)
+                throw InputError("pft_pf_tbd_model_init refused the configuration of " + s_.file);
             runner_ = std::make_unique<PfRunner>(engine_config(e_, n_, cfg.seed), iface_);
         }
-        pft_tbdm_model_restart(model_.get());
+        pft_pf_tbd_model_restart(model_.get());
         runner_->reset(cfg.seed);
         bool present = false;
         uint32_t next_id = 1, cur_id = 0, cur_first = 0;
@@ -160,9 +160,9 @@ public:
             tbd::FrameOut o;
             uint32_t fr = static_cast<uint32_t>(k + 1);
             o.frame = fr;
-            o.search_p = e[PFT_TBDM_E];
-            o.search_x = e[PFT_TBDM_X];
-            o.search_y = e[PFT_TBDM_Y];
+            o.search_p = e[PFT_PF_TBD_E];
+            o.search_x = e[PFT_PF_TBD_X];
+            o.search_y = e[PFT_PF_TBD_Y];
             o.search_valid = true;
             bool now = o.search_p > theta1;
             if (now && !present) {
@@ -178,9 +178,9 @@ public:
                 t.id = cur_id;
                 t.x = o.search_x;
                 t.y = o.search_y;
-                t.vx = e[PFT_TBDM_VX];
-                t.vy = e[PFT_TBDM_VY];
-                t.intensity = e[PFT_TBDM_I];
+                t.vx = e[PFT_PF_TBD_VX];
+                t.vy = e[PFT_PF_TBD_VY];
+                t.intensity = e[PFT_PF_TBD_I];
                 t.p_exist = o.search_p;
                 t.first_frame = cur_first;
                 o.tracks.push_back(t);
@@ -198,7 +198,7 @@ private:
     const tbd::Scenario &s_;
     EngineSpec e_;
     uint32_t n_;
-    std::unique_ptr<pft_tbdm_model_t> model_;
+    std::unique_ptr<pft_pf_tbd_model_t> model_;
     std::vector<uint64_t> mwork_;
     pft_pf_model_t iface_{};
     std::unique_ptr<PfRunner> runner_;

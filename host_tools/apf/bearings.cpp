@@ -150,11 +150,11 @@ BearingsSequence simulate_bearings(const BearingsScenario &s, uint64_t seed, int
     return q;
 }
 
-pft_bearings_config_t bearings_config(const BearingsScenario &s, double first_r_sd)
+pft_pf_bearings_config_t bearings_config(const BearingsScenario &s, double first_r_sd)
 {
     using tbd::to_real;
-    pft_bearings_config_t c;
-    pft_bearings_config_default(&c, s.scale);
+    pft_pf_bearings_config_t c;
+    pft_pf_bearings_config_default(&c, s.scale);
     const double k = s.scale;
     c.T = to_real(s.T);
     c.q_sd = to_real(s.q_sd * k);
@@ -171,8 +171,8 @@ pft_bearings_config_t bearings_config(const BearingsScenario &s, double first_r_
 BearingsFilter::BearingsFilter(const BearingsScenario &s, const EngineSpec &e, uint32_t n)
     : scale_(s.scale)
 {
-    pft_bearings_config_t bc = bearings_config(s, e.first_r_sd);
-    if (pft_bearings_model_init(&model_, &bc, &iface_) != PFT_OK)
+    pft_pf_bearings_config_t bc = bearings_config(s, e.first_r_sd);
+    if (pft_pf_bearings_model_init(&model_, &bc, &iface_) != PFT_OK)
         throw InputError(s.file + ": the bearings model refuses this configuration");
     runner_ = std::make_unique<PfRunner>(engine_config(e, n, 1), iface_);
 }

@@ -3,7 +3,7 @@
 // filter's pass over a simulated sequence through the library's engine and bearings model.
 //
 // Units: the scenario and every reported number are in the benchmark's units; the library
-// model works in positions times `scale` (pft_models.h), converted here.
+// model works in positions times `scale` (pft_pf_models.h), converted here.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 extern "C" {
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 }
 
 #include "pf_runner.hpp"
@@ -33,7 +33,7 @@ struct BearingsScenario {
     std::array<double, 4> prior_mean{0.0, 0.0, 0.4, -0.05};
     std::array<double, 4> prior_sd{0.5, 0.005, 0.3, 0.01};
     int scale = 1000;                ///< model units per benchmark unit
-    double ll_clip = 50.0;           ///< see pft_bearings_config_t
+    double ll_clip = 50.0;           ///< see pft_pf_bearings_config_t
     std::vector<EngineSpec> filters;
     std::vector<uint32_t> particles{100, 200, 500, 1000, 2000, 5000};
     uint32_t table_particles = 1000; ///< N of the per-step tables (paper's Table 1)
@@ -60,7 +60,7 @@ struct BearingsSequence {
 BearingsSequence simulate_bearings(const BearingsScenario &s, uint64_t seed, int steps = 0);
 
 /** The library model configuration (scaled units). */
-pft_bearings_config_t bearings_config(const BearingsScenario &s, double first_r_sd);
+pft_pf_bearings_config_t bearings_config(const BearingsScenario &s, double first_r_sd);
 
 /** One filter over one sequence. */
 struct PassResult {
@@ -84,7 +84,7 @@ public:
 
 private:
     double scale_;
-    pft_bearings_model_t model_{};
+    pft_pf_bearings_model_t model_{};
     pft_pf_model_t iface_{};
     std::unique_ptr<PfRunner> runner_;
 };

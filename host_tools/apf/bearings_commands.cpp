@@ -648,10 +648,10 @@ public:
         };
         // 1. the library's innovation and log-likelihood against double formulas
         BearingsScenario s;
-        pft_bearings_config_t c = bearings_config(s, 0.0);
-        pft_bearings_model_t m;
+        pft_pf_bearings_config_t c = bearings_config(s, 0.0);
+        pft_pf_bearings_model_t m;
         pft_pf_model_t iface;
-        check(pft_bearings_model_init(&m, &c, &iface) == PFT_OK, "model init");
+        check(pft_pf_bearings_model_init(&m, &c, &iface) == PFT_OK, "model init");
 #ifdef PFT_NUMERIC_Q16
         const double tol_e = 1e-4;
 #else
@@ -665,25 +665,25 @@ public:
             pft_real_t st[4] = {to_real(x), 0, to_real(y), 0};
             double xr = from_real(st[0]), yr = from_real(st[2]), zr = from_real(to_real(z));
             double e_ref = wrap_pi(zr - std::atan2(yr, xr));
-            double e = from_real(pft_bearings_innovation(st, to_real(z)));
+            double e = from_real(pft_pf_bearings_innovation(st, to_real(z)));
             double d = std::fabs(e - e_ref);
             d = std::min(d, std::fabs(d - 2 * 3.14159265358979323846));
             worst_e = std::max(worst_e, d);
             double sd = std::fabs(e_ref) / s.r_sd;
             double l_ref = sd <= s.ll_clip ? -0.5 * sd * sd : -(s.ll_clip * sd - 0.5 * s.ll_clip * s.ll_clip);
-            double l = from_real(pft_bearings_loglik(&m, st, to_real(z)));
+            double l = from_real(pft_pf_bearings_loglik(&m, st, to_real(z)));
             double tol_l = 3e-3 * std::fabs(l_ref) + (numeric_name() == std::string("q16") ? 0.02 * (sd + 1) : 1e-4);
             worst_l = std::max(worst_l, std::fabs(l - l_ref) / tol_l);
         }
         check(worst_e <= tol_e, "innovation error " + fmt_e(worst_e) + " > " + fmt_e(tol_e));
         check(worst_l <= 1.0, "log-likelihood error ratio " + fmt_e(worst_l));
         // 2. the default scenario gives the library's default configuration exactly
-        pft_bearings_config_t d;
-        pft_bearings_config_default(&d, 1000);
+        pft_pf_bearings_config_t d;
+        pft_pf_bearings_config_default(&d, 1000);
         bool same = d.q_sd == c.q_sd && d.r_sd == c.r_sd && d.ll_clip == c.ll_clip;
         for (int i = 0; i < 4; ++i)
             same = same && d.prior_mean[i] == c.prior_mean[i] && d.prior_sd[i] == c.prior_sd[i];
-        check(same, "default scenario != pft_bearings_config_default(1000)");
+        check(same, "default scenario != pft_pf_bearings_config_default(1000)");
         // 3. noise-free truth is the straight line
         BearingsScenario s2;
         s2.truth_noise = false;

@@ -17,7 +17,7 @@
 #define PFT_PF_VECTORS_SPEC_H
 #include <string.h>
 #include "pft/pft.h"
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 #include "gv_scene.h"
 
 /* row: est[6], ess_ratio, ess_first, log_evidence, flags, hash states, hash weights,
@@ -80,15 +80,15 @@ static inline void pft_pv_row(const pft_pf_t *pf, int tbd, uint32_t *row)
     for (uint32_t i = 0; i < n; ++i) {
         const pft_real_t *xi = pft_pv_x + (size_t)i * dim;
         for (uint16_t c = 0; c < dim; ++c) {
-            if (tbd && (c == PFT_TBDM_X || c == PFT_TBDM_Y)) {
+            if (tbd && (c == PFT_PF_TBD_X || c == PFT_PF_TBD_Y)) {
                 continue;
             }
             hs = pft_gv_fnv(hs, pft_gv_r(xi[c]));
         }
-        if (tbd && xi[PFT_TBDM_E] != PFT_C(0.0)) {
+        if (tbd && xi[PFT_PF_TBD_E] != PFT_C(0.0)) {
             ++live;
-            sx += pft_gv_r(xi[PFT_TBDM_X]);
-            sy += pft_gv_r(xi[PFT_TBDM_Y]);
+            sx += pft_gv_r(xi[PFT_PF_TBD_X]);
+            sy += pft_gv_r(xi[PFT_PF_TBD_Y]);
         }
         hw = pft_gv_fnv(hw, pft_gv_w(pft_pv_w[i]));
     }
@@ -132,11 +132,11 @@ static inline void pft_pv_known_set(pft_pf_t *pf)
 /* ---- bearings ---- */
 static inline void pft_pv_run_bearings(pft_pf_kind_t kind, int known, uint32_t rows[][PFT_PV_ROW])
 {
-    pft_bearings_config_t bc;
-    pft_bearings_config_default(&bc, 1000);
-    pft_bearings_model_t m;
+    pft_pf_bearings_config_t bc;
+    pft_pf_bearings_config_default(&bc, 1000);
+    pft_pf_bearings_model_t m;
     pft_pf_model_t iface;
-    if (pft_bearings_model_init(&m, &bc, &iface) != PFT_OK) {
+    if (pft_pf_bearings_model_init(&m, &bc, &iface) != PFT_OK) {
         return;
     }
     pft_pf_config_t c;
@@ -163,7 +163,7 @@ static inline void pft_pv_run_bearings(pft_pf_kind_t kind, int known, uint32_t r
 /* ---- linear Gaussian ---- */
 static inline void pft_pv_run_lg(pft_pf_kind_t kind, int known, uint32_t rows[][PFT_PV_ROW])
 {
-    pft_lg_config_t lc;
+    pft_pf_lg_config_t lc;
     memset(&lc, 0, sizeof lc);
     lc.dim = 2;
     lc.meas = 1;
@@ -177,9 +177,9 @@ static inline void pft_pv_run_lg(pft_pf_kind_t kind, int known, uint32_t rows[][
     lc.m0[1] = PFT_C(1.0);
     lc.L0[0] = PFT_C(1.0);
     lc.L0[3] = PFT_C(0.5);
-    pft_lg_model_t m;
+    pft_pf_lg_model_t m;
     pft_pf_model_t iface;
-    if (pft_lg_model_init(&m, &lc, &iface) != PFT_OK) {
+    if (pft_pf_lg_model_init(&m, &lc, &iface) != PFT_OK) {
         return;
     }
     pft_pf_config_t c;
@@ -200,8 +200,8 @@ static inline void pft_pv_run_lg(pft_pf_kind_t kind, int known, uint32_t rows[][
 }
 
 /* ---- TBD pixel model ---- */
-static uint64_t pft_pv_mwork[PFT_TBDM_WORKSPACE_BYTES(PFT_GV_SCENE_W, PFT_GV_SCENE_H) / 8u + 1u];
-static pft_tbdm_model_t pft_pv_tm;
+static uint64_t pft_pv_mwork[PFT_PF_TBD_WORKSPACE_BYTES(PFT_GV_SCENE_W, PFT_GV_SCENE_H) / 8u + 1u];
+static pft_pf_tbd_model_t pft_pv_tm;
 static uint16_t pft_pv_raw[PFT_GV_SCENE_W * PFT_GV_SCENE_H];
 
 static inline void pft_pv_run_tbd(pft_pf_kind_t kind, uint32_t rows[][PFT_PV_ROW])
@@ -215,7 +215,7 @@ static inline void pft_pv_run_tbd(pft_pf_kind_t kind, uint32_t rows[][PFT_PV_ROW
     tc.pixel_offset = PFT_C(-64.0);
     tc.seed = 51u;
     pft_pf_model_t iface;
-    if (pft_tbdm_model_init(&pft_pv_tm, &tc, pft_pv_mwork, sizeof pft_pv_mwork, &iface) != PFT_OK) {
+    if (pft_pf_tbd_model_init(&pft_pv_tm, &tc, pft_pv_mwork, sizeof pft_pv_mwork, &iface) != PFT_OK) {
         return;
     }
     pft_pf_config_t c;

@@ -205,8 +205,8 @@ static inline void pft_tv_run_meas(uint32_t *out)
 {
     pft_tbd_config_t c;
     pft_tv_config(&c, 0, 1u);
-    pft_tbd_model_t m;
-    pft_tbd_model_init(&m, &c);
+    pft_tbd_meas_t m;
+    pft_tbd_meas_init(&m, &c);
     /* one frame of the scene at frame 10, converted like the filters do (z = raw/256 - 64) */
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);
@@ -226,16 +226,16 @@ static inline void pft_tv_run_meas(uint32_t *out)
                                                     (uint32_t)r.i_hi),
                                          (uint32_t)r.j_lo),
                               (uint32_t)r.j_hi);
-        out[o++] = pft_gv_r(pft_tbd_model_h(&m, 9, 8, xs[i], ys[i], PFT_C(20.0)));
-        out[o++] = pft_gv_r(pft_tbd_model_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(20.0)));
-        pft_tbd_model_add_psf(&m, pft_tv_img, xs[i], ys[i], PFT_C(-6.0), 2u);
+        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 9, 8, xs[i], ys[i], PFT_C(20.0)));
+        out[o++] = pft_gv_r(pft_tbd_meas_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(20.0)));
+        pft_tbd_meas_add_psf(&m, pft_tv_img, xs[i], ys[i], PFT_C(-6.0), 2u);
         uint32_t h = PFT_GV_FNV0;
         for (size_t k = 0; k < PFT_GV_SCENE_W * PFT_GV_SCENE_H; ++k) {
             h = pft_gv_fnv(h, pft_gv_r(pft_tv_img[k]));
         }
         out[o++] = h;
-        out[o++] = pft_gv_r(pft_tbd_model_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(14.0)));
-        out[o++] = pft_gv_r(pft_tbd_model_h(&m, 1, 20, xs[i], ys[i], PFT_C(14.0)));
+        out[o++] = pft_gv_r(pft_tbd_meas_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(14.0)));
+        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 1, 20, xs[i], ys[i], PFT_C(14.0)));
     }
 }
 

@@ -8,7 +8,7 @@
  * particle through the dynamics, log likelihood of a measurement, the predicted point used
  * by the APF's first stage, and optional hooks (prior draw, per-measurement preparation,
  * state-estimate reduction). The engine owns the particle set, the log-weights, the RNG and
- * the resampling; the model owns nothing of the particle set. pft_models.h has three
+ * the resampling; the model owns nothing of the particle set. pft_pf_models.h has three
  * models: the bearings-only constant-velocity benchmark, a linear-Gaussian model (tests,
  * Kalman comparisons) and the TBD pixel likelihood of pft_tbd.h.
  *
@@ -43,9 +43,9 @@
  * Number formats (q16 build): states and log-likelihoods are Q16.16 pft_real_t, weights
  * Q2.30 (pft_weight_t). Log-weights are normalised every step, so they stay <= 0; a model's
  * log-likelihood must stay within +-32768 (bearings and TBD models saturate by design, see
- * pft_models.h). The weighted mean is accumulated in int64 (weight x state, < 2^61) and
+ * pft_pf_models.h). The weighted mean is accumulated in int64 (weight x state, < 2^61) and
  * rounded once; covariances square Q16.16 differences with pft_mul, so an entry saturates
- * at 32768 (state units squared): choose state units accordingly (pft_models.h).
+ * at 32768 (state units squared): choose state units accordingly (pft_pf_models.h).
  *
  * Determinism: the engine owns one pft_rng_t, seeded from cfg.seed (pft_pf_reset reseeds);
  * the model draws from it through the rng argument. Float and q16 builds consume the same

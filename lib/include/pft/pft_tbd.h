@@ -179,7 +179,7 @@ typedef struct {
 } pft_tbd_estimate_t;
 
 /**
- * Derived constants of the measurement model for one configuration (pft_tbd_model_init).
+ * Derived constants of the measurement model for one configuration (pft_tbd_meas_init).
  * Public so the model can be evaluated and tested on its own; fields are read-only.
  */
 typedef struct {
@@ -190,14 +190,14 @@ typedef struct {
     pft_real_t c0;           /**< dx*dy/(2 pi S^2): h = I*c0*gx*gy */
     pft_real_t inv_2s2;      /**< 1/(2 S^2) */
     pft_real_t inv_s2n;      /**< 1/sigma^2 */
-} pft_tbd_model_t;
+} pft_tbd_meas_t;
 
 /** Fills m from cfg (cfg must pass pft_tbd_config_check). */
-void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg);
+void pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
 
 /** PSF contribution h(i, j; x, y, I) of a target at (x, y) with intensity I to pixel
  *  (i, j) (1-based). */
-pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_real_t x,
+pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
                            pft_real_t y, pft_real_t intensity);
 
 /**
@@ -206,20 +206,20 @@ pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_r
  * width*height intensities (img[(j-1)*width + (i-1)] is pixel (i, j)). The Gaussian is
  * evaluated separably: 2(2p+1) exponentials per call. Q16: pixel sums saturate at +-32768.
  */
-pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
+pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
                              pft_real_t y, pft_real_t intensity);
 
-/** Largest half-size accepted by pft_tbd_model_add_psf. */
+/** Largest half-size accepted by pft_tbd_meas_add_psf. */
 #define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
 
 /**
  * img += h(i, j; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
  * round(y/dy)), clipped to the image (half is capped at PFT_TBD_MAX_PSF_HALF). A negative
  * intensity subtracts the target: the log likelihood ratio of a second target s on the result,
- * pft_tbd_model_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)
+ * pft_tbd_meas_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)
  * of the pixels where h_t was subtracted. Q16: pixels saturate at +-32768.
  */
-void pft_tbd_model_add_psf(const pft_tbd_model_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
                            pft_real_t intensity, uint8_t half);
 
 /** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
@@ -249,7 +249,7 @@ typedef struct {
     uint8_t *mask;           /**< standalone only: exclusion mask */
     uint32_t *cand;          /**< standalone only: birth candidate pixels */
     /* derived constants */
-    pft_tbd_model_t model;
+    pft_tbd_meas_t model;
     pft_real_t log_n;        /**< log N */
     pft_real_t log_ratio;    /**< log dis_ratio */
     pft_real_t kf_qpos;      /**< q1 T^3 / 3 */

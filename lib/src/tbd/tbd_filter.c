@@ -1,37 +1,9 @@
 /* One TBD filter: RBPF-TBD (ALGORITHMS.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
 #include <string.h>
 
-#include "tbd_internal_.h"
-
-/* ---------------------------- weighted sums (both builds) --------------------------------- */
-#ifdef PFT_NUMERIC_Q16
-/* w (Q2.30) times v (Q16.16) is Q46 in int64; normalised weights sum to ~2^30, so a sum over
- * all particles stays below 2^61. */
-typedef int64_t tbd_acc_t;
-static inline tbd_acc_t acc_wx_(pft_weight_t w, pft_real_t v) { return (int64_t)w * v; }
-static pft_real_t acc_div_(tbd_acc_t num, pft_wacc_t den)
-{
-    if (den == 0u) {
-        return 0;
-    }
-    int64_t d = (int64_t)den;
-    int64_t q = (num >= 0 ? num + d / 2 : num - d / 2) / d;
-    return pft_sat64_(q);
-}
-/* a / b for 0 <= a <= b as a real in [0, 1]. */
-static pft_real_t wratio_(pft_wacc_t a, pft_wacc_t b)
-{
-    if (b == 0u) {
-        return 0;
-    }
-    return (pft_real_t)(((a << 16) + b / 2u) / b);
-}
-#else
-typedef float tbd_acc_t;
-static inline tbd_acc_t acc_wx_(pft_weight_t w, pft_real_t v) { return w * v; }
-static pft_real_t acc_div_(tbd_acc_t num, pft_wacc_t den) { return den > 0.0f ? num / den : 0.0f; }
-static pft_real_t wratio_(pft_wacc_t a, pft_wacc_t b) { return b > 0.0f ? a / b : 0.0f; }
-#endif
+#include "tbd_int.h"
+#include "../core/acc_int.h"
+#include "../core/num_int.h"
 
 /* ---------------------------------- layout ------------------------------------------------ */
 
@@ -67,17 +39,6 @@ void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws)
     f->idx = (uint32_t *)pft_ws_take(ws, (size_t)f->n * sizeof(uint32_t));
 }
 
-static pft_real_t log_count_(uint32_t n)
-{
-    /* log n = log(n / 2^s) + s log 2, with n / 2^s < 2^14 so it is representable in Q16. */
-    uint32_t s = 0;
-    while (s < 31u && (n >> s) >= 16384u) {
-        ++s;
-    }
-    pft_real_t frac = pft_ratio((int32_t)n, (int32_t)(1u << s));
-    return pft_add(pft_log(frac), pft_mul_i(PFT_C(0.693147180559945), (int32_t)s));
-}
-
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f)
 {
     memset(&f->est, 0, sizeof(f->est));
@@ -98,8 +59,8 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
     f->n = n;
     f->births = births;
     f->constrain = constrain;
-    pft_tbd_model_init(&f->model, cfg);
-    f->log_n = log_count_(n);
+    pft_tbd_meas_init(&f->model, cfg);
+    f->log_n = pft_log_count_(n);
     f->log_ratio = pft_log(cfg->dis_ratio);
     pft_real_t T = cfg->T;
     pft_real_t T3 = pft_mul(pft_sq(T), T);
@@ -116,9 +77,9 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
     f->ch_int = pft_sqrt(pft_mul(cfg->q2, T));
     f->vel_sd[0] = pft_sqrt(cfg->vel_var[0]);
     f->vel_sd[1] = pft_sqrt(cfg->vel_var[1]);
-    f->p16_b = pft_tbd_p16_(cfg->pb);
-    f->p16_d = pft_tbd_p16_(cfg->pd);
-    f->p16_eta = pft_tbd_p16_(cfg->eta);
+    f->p16_b = pft_p16_(cfg->pb);
+    f->p16_d = pft_p16_(cfg->pd);
+    f->p16_eta = pft_p16_(cfg->eta);
     pft_rng_seed(&f->rng, seed);
     pft_tbd_filter_reset_stats_(f);
 }
@@ -227,40 +188,41 @@ static void estimate_(pft_tbd_filter_t *f)
     const pft_weight_t *w = f->w;
     pft_wacc_t wt = 0;
     pft_wacc_t we = 0;
-    tbd_acc_t sx = 0, sy = 0, svx = 0, svy = 0, si = 0;
+    pft_acc_t_ sx = PFT_ACC_ZERO_, sy = PFT_ACC_ZERO_, svx = PFT_ACC_ZERO_, svy = PFT_ACC_ZERO_,
+               si = PFT_ACC_ZERO_;
     for (uint32_t s = 0; s < f->n; ++s) {
         wt += w[s];
         if (P->e[s] != 0u) {
             we += w[s];
-            sx += acc_wx_(w[s], P->x[s]);
-            sy += acc_wx_(w[s], P->y[s]);
-            svx += acc_wx_(w[s], P->mx[s]);
-            svy += acc_wx_(w[s], P->my[s]);
-            si += acc_wx_(w[s], P->in[s]);
+            sx += pft_acc_wx_(w[s], P->x[s]);
+            sy += pft_acc_wx_(w[s], P->y[s]);
+            svx += pft_acc_wx_(w[s], P->mx[s]);
+            svy += pft_acc_wx_(w[s], P->my[s]);
+            si += pft_acc_wx_(w[s], P->in[s]);
         }
     }
     pft_tbd_estimate_t *e = &f->est;
-    e->p_exist = wratio_(we, wt);
+    e->p_exist = pft_wratio_(we, wt);
     e->n_eff = pft_ess(w, f->n);
     if (we > 0) {
-        e->x = acc_div_(sx, we);
-        e->y = acc_div_(sy, we);
-        e->vx = acc_div_(svx, we);
-        e->vy = acc_div_(svy, we);
-        e->intensity = acc_div_(si, we);
-        tbd_acc_t cxx = 0, cxy = 0, cyy = 0;
+        e->x = pft_acc_div_(sx, we);
+        e->y = pft_acc_div_(sy, we);
+        e->vx = pft_acc_div_(svx, we);
+        e->vy = pft_acc_div_(svy, we);
+        e->intensity = pft_acc_div_(si, we);
+        pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
         for (uint32_t s = 0; s < f->n; ++s) {
             if (P->e[s] != 0u) {
                 pft_real_t ddx = pft_sub(P->x[s], e->x);
                 pft_real_t ddy = pft_sub(P->y[s], e->y);
-                cxx += acc_wx_(w[s], pft_sq(ddx));
-                cxy += acc_wx_(w[s], pft_mul(ddx, ddy));
-                cyy += acc_wx_(w[s], pft_sq(ddy));
+                cxx += pft_acc_wx_(w[s], pft_sq(ddx));
+                cxy += pft_acc_wx_(w[s], pft_mul(ddx, ddy));
+                cyy += pft_acc_wx_(w[s], pft_sq(ddy));
             }
         }
-        e->pos_cov[0] = acc_div_(cxx, we);
-        e->pos_cov[1] = acc_div_(cxy, we);
-        e->pos_cov[2] = acc_div_(cyy, we);
+        e->pos_cov[0] = pft_acc_div_(cxx, we);
+        e->pos_cov[1] = pft_acc_div_(cxy, we);
+        e->pos_cov[2] = pft_acc_div_(cyy, we);
         e->valid = true;
     }
 }
@@ -404,7 +366,7 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
         /* 3. log-weight (eq. 20; E = 0 particles have likelihood ratio 1) */
         pft_real_t lw = PFT_C(0.0);
         if (e != 0u) {
-            lw = pft_tbd_model_llr(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
+            lw = pft_tbd_meas_llr(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
             if (born) {
                 lw = pft_add(lw, f->birth_lw);
             }

@@ -1,7 +1,7 @@
 /* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (ALGORITHMS.md 2.6-2.7). */
 #include <string.h>
 
-#include "tbd_internal_.h"
+#include "tbd_int.h"
 
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
 {
@@ -140,7 +140,7 @@ static uint8_t psf_half_(const pft_tbd_config_t *cfg)
     return (uint8_t)(cfg->window + cfg->residual_margin);
 }
 
-/* res = img on the pixels pft_tbd_model_add_psf(.., x, y, .., half) touched. */
+/* res = img on the pixels pft_tbd_meas_add_psf(.., x, y, .., half) touched. */
 static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
                          pft_real_t x, pft_real_t y, uint8_t half)
 {
@@ -270,7 +270,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     t->n_events = 0u;
     size_t npix = (size_t)cfg->width * cfg->height;
     memset(t->mask, 0, npix);
-    const pft_tbd_model_t *model = &t->search.model;
+    const pft_tbd_meas_t *model = &t->search.model;
     uint8_t half = psf_half_(cfg);
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
@@ -297,7 +297,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
                 if (u != k && t->records[u].id != 0u) {
                     pft_real_t px, py;
                     predict_(cfg, &t->records[u], &px, &py);
-                    pft_tbd_model_add_psf(model, t->res, px, py,
+                    pft_tbd_meas_add_psf(model, t->res, px, py,
                                           pft_neg(t->records[u].intensity), half);
                 }
             }
@@ -349,7 +349,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (res_search && t->n_tracks > 0u) {
         for (uint32_t u = 0; u < cfg->max_targets; ++u) {
             if (t->records[u].id != 0u) {
-                pft_tbd_model_add_psf(model, t->res, t->records[u].x, t->records[u].y,
+                pft_tbd_meas_add_psf(model, t->res, t->records[u].x, t->records[u].y,
                                       pft_neg(t->records[u].intensity), half);
             }
         }

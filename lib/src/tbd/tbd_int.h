@@ -1,6 +1,6 @@
 /* Internals shared by the TBD sources (not installed). */
-#ifndef PFT_TBD_INTERNAL_H_
-#define PFT_TBD_INTERNAL_H_
+#ifndef PFT_TBD_INT_H
+#define PFT_TBD_INT_H
 
 #include "pft/pft_tbd.h"
 #include "pft/pft_resample.h"
@@ -46,8 +46,6 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
  * false (dst untouched) if no particle qualifies. */
 bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
 
-/* Probability (real in [0, 1]) in 1/65536 steps, same integer in both builds. */
-uint32_t pft_tbd_p16_(pft_real_t p);
 /* Integer pixel index round(v * inv_d), with v clamped so the conversion is defined. */
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d);
 

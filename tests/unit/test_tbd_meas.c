@@ -143,7 +143,7 @@ static void test_config_check_rejects(void)
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
 }
 
-/* pft_tbd_model_add_psf with a negative intensity subtracts h exactly on its window (and
+/* pft_tbd_meas_add_psf with a negative intensity subtracts h exactly on its window (and
  * nowhere else, clipped at the borders); the LLR of a second target s on the result is the
  * joint log likelihood ratio log p(z | s, t) - log p(z | t) = sum over C(s) of
  * h_s (2 (z - h_t) - h_s) / (2 sigma^2), when C(s) lies inside the subtracted window. */
@@ -162,8 +162,8 @@ static void test_add_psf_and_joint_llr(void)
     pft_tbd_config_t c;
     base_cfg(&c);
     c.noise_sigma = R(3.256);
-    pft_tbd_model_t m;
-    pft_tbd_model_init(&m, &c);
+    pft_tbd_meas_t m;
+    pft_tbd_meas_init(&m, &c);
     const double sn = D(R(3.256));
     int checked = 0;
     for (int k = 0; k < 24; ++k) {
@@ -172,7 +172,7 @@ static void test_add_psf_and_joint_llr(void)
         double xs = xt + 0.9 * cos(0.7 * k), ys = yt + 0.9 * sin(0.7 * k), Is = 20.0;
         xt = D(R(xt)); yt = D(R(yt)); xs = D(R(xs)); ys = D(R(ys));
         memcpy(res, img, sizeof img);
-        pft_tbd_model_add_psf(&m, res, R(xt), R(yt), R(-It), 2u);
+        pft_tbd_meas_add_psf(&m, res, R(xt), R(yt), R(-It), 2u);
         int it0 = (int)floor(xt + 0.5), jt0 = (int)floor(yt + 0.5);
         for (int j = 1; j <= H; ++j) {
             for (int i = 1; i <= W; ++i) {
@@ -197,10 +197,10 @@ static void test_add_psf_and_joint_llr(void)
                 ref += ((z - ht) * (z - ht) - (z - ht - hs) * (z - ht - hs)) / (2.0 * sn * sn);
             }
         }
-        double got = D(pft_tbd_model_llr(&m, res, R(xs), R(ys), R(Is)));
+        double got = D(pft_tbd_meas_llr(&m, res, R(xs), R(ys), R(Is)));
         TEST_ASSERT_DOUBLE_WITHIN(tol_llr(ref), ref, got);
         /* and it differs from the single-target LLR on z when the PSFs overlap */
-        double single = D(pft_tbd_model_llr(&m, img, R(xs), R(ys), R(Is)));
+        double single = D(pft_tbd_meas_llr(&m, img, R(xs), R(ys), R(Is)));
         if (fabs(single - ref) > 0.5) {
             ++checked;
         }
@@ -208,7 +208,7 @@ static void test_add_psf_and_joint_llr(void)
     TEST_ASSERT_TRUE_MESSAGE(checked > 12, "the subtraction changes the LLR");
     /* a window entirely outside the image leaves it untouched */
     memcpy(res, img, sizeof img);
-    pft_tbd_model_add_psf(&m, res, R(-5.0), R(3.0), R(-20.0), 2u);
+    pft_tbd_meas_add_psf(&m, res, R(-5.0), R(3.0), R(-20.0), 2u);
     TEST_ASSERT_EQUAL_MEMORY(img, res, sizeof img);
 }
 
@@ -222,24 +222,24 @@ static void test_psf_h_matches_reference(void)
         c.psf_sigma = R(S[a]);
         c.dx = R(dxs[a]);
         c.dy = R(1.0);
-        pft_tbd_model_t m;
-        pft_tbd_model_init(&m, &c);
+        pft_tbd_meas_t m;
+        pft_tbd_meas_init(&m, &c);
         for (int k = 0; k < 40; ++k) {
             double x = 2.0 + 0.137 * k, y = 3.0 + 0.071 * k, I = 10.0 + 0.5 * k;
             int i = (int)floor(x / dxs[a] + 0.5) + (k % 3) - 1;
             int j = (int)floor(y + 0.5) + (k % 2);
             double ref = ref_h(dxs[a], 1.0, S[a], i, j, D(R(x)), D(R(y)), D(R(I)));
-            double got = D(pft_tbd_model_h(&m, i, j, R(x), R(y), R(I)));
+            double got = D(pft_tbd_meas_h(&m, i, j, R(x), R(y), R(I)));
             TEST_ASSERT_DOUBLE_WITHIN(tol_h(ref), ref, got);
         }
     }
     /* the peak amplitude of the paper's target: I = 20, Sigma = 0.7 gives A = 6.4961 */
     pft_tbd_config_t c;
     base_cfg(&c);
-    pft_tbd_model_t m;
-    pft_tbd_model_init(&m, &c);
+    pft_tbd_meas_t m;
+    pft_tbd_meas_init(&m, &c);
     TEST_ASSERT_DOUBLE_WITHIN(tol_h(6.4961), 6.4961,
-                              D(pft_tbd_model_h(&m, 3, 4, R(3.0), R(4.0), R(20.0))));
+                              D(pft_tbd_meas_h(&m, 3, 4, R(3.0), R(4.0), R(20.0))));
 }
 
 static void test_llr_matches_reference(void)
@@ -259,28 +259,28 @@ static void test_llr_matches_reference(void)
         base_cfg(&c);
         c.window = (uint8_t)p;
         c.noise_sigma = R(2.586);
-        pft_tbd_model_t m;
-        pft_tbd_model_init(&m, &c);
+        pft_tbd_meas_t m;
+        pft_tbd_meas_init(&m, &c);
         for (int k = 0; k < 60; ++k) {
             /* includes windows clipped at every border and fully outside */
             double x = -0.8 + 0.197 * k, y = -0.4 + 0.163 * k, I = 8.0 + 0.4 * k;
             double ref = ref_llr(dimg, W, H, p, 1.0, 1.0, 0.7, D(R(2.586)), D(R(x)), D(R(y)),
                                  D(R(I)));
-            double got = D(pft_tbd_model_llr(&m, img, R(x), R(y), R(I)));
+            double got = D(pft_tbd_meas_llr(&m, img, R(x), R(y), R(I)));
             TEST_ASSERT_DOUBLE_WITHIN(tol_llr(ref), ref, got);
         }
     }
     /* Sign: a target on a bright pixel has a positive LLR, on a dark one negative. */
     pft_tbd_config_t c;
     base_cfg(&c);
-    pft_tbd_model_t m;
-    pft_tbd_model_init(&m, &c);
+    pft_tbd_meas_t m;
+    pft_tbd_meas_init(&m, &c);
     for (int k = 0; k < W * H; ++k) {
         img[k] = R(0.0);
     }
     img[3 * W + 4] = R(7.0); /* pixel (5, 4) */
-    TEST_ASSERT_TRUE(D(pft_tbd_model_llr(&m, img, R(5.0), R(4.0), R(20.0))) > 1.0);
-    TEST_ASSERT_TRUE(D(pft_tbd_model_llr(&m, img, R(2.0), R(7.0), R(20.0))) < -1.0);
+    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(5.0), R(4.0), R(20.0))) > 1.0);
+    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(2.0), R(7.0), R(20.0))) < -1.0);
 }
 
 static void test_window_region(void)

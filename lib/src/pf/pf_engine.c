@@ -3,32 +3,20 @@
 #include <string.h>
 
 #include "pft/pft_pf.h"
-#include "filter/pf_acc_.h"
+#include "../core/acc_int.h"
 
 /* ---------------------------------- helpers ----------------------------------------------- */
-
-/* log n for n >= 1: log(n / 2^s) + s log 2 with n / 2^s < 2^14 (representable in Q16.16). */
-static pft_real_t log_count_(uint32_t n)
-{
-    uint32_t s = 0;
-    while (s < 31u && (n >> s) >= 16384u) {
-        ++s;
-    }
-    pft_real_t frac = pft_ratio((int32_t)(n >> s), 1);
-    /* the bits shifted out are below 2^-14 relative: log changes by < 2^-14 (~4 LSB) */
-    return pft_add(pft_log(frac), pft_mul_i(PFT_C(0.693147180559945), (int32_t)s));
-}
 
 static pft_real_t floor_lw_(pft_real_t v) { return pft_max(v, PFT_PF_LW_FLOOR); }
 
 void pft_pf_weighted_mean(const pft_real_t *x, const pft_weight_t *w, uint32_t n, uint16_t dim,
                           pft_real_t *mean)
 {
-    pft_pf_acc_t_ acc[PFT_PF_MAX_DIM];
+    pft_acc_t_ acc[PFT_PF_MAX_DIM];
     pft_wacc_t wt = 0;
     uint16_t d = dim > PFT_PF_MAX_DIM ? (uint16_t)PFT_PF_MAX_DIM : dim;
     for (uint16_t c = 0; c < d; ++c) {
-        acc[c] = PFT_PF_ACC_ZERO_;
+        acc[c] = PFT_ACC_ZERO_;
     }
     for (uint32_t i = 0; i < n; ++i) {
         const pft_real_t *xi = x + (size_t)i * dim;
@@ -37,11 +25,11 @@ void pft_pf_weighted_mean(const pft_real_t *x, const pft_weight_t *w, uint32_t n
             continue;
         }
         for (uint16_t c = 0; c < d; ++c) {
-            acc[c] += pft_pf_acc_wx_(w[i], xi[c]);
+            acc[c] += pft_acc_wx_(w[i], xi[c]);
         }
     }
     for (uint16_t c = 0; c < d; ++c) {
-        mean[c] = pft_pf_acc_div_(acc[c], wt);
+        mean[c] = pft_acc_div_(acc[c], wt);
     }
 }
 
@@ -228,7 +216,7 @@ pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, const pft_pf_
         memset(pf, 0, sizeof(*pf));
         return PFT_ERR_NOMEM;
     }
-    pf->log_n = log_count_(pf->n);
+    pf->log_n = pft_log_count_(pf->n);
     memset(pf->x_alt, 0, sb);
     memset(pf->fl, 0, rb);
     memset(pf->scratch, 0, wb);
@@ -321,12 +309,12 @@ pft_status_t pft_pf_mean_cov(const pft_pf_t *pf, pft_real_t *mean, pft_real_t *c
     if (cov == NULL) {
         return PFT_OK;
     }
-    pft_pf_acc_t_ acc[PFT_PF_MAX_DIM * (PFT_PF_MAX_DIM + 1u) / 2u];
+    pft_acc_t_ acc[PFT_PF_MAX_DIM * (PFT_PF_MAX_DIM + 1u) / 2u];
     pft_real_t dv[PFT_PF_MAX_DIM];
     size_t nt = (size_t)d * (d + 1u) / 2u;
     pft_wacc_t wt = 0;
     for (size_t t = 0; t < nt; ++t) {
-        acc[t] = PFT_PF_ACC_ZERO_;
+        acc[t] = PFT_ACC_ZERO_;
     }
     for (uint32_t i = 0; i < pf->n; ++i) {
         pft_weight_t wi = pf->w[i];
@@ -341,14 +329,14 @@ pft_status_t pft_pf_mean_cov(const pft_pf_t *pf, pft_real_t *mean, pft_real_t *c
         size_t t = 0;
         for (uint16_t a = 0; a < d; ++a) {
             for (uint16_t b = a; b < d; ++b) {
-                acc[t++] += pft_pf_acc_wx_(wi, pft_mul(dv[a], dv[b]));
+                acc[t++] += pft_acc_wx_(wi, pft_mul(dv[a], dv[b]));
             }
         }
     }
     size_t t = 0;
     for (uint16_t a = 0; a < d; ++a) {
         for (uint16_t b = a; b < d; ++b) {
-            pft_real_t v = pft_pf_acc_div_(acc[t++], wt);
+            pft_real_t v = pft_acc_div_(acc[t++], wt);
             cov[(size_t)a * d + b] = v;
             cov[(size_t)b * d + a] = v;
         }

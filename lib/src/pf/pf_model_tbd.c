@@ -1,22 +1,23 @@
 /* The TBD pixel likelihood (pft_tbd.h, ALGORITHMS.md 1 and 2.9) as a model of the
  * particle-filter engine: with SIR it is the bootstrap PF-TBD, with the APF the APF-TBD.
  * The measurement model, frame conversion and birth-candidate scan are the tbd module's
- * (pft_tbd_model_llr and its internal frame helpers); only the engine differs. */
+ * (pft_tbd_meas_llr and its internal frame helpers); only the engine differs. */
 #include <string.h>
 
-#include "pft/pft_models.h"
-#include "filter/pf_acc_.h"
-#include "tbd/tbd_internal_.h"
+#include "pft/pft_pf_models.h"
+#include "../core/acc_int.h"
+#include "../core/num_int.h"
+#include "../tbd/tbd_int.h"
 
-size_t pft_tbdm_model_workspace_size(const pft_tbd_config_t *cfg)
+size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg)
 {
     if (cfg == NULL) {
         return 0u;
     }
-    return PFT_TBDM_WORKSPACE_BYTES(cfg->width, cfg->height);
+    return PFT_PF_TBD_WORKSPACE_BYTES(cfg->width, cfg->height);
 }
 
-void pft_tbdm_model_restart(pft_tbdm_model_t *m)
+void pft_pf_tbd_model_restart(pft_pf_tbd_model_t *m)
 {
     if (m == NULL) {
         return;
@@ -30,7 +31,7 @@ void pft_tbdm_model_restart(pft_tbdm_model_t *m)
 
 static pft_status_t tbdm_begin_(void *ctx, const void *z)
 {
-    pft_tbdm_model_t *m = (pft_tbdm_model_t *)ctx;
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
     const pft_frame_t *frame = (const pft_frame_t *)z;
     if (frame == NULL) {
         return PFT_ERR_INVAL;
@@ -57,17 +58,17 @@ static void tbdm_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     (void)ctx;
     (void)rng;
-    memset(x, 0, PFT_TBDM_DIM * sizeof(pft_real_t)); /* E = 0: no target before frame 1 */
+    memset(x, 0, PFT_PF_TBD_DIM * sizeof(pft_real_t)); /* E = 0: no target before frame 1 */
 }
 
-static void axis_(const pft_tbdm_model_t *m, pft_real_t *pos, pft_real_t *v, pft_real_t g1,
+static void axis_(const pft_pf_tbd_model_t *m, pft_real_t *pos, pft_real_t *v, pft_real_t g1,
                   pft_real_t g2)
 {
     *pos = pft_add(*pos, pft_add(pft_mul(m->cfg.T, *v), pft_mul(m->ch_pos, g1)));
     *v = pft_add(*v, pft_add(pft_mul(m->ch_cross, g1), pft_mul(m->ch_vel, g2)));
 }
 
-static void birth_(const pft_tbdm_model_t *m, pft_real_t *x, pft_rng_t *rng)
+static void birth_(const pft_pf_tbd_model_t *m, pft_real_t *x, pft_rng_t *rng)
 {
     const pft_tbd_config_t *c = &m->cfg;
     uint32_t k = m->cand[pft_rng_below(rng, m->n_cand)];
@@ -76,33 +77,33 @@ static void birth_(const pft_tbdm_model_t *m, pft_real_t *x, pft_rng_t *rng)
     pft_real_t ux = pft_rng_uniform(rng);
     pft_real_t uy = pft_rng_uniform(rng);
     /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    x[PFT_TBDM_X] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    x[PFT_TBDM_Y] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
-    x[PFT_TBDM_I] = pft_rng_uniform_range(rng, c->i_min, c->i_max);
-    x[PFT_TBDM_VX] = pft_add(c->vel_mean[0], pft_mul(m->vel_sd[0], pft_rng_gauss(rng)));
-    x[PFT_TBDM_VY] = pft_add(c->vel_mean[1], pft_mul(m->vel_sd[1], pft_rng_gauss(rng)));
-    x[PFT_TBDM_E] = PFT_C(2.0);
+    x[PFT_PF_TBD_X] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
+    x[PFT_PF_TBD_Y] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
+    x[PFT_PF_TBD_I] = pft_rng_uniform_range(rng, c->i_min, c->i_max);
+    x[PFT_PF_TBD_VX] = pft_add(c->vel_mean[0], pft_mul(m->vel_sd[0], pft_rng_gauss(rng)));
+    x[PFT_PF_TBD_VY] = pft_add(c->vel_mean[1], pft_mul(m->vel_sd[1], pft_rng_gauss(rng)));
+    x[PFT_PF_TBD_E] = PFT_C(2.0);
 }
 
 /* A target whose window centre leaves the image leaves the surveillance region: E = 0 (the
  * tbd module's rule). */
-static void leave_image_(const pft_tbdm_model_t *m, pft_real_t *x)
+static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
 {
-    int32_t i0 = pft_tbd_pix_(x[PFT_TBDM_X], m->m.inv_dx);
-    int32_t j0 = pft_tbd_pix_(x[PFT_TBDM_Y], m->m.inv_dy);
+    int32_t i0 = pft_tbd_pix_(x[PFT_PF_TBD_X], m->m.inv_dx);
+    int32_t j0 = pft_tbd_pix_(x[PFT_PF_TBD_Y], m->m.inv_dy);
     if (i0 < 1 || j0 < 1 || i0 > (int32_t)m->cfg.width || j0 > (int32_t)m->cfg.height) {
-        x[PFT_TBDM_E] = PFT_C(0.0);
+        x[PFT_PF_TBD_E] = PFT_C(0.0);
     }
 }
 
 static void tbdm_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_tbdm_model_t *m = (const pft_tbdm_model_t *)ctx;
+    const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     /* existence: one draw per particle, decided on its top 16 bits (same as the tbd module) */
     uint32_t u = pft_rng_u32(rng) >> 16;
-    if (x[PFT_TBDM_E] != PFT_C(0.0)) {
+    if (x[PFT_PF_TBD_E] != PFT_C(0.0)) {
         if (u < m->p16_d) {
-            x[PFT_TBDM_E] = PFT_C(0.0);
+            x[PFT_PF_TBD_E] = PFT_C(0.0);
             return;
         }
         pft_real_t g1 = pft_rng_gauss(rng);
@@ -110,10 +111,10 @@ static void tbdm_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
         pft_real_t g3 = pft_rng_gauss(rng);
         pft_real_t g4 = pft_rng_gauss(rng);
         pft_real_t g5 = pft_rng_gauss(rng);
-        axis_(m, &x[PFT_TBDM_X], &x[PFT_TBDM_VX], g1, g2);
-        axis_(m, &x[PFT_TBDM_Y], &x[PFT_TBDM_VY], g3, g4);
-        x[PFT_TBDM_I] = pft_add(x[PFT_TBDM_I], pft_mul(m->ch_int, g5));
-        x[PFT_TBDM_E] = PFT_C(1.0);
+        axis_(m, &x[PFT_PF_TBD_X], &x[PFT_PF_TBD_VX], g1, g2);
+        axis_(m, &x[PFT_PF_TBD_Y], &x[PFT_PF_TBD_VY], g3, g4);
+        x[PFT_PF_TBD_I] = pft_add(x[PFT_PF_TBD_I], pft_mul(m->ch_int, g5));
+        x[PFT_PF_TBD_E] = PFT_C(1.0);
         leave_image_(m, x);
         return;
     }
@@ -126,13 +127,13 @@ static void tbdm_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 
 static pft_real_t tbdm_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
-    const pft_tbdm_model_t *m = (const pft_tbdm_model_t *)ctx;
+    const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     (void)z; /* the converted frame of begin() */
-    if (x[PFT_TBDM_E] == PFT_C(0.0)) {
+    if (x[PFT_PF_TBD_E] == PFT_C(0.0)) {
         return PFT_C(0.0);
     }
-    pft_real_t ll = pft_tbd_model_llr(&m->m, m->img, x[PFT_TBDM_X], x[PFT_TBDM_Y], x[PFT_TBDM_I]);
-    if (x[PFT_TBDM_E] > PFT_C(1.0)) {
+    pft_real_t ll = pft_tbd_meas_llr(&m->m, m->img, x[PFT_PF_TBD_X], x[PFT_PF_TBD_Y], x[PFT_PF_TBD_I]);
+    if (x[PFT_PF_TBD_E] > PFT_C(1.0)) {
         ll = pft_add(ll, m->birth_lw);
     }
     return ll;
@@ -140,45 +141,45 @@ static pft_real_t tbdm_loglik_(void *ctx, const pft_real_t *x, const void *z)
 
 static void tbdm_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 {
-    const pft_tbdm_model_t *m = (const pft_tbdm_model_t *)ctx;
-    memcpy(mu, x, PFT_TBDM_DIM * sizeof(pft_real_t));
-    if (x[PFT_TBDM_E] != PFT_C(0.0)) {
-        mu[PFT_TBDM_X] = pft_add(x[PFT_TBDM_X], pft_mul(m->cfg.T, x[PFT_TBDM_VX]));
-        mu[PFT_TBDM_Y] = pft_add(x[PFT_TBDM_Y], pft_mul(m->cfg.T, x[PFT_TBDM_VY]));
-        mu[PFT_TBDM_E] = PFT_C(1.0);
+    const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
+    memcpy(mu, x, PFT_PF_TBD_DIM * sizeof(pft_real_t));
+    if (x[PFT_PF_TBD_E] != PFT_C(0.0)) {
+        mu[PFT_PF_TBD_X] = pft_add(x[PFT_PF_TBD_X], pft_mul(m->cfg.T, x[PFT_PF_TBD_VX]));
+        mu[PFT_PF_TBD_Y] = pft_add(x[PFT_PF_TBD_Y], pft_mul(m->cfg.T, x[PFT_PF_TBD_VY]));
+        mu[PFT_PF_TBD_E] = PFT_C(1.0);
     }
 }
 
 static void tbdm_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
                            pft_real_t *est)
 {
-    pft_tbdm_model_t *m = (pft_tbdm_model_t *)ctx;
-    pft_pf_acc_t_ acc[5];
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
+    pft_acc_t_ acc[5];
     pft_wacc_t wt = 0;
     pft_wacc_t we = 0;
     for (int c = 0; c < 5; ++c) {
-        acc[c] = PFT_PF_ACC_ZERO_;
+        acc[c] = PFT_ACC_ZERO_;
     }
     for (uint32_t i = 0; i < n; ++i) {
-        const pft_real_t *xi = x + (size_t)i * PFT_TBDM_DIM;
+        const pft_real_t *xi = x + (size_t)i * PFT_PF_TBD_DIM;
         wt += w[i];
-        if (xi[PFT_TBDM_E] != PFT_C(0.0)) {
+        if (xi[PFT_PF_TBD_E] != PFT_C(0.0)) {
             we += w[i];
             for (int c = 0; c < 5; ++c) {
-                acc[c] += pft_pf_acc_wx_(w[i], xi[c]);
+                acc[c] += pft_acc_wx_(w[i], xi[c]);
             }
         }
     }
     if (we > 0) {
         for (int c = 0; c < 5; ++c) {
-            m->last[c] = pft_pf_acc_div_(acc[c], we);
+            m->last[c] = pft_acc_div_(acc[c], we);
         }
     }
     memcpy(est, m->last, sizeof(m->last));
-    est[PFT_TBDM_E] = pft_pf_wratio_(we, wt);
+    est[PFT_PF_TBD_E] = pft_wratio_(we, wt);
 }
 
-pft_status_t pft_tbdm_model_init(pft_tbdm_model_t *m, const pft_tbd_config_t *cfg, void *work,
+pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len, pft_pf_model_t *iface)
 {
     if (m == NULL || cfg == NULL || work == NULL || iface == NULL) {
@@ -197,7 +198,7 @@ pft_status_t pft_tbdm_model_init(pft_tbdm_model_t *m, const pft_tbd_config_t *cf
     }
     memset(m, 0, sizeof(*m));
     m->cfg = *cfg;
-    pft_tbd_model_init(&m->m, cfg);
+    pft_tbd_meas_init(&m->m, cfg);
     m->img = img;
     m->cand = cand;
     memset(img, 0, npix * sizeof(pft_real_t));
@@ -214,12 +215,12 @@ pft_status_t pft_tbdm_model_init(pft_tbdm_model_t *m, const pft_tbd_config_t *cf
     m->ch_int = pft_sqrt(pft_mul(cfg->q2, T));
     m->vel_sd[0] = pft_sqrt(cfg->vel_var[0]);
     m->vel_sd[1] = pft_sqrt(cfg->vel_var[1]);
-    m->p16_b = pft_tbd_p16_(cfg->pb);
-    m->p16_d = pft_tbd_p16_(cfg->pd);
-    m->p16_eta = pft_tbd_p16_(cfg->eta);
-    pft_tbdm_model_restart(m);
+    m->p16_b = pft_p16_(cfg->pb);
+    m->p16_d = pft_p16_(cfg->pd);
+    m->p16_eta = pft_p16_(cfg->eta);
+    pft_pf_tbd_model_restart(m);
     memset(iface, 0, sizeof(*iface));
-    iface->dim = PFT_TBDM_DIM;
+    iface->dim = PFT_PF_TBD_DIM;
     iface->ctx = m;
     iface->begin = tbdm_begin_;
     iface->sample_prior = tbdm_prior_;

@@ -2,9 +2,9 @@
  * for the particle-filter engine. */
 #include <string.h>
 
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 
-void pft_bearings_config_default(pft_bearings_config_t *cfg, int32_t scale)
+void pft_pf_bearings_config_default(pft_pf_bearings_config_t *cfg, int32_t scale)
 {
     if (cfg == NULL) {
         return;
@@ -15,21 +15,21 @@ void pft_bearings_config_default(pft_bearings_config_t *cfg, int32_t scale)
     /* exact integer ratios: value * scale = (k * scale) / 1000 */
     cfg->q_sd = pft_ratio(s, 1000);
     cfg->r_sd = PFT_C(0.005);
-    cfg->prior_mean[PFT_BRG_X] = PFT_C(0.0);
-    cfg->prior_mean[PFT_BRG_VX] = PFT_C(0.0);
-    cfg->prior_mean[PFT_BRG_Y] = pft_ratio(400 * s, 1000);
-    cfg->prior_mean[PFT_BRG_VY] = pft_ratio(-50 * s, 1000);
-    cfg->prior_sd[PFT_BRG_X] = pft_ratio(500 * s, 1000);
-    cfg->prior_sd[PFT_BRG_VX] = pft_ratio(5 * s, 1000);
-    cfg->prior_sd[PFT_BRG_Y] = pft_ratio(300 * s, 1000);
-    cfg->prior_sd[PFT_BRG_VY] = pft_ratio(10 * s, 1000);
+    cfg->prior_mean[PFT_PF_BRG_X] = PFT_C(0.0);
+    cfg->prior_mean[PFT_PF_BRG_VX] = PFT_C(0.0);
+    cfg->prior_mean[PFT_PF_BRG_Y] = pft_ratio(400 * s, 1000);
+    cfg->prior_mean[PFT_PF_BRG_VY] = pft_ratio(-50 * s, 1000);
+    cfg->prior_sd[PFT_PF_BRG_X] = pft_ratio(500 * s, 1000);
+    cfg->prior_sd[PFT_PF_BRG_VX] = pft_ratio(5 * s, 1000);
+    cfg->prior_sd[PFT_PF_BRG_Y] = pft_ratio(300 * s, 1000);
+    cfg->prior_sd[PFT_PF_BRG_VY] = pft_ratio(10 * s, 1000);
     cfg->ll_clip = PFT_C(50.0);
     cfg->first_r_sd = PFT_C(0.0);
 }
 
-pft_real_t pft_bearings_innovation(const pft_real_t *x, pft_real_t z)
+pft_real_t pft_pf_bearings_innovation(const pft_real_t *x, pft_real_t z)
 {
-    pft_real_t e = pft_sub(z, pft_atan2(x[PFT_BRG_Y], x[PFT_BRG_X]));
+    pft_real_t e = pft_sub(z, pft_atan2(x[PFT_PF_BRG_Y], x[PFT_PF_BRG_X]));
     /* both terms in [-pi, pi] (z may be any angle in (-pi, pi]): one correction suffices;
      * a second keeps a z slightly outside that interval in range too */
     for (int k = 0; k < 2; ++k) {
@@ -43,7 +43,7 @@ pft_real_t pft_bearings_innovation(const pft_real_t *x, pft_real_t z)
 }
 
 /* -s^2/2 inside the clip, the tangent line beyond. s >= 0. */
-static pft_real_t ll_of_s_(const pft_bearings_model_t *m, pft_real_t s)
+static pft_real_t ll_of_s_(const pft_pf_bearings_model_t *m, pft_real_t s)
 {
     if (s <= m->cfg.ll_clip) {
         return pft_neg(pft_mul(pft_sq(s), PFT_C(0.5)));
@@ -51,9 +51,9 @@ static pft_real_t ll_of_s_(const pft_bearings_model_t *m, pft_real_t s)
     return pft_neg(pft_sub(pft_mul(m->cfg.ll_clip, s), m->half_clip2));
 }
 
-pft_real_t pft_bearings_loglik(const pft_bearings_model_t *m, const pft_real_t *x, pft_real_t z)
+pft_real_t pft_pf_bearings_loglik(const pft_pf_bearings_model_t *m, const pft_real_t *x, pft_real_t z)
 {
-    pft_real_t s = pft_abs(pft_mul(pft_bearings_innovation(x, z), m->inv_r));
+    pft_real_t s = pft_abs(pft_mul(pft_pf_bearings_innovation(x, z), m->inv_r));
     return ll_of_s_(m, s);
 }
 
@@ -61,48 +61,48 @@ pft_real_t pft_bearings_loglik(const pft_bearings_model_t *m, const pft_real_t *
 
 static void brg_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_bearings_model_t *m = (const pft_bearings_model_t *)ctx;
-    for (int c = 0; c < PFT_BRG_DIM; ++c) {
+    const pft_pf_bearings_model_t *m = (const pft_pf_bearings_model_t *)ctx;
+    for (int c = 0; c < PFT_PF_BRG_DIM; ++c) {
         x[c] = pft_add(m->cfg.prior_mean[c], pft_mul(m->cfg.prior_sd[c], pft_rng_gauss(rng)));
     }
 }
 
 static void brg_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_bearings_model_t *m = (const pft_bearings_model_t *)ctx;
+    const pft_pf_bearings_model_t *m = (const pft_pf_bearings_model_t *)ctx;
     pft_real_t T = m->cfg.T;
     pft_real_t wx = pft_rng_gauss(rng);
     pft_real_t wy = pft_rng_gauss(rng);
-    x[PFT_BRG_X] = pft_add(x[PFT_BRG_X], pft_add(pft_mul(T, x[PFT_BRG_VX]), pft_mul(m->pos_gain, wx)));
-    x[PFT_BRG_VX] = pft_add(x[PFT_BRG_VX], pft_mul(m->vel_gain, wx));
-    x[PFT_BRG_Y] = pft_add(x[PFT_BRG_Y], pft_add(pft_mul(T, x[PFT_BRG_VY]), pft_mul(m->pos_gain, wy)));
-    x[PFT_BRG_VY] = pft_add(x[PFT_BRG_VY], pft_mul(m->vel_gain, wy));
+    x[PFT_PF_BRG_X] = pft_add(x[PFT_PF_BRG_X], pft_add(pft_mul(T, x[PFT_PF_BRG_VX]), pft_mul(m->pos_gain, wx)));
+    x[PFT_PF_BRG_VX] = pft_add(x[PFT_PF_BRG_VX], pft_mul(m->vel_gain, wx));
+    x[PFT_PF_BRG_Y] = pft_add(x[PFT_PF_BRG_Y], pft_add(pft_mul(T, x[PFT_PF_BRG_VY]), pft_mul(m->pos_gain, wy)));
+    x[PFT_PF_BRG_VY] = pft_add(x[PFT_PF_BRG_VY], pft_mul(m->vel_gain, wy));
 }
 
 static pft_real_t brg_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
-    const pft_bearings_model_t *m = (const pft_bearings_model_t *)ctx;
-    return pft_bearings_loglik(m, x, *(const pft_real_t *)z);
+    const pft_pf_bearings_model_t *m = (const pft_pf_bearings_model_t *)ctx;
+    return pft_pf_bearings_loglik(m, x, *(const pft_real_t *)z);
 }
 
 static pft_real_t brg_loglik_first_(void *ctx, const pft_real_t *mu, const void *z)
 {
-    const pft_bearings_model_t *m = (const pft_bearings_model_t *)ctx;
-    pft_real_t e = pft_bearings_innovation(mu, *(const pft_real_t *)z);
+    const pft_pf_bearings_model_t *m = (const pft_pf_bearings_model_t *)ctx;
+    pft_real_t e = pft_pf_bearings_innovation(mu, *(const pft_real_t *)z);
     return ll_of_s_(m, pft_abs(pft_mul(e, m->inv_r_first)));
 }
 
 static void brg_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 {
-    const pft_bearings_model_t *m = (const pft_bearings_model_t *)ctx;
+    const pft_pf_bearings_model_t *m = (const pft_pf_bearings_model_t *)ctx;
     pft_real_t T = m->cfg.T;
-    mu[PFT_BRG_X] = pft_add(x[PFT_BRG_X], pft_mul(T, x[PFT_BRG_VX]));
-    mu[PFT_BRG_VX] = x[PFT_BRG_VX];
-    mu[PFT_BRG_Y] = pft_add(x[PFT_BRG_Y], pft_mul(T, x[PFT_BRG_VY]));
-    mu[PFT_BRG_VY] = x[PFT_BRG_VY];
+    mu[PFT_PF_BRG_X] = pft_add(x[PFT_PF_BRG_X], pft_mul(T, x[PFT_PF_BRG_VX]));
+    mu[PFT_PF_BRG_VX] = x[PFT_PF_BRG_VX];
+    mu[PFT_PF_BRG_Y] = pft_add(x[PFT_PF_BRG_Y], pft_mul(T, x[PFT_PF_BRG_VY]));
+    mu[PFT_PF_BRG_VY] = x[PFT_PF_BRG_VY];
 }
 
-pft_status_t pft_bearings_model_init(pft_bearings_model_t *m, const pft_bearings_config_t *cfg,
+pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf_bearings_config_t *cfg,
                                      pft_pf_model_t *iface)
 {
     if (m == NULL || cfg == NULL || iface == NULL) {
@@ -110,7 +110,7 @@ pft_status_t pft_bearings_model_init(pft_bearings_model_t *m, const pft_bearings
     }
     bool ok = cfg->T > PFT_C(0.0) && cfg->q_sd > PFT_C(0.0) && cfg->r_sd > PFT_C(0.0) &&
               cfg->ll_clip > PFT_C(0.0) && cfg->first_r_sd >= PFT_C(0.0);
-    for (int c = 0; c < PFT_BRG_DIM; ++c) {
+    for (int c = 0; c < PFT_PF_BRG_DIM; ++c) {
         ok = ok && cfg->prior_sd[c] >= PFT_C(0.0);
     }
     if (!ok) {
@@ -124,7 +124,7 @@ pft_status_t pft_bearings_model_init(pft_bearings_model_t *m, const pft_bearings
     m->pos_gain = pft_mul(pft_mul(pft_sq(cfg->T), PFT_C(0.5)), cfg->q_sd);
     m->vel_gain = pft_mul(cfg->T, cfg->q_sd);
     memset(iface, 0, sizeof(*iface));
-    iface->dim = PFT_BRG_DIM;
+    iface->dim = PFT_PF_BRG_DIM;
     iface->ctx = m;
     iface->sample_prior = brg_prior_;
     iface->propagate = brg_propagate_;

@@ -2,7 +2,7 @@
  * posterior: the reference of the engine tests). */
 #include <string.h>
 
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 
 static void matvec_(const pft_real_t *A, const pft_real_t *v, uint16_t rows, uint16_t cols,
                     pft_real_t *out)
@@ -18,10 +18,10 @@ static void matvec_(const pft_real_t *A, const pft_real_t *v, uint16_t rows, uin
 
 static void lg_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_lg_model_t *m = (const pft_lg_model_t *)ctx;
+    const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     uint16_t d = m->cfg.dim;
-    pft_real_t g[PFT_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t t[PFT_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t g[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t t[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
     for (uint16_t c = 0; c < d; ++c) {
         g[c] = pft_rng_gauss(rng);
     }
@@ -33,17 +33,17 @@ static void lg_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 
 static void lg_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 {
-    const pft_lg_model_t *m = (const pft_lg_model_t *)ctx;
+    const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     matvec_(m->cfg.F, x, m->cfg.dim, m->cfg.dim, mu);
 }
 
 static void lg_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_lg_model_t *m = (const pft_lg_model_t *)ctx;
+    const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     uint16_t d = m->cfg.dim;
-    pft_real_t g[PFT_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t fx[PFT_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t t[PFT_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t g[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t fx[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t t[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
     for (uint16_t c = 0; c < d; ++c) {
         g[c] = pft_rng_gauss(rng);
     }
@@ -56,9 +56,9 @@ static void lg_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 
 static pft_real_t lg_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
-    const pft_lg_model_t *m = (const pft_lg_model_t *)ctx;
+    const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     const pft_real_t *zz = (const pft_real_t *)z;
-    pft_real_t hx[PFT_LG_MAX_MEAS] = {PFT_C(0.0)};
+    pft_real_t hx[PFT_PF_LG_MAX_MEAS] = {PFT_C(0.0)};
     pft_real_t ll = PFT_C(0.0);
     matvec_(m->cfg.H, x, m->cfg.meas, m->cfg.dim, hx);
     for (uint16_t k = 0; k < m->cfg.meas; ++k) {
@@ -68,14 +68,14 @@ static pft_real_t lg_loglik_(void *ctx, const pft_real_t *x, const void *z)
     return ll;
 }
 
-pft_status_t pft_lg_model_init(pft_lg_model_t *m, const pft_lg_config_t *cfg,
+pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t *cfg,
                                pft_pf_model_t *iface)
 {
     if (m == NULL || cfg == NULL || iface == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (cfg->dim < 1u || cfg->dim > PFT_LG_MAX_DIM || cfg->meas < 1u ||
-        cfg->meas > PFT_LG_MAX_MEAS) {
+    if (cfg->dim < 1u || cfg->dim > PFT_PF_LG_MAX_DIM || cfg->meas < 1u ||
+        cfg->meas > PFT_PF_LG_MAX_MEAS) {
         return PFT_ERR_INVAL;
     }
     for (uint16_t k = 0; k < cfg->meas; ++k) {

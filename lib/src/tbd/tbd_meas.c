@@ -1,7 +1,8 @@
 /* TBD configuration, measurement model (PSF, windowed LLR) and frame preparation. */
 #include <string.h>
 
-#include "tbd_internal_.h"
+#include "tbd_int.h"
+#include "../core/num_int.h"
 
 void pft_tbd_config_default(pft_tbd_config_t *cfg)
 {
@@ -101,22 +102,9 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
     ok = ok && c->max_targets >= 1u;
     ok = ok && (c->kind == PFT_TBD_RBPF || c->kind == PFT_TBD_PF);
     ok = ok && (c->kf_variant == PFT_TBD_KF_EXACT || c->kf_variant == PFT_TBD_KF_PAPER);
-#ifdef PFT_NUMERIC_Q16
-    /* Positions must stay well inside the Q16.16 range. */
-    ok = ok && (int64_t)c->width * c->dx < ((int64_t)16384 << 16) &&
-         (int64_t)c->height * c->dy < ((int64_t)16384 << 16);
-#endif
+    /* positions must stay well inside the number range (q16) */
+    ok = ok && pft_span_ok_(c->width, c->dx) && pft_span_ok_(c->height, c->dy);
     return ok ? PFT_OK : PFT_ERR_INVAL;
-}
-
-uint32_t pft_tbd_p16_(pft_real_t p)
-{
-    p = pft_clamp(p, PFT_C(0.0), PFT_C(1.0));
-#ifdef PFT_NUMERIC_Q16
-    return (uint32_t)p;
-#else
-    return (uint32_t)(p * 65536.0f + 0.5f);
-#endif
 }
 
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
@@ -141,7 +129,7 @@ pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x
     return r;
 }
 
-void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg)
+void pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
 {
     m->width = cfg->width;
     m->height = cfg->height;
@@ -156,7 +144,7 @@ void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg)
     m->inv_s2n = pft_recip(pft_sq(cfg->noise_sigma));
 }
 
-pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_real_t x,
+pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
                            pft_real_t y, pft_real_t intensity)
 {
     pft_real_t ddx = pft_sub(pft_mul_i(m->dx, i), x);
@@ -166,7 +154,7 @@ pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_r
     return pft_mul(pft_mul(pft_mul(intensity, m->c0), gx), gy);
 }
 
-pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
+pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
                              pft_real_t y, pft_real_t intensity)
 {
     int32_t p = (int32_t)m->p;
@@ -205,7 +193,7 @@ pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pf
     return pft_mul(acc, m->inv_s2n);
 }
 
-void pft_tbd_model_add_psf(const pft_tbd_model_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
                            pft_real_t intensity, uint8_t half)
 {
     int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;

@@ -1,5 +1,5 @@
 /**
- * @file pft_models.h
+ * @file pft_pf_models.h
  * @brief Models for the particle-filter engine of pft_pf.h: the bearings-only
  *        constant-velocity benchmark (Gordon, Salmond & Smith 1993; ALGORITHMS.md 3.1), a
  *        linear-Gaussian model (exact Kalman reference for tests) and the TBD pixel
@@ -10,8 +10,8 @@
  * configuration, precomputes constants and fills a pft_pf_model_t whose ctx points at the
  * instance (which must therefore outlive the engine and not move).
  */
-#ifndef PFT_MODELS_H
-#define PFT_MODELS_H
+#ifndef PFT_PF_MODELS_H
+#define PFT_PF_MODELS_H
 
 #include "pft/pft_pf.h"
 #include "pft/pft_tbd.h"
@@ -23,7 +23,7 @@ extern "C" {
 /* ============================ bearings-only constant velocity ============================= */
 
 /** State layout of the bearings model: [x, vx, y, vy]. */
-enum { PFT_BRG_X = 0, PFT_BRG_VX = 1, PFT_BRG_Y = 2, PFT_BRG_VY = 3, PFT_BRG_DIM = 4 };
+enum { PFT_PF_BRG_X = 0, PFT_PF_BRG_VX = 1, PFT_PF_BRG_Y = 2, PFT_PF_BRG_VY = 3, PFT_PF_BRG_DIM = 4 };
 
 /**
  * Bearings-only tracking with a constant-velocity target (ALGORITHMS.md 3.1):
@@ -41,7 +41,7 @@ enum { PFT_BRG_X = 0, PFT_BRG_VX = 1, PFT_BRG_Y = 2, PFT_BRG_VY = 3, PFT_BRG_DIM
  *
  * Units and the q16 build. The benchmark's quantities are tiny (sqrt(q) = 0.001,
  * sqrt(r) = 0.005, velocities 0.001..0.05) against the Q16.16 resolution of 1.5e-5, so the
- * model works in scaled position units: pft_bearings_config_default(cfg, scale) expresses all
+ * model works in scaled position units: pft_pf_bearings_config_default(cfg, scale) expresses all
  * positions and velocities in benchmark units times `scale` (e.g. 1000: "km -> m"). Bearings
  * are scale-invariant (atan2 of the scaled position is the same angle) and stay in radians. The
  * scale must keep every position within +-32768: for the benchmark's prior (sd 0.5) and 24
@@ -58,39 +58,39 @@ typedef struct {
     pft_real_t first_r_sd;    /**< APF first stage: bearing sd used at the predicted point
                                    (0, the default: r_sd, i.e. Pitt & Shephard's p(z | mu));
                                    a larger value widens the first-stage likelihood */
-} pft_bearings_config_t;
+} pft_pf_bearings_config_t;
 
 /** The model instance (fields read-only after init). */
 typedef struct {
-    pft_bearings_config_t cfg;
+    pft_pf_bearings_config_t cfg;
     pft_real_t inv_r;       /**< 1 / r_sd */
     pft_real_t inv_r_first; /**< 1 / first-stage sd */
     pft_real_t half_clip2;  /**< ll_clip^2 / 2 */
     pft_real_t pos_gain;    /**< T^2/2 * q_sd */
     pft_real_t vel_gain;    /**< T * q_sd */
-} pft_bearings_model_t;
+} pft_pf_bearings_model_t;
 
 /** Fills cfg with the benchmark's values in units of 1/scale of the benchmark's (scale >= 1;
  *  each value is an exact integer ratio, so e.g. scale 1000 gives q_sd = 1 exactly). */
-void pft_bearings_config_default(pft_bearings_config_t *cfg, int32_t scale);
+void pft_pf_bearings_config_default(pft_pf_bearings_config_t *cfg, int32_t scale);
 
 /** Checks cfg (positive T, q_sd, r_sd, ll_clip, non-negative sds and first_r_sd), fills m and
  *  the interface iface (measurement: const pft_real_t *, one bearing in radians).
  *  PFT_ERR_INVAL on NULL or a bad config. */
-pft_status_t pft_bearings_model_init(pft_bearings_model_t *m, const pft_bearings_config_t *cfg,
+pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf_bearings_config_t *cfg,
                                      pft_pf_model_t *iface);
 
 /** Bearing innovation z - atan2(y, x) of a state, wrapped to (-pi, pi]. */
-pft_real_t pft_bearings_innovation(const pft_real_t *x, pft_real_t z);
+pft_real_t pft_pf_bearings_innovation(const pft_real_t *x, pft_real_t z);
 
 /** Log-likelihood of bearing z for state x (the model's loglik, for tests and tools). */
-pft_real_t pft_bearings_loglik(const pft_bearings_model_t *m, const pft_real_t *x, pft_real_t z);
+pft_real_t pft_pf_bearings_loglik(const pft_pf_bearings_model_t *m, const pft_real_t *x, pft_real_t z);
 
 /* ===================================== linear Gaussian ==================================== */
 
 /** Largest state and measurement dimensions of the linear-Gaussian model. */
-#define PFT_LG_MAX_DIM 4u
-#define PFT_LG_MAX_MEAS 2u
+#define PFT_PF_LG_MAX_DIM 4u
+#define PFT_PF_LG_MAX_MEAS 2u
 
 /**
  * Linear-Gaussian model x_k = F x_{k-1} + Lq g (g ~ N(0, I)), z_k = H x_k + v with
@@ -101,23 +101,23 @@ pft_real_t pft_bearings_loglik(const pft_bearings_model_t *m, const pft_real_t *
  * Measurement: const pft_real_t * of meas values.
  */
 typedef struct {
-    uint16_t dim;                                     /**< 1..PFT_LG_MAX_DIM */
-    uint16_t meas;                                    /**< 1..PFT_LG_MAX_MEAS */
-    pft_real_t F[PFT_LG_MAX_DIM * PFT_LG_MAX_DIM];    /**< transition, dim x dim */
-    pft_real_t Lq[PFT_LG_MAX_DIM * PFT_LG_MAX_DIM];   /**< process-noise factor, dim x dim */
-    pft_real_t H[PFT_LG_MAX_MEAS * PFT_LG_MAX_DIM];   /**< measurement matrix, meas x dim */
-    pft_real_t r_sd[PFT_LG_MAX_MEAS];                 /**< measurement noise sds (> 0) */
-    pft_real_t m0[PFT_LG_MAX_DIM];                    /**< prior mean */
-    pft_real_t L0[PFT_LG_MAX_DIM * PFT_LG_MAX_DIM];   /**< prior factor, dim x dim */
-} pft_lg_config_t;
+    uint16_t dim;                                     /**< 1..PFT_PF_LG_MAX_DIM */
+    uint16_t meas;                                    /**< 1..PFT_PF_LG_MAX_MEAS */
+    pft_real_t F[PFT_PF_LG_MAX_DIM * PFT_PF_LG_MAX_DIM];    /**< transition, dim x dim */
+    pft_real_t Lq[PFT_PF_LG_MAX_DIM * PFT_PF_LG_MAX_DIM];   /**< process-noise factor, dim x dim */
+    pft_real_t H[PFT_PF_LG_MAX_MEAS * PFT_PF_LG_MAX_DIM];   /**< measurement matrix, meas x dim */
+    pft_real_t r_sd[PFT_PF_LG_MAX_MEAS];                 /**< measurement noise sds (> 0) */
+    pft_real_t m0[PFT_PF_LG_MAX_DIM];                    /**< prior mean */
+    pft_real_t L0[PFT_PF_LG_MAX_DIM * PFT_PF_LG_MAX_DIM];   /**< prior factor, dim x dim */
+} pft_pf_lg_config_t;
 
 typedef struct {
-    pft_lg_config_t cfg;
-    pft_real_t inv_r[PFT_LG_MAX_MEAS];
-} pft_lg_model_t;
+    pft_pf_lg_config_t cfg;
+    pft_real_t inv_r[PFT_PF_LG_MAX_MEAS];
+} pft_pf_lg_model_t;
 
 /** Checks cfg, fills m and iface. PFT_ERR_INVAL on NULL, bad dimensions or r_sd <= 0. */
-pft_status_t pft_lg_model_init(pft_lg_model_t *m, const pft_lg_config_t *cfg,
+pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t *cfg,
                                pft_pf_model_t *iface);
 
 /* ================================ TBD pixel likelihood ==================================== */
@@ -125,8 +125,8 @@ pft_status_t pft_lg_model_init(pft_lg_model_t *m, const pft_lg_config_t *cfg,
 /** State layout of the TBD model: [x, vx, y, vy, I, E]. E is 0 (no target), 1 (target) or 2
  *  (born at this step: a target whose log-likelihood also gets the birth correction). */
 enum {
-    PFT_TBDM_X = 0, PFT_TBDM_VX = 1, PFT_TBDM_Y = 2, PFT_TBDM_VY = 3, PFT_TBDM_I = 4,
-    PFT_TBDM_E = 5, PFT_TBDM_DIM = 6
+    PFT_PF_TBD_X = 0, PFT_PF_TBD_VX = 1, PFT_PF_TBD_Y = 2, PFT_PF_TBD_VY = 3, PFT_PF_TBD_I = 4,
+    PFT_PF_TBD_E = 5, PFT_PF_TBD_DIM = 6
 };
 
 /**
@@ -136,7 +136,7 @@ enum {
  * position, intensity ~ U[i_min, i_max], velocity ~ N(vel_mean, vel_var); survivors move with
  * the full CV process noise chol(V) and the intensity random walk; a target whose window
  * centre leaves the image gets E = 0 (it left the surveillance region). The log-likelihood is
- * pft_tbd_model_llr (the windowed pixel log likelihood ratio of pft_tbd.h) for E != 0 and 0
+ * pft_tbd_meas_llr (the windowed pixel log likelihood ratio of pft_tbd.h) for E != 0 and 0
  * for E = 0 (plus log(|B_k| / A_allow) for births when cfg.birth_correction). The APF's
  * predicted point keeps E and moves the kinematic part by Phi. The estimate is
  * [mean of x, vx, y, vy, I over the E != 0 particles, P(E != 0)] (the kinematic part keeps
@@ -151,7 +151,7 @@ enum {
  */
 typedef struct {
     pft_tbd_config_t cfg;
-    pft_tbd_model_t m;
+    pft_tbd_meas_t m;
     pft_real_t *img;       /**< converted frame (workspace) */
     uint32_t *cand;        /**< birth candidate pixels (workspace) */
     uint32_t n_cand;
@@ -161,24 +161,24 @@ typedef struct {
     pft_real_t vel_sd[2];  /**< sqrt(vel_var) */
     uint32_t p16_b, p16_d, p16_eta; /**< probabilities in 1/65536 steps */
     pft_real_t last[5];    /**< last kinematic estimate */
-} pft_tbdm_model_t;
+} pft_pf_tbd_model_t;
 
 /** Workspace bytes of the TBD model for a w x h image (constant expression). */
-#define PFT_TBDM_WORKSPACE_BYTES(w, h)                                                          \
+#define PFT_PF_TBD_WORKSPACE_BYTES(w, h)                                                          \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)) + \
      PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
 
-/** Workspace bytes pft_tbdm_model_init needs for cfg (0 for NULL). */
-size_t pft_tbdm_model_workspace_size(const pft_tbd_config_t *cfg);
+/** Workspace bytes pft_pf_tbd_model_init needs for cfg (0 for NULL). */
+size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg);
 
 /** Checks cfg (pft_tbd_config_check), carves the image buffers, fills m and iface.
  *  PFT_ERR_INVAL / PFT_ERR_NOMEM. */
-pft_status_t pft_tbdm_model_init(pft_tbdm_model_t *m, const pft_tbd_config_t *cfg, void *work,
+pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len, pft_pf_model_t *iface);
 
 /** Starts a new sequence (the next frame is the first: births with probability eta). Call
  *  together with pft_pf_reset. */
-void pft_tbdm_model_restart(pft_tbdm_model_t *m);
+void pft_pf_tbd_model_restart(pft_pf_tbd_model_t *m);
 
 #ifdef __cplusplus
 }
