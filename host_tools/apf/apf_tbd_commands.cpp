@@ -139,8 +139,7 @@ public:
                 throw InputError("pft_pf_tbd_model_init refused the configuration of " + s_.file);
             runner_ = std::make_unique<PfRunner>(engine_config(e_, n_, cfg.seed), iface_);
         }
-        pft_pf_tbd_model_restart(model_.get());
-        runner_->reset(cfg.seed);
+        runner_->reset(cfg.seed); // also the model's reset hook: frame 1 is a first frame again
         bool present = false;
         uint32_t next_id = 1, cur_id = 0, cur_first = 0;
         const double theta1 = from_real(cfg.theta1);

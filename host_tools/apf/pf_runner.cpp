@@ -39,7 +39,9 @@ pft_pf_config_t engine_config(const EngineSpec &e, uint32_t n, uint64_t seed)
 {
     pft_pf_kind_t k = e.engine == "sis" ? PFT_PF_SIS : e.engine == "sir" ? PFT_PF_SIR : PFT_PF_APF;
     pft_pf_config_t c;
-    pft_pf_config_default(&c, k, n);
+    pft_pf_config_default(&c);
+    c.kind = k;
+    c.n_particles = n;
     c.scheme = e.scheme == "stratified"    ? PFT_RESAMPLE_STRATIFIED
                : e.scheme == "residual"    ? PFT_RESAMPLE_RESIDUAL
                : e.scheme == "multinomial" ? PFT_RESAMPLE_MULTINOMIAL
@@ -58,9 +60,14 @@ pft_pf_config_t engine_config(const EngineSpec &e, uint32_t n, uint64_t seed)
 nlohmann::json engine_json(const EngineSpec &e)
 {
     pft_pf_config_t c = engine_config(e, 1, 0);
-    const char *pol = c.policy == PFT_PF_RESAMPLE_ALWAYS ? "always"
-                      : c.policy == PFT_PF_RESAMPLE_ESS  ? "ess"
-                                                         : "never";
+    pft_pf_policy_t p = c.policy;
+    if (p == PFT_PF_RESAMPLE_AUTO)  // the kind's own policy
+        p = c.kind == PFT_PF_APF ? PFT_PF_RESAMPLE_ESS
+            : c.kind == PFT_PF_SIR ? PFT_PF_RESAMPLE_ALWAYS
+                                   : PFT_PF_RESAMPLE_NEVER;
+    const char *pol = p == PFT_PF_RESAMPLE_ALWAYS ? "always"
+                      : p == PFT_PF_RESAMPLE_ESS  ? "ess"
+                                                  : "never";
     nlohmann::json j = {{"label", e.label}, {"engine", e.engine}, {"scheme", e.scheme},
                         {"policy", e.engine == "sis" ? "never" : pol},
                         {"ess_threshold", e.ess_threshold}};
@@ -69,34 +76,40 @@ nlohmann::json engine_json(const EngineSpec &e)
     return j;
 }
 
-PfRunner::PfRunner(const pft_pf_config_t &cfg, const pft_pf_model_t &model)
+PfRunner::PfRunner(const pft_pf_config_t &cfg, const pft_pf_model_t &model) : cfg_(cfg)
 {
-    ws_bytes_ = pft_pf_workspace_size(&cfg, model.dim);
+    cfg_.model = model;
+    const char *field = nullptr;
+    pft_status_t st = pft_pf_config_check(&cfg_, &field);
+    if (st != PFT_OK)
+        throw InputError(std::string("pft_pf_config_check: ") + pft_status_str(st) + " (field " +
+                         (field != nullptr ? field : "?") + ")");
+    ws_bytes_ = pft_pf_workspace_size(&cfg_);
     work_.assign(ws_bytes_ / 8 + 1, 0);
-    pft_status_t st = pft_pf_init(&pf_, &cfg, &model, work_.data(), work_.size() * 8);
+    st = pft_pf_init(&pf_, &cfg_, work_.data(), work_.size() * 8);
     if (st != PFT_OK)
         throw InputError(std::string("pft_pf_init: ") + pft_status_str(st));
 }
 
 void PfRunner::reset(uint64_t seed)
 {
-    pft_pf_reset(&pf_, seed);
+    pft_pf_reseed(&pf_, seed);
 }
 
 void PfRunner::update(const void *z)
 {
-    pft_status_t st = pf_.cfg.kind == PFT_PF_SIS   ? pft_host_update_sis(&pf_, z)
-                      : pf_.cfg.kind == PFT_PF_SIR ? pft_host_update_sir(&pf_, z)
-                                                   : pft_host_update_apf(&pf_, z);
+    pft_status_t st = cfg_.kind == PFT_PF_SIS   ? pft_host_update_sis(&pf_, z)
+                      : cfg_.kind == PFT_PF_SIR ? pft_host_update_sir(&pf_, z)
+                                                : pft_host_update_apf(&pf_, z);
     if (st != PFT_OK)
         throw InputError(std::string("pft_pf_update: ") + pft_status_str(st));
 }
 
 std::vector<double> PfRunner::estimate() const
 {
-    std::vector<pft_real_t> e(pf_.dim);
+    std::vector<pft_real_t> e(cfg_.model.dim);
     pft_pf_estimate(&pf_, e.data());
-    std::vector<double> d(pf_.dim);
+    std::vector<double> d(cfg_.model.dim);
     for (std::size_t i = 0; i < e.size(); ++i)
         d[i] = tbd::from_real(e[i]);
     return d;

@@ -54,9 +54,9 @@ public:
     std::vector<double> estimate() const;
     pft_pf_stats_t stats() const;
     std::size_t workspace_bytes() const { return ws_bytes_; }
-    pft_pf_t *engine() { return &pf_; }
 
 private:
+    pft_pf_config_t cfg_;  // the engine's configuration, the model included
     std::vector<uint64_t> work_;
     std::size_t ws_bytes_ = 0;
     pft_pf_t pf_{};

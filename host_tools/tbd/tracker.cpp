@@ -118,22 +118,25 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
 }
 
 namespace {
-[[noreturn]] void lib_error(const char *what, pft_status_t st)
+[[noreturn]] void lib_error(const std::string &what, pft_status_t st)
 {
-    throw InputError(std::string(what) + ": " + pft_status_str(st) + " (" +
+    throw InputError(what + ": " + pft_status_str(st) + " (" +
                      std::to_string(static_cast<int>(st)) + ")");
 }
 }  // namespace
 
 Tracker::Tracker(const pft_tbd_config_t &cfg, bool single) : cfg_(cfg), single_(single)
 {
-    pft_status_t st = pft_tbd_config_check(&cfg_);
+    const char *field = nullptr;
+    pft_status_t st = pft_tbd_config_check(&cfg_, &field);
     if (st != PFT_OK)
-        lib_error("filter configuration rejected by pft_tbd_config_check", st);
-    ws_bytes_ = single_ ? pft_tbd_filter_workspace_size(&cfg_, cfg_.n_search, cfg_.kind)
-                        : pft_tbd_workspace_size(&cfg_);
+        lib_error(std::string("filter configuration rejected by pft_tbd_config_check (field ") +
+                      (field != nullptr ? field : "?") + ")",
+                  st);
+    // single: a standalone filter of cfg.n_search particles of cfg.kind
+    ws_bytes_ = single_ ? pft_tbd_filter_workspace_size(&cfg_) : pft_tbd_workspace_size(&cfg_);
     work_.assign((ws_bytes_ + 7) / 8, 0);
-    st = single_ ? pft_tbd_filter_init(&flt_, &cfg_, cfg_.n_search, cfg_.kind, work_.data(), ws_bytes_)
+    st = single_ ? pft_tbd_filter_init(&flt_, &cfg_, work_.data(), ws_bytes_)
                  : pft_tbd_init(&mgr_, &cfg_, work_.data(), ws_bytes_);
     if (st != PFT_OK)
         lib_error(single_ ? "pft_tbd_filter_init" : "pft_tbd_init", st);

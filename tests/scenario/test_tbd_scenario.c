@@ -95,7 +95,7 @@ static void test_single_target_8db(void)
         scenario_cfg(&c, sigma, 1000u + (uint64_t)run);
         pft_tbd_filter_t f;
         TEST_ASSERT_EQUAL_INT(PFT_OK,
-                              pft_tbd_filter_init(&f, &c, NS, PFT_TBD_RBPF, g_fws, sizeof g_fws));
+                              pft_tbd_filter_init(&f, &c, g_fws, sizeof g_fws));
         pft_rng_t sim;
         pft_rng_seed(&sim, 5000u + SCN_SEED_BASE + (uint64_t)run);
         int appear = -1, correct = 0;

@@ -149,9 +149,12 @@ static outcome_t run_case(pft_pf_kind_t kind, uint64_t seed, int steps, double k
     lg_config(&lc);
     lc.r_sd[0] = R(filter_rsd);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_lg_model_init(&lm, &lc, &md));
-    pft_pf_config_default(&c, kind, N_PART);
+    pft_pf_config_default(&c);
+    c.kind = kind;
+    c.n_particles = N_PART;
+    c.model = md;
     c.seed = seed;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &c, &md, g_work, sizeof(g_work)));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &c, g_work, sizeof(g_work)));
     kf_init(&kf);
     const double lconst = log(sqrt(2.0 * 3.141592653589793) * filter_rsd);
     double ess = (double)N_PART;

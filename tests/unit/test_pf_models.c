@@ -72,10 +72,10 @@ static void test_bearings_defaults_scaled(void)
     TEST_ASSERT_NOT_NULL(iface.predict);
     TEST_ASSERT_NULL(iface.loglik_first);
     c.r_sd = PFT_C(0.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_bearings_model_init(&m, &c, &iface));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
     pft_pf_bearings_config_default(&c, 1);
     c.prior_sd[2] = PFT_C(-1.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_bearings_model_init(&m, &c, &iface));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_bearings_model_init(NULL, &c, &iface));
 }
 
@@ -229,9 +229,12 @@ static void test_bearings_filters_follow_the_bearing(void)
         pft_pf_t pf;
         pft_pf_bearings_config_default(&c, 1000);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_bearings_model_init(&m, &c, &iface));
-        pft_pf_config_default(&pc, kinds[kk], NB);
+        pft_pf_config_default(&pc);
+        pc.kind = kinds[kk];
+        pc.n_particles = NB;
+        pc.model = iface;
         pc.seed = 5u;
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, &iface, g_bwork, sizeof(g_bwork)));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, g_bwork, sizeof(g_bwork)));
         double t[4] = {-0.05, 0.001, 0.7, -0.055};
         g_lcg = 2024u;
         double ae[20];
@@ -323,7 +326,9 @@ static void test_tbd_model_workspace(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
     TEST_ASSERT_EQUAL_UINT(PFT_PF_TBD_DIM, iface.dim);
     c.psf_sigma = PFT_C(0.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_pf_tbd_model_workspace_size(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_tbd_model_init(&m, NULL, g_mw, sizeof(g_mw), &iface));
 }
 
 /* SIR (systematic, every step) over the TBD model is the tbd module's PF-TBD: same particles,
@@ -349,10 +354,15 @@ static void test_tbd_sir_is_the_pf_tbd(void)
     static pft_tbd_filter_t tf;
     tbd_cfg(&c, 2.0);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
-    pft_pf_config_default(&pc, PFT_PF_SIR, TN);
+    pft_pf_config_default(&pc);
+    pc.kind = PFT_PF_SIR;
+    pc.n_particles = TN;
+    pc.model = iface;
     pc.seed = c.seed;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, &iface, g_pfw, sizeof(g_pfw)));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&tf, &c, TN, PFT_TBD_PF, g_tw, sizeof(g_tw)));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, g_pfw, sizeof(g_pfw)));
+    c.n_search = TN; /* the standalone PF-TBD: TN particles of the PF kind */
+    c.kind = PFT_TBD_PF;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&tf, &c, g_tw, sizeof(g_tw)));
     g_lcg = 99u;
     int seen = 0;
     for (int k = 1; k <= 12; ++k) {
@@ -387,8 +397,11 @@ static void test_tbd_refused_frame_changes_nothing(void)
     static uint64_t snap[sizeof(g_pfw) / 8];
     tbd_cfg(&c, 3.2);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
-    pft_pf_config_default(&pc, PFT_PF_APF, TN);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, &iface, g_pfw, sizeof(g_pfw)));
+    pft_pf_config_default(&pc);
+    pc.kind = PFT_PF_APF;
+    pc.n_particles = TN;
+    pc.model = iface;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, g_pfw, sizeof(g_pfw)));
     pft_frame_t f;
     g_lcg = 5u;
     make_frame(1, 1, 20.0, 3.2, &f);
@@ -424,9 +437,12 @@ static void test_apf_tbd_detects_and_locates(void)
     static pft_pf_t pf;
     tbd_cfg(&c, 1.831);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
-    pft_pf_config_default(&pc, PFT_PF_APF, TN);
+    pft_pf_config_default(&pc);
+    pc.kind = PFT_PF_APF;
+    pc.n_particles = TN;
+    pc.model = iface;
     pc.seed = 3u;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, &iface, g_pfw, sizeof(g_pfw)));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &pc, g_pfw, sizeof(g_pfw)));
     g_lcg = 34u;
     int first = 0;
     double tail = 0.0;
@@ -451,8 +467,9 @@ static void test_apf_tbd_detects_and_locates(void)
     }
     TEST_ASSERT_TRUE_MESSAGE(first >= 4 && first <= 7, "APF-TBD detection delay");
     TEST_ASSERT_TRUE_MESSAGE(tail < 1.0, "APF-TBD position error");
-    /* restart: the next frame is a first frame again */
-    pft_pf_tbd_model_restart(&m);
+    /* reset: the model's hook makes the next frame a first frame again */
+    TEST_ASSERT_TRUE(m.frames > 0u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_reset(&pf));
     TEST_ASSERT_EQUAL_UINT32(0u, m.frames);
 }
 

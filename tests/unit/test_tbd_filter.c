@@ -55,6 +55,15 @@ static void small_cfg(pft_tbd_config_t *c, double sigma, uint64_t seed)
     c->seed = seed;
 }
 
+/* A standalone filter of n particles of the given kind (cfg.n_search and cfg.kind). */
+static pft_status_t finit(pft_tbd_filter_t *f, pft_tbd_config_t *c, uint32_t n,
+                          pft_tbd_kind_t kind, void *buf, size_t len)
+{
+    c->n_search = n;
+    c->kind = kind;
+    return pft_tbd_filter_init(f, c, buf, len);
+}
+
 #define SIGMA_15DB 1.1552 /* 6.4961 * 10^(-15/20) */
 #define SIGMA_6DB 3.256
 #define SIGMA_10DB 2.0543 /* 6.4961 * 10^(-10/20) */
@@ -79,17 +88,19 @@ static void test_filter_workspace_size_is_exact(void)
     small_cfg(&c, SIGMA_6DB, 1u);
     static pft_tbd_filter_t f;
     for (int kind = 0; kind < 2; ++kind) {
-        size_t need = pft_tbd_filter_workspace_size(&c, NF, (pft_tbd_kind_t)kind);
+        c.n_search = NF;
+        c.kind = (pft_tbd_kind_t)kind;
+        size_t need = pft_tbd_filter_workspace_size(&c);
         TEST_ASSERT_EQUAL_UINT(kind == 0 ? (unsigned)FWS_BYTES
                                          : (unsigned)PFT_TBD_FILTER_WORKSPACE_BYTES(NF, PFT_TBD_PF, IMG, IMG),
                                (unsigned)need);
         size_t off = misalign(g_fbuf);
         pft_test_guard_fill(g_fbuf, sizeof g_fbuf);
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tbd_filter_init(&f, &c, NF, (pft_tbd_kind_t)kind,
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, finit(&f, &c, NF, (pft_tbd_kind_t)kind,
                                                                 g_fbuf + off, need - 1u));
         TEST_ASSERT_TRUE_MESSAGE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, 0, 0),
                                  "a refused init wrote into the workspace");
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, (pft_tbd_kind_t)kind,
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, (pft_tbd_kind_t)kind,
                                                          g_fbuf + off, need));
         TEST_ASSERT_TRUE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, off, off + need));
         /* a few updates stay inside too */
@@ -102,8 +113,14 @@ static void test_filter_workspace_size_is_exact(void)
         }
         TEST_ASSERT_TRUE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, off, off + need));
     }
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, &c, 0u, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, NULL, NF, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
+    /* refused configuration: PFT_ERR_CONFIG naming the field, workspace size 0 */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, finit(&f, &c, 0u, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
+    const char *field = NULL;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("n_search", field);
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_filter_workspace_size(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, NULL, g_fbuf, sizeof g_fbuf));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(NULL, &c, g_fbuf, sizeof g_fbuf));
 }
 
 static void test_manager_workspace_size_is_exact(void)
@@ -129,7 +146,9 @@ static void test_manager_workspace_size_is_exact(void)
     }
     TEST_ASSERT_TRUE(pft_test_guard_intact(g_mbuf, sizeof g_mbuf, off, off + need));
     c.n_search = 0u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_init(&t, &c, g_mbuf, sizeof g_mbuf));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_init(&t, &c, g_mbuf, sizeof g_mbuf));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_workspace_size(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_init(NULL, &c, g_mbuf, sizeof g_mbuf));
 }
 
 /* ------------------------------- refused input -------------------------------------------- */
@@ -182,8 +201,10 @@ static void test_filter_refused_input_leaves_state_untouched(void)
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_15DB, 9u);
     static pft_tbd_filter_t f, f_snap;
-    size_t need = pft_tbd_filter_workspace_size(&c, NF, PFT_TBD_RBPF);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
+    c.n_search = NF;
+    c.kind = PFT_TBD_RBPF;
+    size_t need = pft_tbd_filter_workspace_size(&c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);
     const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
@@ -239,8 +260,8 @@ static void test_filter_is_deterministic(void)
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_6DB, 21u);
     static pft_tbd_filter_t a, b;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&a, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&a, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 8u);
     const pft_sim_truth_t tr = {3, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
@@ -255,6 +276,60 @@ static void test_filter_is_deterministic(void)
     }
 }
 
+/* reset: back to the state right after init (same seeds, ids from 1 again): a second pass
+ * over the same frames gives the same estimates, tracks and events. */
+#define RESET_FRAMES 10
+static void run_pass(pft_tbd_filter_t *f, pft_tbd_t *t, pft_tbd_estimate_t *est, uint32_t *ids)
+{
+    pft_rng_t sim;
+    pft_rng_seed(&sim, 15u);
+    const pft_sim_truth_t tr = {2, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    for (int k = 1; k <= RESET_FRAMES; ++k) {
+        pft_frame_t fr;
+        render(&sim, &tr, k, SIGMA_15DB, &fr);
+        if (f != NULL) {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(f, &fr));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_estimate(f, &est[k - 1]));
+        } else {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(t, &fr));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(t, &est[k - 1]));
+            pft_tbd_track_t trk[2];
+            size_t n = pft_tbd_tracks(t, trk, 2);
+            ids[k - 1] = n > 0u ? trk[0].id : 0u;
+        }
+    }
+}
+
+static void test_reset_reproduces_the_first_run(void)
+{
+    static pft_tbd_filter_t f;
+    static pft_tbd_t t;
+    static pft_tbd_estimate_t a[RESET_FRAMES], b[RESET_FRAMES];
+    uint32_t ia[RESET_FRAMES], ib[RESET_FRAMES];
+    pft_tbd_config_t c;
+    small_cfg(&c, SIGMA_15DB, 17u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    run_pass(&f, NULL, a, NULL);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_reset(&f));
+    run_pass(&f, NULL, b, NULL);
+    TEST_ASSERT_EQUAL_MEMORY(a, b, sizeof a);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_reset(NULL));
+    small_cfg(&c, SIGMA_15DB, 18u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, MWS_BYTES));
+    run_pass(NULL, &t, a, ia);
+    TEST_ASSERT_TRUE(ia[RESET_FRAMES - 1] >= 1u); /* a track is held at the last frame */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_reset(&t));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_frame(&t));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_tracks(&t, NULL, 0));
+    run_pass(NULL, &t, b, ib);
+    TEST_ASSERT_EQUAL_MEMORY(a, b, sizeof a);
+    TEST_ASSERT_EQUAL_MEMORY(ia, ib, sizeof ia);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_reset(NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_frame(NULL));
+    /* a layer of the manager is not a standalone filter */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_tbd_filter_reset(&t.tracks[0]));
+}
+
 /* ------------------------------- behaviour ------------------------------------------------ */
 static void test_noise_only_keeps_existence_low(void)
 {
@@ -265,7 +340,7 @@ static void test_noise_only_keeps_existence_low(void)
     for (uint64_t seed = 1; seed <= 3; ++seed) {
         pft_tbd_config_t c;
         small_cfg(&c, SIGMA_6DB, seed);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 100u + seed);
         for (int k = 1; k <= 20; ++k) {
@@ -304,7 +379,7 @@ static void bright_target(pft_tbd_kind_t kind)
     for (uint64_t seed = 0; seed < 3; ++seed) {
         pft_tbd_config_t c;
         small_cfg(&c, SIGMA_15DB, 31u + seed);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 12u + seed);
         const pft_sim_truth_t tr = {3, 40, 3.0, 3.5, 0.3, 0.2, 20.0};
@@ -381,7 +456,7 @@ static void test_kf_exact_variance_matches_reference(void)
     static pft_tbd_filter_t f;
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_15DB, 41u);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 13u);
     const pft_sim_truth_t tr = {1, 40, 3.0, 3.0, 0.3, 0.2, 20.0};
@@ -583,6 +658,7 @@ int main(void)
     RUN_TEST(test_filter_refused_input_leaves_state_untouched);
     RUN_TEST(test_manager_refused_input_leaves_state_untouched);
     RUN_TEST(test_filter_is_deterministic);
+    RUN_TEST(test_reset_reproduces_the_first_run);
     RUN_TEST(test_noise_only_keeps_existence_low);
     RUN_TEST(test_bright_target_rbpf);
     RUN_TEST(test_bright_target_pf);

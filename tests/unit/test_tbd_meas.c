@@ -98,49 +98,75 @@ static void test_defaults_are_the_papers(void)
     TEST_ASSERT_EQUAL_UINT(0, c.handover_gate);
     TEST_ASSERT_EQUAL_UINT(0, c.end_lr_frames);
     TEST_ASSERT_TRUE(c.dis_ratio_test);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
     pft_tbd_config_recommended(&c);
     TEST_ASSERT_TRUE(c.residual_search && c.residual_tracks);
     TEST_ASSERT_EQUAL_INT(PFT_TBD_D_NONE, c.d_region);
     TEST_ASSERT_EQUAL_UINT(2, c.handover_gate);
     TEST_ASSERT_FALSE(c.dis_ratio_test);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+}
+
+/* Every refused value gives PFT_ERR_CONFIG and names its field; NULL is PFT_ERR_INVAL. */
+static void expect_refused(const pft_tbd_config_t *c, const char *name)
+{
+    const char *field = "unset";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(c, &field));
+    TEST_ASSERT_EQUAL_STRING(name, field);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(c, NULL));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_workspace_size(c));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_filter_workspace_size(c));
+    pft_tbd_meas_t m;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_meas_init(&m, c));
 }
 
 static void test_config_check_rejects(void)
 {
     pft_tbd_config_t c;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(NULL));
+    const char *field = "unset";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(NULL, &field));
+    TEST_ASSERT_NULL(field);
+    base_cfg(&c);
+    field = "unset";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_NULL(field);
     base_cfg(&c); c.width = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "width");
     base_cfg(&c); c.psf_sigma = R(0.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "psf_sigma");
     base_cfg(&c); c.noise_sigma = R(-1.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "noise_sigma");
     base_cfg(&c); c.window = PFT_TBD_MAX_WINDOW + 1u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "window");
     base_cfg(&c); c.pb = R(1.5);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "pb");
+    base_cfg(&c); c.theta_end = R(-0.5);
+    expect_refused(&c, "theta_end");
     base_cfg(&c); c.i_min = R(40.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "i_max");
+    base_cfg(&c); c.vel_var[1] = R(-0.1);
+    expect_refused(&c, "vel_var[1]");
     base_cfg(&c); c.dis_prev = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "dis_prev");
     base_cfg(&c); c.dis_ratio = R(0.0);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "dis_ratio");
     base_cfg(&c); c.n_search = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "n_search");
     base_cfg(&c); c.max_targets = 0;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "max_targets");
     base_cfg(&c); c.kind = (pft_tbd_kind_t)7;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "kind");
     base_cfg(&c); c.d_region = (pft_tbd_dregion_t)3;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "d_region");
     base_cfg(&c); c.window = PFT_TBD_MAX_WINDOW; c.residual_margin = PFT_TBD_MAX_WINDOW + 1u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "residual_margin");
     base_cfg(&c); c.end_lr_frames = PFT_TBD_MAX_DIS_R + 2u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "end_lr_frames");
     base_cfg(&c); c.handover_gate = 65u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_config_check(&c));
+    expect_refused(&c, "handover_gate");
+    /* the first refused field in the struct's order is named */
+    base_cfg(&c); c.height = 0; c.n_track = 0;
+    expect_refused(&c, "height");
 }
 
 /* pft_tbd_meas_add_psf with a negative intensity subtracts h exactly on its window (and
@@ -163,7 +189,7 @@ static void test_add_psf_and_joint_llr(void)
     base_cfg(&c);
     c.noise_sigma = R(3.256);
     pft_tbd_meas_t m;
-    pft_tbd_meas_init(&m, &c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_meas_init(&m, &c));
     const double sn = D(R(3.256));
     int checked = 0;
     for (int k = 0; k < 24; ++k) {
@@ -223,7 +249,7 @@ static void test_psf_h_matches_reference(void)
         c.dx = R(dxs[a]);
         c.dy = R(1.0);
         pft_tbd_meas_t m;
-        pft_tbd_meas_init(&m, &c);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_meas_init(&m, &c));
         for (int k = 0; k < 40; ++k) {
             double x = 2.0 + 0.137 * k, y = 3.0 + 0.071 * k, I = 10.0 + 0.5 * k;
             int i = (int)floor(x / dxs[a] + 0.5) + (k % 3) - 1;
@@ -237,7 +263,7 @@ static void test_psf_h_matches_reference(void)
     pft_tbd_config_t c;
     base_cfg(&c);
     pft_tbd_meas_t m;
-    pft_tbd_meas_init(&m, &c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_meas_init(&m, &c));
     TEST_ASSERT_DOUBLE_WITHIN(tol_h(6.4961), 6.4961,
                               D(pft_tbd_meas_h(&m, 3, 4, R(3.0), R(4.0), R(20.0))));
 }
@@ -260,7 +286,7 @@ static void test_llr_matches_reference(void)
         c.window = (uint8_t)p;
         c.noise_sigma = R(2.586);
         pft_tbd_meas_t m;
-        pft_tbd_meas_init(&m, &c);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_meas_init(&m, &c));
         for (int k = 0; k < 60; ++k) {
             /* includes windows clipped at every border and fully outside */
             double x = -0.8 + 0.197 * k, y = -0.4 + 0.163 * k, I = 8.0 + 0.4 * k;
@@ -274,7 +300,7 @@ static void test_llr_matches_reference(void)
     pft_tbd_config_t c;
     base_cfg(&c);
     pft_tbd_meas_t m;
-    pft_tbd_meas_init(&m, &c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_meas_init(&m, &c));
     for (int k = 0; k < W * H; ++k) {
         img[k] = R(0.0);
     }
@@ -307,8 +333,9 @@ static void test_frame_conversion(void)
     base_cfg(&c);
     c.pixel_gain = R(0.5);
     c.pixel_offset = R(-3.0);
+    c.n_search = 16u;
     pft_tbd_filter_t f;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, 16, PFT_TBD_RBPF, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
 
     static uint8_t u8[H][W + 3]; /* stride larger than the width */
     static uint16_t u16[H][W];
@@ -338,7 +365,7 @@ static void test_frame_conversion(void)
      * gain*raw before the offset is added, so the offset is 0 here) */
     c.pixel_gain = R(4.0);
     c.pixel_offset = R(0.0);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, 16, PFT_TBD_RBPF, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
     u16[0][0] = 0xFFFFu;
     f16.bit_depth = 0;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));

@@ -41,6 +41,7 @@ static pft_pf_t pft_pv_pf;
 static pft_real_t pft_pv_x[PFT_PV_NTBD * 6];
 static pft_weight_t pft_pv_w[PFT_PV_NTBD];
 static pft_real_t pft_pv_cov[6 * 6];
+static uint16_t pft_pv_dim; /* state dimension of the model of the current run */
 
 /* Integer Irwin-Hall N(0, 1) draw as a real (exact conversion in both builds). */
 static inline pft_real_t pft_pv_gauss(pft_rng_t *r)
@@ -56,7 +57,7 @@ static inline pft_real_t pft_pv_gauss(pft_rng_t *r)
 static inline void pft_pv_row(const pft_pf_t *pf, int tbd, uint32_t *row)
 {
     memset(row, 0, PFT_PV_ROW * sizeof(uint32_t));
-    uint16_t dim = pf->dim;
+    uint16_t dim = pft_pv_dim;
     pft_real_t est[6];
     memset(est, 0, sizeof est);
     (void)pft_pf_estimate(pf, est);
@@ -70,11 +71,8 @@ static inline void pft_pv_row(const pft_pf_t *pf, int tbd, uint32_t *row)
     row[7] = pft_gv_r(s.ess_first);
     row[8] = pft_gv_r(s.log_evidence);
     row[9] = s.step | (s.resampled ? 1u << 30 : 0u) | (s.resample_pending ? 1u << 31 : 0u);
-    uint32_t n = pf->n;
-    const pft_real_t *x = pft_pf_states((pft_pf_t *)pf);
-    const pft_weight_t *w = pft_pf_weights(pf);
-    memcpy(pft_pv_x, x, (size_t)n * dim * sizeof(pft_real_t));
-    memcpy(pft_pv_w, w, (size_t)n * sizeof(pft_weight_t));
+    uint32_t n = (uint32_t)pft_pf_states(pf, pft_pv_x, PFT_PV_NTBD);
+    (void)pft_pf_weights(pf, pft_pv_w, PFT_PV_NTBD);
     uint32_t hs = PFT_GV_FNV0, hw = PFT_GV_FNV0;
     uint32_t live = 0, sx = 0, sy = 0;
     for (uint32_t i = 0; i < n; ++i) {
@@ -113,19 +111,24 @@ static inline void pft_pv_row(const pft_pf_t *pf, int tbd, uint32_t *row)
 
 static inline void pft_pv_config(pft_pf_config_t *c, pft_pf_kind_t kind, uint32_t n, uint64_t seed)
 {
-    pft_pf_config_default(c, kind, n);
+    pft_pf_config_default(c);
+    c->kind = kind;
+    c->n_particles = n;
     c->seed = seed;
 }
 
-/* A known initial set: the prior's draws, then log-weights -0.01 i (mod 7 steps). */
+/* A known initial set: the prior's draws with the first component moved by (i mod 5) / 4,
+ * then log-weights -(i mod 7) / 100. */
 static inline void pft_pv_known_set(pft_pf_t *pf)
 {
     static pft_real_t lw[PFT_PV_NTBD];
-    pft_real_t *x = pft_pf_states(pf);
-    for (uint32_t i = 0; i < pf->n; ++i) {
-        x[(size_t)i * pf->dim] = pft_add(x[(size_t)i * pf->dim], pft_ratio((int32_t)(i % 5u), 4));
+    uint32_t n = (uint32_t)pft_pf_states(pf, pft_pv_x, PFT_PV_NTBD);
+    for (uint32_t i = 0; i < n; ++i) {
+        size_t o = (size_t)i * pft_pv_dim;
+        pft_pv_x[o] = pft_add(pft_pv_x[o], pft_ratio((int32_t)(i % 5u), 4));
         lw[i] = pft_ratio(-(int32_t)(i % 7u), 100);
     }
+    (void)pft_pf_set_states(pf, pft_pv_x, n);
     (void)pft_pf_set_logweights(pf, lw);
 }
 
@@ -141,7 +144,9 @@ static inline void pft_pv_run_bearings(pft_pf_kind_t kind, int known, uint32_t r
     }
     pft_pf_config_t c;
     pft_pv_config(&c, kind, PFT_PV_NB, 31u + (uint64_t)kind);
-    if (pft_pf_init(&pft_pv_pf, &c, &iface, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    c.model = iface;
+    pft_pv_dim = iface.dim;
+    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
         return;
     }
     if (known) {
@@ -184,7 +189,9 @@ static inline void pft_pv_run_lg(pft_pf_kind_t kind, int known, uint32_t rows[][
     }
     pft_pf_config_t c;
     pft_pv_config(&c, kind, PFT_PV_NL, 41u + (uint64_t)kind);
-    if (pft_pf_init(&pft_pv_pf, &c, &iface, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    c.model = iface;
+    pft_pv_dim = iface.dim;
+    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
         return;
     }
     if (known) {
@@ -220,7 +227,9 @@ static inline void pft_pv_run_tbd(pft_pf_kind_t kind, uint32_t rows[][PFT_PV_ROW
     }
     pft_pf_config_t c;
     pft_pv_config(&c, kind, PFT_PV_NTBD, 61u + (uint64_t)kind);
-    if (pft_pf_init(&pft_pv_pf, &c, &iface, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    c.model = iface;
+    pft_pv_dim = iface.dim;
+    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
         return;
     }
     pft_rng_t sim;

@@ -106,9 +106,9 @@ static inline void pft_tv_run_filter(pft_tbd_kind_t kind, uint32_t rows[][PFT_TV
     pft_tbd_config_t c;
     pft_tv_config(&c, 0, 11u);
     c.kind = kind;
+    c.n_search = PFT_TV_NF; /* the standalone filter's particle count */
     memset(pft_tv_fwork, 0, sizeof pft_tv_fwork);
-    if (pft_tbd_filter_init(&pft_tv_filter, &c, PFT_TV_NF, kind, pft_tv_fwork,
-                            sizeof pft_tv_fwork) != PFT_OK) {
+    if (pft_tbd_filter_init(&pft_tv_filter, &c, pft_tv_fwork, sizeof pft_tv_fwork) != PFT_OK) {
         return;
     }
     pft_rng_t sim;
@@ -206,7 +206,9 @@ static inline void pft_tv_run_meas(uint32_t *out)
     pft_tbd_config_t c;
     pft_tv_config(&c, 0, 1u);
     pft_tbd_meas_t m;
-    pft_tbd_meas_init(&m, &c);
+    if (pft_tbd_meas_init(&m, &c) != PFT_OK) {
+        return;
+    }
     /* one frame of the scene at frame 10, converted like the filters do (z = raw/256 - 64) */
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);

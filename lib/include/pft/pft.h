@@ -11,4 +11,7 @@
 #include "pft/pft_resample.h"
 #include "pft/pft_workspace.h"
 #include "pft/pft_kalman.h"
+#include "pft/pft_tbd.h"
+#include "pft/pft_pf.h"
+#include "pft/pft_pf_models.h"
 #endif

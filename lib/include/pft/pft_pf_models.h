@@ -20,6 +20,12 @@
 extern "C" {
 #endif
 
+/* Model instances: declared by the caller, layouts in pft/internal/pft_pf_models_types.h (not
+ * API; included at the end of this header so that sizeof works). */
+typedef struct pft_pf_bearings_model_s pft_pf_bearings_model_t;
+typedef struct pft_pf_lg_model_s pft_pf_lg_model_t;
+typedef struct pft_pf_tbd_model_s pft_pf_tbd_model_t;
+
 /* ============================ bearings-only constant velocity ============================= */
 
 /** State layout of the bearings model: [x, vx, y, vy]. */
@@ -60,23 +66,13 @@ typedef struct {
                                    a larger value widens the first-stage likelihood */
 } pft_pf_bearings_config_t;
 
-/** The model instance (fields read-only after init). */
-typedef struct {
-    pft_pf_bearings_config_t cfg;
-    pft_real_t inv_r;       /**< 1 / r_sd */
-    pft_real_t inv_r_first; /**< 1 / first-stage sd */
-    pft_real_t half_clip2;  /**< ll_clip^2 / 2 */
-    pft_real_t pos_gain;    /**< T^2/2 * q_sd */
-    pft_real_t vel_gain;    /**< T * q_sd */
-} pft_pf_bearings_model_t;
-
 /** Fills cfg with the benchmark's values in units of 1/scale of the benchmark's (scale >= 1;
  *  each value is an exact integer ratio, so e.g. scale 1000 gives q_sd = 1 exactly). */
 void pft_pf_bearings_config_default(pft_pf_bearings_config_t *cfg, int32_t scale);
 
 /** Checks cfg (positive T, q_sd, r_sd, ll_clip, non-negative sds and first_r_sd), fills m and
- *  the interface iface (measurement: const pft_real_t *, one bearing in radians).
- *  PFT_ERR_INVAL on NULL or a bad config. */
+ *  the interface iface, e.g. &engine_cfg.model (measurement: const pft_real_t *, one bearing in
+ *  radians). PFT_ERR_INVAL on NULL, PFT_ERR_CONFIG for a refused cfg. */
 pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf_bearings_config_t *cfg,
                                      pft_pf_model_t *iface);
 
@@ -111,12 +107,8 @@ typedef struct {
     pft_real_t L0[PFT_PF_LG_MAX_DIM * PFT_PF_LG_MAX_DIM];   /**< prior factor, dim x dim */
 } pft_pf_lg_config_t;
 
-typedef struct {
-    pft_pf_lg_config_t cfg;
-    pft_real_t inv_r[PFT_PF_LG_MAX_MEAS];
-} pft_pf_lg_model_t;
-
-/** Checks cfg, fills m and iface. PFT_ERR_INVAL on NULL, bad dimensions or r_sd <= 0. */
+/** Checks cfg, fills m and iface. PFT_ERR_INVAL on NULL, PFT_ERR_CONFIG for bad dimensions or
+ *  r_sd <= 0. */
 pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t *cfg,
                                pft_pf_model_t *iface);
 
@@ -149,38 +141,24 @@ enum {
  * Fields of cfg that belong to the tbd manager (theta1, disappearance, sizes, kind) are
  * ignored.
  */
-typedef struct {
-    pft_tbd_config_t cfg;
-    pft_tbd_meas_t m;
-    pft_real_t *img;       /**< converted frame (workspace) */
-    uint32_t *cand;        /**< birth candidate pixels (workspace) */
-    uint32_t n_cand;
-    uint32_t frames;       /**< frames accepted since init / restart */
-    pft_real_t birth_lw;   /**< birth correction of the current frame */
-    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /**< chol(V) per axis, sqrt(q2 T) */
-    pft_real_t vel_sd[2];  /**< sqrt(vel_var) */
-    uint32_t p16_b, p16_d, p16_eta; /**< probabilities in 1/65536 steps */
-    pft_real_t last[5];    /**< last kinematic estimate */
-} pft_pf_tbd_model_t;
-
 /** Workspace bytes of the TBD model for a w x h image (constant expression). */
 #define PFT_PF_TBD_WORKSPACE_BYTES(w, h)                                                          \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)) + \
      PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
 
-/** Workspace bytes pft_pf_tbd_model_init needs for cfg (0 for NULL). */
+/** Workspace bytes pft_pf_tbd_model_init needs for cfg (0 for NULL or a refused cfg). */
 size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg);
 
-/** Checks cfg (pft_tbd_config_check), carves the image buffers, fills m and iface.
- *  PFT_ERR_INVAL / PFT_ERR_NOMEM. */
+/** Checks cfg (pft_tbd_config_check), carves the image buffers, fills m and iface (whose reset
+ *  hook starts a new sequence: pft_pf_reset makes the next frame a first frame again, births
+ *  with probability eta). PFT_ERR_INVAL for NULL, PFT_ERR_CONFIG for a refused cfg,
+ *  PFT_ERR_NOMEM for a short workspace. */
 pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len, pft_pf_model_t *iface);
-
-/** Starts a new sequence (the next frame is the first: births with probability eta). Call
- *  together with pft_pf_reset. */
-void pft_pf_tbd_model_restart(pft_pf_tbd_model_t *m);
 
 #ifdef __cplusplus
 }
 #endif
+
+#include "pft/internal/pft_pf_models_types.h"
 #endif

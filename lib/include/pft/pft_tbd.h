@@ -33,6 +33,13 @@
  *
  * Memory: everything lives in a caller workspace; see the *_WORKSPACE_BYTES macros, which
  * equal the *_workspace_size functions exactly.
+ *
+ * Calls, in the order of use (docs/design.md, "One API pattern for every tracker"), for the
+ * manager pft_tbd_* and the standalone filter pft_tbd_filter_* alike (they share
+ * pft_tbd_config_t): pft_tbd_config_default (or _recommended), change fields,
+ * pft_tbd_config_check, *_workspace_size, *_init, *_update per frame, results copied out
+ * (pft_tbd_tracks, pft_tbd_events, pft_tbd_search_estimate, pft_tbd_filter_estimate), *_reset
+ * to start over. The standalone filter runs cfg.n_search particles of cfg.kind.
  */
 #ifndef PFT_TBD_H
 #define PFT_TBD_H
@@ -44,6 +51,12 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Instances: declared by the caller, layouts in pft/internal/pft_tbd_types.h (not API; included
+ * at the end of this header so that sizeof works). */
+typedef struct pft_tbd_meas_s pft_tbd_meas_t;     /**< measurement model constants */
+typedef struct pft_tbd_filter_s pft_tbd_filter_t; /**< one filter (standalone, or a layer) */
+typedef struct pft_tbd_s pft_tbd_t;               /**< the multi-target manager */
 
 /** Largest window half-size p accepted (window (2p+1)^2 pixels). */
 #define PFT_TBD_MAX_WINDOW 4u
@@ -122,10 +135,10 @@ typedef struct {
     uint8_t end_lr_frames;   /**< a track also ends when the frame log likelihood ratio of its layer (log_mean_lr) was below end_lr_max in each of the last end_lr_frames frames; 0 turns it off (default), at most PFT_TBD_MAX_DIS_R + 1 [A] */
     pft_real_t end_lr_max;   /**< threshold of the test above (default 0: the frame favours absence) */
     /* sizes */
-    uint32_t n_search;       /**< search-layer particles Ns (default 6000) */
+    uint32_t n_search;       /**< search-layer particles Ns, and the particles of a standalone filter (default 6000) */
     uint32_t n_track;        /**< particles per track layer Nt (default 500) */
     uint16_t max_targets;    /**< track layers available (default 4) */
-    pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline */
+    pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline, for every layer and the standalone filter */
     pft_tbd_kf_variant_t kf_variant; /**< RBPF Kalman variant (default exact) */
     uint64_t seed;           /**< RNG seed; layer l of the manager uses seed + l (default 1) */
 } pft_tbd_config_t;
@@ -153,8 +166,12 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg);
  */
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
 
-/** PFT_OK if cfg is usable (sizes, ranges, positivity), PFT_ERR_INVAL otherwise. */
-pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg);
+/**
+ * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL cfg; PFT_ERR_CONFIG for a refused value, and
+ * then *field (when field is not NULL) names the first refused field as written in the struct
+ * ("width", "vel_var[1]", "n_search", ...); *field is NULL on success.
+ */
+pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **field);
 
 /** A pixel box, 1-based inclusive pixel indices (i: x/columns, j: y/rows). Parts outside
  *  the image are ignored. */
@@ -163,7 +180,8 @@ typedef struct {
 } pft_tbd_region_t;
 
 /** The (2p+1)^2 window C(x) around position (x, y) (not clipped to the image): the
- *  constraint region D of a target estimated at (x, y). */
+ *  constraint region D of a target estimated at (x, y). An empty region (i_lo > i_hi) for a
+ *  NULL cfg or non-positive pixel pitch. */
 pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
 
 /** Estimates of one filter at the last frame, from the normalised weights before resampling. */
@@ -178,27 +196,16 @@ typedef struct {
     bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
 } pft_tbd_estimate_t;
 
-/**
- * Derived constants of the measurement model for one configuration (pft_tbd_meas_init).
- * Public so the model can be evaluated and tested on its own; fields are read-only.
- */
-typedef struct {
-    uint16_t width, height;
-    uint8_t p;               /**< window half-size */
-    pft_real_t dx, dy;
-    pft_real_t inv_dx, inv_dy;
-    pft_real_t c0;           /**< dx*dy/(2 pi S^2): h = I*c0*gx*gy */
-    pft_real_t inv_2s2;      /**< 1/(2 S^2) */
-    pft_real_t inv_s2n;      /**< 1/sigma^2 */
-} pft_tbd_meas_t;
+/* ---------------------------------- measurement model -------------------------------------- */
 
-/** Fills m from cfg (cfg must pass pft_tbd_config_check). */
-void pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
+/** Derived constants of the measurement model for cfg, so that it can be evaluated on its own.
+ *  PFT_ERR_INVAL for NULL, PFT_ERR_CONFIG for a refused cfg (m untouched). */
+pft_status_t pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
 
 /** PSF contribution h(i, j; x, y, I) of a target at (x, y) with intensity I to pixel
  *  (i, j) (1-based). */
 pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
-                           pft_real_t y, pft_real_t intensity);
+                          pft_real_t y, pft_real_t intensity);
 
 /**
  * Log likelihood ratio of a target (x, y, I) against noise only: sum over the window C(x),
@@ -207,7 +214,7 @@ pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_rea
  * evaluated separably: 2(2p+1) exponentials per call. Q16: pixel sums saturate at +-32768.
  */
 pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
-                             pft_real_t y, pft_real_t intensity);
+                            pft_real_t y, pft_real_t intensity);
 
 /** Largest half-size accepted by pft_tbd_meas_add_psf. */
 #define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
@@ -220,55 +227,10 @@ pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_
  * of the pixels where h_t was subtracted. Q16: pixels saturate at +-32768.
  */
 void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
-                           pft_real_t intensity, uint8_t half);
+                          pft_real_t intensity, uint8_t half);
 
-/** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
-typedef struct {
-    pft_real_t *x, *y, *in; /**< position and intensity */
-    pft_real_t *mx, *my;    /**< RBPF: Kalman velocity means; PF: sampled velocities */
-    pft_real_t *px, *py;    /**< RBPF: Kalman velocity variances (P stays diagonal) */
-    uint8_t *e;             /**< existence E */
-} pft_tbd_particles_t;
+/* --------------------------------- standalone filter --------------------------------------- */
 
-/**
- * One TBD filter (a single target with existence). Fields are private; read results with
- * pft_tbd_filter_estimate(). Used directly for a single target (the paper's Exp. 1) and as
- * the search and track layers of pft_tbd_t.
- */
-typedef struct {
-    pft_tbd_config_t cfg;
-    pft_tbd_kind_t kind;
-    uint32_t n;              /**< particles */
-    bool births;             /**< births from E = 0 allowed (false in track layers) */
-    bool constrain;          /**< force E = 0 inside the exclusion mask (search layer) */
-    pft_tbd_particles_t cur, nxt;
-    pft_real_t *lw;
-    pft_weight_t *w;
-    uint32_t *idx;
-    pft_real_t *img;         /**< standalone only: converted frame */
-    uint8_t *mask;           /**< standalone only: exclusion mask */
-    uint32_t *cand;          /**< standalone only: birth candidate pixels */
-    /* derived constants */
-    pft_tbd_meas_t model;
-    pft_real_t log_n;        /**< log N */
-    pft_real_t log_ratio;    /**< log dis_ratio */
-    pft_real_t kf_qpos;      /**< q1 T^3 / 3 */
-    pft_real_t kf_qvel;      /**< q1 T (paper) or q1 T / 4 (exact) */
-    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /**< PF: chol(V) per axis, sqrt(q2 T) */
-    pft_real_t vel_sd[2];    /**< PF: sqrt(P0) */
-    pft_real_t birth_lw;     /**< birth log-weight correction of the current frame */
-    uint32_t p16_b, p16_d, p16_eta; /**< probabilities in 1/65536 steps (0..65536) */
-    pft_rng_t rng;
-    uint32_t frames;         /**< accepted updates */
-    pft_tbd_estimate_t est;
-    /* disappearance statistic */
-    pft_real_t lr_hist[PFT_TBD_MAX_DIS_R + 1u];   /**< last log mean LRs (ring) */
-    pft_real_t win_hist[PFT_TBD_MAX_DIS_PREV];    /**< previous window statistics (ring) */
-    uint32_t n_lr, n_win;
-    bool gone;               /**< disappearance declared at the last update */
-} pft_tbd_filter_t;
-
-/* ---- workspace sizes (constant expressions; equal to the functions below) ---- */
 /** @cond internal */
 #define PFT_TBD_NSTATE_(kind) ((kind) == PFT_TBD_RBPF ? 7u : 5u)
 #define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
@@ -281,23 +243,29 @@ typedef struct {
      PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
 /** @endcond */
 
-/** Workspace bytes of a standalone filter with n particles on a w x h image. */
+/** Workspace bytes of a standalone filter with n particles of the given kind on a w x h image
+ *  (constant expression; with n = cfg.n_search, kind = cfg.kind, w x h = cfg.width x
+ *  cfg.height it equals pft_tbd_filter_workspace_size). */
 #define PFT_TBD_FILTER_WORKSPACE_BYTES(n, kind, w, h)                                           \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_PARTICLE_BYTES_(n, kind))
 
-/** Workspace bytes a standalone filter with n particles needs for cfg (image size from cfg). */
-size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg, uint32_t n_particles,
-                                     pft_tbd_kind_t kind);
+/** Workspace bytes pft_tbd_filter_init needs for cfg (cfg.n_search particles of cfg.kind);
+ *  0 for a NULL or refused cfg. */
+size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg);
 
 /**
- * Initialises a standalone filter with births (cfg.kind is ignored; `kind` is used).
- * All particles start with E = 0; the first update draws births with probability eta.
- * @return PFT_ERR_INVAL for a bad config or n_particles outside 1..PFT_CFG_MAX_PARTICLES,
- *         PFT_ERR_NOMEM when work_len is short (nothing written outside the instance).
+ * Initialises a standalone filter with births: cfg.n_search particles of cfg.kind (the other
+ * manager sizes are not used). All particles start with E = 0; the first update draws births
+ * with probability eta. The config is copied.
+ * @return PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM
+ *         when work_len is short (nothing written outside the instance).
  */
-pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg,
-                                 uint32_t n_particles, pft_tbd_kind_t kind, void *work,
+pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len);
+
+/** Back to the state right after pft_tbd_filter_init (same seed, workspace reused).
+ *  PFT_ERR_INVAL for NULL, PFT_ERR_STATE for a filter that is not a standalone one. */
+pft_status_t pft_tbd_filter_reset(pft_tbd_filter_t *f);
 
 /** One frame: existence prediction, propagation and births, weighting, estimates,
  *  systematic resampling. Same as pft_tbd_filter_update_ex with no exclusion regions. */
@@ -312,7 +280,7 @@ pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame
 pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *frame,
                                       const pft_tbd_region_t *regions, size_t n_regions);
 
-/** Estimates of the last update (all zero and valid == false before the first). */
+/** Copies the estimates of the last update (all zero and valid == false before the first). */
 pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out);
 
 /* --------------------------------- multi-target manager ------------------------------------ */
@@ -343,32 +311,12 @@ typedef struct {
     pft_real_t x, y;        /**< position at the event (ENDED: the last estimate) */
 } pft_tbd_event_t;
 
-/**
- * The multi-target manager (ALGORITHMS.md 2.7): one search layer (cfg.n_search particles,
- * births outside the constraint regions) and up to cfg.max_targets track layers
- * (cfg.n_track particles each, no births). Fields are private.
- */
-typedef struct {
-    pft_tbd_config_t cfg;
-    pft_tbd_filter_t search;
-    pft_tbd_filter_t *tracks;    /**< max_targets slots (workspace) */
-    pft_tbd_track_t *records;    /**< max_targets slots (workspace); id 0 marks a free slot */
-    pft_tbd_event_t *events;     /**< max_targets + 1 (workspace) */
-    uint32_t n_events;
-    pft_real_t *img;
-    uint8_t *mask;
-    uint32_t *cand;
-    pft_real_t *res;             /**< residual frame (joint likelihood, cfg.residual_*) */
-    uint32_t frame;              /**< frames accepted so far (the last frame number) */
-    uint32_t next_id;
-    uint16_t n_tracks;           /**< active tracks */
-} pft_tbd_t;
-
 /** @cond internal */
 #define PFT_TBD_EVENT_BYTES_(maxt) PFT_WS_ROUND((size_t)((maxt) + 1u) * sizeof(pft_tbd_event_t))
 /** @endcond */
 
-/** Workspace bytes of the manager (kind: cfg.kind; w x h: cfg.width x cfg.height). */
+/** Workspace bytes of the manager (constant expression; with the sizes, kind and image of cfg
+ *  it equals pft_tbd_workspace_size). */
 #define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) +                                 \
      PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                                                  \
@@ -377,12 +325,21 @@ typedef struct {
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
      PFT_TBD_EVENT_BYTES_(max_targets) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)))
 
-/** Workspace bytes pft_tbd_init needs for cfg. */
+/** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
-/** Initialises the manager: no tracks, the search layer all E = 0.
- *  PFT_ERR_INVAL for a bad config, PFT_ERR_NOMEM for a short workspace. */
+/**
+ * Initialises the manager (ALGORITHMS.md 2.7): one search layer (cfg.n_search particles,
+ * births outside the constraint regions) and up to cfg.max_targets track layers (cfg.n_track
+ * particles each, no births); no tracks, the search layer all E = 0. The config is copied.
+ * PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM for a
+ * short workspace.
+ */
 pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
+
+/** Back to the state right after pft_tbd_init (same seeds, no tracks, ids from 1 again,
+ *  workspace reused). PFT_ERR_INVAL for NULL or an uninitialised manager. */
+pft_status_t pft_tbd_reset(pft_tbd_t *t);
 
 /**
  * One frame (ALGORITHMS.md 2.7): update every track layer (with residual_tracks, each on the
@@ -395,19 +352,23 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
 
-/** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist. */
+/** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist (out may
+ *  be NULL with max 0 to ask the count). */
 size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
 
 /** Copies up to max events of the last update into out; returns how many happened. */
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
 
-/** The search layer's estimate at the last frame (p_exist is the appearance statistic). */
+/** Copies the search layer's estimate at the last frame (p_exist is the appearance
+ *  statistic). */
 pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out);
 
-/** Frame number of the last accepted update (1-based; 0 before the first). */
-static inline uint32_t pft_tbd_frame(const pft_tbd_t *t) { return t->frame; }
+/** Frame number of the last accepted update (1-based; 0 before the first and for NULL). */
+uint32_t pft_tbd_frame(const pft_tbd_t *t);
 
 #ifdef __cplusplus
 }
 #endif
+
+#include "pft/internal/pft_tbd_types.h"
 #endif

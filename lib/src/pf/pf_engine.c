@@ -35,8 +35,8 @@ void pft_pf_weighted_mean(const pft_real_t *x, const pft_weight_t *w, uint32_t n
 
 static void estimate_(pft_pf_t *pf)
 {
-    if (pf->model.estimate != NULL) {
-        pf->model.estimate(pf->model.ctx, pf->x, pf->w, pf->n, pf->est);
+    if (pf->cfg.model.estimate != NULL) {
+        pf->cfg.model.estimate(pf->cfg.model.ctx, pf->x, pf->w, pf->n, pf->est);
     } else {
         pft_pf_weighted_mean(pf->x, pf->w, pf->n, pf->dim, pf->est);
     }
@@ -94,7 +94,7 @@ static void resample_(pft_pf_t *pf)
 /* SIS / SIR: bootstrap proposal, weights times the likelihood. */
 static pft_real_t step_bootstrap_(pft_pf_t *pf, const void *z)
 {
-    const pft_pf_model_t *md = &pf->model;
+    const pft_pf_model_t *md = &pf->cfg.model;
     for (uint32_t i = 0; i < pf->n; ++i) {
         pft_real_t *xi = pf->x + (size_t)i * pf->dim;
         md->propagate(md->ctx, xi, &pf->rng);
@@ -107,7 +107,7 @@ static pft_real_t step_bootstrap_(pft_pf_t *pf, const void *z)
  * second-stage correction by the first-stage likelihood of the parent only. */
 static pft_real_t step_apf_(pft_pf_t *pf, const void *z)
 {
-    const pft_pf_model_t *md = &pf->model;
+    const pft_pf_model_t *md = &pf->cfg.model;
     pft_real_t mu[PFT_PF_MAX_DIM];
     size_t row = (size_t)pf->dim * sizeof(pft_real_t);
     /* 1-2. first stage: lambda_i ~ w_i p(z | mu_i); lw is reused for log lambda */
@@ -142,64 +142,106 @@ static pft_real_t step_apf_(pft_pf_t *pf, const void *z)
 
 /* ---------------------------------- public API -------------------------------------------- */
 
-void pft_pf_config_default(pft_pf_config_t *cfg, pft_pf_kind_t kind, uint32_t n)
+void pft_pf_config_default(pft_pf_config_t *cfg)
 {
     if (cfg == NULL) {
         return;
     }
     memset(cfg, 0, sizeof(*cfg));
-    cfg->kind = kind;
-    cfg->n_particles = n;
+    cfg->kind = PFT_PF_SIR;
+    cfg->n_particles = 1000u;
     cfg->scheme = PFT_RESAMPLE_SYSTEMATIC;
-    cfg->policy = kind == PFT_PF_APF ? PFT_PF_RESAMPLE_ESS
-                  : kind == PFT_PF_SIS ? PFT_PF_RESAMPLE_NEVER
-                                       : PFT_PF_RESAMPLE_ALWAYS;
+    cfg->policy = PFT_PF_RESAMPLE_AUTO;
     cfg->ess_threshold = PFT_C(0.5);
     cfg->seed = 1u;
 }
 
-size_t pft_pf_workspace_size(const pft_pf_config_t *cfg, uint16_t dim)
+/* The policy in force: AUTO resolved by kind, SIS never. */
+static pft_pf_policy_t policy_(const pft_pf_config_t *c)
 {
-    if (cfg == NULL || dim == 0u) {
+    if (c->kind == PFT_PF_SIS) {
+        return PFT_PF_RESAMPLE_NEVER;
+    }
+    if (c->policy == PFT_PF_RESAMPLE_AUTO) {
+        return c->kind == PFT_PF_APF ? PFT_PF_RESAMPLE_ESS : PFT_PF_RESAMPLE_ALWAYS;
+    }
+    return c->policy;
+}
+
+/* The first refused field of c, NULL if none. */
+static const char *refused_field_(const pft_pf_config_t *c)
+{
+    const pft_pf_model_t *m = &c->model;
+    if (c->kind != PFT_PF_SIS && c->kind != PFT_PF_SIR && c->kind != PFT_PF_APF) {
+        return "kind";
+    }
+    if (c->n_particles < 1u || c->n_particles > PFT_CFG_MAX_PARTICLES) {
+        return "n_particles";
+    }
+    if ((unsigned)c->scheme > (unsigned)PFT_RESAMPLE_MULTINOMIAL) {
+        return "scheme";
+    }
+    if (c->policy != PFT_PF_RESAMPLE_ALWAYS && c->policy != PFT_PF_RESAMPLE_ESS &&
+        c->policy != PFT_PF_RESAMPLE_NEVER && c->policy != PFT_PF_RESAMPLE_AUTO) {
+        return "policy";
+    }
+    if (policy_(c) == PFT_PF_RESAMPLE_ESS &&
+        !(c->ess_threshold > PFT_C(0.0) && c->ess_threshold <= PFT_C(1.0))) {
+        return "ess_threshold";
+    }
+    if (m->dim < 1u || m->dim > PFT_PF_MAX_DIM) {
+        return "model.dim";
+    }
+    if (m->propagate == NULL) {
+        return "model.propagate";
+    }
+    if (m->loglik == NULL) {
+        return "model.loglik";
+    }
+    if (c->kind == PFT_PF_APF && m->predict == NULL) {
+        return "model.predict";
+    }
+    return NULL;
+}
+
+pft_status_t pft_pf_config_check(const pft_pf_config_t *cfg, const char **field)
+{
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const char *bad = refused_field_(cfg);
+    if (bad != NULL) {
+        if (field != NULL) {
+            *field = bad;
+        }
+        return PFT_ERR_CONFIG;
+    }
+    return PFT_OK;
+}
+
+size_t pft_pf_workspace_size(const pft_pf_config_t *cfg)
+{
+    if (pft_pf_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_PF_WORKSPACE_BYTES(cfg->n_particles, dim);
+    return PFT_PF_WORKSPACE_BYTES(cfg->n_particles, cfg->model.dim);
 }
 
-static bool config_ok_(const pft_pf_config_t *c)
+pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, void *work, size_t work_len)
 {
-    bool ok = c->n_particles >= 1u && c->n_particles <= PFT_CFG_MAX_PARTICLES;
-    ok = ok && (c->kind == PFT_PF_SIS || c->kind == PFT_PF_SIR || c->kind == PFT_PF_APF);
-    ok = ok && (unsigned)c->scheme <= (unsigned)PFT_RESAMPLE_MULTINOMIAL;
-    ok = ok && (c->policy == PFT_PF_RESAMPLE_ALWAYS || c->policy == PFT_PF_RESAMPLE_ESS ||
-                c->policy == PFT_PF_RESAMPLE_NEVER);
-    ok = ok && (c->policy != PFT_PF_RESAMPLE_ESS ||
-                (c->ess_threshold > PFT_C(0.0) && c->ess_threshold <= PFT_C(1.0)));
-    return ok;
-}
-
-static bool model_ok_(const pft_pf_model_t *m, pft_pf_kind_t kind)
-{
-    bool ok = m->dim >= 1u && m->dim <= PFT_PF_MAX_DIM;
-    ok = ok && m->propagate != NULL && m->loglik != NULL;
-    ok = ok && (kind != PFT_PF_APF || m->predict != NULL);
-    return ok;
-}
-
-pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, const pft_pf_model_t *model,
-                         void *work, size_t work_len)
-{
-    if (pf == NULL || cfg == NULL || model == NULL || work == NULL) {
+    if (pf == NULL || cfg == NULL || work == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (!config_ok_(cfg) || !model_ok_(model, cfg->kind)) {
-        return PFT_ERR_INVAL;
+    if (pft_pf_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
     }
     memset(pf, 0, sizeof(*pf));
     pf->cfg = *cfg;
-    pf->model = *model;
     pf->n = cfg->n_particles;
-    pf->dim = model->dim;
+    pf->dim = cfg->model.dim;
     size_t sb = (size_t)pf->n * pf->dim * sizeof(pft_real_t);
     size_t rb = (size_t)pf->n * sizeof(pft_real_t);
     size_t wb = (size_t)pf->n * sizeof(pft_weight_t);
@@ -221,16 +263,19 @@ pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, const pft_pf_
     memset(pf->fl, 0, rb);
     memset(pf->scratch, 0, wb);
     memset(pf->idx, 0, (size_t)pf->n * sizeof(uint32_t));
-    return pft_pf_reset(pf, cfg->seed);
+    return pft_pf_reset(pf);
 }
 
-pft_status_t pft_pf_reset(pft_pf_t *pf, uint64_t seed)
+pft_status_t pft_pf_reset(pft_pf_t *pf)
 {
     if (pf == NULL || pf->x == NULL) {
         return PFT_ERR_INVAL;
     }
-    pft_rng_seed(&pf->rng, seed);
-    const pft_pf_model_t *md = &pf->model;
+    const pft_pf_model_t *md = &pf->cfg.model;
+    if (md->reset != NULL) {
+        md->reset(md->ctx);
+    }
+    pft_rng_seed(&pf->rng, pf->cfg.seed);
     for (uint32_t i = 0; i < pf->n; ++i) {
         pft_real_t *xi = pf->x + (size_t)i * pf->dim;
         if (md->sample_prior != NULL) {
@@ -247,12 +292,34 @@ pft_status_t pft_pf_reset(pft_pf_t *pf, uint64_t seed)
     return PFT_OK;
 }
 
+pft_status_t pft_pf_reseed(pft_pf_t *pf, uint64_t seed)
+{
+    if (pf == NULL || pf->x == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    pf->cfg.seed = seed;
+    return pft_pf_reset(pf);
+}
+
+/* The resampling decision for the next update (step 5). */
+static bool resample_next_(const pft_pf_t *pf)
+{
+    switch (policy_(&pf->cfg)) {
+    case PFT_PF_RESAMPLE_ALWAYS:
+        return true;
+    case PFT_PF_RESAMPLE_ESS:
+        return pf->stats.ess_ratio < pf->cfg.ess_threshold;
+    default:
+        return false;
+    }
+}
+
 pft_status_t pft_pf_update(pft_pf_t *pf, const void *z)
 {
     if (pf == NULL || pf->x == NULL) {
         return PFT_ERR_INVAL;
     }
-    const pft_pf_model_t *md = &pf->model;
+    const pft_pf_model_t *md = &pf->cfg.model;
     if (md->begin != NULL) {
         pft_status_t st = md->begin(md->ctx, z);
         if (st != PFT_OK) {
@@ -276,17 +343,7 @@ pft_status_t pft_pf_update(pft_pf_t *pf, const void *z)
     }
     s->log_evidence = lev;
     s->resampled = resampled;
-    switch (pf->cfg.kind == PFT_PF_SIS ? PFT_PF_RESAMPLE_NEVER : pf->cfg.policy) {
-    case PFT_PF_RESAMPLE_ALWAYS:
-        s->resample_pending = true;
-        break;
-    case PFT_PF_RESAMPLE_ESS:
-        s->resample_pending = s->ess_ratio < pf->cfg.ess_threshold;
-        break;
-    default:
-        s->resample_pending = false;
-        break;
-    }
+    s->resample_pending = resample_next_(pf);
     return PFT_OK;
 }
 
@@ -353,9 +410,39 @@ pft_status_t pft_pf_stats(const pft_pf_t *pf, pft_pf_stats_t *out)
     return PFT_OK;
 }
 
-pft_real_t *pft_pf_states(pft_pf_t *pf) { return pf == NULL ? NULL : pf->x; }
+size_t pft_pf_states(const pft_pf_t *pf, pft_real_t *out, size_t max)
+{
+    if (pf == NULL || pf->x == NULL) {
+        return 0u;
+    }
+    size_t k = max < pf->n ? max : pf->n;
+    if (out != NULL && k > 0u) {
+        memcpy(out, pf->x, k * pf->dim * sizeof(pft_real_t));
+    }
+    return pf->n;
+}
 
-const pft_weight_t *pft_pf_weights(const pft_pf_t *pf) { return pf == NULL ? NULL : pf->w; }
+size_t pft_pf_weights(const pft_pf_t *pf, pft_weight_t *out, size_t max)
+{
+    if (pf == NULL || pf->x == NULL) {
+        return 0u;
+    }
+    size_t k = max < pf->n ? max : pf->n;
+    if (out != NULL && k > 0u) {
+        memcpy(out, pf->w, k * sizeof(pft_weight_t));
+    }
+    return pf->n;
+}
+
+pft_status_t pft_pf_set_states(pft_pf_t *pf, const pft_real_t *x, size_t n)
+{
+    if (pf == NULL || x == NULL || pf->x == NULL || n != pf->n) {
+        return PFT_ERR_INVAL;
+    }
+    memcpy(pf->x, x, n * pf->dim * sizeof(pft_real_t));
+    estimate_(pf);
+    return PFT_OK;
+}
 
 pft_status_t pft_pf_set_logweights(pft_pf_t *pf, const pft_real_t *lw)
 {

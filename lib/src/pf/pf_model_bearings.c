@@ -114,7 +114,7 @@ pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf
         ok = ok && cfg->prior_sd[c] >= PFT_C(0.0);
     }
     if (!ok) {
-        return PFT_ERR_INVAL;
+        return PFT_ERR_CONFIG;
     }
     memset(m, 0, sizeof(*m));
     m->cfg = *cfg;

@@ -76,11 +76,11 @@ pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t
     }
     if (cfg->dim < 1u || cfg->dim > PFT_PF_LG_MAX_DIM || cfg->meas < 1u ||
         cfg->meas > PFT_PF_LG_MAX_MEAS) {
-        return PFT_ERR_INVAL;
+        return PFT_ERR_CONFIG;
     }
     for (uint16_t k = 0; k < cfg->meas; ++k) {
         if (!(cfg->r_sd[k] > PFT_C(0.0))) {
-            return PFT_ERR_INVAL;
+            return PFT_ERR_CONFIG;
         }
     }
     memset(m, 0, sizeof(*m));

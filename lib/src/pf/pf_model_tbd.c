@@ -11,17 +11,16 @@
 
 size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg)
 {
-    if (cfg == NULL) {
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
     return PFT_PF_TBD_WORKSPACE_BYTES(cfg->width, cfg->height);
 }
 
-void pft_pf_tbd_model_restart(pft_pf_tbd_model_t *m)
+/* The reset hook: a new sequence starts (the next frame is a first frame). */
+static void tbd_reset_(void *ctx)
 {
-    if (m == NULL) {
-        return;
-    }
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
     m->frames = 0u;
     m->birth_lw = PFT_C(0.0);
     memset(m->last, 0, sizeof(m->last));
@@ -29,7 +28,7 @@ void pft_pf_tbd_model_restart(pft_pf_tbd_model_t *m)
 
 /* ---- interface callbacks ---- */
 
-static pft_status_t tbdm_begin_(void *ctx, const void *z)
+static pft_status_t tbd_begin_(void *ctx, const void *z)
 {
     pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
     const pft_frame_t *frame = (const pft_frame_t *)z;
@@ -54,7 +53,7 @@ static pft_status_t tbdm_begin_(void *ctx, const void *z)
     return PFT_OK;
 }
 
-static void tbdm_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
+static void tbd_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     (void)ctx;
     (void)rng;
@@ -96,7 +95,7 @@ static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
     }
 }
 
-static void tbdm_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
+static void tbd_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     /* existence: one draw per particle, decided on its top 16 bits (same as the tbd module) */
@@ -125,7 +124,7 @@ static void tbdm_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
     }
 }
 
-static pft_real_t tbdm_loglik_(void *ctx, const pft_real_t *x, const void *z)
+static pft_real_t tbd_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     (void)z; /* the converted frame of begin() */
@@ -139,7 +138,7 @@ static pft_real_t tbdm_loglik_(void *ctx, const pft_real_t *x, const void *z)
     return ll;
 }
 
-static void tbdm_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
+static void tbd_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     memcpy(mu, x, PFT_PF_TBD_DIM * sizeof(pft_real_t));
@@ -150,7 +149,7 @@ static void tbdm_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
     }
 }
 
-static void tbdm_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
+static void tbd_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
                            pft_real_t *est)
 {
     pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
@@ -185,8 +184,8 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     if (m == NULL || cfg == NULL || work == NULL || iface == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (pft_tbd_config_check(cfg) != PFT_OK) {
-        return PFT_ERR_INVAL;
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
     }
     size_t npix = (size_t)cfg->width * cfg->height;
     pft_ws_t ws;
@@ -198,7 +197,7 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     }
     memset(m, 0, sizeof(*m));
     m->cfg = *cfg;
-    pft_tbd_meas_init(&m->m, cfg);
+    pft_tbd_meas_setup_(&m->m, cfg);
     m->img = img;
     m->cand = cand;
     memset(img, 0, npix * sizeof(pft_real_t));
@@ -218,15 +217,16 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     m->p16_b = pft_p16_(cfg->pb);
     m->p16_d = pft_p16_(cfg->pd);
     m->p16_eta = pft_p16_(cfg->eta);
-    pft_pf_tbd_model_restart(m);
+    tbd_reset_(m);
     memset(iface, 0, sizeof(*iface));
     iface->dim = PFT_PF_TBD_DIM;
     iface->ctx = m;
-    iface->begin = tbdm_begin_;
-    iface->sample_prior = tbdm_prior_;
-    iface->propagate = tbdm_propagate_;
-    iface->loglik = tbdm_loglik_;
-    iface->predict = tbdm_predict_;
-    iface->estimate = tbdm_estimate_;
+    iface->begin = tbd_begin_;
+    iface->sample_prior = tbd_prior_;
+    iface->propagate = tbd_propagate_;
+    iface->loglik = tbd_loglik_;
+    iface->predict = tbd_predict_;
+    iface->estimate = tbd_estimate_;
+    iface->reset = tbd_reset_;
     return PFT_OK;
 }

@@ -437,37 +437,30 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
 
 /* ---------------------------------- public API -------------------------------------------- */
 
-size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg, uint32_t n_particles,
-                                     pft_tbd_kind_t kind)
+size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg)
 {
-    if (cfg == NULL) {
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_TBD_FILTER_WORKSPACE_BYTES(n_particles, kind, cfg->width, cfg->height);
+    return PFT_TBD_FILTER_WORKSPACE_BYTES(cfg->n_search, cfg->kind, cfg->width, cfg->height);
 }
 
-pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg,
-                                 uint32_t n_particles, pft_tbd_kind_t kind, void *work,
-                                 size_t work_len)
+/* Sets up f (cfg checked) with its buffers carved from work; false (f zeroed) when short. */
+static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
+                          size_t work_len)
 {
-    if (f == NULL || cfg == NULL || work == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (pft_tbd_config_check(cfg) != PFT_OK || n_particles < 1u ||
-        n_particles > PFT_CFG_MAX_PARTICLES || (kind != PFT_TBD_RBPF && kind != PFT_TBD_PF)) {
-        return PFT_ERR_INVAL;
-    }
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
     size_t npix = (size_t)cfg->width * cfg->height;
     pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, npix * sizeof(pft_real_t));
     uint8_t *mask = (uint8_t *)pft_ws_take(&ws, npix);
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
-    pft_tbd_filter_setup_(f, cfg, n_particles, kind, true, cfg->force_constraint, cfg->seed);
+    pft_tbd_filter_setup_(f, cfg, cfg->n_search, cfg->kind, true, cfg->force_constraint,
+                          cfg->seed);
     pft_tbd_particles_carve_(f, &ws);
     if (pft_ws_status(&ws) != PFT_OK) {
         memset(f, 0, sizeof(*f));
-        return PFT_ERR_NOMEM;
+        return false;
     }
     f->img = img;
     f->mask = mask;
@@ -476,7 +469,34 @@ pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cf
     memset(mask, 0, npix);
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_filter_clear_(f);
-    return PFT_OK;
+    return true;
+}
+
+pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
+                                 size_t work_len)
+{
+    if (f == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    return filter_build_(f, cfg, work, work_len) ? PFT_OK : PFT_ERR_NOMEM;
+}
+
+pft_status_t pft_tbd_filter_reset(pft_tbd_filter_t *f)
+{
+    if (f == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (f->img == NULL || f->n == 0u) {
+        return PFT_ERR_STATE; /* not initialised, or a layer owned by a pft_tbd_t */
+    }
+    /* the workspace starts at the (aligned) image buffer: carve it again from there */
+    pft_tbd_config_t cfg = f->cfg;
+    size_t len = PFT_TBD_FILTER_WORKSPACE_BYTES(cfg.n_search, cfg.kind, cfg.width, cfg.height) -
+                 (PFT_WS_ALIGN - 1u);
+    return filter_build_(f, &cfg, f->img, len) ? PFT_OK : PFT_ERR_NOMEM;
 }
 
 pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame)

@@ -1,4 +1,4 @@
-/* Internals shared by the TBD sources (not installed). */
+/* Internals shared by the TBD sources and the pf engine's TBD model (private, not installed). */
 #ifndef PFT_TBD_INT_H
 #define PFT_TBD_INT_H
 
@@ -16,6 +16,8 @@ typedef struct {
     bool cand_is_b;     /* cand holds B_k (z > gamma): the importance correction applies */
 } pft_tbd_scene_t_;
 
+/* pft_tbd_meas_init without the checks (cfg already passed pft_tbd_config_check). */
+void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
 /* Frame validation against cfg (size, format, finiteness): touches nothing. */
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame);
 /* Converts a validated frame into img (width*height reals, row-major). */

@@ -5,7 +5,7 @@
 
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
 {
-    if (cfg == NULL) {
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
     return PFT_TBD_WORKSPACE_BYTES(cfg->n_search, cfg->n_track, cfg->max_targets, cfg->kind,
@@ -50,20 +50,9 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
     }
 }
 
-pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
+/* Sets up t (cfg checked, work_len enough) on work: every layer seeded, no tracks. */
+static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
 {
-    if (t == NULL || cfg == NULL || work == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (pft_tbd_config_check(cfg) != PFT_OK) {
-        return PFT_ERR_INVAL;
-    }
-    pft_ws_t ws;
-    pft_ws_init(&ws, work, work_len);
-    carve_all_(t, cfg, &ws, false);
-    if (pft_ws_status(&ws) != PFT_OK) {
-        return PFT_ERR_NOMEM;
-    }
     memset(t, 0, sizeof(*t));
     t->cfg = *cfg;
     /* setup_ clears a filter's buffer pointers: set up first, carve after. */
@@ -94,8 +83,42 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
         pft_tbd_filter_clear_(&t->tracks[k]);
     }
     t->next_id = 1u;
+}
+
+pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
+{
+    if (t == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    carve_all_(t, cfg, &ws, false);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    build_(t, cfg, work, work_len);
     return PFT_OK;
 }
+
+pft_status_t pft_tbd_reset(pft_tbd_t *t)
+{
+    if (t == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->img == NULL) {
+        return PFT_ERR_STATE;
+    }
+    /* the workspace starts at the (aligned) image buffer: build it again from there */
+    pft_tbd_config_t cfg = t->cfg;
+    size_t len = pft_tbd_workspace_size(&cfg) - (PFT_WS_ALIGN - 1u);
+    build_(t, &cfg, t->img, len);
+    return PFT_OK;
+}
+
+uint32_t pft_tbd_frame(const pft_tbd_t *t) { return t == NULL ? 0u : t->frame; }
 
 static uint32_t count_alive_(const pft_tbd_filter_t *f)
 {

@@ -1,111 +1,7 @@
-/* TBD configuration, measurement model (PSF, windowed LLR) and frame preparation. */
+/* TBD measurement model (PSF, windowed LLR) and frame preparation. */
 #include <string.h>
 
 #include "tbd_int.h"
-#include "../core/num_int.h"
-
-void pft_tbd_config_default(pft_tbd_config_t *cfg)
-{
-    if (cfg == NULL) {
-        return;
-    }
-    memset(cfg, 0, sizeof(*cfg));
-    cfg->width = 20u;
-    cfg->height = 20u;
-    cfg->dx = PFT_C(1.0);
-    cfg->dy = PFT_C(1.0);
-    cfg->psf_sigma = PFT_C(0.7);
-    cfg->noise_sigma = PFT_C(3.2);
-    cfg->pixel_gain = PFT_C(1.0);
-    cfg->pixel_offset = PFT_C(0.0);
-    cfg->window = 1u;
-    cfg->T = PFT_C(1.0);
-    cfg->q1 = PFT_C(0.005);
-    cfg->q2 = PFT_C(0.01);
-    cfg->pb = PFT_C(0.05);
-    cfg->pd = PFT_C(0.05);
-    cfg->eta = PFT_C(0.05);
-    cfg->gamma = PFT_C(2.0);
-    cfg->i_min = PFT_C(10.0);
-    cfg->i_max = PFT_C(30.0);
-    cfg->vel_mean[0] = PFT_C(0.0);
-    cfg->vel_mean[1] = PFT_C(0.0);
-    cfg->vel_var[0] = PFT_C(0.333333333333);
-    cfg->vel_var[1] = PFT_C(0.333333333333);
-    cfg->birth_correction = false;
-    cfg->theta1 = PFT_C(0.6);
-    cfg->dis_r = 2u;
-    cfg->dis_prev = 5u;
-    cfg->dis_ratio = PFT_C(0.8);
-    cfg->dis_ratio_test = true;
-    cfg->theta_end = PFT_C(0.0);
-    cfg->d_margin = 0u;
-    cfg->d_current = false;
-    cfg->force_constraint = true;
-    cfg->d_region = PFT_TBD_D_WINDOW;
-    cfg->residual_search = false;
-    cfg->residual_tracks = false;
-    cfg->residual_margin = 1u;
-    cfg->handover_gate = 0u;
-    cfg->end_lr_frames = 0u;
-    cfg->end_lr_max = PFT_C(0.0);
-    cfg->n_search = 6000u;
-    cfg->n_track = 500u;
-    cfg->max_targets = 4u;
-    cfg->kind = PFT_TBD_RBPF;
-    cfg->kf_variant = PFT_TBD_KF_EXACT;
-    cfg->seed = 1u;
-}
-
-void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
-{
-    if (cfg == NULL) {
-        return;
-    }
-    pft_tbd_config_default(cfg);
-    cfg->dis_ratio_test = false;
-    cfg->theta_end = PFT_C(0.5);
-    cfg->d_current = true;
-    cfg->d_margin = 1u;
-    cfg->residual_search = true;
-    cfg->residual_tracks = true;
-    cfg->d_region = PFT_TBD_D_NONE;
-    cfg->handover_gate = 2u;
-}
-
-static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
-
-pft_status_t pft_tbd_config_check(const pft_tbd_config_t *c)
-{
-    if (c == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    bool ok = c->width >= 1u && c->height >= 1u && c->width <= PFT_CFG_MAX_IMAGE_SIDE &&
-              c->height <= PFT_CFG_MAX_IMAGE_SIDE;
-    ok = ok && c->dx > PFT_C(0.0) && c->dy > PFT_C(0.0);
-    ok = ok && c->psf_sigma > PFT_C(0.0) && c->noise_sigma > PFT_C(0.0);
-    ok = ok && c->window <= PFT_TBD_MAX_WINDOW;
-    ok = ok && c->T > PFT_C(0.0) && c->q1 >= PFT_C(0.0) && c->q2 >= PFT_C(0.0);
-    ok = ok && in01_(c->pb) && in01_(c->pd) && in01_(c->eta) && in01_(c->theta1) && in01_(c->theta_end);
-    ok = ok && c->i_min <= c->i_max;
-    ok = ok && c->vel_var[0] >= PFT_C(0.0) && c->vel_var[1] >= PFT_C(0.0);
-    ok = ok && c->dis_r <= PFT_TBD_MAX_DIS_R && c->dis_prev >= 1u &&
-         c->dis_prev <= PFT_TBD_MAX_DIS_PREV;
-    ok = ok && c->d_margin <= 16u;
-    ok = ok && (c->d_region == PFT_TBD_D_WINDOW || c->d_region == PFT_TBD_D_PIXEL ||
-                c->d_region == PFT_TBD_D_NONE);
-    ok = ok && (uint32_t)c->window + c->residual_margin <= PFT_TBD_MAX_PSF_HALF;
-    ok = ok && c->end_lr_frames <= PFT_TBD_MAX_DIS_R + 1u && c->handover_gate <= 64u;
-    ok = ok && c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0);
-    ok = ok && c->n_search >= 1u && c->n_search <= PFT_CFG_MAX_PARTICLES;
-    ok = ok && c->n_track >= 1u && c->n_track <= PFT_CFG_MAX_PARTICLES;
-    ok = ok && c->max_targets >= 1u;
-    ok = ok && (c->kind == PFT_TBD_RBPF || c->kind == PFT_TBD_PF);
-    ok = ok && (c->kf_variant == PFT_TBD_KF_EXACT || c->kf_variant == PFT_TBD_KF_PAPER);
-    /* positions must stay well inside the number range (q16) */
-    ok = ok && pft_span_ok_(c->width, c->dx) && pft_span_ok_(c->height, c->dy);
-    return ok ? PFT_OK : PFT_ERR_INVAL;
-}
 
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
 {
@@ -113,23 +9,19 @@ int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
     return pft_round_int(r);
 }
 
-pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+pft_status_t pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
 {
-    pft_tbd_region_t r = {0, -1, 0, -1};
-    if (cfg == NULL || cfg->dx <= PFT_C(0.0) || cfg->dy <= PFT_C(0.0)) {
-        return r;
+    if (m == NULL || cfg == NULL) {
+        return PFT_ERR_INVAL;
     }
-    int32_t i0 = pft_tbd_pix_(x, pft_recip(cfg->dx));
-    int32_t j0 = pft_tbd_pix_(y, pft_recip(cfg->dy));
-    int32_t p = (int32_t)cfg->window;
-    r.i_lo = i0 - p;
-    r.i_hi = i0 + p;
-    r.j_lo = j0 - p;
-    r.j_hi = j0 + p;
-    return r;
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    pft_tbd_meas_setup_(m, cfg);
+    return PFT_OK;
 }
 
-void pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
+void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
 {
     m->width = cfg->width;
     m->height = cfg->height;
