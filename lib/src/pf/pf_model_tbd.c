@@ -1,12 +1,11 @@
 /* The TBD pixel likelihood (pft_tbd.h, ALGORITHMS.md 1 and 2.9) as a model of the
  * particle-filter engine: with SIR it is the bootstrap PF-TBD, with the APF the APF-TBD.
- * The measurement model, frame conversion and birth-candidate scan are the tbd module's
- * (pft_tbd_meas_llr and its internal frame helpers); only the engine differs. */
+ * Everything but the engine is the tbd module's, called through its private header: the
+ * measurement model, frame conversion and birth candidates, and the PF-TBD existence chain,
+ * births, CV step, leave-image test and estimate sums (lib/src/tbd/tbd_dyn.c). */
 #include <string.h>
 
 #include "pft/pft_pf_models.h"
-#include "../core/acc_int.h"
-#include "../core/num_int.h"
 #include "../tbd/tbd_int.h"
 
 size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg)
@@ -43,10 +42,7 @@ static pft_status_t tbd_begin_(void *ctx, const void *z)
     pft_tbd_scene_t_ sc;
     pft_tbd_scene_build_(&m->cfg, m->img, NULL, m->cand, &sc);
     m->n_cand = sc.n_cand;
-    m->birth_lw = PFT_C(0.0);
-    if (m->cfg.birth_correction && sc.cand_is_b && sc.n_allowed > 0u) {
-        m->birth_lw = pft_log(pft_ratio((int32_t)sc.n_cand, (int32_t)sc.n_allowed));
-    }
+    m->birth_lw = pft_tbd_birth_lw_(&m->cfg, &sc);
     if (m->frames < UINT32_MAX) {
         ++m->frames;
     }
@@ -60,37 +56,19 @@ static void tbd_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
     memset(x, 0, PFT_PF_TBD_DIM * sizeof(pft_real_t)); /* E = 0: no target before frame 1 */
 }
 
-static void axis_(const pft_pf_tbd_model_t *m, pft_real_t *pos, pft_real_t *v, pft_real_t g1,
-                  pft_real_t g2)
+/* The kinematic part of a state vector. */
+static pft_tbd_kin_t kin_(pft_real_t *x)
 {
-    *pos = pft_add(*pos, pft_add(pft_mul(m->cfg.T, *v), pft_mul(m->ch_pos, g1)));
-    *v = pft_add(*v, pft_add(pft_mul(m->ch_cross, g1), pft_mul(m->ch_vel, g2)));
+    pft_tbd_kin_t k = {&x[PFT_PF_TBD_X], &x[PFT_PF_TBD_Y], &x[PFT_PF_TBD_VX], &x[PFT_PF_TBD_VY],
+                       &x[PFT_PF_TBD_I]};
+    return k;
 }
 
-static void birth_(const pft_pf_tbd_model_t *m, pft_real_t *x, pft_rng_t *rng)
-{
-    const pft_tbd_config_t *c = &m->cfg;
-    uint32_t k = m->cand[pft_rng_below(rng, m->n_cand)];
-    uint32_t col = k % c->width;
-    uint32_t row = k / c->width;
-    pft_real_t ux = pft_rng_uniform(rng);
-    pft_real_t uy = pft_rng_uniform(rng);
-    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    x[PFT_PF_TBD_X] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    x[PFT_PF_TBD_Y] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
-    x[PFT_PF_TBD_I] = pft_rng_uniform_range(rng, c->i_min, c->i_max);
-    x[PFT_PF_TBD_VX] = pft_add(c->vel_mean[0], pft_mul(m->vel_sd[0], pft_rng_gauss(rng)));
-    x[PFT_PF_TBD_VY] = pft_add(c->vel_mean[1], pft_mul(m->vel_sd[1], pft_rng_gauss(rng)));
-    x[PFT_PF_TBD_E] = PFT_C(2.0);
-}
-
-/* A target whose window centre leaves the image leaves the surveillance region: E = 0 (the
- * tbd module's rule). */
+/* A target whose window centre leaves the image leaves the surveillance region: E = 0. */
 static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
 {
-    int32_t i0 = pft_tbd_pix_(x[PFT_PF_TBD_X], m->m.inv_dx);
-    int32_t j0 = pft_tbd_pix_(x[PFT_PF_TBD_Y], m->m.inv_dy);
-    if (i0 < 1 || j0 < 1 || i0 > (int32_t)m->cfg.width || j0 > (int32_t)m->cfg.height) {
+    size_t pix = 0;
+    if (!pft_tbd_centre_(&m->m, x[PFT_PF_TBD_X], x[PFT_PF_TBD_Y], &pix)) {
         x[PFT_PF_TBD_E] = PFT_C(0.0);
     }
 }
@@ -98,28 +76,21 @@ static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
 static void tbd_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
-    /* existence: one draw per particle, decided on its top 16 bits (same as the tbd module) */
-    uint32_t u = pft_rng_u32(rng) >> 16;
+    pft_tbd_kin_t k = kin_(x);
+    uint32_t u = pft_tbd_exist_draw_(rng); /* one draw per particle, as the tbd module */
     if (x[PFT_PF_TBD_E] != PFT_C(0.0)) {
-        if (u < m->p16_d) {
+        if (u < m->dyn.p16_d) {
             x[PFT_PF_TBD_E] = PFT_C(0.0);
             return;
         }
-        pft_real_t g1 = pft_rng_gauss(rng);
-        pft_real_t g2 = pft_rng_gauss(rng);
-        pft_real_t g3 = pft_rng_gauss(rng);
-        pft_real_t g4 = pft_rng_gauss(rng);
-        pft_real_t g5 = pft_rng_gauss(rng);
-        axis_(m, &x[PFT_PF_TBD_X], &x[PFT_PF_TBD_VX], g1, g2);
-        axis_(m, &x[PFT_PF_TBD_Y], &x[PFT_PF_TBD_VY], g3, g4);
-        x[PFT_PF_TBD_I] = pft_add(x[PFT_PF_TBD_I], pft_mul(m->ch_int, g5));
+        pft_tbd_pf_move_(&m->dyn, m->cfg.T, rng, &k);
         x[PFT_PF_TBD_E] = PFT_C(1.0);
         leave_image_(m, x);
         return;
     }
-    uint32_t p_birth = m->frames <= 1u ? m->p16_eta : m->p16_b;
-    if (m->n_cand > 0u && u < p_birth) {
-        birth_(m, x, rng);
+    if (m->n_cand > 0u && u < pft_tbd_p_birth_(&m->dyn, m->frames <= 1u)) {
+        pft_tbd_birth_(&m->cfg, &m->dyn, m->cand, m->n_cand, true, rng, &k);
+        x[PFT_PF_TBD_E] = PFT_C(2.0); /* born at this step: gets the birth correction */
         leave_image_(m, x);
     }
 }
@@ -150,32 +121,27 @@ static void tbd_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 }
 
 static void tbd_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
-                           pft_real_t *est)
+                          pft_real_t *est)
 {
     pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
-    pft_acc_t_ acc[5];
-    pft_wacc_t wt = 0;
-    pft_wacc_t we = 0;
-    for (int c = 0; c < 5; ++c) {
-        acc[c] = PFT_ACC_ZERO_;
-    }
+    pft_tbd_wsum_t a;
+    pft_tbd_wsum_init_(&a);
     for (uint32_t i = 0; i < n; ++i) {
         const pft_real_t *xi = x + (size_t)i * PFT_PF_TBD_DIM;
-        wt += w[i];
-        if (xi[PFT_PF_TBD_E] != PFT_C(0.0)) {
-            we += w[i];
-            for (int c = 0; c < 5; ++c) {
-                acc[c] += pft_acc_wx_(w[i], xi[c]);
-            }
-        }
+        const pft_real_t v[5] = {xi[PFT_PF_TBD_X], xi[PFT_PF_TBD_Y], xi[PFT_PF_TBD_VX],
+                                 xi[PFT_PF_TBD_VY], xi[PFT_PF_TBD_I]};
+        pft_tbd_wsum_add_(&a, w[i], xi[PFT_PF_TBD_E] != PFT_C(0.0), v);
     }
-    if (we > 0) {
-        for (int c = 0; c < 5; ++c) {
-            m->last[c] = pft_acc_div_(acc[c], we);
-        }
+    pft_real_t mean[5];
+    if (pft_tbd_wsum_mean_(&a, mean)) {
+        m->last[PFT_PF_TBD_X] = mean[0];
+        m->last[PFT_PF_TBD_Y] = mean[1];
+        m->last[PFT_PF_TBD_VX] = mean[2];
+        m->last[PFT_PF_TBD_VY] = mean[3];
+        m->last[PFT_PF_TBD_I] = mean[4];
     }
     memcpy(est, m->last, sizeof(m->last));
-    est[PFT_PF_TBD_E] = pft_wratio_(we, wt);
+    est[PFT_PF_TBD_E] = pft_tbd_wsum_p_(&a);
 }
 
 pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t *cfg, void *work,
@@ -202,21 +168,7 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     m->cand = cand;
     memset(img, 0, npix * sizeof(pft_real_t));
     memset(cand, 0, npix * sizeof(uint32_t));
-    pft_real_t T = cfg->T;
-    pft_real_t q1T = pft_mul(cfg->q1, T);
-    /* chol of q1 [[T^3/3, T^2/2], [T^2/2, T]]: L11 = sqrt(q1 T^3/3), L21 = q1 T^2/2 / L11,
-     * L22 = sqrt(q1 T/4) (same constants as the tbd module's PF-TBD) */
-    m->ch_pos = pft_sqrt(pft_div(pft_mul(cfg->q1, pft_mul(pft_sq(T), T)), PFT_C(3.0)));
-    m->ch_cross = m->ch_pos > PFT_C(0.0)
-                      ? pft_div(pft_mul(pft_mul(cfg->q1, pft_sq(T)), PFT_C(0.5)), m->ch_pos)
-                      : PFT_C(0.0);
-    m->ch_vel = pft_sqrt(pft_mul(q1T, PFT_C(0.25)));
-    m->ch_int = pft_sqrt(pft_mul(cfg->q2, T));
-    m->vel_sd[0] = pft_sqrt(cfg->vel_var[0]);
-    m->vel_sd[1] = pft_sqrt(cfg->vel_var[1]);
-    m->p16_b = pft_p16_(cfg->pb);
-    m->p16_d = pft_p16_(cfg->pd);
-    m->p16_eta = pft_p16_(cfg->eta);
+    pft_tbd_dyn_setup_(&m->dyn, cfg);
     tbd_reset_(m);
     memset(iface, 0, sizeof(*iface));
     iface->dim = PFT_PF_TBD_DIM;

@@ -2,8 +2,6 @@
 #include <string.h>
 
 #include "tbd_int.h"
-#include "../core/acc_int.h"
-#include "../core/num_int.h"
 
 /* ---------------------------------- layout ------------------------------------------------ */
 
@@ -59,27 +57,14 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
     f->n = n;
     f->births = births;
     f->constrain = constrain;
-    pft_tbd_meas_init(&f->model, cfg);
+    pft_tbd_meas_setup_(&f->model, cfg);
     f->log_n = pft_log_count_(n);
     f->log_ratio = pft_log(cfg->dis_ratio);
     pft_real_t T = cfg->T;
-    pft_real_t T3 = pft_mul(pft_sq(T), T);
-    f->kf_qpos = pft_div(pft_mul(cfg->q1, T3), PFT_C(3.0));
+    f->kf_qpos = pft_div(pft_mul(cfg->q1, pft_mul(pft_sq(T), T)), PFT_C(3.0)); /* q1 T^3 / 3 */
     pft_real_t q1T = pft_mul(cfg->q1, T);
     f->kf_qvel = cfg->kf_variant == PFT_TBD_KF_EXACT ? pft_mul(q1T, PFT_C(0.25)) : q1T;
-    /* chol of q1 [[T^3/3, T^2/2], [T^2/2, T]]: L11 = sqrt(q1T^3/3), L21 = q1T^2/2 / L11,
-     * L22 = sqrt(q1T/4). */
-    f->ch_pos = pft_sqrt(f->kf_qpos);
-    f->ch_cross = f->ch_pos > PFT_C(0.0)
-                      ? pft_div(pft_mul(pft_mul(cfg->q1, pft_sq(T)), PFT_C(0.5)), f->ch_pos)
-                      : PFT_C(0.0);
-    f->ch_vel = pft_sqrt(pft_mul(q1T, PFT_C(0.25)));
-    f->ch_int = pft_sqrt(pft_mul(cfg->q2, T));
-    f->vel_sd[0] = pft_sqrt(cfg->vel_var[0]);
-    f->vel_sd[1] = pft_sqrt(cfg->vel_var[1]);
-    f->p16_b = pft_p16_(cfg->pb);
-    f->p16_d = pft_p16_(cfg->pd);
-    f->p16_eta = pft_p16_(cfg->eta);
+    pft_tbd_dyn_setup_(&f->dyn, cfg);
     pft_rng_seed(&f->rng, seed);
     pft_tbd_filter_reset_stats_(f);
 }
@@ -149,35 +134,26 @@ static void kf_axis_(const kf_consts_t *kc, kf_memo_t *mm, pft_real_t *pos, pft_
     *p = mm->p_out;
 }
 
-static void birth_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc, uint32_t s)
+/* The kinematic state of particle s of P. */
+static pft_tbd_kin_t kin_(pft_tbd_particles_t *P, uint32_t s)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_config_t *c = &f->cfg;
-    uint32_t k = sc->cand[pft_rng_below(&f->rng, sc->n_cand)];
-    uint32_t col = k % c->width;
-    uint32_t row = k / c->width;
-    pft_real_t ux = pft_rng_uniform(&f->rng);
-    pft_real_t uy = pft_rng_uniform(&f->rng);
-    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    P->x[s] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    P->y[s] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
-    P->in[s] = pft_rng_uniform_range(&f->rng, c->i_min, c->i_max);
-    if (f->kind == PFT_TBD_RBPF) {
-        P->mx[s] = c->vel_mean[0];
-        P->my[s] = c->vel_mean[1];
-        P->px[s] = c->vel_var[0];
-        P->py[s] = c->vel_var[1];
-    } else {
-        P->mx[s] = pft_add(c->vel_mean[0], pft_mul(f->vel_sd[0], pft_rng_gauss(&f->rng)));
-        P->my[s] = pft_add(c->vel_mean[1], pft_mul(f->vel_sd[1], pft_rng_gauss(&f->rng)));
-    }
+    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->mx[s], &P->my[s], &P->in[s]};
+    return k;
 }
 
-static void pf_axis_(const pft_tbd_filter_t *f, pft_real_t T, pft_real_t *pos, pft_real_t *v,
-                     pft_real_t g1, pft_real_t g2)
+/* b[s] = a[k] (the RBPF's Kalman variances too). */
+static void copy_particle_(pft_tbd_particles_t *b, uint32_t s, const pft_tbd_particles_t *a,
+                           uint32_t k, bool rb)
 {
-    *pos = pft_add(*pos, pft_add(pft_mul(T, *v), pft_mul(f->ch_pos, g1)));
-    *v = pft_add(*v, pft_add(pft_mul(f->ch_cross, g1), pft_mul(f->ch_vel, g2)));
+    b->x[s] = a->x[k];
+    b->y[s] = a->y[k];
+    b->in[s] = a->in[k];
+    b->mx[s] = a->mx[k];
+    b->my[s] = a->my[k];
+    if (rb) {
+        b->px[s] = a->px[k];
+        b->py[s] = a->py[k];
+    }
 }
 
 /* ---------------------------------- statistics -------------------------------------------- */
@@ -186,45 +162,38 @@ static void estimate_(pft_tbd_filter_t *f)
 {
     const pft_tbd_particles_t *P = &f->cur;
     const pft_weight_t *w = f->w;
-    pft_wacc_t wt = 0;
-    pft_wacc_t we = 0;
-    pft_acc_t_ sx = PFT_ACC_ZERO_, sy = PFT_ACC_ZERO_, svx = PFT_ACC_ZERO_, svy = PFT_ACC_ZERO_,
-               si = PFT_ACC_ZERO_;
+    pft_tbd_wsum_t a;
+    pft_tbd_wsum_init_(&a);
     for (uint32_t s = 0; s < f->n; ++s) {
-        wt += w[s];
-        if (P->e[s] != 0u) {
-            we += w[s];
-            sx += pft_acc_wx_(w[s], P->x[s]);
-            sy += pft_acc_wx_(w[s], P->y[s]);
-            svx += pft_acc_wx_(w[s], P->mx[s]);
-            svy += pft_acc_wx_(w[s], P->my[s]);
-            si += pft_acc_wx_(w[s], P->in[s]);
-        }
+        const pft_real_t v[5] = {P->x[s], P->y[s], P->mx[s], P->my[s], P->in[s]};
+        pft_tbd_wsum_add_(&a, w[s], P->e[s] != 0u, v);
     }
     pft_tbd_estimate_t *e = &f->est;
-    e->p_exist = pft_wratio_(we, wt);
+    e->p_exist = pft_tbd_wsum_p_(&a);
     e->n_eff = pft_ess(w, f->n);
-    if (we > 0) {
-        e->x = pft_acc_div_(sx, we);
-        e->y = pft_acc_div_(sy, we);
-        e->vx = pft_acc_div_(svx, we);
-        e->vy = pft_acc_div_(svy, we);
-        e->intensity = pft_acc_div_(si, we);
-        pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
-        for (uint32_t s = 0; s < f->n; ++s) {
-            if (P->e[s] != 0u) {
-                pft_real_t ddx = pft_sub(P->x[s], e->x);
-                pft_real_t ddy = pft_sub(P->y[s], e->y);
-                cxx += pft_acc_wx_(w[s], pft_sq(ddx));
-                cxy += pft_acc_wx_(w[s], pft_mul(ddx, ddy));
-                cyy += pft_acc_wx_(w[s], pft_sq(ddy));
-            }
-        }
-        e->pos_cov[0] = pft_acc_div_(cxx, we);
-        e->pos_cov[1] = pft_acc_div_(cxy, we);
-        e->pos_cov[2] = pft_acc_div_(cyy, we);
-        e->valid = true;
+    pft_real_t m[5];
+    if (!pft_tbd_wsum_mean_(&a, m)) {
+        return;
     }
+    e->x = m[0];
+    e->y = m[1];
+    e->vx = m[2];
+    e->vy = m[3];
+    e->intensity = m[4];
+    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            pft_real_t ddx = pft_sub(P->x[s], e->x);
+            pft_real_t ddy = pft_sub(P->y[s], e->y);
+            cxx += pft_acc_wx_(w[s], pft_sq(ddx));
+            cxy += pft_acc_wx_(w[s], pft_mul(ddx, ddy));
+            cyy += pft_acc_wx_(w[s], pft_sq(ddy));
+        }
+    }
+    e->pos_cov[0] = pft_acc_div_(cxx, a.we);
+    e->pos_cov[1] = pft_acc_div_(cxy, a.we);
+    e->pos_cov[2] = pft_acc_div_(cyy, a.we);
+    e->valid = true;
 }
 
 /* Windowed log likelihood ratio and the disappearance test (ALGORITHMS.md 2.6). lr_hist[0]
@@ -274,20 +243,10 @@ static void resample_(pft_tbd_filter_t *f)
     }
     pft_tbd_particles_t *a = &f->cur;
     pft_tbd_particles_t *b = &f->nxt;
-    const uint32_t *idx = f->idx;
     bool rb = f->kind == PFT_TBD_RBPF;
     for (uint32_t s = 0; s < f->n; ++s) {
-        uint32_t k = idx[s];
-        b->x[s] = a->x[k];
-        b->y[s] = a->y[k];
-        b->in[s] = a->in[k];
-        b->mx[s] = a->mx[k];
-        b->my[s] = a->my[k];
-        if (rb) {
-            b->px[s] = a->px[k];
-            b->py[s] = a->py[k];
-        }
-        b->e[s] = a->e[k];
+        copy_particle_(b, s, a, f->idx[s], rb);
+        b->e[s] = a->e[f->idx[s]];
     }
     pft_tbd_particles_t t = *a;
     *a = *b;
@@ -296,72 +255,85 @@ static void resample_(pft_tbd_filter_t *f)
 
 /* ---------------------------------- one iteration ----------------------------------------- */
 
+/* What one step needs beyond the filter: the scene, the Kalman constants and memos, the birth
+ * and constraint switches of this frame. */
+typedef struct {
+    const pft_tbd_scene_t_ *sc;
+    kf_consts_t kc;
+    kf_memo_t mx, my;
+    uint32_t p_birth;
+    bool can_birth;
+    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
+} step_ctx_t;
+
+/* Steps 1-2 for particle s: existence, then the survivor's move (RBPF or PF) or a birth; a
+ * particle whose window centre leaves the image, or enters the exclusion mask, gets E = 0.
+ * Returns the new E; *born for a birth at this step. */
+static uint8_t move_particle_(pft_tbd_filter_t *f, step_ctx_t *x, uint32_t s, bool *born)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_kin_t k = kin_(P, s);
+    uint32_t u = pft_tbd_exist_draw_(&f->rng); /* one draw per particle */
+    uint8_t e = P->e[s];
+    *born = false;
+    if (e != 0u) {
+        if (u < f->dyn.p16_d) {
+            return 0u;
+        }
+        if (f->kind == PFT_TBD_RBPF) {
+            /* RBPF sampling of (x, y, I) and the velocity Kalman filter */
+            pft_real_t gx = pft_rng_gauss(&f->rng);
+            pft_real_t gy = pft_rng_gauss(&f->rng);
+            pft_real_t gi = pft_rng_gauss(&f->rng);
+            kf_axis_(&x->kc, &x->mx, &P->x[s], &P->mx[s], &P->px[s], gx);
+            kf_axis_(&x->kc, &x->my, &P->y[s], &P->my[s], &P->py[s], gy);
+            P->in[s] = pft_add(P->in[s], pft_mul(f->dyn.ch_int, gi));
+        } else {
+            pft_tbd_pf_move_(&f->dyn, f->cfg.T, &f->rng, &k);
+        }
+    } else if (x->can_birth && u < x->p_birth) {
+        bool rb = f->kind == PFT_TBD_RBPF;
+        pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &f->rng, &k);
+        if (rb) {
+            P->px[s] = f->cfg.vel_var[0];
+            P->py[s] = f->cfg.vel_var[1];
+        }
+        e = 1u;
+        *born = true;
+    } else {
+        return e;
+    }
+    /* [A] leaving the image ends the target; a window centre inside a confirmed target's
+     * region forces E = 0 (the constraint) */
+    size_t pix = 0;
+    if (!pft_tbd_centre_(&f->model, P->x[s], P->y[s], &pix) ||
+        (x->mask != NULL && x->mask[pix] != 0u)) {
+        e = 0u;
+    }
+    return e;
+}
+
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
 {
     const pft_tbd_config_t *c = &f->cfg;
     pft_tbd_particles_t *P = &f->cur;
-    uint32_t p_birth = f->frames == 0u ? f->p16_eta : f->p16_b;
-    bool can_birth = f->births && sc->n_cand > 0u;
-    f->birth_lw = PFT_C(0.0);
-    if (can_birth && c->birth_correction && sc->cand_is_b && sc->n_allowed > 0u) {
-        f->birth_lw = pft_log(pft_ratio((int32_t)sc->n_cand, (int32_t)sc->n_allowed));
-    }
-    kf_consts_t kc;
-    kc.T = c->T;
-    kc.T2 = pft_sq(c->T);
-    kc.c32T = pft_div(PFT_C(1.5), c->T);
-    kc.qpos = f->kf_qpos;
-    kc.qvel = f->kf_qvel;
-    kc.exact = c->kf_variant == PFT_TBD_KF_EXACT;
-    kf_memo_t mx = {0, 0, 0, 0, false};
-    kf_memo_t my = {0, 0, 0, 0, false};
-    bool rb = f->kind == PFT_TBD_RBPF;
-    const uint8_t *mask = f->constrain ? sc->mask : NULL;
-
+    step_ctx_t x;
+    memset(&x, 0, sizeof x);
+    x.sc = sc;
+    x.p_birth = pft_tbd_p_birth_(&f->dyn, f->frames == 0u);
+    x.can_birth = f->births && sc->n_cand > 0u;
+    x.mask = f->constrain ? sc->mask : NULL;
+    x.kc.T = c->T;
+    x.kc.T2 = pft_sq(c->T);
+    x.kc.c32T = pft_div(PFT_C(1.5), c->T);
+    x.kc.qpos = f->kf_qpos;
+    x.kc.qvel = f->kf_qvel;
+    x.kc.exact = c->kf_variant == PFT_TBD_KF_EXACT;
+    f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
     for (uint32_t s = 0; s < f->n; ++s) {
-        /* 1. existence (one draw per particle, decided on its top 16 bits) */
-        uint32_t u = pft_rng_u32(&f->rng) >> 16;
-        uint8_t e = P->e[s];
-        bool born = false;
-        if (e != 0u) {
-            if (u < f->p16_d) {
-                e = 0u;
-            } else if (rb) {
-                /* 2. survivors: RBPF sampling of (x, y, I) and the velocity Kalman filter */
-                pft_real_t gx = pft_rng_gauss(&f->rng);
-                pft_real_t gy = pft_rng_gauss(&f->rng);
-                pft_real_t gi = pft_rng_gauss(&f->rng);
-                kf_axis_(&kc, &mx, &P->x[s], &P->mx[s], &P->px[s], gx);
-                kf_axis_(&kc, &my, &P->y[s], &P->my[s], &P->py[s], gy);
-                P->in[s] = pft_add(P->in[s], pft_mul(f->ch_int, gi));
-            } else {
-                /* PF: X = F X + chol(V) n on the full state */
-                pft_real_t g1 = pft_rng_gauss(&f->rng);
-                pft_real_t g2 = pft_rng_gauss(&f->rng);
-                pft_real_t g3 = pft_rng_gauss(&f->rng);
-                pft_real_t g4 = pft_rng_gauss(&f->rng);
-                pft_real_t g5 = pft_rng_gauss(&f->rng);
-                pf_axis_(f, c->T, &P->x[s], &P->mx[s], g1, g2);
-                pf_axis_(f, c->T, &P->y[s], &P->my[s], g3, g4);
-                P->in[s] = pft_add(P->in[s], pft_mul(f->ch_int, g5));
-            }
-        } else if (can_birth && u < p_birth) {
-            birth_(f, sc, s);
-            e = 1u;
-            born = true;
-        }
-        /* A particle whose window centre leaves the image leaves the surveillance region: E = 0
-         * [A]. The constraint: a window centre inside a confirmed target's region forces E = 0. */
-        if (e != 0u) {
-            int32_t i0 = pft_tbd_pix_(P->x[s], f->model.inv_dx);
-            int32_t j0 = pft_tbd_pix_(P->y[s], f->model.inv_dy);
-            if (i0 < 1 || j0 < 1 || i0 > (int32_t)c->width || j0 > (int32_t)c->height) {
-                e = 0u;
-            } else if (mask != NULL &&
-                       mask[(size_t)(j0 - 1) * c->width + (size_t)(i0 - 1)] != 0u) {
-                e = 0u;
-            }
-        }
+        /* 1-2. existence, move or birth */
+        bool born;
+        uint8_t e = move_particle_(f, &x, s, &born);
         P->e[s] = e;
         /* 3. log-weight (eq. 20; E = 0 particles have likelihood ratio 1) */
         pft_real_t lw = PFT_C(0.0);
@@ -391,11 +363,8 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
     for (uint32_t s = 0; s < src->n; ++s) {
         bool a = src->cur.e[s] != 0u;
         if (a && gate != NULL) {
-            int32_t i0 = pft_tbd_pix_(src->cur.x[s], src->model.inv_dx);
-            int32_t j0 = pft_tbd_pix_(src->cur.y[s], src->model.inv_dy);
-            a = i0 >= 1 && j0 >= 1 && i0 <= (int32_t)src->cfg.width &&
-                j0 <= (int32_t)src->cfg.height &&
-                gate[(size_t)(j0 - 1) * src->cfg.width + (size_t)(i0 - 1)] != 0u;
+            size_t pix = 0;
+            a = pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u;
         }
         src->w[s] = a ? PFT_W_ONE : (pft_weight_t)0;
         alive += a ? 1u : 0u;
@@ -411,16 +380,7 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
     pft_tbd_particles_t *b = &dst->cur;
     bool rb = dst->kind == PFT_TBD_RBPF;
     for (uint32_t s = 0; s < dst->n; ++s) {
-        uint32_t k = dst->idx[s];
-        b->x[s] = a->x[k];
-        b->y[s] = a->y[k];
-        b->in[s] = a->in[k];
-        b->mx[s] = a->mx[k];
-        b->my[s] = a->my[k];
-        if (rb) {
-            b->px[s] = a->px[k];
-            b->py[s] = a->py[k];
-        }
+        copy_particle_(b, s, a, dst->idx[s], rb);
         b->e[s] = 1u;
     }
     /* estimates of the handed-over set (equal weights) */

@@ -4,6 +4,7 @@
 
 #include "pft/pft_tbd.h"
 #include "pft/pft_resample.h"
+#include "../core/acc_int.h"
 
 /* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
@@ -50,5 +51,68 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
 
 /* Integer pixel index round(v * inv_d), with v clamped so the conversion is defined. */
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d);
+
+/* ---- PF-TBD pieces shared with the pf engine's TBD model (tbd_dyn.c) ---- */
+
+/* Pointers to one particle's kinematic state (the filter's SoA arrays or the engine's state
+ * vector). */
+typedef struct {
+    pft_real_t *x, *y, *vx, *vy, *in;
+} pft_tbd_kin_t;
+
+/* Fills the PF-TBD constants of cfg: chol(V), sqrt(q2 T), sqrt(P0), quantised probabilities. */
+void pft_tbd_dyn_setup_(pft_tbd_dyn_t *d, const pft_tbd_config_t *cfg);
+/* The existence draw of one particle: 16 bits, compared with the quantised probabilities. */
+static inline uint32_t pft_tbd_exist_draw_(pft_rng_t *rng) { return pft_rng_u32(rng) >> 16; }
+/* Birth probability of a frame (eta on the first frame, pb after). */
+static inline uint32_t pft_tbd_p_birth_(const pft_tbd_dyn_t *d, bool first_frame)
+{
+    return first_frame ? d->p16_eta : d->p16_b;
+}
+/* The birth log-weight correction log(|B_k| / A_allow) of a scene (0 unless
+ * cfg.birth_correction and the candidates are B_k). */
+pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_ *sc);
+/* A birth: a candidate pixel, a uniform position inside it, intensity U[i_min, i_max]; the
+ * velocity drawn from N(vel_mean, vel_var) when sample_vel (PF), else vel_mean (RBPF, whose
+ * caller sets the Kalman variances). n_cand >= 1. */
+void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
+                    uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* A survivor's PF move: X = F X + chol(V) n on the full state, intensity random walk. */
+void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* True when the window centre pixel of (x, y) is inside the image (else the target left the
+ * surveillance region); *pix is then its row-major index. */
+bool pft_tbd_centre_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y, size_t *pix);
+
+/* Estimate sums: total weight, weight of the E != 0 particles and their weighted x, y, vx,
+ * vy, I. */
+typedef struct {
+    pft_wacc_t wt, we;
+    pft_acc_t_ s[5];
+} pft_tbd_wsum_t;
+static inline void pft_tbd_wsum_init_(pft_tbd_wsum_t *a)
+{
+    a->wt = 0;
+    a->we = 0;
+    for (int c = 0; c < 5; ++c) {
+        a->s[c] = PFT_ACC_ZERO_;
+    }
+}
+/* Adds one particle (v: x, y, vx, vy, I). */
+static inline void pft_tbd_wsum_add_(pft_tbd_wsum_t *a, pft_weight_t w, bool alive,
+                                     const pft_real_t v[5])
+{
+    a->wt += w;
+    if (alive) {
+        a->we += w;
+        for (int c = 0; c < 5; ++c) {
+            a->s[c] += pft_acc_wx_(w, v[c]);
+        }
+    }
+}
+/* P(E != 0) of the sums. */
+static inline pft_real_t pft_tbd_wsum_p_(const pft_tbd_wsum_t *a) { return pft_wratio_(a->we, a->wt); }
+/* Weighted means x, y, vx, vy, I of the E != 0 particles; false (mean untouched) when they
+ * have no weight. */
+bool pft_tbd_wsum_mean_(const pft_tbd_wsum_t *a, pft_real_t mean[5]);
 
 #endif

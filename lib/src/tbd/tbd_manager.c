@@ -238,13 +238,9 @@ static void build_gate_(pft_tbd_t *t)
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->mask, 0, npix);
     for (uint32_t s = 0; s < sf->n; ++s) {
-        if (sf->cur.e[s] == 0u) {
-            continue;
-        }
-        int32_t i0 = pft_tbd_pix_(sf->cur.x[s], sf->model.inv_dx);
-        int32_t j0 = pft_tbd_pix_(sf->cur.y[s], sf->model.inv_dy);
-        if (i0 >= 1 && j0 >= 1 && i0 <= (int32_t)w && j0 <= (int32_t)h) {
-            ++t->cand[(size_t)(j0 - 1) * w + (size_t)(i0 - 1)];
+        size_t pix = 0;
+        if (sf->cur.e[s] != 0u && pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
+            ++t->cand[pix];
         }
     }
     int32_t p = (int32_t)cfg->window;
@@ -273,73 +269,47 @@ static void build_gate_(pft_tbd_t *t)
     pft_tbd_mask_add_(cfg, t->mask, &r);
 }
 
-pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
+/* 1a. Track layers (no births). With residual_tracks, track k sees the frame minus the other
+ * tracks' PSFs at their predicted positions (the records still hold frame k - 1); t->res is
+ * restored to the frame after each layer. */
+static void update_tracks_(pft_tbd_t *t, bool residual)
 {
-    if (t == NULL || frame == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (t->img == NULL) {
-        return PFT_ERR_STATE;
-    }
     const pft_tbd_config_t *cfg = &t->cfg;
-    pft_status_t st = pft_tbd_frame_check_(cfg, frame);
-    if (st != PFT_OK) {
-        return st;
-    }
-    pft_tbd_frame_convert_(cfg, frame, t->img);
-    if (t->frame < UINT32_MAX) {
-        ++t->frame;
-    }
-    t->n_events = 0u;
-    size_t npix = (size_t)cfg->width * cfg->height;
-    memset(t->mask, 0, npix);
-    const pft_tbd_meas_t *model = &t->search.model;
     uint8_t half = psf_half_(cfg);
-    bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
-    bool res_search = cfg->residual_search && t->n_tracks > 0u;
-    if (res_tracks || res_search) {
-        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
-    }
-
-    /* 1a. track layers (no births). With residual_tracks, track k sees the frame minus the
-     *     other tracks' PSFs at their predicted positions (records still hold frame k - 1). */
     pft_tbd_scene_t_ tsc;
-    tsc.img = t->img;
-    tsc.mask = NULL;
+    memset(&tsc, 0, sizeof tsc);
     tsc.cand = t->cand;
-    tsc.n_cand = 0u;
-    tsc.n_allowed = 0u;
-    tsc.cand_is_b = false;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         if (t->records[k].id == 0u) {
             continue;
         }
-        tsc.img = t->img;
-        if (res_tracks) {
-            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
-                if (u != k && t->records[u].id != 0u) {
-                    pft_real_t px, py;
-                    predict_(cfg, &t->records[u], &px, &py);
-                    pft_tbd_meas_add_psf(model, t->res, px, py,
-                                          pft_neg(t->records[u].intensity), half);
-                }
+        tsc.img = residual ? t->res : t->img;
+        for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+            if (u != k && t->records[u].id != 0u) {
+                pft_real_t px, py;
+                predict_(cfg, &t->records[u], &px, &py);
+                pft_tbd_meas_add_psf(&t->search.model, t->res, px, py,
+                                     pft_neg(t->records[u].intensity), half);
             }
-            tsc.img = t->res;
         }
         pft_tbd_filter_step_(&t->tracks[k], &tsc);
-        if (res_tracks) {
-            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
-                if (u != k && t->records[u].id != 0u) {
-                    pft_real_t px, py;
-                    predict_(cfg, &t->records[u], &px, &py);
-                    restore_psf_(cfg, t->res, t->img, px, py, half);
-                }
+        for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+            if (u != k && t->records[u].id != 0u) {
+                pft_real_t px, py;
+                predict_(cfg, &t->records[u], &px, &py);
+                restore_psf_(cfg, t->res, t->img, px, py, half);
             }
         }
     }
+}
 
-    /* 1b. disappearance; 2. constraint regions from the surviving tracks' estimates (of the
-     *     previous frame, or of this one with d_current). */
+/* 1b. Disappearance: a track ends on its layer's test, on P < theta_end, with no live
+ * particle left or on the short-window LR test. 2. The surviving tracks take their layers'
+ * estimates and add their constraint regions (around the estimates of the previous frame, or
+ * of this one with d_current) to t->mask. */
+static void end_or_keep_tracks_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         pft_tbd_track_t *rec = &t->records[k];
         if (rec->id == 0u) {
@@ -365,15 +335,19 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         }
         add_region_(cfg, t->mask, dx0, dy0);
     }
+}
 
-    /* 3. search layer, births outside the regions; with residual_search on the frame minus
-     *    every remaining track's PSF at its current estimate. */
+/* 3. The search layer, births outside the regions; with residual, on the frame minus every
+ * remaining track's PSF at its current estimate. */
+static void update_search_(pft_tbd_t *t, bool residual)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
     const pft_real_t *simg = t->img;
-    if (res_search && t->n_tracks > 0u) {
+    if (residual && t->n_tracks > 0u) {
         for (uint32_t u = 0; u < cfg->max_targets; ++u) {
             if (t->records[u].id != 0u) {
-                pft_tbd_meas_add_psf(model, t->res, t->records[u].x, t->records[u].y,
-                                      pft_neg(t->records[u].intensity), half);
+                pft_tbd_meas_add_psf(&t->search.model, t->res, t->records[u].x, t->records[u].y,
+                                     pft_neg(t->records[u].intensity), psf_half_(cfg));
             }
         }
         simg = t->res;
@@ -381,37 +355,75 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     pft_tbd_scene_t_ ssc;
     pft_tbd_scene_build_(cfg, simg, t->mask, t->cand, &ssc);
     pft_tbd_filter_step_(&t->search, &ssc);
+}
 
-    /* 4. appearance: hand over to a new track layer and reset the search layer */
-    if (t->search.est.p_exist > cfg->theta1 && t->n_tracks < cfg->max_targets) {
-        uint32_t k = 0;
-        while (k < cfg->max_targets && t->records[k].id != 0u) {
-            ++k;
-        }
-        pft_tbd_filter_t *tf = &t->tracks[k];
-        pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
-        pft_tbd_filter_reset_stats_(tf);
-        const uint8_t *gate = NULL;
-        if (cfg->handover_gate > 0u) {
-            build_gate_(t);
-            gate = t->mask;
-        }
-        if (pft_tbd_filter_handover_(tf, &t->search, gate)) {
-            pft_tbd_track_t *rec = &t->records[k];
-            memset(rec, 0, sizeof(*rec));
-            rec->id = t->next_id++;
-            if (gate == NULL) {
-                tf->est = t->search.est; /* ALGORITHMS.md 2.7: the search layer's estimate */
-            }
-            record_from_est_(rec, &tf->est);
-            rec->first_frame = t->frame;
-            rec->age = 0u;
-            tf->frames = 0u;
-            memset(t->search.cur.e, 0, t->search.n);
-            ++t->n_tracks;
-            push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
-        }
+/* 4. Appearance: when the search layer's P exceeds theta1 and a slot is free, hand its
+ * particles over to a new track layer (ALGORITHMS.md 2.7) and clear the search layer. */
+static void confirm_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    if (!(t->search.est.p_exist > cfg->theta1) || t->n_tracks >= cfg->max_targets) {
+        return;
     }
+    uint32_t k = 0;
+    while (k < cfg->max_targets && t->records[k].id != 0u) {
+        ++k;
+    }
+    pft_tbd_filter_t *tf = &t->tracks[k];
+    pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
+    pft_tbd_filter_reset_stats_(tf);
+    const uint8_t *gate = NULL;
+    if (cfg->handover_gate > 0u) {
+        build_gate_(t);
+        gate = t->mask;
+    }
+    if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
+        return;
+    }
+    pft_tbd_track_t *rec = &t->records[k];
+    memset(rec, 0, sizeof(*rec));
+    rec->id = t->next_id++;
+    if (gate == NULL) {
+        tf->est = t->search.est; /* ALGORITHMS.md 2.7: the search layer's estimate */
+    }
+    record_from_est_(rec, &tf->est);
+    rec->first_frame = t->frame;
+    rec->age = 0u;
+    tf->frames = 0u;
+    memset(t->search.cur.e, 0, t->search.n);
+    ++t->n_tracks;
+    push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+}
+
+pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
+{
+    if (t == NULL || frame == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->img == NULL) {
+        return PFT_ERR_STATE;
+    }
+    const pft_tbd_config_t *cfg = &t->cfg;
+    pft_status_t st = pft_tbd_frame_check_(cfg, frame);
+    if (st != PFT_OK) {
+        return st; /* nothing touched */
+    }
+    pft_tbd_frame_convert_(cfg, frame, t->img);
+    if (t->frame < UINT32_MAX) {
+        ++t->frame;
+    }
+    t->n_events = 0u;
+    size_t npix = (size_t)cfg->width * cfg->height;
+    memset(t->mask, 0, npix);
+    bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
+    bool res_search = cfg->residual_search && t->n_tracks > 0u;
+    if (res_tracks || res_search) {
+        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
+    }
+    update_tracks_(t, res_tracks);
+    end_or_keep_tracks_(t);
+    update_search_(t, res_search);
+    confirm_(t);
     return PFT_OK;
 }
 

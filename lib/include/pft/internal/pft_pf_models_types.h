@@ -39,10 +39,8 @@ struct pft_pf_tbd_model_s {
     uint32_t n_cand;
     uint32_t frames;       /* frames accepted since init / reset */
     pft_real_t birth_lw;   /* birth correction of the current frame */
-    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /* chol(V) per axis, sqrt(q2 T) */
-    pft_real_t vel_sd[2];  /* sqrt(vel_var) */
-    uint32_t p16_b, p16_d, p16_eta; /* probabilities in 1/65536 steps */
-    pft_real_t last[5];    /* last kinematic estimate */
+    pft_tbd_dyn_t dyn;     /* the tbd module's PF-TBD constants */
+    pft_real_t last[5];    /* last kinematic estimate [x, vx, y, vy, I] */
 };
 
 #ifdef __cplusplus

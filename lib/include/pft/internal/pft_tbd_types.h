@@ -34,6 +34,14 @@ typedef struct {
     uint8_t *e;             /* existence E */
 } pft_tbd_particles_t;
 
+/* Constants of the PF-TBD dynamics, births and existence chain (shared by the filters and the
+ * pf engine's TBD model). */
+typedef struct {
+    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /* chol(V) per axis, sqrt(q2 T) */
+    pft_real_t vel_sd[2];                        /* sqrt(P0) */
+    uint32_t p16_b, p16_d, p16_eta;              /* probabilities in 1/65536 steps (0..65536) */
+} pft_tbd_dyn_t;
+
 /* One TBD filter (a single target with existence): standalone, or a layer of the manager. */
 struct pft_tbd_filter_s {
     pft_tbd_config_t cfg;
@@ -54,10 +62,8 @@ struct pft_tbd_filter_s {
     pft_real_t log_ratio;    /* log dis_ratio */
     pft_real_t kf_qpos;      /* q1 T^3 / 3 */
     pft_real_t kf_qvel;      /* q1 T (paper) or q1 T / 4 (exact) */
-    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /* PF: chol(V) per axis, sqrt(q2 T) */
-    pft_real_t vel_sd[2];    /* PF: sqrt(P0) */
+    pft_tbd_dyn_t dyn;       /* PF dynamics, births, existence probabilities */
     pft_real_t birth_lw;     /* birth log-weight correction of the current frame */
-    uint32_t p16_b, p16_d, p16_eta; /* probabilities in 1/65536 steps (0..65536) */
     pft_rng_t rng;
     uint32_t frames;         /* accepted updates */
     pft_tbd_estimate_t est;
