@@ -8,7 +8,8 @@
  *   - the manager with the paper preset, the recommended preset and a variant that switches on
  *     the other options (PF kind, paper Kalman variant, birth correction, pixel regions from the
  *     current estimates, the short-window ending test), 30 frames each,
- *   - a few direct calls of the measurement model (window region, PSF value, LLR).
+ *   - a few direct calls of the measurement model (window region bounds, kept raw; PSF value,
+ *     LLR, PSF subtraction).
  * Every frame gives one row of uint32 values. Positions are kept raw (x, y of the estimate,
  * tracks and events, in Q16.16 raw units); everything else of the row is hashed (FNV-1a), so a
  * change of the coordinate convention shows as a pure shift of the position columns.
@@ -28,7 +29,7 @@
 /* manager row: search valid, x, y, p_exist, hash; n_tracks, n_events; tracks[3] x, y;
  * events[4] x, y; hash of every non-position field of the tracks and events */
 #define PFT_TV_MROW (5 + 2 + 2 * PFT_TV_MAXT + 2 * (PFT_TV_MAXT + 1) + 1)
-#define PFT_TV_MEAS 24
+#define PFT_TV_MEAS 36
 
 #define PFT_TV_NF 400u
 #define PFT_TV_NS 600u
@@ -224,10 +225,10 @@ static inline void pft_tv_run_meas(uint32_t *out)
     size_t o = 0;
     for (int i = 0; i < 4; ++i) {
         pft_tbd_region_t r = pft_tbd_window_region(&c, xs[i], ys[i]);
-        out[o++] = pft_gv_fnv(pft_gv_fnv(pft_gv_fnv(pft_gv_fnv(PFT_GV_FNV0, (uint32_t)r.i_lo),
-                                                    (uint32_t)r.i_hi),
-                                         (uint32_t)r.j_lo),
-                              (uint32_t)r.j_hi);
+        out[o++] = (uint32_t)r.i_lo;
+        out[o++] = (uint32_t)r.i_hi;
+        out[o++] = (uint32_t)r.j_lo;
+        out[o++] = (uint32_t)r.j_hi;
         out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 9, 8, xs[i], ys[i], PFT_C(20.0)));
         out[o++] = pft_gv_r(pft_tbd_meas_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(20.0)));
         pft_tbd_meas_add_psf(&m, pft_tv_img, xs[i], ys[i], PFT_C(-6.0), 2u);
