@@ -827,12 +827,12 @@ private:
                 std::printf("  %-4s %s\n", ok ? "ok" : "FAIL", what);
         };
         json j = {{"kind", "tbd"}, {"noise", {{"snr_db", 6}}}, {"frames", 30},
-                  {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {6, 0.45, 7, 0.25, 20}}, {"motion", "line"}}}}};
+                  {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {5, 0.45, 6, 0.25, 20}}, {"motion", "line"}}}}};
         Scenario s = parse_scenario(j, "<selftest>");
         check("SNR 6 dB -> sigma 3.256 (ALGORITHMS.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
         check("peak amplitude A = 6.4961", std::fabs(s.peak(20) - 6.4961) < 5e-5);
         Sequence q = simulate(s, 7, 0, false);
-        check("line truth: x at frame 22 = 6 + 15*0.45", std::fabs(q.truth[21][0].x - 12.75) < 1e-12 &&
+        check("line truth: x at frame 22 = 5 + 15*0.45", std::fabs(q.truth[21][0].x - 11.75) < 1e-12 &&
                                                           q.truth[21][0].present && !q.truth[22][0].present);
         // a perfect tracker confirming 2 frames late, offset 0.3 px, declared gone 1 frame late
         std::vector<FrameOut> out(30);

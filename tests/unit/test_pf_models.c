@@ -278,19 +278,18 @@ static uint64_t g_pfw[PFT_PF_WORKSPACE_BYTES(TN, PFT_PF_TBD_DIM) / 8 + 1];
 static uint64_t g_mw[PFT_PF_TBD_WORKSPACE_BYTES(TW, TH) / 8 + 1];
 static uint64_t g_tw[PFT_TBD_FILTER_WORKSPACE_BYTES(TN, PFT_TBD_PF, TW, TH) / 8 + 1];
 
-/* Frame k of a target moving from (6, 7) with velocity (0.45, 0.25) px/frame, intensity I,
- * present from frame `on`, Gaussian noise sd sigma (ALGORITHMS.md 1). */
+/* Frame k of a target moving from (5, 6) (0-based pixels) with velocity (0.45, 0.25) px/frame,
+ * intensity I, present from frame `on`, Gaussian noise sd sigma (ALGORITHMS.md 1). */
 static void make_frame(int k, int on, double I, double sigma, pft_frame_t *f)
 {
-    double x = 6.0 + 0.45 * (k - on), y = 7.0 + 0.25 * (k - on);
+    double x = 5.0 + 0.45 * (k - on), y = 6.0 + 0.25 * (k - on);
     double S = 0.7;
     for (int r = 0; r < TH; ++r) {
         for (int cc = 0; cc < TW; ++cc) {
-            double i = cc + 1, j = r + 1;
             double h = 0.0;
             if (k >= on) {
                 h = I / (2.0 * PI_D * S * S) *
-                    exp(-((i - x) * (i - x) + (j - y) * (j - y)) / (2.0 * S * S));
+                    exp(-((cc - x) * (cc - x) + (r - y) * (r - y)) / (2.0 * S * S));
             }
             g_img[r * TW + cc] = (float)(h + sigma * nrand());
         }
@@ -460,8 +459,8 @@ static void test_apf_tbd_detects_and_locates(void)
             first = k;
         }
         if (k >= 10) {
-            double dx = D(est[PFT_PF_TBD_X]) - (6.0 + 0.45 * (k - 4));
-            double dy = D(est[PFT_PF_TBD_Y]) - (7.0 + 0.25 * (k - 4));
+            double dx = D(est[PFT_PF_TBD_X]) - (5.0 + 0.45 * (k - 4));
+            double dy = D(est[PFT_PF_TBD_Y]) - (6.0 + 0.25 * (k - 4));
             tail += sqrt(dx * dx + dy * dy) / 5.0;
         }
     }

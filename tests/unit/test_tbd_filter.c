@@ -138,7 +138,7 @@ static void test_manager_workspace_size_is_exact(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf + off, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 4u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 6; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -207,7 +207,7 @@ static void test_filter_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 5; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -237,7 +237,7 @@ static void test_manager_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 6u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -264,7 +264,7 @@ static void test_filter_is_deterministic(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 8u);
-    const pft_sim_truth_t tr = {3, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {3, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_6DB, &fr);
@@ -283,7 +283,7 @@ static void run_pass(pft_tbd_filter_t *f, pft_tbd_t *t, pft_tbd_estimate_t *est,
 {
     pft_rng_t sim;
     pft_rng_seed(&sim, 15u);
-    const pft_sim_truth_t tr = {2, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {2, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= RESET_FRAMES; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -382,7 +382,7 @@ static void bright_target(pft_tbd_kind_t kind)
         TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 12u + seed);
-        const pft_sim_truth_t tr = {3, 40, 3.0, 3.5, 0.3, 0.2, 20.0};
+        const pft_sim_truth_t tr = {3, 40, 2.0, 2.5, 0.3, 0.2, 20.0};
         int detected = -1;
         for (int k = 1; k <= 16; ++k) {
             pft_frame_t fr;
@@ -459,7 +459,7 @@ static void test_kf_exact_variance_matches_reference(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 13u);
-    const pft_sim_truth_t tr = {1, 40, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 40, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 16; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -491,8 +491,8 @@ static void test_manager_ids_and_events(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 14u);
-    const pft_sim_truth_t tr1 = {2, 9, 3.0, 3.0, 0.3, 0.2, 20.0};
-    const pft_sim_truth_t tr2 = {16, 40, 7.0, 6.0, -0.2, 0.1, 20.0};
+    const pft_sim_truth_t tr1 = {2, 9, 2.0, 2.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr2 = {16, 40, 6.0, 5.0, -0.2, 0.1, 20.0};
     uint32_t confirmed[4] = {0}, ended[4] = {0};
     int nc = 0, ne = 0;
     for (int k = 1; k <= 24; ++k) {
@@ -556,8 +556,8 @@ static void render2(pft_rng_t *r, const pft_sim_truth_t *a, const pft_sim_truth_
     pft_sim_render_u16(r, ts, n, k, sigma, IMG, IMG, g_raw, f);
 }
 
-/* Runs the manager on T1 (frames 1-20, at rest at (4, 5)) and T2 spawned 2.06 px beside it at
- * frame 6 (at rest at (6, 5.5), inside the 5x5 region D around T1), 10 dB. Returns the first
+/* Runs the manager on T1 (frames 1-20, at rest at (3, 4)) and T2 spawned 2.06 px beside it at
+ * frame 6 (at rest at (5, 4.5), inside the 5x5 region D around T1), 10 dB. Returns the first
  * frame at which both targets hold a track within 1 px (0: never); *held counts the frames
  * after it in which both still do, *ids the largest track id. */
 static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
@@ -566,8 +566,8 @@ static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 23u + c->seed);
-    const pft_sim_truth_t t1 = {1, 20, 4.0, 5.0, 0.0, 0.0, 20.0};
-    const pft_sim_truth_t t2 = {6, 20, 6.0, 5.5, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t1 = {1, 20, 3.0, 4.0, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t2 = {6, 20, 5.0, 4.5, 0.0, 0.0, 20.0};
     int both = 0;
     *held = 0;
     for (int k = 1; k <= 20; ++k) {

@@ -1,6 +1,7 @@
 /*
  * TBD measurement model (ALGORITHMS.md 1): PSF contribution h and the windowed per-pixel log
- * likelihood ratio against a double reference; frame conversion (U8/U16 gain, offset, bit
+ * likelihood ratio against a double reference (0-based pixels: column c, row r centred at
+ * (c dx, r dy)); frame conversion (U8/U16 gain, offset, bit
  * depth; F32), window regions and configuration checks.
  *
  * Tolerances: float: 1e-5 relative (+1e-5 absolute). q16: h within 2e-4 + 1e-3 relative (exp is
@@ -21,25 +22,26 @@ void tearDown(void) {}
 #define H 8
 #define PI_D 3.14159265358979323846
 
-static double ref_h(double dx, double dy, double S, int i, int j, double x, double y, double I)
+/* h of a target at (x, y) in the pixel of column c, row r (0-based, centred at (c dx, r dy)) */
+static double ref_h(double dx, double dy, double S, int c, int r, double x, double y, double I)
 {
-    double r2 = (i * dx - x) * (i * dx - x) + (j * dy - y) * (j * dy - y);
+    double r2 = (c * dx - x) * (c * dx - x) + (r * dy - y) * (r * dy - y);
     return dx * dy * I / (2.0 * PI_D * S * S) * exp(-r2 / (2.0 * S * S));
 }
 
 static double ref_llr(const double *img, int w, int h, int p, double dx, double dy, double S,
                       double sn, double x, double y, double I)
 {
-    int i0 = (int)floor(x / dx + 0.5);
-    int j0 = (int)floor(y / dy + 0.5);
+    int c0 = (int)floor(x / dx + 0.5);
+    int r0 = (int)floor(y / dy + 0.5);
     double acc = 0.0;
-    for (int j = j0 - p; j <= j0 + p; ++j) {
-        for (int i = i0 - p; i <= i0 + p; ++i) {
-            if (i < 1 || j < 1 || i > w || j > h) {
+    for (int r = r0 - p; r <= r0 + p; ++r) {
+        for (int c = c0 - p; c <= c0 + p; ++c) {
+            if (c < 0 || r < 0 || c >= w || r >= h) {
                 continue;
             }
-            double hv = ref_h(dx, dy, S, i, j, x, y, I);
-            double z = img[(j - 1) * w + (i - 1)];
+            double hv = ref_h(dx, dy, S, c, r, x, y, I);
+            double z = img[r * w + c];
             acc += hv * (2.0 * z - hv) / (2.0 * sn * sn);
         }
     }
@@ -194,31 +196,30 @@ static void test_add_psf_and_joint_llr(void)
     int checked = 0;
     for (int k = 0; k < 24; ++k) {
         /* t walks over the image including its borders; s sits within 1 px of t */
-        double xt = 0.7 + 0.41 * k, yt = 0.9 + 0.29 * k, It = 15.0 + 0.5 * k;
+        double xt = -0.3 + 0.41 * k, yt = -0.1 + 0.29 * k, It = 15.0 + 0.5 * k;
         double xs = xt + 0.9 * cos(0.7 * k), ys = yt + 0.9 * sin(0.7 * k), Is = 20.0;
         xt = D(R(xt)); yt = D(R(yt)); xs = D(R(xs)); ys = D(R(ys));
         memcpy(res, img, sizeof img);
         pft_tbd_meas_add_psf(&m, res, R(xt), R(yt), R(-It), 2u);
-        int it0 = (int)floor(xt + 0.5), jt0 = (int)floor(yt + 0.5);
-        for (int j = 1; j <= H; ++j) {
-            for (int i = 1; i <= W; ++i) {
-                int in = abs(i - it0) <= 2 && abs(j - jt0) <= 2;
-                double want = dimg[(j - 1) * W + (i - 1)] -
-                              (in ? ref_h(1.0, 1.0, 0.7, i, j, xt, yt, It) : 0.0);
-                TEST_ASSERT_DOUBLE_WITHIN(tol_h(want), want, D(res[(j - 1) * W + (i - 1)]));
+        int ct0 = (int)floor(xt + 0.5), rt0 = (int)floor(yt + 0.5);
+        for (int r = 0; r < H; ++r) {
+            for (int cc = 0; cc < W; ++cc) {
+                int in = abs(cc - ct0) <= 2 && abs(r - rt0) <= 2;
+                double want = dimg[r * W + cc] - (in ? ref_h(1.0, 1.0, 0.7, cc, r, xt, yt, It) : 0.0);
+                TEST_ASSERT_DOUBLE_WITHIN(tol_h(want), want, D(res[r * W + cc]));
             }
         }
         /* joint LLR reference in double, over C(s) clipped (p = 1) */
-        int is0 = (int)floor(xs + 0.5), js0 = (int)floor(ys + 0.5);
+        int cs0 = (int)floor(xs + 0.5), rs0 = (int)floor(ys + 0.5);
         double ref = 0.0;
-        for (int j = js0 - 1; j <= js0 + 1; ++j) {
-            for (int i = is0 - 1; i <= is0 + 1; ++i) {
-                if (i < 1 || j < 1 || i > W || j > H) {
+        for (int r = rs0 - 1; r <= rs0 + 1; ++r) {
+            for (int cc = cs0 - 1; cc <= cs0 + 1; ++cc) {
+                if (cc < 0 || r < 0 || cc >= W || r >= H) {
                     continue;
                 }
-                double z = dimg[(j - 1) * W + (i - 1)];
-                double ht = ref_h(1.0, 1.0, 0.7, i, j, xt, yt, It);
-                double hs = ref_h(1.0, 1.0, 0.7, i, j, xs, ys, Is);
+                double z = dimg[r * W + cc];
+                double ht = ref_h(1.0, 1.0, 0.7, cc, r, xt, yt, It);
+                double hs = ref_h(1.0, 1.0, 0.7, cc, r, xs, ys, Is);
                 /* log p(z | s, t) - log p(z | t) */
                 ref += ((z - ht) * (z - ht) - (z - ht - hs) * (z - ht - hs)) / (2.0 * sn * sn);
             }
@@ -304,24 +305,33 @@ static void test_llr_matches_reference(void)
     for (int k = 0; k < W * H; ++k) {
         img[k] = R(0.0);
     }
-    img[3 * W + 4] = R(7.0); /* pixel (5, 4) */
-    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(5.0), R(4.0), R(20.0))) > 1.0);
-    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(2.0), R(7.0), R(20.0))) < -1.0);
+    img[3 * W + 4] = R(7.0); /* column 4, row 3 */
+    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(4.0), R(3.0), R(20.0))) > 1.0);
+    TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(1.0), R(6.0), R(20.0))) < -1.0);
 }
 
 static void test_window_region(void)
 {
     pft_tbd_config_t c;
     base_cfg(&c);
+    /* 0-based: (4.4, 6.6) is in column 4, row 7 */
     pft_tbd_region_t r = pft_tbd_window_region(&c, R(4.4), R(6.6));
-    TEST_ASSERT_EQUAL_INT(3, r.i_lo);
-    TEST_ASSERT_EQUAL_INT(5, r.i_hi);
-    TEST_ASSERT_EQUAL_INT(6, r.j_lo);
-    TEST_ASSERT_EQUAL_INT(8, r.j_hi);
+    TEST_ASSERT_EQUAL_INT(3, r.col_lo);
+    TEST_ASSERT_EQUAL_INT(5, r.col_hi);
+    TEST_ASSERT_EQUAL_INT(6, r.row_lo);
+    TEST_ASSERT_EQUAL_INT(8, r.row_hi);
+    /* pixel edges: x = -0.5 is column 0 (ties up), x = 9.49 column 9 */
+    r = pft_tbd_window_region(&c, R(-0.5), R(9.49));
+    TEST_ASSERT_EQUAL_INT(-1, r.col_lo);
+    TEST_ASSERT_EQUAL_INT(1, r.col_hi);
+    TEST_ASSERT_EQUAL_INT(8, r.row_lo);
+    TEST_ASSERT_EQUAL_INT(10, r.row_hi);
     c.window = 2;
     r = pft_tbd_window_region(&c, R(1.0), R(1.0));
-    TEST_ASSERT_EQUAL_INT(-1, r.i_lo);
-    TEST_ASSERT_EQUAL_INT(3, r.i_hi);
+    TEST_ASSERT_EQUAL_INT(-1, r.col_lo);
+    TEST_ASSERT_EQUAL_INT(3, r.col_hi);
+    r = pft_tbd_window_region(NULL, R(1.0), R(1.0));
+    TEST_ASSERT_TRUE(r.col_lo > r.col_hi);
 }
 
 /* Frame conversion, observed through a standalone filter's converted image. */

@@ -114,10 +114,10 @@ static inline void pft_tv_run_filter(pft_tbd_kind_t kind, uint32_t rows[][PFT_TV
     }
     pft_rng_t sim;
     pft_rng_seed(&sim, 101u);
-    /* 1-based pixel indices: columns 16-18, rows 2-4 (frames 8-12, away from the target) and
-     * columns 11-13, rows 7-9 (frames 19-22, on the target's path) */
-    const pft_tbd_region_t far = {16, 18, 2, 4};
-    const pft_tbd_region_t on = {11, 13, 7, 9};
+    /* frame columns 15-17, rows 1-3 (frames 8-12, away from the target) and columns 10-12,
+     * rows 6-8 (frames 19-22, on the target's path) */
+    const pft_tbd_region_t far = {15, 17, 1, 3};
+    const pft_tbd_region_t on = {10, 12, 6, 8};
     for (int32_t k = 1; k <= PFT_TV_FILTER_FRAMES; ++k) {
         pft_frame_t f;
         pft_gv_render(&sim, pft_tv_targets, 1, k, PFT_TV_SIGMA256, pft_tv_raw, &f);
@@ -219,17 +219,17 @@ static inline void pft_tv_run_meas(uint32_t *out)
         pft_frame_row_to_real(&f, r, PFT_GV_SCENE_W, c.pixel_gain, c.pixel_offset,
                               pft_tv_img + r * PFT_GV_SCENE_W);
     }
-    /* 1-based positions: column c is x = c + 1 */
-    const pft_real_t xs[4] = {PFT_C(8.5), PFT_C(1.25), PFT_C(20.4), PFT_C(12.0)};
-    const pft_real_t ys[4] = {PFT_C(7.75), PFT_C(0.6), PFT_C(19.5), PFT_C(11.3)};
+    /* 0-based positions: column c is at x = c (dx = 1) */
+    const pft_real_t xs[4] = {PFT_C(7.5), PFT_C(0.25), PFT_C(19.4), PFT_C(11.0)};
+    const pft_real_t ys[4] = {PFT_C(6.75), PFT_C(-0.4), PFT_C(18.5), PFT_C(10.3)};
     size_t o = 0;
     for (int i = 0; i < 4; ++i) {
         pft_tbd_region_t r = pft_tbd_window_region(&c, xs[i], ys[i]);
-        out[o++] = (uint32_t)r.i_lo;
-        out[o++] = (uint32_t)r.i_hi;
-        out[o++] = (uint32_t)r.j_lo;
-        out[o++] = (uint32_t)r.j_hi;
-        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 9, 8, xs[i], ys[i], PFT_C(20.0)));
+        out[o++] = (uint32_t)r.col_lo;
+        out[o++] = (uint32_t)r.col_hi;
+        out[o++] = (uint32_t)r.row_lo;
+        out[o++] = (uint32_t)r.row_hi;
+        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 8, 7, xs[i], ys[i], PFT_C(20.0)));
         out[o++] = pft_gv_r(pft_tbd_meas_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(20.0)));
         pft_tbd_meas_add_psf(&m, pft_tv_img, xs[i], ys[i], PFT_C(-6.0), 2u);
         uint32_t h = PFT_GV_FNV0;
@@ -238,7 +238,7 @@ static inline void pft_tv_run_meas(uint32_t *out)
         }
         out[o++] = h;
         out[o++] = pft_gv_r(pft_tbd_meas_llr(&m, pft_tv_img, xs[i], ys[i], PFT_C(14.0)));
-        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 1, 20, xs[i], ys[i], PFT_C(14.0)));
+        out[o++] = pft_gv_r(pft_tbd_meas_h(&m, 0, 19, xs[i], ys[i], PFT_C(14.0)));
     }
 }
 

@@ -114,8 +114,9 @@ pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t
 
 /* ================================ TBD pixel likelihood ==================================== */
 
-/** State layout of the TBD model: [x, vx, y, vy, I, E]. E is 0 (no target), 1 (target) or 2
- *  (born at this step: a target whose log-likelihood also gets the birth correction). */
+/** State layout of the TBD model: [x, vx, y, vy, I, E], positions in the 0-based pixel
+ *  coordinates of pft_tbd.h. E is 0 (no target), 1 (target) or 2 (born at this step: a target
+ *  whose log-likelihood also gets the birth correction). */
 enum {
     PFT_PF_TBD_X = 0, PFT_PF_TBD_VX = 1, PFT_PF_TBD_Y = 2, PFT_PF_TBD_VY = 3, PFT_PF_TBD_I = 4,
     PFT_PF_TBD_E = 5, PFT_PF_TBD_DIM = 6
@@ -130,7 +131,8 @@ enum {
  * centre leaves the image gets E = 0 (it left the surveillance region). The log-likelihood is
  * pft_tbd_meas_llr (the windowed pixel log likelihood ratio of pft_tbd.h) for E != 0 and 0
  * for E = 0 (plus log(|B_k| / A_allow) for births when cfg.birth_correction). The APF's
- * predicted point keeps E and moves the kinematic part by Phi. The estimate is
+ * predicted point moves the kinematic part by Phi (it is kept in the tbd module's internal
+ * frame and scored by the model's loglik_first). The estimate is
  * [mean of x, vx, y, vy, I over the E != 0 particles, P(E != 0)] (the kinematic part keeps
  * its last value while no particle has E != 0).
  *

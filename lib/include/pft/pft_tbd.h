@@ -7,15 +7,19 @@
  * The implementable reading of the algorithms, with its corrections, is ALGORITHMS.md
  * sections 1, 2 and 6; this header states the choices a user sees.
  *
- * Coordinates. Pixel (i, j) is 1-based, i indexes x (columns) and j indexes y (rows); its
- * centre is at (i*dx, j*dy). Frame column c (0-based) and row r (0-based) is pixel
- * (c + 1, r + 1), so a target centred on frame pixel (c, r) has x = (c + 1)*dx,
- * y = (r + 1)*dy. Velocities are in position units per frame period T.
+ * Coordinates (docs/design.md, "Pixel coordinates"): 0-based, x along the columns, y down the
+ * rows; the centre of the pixel in column c and row r is at (c*dx, r*dy), so a target centred on
+ * frame pixel (c, r) has x = c*dx, y = r*dy and the image covers [-dx/2, (W - 1/2) dx] x
+ * [-dy/2, (H - 1/2) dy]. Estimates, tracks, events, regions and the measurement-model calls
+ * all use it. (The paper indexes pixels from 1; the library keeps that frame inside, where the
+ * change is an exact shift in q16, and converts at this boundary.) Velocities are in position
+ * units per frame period T.
  *
- * Measurement model (per frame, per filter): z(i,j) = h(i,j; x) + noise, with
- *   h(i,j; x) = dx*dy*I/(2*pi*S^2) * exp(-((i*dx - x)^2 + (j*dy - y)^2)/(2*S^2))   (S = psf_sigma)
+ * Measurement model (per frame, per filter): z(c,r) = h(c,r; x) + noise, with
+ *   h(c,r; x) = dx*dy*I/(2*pi*S^2) * exp(-((c*dx - x)^2 + (r*dy - y)^2)/(2*S^2))   (S = psf_sigma)
  * and the per-pixel log likelihood ratio lambda = h*(2z - h)/(2*noise_sigma^2), summed over
- * the (2p+1)^2 window around (round(x/dx), round(y/dy)) clipped to the image.
+ * the (2p+1)^2 window around the window centre pixel (round(x/dx), round(y/dy)) clipped to the
+ * image.
  *
  * Pixels: U8 and U16 frames are converted as z = pixel_gain*raw + pixel_offset (U16: only the
  * low bit_depth bits are significant; higher bits are ignored). F32 frames are taken as
@@ -173,21 +177,21 @@ void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
  */
 pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **field);
 
-/** A pixel box, 1-based inclusive pixel indices (i: x/columns, j: y/rows). Parts outside
- *  the image are ignored. */
+/** A pixel box: 0-based frame columns col_lo..col_hi and rows row_lo..row_hi, inclusive.
+ *  Parts outside the image are ignored. */
 typedef struct {
-    int32_t i_lo, i_hi, j_lo, j_hi;
+    int32_t col_lo, col_hi, row_lo, row_hi;
 } pft_tbd_region_t;
 
 /** The (2p+1)^2 window C(x) around position (x, y) (not clipped to the image): the
- *  constraint region D of a target estimated at (x, y). An empty region (i_lo > i_hi) for a
- *  NULL cfg or non-positive pixel pitch. */
+ *  constraint region D of a target estimated at (x, y). An empty region (col_lo > col_hi) for
+ *  a NULL cfg or non-positive pixel pitch. */
 pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
 
 /** Estimates of one filter at the last frame, from the normalised weights before resampling. */
 typedef struct {
     pft_real_t p_exist;     /**< existence probability sum_s w_s E_s */
-    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles */
+    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles (0-based, see above) */
     pft_real_t vx, vy;      /**< weighted mean velocity (RBPF: of the Kalman means) */
     pft_real_t intensity;   /**< weighted mean intensity */
     pft_real_t pos_cov[3];  /**< weighted spread of the E = 1 positions: xx, xy, yy */
@@ -202,15 +206,15 @@ typedef struct {
  *  PFT_ERR_INVAL for NULL, PFT_ERR_CONFIG for a refused cfg (m untouched). */
 pft_status_t pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
 
-/** PSF contribution h(i, j; x, y, I) of a target at (x, y) with intensity I to pixel
- *  (i, j) (1-based). */
-pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
+/** PSF contribution h(c, r; x, y, I) of a target at (x, y) with intensity I to the pixel in
+ *  column c, row r (0-based; 0 for a NULL m). */
+pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t c, int32_t r, pft_real_t x,
                           pft_real_t y, pft_real_t intensity);
 
 /**
  * Log likelihood ratio of a target (x, y, I) against noise only: sum over the window C(x),
  * clipped to the image, of h*(2z - h)/(2 sigma^2). img is the converted frame, row-major,
- * width*height intensities (img[(j-1)*width + (i-1)] is pixel (i, j)). The Gaussian is
+ * width*height intensities (img[r*width + c] is the pixel in column c, row r). The Gaussian is
  * evaluated separably: 2(2p+1) exponentials per call. Q16: pixel sums saturate at +-32768.
  */
 pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
@@ -220,7 +224,7 @@ pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_
 #define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
 
 /**
- * img += h(i, j; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
+ * img += h(c, r; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
  * round(y/dy)), clipped to the image (half is capped at PFT_TBD_MAX_PSF_HALF). A negative
  * intensity subtracts the target: the log likelihood ratio of a second target s on the result,
  * pft_tbd_meas_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)

@@ -64,7 +64,21 @@ static pft_tbd_kin_t kin_(pft_real_t *x)
     return k;
 }
 
-/* A target whose window centre leaves the image leaves the surveillance region: E = 0. */
+/* The state's position between the public frame (0-based, the engine's states) and the tbd
+ * module's internal one (x + dx; see lib/src/tbd/tbd_int.h). */
+static void to_int_(const pft_pf_tbd_model_t *m, pft_real_t *x)
+{
+    x[PFT_PF_TBD_X] = pft_tbd_x_int_(x[PFT_PF_TBD_X], m->m.dx);
+    x[PFT_PF_TBD_Y] = pft_tbd_x_int_(x[PFT_PF_TBD_Y], m->m.dy);
+}
+static void to_pub_(const pft_pf_tbd_model_t *m, pft_real_t *x)
+{
+    x[PFT_PF_TBD_X] = pft_tbd_x_pub_(x[PFT_PF_TBD_X], m->m.dx);
+    x[PFT_PF_TBD_Y] = pft_tbd_x_pub_(x[PFT_PF_TBD_Y], m->m.dy);
+}
+
+/* A target whose window centre leaves the image leaves the surveillance region: E = 0
+ * (x in the internal frame). */
 static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
 {
     size_t pix = 0;
@@ -83,41 +97,64 @@ static void tbd_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
             x[PFT_PF_TBD_E] = PFT_C(0.0);
             return;
         }
+        to_int_(m, x);
         pft_tbd_pf_move_(&m->dyn, m->cfg.T, rng, &k);
         x[PFT_PF_TBD_E] = PFT_C(1.0);
         leave_image_(m, x);
+        to_pub_(m, x);
         return;
     }
     if (m->n_cand > 0u && u < pft_tbd_p_birth_(&m->dyn, m->frames <= 1u)) {
         pft_tbd_birth_(&m->cfg, &m->dyn, m->cand, m->n_cand, true, rng, &k);
         x[PFT_PF_TBD_E] = PFT_C(2.0); /* born at this step: gets the birth correction */
         leave_image_(m, x);
+        to_pub_(m, x);
     }
+}
+
+/* Log likelihood ratio of a state whose position is in the internal frame. */
+static pft_real_t llr_int_(const pft_pf_tbd_model_t *m, const pft_real_t *xi)
+{
+    if (xi[PFT_PF_TBD_E] == PFT_C(0.0)) {
+        return PFT_C(0.0);
+    }
+    pft_real_t ll = pft_tbd_meas_llr_int_(&m->m, m->img, xi[PFT_PF_TBD_X], xi[PFT_PF_TBD_Y],
+                                          xi[PFT_PF_TBD_I]);
+    if (xi[PFT_PF_TBD_E] > PFT_C(1.0)) {
+        ll = pft_add(ll, m->birth_lw);
+    }
+    return ll;
 }
 
 static pft_real_t tbd_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     (void)z; /* the converted frame of begin() */
-    if (x[PFT_PF_TBD_E] == PFT_C(0.0)) {
-        return PFT_C(0.0);
-    }
-    pft_real_t ll = pft_tbd_meas_llr(&m->m, m->img, x[PFT_PF_TBD_X], x[PFT_PF_TBD_Y], x[PFT_PF_TBD_I]);
-    if (x[PFT_PF_TBD_E] > PFT_C(1.0)) {
-        ll = pft_add(ll, m->birth_lw);
-    }
-    return ll;
+    pft_real_t xi[PFT_PF_TBD_DIM];
+    memcpy(xi, x, sizeof xi);
+    to_int_(m, xi);
+    return llr_int_(m, xi);
 }
 
+/* The APF's characteristic point mu = Phi x, kept in the internal frame: it is read only by
+ * tbd_loglik_first_ (the engine never interprets mu), so the first stage is the same
+ * arithmetic as the tbd module's. */
 static void tbd_predict_(void *ctx, const pft_real_t *x, pft_real_t *mu)
 {
     const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
     memcpy(mu, x, PFT_PF_TBD_DIM * sizeof(pft_real_t));
     if (x[PFT_PF_TBD_E] != PFT_C(0.0)) {
-        mu[PFT_PF_TBD_X] = pft_add(x[PFT_PF_TBD_X], pft_mul(m->cfg.T, x[PFT_PF_TBD_VX]));
-        mu[PFT_PF_TBD_Y] = pft_add(x[PFT_PF_TBD_Y], pft_mul(m->cfg.T, x[PFT_PF_TBD_VY]));
+        to_int_(m, mu);
+        mu[PFT_PF_TBD_X] = pft_add(mu[PFT_PF_TBD_X], pft_mul(m->cfg.T, x[PFT_PF_TBD_VX]));
+        mu[PFT_PF_TBD_Y] = pft_add(mu[PFT_PF_TBD_Y], pft_mul(m->cfg.T, x[PFT_PF_TBD_VY]));
         mu[PFT_PF_TBD_E] = PFT_C(1.0);
     }
+}
+
+static pft_real_t tbd_loglik_first_(void *ctx, const pft_real_t *mu, const void *z)
+{
+    (void)z;
+    return llr_int_((const pft_pf_tbd_model_t *)ctx, mu);
 }
 
 static void tbd_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
@@ -128,14 +165,18 @@ static void tbd_estimate_(void *ctx, const pft_real_t *x, const pft_weight_t *w,
     pft_tbd_wsum_init_(&a);
     for (uint32_t i = 0; i < n; ++i) {
         const pft_real_t *xi = x + (size_t)i * PFT_PF_TBD_DIM;
-        const pft_real_t v[5] = {xi[PFT_PF_TBD_X], xi[PFT_PF_TBD_Y], xi[PFT_PF_TBD_VX],
-                                 xi[PFT_PF_TBD_VY], xi[PFT_PF_TBD_I]};
-        pft_tbd_wsum_add_(&a, w[i], xi[PFT_PF_TBD_E] != PFT_C(0.0), v);
+        bool alive = xi[PFT_PF_TBD_E] != PFT_C(0.0);
+        /* positions summed in the internal frame, so the mean is the tbd module's exactly */
+        const pft_real_t v[5] = {
+            alive ? pft_tbd_x_int_(xi[PFT_PF_TBD_X], m->m.dx) : PFT_C(0.0),
+            alive ? pft_tbd_x_int_(xi[PFT_PF_TBD_Y], m->m.dy) : PFT_C(0.0), xi[PFT_PF_TBD_VX],
+            xi[PFT_PF_TBD_VY], xi[PFT_PF_TBD_I]};
+        pft_tbd_wsum_add_(&a, w[i], alive, v);
     }
     pft_real_t mean[5];
     if (pft_tbd_wsum_mean_(&a, mean)) {
-        m->last[PFT_PF_TBD_X] = mean[0];
-        m->last[PFT_PF_TBD_Y] = mean[1];
+        m->last[PFT_PF_TBD_X] = pft_tbd_x_pub_(mean[0], m->m.dx);
+        m->last[PFT_PF_TBD_Y] = pft_tbd_x_pub_(mean[1], m->m.dy);
         m->last[PFT_PF_TBD_VX] = mean[2];
         m->last[PFT_PF_TBD_VY] = mean[3];
         m->last[PFT_PF_TBD_I] = mean[4];
@@ -178,6 +219,7 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     iface->propagate = tbd_propagate_;
     iface->loglik = tbd_loglik_;
     iface->predict = tbd_predict_;
+    iface->loglik_first = tbd_loglik_first_;
     iface->estimate = tbd_estimate_;
     iface->reset = tbd_reset_;
     return PFT_OK;

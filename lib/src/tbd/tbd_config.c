@@ -204,19 +204,21 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **fiel
     return PFT_OK;
 }
 
-pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
 {
-    pft_tbd_region_t r = {0, -1, 0, -1};
-    if (cfg == NULL || cfg->dx <= PFT_C(0.0) || cfg->dy <= PFT_C(0.0)) {
-        return r;
-    }
-    int32_t i0 = pft_tbd_pix_(x, pft_recip(cfg->dx));
-    int32_t j0 = pft_tbd_pix_(y, pft_recip(cfg->dy));
+    /* the window centre pixel (i0, j0) of the internal frame is column i0 - 1, row j0 - 1 */
+    int32_t c0 = pft_tbd_pix_(x, pft_recip(cfg->dx)) - 1;
+    int32_t r0 = pft_tbd_pix_(y, pft_recip(cfg->dy)) - 1;
     int32_t p = (int32_t)cfg->window;
-    r.i_lo = i0 - p;
-    r.i_hi = i0 + p;
-    r.j_lo = j0 - p;
-    r.j_hi = j0 + p;
+    pft_tbd_region_t r = {c0 - p, c0 + p, r0 - p, r0 + p};
     return r;
 }
 
+pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+{
+    if (cfg == NULL || !(cfg->dx > PFT_C(0.0)) || !(cfg->dy > PFT_C(0.0))) {
+        pft_tbd_region_t empty = {0, -1, 0, -1};
+        return empty;
+    }
+    return pft_tbd_window_int_(cfg, pft_tbd_x_int_(x, cfg->dx), pft_tbd_x_int_(y, cfg->dy));
+}

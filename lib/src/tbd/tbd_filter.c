@@ -338,7 +338,7 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
         /* 3. log-weight (eq. 20; E = 0 particles have likelihood ratio 1) */
         pft_real_t lw = PFT_C(0.0);
         if (e != 0u) {
-            lw = pft_tbd_meas_llr(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
+            lw = pft_tbd_meas_llr_int_(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
             if (born) {
                 lw = pft_add(lw, f->birth_lw);
             }
@@ -489,11 +489,21 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     return PFT_OK;
 }
 
+void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,
+                      pft_tbd_estimate_t *out)
+{
+    *out = *in;
+    if (in->valid) {
+        out->x = pft_tbd_x_pub_(in->x, m->dx);
+        out->y = pft_tbd_x_pub_(in->y, m->dy);
+    }
+}
+
 pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out)
 {
     if (f == NULL || out == NULL) {
         return PFT_ERR_INVAL;
     }
-    *out = f->est;
+    pft_tbd_est_pub_(&f->model, &f->est, out);
     return PFT_OK;
 }

@@ -1,10 +1,23 @@
-/* Internals shared by the TBD sources and the pf engine's TBD model (private, not installed). */
+/* Internals shared by the TBD sources and the pf engine's TBD model (private, not installed).
+ *
+ * The internal pixel frame. Inside the tbd module positions are kept as the paper writes them:
+ * pixel (i, j), 1-based, has its centre at (i dx, j dy), i.e. x_int = x + dx for the public
+ * 0-based x of docs/design.md ("Pixel coordinates"). Only the public boundary converts:
+ * estimates, tracks and events on the way out, regions and the measurement-model calls on the
+ * way in. In q16 the conversion is an exact integer addition, so the q16 arithmetic is the same
+ * as before the public convention changed (golden vectors: a pure shift of the positions); in
+ * float x - dx is exact for dx = 1 and any x_int >= 0.5 (every position inside the image), and
+ * adding dx back restores x_int exactly. Regions (pft_tbd_region_t) are 0-based everywhere. */
 #ifndef PFT_TBD_INT_H
 #define PFT_TBD_INT_H
 
 #include "pft/pft_tbd.h"
 #include "pft/pft_resample.h"
 #include "../core/acc_int.h"
+
+/* Public 0-based position -> internal (x + d), and back (x - d). */
+static inline pft_real_t pft_tbd_x_int_(pft_real_t x, pft_real_t d) { return pft_add(x, d); }
+static inline pft_real_t pft_tbd_x_pub_(pft_real_t x, pft_real_t d) { return pft_sub(x, d); }
 
 /* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
@@ -19,12 +32,21 @@ typedef struct {
 
 /* pft_tbd_meas_init without the checks (cfg already passed pft_tbd_config_check). */
 void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
+/* The measurement model in the internal frame: pixel (i, j) 1-based, positions x_int. */
+pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
+                              pft_real_t y, pft_real_t intensity);
+pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
+                                pft_real_t y, pft_real_t intensity);
+void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x,
+                               pft_real_t y, pft_real_t intensity, uint8_t half);
+/* The (2p+1)^2 window around an internal position, as a 0-based region. */
+pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
 /* Frame validation against cfg (size, format, finiteness): touches nothing. */
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame);
 /* Converts a validated frame into img (width*height reals, row-major). */
 void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
                             pft_real_t *img);
-/* mask |= region (clipped). */
+/* mask |= region (0-based, clipped to the image). */
 void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r);
 /* Fills cand and the counts of sc from img and mask (mask may be NULL). */
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, const pft_real_t *img,
@@ -49,6 +71,10 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
  * false (dst untouched) if no particle qualifies. */
 bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
 
+/* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
+ * was never valid stays all zero). */
+void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,
+                      pft_tbd_estimate_t *out);
 /* Integer pixel index round(v * inv_d), with v clamped so the conversion is defined. */
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d);
 

@@ -163,20 +163,20 @@ static uint8_t psf_half_(const pft_tbd_config_t *cfg)
     return (uint8_t)(cfg->window + cfg->residual_margin);
 }
 
-/* res = img on the pixels pft_tbd_meas_add_psf(.., x, y, .., half) touched. */
+/* res = img on the pixels pft_tbd_meas_add_psf_int_(.., x, y, .., half) touched. */
 static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
                          pft_real_t x, pft_real_t y, uint8_t half)
 {
-    pft_tbd_region_t r = pft_tbd_window_region(cfg, x, y);
+    pft_tbd_region_t r = pft_tbd_window_int_(cfg, x, y);
     int32_t dp = (int32_t)half - (int32_t)cfg->window;
-    int32_t ilo = r.i_lo - dp < 1 ? 1 : r.i_lo - dp;
-    int32_t ihi = r.i_hi + dp > (int32_t)cfg->width ? (int32_t)cfg->width : r.i_hi + dp;
-    int32_t jlo = r.j_lo - dp < 1 ? 1 : r.j_lo - dp;
-    int32_t jhi = r.j_hi + dp > (int32_t)cfg->height ? (int32_t)cfg->height : r.j_hi + dp;
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        size_t o = (size_t)(j - 1) * cfg->width;
-        for (int32_t i = ilo; i <= ihi; ++i) {
-            res[o + (size_t)(i - 1)] = img[o + (size_t)(i - 1)];
+    int32_t clo = r.col_lo - dp < 0 ? 0 : r.col_lo - dp;
+    int32_t chi = r.col_hi + dp > (int32_t)cfg->width - 1 ? (int32_t)cfg->width - 1 : r.col_hi + dp;
+    int32_t rlo = r.row_lo - dp < 0 ? 0 : r.row_lo - dp;
+    int32_t rhi = r.row_hi + dp > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r.row_hi + dp;
+    for (int32_t row = rlo; row <= rhi; ++row) {
+        size_t o = (size_t)row * cfg->width;
+        for (int32_t col = clo; col <= chi; ++col) {
+            res[o + (size_t)col] = img[o + (size_t)col];
         }
     }
 }
@@ -204,24 +204,24 @@ static bool lr_says_gone_(const pft_tbd_config_t *cfg, const pft_tbd_filter_t *t
     return true;
 }
 
-/* Constraint region D of a track at (x, y) into the mask. */
+/* Constraint region D of a track at (x, y) (internal frame) into the mask. */
 static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x, pft_real_t y)
 {
     if (cfg->d_region == PFT_TBD_D_NONE) {
         return;
     }
-    pft_tbd_region_t d = pft_tbd_window_region(cfg, x, y);
+    pft_tbd_region_t d = pft_tbd_window_int_(cfg, x, y);
     if (cfg->d_region == PFT_TBD_D_PIXEL) {
         int32_t p = (int32_t)cfg->window;
-        d.i_lo += p;
-        d.i_hi -= p;
-        d.j_lo += p;
-        d.j_hi -= p;
+        d.col_lo += p;
+        d.col_hi -= p;
+        d.row_lo += p;
+        d.row_hi -= p;
     }
-    d.i_lo -= cfg->d_margin;
-    d.i_hi += cfg->d_margin;
-    d.j_lo -= cfg->d_margin;
-    d.j_hi += cfg->d_margin;
+    d.col_lo -= cfg->d_margin;
+    d.col_hi += cfg->d_margin;
+    d.row_lo -= cfg->d_margin;
+    d.row_hi += cfg->d_margin;
     pft_tbd_mask_add_(cfg, mask, &d);
 }
 
@@ -245,27 +245,27 @@ static void build_gate_(pft_tbd_t *t)
     }
     int32_t p = (int32_t)cfg->window;
     uint32_t best = 0;
-    int32_t bi = 1;
-    int32_t bj = 1;
-    for (int32_t j = 1; j <= (int32_t)h; ++j) {
-        for (int32_t i = 1; i <= (int32_t)w; ++i) {
+    int32_t bc = 0;
+    int32_t br = 0;
+    for (int32_t row = 0; row < (int32_t)h; ++row) {
+        for (int32_t col = 0; col < (int32_t)w; ++col) {
             uint32_t acc = 0;
-            for (int32_t b = j - p; b <= j + p; ++b) {
-                for (int32_t a = i - p; a <= i + p; ++a) {
-                    if (a >= 1 && b >= 1 && a <= (int32_t)w && b <= (int32_t)h) {
-                        acc += t->cand[(size_t)(b - 1) * w + (size_t)(a - 1)];
+            for (int32_t b = row - p; b <= row + p; ++b) {
+                for (int32_t a = col - p; a <= col + p; ++a) {
+                    if (a >= 0 && b >= 0 && a < (int32_t)w && b < (int32_t)h) {
+                        acc += t->cand[(size_t)b * w + (size_t)a];
                     }
                 }
             }
             if (acc > best) {
                 best = acc;
-                bi = i;
-                bj = j;
+                bc = col;
+                br = row;
             }
         }
     }
     int32_t g = (int32_t)cfg->handover_gate;
-    pft_tbd_region_t r = {bi - g, bi + g, bj - g, bj + g};
+    pft_tbd_region_t r = {bc - g, bc + g, br - g, br + g};
     pft_tbd_mask_add_(cfg, t->mask, &r);
 }
 
@@ -288,7 +288,7 @@ static void update_tracks_(pft_tbd_t *t, bool residual)
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
                 predict_(cfg, &t->records[u], &px, &py);
-                pft_tbd_meas_add_psf(&t->search.model, t->res, px, py,
+                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, px, py,
                                      pft_neg(t->records[u].intensity), half);
             }
         }
@@ -346,7 +346,8 @@ static void update_search_(pft_tbd_t *t, bool residual)
     if (residual && t->n_tracks > 0u) {
         for (uint32_t u = 0; u < cfg->max_targets; ++u) {
             if (t->records[u].id != 0u) {
-                pft_tbd_meas_add_psf(&t->search.model, t->res, t->records[u].x, t->records[u].y,
+                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, t->records[u].x,
+                                          t->records[u].y,
                                      pft_neg(t->records[u].intensity), psf_half_(cfg));
             }
         }
@@ -450,7 +451,10 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         if (!found) {
             break;
         }
-        out[n++] = t->records[bk];
+        out[n] = t->records[bk];
+        out[n].x = pft_tbd_x_pub_(out[n].x, t->cfg.dx);
+        out[n].y = pft_tbd_x_pub_(out[n].y, t->cfg.dy);
+        ++n;
         last = best;
     }
     return t->n_tracks;
@@ -463,6 +467,8 @@ size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max)
     }
     for (size_t i = 0; i < t->n_events && i < max && out != NULL; ++i) {
         out[i] = t->events[i];
+        out[i].x = pft_tbd_x_pub_(out[i].x, t->cfg.dx);
+        out[i].y = pft_tbd_x_pub_(out[i].y, t->cfg.dy);
     }
     return t->n_events;
 }
@@ -472,6 +478,6 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
     if (t == NULL || out == NULL) {
         return PFT_ERR_INVAL;
     }
-    *out = t->search.est;
+    pft_tbd_est_pub_(&t->search.model, &t->search.est, out);
     return PFT_OK;
 }

@@ -36,8 +36,8 @@ void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
     m->inv_s2n = pft_recip(pft_sq(cfg->noise_sigma));
 }
 
-pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
-                           pft_real_t y, pft_real_t intensity)
+pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
+                              pft_real_t y, pft_real_t intensity)
 {
     pft_real_t ddx = pft_sub(pft_mul_i(m->dx, i), x);
     pft_real_t ddy = pft_sub(pft_mul_i(m->dy, j), y);
@@ -46,8 +46,8 @@ pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_rea
     return pft_mul(pft_mul(pft_mul(intensity, m->c0), gx), gy);
 }
 
-pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
-                             pft_real_t y, pft_real_t intensity)
+pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
+                                pft_real_t y, pft_real_t intensity)
 {
     int32_t p = (int32_t)m->p;
     int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
@@ -85,8 +85,8 @@ pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_
     return pft_mul(acc, m->inv_s2n);
 }
 
-void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
-                           pft_real_t intensity, uint8_t half)
+void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x,
+                               pft_real_t y, pft_real_t intensity, uint8_t half)
 {
     int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;
     int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
@@ -114,6 +114,38 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
     }
 }
 
+/* ---- public calls: 0-based coordinates (pixel column c, row r centred at (c dx, r dy)) ---- */
+
+pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t c, int32_t r, pft_real_t x,
+                          pft_real_t y, pft_real_t intensity)
+{
+    if (m == NULL) {
+        return PFT_C(0.0);
+    }
+    return pft_tbd_meas_h_int_(m, c + 1, r + 1, pft_tbd_x_int_(x, m->dx), pft_tbd_x_int_(y, m->dy),
+                               intensity);
+}
+
+pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
+                            pft_real_t y, pft_real_t intensity)
+{
+    if (m == NULL || img == NULL) {
+        return PFT_C(0.0);
+    }
+    return pft_tbd_meas_llr_int_(m, img, pft_tbd_x_int_(x, m->dx), pft_tbd_x_int_(y, m->dy),
+                                 intensity);
+}
+
+void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+                          pft_real_t intensity, uint8_t half)
+{
+    if (m == NULL || img == NULL) {
+        return;
+    }
+    pft_tbd_meas_add_psf_int_(m, img, pft_tbd_x_int_(x, m->dx), pft_tbd_x_int_(y, m->dy),
+                              intensity, half);
+}
+
 /* ------------------------------------ frames ---------------------------------------------- */
 
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame)
@@ -137,13 +169,13 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *fram
 
 void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r)
 {
-    int32_t ilo = r->i_lo < 1 ? 1 : r->i_lo;
-    int32_t ihi = r->i_hi > (int32_t)cfg->width ? (int32_t)cfg->width : r->i_hi;
-    int32_t jlo = r->j_lo < 1 ? 1 : r->j_lo;
-    int32_t jhi = r->j_hi > (int32_t)cfg->height ? (int32_t)cfg->height : r->j_hi;
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        for (int32_t i = ilo; i <= ihi; ++i) {
-            mask[(size_t)(j - 1) * cfg->width + (size_t)(i - 1)] = 1u;
+    int32_t clo = r->col_lo < 0 ? 0 : r->col_lo;
+    int32_t chi = r->col_hi > (int32_t)cfg->width - 1 ? (int32_t)cfg->width - 1 : r->col_hi;
+    int32_t rlo = r->row_lo < 0 ? 0 : r->row_lo;
+    int32_t rhi = r->row_hi > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r->row_hi;
+    for (int32_t row = rlo; row <= rhi; ++row) {
+        for (int32_t col = clo; col <= chi; ++col) {
+            mask[(size_t)row * cfg->width + (size_t)col] = 1u;
         }
     }
 }
