@@ -786,7 +786,7 @@ public:
         json sum = summarize(s, one, single);
         sum["runs"] = 1;
         std::printf("\nSummary versus truth (this run; appear/disappear delays in frames, correct = "
-                    "frames within %.1f px, RMSE eq. 25 over them, PCRLB floor of ALGORITHMS.md 7):",
+                    "frames within %.1f px, RMSE eq. 25 over them, PCRLB floor of docs/algorithms.md 7):",
                     s.eval.d_c);
         print_summary(s, sum, true);
         std::printf("\n  tracking time %.1f ms for %zu frames (%.2f ms/frame), %s build\n", dt * 1e3,
@@ -798,7 +798,7 @@ public:
     int selftest(const Options &o) override
     {
         int fails = 0;
-        std::printf("tbd selftest: PCRLB against ALGORITHMS.md 7.2 (3 digits)\n");
+        std::printf("tbd selftest: PCRLB against docs/algorithms.md 7.2 (3 digits)\n");
         fails += pcrlb_selftest(!o.quiet);
         fails += metrics_selftest(!o.quiet);
         std::printf("tbd selftest: %s (%d failure%s)\n", fails ? "FAILED" : "passed", fails,
@@ -829,7 +829,7 @@ private:
         json j = {{"kind", "tbd"}, {"noise", {{"snr_db", 6}}}, {"frames", 30},
                   {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {5, 0.45, 6, 0.25, 20}}, {"motion", "line"}}}}};
         Scenario s = parse_scenario(j, "<selftest>");
-        check("SNR 6 dB -> sigma 3.256 (ALGORITHMS.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
+        check("SNR 6 dB -> sigma 3.256 (docs/algorithms.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
         check("peak amplitude A = 6.4961", std::fabs(s.peak(20) - 6.4961) < 5e-5);
         Sequence q = simulate(s, 7, 0, false);
         check("line truth: x at frame 22 = 5 + 15*0.45", std::fabs(q.truth[21][0].x - 11.75) < 1e-12 &&

@@ -1,5 +1,5 @@
 /*
- * Monte Carlo scenario test of RBPF-TBD (ALGORITHMS.md 2.10, metrics of section 6).
+ * Monte Carlo scenario test of RBPF-TBD (docs/algorithms.md 2.10, metrics of section 6).
  *
  * A deterministic simulator (own generator on pft_rng's integer stream, Box-Muller in double)
  * renders the paper's targets on a 20x20 image with Gaussian noise and hands the filters U16
@@ -19,7 +19,7 @@
  * A point is correct when it is declared (existence > theta1 / a confirmed track) and within
  * 1 px of the truth. Bounds: mean appearance delay, mean correct frames (of 16), RMSE over
  * correct points within 1.35x (single) / 1.38x (two targets) the 16-frame deterministic-line
- * floor of ALGORITHMS.md 7.2 (0.309 at 8 dB, 0.386 at 6 dB), few false declarations. The measured values are printed.
+ * floor of docs/algorithms.md 7.2 (0.309 at 8 dB, 0.386 at 6 dB), few false declarations. The measured values are printed.
  *
  * Over four seed sets of 24 runs (float build) the measured values were: single target delay
  * 1.4-1.8, correct 13.4-13.7, RMSE 0.36-0.38, false 0.6-1.2 per run; two targets delay

@@ -279,7 +279,7 @@ static uint64_t g_mw[PFT_PF_TBD_WORKSPACE_BYTES(TW, TH) / 8 + 1];
 static uint64_t g_tw[PFT_TBD_FILTER_WORKSPACE_BYTES(TN, PFT_TBD_PF, TW, TH) / 8 + 1];
 
 /* Frame k of a target moving from (5, 6) (0-based pixels) with velocity (0.45, 0.25) px/frame,
- * intensity I, present from frame `on`, Gaussian noise sd sigma (ALGORITHMS.md 1). */
+ * intensity I, present from frame `on`, Gaussian noise sd sigma (docs/algorithms.md 1). */
 static void make_frame(int k, int on, double I, double sigma, pft_frame_t *f)
 {
     double x = 5.0 + 0.45 * (k - on), y = 6.0 + 0.25 * (k - on);

@@ -440,7 +440,7 @@ static void bright_target(pft_tbd_kind_t kind)
 static void test_bright_target_rbpf(void) { bright_target(PFT_TBD_RBPF); }
 static void test_bright_target_pf(void) { bright_target(PFT_TBD_PF); }
 
-/* The velocity variance of the exact variant follows the Riccati recursion of ALGORITHMS.md
+/* The velocity variance of the exact variant follows the Riccati recursion of docs/algorithms.md
  * 2.3 (data independent): after ten frames surviving particles hold its fixed point, ~1.44e-3
  * (the calibrated value of the Monte Carlo check there). */
 static void test_kf_exact_variance_matches_reference(void)

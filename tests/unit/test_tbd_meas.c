@@ -1,5 +1,5 @@
 /*
- * TBD measurement model (ALGORITHMS.md 1): PSF contribution h and the windowed per-pixel log
+ * TBD measurement model (docs/algorithms.md 1): PSF contribution h and the windowed per-pixel log
  * likelihood ratio against a double reference (0-based pixels: column c, row r centred at
  * (c dx, r dy)); frame conversion (U8/U16 gain, offset, bit
  * depth; F32), window regions and configuration checks.

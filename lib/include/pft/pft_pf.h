@@ -1,7 +1,7 @@
 /**
  * @file pft_pf.h
  * @brief Generic particle-filter engine: SIS, SIR and the auxiliary particle filter (APF)
- *        over one model interface (ALGORITHMS.md 3; Gordon, Salmond & Smith 1993; Pitt &
+ *        over one model interface (docs/algorithms.md 3; Gordon, Salmond & Smith 1993; Pitt &
  *        Shephard 1999; Wang 2010).
  *
  * A model is a struct of function pointers plus a context (pft_pf_model_t): propagate one
@@ -130,7 +130,7 @@ typedef enum {
     PFT_PF_RESAMPLE_ALWAYS = 0, /**< every update */
     PFT_PF_RESAMPLE_ESS = 1,    /**< when ESS / N < ess_threshold */
     PFT_PF_RESAMPLE_NEVER = 2,  /**< never (APF: the first-stage index sampling only) */
-    PFT_PF_RESAMPLE_AUTO = 3    /**< the kind's own: SIR ALWAYS, APF ESS (ALGORITHMS.md 3.2
+    PFT_PF_RESAMPLE_AUTO = 3    /**< the kind's own: SIR ALWAYS, APF ESS (docs/algorithms.md 3.2
                                      step 7), SIS NEVER */
 } pft_pf_policy_t;
 

@@ -1,7 +1,7 @@
 /**
  * @file pft_pf_models.h
  * @brief Models for the particle-filter engine of pft_pf.h: the bearings-only
- *        constant-velocity benchmark (Gordon, Salmond & Smith 1993; ALGORITHMS.md 3.1), a
+ *        constant-velocity benchmark (Gordon, Salmond & Smith 1993; docs/algorithms.md 3.1), a
  *        linear-Gaussian model (exact Kalman reference for tests) and the TBD pixel
  *        likelihood of pft_tbd.h (so the SIS / SIR / APF engines run as track-before-detect
  *        filters).
@@ -32,7 +32,7 @@ typedef struct pft_pf_tbd_model_s pft_pf_tbd_model_t;
 enum { PFT_PF_BRG_X = 0, PFT_PF_BRG_VX = 1, PFT_PF_BRG_Y = 2, PFT_PF_BRG_VY = 3, PFT_PF_BRG_DIM = 4 };
 
 /**
- * Bearings-only tracking with a constant-velocity target (ALGORITHMS.md 3.1):
+ * Bearings-only tracking with a constant-velocity target (docs/algorithms.md 3.1):
  *   x_k = Phi x_{k-1} + Gamma w,  w ~ N(0, q I2),  Phi, Gamma the CV matrices of period T,
  *   z_k = atan2(y_k, x_k) + v,     v ~ N(0, r).
  * Log-likelihood: with e = z - atan2(y, x) wrapped to (-pi, pi] and s = |e| / sqrt(r),
@@ -123,7 +123,7 @@ enum {
 };
 
 /**
- * The single-target TBD model of ALGORITHMS.md 1 and 2.9 (the bootstrap PF-TBD's) as an
+ * The single-target TBD model of docs/algorithms.md 1 and 2.9 (the bootstrap PF-TBD's) as an
  * engine model: existence Markov chain (pb, pd; eta on the first frame), births proposed
  * uniformly from the pixels above gamma (all pixels when none is) with uniform sub-pixel
  * position, intensity ~ U[i_min, i_max], velocity ~ N(vel_mean, vel_var); survivors move with

@@ -4,7 +4,7 @@
  *        bootstrap PF-TBD baseline (Ristic ch. 11), as a single-target filter and as the
  *        multi-target two-layer manager (one search layer plus one track layer per target).
  *
- * The implementable reading of the algorithms, with its corrections, is ALGORITHMS.md
+ * The implementable reading of the algorithms, with its corrections, is docs/algorithms.md
  * sections 1, 2 and 6; this header states the choices a user sees.
  *
  * Coordinates (docs/design.md, "Pixel coordinates"): 0-based, x along the columns, y down the
@@ -75,13 +75,13 @@ typedef enum {
     PFT_TBD_PF = 1    /**< bootstrap PF-TBD baseline: the full 5-D state is sampled */
 } pft_tbd_kind_t;
 
-/** Kalman time-update variant of the RBPF (ALGORITHMS.md 2.3 step 3). */
+/** Kalman time-update variant of the RBPF (docs/algorithms.md 2.3 step 3). */
 typedef enum {
     PFT_TBD_KF_EXACT = 0, /**< decorrelated, calibrated (default) */
     PFT_TBD_KF_PAPER = 1  /**< as printed: ignores the position/velocity noise correlation */
 } pft_tbd_kf_variant_t;
 
-/** Shape of a confirmed track's constraint region D (ALGORITHMS.md 2.4, 2.7), before it is
+/** Shape of a confirmed track's constraint region D (docs/algorithms.md 2.4, 2.7), before it is
  *  grown by d_margin pixels on each side. */
 typedef enum {
     PFT_TBD_D_WINDOW = 0, /**< the (2p+1)^2 window C(x) around the estimate (the paper) */
@@ -93,7 +93,7 @@ typedef enum {
 
 /**
  * Every parameter of the TBD filters. pft_tbd_config_default() fills the paper's values
- * ([P] in ALGORITHMS.md 2.8) and the documented defaults of the assumptions ([A]).
+ * ([P] in docs/algorithms.md 2.8) and the documented defaults of the assumptions ([A]).
  */
 typedef struct {
     /* image and sensor */
@@ -127,15 +127,15 @@ typedef struct {
     uint8_t dis_prev;        /**< previous windows compared against (default 5), 1..PFT_TBD_MAX_DIS_PREV */
     pft_real_t dis_ratio;    /**< gone when L(W_k) < dis_ratio * L_max (default 0.8, i.e. theta2 = L_max/5); in (0, 1] */
     bool dis_ratio_test;     /**< apply the windowed likelihood-ratio test above (default true, the paper) */
-    pft_real_t theta_end;    /**< a track also ends when its layer's existence probability falls below this [A] (default 0: off; the paper uses only the ratio test, which is a hair-trigger at 6 dB, see ALGORITHMS.md 2.6) */
+    pft_real_t theta_end;    /**< a track also ends when its layer's existence probability falls below this [A] (default 0: off; the paper uses only the ratio test, which is a hair-trigger at 6 dB, see docs/algorithms.md 2.6) */
     uint8_t d_margin;        /**< constraint region D = C(x) grown by this many pixels on each side [A] (default 0: the paper's C(x)) */
-    bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, ALGORITHMS.md 2.7, default) [A] */
+    bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, docs/algorithms.md 2.7, default) [A] */
     bool force_constraint;   /**< force E = 0 for search particles whose window centre enters a constraint region [A] (default true) */
     pft_tbd_dregion_t d_region; /**< shape of D (default PFT_TBD_D_WINDOW, the paper) [A] */
     bool residual_search;    /**< joint likelihood in the search layer: its particles are weighed on the frame minus the PSF h of every confirmed track at its current estimate (position and intensity) [A] (default false: the paper's single-target likelihood) */
     bool residual_tracks;    /**< joint likelihood in the track layers: track t is weighed on the frame minus the PSF of every other track at its predicted position x + v T (estimates of the previous frame) [A] (default false) */
     uint8_t residual_margin; /**< the subtracted PSF covers the window C(x) grown by this many pixels, half-size p + margin <= 2 PFT_TBD_MAX_WINDOW (default 1) */
-    uint8_t handover_gate;   /**< hand over to a new track layer only the search particles within this many pixels (square half-size, window centres) of the densest (2p+1)^2 block of E = 1 particles; 0 hands over every E = 1 particle (default, ALGORITHMS.md 2.7) [A] */
+    uint8_t handover_gate;   /**< hand over to a new track layer only the search particles within this many pixels (square half-size, window centres) of the densest (2p+1)^2 block of E = 1 particles; 0 hands over every E = 1 particle (default, docs/algorithms.md 2.7) [A] */
     uint8_t end_lr_frames;   /**< a track also ends when the frame log likelihood ratio of its layer (log_mean_lr) was below end_lr_max in each of the last end_lr_frames frames; 0 turns it off (default), at most PFT_TBD_MAX_DIS_R + 1 [A] */
     pft_real_t end_lr_max;   /**< threshold of the test above (default 0: the frame favours absence) */
     /* sizes */
@@ -333,7 +333,7 @@ typedef struct {
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
 /**
- * Initialises the manager (ALGORITHMS.md 2.7): one search layer (cfg.n_search particles,
+ * Initialises the manager (docs/algorithms.md 2.7): one search layer (cfg.n_search particles,
  * births outside the constraint regions) and up to cfg.max_targets track layers (cfg.n_track
  * particles each, no births); no tracks, the search layer all E = 0. The config is copied.
  * PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM for a
@@ -346,7 +346,7 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
 pft_status_t pft_tbd_reset(pft_tbd_t *t);
 
 /**
- * One frame (ALGORITHMS.md 2.7): update every track layer (with residual_tracks, each on the
+ * One frame (docs/algorithms.md 2.7): update every track layer (with residual_tracks, each on the
  * frame minus the other tracks' PSFs at their predicted positions) and test disappearance,
  * rebuild the constraint regions from the remaining tracks' estimates, update the search
  * layer (with residual_search, on the frame minus every remaining track's PSF at its current

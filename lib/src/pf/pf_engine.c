@@ -1,5 +1,5 @@
 /* SIS, SIR and auxiliary particle filter engine over the pft_pf_model_t interface
- * (ALGORITHMS.md 3.2; see pft_pf.h for the exact sequence of one update). */
+ * (docs/algorithms.md 3.2; see pft_pf.h for the exact sequence of one update). */
 #include <string.h>
 
 #include "pft/pft_pf.h"

@@ -1,4 +1,4 @@
-/* Bearings-only constant-velocity model (Gordon, Salmond & Smith 1993; ALGORITHMS.md 3.1)
+/* Bearings-only constant-velocity model (Gordon, Salmond & Smith 1993; docs/algorithms.md 3.1)
  * for the particle-filter engine. */
 #include <string.h>
 

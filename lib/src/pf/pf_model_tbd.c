@@ -1,4 +1,4 @@
-/* The TBD pixel likelihood (pft_tbd.h, ALGORITHMS.md 1 and 2.9) as a model of the
+/* The TBD pixel likelihood (pft_tbd.h, docs/algorithms.md 1 and 2.9) as a model of the
  * particle-filter engine: with SIR it is the bootstrap PF-TBD, with the APF the APF-TBD.
  * Everything but the engine is the tbd module's, called through its private header: the
  * measurement model, frame conversion and birth candidates, and the PF-TBD existence chain,

@@ -1,4 +1,4 @@
-/* The PF-TBD pieces written once (ALGORITHMS.md 2.1, 2.2, 2.9): existence chain, births,
+/* The PF-TBD pieces written once (docs/algorithms.md 2.1, 2.2, 2.9): existence chain, births,
  * the full-state CV step, the leave-image test and the estimate sums. Used by the tbd filters
  * (tbd_filter.c) and by the pf engine's TBD model (lib/src/pf/pf_model_tbd.c), which must stay
  * bit-identical to the tbd module's PF-TBD (test_pf_models.c). */

@@ -1,4 +1,4 @@
-/* One TBD filter: RBPF-TBD (ALGORITHMS.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
+/* One TBD filter: RBPF-TBD (docs/algorithms.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
 #include <string.h>
 
 #include "tbd_int.h"
@@ -196,7 +196,7 @@ static void estimate_(pft_tbd_filter_t *f)
     e->valid = true;
 }
 
-/* Windowed log likelihood ratio and the disappearance test (ALGORITHMS.md 2.6). lr_hist[0]
+/* Windowed log likelihood ratio and the disappearance test (docs/algorithms.md 2.6). lr_hist[0]
  * and win_hist[0] are the newest entries. */
 static void disappearance_(pft_tbd_filter_t *f)
 {

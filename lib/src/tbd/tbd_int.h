@@ -63,7 +63,7 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
 void pft_tbd_filter_clear_(pft_tbd_filter_t *f);
 /* Resets the statistics (estimate history, disappearance windows). */
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f);
-/* One iteration on a prepared scene (ALGORITHMS.md 2.5). */
+/* One iteration on a prepared scene (docs/algorithms.md 2.5). */
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
 /* Hand-over: fills dst (E = 1 everywhere) by systematic resampling of the E = 1 particles of
  * src (only those whose window centre pixel is set in gate, when gate is not NULL) with dst's

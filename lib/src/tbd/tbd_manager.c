@@ -1,4 +1,4 @@
-/* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (ALGORITHMS.md 2.6-2.7). */
+/* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (docs/algorithms.md 2.6-2.7). */
 #include <string.h>
 
 #include "tbd_int.h"
@@ -359,7 +359,7 @@ static void update_search_(pft_tbd_t *t, bool residual)
 }
 
 /* 4. Appearance: when the search layer's P exceeds theta1 and a slot is free, hand its
- * particles over to a new track layer (ALGORITHMS.md 2.7) and clear the search layer. */
+ * particles over to a new track layer (docs/algorithms.md 2.7) and clear the search layer. */
 static void confirm_(pft_tbd_t *t)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
@@ -385,7 +385,7 @@ static void confirm_(pft_tbd_t *t)
     memset(rec, 0, sizeof(*rec));
     rec->id = t->next_id++;
     if (gate == NULL) {
-        tf->est = t->search.est; /* ALGORITHMS.md 2.7: the search layer's estimate */
+        tf->est = t->search.est; /* docs/algorithms.md 2.7: the search layer's estimate */
     }
     record_from_est_(rec, &tf->est);
     rec->first_frame = t->frame;

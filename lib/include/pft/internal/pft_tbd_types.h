@@ -74,7 +74,7 @@ struct pft_tbd_filter_s {
     bool gone;               /* disappearance declared at the last update */
 };
 
-/* The multi-target manager (ALGORITHMS.md 2.7). */
+/* The multi-target manager (docs/algorithms.md 2.7). */
 struct pft_tbd_s {
     pft_tbd_config_t cfg;
     pft_tbd_filter_t search;

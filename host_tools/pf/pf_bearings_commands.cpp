@@ -1,6 +1,6 @@
-// The "bearings" kind: sim, run, eval, bench, demo and selftest for the Gordon-Salmond-Smith
+// The "pf_bearings" kind (formerly "bearings", still accepted): sim, run, eval, bench, demo and selftest for the Gordon-Salmond-Smith
 // bearings-only benchmark with the SIS / SIR / APF engines of lib/include/pft/pft_pf.h
-// (Wang 2010's comparison, ALGORITHMS.md 3).
+// (Wang 2010's comparison, docs/algorithms.md 3).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,11 +18,11 @@
 #include "../common/progress.hpp"
 #include "../common/registry.hpp"
 #include "../tbd/tracker.hpp"
-#include "bearings.hpp"
+#include "pf_bearings.hpp"
 
 using nlohmann::json;
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 namespace {
 
@@ -157,7 +157,7 @@ json agg_json(const Agg &a, unsigned runs, int steps)
 void plots(const BearingsScenario &s, const json &sum, const std::string &dir)
 {
     const json &fl = sum["filters"];
-    std::string tail = " - " + (s.name.empty() ? std::string("bearings") : s.name) + ", " +
+    std::string tail = " - " + (s.name.empty() ? std::string("pf_bearings") : s.name) + ", " +
                        numeric_name() + ", " + std::to_string(sum["runs"].get<unsigned>()) + " runs";
     // Table 1: RMSE per step at the table N
     for (const char *axis : {"x", "y"}) {
@@ -275,7 +275,7 @@ public:
         unsigned runs = o.runs ? o.runs : s.runs;
         uint64_t base = o.seed ? *o.seed : s.base_seed;
         unsigned threads = resolve_threads(o.threads);
-        std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("bearings") : s.name) +
+        std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("pf_bearings") : s.name) +
                                                   "_" + numeric_name()
                                             : o.out;
         ensure_dir(out_dir);
@@ -415,7 +415,7 @@ public:
             engines.push_back(engine_json(e));
         json sum = {
             {"tool", "pft eval"},
-            {"kind", "bearings"},
+            {"kind", "pf_bearings"},
             {"scenario", s.name},
             {"scenario_file", s.file},
             {"description", s.description},
@@ -492,7 +492,7 @@ public:
                         s.reference.dump().c_str());
         if (!o.out.empty()) {
             ensure_dir(o.out);
-            json j = {{"tool", "pft bench"}, {"kind", "bearings"}, {"scenario", s.name},
+            json j = {{"tool", "pft bench"}, {"kind", "pf_bearings"}, {"scenario", s.name},
                       {"numeric", numeric_name()}, {"runs", runs}, {"steps", steps},
                       {"base_seed", base}, {"entries", entries}};
             write_json_atomic(join_path(o.out, "bench.json"), j);
@@ -642,7 +642,7 @@ public:
         int fails = 0;
         auto check = [&](bool ok, const std::string &what) {
             if (!ok) {
-                std::printf("bearings selftest: FAIL: %s\n", what.c_str());
+                std::printf("pf_bearings selftest: FAIL: %s\n", what.c_str());
                 ++fails;
             }
         };
@@ -694,14 +694,15 @@ public:
         // 4. determinism of the simulator
         BearingsSequence a = simulate_bearings(s, 5), b = simulate_bearings(s, 5);
         check(a.z == b.z, "simulator determinism");
-        std::printf("bearings selftest: %s (innovation err %s rad, loglik err/tol %s)\n",
+        std::printf("pf_bearings selftest: %s (innovation err %s rad, loglik err/tol %s)\n",
                     fails ? "FAILED" : "passed", fmt_e(worst_e).c_str(), fmt_e(worst_l).c_str());
         return fails;
     }
 };
 
-PFT_REGISTER_KIND("bearings", BearingsHandler);
+PFT_REGISTER_KIND("pf_bearings", BearingsHandler);
+PFT_REGISTER_KIND_ALIAS("bearings", "pf_bearings", pf_bearings);
 
 }  // namespace
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf

@@ -1,4 +1,4 @@
-#include "bearings.hpp"
+#include "pf_bearings.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "../common/json_field.hpp"
 #include "../tbd/tracker.hpp"
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 double wrap_pi(double a)
 {
@@ -204,4 +204,4 @@ PassResult BearingsFilter::pass(const BearingsSequence &q, uint64_t seed)
     return r;
 }
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf

@@ -5,7 +5,7 @@
 #include "../common/errors.hpp"
 #include "../tbd/tracker.hpp"
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 EngineSpec parse_engine(const Field &f, bool with_particles)
 {
@@ -122,7 +122,7 @@ pft_pf_stats_t PfRunner::stats() const
     return s;
 }
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf
 
 // noipa: neither inlined nor merged by identical-code folding, so each keeps its own cost.
 #if defined(__GNUC__) && !defined(__clang__)

@@ -1,22 +1,22 @@
 #!/usr/bin/env bash
 # Instruction counts of the particle-filter engines under callgrind (exact and repeatable;
-# wall time on a shared machine is not), for docs/results/apf.md Table 2.
+# wall time on a shared machine is not), for docs/results/pf.md Table 2.
 # For each build given (float and/or q16):
-#   bearings: each filter of scenarios/apf/gordon_bearings.json at each N of $NS, one run of the
+#   bearings: each filter of scenarios/pf/gordon_bearings.json at each N of $NS, one run of the
 #             24 steps, valgrind --toggle-collect=pft_pf_update (simulation, prior draws and tool
 #             code are not counted) -> instructions per step and per particle-step;
-#   TBD:      APF-TBD and PF-TBD (SIR engine) of scenarios/apf/apf_tbd_5db.json at N = $TBD_N,
+#   TBD:      APF-TBD and PF-TBD (SIR engine) of scenarios/pf/pf_tbd_5db.json at N = $TBD_N,
 #             30 frames -> instructions per frame (also pft_pf_update).
 # Each filter is profiled alone from a one-filter copy of the scenario (written to OUT_DIR).
-# Usage: host_tools/apf/apf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]
+# Usage: host_tools/pf/pf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]
 #   NS="1000 5000" TBD_N=6000 may be set in the environment.
 set -euo pipefail
-OUT=${1:?usage: apf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]}
+OUT=${1:?usage: pf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]}
 shift
-[ $# -ge 1 ] || { echo "usage: apf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]" >&2; exit 2; }
+[ $# -ge 1 ] || { echo "usage: pf_callgrind.sh OUT_DIR BUILD_DIR [BUILD_DIR...]" >&2; exit 2; }
 command -v valgrind >/dev/null || { echo "valgrind not found" >&2; exit 2; }
 HERE="$(cd "$(dirname "$0")" && pwd)"
-SCEN="$HERE/../scenarios/apf"
+SCEN="$HERE/../scenarios/pf"
 NS=${NS:-"1000 5000"}
 TBD_N=${TBD_N:-6000}
 mkdir -p "$OUT"
@@ -63,7 +63,7 @@ for build in "$@"; do
   for lab in "APF-TBD 6000" "PF-TBD 6000"; do
     tag=$(echo "$lab" | tr ' ' '_')
     sc="$OUT/tbd_${tag}.json"
-    filter_copy "$SCEN/apf_tbd_5db.json" "$lab" "$sc" "$TBD_N"
+    filter_copy "$SCEN/pf_tbd_5db.json" "$lab" "$sc" "$TBD_N"
     cg="$OUT/$(basename "$build")_tbd_${tag}.callgrind.out"
     valgrind --tool=callgrind --toggle-collect=pft_pf_update --callgrind-out-file="$cg" \
       "$PFT" bench --scenario "$sc" --runs 1 -q 2>"$cg.log"

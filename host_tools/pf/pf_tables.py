@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Markdown tables of docs/results/apf.md from the outputs of host_tools/apf/apf_results.sh.
+"""Markdown tables of docs/results/pf.md from the outputs of host_tools/pf/pf_results.sh.
 
-Usage: apf_tables.py RESULTS_DIR
+Usage: pf_tables.py RESULTS_DIR
 RESULTS_DIR holds gordon_bearings_{float,q16}/, gordon_bearings_scale1_{float,q16}/ (eval
-summaries), bench_bearings_{float,q16}/bench.json, apf_tbd_{2,5}db_{float,q16}/ (eval
+summaries), bench_bearings_{float,q16}/bench.json, pf_tbd_{2,5}db_{float,q16}/ (eval
 summaries) and optionally callgrind/table.md."""
 import json
 import math
@@ -173,7 +173,7 @@ def main():
     t = {}
     for snr in (2, 5):
         for b in ("float", "q16"):
-            s = load(d, f"apf_tbd_{snr}db_{b}", "summary.json")
+            s = load(d, f"pf_tbd_{snr}db_{b}", "summary.json")
             if s:
                 t[(snr, b)] = s
     if t:

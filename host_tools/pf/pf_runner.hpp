@@ -1,7 +1,7 @@
 // C++ wrapper over the library's particle-filter engine (pft_pf.h): one engine instance with
 // its workspace, driven through a model interface (pft_pf_model_t) owned by the caller.
 // Also the engine specification read from scenario files ("sis" | "sir" | "apf", particles,
-// resampling scheme and policy), shared by the "bearings" and "apf_tbd" kinds.
+// resampling scheme and policy), shared by the "pf_bearings" and "pf_tbd" kinds.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -15,17 +15,17 @@ extern "C" {
 
 #include "../common/json_field.hpp"
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 /** One filter of a comparison. */
 struct EngineSpec {
     std::string label;             ///< shown in tables and plots (default: upper-case engine)
-    std::string engine = "apf";    ///< sis | sir | apf (apf_tbd also: rbpf, the tbd module's RBPF-TBD)
+    std::string engine = "apf";    ///< sis | sir | apf (pf_tbd also: rbpf, the tbd module's RBPF-TBD)
     std::string scheme = "systematic";  ///< systematic | stratified | residual | multinomial
     std::string policy;            ///< always | ess | never ("": the engine's default)
     double ess_threshold = 0.5;    ///< fraction of N for policy "ess"
     double first_r_sd = 0.0;       ///< bearings APF: widened first-stage bearing sd (0: r_sd)
-    // apf_tbd only
+    // pf_tbd only
     uint32_t particles = 0;        ///< particle count of this filter
     std::string match_time_of;     ///< label of a filter whose time per frame this one matches
                                    ///< (its particle count is then calibrated, "equal compute")
@@ -68,4 +68,4 @@ extern "C" pft_status_t pft_host_update_sis(pft_pf_t *pf, const void *z);
 extern "C" pft_status_t pft_host_update_sir(pft_pf_t *pf, const void *z);
 extern "C" pft_status_t pft_host_update_apf(pft_pf_t *pf, const void *z);
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf

@@ -1,5 +1,5 @@
-// The Gordon-Salmond-Smith bearings-only benchmark (ALGORITHMS.md 3.1) on the host: scenario
-// files (kind "bearings"), the double-precision truth and measurement simulator, and one
+// The Gordon-Salmond-Smith bearings-only benchmark (docs/algorithms.md 3.1) on the host: scenario
+// files (kind "pf_bearings"), the double-precision truth and measurement simulator, and one
 // filter's pass over a simulated sequence through the library's engine and bearings model.
 //
 // Units: the scenario and every reported number are in the benchmark's units; the library
@@ -20,7 +20,7 @@ extern "C" {
 
 #include "pf_runner.hpp"
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 struct BearingsScenario {
     std::string file, name, description;
@@ -92,4 +92,4 @@ private:
 /** Wrap to (-pi, pi]. */
 double wrap_pi(double a);
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf

@@ -1,9 +1,9 @@
-// The "apf_tbd" kind: the particle-filter engines of pft_pf.h over the TBD pixel likelihood
+// The "pf_tbd" kind (formerly "apf_tbd", still accepted): the particle-filter engines of pft_pf.h over the TBD pixel likelihood
 // (pft_pf_tbd_model_t) on a single-target TBD scenario of the tbd module, against each other and
 // against the tbd module's RBPF-TBD, at equal particle counts and at equal compute.
 //
 // Scenario file:
-//   {"kind": "apf_tbd", "name": ..., "description": ...,
+//   {"kind": "pf_tbd", "name": ..., "description": ...,
 //    "base": "../tbd/single_5db.json",          // a "tbd" scenario (relative to this file)
 //    "filters": [{"label": "APF-TBD 6000", "engine": "apf", "particles": 6000},
 //                {"label": "PF-TBD eq. time", "engine": "sir", "match_time_of": "APF-TBD 6000"},
@@ -41,7 +41,7 @@ extern "C" {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-namespace pft::host::apf {
+namespace pft::host::pf {
 
 namespace {
 
@@ -296,7 +296,7 @@ json calibrate(ApfTbdScenario &s, bool quiet)
 
 void plots(const ApfTbdScenario &s, const json &sum, const std::string &dir)
 {
-    std::string tail = " - " + (s.name.empty() ? std::string("apf_tbd") : s.name) + ", " + numeric_name() +
+    std::string tail = " - " + (s.name.empty() ? std::string("pf_tbd") : s.name) + ", " + numeric_name() +
                        ", " + std::to_string(sum["runs"].get<unsigned>()) + " runs";
     const tbd::Target &tg = s.base.targets[0];
     for (int fig = 0; fig < 2; ++fig) {
@@ -344,7 +344,7 @@ class ApfTbdHandler : public KindHandler {
     ApfTbdScenario load(const Options &o)
     {
         if (!o.filter_kind.empty() || !o.preset.empty())
-            throw InputError("kind \"apf_tbd\": --filter and --preset do not apply (the scenario's \"filters\" list them)");
+            throw InputError("kind \"pf_tbd\": --filter and --preset do not apply (the scenario's \"filters\" list them)");
         ApfTbdScenario s = parse(o.scenario, o.scenario_path);
         if (o.particles)
             for (auto &e : s.filters)
@@ -360,7 +360,7 @@ public:
         unsigned runs = o.runs ? o.runs : s.runs;
         uint64_t base = o.seed ? *o.seed : s.base_seed;
         unsigned threads = resolve_threads(o.threads);
-        std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("apf_tbd") : s.name) +
+        std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("pf_tbd") : s.name) +
                                                   "_" + numeric_name()
                                             : o.out;
         ensure_dir(out_dir);
@@ -461,7 +461,7 @@ public:
             seeds.push_back(base + i);
         json sum = {
             {"tool", "pft eval"},
-            {"kind", "apf_tbd"},
+            {"kind", "pf_tbd"},
             {"scenario", s.name},
             {"scenario_file", s.file},
             {"base_scenario_file", s.base_file},
@@ -529,7 +529,7 @@ public:
         if (!o.out.empty()) {
             ensure_dir(o.out);
             write_json_atomic(join_path(o.out, "bench.json"),
-                              {{"tool", "pft bench"}, {"kind", "apf_tbd"}, {"scenario", s.name},
+                              {{"tool", "pft bench"}, {"kind", "pf_tbd"}, {"scenario", s.name},
                                {"numeric", numeric_name()}, {"runs", runs}, {"frames", frames},
                                {"calibration", cal}, {"entries", entries}});
         }
@@ -537,8 +537,9 @@ public:
     }
 };
 
-PFT_REGISTER_KIND("apf_tbd", ApfTbdHandler);
+PFT_REGISTER_KIND("pf_tbd", ApfTbdHandler);
+PFT_REGISTER_KIND_ALIAS("apf_tbd", "pf_tbd", pf_tbd);
 
 }  // namespace
 
-}  // namespace pft::host::apf
+}  // namespace pft::host::pf
