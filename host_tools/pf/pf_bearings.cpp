@@ -31,18 +31,11 @@ std::array<double, 4> four(const Field &f, const char *key, std::array<double, 4
 }
 }  // namespace
 
-BearingsScenario parse_bearings(const nlohmann::json &j, const std::string &file)
+namespace {
+
+/** "model", "truth" and "prior". */
+void parse_model(const Field &root, BearingsScenario &s)
 {
-    Field root(j, file);
-    root.only({"kind", "name", "description", "steps", "model", "truth", "prior", "scale",
-               "ll_clip", "filters", "particles", "table_particles", "lost_radius", "eval",
-               "reference", "reference_filter"});
-    BearingsScenario s;
-    s.file = file;
-    s.raw = j;
-    s.name = root.string_or("name", "");
-    s.description = root.string_or("description", "");
-    s.steps = static_cast<int>(root.integer_in("steps", 24, 1, 100000));
     if (root.has("model")) {
         Field m = root.at("model");
         m.only({"T", "q_sd", "r_sd"});
@@ -65,8 +58,11 @@ BearingsScenario parse_bearings(const nlohmann::json &j, const std::string &file
             if (v < 0)
                 p.at("sd").fail("standard deviations must be >= 0");
     }
-    s.scale = static_cast<int>(root.integer_in("scale", 1000, 1, 100000));
-    s.ll_clip = root.number_in("ll_clip", 50.0, 1.0, 1000.0);
+}
+
+/** "filters" (default SIS, SIR, APF), "particles" and "table_particles". */
+void parse_filters(const Field &root, BearingsScenario &s)
+{
     if (root.has("filters")) {
         Field fl = root.at("filters");
         for (std::size_t i = 0; i < fl.size(); ++i)
@@ -100,6 +96,26 @@ BearingsScenario parse_bearings(const nlohmann::json &j, const std::string &file
     s.table_particles = static_cast<uint32_t>(
         root.integer_in("table_particles", s.particles.size() > 3 ? s.particles[3] : s.particles.back(),
                         1, PFT_CFG_MAX_PARTICLES));
+}
+
+}  // namespace
+
+BearingsScenario parse_bearings(const nlohmann::json &j, const std::string &file)
+{
+    Field root(j, file);
+    root.only({"kind", "name", "description", "steps", "model", "truth", "prior", "scale",
+               "ll_clip", "filters", "particles", "table_particles", "lost_radius", "eval",
+               "reference", "reference_filter"});
+    BearingsScenario s;
+    s.file = file;
+    s.raw = j;
+    s.name = root.string_or("name", "");
+    s.description = root.string_or("description", "");
+    s.steps = static_cast<int>(root.integer_in("steps", 24, 1, 100000));
+    parse_model(root, s);
+    s.scale = static_cast<int>(root.integer_in("scale", 1000, 1, 100000));
+    s.ll_clip = root.number_in("ll_clip", 50.0, 1.0, 1000.0);
+    parse_filters(root, s);
     s.lost_radius = root.number_in("lost_radius", 0.1, 0.0, 1e9);
     if (root.has("reference_filter")) {
         Field rf = root.at("reference_filter");

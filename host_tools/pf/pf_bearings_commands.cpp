@@ -1,4 +1,5 @@
-// The "pf_bearings" kind (formerly "bearings", still accepted): sim, run, eval, bench, demo and selftest for the Gordon-Salmond-Smith
+// The "pf_bearings" kind (formerly "bearings", still accepted): sim, run, eval, bench, demo and
+// selftest for the Gordon-Salmond-Smith
 // bearings-only benchmark with the SIS / SIR / APF engines of lib/include/pft/pft_pf.h
 // (Wang 2010's comparison, docs/algorithms.md 3).
 #include <algorithm>
@@ -267,6 +268,255 @@ void print_tables(const BearingsScenario &s, const json &sum)
     }
 }
 
+/** Every filter at every particle count on every run's sequence (and the reference filter). */
+struct EvalRuns {
+    std::vector<std::vector<PassResult>> res;  ///< res[run][filter * nn + n]
+    std::vector<std::size_t> ws;               ///< workspace bytes per filter and N
+    std::vector<double> ref_se;                ///< reference filter: squared radial error per run
+    double wall = 0;
+};
+
+EvalRuns run_all(const BearingsScenario &s, unsigned runs, uint64_t base, unsigned threads, bool progress)
+{
+    const std::size_t nf = s.filters.size(), nn = s.particles.size();
+    EvalRuns er;
+    er.res.assign(runs, std::vector<PassResult>(nf * nn));
+    er.ws.assign(nf * nn, 0);
+    er.ref_se.assign(runs, 0.0);
+    Progress bar(runs, "eval", progress);
+    auto t0 = std::chrono::steady_clock::now();
+    parallel_for(runs, threads, [&](std::size_t i) {
+        uint64_t seed = base + i;
+        BearingsSequence q = simulate_bearings(s, seed);
+        for (std::size_t f = 0; f < nf; ++f)
+            for (std::size_t n = 0; n < nn; ++n) {
+                BearingsFilter bf(s, s.filters[f], s.particles[n]);
+                er.res[i][f * nn + n] = bf.pass(q, seed);
+                if (i == 0)
+                    er.ws[f * nn + n] = bf.workspace_bytes();
+            }
+        if (s.has_reference_filter) {
+            // the reference runs with its own seed stream (not shared with the filters)
+            BearingsFilter rf(s, s.reference_filter, s.reference_filter.particles);
+            PassResult pr = rf.pass(q, seed ^ 0x5245465245465245ull);
+            for (int k = 0; k < s.steps; ++k)
+                er.ref_se[i] += pr.ex[k] * pr.ex[k] + pr.ey[k] * pr.ey[k];
+            for (auto &p : er.res[i]) {
+                p.dref.resize(s.steps);
+                for (int k = 0; k < s.steps; ++k) {
+                    double dx = p.est[k][0] - pr.est[k][0], dy = p.est[k][2] - pr.est[k][2];
+                    p.dref[k] = dx * dx + dy * dy;
+                }
+            }
+        }
+        bar.tick();
+    });
+    bar.finish();
+    er.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return er;
+}
+
+/** Adds one run's pass to the aggregate of its filter and N. */
+void add_pass(const BearingsScenario &s, const PassResult &p, Agg &a)
+{
+    double se = 0;
+    for (int k = 0; k < s.steps; ++k) {
+        a.sx[k] += p.ex[k] * p.ex[k];
+        a.sy[k] += p.ey[k] * p.ey[k];
+        se += p.ex[k] * p.ex[k] + p.ey[k] * p.ey[k];
+    }
+    a.run_rms.push_back(std::sqrt(se / s.steps));
+    a.run_mse.push_back(se / s.steps);
+    for (int k = 0; k < s.steps; ++k) {
+        // the truth from the estimate and the error (both benchmark units)
+        double xe = p.est[k][0], ye = p.est[k][2];
+        double xt = xe - p.ex[k], yt = ye - p.ey[k];
+        double d = wrap_pi(std::atan2(ye, xe) - std::atan2(yt, xt));
+        a.off[k] += std::fabs(d) > 5.0 * s.r_sd ? 1.0 : 0.0;
+    }
+    if (!p.dref.empty()) {
+        if (a.sref.empty())
+            a.sref.assign(s.steps, 0.0);
+        for (int k = 0; k < s.steps; ++k)
+            a.sref[k] += p.dref[k];
+    }
+    double fin = std::hypot(p.ex.back(), p.ey.back());
+    a.lost += fin > s.lost_radius ? 1 : 0;
+    a.ns += p.ns;
+    a.ess += p.ess_sum;
+    a.ess_first += p.ess_first_sum;
+    a.resamples += p.resamples;
+}
+
+std::vector<Agg> aggregate(const BearingsScenario &s, const EvalRuns &er, unsigned runs)
+{
+    const std::size_t nf = s.filters.size(), nn = s.particles.size();
+    std::vector<Agg> agg(nf * nn);
+    for (std::size_t f = 0; f < nf; ++f)
+        for (std::size_t n = 0; n < nn; ++n) {
+            Agg &a = agg[f * nn + n];
+            a.label = s.filters[f].label;
+            a.engine = s.filters[f].engine;
+            a.n = s.particles[n];
+            a.sx.assign(s.steps, 0.0);
+            a.sy.assign(s.steps, 0.0);
+            a.off.assign(s.steps, 0.0);
+            a.ws = er.ws[f * nn + n];
+            for (unsigned r = 0; r < runs; ++r)
+                add_pass(s, er.res[r][f * nn + n], a);
+        }
+    return agg;
+}
+
+/** Paired comparisons on the same sequences: APF against the others, SIR against SIS. */
+json paired_json(const BearingsScenario &s, const std::vector<Agg> &agg, unsigned runs)
+{
+    const std::size_t nf = s.filters.size(), nn = s.particles.size();
+    json paired = json::array();
+    for (std::size_t n = 0; n < nn; ++n)
+        for (std::size_t fa = 0; fa < nf; ++fa)
+            for (std::size_t fb = 0; fb < nf; ++fb) {
+                if (fa == fb)
+                    continue;
+                const std::string &ea = s.filters[fa].engine, &eb = s.filters[fb].engine;
+                bool want = (ea == "apf" && eb != "apf") || (ea == "sir" && eb == "sis");
+                if (!want)
+                    continue;
+                int wins = 0;
+                for (unsigned r = 0; r < runs; ++r)
+                    wins += agg[fa * nn + n].run_rms[r] < agg[fb * nn + n].run_rms[r] ? 1 : 0;
+                paired.push_back({{"particles", s.particles[n]}, {"a", s.filters[fa].label},
+                                  {"b", s.filters[fb].label},
+                                  {"fraction", static_cast<double>(wins) / runs}});
+            }
+    return paired;
+}
+
+/** Estimates at the table N, per filter, run and step ([x, y]), so that builds (float, q16,
+ *  scales) can be compared sequence by sequence. */
+json estimates_json(const BearingsScenario &s, const EvalRuns &er, unsigned runs)
+{
+    const std::size_t nf = s.filters.size(), nn = s.particles.size();
+    json est_dump = json::object();
+    for (std::size_t f = 0; f < nf; ++f)
+        for (std::size_t n = 0; n < nn; ++n) {
+            if (s.particles[n] != s.table_particles)
+                continue;
+            json per_run = json::array();
+            for (unsigned r = 0; r < runs; ++r) {
+                json steps = json::array();
+                for (const auto &e : er.res[r][f * nn + n].est)
+                    steps.push_back({e[0], e[2]});
+                per_run.push_back(steps);
+            }
+            est_dump[s.filters[f].label] = per_run;
+        }
+    return est_dump;
+}
+
+/** The summary.json of `pft eval` (contract names). */
+json eval_summary(const Options &o, const BearingsScenario &s, const EvalRuns &er,
+                  const std::vector<Agg> &agg, unsigned runs, uint64_t base, unsigned threads)
+{
+    json filters = json::array();
+    for (const Agg &a : agg)
+        filters.push_back(agg_json(a, runs, s.steps));
+    json seeds = json::array();
+    for (unsigned i = 0; i < runs; ++i)
+        seeds.push_back(base + i);
+    json ref_json = nullptr;
+    if (s.has_reference_filter) {
+        ref_json = engine_json(s.reference_filter);
+        ref_json["particles"] = s.reference_filter.particles;
+        double t = 0;
+        for (double v : er.ref_se)
+            t += v;
+        ref_json["rmse"] = std::sqrt(t / (static_cast<double>(runs) * s.steps));
+    }
+    json engines = json::array();
+    for (const auto &e : s.filters)
+        engines.push_back(engine_json(e));
+    json sum = {
+        {"tool", "pft eval"},
+        {"kind", "pf_bearings"},
+        {"scenario", s.name},
+        {"scenario_file", s.file},
+        {"description", s.description},
+        {"tag", o.tag.empty() ? std::string("bearings ") + numeric_name() : o.tag},
+        {"numeric", numeric_name()},
+        {"runs", runs},
+        {"base_seed", base},
+        {"seeds", seeds},
+        {"threads", threads},
+        {"steps", s.steps},
+        {"scale", s.scale},
+        {"ll_clip", s.ll_clip},
+        {"lost_radius", s.lost_radius},
+        {"table_particles", s.table_particles},
+        {"particle_counts", s.particles},
+        {"engines", engines},
+        {"reference_filter", ref_json},
+        {"timing", {{"wall_s", er.wall}, {"note", "ns_per_step: steady_clock around pft_pf_update, "
+                                                  "measured inside the threaded eval (use bench for timing)"}}},
+        {"filters", filters},
+        {"paired", paired_json(s, agg, runs)},
+        {"estimates_at_table_particles", estimates_json(s, er, runs)},
+        {"scenario_json", s.raw},
+    };
+    if (!s.reference.is_null())
+        sum["reference"] = s.reference;
+    return sum;
+}
+
+/** Rows of a CSV file of numbers with a header line and `cols` columns. */
+std::vector<std::vector<double>> read_csv(const std::string &path, std::size_t cols)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw InputError(path + ": cannot open file");
+    std::vector<std::vector<double>> rows;
+    std::string line;
+    std::getline(in, line);  // header
+    int ln = 1;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (line.empty())
+            continue;
+        std::vector<double> r;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ','))
+            try {
+                r.push_back(std::stod(cell));
+            } catch (const std::exception &) {
+                throw InputError(path + ":" + std::to_string(ln) + ": not a number: " + cell);
+            }
+        if (r.size() != cols)
+            throw InputError(path + ":" + std::to_string(ln) + ": expected " +
+                             std::to_string(cols) + " columns");
+        rows.push_back(r);
+    }
+    return rows;
+}
+
+/** A `pft sim` sequence directory: bearings.csv and, when present, truth.csv (zeros else). */
+BearingsSequence read_sequence(const std::string &dir, bool &have_truth)
+{
+    BearingsSequence q;
+    for (auto &r : read_csv(join_path(dir, "bearings.csv"), 2))
+        q.z.push_back(r[1]);
+    have_truth = std::ifstream(join_path(dir, "truth.csv")).good();
+    if (have_truth) {
+        for (auto &r : read_csv(join_path(dir, "truth.csv"), 5))
+            q.truth.push_back({r[1], r[2], r[3], r[4]});
+        if (q.truth.size() != q.z.size())
+            throw InputError(dir + ": truth.csv and bearings.csv differ in length");
+    } else {
+        q.truth.assign(q.z.size(), {0, 0, 0, 0});
+    }
+    return q;
+}
+
 class BearingsHandler : public KindHandler {
 public:
     int eval(const Options &o) override
@@ -279,176 +529,20 @@ public:
                                                   "_" + numeric_name()
                                             : o.out;
         ensure_dir(out_dir);
-        const std::size_t nf = s.filters.size(), nn = s.particles.size();
         if (!o.quiet)
             std::printf("pft eval: %s\n  %u runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(), runs,
                         static_cast<unsigned long long>(base),
                         static_cast<unsigned long long>(base + runs - 1), threads);
-        // res[run][filter * nn + n]
-        std::vector<std::vector<PassResult>> res(runs, std::vector<PassResult>(nf * nn));
-        std::vector<std::size_t> ws(nf * nn, 0);
-        std::vector<double> ref_se(runs, 0.0);  // reference filter: squared radial error per run
-        Progress bar(runs, "eval", progress_wanted(o.progress));
-        auto t0 = std::chrono::steady_clock::now();
-        parallel_for(runs, threads, [&](std::size_t i) {
-            uint64_t seed = base + i;
-            BearingsSequence q = simulate_bearings(s, seed);
-            for (std::size_t f = 0; f < nf; ++f)
-                for (std::size_t n = 0; n < nn; ++n) {
-                    BearingsFilter bf(s, s.filters[f], s.particles[n]);
-                    res[i][f * nn + n] = bf.pass(q, seed);
-                    if (i == 0)
-                        ws[f * nn + n] = bf.workspace_bytes();
-                }
-            if (s.has_reference_filter) {
-                // the reference runs with its own seed stream (not shared with the filters)
-                BearingsFilter rf(s, s.reference_filter, s.reference_filter.particles);
-                PassResult pr = rf.pass(q, seed ^ 0x5245465245465245ull);
-                for (int k = 0; k < s.steps; ++k)
-                    ref_se[i] += pr.ex[k] * pr.ex[k] + pr.ey[k] * pr.ey[k];
-                for (auto &p : res[i]) {
-                    p.dref.resize(s.steps);
-                    for (int k = 0; k < s.steps; ++k) {
-                        double dx = p.est[k][0] - pr.est[k][0], dy = p.est[k][2] - pr.est[k][2];
-                        p.dref[k] = dx * dx + dy * dy;
-                    }
-                }
-            }
-            bar.tick();
-        });
-        bar.finish();
-        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-        std::vector<Agg> agg(nf * nn);
-        for (std::size_t f = 0; f < nf; ++f)
-            for (std::size_t n = 0; n < nn; ++n) {
-                Agg &a = agg[f * nn + n];
-                a.label = s.filters[f].label;
-                a.engine = s.filters[f].engine;
-                a.n = s.particles[n];
-                a.sx.assign(s.steps, 0.0);
-                a.sy.assign(s.steps, 0.0);
-                a.off.assign(s.steps, 0.0);
-                a.ws = ws[f * nn + n];
-                for (unsigned r = 0; r < runs; ++r) {
-                    const PassResult &p = res[r][f * nn + n];
-                    double se = 0;
-                    for (int k = 0; k < s.steps; ++k) {
-                        a.sx[k] += p.ex[k] * p.ex[k];
-                        a.sy[k] += p.ey[k] * p.ey[k];
-                        se += p.ex[k] * p.ex[k] + p.ey[k] * p.ey[k];
-                    }
-                    a.run_rms.push_back(std::sqrt(se / s.steps));
-                    a.run_mse.push_back(se / s.steps);
-                    for (int k = 0; k < s.steps; ++k) {
-                        // the truth from the estimate and the error (both benchmark units)
-                        double xe = p.est[k][0], ye = p.est[k][2];
-                        double xt = xe - p.ex[k], yt = ye - p.ey[k];
-                        double d = wrap_pi(std::atan2(ye, xe) - std::atan2(yt, xt));
-                        a.off[k] += std::fabs(d) > 5.0 * s.r_sd ? 1.0 : 0.0;
-                    }
-                    if (!p.dref.empty()) {
-                        if (a.sref.empty())
-                            a.sref.assign(s.steps, 0.0);
-                        for (int k = 0; k < s.steps; ++k)
-                            a.sref[k] += p.dref[k];
-                    }
-                    double fin = std::hypot(p.ex.back(), p.ey.back());
-                    a.lost += fin > s.lost_radius ? 1 : 0;
-                    a.ns += p.ns;
-                    a.ess += p.ess_sum;
-                    a.ess_first += p.ess_first_sum;
-                    a.resamples += p.resamples;
-                }
-            }
-        json filters = json::array();
-        for (const Agg &a : agg)
-            filters.push_back(agg_json(a, runs, s.steps));
-        // paired comparisons on the same sequences: APF against the others, SIR against SIS
-        json paired = json::array();
-        for (std::size_t n = 0; n < nn; ++n)
-            for (std::size_t fa = 0; fa < nf; ++fa)
-                for (std::size_t fb = 0; fb < nf; ++fb) {
-                    if (fa == fb)
-                        continue;
-                    const std::string &ea = s.filters[fa].engine, &eb = s.filters[fb].engine;
-                    bool want = (ea == "apf" && eb != "apf") || (ea == "sir" && eb == "sis");
-                    if (!want)
-                        continue;
-                    int wins = 0;
-                    for (unsigned r = 0; r < runs; ++r)
-                        wins += agg[fa * nn + n].run_rms[r] < agg[fb * nn + n].run_rms[r] ? 1 : 0;
-                    paired.push_back({{"particles", s.particles[n]}, {"a", s.filters[fa].label},
-                                      {"b", s.filters[fb].label},
-                                      {"fraction", static_cast<double>(wins) / runs}});
-                }
-        // estimates at the table N, per filter, run and step ([x, y]), so that builds (float,
-        // q16, scales) can be compared sequence by sequence
-        json est_dump = json::object();
-        for (std::size_t f = 0; f < nf; ++f)
-            for (std::size_t n = 0; n < nn; ++n) {
-                if (s.particles[n] != s.table_particles)
-                    continue;
-                json per_run = json::array();
-                for (unsigned r = 0; r < runs; ++r) {
-                    json steps = json::array();
-                    for (const auto &e : res[r][f * nn + n].est)
-                        steps.push_back({e[0], e[2]});
-                    per_run.push_back(steps);
-                }
-                est_dump[s.filters[f].label] = per_run;
-            }
-        json seeds = json::array();
-        for (unsigned i = 0; i < runs; ++i)
-            seeds.push_back(base + i);
-        json ref_json = nullptr;
-        if (s.has_reference_filter) {
-            ref_json = engine_json(s.reference_filter);
-            ref_json["particles"] = s.reference_filter.particles;
-            double t = 0;
-            for (double v : ref_se)
-                t += v;
-            ref_json["rmse"] = std::sqrt(t / (static_cast<double>(runs) * s.steps));
-        }
-        json engines = json::array();
-        for (const auto &e : s.filters)
-            engines.push_back(engine_json(e));
-        json sum = {
-            {"tool", "pft eval"},
-            {"kind", "pf_bearings"},
-            {"scenario", s.name},
-            {"scenario_file", s.file},
-            {"description", s.description},
-            {"tag", o.tag.empty() ? std::string("bearings ") + numeric_name() : o.tag},
-            {"numeric", numeric_name()},
-            {"runs", runs},
-            {"base_seed", base},
-            {"seeds", seeds},
-            {"threads", threads},
-            {"steps", s.steps},
-            {"scale", s.scale},
-            {"ll_clip", s.ll_clip},
-            {"lost_radius", s.lost_radius},
-            {"table_particles", s.table_particles},
-            {"particle_counts", s.particles},
-            {"engines", engines},
-            {"reference_filter", ref_json},
-            {"timing", {{"wall_s", wall}, {"note", "ns_per_step: steady_clock around pft_pf_update, "
-                                                  "measured inside the threaded eval (use bench for timing)"}}},
-            {"filters", filters},
-            {"paired", paired},
-            {"estimates_at_table_particles", est_dump},
-            {"scenario_json", s.raw},
-        };
-        if (!s.reference.is_null())
-            sum["reference"] = s.reference;
+        EvalRuns er = run_all(s, runs, base, threads, progress_wanted(o.progress));
+        std::vector<Agg> agg = aggregate(s, er, runs);
+        json sum = eval_summary(o, s, er, agg, runs, base, threads);
         write_json_atomic(join_path(out_dir, "summary.json"), sum);
         plots(s, sum, out_dir);
         if (!o.quiet) {
             print_tables(s, sum);
             std::printf("\n  %.1f s wall; wrote %s/summary.json and plots (rmse_x_per_step.png, "
                         "rmse_y_per_step.png, rmse_vs_particles.png, time_vs_particles.png, rmse_vs_time.png)\n",
-                        wall, out_dir.c_str());
+                        er.wall, out_dir.c_str());
         }
         return 0;
     }
@@ -543,46 +637,8 @@ public:
             if (!o.seed && sj.contains("seed"))
                 seed = sj["seed"].get<uint64_t>();
         }
-        auto read_csv = [](const std::string &path, std::size_t cols) {
-            std::ifstream in(path);
-            if (!in)
-                throw InputError(path + ": cannot open file");
-            std::vector<std::vector<double>> rows;
-            std::string line;
-            std::getline(in, line);  // header
-            int ln = 1;
-            while (std::getline(in, line)) {
-                ++ln;
-                if (line.empty())
-                    continue;
-                std::vector<double> r;
-                std::stringstream ss(line);
-                std::string cell;
-                while (std::getline(ss, cell, ','))
-                    try {
-                        r.push_back(std::stod(cell));
-                    } catch (const std::exception &) {
-                        throw InputError(path + ":" + std::to_string(ln) + ": not a number: " + cell);
-                    }
-                if (r.size() != cols)
-                    throw InputError(path + ":" + std::to_string(ln) + ": expected " +
-                                     std::to_string(cols) + " columns");
-                rows.push_back(r);
-            }
-            return rows;
-        };
-        BearingsSequence q;
-        for (auto &r : read_csv(join_path(dir, "bearings.csv"), 2))
-            q.z.push_back(r[1]);
-        bool have_truth = std::ifstream(join_path(dir, "truth.csv")).good();
-        if (have_truth) {
-            for (auto &r : read_csv(join_path(dir, "truth.csv"), 5))
-                q.truth.push_back({r[1], r[2], r[3], r[4]});
-            if (q.truth.size() != q.z.size())
-                throw InputError(dir + ": truth.csv and bearings.csv differ in length");
-        } else {
-            q.truth.assign(q.z.size(), {0, 0, 0, 0});
-        }
+        bool have_truth = false;
+        BearingsSequence q = read_sequence(dir, have_truth);
         std::string out = o.out.empty() ? "pft_run_out" : o.out;
         ensure_dir(out);
         uint32_t n = s.table_particles;

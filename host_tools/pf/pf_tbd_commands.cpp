@@ -1,4 +1,5 @@
-// The "pf_tbd" kind (formerly "apf_tbd", still accepted): the particle-filter engines of pft_pf.h over the TBD pixel likelihood
+// The "pf_tbd" kind (formerly "apf_tbd", still accepted): the particle-filter engines of
+// pft_pf.h over the TBD pixel likelihood
 // (pft_pf_tbd_model_t) on a single-target TBD scenario of the tbd module, against each other and
 // against the tbd module's RBPF-TBD, at equal particle counts and at equal compute.
 //
@@ -48,7 +49,7 @@ namespace {
 using tbd::from_real;
 using tbd::numeric_name;
 
-struct ApfTbdScenario {
+struct PfTbdScenario {
     std::string file, name, description, base_file;
     tbd::Scenario base;
     std::vector<EngineSpec> filters;
@@ -58,11 +59,11 @@ struct ApfTbdScenario {
     json raw;
 };
 
-ApfTbdScenario parse(const json &j, const std::string &file)
+PfTbdScenario parse(const json &j, const std::string &file)
 {
     Field root(j, file);
     root.only({"kind", "name", "description", "base", "filters", "calibration_runs", "eval"});
-    ApfTbdScenario s;
+    PfTbdScenario s;
     s.file = file;
     s.raw = j;
     s.name = root.string_or("name", "");
@@ -219,7 +220,7 @@ double jnum(const json &j, const char *key)
 }
 
 /** Time per frame (ns) of a filter on each of `runs` sequences, one thread. */
-std::vector<double> times_per_frame(const ApfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs,
+std::vector<double> times_per_frame(const PfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs,
                                     int frames = 0)
 {
     TbdFilter f(s.base, e, n);
@@ -240,14 +241,14 @@ double median_of(std::vector<double> v)
     return n == 0 ? NAN : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-double time_per_frame(const ApfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs, int frames = 0)
+double time_per_frame(const PfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs, int frames = 0)
 {
     return median_of(times_per_frame(s, e, n, runs, frames));
 }
 
 /** Median time per frame of two filters measured alternately (A, B, A, B, ... one sequence
  *  each), so that load changes on a shared machine hit both alike. */
-std::pair<double, double> paired_times(const ApfTbdScenario &s, const EngineSpec &a, uint32_t na,
+std::pair<double, double> paired_times(const PfTbdScenario &s, const EngineSpec &a, uint32_t na,
                                        const EngineSpec &b, uint32_t nb, unsigned runs)
 {
     TbdFilter fa(s.base, a, na), fb(s.base, b, nb);
@@ -265,7 +266,7 @@ std::pair<double, double> paired_times(const ApfTbdScenario &s, const EngineSpec
 
 /** Fills the particle counts of "match_time_of" filters: N = N_ref t_ref / t_this(N_ref),
  *  then one refinement at that N (time is not exactly linear in N). */
-json calibrate(ApfTbdScenario &s, bool quiet)
+json calibrate(PfTbdScenario &s, bool quiet)
 {
     json cal = json::object();
     for (auto &e : s.filters) {
@@ -294,7 +295,7 @@ json calibrate(ApfTbdScenario &s, bool quiet)
     return cal;
 }
 
-void plots(const ApfTbdScenario &s, const json &sum, const std::string &dir)
+void plots(const PfTbdScenario &s, const json &sum, const std::string &dir)
 {
     std::string tail = " - " + (s.name.empty() ? std::string("pf_tbd") : s.name) + ", " + numeric_name() +
                        ", " + std::to_string(sum["runs"].get<unsigned>()) + " runs";
@@ -340,12 +341,137 @@ void plots(const ApfTbdScenario &s, const json &sum, const std::string &dir)
     }
 }
 
-class ApfTbdHandler : public KindHandler {
-    ApfTbdScenario load(const Options &o)
+/** Every filter of the comparison on every run's sequence. */
+struct TbdEvalRuns {
+    std::vector<std::vector<tbd::RunEval>> res;  ///< res[filter][run]
+    std::vector<std::vector<double>> ns;         ///< update time per filter and run
+    double wall = 0;
+};
+
+TbdEvalRuns run_all(const PfTbdScenario &s, unsigned runs, uint64_t base, unsigned threads, bool progress)
+{
+    const std::size_t nf = s.filters.size();
+    TbdEvalRuns er;
+    er.res.assign(nf, std::vector<tbd::RunEval>(runs));
+    er.ns.assign(nf, std::vector<double>(runs, 0.0));
+    Progress bar(runs, "eval", progress);
+    auto t0 = std::chrono::steady_clock::now();
+    parallel_for(runs, threads, [&](std::size_t i) {
+        uint64_t seed = base + i;
+        tbd::Sequence q = tbd::simulate(s.base, seed);
+        for (std::size_t f = 0; f < nf; ++f) {
+            TbdFilter flt(s.base, s.filters[f], s.filters[f].particles);
+            std::vector<tbd::FrameOut> out = flt.pass(q, seed, er.ns[f][i]);
+            er.res[f][i] = tbd::evaluate_run(s.base, q.truth, out, true);
+            er.res[f][i].seed = seed;
+        }
+        bar.tick();
+    });
+    bar.finish();
+    er.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return er;
+}
+
+/** Mean and standard error of the mean (NaN when undefined). */
+std::pair<double, double> mean_se(const std::vector<double> &v)
+{
+    double m = 0, q = 0;
+    for (double x : v)
+        m += x / v.size();
+    for (double x : v)
+        q += (x - m) * (x - m);
+    double se = v.size() > 1 ? std::sqrt(q / (v.size() - 1) / v.size()) : NAN;
+    return std::make_pair(v.empty() ? NAN : m, se);
+}
+
+/** The summary of filter f: the tbd measures, time per frame, standard errors and the paired
+ *  differences against filter 0 on the same sequences. */
+json filter_json(const PfTbdScenario &s, const TbdEvalRuns &er, std::size_t f, unsigned runs)
+{
+    std::vector<double> app, cor, dcor, dapp;
+    for (unsigned r = 0; r < runs; ++r) {
+        const tbd::TargetRun &t = er.res[f][r].targets[0];
+        const tbd::TargetRun &t0 = er.res[0][r].targets[0];
+        cor.push_back(t.correct);
+        dcor.push_back(static_cast<double>(t.correct) - t0.correct);
+        if (t.detected)
+            app.push_back(t.appear_delay);
+        if (t.detected && t0.detected)
+            dapp.push_back(t.appear_delay - t0.appear_delay);
+    }
+    auto [app_m, app_se] = mean_se(app);
+    auto [cor_m, cor_se] = mean_se(cor);
+    auto [dcor_m, dcor_se] = mean_se(dcor);
+    auto [dapp_m, dapp_se] = mean_se(dapp);
+    (void)app_m;
+    (void)cor_m;
+    json sm = tbd::summarize(s.base, er.res[f], true);
+    const json &t = sm["targets"][0];
+    double tot = 0;
+    for (double v : er.ns[f])
+        tot += v;
+    return {
+        {"label", s.filters[f].label},
+        {"engine", s.filters[f].engine},
+        {"particles", s.filters[f].particles},
+        {"runs", runs},
+        {"matched_time_of", s.filters[f].match_time_of.empty() ? json(nullptr) : json(s.filters[f].match_time_of)},
+        {"appearance_delay", t["appearance_delay"]},
+        {"detected_runs", t["detected_runs"]},
+        {"disappearance_delay", t["disappearance_delay"]},
+        {"correct_frames", t["correct_frames"]},
+        {"true_frames", t["true_frames"]},
+        {"rmse", t["rmse"]},
+        {"rmse_all_assigned", t["rmse_all_assigned"]},
+        {"pcrlb", t["pcrlb"]},
+        {"pcrlb_matched", t["pcrlb_matched"]},
+        {"false_tracks", sm["averaged"]["false_tracks"]},
+        {"false_point_fraction", sm["averaged"]["false_point_fraction"]},
+        {"ns_per_step", tot / (static_cast<double>(runs) * s.base.frames)},
+        {"existence_probability", t["existence_probability"]},
+        {"rmse_per_frame", t["rmse_per_frame"]},
+        {"pcrlb_per_frame", t["pcrlb_per_frame"]},
+        {"appearance_delay_se", std::isfinite(app_se) ? json(app_se) : json(nullptr)},
+        {"correct_frames_se", std::isfinite(cor_se) ? json(cor_se) : json(nullptr)},
+        {"paired_vs", s.filters[0].label},
+        {"correct_frames_minus_first", f ? json(dcor_m) : json(nullptr)},
+        {"correct_frames_minus_first_se", f && std::isfinite(dcor_se) ? json(dcor_se) : json(nullptr)},
+        {"appearance_delay_minus_first", f && std::isfinite(dapp_m) ? json(dapp_m) : json(nullptr)},
+        {"appearance_delay_minus_first_se", f && std::isfinite(dapp_se) ? json(dapp_se) : json(nullptr)},
+        {"engine_settings", s.filters[f].engine == "rbpf" ? json(nullptr) : engine_json(s.filters[f])},
+    };
+}
+
+/** The console table of `pft eval`. */
+void print_eval(const PfTbdScenario &s, const json &filters)
+{
+    std::printf("\n  %-22s %6s %8s %6s %8s %8s %8s %8s %7s %10s\n", "filter", "N", "appear", "det.",
+                "correct", "RMSE", "PCRLB", "matched", "false", "us/frame");
+    for (const json &f : filters)
+        std::printf("  %-22s %6u %8s %6d %8s %8s %8s %8s %7s %10s\n", f["label"].get<std::string>().c_str(),
+                    f["particles"].get<uint32_t>(), fmt(jnum(f, "appearance_delay"), 2).c_str(),
+                    f["detected_runs"].get<int>(), fmt(jnum(f, "correct_frames"), 2).c_str(),
+                    fmt(jnum(f, "rmse")).c_str(), fmt(jnum(f, "pcrlb")).c_str(),
+                    fmt(jnum(f, "pcrlb_matched")).c_str(), fmt(jnum(f, "false_tracks"), 2).c_str(),
+                    fmt(jnum(f, "ns_per_step") / 1000.0, 0).c_str());
+    std::printf("\n  paired against %s (same sequences; mean difference +- standard error):\n",
+                s.filters[0].label.c_str());
+    for (std::size_t f = 1; f < s.filters.size(); ++f) {
+        const json &j = filters[f];
+        std::printf("  %-22s correct frames %+.2f +- %.2f, appearance delay %s +- %s\n",
+                    j["label"].get<std::string>().c_str(), jnum(j, "correct_frames_minus_first"),
+                    jnum(j, "correct_frames_minus_first_se"),
+                    fmt(jnum(j, "appearance_delay_minus_first"), 2).c_str(),
+                    fmt(jnum(j, "appearance_delay_minus_first_se"), 2).c_str());
+    }
+}
+
+class PfTbdHandler : public KindHandler {
+    PfTbdScenario load(const Options &o)
     {
         if (!o.filter_kind.empty() || !o.preset.empty())
             throw InputError("kind \"pf_tbd\": --filter and --preset do not apply (the scenario's \"filters\" list them)");
-        ApfTbdScenario s = parse(o.scenario, o.scenario_path);
+        PfTbdScenario s = parse(o.scenario, o.scenario_path);
         if (o.particles)
             for (auto &e : s.filters)
                 if (e.match_time_of.empty())
@@ -356,7 +482,7 @@ class ApfTbdHandler : public KindHandler {
 public:
     int eval(const Options &o) override
     {
-        ApfTbdScenario s = load(o);
+        PfTbdScenario s = load(o);
         unsigned runs = o.runs ? o.runs : s.runs;
         uint64_t base = o.seed ? *o.seed : s.base_seed;
         unsigned threads = resolve_threads(o.threads);
@@ -373,89 +499,10 @@ public:
         if (!o.quiet)
             std::printf("  %u runs, seeds %llu..%llu, %u threads\n", runs, static_cast<unsigned long long>(base),
                         static_cast<unsigned long long>(base + runs - 1), threads);
-        std::vector<std::vector<tbd::RunEval>> res(nf, std::vector<tbd::RunEval>(runs));
-        std::vector<std::vector<double>> ns(nf, std::vector<double>(runs, 0.0));
-        Progress bar(runs, "eval", progress_wanted(o.progress));
-        auto t0 = std::chrono::steady_clock::now();
-        parallel_for(runs, threads, [&](std::size_t i) {
-            uint64_t seed = base + i;
-            tbd::Sequence q = tbd::simulate(s.base, seed);
-            for (std::size_t f = 0; f < nf; ++f) {
-                TbdFilter flt(s.base, s.filters[f], s.filters[f].particles);
-                std::vector<tbd::FrameOut> out = flt.pass(q, seed, ns[f][i]);
-                res[f][i] = tbd::evaluate_run(s.base, q.truth, out, true);
-                res[f][i].seed = seed;
-            }
-            bar.tick();
-        });
-        bar.finish();
-        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-        // per-run statistics for standard errors and paired differences against filter 0
-        auto mean_se = [](const std::vector<double> &v) {
-            double m = 0, q = 0;
-            for (double x : v)
-                m += x / v.size();
-            for (double x : v)
-                q += (x - m) * (x - m);
-            double se = v.size() > 1 ? std::sqrt(q / (v.size() - 1) / v.size()) : NAN;
-            return std::make_pair(v.empty() ? NAN : m, se);
-        };
+        TbdEvalRuns er = run_all(s, runs, base, threads, progress_wanted(o.progress));
         json filters = json::array();
-        for (std::size_t f = 0; f < nf; ++f) {
-            std::vector<double> app, cor, dcor, dapp;
-            for (unsigned r = 0; r < runs; ++r) {
-                const tbd::TargetRun &t = res[f][r].targets[0];
-                const tbd::TargetRun &t0 = res[0][r].targets[0];
-                cor.push_back(t.correct);
-                dcor.push_back(static_cast<double>(t.correct) - t0.correct);
-                if (t.detected)
-                    app.push_back(t.appear_delay);
-                if (t.detected && t0.detected)
-                    dapp.push_back(t.appear_delay - t0.appear_delay);
-            }
-            auto [app_m, app_se] = mean_se(app);
-            auto [cor_m, cor_se] = mean_se(cor);
-            auto [dcor_m, dcor_se] = mean_se(dcor);
-            auto [dapp_m, dapp_se] = mean_se(dapp);
-            (void)app_m;
-            (void)cor_m;
-            json sm = tbd::summarize(s.base, res[f], true);
-            const json &t = sm["targets"][0];
-            double tot = 0;
-            for (double v : ns[f])
-                tot += v;
-            filters.push_back({
-                {"label", s.filters[f].label},
-                {"engine", s.filters[f].engine},
-                {"particles", s.filters[f].particles},
-                {"runs", runs},
-                {"matched_time_of", s.filters[f].match_time_of.empty() ? json(nullptr) : json(s.filters[f].match_time_of)},
-                {"appearance_delay", t["appearance_delay"]},
-                {"detected_runs", t["detected_runs"]},
-                {"disappearance_delay", t["disappearance_delay"]},
-                {"correct_frames", t["correct_frames"]},
-                {"true_frames", t["true_frames"]},
-                {"rmse", t["rmse"]},
-                {"rmse_all_assigned", t["rmse_all_assigned"]},
-                {"pcrlb", t["pcrlb"]},
-                {"pcrlb_matched", t["pcrlb_matched"]},
-                {"false_tracks", sm["averaged"]["false_tracks"]},
-                {"false_point_fraction", sm["averaged"]["false_point_fraction"]},
-                {"ns_per_step", tot / (static_cast<double>(runs) * s.base.frames)},
-                {"existence_probability", t["existence_probability"]},
-                {"rmse_per_frame", t["rmse_per_frame"]},
-                {"pcrlb_per_frame", t["pcrlb_per_frame"]},
-                {"appearance_delay_se", std::isfinite(app_se) ? json(app_se) : json(nullptr)},
-                {"correct_frames_se", std::isfinite(cor_se) ? json(cor_se) : json(nullptr)},
-                {"paired_vs", s.filters[0].label},
-                {"correct_frames_minus_first", f ? json(dcor_m) : json(nullptr)},
-                {"correct_frames_minus_first_se", f && std::isfinite(dcor_se) ? json(dcor_se) : json(nullptr)},
-                {"appearance_delay_minus_first", f && std::isfinite(dapp_m) ? json(dapp_m) : json(nullptr)},
-                {"appearance_delay_minus_first_se", f && std::isfinite(dapp_se) ? json(dapp_se) : json(nullptr)},
-                {"engine_settings", s.filters[f].engine == "rbpf" ? json(nullptr) : engine_json(s.filters[f])},
-            });
-        }
+        for (std::size_t f = 0; f < nf; ++f)
+            filters.push_back(filter_json(s, er, f, runs));
         json seeds = json::array();
         for (unsigned i = 0; i < runs; ++i)
             seeds.push_back(base + i);
@@ -476,7 +523,7 @@ public:
             {"seeds", seeds},
             {"threads", threads},
             {"calibration", cal},
-            {"timing", {{"wall_s", wall}, {"note", "ns_per_step: per frame, steady_clock around the filter update inside the threaded eval"}}},
+            {"timing", {{"wall_s", er.wall}, {"note", "ns_per_step: per frame, steady_clock around the filter update inside the threaded eval"}}},
             {"filters", filters},
             {"tbd_filter_settings", tbd::config_to_json(tbd::make_config(s.base, base))},
             {"scenario_json", s.raw},
@@ -484,33 +531,15 @@ public:
         write_json_atomic(join_path(out_dir, "summary.json"), sum);
         plots(s, sum, out_dir);
         if (!o.quiet) {
-            std::printf("\n  %-22s %6s %8s %6s %8s %8s %8s %8s %7s %10s\n", "filter", "N", "appear", "det.",
-                        "correct", "RMSE", "PCRLB", "matched", "false", "us/frame");
-            for (const json &f : filters)
-                std::printf("  %-22s %6u %8s %6d %8s %8s %8s %8s %7s %10s\n", f["label"].get<std::string>().c_str(),
-                            f["particles"].get<uint32_t>(), fmt(jnum(f, "appearance_delay"), 2).c_str(),
-                            f["detected_runs"].get<int>(), fmt(jnum(f, "correct_frames"), 2).c_str(),
-                            fmt(jnum(f, "rmse")).c_str(), fmt(jnum(f, "pcrlb")).c_str(),
-                            fmt(jnum(f, "pcrlb_matched")).c_str(), fmt(jnum(f, "false_tracks"), 2).c_str(),
-                            fmt(jnum(f, "ns_per_step") / 1000.0, 0).c_str());
-            std::printf("\n  paired against %s (same sequences; mean difference +- standard error):\n",
-                        s.filters[0].label.c_str());
-            for (std::size_t f = 1; f < nf; ++f) {
-                const json &j = filters[f];
-                std::printf("  %-22s correct frames %+.2f +- %.2f, appearance delay %s +- %s\n",
-                            j["label"].get<std::string>().c_str(), jnum(j, "correct_frames_minus_first"),
-                            jnum(j, "correct_frames_minus_first_se"),
-                            fmt(jnum(j, "appearance_delay_minus_first"), 2).c_str(),
-                            fmt(jnum(j, "appearance_delay_minus_first_se"), 2).c_str());
-            }
-            std::printf("\n  %.1f s wall; wrote %s/summary.json, existence.png, rmse.png\n", wall, out_dir.c_str());
+            print_eval(s, filters);
+            std::printf("\n  %.1f s wall; wrote %s/summary.json, existence.png, rmse.png\n", er.wall, out_dir.c_str());
         }
         return 0;
     }
 
     int bench(const Options &o) override
     {
-        ApfTbdScenario s = load(o);
+        PfTbdScenario s = load(o);
         unsigned runs = o.runs ? o.runs : 3;
         int frames = o.frames ? static_cast<int>(o.frames) : s.base.frames;
         json cal = calibrate(s, o.quiet);
@@ -537,7 +566,7 @@ public:
     }
 };
 
-PFT_REGISTER_KIND("pf_tbd", ApfTbdHandler);
+PFT_REGISTER_KIND("pf_tbd", PfTbdHandler);
 PFT_REGISTER_KIND_ALIAS("apf_tbd", "pf_tbd", pf_tbd);
 
 }  // namespace

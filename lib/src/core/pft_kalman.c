@@ -224,20 +224,13 @@ static void pft_kf_predict_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_
     }
 }
 
-/* Update with a 2-D measurement z = H x + v, H 2 x n (H == NULL means H = I, n = 2). */
-static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
-                                    const pft_real_t z[2], const pft_real_t R[4])
+/* P H' (n x 2) and S = H P H' + R (upper: s00, s01, s11) for a 2 x n H (NULL: H = I, n = 2). */
+static void pft_kf_innov_cov_(unsigned n, const pft_real_t *P, const pft_real_t *H,
+                              const pft_real_t R[4], pft_real_t *pht, pft_real_t s[3])
 {
-    pft_real_t pht[PFT_KF_NMAX * 2u]; /* P H', n x 2 */
-    pft_real_t s[3];                  /* S upper: s00, s01, s11 */
-    pft_real_t adj[4];                /* adjugate of S */
-    pft_kacc_t det;
-    pft_real_t k[PFT_KF_NMAX * 2u];   /* gain, n x 2 */
-    pft_real_t y[2];
-    pft_real_t xn[PFT_KF_NMAX];
-    pft_real_t pn[PFT_KF_NMAX * PFT_KF_NMAX];
+    static const unsigned sa[3] = {0u, 0u, 1u};
+    static const unsigned sb[3] = {0u, 1u, 1u};
     unsigned i;
-    unsigned j;
     unsigned a;
     unsigned l;
     for (i = 0u; i < n; ++i) {
@@ -253,31 +246,28 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
             }
         }
     }
-    /* S = H P H' + R (upper) */
-    {
-        const unsigned sa[3] = {0u, 0u, 1u};
-        const unsigned sb[3] = {0u, 1u, 1u};
-        for (i = 0u; i < 3u; ++i) {
-            pft_kacc_t acc = pft_kacc_from_(R[sa[i] * 2u + sb[i]]);
-            if (H == NULL) {
-                acc = pft_kacc_mac_(acc, pht[sa[i] * 2u + sb[i]], PFT_REAL_ONE);
-            } else {
-                for (l = 0u; l < n; ++l) {
-                    acc = pft_kacc_mac_(acc, H[sa[i] * n + l], pht[l * 2u + sb[i]]);
-                }
+    for (i = 0u; i < 3u; ++i) {
+        pft_kacc_t acc = pft_kacc_from_(R[sa[i] * 2u + sb[i]]);
+        if (H == NULL) {
+            acc = pft_kacc_mac_(acc, pht[sa[i] * 2u + sb[i]], PFT_REAL_ONE);
+        } else {
+            for (l = 0u; l < n; ++l) {
+                acc = pft_kacc_mac_(acc, H[sa[i] * n + l], pht[l * 2u + sb[i]]);
             }
-            s[i] = pft_kacc_to_(acc);
         }
+        s[i] = pft_kacc_to_(acc);
     }
-    {
-        pft_status_t st = pft_det2_pd_(s[0], s[1], s[2], &det);
-        if (st != PFT_OK) {
-            return st;
-        }
-    }
-    /* K = P H' adj(S) / det: the numerator is one exact accumulation, then one rounding
-     * (q16: better than rounding S^-1 first, whose entries have few significant bits when S
-     * is large). A gain beyond the real range saturates. */
+}
+
+/* K = P H' adj(S) / det (n x 2): the numerator is one exact accumulation, then one rounding
+ * (q16: better than rounding S^-1 first, whose entries have few significant bits when S is
+ * large). A gain beyond the real range saturates. */
+static void pft_kf_gain_(unsigned n, const pft_real_t *pht, const pft_real_t s[3], pft_kacc_t det,
+                         pft_real_t *k)
+{
+    pft_real_t adj[4];
+    unsigned i;
+    unsigned a;
     adj[0] = s[2];
     adj[1] = pft_neg(s[1]);
     adj[2] = adj[1];
@@ -290,7 +280,19 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
             (void)pft_kdiv_(acc, det, &k[i * 2u + a]);
         }
     }
-    /* innovation y = z - H x */
+}
+
+/* x += K (z - H x), P -= K (P H')' (upper triangle, mirrored). */
+static void pft_kf_apply_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
+                          const pft_real_t z[2], const pft_real_t *k, const pft_real_t *pht)
+{
+    pft_real_t y[2];
+    pft_real_t xn[PFT_KF_NMAX];
+    pft_real_t pn[PFT_KF_NMAX * PFT_KF_NMAX];
+    unsigned i;
+    unsigned j;
+    unsigned a;
+    unsigned l;
     for (a = 0u; a < 2u; ++a) {
         pft_kacc_t acc = pft_kacc_from_(z[a]);
         if (H == NULL) {
@@ -308,7 +310,6 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
         acc = pft_kacc_mac_(acc, k[i * 2u + 1u], y[1]);
         xn[i] = pft_kacc_to_(acc);
     }
-    /* P - K (P H')' : upper triangle, mirrored */
     for (i = 0u; i < n; ++i) {
         for (j = i; j < n; ++j) {
             pft_kacc_t acc = pft_kacc_from_(P[i * n + j]);
@@ -324,6 +325,25 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
     for (i = 0u; i < n * n; ++i) {
         P[i] = pn[i];
     }
+}
+
+/* Update with a 2-D measurement z = H x + v, H 2 x n (H == NULL means H = I, n = 2). A refused
+ * update (S not positive definite) changes nothing. */
+static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
+                                    const pft_real_t z[2], const pft_real_t R[4])
+{
+    pft_real_t pht[PFT_KF_NMAX * 2u]; /* P H', n x 2 */
+    pft_real_t s[3];                  /* S upper: s00, s01, s11 */
+    pft_real_t k[PFT_KF_NMAX * 2u];   /* gain, n x 2 */
+    pft_kacc_t det;
+    pft_status_t st;
+    pft_kf_innov_cov_(n, P, H, R, pht, s);
+    st = pft_det2_pd_(s[0], s[1], s[2], &det);
+    if (st != PFT_OK) {
+        return st;
+    }
+    pft_kf_gain_(n, pht, s, det, k);
+    pft_kf_apply_(n, x, P, H, z, k, pht);
     return PFT_OK;
 }
 
