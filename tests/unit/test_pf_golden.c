@@ -18,30 +18,10 @@ static pft_pv_results_t got, again;
 static void check_rows(const char *name, const uint32_t *ref, const uint32_t *val, size_t rows,
                        size_t cols)
 {
-    for (size_t r = 0; r < rows; ++r) {
-        for (size_t c = 0; c < cols; ++c) {
-            if (ref[r * cols + c] != val[r * cols + c]) {
-                UnityPrint(name);
-                UnityPrint(" step ");
-                UnityPrintNumber((UNITY_INT)(r + 1));
-                UnityPrint(" column ");
-                UnityPrintNumber((UNITY_INT)c);
-                UnityPrint(": expected ");
-                UnityPrintNumberUnsigned((UNITY_UINT)ref[r * cols + c]);
-                UnityPrint(" got ");
-                UnityPrintNumberUnsigned((UNITY_UINT)val[r * cols + c]);
-                UNITY_PRINT_EOL();
-                TEST_FAIL_MESSAGE(name);
-            }
-        }
-    }
+    pft_test_check_rows(name, "step", ref, val, rows, cols);
 }
 
-#if PFT_GV_EXACT
-#define REF(q16, other) (q16)
-#else
-#define REF(q16, other) (other)
-#endif
+#define REF PFT_GV_REF
 
 static void test_bearings(void)
 {

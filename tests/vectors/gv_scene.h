@@ -86,6 +86,9 @@ static inline uint32_t pft_gv_fnv(uint32_t h, uint32_t v)
     return h;
 }
 
+/* The reference of a replay test: the q16 header in q16 builds, a second replay otherwise. */
+#define PFT_GV_REF(q16, again) (PFT_GV_EXACT ? (q16) : (again))
+
 #ifdef PFT_NUMERIC_Q16
 #define PFT_GV_EXACT 1
 static inline uint32_t pft_gv_r(pft_real_t v) { return (uint32_t)v; }

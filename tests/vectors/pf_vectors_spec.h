@@ -109,13 +109,6 @@ static inline void pft_pv_row(const pft_pf_t *pf, int tbd, uint32_t *row)
     row[15] = sy;
 }
 
-static inline void pft_pv_config(pft_pf_config_t *c, pft_pf_kind_t kind, uint32_t n, uint64_t seed)
-{
-    pft_pf_config_default(c);
-    c->kind = kind;
-    c->n_particles = n;
-    c->seed = seed;
-}
 
 /* A known initial set: the prior's draws with the first component moved by (i mod 5) / 4,
  * then log-weights -(i mod 7) / 100. */
@@ -132,6 +125,26 @@ static inline void pft_pv_known_set(pft_pf_t *pf)
     (void)pft_pf_set_logweights(pf, lw);
 }
 
+/* The engine of one run: kind, n particles, seed, the model iface; optionally the known set. */
+static inline int pft_pv_start(const pft_pf_model_t *iface, pft_pf_kind_t kind, uint32_t n,
+                               uint64_t seed, int known)
+{
+    pft_pf_config_t c;
+    pft_pf_config_default(&c);
+    c.kind = kind;
+    c.n_particles = n;
+    c.seed = seed;
+    c.model = *iface;
+    pft_pv_dim = iface->dim;
+    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+        return 0;
+    }
+    if (known) {
+        pft_pv_known_set(&pft_pv_pf);
+    }
+    return 1;
+}
+
 /* ---- bearings ---- */
 static inline void pft_pv_run_bearings(pft_pf_kind_t kind, int known, uint32_t rows[][PFT_PV_ROW])
 {
@@ -142,15 +155,8 @@ static inline void pft_pv_run_bearings(pft_pf_kind_t kind, int known, uint32_t r
     if (pft_pf_bearings_model_init(&m, &bc, &iface) != PFT_OK) {
         return;
     }
-    pft_pf_config_t c;
-    pft_pv_config(&c, kind, PFT_PV_NB, 31u + (uint64_t)kind);
-    c.model = iface;
-    pft_pv_dim = iface.dim;
-    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    if (!pft_pv_start(&iface, kind, PFT_PV_NB, 31u + (uint64_t)kind, known)) {
         return;
-    }
-    if (known) {
-        pft_pv_known_set(&pft_pv_pf);
     }
     pft_rng_t sim;
     pft_rng_seed(&sim, 301u);
@@ -187,15 +193,8 @@ static inline void pft_pv_run_lg(pft_pf_kind_t kind, int known, uint32_t rows[][
     if (pft_pf_lg_model_init(&m, &lc, &iface) != PFT_OK) {
         return;
     }
-    pft_pf_config_t c;
-    pft_pv_config(&c, kind, PFT_PV_NL, 41u + (uint64_t)kind);
-    c.model = iface;
-    pft_pv_dim = iface.dim;
-    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    if (!pft_pv_start(&iface, kind, PFT_PV_NL, 41u + (uint64_t)kind, known)) {
         return;
-    }
-    if (known) {
-        pft_pv_known_set(&pft_pv_pf);
     }
     pft_rng_t sim;
     pft_rng_seed(&sim, 401u);
@@ -225,11 +224,7 @@ static inline void pft_pv_run_tbd(pft_pf_kind_t kind, uint32_t rows[][PFT_PV_ROW
     if (pft_pf_tbd_model_init(&pft_pv_tm, &tc, pft_pv_mwork, sizeof pft_pv_mwork, &iface) != PFT_OK) {
         return;
     }
-    pft_pf_config_t c;
-    pft_pv_config(&c, kind, PFT_PV_NTBD, 61u + (uint64_t)kind);
-    c.model = iface;
-    pft_pv_dim = iface.dim;
-    if (pft_pf_init(&pft_pv_pf, &c, pft_pv_work, sizeof pft_pv_work) != PFT_OK) {
+    if (!pft_pv_start(&iface, kind, PFT_PV_NTBD, 61u + (uint64_t)kind, 0)) {
         return;
     }
     pft_rng_t sim;

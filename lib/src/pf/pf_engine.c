@@ -4,6 +4,7 @@
 
 #include "pft/pft_pf.h"
 #include "../core/acc_int.h"
+#include "../core/config_int.h"
 
 /* ---------------------------------- helpers ----------------------------------------------- */
 
@@ -206,20 +207,7 @@ static const char *refused_field_(const pft_pf_config_t *c)
 
 pft_status_t pft_pf_config_check(const pft_pf_config_t *cfg, const char **field)
 {
-    if (field != NULL) {
-        *field = NULL;
-    }
-    if (cfg == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    const char *bad = refused_field_(cfg);
-    if (bad != NULL) {
-        if (field != NULL) {
-            *field = bad;
-        }
-        return PFT_ERR_CONFIG;
-    }
-    return PFT_OK;
+    return pft_config_verdict_(cfg != NULL, cfg != NULL ? refused_field_(cfg) : NULL, field);
 }
 
 size_t pft_pf_workspace_size(const pft_pf_config_t *cfg)

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "tbd_int.h"
+#include "../core/config_int.h"
 #include "../core/num_int.h"
 
 void pft_tbd_config_default(pft_tbd_config_t *cfg)
@@ -182,26 +183,17 @@ static const char *refused_sizes_(const pft_tbd_config_t *c)
 
 pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **field)
 {
-    if (field != NULL) {
-        *field = NULL;
-    }
-    if (cfg == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    const char *bad = refused_model_(cfg);
-    if (bad == NULL) {
-        bad = refused_decisions_(cfg);
-    }
-    if (bad == NULL) {
-        bad = refused_sizes_(cfg);
-    }
-    if (bad != NULL) {
-        if (field != NULL) {
-            *field = bad;
+    const char *bad = NULL;
+    if (cfg != NULL) {
+        bad = refused_model_(cfg);
+        if (bad == NULL) {
+            bad = refused_decisions_(cfg);
         }
-        return PFT_ERR_CONFIG;
+        if (bad == NULL) {
+            bad = refused_sizes_(cfg);
+        }
     }
-    return PFT_OK;
+    return pft_config_verdict_(cfg != NULL, bad, field);
 }
 
 pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)

@@ -46,38 +46,61 @@ pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pf
     return pft_mul(pft_mul(pft_mul(intensity, m->c0), gx), gy);
 }
 
+/* The (2 half + 1)^2 pixels around the window centre of (x, y), clipped to the image: internal
+ * 1-based pixel ranges ilo..ihi, jlo..jhi. False when nothing is left. */
+typedef struct {
+    int32_t ilo, ihi, jlo, jhi;
+} win_t;
+
+static bool window_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y, int32_t half, win_t *w)
+{
+    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
+    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
+    w->ilo = i0 - half < 1 ? 1 : i0 - half;
+    w->ihi = i0 + half > (int32_t)m->width ? (int32_t)m->width : i0 + half;
+    w->jlo = j0 - half < 1 ? 1 : j0 - half;
+    w->jhi = j0 + half > (int32_t)m->height ? (int32_t)m->height : j0 + half;
+    return w->ilo <= w->ihi && w->jlo <= w->jhi;
+}
+
+/* ax[i - ilo] = amp gx(i) for the window's columns: the x factor of the separable PSF. */
+static void psf_columns_(const pft_tbd_meas_t *m, const win_t *w, pft_real_t x, pft_real_t amp,
+                         pft_real_t *ax)
+{
+    for (int32_t i = w->ilo; i <= w->ihi; ++i) {
+        pft_real_t d = pft_sub(pft_mul_i(m->dx, i), x);
+        ax[i - w->ilo] = pft_mul(amp, pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2))));
+    }
+}
+
+/* gy(j): the y factor of the separable PSF. */
+static pft_real_t psf_row_(const pft_tbd_meas_t *m, int32_t j, pft_real_t y)
+{
+    pft_real_t d = pft_sub(pft_mul_i(m->dy, j), y);
+    return pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+}
+
 pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
                                 pft_real_t y, pft_real_t intensity)
 {
-    int32_t p = (int32_t)m->p;
-    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
-    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
-    int32_t ilo = i0 - p < 1 ? 1 : i0 - p;
-    int32_t ihi = i0 + p > (int32_t)m->width ? (int32_t)m->width : i0 + p;
-    int32_t jlo = j0 - p < 1 ? 1 : j0 - p;
-    int32_t jhi = j0 + p > (int32_t)m->height ? (int32_t)m->height : j0 + p;
-    if (ilo > ihi || jlo > jhi) {
+    win_t w;
+    if (!window_(m, x, y, (int32_t)m->p, &w)) {
         return PFT_C(0.0);
     }
     /* Separable PSF: h(i,j) = (I c0 gx(i)) * gy(j). */
     pft_real_t ax[2u * PFT_TBD_MAX_WINDOW + 1u];
     pft_real_t gy[2u * PFT_TBD_MAX_WINDOW + 1u];
-    pft_real_t amp = pft_mul(intensity, m->c0);
-    for (int32_t i = ilo; i <= ihi; ++i) {
-        pft_real_t d = pft_sub(pft_mul_i(m->dx, i), x);
-        ax[i - ilo] = pft_mul(amp, pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2))));
-    }
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        pft_real_t d = pft_sub(pft_mul_i(m->dy, j), y);
-        gy[j - jlo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    psf_columns_(m, &w, x, pft_mul(intensity, m->c0), ax);
+    for (int32_t j = w.jlo; j <= w.jhi; ++j) {
+        gy[j - w.jlo] = psf_row_(m, j, y);
     }
     /* sum h (z - h/2), then times 1/sigma^2 once. */
     pft_real_t acc = PFT_C(0.0);
-    for (int32_t j = jlo; j <= jhi; ++j) {
+    for (int32_t j = w.jlo; j <= w.jhi; ++j) {
         const pft_real_t *row = img + (size_t)(j - 1) * m->width;
-        pft_real_t g = gy[j - jlo];
-        for (int32_t i = ilo; i <= ihi; ++i) {
-            pft_real_t h = pft_mul(ax[i - ilo], g);
+        pft_real_t g = gy[j - w.jlo];
+        for (int32_t i = w.ilo; i <= w.ihi; ++i) {
+            pft_real_t h = pft_mul(ax[i - w.ilo], g);
             pft_real_t z = row[i - 1];
             acc = pft_add(acc, pft_mul(h, pft_sub(z, pft_mul(h, PFT_C(0.5)))));
         }
@@ -89,27 +112,17 @@ void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_rea
                                pft_real_t y, pft_real_t intensity, uint8_t half)
 {
     int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;
-    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
-    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
-    int32_t ilo = i0 - p < 1 ? 1 : i0 - p;
-    int32_t ihi = i0 + p > (int32_t)m->width ? (int32_t)m->width : i0 + p;
-    int32_t jlo = j0 - p < 1 ? 1 : j0 - p;
-    int32_t jhi = j0 + p > (int32_t)m->height ? (int32_t)m->height : j0 + p;
-    if (ilo > ihi || jlo > jhi) {
+    win_t w;
+    if (!window_(m, x, y, p, &w)) {
         return;
     }
     pft_real_t ax[2u * PFT_TBD_MAX_PSF_HALF + 1u];
-    pft_real_t amp = pft_mul(intensity, m->c0);
-    for (int32_t i = ilo; i <= ihi; ++i) {
-        pft_real_t d = pft_sub(pft_mul_i(m->dx, i), x);
-        ax[i - ilo] = pft_mul(amp, pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2))));
-    }
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        pft_real_t d = pft_sub(pft_mul_i(m->dy, j), y);
-        pft_real_t g = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    psf_columns_(m, &w, x, pft_mul(intensity, m->c0), ax);
+    for (int32_t j = w.jlo; j <= w.jhi; ++j) {
+        pft_real_t g = psf_row_(m, j, y);
         pft_real_t *row = img + (size_t)(j - 1) * m->width;
-        for (int32_t i = ilo; i <= ihi; ++i) {
-            row[i - 1] = pft_add(row[i - 1], pft_mul(ax[i - ilo], g));
+        for (int32_t i = w.ilo; i <= w.ihi; ++i) {
+            row[i - 1] = pft_add(row[i - 1], pft_mul(ax[i - w.ilo], g));
         }
     }
 }
