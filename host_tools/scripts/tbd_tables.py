@@ -21,11 +21,7 @@ def f(v, p=2):
     return "-" if v is None else f"{v:.{p}f}"
 
 
-def main():
-    a = load(sys.argv[1])
-    if not a:
-        sys.exit("no summaries in " + sys.argv[1])
-    num = next(iter(a.values()))["numeric"]
+def single_table(a, num):
     print(f"### Single target ({num})\n")
     print("| SNR dB | filter | N | appear | disappear | correct /16 | RMSE | floor (16-fr) | RMSE/floor | "
           "floor matched | RMSE all | false tracks/run | detected |")
@@ -38,6 +34,9 @@ def main():
               f"{f(t['disappearance_delay'])} | {f(t['correct_frames'])} | {f(t['rmse'], 3)} ± {f(t.get('rmse_se'), 3)} | "
               f"{f(t['pcrlb'], 3)} | {f(t['rmse_over_pcrlb'])} | {f(t['pcrlb_matched'], 3)} | {f(t['rmse_all_assigned'], 3)} | "
               f"{f(s['averaged']['false_tracks'])} | {t['detected_runs']}/{s['runs']} |")
+
+
+def two_target_tables(a, num):
     print(f"\n### Two targets, 6 dB ({num})\n")
     print("| case | preset | target | appear | confirm | disappear | correct /16 | RMSE | floor | RMSE/floor | "
           "floor matched | false tracks/run | detected | censored | paper appear/disapp./correct/RMSE |")
@@ -74,37 +73,49 @@ def main():
               f"{f(mean('correct_frames'))} | {f(mean('rmse'), 3)} | {f(mean('pcrlb'), 3)} | "
               f"{f(mean('false_tracks'))} |")
     print("| paper Table 1 | 2.74 | 1.13 | 12.12 | 0.1772 | (floor 0.386) | - |")
+
+
+def build_comparison(a, b, num):
+    num_b = next(iter(b.values()))["numeric"]
+    print(f"\n### {num} against {num_b}, per target (diff % of {num_b}; z = diff / combined "
+          "standard error)\n")
+    print(f"| configuration | target | appear {num} / {num_b} (z) | disappear (z) | correct (diff %, z) | "
+          "RMSE (diff %, z) |")
+    print("|---|---|---|---|---|---|")
+    worst = {"correct_frames": 0.0, "rmse": 0.0}
+    for k in sorted(a):
+        if k not in b:
+            continue
+        for ta, tb in zip(a[k]["targets"], b[k]["targets"]):
+            cells = []
+            for m in ("appearance_delay", "disappearance_delay", "correct_frames", "rmse"):
+                x, y = ta[m], tb[m]
+                sx, sy = ta.get(m + "_se"), tb.get(m + "_se")
+                z = None
+                if None not in (x, y, sx, sy) and (sx * sx + sy * sy) > 0:
+                    z = (x - y) / (sx * sx + sy * sy) ** 0.5
+                d = None if (x is None or y in (None, 0)) else 100.0 * (x - y) / abs(y)
+                if m in worst and d is not None:
+                    worst[m] = max(worst[m], abs(d))
+                if m in ("correct_frames", "rmse"):
+                    p = 3 if m == "rmse" else 2
+                    cells.append(f"{f(x, p)} / {f(y, p)} ({f(d, 1)}%, {f(z, 1)})")
+                else:
+                    cells.append(f"{f(x)} / {f(y)} ({f(z, 1)})")
+            print(f"| {k} | {ta['id']} | " + " | ".join(cells) + " |")
+    print(f"\nLargest |difference|: correct frames {worst['correct_frames']:.1f}%, "
+          f"RMSE {worst['rmse']:.1f}%.")
+
+
+def main():
+    a = load(sys.argv[1])
+    if not a:
+        sys.exit("no summaries in " + sys.argv[1])
+    num = next(iter(a.values()))["numeric"]
+    single_table(a, num)
+    two_target_tables(a, num)
     if len(sys.argv) > 2:
-        b = load(sys.argv[2])
-        num_b = next(iter(b.values()))["numeric"]
-        print(f"\n### {num} against {num_b}, per target (diff % of {num_b}; z = diff / combined "
-              "standard error)\n")
-        print(f"| configuration | target | appear {num} / {num_b} (z) | disappear (z) | correct (diff %, z) | "
-              "RMSE (diff %, z) |")
-        print("|---|---|---|---|---|---|")
-        worst = {"correct_frames": 0.0, "rmse": 0.0}
-        for k in sorted(a):
-            if k not in b:
-                continue
-            for ta, tb in zip(a[k]["targets"], b[k]["targets"]):
-                cells = []
-                for m in ("appearance_delay", "disappearance_delay", "correct_frames", "rmse"):
-                    x, y = ta[m], tb[m]
-                    sx, sy = ta.get(m + "_se"), tb.get(m + "_se")
-                    z = None
-                    if None not in (x, y, sx, sy) and (sx * sx + sy * sy) > 0:
-                        z = (x - y) / (sx * sx + sy * sy) ** 0.5
-                    d = None if (x is None or y in (None, 0)) else 100.0 * (x - y) / abs(y)
-                    if m in worst and d is not None:
-                        worst[m] = max(worst[m], abs(d))
-                    if m in ("correct_frames", "rmse"):
-                        p = 3 if m == "rmse" else 2
-                        cells.append(f"{f(x, p)} / {f(y, p)} ({f(d, 1)}%, {f(z, 1)})")
-                    else:
-                        cells.append(f"{f(x)} / {f(y)} ({f(z, 1)})")
-                print(f"| {k} | {ta['id']} | " + " | ".join(cells) + " |")
-        print(f"\nLargest |difference|: correct frames {worst['correct_frames']:.1f}%, "
-              f"RMSE {worst['rmse']:.1f}%.")
+        build_comparison(a, load(sys.argv[2]), num)
 
 
 if __name__ == "__main__":

@@ -300,17 +300,11 @@ void print_tracks(const std::vector<FrameOut> &out, const RunEval *ev, const Sce
 }
 
 // ------------------------------------------------------------------------- plots
-void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool single)
+/** Existence probability per frame (paper Fig. 4) with the truth's presence and theta1. */
+void existence_plot(const Scenario &s, const json &sum, const std::vector<double> &frames,
+                    const std::string &title_tail, bool single, const std::string &path)
 {
-    const int nf = static_cast<int>(sum["averaged"]["existence_probability"].size());
-    std::vector<double> frames(nf);
-    for (int k = 0; k < nf; ++k)
-        frames[k] = k + 1;
-    std::string title_tail = " - " + (s.name.empty() ? std::string("tbd") : s.name) + ", " +
-                             (s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") + " N=" +
-                             std::to_string(s.filter.particles) + ", " + numeric_name() + ", " +
-                             std::to_string(sum["runs"].get<int>()) + " runs";
-    // existence probability (paper Fig. 4)
+    const int nf = static_cast<int>(frames.size());
     PlotSpec ex;
     ex.title = "Existence probability" + title_tail;
     ex.xlabel = "frame";
@@ -355,9 +349,13 @@ void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool
     th.thickness = 1;
     th.dashed = true;
     ex.series.push_back(th);
-    save_plot_png(ex, join_path(dir, "existence.png"));
+    save_plot_png(ex, path);
+}
 
-    // RMSE per frame with the PCRLB
+/** RMSE over correct points per frame with the PCRLB of each target. */
+void rmse_plot(const json &sum, const std::vector<double> &frames, const std::string &title_tail,
+               const std::string &path)
+{
     PlotSpec rm;
     rm.title = "RMSE over correct points" + title_tail;
     rm.xlabel = "frame";
@@ -385,7 +383,223 @@ void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool
         f.color = rm.series.size() == 1 ? cv::Scalar(0, 0, 0) : cv::Scalar(90, 90, 90);
         rm.series.push_back(f);
     }
-    save_plot_png(rm, join_path(dir, "rmse.png"));
+    save_plot_png(rm, path);
+}
+
+void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool single)
+{
+    const int nf = static_cast<int>(sum["averaged"]["existence_probability"].size());
+    std::vector<double> frames(nf);
+    for (int k = 0; k < nf; ++k)
+        frames[k] = k + 1;
+    std::string title_tail = " - " + (s.name.empty() ? std::string("tbd") : s.name) + ", " +
+                             (s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") + " N=" +
+                             std::to_string(s.filter.particles) + ", " + numeric_name() + ", " +
+                             std::to_string(sum["runs"].get<int>()) + " runs";
+    existence_plot(s, sum, frames, title_tail, single, join_path(dir, "existence.png"));
+    rmse_plot(sum, frames, title_tail, join_path(dir, "rmse.png"));
+}
+
+// ------------------------------------------------------------------------- sim output
+/** 16-bit PGM frames raw = offset + gain z (clipped to 0..65535, counted); the sidecar fields. */
+json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &dir, long &clipped)
+{
+    std::vector<uint16_t> px(static_cast<std::size_t>(q.width) * q.height);
+    for (int k = 0; k < q.frames; ++k) {
+        for (std::size_t i = 0; i < px.size(); ++i) {
+            double v = std::nearbyint(s.output.offset + s.output.gain * q.images[k][i]);
+            if (v < 0 || v > 65535) {
+                ++clipped;
+                v = v < 0 ? 0 : 65535;
+            }
+            px[i] = static_cast<uint16_t>(v);
+        }
+        pft_frame_t f{};
+        f.data = px.data();
+        f.width = static_cast<uint16_t>(q.width);
+        f.height = static_cast<uint16_t>(q.height);
+        f.stride_bytes = static_cast<uint32_t>(q.width * 2);
+        f.format = PFT_PIX_U16;
+        f.bit_depth = 16;
+        char name[64];
+        std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
+        AtomicPath ap(join_path(dir, name));
+        pft_status_t st = pft_pnm_write(ap.tmp().c_str(), &f);
+        if (st != PFT_OK)
+            throw InputError(ap.final_path() + ": cannot write PGM (" + pft_status_str(st) + ")");
+        ap.commit();
+    }
+    return {{"format", "pgm16"}, {"pattern", "frame_%04u.pgm"},
+            {"raw_gain", s.output.gain}, {"raw_offset", s.output.offset},
+            {"pixel_gain", 1.0 / s.output.gain}, {"pixel_offset", -s.output.offset / s.output.gain},
+            {"clipped_pixels", clipped}};
+}
+
+/** All frames as float32 in one file; the sidecar fields. */
+json write_raw_frames(const Sequence &q, const std::string &dir)
+{
+    AtomicPath ap(join_path(dir, "frames.f32"));
+    for (int k = 0; k < q.frames; ++k) {
+        pft_frame_t f{};
+        f.data = q.images[k].data();
+        f.width = static_cast<uint16_t>(q.width);
+        f.height = static_cast<uint16_t>(q.height);
+        f.stride_bytes = static_cast<uint32_t>(q.width * 4);
+        f.format = PFT_PIX_F32;
+        pft_status_t st = pft_raw_write(ap.tmp().c_str(), &f, k > 0);
+        if (st != PFT_OK)
+            throw InputError(ap.final_path() + ": cannot write (" + pft_status_str(st) + ")");
+    }
+    ap.commit();
+    return {{"format", "raw_f32"}, {"file", "frames.f32"}, {"pixel_gain", 1.0}, {"pixel_offset", 0.0}};
+}
+
+// ------------------------------------------------------------------------- run
+/** The scenario of `pft run`: --scenario, else the one in the pft sim sidecar. */
+Scenario run_scenario(const Options &o, const SequenceInfo &info)
+{
+    json scen = o.scenario;
+    std::string scen_path = o.scenario_path;
+    if (scen.is_null()) {
+        if (!info.sidecar.contains("scenario"))
+            throw InputError("run: --scenario FILE.json is required for " + o.sequence);
+        scen = info.sidecar["scenario"];
+        scen_path = o.sequence + "/sequence.json:scenario";
+    }
+    Options o2 = o;
+    o2.scenario = scen;
+    o2.scenario_path = scen_path;
+    return load(o2);
+}
+
+/** Filter seed: --seed, else the seed the sequence was simulated with (so sim + run reproduces
+ *  the in-memory eval/demo run of that seed), else the scenario's base seed. */
+uint64_t run_seed(const Options &o, const Scenario &s, const SequenceInfo &info)
+{
+    if (o.seed)
+        return *o.seed;
+    if (info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned())
+        return info.sidecar["seed"].get<uint64_t>();
+    return s.eval.base_seed;
+}
+
+/** What `pft run` keeps of the frames it tracked. */
+struct RunTracking {
+    std::unique_ptr<Tracker> tr;
+    std::vector<std::vector<TruthState>> seen_truth;  // truth of the frames tracked
+    std::vector<FrameOut> out;
+};
+
+/** Tracks every frame of the source (at most --frames), with the overlay video unless
+ *  --no-video. The tracker is built at the first frame (its size sets the image). */
+RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint64_t seed,
+                         bool single, const TruthTable &tt, bool have_truth, const std::string &out_dir)
+{
+    const SequenceInfo &info = rd.info();
+    RunTracking rt;
+    std::unique_ptr<OverlayWriter> ov;
+    pft_frame_t f{};
+    std::vector<float> conv;
+    while ((!o.frames || rt.out.size() < o.frames) && rd.next(f)) {
+        if (!rt.tr) {
+            s.width = f.width;
+            s.height = f.height;
+            pft_tbd_config_t c = make_config(s, seed);
+            c.pixel_gain = to_real(info.pixel_gain);
+            c.pixel_offset = to_real(info.pixel_offset);
+            rt.tr = std::make_unique<Tracker>(c, single);
+            if (!o.no_video) {
+                double A = s.peak(s.ref_intensity);
+                double lo = info.kind == "pft-sim" ? -2.0 * s.noise_sigma : 0.0;
+                double hi = info.kind == "pft-sim" ? A + 2.0 * s.noise_sigma : 0.0;
+                ov = std::make_unique<OverlayWriter>(join_path(out_dir, "overlay.avi"), f.width,
+                                                     f.height, o.scale, lo, hi, s.dx, s.dy);
+            }
+        }
+        pft_frame_t g = f;
+        cv::Mat m;
+        if (ov || (f.format != PFT_PIX_U8 && f.format != PFT_PIX_U16 && f.format != PFT_PIX_F32))
+            m = frame_to_mat(f, info.pixel_gain, info.pixel_offset);
+        if (f.format == PFT_PIX_RGB888 || f.format == PFT_PIX_BGR888) {
+            conv.assign(m.ptr<float>(0), m.ptr<float>(0) + m.total());
+            g.data = conv.data();
+            g.format = PFT_PIX_F32;
+            g.stride_bytes = static_cast<uint32_t>(f.width * 4);
+        }
+        rt.out.push_back(rt.tr->update(g));
+        // truth row of this frame: by the source's sequence number, so that frames the
+        // source had to skip do not shift the truth (seq is 1-based for pft sim output)
+        std::size_t ti = f.seq >= 1 ? f.seq - 1 : rt.out.size() - 1;
+        std::vector<TruthState> truth = have_truth && ti < tt.frames.size()
+                                            ? tt.frames[ti]
+                                            : std::vector<TruthState>(tt.ids.size());
+        rt.seen_truth.push_back(truth);
+        if (ov)
+            ov->add(m, truth, tt.ids, rt.out.back());
+    }
+    if (!rt.tr)
+        throw InputError(o.sequence + ": no frames");
+    if (ov)
+        ov->close();
+    return rt;
+}
+
+/** The effective filter settings of a scenario (config_to_json of the library config). */
+json make_filter_json(const Scenario &s)
+{
+    json j = config_to_json(make_config(s, 0));
+    j.erase("n_search");
+    j["preset"] = s.filter.preset;
+    j["mode"] = s.filter.mode;
+    j["seed"] = "run seed + " + std::to_string(s.filter.seed_offset);
+    return j;
+}
+
+// ------------------------------------------------------------------------- eval summary
+/** The summary.json of `pft eval`: the run settings, then the measures (summarize), then the
+ *  scenario as read. */
+json eval_summary(const Options &o, const Scenario &s, const std::vector<RunEval> &res, bool single,
+                  uint64_t base, unsigned threads, double wall, double cpu_s)
+{
+    const unsigned runs = static_cast<unsigned>(res.size());
+    json sum = summarize(s, res, single);
+    json seeds = json::array();
+    for (unsigned i = 0; i < runs; ++i)
+        seeds.push_back(base + i);
+    json head = {
+        {"tool", "pft eval"},
+        {"kind", "tbd"},
+        {"scenario", s.name},
+        {"scenario_file", s.file},
+        {"description", s.description},
+        {"tag", o.tag.empty() ? std::string(s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") +
+                                    " N=" + std::to_string(s.filter.particles) : o.tag},
+        {"snr_db", s.snr_db},
+        {"noise_sigma", s.noise_sigma},
+        {"frames", s.frames},
+        {"image", {s.width, s.height}},
+        {"runs", runs},
+        {"base_seed", base},
+        {"seeds", seeds},
+        {"threads", threads},
+        {"particles", s.filter.particles},
+        {"numeric", numeric_name()},
+        {"filter", s.filter.kind},
+        {"preset", s.filter.preset},
+        {"mode", single ? "single" : "multi"},
+        {"d_c", s.eval.d_c},
+        {"d_assoc", s.eval.d_assoc},
+        {"timing", {{"wall_s", wall}, {"run_s_mean", cpu_s / runs}}},
+    };
+    if (!single)
+        head["track_particles"] = s.filter.track_particles;
+    head["filter_settings"] = make_filter_json(s);
+    if (!s.reference.is_null())
+        head["reference"] = s.reference;
+    for (auto it = sum.begin(); it != sum.end(); ++it)
+        head[it.key()] = it.value();
+    head["scenario_json"] = s.raw;
+    return head;
 }
 
 // ------------------------------------------------------------------------- handler
@@ -408,53 +622,7 @@ public:
         ensure_dir(o.out);
         Sequence q = simulate(s, seed);
         long clipped = 0;
-        json side;
-        if (format == "pgm") {
-            std::vector<uint16_t> px(static_cast<std::size_t>(q.width) * q.height);
-            for (int k = 0; k < q.frames; ++k) {
-                for (std::size_t i = 0; i < px.size(); ++i) {
-                    double v = std::nearbyint(s.output.offset + s.output.gain * q.images[k][i]);
-                    if (v < 0 || v > 65535) {
-                        ++clipped;
-                        v = v < 0 ? 0 : 65535;
-                    }
-                    px[i] = static_cast<uint16_t>(v);
-                }
-                pft_frame_t f{};
-                f.data = px.data();
-                f.width = static_cast<uint16_t>(q.width);
-                f.height = static_cast<uint16_t>(q.height);
-                f.stride_bytes = static_cast<uint32_t>(q.width * 2);
-                f.format = PFT_PIX_U16;
-                f.bit_depth = 16;
-                char name[64];
-                std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
-                AtomicPath ap(join_path(o.out, name));
-                pft_status_t st = pft_pnm_write(ap.tmp().c_str(), &f);
-                if (st != PFT_OK)
-                    throw InputError(ap.final_path() + ": cannot write PGM (" + pft_status_str(st) + ")");
-                ap.commit();
-            }
-            side = {{"format", "pgm16"}, {"pattern", "frame_%04u.pgm"},
-                    {"raw_gain", s.output.gain}, {"raw_offset", s.output.offset},
-                    {"pixel_gain", 1.0 / s.output.gain}, {"pixel_offset", -s.output.offset / s.output.gain},
-                    {"clipped_pixels", clipped}};
-        } else {
-            AtomicPath ap(join_path(o.out, "frames.f32"));
-            for (int k = 0; k < q.frames; ++k) {
-                pft_frame_t f{};
-                f.data = q.images[k].data();
-                f.width = static_cast<uint16_t>(q.width);
-                f.height = static_cast<uint16_t>(q.height);
-                f.stride_bytes = static_cast<uint32_t>(q.width * 4);
-                f.format = PFT_PIX_F32;
-                pft_status_t st = pft_raw_write(ap.tmp().c_str(), &f, k > 0);
-                if (st != PFT_OK)
-                    throw InputError(ap.final_path() + ": cannot write (" + pft_status_str(st) + ")");
-            }
-            ap.commit();
-            side = {{"format", "raw_f32"}, {"file", "frames.f32"}, {"pixel_gain", 1.0}, {"pixel_offset", 0.0}};
-        }
+        json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped) : write_raw_frames(q, o.out);
         write_truth_csv(join_path(o.out, "truth.csv"), s, q.truth);
         side["first_index"] = 1;
         side["frames"] = q.frames;
@@ -487,28 +655,11 @@ public:
                              "pattern, video file or image folder)");
         auto rd = open_sequence(o.sequence);
         const SequenceInfo &info = rd->info();
-        json scen = o.scenario;
-        std::string scen_path = o.scenario_path;
-        if (scen.is_null()) {
-            if (!info.sidecar.contains("scenario"))
-                throw InputError("run: --scenario FILE.json is required for " + o.sequence);
-            scen = info.sidecar["scenario"];
-            scen_path = o.sequence + "/sequence.json:scenario";
-        }
-        Options o2 = o;
-        o2.scenario = scen;
-        o2.scenario_path = scen_path;
-        Scenario s = load(o2);
+        Scenario s = run_scenario(o, info);
         bool single = s.filter.mode == "single";
         std::string out_dir = o.out.empty() ? "pft_run_out" : o.out;
         ensure_dir(out_dir);
-        // filter seed: --seed, else the seed the sequence was simulated with (so sim + run
-        // reproduces the in-memory eval/demo run of that seed), else the scenario's base seed
-        uint64_t seed = s.eval.base_seed;
-        if (o.seed)
-            seed = *o.seed;
-        else if (info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned())
-            seed = info.sidecar["seed"].get<uint64_t>();
+        uint64_t seed = run_seed(o, s, info);
 
         // truth
         std::string truth_path = !o.truth.empty() ? o.truth : info.truth_csv;
@@ -519,72 +670,25 @@ public:
         if (have_truth)
             tt = read_truth_csv(truth_path);
 
-        std::unique_ptr<Tracker> tr;
-        std::unique_ptr<OverlayWriter> ov;
-        std::vector<std::vector<TruthState>> seen_truth;  // truth of the frames tracked
-        std::vector<FrameOut> out;
-        pft_frame_t f{};
-        std::vector<float> conv;
-        while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
-            if (!tr) {
-                s.width = f.width;
-                s.height = f.height;
-                pft_tbd_config_t c = make_config(s, seed);
-                c.pixel_gain = to_real(info.pixel_gain);
-                c.pixel_offset = to_real(info.pixel_offset);
-                tr = std::make_unique<Tracker>(c, single);
-                if (!o.no_video) {
-                    double A = s.peak(s.ref_intensity);
-                    double lo = info.kind == "pft-sim" ? -2.0 * s.noise_sigma : 0.0;
-                    double hi = info.kind == "pft-sim" ? A + 2.0 * s.noise_sigma : 0.0;
-                    ov = std::make_unique<OverlayWriter>(join_path(out_dir, "overlay.avi"), f.width,
-                                                         f.height, o.scale, lo, hi, s.dx, s.dy);
-                }
-            }
-            pft_frame_t g = f;
-            cv::Mat m;
-            if (ov || (f.format != PFT_PIX_U8 && f.format != PFT_PIX_U16 && f.format != PFT_PIX_F32))
-                m = frame_to_mat(f, info.pixel_gain, info.pixel_offset);
-            if (f.format == PFT_PIX_RGB888 || f.format == PFT_PIX_BGR888) {
-                conv.assign(m.ptr<float>(0), m.ptr<float>(0) + m.total());
-                g.data = conv.data();
-                g.format = PFT_PIX_F32;
-                g.stride_bytes = static_cast<uint32_t>(f.width * 4);
-            }
-            out.push_back(tr->update(g));
-            // truth row of this frame: by the source's sequence number, so that frames the
-            // source had to skip do not shift the truth (seq is 1-based for pft sim output)
-            std::size_t ti = f.seq >= 1 ? f.seq - 1 : out.size() - 1;
-            std::vector<TruthState> truth = have_truth && ti < tt.frames.size()
-                                                ? tt.frames[ti]
-                                                : std::vector<TruthState>(tt.ids.size());
-            seen_truth.push_back(truth);
-            if (ov) {
-                ov->add(m, truth, tt.ids, out.back());
-            }
-        }
-        if (!tr)
-            throw InputError(o.sequence + ": no frames");
-        if (ov)
-            ov->close();
+        RunTracking rt = track_source(o, s, *rd, seed, single, tt, have_truth, out_dir);
         json meta = {{"tool", "pft run"}, {"sequence", o.sequence}, {"scenario", s.name},
                      {"mode", single ? "single" : "multi"}, {"filter", s.filter.kind},
                      {"particles", s.filter.particles}, {"numeric", numeric_name()},
-                     {"frames", out.size()}, {"skipped_frames", rd->skipped()}, {"seed", seed},
-                     {"workspace_bytes", tr->workspace_bytes()}};
-        write_tracks(out_dir, out, meta);
+                     {"frames", rt.out.size()}, {"skipped_frames", rd->skipped()}, {"seed", seed},
+                     {"workspace_bytes", rt.tr->workspace_bytes()}};
+        write_tracks(out_dir, rt.out, meta);
         std::unique_ptr<RunEval> ev;
         if (have_truth) {
             // metrics over the frames actually tracked (birth/death renumbered if the source
             // skipped unreadable frames)
-            TruthTable seen{tt.ids, seen_truth};
+            TruthTable seen{tt.ids, rt.seen_truth};
             targets_from_truth(s, seen);
-            ev = std::make_unique<RunEval>(evaluate_run(s, seen_truth, out, single));
+            ev = std::make_unique<RunEval>(evaluate_run(s, rt.seen_truth, rt.out, single));
         }
         if (!o.quiet) {
             std::printf("pft run: %s (%s, %zu frames, %d skipped)\n  %s\n", o.sequence.c_str(),
-                        info.kind.c_str(), out.size(), rd->skipped(), describe(s).c_str());
-            print_tracks(out, ev.get(), &s);
+                        info.kind.c_str(), rt.out.size(), rd->skipped(), describe(s).c_str());
+            print_tracks(rt.out, ev.get(), &s);
             if (ev) {
                 std::vector<RunEval> one{*ev};
                 json sum = summarize(s, one, single);
@@ -634,43 +738,7 @@ public:
         bar.finish();
         double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-        json sum = summarize(s, res, single);
-        json seeds = json::array();
-        for (unsigned i = 0; i < runs; ++i)
-            seeds.push_back(base + i);
-        json head = {
-            {"tool", "pft eval"},
-            {"kind", "tbd"},
-            {"scenario", s.name},
-            {"scenario_file", s.file},
-            {"description", s.description},
-            {"tag", o.tag.empty() ? std::string(s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") +
-                                        " N=" + std::to_string(s.filter.particles) : o.tag},
-            {"snr_db", s.snr_db},
-            {"noise_sigma", s.noise_sigma},
-            {"frames", s.frames},
-            {"image", {s.width, s.height}},
-            {"runs", runs},
-            {"base_seed", base},
-            {"seeds", seeds},
-            {"threads", threads},
-            {"particles", s.filter.particles},
-            {"numeric", numeric_name()},
-            {"filter", s.filter.kind},
-            {"preset", s.filter.preset},
-            {"mode", single ? "single" : "multi"},
-            {"d_c", s.eval.d_c},
-            {"d_assoc", s.eval.d_assoc},
-            {"timing", {{"wall_s", wall}, {"run_s_mean", cpu_s.load() / runs}}},
-        };
-        if (!single)
-            head["track_particles"] = s.filter.track_particles;
-        head["filter_settings"] = make_filter_json(s);
-        if (!s.reference.is_null())
-            head["reference"] = s.reference;
-        for (auto it = sum.begin(); it != sum.end(); ++it)
-            head[it.key()] = it.value();
-        head["scenario_json"] = s.raw;
+        json head = eval_summary(o, s, res, single, base, threads, wall, cpu_s.load());
         write_json_atomic(join_path(out_dir, "summary.json"), head);
         eval_plots(s, head, out_dir, single);
         if (!o.quiet) {
@@ -787,7 +855,7 @@ public:
         json sum = summarize(s, one, single);
         sum["runs"] = 1;
         std::printf("\nSummary versus truth (this run; appear/disappear delays in frames, correct = "
-                    "frames within %.1f px, RMSE eq. 25 over them, PCRLB floor of ALGORITHMS.md 7):",
+                    "frames within %.1f px, RMSE eq. 25 over them, PCRLB floor of docs/algorithms.md 7):",
                     s.eval.d_c);
         print_summary(s, sum, true);
         std::printf("\n  tracking time %.1f ms for %zu frames (%.2f ms/frame), %s build\n", dt * 1e3,
@@ -799,7 +867,7 @@ public:
     int selftest(const Options &o) override
     {
         int fails = 0;
-        std::printf("tbd selftest: PCRLB against ALGORITHMS.md 7.2 (3 digits)\n");
+        std::printf("tbd selftest: PCRLB against docs/algorithms.md 7.2 (3 digits)\n");
         fails += pcrlb_selftest(!o.quiet);
         fails += metrics_selftest(!o.quiet);
         std::printf("tbd selftest: %s (%d failure%s)\n", fails ? "FAILED" : "passed", fails,
@@ -808,16 +876,6 @@ public:
     }
 
 private:
-    static json make_filter_json(const Scenario &s)
-    {
-        json j = config_to_json(make_config(s, 0));
-        j.erase("n_search");
-        j["preset"] = s.filter.preset;
-        j["mode"] = s.filter.mode;
-        j["seed"] = "run seed + " + std::to_string(s.filter.seed_offset);
-        return j;
-    }
-
     /** Checks of the simulator's SNR mapping and of the metrics on hand-made outputs. */
     static int metrics_selftest(bool verbose)
     {
@@ -828,12 +886,12 @@ private:
                 std::printf("  %-4s %s\n", ok ? "ok" : "FAIL", what);
         };
         json j = {{"kind", "tbd"}, {"noise", {{"snr_db", 6}}}, {"frames", 30},
-                  {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {6, 0.45, 7, 0.25, 20}}, {"motion", "line"}}}}};
+                  {"targets", {{{"birth_frame", 7}, {"death_frame", 22}, {"state", {5, 0.45, 6, 0.25, 20}}, {"motion", "line"}}}}};
         Scenario s = parse_scenario(j, "<selftest>");
-        check("SNR 6 dB -> sigma 3.256 (ALGORITHMS.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
+        check("SNR 6 dB -> sigma 3.256 (docs/algorithms.md 1)", std::fabs(s.noise_sigma - 3.256) < 5e-4);
         check("peak amplitude A = 6.4961", std::fabs(s.peak(20) - 6.4961) < 5e-5);
         Sequence q = simulate(s, 7, 0, false);
-        check("line truth: x at frame 22 = 6 + 15*0.45", std::fabs(q.truth[21][0].x - 12.75) < 1e-12 &&
+        check("line truth: x at frame 22 = 5 + 15*0.45", std::fabs(q.truth[21][0].x - 11.75) < 1e-12 &&
                                                           q.truth[21][0].present && !q.truth[22][0].present);
         // a perfect tracker confirming 2 frames late, offset 0.3 px, declared gone 1 frame late
         std::vector<FrameOut> out(30);

@@ -66,27 +66,28 @@ PcrlbResult target_floor(const Scenario &s, const Target &t)
     return pcrlb(in);
 }
 
-RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState>> &truth,
-                     const std::vector<FrameOut> &out, bool single)
-{
-    const double d_c = s.eval.d_c, d_as = s.eval.d_assoc;
-    const int nf = static_cast<int>(out.size());
-    const std::size_t nt = s.targets.size();
-    RunEval r;
-    r.tracks = collect_tracks(out);
-    r.targets.resize(nt);
-    for (const FrameOut &f : out)
-        r.search_p.push_back(f.search_p);
+namespace {
 
-    auto truth_at = [&](int frame, std::size_t ti) -> const TruthState * {
+/** The true state of target ti at a frame (1-based), or nullptr when absent. */
+struct TruthAt {
+    const std::vector<std::vector<TruthState>> &truth;
+    const TruthState *operator()(int frame, std::size_t ti) const
+    {
         if (frame < 1 || frame > static_cast<int>(truth.size()))
             return nullptr;
         const TruthState &t = truth[frame - 1][ti];
         return t.present ? &t : nullptr;
-    };
+    }
+};
 
-    // per-frame association: greedy on distance within d_assoc, one track per target and one
-    // target per track (a track may follow different targets in different frames)
+/** assoc[ti][frame] = (track, point) associated with target ti at that frame, track -1: none. */
+using AssocPoints = std::vector<std::vector<std::pair<long, std::size_t>>>;
+
+/** Per-frame association: greedy on distance within d_assoc, one track per target and one
+ *  target per track (a track may follow different targets in different frames). Fills each
+ *  track's per-point assoc. */
+AssocPoints associate(RunEval &r, const TruthAt &truth_at, int nf, std::size_t nt, double d_as)
+{
     std::vector<std::vector<std::pair<std::size_t, std::size_t>>> at_frame(nf + 1);  // (track, point)
     for (std::size_t h = 0; h < r.tracks.size(); ++h) {
         r.tracks[h].assoc.assign(r.tracks[h].frames.size(), -1);
@@ -100,9 +101,7 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
         double d;
         std::size_t ti, h, k;
     };
-    // assoc_pt[ti][frame] = (track, point) or none
-    std::vector<std::vector<std::pair<long, std::size_t>>> assoc_pt(
-        nt, std::vector<std::pair<long, std::size_t>>(nf + 1, {-1L, 0}));
+    AssocPoints assoc_pt(nt, std::vector<std::pair<long, std::size_t>>(nf + 1, {-1L, 0}));
     for (int f = 1; f <= nf; ++f) {
         std::vector<Cand> c;
         for (auto [h, k] : at_frame[f])
@@ -122,6 +121,12 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
             assoc_pt[x.ti][f] = {static_cast<long>(x.h), x.k};
         }
     }
+    return assoc_pt;
+}
+
+/** Each track's target: the one it was associated with most often; never: a false track. */
+void assign_tracks(RunEval &r, std::size_t nt)
+{
     for (TrackHist &h : r.tracks) {
         std::vector<int> cnt(nt, 0);
         for (int a : h.assoc)
@@ -134,275 +139,323 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
         if (h.assigned < 0)
             ++r.unassigned;
     }
+}
 
-    for (std::size_t ti = 0; ti < nt; ++ti) {
-        const Target &tg = s.targets[ti];
-        TargetRun &tr = r.targets[ti];
-        tr.err2.assign(nf, kNaN);
-        tr.p_exist.assign(nf, 0.0);
-        std::vector<long> ids;
-        int last_f = 0;
-        for (int f = 1; f <= nf; ++f) {
-            const TruthState *t = truth_at(f, ti);
-            auto [h, k] = assoc_pt[ti][f];
-            tr.p_exist[f - 1] = single ? out[f - 1].search_p : (h >= 0 ? r.tracks[h].ps[k] : 0.0);
-            if (!t)
-                continue;
-            ++tr.true_frames;
-            if (h < 0)
-                continue;
-            if (std::find(ids.begin(), ids.end(), h) == ids.end())
-                ids.push_back(h);
-            double d = dist(r.tracks[h].xs[k], r.tracks[h].ys[k], *t);
-            if (!tr.detected) {
-                tr.detected = true;
-                tr.appear_frame = f;
-                tr.appear_delay = f - tg.birth;
-            }
-            tr.sq_all += d * d;
-            ++tr.n_all;
-            if (d <= d_c) {
-                ++tr.correct;
-                tr.sq_correct += d * d;
-                tr.err2[f - 1] = d * d;
-            }
-            last_f = f;
+/** Disappearance of target ti, whose last associated frame was last_f: the track that
+ *  followed it last is declared gone when it ends or is associated with another target; after
+ *  last_f the target's existence curve follows that track until then (multi only). */
+void disappearance(const Target &tg, std::size_t ti, const TrackHist &h, int last_f, int nf,
+                   bool single, TargetRun &tr)
+{
+    int declared = 0;
+    for (std::size_t k = 0; k < h.frames.size(); ++k)
+        if (h.frames[k] > last_f && h.assoc[k] >= 0 && h.assoc[k] != static_cast<int>(ti)) {
+            declared = h.frames[k];
+            break;
         }
-        tr.tracks = static_cast<int>(ids.size());
-        for (const TrackHist &h : r.tracks)
-            if (h.first >= tg.birth && h.first <= tg.death && !h.assoc.empty() &&
-                h.assoc[0] == static_cast<int>(ti) && (!tr.confirmed || h.first - tg.birth < tr.confirm_delay)) {
-                tr.confirmed = true;
-                tr.confirm_delay = h.first - tg.birth;
-            }
-        if (tr.detected) {
-            // the track that followed the target last: declared gone when it ends or when it
-            // is associated with another target
-            const TrackHist &h = r.tracks[assoc_pt[ti][last_f].first];
-            int declared = 0;
-            for (std::size_t k = 0; k < h.frames.size(); ++k)
-                if (h.frames[k] > last_f && h.assoc[k] >= 0 && h.assoc[k] != static_cast<int>(ti)) {
-                    declared = h.frames[k];
-                    break;
-                }
-            if (!declared)
-                declared = h.end_frame;
-            // after the target's last associated frame, its existence curve follows that track
-            // until it is declared gone (so the curves show how fast tracks end)
-            if (!single)
-                for (std::size_t k = 0; k < h.frames.size(); ++k) {
-                    int f = h.frames[k];
-                    if (f > last_f && (!declared || f < declared) && f >= 1 && f <= nf &&
-                        tr.p_exist[f - 1] == 0.0)
-                        tr.p_exist[f - 1] = h.ps[k];
-                }
-            if (declared) {
-                tr.disappear_delay = declared - tg.death;
-            } else {
-                tr.censored = true;
-                tr.disappear_delay = nf + 1 - tg.death;
-            }
+    if (!declared)
+        declared = h.end_frame;
+    if (!single)
+        for (std::size_t k = 0; k < h.frames.size(); ++k) {
+            int f = h.frames[k];
+            if (f > last_f && (!declared || f < declared) && f >= 1 && f <= nf && tr.p_exist[f - 1] == 0.0)
+                tr.p_exist[f - 1] = h.ps[k];
         }
+    if (declared) {
+        tr.disappear_delay = declared - tg.death;
+    } else {
+        tr.censored = true;
+        tr.disappear_delay = nf + 1 - tg.death;
     }
+}
 
+/** The measures of target ti in one run (appearance, correct points, errors, confirmation,
+ *  disappearance). */
+void score_target(const Scenario &s, std::size_t ti, const TruthAt &truth_at, const AssocPoints &assoc_pt,
+                  const std::vector<FrameOut> &out, bool single, RunEval &r)
+{
+    const double d_c = s.eval.d_c;
+    const int nf = static_cast<int>(out.size());
+    const Target &tg = s.targets[ti];
+    TargetRun &tr = r.targets[ti];
+    tr.err2.assign(nf, kNaN);
+    tr.p_exist.assign(nf, 0.0);
+    std::vector<long> ids;
+    int last_f = 0;
+    for (int f = 1; f <= nf; ++f) {
+        const TruthState *t = truth_at(f, ti);
+        auto [h, k] = assoc_pt[ti][f];
+        tr.p_exist[f - 1] = single ? out[f - 1].search_p : (h >= 0 ? r.tracks[h].ps[k] : 0.0);
+        if (!t)
+            continue;
+        ++tr.true_frames;
+        if (h < 0)
+            continue;
+        if (std::find(ids.begin(), ids.end(), h) == ids.end())
+            ids.push_back(h);
+        double d = dist(r.tracks[h].xs[k], r.tracks[h].ys[k], *t);
+        if (!tr.detected) {
+            tr.detected = true;
+            tr.appear_frame = f;
+            tr.appear_delay = f - tg.birth;
+        }
+        tr.sq_all += d * d;
+        ++tr.n_all;
+        if (d <= d_c) {
+            ++tr.correct;
+            tr.sq_correct += d * d;
+            tr.err2[f - 1] = d * d;
+        }
+        last_f = f;
+    }
+    tr.tracks = static_cast<int>(ids.size());
+    for (const TrackHist &h : r.tracks)
+        if (h.first >= tg.birth && h.first <= tg.death && !h.assoc.empty() &&
+            h.assoc[0] == static_cast<int>(ti) && (!tr.confirmed || h.first - tg.birth < tr.confirm_delay)) {
+            tr.confirmed = true;
+            tr.confirm_delay = h.first - tg.birth;
+        }
+    if (tr.detected)
+        disappearance(tg, ti, r.tracks[assoc_pt[ti][last_f].first], last_f, nf, single, tr);
+}
+
+}  // namespace
+
+RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState>> &truth,
+                     const std::vector<FrameOut> &out, bool single)
+{
+    const int nf = static_cast<int>(out.size());
+    const std::size_t nt = s.targets.size();
+    const TruthAt truth_at{truth};
+    RunEval r;
+    r.tracks = collect_tracks(out);
+    r.targets.resize(nt);
+    for (const FrameOut &f : out)
+        r.search_p.push_back(f.search_p);
+    AssocPoints assoc_pt = associate(r, truth_at, nf, nt, s.eval.d_assoc);
+    assign_tracks(r, nt);
+    for (std::size_t ti = 0; ti < nt; ++ti)
+        score_target(s, ti, truth_at, assoc_pt, out, single, r);
     // declared points against the truth (Deng's false-track probability)
     for (const TrackHist &h : r.tracks) {
         for (std::size_t k = 0; k < h.frames.size(); ++k) {
             ++r.declared_points;
             const TruthState *t = h.assoc[k] >= 0 ? truth_at(h.frames[k], h.assoc[k]) : nullptr;
-            if (!t || dist(h.xs[k], h.ys[k], *t) > d_c)
+            if (!t || dist(h.xs[k], h.ys[k], *t) > s.eval.d_c)
                 ++r.incorrect_points;
         }
     }
     return r;
 }
 
-nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bool single)
+namespace {
+
+/** Sums of one target's measures over the runs. */
+struct TargetSums {
+    double app = 0, dis = 0, cor = 0, sqc = 0, sqa = 0, extra = 0, conf = 0;
+    int nconf = 0;
+    long nc = 0, na = 0;
+    int det = 0, ndis = 0, cens = 0;
+    std::vector<double> p, e2;
+    std::vector<int> ne2;
+};
+
+TargetSums sum_target(const std::vector<RunEval> &runs, std::size_t ti, int nf)
+{
+    TargetSums S;
+    S.p.assign(nf, 0.0);
+    S.e2.assign(nf, 0.0);
+    S.ne2.assign(nf, 0);
+    for (const RunEval &r : runs) {
+        const TargetRun &t = r.targets[ti];
+        if (t.detected) {
+            ++S.det;
+            S.app += t.appear_delay;
+            // a track alive at the end counts with its lower bound frames + 1 - death
+            S.cens += t.censored ? 1 : 0;
+            S.dis += t.disappear_delay;
+            ++S.ndis;
+        }
+        if (t.confirmed) {
+            S.conf += t.confirm_delay;
+            ++S.nconf;
+        }
+        S.cor += t.correct;
+        S.sqc += t.sq_correct;
+        S.nc += t.correct;
+        S.sqa += t.sq_all;
+        S.na += t.n_all;
+        S.extra += t.tracks > 1 ? t.tracks - 1 : 0;
+        for (int k = 0; k < nf && k < static_cast<int>(t.p_exist.size()); ++k) {
+            S.p[k] += t.p_exist[k];
+            if (std::isfinite(t.err2[k])) {
+                S.e2[k] += t.err2[k];
+                ++S.ne2[k];
+            }
+        }
+    }
+    return S;
+}
+
+/** Standard error sd/sqrt(n) over the runs of a per-run measure get(t), for the runs with use(t). */
+template <class Get, class Use>
+double se_over_runs(const std::vector<RunEval> &runs, std::size_t ti, Get get, Use use)
+{
+    double m = 0, m2 = 0;
+    int n = 0;
+    for (const RunEval &r : runs) {
+        const TargetRun &t = r.targets[ti];
+        if (!use(t))
+            continue;
+        double v = get(t);
+        m += v;
+        m2 += v * v;
+        ++n;
+    }
+    if (n < 2)
+        return kNaN;
+    double var = (m2 - m * m / n) / (n - 1);
+    return std::sqrt(std::max(0.0, var) / n);
+}
+
+/** Jackknife standard error of the pooled RMSE over correct points. */
+double rmse_jackknife_se(const std::vector<RunEval> &runs, std::size_t ti, const TargetSums &S)
+{
+    if (runs.size() < 2 || S.nc <= 0)
+        return kNaN;
+    std::vector<double> jk;
+    for (const RunEval &r : runs) {
+        const TargetRun &t = r.targets[ti];
+        long n = S.nc - t.correct;
+        if (n > 0)
+            jk.push_back(std::sqrt((S.sqc - t.sq_correct) / n));
+    }
+    if (jk.size() < 2)
+        return kNaN;
+    double m = 0, ss = 0;
+    for (double v : jk)
+        m += v;
+    m /= jk.size();
+    for (double v : jk)
+        ss += (v - m) * (v - m);
+    return std::sqrt(ss * (jk.size() - 1.0) / jk.size());
+}
+
+/** Running sums of the per-target means for the "averaged" block. */
+struct Averages {
+    double app = 0, dis = 0, cor = 0, true_frames = 0, rmse = 0, floor = 0, fm = 0, ra = 0, false_t = 0;
+    int n_app = 0, n_dis = 0, n_rmse = 0;
+    std::vector<double> mean_p;
+};
+
+/** Per-frame series of one target: mean existence, RMSE, correct fraction, floor; and the
+ *  floor matched to the correct points. Adds the existence to the averages. */
+struct FrameSeries {
+    nlohmann::json p, rmse, correct, floor;
+    double matched_num = 0;
+};
+
+FrameSeries frame_series(TargetSums &S, const Target &tg, const PcrlbResult &fl, int nf, double Rd,
+                         std::size_t nt, Averages &A)
+{
+    using nlohmann::json;
+    FrameSeries f;
+    f.p = json::array();
+    f.rmse = json::array();
+    f.correct = json::array();
+    f.floor = json::array();
+    for (int k = 0; k < nf; ++k) {
+        S.p[k] /= Rd;
+        A.mean_p[k] += S.p[k] / static_cast<double>(nt ? nt : 1);
+        f.p.push_back(S.p[k]);
+        f.rmse.push_back(num_or_null(S.ne2[k] ? std::sqrt(S.e2[k] / S.ne2[k]) : kNaN));
+        f.correct.push_back(S.ne2[k] / Rd);
+        int life = k + 1 - tg.birth;
+        double fk = (life >= 0 && life < static_cast<int>(fl.radial.size())) ? fl.radial[life] : kNaN;
+        f.floor.push_back(num_or_null(fk));
+        if (std::isfinite(fk))
+            f.matched_num += S.ne2[k] * fk * fk;
+    }
+    return f;
+}
+
+/** The summary of target ti (contract names), adding to the averages. */
+nlohmann::json target_summary(const Scenario &s, const std::vector<RunEval> &runs, std::size_t ti, int nf,
+                              Averages &A)
 {
     using nlohmann::json;
     const std::size_t nt = s.targets.size();
     const std::size_t R = runs.size();
-    const int nf = R ? static_cast<int>(runs[0].search_p.size()) : s.frames;
-    json targets = json::array();
-    double sum_app = 0, sum_dis = 0, sum_cor = 0, sum_true = 0, sum_rmse = 0, sum_floor = 0,
-           sum_fm = 0, sum_ra = 0, sum_false_t = 0;
-    int n_app = 0, n_dis = 0, n_rmse = 0;
-    std::vector<double> mean_p(nf, 0.0);
-
-    for (std::size_t ti = 0; ti < nt; ++ti) {
-        const Target &tg = s.targets[ti];
-        PcrlbResult fl = target_floor(s, tg);
-        double app = 0, dis = 0, cor = 0, sqc = 0, sqa = 0, extra = 0, conf = 0;
-        int nconf = 0;
-        long nc = 0, na = 0;
-        int det = 0, ndis = 0, cens = 0;
-        std::vector<double> p(nf, 0.0), e2(nf, 0.0), floor_w(nf, 0.0);
-        std::vector<int> ne2(nf, 0);
-        for (const RunEval &r : runs) {
-            const TargetRun &t = r.targets[ti];
-            if (t.detected) {
-                ++det;
-                app += t.appear_delay;
-                // a track alive at the end counts with its lower bound frames + 1 - death
-                cens += t.censored ? 1 : 0;
-                dis += t.disappear_delay;
-                ++ndis;
-            }
-            if (t.confirmed) {
-                conf += t.confirm_delay;
-                ++nconf;
-            }
-            cor += t.correct;
-            sqc += t.sq_correct;
-            nc += t.correct;
-            sqa += t.sq_all;
-            na += t.n_all;
-            extra += t.tracks > 1 ? t.tracks - 1 : 0;
-            for (int k = 0; k < nf && k < static_cast<int>(t.p_exist.size()); ++k) {
-                p[k] += t.p_exist[k];
-                if (std::isfinite(t.err2[k])) {
-                    e2[k] += t.err2[k];
-                    ++ne2[k];
-                }
-            }
-        }
-        double Rd = R ? static_cast<double>(R) : 1.0;
-        json pf = json::array(), rf = json::array(), ff = json::array(), cf = json::array();
-        double matched_num = 0;
-        for (int k = 0; k < nf; ++k) {
-            p[k] /= Rd;
-            mean_p[k] += p[k] / static_cast<double>(nt ? nt : 1);
-            pf.push_back(p[k]);
-            rf.push_back(num_or_null(ne2[k] ? std::sqrt(e2[k] / ne2[k]) : kNaN));
-            cf.push_back(ne2[k] / Rd);
-            int life = k + 1 - tg.birth;
-            double fk = (life >= 0 && life < static_cast<int>(fl.radial.size())) ? fl.radial[life] : kNaN;
-            ff.push_back(num_or_null(fk));
-            if (std::isfinite(fk))
-                matched_num += ne2[k] * fk * fk;
-        }
-        double rmse = nc ? std::sqrt(sqc / nc) : kNaN;
-        // standard errors over runs: sd/sqrt(n) for the per-run means, jackknife for the RMSE
-        auto se_of = [&](auto get, auto use) {
-            double m = 0, m2 = 0;
-            int n = 0;
-            for (const RunEval &r : runs) {
-                const TargetRun &t = r.targets[ti];
-                if (!use(t))
-                    continue;
-                double v = get(t);
-                m += v;
-                m2 += v * v;
-                ++n;
-            }
-            if (n < 2)
-                return kNaN;
-            double var = (m2 - m * m / n) / (n - 1);
-            return std::sqrt(std::max(0.0, var) / n);
-        };
-        auto detected = [](const TargetRun &t) { return t.detected; };
-        auto always = [](const TargetRun &) { return true; };
-        double app_se = se_of([](const TargetRun &t) { return t.appear_delay; }, detected);
-        double dis_se = se_of([](const TargetRun &t) { return t.disappear_delay; }, detected);
-        double cor_se = se_of([](const TargetRun &t) { return static_cast<double>(t.correct); }, always);
-        double rmse_se = kNaN;
-        if (R >= 2 && nc > 0) {
-            std::vector<double> jk;
-            for (const RunEval &r : runs) {
-                const TargetRun &t = r.targets[ti];
-                long n = nc - t.correct;
-                if (n > 0)
-                    jk.push_back(std::sqrt((sqc - t.sq_correct) / n));
-            }
-            if (jk.size() >= 2) {
-                double m = 0, ss = 0;
-                for (double v : jk)
-                    m += v;
-                m /= jk.size();
-                for (double v : jk)
-                    ss += (v - m) * (v - m);
-                rmse_se = std::sqrt(ss * (jk.size() - 1.0) / jk.size());
-            }
-        }
-        double rmse_all = na ? std::sqrt(sqa / na) : kNaN;
-        double matched = nc ? std::sqrt(matched_num / nc) : kNaN;
-        double app_m = det ? app / det : kNaN, dis_m = ndis ? dis / ndis : kNaN;
-        json tj = {
-            {"id", tg.id},
-            {"birth_frame", tg.birth},
-            {"death_frame", tg.death},
-            {"motion", tg.motion == Motion::Line ? "line" : "cv"},
-            {"appearance_delay", num_or_null(app_m)},
-            {"disappearance_delay", num_or_null(dis_m)},
-            {"correct_frames", cor / Rd},
-            {"true_frames", tg.death - tg.birth + 1},
-            {"rmse", num_or_null(rmse)},
-            {"pcrlb", fl.track_rmse},
-            {"false_tracks", extra / Rd},
-            {"detected_runs", det},
-            {"confirmation_delay", num_or_null(nconf ? conf / nconf : kNaN)},
-            {"confirmed_runs", nconf},
-            {"appearance_delay_se", num_or_null(app_se)},
-            {"disappearance_delay_se", num_or_null(dis_se)},
-            {"correct_frames_se", num_or_null(cor_se)},
-            {"rmse_se", num_or_null(rmse_se)},
-            {"censored_disappearances", cens},
-            {"rmse_all_assigned", num_or_null(rmse_all)},
-            {"pcrlb_matched", num_or_null(matched)},
-            {"rmse_over_pcrlb", num_or_null(rmse / fl.track_rmse)},
-            {"existence_probability", pf},
-            {"rmse_per_frame", rf},
-            {"correct_fraction_per_frame", cf},
-            {"pcrlb_per_frame", ff},
-        };
-        targets.push_back(tj);
-        if (std::isfinite(app_m)) {
-            sum_app += app_m;
-            ++n_app;
-        }
-        if (std::isfinite(dis_m)) {
-            sum_dis += dis_m;
-            ++n_dis;
-        }
-        sum_cor += cor / Rd;
-        sum_true += tg.death - tg.birth + 1;
-        if (std::isfinite(rmse)) {
-            sum_rmse += rmse;
-            sum_fm += matched;
-            sum_ra += rmse_all;
-            ++n_rmse;
-        }
-        sum_floor += fl.track_rmse;
-        sum_false_t += extra / Rd;
-    }
-    double unassigned = 0, decl = 0, incorrect = 0;
-    std::vector<double> sp(nf, 0.0);
-    for (const RunEval &r : runs) {
-        unassigned += r.unassigned;
-        decl += r.declared_points;
-        incorrect += r.incorrect_points;
-        for (int k = 0; k < nf && k < static_cast<int>(r.search_p.size()); ++k)
-            sp[k] += r.search_p[k] / static_cast<double>(R ? R : 1);
-    }
-    double Rd = R ? static_cast<double>(R) : 1.0, ntd = nt ? static_cast<double>(nt) : 1.0;
-    json avg = {
-        {"appearance_delay", num_or_null(n_app ? sum_app / n_app : kNaN)},
-        {"disappearance_delay", num_or_null(n_dis ? sum_dis / n_dis : kNaN)},
-        {"correct_frames", sum_cor / ntd},
-        {"true_frames", sum_true / ntd},
-        {"rmse", num_or_null(n_rmse ? sum_rmse / n_rmse : kNaN)},
-        {"pcrlb", sum_floor / ntd},
-        {"false_tracks", (unassigned + 0.0) / Rd + sum_false_t},
-        {"unassigned_tracks", unassigned / Rd},
-        {"false_point_fraction", num_or_null(decl > 0 ? incorrect / decl : kNaN)},
-        {"rmse_all_assigned", num_or_null(n_rmse ? sum_ra / n_rmse : kNaN)},
-        {"pcrlb_matched", num_or_null(n_rmse ? sum_fm / n_rmse : kNaN)},
-        {"existence_probability", mean_p},
+    const Target &tg = s.targets[ti];
+    PcrlbResult fl = target_floor(s, tg);
+    TargetSums S = sum_target(runs, ti, nf);
+    double Rd = R ? static_cast<double>(R) : 1.0;
+    FrameSeries fs = frame_series(S, tg, fl, nf, Rd, nt, A);
+    const json &pf = fs.p, &rf = fs.rmse, &cf = fs.correct, &ff = fs.floor;
+    const double matched_num = fs.matched_num;
+    double rmse = S.nc ? std::sqrt(S.sqc / S.nc) : kNaN;
+    auto detected = [](const TargetRun &t) { return t.detected; };
+    auto always = [](const TargetRun &) { return true; };
+    double app_se = se_over_runs(runs, ti, [](const TargetRun &t) { return t.appear_delay; }, detected);
+    double dis_se = se_over_runs(runs, ti, [](const TargetRun &t) { return t.disappear_delay; }, detected);
+    double cor_se = se_over_runs(runs, ti, [](const TargetRun &t) { return static_cast<double>(t.correct); }, always);
+    double rmse_se = rmse_jackknife_se(runs, ti, S);
+    double rmse_all = S.na ? std::sqrt(S.sqa / S.na) : kNaN;
+    double matched = S.nc ? std::sqrt(matched_num / S.nc) : kNaN;
+    double app_m = S.det ? S.app / S.det : kNaN, dis_m = S.ndis ? S.dis / S.ndis : kNaN;
+    json tj = {
+        {"id", tg.id},
+        {"birth_frame", tg.birth},
+        {"death_frame", tg.death},
+        {"motion", tg.motion == Motion::Line ? "line" : "cv"},
+        {"appearance_delay", num_or_null(app_m)},
+        {"disappearance_delay", num_or_null(dis_m)},
+        {"correct_frames", S.cor / Rd},
+        {"true_frames", tg.death - tg.birth + 1},
+        {"rmse", num_or_null(rmse)},
+        {"pcrlb", fl.track_rmse},
+        {"false_tracks", S.extra / Rd},
+        {"detected_runs", S.det},
+        {"confirmation_delay", num_or_null(S.nconf ? S.conf / S.nconf : kNaN)},
+        {"confirmed_runs", S.nconf},
+        {"appearance_delay_se", num_or_null(app_se)},
+        {"disappearance_delay_se", num_or_null(dis_se)},
+        {"correct_frames_se", num_or_null(cor_se)},
+        {"rmse_se", num_or_null(rmse_se)},
+        {"censored_disappearances", S.cens},
+        {"rmse_all_assigned", num_or_null(rmse_all)},
+        {"pcrlb_matched", num_or_null(matched)},
+        {"rmse_over_pcrlb", num_or_null(rmse / fl.track_rmse)},
+        {"existence_probability", pf},
+        {"rmse_per_frame", rf},
+        {"correct_fraction_per_frame", cf},
+        {"pcrlb_per_frame", ff},
     };
-    json j;
-    j["targets"] = targets;
-    j["averaged"] = avg;
-    j[single ? "filter_existence_probability" : "search_existence_probability"] = sp;
+    if (std::isfinite(app_m)) {
+        A.app += app_m;
+        ++A.n_app;
+    }
+    if (std::isfinite(dis_m)) {
+        A.dis += dis_m;
+        ++A.n_dis;
+    }
+    A.cor += S.cor / Rd;
+    A.true_frames += tg.death - tg.birth + 1;
+    if (std::isfinite(rmse)) {
+        A.rmse += rmse;
+        A.fm += matched;
+        A.ra += rmse_all;
+        ++A.n_rmse;
+    }
+    A.floor += fl.track_rmse;
+    A.false_t += S.extra / Rd;
+    return tj;
+}
+
+/** The per-run block: seed, unassigned tracks and each target's detection and counts. */
+nlohmann::json per_run_summary(const std::vector<RunEval> &runs)
+{
+    using nlohmann::json;
     json per_run = json::array();
     for (const RunEval &r : runs) {
         json pr = {{"seed", r.seed}, {"unassigned_tracks", r.unassigned}};
@@ -417,7 +470,51 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
         pr["targets"] = tt;
         per_run.push_back(pr);
     }
-    j["per_run"] = per_run;
+    return per_run;
+}
+
+}  // namespace
+
+nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bool single)
+{
+    using nlohmann::json;
+    const std::size_t nt = s.targets.size();
+    const std::size_t R = runs.size();
+    const int nf = R ? static_cast<int>(runs[0].search_p.size()) : s.frames;
+    json targets = json::array();
+    Averages A;
+    A.mean_p.assign(nf, 0.0);
+    for (std::size_t ti = 0; ti < nt; ++ti)
+        targets.push_back(target_summary(s, runs, ti, nf, A));
+    double unassigned = 0, decl = 0, incorrect = 0;
+    std::vector<double> sp(nf, 0.0);
+    for (const RunEval &r : runs) {
+        unassigned += r.unassigned;
+        decl += r.declared_points;
+        incorrect += r.incorrect_points;
+        for (int k = 0; k < nf && k < static_cast<int>(r.search_p.size()); ++k)
+            sp[k] += r.search_p[k] / static_cast<double>(R ? R : 1);
+    }
+    double Rd = R ? static_cast<double>(R) : 1.0, ntd = nt ? static_cast<double>(nt) : 1.0;
+    json avg = {
+        {"appearance_delay", num_or_null(A.n_app ? A.app / A.n_app : kNaN)},
+        {"disappearance_delay", num_or_null(A.n_dis ? A.dis / A.n_dis : kNaN)},
+        {"correct_frames", A.cor / ntd},
+        {"true_frames", A.true_frames / ntd},
+        {"rmse", num_or_null(A.n_rmse ? A.rmse / A.n_rmse : kNaN)},
+        {"pcrlb", A.floor / ntd},
+        {"false_tracks", (unassigned + 0.0) / Rd + A.false_t},
+        {"unassigned_tracks", unassigned / Rd},
+        {"false_point_fraction", num_or_null(decl > 0 ? incorrect / decl : kNaN)},
+        {"rmse_all_assigned", num_or_null(A.n_rmse ? A.ra / A.n_rmse : kNaN)},
+        {"pcrlb_matched", num_or_null(A.n_rmse ? A.fm / A.n_rmse : kNaN)},
+        {"existence_probability", A.mean_p},
+    };
+    json j;
+    j["targets"] = targets;
+    j["averaged"] = avg;
+    j[single ? "filter_existence_probability" : "search_existence_probability"] = sp;
+    j["per_run"] = per_run_summary(runs);
     return j;
 }
 

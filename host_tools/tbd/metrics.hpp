@@ -1,4 +1,4 @@
-// Performance measures of ALGORITHMS.md section 6 ([P1] metrics) for one run and their
+// Performance measures of docs/algorithms.md section 6 ([P1] metrics) for one run and their
 // Monte Carlo aggregate with the contract field names of `pft eval`.
 //
 // Association, per frame: every reported track point within d_assoc of a present target is a

@@ -32,8 +32,8 @@ OverlayWriter::OverlayWriter(const std::string &path, int width, int height, int
 
 cv::Point OverlayWriter::to_px(double x, double y) const
 {
-    // pixel (i, j) 1-based has its centre at (i dx, j dy): column c = x/dx - 1
-    double c = x / dx_ - 1.0, r = y / dy_ - 1.0;
+    // the pixel in column c, row r (0-based) has its centre at (c dx, r dy)
+    double c = x / dx_, r = y / dy_;
     return cv::Point(static_cast<int>(std::lround((c + 0.5) * scale_)),
                      static_cast<int>(std::lround((r + 0.5) * scale_)));
 }

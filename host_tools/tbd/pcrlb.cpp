@@ -146,7 +146,7 @@ double jxx_discrete(double peak, double sigma, double psf_sigma, int p, int n_of
 
 int pcrlb_selftest(bool verbose)
 {
-    // ALGORITHMS.md 7.2 table: SNR, sigma (6.15 dB row uses 3.2), steady per-axis, steady
+    // docs/algorithms.md 7.2 table: SNR, sigma (6.15 dB row uses 3.2), steady per-axis, steady
     // radial, steady velocity, 16-frame stochastic CV, 16-frame deterministic line.
     struct Row {
         double snr, sigma, axis, radial, vel, cv16, line16;

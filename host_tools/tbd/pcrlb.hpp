@@ -1,4 +1,4 @@
-// Posterior Cramer-Rao lower bound of the TBD tracking problem (ALGORITHMS.md section 7):
+// Posterior Cramer-Rao lower bound of the TBD tracking problem (docs/algorithms.md section 7):
 // Tichavsky's recursion J_{k+1} = (V + F J_k^-1 F^T)^-1 + J_z on the 5-D state
 // [x, vx, y, vy, I], with the sub-pixel-offset-averaged measurement information J_z
 // (continuum form) and a birth prior on velocity and intensity at the first frame.
@@ -36,7 +36,7 @@ PcrlbResult pcrlb(const PcrlbInput &in);
  *  continuum form pi A^2 / (2 sigma^2 dx dy). */
 double jxx_discrete(double peak, double sigma, double psf_sigma, int p, int n_offsets);
 
-/** Runs the self-checks of this module (table 7.2 of ALGORITHMS.md to 3 digits); prints each
+/** Runs the self-checks of this module (table 7.2 of docs/algorithms.md to 3 digits); prints each
  *  check and returns the number of failures. */
 int pcrlb_selftest(bool verbose);
 

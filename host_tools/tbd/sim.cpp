@@ -77,11 +77,11 @@ void render_psf(const Scenario &s, const std::vector<TruthState> &targets, std::
             continue;
         const double amp = s.peak(t.I);
         for (int r = 0; r < s.height; ++r) {
-            const double dy = (r + 1) * s.dy - t.y;
+            const double dy = r * s.dy - t.y;  // row r is centred at r dy (0-based)
             const double ey = std::exp(-dy * dy * inv2s2);
             double *row = &img[static_cast<std::size_t>(r) * s.width];
             for (int c = 0; c < s.width; ++c) {
-                const double dx = (c + 1) * s.dx - t.x;
+                const double dx = c * s.dx - t.x;
                 row[c] += amp * ey * std::exp(-dx * dx * inv2s2);
             }
         }

@@ -1,5 +1,5 @@
 // TBD sequence simulator (host side, double precision, own seeded RNG): targets per
-// ALGORITHMS.md 2.10, the point-sampled PSF of section 1 summed over targets on every pixel,
+// docs/algorithms.md 2.10, the point-sampled PSF of section 1 summed over targets on every pixel,
 // plus i.i.d. Gaussian noise.
 #pragma once
 #include <cstdint>

@@ -33,7 +33,12 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
     c.max_targets = static_cast<uint16_t>(F.max_targets);
     c.kind = F.kind == "pf" ? PFT_TBD_PF : PFT_TBD_RBPF;
     c.seed = seed + F.seed_offset;
-    // overrides of the preset
+    apply_overrides(F, c);
+    return c;
+}
+
+void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c)
+{
     auto R = [](const std::optional<double> &v, pft_real_t &dst) {
         if (v)
             dst = to_real(*v);
@@ -88,7 +93,6 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
     if (F.end_lr_frames)
         c.end_lr_frames = static_cast<uint8_t>(*F.end_lr_frames);
     R(F.end_lr_max, c.end_lr_max);
-    return c;
 }
 
 nlohmann::json config_to_json(const pft_tbd_config_t &c)
@@ -118,22 +122,25 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
 }
 
 namespace {
-[[noreturn]] void lib_error(const char *what, pft_status_t st)
+[[noreturn]] void lib_error(const std::string &what, pft_status_t st)
 {
-    throw InputError(std::string(what) + ": " + pft_status_str(st) + " (" +
+    throw InputError(what + ": " + pft_status_str(st) + " (" +
                      std::to_string(static_cast<int>(st)) + ")");
 }
 }  // namespace
 
 Tracker::Tracker(const pft_tbd_config_t &cfg, bool single) : cfg_(cfg), single_(single)
 {
-    pft_status_t st = pft_tbd_config_check(&cfg_);
+    const char *field = nullptr;
+    pft_status_t st = pft_tbd_config_check(&cfg_, &field);
     if (st != PFT_OK)
-        lib_error("filter configuration rejected by pft_tbd_config_check", st);
-    ws_bytes_ = single_ ? pft_tbd_filter_workspace_size(&cfg_, cfg_.n_search, cfg_.kind)
-                        : pft_tbd_workspace_size(&cfg_);
+        lib_error(std::string("filter configuration rejected by pft_tbd_config_check (field ") +
+                      (field != nullptr ? field : "?") + ")",
+                  st);
+    // single: a standalone filter of cfg.n_search particles of cfg.kind
+    ws_bytes_ = single_ ? pft_tbd_filter_workspace_size(&cfg_) : pft_tbd_workspace_size(&cfg_);
     work_.assign((ws_bytes_ + 7) / 8, 0);
-    st = single_ ? pft_tbd_filter_init(&flt_, &cfg_, cfg_.n_search, cfg_.kind, work_.data(), ws_bytes_)
+    st = single_ ? pft_tbd_filter_init(&flt_, &cfg_, work_.data(), ws_bytes_)
                  : pft_tbd_init(&mgr_, &cfg_, work_.data(), ws_bytes_);
     if (st != PFT_OK)
         lib_error(single_ ? "pft_tbd_filter_init" : "pft_tbd_init", st);
@@ -154,44 +161,52 @@ FrameOut Tracker::update_f32(const float *img, uint32_t seq)
 
 FrameOut Tracker::update(const pft_frame_t &frame)
 {
-    FrameOut out;
-    if (single_) {
-        pft_status_t st = pft_tbd_filter_update(&flt_, &frame);
-        if (st != PFT_OK)
-            lib_error("pft_tbd_filter_update", st);
-        ++frame_;
-        out.frame = frame_;
-        active_ = cfg_.n_search;
-        pft_tbd_estimate_t e;
-        pft_tbd_filter_estimate(&flt_, &e);
-        out.search_p = from_real(e.p_exist);
-        out.search_x = from_real(e.x);
-        out.search_y = from_real(e.y);
-        out.search_valid = e.valid;
-        bool now = e.valid && e.p_exist > cfg_.theta1;
-        if (now && !present_) {
-            cur_id_ = next_id_++;
-            cur_first_ = frame_;
-            out.events.push_back({PFT_TBD_EV_CONFIRMED, cur_id_, frame_, out.search_x, out.search_y});
-        } else if (!now && present_) {
-            out.events.push_back({PFT_TBD_EV_ENDED, cur_id_, frame_, out.search_x, out.search_y});
-        }
-        present_ = now;
-        if (now) {
-            TrackOut t;
-            t.id = cur_id_;
-            t.x = out.search_x;
-            t.y = out.search_y;
-            t.vx = from_real(e.vx);
-            t.vy = from_real(e.vy);
-            t.intensity = from_real(e.intensity);
-            t.p_exist = out.search_p;
-            t.first_frame = cur_first_;
-            out.tracks.push_back(t);
-        }
-        return out;
-    }
+    return single_ ? update_single(frame) : update_multi(frame);
+}
 
+// single: a track is a maximal run of frames with P > theta1 (the paper's Exp. 1 rule)
+FrameOut Tracker::update_single(const pft_frame_t &frame)
+{
+    FrameOut out;
+    pft_status_t st = pft_tbd_filter_update(&flt_, &frame);
+    if (st != PFT_OK)
+        lib_error("pft_tbd_filter_update", st);
+    ++frame_;
+    out.frame = frame_;
+    active_ = cfg_.n_search;
+    pft_tbd_estimate_t e;
+    pft_tbd_filter_estimate(&flt_, &e);
+    out.search_p = from_real(e.p_exist);
+    out.search_x = from_real(e.x);
+    out.search_y = from_real(e.y);
+    out.search_valid = e.valid;
+    bool now = e.valid && e.p_exist > cfg_.theta1;
+    if (now && !present_) {
+        cur_id_ = next_id_++;
+        cur_first_ = frame_;
+        out.events.push_back({PFT_TBD_EV_CONFIRMED, cur_id_, frame_, out.search_x, out.search_y});
+    } else if (!now && present_) {
+        out.events.push_back({PFT_TBD_EV_ENDED, cur_id_, frame_, out.search_x, out.search_y});
+    }
+    present_ = now;
+    if (now) {
+        TrackOut t;
+        t.id = cur_id_;
+        t.x = out.search_x;
+        t.y = out.search_y;
+        t.vx = from_real(e.vx);
+        t.vy = from_real(e.vy);
+        t.intensity = from_real(e.intensity);
+        t.p_exist = out.search_p;
+        t.first_frame = cur_first_;
+        out.tracks.push_back(t);
+    }
+    return out;
+}
+
+FrameOut Tracker::update_multi(const pft_frame_t &frame)
+{
+    FrameOut out;
     pft_status_t st = pft_tbd_update(&mgr_, &frame);
     if (st != PFT_OK)
         lib_error("pft_tbd_update", st);

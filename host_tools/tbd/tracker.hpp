@@ -45,6 +45,8 @@ struct FrameOut {
 
 /** Library configuration from a scenario (filter settings, model, sigma, image size). */
 pft_tbd_config_t make_config(const Scenario &s, uint64_t seed);
+/** The scenario's overrides of the preset (every field the file gives) into c. */
+void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c);
 /** Every field of a configuration (reals as doubles), for summaries. */
 nlohmann::json config_to_json(const pft_tbd_config_t &c);
 
@@ -67,6 +69,9 @@ public:
     uint64_t active_particles() const { return active_; }
 
 private:
+    FrameOut update_single(const pft_frame_t &frame);
+    FrameOut update_multi(const pft_frame_t &frame);
+
     pft_tbd_config_t cfg_;
     bool single_;
     std::vector<uint64_t> work_;  // 8-byte aligned workspace

@@ -19,19 +19,19 @@ double pft_sim_gauss(pft_rng_t *r)
 void pft_sim_render_u16(pft_rng_t *r, const pft_sim_truth_t *t, int nt, int k, double sigma,
                         int w, int h, uint16_t *buf, pft_frame_t *f)
 {
-    for (int j = 1; j <= h; ++j) {
-        for (int i = 1; i <= w; ++i) {
+    for (int row = 0; row < h; ++row) {
+        for (int col = 0; col < w; ++col) {
             double z = sigma * pft_sim_gauss(r);
             for (int q = 0; q < nt; ++q) {
                 if (pft_sim_alive(&t[q], k)) {
-                    double dx = i - pft_sim_x(&t[q], k), dy = j - pft_sim_y(&t[q], k);
+                    double dx = col - pft_sim_x(&t[q], k), dy = row - pft_sim_y(&t[q], k);
                     z += t[q].I / (2.0 * PFT_SIM_PI * PFT_SIM_S2) *
                          exp(-(dx * dx + dy * dy) / (2.0 * PFT_SIM_S2));
                 }
             }
             double raw = floor((z + 64.0) * 256.0 + 0.5);
             raw = raw < 0.0 ? 0.0 : (raw > 65535.0 ? 65535.0 : raw);
-            buf[(j - 1) * w + (i - 1)] = (uint16_t)raw;
+            buf[row * w + col] = (uint16_t)raw;
         }
     }
     memset(f, 0, sizeof(*f));

@@ -19,7 +19,8 @@ double pft_sim_gauss(pft_rng_t *r);
 
 /**
  * Renders frame k as U16 into buf (w*h pixels): z = sigma * noise + the PSF (Sigma^2 = 0.49,
- * unit pixels, pixel (i, j) centred at (i, j)) of every live target of t[0..nt), stored as
+ * unit pixels, the pixel in column c, row r centred at (c, r): 0-based, docs/design.md) of every
+ * live target of t[0..nt), stored as
  * raw = round((z + 64) * 256) clamped to 0..65535 (so pixel_gain 1/256, pixel_offset -64).
  * f describes buf, seq = k.
  */

@@ -64,3 +64,27 @@ double pft_test_gauss(uint64_t *state)
     }
     return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
 }
+
+void pft_test_check_rows(const char *name, const char *row_name, const uint32_t *ref,
+                         const uint32_t *val, size_t rows, size_t cols)
+{
+    for (size_t r = 0; r < rows; ++r) {
+        for (size_t c = 0; c < cols; ++c) {
+            if (ref[r * cols + c] != val[r * cols + c]) {
+                UnityPrint(name);
+                UnityPrint(" ");
+                UnityPrint(row_name);
+                UnityPrint(" ");
+                UnityPrintNumber((UNITY_INT)(r + 1));
+                UnityPrint(" column ");
+                UnityPrintNumber((UNITY_INT)c);
+                UnityPrint(": expected ");
+                UnityPrintNumberUnsigned((UNITY_UINT)ref[r * cols + c]);
+                UnityPrint(" got ");
+                UnityPrintNumberUnsigned((UNITY_UINT)val[r * cols + c]);
+                UNITY_PRINT_EOL();
+                TEST_FAIL_MESSAGE(name);
+            }
+        }
+    }
+}

@@ -14,6 +14,11 @@ double pft_test_lsb(double v);
  * state must be non-zero. Independent of the library's RNG, for test inputs. */
 double pft_test_gauss(uint64_t *state);
 
+/* Compares two tables of rows x cols uint32 values bit for bit; on the first difference prints
+ * "name <row_name> r column c: expected .. got .." (rows counted from 1) and fails the test. */
+void pft_test_check_rows(const char *name, const char *row_name, const uint32_t *ref,
+                         const uint32_t *val, size_t rows, size_t cols);
+
 /* Guard words around a workspace: fill, then check nothing outside [lo, hi) changed. */
 #define PFT_TEST_GUARD 0xA5u
 void pft_test_guard_fill(uint8_t *buf, size_t len);

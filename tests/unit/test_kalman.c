@@ -392,8 +392,8 @@ static void test_non_pd_refused_state_untouched(void)
     const pft_real_t Rind[4] = {R_(1.0), R_(3.0), R_(3.0), R_(1.0)};
     /* singular S: P2 + R = [[1, 1], [1, 1]] (exact in both builds) */
     const pft_real_t Rsing[4] = {R_(0.5), R_(0.875), R_(0.875), R_(0.5)};
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf4_update2(x, P, H, z, Rneg));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf4_update2(x, P, H, z, Rind));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf4_update2(x, P, H, z, Rneg));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf4_update2(x, P, H, z, Rind));
     TEST_ASSERT_EQUAL_MEMORY(x0, x, sizeof x);
     TEST_ASSERT_EQUAL_MEMORY(P0, P, sizeof P);
     /* 2-D: P2 = [[0.5, 0.125], [0.125, 0.5]] */
@@ -402,13 +402,13 @@ static void test_non_pd_refused_state_untouched(void)
     pft_real_t x2c[2], P2c[4];
     memcpy(x2c, x2, sizeof x2);
     memcpy(P2c, P2, sizeof P2);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf2_update(x2, P2, z, Rneg));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf2_update(x2, P2, z, Rind));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf2_update(x2, P2, z, Rsing));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf2_update(x2, P2, z, Rneg));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf2_update(x2, P2, z, Rind));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf2_update(x2, P2, z, Rsing));
     const pft_real_t h[2] = {R_(1.0), R_(1.0)};
     /* h' P h = 1.25, r = -1.25 -> S = 0 exactly; r = -5 -> S < 0 */
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf2_update_scalar(x2, P2, h, R_(1.0), R_(-1.25)));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_kf2_update_scalar(x2, P2, h, R_(1.0), R_(-5.0)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf2_update_scalar(x2, P2, h, R_(1.0), R_(-1.25)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_kf2_update_scalar(x2, P2, h, R_(1.0), R_(-5.0)));
     TEST_ASSERT_EQUAL_MEMORY(x2c, x2, sizeof x2);
     TEST_ASSERT_EQUAL_MEMORY(P2c, P2, sizeof P2);
     /* and a valid update does change them */
@@ -449,25 +449,25 @@ static void test_mat2_inverse_and_cholesky(void)
         check_close(Ai, ref, 4);
         check_symmetric(Ai, 2);
     }
-    /* singular and indefinite: refused, outputs untouched */
+    /* singular and indefinite: refused (PFT_ERR_SINGULAR), outputs untouched */
     const pft_real_t Sg[4] = {R_(1.0), R_(1.0), R_(1.0), R_(1.0)};
     const pft_real_t Id[4] = {R_(1.0), R_(2.0), R_(2.0), R_(1.0)};
     const pft_real_t Ng[4] = {R_(-1.0), 0, 0, R_(-1.0)};
     for (int i = 0; i < 4; ++i) {
         Ai[i] = L[i] = R_(7.0);
     }
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_inv_sym(Sg, Ai));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_inv_sym(Id, Ai));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_inv_sym(Ng, Ai));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_chol(Sg, L));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_chol(Id, L));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_mat2_chol(Ng, L));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_inv_sym(Sg, Ai));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_inv_sym(Id, Ai));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_inv_sym(Ng, Ai));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_chol(Sg, L));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_chol(Id, L));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_SINGULAR, pft_mat2_chol(Ng, L));
     for (int i = 0; i < 4; ++i) {
         TEST_ASSERT_TRUE(Ai[i] == R_(7.0) && L[i] == R_(7.0));
     }
 #ifdef PFT_NUMERIC_Q16
     /* q16: the determinant is exact, so a one-LSB margin is positive definite for Cholesky;
-     * its inverse (~65536) is not representable and is refused. */
+     * its inverse (~65536) is not representable and is refused (PFT_ERR_RANGE). */
     const pft_real_t E[4] = {R_(1.0) + 1, R_(1.0), R_(1.0), R_(1.0)};
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_mat2_chol(E, L));
     TEST_ASSERT_INT_WITHIN(2, 256, L[3]); /* sqrt(2^-16) = 2^-8 */

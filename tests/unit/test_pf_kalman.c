@@ -1,6 +1,6 @@
 /*
  * SIS, SIR and APF against the exact Kalman filter on a linear-Gaussian model
- * (pft_lg_model_t): constant velocity [p, v], T = 1, q = 0.05 (Q = q [[1/3, 1/2], [1/2, 1]]),
+ * (pft_pf_lg_model_t): constant velocity [p, v], T = 1, q = 0.05 (Q = q [[1/3, 1/2], [1/2, 1]]),
  * position measured with sd 1, prior N([0, 0.5], diag(4, 0.25)), K = 10 steps of measurements
  * simulated from the model with a fixed double-precision generator (two sequences), N = 1500.
  *
@@ -30,7 +30,7 @@
 #include <string.h>
 
 #include "pft_test_support.h"
-#include "pft/pft_models.h"
+#include "pft/pft_pf_models.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -106,7 +106,7 @@ static void kf_step(kf_t *k, double z)
 }
 
 /* ----------------------------------- the model -------------------------------------------- */
-static void lg_config(pft_lg_config_t *c)
+static void lg_config(pft_pf_lg_config_t *c)
 {
     double l11 = sqrt(Q_ / 3.0), l21 = (Q_ / 2.0) / l11, l22 = sqrt(Q_ / 4.0);
     memset(c, 0, sizeof(*c));
@@ -139,8 +139,8 @@ typedef struct {
 static outcome_t run_case(pft_pf_kind_t kind, uint64_t seed, int steps, double kappa,
                           double filter_rsd)
 {
-    pft_lg_config_t lc;
-    pft_lg_model_t lm;
+    pft_pf_lg_config_t lc;
+    pft_pf_lg_model_t lm;
     pft_pf_model_t md;
     pft_pf_config_t c;
     pft_pf_t pf;
@@ -148,10 +148,13 @@ static outcome_t run_case(pft_pf_kind_t kind, uint64_t seed, int steps, double k
     outcome_t o = {0.0, 0.0, 0.0, 0.0};
     lg_config(&lc);
     lc.r_sd[0] = R(filter_rsd);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_lg_model_init(&lm, &lc, &md));
-    pft_pf_config_default(&c, kind, N_PART);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_lg_model_init(&lm, &lc, &md));
+    pft_pf_config_default(&c);
+    c.kind = kind;
+    c.n_particles = N_PART;
+    c.model = md;
     c.seed = seed;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &c, &md, g_work, sizeof(g_work)));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_init(&pf, &c, g_work, sizeof(g_work)));
     kf_init(&kf);
     const double lconst = log(sqrt(2.0 * 3.141592653589793) * filter_rsd);
     double ess = (double)N_PART;

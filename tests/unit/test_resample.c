@@ -220,22 +220,28 @@ static void test_all_zero_weights_refused(void)
         for (int i = 0; i < 6; ++i) {
             idx[i] = 0xDEADBEEFu;
         }
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample(k_schemes[s], w, 5, idx, 6, &rng, scratch,
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample(k_schemes[s], w, 5, idx, 6, &rng, scratch,
                                                           sizeof scratch));
         TEST_ASSERT_EACH_EQUAL_HEX32(0xDEADBEEFu, idx, 6);
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample(k_schemes[s], w, 0, idx, 6, &rng, scratch,
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample(k_schemes[s], w, 0, idx, 6, &rng, scratch,
                                                           sizeof scratch));
         TEST_ASSERT_EACH_EQUAL_HEX32(0xDEADBEEFu, idx, 6);
     }
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample_systematic_u(w, 5, idx, 6, 7u));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample_stratified_u(w, 5, idx, 6, u));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample_multinomial_u(w, 5, idx, 6, u));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample_systematic_u(w, 0, idx, 6, 7u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample_systematic_u(w, 5, idx, 6, 7u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample_stratified_u(w, 5, idx, 6, u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample_multinomial_u(w, 5, idx, 6, u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample_systematic_u(w, 0, idx, 6, 7u));
     TEST_ASSERT_EACH_EQUAL_HEX32(0xDEADBEEFu, idx, 6);
 #ifdef PFT_NUMERIC_FLOAT
     /* float: negative weights count as zero */
     w[1] = -1.0f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_resample_systematic_u(w, 5, idx, 6, 7u));
+    TEST_ASSERT_EACH_EQUAL_HEX32(0xDEADBEEFu, idx, 6);
+    /* float: a total that overflows to infinity is a range error, not a degenerate set */
+    w[1] = 3.0e38f;
+    w[2] = 3.0e38f;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample_systematic_u(w, 5, idx, 6, 7u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_RANGE, pft_resample(PFT_RESAMPLE_SYSTEMATIC, w, 5, idx, 6, &rng, NULL, 0));
     TEST_ASSERT_EACH_EQUAL_HEX32(0xDEADBEEFu, idx, 6);
 #endif
 }

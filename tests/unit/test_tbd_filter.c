@@ -55,6 +55,15 @@ static void small_cfg(pft_tbd_config_t *c, double sigma, uint64_t seed)
     c->seed = seed;
 }
 
+/* A standalone filter of n particles of the given kind (cfg.n_search and cfg.kind). */
+static pft_status_t finit(pft_tbd_filter_t *f, pft_tbd_config_t *c, uint32_t n,
+                          pft_tbd_kind_t kind, void *buf, size_t len)
+{
+    c->n_search = n;
+    c->kind = kind;
+    return pft_tbd_filter_init(f, c, buf, len);
+}
+
 #define SIGMA_15DB 1.1552 /* 6.4961 * 10^(-15/20) */
 #define SIGMA_6DB 3.256
 #define SIGMA_10DB 2.0543 /* 6.4961 * 10^(-10/20) */
@@ -79,17 +88,19 @@ static void test_filter_workspace_size_is_exact(void)
     small_cfg(&c, SIGMA_6DB, 1u);
     static pft_tbd_filter_t f;
     for (int kind = 0; kind < 2; ++kind) {
-        size_t need = pft_tbd_filter_workspace_size(&c, NF, (pft_tbd_kind_t)kind);
+        c.n_search = NF;
+        c.kind = (pft_tbd_kind_t)kind;
+        size_t need = pft_tbd_filter_workspace_size(&c);
         TEST_ASSERT_EQUAL_UINT(kind == 0 ? (unsigned)FWS_BYTES
                                          : (unsigned)PFT_TBD_FILTER_WORKSPACE_BYTES(NF, PFT_TBD_PF, IMG, IMG),
                                (unsigned)need);
         size_t off = misalign(g_fbuf);
         pft_test_guard_fill(g_fbuf, sizeof g_fbuf);
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tbd_filter_init(&f, &c, NF, (pft_tbd_kind_t)kind,
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, finit(&f, &c, NF, (pft_tbd_kind_t)kind,
                                                                 g_fbuf + off, need - 1u));
         TEST_ASSERT_TRUE_MESSAGE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, 0, 0),
                                  "a refused init wrote into the workspace");
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, (pft_tbd_kind_t)kind,
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, (pft_tbd_kind_t)kind,
                                                          g_fbuf + off, need));
         TEST_ASSERT_TRUE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, off, off + need));
         /* a few updates stay inside too */
@@ -102,8 +113,14 @@ static void test_filter_workspace_size_is_exact(void)
         }
         TEST_ASSERT_TRUE(pft_test_guard_intact(g_fbuf, sizeof g_fbuf, off, off + need));
     }
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, &c, 0u, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, NULL, NF, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
+    /* refused configuration: PFT_ERR_CONFIG naming the field, workspace size 0 */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, finit(&f, &c, 0u, PFT_TBD_RBPF, g_fbuf, sizeof g_fbuf));
+    const char *field = NULL;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("n_search", field);
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_filter_workspace_size(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(&f, NULL, g_fbuf, sizeof g_fbuf));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_init(NULL, &c, g_fbuf, sizeof g_fbuf));
 }
 
 static void test_manager_workspace_size_is_exact(void)
@@ -121,7 +138,7 @@ static void test_manager_workspace_size_is_exact(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf + off, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 4u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 6; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -129,7 +146,9 @@ static void test_manager_workspace_size_is_exact(void)
     }
     TEST_ASSERT_TRUE(pft_test_guard_intact(g_mbuf, sizeof g_mbuf, off, off + need));
     c.n_search = 0u;
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_init(&t, &c, g_mbuf, sizeof g_mbuf));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_init(&t, &c, g_mbuf, sizeof g_mbuf));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_workspace_size(&c));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_init(NULL, &c, g_mbuf, sizeof g_mbuf));
 }
 
 /* ------------------------------- refused input -------------------------------------------- */
@@ -182,11 +201,13 @@ static void test_filter_refused_input_leaves_state_untouched(void)
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_15DB, 9u);
     static pft_tbd_filter_t f, f_snap;
-    size_t need = pft_tbd_filter_workspace_size(&c, NF, PFT_TBD_RBPF);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
+    c.n_search = NF;
+    c.kind = PFT_TBD_RBPF;
+    size_t need = pft_tbd_filter_workspace_size(&c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 5u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 5; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -216,7 +237,7 @@ static void test_manager_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, need));
     pft_rng_t sim;
     pft_rng_seed(&sim, 6u);
-    const pft_sim_truth_t tr = {1, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -239,11 +260,11 @@ static void test_filter_is_deterministic(void)
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_6DB, 21u);
     static pft_tbd_filter_t a, b;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&a, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&a, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&b, &c, NF, PFT_TBD_RBPF, g_fbuf2, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 8u);
-    const pft_sim_truth_t tr = {3, 20, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {3, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 8; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_6DB, &fr);
@@ -253,6 +274,60 @@ static void test_filter_is_deterministic(void)
         TEST_ASSERT_EQUAL_MEMORY(a.cur.x, b.cur.x, NF * sizeof(pft_real_t));
         TEST_ASSERT_EQUAL_MEMORY(a.cur.e, b.cur.e, NF);
     }
+}
+
+/* reset: back to the state right after init (same seeds, ids from 1 again): a second pass
+ * over the same frames gives the same estimates, tracks and events. */
+#define RESET_FRAMES 10
+static void run_pass(pft_tbd_filter_t *f, pft_tbd_t *t, pft_tbd_estimate_t *est, uint32_t *ids)
+{
+    pft_rng_t sim;
+    pft_rng_seed(&sim, 15u);
+    const pft_sim_truth_t tr = {2, 20, 2.0, 2.0, 0.3, 0.2, 20.0};
+    for (int k = 1; k <= RESET_FRAMES; ++k) {
+        pft_frame_t fr;
+        render(&sim, &tr, k, SIGMA_15DB, &fr);
+        if (f != NULL) {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(f, &fr));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_estimate(f, &est[k - 1]));
+        } else {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(t, &fr));
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(t, &est[k - 1]));
+            pft_tbd_track_t trk[2];
+            size_t n = pft_tbd_tracks(t, trk, 2);
+            ids[k - 1] = n > 0u ? trk[0].id : 0u;
+        }
+    }
+}
+
+static void test_reset_reproduces_the_first_run(void)
+{
+    static pft_tbd_filter_t f;
+    static pft_tbd_t t;
+    static pft_tbd_estimate_t a[RESET_FRAMES], b[RESET_FRAMES];
+    uint32_t ia[RESET_FRAMES], ib[RESET_FRAMES];
+    pft_tbd_config_t c;
+    small_cfg(&c, SIGMA_15DB, 17u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    run_pass(&f, NULL, a, NULL);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_reset(&f));
+    run_pass(&f, NULL, b, NULL);
+    TEST_ASSERT_EQUAL_MEMORY(a, b, sizeof a);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_filter_reset(NULL));
+    small_cfg(&c, SIGMA_15DB, 18u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, MWS_BYTES));
+    run_pass(NULL, &t, a, ia);
+    TEST_ASSERT_TRUE(ia[RESET_FRAMES - 1] >= 1u); /* a track is held at the last frame */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_reset(&t));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_frame(&t));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_tracks(&t, NULL, 0));
+    run_pass(NULL, &t, b, ib);
+    TEST_ASSERT_EQUAL_MEMORY(a, b, sizeof a);
+    TEST_ASSERT_EQUAL_MEMORY(ia, ib, sizeof ia);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_reset(NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_frame(NULL));
+    /* a layer of the manager is not a standalone filter */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_tbd_filter_reset(&t.tracks[0]));
 }
 
 /* ------------------------------- behaviour ------------------------------------------------ */
@@ -265,7 +340,7 @@ static void test_noise_only_keeps_existence_low(void)
     for (uint64_t seed = 1; seed <= 3; ++seed) {
         pft_tbd_config_t c;
         small_cfg(&c, SIGMA_6DB, seed);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 100u + seed);
         for (int k = 1; k <= 20; ++k) {
@@ -304,10 +379,10 @@ static void bright_target(pft_tbd_kind_t kind)
     for (uint64_t seed = 0; seed < 3; ++seed) {
         pft_tbd_config_t c;
         small_cfg(&c, SIGMA_15DB, 31u + seed);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, kind, g_fbuf, FWS_BYTES));
         pft_rng_t sim;
         pft_rng_seed(&sim, 12u + seed);
-        const pft_sim_truth_t tr = {3, 40, 3.0, 3.5, 0.3, 0.2, 20.0};
+        const pft_sim_truth_t tr = {3, 40, 2.0, 2.5, 0.3, 0.2, 20.0};
         int detected = -1;
         for (int k = 1; k <= 16; ++k) {
             pft_frame_t fr;
@@ -365,7 +440,7 @@ static void bright_target(pft_tbd_kind_t kind)
 static void test_bright_target_rbpf(void) { bright_target(PFT_TBD_RBPF); }
 static void test_bright_target_pf(void) { bright_target(PFT_TBD_PF); }
 
-/* The velocity variance of the exact variant follows the Riccati recursion of ALGORITHMS.md
+/* The velocity variance of the exact variant follows the Riccati recursion of docs/algorithms.md
  * 2.3 (data independent): after ten frames surviving particles hold its fixed point, ~1.44e-3
  * (the calibrated value of the Monte Carlo check there). */
 static void test_kf_exact_variance_matches_reference(void)
@@ -381,10 +456,10 @@ static void test_kf_exact_variance_matches_reference(void)
     static pft_tbd_filter_t f;
     pft_tbd_config_t c;
     small_cfg(&c, SIGMA_15DB, 41u);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, finit(&f, &c, NF, PFT_TBD_RBPF, g_fbuf, FWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 13u);
-    const pft_sim_truth_t tr = {1, 40, 3.0, 3.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr = {1, 40, 2.0, 2.0, 0.3, 0.2, 20.0};
     for (int k = 1; k <= 16; ++k) {
         pft_frame_t fr;
         render(&sim, &tr, k, SIGMA_15DB, &fr);
@@ -416,8 +491,8 @@ static void test_manager_ids_and_events(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 14u);
-    const pft_sim_truth_t tr1 = {2, 9, 3.0, 3.0, 0.3, 0.2, 20.0};
-    const pft_sim_truth_t tr2 = {16, 40, 7.0, 6.0, -0.2, 0.1, 20.0};
+    const pft_sim_truth_t tr1 = {2, 9, 2.0, 2.0, 0.3, 0.2, 20.0};
+    const pft_sim_truth_t tr2 = {16, 40, 6.0, 5.0, -0.2, 0.1, 20.0};
     uint32_t confirmed[4] = {0}, ended[4] = {0};
     int nc = 0, ne = 0;
     for (int k = 1; k <= 24; ++k) {
@@ -481,8 +556,8 @@ static void render2(pft_rng_t *r, const pft_sim_truth_t *a, const pft_sim_truth_
     pft_sim_render_u16(r, ts, n, k, sigma, IMG, IMG, g_raw, f);
 }
 
-/* Runs the manager on T1 (frames 1-20, at rest at (4, 5)) and T2 spawned 2.06 px beside it at
- * frame 6 (at rest at (6, 5.5), inside the 5x5 region D around T1), 10 dB. Returns the first
+/* Runs the manager on T1 (frames 1-20, at rest at (3, 4)) and T2 spawned 2.06 px beside it at
+ * frame 6 (at rest at (5, 4.5), inside the 5x5 region D around T1), 10 dB. Returns the first
  * frame at which both targets hold a track within 1 px (0: never); *held counts the frames
  * after it in which both still do, *ids the largest track id. */
 static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
@@ -491,8 +566,8 @@ static int spawned_beside(const pft_tbd_config_t *c, int *held, uint32_t *ids)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, c, g_mbuf, MWS_BYTES));
     pft_rng_t sim;
     pft_rng_seed(&sim, 23u + c->seed);
-    const pft_sim_truth_t t1 = {1, 20, 4.0, 5.0, 0.0, 0.0, 20.0};
-    const pft_sim_truth_t t2 = {6, 20, 6.0, 5.5, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t1 = {1, 20, 3.0, 4.0, 0.0, 0.0, 20.0};
+    const pft_sim_truth_t t2 = {6, 20, 5.0, 4.5, 0.0, 0.0, 20.0};
     int both = 0;
     *held = 0;
     for (int k = 1; k <= 20; ++k) {
@@ -583,6 +658,7 @@ int main(void)
     RUN_TEST(test_filter_refused_input_leaves_state_untouched);
     RUN_TEST(test_manager_refused_input_leaves_state_untouched);
     RUN_TEST(test_filter_is_deterministic);
+    RUN_TEST(test_reset_reproduces_the_first_run);
     RUN_TEST(test_noise_only_keeps_existence_low);
     RUN_TEST(test_bright_target_rbpf);
     RUN_TEST(test_bright_target_pf);

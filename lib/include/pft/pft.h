@@ -11,6 +11,9 @@
 #include "pft/pft_resample.h"
 #include "pft/pft_workspace.h"
 #include "pft/pft_kalman.h"
+#include "pft/pft_tbd.h"
+#include "pft/pft_pf.h"
+#include "pft/pft_pf_models.h"
 #include "pft/pft_tsa.h"
 #include "pft/pft_pte.h"
 #endif

@@ -1,14 +1,14 @@
 /**
  * @file pft_pf.h
  * @brief Generic particle-filter engine: SIS, SIR and the auxiliary particle filter (APF)
- *        over one model interface (ALGORITHMS.md 3; Gordon, Salmond & Smith 1993; Pitt &
+ *        over one model interface (docs/algorithms.md 3; Gordon, Salmond & Smith 1993; Pitt &
  *        Shephard 1999; Wang 2010).
  *
  * A model is a struct of function pointers plus a context (pft_pf_model_t): propagate one
  * particle through the dynamics, log likelihood of a measurement, the predicted point used
  * by the APF's first stage, and optional hooks (prior draw, per-measurement preparation,
  * state-estimate reduction). The engine owns the particle set, the log-weights, the RNG and
- * the resampling; the model owns nothing of the particle set. pft_models.h has three
+ * the resampling; the model owns nothing of the particle set. pft_pf_models.h has three
  * models: the bearings-only constant-velocity benchmark, a linear-Gaussian model (tests,
  * Kalman comparisons) and the TBD pixel likelihood of pft_tbd.h.
  *
@@ -43,9 +43,9 @@
  * Number formats (q16 build): states and log-likelihoods are Q16.16 pft_real_t, weights
  * Q2.30 (pft_weight_t). Log-weights are normalised every step, so they stay <= 0; a model's
  * log-likelihood must stay within +-32768 (bearings and TBD models saturate by design, see
- * pft_models.h). The weighted mean is accumulated in int64 (weight x state, < 2^61) and
+ * pft_pf_models.h). The weighted mean is accumulated in int64 (weight x state, < 2^61) and
  * rounded once; covariances square Q16.16 differences with pft_mul, so an entry saturates
- * at 32768 (state units squared): choose state units accordingly (pft_models.h).
+ * at 32768 (state units squared): choose state units accordingly (pft_pf_models.h).
  *
  * Determinism: the engine owns one pft_rng_t, seeded from cfg.seed (pft_pf_reset reseeds);
  * the model draws from it through the rng argument. Float and q16 builds consume the same
@@ -53,6 +53,14 @@
  *
  * Memory: all buffers live in the caller workspace (PFT_PF_WORKSPACE_BYTES, equal to
  * pft_pf_workspace_size). No callback may keep pointers to the particle arrays.
+ *
+ * Calls, in the order of use (docs/design.md, "One API pattern for every tracker"):
+ * pft_pf_config_default, set kind, n_particles and the model (cfg.model, e.g. from
+ * pft_pf_bearings_model_init), pft_pf_config_check, pft_pf_workspace_size, pft_pf_init,
+ * pft_pf_update per measurement, results copied out (pft_pf_estimate, pft_pf_mean_cov,
+ * pft_pf_stats, pft_pf_states, pft_pf_weights), pft_pf_reset (or pft_pf_reseed) to start over.
+ * pft_pf_set_states and pft_pf_set_logweights are the explicit write access (a known initial
+ * set).
  */
 #ifndef PFT_PF_H
 #define PFT_PF_H
@@ -65,6 +73,10 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/** The engine instance: declared by the caller, layout in pft/internal/pft_pf_types.h (not
+ *  API; included at the end of this header so that sizeof works). */
+typedef struct pft_pf_s pft_pf_t;
 
 /** Largest state dimension the engine accepts (bounds the per-particle scratch). */
 #define PFT_PF_MAX_DIM 16u
@@ -100,6 +112,10 @@ typedef struct {
      *  to an estimate of dim values in est. NULL: the weighted mean of each component. */
     void (*estimate)(void *ctx, const pft_real_t *x, const pft_weight_t *w, uint32_t n,
                      pft_real_t *est);
+    /** Optional: called by pft_pf_init, pft_pf_reset and pft_pf_reseed before the prior is
+     *  drawn: the model forgets what it kept from earlier measurements (e.g. the TBD model's
+     *  frame count, so the next frame is a first frame again). */
+    void (*reset)(void *ctx);
 } pft_pf_model_t;
 
 /** Engine. */
@@ -113,18 +129,23 @@ typedef enum {
 typedef enum {
     PFT_PF_RESAMPLE_ALWAYS = 0, /**< every update */
     PFT_PF_RESAMPLE_ESS = 1,    /**< when ESS / N < ess_threshold */
-    PFT_PF_RESAMPLE_NEVER = 2   /**< never (APF: the first-stage index sampling only) */
+    PFT_PF_RESAMPLE_NEVER = 2,  /**< never (APF: the first-stage index sampling only) */
+    PFT_PF_RESAMPLE_AUTO = 3    /**< the kind's own: SIR ALWAYS, APF ESS (docs/algorithms.md 3.2
+                                     step 7), SIS NEVER */
 } pft_pf_policy_t;
 
 /** Engine configuration; pft_pf_config_default fills it. */
 typedef struct {
-    pft_pf_kind_t kind;            /**< engine */
-    uint32_t n_particles;          /**< N, 1..PFT_CFG_MAX_PARTICLES */
+    pft_pf_kind_t kind;            /**< engine (default PFT_PF_SIR) */
+    uint32_t n_particles;          /**< N, 1..PFT_CFG_MAX_PARTICLES (default 1000) */
     pft_resample_scheme_t scheme;  /**< resampling and APF index sampling (default systematic) */
-    pft_pf_policy_t policy;        /**< SIR: ALWAYS (default); APF: ESS (default, ALGORITHMS.md 3.2
-                                        step 7); SIS: ignored (never) */
+    pft_pf_policy_t policy;        /**< default PFT_PF_RESAMPLE_AUTO; SIS never resamples whatever
+                                        the policy */
     pft_real_t ess_threshold;      /**< fraction of N for PFT_PF_RESAMPLE_ESS, in (0, 1] (default 0.5) */
     uint64_t seed;                 /**< RNG seed (default 1) */
+    pft_pf_model_t model;          /**< the model (default: all zero, which config_check refuses:
+                                        fill it, e.g. with pft_pf_bearings_model_init). Copied by
+                                        init; model.ctx must outlive the engine. */
 } pft_pf_config_t;
 
 /** Statistics of the last update. */
@@ -138,27 +159,6 @@ typedef struct {
     bool resample_pending;    /**< the next update starts with a resampling */
 } pft_pf_stats_t;
 
-/**
- * The engine instance. Fields are private (read through the functions below).
- */
-typedef struct {
-    pft_pf_config_t cfg;
-    pft_pf_model_t model;
-    uint32_t n;
-    uint16_t dim;
-    pft_real_t *x;         /**< n * dim states (current set) */
-    pft_real_t *x_alt;     /**< n * dim states (next set) */
-    pft_real_t *lw;        /**< normalised log-weights */
-    pft_real_t *fl;        /**< APF first-stage log-likelihoods */
-    pft_weight_t *w;       /**< normalised weights */
-    pft_weight_t *scratch; /**< resampling scratch (residual) */
-    uint32_t *idx;         /**< resampling indices */
-    pft_real_t log_n;      /**< log N */
-    pft_rng_t rng;
-    pft_pf_stats_t stats;
-    pft_real_t est[PFT_PF_MAX_DIM];
-} pft_pf_t;
-
 /** Workspace bytes for n particles of dimension dim (constant expression). */
 #define PFT_PF_WORKSPACE_BYTES(n, dim)                                                          \
     ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
@@ -167,26 +167,38 @@ typedef struct {
      2u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_weight_t)) +                                    \
      PFT_WS_ROUND((size_t)(n) * sizeof(uint32_t)))
 
-/** Fills cfg with the defaults for an engine of n particles (see pft_pf_config_t). */
-void pft_pf_config_default(pft_pf_config_t *cfg, pft_pf_kind_t kind, uint32_t n);
-
-/** Workspace bytes pft_pf_init needs (0 for NULL or dim == 0). Equals
- *  PFT_PF_WORKSPACE_BYTES(cfg->n_particles, dim). */
-size_t pft_pf_workspace_size(const pft_pf_config_t *cfg, uint16_t dim);
+/** Fills every field of cfg with its default (see pft_pf_config_t); set kind, n_particles
+ *  and model after. */
+void pft_pf_config_default(pft_pf_config_t *cfg);
 
 /**
- * Initialises the engine: checks cfg and the model (dim range, required callbacks, predict
- * for the APF), carves the workspace, seeds the RNG and draws the prior (pft_pf_reset).
- * The model struct is copied; its ctx must outlive the engine.
- * @return PFT_ERR_INVAL for NULL arguments, a bad config or model; PFT_ERR_NOMEM for a short
- *         workspace (the instance is then zeroed).
+ * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL cfg; PFT_ERR_CONFIG otherwise, and then
+ * *field (when field is not NULL) names the first refused field: "kind", "n_particles",
+ * "scheme", "policy", "ess_threshold", "model.dim", "model.propagate", "model.loglik",
+ * "model.predict" (required by the APF). *field is NULL on success.
  */
-pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, const pft_pf_model_t *model,
-                         void *work, size_t work_len);
+pft_status_t pft_pf_config_check(const pft_pf_config_t *cfg, const char **field);
 
-/** Reseeds the RNG with seed, draws every particle from the model's prior (zeros without
- *  sample_prior), sets uniform weights and clears the statistics. */
-pft_status_t pft_pf_reset(pft_pf_t *pf, uint64_t seed);
+/** Workspace bytes pft_pf_init needs, PFT_PF_WORKSPACE_BYTES(cfg->n_particles, cfg->model.dim);
+ *  0 for a NULL or refused cfg. */
+size_t pft_pf_workspace_size(const pft_pf_config_t *cfg);
+
+/**
+ * Initialises the engine: copies cfg (the model struct included), carves the workspace,
+ * calls the model's reset hook, seeds the RNG with cfg.seed and draws the prior.
+ * @return PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg (nothing
+ *         written), PFT_ERR_NOMEM for a short workspace (the instance is then zeroed).
+ */
+pft_status_t pft_pf_init(pft_pf_t *pf, const pft_pf_config_t *cfg, void *work, size_t work_len);
+
+/** Back to the state right after pft_pf_init: the model's reset hook, the RNG reseeded with
+ *  cfg.seed, every particle drawn from the prior (zeros without sample_prior), uniform
+ *  weights, statistics cleared. PFT_ERR_INVAL for NULL or an uninitialised engine. */
+pft_status_t pft_pf_reset(pft_pf_t *pf);
+
+/** pft_pf_reset with another seed (kept as the engine's seed from then on): one engine for
+ *  many Monte Carlo runs. */
+pft_status_t pft_pf_reseed(pft_pf_t *pf, uint64_t seed);
 
 /**
  * One step with measurement z (its type is the model's business; it is passed through to
@@ -209,11 +221,18 @@ pft_status_t pft_pf_mean_cov(const pft_pf_t *pf, pft_real_t *mean, pft_real_t *c
 /** Statistics of the last update. */
 pft_status_t pft_pf_stats(const pft_pf_t *pf, pft_pf_stats_t *out);
 
-/** The current states (n * dim, particle i at [i * dim]): read or overwrite (e.g. a known
- *  initial set). NULL for NULL pf. */
-pft_real_t *pft_pf_states(pft_pf_t *pf);
-/** The current normalised weights (n). */
-const pft_weight_t *pft_pf_weights(const pft_pf_t *pf);
+/** Copies the states of the first min(N, max) particles (dim values each, particle i at
+ *  out[i * dim]) into out; returns N (out may be NULL with max 0 to ask it; 0 for NULL pf). */
+size_t pft_pf_states(const pft_pf_t *pf, pft_real_t *out, size_t max);
+/** Copies the normalised weights of the first min(N, max) particles; returns N. */
+size_t pft_pf_weights(const pft_pf_t *pf, pft_weight_t *out, size_t max);
+
+/**
+ * Replaces the particle states by x[0 .. n * dim) (e.g. a known initial set; n must be the
+ * engine's N) and recomputes the estimate; the weights are kept. PFT_ERR_INVAL for NULL
+ * arguments or another n (nothing changed then).
+ */
+pft_status_t pft_pf_set_states(pft_pf_t *pf, const pft_real_t *x, size_t n);
 
 /**
  * Replaces the weights by the normalisation of the log-weights lw[0..n) (e.g. a non-uniform
@@ -230,4 +249,6 @@ void pft_pf_weighted_mean(const pft_real_t *x, const pft_weight_t *w, uint32_t n
 #ifdef __cplusplus
 }
 #endif
+
+#include "pft/internal/pft_pf_types.h"
 #endif

@@ -42,7 +42,8 @@ size_t pft_resample_scratch_size(pft_resample_scheme_t scheme, size_t m, size_t 
 
 /**
  * Draws N indices into idx[0..n) from weights w[0..m). All weights zero (or m == 0) gives
- * PFT_ERR_RANGE and leaves idx untouched. scratch may be NULL when its size is 0; a short or
+ * PFT_ERR_DEGENERATE and leaves idx untouched (float: an infinite weight total gives
+ * PFT_ERR_RANGE). scratch may be NULL when its size is 0; a short or
  * missing residual scratch gives PFT_ERR_NOMEM. NULL w/idx/rng, an unknown scheme or
  * m, n > PFT_CFG_MAX_PARTICLES give PFT_ERR_INVAL. n == 0 is a no-op (PFT_OK).
  * Output indices are non-decreasing for systematic, stratified and multinomial. Residual

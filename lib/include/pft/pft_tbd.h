@@ -4,18 +4,22 @@
  *        bootstrap PF-TBD baseline (Ristic ch. 11), as a single-target filter and as the
  *        multi-target two-layer manager (one search layer plus one track layer per target).
  *
- * The implementable reading of the algorithms, with its corrections, is ALGORITHMS.md
+ * The implementable reading of the algorithms, with its corrections, is docs/algorithms.md
  * sections 1, 2 and 6; this header states the choices a user sees.
  *
- * Coordinates. Pixel (i, j) is 1-based, i indexes x (columns) and j indexes y (rows); its
- * centre is at (i*dx, j*dy). Frame column c (0-based) and row r (0-based) is pixel
- * (c + 1, r + 1), so a target centred on frame pixel (c, r) has x = (c + 1)*dx,
- * y = (r + 1)*dy. Velocities are in position units per frame period T.
+ * Coordinates (docs/design.md, "Pixel coordinates"): 0-based, x along the columns, y down the
+ * rows; the centre of the pixel in column c and row r is at (c*dx, r*dy), so a target centred on
+ * frame pixel (c, r) has x = c*dx, y = r*dy and the image covers [-dx/2, (W - 1/2) dx] x
+ * [-dy/2, (H - 1/2) dy]. Estimates, tracks, events, regions and the measurement-model calls
+ * all use it. (The paper indexes pixels from 1; the library keeps that frame inside, where the
+ * change is an exact shift in q16, and converts at this boundary.) Velocities are in position
+ * units per frame period T.
  *
- * Measurement model (per frame, per filter): z(i,j) = h(i,j; x) + noise, with
- *   h(i,j; x) = dx*dy*I/(2*pi*S^2) * exp(-((i*dx - x)^2 + (j*dy - y)^2)/(2*S^2))   (S = psf_sigma)
+ * Measurement model (per frame, per filter): z(c,r) = h(c,r; x) + noise, with
+ *   h(c,r; x) = dx*dy*I/(2*pi*S^2) * exp(-((c*dx - x)^2 + (r*dy - y)^2)/(2*S^2))   (S = psf_sigma)
  * and the per-pixel log likelihood ratio lambda = h*(2z - h)/(2*noise_sigma^2), summed over
- * the (2p+1)^2 window around (round(x/dx), round(y/dy)) clipped to the image.
+ * the (2p+1)^2 window around the window centre pixel (round(x/dx), round(y/dy)) clipped to the
+ * image.
  *
  * Pixels: U8 and U16 frames are converted as z = pixel_gain*raw + pixel_offset (U16: only the
  * low bit_depth bits are significant; higher bits are ignored). F32 frames are taken as
@@ -33,6 +37,13 @@
  *
  * Memory: everything lives in a caller workspace; see the *_WORKSPACE_BYTES macros, which
  * equal the *_workspace_size functions exactly.
+ *
+ * Calls, in the order of use (docs/design.md, "One API pattern for every tracker"), for the
+ * manager pft_tbd_* and the standalone filter pft_tbd_filter_* alike (they share
+ * pft_tbd_config_t): pft_tbd_config_default (or _recommended), change fields,
+ * pft_tbd_config_check, *_workspace_size, *_init, *_update per frame, results copied out
+ * (pft_tbd_tracks, pft_tbd_events, pft_tbd_search_estimate, pft_tbd_filter_estimate), *_reset
+ * to start over. The standalone filter runs cfg.n_search particles of cfg.kind.
  */
 #ifndef PFT_TBD_H
 #define PFT_TBD_H
@@ -44,6 +55,12 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Instances: declared by the caller, layouts in pft/internal/pft_tbd_types.h (not API; included
+ * at the end of this header so that sizeof works). */
+typedef struct pft_tbd_meas_s pft_tbd_meas_t;     /**< measurement model constants */
+typedef struct pft_tbd_filter_s pft_tbd_filter_t; /**< one filter (standalone, or a layer) */
+typedef struct pft_tbd_s pft_tbd_t;               /**< the multi-target manager */
 
 /** Largest window half-size p accepted (window (2p+1)^2 pixels). */
 #define PFT_TBD_MAX_WINDOW 4u
@@ -58,13 +75,13 @@ typedef enum {
     PFT_TBD_PF = 1    /**< bootstrap PF-TBD baseline: the full 5-D state is sampled */
 } pft_tbd_kind_t;
 
-/** Kalman time-update variant of the RBPF (ALGORITHMS.md 2.3 step 3). */
+/** Kalman time-update variant of the RBPF (docs/algorithms.md 2.3 step 3). */
 typedef enum {
     PFT_TBD_KF_EXACT = 0, /**< decorrelated, calibrated (default) */
     PFT_TBD_KF_PAPER = 1  /**< as printed: ignores the position/velocity noise correlation */
 } pft_tbd_kf_variant_t;
 
-/** Shape of a confirmed track's constraint region D (ALGORITHMS.md 2.4, 2.7), before it is
+/** Shape of a confirmed track's constraint region D (docs/algorithms.md 2.4, 2.7), before it is
  *  grown by d_margin pixels on each side. */
 typedef enum {
     PFT_TBD_D_WINDOW = 0, /**< the (2p+1)^2 window C(x) around the estimate (the paper) */
@@ -76,7 +93,7 @@ typedef enum {
 
 /**
  * Every parameter of the TBD filters. pft_tbd_config_default() fills the paper's values
- * ([P] in ALGORITHMS.md 2.8) and the documented defaults of the assumptions ([A]).
+ * ([P] in docs/algorithms.md 2.8) and the documented defaults of the assumptions ([A]).
  */
 typedef struct {
     /* image and sensor */
@@ -110,22 +127,22 @@ typedef struct {
     uint8_t dis_prev;        /**< previous windows compared against (default 5), 1..PFT_TBD_MAX_DIS_PREV */
     pft_real_t dis_ratio;    /**< gone when L(W_k) < dis_ratio * L_max (default 0.8, i.e. theta2 = L_max/5); in (0, 1] */
     bool dis_ratio_test;     /**< apply the windowed likelihood-ratio test above (default true, the paper) */
-    pft_real_t theta_end;    /**< a track also ends when its layer's existence probability falls below this [A] (default 0: off; the paper uses only the ratio test, which is a hair-trigger at 6 dB, see ALGORITHMS.md 2.6) */
+    pft_real_t theta_end;    /**< a track also ends when its layer's existence probability falls below this [A] (default 0: off; the paper uses only the ratio test, which is a hair-trigger at 6 dB, see docs/algorithms.md 2.6) */
     uint8_t d_margin;        /**< constraint region D = C(x) grown by this many pixels on each side [A] (default 0: the paper's C(x)) */
-    bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, ALGORITHMS.md 2.7, default) [A] */
+    bool d_current;          /**< build D from the track estimates of the current frame (true) or of the previous one (false, docs/algorithms.md 2.7, default) [A] */
     bool force_constraint;   /**< force E = 0 for search particles whose window centre enters a constraint region [A] (default true) */
     pft_tbd_dregion_t d_region; /**< shape of D (default PFT_TBD_D_WINDOW, the paper) [A] */
     bool residual_search;    /**< joint likelihood in the search layer: its particles are weighed on the frame minus the PSF h of every confirmed track at its current estimate (position and intensity) [A] (default false: the paper's single-target likelihood) */
     bool residual_tracks;    /**< joint likelihood in the track layers: track t is weighed on the frame minus the PSF of every other track at its predicted position x + v T (estimates of the previous frame) [A] (default false) */
     uint8_t residual_margin; /**< the subtracted PSF covers the window C(x) grown by this many pixels, half-size p + margin <= 2 PFT_TBD_MAX_WINDOW (default 1) */
-    uint8_t handover_gate;   /**< hand over to a new track layer only the search particles within this many pixels (square half-size, window centres) of the densest (2p+1)^2 block of E = 1 particles; 0 hands over every E = 1 particle (default, ALGORITHMS.md 2.7) [A] */
+    uint8_t handover_gate;   /**< hand over to a new track layer only the search particles within this many pixels (square half-size, window centres) of the densest (2p+1)^2 block of E = 1 particles; 0 hands over every E = 1 particle (default, docs/algorithms.md 2.7) [A] */
     uint8_t end_lr_frames;   /**< a track also ends when the frame log likelihood ratio of its layer (log_mean_lr) was below end_lr_max in each of the last end_lr_frames frames; 0 turns it off (default), at most PFT_TBD_MAX_DIS_R + 1 [A] */
     pft_real_t end_lr_max;   /**< threshold of the test above (default 0: the frame favours absence) */
     /* sizes */
-    uint32_t n_search;       /**< search-layer particles Ns (default 6000) */
+    uint32_t n_search;       /**< search-layer particles Ns, and the particles of a standalone filter (default 6000) */
     uint32_t n_track;        /**< particles per track layer Nt (default 500) */
     uint16_t max_targets;    /**< track layers available (default 4) */
-    pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline */
+    pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline, for every layer and the standalone filter */
     pft_tbd_kf_variant_t kf_variant; /**< RBPF Kalman variant (default exact) */
     uint64_t seed;           /**< RNG seed; layer l of the manager uses seed + l (default 1) */
 } pft_tbd_config_t;
@@ -153,23 +170,28 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg);
  */
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
 
-/** PFT_OK if cfg is usable (sizes, ranges, positivity), PFT_ERR_INVAL otherwise. */
-pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg);
+/**
+ * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL cfg; PFT_ERR_CONFIG for a refused value, and
+ * then *field (when field is not NULL) names the first refused field as written in the struct
+ * ("width", "vel_var[1]", "n_search", ...); *field is NULL on success.
+ */
+pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **field);
 
-/** A pixel box, 1-based inclusive pixel indices (i: x/columns, j: y/rows). Parts outside
- *  the image are ignored. */
+/** A pixel box: 0-based frame columns col_lo..col_hi and rows row_lo..row_hi, inclusive.
+ *  Parts outside the image are ignored. */
 typedef struct {
-    int32_t i_lo, i_hi, j_lo, j_hi;
+    int32_t col_lo, col_hi, row_lo, row_hi;
 } pft_tbd_region_t;
 
 /** The (2p+1)^2 window C(x) around position (x, y) (not clipped to the image): the
- *  constraint region D of a target estimated at (x, y). */
+ *  constraint region D of a target estimated at (x, y). An empty region (col_lo > col_hi) for
+ *  a NULL cfg or non-positive pixel pitch. */
 pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
 
 /** Estimates of one filter at the last frame, from the normalised weights before resampling. */
 typedef struct {
     pft_real_t p_exist;     /**< existence probability sum_s w_s E_s */
-    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles */
+    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles (0-based, see above) */
     pft_real_t vx, vy;      /**< weighted mean velocity (RBPF: of the Kalman means) */
     pft_real_t intensity;   /**< weighted mean intensity */
     pft_real_t pos_cov[3];  /**< weighted spread of the E = 1 positions: xx, xy, yy */
@@ -178,97 +200,41 @@ typedef struct {
     bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
 } pft_tbd_estimate_t;
 
-/**
- * Derived constants of the measurement model for one configuration (pft_tbd_model_init).
- * Public so the model can be evaluated and tested on its own; fields are read-only.
- */
-typedef struct {
-    uint16_t width, height;
-    uint8_t p;               /**< window half-size */
-    pft_real_t dx, dy;
-    pft_real_t inv_dx, inv_dy;
-    pft_real_t c0;           /**< dx*dy/(2 pi S^2): h = I*c0*gx*gy */
-    pft_real_t inv_2s2;      /**< 1/(2 S^2) */
-    pft_real_t inv_s2n;      /**< 1/sigma^2 */
-} pft_tbd_model_t;
+/* ---------------------------------- measurement model -------------------------------------- */
 
-/** Fills m from cfg (cfg must pass pft_tbd_config_check). */
-void pft_tbd_model_init(pft_tbd_model_t *m, const pft_tbd_config_t *cfg);
+/** Derived constants of the measurement model for cfg, so that it can be evaluated on its own.
+ *  PFT_ERR_INVAL for NULL, PFT_ERR_CONFIG for a refused cfg (m untouched). */
+pft_status_t pft_tbd_meas_init(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
 
-/** PSF contribution h(i, j; x, y, I) of a target at (x, y) with intensity I to pixel
- *  (i, j) (1-based). */
-pft_real_t pft_tbd_model_h(const pft_tbd_model_t *m, int32_t i, int32_t j, pft_real_t x,
-                           pft_real_t y, pft_real_t intensity);
+/** PSF contribution h(c, r; x, y, I) of a target at (x, y) with intensity I to the pixel in
+ *  column c, row r (0-based; 0 for a NULL m). */
+pft_real_t pft_tbd_meas_h(const pft_tbd_meas_t *m, int32_t c, int32_t r, pft_real_t x,
+                          pft_real_t y, pft_real_t intensity);
 
 /**
  * Log likelihood ratio of a target (x, y, I) against noise only: sum over the window C(x),
  * clipped to the image, of h*(2z - h)/(2 sigma^2). img is the converted frame, row-major,
- * width*height intensities (img[(j-1)*width + (i-1)] is pixel (i, j)). The Gaussian is
+ * width*height intensities (img[r*width + c] is the pixel in column c, row r). The Gaussian is
  * evaluated separably: 2(2p+1) exponentials per call. Q16: pixel sums saturate at +-32768.
  */
-pft_real_t pft_tbd_model_llr(const pft_tbd_model_t *m, const pft_real_t *img, pft_real_t x,
-                             pft_real_t y, pft_real_t intensity);
+pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
+                            pft_real_t y, pft_real_t intensity);
 
-/** Largest half-size accepted by pft_tbd_model_add_psf. */
+/** Largest half-size accepted by pft_tbd_meas_add_psf. */
 #define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
 
 /**
- * img += h(i, j; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
+ * img += h(c, r; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
  * round(y/dy)), clipped to the image (half is capped at PFT_TBD_MAX_PSF_HALF). A negative
  * intensity subtracts the target: the log likelihood ratio of a second target s on the result,
- * pft_tbd_model_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)
+ * pft_tbd_meas_llr(img - h_t), is the joint log likelihood ratio log p(z | s, t) - log p(z | t)
  * of the pixels where h_t was subtracted. Q16: pixels saturate at +-32768.
  */
-void pft_tbd_model_add_psf(const pft_tbd_model_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
-                           pft_real_t intensity, uint8_t half);
+void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x, pft_real_t y,
+                          pft_real_t intensity, uint8_t half);
 
-/** SoA particle arrays (internal layout; RBPF uses all, PF leaves px/py NULL). */
-typedef struct {
-    pft_real_t *x, *y, *in; /**< position and intensity */
-    pft_real_t *mx, *my;    /**< RBPF: Kalman velocity means; PF: sampled velocities */
-    pft_real_t *px, *py;    /**< RBPF: Kalman velocity variances (P stays diagonal) */
-    uint8_t *e;             /**< existence E */
-} pft_tbd_particles_t;
+/* --------------------------------- standalone filter --------------------------------------- */
 
-/**
- * One TBD filter (a single target with existence). Fields are private; read results with
- * pft_tbd_filter_estimate(). Used directly for a single target (the paper's Exp. 1) and as
- * the search and track layers of pft_tbd_t.
- */
-typedef struct {
-    pft_tbd_config_t cfg;
-    pft_tbd_kind_t kind;
-    uint32_t n;              /**< particles */
-    bool births;             /**< births from E = 0 allowed (false in track layers) */
-    bool constrain;          /**< force E = 0 inside the exclusion mask (search layer) */
-    pft_tbd_particles_t cur, nxt;
-    pft_real_t *lw;
-    pft_weight_t *w;
-    uint32_t *idx;
-    pft_real_t *img;         /**< standalone only: converted frame */
-    uint8_t *mask;           /**< standalone only: exclusion mask */
-    uint32_t *cand;          /**< standalone only: birth candidate pixels */
-    /* derived constants */
-    pft_tbd_model_t model;
-    pft_real_t log_n;        /**< log N */
-    pft_real_t log_ratio;    /**< log dis_ratio */
-    pft_real_t kf_qpos;      /**< q1 T^3 / 3 */
-    pft_real_t kf_qvel;      /**< q1 T (paper) or q1 T / 4 (exact) */
-    pft_real_t ch_pos, ch_cross, ch_vel, ch_int; /**< PF: chol(V) per axis, sqrt(q2 T) */
-    pft_real_t vel_sd[2];    /**< PF: sqrt(P0) */
-    pft_real_t birth_lw;     /**< birth log-weight correction of the current frame */
-    uint32_t p16_b, p16_d, p16_eta; /**< probabilities in 1/65536 steps (0..65536) */
-    pft_rng_t rng;
-    uint32_t frames;         /**< accepted updates */
-    pft_tbd_estimate_t est;
-    /* disappearance statistic */
-    pft_real_t lr_hist[PFT_TBD_MAX_DIS_R + 1u];   /**< last log mean LRs (ring) */
-    pft_real_t win_hist[PFT_TBD_MAX_DIS_PREV];    /**< previous window statistics (ring) */
-    uint32_t n_lr, n_win;
-    bool gone;               /**< disappearance declared at the last update */
-} pft_tbd_filter_t;
-
-/* ---- workspace sizes (constant expressions; equal to the functions below) ---- */
 /** @cond internal */
 #define PFT_TBD_NSTATE_(kind) ((kind) == PFT_TBD_RBPF ? 7u : 5u)
 #define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
@@ -281,23 +247,29 @@ typedef struct {
      PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
 /** @endcond */
 
-/** Workspace bytes of a standalone filter with n particles on a w x h image. */
+/** Workspace bytes of a standalone filter with n particles of the given kind on a w x h image
+ *  (constant expression; with n = cfg.n_search, kind = cfg.kind, w x h = cfg.width x
+ *  cfg.height it equals pft_tbd_filter_workspace_size). */
 #define PFT_TBD_FILTER_WORKSPACE_BYTES(n, kind, w, h)                                           \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_PARTICLE_BYTES_(n, kind))
 
-/** Workspace bytes a standalone filter with n particles needs for cfg (image size from cfg). */
-size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg, uint32_t n_particles,
-                                     pft_tbd_kind_t kind);
+/** Workspace bytes pft_tbd_filter_init needs for cfg (cfg.n_search particles of cfg.kind);
+ *  0 for a NULL or refused cfg. */
+size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg);
 
 /**
- * Initialises a standalone filter with births (cfg.kind is ignored; `kind` is used).
- * All particles start with E = 0; the first update draws births with probability eta.
- * @return PFT_ERR_INVAL for a bad config or n_particles outside 1..PFT_CFG_MAX_PARTICLES,
- *         PFT_ERR_NOMEM when work_len is short (nothing written outside the instance).
+ * Initialises a standalone filter with births: cfg.n_search particles of cfg.kind (the other
+ * manager sizes are not used). All particles start with E = 0; the first update draws births
+ * with probability eta. The config is copied.
+ * @return PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM
+ *         when work_len is short (nothing written outside the instance).
  */
-pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg,
-                                 uint32_t n_particles, pft_tbd_kind_t kind, void *work,
+pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len);
+
+/** Back to the state right after pft_tbd_filter_init (same seed, workspace reused).
+ *  PFT_ERR_INVAL for NULL, PFT_ERR_STATE for a filter that is not a standalone one. */
+pft_status_t pft_tbd_filter_reset(pft_tbd_filter_t *f);
 
 /** One frame: existence prediction, propagation and births, weighting, estimates,
  *  systematic resampling. Same as pft_tbd_filter_update_ex with no exclusion regions. */
@@ -312,7 +284,7 @@ pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame
 pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *frame,
                                       const pft_tbd_region_t *regions, size_t n_regions);
 
-/** Estimates of the last update (all zero and valid == false before the first). */
+/** Copies the estimates of the last update (all zero and valid == false before the first). */
 pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out);
 
 /* --------------------------------- multi-target manager ------------------------------------ */
@@ -343,32 +315,12 @@ typedef struct {
     pft_real_t x, y;        /**< position at the event (ENDED: the last estimate) */
 } pft_tbd_event_t;
 
-/**
- * The multi-target manager (ALGORITHMS.md 2.7): one search layer (cfg.n_search particles,
- * births outside the constraint regions) and up to cfg.max_targets track layers
- * (cfg.n_track particles each, no births). Fields are private.
- */
-typedef struct {
-    pft_tbd_config_t cfg;
-    pft_tbd_filter_t search;
-    pft_tbd_filter_t *tracks;    /**< max_targets slots (workspace) */
-    pft_tbd_track_t *records;    /**< max_targets slots (workspace); id 0 marks a free slot */
-    pft_tbd_event_t *events;     /**< max_targets + 1 (workspace) */
-    uint32_t n_events;
-    pft_real_t *img;
-    uint8_t *mask;
-    uint32_t *cand;
-    pft_real_t *res;             /**< residual frame (joint likelihood, cfg.residual_*) */
-    uint32_t frame;              /**< frames accepted so far (the last frame number) */
-    uint32_t next_id;
-    uint16_t n_tracks;           /**< active tracks */
-} pft_tbd_t;
-
 /** @cond internal */
 #define PFT_TBD_EVENT_BYTES_(maxt) PFT_WS_ROUND((size_t)((maxt) + 1u) * sizeof(pft_tbd_event_t))
 /** @endcond */
 
-/** Workspace bytes of the manager (kind: cfg.kind; w x h: cfg.width x cfg.height). */
+/** Workspace bytes of the manager (constant expression; with the sizes, kind and image of cfg
+ *  it equals pft_tbd_workspace_size). */
 #define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) +                                 \
      PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                                                  \
@@ -377,15 +329,24 @@ typedef struct {
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
      PFT_TBD_EVENT_BYTES_(max_targets) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)))
 
-/** Workspace bytes pft_tbd_init needs for cfg. */
+/** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
-/** Initialises the manager: no tracks, the search layer all E = 0.
- *  PFT_ERR_INVAL for a bad config, PFT_ERR_NOMEM for a short workspace. */
+/**
+ * Initialises the manager (docs/algorithms.md 2.7): one search layer (cfg.n_search particles,
+ * births outside the constraint regions) and up to cfg.max_targets track layers (cfg.n_track
+ * particles each, no births); no tracks, the search layer all E = 0. The config is copied.
+ * PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM for a
+ * short workspace.
+ */
 pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
 
+/** Back to the state right after pft_tbd_init (same seeds, no tracks, ids from 1 again,
+ *  workspace reused). PFT_ERR_INVAL for NULL or an uninitialised manager. */
+pft_status_t pft_tbd_reset(pft_tbd_t *t);
+
 /**
- * One frame (ALGORITHMS.md 2.7): update every track layer (with residual_tracks, each on the
+ * One frame (docs/algorithms.md 2.7): update every track layer (with residual_tracks, each on the
  * frame minus the other tracks' PSFs at their predicted positions) and test disappearance,
  * rebuild the constraint regions from the remaining tracks' estimates, update the search
  * layer (with residual_search, on the frame minus every remaining track's PSF at its current
@@ -395,19 +356,23 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
 
-/** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist. */
+/** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist (out may
+ *  be NULL with max 0 to ask the count). */
 size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
 
 /** Copies up to max events of the last update into out; returns how many happened. */
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
 
-/** The search layer's estimate at the last frame (p_exist is the appearance statistic). */
+/** Copies the search layer's estimate at the last frame (p_exist is the appearance
+ *  statistic). */
 pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out);
 
-/** Frame number of the last accepted update (1-based; 0 before the first). */
-static inline uint32_t pft_tbd_frame(const pft_tbd_t *t) { return t->frame; }
+/** Frame number of the last accepted update (1-based; 0 before the first and for NULL). */
+uint32_t pft_tbd_frame(const pft_tbd_t *t);
 
 #ifdef __cplusplus
 }
 #endif
+
+#include "pft/internal/pft_tbd_types.h"
 #endif

@@ -55,15 +55,19 @@ static inline pft_real_t pft_kacc_to_(pft_kacc_t a)
 
 /* ------------------------------- 2x2 symmetric -------------------------------------------- */
 /* Determinant of [[a, b], [b, d]] as an accumulator (q16: exact Q32.32, each product below
- * 2^62 in magnitude); true if the matrix is positive definite (a > 0 and det > 0). */
-static bool pft_det2_pd_(pft_real_t a, pft_real_t b, pft_real_t d, pft_kacc_t *det)
+ * 2^62 in magnitude). PFT_OK if the matrix is positive definite (a > 0 and det > 0),
+ * PFT_ERR_SINGULAR if it is not, PFT_ERR_RANGE if (float) the determinant overflowed. */
+static pft_status_t pft_det2_pd_(pft_real_t a, pft_real_t b, pft_real_t d, pft_kacc_t *det)
 {
 #ifdef PFT_NUMERIC_Q16
     *det = (int64_t)a * d - (int64_t)b * b;
-    return a > 0 && *det > 0;
+    return a > 0 && *det > 0 ? PFT_OK : PFT_ERR_SINGULAR;
 #else
     *det = a * d - b * b;
-    return a > 0.0f && *det > 0.0f && *det <= PFT_REAL_MAX;
+    if (!(a > 0.0f && *det > 0.0f)) {
+        return PFT_ERR_SINGULAR;
+    }
+    return *det <= PFT_REAL_MAX ? PFT_OK : PFT_ERR_RANGE;
 #endif
 }
 
@@ -108,23 +112,25 @@ static bool pft_kdiv_(pft_kacc_t num, pft_kacc_t det, pft_real_t *out)
 #endif
 }
 
-/* Inverse of [[a, b], [b, d]] if positive definite and representable. */
-static bool pft_inv2_(pft_real_t a, pft_real_t b, pft_real_t d, pft_real_t out[4])
+/* Inverse of [[a, b], [b, d]]: PFT_ERR_SINGULAR if not positive definite, PFT_ERR_RANGE if an
+ * entry is not representable; out untouched then. */
+static pft_status_t pft_inv2_(pft_real_t a, pft_real_t b, pft_real_t d, pft_real_t out[4])
 {
     pft_kacc_t det;
     pft_real_t r[3];
-    if (!pft_det2_pd_(a, b, d, &det)) {
-        return false;
+    pft_status_t st = pft_det2_pd_(a, b, d, &det);
+    if (st != PFT_OK) {
+        return st;
     }
     if (!pft_kdiv_(pft_kacc_from_(d), det, &r[0]) || !pft_kdiv_(pft_kacc_from_(pft_neg(b)), det, &r[1]) ||
         !pft_kdiv_(pft_kacc_from_(a), det, &r[2])) {
-        return false;
+        return PFT_ERR_RANGE;
     }
     out[0] = r[0];
     out[1] = r[1];
     out[2] = r[1];
     out[3] = r[2];
-    return true;
+    return PFT_OK;
 }
 
 pft_status_t pft_mat2_inv_sym(const pft_real_t A[4], pft_real_t Ainv[4])
@@ -134,8 +140,9 @@ pft_status_t pft_mat2_inv_sym(const pft_real_t A[4], pft_real_t Ainv[4])
     if (A == NULL || Ainv == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (!pft_inv2_(A[0], A[1], A[3], r)) {
-        return PFT_ERR_RANGE;
+    pft_status_t st = pft_inv2_(A[0], A[1], A[3], r);
+    if (st != PFT_OK) {
+        return st;
     }
     for (i = 0u; i < 4u; ++i) {
         Ainv[i] = r[i];
@@ -154,8 +161,9 @@ pft_status_t pft_mat2_chol(const pft_real_t A[4], pft_real_t L[4])
     {
         pft_kacc_t det;
         pft_real_t schur;
-        if (!pft_det2_pd_(A[0], A[1], A[3], &det)) {
-            return PFT_ERR_RANGE;
+        pft_status_t st = pft_det2_pd_(A[0], A[1], A[3], &det);
+        if (st != PFT_OK) {
+            return st;
         }
         /* Schur complement a11 - a01^2 / a00 = det / a00, in (0, a11]: one rounding. */
         (void)pft_kdiv_(det, pft_kacc_from_(A[0]), &schur);
@@ -216,20 +224,13 @@ static void pft_kf_predict_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_
     }
 }
 
-/* Update with a 2-D measurement z = H x + v, H 2 x n (H == NULL means H = I, n = 2). */
-static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
-                                    const pft_real_t z[2], const pft_real_t R[4])
+/* P H' (n x 2) and S = H P H' + R (upper: s00, s01, s11) for a 2 x n H (NULL: H = I, n = 2). */
+static void pft_kf_innov_cov_(unsigned n, const pft_real_t *P, const pft_real_t *H,
+                              const pft_real_t R[4], pft_real_t *pht, pft_real_t s[3])
 {
-    pft_real_t pht[PFT_KF_NMAX * 2u]; /* P H', n x 2 */
-    pft_real_t s[3];                  /* S upper: s00, s01, s11 */
-    pft_real_t adj[4];                /* adjugate of S */
-    pft_kacc_t det;
-    pft_real_t k[PFT_KF_NMAX * 2u];   /* gain, n x 2 */
-    pft_real_t y[2];
-    pft_real_t xn[PFT_KF_NMAX];
-    pft_real_t pn[PFT_KF_NMAX * PFT_KF_NMAX];
+    static const unsigned sa[3] = {0u, 0u, 1u};
+    static const unsigned sb[3] = {0u, 1u, 1u};
     unsigned i;
-    unsigned j;
     unsigned a;
     unsigned l;
     for (i = 0u; i < n; ++i) {
@@ -245,28 +246,28 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
             }
         }
     }
-    /* S = H P H' + R (upper) */
-    {
-        const unsigned sa[3] = {0u, 0u, 1u};
-        const unsigned sb[3] = {0u, 1u, 1u};
-        for (i = 0u; i < 3u; ++i) {
-            pft_kacc_t acc = pft_kacc_from_(R[sa[i] * 2u + sb[i]]);
-            if (H == NULL) {
-                acc = pft_kacc_mac_(acc, pht[sa[i] * 2u + sb[i]], PFT_REAL_ONE);
-            } else {
-                for (l = 0u; l < n; ++l) {
-                    acc = pft_kacc_mac_(acc, H[sa[i] * n + l], pht[l * 2u + sb[i]]);
-                }
+    for (i = 0u; i < 3u; ++i) {
+        pft_kacc_t acc = pft_kacc_from_(R[sa[i] * 2u + sb[i]]);
+        if (H == NULL) {
+            acc = pft_kacc_mac_(acc, pht[sa[i] * 2u + sb[i]], PFT_REAL_ONE);
+        } else {
+            for (l = 0u; l < n; ++l) {
+                acc = pft_kacc_mac_(acc, H[sa[i] * n + l], pht[l * 2u + sb[i]]);
             }
-            s[i] = pft_kacc_to_(acc);
         }
+        s[i] = pft_kacc_to_(acc);
     }
-    if (!pft_det2_pd_(s[0], s[1], s[2], &det)) {
-        return PFT_ERR_RANGE;
-    }
-    /* K = P H' adj(S) / det: the numerator is one exact accumulation, then one rounding
-     * (q16: better than rounding S^-1 first, whose entries have few significant bits when S
-     * is large). A gain beyond the real range saturates. */
+}
+
+/* K = P H' adj(S) / det (n x 2): the numerator is one exact accumulation, then one rounding
+ * (q16: better than rounding S^-1 first, whose entries have few significant bits when S is
+ * large). A gain beyond the real range saturates. */
+static void pft_kf_gain_(unsigned n, const pft_real_t *pht, const pft_real_t s[3], pft_kacc_t det,
+                         pft_real_t *k)
+{
+    pft_real_t adj[4];
+    unsigned i;
+    unsigned a;
     adj[0] = s[2];
     adj[1] = pft_neg(s[1]);
     adj[2] = adj[1];
@@ -279,7 +280,19 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
             (void)pft_kdiv_(acc, det, &k[i * 2u + a]);
         }
     }
-    /* innovation y = z - H x */
+}
+
+/* x += K (z - H x), P -= K (P H')' (upper triangle, mirrored). */
+static void pft_kf_apply_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
+                          const pft_real_t z[2], const pft_real_t *k, const pft_real_t *pht)
+{
+    pft_real_t y[2];
+    pft_real_t xn[PFT_KF_NMAX];
+    pft_real_t pn[PFT_KF_NMAX * PFT_KF_NMAX];
+    unsigned i;
+    unsigned j;
+    unsigned a;
+    unsigned l;
     for (a = 0u; a < 2u; ++a) {
         pft_kacc_t acc = pft_kacc_from_(z[a]);
         if (H == NULL) {
@@ -297,7 +310,6 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
         acc = pft_kacc_mac_(acc, k[i * 2u + 1u], y[1]);
         xn[i] = pft_kacc_to_(acc);
     }
-    /* P - K (P H')' : upper triangle, mirrored */
     for (i = 0u; i < n; ++i) {
         for (j = i; j < n; ++j) {
             pft_kacc_t acc = pft_kacc_from_(P[i * n + j]);
@@ -313,6 +325,25 @@ static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, co
     for (i = 0u; i < n * n; ++i) {
         P[i] = pn[i];
     }
+}
+
+/* Update with a 2-D measurement z = H x + v, H 2 x n (H == NULL means H = I, n = 2). A refused
+ * update (S not positive definite) changes nothing. */
+static pft_status_t pft_kf_update2_(unsigned n, pft_real_t *x, pft_real_t *P, const pft_real_t *H,
+                                    const pft_real_t z[2], const pft_real_t R[4])
+{
+    pft_real_t pht[PFT_KF_NMAX * 2u]; /* P H', n x 2 */
+    pft_real_t s[3];                  /* S upper: s00, s01, s11 */
+    pft_real_t k[PFT_KF_NMAX * 2u];   /* gain, n x 2 */
+    pft_kacc_t det;
+    pft_status_t st;
+    pft_kf_innov_cov_(n, P, H, R, pht, s);
+    st = pft_det2_pd_(s[0], s[1], s[2], &det);
+    if (st != PFT_OK) {
+        return st;
+    }
+    pft_kf_gain_(n, pht, s, det, k);
+    pft_kf_apply_(n, x, P, H, z, k, pht);
     return PFT_OK;
 }
 
@@ -371,12 +402,11 @@ pft_status_t pft_kf2_update_scalar(pft_real_t x[2], pft_real_t P[4], const pft_r
     acc = pft_kacc_mac_(acc, h[0], ph[0]);
     acc = pft_kacc_mac_(acc, h[1], ph[1]);
     s = pft_kacc_to_(acc);
-#ifdef PFT_NUMERIC_FLOAT
-    if (!(s > 0.0f) || !(s <= PFT_REAL_MAX)) {
-        return PFT_ERR_RANGE;
+    if (!(s > PFT_C(0.0))) {
+        return PFT_ERR_SINGULAR; /* the innovation variance is not positive */
     }
-#else
-    if (s <= 0) {
+#ifdef PFT_NUMERIC_FLOAT
+    if (!(s <= PFT_REAL_MAX)) {
         return PFT_ERR_RANGE;
     }
 #endif

@@ -134,7 +134,9 @@ static pft_wacc_t pft_tgt_scaled_(pft_wacc_t total, uint32_t u)
 
 /* Total weight and index of the last positive weight. Returns false when nothing is positive
  * (or, in float, when the total is not finite). */
-static bool pft_total_(const pft_weight_t *w, size_t m, pft_wacc_t *total, size_t *last)
+/* Total of the positive weights and the index of the last positive one. PFT_ERR_DEGENERATE
+ * when there is none (or m == 0), PFT_ERR_RANGE when (float) the total overflowed. */
+static pft_status_t pft_total_(const pft_weight_t *w, size_t m, pft_wacc_t *total, size_t *last)
 {
     pft_wacc_t sum = 0;
     size_t j;
@@ -150,12 +152,12 @@ static bool pft_total_(const pft_weight_t *w, size_t m, pft_wacc_t *total, size_
     }
 #ifdef PFT_NUMERIC_FLOAT
     if (!(sum <= PFT_REAL_MAX)) {
-        return false; /* overflowed to infinity */
+        return PFT_ERR_RANGE; /* overflowed to infinity */
     }
 #endif
     *total = sum;
     *last = lastpos;
-    return any && sum > 0;
+    return any && sum > 0 ? PFT_OK : PFT_ERR_DEGENERATE;
 }
 
 /* The walk with a running cumulative sum c (c == c_j). */
@@ -213,13 +215,18 @@ pft_status_t pft_resample_systematic_u(const pft_weight_t *w, size_t m, uint32_t
                                        uint32_t u0)
 {
     pft_wacc_t total;
+    pft_status_t st;
     size_t last;
     pft_usrc_t src;
     if (!pft_args_ok_(w, m, idx, n)) {
         return PFT_ERR_INVAL;
     }
-    if (m == 0u || !pft_total_(w, m, &total, &last)) {
-        return PFT_ERR_RANGE;
+    if (m == 0u) {
+        return PFT_ERR_DEGENERATE;
+    }
+    st = pft_total_(w, m, &total, &last);
+    if (st != PFT_OK) {
+        return st;
     }
     if (n == 0u) {
         return PFT_OK;
@@ -234,13 +241,18 @@ pft_status_t pft_resample_stratified_u(const pft_weight_t *w, size_t m, uint32_t
                                        const uint32_t *u)
 {
     pft_wacc_t total;
+    pft_status_t st;
     size_t last;
     pft_usrc_t src;
     if (!pft_args_ok_(w, m, idx, n) || (u == NULL && n > 0u)) {
         return PFT_ERR_INVAL;
     }
-    if (m == 0u || !pft_total_(w, m, &total, &last)) {
-        return PFT_ERR_RANGE;
+    if (m == 0u) {
+        return PFT_ERR_DEGENERATE;
+    }
+    st = pft_total_(w, m, &total, &last);
+    if (st != PFT_OK) {
+        return st;
     }
     if (n == 0u) {
         return PFT_OK;
@@ -314,13 +326,18 @@ pft_status_t pft_resample_multinomial_u(const pft_weight_t *w, size_t m, uint32_
                                         const uint32_t *u)
 {
     pft_wacc_t total;
+    pft_status_t st;
     size_t last;
     size_t k;
     if (!pft_args_ok_(w, m, idx, n) || (u == NULL && n > 0u)) {
         return PFT_ERR_INVAL;
     }
-    if (m == 0u || !pft_total_(w, m, &total, &last)) {
-        return PFT_ERR_RANGE;
+    if (m == 0u) {
+        return PFT_ERR_DEGENERATE;
+    }
+    st = pft_total_(w, m, &total, &last);
+    if (st != PFT_OK) {
+        return st;
     }
     for (k = 0u; k < n; ++k) {
         idx[k] = u[k];
@@ -401,7 +418,7 @@ static pft_status_t pft_residual_(const pft_weight_t *w, size_t m, pft_wacc_t to
     src.u = NULL;
     src.rng = rng;
     if (filled < n) {
-        if (pft_total_(res, m, &rtotal, &rlast)) {
+        if (pft_total_(res, m, &rtotal, &rlast) == PFT_OK) {
             pft_strat_walk_(res, rtotal, rlast, idx + filled, n - filled, &src, true);
         } else {
             /* Cannot happen in exact arithmetic (the residuals sum to n - filled > 0); after
@@ -424,6 +441,7 @@ pft_status_t pft_resample(pft_resample_scheme_t scheme, const pft_weight_t *w, s
                           size_t scratch_len)
 {
     pft_wacc_t total;
+    pft_status_t st;
     size_t last;
     pft_usrc_t src;
     size_t k;
@@ -441,8 +459,12 @@ pft_status_t pft_resample(pft_resample_scheme_t scheme, const pft_weight_t *w, s
             return PFT_ERR_INVAL;
         }
     }
-    if (m == 0u || !pft_total_(w, m, &total, &last)) {
-        return PFT_ERR_RANGE;
+    if (m == 0u) {
+        return PFT_ERR_DEGENERATE;
+    }
+    st = pft_total_(w, m, &total, &last);
+    if (st != PFT_OK) {
+        return st;
     }
     if (n == 0u) {
         return PFT_OK;

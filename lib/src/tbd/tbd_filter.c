@@ -1,37 +1,7 @@
-/* One TBD filter: RBPF-TBD (ALGORITHMS.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
+/* One TBD filter: RBPF-TBD (docs/algorithms.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
 #include <string.h>
 
-#include "tbd_internal_.h"
-
-/* ---------------------------- weighted sums (both builds) --------------------------------- */
-#ifdef PFT_NUMERIC_Q16
-/* w (Q2.30) times v (Q16.16) is Q46 in int64; normalised weights sum to ~2^30, so a sum over
- * all particles stays below 2^61. */
-typedef int64_t tbd_acc_t;
-static inline tbd_acc_t acc_wx_(pft_weight_t w, pft_real_t v) { return (int64_t)w * v; }
-static pft_real_t acc_div_(tbd_acc_t num, pft_wacc_t den)
-{
-    if (den == 0u) {
-        return 0;
-    }
-    int64_t d = (int64_t)den;
-    int64_t q = (num >= 0 ? num + d / 2 : num - d / 2) / d;
-    return pft_sat64_(q);
-}
-/* a / b for 0 <= a <= b as a real in [0, 1]. */
-static pft_real_t wratio_(pft_wacc_t a, pft_wacc_t b)
-{
-    if (b == 0u) {
-        return 0;
-    }
-    return (pft_real_t)(((a << 16) + b / 2u) / b);
-}
-#else
-typedef float tbd_acc_t;
-static inline tbd_acc_t acc_wx_(pft_weight_t w, pft_real_t v) { return w * v; }
-static pft_real_t acc_div_(tbd_acc_t num, pft_wacc_t den) { return den > 0.0f ? num / den : 0.0f; }
-static pft_real_t wratio_(pft_wacc_t a, pft_wacc_t b) { return b > 0.0f ? a / b : 0.0f; }
-#endif
+#include "tbd_int.h"
 
 /* ---------------------------------- layout ------------------------------------------------ */
 
@@ -67,17 +37,6 @@ void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws)
     f->idx = (uint32_t *)pft_ws_take(ws, (size_t)f->n * sizeof(uint32_t));
 }
 
-static pft_real_t log_count_(uint32_t n)
-{
-    /* log n = log(n / 2^s) + s log 2, with n / 2^s < 2^14 so it is representable in Q16. */
-    uint32_t s = 0;
-    while (s < 31u && (n >> s) >= 16384u) {
-        ++s;
-    }
-    pft_real_t frac = pft_ratio((int32_t)n, (int32_t)(1u << s));
-    return pft_add(pft_log(frac), pft_mul_i(PFT_C(0.693147180559945), (int32_t)s));
-}
-
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f)
 {
     memset(&f->est, 0, sizeof(f->est));
@@ -98,27 +57,14 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
     f->n = n;
     f->births = births;
     f->constrain = constrain;
-    pft_tbd_model_init(&f->model, cfg);
-    f->log_n = log_count_(n);
+    pft_tbd_meas_setup_(&f->model, cfg);
+    f->log_n = pft_log_count_(n);
     f->log_ratio = pft_log(cfg->dis_ratio);
     pft_real_t T = cfg->T;
-    pft_real_t T3 = pft_mul(pft_sq(T), T);
-    f->kf_qpos = pft_div(pft_mul(cfg->q1, T3), PFT_C(3.0));
+    f->kf_qpos = pft_div(pft_mul(cfg->q1, pft_mul(pft_sq(T), T)), PFT_C(3.0)); /* q1 T^3 / 3 */
     pft_real_t q1T = pft_mul(cfg->q1, T);
     f->kf_qvel = cfg->kf_variant == PFT_TBD_KF_EXACT ? pft_mul(q1T, PFT_C(0.25)) : q1T;
-    /* chol of q1 [[T^3/3, T^2/2], [T^2/2, T]]: L11 = sqrt(q1T^3/3), L21 = q1T^2/2 / L11,
-     * L22 = sqrt(q1T/4). */
-    f->ch_pos = pft_sqrt(f->kf_qpos);
-    f->ch_cross = f->ch_pos > PFT_C(0.0)
-                      ? pft_div(pft_mul(pft_mul(cfg->q1, pft_sq(T)), PFT_C(0.5)), f->ch_pos)
-                      : PFT_C(0.0);
-    f->ch_vel = pft_sqrt(pft_mul(q1T, PFT_C(0.25)));
-    f->ch_int = pft_sqrt(pft_mul(cfg->q2, T));
-    f->vel_sd[0] = pft_sqrt(cfg->vel_var[0]);
-    f->vel_sd[1] = pft_sqrt(cfg->vel_var[1]);
-    f->p16_b = pft_tbd_p16_(cfg->pb);
-    f->p16_d = pft_tbd_p16_(cfg->pd);
-    f->p16_eta = pft_tbd_p16_(cfg->eta);
+    pft_tbd_dyn_setup_(&f->dyn, cfg);
     pft_rng_seed(&f->rng, seed);
     pft_tbd_filter_reset_stats_(f);
 }
@@ -188,35 +134,26 @@ static void kf_axis_(const kf_consts_t *kc, kf_memo_t *mm, pft_real_t *pos, pft_
     *p = mm->p_out;
 }
 
-static void birth_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc, uint32_t s)
+/* The kinematic state of particle s of P. */
+static pft_tbd_kin_t kin_(pft_tbd_particles_t *P, uint32_t s)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_config_t *c = &f->cfg;
-    uint32_t k = sc->cand[pft_rng_below(&f->rng, sc->n_cand)];
-    uint32_t col = k % c->width;
-    uint32_t row = k / c->width;
-    pft_real_t ux = pft_rng_uniform(&f->rng);
-    pft_real_t uy = pft_rng_uniform(&f->rng);
-    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    P->x[s] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    P->y[s] = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
-    P->in[s] = pft_rng_uniform_range(&f->rng, c->i_min, c->i_max);
-    if (f->kind == PFT_TBD_RBPF) {
-        P->mx[s] = c->vel_mean[0];
-        P->my[s] = c->vel_mean[1];
-        P->px[s] = c->vel_var[0];
-        P->py[s] = c->vel_var[1];
-    } else {
-        P->mx[s] = pft_add(c->vel_mean[0], pft_mul(f->vel_sd[0], pft_rng_gauss(&f->rng)));
-        P->my[s] = pft_add(c->vel_mean[1], pft_mul(f->vel_sd[1], pft_rng_gauss(&f->rng)));
-    }
+    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->mx[s], &P->my[s], &P->in[s]};
+    return k;
 }
 
-static void pf_axis_(const pft_tbd_filter_t *f, pft_real_t T, pft_real_t *pos, pft_real_t *v,
-                     pft_real_t g1, pft_real_t g2)
+/* b[s] = a[k] (the RBPF's Kalman variances too). */
+static void copy_particle_(pft_tbd_particles_t *b, uint32_t s, const pft_tbd_particles_t *a,
+                           uint32_t k, bool rb)
 {
-    *pos = pft_add(*pos, pft_add(pft_mul(T, *v), pft_mul(f->ch_pos, g1)));
-    *v = pft_add(*v, pft_add(pft_mul(f->ch_cross, g1), pft_mul(f->ch_vel, g2)));
+    b->x[s] = a->x[k];
+    b->y[s] = a->y[k];
+    b->in[s] = a->in[k];
+    b->mx[s] = a->mx[k];
+    b->my[s] = a->my[k];
+    if (rb) {
+        b->px[s] = a->px[k];
+        b->py[s] = a->py[k];
+    }
 }
 
 /* ---------------------------------- statistics -------------------------------------------- */
@@ -225,47 +162,41 @@ static void estimate_(pft_tbd_filter_t *f)
 {
     const pft_tbd_particles_t *P = &f->cur;
     const pft_weight_t *w = f->w;
-    pft_wacc_t wt = 0;
-    pft_wacc_t we = 0;
-    tbd_acc_t sx = 0, sy = 0, svx = 0, svy = 0, si = 0;
+    pft_tbd_wsum_t a;
+    pft_tbd_wsum_init_(&a);
     for (uint32_t s = 0; s < f->n; ++s) {
-        wt += w[s];
-        if (P->e[s] != 0u) {
-            we += w[s];
-            sx += acc_wx_(w[s], P->x[s]);
-            sy += acc_wx_(w[s], P->y[s]);
-            svx += acc_wx_(w[s], P->mx[s]);
-            svy += acc_wx_(w[s], P->my[s]);
-            si += acc_wx_(w[s], P->in[s]);
-        }
+        const pft_real_t v[5] = {P->x[s], P->y[s], P->mx[s], P->my[s], P->in[s]};
+        pft_tbd_wsum_add_(&a, w[s], P->e[s] != 0u, v);
     }
     pft_tbd_estimate_t *e = &f->est;
-    e->p_exist = wratio_(we, wt);
+    e->p_exist = pft_tbd_wsum_p_(&a);
     e->n_eff = pft_ess(w, f->n);
-    if (we > 0) {
-        e->x = acc_div_(sx, we);
-        e->y = acc_div_(sy, we);
-        e->vx = acc_div_(svx, we);
-        e->vy = acc_div_(svy, we);
-        e->intensity = acc_div_(si, we);
-        tbd_acc_t cxx = 0, cxy = 0, cyy = 0;
-        for (uint32_t s = 0; s < f->n; ++s) {
-            if (P->e[s] != 0u) {
-                pft_real_t ddx = pft_sub(P->x[s], e->x);
-                pft_real_t ddy = pft_sub(P->y[s], e->y);
-                cxx += acc_wx_(w[s], pft_sq(ddx));
-                cxy += acc_wx_(w[s], pft_mul(ddx, ddy));
-                cyy += acc_wx_(w[s], pft_sq(ddy));
-            }
-        }
-        e->pos_cov[0] = acc_div_(cxx, we);
-        e->pos_cov[1] = acc_div_(cxy, we);
-        e->pos_cov[2] = acc_div_(cyy, we);
-        e->valid = true;
+    pft_real_t m[5];
+    if (!pft_tbd_wsum_mean_(&a, m)) {
+        return;
     }
+    e->x = m[0];
+    e->y = m[1];
+    e->vx = m[2];
+    e->vy = m[3];
+    e->intensity = m[4];
+    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            pft_real_t ddx = pft_sub(P->x[s], e->x);
+            pft_real_t ddy = pft_sub(P->y[s], e->y);
+            cxx += pft_acc_wx_(w[s], pft_sq(ddx));
+            cxy += pft_acc_wx_(w[s], pft_mul(ddx, ddy));
+            cyy += pft_acc_wx_(w[s], pft_sq(ddy));
+        }
+    }
+    e->pos_cov[0] = pft_acc_div_(cxx, a.we);
+    e->pos_cov[1] = pft_acc_div_(cxy, a.we);
+    e->pos_cov[2] = pft_acc_div_(cyy, a.we);
+    e->valid = true;
 }
 
-/* Windowed log likelihood ratio and the disappearance test (ALGORITHMS.md 2.6). lr_hist[0]
+/* Windowed log likelihood ratio and the disappearance test (docs/algorithms.md 2.6). lr_hist[0]
  * and win_hist[0] are the newest entries. */
 static void disappearance_(pft_tbd_filter_t *f)
 {
@@ -312,20 +243,10 @@ static void resample_(pft_tbd_filter_t *f)
     }
     pft_tbd_particles_t *a = &f->cur;
     pft_tbd_particles_t *b = &f->nxt;
-    const uint32_t *idx = f->idx;
     bool rb = f->kind == PFT_TBD_RBPF;
     for (uint32_t s = 0; s < f->n; ++s) {
-        uint32_t k = idx[s];
-        b->x[s] = a->x[k];
-        b->y[s] = a->y[k];
-        b->in[s] = a->in[k];
-        b->mx[s] = a->mx[k];
-        b->my[s] = a->my[k];
-        if (rb) {
-            b->px[s] = a->px[k];
-            b->py[s] = a->py[k];
-        }
-        b->e[s] = a->e[k];
+        copy_particle_(b, s, a, f->idx[s], rb);
+        b->e[s] = a->e[f->idx[s]];
     }
     pft_tbd_particles_t t = *a;
     *a = *b;
@@ -334,77 +255,90 @@ static void resample_(pft_tbd_filter_t *f)
 
 /* ---------------------------------- one iteration ----------------------------------------- */
 
+/* What one step needs beyond the filter: the scene, the Kalman constants and memos, the birth
+ * and constraint switches of this frame. */
+typedef struct {
+    const pft_tbd_scene_t_ *sc;
+    kf_consts_t kc;
+    kf_memo_t mx, my;
+    uint32_t p_birth;
+    bool can_birth;
+    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
+} step_ctx_t;
+
+/* Steps 1-2 for particle s: existence, then the survivor's move (RBPF or PF) or a birth; a
+ * particle whose window centre leaves the image, or enters the exclusion mask, gets E = 0.
+ * Returns the new E; *born for a birth at this step. */
+static uint8_t move_particle_(pft_tbd_filter_t *f, step_ctx_t *x, uint32_t s, bool *born)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_kin_t k = kin_(P, s);
+    uint32_t u = pft_tbd_exist_draw_(&f->rng); /* one draw per particle */
+    uint8_t e = P->e[s];
+    *born = false;
+    if (e != 0u) {
+        if (u < f->dyn.p16_d) {
+            return 0u;
+        }
+        if (f->kind == PFT_TBD_RBPF) {
+            /* RBPF sampling of (x, y, I) and the velocity Kalman filter */
+            pft_real_t gx = pft_rng_gauss(&f->rng);
+            pft_real_t gy = pft_rng_gauss(&f->rng);
+            pft_real_t gi = pft_rng_gauss(&f->rng);
+            kf_axis_(&x->kc, &x->mx, &P->x[s], &P->mx[s], &P->px[s], gx);
+            kf_axis_(&x->kc, &x->my, &P->y[s], &P->my[s], &P->py[s], gy);
+            P->in[s] = pft_add(P->in[s], pft_mul(f->dyn.ch_int, gi));
+        } else {
+            pft_tbd_pf_move_(&f->dyn, f->cfg.T, &f->rng, &k);
+        }
+    } else if (x->can_birth && u < x->p_birth) {
+        bool rb = f->kind == PFT_TBD_RBPF;
+        pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &f->rng, &k);
+        if (rb) {
+            P->px[s] = f->cfg.vel_var[0];
+            P->py[s] = f->cfg.vel_var[1];
+        }
+        e = 1u;
+        *born = true;
+    } else {
+        return e;
+    }
+    /* [A] leaving the image ends the target; a window centre inside a confirmed target's
+     * region forces E = 0 (the constraint) */
+    size_t pix = 0;
+    if (!pft_tbd_centre_(&f->model, P->x[s], P->y[s], &pix) ||
+        (x->mask != NULL && x->mask[pix] != 0u)) {
+        e = 0u;
+    }
+    return e;
+}
+
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
 {
     const pft_tbd_config_t *c = &f->cfg;
     pft_tbd_particles_t *P = &f->cur;
-    uint32_t p_birth = f->frames == 0u ? f->p16_eta : f->p16_b;
-    bool can_birth = f->births && sc->n_cand > 0u;
-    f->birth_lw = PFT_C(0.0);
-    if (can_birth && c->birth_correction && sc->cand_is_b && sc->n_allowed > 0u) {
-        f->birth_lw = pft_log(pft_ratio((int32_t)sc->n_cand, (int32_t)sc->n_allowed));
-    }
-    kf_consts_t kc;
-    kc.T = c->T;
-    kc.T2 = pft_sq(c->T);
-    kc.c32T = pft_div(PFT_C(1.5), c->T);
-    kc.qpos = f->kf_qpos;
-    kc.qvel = f->kf_qvel;
-    kc.exact = c->kf_variant == PFT_TBD_KF_EXACT;
-    kf_memo_t mx = {0, 0, 0, 0, false};
-    kf_memo_t my = {0, 0, 0, 0, false};
-    bool rb = f->kind == PFT_TBD_RBPF;
-    const uint8_t *mask = f->constrain ? sc->mask : NULL;
-
+    step_ctx_t x;
+    memset(&x, 0, sizeof x);
+    x.sc = sc;
+    x.p_birth = pft_tbd_p_birth_(&f->dyn, f->frames == 0u);
+    x.can_birth = f->births && sc->n_cand > 0u;
+    x.mask = f->constrain ? sc->mask : NULL;
+    x.kc.T = c->T;
+    x.kc.T2 = pft_sq(c->T);
+    x.kc.c32T = pft_div(PFT_C(1.5), c->T);
+    x.kc.qpos = f->kf_qpos;
+    x.kc.qvel = f->kf_qvel;
+    x.kc.exact = c->kf_variant == PFT_TBD_KF_EXACT;
+    f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
     for (uint32_t s = 0; s < f->n; ++s) {
-        /* 1. existence (one draw per particle, decided on its top 16 bits) */
-        uint32_t u = pft_rng_u32(&f->rng) >> 16;
-        uint8_t e = P->e[s];
-        bool born = false;
-        if (e != 0u) {
-            if (u < f->p16_d) {
-                e = 0u;
-            } else if (rb) {
-                /* 2. survivors: RBPF sampling of (x, y, I) and the velocity Kalman filter */
-                pft_real_t gx = pft_rng_gauss(&f->rng);
-                pft_real_t gy = pft_rng_gauss(&f->rng);
-                pft_real_t gi = pft_rng_gauss(&f->rng);
-                kf_axis_(&kc, &mx, &P->x[s], &P->mx[s], &P->px[s], gx);
-                kf_axis_(&kc, &my, &P->y[s], &P->my[s], &P->py[s], gy);
-                P->in[s] = pft_add(P->in[s], pft_mul(f->ch_int, gi));
-            } else {
-                /* PF: X = F X + chol(V) n on the full state */
-                pft_real_t g1 = pft_rng_gauss(&f->rng);
-                pft_real_t g2 = pft_rng_gauss(&f->rng);
-                pft_real_t g3 = pft_rng_gauss(&f->rng);
-                pft_real_t g4 = pft_rng_gauss(&f->rng);
-                pft_real_t g5 = pft_rng_gauss(&f->rng);
-                pf_axis_(f, c->T, &P->x[s], &P->mx[s], g1, g2);
-                pf_axis_(f, c->T, &P->y[s], &P->my[s], g3, g4);
-                P->in[s] = pft_add(P->in[s], pft_mul(f->ch_int, g5));
-            }
-        } else if (can_birth && u < p_birth) {
-            birth_(f, sc, s);
-            e = 1u;
-            born = true;
-        }
-        /* A particle whose window centre leaves the image leaves the surveillance region: E = 0
-         * [A]. The constraint: a window centre inside a confirmed target's region forces E = 0. */
-        if (e != 0u) {
-            int32_t i0 = pft_tbd_pix_(P->x[s], f->model.inv_dx);
-            int32_t j0 = pft_tbd_pix_(P->y[s], f->model.inv_dy);
-            if (i0 < 1 || j0 < 1 || i0 > (int32_t)c->width || j0 > (int32_t)c->height) {
-                e = 0u;
-            } else if (mask != NULL &&
-                       mask[(size_t)(j0 - 1) * c->width + (size_t)(i0 - 1)] != 0u) {
-                e = 0u;
-            }
-        }
+        /* 1-2. existence, move or birth */
+        bool born;
+        uint8_t e = move_particle_(f, &x, s, &born);
         P->e[s] = e;
         /* 3. log-weight (eq. 20; E = 0 particles have likelihood ratio 1) */
         pft_real_t lw = PFT_C(0.0);
         if (e != 0u) {
-            lw = pft_tbd_model_llr(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
+            lw = pft_tbd_meas_llr_int_(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
             if (born) {
                 lw = pft_add(lw, f->birth_lw);
             }
@@ -429,11 +363,8 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
     for (uint32_t s = 0; s < src->n; ++s) {
         bool a = src->cur.e[s] != 0u;
         if (a && gate != NULL) {
-            int32_t i0 = pft_tbd_pix_(src->cur.x[s], src->model.inv_dx);
-            int32_t j0 = pft_tbd_pix_(src->cur.y[s], src->model.inv_dy);
-            a = i0 >= 1 && j0 >= 1 && i0 <= (int32_t)src->cfg.width &&
-                j0 <= (int32_t)src->cfg.height &&
-                gate[(size_t)(j0 - 1) * src->cfg.width + (size_t)(i0 - 1)] != 0u;
+            size_t pix = 0;
+            a = pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u;
         }
         src->w[s] = a ? PFT_W_ONE : (pft_weight_t)0;
         alive += a ? 1u : 0u;
@@ -449,16 +380,7 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
     pft_tbd_particles_t *b = &dst->cur;
     bool rb = dst->kind == PFT_TBD_RBPF;
     for (uint32_t s = 0; s < dst->n; ++s) {
-        uint32_t k = dst->idx[s];
-        b->x[s] = a->x[k];
-        b->y[s] = a->y[k];
-        b->in[s] = a->in[k];
-        b->mx[s] = a->mx[k];
-        b->my[s] = a->my[k];
-        if (rb) {
-            b->px[s] = a->px[k];
-            b->py[s] = a->py[k];
-        }
+        copy_particle_(b, s, a, dst->idx[s], rb);
         b->e[s] = 1u;
     }
     /* estimates of the handed-over set (equal weights) */
@@ -475,37 +397,30 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, cons
 
 /* ---------------------------------- public API -------------------------------------------- */
 
-size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg, uint32_t n_particles,
-                                     pft_tbd_kind_t kind)
+size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg)
 {
-    if (cfg == NULL) {
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_TBD_FILTER_WORKSPACE_BYTES(n_particles, kind, cfg->width, cfg->height);
+    return PFT_TBD_FILTER_WORKSPACE_BYTES(cfg->n_search, cfg->kind, cfg->width, cfg->height);
 }
 
-pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg,
-                                 uint32_t n_particles, pft_tbd_kind_t kind, void *work,
-                                 size_t work_len)
+/* Sets up f (cfg checked) with its buffers carved from work; false (f zeroed) when short. */
+static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
+                          size_t work_len)
 {
-    if (f == NULL || cfg == NULL || work == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (pft_tbd_config_check(cfg) != PFT_OK || n_particles < 1u ||
-        n_particles > PFT_CFG_MAX_PARTICLES || (kind != PFT_TBD_RBPF && kind != PFT_TBD_PF)) {
-        return PFT_ERR_INVAL;
-    }
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
     size_t npix = (size_t)cfg->width * cfg->height;
     pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, npix * sizeof(pft_real_t));
     uint8_t *mask = (uint8_t *)pft_ws_take(&ws, npix);
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
-    pft_tbd_filter_setup_(f, cfg, n_particles, kind, true, cfg->force_constraint, cfg->seed);
+    pft_tbd_filter_setup_(f, cfg, cfg->n_search, cfg->kind, true, cfg->force_constraint,
+                          cfg->seed);
     pft_tbd_particles_carve_(f, &ws);
     if (pft_ws_status(&ws) != PFT_OK) {
         memset(f, 0, sizeof(*f));
-        return PFT_ERR_NOMEM;
+        return false;
     }
     f->img = img;
     f->mask = mask;
@@ -514,7 +429,34 @@ pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cf
     memset(mask, 0, npix);
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_filter_clear_(f);
-    return PFT_OK;
+    return true;
+}
+
+pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
+                                 size_t work_len)
+{
+    if (f == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    return filter_build_(f, cfg, work, work_len) ? PFT_OK : PFT_ERR_NOMEM;
+}
+
+pft_status_t pft_tbd_filter_reset(pft_tbd_filter_t *f)
+{
+    if (f == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (f->img == NULL || f->n == 0u) {
+        return PFT_ERR_STATE; /* not initialised, or a layer owned by a pft_tbd_t */
+    }
+    /* the workspace starts at the (aligned) image buffer: carve it again from there */
+    pft_tbd_config_t cfg = f->cfg;
+    size_t len = PFT_TBD_FILTER_WORKSPACE_BYTES(cfg.n_search, cfg.kind, cfg.width, cfg.height) -
+                 (PFT_WS_ALIGN - 1u);
+    return filter_build_(f, &cfg, f->img, len) ? PFT_OK : PFT_ERR_NOMEM;
 }
 
 pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame)
@@ -547,11 +489,21 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     return PFT_OK;
 }
 
+void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,
+                      pft_tbd_estimate_t *out)
+{
+    *out = *in;
+    if (in->valid) {
+        out->x = pft_tbd_x_pub_(in->x, m->dx);
+        out->y = pft_tbd_x_pub_(in->y, m->dy);
+    }
+}
+
 pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out)
 {
     if (f == NULL || out == NULL) {
         return PFT_ERR_INVAL;
     }
-    *out = f->est;
+    pft_tbd_est_pub_(&f->model, &f->est, out);
     return PFT_OK;
 }

@@ -1,11 +1,11 @@
-/* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (ALGORITHMS.md 2.6-2.7). */
+/* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (docs/algorithms.md 2.6-2.7). */
 #include <string.h>
 
-#include "tbd_internal_.h"
+#include "tbd_int.h"
 
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
 {
-    if (cfg == NULL) {
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
     return PFT_TBD_WORKSPACE_BYTES(cfg->n_search, cfg->n_track, cfg->max_targets, cfg->kind,
@@ -50,20 +50,9 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
     }
 }
 
-pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
+/* Sets up t (cfg checked, work_len enough) on work: every layer seeded, no tracks. */
+static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
 {
-    if (t == NULL || cfg == NULL || work == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (pft_tbd_config_check(cfg) != PFT_OK) {
-        return PFT_ERR_INVAL;
-    }
-    pft_ws_t ws;
-    pft_ws_init(&ws, work, work_len);
-    carve_all_(t, cfg, &ws, false);
-    if (pft_ws_status(&ws) != PFT_OK) {
-        return PFT_ERR_NOMEM;
-    }
     memset(t, 0, sizeof(*t));
     t->cfg = *cfg;
     /* setup_ clears a filter's buffer pointers: set up first, carve after. */
@@ -94,8 +83,42 @@ pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work,
         pft_tbd_filter_clear_(&t->tracks[k]);
     }
     t->next_id = 1u;
+}
+
+pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
+{
+    if (t == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    carve_all_(t, cfg, &ws, false);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    build_(t, cfg, work, work_len);
     return PFT_OK;
 }
+
+pft_status_t pft_tbd_reset(pft_tbd_t *t)
+{
+    if (t == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->img == NULL) {
+        return PFT_ERR_STATE;
+    }
+    /* the workspace starts at the (aligned) image buffer: build it again from there */
+    pft_tbd_config_t cfg = t->cfg;
+    size_t len = pft_tbd_workspace_size(&cfg) - (PFT_WS_ALIGN - 1u);
+    build_(t, &cfg, t->img, len);
+    return PFT_OK;
+}
+
+uint32_t pft_tbd_frame(const pft_tbd_t *t) { return t == NULL ? 0u : t->frame; }
 
 static uint32_t count_alive_(const pft_tbd_filter_t *f)
 {
@@ -140,20 +163,20 @@ static uint8_t psf_half_(const pft_tbd_config_t *cfg)
     return (uint8_t)(cfg->window + cfg->residual_margin);
 }
 
-/* res = img on the pixels pft_tbd_model_add_psf(.., x, y, .., half) touched. */
+/* res = img on the pixels pft_tbd_meas_add_psf_int_(.., x, y, .., half) touched. */
 static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
                          pft_real_t x, pft_real_t y, uint8_t half)
 {
-    pft_tbd_region_t r = pft_tbd_window_region(cfg, x, y);
+    pft_tbd_region_t r = pft_tbd_window_int_(cfg, x, y);
     int32_t dp = (int32_t)half - (int32_t)cfg->window;
-    int32_t ilo = r.i_lo - dp < 1 ? 1 : r.i_lo - dp;
-    int32_t ihi = r.i_hi + dp > (int32_t)cfg->width ? (int32_t)cfg->width : r.i_hi + dp;
-    int32_t jlo = r.j_lo - dp < 1 ? 1 : r.j_lo - dp;
-    int32_t jhi = r.j_hi + dp > (int32_t)cfg->height ? (int32_t)cfg->height : r.j_hi + dp;
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        size_t o = (size_t)(j - 1) * cfg->width;
-        for (int32_t i = ilo; i <= ihi; ++i) {
-            res[o + (size_t)(i - 1)] = img[o + (size_t)(i - 1)];
+    int32_t clo = r.col_lo - dp < 0 ? 0 : r.col_lo - dp;
+    int32_t chi = r.col_hi + dp > (int32_t)cfg->width - 1 ? (int32_t)cfg->width - 1 : r.col_hi + dp;
+    int32_t rlo = r.row_lo - dp < 0 ? 0 : r.row_lo - dp;
+    int32_t rhi = r.row_hi + dp > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r.row_hi + dp;
+    for (int32_t row = rlo; row <= rhi; ++row) {
+        size_t o = (size_t)row * cfg->width;
+        for (int32_t col = clo; col <= chi; ++col) {
+            res[o + (size_t)col] = img[o + (size_t)col];
         }
     }
 }
@@ -181,24 +204,24 @@ static bool lr_says_gone_(const pft_tbd_config_t *cfg, const pft_tbd_filter_t *t
     return true;
 }
 
-/* Constraint region D of a track at (x, y) into the mask. */
+/* Constraint region D of a track at (x, y) (internal frame) into the mask. */
 static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x, pft_real_t y)
 {
     if (cfg->d_region == PFT_TBD_D_NONE) {
         return;
     }
-    pft_tbd_region_t d = pft_tbd_window_region(cfg, x, y);
+    pft_tbd_region_t d = pft_tbd_window_int_(cfg, x, y);
     if (cfg->d_region == PFT_TBD_D_PIXEL) {
         int32_t p = (int32_t)cfg->window;
-        d.i_lo += p;
-        d.i_hi -= p;
-        d.j_lo += p;
-        d.j_hi -= p;
+        d.col_lo += p;
+        d.col_hi -= p;
+        d.row_lo += p;
+        d.row_hi -= p;
     }
-    d.i_lo -= cfg->d_margin;
-    d.i_hi += cfg->d_margin;
-    d.j_lo -= cfg->d_margin;
-    d.j_hi += cfg->d_margin;
+    d.col_lo -= cfg->d_margin;
+    d.col_hi += cfg->d_margin;
+    d.row_lo -= cfg->d_margin;
+    d.row_hi += cfg->d_margin;
     pft_tbd_mask_add_(cfg, mask, &d);
 }
 
@@ -215,108 +238,78 @@ static void build_gate_(pft_tbd_t *t)
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->mask, 0, npix);
     for (uint32_t s = 0; s < sf->n; ++s) {
-        if (sf->cur.e[s] == 0u) {
-            continue;
-        }
-        int32_t i0 = pft_tbd_pix_(sf->cur.x[s], sf->model.inv_dx);
-        int32_t j0 = pft_tbd_pix_(sf->cur.y[s], sf->model.inv_dy);
-        if (i0 >= 1 && j0 >= 1 && i0 <= (int32_t)w && j0 <= (int32_t)h) {
-            ++t->cand[(size_t)(j0 - 1) * w + (size_t)(i0 - 1)];
+        size_t pix = 0;
+        if (sf->cur.e[s] != 0u && pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
+            ++t->cand[pix];
         }
     }
     int32_t p = (int32_t)cfg->window;
     uint32_t best = 0;
-    int32_t bi = 1;
-    int32_t bj = 1;
-    for (int32_t j = 1; j <= (int32_t)h; ++j) {
-        for (int32_t i = 1; i <= (int32_t)w; ++i) {
+    int32_t bc = 0;
+    int32_t br = 0;
+    for (int32_t row = 0; row < (int32_t)h; ++row) {
+        for (int32_t col = 0; col < (int32_t)w; ++col) {
             uint32_t acc = 0;
-            for (int32_t b = j - p; b <= j + p; ++b) {
-                for (int32_t a = i - p; a <= i + p; ++a) {
-                    if (a >= 1 && b >= 1 && a <= (int32_t)w && b <= (int32_t)h) {
-                        acc += t->cand[(size_t)(b - 1) * w + (size_t)(a - 1)];
+            for (int32_t b = row - p; b <= row + p; ++b) {
+                for (int32_t a = col - p; a <= col + p; ++a) {
+                    if (a >= 0 && b >= 0 && a < (int32_t)w && b < (int32_t)h) {
+                        acc += t->cand[(size_t)b * w + (size_t)a];
                     }
                 }
             }
             if (acc > best) {
                 best = acc;
-                bi = i;
-                bj = j;
+                bc = col;
+                br = row;
             }
         }
     }
     int32_t g = (int32_t)cfg->handover_gate;
-    pft_tbd_region_t r = {bi - g, bi + g, bj - g, bj + g};
+    pft_tbd_region_t r = {bc - g, bc + g, br - g, br + g};
     pft_tbd_mask_add_(cfg, t->mask, &r);
 }
 
-pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
+/* 1a. Track layers (no births). With residual_tracks, track k sees the frame minus the other
+ * tracks' PSFs at their predicted positions (the records still hold frame k - 1); t->res is
+ * restored to the frame after each layer. */
+static void update_tracks_(pft_tbd_t *t, bool residual)
 {
-    if (t == NULL || frame == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    if (t->img == NULL) {
-        return PFT_ERR_STATE;
-    }
     const pft_tbd_config_t *cfg = &t->cfg;
-    pft_status_t st = pft_tbd_frame_check_(cfg, frame);
-    if (st != PFT_OK) {
-        return st;
-    }
-    pft_tbd_frame_convert_(cfg, frame, t->img);
-    if (t->frame < UINT32_MAX) {
-        ++t->frame;
-    }
-    t->n_events = 0u;
-    size_t npix = (size_t)cfg->width * cfg->height;
-    memset(t->mask, 0, npix);
-    const pft_tbd_model_t *model = &t->search.model;
     uint8_t half = psf_half_(cfg);
-    bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
-    bool res_search = cfg->residual_search && t->n_tracks > 0u;
-    if (res_tracks || res_search) {
-        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
-    }
-
-    /* 1a. track layers (no births). With residual_tracks, track k sees the frame minus the
-     *     other tracks' PSFs at their predicted positions (records still hold frame k - 1). */
     pft_tbd_scene_t_ tsc;
-    tsc.img = t->img;
-    tsc.mask = NULL;
+    memset(&tsc, 0, sizeof tsc);
     tsc.cand = t->cand;
-    tsc.n_cand = 0u;
-    tsc.n_allowed = 0u;
-    tsc.cand_is_b = false;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         if (t->records[k].id == 0u) {
             continue;
         }
-        tsc.img = t->img;
-        if (res_tracks) {
-            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
-                if (u != k && t->records[u].id != 0u) {
-                    pft_real_t px, py;
-                    predict_(cfg, &t->records[u], &px, &py);
-                    pft_tbd_model_add_psf(model, t->res, px, py,
-                                          pft_neg(t->records[u].intensity), half);
-                }
+        tsc.img = residual ? t->res : t->img;
+        for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+            if (u != k && t->records[u].id != 0u) {
+                pft_real_t px, py;
+                predict_(cfg, &t->records[u], &px, &py);
+                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, px, py,
+                                     pft_neg(t->records[u].intensity), half);
             }
-            tsc.img = t->res;
         }
         pft_tbd_filter_step_(&t->tracks[k], &tsc);
-        if (res_tracks) {
-            for (uint32_t u = 0; u < cfg->max_targets; ++u) {
-                if (u != k && t->records[u].id != 0u) {
-                    pft_real_t px, py;
-                    predict_(cfg, &t->records[u], &px, &py);
-                    restore_psf_(cfg, t->res, t->img, px, py, half);
-                }
+        for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+            if (u != k && t->records[u].id != 0u) {
+                pft_real_t px, py;
+                predict_(cfg, &t->records[u], &px, &py);
+                restore_psf_(cfg, t->res, t->img, px, py, half);
             }
         }
     }
+}
 
-    /* 1b. disappearance; 2. constraint regions from the surviving tracks' estimates (of the
-     *     previous frame, or of this one with d_current). */
+/* 1b. Disappearance: a track ends on its layer's test, on P < theta_end, with no live
+ * particle left or on the short-window LR test. 2. The surviving tracks take their layers'
+ * estimates and add their constraint regions (around the estimates of the previous frame, or
+ * of this one with d_current) to t->mask. */
+static void end_or_keep_tracks_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         pft_tbd_track_t *rec = &t->records[k];
         if (rec->id == 0u) {
@@ -342,15 +335,20 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         }
         add_region_(cfg, t->mask, dx0, dy0);
     }
+}
 
-    /* 3. search layer, births outside the regions; with residual_search on the frame minus
-     *    every remaining track's PSF at its current estimate. */
+/* 3. The search layer, births outside the regions; with residual, on the frame minus every
+ * remaining track's PSF at its current estimate. */
+static void update_search_(pft_tbd_t *t, bool residual)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
     const pft_real_t *simg = t->img;
-    if (res_search && t->n_tracks > 0u) {
+    if (residual && t->n_tracks > 0u) {
         for (uint32_t u = 0; u < cfg->max_targets; ++u) {
             if (t->records[u].id != 0u) {
-                pft_tbd_model_add_psf(model, t->res, t->records[u].x, t->records[u].y,
-                                      pft_neg(t->records[u].intensity), half);
+                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, t->records[u].x,
+                                          t->records[u].y,
+                                     pft_neg(t->records[u].intensity), psf_half_(cfg));
             }
         }
         simg = t->res;
@@ -358,37 +356,75 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     pft_tbd_scene_t_ ssc;
     pft_tbd_scene_build_(cfg, simg, t->mask, t->cand, &ssc);
     pft_tbd_filter_step_(&t->search, &ssc);
+}
 
-    /* 4. appearance: hand over to a new track layer and reset the search layer */
-    if (t->search.est.p_exist > cfg->theta1 && t->n_tracks < cfg->max_targets) {
-        uint32_t k = 0;
-        while (k < cfg->max_targets && t->records[k].id != 0u) {
-            ++k;
-        }
-        pft_tbd_filter_t *tf = &t->tracks[k];
-        pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
-        pft_tbd_filter_reset_stats_(tf);
-        const uint8_t *gate = NULL;
-        if (cfg->handover_gate > 0u) {
-            build_gate_(t);
-            gate = t->mask;
-        }
-        if (pft_tbd_filter_handover_(tf, &t->search, gate)) {
-            pft_tbd_track_t *rec = &t->records[k];
-            memset(rec, 0, sizeof(*rec));
-            rec->id = t->next_id++;
-            if (gate == NULL) {
-                tf->est = t->search.est; /* ALGORITHMS.md 2.7: the search layer's estimate */
-            }
-            record_from_est_(rec, &tf->est);
-            rec->first_frame = t->frame;
-            rec->age = 0u;
-            tf->frames = 0u;
-            memset(t->search.cur.e, 0, t->search.n);
-            ++t->n_tracks;
-            push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
-        }
+/* 4. Appearance: when the search layer's P exceeds theta1 and a slot is free, hand its
+ * particles over to a new track layer (docs/algorithms.md 2.7) and clear the search layer. */
+static void confirm_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    if (!(t->search.est.p_exist > cfg->theta1) || t->n_tracks >= cfg->max_targets) {
+        return;
     }
+    uint32_t k = 0;
+    while (k < cfg->max_targets && t->records[k].id != 0u) {
+        ++k;
+    }
+    pft_tbd_filter_t *tf = &t->tracks[k];
+    pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
+    pft_tbd_filter_reset_stats_(tf);
+    const uint8_t *gate = NULL;
+    if (cfg->handover_gate > 0u) {
+        build_gate_(t);
+        gate = t->mask;
+    }
+    if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
+        return;
+    }
+    pft_tbd_track_t *rec = &t->records[k];
+    memset(rec, 0, sizeof(*rec));
+    rec->id = t->next_id++;
+    if (gate == NULL) {
+        tf->est = t->search.est; /* docs/algorithms.md 2.7: the search layer's estimate */
+    }
+    record_from_est_(rec, &tf->est);
+    rec->first_frame = t->frame;
+    rec->age = 0u;
+    tf->frames = 0u;
+    memset(t->search.cur.e, 0, t->search.n);
+    ++t->n_tracks;
+    push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+}
+
+pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
+{
+    if (t == NULL || frame == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->img == NULL) {
+        return PFT_ERR_STATE;
+    }
+    const pft_tbd_config_t *cfg = &t->cfg;
+    pft_status_t st = pft_tbd_frame_check_(cfg, frame);
+    if (st != PFT_OK) {
+        return st; /* nothing touched */
+    }
+    pft_tbd_frame_convert_(cfg, frame, t->img);
+    if (t->frame < UINT32_MAX) {
+        ++t->frame;
+    }
+    t->n_events = 0u;
+    size_t npix = (size_t)cfg->width * cfg->height;
+    memset(t->mask, 0, npix);
+    bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
+    bool res_search = cfg->residual_search && t->n_tracks > 0u;
+    if (res_tracks || res_search) {
+        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
+    }
+    update_tracks_(t, res_tracks);
+    end_or_keep_tracks_(t);
+    update_search_(t, res_search);
+    confirm_(t);
     return PFT_OK;
 }
 
@@ -415,7 +451,10 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         if (!found) {
             break;
         }
-        out[n++] = t->records[bk];
+        out[n] = t->records[bk];
+        out[n].x = pft_tbd_x_pub_(out[n].x, t->cfg.dx);
+        out[n].y = pft_tbd_x_pub_(out[n].y, t->cfg.dy);
+        ++n;
         last = best;
     }
     return t->n_tracks;
@@ -428,6 +467,8 @@ size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max)
     }
     for (size_t i = 0; i < t->n_events && i < max && out != NULL; ++i) {
         out[i] = t->events[i];
+        out[i].x = pft_tbd_x_pub_(out[i].x, t->cfg.dx);
+        out[i].y = pft_tbd_x_pub_(out[i].y, t->cfg.dy);
     }
     return t->n_events;
 }
@@ -437,6 +478,6 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
     if (t == NULL || out == NULL) {
         return PFT_ERR_INVAL;
     }
-    *out = t->search.est;
+    pft_tbd_est_pub_(&t->search.model, &t->search.est, out);
     return PFT_OK;
 }

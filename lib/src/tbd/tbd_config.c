@@ -1,0 +1,216 @@
+/* TBD configuration: defaults, the recommended preset, the check, constraint windows. */
+#include <string.h>
+
+#include "tbd_int.h"
+#include "../core/config_int.h"
+#include "../core/num_int.h"
+
+void pft_tbd_config_default(pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->width = 20u;
+    cfg->height = 20u;
+    cfg->dx = PFT_C(1.0);
+    cfg->dy = PFT_C(1.0);
+    cfg->psf_sigma = PFT_C(0.7);
+    cfg->noise_sigma = PFT_C(3.2);
+    cfg->pixel_gain = PFT_C(1.0);
+    cfg->pixel_offset = PFT_C(0.0);
+    cfg->window = 1u;
+    cfg->T = PFT_C(1.0);
+    cfg->q1 = PFT_C(0.005);
+    cfg->q2 = PFT_C(0.01);
+    cfg->pb = PFT_C(0.05);
+    cfg->pd = PFT_C(0.05);
+    cfg->eta = PFT_C(0.05);
+    cfg->gamma = PFT_C(2.0);
+    cfg->i_min = PFT_C(10.0);
+    cfg->i_max = PFT_C(30.0);
+    cfg->vel_mean[0] = PFT_C(0.0);
+    cfg->vel_mean[1] = PFT_C(0.0);
+    cfg->vel_var[0] = PFT_C(0.333333333333);
+    cfg->vel_var[1] = PFT_C(0.333333333333);
+    cfg->birth_correction = false;
+    cfg->theta1 = PFT_C(0.6);
+    cfg->dis_r = 2u;
+    cfg->dis_prev = 5u;
+    cfg->dis_ratio = PFT_C(0.8);
+    cfg->dis_ratio_test = true;
+    cfg->theta_end = PFT_C(0.0);
+    cfg->d_margin = 0u;
+    cfg->d_current = false;
+    cfg->force_constraint = true;
+    cfg->d_region = PFT_TBD_D_WINDOW;
+    cfg->residual_search = false;
+    cfg->residual_tracks = false;
+    cfg->residual_margin = 1u;
+    cfg->handover_gate = 0u;
+    cfg->end_lr_frames = 0u;
+    cfg->end_lr_max = PFT_C(0.0);
+    cfg->n_search = 6000u;
+    cfg->n_track = 500u;
+    cfg->max_targets = 4u;
+    cfg->kind = PFT_TBD_RBPF;
+    cfg->kf_variant = PFT_TBD_KF_EXACT;
+    cfg->seed = 1u;
+}
+
+void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    pft_tbd_config_default(cfg);
+    cfg->dis_ratio_test = false;
+    cfg->theta_end = PFT_C(0.5);
+    cfg->d_current = true;
+    cfg->d_margin = 1u;
+    cfg->residual_search = true;
+    cfg->residual_tracks = true;
+    cfg->d_region = PFT_TBD_D_NONE;
+    cfg->handover_gate = 2u;
+}
+
+static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
+
+/* The first refused field of the image, sensor and dynamics settings, NULL if none. */
+static const char *refused_model_(const pft_tbd_config_t *c)
+{
+    if (c->width < 1u || c->width > PFT_CFG_MAX_IMAGE_SIDE) {
+        return "width";
+    }
+    if (c->height < 1u || c->height > PFT_CFG_MAX_IMAGE_SIDE) {
+        return "height";
+    }
+    /* positions must stay well inside the number range (q16) */
+    if (!(c->dx > PFT_C(0.0)) || !pft_span_ok_(c->width, c->dx)) {
+        return "dx";
+    }
+    if (!(c->dy > PFT_C(0.0)) || !pft_span_ok_(c->height, c->dy)) {
+        return "dy";
+    }
+    if (!(c->psf_sigma > PFT_C(0.0))) {
+        return "psf_sigma";
+    }
+    if (!(c->noise_sigma > PFT_C(0.0))) {
+        return "noise_sigma";
+    }
+    if (c->window > PFT_TBD_MAX_WINDOW) {
+        return "window";
+    }
+    if (!(c->T > PFT_C(0.0))) {
+        return "T";
+    }
+    if (!(c->q1 >= PFT_C(0.0))) {
+        return "q1";
+    }
+    if (!(c->q2 >= PFT_C(0.0))) {
+        return "q2";
+    }
+    return NULL;
+}
+
+/* The first refused field of the existence, birth and decision settings, NULL if none. */
+static const char *refused_decisions_(const pft_tbd_config_t *c)
+{
+    const pft_real_t probs[5] = {c->pb, c->pd, c->eta, c->theta1, c->theta_end};
+    static const char *const names[5] = {"pb", "pd", "eta", "theta1", "theta_end"};
+    for (int k = 0; k < 5; ++k) {
+        if (!in01_(probs[k])) {
+            return names[k];
+        }
+    }
+    if (!(c->i_min <= c->i_max)) {
+        return "i_max";
+    }
+    if (!(c->vel_var[0] >= PFT_C(0.0))) {
+        return "vel_var[0]";
+    }
+    if (!(c->vel_var[1] >= PFT_C(0.0))) {
+        return "vel_var[1]";
+    }
+    if (c->dis_r > PFT_TBD_MAX_DIS_R) {
+        return "dis_r";
+    }
+    if (c->dis_prev < 1u || c->dis_prev > PFT_TBD_MAX_DIS_PREV) {
+        return "dis_prev";
+    }
+    if (!(c->dis_ratio > PFT_C(0.0) && c->dis_ratio <= PFT_C(1.0))) {
+        return "dis_ratio";
+    }
+    if (c->d_margin > 16u) {
+        return "d_margin";
+    }
+    if (c->d_region != PFT_TBD_D_WINDOW && c->d_region != PFT_TBD_D_PIXEL &&
+        c->d_region != PFT_TBD_D_NONE) {
+        return "d_region";
+    }
+    if ((uint32_t)c->window + c->residual_margin > PFT_TBD_MAX_PSF_HALF) {
+        return "residual_margin";
+    }
+    if (c->end_lr_frames > PFT_TBD_MAX_DIS_R + 1u) {
+        return "end_lr_frames";
+    }
+    if (c->handover_gate > 64u) {
+        return "handover_gate";
+    }
+    return NULL;
+}
+
+/* The first refused size or algorithm choice, NULL if none. */
+static const char *refused_sizes_(const pft_tbd_config_t *c)
+{
+    if (c->n_search < 1u || c->n_search > PFT_CFG_MAX_PARTICLES) {
+        return "n_search";
+    }
+    if (c->n_track < 1u || c->n_track > PFT_CFG_MAX_PARTICLES) {
+        return "n_track";
+    }
+    if (c->max_targets < 1u) {
+        return "max_targets";
+    }
+    if (c->kind != PFT_TBD_RBPF && c->kind != PFT_TBD_PF) {
+        return "kind";
+    }
+    if (c->kf_variant != PFT_TBD_KF_EXACT && c->kf_variant != PFT_TBD_KF_PAPER) {
+        return "kf_variant";
+    }
+    return NULL;
+}
+
+pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **field)
+{
+    const char *bad = NULL;
+    if (cfg != NULL) {
+        bad = refused_model_(cfg);
+        if (bad == NULL) {
+            bad = refused_decisions_(cfg);
+        }
+        if (bad == NULL) {
+            bad = refused_sizes_(cfg);
+        }
+    }
+    return pft_config_verdict_(cfg != NULL, bad, field);
+}
+
+pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+{
+    /* the window centre pixel (i0, j0) of the internal frame is column i0 - 1, row j0 - 1 */
+    int32_t c0 = pft_tbd_pix_(x, pft_recip(cfg->dx)) - 1;
+    int32_t r0 = pft_tbd_pix_(y, pft_recip(cfg->dy)) - 1;
+    int32_t p = (int32_t)cfg->window;
+    pft_tbd_region_t r = {c0 - p, c0 + p, r0 - p, r0 + p};
+    return r;
+}
+
+pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y)
+{
+    if (cfg == NULL || !(cfg->dx > PFT_C(0.0)) || !(cfg->dy > PFT_C(0.0))) {
+        pft_tbd_region_t empty = {0, -1, 0, -1};
+        return empty;
+    }
+    return pft_tbd_window_int_(cfg, pft_tbd_x_int_(x, cfg->dx), pft_tbd_x_int_(y, cfg->dy));
+}

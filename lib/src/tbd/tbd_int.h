@@ -1,0 +1,144 @@
+/* Internals shared by the TBD sources and the pf engine's TBD model (private, not installed).
+ *
+ * The internal pixel frame. Inside the tbd module positions are kept as the paper writes them:
+ * pixel (i, j), 1-based, has its centre at (i dx, j dy), i.e. x_int = x + dx for the public
+ * 0-based x of docs/design.md ("Pixel coordinates"). Only the public boundary converts:
+ * estimates, tracks and events on the way out, regions and the measurement-model calls on the
+ * way in. In q16 the conversion is an exact integer addition, so the q16 arithmetic is the same
+ * as before the public convention changed (golden vectors: a pure shift of the positions); in
+ * float x - dx is exact for dx = 1 and any x_int >= 0.5 (every position inside the image), and
+ * adding dx back restores x_int exactly. Regions (pft_tbd_region_t) are 0-based everywhere. */
+#ifndef PFT_TBD_INT_H
+#define PFT_TBD_INT_H
+
+#include "pft/pft_tbd.h"
+#include "pft/pft_resample.h"
+#include "../core/acc_int.h"
+
+/* Public 0-based position -> internal (x + d), and back (x - d). */
+static inline pft_real_t pft_tbd_x_int_(pft_real_t x, pft_real_t d) { return pft_add(x, d); }
+static inline pft_real_t pft_tbd_x_pub_(pft_real_t x, pft_real_t d) { return pft_sub(x, d); }
+
+/* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
+ * and the birth candidate list with its sizes. */
+typedef struct {
+    const pft_real_t *img;
+    const uint8_t *mask;
+    const uint32_t *cand;
+    uint32_t n_cand;    /* pixels proposed for births (B_k, or all allowed pixels) */
+    uint32_t n_allowed; /* pixels outside the exclusion mask */
+    bool cand_is_b;     /* cand holds B_k (z > gamma): the importance correction applies */
+} pft_tbd_scene_t_;
+
+/* pft_tbd_meas_init without the checks (cfg already passed pft_tbd_config_check). */
+void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
+/* The measurement model in the internal frame: pixel (i, j) 1-based, positions x_int. */
+pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
+                              pft_real_t y, pft_real_t intensity);
+pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
+                                pft_real_t y, pft_real_t intensity);
+void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x,
+                               pft_real_t y, pft_real_t intensity, uint8_t half);
+/* The (2p+1)^2 window around an internal position, as a 0-based region. */
+pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
+/* Frame validation against cfg (size, format, finiteness): touches nothing. */
+pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame);
+/* Converts a validated frame into img (width*height reals, row-major). */
+void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
+                            pft_real_t *img);
+/* mask |= region (0-based, clipped to the image). */
+void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r);
+/* Fills cand and the counts of sc from img and mask (mask may be NULL). */
+void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, const pft_real_t *img,
+                          const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
+
+/* Bytes of one filter's particle buffers, and carving them. */
+size_t pft_tbd_particle_bytes_(uint32_t n, pft_tbd_kind_t kind);
+/* Carves the particle buffers of f (n, kind set) from ws; pointers NULL when short. */
+void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws);
+/* Sets every field of f except the buffers: cfg copy, constants, RNG, statistics. */
+void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uint32_t n,
+                           pft_tbd_kind_t kind, bool births, bool constrain, uint64_t seed);
+/* All particles E = 0 (buffers carved). */
+void pft_tbd_filter_clear_(pft_tbd_filter_t *f);
+/* Resets the statistics (estimate history, disappearance windows). */
+void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f);
+/* One iteration on a prepared scene (docs/algorithms.md 2.5). */
+void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
+/* Hand-over: fills dst (E = 1 everywhere) by systematic resampling of the E = 1 particles of
+ * src (only those whose window centre pixel is set in gate, when gate is not NULL) with dst's
+ * RNG, and sets dst->est from the handed-over set (p_exist and log_mean_lr: src's). Returns
+ * false (dst untouched) if no particle qualifies. */
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
+
+/* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
+ * was never valid stays all zero). */
+void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,
+                      pft_tbd_estimate_t *out);
+/* Integer pixel index round(v * inv_d), with v clamped so the conversion is defined. */
+int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d);
+
+/* ---- PF-TBD pieces shared with the pf engine's TBD model (tbd_dyn.c) ---- */
+
+/* Pointers to one particle's kinematic state (the filter's SoA arrays or the engine's state
+ * vector). */
+typedef struct {
+    pft_real_t *x, *y, *vx, *vy, *in;
+} pft_tbd_kin_t;
+
+/* Fills the PF-TBD constants of cfg: chol(V), sqrt(q2 T), sqrt(P0), quantised probabilities. */
+void pft_tbd_dyn_setup_(pft_tbd_dyn_t *d, const pft_tbd_config_t *cfg);
+/* The existence draw of one particle: 16 bits, compared with the quantised probabilities. */
+static inline uint32_t pft_tbd_exist_draw_(pft_rng_t *rng) { return pft_rng_u32(rng) >> 16; }
+/* Birth probability of a frame (eta on the first frame, pb after). */
+static inline uint32_t pft_tbd_p_birth_(const pft_tbd_dyn_t *d, bool first_frame)
+{
+    return first_frame ? d->p16_eta : d->p16_b;
+}
+/* The birth log-weight correction log(|B_k| / A_allow) of a scene (0 unless
+ * cfg.birth_correction and the candidates are B_k). */
+pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_ *sc);
+/* A birth: a candidate pixel, a uniform position inside it, intensity U[i_min, i_max]; the
+ * velocity drawn from N(vel_mean, vel_var) when sample_vel (PF), else vel_mean (RBPF, whose
+ * caller sets the Kalman variances). n_cand >= 1. */
+void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
+                    uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* A survivor's PF move: X = F X + chol(V) n on the full state, intensity random walk. */
+void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* True when the window centre pixel of (x, y) is inside the image (else the target left the
+ * surveillance region); *pix is then its row-major index. */
+bool pft_tbd_centre_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y, size_t *pix);
+
+/* Estimate sums: total weight, weight of the E != 0 particles and their weighted x, y, vx,
+ * vy, I. */
+typedef struct {
+    pft_wacc_t wt, we;
+    pft_acc_t_ s[5];
+} pft_tbd_wsum_t;
+static inline void pft_tbd_wsum_init_(pft_tbd_wsum_t *a)
+{
+    a->wt = 0;
+    a->we = 0;
+    for (int c = 0; c < 5; ++c) {
+        a->s[c] = PFT_ACC_ZERO_;
+    }
+}
+/* Adds one particle (v: x, y, vx, vy, I). */
+static inline void pft_tbd_wsum_add_(pft_tbd_wsum_t *a, pft_weight_t w, bool alive,
+                                     const pft_real_t v[5])
+{
+    a->wt += w;
+    if (alive) {
+        a->we += w;
+        for (int c = 0; c < 5; ++c) {
+            a->s[c] += pft_acc_wx_(w, v[c]);
+        }
+    }
+}
+/* P(E != 0) of the sums. */
+static inline pft_real_t pft_tbd_wsum_p_(const pft_tbd_wsum_t *a) { return pft_wratio_(a->we, a->wt); }
+/* Weighted means x, y, vx, vy, I of the E != 0 particles; false (mean untouched) when they
+ * have no weight. */
+bool pft_tbd_wsum_mean_(const pft_tbd_wsum_t *a, pft_real_t mean[5]);
+
+#endif
