@@ -15,7 +15,7 @@ pkgs=(cmake ninja-build gcc g++ make pkg-config
       valgrind binutils dpkg-dev doxygen)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
-# deb-src entries are needed for Unity (see TOOLCHAIN.md: Debian's cjson source ships Unity 2.4.3)
+# deb-src entries are needed for Unity (Debian's cjson source package ships Unity 2.4.3 in tests/unity)
 need_src=0
 [ -f "$here/.deps/unity/src/unity.c" ] || need_src=1
 if [ "$need_src" = 1 ] && ! grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/sources.list /etc/apt/sources.list.d/; then

@@ -31,10 +31,6 @@ extern "C" {
 #include "sim.hpp"
 #include "tracker.hpp"
 
-#ifndef PFT_HOST_SCENARIO_DIR
-#define PFT_HOST_SCENARIO_DIR ""
-#endif
-
 namespace fs = std::filesystem;
 using nlohmann::json;
 
