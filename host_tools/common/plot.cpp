@@ -146,8 +146,14 @@ cv::Mat render_plot(const PlotSpec &spec)
         y0 = *spec.ymin;
     if (spec.ymax)
         y1 = *spec.ymax;
-    if (x1 <= x0)
-        x1 = x0 + 1;
+    if (x1 <= x0) {  // one x value: centre it rather than put it on the frame
+        double pad = std::fabs(x0) > 0 ? std::fabs(x0) * 0.1 : 0.5;
+        if (!spec.xmin)
+            x0 -= pad;
+        x1 = x0 + 2 * pad;
+        if (spec.xmin)
+            x1 = x0 + 1;
+    }
     if (y1 <= y0) {
         double pad = std::fabs(y0) > 0 ? std::fabs(y0) * 0.1 : 1.0;
         if (!spec.ymin)
