@@ -1,6 +1,7 @@
 #include "plot.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -48,6 +49,41 @@ void text(cv::Mat &img, const std::string &s, cv::Point org, double scale, int t
 
 }  // namespace
 
+bool natural_less(const std::string &a, const std::string &b)
+{
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        bool da = std::isdigit(static_cast<unsigned char>(a[i])) != 0;
+        bool db = std::isdigit(static_cast<unsigned char>(b[j])) != 0;
+        if (da && db) {
+            std::size_t i2 = i, j2 = j;
+            while (i2 < a.size() && std::isdigit(static_cast<unsigned char>(a[i2])))
+                ++i2;
+            while (j2 < b.size() && std::isdigit(static_cast<unsigned char>(b[j2])))
+                ++j2;
+            // compare the numbers without leading zeros: longer is larger, else digit by digit
+            std::size_t a0 = i, b0 = j;
+            while (a0 + 1 < i2 && a[a0] == '0')
+                ++a0;
+            while (b0 + 1 < j2 && b[b0] == '0')
+                ++b0;
+            if (i2 - a0 != j2 - b0)
+                return i2 - a0 < j2 - b0;
+            int c = a.compare(a0, i2 - a0, b, b0, j2 - b0);
+            if (c != 0)
+                return c < 0;
+            i = i2;
+            j = j2;
+            continue;
+        }
+        if (a[i] != b[j])
+            return a[i] < b[j];
+        ++i;
+        ++j;
+    }
+    return a.size() - i < b.size() - j;
+}
+
 std::vector<double> nice_ticks(double lo, double hi, int target)
 {
     std::vector<double> t;
@@ -69,9 +105,20 @@ std::vector<double> nice_ticks(double lo, double hi, int target)
 
 cv::Mat render_plot(const PlotSpec &spec)
 {
-    const int W = std::max(300, spec.width), H = std::max(200, spec.height);
+    // legend column right of the axes: the image grows by its width, the axes keep theirs
+    std::vector<std::size_t> shown;
+    int lw = 0;
+    for (std::size_t si = 0; si < spec.series.size(); ++si) {
+        if (spec.series[si].label.empty())
+            continue;
+        shown.push_back(si);
+        int base = 0;
+        lw = std::max(lw, cv::getTextSize(spec.series[si].label, kFont, 0.45, 1, &base).width);
+    }
+    const int legend_w = shown.empty() ? 0 : lw + 60;
+    const int W = std::max(300, spec.width) + legend_w, H = std::max(200, spec.height);
     cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
-    const int left = 90, right = 25, top = spec.title.empty() ? 25 : 50, bottom = 65;
+    const int left = 90, right = 25 + legend_w, top = spec.title.empty() ? 25 : 50, bottom = 65;
     const cv::Rect area(left, top, W - left - right, H - top - bottom);
 
     double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
@@ -79,10 +126,11 @@ cv::Mat render_plot(const PlotSpec &spec)
         for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
             if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
                 continue;
+            double e = i < s.err.size() && std::isfinite(s.err[i]) ? std::fabs(s.err[i]) : 0.0;
             x0 = std::min(x0, s.x[i]);
             x1 = std::max(x1, s.x[i]);
-            y0 = std::min(y0, s.y[i]);
-            y1 = std::max(y1, s.y[i]);
+            y0 = std::min(y0, s.y[i] - e);
+            y1 = std::max(y1, s.y[i] + e);
         }
     if (!std::isfinite(x0)) {
         x0 = 0;
@@ -98,16 +146,26 @@ cv::Mat render_plot(const PlotSpec &spec)
         y0 = *spec.ymin;
     if (spec.ymax)
         y1 = *spec.ymax;
-    if (x1 <= x0)
-        x1 = x0 + 1;
+    if (x1 <= x0) {  // one x value: centre it rather than put it on the frame
+        double pad = std::fabs(x0) > 0 ? std::fabs(x0) * 0.1 : 0.5;
+        if (!spec.xmin)
+            x0 -= pad;
+        x1 = x0 + 2 * pad;
+        if (spec.xmin)
+            x1 = x0 + 1;
+    }
     if (y1 <= y0) {
         double pad = std::fabs(y0) > 0 ? std::fabs(y0) * 0.1 : 1.0;
-        y0 -= pad;
-        y1 += pad;
-    } else if (!spec.ymin && !spec.ymax) {
-        double pad = 0.05 * (y1 - y0);
-        y1 += pad;
-        if (y0 != 0.0)
+        if (!spec.ymin)
+            y0 -= pad;
+        if (!spec.ymax)
+            y1 += pad;
+    } else {
+        // a margin above the data unless the top is fixed, so the maximum is not on the frame
+        double pad = 0.06 * (y1 - y0);
+        if (!spec.ymax)
+            y1 += pad;
+        if (!spec.ymin && y0 != 0.0)
             y0 -= pad;
     }
 
@@ -174,6 +232,13 @@ cv::Mat render_plot(const PlotSpec &spec)
             }
             if (s.markers)
                 cv::circle(roi, p, 4, col, cv::FILLED, cv::LINE_AA);
+            if (i < s.err.size() && std::isfinite(s.err[i]) && s.err[i] != 0.0) {
+                double e = std::fabs(s.err[i]);
+                int ya = py(s.y[i] + e) - area.y, yb = py(s.y[i] - e) - area.y;
+                cv::line(roi, {p.x, ya}, {p.x, yb}, col, 1, cv::LINE_AA);
+                cv::line(roi, {p.x - 4, ya}, {p.x + 4, ya}, col, 1, cv::LINE_AA);
+                cv::line(roi, {p.x - 4, yb}, {p.x + 4, yb}, col, 1, cv::LINE_AA);
+            }
             prev = p;
             have_prev = true;
         }
@@ -197,19 +262,10 @@ cv::Mat render_plot(const PlotSpec &spec)
             rot.copyTo(img(cv::Rect(8, yy, rot.cols, rot.rows)));
     }
 
-    // legend (top right inside the plot)
-    std::vector<std::size_t> shown;
-    int lw = 0;
-    for (std::size_t si = 0; si < spec.series.size(); ++si) {
-        if (spec.series[si].label.empty())
-            continue;
-        shown.push_back(si);
-        int base = 0;
-        lw = std::max(lw, cv::getTextSize(spec.series[si].label, kFont, 0.45, 1, &base).width);
-    }
+    // legend in its column right of the axes
     if (!shown.empty()) {
-        int row = 20, bw = lw + 60, bh = static_cast<int>(shown.size()) * row + 10;
-        cv::Rect box(area.x + area.width - bw - 10, area.y + 10, bw, bh);
+        int row = 20, bw = lw + 50, bh = static_cast<int>(shown.size()) * row + 10;
+        cv::Rect box(area.x + area.width + 15, area.y, bw, bh);
         cv::rectangle(img, box, cv::Scalar(255, 255, 255), cv::FILLED);
         cv::rectangle(img, box, cv::Scalar(120, 120, 120), 1);
         for (std::size_t k = 0; k < shown.size(); ++k) {

@@ -1,6 +1,8 @@
-// Small reusable line-plot helper drawn with OpenCV: axes, "nice" ticks, grid, legend, title,
-// solid/dashed lines, optional markers. Used for the eval figures (existence probability and
-// RMSE against frame, RMSE against SNR).
+// Small reusable line-plot helper drawn with OpenCV: axes, "nice" ticks, grid, title,
+// solid/dashed lines, optional markers and error bars, and a legend in its own column right of
+// the axes (never over the data). The y range covers the data and the error bars with a margin
+// above, so no curve is clipped at its maximum. Used for the eval figures (existence
+// probability and RMSE against frame, RMSE against SNR).
 #pragma once
 #include <optional>
 #include <string>
@@ -13,6 +15,7 @@ namespace pft::host {
 struct PlotSeries {
     std::string label;
     std::vector<double> x, y;  ///< NaN y values break the line
+    std::vector<double> err;   ///< optional: half-width of an error bar at each point (NaN: none)
     std::optional<cv::Scalar> color;  ///< BGR; default: from the palette
     bool dashed = false;
     bool markers = false;
@@ -30,6 +33,8 @@ struct PlotSpec {
 cv::Mat render_plot(const PlotSpec &spec);
 /** Renders and writes a PNG atomically (InputError on failure). */
 void save_plot_png(const PlotSpec &spec, const std::string &path);
+/** "Natural" order of labels: runs of digits compare as numbers ("N=6000" < "N=36000"). */
+bool natural_less(const std::string &a, const std::string &b);
 /** Ticks at 1/2/5 x 10^k covering [lo, hi], about `target` of them. */
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 

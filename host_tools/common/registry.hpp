@@ -1,6 +1,6 @@
 // The per-kind handler registry. A scenario file's top-level "kind" selects the module that
-// implements `sim`, `run`, `eval`, `bench`, `demo` and `selftest` for it ("tbd" now; other
-// and the other families: "pf_bearings", "pf_tbd", "tsa", "pte"). A module registers itself with PFT_REGISTER_KIND in
+// implements `sim`, `run`, `eval`, `merge`, `bench`, `demo` and `selftest` for it ("tbd",
+// "pf_bearings", "pf_tbd", "tsa", "pte"). A module registers itself with PFT_REGISTER_KIND in
 // one of its .cpp files, which are compiled directly into the `pft` executable.
 #pragma once
 #include <cstdint>
@@ -37,7 +37,13 @@ struct Options {
     std::string format;         ///< --format pgm|raw (sim)
     int scale = 0;              ///< --scale: overlay upscale factor (run)
     std::string tag;            ///< --tag: label stored in eval summaries (plots group by it)
+    std::string shard;          ///< --shard K/N (eval): compute shard K of N, write a partial summary
+    std::optional<double> gospa_c;  ///< --gospa-c: GOSPA/OSPA cut-off (unset: the kind's default)
+    std::optional<double> gospa_p;  ///< --gospa-p: GOSPA/OSPA order (unset: 2)
+    std::vector<std::string> argv;  ///< the command line (recorded in summaries)
 };
+
+struct MergedRuns;  // common/campaign.hpp
 
 class KindHandler {
 public:
@@ -47,6 +53,9 @@ public:
     virtual int eval(const Options &o);
     virtual int bench(const Options &o);
     virtual int demo(const Options &o);
+    /** `pft merge`: the summary of the whole campaign from its partial summaries (the kind's
+     *  records of every run, read back in run order), written as `eval` writes it. */
+    virtual int merge(const Options &o, const MergedRuns &m);
     /** Self-checks of the module's formulas; returns 0 when they all hold. */
     virtual int selftest(const Options &o);
     /** Scenario file used by `pft demo` when none is given (absolute path or empty). */

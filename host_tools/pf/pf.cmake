@@ -27,3 +27,9 @@ if(PFT_BUILD_TESTS AND COMMAND pft_expect_error)
   pft_expect_error(pf_bad_engine "filters\\[0\\].engine" eval --scenario ${CMAKE_CURRENT_LIST_DIR}/tests/bad_engine.json)
   pft_expect_error(pf_bad_match "match_time_of: no filter labelled" eval --scenario ${CMAKE_CURRENT_LIST_DIR}/tests/bad_match.json)
 endif()
+
+# Campaigns: 4 shards + pft merge give the single run's summary (host_tools/tests/shard_merge.cmake).
+if(PFT_BUILD_TESTS AND COMMAND pft_shard_merge_test)
+  pft_shard_merge_test(pf_tbd ${CMAKE_CURRENT_LIST_DIR}/tests/pf_tbd_small.json 8)
+  pft_shard_merge_test(pf_bearings ${CMAKE_CURRENT_LIST_DIR}/tests/bearings_small.json 8)
+endif()

@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/output.hpp"
@@ -18,6 +19,7 @@
 #include "../common/plot.hpp"
 #include "../common/progress.hpp"
 #include "../common/registry.hpp"
+#include "../common/set_metrics.hpp"
 #include "../tbd/tracker.hpp"
 #include "pf_bearings.hpp"
 
@@ -46,6 +48,16 @@ BearingsScenario load(const Options &o)
     std::sort(s.particles.begin(), s.particles.end());
     s.particles.erase(std::unique(s.particles.begin(), s.particles.end()), s.particles.end());
     return s;
+}
+
+/** GOSPA/OSPA settings of a bearings eval: one truth and one estimate per step, so GOSPA is the
+ *  radial error cut at c (a miss and a false point beyond it). Default c = lost_radius. */
+struct SetMetricParams {
+    double c, p;
+};
+SetMetricParams set_params(const Options &o, const BearingsScenario &s)
+{
+    return {o.gospa_c ? *o.gospa_c : s.lost_radius, o.gospa_p ? *o.gospa_p : 2.0};
 }
 
 std::string fmt(double v, int prec = 4)
@@ -101,7 +113,16 @@ struct Agg {
     std::vector<double> run_rms;  ///< per run: RMS radial error over the steps
     int lost = 0;
     std::size_t ws = 0;
+    metrics::SetMetricSums set{0, 1.0, 2.0};  ///< GOSPA/OSPA per step over the runs
 };
+
+std::vector<double> gospa_steps(const metrics::SetMetricSums &m)
+{
+    std::vector<double> v(m.frames());
+    for (std::size_t k = 0; k < v.size(); ++k)
+        v[k] = m.gospa_at(k);
+    return v;
+}
 
 json agg_json(const Agg &a, unsigned runs, int steps)
 {
@@ -152,6 +173,14 @@ json agg_json(const Agg &a, unsigned runs, int steps)
         {"rmse_x_per_step", rx},
         {"rmse_y_per_step", ry},
         {"rmse_per_step", rr},
+        {"gospa", num_or_null(a.set.gospa())},
+        {"gospa_localisation", num_or_null(a.set.localisation())},
+        {"gospa_missed", num_or_null(a.set.missed())},
+        {"gospa_false", num_or_null(a.set.false_())},
+        {"gospa_missed_count", num_or_null(a.set.missed_count())},
+        {"gospa_false_count", num_or_null(a.set.false_count())},
+        {"ospa", num_or_null(a.set.ospa())},
+        {"gospa_per_step", nums_or_null(gospa_steps(a.set))},
     };
 }
 
@@ -216,6 +245,8 @@ void plots(const BearingsScenario &s, const json &sum, const std::string &dir)
                     y /= 1000.0;
                 ser.x.push_back(g.logx ? std::log10(x) : x);
                 ser.y.push_back(y);
+                // error bars: one standard error of the RMSE over the runs
+                ser.err.push_back(std::string(g.ykey) == "rmse" ? f["rmse_se"].get<double>() : NAN);
             }
             p.series.push_back(ser);
         }
@@ -241,10 +272,10 @@ void print_tables(const BearingsScenario &s, const json &sum)
                         fmt((*f)["rmse_y_per_step"][k].get<double>()).c_str());
         std::printf("\n");
     }
-    std::printf("\n  %-10s %6s %8s %8s %8s %7s %8s %8s %5s %5s %9s %7s %7s\n", "filter", "N", "RMSE x", "RMSE y",
-                "RMSE", "+-se", "to ref", "median", "far", "brg", "us/step", "ESS/N", "ESS1/N");
+    std::printf("\n  %-10s %6s %8s %8s %8s %7s %8s %8s %5s %5s %9s %7s %7s %8s\n", "filter", "N", "RMSE x", "RMSE y",
+                "RMSE", "+-se", "to ref", "median", "far", "brg", "us/step", "ESS/N", "ESS1/N", "GOSPA");
     for (const json &f : fl)
-        std::printf("  %-10s %6u %8s %8s %8s %7s %8s %8s %5d %5.0f %9s %7s %7s\n", f["label"].get<std::string>().c_str(),
+        std::printf("  %-10s %6u %8s %8s %8s %7s %8s %8s %5d %5.0f %9s %7s %7s %8s\n", f["label"].get<std::string>().c_str(),
                     f["particles"].get<uint32_t>(), fmt(f["rmse_x"].get<double>()).c_str(),
                     fmt(f["rmse_y"].get<double>()).c_str(), fmt(f["rmse"].get<double>()).c_str(),
                     fmt(f["rmse_se"].get<double>()).c_str(),
@@ -253,7 +284,10 @@ void print_tables(const BearingsScenario &s, const json &sum)
                     f["bearing_off_final_runs"].get<double>(),
                     fmt(f["ns_per_step"].get<double>() / 1000.0, 1).c_str(),
                     fmt(f["mean_ess_ratio"].get<double>(), 3).c_str(),
-                    fmt(f["mean_ess_first_ratio"].get<double>(), 3).c_str());
+                    fmt(f["mean_ess_first_ratio"].get<double>(), 3).c_str(),
+                    fmt(f["gospa"].is_number() ? f["gospa"].get<double>() : NAN).c_str());
+    std::printf("  GOSPA: per step, truth and estimate as one-point sets, c = %s, p = %s (radial error cut at c)\n",
+                fmt(sum["gospa_c"].get<double>(), 3).c_str(), fmt(sum["gospa_p"].get<double>(), 1).c_str());
     if (sum["reference_filter"].is_object())
         std::printf("  reference %s N=%u: RMSE to truth %s (the floor the others approach)\n",
                     sum["reference_filter"]["label"].get<std::string>().c_str(),
@@ -270,50 +304,82 @@ void print_tables(const BearingsScenario &s, const json &sum)
 
 /** Every filter at every particle count on every run's sequence (and the reference filter). */
 struct EvalRuns {
-    std::vector<std::vector<PassResult>> res;  ///< res[run][filter * nn + n]
+    std::vector<std::vector<PassResult>> res;  ///< res[run][filter * nn + n], the campaign's runs
     std::vector<std::size_t> ws;               ///< workspace bytes per filter and N
     std::vector<double> ref_se;                ///< reference filter: squared radial error per run
-    double wall = 0;
+    std::vector<uint64_t> seeds;               ///< seed of each run
 };
 
-EvalRuns run_all(const BearingsScenario &s, unsigned runs, uint64_t base, unsigned threads, bool progress)
+/** Workspace bytes of every filter and N (deterministic; taken once, not inside the runs). */
+std::vector<std::size_t> workspaces(const BearingsScenario &s)
+{
+    std::vector<std::size_t> ws;
+    for (const auto &f : s.filters)
+        for (uint32_t n : s.particles)
+            ws.push_back(BearingsFilter(s, f, n).workspace_bytes());
+    return ws;
+}
+
+/** One run: every filter at every N on the sequence of `seed`, and the reference filter. */
+void run_one(const BearingsScenario &s, uint64_t seed, std::vector<PassResult> &res, double &ref_se)
 {
     const std::size_t nf = s.filters.size(), nn = s.particles.size();
-    EvalRuns er;
-    er.res.assign(runs, std::vector<PassResult>(nf * nn));
-    er.ws.assign(nf * nn, 0);
-    er.ref_se.assign(runs, 0.0);
-    Progress bar(runs, "eval", progress);
-    auto t0 = std::chrono::steady_clock::now();
-    parallel_for(runs, threads, [&](std::size_t i) {
-        uint64_t seed = base + i;
-        BearingsSequence q = simulate_bearings(s, seed);
-        for (std::size_t f = 0; f < nf; ++f)
-            for (std::size_t n = 0; n < nn; ++n) {
-                BearingsFilter bf(s, s.filters[f], s.particles[n]);
-                er.res[i][f * nn + n] = bf.pass(q, seed);
-                if (i == 0)
-                    er.ws[f * nn + n] = bf.workspace_bytes();
-            }
-        if (s.has_reference_filter) {
-            // the reference runs with its own seed stream (not shared with the filters)
-            BearingsFilter rf(s, s.reference_filter, s.reference_filter.particles);
-            PassResult pr = rf.pass(q, seed ^ 0x5245465245465245ull);
-            for (int k = 0; k < s.steps; ++k)
-                er.ref_se[i] += pr.ex[k] * pr.ex[k] + pr.ey[k] * pr.ey[k];
-            for (auto &p : er.res[i]) {
-                p.dref.resize(s.steps);
-                for (int k = 0; k < s.steps; ++k) {
-                    double dx = p.est[k][0] - pr.est[k][0], dy = p.est[k][2] - pr.est[k][2];
-                    p.dref[k] = dx * dx + dy * dy;
-                }
+    res.assign(nf * nn, PassResult());
+    BearingsSequence q = simulate_bearings(s, seed);
+    for (std::size_t f = 0; f < nf; ++f)
+        for (std::size_t n = 0; n < nn; ++n) {
+            BearingsFilter bf(s, s.filters[f], s.particles[n]);
+            res[f * nn + n] = bf.pass(q, seed);
+        }
+    ref_se = 0.0;
+    if (s.has_reference_filter) {
+        // the reference runs with its own seed stream (not shared with the filters)
+        BearingsFilter rf(s, s.reference_filter, s.reference_filter.particles);
+        PassResult pr = rf.pass(q, seed ^ 0x5245465245465245ull);
+        for (int k = 0; k < s.steps; ++k)
+            ref_se += pr.ex[k] * pr.ex[k] + pr.ey[k] * pr.ey[k];
+        for (auto &p : res) {
+            p.dref.resize(s.steps);
+            for (int k = 0; k < s.steps; ++k) {
+                double dx = p.est[k][0] - pr.est[k][0], dy = p.est[k][2] - pr.est[k][2];
+                p.dref[k] = dx * dx + dy * dy;
             }
         }
-        bar.tick();
-    });
-    bar.finish();
-    er.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return er;
+    }
+}
+
+/** A run's record in a partial summary, and back. */
+json run_to_json(const std::vector<PassResult> &res, double ref_se, uint64_t seed)
+{
+    json passes = json::array();
+    for (const PassResult &p : res) {
+        json est = json::array();
+        for (const auto &e : p.est)
+            est.push_back(e);
+        passes.push_back({{"ex", p.ex}, {"ey", p.ey}, {"dref", p.dref}, {"est", est}, {"ns", p.ns},
+                          {"ess_sum", p.ess_sum}, {"ess_first_sum", p.ess_first_sum}, {"resamples", p.resamples}});
+    }
+    return {{"seed", seed}, {"ref_se", ref_se}, {"passes", passes}};
+}
+
+void run_from_json(const json &j, std::vector<PassResult> &res, double &ref_se, uint64_t &seed)
+{
+    seed = j.at("seed").get<uint64_t>();
+    ref_se = j.at("ref_se").get<double>();
+    res.clear();
+    for (const json &x : j.at("passes")) {
+        PassResult p;
+        p.ex = x.at("ex").get<std::vector<double>>();
+        p.ey = x.at("ey").get<std::vector<double>>();
+        p.dref = x.at("dref").get<std::vector<double>>();
+        for (const json &e : x.at("est"))
+            p.est.push_back(e.get<std::array<double, 4>>());
+        p.ns = x.at("ns").get<double>();
+        p.ess_sum = x.at("ess_sum").get<double>();
+        p.ess_first_sum = x.at("ess_first_sum").get<double>();
+        p.resamples = x.at("resamples").get<int>();
+        res.push_back(std::move(p));
+    }
 }
 
 /** Adds one run's pass to the aggregate of its filter and N. */
@@ -342,13 +408,16 @@ void add_pass(const BearingsScenario &s, const PassResult &p, Agg &a)
     }
     double fin = std::hypot(p.ex.back(), p.ey.back());
     a.lost += fin > s.lost_radius ? 1 : 0;
+    for (int k = 0; k < s.steps; ++k)
+        a.set.add(static_cast<std::size_t>(k),
+                  metrics::frame_metrics({{0.0, 0.0}}, {{p.ex[k], p.ey[k]}}, a.set.c(), a.set.p()));
     a.ns += p.ns;
     a.ess += p.ess_sum;
     a.ess_first += p.ess_first_sum;
     a.resamples += p.resamples;
 }
 
-std::vector<Agg> aggregate(const BearingsScenario &s, const EvalRuns &er, unsigned runs)
+std::vector<Agg> aggregate(const BearingsScenario &s, const EvalRuns &er, unsigned runs, SetMetricParams sp)
 {
     const std::size_t nf = s.filters.size(), nn = s.particles.size();
     std::vector<Agg> agg(nf * nn);
@@ -362,6 +431,7 @@ std::vector<Agg> aggregate(const BearingsScenario &s, const EvalRuns &er, unsign
             a.sy.assign(s.steps, 0.0);
             a.off.assign(s.steps, 0.0);
             a.ws = er.ws[f * nn + n];
+            a.set = metrics::SetMetricSums(static_cast<std::size_t>(s.steps), sp.c, sp.p);
             for (unsigned r = 0; r < runs; ++r)
                 add_pass(s, er.res[r][f * nn + n], a);
         }
@@ -414,16 +484,48 @@ json estimates_json(const BearingsScenario &s, const EvalRuns &er, unsigned runs
     return est_dump;
 }
 
-/** The summary.json of `pft eval` (contract names). */
-json eval_summary(const Options &o, const BearingsScenario &s, const EvalRuns &er,
-                  const std::vector<Agg> &agg, unsigned runs, uint64_t base, unsigned threads)
+/** The settings part of summary.json (common header, then the bearings settings). */
+json bearings_head(const Options &o, const BearingsScenario &s, const Campaign &c, unsigned threads,
+                   const CampaignTiming &t)
 {
+    SummaryHead h;
+    h.kind = "pf_bearings";
+    h.scenario = s.name;
+    h.scenario_file = s.file;
+    h.description = s.description;
+    h.tag = o.tag.empty() ? std::string("bearings ") + numeric_name() : o.tag;
+    h.scenario_json = s.raw;
+    json head = summary_header(o, c, h, threads, t);
+    head["timing"]["note"] = "ns_per_step: steady_clock around pft_pf_update, measured inside the threaded eval "
+                             "(use bench for timing)";
+    json engines = json::array();
+    for (const auto &e : s.filters)
+        engines.push_back(engine_json(e));
+    SetMetricParams sp = set_params(o, s);
+    head["steps"] = s.steps;
+    head["scale"] = s.scale;
+    head["ll_clip"] = s.ll_clip;
+    head["lost_radius"] = s.lost_radius;
+    head["table_particles"] = s.table_particles;
+    head["particle_counts"] = s.particles;
+    head["engines"] = engines;
+    head["gospa_c"] = sp.c;
+    head["gospa_p"] = sp.p;
+    head["gospa_alpha"] = 2;
+    head["scenario_json"] = s.raw;
+    if (!s.reference.is_null())
+        head["reference"] = s.reference;
+    return head;
+}
+
+/** The measures (contract names) added to the head. */
+json eval_summary(const Options &o, const BearingsScenario &s, const EvalRuns &er, const std::vector<Agg> &agg,
+                  json head)
+{
+    const unsigned runs = static_cast<unsigned>(er.res.size());
     json filters = json::array();
     for (const Agg &a : agg)
         filters.push_back(agg_json(a, runs, s.steps));
-    json seeds = json::array();
-    for (unsigned i = 0; i < runs; ++i)
-        seeds.push_back(base + i);
     json ref_json = nullptr;
     if (s.has_reference_filter) {
         ref_json = engine_json(s.reference_filter);
@@ -433,39 +535,12 @@ json eval_summary(const Options &o, const BearingsScenario &s, const EvalRuns &e
             t += v;
         ref_json["rmse"] = std::sqrt(t / (static_cast<double>(runs) * s.steps));
     }
-    json engines = json::array();
-    for (const auto &e : s.filters)
-        engines.push_back(engine_json(e));
-    json sum = {
-        {"tool", "pft eval"},
-        {"kind", "pf_bearings"},
-        {"scenario", s.name},
-        {"scenario_file", s.file},
-        {"description", s.description},
-        {"tag", o.tag.empty() ? std::string("bearings ") + numeric_name() : o.tag},
-        {"numeric", numeric_name()},
-        {"runs", runs},
-        {"base_seed", base},
-        {"seeds", seeds},
-        {"threads", threads},
-        {"steps", s.steps},
-        {"scale", s.scale},
-        {"ll_clip", s.ll_clip},
-        {"lost_radius", s.lost_radius},
-        {"table_particles", s.table_particles},
-        {"particle_counts", s.particles},
-        {"engines", engines},
-        {"reference_filter", ref_json},
-        {"timing", {{"wall_s", er.wall}, {"note", "ns_per_step: steady_clock around pft_pf_update, "
-                                                  "measured inside the threaded eval (use bench for timing)"}}},
-        {"filters", filters},
-        {"paired", paired_json(s, agg, runs)},
-        {"estimates_at_table_particles", estimates_json(s, er, runs)},
-        {"scenario_json", s.raw},
-    };
-    if (!s.reference.is_null())
-        sum["reference"] = s.reference;
-    return sum;
+    (void)o;
+    head["reference_filter"] = ref_json;
+    head["filters"] = filters;
+    head["paired"] = paired_json(s, agg, runs);
+    head["estimates_at_table_particles"] = estimates_json(s, er, runs);
+    return head;
 }
 
 /** Rows of a CSV file of numbers with a header line and `cols` columns. */
@@ -517,34 +592,79 @@ BearingsSequence read_sequence(const std::string &dir, bool &have_truth)
     return q;
 }
 
+/** Aggregates, writes summary.json and the plots, prints the tables (eval and merge). */
+int finish(const Options &o, const BearingsScenario &s, const EvalRuns &er, json head, const std::string &out_dir)
+{
+    const unsigned runs = static_cast<unsigned>(er.res.size());
+    std::vector<Agg> agg = aggregate(s, er, runs, set_params(o, s));
+    json sum = eval_summary(o, s, er, agg, head);
+    write_json_atomic(join_path(out_dir, "summary.json"), sum);
+    plots(s, sum, out_dir);
+    if (!o.quiet) {
+        print_tables(s, sum);
+        std::printf("\n  %.1f s wall; wrote %s/summary.json and plots (rmse_x_per_step.png, "
+                    "rmse_y_per_step.png, rmse_vs_particles.png, time_vs_particles.png, rmse_vs_time.png)\n",
+                    sum["timing"]["wall_s"].get<double>(), out_dir.c_str());
+    }
+    return 0;
+}
+
 class BearingsHandler : public KindHandler {
 public:
     int eval(const Options &o) override
     {
         BearingsScenario s = load(o);
-        unsigned runs = o.runs ? o.runs : s.runs;
-        uint64_t base = o.seed ? *o.seed : s.base_seed;
+        Campaign c = make_campaign(o.runs ? o.runs : s.runs, o.seed ? *o.seed : s.base_seed, o.shard);
         unsigned threads = resolve_threads(o.threads);
         std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("pf_bearings") : s.name) +
                                                   "_" + numeric_name()
                                             : o.out;
         ensure_dir(out_dir);
         if (!o.quiet)
-            std::printf("pft eval: %s\n  %u runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(), runs,
-                        static_cast<unsigned long long>(base),
-                        static_cast<unsigned long long>(base + runs - 1), threads);
-        EvalRuns er = run_all(s, runs, base, threads, progress_wanted(o.progress));
-        std::vector<Agg> agg = aggregate(s, er, runs);
-        json sum = eval_summary(o, s, er, agg, runs, base, threads);
-        write_json_atomic(join_path(out_dir, "summary.json"), sum);
-        plots(s, sum, out_dir);
-        if (!o.quiet) {
-            print_tables(s, sum);
-            std::printf("\n  %.1f s wall; wrote %s/summary.json and plots (rmse_x_per_step.png, "
-                        "rmse_y_per_step.png, rmse_vs_particles.png, time_vs_particles.png, rmse_vs_time.png)\n",
-                        er.wall, out_dir.c_str());
+            std::printf("pft eval: %s\n  %zu runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(), c.count(),
+                        static_cast<unsigned long long>(c.seed(c.first)),
+                        static_cast<unsigned long long>(c.seed(c.end - 1)), threads);
+        EvalRuns er;
+        er.res.resize(c.count());
+        er.ref_se.assign(c.count(), 0.0);
+        er.seeds.resize(c.count());
+        er.ws = workspaces(s);
+        CampaignTiming t = run_campaign(c, threads, progress_wanted(o.progress), "eval", [&](std::size_t run, uint64_t seed) {
+            std::size_t i = run - c.first;
+            run_one(s, seed, er.res[i], er.ref_se[i]);
+            er.seeds[i] = seed;
+        });
+        json head = bearings_head(o, s, c, threads, t);
+        if (c.partial()) {
+            json recs = json::array();
+            for (std::size_t i = 0; i < er.res.size(); ++i)
+                recs.push_back(run_to_json(er.res[i], er.ref_se[i], er.seeds[i]));
+            std::string path = write_partial(out_dir, head, o, c, recs);
+            if (!o.quiet)
+                std::printf("  %.1f s wall; wrote %s (pft merge combines the shards)\n", t.wall_s, path.c_str());
+            return 0;
         }
-        return 0;
+        return finish(o, s, er, head, out_dir);
+    }
+
+    int merge(const Options &o, const MergedRuns &m) override
+    {
+        Options eo = m.options;
+        eo.out = o.out;
+        eo.quiet = o.quiet;
+        eo.argv = o.argv;
+        BearingsScenario s = load(eo);
+        EvalRuns er;
+        er.res.resize(m.runs.size());
+        er.ref_se.resize(m.runs.size());
+        er.seeds.resize(m.runs.size());
+        for (std::size_t i = 0; i < m.runs.size(); ++i)
+            run_from_json(m.runs[i], er.res[i], er.ref_se[i], er.seeds[i]);
+        er.ws = workspaces(s);
+        ensure_dir(o.out);
+        json head = bearings_head(eo, s, m.campaign, m.threads, m.timing);
+        add_merge_fields(head, m);
+        return finish(eo, s, er, head, o.out);
     }
 
     int bench(const Options &o) override
@@ -555,32 +675,47 @@ public:
         uint64_t base = o.seed ? *o.seed : s.base_seed;
         json entries = json::array();
         if (!o.quiet)
-            std::printf("pft bench: %s\n  %u timed runs of %d steps each, one thread\n\n  %-10s %6s %12s %12s %12s %14s %10s\n",
+            std::printf("pft bench: %s\n  %u timed runs of %d steps each, one thread; the filters take turns "
+                        "within each run (round robin), so load changes hit them alike\n\n  %-10s %6s %12s %12s %12s %14s %10s\n",
                         describe(s).c_str(), runs, steps, "filter", "N", "us/step min", "us/step med",
                         "us/step mean", "ns/particle", "workspace");
+        // every filter and N built once; run r: the same sequence through each of them in turn
+        std::vector<std::unique_ptr<BearingsFilter>> bfs;
+        std::vector<std::pair<const EngineSpec *, uint32_t>> cfgs;
         for (const auto &spec : s.filters)
             for (uint32_t n : s.particles) {
-                BearingsFilter bf(s, spec, n);
-                std::vector<double> per;
-                double tot = 0;
-                for (unsigned r = 0; r < runs; ++r) {
-                    BearingsSequence q = simulate_bearings(s, base + r, steps);
-                    PassResult p = bf.pass(q, base + r);
-                    per.push_back(p.ns / steps);
-                    tot += p.ns;
-                }
-                double med = median(per), mean = tot / (static_cast<double>(runs) * steps);
-                double mn = *std::min_element(per.begin(), per.end());
-                entries.push_back({{"label", spec.label}, {"engine", spec.engine}, {"particles", n},
-                                   {"steps", steps}, {"runs", runs}, {"ns_per_step_median", med},
-                                   {"ns_per_step_mean", mean}, {"ns_per_step_min", mn},
-                                   {"ns_per_particle_step", med / n}, {"ns_per_particle_step_min", mn / n},
-                                   {"workspace_bytes", bf.workspace_bytes()}});
-                if (!o.quiet)
-                    std::printf("  %-10s %6u %12s %12s %12s %14s %10zu\n", spec.label.c_str(), n,
-                                fmt(mn / 1000.0, 1).c_str(), fmt(med / 1000.0, 1).c_str(),
-                                fmt(mean / 1000.0, 1).c_str(), fmt(mn / n, 1).c_str(), bf.workspace_bytes());
+                bfs.push_back(std::make_unique<BearingsFilter>(s, spec, n));
+                cfgs.push_back({&spec, n});
             }
+        std::vector<std::vector<double>> per(bfs.size());
+        Progress bar(static_cast<std::size_t>(runs) * bfs.size(), "bench", progress_wanted(o.progress));
+        for (unsigned r = 0; r < runs; ++r) {
+            BearingsSequence q = simulate_bearings(s, base + r, steps);
+            for (std::size_t i = 0; i < bfs.size(); ++i) {
+                PassResult p = bfs[i]->pass(q, base + r);
+                per[i].push_back(p.ns / steps);
+                bar.tick();
+            }
+        }
+        bar.finish();
+        for (std::size_t i = 0; i < bfs.size(); ++i) {
+            const EngineSpec &spec = *cfgs[i].first;
+            uint32_t n = cfgs[i].second;
+            double tot = 0;
+            for (double v : per[i])
+                tot += v;
+            double med = median(per[i]), mean = tot / runs;
+            double mn = *std::min_element(per[i].begin(), per[i].end());
+            entries.push_back({{"label", spec.label}, {"engine", spec.engine}, {"particles", n},
+                               {"steps", steps}, {"runs", runs}, {"ns_per_step_median", med},
+                               {"ns_per_step_mean", mean}, {"ns_per_step_min", mn},
+                               {"ns_per_particle_step", med / n}, {"ns_per_particle_step_min", mn / n},
+                               {"workspace_bytes", bfs[i]->workspace_bytes()}});
+            if (!o.quiet)
+                std::printf("  %-10s %6u %12s %12s %12s %14s %10zu\n", spec.label.c_str(), n,
+                            fmt(mn / 1000.0, 1).c_str(), fmt(med / 1000.0, 1).c_str(),
+                            fmt(mean / 1000.0, 1).c_str(), fmt(mn / n, 1).c_str(), bfs[i]->workspace_bytes());
+        }
         if (!o.quiet && !s.reference.is_null())
             std::printf("\n  paper [P2] Table 2 (2 frames, its video experiment and hardware): %s\n",
                         s.reference.dump().c_str());
@@ -588,7 +723,8 @@ public:
             ensure_dir(o.out);
             json j = {{"tool", "pft bench"}, {"kind", "pf_bearings"}, {"scenario", s.name},
                       {"numeric", numeric_name()}, {"runs", runs}, {"steps", steps},
-                      {"base_seed", base}, {"entries", entries}};
+                      {"base_seed", base}, {"order", "round robin: run r passes one sequence through every filter in turn"},
+                      {"entries", entries}};
             write_json_atomic(join_path(o.out, "bench.json"), j);
         }
         return 0;
@@ -598,7 +734,10 @@ public:
     {
         BearingsScenario s = load(o);
         uint64_t seed = o.seed ? *o.seed : s.base_seed;
+        Progress bar(1, "sim", progress_wanted(o.progress));
         BearingsSequence q = simulate_bearings(s, seed);
+        bar.tick();
+        bar.finish();
         ensure_dir(o.out);
         write_text_atomic(join_path(o.out, "truth.csv"), [&](std::ostream &os) {
             CsvWriter w(os);
@@ -644,9 +783,11 @@ public:
         uint32_t n = s.table_particles;
         std::printf("pft run: %zu bearings from %s, N = %u, filter seed %llu, %s\n", q.z.size(), dir.c_str(), n,
                     static_cast<unsigned long long>(seed), numeric_name());
+        Progress bar(s.filters.size(), "run", progress_wanted(o.progress));
         for (const auto &spec : s.filters) {
             BearingsFilter bf(s, spec, n);
             PassResult p = bf.pass(q, seed);
+            bar.tick();
             std::string file = join_path(out, "estimates_" + spec.label + ".csv");
             write_text_atomic(file, [&](std::ostream &os) {
                 CsvWriter w(os);
@@ -678,11 +819,16 @@ public:
         std::printf("pft demo: %s\n  seed %llu, N = %u\n\n  %3s %8s %8s", describe(s).c_str(),
                     static_cast<unsigned long long>(seed), n, "k", "x", "y");
         std::vector<PassResult> res;
-        for (const auto &spec : s.filters) {
-            BearingsFilter bf(s, spec, n);
-            res.push_back(bf.pass(q, seed));
-            std::printf(" %17s", (spec.label + " x/y").c_str());
+        {
+            Progress bar(s.filters.size(), "demo", progress_wanted(o.progress));
+            for (const auto &spec : s.filters) {
+                BearingsFilter bf(s, spec, n);
+                res.push_back(bf.pass(q, seed));
+                bar.tick();
+            }
         }
+        for (const auto &spec : s.filters)
+            std::printf(" %17s", (spec.label + " x/y").c_str());
         std::printf("\n");
         for (int k = 0; k < s.steps; ++k) {
             std::printf("  %3d %8s %8s", k + 1, fmt(q.truth[k][0]).c_str(), fmt(q.truth[k][2]).c_str());

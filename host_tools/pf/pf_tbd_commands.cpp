@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/output.hpp"
@@ -219,31 +220,11 @@ double jnum(const json &j, const char *key)
     return (it != j.end() && it->is_number()) ? it->get<double>() : NAN;
 }
 
-/** Time per frame (ns) of a filter on each of `runs` sequences, one thread. */
-std::vector<double> times_per_frame(const PfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs,
-                                    int frames = 0)
-{
-    TbdFilter f(s.base, e, n);
-    std::vector<double> t;
-    for (unsigned r = 0; r < runs; ++r) {
-        tbd::Sequence q = tbd::simulate(s.base, s.base_seed + 1000 + r, frames);
-        double ns = 0;
-        f.pass(q, s.base_seed + 1000 + r, ns);
-        t.push_back(ns / q.frames);
-    }
-    return t;
-}
-
 double median_of(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
     std::size_t n = v.size();
     return n == 0 ? NAN : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double time_per_frame(const PfTbdScenario &s, const EngineSpec &e, uint32_t n, unsigned runs, int frames = 0)
-{
-    return median_of(times_per_frame(s, e, n, runs, frames));
 }
 
 /** Median time per frame of two filters measured alternately (A, B, A, B, ... one sequence
@@ -345,31 +326,42 @@ void plots(const PfTbdScenario &s, const json &sum, const std::string &dir)
 struct TbdEvalRuns {
     std::vector<std::vector<tbd::RunEval>> res;  ///< res[filter][run]
     std::vector<std::vector<double>> ns;         ///< update time per filter and run
-    double wall = 0;
 };
 
-TbdEvalRuns run_all(const PfTbdScenario &s, unsigned runs, uint64_t base, unsigned threads, bool progress)
+/** One run (the sequence of `seed`) through every filter: results into column i. */
+void run_one(const PfTbdScenario &s, uint64_t seed, std::size_t i, TbdEvalRuns &er)
 {
-    const std::size_t nf = s.filters.size();
-    TbdEvalRuns er;
-    er.res.assign(nf, std::vector<tbd::RunEval>(runs));
-    er.ns.assign(nf, std::vector<double>(runs, 0.0));
-    Progress bar(runs, "eval", progress);
-    auto t0 = std::chrono::steady_clock::now();
-    parallel_for(runs, threads, [&](std::size_t i) {
-        uint64_t seed = base + i;
-        tbd::Sequence q = tbd::simulate(s.base, seed);
-        for (std::size_t f = 0; f < nf; ++f) {
-            TbdFilter flt(s.base, s.filters[f], s.filters[f].particles);
-            std::vector<tbd::FrameOut> out = flt.pass(q, seed, er.ns[f][i]);
-            er.res[f][i] = tbd::evaluate_run(s.base, q.truth, out, true);
-            er.res[f][i].seed = seed;
-        }
-        bar.tick();
-    });
-    bar.finish();
-    er.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return er;
+    tbd::Sequence q = tbd::simulate(s.base, seed);
+    for (std::size_t f = 0; f < s.filters.size(); ++f) {
+        TbdFilter flt(s.base, s.filters[f], s.filters[f].particles);
+        std::vector<tbd::FrameOut> out = flt.pass(q, seed, er.ns[f][i]);
+        er.res[f][i] = tbd::evaluate_run(s.base, q.truth, out, true);
+        er.res[f][i].seed = seed;
+    }
+}
+
+/** Run i's record in a partial summary (every filter's tbd record and update time), and back. */
+json run_to_json(const TbdEvalRuns &er, std::size_t i)
+{
+    json fl = json::array();
+    for (std::size_t f = 0; f < er.res.size(); ++f) {
+        json r = tbd::run_to_json(er.res[f][i]);
+        r["ns"] = er.ns[f][i];
+        fl.push_back(r);
+    }
+    return {{"filters", fl}};
+}
+
+void run_from_json(const json &j, std::size_t i, TbdEvalRuns &er)
+{
+    const json &fl = j.at("filters");
+    if (fl.size() != er.res.size())
+        throw InputError("merge: a run record has " + std::to_string(fl.size()) + " filters, the scenario " +
+                         std::to_string(er.res.size()));
+    for (std::size_t f = 0; f < er.res.size(); ++f) {
+        er.res[f][i] = tbd::run_from_json(fl[f]);
+        er.ns[f][i] = fl[f].at("ns").get<double>();
+    }
 }
 
 /** Mean and standard error of the mean (NaN when undefined). */
@@ -407,6 +399,7 @@ json filter_json(const PfTbdScenario &s, const TbdEvalRuns &er, std::size_t f, u
     (void)cor_m;
     json sm = tbd::summarize(s.base, er.res[f], true);
     const json &t = sm["targets"][0];
+    const json &av = sm["averaged"];
     double tot = 0;
     for (double v : er.ns[f])
         tot += v;
@@ -439,21 +432,35 @@ json filter_json(const PfTbdScenario &s, const TbdEvalRuns &er, std::size_t f, u
         {"appearance_delay_minus_first", f && std::isfinite(dapp_m) ? json(dapp_m) : json(nullptr)},
         {"appearance_delay_minus_first_se", f && std::isfinite(dapp_se) ? json(dapp_se) : json(nullptr)},
         {"engine_settings", s.filters[f].engine == "rbpf" ? json(nullptr) : engine_json(s.filters[f])},
+        {"detection_rate", t["detection_rate"]},
+        {"appearance_delay_all_runs", t["appearance_delay_all_runs"]},
+        {"gospa", av["gospa"]},
+        {"gospa_localisation", av["gospa_localisation"]},
+        {"gospa_missed", av["gospa_missed"]},
+        {"gospa_false", av["gospa_false"]},
+        {"gospa_missed_count", av["gospa_missed_count"]},
+        {"gospa_false_count", av["gospa_false_count"]},
+        {"ospa", av["ospa"]},
+        {"gospa_per_frame", av["gospa_per_frame"]},
+        {"ospa_per_frame", av["ospa_per_frame"]},
     };
 }
 
 /** The console table of `pft eval`. */
 void print_eval(const PfTbdScenario &s, const json &filters)
 {
-    std::printf("\n  %-22s %6s %8s %6s %8s %8s %8s %8s %7s %10s\n", "filter", "N", "appear", "det.",
-                "correct", "RMSE", "PCRLB", "matched", "false", "us/frame");
+    // appear: over detecting runs; app.all: over all runs, a miss counting the whole life;
+    // det.: detection rate; GOSPA (c, p of the summary) over all frames and runs
+    std::printf("\n  %-22s %6s %8s %8s %6s %8s %8s %8s %8s %7s %7s %10s\n", "filter", "N", "appear", "app.all",
+                "det.", "correct", "RMSE", "PCRLB", "matched", "false", "GOSPA", "us/frame");
     for (const json &f : filters)
-        std::printf("  %-22s %6u %8s %6d %8s %8s %8s %8s %7s %10s\n", f["label"].get<std::string>().c_str(),
+        std::printf("  %-22s %6u %8s %8s %6s %8s %8s %8s %8s %7s %7s %10s\n", f["label"].get<std::string>().c_str(),
                     f["particles"].get<uint32_t>(), fmt(jnum(f, "appearance_delay"), 2).c_str(),
-                    f["detected_runs"].get<int>(), fmt(jnum(f, "correct_frames"), 2).c_str(),
+                    fmt(jnum(f, "appearance_delay_all_runs"), 2).c_str(), fmt(jnum(f, "detection_rate"), 2).c_str(),
+                    fmt(jnum(f, "correct_frames"), 2).c_str(),
                     fmt(jnum(f, "rmse")).c_str(), fmt(jnum(f, "pcrlb")).c_str(),
                     fmt(jnum(f, "pcrlb_matched")).c_str(), fmt(jnum(f, "false_tracks"), 2).c_str(),
-                    fmt(jnum(f, "ns_per_step") / 1000.0, 0).c_str());
+                    fmt(jnum(f, "gospa")).c_str(), fmt(jnum(f, "ns_per_step") / 1000.0, 0).c_str());
     std::printf("\n  paired against %s (same sequences; mean difference +- standard error):\n",
                 s.filters[0].label.c_str());
     for (std::size_t f = 1; f < s.filters.size(); ++f) {
@@ -466,12 +473,65 @@ void print_eval(const PfTbdScenario &s, const json &filters)
     }
 }
 
+/** The settings part of summary.json (common header, then the pf_tbd settings). `cal` is the
+ *  equal-compute calibration (measured; empty when every filter has a fixed count). */
+json pf_tbd_head(const Options &o, const PfTbdScenario &s, const Campaign &c, unsigned threads,
+                 const CampaignTiming &t, const json &cal)
+{
+    SummaryHead h;
+    h.kind = "pf_tbd";
+    h.scenario = s.name;
+    h.scenario_file = s.file;
+    h.description = s.description;
+    h.tag = o.tag.empty() ? s.name + " " + numeric_name() : o.tag;
+    h.scenario_json = s.raw;
+    json head = summary_header(o, c, h, threads, t);
+    head["timing"]["note"] = "ns_per_step: per frame, steady_clock around the filter update inside the threaded eval";
+    head["base_scenario_file"] = s.base_file;
+    head["snr_db"] = s.base.snr_db;
+    head["noise_sigma"] = s.base.noise_sigma;
+    head["frames"] = s.base.frames;
+    head["calibration"] = cal;
+    json particles = json::array();
+    for (const auto &e : s.filters)
+        particles.push_back({{"label", e.label}, {"particles", e.particles}});
+    head["filter_particles"] = particles;
+    head["gospa_c"] = tbd::gospa_cutoff(s.base);
+    head["gospa_p"] = s.base.eval.gospa_p;
+    head["gospa_alpha"] = 2;
+    head["tbd_filter_settings"] = tbd::config_to_json(tbd::make_config(s.base, c.base_seed));
+    head["scenario_json"] = s.raw;
+    return head;
+}
+
+/** Measures of every filter, summary.json, plots and table (eval and merge). */
+int finish(const Options &o, const PfTbdScenario &s, const TbdEvalRuns &er, json head, const std::string &out_dir)
+{
+    const unsigned runs = static_cast<unsigned>(er.res.empty() ? 0 : er.res[0].size());
+    json filters = json::array();
+    for (std::size_t f = 0; f < s.filters.size(); ++f)
+        filters.push_back(filter_json(s, er, f, runs));
+    head["filters"] = filters;
+    write_json_atomic(join_path(out_dir, "summary.json"), head);
+    plots(s, head, out_dir);
+    if (!o.quiet) {
+        print_eval(s, filters);
+        std::printf("\n  %.1f s wall; wrote %s/summary.json, existence.png, rmse.png\n",
+                    head["timing"]["wall_s"].get<double>(), out_dir.c_str());
+    }
+    return 0;
+}
+
 class PfTbdHandler : public KindHandler {
     PfTbdScenario load(const Options &o)
     {
         if (!o.filter_kind.empty() || !o.preset.empty())
             throw InputError("kind \"pf_tbd\": --filter and --preset do not apply (the scenario's \"filters\" list them)");
         PfTbdScenario s = parse(o.scenario, o.scenario_path);
+        if (o.gospa_c)
+            s.base.eval.gospa_c = *o.gospa_c;
+        if (o.gospa_p)
+            s.base.eval.gospa_p = *o.gospa_p;
         if (o.particles)
             for (auto &e : s.filters)
                 if (e.match_time_of.empty())
@@ -483,12 +543,17 @@ public:
     int eval(const Options &o) override
     {
         PfTbdScenario s = load(o);
-        unsigned runs = o.runs ? o.runs : s.runs;
-        uint64_t base = o.seed ? *o.seed : s.base_seed;
+        Campaign c = make_campaign(o.runs ? o.runs : s.runs, o.seed ? *o.seed : s.base_seed, o.shard);
         unsigned threads = resolve_threads(o.threads);
         std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("pf_tbd") : s.name) +
                                                   "_" + numeric_name()
                                             : o.out;
+        if (c.partial())
+            for (const auto &e : s.filters)
+                if (!e.match_time_of.empty())
+                    throw InputError("--shard: filter \"" + e.label + "\" has match_time_of, whose particle count is "
+                                     "calibrated by timing and would differ between shards; calibrate once "
+                                     "(pft bench prints the counts) and give \"particles\"");
         ensure_dir(out_dir);
         if (!o.quiet)
             std::printf("pft eval: %s (base %s, SNR %.1f dB, sigma %.3f, %d frames, target frames %d-%d), %s\n",
@@ -497,44 +562,43 @@ public:
         json cal = calibrate(s, o.quiet);
         const std::size_t nf = s.filters.size();
         if (!o.quiet)
-            std::printf("  %u runs, seeds %llu..%llu, %u threads\n", runs, static_cast<unsigned long long>(base),
-                        static_cast<unsigned long long>(base + runs - 1), threads);
-        TbdEvalRuns er = run_all(s, runs, base, threads, progress_wanted(o.progress));
-        json filters = json::array();
-        for (std::size_t f = 0; f < nf; ++f)
-            filters.push_back(filter_json(s, er, f, runs));
-        json seeds = json::array();
-        for (unsigned i = 0; i < runs; ++i)
-            seeds.push_back(base + i);
-        json sum = {
-            {"tool", "pft eval"},
-            {"kind", "pf_tbd"},
-            {"scenario", s.name},
-            {"scenario_file", s.file},
-            {"base_scenario_file", s.base_file},
-            {"description", s.description},
-            {"tag", o.tag.empty() ? s.name + " " + numeric_name() : o.tag},
-            {"numeric", numeric_name()},
-            {"snr_db", s.base.snr_db},
-            {"noise_sigma", s.base.noise_sigma},
-            {"frames", s.base.frames},
-            {"runs", runs},
-            {"base_seed", base},
-            {"seeds", seeds},
-            {"threads", threads},
-            {"calibration", cal},
-            {"timing", {{"wall_s", er.wall}, {"note", "ns_per_step: per frame, steady_clock around the filter update inside the threaded eval"}}},
-            {"filters", filters},
-            {"tbd_filter_settings", tbd::config_to_json(tbd::make_config(s.base, base))},
-            {"scenario_json", s.raw},
-        };
-        write_json_atomic(join_path(out_dir, "summary.json"), sum);
-        plots(s, sum, out_dir);
-        if (!o.quiet) {
-            print_eval(s, filters);
-            std::printf("\n  %.1f s wall; wrote %s/summary.json, existence.png, rmse.png\n", er.wall, out_dir.c_str());
+            std::printf("  %zu runs, seeds %llu..%llu, %u threads\n", c.count(),
+                        static_cast<unsigned long long>(c.seed(c.first)),
+                        static_cast<unsigned long long>(c.seed(c.end - 1)), threads);
+        TbdEvalRuns er;
+        er.res.assign(nf, std::vector<tbd::RunEval>(c.count()));
+        er.ns.assign(nf, std::vector<double>(c.count(), 0.0));
+        CampaignTiming t = run_campaign(c, threads, progress_wanted(o.progress), "eval",
+                                        [&](std::size_t run, uint64_t seed) { run_one(s, seed, run - c.first, er); });
+        json head = pf_tbd_head(o, s, c, threads, t, cal);
+        if (c.partial()) {
+            json recs = json::array();
+            for (std::size_t i = 0; i < c.count(); ++i)
+                recs.push_back(run_to_json(er, i));
+            std::string path = write_partial(out_dir, head, o, c, recs);
+            if (!o.quiet)
+                std::printf("  %.1f s wall; wrote %s (pft merge combines the shards)\n", t.wall_s, path.c_str());
+            return 0;
         }
-        return 0;
+        return finish(o, s, er, head, out_dir);
+    }
+
+    int merge(const Options &o, const MergedRuns &m) override
+    {
+        Options eo = m.options;
+        eo.out = o.out;
+        eo.quiet = o.quiet;
+        eo.argv = o.argv;
+        PfTbdScenario s = load(eo);
+        TbdEvalRuns er;
+        er.res.assign(s.filters.size(), std::vector<tbd::RunEval>(m.runs.size()));
+        er.ns.assign(s.filters.size(), std::vector<double>(m.runs.size(), 0.0));
+        for (std::size_t i = 0; i < m.runs.size(); ++i)
+            run_from_json(m.runs[i], i, er);
+        ensure_dir(o.out);
+        json head = pf_tbd_head(eo, s, m.campaign, m.threads, m.timing, json::object());
+        add_merge_fields(head, m);
+        return finish(eo, s, er, head, o.out);
     }
 
     int bench(const Options &o) override
@@ -545,21 +609,42 @@ public:
         json cal = calibrate(s, o.quiet);
         json entries = json::array();
         if (!o.quiet)
-            std::printf("pft bench: %s, %u runs of %d frames, one thread, %s\n  %-22s %6s %12s %14s\n", s.name.c_str(),
-                        runs, frames, numeric_name(), "filter", "N", "us/frame", "ns/particle");
-        for (const auto &e : s.filters) {
-            double t = time_per_frame(s, e, e.particles, runs, frames);
+            std::printf("pft bench: %s, %u runs of %d frames, one thread, %s; the filters take turns within each "
+                        "run (round robin)\n  %-22s %6s %12s %12s %14s\n", s.name.c_str(),
+                        runs, frames, numeric_name(), "filter", "N", "us/frame min", "us/frame med", "ns/particle");
+        // round robin: each run's sequence goes through every filter in turn, so load changes on a
+        // shared machine hit them alike; min and median over the runs per filter
+        std::vector<std::unique_ptr<TbdFilter>> fl;
+        for (const auto &e : s.filters)
+            fl.push_back(std::make_unique<TbdFilter>(s.base, e, e.particles));
+        std::vector<std::vector<double>> per(fl.size());
+        Progress bar(static_cast<std::size_t>(runs) * fl.size(), "bench", progress_wanted(o.progress));
+        for (unsigned r = 0; r < runs; ++r) {
+            tbd::Sequence q = tbd::simulate(s.base, s.base_seed + 1000 + r, frames);
+            for (std::size_t i = 0; i < fl.size(); ++i) {
+                double ns = 0;
+                fl[i]->pass(q, s.base_seed + 1000 + r, ns);
+                per[i].push_back(ns / q.frames);
+                bar.tick();
+            }
+        }
+        bar.finish();
+        for (std::size_t i = 0; i < fl.size(); ++i) {
+            const EngineSpec &e = s.filters[i];
+            double t = median_of(per[i]), mn = *std::min_element(per[i].begin(), per[i].end());
             entries.push_back({{"label", e.label}, {"engine", e.engine}, {"particles", e.particles},
-                               {"ns_per_frame", t}, {"ns_per_particle_frame", t / e.particles}});
+                               {"ns_per_frame", t}, {"ns_per_frame_min", mn},
+                               {"ns_per_particle_frame", t / e.particles}});
             if (!o.quiet)
-                std::printf("  %-22s %6u %12s %14s\n", e.label.c_str(), e.particles, fmt(t / 1000.0, 1).c_str(),
-                            fmt(t / e.particles, 1).c_str());
+                std::printf("  %-22s %6u %12s %12s %14s\n", e.label.c_str(), e.particles, fmt(mn / 1000.0, 1).c_str(),
+                            fmt(t / 1000.0, 1).c_str(), fmt(t / e.particles, 1).c_str());
         }
         if (!o.out.empty()) {
             ensure_dir(o.out);
             write_json_atomic(join_path(o.out, "bench.json"),
                               {{"tool", "pft bench"}, {"kind", "pf_tbd"}, {"scenario", s.name},
                                {"numeric", numeric_name()}, {"runs", runs}, {"frames", frames},
+                               {"order", "round robin: run r passes one sequence through every filter in turn"},
                                {"calibration", cal}, {"entries", entries}});
         }
         return 0;

@@ -1,5 +1,6 @@
 // pft: the host tool. Subcommands sim, run, eval, bench, demo (dispatched to the handler of
-// the scenario's "kind"), selftest (every registered kind), and plot (merges eval summaries).
+// the scenario's "kind"), merge (partial summaries of `eval --shard K/N`, dispatched by their
+// kind), selftest (every registered kind), and plot (merges eval summaries into one figure).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/core/utils/logger.hpp>
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/plot.hpp"
@@ -23,7 +25,7 @@ namespace {
 struct PlotOptions {
     std::vector<std::string> files;
     std::string out = "plot.png", x = "/snr_db", y = "/averaged/rmse", group = "/tag",
-                floor = "/averaged/pcrlb", title, xlabel, ylabel;
+                floor = "/averaged/pcrlb", err, title, xlabel, ylabel;
     double ymax = 0.0;
 };
 
@@ -38,21 +40,27 @@ json pointer_value(const json &j, const std::string &ptr, const std::string &fil
 
 int cmd_plot(const PlotOptions &p)
 {
-    std::map<std::string, std::vector<std::pair<double, double>>> groups;
+    struct Pt {
+        double x, y, e;
+    };
+    std::map<std::string, std::vector<Pt>> groups;
     std::map<double, double> floor;
-    std::vector<std::string> order;
     std::vector<PlotSeries> curves;
     for (const auto &f : p.files) {
         json j = load_json_file(f);
         json yv = pointer_value(j, p.y, f);
-        json gv0 = p.group.empty() ? json(f) : pointer_value(j, p.group, f);
+        json gv = p.group.empty() ? json(f) : pointer_value(j, p.group, f);
+        std::string g = gv.is_string() ? gv.get<std::string>() : gv.dump();
+        json ev = p.err.empty() ? json(nullptr) : pointer_value(j, p.err, f);
         if (yv.is_array()) {
             // a per-frame curve (e.g. /averaged/existence_probability): one series per file
             PlotSeries s;
-            s.label = gv0.is_string() ? gv0.get<std::string>() : gv0.dump();
+            s.label = g;
             for (std::size_t k = 0; k < yv.size(); ++k) {
                 s.x.push_back(static_cast<double>(k + 1));
-                s.y.push_back(yv[k].is_number() ? yv[k].get<double>() : NAN);
+                s.y.push_back(null_to_nan(yv[k]));
+                if (ev.is_array())
+                    s.err.push_back(k < ev.size() ? null_to_nan(ev[k]) : NAN);
             }
             curves.push_back(s);
             continue;
@@ -60,12 +68,7 @@ int cmd_plot(const PlotOptions &p)
         json xv = pointer_value(j, p.x, f);
         if (!xv.is_number())
             throw InputError(f + ": " + p.x + " is not a number");
-        double y = yv.is_number() ? yv.get<double>() : NAN;
-        const json &gv = gv0;
-        std::string g = gv.is_string() ? gv.get<std::string>() : gv.dump();
-        if (!groups.count(g))
-            order.push_back(g);
-        groups[g].push_back({xv.get<double>(), y});
+        groups[g].push_back({xv.get<double>(), null_to_nan(yv), null_to_nan(ev)});
         if (!p.floor.empty()) {
             json fv = pointer_value(j, p.floor, f);
             if (fv.is_number())
@@ -80,8 +83,10 @@ int cmd_plot(const PlotOptions &p)
     if (p.ymax > 0)
         spec.ymax = p.ymax;
     if (!curves.empty()) {
-        if (!order.empty())
+        if (!groups.empty())
             throw InputError("plot: --y must be a number in every summary or an array in every one");
+        std::stable_sort(curves.begin(), curves.end(),
+                         [](const PlotSeries &a, const PlotSeries &b) { return natural_less(a.label, b.label); });
         spec.series = curves;
         if (p.xlabel.empty())
             spec.xlabel = "frame";
@@ -89,15 +94,22 @@ int cmd_plot(const PlotOptions &p)
         std::printf("pft plot: %zu curves -> %s\n", curves.size(), p.out.c_str());
         return 0;
     }
+    // legend entries in natural order: "N=6000" before "N=36000"
+    std::vector<std::string> order;
+    for (const auto &kv : groups)
+        order.push_back(kv.first);
+    std::stable_sort(order.begin(), order.end(), natural_less);
     for (const auto &g : order) {
         auto pts = groups[g];
-        std::sort(pts.begin(), pts.end());
+        std::sort(pts.begin(), pts.end(), [](const Pt &a, const Pt &b) { return a.x < b.x; });
         PlotSeries s;
         s.label = g;
         s.markers = true;
         for (auto &pt : pts) {
-            s.x.push_back(pt.first);
-            s.y.push_back(pt.second);
+            s.x.push_back(pt.x);
+            s.y.push_back(pt.y);
+            if (!p.err.empty())
+                s.err.push_back(pt.e);
         }
         spec.series.push_back(s);
     }
@@ -135,6 +147,8 @@ int main(int argc, char **argv)
     PlotOptions po;
     std::string kind_filter;
     uint64_t seed = 0;
+    std::vector<std::string> partials;
+    o.argv.assign(argv, argv + argc);
 
     auto common = [&](CLI::App *c) {
         c->add_flag("--progress", o.progress, "draw the progress bar even when stderr is not a terminal");
@@ -148,6 +162,14 @@ int main(int argc, char **argv)
             ->check(CLI::IsMember({"paper", "recommended"}));
         c->add_flag("--single", o.single, "single-target filter (existence decision P > theta1) instead of the manager");
         c->add_option("--seed", seed, "seed (sim/demo/bench: the sequence; eval: base seed, run i uses seed + i)");
+    };
+    auto set_metric_opts = [&](CLI::App *c) {
+        c->add_option_function<double>("--gospa-c", [&](const double &v) { o.gospa_c = v; },
+                                       "GOSPA/OSPA cut-off c (default: the kind's, e.g. tbd: d_assoc = 3 px)")
+            ->check(CLI::PositiveNumber);
+        c->add_option_function<double>("--gospa-p", [&](const double &v) { o.gospa_p = v; },
+                                       "GOSPA/OSPA order p >= 1 (default 2)")
+            ->check(CLI::Range(1.0, 1e6));
     };
 
     CLI::App *sim = app.add_subcommand("sim", "simulate a scenario: frames (16-bit PGM or raw float32), truth CSV, sidecar JSON");
@@ -166,6 +188,7 @@ int main(int argc, char **argv)
     run->add_flag("--no-video", o.no_video, "do not write the overlay video");
     run->add_option("--frames", o.frames, "stop after this many frames")->check(CLI::Range(1u, 100000000u));
     filter_opts(run);
+    set_metric_opts(run);
     common(run);
 
     CLI::App *ev = app.add_subcommand("eval", "Monte Carlo evaluation: JSON summary and PNG plots");
@@ -174,7 +197,9 @@ int main(int argc, char **argv)
     ev->add_option("--threads", o.threads, "worker threads (default: hardware concurrency)")->check(CLI::Range(1u, 1024u));
     ev->add_option("--out", o.out, "output directory");
     ev->add_option("--tag", o.tag, "label of this configuration in merged plots");
+    ev->add_option("--shard", o.shard, "compute shard K of N (runs [(K-1)R/N, KR/N)) and write OUT/partial_K_of_N.json for pft merge");
     filter_opts(ev);
+    set_metric_opts(ev);
     common(ev);
 
     CLI::App *be = app.add_subcommand("bench", "per-frame time, particles/s and workspace bytes (not a test)");
@@ -190,7 +215,13 @@ int main(int argc, char **argv)
     de->add_option("--sequence", o.sequence, "track this sequence instead of simulating");
     de->add_option("--out", o.out, "output directory when --sequence is given");
     filter_opts(de);
+    set_metric_opts(de);
     common(de);
+
+    CLI::App *mg = app.add_subcommand("merge", "combine the partial summaries of pft eval --shard K/N into the summary one eval gives");
+    mg->add_option("partials", partials, "partial_K_of_N.json files, every shard once")->required()->check(CLI::ExistingFile);
+    mg->add_option("--out", o.out, "output directory (summary.json and the kind's plots)")->required();
+    common(mg);
 
     CLI::App *st = app.add_subcommand("selftest", "self-checks of the modules' formulas (e.g. the PCRLB table)");
     st->add_option("--kind", kind_filter, "only this kind");
@@ -203,6 +234,7 @@ int main(int argc, char **argv)
     pl->add_option("--y", po.y, "JSON pointer of the y value (an array: one curve per summary, x = frame)");
     pl->add_option("--group", po.group, "JSON pointer of the series label");
     pl->add_option("--floor", po.floor, "JSON pointer of a floor curve ('' for none)");
+    pl->add_option("--err", po.err, "JSON pointer of each point's error bar half-width (e.g. a standard error)");
     pl->add_option("--title", po.title);
     pl->add_option("--ymax", po.ymax, "upper y limit");
     pl->add_option("--xlabel", po.xlabel);
@@ -226,6 +258,10 @@ int main(int argc, char **argv)
             return cmd_plot(po);
         if (o.command == "track")
             return pft::host::tsa::run_track(track_cli);
+        if (o.command == "merge") {
+            MergedRuns m = read_partials(partials);
+            return make_handler(m.kind)->merge(o, m);
+        }
         if (o.command == "selftest") {
             int fails = 0;
             for (const auto &k : registered_kinds())
@@ -248,6 +284,8 @@ int main(int argc, char **argv)
                 throw InputError("--scenario FILE.json is required (no " + side + ")");
             std::fclose(fp);
             json sj = load_json_file(side);
+            if (!sj.is_object() || !sj.contains("scenario"))
+                throw InputError("--scenario FILE.json is required (" + side + " names no scenario)");
             Field f(sj, side);
             kind = f.at("scenario").string("kind");
         }

@@ -15,8 +15,10 @@ extern "C" {
 #include "pft/pft_port_file.h"
 }
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
+#include "../common/mot_export.hpp"
 #include "../common/output.hpp"
 #include "../common/parallel.hpp"
 #include "../common/plot.hpp"
@@ -51,6 +53,10 @@ Scenario load(const Options &o)
         s.filter.mode = "single";
     if (!o.preset.empty())
         s.filter.preset = o.preset;
+    if (o.gospa_c)
+        s.eval.gospa_c = *o.gospa_c;
+    if (o.gospa_p)
+        s.eval.gospa_p = *o.gospa_p;
     return s;
 }
 
@@ -84,45 +90,75 @@ std::string describe(const Scenario &s)
 }
 
 /** Runs the tracker over an in-memory sequence. */
-std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint64_t seed)
+std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint64_t seed, Progress *bar = nullptr)
 {
     Tracker tr(make_config(s, seed), s.filter.mode == "single");
     std::vector<FrameOut> out;
     out.reserve(q.frames);
-    for (int k = 0; k < q.frames; ++k)
+    for (int k = 0; k < q.frames; ++k) {
         out.push_back(tr.update_f32(q.images[k].data(), static_cast<uint32_t>(k + 1)));
+        if (bar)
+            bar->tick();
+    }
     return out;
+}
+
+/** MOTChallenge box side: 3 d_c, so IoU >= 0.5 means an axis offset of at most d_c
+ *  (common/mot_export.hpp). */
+double mot_box(const Scenario &s) { return 3.0 * s.eval.d_c; }
+
+/** Truth rows of the present targets; frame numbers from `out` when given (pft run), else k + 1. */
+std::vector<MotRow> truth_mot_rows(const std::vector<Target> &targets, const std::vector<std::vector<TruthState>> &truth,
+                                   const std::vector<FrameOut> *out)
+{
+    std::vector<MotRow> rows;
+    for (std::size_t k = 0; k < truth.size(); ++k)
+        for (std::size_t t = 0; t < truth[k].size() && t < targets.size(); ++t)
+            if (truth[k][t].present)
+                rows.push_back({out ? static_cast<long>((*out)[k].frame) : static_cast<long>(k + 1),
+                                static_cast<long>(targets[t].id), truth[k][t].x, truth[k][t].y, 1.0});
+    return rows;
 }
 
 // ------------------------------------------------------------------------- tables
 void print_summary(const Scenario &s, const json &sum, bool with_reference)
 {
-    std::printf("\n  %-8s %8s %8s %8s %6s %8s %8s %7s %6s %7s\n", "target", "appear", "disapp.",
+    // appear / disapp.: over the runs that detected the target; app.all: over all runs, a miss
+    // counting its whole life; det.: detection rate (detected runs / runs)
+    std::printf("\n  %-8s %8s %8s %8s %8s %6s %8s %8s %7s %6s %6s\n", "target", "appear", "app.all", "disapp.",
                 "correct", "of", "RMSE", "PCRLB", "ratio", "false", "det.");
     for (const json &t : sum["targets"]) {
         double rmse = jnum(t, "rmse"), fl = jnum(t, "pcrlb");
-        std::printf("  %-8s %8s %8s %8s %6d %8s %8s %7s %6s %7s\n",
+        std::printf("  %-8s %8s %8s %8s %8s %6d %8s %8s %7s %6s %6s\n",
                     ("T" + std::to_string(t["id"].get<int>())).c_str(),
-                    fmt(jnum(t, "appearance_delay")).c_str(),
+                    fmt(jnum(t, "appearance_delay")).c_str(), fmt(jnum(t, "appearance_delay_all_runs")).c_str(),
                     fmt(jnum(t, "disappearance_delay")).c_str(),
                     fmt(jnum(t, "correct_frames")).c_str(), t["true_frames"].get<int>(),
                     fmt(rmse, 4).c_str(), fmt(fl, 4).c_str(), fmt(rmse / fl, 2).c_str(),
-                    fmt(jnum(t, "false_tracks")).c_str(),
-                    t.contains("detected_runs") ? std::to_string(t["detected_runs"].get<int>()).c_str() : "-");
+                    fmt(jnum(t, "false_tracks")).c_str(), fmt(jnum(t, "detection_rate")).c_str());
     }
     const json &a = sum["averaged"];
-    std::printf("  %-8s %8s %8s %8s %6s %8s %8s %7s %6s\n", "mean", fmt(jnum(a, "appearance_delay")).c_str(),
+    std::printf("  %-8s %8s %8s %8s %8s %6s %8s %8s %7s %6s %6s\n", "mean", fmt(jnum(a, "appearance_delay")).c_str(),
+                fmt(jnum(a, "appearance_delay_all_runs")).c_str(),
                 fmt(jnum(a, "disappearance_delay")).c_str(), fmt(jnum(a, "correct_frames")).c_str(),
                 fmt(jnum(a, "true_frames"), 0).c_str(), fmt(jnum(a, "rmse"), 4).c_str(),
                 fmt(jnum(a, "pcrlb"), 4).c_str(), fmt(jnum(a, "rmse") / jnum(a, "pcrlb"), 2).c_str(),
-                fmt(jnum(a, "false_tracks")).c_str());
+                fmt(jnum(a, "false_tracks")).c_str(), fmt(jnum(a, "detection_rate")).c_str());
+    if (a.contains("gospa"))
+        std::printf("  GOSPA (c = %s px, p = %s, alpha = 2) %s: localisation %s, missed %s (%s targets/frame), "
+                    "false %s (%s points/frame); OSPA %s\n",
+                    fmt(jnum(sum, "gospa_c"), 2).c_str(), fmt(jnum(sum, "gospa_p"), 1).c_str(),
+                    fmt(jnum(a, "gospa"), 3).c_str(), fmt(jnum(a, "gospa_localisation"), 3).c_str(),
+                    fmt(jnum(a, "gospa_missed"), 3).c_str(), fmt(jnum(a, "gospa_missed_count"), 2).c_str(),
+                    fmt(jnum(a, "gospa_false"), 3).c_str(), fmt(jnum(a, "gospa_false_count"), 2).c_str(),
+                    fmt(jnum(a, "ospa"), 3).c_str());
     if (with_reference && s.reference.is_object() && s.reference.contains("targets")) {
         std::string src = s.reference.value("source", std::string("paper"));
         std::printf("  reference (%s):\n", src.c_str());
         for (const json &t : s.reference["targets"])
-            std::printf("  %-8s %8s %8s %8s %6s %8s\n",
+            std::printf("  %-8s %8s %8s %8s %8s %6s %8s\n",
                         ("T" + std::to_string(t.value("id", 0))).c_str(),
-                        fmt(jnum(t, "appearance_delay")).c_str(),
+                        fmt(jnum(t, "appearance_delay")).c_str(), "",
                         fmt(jnum(t, "disappearance_delay")).c_str(),
                         fmt(jnum(t, "correct_frames")).c_str(), "16", fmt(jnum(t, "rmse"), 4).c_str());
     }
@@ -398,7 +434,7 @@ void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool
 
 // ------------------------------------------------------------------------- sim output
 /** 16-bit PGM frames raw = offset + gain z (clipped to 0..65535, counted); the sidecar fields. */
-json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &dir, long &clipped)
+json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &dir, long &clipped, Progress &bar)
 {
     std::vector<uint16_t> px(static_cast<std::size_t>(q.width) * q.height);
     for (int k = 0; k < q.frames; ++k) {
@@ -424,6 +460,7 @@ json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &d
         if (st != PFT_OK)
             throw InputError(ap.final_path() + ": cannot write PGM (" + pft_status_str(st) + ")");
         ap.commit();
+        bar.tick();
     }
     return {{"format", "pgm16"}, {"pattern", "frame_%04u.pgm"},
             {"raw_gain", s.output.gain}, {"raw_offset", s.output.offset},
@@ -432,7 +469,7 @@ json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &d
 }
 
 /** All frames as float32 in one file; the sidecar fields. */
-json write_raw_frames(const Sequence &q, const std::string &dir)
+json write_raw_frames(const Sequence &q, const std::string &dir, Progress &bar)
 {
     AtomicPath ap(join_path(dir, "frames.f32"));
     for (int k = 0; k < q.frames; ++k) {
@@ -445,6 +482,7 @@ json write_raw_frames(const Sequence &q, const std::string &dir)
         pft_status_t st = pft_raw_write(ap.tmp().c_str(), &f, k > 0);
         if (st != PFT_OK)
             throw InputError(ap.final_path() + ": cannot write (" + pft_status_str(st) + ")");
+        bar.tick();
     }
     ap.commit();
     return {{"format", "raw_f32"}, {"file", "frames.f32"}, {"pixel_gain", 1.0}, {"pixel_offset", 0.0}};
@@ -496,6 +534,10 @@ RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint
     std::unique_ptr<OverlayWriter> ov;
     pft_frame_t f{};
     std::vector<float> conv;
+    std::size_t total = info.frames > 0 ? static_cast<std::size_t>(info.frames) : 0;
+    if (o.frames && (!total || o.frames < total))
+        total = o.frames;
+    Progress bar(total, "run", progress_wanted(o.progress));
     while ((!o.frames || rt.out.size() < o.frames) && rd.next(f)) {
         if (!rt.tr) {
             s.width = f.width;
@@ -532,7 +574,9 @@ RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint
         rt.seen_truth.push_back(truth);
         if (ov)
             ov->add(m, truth, tt.ids, rt.out.back());
+        bar.tick();
     }
+    bar.finish();
     if (!rt.tr)
         throw InputError(o.sequence + ": no frames");
     if (ov)
@@ -552,50 +596,60 @@ json make_filter_json(const Scenario &s)
 }
 
 // ------------------------------------------------------------------------- eval summary
-/** The summary.json of `pft eval`: the run settings, then the measures (summarize), then the
- *  scenario as read. */
-json eval_summary(const Options &o, const Scenario &s, const std::vector<RunEval> &res, bool single,
-                  uint64_t base, unsigned threads, double wall, double cpu_s)
+/** The settings part of summary.json (the common header, then the tbd run settings); a partial
+ *  summary carries the same, so pft merge can check that its shards belong together. */
+json eval_head(const Options &o, const Scenario &s, const Campaign &c, bool single, unsigned threads,
+               const CampaignTiming &t)
 {
-    const unsigned runs = static_cast<unsigned>(res.size());
-    json sum = summarize(s, res, single);
-    json seeds = json::array();
-    for (unsigned i = 0; i < runs; ++i)
-        seeds.push_back(base + i);
-    json head = {
-        {"tool", "pft eval"},
-        {"kind", "tbd"},
-        {"scenario", s.name},
-        {"scenario_file", s.file},
-        {"description", s.description},
-        {"tag", o.tag.empty() ? std::string(s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") +
-                                    " N=" + std::to_string(s.filter.particles) : o.tag},
-        {"snr_db", s.snr_db},
-        {"noise_sigma", s.noise_sigma},
-        {"frames", s.frames},
-        {"image", {s.width, s.height}},
-        {"runs", runs},
-        {"base_seed", base},
-        {"seeds", seeds},
-        {"threads", threads},
-        {"particles", s.filter.particles},
-        {"numeric", numeric_name()},
-        {"filter", s.filter.kind},
-        {"preset", s.filter.preset},
-        {"mode", single ? "single" : "multi"},
-        {"d_c", s.eval.d_c},
-        {"d_assoc", s.eval.d_assoc},
-        {"timing", {{"wall_s", wall}, {"run_s_mean", cpu_s / runs}}},
-    };
+    SummaryHead h;
+    h.kind = "tbd";
+    h.scenario = s.name;
+    h.scenario_file = s.file;
+    h.description = s.description;
+    h.tag = o.tag.empty() ? std::string(s.filter.kind == "pf" ? "PF-TBD" : "RBPF-TBD") + " N=" +
+                                std::to_string(s.filter.particles)
+                          : o.tag;
+    h.scenario_json = s.raw;
+    json head = summary_header(o, c, h, threads, t);
+    head["snr_db"] = s.snr_db;
+    head["noise_sigma"] = s.noise_sigma;
+    head["frames"] = s.frames;
+    head["image"] = {s.width, s.height};
+    head["particles"] = s.filter.particles;
+    head["filter"] = s.filter.kind;
+    head["preset"] = s.filter.preset;
+    head["mode"] = single ? "single" : "multi";
+    head["d_c"] = s.eval.d_c;
+    head["d_assoc"] = s.eval.d_assoc;
+    head["gospa_c"] = gospa_cutoff(s);
+    head["gospa_p"] = s.eval.gospa_p;
+    head["gospa_alpha"] = 2;
     if (!single)
         head["track_particles"] = s.filter.track_particles;
     head["filter_settings"] = make_filter_json(s);
     if (!s.reference.is_null())
         head["reference"] = s.reference;
-    for (auto it = sum.begin(); it != sum.end(); ++it)
-        head[it.key()] = it.value();
     head["scenario_json"] = s.raw;
     return head;
+}
+
+/** The measures of the runs (in run order) added to the head; summary.json, the plots and the
+ *  table. Shared by eval and merge, so both give the same summary from the same runs. */
+int finish_eval(const Options &o, const Scenario &s, json head, const std::vector<RunEval> &res, bool single,
+                const std::string &out_dir)
+{
+    json sum = summarize(s, res, single);
+    for (auto it = sum.begin(); it != sum.end(); ++it)
+        head[it.key()] = it.value();
+    write_json_atomic(join_path(out_dir, "summary.json"), head);
+    eval_plots(s, head, out_dir, single);
+    if (!o.quiet) {
+        print_summary(s, head, true);
+        std::printf("\n  %.1f s wall, %.2f s per run; wrote %s/summary.json, existence.png, rmse.png\n",
+                    head["timing"]["wall_s"].get<double>(), head["timing"]["run_s_mean"].get<double>(),
+                    out_dir.c_str());
+    }
+    return 0;
 }
 
 // ------------------------------------------------------------------------- handler
@@ -618,8 +672,11 @@ public:
         ensure_dir(o.out);
         Sequence q = simulate(s, seed);
         long clipped = 0;
-        json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped) : write_raw_frames(q, o.out);
+        Progress bar(static_cast<std::size_t>(q.frames), "sim", progress_wanted(o.progress));
+        json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped, bar) : write_raw_frames(q, o.out, bar);
+        bar.finish();
         write_truth_csv(join_path(o.out, "truth.csv"), s, q.truth);
+        write_mot_file(join_path(o.out, "truth_mot.txt"), truth_mot_rows(s.targets, q.truth, nullptr), mot_box(s));
         side["first_index"] = 1;
         side["frames"] = q.frames;
         side["width"] = q.width;
@@ -634,7 +691,7 @@ public:
         write_json_atomic(join_path(o.out, "sequence.json"), side);
         if (!o.quiet) {
             std::printf("pft sim: %s\n", describe(s).c_str());
-            std::printf("  seed %llu -> %s: %d frames (%s), truth.csv, sequence.json", 
+            std::printf("  seed %llu -> %s: %d frames (%s), truth.csv, truth_mot.txt, sequence.json", 
                         static_cast<unsigned long long>(seed), o.out.c_str(), q.frames,
                         format == "pgm" ? "16-bit PGM" : "float32 raw");
             if (format == "pgm")
@@ -673,6 +730,21 @@ public:
                      {"frames", rt.out.size()}, {"skipped_frames", rd->skipped()}, {"seed", seed},
                      {"workspace_bytes", rt.tr->workspace_bytes()}};
         write_tracks(out_dir, rt.out, meta);
+        std::vector<MotRow> mot_tracks, mot_truth;
+        for (const FrameOut &fo : rt.out)
+            for (const TrackOut &tk : fo.tracks)
+                mot_tracks.push_back({static_cast<long>(fo.frame), static_cast<long>(tk.id), tk.x, tk.y, tk.p_exist});
+        if (have_truth) {
+            std::vector<Target> ids;
+            for (int id : tt.ids) {
+                Target t;
+                t.id = id;
+                ids.push_back(t);
+            }
+            mot_truth = truth_mot_rows(ids, rt.seen_truth, &rt.out);
+        }
+        write_mot_layout(join_path(out_dir, "mot"), s.name.empty() ? "sequence" : s.name, mot_tracks, mot_truth,
+                         mot_box(s), have_truth);
         std::unique_ptr<RunEval> ev;
         if (have_truth) {
             // metrics over the frames actually tracked (birth/death renumbered if the source
@@ -692,8 +764,8 @@ public:
                 std::printf("\nVersus truth (%s):", truth_path.c_str());
                 print_summary(s, sum, false);
             }
-            std::printf("\nWrote %s/tracks.csv, tracks.json%s\n", out_dir.c_str(),
-                        o.no_video ? "" : ", overlay.avi");
+            std::printf("\nWrote %s/tracks.csv, tracks.json%s, mot/ (MOTChallenge layout for py-motmetrics)\n",
+                        out_dir.c_str(), o.no_video ? "" : ", overlay.avi");
         }
         return 0;
     }
@@ -702,8 +774,7 @@ public:
     {
         Scenario s = load(o);
         bool single = s.filter.mode == "single";
-        unsigned runs = o.runs ? o.runs : s.eval.runs;
-        uint64_t base = o.seed ? *o.seed : s.eval.base_seed;
+        Campaign c = make_campaign(o.runs ? o.runs : s.eval.runs, o.seed ? *o.seed : s.eval.base_seed, o.shard);
         unsigned threads = resolve_threads(o.threads);
         std::string out_dir = o.out;
         if (out_dir.empty())
@@ -711,38 +782,52 @@ public:
                       s.filter.kind + "_" + std::to_string(s.filter.particles) + "_" + numeric_name();
         ensure_dir(out_dir);
         if (!o.quiet)
-            std::printf("pft eval: %s\n  %u runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(),
-                        runs, static_cast<unsigned long long>(base),
-                        static_cast<unsigned long long>(base + runs - 1), threads);
-        std::vector<RunEval> res(runs);
-        Progress bar(runs, "eval", progress_wanted(o.progress));
-        auto t0 = std::chrono::steady_clock::now();
-        std::atomic<double> cpu_s{0.0};
-        parallel_for(runs, threads, [&](std::size_t i) {
-            auto c0 = std::chrono::steady_clock::now();
-            uint64_t seed = base + i;
+            std::printf("pft eval: %s\n  %zu runs, seeds %llu..%llu%s, %u threads\n", describe(s).c_str(),
+                        c.count(), static_cast<unsigned long long>(c.seed(c.first)),
+                        static_cast<unsigned long long>(c.seed(c.end - 1)),
+                        c.partial() ? (" (shard " + std::to_string(c.shard) + "/" + std::to_string(c.shards) +
+                                       " of " + std::to_string(c.runs) + " runs)").c_str()
+                                    : "",
+                        threads);
+        std::vector<RunEval> res(c.count());
+        CampaignTiming t = run_campaign(c, threads, progress_wanted(o.progress), "eval", [&](std::size_t run, uint64_t seed) {
             Sequence q = simulate(s, seed);
             std::vector<FrameOut> out = track_sequence(s, q, seed);
-            res[i] = evaluate_run(s, q.truth, out, single);
-            res[i].seed = seed;
-            double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
-            double cur = cpu_s.load();
-            while (!cpu_s.compare_exchange_weak(cur, cur + dt)) {
-            }
-            bar.tick();
+            RunEval &r = res[run - c.first];
+            r = evaluate_run(s, q.truth, out, single);
+            r.seed = seed;
         });
-        bar.finish();
-        double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-        json head = eval_summary(o, s, res, single, base, threads, wall, cpu_s.load());
-        write_json_atomic(join_path(out_dir, "summary.json"), head);
-        eval_plots(s, head, out_dir, single);
-        if (!o.quiet) {
-            print_summary(s, head, true);
-            std::printf("\n  %.1f s wall, %.2f s per run; wrote %s/summary.json, existence.png, rmse.png\n",
-                        wall, cpu_s.load() / runs, out_dir.c_str());
+        json head = eval_head(o, s, c, single, threads, t);
+        if (c.partial()) {
+            json recs = json::array();
+            for (const RunEval &r : res)
+                recs.push_back(run_to_json(r));
+            std::string path = write_partial(out_dir, head, o, c, recs);
+            if (!o.quiet)
+                std::printf("  %.1f s wall; wrote %s (pft merge combines the shards)\n", t.wall_s, path.c_str());
+            return 0;
         }
-        return 0;
+        return finish_eval(o, s, head, res, single, out_dir);
+    }
+
+    int merge(const Options &o, const MergedRuns &m) override
+    {
+        Options eo = m.options;
+        eo.out = o.out;
+        eo.quiet = o.quiet;
+        eo.argv = o.argv;
+        Scenario s = load(eo);
+        bool single = s.filter.mode == "single";
+        std::vector<RunEval> res;
+        for (const json &r : m.runs)
+            res.push_back(run_from_json(r));
+        ensure_dir(o.out);
+        json head = eval_head(eo, s, m.campaign, single, m.threads, m.timing);
+        add_merge_fields(head, m);
+        if (!o.quiet)
+            std::printf("pft merge: %s\n  %u runs from %zu shards\n", describe(s).c_str(), m.campaign.runs,
+                        m.shards.size());
+        return finish_eval(eo, s, head, res, single, o.out);
     }
 
     int bench(const Options &o) override
@@ -755,6 +840,8 @@ public:
         std::vector<double> times;
         uint64_t particle_frames = 0;
         std::size_t ws = 0;
+        Progress bar(static_cast<std::size_t>(reps) * static_cast<std::size_t>(frames), "bench",
+                     progress_wanted(o.progress));
         for (unsigned r = 0; r < reps; ++r) {
             Sequence q = simulate(s, seed + r, frames);
             Tracker tr(make_config(s, seed + r), single);
@@ -765,8 +852,10 @@ public:
                 auto t1 = std::chrono::steady_clock::now();
                 times.push_back(std::chrono::duration<double>(t1 - t0).count());
                 particle_frames += tr.active_particles();
+                bar.tick();
             }
         }
+        bar.finish();
         std::vector<double> sorted = times;
         std::sort(sorted.begin(), sorted.end());
         double med = sorted[sorted.size() / 2], p90 = sorted[std::min(sorted.size() - 1, sorted.size() * 9 / 10)];
@@ -822,7 +911,11 @@ public:
         std::printf(")\n\n");
         Sequence q = simulate(s, seed);
         auto t0 = std::chrono::steady_clock::now();
-        std::vector<FrameOut> out = track_sequence(s, q, seed);
+        std::vector<FrameOut> out;
+        {
+            Progress bar(static_cast<std::size_t>(q.frames), "demo", progress_wanted(o.progress));
+            out = track_sequence(s, q, seed, &bar);
+        }
         double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::printf("frame | truth                            | tracks                                       | %s\n",
                     single ? "filter P" : "search P");

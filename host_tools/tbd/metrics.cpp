@@ -5,18 +5,17 @@
 #include <limits>
 #include <map>
 
+#include "../common/campaign.hpp"
+
 namespace pft::host::tbd {
 
 namespace {
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double dist(double x, double y, const TruthState &t) { return std::hypot(x - t.x, y - t.y); }
-
-nlohmann::json num_or_null(double v)
-{
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
 }  // namespace
+
+double gospa_cutoff(const Scenario &s) { return s.eval.gospa_c > 0 ? s.eval.gospa_c : s.eval.d_assoc; }
 
 std::vector<TrackHist> collect_tracks(const std::vector<FrameOut> &out)
 {
@@ -236,6 +235,19 @@ RunEval evaluate_run(const Scenario &s, const std::vector<std::vector<TruthState
     assign_tracks(r, nt);
     for (std::size_t ti = 0; ti < nt; ++ti)
         score_target(s, ti, truth_at, assoc_pt, out, single, r);
+    // set measures per frame: present targets against every reported track point
+    const double gc = gospa_cutoff(s), gp = s.eval.gospa_p;
+    r.set.resize(nf);
+    for (int f = 1; f <= nf; ++f) {
+        std::vector<metrics::Point> X, Y;
+        for (std::size_t ti = 0; ti < nt; ++ti)
+            if (const TruthState *t = truth_at(f, ti))
+                X.push_back({t->x, t->y});
+        for (const TrackOut &t : out[f - 1].tracks)
+            Y.push_back({t.x, t.y});
+        metrics::FrameMetrics fm = metrics::frame_metrics(X, Y, gc, gp);
+        r.set[f - 1] = {fm.localisation, fm.missed_count, fm.false_count, std::pow(fm.ospa, gp)};
+    }
     // declared points against the truth (Deng's false-track probability)
     for (const TrackHist &h : r.tracks) {
         for (std::size_t k = 0; k < h.frames.size(); ++k) {
@@ -344,6 +356,7 @@ double rmse_jackknife_se(const std::vector<RunEval> &runs, std::size_t ti, const
 /** Running sums of the per-target means for the "averaged" block. */
 struct Averages {
     double app = 0, dis = 0, cor = 0, true_frames = 0, rmse = 0, floor = 0, fm = 0, ra = 0, false_t = 0;
+    double det_rate = 0, app_all = 0;
     int n_app = 0, n_dis = 0, n_rmse = 0;
     std::vector<double> mean_p;
 };
@@ -403,6 +416,10 @@ nlohmann::json target_summary(const Scenario &s, const std::vector<RunEval> &run
     double rmse_all = S.na ? std::sqrt(S.sqa / S.na) : kNaN;
     double matched = S.nc ? std::sqrt(matched_num / S.nc) : kNaN;
     double app_m = S.det ? S.app / S.det : kNaN, dis_m = S.ndis ? S.dis / S.ndis : kNaN;
+    const int life = tg.death - tg.birth + 1;
+    // a miss as a miss: over all runs, a run that never detected the target counts its whole life
+    double det_rate = R ? S.det / Rd : kNaN;
+    double app_all = R ? (S.app + static_cast<double>(R - S.det) * life) / Rd : kNaN;
     json tj = {
         {"id", tg.id},
         {"birth_frame", tg.birth},
@@ -416,6 +433,8 @@ nlohmann::json target_summary(const Scenario &s, const std::vector<RunEval> &run
         {"pcrlb", fl.track_rmse},
         {"false_tracks", S.extra / Rd},
         {"detected_runs", S.det},
+        {"detection_rate", num_or_null(det_rate)},
+        {"appearance_delay_all_runs", num_or_null(app_all)},
         {"confirmation_delay", num_or_null(S.nconf ? S.conf / S.nconf : kNaN)},
         {"confirmed_runs", S.nconf},
         {"appearance_delay_se", num_or_null(app_se)},
@@ -449,16 +468,22 @@ nlohmann::json target_summary(const Scenario &s, const std::vector<RunEval> &run
     }
     A.floor += fl.track_rmse;
     A.false_t += S.extra / Rd;
+    A.det_rate += det_rate;
+    A.app_all += app_all;
     return tj;
 }
 
 /** The per-run block: seed, unassigned tracks and each target's detection and counts. */
-nlohmann::json per_run_summary(const std::vector<RunEval> &runs)
+nlohmann::json per_run_summary(const std::vector<RunEval> &runs, double c, double p)
 {
     using nlohmann::json;
     json per_run = json::array();
     for (const RunEval &r : runs) {
-        json pr = {{"seed", r.seed}, {"unassigned_tracks", r.unassigned}};
+        metrics::SetMetricSums one(r.set.size(), c, p);
+        for (std::size_t k = 0; k < r.set.size(); ++k)
+            one.add_terms(k, r.set[k].localisation, r.set[k].missed, r.set[k].false_, r.set[k].ospa_pow);
+        json pr = {{"seed", r.seed}, {"unassigned_tracks", r.unassigned}, {"gospa", num_or_null(one.gospa())},
+                   {"ospa", num_or_null(one.ospa())}};
         json tt = json::array();
         for (const TargetRun &t : r.targets)
             tt.push_back({{"detected", t.detected},
@@ -495,27 +520,104 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
         for (int k = 0; k < nf && k < static_cast<int>(r.search_p.size()); ++k)
             sp[k] += r.search_p[k] / static_cast<double>(R ? R : 1);
     }
-    double Rd = R ? static_cast<double>(R) : 1.0, ntd = nt ? static_cast<double>(nt) : 1.0;
+    double Rd = R ? static_cast<double>(R) : 1.0;
+    // no target (noise only): the per-target means do not exist (null), they are not 0
+    const double ntd = nt ? static_cast<double>(nt) : kNaN;
+    const double gc = gospa_cutoff(s), gp = s.eval.gospa_p;
+    metrics::SetMetricSums sm(static_cast<std::size_t>(nf), gc, gp);
+    for (const RunEval &r : runs)
+        for (std::size_t k = 0; k < r.set.size() && k < static_cast<std::size_t>(nf); ++k)
+            sm.add_terms(k, r.set[k].localisation, r.set[k].missed, r.set[k].false_, r.set[k].ospa_pow);
+    std::vector<double> gpf(nf), opf(nf);
+    for (int k = 0; k < nf; ++k) {
+        gpf[k] = sm.gospa_at(k);
+        opf[k] = sm.ospa_at(k);
+    }
     json avg = {
         {"appearance_delay", num_or_null(A.n_app ? A.app / A.n_app : kNaN)},
+        {"appearance_delay_all_runs", num_or_null(A.app_all / ntd)},
+        {"detection_rate", num_or_null(A.det_rate / ntd)},
         {"disappearance_delay", num_or_null(A.n_dis ? A.dis / A.n_dis : kNaN)},
-        {"correct_frames", A.cor / ntd},
-        {"true_frames", A.true_frames / ntd},
+        {"correct_frames", num_or_null(A.cor / ntd)},
+        {"true_frames", num_or_null(A.true_frames / ntd)},
         {"rmse", num_or_null(A.n_rmse ? A.rmse / A.n_rmse : kNaN)},
-        {"pcrlb", A.floor / ntd},
+        {"pcrlb", num_or_null(A.floor / ntd)},
+        {"gospa", num_or_null(sm.gospa())},
+        {"gospa_localisation", num_or_null(sm.localisation())},
+        {"gospa_missed", num_or_null(sm.missed())},
+        {"gospa_false", num_or_null(sm.false_())},
+        {"gospa_missed_count", num_or_null(sm.missed_count())},
+        {"gospa_false_count", num_or_null(sm.false_count())},
+        {"ospa", num_or_null(sm.ospa())},
+        {"gospa_per_frame", nums_or_null(gpf)},
+        {"ospa_per_frame", nums_or_null(opf)},
         {"false_tracks", (unassigned + 0.0) / Rd + A.false_t},
         {"unassigned_tracks", unassigned / Rd},
         {"false_point_fraction", num_or_null(decl > 0 ? incorrect / decl : kNaN)},
         {"rmse_all_assigned", num_or_null(A.n_rmse ? A.ra / A.n_rmse : kNaN)},
         {"pcrlb_matched", num_or_null(A.n_rmse ? A.fm / A.n_rmse : kNaN)},
-        {"existence_probability", A.mean_p},
+        {"existence_probability", nt ? json(A.mean_p) : nums_or_null(std::vector<double>(nf, kNaN))},
     };
     json j;
     j["targets"] = targets;
     j["averaged"] = avg;
     j[single ? "filter_existence_probability" : "search_existence_probability"] = sp;
-    j["per_run"] = per_run_summary(runs);
+    j["per_run"] = per_run_summary(runs, gc, gp);
+    j["gospa_c"] = gc;
+    j["gospa_p"] = gp;
+    j["gospa_alpha"] = 2;
     return j;
+}
+
+nlohmann::json run_to_json(const RunEval &r)
+{
+    using nlohmann::json;
+    json tt = json::array();
+    for (const TargetRun &t : r.targets)
+        tt.push_back({{"detected", t.detected}, {"appear_frame", t.appear_frame}, {"appear_delay", t.appear_delay},
+                      {"confirmed", t.confirmed}, {"confirm_delay", t.confirm_delay}, {"censored", t.censored},
+                      {"disappear_delay", t.disappear_delay}, {"correct", t.correct},
+                      {"true_frames", t.true_frames}, {"sq_correct", t.sq_correct}, {"sq_all", t.sq_all},
+                      {"n_all", t.n_all}, {"tracks", t.tracks}, {"err2", nums_or_null(t.err2)},
+                      {"p_exist", t.p_exist}});
+    json set = json::array();
+    for (const SetFrame &f : r.set)
+        set.push_back({f.localisation, f.missed, f.false_, f.ospa_pow});
+    return {{"seed", r.seed}, {"targets", tt}, {"unassigned", r.unassigned},
+            {"declared_points", r.declared_points}, {"incorrect_points", r.incorrect_points},
+            {"search_p", r.search_p}, {"set", set}};
+}
+
+RunEval run_from_json(const nlohmann::json &j)
+{
+    RunEval r;
+    r.seed = j.at("seed").get<uint64_t>();
+    for (const auto &x : j.at("targets")) {
+        TargetRun t;
+        t.detected = x.at("detected").get<bool>();
+        t.appear_frame = x.at("appear_frame").get<int>();
+        t.appear_delay = x.at("appear_delay").get<double>();
+        t.confirmed = x.at("confirmed").get<bool>();
+        t.confirm_delay = x.at("confirm_delay").get<double>();
+        t.censored = x.at("censored").get<bool>();
+        t.disappear_delay = x.at("disappear_delay").get<double>();
+        t.correct = x.at("correct").get<int>();
+        t.true_frames = x.at("true_frames").get<int>();
+        t.sq_correct = x.at("sq_correct").get<double>();
+        t.sq_all = x.at("sq_all").get<double>();
+        t.n_all = x.at("n_all").get<int>();
+        t.tracks = x.at("tracks").get<int>();
+        t.err2 = nulls_to_nan(x.at("err2"));
+        t.p_exist = x.at("p_exist").get<std::vector<double>>();
+        r.targets.push_back(std::move(t));
+    }
+    r.unassigned = j.at("unassigned").get<int>();
+    r.declared_points = j.at("declared_points").get<int>();
+    r.incorrect_points = j.at("incorrect_points").get<int>();
+    r.search_p = j.at("search_p").get<std::vector<double>>();
+    for (const auto &f : j.at("set"))
+        r.set.push_back({f.at(0).get<double>(), f.at(1).get<int>(), f.at(2).get<int>(), f.at(3).get<double>()});
+    return r;
 }
 
 }  // namespace pft::host::tbd

@@ -20,12 +20,18 @@
 //   false tracks        = per target: distinct tracks associated with it beyond the first
 //                         (re-acquisitions, swaps); overall: those plus the never-associated
 //                         tracks, per run.
+//   detection rate      = runs in which the target was ever associated / runs; the appearance
+//                         delay over all runs counts a miss as the whole life (true_frames).
+// Set measures per frame (common/set_metrics.hpp): GOSPA (alpha 2) and OSPA between the present
+// targets' true positions and every track point reported at that frame, cut-off gospa_c
+// (default d_assoc) and order gospa_p (default 2).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "../common/set_metrics.hpp"
 #include "pcrlb.hpp"
 #include "scenario.hpp"
 #include "sim.hpp"
@@ -62,8 +68,16 @@ struct TargetRun {
     std::vector<double> p_exist;  ///< per frame
 };
 
+/** One frame's set measures, kept as their additive terms (see SetMetricSums). */
+struct SetFrame {
+    double localisation = 0;  ///< sum of d^p over the GOSPA pairs
+    int missed = 0, false_ = 0;
+    double ospa_pow = 0;      ///< OSPA^p
+};
+
 struct RunEval {
     uint64_t seed = 0;
+    std::vector<SetFrame> set;     ///< per frame
     std::vector<TargetRun> targets;
     std::vector<TrackHist> tracks;
     int unassigned = 0;
@@ -81,5 +95,12 @@ PcrlbResult target_floor(const Scenario &s, const Target &t);
 
 /** The eval summary (contract names, see docs/host_tools.md) from the runs. */
 nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bool single);
+
+/** GOSPA/OSPA cut-off of a scenario: eval.gospa_c, else d_assoc. */
+double gospa_cutoff(const Scenario &s);
+
+/** A run's record in a partial summary (everything summarize reads), and back. */
+nlohmann::json run_to_json(const RunEval &r);
+RunEval run_from_json(const nlohmann::json &j);
 
 }  // namespace pft::host::tbd

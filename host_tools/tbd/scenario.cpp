@@ -172,11 +172,13 @@ void parse_eval_output(const Field &root, Scenario &s)
 {
     if (root.has("eval")) {
         Field e = root.at("eval");
-        e.only({"runs", "base_seed", "d_c", "d_assoc"});
+        e.only({"runs", "base_seed", "d_c", "d_assoc", "gospa_c", "gospa_p"});
         s.eval.runs = static_cast<unsigned>(e.integer_in("runs", 100, 1, 10000000));
         s.eval.base_seed = static_cast<uint64_t>(e.integer_in("base_seed", 1, 0, INT64_MAX));
         s.eval.d_c = e.number_in("d_c", 1.0, 1e-9, 1e9);
         s.eval.d_assoc = e.number_in("d_assoc", 3.0, 1e-9, 1e9);
+        s.eval.gospa_c = e.number_in("gospa_c", 0.0, 0.0, 1e9);
+        s.eval.gospa_p = e.number_in("gospa_p", 2.0, 1.0, 1e6);
     }
     if (root.has("output")) {
         Field o = root.at("output");

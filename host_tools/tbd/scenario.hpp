@@ -47,6 +47,8 @@ struct EvalSettings {
     uint64_t base_seed = 1;
     double d_c = 1.0;                 ///< correct-point distance (pixels)
     double d_assoc = 3.0;             ///< track-to-target association gate (pixels)
+    double gospa_c = 0.0;             ///< GOSPA/OSPA cut-off (pixels; 0: d_assoc)
+    double gospa_p = 2.0;             ///< GOSPA/OSPA order
 };
 
 struct OutputSettings {

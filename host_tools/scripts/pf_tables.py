@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Markdown tables of docs/results/pf.md from the outputs of host_tools/pf/pf_results.sh.
+"""Markdown tables of docs/results/pf.md from the outputs of host_tools/scripts/pf_results.sh.
 
 Usage: pf_tables.py RESULTS_DIR
 RESULTS_DIR holds gordon_bearings_{float,q16}/, gordon_bearings_scale1_{float,q16}/ (eval

@@ -2,10 +2,11 @@
 # Every evaluation of docs/results/pf.md, for a float and a q16 build of `pft`:
 #   bearings benchmark (scale 1000 and scale 1), Monte Carlo eval of SIS / SIR / APF / APF-nr
 #   over N = 100..5000; single-thread bench; APF-TBD against PF-TBD at 2 and 5 dB; callgrind
-#   instruction counts; the markdown tables (apf_tables.py) and the float-vs-q16 comparisons
+#   instruction counts (callgrind.py with callgrind/pf.json); the markdown tables (pf_tables.py) and the
+#   float-vs-q16 comparisons
 #   (compare_builds.py).
-# Usage: host_tools/pf/pf_results.sh FLOAT_BUILD Q16_BUILD OUT_DIR [RUNS] [THREADS]
-#   e.g. host_tools/pf/pf_results.sh build/h7-host-float build/h7-host-q16 results/pf 100 2
+# Usage: host_tools/scripts/pf_results.sh FLOAT_BUILD Q16_BUILD OUT_DIR [RUNS] [THREADS]
+#   e.g. host_tools/scripts/pf_results.sh build/host-float build/host-q16 results/pf 100 2
 # Seeds: every eval uses its scenario's base seed 1; run i uses seed 1 + i (recorded in each
 # summary.json); bench uses seeds 1..30.
 set -euo pipefail
@@ -33,7 +34,7 @@ for b in float q16; do
 done
 echo "== callgrind" >&2
 mkdir -p "$OUT/callgrind"
-"$HERE/pf_callgrind.sh" "$OUT/callgrind" "$FB" "$QB" > "$OUT/callgrind/table.md"
+python3 "$HERE/callgrind.py" "$OUT/callgrind" "$HERE/callgrind/pf.json" "$FB" "$QB" > "$OUT/callgrind/table.md"
 python3 "$HERE/pf_tables.py" "$OUT" > "$OUT/tables.md"
 {
   echo "float vs q16, scale 1000"; python3 "$HERE/compare_builds.py" "$OUT/gordon_bearings_float/summary.json" "$OUT/gordon_bearings_q16/summary.json" --md
