@@ -643,8 +643,8 @@ PixelScaling decide_scaling(const SequenceInfo &info, const std::vector<cv::Mat>
             s.how = "pixel scaling from the sidecar; sigma: the frames are constant, the scenario's used";
             return s;
         }
-        std::snprintf(b, sizeof b, "pixel scaling from the sidecar; sigma %.4g estimated (%s MAD, "
-                      "%d frames, %ld residuals)", s.noise_sigma, e.method.c_str(), e.frames, e.samples);
+        std::snprintf(b, sizeof b, "pixel scaling from the sidecar; sigma %.4g estimated (robust %s "
+                      "estimate, %d frames, %ld residuals)", s.noise_sigma, e.method.c_str(), e.frames, e.samples);
         s.how = b;
         return s;
     }
@@ -662,8 +662,8 @@ PixelScaling decide_scaling(const SequenceInfo &info, const std::vector<cv::Mat>
     s.gain = model_sigma / e.sigma;
     s.offset = -e.background * s.gain;
     std::snprintf(b, sizeof b, "no sidecar; estimated from the first %d frames: background %.6g, "
-                  "noise sigma %.5g (raw units; %s MAD of the frame minus its 8-neighbour mean, "
-                  "%ld residuals); intensity = (raw - %.6g) * %.6g so that sigma = %.4g, the "
+                  "noise sigma %.5g (raw units; robust %s estimate: the frame minus its 8-neighbour "
+                  "mean, %ld residuals); intensity = (raw - %.6g) * %.6g so that sigma = %.4g, the "
                   "scenario's", e.frames, e.background, e.sigma, e.method.c_str(), e.samples,
                   e.background, s.gain, model_sigma);
     s.how = b;

@@ -261,8 +261,8 @@ int main(int argc, char **argv)
                 o.scenario = load_json_file(o.scenario_path);
                 kind = "tbd_ir";
                 if (!o.quiet)
-                    std::fprintf(stderr, "pft: note: no --scenario and no %s: the IR pipeline "
-                                 "(kind tbd_ir) with the settings of %s\n", side.c_str(),
+                    std::fprintf(stderr, "pft: note: no --scenario and no sequence.json sidecar: "
+                                 "the IR pipeline (kind tbd_ir) with the settings of %s\n",
                                  o.scenario_path.c_str());
             }
         }

@@ -469,8 +469,8 @@ public:
             std::printf("pft run: %s (%s, %dx%d, %s frames, %d bits)\n", o.sequence.c_str(), info.kind.c_str(),
                         head[0].cols, head[0].rows,
                         info.frames >= 0 ? std::to_string(info.frames).c_str() : "?", bits);
-            std::printf("  noise sigma estimated from the first %d frames: %.4g counts (spatial: MAD of "
-                        "the frame minus its 8-neighbour mean), %.4g counts (temporal: MAD of frame "
+            std::printf("  noise sigma estimated from the first %d frames: %.4g counts (spatial: robust sigma of "
+                        "the frame minus its 8-neighbour mean), %.4g counts (temporal: frame "
                         "differences)%s\n", es.frames, es.sigma, et.sigma,
                         std::isfinite(info.noise_sigma)
                             ? (", sidecar: " + std::to_string(info.noise_sigma).substr(0, 7)).c_str()

@@ -17,6 +17,8 @@ namespace pft::host::tbd_ir {
 
 namespace {
 
+const double kMinCell = 6.0;  // finest cell of the procedural textures, px
+
 bool is_image(const fs::path &p)
 {
     std::string e = p.extension().string();
@@ -73,13 +75,13 @@ double quantile(const cv::Mat &m, double q)
 
 }  // namespace
 
-cv::Mat fractal_noise(int w, int h, double scale, int octaves, cv::RNG &rng)
+cv::Mat fractal_noise(int w, int h, double scale, double min_cell, cv::RNG &rng)
 {
     cv::Mat acc = cv::Mat::zeros(h, w, CV_32F);
     double amp = 1.0;
-    for (int o = 0; o < octaves; ++o) {
+    for (int o = 0; o < 16; ++o) {
         double cell = scale / std::pow(2.0, o);
-        if (cell < 1.5)
+        if (cell < min_cell && o > 0)
             break;
         int gw = static_cast<int>(std::ceil(w / cell)) + 4, gh = static_cast<int>(std::ceil(h / cell)) + 4;
         cv::Mat g(gh, gw, CV_32F);
@@ -184,7 +186,7 @@ Scene procedural_scene(const IrScenario &s, int W, int H, double y0, int frame_h
     // horizon ridge (scene rows): none -> below the scene
     std::vector<float> ridge(static_cast<std::size_t>(W), static_cast<float>(H + 10));
     if (P.horizon) {
-        cv::Mat rn = fractal_noise(W, 1, 48.0, 5, rng);
+        cv::Mat rn = fractal_noise(W, 1, 48.0, 3.0, rng);
         double base = y0 + *P.horizon * frame_h;
         for (int c = 0; c < W; ++c)
             ridge[static_cast<std::size_t>(c)] = static_cast<float>(base + 0.025 * frame_h * rn.at<float>(0, c));
@@ -200,9 +202,11 @@ Scene procedural_scene(const IrScenario &s, int W, int H, double y0, int frame_h
         }
     }
     // clouds: fractal field thresholded at the cover quantile, soft edges of cloud_edge_px
-    cv::Mat n1 = fractal_noise(W, H, P.cloud_scale_px, 7, rng);
-    cv::Mat n2 = fractal_noise(W, H, P.cloud_scale_px / 3.0, 5, rng);
-    cv::Mat n3 = fractal_noise(W, H, 24.0, 4, rng);
+    // structure down to cells of kMinCell px: finer random texture would be point-like
+    // clutter everywhere (real cloud texture is smoother than that at the sensor's scale)
+    cv::Mat n1 = fractal_noise(W, H, P.cloud_scale_px, kMinCell, rng);
+    cv::Mat n2 = fractal_noise(W, H, P.cloud_scale_px / 3.0, kMinCell, rng);
+    cv::Mat n3 = fractal_noise(W, H, 24.0, kMinCell, rng);
     double t = P.cloud_cover <= 0 ? 1e9 : quantile(n1, 1.0 - P.cloud_cover);
     cv::Mat gx, gy, mag;
     cv::Sobel(n1, gx, CV_32F, 1, 0, 3, 1.0 / 8.0);

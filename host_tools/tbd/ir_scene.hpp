@@ -51,7 +51,7 @@ Scene image_scene(const IrScenario &s, const std::string &file);
 double object_amplitude(const cv::Mat &counts, const SceneObject &o);
 
 /** Fractal noise (sum of octaves of bicubically interpolated random grids, persistence 0.5)
- *  of w x h, largest structures about `scale` px, normalised to mean 0 and deviation 1. */
-cv::Mat fractal_noise(int w, int h, double scale, int octaves, cv::RNG &rng);
+ *  of w x h, cells from `scale` px down to `min_cell` px, normalised to mean 0 and deviation 1. */
+cv::Mat fractal_noise(int w, int h, double scale, double min_cell, cv::RNG &rng);
 
 }  // namespace pft::host::tbd_ir
