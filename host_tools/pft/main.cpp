@@ -153,7 +153,7 @@ int main(int argc, char **argv)
     CLI::App *sim = app.add_subcommand("sim", "simulate a scenario: frames (16-bit PGM or raw float32), truth CSV, sidecar JSON");
     add_scenario(sim, o, true);
     sim->add_option("--out", o.out, "output directory")->required();
-    sim->add_option("--format", o.format, "pgm (16-bit, default) or raw (float32)")->check(CLI::IsMember({"pgm", "raw"}));
+    sim->add_option("--format", o.format, "pgm (16-bit, default) or raw (tbd: float32; tbd_ir: u16)")->check(CLI::IsMember({"pgm", "raw"}));
     filter_opts(sim);
     sim->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
     common(sim);
