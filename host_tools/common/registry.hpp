@@ -23,6 +23,8 @@ struct Options {
     std::string out;            ///< --out: output directory
     std::string sequence;       ///< --sequence: input (run, demo)
     std::string truth;          ///< --truth: ground-truth CSV (run)
+    std::string raw;            ///< --raw WxH[:bits][:le|be][:skip=BYTES]: --sequence is a u16 dump
+    std::string backgrounds;    ///< --backgrounds DIR: background images (kind tbd_ir)
     unsigned runs = 0;          ///< --runs (0: scenario or default)
     unsigned threads = 0;       ///< --threads (0: hardware concurrency)
     std::optional<uint64_t> seed;  ///< --seed (sim: the sequence, eval: base seed)

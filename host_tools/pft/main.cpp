@@ -175,14 +175,16 @@ int main(int argc, char **argv)
     CLI::App *sim = app.add_subcommand("sim", "simulate a scenario: frames (16-bit PGM or raw float32), truth CSV, sidecar JSON");
     add_scenario(sim, o, true);
     sim->add_option("--out", o.out, "output directory")->required();
-    sim->add_option("--format", o.format, "pgm (16-bit, default) or raw (float32)")->check(CLI::IsMember({"pgm", "raw"}));
+    sim->add_option("--format", o.format, "pgm (16-bit, default) or raw (tbd: float32; tbd_ir: u16)")->check(CLI::IsMember({"pgm", "raw"}));
     filter_opts(sim);
+    sim->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
     common(sim);
 
     CLI::App *run = app.add_subcommand("run", "track a recorded sequence; write tracks CSV/JSON and an overlay video");
     add_scenario(run, o, false);
-    run->add_option("--sequence", o.sequence, "pft sim directory, PGM pattern (dir/f%04u.pgm), video file or image folder")->required();
-    run->add_option("--truth", o.truth, "ground-truth CSV (frame,target,x,y,vx,vy,I,present)");
+    run->add_option("--sequence", o.sequence, "pft sim directory, PGM pattern (dir/f%04u.pgm), video file, image folder or (with --raw) u16 dump")->required();
+    run->add_option("--raw", o.raw, "--sequence is a headerless u16 dump: WxH[:bits][:le|be][:skip=BYTES]");
+    run->add_option("--truth", o.truth, "ground-truth CSV (tbd: frame,target,x,y,vx,vy,I,present; tbd_ir: frame,id,x,y,snr_db,kind)");
     run->add_option("--out", o.out, "output directory (default pft_run_out)");
     run->add_option("--scale", o.scale, "overlay upscale factor (default: about 480 px)")->check(CLI::Range(1, 64));
     run->add_flag("--no-video", o.no_video, "do not write the overlay video");
@@ -200,6 +202,7 @@ int main(int argc, char **argv)
     ev->add_option("--shard", o.shard, "compute shard K of N (runs [(K-1)R/N, KR/N)) and write OUT/partial_K_of_N.json for pft merge");
     filter_opts(ev);
     set_metric_opts(ev);
+    ev->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
     common(ev);
 
     CLI::App *be = app.add_subcommand("bench", "per-frame time, particles/s and workspace bytes (not a test)");
@@ -208,14 +211,17 @@ int main(int argc, char **argv)
     be->add_option("--runs", o.runs, "timed runs (default 1)")->check(CLI::Range(1u, 100000u));
     be->add_option("--out", o.out, "directory for bench.json");
     filter_opts(be);
+    be->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
     common(be);
 
     CLI::App *de = app.add_subcommand("demo", "simulate the default two-target scenario (or take --sequence), track it, print tracks and summary");
     add_scenario(de, o, false);
     de->add_option("--sequence", o.sequence, "track this sequence instead of simulating");
+    de->add_option("--raw", o.raw, "--sequence is a headerless u16 dump: WxH[:bits][:le|be][:skip=BYTES]");
     de->add_option("--out", o.out, "output directory when --sequence is given");
     filter_opts(de);
     set_metric_opts(de);
+    de->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
     common(de);
 
     CLI::App *mg = app.add_subcommand("merge", "combine the partial summaries of pft eval --shard K/N into the summary one eval gives");
@@ -279,15 +285,24 @@ int main(int argc, char **argv)
         } else {
             // run on a pft sim directory: the sidecar carries the scenario and its kind
             std::string side = o.sequence + "/sequence.json";
-            std::FILE *fp = std::fopen(side.c_str(), "r");
-            if (!fp)
-                throw InputError("--scenario FILE.json is required (no " + side + ")");
-            std::fclose(fp);
-            json sj = load_json_file(side);
-            if (!sj.is_object() || !sj.contains("scenario"))
-                throw InputError("--scenario FILE.json is required (" + side + " names no scenario)");
-            Field f(sj, side);
-            kind = f.at("scenario").string("kind");
+            std::FILE *fp = o.raw.empty() ? std::fopen(side.c_str(), "r") : nullptr;
+            if (fp) {
+                std::fclose(fp);
+                json sj = load_json_file(side);
+                if (!sj.is_object() || !sj.contains("scenario"))
+                    throw InputError("--scenario FILE.json is required (" + side + " names no scenario)");
+                Field f(sj, side);
+                kind = f.at("scenario").string("kind");
+            } else {
+                // recorded frames without a sidecar: the IR pipeline with its default settings
+                o.scenario_path = make_handler("tbd_ir")->default_scenario();
+                o.scenario = load_json_file(o.scenario_path);
+                kind = "tbd_ir";
+                if (!o.quiet)
+                    std::fprintf(stderr, "pft: note: no --scenario and no sequence.json sidecar: "
+                                 "the IR pipeline (kind tbd_ir) with the settings of %s\n",
+                                 o.scenario_path.c_str());
+            }
         }
         auto h = make_handler(kind);
         if (o.command == "sim")

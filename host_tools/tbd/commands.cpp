@@ -526,8 +526,9 @@ struct RunTracking {
 
 /** Tracks every frame of the source (at most --frames), with the overlay video unless
  *  --no-video. The tracker is built at the first frame (its size sets the image). */
-RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint64_t seed,
-                         bool single, const TruthTable &tt, bool have_truth, const std::string &out_dir)
+RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, const PixelScaling &ps,
+                         uint64_t seed, bool single, const TruthTable &tt, bool have_truth,
+                         const std::string &out_dir)
 {
     const SequenceInfo &info = rd.info();
     RunTracking rt;
@@ -543,8 +544,8 @@ RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint
             s.width = f.width;
             s.height = f.height;
             pft_tbd_config_t c = make_config(s, seed);
-            c.pixel_gain = to_real(info.pixel_gain);
-            c.pixel_offset = to_real(info.pixel_offset);
+            c.pixel_gain = to_real(ps.gain);
+            c.pixel_offset = to_real(ps.offset);
             rt.tr = std::make_unique<Tracker>(c, single);
             if (!o.no_video) {
                 double A = s.peak(s.ref_intensity);
@@ -556,9 +557,12 @@ RunTracking track_source(const Options &o, Scenario &s, SequenceReader &rd, uint
         }
         pft_frame_t g = f;
         cv::Mat m;
-        if (ov || (f.format != PFT_PIX_U8 && f.format != PFT_PIX_U16 && f.format != PFT_PIX_F32))
-            m = frame_to_mat(f, info.pixel_gain, info.pixel_offset);
-        if (f.format == PFT_PIX_RGB888 || f.format == PFT_PIX_BGR888) {
+        // colour, and float frames that need a scaling, go in as F32 intensities
+        bool convert = (f.format != PFT_PIX_U8 && f.format != PFT_PIX_U16 && f.format != PFT_PIX_F32) ||
+                       (f.format == PFT_PIX_F32 && (ps.gain != 1.0 || ps.offset != 0.0));
+        if (ov || convert)
+            m = frame_to_mat(f, ps.gain, ps.offset);
+        if (convert) {
             conv.assign(m.ptr<float>(0), m.ptr<float>(0) + m.total());
             g.data = conv.data();
             g.format = PFT_PIX_F32;
@@ -706,9 +710,15 @@ public:
         if (o.sequence.empty())
             throw InputError("run: --sequence PATH is required (pft sim output directory, PGM "
                              "pattern, video file or image folder)");
-        auto rd = open_sequence(o.sequence);
+        auto rd = std::make_unique<LookaheadReader>(open_sequence(o.sequence, o.raw));
         const SequenceInfo &info = rd->info();
         Scenario s = run_scenario(o, info);
+        // pixel scaling and sigma: the sidecar's, else estimated from the first frames
+        PixelScaling ps = decide_scaling(info, rd->head(8), s.noise_sigma);
+        if (!s.filter.noise_sigma) {
+            s.noise_sigma = ps.noise_sigma;
+            s.snr_db = snr_from_sigma(s.peak(s.ref_intensity), s.noise_sigma);
+        }
         bool single = s.filter.mode == "single";
         std::string out_dir = o.out.empty() ? "pft_run_out" : o.out;
         ensure_dir(out_dir);
@@ -723,7 +733,9 @@ public:
         if (have_truth)
             tt = read_truth_csv(truth_path);
 
-        RunTracking rt = track_source(o, s, *rd, seed, single, tt, have_truth, out_dir);
+        if (!o.quiet)
+            std::printf("pft run: input %s: %s\n", o.sequence.c_str(), ps.how.c_str());
+        RunTracking rt = track_source(o, s, *rd, ps, seed, single, tt, have_truth, out_dir);
         json meta = {{"tool", "pft run"}, {"sequence", o.sequence}, {"scenario", s.name},
                      {"mode", single ? "single" : "multi"}, {"filter", s.filter.kind},
                      {"particles", s.filter.particles}, {"numeric", numeric_name()},

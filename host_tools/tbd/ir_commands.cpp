@@ -1,0 +1,690 @@
+// The "tbd_ir" kind: sim, run, demo, eval, bench and selftest for semi-synthetic infrared
+// sequences (ir_scenario.hpp) and the IR pipeline (ir_pipeline.hpp).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <opencv2/core/utility.hpp>
+
+extern "C" {
+#include "pft/pft_port_file.h"
+}
+
+#include "../common/errors.hpp"
+#include "../common/json_field.hpp"
+#include "../common/noise_estimate.hpp"
+#include "../common/output.hpp"
+#include "../common/parallel.hpp"
+#include "../common/progress.hpp"
+#include "../common/registry.hpp"
+#include "../common/scenario_dir.hpp"
+#include "../common/sequence_input.hpp"
+#include "ir_eval.hpp"
+#include "ir_pipeline.hpp"
+#include "ir_scenario.hpp"
+#include "ir_scene.hpp"
+#include "ir_sim.hpp"
+#include "overlay.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace pft::host::tbd_ir {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0)
+{
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+IrScenario load(const Options &o)
+{
+    return parse_ir_scenario(o.scenario, o.scenario_path, o.backgrounds);
+}
+
+std::string describe(const IrScenario &s)
+{
+    char b[512];
+    std::string count = s.targets.count[0] == s.targets.count[1]
+                            ? std::to_string(s.targets.count[0])
+                            : std::to_string(s.targets.count[0]) + ".." + std::to_string(s.targets.count[1]);
+    std::string bg = s.background.source == "procedural" ? "procedural clouds"
+                                                         : "backgrounds from " + s.background.folder;
+    std::string snr = s.targets.snr_db[0] == s.targets.snr_db[1]
+                          ? std::to_string(s.targets.snr_db[0]).substr(0, 5) + " dB"
+                          : std::to_string(s.targets.snr_db[0]).substr(0, 5) + ".." +
+                                std::to_string(s.targets.snr_db[1]).substr(0, 5) + " dB";
+    std::snprintf(b, sizeof b,
+                  "%s: %s, %d frames, %d-bit sensor (noise %.4g counts, column FPN %.4g), drift "
+                  "(%.2f, %.2f) px/frame + jitter %.2f px, %s random target(s) + %d crossing "
+                  "pair(s) + %zu listed at SNR %s",
+                  s.name.empty() ? s.file.c_str() : s.name.c_str(), bg.c_str(), s.frames,
+                  s.sensor.bit_depth, s.sensor.noise_sigma, s.sensor.column_fpn_sigma,
+                  s.platform.drift_px[0], s.platform.drift_px[1], s.platform.jitter_px,
+                  count.c_str(), s.targets.crossings, s.targets.list.size(), snr.c_str());
+    return b;
+}
+
+std::string describe_pipeline(const IrScenario &s)
+{
+    char b[320];
+    const TrackerSettings &t = s.tracker;
+    std::snprintf(b, sizeof b,
+                  "pipeline: host stand-in preprocessing (local mean %dx%d, guard %dx%d, tile "
+                  "sigma %d px) + pft_tbd manager (%s preset, Ns=%u, Nt=%u, %u tracks, SNR prior "
+                  "%.3g..%.3g dB), %s",
+                  2 * t.background_radius + 1, 2 * t.background_radius + 1, 2 * t.guard_radius + 1,
+                  2 * t.guard_radius + 1, t.tile, t.preset.c_str(), t.particles, t.track_particles,
+                  t.max_targets, t.snr_min_db, t.snr_max_db, numeric_name());
+    return b;
+}
+
+pft_frame_t u16_frame(const cv::Mat &m, int bits, uint32_t seq)
+{
+    pft_frame_t f{};
+    f.data = m.data;
+    f.width = static_cast<uint16_t>(m.cols);
+    f.height = static_cast<uint16_t>(m.rows);
+    f.stride_bytes = static_cast<uint32_t>(m.step[0]);
+    f.format = PFT_PIX_U16;
+    f.bit_depth = static_cast<uint8_t>(bits);
+    f.seq = seq;
+    f.timestamp_us = static_cast<uint64_t>(seq - 1) * 40000u;
+    return f;
+}
+
+// ------------------------------------------------------------------------- sim output
+json write_frames(const IrScenario &s, const IrSequence &q, const std::string &dir,
+                  const std::string &format, Progress &bar)
+{
+    if (format == "pgm") {
+        for (int k = 0; k < q.frames; ++k) {
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
+            AtomicPath ap(join_path(dir, name));
+            pft_frame_t f = u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth, static_cast<uint32_t>(k + 1));
+            pft_status_t st = pft_pnm_write(ap.tmp().c_str(), &f);
+            if (st != PFT_OK)
+                throw InputError(ap.final_path() + ": cannot write PGM (" + pft_status_str(st) + ")");
+            ap.commit();
+            bar.tick();
+        }
+        return {{"format", "pgm16"}, {"pattern", "frame_%04u.pgm"}};
+    }
+    AtomicPath ap(join_path(dir, "frames.u16"));
+    for (int k = 0; k < q.frames; ++k) {
+        pft_frame_t f = u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth, static_cast<uint32_t>(k + 1));
+        pft_status_t st = pft_raw_write(ap.tmp().c_str(), &f, k > 0);
+        if (st != PFT_OK)
+            throw InputError(ap.final_path() + ": cannot write (" + pft_status_str(st) + ")");
+        bar.tick();
+    }
+    ap.commit();
+    (void)s;
+    return {{"format", "raw_u16"}, {"file", "frames.u16"}, {"endian", "le"}};
+}
+
+void write_platform(const std::string &path, const IrSequence &q)
+{
+    write_text_atomic(path, [&](std::ostream &os) {
+        CsvWriter w(os);
+        w.field("frame").field("x").field("y");
+        w.end_row();
+        for (std::size_t k = 0; k < q.platform.size(); ++k) {
+            w.field(static_cast<int>(k + 1)).field(q.platform[k][0]).field(q.platform[k][1]);
+            w.end_row();
+        }
+    });
+}
+
+// ------------------------------------------------------------------------- tracks output
+void write_tracks(const std::string &dir, const std::vector<tbd::FrameOut> &out, const json &meta)
+{
+    write_text_atomic(join_path(dir, "tracks.csv"), [&](std::ostream &os) {
+        CsvWriter w(os);
+        w.field("frame").field("track").field("x").field("y").field("vx").field("vy")
+            .field("intensity").field("p_exist").field("first_frame");
+        w.end_row();
+        for (const tbd::FrameOut &f : out)
+            for (const tbd::TrackOut &t : f.tracks) {
+                w.field(static_cast<long long>(f.frame)).field(static_cast<long long>(t.id)).field(t.x)
+                    .field(t.y).field(t.vx).field(t.vy).field(t.intensity).field(t.p_exist)
+                    .field(static_cast<long long>(t.first_frame));
+                w.end_row();
+            }
+    });
+    std::map<uint32_t, json> tracks;
+    json events = json::array();
+    for (const tbd::FrameOut &f : out) {
+        for (const tbd::TrackOut &t : f.tracks) {
+            json &j = tracks[t.id];
+            if (j.is_null())
+                j = {{"id", t.id}, {"first_frame", f.frame}, {"points", json::array()}};
+            j["last_frame"] = f.frame;
+            j["points"].push_back({f.frame, t.x, t.y, t.p_exist});
+        }
+        for (const tbd::EventOut &e : f.events)
+            events.push_back({{"frame", f.frame}, {"id", e.id},
+                              {"event", e.kind == PFT_TBD_EV_CONFIRMED ? "confirmed" : "ended"},
+                              {"x", e.x}, {"y", e.y}});
+    }
+    json j = meta;
+    j["tracks"] = json::array();
+    for (auto &kv : tracks)
+        j["tracks"].push_back(kv.second);
+    j["events"] = events;
+    j["tracks_point_format"] = "[frame, x, y, p_exist]";
+    write_json_atomic(join_path(dir, "tracks.json"), j);
+}
+
+/** Truth of one frame as the overlay wants it (ids in `ids` order). */
+std::vector<tbd::TruthState> overlay_truth(const std::vector<TruthRow> &rows, int frame,
+                                           const std::vector<int> &ids)
+{
+    std::vector<tbd::TruthState> v(ids.size());
+    for (const TruthRow &r : rows)
+        if (r.frame == frame) {
+            auto it = std::lower_bound(ids.begin(), ids.end(), r.id);
+            auto &t = v[static_cast<std::size_t>(it - ids.begin())];
+            t.present = true;
+            t.x = r.x;
+            t.y = r.y;
+        }
+    return v;
+}
+
+void print_tracks(const std::vector<tbd::FrameOut> &out, const IrRunEval *ev)
+{
+    std::map<uint32_t, std::array<double, 6>> h;  // first, last, x0, y0, x1, y1
+    for (const tbd::FrameOut &f : out)
+        for (const tbd::TrackOut &t : f.tracks) {
+            auto it = h.find(t.id);
+            if (it == h.end())
+                h[t.id] = {double(f.frame), double(f.frame), t.x, t.y, t.x, t.y};
+            else {
+                it->second[1] = f.frame;
+                it->second[4] = t.x;
+                it->second[5] = t.y;
+            }
+        }
+    std::set<uint32_t> fals;
+    if (ev)
+        fals.insert(ev->false_ids.begin(), ev->false_ids.end());
+    std::printf("\nTracks found: %zu\n", h.size());
+    for (auto &kv : h)
+        std::printf("  #%-3u frames %3.0f-%-3.0f (%7.2f,%7.2f) .. (%7.2f,%7.2f)%s\n", kv.first,
+                    kv.second[0], kv.second[1], kv.second[2], kv.second[3], kv.second[4], kv.second[5],
+                    !ev ? "" : fals.count(kv.first) ? "  false track" : "  on a target");
+}
+
+/** Tracks a whole in-memory sequence through the pipeline. */
+std::vector<tbd::FrameOut> track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
+{
+    IrPipeline pl(s.tracker, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+    std::vector<tbd::FrameOut> out;
+    out.reserve(static_cast<std::size_t>(q.frames));
+    for (int k = 0; k < q.frames; ++k)
+        out.push_back(pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth,
+                                        static_cast<uint32_t>(k + 1))));
+    return out;
+}
+
+// ------------------------------------------------------------------------- selftest
+int selftest_checks(bool verbose)
+{
+    int fails = 0;
+    auto check = [&](const std::string &what, bool ok) {
+        fails += ok ? 0 : 1;
+        if (verbose || !ok)
+            std::printf("  %-4s %s\n", ok ? "ok" : "FAIL", what.c_str());
+    };
+    cv::RNG rng(12345);
+    const int W = 256, H = 192;
+    const double sigma = 10.0;
+    auto plane = [&](double off) {
+        cv::Mat m(H, W, CV_32F), n(H, W, CV_32F);
+        for (int r = 0; r < H; ++r)
+            for (int c = 0; c < W; ++c)
+                m.at<float>(r, c) = static_cast<float>(off + 3.0 * c - 2.0 * r);
+        rng.fill(n, cv::RNG::NORMAL, 0.0, sigma);
+        return cv::Mat(m + n);
+    };
+    std::vector<cv::Mat> frames{plane(2000), plane(2000), plane(2000), plane(2000)};
+    NoiseEstimate sp = estimate_noise_spatial(frames);
+    char b[200];
+    std::snprintf(b, sizeof b, "spatial sigma of a plane (3, -2 counts/px) plus noise 10: %.3f within 5%%", sp.sigma);
+    check(b, std::fabs(sp.sigma / sigma - 1.0) < 0.05);
+    NoiseEstimate tp = estimate_noise_temporal(frames);
+    std::snprintf(b, sizeof b, "temporal sigma of the same static frames: %.3f within 5%%", tp.sigma);
+    check(b, std::fabs(tp.sigma / sigma - 1.0) < 0.05);
+    std::vector<cv::Mat> flat{cv::Mat(H, W, CV_32F, cv::Scalar(77.0))};
+    NoiseEstimate fl = estimate_noise_spatial(flat);
+    check("constant frame: sigma 0, finite, reported degenerate", fl.degenerate && fl.sigma == 0.0 &&
+                                                                       fl.background == 77.0);
+    // quantised data: more than half the residuals equal -> the fallback, still near sigma
+    cv::Mat q8;
+    plane(100).convertTo(q8, CV_8U, 0.02);  // sigma 0.2 counts after scaling: mostly equal
+    cv::Mat q8f;
+    q8.convertTo(q8f, CV_32F);
+    NoiseEstimate qe = estimate_noise_spatial({q8f});
+    check("8-bit quantised frame: finite positive sigma", std::isfinite(qe.sigma) && qe.sigma > 0);
+
+    // the pipeline's residual on a plane plus noise: local mean over 11x11 minus 5x5 (96 px)
+    TrackerSettings ts;
+    IrPipeline pl(ts, 0.7, W, H, 14, 1);
+    cv::Mat u16;
+    plane(4000).convertTo(u16, CV_16U);
+    pl.step(u16_frame(u16, 14, 1));
+    double expect = sigma * std::sqrt(1.0 + 1.0 / 96.0);
+    std::snprintf(b, sizeof b, "pipeline tile sigma on a plane: %.3f, expected %.3f within 5%%", pl.sigma(), expect);
+    check(b, std::fabs(pl.sigma() / expect - 1.0) < 0.05);
+    cv::Mat dead = u16.clone();
+    dead.at<uint16_t>(50, 60) = 0;
+    dead.at<uint16_t>(70, 80) = 16383;
+    pl.step(u16_frame(dead, 14, 2));
+    check("dead and saturated pixels masked (residual 0 there)",
+          pl.masked() == 2 && pl.residual().at<float>(50, 60) == 0.0f && pl.residual().at<float>(70, 80) == 0.0f);
+    // a point on the gradient keeps its SNR: the whitened residual with the point minus the
+    // one without it (same noise) at the point's pixel, against 8 / sqrt(1 + 1/96)
+    cv::Mat grad(H, W, CV_32F), noise(H, W, CV_32F);
+    for (int r = 0; r < H; ++r)
+        for (int c = 0; c < W; ++c)
+            grad.at<float>(r, c) = static_cast<float>(4000 + 3.0 * c - 2.0 * r);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+    cv::Mat with = grad + noise;
+    add_point(with, 100.0, 90.0, 8.0 * sigma, 0.7);
+    cv::Mat(grad + noise).convertTo(u16, CV_16U);
+    pl.step(u16_frame(u16, 14, 3));
+    double base = pl.residual().at<float>(90, 100);
+    with.convertTo(u16, CV_16U);
+    pl.step(u16_frame(u16, 14, 4));
+    double peak = pl.residual().at<float>(90, 100) - base, want = 8.0 / std::sqrt(1.0 + 1.0 / 96.0);
+    std::snprintf(b, sizeof b, "point of peak 8 sigma on the gradient: whitened peak %.3f (%.3f within 5%%)", peak, want);
+    check(b, std::fabs(peak / want - 1.0) < 0.05);
+
+    // injection and SNR mapping
+    cv::Mat z(9, 9, CV_32F, cv::Scalar(0.0));
+    add_point(z, 4.0, 4.0, 50.0, 0.7);
+    check("add_point: peak amplitude on the pixel centre", std::fabs(z.at<float>(4, 4) - 50.0f) < 1e-4);
+    json sj = {{"kind", "tbd_ir"}, {"sensor", {{"noise_sigma", 20}}}};
+    IrScenario s = parse_ir_scenario(sj, "<selftest>");
+    check("SNR 9 dB -> peak 2.818 sigma", std::fabs(s.amplitude(9.0) / 20.0 - 2.8183829) < 1e-6);
+
+    // YOLO labels: fractions of the image to 0-based pixel centres
+    std::string lab = (fs::temp_directory_path() / "pft_ir_selftest_labels.txt").string();
+    {
+        std::ofstream o(lab);
+        o << "0 0.5 0.25 0.02 0.03\n";
+    }
+    auto objs = read_yolo_labels(lab, 384, 288);
+    fs::remove(lab);
+    check("YOLO label (0.5, 0.25) of 384x288 -> (191.5, 71.5)",
+          objs.size() == 1 && objs[0].x == 191.5 && objs[0].y == 71.5);
+
+    // --raw specs
+    RawSpec r = parse_raw_spec("384x288:14:be:skip=512", "x");
+    check("--raw 384x288:14:be:skip=512", r.width == 384 && r.height == 288 && r.bits == 14 &&
+                                              r.big_endian && r.skip == 512);
+    bool refused = false;
+    try {
+        parse_raw_spec("384x", "dump.u16");
+    } catch (const InputError &e) {
+        refused = std::string(e.what()).find("dump.u16: --raw 384x: field H") != std::string::npos;
+    }
+    check("--raw 384x refused naming the file and field H", refused);
+
+    // the simulator: temporal noise of a static scene (no drift, jitter) in counts, targets in
+    // the truth, pixels within the bit depth
+    json sc = {{"kind", "tbd_ir"}, {"image", {{"width", 96}, {"height", 72}}}, {"frames", 6},
+               {"platform", {{"drift_px", {0, 0}}, {"jitter_px", 0}}},
+               {"sensor", {{"noise_sigma", 12}, {"dead_fraction", 0}, {"saturated_fraction", 0}}},
+               {"targets", {{"count", 8}, {"crossings", 0}, {"enter_fraction", 0}, {"min_life", 6},
+                            {"speed_px", {0.0, 0.0}}}}};
+    IrScenario ss = parse_ir_scenario(sc, "<selftest>");
+    IrSequence q = simulate_ir(ss, 3);
+    std::vector<float> d;
+    std::set<int> ids;
+    for (const TruthRow &t : q.truth)
+        ids.insert(t.id);
+    cv::Mat a, c;
+    q.images[4].convertTo(a, CV_32F);
+    q.images[5].convertTo(c, CV_32F);
+    cv::Mat diff = a - c;
+    d.assign(diff.begin<float>(), diff.end<float>());
+    double tsig = robust_sigma(d) / std::sqrt(2.0);
+    std::snprintf(b, sizeof b, "sim: temporal noise of a static scene %.2f counts (12 within 5%%)", tsig);
+    check(b, std::fabs(tsig / 12.0 - 1.0) < 0.05);
+    check("sim: 8 targets at once in the truth", ids.size() == 8);
+    double mx;
+    cv::minMaxLoc(q.images[0], nullptr, &mx);
+    check("sim: pixels within 14 bits", mx <= 16383);
+    IrSequence q2 = simulate_ir(ss, 3);
+    check("sim: same seed, same frames", cv::norm(q.images[3], q2.images[3], cv::NORM_INF) == 0);
+    return fails;
+}
+
+// ------------------------------------------------------------------------- handler
+class TbdIrHandler : public KindHandler {
+public:
+    std::string default_scenario() const override
+    {
+        return scenario_file("tbd_ir/procedural_384x288.json");
+    }
+
+    int sim(const Options &o) override
+    {
+        IrScenario s = load(o);
+        if (o.out.empty())
+            throw InputError("sim: --out DIR is required");
+        std::string format = o.format.empty() ? s.output_format : o.format;
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        ensure_dir(o.out);
+        auto t0 = Clock::now();
+        Progress bar(static_cast<std::size_t>(2 * s.frames), "sim", progress_wanted(o.progress) && !o.quiet);
+        IrSequence q = simulate_ir(s, seed, &bar);
+        double t_sim = seconds_since(t0);
+        json side = write_frames(s, q, o.out, format, bar);
+        bar.finish();
+        write_ir_truth(join_path(o.out, "truth.csv"), q.truth);
+        write_platform(join_path(o.out, "platform.csv"), q);
+        side["first_index"] = 1;
+        side["frames"] = q.frames;
+        side["width"] = q.width;
+        side["height"] = q.height;
+        side["bit_depth"] = q.bit_depth;
+        side["pixel_gain"] = 1.0;
+        side["pixel_offset"] = 0.0;
+        side["noise_sigma"] = s.sensor.noise_sigma;
+        side["noise_units"] = "counts (temporal noise of the sensor)";
+        side["truth"] = "truth.csv";
+        side["platform"] = "platform.csv";
+        side["background"] = q.background;
+        side["labelled_objects"] = q.labelled_objects;
+        side["seed"] = seed;
+        side["generator"] = "pft sim, kind tbd_ir (std::mt19937_64 paths, cv::RNG noise)";
+        side["scenario_file"] = s.file;
+        side["scenario"] = s.raw;
+        write_json_atomic(join_path(o.out, "sequence.json"), side);
+        if (!o.quiet) {
+            std::set<int> inj, lab;
+            std::map<int, int> at_once;
+            for (const TruthRow &r : q.truth) {
+                (r.labelled ? lab : inj).insert(r.id);
+                at_once[r.frame] += r.labelled ? 0 : 1;
+            }
+            int most = 0;
+            for (auto &kv : at_once)
+                most = std::max(most, kv.second);
+            std::printf("pft sim: %s\n", describe(s).c_str());
+            std::printf("  seed %llu -> %s: %d frames %dx%d (%s, %d bits), background %s; %zu injected "
+                        "target(s) (at most %d at once), %zu labelled object(s); truth.csv, "
+                        "platform.csv, sequence.json; %.2f s simulation, %.2f s in all\n",
+                        static_cast<unsigned long long>(seed), o.out.c_str(), q.frames, q.width, q.height,
+                        format == "pgm" ? "16-bit PGM" : "raw u16 little-endian", q.bit_depth,
+                        q.background.c_str(), inj.size(), most, lab.size(), t_sim, seconds_since(t0));
+        }
+        return 0;
+    }
+
+    int run(const Options &o) override
+    {
+        if (o.sequence.empty())
+            throw InputError("run: --sequence PATH is required");
+        auto rd = std::make_unique<LookaheadReader>(open_sequence(o.sequence, o.raw));
+        const SequenceInfo &info = rd->info();
+        json scen = o.scenario;
+        std::string scen_path = o.scenario_path;
+        if (scen.is_null() && info.sidecar.contains("scenario")) {
+            scen = info.sidecar["scenario"];
+            scen_path = o.sequence + "/sequence.json:scenario";
+        }
+        if (scen.is_null()) {
+            scen_path = default_scenario();
+            scen = load_json_file(scen_path);
+        }
+        IrScenario s = parse_ir_scenario(scen, scen_path, "");
+        const std::vector<cv::Mat> &head = rd->head(8);
+        if (head.empty())
+            throw InputError(o.sequence + ": no frames");
+        uint64_t seed = o.seed ? *o.seed
+                        : info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned()
+                            ? info.sidecar["seed"].get<uint64_t>()
+                            : s.eval.base_seed;
+        int bits = detect_bit_depth(info.bit_depth, head);
+        // noise of the input, for the log (the pipeline estimates its own per tile and frame)
+        cv::Mat usable = (head[0] > 0.0) & (head[0] < std::ldexp(1.0, bits) - 1.0);
+        NoiseEstimate es = estimate_noise_spatial(head, usable);
+        NoiseEstimate et = estimate_noise_temporal(head);
+        std::string out_dir = o.out.empty() ? "pft_run_out" : o.out;
+        ensure_dir(out_dir);
+        if (!o.quiet) {
+            std::printf("pft run: %s (%s, %dx%d, %s frames, %d bits)\n", o.sequence.c_str(), info.kind.c_str(),
+                        head[0].cols, head[0].rows,
+                        info.frames >= 0 ? std::to_string(info.frames).c_str() : "?", bits);
+            std::printf("  noise sigma estimated from the first %d frames: %.4g counts (spatial: robust sigma of "
+                        "the frame minus its 8-neighbour mean), %.4g counts (temporal: frame "
+                        "differences)%s\n", es.frames, es.sigma, et.sigma,
+                        std::isfinite(info.noise_sigma)
+                            ? (", sidecar: " + std::to_string(info.noise_sigma).substr(0, 7)).c_str()
+                            : "");
+            if (es.degenerate)
+                std::printf("  the first frames are constant: no noise to estimate\n");
+            std::printf("  %s\n", describe_pipeline(s).c_str());
+        }
+        IrPipeline pl(s.tracker, s.targets.psf_sigma, head[0].cols, head[0].rows, bits, seed);
+
+        std::string truth_path = !o.truth.empty() ? o.truth : info.truth_csv;
+        bool have_truth = !truth_path.empty() && fs::exists(truth_path);
+        if (!o.truth.empty() && !have_truth)
+            throw InputError(o.truth + ": no such truth file");
+        std::vector<TruthRow> truth;
+        if (have_truth)
+            truth = read_ir_truth(truth_path);
+        std::vector<int> ids;
+        for (const TruthRow &r : truth)
+            ids.push_back(r.id);
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+
+        std::unique_ptr<tbd::OverlayWriter> ov;
+        if (!o.no_video)
+            ov = std::make_unique<tbd::OverlayWriter>(join_path(out_dir, "overlay.avi"), head[0].cols,
+                                                      head[0].rows, o.scale, 0.0, 0.0, 1.0, 1.0, 10.0);
+        std::vector<tbd::FrameOut> out;
+        Progress bar(info.frames > 0 ? static_cast<std::size_t>(info.frames) : 0, "run",
+                     progress_wanted(o.progress) && !o.quiet);
+        auto t0 = Clock::now();
+        pft_frame_t f{};
+        while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
+            out.push_back(pl.step(f));
+            if (ov)
+                ov->add(frame_to_mat(f, 1.0, 0.0), overlay_truth(truth, static_cast<int>(out.back().frame), ids), ids,
+                        out.back());
+            bar.tick();
+        }
+        bar.finish();
+        double dt = seconds_since(t0);
+        if (ov)
+            ov->close();
+        json meta = {{"tool", "pft run"}, {"kind", "tbd_ir"}, {"sequence", o.sequence},
+                     {"scenario", s.name}, {"numeric", numeric_name()}, {"frames", out.size()},
+                     {"skipped_frames", rd->skipped()}, {"seed", seed}, {"bit_depth", bits},
+                     {"noise_sigma_spatial", es.sigma}, {"noise_sigma_temporal", et.sigma},
+                     {"workspace_bytes", pl.workspace_bytes()}};
+        write_tracks(out_dir, out, meta);
+        std::unique_ptr<IrRunEval> ev;
+        if (have_truth)
+            ev = std::make_unique<IrRunEval>(evaluate_ir(truth, out, s.eval.d_c, s.eval.d_assoc));
+        if (!o.quiet) {
+            print_tracks(out, ev.get());
+            if (ev) {
+                std::printf("\nVersus truth (%s):\n", truth_path.c_str());
+                print_ir_summary(summarize_ir({*ev}));
+            }
+            std::printf("\n  %zu frames in %.2f s (%.1f ms/frame); wrote %s/tracks.csv, tracks.json%s\n",
+                        out.size(), dt, 1e3 * dt / std::max<std::size_t>(1, out.size()), out_dir.c_str(),
+                        o.no_video ? "" : ", overlay.avi");
+        }
+        return 0;
+    }
+
+    int demo(const Options &o) override
+    {
+        if (!o.sequence.empty()) {
+            Options o2 = o;
+            if (o2.out.empty())
+                o2.out = "pft_demo_out";
+            return run(o2);
+        }
+        IrScenario s = load(o);
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        std::printf("pft demo: %s\n  simulated in memory with seed %llu\n  %s\n", describe(s).c_str(),
+                    static_cast<unsigned long long>(seed), describe_pipeline(s).c_str());
+        auto t0 = Clock::now();
+        Progress bar(static_cast<std::size_t>(s.frames), "sim", progress_wanted(o.progress));
+        IrSequence q = simulate_ir(s, seed, &bar);
+        bar.finish();
+        double t_sim = seconds_since(t0);
+        t0 = Clock::now();
+        std::vector<tbd::FrameOut> out = track_sequence(s, q, seed);
+        double t_trk = seconds_since(t0);
+        std::printf("\nframe | targets present | tracks | search P\n");
+        for (std::size_t k = 0; k < out.size(); k += std::max<std::size_t>(1, out.size() / 10)) {
+            int present = 0;
+            for (const TruthRow &r : q.truth)
+                present += r.frame == static_cast<int>(k + 1);
+            std::printf(" %4zu | %15d | %6zu | %.2f\n", k + 1, present, out[k].tracks.size(), out[k].search_p);
+        }
+        IrRunEval ev = evaluate_ir(q.truth, out, s.eval.d_c, s.eval.d_assoc);
+        print_tracks(out, &ev);
+        std::printf("\nSummary versus truth (this run; appear = frames from the first frame present "
+                    "to the first associated, correct = frames within %.1f px):\n", s.eval.d_c);
+        print_ir_summary(summarize_ir({ev}));
+        std::printf("\n  %dx%d x %d frames: simulated in %.2f s, tracked in %.2f s (%.1f ms/frame), %s build\n",
+                    q.width, q.height, q.frames, t_sim, t_trk, 1e3 * t_trk / std::max(1, q.frames), numeric_name());
+        std::printf("  the same sequence on disk: pft sim --scenario %s --out DIR, then pft run --sequence DIR\n",
+                    s.file.c_str());
+        return 0;
+    }
+
+    int eval(const Options &o) override
+    {
+        IrScenario s = load(o);
+        unsigned runs = o.runs ? o.runs : s.eval.runs;
+        uint64_t base = o.seed ? *o.seed : s.eval.base_seed;
+        unsigned threads = resolve_threads(o.threads);
+        std::string out_dir = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("tbd_ir") : s.name) +
+                                                  "_" + numeric_name()
+                                            : o.out;
+        ensure_dir(out_dir);
+        if (!o.quiet)
+            std::printf("pft eval: %s\n  %s\n  %u runs, seeds %llu..%llu, %u threads\n", describe(s).c_str(),
+                        describe_pipeline(s).c_str(), runs, static_cast<unsigned long long>(base),
+                        static_cast<unsigned long long>(base + runs - 1), threads);
+        cv::setNumThreads(1);  // the runs are the parallel work
+        std::vector<IrRunEval> res(runs);
+        std::vector<std::string> backgrounds(runs);
+        Progress bar(runs, "eval", progress_wanted(o.progress));
+        auto t0 = Clock::now();
+        parallel_for(runs, threads, [&](std::size_t i) {
+            uint64_t seed = base + i;
+            IrSequence q = simulate_ir(s, seed);
+            res[i] = evaluate_ir(q.truth, track_sequence(s, q, seed), s.eval.d_c, s.eval.d_assoc);
+            res[i].seed = seed;
+            backgrounds[i] = q.background;
+            bar.tick();
+        });
+        bar.finish();
+        double wall = seconds_since(t0);
+        json sum = summarize_ir(res);
+        json seeds = json::array();
+        for (unsigned i = 0; i < runs; ++i) {
+            seeds.push_back(base + i);
+            sum["per_run"][i]["background"] = backgrounds[i];
+        }
+        json head = {{"tool", "pft eval"}, {"kind", "tbd_ir"}, {"scenario", s.name},
+                     {"scenario_file", s.file}, {"description", s.description},
+                     {"tag", o.tag.empty() ? "TBD (stand-in preprocessing)" : o.tag},
+                     {"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
+                     {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
+                     {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
+                     {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
+                     {"background", s.background.source == "folder" ? s.background.folder : "procedural"},
+                     {"tracker", {{"preset", s.tracker.preset}, {"particles", s.tracker.particles},
+                                  {"track_particles", s.tracker.track_particles},
+                                  {"max_targets", s.tracker.max_targets},
+                                  {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
+                                  {"background_radius", s.tracker.background_radius},
+                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
+                     {"timing", {{"wall_s", wall}}}};
+        for (auto it = sum.begin(); it != sum.end(); ++it)
+            head[it.key()] = it.value();
+        head["scenario_json"] = s.raw;
+        write_json_atomic(join_path(out_dir, "summary.json"), head);
+        if (!o.quiet) {
+            std::printf("\n");
+            print_ir_summary(head);
+            std::printf("\n  %.1f s wall; wrote %s/summary.json\n", wall, out_dir.c_str());
+        }
+        return 0;
+    }
+
+    int bench(const Options &o) override
+    {
+        IrScenario s = load(o);
+        if (o.frames)
+            s.frames = static_cast<int>(o.frames);
+        uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
+        auto t0 = Clock::now();
+        IrSequence q = simulate_ir(s, seed);
+        double t_sim = seconds_since(t0);
+        IrPipeline pl(s.tracker, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+        std::vector<double> times;
+        for (int k = 0; k < q.frames; ++k) {
+            auto t1 = Clock::now();
+            pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth, static_cast<uint32_t>(k + 1)));
+            times.push_back(seconds_since(t1));
+        }
+        std::sort(times.begin(), times.end());
+        double med = times[times.size() / 2];
+        if (!o.quiet) {
+            std::printf("pft bench: %s\n  %s\n", describe(s).c_str(), describe_pipeline(s).c_str());
+            std::printf("  simulation %.2f ms/frame; pipeline per frame: median %.2f ms, max %.2f ms "
+                        "(wall time, this machine); workspace %zu bytes\n",
+                        1e3 * t_sim / q.frames, 1e3 * med, 1e3 * times.back(), pl.workspace_bytes());
+        }
+        if (!o.out.empty()) {
+            ensure_dir(o.out);
+            write_json_atomic(join_path(o.out, "bench.json"),
+                              {{"tool", "pft bench"}, {"kind", "tbd_ir"}, {"scenario", s.name},
+                               {"frames", q.frames}, {"width", q.width}, {"height", q.height},
+                               {"sim_s_per_frame", t_sim / q.frames}, {"median_s_per_frame", med},
+                               {"max_s_per_frame", times.back()}, {"workspace_bytes", pl.workspace_bytes()},
+                               {"numeric", numeric_name()}});
+        }
+        return 0;
+    }
+
+    int selftest(const Options &o) override
+    {
+        std::printf("tbd_ir selftest: noise estimates, residual, injection, labels, --raw, simulator\n");
+        int fails = selftest_checks(!o.quiet);
+        std::printf("tbd_ir selftest: %s (%d failure%s)\n", fails ? "FAILED" : "passed", fails,
+                    fails == 1 ? "" : "s");
+        return fails ? 1 : 0;
+    }
+};
+
+}  // namespace
+
+PFT_REGISTER_KIND("tbd_ir", TbdIrHandler);
+
+}  // namespace pft::host::tbd_ir

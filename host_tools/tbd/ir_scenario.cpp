@@ -1,0 +1,208 @@
+#include "ir_scenario.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "../common/json_field.hpp"
+
+namespace pft::host::tbd_ir {
+
+double IrScenario::amplitude(double snr_db) const
+{
+    return sensor.noise_sigma * std::pow(10.0, snr_db / 20.0);
+}
+
+namespace {
+
+std::array<double, 2> pair_or(const Field &f, const char *key, std::array<double, 2> dflt,
+                              double lo, double hi)
+{
+    if (!f.has(key))
+        return dflt;
+    Field v = f.at(key);
+    std::array<double, 2> r{};
+    if (v.node().is_number()) {
+        r[0] = r[1] = v.as_number();
+    } else {
+        auto n = f.numbers(key, 2);
+        r = {n[0], n[1]};
+    }
+    for (double x : r)
+        if (!(x >= lo && x <= hi))
+            v.fail("values must be within " + std::to_string(lo) + ".." + std::to_string(hi));
+    return r;
+}
+
+void parse_background(const Field &b, IrScenario &s)
+{
+    b.only({"source", "folder", "files", "index", "labels", "scale", "sky_top", "sky_horizon",
+            "cloud_cover", "cloud_scale_px", "cloud_level", "cloud_texture", "cloud_edge_px",
+            "horizon", "ground_level", "ground_texture", "structures", "note"});
+    Background &B = s.background;
+    B.source = b.choice_or("source", "procedural", {"procedural", "folder"});
+    B.folder = b.string_or("folder", "");
+    if (b.has("files")) {
+        Field fl = b.at("files");
+        for (std::size_t i = 0; i < fl.size(); ++i)
+            B.files.push_back(fl.at(i).as_string());
+    }
+    if (b.has("index") && !b.at("index").node().is_null())
+        B.index = static_cast<int>(b.integer_in("index", 0, 0, 1000000));
+    B.labels = b.boolean_or("labels", true);
+    B.scale = b.number_in("scale", 0.0, 0.0, 1e6);
+    Procedural &P = B.proc;
+    P.sky_top = b.number_in("sky_top", P.sky_top, 0.0, 1.0);
+    P.sky_horizon = b.number_in("sky_horizon", P.sky_horizon, 0.0, 1.0);
+    P.cloud_cover = b.number_in("cloud_cover", P.cloud_cover, 0.0, 1.0);
+    P.cloud_scale_px = b.number_in("cloud_scale_px", P.cloud_scale_px, 4.0, 4096.0);
+    P.cloud_level = b.number_in("cloud_level", P.cloud_level, -1.0, 1.0);
+    P.cloud_texture = b.number_in("cloud_texture", P.cloud_texture, 0.0, 2.0);
+    P.cloud_edge_px = b.number_in("cloud_edge_px", P.cloud_edge_px, 0.5, 256.0);
+    if (b.node().contains("horizon") && (b.node()["horizon"].is_null() ||
+                                         b.node()["horizon"] == false))
+        P.horizon.reset();  // null or false: all sky
+    else if (b.has("horizon"))
+        P.horizon = b.number_in("horizon", 0.8, 0.05, 1.0);
+    P.ground_level = b.number_in("ground_level", P.ground_level, 0.0, 1.0);
+    P.ground_texture = b.number_in("ground_texture", P.ground_texture, 0.0, 1.0);
+    P.structures = static_cast<int>(b.integer_in("structures", P.structures, 0, 100));
+}
+
+void parse_targets(const Field &t, IrScenario &s)
+{
+    t.only({"count", "snr_db", "psf_sigma", "speed_px", "turn_deg", "enter_fraction", "min_life",
+            "crossings", "list", "note"});
+    Targets &T = s.targets;
+    if (t.has("count")) {
+        auto c = pair_or(t, "count", {0, 0}, 0.0, 256.0);
+        if (c[0] != std::floor(c[0]) || c[1] != std::floor(c[1]) || c[1] < c[0])
+            t.at("count").fail("expected an integer or [min, max] integers, min <= max");
+        T.count = {static_cast<int>(c[0]), static_cast<int>(c[1])};
+    }
+    T.snr_db = pair_or(t, "snr_db", T.snr_db, -20.0, 60.0);
+    if (T.snr_db[1] < T.snr_db[0])
+        t.at("snr_db").fail("the second value must not be below the first");
+    T.psf_sigma = t.number_in("psf_sigma", T.psf_sigma, 0.2, 10.0);
+    T.speed_px = pair_or(t, "speed_px", T.speed_px, 0.0, 100.0);
+    if (T.speed_px[1] < T.speed_px[0])
+        t.at("speed_px").fail("the second value must not be below the first");
+    T.turn_deg = t.number_in("turn_deg", T.turn_deg, 0.0, 45.0);
+    T.enter_fraction = t.number_in("enter_fraction", T.enter_fraction, 0.0, 1.0);
+    T.min_life = static_cast<int>(t.integer_in("min_life", T.min_life, 1, s.frames));
+    T.crossings = static_cast<int>(t.integer_in("crossings", T.crossings, 0, 64));
+    if (!t.has("list"))
+        return;
+    Field l = t.at("list");
+    std::set<int> ids;
+    for (std::size_t i = 0; i < l.size(); ++i) {
+        Field e = l.at(i);
+        e.only({"id", "birth_frame", "death_frame", "x", "y", "vx", "vy", "turn_deg", "snr_db", "note"});
+        TargetSpec ts;
+        ts.id = static_cast<int>(e.integer_in("id", static_cast<int64_t>(i) + 1, 1, 499));
+        if (!ids.insert(ts.id).second)
+            e.at("id").fail("duplicate target id " + std::to_string(ts.id));
+        ts.birth = static_cast<int>(e.integer_in("birth_frame", 1, 1, s.frames));
+        ts.death = static_cast<int>(e.integer_in("death_frame", 0, 0, s.frames));
+        if (ts.death && ts.death < ts.birth)
+            e.at("death_frame").fail("must be >= birth_frame");
+        ts.x = e.number_req_in("x", -1e4, 1e4);
+        ts.y = e.number_req_in("y", -1e4, 1e4);
+        ts.vx = e.number_in("vx", 0.0, -100.0, 100.0);
+        ts.vy = e.number_in("vy", 0.0, -100.0, 100.0);
+        ts.turn_deg = e.number_in("turn_deg", 0.0, -45.0, 45.0);
+        ts.snr_db = e.number_in("snr_db", T.snr_db[0], -20.0, 60.0);
+        T.list.push_back(ts);
+    }
+}
+
+void parse_tracker(const Field &t, TrackerSettings &T)
+{
+    t.only({"preset", "particles", "track_particles", "max_targets", "snr_min_db", "snr_max_db",
+            "background_radius", "guard_radius", "tile", "seed_offset", "note"});
+    T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
+    T.particles = static_cast<uint32_t>(t.integer_in("particles", T.particles, 1, 4194304));
+    T.track_particles = static_cast<uint32_t>(t.integer_in("track_particles", T.track_particles, 1, 4194304));
+    T.max_targets = static_cast<uint32_t>(t.integer_in("max_targets", T.max_targets, 1, 64));
+    T.snr_min_db = t.number_in("snr_min_db", T.snr_min_db, -20.0, 60.0);
+    T.snr_max_db = t.number_in("snr_max_db", T.snr_max_db, -20.0, 60.0);
+    if (T.snr_max_db <= T.snr_min_db)
+        t.at("snr_max_db").fail("must exceed snr_min_db");
+    T.guard_radius = static_cast<int>(t.integer_in("guard_radius", T.guard_radius, 0, 32));
+    T.background_radius = static_cast<int>(t.integer_in("background_radius", T.background_radius, 1, 64));
+    if (T.background_radius <= T.guard_radius)
+        t.at("background_radius").fail("must exceed guard_radius");
+    T.tile = static_cast<int>(t.integer_in("tile", T.tile, 8, 4096));
+    T.seed_offset = static_cast<uint64_t>(t.integer_in("seed_offset", 0, 0, INT64_MAX));
+}
+
+}  // namespace
+
+IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
+                             const std::string &backgrounds)
+{
+    IrScenario s;
+    s.file = file;
+    s.raw = j;
+    Field root(j, file);
+    root.only({"kind", "name", "description", "image", "frames", "background", "optics_blur_px",
+               "platform", "sensor", "targets", "tracker", "eval", "output", "note"});
+    if (root.string("kind") != "tbd_ir")
+        root.at("kind").fail("expected \"tbd_ir\"");
+    s.name = root.string_or("name", "");
+    s.description = root.string_or("description", "");
+    if (root.has("image")) {
+        Field im = root.at("image");
+        im.only({"width", "height"});
+        s.width = static_cast<int>(im.integer_in("width", 384, 16, 8192));
+        s.height = static_cast<int>(im.integer_in("height", 288, 16, 8192));
+        s.size_given = true;
+    }
+    s.frames = static_cast<int>(root.integer_in("frames", 100, 1, 1000000));
+    s.optics_blur_px = root.number_in("optics_blur_px", 0.7, 0.0, 20.0);
+    if (root.has("background"))
+        parse_background(root.at("background"), s);
+    if (!backgrounds.empty()) {
+        s.background.source = "folder";
+        s.background.folder = backgrounds;
+    }
+    if (s.background.source == "folder" && s.background.folder.empty())
+        root.fail("background.folder: required for source \"folder\" (or give --backgrounds DIR)");
+    if (root.has("platform")) {
+        Field p = root.at("platform");
+        p.only({"drift_px", "jitter_px", "note"});
+        s.platform.drift_px = pair_or(p, "drift_px", s.platform.drift_px, -50.0, 50.0);
+        s.platform.jitter_px = p.number_in("jitter_px", s.platform.jitter_px, 0.0, 50.0);
+    }
+    if (root.has("sensor")) {
+        Field se = root.at("sensor");
+        se.only({"bit_depth", "noise_sigma", "column_fpn_sigma", "dead_fraction",
+                 "saturated_fraction", "vignetting", "note"});
+        Sensor &S = s.sensor;
+        S.bit_depth = static_cast<int>(se.integer_in("bit_depth", S.bit_depth, 8, 16));
+        S.noise_sigma = se.number_in("noise_sigma", S.noise_sigma, 1e-3, 1e5);
+        S.column_fpn_sigma = se.number_in("column_fpn_sigma", S.column_fpn_sigma, 0.0, 1e5);
+        S.dead_fraction = se.number_in("dead_fraction", S.dead_fraction, 0.0, 0.1);
+        S.saturated_fraction = se.number_in("saturated_fraction", S.saturated_fraction, 0.0, 0.1);
+        S.vignetting = se.number_in("vignetting", S.vignetting, 0.0, 0.9);
+    }
+    if (root.has("targets"))
+        parse_targets(root.at("targets"), s);
+    if (root.has("tracker"))
+        parse_tracker(root.at("tracker"), s.tracker);
+    if (root.has("eval")) {
+        Field e = root.at("eval");
+        e.only({"runs", "base_seed", "d_c", "d_assoc"});
+        s.eval.runs = static_cast<unsigned>(e.integer_in("runs", s.eval.runs, 1, 10000000));
+        s.eval.base_seed = static_cast<uint64_t>(e.integer_in("base_seed", 1, 0, INT64_MAX));
+        s.eval.d_c = e.number_in("d_c", 1.0, 1e-6, 1e4);
+        s.eval.d_assoc = e.number_in("d_assoc", 3.0, 1e-6, 1e4);
+    }
+    if (root.has("output")) {
+        Field o = root.at("output");
+        o.only({"format"});
+        s.output_format = o.choice_or("format", "pgm", {"pgm", "raw"});
+    }
+    return s;
+}
+
+}  // namespace pft::host::tbd_ir

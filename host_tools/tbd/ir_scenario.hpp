@@ -1,0 +1,117 @@
+// Scenario files of kind "tbd_ir": semi-synthetic infrared sequences (a real or procedural
+// background drifting with the platform, scaled to the sensor's bit depth, with temporal and
+// column noise, dead and saturated pixels, vignetting and injected dim point targets) and the
+// settings of the IR pipeline that tracks them. Every field, its unit and default:
+// docs/host_tools.md, "IR scenario files".
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pft::host::tbd_ir {
+
+/** Built-in procedural sky (levels are fractions of the sensor's full scale). */
+struct Procedural {
+    double sky_top = 0.22, sky_horizon = 0.34;  ///< sky level at the top row and at the horizon
+    double cloud_cover = 0.35;                  ///< fraction of the sky under cloud
+    double cloud_scale_px = 96;                 ///< size of the largest cloud structures
+    double cloud_level = 0.16;                  ///< cloud level above the sky
+    double cloud_texture = 0.35;                ///< relative texture inside the clouds
+    double cloud_edge_px = 4;                   ///< width of the cloud edges
+    std::optional<double> horizon = 0.8;        ///< horizon row / frame height (none: all sky)
+    double ground_level = 0.5, ground_texture = 0.04;
+    int structures = 3;                         ///< towers/buildings standing on the horizon
+};
+
+struct Background {
+    std::string source = "procedural";          ///< "procedural" | "folder"
+    Procedural proc;
+    std::string folder;                         ///< folder of background images (source folder)
+    std::vector<std::string> files;             ///< subset of the folder (empty: all images)
+    std::optional<int> index;                   ///< fixed image; absent: (seed - 1) mod count
+    bool labels = true;                         ///< read YOLO label files beside the images
+    double scale = 0;                           ///< counts per image unit (0: 2^(bits - image bits))
+};
+
+struct Platform {
+    std::array<double, 2> drift_px{0.3, 0.1};   ///< scene motion in px per frame (x, y)
+    double jitter_px = 0.1;                     ///< white jitter, sigma per axis, px
+};
+
+struct Sensor {
+    int bit_depth = 14;
+    double noise_sigma = 20;                    ///< temporal noise, counts
+    double column_fpn_sigma = 6;                ///< column fixed-pattern offsets, counts
+    double dead_fraction = 2e-4;                ///< pixels stuck at 0
+    double saturated_fraction = 1e-4;           ///< pixels stuck at full scale
+    double vignetting = 0.2;                    ///< relative fall-off at the corners (0: none)
+    double full_scale() const { return static_cast<double>((1u << bit_depth) - 1u); }
+};
+
+/** An explicitly placed target (frames 1-based, positions 0-based pixels at birth_frame). */
+struct TargetSpec {
+    int id = 0;
+    int birth = 1, death = 0;                   ///< death 0: until it leaves the frame or the end
+    double x = 0, y = 0, vx = 0, vy = 0;
+    double turn_deg = 0;                        ///< heading change per frame
+    double snr_db = 9;
+};
+
+struct Targets {
+    std::array<int, 2> count{4, 4};             ///< random targets (uniform in the range per run)
+    std::array<double, 2> snr_db{9, 9};         ///< SNR range (dB), uniform per target
+    double psf_sigma = 0.7;
+    std::array<double, 2> speed_px{0.3, 1.2};   ///< px per frame
+    double turn_deg = 1.0;                      ///< max |heading change| per frame, degrees
+    double enter_fraction = 0.5;                ///< random targets entering at a border
+    int min_life = 15;                          ///< frames
+    int crossings = 1;                          ///< extra pairs made to cross each other
+    std::vector<TargetSpec> list;
+};
+
+/** Settings of the IR pipeline (host stand-in preprocessing + the library's TBD manager). */
+struct TrackerSettings {
+    std::string preset = "recommended";         ///< pft_tbd preset to start from
+    uint32_t particles = 6000, track_particles = 500;
+    uint32_t max_targets = 8;
+    double snr_min_db = 6, snr_max_db = 18;     ///< intensity prior over the whitened residual
+    int background_radius = 5, guard_radius = 2;///< local-mean box and its guard (half-sizes)
+    int tile = 32;                              ///< noise-estimate tile side, px
+    uint64_t seed_offset = 0;
+};
+
+struct EvalSettings {
+    unsigned runs = 20;
+    uint64_t base_seed = 1;
+    double d_c = 1.0, d_assoc = 3.0;            ///< correct / association distances, px
+};
+
+struct IrScenario {
+    std::string file, name, description;
+    int width = 384, height = 288;              ///< sensor frame
+    bool size_given = false;                    ///< "image" present (else folder: from the image)
+    int frames = 100;
+    double optics_blur_px = 0.7;
+    Background background;
+    Platform platform;
+    Sensor sensor;
+    Targets targets;
+    TrackerSettings tracker;
+    EvalSettings eval;
+    std::string output_format = "pgm";          ///< "pgm" (16-bit PGM) | "raw" (frames.u16)
+    nlohmann::json raw;                         ///< the file as read
+
+    /** Temporal-noise SNR (dB) of a peak amplitude in counts, and back. */
+    double amplitude(double snr_db) const;
+};
+
+/** Parses and validates; InputError naming the bad field. `backgrounds` (--backgrounds)
+ *  replaces background.folder and selects source "folder". */
+IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
+                             const std::string &backgrounds = "");
+
+}  // namespace pft::host::tbd_ir

@@ -1,0 +1,165 @@
+# cmake -DPFT=pft -DCONV=pft_frames_convert -DWORK=dir -DSRC=host_tools -DMODE=... -P input_forms.cmake
+# MODE setup: simulate and convert (the fixture); tbd, tbd_ir: same tracks from every form;
+# raw_errors: refused --raw specs and truncated dumps; sim_formats: tbd_ir pgm and raw output
+# read back alike; real_frames: a folder background with a YOLO label.
+function(run_ok)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+  set(run_err "${err}" PARENT_SCOPE)
+endfunction()
+
+# the command must exit with status 2 and print `pft: error: <regex>` on stderr
+function(expect_refused regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "expected exit status 2, got ${rc}: ${ARGN}\n${out}\n${err}")
+  endif()
+  if(NOT err MATCHES "pft: error: ${regex}")
+    message(FATAL_ERROR "stderr does not match 'pft: error: ${regex}':\n${err}")
+  endif()
+  message(STATUS "refused as expected: ${err}")
+endfunction()
+
+function(same_tracks ref)
+  foreach(f ${ARGN})
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${ref} ${f} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      file(READ ${ref} a)
+      file(READ ${f} b)
+      message(FATAL_ERROR "${f} differs from ${ref}\n--- ${ref}\n${a}\n--- ${f}\n${b}")
+    endif()
+  endforeach()
+endfunction()
+
+set(two "${SRC}/scenarios/tbd/two_case1.json")
+set(small "${SRC}/tests/tbd_ir_small.json")
+
+if(MODE STREQUAL "setup")
+  file(REMOVE_RECURSE ${WORK})
+  file(MAKE_DIRECTORY ${WORK})
+  foreach(k tbd tbd_ir)
+    if(k STREQUAL "tbd")
+      run_ok(${PFT} sim --scenario ${two} --out ${WORK}/${k}_sim -q)
+    else()
+      run_ok(${PFT} sim --scenario ${small} --out ${WORK}/${k}_sim -q)
+    endif()
+    # the same frames without the sidecar: PGM copied as they are, PNG and TIFF re-encoded
+    file(GLOB frames ${WORK}/${k}_sim/frame_*.pgm)
+    file(COPY ${frames} DESTINATION ${WORK}/${k}_pgm)
+    run_ok(${CONV} ${WORK}/${k}_sim ${WORK}/${k}_png png)
+    run_ok(${CONV} ${WORK}/${k}_sim ${WORK}/${k}_tiff tiff)
+    file(MAKE_DIRECTORY ${WORK}/${k}_raw)
+    run_ok(${CONV} ${WORK}/${k}_sim ${WORK}/${k}_raw/le.u16 raw)
+    run_ok(${CONV} ${WORK}/${k}_sim ${WORK}/${k}_raw/be.u16 raw be skip=512)
+    run_ok(${CONV} ${WORK}/${k}_sim ${WORK}/${k}_raw/cut.u16 raw cut=100)
+  endforeach()
+  message(STATUS "input forms written to ${WORK}")
+
+elseif(MODE STREQUAL "tbd")
+  # the shipped two-target case from 5 forms with no sidecar: sigma estimated, same tracks
+  set(outs "")
+  foreach(form pgm png tiff)
+    run_ok(${PFT} run --sequence ${WORK}/tbd_${form} --scenario ${two} --truth ${WORK}/tbd_sim/truth.csv
+           --no-video --out ${WORK}/run_tbd_${form})
+    if(NOT run_out MATCHES "no sidecar; estimated from the first 8 frames: background [0-9.]+, noise sigma [0-9.]+")
+      message(FATAL_ERROR "${form}: the estimated sigma is not printed:\n${run_out}")
+    endif()
+    list(APPEND outs ${WORK}/run_tbd_${form}/tracks.csv)
+    set(out_${form} "${run_out}")
+  endforeach()
+  run_ok(${PFT} run --sequence ${WORK}/tbd_raw/le.u16 --raw 20x20 --scenario ${two} --no-video -q
+         --out ${WORK}/run_tbd_raw_le)
+  run_ok(${PFT} run --sequence ${WORK}/tbd_raw/be.u16 --raw 20x20:16:be:skip=512 --scenario ${two}
+         --no-video -q --out ${WORK}/run_tbd_raw_be)
+  same_tracks(${WORK}/run_tbd_pgm/tracks.csv ${outs} ${WORK}/run_tbd_raw_le/tracks.csv
+              ${WORK}/run_tbd_raw_be/tracks.csv)
+  # 16-bit TIFF: both targets found (before the fix: 6 tracks, all false)
+  string(REGEX MATCH "Tracks found: [0-9]+" n "${out_tiff}")
+  string(REGEX MATCHALL "-> target T[12]" hits "${out_tiff}")
+  list(REMOVE_DUPLICATES hits)
+  list(LENGTH hits nhit)
+  if(NOT nhit EQUAL 2)
+    message(FATAL_ERROR "16-bit TIFF: expected tracks on both targets:\n${out_tiff}")
+  endif()
+  message(STATUS "same tracks from PGM, PNG, TIFF, raw le and raw be; TIFF: ${n}, both targets")
+
+elseif(MODE STREQUAL "tbd_ir")
+  # no scenario and no sidecar: the IR pipeline with its default settings, same tracks
+  set(outs "")
+  foreach(form pgm png tiff)
+    run_ok(${PFT} run --sequence ${WORK}/tbd_ir_${form} --no-video --out ${WORK}/run_ir_${form})
+    if(NOT run_out MATCHES "72, 24 frames, 14 bits")
+      message(FATAL_ERROR "${form}: expected 24 frames of 14 bits:\n${run_out}")
+    endif()
+    list(APPEND outs ${WORK}/run_ir_${form}/tracks.csv)
+  endforeach()
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_raw/le.u16 --raw 96x72:14 --no-video -q --out ${WORK}/run_ir_raw_le)
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_raw/be.u16 --raw 96x72:14:be:skip=512 --no-video -q
+         --out ${WORK}/run_ir_raw_be)
+  same_tracks(${WORK}/run_ir_pgm/tracks.csv ${outs} ${WORK}/run_ir_raw_le/tracks.csv ${WORK}/run_ir_raw_be/tracks.csv)
+  # and the pft sim directory itself (sidecar: its scenario, truth and seed)
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_sim --no-video --out ${WORK}/run_ir_sim)
+  if(NOT run_out MATCHES "Versus truth")
+    message(FATAL_ERROR "the pft sim directory's truth was not used:\n${run_out}")
+  endif()
+  message(STATUS "same tracks from PGM, PNG, TIFF, raw le and raw be")
+
+elseif(MODE STREQUAL "raw_errors")
+  set(d ${WORK}/tbd_raw)
+  expect_refused("[^\n]*le.u16: --raw 20x: field H: expected a number"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20x --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 20\\*20: field WxH: expected WIDTHxHEIGHT"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20*20 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 20x20:17: field bits: 17 is outside 1..16"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20x20:17 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 20x20:little: field 2 \\(\"little\"\\)"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20x20:little --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 20x20:skip=x: field skip: expected a byte count"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20x20:skip=x --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 0x20: field W: 0 is outside 1..65535"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 0x20 --scenario ${two} --no-video --out ${WORK}/bad)
+  # truncated dumps: a cut file, a wrong geometry, a skip beyond the end
+  expect_refused("[^\n]*cut.u16: --raw 20x20: field WxH: [0-9]+ bytes after skip=0 are not a whole number of 20x20 u16 frames"
+                 ${PFT} run --sequence ${d}/cut.u16 --raw 20x20 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 21x20: field WxH: "
+                 ${PFT} run --sequence ${d}/le.u16 --raw 21x20 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: --raw 20x20:skip=99999999: field skip: 99999999 bytes of header, but the file has only"
+                 ${PFT} run --sequence ${d}/le.u16 --raw 20x20:skip=99999999 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*le.u16: looks like a headerless dump: give its geometry with --raw"
+                 ${PFT} run --sequence ${d}/le.u16 --scenario ${two} --no-video --out ${WORK}/bad)
+  expect_refused("[^\n]*no_such.u16: no such file or directory"
+                 ${PFT} run --sequence ${d}/no_such.u16 --raw 20x20 --scenario ${two} --no-video --out ${WORK}/bad)
+
+elseif(MODE STREQUAL "sim_formats")
+  # tbd_ir frames written as raw u16 with a sidecar read back as the PGM ones
+  run_ok(${PFT} sim --scenario ${small} --format raw --out ${WORK}/ir_sim_raw -q)
+  run_ok(${PFT} run --sequence ${WORK}/ir_sim_raw --no-video -q --out ${WORK}/run_ir_sim_raw)
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_sim --no-video -q --out ${WORK}/run_ir_sim_pgm)
+  same_tracks(${WORK}/run_ir_sim_pgm/tracks.csv ${WORK}/run_ir_sim_raw/tracks.csv)
+  file(READ ${WORK}/ir_sim_raw/truth.csv t)
+  if(NOT t MATCHES "^frame,id,x,y,snr_db,kind\n[0-9]+,[0-9]+,[-0-9.e]+,[-0-9.e]+,12,injected\n")
+    message(FATAL_ERROR "truth.csv is not frame,id,x,y,snr_db,kind:\n${t}")
+  endif()
+
+elseif(MODE STREQUAL "real_frames")
+  # a folder of "real" backgrounds: one 8-bit PNG (a simulated frame >> 6) with a YOLO label
+  file(MAKE_DIRECTORY ${WORK}/bg)
+  run_ok(${CONV} ${WORK}/tbd_ir_sim/frame_0001.pgm ${WORK}/bg/img_01.png png8)
+  file(WRITE ${WORK}/bg/img_01.txt "0 0.5 0.25 0.03 0.04\n")
+  run_ok(${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${WORK}/bg
+         --out ${WORK}/ir_real -q)
+  file(READ ${WORK}/ir_real/truth.csv t)
+  # the labelled object moves with the scene: 0-based centre (47.5, 17.5) of the image
+  # minus the platform position
+  if(NOT t MATCHES ",1001,[-0-9.e]+,[-0-9.e]+,[-0-9.e]*,labelled\n")
+    message(FATAL_ERROR "no labelled object in truth.csv:\n${t}")
+  endif()
+  expect_refused("[^\n]*no_such_dir: background folder not found"
+                 ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${WORK}/no_such_dir
+                 --out ${WORK}/bad -q)
+else()
+  message(FATAL_ERROR "unknown MODE ${MODE}")
+endif()

@@ -1,0 +1,43 @@
+# ctests of the input forms of `pft run` and of kind tbd_ir (included by host_tools/CMakeLists.txt).
+# A fixture simulates two sequences (the shipped two-target tbd case and a small tbd_ir one)
+# and rewrites their frames as a PGM folder, 16-bit PNG, 16-bit TIFF and headerless u16 dumps
+# (little- and big-endian, with a header to skip); the tests check that every form gives the
+# same tracks, that bad --raw specs and truncated dumps are refused with exit status 2 and a
+# message naming the file and the field, and the tbd_ir self-checks and scenarios.
+add_executable(pft_frames_convert ${CMAKE_CURRENT_LIST_DIR}/frames_convert.cpp)
+target_link_libraries(pft_frames_convert PRIVATE ${OpenCV_LIBS})
+target_include_directories(pft_frames_convert PRIVATE ${OpenCV_INCLUDE_DIRS})
+
+set(_ir_work "${CMAKE_CURRENT_BINARY_DIR}/input_forms")
+set(_ir_args "-DPFT=$<TARGET_FILE:pft>" "-DCONV=$<TARGET_FILE:pft_frames_convert>"
+             "-DWORK=${_ir_work}" "-DSRC=${CMAKE_CURRENT_SOURCE_DIR}")
+function(pft_input_test name mode)
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${_ir_args} -DMODE=${mode}
+                                -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/input_forms.cmake)
+  set_tests_properties(${name} PROPERTIES LABELS "host" FIXTURES_REQUIRED pft_input_data)
+endfunction()
+add_test(NAME host_input_setup COMMAND ${CMAKE_COMMAND} ${_ir_args} -DMODE=setup
+                               -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/input_forms.cmake)
+set_tests_properties(host_input_setup PROPERTIES LABELS "host" FIXTURES_SETUP pft_input_data)
+pft_input_test(host_input_forms_tbd tbd)
+pft_input_test(host_input_forms_tbd_ir tbd_ir)
+pft_input_test(host_input_raw_errors raw_errors)
+pft_input_test(host_tbd_ir_sim_formats sim_formats)
+pft_input_test(host_tbd_ir_real_frames real_frames)
+
+add_test(NAME host_tbd_ir_selftest COMMAND pft selftest --kind tbd_ir)
+set_tests_properties(host_tbd_ir_selftest PROPERTIES LABELS "host"
+                     PASS_REGULAR_EXPRESSION "tbd_ir selftest: passed" FAIL_REGULAR_EXPRESSION "FAIL")
+# Every shipped procedural tbd_ir scenario simulates and tracks 2 frames.
+file(GLOB PFT_TBD_IR_SCENARIOS CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/*.json")
+foreach(sc ${PFT_TBD_IR_SCENARIOS})
+  get_filename_component(n ${sc} NAME_WE)
+  if(NOT n STREQUAL "real_frames")
+    add_test(NAME host_tbd_ir_scenario_${n} COMMAND pft bench --scenario ${sc} --frames 2 -q)
+    set_tests_properties(host_tbd_ir_scenario_${n} PROPERTIES LABELS "host")
+  endif()
+endforeach()
+# The pipeline's plumbing: on a clear sky at 15 dB it confirms at least 5 of the 6 targets.
+add_test(NAME host_tbd_ir_clear_sky COMMAND pft demo --scenario ${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/clear_sky_128x96.json)
+set_tests_properties(host_tbd_ir_clear_sky PROPERTIES LABELS "host"
+                     PASS_REGULAR_EXPRESSION "injected +6 +(100\\.0|83\\.3)%")
