@@ -13,4 +13,5 @@
 #include "pft/pft_kalman.h"
 #include "pft/pft_tsa.h"
 #include "pft/pft_pte.h"
+#include "pft/pft_pre.h"
 #endif
