@@ -4,7 +4,8 @@
  * gradient keeps its SNR, dead / saturated / listed pixels masked, constant and all-zero and
  * all-saturated frames finite and flagged), registration of a textured scene shifted by known
  * sub-pixel and integer amounts, column fixed-pattern removal, peaks, the RES16 frame and its
- * conversion. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it.
+ * conversion. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it;
+ * scenes are made with integer arithmetic per pixel for the same reason.
  */
 #include <math.h>
 #include <string.h>
@@ -28,7 +29,110 @@ static pft_pre_peak_t g_peaks[PFT_PRE_MAX_PEAKS];
 static uint32_t g_sig[64];
 static uint64_t g_s = 0x9E3779B97F4A7C15u;
 
-static double gauss(void) { return pft_test_gauss(&g_s); }
+/* Scenes are made with integer arithmetic per pixel (Cortex-M3 has no FPU: per-pixel double
+ * maths would take minutes under QEMU). Noise: N(0, 1) draws of pft_test_gauss, kept in a
+ * table normalised to mean 0 and standard deviation 1 (Q10), picked by a xorshift. */
+#define NTAB 4096
+static int16_t g_noise[NTAB];
+static uint32_t g_rs = 2463534242u;
+
+static void noise_init(void)
+{
+    static double d[NTAB];
+    double m = 0.0, v = 0.0;
+    for (int i = 0; i < NTAB; ++i) {
+        d[i] = pft_test_gauss(&g_s);
+        m += d[i] / NTAB;
+    }
+    for (int i = 0; i < NTAB; ++i) {
+        v += (d[i] - m) * (d[i] - m) / NTAB;
+    }
+    for (int i = 0; i < NTAB; ++i) {
+        g_noise[i] = (int16_t)floor((d[i] - m) / sqrt(v) * 1024.0 + 0.5);
+    }
+}
+
+/* N(0, 1) in Q10 */
+static int32_t nq10(void)
+{
+    g_rs ^= g_rs << 13;
+    g_rs ^= g_rs >> 17;
+    g_rs ^= g_rs << 5;
+    return g_noise[g_rs >> 20];
+}
+
+/* a Q10 value rounded to counts and clamped to [lo, hi] */
+static uint16_t clampq10(int64_t v, int32_t lo, int32_t hi)
+{
+    const int64_t r = (v + 512) >> 10;
+    return (uint16_t)(r < lo ? lo : (r > hi ? hi : r));
+}
+
+static int64_t q10(double v) { return (int64_t)floor(v * 1024.0 + 0.5); }
+
+/* plane a + bx x + by y plus N(0, sigma) noise, 14 bits */
+static void plane(double a, double bx, double by, double sigma)
+{
+    const int64_t qa = q10(a), qx = q10(bx), qy = q10(by), qs = q10(sigma);
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            g_img[y * W + x] = clampq10(qa + qx * x + qy * y + ((qs * nq10()) >> 10), 0, 16383);
+        }
+    }
+}
+
+/* A smooth textured scene (four sinusoids and two blobs, 2000..12000 counts) seen with the
+ * scene shifted by (sx, sy): pixel p shows the texture at p - s, exactly (each term is
+ * separable: per-frame column and row tables in Q14, products per pixel). */
+#define NSIN 4
+static const double k_amp[NSIN] = {1500.0, 1200.0, 900.0, 600.0};
+static const double k_fx[NSIN] = {0.31, -0.12, 0.57, 0.21};
+static const double k_fy[NSIN] = {0.17, 0.43, -0.29, 0.61};
+static const double k_ph[NSIN] = {0.4, 1.3, 2.1, 1.5707963267948966};
+static int32_t g_su[NSIN][W], g_cu[NSIN][W], g_sv[NSIN][H], g_cv[NSIN][H];
+static int32_t g_bx[2][W], g_by[2][H];
+
+static void textured(double sx, double sy, double sigma)
+{
+    static const double bamp[2] = {2000.0, -1500.0}, bcx[2] = {30.0, 70.0}, bcy[2] = {20.0, 50.0};
+    static const double bs[2] = {40.0, 60.0};
+    for (int k = 0; k < NSIN; ++k) { /* sin(fx (x - sx) + ph + fy (y - sy)) */
+        for (int x = 0; x < W; ++x) {
+            const double u = k_fx[k] * (x - sx) + k_ph[k];
+            g_su[k][x] = (int32_t)floor(16384.0 * sin(u) + 0.5);
+            g_cu[k][x] = (int32_t)floor(16384.0 * cos(u) + 0.5);
+        }
+        for (int y = 0; y < H; ++y) {
+            const double v = k_fy[k] * (y - sy);
+            g_sv[k][y] = (int32_t)floor(16384.0 * sin(v) + 0.5);
+            g_cv[k][y] = (int32_t)floor(16384.0 * cos(v) + 0.5);
+        }
+    }
+    for (int j = 0; j < 2; ++j) {
+        for (int x = 0; x < W; ++x) {
+            const double d = x - sx - bcx[j];
+            g_bx[j][x] = (int32_t)floor(16384.0 * exp(-d * d / bs[j]) + 0.5);
+        }
+        for (int y = 0; y < H; ++y) {
+            const double d = y - sy - bcy[j];
+            g_by[j][y] = (int32_t)floor(16384.0 * exp(-d * d / bs[j]) + 0.5);
+        }
+    }
+    const int64_t qs = q10(sigma);
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            int64_t v = (int64_t)7000 << 14; /* Q14 counts */
+            for (int k = 0; k < NSIN; ++k) {
+                const int32_t t = (g_su[k][x] * g_cv[k][y] + g_cu[k][x] * g_sv[k][y]) >> 14;
+                v += (int64_t)t * (int32_t)k_amp[k];
+            }
+            for (int j = 0; j < 2; ++j) {
+                v += (((int64_t)g_bx[j][x] * g_by[j][y]) >> 14) * (int32_t)bamp[j];
+            }
+            g_img[y * W + x] = clampq10((v >> 4) + ((qs * nq10()) >> 10), 0, 16383);
+        }
+    }
+}
 
 static pft_frame_t frame_of(const void *data, uint32_t seq)
 {
@@ -65,43 +169,6 @@ static void init(pft_pre_t *p, const pft_pre_config_t *c)
 
 /* pixels of the border band the local background masks (its window would be clipped) */
 #define LOCAL_BAND(ro) (NPIX - (W - 2 * (ro)) * (H - 2 * (ro)))
-
-static uint16_t clamp14(double v)
-{
-    const double r = floor(v + 0.5);
-    return (uint16_t)(r < 0.0 ? 0.0 : (r > 16383.0 ? 16383.0 : r));
-}
-
-/* plane a + bx x + by y plus N(0, sigma) noise */
-static void plane(double a, double bx, double by, double sigma)
-{
-    for (int y = 0; y < H; ++y) {
-        for (int x = 0; x < W; ++x) {
-            g_img[y * W + x] = clamp14(a + bx * x + by * y + sigma * gauss());
-        }
-    }
-}
-
-/* A smooth textured scene (sinusoids and blobs, 2000..12000 counts) seen with the scene
- * shifted by (sx, sy): pixel p shows the texture at p - s. */
-static double texture(double x, double y)
-{
-    double v = 7000.0;
-    v += 1500.0 * sin(0.31 * x + 0.17 * y + 0.4) + 1200.0 * sin(-0.12 * x + 0.43 * y + 1.3);
-    v += 900.0 * sin(0.57 * x - 0.29 * y + 2.1) + 600.0 * cos(0.21 * x + 0.61 * y);
-    v += 2000.0 * exp(-((x - 30.0) * (x - 30.0) + (y - 20.0) * (y - 20.0)) / 40.0);
-    v -= 1500.0 * exp(-((x - 70.0) * (x - 70.0) + (y - 50.0) * (y - 50.0)) / 60.0);
-    return v;
-}
-
-static void textured(double sx, double sy, double sigma)
-{
-    for (int y = 0; y < H; ++y) {
-        for (int x = 0; x < W; ++x) {
-            g_img[y * W + x] = clamp14(texture(x - sx, y - sy) + sigma * gauss());
-        }
-    }
-}
 
 /* sample standard deviation of the unmasked whitened residual (sigma units), border of b
  * pixels left out */
@@ -334,11 +401,12 @@ static void test_plane_plus_noise_gives_sigma(void)
             double ssum = 0.0, wsum = 0.0;
             const uint32_t frames = m == 0 ? 3u : 33u;
             for (uint32_t k = 0; k < frames; ++k) {
+                const int64_t qa = q10(3000.0 * scale), qx = q10(12.0 * scale);
+                const int64_t qy = q10(-7.0 * scale), qs = q10(sigma);
                 for (int y = 0; y < H; ++y) {
                     for (int x = 0; x < W; ++x) {
-                        const double v = scale * (3000.0 + 12.0 * x - 7.0 * y) + sigma * gauss();
-                        const double r = floor(v + 0.5);
-                        g_img[y * W + x] = (uint16_t)(r < 1.0 ? 1.0 : (r > 65000.0 ? 65000.0 : r));
+                        g_img[y * W + x] =
+                            clampq10(qa + qx * x + qy * y + ((qs * nq10()) >> 10), 1, 65000);
                     }
                 }
                 pft_frame_t f = frame_of(g_img, k);
@@ -667,9 +735,9 @@ static void test_registration_weak_on_flat(void)
  * finest sinusoid.) */
 static void test_column_pattern_removed(void)
 {
-    static double col[W];
+    static int32_t col[W];
     for (int x = 0; x < W; ++x) {
-        col[x] = 25.0 * sin(1.7 * x) + 30.0 * ((x * 7) % 5 - 2) / 2.0;
+        col[x] = (int32_t)floor(25.0 * sin(1.7 * x) + 15.0 * ((x * 7) % 5 - 2) + 0.5);
     }
     double sd[3];
     for (int run = 0; run < 3; ++run) { /* no pattern; pattern, no estimate; pattern, estimate */
@@ -683,7 +751,8 @@ static void test_column_pattern_removed(void)
             textured(0.3 * k, 0.2 * k, 15.0);
             for (int y = 0; y < H; ++y) {
                 for (int x = 0; x < W; ++x) {
-                    g_img[y * W + x] = clamp14(g_img[y * W + x] + (run > 0 ? col[x] : 0.0));
+                    const int32_t v = g_img[y * W + x] + (run > 0 ? col[x] : 0);
+                    g_img[y * W + x] = (uint16_t)(v < 0 ? 0 : (v > 16383 ? 16383 : v));
                 }
             }
             pft_frame_t f = frame_of(g_img, k);
@@ -749,8 +818,7 @@ static void test_u8_and_bit_depths(void)
     pft_pre_t p;
     init(&p, &c);
     for (int i = 0; i < NPIX; ++i) {
-        const double v = floor(100.0 + 0.5 * (i % W) + 6.0 * gauss() + 0.5);
-        img8[i] = (uint8_t)(v < 1.0 ? 1.0 : (v > 254.0 ? 254.0 : v));
+        img8[i] = (uint8_t)clampq10(q10(100.0 + 0.5 * (i % W)) + 6 * nq10(), 1, 254);
     }
     pft_frame_t f = frame_of(img8, 0);
     f.format = PFT_PIX_U8;
@@ -799,6 +867,7 @@ static void test_sigma_options(void)
 
 int main(void)
 {
+    noise_init();
     UNITY_BEGIN();
     RUN_TEST(test_config_and_workspace);
     RUN_TEST(test_refused_input_changes_nothing);

@@ -558,6 +558,24 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
     int32_t *zl = p->line, *bw = p->bwl;
     int32_t carry = 0;  /* first frame: the last unmasked value, for masked pixels */
     int32_t yprev = -1; /* the row written last; p->prev holds its former values */
+    if (held) {
+        /* a constant frame (a glitch, a shutter): the background is kept as it is and the
+         * residual, which would only show the background, is masked */
+        for (int32_t y = 0; y < h; ++y) {
+            if (zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+                count_row_(&c, f, (uint32_t)y, acc);
+            }
+            int16_t *r = p->res + (size_t)y * (size_t)w;
+            for (int32_t x = 0; x < w; ++x) {
+                r[x] = PFT_RES16_MASKED;
+            }
+            acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
+            if (y + 1 == h || (y + 1) % t == 0) {
+                pft_pre_tilerow_done_(p, (uint32_t)(y / t));
+            }
+        }
+        return;
+    }
     for (int32_t yi = 0; yi < h; ++yi) {
         const int32_t y = yup ? yi : h - 1 - yi;
         const uint32_t ninv = zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
