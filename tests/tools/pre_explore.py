@@ -96,6 +96,8 @@ def main():
     ap.add_argument('--method', default='temporal')
     ap.add_argument('--seed', type=int, default=1)
     ap.add_argument('--set', default='', help='"key=value ..." passed to pre_probe')
+    ap.add_argument('--size', default='384x288', help='procedural scene size WxH')
+    ap.add_argument('--write-seq', help='write the first scene as raw u16 frames here and stop')
     a = ap.parse_args()
 
     scenes = []
@@ -104,19 +106,28 @@ def main():
         if a.limit:
             names = names[:a.limit]
         scenes += [(nm, load_image(os.path.join(a.images, nm))) for nm in names]
+    pw, ph = (int(v) for v in a.size.split('x'))
     for i in range(a.procedural):
-        scenes.append(('procedural%d' % i, procedural(a.seed * 1000 + i)))
+        scenes.append(('procedural%d' % i, procedural(a.seed * 1000 + i, pw, ph)))
     if not scenes:
         sys.exit('no scene: give --images or --procedural')
 
+    if a.write_seq:
+        frames, _ = make_sequence(scenes[0][1], a.frames, a.drift, a.jitter, a.sigma_t,
+                                  a.sigma_col, a.blur, a.seed * 7919)
+        frames.astype('<u2').tofile(a.write_seq)
+        print('wrote %d frames %dx%d to %s' % (a.frames, frames.shape[2], frames.shape[1],
+                                               a.write_seq))
+        return
     errs, ratio_std, ratio_mad, sds = [], [], [], []
     for si, (name, bg) in enumerate(scenes):
         frames, truth = make_sequence(bg, a.frames, a.drift, a.jitter, a.sigma_t, a.sigma_col,
                                       a.blur, a.seed * 7919 + si)
         common = ['method=' + a.method] + a.set.split()
         rows, _ = run_probe(a.probe, frames, common)
-        # raw residual in counts: every tile sigma floored at 256 counts, so Q8.8 = counts
-        _, res = run_probe(a.probe, frames, common + ['floor=4096'], out=True)
+        # raw residual in counts: every tile sigma floored at 65535/16 counts (above any tile
+        # sigma here), so a Q8.8 value q is q * 65535 / 4096 counts
+        _, res = run_probe(a.probe, frames, common + ['floor=65535'], out=True)
         for k, r in enumerate(rows):
             if k == 0 or a.method != 'temporal':
                 continue
@@ -127,8 +138,7 @@ def main():
             errs.append(e)
             sds.append([float(r['sd_x']), float(r['sd_y'])])
         for k in range(a.skip, a.frames):
-            v = res[k][res[k] != -32768].astype(np.float64)
-            v = v[8:-8] if v.size > 16 else v
+            v = res[k][res[k] != -32768].astype(np.float64) * (65535.0 / 4096.0)
             ratio_std.append(v.std() / a.sigma_t)
             ratio_mad.append(float(rows[k]['sigma_mean']) / a.sigma_t)
     print('scenes %d, frames %d each, drift %s, jitter %.2f, sigma_t %.0f, sigma_col %.0f'

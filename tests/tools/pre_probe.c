@@ -6,7 +6,8 @@
  * driven by tests/tools/pre_explore.py; not a test.
  *
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
- *   keys: method=local|temporal ro rg alpha search iters step col tile interp floor peaks thr
+ *   keys: method=local|temporal ro rg alpha search iters step cubic col tile interp floor
+ *         peaks thr
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,6 +55,8 @@ int main(int argc, char **argv)
             cfg.reg_search = (uint8_t)v;
         } else if (arg_int(argv[i], "iters", &v)) {
             cfg.reg_iters = (uint8_t)v;
+        } else if (arg_int(argv[i], "cubic", &v)) {
+            cfg.warp_cubic = v != 0;
         } else if (arg_int(argv[i], "step", &v)) {
             cfg.reg_step = (uint8_t)v;
         } else if (arg_int(argv[i], "col", &v)) {

@@ -110,6 +110,7 @@ typedef struct {
     uint8_t reg_search;      /**< TEMPORAL: integer search radius around the predicted shift, 0..PFT_PRE_MAX_SEARCH px (default 8; 0: integer step off) */
     uint8_t reg_iters;       /**< TEMPORAL: Lucas-Kanade iterations, 0..PFT_PRE_MAX_ITERS (default 2; 0: integer shifts only) */
     uint8_t reg_step;        /**< TEMPORAL: registration uses every reg_step-th pixel of every reg_step-th row, 1..8 (default 2) */
+    bool warp_cubic;         /**< TEMPORAL: warp the background with Catmull-Rom cubic weights (true, default) or bilinear ones (false: same cost here; kept to measure the difference, docs/algorithms.md 9.4) */
     /* column fixed-pattern noise */
     uint16_t col_alpha;      /**< update weight of the column offsets, Q0.16, 0..65535; 0 disables (default 4096 = 1/16) */
     /* noise */

@@ -24,6 +24,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->reg_search = 8u;
     cfg->reg_iters = 2u;
     cfg->reg_step = 2u;
+    cfg->warp_cubic = true;
     cfg->col_alpha = 4096u;
     cfg->tile = 32u;
     cfg->sigma_interp = true;
@@ -243,6 +244,7 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
     p->last_seq = 0u;
     p->shift_prev[0] = 0;
     p->shift_prev[1] = 0;
+    p->jumped = false;
     memset(&p->st, 0, sizeof(p->st));
     p->n_peaks = 0u;
     p->sig_known = false;

@@ -211,6 +211,19 @@ static void cubic_q8_(uint32_t f, int32_t w[4])
     w[f < 128u ? 1 : 2] += 256 - sum;
 }
 
+/* Warp weights of taps -1, 0, 1, 2: Catmull-Rom, or bilinear (0, 256 - f, f, 0). */
+static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
+{
+    if (cubic) {
+        cubic_q8_(f, w);
+        return;
+    }
+    w[0] = 0;
+    w[1] = 256 - (int32_t)f;
+    w[2] = (int32_t)f;
+    w[3] = 0;
+}
+
 /* One pass of sums over the sampled pixels whose taps are inside the image. The gradient of
  * the 2 x 2 cell of the bilinear taps is taken across it, from the columns (rows) just
  * outside: gx = b[.][x0 + 2] - b[.][x0 - 1] summed over the cell's two rows, 6 times the
@@ -368,6 +381,7 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
     p->st.shift_sd[0] = p->st.shift_sd[1] = 0;
     p->st.shift_coarse[0] = p->st.shift_coarse[1] = 0;
     p->st.reg_rms = 0u;
+    p->jumped = false;
     if (p->bg_frames == 0u) {
         return; /* the background starts from this frame */
     }
@@ -397,6 +411,7 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         ix = cx; /* the projections' jump is not confirmed */
         iy = cy;
     }
+    p->jumped = ix != cx || iy != cy; /* a jump does not feed the next prediction */
     p->st.shift_coarse[0] = ix;
     p->st.shift_coarse[1] = iy;
     if (ex || ey) {
@@ -545,8 +560,8 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
      * blended into vb before the row is written */
     const bool yup = g.ky >= 0;
     int32_t wy[4], wx[4];
-    cubic_q8_(g.fy, wy);
-    cubic_q8_(g.fx, wx);
+    warp_q8_(g.fy, p->cfg.warp_cubic, wy);
+    warp_q8_(g.fx, p->cfg.warp_cubic, wx);
     /* taps of non-zero weight: x + kx + tlo .. x + kx + thi (f = 0: the central one only) */
     const int32_t txlo = wx[0] != 0 ? -1 : 0, txhi = wx[3] != 0 ? 2 : (wx[2] != 0 ? 1 : 0);
     const int32_t tylo = wy[0] != 0 ? -1 : 0, tyhi = wy[3] != 0 ? 2 : (wy[2] != 0 ? 1 : 0);
@@ -603,8 +618,17 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
             }
             const uint16_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
             int32_t *vb = p->vb;
-            for (int32_t x = 0; x < w; ++x) { /* vectorisable */
-                vb[x] = (wy[0] * t0[x] + wy[1] * t1[x] + wy[2] * t2[x] + wy[3] * t3[x] + 8) >> 4;
+            /* 16 x 16-bit products (vectorisable with 16-bit multiplies): the taps biased by
+             * -32768 into int16, the bias added back as 32768 times the weights' sum (256) */
+            const int16_t w0 = (int16_t)wy[0], w1 = (int16_t)wy[1], w2 = (int16_t)wy[2];
+            const int16_t w3 = (int16_t)wy[3];
+            for (int32_t x = 0; x < w; ++x) {
+                const int16_t s0 = (int16_t)((int32_t)t0[x] - 32768);
+                const int16_t s1 = (int16_t)((int32_t)t1[x] - 32768);
+                const int16_t s2 = (int16_t)((int32_t)t2[x] - 32768);
+                const int16_t s3 = (int16_t)((int32_t)t3[x] - 32768);
+                const int32_t v = w0 * s0 + w1 * s1 + w2 * s2 + w3 * s3;
+                vb[x] = (v + 256 * 32768 + 8) >> 4;
             }
             memcpy(p->prev, b, (size_t)w * 2u);
             yprev = y;
@@ -646,7 +670,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
     }
     if (!held) {
         p->bg_frames++;
-        p->shift_prev[0] = p->st.shift[0];
-        p->shift_prev[1] = p->st.shift[1];
+        if (!p->jumped) {
+            p->shift_prev[0] = p->st.shift[0];
+            p->shift_prev[1] = p->st.shift[1];
+        }
     }
 }

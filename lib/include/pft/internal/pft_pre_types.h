@@ -48,7 +48,8 @@ struct pft_pre_s {
     uint32_t frames;       /* accepted since init/reset */
     uint32_t bg_frames;    /* frames in the background since it was (re)started */
     uint32_t last_seq;
-    int32_t shift_prev[2]; /* last shift, Q16.16 px */
+    int32_t shift_prev[2]; /* last shift, Q16.16 px (the prediction's base) */
+    bool jumped;           /* this frame: the integer search found a jump */
     pft_pre_stats_t st;
     uint32_t n_peaks;
     bool sig_known;        /* some tile sigma was estimated since init/reset */
