@@ -125,9 +125,11 @@ def main():
                                       a.blur, a.seed * 7919 + si)
         common = ['method=' + a.method] + a.set.split()
         rows, _ = run_probe(a.probe, frames, common)
-        # raw residual in counts: every tile sigma floored at 65535/16 counts (above any tile
-        # sigma here), so a Q8.8 value q is q * 65535 / 4096 counts
-        _, res = run_probe(a.probe, frames, common + ['floor=65535'], out=True)
+        # raw residual in counts: every tile sigma floored at 8 sigma_t (above any tile sigma
+        # here), so a Q8.8 value q is q * floor / 4096 counts (floor in counts Q4; one LSB is
+        # sigma_t / 32)
+        floor_q4 = min(65535, int(round(128 * a.sigma_t)))
+        _, res = run_probe(a.probe, frames, common + ['floor=%d' % floor_q4], out=True)
         for k, r in enumerate(rows):
             if k == 0 or a.method != 'temporal':
                 continue
@@ -138,7 +140,7 @@ def main():
             errs.append(e)
             sds.append([float(r['sd_x']), float(r['sd_y'])])
         for k in range(a.skip, a.frames):
-            v = res[k][res[k] != -32768].astype(np.float64) * (65535.0 / 4096.0)
+            v = res[k][res[k] != -32768].astype(np.float64) * (floor_q4 / 4096.0)
             ratio_std.append(v.std() / a.sigma_t)
             ratio_mad.append(float(rows[k]['sigma_mean']) / a.sigma_t)
     print('scenes %d, frames %d each, drift %s, jitter %.2f, sigma_t %.0f, sigma_col %.0f'

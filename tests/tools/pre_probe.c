@@ -6,8 +6,8 @@
  * driven by tests/tools/pre_explore.py; not a test.
  *
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
- *   keys: method=local|temporal ro rg alpha search iters step cubic col tile interp floor
- *         peaks thr
+ *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp
+ *         floor peaks thr
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,6 +63,8 @@ int main(int argc, char **argv)
             cfg.col_alpha = (uint16_t)v;
         } else if (arg_int(argv[i], "tile", &v)) {
             cfg.tile = (uint8_t)v;
+        } else if (arg_int(argv[i], "current", &v)) {
+            cfg.sigma_current = v != 0;
         } else if (arg_int(argv[i], "interp", &v)) {
             cfg.sigma_interp = v != 0;
         } else if (arg_int(argv[i], "floor", &v)) {

@@ -17,6 +17,10 @@ echo "== 1. instructions (callgrind, pft_pre_update, mean of frames 2..12)"
 for s in 384x288 640x512; do
   bash "$src/tests/tools/pre_callgrind.sh" "$out/cg" "$s" "$bf" "$bq" | sed "s/^/$s  /"
 done
+echo "-- variants (host q16, 384x288): reg_step 3; bilinear warp; sigma of the frame itself (second pass); sigma held per tile"
+for v in "step=3" "cubic=0" "current=1" "interp=0"; do
+  bash "$src/tests/tools/pre_callgrind.sh" "$out/cg-$v" 384x288 "$bq" -- $v | tail -2 | sed "s/^/$v  /"
+done
 probe="$out/cg/pre_probe_$(basename "$bq")"
 echo "== 2. procedural scenes (4 scenes x 30 frames, 14 bits, blur 0.7 px, jitter 0.1 px)"
 for d in "0.1 0.05" "0.3 0.2" "0.5 0.3"; do
@@ -27,9 +31,10 @@ for d in "0.1 0.05" "0.3 0.2" "0.5 0.3"; do
 done
 echo "-- jitter 0 (drift 0.3 0.2, sigma_t 64)"
 $py "$ex" "$probe" --procedural 4 --frames 30 --jitter 0 | tail -3
-echo "-- registration on every 3rd pixel (reg_step 3), and with 3 iterations"
+echo "-- registration on every 3rd pixel (reg_step 3); with 3 iterations; bilinear warp"
 $py "$ex" "$probe" --procedural 4 --frames 30 --set "step=3" | sed -n 2p
 $py "$ex" "$probe" --procedural 4 --frames 30 --set "iters=3" | sed -n 2p
+$py "$ex" "$probe" --procedural 4 --frames 30 --set "cubic=0" | tail -3
 echo "-- local background (9 x 9, guard 3 x 3), drift 0.3 0.2, sigma_t 64"
 $py "$ex" "$probe" --procedural 4 --frames 30 --method local | tail -2
 echo "== 4. column offsets (sigma_col 32 counts), temporal, procedural, drift 0.3 0.2"
@@ -41,6 +46,9 @@ if [ -n "$sky" ]; then
   $py "$ex" "$probe" --images "$sky" --frames 29 | tail -3
   echo "-- local"
   $py "$ex" "$probe" --images "$sky" --frames 29 --method local | tail -2
-  echo "-- temporal, column offsets sigma_col 32"
+  echo "-- temporal, bilinear warp"
+  $py "$ex" "$probe" --images "$sky" --frames 29 --set "cubic=0" | tail -3
+  echo "-- temporal, column offsets sigma_col 32, estimated / not"
   $py "$ex" "$probe" --images "$sky" --frames 29 --sigma-col 32 | tail -2
+  $py "$ex" "$probe" --images "$sky" --frames 29 --sigma-col 32 --set "col=0" | tail -2
 fi

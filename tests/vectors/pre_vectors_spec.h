@@ -5,7 +5,8 @@
  * drifting sub-pixel offset, a sky gradient), column fixed-pattern offsets, noise from an
  * integer generator, two dead pixels and a saturated one, a dim target crossing the frame, a
  * jump of several pixels, and one constant frame. pre_gv_compute() runs the temporal and the
- * local stage over it (and a U8 local case) and records, per frame, the status, the
+ * local stage over it (the local one whitening with the last frame's sigma, and a U8 local
+ * case with sigma held per tile) and records, per frame, the status, the
  * statistics, hashes of the residual frame and of the tile sigmas, and the first peaks. The
  * stage is integer arithmetic only, so the float and q16 builds must give the same values.
  */
@@ -145,7 +146,8 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
     }
 }
 
-/* Runs the three cases: 0 temporal, 1 local (U16), 2 local on the frames as U8 (>> 6). */
+/* Runs the three cases: 0 temporal, 1 local (U16, sigma_current false), 2 local on the frames
+ * as U8 (>> 6, sigma held per tile). */
 static inline void pre_gv_compute(pre_gv_results_t *r)
 {
     static uint16_t img[PRE_GV_W * PRE_GV_H];
@@ -161,6 +163,7 @@ static inline void pre_gv_compute(pre_gv_results_t *r)
         cfg.tile = 16;
         cfg.peak_max = 8;
         cfg.method = c == 0u ? PFT_PRE_BG_TEMPORAL : PFT_PRE_BG_LOCAL;
+        cfg.sigma_current = c != 1u; /* case 1: the last frame's sigma, in one pass */
         if (c == 2u) {
             cfg.format = PFT_PIX_U8;
             cfg.bit_depth = 8;

@@ -116,7 +116,7 @@ typedef struct {
     /* noise */
     uint8_t tile;            /**< tile side, PFT_PRE_MIN_TILE..PFT_PRE_MAX_TILE (default 32) */
     bool sigma_interp;       /**< true: 1/sigma interpolated bilinearly between tile centres; false: held per tile (default true) */
-    bool sigma_current;      /**< true: each frame is whitened with its own tile sigmas (a second pass over the residual); false: with the last frame's, as the rows are made (one pass; a frame with no earlier estimate uses its own) (default false) */
+    bool sigma_current;      /**< true: each frame is whitened with its own tile sigmas, in a second pass over the residual (default); false: with the last frame's, as the rows are made (one pass over memory, the same instructions; a frame with no earlier estimate uses its own) (default true) */
     uint16_t sigma_floor;    /**< smallest sigma, raw counts Q12.4 (16 = 1 count), >= 1 (default 8 = 0.5 count) */
     /* peaks */
     uint16_t peak_max;       /**< peaks kept per frame, 0..PFT_PRE_MAX_PEAKS; 0: no peak search (default 64) */

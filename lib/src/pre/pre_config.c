@@ -28,7 +28,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->col_alpha = 4096u;
     cfg->tile = 32u;
     cfg->sigma_interp = true;
-    cfg->sigma_current = false;
+    cfg->sigma_current = true;
     cfg->sigma_floor = 8u;
     cfg->peak_max = 64u;
     cfg->peak_threshold = 768;

@@ -139,13 +139,13 @@ static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
         n = 0u;
         for (int32_t y = my; y < h - my; y += st) {
             const uint8_t *row = pft_frame_row(f, (uint32_t)y);
-            const uint16_t *b = p->bg + (size_t)(y - sy) * (size_t)w - sx;
+            const uint16_t *b = p->bg + (size_t)(y - sy) * (size_t)w; /* y - sy >= 0 */
             for (int32_t x = mx; x < w - mx; x += st) {
                 const uint32_t v = pft_pre_raw_(row, (uint32_t)x, c);
                 if (!pft_pre_valid_(c, v, (uint32_t)x, (uint32_t)y)) {
                     continue;
                 }
-                const int32_t e = (int32_t)(v << p->bf) - p->colnow[x] - b[x];
+                const int32_t e = (int32_t)(v << p->bf) - p->colnow[x] - b[x - sx];
                 cost += e < 0 ? -e : e;
                 n++;
             }
@@ -248,17 +248,20 @@ static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
     uint32_t n = 0u;
     for (int32_t y = y0; y <= yb; y += st) {
         const uint8_t *row = pft_frame_row(f, (uint32_t)y);
-        const uint16_t *b0 = p->bg + (size_t)(y + g->ky) * (size_t)w + g->kx;
-        const uint16_t *b1 = b0 + w, *bm = b0 - w, *b2 = b1 + w;
-        for (int32_t x = x0; x <= xb; x += st) {
-            const uint32_t v = pft_pre_raw_(row, (uint32_t)x, c);
-            if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)x, (uint32_t)y))) {
+        /* rows y + ky - 1 .. y + ky + 2 of the background, columns from x + kx - 1 (all inside:
+         * indices, never a pointer before the buffer) */
+        const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w;
+        const uint16_t *b0 = bm + w, *b1 = b0 + w, *b2 = b1 + w;
+        for (int32_t xs = x0; xs <= xb; xs += st) {
+            const uint32_t v = pft_pre_raw_(row, (uint32_t)xs, c);
+            if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)xs, (uint32_t)y))) {
                 continue;
             }
+            const int32_t x = xs + g->kx; /* the left tap column */
             const uint32_t b00 = b0[x], b01 = b0[x + 1], b10 = b1[x], b11 = b1[x + 1];
             const uint32_t h0 = b00 * gx0 + b01 * fx, h1 = b10 * gx0 + b11 * fx;
             const int32_t bw = (int32_t)((h0 * gy0 + h1 * fy + 32768u) >> 16);
-            const int32_t e = (int32_t)(v << bf) - cn[x] - bw;
+            const int32_t e = (int32_t)(v << bf) - cn[xs] - bw;
             const int32_t gx = ((int32_t)b0[x + 2] - b0[x - 1]) + ((int32_t)b1[x + 2] - b1[x - 1]);
             const int32_t gy = ((int32_t)b2[x] - bm[x]) + ((int32_t)b2[x + 1] - bm[x + 1]);
             sxx += (int64_t)gx * gx;
@@ -520,9 +523,9 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
 {
     const int32_t w0 = wx[0], w1 = wx[1], w2 = wx[2], w3 = wx[3];
     if (!clamp) {
-        const int32_t *v = vb + kx;
-        for (int32_t x = x0; x < x1; ++x) { /* vectorisable */
-            const int32_t s = (w0 * v[x - 1] + w1 * v[x] + w2 * v[x + 1] + w3 * v[x + 2] + 2048) >> 12;
+        for (int32_t x = x0; x < x1; ++x) { /* vectorisable; x + kx - 1 >= 0 here */
+            const int32_t c = x + kx;
+            const int32_t s = (w0 * vb[c - 1] + w1 * vb[c] + w2 * vb[c + 1] + w3 * vb[c + 2] + 2048) >> 12;
             bw[x] = s < 0 ? 0 : (s > 65535 ? 65535 : s);
         }
         return;
