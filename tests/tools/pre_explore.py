@@ -83,7 +83,7 @@ def run_probe(probe, frames, args, out=False):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('probe')
-    ap.add_argument('--images', help='folder of 8-bit frames (e.g. /work/shared/data/ir_sky)')
+    ap.add_argument('--images', help='folder of 8-bit PNG frames (the ir_sky development set)')
     ap.add_argument('--procedural', type=int, default=0, help='number of procedural scenes')
     ap.add_argument('--limit', type=int, default=0, help='use the first N images only')
     ap.add_argument('--frames', type=int, default=30)
