@@ -18,18 +18,28 @@
  *     bad_map; a masked pixel never enters an estimate and its residual is PFT_RES16_MASKED;
  *  2. background b, by method:
  *     - PFT_PRE_BG_LOCAL: mean of the unmasked pixels of the (2 local_outer + 1)^2 window
- *       minus its (2 local_guard + 1)^2 guard window, the window clipped to the image;
+ *       minus its (2 local_guard + 1)^2 guard window; the border band of local_outer pixels,
+ *       where the window would be clipped (and off-centre), is masked;
  *     - PFT_PRE_BG_TEMPORAL: a recursive background registered to the scene: the global
  *       translation of the frame against the background is estimated (integer search on row
- *       and column projections, then Lucas-Kanade sub-pixel steps), the background is warped
- *       by it (bilinear) and updated, b <- (1 - alpha) warp(b) + alpha z;
+ *       and column projections with a two-dimensional check of jumps, then Lucas-Kanade
+ *       sub-pixel steps), the background is warped by it (Catmull-Rom cubic) and updated,
+ *       b <- (1 - alpha) warp(b) + alpha (z - c); pixels whose scene the background has not
+ *       seen (a band of 1-2 px where the scene enters) are masked. The first frame only starts
+ *       the background (all masked); a constant frame is masked whole and changes nothing;
  *  3. residual r = z - b - c(x) with c a per-column offset (column fixed-pattern noise),
- *     estimated recursively from the column means of the residual (clipped at 3 sigma);
+ *     estimated recursively from the column means of the residual (clipped at 3 sigma,
+ *     high-passed across columns);
  *  4. noise: per tile of tile x tile pixels, sigma = 1.4826 median |r| from a histogram
- *     (no sorting), floored at sigma_floor, held per tile or interpolated bilinearly between
- *     tile centres;
+ *     (no sorting), floored at sigma_floor, 1/sigma interpolated bilinearly between tile
+ *     centres or held per tile;
  *  5. whitened residual w = r / sigma in Q8.8 (PFT_PIX_RES16), and its peaks: 3x3 local
  *     maxima of w at or above peak_threshold, the peak_max highest kept.
+ *
+ * What a tracker does with it: take the frame from pft_pre_frame (same seq and timestamp as
+ * the input); skip pixels equal to PFT_RES16_MASKED (pft_frame_row_to_real reads them as a
+ * zero residual); treat frames flagged CONSTANT, ALL_MASKED, WARMUP or REG_LOST as carrying no
+ * detection evidence; propose births at pft_pre_peaks.
  *
  * Numbers. Everything is integer arithmetic (int32/int64), so the float and q16 builds give
  * bit-identical outputs on every target; configuration fields are integers with their scale
@@ -84,7 +94,7 @@ enum {
     PFT_PRE_FLAG_ALL_SATURATED = 1u << 1, /**< every pixel is at or above sat_level */
     PFT_PRE_FLAG_ALL_DEAD = 1u << 2,      /**< every pixel is at or below dead_level (an all-zero frame with the default dead_level 0) */
     PFT_PRE_FLAG_ALL_MASKED = 1u << 3,    /**< no unmasked pixel: every residual is PFT_RES16_MASKED */
-    PFT_PRE_FLAG_WARMUP = 1u << 4,        /**< temporal: the background is still converging (its first ceil(1/alpha) frames; the first is all masked) */
+    PFT_PRE_FLAG_WARMUP = 1u << 4,        /**< temporal: the background is still converging (a running mean while it holds fewer than 1/alpha frames; the first frame is all masked) */
     PFT_PRE_FLAG_REG_WEAK = 1u << 5,      /**< temporal: too little texture for sub-pixel registration (the shift is the integer search's) */
     PFT_PRE_FLAG_REG_LOST = 1u << 6,      /**< temporal: the integer search hit its limit: the background restarted from this frame */
     PFT_PRE_FLAG_SIGMA_FLOOR = 1u << 7,   /**< at least one tile's sigma was raised to sigma_floor */

@@ -66,7 +66,7 @@ static inline uint32_t pft_pre_raw_(const uint8_t *row, uint32_t x, const pft_pr
 /* Whether pixel (x, y) is set in the bad-pixel map (which must exist). */
 static inline bool pft_pre_bad_(const pft_pre_cls_t *c, uint32_t x, uint32_t y)
 {
-    return ((c->map[y * c->map_stride + (x >> 3)] >> (x & 7u)) & 1u) != 0u;
+    return (((uint32_t)c->map[y * c->map_stride + (x >> 3)] >> (x & 7u)) & 1u) != 0u;
 }
 
 /* Whether pixel x of row y with raw value v is unmasked. */
