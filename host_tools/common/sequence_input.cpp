@@ -553,6 +553,12 @@ cv::Mat frame_to_mat(const pft_frame_t &f, double gain, double offset)
                 v = gain * x + offset;
                 break;
             }
+            case PFT_PIX_RES16: {  // whitened residual, Q8.8 sigma units
+                int16_t q;
+                std::memcpy(&q, row + 2 * c, 2);
+                v = q == PFT_RES16_MASKED ? offset : gain * (q / 256.0) + offset;
+                break;
+            }
             case PFT_PIX_RGB888:
             case PFT_PIX_BGR888: {
                 const uint8_t *p = row + 3 * c;

@@ -16,4 +16,5 @@
 #include "pft/pft_pf_models.h"
 #include "pft/pft_tsa.h"
 #include "pft/pft_pte.h"
+#include "pft/pft_pre.h"
 #endif

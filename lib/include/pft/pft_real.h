@@ -234,10 +234,11 @@ static inline pft_real_t pft_from_u16(uint16_t v) { return pft_from_int((int32_t
 pft_real_t pft_from_f32(float v);
 
 /**
- * Converts the first n pixels of row y of a U8, U16 or F32 frame (already validated with
- * pft_frame_check) to reals: z = gain*raw + offset for U8 and U16 (U16: only the low
- * bit_depth bits are significant), F32 as it is (pft_from_f32). Results are clamped to
- * [-32767, 32767], the q16 range, in both builds.
+ * Converts the first n pixels of row y of a U8, U16, RES16 or F32 frame (already validated
+ * with pft_frame_check) to reals: z = gain*raw + offset for U8 and U16 (U16: only the low
+ * bit_depth bits are significant), z = gain*(raw/256) + offset for RES16 (sigma units; a
+ * PFT_RES16_MASKED pixel gives offset, the value of a zero residual), F32 as it is
+ * (pft_from_f32). Results are clamped to [-32767, 32767], the q16 range, in both builds.
  */
 void pft_frame_row_to_real(const pft_frame_t *frame, uint32_t y, uint32_t n, pft_real_t gain,
                            pft_real_t offset, pft_real_t *out);

@@ -42,8 +42,18 @@ typedef enum {
     PFT_PIX_U16 = 2,    /**< 16-bit container, significant bits in frame.bit_depth (e.g. 14-bit IR) */
     PFT_PIX_F32 = 3,    /**< IEEE single, intensity units (host or FPU targets) */
     PFT_PIX_RGB888 = 4, /**< packed R,G,B bytes */
-    PFT_PIX_BGR888 = 5  /**< packed B,G,R bytes (OpenCV order) */
+    PFT_PIX_BGR888 = 5, /**< packed B,G,R bytes (OpenCV order) */
+    PFT_PIX_RES16 = 6   /**< whitened residual (pft_pre.h): int16 per pixel, Q8.8 in units of
+                             the local noise sigma (value / 256), saturating at +-32767 (127.996
+                             sigma); PFT_RES16_MASKED marks a pixel without a valid value */
 } pft_pixfmt_t;
+
+/**
+ * The reserved PFT_PIX_RES16 value of a masked pixel (dead, saturated, listed as bad, or without
+ * a background estimate yet). pft_frame_row_to_real gives such a pixel the value of a zero
+ * residual; a tracker that can skip pixels should test for this value instead.
+ */
+#define PFT_RES16_MASKED INT16_MIN
 
 /** Bytes per pixel of a format, 0 for an unknown format. */
 uint32_t pft_pixfmt_bytes(pft_pixfmt_t f);

@@ -17,6 +17,13 @@ void pft_frame_row_to_real(const pft_frame_t *frame, uint32_t y, uint32_t n, pft
             uint16_t raw;
             memcpy(&raw, row + 2u * c, 2u);
             v = pft_add(pft_mul_i(gain, (int32_t)((uint32_t)raw & mask16)), offset);
+        } else if (frame->format == PFT_PIX_RES16) {
+            int16_t res;
+            memcpy(&res, row + 2u * c, 2u);
+            /* Q8.8 sigma units; a masked pixel reads as a zero residual */
+            v = res == PFT_RES16_MASKED
+                    ? offset
+                    : pft_add(pft_mul(gain, pft_ratio((int32_t)res, 256)), offset);
         } else {
             float f;
             memcpy(&f, row + 4u * c, 4u);

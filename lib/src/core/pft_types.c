@@ -28,7 +28,8 @@ uint32_t pft_pixfmt_bytes(pft_pixfmt_t f)
 {
     switch (f) {
     case PFT_PIX_U8: return 1u;
-    case PFT_PIX_U16: return 2u;
+    case PFT_PIX_U16:
+    case PFT_PIX_RES16: return 2u;
     case PFT_PIX_F32: return 4u;
     case PFT_PIX_RGB888:
     case PFT_PIX_BGR888: return 3u;

@@ -1,0 +1,63 @@
+/*
+ * NOT API. Layout of the preprocessing instance, here only so that a firmware can declare
+ * instances statically (sizeof) and PFT_PRE_WORKSPACE_BYTES can be evaluated. Fields may
+ * change in any release: read results through the calls of pft_pre.h, which includes this
+ * file.
+ */
+#ifndef PFT_INTERNAL_PRE_TYPES_H
+#define PFT_INTERNAL_PRE_TYPES_H
+
+#include "pft/pft_pre.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** @cond internal */
+/* Tiles along a side of n pixels. */
+#define PFT_PRE_NT_(n, t) (((size_t)(n) + (size_t)(t) - 1u) / (size_t)(t))
+/** @endcond */
+
+struct pft_pre_s {
+    pft_pre_config_t cfg;  /* sat_level resolved */
+    /* workspace buffers */
+    int16_t *res;          /* residual (R units) then whitened (Q8.8), w * h */
+    uint16_t *bg;          /* TEMPORAL background (U units), w * h */
+    int32_t *colq;         /* column offsets, R units Q8 */
+    int32_t *colnow;       /* this frame's column offsets in working units */
+    int32_t *csum;         /* column sums of the clipped residual (R units) */
+    uint16_t *hist;        /* histograms of one tile row, ntx * PFT_PRE_BINS */
+    uint32_t *tsig;        /* sigma per tile, R units Q4 (0: unknown) */
+    uint32_t *tmul;        /* 2^28 / sigma per tile */
+    uint32_t *rowm;        /* multipliers of one row at the tile columns (interpolation) */
+    int32_t *pzc, *pbc;    /* TEMPORAL column projections of z and of b */
+    int32_t *pzr, *pbr;    /* TEMPORAL row projections */
+    int32_t *line;         /* one row: TEMPORAL z - c in U units (-1: masked), LOCAL b (R units) */
+    int32_t *vb;           /* TEMPORAL vertical blend of the tap rows of one row */
+    int32_t *bwl;          /* TEMPORAL background prediction of one row */
+    uint16_t *prev;        /* TEMPORAL former values of the background row written last */
+    uint32_t *colo, *colg; /* LOCAL column sums (outer, guard), padded by ro + 1 each side */
+    uint32_t *ring;        /* LOCAL packed rows, (2 ro + 2) * w */
+    pft_pre_peak_t *peaks; /* heap during a frame, sorted after it */
+    /* derived */
+    uint32_t ntx, nty;     /* tiles per row, per column */
+    uint32_t rawmask;      /* 2^bits - 1 */
+    uint8_t rs;            /* fraction bits of the residual */
+    uint8_t bf;            /* fraction bits of the background */
+    /* state */
+    uint32_t frames;       /* accepted since init/reset */
+    uint32_t bg_frames;    /* frames in the background since it was (re)started */
+    uint32_t last_seq;
+    int32_t shift_prev[2]; /* last shift, Q16.16 px (the prediction's base) */
+    bool jumped;           /* this frame: the integer search found a jump */
+    pft_pre_stats_t st;
+    uint32_t n_peaks;
+    bool sig_known;        /* some tile sigma was estimated since init/reset */
+    bool fused;            /* this frame: rows whitened as they are made (last frame's sigmas) */
+    int32_t last_row;      /* fused: the row made last (-1: none) */
+};
+
+#ifdef __cplusplus
+}
+#endif
+#endif

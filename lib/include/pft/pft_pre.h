@@ -1,0 +1,250 @@
+/**
+ * @file pft_pre.h
+ * @brief Infrared preprocessing: background suppression, per-tile noise whitening, a mask of
+ *        dead and saturated pixels and the peaks of the result, from raw U8/U16 sensor frames
+ *        to a whitened residual frame (PFT_PIX_RES16) that any tracker of the library takes.
+ *
+ * The stage is family-neutral (prefix pft_pre_). docs/algorithms.md section 9 gives the
+ * formulas; this header states what a user sees.
+ *
+ * Calls, in the order of use (the library's one API pattern): pft_pre_config_default,
+ * pft_pre_config_check (names the refused field), pft_pre_workspace_size (0 for a refused
+ * configuration) and PFT_PRE_WORKSPACE_BYTES, pft_pre_init, pft_pre_reset, pft_pre_update (one
+ * frame), then the results: pft_pre_frame (the residual as a frame descriptor), pft_pre_stats,
+ * pft_pre_peaks and pft_pre_sigma (copied out).
+ *
+ * Per frame z (raw counts, the low bit_depth bits of each pixel):
+ *  1. mask: a pixel is masked when raw >= sat_level, raw <= dead_level or its bit is set in
+ *     bad_map; a masked pixel never enters an estimate and its residual is PFT_RES16_MASKED;
+ *  2. background b, by method:
+ *     - PFT_PRE_BG_LOCAL: mean of the unmasked pixels of the (2 local_outer + 1)^2 window
+ *       minus its (2 local_guard + 1)^2 guard window; the border band of local_outer pixels,
+ *       where the window would be clipped (and off-centre), is masked;
+ *     - PFT_PRE_BG_TEMPORAL: a recursive background registered to the scene: the global
+ *       translation of the frame against the background is estimated (integer search on row
+ *       and column projections with a two-dimensional check of jumps, then Lucas-Kanade
+ *       sub-pixel steps), the background is warped by it (Catmull-Rom cubic) and updated,
+ *       b <- (1 - alpha) warp(b) + alpha (z - c); pixels whose scene the background has not
+ *       seen (a band of 1-2 px where the scene enters) are masked. The first frame only starts
+ *       the background (all masked); a constant frame is masked whole and changes nothing;
+ *  3. residual r = z - b - c(x) with c a per-column offset (column fixed-pattern noise),
+ *     estimated recursively from the column means of the residual (clipped at 3 sigma,
+ *     high-passed across columns);
+ *  4. noise: per tile of tile x tile pixels, sigma = 1.4826 median |r| from a histogram
+ *     (no sorting), floored at sigma_floor, 1/sigma interpolated bilinearly between tile
+ *     centres or held per tile;
+ *  5. whitened residual w = r / sigma in Q8.8 (PFT_PIX_RES16), and its peaks: 3x3 local
+ *     maxima of w at or above peak_threshold, the peak_max highest kept.
+ *
+ * What a tracker does with it: take the frame from pft_pre_frame (same seq and timestamp as
+ * the input); skip pixels equal to PFT_RES16_MASKED (pft_frame_row_to_real reads them as a
+ * zero residual); treat frames flagged CONSTANT, ALL_MASKED, WARMUP or REG_LOST as carrying no
+ * detection evidence; propose births at pft_pre_peaks.
+ *
+ * Numbers. Everything is integer arithmetic (int32/int64), so the float and q16 builds give
+ * bit-identical outputs on every target; configuration fields are integers with their scale
+ * in the field's comment, and reported quantities are Q16.16 integers (value * 65536) in
+ * pixels or raw counts. The residual r is held with 15 - bit_depth fraction bits (none for
+ * 16-bit data, where |r| saturates at 32767 counts); the temporal background with
+ * 16 - bit_depth fraction bits (U8: 8).
+ *
+ * Memory: the caller's workspace holds the residual (2 bytes per pixel), the temporal
+ * background (2 bytes per pixel, PFT_PRE_BG_TEMPORAL only) and O(width + height + tiles) of
+ * line, column and tile buffers; see PFT_PRE_WORKSPACE_BYTES.
+ *
+ * Refused input (NULL, a frame of the wrong size, format or bit depth, a stride too small)
+ * returns a status before anything changes: the instance and its workspace stay byte for byte
+ * as they were. Constant, all-saturated and all-zero frames are accepted: every estimate stays
+ * finite and pft_pre_stats reports them (PFT_PRE_FLAG_*).
+ */
+#ifndef PFT_PRE_H
+#define PFT_PRE_H
+
+#include "pft/pft_types.h"
+#include "pft/pft_workspace.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest local_outer (window 15 x 15: counts and sums then pack into 32 bits). */
+#define PFT_PRE_MAX_OUTER 7u
+/** Largest tile side (a tile's histogram counts fit 16 bits). */
+#define PFT_PRE_MAX_TILE 255u
+/** Smallest tile side. */
+#define PFT_PRE_MIN_TILE 8u
+/** Largest peak_max. */
+#define PFT_PRE_MAX_PEAKS 256u
+/** Largest reg_search (pixels). */
+#define PFT_PRE_MAX_SEARCH 32u
+/** Largest reg_iters. */
+#define PFT_PRE_MAX_ITERS 8u
+/** Bins of the per-tile histogram of |r| (16 exact bins, then 8 per octave up to 2^15). */
+#define PFT_PRE_BINS 104u
+
+/** Background estimate. */
+typedef enum {
+    PFT_PRE_BG_LOCAL = 0,   /**< spatial: local mean with a guard window (one frame, no state) */
+    PFT_PRE_BG_TEMPORAL = 1 /**< recursive background registered to the drifting scene */
+} pft_pre_bg_t;
+
+/** Statistics flags (pft_pre_stats_t.flags). */
+enum {
+    PFT_PRE_FLAG_CONSTANT = 1u << 0,      /**< every unmasked pixel has the same raw value (or none is unmasked) */
+    PFT_PRE_FLAG_ALL_SATURATED = 1u << 1, /**< every pixel is at or above sat_level */
+    PFT_PRE_FLAG_ALL_DEAD = 1u << 2,      /**< every pixel is at or below dead_level (an all-zero frame with the default dead_level 0) */
+    PFT_PRE_FLAG_ALL_MASKED = 1u << 3,    /**< no unmasked pixel: every residual is PFT_RES16_MASKED */
+    PFT_PRE_FLAG_WARMUP = 1u << 4,        /**< temporal: the background is still converging (a running mean while it holds fewer than 1/alpha frames; the first frame is all masked) */
+    PFT_PRE_FLAG_REG_WEAK = 1u << 5,      /**< temporal: too little texture for sub-pixel registration (the shift is the integer search's) */
+    PFT_PRE_FLAG_REG_LOST = 1u << 6,      /**< temporal: the integer search hit its limit: the background restarted from this frame */
+    PFT_PRE_FLAG_SIGMA_FLOOR = 1u << 7,   /**< at least one tile's sigma was raised to sigma_floor */
+    PFT_PRE_FLAG_HELD = 1u << 8           /**< temporal: constant or all-masked frame: background and column offsets not updated */
+};
+
+/** Configuration of the stage (integers only: the float and q16 builds behave identically). */
+typedef struct {
+    uint16_t width;          /**< frame width, 8..PFT_CFG_MAX_IMAGE_SIDE (default 384) */
+    uint16_t height;         /**< frame height, 8..PFT_CFG_MAX_IMAGE_SIDE (default 288) */
+    pft_pixfmt_t format;     /**< PFT_PIX_U16 (default) or PFT_PIX_U8 */
+    uint8_t bit_depth;       /**< U16: significant bits 8..16, frames must carry the same (bit_depth 0 reads as 16) (default 14); U8: 8 */
+    pft_pre_bg_t method;     /**< background estimate (default PFT_PRE_BG_TEMPORAL) */
+    /* mask */
+    uint16_t sat_level;      /**< raw >= sat_level is saturated; 0: 2^bit_depth - 1 (default 0) */
+    uint16_t dead_level;     /**< raw <= dead_level is dead, < sat_level (default 0) */
+    const uint8_t *bad_map;  /**< optional bad-pixel bitmap (NULL: none): (width + 7) / 8 bytes per row, pixel x of row y is bit (x & 7) of byte y * ((width + 7) / 8) + x / 8; set = bad. Not copied: it must outlive the instance (default NULL) */
+    /* local background */
+    uint8_t local_outer;     /**< LOCAL: window half-width r_o, 1..PFT_PRE_MAX_OUTER (default 4: 9 x 9) */
+    uint8_t local_guard;     /**< LOCAL: guard half-width r_g < r_o (default 1: 3 x 3) */
+    /* temporal background */
+    uint16_t bg_alpha;       /**< TEMPORAL: update weight alpha, Q0.16 (65536 = 1), 1..65535 (default 9830 = 0.15) */
+    uint8_t reg_search;      /**< TEMPORAL: integer search radius around the predicted shift, 0..PFT_PRE_MAX_SEARCH px (default 8; 0: integer step off) */
+    uint8_t reg_iters;       /**< TEMPORAL: Lucas-Kanade iterations, 0..PFT_PRE_MAX_ITERS (default 2; 0: integer shifts only) */
+    uint8_t reg_step;        /**< TEMPORAL: registration uses every reg_step-th pixel of every reg_step-th row, 1..8 (default 2) */
+    bool warp_cubic;         /**< TEMPORAL: warp the background with Catmull-Rom cubic weights (true, default) or bilinear ones (false: same cost here; kept to measure the difference, docs/algorithms.md 9.4) */
+    /* column fixed-pattern noise */
+    uint16_t col_alpha;      /**< update weight of the column offsets, Q0.16, 0..65535; 0 disables (default 4096 = 1/16) */
+    /* noise */
+    uint8_t tile;            /**< tile side, PFT_PRE_MIN_TILE..PFT_PRE_MAX_TILE (default 32) */
+    bool sigma_interp;       /**< true: 1/sigma interpolated bilinearly between tile centres; false: held per tile (default true) */
+    bool sigma_current;      /**< true: each frame is whitened with its own tile sigmas, in a second pass over the residual (default); false: with the last frame's, as the rows are made (one pass over memory, the same instructions; a frame with no earlier estimate uses its own) (default true) */
+    uint16_t sigma_floor;    /**< smallest sigma, raw counts Q12.4 (16 = 1 count), >= 1 (default 8 = 0.5 count) */
+    /* peaks */
+    uint16_t peak_max;       /**< peaks kept per frame, 0..PFT_PRE_MAX_PEAKS; 0: no peak search (default 64) */
+    int16_t peak_threshold;  /**< smallest whitened value of a peak, Q8.8 sigma units, >= 1 (default 768 = 3 sigma) */
+} pft_pre_config_t;
+
+/** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */
+typedef struct {
+    uint16_t x;    /**< column (pixel centre at x) */
+    uint16_t y;    /**< row */
+    int16_t value; /**< whitened residual, Q8.8 sigma units */
+} pft_pre_peak_t;
+
+/** Statistics of the last accepted frame (copied out by pft_pre_stats). */
+typedef struct {
+    uint64_t timestamp_us;  /**< of the input frame */
+    uint32_t seq;           /**< of the input frame */
+    uint32_t frames;        /**< frames accepted since init or reset */
+    uint32_t flags;         /**< PFT_PRE_FLAG_* */
+    uint32_t n_masked;      /**< residual pixels set to PFT_RES16_MASKED */
+    uint32_t n_saturated;   /**< pixels at or above sat_level */
+    uint32_t n_dead;        /**< pixels at or below dead_level */
+    uint32_t n_bad;         /**< pixels set in bad_map (and neither saturated nor dead) */
+    int32_t shift[2];       /**< TEMPORAL: translation of the scene since the last frame, x and y, Q16.16 px: z(p) = b(p - shift) */
+    int32_t shift_sd[2];    /**< TEMPORAL: predicted standard deviation of shift (fit residual and normal matrix), Q16.16 px; 0 when not estimated */
+    int32_t shift_coarse[2];/**< TEMPORAL: the integer search's shift, px */
+    uint32_t reg_rms;       /**< TEMPORAL: RMS of z - warp(b) over the unmasked pixels after registration, Q16.16 counts */
+    uint32_t sigma_min;     /**< smallest tile sigma, Q16.16 counts */
+    uint32_t sigma_mean;    /**< mean tile sigma, Q16.16 counts */
+    uint32_t sigma_max;     /**< largest tile sigma, Q16.16 counts */
+    uint32_t n_peaks;       /**< peaks kept (<= peak_max) */
+    uint32_t n_candidates;  /**< local maxima at or above peak_threshold (before keeping peak_max) */
+} pft_pre_stats_t;
+
+/** Instance (layout in pft/internal/pft_pre_types.h, not API). */
+typedef struct pft_pre_s pft_pre_t;
+
+/** Fills every field with its default (384 x 288 U16 14-bit frames, temporal background). */
+void pft_pre_config_default(pft_pre_config_t *cfg);
+/**
+ * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL; PFT_ERR_CONFIG for a refused value, and
+ * then *field (when field is not NULL) names the first offending field as written in the
+ * struct ("width", "local_guard", ...). *field is NULL on success.
+ */
+pft_status_t pft_pre_config_check(const pft_pre_config_t *cfg, const char **field);
+
+#ifdef __cplusplus
+}
+#endif
+
+/* Layout of the instance, for sizeof and the workspace macro (not API). */
+#include "pft/internal/pft_pre_types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * Workspace bytes for frames w x h, method m (pft_pre_bg_t), local_outer ro, tile side t and
+ * peak_max k: the residual (2 w h), the temporal background (2 w h, TEMPORAL only), and
+ * O(w + h + tiles): column offsets and sums, tile histograms of one tile row, tile sigmas,
+ * LOCAL packed-row ring and column sums, TEMPORAL projections and a packed row, the peaks.
+ */
+#define PFT_PRE_WORKSPACE_BYTES(w, h, m, ro, t, k)                                              \
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +               \
+     ((m) == PFT_PRE_BG_TEMPORAL ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +         \
+     4u * PFT_WS_ROUND((size_t)(w) * 4u) +                                                      \
+     PFT_WS_ROUND(PFT_PRE_NT_(w, t) * (PFT_PRE_BINS + 1u) * 2u) +                               \
+     2u * PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 4u) +                           \
+     PFT_WS_ROUND(PFT_PRE_NT_(w, t) * 4u) +                                                     \
+     ((m) == PFT_PRE_BG_TEMPORAL                                                                \
+          ? 4u * PFT_WS_ROUND((size_t)(w) * 4u) + PFT_WS_ROUND((size_t)(w) * 2u) +              \
+                2u * PFT_WS_ROUND((size_t)(h) * 4u)                                              \
+          : 2u * PFT_WS_ROUND(((size_t)(w) + 2u * (size_t)(ro) + 2u) * 4u) +                    \
+                PFT_WS_ROUND((2u * (size_t)(ro) + 2u) * (size_t)(w) * 4u)) +                    \
+     PFT_WS_ROUND((size_t)(k) * sizeof(pft_pre_peak_t)))
+
+/** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
+size_t pft_pre_workspace_size(const pft_pre_config_t *cfg);
+/**
+ * Initialises pre in work[0..work_len): PFT_ERR_INVAL (NULL), PFT_ERR_CONFIG (refused cfg),
+ * PFT_ERR_NOMEM (work too short). The configuration is copied (sat_level 0 resolved); the
+ * bad_map it points to is not.
+ */
+pft_status_t pft_pre_init(pft_pre_t *pre, const pft_pre_config_t *cfg, void *work,
+                          size_t work_len);
+/** Back to the state right after init: background, column offsets and tile sigmas forgotten. */
+pft_status_t pft_pre_reset(pft_pre_t *pre);
+/**
+ * Processes one raw frame (format, size and bit depth of the configuration). PFT_ERR_INVAL for
+ * NULL, PFT_ERR_FORMAT for a wrong frame: nothing changes. Work per frame is bounded by the
+ * frame size (a few passes over the pixels; docs/results/ir_clutter.md gives the measured
+ * instructions per pixel) plus (2 reg_search + 1)(w + h) for the integer search.
+ */
+pft_status_t pft_pre_update(pft_pre_t *pre, const pft_frame_t *frame);
+/**
+ * The whitened residual of the last update as a frame: PFT_PIX_RES16, the configured size,
+ * the input frame's seq and timestamp_us. The descriptor lends the instance's residual buffer
+ * (the one exception to copying results out, so that no frame-sized copy is needed): read-only,
+ * valid until the next pft_pre_update, pft_pre_reset or pft_pre_init of this instance.
+ * PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first update.
+ */
+pft_status_t pft_pre_frame(const pft_pre_t *pre, pft_frame_t *out);
+/** Statistics of the last update (all zero before the first). PFT_ERR_INVAL for NULL. */
+pft_status_t pft_pre_stats(const pft_pre_t *pre, pft_pre_stats_t *out);
+/**
+ * Peaks of the last update, highest first (equal values in raster order): copies at most max
+ * into out and returns how many there are (out may be NULL with max 0; 0 for NULL pre).
+ */
+size_t pft_pre_peaks(const pft_pre_t *pre, pft_pre_peak_t *out, size_t max);
+/**
+ * Noise sigma of every tile after the last update, Q16.16 raw counts, row-major (tiles_x per
+ * row): copies at most max values and returns the number of tiles (0 for NULL pre). The
+ * number of tiles per row is (width + tile - 1) / tile.
+ */
+size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,153 @@
+/* Internals of the preprocessing stage (private, not installed): the per-frame accumulators,
+ * the pixel classification, the histogram binning and the passes shared by the files of
+ * lib/src/pre. Units (docs/algorithms.md 9.1): raw counts; R = counts * 2^rs (residual);
+ * U = counts * 2^bf (temporal background); sigma in R units Q4. */
+#ifndef PFT_PRE_INT_H
+#define PFT_PRE_INT_H
+
+#include <string.h>
+
+#include "pft/pft_pre.h"
+
+/* A valid pixel packed with its count: raw | 1 << 24 (0: masked). Sums of up to 225 packed
+ * values keep the count in bits 24..31 and the sum of raw values below. */
+#define PFT_PRE_ONE_ (1u << 24)
+#define PFT_PRE_VAL_ 0x00FFFFFFu
+/* Largest |residual| and |whitened| value (INT16_MIN is the mask). */
+#define PFT_PRE_RMAX_ 32767
+/* 1 / Phi^-1(3/4) in Q16: sigma = 1.4826 median |r| for Gaussian noise. */
+#define PFT_PRE_MAD_K_ 97163u
+/* Multiplier numerator: tmul = 2^28 / sigma(R Q4), whitened Q8.8 = r * tmul / 2^16. */
+#define PFT_PRE_MUL_ONE_ (1u << 28)
+/* Column sums are taken on every PFT_PRE_COL_ROWS_-th row (their recursion averages frames). */
+#define PFT_PRE_COL_ROWS_ 4u
+/* Half-width (columns) of the smoothing taken off the column offsets (a high-pass). */
+#define PFT_PRE_COL_HP_ 8
+/* Tile sigma entries flagged as not estimated in the current frame. */
+#define PFT_PRE_TILE_STALE_ 0x80000000u
+
+/* Per-frame accumulators. */
+typedef struct {
+    uint32_t n_sat, n_dead, n_bad; /* masked input pixels by cause */
+    uint32_t n_masked;             /* residual pixels set to PFT_RES16_MASKED */
+    uint32_t flags;
+} pft_pre_acc_t;
+
+/* Classification limits of a frame: valid iff raw - lo < span (unsigned) and not in the map. */
+typedef struct {
+    uint32_t lo, span;
+    uint32_t mask;   /* 2^bits - 1 */
+    bool u8;
+    const uint8_t *map;
+    uint32_t map_stride;
+} pft_pre_cls_t;
+
+static inline void pft_pre_cls_init_(const pft_pre_t *p, pft_pre_cls_t *c)
+{
+    c->lo = (uint32_t)p->cfg.dead_level + 1u;
+    c->span = (uint32_t)p->cfg.sat_level - c->lo;
+    c->mask = p->rawmask;
+    c->u8 = p->cfg.format == PFT_PIX_U8;
+    c->map = p->cfg.bad_map;
+    c->map_stride = ((uint32_t)p->cfg.width + 7u) / 8u;
+}
+
+/* Raw value of pixel x of a frame row (low bit_depth bits). */
+static inline uint32_t pft_pre_raw_(const uint8_t *row, uint32_t x, const pft_pre_cls_t *c)
+{
+    if (c->u8) {
+        return row[x];
+    }
+    uint16_t v;
+    memcpy(&v, row + 2u * x, 2u);
+    return (uint32_t)v & c->mask;
+}
+
+/* Whether pixel (x, y) is set in the bad-pixel map (which must exist). */
+static inline bool pft_pre_bad_(const pft_pre_cls_t *c, uint32_t x, uint32_t y)
+{
+    return (((uint32_t)c->map[y * c->map_stride + (x >> 3)] >> (x & 7u)) & 1u) != 0u;
+}
+
+/* Whether pixel x of row y with raw value v is unmasked. */
+static inline bool pft_pre_valid_(const pft_pre_cls_t *c, uint32_t v, uint32_t x, uint32_t y)
+{
+    if (v - c->lo >= c->span) {
+        return false;
+    }
+    return c->map == NULL || !pft_pre_bad_(c, x, y);
+}
+
+/* Counts a masked pixel of raw value v (a value in range: it is in the map). */
+static inline void pft_pre_count_masked_(const pft_pre_cls_t *c, uint32_t v, pft_pre_acc_t *acc)
+{
+    if (v - c->lo < c->span) {
+        acc->n_bad++;
+    } else if (v < c->lo) {
+        acc->n_dead++;
+    } else {
+        acc->n_sat++;
+    }
+}
+
+
+/* Floor of log2(v) for v >= 1. */
+static inline uint32_t pft_pre_log2_(uint32_t v)
+{
+#if defined(__GNUC__)
+    return 31u - (uint32_t)__builtin_clz(v);
+#else
+    uint32_t e = 0u;
+    while (v > 1u) {
+        v >>= 1;
+        e++;
+    }
+    return e;
+#endif
+}
+
+/* Histogram bin of |r| = v in 0..32767: v itself below 16, then 8 bins per octave
+ * (bin 8 (e - 3) + (v >> (e - 3)) with e = floor(log2(v | 8)); 104 bins). */
+static inline uint32_t pft_pre_bin_(uint32_t v)
+{
+    const uint32_t e3 = pft_pre_log2_(v | 8u) - 3u;
+    return (e3 << 3) + (v >> e3);
+}
+
+/* Clamp of a residual to +-PFT_PRE_RMAX_. */
+static inline int32_t pft_pre_rclamp_(int32_t r)
+{
+    return r > PFT_PRE_RMAX_ ? PFT_PRE_RMAX_ : (r < -PFT_PRE_RMAX_ ? -PFT_PRE_RMAX_ : r);
+}
+
+/* Clip (R units) of the column sums for tile (j, i): 3 sigma of the last frame, or no clip. */
+static inline int32_t pft_pre_clip_(const pft_pre_t *p, uint32_t j, uint32_t i)
+{
+    const uint32_t s = p->tsig[j * p->ntx + i] & ~PFT_PRE_TILE_STALE_;
+    if (s == 0u) {
+        return PFT_PRE_RMAX_;
+    }
+    const uint32_t c = (3u * s + 8u) >> 4;
+    return c > (uint32_t)PFT_PRE_RMAX_ ? PFT_PRE_RMAX_ : (int32_t)(c == 0u ? 1u : c);
+}
+
+/* Column sums and histograms of residual row y (written in p->res); returns its masked
+ * pixels. */
+uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y);
+/* Residual row y is complete (rows come in order, up or down): book-keeping, and when the
+ * frame is whitened with the last frame's sigmas, whitening and the peaks of the row before.
+ * Returns the row's masked pixels. */
+uint32_t pft_pre_row_out_(pft_pre_t *p, uint32_t y);
+/* Sigma of the tiles of tile row j from the histograms (then cleared). */
+void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j);
+
+/* Pass 1 of each method: residual (R units) into p->res, histograms, column sums. */
+void pft_pre_local_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
+/* TEMPORAL: registration of f against the background (sets p->st.shift*, flags in acc). */
+void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
+void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
+
+/* Integer square root of a 64-bit value (floor). */
+uint32_t pft_pre_isqrt64_(uint64_t v);
+
+#endif

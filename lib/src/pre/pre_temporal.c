@@ -1,0 +1,681 @@
+/* Temporal background registered to a drifting scene (docs/algorithms.md 9.3): the global
+ * translation of each frame against the background (integer search on row and column
+ * projections, then Lucas-Kanade Gauss-Newton steps), the bilinear warp of the background by
+ * it and the recursive update b <- warp(b) + alpha (z - c - warp(b)), in place.
+ * Background values are U units (counts * 2^bf, uint16); shifts Q16.16 px; the warp uses the
+ * shift rounded to 1/256 px. */
+#include <string.h>
+
+#include "pre_int.h"
+
+/* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
+#define PFT_PRE_SD_MAX_ 3277
+
+/* floor(a / 2^k) and round(a / 2^k) for signed a (arithmetic shift, as the number layer). */
+static int32_t fl_(int32_t a, uint32_t k) { return a >> k; }
+static int32_t rnd_(int32_t a, uint32_t k) { return (int32_t)(((int64_t)a + (1 << k >> 1)) >> k); }
+
+static int64_t div_rnd_(int64_t n, int64_t d) /* d > 0 */
+{
+    return (n >= 0 ? n + d / 2 : n - d / 2) / d;
+}
+
+static int64_t abs64_(int64_t v) { return v < 0 ? -v : v; }
+
+static int32_t clampi_(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : (v > hi ? hi : v);
+}
+
+/* ------------------------------------------------------------------ integer search */
+
+/* Projections of z (counts) and b (U units) on the columns (every step-th row) and on the
+ * rows (every column). */
+static void projections_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c)
+{
+    const uint32_t w = p->cfg.width, h = p->cfg.height, st = p->cfg.reg_step, mask = c->mask;
+    int32_t *pzc = p->pzc, *pbc = p->pbc;
+    memset(pzc, 0, (size_t)w * 4u);
+    memset(pbc, 0, (size_t)w * 4u);
+    for (uint32_t y = 0; y < h; ++y) {
+        const uint8_t *row = pft_frame_row(f, y);
+        const uint16_t *b = p->bg + (size_t)y * w;
+        const bool col = y % st == 0u;
+        int32_t sz = 0, sb = 0;
+        if (c->u8) {
+            for (uint32_t x = 0; x < w; ++x) {
+                sz += row[x];
+                pzc[x] += col ? (int32_t)row[x] : 0;
+            }
+        } else {
+            for (uint32_t x = 0; x < w; ++x) {
+                uint16_t v;
+                memcpy(&v, row + 2u * x, 2u);
+                const int32_t z = (int32_t)((uint32_t)v & mask);
+                sz += z;
+                pzc[x] += col ? z : 0;
+            }
+        }
+        for (uint32_t x = 0; x < w; ++x) {
+            sb += b[x];
+            pbc[x] += col ? (int32_t)b[x] : 0;
+        }
+        p->pzr[y] = sz;
+        p->pbr[y] = sb;
+    }
+}
+
+/* Best integer shift i of z against b along one axis from the projections pz (counts) and
+ * pb (U units) of n elements: the smallest sum of |dz(x) - db(x - i)| over their first
+ * differences, on the same m values of x for every candidate and away from the ends (where
+ * the warped background repeats its border). A shift other than the prediction is taken only
+ * when its cost is below the prediction's by more than 6/sqrt(m) of it, several times the
+ * cost's relative noise (the best of up to 65 noisy candidates): a flat or one-directional
+ * scene has no shift to find, and its noise must not make one up. dz carries the column offsets off (cofs, NULL for rows, times
+ * the rows summed). Sets *edge when the shift taken is at the end of the searched range. */
+static int32_t search_axis_(const int32_t *pz, const int32_t *pb, uint32_t n, uint32_t bf,
+                            const int32_t *cofs, int32_t nsum, int32_t centre, int32_t radius,
+                            bool *edge)
+{
+    const int32_t lim = (int32_t)n / 4; /* compare at least half the axis */
+    const int32_t c = clampi_(centre, -lim, lim);
+    const int32_t rad = clampi_(radius, 0, lim - (c < 0 ? -c : c));
+    const int32_t lo = c - rad, hi = c + rad;
+    /* x and x - i inside [2, n - 3) for every candidate i */
+    const int32_t x0 = 2 + (hi > 0 ? hi : 0), x1 = (int32_t)n - 3 + (lo < 0 ? lo : 0);
+    int32_t best = c;
+    int64_t best_cost = -1, centre_cost = 0;
+    for (int32_t i = lo; i <= hi; ++i) {
+        int64_t cost = 0;
+        for (int32_t x = x0; x < x1; ++x) {
+            int64_t dz = ((int64_t)pz[x + 1] - pz[x]) * (1 << bf);
+            if (cofs != NULL) {
+                dz -= ((int64_t)cofs[x + 1] - cofs[x]) * nsum;
+            }
+            const int64_t db = (int64_t)pb[x - i + 1] - pb[x - i];
+            cost += abs64_(dz - db);
+        }
+        if (i == c) {
+            centre_cost = cost;
+        }
+        const int32_t di = i > c ? i - c : c - i, db_ = best > c ? best - c : c - best;
+        if (best_cost < 0 || cost < best_cost || (cost == best_cost && di < db_)) {
+            best_cost = cost;
+            best = i;
+        }
+    }
+    const int64_t m = x1 > x0 ? x1 - x0 : 1;
+    const int64_t margin = 6144 / (int64_t)pft_pre_isqrt64_((uint64_t)m); /* 6/sqrt(m), Q10 */
+    if (best != c && best_cost * (1024 + margin) >= centre_cost * 1024) {
+        best = c;
+    }
+    *edge = rad > 0 && best != c && (best == lo || best == hi);
+    return best;
+}
+
+/* A jump found by the projections is checked in two dimensions: the mean |z - c - b(p - s)|
+ * over every 4th pixel of every 4th row, for the integer shifts within 2 px of the
+ * projections' (ix, iy) and for the prediction (cx, cy), on the pixels inside the image for
+ * all of them. The projections of a scene shifted along both axes also change with the
+ * rows (columns) that enter and leave, which can pull a one-axis estimate by a pixel or two.
+ * Returns false when no candidate beats the prediction by 6/sqrt(n) of its cost (no jump). */
+static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                     int32_t cx, int32_t cy, int32_t *ix, int32_t *iy)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, st = 4;
+    const int32_t ax = *ix, ay = *iy;
+    int32_t mx = (ax < 0 ? -ax : ax) + 2, my = (ay < 0 ? -ay : ay) + 2;
+    mx = (cx < 0 ? -cx : cx) > mx ? (cx < 0 ? -cx : cx) : mx;
+    my = (cy < 0 ? -cy : cy) > my ? (cy < 0 ? -cy : cy) : my;
+    if (2 * mx + st >= w || 2 * my + st >= h) {
+        return true; /* no room to check: keep the projections' answer */
+    }
+    int64_t best = -1, pred_cost = 0;
+    int32_t bx = ax, by = ay;
+    uint32_t n = 0u;
+    for (int32_t k = 0; k < 26; ++k) { /* 25 candidates around (ax, ay), then the prediction */
+        const int32_t sx = k < 25 ? ax + k % 5 - 2 : cx, sy = k < 25 ? ay + k / 5 - 2 : cy;
+        int64_t cost = 0;
+        n = 0u;
+        for (int32_t y = my; y < h - my; y += st) {
+            const uint8_t *row = pft_frame_row(f, (uint32_t)y);
+            const uint16_t *b = p->bg + (size_t)(y - sy) * (size_t)w; /* y - sy >= 0 */
+            for (int32_t x = mx; x < w - mx; x += st) {
+                const uint32_t v = pft_pre_raw_(row, (uint32_t)x, c);
+                if (!pft_pre_valid_(c, v, (uint32_t)x, (uint32_t)y)) {
+                    continue;
+                }
+                const int32_t e = (int32_t)(v << p->bf) - p->colnow[x] - b[x - sx];
+                cost += e < 0 ? -e : e;
+                n++;
+            }
+        }
+        if (k == 25) {
+            pred_cost = cost;
+        } else if (best < 0 || cost < best) {
+            best = cost;
+            bx = sx;
+            by = sy;
+        }
+    }
+    const int64_t margin = 6144 / (int64_t)(n > 0u ? pft_pre_isqrt64_(n) : 1u);
+    if ((bx == cx && by == cy) || best * (1024 + margin) >= pred_cost * 1024) {
+        return false;
+    }
+    *ix = bx;
+    *iy = by;
+    return true;
+}
+
+/* ------------------------------------------------------------------ Lucas-Kanade */
+
+typedef struct {
+    int64_t sxx, sxy, syy, sxe, sye, see;
+    uint32_t n;
+} lk_sums_t;
+
+/* Warp geometry of a shift s (Q16.16): the sample of pixel x is b at x - s, taps x + k and
+ * x + k + 1 with weights 256 - fr and fr (per axis). */
+typedef struct {
+    int32_t kx, ky;
+    uint32_t fx, fy;
+} warp_t;
+
+static warp_t warp_of_(const int32_t s[2])
+{
+    warp_t g;
+    const int32_t dx = -rnd_(s[0], 8), dy = -rnd_(s[1], 8); /* Q8 sample offsets */
+    g.kx = fl_(dx, 8);
+    g.ky = fl_(dy, 8);
+    g.fx = (uint32_t)(dx - g.kx * 256);
+    g.fy = (uint32_t)(dy - g.ky * 256);
+    return g;
+}
+
+/* Catmull-Rom weights of taps -1, 0, 1, 2 for the fraction f/256, Q8, summing to 256
+ * (f = 0: 0, 256, 0, 0). The cubic reproduces quadratics, so warping the background again
+ * and again neither blurs nor skews it the way bilinear weights (1 - f, f) do. */
+static void cubic_q8_(uint32_t f, int32_t w[4])
+{
+    const int64_t t1 = f, t2 = (int64_t)f * f, t3 = t2 * f; /* Q8, Q16, Q24 */
+    const int64_t one = (int64_t)1 << 24;
+    const int64_t q[4] = {(-t3 + 2 * t2 * 256 - t1 * 65536) / 2,
+                          (3 * t3 - 5 * t2 * 256 + 2 * one) / 2,
+                          (-3 * t3 + 4 * t2 * 256 + t1 * 65536) / 2,
+                          (t3 - t2 * 256) / 2};
+    int32_t sum = 0;
+    for (uint32_t i = 0; i < 4u; ++i) {
+        w[i] = (int32_t)((q[i] >= 0 ? q[i] + 32768 : q[i] - 32768) / 65536);
+        sum += w[i];
+    }
+    w[f < 128u ? 1 : 2] += 256 - sum;
+}
+
+/* Warp weights of taps -1, 0, 1, 2: Catmull-Rom, or bilinear (0, 256 - f, f, 0). */
+static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
+{
+    if (cubic) {
+        cubic_q8_(f, w);
+        return;
+    }
+    w[0] = 0;
+    w[1] = 256 - (int32_t)f;
+    w[2] = (int32_t)f;
+    w[3] = 0;
+}
+
+/* One pass of sums over the sampled pixels whose taps are inside the image. The gradient of
+ * the 2 x 2 cell of the bilinear taps is taken across it, from the columns (rows) just
+ * outside: gx = b[.][x0 + 2] - b[.][x0 - 1] summed over the cell's two rows, 6 times the
+ * gradient. Built from pixels the sample does not use, its noise is independent of the
+ * sample's, so the Gauss-Newton fixed point (sum g e = 0) is not pulled towards the cell
+ * centre by the background's own noise (the two forward differences inside the cell would
+ * correlate with the sample as 2 fx - 1). */
+static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                     const warp_t *g, int32_t st, lk_sums_t *s)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const uint32_t bf = p->bf;
+    /* taps x + kx - 1 .. x + kx + 2 inside [0, w - 1], the same for rows */
+    const int32_t xa = 1 - g->kx > 0 ? 1 - g->kx : 0, xb = (w - 3 - g->kx < w - 1 ? w - 3 - g->kx : w - 1);
+    const int32_t ya = 1 - g->ky > 0 ? 1 - g->ky : 0, yb = (h - 3 - g->ky < h - 1 ? h - 3 - g->ky : h - 1);
+    const uint32_t fx = g->fx, fy = g->fy, gx0 = 256u - fx, gy0 = 256u - fy;
+    /* the sampling grid starts at a multiple of st so that it does not move with the shift */
+    const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
+    const int32_t *cn = p->colnow;
+    const uint32_t lo = c->lo, span = c->span;
+    int64_t sxx = 0, sxy = 0, syy = 0, sxe = 0, sye = 0, see = 0;
+    uint32_t n = 0u;
+    for (int32_t y = y0; y <= yb; y += st) {
+        const uint8_t *row = pft_frame_row(f, (uint32_t)y);
+        /* rows y + ky - 1 .. y + ky + 2 of the background, columns from x + kx - 1 (all inside:
+         * indices, never a pointer before the buffer) */
+        const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w;
+        const uint16_t *b0 = bm + w, *b1 = b0 + w, *b2 = b1 + w;
+        for (int32_t xs = x0; xs <= xb; xs += st) {
+            const uint32_t v = pft_pre_raw_(row, (uint32_t)xs, c);
+            if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)xs, (uint32_t)y))) {
+                continue;
+            }
+            const int32_t x = xs + g->kx; /* the left tap column */
+            const uint32_t b00 = b0[x], b01 = b0[x + 1], b10 = b1[x], b11 = b1[x + 1];
+            const uint32_t h0 = b00 * gx0 + b01 * fx, h1 = b10 * gx0 + b11 * fx;
+            const int32_t bw = (int32_t)((h0 * gy0 + h1 * fy + 32768u) >> 16);
+            const int32_t e = (int32_t)(v << bf) - cn[xs] - bw;
+            const int32_t gx = ((int32_t)b0[x + 2] - b0[x - 1]) + ((int32_t)b1[x + 2] - b1[x - 1]);
+            const int32_t gy = ((int32_t)b2[x] - bm[x]) + ((int32_t)b2[x + 1] - bm[x + 1]);
+            sxx += (int64_t)gx * gx;
+            sxy += (int64_t)gx * gy;
+            syy += (int64_t)gy * gy;
+            sxe += (int64_t)gx * e;
+            sye += (int64_t)gy * e;
+            see += (int64_t)e * e;
+            n++;
+        }
+    }
+    s->sxx = sxx;
+    s->sxy = sxy;
+    s->syy = syy;
+    s->sxe = sxe;
+    s->sye = sye;
+    s->see = see;
+    s->n = n;
+}
+
+/* Leading zeros of a 64-bit value (64 for 0). */
+static uint32_t clz64_(uint64_t v)
+{
+    uint32_t n = 0u;
+    if (v == 0u) {
+        return 64u;
+    }
+    while ((v & ((uint64_t)1 << 63)) == 0u) {
+        v <<= 1;
+        n++;
+    }
+    return n;
+}
+
+/* num * 2^sh / den for num, den > 0, saturating at 2^62. */
+static uint64_t scaled_ratio_(uint64_t num, int32_t sh, uint64_t den)
+{
+    if (sh < 0) {
+        const uint32_t room = clz64_(den) > 1u ? clz64_(den) - 1u : 0u;
+        if ((uint32_t)-sh <= room) {
+            den <<= (uint32_t)-sh;
+        } else {
+            den <<= room;
+            num >>= ((uint32_t)-sh - room);
+        }
+        return num / den;
+    }
+    const uint32_t room = clz64_(num) > 1u ? clz64_(num) - 1u : 0u;
+    if ((uint32_t)sh <= room) {
+        return (num << (uint32_t)sh) / den;
+    }
+    num <<= room;
+    const uint32_t rest = (uint32_t)sh - room;
+    if (rest >= 64u || (den >> rest) == 0u) {
+        return (uint64_t)1 << 62;
+    }
+    return num / (den >> rest);
+}
+
+/* Solves the Gauss-Newton step delta = -6 A^-1 v (A = [sxx sxy; sxy syy], v = [sxe sye],
+ * from g = 6 grad b) in Q16.16 px; false when A is singular or worse conditioned than
+ * 1 : 1000 (too little texture, or texture in one direction only). When sd is not NULL, also
+ * the predicted standard deviations sd = sqrt(36 (see/n) diag(A^-1)) in Q16.16 px. */
+static bool lk_solve_(const lk_sums_t *s, int32_t delta[2], int32_t sd[2])
+{
+    if (s->n < 16u || s->sxx <= 0 || s->syy <= 0) {
+        return false;
+    }
+    /* scale every sum below 2^23: products below 2^46, numerators * 2^16 below 2^63 */
+    int64_t m = s->sxx > s->syy ? s->sxx : s->syy;
+    m = abs64_(s->sxy) > m ? abs64_(s->sxy) : m;
+    m = abs64_(s->sxe) > m ? abs64_(s->sxe) : m;
+    m = abs64_(s->sye) > m ? abs64_(s->sye) : m;
+    uint32_t k = 0u;
+    while ((m >> k) >= ((int64_t)1 << 23)) {
+        k++;
+    }
+    const int64_t a = s->sxx >> k, b = s->sxy >> k, d = s->syy >> k;
+    const int64_t vx = s->sxe >> k, vy = s->sye >> k;
+    const int64_t det = a * d - b * b, tr = a + d;
+    if (det <= 0 || det < (tr * tr) / 1024) {
+        return false;
+    }
+    const int64_t nx = -6 * (d * vx - b * vy), ny = -6 * (a * vy - b * vx);
+    const int64_t lim = (int64_t)1 << 46;
+    const int64_t qx = div_rnd_((nx > lim ? lim : (nx < -lim ? -lim : nx)) * 65536, det);
+    const int64_t qy = div_rnd_((ny > lim ? lim : (ny < -lim ? -lim : ny)) * 65536, det);
+    const int64_t one = 65536; /* at most one pixel per step */
+    delta[0] = (int32_t)(qx > one ? one : (qx < -one ? -one : qx));
+    delta[1] = (int32_t)(qy > one ? one : (qy < -one ? -one : qy));
+    if (sd != NULL) {
+        /* var_x = 36 (see/n) d / (det 2^k) px^2; in Q32: (36 (see/n) d) * 2^(32-k) / det */
+        const uint64_t e2 = (uint64_t)s->see / s->n;
+        const uint32_t ez = clz64_(e2 > 0u ? e2 : 1u);
+        const int32_t se = ez < 31u ? (int32_t)(31u - ez) : 0; /* keep e2 below 2^33 */
+        const uint64_t e2s = e2 >> se;
+        const int32_t sh = 32 - (int32_t)k + se;
+        sd[0] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(36u * e2s * (uint64_t)d, sh, (uint64_t)det));
+        sd[1] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(36u * e2s * (uint64_t)a, sh, (uint64_t)det));
+    }
+    return true;
+}
+
+/* RMS of e over the sums' pixels in counts, Q16.16: sqrt(see/n) * 2^(16 - bf). */
+static uint32_t rms_counts_(const lk_sums_t *s, uint32_t bf)
+{
+    if (s->n == 0u) {
+        return 0u;
+    }
+    const uint64_t m = (uint64_t)s->see / s->n;
+    const uint32_t sh = 32u - 2u * bf;
+    return pft_pre_isqrt64_(m >= ((uint64_t)1 << (63u - sh)) ? ~(uint64_t)0 >> 1 : m << sh);
+}
+
+void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
+{
+    pft_pre_cls_t c;
+    pft_pre_cls_init_(p, &c);
+    p->st.shift[0] = p->st.shift[1] = 0;
+    p->st.shift_sd[0] = p->st.shift_sd[1] = 0;
+    p->st.shift_coarse[0] = p->st.shift_coarse[1] = 0;
+    p->st.reg_rms = 0u;
+    p->jumped = false;
+    if (p->bg_frames == 0u) {
+        return; /* the background starts from this frame */
+    }
+    if ((acc->flags & PFT_PRE_FLAG_HELD) != 0u) {
+        acc->flags |= PFT_PRE_FLAG_REG_WEAK;
+        return; /* a constant frame: nothing to register; background and offsets held */
+    }
+    projections_(p, f, &c);
+    /* prediction: the last shift times the frame gap (1..16) */
+    uint32_t gap = f->seq - p->last_seq;
+    gap = gap >= 1u && gap <= 16u ? gap : 1u;
+    int32_t pred[2];
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const int64_t v = (int64_t)p->shift_prev[a] * gap;
+        const int64_t lim = (int64_t)PFT_PRE_MAX_SEARCH << 16;
+        pred[a] = (int32_t)(v > lim ? lim : (v < -lim ? -lim : v));
+    }
+    const int32_t rad = p->cfg.reg_search;
+    const int32_t cx = rnd_(pred[0], 16), cy = rnd_(pred[1], 16);
+    bool ex = false, ey = false;
+    const int32_t nrows = (int32_t)((p->cfg.height + p->cfg.reg_step - 1u) / p->cfg.reg_step);
+    int32_t ix = search_axis_(p->pzc, p->pbc, p->cfg.width, p->bf, p->colnow, nrows, cx,
+                                    rad, &ex);
+    /* the row projections sum every column: their column offsets are one constant */
+    int32_t iy = search_axis_(p->pzr, p->pbr, p->cfg.height, p->bf, NULL, 0, cy, rad, &ey);
+    if ((ix != cx || iy != cy) && !ex && !ey && !jump_2d_(p, f, &c, cx, cy, &ix, &iy)) {
+        ix = cx; /* the projections' jump is not confirmed */
+        iy = cy;
+    }
+    p->jumped = ix != cx || iy != cy; /* a jump does not feed the next prediction */
+    p->st.shift_coarse[0] = ix;
+    p->st.shift_coarse[1] = iy;
+    if (ex || ey) {
+        acc->flags |= PFT_PRE_FLAG_REG_LOST;
+        p->bg_frames = 0u; /* the scene jumped beyond the search: restart the background */
+        p->shift_prev[0] = p->shift_prev[1] = 0;
+        return;
+    }
+    int32_t s[2];
+    s[0] = ix == cx ? pred[0] : ix * 65536;
+    s[1] = iy == cy ? pred[1] : iy * 65536;
+    bool ok = p->cfg.reg_iters > 0u;
+    int32_t sd[2] = {0, 0};
+    uint32_t rms = 0u;
+    for (uint32_t it = 0; ok && it < p->cfg.reg_iters; ++it) {
+        const warp_t g = warp_of_(s);
+        lk_sums_t sums;
+        /* iterations before the last sample every 2 step-th pixel of every 2 step-th row */
+        const int32_t st = (int32_t)p->cfg.reg_step * (it + 1u < p->cfg.reg_iters ? 2 : 1);
+        lk_sums_(p, f, &c, &g, st, &sums);
+        int32_t dl[2];
+        const bool last = it + 1u == p->cfg.reg_iters;
+        rms = rms_counts_(&sums, p->bf);
+        if (!lk_solve_(&sums, dl, sd)) {
+            ok = false;
+            break;
+        }
+        s[0] += dl[0];
+        s[1] += dl[1];
+        if (last || (dl[0] < 64 && dl[0] > -64 && dl[1] < 64 && dl[1] > -64)) {
+            break; /* converged below 1/1024 px */
+        }
+    }
+    /* the sub-pixel estimate must stay within 1.5 px of the integer search, and be precise:
+     * a predicted standard deviation above 0.05 px means too little texture (a flat or
+     * one-directional scene, where the noise alone would move the estimate) */
+    if (ok && (abs64_((int64_t)s[0] - ix * 65536) > 98304 ||
+               abs64_((int64_t)s[1] - iy * 65536) > 98304 || sd[0] > PFT_PRE_SD_MAX_ ||
+               sd[1] > PFT_PRE_SD_MAX_)) {
+        ok = false;
+    }
+    if (!ok) { /* not measurable: the integer search's shift (the rounded prediction when it
+                * found nothing better); extrapolating a sub-pixel drift instead would move a
+                * featureless background off a still scene frame after frame */
+        if (p->cfg.reg_iters > 0u) {
+            acc->flags |= PFT_PRE_FLAG_REG_WEAK;
+        }
+        s[0] = ix * 65536;
+        s[1] = iy * 65536;
+        sd[0] = sd[1] = 0;
+    }
+    p->st.shift[0] = s[0];
+    p->st.shift[1] = s[1];
+    p->st.shift_sd[0] = sd[0];
+    p->st.shift_sd[1] = sd[1];
+    p->st.reg_rms = rms;
+}
+
+/* ------------------------------------------------------------------ update pass */
+
+/* Row y of the frame in U units with the column offsets off, clamped to [0, 65535]; -1 for a
+ * masked pixel. Returns the number of masked pixels. */
+static uint32_t zrow_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
+                      const int32_t *cn, int32_t *zl)
+{
+    const uint8_t *row = pft_frame_row(f, y);
+    const uint32_t w = f->width, lo = c->lo, span = c->span, mask = c->mask;
+    uint32_t ninv = 0u;
+    for (uint32_t x = 0; x < w; ++x) {
+        const uint32_t v = pft_pre_raw_(row, x, c) & mask;
+        int32_t zu = (int32_t)(v << bf) - cn[x];
+        zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
+        const bool ok = v - lo < span;
+        zl[x] = ok ? zu : -1;
+        ninv += ok ? 0u : 1u;
+    }
+    if (c->map != NULL) {
+        for (uint32_t x = 0; x < w; ++x) {
+            if (zl[x] >= 0 && pft_pre_bad_(c, x, y)) {
+                zl[x] = -1;
+                ninv++;
+            }
+        }
+    }
+    return ninv;
+}
+
+/* Counts the masked pixels of row y by cause (rows with masked pixels only). */
+static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
+                       pft_pre_acc_t *acc)
+{
+    const uint8_t *row = pft_frame_row(f, y);
+    for (uint32_t x = 0; x < f->width; ++x) {
+        const uint32_t v = pft_pre_raw_(row, x, c);
+        if (!pft_pre_valid_(c, v, x, y)) {
+            pft_pre_count_masked_(c, v, acc);
+        }
+    }
+}
+
+/* Background prediction of row pixels [x0, x1) from the vertical blends vb (U * 16) with the
+ * horizontal cubic weights wx at columns x + kx - 1 .. x + kx + 2, clamped to the image when
+ * clamp is set; into bw (U). */
+static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t w, int32_t x0,
+                    int32_t x1, bool clamp, int32_t *bw)
+{
+    const int32_t w0 = wx[0], w1 = wx[1], w2 = wx[2], w3 = wx[3];
+    if (!clamp) {
+        for (int32_t x = x0; x < x1; ++x) { /* vectorisable; x + kx - 1 >= 0 here */
+            const int32_t c = x + kx;
+            const int32_t s = (w0 * vb[c - 1] + w1 * vb[c] + w2 * vb[c + 1] + w3 * vb[c + 2] + 2048) >> 12;
+            bw[x] = s < 0 ? 0 : (s > 65535 ? 65535 : s);
+        }
+        return;
+    }
+    for (int32_t x = x0; x < x1; ++x) {
+        const int32_t c = x + kx;
+        const int32_t s = (w0 * vb[clampi_(c - 1, 0, w - 1)] + w1 * vb[clampi_(c, 0, w - 1)] +
+                           w2 * vb[clampi_(c + 1, 0, w - 1)] + w3 * vb[clampi_(c + 2, 0, w - 1)] +
+                           2048) >> 12;
+        bw[x] = s < 0 ? 0 : (s > 65535 ? 65535 : s);
+    }
+}
+
+void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, t = p->cfg.tile;
+    pft_pre_cls_t c;
+    pft_pre_cls_init_(p, &c);
+    const bool first = p->bg_frames == 0u;
+    const bool held = (acc->flags & PFT_PRE_FLAG_HELD) != 0u;
+    /* alpha, or 1/(n+1) while the background holds fewer than 1/alpha frames */
+    int64_t alpha = p->cfg.bg_alpha;
+    if (!first && !held) {
+        const int64_t avg = (65536 + (int64_t)p->bg_frames / 2) / ((int64_t)p->bg_frames + 1);
+        alpha = avg > alpha ? avg : alpha;
+    }
+    if (held) {
+        alpha = 0;
+    }
+    if (first || alpha > p->cfg.bg_alpha) {
+        acc->flags |= PFT_PRE_FLAG_WARMUP;
+    }
+    const warp_t g = warp_of_(p->st.shift);
+    /* in place: rows are walked away from the side their taps come from; each row's taps are
+     * blended into vb before the row is written */
+    const bool yup = g.ky >= 0;
+    int32_t wy[4], wx[4];
+    warp_q8_(g.fy, p->cfg.warp_cubic, wy);
+    warp_q8_(g.fx, p->cfg.warp_cubic, wx);
+    /* taps of non-zero weight: x + kx + tlo .. x + kx + thi (f = 0: the central one only) */
+    const int32_t txlo = wx[0] != 0 ? -1 : 0, txhi = wx[3] != 0 ? 2 : (wx[2] != 0 ? 1 : 0);
+    const int32_t tylo = wy[0] != 0 ? -1 : 0, tyhi = wy[3] != 0 ? 2 : (wy[2] != 0 ? 1 : 0);
+    const int32_t xa = clampi_(-g.kx - txlo, 0, w); /* taps of x in [xa, xb] are inside */
+    const int32_t xb = clampi_(w - 1 - g.kx - txhi, -1, w - 1);
+    const uint32_t k1 = (uint32_t)(p->bf - p->rs); /* 0 or 1 */
+    /* alpha with 15 bits so that e * alpha fits 32 bits (|e| <= 65535) */
+    const int32_t a15 = (int32_t)((alpha + 1) >> 1);
+    int32_t *zl = p->line, *bw = p->bwl;
+    int32_t carry = 0;  /* first frame: the last unmasked value, for masked pixels */
+    int32_t yprev = -1; /* the row written last; p->prev holds its former values */
+    if (held) {
+        /* a constant frame (a glitch, a shutter): the background is kept as it is and the
+         * residual, which would only show the background, is masked */
+        for (int32_t y = 0; y < h; ++y) {
+            if (zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+                count_row_(&c, f, (uint32_t)y, acc);
+            }
+            int16_t *r = p->res + (size_t)y * (size_t)w;
+            for (int32_t x = 0; x < w; ++x) {
+                r[x] = PFT_RES16_MASKED;
+            }
+            acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
+            if (y + 1 == h || (y + 1) % t == 0) {
+                pft_pre_tilerow_done_(p, (uint32_t)(y / t));
+            }
+        }
+        return;
+    }
+    for (int32_t yi = 0; yi < h; ++yi) {
+        const int32_t y = yup ? yi : h - 1 - yi;
+        const uint32_t ninv = zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
+        if (ninv > 0u) {
+            count_row_(&c, f, (uint32_t)y, acc);
+        }
+        uint16_t *b = p->bg + (size_t)y * (size_t)w;
+        int16_t *r = p->res + (size_t)y * (size_t)w;
+        if (first) {
+            for (int32_t x = 0; x < w; ++x) {
+                carry = zl[x] >= 0 ? zl[x] : carry;
+                b[x] = (uint16_t)carry;
+                r[x] = PFT_RES16_MASKED;
+            }
+            acc->n_masked += (uint32_t)w;
+        } else {
+            /* tap rows y + ky - 1 .. y + ky + 2, clamped; the row written last is read from its
+             * copy; the row is covered when those of non-zero weight are inside */
+            const int32_t r0 = y + g.ky;
+            const bool covered = r0 + tylo >= 0 && r0 + tyhi <= h - 1;
+            const uint16_t *tr[4];
+            for (int32_t i = 0; i < 4; ++i) {
+                const int32_t rr = clampi_(r0 - 1 + i, 0, h - 1);
+                tr[i] = rr == yprev ? p->prev : p->bg + (size_t)rr * (size_t)w;
+            }
+            const uint16_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
+            int32_t *vb = p->vb;
+            /* 16 x 16-bit products (vectorisable with 16-bit multiplies): the taps biased by
+             * -32768 into int16, the bias added back as 32768 times the weights' sum (256) */
+            const int16_t w0 = (int16_t)wy[0], w1 = (int16_t)wy[1], w2 = (int16_t)wy[2];
+            const int16_t w3 = (int16_t)wy[3];
+            for (int32_t x = 0; x < w; ++x) {
+                const int16_t s0 = (int16_t)((int32_t)t0[x] - 32768);
+                const int16_t s1 = (int16_t)((int32_t)t1[x] - 32768);
+                const int16_t s2 = (int16_t)((int32_t)t2[x] - 32768);
+                const int16_t s3 = (int16_t)((int32_t)t3[x] - 32768);
+                const int32_t v = w0 * s0 + w1 * s1 + w2 * s2 + w3 * s3;
+                vb[x] = (v + 256 * 32768 + 8) >> 4;
+            }
+            memcpy(p->prev, b, (size_t)w * 2u);
+            yprev = y;
+            /* prediction: exact taps inside [xa, xb], clamped outside (for masked pixels) */
+            const int32_t ia = xa < w ? xa : w, ib = xb + 1 > ia ? xb + 1 : ia;
+            hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
+            hcubic_(vb, g.kx, wx, w, ia, ib, false, bw);
+            hcubic_(vb, g.kx, wx, w, ib, w, true, bw);
+            for (int32_t x = 0; x < w; ++x) { /* vectorisable: update and residual */
+                const int32_t zu = zl[x], bx = bw[x], e = zu - bx;
+                const int32_t nb = bx + ((e * a15 + 16384) >> 15);
+                const int32_t rr = pft_pre_rclamp_((e + (int32_t)k1) >> k1);
+                b[x] = (uint16_t)(zu < 0 ? bx : nb);
+                r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
+            }
+            /* a pixel with a tap outside the image (the last frame's view) sees a part of the
+             * scene the background has not seen, or has only extrapolated: its residual is
+             * masked and its background restarts from z (x outside [xa, xb], or every pixel
+             * of a row that is not covered) */
+            const int32_t ua = covered ? ia : w, ub = covered ? ib : w;
+            for (int32_t x = 0; x < w; ++x) {
+                if (x == ua) {
+                    x = ub; /* skip the covered columns */
+                    if (x >= w) {
+                        break;
+                    }
+                }
+                r[x] = PFT_RES16_MASKED;
+                if (zl[x] >= 0) {
+                    b[x] = (uint16_t)zl[x];
+                }
+            }
+            acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
+        }
+        const bool tile_end = yup ? (y + 1 == h || (y + 1) % t == 0) : (y % t == 0);
+        if (tile_end) {
+            pft_pre_tilerow_done_(p, (uint32_t)(y / t));
+        }
+    }
+    if (!held) {
+        p->bg_frames++;
+        if (!p->jumped) {
+            p->shift_prev[0] = p->st.shift[0];
+            p->shift_prev[1] = p->st.shift[1];
+        }
+    }
+}

@@ -1,0 +1,560 @@
+/* Preprocessing stage: the per-frame driver (docs/algorithms.md 9): input check, pass 1 of
+ * the configured background method, tile noise, column offsets, whitening and peaks. */
+#include <string.h>
+
+#include "pre_int.h"
+
+uint32_t pft_pre_isqrt64_(uint64_t v)
+{
+    uint64_t r = 0u, bit = (uint64_t)1 << 62;
+    while (bit > v) {
+        bit >>= 2;
+    }
+    while (bit != 0u) {
+        if (v >= r + bit) {
+            v -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    return r > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)r;
+}
+
+/* Constancy of the unmasked pixels: scans until a second value appears (at once in a real
+ * frame); *valid is false when no pixel is unmasked. */
+static bool frame_constant_(const pft_pre_cls_t *c, const pft_frame_t *f, bool *valid)
+{
+    bool have = false;
+    uint32_t ref = 0u;
+    for (uint32_t y = 0; y < f->height; ++y) {
+        const uint8_t *row = pft_frame_row(f, y);
+        for (uint32_t x = 0; x < f->width; ++x) {
+            const uint32_t v = pft_pre_raw_(row, x, c);
+            if (!pft_pre_valid_(c, v, x, y)) {
+                continue;
+            }
+            if (!have) {
+                have = true;
+                ref = v;
+            } else if (v != ref) {
+                *valid = true;
+                return false;
+            }
+        }
+    }
+    *valid = have;
+    return true;
+}
+
+/* Sigma (R units Q4) of one tile from its histogram of |r| over n pixels: 1.4826 times the
+ * median, interpolated within its bin; bin k < 16 holds the integer k, so it stands for
+ * [k - 1/2, k + 1/2) (k = 0: [0, 1/2)), and a bin of integers [lo, lo + 2^e3) for
+ * [lo - 1/2, lo + 2^e3 - 1/2). 0 if n is 0. */
+static uint32_t tile_sigma_(const uint16_t *h, uint32_t n)
+{
+    uint32_t cum = 0u;
+    for (uint32_t k = 0; k < PFT_PRE_BINS; ++k) {
+        const uint32_t c = h[k];
+        if (c == 0u || 2u * (cum + c) < n) {
+            cum += c;
+            continue;
+        }
+        /* the median is in bin k: lo2, w2 its range in half units */
+        uint32_t lo2, w2;
+        if (k == 0u) {
+            lo2 = 0u;
+            w2 = 1u;
+        } else if (k < 16u) {
+            lo2 = 2u * k - 1u;
+            w2 = 2u;
+        } else {
+            const uint32_t e3 = (k >> 3) - 1u; /* values [(8 + k % 8) 2^e3, + 2^e3) */
+            const uint32_t lo = (8u + (k & 7u)) << e3;
+            lo2 = 2u * lo - 1u;
+            w2 = 2u << e3;
+        }
+        /* median (Q4) = 8 lo2 + 8 w2 (n/2 - cum) / c */
+        const uint64_t med = (uint64_t)8u * lo2 + ((uint64_t)4u * w2 * (n - 2u * cum)) / c;
+        return (uint32_t)((med * PFT_PRE_MAD_K_ + 32768u) >> 16);
+    }
+    return 0u;
+}
+
+uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
+{
+    const uint32_t w = p->cfg.width, t = p->cfg.tile, j = y / t;
+    const int16_t *r = p->res + (size_t)y * w;
+    int32_t *cs = p->csum;
+    const bool colrow = y % PFT_PRE_COL_ROWS_ == 0u; /* column sums: every 4th row */
+    uint32_t nm = 0u;
+    for (uint32_t i = 0; i < p->ntx; ++i) {
+        const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
+        const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
+        for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
+            const int16_t v = r[x];
+            const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
+            cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+        }
+        /* a masked pixel (|INT16_MIN| = 32768) lands in the extra bin PFT_PRE_BINS */
+        uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
+        const uint16_t before = hist[PFT_PRE_BINS];
+        for (uint32_t x = x0; x < x1; ++x) {
+            const int32_t v = r[x];
+            hist[pft_pre_bin_((uint32_t)(v < 0 ? -v : v))]++;
+        }
+        nm += (uint16_t)(hist[PFT_PRE_BINS] - before);
+    }
+    return nm;
+}
+
+void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
+{
+    const uint32_t t = p->cfg.tile, w = p->cfg.width, h = p->cfg.height;
+    const uint32_t y0 = j * t, ny = (y0 + t > h ? h : y0 + t) - y0;
+    for (uint32_t i = 0; i < p->ntx; ++i) {
+        uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
+        const uint32_t x0 = i * t, nx = (x0 + t > w ? w : x0 + t) - x0;
+        uint32_t n = 0u;
+        for (uint32_t k = 0; k < PFT_PRE_BINS; ++k) {
+            n += hist[k];
+        }
+        /* at least 1/16 of the tile's pixels, and 16 */
+        const uint32_t need = (nx * ny) / 16u > 16u ? (nx * ny) / 16u : 16u;
+        uint32_t *ts = &p->tsig[j * p->ntx + i];
+        if (n >= need) {
+            *ts = tile_sigma_(hist, n);
+        } else {
+            *ts = (*ts & ~PFT_PRE_TILE_STALE_) | PFT_PRE_TILE_STALE_;
+        }
+        memset(hist, 0, (PFT_PRE_BINS + 1u) * 2u);
+    }
+}
+
+/* Tiles without enough pixels take the mean of the estimated ones (or keep their last value
+ * when none was estimated); every sigma is floored; multipliers and statistics. */
+static void tiles_finish_(pft_pre_t *p, pft_pre_acc_t *acc)
+{
+    const uint32_t nt = p->ntx * p->nty;
+    const uint32_t floor_q4 = (uint32_t)p->cfg.sigma_floor << p->rs;
+    uint64_t sum = 0u;
+    uint32_t nvalid = 0u;
+    for (uint32_t k = 0; k < nt; ++k) {
+        if ((p->tsig[k] & PFT_PRE_TILE_STALE_) == 0u) {
+            sum += p->tsig[k];
+            nvalid++;
+        }
+    }
+    const uint32_t fill = nvalid > 0u ? (uint32_t)(sum / nvalid) : 0u;
+    if (nvalid > 0u) {
+        p->sig_known = true;
+    }
+    uint32_t smin = 0xFFFFFFFFu, smax = 0u;
+    uint64_t ssum = 0u;
+    for (uint32_t k = 0; k < nt; ++k) {
+        uint32_t s = p->tsig[k];
+        if ((s & PFT_PRE_TILE_STALE_) != 0u) {
+            s = nvalid > 0u ? fill : (s & ~PFT_PRE_TILE_STALE_);
+        }
+        if (s < floor_q4) {
+            s = floor_q4;
+            acc->flags |= PFT_PRE_FLAG_SIGMA_FLOOR;
+        }
+        p->tsig[k] = s;
+        p->tmul[k] = (PFT_PRE_MUL_ONE_ + s / 2u) / s;
+        smin = s < smin ? s : smin;
+        smax = s > smax ? s : smax;
+        ssum += s;
+    }
+    const uint32_t sh = 12u - p->rs; /* R Q4 -> counts Q16.16 */
+    const uint64_t lim = 0xFFFFFFFFu;
+    p->st.sigma_min = (uint64_t)smin << sh > lim ? 0xFFFFFFFFu : smin << sh;
+    p->st.sigma_max = (uint64_t)smax << sh > lim ? 0xFFFFFFFFu : smax << sh;
+    const uint64_t mean = (ssum / nt) << sh;
+    p->st.sigma_mean = mean > lim ? 0xFFFFFFFFu : (uint32_t)mean;
+}
+
+/* Column offsets: c += col_alpha * HP(m), m the column mean of the clipped r over the rows
+ * summed, HP taking off the mean of m over the columns within PFT_PRE_COL_HP_ (clipped at the
+ * border). A smooth column profile is the background's to follow (it moves with the scene,
+ * which tells it apart from the sensor only slowly), so c learns the column-to-column
+ * pattern only and the split between the two cannot wander. A masked pixel adds 0: it slows
+ * the convergence of its column, not where it converges to (r's mean goes to 0). The csum
+ * buffer holds m in place. */
+static void columns_update_(pft_pre_t *p)
+{
+    const int32_t w = p->cfg.width, hp = PFT_PRE_COL_HP_;
+    const int64_t a = p->cfg.col_alpha;
+    const int64_t n = (p->cfg.height + PFT_PRE_COL_ROWS_ - 1u) / PFT_PRE_COL_ROWS_;
+    const int64_t lim = (int64_t)PFT_PRE_RMAX_ * 256;
+    int32_t *m = p->csum;
+    for (int32_t x = 0; x < w; ++x) { /* column means, R units Q8 (|m| <= 32767 * 256) */
+        const int64_t m0 = (int64_t)m[x] * 256;
+        m[x] = (int32_t)((m0 >= 0 ? m0 + n / 2 : m0 - n / 2) / n);
+    }
+    /* c += a (m - mean of m over [x - hp, x + hp]), a sliding sum; m[x - hp - 1] is read
+     * before it is needed no more, so the means go to colq directly */
+    int64_t sum = 0;
+    int32_t cnt = 0;
+    for (int32_t x = 0; x < hp && x < w; ++x) {
+        sum += m[x];
+        cnt++;
+    }
+    for (int32_t x = 0; x < w; ++x) {
+        if (x + hp < w) {
+            sum += m[x + hp];
+            cnt++;
+        }
+        if (x - hp - 1 >= 0) {
+            sum -= m[x - hp - 1];
+            cnt--;
+        }
+        const int64_t mean = (sum >= 0 ? sum + cnt / 2 : sum - cnt / 2) / cnt;
+        int64_t q = (int64_t)p->colq[x] + ((((int64_t)m[x] - mean) * a + 32768) >> 16);
+        q = q > lim ? lim : (q < -lim ? -lim : q);
+        p->colq[x] = (int32_t)q;
+    }
+}
+
+/* ------------------------------------------------------------------------------ peaks */
+
+/* a ranks below b: smaller value, or the same value later in raster order. */
+static bool peak_below_(const pft_pre_peak_t *a, const pft_pre_peak_t *b, uint32_t w)
+{
+    if (a->value != b->value) {
+        return a->value < b->value;
+    }
+    return (uint32_t)a->y * w + a->x > (uint32_t)b->y * w + b->x;
+}
+
+/* Restores the min-heap (root: the lowest-ranked peak) below slot i of n. */
+static void heap_down_(pft_pre_peak_t *hp, uint32_t n, uint32_t i, uint32_t w)
+{
+    for (;;) {
+        const uint32_t l = 2u * i + 1u, r = l + 1u;
+        uint32_t m = i;
+        if (l < n && peak_below_(&hp[l], &hp[m], w)) {
+            m = l;
+        }
+        if (r < n && peak_below_(&hp[r], &hp[m], w)) {
+            m = r;
+        }
+        if (m == i) {
+            return;
+        }
+        const pft_pre_peak_t t = hp[i];
+        hp[i] = hp[m];
+        hp[m] = t;
+        i = m;
+    }
+}
+
+static void peak_add_(pft_pre_t *p, uint32_t x, uint32_t y, int16_t v)
+{
+    const uint32_t w = p->cfg.width, k = p->cfg.peak_max;
+    pft_pre_peak_t pk;
+    pk.x = (uint16_t)x;
+    pk.y = (uint16_t)y;
+    pk.value = v;
+    p->st.n_candidates++;
+    if (p->n_peaks < k) {
+        uint32_t i = p->n_peaks++;
+        p->peaks[i] = pk;
+        while (i > 0u) { /* sift up */
+            const uint32_t up = (i - 1u) / 2u;
+            if (!peak_below_(&p->peaks[i], &p->peaks[up], w)) {
+                break;
+            }
+            const pft_pre_peak_t t = p->peaks[i];
+            p->peaks[i] = p->peaks[up];
+            p->peaks[up] = t;
+            i = up;
+        }
+    } else if (peak_below_(&p->peaks[0], &pk, w)) {
+        p->peaks[0] = pk;
+        heap_down_(p->peaks, k, 0u, w);
+    }
+}
+
+/* Heap sort: highest first. */
+static void peaks_sort_(pft_pre_t *p)
+{
+    const uint32_t w = p->cfg.width;
+    for (uint32_t n = p->n_peaks; n > 1u; --n) {
+        const pft_pre_peak_t t = p->peaks[0];
+        p->peaks[0] = p->peaks[n - 1u];
+        p->peaks[n - 1u] = t;
+        heap_down_(p->peaks, n - 1u, 0u, w);
+    }
+}
+
+/* Peaks of row y (mid) given the rows above and below (NULL at the image border): a value at
+ * or above the threshold, not below a later neighbour and above an earlier one. */
+static void peaks_row_(pft_pre_t *p, uint32_t y, const int16_t *up, const int16_t *mid,
+                       const int16_t *dn)
+{
+    const uint32_t w = p->cfg.width;
+    const int16_t thr = p->cfg.peak_threshold;
+    for (uint32_t xb = 0; xb < w; xb += 16u) {
+        const uint32_t xe = xb + 16u < w ? xb + 16u : w;
+        int16_t bmax = INT16_MIN;
+        for (uint32_t x = xb; x < xe; ++x) { /* vectorisable block maximum */
+            bmax = mid[x] > bmax ? mid[x] : bmax;
+        }
+        if (bmax < thr) {
+            continue;
+        }
+        for (uint32_t x = xb; x < xe; ++x) {
+            const int16_t v = mid[x];
+            if (v < thr) {
+                continue;
+            }
+            const uint32_t xl = x > 0u ? x - 1u : x, xr = x + 1u < w ? x + 1u : x;
+            bool ok = true;
+            for (uint32_t xx = xl; ok && xx <= xr; ++xx) {
+                if (up != NULL && !(v > up[xx])) {
+                    ok = false;
+                }
+                if (dn != NULL && v < dn[xx]) {
+                    ok = false;
+                }
+            }
+            if (ok && x > 0u && !(v > mid[x - 1u])) {
+                ok = false;
+            }
+            if (ok && x + 1u < w && v < mid[x + 1u]) {
+                ok = false;
+            }
+            if (ok) {
+                peak_add_(p, x, y, v);
+            }
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------------ whitening */
+
+/* Twice the centre of tile i along a side of n pixels: first + last pixel. */
+static uint32_t centre2_(uint32_t i, uint32_t t, uint32_t n)
+{
+    const uint32_t a = i * t, b = (a + t > n ? n : a + t) - 1u;
+    return a + b;
+}
+
+/* Multipliers of row y at the tile columns: tile row values interpolated vertically. */
+static void row_multipliers_(pft_pre_t *p, uint32_t y)
+{
+    const uint32_t t = p->cfg.tile, h = p->cfg.height, ntx = p->ntx, nty = p->nty;
+    const uint32_t y2 = 2u * y;
+    uint32_t j = y / t; /* tile row of y; interpolate towards the neighbour on y's side */
+    uint32_t ja = j, jb = j;
+    const uint32_t cj = centre2_(j, t, h);
+    if (y2 < cj && j > 0u) {
+        ja = j - 1u;
+    } else if (y2 > cj && j + 1u < nty) {
+        jb = j + 1u;
+    }
+    const uint32_t *ma = p->tmul + (size_t)ja * ntx, *mb = p->tmul + (size_t)jb * ntx;
+    if (ja == jb || !p->cfg.sigma_interp) {
+        memcpy(p->rowm, p->tmul + (size_t)j * ntx, ntx * 4u);
+        return;
+    }
+    const int64_t ca = centre2_(ja, t, h), d = (int64_t)centre2_(jb, t, h) - ca;
+    const int64_t num = (int64_t)y2 - ca;
+    for (uint32_t i = 0; i < ntx; ++i) {
+        const int64_t a = ma[i], diff = (int64_t)mb[i] - a;
+        const int64_t q = diff * num;
+        p->rowm[i] = (uint32_t)(a + (q >= 0 ? q + d / 2 : q - d / 2) / d);
+    }
+}
+
+/* Multipliers of pixels [x0, x1) (scaled, below 2^15) into m: from ma at doubled coordinate
+ * x2a linearly to mb at x2b (ma alone when x2a == x2b). */
+static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_t mb,
+                        int32_t x2a, int32_t x2b)
+{
+    if (x2b <= x2a || ma == mb) {
+        for (uint32_t x = x0; x < x1; ++x) {
+            m[x] = (int16_t)ma;
+        }
+        return;
+    }
+    /* m(x) = ma + (mb - ma) (2x - x2a) / d, in Q16: base at x0 plus 2 step per pixel */
+    const int64_t d = x2b - x2a, dm = (int64_t)(mb - ma) * 65536;
+    const int64_t b0 = (int64_t)ma * 65536 + (dm * (2 * (int64_t)x0 - x2a)) / d;
+    const int32_t base = (int32_t)b0, step2 = (int32_t)((2 * dm) / d);
+    for (uint32_t x = x0; x < x1; ++x) {
+        m[x] = (int16_t)((base + (int32_t)(x - x0) * step2 + 32768) >> 16);
+    }
+}
+
+/* Whitens row y in place: w = r m / 2^16 with m = 2^28 / sigma(R Q4) interpolated; the
+ * row's multipliers share one exponent e so that m >> e < 2^15 and the products fit 32 bits
+ * (a multiplier 2^k times smaller than the row's largest keeps 15 - k bits). */
+static void whiten_row_(pft_pre_t *p, uint32_t y)
+{
+    const uint32_t t = p->cfg.tile, w = p->cfg.width, ntx = p->ntx;
+    int16_t *r = p->res + (size_t)y * w;
+    int16_t *m = (int16_t *)p->line; /* w int16 in the row buffer */
+    row_multipliers_(p, y);
+    uint32_t mx = 1u;
+    for (uint32_t i = 0; i < ntx; ++i) {
+        mx = p->rowm[i] > mx ? p->rowm[i] : mx;
+    }
+    const uint32_t e = pft_pre_log2_(mx) >= 15u ? pft_pre_log2_(mx) - 14u : 0u;
+    const uint32_t half = 1u << e >> 1;
+#define MS_(i) ((int32_t)((p->rowm[i] + half) >> e) > 32767 ? 32767 : (int32_t)((p->rowm[i] + half) >> e))
+    if (!p->cfg.sigma_interp || ntx == 1u) {
+        for (uint32_t i = 0; i < ntx; ++i) {
+            const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
+            mline_span_(m, x0, x1, MS_(i), MS_(i), 0, 0);
+        }
+    } else {
+        /* before the first centre and after the last: held; between centres: linear */
+        uint32_t x = (centre2_(0u, t, w) + 1u) / 2u; /* first x with 2x >= the first centre */
+        mline_span_(m, 0u, x, MS_(0u), MS_(0u), 0, 0);
+        for (uint32_t i = 0; i + 1u < ntx; ++i) {
+            const uint32_t cb = centre2_(i + 1u, t, w), xb = (cb + 1u) / 2u;
+            mline_span_(m, x, xb, MS_(i), MS_(i + 1u), (int32_t)centre2_(i, t, w), (int32_t)cb);
+            x = xb;
+        }
+        mline_span_(m, x, w, MS_(ntx - 1u), MS_(ntx - 1u), 0, 0);
+    }
+#undef MS_
+    const uint32_t sh = 16u - e;
+    const int32_t rnd = (int32_t)(1u << (sh - 1u));
+    for (uint32_t x = 0; x < w; ++x) { /* vectorisable: 16 x 16 bit products, saturation */
+        const int16_t v = r[x];
+        const int32_t q = ((int32_t)v * (int32_t)m[x] + rnd) >> sh;
+        int16_t q16 = (int16_t)(q > INT16_MAX ? INT16_MAX : (q < INT16_MIN ? INT16_MIN : q));
+        q16 = q16 < -PFT_PRE_RMAX_ ? (int16_t)-PFT_PRE_RMAX_ : q16;
+        r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : q16;
+    }
+}
+
+/* Peaks of row yq once both its neighbours are whitened. */
+static void peaks_of_(pft_pre_t *p, int32_t yq)
+{
+    const uint32_t w = p->cfg.width, h = p->cfg.height;
+    const int16_t *mid = p->res + (size_t)yq * w;
+    peaks_row_(p, (uint32_t)yq, yq >= 1 ? mid - w : NULL, mid, (uint32_t)yq + 1u < h ? mid + w : NULL);
+}
+
+/* The second pass (sigma of the frame itself): whitens every row, then its peaks. */
+static void whiten_(pft_pre_t *p)
+{
+    const uint32_t h = p->cfg.height;
+    for (uint32_t y = 0; y < h; ++y) {
+        whiten_row_(p, y);
+        if (p->cfg.peak_max > 0u && y >= 1u) {
+            peaks_of_(p, (int32_t)y - 1);
+        }
+    }
+    if (p->cfg.peak_max > 0u) {
+        peaks_of_(p, (int32_t)h - 1);
+    }
+}
+
+uint32_t pft_pre_row_out_(pft_pre_t *p, uint32_t y)
+{
+    const uint32_t nm = pft_pre_book_row_(p, y);
+    if (p->fused) {
+        whiten_row_(p, y);
+        /* rows come in order (up or down): the row before has both neighbours now */
+        if (p->cfg.peak_max > 0u && p->last_row >= 0) {
+            peaks_of_(p, p->last_row);
+        }
+        p->last_row = (int32_t)y;
+    }
+    return nm;
+}
+
+/* ------------------------------------------------------------------------------ update */
+
+static pft_status_t check_frame_(const pft_pre_t *p, const pft_frame_t *f)
+{
+    const pft_status_t s =
+        pft_frame_check(f, p->cfg.width, p->cfg.height, PFT_FMT_BIT(p->cfg.format));
+    if (s != PFT_OK) {
+        return s;
+    }
+    if (f->format == PFT_PIX_U16 && (f->bit_depth == 0u ? 16u : f->bit_depth) != p->cfg.bit_depth) {
+        return PFT_ERR_FORMAT;
+    }
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_update(pft_pre_t *p, const pft_frame_t *f)
+{
+    if (p == NULL || p->res == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_status_t s = check_frame_(p, f);
+    if (s != PFT_OK) {
+        return s;
+    }
+    pft_pre_acc_t acc;
+    memset(&acc, 0, sizeof acc);
+    pft_pre_cls_t cls;
+    pft_pre_cls_init_(p, &cls);
+    bool any_valid = false;
+    if (frame_constant_(&cls, f, &any_valid)) {
+        acc.flags |= PFT_PRE_FLAG_CONSTANT;
+    }
+    if (!any_valid) {
+        acc.flags |= PFT_PRE_FLAG_ALL_MASKED;
+    }
+    const uint32_t w = p->cfg.width;
+    const bool temporal = p->cfg.method == PFT_PRE_BG_TEMPORAL;
+    /* this frame's column offsets in working units (TEMPORAL: U, LOCAL: R) */
+    const uint32_t k = temporal ? (uint32_t)(p->bf - p->rs) : 0u;
+    for (uint32_t x = 0; x < w; ++x) {
+        p->colnow[x] = (int32_t)(((int64_t)p->colq[x] * (1 << k) + 128) >> 8);
+    }
+    memset(p->csum, 0, (size_t)w * 4u);
+    /* whiten row by row with the last frame's tile sigmas, or in a second pass with this
+     * frame's (configured so, or no sigma estimated yet) */
+    p->fused = !p->cfg.sigma_current && p->sig_known;
+    p->last_row = -1;
+    p->n_peaks = 0u;
+    p->st.n_candidates = 0u;
+    if (temporal) {
+        if ((acc.flags & PFT_PRE_FLAG_CONSTANT) != 0u && p->bg_frames > 0u) {
+            acc.flags |= PFT_PRE_FLAG_HELD; /* no scene to learn or register */
+        }
+        pft_pre_register_(p, f, &acc);
+        pft_pre_temporal_pass_(p, f, &acc);
+    } else {
+        pft_pre_local_pass_(p, f, &acc);
+    }
+    const uint32_t npix = (uint32_t)w * p->cfg.height;
+    if (acc.n_sat == npix) {
+        acc.flags |= PFT_PRE_FLAG_ALL_SATURATED;
+    }
+    if (acc.n_dead == npix) {
+        acc.flags |= PFT_PRE_FLAG_ALL_DEAD;
+    }
+    tiles_finish_(p, &acc);
+    if (p->cfg.col_alpha > 0u && (acc.flags & (PFT_PRE_FLAG_HELD | PFT_PRE_FLAG_ALL_MASKED)) == 0u) {
+        columns_update_(p);
+    }
+    if (!p->fused) {
+        whiten_(p);
+    } else if (p->cfg.peak_max > 0u && p->last_row >= 0) {
+        peaks_of_(p, p->last_row);
+    }
+    peaks_sort_(p);
+    p->st.n_peaks = p->n_peaks;
+    p->frames++;
+    p->last_seq = f->seq;
+    p->st.seq = f->seq;
+    p->st.timestamp_us = f->timestamp_us;
+    p->st.frames = p->frames;
+    p->st.flags = acc.flags;
+    p->st.n_masked = acc.n_masked;
+    p->st.n_saturated = acc.n_sat;
+    p->st.n_dead = acc.n_dead;
+    p->st.n_bad = acc.n_bad;
+    return PFT_OK;
+}

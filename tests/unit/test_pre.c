@@ -1,0 +1,887 @@
+/*
+ * Infrared preprocessing stage (pft_pre.h): configuration and workspace, refused input leaves
+ * every byte unchanged, known answers (a plane plus noise gives its sigma, a point target on a
+ * gradient keeps its SNR, dead / saturated / listed pixels masked, constant and all-zero and
+ * all-saturated frames finite and flagged), registration of a textured scene shifted by known
+ * sub-pixel and integer amounts, column fixed-pattern removal, peaks, the RES16 frame and its
+ * conversion. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it;
+ * scenes are made with integer arithmetic per pixel for the same reason.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_pre.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 96
+#define H 72
+#define NPIX (W * H)
+#define TILE 24
+
+static uint16_t g_img[NPIX];
+static uint8_t g_map[((W + 7) / 8) * H];
+static uint64_t g_work[PFT_PRE_WORKSPACE_BYTES(W, H, PFT_PRE_BG_TEMPORAL, 7, 8, 256) / 8 + 8];
+static uint64_t g_copy[sizeof(g_work) / 8];
+static pft_pre_peak_t g_peaks[PFT_PRE_MAX_PEAKS];
+static uint32_t g_sig[64];
+static uint64_t g_s = 0x9E3779B97F4A7C15u;
+
+/* Scenes are made with integer arithmetic per pixel (Cortex-M3 has no FPU: per-pixel double
+ * maths would take minutes under QEMU). Noise: N(0, 1) draws of pft_test_gauss, kept in a
+ * table normalised to mean 0 and standard deviation 1 (Q10), picked by a xorshift. */
+#define NTAB 4096
+static int16_t g_noise[NTAB];
+static uint32_t g_rs = 2463534242u;
+
+static void noise_init(void)
+{
+    static double d[NTAB];
+    double m = 0.0, v = 0.0;
+    for (int i = 0; i < NTAB; ++i) {
+        d[i] = pft_test_gauss(&g_s);
+        m += d[i] / NTAB;
+    }
+    for (int i = 0; i < NTAB; ++i) {
+        v += (d[i] - m) * (d[i] - m) / NTAB;
+    }
+    for (int i = 0; i < NTAB; ++i) {
+        g_noise[i] = (int16_t)floor((d[i] - m) / sqrt(v) * 1024.0 + 0.5);
+    }
+}
+
+/* N(0, 1) in Q10 */
+static int32_t nq10(void)
+{
+    g_rs ^= g_rs << 13;
+    g_rs ^= g_rs >> 17;
+    g_rs ^= g_rs << 5;
+    return g_noise[g_rs >> 20];
+}
+
+/* a Q10 value rounded to counts and clamped to [lo, hi] */
+static uint16_t clampq10(int64_t v, int32_t lo, int32_t hi)
+{
+    const int64_t r = (v + 512) >> 10;
+    return (uint16_t)(r < lo ? lo : (r > hi ? hi : r));
+}
+
+static int64_t q10(double v) { return (int64_t)floor(v * 1024.0 + 0.5); }
+
+/* plane a + bx x + by y plus N(0, sigma) noise, 14 bits */
+static void plane(double a, double bx, double by, double sigma)
+{
+    const int64_t qa = q10(a), qx = q10(bx), qy = q10(by), qs = q10(sigma);
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            g_img[y * W + x] = clampq10(qa + qx * x + qy * y + ((qs * nq10()) >> 10), 0, 16383);
+        }
+    }
+}
+
+/* A smooth textured scene (four sinusoids and two blobs, 2000..12000 counts) seen with the
+ * scene shifted by (sx, sy): pixel p shows the texture at p - s, exactly (each term is
+ * separable: per-frame column and row tables in Q14, products per pixel). */
+#define NSIN 4
+static const double k_amp[NSIN] = {1500.0, 1200.0, 900.0, 600.0};
+static const double k_fx[NSIN] = {0.31, -0.12, 0.57, 0.21};
+static const double k_fy[NSIN] = {0.17, 0.43, -0.29, 0.61};
+static const double k_ph[NSIN] = {0.4, 1.3, 2.1, 1.5707963267948966};
+static int32_t g_su[NSIN][W], g_cu[NSIN][W], g_sv[NSIN][H], g_cv[NSIN][H];
+static int32_t g_bx[2][W], g_by[2][H];
+
+static void textured(double sx, double sy, double sigma)
+{
+    static const double bamp[2] = {2000.0, -1500.0}, bcx[2] = {30.0, 70.0}, bcy[2] = {20.0, 50.0};
+    static const double bs[2] = {40.0, 60.0};
+    for (int k = 0; k < NSIN; ++k) { /* sin(fx (x - sx) + ph + fy (y - sy)) */
+        for (int x = 0; x < W; ++x) {
+            const double u = k_fx[k] * (x - sx) + k_ph[k];
+            g_su[k][x] = (int32_t)floor(16384.0 * sin(u) + 0.5);
+            g_cu[k][x] = (int32_t)floor(16384.0 * cos(u) + 0.5);
+        }
+        for (int y = 0; y < H; ++y) {
+            const double v = k_fy[k] * (y - sy);
+            g_sv[k][y] = (int32_t)floor(16384.0 * sin(v) + 0.5);
+            g_cv[k][y] = (int32_t)floor(16384.0 * cos(v) + 0.5);
+        }
+    }
+    for (int j = 0; j < 2; ++j) {
+        for (int x = 0; x < W; ++x) {
+            const double d = x - sx - bcx[j];
+            g_bx[j][x] = (int32_t)floor(16384.0 * exp(-d * d / bs[j]) + 0.5);
+        }
+        for (int y = 0; y < H; ++y) {
+            const double d = y - sy - bcy[j];
+            g_by[j][y] = (int32_t)floor(16384.0 * exp(-d * d / bs[j]) + 0.5);
+        }
+    }
+    const int64_t qs = q10(sigma);
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            int64_t v = (int64_t)7000 << 14; /* Q14 counts */
+            for (int k = 0; k < NSIN; ++k) {
+                const int32_t t = (g_su[k][x] * g_cv[k][y] + g_cu[k][x] * g_sv[k][y]) >> 14;
+                v += (int64_t)t * (int32_t)k_amp[k];
+            }
+            for (int j = 0; j < 2; ++j) {
+                v += (((int64_t)g_bx[j][x] * g_by[j][y]) >> 14) * (int32_t)bamp[j];
+            }
+            g_img[y * W + x] = clampq10((v >> 4) + ((qs * nq10()) >> 10), 0, 16383);
+        }
+    }
+}
+
+static pft_frame_t frame_of(const void *data, uint32_t seq)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = data;
+    f.width = W;
+    f.height = H;
+    f.stride_bytes = 2u * W;
+    f.format = PFT_PIX_U16;
+    f.bit_depth = 14;
+    f.seq = seq;
+    f.timestamp_us = 1000u * seq;
+    return f;
+}
+
+static void config(pft_pre_config_t *c, pft_pre_bg_t method)
+{
+    pft_pre_config_default(c);
+    c->width = W;
+    c->height = H;
+    c->method = method;
+    c->tile = TILE;
+}
+
+static void init(pft_pre_t *p, const pft_pre_config_t *c)
+{
+    const char *field = NULL;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_pre_config_check(c, &field), field);
+    const size_t need = pft_pre_workspace_size(c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, g_work, need));
+}
+
+/* pixels of the border band the local background masks (its window would be clipped) */
+#define LOCAL_BAND(ro) (NPIX - (W - 2 * (ro)) * (H - 2 * (ro)))
+
+/* sample standard deviation of the unmasked whitened residual (sigma units), border of b
+ * pixels left out */
+static double whitened_sd(const pft_pre_t *p, int b, int *n_out)
+{
+    pft_frame_t r;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(p, &r));
+    const int16_t *v = r.data;
+    double s = 0.0, s2 = 0.0;
+    int n = 0;
+    for (int y = b; y < H - b; ++y) {
+        for (int x = b; x < W - b; ++x) {
+            const int16_t q = v[y * W + x];
+            if (q == PFT_RES16_MASKED) {
+                continue;
+            }
+            s += q / 256.0;
+            s2 += (q / 256.0) * (q / 256.0);
+            n++;
+        }
+    }
+    if (n_out != NULL) {
+        *n_out = n;
+    }
+    return n > 1 ? sqrt((s2 - s * s / n) / (n - 1)) : 0.0;
+}
+
+static int16_t res_at(const pft_pre_t *p, int x, int y)
+{
+    pft_frame_t r;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(p, &r));
+    return ((const int16_t *)r.data)[y * W + x];
+}
+
+/* mean tile sigma (counts) */
+static double sigma_mean(const pft_pre_t *p)
+{
+    pft_pre_stats_t st;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_stats(p, &st));
+    return st.sigma_mean / 65536.0;
+}
+
+/* ------------------------------------------------------------------ configuration */
+
+static void test_config_and_workspace(void)
+{
+    pft_pre_config_t c;
+    pft_pre_config_default(&c);
+    TEST_ASSERT_EQUAL_UINT16(384, c.width);
+    TEST_ASSERT_EQUAL_UINT16(288, c.height);
+    TEST_ASSERT_EQUAL_INT(PFT_PRE_BG_TEMPORAL, c.method);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_config_check(NULL, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0, pft_pre_workspace_size(NULL));
+    static const struct {
+        int method, ro, tile, peaks;
+    } cases[] = {{0, 4, 24, 64}, {1, 4, 24, 64}, {0, 7, 8, 256}, {1, 1, 255, 0}, {0, 1, 32, 1}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        config(&c, (pft_pre_bg_t)cases[i].method);
+        c.local_outer = (uint8_t)cases[i].ro;
+        c.local_guard = 0;
+        c.tile = (uint8_t)cases[i].tile;
+        c.peak_max = (uint16_t)cases[i].peaks;
+        const size_t need = pft_pre_workspace_size(&c);
+        TEST_ASSERT_EQUAL_UINT32(PFT_PRE_WORKSPACE_BYTES(W, H, cases[i].method, cases[i].ro,
+                                                         cases[i].tile, cases[i].peaks),
+                                 need);
+        TEST_ASSERT_TRUE(need <= sizeof(g_work));
+        pft_pre_t p;
+        uint8_t *buf = (uint8_t *)g_work;
+        pft_test_guard_fill(buf, sizeof(g_work));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_init(&p, &c, buf + 1, need - 1));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(&p, &c, buf + 1, need));
+        TEST_ASSERT_TRUE(pft_test_guard_intact(buf, sizeof(g_work), 1, 1 + need));
+        plane(4000.0, 3.0, -2.0, 30.0);
+        pft_frame_t f = frame_of(g_img, 0);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        TEST_ASSERT_TRUE(pft_test_guard_intact(buf, sizeof(g_work), 1, 1 + need));
+    }
+    /* the budget: residual and background 4 bytes per pixel, plus line and tile buffers */
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    c.width = 384;
+    c.height = 288;
+    c.tile = 32;
+    const size_t big = pft_pre_workspace_size(&c);
+    TEST_ASSERT_TRUE(big >= 4u * 384u * 288u && big < 4u * 384u * 288u + 24u * 1024u);
+    /* refused fields are named */
+    static const char *const names[] = {"width", "height", "format", "bit_depth", "method",
+                                        "sat_level", "dead_level", "local_outer",
+                                        "local_guard", "bg_alpha", "reg_search", "reg_iters",
+                                        "reg_step", "tile", "sigma_floor", "peak_max",
+                                        "peak_threshold"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
+        config(&c, PFT_PRE_BG_LOCAL);
+        switch (i) {
+        case 0: c.width = 7; break;
+        case 1: c.height = 0; break;
+        case 2: c.format = PFT_PIX_F32; break;
+        case 3: c.bit_depth = 17; break;
+        case 4: c.method = (pft_pre_bg_t)5; break;
+        case 5: c.sat_level = 16384; break;
+        case 6: c.dead_level = 16383; break;
+        case 7: c.local_outer = PFT_PRE_MAX_OUTER + 1u; break;
+        case 8: c.local_guard = c.local_outer; break;
+        case 9: c.bg_alpha = 0; break;
+        case 10: c.reg_search = PFT_PRE_MAX_SEARCH + 1u; break;
+        case 11: c.reg_iters = PFT_PRE_MAX_ITERS + 1u; break;
+        case 12: c.reg_step = 0; break;
+        case 13: c.tile = 7; break;
+        case 14: c.sigma_floor = 0; break;
+        case 15: c.peak_max = PFT_PRE_MAX_PEAKS + 1u; break;
+        default: c.peak_threshold = 0; break;
+        }
+        const char *field = NULL;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_config_check(&c, &field));
+        TEST_ASSERT_EQUAL_STRING(names[i], field);
+        TEST_ASSERT_EQUAL_UINT32(0, pft_pre_workspace_size(&c));
+        pft_pre_t p;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_init(&p, &c, g_work, sizeof g_work));
+    }
+    config(&c, PFT_PRE_BG_LOCAL);
+    c.format = PFT_PIX_U8;
+    c.bit_depth = 14;
+    const char *field = NULL;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("bit_depth", field);
+    c.bit_depth = 8;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, &field));
+    TEST_ASSERT_NULL(field);
+    pft_pre_t p;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_init(NULL, &c, g_work, sizeof g_work));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_init(&p, NULL, g_work, sizeof g_work));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_init(&p, &c, NULL, 0));
+}
+
+/* ------------------------------------------------------------------ refused input */
+
+static void test_refused_input_changes_nothing(void)
+{
+    for (int m = 0; m < 2; ++m) {
+        pft_pre_config_t c;
+        config(&c, (pft_pre_bg_t)m);
+        pft_pre_t p;
+        init(&p, &c);
+        const size_t need = pft_pre_workspace_size(&c);
+        for (uint32_t k = 0; k < 3u; ++k) { /* a state worth protecting */
+            textured(0.3 * k, 0.2 * k, 20.0);
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        }
+        const pft_pre_t before = p;
+        memcpy(g_copy, g_work, need);
+        static uint8_t bytes[NPIX];
+        pft_frame_t bad[8];
+        for (int i = 0; i < 8; ++i) {
+            bad[i] = frame_of(g_img, 9);
+        }
+        bad[0].data = NULL;
+        bad[1].width = W - 1;
+        bad[2].height = H + 1;
+        bad[3].stride_bytes = 2u * W - 1u;
+        bad[4].bit_depth = 12;
+        bad[5].format = PFT_PIX_U8;
+        bad[5].data = bytes;
+        bad[5].stride_bytes = W;
+        bad[6].format = PFT_PIX_RES16;
+        bad[7].bit_depth = 0; /* reads as 16 bits: not the configured 14 */
+        const pft_status_t want[8] = {PFT_ERR_INVAL, PFT_ERR_FORMAT, PFT_ERR_FORMAT,
+                                      PFT_ERR_FORMAT, PFT_ERR_FORMAT, PFT_ERR_FORMAT,
+                                      PFT_ERR_FORMAT, PFT_ERR_FORMAT};
+        for (int i = 0; i < 8; ++i) {
+            TEST_ASSERT_EQUAL_INT(want[i], pft_pre_update(&p, &bad[i]));
+            TEST_ASSERT_EQUAL_MEMORY(&before, &p, sizeof p);
+            TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, need);
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_update(&p, NULL));
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_update(NULL, &bad[1]));
+        TEST_ASSERT_EQUAL_MEMORY(&before, &p, sizeof p);
+        TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, need);
+    }
+}
+
+static void test_reset_is_init(void)
+{
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    pft_pre_t p;
+    init(&p, &c);
+    const size_t need = pft_pre_workspace_size(&c);
+    const pft_pre_t fresh = p;
+    memcpy(g_copy, g_work, need);
+    pft_frame_t out;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_pre_frame(&p, &out));
+    for (uint32_t k = 0; k < 4u; ++k) {
+        textured(0.4 * k, -0.3 * k, 20.0);
+        pft_frame_t f = frame_of(g_img, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    }
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_reset(&p));
+    TEST_ASSERT_EQUAL_MEMORY(&fresh, &p, sizeof p);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, need);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_reset(NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_frame(NULL, &out));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_stats(&p, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0, pft_pre_peaks(NULL, g_peaks, 4));
+    TEST_ASSERT_EQUAL_UINT32(0, pft_pre_sigma(NULL, g_sig, 4));
+}
+
+/* ------------------------------------------------------------------ known answers */
+
+/* A tilted plane plus white noise: the tiles' sigma is the residual's (sigma times
+ * sqrt(1 + 1/72) for the 9 x 9 window less its 3 x 3 guard; sqrt(1 + alpha/(2 - alpha)) for
+ * the converged temporal background of a still scene), within 5 %, and the whitened residual
+ * has unit standard deviation within 5 %. Three frames averaged: the MAD of 1728 pixels per
+ * frame has a standard error of about 2 %. */
+static void test_plane_plus_noise_gives_sigma(void)
+{
+    for (int m = 0; m < 2; ++m) {
+        for (int bd = 0; bd < 3; ++bd) {
+            static const uint8_t depths[3] = {14, 12, 16};
+            pft_pre_config_t c;
+            config(&c, (pft_pre_bg_t)m);
+            c.bit_depth = depths[bd];
+            pft_pre_t p;
+            init(&p, &c);
+            const double scale = bd == 0 ? 1.0 : (bd == 1 ? 0.25 : 4.0);
+            const double sigma = 40.0 * scale;
+            const double expect = sigma * (m == 0 ? sqrt(1.0 + 1.0 / 72.0)
+                                                  : sqrt(1.0 + 0.15 / (2.0 - 0.15)));
+            double ssum = 0.0, wsum = 0.0;
+            const uint32_t frames = m == 0 ? 3u : 33u;
+            for (uint32_t k = 0; k < frames; ++k) {
+                const int64_t qa = q10(3000.0 * scale), qx = q10(12.0 * scale);
+                const int64_t qy = q10(-7.0 * scale), qs = q10(sigma);
+                for (int y = 0; y < H; ++y) {
+                    for (int x = 0; x < W; ++x) {
+                        g_img[y * W + x] =
+                            clampq10(qa + qx * x + qy * y + ((qs * nq10()) >> 10), 1, 65000);
+                    }
+                }
+                pft_frame_t f = frame_of(g_img, k);
+                f.bit_depth = depths[bd];
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+                if (k + 3u >= frames) {
+                    ssum += sigma_mean(&p);
+                    wsum += whitened_sd(&p, 0, NULL);
+                }
+            }
+            const double s = ssum / 3.0, wsd = wsum / 3.0;
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05 * expect, expect, s, "tile sigma");
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05, 1.0, wsd, "whitened sd");
+            /* every tile within 20 % (one tile: 576 pixels, MAD standard error 5 %) */
+            const size_t nt = pft_pre_sigma(&p, g_sig, 64);
+            TEST_ASSERT_EQUAL_UINT32(4u * 3u, nt);
+            for (size_t i = 0; i < nt; ++i) {
+                TEST_ASSERT_DOUBLE_WITHIN(0.2 * expect, expect, g_sig[i] / 65536.0);
+            }
+        }
+    }
+}
+
+/* Point targets of 8 sigma on a steep gradient (40 counts per pixel, 2 sigma) with the
+ * local background: the whitened peak is the amplitude over the residual sigma, within 10 %
+ * on average over twelve targets (one target's value has a noise of 1 sigma). The same for
+ * the temporal background with targets present in the last frame only. */
+static void test_point_target_keeps_snr(void)
+{
+    static const int tx[12] = {14, 30, 46, 62, 78, 22, 38, 54, 70, 14, 46, 78};
+    static const int ty[12] = {14, 14, 14, 14, 14, 36, 36, 36, 36, 56, 56, 56};
+    const double sigma = 20.0, amp = 8.0 * sigma;
+    for (int m = 0; m < 2; ++m) {
+        pft_pre_config_t c;
+        config(&c, (pft_pre_bg_t)m);
+        c.peak_threshold = 5 * 256;
+        pft_pre_t p;
+        init(&p, &c);
+        const uint32_t frames = m == 0 ? 1u : 30u;
+        for (uint32_t k = 0; k < frames; ++k) {
+            plane(2000.0, 40.0, 25.0, sigma);
+            if (k + 1u == frames) {
+                for (int i = 0; i < 12; ++i) {
+                    g_img[ty[i] * W + tx[i]] = (uint16_t)(g_img[ty[i] * W + tx[i]] + amp);
+                }
+            }
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        }
+        const double sres = sigma * (m == 0 ? sqrt(1.0 + 1.0 / 72.0)
+                                            : sqrt(1.0 + 0.15 / (2.0 - 0.15)));
+        double sum = 0.0;
+        for (int i = 0; i < 12; ++i) {
+            sum += res_at(&p, tx[i], ty[i]) / 256.0;
+        }
+        TEST_ASSERT_DOUBLE_WITHIN(0.1 * amp / sres, amp / sres, sum / 12.0);
+        /* every target is a peak, and the highest peaks are targets */
+        const size_t n = pft_pre_peaks(&p, g_peaks, PFT_PRE_MAX_PEAKS);
+        TEST_ASSERT_TRUE(n >= 12u && n <= 16u);
+        for (size_t i = 0; i < 12; ++i) {
+            bool hit = false;
+            for (int t = 0; t < 12; ++t) {
+                hit = hit || (g_peaks[i].x == tx[t] && g_peaks[i].y == ty[t]);
+            }
+            TEST_ASSERT_TRUE_MESSAGE(hit, "a top-12 peak is not a target");
+            if (i > 0) {
+                TEST_ASSERT_TRUE(g_peaks[i].value <= g_peaks[i - 1].value);
+            }
+            TEST_ASSERT_EQUAL_INT16(res_at(&p, g_peaks[i].x, g_peaks[i].y), g_peaks[i].value);
+        }
+        pft_pre_stats_t st;
+        pft_pre_stats(&p, &st);
+        TEST_ASSERT_EQUAL_UINT32(n, st.n_peaks);
+        TEST_ASSERT_EQUAL_UINT32(n, st.n_candidates);
+        TEST_ASSERT_EQUAL_UINT32(n, pft_pre_peaks(&p, NULL, 0));
+        TEST_ASSERT_EQUAL_UINT32(n, pft_pre_peaks(&p, g_peaks, 3));
+    }
+}
+
+/* Dead (0) and saturated (2^14 - 1) pixels and pixels listed in the bad-pixel map are masked,
+ * counted, and do not disturb their neighbours (no false ring around a dead pixel). */
+static void test_dead_saturated_and_listed_pixels_masked(void)
+{
+    for (int m = 0; m < 2; ++m) {
+        pft_pre_config_t c;
+        config(&c, (pft_pre_bg_t)m);
+        memset(g_map, 0, sizeof g_map);
+        g_map[(40 * ((W + 7) / 8)) + 50 / 8] |= (uint8_t)(1u << (50 % 8));
+        c.bad_map = g_map;
+        pft_pre_t p;
+        init(&p, &c);
+        pft_pre_stats_t st;
+        for (uint32_t k = 0; k < 12u; ++k) {
+            plane(5000.0, 10.0, 5.0, 20.0);
+            g_img[20 * W + 20] = 0;     /* dead */
+            g_img[20 * W + 21] = 0;
+            g_img[30 * W + 60] = 16383; /* saturated */
+            g_img[40 * W + 50] = 9000;  /* hot, listed in the map */
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            pft_pre_stats(&p, &st);
+            TEST_ASSERT_EQUAL_UINT32(2, st.n_dead);
+            TEST_ASSERT_EQUAL_UINT32(1, st.n_saturated);
+            TEST_ASSERT_EQUAL_UINT32(1, st.n_bad);
+        }
+        TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, res_at(&p, 20, 20));
+        TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, res_at(&p, 21, 20));
+        TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, res_at(&p, 60, 30));
+        TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, res_at(&p, 50, 40));
+        TEST_ASSERT_EQUAL_UINT32(4u + (m == 0 ? LOCAL_BAND(4) : 0u), st.n_masked);
+        TEST_ASSERT_EQUAL_UINT32(0, st.flags & ~(uint32_t)PFT_PRE_FLAG_REG_WEAK);
+        /* neighbours within 5 sigma */
+        for (int dy = -4; dy <= 4; ++dy) {
+            for (int dx = -4; dx <= 5; ++dx) {
+                const int16_t v = res_at(&p, 20 + dx, 20 + dy);
+                if (v != PFT_RES16_MASKED) {
+                    TEST_ASSERT_TRUE(v > -5 * 256 && v < 5 * 256);
+                }
+                const int16_t u = res_at(&p, 60 + dx, 30 + dy);
+                if (u != PFT_RES16_MASKED) {
+                    TEST_ASSERT_TRUE(u > -5 * 256 && u < 5 * 256);
+                }
+            }
+        }
+        /* a lower saturation level masks more */
+        pft_pre_config_t c2 = c;
+        c2.bad_map = NULL;
+        c2.sat_level = 5500;
+        c2.dead_level = 4600;
+        init(&p, &c2);
+        pft_frame_t f = frame_of(g_img, 0);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        pft_pre_stats(&p, &st);
+        uint32_t sat = 0, dead = 0;
+        for (int i = 0; i < NPIX; ++i) {
+            sat += g_img[i] >= 5500 ? 1u : 0u;
+            dead += g_img[i] <= 4600 ? 1u : 0u;
+        }
+        TEST_ASSERT_EQUAL_UINT32(sat, st.n_saturated);
+        TEST_ASSERT_EQUAL_UINT32(dead, st.n_dead);
+    }
+}
+
+/* every residual is masked or within +-32767 and the statistics are finite: sigma at least
+ * the floor, no peak when nothing stands out */
+static void check_sane(const pft_pre_t *p, const pft_pre_config_t *c)
+{
+    pft_pre_stats_t st;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_stats(p, &st));
+    const uint32_t floor16 = (uint32_t)c->sigma_floor << 12;
+    TEST_ASSERT_TRUE(st.sigma_min >= floor16 && st.sigma_max >= st.sigma_min);
+    TEST_ASSERT_TRUE(st.sigma_mean >= st.sigma_min && st.sigma_mean <= st.sigma_max);
+    pft_frame_t r;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(p, &r));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_frame_check(&r, W, H, PFT_FMT_BIT(PFT_PIX_RES16)));
+}
+
+/* Constant, all-zero and all-saturated frames: finite estimates, flagged, nothing found; a
+ * normal frame afterwards is processed normally. */
+static void test_degenerate_frames_flagged(void)
+{
+    static const struct {
+        uint16_t value;
+        uint32_t flags;
+    } cases[] = {{7000, PFT_PRE_FLAG_CONSTANT},
+                 {0, PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_DEAD | PFT_PRE_FLAG_ALL_MASKED},
+                 {16383, PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_SATURATED |
+                             PFT_PRE_FLAG_ALL_MASKED}};
+    for (int m = 0; m < 2; ++m) {
+        for (size_t i = 0; i < 3; ++i) {
+            for (int before = 0; before < 2; ++before) {
+                pft_pre_config_t c;
+                config(&c, (pft_pre_bg_t)m);
+                pft_pre_t p;
+                init(&p, &c);
+                pft_pre_stats_t st;
+                for (uint32_t k = 0; k < (uint32_t)(before ? 8 : 0); ++k) {
+                    textured(0.25 * k, 0.1 * k, 20.0);
+                    pft_frame_t f = frame_of(g_img, k);
+                    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+                }
+                for (int n = 0; n < NPIX; ++n) {
+                    g_img[n] = cases[i].value;
+                }
+                pft_frame_t f = frame_of(g_img, 20);
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_stats(&p, &st));
+                TEST_ASSERT_EQUAL_UINT32(cases[i].flags, st.flags & cases[i].flags);
+                check_sane(&p, &c);
+                if (m == 0 || before == 0) {
+                    TEST_ASSERT_EQUAL_UINT32(0, st.n_peaks);
+                }
+                if (m == 1 && before) { /* the background waits for a real frame */
+                    TEST_ASSERT_TRUE((st.flags & PFT_PRE_FLAG_HELD) != 0u);
+                }
+                if (cases[i].value == 7000 && m == 0 && !before) { /* flat: zero residual */
+                    int n = 0;
+                    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, whitened_sd(&p, 0, &n));
+                    TEST_ASSERT_EQUAL_INT(NPIX - LOCAL_BAND(4), n);
+                }
+                if (cases[i].value != 7000) {
+                    TEST_ASSERT_EQUAL_UINT32(NPIX, st.n_masked);
+                }
+                /* back to a normal scene */
+                for (uint32_t k = 21; k < 31u; ++k) {
+                    textured(0.25 * k, 0.1 * k, 20.0);
+                    pft_frame_t g = frame_of(g_img, k);
+                    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &g));
+                }
+                check_sane(&p, &c);
+                TEST_ASSERT_EQUAL_UINT32(0, st.flags & PFT_PRE_FLAG_REG_LOST);
+                pft_pre_stats(&p, &st);
+                TEST_ASSERT_EQUAL_UINT32(0, st.flags & (PFT_PRE_FLAG_CONSTANT |
+                                                        PFT_PRE_FLAG_ALL_MASKED));
+                TEST_ASSERT_TRUE(whitened_sd(&p, 2, NULL) < 1.5);
+            }
+        }
+    }
+}
+
+/* ------------------------------------------------------------------ registration */
+
+/* A textured scene drifting by known steps: sub-pixel steps, a jitter, then a jump of several
+ * pixels that only the integer search can catch; each frame's shift within 0.05 px (after the
+ * first two frames, which register against a one-frame background) and the predicted standard
+ * deviation small; the residual stays near the noise. */
+static void test_registration_recovers_known_shifts(void)
+{
+    static const double steps[][2] = {{0.0, 0.0},    {0.30, -0.20}, {0.35, -0.15}, {0.25, -0.25},
+                                      {0.40, -0.10}, {0.10, 0.30},  {-0.20, 0.45}, {0.30, 0.20},
+                                      {5.30, -3.40}, {0.30, -0.20}, {0.20, -0.30}, {0.33, 0.17}};
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    pft_pre_t p;
+    init(&p, &c);
+    double sx = 0.0, sy = 0.0, worst = 0.0;
+    for (uint32_t k = 0; k < sizeof steps / sizeof steps[0]; ++k) {
+        sx += steps[k][0];
+        sy += steps[k][1];
+        textured(sx, sy, 15.0);
+        pft_frame_t f = frame_of(g_img, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        pft_pre_stats_t st;
+        pft_pre_stats(&p, &st);
+        if (k == 0) {
+            TEST_ASSERT_TRUE((st.flags & PFT_PRE_FLAG_WARMUP) != 0u);
+            TEST_ASSERT_EQUAL_UINT32(NPIX, st.n_masked);
+            continue;
+        }
+        TEST_ASSERT_EQUAL_UINT32(0, st.flags & (PFT_PRE_FLAG_REG_WEAK | PFT_PRE_FLAG_REG_LOST));
+        const double ex = st.shift[0] / 65536.0 - steps[k][0];
+        const double ey = st.shift[1] / 65536.0 - steps[k][1];
+        const double tol = 0.05;
+        TEST_ASSERT_DOUBLE_WITHIN(tol, 0.0, ex);
+        TEST_ASSERT_DOUBLE_WITHIN(tol, 0.0, ey);
+        worst = fmax(worst, fmax(fabs(ex), fabs(ey)));
+        TEST_ASSERT_TRUE(st.shift_sd[0] > 0 && st.shift_sd[0] < 65536 / 50);
+        TEST_ASSERT_TRUE(st.shift_sd[1] > 0 && st.shift_sd[1] < 65536 / 50);
+        TEST_ASSERT_EQUAL_INT32((int32_t)floor(steps[k][0] + 0.5), st.shift_coarse[0]);
+        TEST_ASSERT_EQUAL_INT32((int32_t)floor(steps[k][1] + 0.5), st.shift_coarse[1]);
+        if (k >= 4u && k != 8u) { /* the jump leaves a band of new pixels, masked */
+            TEST_ASSERT_TRUE(whitened_sd(&p, 4, NULL) < 1.3);
+        }
+    }
+    TEST_ASSERT_TRUE(worst > 0.0); /* the tolerance above bounds a real error */
+}
+
+/* A jump beyond the search radius restarts the background (flagged), and it recovers. */
+static void test_registration_lost_restarts(void)
+{
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    c.reg_search = 4;
+    pft_pre_t p;
+    init(&p, &c);
+    pft_pre_stats_t st;
+    for (uint32_t k = 0; k < 5u; ++k) {
+        textured(0.3 * k, 0.0, 15.0);
+        pft_frame_t f = frame_of(g_img, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    }
+    textured(1.2 + 15.0, 0.0, 15.0);
+    pft_frame_t f = frame_of(g_img, 5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    pft_pre_stats(&p, &st);
+    TEST_ASSERT_TRUE((st.flags & PFT_PRE_FLAG_REG_LOST) != 0u);
+    TEST_ASSERT_TRUE((st.flags & PFT_PRE_FLAG_WARMUP) != 0u);
+    TEST_ASSERT_EQUAL_UINT32(NPIX, st.n_masked);
+    for (uint32_t k = 6; k < 12u; ++k) {
+        textured(16.2 + 0.3 * (k - 5), 0.0, 15.0);
+        pft_frame_t g = frame_of(g_img, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &g));
+    }
+    pft_pre_stats(&p, &st);
+    TEST_ASSERT_EQUAL_UINT32(0, st.flags & (PFT_PRE_FLAG_REG_LOST | PFT_PRE_FLAG_WARMUP));
+    TEST_ASSERT_DOUBLE_WITHIN(0.05, 0.3, st.shift[0] / 65536.0);
+}
+
+/* A flat scene has nothing to register: flagged weak, integer shift 0, still finite. */
+static void test_registration_weak_on_flat(void)
+{
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    pft_pre_t p;
+    init(&p, &c);
+    pft_pre_stats_t st;
+    for (uint32_t k = 0; k < 3u; ++k) {
+        plane(3000.0, 0.0, 0.0, 0.0);
+        g_img[5] = 3001; /* not constant */
+        pft_frame_t f = frame_of(g_img, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    }
+    pft_pre_stats(&p, &st);
+    TEST_ASSERT_TRUE((st.flags & PFT_PRE_FLAG_REG_WEAK) != 0u);
+    TEST_ASSERT_EQUAL_INT32(0, st.shift[0]);
+    TEST_ASSERT_EQUAL_INT32(0, st.shift[1]);
+    check_sane(&p, &c);
+}
+
+/* ------------------------------------------------------------------ column pattern */
+
+/* Sensor-fixed column offsets (about 2.3 sigma rms) under a drifting scene: the recursive
+ * column estimate removes them, so that the residual is within 10 % of the same scene's
+ * without them; without the estimate it is over 1.5 times that. (The residual of this
+ * strongly textured scene is about 20 counts, beyond its noise of 15: the cubic warp of its
+ * finest sinusoid.) */
+static void test_column_pattern_removed(void)
+{
+    static int32_t col[W];
+    for (int x = 0; x < W; ++x) {
+        col[x] = (int32_t)floor(25.0 * sin(1.7 * x) + 15.0 * ((x * 7) % 5 - 2) + 0.5);
+    }
+    double sd[3];
+    for (int run = 0; run < 3; ++run) { /* no pattern; pattern, no estimate; pattern, estimate */
+        pft_pre_config_t c;
+        config(&c, PFT_PRE_BG_TEMPORAL);
+        c.col_alpha = run == 1 ? 0u : 8192u;
+        pft_pre_t p;
+        init(&p, &c);
+        double acc = 0.0;
+        for (uint32_t k = 0; k < 60u; ++k) {
+            textured(0.3 * k, 0.2 * k, 15.0);
+            for (int y = 0; y < H; ++y) {
+                for (int x = 0; x < W; ++x) {
+                    const int32_t v = g_img[y * W + x] + (run > 0 ? col[x] : 0);
+                    g_img[y * W + x] = (uint16_t)(v < 0 ? 0 : (v > 16383 ? 16383 : v));
+                }
+            }
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            if (k >= 50u) { /* residual in counts: whitened times the mean sigma */
+                acc += whitened_sd(&p, 4, NULL) * sigma_mean(&p) / 10.0;
+            }
+        }
+        sd[run] = acc;
+    }
+    TEST_ASSERT_TRUE(sd[1] > 1.5 * sd[0]);
+    TEST_ASSERT_DOUBLE_WITHIN(0.1 * sd[0], sd[0], sd[2]);
+}
+
+/* ------------------------------------------------------------------ frames and formats */
+
+static void test_res16_frame_and_conversion(void)
+{
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_LOCAL);
+    pft_pre_t p;
+    init(&p, &c);
+    plane(3000.0, 2.0, 1.0, 25.0);
+    g_img[0] = 0;
+    pft_frame_t f = frame_of(g_img, 77);
+    f.timestamp_us = 123456789u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    pft_frame_t r;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(&p, &r));
+    TEST_ASSERT_EQUAL_INT(PFT_PIX_RES16, r.format);
+    TEST_ASSERT_EQUAL_UINT16(W, r.width);
+    TEST_ASSERT_EQUAL_UINT16(H, r.height);
+    TEST_ASSERT_EQUAL_UINT32(2u * W, r.stride_bytes);
+    TEST_ASSERT_EQUAL_UINT32(77, r.seq);
+    TEST_ASSERT_TRUE(r.timestamp_us == 123456789u);
+    TEST_ASSERT_EQUAL_UINT32(2, pft_pixfmt_bytes(PFT_PIX_RES16));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_frame_check(&r, W, H, PFT_FMT_BIT(PFT_PIX_RES16)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_frame_check(&r, W, H, PFT_FMT_BIT(PFT_PIX_U16)));
+    static pft_real_t row[W];
+    const int16_t *v = (const int16_t *)r.data + 20 * W; /* row 20: band masked at x < 4 */
+    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, v[0]);
+    pft_frame_row_to_real(&r, 20, W, PFT_C(1.0), PFT_C(0.0), row);
+    TEST_ASSERT_TRUE(row[0] == PFT_C(0.0)); /* masked: a zero residual */
+    for (int x = 4; x < W - 4; ++x) {
+        TEST_ASSERT_TRUE(v[x] != PFT_RES16_MASKED);
+        TEST_ASSERT_DOUBLE_WITHIN(pft_test_lsb(v[x] / 256.0), v[x] / 256.0,
+                                  pft_test_to_double(row[x]));
+    }
+    pft_frame_row_to_real(&r, 20, W, PFT_C(2.0), PFT_C(1.0), row);
+    TEST_ASSERT_TRUE(row[0] == PFT_C(1.0));
+    TEST_ASSERT_DOUBLE_WITHIN(2.0 * pft_test_lsb(v[9] / 128.0), 2.0 * v[9] / 256.0 + 1.0,
+                              pft_test_to_double(row[9]));
+}
+
+/* U8 frames and a 12-bit U16 frame are read at their own depth: same sigma in counts. */
+static void test_u8_and_bit_depths(void)
+{
+    static uint8_t img8[NPIX];
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_LOCAL);
+    c.format = PFT_PIX_U8;
+    c.bit_depth = 8;
+    pft_pre_t p;
+    init(&p, &c);
+    for (int i = 0; i < NPIX; ++i) {
+        img8[i] = (uint8_t)clampq10(q10(100.0 + 0.5 * (i % W)) + 6 * nq10(), 1, 254);
+    }
+    pft_frame_t f = frame_of(img8, 0);
+    f.format = PFT_PIX_U8;
+    f.stride_bytes = W;
+    f.bit_depth = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    TEST_ASSERT_DOUBLE_WITHIN(0.1 * 6.0, 6.0 * sqrt(1.0 + 1.0 / 72.0), sigma_mean(&p));
+    /* 12-bit data in a 16-bit container: the top bits are ignored */
+    config(&c, PFT_PRE_BG_LOCAL);
+    c.bit_depth = 12;
+    init(&p, &c);
+    plane(1000.0, 1.0, 1.0, 10.0);
+    for (int i = 0; i < NPIX; ++i) {
+        g_img[i] = (uint16_t)(g_img[i] | 0xF000u);
+    }
+    f = frame_of(g_img, 0);
+    f.bit_depth = 12;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+    TEST_ASSERT_DOUBLE_WITHIN(0.1 * 10.0, 10.0 * sqrt(1.0 + 1.0 / 72.0), sigma_mean(&p));
+    pft_pre_stats_t st;
+    pft_pre_stats(&p, &st);
+    TEST_ASSERT_EQUAL_UINT32(0, st.n_saturated);
+}
+
+/* The second-pass whitening (sigma_current) and the held per-tile sigma give the same kind
+ * of answer on a stationary scene. */
+static void test_sigma_options(void)
+{
+    for (int opt = 0; opt < 2; ++opt) {
+        pft_pre_config_t c;
+        config(&c, PFT_PRE_BG_LOCAL);
+        c.sigma_current = opt == 0;
+        c.sigma_interp = opt == 1 ? false : true;
+        pft_pre_t p;
+        init(&p, &c);
+        double wsd = 0.0;
+        for (uint32_t k = 0; k < 3u; ++k) {
+            plane(3000.0, 5.0, 5.0, 30.0);
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            wsd += whitened_sd(&p, 0, NULL) / 3.0;
+        }
+        TEST_ASSERT_DOUBLE_WITHIN(0.05, 1.0, wsd);
+    }
+}
+
+int main(void)
+{
+    noise_init();
+    UNITY_BEGIN();
+    RUN_TEST(test_config_and_workspace);
+    RUN_TEST(test_refused_input_changes_nothing);
+    RUN_TEST(test_reset_is_init);
+    RUN_TEST(test_plane_plus_noise_gives_sigma);
+    RUN_TEST(test_point_target_keeps_snr);
+    RUN_TEST(test_dead_saturated_and_listed_pixels_masked);
+    RUN_TEST(test_degenerate_frames_flagged);
+    RUN_TEST(test_registration_recovers_known_shifts);
+    RUN_TEST(test_registration_lost_restarts);
+    RUN_TEST(test_registration_weak_on_flat);
+    RUN_TEST(test_column_pattern_removed);
+    RUN_TEST(test_res16_frame_and_conversion);
+    RUN_TEST(test_u8_and_bit_depths);
+    RUN_TEST(test_sigma_options);
+    return UNITY_END();
+}
