@@ -31,30 +31,43 @@ const char *pft_file_error_str(pft_file_error_t e)
 /* ------------------------------------------------------------------------------------------ */
 /* helpers                                                                                    */
 
-/* Exactly one integer conversion (flags and width allowed, no length modifier), %% allowed. */
+#define PATTERN_MAX_WIDTH_DIGITS 3u /* a width above 999 could never give a usable name */
+
+/* Exactly one integer conversion (flags and a width of at most three digits, no precision, no
+ * length modifier), %% allowed, and shorter than PFT_FILE_NAME_MAX characters. The whole
+ * pattern is checked: whatever reaches snprintf has been seen here. */
 static bool pattern_ok(const char *p)
 {
     uint32_t conversions = 0u;
-    for (size_t i = 0; p[i] != '\0' && i < PFT_FILE_NAME_MAX; ++i) {
+    size_t i = 0u;
+    while (i < PFT_FILE_NAME_MAX && p[i] != '\0') {
         if (p[i] != '%') {
+            ++i;
             continue;
         }
         ++i;
-        if (p[i] == '%') {
+        if (i < PFT_FILE_NAME_MAX && p[i] == '%') {
+            ++i;
             continue;
         }
-        while (p[i] == '0' || p[i] == '-' || p[i] == '+' || p[i] == ' ' || p[i] == '#') {
+        while (i < PFT_FILE_NAME_MAX &&
+               (p[i] == '0' || p[i] == '-' || p[i] == '+' || p[i] == ' ' || p[i] == '#')) {
             ++i;
         }
-        while (p[i] >= '0' && p[i] <= '9') {
+        uint32_t digits = 0u;
+        while (i < PFT_FILE_NAME_MAX && p[i] >= '0' && p[i] <= '9') {
             ++i;
+            ++digits;
         }
-        if (p[i] == '\0' || strchr("udixXo", p[i]) == NULL) {
+        if (i >= PFT_FILE_NAME_MAX || digits > PATTERN_MAX_WIDTH_DIGITS || p[i] == '\0' ||
+            strchr("udixXo", p[i]) == NULL) {
             return false;
         }
+        ++i;
         conversions++;
     }
-    return conversions == 1u;
+    /* stopped at the terminator (i < PFT_FILE_NAME_MAX), or the pattern is too long */
+    return i < PFT_FILE_NAME_MAX && conversions == 1u;
 }
 
 /* The pattern is the user's, checked by pattern_ok to hold one integer conversion. */
@@ -286,6 +299,14 @@ pft_status_t pft_file_source_init(pft_file_source_t *fs, const pft_file_config_t
             return PFT_ERR_NOMEM;
         }
     }
+    /* the only step that can still fail comes first: a refused init changes nothing in fs */
+    FILE *fp = NULL;
+    if (cfg->layout == PFT_FILE_CONCAT) {
+        fp = fopen(cfg->path, "rb");
+        if (fp == NULL) {
+            return PFT_ERR_IO;
+        }
+    }
     memset(fs, 0, sizeof *fs);
     fs->cfg = *cfg;
     fs->cfg.slots = slots;
@@ -296,11 +317,6 @@ pft_status_t pft_file_source_init(pft_file_source_t *fs, const pft_file_config_t
     fs->index = cfg->first_index;
     if (cfg->layout == PFT_FILE_CONCAT) {
         (void)snprintf(fs->name, sizeof fs->name, "%s", cfg->path);
-        FILE *fp = fopen(cfg->path, "rb");
-        if (fp == NULL) {
-            fs->last_error = PFT_FILE_E_OPEN;
-            return PFT_ERR_IO;
-        }
         fs->fp = fp;
     }
     return PFT_OK;

@@ -444,6 +444,46 @@ static void test_argument_checks(void)
     TEST_ASSERT_NOT_NULL(pft_file_error_str((pft_file_error_t)99));
 }
 
+/* The whole pattern is checked, not only its first PFT_FILE_NAME_MAX characters: a second
+ * conversion (here %s, which would read a missing argument) after a long run of text is
+ * refused, and so is any pattern too long to ever give a usable name. A width of more than
+ * three digits is refused too (no name is that long; snprintf would pad it for nothing). */
+static void test_long_patterns_refused(void)
+{
+    static char pat[PFT_FILE_NAME_MAX + 64u];
+    pft_file_config_t c = cfg_of(pat, PFT_FILE_PER_FRAME, PFT_FILE_PNM);
+    /* "%u" + 300 x 'a' + "%s": one integer conversion in the first 256 characters */
+    memset(pat, 0, sizeof pat);
+    memcpy(pat, "%u", 2u);
+    memset(pat + 2, 'a', PFT_FILE_NAME_MAX + 44u);
+    memcpy(pat + PFT_FILE_NAME_MAX + 46u, "%s", 2u);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* a long pattern with one valid conversion: refused too (no name fits) */
+    pat[PFT_FILE_NAME_MAX + 46u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* the longest pattern accepted: PFT_FILE_NAME_MAX - 1 characters */
+    pat[PFT_FILE_NAME_MAX - 1u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    pat[PFT_FILE_NAME_MAX] = 'a';
+    pat[PFT_FILE_NAME_MAX - 1u] = 'a';
+    pat[PFT_FILE_NAME_MAX + 1u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* widths */
+    c.path = "f%0999u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    c.path = "f%01000u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    c.path = "f%99999999999u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* a width that makes the name too long: init accepts it, acquire reports the name */
+    c.path = "f%0300u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    pft_frame_t g;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_IO, pft_file_acquire(&fs, &g, 0u));
+    TEST_ASSERT_EQUAL_INT(PFT_FILE_E_NAME, fs.last_error);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_EOF, pft_file_acquire(&fs, &g, 0u));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -458,5 +498,6 @@ int main(void)
     RUN_TEST(test_pnm_concat_stream);
     RUN_TEST(test_runner_over_file_sequence);
     RUN_TEST(test_argument_checks);
+    RUN_TEST(test_long_patterns_refused);
     return UNITY_END();
 }
