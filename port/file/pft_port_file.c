@@ -103,7 +103,7 @@ static pft_status_t read_exact(FILE *fp, void *dst, size_t n, pft_file_error_t *
     if (got == n) {
         return PFT_OK;
     }
-    if (ferror(fp)) {
+    if (ferror(fp) != 0) {
         *err = PFT_FILE_E_READ;
         return PFT_ERR_IO;
     }
@@ -130,8 +130,8 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
         }
     }
     if (c == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (c < '0' || c > '9') {
         *err = PFT_FILE_E_HEADER;
@@ -139,7 +139,7 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
     }
     uint32_t x = 0u;
     for (uint32_t n = 0; n < 8u && c >= '0' && c <= '9'; ++n) {
-        x = x * 10u + (uint32_t)(c - '0');
+        x = x * 10u + ((uint32_t)c - (uint32_t)'0');
         c = fgetc(fp);
     }
     if (c >= '0' && c <= '9') { /* more than 8 digits */
@@ -159,9 +159,10 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
 
 static uint8_t bits_of(uint32_t maxval)
 {
+    uint32_t v = maxval;
     uint8_t b = 0u;
-    while (maxval != 0u && b < 16u) {
-        maxval >>= 1;
+    while (v != 0u && b < 16u) {
+        v >>= 1;
         ++b;
     }
     return b;
@@ -174,8 +175,8 @@ static pft_status_t pnm_read_fp(FILE *fp, uint8_t *buf, size_t cap, uint16_t wan
     int c0 = fgetc(fp);
     int c1 = fgetc(fp);
     if (c0 == EOF || c1 == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (c0 != 'P' || (c1 != '5' && c1 != '6')) {
         *err = PFT_FILE_E_MAGIC;
@@ -194,8 +195,8 @@ static pft_status_t pnm_read_fp(FILE *fp, uint8_t *buf, size_t cap, uint16_t wan
     }
     int sep = fgetc(fp); /* exactly one whitespace before the pixels */
     if (sep == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (w == 0u || h == 0u || maxval == 0u ||
         (sep != ' ' && sep != '\t' && sep != '\n' && sep != '\r')) {
@@ -411,7 +412,7 @@ pft_status_t pft_file_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms)
         int c = fgetc(fp);
         if (c == EOF) {
             fs->ended = true;
-            if (ferror(fp)) {
+            if (ferror(fp) != 0) {
                 fs->last_error = PFT_FILE_E_READ;
                 fs->stats.errors++;
                 return PFT_ERR_IO;
@@ -559,9 +560,11 @@ pft_status_t pft_pnm_write(const char *path, const pft_frame_t *frame)
     char magic = '5';
     if (frame->format == PFT_PIX_U16) {
         uint8_t bd = frame->bit_depth;
-        maxval = (bd >= 9u && bd <= 16u) ? (unsigned)((1ul << bd) - 1u) : 65535u;
+        maxval = (bd >= 9u && bd <= 16u) ? (unsigned)((1UL << bd) - 1u) : 65535u;
     } else if (frame->format != PFT_PIX_U8) {
         magic = '6';
+    } else {
+        /* U8: P5, maxval 255 */
     }
     (void)snprintf(header, sizeof header, "P%c\n%u %u\n%u\n", magic, (unsigned)frame->width,
                    (unsigned)frame->height, maxval);
