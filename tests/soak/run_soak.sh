@@ -5,6 +5,7 @@
 #   bash tests/soak/run_soak.sh work [frames]   per-frame instructions of every tracker's
 #                                               update under callgrind (default 1000 frames
 #                                               after 100 of warm-up): max / median per tracker
+#   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work mode)
 # Builds build/soak-float and build/soak-q16 (Release, library and pft_soak only).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -28,10 +29,10 @@ work)
   declare -A fn=([tbd]=pft_tbd_update [pf]=pft_pf_update [tsa]=pft_tsa_update
                  [pte]=pft_pte_update [pte_dp]=pft_pte_dp_update [pte_dbt]=pft_pte_dbt_update)
   for t in float q16; do
-    for k in tbd pf tsa pte pte_dp pte_dbt; do
+    for k in ${SOAK_TRACKERS:-tbd pf tsa pte pte_dp pte_dbt}; do
       d=$(mktemp -d)
       valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --dump-after="${fn[$k]}" \
-        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + 100)) --quiet --known \
+        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + 100)) --seed "${SOAK_SEED:-1}" --quiet --known \
         --trace >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
       # one dump per update: its total instruction count, with the load of that frame (tracks
       # after the update) from --trace; the first 100 updates are warm-up
