@@ -2,7 +2,8 @@
 # Installs everything pftrack needs on a fresh Debian/Ubuntu machine (as root, or with sudo;
 # never reads stdin). Idempotent: when every package is present and Unity is in .deps/, it
 # changes nothing and uses no network; otherwise it runs apt-get update before installing.
-# doxygen: the ctest docs_doxygen; gcc-arm-none-eabi also runs the recipe check (.ci/check-recipe).
+# doxygen: the ctest docs_doxygen; gcc-arm-none-eabi also runs the recipe check (.ci/check-recipe);
+# clang + libclang-rt-14-dev (libFuzzer), cppcheck, gcovr: .ci/reliability.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
@@ -12,7 +13,8 @@ pkgs=(cmake ninja-build gcc g++ make pkg-config
       gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
       gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user
       libopencv-dev libcli11-dev nlohmann-json3-dev libopencv-contrib-dev opencv-doc
-      valgrind binutils dpkg-dev doxygen)
+      valgrind binutils dpkg-dev doxygen
+      clang libclang-rt-14-dev cppcheck gcovr python3)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 # deb-src entries are needed for Unity (Debian's cjson source package ships Unity 2.4.3 in tests/unity)

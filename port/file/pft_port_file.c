@@ -31,30 +31,43 @@ const char *pft_file_error_str(pft_file_error_t e)
 /* ------------------------------------------------------------------------------------------ */
 /* helpers                                                                                    */
 
-/* Exactly one integer conversion (flags and width allowed, no length modifier), %% allowed. */
+#define PATTERN_MAX_WIDTH_DIGITS 3u /* a width above 999 could never give a usable name */
+
+/* Exactly one integer conversion (flags and a width of at most three digits, no precision, no
+ * length modifier), %% allowed, and shorter than PFT_FILE_NAME_MAX characters. The whole
+ * pattern is checked: whatever reaches snprintf has been seen here. */
 static bool pattern_ok(const char *p)
 {
     uint32_t conversions = 0u;
-    for (size_t i = 0; p[i] != '\0' && i < PFT_FILE_NAME_MAX; ++i) {
+    size_t i = 0u;
+    while (i < PFT_FILE_NAME_MAX && p[i] != '\0') {
         if (p[i] != '%') {
+            ++i;
             continue;
         }
         ++i;
-        if (p[i] == '%') {
+        if (i < PFT_FILE_NAME_MAX && p[i] == '%') {
+            ++i;
             continue;
         }
-        while (p[i] == '0' || p[i] == '-' || p[i] == '+' || p[i] == ' ' || p[i] == '#') {
+        while (i < PFT_FILE_NAME_MAX &&
+               (p[i] == '0' || p[i] == '-' || p[i] == '+' || p[i] == ' ' || p[i] == '#')) {
             ++i;
         }
-        while (p[i] >= '0' && p[i] <= '9') {
+        uint32_t digits = 0u;
+        while (i < PFT_FILE_NAME_MAX && p[i] >= '0' && p[i] <= '9') {
             ++i;
+            ++digits;
         }
-        if (p[i] == '\0' || strchr("udixXo", p[i]) == NULL) {
+        if (i >= PFT_FILE_NAME_MAX || digits > PATTERN_MAX_WIDTH_DIGITS || p[i] == '\0' ||
+            strchr("udixXo", p[i]) == NULL) {
             return false;
         }
+        ++i;
         conversions++;
     }
-    return conversions == 1u;
+    /* stopped at the terminator (i < PFT_FILE_NAME_MAX), or the pattern is too long */
+    return i < PFT_FILE_NAME_MAX && conversions == 1u;
 }
 
 /* The pattern is the user's, checked by pattern_ok to hold one integer conversion. */
@@ -90,7 +103,7 @@ static pft_status_t read_exact(FILE *fp, void *dst, size_t n, pft_file_error_t *
     if (got == n) {
         return PFT_OK;
     }
-    if (ferror(fp)) {
+    if (ferror(fp) != 0) {
         *err = PFT_FILE_E_READ;
         return PFT_ERR_IO;
     }
@@ -117,8 +130,8 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
         }
     }
     if (c == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (c < '0' || c > '9') {
         *err = PFT_FILE_E_HEADER;
@@ -126,7 +139,7 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
     }
     uint32_t x = 0u;
     for (uint32_t n = 0; n < 8u && c >= '0' && c <= '9'; ++n) {
-        x = x * 10u + (uint32_t)(c - '0');
+        x = x * 10u + ((uint32_t)c - (uint32_t)'0');
         c = fgetc(fp);
     }
     if (c >= '0' && c <= '9') { /* more than 8 digits */
@@ -146,9 +159,10 @@ static pft_status_t pnm_number(FILE *fp, uint32_t *v, pft_file_error_t *err)
 
 static uint8_t bits_of(uint32_t maxval)
 {
+    uint32_t v = maxval;
     uint8_t b = 0u;
-    while (maxval != 0u && b < 16u) {
-        maxval >>= 1;
+    while (v != 0u && b < 16u) {
+        v >>= 1;
         ++b;
     }
     return b;
@@ -161,8 +175,8 @@ static pft_status_t pnm_read_fp(FILE *fp, uint8_t *buf, size_t cap, uint16_t wan
     int c0 = fgetc(fp);
     int c1 = fgetc(fp);
     if (c0 == EOF || c1 == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (c0 != 'P' || (c1 != '5' && c1 != '6')) {
         *err = PFT_FILE_E_MAGIC;
@@ -181,8 +195,8 @@ static pft_status_t pnm_read_fp(FILE *fp, uint8_t *buf, size_t cap, uint16_t wan
     }
     int sep = fgetc(fp); /* exactly one whitespace before the pixels */
     if (sep == EOF) {
-        *err = ferror(fp) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
-        return ferror(fp) ? PFT_ERR_IO : PFT_ERR_FORMAT;
+        *err = (ferror(fp) != 0) ? PFT_FILE_E_READ : PFT_FILE_E_TRUNCATED;
+        return (ferror(fp) != 0) ? PFT_ERR_IO : PFT_ERR_FORMAT;
     }
     if (w == 0u || h == 0u || maxval == 0u ||
         (sep != ' ' && sep != '\t' && sep != '\n' && sep != '\r')) {
@@ -286,6 +300,14 @@ pft_status_t pft_file_source_init(pft_file_source_t *fs, const pft_file_config_t
             return PFT_ERR_NOMEM;
         }
     }
+    /* the only step that can still fail comes first: a refused init changes nothing in fs */
+    FILE *fp = NULL;
+    if (cfg->layout == PFT_FILE_CONCAT) {
+        fp = fopen(cfg->path, "rb");
+        if (fp == NULL) {
+            return PFT_ERR_IO;
+        }
+    }
     memset(fs, 0, sizeof *fs);
     fs->cfg = *cfg;
     fs->cfg.slots = slots;
@@ -296,11 +318,6 @@ pft_status_t pft_file_source_init(pft_file_source_t *fs, const pft_file_config_t
     fs->index = cfg->first_index;
     if (cfg->layout == PFT_FILE_CONCAT) {
         (void)snprintf(fs->name, sizeof fs->name, "%s", cfg->path);
-        FILE *fp = fopen(cfg->path, "rb");
-        if (fp == NULL) {
-            fs->last_error = PFT_FILE_E_OPEN;
-            return PFT_ERR_IO;
-        }
         fs->fp = fp;
     }
     return PFT_OK;
@@ -395,7 +412,7 @@ pft_status_t pft_file_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms)
         int c = fgetc(fp);
         if (c == EOF) {
             fs->ended = true;
-            if (ferror(fp)) {
+            if (ferror(fp) != 0) {
                 fs->last_error = PFT_FILE_E_READ;
                 fs->stats.errors++;
                 return PFT_ERR_IO;
@@ -543,9 +560,11 @@ pft_status_t pft_pnm_write(const char *path, const pft_frame_t *frame)
     char magic = '5';
     if (frame->format == PFT_PIX_U16) {
         uint8_t bd = frame->bit_depth;
-        maxval = (bd >= 9u && bd <= 16u) ? (unsigned)((1ul << bd) - 1u) : 65535u;
+        maxval = (bd >= 9u && bd <= 16u) ? (unsigned)((1UL << bd) - 1u) : 65535u;
     } else if (frame->format != PFT_PIX_U8) {
         magic = '6';
+    } else {
+        /* U8: P5, maxval 255 */
     }
     (void)snprintf(header, sizeof header, "P%c\n%u %u\n%u\n", magic, (unsigned)frame->width,
                    (unsigned)frame->height, maxval);

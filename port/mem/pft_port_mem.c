@@ -128,7 +128,8 @@ pft_status_t pft_mem_write_commit(pft_mem_source_t *m, uint64_t timestamp_us)
     }
     uint32_t i = (uint32_t)m->writing;
     m->writing = -1;
-    uint32_t seq = m->next_seq++;
+    uint32_t seq = m->next_seq;
+    m->next_seq++;
     m->stats.pushed++;
     pft_fault_kind_t k = decide_fault(m, seq);
     if ((uint32_t)k >= (uint32_t)PFT_FAULT_COUNT) {
@@ -240,6 +241,8 @@ pft_status_t pft_mem_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms)
             m->closed = true;
         } else if (st != PFT_OK) {
             return st;
+        } else {
+            /* the producer may have queued a frame: look again */
         }
         s = oldest_queued(m);
     }

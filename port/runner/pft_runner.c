@@ -235,6 +235,8 @@ static void run_check_time(run_t *r, const pft_frame_t *f)
                    f->timestamp_us - r->last_ts > r->c.max_interval_us) {
             r->stats->late++;
             fault(r->hooks, PFT_ERR_TIMEOUT, f->seq);
+        } else {
+            /* on time */
         }
     }
     r->last_ts = f->timestamp_us;

@@ -149,6 +149,8 @@ pft_status_t pft_tpl_init(pft_tpl_port_t *p, const pft_tpl_driver_t *drv,
         }
     } else if (cfg->mode != PFT_TPL_ONESHOT) {
         return PFT_ERR_INVAL;
+    } else {
+        /* one-shot: nothing more is required */
     }
     uint32_t row = (uint32_t)cfg->width * pft_pixfmt_bytes(cfg->format);
     uint32_t st = (cfg->stride == 0u) ? row : cfg->stride;

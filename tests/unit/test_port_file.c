@@ -444,6 +444,117 @@ static void test_argument_checks(void)
     TEST_ASSERT_NOT_NULL(pft_file_error_str((pft_file_error_t)99));
 }
 
+/* The whole pattern is checked, not only its first PFT_FILE_NAME_MAX characters: a second
+ * conversion (here %s, which would read a missing argument) after a long run of text is
+ * refused, and so is any pattern too long to ever give a usable name. A width of more than
+ * three digits is refused too (no name is that long; snprintf would pad it for nothing). */
+static void test_long_patterns_refused(void)
+{
+    static char pat[PFT_FILE_NAME_MAX + 64u];
+    pft_file_config_t c = cfg_of(pat, PFT_FILE_PER_FRAME, PFT_FILE_PNM);
+    /* "%u" + 300 x 'a' + "%s": one integer conversion in the first 256 characters */
+    memset(pat, 0, sizeof pat);
+    memcpy(pat, "%u", 2u);
+    memset(pat + 2, 'a', PFT_FILE_NAME_MAX + 44u);
+    memcpy(pat + PFT_FILE_NAME_MAX + 46u, "%s", 2u);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* a long pattern with one valid conversion: refused too (no name fits) */
+    pat[PFT_FILE_NAME_MAX + 46u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* the longest pattern accepted: PFT_FILE_NAME_MAX - 1 characters */
+    pat[PFT_FILE_NAME_MAX - 1u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    pat[PFT_FILE_NAME_MAX] = 'a';
+    pat[PFT_FILE_NAME_MAX - 1u] = 'a';
+    pat[PFT_FILE_NAME_MAX + 1u] = '\0';
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* widths */
+    c.path = "f%0999u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    c.path = "f%01000u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    c.path = "f%99999999999u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_file_source_init(&fs, &c));
+    /* a width that makes the name too long: init accepts it, acquire reports the name */
+    c.path = "f%0300u.pgm";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    pft_frame_t g;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_IO, pft_file_acquire(&fs, &g, 0u));
+    TEST_ASSERT_EQUAL_INT(PFT_FILE_E_NAME, fs.last_error);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_EOF, pft_file_acquire(&fs, &g, 0u));
+}
+
+/* Header corner cases of the PNM parser, each with the status and detail it must give:
+ * whitespace of every kind and comments between the fields, numbers of nine digits, a missing
+ * or wrong separator before the pixels, a file ending inside the magic or the header, the
+ * height checked against the configuration, and the widths and patterns of pattern_ok. */
+static void test_pnm_header_corner_cases(void)
+{
+    static const struct {
+        const char *text;
+        pft_status_t st;
+        pft_file_error_t e;
+    } cases[] = {
+        {"P5\v2\f2 #c\n#\r255\tABCD", PFT_OK, PFT_FILE_E_NONE},     /* all whitespace kinds */
+        {"P5 2 2 255\rABCD", PFT_OK, PFT_FILE_E_NONE},               /* CR before the pixels */
+        {"P5\n2 2\n255#\nABCD", PFT_ERR_FORMAT, PFT_FILE_E_HEADER},   /* '#' as the separator */
+        {"P5\n123456789 1\n255\n", PFT_ERR_FORMAT, PFT_FILE_E_HEADER}, /* nine digits */
+        {"P5\n00000001 1\n255\nA", PFT_OK, PFT_FILE_E_NONE},         /* eight digits */
+        {"P5\n1 0\n255\n", PFT_ERR_FORMAT, PFT_FILE_E_HEADER},         /* zero height */
+        {"P5\n1 1\n0\n", PFT_ERR_FORMAT, PFT_FILE_E_HEADER},           /* zero maxval */
+        {"P5\n1 1\n255", PFT_ERR_FORMAT, PFT_FILE_E_TRUNCATED},        /* no separator */
+        {"P5\n1 1", PFT_ERR_FORMAT, PFT_FILE_E_TRUNCATED},              /* ends in the header */
+        {"P5\n1 1\n255\n", PFT_ERR_FORMAT, PFT_FILE_E_TRUNCATED},      /* no pixels */
+        {"P", PFT_ERR_FORMAT, PFT_FILE_E_TRUNCATED},                    /* ends in the magic */
+        {"P5 #only a comment", PFT_ERR_FORMAT, PFT_FILE_E_TRUNCATED},
+        {"P6\n1 1\n255\nRGB", PFT_OK, PFT_FILE_E_NONE},
+        {"P5\n1 1\n1023\n\x03\xff", PFT_OK, PFT_FILE_E_NONE},         /* 10-bit */
+    };
+    for (uint32_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        pft_frame_t g;
+        pft_file_error_t e = PFT_FILE_E_OPEN;
+        write_text("pft_tpf_hc.pgm", cases[i].text);
+        pft_status_t st = pft_pnm_read("pft_tpf_hc.pgm", buf, sizeof buf, &g, &e);
+        char msg[48];
+        (void)snprintf(msg, sizeof msg, "case %u", (unsigned)i);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].st, st, msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(cases[i].e, e, msg);
+    }
+    /* the source checks the height it was configured with */
+    write_text("pft_tpf_hc.pgm", "P5\n2 2\n255\nabcd");
+    pft_file_config_t c = cfg_of("pft_tpf_hc.pgm", PFT_FILE_CONCAT, PFT_FILE_PNM);
+    c.width = 2u;
+    c.height = 3u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
+    pft_frame_t g;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_file_acquire(&fs, &g, 0u));
+    TEST_ASSERT_EQUAL_INT(PFT_FILE_E_GEOMETRY, fs.last_error);
+    pft_file_source_close(&fs);
+    pft_file_source_close(&fs); /* twice is fine */
+    /* the error detail is optional */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pnm_read("pft_tpf_hc.pgm", buf, sizeof buf, &g, NULL));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_IO, pft_pnm_read("pft_tpf_none.pgm", buf, sizeof buf, &g, NULL));
+    (void)pft_file_remove("pft_tpf_hc.pgm");
+    /* patterns: flags, a three-digit width, a conversion at the very end, %% after it */
+    static const char *const good[] = {"f%-3u.pgm", "f%+d.pgm", "f% d.pgm", "f%#x.pgm", "f%u",
+                                       "f%o%%.pgm", "%X"};
+    static const char *const bad[] = {"f%-.pgm", "f%5", "f%5.2u.pgm", "%%", "f%u%%%u.pgm"};
+    c = cfg_of(NULL, PFT_FILE_PER_FRAME, PFT_FILE_PNM);
+    for (uint32_t i = 0; i < sizeof good / sizeof good[0]; ++i) {
+        c.path = good[i];
+        TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_file_source_init(&fs, &c), good[i]);
+    }
+    for (uint32_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        c.path = bad[i];
+        TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_ERR_INVAL, pft_file_source_init(&fs, &c), bad[i]);
+    }
+    /* every detail has a name */
+    for (int k = 0; k <= (int)PFT_FILE_E_NAME; ++k) {
+        TEST_ASSERT_NOT_NULL(pft_file_error_str((pft_file_error_t)k));
+    }
+    TEST_ASSERT_EQUAL_STRING("file name too long", pft_file_error_str(PFT_FILE_E_NAME));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -458,5 +569,7 @@ int main(void)
     RUN_TEST(test_pnm_concat_stream);
     RUN_TEST(test_runner_over_file_sequence);
     RUN_TEST(test_argument_checks);
+    RUN_TEST(test_long_patterns_refused);
+    RUN_TEST(test_pnm_header_corner_cases);
     return UNITY_END();
 }

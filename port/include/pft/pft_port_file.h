@@ -116,10 +116,12 @@ typedef struct {
 } pft_file_source_t;
 
 /**
- * Initialises a source. PFT_ERR_INVAL: NULL, bad layout/encoding/slots, a pattern without
- * exactly one integer conversion (`%u`, `%04u`, `%d`, `%x`...; `%%` allowed), RAW without a
- * geometry or with an unknown format. PFT_ERR_NOMEM: a RAW frame does not fit one slot.
- * PFT_ERR_IO: a concatenated file cannot be opened. Close with pft_file_source_close.
+ * Initialises a source. PFT_ERR_INVAL: NULL, bad layout/encoding/slots, a pattern or file name
+ * of PFT_FILE_NAME_MAX characters or more, a pattern without exactly one integer conversion
+ * (`%u`, `%04u`, `%d`, `%x`...: flags and a width of at most three digits, no precision, no
+ * length modifier; `%%` allowed), RAW without a geometry or with an unknown format.
+ * PFT_ERR_NOMEM: a RAW frame does not fit one slot. PFT_ERR_IO: a concatenated file cannot be
+ * opened. On any error `fs` is left as it was. Close with pft_file_source_close.
  */
 pft_status_t pft_file_source_init(pft_file_source_t *fs, const pft_file_config_t *cfg);
 

@@ -1,0 +1,594 @@
+/* libFuzzer harness: configurations of every tracker from fuzzed bytes.
+ * The first byte picks the tracker (tbd manager, tbd filter, pf engine with the bearings, the
+ * linear-Gaussian or the TBD model, tsa, pte, pte_dp, pte_dbt); a small valid configuration is
+ * then changed by up to 12 (offset, length, bytes) patches, whatever the struct's layout (in the
+ * float build this gives NaN, infinities and subnormals too). Then:
+ *  - config_check: PFT_OK with *field NULL, or PFT_ERR_CONFIG with *field naming a field;
+ *    NULL cfg gives PFT_ERR_INVAL;
+ *  - workspace_size: 0 exactly for a refused configuration; the *_WORKSPACE_BYTES macro gives
+ *    the same number; init refuses one byte less (PFT_ERR_NOMEM) and takes the exact size;
+ *  - init refuses a refused configuration with PFT_ERR_CONFIG;
+ *  - a few updates on synthetic frames (when the configuration's per-frame work is small
+ *    enough for a fuzzer), reset, and the same frames again give the same results;
+ *  - through ASan + UBSan: no out-of-bounds access and no undefined behaviour.
+ * FZ_CHECK aborts on a violated property. */
+#include <stddef.h>
+
+#include "fuzz_common.h"
+
+uint8_t fz_pix[FZ_PIX_BYTES];
+uint8_t fz_snap_ws[FZ_SNAP_BYTES];
+uint8_t fz_snap_inst[1u << 16];
+
+/* Workspaces start one byte past an 8-byte boundary: the worst alignment, where the exact
+ * workspace size is needed to the byte (the 7 bytes of slack are all used). */
+#define WS_CAP (1u << 20)
+static uint8_t g_ws_mem[WS_CAP + 16u] __attribute__((aligned(16)));
+static uint8_t g_ws2_mem[(1u << 20) + 16u] __attribute__((aligned(16)));
+#define g_ws (g_ws_mem + 1)
+#define g_ws2 (g_ws2_mem + 1)
+#define NFR 2u            /* frames per pass */
+#define WORK_CAP 2000000u /* per-frame work bound (taps, particle-pixels) for the updates */
+
+static const char *g_field;
+
+/* A patch may leave a bool holding neither 0 nor 1, which no caller can produce without
+ * undefined behaviour of its own: keep the low bit (read through a byte). */
+#define FZ_BOOL(b) ((b) = ((*(const uint8_t *)(const void *)&(b)) & 1u) != 0u)
+
+/* Checks the config_check contract; true when the configuration is accepted. */
+static bool check_contract(pft_status_t st)
+{
+    FZ_CHECK(st == PFT_OK || st == PFT_ERR_CONFIG);
+    if (st == PFT_OK) {
+        FZ_CHECK(g_field == NULL);
+        return true;
+    }
+    FZ_CHECK(g_field != NULL && g_field[0] != '\0');
+    return false;
+}
+
+/* Synthetic frames: noise plus a bright blob, all from a seed (same frames on both passes). */
+static pft_frame_t synth(uint32_t seed, uint32_t k, uint16_t w, uint16_t h, pft_pixfmt_t fmt)
+{
+    pft_frame_t fr;
+    memset(&fr, 0, sizeof fr);
+    fr.width = w;
+    fr.height = h;
+    fr.format = fmt;
+    fr.stride_bytes = (uint32_t)w * pft_pixfmt_bytes(fmt);
+    fr.seq = k;
+    fr.data = fz_pix;
+    uint32_t s = (seed * 2654435761u + k) | 1u;
+    uint32_t cx = seed % (w + 1u), cy = (seed >> 8) % (h + 1u);
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            uint32_t v = (fz_xorshift(&s) & 31u) + 40u;
+            uint32_t dx = x > cx + k ? x - cx - k : cx + k - x, dy = y > cy ? y - cy : cy - y;
+            if (dx < 4u && dy < 4u) {
+                v += 120u;
+            }
+            uint8_t *p = fz_pix + (size_t)y * fr.stride_bytes + (size_t)x * pft_pixfmt_bytes(fmt);
+            if (fmt == PFT_PIX_U8) {
+                p[0] = (uint8_t)v;
+            } else if (fmt == PFT_PIX_RGB888) {
+                p[0] = (uint8_t)v;
+                p[1] = (uint8_t)(v / 2u);
+                p[2] = (uint8_t)(255u - v);
+            }
+        }
+    }
+    return fr;
+}
+
+/* PFT_FUZZ_VERBOSE=1 in the environment prints every byte range a patch changed, as
+ * "offset+length: old -> new" (hex), to name the fields of a reproducer. */
+static void fz_show_diff(const char *what, const void *before, const void *after, size_t size)
+{
+    if (getenv("PFT_FUZZ_VERBOSE") == NULL) {
+        return;
+    }
+    const uint8_t *a = (const uint8_t *)before, *b = (const uint8_t *)after;
+    for (size_t i = 0; i < size; ++i) {
+        if (a[i] == b[i]) {
+            continue;
+        }
+        size_t j = i;
+        while (j < size && a[j] != b[j]) {
+            ++j;
+        }
+        fprintf(stderr, "%s offset %zu+%zu:", what, i, j - i);
+        for (size_t k = i; k < j; ++k) {
+            fprintf(stderr, " %02x->%02x", a[k], b[k]);
+        }
+        fprintf(stderr, "\n");
+        i = j;
+    }
+}
+#define FZ_PATCH(f, obj, n)                                                                   \
+    do {                                                                                      \
+        static uint8_t before_[sizeof(obj)];                                                   \
+        memcpy(before_, &(obj), sizeof(obj));                                                 \
+        fz_patch((f), &(obj), sizeof(obj), (n));                                              \
+        fz_show_diff(#obj, before_, &(obj), sizeof(obj));                                      \
+    } while (0)
+
+/* ----------------------------------------- tbd -------------------------------------------- */
+/* known F4: the float build's tbd config_check takes subnormal (and huge) reals, e.g. a
+ * psf_sigma or noise_sigma of 1e-39, and the estimates are NaN from the first frame */
+static bool tbd_known_f4(const pft_tbd_config_t *c)
+{
+    const pft_real_t v[] = {c->dx, c->dy, c->psf_sigma, c->noise_sigma, c->pixel_gain,
+                            c->pixel_offset, c->T, c->q1, c->q2, c->pb, c->pd, c->eta, c->gamma,
+                            c->i_min, c->i_max, c->vel_mean[0], c->vel_mean[1], c->vel_var[0],
+                            c->vel_var[1], c->theta1, c->dis_ratio, c->theta_end, c->end_lr_max};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i) {
+        if (!fz_sane(v[i])) {
+            return FZ_KNOWN;
+        }
+    }
+    return false;
+}
+
+static void fuzz_tbd(fz_t *f, bool manager)
+{
+    static pft_tbd_t t;
+    static pft_tbd_filter_t flt;
+    pft_tbd_config_t c;
+    pft_tbd_config_default(&c);
+    c.width = 16u;
+    c.height = 16u;
+    c.n_search = 200u;
+    c.n_track = 50u;
+    c.max_targets = 2u;
+    FZ_PATCH(f, c, 12u);
+    FZ_BOOL(c.birth_correction);
+    FZ_BOOL(c.dis_ratio_test);
+    FZ_BOOL(c.d_current);
+    FZ_BOOL(c.force_constraint);
+    FZ_BOOL(c.residual_search);
+    FZ_BOOL(c.residual_tracks);
+#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
+    /* known F2 (issue #12): q16 config_check accepts any vel_mean; the estimate's int64 sums
+     * overflow at thousands of px/frame */
+    if (!(c.vel_mean[0] > PFT_C(-1000.0) && c.vel_mean[0] < PFT_C(1000.0) &&
+          c.vel_mean[1] > PFT_C(-1000.0) && c.vel_mean[1] < PFT_C(1000.0))) {
+        return;
+    }
+#endif
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_tbd_config_check(&c, &g_field));
+    size_t ws = manager ? pft_tbd_workspace_size(&c) : pft_tbd_filter_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(manager ? pft_tbd_init(&t, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG
+                         : pft_tbd_filter_init(&flt, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    size_t macro = manager ? PFT_TBD_WORKSPACE_BYTES(c.n_search, c.n_track, c.max_targets,
+                                                     c.kind, c.width, c.height)
+                           : PFT_TBD_FILTER_WORKSPACE_BYTES(c.n_search, c.kind, c.width,
+                                                            c.height);
+    FZ_CHECK(macro == ws);
+    if (ws > WS_CAP) {
+        return;
+    }
+    if (manager) {
+        FZ_CHECK(pft_tbd_init(&t, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+        FZ_CHECK(pft_tbd_init(&t, &c, g_ws, ws) == PFT_OK);
+    } else {
+        FZ_CHECK(pft_tbd_filter_init(&flt, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+        FZ_CHECK(pft_tbd_filter_init(&flt, &c, g_ws, ws) == PFT_OK);
+    }
+    uint64_t win = (2u * (uint64_t)c.window + 1u) * (2u * (uint64_t)c.window + 1u);
+    uint64_t work = ((uint64_t)c.n_search + (manager ? (uint64_t)c.max_targets * c.n_track : 0u)) *
+                    win + (uint64_t)c.width * c.height;
+    if (work > WORK_CAP || (size_t)c.width * c.height > 128u * 128u || tbd_known_f4(&c)) {
+        return;
+    }
+#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
+    /* known F3: the handover's estimate sums unnormalised weights (n_track x 2^30) times
+     * squared spreads in int64: skip images whose diagonal D gives n_track D^2 >= 2^17 */
+    if (manager) {
+        float wd = pft_to_float(c.dx) * c.width, hd = pft_to_float(c.dy) * c.height;
+        if ((float)c.n_track * (wd * wd + hd * hd) >= 131072.0f) {
+            return;
+        }
+    }
+#endif
+    uint32_t seed = fz_u32(f);
+    pft_tbd_estimate_t e[2][NFR];
+    memset(e, 0, sizeof e);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR; ++k) {
+            pft_frame_t fr = synth(seed, k, c.width, c.height, PFT_PIX_U8);
+            if (manager) {
+                FZ_CHECK(pft_tbd_update(&t, &fr) == PFT_OK);
+                FZ_CHECK(pft_tbd_tracks(&t, NULL, 0u) <= c.max_targets);
+                FZ_CHECK(pft_tbd_search_estimate(&t, &e[pass][k]) == PFT_OK);
+            } else {
+                FZ_CHECK(pft_tbd_filter_update(&flt, &fr) == PFT_OK);
+                FZ_CHECK(pft_tbd_filter_estimate(&flt, &e[pass][k]) == PFT_OK);
+            }
+            FZ_CHECK(fz_finite(e[pass][k].p_exist) && fz_finite(e[pass][k].x) &&
+                     fz_finite(e[pass][k].log_mean_lr));
+        }
+        FZ_CHECK(manager ? pft_tbd_reset(&t) == PFT_OK : pft_tbd_filter_reset(&flt) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(e[0], e[1], sizeof e[0]) == 0);
+}
+
+/* ------------------------------------------ pf -------------------------------------------- */
+static void fuzz_pf(fz_t *f)
+{
+    static pft_pf_t pf;
+    static pft_pf_bearings_model_t mb;
+    static pft_pf_lg_model_t ml;
+    static pft_pf_tbd_model_t mt;
+    pft_pf_config_t c;
+    pft_pf_config_default(&c);
+    c.n_particles = 100u;
+    uint8_t which = fz_u8(f) % 3u;
+    pft_tbd_config_t tc;
+    pft_status_t ms;
+    if (which == 0u) {
+        pft_pf_bearings_config_t bc;
+        pft_pf_bearings_config_default(&bc, 1000);
+        FZ_PATCH(f, bc, 6u);
+        if (!fz_sane_all((const pft_real_t *)(const void *)&bc, sizeof bc / sizeof(pft_real_t))) {
+            return; /* known F7: huge (finite) prior_sd taken, the prior draws are infinite */
+        }
+        ms = pft_pf_bearings_model_init(&mb, &bc, &c.model);
+    } else if (which == 1u) {
+        pft_pf_lg_config_t lc;
+        memset(&lc, 0, sizeof lc);
+        lc.dim = 2u;
+        lc.meas = 1u;
+        lc.F[0] = lc.F[3] = lc.Lq[0] = lc.Lq[3] = lc.L0[0] = lc.L0[3] = lc.H[0] = PFT_C(1.0);
+        lc.r_sd[0] = lc.r_sd[1] = PFT_C(1.0);
+        FZ_PATCH(f, lc, 6u);
+        if (!fz_sane_all(lc.F, (sizeof lc - offsetof(pft_pf_lg_config_t, F)) / sizeof(pft_real_t))) {
+            return; /* known F7, as for the bearings model */
+        }
+        ms = pft_pf_lg_model_init(&ml, &lc, &c.model);
+    } else {
+        pft_tbd_config_default(&tc);
+        tc.width = 16u;
+        tc.height = 16u;
+        FZ_PATCH(f, tc, 6u);
+        FZ_BOOL(tc.birth_correction);
+        FZ_BOOL(tc.dis_ratio_test);
+        FZ_BOOL(tc.d_current);
+        FZ_BOOL(tc.force_constraint);
+        FZ_BOOL(tc.residual_search);
+        FZ_BOOL(tc.residual_tracks);
+#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
+        if (!(tc.vel_mean[0] > PFT_C(-1000.0) && tc.vel_mean[0] < PFT_C(1000.0) &&
+              tc.vel_mean[1] > PFT_C(-1000.0) && tc.vel_mean[1] < PFT_C(1000.0))) {
+            return; /* known F2, as in fuzz_tbd */
+        }
+#endif
+        if (tbd_known_f4(&tc)) {
+            return;
+        }
+        size_t mws = pft_pf_tbd_model_workspace_size(&tc);
+        if (mws == 0u || mws > (1u << 20)) {
+            return;
+        }
+        FZ_CHECK(pft_pf_tbd_model_init(&mt, &tc, g_ws2, mws - 1u, &c.model) == PFT_ERR_NOMEM);
+        ms = pft_pf_tbd_model_init(&mt, &tc, g_ws2, mws, &c.model);
+        FZ_CHECK(ms == PFT_OK);
+    }
+    FZ_CHECK(ms == PFT_OK || ms == PFT_ERR_CONFIG);
+    if (ms != PFT_OK) {
+        return;
+    }
+    /* the engine's own fields are patched, the model interface is kept */
+    pft_pf_model_t model = c.model;
+    FZ_PATCH(f, c, 6u);
+    c.model = model;
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_pf_config_check(&c, &g_field));
+    size_t ws = pft_pf_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(pft_pf_init(&pf, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    FZ_CHECK(ws == PFT_PF_WORKSPACE_BYTES(c.n_particles, c.model.dim));
+    if (ws > WS_CAP || c.n_particles > 5000u) {
+        return;
+    }
+    FZ_CHECK(pft_pf_init(&pf, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+    FZ_CHECK(pft_pf_init(&pf, &c, g_ws, ws) == PFT_OK);
+    uint32_t seed = fz_u32(f);
+    pft_real_t est[2][NFR][PFT_PF_MAX_DIM];
+    memset(est, 0, sizeof est);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR; ++k) {
+            pft_real_t z[2] = {pft_div(pft_from_int((int32_t)(seed % 200u) + (int32_t)k), pft_from_int(100)),
+                               pft_from_int((int32_t)(seed >> 24) - 128)};
+            pft_frame_t fr = synth(seed, k, 16u, 16u, PFT_PIX_U8);
+            const void *meas = (which == 2u) ? (const void *)&fr : (const void *)z;
+            if (which == 2u && (tc.width != 16u || tc.height != 16u)) {
+                return; /* frames of other sizes: covered by fuzz_frames */
+            }
+            FZ_CHECK(pft_pf_update(&pf, meas) == PFT_OK);
+            FZ_CHECK(pft_pf_estimate(&pf, est[pass][k]) == PFT_OK);
+            for (uint16_t i = 0; i < c.model.dim; ++i) {
+                FZ_CHECK(fz_finite(est[pass][k][i]));
+            }
+        }
+        FZ_CHECK(pft_pf_reset(&pf) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(est[0], est[1], sizeof est[0]) == 0);
+}
+
+/* ------------------------------------------ tsa ------------------------------------------- */
+static void fuzz_tsa(fz_t *f)
+{
+    static pft_tsa_t t;
+    pft_tsa_config_t c;
+    pft_tsa_config_default(&c);
+    c.width = 48u;
+    c.height = 40u;
+    c.max_target_w = 16u;
+    c.max_target_h = 16u;
+    c.n_particles = 20u;
+    c.snake_points = 12u;
+    c.init_passes = 2u;
+    pft_tsa_snake_params_default(&c.snake, c.max_target_w, c.max_target_h);
+    FZ_PATCH(f, c, 12u);
+    FZ_BOOL(c.fit_rho_weights);
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_tsa_config_check(&c, &g_field));
+    size_t ws = pft_tsa_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(pft_tsa_init(&t, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    FZ_CHECK(ws == PFT_TSA_WORKSPACE_BYTES(c.n_particles, c.max_target_w, c.max_target_h,
+                                           c.snake_points, c.snake.margin));
+    if (ws > WS_CAP) {
+        return;
+    }
+    FZ_CHECK(pft_tsa_init(&t, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+    FZ_CHECK(pft_tsa_init(&t, &c, g_ws, ws) == PFT_OK);
+    uint64_t work = (uint64_t)(c.n_particles + 1u) * c.max_target_w * c.max_target_h +
+                    (uint64_t)c.init_passes * c.snake_points * 81u +
+                    (uint64_t)c.width * c.height;
+    if (work > WORK_CAP || (size_t)c.width * c.height > 64u * 64u) {
+        return;
+    }
+    uint32_t seed = fz_u32(f);
+    pft_tsa_estimate_t e[2][NFR];
+    memset(e, 0, sizeof e);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        pft_frame_t fr = synth(seed, 0u, c.width, c.height, PFT_PIX_RGB888);
+        uint32_t cx = seed % (c.width + 1u), cy = (seed >> 8) % (c.height + 1u);
+        pft_tsa_pt_t box[4] = {{(int16_t)(cx - 4u), (int16_t)(cy - 4u)},
+                               {(int16_t)(cx + 4u), (int16_t)(cy - 4u)},
+                               {(int16_t)(cx + 4u), (int16_t)(cy + 4u)},
+                               {(int16_t)(cx - 4u), (int16_t)(cy + 4u)}};
+        if (pft_tsa_start(&t, &fr, box, 4u) != PFT_OK) {
+            return; /* a box the configuration refuses (size, position) */
+        }
+        for (uint32_t k = 0; k < NFR; ++k) {
+            fr = synth(seed, k + 1u, c.width, c.height, PFT_PIX_RGB888);
+            FZ_CHECK(pft_tsa_update(&t, &fr) == PFT_OK);
+            FZ_CHECK(pft_tsa_estimate(&t, &e[pass][k]) == PFT_OK);
+            FZ_CHECK(fz_finite(e[pass][k].x) && fz_finite(e[pass][k].y) &&
+                     fz_finite(e[pass][k].rho) && fz_finite(e[pass][k].beta_next));
+        }
+        FZ_CHECK(pft_tsa_reset(&t) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(e[0], e[1], sizeof e[0]) == 0);
+}
+
+/* ------------------------------------------ pte ------------------------------------------- */
+static pft_real_t g_z[4096];
+
+static void synth_real(uint32_t seed, uint32_t k, size_t n)
+{
+    uint32_t s = (seed * 2654435761u + k) | 1u;
+    for (size_t i = 0; i < n; ++i) {
+        g_z[i] = pft_div(pft_from_int((int32_t)(fz_xorshift(&s) & 0xFFu) - 128), pft_from_int(64));
+    }
+    if (n > 0u) {
+        g_z[(seed + k) % n] = PFT_C(6.0);
+    }
+}
+
+static void pte_in(pft_pte_input_t *in)
+{
+    in->n_range = 40u;
+    in->n_doppler = 1u;
+    in->cfar_ref = 4u;
+    in->cfar_guard = 1u;
+}
+
+/* known F6: the float build's pte config_check takes subnormal sigma_r / sigma_w_max (NaN in
+ * pft_pte_init's tables, then pft_round_int(NaN)) and huge scan_sigmas (pft_floor_int of
+ * 1e38 in the update) */
+static bool pte_known_f6(const pft_pte_config_t *c)
+{
+    const pft_real_t v[] = {c->in.pixel_gain, c->in.pixel_offset, c->in.noise_sigma,
+                            c->in.zeta_clip, c->init_threshold, c->sigma_r[0], c->sigma_r[1],
+                            c->q_sd[0], c->q_sd[1], c->acc_sd0[0], c->acc_sd0[1], c->q_amp,
+                            c->dtheta_min, c->c_step, c->scan_sigmas, c->sigma_w_max, c->eta_t,
+                            c->dup_cells};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i) {
+        if (!fz_sane(v[i])) {
+            return FZ_KNOWN;
+        }
+    }
+    return false;
+}
+
+static void fuzz_pte(fz_t *f)
+{
+    static pft_pte_t p;
+    pft_pte_config_t c;
+    pft_pte_config_default(&c);
+    pte_in(&c.in);
+    c.init_frames = 4u;
+    c.max_len = 8u;
+    c.scan_steps = 4u;
+    c.max_tracks = 2u;
+    c.init_threshold = PFT_C(8.0);
+    FZ_PATCH(f, c, 12u);
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_pte_config_check(&c, &g_field));
+    size_t ws = pft_pte_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(pft_pte_init(&p, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    if (ws > WS_CAP || pte_known_f6(&c)) {
+        return;
+    }
+    FZ_CHECK(pft_pte_init(&p, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+    FZ_CHECK(pft_pte_init(&p, &c, g_ws, ws) == PFT_OK);
+    uint64_t cells = (uint64_t)c.in.n_range * c.in.n_doppler;
+    uint64_t nax = (c.in.n_doppler > 1u) ? 2u : 1u;
+    uint64_t scan = 2u * (uint64_t)c.scan_steps + 1u;
+    uint64_t ops = (uint64_t)c.max_tracks * c.n_dir[0] * (nax == 2u ? c.n_dir[1] : 1u) *
+                   c.max_len * (nax == 2u ? scan * scan * 225u : scan * 15u);
+    uint64_t dp = ((uint64_t)c.max_tracks + 1u) * c.init_frames * cells *
+                  (2u * (uint64_t)c.init_gate[0] + 1u) * (2u * (uint64_t)c.init_gate[1] + 1u);
+    if (ops > WORK_CAP || dp > WORK_CAP || cells > 4096u) {
+        return;
+    }
+    uint32_t seed = fz_u32(f);
+    pft_pte_report_t r[2][NFR + 3u][2];
+    memset(r, 0, sizeof r);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR + 3u; ++k) {
+            synth_real(seed, k, (size_t)cells);
+            FZ_CHECK(pft_pte_update_real(&p, g_z) == PFT_OK);
+            FZ_CHECK(pft_pte_reports(&p, r[pass][k], 2u) <= c.max_tracks);
+        }
+        FZ_CHECK(pft_pte_reset(&p) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+    pft_real_t vt;
+    pft_status_t st = pft_pte_threshold(&p, fz_real(f), fz_u8(f) % 6u, fz_u8(f), &vt);
+    FZ_CHECK(st == PFT_OK || st == PFT_ERR_INVAL);
+}
+
+static void fuzz_pte_dp(fz_t *f)
+{
+    static pft_pte_dp_t p;
+    pft_pte_dp_config_t c;
+    pft_pte_dp_config_default(&c);
+    pte_in(&c.in);
+    c.frames = 4u;
+    c.max_targets = 2u;
+    c.threshold = PFT_C(8.0);
+    FZ_PATCH(f, c, 12u);
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_pte_dp_config_check(&c, &g_field));
+    size_t ws = pft_pte_dp_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(pft_pte_dp_init(&p, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    FZ_CHECK(ws == PFT_PTE_DP_WORKSPACE_BYTES(c.in.n_range, c.in.n_doppler, c.frames, c.max_targets));
+    if (ws > WS_CAP) {
+        return;
+    }
+    FZ_CHECK(pft_pte_dp_init(&p, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+    FZ_CHECK(pft_pte_dp_init(&p, &c, g_ws, ws) == PFT_OK);
+    uint64_t cells = (uint64_t)c.in.n_range * c.in.n_doppler;
+    uint64_t dp = ((uint64_t)c.max_targets + 1u) * c.frames * cells *
+                  (2u * (uint64_t)c.gate[0] + 1u) * (2u * (uint64_t)c.gate[1] + 1u);
+    if (dp > WORK_CAP || cells > 4096u) {
+        return;
+    }
+    uint32_t seed = fz_u32(f);
+    pft_pte_report_t r[2][NFR + 3u][2];
+    memset(r, 0, sizeof r);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR + 3u; ++k) {
+            synth_real(seed, k, (size_t)cells);
+            FZ_CHECK(pft_pte_dp_update_real(&p, g_z) == PFT_OK);
+            FZ_CHECK(pft_pte_dp_reports(&p, r[pass][k], 2u) <= c.max_targets);
+        }
+        FZ_CHECK(pft_pte_dp_reset(&p) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+    pft_real_t vt;
+    pft_status_t st = pft_pte_dp_threshold(&p, fz_real(f), fz_u8(f) % 6u, fz_u8(f), &vt);
+    FZ_CHECK(st == PFT_OK || st == PFT_ERR_INVAL);
+}
+
+static void fuzz_pte_dbt(fz_t *f)
+{
+    static pft_pte_dbt_t p;
+    pft_pte_dbt_config_t c;
+    pft_pte_dbt_config_default(&c);
+    pte_in(&c.in);
+    c.max_tracks = 8u;
+    c.max_dets = 16u;
+    FZ_PATCH(f, c, 12u);
+    g_field = (const char *)&g_field;
+    bool ok = check_contract(pft_pte_dbt_config_check(&c, &g_field));
+    size_t ws = pft_pte_dbt_workspace_size(&c);
+    FZ_CHECK(ok == (ws > 0u));
+    if (!ok) {
+        FZ_CHECK(pft_pte_dbt_init(&p, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
+        return;
+    }
+    FZ_CHECK(ws == PFT_PTE_DBT_WORKSPACE_BYTES(c.in.n_range, c.in.n_doppler, c.max_tracks, c.max_dets));
+    if (ws > WS_CAP) {
+        return;
+    }
+    FZ_CHECK(pft_pte_dbt_init(&p, &c, g_ws, ws - 1u) == PFT_ERR_NOMEM);
+    FZ_CHECK(pft_pte_dbt_init(&p, &c, g_ws, ws) == PFT_OK);
+    uint64_t cells = (uint64_t)c.in.n_range * c.in.n_doppler;
+    if (cells > 4096u) {
+        return;
+    }
+    uint32_t seed = fz_u32(f);
+    pft_pte_report_t r[2][NFR + 3u][2];
+    memset(r, 0, sizeof r);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR + 3u; ++k) {
+            synth_real(seed, k, (size_t)cells);
+            FZ_CHECK(pft_pte_dbt_update_real(&p, g_z) == PFT_OK);
+            FZ_CHECK(pft_pte_dbt_reports(&p, r[pass][k], 2u) <= c.max_tracks);
+        }
+        FZ_CHECK(pft_pte_dbt_reset(&p) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static bool once;
+    if (!once) { /* NULL configurations, once per process */
+        once = true;
+        FZ_CHECK(pft_tbd_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_tbd_workspace_size(NULL) == 0u);
+        FZ_CHECK(pft_pf_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_pf_workspace_size(NULL) == 0u);
+        FZ_CHECK(pft_tsa_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_tsa_workspace_size(NULL) == 0u);
+        FZ_CHECK(pft_pte_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_pte_workspace_size(NULL) == 0u);
+        FZ_CHECK(pft_pte_dp_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_pte_dp_workspace_size(NULL) == 0u);
+        FZ_CHECK(pft_pte_dbt_config_check(NULL, NULL) == PFT_ERR_INVAL && pft_pte_dbt_workspace_size(NULL) == 0u);
+    }
+    fz_t f = {data, size};
+    switch (fz_u8(&f) % 8u) {
+    case 0: fuzz_tbd(&f, true); break;
+    case 1: fuzz_tbd(&f, false); break;
+    case 2: fuzz_pf(&f); break;
+    case 3: fuzz_tsa(&f); break;
+    case 4: fuzz_pte(&f); break;
+    case 5: fuzz_pte_dp(&f); break;
+    case 6: fuzz_pte_dbt(&f); break;
+    default: fuzz_tbd(&f, (size & 1u) != 0u); break;
+    }
+    return 0;
+}
