@@ -125,7 +125,7 @@ typedef struct {
     uint64_t time_max_us;     /**< longest consumer time */
     uint64_t time_total_us;   /**< sum of consumer times (mean = total / frames) */
     uint16_t width;           /**< geometry the run checked against (given or locked) */
-    uint16_t height;
+    uint16_t height;          /**< rows of that geometry */
     pft_status_t stop;        /**< why the run ended: PFT_ERR_EOF (source or consumer), PFT_OK
                                    (max_frames or max_attempts reached), or the fatal error */
 } pft_runner_stats_t;
@@ -141,8 +141,12 @@ typedef struct {
  * PFT_ERR_RANGE or any unknown status, and `max_consecutive_errors` reached (returns the last
  * recoverable error).
  *
- * @param hooks  may be NULL (no timing). @param cfg may be NULL (all defaults).
- * @param stats  required; filled even when an error is returned.
+ * @param src           the frame source (required).
+ * @param consumer      called once per delivered frame (required).
+ * @param consumer_ctx  passed to `consumer` unchanged.
+ * @param hooks         may be NULL (no timing).
+ * @param cfg           may be NULL (all defaults).
+ * @param stats         required; filled even when an error is returned.
  * @return PFT_OK on a normal end (EOF, max_frames, max_attempts), PFT_ERR_INVAL for NULL
  *         `src`/`consumer`/`stats` or a source without acquire/release, else the fatal error.
  */

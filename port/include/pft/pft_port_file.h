@@ -79,17 +79,17 @@ const char *pft_file_error_str(pft_file_error_t e);
 /** Configuration of a file source. */
 typedef struct {
     const char *path;          /**< pattern (PER_FRAME) or file name (CONCAT); kept by pointer */
-    pft_file_layout_t layout;
-    pft_file_encoding_t encoding;
+    pft_file_layout_t layout;  /**< one file per frame (pattern) or one concatenated file */
+    pft_file_encoding_t encoding; /**< PNM (PGM/PPM headers) or RAW (headerless pixels) */
     uint32_t first_index;      /**< first pattern index; seq of the first frame */
     uint16_t width;            /**< RAW: required. PNM: 0 = any, else must match */
-    uint16_t height;
+    uint16_t height;           /**< rows; same rule as `width` */
     pft_pixfmt_t format;       /**< RAW only */
     uint8_t bit_depth;         /**< RAW U16 significant bits (0: 16) */
     bool raw_big_endian;       /**< RAW U16 stored big-endian */
     uint64_t frame_period_us;  /**< synthetic timestamp step */
     void *buffer;              /**< pixel memory, caller-owned */
-    size_t buffer_bytes;
+    size_t buffer_bytes;       /**< size of `buffer`: slots x the largest frame */
     uint32_t slots;            /**< frames lent at once, 1..PFT_FILE_MAX_SLOTS (0: 1) */
 } pft_file_config_t;
 
@@ -97,22 +97,23 @@ typedef struct {
 typedef struct {
     uint32_t frames;       /**< frames lent */
     uint32_t errors;       /**< acquires that failed with IO or FORMAT */
-    uint32_t released;
+    uint32_t released;     /**< frames given back */
     uint32_t bad_releases; /**< releases of frames that were not lent (ignored) */
 } pft_file_stats_t;
 
-/** File source state; allocate it, then pft_file_source_init. */
+/** File source state; allocate it, then pft_file_source_init. Members are private to the
+ *  port: read the counters, change nothing. */
 typedef struct {
-    pft_file_config_t cfg;
+    pft_file_config_t cfg;     /**< copy of the configuration */
     void *fp;                  /**< FILE * of a concatenated file */
-    uint8_t *slot[PFT_FILE_MAX_SLOTS];
-    uint8_t lent[PFT_FILE_MAX_SLOTS];
-    uint32_t slot_bytes;
+    uint8_t *slot[PFT_FILE_MAX_SLOTS]; /**< start of each slot in `buffer` */
+    uint8_t lent[PFT_FILE_MAX_SLOTS];  /**< 1 while the slot's frame is lent */
+    uint32_t slot_bytes;       /**< bytes per slot */
     uint32_t index;            /**< next file index / seq */
-    bool ended;
-    pft_file_error_t last_error;
+    bool ended;                /**< the sequence has ended (acquire returns PFT_ERR_EOF) */
+    pft_file_error_t last_error; /**< detail of the last failure (PFT_FILE_OK if none) */
     char name[PFT_FILE_NAME_MAX]; /**< file of the last acquire */
-    pft_file_stats_t stats;
+    pft_file_stats_t stats;    /**< counters */
 } pft_file_source_t;
 
 /**
@@ -131,8 +132,9 @@ void pft_file_source_close(pft_file_source_t *fs);
 /** The pft_frame_source_t view of `fs` (ctx = fs). */
 pft_frame_source_t pft_file_as_source(pft_file_source_t *fs);
 
-/** acquire/release of the source interface (usable directly with ctx = fs). */
+/** acquire of the source interface (usable directly with ctx = fs). */
 pft_status_t pft_file_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms);
+/** release of the source interface: gives back a lent frame (others ignored and counted). */
 void pft_file_release(void *ctx, const pft_frame_t *frame);
 
 /**

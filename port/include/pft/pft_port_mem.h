@@ -52,8 +52,8 @@ typedef enum {
 
 /** One scheduled fault: the frame with sequence number `seq` gets `kind`. */
 typedef struct {
-    uint32_t seq;
-    pft_fault_kind_t kind;
+    uint32_t seq;          /**< sequence number of the frame that gets the fault */
+    pft_fault_kind_t kind; /**< what goes wrong with it */
 } pft_fault_at_t;
 
 /** Fault-injection plan. Zero-initialised: no faults. */
@@ -86,14 +86,14 @@ typedef struct {
     size_t buffer_bytes;      /**< size of `buffer` */
     uint32_t slots;           /**< 1..PFT_MEM_MAX_SLOTS */
     uint16_t width;           /**< frame geometry of every slot */
-    uint16_t height;
-    pft_pixfmt_t format;
+    uint16_t height;          /**< rows */
+    pft_pixfmt_t format;      /**< pixel format of every slot */
     uint8_t bit_depth;        /**< U16 significant bits (0: 16) */
     uint32_t stride_bytes;    /**< 0: packed (width * bytes per pixel) */
     uint32_t max_lent;        /**< frames lent at once; 0: slots */
     uint32_t first_seq;       /**< sequence number of the first frame */
     pft_mem_fill_fn fill;     /**< optional producer pulled on demand */
-    void *fill_ctx;
+    void *fill_ctx;           /**< passed to `fill` */
     pft_mem_faults_t faults;  /**< fault injection (copied; `at` kept by pointer) */
 } pft_mem_config_t;
 
@@ -110,21 +110,22 @@ typedef struct {
     uint32_t injected[PFT_FAULT_COUNT]; /**< faults injected, by kind */
 } pft_mem_stats_t;
 
-/** Ring source state: allocate it (static or on the stack), then pft_mem_source_init. */
+/** Ring source state: allocate it (static or on the stack), then pft_mem_source_init. Members
+ *  are private to the port: read the counters with the functions below. */
 struct pft_mem_source {
-    pft_mem_config_t cfg;
-    uint8_t *base;
-    uint32_t slot_bytes;
-    uint32_t next_seq;
-    uint32_t rng;
+    pft_mem_config_t cfg;   /**< copy of the configuration */
+    uint8_t *base;          /**< first slot */
+    uint32_t slot_bytes;    /**< stride_bytes * height */
+    uint32_t next_seq;      /**< sequence number of the next frame committed */
+    uint32_t rng;           /**< state of the fault-injection generator */
     int32_t writing;        /**< slot being written, -1 if none */
-    bool closed;
-    uint8_t state[PFT_MEM_MAX_SLOTS];
-    uint8_t fault[PFT_MEM_MAX_SLOTS];
-    uint8_t fault_served[PFT_MEM_MAX_SLOTS];
-    uint32_t seq[PFT_MEM_MAX_SLOTS];
-    uint64_t ts[PFT_MEM_MAX_SLOTS];
-    pft_mem_stats_t stats;
+    bool closed;            /**< pft_mem_close was called */
+    uint8_t state[PFT_MEM_MAX_SLOTS];        /**< free / being written / queued / lent, per slot */
+    uint8_t fault[PFT_MEM_MAX_SLOTS];        /**< fault kind scheduled for the slot's frame */
+    uint8_t fault_served[PFT_MEM_MAX_SLOTS]; /**< the fault was applied when lent */
+    uint32_t seq[PFT_MEM_MAX_SLOTS];         /**< sequence number of the slot's frame */
+    uint64_t ts[PFT_MEM_MAX_SLOTS];          /**< timestamp of the slot's frame, us */
+    pft_mem_stats_t stats;  /**< counters */
 };
 
 /**
@@ -163,8 +164,9 @@ void pft_mem_close(pft_mem_source_t *m);
 /** Frames queued and not yet lent. */
 uint32_t pft_mem_queued(const pft_mem_source_t *m);
 
-/** acquire/release of the source interface (usable directly with ctx = m). */
+/** acquire of the source interface (usable directly with ctx = m). */
 pft_status_t pft_mem_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms);
+/** release of the source interface: gives back a lent frame (others ignored and counted). */
 void pft_mem_release(void *ctx, const pft_frame_t *frame);
 
 #ifdef __cplusplus

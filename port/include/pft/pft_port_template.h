@@ -90,6 +90,7 @@ typedef struct {
     /** Mask / unmask the DMA interrupt around shared state (the critical section). NULL only
      *  where nothing runs concurrently (single-context tests). */
     void (*irq_lock)(void *drv);
+    /** Unmask the DMA interrupt (the end of the critical section); NULL with `irq_lock`. */
     void (*irq_unlock)(void *drv);
     /** Invalidate the data cache over a buffer the DMA wrote, before the CPU reads it
      *  (Cortex-M7 with D-cache; NULL when buffers are in non-cacheable memory or no cache). */
@@ -114,8 +115,9 @@ typedef struct {
     uint32_t nbuf;                       /**< 2..PFT_TPL_MAX_BUFFERS */
     void *sink;                          /**< circular: required, stride * height bytes the
                                               DMA may write and nobody reads; one-shot: unused */
-    uint16_t width, height;              /**< pixels, rows */
-    pft_pixfmt_t format;
+    uint16_t width;                      /**< pixels per row */
+    uint16_t height;                     /**< rows */
+    pft_pixfmt_t format;                 /**< pixel format the DMA writes */
     uint8_t bit_depth;                   /**< U16 significant bits (0: 16) */
     uint32_t stride;                     /**< bytes per row; 0: packed */
     uint8_t counter_bits;                /**< width of the sensor's frame counter, 1..32
@@ -123,7 +125,7 @@ typedef struct {
     uint64_t frame_period_us;            /**< nominal frame period: timestamps of frames the
                                               ISR reports without one (0: repeat the last) */
     pft_tpl_sink_fn on_sink;             /**< optional, called from the ISR per sink frame */
-    void *on_sink_ctx;
+    void *on_sink_ctx;                   /**< passed to `on_sink` */
 } pft_tpl_config_t;
 
 /** Counters (read them with pft_tpl_get_stats). */
@@ -139,12 +141,12 @@ typedef struct {
 
 /** Port state (allocate it statically; members are private to the port). */
 typedef struct {
-    pft_tpl_driver_t drv;
+    pft_tpl_driver_t drv;         /**< copy of the driver callbacks */
     pft_tpl_config_t cfg;         /**< copy; stride resolved, counter_bits 32 for 0 */
     uint32_t bytes;               /**< stride * height */
-    volatile uint8_t state[PFT_TPL_MAX_BUFFERS];
-    volatile uint32_t seq[PFT_TPL_MAX_BUFFERS];
-    volatile uint64_t ts[PFT_TPL_MAX_BUFFERS];
+    volatile uint8_t state[PFT_TPL_MAX_BUFFERS]; /**< free / DMA / ready / lent, per buffer */
+    volatile uint32_t seq[PFT_TPL_MAX_BUFFERS];  /**< sequence number of the buffer's frame */
+    volatile uint64_t ts[PFT_TPL_MAX_BUFFERS];   /**< timestamp of the buffer's frame, us */
     volatile uint8_t run;         /**< never started / running / stopped */
     volatile int32_t dma_buf;     /**< target being filled: buffer index, PFT_TPL_SINK, or -1
                                        (one-shot paused for want of a buffer, or not running) */
@@ -153,8 +155,12 @@ typedef struct {
     volatile uint32_t last_seq;   /**< seq of the last completed frame */
     volatile uint32_t last_counter; /**< sensor counter of the last completed frame */
     volatile uint64_t last_ts;    /**< timestamp of the last completed frame */
-    volatile uint32_t completed, overruns, sink_frames, dma_errors, counter_repeats;
-    uint32_t bad_releases;
+    volatile uint32_t completed;  /**< counters: see pft_tpl_stats_t */
+    volatile uint32_t overruns;   /**< see pft_tpl_stats_t */
+    volatile uint32_t sink_frames; /**< see pft_tpl_stats_t */
+    volatile uint32_t dma_errors; /**< see pft_tpl_stats_t */
+    volatile uint32_t counter_repeats; /**< see pft_tpl_stats_t */
+    uint32_t bad_releases;        /**< see pft_tpl_stats_t */
 } pft_tpl_port_t;
 
 /** dma_buf / next_buf value of the sink. */
@@ -213,7 +219,9 @@ void pft_tpl_on_frame_done(pft_tpl_port_t *p, uint64_t timestamp_us, bool ok);
  * Releasing a frame that is not lent is ignored and counted (`bad_releases`).
  */
 pft_status_t pft_tpl_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms);
+/** release of the source interface: the buffer goes back to the DMA's pool. */
 void pft_tpl_release(void *ctx, const pft_frame_t *frame);
+/** The pft_frame_source_t view of `p` (ctx = p). */
 pft_frame_source_t pft_tpl_as_source(pft_tpl_port_t *p);
 
 /** Copies the counters inside the critical section. PFT_ERR_INVAL for NULL. */
