@@ -15,6 +15,9 @@ json load_json_file(const std::string &path)
         return json::parse(in, nullptr, true, /*ignore_comments=*/true);
     } catch (const json::parse_error &e) {
         throw InputError(path + ": invalid JSON (" + e.what() + ")");
+    } catch (const json::exception &e) {
+        // e.g. out_of_range 406: a number such as 1e999 that no double holds
+        throw InputError(path + ": invalid JSON (" + e.what() + ")");
     }
 }
 

@@ -391,6 +391,8 @@ std::unique_ptr<SequenceReader> open_sidecar(const std::string &dir)
     std::string fmt = f.choice_or("format", "pgm16", {"pgm16", "raw_f32", "raw_u16"});
     info.width = static_cast<int>(f.integer_in("width", 0, 1, 65535));
     info.height = static_cast<int>(f.integer_in("height", 0, 1, 65535));
+    check_frame_area(side + ": width x height", static_cast<std::uint64_t>(info.width),
+                     static_cast<std::uint64_t>(info.height));
     info.frames = static_cast<int>(f.integer_in("frames", -1, 0, 100000000));
     sidecar_common(f, dir, info);
     uint32_t first = static_cast<uint32_t>(f.integer_in("first_index", 1, 0, 100000000));
@@ -458,6 +460,7 @@ RawSpec parse_raw_spec(const std::string &spec, const std::string &source)
         throw InputError(where + ": field WxH: expected WIDTHxHEIGHT, got \"" + parts[0] + "\"" + syntax);
     r.width = spec_int(parts[0].substr(0, x), "W", 1, 65535, where);
     r.height = spec_int(parts[0].substr(x + 1), "H", 1, 65535, where);
+    check_frame_area(where, static_cast<std::uint64_t>(r.width), static_cast<std::uint64_t>(r.height));
     bool seen_bits = false, seen_endian = false, seen_skip = false;
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::string &t = parts[i];

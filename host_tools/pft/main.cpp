@@ -143,6 +143,8 @@ int main(int argc, char **argv)
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_WARNING);
     CLI::App app{"pft - host tools of pftrack: simulate, run, evaluate and benchmark trackers"};
     app.require_subcommand(1);
+    bool want_version = false;
+    app.add_flag("--version", want_version, "print the version (library and git) and exit");
     Options o;
     PlotOptions po;
     std::string kind_filter;
@@ -249,10 +251,36 @@ int main(int argc, char **argv)
     pft::host::tsa::TrackCli track_cli;
     pft::host::tsa::add_track_command(app, track_cli);
 
+    // --version alone: answered before the parser insists on a subcommand
+    if (argc == 2 && std::string(argv[1]) == "--version") {
+        const std::string git = git_describe();
+        std::printf("pft %s (git %s)\n", tool_version(), git.empty() ? "unknown" : git.c_str());
+        return 0;
+    }
+    // an unknown subcommand is named as such (CLI11 would only say that one is required)
+    if (argc >= 2 && argv[1][0] != '-') {
+        bool known = false;
+        std::string names;
+        for (const CLI::App *sc : app.get_subcommands([](const CLI::App *) { return true; })) {
+            known = known || sc->get_name() == argv[1];
+            names += (names.empty() ? "" : ", ") + sc->get_name();
+        }
+        if (!known) {
+            std::fprintf(stderr, "pft: error: unknown subcommand '%s' (one of: %s)\n", argv[1], names.c_str());
+            return 2;
+        }
+    }
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError &e) {
+    } catch (const CLI::Success &e) {  // --help
         return app.exit(e);
+    } catch (const CLI::ParseError &e) {
+        // every usage error: one line naming the option, exit 2 (the same as a bad input file)
+        std::string msg = e.what();
+        if (msg.empty())
+            msg = e.get_name();
+        std::fprintf(stderr, "pft: error: %s (pft --help, pft SUBCOMMAND --help)\n", msg.c_str());
+        return 2;
     }
 
     try {

@@ -57,6 +57,12 @@ Scenario load(const Options &o)
         s.eval.gospa_c = *o.gospa_c;
     if (o.gospa_p)
         s.eval.gospa_p = *o.gospa_p;
+    // the library's verdict on the tracker configuration before anything is simulated or read
+    pft_tbd_config_t c = make_config(s, 0);
+    const char *field = nullptr;
+    if (pft_tbd_config_check(&c, &field) != PFT_OK)
+        throw InputError(o.scenario_path + ": the tracker configuration is refused by "
+                         "pft_tbd_config_check (field " + std::string(field ? field : "?") + ")");
     return s;
 }
 

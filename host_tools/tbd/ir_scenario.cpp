@@ -155,6 +155,8 @@ IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
         im.only({"width", "height"});
         s.width = static_cast<int>(im.integer_in("width", 384, 16, 8192));
         s.height = static_cast<int>(im.integer_in("height", 288, 16, 8192));
+        check_frame_area(file + ": image", static_cast<std::uint64_t>(s.width),
+                         static_cast<std::uint64_t>(s.height));
         s.size_given = true;
     }
     s.frames = static_cast<int>(root.integer_in("frames", 100, 1, 1000000));

@@ -209,6 +209,8 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
         im.only({"width", "height", "dx", "dy"});
         s.width = static_cast<int>(im.integer_in("width", 20, 3, 8192));
         s.height = static_cast<int>(im.integer_in("height", 20, 3, 8192));
+        check_frame_area(file + ": image", static_cast<std::uint64_t>(s.width),
+                         static_cast<std::uint64_t>(s.height));
         s.dx = im.number_in("dx", 1.0, 1e-3, 1e3);
         s.dy = im.number_in("dy", 1.0, 1e-3, 1e3);
     }

@@ -1,12 +1,16 @@
-# cmake -DCMD="pft;args..." -DEXPECT=regex -P expect_error.cmake
-# Passes when the command exits with a non-zero status (not a crash/signal) and its stderr
+# cmake -DCMD="pft;args..." -DEXPECT=regex [-DEXIT=n] -P expect_error.cmake
+# Passes when the command exits with status EXIT (default 2, the host tools' status for every
+# usage or input error; never a crash or signal), a line of its stderr starts with "pft: error: " and
 # matches EXPECT.
-execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(rc EQUAL 0)
-  message(FATAL_ERROR "expected a non-zero exit, got 0\n${out}\n${err}")
+if(NOT DEFINED EXIT OR EXIT STREQUAL "")
+  set(EXIT 2)
 endif()
-if(NOT rc MATCHES "^[0-9]+$" OR rc GREATER 100)
-  message(FATAL_ERROR "abnormal termination: ${rc}\n${err}")
+execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc STREQUAL "${EXIT}")
+  message(FATAL_ERROR "expected exit ${EXIT}, got ${rc}\n${out}\n${err}")
+endif()
+if(NOT err MATCHES "(^|\n)pft: error: ")
+  message(FATAL_ERROR "stderr has no line starting with 'pft: error: ':\n${err}")
 endif()
 if(NOT err MATCHES "${EXPECT}")
   message(FATAL_ERROR "stderr does not match '${EXPECT}':\n${err}")
