@@ -299,6 +299,21 @@ static void test_round_floor_negatives(void)
     TEST_ASSERT_EQUAL_INT32(0, pft_round_int(0.49999997f));
     TEST_ASSERT_EQUAL_INT32(-1, pft_round_int(-0.50000006f));
     TEST_ASSERT_EQUAL_INT32(8388609, pft_round_int(8388609.0f));
+    /* out of the int32 range: saturated, never a conversion with undefined behaviour (the fuzzer
+     * found 1.3e13 reaching pft_floor_int through pft_pte_start; reliability.md F1) */
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, pft_floor_int(1.3e13f));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, pft_floor_int(-1.3e13f));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, pft_round_int(PFT_REAL_MAX));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, pft_round_int(PFT_REAL_MIN));
+    TEST_ASSERT_EQUAL_INT32(INT32_MAX, pft_round_int(2147483648.0f));
+    TEST_ASSERT_EQUAL_INT32(INT32_MIN, pft_floor_int(-2147483648.0f));
+    TEST_ASSERT_EQUAL_INT32(2147483520, pft_floor_int(2147483520.0f)); /* largest float below 2^31 */
+    {
+        volatile float zero = 0.0f;
+        float nan = zero / zero;
+        TEST_ASSERT_EQUAL_INT32(0, pft_floor_int(nan));
+        TEST_ASSERT_EQUAL_INT32(0, pft_round_int(nan));
+    }
 #endif
 }
 

@@ -151,13 +151,26 @@ static inline pft_real_t pft_div_i(pft_real_t a, int32_t k)
     return k > 0 ? a / (float)k : pft_div(a, 0.0f);
 }
 static inline pft_real_t pft_from_int(int32_t i) { return (float)i; }
-static inline int32_t pft_floor_int(pft_real_t a) { return (int32_t)floorf(a); }
+/* An integral float to int32, saturating: beyond the int32 range INT32_MIN / INT32_MAX, NaN 0
+ * (a plain conversion of such a value is undefined behaviour in C). */
+static inline int32_t pft_sat_int_(float f)
+{
+    if (f >= 2147483648.0f) {
+        return INT32_MAX;
+    }
+    if (f < -2147483648.0f) {
+        return INT32_MIN;
+    }
+    return (f == f) ? (int32_t)f : 0;
+}
+static inline int32_t pft_floor_int(pft_real_t a) { return pft_sat_int_(floorf(a)); }
 /* floorf(a + 0.5f) would round 0.49999997f up (the sum rounds to 1.0f): compare the exact
- * fractional part a - floorf(a) instead. */
+ * fractional part a - floorf(a) instead. Beyond 2^24 every float is an integer, so the sum
+ * below is exact wherever it matters. */
 static inline int32_t pft_round_int(pft_real_t a)
 {
     float f = floorf(a);
-    return (int32_t)f + (a - f >= 0.5f ? 1 : 0);
+    return pft_sat_int_(f + (a - f >= 0.5f ? 1.0f : 0.0f));
 }
 static inline pft_real_t pft_ratio(int32_t num, int32_t den) { return pft_div((float)num, (float)den); }
 /** Uniform u32 fraction u/2^32 in [0,1): top 24 bits, exact in a float. */
