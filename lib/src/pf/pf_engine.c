@@ -354,34 +354,30 @@ pft_status_t pft_pf_mean_cov(const pft_pf_t *pf, pft_real_t *mean, pft_real_t *c
     if (cov == NULL) {
         return PFT_OK;
     }
-    pft_acc_t_ acc[PFT_PF_MAX_DIM * (PFT_PF_MAX_DIM + 1u) / 2u];
-    pft_real_t dv[PFT_PF_MAX_DIM];
-    size_t nt = (size_t)d * (d + 1u) / 2u;
+    /* one row of the upper triangle at a time: PFT_PF_MAX_DIM accumulators on the stack instead
+     * of the whole triangle (1088 bytes of int64 in q16), the same sums in the same order */
+    pft_acc_t_ acc[PFT_PF_MAX_DIM];
     pft_wacc_t wt = 0;
-    for (size_t t = 0; t < nt; ++t) {
-        acc[t] = PFT_ACC_ZERO_;
-    }
     for (uint32_t i = 0; i < pf->n; ++i) {
-        pft_weight_t wi = pf->w[i];
-        wt += wi;
-        if (wi == 0) {
-            continue;
-        }
-        const pft_real_t *xi = pf->x + (size_t)i * d;
-        for (uint16_t a = 0; a < d; ++a) {
-            dv[a] = pft_sub(xi[a], mean[a]);
-        }
-        size_t t = 0;
-        for (uint16_t a = 0; a < d; ++a) {
-            for (uint16_t b = a; b < d; ++b) {
-                acc[t++] += pft_acc_wx_(wi, pft_mul(dv[a], dv[b]));
-            }
-        }
+        wt += pf->w[i];
     }
-    size_t t = 0;
     for (uint16_t a = 0; a < d; ++a) {
         for (uint16_t b = a; b < d; ++b) {
-            pft_real_t v = pft_acc_div_(acc[t++], wt);
+            acc[b] = PFT_ACC_ZERO_;
+        }
+        for (uint32_t i = 0; i < pf->n; ++i) {
+            pft_weight_t wi = pf->w[i];
+            if (wi == 0) {
+                continue;
+            }
+            const pft_real_t *xi = pf->x + (size_t)i * d;
+            pft_real_t da = pft_sub(xi[a], mean[a]);
+            for (uint16_t b = a; b < d; ++b) {
+                acc[b] += pft_acc_wx_(wi, pft_mul(da, pft_sub(xi[b], mean[b])));
+            }
+        }
+        for (uint16_t b = a; b < d; ++b) {
+            pft_real_t v = pft_acc_div_(acc[b], wt);
             cov[(size_t)a * d + b] = v;
             cov[(size_t)b * d + a] = v;
         }
