@@ -213,6 +213,30 @@ static void test_sis_degenerates(void)
 
 /* The comparison has power: a filter whose measurement sd is 1.5 instead of 1 (a posterior
  * that is wrong but not absurd) fails it for every engine. */
+/* The model refuses reals outside the configuration domain (reliability.md F7) and accepts the
+ * reference configuration. */
+static void test_lg_config_domain(void)
+{
+    pft_pf_lg_config_t c;
+    pft_pf_lg_model_t m;
+    pft_pf_model_t md;
+    lg_config(&c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_lg_model_init(&m, &c, &md));
+    c.r_sd[0] = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_lg_model_init(&m, &c, &md));
+#ifndef PFT_NUMERIC_Q16
+    lg_config(&c);
+    c.L0[0] = 3.4e38f; /* finite, but the prior draws would be infinite */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_lg_model_init(&m, &c, &md));
+    lg_config(&c);
+    c.r_sd[0] = 1e-39f; /* subnormal: an infinite reciprocal */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_lg_model_init(&m, &c, &md));
+    lg_config(&c);
+    c.F[5] = 1e30f; /* outside the packed 2 x 2 matrix: not read, not checked */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_lg_model_init(&m, &c, &md));
+#endif
+}
+
 static void test_comparison_detects_a_wrong_posterior(void)
 {
     const pft_pf_kind_t kinds[3] = {PFT_PF_SIS, PFT_PF_SIR, PFT_PF_APF};
@@ -233,5 +257,6 @@ int main(void)
     RUN_TEST(test_sis_matches_kalman_early);
     RUN_TEST(test_sis_degenerates);
     RUN_TEST(test_comparison_detects_a_wrong_posterior);
+    RUN_TEST(test_lg_config_domain);
     return UNITY_END();
 }

@@ -77,6 +77,23 @@ static void test_bearings_defaults_scaled(void)
     c.prior_sd[2] = PFT_C(-1.0);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_bearings_model_init(NULL, &c, &iface));
+#ifndef PFT_NUMERIC_Q16
+    /* the float build keeps its configuration in the q16 domain (reliability.md F7): a finite
+     * but huge prior sd gave infinite draws and NaN estimates; a subnormal noise sd an
+     * infinite reciprocal */
+    pft_pf_bearings_config_default(&c, 1);
+    c.prior_sd[0] = 3.4e38f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
+    pft_pf_bearings_config_default(&c, 1);
+    c.r_sd = 1e-39f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
+    pft_pf_bearings_config_default(&c, 1);
+    c.prior_mean[1] = 1e30f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pf_bearings_model_init(&m, &c, &iface));
+    pft_pf_bearings_config_default(&c, 1);
+    c.prior_sd[3] = 32767.0f; /* the edge of the domain is accepted */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_bearings_model_init(&m, &c, &iface));
+#endif
 }
 
 static void test_bearings_innovation_wraps(void)

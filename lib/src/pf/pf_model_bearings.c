@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "pft/pft_pf_models.h"
+#include "../core/config_int.h"
 
 void pft_pf_bearings_config_default(pft_pf_bearings_config_t *cfg, int32_t scale)
 {
@@ -108,10 +109,14 @@ pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf
     if (m == NULL || cfg == NULL || iface == NULL) {
         return PFT_ERR_INVAL;
     }
-    bool ok = cfg->T > PFT_C(0.0) && cfg->q_sd > PFT_C(0.0) && cfg->r_sd > PFT_C(0.0) &&
-              cfg->ll_clip > PFT_C(0.0) && cfg->first_r_sd >= PFT_C(0.0);
+    /* every real in the configuration domain (core/config_int.h): a finite, huge prior sd or a
+     * subnormal noise sd would give infinite draws or reciprocals in the float build */
+    bool ok = pft_cfg_real_pos_(cfg->T) && pft_cfg_real_pos_(cfg->q_sd) &&
+              pft_cfg_real_pos_(cfg->r_sd) && pft_cfg_real_pos_(cfg->ll_clip) &&
+              (cfg->first_r_sd == PFT_C(0.0) || pft_cfg_real_pos_(cfg->first_r_sd));
     for (int c = 0; c < PFT_PF_BRG_DIM; ++c) {
-        ok = ok && cfg->prior_sd[c] >= PFT_C(0.0);
+        ok = ok && cfg->prior_sd[c] >= PFT_C(0.0) && pft_cfg_real_ok_(cfg->prior_sd[c]) &&
+             pft_cfg_real_ok_(cfg->prior_mean[c]);
     }
     if (!ok) {
         return PFT_ERR_CONFIG;

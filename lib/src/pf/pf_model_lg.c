@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "pft/pft_pf_models.h"
+#include "../core/config_int.h"
 
 static void matvec_(const pft_real_t *A, const pft_real_t *v, uint16_t rows, uint16_t cols,
                     pft_real_t *out)
@@ -79,9 +80,16 @@ pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t
         return PFT_ERR_CONFIG;
     }
     for (uint16_t k = 0; k < cfg->meas; ++k) {
-        if (!(cfg->r_sd[k] > PFT_C(0.0))) {
+        if (!pft_cfg_real_pos_(cfg->r_sd[k])) {
             return PFT_ERR_CONFIG;
         }
+    }
+    /* every matrix and the prior in the configuration domain (core/config_int.h) */
+    const size_t dd = (size_t)cfg->dim * cfg->dim; /* matrices are packed rows of dim */
+    if (!pft_cfg_reals_ok_(cfg->F, dd) || !pft_cfg_reals_ok_(cfg->Lq, dd) ||
+        !pft_cfg_reals_ok_(cfg->H, (size_t)cfg->meas * cfg->dim) ||
+        !pft_cfg_reals_ok_(cfg->m0, cfg->dim) || !pft_cfg_reals_ok_(cfg->L0, dd)) {
+        return PFT_ERR_CONFIG;
     }
     memset(m, 0, sizeof(*m));
     m->cfg = *cfg;
