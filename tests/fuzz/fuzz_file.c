@@ -62,7 +62,8 @@ static bool zero_frame(const pft_frame_t *f)
 static void check_lent(const pft_frame_t *fr, const uint8_t *base, size_t cap)
 {
     uint32_t all = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32) |
-                   PFT_FMT_BIT(PFT_PIX_RGB888) | PFT_FMT_BIT(PFT_PIX_BGR888);
+                   PFT_FMT_BIT(PFT_PIX_RGB888) | PFT_FMT_BIT(PFT_PIX_BGR888) |
+                   PFT_FMT_BIT(PFT_PIX_RES16);
     FZ_CHECK(pft_frame_check(fr, 0u, 0u, all) == PFT_OK);
     const uint8_t *d = (const uint8_t *)fr->data;
     uint64_t span = (uint64_t)fr->stride_bytes * (fr->height - 1u) +
