@@ -380,9 +380,12 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
 {
     pft_pre_cls_t c;
     pft_pre_cls_init_(p, &c);
-    p->st.shift[0] = p->st.shift[1] = 0;
-    p->st.shift_sd[0] = p->st.shift_sd[1] = 0;
-    p->st.shift_coarse[0] = p->st.shift_coarse[1] = 0;
+    p->st.shift[0] = 0;
+    p->st.shift[1] = 0;
+    p->st.shift_sd[0] = 0;
+    p->st.shift_sd[1] = 0;
+    p->st.shift_coarse[0] = 0;
+    p->st.shift_coarse[1] = 0;
     p->st.reg_rms = 0u;
     p->jumped = false;
     if (p->bg_frames == 0u) {
@@ -420,7 +423,8 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
     if (ex || ey) {
         acc->flags |= PFT_PRE_FLAG_REG_LOST;
         p->bg_frames = 0u; /* the scene jumped beyond the search: restart the background */
-        p->shift_prev[0] = p->shift_prev[1] = 0;
+        p->shift_prev[0] = 0;
+        p->shift_prev[1] = 0;
         return;
     }
     int32_t s[2];
@@ -464,7 +468,8 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         }
         s[0] = ix * 65536;
         s[1] = iy * 65536;
-        sd[0] = sd[1] = 0;
+        sd[0] = 0;
+        sd[1] = 0;
     }
     p->st.shift[0] = s[0];
     p->st.shift[1] = s[1];
