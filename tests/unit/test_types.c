@@ -39,6 +39,22 @@ static void test_bad_frames_refused(void)
     f = make(PFT_PIX_U8, 4, 6);
     f.data = NULL;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_frame_check(&f, 4, 6, PFT_FMT_BIT(PFT_PIX_U8)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_frame_check_finite(&f));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_frame_check_finite(NULL));
+    /* empty geometry, a geometry that differs in height only, a 16-bit container with more
+     * than 16 significant bits */
+    f = make(PFT_PIX_U16, 4, 6);
+    f.width = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_frame_check(&f, 0, 0, PFT_FMT_BIT(PFT_PIX_U16)));
+    f = make(PFT_PIX_U16, 4, 6);
+    f.height = 0;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_frame_check(&f, 0, 0, PFT_FMT_BIT(PFT_PIX_U16)));
+    f = make(PFT_PIX_U16, 4, 6);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_frame_check(&f, 4, 7, PFT_FMT_BIT(PFT_PIX_U16)));
+    f.bit_depth = 17;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_frame_check(&f, 4, 6, PFT_FMT_BIT(PFT_PIX_U16)));
+    f.bit_depth = 14;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_frame_check(&f, 4, 6, PFT_FMT_BIT(PFT_PIX_U16)));
 }
 
 static void test_nonfinite_f32_refused(void)
@@ -60,6 +76,18 @@ static void test_status_strings(void)
     TEST_ASSERT_EQUAL_STRING("ok", pft_status_str(PFT_OK));
     TEST_ASSERT_EQUAL_STRING("workspace too short", pft_status_str(PFT_ERR_NOMEM));
     TEST_ASSERT_EQUAL_STRING("unknown status", pft_status_str((pft_status_t)-99));
+    TEST_ASSERT_EQUAL_STRING("unknown status", pft_status_str((pft_status_t)-14)); /* one past */
+    /* every status has its own name (a log line tells them apart) */
+    for (int a = 0; a >= -13; --a) {
+        const char *sa = pft_status_str((pft_status_t)a);
+        TEST_ASSERT_NOT_NULL(sa);
+        TEST_ASSERT_TRUE(strlen(sa) > 0u);
+        TEST_ASSERT_TRUE_MESSAGE(strcmp(sa, "unknown status") != 0, "a status without a name");
+        for (int b = a - 1; b >= -13; --b) {
+            TEST_ASSERT_TRUE_MESSAGE(strcmp(sa, pft_status_str((pft_status_t)b)) != 0,
+                                     "two statuses share a name");
+        }
+    }
 }
 
 int main(void)
