@@ -148,6 +148,8 @@ static void test_config_check_rejects(void)
     expect_refused(&c, "i_max");
     base_cfg(&c); c.vel_var[1] = R(-0.1);
     expect_refused(&c, "vel_var[1]");
+    base_cfg(&c); c.i_min = R(-1.0);
+    expect_refused(&c, "i_min");
     base_cfg(&c); c.dis_prev = 0;
     expect_refused(&c, "dis_prev");
     base_cfg(&c); c.dis_ratio = R(0.0);
@@ -169,6 +171,74 @@ static void test_config_check_rejects(void)
     /* the first refused field in the struct's order is named */
     base_cfg(&c); c.height = 0; c.n_track = 0;
     expect_refused(&c, "height");
+}
+
+/* Issue #12: the birth prior is bounded so that every state stays inside the number range
+ * (q16 accepted any vel_mean before: thousands of px/frame saturated the positions and, in
+ * the hand-over, overflowed the int64 estimate sums). Each bound names its field; the
+ * largest accepted values run through the manager (the sanitizer presets would flag any
+ * overflow) and give estimates inside the image. */
+static uint8_t g_mws[PFT_TBD_WORKSPACE_BYTES(300u, 100u, 2u, PFT_TBD_RBPF, W, H)];
+
+static void test_config_check_bounds_birth_prior(void)
+{
+    pft_tbd_config_t c;
+    base_cfg(&c); c.vel_mean[0] = R(5000.0);
+    expect_refused(&c, "vel_mean[0]");
+    base_cfg(&c); c.vel_mean[1] = R(-8.01); /* height 8, dy 1, T 1: span 8 */
+    expect_refused(&c, "vel_mean[1]");
+    base_cfg(&c); c.vel_mean[1] = R(-8.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    base_cfg(&c); c.vel_mean[0] = R(5.0); c.T = R(2.5); /* 12.5 > span 10 */
+    expect_refused(&c, "vel_mean[0]");
+    base_cfg(&c); c.vel_var[0] = R(100.5); /* sqrt > 10 */
+    expect_refused(&c, "vel_var[0]");
+    base_cfg(&c); c.vel_var[1] = R(64.5);
+    expect_refused(&c, "vel_var[1]");
+    base_cfg(&c); c.i_max = R(30000.0); /* peak 30000/(2 pi 0.49) = 9745, but /sigma 3.2 fine */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    base_cfg(&c); c.i_max = R(30000.0); c.psf_sigma = R(0.3); /* peak 53052 */
+    expect_refused(&c, "i_max");
+    base_cfg(&c); c.i_max = R(30000.0); c.noise_sigma = R(0.25); /* peak / sigma 38981 */
+    expect_refused(&c, "i_max");
+
+    /* the extremes that are accepted, through the manager */
+    base_cfg(&c);
+    c.vel_mean[0] = R(10.0);
+    c.vel_mean[1] = R(-8.0);
+    c.vel_var[0] = R(100.0);
+    c.vel_var[1] = R(64.0);
+    c.i_min = R(0.0);
+    c.i_max = R(20000.0);
+    c.eta = R(1.0);
+    c.pb = R(0.5);
+    c.theta1 = R(0.3);
+    c.n_search = 300u;
+    c.n_track = 100u;
+    c.max_targets = 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    static pft_tbd_t t;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mws, sizeof g_mws));
+    static float img[H][W];
+    int confirmed = 0;
+    for (int k = 1; k <= 12; ++k) {
+        for (int r = 0; r < H; ++r) {
+            for (int q = 0; q < W; ++q) {
+                img[r][q] = (r == 3 && q == (k % W)) ? 3000.0f : 0.0f;
+            }
+        }
+        pft_frame_t fr = {img, W, H, 4 * W, PFT_PIX_F32, 0, 0, (uint32_t)k};
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &fr));
+        pft_tbd_track_t tr[2];
+        size_t n = pft_tbd_tracks(&t, tr, 2);
+        for (size_t i = 0; i < n && i < 2u; ++i) {
+            TEST_ASSERT_TRUE(D(tr[i].x) > -0.5 && D(tr[i].x) < W - 0.5);
+            TEST_ASSERT_TRUE(D(tr[i].y) > -0.5 && D(tr[i].y) < H - 0.5);
+            TEST_ASSERT_TRUE(fabs(D(tr[i].vx)) < 1000.0 && fabs(D(tr[i].vy)) < 1000.0);
+        }
+        confirmed += pft_tbd_events(&t, NULL, 0) > 0u;
+    }
+    TEST_ASSERT_TRUE(confirmed > 0);
 }
 
 /* pft_tbd_meas_add_psf with a negative intensity subtracts h exactly on its window (and
@@ -491,6 +561,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_defaults_are_the_papers);
     RUN_TEST(test_config_check_rejects);
+    RUN_TEST(test_config_check_bounds_birth_prior);
     RUN_TEST(test_psf_h_matches_reference);
     RUN_TEST(test_llr_matches_reference);
     RUN_TEST(test_add_psf_and_joint_llr);

@@ -116,10 +116,10 @@ typedef struct {
     pft_real_t eta;          /**< initial existence probability P(E_1 = 1) (default 0.05) */
     /* births */
     pft_real_t gamma;        /**< birth candidate threshold on z (default 2) */
-    pft_real_t i_min;        /**< birth intensity ~ U[i_min, i_max] (default 10) */
-    pft_real_t i_max;        /**< (default 30) */
-    pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A] */
-    pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A] */
+    pft_real_t i_min;        /**< birth intensity ~ U[i_min, i_max] (default 10); i_min >= 0 */
+    pft_real_t i_max;        /**< (default 30); i_min <= i_max, and the PSF peak i_max*dx*dy/(2 pi S^2) and its ratio to noise_sigma below 32767 */
+    pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A]; |vel_mean| * T at most the image span (width*dx, height*dy) */
+    pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A]; >= 0, sqrt(vel_var) * T at most the image span */
     bool birth_correction;   /**< add log(|B_k|/A_allow) to born particles' log-weights [A] (default false: the paper's eq. 20) */
     /* decisions */
     pft_real_t theta1;       /**< appearance threshold on the existence probability (default 0.6) */
