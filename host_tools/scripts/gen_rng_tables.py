@@ -91,8 +91,17 @@ def main():
         out.append("};")
         out.append("")
 
-    arr("pft_zig_w", "uint32_t", W, "right edge of layer i in Q24 (layer 0: v / f(r), the base's pseudo-width)")
-    arr("pft_zig_k", "uint32_t", K, "fast acceptance: a 24-bit draw m < k[i] lies inside f (floor(2^24 inner / right))")
+    kw = []
+    for i in range(N):
+        kw += [K[i], W[i]]
+    out.append("/* per layer i: k[i], the fast acceptance (a 24-bit draw m < k[i] lies inside f:")
+    out.append(" * floor(2^24 inner / right)), and w[i], the right edge in Q24 (layer 0: v / f(r), the")
+    out.append(" * base's pseudo-width); interleaved, so one layer is one 8-byte load */")
+    out.append("const uint32_t pft_zig_kw[%d][2] = {" % N)
+    for i in range(0, N, 4):
+        out.append("    " + " ".join("{%du, %du}," % (K[j], W[j]) for j in range(i, min(i + 4, N))))
+    out.append("};")
+    out.append("")
     arr("pft_zig_f", "uint32_t", FY, "f(x[i]) in Q31 at the layer edges x[1] = r ... x[127], f(0) = 2^31 last; [0] unused")
     arr("pft_kexp2_tab", "uint32_t", E2, "2^(-j/128) in Q30, j = 0..128")
     out.append("/* r in Q24 and 2^32 / r */")

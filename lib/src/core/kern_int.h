@@ -132,14 +132,14 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
 static inline pft_real_t pft_kfrac_off_(pft_kfrac_t g) { return (pft_real_t)g - 32768; }
 
 /* t[k] = tab(f)[k], k = 0..3 (lane 3: the sum of the squared taps): row n = g >> 10,
- * t = v + (d r + 2^9) >> 10 with r = g mod 2^10 (|d| <= 2^17, so the product stays below
- * 2^27). */
+ * t = v + (d r) >> 10 with r = g mod 2^10 (|d| <= 2^17, so the product stays below 2^27; the
+ * floor costs at most 1 LSB, far below the interpolation error). */
 static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_real_t t[4])
 {
     const int32_t r = (int32_t)(g & 1023u);
     const pft_real_t *a = tab[g >> 10];
     for (int k = 0; k < 4; ++k) {
-        t[k] = a[k] + ((a[k + 4] * r + 512) >> 10);
+        t[k] = a[k] + ((a[k + 4] * r) >> 10);
     }
 }
 
@@ -147,7 +147,10 @@ static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_rea
  * below 32768 (181^2 = 32761). */
 static inline pft_real_t pft_kspread_(pft_real_t d)
 {
-    return pft_clamp(d, PFT_C(-181.0), PFT_C(181.0));
+    if ((uint32_t)(d + PFT_C(181.0)) > (uint32_t)PFT_C(362.0)) { /* |d| > 181, rare */
+        return d > 0 ? PFT_C(181.0) : PFT_C(-181.0);
+    }
+    return d;
 }
 
 /* a b rounded to nearest (ties up) for |a b| < 32768 (the caller proves it). */

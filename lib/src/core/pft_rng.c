@@ -4,6 +4,8 @@
  * same in the float and the q16 build and on every target; reals are derived from it through
  * pft_from_u32_frac (q16: top 16 bits; float: top 24 bits).
  */
+#include <string.h>
+
 #include "pft/pft_rng.h"
 #include "rng_int.h"
 #include "kern_int.h"
@@ -198,7 +200,7 @@ static uint32_t pft_zig_tail_q24_(pft_rng_t *rng)
     return pft_zig_r_q24 + a;
 }
 
-pft_real_t pft_rng_zig_slow_(pft_rng_t *rng, uint32_t u)
+static pft_real_t zig_slow_(pft_rng_t *rng, uint32_t u)
 {
     uint32_t w = u;
     uint32_t round;
@@ -209,9 +211,9 @@ pft_real_t pft_rng_zig_slow_(pft_rng_t *rng, uint32_t u)
         const uint32_t i = w & (PFT_ZIG_LAYERS - 1u);
         const uint32_t m = w >> 8;
         const bool neg = (w & 128u) != 0u;
-        mag = (uint32_t)(((uint64_t)m * pft_zig_w[i]) >> 24);
-        if (m < pft_zig_k[i]) {
-            return pft_zig_real_(mag, neg);
+        mag = (uint32_t)(((uint64_t)m * pft_zig_kw[i][1]) >> 24);
+        if (m < pft_zig_kw[i][0]) {
+            return pft_zig_fast_((uint64_t)m * pft_zig_kw[i][1], neg ? 1u : 0u);
         }
         if (i == 0u) {
             return pft_zig_real_(pft_zig_tail_q24_(rng), neg);
@@ -229,6 +231,20 @@ pft_real_t pft_rng_zig_slow_(pft_rng_t *rng, uint32_t u)
         w = pft_rng_next_(rng);
     }
     return pft_zig_real_(mag, (w & 128u) != 0u);
+}
+
+pft_zig_slow_t pft_rng_zig_slow_(uint32_t s0, uint32_t s1, uint32_t s2, uint32_t s3, uint32_t u)
+{
+    pft_zig_slow_t r;
+    pft_rng_t g;
+    memset(&g, 0, sizeof g);
+    g.s[0] = s0;
+    g.s[1] = s1;
+    g.s[2] = s2;
+    g.s[3] = s3;
+    r.v = zig_slow_(&g, u);
+    memcpy(r.s, g.s, sizeof r.s);
+    return r;
 }
 
 pft_real_t pft_rng_gauss_zig(pft_rng_t *rng) { return pft_rng_zig_(rng); }

@@ -8,7 +8,12 @@
  * W = q N + r and q = qh 2^32 + ql with integer parts qh u + (ql u >> 32) and fractional
  * parts over D = N 2^32 (< 2^54); each further target adds q to the integer part and r 2^32
  * to the fraction (< 2 D), with one carry.
- * float: T_k = (W / N)(k + u), the same expression as pft_resample's float walk.
+ * float: T_k = (W / N)(k + u), as pft_resample's float walk; the number of targets below a
+ * cumulative weight c is min(N, ceil(c N / W - u)) directly, so a walk costs the same for any
+ * counts.
+ *
+ * pft_sys_take_(s, c): the targets below the cumulative weight c not taken yet (the
+ * replication count of the particle whose range ends at c), in order of c.
  */
 #ifndef PFT_CORE_RESAMPLE_INT_H
 #define PFT_CORE_RESAMPLE_INT_H
@@ -23,6 +28,7 @@ typedef struct {
     uint64_t q;  /* W / N, integer part */
     uint64_t rr; /* (W mod N) 2^32 */
     uint64_t d;  /* N 2^32 */
+    uint32_t k, n;
 } pft_sys_t;
 
 static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uint32_t u)
@@ -39,13 +45,15 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
     }
     s->q = q;
     s->rr = r << 32;
+    s->k = 0u;
+    s->n = n;
 }
 
-/* k is the index of the new target; after the last (k == n) the target is past every
- * cumulative weight, so a walk ends without testing k. */
-static inline void pft_sys_next_(pft_sys_t *s, uint32_t k, uint32_t n)
+/* The next target; after the last (k == n) it is past every cumulative weight. */
+static inline void pft_sys_next_(pft_sys_t *s)
 {
-    if (k >= n) {
+    s->k += 1u;
+    if (s->k >= s->n) {
         s->t = UINT64_MAX;
         return;
     }
@@ -57,32 +65,59 @@ static inline void pft_sys_next_(pft_sys_t *s, uint32_t k, uint32_t n)
     }
 }
 
-/* The cumulative weight c lies above the current target. */
-static inline bool pft_sys_below_(const pft_sys_t *s, pft_wacc_t c) { return c > s->t; }
+/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: the target after the last
+ * is past every c. */
+static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
+{
+    const uint32_t k0 = s->k;
+    while (c > s->t) {
+        pft_sys_next_(s);
+    }
+    return s->k - k0;
+}
+
+/* Targets not taken by the walk (float rounding only; 0 here). */
+static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }
 
 #else
 
 typedef struct {
-    float step; /* W / N */
-    float u;    /* u / 2^32 */
-    float t;    /* T_k */
+    float inv_step; /* N / W */
+    float u;        /* u / 2^32 */
+    uint32_t k, n;
 } pft_sys_t;
 
 static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uint32_t u)
 {
-    s->step = total / (float)n;
+    s->inv_step = total > 0.0f ? (float)n / total : 0.0f;
     s->u = pft_from_u32_frac(u);
-    s->t = s->step * s->u;
+    s->k = 0u;
+    s->n = n;
 }
 
-/* k is the index of the new target (exact as a float: k < 2^22); after the last (k == n) the
- * target is past every cumulative weight. */
-static inline void pft_sys_next_(pft_sys_t *s, uint32_t k, uint32_t n)
+/* T_k < c exactly when k < q = c N / W - u: min(n, ceil(q)) targets lie below c. */
+static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
 {
-    s->t = k >= n ? PFT_REAL_MAX : s->step * (float)k + s->step * s->u;
+    const float q = c * s->inv_step - s->u;
+    uint32_t kc = 0u;
+    if (q > 0.0f) {
+        const float lim = (float)s->n;
+        if (q >= lim) {
+            kc = s->n;
+        } else {
+            kc = (uint32_t)q; /* truncation of a positive value: the floor */
+            kc += (float)kc < q ? 1u : 0u;
+        }
+    }
+    kc = kc > s->k ? kc : s->k;
+    {
+        const uint32_t cnt = kc - s->k;
+        s->k = kc;
+        return cnt;
+    }
 }
 
-static inline bool pft_sys_below_(const pft_sys_t *s, pft_wacc_t c) { return c > s->t; }
+static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }
 
 #endif
 

@@ -7,11 +7,12 @@
  * under f(x) = exp(-x^2/2) (tables in pft_rng_tables.c, made by
  * host_tools/scripts/gen_rng_tables.py). One 32-bit word w gives the layer i (bits 0-6), the
  * sign (bit 7) and a 24-bit position m (bits 8-31); when m < k[i] (98.8 % of words) the draw is
- * |x| = m w[i] / 2^24 in Q24, exactly under the density, and the word is all it consumes. The
- * rest (the wedges beside each layer and the tail beyond r = 3.4426) goes to
- * pft_rng_zig_slow_ in pft_rng.c, which draws more words. The magnitude is an integer in Q24;
- * the q16 build rounds it to Q16.16, the float build scales it by 2^-24, so both builds draw
- * the same Gaussians up to that last rounding (docs/fixed_point.md, "RNG and resampling").
+ * |x| = m w[i] / 2^48 (the product exact in 64 bits), under the density, and the word is all
+ * it consumes. The rest (the wedges beside each layer and the tail beyond r = 3.4426) goes to
+ * pft_rng_zig_slow_ in pft_rng.c, which draws more words and forms Q24 magnitudes. The q16
+ * build rounds the exact value to Q16.16 once, the float build to a float once, so both
+ * builds draw the same Gaussians up to that last rounding (docs/fixed_point.md, "RNG and
+ * resampling").
  */
 #ifndef PFT_CORE_RNG_INT_H
 #define PFT_CORE_RNG_INT_H
@@ -22,8 +23,7 @@
 
 #define PFT_ZIG_LAYERS 128u
 
-extern const uint32_t pft_zig_w[PFT_ZIG_LAYERS];
-extern const uint32_t pft_zig_k[PFT_ZIG_LAYERS];
+extern const uint32_t pft_zig_kw[PFT_ZIG_LAYERS][2]; /* k[i] (fast acceptance), w[i] (Q24 edge) */
 extern const uint32_t pft_zig_f[PFT_ZIG_LAYERS + 1u];
 extern const uint32_t pft_zig_r_q24;
 extern const uint32_t pft_zig_inv_r_q32;
@@ -45,7 +45,7 @@ static inline uint32_t pft_rng_next_(pft_rng_t *rng)
 }
 
 /* A Q24 magnitude and a sign as the build's real (q16: rounded to Q16.16; float: exact
- * scaling of a value below 2^28, rounded to 24 bits). */
+ * scaling of a value below 2^28, rounded to 24 bits). The slow path's draws. */
 static inline pft_real_t pft_zig_real_(uint32_t mag_q24, bool neg)
 {
 #ifdef PFT_NUMERIC_Q16
@@ -54,33 +54,50 @@ static inline pft_real_t pft_zig_real_(uint32_t mag_q24, bool neg)
     return (v ^ sg) - sg;
 #else
     const float v = (float)(int32_t)mag_q24 * 5.9604644775390625e-8f;
-    uint32_t b;
-    float r;
-    memcpy(&b, &v, sizeof b);
-    b ^= (uint32_t)neg << 31;
-    memcpy(&r, &b, sizeof r);
-    return r;
+    return neg ? -v : v;
 #endif
 }
 
-/* The draws that word u does not settle at once (pft_rng.c). */
-pft_real_t pft_rng_zig_slow_(pft_rng_t *rng, uint32_t u);
+/* The fast path's draws from the exact product p = m w (Q48, below 2^50) and the sign bit:
+ * q16 rounds p to Q16.16 once, float converts it once and scales by +-2^-48. */
+static inline pft_real_t pft_zig_fast_(uint64_t p, uint32_t sign_bit)
+{
+#ifdef PFT_NUMERIC_Q16
+    const int32_t v = (int32_t)((p + 0x80000000u) >> 32);
+    const int32_t sg = -(int32_t)sign_bit;
+    return (v ^ sg) - sg;
+#else
+    static const float scale[2] = {3.5527136788005009e-15f, -3.5527136788005009e-15f};
+    return (float)(int64_t)p * scale[sign_bit];
+#endif
+}
 
-/* The slow path works on a copy of the state, so that a caller's generator whose address
- * never escapes (a local copy in a particle loop) can live in registers. */
+/* The draws that word u does not settle at once (pft_rng.c): the generator's words go in as
+ * scalars and come back in the result, so that a caller's generator kept in a local never has
+ * its address taken (and is never assembled in memory on the fast path). */
+typedef struct {
+    pft_real_t v;
+    uint32_t s[4];
+} pft_zig_slow_t;
+pft_zig_slow_t pft_rng_zig_slow_(uint32_t s0, uint32_t s1, uint32_t s2, uint32_t s3, uint32_t u);
+
+/* The fast path inline; the rest by value (above). */
 static inline pft_real_t pft_rng_zig_(pft_rng_t *rng)
 {
     const uint32_t u = pft_rng_next_(rng);
     const uint32_t i = u & (PFT_ZIG_LAYERS - 1u);
     const uint32_t m = u >> 8;
-    if (m < pft_zig_k[i]) {
-        return pft_zig_real_((uint32_t)(((uint64_t)m * pft_zig_w[i]) >> 24), (u & 128u) != 0u);
+    const uint32_t *kw = pft_zig_kw[i];
+    if (m < kw[0]) {
+        return pft_zig_fast_((uint64_t)m * kw[1], (u >> 7) & 1u);
     }
     {
-        pft_rng_t t = *rng;
-        const pft_real_t v = pft_rng_zig_slow_(&t, u);
-        *rng = t;
-        return v;
+        const pft_zig_slow_t r = pft_rng_zig_slow_(rng->s[0], rng->s[1], rng->s[2], rng->s[3], u);
+        rng->s[0] = r.s[0];
+        rng->s[1] = r.s[1];
+        rng->s[2] = r.s[2];
+        rng->s[3] = r.s[3];
+        return r.v;
     }
 }
 

@@ -124,30 +124,22 @@ static inline void rbpf_move_(pft_tbd_particles_t *P, uint32_t s, const pft_tbd_
     P->in[s] = pft_kmad1_(P->in[s], ch_int, gi);
 }
 
-/* Steps 1-3 of docs/algorithms.md 2.5 for every particle: the new state byte and log-weight
- * (eq. 20; E = 0 particles have likelihood ratio 1). Returns the largest log-weight. */
-static pft_real_t move_and_weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+/* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
+ * (RBPF or PF) or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. */
+static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_meas_t *m = &f->model;
-    const pft_real_t *img = x->sc->img;
     uint8_t *restrict pe = P->e;
-    pft_tbd_slot_t *restrict pw = P->w;
-    const pft_real_t *restrict pin = P->in;
     const uint32_t p16_d = f->dyn.p16_d;
     const uint32_t p_birth = x->can_birth ? x->p_birth : 0u; /* u < 0 never holds */
-    const uint8_t *mask = x->mask;
     const bool rb = x->rb;
     const uint32_t e_max = x->e_max;
     const uint32_t n = f->n;
     /* the generator in a local whose address never escapes (copies go to the calls) */
     pft_rng_t rng = f->rng;
-    pft_real_t lmax = PFT_REAL_MIN;
     for (uint32_t s = 0; s < n; ++s) {
         const uint32_t u = pft_tbd_exist_draw_(&rng); /* one draw per particle */
         uint32_t e = pe[s];
-        bool born = false;
-        pft_real_t lw = PFT_C(0.0);
         if (e != 0u) {
             if (u < p16_d) {
                 e = 0u;
@@ -166,27 +158,48 @@ static pft_real_t move_and_weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
             pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
             rng = t;
             e = 1u;
-            born = true;
         }
+        pe[s] = (uint8_t)e;
+    }
+    f->rng = rng;
+}
+
+/* Step 3 for every particle: a particle whose window centre leaves the image, or enters the
+ * exclusion mask, gets E = 0 [A]; the others get the log-weight of eq. 20 (E = 0: likelihood
+ * ratio 1), births (state byte 1) plus the birth correction. Returns the largest log-weight. */
+static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_tbd_meas_t *m = &f->model;
+    const pft_real_t *img = x->sc->img;
+    const pft_tbd_tab_t *tab = x->tab;
+    const uint8_t *mask = x->mask;
+    uint8_t *restrict pe = P->e;
+    pft_tbd_slot_t *restrict pw = P->w;
+    const pft_real_t *restrict px = P->x;
+    const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pin = P->in;
+    const pft_real_t birth_lw = f->birth_lw;
+    const uint32_t n = f->n;
+    pft_real_t lmax = PFT_REAL_MIN;
+    for (uint32_t s = 0; s < n; ++s) {
+        pft_real_t lw = PFT_C(0.0);
+        const uint32_t e = pe[s];
         if (e != 0u) {
-            /* [A] leaving the image ends the target; a window centre inside a confirmed
-             * target's region forces E = 0 (the constraint) */
             pft_tbd_cell_t c;
-            if (!pft_tbd_cell_(m, P->x[s], P->y[s], &c) ||
+            if (!pft_tbd_cell_(m, px[s], py[s], &c) ||
                 (mask != NULL && mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u)) {
-                e = 0u;
+                pe[s] = 0u;
             } else {
-                lw = pft_tbd_llr_(m, x->tab, img, &c, pin[s]);
-                if (born) {
-                    lw = pft_add(lw, f->birth_lw);
+                lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
+                if (e == 1u) {
+                    lw = pft_add(lw, birth_lw);
                 }
             }
         }
-        pe[s] = (uint8_t)e;
         pw[s].lw = lw;
         lmax = pft_max(lmax, lw);
     }
-    f->rng = rng;
     return lmax;
 }
 
@@ -259,7 +272,6 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     est_sums_t a;
     pft_sys_t sys;
     pft_wacc_t cum = 0;
-    uint32_t k = 0;
     memset(&a, 0, sizeof a);
     for (int c = 0; c < 5; ++c) {
         a.s[c] = PFT_ACC_ZERO_;
@@ -280,14 +292,8 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     for (uint32_t s = 0; s < n; ++s) {
         const pft_weight_t e = w[s].w;
         const pft_weight_t wn = pft_kwnorm_(e, r);
-        uint32_t cnt = 0;
         cum += e;
-        while (pft_sys_below_(&sys, cum)) { /* ends: the target after the last is past it */
-            ++cnt;
-            ++k;
-            pft_sys_next_(&sys, k, n);
-        }
-        w[s].n = cnt;
+        w[s].n = pft_sys_take_(&sys, cum);
         a.w += wn;
         a.w2 += (pft_wacc_t)wn * wn;
         if (pe[s] != 0u) {
@@ -306,14 +312,14 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
         }
     }
-    if (k < n) {
-        /* float only: targets that round up to the total go to the last positive weight
-         * (q16 walks are exact and end with k == n) */
+    if (pft_sys_left_(&sys) > 0u) {
+        /* float only: targets that round up to the total go to the last particle drawn
+         * (q16 walks are exact and take every target) */
         uint32_t last = n - 1u;
         while (last > 0u && !(w[last].n > 0u)) {
             --last;
         }
-        w[last].n += n - k;
+        w[last].n += pft_sys_left_(&sys);
     }
     est_finish_(&f->est, &a);
 }
@@ -402,7 +408,8 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     x.rb = f->kind == PFT_TBD_RBPF;
     f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
     /* 1-3. existence, move or birth, log-weights */
-    pft_real_t lmax = move_and_weigh_(f, &x);
+    move_(f, &x);
+    pft_real_t lmax = weigh_(f, &x);
     pft_wacc_t sum = weights_(f, lmax);
     f->est.log_mean_lr = pft_sub(pft_add(lmax, pft_wacc_log(sum)), f->log_n);
     /* 4. estimates from the normalised weights, before resampling; the walk of step 5 */
@@ -485,10 +492,9 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src
             continue;
         }
         cum += (pft_wacc_t)1;
-        while (pft_sys_below_(&sys, cum)) {
+        for (uint32_t c = pft_sys_take_(&sys, cum); c > 0u && k < dst->n; --c) {
             copy_particle_(&dst->cur, k, &src->cur, s);
             ++k;
-            pft_sys_next_(&sys, k, dst->n);
         }
     }
     for (; k > 0u && k < dst->n; ++k) {
