@@ -5,10 +5,11 @@ also when the function was inlined, so summing lines by the function that enclos
 the source gives a per-kernel breakdown that function-level profiles cannot (the hot loop is
 one function after inlining).
 
-    tbd_components.py CALLGRIND_OUT DIVISOR [--top N]
+    tbd_components.py CALLGRIND_OUT DIVISOR [--top N] [--groups]
 
 prints, for every source function with cost, instructions / DIVISOR (e.g. particle updates)
-and the share of the total. Used by host_tools/tbd/tbd_bench.sh.
+and the share of the total; --groups sums them into the steps of a TBD update (the names of
+docs/results/tbd.md). Used by host_tools/scripts/tbd_callgrind.sh (COMPONENTS=1).
 """
 import re
 import sys
@@ -103,6 +104,28 @@ def function_spans(path):
     return spans
 
 
+GROUPS = [
+    ("likelihood (window centre, taps, 3x3 sums)",
+     {"pft_kcell_", "pft_tbd_cell_", "pft_ktaps_", "pft_tbd_llr3_", "pft_tbd_llr_", "pft_tbd_clip_",
+      "pft_kspot3_", "pft_krow3_", "pft_kspot_end_", "pft_kmulq_", "weigh_", "pft_tbd_llr_exact_",
+      "pft_kspot_"}),
+    ("random draws (existence, Gaussians)",
+     {"pft_rng_next_", "pft_rng_rotl_", "pft_rng_zig_", "pft_zig_fast_", "pft_zig_real_",
+      "pft_rng_zig_slow_", "zig_slow_", "pft_zig_exp2_q31_", "pft_zig_f_q31_", "pft_zig_neglog_q24_",
+      "pft_zig_tail_q24_", "pft_tbd_exist_draw_", "pft_rng_u32"}),
+    ("move: Kalman / CV step, intensity", {"rbpf_move_", "pft_kmad1_", "pft_kmad2_", "pft_ksat_",
+                                           "pft_tbd_pf_move_"}),
+    ("existence logic, births", {"move_", "pft_tbd_birth_", "pft_rng_below", "pft_rng_uniform",
+                                 "pft_rng_uniform_range", "pft_from_u32_frac"}),
+    ("weights exp(lw - max)", {"weights_", "pft_kwexp_"}),
+    ("estimates, ESS, resampling walk", {"estimate_and_count_", "pft_acc_wx_", "pft_kwnorm_",
+                                         "pft_kmulr_", "pft_kspread_", "pft_sys_take_",
+                                         "pft_sys_next_", "pft_sys_init_", "pft_kess_",
+                                         "est_finish_", "pft_krecip_"}),
+    ("resampling copies (in place)", {"replicate_", "copy_particle_"}),
+]
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -125,6 +148,16 @@ def main():
         base = fname.split("/")[-1]
         per_fn[(base, name or "?")] += c
     rows = sorted(per_fn.items(), key=lambda kv: -kv[1])
+    if "--groups" in sys.argv:
+        acc = defaultdict(int)
+        for (base, name), c in per_fn.items():
+            g = next((label for label, names in GROUPS if name in names), "other (frame, scene, helpers)")
+            acc[g] += c
+        order = [label for label, _ in GROUPS] + ["other (frame, scene, helpers)"]
+        for label in order:
+            print("%-46s %8.1f" % (label, acc[label] / div))
+        print("%-46s %8.1f" % ("total", total / div))
+        return
     print("%-22s %-30s %10s %6s" % ("file", "function (inlined code included)", "Ir/unit", "share"))
     for (base, name), c in rows[:top]:
         print("%-22s %-30s %10.1f %5.1f%%" % (base, name, c / div, 100.0 * c / total))
