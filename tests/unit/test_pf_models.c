@@ -347,16 +347,20 @@ static void test_tbd_model_workspace(void)
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pf_tbd_model_init(&m, NULL, g_mw, sizeof(g_mw), &iface));
 }
 
-/* SIR (systematic, every step) over the TBD model is the tbd module's PF-TBD: same particles,
- * same weights, same estimates. q16: bit for bit. float: the particles and weights are the
- * same, but the weighted sums of 1000 float terms are compiled in a different order (they
- * differ by up to ~3e-7 relative), so within 2e-6 relative + 1e-6 absolute. */
-static int same(pft_real_t a, pft_real_t b)
+/* SIR (systematic, every step) over the TBD model is the tbd module's PF-TBD. On the first
+ * frame they make the same draws through the same tbd pieces (existence, births, the
+ * likelihood kernel), so their estimates agree up to the weight arithmetic: the engine
+ * normalises with pft_lognormalize, the tbd filter with its own pass (table exponential, one
+ * reciprocal): q16 within 2 LSB, float within 2e-5 relative + 1e-6. After that each resamples
+ * its own way (the tbd filter in place, so its particles come in another order) and they are
+ * two runs of one filter (13.5 dB here): from frame 7 on both hold P > 0.9, lie within
+ * 0.45 px of each other, and their RMSE over frames 7-12 is below 0.4 px. */
+static int close1(pft_real_t a, pft_real_t b)
 {
 #ifdef PFT_NUMERIC_Q16
-    return a == b;
+    return (a > b ? a - b : b - a) <= 2;
 #else
-    return fabs((double)a - (double)b) <= 2e-6 * fabs((double)b) + 1e-6;
+    return fabs((double)a - (double)b) <= 2e-5 * fabs((double)b) + 1e-6;
 #endif
 }
 
@@ -369,6 +373,7 @@ static void test_tbd_sir_is_the_pf_tbd(void)
     static pft_pf_t pf;
     static pft_tbd_filter_t tf;
     tbd_cfg(&c, 2.0);
+    c.eta = PFT_C(0.5); /* births on the first frame */
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_tbd_model_init(&m, &c, g_mw, sizeof(g_mw), &iface));
     pft_pf_config_default(&pc);
     pc.kind = PFT_PF_SIR;
@@ -380,27 +385,40 @@ static void test_tbd_sir_is_the_pf_tbd(void)
     c.kind = PFT_TBD_PF;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&tf, &c, g_tw, sizeof(g_tw)));
     g_lcg = 99u;
-    int seen = 0;
+    int located = 0;
+    double se1 = 0.0, se2 = 0.0;
     for (int k = 1; k <= 12; ++k) {
         pft_frame_t f;
-        make_frame(k, 3, 20.0, 2.0, &f);
+        make_frame(k, 1, 30.0, 2.0, &f);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_update(&pf, &f));
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&tf, &f));
         pft_real_t est[PFT_PF_TBD_DIM];
         pft_tbd_estimate_t te;
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pf_estimate(&pf, est));
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_estimate(&tf, &te));
-        TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_E], te.p_exist));
-        if (te.valid) {
-            TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_X], te.x));
-            TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_Y], te.y));
-            TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_VX], te.vx));
-            TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_VY], te.vy));
-            TEST_ASSERT_TRUE(same(est[PFT_PF_TBD_I], te.intensity));
-            ++seen;
+        TEST_ASSERT_TRUE(te.valid);
+        if (k == 1) {
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_E], te.p_exist));
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_X], te.x));
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_Y], te.y));
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_VX], te.vx));
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_VY], te.vy));
+            TEST_ASSERT_TRUE(close1(est[PFT_PF_TBD_I], te.intensity));
+        }
+        if (k >= 7) {
+            double tx = 5.0 + 0.45 * (k - 1), ty = 6.0 + 0.25 * (k - 1);
+            double e1 = hypot(D(est[PFT_PF_TBD_X]) - tx, D(est[PFT_PF_TBD_Y]) - ty);
+            double e2 = hypot(D(te.x) - tx, D(te.y) - ty);
+            double d12 = hypot(D(est[PFT_PF_TBD_X]) - D(te.x), D(est[PFT_PF_TBD_Y]) - D(te.y));
+            TEST_ASSERT_TRUE(D(est[PFT_PF_TBD_E]) > 0.9 && D(te.p_exist) > 0.9);
+            TEST_ASSERT_TRUE(d12 < 0.45);
+            se1 += e1 * e1;
+            se2 += e2 * e2;
+            ++located;
         }
     }
-    TEST_ASSERT_TRUE(seen > 5);
+    TEST_ASSERT_EQUAL_INT(6, located);
+    TEST_ASSERT_TRUE(se1 < 0.4 * 0.4 * located && se2 < 0.4 * 0.4 * located);
 }
 
 static void test_tbd_refused_frame_changes_nothing(void)

@@ -371,6 +371,67 @@ static void test_gauss_moments_and_shape(void)
     TEST_ASSERT_TRUE(maxabs <= gmax + 1e-3);
 }
 
+/* The ziggurat (pft_rng_gauss_zig): 200 000 draws, moments, a chi-square over 28 bins of 0.25
+ * with the tails beyond +-3.25, and the frequencies beyond 3, 3.5 and 4 (the tail beyond the
+ * base layer's r = 3.44 comes from its own sampler) within 4 binomial SE. Bounds as above
+ * (chi-square df 27: 0.1 % and 99.9 % quantiles). The q16 values are exactly the float ones
+ * rounded (test_golden), so both builds see the same statistics up to that rounding. */
+#define N_ZIG 200000
+static void test_gauss_zig_moments_shape_and_tails(void)
+{
+    long bins[28] = {0};
+    long beyond[3] = {0, 0, 0};
+    static const double thr[3] = {3.0, 3.5, 4.0};
+    pft_rng_t rng;
+    double sum = 0.0, sum2 = 0.0, sum4 = 0.0, maxabs = 0.0;
+    pft_rng_seed(&rng, 4343);
+    for (int i = 0; i < N_ZIG; ++i) {
+        const double g = pft_test_to_double(pft_rng_gauss_zig(&rng));
+        const double a = fabs(g);
+        int b = (int)floor((g + 3.25) / 0.25) + 1; /* 1..26 inside, 0 and 27 the tails */
+        b = b < 0 ? 0 : (b > 27 ? 27 : b);
+        bins[b]++;
+        sum += g;
+        sum2 += g * g;
+        sum4 += g * g * g * g;
+        maxabs = a > maxabs ? a : maxabs;
+        for (int t = 0; t < 3; ++t) {
+            beyond[t] += a > thr[t];
+        }
+    }
+    const double mean = sum / N_ZIG;
+    const double var = sum2 / N_ZIG - mean * mean;
+    const double kurt = sum4 / N_ZIG / (var * var);
+    double chi2 = 0.0;
+    for (int b = 0; b < 28; ++b) {
+        const double lo = b == 0 ? 0.0 : phi(-3.25 + 0.25 * (b - 1));
+        const double hi = b == 27 ? 1.0 : phi(-3.25 + 0.25 * b);
+        const double e = N_ZIG * (hi - lo);
+        chi2 += (bins[b] - e) * (bins[b] - e) / e;
+    }
+    note_begin("gauss_zig");
+    note("mean_SE", mean / sqrt(1.0 / N_ZIG));
+    note("var_dev_SE", (var - 1.0) / sqrt(2.0 / N_ZIG));
+    note("kurt_dev_SE", (kurt - 3.0) / sqrt(24.0 / N_ZIG));
+    note("chi2_27", chi2);
+    note("max_abs", maxabs);
+    for (int t = 0; t < 3; ++t) {
+        const double p = 2.0 * phi(-thr[t]);
+        note(t == 0 ? "beyond3_SE" : (t == 1 ? "beyond3.5_SE" : "beyond4_SE"),
+             (beyond[t] - N_ZIG * p) / sqrt(N_ZIG * p * (1.0 - p)));
+    }
+    note_end();
+    TEST_ASSERT_DOUBLE_WITHIN(4.0 * sqrt(1.0 / N_ZIG), 0.0, mean);
+    TEST_ASSERT_DOUBLE_WITHIN(4.0 * sqrt(2.0 / N_ZIG), 1.0, var);
+    TEST_ASSERT_DOUBLE_WITHIN(4.0 * sqrt(24.0 / N_ZIG), 3.0, kurt);
+    TEST_ASSERT_TRUE(chi2 > 9.80 && chi2 < 55.48);
+    for (int t = 0; t < 3; ++t) {
+        const double p = 2.0 * phi(-thr[t]);
+        TEST_ASSERT_DOUBLE_WITHIN(4.0 * sqrt(N_ZIG * p * (1.0 - p)), N_ZIG * p, (double)beyond[t]);
+    }
+    TEST_ASSERT_TRUE(maxabs <= 10.2); /* r + 22.9 / r */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -384,5 +445,6 @@ int main(void)
     RUN_TEST(test_below10_chi2);
     RUN_TEST(test_below_no_bias_large_n);
     RUN_TEST(test_gauss_moments_and_shape);
+    RUN_TEST(test_gauss_zig_moments_shape_and_tails);
     return UNITY_END();
 }

@@ -148,6 +148,8 @@ static void test_config_check_rejects(void)
     expect_refused(&c, "i_max");
     base_cfg(&c); c.vel_var[1] = R(-0.1);
     expect_refused(&c, "vel_var[1]");
+    base_cfg(&c); c.i_min = R(-1.0);
+    expect_refused(&c, "i_min");
     base_cfg(&c); c.dis_prev = 0;
     expect_refused(&c, "dis_prev");
     base_cfg(&c); c.dis_ratio = R(0.0);
@@ -169,6 +171,74 @@ static void test_config_check_rejects(void)
     /* the first refused field in the struct's order is named */
     base_cfg(&c); c.height = 0; c.n_track = 0;
     expect_refused(&c, "height");
+}
+
+/* Issue #12: the birth prior is bounded so that every state stays inside the number range
+ * (q16 accepted any vel_mean before: thousands of px/frame saturated the positions and, in
+ * the hand-over, overflowed the int64 estimate sums). Each bound names its field; the
+ * largest accepted values run through the manager (the sanitizer presets would flag any
+ * overflow) and give estimates inside the image. */
+static uint8_t g_mws[PFT_TBD_WORKSPACE_BYTES(300u, 100u, 2u, PFT_TBD_RBPF, W, H)];
+
+static void test_config_check_bounds_birth_prior(void)
+{
+    pft_tbd_config_t c;
+    base_cfg(&c); c.vel_mean[0] = R(5000.0);
+    expect_refused(&c, "vel_mean[0]");
+    base_cfg(&c); c.vel_mean[1] = R(-8.01); /* height 8, dy 1, T 1: span 8 */
+    expect_refused(&c, "vel_mean[1]");
+    base_cfg(&c); c.vel_mean[1] = R(-8.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    base_cfg(&c); c.vel_mean[0] = R(5.0); c.T = R(2.5); /* 12.5 > span 10 */
+    expect_refused(&c, "vel_mean[0]");
+    base_cfg(&c); c.vel_var[0] = R(100.5); /* sqrt > 10 */
+    expect_refused(&c, "vel_var[0]");
+    base_cfg(&c); c.vel_var[1] = R(64.5);
+    expect_refused(&c, "vel_var[1]");
+    base_cfg(&c); c.i_max = R(30000.0); /* peak 30000/(2 pi 0.49) = 9745, but /sigma 3.2 fine */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    base_cfg(&c); c.i_max = R(30000.0); c.psf_sigma = R(0.3); /* peak 53052 */
+    expect_refused(&c, "i_max");
+    base_cfg(&c); c.i_max = R(30000.0); c.noise_sigma = R(0.25); /* peak / sigma 38981 */
+    expect_refused(&c, "i_max");
+
+    /* the extremes that are accepted, through the manager */
+    base_cfg(&c);
+    c.vel_mean[0] = R(10.0);
+    c.vel_mean[1] = R(-8.0);
+    c.vel_var[0] = R(100.0);
+    c.vel_var[1] = R(64.0);
+    c.i_min = R(0.0);
+    c.i_max = R(20000.0);
+    c.eta = R(1.0);
+    c.pb = R(0.5);
+    c.theta1 = R(0.3);
+    c.n_search = 300u;
+    c.n_track = 100u;
+    c.max_targets = 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, NULL));
+    static pft_tbd_t t;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_mws, sizeof g_mws));
+    static float img[H][W];
+    int confirmed = 0;
+    for (int k = 1; k <= 12; ++k) {
+        for (int r = 0; r < H; ++r) {
+            for (int q = 0; q < W; ++q) {
+                img[r][q] = (r == 3 && q == (k % W)) ? 3000.0f : 0.0f;
+            }
+        }
+        pft_frame_t fr = {img, W, H, 4 * W, PFT_PIX_F32, 0, 0, (uint32_t)k};
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &fr));
+        pft_tbd_track_t tr[2];
+        size_t n = pft_tbd_tracks(&t, tr, 2);
+        for (size_t i = 0; i < n && i < 2u; ++i) {
+            TEST_ASSERT_TRUE(D(tr[i].x) > -0.5 && D(tr[i].x) < W - 0.5);
+            TEST_ASSERT_TRUE(D(tr[i].y) > -0.5 && D(tr[i].y) < H - 0.5);
+            TEST_ASSERT_TRUE(fabs(D(tr[i].vx)) < 1000.0 && fabs(D(tr[i].vy)) < 1000.0);
+        }
+        confirmed += pft_tbd_events(&t, NULL, 0) > 0u;
+    }
+    TEST_ASSERT_TRUE(confirmed > 0);
 }
 
 /* pft_tbd_meas_add_psf with a negative intensity subtracts h exactly on its window (and
@@ -310,6 +380,65 @@ static void test_llr_matches_reference(void)
     TEST_ASSERT_TRUE(D(pft_tbd_meas_llr(&m, img, R(1.0), R(6.0), R(20.0))) < -1.0);
 }
 
+/* The filters' own kernel (pft_tbd_filter_llr: the whitened frame, tabulated taps for p = 1,
+ * exact taps otherwise) against the double reference, windows clipped at every border, pixel
+ * pitches 1 and 0.5, Sigma 0.7 and 1.3. The bound is the tap table's interpolation error
+ * (64 steps per pixel: at most d^2 / (8 64^2 S^2) per tap, 6.2e-5 for S = 0.7, d = 1) carried
+ * through the window sums for these pixel values (|z| < 9, sigma 2.586, I < 32): measured 1.2e-3
+ * (float) and 2.1e-3 (q16), asserted 3e-3, plus
+ * the q16 rounding of the reference bound above. */
+static uint8_t g_kws[PFT_TBD_FILTER_WORKSPACE_BYTES(16, PFT_TBD_RBPF, W, H)];
+
+static void test_filter_kernel_matches_reference(void)
+{
+    static double dimg[W * H];
+    static float fimg[W * H];
+    pft_rng_t rng;
+    pft_rng_seed(&rng, 98u);
+    for (int k = 0; k < W * H; ++k) {
+        double u = (double)pft_rng_u32(&rng) / 4294967296.0;
+        fimg[k] = (float)(12.0 * u - 3.0); /* pixels in [-3, 9) */
+        dimg[k] = D(R((double)fimg[k]));
+    }
+    static const double S[] = {0.7, 1.3, 0.7};
+    static const double dxs[] = {1.0, 1.0, 0.5};
+    double worst = 0.0;
+    for (int p = 0; p <= 2; ++p) {
+        for (int v = 0; v < 3; ++v) {
+            pft_tbd_config_t c;
+            base_cfg(&c);
+            c.window = (uint8_t)p;
+            c.noise_sigma = R(2.586);
+            c.psf_sigma = R(S[v]);
+            c.dx = R(dxs[v]);
+            c.n_search = 16u;
+            pft_tbd_filter_t f;
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_kws, sizeof g_kws));
+            TEST_ASSERT_EQUAL_INT(0, pft_tbd_filter_llr(&f, R(3.0), R(3.0), R(20.0)) != 0);
+            pft_frame_t fr = {fimg, W, H, 4 * W, PFT_PIX_F32, 0, 0, 0};
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &fr));
+            for (int k = 0; k < 90; ++k) {
+                double x = (-0.45 + 0.1123 * k) * dxs[v], y = -0.45 + 0.0911 * k,
+                       I = 8.0 + 0.27 * k;
+                double xr = D(R(x)), yr = D(R(y));
+                double got = D(pft_tbd_filter_llr(&f, R(x), R(y), R(I)));
+                if (floor(xr / D(c.dx) + 0.5) >= W || floor(yr + 0.5) >= H) {
+                    TEST_ASSERT_EQUAL_INT(0, got != 0.0); /* centre outside: 0 */
+                    continue;
+                }
+                double ref = ref_llr(dimg, W, H, p, D(c.dx), 1.0, S[v], D(R(2.586)), xr, yr,
+                                     D(R(I)));
+                double err = fabs(got - ref);
+                worst = err > worst ? err : worst;
+                TEST_ASSERT_DOUBLE_WITHIN(3e-3 + tol_llr(ref), ref, got);
+            }
+        }
+    }
+    UnityPrint("measured filter kernel: max |llr - reference| = ");
+    UnityPrintFloat(worst);
+    UNITY_PRINT_EOL();
+}
+
 static void test_window_region(void)
 {
     pft_tbd_config_t c;
@@ -334,8 +463,26 @@ static void test_window_region(void)
     TEST_ASSERT_TRUE(r.col_lo > r.col_hi);
 }
 
-/* Frame conversion, observed through a standalone filter's converted image. */
+/* Frame conversion, observed through a standalone filter's converted image: whitened
+ * (z / sigma, sigma = 3.2 here, whose reciprocal 0.3125 is exact in both builds), stored with a
+ * border of one zero pixel (internal pixel (i, j) at j (W + 2) + i). */
 static uint8_t g_ws[PFT_TBD_FILTER_WORKSPACE_BYTES(16, PFT_TBD_RBPF, W, H)];
+
+static double img_at(const pft_tbd_filter_t *f, int r, int k)
+{
+    return D(f->img[(r + 1) * (W + 2) + k + 1]);
+}
+
+static void check_border(const pft_tbd_filter_t *f)
+{
+    for (int r = 0; r < H + 2; ++r) {
+        for (int k = 0; k < W + 2; ++k) {
+            if (r == 0 || k == 0 || r == H + 1 || k == W + 1) {
+                TEST_ASSERT_EQUAL_INT(0, (int)(f->img[r * (W + 2) + k] != PFT_C(0.0)));
+            }
+        }
+    }
+}
 
 static void test_frame_conversion(void)
 {
@@ -344,6 +491,8 @@ static void test_frame_conversion(void)
     c.pixel_gain = R(0.5);
     c.pixel_offset = R(-3.0);
     c.n_search = 16u;
+    const double sn = 3.2;
+    TEST_ASSERT_EQUAL_INT(PFT_C(3.2), c.noise_sigma);
     pft_tbd_filter_t f;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
 
@@ -359,27 +508,36 @@ static void test_frame_conversion(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &fr));
     for (int r = 0; r < H; ++r) {
         for (int k = 0; k < W; ++k) {
-            double want = 0.5 * u8[r][k] - 3.0;
-            TEST_ASSERT_DOUBLE_WITHIN(1e-6, want, D(f.img[r * W + k]));
+            double want = (0.5 * u8[r][k] - 3.0) / sn;
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6 + pft_test_lsb(want), want, img_at(&f, r, k));
         }
     }
+    check_border(&f);
     pft_frame_t f16 = {u16, W, H, 2 * W, PFT_PIX_U16, 14, 0, 0};
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));
     for (int r = 0; r < H; ++r) {
         for (int k = 0; k < W; ++k) {
-            double want = 0.5 * (double)(u16[r][k] & 0x3FFFu) - 3.0;
-            TEST_ASSERT_DOUBLE_WITHIN(1e-6, want, D(f.img[r * W + k]));
+            double want = (0.5 * (double)(u16[r][k] & 0x3FFFu) - 3.0) / sn;
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6 * fabs(want) + pft_test_lsb(want), want,
+                                      img_at(&f, r, k));
         }
     }
-    /* gain large enough to exceed the q16 range: clamped to 32767 in both builds (q16 saturates
-     * gain*raw before the offset is added, so the offset is 0 here) */
+    /* gain large enough to exceed the q16 range: z clamped to 32767 in both builds (q16
+     * saturates gain*raw before the offset is added, so the offset is 0 here), then whitened */
     c.pixel_gain = R(4.0);
     c.pixel_offset = R(0.0);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
     u16[0][0] = 0xFFFFu;
     f16.bit_depth = 0;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));
-    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 32767.0, D(f.img[0]));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 32767.0 / sn, img_at(&f, 0, 0));
+    /* a sigma below 1 would take whitened pixels out of range: clamped to 32767 */
+    c.noise_sigma = R(0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &f16));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-3, 32767.0, img_at(&f, 0, 0));
+    c.noise_sigma = R(3.2);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
 
     static float f32[H][W];
     for (int r = 0; r < H; ++r) {
@@ -391,9 +549,11 @@ static void test_frame_conversion(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &ff));
     for (int r = 0; r < H; ++r) {
         for (int k = 0; k < W; ++k) {
-            TEST_ASSERT_DOUBLE_WITHIN(1e-6, (double)f32[r][k], D(f.img[r * W + k]));
+            double want = (double)f32[r][k] / sn;
+            TEST_ASSERT_DOUBLE_WITHIN(1e-6 + pft_test_lsb(want), want, img_at(&f, r, k));
         }
     }
+    check_border(&f);
 }
 
 int main(void)
@@ -401,9 +561,11 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_defaults_are_the_papers);
     RUN_TEST(test_config_check_rejects);
+    RUN_TEST(test_config_check_bounds_birth_prior);
     RUN_TEST(test_psf_h_matches_reference);
     RUN_TEST(test_llr_matches_reference);
     RUN_TEST(test_add_psf_and_joint_llr);
+    RUN_TEST(test_filter_kernel_matches_reference);
     RUN_TEST(test_window_region);
     RUN_TEST(test_frame_conversion);
     return UNITY_END();

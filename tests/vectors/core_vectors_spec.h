@@ -13,6 +13,10 @@
 #define PFT_GV_N_W 40u
 #define PFT_GV_N_IDX 50u
 #define PFT_GV_SEED 0x5EEDC0DEull
+/* ziggurat: the first draws raw, and over a long run (its tails and wedges included) an FNV-1a
+ * hash of the raw values and the next 32-bit word (equal in both builds: same decisions) */
+#define PFT_GV_N_ZIG 96u
+#define PFT_GV_N_ZIG_RUN 200000u
 
 typedef struct {
     uint32_t rng_u32[PFT_GV_N_RNG];
@@ -27,6 +31,8 @@ typedef struct {
     int32_t lognorm_ret, ess;
     uint32_t idx[4][PFT_GV_N_IDX];
     int32_t kf4[20];
+    int32_t rng_zig[PFT_GV_N_ZIG];
+    uint32_t zig_run[2]; /* hash of the raw values, the next word */
 } pft_gv_results_t;
 
 /* Grid inputs: raw Q16.16 patterns spread over each function's domain (integer arithmetic). */
@@ -124,5 +130,15 @@ static inline void pft_gv_compute(pft_gv_results_t *r)
     (void)pft_kf4_update2(x, P, H, z, R);
     for (uint32_t i = 0; i < 4u; ++i) r->kf4[i] = PFT_GV_RAW(x[i]);
     for (uint32_t i = 0; i < 16u; ++i) r->kf4[4u + i] = PFT_GV_RAW(P[i]);
+
+    /* a generator of its own, so the streams above are those of the earlier vectors */
+    pft_rng_seed(&rng, PFT_GV_SEED + 100u);
+    for (uint32_t i = 0; i < PFT_GV_N_ZIG; ++i) r->rng_zig[i] = PFT_GV_RAW(pft_rng_gauss_zig(&rng));
+    uint32_t h = 2166136261u;
+    for (uint32_t i = 0; i < PFT_GV_N_ZIG_RUN; ++i) {
+        h = (h ^ (uint32_t)PFT_GV_RAW(pft_rng_gauss_zig(&rng))) * 16777619u;
+    }
+    r->zig_run[0] = h;
+    r->zig_run[1] = pft_rng_u32(&rng);
 }
 #endif

@@ -50,6 +50,8 @@ int main(void)
     pft_gv_emit_u32("gv_idx_residual", r.idx[2], PFT_GV_N_IDX);
     pft_gv_emit_u32("gv_idx_multinomial", r.idx[3], PFT_GV_N_IDX);
     pft_gv_emit_i32("gv_kf4", r.kf4, 20);
+    pft_gv_emit_i32("gv_rng_zig", r.rng_zig, PFT_GV_N_ZIG);
+    pft_gv_emit_u32("gv_zig_run", r.zig_run, 2);
     printf("#endif\n");
     return 0;
 #endif

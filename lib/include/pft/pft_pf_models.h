@@ -129,24 +129,27 @@ enum {
  * position, intensity ~ U[i_min, i_max], velocity ~ N(vel_mean, vel_var); survivors move with
  * the full CV process noise chol(V) and the intensity random walk; a target whose window
  * centre leaves the image gets E = 0 (it left the surveillance region). The log-likelihood is
- * pft_tbd_meas_llr (the windowed pixel log likelihood ratio of pft_tbd.h) for E != 0 and 0
- * for E = 0 (plus log(|B_k| / A_allow) for births when cfg.birth_correction). The APF's
+ * the windowed pixel log likelihood ratio of pft_tbd.h, evaluated by the tbd filters' kernel
+ * (the tabulated 3 x 3 window for p = 1, on the whitened frame), for E != 0 and 0 for E = 0
+ * (plus log(|B_k| / A_allow) for births when cfg.birth_correction). The APF's
  * predicted point moves the kinematic part by Phi (it is kept in the tbd module's internal
  * frame and scored by the model's loglik_first). The estimate is
  * [mean of x, vx, y, vy, I over the E != 0 particles, P(E != 0)] (the kinematic part keeps
  * its last value while no particle has E != 0).
  *
  * With the SIR engine (systematic resampling every step) this is the bootstrap PF-TBD of the
- * tbd module with the same random-draw order per particle; with the APF engine it is the
- * APF-TBD. Measurement: const pft_frame_t * (formats and conversion as pft_tbd.h); a frame
+ * tbd module: the same draws per particle from the same state (the engine normalises and
+ * resamples its own way, so the two runs agree on the first frame and in distribution after);
+ * with the APF engine it is the APF-TBD. Measurement: const pft_frame_t * (formats and conversion as pft_tbd.h); a frame
  * of the wrong size or format is refused by begin (the engine then changes nothing).
  * Fields of cfg that belong to the tbd manager (theta1, disappearance, sizes, kind) are
  * ignored.
  */
 /** Workspace bytes of the TBD model for a w x h image (constant expression). */
 #define PFT_PF_TBD_WORKSPACE_BYTES(w, h)                                                          \
-    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)) + \
-     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                 \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)) + PFT_WS_ROUND(sizeof(pft_tbd_tab_t)))
 
 /** Workspace bytes pft_pf_tbd_model_init needs for cfg (0 for NULL or a refused cfg). */
 size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg);

@@ -116,10 +116,10 @@ typedef struct {
     pft_real_t eta;          /**< initial existence probability P(E_1 = 1) (default 0.05) */
     /* births */
     pft_real_t gamma;        /**< birth candidate threshold on z (default 2) */
-    pft_real_t i_min;        /**< birth intensity ~ U[i_min, i_max] (default 10) */
-    pft_real_t i_max;        /**< (default 30) */
-    pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A] */
-    pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A] */
+    pft_real_t i_min;        /**< birth intensity ~ U[i_min, i_max] (default 10); i_min >= 0 */
+    pft_real_t i_max;        /**< (default 30); i_min <= i_max, and the PSF peak i_max*dx*dy/(2 pi S^2) and its ratio to noise_sigma below 32767 */
+    pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A]; |vel_mean| * T at most the image span (width*dx, height*dy) */
+    pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A]; >= 0, sqrt(vel_var) * T at most the image span */
     bool birth_correction;   /**< add log(|B_k|/A_allow) to born particles' log-weights [A] (default false: the paper's eq. 20) */
     /* decisions */
     pft_real_t theta1;       /**< appearance threshold on the existence probability (default 0.6) */
@@ -236,22 +236,22 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
 /* --------------------------------- standalone filter --------------------------------------- */
 
 /** @cond internal */
-#define PFT_TBD_NSTATE_(kind) ((kind) == PFT_TBD_RBPF ? 7u : 5u)
 #define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
-    (2u * PFT_TBD_NSTATE_(kind) * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) +              \
-     2u * PFT_WS_ROUND((size_t)(n)) + PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) +          \
-     PFT_WS_ROUND((size_t)(n) * sizeof(pft_weight_t)) + PFT_WS_ROUND((size_t)(n) * sizeof(uint32_t)))
+    (5u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) + PFT_WS_ROUND((size_t)(n)) +         \
+     PFT_WS_ROUND((size_t)(n) * sizeof(pft_tbd_slot_t)) + 0u * (size_t)(kind))
 #define PFT_TBD_IMAGE_BYTES_(w, h)                                                              \
-    (PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)) +                              \
+    (PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                \
      PFT_WS_ROUND((size_t)(w) * (size_t)(h)) +                                                   \
      PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
+#define PFT_TBD_TAB_BYTES_ PFT_WS_ROUND(sizeof(pft_tbd_tab_t))
 /** @endcond */
 
 /** Workspace bytes of a standalone filter with n particles of the given kind on a w x h image
  *  (constant expression; with n = cfg.n_search, kind = cfg.kind, w x h = cfg.width x
  *  cfg.height it equals pft_tbd_filter_workspace_size). */
 #define PFT_TBD_FILTER_WORKSPACE_BYTES(n, kind, w, h)                                           \
-    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_PARTICLE_BYTES_(n, kind))
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_TAB_BYTES_ +             \
+     PFT_TBD_PARTICLE_BYTES_(n, kind))
 
 /** Workspace bytes pft_tbd_filter_init needs for cfg (cfg.n_search particles of cfg.kind);
  *  0 for a NULL or refused cfg. */
@@ -286,6 +286,16 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
 
 /** Copies the estimates of the last update (all zero and valid == false before the first). */
 pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate_t *out);
+
+/**
+ * The log likelihood ratio the filter weighs a particle with, for a target (x, y, intensity)
+ * (0-based position) on the frame of the last accepted update: the windowed sum of
+ * pft_tbd_meas_llr as the filter evaluates it (on the whitened frame; for window 1 with
+ * tabulated PSF taps, docs/fixed_point.md "Particle kernels"). 0 for a NULL filter, before the
+ * first update, for a layer of a manager and for a window centre outside the image.
+ */
+pft_real_t pft_tbd_filter_llr(const pft_tbd_filter_t *f, pft_real_t x, pft_real_t y,
+                              pft_real_t intensity);
 
 /* --------------------------------- multi-target manager ------------------------------------ */
 
@@ -322,12 +332,13 @@ typedef struct {
 /** Workspace bytes of the manager (constant expression; with the sizes, kind and image of cfg
  *  it equals pft_tbd_workspace_size). */
 #define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
-    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) +                                 \
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_TAB_BYTES_ +             \
      PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                                                  \
      (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
-     PFT_TBD_EVENT_BYTES_(max_targets) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(pft_real_t)))
+     PFT_TBD_EVENT_BYTES_(max_targets) +                                                        \
+     PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)))
 
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);

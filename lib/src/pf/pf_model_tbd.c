@@ -38,9 +38,9 @@ static pft_status_t tbd_begin_(void *ctx, const void *z)
     if (st != PFT_OK) {
         return st;
     }
-    pft_tbd_frame_convert_(&m->cfg, frame, m->img);
+    pft_tbd_frame_convert_(&m->cfg, &m->m, frame, m->img);
     pft_tbd_scene_t_ sc;
-    pft_tbd_scene_build_(&m->cfg, m->img, NULL, m->cand, &sc);
+    pft_tbd_scene_build_(&m->cfg, m->gamma_w, m->img, NULL, m->cand, &sc);
     m->n_cand = sc.n_cand;
     m->birth_lw = pft_tbd_birth_lw_(&m->cfg, &sc);
     if (m->frames < UINT32_MAX) {
@@ -118,8 +118,11 @@ static pft_real_t llr_int_(const pft_pf_tbd_model_t *m, const pft_real_t *xi)
     if (xi[PFT_PF_TBD_E] == PFT_C(0.0)) {
         return PFT_C(0.0);
     }
-    pft_real_t ll = pft_tbd_meas_llr_int_(&m->m, m->img, xi[PFT_PF_TBD_X], xi[PFT_PF_TBD_Y],
-                                          xi[PFT_PF_TBD_I]);
+    pft_tbd_cell_t c;
+    if (!pft_tbd_cell_(&m->m, xi[PFT_PF_TBD_X], xi[PFT_PF_TBD_Y], &c)) {
+        return PFT_C(0.0); /* (an APF predicted point outside the image) */
+    }
+    pft_real_t ll = pft_tbd_llr_(&m->m, m->tab, m->img, &c, xi[PFT_PF_TBD_I]);
     if (xi[PFT_PF_TBD_E] > PFT_C(1.0)) {
         ll = pft_add(ll, m->birth_lw);
     }
@@ -195,10 +198,12 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
         return PFT_ERR_CONFIG;
     }
     size_t npix = (size_t)cfg->width * cfg->height;
+    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
-    pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, npix * sizeof(pft_real_t));
+    pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, nimg * sizeof(pft_real_t));
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
+    pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(&ws, sizeof(pft_tbd_tab_t));
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -207,7 +212,10 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     pft_tbd_meas_setup_(&m->m, cfg);
     m->img = img;
     m->cand = cand;
-    memset(img, 0, npix * sizeof(pft_real_t));
+    m->tab = tab;
+    pft_tbd_tab_setup_(tab, cfg);
+    m->gamma_w = pft_mul(cfg->gamma, m->m.inv_sn);
+    memset(img, 0, nimg * sizeof(pft_real_t));
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_dyn_setup_(&m->dyn, cfg);
     tbd_reset_(m);

@@ -113,6 +113,39 @@ static const char *refused_model_(const pft_tbd_config_t *c)
     return NULL;
 }
 
+/* The first refused field of the birth prior, NULL if none (fields checked first). The ranges
+ * keep every state a birth can start from inside the number range (docs/fixed_point.md,
+ * "Particle kernels"): intensities in [0, i_max] with the PSF peak i_max c0 and its whitened
+ * value i_max c0 / sigma below 32767, and a velocity prior that crosses at most the image
+ * (span = width dx, height dy) per frame period: |vel_mean| T <= span, sqrt(vel_var) T <= span. */
+static const char *refused_birth_(const pft_tbd_config_t *c)
+{
+    static const char *const vm[2] = {"vel_mean[0]", "vel_mean[1]"};
+    static const char *const vv[2] = {"vel_var[0]", "vel_var[1]"};
+    const pft_real_t span[2] = {pft_mul_i(c->dx, (int32_t)c->width),
+                                pft_mul_i(c->dy, (int32_t)c->height)};
+    const pft_real_t c0 =
+        pft_div(pft_mul(c->dx, c->dy), pft_mul(PFT_TWO_PI, pft_sq(c->psf_sigma)));
+    if (!(c->i_min >= PFT_C(0.0))) {
+        return "i_min";
+    }
+    if (!(c->i_min <= c->i_max) || !(pft_mul(c->i_max, c0) < PFT_C(32767.0)) ||
+        !(pft_mul(c->i_max, pft_div(c0, c->noise_sigma)) < PFT_C(32767.0))) {
+        return "i_max";
+    }
+    for (int a = 0; a < 2; ++a) {
+        if (!(pft_mul(pft_abs(c->vel_mean[a]), c->T) <= span[a])) {
+            return vm[a];
+        }
+    }
+    for (int a = 0; a < 2; ++a) {
+        if (!(c->vel_var[a] >= PFT_C(0.0)) || !(pft_mul(pft_sqrt(c->vel_var[a]), c->T) <= span[a])) {
+            return vv[a];
+        }
+    }
+    return NULL;
+}
+
 /* The first refused field of the existence, birth and decision settings, NULL if none. */
 static const char *refused_decisions_(const pft_tbd_config_t *c)
 {
@@ -123,14 +156,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
             return names[k];
         }
     }
-    if (!(c->i_min <= c->i_max)) {
-        return "i_max";
-    }
-    if (!(c->vel_var[0] >= PFT_C(0.0))) {
-        return "vel_var[0]";
-    }
-    if (!(c->vel_var[1] >= PFT_C(0.0))) {
-        return "vel_var[1]";
+    const char *bad = refused_birth_(c);
+    if (bad != NULL) {
+        return bad;
     }
     if (c->dis_r > PFT_TBD_MAX_DIS_R) {
         return "dis_r";

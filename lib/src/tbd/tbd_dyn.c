@@ -1,7 +1,10 @@
-/* The PF-TBD pieces written once (docs/algorithms.md 2.1, 2.2, 2.9): existence chain, births,
- * the full-state CV step, the leave-image test and the estimate sums. Used by the tbd filters
- * (tbd_filter.c) and by the pf engine's TBD model (lib/src/pf/pf_model_tbd.c), which must stay
- * bit-identical to the tbd module's PF-TBD (test_pf_models.c). */
+/* The PF-TBD pieces written once (docs/algorithms.md 2.1, 2.2, 2.9): existence chain, births
+ * and the estimate sums (the full-state CV step and the leave-image test are inline in
+ * tbd_int.h), and the tables every filter of a workspace shares. Used by the tbd filters
+ * (tbd_filter.c) and by the pf engine's TBD model (lib/src/pf/pf_model_tbd.c), which draws
+ * exactly as the tbd module's PF-TBD does (test_pf_models.c). */
+#include <string.h>
+
 #include "tbd_int.h"
 #include "../core/num_int.h"
 
@@ -45,43 +48,51 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
     *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
     *k->in = pft_rng_uniform_range(rng, c->i_min, c->i_max);
     if (sample_vel) {
-        *k->vx = pft_add(c->vel_mean[0], pft_mul(d->vel_sd[0], pft_rng_gauss(rng)));
-        *k->vy = pft_add(c->vel_mean[1], pft_mul(d->vel_sd[1], pft_rng_gauss(rng)));
+        *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
+        *k->vy = pft_kmad1_(c->vel_mean[1], d->vel_sd[1], pft_rng_zig_(rng));
     } else {
         *k->vx = c->vel_mean[0];
         *k->vy = c->vel_mean[1];
     }
 }
 
-/* One axis of X = F X + chol(V) n: position and velocity. */
-static void axis_(const pft_tbd_dyn_t *d, pft_real_t T, pft_real_t *pos, pft_real_t *v,
-                  pft_real_t g1, pft_real_t g2)
+/* The RBPF's velocity filter per axis as a function of age (docs/algorithms.md 2.3): from
+ * P_0 = vel_var, N_a = T^2 P_a + q1 T^3/3, K_a = T P_a / N_a, P+ = P_a - K_a T P_a, and
+ * P_{a+1} = P+/4 + q1 T/4 (exact) or P+ + q1 T (paper). A survivor of age a moves by
+ * T m + sd_a g and its mean by G_a sd_a g, with G_a = 3/(2T) - K_a/2 (exact: the time update
+ * -m+/2 + 3/(2T) y written with y = T m + sd_a g) or K_a (paper). The recursion contracts by at
+ * least 4 per frame after the first, so entry PFT_TBD_KF_AGES - 1 is its fixed point. */
+static void kf_axis_table_(const pft_tbd_config_t *cfg, pft_real_t p0, pft_real_t *sd,
+                           pft_real_t *gsd)
 {
-    *pos = pft_add(*pos, pft_add(pft_mul(T, *v), pft_mul(d->ch_pos, g1)));
-    *v = pft_add(*v, pft_add(pft_mul(d->ch_cross, g1), pft_mul(d->ch_vel, g2)));
-}
-
-void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng, pft_tbd_kin_t *k)
-{
-    pft_real_t g1 = pft_rng_gauss(rng);
-    pft_real_t g2 = pft_rng_gauss(rng);
-    pft_real_t g3 = pft_rng_gauss(rng);
-    pft_real_t g4 = pft_rng_gauss(rng);
-    pft_real_t g5 = pft_rng_gauss(rng);
-    axis_(d, T, k->x, k->vx, g1, g2);
-    axis_(d, T, k->y, k->vy, g3, g4);
-    *k->in = pft_add(*k->in, pft_mul(d->ch_int, g5));
-}
-
-bool pft_tbd_centre_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y, size_t *pix)
-{
-    int32_t i0 = pft_tbd_pix_(x, m->inv_dx);
-    int32_t j0 = pft_tbd_pix_(y, m->inv_dy);
-    if (i0 < 1 || j0 < 1 || i0 > (int32_t)m->width || j0 > (int32_t)m->height) {
-        return false;
+    const pft_real_t T = cfg->T;
+    const pft_real_t T2 = pft_sq(T);
+    const pft_real_t qpos = pft_div(pft_mul(cfg->q1, pft_mul(T2, T)), PFT_C(3.0));
+    const pft_real_t q1T = pft_mul(cfg->q1, T);
+    const bool exact = cfg->kf_variant == PFT_TBD_KF_EXACT;
+    const pft_real_t qvel = exact ? pft_mul(q1T, PFT_C(0.25)) : q1T;
+    const pft_real_t c32 = pft_div(PFT_C(1.5), T);
+    pft_real_t p = p0;
+    for (uint32_t a = 0; a < PFT_TBD_KF_AGES; ++a) {
+        pft_real_t nv = pft_add(pft_mul(T2, p), qpos);
+        pft_real_t k = nv > PFT_C(0.0) ? pft_div(pft_mul(T, p), nv) : PFT_C(0.0);
+        pft_real_t pplus = pft_max(pft_sub(p, pft_mul(pft_mul(k, T), p)), PFT_C(0.0));
+        pft_real_t g = exact ? pft_sub(c32, pft_mul(k, PFT_C(0.5))) : k;
+        sd[a] = pft_sqrt(nv);
+        gsd[a] = pft_mul(g, sd[a]);
+        p = exact ? pft_add(pft_mul(pplus, PFT_C(0.25)), qvel) : pft_add(pplus, qvel);
     }
-    *pix = (size_t)(j0 - 1) * m->width + (size_t)(i0 - 1);
-    return true;
+}
+
+void pft_tbd_tab_setup_(pft_tbd_tab_t *t, const pft_tbd_config_t *cfg)
+{
+    pft_tbd_meas_t m;
+    memset(t, 0, sizeof(*t));
+    pft_tbd_meas_setup_(&m, cfg);
+    pft_tbd_taps_setup_(t, &m);
+    kf_axis_table_(cfg, cfg->vel_var[0], t->kf_sd[0], t->kf_gsd[0]);
+    kf_axis_table_(cfg, cfg->vel_var[1], t->kf_sd[1], t->kf_gsd[1]);
+    t->age_cap = (uint8_t)(PFT_TBD_KF_AGES - 1u);
 }
 
 bool pft_tbd_wsum_mean_(const pft_tbd_wsum_t *a, pft_real_t mean[5])

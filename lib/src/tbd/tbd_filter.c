@@ -1,7 +1,21 @@
-/* One TBD filter: RBPF-TBD (docs/algorithms.md 2.3-2.5) and the bootstrap PF-TBD (2.9). */
+/* One TBD filter: RBPF-TBD (docs/algorithms.md 2.3-2.5) and the bootstrap PF-TBD (2.9).
+ *
+ * One update is four passes over the particles, each a plain loop over the SoA arrays:
+ *   1. existence, the move (RBPF: three ziggurat draws and the velocity filter's quantities
+ *      for the particle's age from the tables; PF: five draws) or a birth, the window centre
+ *      (leave-image and constraint tests) and the log-weight from the tabulated 3 x 3 kernel;
+ *      the largest log-weight and its particle;
+ *   2. the unnormalised weights exp(lw - max) and their sum;
+ *   3. normalised weights by one reciprocal, the estimates, the effective sample size and the
+ *      systematic resampling walk, which leaves each particle's replication count;
+ *   4. resampling in place: each particle with r > 1 copies goes into r - 1 slots of
+ *      particles with none (no second particle set).
+ * Number formats and the ranges behind every rounding: docs/fixed_point.md ("Particle
+ * kernels"); the kernels themselves are in lib/src/core/kern_int.h and tbd_int.h. */
 #include <string.h>
 
 #include "tbd_int.h"
+#include "../core/resample_int.h"
 
 /* ---------------------------------- layout ------------------------------------------------ */
 
@@ -10,31 +24,17 @@ size_t pft_tbd_particle_bytes_(uint32_t n, pft_tbd_kind_t kind)
     return PFT_TBD_PARTICLE_BYTES_(n, kind);
 }
 
-static void carve_set_(pft_tbd_particles_t *p, pft_tbd_kind_t kind, uint32_t n, pft_ws_t *ws)
+void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws)
 {
-    size_t rb = (size_t)n * sizeof(pft_real_t);
+    pft_tbd_particles_t *p = &f->cur;
+    size_t rb = (size_t)f->n * sizeof(pft_real_t);
     p->x = (pft_real_t *)pft_ws_take(ws, rb);
     p->y = (pft_real_t *)pft_ws_take(ws, rb);
     p->in = (pft_real_t *)pft_ws_take(ws, rb);
-    p->mx = (pft_real_t *)pft_ws_take(ws, rb);
-    p->my = (pft_real_t *)pft_ws_take(ws, rb);
-    if (kind == PFT_TBD_RBPF) {
-        p->px = (pft_real_t *)pft_ws_take(ws, rb);
-        p->py = (pft_real_t *)pft_ws_take(ws, rb);
-    } else {
-        p->px = NULL;
-        p->py = NULL;
-    }
-    p->e = (uint8_t *)pft_ws_take(ws, n);
-}
-
-void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws)
-{
-    carve_set_(&f->cur, f->kind, f->n, ws);
-    carve_set_(&f->nxt, f->kind, f->n, ws);
-    f->lw = (pft_real_t *)pft_ws_take(ws, (size_t)f->n * sizeof(pft_real_t));
-    f->w = (pft_weight_t *)pft_ws_take(ws, (size_t)f->n * sizeof(pft_weight_t));
-    f->idx = (uint32_t *)pft_ws_take(ws, (size_t)f->n * sizeof(uint32_t));
+    p->vx = (pft_real_t *)pft_ws_take(ws, rb);
+    p->vy = (pft_real_t *)pft_ws_take(ws, rb);
+    p->e = (uint8_t *)pft_ws_take(ws, f->n);
+    p->w = (pft_tbd_slot_t *)pft_ws_take(ws, (size_t)f->n * sizeof(pft_tbd_slot_t));
 }
 
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f)
@@ -60,141 +60,297 @@ void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uin
     pft_tbd_meas_setup_(&f->model, cfg);
     f->log_n = pft_log_count_(n);
     f->log_ratio = pft_log(cfg->dis_ratio);
-    pft_real_t T = cfg->T;
-    f->kf_qpos = pft_div(pft_mul(cfg->q1, pft_mul(pft_sq(T), T)), PFT_C(3.0)); /* q1 T^3 / 3 */
-    pft_real_t q1T = pft_mul(cfg->q1, T);
-    f->kf_qvel = cfg->kf_variant == PFT_TBD_KF_EXACT ? pft_mul(q1T, PFT_C(0.25)) : q1T;
+    f->gamma_w = pft_mul(cfg->gamma, f->model.inv_sn);
     pft_tbd_dyn_setup_(&f->dyn, cfg);
     pft_rng_seed(&f->rng, seed);
     pft_tbd_filter_reset_stats_(f);
 }
 
-static void clear_set_(pft_tbd_particles_t *p, pft_tbd_kind_t kind, uint32_t n)
+void pft_tbd_filter_clear_(pft_tbd_filter_t *f)
 {
-    size_t rb = (size_t)n * sizeof(pft_real_t);
+    pft_tbd_particles_t *p = &f->cur;
+    size_t rb = (size_t)f->n * sizeof(pft_real_t);
     memset(p->x, 0, rb);
     memset(p->y, 0, rb);
     memset(p->in, 0, rb);
-    memset(p->mx, 0, rb);
-    memset(p->my, 0, rb);
-    if (kind == PFT_TBD_RBPF) {
-        memset(p->px, 0, rb);
-        memset(p->py, 0, rb);
-    }
-    memset(p->e, 0, n);
+    memset(p->vx, 0, rb);
+    memset(p->vy, 0, rb);
+    memset(p->e, 0, f->n);
+    memset(p->w, 0, (size_t)f->n * sizeof(pft_tbd_slot_t));
 }
 
-void pft_tbd_filter_clear_(pft_tbd_filter_t *f)
-{
-    clear_set_(&f->cur, f->kind, f->n);
-    clear_set_(&f->nxt, f->kind, f->n);
-    memset(f->lw, 0, (size_t)f->n * sizeof(pft_real_t));
-    memset(f->w, 0, (size_t)f->n * sizeof(pft_weight_t));
-    memset(f->idx, 0, (size_t)f->n * sizeof(uint32_t));
-}
-
-/* ---------------------------------- propagation ------------------------------------------- */
-
-/* Per-axis Kalman quantities depend only on the incoming variance p (the Riccati recursion
- * does not see the data), and after resampling most particles share p: a one-entry memo. */
-typedef struct {
-    pft_real_t p_in, sd, k, p_out;
-    bool valid;
-} kf_memo_t;
-
-typedef struct {
-    pft_real_t T, T2, c32T, qpos, qvel;
-    bool exact;
-} kf_consts_t;
-
-static void kf_axis_(const kf_consts_t *kc, kf_memo_t *mm, pft_real_t *pos, pft_real_t *m,
-                     pft_real_t *p, pft_real_t g)
-{
-    if (!mm->valid || mm->p_in != *p) {
-        pft_real_t pin = *p;
-        pft_real_t nv = pft_add(pft_mul(kc->T2, pin), kc->qpos); /* N = T^2 P + q1 T^3/3 */
-        pft_real_t k = nv > PFT_C(0.0) ? pft_div(pft_mul(kc->T, pin), nv) : PFT_C(0.0);
-        pft_real_t pplus = pft_sub(pin, pft_mul(pft_mul(k, kc->T), pin)); /* P - K N K' */
-        pplus = pft_max(pplus, PFT_C(0.0));
-        mm->p_in = pin;
-        mm->sd = pft_sqrt(nv);
-        mm->k = k;
-        mm->p_out = kc->exact ? pft_add(pft_mul(pplus, PFT_C(0.25)), kc->qvel)
-                              : pft_add(pplus, kc->qvel);
-        mm->valid = true;
-    }
-    /* 1. sample the position: y = zeta_k - zeta_{k-1} = T m + sqrt(N) g */
-    pft_real_t innov = pft_mul(mm->sd, g);
-    pft_real_t dpos = pft_add(pft_mul(kc->T, *m), innov);
-    *pos = pft_add(*pos, dpos);
-    /* 2. measurement update with y: m+ = m + K (y - T m) */
-    pft_real_t mplus = pft_add(*m, pft_mul(mm->k, innov));
-    /* 3. time update */
-    *m = kc->exact ? pft_sub(pft_mul(kc->c32T, dpos), pft_mul(mplus, PFT_C(0.5))) : mplus;
-    *p = mm->p_out;
-}
-
-/* The kinematic state of particle s of P. */
-static pft_tbd_kin_t kin_(pft_tbd_particles_t *P, uint32_t s)
-{
-    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->mx[s], &P->my[s], &P->in[s]};
-    return k;
-}
-
-/* b[s] = a[k] (the RBPF's Kalman variances too). */
+/* b[s] = a[k], the state byte (existence and age) included. */
 static void copy_particle_(pft_tbd_particles_t *b, uint32_t s, const pft_tbd_particles_t *a,
-                           uint32_t k, bool rb)
+                           uint32_t k)
 {
     b->x[s] = a->x[k];
     b->y[s] = a->y[k];
     b->in[s] = a->in[k];
-    b->mx[s] = a->mx[k];
-    b->my[s] = a->my[k];
-    if (rb) {
-        b->px[s] = a->px[k];
-        b->py[s] = a->py[k];
+    b->vx[s] = a->vx[k];
+    b->vy[s] = a->vy[k];
+    b->e[s] = a->e[k];
+}
+
+/* ---------------------------------- pass 1: move and weigh -------------------------------- */
+
+/* What one step needs beyond the filter: the scene, the tables, the birth and constraint
+ * switches of this frame. */
+typedef struct {
+    const pft_tbd_scene_t_ *sc;
+    const pft_tbd_tab_t *tab;
+    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
+    pft_real_t T;
+    uint32_t p_birth;
+    uint8_t e_max; /* largest state byte: 1 + the age cap */
+    bool can_birth;
+    bool rb;
+} step_ctx_t;
+
+/* RBPF survivor of state byte e (age e - 1): the position is sampled from N(x + T m, N_a)
+ * per axis, the velocity mean takes the Kalman update of that step (tbd_dyn.c), the intensity
+ * a random walk. */
+static inline void rbpf_move_(pft_tbd_particles_t *P, uint32_t s, const pft_tbd_tab_t *tab,
+                              pft_real_t T, pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
+{
+    const pft_real_t gx = pft_rng_zig_(rng);
+    const pft_real_t gy = pft_rng_zig_(rng);
+    const pft_real_t gi = pft_rng_zig_(rng);
+    const pft_real_t vx = P->vx[s];
+    const pft_real_t vy = P->vy[s];
+    P->x[s] = pft_kmad2_(P->x[s], T, vx, tab->kf_sd[0][age], gx);
+    P->vx[s] = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
+    P->y[s] = pft_kmad2_(P->y[s], T, vy, tab->kf_sd[1][age], gy);
+    P->vy[s] = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
+    P->in[s] = pft_kmad1_(P->in[s], ch_int, gi);
+}
+
+/* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
+ * (RBPF or PF) or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. */
+static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    uint8_t *restrict pe = P->e;
+    const uint32_t p16_d = f->dyn.p16_d;
+    const uint32_t p_birth = x->can_birth ? x->p_birth : 0u; /* u < 0 never holds */
+    const bool rb = x->rb;
+    const uint32_t e_max = x->e_max;
+    const uint32_t n = f->n;
+    /* the generator in a local whose address never escapes (copies go to the calls) */
+    pft_rng_t rng = f->rng;
+    for (uint32_t s = 0; s < n; ++s) {
+        const uint32_t u = pft_tbd_exist_draw_(&rng); /* one draw per particle */
+        uint32_t e = pe[s];
+        if (e != 0u) {
+            if (u < p16_d) {
+                e = 0u;
+            } else {
+                if (rb) {
+                    rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
+                } else {
+                    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+                    pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
+                }
+                e = e < e_max ? e + 1u : e;
+            }
+        } else if (u < p_birth) {
+            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+            pft_rng_t t = rng;
+            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
+            rng = t;
+            e = 1u;
+        }
+        pe[s] = (uint8_t)e;
+    }
+    f->rng = rng;
+}
+
+/* Step 3 for every particle: a particle whose window centre leaves the image, or enters the
+ * exclusion mask, gets E = 0 [A]; the others get the log-weight of eq. 20 (E = 0: likelihood
+ * ratio 1), births (state byte 1) plus the birth correction. Returns the largest log-weight. */
+static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_tbd_meas_t *m = &f->model;
+    const pft_real_t *img = x->sc->img;
+    const pft_tbd_tab_t *tab = x->tab;
+    const uint8_t *mask = x->mask;
+    uint8_t *restrict pe = P->e;
+    pft_tbd_slot_t *restrict pw = P->w;
+    const pft_real_t *restrict px = P->x;
+    const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pin = P->in;
+    const pft_real_t birth_lw = f->birth_lw;
+    const uint32_t n = f->n;
+    pft_real_t lmax = PFT_REAL_MIN;
+    for (uint32_t s = 0; s < n; ++s) {
+        pft_real_t lw = PFT_C(0.0);
+        const uint32_t e = pe[s];
+        if (e != 0u) {
+            pft_tbd_cell_t c;
+            if (!pft_tbd_cell_(m, px[s], py[s], &c) ||
+                (mask != NULL && mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u)) {
+                pe[s] = 0u;
+            } else {
+                lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
+                if (e == 1u) {
+                    lw = pft_add(lw, birth_lw);
+                }
+            }
+        }
+        pw[s].lw = lw;
+        lmax = pft_max(lmax, lw);
+    }
+    return lmax;
+}
+
+/* ---------------------------------- pass 2: weights --------------------------------------- */
+
+/* w = exp(lw - max) (the largest is exactly PFT_W_ONE), in place; returns their sum
+ * (q16: <= n 2^30 <= 2^52). Every E = 0 particle has lw = 0, so their common weight is
+ * computed once. */
+static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
+{
+    pft_tbd_slot_t *restrict w = f->cur.w;
+    const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
+    pft_wacc_t sum = 0;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        const pft_real_t lw = w[s].lw;
+        const pft_weight_t e = lw == PFT_C(0.0) ? e0 : pft_kwexp_(lw, lmax);
+        w[s].w = e;
+        sum += e;
+    }
+    return sum;
+}
+
+/* ---------------------------------- pass 3: estimates and counts -------------------------- */
+
+/* The sums of pass 3: total normalised weight and its square, the weight of the E = 1
+ * particles and their weighted x, y, vx, vy, I, and second moments of the position about a
+ * reference point r (the previous estimate, or the image centre). */
+typedef struct {
+    pft_wacc_t w, w2, we;
+    pft_acc_t_ s[5];
+    pft_acc_t_ cxx, cxy, cyy;
+    pft_real_t rx, ry;
+} est_sums_t;
+
+static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
+{
+    e->p_exist = pft_wratio_(a->we, a->w);
+    e->n_eff = pft_kess_(a->w, a->w2);
+    if (!(a->we > 0)) {
+        return; /* no E = 1 weight: the kinematic estimate keeps its last value */
+    }
+    e->x = pft_acc_div_(a->s[0], a->we);
+    e->y = pft_acc_div_(a->s[1], a->we);
+    e->vx = pft_acc_div_(a->s[2], a->we);
+    e->vy = pft_acc_div_(a->s[3], a->we);
+    e->intensity = pft_acc_div_(a->s[4], a->we);
+    /* spread about the mean from the moments about the reference: E[d d'] - E[d] E[d'] */
+    {
+        const pft_real_t mx = pft_sub(e->x, a->rx);
+        const pft_real_t my = pft_sub(e->y, a->ry);
+        e->pos_cov[0] = pft_max(pft_sub(pft_acc_div_(a->cxx, a->we), pft_sq(mx)), PFT_C(0.0));
+        e->pos_cov[1] = pft_sub(pft_acc_div_(a->cxy, a->we), pft_mul(mx, my));
+        e->pos_cov[2] = pft_max(pft_sub(pft_acc_div_(a->cyy, a->we), pft_sq(my)), PFT_C(0.0));
+    }
+    e->valid = true;
+}
+
+/* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
+ * of systematic resampling (step 5): each slot ends holding its particle's replication count.
+ * The walk runs over the unnormalised weights, whose total is exact. */
+static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_slot_t *restrict w = P->w;
+    const uint8_t *restrict pe = P->e;
+    const pft_real_t *restrict px = P->x;
+    const pft_real_t *restrict py = P->y;
+    const uint32_t n = f->n;
+    const pft_krecip_t r = pft_krecip_(sum);
+    est_sums_t a;
+    pft_sys_t sys;
+    pft_wacc_t cum = 0;
+    memset(&a, 0, sizeof a);
+    for (int c = 0; c < 5; ++c) {
+        a.s[c] = PFT_ACC_ZERO_;
+    }
+    a.cxx = PFT_ACC_ZERO_;
+    a.cxy = PFT_ACC_ZERO_;
+    a.cyy = PFT_ACC_ZERO_;
+    /* the reference: inside the image, as every E = 1 position is, so the differences below
+     * stay within the image span (< 2^14) and need no saturation */
+    if (f->est.valid) {
+        a.rx = f->est.x;
+        a.ry = f->est.y;
+    } else {
+        a.rx = pft_mul(f->model.hi_x, pft_mul(f->model.dx, PFT_C(0.5)));
+        a.ry = pft_mul(f->model.hi_y, pft_mul(f->model.dy, PFT_C(0.5)));
+    }
+    pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
+    for (uint32_t s = 0; s < n; ++s) {
+        const pft_weight_t e = w[s].w;
+        const pft_weight_t wn = pft_kwnorm_(e, r);
+        cum += e;
+        w[s].n = pft_sys_take_(&sys, cum);
+        a.w += wn;
+        a.w2 += (pft_wacc_t)wn * wn;
+        if (pe[s] != 0u) {
+            /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below stay
+             * inside the number range (a particle beyond 181 px counts as 181 px away) */
+            const pft_real_t dx = pft_kspread_(px[s] - a.rx);
+            const pft_real_t dy = pft_kspread_(py[s] - a.ry);
+            a.we += wn;
+            a.s[0] += pft_acc_wx_(wn, px[s]);
+            a.s[1] += pft_acc_wx_(wn, py[s]);
+            a.s[2] += pft_acc_wx_(wn, P->vx[s]);
+            a.s[3] += pft_acc_wx_(wn, P->vy[s]);
+            a.s[4] += pft_acc_wx_(wn, P->in[s]);
+            a.cxx += pft_acc_wx_(wn, pft_kmulr_(dx, dx));
+            a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
+            a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
+        }
+    }
+    if (pft_sys_left_(&sys) > 0u) {
+        /* float only: targets that round up to the total go to the last particle drawn
+         * (q16 walks are exact and take every target) */
+        uint32_t last = n - 1u;
+        while (last > 0u && !(w[last].n > 0u)) {
+            --last;
+        }
+        w[last].n += pft_sys_left_(&sys);
+    }
+    est_finish_(&f->est, &a);
+}
+
+/* ---------------------------------- pass 4: resampling in place --------------------------- */
+
+/* Particle s with count r > 1 is copied into the next r - 1 slots whose count is 0; those
+ * slots are marked 1 so that the outer loop keeps them when it reaches them. The counts sum
+ * to n, so there are exactly as many empty slots as extra copies: the scan j only moves
+ * forward and every loop is bounded by n. */
+static void replicate_(pft_tbd_filter_t *f)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_slot_t *w = P->w;
+    const uint32_t n = f->n;
+    uint32_t j = 0;
+    for (uint32_t s = 0; s < n; ++s) {
+        for (uint32_t c = w[s].n; c > 1u; --c) {
+            while (j < n && w[j].n != 0u) {
+                ++j;
+            }
+            if (j >= n) {
+                return; /* cannot happen: the counts sum to n */
+            }
+            copy_particle_(P, j, P, s);
+            w[j].n = 1u;
+        }
     }
 }
 
 /* ---------------------------------- statistics -------------------------------------------- */
-
-static void estimate_(pft_tbd_filter_t *f)
-{
-    const pft_tbd_particles_t *P = &f->cur;
-    const pft_weight_t *w = f->w;
-    pft_tbd_wsum_t a;
-    pft_tbd_wsum_init_(&a);
-    for (uint32_t s = 0; s < f->n; ++s) {
-        const pft_real_t v[5] = {P->x[s], P->y[s], P->mx[s], P->my[s], P->in[s]};
-        pft_tbd_wsum_add_(&a, w[s], P->e[s] != 0u, v);
-    }
-    pft_tbd_estimate_t *e = &f->est;
-    e->p_exist = pft_tbd_wsum_p_(&a);
-    e->n_eff = pft_ess(w, f->n);
-    pft_real_t m[5];
-    if (!pft_tbd_wsum_mean_(&a, m)) {
-        return;
-    }
-    e->x = m[0];
-    e->y = m[1];
-    e->vx = m[2];
-    e->vy = m[3];
-    e->intensity = m[4];
-    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
-    for (uint32_t s = 0; s < f->n; ++s) {
-        if (P->e[s] != 0u) {
-            pft_real_t ddx = pft_sub(P->x[s], e->x);
-            pft_real_t ddy = pft_sub(P->y[s], e->y);
-            cxx += pft_acc_wx_(w[s], pft_sq(ddx));
-            cxy += pft_acc_wx_(w[s], pft_mul(ddx, ddy));
-            cyy += pft_acc_wx_(w[s], pft_sq(ddy));
-        }
-    }
-    e->pos_cov[0] = pft_acc_div_(cxx, a.we);
-    e->pos_cov[1] = pft_acc_div_(cxy, a.we);
-    e->pos_cov[2] = pft_acc_div_(cyy, a.we);
-    e->valid = true;
-}
 
 /* Windowed log likelihood ratio and the disappearance test (docs/algorithms.md 2.6). lr_hist[0]
  * and win_hist[0] are the newest entries. */
@@ -235,161 +391,118 @@ static void disappearance_(pft_tbd_filter_t *f)
     }
 }
 
-static void resample_(pft_tbd_filter_t *f)
-{
-    if (pft_resample(PFT_RESAMPLE_SYSTEMATIC, f->w, f->n, f->idx, f->n, &f->rng, NULL, 0u) !=
-        PFT_OK) {
-        return; /* cannot happen after log-normalisation (the largest weight is 1) */
-    }
-    pft_tbd_particles_t *a = &f->cur;
-    pft_tbd_particles_t *b = &f->nxt;
-    bool rb = f->kind == PFT_TBD_RBPF;
-    for (uint32_t s = 0; s < f->n; ++s) {
-        copy_particle_(b, s, a, f->idx[s], rb);
-        b->e[s] = a->e[f->idx[s]];
-    }
-    pft_tbd_particles_t t = *a;
-    *a = *b;
-    *b = t;
-}
-
 /* ---------------------------------- one iteration ----------------------------------------- */
-
-/* What one step needs beyond the filter: the scene, the Kalman constants and memos, the birth
- * and constraint switches of this frame. */
-typedef struct {
-    const pft_tbd_scene_t_ *sc;
-    kf_consts_t kc;
-    kf_memo_t mx, my;
-    uint32_t p_birth;
-    bool can_birth;
-    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
-} step_ctx_t;
-
-/* Steps 1-2 for particle s: existence, then the survivor's move (RBPF or PF) or a birth; a
- * particle whose window centre leaves the image, or enters the exclusion mask, gets E = 0.
- * Returns the new E; *born for a birth at this step. */
-static uint8_t move_particle_(pft_tbd_filter_t *f, step_ctx_t *x, uint32_t s, bool *born)
-{
-    pft_tbd_particles_t *P = &f->cur;
-    pft_tbd_kin_t k = kin_(P, s);
-    uint32_t u = pft_tbd_exist_draw_(&f->rng); /* one draw per particle */
-    uint8_t e = P->e[s];
-    *born = false;
-    if (e != 0u) {
-        if (u < f->dyn.p16_d) {
-            return 0u;
-        }
-        if (f->kind == PFT_TBD_RBPF) {
-            /* RBPF sampling of (x, y, I) and the velocity Kalman filter */
-            pft_real_t gx = pft_rng_gauss(&f->rng);
-            pft_real_t gy = pft_rng_gauss(&f->rng);
-            pft_real_t gi = pft_rng_gauss(&f->rng);
-            kf_axis_(&x->kc, &x->mx, &P->x[s], &P->mx[s], &P->px[s], gx);
-            kf_axis_(&x->kc, &x->my, &P->y[s], &P->my[s], &P->py[s], gy);
-            P->in[s] = pft_add(P->in[s], pft_mul(f->dyn.ch_int, gi));
-        } else {
-            pft_tbd_pf_move_(&f->dyn, f->cfg.T, &f->rng, &k);
-        }
-    } else if (x->can_birth && u < x->p_birth) {
-        bool rb = f->kind == PFT_TBD_RBPF;
-        pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &f->rng, &k);
-        if (rb) {
-            P->px[s] = f->cfg.vel_var[0];
-            P->py[s] = f->cfg.vel_var[1];
-        }
-        e = 1u;
-        *born = true;
-    } else {
-        return e;
-    }
-    /* [A] leaving the image ends the target; a window centre inside a confirmed target's
-     * region forces E = 0 (the constraint) */
-    size_t pix = 0;
-    if (!pft_tbd_centre_(&f->model, P->x[s], P->y[s], &pix) ||
-        (x->mask != NULL && x->mask[pix] != 0u)) {
-        e = 0u;
-    }
-    return e;
-}
 
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
 {
     const pft_tbd_config_t *c = &f->cfg;
-    pft_tbd_particles_t *P = &f->cur;
     step_ctx_t x;
     memset(&x, 0, sizeof x);
     x.sc = sc;
-    x.p_birth = pft_tbd_p_birth_(&f->dyn, f->frames == 0u);
-    x.can_birth = f->births && sc->n_cand > 0u;
+    x.tab = f->tab;
     x.mask = f->constrain ? sc->mask : NULL;
-    x.kc.T = c->T;
-    x.kc.T2 = pft_sq(c->T);
-    x.kc.c32T = pft_div(PFT_C(1.5), c->T);
-    x.kc.qpos = f->kf_qpos;
-    x.kc.qvel = f->kf_qvel;
-    x.kc.exact = c->kf_variant == PFT_TBD_KF_EXACT;
+    x.T = c->T;
+    x.p_birth = pft_tbd_p_birth_(&f->dyn, f->frames == 0u);
+    x.e_max = (uint8_t)(f->tab->age_cap + 1u);
+    x.can_birth = f->births && sc->n_cand > 0u;
+    x.rb = f->kind == PFT_TBD_RBPF;
     f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
-    for (uint32_t s = 0; s < f->n; ++s) {
-        /* 1-2. existence, move or birth */
-        bool born;
-        uint8_t e = move_particle_(f, &x, s, &born);
-        P->e[s] = e;
-        /* 3. log-weight (eq. 20; E = 0 particles have likelihood ratio 1) */
-        pft_real_t lw = PFT_C(0.0);
-        if (e != 0u) {
-            lw = pft_tbd_meas_llr_int_(&f->model, sc->img, P->x[s], P->y[s], P->in[s]);
-            if (born) {
-                lw = pft_add(lw, f->birth_lw);
-            }
-        }
-        f->lw[s] = lw;
-    }
-    pft_real_t lse = pft_lognormalize(f->lw, f->w, f->n);
-    f->est.log_mean_lr = pft_sub(lse, f->log_n);
-    /* 4. estimates from the normalised weights, before resampling */
-    estimate_(f);
+    /* 1-3. existence, move or birth, log-weights */
+    move_(f, &x);
+    pft_real_t lmax = weigh_(f, &x);
+    pft_wacc_t sum = weights_(f, lmax);
+    f->est.log_mean_lr = pft_sub(pft_add(lmax, pft_wacc_log(sum)), f->log_n);
+    /* 4. estimates from the normalised weights, before resampling; the walk of step 5 */
+    estimate_and_count_(f, sum);
     disappearance_(f);
-    /* 5. systematic resampling */
-    resample_(f);
+    /* 5. systematic resampling, in place */
+    replicate_(f);
     if (f->frames < UINT32_MAX) {
         ++f->frames;
     }
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
+/* Estimates of a set with equal weights (the handed-over set): means, then the spread about
+ * them. Sums of n <= 2^22 values (q16: each < 2^31, so < 2^53). */
+static void equal_weight_estimate_(pft_tbd_filter_t *f)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_wacc_t nw = (pft_wacc_t)f->n;
+    const pft_weight_t one = (pft_weight_t)1;
+    pft_acc_t_ s[5];
+    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
+    pft_tbd_estimate_t *e = &f->est;
+    for (int c = 0; c < 5; ++c) {
+        s[c] = PFT_ACC_ZERO_;
+    }
+    for (uint32_t i = 0; i < f->n; ++i) {
+        s[0] += pft_acc_wx_(one, P->x[i]);
+        s[1] += pft_acc_wx_(one, P->y[i]);
+        s[2] += pft_acc_wx_(one, P->vx[i]);
+        s[3] += pft_acc_wx_(one, P->vy[i]);
+        s[4] += pft_acc_wx_(one, P->in[i]);
+    }
+    e->x = pft_acc_div_(s[0], nw);
+    e->y = pft_acc_div_(s[1], nw);
+    e->vx = pft_acc_div_(s[2], nw);
+    e->vy = pft_acc_div_(s[3], nw);
+    e->intensity = pft_acc_div_(s[4], nw);
+    for (uint32_t i = 0; i < f->n; ++i) {
+        const pft_real_t dx = pft_sub(P->x[i], e->x);
+        const pft_real_t dy = pft_sub(P->y[i], e->y);
+        cxx += pft_acc_wx_(one, pft_sq(dx));
+        cxy += pft_acc_wx_(one, pft_mul(dx, dy));
+        cyy += pft_acc_wx_(one, pft_sq(dy));
+    }
+    e->pos_cov[0] = pft_acc_div_(cxx, nw);
+    e->pos_cov[1] = pft_acc_div_(cxy, nw);
+    e->pos_cov[2] = pft_acc_div_(cyy, nw);
+    e->n_eff = pft_from_int(f->n > 32767u ? 32767 : (int32_t)f->n);
+    e->valid = true;
+}
+
+/* Whether particle s of src may be handed over. */
+static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *gate)
+{
+    size_t pix = 0;
+    if (src->cur.e[s] == 0u) {
+        return false;
+    }
+    return gate == NULL ||
+           (pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u);
+}
+
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
+                              const uint8_t *gate)
 {
     uint32_t alive = 0;
     for (uint32_t s = 0; s < src->n; ++s) {
-        bool a = src->cur.e[s] != 0u;
-        if (a && gate != NULL) {
-            size_t pix = 0;
-            a = pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u;
-        }
-        src->w[s] = a ? PFT_W_ONE : (pft_weight_t)0;
-        alive += a ? 1u : 0u;
+        alive += qualifies_(src, s, gate) ? 1u : 0u;
     }
     if (alive == 0u || dst->kind != src->kind) {
         return false;
     }
-    if (pft_resample(PFT_RESAMPLE_SYSTEMATIC, src->w, src->n, dst->idx, dst->n, &dst->rng, NULL,
-                     0u) != PFT_OK) {
-        return false;
+    /* systematic resampling of `alive` equal weights into dst->n slots */
+    pft_sys_t sys;
+    uint32_t k = 0;
+    pft_wacc_t cum = 0;
+    pft_sys_init_(&sys, (pft_wacc_t)alive, dst->n, pft_rng_next_(&dst->rng));
+    for (uint32_t s = 0; s < src->n && k < dst->n; ++s) {
+        if (!qualifies_(src, s, gate)) {
+            continue;
+        }
+        cum += (pft_wacc_t)1;
+        for (uint32_t c = pft_sys_take_(&sys, cum); c > 0u && k < dst->n; --c) {
+            copy_particle_(&dst->cur, k, &src->cur, s);
+            ++k;
+        }
     }
-    const pft_tbd_particles_t *a = &src->cur;
-    pft_tbd_particles_t *b = &dst->cur;
-    bool rb = dst->kind == PFT_TBD_RBPF;
-    for (uint32_t s = 0; s < dst->n; ++s) {
-        copy_particle_(b, s, a, dst->idx[s], rb);
-        b->e[s] = 1u;
-    }
-    /* estimates of the handed-over set (equal weights) */
-    for (uint32_t s = 0; s < dst->n; ++s) {
-        dst->w[s] = PFT_W_ONE;
+    for (; k > 0u && k < dst->n; ++k) {
+        copy_particle_(&dst->cur, k, &dst->cur, k - 1u); /* float rounding only */
     }
     pft_real_t lmlr = src->est.log_mean_lr;
     pft_real_t pex = src->est.p_exist;
-    estimate_(dst);
+    equal_weight_estimate_(dst);
     dst->est.log_mean_lr = lmlr;
     dst->est.p_exist = pex;
     return true;
@@ -412,9 +525,11 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
     size_t npix = (size_t)cfg->width * cfg->height;
-    pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, npix * sizeof(pft_real_t));
+    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
+    pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, nimg * sizeof(pft_real_t));
     uint8_t *mask = (uint8_t *)pft_ws_take(&ws, npix);
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
+    pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(&ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_setup_(f, cfg, cfg->n_search, cfg->kind, true, cfg->force_constraint,
                           cfg->seed);
     pft_tbd_particles_carve_(f, &ws);
@@ -425,7 +540,9 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     f->img = img;
     f->mask = mask;
     f->cand = cand;
-    memset(img, 0, npix * sizeof(pft_real_t));
+    pft_tbd_tab_setup_(tab, cfg);
+    f->tab = tab;
+    memset(img, 0, nimg * sizeof(pft_real_t));
     memset(mask, 0, npix);
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_filter_clear_(f);
@@ -477,14 +594,15 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     if (st != PFT_OK) {
         return st;
     }
-    pft_tbd_frame_convert_(&f->cfg, frame, f->img);
+    pft_tbd_frame_convert_(&f->cfg, &f->model, frame, f->img);
     size_t npix = (size_t)f->cfg.width * f->cfg.height;
     memset(f->mask, 0, npix);
     for (size_t r = 0; r < n_regions; ++r) {
         pft_tbd_mask_add_(&f->cfg, f->mask, &regions[r]);
     }
     pft_tbd_scene_t_ sc;
-    pft_tbd_scene_build_(&f->cfg, f->img, n_regions > 0u ? f->mask : NULL, f->cand, &sc);
+    pft_tbd_scene_build_(&f->cfg, f->gamma_w, f->img, n_regions > 0u ? f->mask : NULL, f->cand,
+                         &sc);
     pft_tbd_filter_step_(f, &sc);
     return PFT_OK;
 }
@@ -506,4 +624,16 @@ pft_status_t pft_tbd_filter_estimate(const pft_tbd_filter_t *f, pft_tbd_estimate
     }
     pft_tbd_est_pub_(&f->model, &f->est, out);
     return PFT_OK;
+}
+
+pft_real_t pft_tbd_filter_llr(const pft_tbd_filter_t *f, pft_real_t x, pft_real_t y,
+                              pft_real_t intensity)
+{
+    pft_tbd_cell_t c;
+    if (f == NULL || f->img == NULL || f->tab == NULL || f->frames == 0u ||
+        !pft_tbd_cell_(&f->model, pft_tbd_x_int_(x, f->model.dx), pft_tbd_x_int_(y, f->model.dy),
+                       &c)) {
+        return PFT_C(0.0);
+    }
+    return pft_tbd_llr_(&f->model, f->tab, f->img, &c, intensity);
 }

@@ -14,17 +14,29 @@
 #include "pft/pft_tbd.h"
 #include "pft/pft_resample.h"
 #include "../core/acc_int.h"
+#include "../core/kern_int.h"
+#include "../core/rng_int.h"
 
 /* Public 0-based position -> internal (x + d), and back (x - d). */
 static inline pft_real_t pft_tbd_x_int_(pft_real_t x, pft_real_t d) { return pft_add(x, d); }
 static inline pft_real_t pft_tbd_x_pub_(pft_real_t x, pft_real_t d) { return pft_sub(x, d); }
 
+/* Images inside the module are whitened (z / sigma, clamped to +-32767) and carry a border of
+ * one zero pixel: internal pixel (i, j) (1-based) is img[j * stride + i] with
+ * stride = width + 2, so a 3 x 3 window around any pixel of the image reads only the buffer.
+ * The border stays zero (only the interior is ever written). */
+static inline uint32_t pft_tbd_stride_(uint32_t width) { return width + 2u; }
+static inline size_t pft_tbd_img_len_(uint32_t width, uint32_t height)
+{
+    return (size_t)(width + 2u) * (height + 2u);
+}
+
 /* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
 typedef struct {
-    const pft_real_t *img;
-    const uint8_t *mask;
-    const uint32_t *cand;
+    const pft_real_t *img; /* whitened, bordered (above) */
+    const uint8_t *mask;   /* width x height, row-major, 0-based */
+    const uint32_t *cand;  /* 0-based row-major pixel indices */
     uint32_t n_cand;    /* pixels proposed for births (B_k, or all allowed pixels) */
     uint32_t n_allowed; /* pixels outside the exclusion mask */
     bool cand_is_b;     /* cand holds B_k (z > gamma): the importance correction applies */
@@ -37,26 +49,36 @@ pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pf
                               pft_real_t y, pft_real_t intensity);
 pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img, pft_real_t x,
                                 pft_real_t y, pft_real_t intensity);
-void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x,
-                               pft_real_t y, pft_real_t intensity, uint8_t half);
+/* img += coef gx gy over the (2 half + 1)^2 pixels around (x, y) (internal frame), clipped to
+ * the image; internal pixel (i, j) is img[origin + (j - 1) stride + i - 1] (origin 0 and
+ * stride width for a plain row-major image, stride + 1 and width + 2 for a bordered one).
+ * coef = I c0 adds h; I kc adds h / sigma (whitened); a negative coef subtracts. */
+void pft_tbd_psf_add_(const pft_tbd_meas_t *m, pft_real_t *img, size_t origin, uint32_t stride,
+                      pft_real_t x, pft_real_t y, pft_real_t coef, uint8_t half);
 /* The (2p+1)^2 window around an internal position, as a 0-based region. */
 pft_tbd_region_t pft_tbd_window_int_(const pft_tbd_config_t *cfg, pft_real_t x, pft_real_t y);
 /* Frame validation against cfg (size, format, finiteness): touches nothing. */
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame);
-/* Converts a validated frame into img (width*height reals, row-major). */
-void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
-                            pft_real_t *img);
+/* Converts a validated frame into the interior of the bordered whitened image img. */
+void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m,
+                            const pft_frame_t *frame, pft_real_t *img);
 /* mask |= region (0-based, clipped to the image). */
 void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r);
-/* Fills cand and the counts of sc from img and mask (mask may be NULL). */
-void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, const pft_real_t *img,
+/* Fills cand and the counts of sc from the bordered whitened img (birth threshold gamma_w =
+ * gamma / sigma) and mask (may be NULL). */
+void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
                           const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
+
+/* The tables of cfg (PSF taps, Kalman quantities by age), and the taps alone (tbd_meas.c). */
+void pft_tbd_tab_setup_(pft_tbd_tab_t *t, const pft_tbd_config_t *cfg);
+void pft_tbd_taps_setup_(pft_tbd_tab_t *t, const pft_tbd_meas_t *m);
 
 /* Bytes of one filter's particle buffers, and carving them. */
 size_t pft_tbd_particle_bytes_(uint32_t n, pft_tbd_kind_t kind);
 /* Carves the particle buffers of f (n, kind set) from ws; pointers NULL when short. */
 void pft_tbd_particles_carve_(pft_tbd_filter_t *f, pft_ws_t *ws);
-/* Sets every field of f except the buffers: cfg copy, constants, RNG, statistics. */
+/* Sets every field of f except the buffers and the tables: cfg copy, constants, RNG,
+ * statistics. */
 void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uint32_t n,
                            pft_tbd_kind_t kind, bool births, bool constrain, uint64_t seed);
 /* All particles E = 0 (buffers carved). */
@@ -65,11 +87,12 @@ void pft_tbd_filter_clear_(pft_tbd_filter_t *f);
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f);
 /* One iteration on a prepared scene (docs/algorithms.md 2.5). */
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
-/* Hand-over: fills dst (E = 1 everywhere) by systematic resampling of the E = 1 particles of
- * src (only those whose window centre pixel is set in gate, when gate is not NULL) with dst's
- * RNG, and sets dst->est from the handed-over set (p_exist and log_mean_lr: src's). Returns
- * false (dst untouched) if no particle qualifies. */
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
+/* Hand-over: fills dst with dst->n particles by systematic resampling (equal weights) of the
+ * E = 1 particles of src (only those whose window centre pixel is set in gate, when gate is
+ * not NULL) with dst's RNG, ages kept, and sets dst->est from the handed-over set (p_exist and
+ * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. */
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
+                              const uint8_t *gate);
 
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */
@@ -77,6 +100,82 @@ void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,
                       pft_tbd_estimate_t *out);
 /* Integer pixel index round(v * inv_d), with v clamped so the conversion is defined. */
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d);
+
+/* ---- the per-particle kernel (the filters' hot loop and the pf engine's TBD model) ---- */
+
+/* The window centre of a position: internal pixel (i, j) and the offsets f = u - i of
+ * u = x / dx (and of y) from its centre, in [-1/2, 1/2), in the tap tables' terms
+ * (kern_int.h; pft_kfrac_off_ gives f). */
+typedef struct {
+    int32_t i, j;
+    pft_kfrac_t fx, fy;
+} pft_tbd_cell_t;
+
+/* False when the window centre pixel is outside the image (the target left the surveillance
+ * region). One rounding rule for the leave-image test, the constraint mask and the window. */
+static inline bool pft_tbd_cell_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y,
+                                 pft_tbd_cell_t *c)
+{
+    const pft_real_t u = m->dx == PFT_REAL_ONE ? x : pft_mul(x, m->inv_dx);
+    const pft_real_t v = m->dy == PFT_REAL_ONE ? y : pft_mul(y, m->inv_dy);
+    return pft_kcell_(u, m->hi_x, (int32_t)m->width, &c->i, &c->fx) &&
+           pft_kcell_(v, m->hi_y, (int32_t)m->height, &c->j, &c->fy);
+}
+
+/* The windowed LLR (docs/algorithms.md 1) of intensity I at cell c on a bordered whitened
+ * image, for any window: the exact PSF taps (2 (2p + 1) exponentials), the window clipped to
+ * the image. */
+pft_real_t pft_tbd_llr_exact_(const pft_tbd_meas_t *m, const pft_real_t *img,
+                              const pft_tbd_cell_t *c, pft_real_t intensity);
+
+/* Taps at an image edge: the tap outside set to 0 and its square taken out of lane 3. */
+static inline void pft_tbd_clip_(pft_real_t t[4], int32_t i, int32_t n)
+{
+    if (i == 1) {
+        t[3] = pft_sub(t[3], pft_kmulq_(t[0], t[0]));
+        t[0] = PFT_C(0.0);
+    }
+    if (i == n) {
+        t[3] = pft_sub(t[3], pft_kmulq_(t[2], t[2]));
+        t[2] = PFT_C(0.0);
+    }
+}
+
+/* The same for p = 1 with tabulated taps (pft_tbd_tab_t, linear interpolation): three taps
+ * and their sum of squares per axis, a tap outside the image set to 0 (the window clipped),
+ * the 3 x 3 sum factored, the pixel index computed once. */
+static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                       const pft_real_t *img, const pft_tbd_cell_t *c,
+                                       pft_real_t intensity)
+{
+    pft_real_t tx[4], ty[4];
+    const size_t stride = (size_t)m->width + 2u;
+    pft_ktaps_(tab->taps[0], c->fx, tx);
+    pft_ktaps_(tab->taps[1], c->fy, ty);
+    if (c->i == 1 || c->i == (int32_t)m->width) {
+        pft_tbd_clip_(tx, c->i, (int32_t)m->width);
+    }
+    if (c->j == 1 || c->j == (int32_t)m->height) {
+        pft_tbd_clip_(ty, c->j, (int32_t)m->height);
+    }
+    return pft_kspot3_(img + (size_t)(c->j - 1) * stride + (size_t)(c->i - 1), stride, tx, ty,
+                       pft_kmulq_(intensity, m->kc));
+}
+
+/* The filters' likelihood: the tabulated 3 x 3 kernel for p = 1, the exact one otherwise (on a
+ * copy of the cell, so that the caller's never has its address taken by a call). */
+static inline pft_real_t pft_tbd_llr_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                      const pft_real_t *img, const pft_tbd_cell_t *c,
+                                      pft_real_t intensity)
+{
+    if (m->p == 1u) {
+        return pft_tbd_llr3_(m, tab, img, c, intensity);
+    }
+    {
+        const pft_tbd_cell_t cc = *c;
+        return pft_tbd_llr_exact_(m, img, &cc, intensity);
+    }
+}
 
 /* ---- PF-TBD pieces shared with the pf engine's TBD model (tbd_dyn.c) ---- */
 
@@ -89,7 +188,7 @@ typedef struct {
 /* Fills the PF-TBD constants of cfg: chol(V), sqrt(q2 T), sqrt(P0), quantised probabilities. */
 void pft_tbd_dyn_setup_(pft_tbd_dyn_t *d, const pft_tbd_config_t *cfg);
 /* The existence draw of one particle: 16 bits, compared with the quantised probabilities. */
-static inline uint32_t pft_tbd_exist_draw_(pft_rng_t *rng) { return pft_rng_u32(rng) >> 16; }
+static inline uint32_t pft_tbd_exist_draw_(pft_rng_t *rng) { return pft_rng_next_(rng) >> 16; }
 /* Birth probability of a frame (eta on the first frame, pb after). */
 static inline uint32_t pft_tbd_p_birth_(const pft_tbd_dyn_t *d, bool first_frame)
 {
@@ -100,14 +199,37 @@ static inline uint32_t pft_tbd_p_birth_(const pft_tbd_dyn_t *d, bool first_frame
 pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_ *sc);
 /* A birth: a candidate pixel, a uniform position inside it, intensity U[i_min, i_max]; the
  * velocity drawn from N(vel_mean, vel_var) when sample_vel (PF), else vel_mean (RBPF, whose
- * caller sets the Kalman variances). n_cand >= 1. */
+ * Kalman variance is that of age 0). n_cand >= 1. */
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
                     uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
-/* A survivor's PF move: X = F X + chol(V) n on the full state, intensity random walk. */
-void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
+ * y axis, intensity), each component rounded once. */
+static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,
+                                    pft_tbd_kin_t *k)
+{
+    const pft_real_t g1 = pft_rng_zig_(rng);
+    const pft_real_t g2 = pft_rng_zig_(rng);
+    const pft_real_t g3 = pft_rng_zig_(rng);
+    const pft_real_t g4 = pft_rng_zig_(rng);
+    const pft_real_t g5 = pft_rng_zig_(rng);
+    *k->x = pft_kmad2_(*k->x, T, *k->vx, d->ch_pos, g1);
+    *k->vx = pft_kmad2_(*k->vx, d->ch_cross, g1, d->ch_vel, g2);
+    *k->y = pft_kmad2_(*k->y, T, *k->vy, d->ch_pos, g3);
+    *k->vy = pft_kmad2_(*k->vy, d->ch_cross, g3, d->ch_vel, g4);
+    *k->in = pft_kmad1_(*k->in, d->ch_int, g5);
+}
 /* True when the window centre pixel of (x, y) is inside the image (else the target left the
- * surveillance region); *pix is then its row-major index. */
-bool pft_tbd_centre_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y, size_t *pix);
+ * surveillance region); *pix is then its 0-based row-major index. */
+static inline bool pft_tbd_centre_(const pft_tbd_meas_t *m, pft_real_t x, pft_real_t y,
+                                   size_t *pix)
+{
+    pft_tbd_cell_t c;
+    if (!pft_tbd_cell_(m, x, y, &c)) {
+        return false;
+    }
+    *pix = (size_t)(c.j - 1) * m->width + (size_t)(c.i - 1);
+    return true;
+}
 
 /* Estimate sums: total weight, weight of the E != 0 particles and their weighted x, y, vx,
  * vy, I. */

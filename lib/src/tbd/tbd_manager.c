@@ -17,9 +17,11 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
 static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, bool commit)
 {
     size_t npix = (size_t)cfg->width * cfg->height;
-    pft_real_t *img = (pft_real_t *)pft_ws_take(ws, npix * sizeof(pft_real_t));
+    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
+    pft_real_t *img = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
     uint8_t *mask = (uint8_t *)pft_ws_take(ws, npix);
     uint32_t *cand = (uint32_t *)pft_ws_take(ws, npix * sizeof(uint32_t));
+    pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
         (pft_tbd_filter_t *)pft_ws_take(ws, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
     pft_tbd_track_t *records =
@@ -38,9 +40,10 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         tf->kind = cfg->kind;
         pft_tbd_particles_carve_(tf, ws);
     }
-    res = (pft_real_t *)pft_ws_take(ws, npix * sizeof(pft_real_t));
+    res = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
     if (commit) {
         t->res = res;
+        t->tab = tab;
         t->img = img;
         t->mask = mask;
         t->cand = cand;
@@ -61,9 +64,11 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     pft_ws_t ws2;
     pft_ws_init(&ws2, work, work_len);
     size_t npix = (size_t)cfg->width * cfg->height;
-    (void)pft_ws_take(&ws2, npix * sizeof(pft_real_t));
+    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
+    (void)pft_ws_take(&ws2, nimg * sizeof(pft_real_t));
     (void)pft_ws_take(&ws2, npix);
     (void)pft_ws_take(&ws2, npix * sizeof(uint32_t));
+    (void)pft_ws_take(&ws2, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
         (pft_tbd_filter_t *)pft_ws_take(&ws2, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
@@ -72,8 +77,13 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     }
     pft_ws_init(&ws2, work, work_len);
     carve_all_(t, cfg, &ws2, true);
-    memset(t->img, 0, npix * sizeof(pft_real_t));
-    memset(t->res, 0, npix * sizeof(pft_real_t));
+    pft_tbd_tab_setup_(t->tab, cfg);
+    t->search.tab = t->tab;
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        t->tracks[k].tab = t->tab;
+    }
+    memset(t->img, 0, nimg * sizeof(pft_real_t));
+    memset(t->res, 0, nimg * sizeof(pft_real_t));
     memset(t->mask, 0, npix);
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
@@ -163,7 +173,7 @@ static uint8_t psf_half_(const pft_tbd_config_t *cfg)
     return (uint8_t)(cfg->window + cfg->residual_margin);
 }
 
-/* res = img on the pixels pft_tbd_meas_add_psf_int_(.., x, y, .., half) touched. */
+/* res = img on the pixels subtract_psf_(.., x, y, .., half) touched. */
 static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
                          pft_real_t x, pft_real_t y, uint8_t half)
 {
@@ -173,12 +183,23 @@ static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft
     int32_t chi = r.col_hi + dp > (int32_t)cfg->width - 1 ? (int32_t)cfg->width - 1 : r.col_hi + dp;
     int32_t rlo = r.row_lo - dp < 0 ? 0 : r.row_lo - dp;
     int32_t rhi = r.row_hi + dp > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r.row_hi + dp;
+    const size_t stride = pft_tbd_stride_(cfg->width);
     for (int32_t row = rlo; row <= rhi; ++row) {
-        size_t o = (size_t)row * cfg->width;
+        size_t o = (size_t)(row + 1) * stride + 1u;
         for (int32_t col = clo; col <= chi; ++col) {
             res[o + (size_t)col] = img[o + (size_t)col];
         }
     }
+}
+
+/* res -= h / sigma of a track record's intensity at (x, y) (internal frame). */
+static void subtract_psf_(const pft_tbd_t *t, pft_real_t x, pft_real_t y, pft_real_t intensity,
+                          uint8_t half)
+{
+    const pft_tbd_meas_t *m = &t->search.model;
+    const uint32_t stride = pft_tbd_stride_(t->cfg.width);
+    pft_tbd_psf_add_(m, t->res, (size_t)stride + 1u, stride, x, y,
+                     pft_neg(pft_mul(intensity, m->kc)), half);
 }
 
 /* Predicted position of a track record one frame ahead (x + v T). */
@@ -288,8 +309,7 @@ static void update_tracks_(pft_tbd_t *t, bool residual)
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
                 predict_(cfg, &t->records[u], &px, &py);
-                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, px, py,
-                                     pft_neg(t->records[u].intensity), half);
+                subtract_psf_(t, px, py, t->records[u].intensity, half);
             }
         }
         pft_tbd_filter_step_(&t->tracks[k], &tsc);
@@ -346,15 +366,14 @@ static void update_search_(pft_tbd_t *t, bool residual)
     if (residual && t->n_tracks > 0u) {
         for (uint32_t u = 0; u < cfg->max_targets; ++u) {
             if (t->records[u].id != 0u) {
-                pft_tbd_meas_add_psf_int_(&t->search.model, t->res, t->records[u].x,
-                                          t->records[u].y,
-                                     pft_neg(t->records[u].intensity), psf_half_(cfg));
+                subtract_psf_(t, t->records[u].x, t->records[u].y, t->records[u].intensity,
+                              psf_half_(cfg));
             }
         }
         simg = t->res;
     }
     pft_tbd_scene_t_ ssc;
-    pft_tbd_scene_build_(cfg, simg, t->mask, t->cand, &ssc);
+    pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
     pft_tbd_filter_step_(&t->search, &ssc);
 }
 
@@ -409,7 +428,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (st != PFT_OK) {
         return st; /* nothing touched */
     }
-    pft_tbd_frame_convert_(cfg, frame, t->img);
+    pft_tbd_frame_convert_(cfg, &t->search.model, frame, t->img);
     if (t->frame < UINT32_MAX) {
         ++t->frame;
     }
@@ -419,7 +438,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
     if (res_tracks || res_search) {
-        memcpy(t->res, t->img, npix * sizeof(pft_real_t));
+        memcpy(t->res, t->img, pft_tbd_img_len_(cfg->width, cfg->height) * sizeof(pft_real_t));
     }
     update_tracks_(t, res_tracks);
     end_or_keep_tracks_(t);

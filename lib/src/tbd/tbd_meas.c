@@ -34,6 +34,10 @@ void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg)
     m->c0 = pft_div(pft_mul(cfg->dx, cfg->dy), pft_mul(PFT_TWO_PI, s2));
     m->inv_2s2 = pft_recip(pft_mul_i(s2, 2));
     m->inv_s2n = pft_recip(pft_sq(cfg->noise_sigma));
+    m->inv_sn = pft_recip(cfg->noise_sigma);
+    m->kc = pft_div(m->c0, cfg->noise_sigma);
+    m->hi_x = pft_add(pft_from_int((int32_t)cfg->width), PFT_C(0.5));
+    m->hi_y = pft_add(pft_from_int((int32_t)cfg->height), PFT_C(0.5));
 }
 
 pft_real_t pft_tbd_meas_h_int_(const pft_tbd_meas_t *m, int32_t i, int32_t j, pft_real_t x,
@@ -108,8 +112,8 @@ pft_real_t pft_tbd_meas_llr_int_(const pft_tbd_meas_t *m, const pft_real_t *img,
     return pft_mul(acc, m->inv_s2n);
 }
 
-void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x,
-                               pft_real_t y, pft_real_t intensity, uint8_t half)
+void pft_tbd_psf_add_(const pft_tbd_meas_t *m, pft_real_t *img, size_t origin, uint32_t stride,
+                      pft_real_t x, pft_real_t y, pft_real_t coef, uint8_t half)
 {
     int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;
     win_t w;
@@ -117,14 +121,70 @@ void pft_tbd_meas_add_psf_int_(const pft_tbd_meas_t *m, pft_real_t *img, pft_rea
         return;
     }
     pft_real_t ax[2u * PFT_TBD_MAX_PSF_HALF + 1u];
-    psf_columns_(m, &w, x, pft_mul(intensity, m->c0), ax);
+    psf_columns_(m, &w, x, coef, ax);
     for (int32_t j = w.jlo; j <= w.jhi; ++j) {
         pft_real_t g = psf_row_(m, j, y);
-        pft_real_t *row = img + (size_t)(j - 1) * m->width;
+        pft_real_t *row = img + origin + (size_t)(j - 1) * stride;
         for (int32_t i = w.ilo; i <= w.ihi; ++i) {
             row[i - 1] = pft_add(row[i - 1], pft_mul(ax[i - w.ilo], g));
         }
     }
+}
+
+pft_real_t pft_tbd_llr_exact_(const pft_tbd_meas_t *m, const pft_real_t *img,
+                              const pft_tbd_cell_t *c, pft_real_t intensity)
+{
+    const int32_t p = (int32_t)m->p;
+    const int32_t ilo = c->i - p < 1 ? 1 : c->i - p;
+    const int32_t ihi = c->i + p > (int32_t)m->width ? (int32_t)m->width : c->i + p;
+    const int32_t jlo = c->j - p < 1 ? 1 : c->j - p;
+    const int32_t jhi = c->j + p > (int32_t)m->height ? (int32_t)m->height : c->j + p;
+    const size_t stride = (size_t)m->width + 2u;
+    pft_real_t tx[2u * PFT_TBD_MAX_WINDOW + 1u];
+    pft_real_t ty[2u * PFT_TBD_MAX_WINDOW + 1u];
+    /* offsets from the particle in pixels: (i - u) for u = i0 + f */
+    for (int32_t i = ilo; i <= ihi; ++i) {
+        pft_real_t d = pft_mul(pft_sub(pft_from_int(i - c->i), pft_kfrac_off_(c->fx)), m->dx);
+        tx[i - ilo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    }
+    for (int32_t j = jlo; j <= jhi; ++j) {
+        pft_real_t d = pft_mul(pft_sub(pft_from_int(j - c->j), pft_kfrac_off_(c->fy)), m->dy);
+        ty[j - jlo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    }
+    return pft_kspot_(img + (size_t)jlo * stride + (size_t)ilo, stride, tx, (uint32_t)(ihi - ilo + 1),
+                      ty, (uint32_t)(jhi - jlo + 1), pft_mul(intensity, m->kc));
+}
+
+/* The tap table of pitch d: row n holds g((k - 1 - f_n) d), k = 0..2, and their sum of squares
+ * at f_n = -1/2 + n / PFT_TBD_TAP_STEPS, then the differences to row n + 1. */
+static void taps_fill_(const pft_tbd_meas_t *m, pft_real_t d, pft_real_t (*rows)[8])
+{
+    pft_real_t prev[4] = {0, 0, 0, 0};
+    for (uint32_t n = 0; n <= PFT_TBD_TAP_STEPS; ++n) {
+        pft_real_t f = pft_sub(pft_ratio((int32_t)n, (int32_t)PFT_TBD_TAP_STEPS), PFT_C(0.5));
+        pft_real_t v[4];
+        v[3] = PFT_C(0.0);
+        for (int32_t k = 0; k < 3; ++k) {
+            pft_real_t t = pft_mul(pft_sub(pft_from_int(k - 1), f), d);
+            v[k] = pft_exp(pft_neg(pft_mul(pft_sq(t), m->inv_2s2)));
+            v[3] = pft_add(v[3], pft_sq(v[k]));
+        }
+        for (int k = 0; k < 4; ++k) {
+            if (n > 0u) {
+                rows[n - 1u][k + 4] = pft_sub(v[k], prev[k]);
+            }
+            if (n < PFT_TBD_TAP_STEPS) {
+                rows[n][k] = v[k];
+            }
+            prev[k] = v[k];
+        }
+    }
+}
+
+void pft_tbd_taps_setup_(pft_tbd_tab_t *t, const pft_tbd_meas_t *m)
+{
+    taps_fill_(m, m->dx, t->taps[0]);
+    taps_fill_(m, m->dy, t->taps[1]);
 }
 
 /* ---- public calls: 0-based coordinates (pixel column c, row r centred at (c dx, r dy)) ---- */
@@ -155,8 +215,8 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
     if (m == NULL || img == NULL) {
         return;
     }
-    pft_tbd_meas_add_psf_int_(m, img, pft_tbd_x_int_(x, m->dx), pft_tbd_x_int_(y, m->dy),
-                              intensity, half);
+    pft_tbd_psf_add_(m, img, 0u, m->width, pft_tbd_x_int_(x, m->dx), pft_tbd_x_int_(y, m->dy),
+                     pft_mul(intensity, m->c0), half);
 }
 
 /* ------------------------------------ frames ---------------------------------------------- */
@@ -171,12 +231,16 @@ pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t
     return pft_frame_check_finite(frame);
 }
 
-void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_frame_t *frame,
-                            pft_real_t *img)
+void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m,
+                            const pft_frame_t *frame, pft_real_t *img)
 {
+    const size_t stride = pft_tbd_stride_(cfg->width);
     for (uint32_t r = 0; r < cfg->height; ++r) {
-        pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset,
-                              img + (size_t)r * cfg->width);
+        pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
+        pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset, row);
+        for (uint32_t c = 0; c < cfg->width; ++c) {
+            row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
+        }
     }
 }
 
@@ -193,19 +257,24 @@ void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd
     }
 }
 
-void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, const pft_real_t *img,
+void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
                           const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc)
 {
-    uint32_t npix = (uint32_t)cfg->width * cfg->height;
+    const uint32_t w = cfg->width;
+    const uint32_t stride = pft_tbd_stride_(w);
+    uint32_t npix = w * cfg->height;
     uint32_t nb = 0;
     uint32_t na = 0;
-    for (uint32_t k = 0; k < npix; ++k) {
-        if (mask != NULL && mask[k] != 0u) {
-            continue;
-        }
-        ++na;
-        if (img[k] > cfg->gamma) {
-            cand[nb++] = k;
+    for (uint32_t r = 0, k = 0; r < cfg->height; ++r) {
+        const pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
+        for (uint32_t c = 0; c < w; ++c, ++k) {
+            if (mask != NULL && mask[k] != 0u) {
+                continue;
+            }
+            ++na;
+            if (row[c] > gamma_w) {
+                cand[nb++] = k;
+            }
         }
     }
     sc->img = img;

@@ -34,8 +34,10 @@ struct pft_pf_lg_model_s {
 struct pft_pf_tbd_model_s {
     pft_tbd_config_t cfg;
     pft_tbd_meas_t m;
-    pft_real_t *img;       /* converted frame (workspace) */
+    pft_real_t *img;       /* converted frame, whitened with a zero border (workspace) */
     uint32_t *cand;        /* birth candidate pixels (workspace) */
+    pft_tbd_tab_t *tab;    /* PSF tap tables (workspace) */
+    pft_real_t gamma_w;    /* birth threshold on the whitened frame */
     uint32_t n_cand;
     uint32_t frames;       /* frames accepted since init / reset */
     pft_real_t birth_lw;   /* birth correction of the current frame */

@@ -24,14 +24,46 @@ struct pft_tbd_meas_s {
     pft_real_t c0;           /* dx*dy/(2 pi S^2): h = I*c0*gx*gy */
     pft_real_t inv_2s2;      /* 1/(2 S^2) */
     pft_real_t inv_s2n;      /* 1/sigma^2 */
+    pft_real_t inv_sn;       /* 1/sigma: frames are whitened, z/sigma */
+    pft_real_t kc;           /* c0/sigma: the whitened amplitude of intensity I is I*kc */
+    pft_real_t hi_x, hi_y;   /* width + 1/2, height + 1/2: a window centre u = x/dx is inside
+                                the image for u in [1/2, hi_x) */
 };
 
-/* SoA particle arrays (RBPF uses all, PF leaves px/py NULL). */
+/* Rows of the PSF tap tables per pixel, and ages of the Kalman tables (pft_tbd_tab_t). */
+#define PFT_TBD_TAP_STEPS 64u
+#define PFT_TBD_KF_AGES 32u
+
+/* Tables shared by every filter of a workspace (one copy per standalone filter, manager or pf
+ * engine model): the separable PSF taps g((k - 1 - f) d) = exp(-((k - 1 - f) d)^2 / (2 S^2)),
+ * k = 0..2, and their sum of squares (lane 3) at a window centre offset
+ * f = -1/2 + n/PFT_TBD_TAP_STEPS, n = 0..STEPS - 1, followed by the differences of the four
+ * lanes to row n + 1 (lanes 4-7), for x ([0], pitch dx) and y ([1], pitch dy); and the RBPF's
+ * per-axis Kalman quantities as functions
+ * of a particle's age (frames since birth; the covariance depends on nothing else): the
+ * position spread sd = sqrt(T^2 P + q1 T^3/3) and the velocity gain times sd. Ages at or above
+ * age_cap use entry age_cap (the recursion has converged there). */
 typedef struct {
-    pft_real_t *x, *y, *in; /* position and intensity */
-    pft_real_t *mx, *my;    /* RBPF: Kalman velocity means; PF: sampled velocities */
-    pft_real_t *px, *py;    /* RBPF: Kalman velocity variances (P stays diagonal) */
-    uint8_t *e;             /* existence E */
+    pft_real_t taps[2][PFT_TBD_TAP_STEPS][8];
+    pft_real_t kf_sd[2][PFT_TBD_KF_AGES];
+    pft_real_t kf_gsd[2][PFT_TBD_KF_AGES];
+    uint8_t age_cap;
+} pft_tbd_tab_t;
+
+/* One particle's weight slot, used in turn for its log-weight, its weight and its replication
+ * count within one update (only the member last written is read). */
+typedef union {
+    pft_real_t lw;
+    pft_weight_t w;
+    uint32_t n;
+} pft_tbd_slot_t;
+
+/* SoA particle arrays (both kinds). */
+typedef struct {
+    pft_real_t *x, *y, *in; /* position (internal frame) and intensity */
+    pft_real_t *vx, *vy;    /* RBPF: Kalman velocity means; PF: sampled velocities */
+    uint8_t *e;             /* 0: no target (E = 0); else 1 + age, age capped at tab->age_cap */
+    pft_tbd_slot_t *w;      /* log-weight, weight, replication count */
 } pft_tbd_particles_t;
 
 /* Constants of the PF-TBD dynamics, births and existence chain (shared by the filters and the
@@ -49,19 +81,16 @@ struct pft_tbd_filter_s {
     uint32_t n;              /* particles */
     bool births;             /* births from E = 0 allowed (false in track layers) */
     bool constrain;          /* force E = 0 inside the exclusion mask (search layer) */
-    pft_tbd_particles_t cur, nxt;
-    pft_real_t *lw;
-    pft_weight_t *w;
-    uint32_t *idx;
-    pft_real_t *img;         /* standalone only: converted frame */
+    pft_tbd_particles_t cur;
+    const pft_tbd_tab_t *tab; /* tables (workspace; shared by the manager's layers) */
+    pft_real_t *img;         /* standalone only: converted frame (whitened, 1-pixel zero border) */
     uint8_t *mask;           /* standalone only: exclusion mask */
     uint32_t *cand;          /* standalone only: birth candidate pixels */
     /* derived constants */
     pft_tbd_meas_t model;
     pft_real_t log_n;        /* log N */
     pft_real_t log_ratio;    /* log dis_ratio */
-    pft_real_t kf_qpos;      /* q1 T^3 / 3 */
-    pft_real_t kf_qvel;      /* q1 T (paper) or q1 T / 4 (exact) */
+    pft_real_t gamma_w;      /* birth threshold on the whitened frame, gamma/sigma */
     pft_tbd_dyn_t dyn;       /* PF dynamics, births, existence probabilities */
     pft_real_t birth_lw;     /* birth log-weight correction of the current frame */
     pft_rng_t rng;
@@ -82,10 +111,11 @@ struct pft_tbd_s {
     pft_tbd_track_t *records;    /* max_targets slots (workspace); id 0 marks a free slot */
     pft_tbd_event_t *events;     /* max_targets + 1 (workspace) */
     uint32_t n_events;
-    pft_real_t *img;
+    pft_real_t *img;             /* converted frame (whitened, 1-pixel zero border) */
     uint8_t *mask;
     uint32_t *cand;
-    pft_real_t *res;             /* residual frame (joint likelihood, cfg.residual_*) */
+    pft_tbd_tab_t *tab;          /* tables shared by every layer */
+    pft_real_t *res;             /* residual frame (joint likelihood, cfg.residual_*), as img */
     uint32_t frame;              /* frames accepted so far (the last frame number) */
     uint32_t next_id;
     uint16_t n_tracks;           /* active tracks */

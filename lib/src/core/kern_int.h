@@ -1,0 +1,343 @@
+/* Arithmetic of the particle kernels (private, not installed): the per-particle steps written
+ * once for both number types, so that tracker sources never test the build's number type.
+ * Every function here is inline; the q16 ones round once and saturate once per result, with
+ * int64 intermediates whose ranges are proven in the comments (docs/fixed_point.md, "Particle
+ * kernels"). Right shifts of negative int64 values are arithmetic (as everywhere in the
+ * library, docs/fixed_point.md).
+ *
+ * - pft_kmad1_, pft_kmad2_: a + b c (+ d e), one rounding.
+ * - pft_kwexp_: exp(x - m) for x <= m as a weight (q16: 2^-y from a 128-step table with linear
+ *   interpolation; float: 2^y by a degree-5 polynomial and the exponent bits).
+ * - pft_krecip_, pft_kwnorm_, pft_kess_: normalisation by one reciprocal per set instead of a
+ *   division per particle, and the effective sample size from the sums.
+ * - pft_kcell_: the pixel of a position (round to nearest, ties up) and the offset from its
+ *   centre, or "outside".
+ * - pft_ktaps_: three tabulated PSF taps and the sum of their squares at an offset
+ *   (PFT_KTAP_STEPS rows per pixel of values and differences, linear interpolation).
+ * - pft_kspot3_, pft_kspot_: the log likelihood ratio of a separable spot of amplitude a on a
+ *   whitened (noise-normalised) window: a sum_ij tx_i ty_j z_ij - a^2/2 (sum tx^2)(sum ty^2).
+ * - pft_kmulq_: a b rounded (ties up), saturated: a cheaper pft_mul for products of proven
+ *   range; pft_kmulr_ the same without saturation where the caller proves the range;
+ *   pft_kspread_: a position difference limited (q16) so that its square fits.
+ */
+#ifndef PFT_CORE_KERN_INT_H
+#define PFT_CORE_KERN_INT_H
+
+#include <string.h>
+
+#include "pft/pft_real.h"
+
+/** Rows of a tap table per pixel: offsets f = -1/2 + n / PFT_KTAP_STEPS, n = 0..STEPS - 1; a
+ *  row holds the values of four lanes at f_n and their differences to f_{n+1}. */
+#define PFT_KTAP_STEPS 64u
+
+extern const uint32_t pft_kexp2_tab[129];
+
+#ifdef PFT_NUMERIC_Q16
+
+typedef uint64_t pft_krecip_t;
+
+/* pft_sat64_ for values that are almost always in range: one unsigned comparison decides (v is
+ * in [-INT32_MAX, INT32_MAX] exactly when v + INT32_MAX is in [0, 2 INT32_MAX]), the clamp
+ * is the rare branch. */
+static inline pft_real_t pft_ksat_(int64_t v)
+{
+    if ((uint64_t)(v + INT32_MAX) > (uint64_t)2 * INT32_MAX) {
+        return v > 0 ? PFT_REAL_MAX : PFT_REAL_MIN;
+    }
+    return (pft_real_t)v;
+}
+
+/* a + b c rounded once, saturated: |a 2^16| <= 2^47, |b c| <= 2^62, sum < 2^63. */
+static inline pft_real_t pft_kmad1_(pft_real_t a, pft_real_t b, pft_real_t c)
+{
+    return pft_ksat_(((int64_t)a * 65536 + (int64_t)b * c + 32768) >> 16);
+}
+/* a + b c + d e rounded once, saturated; |e| < 2^24 (|e| < 256, e.g. a Gaussian draw), so
+ * |d e| < 2^55 and the sum stays below 2^62 + 2^55 + 2^48 < 2^63. */
+static inline pft_real_t pft_kmad2_(pft_real_t a, pft_real_t b, pft_real_t c, pft_real_t d,
+                                    pft_real_t e)
+{
+    return pft_ksat_(((int64_t)a * 65536 + (int64_t)b * c + (int64_t)d * e + 32768) >> 16);
+}
+
+/* exp(x - m), x <= m, in Q2.30: t = m - x exactly as a uint32 (< 2^32); y = t log2(e) in
+ * Q24 (t < 22 2^16 times log2(e) in Q28 < 2^50), 2^-frac(y) from the Q30 table by linear
+ * interpolation ((T[j] - T[j+1]) < 2^23 times a 9-bit fraction < 2^32), shifted right by
+ * floor(y) with rounding. Relative error below 4e-6 plus the final rounding; x = m gives
+ * exactly PFT_W_ONE, m - x >= 22 gives 0. */
+static inline pft_weight_t pft_kwexp_(pft_real_t x, pft_real_t m)
+{
+    uint32_t t, u, k, fr, j, r, d, v;
+    if (x >= m) {
+        return PFT_W_ONE;
+    }
+    t = (uint32_t)m - (uint32_t)x;
+    if (t >= (22u << 16)) {
+        return 0u;
+    }
+    u = (uint32_t)(((uint64_t)t * 387270501u) >> 20); /* log2(e) in Q28 */
+    k = u >> 24;
+    fr = u & 0xFFFFFFu;
+    j = fr >> 17;
+    r = (fr >> 8) & 0x1FFu;
+    d = pft_kexp2_tab[j] - pft_kexp2_tab[j + 1u];
+    v = pft_kexp2_tab[j] - ((d * r) >> 9);
+    return (v + ((1u << k) >> 1)) >> k;
+}
+
+/* 2^62 / s for a weight sum s >= 2^30 (the largest weight is PFT_W_ONE): at most 2^32. */
+static inline pft_krecip_t pft_krecip_(pft_wacc_t s)
+{
+    return s > 0u ? ((uint64_t)1 << 62) / s : 0u;
+}
+/* e / s in Q2.30 from e <= 2^30 and r = 2^62 / s: e r <= 2^62. */
+static inline pft_weight_t pft_kwnorm_(pft_weight_t e, pft_krecip_t r)
+{
+    return (pft_weight_t)(((uint64_t)e * r) >> 32);
+}
+/* ESS = w^2 / w2 for w = sum of normalised weights (<= 2^30, so w^2 <= 2^60) and w2 = their
+ * sum of squares (>= w^2 / n >= 2^38 for n <= 2^22), as Q16.16 saturated at 32768. */
+static inline pft_real_t pft_kess_(pft_wacc_t w, pft_wacc_t w2)
+{
+    uint64_t d = w2 >> 16;
+    uint64_t q;
+    if (d == 0u) {
+        return 0;
+    }
+    q = (w * w + d / 2u) / d;
+    return q > (uint64_t)INT32_MAX ? PFT_REAL_MAX : (pft_real_t)q;
+}
+
+/* The offset f of a position from its pixel's centre, kept as (f + 1/2) 2^16 in [0, 2^16):
+ * the tap table's row is its top 6 bits, the interpolation fraction the next 10. */
+typedef uint32_t pft_kfrac_t;
+
+/* The pixel i in [1, n] whose centre (at i) is nearest to u (ties up) and the offset of u from
+ * it; false when u is outside [1/2, hi) with hi = n + 1/2 (n <= 2^14, so no sum overflows). */
+static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i, pft_kfrac_t *g)
+{
+    uint32_t t;
+    (void)n;
+    if (u < 32768 || u >= hi) {
+        return false;
+    }
+    t = (uint32_t)u + 32768u;
+    *i = (int32_t)(t >> 16);
+    *g = t & 0xFFFFu;
+    return true;
+}
+
+/* f = u - i as a real. */
+static inline pft_real_t pft_kfrac_off_(pft_kfrac_t g) { return (pft_real_t)g - 32768; }
+
+/* t[k] = tab(f)[k], k = 0..3 (lane 3: the sum of the squared taps): row n = g >> 10,
+ * t = v + (d r) >> 10 with r = g mod 2^10 (|d| <= 2^17, so the product stays below 2^27; the
+ * floor costs at most 1 LSB, far below the interpolation error). */
+static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_real_t t[4])
+{
+    const int32_t r = (int32_t)(g & 1023u);
+    const pft_real_t *a = tab[g >> 10];
+    for (int k = 0; k < 4; ++k) {
+        t[k] = a[k] + ((a[k + 4] * r) >> 10);
+    }
+}
+
+/* A position difference for second moments: clamped to +-181 so that a product of two stays
+ * below 32768 (181^2 = 32761). */
+static inline pft_real_t pft_kspread_(pft_real_t d)
+{
+    if ((uint32_t)(d + PFT_C(181.0)) > (uint32_t)PFT_C(362.0)) { /* |d| > 181, rare */
+        return d > 0 ? PFT_C(181.0) : PFT_C(-181.0);
+    }
+    return d;
+}
+
+/* a b rounded to nearest (ties up) for |a b| < 32768 (the caller proves it). */
+static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b)
+{
+    return (pft_real_t)(((int64_t)a * b + 32768) >> 16);
+}
+
+/* a b rounded to nearest (ties up) and saturated. */
+static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b)
+{
+    return pft_ksat_(((int64_t)a * b + 32768) >> 16);
+}
+
+/* The spot LLR from the window sums: s1 = sum ty (sum tx z) in Q32, sx2, sy2 = sums of
+ * squared taps in Q16 (<= 9 2^16). q = sx2 sy2 in Q16 (< 81 2^16); d = s1 - a q / 2 in Q32
+ * (|s1| < 2^53.4 for 9 x 9 windows of |z| < 2^31 and taps <= 2^16, |a q| < 2^54);
+ * result a d in Q16 via d16 = round(d / 2^16) = h 2^16 + l, a h + round(a l / 2^16),
+ * |a h| < 2^55. One saturation. */
+static inline pft_real_t pft_kspot_end_(int64_t s1, int64_t sx2, int64_t sy2, pft_real_t a)
+{
+    const int64_t q = (sx2 * sy2 + 32768) >> 16;
+    const int64_t d = s1 - (((int64_t)a * q) >> 1);
+    const int64_t d16 = (d + 32768) >> 16;
+    const int64_t h = d16 >> 16;
+    const int64_t l = d16 & 0xFFFF;
+    return pft_ksat_((int64_t)a * h + (((int64_t)a * l + 32768) >> 16));
+}
+
+/* One row: sum tx z (Q32, |.| < 3 2^47), then to Q16 (int64, rounded). */
+static inline int64_t pft_krow3_(const pft_real_t *z, const pft_real_t tx[3])
+{
+    return ((int64_t)tx[0] * z[0] + (int64_t)tx[1] * z[1] + (int64_t)tx[2] * z[2] + 32768) >> 16;
+}
+
+/* The 3 x 3 spot LLR; z points at the window's top-left pixel, rows stride apart; tx[3] and
+ * ty[3] are the sums of the squared taps. */
+static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const pft_real_t tx[4],
+                                     const pft_real_t ty[4], pft_real_t a)
+{
+    const int64_t s1 = ty[0] * pft_krow3_(z, tx) + ty[1] * pft_krow3_(z + stride, tx) +
+                       ty[2] * pft_krow3_(z + 2u * stride, tx);
+    return pft_kspot_end_(s1, tx[3], ty[3], a);
+}
+
+/* The same for an nx x ny window (n <= 9): the arithmetic of pft_kspot3_ exactly. */
+static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,
+                                    uint32_t nx, const pft_real_t *ty, uint32_t ny, pft_real_t a)
+{
+    int64_t s1 = 0, sx2 = 0, sy2 = 0;
+    for (uint32_t j = 0; j < ny; ++j) {
+        int64_t r = 0;
+        for (uint32_t i = 0; i < nx; ++i) {
+            r += (int64_t)tx[i] * z[(size_t)j * stride + i];
+        }
+        s1 += ty[j] * ((r + 32768) >> 16);
+        sy2 += (int64_t)ty[j] * ty[j];
+    }
+    for (uint32_t i = 0; i < nx; ++i) {
+        sx2 += (int64_t)tx[i] * tx[i];
+    }
+    return pft_kspot_end_(s1, (sx2 + 32768) >> 16, (sy2 + 32768) >> 16, a);
+}
+
+#else /* ----------------------------------- float --------------------------------------- */
+
+typedef float pft_krecip_t;
+
+static inline pft_real_t pft_kmad1_(pft_real_t a, pft_real_t b, pft_real_t c) { return a + b * c; }
+static inline pft_real_t pft_kmad2_(pft_real_t a, pft_real_t b, pft_real_t c, pft_real_t d,
+                                    pft_real_t e)
+{
+    return a + b * c + d * e;
+}
+/* exp(x) (x = xx - m) = 2^y, y = x log2(e) = k + f with k = trunc(y) in [-125, 0] and f in
+ * (-1, 0]: 2^f by
+ * a degree-5 polynomial (Chebyshev nodes; relative error below 2.2e-7, measured in
+ * test_kern), 2^k from the exponent bits. x = 0 gives exactly 1; x <= -87 gives 0. */
+static inline pft_weight_t pft_kwexp_(pft_real_t xx, pft_real_t m)
+{
+    const float x = xx - m;
+    float y, f, p, sc;
+    int32_t k;
+    uint32_t bits;
+    if (x >= 0.0f) {
+        return 1.0f;
+    }
+    if (!(x > -87.0f)) {
+        return 0.0f;
+    }
+    y = x * 1.44269504f;
+    k = (int32_t)y;
+    f = y - (float)k;
+    p = 0.000946877000387758f;
+    p = p * f + 0.009209180250763893f;
+    p = p * f + 0.05529811978340149f;
+    p = p * f + 0.24017895758152008f;
+    p = p * f + 0.6931431293487549f;
+    p = p * f + 0.9999999403953552f;
+    bits = (uint32_t)(k + 127) << 23;
+    memcpy(&sc, &bits, sizeof sc);
+    return p * sc;
+}
+static inline pft_krecip_t pft_krecip_(pft_wacc_t s) { return s > 0.0f ? 1.0f / s : 0.0f; }
+static inline pft_weight_t pft_kwnorm_(pft_weight_t e, pft_krecip_t r) { return e * r; }
+static inline pft_real_t pft_kess_(pft_wacc_t w, pft_wacc_t w2)
+{
+    return w2 > 0.0f ? w * w / w2 : 0.0f;
+}
+
+/* The offset f of a position from its pixel's centre as the tap table's row n and the
+ * fraction r within it: (f + 1/2) STEPS = n + r. */
+typedef struct {
+    int32_t n;
+    float r;
+} pft_kfrac_t;
+
+/* u in [1/2, hi) with hi = n + 1/2 exactly as in q16; t = (u + 1/2) STEPS is truncated once
+ * (a floor: t >= STEPS > 0) into the pixel and the row. When u is just below hi the product
+ * may round up to (n + 1) STEPS: then the last row of pixel n at r = 1. */
+static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i, pft_kfrac_t *g)
+{
+    float t;
+    int32_t q;
+    if (!(u >= 0.5f && u < hi)) {
+        return false;
+    }
+    t = (u + 0.5f) * (float)PFT_KTAP_STEPS;
+    q = (int32_t)t;
+    *i = q >> 6;
+    if (*i > n) {
+        *i = n;
+        g->n = (int32_t)PFT_KTAP_STEPS - 1;
+        g->r = 1.0f;
+        return true;
+    }
+    g->n = q & ((int32_t)PFT_KTAP_STEPS - 1);
+    g->r = t - (float)q;
+    return true;
+}
+
+static inline pft_real_t pft_kfrac_off_(pft_kfrac_t g)
+{
+    return ((float)g.n + g.r) * (1.0f / (float)PFT_KTAP_STEPS) - 0.5f;
+}
+
+static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_real_t t[4])
+{
+    const pft_real_t *a = tab[g.n];
+    for (int k = 0; k < 4; ++k) {
+        t[k] = a[k] + g.r * a[k + 4];
+    }
+}
+
+static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
+
+static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const pft_real_t tx[4],
+                                     const pft_real_t ty[4], pft_real_t a)
+{
+    const pft_real_t *z1 = z + stride;
+    const pft_real_t *z2 = z1 + stride;
+    const float s1 = ty[0] * (tx[0] * z[0] + tx[1] * z[1] + tx[2] * z[2]) +
+                     ty[1] * (tx[0] * z1[0] + tx[1] * z1[1] + tx[2] * z1[2]) +
+                     ty[2] * (tx[0] * z2[0] + tx[1] * z2[1] + tx[2] * z2[2]);
+    return a * (s1 - 0.5f * a * tx[3] * ty[3]);
+}
+
+static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,
+                                    uint32_t nx, const pft_real_t *ty, uint32_t ny, pft_real_t a)
+{
+    float s1 = 0.0f, sx2 = 0.0f, sy2 = 0.0f;
+    for (uint32_t j = 0; j < ny; ++j) {
+        float r = 0.0f;
+        for (uint32_t i = 0; i < nx; ++i) {
+            r += tx[i] * z[(size_t)j * stride + i];
+        }
+        s1 += ty[j] * r;
+        sy2 += ty[j] * ty[j];
+    }
+    for (uint32_t i = 0; i < nx; ++i) {
+        sx2 += tx[i] * tx[i];
+    }
+    return a * (s1 - 0.5f * a * sx2 * sy2);
+}
+
+#endif
+
+#endif

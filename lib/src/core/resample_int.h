@@ -1,0 +1,124 @@
+/* Systematic resampling as a stream of targets, for walks fused into other passes (private,
+ * not installed). The targets are those of pft_resample's systematic scheme,
+ * T_k = W (k + u / 2^32) / N for k = 0, 1, ..., N - 1 over a total weight W; a particle whose
+ * cumulative weight range [c_{j-1}, c_j) holds r targets is replicated r times.
+ *
+ * q16: exact, as in pft_resample.c. Since the cumulative sums c_j are integers, c_j > T_k
+ * exactly when c_j > floor(T_k). floor(T_0) = floor(W u / (N 2^32)) is formed from
+ * W = q N + r and q = qh 2^32 + ql with integer parts qh u + (ql u >> 32) and fractional
+ * parts over D = N 2^32 (< 2^54); each further target adds q to the integer part and r 2^32
+ * to the fraction (< 2 D), with one carry.
+ * float: T_k = (W / N)(k + u), as pft_resample's float walk; the number of targets below a
+ * cumulative weight c is min(N, ceil(c N / W - u)) directly, so a walk costs the same for any
+ * counts.
+ *
+ * pft_sys_take_(s, c): the targets below the cumulative weight c not taken yet (the
+ * replication count of the particle whose range ends at c), in order of c.
+ */
+#ifndef PFT_CORE_RESAMPLE_INT_H
+#define PFT_CORE_RESAMPLE_INT_H
+
+#include "pft/pft_real.h"
+
+#ifdef PFT_NUMERIC_Q16
+
+typedef struct {
+    uint64_t t;  /* floor(T_k) */
+    uint64_t fr; /* fraction of T_k over d */
+    uint64_t q;  /* W / N, integer part */
+    uint64_t rr; /* (W mod N) 2^32 */
+    uint64_t d;  /* N 2^32 */
+    uint32_t k, n;
+} pft_sys_t;
+
+static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uint32_t u)
+{
+    const uint64_t q = total / n;
+    const uint64_t r = total % n;
+    const uint64_t qlu = (q & 0xFFFFFFFFu) * u;
+    s->d = (uint64_t)n << 32;
+    s->t = (q >> 32) * u + (qlu >> 32);
+    s->fr = (qlu & 0xFFFFFFFFu) * n + r * u; /* < 2 d */
+    if (s->fr >= s->d) {
+        s->fr -= s->d;
+        s->t += 1u;
+    }
+    s->q = q;
+    s->rr = r << 32;
+    s->k = 0u;
+    s->n = n;
+}
+
+/* The next target; after the last (k == n) it is past every cumulative weight. */
+static inline void pft_sys_next_(pft_sys_t *s)
+{
+    s->k += 1u;
+    if (s->k >= s->n) {
+        s->t = UINT64_MAX;
+        return;
+    }
+    s->t += s->q;
+    s->fr += s->rr;
+    if (s->fr >= s->d) {
+        s->fr -= s->d;
+        s->t += 1u;
+    }
+}
+
+/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: the target after the last
+ * is past every c. */
+static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
+{
+    const uint32_t k0 = s->k;
+    while (c > s->t) {
+        pft_sys_next_(s);
+    }
+    return s->k - k0;
+}
+
+/* Targets not taken by the walk (float rounding only; 0 here). */
+static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }
+
+#else
+
+typedef struct {
+    float inv_step; /* N / W */
+    float u;        /* u / 2^32 */
+    uint32_t k, n;
+} pft_sys_t;
+
+static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uint32_t u)
+{
+    s->inv_step = total > 0.0f ? (float)n / total : 0.0f;
+    s->u = pft_from_u32_frac(u);
+    s->k = 0u;
+    s->n = n;
+}
+
+/* T_k < c exactly when k < q = c N / W - u: min(n, ceil(q)) targets lie below c. */
+static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
+{
+    const float q = c * s->inv_step - s->u;
+    uint32_t kc = 0u;
+    if (q > 0.0f) {
+        const float lim = (float)s->n;
+        if (q >= lim) {
+            kc = s->n;
+        } else {
+            kc = (uint32_t)q; /* truncation of a positive value: the floor */
+            kc += (float)kc < q ? 1u : 0u;
+        }
+    }
+    kc = kc > s->k ? kc : s->k;
+    {
+        const uint32_t cnt = kc - s->k;
+        s->k = kc;
+        return cnt;
+    }
+}
+
+static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }
+
+#endif
+
+#endif

@@ -1,0 +1,104 @@
+/* The random stream's hot paths, inline for the particle loops (private, not installed).
+ *
+ * pft_rng_next_: one xoshiro128** step (pft_rng_u32 is this, called).
+ *
+ * pft_rng_zig_: a standard normal draw by the ziggurat of Marsaglia & Tsang (2000) in integer
+ * arithmetic only, the same in both builds and on every target. 128 layers of equal area
+ * under f(x) = exp(-x^2/2) (tables in pft_rng_tables.c, made by
+ * host_tools/scripts/gen_rng_tables.py). One 32-bit word w gives the layer i (bits 0-6), the
+ * sign (bit 7) and a 24-bit position m (bits 8-31); when m < k[i] (98.8 % of words) the draw is
+ * |x| = m w[i] / 2^48 (the product exact in 64 bits), under the density, and the word is all
+ * it consumes. The rest (the wedges beside each layer and the tail beyond r = 3.4426) goes to
+ * pft_rng_zig_slow_ in pft_rng.c, which draws more words and forms Q24 magnitudes. The q16
+ * build rounds the exact value to Q16.16 once, the float build to a float once, so both
+ * builds draw the same Gaussians up to that last rounding (docs/fixed_point.md, "RNG and
+ * resampling").
+ */
+#ifndef PFT_CORE_RNG_INT_H
+#define PFT_CORE_RNG_INT_H
+
+#include <string.h>
+
+#include "pft/pft_rng.h"
+
+#define PFT_ZIG_LAYERS 128u
+
+extern const uint32_t pft_zig_kw[PFT_ZIG_LAYERS][2]; /* k[i] (fast acceptance), w[i] (Q24 edge) */
+extern const uint32_t pft_zig_f[PFT_ZIG_LAYERS + 1u];
+extern const uint32_t pft_zig_r_q24;
+extern const uint32_t pft_zig_inv_r_q32;
+
+static inline uint32_t pft_rng_rotl_(uint32_t x, unsigned k) { return (x << k) | (x >> (32u - k)); }
+
+static inline uint32_t pft_rng_next_(pft_rng_t *rng)
+{
+    uint32_t *s = rng->s;
+    const uint32_t result = pft_rng_rotl_(s[1] * 5u, 7u) * 9u;
+    const uint32_t t = s[1] << 9;
+    s[2] ^= s[0];
+    s[3] ^= s[1];
+    s[1] ^= s[2];
+    s[0] ^= s[3];
+    s[2] ^= t;
+    s[3] = pft_rng_rotl_(s[3], 11u);
+    return result;
+}
+
+/* A Q24 magnitude and a sign as the build's real (q16: rounded to Q16.16; float: exact
+ * scaling of a value below 2^28, rounded to 24 bits). The slow path's draws. */
+static inline pft_real_t pft_zig_real_(uint32_t mag_q24, bool neg)
+{
+#ifdef PFT_NUMERIC_Q16
+    const int32_t v = (int32_t)((mag_q24 + 128u) >> 8);
+    const int32_t sg = -(int32_t)neg; /* 0 or -1: v or -v without a branch */
+    return (v ^ sg) - sg;
+#else
+    const float v = (float)(int32_t)mag_q24 * 5.9604644775390625e-8f;
+    return neg ? -v : v;
+#endif
+}
+
+/* The fast path's draws from the exact product p = m w (Q48, below 2^50) and the sign bit:
+ * q16 rounds p to Q16.16 once, float converts it once and scales by +-2^-48. */
+static inline pft_real_t pft_zig_fast_(uint64_t p, uint32_t sign_bit)
+{
+#ifdef PFT_NUMERIC_Q16
+    const int32_t v = (int32_t)((p + 0x80000000u) >> 32);
+    const int32_t sg = -(int32_t)sign_bit;
+    return (v ^ sg) - sg;
+#else
+    static const float scale[2] = {3.5527136788005009e-15f, -3.5527136788005009e-15f};
+    return (float)(int64_t)p * scale[sign_bit];
+#endif
+}
+
+/* The draws that word u does not settle at once (pft_rng.c): the generator's words go in as
+ * scalars and come back in the result, so that a caller's generator kept in a local never has
+ * its address taken (and is never assembled in memory on the fast path). */
+typedef struct {
+    pft_real_t v;
+    uint32_t s[4];
+} pft_zig_slow_t;
+pft_zig_slow_t pft_rng_zig_slow_(uint32_t s0, uint32_t s1, uint32_t s2, uint32_t s3, uint32_t u);
+
+/* The fast path inline; the rest by value (above). */
+static inline pft_real_t pft_rng_zig_(pft_rng_t *rng)
+{
+    const uint32_t u = pft_rng_next_(rng);
+    const uint32_t i = u & (PFT_ZIG_LAYERS - 1u);
+    const uint32_t m = u >> 8;
+    const uint32_t *kw = pft_zig_kw[i];
+    if (m < kw[0]) {
+        return pft_zig_fast_((uint64_t)m * kw[1], (u >> 7) & 1u);
+    }
+    {
+        const pft_zig_slow_t r = pft_rng_zig_slow_(rng->s[0], rng->s[1], rng->s[2], rng->s[3], u);
+        rng->s[0] = r.s[0];
+        rng->s[1] = r.s[1];
+        rng->s[2] = r.s[2];
+        rng->s[3] = r.s[3];
+        return r.v;
+    }
+}
+
+#endif

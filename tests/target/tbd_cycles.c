@@ -1,0 +1,161 @@
+/*
+ * Instructions per frame of the TBD filters on a Cortex-M board under QEMU (not a test).
+ * Under qemu-system-arm -icount shift=0 every guest instruction advances virtual time by 1 ns,
+ * and SysTick on the processor clock (25 MHz on mps2) ticks once per 40 ns, so SysTick counts
+ * instructions / 40. The program calibrates that ratio on a loop of known length, then runs
+ * one RBPF-TBD and one PF-TBD filter (N = 6000, 20 x 20, 6 dB, the Exp. 1 target of
+ * single_6db.json as a straight line) for 30 frames and prints, per filter, the instructions
+ * of pft_tbd_filter_update per frame (mean and largest) and per particle update; then the
+ * two-target manager of two_case1.json (recommended preset, Ns = 6000, Nt = 500, 35 frames,
+ * both targets as straight lines) per frame. Frames are rendered outside the timed region.
+ */
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft_tbd_sim.h"
+#include "pft/pft_tbd.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 20
+#define N 6000u
+#define FRAMES 30
+#define SIGMA_6DB 3.256
+
+#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
+#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
+#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
+
+static uint16_t g_raw[W * W];
+#define NT 500u
+#define MAXT 4u
+#define FRAMES2 35
+static uint8_t g_ws[PFT_TBD_FILTER_WORKSPACE_BYTES(N, PFT_TBD_RBPF, W, W) + 64u];
+static uint8_t g_mws[PFT_TBD_WORKSPACE_BYTES(N, NT, MAXT, PFT_TBD_RBPF, W, W) + 64u];
+
+static uint32_t now(void) { return SYST_CVR; }
+static uint32_t ticks(uint32_t t0, uint32_t t1) { return (t0 - t1) & 0xFFFFFFu; } /* counts down */
+
+static void put(const char *s) { UnityPrint(s); }
+static void eol(void) { UNITY_PRINT_EOL(); }
+static void putu(uint32_t v) { UnityPrintNumberUnsigned(v); }
+
+/* 2 instructions per iteration (subs, bne). */
+static void spin(uint32_t n)
+{
+    __asm__ volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
+}
+
+static void run(pft_tbd_kind_t kind, const char *name, uint32_t per_tick)
+{
+    pft_tbd_config_t c;
+    pft_tbd_config_default(&c);
+    c.width = W;
+    c.height = W;
+    c.noise_sigma = pft_test_from_double(SIGMA_6DB);
+    c.pixel_gain = pft_test_from_double(1.0 / 256.0);
+    c.pixel_offset = pft_test_from_double(-64.0);
+    c.n_search = N;
+    c.kind = kind;
+    c.seed = 1u;
+    static pft_tbd_filter_t f;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
+    pft_sim_truth_t t = {7, 22, 5.0, 6.0, 0.45, 0.25, 20.0};
+    pft_rng_t sim;
+    pft_rng_seed(&sim, 1u);
+    uint64_t total = 0u;
+    uint32_t worst = 0u;
+    pft_frame_t fr;
+    for (int k = 1; k <= FRAMES; ++k) {
+        pft_sim_render_u16(&sim, &t, 1, k, SIGMA_6DB, W, W, g_raw, &fr);
+        uint32_t t0 = now();
+        pft_status_t st = pft_tbd_filter_update(&f, &fr);
+        uint32_t dt = ticks(t0, now());
+        TEST_ASSERT_EQUAL_INT(PFT_OK, st);
+        total += dt;
+        if (dt > worst) {
+            worst = dt;
+        }
+    }
+    eol();
+    put(name);
+    put(" N=6000: instructions/frame mean ");
+    putu((uint32_t)(total * per_tick / FRAMES));
+    put(" max ");
+    putu(worst * per_tick);
+    put(" per particle update ");
+    putu((uint32_t)(total * per_tick / (FRAMES * (uint64_t)N)));
+    eol();
+}
+
+/* The two-target manager of two_case1.json (recommended preset, Ns = 6000, Nt = 500). */
+static void run_manager(uint32_t per_tick)
+{
+    pft_tbd_config_t c;
+    pft_tbd_config_recommended(&c);
+    c.width = W;
+    c.height = W;
+    c.noise_sigma = pft_test_from_double(SIGMA_6DB);
+    c.pixel_gain = pft_test_from_double(1.0 / 256.0);
+    c.pixel_offset = pft_test_from_double(-64.0);
+    c.n_search = N;
+    c.n_track = NT;
+    c.max_targets = MAXT;
+    c.kind = PFT_TBD_RBPF;
+    c.seed = 1u;
+    static pft_tbd_t m;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&m, &c, g_mws, sizeof g_mws));
+    pft_sim_truth_t t[2] = {{7, 22, 1.0, 1.0, 0.70, 0.35, 20.0}, {17, 32, 2.0, 3.0, 0.55, 0.55, 20.0}};
+    pft_rng_t sim;
+    pft_rng_seed(&sim, 1u);
+    uint64_t total = 0u;
+    uint32_t worst = 0u;
+    pft_frame_t fr;
+    for (int k = 1; k <= FRAMES2; ++k) {
+        pft_sim_render_u16(&sim, t, 2, k, SIGMA_6DB, W, W, g_raw, &fr);
+        uint32_t t0 = now();
+        pft_status_t st = pft_tbd_update(&m, &fr);
+        uint32_t dt = ticks(t0, now());
+        TEST_ASSERT_EQUAL_INT(PFT_OK, st);
+        total += dt;
+        if (dt > worst) {
+            worst = dt;
+        }
+    }
+    eol();
+    put("manager Ns=6000 Nt=500 (35 frames): instructions/frame mean ");
+    putu((uint32_t)(total * per_tick / FRAMES2));
+    put(" max ");
+    putu(worst * per_tick);
+    eol();
+}
+
+static void test_cycles(void)
+{
+    SYST_RVR = 0xFFFFFFu;
+    SYST_CVR = 0u;
+    SYST_CSR = 5u; /* enable, processor clock, no interrupt */
+    uint32_t t0 = now();
+    spin(1000000u);
+    uint32_t dt = ticks(t0, now());
+    eol();
+    put("calibration: 2000000 instructions = ");
+    putu(dt);
+    put(" SysTick ticks");
+    TEST_ASSERT_TRUE(dt > 0u);
+    uint32_t per_tick = (2000000u + dt / 2u) / dt;
+    put(" (");
+    putu(per_tick);
+    put(" instructions per tick)");
+    run(PFT_TBD_RBPF, "RBPF-TBD", per_tick);
+    run(PFT_TBD_PF, "PF-TBD", per_tick);
+    run_manager(per_tick);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_cycles);
+    return UNITY_END();
+}
