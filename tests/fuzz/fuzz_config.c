@@ -114,21 +114,6 @@ static void fz_show_diff(const char *what, const void *before, const void *after
     } while (0)
 
 /* ----------------------------------------- tbd -------------------------------------------- */
-/* known F4: the float build's tbd config_check takes subnormal (and huge) reals, e.g. a
- * psf_sigma or noise_sigma of 1e-39, and the estimates are NaN from the first frame */
-static bool tbd_known_f4(const pft_tbd_config_t *c)
-{
-    const pft_real_t v[] = {c->dx, c->dy, c->psf_sigma, c->noise_sigma, c->pixel_gain,
-                            c->pixel_offset, c->T, c->q1, c->q2, c->pb, c->pd, c->eta, c->gamma,
-                            c->i_min, c->i_max, c->vel_mean[0], c->vel_mean[1], c->vel_var[0],
-                            c->vel_var[1], c->theta1, c->dis_ratio, c->theta_end, c->end_lr_max};
-    for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i) {
-        if (!fz_sane(v[i])) {
-            return FZ_KNOWN;
-        }
-    }
-    return false;
-}
 
 static void fuzz_tbd(fz_t *f, bool manager)
 {
@@ -148,14 +133,6 @@ static void fuzz_tbd(fz_t *f, bool manager)
     FZ_BOOL(c.force_constraint);
     FZ_BOOL(c.residual_search);
     FZ_BOOL(c.residual_tracks);
-#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
-    /* known F2 (issue #12): q16 config_check accepts any vel_mean; the estimate's int64 sums
-     * overflow at thousands of px/frame */
-    if (!(c.vel_mean[0] > PFT_C(-1000.0) && c.vel_mean[0] < PFT_C(1000.0) &&
-          c.vel_mean[1] > PFT_C(-1000.0) && c.vel_mean[1] < PFT_C(1000.0))) {
-        return;
-    }
-#endif
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_tbd_config_check(&c, &g_field));
     size_t ws = manager ? pft_tbd_workspace_size(&c) : pft_tbd_filter_workspace_size(&c);
@@ -183,19 +160,9 @@ static void fuzz_tbd(fz_t *f, bool manager)
     uint64_t win = (2u * (uint64_t)c.window + 1u) * (2u * (uint64_t)c.window + 1u);
     uint64_t work = ((uint64_t)c.n_search + (manager ? (uint64_t)c.max_targets * c.n_track : 0u)) *
                     win + (uint64_t)c.width * c.height;
-    if (work > WORK_CAP || (size_t)c.width * c.height > 128u * 128u || tbd_known_f4(&c)) {
+    if (work > WORK_CAP || (size_t)c.width * c.height > 128u * 128u) {
         return;
     }
-#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
-    /* known F3: the handover's estimate sums unnormalised weights (n_track x 2^30) times
-     * squared spreads in int64: skip images whose diagonal D gives n_track D^2 >= 2^17 */
-    if (manager) {
-        float wd = pft_to_float(c.dx) * c.width, hd = pft_to_float(c.dy) * c.height;
-        if ((float)c.n_track * (wd * wd + hd * hd) >= 131072.0f) {
-            return;
-        }
-    }
-#endif
     uint32_t seed = fz_u32(f);
     pft_tbd_estimate_t e[2][NFR];
     memset(e, 0, sizeof e);
@@ -256,15 +223,6 @@ static void fuzz_pf(fz_t *f)
         FZ_BOOL(tc.force_constraint);
         FZ_BOOL(tc.residual_search);
         FZ_BOOL(tc.residual_tracks);
-#if FZ_KNOWN && defined(PFT_NUMERIC_Q16)
-        if (!(tc.vel_mean[0] > PFT_C(-1000.0) && tc.vel_mean[0] < PFT_C(1000.0) &&
-              tc.vel_mean[1] > PFT_C(-1000.0) && tc.vel_mean[1] < PFT_C(1000.0))) {
-            return; /* known F2, as in fuzz_tbd */
-        }
-#endif
-        if (tbd_known_f4(&tc)) {
-            return;
-        }
         size_t mws = pft_pf_tbd_model_workspace_size(&tc);
         if (mws == 0u || mws > (1u << 20)) {
             return;

@@ -138,6 +138,20 @@ static void test_config_check_rejects(void)
     expect_refused(&c, "psf_sigma");
     base_cfg(&c); c.noise_sigma = R(-1.0);
     expect_refused(&c, "noise_sigma");
+#ifndef PFT_NUMERIC_Q16
+    /* the configuration domain of both builds (reliability.md F4): subnormal sigmas made every
+     * estimate NaN in float; huge reals are outside the q16 range */
+    base_cfg(&c); c.psf_sigma = 1e-39f;
+    expect_refused(&c, "psf_sigma");
+    base_cfg(&c); c.noise_sigma = 1e-39f;
+    expect_refused(&c, "noise_sigma");
+    base_cfg(&c); c.pixel_gain = 1e30f;
+    expect_refused(&c, "pixel_gain");
+    base_cfg(&c); c.q2 = 1e30f;
+    expect_refused(&c, "q2");
+    base_cfg(&c); c.gamma = -1e30f;
+    expect_refused(&c, "gamma");
+#endif
     base_cfg(&c); c.window = PFT_TBD_MAX_WINDOW + 1u;
     expect_refused(&c, "window");
     base_cfg(&c); c.pb = R(1.5);

@@ -86,28 +86,36 @@ static const char *refused_model_(const pft_tbd_config_t *c)
         return "height";
     }
     /* positions must stay well inside the number range (q16) */
-    if (!(c->dx > PFT_C(0.0)) || !pft_span_ok_(c->width, c->dx)) {
+    if (!pft_cfg_real_pos_(c->dx) || !pft_span_ok_(c->width, c->dx)) {
         return "dx";
     }
-    if (!(c->dy > PFT_C(0.0)) || !pft_span_ok_(c->height, c->dy)) {
+    if (!pft_cfg_real_pos_(c->dy) || !pft_span_ok_(c->height, c->dy)) {
         return "dy";
     }
-    if (!(c->psf_sigma > PFT_C(0.0))) {
+    /* reals in the configuration domain shared by both builds (core/config_int.h): in float a
+     * subnormal psf_sigma or noise_sigma made every estimate NaN (reliability.md F4) */
+    if (!pft_cfg_real_pos_(c->psf_sigma)) {
         return "psf_sigma";
     }
-    if (!(c->noise_sigma > PFT_C(0.0))) {
+    if (!pft_cfg_real_pos_(c->noise_sigma)) {
         return "noise_sigma";
+    }
+    if (!pft_cfg_real_ok_(c->pixel_gain)) {
+        return "pixel_gain";
+    }
+    if (!pft_cfg_real_ok_(c->pixel_offset)) {
+        return "pixel_offset";
     }
     if (c->window > PFT_TBD_MAX_WINDOW) {
         return "window";
     }
-    if (!(c->T > PFT_C(0.0))) {
+    if (!pft_cfg_real_pos_(c->T)) {
         return "T";
     }
-    if (!(c->q1 >= PFT_C(0.0))) {
+    if (!(c->q1 >= PFT_C(0.0)) || !pft_cfg_real_ok_(c->q1)) {
         return "q1";
     }
-    if (!(c->q2 >= PFT_C(0.0))) {
+    if (!(c->q2 >= PFT_C(0.0)) || !pft_cfg_real_ok_(c->q2)) {
         return "q2";
     }
     return NULL;
@@ -181,6 +189,12 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->end_lr_frames > PFT_TBD_MAX_DIS_R + 1u) {
         return "end_lr_frames";
+    }
+    if (!pft_cfg_real_ok_(c->end_lr_max)) {
+        return "end_lr_max";
+    }
+    if (!pft_cfg_real_ok_(c->gamma)) {
+        return "gamma";
     }
     if (c->handover_gate > 64u) {
         return "handover_gate";
