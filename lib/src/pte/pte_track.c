@@ -7,6 +7,31 @@
 
 #define SV_ PFT_PTE_SV_
 #define SA_ PFT_PTE_SA_
+/* TABLE: the age at which a float build sums a slope entry afresh, and the lines a slope
+ * entry holds beyond the scan interval on each side (see the slope bank) */
+#define RENEW_ 256u
+#define MARGIN_ 3
+/* TABLE: cells per block of lazily computed responses */
+#define YBLK_ 8
+
+/* v as a signed 16.16 fixed-point integer (any range of pft_real_t, both builds). */
+static int64_t fix16_(pft_real_t v)
+{
+    int32_t ip = pft_floor_int(v);
+    pft_real_t fr = pft_sub(v, pft_from_int(ip));
+    return (int64_t)ip * 65536 + 2 * (int64_t)pft_round_int(pft_mul_i(fr, 32768));
+}
+
+/* A signed 16.16 fixed-point integer as a real (q16: the same bits, saturated). */
+static pft_real_t from_fix16_(int64_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return v > (int64_t)PFT_REAL_MAX ? PFT_REAL_MAX
+                                     : (v < (int64_t)PFT_REAL_MIN ? PFT_REAL_MIN : (pft_real_t)v);
+#else
+    return (pft_real_t)v * (1.0f / 65536.0f);
+#endif
+}
 
 /* ----------------------------------------------------------------- TABLE operators */
 
@@ -17,6 +42,19 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
     const int32_t q = p->yq;
     const int32_t nr = p->cfg.in.n_range;
     p->sigma_y = pft_min(p->cfg.sigma_r[0], p->cfg.sigma_w_max);
+    /* slope lattice: dtheta_min cells per frame, in 1/65536 grid points per frame and as a
+     * scaled slope (exact when yq divides SV) */
+    p->lat_u = fix16_(pft_mul_i(p->cfg.dtheta_min, q));
+    p->lat_u = p->lat_u < 1 ? 1 : p->lat_u;
+    /* block of a response point: a shift when YBLK_ q is a power of two */
+    p->yblk_shift = 0u;
+    for (uint32_t k = 1; k < 12u; ++k) {
+        if (((int32_t)1 << k) == YBLK_ * q) {
+            p->yblk_shift = (uint8_t)k;
+        }
+    }
+    p->lat_t = (p->lat_u * SV_ + q / 2) / q;
+    p->lat_t = p->lat_t < 1 ? 1 : p->lat_t;
     pft_real_t inv = pft_recip(p->sigma_y);
     pft_real_t reach = pft_mul_i(p->sigma_y, 3);
     for (int32_t ph = 0; ph < q; ++ph) {
@@ -46,12 +84,30 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
         }
         p->gq[i] = g2;
     }
+    /* the normaliser of a point whose taps all lie on the profile, per phase, and the range of
+     * such points (the slope bank's G per residue holds there) */
+    for (int32_t ph = 0; ph < q; ++ph) {
+        pft_real_t g2 = PFT_C(0.0);
+        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
+            g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
+        }
+        p->gfull[ph] = g2;
+    }
+    p->yin_lo = (int32_t)p->ny;
+    p->yin_hi = -1;
+    for (int32_t i = 0; i < (int32_t)p->ny; ++i) {
+        int32_t ph = i % q;
+        int32_t u0 = i / q - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
+        if (u0 >= 0 && u0 + p->ytap_n[ph] <= nr) {
+            p->yin_lo = i < p->yin_lo ? i : p->yin_lo;
+            p->yin_hi = i;
+        }
+    }
 }
 
 /* TABLE operators: responses are computed lazily, one block of 8 cells at a time, the first
  * time an operator reads them, and kept beside the frame in the ring; only the neighbourhood
  * of live tracks is ever computed. */
-#define YBLK_ 8
 
 static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
 {
@@ -85,22 +141,6 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
     p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
 }
 
-/* TABLE operators: response of the frame `back` frames ago, valid at points [i0, i1). */
-static const pft_real_t *yframe_(pft_pte_t *p, uint32_t back, int32_t i0, int32_t i1)
-{
-    uint32_t len = p->ring.len;
-    uint32_t slot = ((uint32_t)p->ring.head + len - (back % len)) % len;
-    int32_t bp = YBLK_ * (int32_t)p->yq;
-    i0 = i0 < 0 ? 0 : i0;
-    i1 = i1 > (int32_t)p->ny ? (int32_t)p->ny : i1;
-    for (int32_t blk = i0 / bp; i1 > i0 && blk <= (i1 - 1) / bp; ++blk) {
-        if (p->yflag[(size_t)slot * p->nyblk + (size_t)blk] == 0u) {
-            yblock_(p, slot, back, blk);
-        }
-    }
-    return p->yring + (size_t)slot * p->ny;
-}
-
 /* ------------------------------------------------------------------- operator geometry */
 
 /* Per-axis operator parameters of one track at one frame. The operators are straight lines
@@ -128,6 +168,7 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     pft_real_t stt = pft_add(pft_add(P[5], pft_mul_i(pft_mul(h6, P[6]), 2)), pft_mul(pft_sq(h6), P[10]));
     scc = pft_max(scc, PFT_C(0.0));
     stt = pft_max(stt, PFT_C(0.0));
+    ap->stt = stt;
     pft_real_t sr2 = pft_sq(c->sigma_r[a]);
     ap->sw2 = pft_add(sr2, scc);
     ap->sw = p->yq > 0u ? p->sigma_y : pft_min(pft_sqrt(ap->sw2), c->sigma_w_max);
@@ -353,23 +394,230 @@ static void model_(const pft_pte_config_t *c, uint32_t a, pft_real_t F[16], pft_
     Q[9] = Q[6];
 }
 
-/* v as a signed 16.16 fixed-point integer (any range of pft_real_t, both builds). */
-static int64_t fix16_(pft_real_t v)
+/* ------------------------------------------------------- TABLE operators: slope bank */
+
+/* The TABLE operators of a track are straight lines on the response grid, one family per
+ * slope of a lattice (step dtheta_min). For each slope the track keeps an entry of
+ * line sums over the last M frames (docs/algorithms.md 5.3, library extension "sliding
+ * sums"): at each frame the newest response is added and the one leaving the window
+ * subtracted, so an operator costs O(1) reads per frame instead of M. Entries of slopes no
+ * longer wanted are dropped; a new slope is summed once in full. The normaliser G of a line
+ * that stays inside the profile depends only on its grid phases, so an entry keeps it per
+ * residue of the line index modulo yq instead of per line. In the q16 build the sums are
+ * integers and sliding them is exact; in the float build an entry is summed afresh every
+ * RENEW_ frames so rounding cannot drift. */
+
+/* Line offset at frame k of slope entry e: round(s U (k - k0) / 2^16) grid points. */
+static inline int32_t bank_off_(const pft_pte_t *p, const pft_pte_bank_t *e, uint32_t k)
 {
-    int32_t ip = pft_floor_int(v);
-    pft_real_t fr = pft_sub(v, pft_from_int(ip));
-    return (int64_t)ip * 65536 + 2 * (int64_t)pft_round_int(pft_mul_i(fr, 32768));
+    int64_t v = (int64_t)e->s * p->lat_u * (int64_t)(int32_t)(k - e->k0);
+    return (int32_t)((v + 32768) >> 16);
 }
 
-/* TABLE: grid index of the path ending at c0 (cfix = 16.16 of c0, times SV) with scaled
- * slope tfix (16.16), tau frames back: round(yq (c0 - theta tau)) + YPAD yq. */
-static int32_t grid_index_(int64_t cfix, int64_t tfix, int32_t tau, int32_t yq)
+/* E sums of entry bi of track ti, window w (one per line). */
+static inline pft_real_t *bank_e_(const pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w)
 {
-    int64_t num = (cfix - tfix * tau) * yq + ((int64_t)1 << 19);
-    int64_t f = num >= 0 ? num / ((int64_t)1 << 20) : -((-num + ((int64_t)1 << 20) - 1) / ((int64_t)1 << 20));
-    return (int32_t)f + (int32_t)PFT_PTE_YPAD * yq;
+    return p->bsum + (((size_t)ti * p->nbank + bi) * PFT_PTE_NWIN_ + w) * p->nline;
 }
 
+/* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
+static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
+                                      int32_t i1)
+{
+    const int32_t sh = p->yblk_shift;
+    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / (YBLK_ * (int32_t)p->yq);
+    for (int32_t blk = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq); blk <= b1; ++blk) {
+        if (fl[blk] == 0u) {
+            yblock_(p, slot, back, blk);
+        }
+    }
+    return p->yring + (size_t)slot * p->ny;
+}
+
+/* Adds (sign 1) or subtracts (sign -1) the responses of the frames kn - tau, tau in
+ * [tau0, tau1), along the lines [j0, j1) of entry bi (local indices from its jlo) to its E
+ * sums of window w. Points off the response grid count 0. q16: plain integer sums, so adding
+ * and subtracting is exact: every partial sum is a sum over at most PFT_PTE_MAX_FRAMES + 1
+ * frames of |y| <= zeta_clip * sum g <= 64 * 6.9 (TABLE requires zeta_clip <= 64), so
+ * |E| < 28800 stays inside the q16 range. */
+static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t tau0, int32_t tau1, int32_t sign)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    int32_t slot = (int32_t)p->ring.head - tau0 % len;
+    slot = slot < 0 ? slot + len : slot;
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    for (int32_t tau = tau0; tau < tau1; ++tau) {
+        const int32_t d = (int32_t)(acc >> 16) + e->jlo;
+        const int32_t a = j0 + d < 0 ? -d : j0;
+        const int32_t b = j1 + d > ny ? ny - d : j1;
+        if (a < b) {
+            const pft_real_t *restrict y = yrow_(p, (uint32_t)slot, (uint32_t)tau, a + d, b + d) + d;
+            if (sign > 0) {
+                for (int32_t j = a; j < b; ++j) {
+                    se[j] = se[j] + y[j];
+                }
+            } else {
+                for (int32_t j = a; j < b; ++j) {
+                    se[j] = se[j] - y[j];
+                }
+            }
+        }
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
+    }
+}
+
+/* Adds (sign 1) or subtracts the interior normaliser terms of the frames kn - tau, tau in
+ * [tau0, tau1), to the residues of window w of entry e: residue r holds the sum over the
+ * window of gfull[(r + offset) mod yq]. */
+static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
+                       int32_t tau0, int32_t tau1, int32_t sign)
+{
+    const int32_t q = p->yq;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    pft_real_t *gr = e->gres[w];
+    for (int32_t tau = tau0; tau < tau1; ++tau) {
+        int32_t o = (int32_t)(acc >> 16) % q;
+        o = o < 0 ? o + q : o;
+        for (int32_t r = 0; r < q; ++r) {
+            const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
+            gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
+        }
+        acc -= step;
+    }
+}
+
+/* Sums the lines [j0, j1) of entry bi afresh over the last m[w] frames of every window. */
+static void bank_fill_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t j0, int32_t j1,
+                       uint32_t kn)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        pft_real_t *se = bank_e_(p, ti, bi, w);
+        for (int32_t j = j0; j < j1; ++j) {
+            se[j] = PFT_C(0.0);
+        }
+        bank_lines_(p, ti, bi, w, j0, j1, kn, 0, (int32_t)e->m[w], 1);
+    }
+}
+
+/* Brings entry bi of track ti to lines [jlo, jlo + n) and windows m[] at frame kn. A kept
+ * entry (its sums are at frame kn - 1) slides the lines it already holds: the newest frame
+ * in, the frames beyond each window out (the frame leaving a window of m frames is m frames
+ * back, still in the ring, which holds max_len + 1 frames); every other line is summed
+ * afresh. jlo is counted from the entry's anchor (set by the caller). */
+static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
+                       const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+{
+    pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    int32_t k0 = 0; /* held lines kept: [k0, k1) in the new local indices */
+    int32_t k1 = 0;
+    const int32_t a = jlo > e->jlo ? jlo : e->jlo;
+    const int32_t b = jlo + n < e->jlo + (int32_t)e->n ? jlo + n : e->jlo + (int32_t)e->n;
+    if (keep) {
+        if (a < b) {
+            k0 = a - jlo;
+            k1 = b - jlo;
+            const int32_t sh = a - e->jlo - k0; /* old local index = new local index + sh */
+            for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+                pft_real_t *v = bank_e_(p, ti, bi, w);
+                memmove(v + k0, v + k0 + sh, (size_t)(k1 - k0) * sizeof(pft_real_t));
+            }
+        }
+        e->jlo = jlo;
+        for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+            const int32_t mo = e->m[w];
+            const int32_t mn = m[w];
+            if (mn == 0) {
+                continue; /* window unused */
+            }
+            if (mo == 0) { /* a window taken into use: summed in full */
+                pft_real_t *se = bank_e_(p, ti, bi, w);
+                for (int32_t j = k0; j < k1; ++j) {
+                    se[j] = PFT_C(0.0);
+                }
+                for (int32_t r = 0; r < (int32_t)p->yq; ++r) {
+                    e->gres[w][r] = PFT_C(0.0);
+                }
+                bank_lines_(p, ti, bi, w, k0, k1, kn, 0, mn, 1);
+                bank_gres_(p, e, w, kn, 0, mn, 1);
+                continue;
+            }
+            /* newest frame in; then the far end from mo + 1 frames to mn frames */
+            bank_lines_(p, ti, bi, w, k0, k1, kn, 0, 1, 1);
+            bank_gres_(p, e, w, kn, 0, 1, 1);
+            if (mn <= mo) {
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mn, mo + 1, -1);
+                bank_gres_(p, e, w, kn, mn, mo + 1, -1);
+            } else {
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mo + 1, mn, 1);
+                bank_gres_(p, e, w, kn, mo + 1, mn, 1);
+            }
+        }
+    } else {
+        for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+            for (int32_t r = 0; r < (int32_t)p->yq; ++r) {
+                e->gres[w][r] = PFT_C(0.0);
+            }
+            bank_gres_(p, e, w, kn, 0, (int32_t)m[w], 1);
+        }
+    }
+    e->jlo = jlo;
+    e->n = (uint16_t)n;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        e->m[w] = m[w];
+    }
+    e->kl = kn;
+    e->live = 1u;
+    if (k0 > 0) {
+        bank_fill_(p, ti, bi, 0, k0, kn);
+    }
+    if (k1 < n) {
+        bank_fill_(p, ti, bi, k1, n, kn);
+    }
+}
+
+/* G of the lines of entry bi (window w) at frame kn into G[0..n): from the residues when
+ * every line stays on the interior of the response grid over the window, else summed. */
+static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t kn,
+                    int32_t j0, int32_t n, pft_real_t *G)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t q = p->yq;
+    const int32_t m = e->m[w];
+    const int32_t jl = e->jlo + j0;
+    int32_t d0 = bank_off_(p, e, kn) + jl;
+    int32_t d1 = bank_off_(p, e, kn - (uint32_t)(m > 0 ? m - 1 : 0)) + jl;
+    int32_t lo = d0 < d1 ? d0 : d1;
+    int32_t hi = (d0 > d1 ? d0 : d1) + n - 1;
+    if (lo >= p->yin_lo && hi <= p->yin_hi) {
+        int32_t r = jl % q;
+        r = r < 0 ? r + q : r;
+        for (int32_t j = 0; j < n; ++j) {
+            G[j] = e->gres[w][r];
+            r = r + 1 == q ? 0 : r + 1;
+        }
+        return;
+    }
+    for (int32_t j = 0; j < n; ++j) {
+        G[j] = PFT_C(0.0);
+    }
+    for (int32_t tau = 0; tau < m; ++tau) {
+        int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
+        for (int32_t j = 0; j < n; ++j) {
+            if (j + d >= 0 && j + d < (int32_t)p->ny) {
+                G[j] = G[j] + p->gq[j + d]; /* bounded as the E sums */
+            }
+        }
+    }
+}
 
 /* ------------------------------------------------------------------------ track step */
 
@@ -381,7 +629,7 @@ typedef struct {
     int32_t nsc;        /* n0 * n1 */
     int32_t ndir;       /* L0 * L1 */
     int32_t reach64[2]; /* EXACT: reach of the per-frame weight table, 1/64 cells */
-    int64_t cfix;       /* TABLE: 16.16 of the first scan position, times SV */
+    pft_real_t dprior;  /* TABLE: 1 / (2 (S_tt + dth^2/12)), scaled slopes */
 } step_geom_;
 
 /* One operator direction: slopes per axis (scaled) and the log prior of its index. */
@@ -396,6 +644,7 @@ typedef struct {
     pft_real_t lse;      /* log of the sum over scan positions */
     pft_real_t cstar[2]; /* best end position per axis, parabola refined */
     pft_real_t t;        /* T at the best position (0 when G = 0) */
+    pft_real_t e, g;     /* E and G at the best position */
 } dir_best_;
 
 /* 1. Kalman prediction of the state and the amplitude. */
@@ -411,8 +660,122 @@ static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
     t->amp_var = pft_add(t->amp_var, c->q_amp);
 }
 
+/* Log prior -d^2 / (2 sc2) of every scan position of axis a, d = off + j c_step its distance
+ * from the predicted end position (off: that of the first position). */
+static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
+{
+    pft_pte_scratch_t *s = p->scr;
+    const pft_pte_axis_t *ap = &s->ap[a];
+    pft_real_t k2 = pft_mul_i(ap->sc2, 2);
+    for (int32_t j = 0; j < ap->ns; ++j) {
+        pft_real_t d = pft_add(off, pft_mul_i(p->cfg.c_step, j));
+        s->lc[a][j] = pft_neg(pft_div(pft_sq(d), k2));
+    }
+}
+
+/* TABLE: the directions of this step on the slope lattice (step dtheta_min): the lattice
+ * point nearest to the predicted slope and (L - 1) / 2 more on each side, `mult` lattice
+ * steps apart. The spacing is dtheta_min while the wanted spacing dth (5.3 step 2) is at
+ * most 2.5 dtheta_min, else dth rounded to a multiple of dtheta_min [A]: a fine, fixed
+ * spacing keeps the direction set from snapping the slope estimate to a coarse lattice, a
+ * wide one keeps an uncertain slope (a cue, a young track) covered. The bank entries of the
+ * directions are brought to this frame (entries of slopes no longer wanted are freed first;
+ * a direction set moving by one lattice point costs one new entry at spacing dtheta_min).
+ * Also the first scan line of each direction in its entry and its end position. */
+static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
+{
+    pft_pte_scratch_t *s = p->scr;
+    pft_pte_axis_t *ap = &s->ap[0];
+    const uint32_t ti = (uint32_t)(t - p->tracks);
+    pft_pte_bank_t *bank = p->bank + (size_t)ti * p->nbank;
+    const uint32_t kn = p->frames_in;
+    const int32_t L = ap->L;
+    const int32_t h = (L - 1) / 2;
+    const int32_t q = p->yq;
+    const pft_real_t lat = from_fix16_(p->lat_t);
+    int32_t mult = 1;
+    if (ap->dth > pft_mul(lat, PFT_C(2.5))) {
+        mult = pft_round_int(pft_div(ap->dth, lat));
+        mult = mult > 4096 ? 4096 : mult;
+    }
+    ap->dth = pft_mul_i(lat, mult);
+    g->dprior = pft_recip(pft_mul_i(pft_add(ap->stt, pft_div_i(pft_sq(ap->dth), 12)), 2));
+    /* lattice point nearest to the predicted slope */
+    const int64_t lt = p->lat_t;
+    const int64_t num = 2 * fix16_(ap->zt) + lt;
+    int64_t c = num >= 0 ? num / (2 * lt) : -((-num + 2 * lt - 1) / (2 * lt));
+    const int64_t cmax = (int64_t)1 << 24; /* |slope| far beyond any track */
+    c = c > cmax ? cmax : (c < -cmax ? -cmax : c);
+    int32_t want[PFT_PTE_MAX_DIRS];
+    const int32_t nw = L;
+    for (int32_t l = 0; l < L; ++l) {
+        want[l] = (int32_t)(c + (l - h) * mult);
+    }
+    int32_t sel[PFT_PTE_MAX_DIRS];
+    for (uint32_t b = 0; b < p->nbank; ++b) {
+        bank[b].used = 0u;
+    }
+    for (int32_t i = 0; i < nw; ++i) {
+        sel[i] = -1;
+        for (uint32_t b = 0; b < p->nbank; ++b) {
+            if (bank[b].live && !bank[b].used && bank[b].s == want[i]) {
+                sel[i] = (int32_t)b;
+                bank[b].used = 1u;
+                break;
+            }
+        }
+    }
+    for (uint32_t b = 0; b < p->nbank; ++b) {
+        if (!bank[b].used) {
+            bank[b].live = 0u;
+        }
+    }
+    for (int32_t i = 0; i < nw; ++i) {
+        for (uint32_t b = 0; sel[i] < 0 && b < p->nbank; ++b) {
+            if (!bank[b].used) {
+                sel[i] = (int32_t)b;
+                bank[b].used = 1u;
+                bank[b].s = want[i];
+            }
+        }
+    }
+    /* window lengths: max_len (or fewer frames while the track is young) and the short one */
+    uint8_t m[PFT_PTE_NWIN_];
+    m[0] = (uint8_t)g->M;
+    m[1] = (uint8_t)(p->short_len == 0u ? 0 : (g->M < p->short_len ? g->M : p->short_len));
+    /* lines whose end points cover the scan interval around the predicted end position zc */
+    const int32_t half = (ap->ns - 1) / 2;
+    const int64_t zg = (fix16_(ap->zc) + (int64_t)PFT_PTE_YPAD * 65536) * q;
+    /* an entry holds up to MARGIN_ lines more on each side than the scan needs, so that scan
+     * intervals moving back and forth cost nothing and new lines are summed a few at a time */
+    int32_t margin = ((int32_t)p->nline - ap->ns) / 2;
+    margin = margin > MARGIN_ ? MARGIN_ : margin;
+    for (int32_t i = 0; i < nw; ++i) {
+        pft_pte_bank_t *e = &bank[sel[i]];
+        bool keep = e->live && e->kl + 1u == kn && kn - e->k0 < RENEW_;
+        if (!keep) {
+            e->k0 = kn; /* a fresh entry is anchored at this frame */
+        }
+        int64_t sh = (int64_t)e->s * p->lat_u * (int64_t)(int32_t)(kn - e->k0);
+        int64_t jc = (zg - sh + 32768) >> 16;
+        int32_t jlo = (int32_t)(jc - half);
+        if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
+            bank_sync_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
+        } else {
+            bank_sync_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m, kn, keep);
+        }
+        if (i < L) {
+            s->bsel[i] = sel[i];
+            s->bj0[i] = jlo - e->jlo;
+            /* first scan position minus zc, cells: ((jc - half) 2^16 + sh - zg) / (2^16 q) */
+            int64_t d16 = (jc - half) * 65536 + sh - zg;
+            s->boff[i] = from_fix16_(d16 >= 0 ? (d16 + q / 2) / q : -((-d16 + q / 2) / q));
+        }
+    }
+}
+
 /* 2. Operator parameters of both axes, the log prior of every scan position, the EXACT
- * weight tables or the TABLE response rows every direction may read (computed once). */
+ * weight tables or the TABLE slope entries (computed once per step). */
 static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
 {
     const pft_pte_config_t *c = &p->cfg;
@@ -432,10 +795,7 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     memset(ap, 0, 2u * sizeof(*ap));
     for (uint32_t a = 0; a < na; ++a) {
         axis_setup_(p, t->x[a], t->P[a], a, M, &ap[a]);
-        for (int32_t j = 0; j < ap[a].ns; ++j) {
-            pft_real_t d = pft_mul_i(c->c_step, j - (ap[a].ns - 1) / 2);
-            s->lc[a][j] = pft_neg(pft_div(pft_sq(d), pft_mul_i(ap[a].sc2, 2)));
-        }
+        scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
     }
     g->reach64[0] = 0;
     g->reach64[1] = 0;
@@ -454,22 +814,14 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     g->nsc = g->n0 * g->n1;
     int32_t m1 = M > 1 ? M : 2;
     g->mm = m1 * m1 - 1;
-    g->cfix = 0;
+    g->dprior = PFT_C(0.0);
     if (p->yq > 0u) {
-        int32_t h = (ap[0].L - 1) / 2;
-        g->cfix = fix16_(ap[0].c0) * SV_;
-        int64_t tlo = fix16_(pft_sub(ap[0].zt, pft_mul_i(ap[0].dth, h)));
-        int64_t thi = fix16_(pft_add(ap[0].zt, pft_mul_i(ap[0].dth, h)));
-        for (int32_t tau = 0; tau < M; ++tau) {
-            int32_t b0 = grid_index_(g->cfix, thi, tau, p->yq);
-            int32_t b1 = grid_index_(g->cfix, tlo, tau, p->yq);
-            s->yrow[tau] = yframe_(p, (uint32_t)tau, b0, b1 + g->n0);
-        }
+        step_bank_(p, t, g);
     }
 }
 
 /* Slopes and log prior of direction li (index l0 + L0 l1). */
-static dir_slope_ dir_slope_of_(const pft_pte_t *p, int32_t li)
+static dir_slope_ dir_slope_of_(const pft_pte_t *p, const step_geom_ *g, int32_t li)
 {
     const pft_pte_axis_t *ap = p->scr->ap;
     dir_slope_ d;
@@ -479,42 +831,19 @@ static dir_slope_ dir_slope_of_(const pft_pte_t *p, int32_t li)
     d.th[0] = PFT_C(0.0);
     d.th[1] = PFT_C(0.0);
     d.prior = PFT_C(0.0);
+    if (p->yq > 0u) {
+        /* TABLE: the direction's lattice slope */
+        const pft_pte_bank_t *e = &p->bank[(size_t)(p->scr->ti) * p->nbank + (size_t)p->scr->bsel[li]];
+        d.th[0] = from_fix16_((int64_t)e->s * p->lat_t);
+        d.prior = pft_neg(pft_mul(pft_sq(pft_sub(d.th[0], ap[0].zt)), g->dprior));
+        return d;
+    }
     for (uint32_t a = 0; a < p->naxes; ++a) {
         int32_t k = l[a] - (ap[a].L - 1) / 2;
         d.th[a] = pft_add(ap[a].zt, pft_mul_i(ap[a].dth, k));
         d.prior = pft_sub(d.prior, pft_mul_i(ap[a].prior_k, k * k));
     }
     return d;
-}
-
-/* TABLE: adds frame tau's responses along the direction of scaled slope tfix (16.16) to the
- * operator sums: one read per scan position. */
-static void accum_table_(pft_pte_t *p, const step_geom_ *g, int64_t tfix, int32_t tau)
-{
-    const int32_t n0 = g->n0;
-    int32_t b = grid_index_(g->cfix, tfix, tau, p->yq);
-    int32_t ny = (int32_t)p->ny;
-    const pft_real_t *yv = p->scr->yrow[tau];
-    if (b >= 0 && b + n0 <= ny) {
-        pft_real_t *restrict se = p->sE;
-        pft_real_t *restrict sg = p->sG;
-        const pft_real_t *restrict yb = yv + b;
-        const pft_real_t *restrict gb = p->gq + b;
-        /* plain additions: |y| <= zeta_clip * sum g <= 64 * 6.9 and at most 64 frames are
-         * summed, so |E| < 28300 and G < 64 * 4.2 never overflow the q16 range (TABLE mode
-         * requires zeta_clip <= 64, see config_check) */
-        for (int32_t j0 = 0; j0 < n0; ++j0) {
-            se[j0] = se[j0] + yb[j0];
-            sg[j0] = sg[j0] + gb[j0];
-        }
-        return;
-    }
-    for (int32_t j0 = 0; j0 < n0; ++j0) {
-        if (b + j0 >= 0 && b + j0 < ny) {
-            p->sE[j0] = pft_add(p->sE[j0], yv[b + j0]);
-            p->sG[j0] = pft_add(p->sG[j0], p->gq[b + j0]);
-        }
-    }
 }
 
 /* EXACT range-Doppler: adds frame zf (tau frames back) along slopes th to the operator sums
@@ -550,26 +879,27 @@ static void accum_2d_(pft_pte_t *p, const step_geom_ *g, const pft_real_t th[2],
     }
 }
 
-/* 3. Operator sums E, G of one direction at every scan position, over the last M frames. */
-static void dir_accumulate_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d)
+/* 3. Operator sums E, G of one direction at every scan position, over the last M frames:
+ * TABLE reads them from the direction's slope entry (window w); EXACT sums the taps. */
+static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, int32_t li,
+                      uint32_t w, const pft_real_t **E, const pft_real_t **G)
 {
+    if (p->yq > 0u) {
+        const int32_t j0 = p->scr->bj0[li];
+        *E = bank_e_(p, p->scr->ti, (uint32_t)p->scr->bsel[li], w) + j0;
+        bank_g_(p, p->scr->ti, (uint32_t)p->scr->bsel[li], w, p->frames_in, j0, g->n0, p->sG);
+        *G = p->sG;
+        return;
+    }
     for (int32_t j = 0; j < g->nsc; ++j) {
         p->sE[j] = PFT_C(0.0);
         p->sG[j] = PFT_C(0.0);
-    }
-    const int32_t M = g->M;
-    if (p->yq > 0u) {
-        const int64_t tfix = fix16_(d->th[0]);
-        for (int32_t tau = 0; tau < M; ++tau) {
-            accum_table_(p, g, tfix, tau);
-        }
-        return;
     }
     const pft_pte_axis_t *ap0 = &p->scr->ap[0];
     const int32_t R0 = g->reach64[0];
     const pft_real_t th0 = d->th[0];
     const bool one = p->naxes == 1u;
-    for (int32_t tau = 0; tau < M; ++tau) {
+    for (int32_t tau = 0; tau < g->M; ++tau) {
         const pft_real_t *zf = pft_pte_ring_get_(&p->ring, (uint32_t)tau);
         if (one) {
             accum_1d_(p, ap0, R0, line_shift_(th0, tau), zf);
@@ -577,11 +907,14 @@ static void dir_accumulate_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ 
             accum_2d_(p, g, d->th, tau, zf);
         }
     }
+    *E = p->sE;
+    *G = p->sG;
 }
 
 /* 4. Test statistic and log summand of every scan position, their log-sum, the best position
- * (parabola refined per axis) and its T. */
-static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
+ * (parabola refined per axis) and its T. c0: first scan position per axis. */
+static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
+                              const pft_real_t *G, const pft_real_t c0[2])
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
@@ -592,8 +925,8 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
         /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
          * the product saturates at 32768 before the clamp, with the same result) */
         pft_real_t t2 = PFT_C(0.0);
-        if (p->sE[j] > PFT_C(0.0) && p->sG[j] > PFT_C(0.0)) {
-            t2 = pft_min(pft_mul(p->sE[j], pft_div(p->sE[j], p->sG[j])), PFT_C(22500.0));
+        if (E[j] > PFT_C(0.0) && G[j] > PFT_C(0.0)) {
+            t2 = pft_min(pft_mul(E[j], pft_div(E[j], G[j])), PFT_C(22500.0));
         }
         pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
         p->sL[j] = ls;
@@ -618,11 +951,13 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
         if (ja > 0 && ja < na_ - 1) {
             off = pft_pte_parabola_(p->sL[jb - stride], p->sL[jb], p->sL[jb + stride]);
         }
-        r.cstar[a] = pft_add(s->ap[a].c0, pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
+        r.cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
     }
+    r.e = E[jb];
+    r.g = G[jb];
     r.t = PFT_C(0.0);
-    if (p->sG[jb] > PFT_C(0.0)) {
-        r.t = pft_clamp(pft_div(p->sE[jb], pft_sqrt(p->sG[jb])), PFT_C(-150.0), PFT_C(150.0));
+    if (r.g > PFT_C(0.0)) {
+        r.t = pft_clamp(pft_div(r.e, pft_sqrt(r.g)), PFT_C(-150.0), PFT_C(150.0));
     }
     return r;
 }
@@ -652,12 +987,11 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
         (void)pft_kf4_update2(out->x[a], out->P[a], ap[a].H, z, R); /* on failure the prediction stays */
     }
     /* amplitude: measurement E/G with variance 1/G */
-    const int32_t jb = b->jb;
     pft_real_t am = t->amp;
     pft_real_t av = t->amp_var;
-    if (p->sG[jb] > PFT_C(0.0)) {
-        pft_real_t meas = pft_div(p->sE[jb], p->sG[jb]);
-        pft_real_t r = pft_recip(p->sG[jb]);
+    if (b->g > PFT_C(0.0)) {
+        pft_real_t meas = pft_div(b->e, b->g);
+        pft_real_t r = pft_recip(b->g);
         pft_real_t k = pft_div(av, pft_add(av, r));
         am = pft_add(am, pft_mul(k, pft_sub(meas, am)));
         av = pft_sub(av, pft_mul(k, av));
@@ -753,18 +1087,28 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_geom_ g;
+    pft_pte_scratch_t *s = p->scr;
+    s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
     step_geometry_(p, t, &g);
     pft_real_t tmax = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
-        dir_slope_ d = dir_slope_of_(p, li);
-        dir_accumulate_(p, &g, &d);
-        dir_best_ b = dir_best_of_(p, &g);
+        dir_slope_ d = dir_slope_of_(p, &g, li);
+        const pft_real_t *E;
+        const pft_real_t *G;
+        dir_sums_(p, &g, &d, li, 0u, &E, &G);
+        pft_real_t c0[2] = {s->ap[0].c0, s->ap[1].c0};
+        if (p->yq > 0u) {
+            /* TABLE: the scan positions of the direction's lines at this frame */
+            c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
+            scan_prior_(p, 0u, s->boff[li]);
+        }
+        dir_best_ b = dir_best_of_(p, &g, E, G, c0);
         if (b.t > tmax) {
             tmax = b.t;
         }
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
-        p->scr->lw[li] = p->dir[li].logw;
+        s->lw[li] = p->dir[li].logw;
     }
     step_fuse_(p, t, g.ndir);
     step_maintain_(p, t, tmax);
