@@ -378,7 +378,6 @@ extern "C" {
      PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 0) * 4u * sizeof(int16_t)) +                        \
      PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 1) * 4u * sizeof(int16_t)) +                        \
      PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_pte_dir_t)) +              \
-     PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_weight_t)) +               \
      PFT_WS_ROUND(sizeof(pft_pte_scratch_t)) +                                                  \
      (PFT_WS_ROUND(PFT_PTE_RING_(mlen, ninit) * ((size_t)(nr) + 2u * PFT_PTE_YPAD) *             \
                    (size_t)(yq) * sizeof(pft_real_t)) +                                         \

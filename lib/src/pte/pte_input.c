@@ -128,11 +128,22 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
 {
     const pft_real_t inv = pft_recip(in->noise_sigma);
     const pft_real_t clip = in->zeta_clip;
-    const pft_real_t nclip = pft_neg(clip);
     const uint8_t *row = pft_frame_row(frame, d);
+#ifdef PFT_NUMERIC_Q16
+    /* pft_mul's rounding, then the clamp to +-zeta_clip (< 32768) in 64 bits, which also
+     * covers pft_mul's saturation */
+    const int64_t hi = clip;
+    for (uint32_t u = 0; u < in->n_range; ++u) {
+        int64_t v = (int64_t)f32_in_(row + 4u * u) * inv;
+        v = (v >= 0 ? v + 32768 : v + 32767) >> 16;
+        out[u] = (pft_real_t)(v > hi ? hi : (v < -hi ? -hi : v));
+    }
+#else
+    const pft_real_t nclip = pft_neg(clip);
     for (uint32_t u = 0; u < in->n_range; ++u) {
         out[u] = pft_clamp(pft_mul(f32_in_(row + 4u * u), inv), nclip, clip);
     }
+#endif
 }
 
 /* |z| / ref: one CFAR term (the same expression when a cell enters and leaves a window, so

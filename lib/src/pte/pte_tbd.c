@@ -215,7 +215,6 @@ typedef struct {
     pft_real_t *sE, *sG, *sL, *tw[2];
     int16_t *tlo[2];
     pft_pte_dir_t *dir;
-    pft_weight_t *dw;
     pft_pte_scratch_t *scr;
     pft_real_t *yring, *gq;
     uint8_t *yflag;
@@ -258,7 +257,6 @@ static pft_status_t carve_(const pft_pte_config_t *cfg, uint32_t yq, void *work,
     l->tlo[0] = pft_ws_take(&ws, (size_t)ns0 * 4u * sizeof(int16_t));
     l->tlo[1] = pft_ws_take(&ws, (size_t)ns1 * 4u * sizeof(int16_t));
     l->dir = pft_ws_take(&ws, (size_t)nd * sizeof(pft_pte_dir_t));
-    l->dw = pft_ws_take(&ws, (size_t)nd * sizeof(pft_weight_t));
     l->scr = pft_ws_take(&ws, sizeof(pft_pte_scratch_t));
     if (yq > 0u) {
         l->yring = pft_ws_take(&ws, (size_t)nring * ny * sizeof(pft_real_t));
@@ -310,9 +308,9 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     p->tlo[0] = l.tlo[0];
     p->tlo[1] = l.tlo[1];
     p->dir = l.dir;
-    p->dw = l.dw;
     p->scr = l.scr;
     p->naxes = cfg->in.n_doppler > 1u ? 2u : 1u;
+    pft_pte_model_setup_(p);
     /* scan positions one cell apart share their tap weights when c_step = 1/period */
     p->period = period_(cfg->c_step);
     /* g(t) = exp(-t^2/2), t = i/64 */

@@ -3,7 +3,6 @@
  * TABLE responses), direction likelihoods, per-direction Kalman updates, fusion, detection
  * and maintenance. */
 #include "pte_int.h"
-#include "pft/pft_kalman.h"
 
 #define SV_ PFT_PTE_SV_
 #define SA_ PFT_PTE_SA_
@@ -32,6 +31,78 @@ static pft_real_t from_fix16_(int64_t v)
     return (pft_real_t)v * (1.0f / 65536.0f);
 #endif
 }
+
+/* ------------------------------------------------------------ wide accumulation */
+
+/* Sums of products rounded once (q16: exact Q32.32 products in int64 with saturating sums;
+ * float: float), for the small Kalman algebra of a track step. */
+#ifdef PFT_NUMERIC_Q16
+typedef int64_t acc_t;
+static inline acc_t amul_(pft_real_t a, pft_real_t b) { return (int64_t)a * b; }
+static inline acc_t afrom_(pft_real_t a) { return (int64_t)a * 65536; }
+static inline acc_t aadd_(acc_t x, acc_t y)
+{
+    if (y > 0 && x > INT64_MAX - y) {
+        return INT64_MAX;
+    }
+    if (y < 0 && x < -INT64_MAX - y) {
+        return -INT64_MAX;
+    }
+    return x + y;
+}
+/* to Q16.16, rounded to nearest (ties as pft_mul), saturated */
+static inline pft_real_t ato_(acc_t v)
+{
+    int64_t r = (v >= 0 ? v + 32768 : v + 32767) >> 16;
+    return r > INT32_MAX ? PFT_REAL_MAX : (r < -INT32_MAX ? PFT_REAL_MIN : (pft_real_t)r);
+}
+/* num / den for den > 0 (both accumulators), rounded, saturated */
+static inline pft_real_t adiv_(acc_t num, acc_t den)
+{
+    const int64_t lim = (int64_t)1 << 46;
+    int64_t q;
+    if (num < lim && num > -lim) {
+        int64_t n = num * 65536;
+        q = (n >= 0 ? n + den / 2 : n - den / 2) / den;
+    } else {
+        q = num / den;
+        q = q > ((int64_t)1 << 16) ? ((int64_t)1 << 32) : (q < -((int64_t)1 << 16) ? -((int64_t)1 << 32) : q * 65536);
+    }
+    return q > INT32_MAX ? PFT_REAL_MAX : (q < -INT32_MAX ? PFT_REAL_MIN : (pft_real_t)q);
+}
+/* max(e, 0)^2 / g (0 when g <= 0), clamped at 22500 = 150^2: the squared operator statistic */
+static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
+{
+    if (e <= 0 || g <= 0) {
+        return 0;
+    }
+    int64_t q = ((int64_t)e * e + g / 2) / g;
+    return q > (int64_t)22500 * 65536 ? (pft_real_t)(22500 * 65536) : (pft_real_t)q;
+}
+/* pft_mul without the saturation, for products and sums proven inside the range (each call
+ * site states the bound): the same rounding, so the same bits whenever pft_mul would not
+ * saturate */
+static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
+{
+    int64_t v = (int64_t)a * b;
+    return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
+}
+#else
+static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
+typedef float acc_t;
+static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline acc_t afrom_(pft_real_t a) { return a; }
+static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline pft_real_t ato_(acc_t v) { return v; }
+static inline pft_real_t adiv_(acc_t num, acc_t den) { return num / den; }
+static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
+{
+    if (!(e > 0.0f) || !(g > 0.0f)) {
+        return 0.0f;
+    }
+    return pft_min(e * e / g, 22500.0f);
+}
+#endif
 
 /* ----------------------------------------------------------------- TABLE operators */
 
@@ -72,6 +143,21 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
         }
         p->ytap_lo[ph] = (int16_t)lo;
         p->ytap_n[ph] = (uint8_t)n;
+    }
+    /* the same taps padded to 4 per phase from the smallest first offset, when they fit */
+    int32_t lo4 = 0;
+    int32_t hi4 = -1;
+    for (int32_t ph = 0; ph < q; ++ph) {
+        lo4 = ph == 0 || p->ytap_lo[ph] < lo4 ? p->ytap_lo[ph] : lo4;
+        hi4 = ph == 0 || p->ytap_lo[ph] + p->ytap_n[ph] - 1 > hi4 ? p->ytap_lo[ph] + p->ytap_n[ph] - 1 : hi4;
+    }
+    p->ytap4 = (uint8_t)(hi4 - lo4 + 1 <= 4 ? 1 : 0);
+    p->ytap4_lo = (int16_t)lo4;
+    memset(p->ytap4_w, 0, sizeof(p->ytap4_w));
+    for (int32_t ph = 0; ph < q && p->ytap4; ++ph) {
+        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
+            p->ytap4_w[ph][p->ytap_lo[ph] - lo4 + k] = p->ytap[ph][k];
+        }
     }
     for (uint32_t i = 0; i < p->ny; ++i) {
         int32_t ph = (int32_t)i % q;
@@ -117,21 +203,41 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
     pft_real_t *y = p->yring + (size_t)slot * p->ny;
     const int32_t ncell = (int32_t)(p->ny / (uint32_t)q);
     int32_t c1 = (blk + 1) * YBLK_ < ncell ? (blk + 1) * YBLK_ : ncell;
-    for (int32_t cell = blk * YBLK_; cell < c1; ++cell) {
+    int32_t cell = blk * YBLK_;
+    if (p->ytap4 && cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo >= 0 &&
+        c1 - 1 - (int32_t)PFT_PTE_YPAD + p->ytap4_lo + 4 <= nr) {
+        /* interior block, at most 4 taps per phase (sigma_y <= ~0.6 cells): the taps of every
+         * phase padded to 4 from one common first offset; the zero weights add exact zeros,
+         * so the sums are those of the general loop below (plain sums, bounded there) */
+        for (int32_t ph = 0; ph < q; ++ph) {
+            const pft_real_t *w = p->ytap4_w[ph];
+            const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
+            pft_real_t *yy = y + cell * q + ph;
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                yy[k * q] = mul_nb_(w[0], zz[k]) + mul_nb_(w[1], zz[k + 1]) +
+                            mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
+            }
+        }
+        p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+        return;
+    }
+    for (; cell < c1; ++cell) {
         for (int32_t ph = 0; ph < q; ++ph) {
             int32_t u0 = cell - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
             int32_t n = p->ytap_n[ph];
             const pft_real_t *w = p->ytap[ph];
+            /* plain sums: |zeta| <= zeta_clip <= 64 (TABLE), 0 <= w <= 1 and at most
+             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (the values pft_mul/pft_add would give) */
             pft_real_t acc = PFT_C(0.0);
             if (u0 >= 0 && u0 + n <= nr) {
                 const pft_real_t *zz = z + u0;
                 for (int32_t k = 0; k < n; ++k) {
-                    acc = pft_add(acc, pft_mul(w[k], zz[k]));
+                    acc = acc + mul_nb_(w[k], zz[k]);
                 }
             } else {
                 for (int32_t k = 0; k < n; ++k) {
                     if (u0 + k >= 0 && u0 + k < nr) {
-                        acc = pft_add(acc, pft_mul(w[k], z[u0 + k]));
+                        acc = acc + mul_nb_(w[k], z[u0 + k]);
                     }
                 }
             }
@@ -184,6 +290,13 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     pft_real_t rho = pft_div(stt, pft_sq(ap->dth));
     ap->prior_k = pft_recip(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
     ap->sc2 = pft_add(scc, sr2);
+    ap->lck = pft_recip(pft_mul_i(ap->sc2, 2));
+    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' */
+    for (uint32_t i = 0; i < 3u; ++i) {
+        ap->pht[2u * i] = ato_(aadd_(afrom_(P[4u * i]), amul_(P[4u * i + 2u], h2)));
+        ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
+    }
+    ap->s01 = ato_(aadd_(afrom_(ap->pht[1]), amul_(h2, ap->pht[5])));
     int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, pft_sqrt(ap->sc2)), c->c_step));
     if (half < 1) {
         half = 1;
@@ -494,6 +607,45 @@ static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32
     }
 }
 
+/* One slide of window w (m frames) of entry bi over its lines [j0, j1): the newest frame in,
+ * the frame m back out, in one pass, E and the G residues. False (nothing done) when a line
+ * leaves the response grid at either frame (then bank_lines_ handles the edges). */
+static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t m)
+{
+    pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t on = bank_off_(p, e, kn);
+    const int32_t oo = bank_off_(p, e, kn - (uint32_t)m);
+    const int32_t dn = on + e->jlo;
+    const int32_t dold = oo + e->jlo;
+    if (j0 >= j1 || j0 + dn < 0 || j1 + dn > ny || j0 + dold < 0 || j1 + dold > ny) {
+        return false;
+    }
+    const int32_t len = p->ring.len;
+    int32_t so = (int32_t)p->ring.head - m;
+    so = so < 0 ? so + len : so;
+    const pft_real_t *restrict yn = yrow_(p, p->ring.head, 0u, j0 + dn, j1 + dn) + dn;
+    const pft_real_t *restrict yo = yrow_(p, (uint32_t)so, (uint32_t)m, j0 + dold, j1 + dold) + dold;
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    for (int32_t j = j0; j < j1; ++j) {
+        se[j] = se[j] + yn[j] - yo[j]; /* plain sums, bounded as in bank_lines_ */
+    }
+    const int32_t q = p->yq;
+    int32_t rn = on % q;
+    int32_t ro = oo % q;
+    rn = rn < 0 ? rn + q : rn;
+    ro = ro < 0 ? ro + q : ro;
+    if (rn != ro) {
+        pft_real_t *gr = e->gres[w];
+        for (int32_t r = 0; r < q; ++r) {
+            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
+                    p->gfull[r + ro < q ? r + ro : r + ro - q];
+        }
+    }
+    return true;
+}
+
 /* Sums the lines [j0, j1) of entry bi afresh over the last m[w] frames of every window. */
 static void bank_fill_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t j0, int32_t j1,
                        uint32_t kn)
@@ -526,9 +678,11 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
             k0 = a - jlo;
             k1 = b - jlo;
             const int32_t sh = a - e->jlo - k0; /* old local index = new local index + sh */
-            for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
-                pft_real_t *v = bank_e_(p, ti, bi, w);
-                memmove(v + k0, v + k0 + sh, (size_t)(k1 - k0) * sizeof(pft_real_t));
+            for (uint32_t w = 0; w < PFT_PTE_NWIN_ && sh != 0; ++w) {
+                if (e->m[w] > 0u) {
+                    pft_real_t *v = bank_e_(p, ti, bi, w);
+                    memmove(v + k0, v + k0 + sh, (size_t)(k1 - k0) * sizeof(pft_real_t));
+                }
             }
         }
         e->jlo = jlo;
@@ -549,6 +703,9 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
                 bank_lines_(p, ti, bi, w, k0, k1, kn, 0, mn, 1);
                 bank_gres_(p, e, w, kn, 0, mn, 1);
                 continue;
+            }
+            if (mn == mo && bank_slide_(p, ti, bi, w, k0, k1, kn, mn)) {
+                continue; /* the common case: one frame in, one out */
             }
             /* newest frame in; then the far end from mo + 1 frames to mn frames */
             bank_lines_(p, ti, bi, w, k0, k1, kn, 0, 1, 1);
@@ -600,9 +757,12 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
     if (lo >= p->yin_lo && hi <= p->yin_hi) {
         int32_t r = jl % q;
         r = r < 0 ? r + q : r;
-        for (int32_t j = 0; j < n; ++j) {
-            G[j] = e->gres[w][r];
+        for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
+            G[k] = e->gres[w][r];
             r = r + 1 == q ? 0 : r + 1;
+        }
+        for (int32_t j = q; j < n; ++j) {
+            G[j] = G[j - q];
         }
         return;
     }
@@ -641,23 +801,68 @@ typedef struct {
 /* Best scan position of one direction. */
 typedef struct {
     int32_t jb;          /* index of the best summand */
-    pft_real_t lse;      /* log of the sum over scan positions */
+    pft_real_t lmax;     /* the best summand's log */
+    pft_real_t ssum;     /* sum over scan positions of exp(log summand - lmax), >= 1 */
     pft_real_t cstar[2]; /* best end position per axis, parabola refined */
-    pft_real_t t;        /* T at the best position (0 when G = 0) */
+    pft_real_t t2s;      /* T^2 at the best position with the sign of T (0 when G = 0) */
     pft_real_t e, g;     /* E and G at the best position */
 } dir_best_;
 
-/* 1. Kalman prediction of the state and the amplitude. */
-static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+/* Transition and process noise of the effective state [r, SV r', SA r''] of each axis (the
+ * 4th state of the track layout stays 0), from model_ (at init). */
+void pft_pte_model_setup_(pft_pte_t *p)
 {
-    const pft_pte_config_t *c = &p->cfg;
-    for (uint32_t a = 0; a < p->naxes; ++a) {
+    for (uint32_t a = 0; a < 2u; ++a) {
         pft_real_t F[16];
         pft_real_t Q[16];
-        model_(c, a, F, Q);
-        pft_kf4_predict(t->x[a], t->P[a], F, Q);
+        model_(&p->cfg, a, F, Q);
+        for (uint32_t i = 0; i < 3u; ++i) {
+            for (uint32_t j = 0; j < 3u; ++j) {
+                p->kF[a][3u * i + j] = F[4u * i + j];
+                p->kQ[a][3u * i + j] = Q[4u * i + j];
+            }
+        }
     }
-    t->amp_var = pft_add(t->amp_var, c->q_amp);
+}
+
+/* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
+ * rounded once) and of the amplitude. */
+static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+{
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        const pft_real_t *F = p->kF[a];
+        const pft_real_t *Q = p->kQ[a];
+        pft_real_t *x = t->x[a];
+        pft_real_t *P = t->P[a];
+        pft_real_t xn[3];
+        pft_real_t fp[9];
+        for (uint32_t i = 0; i < 3u; ++i) {
+            acc_t v = 0;
+            for (uint32_t l = 0; l < 3u; ++l) {
+                v = aadd_(v, amul_(F[3u * i + l], x[l]));
+            }
+            xn[i] = ato_(v);
+            for (uint32_t j = 0; j < 3u; ++j) {
+                acc_t w = 0;
+                for (uint32_t l = 0; l < 3u; ++l) {
+                    w = aadd_(w, amul_(F[3u * i + l], P[4u * l + j]));
+                }
+                fp[3u * i + j] = ato_(w);
+            }
+        }
+        for (uint32_t i = 0; i < 3u; ++i) {
+            x[i] = xn[i];
+            for (uint32_t j = i; j < 3u; ++j) {
+                acc_t w = afrom_(Q[3u * i + j]);
+                for (uint32_t l = 0; l < 3u; ++l) {
+                    w = aadd_(w, amul_(fp[3u * i + l], F[3u * j + l]));
+                }
+                P[4u * i + j] = ato_(w);
+                P[4u * j + i] = P[4u * i + j];
+            }
+        }
+    }
+    t->amp_var = pft_add(t->amp_var, p->cfg.q_amp);
 }
 
 /* Log prior -d^2 / (2 sc2) of every scan position of axis a, d = off + j c_step its distance
@@ -666,10 +871,16 @@ static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
 {
     pft_pte_scratch_t *s = p->scr;
     const pft_pte_axis_t *ap = &s->ap[a];
-    pft_real_t k2 = pft_mul_i(ap->sc2, 2);
+    /* -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k: lc_{j+1} =
+     * lc_j + dl_j with dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd */
+    const pft_real_t cs = p->cfg.c_step;
+    pft_real_t lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    pft_real_t dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
+    pft_real_t dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
     for (int32_t j = 0; j < ap->ns; ++j) {
-        pft_real_t d = pft_add(off, pft_mul_i(p->cfg.c_step, j));
-        s->lc[a][j] = pft_neg(pft_div(pft_sq(d), k2));
+        s->lc[a][j] = lc;
+        lc = pft_add(lc, dl);
+        dl = pft_add(dl, dd);
     }
 }
 
@@ -911,8 +1122,10 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
     *G = p->sG;
 }
 
-/* 4. Test statistic and log summand of every scan position, their log-sum, the best position
- * (parabola refined per axis) and its T. c0: first scan position per axis. */
+/* 4. Test statistic and log summand of every scan position, the best one and the sum of
+ * the others relative to it (the direction likelihood is their log-sum; the fusion needs
+ * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
+ * position per axis. */
 static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
                               const pft_real_t *G, const pft_real_t c0[2])
 {
@@ -924,10 +1137,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     for (int32_t j = 0; j < g->nsc; ++j) {
         /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
          * the product saturates at 32768 before the clamp, with the same result) */
-        pft_real_t t2 = PFT_C(0.0);
-        if (E[j] > PFT_C(0.0) && G[j] > PFT_C(0.0)) {
-            t2 = pft_min(pft_mul(E[j], pft_div(E[j], G[j])), PFT_C(22500.0));
-        }
+        pft_real_t t2 = sq_over_(E[j], G[j]);
         pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
         p->sL[j] = ls;
         if (ls > lmax) {
@@ -935,11 +1145,16 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             r.jb = j;
         }
     }
+    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
     pft_real_t ssum = PFT_C(0.0);
+    const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
-        ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+        if (p->sL[j] > lcut) {
+            ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+        }
     }
-    r.lse = pft_add(lmax, pft_log(ssum));
+    r.lmax = lmax;
+    r.ssum = ssum;
     const int32_t jb = r.jb;
     r.cstar[0] = PFT_C(0.0);
     r.cstar[1] = PFT_C(0.0);
@@ -955,110 +1170,137 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     }
     r.e = E[jb];
     r.g = G[jb];
-    r.t = PFT_C(0.0);
-    if (r.g > PFT_C(0.0)) {
-        r.t = pft_clamp(pft_div(r.e, pft_sqrt(r.g)), PFT_C(-150.0), PFT_C(150.0));
-    }
+    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
+    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
     return r;
 }
 
 /* 5. Kalman update of the track's prediction with the direction's measurement [c*, theta]
- * per axis, and of its amplitude with E/G, into out. */
+ * per axis (H = [1 0 hc; 0 1 hv], R = diag(sigma_c^2, sigma_theta^2) of docs/algorithms.md
+ * 5.3 step 5): the gain K = P H' S^-1 and the state change K nu, with P H' and H P H' shared
+ * by the directions (step geometry); the covariance is formed once, at the fusion. The
+ * amplitude gets a scalar update with E/G (variance 1/G). On a singular S the direction
+ * leaves the prediction unchanged. */
 static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step_geom_ *g,
                         const dir_slope_ *d, const dir_best_ *b, pft_pte_dir_t *out)
 {
     const pft_pte_config_t *c = &p->cfg;
     const pft_pte_axis_t *ap = p->scr->ap;
-    pft_real_t tc = pft_max(pft_sq(b->t), PFT_C(1.0));
-    for (uint32_t a = 0; a < 2u; ++a) {
-        memcpy(out->x[a], t->x[a], 4u * sizeof(pft_real_t));
-        memcpy(out->P[a], t->P[a], 16u * sizeof(pft_real_t));
-        if (a >= p->naxes) {
+    const pft_real_t itc = pft_recip(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
+    memset(out->dx, 0, sizeof(out->dx));
+    memset(out->K, 0, sizeof(out->K));
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        const pft_pte_axis_t *x = &ap[a];
+        /* R: sigma_w^2 / T^2 + c_step^2 / 12 and dth^2 / 12 + 12 sigma_w^2 / ((M^2 - 1) T^2),
+         * the latter scaled by SV^2 */
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(c->c_step), 12));
+        pft_real_t r3 = pft_add(pft_div_i(pft_sq(x->dth), 12),
+                                pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
+        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(c->sigma_r[a])), r0);
+        pft_real_t s11 = pft_add(x->stt, r3);
+        acc_t det = aadd_(amul_(s00, s11), -amul_(x->s01, x->s01));
+        if (!(s00 > PFT_C(0.0)) || !(det > 0)) {
             continue;
         }
-        pft_real_t z[2] = {b->cstar[a], d->th[a]};
-        pft_real_t R[4];
-        R[0] = pft_add(pft_div(ap[a].sw2, tc), pft_div_i(pft_sq(c->c_step), 12));
-        /* slope variance 12 sigma_w^2 / ((M^2 - 1) T^2), scaled by SV^2 */
-        R[3] = pft_add(pft_div_i(pft_sq(ap[a].dth), 12),
-                       pft_div_i(pft_div(pft_mul_i(ap[a].sw2, 12 * SV_ * SV_), tc), g->mm));
-        R[1] = PFT_C(0.0);
-        R[2] = PFT_C(0.0);
-        (void)pft_kf4_update2(out->x[a], out->P[a], ap[a].H, z, R); /* on failure the prediction stays */
+        pft_real_t nu0 = pft_sub(b->cstar[a], x->zc);
+        pft_real_t nu1 = pft_sub(d->th[a], x->zt);
+        for (uint32_t i = 0; i < 3u; ++i) {
+            /* K = P H' adj(S) / det, each entry summed exactly and rounded once */
+            const pft_real_t h0 = x->pht[2u * i];
+            const pft_real_t h1 = x->pht[2u * i + 1u];
+            pft_real_t k0 = adiv_(aadd_(amul_(h0, s11), -amul_(h1, x->s01)), det);
+            pft_real_t k1 = adiv_(aadd_(amul_(h1, s00), -amul_(h0, x->s01)), det);
+            out->K[a][2u * i] = k0;
+            out->K[a][2u * i + 1u] = k1;
+            out->dx[a][i] = ato_(aadd_(amul_(k0, nu0), amul_(k1, nu1)));
+        }
     }
-    /* amplitude: measurement E/G with variance 1/G */
+    /* amplitude: measurement E/G with variance 1/G: gain av G / (av G + 1) */
     pft_real_t am = t->amp;
     pft_real_t av = t->amp_var;
     if (b->g > PFT_C(0.0)) {
-        pft_real_t meas = pft_div(b->e, b->g);
-        pft_real_t r = pft_recip(b->g);
-        pft_real_t k = pft_div(av, pft_add(av, r));
-        am = pft_add(am, pft_mul(k, pft_sub(meas, am)));
-        av = pft_sub(av, pft_mul(k, av));
+        pft_real_t inv = pft_recip(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
+        am = pft_add(am, pft_mul(pft_mul(av, pft_sub(b->e, pft_mul(am, b->g))), inv));
+        av = pft_mul(av, inv);
     }
     out->amp = am;
     out->amp_var = av;
-    out->logw = pft_add(d->prior, b->lse);
-    out->t = b->t;
+    out->logw = pft_add(d->prior, b->lmax);
+    out->ssum = b->ssum;
 }
 
-/* 6. Fusion of the directions with their normalised likelihoods. Deviations from the
- * prediction are fused (X = X_pred + sum W (X_l - X_pred)) so that weights summing to
- * 1 - epsilon after rounding (q16) cannot bias the state. */
+/* 6. Fusion of the directions with their normalised likelihoods W:
+ * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
+ * which is sum W (P_l + (X_l - X)(X_l - X)') when the weights sum to 1. Deviations from the
+ * prediction are fused so that weights summing to 1 - epsilon after rounding (q16) cannot
+ * bias the state. */
 static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
 {
     const uint32_t na = p->naxes;
-    pft_pte_dir_t *f = &p->scr->fused;
-    (void)pft_lognormalize(p->scr->lw, p->dw, (size_t)ndir);
-    memset(f, 0, sizeof(*f));
-    pft_real_t as = PFT_C(0.0);
+    const pft_pte_axis_t *ap = p->scr->ap;
+    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions */
+    pft_real_t w[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS];
+    pft_real_t lx = PFT_REAL_MIN;
     for (int32_t li = 0; li < ndir; ++li) {
-        pft_real_t w = pft_weight_to_real(p->dw[li]);
-        const pft_pte_dir_t *d = &p->dir[li];
-        for (uint32_t a = 0; a < na; ++a) {
-            for (uint32_t i = 0; i < 3u; ++i) {
-                f->x[a][i] = pft_add(f->x[a][i], pft_mul(w, pft_sub(d->x[a][i], t->x[a][i])));
-            }
-        }
-        as = pft_add(as, pft_mul(w, pft_sub(d->amp, t->amp)));
+        lx = pft_max(lx, p->dir[li].logw);
+    }
+    pft_real_t tot = PFT_C(0.0);
+    for (int32_t li = 0; li < ndir; ++li) {
+        pft_real_t dl = pft_sub(p->dir[li].logw, lx);
+        w[li] = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        tot = pft_add(tot, w[li]);
+    }
+    const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
+    for (int32_t li = 0; li < ndir; ++li) {
+        w[li] = pft_mul(w[li], itot);
     }
     for (uint32_t a = 0; a < na; ++a) {
+        pft_real_t df[3];
+        pft_real_t kw[6];
         for (uint32_t i = 0; i < 3u; ++i) {
-            f->x[a][i] = pft_add(t->x[a][i], f->x[a][i]);
-        }
-    }
-    as = pft_add(t->amp, as);
-    pft_real_t avs = PFT_C(0.0);
-    for (int32_t li = 0; li < ndir; ++li) {
-        pft_real_t w = pft_weight_to_real(p->dw[li]);
-        const pft_pte_dir_t *d = &p->dir[li];
-        for (uint32_t a = 0; a < na; ++a) {
-            pft_real_t dv[3];
-            for (uint32_t i = 0; i < 3u; ++i) {
-                dv[i] = pft_sub(d->x[a][i], f->x[a][i]);
+            acc_t v = 0;
+            for (int32_t li = 0; li < ndir; ++li) {
+                v = aadd_(v, amul_(w[li], p->dir[li].dx[a][i]));
             }
-            for (uint32_t i = 0; i < 3u; ++i) {
-                for (uint32_t j = i; j < 3u; ++j) {
-                    f->P[a][i * 4u + j] = pft_add(f->P[a][i * 4u + j],
-                                                  pft_mul(w, pft_add(d->P[a][i * 4u + j], pft_mul(dv[i], dv[j]))));
-                }
-            }
+            df[i] = ato_(v);
         }
-        avs = pft_add(avs, pft_mul(w, pft_add(d->amp_var, pft_sq(pft_sub(d->amp, as)))));
-    }
-    for (uint32_t a = 0; a < na; ++a) {
+        for (uint32_t i = 0; i < 6u; ++i) {
+            acc_t v = 0;
+            for (int32_t li = 0; li < ndir; ++li) {
+                v = aadd_(v, amul_(w[li], p->dir[li].K[a][i]));
+            }
+            kw[i] = ato_(v);
+        }
+        pft_real_t *P = t->P[a];
         for (uint32_t i = 0; i < 3u; ++i) {
-            t->x[a][i] = f->x[a][i];
             for (uint32_t j = i; j < 3u; ++j) {
-                t->P[a][i * 4u + j] = f->P[a][i * 4u + j];
-                t->P[a][j * 4u + i] = f->P[a][i * 4u + j];
+                acc_t v = afrom_(P[4u * i + j]);
+                v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
+                v = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
+                for (int32_t li = 0; li < ndir; ++li) {
+                    pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
+                    pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
+                    v = aadd_(v, amul_(w[li], pft_mul(di, dj)));
+                }
+                P[4u * i + j] = ato_(v);
+                P[4u * j + i] = P[4u * i + j];
             }
+            t->x[a][i] = pft_add(t->x[a][i], df[i]);
         }
-        t->P[a][0] = pft_max(t->P[a][0], PFT_REAL_EPS);
-        t->P[a][5] = pft_max(t->P[a][5], PFT_REAL_EPS);
+        P[0] = pft_max(P[0], PFT_REAL_EPS);
+        P[5] = pft_max(P[5], PFT_REAL_EPS);
     }
-    t->amp = as;
-    t->amp_var = pft_max(avs, PFT_REAL_EPS);
+    acc_t as = 0;
+    for (int32_t li = 0; li < ndir; ++li) {
+        as = aadd_(as, amul_(w[li], pft_sub(p->dir[li].amp, t->amp)));
+    }
+    pft_real_t amp = pft_add(t->amp, ato_(as));
+    acc_t avs = 0;
+    for (int32_t li = 0; li < ndir; ++li) {
+        avs = aadd_(avs, amul_(w[li], pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+    }
+    t->amp = amp;
+    t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
 }
 
 /* 7. Detection test, misses, termination (also when the track left the image). */
@@ -1091,7 +1333,7 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
     step_geometry_(p, t, &g);
-    pft_real_t tmax = PFT_REAL_MIN;
+    pft_real_t t2max = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
         dir_slope_ d = dir_slope_of_(p, &g, li);
         const pft_real_t *E;
@@ -1104,12 +1346,11 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
             scan_prior_(p, 0u, s->boff[li]);
         }
         dir_best_ b = dir_best_of_(p, &g, E, G, c0);
-        if (b.t > tmax) {
-            tmax = b.t;
-        }
+        t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
-        s->lw[li] = p->dir[li].logw;
     }
     step_fuse_(p, t, g.ndir);
-    step_maintain_(p, t, tmax);
+    /* max_l T_l* from the largest signed T^2 */
+    pft_real_t tmax = pft_sqrt(pft_abs(t2max));
+    step_maintain_(p, t, t2max < PFT_C(0.0) ? pft_neg(tmax) : tmax);
 }

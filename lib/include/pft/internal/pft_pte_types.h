@@ -56,14 +56,16 @@ typedef struct {
     bool detected;
 } pft_pte_track_t;
 
-/* Result of one operator direction within a track step (also the fused state). */
+/* Result of one operator direction within a track step: the Kalman gain and state change of
+ * its update per axis (effective state [r, SV r', SA r'']), amplitude, likelihood. */
 typedef struct {
-    pft_real_t x[2][4];  /* per axis state after the direction's Kalman update */
-    pft_real_t P[2][16]; /* per axis covariance */
+    pft_real_t dx[2][3]; /* per axis K nu */
+    pft_real_t K[2][6];  /* per axis gain, 3 x 2 row-major */
     pft_real_t amp;      /* amplitude after the update with E/G */
     pft_real_t amp_var;
-    pft_real_t logw;     /* log direction likelihood (prior + log-sum over scan positions) */
-    pft_real_t t;        /* T of the best scan position */
+    pft_real_t logw;     /* log prior + the best scan position's log summand */
+    pft_real_t ssum;     /* sum of the summands relative to the best (the likelihood is
+                            exp(logw) ssum) */
 } pft_pte_dir_t;
 
 /* Per-axis operator parameters of one track at one frame. */
@@ -76,6 +78,9 @@ typedef struct {
     pft_real_t c0;                     /* first scan position */
     pft_real_t sc2;                    /* S_cc + sigma_r^2 */
     pft_real_t stt;                    /* S_tt: predicted variance of the scaled slope */
+    pft_real_t pht[6];                 /* P H', 3 x 2 row-major (effective state) */
+    pft_real_t s01;                    /* H P H' off-diagonal (the diagonal: sc2 - sigma_r^2, stt) */
+    pft_real_t lck;                    /* 1 / (2 sc2): scan-position log prior per d^2 */
     int32_t ns;                        /* scan positions */
     int32_t L;                         /* directions */
     int32_t ncell;                     /* cells along the axis */
@@ -104,14 +109,12 @@ typedef struct {
     pft_pte_axis_t ap[2];                        /* operator parameters per axis */
     pft_real_t lc[2][PFT_PTE_MAX_SCAN_];         /* log prior of each scan position per axis */
     pft_real_t gs[2][PFT_PTE_MAX_SCAN_];         /* sum of squared tap weights per position */
-    pft_real_t lw[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS]; /* log weight of each direction */
     int32_t bsel[PFT_PTE_MAX_DIRS];              /* TABLE: bank entry of each direction */
     int32_t bj0[PFT_PTE_MAX_DIRS];               /* TABLE: its first scan line in the entry */
     pft_real_t boff[PFT_PTE_MAX_DIRS];           /* TABLE: first scan position - predicted end */
     int32_t blo[PFT_PTE_MAX_SCAN_];              /* EXACT 2-D taps per phase: first cell, */
     int32_t bcnt[PFT_PTE_MAX_SCAN_];             /* count, */
     pft_real_t bg[PFT_PTE_MAX_SCAN_];            /* and sum of squared weights */
-    pft_pte_dir_t fused;                         /* fusion accumulators */
     uint32_t ti;                                 /* slot of the track being stepped */
 } pft_pte_scratch_t;
 
@@ -131,6 +134,9 @@ struct pft_pte_s {
     pft_real_t ytap[8][PFT_PTE_MAX_TAPS]; /* TABLE: tap weights per grid phase */
     int16_t ytap_lo[8];          /* TABLE: first tap offset per phase (cells from floor(p)) */
     uint8_t ytap_n[8];           /* TABLE: taps per phase */
+    pft_real_t ytap4_w[8][4];    /* TABLE: the taps padded to 4 from ytap4_lo (when ytap4) */
+    int16_t ytap4_lo;
+    uint8_t ytap4;               /* TABLE: every phase's taps fit in 4 from ytap4_lo */
     pft_real_t sigma_y;          /* TABLE: operator width */
     uint32_t ny;                 /* TABLE: response points (n_range + 2 PFT_PTE_YPAD) * yq */
     uint8_t yq;                  /* TABLE: grid points per cell (0: EXACT mode) */
@@ -150,8 +156,9 @@ struct pft_pte_s {
     pft_real_t *tw[2];           /* tap weights per axis (n_scan * TAPS) */
     int16_t *tlo[2];             /* first tap cell, count, weight offset per axis (n_scan * 4) */
     pft_pte_dir_t *dir;          /* per-direction results (n_dir0 * n_dir1) */
-    pft_weight_t *dw;            /* per-direction weights */
     pft_pte_scratch_t *scr;      /* track-step scratch */
+    pft_real_t kF[2][9];         /* per axis transition of the effective state [r, SV r', SA r''] */
+    pft_real_t kQ[2][9];         /* per axis process noise of the effective state */
     uint32_t frames_in;
     uint16_t next_id;
     uint16_t since_search;
