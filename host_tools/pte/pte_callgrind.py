@@ -15,7 +15,7 @@ operators), DP-TBD K = 10 and K = 20 and the DBT; the same target in a ten times
 (noise-only Monte Carlo) and are written into the scenario, so valgrind does not run the
 Monte Carlo.
 
-Usage: pte_callgrind.py [--wall] [--only SUBSTRING] OUT_DIR BUILD_DIR [BUILD_DIR...]
+Usage: pte_callgrind.py [--wall] [--only SUBSTRING] [--name-builds] OUT_DIR BUILD_DIR [BUILD_DIR...]
   e.g. python3 host_tools/pte/pte_callgrind.py build/instr build/host-float build/host-q16
 Markdown tables on stdout: one row per build and configuration, then the ratios
 DP-TBD K=20 / PTE-TBD (mean instructions per frame).
@@ -68,6 +68,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--wall', action='store_true', help='also wall time per frame (5 pft bench runs)')
     ap.add_argument('--only', default='', help='only configurations whose row label contains this')
+    ap.add_argument('--name-builds', action='store_true',
+                    help='label rows with the build directory too (to compare builds of the same numeric type)')
     ap.add_argument('out')
     ap.add_argument('builds', nargs='+')
     a = ap.parse_args()
@@ -120,9 +122,10 @@ def main():
             mean = sum(ir) / len(ir)
             med = sorted(ir)[len(ir) // 2]
             worst = max(ir)
-            means[(bj['numeric'], window, label)] = mean
+            bname = f"{bj['numeric']} ({os.path.basename(os.path.normpath(b))})" if a.name_builds else bj['numeric']
+            means[(bname, window, label)] = mean
             bm = bj['methods'][m]
-            row = (f"| {bj['numeric']} | {window} | {label} | {mean:,.0f} | {med:,} | "
+            row = (f"| {bname} | {window} | {label} | {mean:,.0f} | {med:,} | "
                    f"{worst:,} ({ir.index(worst) + 1}) | {bm['workspace_bytes']} |")
             if a.wall:
                 row += f" {bm['median_us_per_frame']:.1f} |"
