@@ -178,8 +178,14 @@ void write_tracks_csv(const std::string &path, const std::vector<std::string> &n
  *  picture and tracks CSV when dir is not empty. */
 json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &z,
                       const std::vector<Truth> *truth, const std::string &dir, const std::string &caption,
-                      bool quiet)
+                      bool quiet, const std::vector<std::vector<Truth>> *truths = nullptr)
 {
+    // several targets (a scenario's `targets`): scored together; the picture shows the first
+    auto score = [&](const std::vector<std::vector<Report>> &o, bool coasting) {
+        if (truths && truths->size() > 1)
+            return score_runs(*truths, o, s.radar.cells, s.eval.d_c, coasting);
+        return score_run(*truth, o, s.radar.cells, s.eval.d_c, nullptr, coasting);
+    };
     std::vector<MethodSpec> specs = make_specs(s);
     std::vector<std::vector<std::vector<Report>>> outs;
     std::vector<std::string> names;
@@ -193,12 +199,11 @@ json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &
         json j = {{"label", sp.label()}, {"settings", sp.settings()},
                   {"us_per_frame", t * 1e6 / std::max<std::size_t>(1, z.size())}};
         if (truth) {
-            Counts c = score_run(*truth, outs.back(), s.radar.cells, s.eval.d_c);
+            Counts c = score(outs.back(), false);
             c.time_s = t;
             c.frames = static_cast<long long>(z.size());
             j["metrics"] = c.to_json();
-            j["metrics_with_coasting"] =
-                score_run(*truth, outs.back(), s.radar.cells, s.eval.d_c, nullptr, true).to_json();
+            j["metrics_with_coasting"] = score(outs.back(), true).to_json();
             if (!quiet)
                 print_row(sp.label(), s.snr_db, c);
         }
@@ -528,8 +533,8 @@ public:
             for (const auto &sp : specs) {
                 double t = 0.0;
                 auto outp = run_method(sp, q.z, &t);
-                Counts c = score_run(q.truth, outp, sc.radar.cells, sc.eval.d_c);
-                Counts cc = score_run(q.truth, outp, sc.radar.cells, sc.eval.d_c, nullptr, true);
+                Counts c = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c);
+                Counts cc = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true);
                 c.time_s = cc.time_s = t;
                 c.frames = cc.frames = q.frames;
                 local[sp.name] = c;
@@ -682,7 +687,7 @@ public:
                     describe(s).c_str(), static_cast<unsigned long long>(seed), q.truth.front().r, q.truth.back().r);
         std::string dir = o.out.empty() ? "pft_demo_pte" : o.out;
         ensure_dir(dir);
-        track_and_report(s, q.z, &q.truth, dir, describe(s) + ", seed " + std::to_string(seed), false);
+        track_and_report(s, q.z, &q.truth, dir, describe(s) + ", seed " + std::to_string(seed), false, &q.truths);
         std::printf("\n  wrote %s/tracked.png and tracks.csv; Monte Carlo: pft eval --scenario %s\n", dir.c_str(),
                     s.file.c_str());
         return 0;
