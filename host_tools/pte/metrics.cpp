@@ -1,5 +1,6 @@
 #include "metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pft::host::pte {
@@ -70,6 +71,62 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
         }
     if (correct)
         *correct = ok;
+    return c;
+}
+
+Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vector<std::vector<Report>> &out,
+                  int cells, double d_c, bool with_coasting)
+{
+    if (truths.size() == 1)
+        return score_run(truths[0], out, cells, d_c, nullptr, with_coasting);
+    Counts c;
+    const std::size_t nt = truths.size();
+    std::size_t n = out.size();
+    for (const auto &tr : truths)
+        n = std::min(n, tr.size());
+    std::vector<std::vector<char>> ok(nt, std::vector<char>(n, 0)), present(nt, std::vector<char>(n, 0));
+    for (std::size_t k = 0; k < n; ++k) {
+        std::vector<double> pos;
+        for (const Report &r : out[k])
+            if (r.detected || with_coasting)
+                pos.push_back(r.pos);
+        c.declared += static_cast<long long>(pos.size());
+        struct Pair { double d; std::size_t t, r; };
+        std::vector<Pair> pairs;
+        for (std::size_t t = 0; t < nt; ++t) {
+            const Truth &tr = truths[t][k];
+            present[t][k] = tr.active && tr.r >= 0.0 && tr.r <= cells - 1.0;
+            if (!present[t][k])
+                continue;
+            c.true_frames++;
+            for (std::size_t r = 0; r < pos.size(); ++r) {
+                double d = std::fabs(pos[r] - tr.r);
+                if (d <= d_c)
+                    pairs.push_back({d, t, r});
+            }
+        }
+        std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
+            return a.d < b.d || (a.d == b.d && (a.t < b.t || (a.t == b.t && a.r < b.r)));
+        });
+        std::vector<char> used(pos.size(), 0);
+        long long matched = 0;
+        for (const Pair &p : pairs) {
+            if (ok[p.t][k] || used[p.r])
+                continue;
+            ok[p.t][k] = 1;
+            used[p.r] = 1;
+            ++matched;
+            c.correct++;
+            c.sq += p.d * p.d;
+        }
+        c.false_points += static_cast<long long>(pos.size()) - matched;
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+        for (std::size_t k = 2; k < n; ++k)
+            if (present[t][k] && present[t][k - 1] && present[t][k - 2]) {
+                c.rel_den++;
+                c.rel_num += ok[t][k] && ok[t][k - 1] && ok[t][k - 2];
+            }
     return c;
 }
 

@@ -36,4 +36,12 @@ struct Counts {
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
                  int cells, double d_c, std::vector<char> *correct = nullptr, bool with_coasting = false);
 
+/** Several targets ([target][frame]): at each frame the declared reports are assigned one to
+ *  one to the targets present (active and inside the window), closest pairs first, within
+ *  d_c cells; an assigned report is a correct point of its target, every other declared
+ *  report is false. true_frames counts target-frames; reliable3 is counted per target. With
+ *  one target this is score_run. */
+Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vector<std::vector<Report>> &out,
+                  int cells, double d_c, bool with_coasting = false);
+
 }  // namespace pft::host::pte

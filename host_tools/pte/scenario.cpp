@@ -1,5 +1,6 @@
 #include "scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "../common/json_field.hpp"
@@ -18,6 +19,37 @@ std::array<double, 3> vec3(const Field &f, const std::string &key, std::array<do
     return {v[0], v[1], v[2]};
 }
 
+Motion parse_motion(const Field &t, Motion m)
+{
+    t.only({"motion", "start_m", "speed_mps", "turn_rate_rad_s", "phases_s", "centre_m", "radius_m",
+            "rate_rad_s", "direction", "velocity_mps", "start_s", "end_s", "note"});
+    std::string mk = t.choice_or("motion", "air_turn", {"air_turn", "circle", "line"});
+    m.kind = mk == "air_turn" ? MotionKind::AirTurn : mk == "circle" ? MotionKind::Circle : MotionKind::Line;
+    m.start = vec3(t, "start_m", m.start);
+    m.speed = t.number_in("speed_mps", m.speed, 0.0, 1e5);
+    m.turn_rate = t.number_in("turn_rate_rad_s", m.turn_rate, -100.0, 100.0);
+    if (t.has("phases_s")) {
+        auto v = t.numbers("phases_s", 3);
+        for (int k = 0; k < 3; ++k) {
+            if (v[k] < 0)
+                t.at("phases_s").fail("durations must be >= 0");
+            m.phases[k] = v[k];
+        }
+    }
+    m.centre = vec3(t, "centre_m", m.centre);
+    m.radius = t.number_in("radius_m", m.radius, 0.0, 1e7);
+    m.rate = t.number_in("rate_rad_s", m.rate, -100.0, 100.0);
+    m.direction = static_cast<int>(t.integer_in("direction", 1, -1, 1));
+    if (m.direction == 0)
+        t.at("direction").fail("must be +1 (counter-clockwise) or -1");
+    m.velocity = vec3(t, "velocity_mps", m.velocity);
+    m.start_s = t.number_in("start_s", 0.0, 0.0, 1e9);
+    m.end_s = t.number_in("end_s", 1e300, 0.0, 1e300);
+    if (m.end_s < m.start_s)
+        t.at("end_s").fail("must be >= start_s");
+    return m;
+}
+
 }  // namespace
 
 Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
@@ -26,7 +58,7 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
     s.file = file;
     s.raw = j;
     Field root(j, file);
-    root.only({"kind", "name", "description", "radar", "frames", "target", "signal", "background",
+    root.only({"kind", "name", "description", "radar", "frames", "target", "targets", "signal", "background",
                "methods", "eval", "output", "reference"});
     if (root.string("kind") != "pte" && root.string("kind") != "radar")  // "radar": the former name
         root.at("kind").fail("expected \"pte\"");
@@ -44,29 +76,19 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
     }
     s.frames = static_cast<int>(root.integer_in("frames", s.frames, 1, 1000000));
 
-    Field t = root.at("target");
-    t.only({"motion", "start_m", "speed_mps", "turn_rate_rad_s", "phases_s", "centre_m", "radius_m",
-            "rate_rad_s", "direction", "velocity_mps", "note"});
-    std::string mk = t.choice_or("motion", "air_turn", {"air_turn", "circle", "line"});
-    s.motion.kind = mk == "air_turn" ? MotionKind::AirTurn : mk == "circle" ? MotionKind::Circle : MotionKind::Line;
-    s.motion.start = vec3(t, "start_m", s.motion.start);
-    s.motion.speed = t.number_in("speed_mps", s.motion.speed, 0.0, 1e5);
-    s.motion.turn_rate = t.number_in("turn_rate_rad_s", s.motion.turn_rate, -100.0, 100.0);
-    if (t.has("phases_s")) {
-        auto v = t.numbers("phases_s", 3);
-        for (int k = 0; k < 3; ++k) {
-            if (v[k] < 0)
-                t.at("phases_s").fail("durations must be >= 0");
-            s.motion.phases[k] = v[k];
-        }
+    if (root.has("target") == root.has("targets"))
+        root.fail("give either \"target\" (one target) or \"targets\" (a list)");
+    if (root.has("target")) {
+        s.motion = parse_motion(root.at("target"), s.motion);
+        s.targets = {s.motion};
+    } else {
+        Field v = root.at("targets");
+        if (v.size() < 1 || v.size() > 8)
+            v.fail("expected a list of 1..8 targets");
+        for (std::size_t i = 0; i < v.size(); ++i)
+            s.targets.push_back(parse_motion(v.at(i), Motion{}));
+        s.motion = s.targets[0];
     }
-    s.motion.centre = vec3(t, "centre_m", s.motion.centre);
-    s.motion.radius = t.number_in("radius_m", s.motion.radius, 0.0, 1e7);
-    s.motion.rate = t.number_in("rate_rad_s", s.motion.rate, -100.0, 100.0);
-    s.motion.direction = static_cast<int>(t.integer_in("direction", 1, -1, 1));
-    if (s.motion.direction == 0)
-        t.at("direction").fail("must be +1 (counter-clockwise) or -1");
-    s.motion.velocity = vec3(t, "velocity_mps", s.motion.velocity);
 
     if (root.has("signal")) {
         Field g = root.at("signal");
@@ -144,6 +166,7 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
 
 std::array<double, 3> target_position(const Motion &m, double t)
 {
+    t = std::max(t - m.start_s, 0.0);
     std::array<double, 3> p = m.start;
     if (m.kind == MotionKind::Line) {
         for (int k = 0; k < 3; ++k)

@@ -37,6 +37,9 @@ struct Motion {
     int direction = 1;
     // Line: start (above) and velocity (m/s)
     std::array<double, 3> velocity{0.0, 0.0, 0.0};
+    double start_s = 0.0;          ///< the target exists from this time on (its motion's t = 0)
+    double end_s = 1e300;          ///< ... until this time (s)
+    bool active(double t) const { return t >= start_s && t <= end_s; }
 };
 
 struct Background {
@@ -81,7 +84,8 @@ struct Scenario {
     std::string file, name, description;
     RadarGeom radar;
     int frames = 300;
-    Motion motion;
+    Motion motion;                  ///< the first target (`target`, or `targets[0]`)
+    std::vector<Motion> targets;    ///< every target (one for `target`)
     double psf_sigma = 0.6;         ///< cells
     double snr_db = 6.0;            ///< SNR (Gaussian) or SCNR (clutter): 20 log10(A / sigma)
     Background background;
@@ -99,6 +103,7 @@ struct Scenario {
 Scenario parse_scenario(const nlohmann::json &j, const std::string &file);
 
 /** Target position (m) at time t (s). */
+/** Position at scenario time t of a target whose motion starts at m.start_s. */
 std::array<double, 3> target_position(const Motion &m, double t);
 /** Range (m) from the radar. */
 double slant_range(const RadarGeom &g, const std::array<double, 3> &p);

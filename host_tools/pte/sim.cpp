@@ -6,22 +6,39 @@
 
 namespace pft::host::pte {
 
-std::vector<Truth> simulate_truth(const Scenario &s, int frames)
+namespace {
+
+std::vector<Truth> truth_of(const Scenario &s, const Motion &m, int frames)
 {
     int nf = frames > 0 ? frames : s.frames;
     std::vector<Truth> tr(nf);
     const double T = s.radar.frame_period, h = 1e-3 * T;
     for (int k = 0; k < nf; ++k) {
         double t = k * T;
-        double r = slant_range(s.radar, target_position(s.motion, t));
-        double rp = slant_range(s.radar, target_position(s.motion, t + h));
-        double rm = slant_range(s.radar, target_position(s.motion, t > h ? t - h : 0.0));
+        double r = slant_range(s.radar, target_position(m, t));
+        double rp = slant_range(s.radar, target_position(m, t + h));
+        double rm = slant_range(s.radar, target_position(m, t > h ? t - h : 0.0));
         double dt = t > h ? 2.0 * h : h;
         tr[k].range_m = r;
         tr[k].r = range_cells(s.radar, r);
         tr[k].rdot = (rp - rm) / dt * T / s.radar.range_res;
+        tr[k].active = m.active(t);
     }
     return tr;
+}
+
+}  // namespace
+
+std::vector<Truth> simulate_truth(const Scenario &s, int frames) { return truth_of(s, s.motion, frames); }
+
+std::vector<std::vector<Truth>> simulate_truths(const Scenario &s, int frames)
+{
+    std::vector<std::vector<Truth>> all;
+    if (s.targets.empty())
+        all.push_back(truth_of(s, s.motion, frames));
+    for (const Motion &m : s.targets)
+        all.push_back(truth_of(s, m, frames));
+    return all;
 }
 
 namespace {
@@ -82,7 +99,8 @@ Sequence simulate(const Scenario &s, uint64_t seed, int frames)
     q.cells = s.radar.cells;
     q.frames = frames > 0 ? frames : s.frames;
     q.amplitude = s.amplitude();
-    q.truth = simulate_truth(s, q.frames);
+    q.truths = simulate_truths(s, q.frames);
+    q.truth = q.truths[0];
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> n01;
     const double sig = s.background.sigma;
@@ -106,9 +124,13 @@ Sequence simulate(const Scenario &s, uint64_t seed, int frames)
                 v = sc * std::sqrt(tex->tau(u)) * n01(rng) + sn * n01(rng);
             else
                 v = sig * n01(rng);
-            double d = u - q.truth[k].r;
-            if (std::fabs(d) < 8.0 * s.psf_sigma)
-                v += q.amplitude * std::exp(-d * d * inv2s2);
+            for (const std::vector<Truth> &tr : q.truths) {
+                if (!tr[k].active)
+                    continue;
+                double d = u - tr[k].r;
+                if (std::fabs(d) < 8.0 * s.psf_sigma)
+                    v += q.amplitude * std::exp(-d * d * inv2s2);
+            }
             z[u] = static_cast<float>(v);
         }
     }

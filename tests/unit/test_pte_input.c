@@ -1,8 +1,9 @@
 /*
  * Input stage of the pte family (pft_pte.h): frame conversion (U8, U16 with bit depth, F32),
  * fixed-sigma normalisation and clamping, the cell-averaging CFAR (exact value on a constant
- * profile, edges, floor, adaptation to a step in the noise level), and refusal of bad frames
- * with nothing written.
+ * profile, edges, floor, adaptation to a step in the noise level), the one-pass F32 path bit
+ * for bit against the step-by-step conversion, and refusal of bad frames with nothing
+ * written.
  */
 #include <math.h>
 #include <string.h>
@@ -201,6 +202,55 @@ static void test_frames_u8_u16_f32(void)
     }
 }
 
+/* F32 frames in fixed-noise mode take a one-pass path (IEEE decoding inlined in the q16
+ * build): every value equals pft_from_f32, the clamp to +-32767, the multiplication by
+ * 1/sigma and the zeta clamp done step by step, bit for bit. Values: random bit patterns
+ * (finite) over the whole exponent range and over the range around the q16 LSB and 32767,
+ * zeros, subnormals and ties. */
+static void test_f32_fast_path_exact(void)
+{
+    pft_pte_input_t in;
+    input_config(&in, NR, 1);
+    in.noise_sigma = R(0.7);
+    in.zeta_clip = R(1000.0);
+    static float px[NR];
+    static pft_real_t ref[NR];
+    const pft_real_t inv = pft_recip(in.noise_sigma);
+    uint32_t st = 2463534242u;
+    long differ = 0;
+    for (int it = 0; it < 400; ++it) {
+        for (int u = 0; u < NR; ++u) {
+            st ^= st << 13;
+            st ^= st >> 17;
+            st ^= st << 5;
+            uint32_t bits = st;
+            if ((it & 3) == 1) { /* exponents around the q16 LSB (2^-16) and 32767 (2^15) */
+                bits = (bits & 0x807FFFFFu) | ((uint32_t)(100u + (st >> 9) % 50u) << 23);
+            } else if ((it & 3) == 2) { /* zeros, subnormals, ties at half an LSB */
+                bits = (u & 3) == 0 ? (bits & 0x80000000u) : ((u & 3) == 1 ? bits & 0x807FFFFFu : 0x37000000u | (bits & 0x80000000u) | (uint32_t)u << 18);
+            }
+            if ((bits & 0x7F800000u) == 0x7F800000u) {
+                bits &= 0xBFFFFFFFu; /* finite only (NaN/Inf are refused) */
+            }
+            memcpy(&px[u], &bits, 4u);
+            pft_real_t v = pft_clamp(pft_from_f32(px[u]), R(-32767.0), R(32767.0));
+            ref[u] = pft_clamp(pft_mul(v, inv), pft_neg(in.zeta_clip), in.zeta_clip);
+        }
+        pft_frame_t f;
+        memset(&f, 0, sizeof(f));
+        f.data = px;
+        f.width = NR;
+        f.height = 1;
+        f.stride_bytes = 4u * NR;
+        f.format = PFT_PIX_F32;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_normalize(&in, &f, g_zeta, NULL));
+        for (int u = 0; u < NR; ++u) {
+            differ += memcmp(&g_zeta[u], &ref[u], sizeof(pft_real_t)) != 0;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT32(0, differ);
+}
+
 static void test_bad_frames_write_nothing(void)
 {
     pft_pte_input_t in;
@@ -249,6 +299,7 @@ int main(void)
     RUN_TEST(test_cfar_constant_profile);
     RUN_TEST(test_cfar_adapts_to_level_step);
     RUN_TEST(test_frames_u8_u16_f32);
+    RUN_TEST(test_f32_fast_path_exact);
     RUN_TEST(test_bad_frames_write_nothing);
     return UNITY_END();
 }

@@ -164,12 +164,19 @@ typedef enum {
                                y(p) = sum_u g((u - p)/sigma_r) zeta(u) is computed on a grid of
                                c_step cells (c_step = 1/Q, Q integer <= 8), lazily in blocks of
                                8 cells the first time an operator needs it, and kept beside zeta
-                               in the ring; an operator is then one table read per frame (path
-                               position rounded to the grid, error <= c_step/2). The width is
-                               sigma_r (the covariance part of sigma_w is dropped) [A]. Requires
-                               zeta_clip <= 64 (the operator sums then cannot overflow q16 and
-                               use plain additions). Memory: ring.len * (n_range + 8) * Q more
-                               reals than EXACT */
+                               in the ring; an operator is a straight line on that grid (path
+                               position rounded to the grid, error <= c_step/2). The directions
+                               lie on a lattice of slopes of step dtheta_min (the one nearest the
+                               predicted slope and (L-1)/2 on each side, spaced dtheta_min, or
+                               dth rounded to a multiple of dtheta_min when dth > 2.5 dtheta_min)
+                               and each track keeps, per direction slope, the sums of its lines
+                               over the window and slides them (newest frame in, the frame
+                               leaving the window out): O(1) reads per line and frame instead of
+                               M [A]. The width is sigma_r (the covariance part of sigma_w is
+                               dropped) [A]. Requires zeta_clip <= 64 (the operator sums then
+                               cannot overflow q16 and use plain additions; sliding them is exact
+                               in q16, and the float build sums an entry afresh every 256
+                               frames). Memory: see PFT_PTE_WORKSPACE_BYTES */
     PFT_PTE_OP_AUTO = 2   /**< TABLE for range-time frames (n_doppler 1), EXACT for range-Doppler */
 } pft_pte_op_t;
 
@@ -350,12 +357,14 @@ extern "C" {
 /**
  * Workspace bytes of a PTE-TBD instance: frames n_range x n_doppler, max_len M_max,
  * init_frames N, max_tracks, scan_steps, n_dir[0], n_dir[1], and yq = 1/c_step in TABLE mode
- * (0 in EXACT mode; AUTO is TABLE for n_doppler 1).
+ * (0 in EXACT mode; AUTO is TABLE for n_doppler 1). The ring holds max(M_max + 1, N) frames
+ * (the frame leaving an operator window is subtracted from the sliding sums); TABLE adds
+ * the response ring and, per track, n_dir[0] slope entries of 2 windows x (2 scan_steps + 1)
+ * line sums.
  */
 #define PFT_PTE_WORKSPACE_BYTES(nr, nd, mlen, ninit, tmax, steps, l0, l1, yq)                   \
     ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
-     PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) * PFT_PTE_CELLS_(nr, nd) *                 \
-                  sizeof(pft_real_t)) +                                                         \
+     PFT_WS_ROUND(PFT_PTE_RING_(mlen, ninit) * PFT_PTE_CELLS_(nr, nd) * sizeof(pft_real_t)) +    \
      PFT_WS_ROUND((size_t)(nr) * sizeof(pft_real_t)) + PFT_PTE_DPCORE_BYTES_(nr, nd, ninit) +   \
      PFT_WS_ROUND((size_t)(ninit) * 2u * sizeof(int16_t)) +                                     \
      PFT_WS_ROUND((size_t)PFT_PTE_GTAB_SIZE * sizeof(pft_real_t)) +                            \
@@ -369,13 +378,17 @@ extern "C" {
      PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 0) * 4u * sizeof(int16_t)) +                        \
      PFT_WS_ROUND(PFT_PTE_NSCAN_(nd, steps, 1) * 4u * sizeof(int16_t)) +                        \
      PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_pte_dir_t)) +              \
-     PFT_WS_ROUND((size_t)(l0) * PFT_PTE_NDIR_(nd, l1) * sizeof(pft_weight_t)) +               \
      PFT_WS_ROUND(sizeof(pft_pte_scratch_t)) +                                                  \
-     (PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) * ((size_t)(nr) + 2u * PFT_PTE_YPAD) *    \
+     (PFT_WS_ROUND(PFT_PTE_RING_(mlen, ninit) * ((size_t)(nr) + 2u * PFT_PTE_YPAD) *             \
                    (size_t)(yq) * sizeof(pft_real_t)) +                                         \
       PFT_WS_ROUND(((size_t)(nr) + 2u * PFT_PTE_YPAD) * (size_t)(yq) * sizeof(pft_real_t)) +     \
-      ((yq) > 0 ? PFT_WS_ROUND((size_t)PFT_PTE_MAXU_(mlen, ninit) *                             \
-                               (((size_t)(nr) + 2u * PFT_PTE_YPAD + 7u) / 8u)) : 0u)))
+      ((yq) > 0 ? PFT_WS_ROUND(PFT_PTE_RING_(mlen, ninit) *                                     \
+                               (((size_t)(nr) + 2u * PFT_PTE_YPAD + 7u) / 8u)) +                \
+                      PFT_WS_ROUND((size_t)(tmax) * PFT_PTE_NBANK_(l0) *                        \
+                                   sizeof(pft_pte_bank_t)) +                                    \
+                      PFT_WS_ROUND((size_t)(tmax) * PFT_PTE_NBANK_(l0) * PFT_PTE_NWIN_ *         \
+                                   (2u * (size_t)(steps) + 1u) * sizeof(pft_real_t))            \
+                : 0u)))
 
 /** Exact workspace bytes for cfg (0 if cfg is NULL or refused). */
 size_t pft_pte_workspace_size(const pft_pte_config_t *cfg);

@@ -61,16 +61,89 @@ pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *
 {
     uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32);
     pft_status_t st = pft_frame_check(frame, in->n_range, in->n_doppler, fmts);
-    if (st != PFT_OK) {
+    if (st != PFT_OK || frame->format != PFT_PIX_F32) {
         return st;
     }
-    return pft_frame_check_finite(frame);
+    /* pft_frame_check_finite without the early exit (one branch-free pass per row) */
+    for (uint32_t y = 0; y < frame->height; ++y) {
+        const uint8_t *row = pft_frame_row(frame, y);
+        uint32_t bad = 0u;
+        for (uint32_t x = 0; x < frame->width; ++x) {
+            uint32_t bits;
+            memcpy(&bits, row + 4u * x, 4u); /* integer test: no float ops (q16 builds) */
+            bad |= (uint32_t)((bits & 0x7F800000u) == 0x7F800000u);
+        }
+        if (bad != 0u) {
+            return PFT_ERR_FORMAT;
+        }
+    }
+    return PFT_OK;
+}
+
+/* A finite F32 pixel as a real clamped to +-32767, as pft_from_f32 followed by the clamp of
+ * pft_frame_row_to_real (q16: the same IEEE decoding, inlined; float: the value). */
+static inline pft_real_t f32_in_(const uint8_t *px)
+{
+#ifdef PFT_NUMERIC_Q16
+    uint32_t bits;
+    memcpy(&bits, px, 4u);
+    const uint32_t ex = (bits >> 23) & 0xFFu;
+    const int32_t s = (int32_t)ex - 134; /* value = mant 2^(ex - 150), Q16: mant 2^(ex - 134) */
+    const uint32_t mant = (bits & 0x7FFFFFu) | 0x800000u;
+    uint32_t mag; /* magnitude clamped to 32767 in Q16.16 (2147418112) */
+    if (ex == 0u || s < -25) {
+        mag = 0u; /* zero, subnormal or below half an LSB */
+    } else if (s < 0) {
+        mag = (mant + (1u << (-s - 1))) >> (-s); /* nearest, ties away */
+    } else if (s <= 7 && ((uint64_t)mant << s) <= 2147418112u) {
+        mag = mant << s;
+    } else {
+        mag = 2147418112u;
+    }
+    return (bits >> 31) != 0u ? -(pft_real_t)mag : (pft_real_t)mag;
+#else
+    float v;
+    memcpy(&v, px, 4u);
+    return pft_clamp(v, PFT_C(-32767.0), PFT_C(32767.0));
+#endif
 }
 
 void pft_pte_frame_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
                         pft_real_t *z)
 {
+    if (frame->format == PFT_PIX_F32) {
+        const uint8_t *row = pft_frame_row(frame, d);
+        for (uint32_t u = 0; u < in->n_range; ++u) {
+            z[u] = f32_in_(row + 4u * u);
+        }
+        return;
+    }
     pft_frame_row_to_real(frame, d, in->n_range, in->pixel_gain, in->pixel_offset, z);
+}
+
+/* Fixed-noise input of row d straight into zeta (F32 pixels: one pass, the same values as
+ * pft_pte_frame_row_ followed by pft_pte_norm_row_). */
+static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
+                       pft_real_t *out)
+{
+    const pft_real_t inv = pft_recip(in->noise_sigma);
+    const pft_real_t clip = in->zeta_clip;
+    const uint8_t *row = pft_frame_row(frame, d);
+#ifdef PFT_NUMERIC_Q16
+    /* pft_mul's rounding, then the clamp to +-zeta_clip (< 32768) in 64 bits, which also
+     * covers pft_mul's saturation */
+    const int64_t hi = clip;
+    for (uint32_t u = 0; u < in->n_range; ++u) {
+        int64_t v = (int64_t)f32_in_(row + 4u * u) * inv;
+        v = (v >= 0 ? v + 32768 : v + 32767) >> 16;
+        out[u] = (pft_real_t)(v > hi ? hi : (v < -hi ? -hi : v));
+    }
+#else
+    const pft_real_t nclip = pft_neg(clip);
+    for (uint32_t u = 0; u < in->n_range; ++u) {
+        out[u] = pft_clamp(pft_mul(f32_in_(row + 4u * u), inv), nclip, clip);
+    }
+#endif
 }
 
 /* |z| / ref: one CFAR term (the same expression when a cell enters and leaves a window, so
@@ -148,7 +221,9 @@ pft_status_t pft_pte_normalize(const pft_pte_input_t *in, const pft_frame_t *fra
     }
     for (uint32_t d = 0; d < in->n_doppler; ++d) {
         pft_real_t *out = zeta + (size_t)d * in->n_range;
-        if (in->noise == PFT_PTE_NOISE_CFAR) {
+        if (in->noise == PFT_PTE_NOISE_FIXED && frame->format == PFT_PIX_F32) {
+            fixed_row_(in, frame, d, out);
+        } else if (in->noise == PFT_PTE_NOISE_CFAR) {
             pft_pte_frame_row_(in, frame, d, scratch);
             pft_pte_norm_row_(in, scratch, out);
         } else {
@@ -227,7 +302,9 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
     pft_real_t *dst = pft_pte_ring_next_(ring);
     for (uint32_t d = 0; d < in->n_doppler; ++d) {
         pft_real_t *out = dst + (size_t)d * in->n_range;
-        if (frame != NULL) {
+        if (frame != NULL && frame->format == PFT_PIX_F32 && in->noise == PFT_PTE_NOISE_FIXED) {
+            fixed_row_(in, frame, d, out);
+        } else if (frame != NULL) {
             pft_pte_frame_row_(in, frame, d, row);
             pft_pte_norm_row_(in, row, out);
         } else {

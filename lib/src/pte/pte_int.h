@@ -116,6 +116,8 @@ pft_real_t pft_pte_shift_(pft_real_t th, pft_real_t acc, int32_t tau);
 /* TABLE operators: tap weights of each grid phase and the normaliser of every response point
  * (at init, after gtab and the TABLE buffers are set). */
 void pft_pte_ytable_setup_(pft_pte_t *p);
+/* Transition and process noise of every axis into the instance (at init, after cfg). */
+void pft_pte_model_setup_(pft_pte_t *p);
 /* Step 3 for one live track at the newest frame of the ring (the frame is pushed). */
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t);
 

@@ -215,17 +215,18 @@ typedef struct {
     pft_real_t *sE, *sG, *sL, *tw[2];
     int16_t *tlo[2];
     pft_pte_dir_t *dir;
-    pft_weight_t *dw;
     pft_pte_scratch_t *scr;
     pft_real_t *yring, *gq;
     uint8_t *yflag;
+    pft_pte_bank_t *bank;
+    pft_real_t *bsum;
 } layout_;
 
 static pft_status_t carve_(const pft_pte_config_t *cfg, uint32_t yq, void *work, size_t len,
                            layout_ *l)
 {
     const uint32_t cells = (uint32_t)cfg->in.n_range * cfg->in.n_doppler;
-    const uint32_t nring = cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames;
+    const uint32_t nring = (uint32_t)PFT_PTE_RING_(cfg->max_len, cfg->init_frames);
     const uint32_t n = cfg->init_frames;
     const bool two = cfg->in.n_doppler > 1u;
     const uint32_t ns0 = 2u * cfg->scan_steps + 1u;
@@ -256,12 +257,15 @@ static pft_status_t carve_(const pft_pte_config_t *cfg, uint32_t yq, void *work,
     l->tlo[0] = pft_ws_take(&ws, (size_t)ns0 * 4u * sizeof(int16_t));
     l->tlo[1] = pft_ws_take(&ws, (size_t)ns1 * 4u * sizeof(int16_t));
     l->dir = pft_ws_take(&ws, (size_t)nd * sizeof(pft_pte_dir_t));
-    l->dw = pft_ws_take(&ws, (size_t)nd * sizeof(pft_weight_t));
     l->scr = pft_ws_take(&ws, sizeof(pft_pte_scratch_t));
     if (yq > 0u) {
         l->yring = pft_ws_take(&ws, (size_t)nring * ny * sizeof(pft_real_t));
         l->gq = pft_ws_take(&ws, (size_t)ny * sizeof(pft_real_t));
         l->yflag = pft_ws_take(&ws, (size_t)nring * nyblk);
+        l->bank = pft_ws_take(&ws, (size_t)cfg->max_tracks * PFT_PTE_NBANK_(cfg->n_dir[0]) *
+                                       sizeof(pft_pte_bank_t));
+        l->bsum = pft_ws_take(&ws, (size_t)cfg->max_tracks * PFT_PTE_NBANK_(cfg->n_dir[0]) *
+                                       PFT_PTE_NWIN_ * ns0 * sizeof(pft_real_t));
     }
     return pft_ws_status(&ws);
 }
@@ -282,7 +286,7 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     memset(p, 0, sizeof(*p));
     p->cfg = *cfg;
     p->cfg.op = op_of_(cfg);
-    const uint32_t nring = cfg->max_len > cfg->init_frames ? cfg->max_len : cfg->init_frames;
+    const uint32_t nring = (uint32_t)PFT_PTE_RING_(cfg->max_len, cfg->init_frames);
     pft_pte_ring_setup_(&p->ring, l.ring, (uint16_t)nring,
                         (uint32_t)cfg->in.n_range * cfg->in.n_doppler);
     p->row = l.row;
@@ -304,9 +308,9 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     p->tlo[0] = l.tlo[0];
     p->tlo[1] = l.tlo[1];
     p->dir = l.dir;
-    p->dw = l.dw;
     p->scr = l.scr;
     p->naxes = cfg->in.n_doppler > 1u ? 2u : 1u;
+    pft_pte_model_setup_(p);
     /* scan positions one cell apart share their tap weights when c_step = 1/period */
     p->period = period_(cfg->c_step);
     /* g(t) = exp(-t^2/2), t = i/64 */
@@ -320,6 +324,10 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     p->gq = l.gq;
     p->yflag = l.yflag;
     p->nyblk = (uint16_t)(((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD + 7u) / 8u);
+    p->bank = l.bank;
+    p->bsum = l.bsum;
+    p->nbank = (uint16_t)PFT_PTE_NBANK_(cfg->n_dir[0]);
+    p->nline = (uint16_t)(2u * cfg->scan_steps + 1u);
     if (yq > 0u) {
         pft_pte_ytable_setup_(p);
     }
@@ -334,6 +342,9 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     p->ring.count = 0u;
     p->ring.head = (uint16_t)(p->ring.len - 1u);
     memset(p->tracks, 0, (size_t)p->cfg.max_tracks * sizeof(pft_pte_track_t));
+    if (p->bank != NULL) {
+        memset(p->bank, 0, (size_t)p->cfg.max_tracks * p->nbank * sizeof(pft_pte_bank_t));
+    }
     p->frames_in = 0u;
     p->next_id = 1u;
     p->since_search = 0u;
@@ -370,6 +381,9 @@ static void track_new_(pft_pte_t *p, pft_pte_track_t *t, const pft_real_t pos[2]
                        const pft_real_t cv[2], pft_real_t amp, uint8_t n_acc)
 {
     memset(t, 0, sizeof(*t));
+    if (p->bank != NULL) { /* TABLE: no slope entry of the slot's previous track survives */
+        memset(p->bank + (size_t)(t - p->tracks) * p->nbank, 0, p->nbank * sizeof(pft_pte_bank_t));
+    }
     for (uint32_t a = 0; a < p->naxes; ++a) {
         t->x[a][0] = pos[a];
         t->x[a][1] = pft_mul_i(vel[a], SV_);

@@ -3,10 +3,106 @@
  * TABLE responses), direction likelihoods, per-direction Kalman updates, fusion, detection
  * and maintenance. */
 #include "pte_int.h"
-#include "pft/pft_kalman.h"
 
 #define SV_ PFT_PTE_SV_
 #define SA_ PFT_PTE_SA_
+/* TABLE: the age at which a float build sums a slope entry afresh, and the lines a slope
+ * entry holds beyond the scan interval on each side (see the slope bank) */
+#define RENEW_ 256u
+#define MARGIN_ 3
+/* TABLE: cells per block of lazily computed responses */
+#define YBLK_ 8
+
+/* v as a signed 16.16 fixed-point integer (any range of pft_real_t, both builds). */
+static int64_t fix16_(pft_real_t v)
+{
+    int32_t ip = pft_floor_int(v);
+    pft_real_t fr = pft_sub(v, pft_from_int(ip));
+    return (int64_t)ip * 65536 + 2 * (int64_t)pft_round_int(pft_mul_i(fr, 32768));
+}
+
+/* A signed 16.16 fixed-point integer as a real (q16: the same bits, saturated). */
+static pft_real_t from_fix16_(int64_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return v > (int64_t)PFT_REAL_MAX ? PFT_REAL_MAX
+                                     : (v < (int64_t)PFT_REAL_MIN ? PFT_REAL_MIN : (pft_real_t)v);
+#else
+    return (pft_real_t)v * (1.0f / 65536.0f);
+#endif
+}
+
+/* ------------------------------------------------------------ wide accumulation */
+
+/* Sums of products rounded once (q16: exact Q32.32 products in int64 with saturating sums;
+ * float: float), for the small Kalman algebra of a track step. */
+#ifdef PFT_NUMERIC_Q16
+typedef int64_t acc_t;
+static inline acc_t amul_(pft_real_t a, pft_real_t b) { return (int64_t)a * b; }
+static inline acc_t afrom_(pft_real_t a) { return (int64_t)a * 65536; }
+static inline acc_t aadd_(acc_t x, acc_t y)
+{
+    if (y > 0 && x > INT64_MAX - y) {
+        return INT64_MAX;
+    }
+    if (y < 0 && x < -INT64_MAX - y) {
+        return -INT64_MAX;
+    }
+    return x + y;
+}
+/* to Q16.16, rounded to nearest (ties as pft_mul), saturated */
+static inline pft_real_t ato_(acc_t v)
+{
+    int64_t r = (v >= 0 ? v + 32768 : v + 32767) >> 16;
+    return r > INT32_MAX ? PFT_REAL_MAX : (r < -INT32_MAX ? PFT_REAL_MIN : (pft_real_t)r);
+}
+/* num / den for den > 0 (both accumulators), rounded, saturated */
+static inline pft_real_t adiv_(acc_t num, acc_t den)
+{
+    const int64_t lim = (int64_t)1 << 46;
+    int64_t q;
+    if (num < lim && num > -lim) {
+        int64_t n = num * 65536;
+        q = (n >= 0 ? n + den / 2 : n - den / 2) / den;
+    } else {
+        q = num / den;
+        q = q > ((int64_t)1 << 16) ? ((int64_t)1 << 32) : (q < -((int64_t)1 << 16) ? -((int64_t)1 << 32) : q * 65536);
+    }
+    return q > INT32_MAX ? PFT_REAL_MAX : (q < -INT32_MAX ? PFT_REAL_MIN : (pft_real_t)q);
+}
+/* max(e, 0)^2 / g (0 when g <= 0), clamped at 22500 = 150^2: the squared operator statistic */
+static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
+{
+    if (e <= 0 || g <= 0) {
+        return 0;
+    }
+    int64_t q = ((int64_t)e * e + g / 2) / g;
+    return q > (int64_t)22500 * 65536 ? (pft_real_t)(22500 * 65536) : (pft_real_t)q;
+}
+/* pft_mul without the saturation, for products and sums proven inside the range (each call
+ * site states the bound): the same rounding, so the same bits whenever pft_mul would not
+ * saturate */
+static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
+{
+    int64_t v = (int64_t)a * b;
+    return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
+}
+#else
+static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
+typedef float acc_t;
+static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline acc_t afrom_(pft_real_t a) { return a; }
+static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline pft_real_t ato_(acc_t v) { return v; }
+static inline pft_real_t adiv_(acc_t num, acc_t den) { return num / den; }
+static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
+{
+    if (!(e > 0.0f) || !(g > 0.0f)) {
+        return 0.0f;
+    }
+    return pft_min(e * e / g, 22500.0f);
+}
+#endif
 
 /* ----------------------------------------------------------------- TABLE operators */
 
@@ -17,6 +113,19 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
     const int32_t q = p->yq;
     const int32_t nr = p->cfg.in.n_range;
     p->sigma_y = pft_min(p->cfg.sigma_r[0], p->cfg.sigma_w_max);
+    /* slope lattice: dtheta_min cells per frame, in 1/65536 grid points per frame and as a
+     * scaled slope (exact when yq divides SV) */
+    p->lat_u = fix16_(pft_mul_i(p->cfg.dtheta_min, q));
+    p->lat_u = p->lat_u < 1 ? 1 : p->lat_u;
+    /* block of a response point: a shift when YBLK_ q is a power of two */
+    p->yblk_shift = 0u;
+    for (uint32_t k = 1; k < 12u; ++k) {
+        if (((int32_t)1 << k) == YBLK_ * q) {
+            p->yblk_shift = (uint8_t)k;
+        }
+    }
+    p->lat_t = (p->lat_u * SV_ + q / 2) / q;
+    p->lat_t = p->lat_t < 1 ? 1 : p->lat_t;
     pft_real_t inv = pft_recip(p->sigma_y);
     pft_real_t reach = pft_mul_i(p->sigma_y, 3);
     for (int32_t ph = 0; ph < q; ++ph) {
@@ -35,6 +144,21 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
         p->ytap_lo[ph] = (int16_t)lo;
         p->ytap_n[ph] = (uint8_t)n;
     }
+    /* the same taps padded to 4 per phase from the smallest first offset, when they fit */
+    int32_t lo4 = 0;
+    int32_t hi4 = -1;
+    for (int32_t ph = 0; ph < q; ++ph) {
+        lo4 = ph == 0 || p->ytap_lo[ph] < lo4 ? p->ytap_lo[ph] : lo4;
+        hi4 = ph == 0 || p->ytap_lo[ph] + p->ytap_n[ph] - 1 > hi4 ? p->ytap_lo[ph] + p->ytap_n[ph] - 1 : hi4;
+    }
+    p->ytap4 = (uint8_t)(hi4 - lo4 + 1 <= 4 ? 1 : 0);
+    p->ytap4_lo = (int16_t)lo4;
+    memset(p->ytap4_w, 0, sizeof(p->ytap4_w));
+    for (int32_t ph = 0; ph < q && p->ytap4; ++ph) {
+        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
+            p->ytap4_w[ph][p->ytap_lo[ph] - lo4 + k] = p->ytap[ph][k];
+        }
+    }
     for (uint32_t i = 0; i < p->ny; ++i) {
         int32_t ph = (int32_t)i % q;
         int32_t u0 = (int32_t)i / q - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
@@ -46,12 +170,30 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
         }
         p->gq[i] = g2;
     }
+    /* the normaliser of a point whose taps all lie on the profile, per phase, and the range of
+     * such points (the slope bank's G per residue holds there) */
+    for (int32_t ph = 0; ph < q; ++ph) {
+        pft_real_t g2 = PFT_C(0.0);
+        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
+            g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
+        }
+        p->gfull[ph] = g2;
+    }
+    p->yin_lo = (int32_t)p->ny;
+    p->yin_hi = -1;
+    for (int32_t i = 0; i < (int32_t)p->ny; ++i) {
+        int32_t ph = i % q;
+        int32_t u0 = i / q - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
+        if (u0 >= 0 && u0 + p->ytap_n[ph] <= nr) {
+            p->yin_lo = i < p->yin_lo ? i : p->yin_lo;
+            p->yin_hi = i;
+        }
+    }
 }
 
 /* TABLE operators: responses are computed lazily, one block of 8 cells at a time, the first
  * time an operator reads them, and kept beside the frame in the ring; only the neighbourhood
  * of live tracks is ever computed. */
-#define YBLK_ 8
 
 static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
 {
@@ -61,21 +203,41 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
     pft_real_t *y = p->yring + (size_t)slot * p->ny;
     const int32_t ncell = (int32_t)(p->ny / (uint32_t)q);
     int32_t c1 = (blk + 1) * YBLK_ < ncell ? (blk + 1) * YBLK_ : ncell;
-    for (int32_t cell = blk * YBLK_; cell < c1; ++cell) {
+    int32_t cell = blk * YBLK_;
+    if (p->ytap4 && cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo >= 0 &&
+        c1 - 1 - (int32_t)PFT_PTE_YPAD + p->ytap4_lo + 4 <= nr) {
+        /* interior block, at most 4 taps per phase (sigma_y <= ~0.6 cells): the taps of every
+         * phase padded to 4 from one common first offset; the zero weights add exact zeros,
+         * so the sums are those of the general loop below (plain sums, bounded there) */
+        for (int32_t ph = 0; ph < q; ++ph) {
+            const pft_real_t *w = p->ytap4_w[ph];
+            const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
+            pft_real_t *yy = y + cell * q + ph;
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                yy[k * q] = mul_nb_(w[0], zz[k]) + mul_nb_(w[1], zz[k + 1]) +
+                            mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
+            }
+        }
+        p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+        return;
+    }
+    for (; cell < c1; ++cell) {
         for (int32_t ph = 0; ph < q; ++ph) {
             int32_t u0 = cell - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
             int32_t n = p->ytap_n[ph];
             const pft_real_t *w = p->ytap[ph];
+            /* plain sums: |zeta| <= zeta_clip <= 64 (TABLE), 0 <= w <= 1 and at most
+             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (the values pft_mul/pft_add would give) */
             pft_real_t acc = PFT_C(0.0);
             if (u0 >= 0 && u0 + n <= nr) {
                 const pft_real_t *zz = z + u0;
                 for (int32_t k = 0; k < n; ++k) {
-                    acc = pft_add(acc, pft_mul(w[k], zz[k]));
+                    acc = acc + mul_nb_(w[k], zz[k]);
                 }
             } else {
                 for (int32_t k = 0; k < n; ++k) {
                     if (u0 + k >= 0 && u0 + k < nr) {
-                        acc = pft_add(acc, pft_mul(w[k], z[u0 + k]));
+                        acc = acc + mul_nb_(w[k], z[u0 + k]);
                     }
                 }
             }
@@ -83,22 +245,6 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
         }
     }
     p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
-}
-
-/* TABLE operators: response of the frame `back` frames ago, valid at points [i0, i1). */
-static const pft_real_t *yframe_(pft_pte_t *p, uint32_t back, int32_t i0, int32_t i1)
-{
-    uint32_t len = p->ring.len;
-    uint32_t slot = ((uint32_t)p->ring.head + len - (back % len)) % len;
-    int32_t bp = YBLK_ * (int32_t)p->yq;
-    i0 = i0 < 0 ? 0 : i0;
-    i1 = i1 > (int32_t)p->ny ? (int32_t)p->ny : i1;
-    for (int32_t blk = i0 / bp; i1 > i0 && blk <= (i1 - 1) / bp; ++blk) {
-        if (p->yflag[(size_t)slot * p->nyblk + (size_t)blk] == 0u) {
-            yblock_(p, slot, back, blk);
-        }
-    }
-    return p->yring + (size_t)slot * p->ny;
 }
 
 /* ------------------------------------------------------------------- operator geometry */
@@ -128,6 +274,7 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     pft_real_t stt = pft_add(pft_add(P[5], pft_mul_i(pft_mul(h6, P[6]), 2)), pft_mul(pft_sq(h6), P[10]));
     scc = pft_max(scc, PFT_C(0.0));
     stt = pft_max(stt, PFT_C(0.0));
+    ap->stt = stt;
     pft_real_t sr2 = pft_sq(c->sigma_r[a]);
     ap->sw2 = pft_add(sr2, scc);
     ap->sw = p->yq > 0u ? p->sigma_y : pft_min(pft_sqrt(ap->sw2), c->sigma_w_max);
@@ -143,6 +290,13 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     pft_real_t rho = pft_div(stt, pft_sq(ap->dth));
     ap->prior_k = pft_recip(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
     ap->sc2 = pft_add(scc, sr2);
+    ap->lck = pft_recip(pft_mul_i(ap->sc2, 2));
+    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' */
+    for (uint32_t i = 0; i < 3u; ++i) {
+        ap->pht[2u * i] = ato_(aadd_(afrom_(P[4u * i]), amul_(P[4u * i + 2u], h2)));
+        ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
+    }
+    ap->s01 = ato_(aadd_(afrom_(ap->pht[1]), amul_(h2, ap->pht[5])));
     int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, pft_sqrt(ap->sc2)), c->c_step));
     if (half < 1) {
         half = 1;
@@ -353,23 +507,277 @@ static void model_(const pft_pte_config_t *c, uint32_t a, pft_real_t F[16], pft_
     Q[9] = Q[6];
 }
 
-/* v as a signed 16.16 fixed-point integer (any range of pft_real_t, both builds). */
-static int64_t fix16_(pft_real_t v)
+/* ------------------------------------------------------- TABLE operators: slope bank */
+
+/* The TABLE operators of a track are straight lines on the response grid, one family per
+ * slope of a lattice (step dtheta_min). For each slope the track keeps an entry of
+ * line sums over the last M frames (docs/algorithms.md 5.3, library extension "sliding
+ * sums"): at each frame the newest response is added and the one leaving the window
+ * subtracted, so an operator costs O(1) reads per frame instead of M. Entries of slopes no
+ * longer wanted are dropped; a new slope is summed once in full. The normaliser G of a line
+ * that stays inside the profile depends only on its grid phases, so an entry keeps it per
+ * residue of the line index modulo yq instead of per line. In the q16 build the sums are
+ * integers and sliding them is exact; in the float build an entry is summed afresh every
+ * RENEW_ frames so rounding cannot drift. */
+
+/* Line offset at frame k of slope entry e: round(s U (k - k0) / 2^16) grid points. */
+static inline int32_t bank_off_(const pft_pte_t *p, const pft_pte_bank_t *e, uint32_t k)
 {
-    int32_t ip = pft_floor_int(v);
-    pft_real_t fr = pft_sub(v, pft_from_int(ip));
-    return (int64_t)ip * 65536 + 2 * (int64_t)pft_round_int(pft_mul_i(fr, 32768));
+    int64_t v = (int64_t)e->s * p->lat_u * (int64_t)(int32_t)(k - e->k0);
+    return (int32_t)((v + 32768) >> 16);
 }
 
-/* TABLE: grid index of the path ending at c0 (cfix = 16.16 of c0, times SV) with scaled
- * slope tfix (16.16), tau frames back: round(yq (c0 - theta tau)) + YPAD yq. */
-static int32_t grid_index_(int64_t cfix, int64_t tfix, int32_t tau, int32_t yq)
+/* E sums of entry bi of track ti, window w (one per line). */
+static inline pft_real_t *bank_e_(const pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w)
 {
-    int64_t num = (cfix - tfix * tau) * yq + ((int64_t)1 << 19);
-    int64_t f = num >= 0 ? num / ((int64_t)1 << 20) : -((-num + ((int64_t)1 << 20) - 1) / ((int64_t)1 << 20));
-    return (int32_t)f + (int32_t)PFT_PTE_YPAD * yq;
+    return p->bsum + (((size_t)ti * p->nbank + bi) * PFT_PTE_NWIN_ + w) * p->nline;
 }
 
+/* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
+static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
+                                      int32_t i1)
+{
+    const int32_t sh = p->yblk_shift;
+    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / (YBLK_ * (int32_t)p->yq);
+    for (int32_t blk = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq); blk <= b1; ++blk) {
+        if (fl[blk] == 0u) {
+            yblock_(p, slot, back, blk);
+        }
+    }
+    return p->yring + (size_t)slot * p->ny;
+}
+
+/* Adds (sign 1) or subtracts (sign -1) the responses of the frames kn - tau, tau in
+ * [tau0, tau1), along the lines [j0, j1) of entry bi (local indices from its jlo) to its E
+ * sums of window w. Points off the response grid count 0. q16: plain integer sums, so adding
+ * and subtracting is exact: every partial sum is a sum over at most PFT_PTE_MAX_FRAMES + 1
+ * frames of |y| <= zeta_clip * sum g <= 64 * 6.9 (TABLE requires zeta_clip <= 64), so
+ * |E| < 28800 stays inside the q16 range. */
+static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t tau0, int32_t tau1, int32_t sign)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    int32_t slot = (int32_t)p->ring.head - tau0 % len;
+    slot = slot < 0 ? slot + len : slot;
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    for (int32_t tau = tau0; tau < tau1; ++tau) {
+        const int32_t d = (int32_t)(acc >> 16) + e->jlo;
+        const int32_t a = j0 + d < 0 ? -d : j0;
+        const int32_t b = j1 + d > ny ? ny - d : j1;
+        if (a < b) {
+            const pft_real_t *restrict y = yrow_(p, (uint32_t)slot, (uint32_t)tau, a + d, b + d) + d;
+            if (sign > 0) {
+                for (int32_t j = a; j < b; ++j) {
+                    se[j] = se[j] + y[j];
+                }
+            } else {
+                for (int32_t j = a; j < b; ++j) {
+                    se[j] = se[j] - y[j];
+                }
+            }
+        }
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
+    }
+}
+
+/* Adds (sign 1) or subtracts the interior normaliser terms of the frames kn - tau, tau in
+ * [tau0, tau1), to the residues of window w of entry e: residue r holds the sum over the
+ * window of gfull[(r + offset) mod yq]. */
+static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
+                       int32_t tau0, int32_t tau1, int32_t sign)
+{
+    const int32_t q = p->yq;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    pft_real_t *gr = e->gres[w];
+    for (int32_t tau = tau0; tau < tau1; ++tau) {
+        int32_t o = (int32_t)(acc >> 16) % q;
+        o = o < 0 ? o + q : o;
+        for (int32_t r = 0; r < q; ++r) {
+            const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
+            gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
+        }
+        acc -= step;
+    }
+}
+
+/* One slide of window w (m frames) of entry bi over its lines [j0, j1): the newest frame in,
+ * the frame m back out, in one pass, E and the G residues. False (nothing done) when a line
+ * leaves the response grid at either frame (then bank_lines_ handles the edges). */
+static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t m)
+{
+    pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t on = bank_off_(p, e, kn);
+    const int32_t oo = bank_off_(p, e, kn - (uint32_t)m);
+    const int32_t dn = on + e->jlo;
+    const int32_t dold = oo + e->jlo;
+    if (j0 >= j1 || j0 + dn < 0 || j1 + dn > ny || j0 + dold < 0 || j1 + dold > ny) {
+        return false;
+    }
+    const int32_t len = p->ring.len;
+    int32_t so = (int32_t)p->ring.head - m;
+    so = so < 0 ? so + len : so;
+    const pft_real_t *restrict yn = yrow_(p, p->ring.head, 0u, j0 + dn, j1 + dn) + dn;
+    const pft_real_t *restrict yo = yrow_(p, (uint32_t)so, (uint32_t)m, j0 + dold, j1 + dold) + dold;
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    for (int32_t j = j0; j < j1; ++j) {
+        se[j] = se[j] + yn[j] - yo[j]; /* plain sums, bounded as in bank_lines_ */
+    }
+    const int32_t q = p->yq;
+    int32_t rn = on % q;
+    int32_t ro = oo % q;
+    rn = rn < 0 ? rn + q : rn;
+    ro = ro < 0 ? ro + q : ro;
+    if (rn != ro) {
+        pft_real_t *gr = e->gres[w];
+        for (int32_t r = 0; r < q; ++r) {
+            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
+                    p->gfull[r + ro < q ? r + ro : r + ro - q];
+        }
+    }
+    return true;
+}
+
+/* Sums the lines [j0, j1) of entry bi afresh over the last m[w] frames of every window. */
+static void bank_fill_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t j0, int32_t j1,
+                       uint32_t kn)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        pft_real_t *se = bank_e_(p, ti, bi, w);
+        for (int32_t j = j0; j < j1; ++j) {
+            se[j] = PFT_C(0.0);
+        }
+        bank_lines_(p, ti, bi, w, j0, j1, kn, 0, (int32_t)e->m[w], 1);
+    }
+}
+
+/* Brings entry bi of track ti to lines [jlo, jlo + n) and windows m[] at frame kn. A kept
+ * entry (its sums are at frame kn - 1) slides the lines it already holds: the newest frame
+ * in, the frames beyond each window out (the frame leaving a window of m frames is m frames
+ * back, still in the ring, which holds max_len + 1 frames); every other line is summed
+ * afresh. jlo is counted from the entry's anchor (set by the caller). */
+static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
+                       const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+{
+    pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    int32_t k0 = 0; /* held lines kept: [k0, k1) in the new local indices */
+    int32_t k1 = 0;
+    const int32_t a = jlo > e->jlo ? jlo : e->jlo;
+    const int32_t b = jlo + n < e->jlo + (int32_t)e->n ? jlo + n : e->jlo + (int32_t)e->n;
+    if (keep) {
+        if (a < b) {
+            k0 = a - jlo;
+            k1 = b - jlo;
+            const int32_t sh = a - e->jlo - k0; /* old local index = new local index + sh */
+            for (uint32_t w = 0; w < PFT_PTE_NWIN_ && sh != 0; ++w) {
+                if (e->m[w] > 0u) {
+                    pft_real_t *v = bank_e_(p, ti, bi, w);
+                    memmove(v + k0, v + k0 + sh, (size_t)(k1 - k0) * sizeof(pft_real_t));
+                }
+            }
+        }
+        e->jlo = jlo;
+        for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+            const int32_t mo = e->m[w];
+            const int32_t mn = m[w];
+            if (mn == 0) {
+                continue; /* window unused */
+            }
+            if (mo == 0) { /* a window taken into use: summed in full */
+                pft_real_t *se = bank_e_(p, ti, bi, w);
+                for (int32_t j = k0; j < k1; ++j) {
+                    se[j] = PFT_C(0.0);
+                }
+                for (int32_t r = 0; r < (int32_t)p->yq; ++r) {
+                    e->gres[w][r] = PFT_C(0.0);
+                }
+                bank_lines_(p, ti, bi, w, k0, k1, kn, 0, mn, 1);
+                bank_gres_(p, e, w, kn, 0, mn, 1);
+                continue;
+            }
+            if (mn == mo && bank_slide_(p, ti, bi, w, k0, k1, kn, mn)) {
+                continue; /* the common case: one frame in, one out */
+            }
+            /* newest frame in; then the far end from mo + 1 frames to mn frames */
+            bank_lines_(p, ti, bi, w, k0, k1, kn, 0, 1, 1);
+            bank_gres_(p, e, w, kn, 0, 1, 1);
+            if (mn <= mo) {
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mn, mo + 1, -1);
+                bank_gres_(p, e, w, kn, mn, mo + 1, -1);
+            } else {
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mo + 1, mn, 1);
+                bank_gres_(p, e, w, kn, mo + 1, mn, 1);
+            }
+        }
+    } else {
+        for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+            for (int32_t r = 0; r < (int32_t)p->yq; ++r) {
+                e->gres[w][r] = PFT_C(0.0);
+            }
+            bank_gres_(p, e, w, kn, 0, (int32_t)m[w], 1);
+        }
+    }
+    e->jlo = jlo;
+    e->n = (uint16_t)n;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        e->m[w] = m[w];
+    }
+    e->kl = kn;
+    e->live = 1u;
+    if (k0 > 0) {
+        bank_fill_(p, ti, bi, 0, k0, kn);
+    }
+    if (k1 < n) {
+        bank_fill_(p, ti, bi, k1, n, kn);
+    }
+}
+
+/* G of the lines of entry bi (window w) at frame kn into G[0..n): from the residues when
+ * every line stays on the interior of the response grid over the window, else summed. */
+static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t kn,
+                    int32_t j0, int32_t n, pft_real_t *G)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t q = p->yq;
+    const int32_t m = e->m[w];
+    const int32_t jl = e->jlo + j0;
+    int32_t d0 = bank_off_(p, e, kn) + jl;
+    int32_t d1 = bank_off_(p, e, kn - (uint32_t)(m > 0 ? m - 1 : 0)) + jl;
+    int32_t lo = d0 < d1 ? d0 : d1;
+    int32_t hi = (d0 > d1 ? d0 : d1) + n - 1;
+    if (lo >= p->yin_lo && hi <= p->yin_hi) {
+        int32_t r = jl % q;
+        r = r < 0 ? r + q : r;
+        for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
+            G[k] = e->gres[w][r];
+            r = r + 1 == q ? 0 : r + 1;
+        }
+        for (int32_t j = q; j < n; ++j) {
+            G[j] = G[j - q];
+        }
+        return;
+    }
+    for (int32_t j = 0; j < n; ++j) {
+        G[j] = PFT_C(0.0);
+    }
+    for (int32_t tau = 0; tau < m; ++tau) {
+        int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
+        for (int32_t j = 0; j < n; ++j) {
+            if (j + d >= 0 && j + d < (int32_t)p->ny) {
+                G[j] = G[j] + p->gq[j + d]; /* bounded as the E sums */
+            }
+        }
+    }
+}
 
 /* ------------------------------------------------------------------------ track step */
 
@@ -381,7 +789,7 @@ typedef struct {
     int32_t nsc;        /* n0 * n1 */
     int32_t ndir;       /* L0 * L1 */
     int32_t reach64[2]; /* EXACT: reach of the per-frame weight table, 1/64 cells */
-    int64_t cfix;       /* TABLE: 16.16 of the first scan position, times SV */
+    pft_real_t dprior;  /* TABLE: 1 / (2 (S_tt + dth^2/12)), scaled slopes */
 } step_geom_;
 
 /* One operator direction: slopes per axis (scaled) and the log prior of its index. */
@@ -393,26 +801,192 @@ typedef struct {
 /* Best scan position of one direction. */
 typedef struct {
     int32_t jb;          /* index of the best summand */
-    pft_real_t lse;      /* log of the sum over scan positions */
+    pft_real_t lmax;     /* the best summand's log */
+    pft_real_t ssum;     /* sum over scan positions of exp(log summand - lmax), >= 1 */
     pft_real_t cstar[2]; /* best end position per axis, parabola refined */
-    pft_real_t t;        /* T at the best position (0 when G = 0) */
+    pft_real_t t2s;      /* T^2 at the best position with the sign of T (0 when G = 0) */
+    pft_real_t e, g;     /* E and G at the best position */
 } dir_best_;
 
-/* 1. Kalman prediction of the state and the amplitude. */
-static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+/* Transition and process noise of the effective state [r, SV r', SA r''] of each axis (the
+ * 4th state of the track layout stays 0), from model_ (at init). */
+void pft_pte_model_setup_(pft_pte_t *p)
 {
-    const pft_pte_config_t *c = &p->cfg;
-    for (uint32_t a = 0; a < p->naxes; ++a) {
+    for (uint32_t a = 0; a < 2u; ++a) {
         pft_real_t F[16];
         pft_real_t Q[16];
-        model_(c, a, F, Q);
-        pft_kf4_predict(t->x[a], t->P[a], F, Q);
+        model_(&p->cfg, a, F, Q);
+        for (uint32_t i = 0; i < 3u; ++i) {
+            for (uint32_t j = 0; j < 3u; ++j) {
+                p->kF[a][3u * i + j] = F[4u * i + j];
+                p->kQ[a][3u * i + j] = Q[4u * i + j];
+            }
+        }
     }
-    t->amp_var = pft_add(t->amp_var, c->q_amp);
+}
+
+/* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
+ * rounded once) and of the amplitude. */
+static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+{
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        const pft_real_t *F = p->kF[a];
+        const pft_real_t *Q = p->kQ[a];
+        pft_real_t *x = t->x[a];
+        pft_real_t *P = t->P[a];
+        pft_real_t xn[3];
+        pft_real_t fp[9];
+        for (uint32_t i = 0; i < 3u; ++i) {
+            acc_t v = 0;
+            for (uint32_t l = 0; l < 3u; ++l) {
+                v = aadd_(v, amul_(F[3u * i + l], x[l]));
+            }
+            xn[i] = ato_(v);
+            for (uint32_t j = 0; j < 3u; ++j) {
+                acc_t w = 0;
+                for (uint32_t l = 0; l < 3u; ++l) {
+                    w = aadd_(w, amul_(F[3u * i + l], P[4u * l + j]));
+                }
+                fp[3u * i + j] = ato_(w);
+            }
+        }
+        for (uint32_t i = 0; i < 3u; ++i) {
+            x[i] = xn[i];
+            for (uint32_t j = i; j < 3u; ++j) {
+                acc_t w = afrom_(Q[3u * i + j]);
+                for (uint32_t l = 0; l < 3u; ++l) {
+                    w = aadd_(w, amul_(fp[3u * i + l], F[3u * j + l]));
+                }
+                P[4u * i + j] = ato_(w);
+                P[4u * j + i] = P[4u * i + j];
+            }
+        }
+    }
+    t->amp_var = pft_add(t->amp_var, p->cfg.q_amp);
+}
+
+/* Log prior -d^2 / (2 sc2) of every scan position of axis a, d = off + j c_step its distance
+ * from the predicted end position (off: that of the first position). */
+static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
+{
+    pft_pte_scratch_t *s = p->scr;
+    const pft_pte_axis_t *ap = &s->ap[a];
+    /* -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k: lc_{j+1} =
+     * lc_j + dl_j with dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd */
+    const pft_real_t cs = p->cfg.c_step;
+    pft_real_t lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    pft_real_t dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
+    pft_real_t dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
+    for (int32_t j = 0; j < ap->ns; ++j) {
+        s->lc[a][j] = lc;
+        lc = pft_add(lc, dl);
+        dl = pft_add(dl, dd);
+    }
+}
+
+/* TABLE: the directions of this step on the slope lattice (step dtheta_min): the lattice
+ * point nearest to the predicted slope and (L - 1) / 2 more on each side, `mult` lattice
+ * steps apart. The spacing is dtheta_min while the wanted spacing dth (5.3 step 2) is at
+ * most 2.5 dtheta_min, else dth rounded to a multiple of dtheta_min [A]: a fine, fixed
+ * spacing keeps the direction set from snapping the slope estimate to a coarse lattice, a
+ * wide one keeps an uncertain slope (a cue, a young track) covered. The bank entries of the
+ * directions are brought to this frame (entries of slopes no longer wanted are freed first;
+ * a direction set moving by one lattice point costs one new entry at spacing dtheta_min).
+ * Also the first scan line of each direction in its entry and its end position. */
+static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
+{
+    pft_pte_scratch_t *s = p->scr;
+    pft_pte_axis_t *ap = &s->ap[0];
+    const uint32_t ti = (uint32_t)(t - p->tracks);
+    pft_pte_bank_t *bank = p->bank + (size_t)ti * p->nbank;
+    const uint32_t kn = p->frames_in;
+    const int32_t L = ap->L;
+    const int32_t h = (L - 1) / 2;
+    const int32_t q = p->yq;
+    const pft_real_t lat = from_fix16_(p->lat_t);
+    int32_t mult = 1;
+    if (ap->dth > pft_mul(lat, PFT_C(2.5))) {
+        mult = pft_round_int(pft_div(ap->dth, lat));
+        mult = mult > 4096 ? 4096 : mult;
+    }
+    ap->dth = pft_mul_i(lat, mult);
+    g->dprior = pft_recip(pft_mul_i(pft_add(ap->stt, pft_div_i(pft_sq(ap->dth), 12)), 2));
+    /* lattice point nearest to the predicted slope */
+    const int64_t lt = p->lat_t;
+    const int64_t num = 2 * fix16_(ap->zt) + lt;
+    int64_t c = num >= 0 ? num / (2 * lt) : -((-num + 2 * lt - 1) / (2 * lt));
+    const int64_t cmax = (int64_t)1 << 24; /* |slope| far beyond any track */
+    c = c > cmax ? cmax : (c < -cmax ? -cmax : c);
+    int32_t want[PFT_PTE_MAX_DIRS];
+    const int32_t nw = L;
+    for (int32_t l = 0; l < L; ++l) {
+        want[l] = (int32_t)(c + (l - h) * mult);
+    }
+    int32_t sel[PFT_PTE_MAX_DIRS];
+    for (uint32_t b = 0; b < p->nbank; ++b) {
+        bank[b].used = 0u;
+    }
+    for (int32_t i = 0; i < nw; ++i) {
+        sel[i] = -1;
+        for (uint32_t b = 0; b < p->nbank; ++b) {
+            if (bank[b].live && !bank[b].used && bank[b].s == want[i]) {
+                sel[i] = (int32_t)b;
+                bank[b].used = 1u;
+                break;
+            }
+        }
+    }
+    for (uint32_t b = 0; b < p->nbank; ++b) {
+        if (!bank[b].used) {
+            bank[b].live = 0u;
+        }
+    }
+    for (int32_t i = 0; i < nw; ++i) {
+        for (uint32_t b = 0; sel[i] < 0 && b < p->nbank; ++b) {
+            if (!bank[b].used) {
+                sel[i] = (int32_t)b;
+                bank[b].used = 1u;
+                bank[b].s = want[i];
+            }
+        }
+    }
+    /* window lengths: max_len (or fewer frames while the track is young) and the short one */
+    uint8_t m[PFT_PTE_NWIN_];
+    m[0] = (uint8_t)g->M;
+    m[1] = (uint8_t)(p->short_len == 0u ? 0 : (g->M < p->short_len ? g->M : p->short_len));
+    /* lines whose end points cover the scan interval around the predicted end position zc */
+    const int32_t half = (ap->ns - 1) / 2;
+    const int64_t zg = (fix16_(ap->zc) + (int64_t)PFT_PTE_YPAD * 65536) * q;
+    /* an entry holds up to MARGIN_ lines more on each side than the scan needs, so that scan
+     * intervals moving back and forth cost nothing and new lines are summed a few at a time */
+    int32_t margin = ((int32_t)p->nline - ap->ns) / 2;
+    margin = margin > MARGIN_ ? MARGIN_ : margin;
+    for (int32_t i = 0; i < nw; ++i) {
+        pft_pte_bank_t *e = &bank[sel[i]];
+        bool keep = e->live && e->kl + 1u == kn && kn - e->k0 < RENEW_;
+        if (!keep) {
+            e->k0 = kn; /* a fresh entry is anchored at this frame */
+        }
+        int64_t sh = (int64_t)e->s * p->lat_u * (int64_t)(int32_t)(kn - e->k0);
+        int64_t jc = (zg - sh + 32768) >> 16;
+        int32_t jlo = (int32_t)(jc - half);
+        if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
+            bank_sync_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
+        } else {
+            bank_sync_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m, kn, keep);
+        }
+        if (i < L) {
+            s->bsel[i] = sel[i];
+            s->bj0[i] = jlo - e->jlo;
+            /* first scan position minus zc, cells: ((jc - half) 2^16 + sh - zg) / (2^16 q) */
+            int64_t d16 = (jc - half) * 65536 + sh - zg;
+            s->boff[i] = from_fix16_(d16 >= 0 ? (d16 + q / 2) / q : -((-d16 + q / 2) / q));
+        }
+    }
 }
 
 /* 2. Operator parameters of both axes, the log prior of every scan position, the EXACT
- * weight tables or the TABLE response rows every direction may read (computed once). */
+ * weight tables or the TABLE slope entries (computed once per step). */
 static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
 {
     const pft_pte_config_t *c = &p->cfg;
@@ -432,10 +1006,7 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     memset(ap, 0, 2u * sizeof(*ap));
     for (uint32_t a = 0; a < na; ++a) {
         axis_setup_(p, t->x[a], t->P[a], a, M, &ap[a]);
-        for (int32_t j = 0; j < ap[a].ns; ++j) {
-            pft_real_t d = pft_mul_i(c->c_step, j - (ap[a].ns - 1) / 2);
-            s->lc[a][j] = pft_neg(pft_div(pft_sq(d), pft_mul_i(ap[a].sc2, 2)));
-        }
+        scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
     }
     g->reach64[0] = 0;
     g->reach64[1] = 0;
@@ -454,22 +1025,14 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     g->nsc = g->n0 * g->n1;
     int32_t m1 = M > 1 ? M : 2;
     g->mm = m1 * m1 - 1;
-    g->cfix = 0;
+    g->dprior = PFT_C(0.0);
     if (p->yq > 0u) {
-        int32_t h = (ap[0].L - 1) / 2;
-        g->cfix = fix16_(ap[0].c0) * SV_;
-        int64_t tlo = fix16_(pft_sub(ap[0].zt, pft_mul_i(ap[0].dth, h)));
-        int64_t thi = fix16_(pft_add(ap[0].zt, pft_mul_i(ap[0].dth, h)));
-        for (int32_t tau = 0; tau < M; ++tau) {
-            int32_t b0 = grid_index_(g->cfix, thi, tau, p->yq);
-            int32_t b1 = grid_index_(g->cfix, tlo, tau, p->yq);
-            s->yrow[tau] = yframe_(p, (uint32_t)tau, b0, b1 + g->n0);
-        }
+        step_bank_(p, t, g);
     }
 }
 
 /* Slopes and log prior of direction li (index l0 + L0 l1). */
-static dir_slope_ dir_slope_of_(const pft_pte_t *p, int32_t li)
+static dir_slope_ dir_slope_of_(const pft_pte_t *p, const step_geom_ *g, int32_t li)
 {
     const pft_pte_axis_t *ap = p->scr->ap;
     dir_slope_ d;
@@ -479,42 +1042,19 @@ static dir_slope_ dir_slope_of_(const pft_pte_t *p, int32_t li)
     d.th[0] = PFT_C(0.0);
     d.th[1] = PFT_C(0.0);
     d.prior = PFT_C(0.0);
+    if (p->yq > 0u) {
+        /* TABLE: the direction's lattice slope */
+        const pft_pte_bank_t *e = &p->bank[(size_t)(p->scr->ti) * p->nbank + (size_t)p->scr->bsel[li]];
+        d.th[0] = from_fix16_((int64_t)e->s * p->lat_t);
+        d.prior = pft_neg(pft_mul(pft_sq(pft_sub(d.th[0], ap[0].zt)), g->dprior));
+        return d;
+    }
     for (uint32_t a = 0; a < p->naxes; ++a) {
         int32_t k = l[a] - (ap[a].L - 1) / 2;
         d.th[a] = pft_add(ap[a].zt, pft_mul_i(ap[a].dth, k));
         d.prior = pft_sub(d.prior, pft_mul_i(ap[a].prior_k, k * k));
     }
     return d;
-}
-
-/* TABLE: adds frame tau's responses along the direction of scaled slope tfix (16.16) to the
- * operator sums: one read per scan position. */
-static void accum_table_(pft_pte_t *p, const step_geom_ *g, int64_t tfix, int32_t tau)
-{
-    const int32_t n0 = g->n0;
-    int32_t b = grid_index_(g->cfix, tfix, tau, p->yq);
-    int32_t ny = (int32_t)p->ny;
-    const pft_real_t *yv = p->scr->yrow[tau];
-    if (b >= 0 && b + n0 <= ny) {
-        pft_real_t *restrict se = p->sE;
-        pft_real_t *restrict sg = p->sG;
-        const pft_real_t *restrict yb = yv + b;
-        const pft_real_t *restrict gb = p->gq + b;
-        /* plain additions: |y| <= zeta_clip * sum g <= 64 * 6.9 and at most 64 frames are
-         * summed, so |E| < 28300 and G < 64 * 4.2 never overflow the q16 range (TABLE mode
-         * requires zeta_clip <= 64, see config_check) */
-        for (int32_t j0 = 0; j0 < n0; ++j0) {
-            se[j0] = se[j0] + yb[j0];
-            sg[j0] = sg[j0] + gb[j0];
-        }
-        return;
-    }
-    for (int32_t j0 = 0; j0 < n0; ++j0) {
-        if (b + j0 >= 0 && b + j0 < ny) {
-            p->sE[j0] = pft_add(p->sE[j0], yv[b + j0]);
-            p->sG[j0] = pft_add(p->sG[j0], p->gq[b + j0]);
-        }
-    }
 }
 
 /* EXACT range-Doppler: adds frame zf (tau frames back) along slopes th to the operator sums
@@ -550,26 +1090,27 @@ static void accum_2d_(pft_pte_t *p, const step_geom_ *g, const pft_real_t th[2],
     }
 }
 
-/* 3. Operator sums E, G of one direction at every scan position, over the last M frames. */
-static void dir_accumulate_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d)
+/* 3. Operator sums E, G of one direction at every scan position, over the last M frames:
+ * TABLE reads them from the direction's slope entry (window w); EXACT sums the taps. */
+static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, int32_t li,
+                      uint32_t w, const pft_real_t **E, const pft_real_t **G)
 {
+    if (p->yq > 0u) {
+        const int32_t j0 = p->scr->bj0[li];
+        *E = bank_e_(p, p->scr->ti, (uint32_t)p->scr->bsel[li], w) + j0;
+        bank_g_(p, p->scr->ti, (uint32_t)p->scr->bsel[li], w, p->frames_in, j0, g->n0, p->sG);
+        *G = p->sG;
+        return;
+    }
     for (int32_t j = 0; j < g->nsc; ++j) {
         p->sE[j] = PFT_C(0.0);
         p->sG[j] = PFT_C(0.0);
-    }
-    const int32_t M = g->M;
-    if (p->yq > 0u) {
-        const int64_t tfix = fix16_(d->th[0]);
-        for (int32_t tau = 0; tau < M; ++tau) {
-            accum_table_(p, g, tfix, tau);
-        }
-        return;
     }
     const pft_pte_axis_t *ap0 = &p->scr->ap[0];
     const int32_t R0 = g->reach64[0];
     const pft_real_t th0 = d->th[0];
     const bool one = p->naxes == 1u;
-    for (int32_t tau = 0; tau < M; ++tau) {
+    for (int32_t tau = 0; tau < g->M; ++tau) {
         const pft_real_t *zf = pft_pte_ring_get_(&p->ring, (uint32_t)tau);
         if (one) {
             accum_1d_(p, ap0, R0, line_shift_(th0, tau), zf);
@@ -577,11 +1118,16 @@ static void dir_accumulate_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ 
             accum_2d_(p, g, d->th, tau, zf);
         }
     }
+    *E = p->sE;
+    *G = p->sG;
 }
 
-/* 4. Test statistic and log summand of every scan position, their log-sum, the best position
- * (parabola refined per axis) and its T. */
-static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
+/* 4. Test statistic and log summand of every scan position, the best one and the sum of
+ * the others relative to it (the direction likelihood is their log-sum; the fusion needs
+ * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
+ * position per axis. */
+static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
+                              const pft_real_t *G, const pft_real_t c0[2])
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
@@ -591,10 +1137,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
     for (int32_t j = 0; j < g->nsc; ++j) {
         /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
          * the product saturates at 32768 before the clamp, with the same result) */
-        pft_real_t t2 = PFT_C(0.0);
-        if (p->sE[j] > PFT_C(0.0) && p->sG[j] > PFT_C(0.0)) {
-            t2 = pft_min(pft_mul(p->sE[j], pft_div(p->sE[j], p->sG[j])), PFT_C(22500.0));
-        }
+        pft_real_t t2 = sq_over_(E[j], G[j]);
         pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
         p->sL[j] = ls;
         if (ls > lmax) {
@@ -602,11 +1145,16 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
             r.jb = j;
         }
     }
+    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
     pft_real_t ssum = PFT_C(0.0);
+    const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
-        ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+        if (p->sL[j] > lcut) {
+            ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+        }
     }
-    r.lse = pft_add(lmax, pft_log(ssum));
+    r.lmax = lmax;
+    r.ssum = ssum;
     const int32_t jb = r.jb;
     r.cstar[0] = PFT_C(0.0);
     r.cstar[1] = PFT_C(0.0);
@@ -618,113 +1166,141 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g)
         if (ja > 0 && ja < na_ - 1) {
             off = pft_pte_parabola_(p->sL[jb - stride], p->sL[jb], p->sL[jb + stride]);
         }
-        r.cstar[a] = pft_add(s->ap[a].c0, pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
+        r.cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
     }
-    r.t = PFT_C(0.0);
-    if (p->sG[jb] > PFT_C(0.0)) {
-        r.t = pft_clamp(pft_div(p->sE[jb], pft_sqrt(p->sG[jb])), PFT_C(-150.0), PFT_C(150.0));
-    }
+    r.e = E[jb];
+    r.g = G[jb];
+    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
+    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
     return r;
 }
 
 /* 5. Kalman update of the track's prediction with the direction's measurement [c*, theta]
- * per axis, and of its amplitude with E/G, into out. */
+ * per axis (H = [1 0 hc; 0 1 hv], R = diag(sigma_c^2, sigma_theta^2) of docs/algorithms.md
+ * 5.3 step 5): the gain K = P H' S^-1 and the state change K nu, with P H' and H P H' shared
+ * by the directions (step geometry); the covariance is formed once, at the fusion. The
+ * amplitude gets a scalar update with E/G (variance 1/G). On a singular S the direction
+ * leaves the prediction unchanged. */
 static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step_geom_ *g,
                         const dir_slope_ *d, const dir_best_ *b, pft_pte_dir_t *out)
 {
     const pft_pte_config_t *c = &p->cfg;
     const pft_pte_axis_t *ap = p->scr->ap;
-    pft_real_t tc = pft_max(pft_sq(b->t), PFT_C(1.0));
-    for (uint32_t a = 0; a < 2u; ++a) {
-        memcpy(out->x[a], t->x[a], 4u * sizeof(pft_real_t));
-        memcpy(out->P[a], t->P[a], 16u * sizeof(pft_real_t));
-        if (a >= p->naxes) {
+    const pft_real_t itc = pft_recip(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
+    memset(out->dx, 0, sizeof(out->dx));
+    memset(out->K, 0, sizeof(out->K));
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        const pft_pte_axis_t *x = &ap[a];
+        /* R: sigma_w^2 / T^2 + c_step^2 / 12 and dth^2 / 12 + 12 sigma_w^2 / ((M^2 - 1) T^2),
+         * the latter scaled by SV^2 */
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(c->c_step), 12));
+        pft_real_t r3 = pft_add(pft_div_i(pft_sq(x->dth), 12),
+                                pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
+        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(c->sigma_r[a])), r0);
+        pft_real_t s11 = pft_add(x->stt, r3);
+        acc_t det = aadd_(amul_(s00, s11), -amul_(x->s01, x->s01));
+        if (!(s00 > PFT_C(0.0)) || !(det > 0)) {
             continue;
         }
-        pft_real_t z[2] = {b->cstar[a], d->th[a]};
-        pft_real_t R[4];
-        R[0] = pft_add(pft_div(ap[a].sw2, tc), pft_div_i(pft_sq(c->c_step), 12));
-        /* slope variance 12 sigma_w^2 / ((M^2 - 1) T^2), scaled by SV^2 */
-        R[3] = pft_add(pft_div_i(pft_sq(ap[a].dth), 12),
-                       pft_div_i(pft_div(pft_mul_i(ap[a].sw2, 12 * SV_ * SV_), tc), g->mm));
-        R[1] = PFT_C(0.0);
-        R[2] = PFT_C(0.0);
-        (void)pft_kf4_update2(out->x[a], out->P[a], ap[a].H, z, R); /* on failure the prediction stays */
+        pft_real_t nu0 = pft_sub(b->cstar[a], x->zc);
+        pft_real_t nu1 = pft_sub(d->th[a], x->zt);
+        for (uint32_t i = 0; i < 3u; ++i) {
+            /* K = P H' adj(S) / det, each entry summed exactly and rounded once */
+            const pft_real_t h0 = x->pht[2u * i];
+            const pft_real_t h1 = x->pht[2u * i + 1u];
+            pft_real_t k0 = adiv_(aadd_(amul_(h0, s11), -amul_(h1, x->s01)), det);
+            pft_real_t k1 = adiv_(aadd_(amul_(h1, s00), -amul_(h0, x->s01)), det);
+            out->K[a][2u * i] = k0;
+            out->K[a][2u * i + 1u] = k1;
+            out->dx[a][i] = ato_(aadd_(amul_(k0, nu0), amul_(k1, nu1)));
+        }
     }
-    /* amplitude: measurement E/G with variance 1/G */
-    const int32_t jb = b->jb;
+    /* amplitude: measurement E/G with variance 1/G: gain av G / (av G + 1) */
     pft_real_t am = t->amp;
     pft_real_t av = t->amp_var;
-    if (p->sG[jb] > PFT_C(0.0)) {
-        pft_real_t meas = pft_div(p->sE[jb], p->sG[jb]);
-        pft_real_t r = pft_recip(p->sG[jb]);
-        pft_real_t k = pft_div(av, pft_add(av, r));
-        am = pft_add(am, pft_mul(k, pft_sub(meas, am)));
-        av = pft_sub(av, pft_mul(k, av));
+    if (b->g > PFT_C(0.0)) {
+        pft_real_t inv = pft_recip(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
+        am = pft_add(am, pft_mul(pft_mul(av, pft_sub(b->e, pft_mul(am, b->g))), inv));
+        av = pft_mul(av, inv);
     }
     out->amp = am;
     out->amp_var = av;
-    out->logw = pft_add(d->prior, b->lse);
-    out->t = b->t;
+    out->logw = pft_add(d->prior, b->lmax);
+    out->ssum = b->ssum;
 }
 
-/* 6. Fusion of the directions with their normalised likelihoods. Deviations from the
- * prediction are fused (X = X_pred + sum W (X_l - X_pred)) so that weights summing to
- * 1 - epsilon after rounding (q16) cannot bias the state. */
+/* 6. Fusion of the directions with their normalised likelihoods W:
+ * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
+ * which is sum W (P_l + (X_l - X)(X_l - X)') when the weights sum to 1. Deviations from the
+ * prediction are fused so that weights summing to 1 - epsilon after rounding (q16) cannot
+ * bias the state. */
 static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
 {
     const uint32_t na = p->naxes;
-    pft_pte_dir_t *f = &p->scr->fused;
-    (void)pft_lognormalize(p->scr->lw, p->dw, (size_t)ndir);
-    memset(f, 0, sizeof(*f));
-    pft_real_t as = PFT_C(0.0);
+    const pft_pte_axis_t *ap = p->scr->ap;
+    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions */
+    pft_real_t w[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS];
+    pft_real_t lx = PFT_REAL_MIN;
     for (int32_t li = 0; li < ndir; ++li) {
-        pft_real_t w = pft_weight_to_real(p->dw[li]);
-        const pft_pte_dir_t *d = &p->dir[li];
-        for (uint32_t a = 0; a < na; ++a) {
-            for (uint32_t i = 0; i < 3u; ++i) {
-                f->x[a][i] = pft_add(f->x[a][i], pft_mul(w, pft_sub(d->x[a][i], t->x[a][i])));
-            }
-        }
-        as = pft_add(as, pft_mul(w, pft_sub(d->amp, t->amp)));
+        lx = pft_max(lx, p->dir[li].logw);
+    }
+    pft_real_t tot = PFT_C(0.0);
+    for (int32_t li = 0; li < ndir; ++li) {
+        pft_real_t dl = pft_sub(p->dir[li].logw, lx);
+        w[li] = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        tot = pft_add(tot, w[li]);
+    }
+    const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
+    for (int32_t li = 0; li < ndir; ++li) {
+        w[li] = pft_mul(w[li], itot);
     }
     for (uint32_t a = 0; a < na; ++a) {
+        pft_real_t df[3];
+        pft_real_t kw[6];
         for (uint32_t i = 0; i < 3u; ++i) {
-            f->x[a][i] = pft_add(t->x[a][i], f->x[a][i]);
-        }
-    }
-    as = pft_add(t->amp, as);
-    pft_real_t avs = PFT_C(0.0);
-    for (int32_t li = 0; li < ndir; ++li) {
-        pft_real_t w = pft_weight_to_real(p->dw[li]);
-        const pft_pte_dir_t *d = &p->dir[li];
-        for (uint32_t a = 0; a < na; ++a) {
-            pft_real_t dv[3];
-            for (uint32_t i = 0; i < 3u; ++i) {
-                dv[i] = pft_sub(d->x[a][i], f->x[a][i]);
+            acc_t v = 0;
+            for (int32_t li = 0; li < ndir; ++li) {
+                v = aadd_(v, amul_(w[li], p->dir[li].dx[a][i]));
             }
-            for (uint32_t i = 0; i < 3u; ++i) {
-                for (uint32_t j = i; j < 3u; ++j) {
-                    f->P[a][i * 4u + j] = pft_add(f->P[a][i * 4u + j],
-                                                  pft_mul(w, pft_add(d->P[a][i * 4u + j], pft_mul(dv[i], dv[j]))));
-                }
-            }
+            df[i] = ato_(v);
         }
-        avs = pft_add(avs, pft_mul(w, pft_add(d->amp_var, pft_sq(pft_sub(d->amp, as)))));
-    }
-    for (uint32_t a = 0; a < na; ++a) {
+        for (uint32_t i = 0; i < 6u; ++i) {
+            acc_t v = 0;
+            for (int32_t li = 0; li < ndir; ++li) {
+                v = aadd_(v, amul_(w[li], p->dir[li].K[a][i]));
+            }
+            kw[i] = ato_(v);
+        }
+        pft_real_t *P = t->P[a];
         for (uint32_t i = 0; i < 3u; ++i) {
-            t->x[a][i] = f->x[a][i];
             for (uint32_t j = i; j < 3u; ++j) {
-                t->P[a][i * 4u + j] = f->P[a][i * 4u + j];
-                t->P[a][j * 4u + i] = f->P[a][i * 4u + j];
+                acc_t v = afrom_(P[4u * i + j]);
+                v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
+                v = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
+                for (int32_t li = 0; li < ndir; ++li) {
+                    pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
+                    pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
+                    v = aadd_(v, amul_(w[li], pft_mul(di, dj)));
+                }
+                P[4u * i + j] = ato_(v);
+                P[4u * j + i] = P[4u * i + j];
             }
+            t->x[a][i] = pft_add(t->x[a][i], df[i]);
         }
-        t->P[a][0] = pft_max(t->P[a][0], PFT_REAL_EPS);
-        t->P[a][5] = pft_max(t->P[a][5], PFT_REAL_EPS);
+        P[0] = pft_max(P[0], PFT_REAL_EPS);
+        P[5] = pft_max(P[5], PFT_REAL_EPS);
     }
-    t->amp = as;
-    t->amp_var = pft_max(avs, PFT_REAL_EPS);
+    acc_t as = 0;
+    for (int32_t li = 0; li < ndir; ++li) {
+        as = aadd_(as, amul_(w[li], pft_sub(p->dir[li].amp, t->amp)));
+    }
+    pft_real_t amp = pft_add(t->amp, ato_(as));
+    acc_t avs = 0;
+    for (int32_t li = 0; li < ndir; ++li) {
+        avs = aadd_(avs, amul_(w[li], pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+    }
+    t->amp = amp;
+    t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
 }
 
 /* 7. Detection test, misses, termination (also when the track left the image). */
@@ -753,19 +1329,28 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_geom_ g;
+    pft_pte_scratch_t *s = p->scr;
+    s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
     step_geometry_(p, t, &g);
-    pft_real_t tmax = PFT_REAL_MIN;
+    pft_real_t t2max = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
-        dir_slope_ d = dir_slope_of_(p, li);
-        dir_accumulate_(p, &g, &d);
-        dir_best_ b = dir_best_of_(p, &g);
-        if (b.t > tmax) {
-            tmax = b.t;
+        dir_slope_ d = dir_slope_of_(p, &g, li);
+        const pft_real_t *E;
+        const pft_real_t *G;
+        dir_sums_(p, &g, &d, li, 0u, &E, &G);
+        pft_real_t c0[2] = {s->ap[0].c0, s->ap[1].c0};
+        if (p->yq > 0u) {
+            /* TABLE: the scan positions of the direction's lines at this frame */
+            c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
+            scan_prior_(p, 0u, s->boff[li]);
         }
+        dir_best_ b = dir_best_of_(p, &g, E, G, c0);
+        t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
-        p->scr->lw[li] = p->dir[li].logw;
     }
     step_fuse_(p, t, g.ndir);
-    step_maintain_(p, t, tmax);
+    /* max_l T_l* from the largest signed T^2 */
+    pft_real_t tmax = pft_sqrt(pft_abs(t2max));
+    step_maintain_(p, t, t2max < PFT_C(0.0) ? pft_neg(tmax) : tmax);
 }

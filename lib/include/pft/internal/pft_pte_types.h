@@ -19,10 +19,16 @@ extern "C" {
     (2u * PFT_WS_ROUND(PFT_PTE_CELLS_(nr, nd) * sizeof(pft_real_t)) +                           \
      2u * PFT_WS_ROUND((size_t)(k) * PFT_PTE_CELLS_(nr, nd)))
 #define PFT_PTE_MAXU_(a, b) ((a) > (b) ? (a) : (b))
+/** Frames in the ring: max_len + 1 (the frame leaving the operator window) or init_frames. */
+#define PFT_PTE_RING_(mlen, ninit) ((size_t)PFT_PTE_MAXU_((size_t)(mlen) + 1u, (size_t)(ninit)))
 #define PFT_PTE_NSCAN_(nd, steps, axis) ((axis) == 0 || (nd) > 1 ? 2u * (size_t)(steps) + 1u : 1u)
 #define PFT_PTE_NDIR_(nd, l1) ((nd) > 1 ? (size_t)(l1) : 1u)
 /** Largest number of scan positions per axis. */
 #define PFT_PTE_MAX_SCAN_ (2u * PFT_PTE_MAX_SCAN_STEPS + 1u)
+/** TABLE: slope entries per track (one per direction). */
+#define PFT_PTE_NBANK_(l0) ((size_t)(l0))
+/** TABLE: window lengths whose sums every slope entry slides (max_len and short_len). */
+#define PFT_PTE_NWIN_ 2u
 /** @endcond */
 
 /* Ring of the last frames (normalised). */
@@ -50,14 +56,16 @@ typedef struct {
     bool detected;
 } pft_pte_track_t;
 
-/* Result of one operator direction within a track step (also the fused state). */
+/* Result of one operator direction within a track step: the Kalman gain and state change of
+ * its update per axis (effective state [r, SV r', SA r'']), amplitude, likelihood. */
 typedef struct {
-    pft_real_t x[2][4];  /* per axis state after the direction's Kalman update */
-    pft_real_t P[2][16]; /* per axis covariance */
+    pft_real_t dx[2][3]; /* per axis K nu */
+    pft_real_t K[2][6];  /* per axis gain, 3 x 2 row-major */
     pft_real_t amp;      /* amplitude after the update with E/G */
     pft_real_t amp_var;
-    pft_real_t logw;     /* log direction likelihood (prior + log-sum over scan positions) */
-    pft_real_t t;        /* T of the best scan position */
+    pft_real_t logw;     /* log prior + the best scan position's log summand */
+    pft_real_t ssum;     /* sum of the summands relative to the best (the likelihood is
+                            exp(logw) ssum) */
 } pft_pte_dir_t;
 
 /* Per-axis operator parameters of one track at one frame. */
@@ -69,22 +77,45 @@ typedef struct {
     pft_real_t prior_k;                /* dth^2 / (2 (S_tt + dth^2/12)): prior per k^2 */
     pft_real_t c0;                     /* first scan position */
     pft_real_t sc2;                    /* S_cc + sigma_r^2 */
+    pft_real_t stt;                    /* S_tt: predicted variance of the scaled slope */
+    pft_real_t pht[6];                 /* P H', 3 x 2 row-major (effective state) */
+    pft_real_t s01;                    /* H P H' off-diagonal (the diagonal: sc2 - sigma_r^2, stt) */
+    pft_real_t lck;                    /* 1 / (2 sc2): scan-position log prior per d^2 */
     int32_t ns;                        /* scan positions */
     int32_t L;                         /* directions */
     int32_t ncell;                     /* cells along the axis */
 } pft_pte_axis_t;
+
+/* TABLE operators: the sliding line sums of one operator slope of one track. Line j of the
+ * entry passes, at frame k (numbered as frames_in), the response grid point
+ * jlo + j + round(s U (k - k0) / 2^16), U the lattice step in 1/65536 grid points per frame.
+ * Its sum E of the responses over the last m[w] frames lives in the bank sums of the track
+ * (window w, line j); the sum G of their normalisers, for lines inside the profile, depends
+ * only on (jlo + j) mod yq and is kept here per residue. */
+typedef struct {
+    pft_real_t gres[2][8]; /* G per window and residue */
+    int32_t s;      /* slope, in lattice steps */
+    int32_t jlo;    /* first line held */
+    uint32_t k0;    /* anchor frame */
+    uint32_t kl;    /* frame the sums are at */
+    uint16_t n;     /* lines held */
+    uint8_t m[2];   /* frames summed per window */
+    uint8_t live;
+    uint8_t used;   /* wanted at the current step */
+} pft_pte_bank_t;
 
 /* Scratch of one track step (one track at a time), in the workspace. */
 typedef struct {
     pft_pte_axis_t ap[2];                        /* operator parameters per axis */
     pft_real_t lc[2][PFT_PTE_MAX_SCAN_];         /* log prior of each scan position per axis */
     pft_real_t gs[2][PFT_PTE_MAX_SCAN_];         /* sum of squared tap weights per position */
-    pft_real_t lw[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS]; /* log weight of each direction */
-    const pft_real_t *yrow[PFT_PTE_MAX_FRAMES];  /* TABLE: response of each frame of the window */
+    int32_t bsel[PFT_PTE_MAX_DIRS];              /* TABLE: bank entry of each direction */
+    int32_t bj0[PFT_PTE_MAX_DIRS];               /* TABLE: its first scan line in the entry */
+    pft_real_t boff[PFT_PTE_MAX_DIRS];           /* TABLE: first scan position - predicted end */
     int32_t blo[PFT_PTE_MAX_SCAN_];              /* EXACT 2-D taps per phase: first cell, */
     int32_t bcnt[PFT_PTE_MAX_SCAN_];             /* count, */
     pft_real_t bg[PFT_PTE_MAX_SCAN_];            /* and sum of squared weights */
-    pft_pte_dir_t fused;                         /* fusion accumulators */
+    uint32_t ti;                                 /* slot of the track being stepped */
 } pft_pte_scratch_t;
 
 struct pft_pte_s {
@@ -103,17 +134,31 @@ struct pft_pte_s {
     pft_real_t ytap[8][PFT_PTE_MAX_TAPS]; /* TABLE: tap weights per grid phase */
     int16_t ytap_lo[8];          /* TABLE: first tap offset per phase (cells from floor(p)) */
     uint8_t ytap_n[8];           /* TABLE: taps per phase */
+    pft_real_t ytap4_w[8][4];    /* TABLE: the taps padded to 4 from ytap4_lo (when ytap4) */
+    int16_t ytap4_lo;
+    uint8_t ytap4;               /* TABLE: every phase's taps fit in 4 from ytap4_lo */
     pft_real_t sigma_y;          /* TABLE: operator width */
     uint32_t ny;                 /* TABLE: response points (n_range + 2 PFT_PTE_YPAD) * yq */
     uint8_t yq;                  /* TABLE: grid points per cell (0: EXACT mode) */
+    pft_pte_bank_t *bank;        /* TABLE: slope entries, max_tracks * nbank */
+    pft_real_t *bsum;            /* TABLE: their E sums, max_tracks * nbank * NWIN * nline */
+    pft_real_t gfull[8];         /* TABLE: normaliser of an interior grid point per phase */
+    int32_t yin_lo, yin_hi;      /* TABLE: interior grid points (gq = gfull) */
+    int64_t lat_u;               /* TABLE: lattice step of the slopes, 1/65536 grid points per frame */
+    int64_t lat_t;               /* TABLE: the same as a scaled slope (SV r'), 1/65536 */
+    uint16_t nbank;              /* TABLE: entries per track */
+    uint16_t nline;              /* TABLE: lines per entry (2 scan_steps + 1) */
+    uint8_t short_len;           /* TABLE: frames of the short window (0: none) */
+    uint8_t yblk_shift;          /* TABLE: log2 of the grid points per response block (0: not a power of 2) */
     pft_pte_track_t *tracks;
     pft_pte_report_t *rep;
     pft_real_t *sE, *sG, *sL;    /* scan accumulators (n_scan0 * n_scan1) */
     pft_real_t *tw[2];           /* tap weights per axis (n_scan * TAPS) */
     int16_t *tlo[2];             /* first tap cell, count, weight offset per axis (n_scan * 4) */
     pft_pte_dir_t *dir;          /* per-direction results (n_dir0 * n_dir1) */
-    pft_weight_t *dw;            /* per-direction weights */
     pft_pte_scratch_t *scr;      /* track-step scratch */
+    pft_real_t kF[2][9];         /* per axis transition of the effective state [r, SV r', SA r''] */
+    pft_real_t kQ[2][9];         /* per axis process noise of the effective state */
     uint32_t frames_in;
     uint16_t next_id;
     uint16_t since_search;
