@@ -400,11 +400,6 @@ static void run_pte(fz_t *f)
             pft_real_t pv[2] = {fz_real(f), fz_real(f)}, vv[2] = {fz_real(f), fz_real(f)};
             uint16_t id = 0u;
             pft_real_t amp = fz_real(f);
-            if (FZ_KNOWN && !(fz_small(pos[0]) && fz_small(pos[1]) && fz_small(vel[0]) &&
-                              fz_small(vel[1]) && fz_small(pv[0]) && fz_small(pv[1]) &&
-                              fz_small(vv[0]) && fz_small(vv[1]) && fz_small(amp))) {
-                continue; /* known F1: pft_pte_start takes any float state or variance */
-            }
             st = pft_pte_start(&p, pos, vel, pv, vv, amp, fz_u8(f), &id);
         }
         if (fz_refused(st)) {

@@ -135,6 +135,24 @@ static void test_workspace_formula(void)
     c.max_tracks = PFT_PTE_MAX_TRACKS + 1u;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
     TEST_ASSERT_EQUAL_STRING("max_tracks", field);
+#ifndef PFT_NUMERIC_Q16
+    /* the configuration domain of both builds (reliability.md F6): a subnormal sigma_r gave NaN
+     * tables, a scan_sigmas of 8.5e37 an out-of-range conversion */
+    cfg_default(&c);
+    c.sigma_r[0] = 1e-39f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("sigma_r[0]", field);
+    cfg_default(&c);
+    c.scan_sigmas = 8.5e37f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("scan_sigmas", field);
+    cfg_default(&c);
+    c.in.noise_sigma = 1e-39f;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("in.noise_sigma", field);
+    cfg_default(&c);
+    c.max_tracks = PFT_PTE_MAX_TRACKS + 1u;
+#endif
     pft_pte_t p;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_init(&p, &c, g_work, sizeof(g_work)));
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pte_init(&p, NULL, g_work, sizeof(g_work)));
@@ -470,6 +488,15 @@ static void test_bad_input_untouched(void)
     id = 77;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_pte_start(&p, pos, vel, pv, vv, R(3.0), 10, &id));
     TEST_ASSERT_EQUAL_UINT16(77, id);
+#ifndef PFT_NUMERIC_Q16
+    /* a state outside the domain of both builds is refused, changing nothing (reliability.md
+     * F1: a position of 1.3e13 reached an out-of-range conversion in the next update) */
+    pft_real_t far[2] = {1.3e13f, 0.0f};
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pte_start(&p, far, vel, pv, vv, R(3.0), 10, &id));
+    pft_real_t huge_var[2] = {3e38f, 1.0f};
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pte_start(&p, pos, vel, huge_var, vv, R(3.0), 10, &id));
+    TEST_ASSERT_EQUAL_UINT16(77, id);
+#endif
     TEST_ASSERT_EQUAL_MEMORY(&copy, &p, sizeof(p));
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof(g_work));
     /* copy-out: the count of all reports, at most max copied */

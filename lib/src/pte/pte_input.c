@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "pte_int.h"
+#include "../core/config_int.h"
 
 void pft_pte_input_default(pft_pte_input_t *in)
 {
@@ -32,10 +33,17 @@ const char *pft_pte_input_bad_(const pft_pte_input_t *in)
     if (in->noise != PFT_PTE_NOISE_FIXED && in->noise != PFT_PTE_NOISE_CFAR) {
         return "in.noise";
     }
-    if (!(in->noise_sigma > PFT_C(0.0))) {
+    /* reals in the configuration domain shared by both builds (core/config_int.h) */
+    if (!pft_cfg_real_pos_(in->noise_sigma)) {
         return "in.noise_sigma";
     }
-    if (!(in->zeta_clip > PFT_C(0.0)) || in->zeta_clip > PFT_C(1000.0)) {
+    if (!pft_cfg_real_ok_(in->pixel_gain)) {
+        return "in.pixel_gain";
+    }
+    if (!pft_cfg_real_ok_(in->pixel_offset)) {
+        return "in.pixel_offset";
+    }
+    if (!pft_cfg_real_pos_(in->zeta_clip) || in->zeta_clip > PFT_C(1000.0)) {
         return "in.zeta_clip";
     }
     if (in->cfar_ref < 1u || in->cfar_ref > PFT_PTE_MAX_CFAR_REF) {

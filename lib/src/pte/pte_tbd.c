@@ -4,6 +4,7 @@
  * likelihood-weighted fusion, closed-loop feedback, termination and re-initiation, several
  * targets with cancellation. This file: configuration, workspace, initiation, reports. */
 #include "pte_int.h"
+#include "../core/config_int.h"
 
 #define SV_ PFT_PTE_SV_
 #define SA_ PFT_PTE_SA_
@@ -79,7 +80,8 @@ static const char *bad_axis_field_(const pft_pte_config_t *c)
         return "motion";
     }
     for (uint32_t a = 0; a < 2u; ++a) {
-        if (!(c->sigma_r[a] > PFT_C(0.0)) || c->sigma_r[a] > PFT_C(100.0)) {
+        /* in float a subnormal sigma_r gave NaN tables (reliability.md F6) */
+        if (!pft_cfg_real_pos_(c->sigma_r[a]) || c->sigma_r[a] > PFT_C(100.0)) {
             return sr[a];
         }
     }
@@ -99,24 +101,31 @@ static const char *bad_axis_field_(const pft_pte_config_t *c)
 /* Operator fields (struct order), NULL when usable. */
 static const char *bad_operator_field_(const pft_pte_config_t *c)
 {
-    if (!(c->q_amp >= PFT_C(0.0))) {
+    if (!(c->q_amp >= PFT_C(0.0)) || !pft_cfg_real_ok_(c->q_amp)) {
         return "q_amp";
     }
-    if (!(c->dtheta_min > PFT_C(0.0))) {
+    if (!pft_cfg_real_pos_(c->dtheta_min)) {
         return "dtheta_min";
     }
-    if (!(c->c_step > PFT_C(0.0)) || c->c_step > PFT_C(4.0)) {
+    if (!pft_cfg_real_pos_(c->c_step) || c->c_step > PFT_C(4.0)) {
         return "c_step";
     }
     if (c->scan_steps < 1u || c->scan_steps > PFT_PTE_MAX_SCAN_STEPS) {
         return "scan_steps";
     }
-    if (!(c->scan_sigmas > PFT_C(0.0))) {
+    /* in float a scan_sigmas of 8.5e37 reached an out-of-range conversion (reliability.md F6) */
+    if (!pft_cfg_real_pos_(c->scan_sigmas)) {
         return "scan_sigmas";
     }
-    if (!(c->sigma_w_max > PFT_C(0.0)) ||
+    if (!pft_cfg_real_pos_(c->sigma_w_max) ||
         c->sigma_w_max > pft_ratio((int32_t)PFT_PTE_MAX_TAPS - 1, 6)) {
         return "sigma_w_max";
+    }
+    if (!pft_cfg_real_ok_(c->init_threshold)) {
+        return "init_threshold";
+    }
+    if (!pft_cfg_real_ok_(c->eta_t)) {
+        return "eta_t";
     }
     return NULL;
 }
@@ -156,7 +165,7 @@ static const char *bad_field_(const pft_pte_config_t *c)
     if (c->max_tracks < 1u || c->max_tracks > PFT_PTE_MAX_TRACKS) {
         return "max_tracks";
     }
-    if (!(c->dup_cells >= PFT_C(0.0))) {
+    if (!(c->dup_cells >= PFT_C(0.0)) || !pft_cfg_real_ok_(c->dup_cells)) {
         return "dup_cells";
     }
     if (c->op != PFT_PTE_OP_EXACT && c->op != PFT_PTE_OP_TABLE && c->op != PFT_PTE_OP_AUTO) {
@@ -611,9 +620,10 @@ pft_status_t pft_pte_start(pft_pte_t *p, const pft_real_t pos[2],
         return PFT_ERR_INVAL;
     }
     for (uint32_t a = 0; a < p->naxes; ++a) {
-        if (!(pos_var[a] > PFT_C(0.0)) || !(vel_var[a] > PFT_C(0.0)) ||
-            !(pos[a] >= PFT_REAL_MIN && pos[a] <= PFT_REAL_MAX) ||
-            !(vel[a] >= PFT_REAL_MIN && vel[a] <= PFT_REAL_MAX)) {
+        /* the configuration domain of both builds (core/config_int.h): a float position of
+         * 1.3e13 reached an out-of-range conversion in the next update (reliability.md F1) */
+        if (!pft_cfg_real_pos_(pos_var[a]) || !pft_cfg_real_pos_(vel_var[a]) ||
+            !pft_cfg_real_ok_(pos[a]) || !pft_cfg_real_ok_(vel[a]) || !pft_cfg_real_ok_(amp)) {
             return PFT_ERR_INVAL;
         }
     }
