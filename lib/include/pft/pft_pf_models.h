@@ -22,8 +22,11 @@ extern "C" {
 
 /* Model instances: declared by the caller, layouts in pft/internal/pft_pf_models_types.h (not
  * API; included at the end of this header so that sizeof works). */
+/** Instance of the bearings-only model (pft_pf_bearings_model_init). */
 typedef struct pft_pf_bearings_model_s pft_pf_bearings_model_t;
+/** Instance of the linear-Gaussian model (pft_pf_lg_model_init). */
 typedef struct pft_pf_lg_model_s pft_pf_lg_model_t;
+/** Instance of the TBD pixel-likelihood model (pft_pf_tbd_model_init). */
 typedef struct pft_pf_tbd_model_s pft_pf_tbd_model_t;
 
 /* ============================ bearings-only constant velocity ============================= */
@@ -70,7 +73,8 @@ typedef struct {
  *  each value is an exact integer ratio, so e.g. scale 1000 gives q_sd = 1 exactly). */
 void pft_pf_bearings_config_default(pft_pf_bearings_config_t *cfg, int32_t scale);
 
-/** Checks cfg (positive T, q_sd, r_sd, ll_clip, non-negative sds and first_r_sd), fills m and
+/** Checks cfg (T, q_sd, r_sd, ll_clip at least 2^-16, sds non-negative, first_r_sd 0 or at least
+ *  2^-16, every real within +-32767: the configuration domain of both builds), fills m and
  *  the interface iface, e.g. &engine_cfg.model (measurement: const pft_real_t *, one bearing in
  *  radians). PFT_ERR_INVAL on NULL, PFT_ERR_CONFIG for a refused cfg. */
 pft_status_t pft_pf_bearings_model_init(pft_pf_bearings_model_t *m, const pft_pf_bearings_config_t *cfg,
@@ -84,8 +88,9 @@ pft_real_t pft_pf_bearings_loglik(const pft_pf_bearings_model_t *m, const pft_re
 
 /* ===================================== linear Gaussian ==================================== */
 
-/** Largest state and measurement dimensions of the linear-Gaussian model. */
+/** Largest state dimension of the linear-Gaussian model. */
 #define PFT_PF_LG_MAX_DIM 4u
+/** Largest measurement dimension of the linear-Gaussian model. */
 #define PFT_PF_LG_MAX_MEAS 2u
 
 /**
@@ -107,8 +112,9 @@ typedef struct {
     pft_real_t L0[PFT_PF_LG_MAX_DIM * PFT_PF_LG_MAX_DIM];   /**< prior factor, dim x dim */
 } pft_pf_lg_config_t;
 
-/** Checks cfg, fills m and iface. PFT_ERR_INVAL on NULL, PFT_ERR_CONFIG for bad dimensions or
- *  r_sd <= 0. */
+/** Checks cfg, fills m and iface. PFT_ERR_INVAL on NULL, PFT_ERR_CONFIG for bad dimensions,
+ *  r_sd below 2^-16, or a real of the used part of the matrices or the prior outside
+ *  +-32767 (the configuration domain of both builds). */
 pft_status_t pft_pf_lg_model_init(pft_pf_lg_model_t *m, const pft_pf_lg_config_t *cfg,
                                pft_pf_model_t *iface);
 

@@ -180,7 +180,10 @@ pft_status_t pft_tbd_config_check(const pft_tbd_config_t *cfg, const char **fiel
 /** A pixel box: 0-based frame columns col_lo..col_hi and rows row_lo..row_hi, inclusive.
  *  Parts outside the image are ignored. */
 typedef struct {
-    int32_t col_lo, col_hi, row_lo, row_hi;
+    int32_t col_lo; /**< first column */
+    int32_t col_hi; /**< last column (inclusive) */
+    int32_t row_lo; /**< first row */
+    int32_t row_hi; /**< last row (inclusive) */
 } pft_tbd_region_t;
 
 /** The (2p+1)^2 window C(x) around position (x, y) (not clipped to the image): the
@@ -191,8 +194,10 @@ pft_tbd_region_t pft_tbd_window_region(const pft_tbd_config_t *cfg, pft_real_t x
 /** Estimates of one filter at the last frame, from the normalised weights before resampling. */
 typedef struct {
     pft_real_t p_exist;     /**< existence probability sum_s w_s E_s */
-    pft_real_t x, y;        /**< weighted mean position of the E = 1 particles (0-based, see above) */
-    pft_real_t vx, vy;      /**< weighted mean velocity (RBPF: of the Kalman means) */
+    pft_real_t x;           /**< weighted mean column position of the E = 1 particles (0-based, see above) */
+    pft_real_t y;           /**< weighted mean row position of the E = 1 particles */
+    pft_real_t vx;          /**< weighted mean column velocity (RBPF: of the Kalman means) */
+    pft_real_t vy;          /**< weighted mean row velocity */
     pft_real_t intensity;   /**< weighted mean intensity */
     pft_real_t pos_cov[3];  /**< weighted spread of the E = 1 positions: xx, xy, yy */
     pft_real_t log_mean_lr; /**< log of the mean unnormalised weight (frame likelihood ratio) */
@@ -302,8 +307,10 @@ pft_real_t pft_tbd_filter_llr(const pft_tbd_filter_t *f, pft_real_t x, pft_real_
 /** A confirmed track. */
 typedef struct {
     uint32_t id;            /**< 1, 2, ...: stable for the track's life, never reused */
-    pft_real_t x, y;        /**< position estimate at the last frame */
-    pft_real_t vx, vy;      /**< velocity estimate */
+    pft_real_t x;           /**< column position estimate at the last frame */
+    pft_real_t y;           /**< row position estimate at the last frame */
+    pft_real_t vx;          /**< column velocity estimate */
+    pft_real_t vy;          /**< row velocity estimate */
     pft_real_t intensity;   /**< intensity estimate */
     pft_real_t pos_cov[3];  /**< position spread xx, xy, yy */
     pft_real_t p_exist;     /**< track layer existence probability */
@@ -312,6 +319,7 @@ typedef struct {
     uint32_t age;           /**< frames since confirmation (0 at the confirmation frame) */
 } pft_tbd_track_t;
 
+/** What an event reports. */
 typedef enum {
     PFT_TBD_EV_CONFIRMED = 1, /**< the search layer's P > theta1: a new track */
     PFT_TBD_EV_ENDED = 2      /**< disappearance declared: the track was removed */
@@ -319,10 +327,11 @@ typedef enum {
 
 /** Something that happened during the last update. */
 typedef struct {
-    pft_tbd_event_kind_t kind;
+    pft_tbd_event_kind_t kind; /**< confirmed or ended */
     uint32_t id;            /**< track id */
     uint32_t frame;         /**< frame number of the update */
-    pft_real_t x, y;        /**< position at the event (ENDED: the last estimate) */
+    pft_real_t x;           /**< column position at the event (ENDED: the last estimate) */
+    pft_real_t y;           /**< row position at the event */
 } pft_tbd_event_t;
 
 /** @cond internal */
