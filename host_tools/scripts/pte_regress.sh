@@ -3,8 +3,8 @@
 # docs/results/pte.md (Fig. 5 sweep with table and exact operators, sea clutter, air target),
 # run with an old and a new pair of builds on the same seeds, printed side by side.
 # Only PTE-TBD is evaluated (eval.methods = ["pte"]); DP-TBD and the DBT are left out.
-# Usage: host_tools/pte/pte_regress.sh OLD_FLOAT OLD_Q16 NEW_FLOAT NEW_Q16 OUT_DIR [RUNS] [THREADS]
-#   e.g. host_tools/pte/pte_regress.sh main/build/host-float main/build/host-q16 \
+# Usage: host_tools/scripts/pte_regress.sh OLD_FLOAT OLD_Q16 NEW_FLOAT NEW_Q16 OUT_DIR [RUNS] [THREADS]
+#   e.g. host_tools/scripts/pte_regress.sh main/build/host-float main/build/host-q16 \
 #          build/host-float build/host-q16 build/pte_regress 100 1
 # SKIP_EVAL=1 only prints the tables from OUT_DIR.
 set -euo pipefail

@@ -16,7 +16,7 @@ operators), DP-TBD K = 10 and K = 20 and the DBT; the same target in a ten times
 Monte Carlo.
 
 Usage: pte_callgrind.py [--wall] [--only SUBSTRING] [--name-builds] OUT_DIR BUILD_DIR [BUILD_DIR...]
-  e.g. python3 host_tools/pte/pte_callgrind.py build/instr build/host-float build/host-q16
+  e.g. python3 host_tools/scripts/pte_callgrind.py build/instr build/host-float build/host-q16
 Markdown tables on stdout: one row per build and configuration, then the ratios
 DP-TBD K=20 / PTE-TBD (mean instructions per frame).
 """

@@ -3,8 +3,8 @@
 # K = 10, Kalman DBT; PTE-TBD also with exact operators) over SNR 0..15 dB, the sea-clutter
 # scenario, both builds, 100 Monte Carlo runs each (seeds 1..100, the same at every SNR), the
 # merged Fig. 5 curves and the tracked range-time images.
-# Usage: host_tools/pte/pte_results.sh FLOAT_BUILD Q16_BUILD OUT_DIR IMG_DIR [RUNS] [THREADS]
-#   e.g. host_tools/pte/pte_results.sh build/h8-host-float build/h8-host-q16 results/pte docs/results/pte
+# Usage: host_tools/scripts/pte_results.sh FLOAT_BUILD Q16_BUILD OUT_DIR IMG_DIR [RUNS] [THREADS]
+#   e.g. host_tools/scripts/pte_results.sh build/host-float build/host-q16 results/pte docs/results/pte
 # SKIP_EVAL=1 only redraws the figures and tables from OUT_DIR.
 set -euo pipefail
 FB=${1:?usage: pte_results.sh FLOAT_BUILD Q16_BUILD OUT_DIR IMG_DIR [RUNS] [THREADS]}
