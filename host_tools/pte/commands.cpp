@@ -533,8 +533,9 @@ public:
             for (const auto &sp : specs) {
                 double t = 0.0;
                 auto outp = run_method(sp, q.z, &t);
-                Counts c = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c);
-                Counts cc = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true);
+                const double gc = o.gospa_c ? *o.gospa_c : 0.0, gp = o.gospa_p ? *o.gospa_p : 2.0;
+                Counts c = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, false, gc, gp);
+                Counts cc = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true, gc, gp);
                 c.time_s = cc.time_s = t;
                 c.frames = cc.frames = q.frames;
                 local[sp.name] = c;
@@ -736,6 +737,27 @@ public:
         check("measures: RMSE 0.5", std::fabs(c.rmse() - 0.5) < 1e-9);
         Counts cc = score_run(tr, out, 150, 3.0, nullptr, true);
         check("measures with coasting: false = 2 / 292", cc.false_points == 2 && cc.declared == 292);
+        {
+            // GOSPA / OSPA (c = 3 cells, p = 2) on four frames, truth at cell 10: a report 0.5
+            // off (localisation 0.25), none (missed 9/2), an exact one plus one at 30 (false 9/2),
+            // one at 20 (a missed and a false point, 9). OSPA^2: 0.25, 9, 9/2, 9.
+            std::vector<Truth> t4(4);
+            for (auto &t : t4)
+                t.r = 10.0;
+            std::vector<std::vector<Report>> o4(4);
+            auto rep = [](double pos) { Report q; q.pos = pos; q.detected = true; return q; };
+            o4[0] = {rep(10.5)};
+            o4[2] = {rep(10.0), rep(30.0)};
+            o4[3] = {rep(20.0)};
+            Counts g = score_run(t4, o4, 150, 3.0);
+            check("GOSPA over 4 frames = sqrt(18.25 / 4)", std::fabs(g.gospa() - std::sqrt(18.25 / 4.0)) < 1e-12);
+            check("GOSPA parts: 2 missed, 2 false points", g.g_missed == 2 && g.g_false == 2 &&
+                                                               std::fabs(g.g_loc - 0.25) < 1e-12);
+            check("OSPA over 4 frames = sqrt(22.75 / 4)", std::fabs(g.ospa() - std::sqrt(22.75 / 4.0)) < 1e-12);
+            Counts g1 = score_runs({t4}, o4, 150, 3.0, false, 5.0, 1.0);
+            check("GOSPA c = 5, p = 1: (0.5 + 2.5 + 2.5 + 5) / 4",
+                  std::fabs(g1.gospa() - 10.5 / 4.0) < 1e-12 && g1.gospa_c == 5.0);
+        }
         Counts c1 = score_runs({tr}, out, 150, 3.0);
         check("several targets, one given: the single-target counts",
               c1.correct == c.correct && c1.false_points == c.false_points && c1.declared == c.declared &&

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../common/set_metrics.hpp"
+
 namespace pft::host::pte {
 
 void Counts::add(const Counts &o)
@@ -16,7 +18,43 @@ void Counts::add(const Counts &o)
     frames += o.frames;
     sq += o.sq;
     time_s += o.time_s;
+    gospa_c = o.gospa_c;
+    gospa_p = o.gospa_p;
+    g_loc += o.g_loc;
+    g_ospa += o.g_ospa;
+    g_missed += o.g_missed;
+    g_false += o.g_false;
+    g_frames += o.g_frames;
 }
+
+double Counts::gospa_part(double sum) const
+{
+    return g_frames ? std::pow(sum / double(g_frames), 1.0 / gospa_p) : NAN;
+}
+double Counts::gospa() const
+{
+    const double half = std::pow(gospa_c, gospa_p) / 2.0;
+    return gospa_part(g_loc + half * double(g_missed + g_false));
+}
+double Counts::ospa() const { return gospa_part(g_ospa); }
+
+namespace {
+/** Adds one frame's GOSPA / OSPA terms: truth and declared positions in cells (1-D). */
+void add_set_metrics(Counts &c, const std::vector<double> &truth, const std::vector<double> &est)
+{
+    std::vector<metrics::Point> t, e;
+    for (double r : truth)
+        t.push_back({r, 0.0});
+    for (double r : est)
+        e.push_back({r, 0.0});
+    metrics::FrameMetrics f = metrics::frame_metrics(t, e, c.gospa_c, c.gospa_p);
+    c.g_loc += f.localisation;
+    c.g_ospa += std::pow(f.ospa, c.gospa_p);
+    c.g_missed += f.missed_count;
+    c.g_false += f.false_count;
+    c.g_frames++;
+}
+}  // namespace
 
 double Counts::detection_prob() const { return true_frames ? double(correct) / true_frames : NAN; }
 double Counts::reliable3_prob() const { return rel_den ? double(rel_num) / rel_den : NAN; }
@@ -31,25 +69,37 @@ nlohmann::json Counts::to_json() const
             {"false_track_prob", num(false_track_prob())}, {"rmse_cells", num(rmse())},
             {"us_per_frame", num(us_per_frame())}, {"true_frames", true_frames}, {"correct_points", correct},
             {"declared_points", declared}, {"false_points", false_points}, {"reliable_frames", rel_num},
-            {"reliable_den", rel_den}, {"frames", frames}};
+            {"reliable_den", rel_den}, {"frames", frames},
+            {"gospa", num(gospa())}, {"gospa_localisation", num(gospa_part(g_loc))},
+            {"gospa_missed", num(gospa_part(std::pow(gospa_c, gospa_p) / 2.0 * double(g_missed)))},
+            {"gospa_false", num(gospa_part(std::pow(gospa_c, gospa_p) / 2.0 * double(g_false)))},
+            {"gospa_missed_count", num(g_frames ? double(g_missed) / double(g_frames) : NAN)},
+            {"gospa_false_count", num(g_frames ? double(g_false) / double(g_frames) : NAN)},
+            {"ospa", num(ospa())}, {"gospa_c", gospa_c}, {"gospa_p", gospa_p}, {"gospa_alpha", 2}};
 }
 
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
-                 int cells, double d_c, std::vector<char> *correct, bool with_coasting)
+                 int cells, double d_c, std::vector<char> *correct, bool with_coasting, double gospa_c,
+                 double gospa_p)
 {
     Counts c;
+    c.gospa_c = gospa_c > 0.0 ? gospa_c : d_c;
+    c.gospa_p = gospa_p;
     std::size_t n = std::min(truth.size(), out.size());
     std::vector<char> ok(n, 0), present(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
         present[k] = truth[k].r >= 0.0 && truth[k].r <= cells - 1.0;
         long long nd = 0;
         double best = INFINITY;
+        std::vector<double> est;
         for (const Report &r : out[k])
             if (r.detected || with_coasting) {
                 ++nd;
                 best = std::min(best, std::fabs(r.pos - truth[k].r));
+                est.push_back(r.pos);
             }
         c.declared += nd;
+        add_set_metrics(c, present[k] ? std::vector<double>{truth[k].r} : std::vector<double>{}, est);
         if (!present[k]) {
             c.false_points += nd;
             continue;
@@ -75,11 +125,13 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
 }
 
 Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vector<std::vector<Report>> &out,
-                  int cells, double d_c, bool with_coasting)
+                  int cells, double d_c, bool with_coasting, double gospa_c, double gospa_p)
 {
     if (truths.size() == 1)
-        return score_run(truths[0], out, cells, d_c, nullptr, with_coasting);
+        return score_run(truths[0], out, cells, d_c, nullptr, with_coasting, gospa_c, gospa_p);
     Counts c;
+    c.gospa_c = gospa_c > 0.0 ? gospa_c : d_c;
+    c.gospa_p = gospa_p;
     const std::size_t nt = truths.size();
     std::size_t n = out.size();
     for (const auto &tr : truths)
@@ -105,6 +157,11 @@ Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vect
                     pairs.push_back({d, t, r});
             }
         }
+        std::vector<double> present_r;
+        for (std::size_t t = 0; t < nt; ++t)
+            if (present[t][k])
+                present_r.push_back(truths[t][k].r);
+        add_set_metrics(c, present_r, pos);
         std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
             return a.d < b.d || (a.d == b.d && (a.t < b.t || (a.t == b.t && a.r < b.r)));
         });

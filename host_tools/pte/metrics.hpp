@@ -22,6 +22,14 @@ struct Counts {
     long long rel_num = 0, rel_den = 0, frames = 0;
     double sq = 0.0;       ///< sum of squared errors of the correct points (cells^2)
     double time_s = 0.0;   ///< update time summed over frames
+    /// GOSPA (alpha = 2) and OSPA per frame between the targets present and the declared
+    /// reports (positions in cells), as sums of their p-th-power terms over frames:
+    double gospa_c = 3.0, gospa_p = 2.0;
+    double g_loc = 0.0, g_ospa = 0.0;  ///< sums of localisation^p and OSPA^p
+    long long g_missed = 0, g_false = 0, g_frames = 0;  ///< missed / false points, frames
+    double gospa() const;              ///< power mean over frames: (sum GOSPA^p / frames)^(1/p)
+    double gospa_part(double sum) const;  ///< the same power mean of one part's p-th powers
+    double ospa() const;
     void add(const Counts &o);
     double detection_prob() const;
     double reliable3_prob() const;
@@ -34,7 +42,8 @@ struct Counts {
 /** Scores one run; correct (optional) receives a 0/1 flag per frame. The target counts as
  *  present at frames whose true range lies inside the window [0, cells - 1]. */
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
-                 int cells, double d_c, std::vector<char> *correct = nullptr, bool with_coasting = false);
+                 int cells, double d_c, std::vector<char> *correct = nullptr, bool with_coasting = false,
+                 double gospa_c = 0.0, double gospa_p = 2.0);
 
 /** Several targets ([target][frame]): at each frame the declared reports are assigned one to
  *  one to the targets present (active and inside the window), closest pairs first, within
@@ -42,6 +51,8 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
  *  report is false. true_frames counts target-frames; reliable3 is counted per target. With
  *  one target this is score_run. */
 Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vector<std::vector<Report>> &out,
-                  int cells, double d_c, bool with_coasting = false);
+                  int cells, double d_c, bool with_coasting = false, double gospa_c = 0.0, double gospa_p = 2.0);
+// GOSPA / OSPA (host_tools/common/set_metrics.hpp) are computed at every frame of score_run and
+// score_runs with cut-off gospa_c (0: d_c) and order gospa_p, on the same declared reports.
 
 }  // namespace pft::host::pte
