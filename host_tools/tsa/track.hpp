@@ -15,6 +15,7 @@ struct TrackCli {
     std::string motion;                  ///< empty: the scenario's (default tsa)
     int particles = 0;                   ///< 0: the scenario's (default 100)
     std::vector<std::string> set;        ///< name=value tracker parameters
+    std::vector<std::string> compare;    ///< more trackers on the same frames
     int frames = 0, snapshots = 0, max_target = 0;
     std::vector<int> snapshot_at;
     std::string snapshot_format = "png";

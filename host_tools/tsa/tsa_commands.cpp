@@ -124,6 +124,31 @@ void draw_overlay(cv::Mat &img, const TrackOut &t, const cv::Rect2d *truth, int 
     cv::putText(img, buf, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
 }
 
+/* Several trackers on one frame: each one's contour (pftrack) or box (OpenCV) and centre in its
+ * colour, its name beside it, and a legend. */
+void draw_compare(cv::Mat &img, const std::vector<TrackOut> &outs, const std::vector<std::string> &names, int frame)
+{
+    static const cv::Scalar colours[] = {{0, 255, 0}, {0, 200, 255}, {255, 128, 0}, {255, 0, 255}, {0, 0, 255},
+                                         {255, 255, 0}, {128, 128, 255}, {255, 255, 255}};
+    std::string legend = "#" + std::to_string(frame);
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+        const TrackOut &t = outs[i];
+        const cv::Scalar c = colours[i % 8];
+        if (!t.contour.empty())
+            cv::polylines(img, t.contour, true, c, 2, cv::LINE_AA);
+        else
+            cv::rectangle(img, t.box, c, 2);
+        cv::drawMarker(img, cv::Point((int)std::lround(t.center.x), (int)std::lround(t.center.y)), c,
+                       cv::MARKER_TILTED_CROSS, 9, 2);
+        const cv::Point at((int)std::lround(t.box.x), (int)std::lround(t.box.y) - 4 - 12 * (int)(i % 2));
+        cv::putText(img, names[i], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+        cv::putText(img, names[i], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, c, 1);
+        legend += "  " + names[i];
+    }
+    cv::putText(img, legend, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+    cv::putText(img, legend, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
+}
+
 // ------------------------------------------------------------------------------ evaluation
 // CPU time of the calling thread, microseconds (the trackers run on the thread that calls them;
 // OpenCV's own worker threads are switched off in evaluate(), see there).
@@ -546,6 +571,7 @@ struct TrackRun {
     std::vector<cv::Point> init;
     PftParams params;
     std::string label = "tsa";
+    std::vector<std::string> compare;  // more trackers on the same frames (names of make_tracker)
     std::string out;
     int frames = 0;
     bool video = true;
@@ -605,11 +631,20 @@ double mean_of(const std::vector<double> &v)
 int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
 {
     ensure_dir(tr.out);
+    cv::setNumThreads(0);  // OpenCV's trackers on this thread: their thread CPU time is complete
     cv::Mat f0;
     if (!in.next(f0))
         throw InputError(source + ": no frames");
-    auto t = make_tracker(tr.label, tr.params, f0.cols, f0.rows);
-    t->init(f0, tr.init);
+    std::vector<std::string> names = {tr.label};
+    for (const auto &n : tr.compare)
+        if (std::find(names.begin(), names.end(), n) == names.end())
+            names.push_back(n);
+    std::vector<std::unique_ptr<Tracker>> trk;
+    for (const auto &n : names) {
+        trk.push_back(make_tracker(n, tr.params, f0.cols, f0.rows));
+        trk.back()->init(f0, tr.init);
+    }
+    const std::size_t nt = trk.size();
     AtomicPath vid(join_path(tr.out, "overlay.avi"));
     cv::VideoWriter vw;
     if (tr.video) {
@@ -621,9 +656,9 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
     const long total = tr.frames > 0 ? (known > 0 ? std::min<long>(known, tr.frames) : tr.frames) : known;
     const std::vector<int> snaps = snapshot_frames(tr, total);
     std::size_t next_snap = 0;
-    std::vector<std::string> rows;
-    std::vector<double> us, cpu;
-    std::map<int, int> states;
+    std::vector<std::vector<std::string>> rows(nt);
+    std::vector<std::vector<double>> us(nt), cpu(nt);
+    std::vector<std::map<int, int>> states(nt);
     int k = 0;
     cv::Mat f;
     if (tr.video || (!snaps.empty() && snaps[0] == 1)) {
@@ -636,29 +671,40 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
             ++next_snap;
         }
     }
+    std::vector<TrackOut> outs(nt);
     while ((tr.frames <= 0 || k + 1 < tr.frames) && in.next(f)) {
         ++k;
-        TrackOut o;
-        const double c0 = thread_cpu_us();
-        auto t0 = std::chrono::steady_clock::now();
-        t->update(f, o);
-        auto t1 = std::chrono::steady_clock::now();
-        cpu.push_back(thread_cpu_us() - c0);
-        us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
-        states[o.state]++;
-        char buf[320];
-        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.1f,%.1f,%.1f,%.1f,%.4f,%.4f,%.4f,%d,%d,%d,%.1f,%.2f,%.2f,%.1f",
-                      k + 1, o.center.x, o.center.y, o.box.x, o.box.y, o.box.width, o.box.height, o.rho,
-                      o.rho_pioneer, o.beta, o.state, o.alive, o.template_updated ? 1 : 0, us.back(), o.pioneer.x,
-                      o.pioneer.y, cpu.back());
-        rows.push_back(buf);
+        for (std::size_t i = 0; i < nt; ++i) {
+            TrackOut &o = outs[i];
+            o = TrackOut();
+            const double c0 = thread_cpu_us();
+            auto t0 = std::chrono::steady_clock::now();
+            trk[i]->update(f, o);
+            auto t1 = std::chrono::steady_clock::now();
+            cpu[i].push_back(thread_cpu_us() - c0);
+            us[i].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+            states[i][o.state]++;
+            char buf[320];
+            std::snprintf(buf, sizeof buf,
+                          "%d,%.3f,%.3f,%.1f,%.1f,%.1f,%.1f,%.4f,%.4f,%.4f,%d,%d,%d,%.1f,%.2f,%.2f,%.1f", k + 1,
+                          o.center.x, o.center.y, o.box.x, o.box.y, o.box.width, o.box.height, o.rho, o.rho_pioneer,
+                          o.beta, o.state, o.alive, o.template_updated ? 1 : 0, us[i].back(), o.pioneer.x,
+                          o.pioneer.y, cpu[i].back());
+            rows[i].push_back(buf);
+        }
         while (next_snap < snaps.size() && snaps[next_snap] < k + 1)
             ++next_snap;
         const bool snap = next_snap < snaps.size() && snaps[next_snap] == k + 1;
         if (tr.video || snap) {
             cv::Mat ov = f.clone();
-            const cv::Rect2d *tb = (std::size_t)k < tr.truth.size() ? &tr.truth[k].box : nullptr;
-            draw_overlay(ov, o, tb, k + 1, t->name());
+            if (nt == 1) {
+                const cv::Rect2d *tb = (std::size_t)k < tr.truth.size() ? &tr.truth[k].box : nullptr;
+                draw_overlay(ov, outs[0], tb, k + 1, trk[0]->name());
+            } else {
+                if ((std::size_t)k < tr.truth.size())
+                    cv::rectangle(ov, tr.truth[k].box, cv::Scalar(255, 255, 255), 1);
+                draw_compare(ov, outs, names, k + 1);
+            }
             if (tr.video)
                 vw.write(ov);
             if (snap) {
@@ -671,29 +717,49 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
         vw.release();
         vid.commit();
     }
-    write_text_atomic(join_path(tr.out, "tracks.csv"), [&](std::ostream &os) {
-        os << "frame,x,y,box_x,box_y,box_w,box_h,rho,rho_pioneer,beta,state,alive,template_updated,us,pioneer_x,"
-              "pioneer_y,cpu_us\n";
-        for (auto &r : rows)
-            os << r << "\n";
-    });
-    const double mean = mean_of(us), med = median_of(us), cmean = mean_of(cpu), cmed = median_of(cpu);
-    json st = json::object();
-    static const char *names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view", "reacquired"};
-    for (auto &kv : states)
-        st[kv.first >= 0 && kv.first <= 6 ? names[kv.first] : "other"] = kv.second;
-    json j = {{"source", source}, {"tracker", t->name()}, {"numeric", numeric_name()},
+    static const char *header = "frame,x,y,box_x,box_y,box_w,box_h,rho,rho_pioneer,beta,state,alive,"
+                                "template_updated,us,pioneer_x,pioneer_y,cpu_us\n";
+    static const char *state_names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view",
+                                        "reacquired"};
+    json per = json::array();
+    for (std::size_t i = 0; i < nt; ++i) {
+        auto write_rows = [&](std::ostream &os) {
+            os << header;
+            for (auto &r : rows[i])
+                os << r << "\n";
+        };
+        if (i == 0)
+            write_text_atomic(join_path(tr.out, "tracks.csv"), write_rows);
+        if (nt > 1)
+            write_text_atomic(join_path(tr.out, "tracks_" + names[i] + ".csv"), write_rows);
+        json st = json::object();
+        for (auto &kv : states[i])
+            st[kv.first >= 0 && kv.first <= 6 ? state_names[kv.first] : "other"] = kv.second;
+        per.push_back({{"tracker", trk[i]->name()}, {"us_per_frame_mean", mean_of(us[i])},
+                       {"us_per_frame_median", median_of(us[i])}, {"cpu_us_per_frame_mean", mean_of(cpu[i])},
+                       {"cpu_us_per_frame_median", median_of(cpu[i])}, {"states", st},
+                       {"workspace_bytes", trk[i]->memory_bytes()}});
+    }
+    const json &p0 = per[0];
+    json j = {{"source", source}, {"tracker", trk[0]->name()}, {"numeric", numeric_name()},
               {"frames", k + 1}, {"width", f0.cols}, {"height", f0.rows},
-              {"us_per_frame_mean", mean}, {"us_per_frame_median", med},
-              {"cpu_us_per_frame_mean", cmean}, {"cpu_us_per_frame_median", cmed},
-              {"fps_equivalent", mean > 0 ? 1e6 / mean : 0.0}, {"states", st},
-              {"workspace_bytes", t->memory_bytes()}, {"params", pft_params_json(tr.params)}};
+              {"us_per_frame_mean", p0["us_per_frame_mean"]}, {"us_per_frame_median", p0["us_per_frame_median"]},
+              {"cpu_us_per_frame_mean", p0["cpu_us_per_frame_mean"]},
+              {"cpu_us_per_frame_median", p0["cpu_us_per_frame_median"]},
+              {"fps_equivalent", p0["us_per_frame_mean"].get<double>() > 0 ? 1e6 / p0["us_per_frame_mean"].get<double>() : 0.0},
+              {"states", p0["states"]}, {"workspace_bytes", p0["workspace_bytes"]},
+              {"params", pft_params_json(tr.params)}};
+    if (nt > 1)
+        j["trackers"] = per;
     write_json_atomic(join_path(tr.out, "tracks.json"), j);
     if (!tr.quiet)
-        std::printf("pft track: %s, %d frames %dx%d, %s: %.0f us/frame wall mean (%.0f median), %.0f us CPU mean "
-                    "(%.0f median), states %s -> %s\n",
-                    source.c_str(), k + 1, f0.cols, f0.rows, t->name().c_str(), mean, med, cmean, cmed,
-                    st.dump().c_str(), tr.out.c_str());
+        for (const auto &t : per)
+            std::printf("pft track: %s, %d frames %dx%d, %s: %.0f us/frame wall mean (%.0f median), %.0f us CPU mean "
+                        "(%.0f median), states %s -> %s\n",
+                        source.c_str(), k + 1, f0.cols, f0.rows, t["tracker"].get<std::string>().c_str(),
+                        t["us_per_frame_mean"].get<double>(), t["us_per_frame_median"].get<double>(),
+                        t["cpu_us_per_frame_mean"].get<double>(), t["cpu_us_per_frame_median"].get<double>(),
+                        t["states"].dump().c_str(), tr.out.c_str());
     return 0;
 }
 
@@ -908,6 +974,10 @@ CLI::App *add_track_command(CLI::App &app, TrackCli &t)
         ->check(CLI::IsMember({"tsa", "ncv", "ts"}));
     c->add_option("--particles", t.particles, "normal particles (default 100; overrides the scenario)")
         ->check(CLI::Range(1, 65535));
+    c->add_option("--compare", t.compare, "more trackers on the same frames, drawn in one overlay (comma "
+                                          "separated: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil); "
+                                          "tracks_<name>.csv each")
+        ->delimiter(',');
     c->add_option("--set", t.set, "tracker parameter name=value (repeatable; any field of pft_tsa_config_t, e.g. "
                                   "lik_lambda=0, loss_search=false; see docs/host_tools.md)");
     c->add_option("--frames", t.frames, "stop after this many frames (default: all)")->check(CLI::Range(0, 10000000));
@@ -978,6 +1048,7 @@ int run_track(const TrackCli &t)
                                                    ? std::min(255, std::max(16, 2 * (side + 1)))
                                                    : tr.params.max_target);
     tr.label = tr.params.motion;
+    tr.compare = t.compare;
     tr.out = t.out;
     tr.frames = t.frames;
     tr.video = t.video && !t.no_video;
