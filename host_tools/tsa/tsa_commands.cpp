@@ -904,7 +904,8 @@ private:
         const std::vector<std::string> &names = bench ? s.bench_trackers : s.eval_trackers;
         std::vector<std::string> use;
         for (auto &n : names)
-            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200")
+            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200" ||
+                n == "tsa_paper")
                 use.push_back(n);
             else if (!o.quiet)
                 std::printf("(skipping %s: OpenCV contrib tracking module not built in)\n", n.c_str());
