@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every evaluation of docs/results/tsa.md (issue #10): the three swing levels (3/1, 8/3, 15/5
+# Every evaluation of docs/results/tsa_ak.md (issue #10): the three swing levels (3/1, 8/3, 15/5
 # px/frame, px/frame^2; 300 frames) and their forced-loss versions (120 frames, 10 blank),
 # RUNS seeds each. The float build runs TSA-AK, the paper's variant, NCV, TS, KCF and CSRT in
 # the same run (one eval per scenario, THREADS worker threads, OpenCV single-threaded, so the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Markdown tables of docs/results/tsa.md from the summaries tsa_results.sh writes.
+"""Markdown tables of docs/results/tsa_ak.md from the summaries tsa_results.sh writes.
 
 Usage: tsa_tables.py OUT   (OUT/{float,q16}_swing_<level>[_loss]/summary.json)
 """

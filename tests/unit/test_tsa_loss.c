@@ -5,7 +5,7 @@
  *   report REACQUIRED within 15 frames and track again (centre error below 7 px, half the
  *   target's length, on every later frame), in every one of 6 seeds;
  * - noise soak (short version; TSA_SOAK_FRAMES frames, 1500 by default, 10^6 for the long run
- *   of docs/results/tsa.md): a target that moves at 3 px/frame, then only noise frames; no
+ *   of docs/results/tsa_ak.md): a target that moves at 3 px/frame, then only noise frames; no
  *   estimate ever leaves the frame by more than the target's box, in the loss handling's mode
  *   and in the paper's (loss_search off), for TSA, TS and NCV. Before the loss handling the
  *   paper's TSA let the pioneer extrapolate and the estimate ran to the +-16000 px clamp;
