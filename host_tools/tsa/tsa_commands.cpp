@@ -2,6 +2,7 @@
 // semi-synthetic airborne sequences, and the `pft track` subcommand (TSA-AK, docs/algorithms.md 4).
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <numeric>
 #include <sstream>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -122,19 +124,65 @@ void draw_overlay(cv::Mat &img, const TrackOut &t, const cv::Rect2d *truth, int 
     cv::putText(img, buf, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
 }
 
+/* Several trackers on one frame: each one's contour (pftrack) or box (OpenCV) and centre in its
+ * colour, its name beside it, and a legend. */
+void draw_compare(cv::Mat &img, const std::vector<TrackOut> &outs, const std::vector<std::string> &names, int frame)
+{
+    static const cv::Scalar colours[] = {{0, 255, 0}, {0, 200, 255}, {255, 128, 0}, {255, 0, 255}, {0, 0, 255},
+                                         {255, 255, 0}, {128, 128, 255}, {255, 255, 255}};
+    std::string legend = "#" + std::to_string(frame);
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+        const TrackOut &t = outs[i];
+        const cv::Scalar c = colours[i % 8];
+        if (!t.contour.empty())
+            cv::polylines(img, t.contour, true, c, 2, cv::LINE_AA);
+        else
+            cv::rectangle(img, t.box, c, 2);
+        cv::drawMarker(img, cv::Point((int)std::lround(t.center.x), (int)std::lround(t.center.y)), c,
+                       cv::MARKER_TILTED_CROSS, 9, 2);
+        const cv::Point at((int)std::lround(t.box.x), (int)std::lround(t.box.y) - 4 - 12 * (int)(i % 2));
+        cv::putText(img, names[i], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+        cv::putText(img, names[i], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, c, 1);
+        legend += "  " + names[i];
+    }
+    cv::putText(img, legend, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+    cv::putText(img, legend, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
+}
+
 // ------------------------------------------------------------------------------ evaluation
+// CPU time of the calling thread, microseconds (the trackers run on the thread that calls them;
+// OpenCV's own worker threads are switched off in evaluate(), see there).
+double thread_cpu_us()
+{
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec * 1e-3;
+}
+
+// A frame succeeds when IoU > iou and the centre error < center_px (the scenario's criterion);
+// the project's own criterion (docs/algorithms.md 6) is IoU > 0.5 and centre error < 10 px. Blank
+// frames (forced loss) are not scored; after them the re-acquisition delay is the number of
+// frames from the first frame after the blank to the first of REACQ_RUN consecutive successful
+// frames (0: tracking at once; -1: never).
+constexpr int REACQ_RUN = 3;
+constexpr double PROJECT_CENTER_PX = 10.0, PROJECT_IOU = 0.5;
+
 struct RunTrace {
-    std::vector<double> err, iou, us, beta, x;
-    std::vector<int> ok;
-    bool success = false;
+    std::vector<double> err, iou, us, cpu_us, beta, x;
+    std::vector<int> ok, ok_project, scored, state;
+    bool success = false, success_project = false;
+    int reacquire = -2;  // -2: no forced loss in the scenario
 };
 
 struct Agg {
     std::string name;
-    double err_sum = 0, us_sum = 0;
-    long frames = 0, ok_frames = 0;
-    int runs = 0, runs_ok = 0;
+    double err_sum = 0, us_sum = 0, cpu_sum = 0;
+    long frames = 0, ok_frames = 0, ok_project = 0, timed = 0;
+    int runs = 0, runs_ok = 0, runs_ok_project = 0;
     std::vector<long> iou_ge = std::vector<long>(21, 0);  // frames with IoU >= t/20
+    std::vector<double> errs;                             // every scored frame's centre error
+    std::vector<double> run_success;                      // per run: fraction of successful frames
+    std::vector<int> reacquire;                           // per run (forced-loss scenarios)
     std::size_t memory = 0;
     std::vector<RunTrace> traces;                          // kept for plots (first runs)
 };
@@ -144,24 +192,49 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
 {
     RunTrace r;
     t.init(frames[0], box_poly(truth[0].box));
-    long good = 0;
+    long good = 0, good_p = 0, scored = 0;
     for (std::size_t k = 1; k < frames.size(); ++k) {
         TrackOut out;
+        const double c0 = thread_cpu_us();
         auto t0 = std::chrono::steady_clock::now();
         t.update(frames[k], out);
         auto t1 = std::chrono::steady_clock::now();
+        const double c1 = thread_cpu_us();
         const double e = std::hypot(out.center.x - truth[k].cx, out.center.y - truth[k].cy);
         const double ov = iou(out.box, truth[k].box);
-        const int ok = ov > s.iou_thr && e < s.center_thr;
+        const int sc = s.scene.blank((int)k) ? 0 : 1;
+        const int ok = sc && ov > s.iou_thr && e < s.center_thr;
+        const int okp = sc && ov > PROJECT_IOU && e < PROJECT_CENTER_PX;
         r.err.push_back(e);
         r.iou.push_back(ov);
         r.us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+        r.cpu_us.push_back(c1 - c0);
         r.beta.push_back(out.beta);
         r.x.push_back(out.center.x);
         r.ok.push_back(ok);
+        r.ok_project.push_back(okp);
+        r.scored.push_back(sc);
+        r.state.push_back(out.state);
         good += ok;
+        good_p += okp;
+        scored += sc;
     }
-    r.success = !r.ok.empty() && good >= (long)std::ceil(s.run_min_fraction * (double)r.ok.size());
+    r.success = scored > 0 && good >= (long)std::ceil(s.run_min_fraction * (double)scored);
+    r.success_project = scored > 0 && good_p >= (long)std::ceil(s.run_min_fraction * (double)scored);
+    if (s.scene.blank_frame >= 1 && s.scene.blank_frames > 0) {
+        // r.ok[i] is frame i + 1
+        const int first = s.scene.blank_frame + s.scene.blank_frames;
+        r.reacquire = -1;
+        for (int k = first; k + REACQ_RUN - 1 < (int)frames.size(); ++k) {
+            bool run = true;
+            for (int j = 0; j < REACQ_RUN && run; ++j)
+                run = r.ok[(std::size_t)(k + j - 1)] != 0;
+            if (run) {
+                r.reacquire = k - first;
+                break;
+            }
+        }
+    }
     return r;
 }
 
@@ -173,6 +246,9 @@ struct EvalResult {
 EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, int runs, uint64_t seed_base,
                     unsigned threads, int max_frames, bool progress, std::size_t keep_traces)
 {
+    // OpenCV's trackers and image functions run on the calling thread, so the thread CPU time
+    // measures them completely and `threads` bounds the cores used
+    cv::setNumThreads(0);
     EvalResult res;
     for (auto &n : names) {
         Agg a;
@@ -208,14 +284,27 @@ EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, in
             const RunTrace &r = all[i][j];
             a.runs++;
             a.runs_ok += r.success;
+            a.runs_ok_project += r.success_project;
+            long ok = 0, n = 0;
             for (std::size_t k = 0; k < r.err.size(); ++k) {
-                a.err_sum += r.err[k];
                 a.us_sum += r.us[k];
+                a.cpu_sum += r.cpu_us[k];
+                a.timed++;
+                if (!r.scored[k])
+                    continue;
+                a.err_sum += r.err[k];
+                a.errs.push_back(r.err[k]);
                 a.ok_frames += r.ok[k];
+                a.ok_project += r.ok_project[k];
                 a.frames++;
+                ok += r.ok[k];
+                ++n;
                 for (int t = 0; t <= 20; ++t)
                     a.iou_ge[t] += r.iou[k] >= t / 20.0;
             }
+            a.run_success.push_back(n ? (double)ok / n : 0.0);
+            if (r.reacquire != -2)
+                a.reacquire.push_back(r.reacquire);
             if ((std::size_t)i < keep_traces)
                 a.traces.push_back(r);
         }
@@ -231,20 +320,37 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
         std::vector<double> curve;
         for (int t = 0; t <= 20; ++t)
             curve.push_back(a.frames ? (double)a.iou_ge[t] / a.frames : 0.0);
-        trk.push_back({{"tracker", a.name},
-                       {"success_rate", a.frames ? (double)a.ok_frames / a.frames : 0.0},
-                       {"mean_center_error", a.frames ? a.err_sum / a.frames : 0.0},
-                       {"us_per_frame", a.frames ? a.us_sum / a.frames : 0.0},
-                       {"runs_succeeded", a.runs_ok},
-                       {"runs", a.runs},
-                       {"frames", a.frames},
-                       {"workspace_bytes", a.memory},
-                       {"success_vs_iou", curve}});
+        std::vector<double> e = a.errs;
+        std::sort(e.begin(), e.end());
+        json t = {{"tracker", a.name},
+                  {"success_rate", a.frames ? (double)a.ok_frames / a.frames : 0.0},
+                  {"success_rate_project", a.frames ? (double)a.ok_project / a.frames : 0.0},
+                  {"mean_center_error", a.frames ? a.err_sum / a.frames : 0.0},
+                  {"median_center_error", e.empty() ? 0.0 : e[e.size() / 2]},
+                  {"us_per_frame", a.timed ? a.us_sum / a.timed : 0.0},
+                  {"cpu_us_per_frame", a.timed ? a.cpu_sum / a.timed : 0.0},
+                  {"runs_succeeded", a.runs_ok},
+                  {"runs_succeeded_project", a.runs_ok_project},
+                  {"runs", a.runs},
+                  {"frames", a.frames},
+                  {"workspace_bytes", a.memory},
+                  {"run_success", a.run_success},
+                  {"success_vs_iou", curve}};
+        if (!a.reacquire.empty()) {
+            int within = 0;
+            for (int q : a.reacquire)
+                within += q >= 0 && q <= 15;
+            t["reacquire_frames"] = a.reacquire;
+            t["reacquired_within_15"] = within;
+        }
+        trk.push_back(t);
     }
     return {{"kind", "tsa"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
             {"numeric", numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
             {"seed_last", seed_base + (uint64_t)runs - 1}, {"frames_per_run", s.scene.frames},
-            {"success", {{"iou", s.iou_thr}, {"center_px", s.center_thr}, {"run_min_fraction", s.run_min_fraction}}},
+            {"success", {{"iou", s.iou_thr}, {"center_px", s.center_thr}, {"run_min_fraction", s.run_min_fraction},
+                         {"project_iou", PROJECT_IOU}, {"project_center_px", PROJECT_CENTER_PX},
+                         {"reacquire_run", REACQ_RUN}}},
             {"tracker_params", pft_params_json(s.tracker)}, {"scene", scene_to_json(s.scene)},
             {"trackers", trk}, {"reference", s.reference}};
 }
@@ -357,18 +463,24 @@ void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
 
 void print_table(const Scenario &s, const json &sum)
 {
-    std::printf("%s (%s build): %d runs x %d frames, seeds %llu..%llu; success = IoU > %.2f and centre error < %.0f px"
-                " on >= %.0f%% of frames\n",
+    std::printf("%s (%s build): %d runs x %d frames, seeds %llu..%llu; frame success = IoU > %.2f and centre error < %.0f px"
+                " (project: IoU > %.1f and < %.0f px); a run succeeds on >= %.0f%% of its frames\n",
                 s.name.c_str(), numeric_name(), sum["runs"].get<int>(), s.scene.frames,
                 (unsigned long long)sum["seed_first"].get<uint64_t>(), (unsigned long long)sum["seed_last"].get<uint64_t>(),
-                s.iou_thr, s.center_thr, 100 * s.run_min_fraction);
-    std::printf("%-8s %10s %14s %12s %10s %12s\n", "tracker", "runs ok", "frame success", "centre err", "us/frame",
-                "workspace");
-    for (const auto &t : sum["trackers"])
-        std::printf("%-8s %6d/%-3d %14.3f %12.2f %10.0f %12zu\n", t["tracker"].get<std::string>().c_str(),
-                    t["runs_succeeded"].get<int>(), t["runs"].get<int>(), t["success_rate"].get<double>(),
-                    t["mean_center_error"].get<double>(), t["us_per_frame"].get<double>(),
-                    t["workspace_bytes"].get<std::size_t>());
+                s.iou_thr, s.center_thr, PROJECT_IOU, PROJECT_CENTER_PX, 100 * s.run_min_fraction);
+    std::printf("%-8s %9s %9s %9s %9s %10s %10s %10s %10s %s\n", "tracker", "runs ok", "(project)", "frames ok",
+                "(project)", "mean err", "median err", "us/frame", "cpu us", "re-acquired <= 15");
+    for (const auto &t : sum["trackers"]) {
+        std::string re = "-";
+        if (t.contains("reacquired_within_15"))
+            re = std::to_string(t["reacquired_within_15"].get<int>()) + "/" + std::to_string(t["runs"].get<int>());
+        std::printf("%-8s %5d/%-3d %5d/%-3d %9.3f %9.3f %10.2f %10.2f %10.0f %10.0f %s\n",
+                    t["tracker"].get<std::string>().c_str(), t["runs_succeeded"].get<int>(), t["runs"].get<int>(),
+                    t["runs_succeeded_project"].get<int>(), t["runs"].get<int>(), t["success_rate"].get<double>(),
+                    t["success_rate_project"].get<double>(), t["mean_center_error"].get<double>(),
+                    t["median_center_error"].get<double>(), t["us_per_frame"].get<double>(),
+                    t["cpu_us_per_frame"].get<double>(), re.c_str());
+    }
 }
 
 // ------------------------------------------------------------------------- colour sequences
@@ -413,6 +525,14 @@ public:
         return cap_.read(bgr) && !bgr.empty();
     }
     double fps() const { return fps_ > 0 ? fps_ : 25.0; }
+    /** Frames in the sequence (a video's own count, which may be approximate), or -1. */
+    long count() const
+    {
+        if (!files_.empty())
+            return (long)files_.size();
+        const double n = cap_.get(cv::CAP_PROP_FRAME_COUNT);
+        return n > 0 ? (long)n : -1;
+    }
 
 private:
     std::vector<std::string> files_;
@@ -451,22 +571,80 @@ struct TrackRun {
     std::vector<cv::Point> init;
     PftParams params;
     std::string label = "tsa";
+    std::vector<std::string> compare;  // more trackers on the same frames (names of make_tracker)
     std::string out;
     int frames = 0;
     bool video = true;
-    int snapshots = 4;
+    int snapshots = 4;             // evenly spaced over the run (needs the frame count)
+    std::vector<int> snapshot_at;  // and these frames (1-based)
+    std::string snapshot_format = "png";
+    double snapshot_scale = 1.0;
     bool quiet = false;
     std::vector<TruthRow> truth;  // optional
 };
 
+/* The frames to write snapshots of: n evenly spaced over 1..total (the last included) and the
+ * listed ones. With an unknown total (a stream) every 100th frame, at most n. */
+std::vector<int> snapshot_frames(const TrackRun &tr, long total)
+{
+    std::vector<int> v = tr.snapshot_at;
+    if (tr.snapshots > 0) {
+        for (int i = 0; i < tr.snapshots; ++i)
+            v.push_back(total > 0 ? (int)std::max<long>(1, total * (i + 1) / tr.snapshots) : 100 * (i + 1));
+    }
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+}
+
+void write_snapshot(const TrackRun &tr, const cv::Mat &ov, int frame)
+{
+    cv::Mat img = ov;
+    if (tr.snapshot_scale != 1.0)
+        cv::resize(ov, img, cv::Size(), tr.snapshot_scale, tr.snapshot_scale, cv::INTER_AREA);
+    char name[64];
+    std::snprintf(name, sizeof name, "snap_%04d.%s", frame, tr.snapshot_format.c_str());
+    AtomicPath p(join_path(tr.out, name));
+    std::vector<int> opt;
+    if (tr.snapshot_format == "jpg")
+        opt = {cv::IMWRITE_JPEG_QUALITY, 85};
+    if (!cv::imwrite(p.tmp(), img, opt))
+        throw InputError(p.final_path() + ": cannot write");
+    p.commit();
+}
+
+double median_of(std::vector<double> v)
+{
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+double mean_of(const std::vector<double> &v)
+{
+    return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / (double)v.size();
+}
+
+/* Tracks the sequence: tracks.csv, tracks.json, and (when asked) overlay.avi and snapshots.
+ * Overlays are drawn only for the video and the snapshot frames, and no frame is kept. */
 int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
 {
     ensure_dir(tr.out);
+    cv::setNumThreads(0);  // OpenCV's trackers on this thread: their thread CPU time is complete
     cv::Mat f0;
     if (!in.next(f0))
         throw InputError(source + ": no frames");
-    auto t = make_tracker(tr.label, tr.params, f0.cols, f0.rows);
-    t->init(f0, tr.init);
+    std::vector<std::string> names = {tr.label};
+    for (const auto &n : tr.compare)
+        if (std::find(names.begin(), names.end(), n) == names.end())
+            names.push_back(n);
+    std::vector<std::unique_ptr<Tracker>> trk;
+    for (const auto &n : names) {
+        trk.push_back(make_tracker(n, tr.params, f0.cols, f0.rows));
+        trk.back()->init(f0, tr.init);
+    }
+    const std::size_t nt = trk.size();
     AtomicPath vid(join_path(tr.out, "overlay.avi"));
     cv::VideoWriter vw;
     if (tr.video) {
@@ -474,83 +652,114 @@ int do_track(ColourInput &in, const TrackRun &tr, const std::string &source)
         if (!vw.isOpened())
             throw InputError(vid.final_path() + ": cannot write video");
     }
-    std::vector<std::string> rows;
-    std::vector<double> us;
-    std::map<int, int> states;
+    const long known = in.count();
+    const long total = tr.frames > 0 ? (known > 0 ? std::min<long>(known, tr.frames) : tr.frames) : known;
+    const std::vector<int> snaps = snapshot_frames(tr, total);
+    std::size_t next_snap = 0;
+    std::vector<std::vector<std::string>> rows(nt);
+    std::vector<std::vector<double>> us(nt), cpu(nt);
+    std::vector<std::map<int, int>> states(nt);
     int k = 0;
     cv::Mat f;
-    std::vector<int> snap_at;
-    const int total = tr.frames > 0 ? tr.frames : -1;
-    {
-        TrackOut o0;
-        o0.center = cv::Point2d(NAN, NAN);
+    if (tr.video || (!snaps.empty() && snaps[0] == 1)) {
         cv::Mat ov = f0.clone();
         cv::polylines(ov, tr.init, true, cv::Scalar(0, 255, 0), 1);
         if (tr.video)
             vw.write(ov);
+        if (!snaps.empty() && snaps[0] == 1) {
+            write_snapshot(tr, ov, 1);
+            ++next_snap;
+        }
     }
-    std::vector<std::pair<int, cv::Mat>> snaps;
-    while ((total < 0 || k + 1 < total) && in.next(f)) {
+    std::vector<TrackOut> outs(nt);
+    while ((tr.frames <= 0 || k + 1 < tr.frames) && in.next(f)) {
         ++k;
-        TrackOut o;
-        auto t0 = std::chrono::steady_clock::now();
-        t->update(f, o);
-        auto t1 = std::chrono::steady_clock::now();
-        us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
-        states[o.state]++;
-        char buf[256];
-        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.1f,%.1f,%.1f,%.1f,%.4f,%.4f,%.4f,%d,%d,%d,%.1f", k + 1, o.center.x,
-                      o.center.y, o.box.x, o.box.y, o.box.width, o.box.height, o.rho, o.rho_pioneer, o.beta, o.state,
-                      o.alive, o.template_updated ? 1 : 0, us.back());
-        rows.push_back(buf);
-        cv::Mat ov = f.clone();
-        const cv::Rect2d *tb = (std::size_t)k < tr.truth.size() ? &tr.truth[k].box : nullptr;
-        draw_overlay(ov, o, tb, k + 1, t->name());
-        if (tr.video)
-            vw.write(ov);
-        snaps.emplace_back(k + 1, ov);
-        if (snaps.size() > 4096)
-            snaps.erase(snaps.begin());  // bounded memory; snapshots come from the last frames kept
+        for (std::size_t i = 0; i < nt; ++i) {
+            TrackOut &o = outs[i];
+            o = TrackOut();
+            const double c0 = thread_cpu_us();
+            auto t0 = std::chrono::steady_clock::now();
+            trk[i]->update(f, o);
+            auto t1 = std::chrono::steady_clock::now();
+            cpu[i].push_back(thread_cpu_us() - c0);
+            us[i].push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+            states[i][o.state]++;
+            char buf[320];
+            std::snprintf(buf, sizeof buf,
+                          "%d,%.3f,%.3f,%.1f,%.1f,%.1f,%.1f,%.4f,%.4f,%.4f,%d,%d,%d,%.1f,%.2f,%.2f,%.1f", k + 1,
+                          o.center.x, o.center.y, o.box.x, o.box.y, o.box.width, o.box.height, o.rho, o.rho_pioneer,
+                          o.beta, o.state, o.alive, o.template_updated ? 1 : 0, us[i].back(), o.pioneer.x,
+                          o.pioneer.y, cpu[i].back());
+            rows[i].push_back(buf);
+        }
+        while (next_snap < snaps.size() && snaps[next_snap] < k + 1)
+            ++next_snap;
+        const bool snap = next_snap < snaps.size() && snaps[next_snap] == k + 1;
+        if (tr.video || snap) {
+            cv::Mat ov = f.clone();
+            if (nt == 1) {
+                const cv::Rect2d *tb = (std::size_t)k < tr.truth.size() ? &tr.truth[k].box : nullptr;
+                draw_overlay(ov, outs[0], tb, k + 1, trk[0]->name());
+            } else {
+                if ((std::size_t)k < tr.truth.size())
+                    cv::rectangle(ov, tr.truth[k].box, cv::Scalar(255, 255, 255), 1);
+                draw_compare(ov, outs, names, k + 1);
+            }
+            if (tr.video)
+                vw.write(ov);
+            if (snap) {
+                write_snapshot(tr, ov, k + 1);
+                ++next_snap;
+            }
+        }
     }
     if (tr.video) {
         vw.release();
         vid.commit();
     }
-    // snapshots: evenly spaced over the frames kept
-    if (tr.snapshots > 0 && !snaps.empty()) {
-        for (int i = 0; i < tr.snapshots; ++i) {
-            std::size_t idx = (snaps.size() - 1) * (std::size_t)(i + 1) / (std::size_t)tr.snapshots;
-            char name[64];
-            std::snprintf(name, sizeof name, "snap_%04d.png", snaps[idx].first);
-            AtomicPath p(join_path(tr.out, name));
-            if (!cv::imwrite(p.tmp(), snaps[idx].second))
-                throw InputError(p.final_path() + ": cannot write");
-            p.commit();
-        }
+    static const char *header = "frame,x,y,box_x,box_y,box_w,box_h,rho,rho_pioneer,beta,state,alive,"
+                                "template_updated,us,pioneer_x,pioneer_y,cpu_us\n";
+    static const char *state_names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view",
+                                        "reacquired"};
+    json per = json::array();
+    for (std::size_t i = 0; i < nt; ++i) {
+        auto write_rows = [&](std::ostream &os) {
+            os << header;
+            for (auto &r : rows[i])
+                os << r << "\n";
+        };
+        if (i == 0)
+            write_text_atomic(join_path(tr.out, "tracks.csv"), write_rows);
+        if (nt > 1)
+            write_text_atomic(join_path(tr.out, "tracks_" + names[i] + ".csv"), write_rows);
+        json st = json::object();
+        for (auto &kv : states[i])
+            st[kv.first >= 0 && kv.first <= 6 ? state_names[kv.first] : "other"] = kv.second;
+        per.push_back({{"tracker", trk[i]->name()}, {"us_per_frame_mean", mean_of(us[i])},
+                       {"us_per_frame_median", median_of(us[i])}, {"cpu_us_per_frame_mean", mean_of(cpu[i])},
+                       {"cpu_us_per_frame_median", median_of(cpu[i])}, {"states", st},
+                       {"workspace_bytes", trk[i]->memory_bytes()}});
     }
-    write_text_atomic(join_path(tr.out, "tracks.csv"), [&](std::ostream &os) {
-        os << "frame,x,y,box_x,box_y,box_w,box_h,rho,rho_pioneer,beta,state,alive,template_updated,us\n";
-        for (auto &r : rows)
-            os << r << "\n";
-    });
-    std::vector<double> sorted = us;
-    std::sort(sorted.begin(), sorted.end());
-    const double mean = us.empty() ? 0 : std::accumulate(us.begin(), us.end(), 0.0) / us.size();
-    const double med = sorted.empty() ? 0 : sorted[sorted.size() / 2];
-    json st = json::object();
-    static const char *names[] = {"idle", "tracking", "pioneer_only", "weak", "lost", "out_of_view"};
-    for (auto &kv : states)
-        st[kv.first >= 0 && kv.first <= 5 ? names[kv.first] : "other"] = kv.second;
-    json j = {{"source", source}, {"tracker", t->name()}, {"numeric", numeric_name()},
+    const json &p0 = per[0];
+    json j = {{"source", source}, {"tracker", trk[0]->name()}, {"numeric", numeric_name()},
               {"frames", k + 1}, {"width", f0.cols}, {"height", f0.rows},
-              {"us_per_frame_mean", mean}, {"us_per_frame_median", med},
-              {"fps_equivalent", mean > 0 ? 1e6 / mean : 0.0}, {"states", st},
-              {"workspace_bytes", t->memory_bytes()}, {"params", pft_params_json(tr.params)}};
+              {"us_per_frame_mean", p0["us_per_frame_mean"]}, {"us_per_frame_median", p0["us_per_frame_median"]},
+              {"cpu_us_per_frame_mean", p0["cpu_us_per_frame_mean"]},
+              {"cpu_us_per_frame_median", p0["cpu_us_per_frame_median"]},
+              {"fps_equivalent", p0["us_per_frame_mean"].get<double>() > 0 ? 1e6 / p0["us_per_frame_mean"].get<double>() : 0.0},
+              {"states", p0["states"]}, {"workspace_bytes", p0["workspace_bytes"]},
+              {"params", pft_params_json(tr.params)}};
+    if (nt > 1)
+        j["trackers"] = per;
     write_json_atomic(join_path(tr.out, "tracks.json"), j);
     if (!tr.quiet)
-        std::printf("pft track: %s, %d frames %dx%d, %s: %.0f us/frame mean (%.0f median), states %s -> %s\n",
-                    source.c_str(), k + 1, f0.cols, f0.rows, t->name().c_str(), mean, med, st.dump().c_str(),
-                    tr.out.c_str());
+        for (const auto &t : per)
+            std::printf("pft track: %s, %d frames %dx%d, %s: %.0f us/frame wall mean (%.0f median), %.0f us CPU mean "
+                        "(%.0f median), states %s -> %s\n",
+                        source.c_str(), k + 1, f0.cols, f0.rows, t["tracker"].get<std::string>().c_str(),
+                        t["us_per_frame_mean"].get<double>(), t["us_per_frame_median"].get<double>(),
+                        t["cpu_us_per_frame_mean"].get<double>(), t["cpu_us_per_frame_median"].get<double>(),
+                        t["states"].dump().c_str(), tr.out.c_str());
     return 0;
 }
 
@@ -695,7 +904,8 @@ private:
         const std::vector<std::string> &names = bench ? s.bench_trackers : s.eval_trackers;
         std::vector<std::string> use;
         for (auto &n : names)
-            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200")
+            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200" ||
+                n == "tsa_paper")
                 use.push_back(n);
             else if (!o.quiet)
                 std::printf("(skipping %s: OpenCV contrib tracking module not built in)\n", n.c_str());
@@ -732,9 +942,9 @@ private:
                         cv::Mat ov = frames[k].clone();
                         draw_overlay(ov, out, &truth[k].box, (int)k + 1, t->name());
                         char name[64];
-                        std::snprintf(name, sizeof name, "overlay_%04zu.png", k + 1);
+                        std::snprintf(name, sizeof name, "overlay_%04zu.jpg", k + 1);
                         AtomicPath pth(join_path(o.out, name));
-                        cv::imwrite(pth.tmp(), ov);
+                        cv::imwrite(pth.tmp(), ov, {cv::IMWRITE_JPEG_QUALITY, 85});
                         pth.commit();
                     }
                 }
@@ -755,17 +965,34 @@ CLI::App *add_track_command(CLI::App &app, TrackCli &t)
     CLI::App *c = app.add_subcommand("track", "pftrack TSA-AK (or ncv/ts) on a video or image folder from a box or polygon");
     c->add_option("--sequence", t.sequence, "video file, image folder, or an opencv-doc name (vtest.avi, Megamind.avi)")
         ->required();
-    c->add_option("--box", t.box, "initial box x,y,w,h (pixels)");
+    c->add_option("--box", t.box, "initial box x,y,w,h (pixels; the box's corners are the polygon, so the target's "
+                                  "pixels are x .. x+w-1, y .. y+h-1)");
     c->add_option("--polygon", t.polygon, "initial polygon x1,y1;x2,y2;...");
     c->add_option("--init", t.init, "file with {\"box\": [x,y,w,h]} or {\"polygon\": [[x,y],...]} (JSON)");
     c->add_option("--out", t.out, "output directory (default pft_track_out)");
-    c->add_option("--motion", t.motion, "tsa (default), ncv or ts")->check(CLI::IsMember({"tsa", "ncv", "ts"}));
-    c->add_option("--particles", t.particles, "normal particles (default 100)")->check(CLI::Range(1, 65535));
+    c->add_option("--scenario", t.scenario, "take the tracker parameters from this tsa scenario's \"tracker\" object");
+    c->add_option("--motion", t.motion, "tsa (default), ncv or ts (overrides the scenario)")
+        ->check(CLI::IsMember({"tsa", "ncv", "ts"}));
+    c->add_option("--particles", t.particles, "normal particles (default 100; overrides the scenario)")
+        ->check(CLI::Range(1, 65535));
+    c->add_option("--compare", t.compare, "more trackers on the same frames, drawn in one overlay (comma "
+                                          "separated: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil); "
+                                          "tracks_<name>.csv each")
+        ->delimiter(',');
+    c->add_option("--set", t.set, "tracker parameter name=value (repeatable; any field of pft_tsa_config_t, e.g. "
+                                  "lik_lambda=0, loss_search=false; see docs/host_tools.md)");
     c->add_option("--frames", t.frames, "stop after this many frames (default: all)")->check(CLI::Range(0, 10000000));
     c->add_option("--max-target", t.max_target, "largest target side in px (default: 2x the initial box, <= 255)")
         ->check(CLI::Range(0, 255));
-    c->add_option("--snapshots", t.snapshots, "overlay PNG snapshots to write (default 4)")->check(CLI::Range(0, 100));
-    c->add_flag("--no-video", t.no_video, "do not write overlay.avi");
+    c->add_flag("--video", t.video, "write overlay.avi (MJPEG)");
+    c->add_flag("--no-video", t.no_video, "no overlay.avi (the default; kept for older command lines)");
+    c->add_option("--snapshots", t.snapshots, "overlay snapshots evenly spaced over the run (default 0)")
+        ->check(CLI::Range(0, 100));
+    c->add_option("--snapshot-at", t.snapshot_at, "overlay snapshots of these frames (1-based, comma separated)")
+        ->delimiter(',');
+    c->add_option("--snapshot-format", t.snapshot_format, "png (default) or jpg (quality 85)")
+        ->check(CLI::IsMember({"png", "jpg"}));
+    c->add_option("--snapshot-scale", t.snapshot_scale, "scale of the snapshots (default 1)")->check(CLI::Range(0.05, 4.0));
     c->add_flag("-q,--quiet", t.quiet, "print less");
     return c;
 }
@@ -803,15 +1030,33 @@ int run_track(const TrackCli &t)
             f.fail("expected \"box\" or \"polygon\"");
         }
     }
-    cv::Rect br = cv::boundingRect(tr.init);
-    tr.params.motion = t.motion;
-    tr.params.particles = t.particles;
-    tr.params.max_target = t.max_target > 0 ? t.max_target : std::min(255, std::max(16, 2 * std::max(br.width, br.height)));
-    tr.label = t.motion;
+    const cv::Rect2d br = polygon_extent(tr.init);
+    // parameters: the scenario's tracker object, then the flags
+    if (!t.scenario.empty()) {
+        const json sc = load_json_file(t.scenario);
+        if (sc.contains("tracker"))
+            tr.params = parse_pft_params(sc.at("tracker"), t.scenario, "tracker");
+    }
+    if (!t.motion.empty())
+        tr.params.motion = t.motion;
+    if (t.particles > 0)
+        tr.params.particles = t.particles;
+    for (const auto &a : t.set)
+        set_pft_param(tr.params, a, "--set");
+    const int side = (int)std::ceil(std::max(br.width, br.height));
+    tr.params.max_target = t.max_target > 0 ? t.max_target
+                                            : (t.scenario.empty() || side + 1 > tr.params.max_target
+                                                   ? std::min(255, std::max(16, 2 * (side + 1)))
+                                                   : tr.params.max_target);
+    tr.label = tr.params.motion;
+    tr.compare = t.compare;
     tr.out = t.out;
     tr.frames = t.frames;
-    tr.video = !t.no_video;
+    tr.video = t.video && !t.no_video;
     tr.snapshots = t.snapshots;
+    tr.snapshot_at = t.snapshot_at;
+    tr.snapshot_format = t.snapshot_format;
+    tr.snapshot_scale = t.snapshot_scale;
     tr.quiet = t.quiet;
     ColourInput in(t.sequence);
     return do_track(in, tr, t.sequence);

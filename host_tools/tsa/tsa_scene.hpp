@@ -24,16 +24,33 @@ struct SceneSpec {
     int accel_frames = 20;          ///< ... and lasts this many frames
     double accel = 0;               ///< px/frame^2 along the heading
     // camera
+    /// "legs": constant-speed legs of equal length, the swing speed flipping sign at each of the
+    /// `reversals` instants (the first scenarios); "sine": a sinusoidal swing of amplitude
+    /// swing_amplitude (speed swing_speed at the centre, gentle turns at the ends) with
+    /// `reversals` sudden reversals mid-swing (the direction flips where the speed is above
+    /// 0.7 swing_speed); in both the speed changes by at most swing_accel per frame
+    std::string profile = "legs";
     double swing_speed = 12;        ///< max swing speed, image px/frame (x)
     int reversals = 9;              ///< direction reversals of the swing over the sequence
     double swing_accel = 2.0;       ///< max swing acceleration, px/frame^2
+    double swing_amplitude = 200;   ///< "sine": half the x excursion of the swing, px
     double swing_y = 0.15;          ///< y swing as a fraction of the x swing
     double jitter = 0.4;            ///< camera vibration, px (sd per frame)
     double zoom = 0.1;              ///< relative zoom amplitude (1 +- zoom over the sequence)
+    double rotation_deg = 0;        ///< camera roll amplitude, degrees (sinusoid, two periods)
     // sensor
     double noise_sigma = 4;         ///< additive Gaussian noise, grey levels
     double blur_sigma = 0.7;        ///< Gaussian blur, px (0: none)
+    /// motion blur along the apparent motion: exposure as a fraction of the frame time (the
+    /// blur length is exposure x the image speed of the ground; 0: none)
+    double motion_blur = 0;
+    double gain_flicker = 0;        ///< per-frame gain 1 + N(0, gain_flicker^2), clamped to [0.5, 1.5]
+    // forced loss: frames [blank_frame, blank_frame + blank_frames) are blank (mid grey and noise)
+    int blank_frame = -1;
+    int blank_frames = 0;
     uint64_t seed_base = 1;
+
+    bool blank(int k) const { return blank_frame >= 0 && k >= blank_frame && k < blank_frame + blank_frames; }
 };
 
 struct TruthRow {

@@ -1,6 +1,8 @@
 #include "tsa_trackers.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <functional>
 
 #include <opencv2/imgproc.hpp>
 #ifdef PFT_HAVE_CV_TRACKING
@@ -20,38 +22,202 @@ extern "C" {
 namespace pft::host::tsa {
 
 
+namespace {
+
+// One field of pft_tsa_config_t the host can set by name.
+struct ParamDef {
+    const char *name;
+    char type;  // 'r' real, 'i' integer, 'b' bool
+    double lo, hi;
+    std::function<void(pft_tsa_config_t &, double)> set;
+    std::function<double(const pft_tsa_config_t &)> get;
+};
+
+#define PFT_REAL_PARAM(f, lo, hi)                                                                  \
+    ParamDef{#f, 'r', lo, hi, [](pft_tsa_config_t &c, double v) { c.f = to_real(v); },             \
+             [](const pft_tsa_config_t &c) { return from_real(c.f); }}
+#define PFT_INT_PARAM(f, T, lo, hi)                                                                \
+    ParamDef{#f, 'i', lo, hi, [](pft_tsa_config_t &c, double v) { c.f = (T)v; },                   \
+             [](const pft_tsa_config_t &c) { return (double)c.f; }}
+#define PFT_BOOL_PARAM(f)                                                                          \
+    ParamDef{#f, 'b', 0, 1, [](pft_tsa_config_t &c, double v) { c.f = v != 0; },                   \
+             [](const pft_tsa_config_t &c) { return c.f ? 1.0 : 0.0; }}
+
+const std::vector<ParamDef> &param_defs()
+{
+    static const std::vector<ParamDef> defs = {
+        PFT_REAL_PARAM(beta0, 0, 64),
+        PFT_REAL_PARAM(beta_max, 0.001, 64),
+        PFT_REAL_PARAM(q, 0, 10000),
+        PFT_REAL_PARAM(pos_sd, 0, 1000),
+        PFT_REAL_PARAM(spread_gain, 0, 100),
+        PFT_REAL_PARAM(spread_max, 0, 1000),
+        PFT_INT_PARAM(fit_k, uint8_t, 1, PFT_TSA_MOTION_MAX_K),
+        PFT_REAL_PARAM(fit_sigma, 0.01, 100),
+        PFT_BOOL_PARAM(fit_rho_weights),
+        PFT_REAL_PARAM(fit_a_max, 0, 1000),
+        PFT_REAL_PARAM(fit_v_max, 0, 1000),
+        PFT_REAL_PARAM(rho_min, 0, 1),
+        PFT_REAL_PARAM(lik_lambda, 0, 1000),
+        PFT_REAL_PARAM(theta_u, 0, 1),
+        PFT_REAL_PARAM(update_rho_min, 0, 1),
+        PFT_REAL_PARAM(anchor_rho_min, 0, 1),
+        PFT_REAL_PARAM(k_s, 0.01, 100),
+        PFT_INT_PARAM(update_max_passes, uint8_t, 0, 255),
+        PFT_INT_PARAM(init_passes, uint8_t, 0, 255),
+        PFT_INT_PARAM(snake_points, uint8_t, PFT_TSA_MIN_POINTS, PFT_TSA_MAX_POINTS),
+        PFT_REAL_PARAM(kernel_c, 0, 1000),
+        PFT_REAL_PARAM(max_area_change, 1, 1000),
+        PFT_INT_PARAM(lost_frames, uint16_t, 0, 65535),
+        PFT_BOOL_PARAM(loss_search),
+        PFT_REAL_PARAM(rho_acquire, 0, 1),
+        PFT_REAL_PARAM(search_growth, 0, 4096),
+        PFT_REAL_PARAM(reacq_radius, 0, 4096),
+        PFT_INT_PARAM(map_margin, uint16_t, 0, 4096),
+    };
+    return defs;
+}
+
+const ParamDef *find_param(const std::string &name)
+{
+    for (const auto &d : param_defs())
+        if (name == d.name)
+            return &d;
+    return nullptr;
+}
+
+std::string known_params()
+{
+    std::string k = "motion, particles, max_target, seed";
+    for (const auto &d : param_defs())
+        k += std::string(", ") + d.name;
+    return k;
+}
+
+}  // namespace
+
+std::vector<std::string> tracker_param_names()
+{
+    std::vector<std::string> v = {"motion", "particles", "max_target", "seed"};
+    for (const auto &d : param_defs())
+        v.push_back(d.name);
+    return v;
+}
+
 PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, const std::string &path)
 {
     PftParams p;
     Field f(j, file, path);
-    f.only({"motion", "particles", "beta0", "q", "pos_sd", "rho_min", "lik_lambda", "theta_u", "update_rho_min", "fit_k",
-            "fit_sigma", "fit_a_max", "fit_v_max", "snake_points", "init_passes", "max_target", "seed"});
+    if (!f.is_object())
+        f.fail("expected an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string &k = it.key();
+        if (k == "motion" || k == "particles" || k == "max_target" || k == "seed")
+            continue;
+        const ParamDef *d = find_param(k);
+        if (!d)
+            f.at(k).fail("unknown tracker parameter (known: " + known_params() + ")");
+        if (d->type == 'b')
+            p.set[k] = f.at(k).as_bool() ? 1.0 : 0.0;
+        else if (d->type == 'i')
+            p.set[k] = (double)f.integer_in(k, 0, (int64_t)d->lo, (int64_t)d->hi);
+        else
+            p.set[k] = f.number_in(k, 0, d->lo, d->hi);
+    }
     p.motion = f.choice_or("motion", p.motion, {"tsa", "ts", "ncv"});
     p.particles = (int)f.integer_in("particles", p.particles, 1, 65535);
-    p.beta0 = f.number_in("beta0", p.beta0, 0, 64);
-    p.q = f.number_in("q", p.q, 0, 10000);
-    p.pos_sd = f.number_in("pos_sd", p.pos_sd, 0, 1000);
-    p.rho_min = f.number_in("rho_min", p.rho_min, 0, 1);
-    p.lik_lambda = f.number_in("lik_lambda", p.lik_lambda, 0, 1000);
-    p.theta_u = f.number_in("theta_u", p.theta_u, 0, 1);
-    p.update_rho_min = f.number_in("update_rho_min", p.update_rho_min, 0, 1);
-    p.fit_k = (int)f.integer_in("fit_k", p.fit_k, 1, PFT_TSA_MOTION_MAX_K);
-    p.fit_sigma = f.number_in("fit_sigma", p.fit_sigma, 0.1, 100);
-    p.fit_a_max = f.number_in("fit_a_max", p.fit_a_max, 0, 1000);
-    p.fit_v_max = f.number_in("fit_v_max", p.fit_v_max, 0, 1000);
-    p.snake_points = (int)f.integer_in("snake_points", p.snake_points, PFT_TSA_MIN_POINTS, PFT_TSA_MAX_POINTS);
-    p.init_passes = (int)f.integer_in("init_passes", p.init_passes, 0, 255);
     p.max_target = (int)f.integer_in("max_target", p.max_target, 8, PFT_TSA_MAX_SIDE);
     p.seed = (uint64_t)f.integer_in("seed", (int64_t)p.seed, 0, INT64_MAX);
     return p;
 }
 
+void set_pft_param(PftParams &p, const std::string &assignment, const std::string &what)
+{
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(what + ": expected name=value, got \"" + assignment + "\"");
+    const std::string k = assignment.substr(0, eq), v = assignment.substr(eq + 1);
+    auto number = [&](double lo, double hi) {
+        char *end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (v.empty() || *end != '\0' || !std::isfinite(x) || x < lo || x > hi)
+            throw InputError(what + ": " + k + " must be a number in [" + std::to_string(lo) + ", " +
+                             std::to_string(hi) + "], got \"" + v + "\"");
+        return x;
+    };
+    if (k == "motion") {
+        if (v != "tsa" && v != "ts" && v != "ncv")
+            throw InputError(what + ": motion must be tsa, ts or ncv, got \"" + v + "\"");
+        p.motion = v;
+    } else if (k == "particles") {
+        p.particles = (int)number(1, 65535);
+    } else if (k == "max_target") {
+        p.max_target = (int)number(8, PFT_TSA_MAX_SIDE);
+    } else if (k == "seed") {
+        p.seed = (uint64_t)number(0, 9.0e15);
+    } else if (const ParamDef *d = find_param(k)) {
+        if (d->type == 'b') {
+            if (v == "true" || v == "1")
+                p.set[k] = 1;
+            else if (v == "false" || v == "0")
+                p.set[k] = 0;
+            else
+                throw InputError(what + ": " + k + " must be true or false, got \"" + v + "\"");
+        } else {
+            const double x = number(d->lo, d->hi);
+            if (d->type == 'i' && x != std::floor(x))
+                throw InputError(what + ": " + k + " must be an integer, got \"" + v + "\"");
+            p.set[k] = x;
+        }
+    } else {
+        throw InputError(what + ": unknown tracker parameter \"" + k + "\" (known: " + known_params() + ")");
+    }
+}
+
+cv::Rect2d polygon_extent(const std::vector<cv::Point> &poly)
+{
+    // cv::boundingRect counts pixels inclusively (x1 - x0 + 1); a polygon through pixel centres
+    // x0 .. x1 covers the extent [x0, x1] and, rasterised half-open, the pixels x0 .. x1 - 1
+    const cv::Rect br = cv::boundingRect(poly);
+    return cv::Rect2d(br.x, br.y, br.width - 1, br.height - 1);
+}
+
+namespace {
+
+pft_tsa_config_t make_config(const PftParams &p, int w, int h)
+{
+    pft_tsa_config_t c;
+    pft_tsa_config_default(&c);
+    c.width = (uint16_t)w;
+    c.height = (uint16_t)h;
+    c.max_target_w = (uint16_t)p.max_target;
+    c.max_target_h = (uint16_t)p.max_target;
+    pft_tsa_snake_params_default(&c.snake, c.max_target_w, c.max_target_h);
+    c.n_particles = (uint32_t)p.particles;
+    c.motion = p.motion == "tsa" ? PFT_TSA_MOTION_TSA : (p.motion == "ts" ? PFT_TSA_MOTION_TS : PFT_TSA_MOTION_NCV);
+    c.seed = p.seed;
+    for (const auto &kv : p.set)
+        find_param(kv.first)->set(c, kv.second);
+    return c;
+}
+
+}  // namespace
+
 nlohmann::json pft_params_json(const PftParams &p)
 {
-    return {{"motion", p.motion}, {"particles", p.particles}, {"beta0", p.beta0}, {"q", p.q}, {"pos_sd", p.pos_sd},
-            {"rho_min", p.rho_min}, {"lik_lambda", p.lik_lambda}, {"theta_u", p.theta_u}, {"update_rho_min", p.update_rho_min},
-            {"fit_k", p.fit_k}, {"fit_sigma", p.fit_sigma}, {"fit_a_max", p.fit_a_max}, {"fit_v_max", p.fit_v_max}, {"snake_points", p.snake_points},
-            {"init_passes", p.init_passes}, {"max_target", p.max_target}, {"seed", p.seed}};
+    const pft_tsa_config_t c = make_config(p, 640, 480);
+    nlohmann::json j = {{"motion", p.motion}, {"particles", p.particles}, {"max_target", p.max_target},
+                        {"seed", p.seed}};
+    for (const auto &d : param_defs()) {
+        const double v = d.get(c);
+        if (d.type == 'b')
+            j[d.name] = v != 0;
+        else if (d.type == 'i')
+            j[d.name] = (int64_t)v;
+        else
+            j[d.name] = std::round(v * 1e6) / 1e6;
+    }
+    return j;
 }
 
 namespace {
@@ -60,28 +226,7 @@ class PftTracker : public Tracker {
 public:
     PftTracker(std::string label, const PftParams &p, int w, int h) : label_(std::move(label)), p_(p)
     {
-        pft_tsa_config_default(&cfg_);
-        cfg_.width = (uint16_t)w;
-        cfg_.height = (uint16_t)h;
-        cfg_.max_target_w = (uint16_t)p.max_target;
-        cfg_.max_target_h = (uint16_t)p.max_target;
-        pft_tsa_snake_params_default(&cfg_.snake, cfg_.max_target_w, cfg_.max_target_h);
-        cfg_.n_particles = (uint32_t)p.particles;
-        cfg_.motion = p.motion == "tsa" ? PFT_TSA_MOTION_TSA : (p.motion == "ts" ? PFT_TSA_MOTION_TS : PFT_TSA_MOTION_NCV);
-        cfg_.beta0 = to_real(p.beta0);
-        cfg_.q = to_real(p.q);
-        cfg_.pos_sd = to_real(p.pos_sd);
-        cfg_.rho_min = to_real(p.rho_min);
-        cfg_.lik_lambda = to_real(p.lik_lambda);
-        cfg_.theta_u = to_real(p.theta_u);
-        cfg_.update_rho_min = to_real(p.update_rho_min);
-        cfg_.fit_k = (uint8_t)p.fit_k;
-        cfg_.fit_sigma = to_real(p.fit_sigma);
-        cfg_.fit_a_max = to_real(p.fit_a_max);
-        cfg_.fit_v_max = to_real(p.fit_v_max);
-        cfg_.snake_points = (uint8_t)p.snake_points;
-        cfg_.init_passes = (uint8_t)p.init_passes;
-        cfg_.seed = p.seed;
+        cfg_ = make_config(p, w, h);
         const char *field = nullptr;
         if (pft_tsa_config_check(&cfg_, &field) != PFT_OK)
             throw InputError("tracker " + label_ + ": invalid pftrack configuration (" +
@@ -108,7 +253,7 @@ public:
     void init(const cv::Mat &bgr, const std::vector<cv::Point> &poly) override
     {
         std::vector<pft_tsa_pt_t> pp;
-        cv::Rect br = cv::boundingRect(poly);
+        const cv::Rect2d br = polygon_extent(poly);
         for (auto &q : poly)
             pp.push_back({(int16_t)q.x, (int16_t)q.y});
         pft_frame_t f = wrap(bgr);
@@ -119,7 +264,7 @@ public:
         pft_tsa_estimate(&t_, &e);
         // the kernel origin is the contour's area centroid: report centres relative to the
         // initial box centre so they compare with box-centre ground truth
-        off_ = cv::Point2d(from_real(e.x) - (br.x + (br.width - 1) / 2.0), from_real(e.y) - (br.y + (br.height - 1) / 2.0));
+        off_ = cv::Point2d(from_real(e.x) - (br.x + br.width / 2.0), from_real(e.y) - (br.y + br.height / 2.0));
     }
 
     void update(const cv::Mat &bgr, TrackOut &out) override
@@ -136,7 +281,8 @@ public:
         pft_tsa_estimate_t e;
         pft_tsa_estimate(&t_, &e);
         out.center = cv::Point2d(from_real(e.x), from_real(e.y)) - off_;
-        out.box = cv::Rect2d(e.box_x0, e.box_y0, e.box_x1 - e.box_x0 + 1, e.box_y1 - e.box_y0 + 1);
+        // the contour's extent (a box given as x, y, w, h comes back as w x h)
+        out.box = cv::Rect2d(e.box_x0, e.box_y0, e.box_x1 - e.box_x0, e.box_y1 - e.box_y0);
         out.ok = e.state == PFT_TSA_TRACKING || e.state == PFT_TSA_PIONEER_ONLY;
         out.beta = from_real(e.beta);
         out.rho = from_real(e.rho);
@@ -173,7 +319,8 @@ public:
     std::string name() const override { return name_; }
     void init(const cv::Mat &bgr, const std::vector<cv::Point> &poly) override
     {
-        cv::Rect r = cv::boundingRect(poly);
+        const cv::Rect2d ext = polygon_extent(poly);
+        const cv::Rect r((int)ext.x, (int)ext.y, (int)ext.width, (int)ext.height);
         if (name_ == "mosse") {
             legacy_ = cv::legacy::TrackerMOSSE::create();
             legacy_->init(bgr, cv::Rect2d(r));
@@ -204,7 +351,7 @@ public:
         }
         out.ok = ok;
         out.box = last_;
-        out.center = cv::Point2d(last_.x + (last_.width - 1) / 2.0, last_.y + (last_.height - 1) / 2.0);
+        out.center = cv::Point2d(last_.x + last_.width / 2.0, last_.y + last_.height / 2.0);
     }
 
 private:
@@ -249,18 +396,29 @@ std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &
         p.motion = "tsa";
     } else if (name == "ts") {
         p.motion = "ts";
-        p.beta0 = 2.0;
+        p.set["beta0"] = 2.0;
     } else if (name == "ncv" || name == "ncv100") {
         p.motion = "ncv";
         p.particles = 100;
     } else if (name == "ncv200") {
         p.motion = "ncv";
         p.particles = 200;
+    } else if (name == "tsa_paper") {
+        p.motion = "tsa";
+        p.set["lik_lambda"] = 0;
+        p.set["fit_a_max"] = 0;
+        p.set["fit_v_max"] = 0;
+        p.set["fit_k"] = 10;
+        p.set["fit_sigma"] = 5;
+        p.set["pos_sd"] = 2;
+        p.set["spread_gain"] = 0;
+        p.set["theta_u"] = 0.9;
+        p.set["loss_search"] = 0;
     } else {
         auto t = make_cv_tracker(name);
         if (!t)
             throw InputError("tracker \"" + name + "\": unknown, or OpenCV's contrib tracking module is not available "
-                             "(known: tsa, ts, ncv, ncv200, kcf, csrt, mosse, mil)");
+                             "(known: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil)");
         return t;
     }
     return make_pft_tracker(name, p, width, height);

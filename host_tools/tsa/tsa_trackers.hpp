@@ -1,6 +1,7 @@
 // Trackers behind one interface for the "tsa" kind: pftrack's TSA-AK and its NCV / TS
 // baselines (lib/include/pft/pft_tsa.h), and OpenCV's KCF, CSRT, MOSSE and MIL.
 #pragma once
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,20 +24,27 @@ struct TrackOut {
     std::vector<cv::Point2f> particles;
 };
 
-/** Parameters of a pftrack tracker (the JSON "tracker" object of a scenario). */
+/** Parameters of a pftrack tracker (the JSON "tracker" object of a scenario, or `pft track`'s
+ *  flags): the dynamics, the particle count, the largest target side, the seed, and any field
+ *  of pft_tsa_config_t by its name (see tracker_param_names()); a field not given keeps the
+ *  library's default (pft_tsa_config_default). */
 struct PftParams {
     std::string motion = "tsa";  ///< tsa | ts | ncv
     int particles = 100;
-    double beta0 = 2.0, q = 4.07, pos_sd = 2.0, rho_min = 0.75, theta_u = 0.9, update_rho_min = 0.85;
-    double lik_lambda = 300.0;  ///< 0: w = rho (paper eq. 22); > 0: w = exp(lik_lambda (rho - rho_best))
-    int fit_k = 10;
-    double fit_sigma = 5.0;
-    double fit_a_max = 0.5, fit_v_max = 12.0;  ///< bounds on the conservative fit (0: off, the paper)
-    int snake_points = 40, init_passes = 50, max_target = 96;
+    int max_target = 96;         ///< max_target_w = max_target_h
     uint64_t seed = 1;
+    std::map<std::string, double> set;  ///< library fields given explicitly (bools as 0/1)
 };
+/** Reads the "tracker" object (every member checked: unknown names and out-of-range values are
+ *  refused with the file and field). */
 PftParams parse_pft_params(const nlohmann::json &j, const std::string &file, const std::string &path);
+/** Sets one field by name from text ("lik_lambda=0", "loss_search=false"); InputError naming
+ *  `what` on an unknown name or a bad value. */
+void set_pft_param(PftParams &p, const std::string &assignment, const std::string &what);
+/** Every parameter with its effective value (the library's default where not given). */
 nlohmann::json pft_params_json(const PftParams &p);
+/** The names set_pft_param accepts. */
+std::vector<std::string> tracker_param_names();
 
 class Tracker {
 public:
@@ -48,12 +56,17 @@ public:
     virtual std::size_t memory_bytes() const { return 0; }
 };
 
-/** "tsa", "ts", "ncv", "ncv200" (NCV with 200 particles), or pftrack params explicitly. */
+/** The extent of a polygon through pixel centres, [x0, x1] x [y0, y1], as x0, y0, x1 - x0,
+ *  y1 - y0: a box x, y, w, h given as its four corners comes back as itself. */
+cv::Rect2d polygon_extent(const std::vector<cv::Point> &poly);
+/** A pftrack tracker with the given parameters (label: its name in tables). */
 std::unique_ptr<Tracker> make_pft_tracker(const std::string &label, const PftParams &p, int width, int height);
 /** "kcf", "csrt", "mosse", "mil"; nullptr when the contrib tracking module was not built in. */
 std::unique_ptr<Tracker> make_cv_tracker(const std::string &name);
 bool have_cv_tracking();
-/** A named tracker of the bench list: tsa, ts, ncv, ncv200, kcf, csrt, mosse, mil. */
+/** A named tracker of the eval / bench lists: tsa, ts, ncv, ncv200 (NCV with 200 particles),
+ *  tsa_paper (the paper's variant: w = rho, unbounded fit over K = 10, position diffusion 2 px,
+ *  template updates, no loss search), kcf, csrt, mosse, mil. */
 std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &base, int width, int height);
 
 }  // namespace pft::host::tsa

@@ -7,10 +7,13 @@
  *   float builds: the integer building blocks (kernel, histogram, resampling, snake, polygon)
  *   are integer arithmetic in both builds and must be identical too, and so is every tracker's
  *   start (frame 0: the snake, kernel and template, integer particle positions). The real
- *   results agree with q16 within its documented accuracy (tolerances below); later tracker
- *   frames follow the q16 trajectory within TRK_TOL_PX (different Gaussian draws: 16 vs 24-bit
- *   uniforms, so the particle clouds differ).
+ *   results agree with q16 within its documented accuracy (tolerances below); on later
+ *   tracker frames (different Gaussian draws: 16 vs 24-bit uniforms, so the particle clouds
+ *   differ) the float estimate is within TRK_TOL_PX of q16's, or both are on the target
+ *   (within TRUTH_TOL_PX of the scene's truth, as they start).
  */
+#include <math.h>
+#include <stdlib.h>
 #include "pft_test_support.h"
 #include "tsa_vectors_spec.h"
 #include "tsa_q16_vectors.h"
@@ -26,21 +29,38 @@ static tsa_gv_results_t got;
 #define EXACT 0
 #endif
 /* float vs q16 in Q16.16 raw units:
- * - Bhattacharyya: q16 rounds the integer quotient, float divides: 1 raw;
+ * - Bhattacharyya: q16 uses table square roots of the normalised bins (within 2^-12 of the
+ *   exact coefficient, tests/unit/test_tsa_fast.c), float the FPU's: 16 raw;
  * - free-model coefficients: the q16 bound of test_tsa_motion.c, 2e-4 times q = 4.07 (53 raw);
  *   one step combines four of them with |v| = 1, |vbar| = 2, |g| <= 1.3: 150 raw;
  * - fit: test_tsa_motion.c's 2e-3 px (131 raw), four times for v_pred and x_pred (v + 2a,
  *   s + v + a; as test_tsa_bounds.c): 524 raw;
  * - beta adaptation: one division scaled by beta_max = 6 and one product, 0.5 LSB each: 4 raw.
- * Measured on host-float: 1, 4, 5, 27 and 3 raw. */
-#define TOL_RHO (EXACT ? 0 : 1)
+ * Measured on host-float: 2, 4, 5, 27 and 3 raw. */
+#define TOL_RHO (EXACT ? 0 : 16)
 #define TOL_COEF (EXACT ? 0 : 54)
 #define TOL_STEP (EXACT ? 0 : 150)
 #define TOL_FIT (EXACT ? 0 : 524)
 #define TOL_ADAPT (EXACT ? 0 : 4)
-/* float trackers after frame 0: within 6 px of the q16 estimate (measured on host-float: at
- * most 2.7 px over the five cases) */
+/* float trackers after frame 0: within 6 px of the q16 estimate, or both within 7 px (half the
+ * target's length) of the truth. Measured on host-float: the paper-like cases 1 and 4 agree to
+ * 0.02 px; cases 0 and 3 (innovation-widened diffusion up to 8 px) differ by up to 6.4 px with
+ * both builds within 5.5 px of the truth. */
 #define TRK_TOL_PX 6
+#define TRUTH_TOL_PX 7.0
+
+/* Distance of record v's estimate from the truth of frame k, with the offset of case c's start
+ * (the kernel origin is the contour's centroid, not the box centre). */
+static double truth_error(uint32_t c, uint32_t k, const int32_t *v)
+{
+    const int32_t *r0 = &tsa_gv_trk[(c * TSA_GV_FRAMES) * TSA_GV_NF];
+    int32_t tx0, ty0, tx, ty;
+    tsa_gv_truth(0u, &tx0, &ty0);
+    tsa_gv_truth(k, &tx, &ty);
+    const double ex = v[2] / 65536.0 - (r0[2] / 65536.0 - tx0) - tx;
+    const double ey = v[3] / 65536.0 - (r0[3] / 65536.0 - ty0) - ty;
+    return sqrt(ex * ex + ey * ey);
+}
 
 /* ref and val agree within tol (Unity names the element for exact arrays). */
 static void check(const char *name, const int32_t *ref, const int32_t *val, size_t n, int32_t tol)
@@ -97,7 +117,12 @@ static void test_trackers(void)
             if (EXACT || k == 0u) {
                 check(k == 0u ? "tracker start" : "tracker frame", ref, val, TSA_GV_NF, 0);
             } else {
-                check("tracker x, y (float)", &ref[2], &val[2], 2u, TRK_TOL_PX * 65536);
+                const bool agree = abs(ref[2] - val[2]) <= TRK_TOL_PX * 65536 &&
+                                   abs(ref[3] - val[3]) <= TRK_TOL_PX * 65536;
+                const bool both_on_target = truth_error(c, k, ref) <= TRUTH_TOL_PX &&
+                                            truth_error(c, k, val) <= TRUTH_TOL_PX;
+                TEST_ASSERT_TRUE_MESSAGE(agree || both_on_target,
+                                         "float tracker away from q16's and from the target");
                 check("tracker frame count (float)", &ref[1], &val[1], 1u, 0);
             }
         }

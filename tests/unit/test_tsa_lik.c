@@ -37,7 +37,7 @@ void tearDown(void) {}
 
 static uint8_t img[H][W][3];
 static uint8_t bg[H][W][3];
-static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
+static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6, 48)];
 static pft_tsa_t trk;
 static pft_tsa_particle_t part[NP + 1];
 

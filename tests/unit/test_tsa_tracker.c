@@ -41,7 +41,7 @@ void tearDown(void) {}
 
 static uint8_t img[H][W][3];
 static uint8_t bg[H][W][3];
-static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6)];
+static uint8_t work[PFT_TSA_WORKSPACE_BYTES(NP, 32, 32, 24, 6, 48)];
 static pft_tsa_t trk;
 
 static pft_tsa_estimate_t estimate(void)
@@ -262,6 +262,14 @@ static void assert_unchanged(const char *what)
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(work_copy, work, sizeof work, what);
 }
 
+/* A refusal: the expected status, and instance and workspace byte-identical (issue #12). */
+#define REFUSED(code, call, what)                                                             \
+    do {                                                                                      \
+        snapshot();                                                                           \
+        TEST_ASSERT_EQUAL_INT_MESSAGE(code, call, what);                                      \
+        assert_unchanged(what);                                                               \
+    } while (0)
+
 static void test_bad_input(void)
 {
     pft_tsa_config_t c;
@@ -271,46 +279,70 @@ static void test_bad_input(void)
     render(60, 24);
     config(&c, PFT_TSA_MOTION_TSA);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_tsa_update(&trk, &f)); /* before start */
+    REFUSED(PFT_ERR_STATE, pft_tsa_update(&trk, &f), "update before start");
     box_at(60, 24, b);
     for (int round = 0; round < 2; ++round) { /* idle, then tracking: refusals change nothing */
         pft_tsa_pt_t o[4];
-        snapshot();
         memcpy(o, b, sizeof o);
         for (int i = 0; i < 4; ++i) { /* target outside the frame */
             o[i].x = (int16_t)(o[i].x + 200);
         }
-        TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, o, 4));
+        REFUSED(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, o, 4), "box outside the frame");
         {   /* degenerate contour: collinear points; too few points */
             const pft_tsa_pt_t line[3] = {{10, 10}, {20, 20}, {30, 30}};
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_DEGENERATE, pft_tsa_start(&trk, &f, line, 3));
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, line, 2));
+            REFUSED(PFT_ERR_DEGENERATE, pft_tsa_start(&trk, &f, line, 3), "collinear polygon");
+            REFUSED(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, line, 2), "two points");
+        }
+        {   /* too small: a 1 x 1 and a 2 x 2 box; a sliver whose resampled contour has no pixel
+             * centre inside (its kernel would be empty): refused before anything is written,
+             * the snake included (issue #12) */
+            const pft_tsa_pt_t one[4] = {{60, 20}, {61, 20}, {61, 21}, {60, 21}};
+            const pft_tsa_pt_t two[4] = {{60, 20}, {62, 20}, {62, 22}, {60, 22}};
+            const pft_tsa_pt_t sliver[3] = {{10, 10}, {19, 16}, {20, 16}};
+            REFUSED(PFT_ERR_DEGENERATE, pft_tsa_start(&trk, &f, one, 4), "1 x 1 box");
+            REFUSED(PFT_ERR_DEGENERATE, pft_tsa_start(&trk, &f, two, 4), "2 x 2 box");
+            REFUSED(PFT_ERR_DEGENERATE, pft_tsa_start(&trk, &f, sliver, 3), "empty sliver");
         }
         {   /* larger than the configured box */
             const pft_tsa_pt_t big[4] = {{10, 2}, {60, 2}, {60, 40}, {10, 40}};
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, big, 4));
+            REFUSED(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, big, 4), "box too large");
         }
         {   /* wrong format and size */
             pft_frame_t g = f;
             g.format = PFT_PIX_U16;
             g.stride_bytes = 2 * W;
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4));
+            REFUSED(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4), "U16 frame");
             g = f;
             g.width = W - 1;
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4));
-            TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_start(&trk, NULL, b, 4));
-            if (round == 1) { /* a bad frame mid-track */
-                g = f;
-                g.format = PFT_PIX_F32;
-                TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_update(&trk, &g));
-                g = f;
-                g.height = H / 2;
-                TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tsa_update(&trk, &g));
-                TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tsa_update(&trk, NULL));
-            }
+            REFUSED(PFT_ERR_FORMAT, pft_tsa_start(&trk, &g, b, 4), "narrow frame");
+            REFUSED(PFT_ERR_INVAL, pft_tsa_start(&trk, NULL, b, 4), "NULL frame");
+            REFUSED(PFT_ERR_INVAL, pft_tsa_start(&trk, &f, NULL, 4), "NULL polygon");
+            g = f;
+            g.format = PFT_PIX_F32;
+            REFUSED(round == 0 ? PFT_ERR_STATE : PFT_ERR_FORMAT, pft_tsa_update(&trk, &g),
+                    "F32 frame");
+            g = f;
+            g.height = H / 2;
+            REFUSED(round == 0 ? PFT_ERR_STATE : PFT_ERR_FORMAT, pft_tsa_update(&trk, &g),
+                    "short frame");
+            REFUSED(round == 0 ? PFT_ERR_STATE : PFT_ERR_INVAL, pft_tsa_update(&trk, NULL),
+                    "NULL frame (update)");
         }
-        assert_unchanged(round == 0 ? "refused input changed the idle tracker"
-                                    : "refused input changed the running tracker");
+        {   /* init refused on a live instance: a bad configuration, a short workspace */
+            pft_tsa_config_t bad = c;
+            bad.n_particles = 0;
+            REFUSED(PFT_ERR_CONFIG, pft_tsa_init(&trk, &bad, work, sizeof work), "bad config");
+            REFUSED(PFT_ERR_NOMEM, pft_tsa_init(&trk, &c, work, sizeof work - 1), "short work");
+            REFUSED(PFT_ERR_INVAL, pft_tsa_init(&trk, &c, NULL, sizeof work), "NULL work");
+        }
+        {   /* results refused: out untouched, instance unchanged */
+            pft_tsa_kernel_t k;
+            memset(&k, 0, sizeof k);
+            REFUSED(PFT_ERR_INVAL, pft_tsa_estimate(&trk, NULL), "estimate to NULL");
+            REFUSED(PFT_ERR_INVAL, pft_tsa_template(&trk, NULL), "template to NULL");
+            k.cap = 1u;
+            REFUSED(PFT_ERR_INVAL, pft_tsa_kernel(&trk, &k), "kernel to NULL pixels");
+        }
         if (round == 0) {
             TEST_ASSERT_EQUAL_INT(PFT_TSA_IDLE, estimate().state); /* still idle */
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));

@@ -20,7 +20,7 @@
 #define TSA_GV_TW 12 /* target box */
 #define TSA_GV_TH 10
 #define TSA_GV_FRAMES 24u
-#define TSA_GV_CASES 5u
+#define TSA_GV_CASES 6u
 #define TSA_GV_NP 32u
 #define TSA_GV_MAXT 24u
 #define TSA_GV_PTS 24u
@@ -78,8 +78,14 @@ static inline void tsa_gv_truth(uint32_t k, int32_t *cx, int32_t *cy)
     *cy = 20 + ys[k % TSA_GV_FRAMES];
 }
 
-/* Frame k: rgb (TSA_GV_H x TSA_GV_W x 3) and its grey version (77 R + 150 G + 29 B) >> 8. */
-static inline void tsa_gv_render(uint32_t k, uint8_t *rgb, uint8_t *grey)
+/* Frames of case 5 with the target hidden (only the background): the loss handling searches
+ * and re-acquires. */
+#define TSA_GV_HIDE0 10u
+#define TSA_GV_HIDE1 14u
+
+/* Frame k: rgb (TSA_GV_H x TSA_GV_W x 3) and its grey version (77 R + 150 G + 29 B) >> 8; with
+ * hide set the target is not drawn. */
+static inline void tsa_gv_render_ex(uint32_t k, uint8_t *rgb, uint8_t *grey, int hide)
 {
     int32_t cx, cy;
     uint32_t s = 12345u;
@@ -89,7 +95,7 @@ static inline void tsa_gv_render(uint32_t k, uint8_t *rgb, uint8_t *grey)
             uint8_t *p = &rgb[3 * (y * TSA_GV_W + x)];
             const int32_t tx = x - (cx - TSA_GV_TW / 2), ty = y - (cy - TSA_GV_TH / 2);
             s = s * 1664525u + 1013904223u;
-            if (tx >= 0 && tx < TSA_GV_TW && ty >= 0 && ty < TSA_GV_TH) {
+            if (!hide && tx >= 0 && tx < TSA_GV_TW && ty >= 0 && ty < TSA_GV_TH) {
                 const int32_t nose = tx >= TSA_GV_TW - 4;
                 p[0] = (uint8_t)(nose ? 235 : 200);
                 p[1] = (uint8_t)(nose ? 205 : 50 + 30 * (ty & 1));
@@ -103,6 +109,11 @@ static inline void tsa_gv_render(uint32_t k, uint8_t *rgb, uint8_t *grey)
             grey[y * TSA_GV_W + x] = (uint8_t)((77u * p[0] + 150u * p[1] + 29u * p[2]) >> 8);
         }
     }
+}
+
+static inline void tsa_gv_render(uint32_t k, uint8_t *rgb, uint8_t *grey)
+{
+    tsa_gv_render_ex(k, rgb, grey, 0);
 }
 
 static inline pft_frame_t tsa_gv_frame(const uint8_t *data, pft_pixfmt_t fmt)
@@ -338,11 +349,13 @@ static inline void tsa_gv_motion(tsa_gv_results_t *r)
 }
 
 /* ------------------------------------------------------------------------------- trackers */
-#define TSA_GV_WORK_BYTES PFT_TSA_WORKSPACE_BYTES(TSA_GV_NP, TSA_GV_MAXT, TSA_GV_MAXT, TSA_GV_PTS, 6)
+#define TSA_GV_WORK_BYTES PFT_TSA_WORKSPACE_BYTES(TSA_GV_NP, TSA_GV_MAXT, TSA_GV_MAXT, TSA_GV_PTS, 6, 48)
 
 /* Case c: 0 TSA with exponential weights (lik_lambda 300), 1 TSA with w = rho, 2 TS, 3 NCV,
- * 4 TSA on the grey frames with rho-weighted reference points and the paper's unbounded fit.
- * theta_u 1 updates the template (snake passes) on most frames. */
+ * 4 TSA on the grey frames with rho-weighted reference points, the paper's unbounded fit and
+ * no loss handling, 5 TSA (defaults, no template update) with the target hidden on frames
+ * TSA_GV_HIDE0 .. TSA_GV_HIDE1 - 1 (search, re-acquisition). Cases 0-4: theta_u 1 updates the
+ * template (snake passes) on most frames. */
 static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
 {
     pft_tsa_config_default(c);
@@ -367,6 +380,11 @@ static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
         c->fit_a_max = 0;
         c->fit_v_max = 0;
         c->lost_frames = 3u;
+        c->loss_search = false;
+    }
+    if (cs == 5u) {
+        c->theta_u = 0;
+        c->lost_frames = 2u;
     }
 }
 
@@ -427,10 +445,15 @@ static inline void tsa_gv_compute(tsa_gv_results_t *r)
 {
     static uint8_t rgb[TSA_GV_FRAMES][TSA_GV_W * TSA_GV_H * 3];
     static uint8_t grey[TSA_GV_FRAMES][TSA_GV_W * TSA_GV_H];
+    static uint8_t hidden[TSA_GV_HIDE1 - TSA_GV_HIDE0][TSA_GV_W * TSA_GV_H * 3];
+    static uint8_t hidden_grey[TSA_GV_W * TSA_GV_H];
     static uint8_t work[TSA_GV_WORK_BYTES];
     static pft_tsa_t trk;
     for (uint32_t k = 0; k < TSA_GV_FRAMES; ++k) {
         tsa_gv_render(k, rgb[k], grey[k]);
+    }
+    for (uint32_t k = TSA_GV_HIDE0; k < TSA_GV_HIDE1; ++k) {
+        tsa_gv_render_ex(k, hidden[k - TSA_GV_HIDE0], hidden_grey, 1);
     }
     tsa_gv_blocks(r, rgb[0], grey[0], rgb[5]);
     tsa_gv_motion(r);
@@ -446,7 +469,9 @@ static inline void tsa_gv_compute(tsa_gv_results_t *r)
             continue;
         }
         for (uint32_t k = 0; k < TSA_GV_FRAMES; ++k) {
-            const pft_frame_t f = tsa_gv_frame(fmt == PFT_PIX_U8 ? grey[k] : rgb[k], fmt);
+            const int hide = cs == 5u && k >= TSA_GV_HIDE0 && k < TSA_GV_HIDE1;
+            const pft_frame_t f = tsa_gv_frame(
+                fmt == PFT_PIX_U8 ? grey[k] : (hide ? hidden[k - TSA_GV_HIDE0] : rgb[k]), fmt);
             r->status[cs][k] = (int32_t)(k == 0u ? pft_tsa_start(&trk, &f, box, 4u) : pft_tsa_update(&trk, &f));
             tsa_gv_record(&trk, r->trk[cs][k]);
         }

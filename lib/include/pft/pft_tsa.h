@@ -36,9 +36,16 @@
  * Integer arithmetic (both builds, so float and q16 agree exactly here): grey conversion
  * (77 R + 150 G + 29 B) >> 8, Sobel magnitude isqrt(gx^2 + gy^2) / 4 clamped to 255, every snake
  * energy (Q16 fractions), the distance transform (exact rational comparison, one square root per
- * pixel), kernel weights (Q4: round(16 (c + d))), histograms (uint32 sums) and the
- * Bhattacharyya coefficient (64-bit integer square roots). Only the dynamics, the estimates
- * and the configuration use pft_real_t.
+ * pixel), kernel weights (Q4: round(16 (c + d))) and histograms (uint32 sums). The
+ * Bhattacharyya coefficient: q16 from table square roots of the bins normalised by the total
+ * (within 2^-12 of the exact value), float with the FPU's square root. Only the dynamics, the
+ * estimates and the configuration use pft_real_t.
+ *
+ * Speed: per frame the tracker codes once the region its particles' kernels cover (a 16-bit
+ * code per pixel: the joint (R, G) bin and the B bin), walks the kernel as row spans adding each
+ * weight to two bins, and evaluates each distinct kernel position once; histograms and
+ * similarities equal those of pft_tsa_hist and pft_tsa_bhattacharyya (tests/unit/
+ * test_tsa_fast.c).
  *
  * Memory: pft_tsa_workspace_size(cfg) / PFT_TSA_WORKSPACE_BYTES(...) bytes of caller
  * workspace, sized by the particle count, the largest target box and the snake's point count
@@ -134,9 +141,16 @@ typedef struct {
     /** OU spectral density (default 4.07: sqrt(Q22) = 1 px/frame at beta 2) [A] */
     pft_real_t q;
     pft_real_t pos_sd;            /**< extra isotropic position diffusion, px (default 2) [A] */
-    /** K reference points, 1..PFT_TSA_MOTION_MAX_K (default 10) [A] */
+    /** the diffusion of an axis widens to spread_gain |innovation| (up to spread_max px) when
+     *  that exceeds pos_sd; the innovation is the last frame's estimate minus the mean of its
+     *  propagated particles [E] (default 1.5; 0: pos_sd always) */
+    pft_real_t spread_gain;
+    pft_real_t spread_max;        /**< px (default 8) [E] */
+    /** K reference points, 1..PFT_TSA_MOTION_MAX_K (default 4 [E]: a fit over 10 points, sigma_G
+     *  5, lagged a sudden reversal by several frames and lost the target at 15 px/frame,
+     *  5 px/frame^2; docs/results/tsa.md) */
     uint8_t fit_k;
-    pft_real_t fit_sigma;         /**< sigma_G (default K/2 = 5) [A] */
+    pft_real_t fit_sigma;         /**< sigma_G (default K/2 = 2) [E] */
     /** pi_i = rho of the reference point (default false: pi_i = 1) [A] */
     bool fit_rho_weights;
     /** TSA/TS: bound on |a| of the conservative fit per axis, px/frame^2 (a as fitted: half the
@@ -154,7 +168,9 @@ typedef struct {
      *  localises and TS/TSA's fit of their own estimates drifts or oscillates; see
      *  docs/results/tsa.md (default 300) [A] */
     pft_real_t lik_lambda;
-    /** template update when rho(estimate) < theta_u (default 0.9) [A] */
+    /** template update when rho(estimate) < theta_u (the paper: 0.9 [A]; default 0 = no update
+     *  [E]: under 5% gain flicker every update learned a flicker-shifted histogram and the
+     *  tracker drifted off, docs/results/tsa.md) */
     pft_real_t theta_u;
     /** ... but only when rho(estimate) >= this: a misaligned estimate would teach the template
      *  the background (default 0.85) [A] */
@@ -175,8 +191,27 @@ typedef struct {
     /** a snake result whose area changes by more than this factor (or its inverse) is rejected
      *  (default 2) [A] */
     pft_real_t max_area_change;
-    /** frames with rho(estimate) < rho_min before LOST (default 10) */
+    /** loss_search: frames of search (no particle kept) reported WEAK before LOST; without
+     *  loss_search: frames with rho(estimate) < rho_min before LOST (default 10) */
     uint16_t lost_frames;
+    /** loss handling [E] (default true; docs/algorithms.md 4.4): when no particle (nor TSA's
+     *  pioneer) reaches rho_min, the estimate stops at the last good position (no
+     *  extrapolation) and the particles search a window around it whose half-size grows by
+     *  search_growth px per frame up to the whole frame; a search particle with rho >=
+     *  rho_acquire is a candidate, confirmed when a particle within reacq_radius px of it
+     *  reaches rho_acquire on the next frame: the target is then re-acquired (state
+     *  PFT_TSA_REACQUIRED) and tracking restarts there. Every particle, and so every estimate,
+     *  stays within the frame enlarged by the target's box on each side. false: the paper's
+     *  behaviour (pioneer-only frames, WEAK fallback weights, extrapolation of the fit) */
+    bool loss_search;
+    pft_real_t rho_acquire;       /**< candidate and confirmation threshold (default 0.9) [A] */
+    pft_real_t search_growth;     /**< px per frame (default 16) [A] */
+    pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
+    /** margin (px) of the per-frame code map around the largest target box: the map holds
+     *  (max_target_w + 2 map_margin)(max_target_h + 2 map_margin) 16-bit codes; placements
+     *  outside the mapped region read the frame (the same result, slower). 0: no map
+     *  (default 48) */
+    uint16_t map_margin;
     uint64_t seed;                /**< RNG seed (default 1) */
 } pft_tsa_config_t;
 
@@ -185,10 +220,13 @@ typedef enum {
     PFT_TSA_IDLE = 0,         /**< initialised, not started */
     PFT_TSA_TRACKING = 1,     /**< some normal particle has rho >= rho_min */
     PFT_TSA_PIONEER_ONLY = 2, /**< every normal particle discarded, the pioneer carried the frame */
-    PFT_TSA_WEAK = 3,         /**< every particle (and the pioneer) below rho_min: weights fall
-                                   back to rho itself */
-    PFT_TSA_LOST = 4,         /**< WEAK for lost_frames consecutive frames (tracking goes on) */
-    PFT_TSA_OUT_OF_VIEW = 5   /**< the estimate left the frame */
+    PFT_TSA_WEAK = 3,         /**< no particle (nor the pioneer) reached rho_min: loss_search
+                                   holds the estimate at the last good position and searches;
+                                   without, weights fall back to rho itself */
+    PFT_TSA_LOST = 4,         /**< loss_search: searching for lost_frames frames or more; without:
+                                   rho(estimate) < rho_min for lost_frames frames */
+    PFT_TSA_OUT_OF_VIEW = 5,  /**< the estimate's pixel is outside the frame */
+    PFT_TSA_REACQUIRED = 6    /**< loss_search: the search found the target again this frame */
 } pft_tsa_state_t;
 
 /** Results of the last frame. */
@@ -252,9 +290,10 @@ typedef struct {
 
 /**
  * Workspace bytes, as a constant expression: N particles, box max_w x max_h, n_pts snake
- * points, snake margin m. Equal to pft_tsa_workspace_size() for the same values.
+ * points, snake margin m, code-map margin map_m (cfg.map_margin). Equal to
+ * pft_tsa_workspace_size() for the same values.
  */
-#define PFT_TSA_WORKSPACE_BYTES(N, max_w, max_h, n_pts, m)                                     \
+#define PFT_TSA_WORKSPACE_BYTES(N, max_w, max_h, n_pts, m, map_m)                              \
     ((size_t)(PFT_WS_ALIGN - 1u) +                                                            \
      4u * PFT_WS_ROUND(((size_t)(N) + 1u) * sizeof(pft_real_t)) +                             \
      4u * PFT_WS_ROUND((size_t)(N) * sizeof(pft_real_t)) +                                    \
@@ -264,7 +303,14 @@ typedef struct {
      2u * PFT_WS_ROUND((size_t)(max_w) * (size_t)(max_h) * sizeof(pft_tsa_kpix_t)) +          \
      PFT_WS_ROUND((size_t)(n_pts) * sizeof(int32_t)) +                                        \
      2u * PFT_WS_ROUND((size_t)(n_pts) * sizeof(pft_tsa_pt_t)) + PFT_WS_ROUND((size_t)(n_pts)) + \
-     PFT_WS_ROUND(PFT_TSA_SNAKE_WORK_BYTES(max_w, max_h, m)))
+     PFT_WS_ROUND(PFT_TSA_SNAKE_WORK_BYTES(max_w, max_h, m)) +                                \
+     2u * PFT_WS_ROUND(PFT_TSA_SPAN_CAP(max_w, max_h, n_pts) * sizeof(pft_tsa_span_t)) +     \
+     2u * PFT_WS_ROUND((size_t)(max_w) * (size_t)(max_h) * sizeof(uint16_t)) +                \
+     ((map_m) > 0u ? PFT_WS_ROUND(((size_t)(max_w) + 2u * (size_t)(map_m)) *                  \
+                                  ((size_t)(max_h) + 2u * (size_t)(map_m)) * sizeof(uint16_t)) \
+                   : (size_t)0) +                                                             \
+     PFT_WS_ROUND((2u * (size_t)(N) + 4u) * sizeof(uint32_t)) +                               \
+     PFT_WS_ROUND((2u * (size_t)(N) + 4u) * sizeof(pft_real_t)))
 
 /** Fills every field of cfg with the default listed in pft_tsa_config_t (width and height 0:
  *  the caller sets them). NULL: no-op. */
@@ -295,12 +341,13 @@ pft_status_t pft_tsa_reset(pft_tsa_t *t);
  * snake passes (a result whose area changed by more than max_area_change, or which outgrew
  * the box limit, is replaced by the resampled polygon), builds the kernel and the template,
  * and places all particles at the kernel origin with zero velocity.
- * Refusals leave the tracker as it was: PFT_ERR_INVAL for NULL, n < 3, a polygon whose
- * bounding box is not inside the frame or is larger than max_target_w x max_target_h;
- * PFT_ERR_FORMAT for a bad frame (size or format); PFT_ERR_DEGENERATE for a zero-area polygon
- * (also after resampling) or a contour with no pixel centre inside. After the snake has run
- * (PFT_ERR_DEGENERATE for an empty kernel) the scratch parts of the workspace are overwritten,
- * the tracker's state is not.
+ * Refusals leave instance and workspace byte-identical: PFT_ERR_INVAL for NULL, n < 3, a
+ * polygon whose bounding box is not inside the frame or is larger than max_target_w x
+ * max_target_h; PFT_ERR_FORMAT for a bad frame (size or format); PFT_ERR_DEGENERATE for a
+ * zero-area polygon, a bounding box spanning fewer than 3 px either way (a 1 x 1 or 2 x 2
+ * box), or a resampled polygon with no pixel centre inside. Every refusal is decided before
+ * the snake runs; a snake result that would give an empty kernel is replaced by the resampled
+ * polygon, so nothing fails after it.
  */
 pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa_pt_t *poly,
                            uint32_t n);
@@ -347,9 +394,11 @@ pft_status_t pft_tsa_hist(const pft_frame_t *frame, const pft_tsa_kernel_t *k, i
 
 /**
  * Bhattacharyya coefficient rho = sum_u sqrt(p_u q_u) of the normalised histograms (eq. 21),
- * in [0, 1]; 0 when either histogram is empty. Computed as
- * sum_u isqrt(256 P_u Q_u) / (3 isqrt(256 P Q)) in 64-bit integers (identical histograms give
- * exactly 1 up to the integer square roots: |rho - 1| <= 2^-12).
+ * in [0, 1]; 0 when either histogram is empty. q16: sum_u s_u(P) s_u(Q) / (3 r(P) r(Q)), where
+ * with the even shift s that puts the total T into [2^30, 2^32), r = sqrt(T 2^s) and
+ * s_u = sqrt(bin_u 2^s) from a 193-entry table (within 2 of the exact root, so within 2^-12 of
+ * the exact coefficient; identical histograms give 1 within 2^-12); float: the same coefficient
+ * with the FPU's square root. Bins above the total are taken as the total.
  */
 pft_real_t pft_tsa_bhattacharyya(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q);
 

@@ -20,14 +20,16 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->beta_max = PFT_C(6.0);
     cfg->q = PFT_C(4.07);
     cfg->pos_sd = PFT_C(2.0);
-    cfg->fit_k = 10u;
-    cfg->fit_sigma = PFT_C(5.0);
+    cfg->spread_gain = PFT_C(1.5);
+    cfg->spread_max = PFT_C(8.0);
+    cfg->fit_k = 4u;
+    cfg->fit_sigma = PFT_C(2.0);
     cfg->fit_rho_weights = false;
     cfg->fit_a_max = PFT_C(0.5);
     cfg->fit_v_max = PFT_C(12.0);
     cfg->rho_min = PFT_C(0.75);
     cfg->lik_lambda = PFT_C(300.0);
-    cfg->theta_u = PFT_C(0.9);
+    cfg->theta_u = PFT_C(0.0);
     cfg->update_rho_min = PFT_C(0.85);
     cfg->anchor_rho_min = PFT_C(0.8);
     cfg->k_s = PFT_C(1.5);
@@ -38,6 +40,11 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->kernel_c = PFT_C(1.0);
     cfg->max_area_change = PFT_C(2.0);
     cfg->lost_frames = 10u;
+    cfg->loss_search = true;
+    cfg->rho_acquire = PFT_C(0.9);
+    cfg->search_growth = PFT_C(16.0);
+    cfg->reacq_radius = PFT_C(24.0);
+    cfg->map_margin = 48u;
     cfg->seed = 1u;
 }
 
@@ -81,6 +88,12 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     if (!in_range_(c->pos_sd, PFT_C(0.0), PFT_C(1000.0))) {
         return "pos_sd";
     }
+    if (!in_range_(c->spread_gain, PFT_C(0.0), PFT_C(100.0))) {
+        return "spread_gain";
+    }
+    if (!in_range_(c->spread_max, PFT_C(0.0), PFT_C(1000.0))) {
+        return "spread_max";
+    }
     if (c->fit_k == 0u || c->fit_k > PFT_TSA_MOTION_MAX_K) {
         return "fit_k";
     }
@@ -123,6 +136,18 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     if (!in_range_(c->max_area_change, PFT_REAL_ONE, PFT_C(1000.0))) {
         return "max_area_change";
     }
+    if (!in_range_(c->rho_acquire, PFT_C(0.0), PFT_REAL_ONE)) {
+        return "rho_acquire";
+    }
+    if (!in_range_(c->search_growth, PFT_C(0.0), PFT_C(4096.0))) {
+        return "search_growth";
+    }
+    if (!in_range_(c->reacq_radius, PFT_C(0.0), PFT_C(4096.0))) {
+        return "reacq_radius";
+    }
+    if (c->map_margin > 4096u) {
+        return "map_margin";
+    }
     return NULL;
 }
 
@@ -151,5 +176,5 @@ size_t pft_tsa_workspace_size(const pft_tsa_config_t *cfg)
     }
     return PFT_TSA_WORKSPACE_BYTES((size_t)cfg->n_particles, (size_t)cfg->max_target_w,
                                    (size_t)cfg->max_target_h, (size_t)cfg->snake_points,
-                                   (size_t)cfg->snake.margin);
+                                   (size_t)cfg->snake.margin, (size_t)cfg->map_margin);
 }

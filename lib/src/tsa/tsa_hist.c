@@ -3,6 +3,9 @@
  * eq. 21), in integer arithmetic in both builds.
  */
 #include <string.h>
+#ifndef PFT_NUMERIC_Q16
+#include <math.h>
+#endif
 
 #include "../core/acc_int.h"
 #include "tsa_int.h"
@@ -59,24 +62,134 @@ pft_status_t pft_tsa_hist(const pft_frame_t *frame, const pft_tsa_kernel_t *k, i
     return PFT_OK;
 }
 
-pft_real_t pft_tsa_bhattacharyya(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q)
+const uint32_t pft_tsa_sqrt_tab_[193] = {
+    32768u, 33023u, 33276u, 33527u, 33776u, 34024u, 34270u, 34514u, 34756u, 34996u, 35235u,
+    35472u, 35708u, 35942u, 36175u, 36406u, 36636u, 36864u, 37091u, 37316u, 37540u, 37763u,
+    37985u, 38205u, 38424u, 38642u, 38858u, 39073u, 39287u, 39500u, 39712u, 39923u, 40132u,
+    40341u, 40548u, 40755u, 40960u, 41164u, 41368u, 41570u, 41771u, 41972u, 42171u, 42369u,
+    42567u, 42763u, 42959u, 43154u, 43348u, 43541u, 43733u, 43925u, 44115u, 44305u, 44494u,
+    44682u, 44869u, 45056u, 45242u, 45427u, 45611u, 45795u, 45977u, 46160u, 46341u, 46522u,
+    46702u, 46881u, 47059u, 47237u, 47415u, 47591u, 47767u, 47942u, 48117u, 48291u, 48465u,
+    48637u, 48809u, 48981u, 49152u, 49322u, 49492u, 49661u, 49830u, 49998u, 50166u, 50332u,
+    50499u, 50665u, 50830u, 50995u, 51159u, 51323u, 51486u, 51649u, 51811u, 51972u, 52134u,
+    52294u, 52454u, 52614u, 52773u, 52932u, 53090u, 53248u, 53405u, 53562u, 53719u, 53874u,
+    54030u, 54185u, 54340u, 54494u, 54647u, 54801u, 54954u, 55106u, 55258u, 55410u, 55561u,
+    55712u, 55862u, 56012u, 56162u, 56311u, 56459u, 56608u, 56756u, 56903u, 57051u, 57198u,
+    57344u, 57490u, 57636u, 57781u, 57926u, 58071u, 58215u, 58359u, 58503u, 58646u, 58789u,
+    58931u, 59073u, 59215u, 59357u, 59498u, 59639u, 59779u, 59919u, 60059u, 60199u, 60338u,
+    60477u, 60615u, 60753u, 60891u, 61029u, 61166u, 61303u, 61440u, 61576u, 61712u, 61848u,
+    61984u, 62119u, 62254u, 62388u, 62523u, 62657u, 62790u, 62924u, 63057u, 63190u, 63323u,
+    63455u, 63587u, 63719u, 63850u, 63982u, 64113u, 64243u, 64374u, 64504u, 64634u, 64763u,
+    64893u, 65022u, 65151u, 65279u, 65408u, 65536u
+};
+
+const uint8_t pft_tsa_norm_tab_[256] = {
+    0u, 6u, 6u, 6u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 4u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u,
+    2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u,
+    0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u
+};
+
+/* The even shift that puts v (> 0) into [2^30, 2^32). */
+static uint32_t norm_shift_(uint32_t v)
 {
-    if (p == NULL || q == NULL || p->total == 0u || q->total == 0u) {
-        return PFT_C(0.0);
+    uint32_t s = 0u;
+    if (v < 0x10000u) {
+        v <<= 16;
+        s = 16u;
     }
-    uint64_t num = 0u;
+    if (v < 0x1000000u) {
+        v <<= 8;
+        s += 8u;
+    }
+    if (v < 0x10000000u) {
+        v <<= 4;
+        s += 4u;
+    }
+    if (v < 0x40000000u) {
+        s += 2u;
+    }
+    return s;
+}
+
+void pft_tsa_hroot_(const pft_tsa_hist_t *h, pft_tsa_hroot_t *r)
+{
+    memset(r, 0, sizeof(*r));
+    if (h->total == 0u) {
+        return;
+    }
+    const uint32_t s = norm_shift_(h->total);
+    r->root = pft_tsa_sqrt_approx_(h->total << s);
     for (uint32_t u = 0; u < PFT_TSA_BINS; ++u) {
-        if (p->bin[u] != 0u && q->bin[u] != 0u) {
-            num += pft_tsa_isqrt64_(((uint64_t)p->bin[u] * q->bin[u]) << 8);
-        }
+        /* a bin above the total (not a histogram of this module) is taken as the total */
+        const uint32_t b = h->bin[u] < h->total ? h->bin[u] : h->total;
+        r->s[u] = pft_tsa_sqrt_approx_(b << s);
     }
-    const uint64_t den = 3u * (uint64_t)pft_tsa_isqrt64_(((uint64_t)p->total * q->total) << 8);
-    if (den == 0u) {
-        return PFT_C(0.0);
-    }
+}
+
+#ifdef PFT_NUMERIC_Q16
+/* num / den for 0 < den: 1 when num >= den, else the quotient (rounded to nearest in q16). */
+static pft_real_t ratio_(uint64_t num, uint64_t den)
+{
     if (num >= den) {
         return PFT_REAL_ONE;
     }
-    /* num < den: the quotient in [0, 1), rounded to nearest in q16 */
     return pft_wratio_((pft_wacc_t)num, (pft_wacc_t)den);
+}
+
+pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
+                             const pft_tsa_hroot_t *qr)
+{
+    (void)q;
+    if (p->total == 0u || qr->root == 0u) {
+        return PFT_C(0.0);
+    }
+    const uint32_t s = norm_shift_(p->total);
+    uint64_t num = 0u;
+    for (uint32_t u = 0; u < PFT_TSA_BINS; ++u) {
+        /* p's bins are at most its total (a histogram of this module; the public
+         * pft_tsa_bhattacharyya clamps its inputs) */
+        if (qr->s[u] != 0u && p->bin[u] != 0u) {
+            num += (uint64_t)pft_tsa_sqrt_approx_(p->bin[u] << s) * qr->s[u];
+        }
+    }
+    return ratio_(num, 3u * (uint64_t)pft_tsa_sqrt_approx_(p->total << s) * qr->root);
+}
+#else
+/* float twin: sum_u sqrt(p_u q_u) / (3 sqrt(P Q)) with the FPU's square root (products of two
+ * uint32 sums are exact to 2^-24 relative in float) */
+pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
+                             const pft_tsa_hroot_t *qr)
+{
+    (void)qr;
+    if (p->total == 0u || q->total == 0u) {
+        return 0.0f;
+    }
+    float num = 0.0f;
+    for (uint32_t u = 0; u < PFT_TSA_BINS; ++u) {
+        if (p->bin[u] != 0u && q->bin[u] != 0u) {
+            num += sqrtf((float)p->bin[u] * (float)q->bin[u]);
+        }
+    }
+    const float r = num / (3.0f * sqrtf((float)p->total * (float)q->total));
+    return r < 1.0f ? r : 1.0f;
+}
+#endif
+
+pft_real_t pft_tsa_bhattacharyya(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q)
+{
+    if (p == NULL || q == NULL) {
+        return PFT_C(0.0);
+    }
+    pft_tsa_hist_t pc = *p;
+    for (uint32_t u = 0; u < PFT_TSA_BINS; ++u) {
+        pc.bin[u] = pc.bin[u] < pc.total ? pc.bin[u] : pc.total;
+    }
+    pft_tsa_hroot_t qr;
+    pft_tsa_hroot_(q, &qr);
+    return pft_tsa_rho_hist_(&pc, q, &qr);
 }

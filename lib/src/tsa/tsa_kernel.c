@@ -196,6 +196,17 @@ static void interior_weights_(pft_tsa_kernel_t *k, const pft_tsa_pt_t *poly, uin
     k->y1 = by1;
 }
 
+uint32_t pft_tsa_poly_count_(const pft_tsa_pt_t *poly, uint32_t n, int32_t *cross)
+{
+    if (pft_tsa_poly_area2(poly, n) == 0) {
+        return 0u;
+    }
+    const pft_tsa_box_t_ bb = pft_tsa_bbox_(poly, n);
+    int64_t sx;
+    int64_t sy;
+    return interior_sums_(poly, n, &bb, cross, &sx, &sy);
+}
+
 pft_status_t pft_tsa_kernel_build(pft_tsa_kernel_t *k, const pft_tsa_pt_t *poly, uint32_t n,
                                   uint16_t c_q4, int32_t *cross, pft_tsa_pt_t *origin)
 {

@@ -2,7 +2,8 @@
  * The TSA-AK particle filter (docs/algorithms.md 4.4) and its NCV / TS baselines: resampling,
  * conservative fit and pioneer, free-model propagation, kernel-histogram weights with the
  * rho_min discard, estimate, beta adaptation and reference-point rule, template update with
- * bounded snake passes.
+ * bounded snake passes; the loss handling (search, confirmation, re-acquisition) and the
+ * per-frame appearance context (code map, similarity cache).
  */
 #include <string.h>
 
@@ -10,11 +11,10 @@
 #include "../core/acc_int.h"
 #include "tsa_int.h"
 
-/* Particles are kept within +-POS_LIMIT_ px: positions and their differences stay far inside
- * the Q16.16 range (32768). */
-#define POS_LIMIT_ PFT_C(16000.0)
 /* The reported contour box is clamped to +-BOX_LIMIT_ px (int16 fields). */
 #define BOX_LIMIT_ 32000
+/* The smallest initial polygon: its bounding box spans at least this many pixels each way. */
+#define MIN_EXTENT_ 3
 /* Floor of rho in N_iter = ceil(k_s / rho) (no division by zero). */
 #define RHO_FLOOR_ PFT_C(0.01)
 
@@ -62,6 +62,20 @@ pft_status_t pft_tsa_init(pft_tsa_t *t, const pft_tsa_config_t *cfg, void *work,
     t->snake_ws_len =
         pft_tsa_snake_work_size(cfg->max_target_w, cfg->max_target_h, cfg->snake.margin);
     t->snake_ws = pft_ws_take(&ws, t->snake_ws_len);
+    const size_t span_cap = PFT_TSA_SPAN_CAP(cfg->max_target_w, cfg->max_target_h, np);
+    t->spans = (pft_tsa_span_t *)pft_ws_take(&ws, span_cap * sizeof(pft_tsa_span_t));
+    t->spans_alt = (pft_tsa_span_t *)pft_ws_take(&ws, span_cap * sizeof(pft_tsa_span_t));
+    t->kw = (uint16_t *)pft_ws_take(&ws, kcap * sizeof(uint16_t));
+    t->kw_alt = (uint16_t *)pft_ws_take(&ws, kcap * sizeof(uint16_t));
+    t->span_cap = (uint32_t)span_cap;
+    if (cfg->map_margin > 0u) {
+        t->map_cap = ((size_t)cfg->max_target_w + 2u * (size_t)cfg->map_margin) *
+                     ((size_t)cfg->max_target_h + 2u * (size_t)cfg->map_margin);
+        t->map = (uint8_t *)pft_ws_take(&ws, 2u * t->map_cap);
+    }
+    t->memo_cap = (uint32_t)(2u * n + 4u);
+    t->memo_key = (uint32_t *)pft_ws_take(&ws, (size_t)t->memo_cap * sizeof(uint32_t));
+    t->memo_rho = (pft_real_t *)pft_ws_take(&ws, (size_t)t->memo_cap * sizeof(pft_real_t));
     st = pft_ws_status(&ws);
     if (st != PFT_OK) {
         memset(t, 0, sizeof(*t));
@@ -69,6 +83,9 @@ pft_status_t pft_tsa_init(pft_tsa_t *t, const pft_tsa_config_t *cfg, void *work,
     }
     t->kern.cap = (uint32_t)kcap;
     t->kern_alt.cap = (uint32_t)kcap;
+    /* scratch that refusable calls use is kept zero between calls (see pft_tsa_start) */
+    memset(t->cwork, 0, np * sizeof(pft_tsa_pt_t));
+    memset(t->cross, 0, np * sizeof(int32_t));
     pft_rng_seed(&t->rng, cfg->seed);
     t->est.state = PFT_TSA_IDLE;
     return PFT_OK;
@@ -87,18 +104,79 @@ pft_status_t pft_tsa_reset(pft_tsa_t *t)
 
 /* ----------------------------------- appearance helpers ----------------------------------- */
 
-/* Similarity of the template to the kernel placed at (x, y), in the scratch histogram. */
-static pft_real_t rho_at_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t x, pft_real_t y)
+/* The frame of this update as the appearance model reads it, and the similarity cache. */
+typedef struct {
+    pft_tsa_view_t_ v;
+    pft_real_t lo_x, hi_x, lo_y, hi_y; /* the box every position is kept in */
+} frame_ctx_t_;
+
+/* Similarity of the template to the kernel placed at pixel (cx, cy), cached per position for
+ * this frame (the particles of a cloud often share pixels). */
+static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int32_t cy)
 {
-    if (pft_tsa_hist(f, &t->kern, pft_round_int(x), pft_round_int(y), &t->h) != PFT_OK) {
-        return PFT_C(0.0);
+    /* positions are kept within the frame enlarged by the kernel (|c| < 2^15 - 1) */
+    const uint32_t key = ((uint32_t)(cx + 32768) << 16) | (uint32_t)(cy + 32768);
+    uint32_t i = (uint32_t)(((uint64_t)(key * 2654435761u) * t->memo_cap) >> 32);
+    for (uint32_t probe = 0; probe < t->memo_cap; ++probe) {
+        if (t->memo_key[i] == key) {
+            return t->memo_rho[i];
+        }
+        if (t->memo_key[i] == 0u) {
+            pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h);
+            const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
+            t->memo_key[i] = key;
+            t->memo_rho[i] = r;
+            return r;
+        }
+        i = i + 1u == t->memo_cap ? 0u : i + 1u;
     }
-    return pft_tsa_bhattacharyya(&t->h, &t->q);
+    /* a full table (more distinct positions than 2 N + 4: not reached) */
+    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h);
+    return pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
+}
+
+static pft_real_t rho_at_(pft_tsa_t *t, const frame_ctx_t_ *fc, pft_real_t x, pft_real_t y)
+{
+    return rho_px_(t, fc, pft_round_int(x), pft_round_int(y));
+}
+
+/* The box positions are kept in: the frame enlarged by the kernel's box on each side, so no
+ * estimate leaves the frame by more than the target's size. */
+static void position_box_(const pft_tsa_t *t, frame_ctx_t_ *fc)
+{
+    const int32_t kw = t->kern.x1 - t->kern.x0 + 1;
+    const int32_t kh = t->kern.y1 - t->kern.y0 + 1;
+    fc->lo_x = pft_from_int(-kw);
+    fc->lo_y = pft_from_int(-kh);
+    fc->hi_x = pft_from_int((int32_t)t->cfg.width - 1 + kw);
+    fc->hi_y = pft_from_int((int32_t)t->cfg.height - 1 + kh);
+}
+
+/* Codes the region that the placements of the first m particles cover, and clears the
+ * similarity cache. */
+static void frame_prepare_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t m)
+{
+    memset(t->memo_key, 0, (size_t)t->memo_cap * sizeof(uint32_t));
+    int32_t x0 = INT32_MAX;
+    int32_t y0 = INT32_MAX;
+    int32_t x1 = INT32_MIN;
+    int32_t y1 = INT32_MIN;
+    for (uint32_t i = 0; i < m; ++i) {
+        const int32_t x = pft_round_int(t->px[i]);
+        const int32_t y = pft_round_int(t->py[i]);
+        x0 = x < x0 ? x : x0;
+        x1 = x > x1 ? x : x1;
+        y0 = y < y0 ? y : y0;
+        y1 = y > y1 ? y : y1;
+    }
+    pft_tsa_view_map_(&fc->v, t->map, t->map_cap, x0 + t->kern.x0, y0 + t->kern.y0,
+                      x1 + t->kern.x1, y1 + t->kern.y1);
 }
 
 /* A real >= 0 stored in a weight with the same bits: q16 keeps the Q16.16 value (a weight
  * 2^-14 of its Q2.30 scale), float the value. Weights are only compared and normalised, and on
- * this scale (at most 2^16 per particle) the 64-bit sums of the weighted mean cannot overflow. */
+ * this scale (at most 2^16 per particle, positions below 2^13 px, at most 65535 particles) the
+ * 64-bit sums of the weighted mean cannot overflow. */
 static pft_weight_t weight_on_rho_scale_(pft_real_t v)
 {
     return (pft_weight_t)v;
@@ -151,22 +229,23 @@ static int64_t abs64_(int64_t a)
     return a < 0 ? -a : a;
 }
 
-/* Area change within [1/r, r] (r = max_area_change, Q4) and a nonzero area. */
-static bool contour_acceptable_(const pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t area2_ref)
+/* Area change within [1/r, r] (r = max_area_change, Q4), a nonzero area and a pixel centre
+ * inside. */
+static bool contour_acceptable_(pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t area2_ref)
 {
     const int32_t r = pft_round_int(pft_mul_i(t->cfg.max_area_change, 16));
     const int64_t a = abs64_(pft_tsa_poly_area2(p, t->cfg.snake_points));
     const int64_t b = abs64_(area2_ref);
-    if (a == 0 || b == 0) {
+    if (a == 0 || b == 0 || !(a * 16 <= b * r && b * 16 <= a * r)) {
         return false;
     }
-    return a * 16 <= b * r && b * 16 <= a * r;
+    return pft_tsa_poly_count_(p, t->cfg.snake_points, t->cross) > 0u;
 }
 
-/* Builds kernel and template from cwork (frame coordinates) into the alternate kernel and
- * commits them (kernel, template, contour, area); returns the new origin. On an error
- * nothing is committed: PFT_ERR_DEGENERATE for an empty kernel or template, PFT_ERR_LOST when
- * anchor is set and the new template drifted away from the first one. */
+/* Builds kernel, spans and template from cwork (frame coordinates) into the alternate kernel
+ * and commits them (kernel, spans, template, contour, area); returns the new origin. On an
+ * error nothing is committed: PFT_ERR_DEGENERATE for an empty kernel or template, PFT_ERR_LOST
+ * when anchor is set and the new template drifted away from the first one. */
 static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *origin, bool anchor)
 {
     const uint16_t cq4 = (uint16_t)pft_round_int(pft_mul_i(t->cfg.kernel_c, 16));
@@ -174,6 +253,10 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
         pft_tsa_kernel_build(&t->kern_alt, t->cwork, t->cfg.snake_points, cq4, t->cross, origin);
     if (st != PFT_OK) {
         return st;
+    }
+    const uint32_t ns = pft_tsa_spans_(&t->kern_alt, t->spans_alt, t->span_cap, t->kw_alt);
+    if (ns > t->span_cap) {
+        return PFT_ERR_NOMEM; /* not reached: the cap bounds every contour of the box */
     }
     pft_tsa_hist_t hq;
     st = pft_tsa_hist(f, &t->kern_alt, origin->x, origin->y, &hq);
@@ -190,7 +273,16 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     const pft_tsa_kernel_t tmp = t->kern;
     t->kern = t->kern_alt;
     t->kern_alt = tmp;
+    pft_tsa_span_t *sp = t->spans;
+    t->spans = t->spans_alt;
+    t->spans_alt = sp;
+    t->n_spans_alt = t->n_spans;
+    t->n_spans = ns;
+    uint16_t *kw = t->kw;
+    t->kw = t->kw_alt;
+    t->kw_alt = kw;
     t->q = hq;
+    pft_tsa_hroot_(&t->q, &t->q_root);
     for (uint32_t i = 0; i < t->cfg.snake_points; ++i) {
         t->contour[i].x = (int16_t)(t->cwork[i].x - origin->x);
         t->contour[i].y = (int16_t)(t->cwork[i].y - origin->y);
@@ -199,21 +291,25 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     return PFT_OK;
 }
 
+/* cwork and cross are scratch that pft_tsa_start uses before it may refuse: they are zero
+ * between calls, so a refused start leaves the workspace as it found it. */
+static void scratch_clear_(pft_tsa_t *t)
+{
+    memset(t->cwork, 0, (size_t)t->cfg.snake_points * sizeof(pft_tsa_pt_t));
+    memset(t->cross, 0, (size_t)t->cfg.snake_points * sizeof(int32_t));
+}
+
 /* ----------------------------------------- start ------------------------------------------ */
 
-/* The initial contour in cwork: poly resampled to snake_points points, refined by init_passes
- * snake passes when the result is acceptable (else the resampled polygon again). Returns the
- * passes run, or -1 for a resampled polygon of zero area. */
-static int32_t initial_contour_(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa_pt_t *poly,
-                                uint32_t n, int64_t area2)
+/* The initial contour in cwork: the resampled polygon (checked by the caller: nonzero area, a
+ * pixel centre inside), refined by init_passes snake passes when the result is acceptable
+ * (else the resampled polygon again). Returns the passes run. */
+static uint32_t initial_contour_(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa_pt_t *poly,
+                                 uint32_t n, int64_t area2)
 {
     const uint32_t np = t->cfg.snake_points;
-    (void)pft_tsa_poly_resample(poly, n, t->cwork, np); /* poly checked: n >= 3, nonzero area */
-    if (pft_tsa_poly_area2(t->cwork, np) == 0) {
-        return -1;
-    }
     if (t->cfg.init_passes == 0u) {
-        return 0;
+        return 0u;
     }
     uint32_t done = 0u;
     const pft_status_t st = pft_tsa_snake(frame, t->cwork, np, &t->cfg.snake, t->cfg.init_passes,
@@ -221,7 +317,16 @@ static int32_t initial_contour_(pft_tsa_t *t, const pft_frame_t *frame, const pf
     if (st != PFT_OK || !contour_acceptable_(t, t->cwork, area2)) {
         (void)pft_tsa_poly_resample(poly, n, t->cwork, np);
     }
-    return (int32_t)(done > 255u ? 255u : done);
+    return done > 255u ? 255u : done;
+}
+
+/* The reference ring restarted at (x, y). */
+static void ref_restart_(pft_tsa_t *t, pft_real_t x, pft_real_t y)
+{
+    t->ref_n = 1u;
+    t->ref_x[0] = x;
+    t->ref_y[0] = y;
+    t->ref_w[0] = PFT_REAL_ONE;
 }
 
 /* All particles at (x, y) at rest, the reference points and beta restarted. */
@@ -236,12 +341,16 @@ static void place_particles_(pft_tsa_t *t, pft_real_t x, pft_real_t y)
         t->rho[i] = PFT_REAL_ONE;
         t->w[i] = PFT_W_ONE;
     }
-    t->ref_n = 1u;
-    t->ref_x[0] = x;
-    t->ref_y[0] = y;
-    t->ref_w[0] = PFT_REAL_ONE;
+    ref_restart_(t, x, y);
     t->beta = t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : t->cfg.beta0;
     t->weak_run = 0u;
+    t->mode = PFT_TSA_MODE_TRACK;
+    t->good_x = x;
+    t->good_y = y;
+    t->cand_x = x;
+    t->cand_y = y;
+    t->res_x = PFT_C(0.0);
+    t->res_y = PFT_C(0.0);
 }
 
 pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa_pt_t *poly,
@@ -266,14 +375,23 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
     if (!in_frame || !fits) {
         return PFT_ERR_INVAL;
     }
-    const int32_t passes = initial_contour_(t, frame, poly, n, a0);
-    if (passes < 0) {
+    if (bb.x1 - bb.x0 < MIN_EXTENT_ || bb.y1 - bb.y0 < MIN_EXTENT_) {
         return PFT_ERR_DEGENERATE;
     }
+    /* Every remaining refusal is decided on the resampled polygon, in the zeroed scratch
+     * (cwork, cross), before anything else is written: from here on nothing fails. */
+    const uint32_t np = t->cfg.snake_points;
+    (void)pft_tsa_poly_resample(poly, n, t->cwork, np); /* poly checked: n >= 3, nonzero area */
+    if (pft_tsa_poly_count_(t->cwork, np, t->cross) == 0u) {
+        scratch_clear_(t);
+        return PFT_ERR_DEGENERATE;
+    }
+    const uint32_t passes = initial_contour_(t, frame, poly, n, a0);
     pft_tsa_pt_t origin;
     st = rebuild_(t, frame, &origin, false);
+    scratch_clear_(t);
     if (st != PFT_OK) {
-        return st;
+        return st; /* not reached: the contour was checked above */
     }
     t->q0 = t->q;
     const pft_real_t ox = pft_from_int(origin.x);
@@ -345,32 +463,70 @@ static void conservative_fit_(const pft_tsa_t *t, pft_tsa_motion_fit_t *fx,
     pft_tsa_motion_fit_bound(fy, t->cfg.fit_a_max, t->cfg.fit_v_max);
 }
 
+/* The position diffusion of an axis whose last innovation was res: pos_sd, or spread_gain |res|
+ * up to spread_max when that is larger [E]. */
+static pft_real_t spread_(const pft_tsa_t *t, pft_real_t res)
+{
+    const pft_real_t w = pft_min(pft_mul(t->cfg.spread_gain, pft_abs(res)), t->cfg.spread_max);
+    return pft_max(t->cfg.pos_sd, w);
+}
+
+/* Adds an independent position diffusion of sd px to the free model's noise: the Cholesky
+ * factor of [[Q11 + sd^2, Q12], [Q12, Q22]]. */
+static void diffusion_(pft_tsa_motion_free_t *c, pft_real_t sd)
+{
+    const pft_real_t q11 = pft_add(c->q11, pft_sq(sd));
+    c->l11 = pft_sqrt(q11);
+    c->l21 = c->l11 > PFT_C(0.0) ? pft_div(c->q12, c->l11) : PFT_C(0.0);
+    c->l22 = pft_sqrt(pft_max(pft_sub(c->q22, pft_sq(c->l21)), PFT_C(0.0)));
+}
+
 /* Step 3: the N normal particles through the free model at beta with the input (vbx, vby) and
- * the extra position diffusion; TSA's pioneer at the fit's prediction. */
-static void propagate_(pft_tsa_t *t, uint32_t N, pft_real_t beta, const pft_tsa_motion_fit_t *fx,
-                       const pft_tsa_motion_fit_t *fy)
+ * the extra position diffusion; TSA's pioneer at the fit's prediction. Positions stay in the
+ * frame's enlarged box. */
+static void propagate_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t N, pft_real_t beta,
+                       const pft_tsa_motion_fit_t *fx, const pft_tsa_motion_fit_t *fy)
 {
     pft_tsa_motion_free_t coef;
     (void)pft_tsa_motion_free_coef(&coef, beta, t->cfg.q); /* beta and q checked by the config */
     const pft_real_t vbx = fx->v_pred;
     const pft_real_t vby = fy->v_pred;
+    /* position diffusion: pos_sd, widened per axis by the last innovation (spread_gain); folded
+     * into the free model's noise (x: Q11 + sd^2), so two normal draws per axis */
+    pft_tsa_motion_free_t cx = coef;
+    pft_tsa_motion_free_t cy = coef;
+    diffusion_(&cx, spread_(t, t->res_x));
+    diffusion_(&cy, spread_(t, t->res_y));
+    /* the prior mean (without the noise, whose mean is 0) is the innovation's reference:
+     * mean x + phi12 mean v + gamma1 vbar per axis */
+    const pft_weight_t w1 = weight_on_rho_scale_(PFT_REAL_ONE);
+    pft_acc_t_ sx = PFT_ACC_ZERO_;
+    pft_acc_t_ sy = PFT_ACC_ZERO_;
+    pft_acc_t_ svx = PFT_ACC_ZERO_;
+    pft_acc_t_ svy = PFT_ACC_ZERO_;
+    pft_wacc_t den = 0;
     for (uint32_t i = 0; i < N; ++i) {
         const pft_real_t g1 = pft_rng_gauss(&t->rng);
         const pft_real_t g2 = pft_rng_gauss(&t->rng);
         const pft_real_t g3 = pft_rng_gauss(&t->rng);
         const pft_real_t g4 = pft_rng_gauss(&t->rng);
-        const pft_real_t g5 = pft_rng_gauss(&t->rng);
-        const pft_real_t g6 = pft_rng_gauss(&t->rng);
-        pft_tsa_motion_free_step(&coef, &t->px[i], &t->pvx[i], vbx, g1, g2);
-        pft_tsa_motion_free_step(&coef, &t->py[i], &t->pvy[i], vby, g3, g4);
-        t->px[i] = pft_clamp(pft_add(t->px[i], pft_mul(t->cfg.pos_sd, g5)), pft_neg(POS_LIMIT_),
-                             POS_LIMIT_);
-        t->py[i] = pft_clamp(pft_add(t->py[i], pft_mul(t->cfg.pos_sd, g6)), pft_neg(POS_LIMIT_),
-                             POS_LIMIT_);
+        sx += pft_acc_wx_(w1, t->px[i]);
+        sy += pft_acc_wx_(w1, t->py[i]);
+        svx += pft_acc_wx_(w1, t->pvx[i]);
+        svy += pft_acc_wx_(w1, t->pvy[i]);
+        den += w1;
+        pft_tsa_motion_free_step(&cx, &t->px[i], &t->pvx[i], vbx, g1, g2);
+        pft_tsa_motion_free_step(&cy, &t->py[i], &t->pvy[i], vby, g3, g4);
+        t->px[i] = pft_clamp(t->px[i], fc->lo_x, fc->hi_x);
+        t->py[i] = pft_clamp(t->py[i], fc->lo_y, fc->hi_y);
     }
+    t->prior_x = pft_add(pft_acc_div_(sx, den), pft_add(pft_mul(coef.phi12, pft_acc_div_(svx, den)),
+                                                        pft_mul(coef.gamma1, vbx)));
+    t->prior_y = pft_add(pft_acc_div_(sy, den), pft_add(pft_mul(coef.phi12, pft_acc_div_(svy, den)),
+                                                        pft_mul(coef.gamma1, vby)));
     if (t->cfg.motion == PFT_TSA_MOTION_TSA) {
-        t->px[N] = pft_clamp(fx->x_pred, pft_neg(POS_LIMIT_), POS_LIMIT_);
-        t->py[N] = pft_clamp(fy->x_pred, pft_neg(POS_LIMIT_), POS_LIMIT_);
+        t->px[N] = pft_clamp(fx->x_pred, fc->lo_x, fc->hi_x);
+        t->py[N] = pft_clamp(fy->x_pred, fc->lo_y, fc->hi_y);
         t->pvx[N] = vbx;
         t->pvy[N] = vby;
     }
@@ -380,12 +536,16 @@ static void propagate_(pft_tsa_t *t, uint32_t N, pft_real_t beta, const pft_tsa_
 typedef struct {
     pft_tsa_state_t state;
     uint32_t alive;   /* normal particles with rho >= rho_min */
+    bool any_alive;   /* some particle (the pioneer included) with rho >= rho_min */
     pft_real_t rho_p; /* the pioneer's rho (TSA; else 0) */
+    pft_real_t best;  /* the largest rho */
+    uint32_t i_best;  /* its particle */
 } weigh_out_t_;
 
-/* Step 4 when no normal particle is alive: TSA lets the pioneer carry the frame (X_hat =
- * X_tilde; the normal particles recover at the resampling); NCV / TS weigh every particle
- * relative to the best (uniformly when all are zero). */
+/* Step 4 when no normal particle is alive and loss_search is off (the paper's behaviour): TSA
+ * lets the pioneer carry the frame (X_hat = X_tilde; the normal particles recover at the
+ * resampling); NCV / TS weigh every particle relative to the best (uniformly when all are zero,
+ * on the scale of rho, so the weighted sums stay in range). */
 static pft_tsa_state_t weigh_fallback_(pft_tsa_t *t, uint32_t N, uint32_t M, pft_real_t best_any,
                                        pft_real_t rho_p)
 {
@@ -403,35 +563,48 @@ static pft_tsa_state_t weigh_fallback_(pft_tsa_t *t, uint32_t N, uint32_t M, pft
     }
     if (!any) {
         for (uint32_t i = 0; i < M; ++i) {
-            t->w[i] = PFT_W_ONE;
+            t->w[i] = weight_on_rho_scale_(PFT_REAL_ONE);
         }
     }
     return PFT_TSA_WEAK;
 }
 
 /* Step 4: similarities, particles below rho_min discarded, weights from rho (eq. 22 or the
- * exponential weighting). */
-static weigh_out_t_ weigh_(pft_tsa_t *t, const pft_frame_t *frame, uint32_t N, uint32_t M)
+ * exponential weighting). With loss_search and nothing kept the weights are left to the
+ * caller. */
+static weigh_out_t_ weigh_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t N, uint32_t M)
 {
     pft_real_t best_alive = PFT_C(0.0);
-    pft_real_t best_any = PFT_C(0.0);
+    weigh_out_t_ r;
+    r.best = PFT_C(-1.0);
+    r.i_best = 0u;
     for (uint32_t i = 0; i < M; ++i) {
-        t->rho[i] = rho_at_(t, frame, t->px[i], t->py[i]);
-        best_any = pft_max(best_any, t->rho[i]);
+        t->rho[i] = rho_at_(t, fc, t->px[i], t->py[i]);
+        if (t->rho[i] > r.best) {
+            r.best = t->rho[i];
+            r.i_best = i;
+        }
         if (t->rho[i] >= t->cfg.rho_min) {
             best_alive = pft_max(best_alive, t->rho[i]);
         }
     }
-    weigh_out_t_ r;
     r.alive = 0u;
+    r.any_alive = false;
     for (uint32_t i = 0; i < M; ++i) {
         t->w[i] = t->rho[i] >= t->cfg.rho_min ? weight_of_(t, t->rho[i], best_alive) : 0;
-        if (i < N && t->w[i] > 0) {
-            ++r.alive;
+        if (t->w[i] > 0) {
+            r.any_alive = true;
+            r.alive += i < N ? 1u : 0u;
         }
     }
     r.rho_p = t->cfg.motion == PFT_TSA_MOTION_TSA ? t->rho[N] : PFT_C(0.0);
-    r.state = r.alive == 0u ? weigh_fallback_(t, N, M, best_any, r.rho_p) : PFT_TSA_TRACKING;
+    if (r.alive > 0u) {
+        r.state = PFT_TSA_TRACKING;
+    } else if (t->cfg.loss_search) {
+        r.state = r.any_alive ? PFT_TSA_PIONEER_ONLY : PFT_TSA_WEAK;
+    } else {
+        r.state = weigh_fallback_(t, N, M, pft_max(r.best, PFT_C(0.0)), r.rho_p);
+    }
     return r;
 }
 
@@ -454,6 +627,21 @@ static void estimate_(pft_tsa_t *t, uint32_t M, const pft_tsa_motion_fit_t *fx,
     }
 }
 
+/* Appends (x, y) with weight w to the last fit_k reference points. */
+static void ref_push_(pft_tsa_t *t, pft_real_t x, pft_real_t y, pft_real_t w)
+{
+    if (t->ref_n == t->cfg.fit_k) {
+        memmove(&t->ref_x[0], &t->ref_x[1], (t->ref_n - 1u) * sizeof(pft_real_t));
+        memmove(&t->ref_y[0], &t->ref_y[1], (t->ref_n - 1u) * sizeof(pft_real_t));
+        memmove(&t->ref_w[0], &t->ref_w[1], (t->ref_n - 1u) * sizeof(pft_real_t));
+        --t->ref_n;
+    }
+    t->ref_x[t->ref_n] = x;
+    t->ref_y[t->ref_n] = y;
+    t->ref_w[t->ref_n] = w;
+    ++t->ref_n;
+}
+
 /* Step 6: TSA's beta for the next frame (eq. 24) and the next reference point (eq. 25: the
  * estimate, or TSA's pioneer), appended to the last fit_k. */
 static void next_reference_(pft_tsa_t *t, uint32_t N, pft_real_t rho_e, pft_real_t rho_p)
@@ -471,29 +659,22 @@ static void next_reference_(pft_tsa_t *t, uint32_t N, pft_real_t rho_e, pft_real
             t->est.ref_is_estimate = false;
         }
     }
-    if (t->ref_n == t->cfg.fit_k) {
-        memmove(&t->ref_x[0], &t->ref_x[1], (t->ref_n - 1u) * sizeof(pft_real_t));
-        memmove(&t->ref_y[0], &t->ref_y[1], (t->ref_n - 1u) * sizeof(pft_real_t));
-        memmove(&t->ref_w[0], &t->ref_w[1], (t->ref_n - 1u) * sizeof(pft_real_t));
-        --t->ref_n;
-    }
-    t->ref_x[t->ref_n] = ox;
-    t->ref_y[t->ref_n] = oy;
-    t->ref_w[t->ref_n] = ow;
-    ++t->ref_n;
+    ref_push_(t, ox, oy, ow);
 }
 
-/* Lost and out-of-view bookkeeping on top of the weighing's state. */
+/* Lost (without loss_search) and out-of-view bookkeeping on top of the frame's state. */
 static pft_tsa_state_t track_state_(pft_tsa_t *t, const pft_frame_t *frame, pft_tsa_state_t state,
                                     pft_real_t rho_e)
 {
-    if (rho_e < t->cfg.rho_min) {
-        ++t->weak_run;
-    } else {
-        t->weak_run = 0u;
-    }
-    if (t->weak_run >= t->cfg.lost_frames && t->cfg.lost_frames > 0u) {
-        state = PFT_TSA_LOST;
+    if (!t->cfg.loss_search) {
+        if (rho_e < t->cfg.rho_min) {
+            ++t->weak_run;
+        } else {
+            t->weak_run = 0u;
+        }
+        if (t->weak_run >= t->cfg.lost_frames && t->cfg.lost_frames > 0u) {
+            state = PFT_TSA_LOST;
+        }
     }
     const int32_t cx = pft_round_int(t->est.x);
     const int32_t cy = pft_round_int(t->est.y);
@@ -518,6 +699,8 @@ static void shift_state_(pft_tsa_t *t, pft_real_t dx, pft_real_t dy)
     t->est.y = pft_add(t->est.y, dy);
     t->est.pioneer_x = pft_add(t->est.pioneer_x, dx);
     t->est.pioneer_y = pft_add(t->est.pioneer_y, dy);
+    t->good_x = pft_add(t->good_x, dx);
+    t->good_y = pft_add(t->good_y, dy);
 }
 
 /* N_iter = min(ceil(k_s / rho), update_max_passes). */
@@ -547,6 +730,7 @@ static void template_update_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t rho_
         const int32_t x = t->contour[i].x + cx;
         const int32_t y = t->contour[i].y + cy;
         if (x < 1 || y < 1 || x > (int32_t)f->width - 2 || y > (int32_t)f->height - 2) {
+            scratch_clear_(t);
             return;
         }
         t->cwork[i].x = (int16_t)x;
@@ -558,12 +742,15 @@ static void template_update_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t rho_
                                               t->bflags, t->snake_ws, t->snake_ws_len, &done);
         if (st != PFT_OK || !contour_acceptable_(t, t->cwork, t->area2)) {
             t->est.snake_passes = (uint8_t)done;
+            scratch_clear_(t);
             return;
         }
     }
     t->est.snake_passes = (uint8_t)done;
     pft_tsa_pt_t origin;
-    if (rebuild_(t, f, &origin, true) != PFT_OK) {
+    const pft_status_t st = rebuild_(t, f, &origin, true);
+    scratch_clear_(t);
+    if (st != PFT_OK) {
         return;
     }
     t->est.template_updated = true;
@@ -574,7 +761,113 @@ static void template_update_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t rho_
     }
 }
 
+/* ----------------------------------------- loss handling --------------------------------- */
+
+/* Integer position uniform in [c - r, c + r] intersected with [0, size - 1] (per axis). */
+static pft_real_t draw_in_(pft_tsa_t *t, pft_real_t c, pft_real_t r, uint16_t size)
+{
+    int32_t lo = pft_floor_int(pft_sub(c, r));
+    int32_t hi = pft_floor_int(pft_add(c, r));
+    lo = lo < 0 ? 0 : (lo > (int32_t)size - 1 ? (int32_t)size - 1 : lo);
+    hi = hi < lo ? lo : (hi > (int32_t)size - 1 ? (int32_t)size - 1 : hi);
+    return pft_from_int(lo + (int32_t)pft_rng_below(&t->rng, (uint32_t)(hi - lo + 1)));
+}
+
+/* The search's particles: SEARCH spreads them over the window of half-size r around the last
+ * good position, CONFIRM over the disc... the box of half-size reacq_radius around the
+ * candidate; all at rest. The pioneer (TSA) is placed like a normal particle. */
+static void search_place_(pft_tsa_t *t, uint32_t M)
+{
+    pft_real_t cx = t->good_x;
+    pft_real_t cy = t->good_y;
+    pft_real_t r;
+    if (t->mode == PFT_TSA_MODE_CONFIRM) {
+        cx = t->cand_x;
+        cy = t->cand_y;
+        r = t->cfg.reacq_radius;
+    } else {
+        const pft_real_t span = pft_from_int((int32_t)(t->cfg.width > t->cfg.height ? t->cfg.width
+                                                                                  : t->cfg.height));
+        const pft_real_t half = pft_from_int((t->kern.x1 - t->kern.x0 + 1) / 2);
+        /* weak_run <= UINT32_MAX: saturated by the clamp to the frame's span */
+        const int32_t k = t->weak_run > 4096u ? 4096 : (int32_t)t->weak_run;
+        r = pft_min(pft_add(half, pft_mul_i(t->cfg.search_growth, k)), span);
+    }
+    for (uint32_t i = 0; i < M; ++i) {
+        t->px[i] = draw_in_(t, cx, r, t->cfg.width);
+        t->py[i] = draw_in_(t, cy, r, t->cfg.height);
+        t->pvx[i] = PFT_C(0.0);
+        t->pvy[i] = PFT_C(0.0);
+    }
+}
+
+/* A frame of the search (SEARCH or CONFIRM): the estimate stays at the last good position; a
+ * candidate with rho >= rho_acquire moves SEARCH to CONFIRM, and a confirmation re-acquires
+ * (returns true: the caller weighs the particles as a tracking frame). */
+static bool search_frame_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t M)
+{
+    pft_real_t best = PFT_C(-1.0);
+    uint32_t ib = 0u;
+    for (uint32_t i = 0; i < M; ++i) {
+        t->rho[i] = rho_at_(t, fc, t->px[i], t->py[i]);
+        if (t->rho[i] > best) {
+            best = t->rho[i];
+            ib = i;
+        }
+    }
+    const bool found = best >= t->cfg.rho_acquire && best >= t->cfg.rho_min;
+    if (found && t->mode == PFT_TSA_MODE_CONFIRM) {
+        return true;
+    }
+    t->mode = found ? PFT_TSA_MODE_CONFIRM : PFT_TSA_MODE_SEARCH;
+    if (found) {
+        t->cand_x = t->px[ib];
+        t->cand_y = t->py[ib];
+    }
+    for (uint32_t i = 0; i < M; ++i) {
+        t->w[i] = weight_on_rho_scale_(PFT_REAL_ONE);
+    }
+    return false;
+}
+
+/* Enters the search at the last good position (the estimate of the previous frame). */
+static void search_enter_(pft_tsa_t *t)
+{
+    t->mode = PFT_TSA_MODE_SEARCH;
+    t->weak_run = 0u;
+}
+
+/* The state and estimate of a frame without a particle kept (loss_search). */
+static pft_tsa_state_t search_report_(pft_tsa_t *t, uint32_t M)
+{
+    ++t->weak_run;
+    t->est.x = t->good_x;
+    t->est.y = t->good_y;
+    t->est.vx = PFT_C(0.0);
+    t->est.vy = PFT_C(0.0);
+    t->est.pioneer_x = t->good_x;
+    t->est.pioneer_y = t->good_y;
+    t->est.pioneer_vx = PFT_C(0.0);
+    t->est.pioneer_vy = PFT_C(0.0);
+    for (uint32_t i = 0; i < M; ++i) {
+        t->w[i] = weight_on_rho_scale_(PFT_REAL_ONE);
+    }
+    return t->weak_run >= t->cfg.lost_frames ? PFT_TSA_LOST : PFT_TSA_WEAK;
+}
+
 /* ------------------------------------------ update ---------------------------------------- */
+
+/* A tracking frame: resample, fit, propagate, weigh; returns the weighing's result. */
+static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uint32_t M,
+                                 pft_real_t beta_used, pft_tsa_motion_fit_t *fx,
+                                 pft_tsa_motion_fit_t *fy)
+{
+    resample_(t, N, M);
+    conservative_fit_(t, fx, fy);
+    propagate_(t, fc, N, beta_used, fx, fy);
+    frame_prepare_(t, fc, M);
+    return weigh_(t, fc, N, M);
+}
 
 pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
 {
@@ -591,27 +884,97 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     const uint32_t N = t->cfg.n_particles;
     const uint32_t M = t->n_state;
     const bool tsa = t->cfg.motion == PFT_TSA_MOTION_TSA;
-    resample_(t, N, M);
+    frame_ctx_t_ fc;
+    pft_tsa_view_init_(&fc.v, frame);
+    position_box_(t, &fc);
     pft_tsa_motion_fit_t fx;
     pft_tsa_motion_fit_t fy;
-    conservative_fit_(t, &fx, &fy);
+    memset(&fx, 0, sizeof(fx));
+    memset(&fy, 0, sizeof(fy));
     const pft_real_t beta_used =
         t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : (tsa ? t->beta : t->cfg.beta0);
-    propagate_(t, N, beta_used, &fx, &fy);
-    const weigh_out_t_ wo = weigh_(t, frame, N, M);
-    estimate_(t, M, &fx, &fy);
-    const pft_real_t rho_e = rho_at_(t, frame, t->est.x, t->est.y);
+    weigh_out_t_ wo;
+    bool reacquired = false;
+    if (t->mode == PFT_TSA_MODE_TRACK) {
+        wo = track_frame_(t, &fc, N, M, beta_used, &fx, &fy);
+    } else {
+        search_place_(t, M);
+        frame_prepare_(t, &fc, M);
+        reacquired = search_frame_(t, &fc, M);
+        if (reacquired) {
+            /* weigh the confirmation's particles as a tracking frame */
+            wo = weigh_(t, &fc, N, M);
+        } else {
+            wo.state = PFT_TSA_WEAK;
+            wo.alive = 0u;
+            wo.any_alive = false;
+            wo.rho_p = PFT_C(0.0);
+        }
+    }
     t->est.beta = beta_used;
-    next_reference_(t, N, rho_e, wo.rho_p);
-    t->est.beta_next = tsa ? t->beta : beta_used;
-    t->est.rho = rho_e;
-    t->est.rho_pioneer = tsa ? wo.rho_p : rho_e;
-    t->est.n_alive = wo.alive;
-    t->est.fit_order = fx.order;
     t->est.frame += 1u;
     t->est.template_updated = false;
     t->est.snake_passes = 0u;
-    t->est.state = track_state_(t, frame, wo.state, rho_e);
+    t->est.fit_order = fx.order;
+    t->est.n_alive = wo.alive;
+    pft_real_t rho_e;
+    if (t->cfg.loss_search && !wo.any_alive) {
+        /* nothing kept: no extrapolation, the estimate stays at the last good position */
+        if (t->mode == PFT_TSA_MODE_TRACK) {
+            search_enter_(t);
+        }
+        const pft_tsa_state_t s = search_report_(t, M);
+        rho_e = rho_at_(t, &fc, t->est.x, t->est.y);
+        t->est.rho = rho_e;
+        t->est.rho_pioneer = rho_e;
+        t->est.beta_next = t->beta;
+        t->est.ref_is_estimate = true;
+        t->est.state = track_state_(t, frame, s, rho_e);
+        contour_box_(t, pft_round_int(t->est.x), pft_round_int(t->est.y));
+        return PFT_OK;
+    }
+    estimate_(t, M, &fx, &fy);
+    if (reacquired) {
+        /* tracking restarts at the confirmed position, moving as from the candidate */
+        const pft_real_t vx = pft_sub(t->est.x, t->cand_x);
+        const pft_real_t vy = pft_sub(t->est.y, t->cand_y);
+        ref_restart_(t, t->cand_x, t->cand_y);
+        for (uint32_t i = 0; i < M; ++i) {
+            t->pvx[i] = vx;
+            t->pvy[i] = vy;
+        }
+        t->est.vx = vx;
+        t->est.vy = vy;
+        t->est.pioneer_x = t->est.x;
+        t->est.pioneer_y = t->est.y;
+        t->beta = t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : t->cfg.beta0;
+        t->mode = PFT_TSA_MODE_TRACK;
+        t->weak_run = 0u;
+        wo.rho_p = PFT_C(0.0);
+    }
+    rho_e = rho_at_(t, &fc, t->est.x, t->est.y);
+    if (reacquired) {
+        ref_push_(t, t->est.x, t->est.y, rho_e);
+        t->est.ref_is_estimate = true;
+    } else {
+        next_reference_(t, N, rho_e, wo.rho_p);
+    }
+    t->est.beta_next = tsa ? t->beta : beta_used;
+    t->est.rho = rho_e;
+    t->est.rho_pioneer = tsa && !reacquired ? wo.rho_p : rho_e;
+    t->est.state = track_state_(t, frame, reacquired ? PFT_TSA_REACQUIRED : wo.state, rho_e);
+    t->good_x = t->est.x;
+    t->good_y = t->est.y;
+    /* the innovation: how far the frame moved the cloud from its prior mean; after a
+     * re-acquisition the motion is barely known: the widest spread */
+    if (reacquired) {
+        t->res_x = t->cfg.spread_gain > PFT_C(0.0) ? pft_div(t->cfg.spread_max, t->cfg.spread_gain)
+                                                   : PFT_C(0.0);
+        t->res_y = t->res_x;
+    } else {
+        t->res_x = pft_sub(t->est.x, t->prior_x);
+        t->res_y = pft_sub(t->est.y, t->prior_y);
+    }
     /* only on a trustworthy estimate, rho >= update_rho_min [A] */
     if (rho_e < t->cfg.theta_u && rho_e >= t->cfg.update_rho_min &&
         t->est.state != PFT_TSA_OUT_OF_VIEW) {
