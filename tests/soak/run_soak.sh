@@ -19,7 +19,7 @@ case "$mode" in
 long)
   for t in float q16; do
     start=$(date +%s)
-    nice -n 19 build/soak-$t/tests/soak/pft_soak --frames "${frames:-1000000}" --known \
+    nice -n 19 build/soak-$t/tests/soak/pft_soak --frames "${frames:-1000000}" \
       | tee build/soak-$t/soak-long.log
     echo "soak $t: $(( $(date +%s) - start )) s"
   done;;
@@ -32,7 +32,7 @@ work)
     for k in ${SOAK_TRACKERS:-tbd pf tsa pte pte_dp pte_dbt}; do
       d=$(mktemp -d)
       valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --dump-after="${fn[$k]}" \
-        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + 100)) --seed "${SOAK_SEED:-1}" --quiet --known \
+        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + 100)) --seed "${SOAK_SEED:-1}" --quiet \
         --trace >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
       # one dump per update: its total instruction count, with the load of that frame (tracks
       # after the update) from --trace; the first 100 updates are warm-up
