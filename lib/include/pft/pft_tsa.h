@@ -92,15 +92,17 @@ extern "C" {
 /** Largest side of the target box: kernel weights (Q4, < 2^16) and histogram sums (uint32) are
  *  sized for it. */
 #define PFT_TSA_MAX_SIDE 255u
-/** Snake point count limits. */
+/** Fewest snake points. */
 #define PFT_TSA_MIN_POINTS 8u
+/** Most snake points. */
 #define PFT_TSA_MAX_POINTS 255u
 /** Largest number K of reference points of the conservative fit. */
 #define PFT_TSA_MOTION_MAX_K 16u
 
 /** An integer pixel position (a pixel centre). */
 typedef struct {
-    int16_t x, y;
+    int16_t x; /**< column (0-based) */
+    int16_t y; /**< row (0-based) */
 } pft_tsa_pt_t;
 
 /* ======================================== tracker ========================================= */
@@ -125,13 +127,16 @@ typedef struct {
     pft_real_t corner_c; /**< corner curvature threshold (default 0.25) */
     uint8_t corner_g;    /**< corner edge-strength threshold (default 100) */
     uint8_t margin;      /**< gradient patch margin around the contour box (default 6, >= 3) */
-    uint16_t max_w, max_h; /**< largest contour box the work buffer was sized for */
+    uint16_t max_w;      /**< largest contour box width the work buffer was sized for */
+    uint16_t max_h;      /**< largest contour box height the work buffer was sized for */
 } pft_tsa_snake_params_t;
 
 /** Tracker configuration; pft_tsa_config_default() fills the documented defaults. */
 typedef struct {
-    /** frame size, 8..PFT_CFG_MAX_IMAGE_SIDE (required: the default 0 is refused) */
-    uint16_t width, height;
+    /** frame width, 8..PFT_CFG_MAX_IMAGE_SIDE (required: the default 0 is refused) */
+    uint16_t width;
+    /** frame height, 8..PFT_CFG_MAX_IMAGE_SIDE (required: the default 0 is refused) */
+    uint16_t height;
     uint16_t max_target_w;        /**< largest contour box width (default 64, 4..255) */
     uint16_t max_target_h;        /**< largest contour box height (default 64, 4..255) */
     uint32_t n_particles;         /**< N normal particles (default 100); TSA adds the pioneer */
@@ -231,11 +236,16 @@ typedef enum {
 
 /** Results of the last frame. */
 typedef struct {
-    pft_tsa_state_t state;
+    pft_tsa_state_t state;          /**< tracking / weak / lost / out of view / re-acquired */
     uint32_t frame;                 /**< frames consumed, the start frame included */
-    pft_real_t x, y, vx, vy;        /**< estimate X_hat (kernel origin) and mean velocity */
-    pft_real_t pioneer_x, pioneer_y;/**< pioneer X_tilde (TSA; TS: the fit's prediction) */
-    pft_real_t pioneer_vx, pioneer_vy; /**< conservative velocity v_hat */
+    pft_real_t x;                   /**< estimate X_hat (kernel origin), column */
+    pft_real_t y;                   /**< estimate X_hat (kernel origin), row */
+    pft_real_t vx;                  /**< mean velocity, columns per frame */
+    pft_real_t vy;                  /**< mean velocity, rows per frame */
+    pft_real_t pioneer_x;           /**< pioneer X_tilde, column (TSA; TS: the fit's prediction) */
+    pft_real_t pioneer_y;           /**< pioneer X_tilde, row */
+    pft_real_t pioneer_vx;          /**< conservative velocity v_hat, columns per frame */
+    pft_real_t pioneer_vy;          /**< conservative velocity v_hat, rows per frame */
     pft_real_t rho;                 /**< rho(X_hat) */
     pft_real_t rho_pioneer;         /**< rho(X_tilde) (TSA) */
     pft_real_t beta;                /**< beta used for this frame's propagation */
@@ -245,13 +255,16 @@ typedef struct {
     bool template_updated;          /**< the template was rebuilt this frame */
     uint8_t snake_passes;           /**< snake passes run this frame */
     uint8_t fit_order;              /**< order of the conservative fit (x axis) */
-    int16_t box_x0, box_y0, box_x1, box_y1; /**< contour bounding box at the estimate (pixels,
-                                                 inclusive) */
+    int16_t box_x0;                 /**< contour bounding box at the estimate: first column */
+    int16_t box_y0;                 /**< first row */
+    int16_t box_x1;                 /**< last column (inclusive) */
+    int16_t box_y1;                 /**< last row (inclusive) */
 } pft_tsa_estimate_t;
 
 /** One particle of the last frame. */
 typedef struct {
-    pft_real_t x, y; /**< position (kernel origin) */
+    pft_real_t x;    /**< position (kernel origin), column */
+    pft_real_t y;    /**< position (kernel origin), row */
     pft_real_t rho;  /**< its similarity to the template */
 } pft_tsa_particle_t;
 
@@ -259,14 +272,15 @@ typedef struct {
  *  channel value falls in bin b ((v * 10) >> 8 per channel); total sums the weights of the
  *  in-image pixels (so the bins sum to 3 * total). Normalisation is implicit. */
 typedef struct {
-    uint32_t bin[PFT_TSA_BINS];
-    uint32_t total;
+    uint32_t bin[PFT_TSA_BINS]; /**< summed Q4 kernel weights per bin (10 bins per channel) */
+    uint32_t total;             /**< summed Q4 weights of the in-image pixels */
 } pft_tsa_hist_t;
 
 /** One kernel pixel: offset from the kernel origin and Q4 weight round(16 (c + d)). */
 typedef struct {
-    int16_t dx, dy;
-    uint16_t w;
+    int16_t dx;  /**< column offset from the kernel origin */
+    int16_t dy;  /**< row offset from the kernel origin */
+    uint16_t w;  /**< Q4 weight */
 } pft_tsa_kpix_t;
 
 /** Asymmetric kernel (eqs. 19-20): pixels of the contour's interior R with weight c + d(p). */
@@ -275,7 +289,10 @@ typedef struct {
     uint32_t n;           /**< pixels in R */
     uint32_t cap;         /**< capacity of pix */
     uint32_t sum;         /**< sum of the weights */
-    int16_t x0, y0, x1, y1; /**< bounding box of the offsets (inclusive) */
+    int16_t x0;           /**< bounding box of the offsets: smallest dx */
+    int16_t y0;           /**< smallest dy */
+    int16_t x1;           /**< largest dx (inclusive) */
+    int16_t y1;           /**< largest dy (inclusive) */
 } pft_tsa_kernel_t;
 
 /* The instance layout pft_tsa_t (for sizeof; not API). */
@@ -423,7 +440,12 @@ pft_status_t pft_tsa_poly_resample(const pft_tsa_pt_t *in, uint32_t n_in, pft_ts
  * Builds the asymmetric kernel of polygon poly[0..n): rasterises the interior (pixel centres,
  * even-odd rule), weights each pixel c + d(p) (c = c_q4 / 16), and stores the offsets from
  * the rounded area centroid of R, which is returned in *origin (frame coordinates).
- * @param cross scratch of n int32 (row crossings)
+ * @param k      the kernel; k->pix and k->cap give its caller storage
+ * @param poly   the contour polygon, frame coordinates
+ * @param n      its point count, 3..PFT_TSA_MAX_POINTS
+ * @param c_q4   the constant part c of the weights, Q4 (16 = 1.0)
+ * @param cross  scratch of n int32 (row crossings)
+ * @param origin the rounded area centroid of R, frame coordinates (output)
  * PFT_ERR_INVAL: NULL, n < 3 or n > PFT_TSA_MAX_POINTS; PFT_ERR_DEGENERATE: zero area or an
  * empty interior (no pixel centre inside); PFT_ERR_RANGE: a bounding box wider or taller than
  * PFT_TSA_MAX_SIDE (the weight sums are sized for it); PFT_ERR_NOMEM: more pixels than k->cap.
@@ -447,7 +469,14 @@ size_t pft_tsa_snake_work_size(uint16_t max_w, uint16_t max_h, uint8_t margin);
  * above corner_g) get beta_i = 0. Stops early when fewer than 10% of the points moved.
  * Points stay inside the frame (1 px from its border). The gradient is recomputed around the
  * contour every margin - 2 passes. The weights are used as Q16.16 integers (rounded).
+ * @param frame  the frame (grey or colour; its gradient drives e_img)
+ * @param pts    the contour, updated in place
+ * @param n      its point count
+ * @param prm    the weights and limits (pft_tsa_snake_params_default)
+ * @param max_passes most passes to run
  * @param bflags scratch of n bytes (per-point curvature switch)
+ * @param work   scratch of pft_tsa_snake_work_size(prm->max_w, prm->max_h, prm->margin) bytes
+ * @param work_len its length in bytes
  * @param passes_done passes run (may be NULL)
  * PFT_ERR_INVAL: NULL or n < PFT_TSA_MIN_POINTS or n > PFT_TSA_MAX_POINTS or margin < 3;
  * PFT_ERR_FORMAT: bad frame; PFT_ERR_NOMEM: work shorter than
@@ -463,11 +492,17 @@ pft_status_t pft_tsa_snake(const pft_frame_t *frame, pft_tsa_pt_t *pts, uint32_t
 
 /** Coefficients of the free model for one beta and q (Delta t = 1). */
 typedef struct {
-    pft_real_t beta;
-    pft_real_t phi12, phi22;   /**< transition */
-    pft_real_t gamma1, gamma2; /**< input gains of vbar */
-    pft_real_t q11, q12, q22;  /**< process-noise covariance */
-    pft_real_t l11, l21, l22;  /**< its lower Cholesky factor (l22 = 0 if Q is singular) */
+    pft_real_t beta;   /**< the beta these coefficients are for */
+    pft_real_t phi12;  /**< transition: position from velocity */
+    pft_real_t phi22;  /**< transition: velocity from velocity */
+    pft_real_t gamma1; /**< input gain of vbar into the position */
+    pft_real_t gamma2; /**< input gain of vbar into the velocity */
+    pft_real_t q11;    /**< process-noise covariance: position variance */
+    pft_real_t q12;    /**< process-noise covariance: position-velocity */
+    pft_real_t q22;    /**< process-noise covariance: velocity variance */
+    pft_real_t l11;    /**< its lower Cholesky factor, (1, 1) */
+    pft_real_t l21;    /**< (2, 1) */
+    pft_real_t l22;    /**< (2, 2); 0 if Q is singular */
 } pft_tsa_motion_free_t;
 
 /**
@@ -486,7 +521,9 @@ void pft_tsa_motion_free_step(const pft_tsa_motion_free_t *c, pft_real_t *x, pft
 
 /** Result of the conservative fit of one axis. */
 typedef struct {
-    pft_real_t s, v, a;  /**< X(tau) = s + v tau + a tau^2, tau = 0 at the newest point */
+    pft_real_t s;        /**< X(tau) = s + v tau + a tau^2, tau = 0 at the newest point: s */
+    pft_real_t v;        /**< v of that fit */
+    pft_real_t a;        /**< a of that fit */
     pft_real_t v_pred;   /**< conservative velocity at tau = 1: v + 2a (eq. 15) */
     pft_real_t x_pred;   /**< pioneer position at tau = 1: s + v + a (eq. 16) */
     uint8_t order;       /**< 2 quadratic, 1 constant-velocity fallback, 0 single point */
@@ -494,6 +531,9 @@ typedef struct {
 
 /**
  * Weighted least-squares fit of o[0..n) (oldest first, o[n-1] at tau = 0).
+ * @param o         the reference positions of one axis
+ * @param n         their count, 1..PFT_TSA_MOTION_MAX_K
+ * @param out       the fit (output)
  * @param pi        per-point weights pi_i >= 0 (NULL: all 1)
  * @param sigma_g   width of the Gaussian time weighting (> 0), in frames
  * @param max_order 2 for TSA (constant acceleration), 1 for TS (constant velocity)
