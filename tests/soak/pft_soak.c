@@ -558,10 +558,12 @@ static bool soak_tsa(uint64_t n, uint64_t seed, bool quiet)
         check_real(dst, k, "vy", e.vy, -100.0, 100.0);
         check_real(&st, k, "rho", e.rho, 0.0, 1.0001);
         check_real(&st, k, "beta_next", e.beta_next, 0.0, R(c.beta_max) + 0.001);
-        if ((uint32_t)e.state > (uint32_t)PFT_TSA_OUT_OF_VIEW) {
+        if ((uint32_t)e.state > (uint32_t)PFT_TSA_REACQUIRED) {
             fail(&st, &st.fail_domain, k, "state", (double)e.state);
         }
-        bool track = e.state == PFT_TSA_TRACKING || e.state == PFT_TSA_PIONEER_ONLY;
+        /* a re-acquisition reports the target found again: a track like the tracking states */
+        bool track = e.state == PFT_TSA_TRACKING || e.state == PFT_TSA_PIONEER_ONLY ||
+                     e.state == PFT_TSA_REACQUIRED;
         bool false_track = track && nearest(&s, R(e.x), R(e.y)) > 2.0 * V_BOX;
         trace(k, track ? 1u : 0u);
         count_frame(&st, k, false_track, track);
