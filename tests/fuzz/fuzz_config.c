@@ -292,6 +292,7 @@ static void fuzz_tsa(fz_t *f)
     pft_tsa_snake_params_default(&c.snake, c.max_target_w, c.max_target_h);
     FZ_PATCH(f, c, 12u);
     FZ_BOOL(c.fit_rho_weights);
+    FZ_BOOL(c.loss_search);
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_tsa_config_check(&c, &g_field));
     size_t ws = pft_tsa_workspace_size(&c);
@@ -301,7 +302,7 @@ static void fuzz_tsa(fz_t *f)
         return;
     }
     FZ_CHECK(ws == PFT_TSA_WORKSPACE_BYTES(c.n_particles, c.max_target_w, c.max_target_h,
-                                           c.snake_points, c.snake.margin));
+                                           c.snake_points, c.snake.margin, c.map_margin));
     if (ws > WS_CAP) {
         return;
     }

@@ -317,7 +317,7 @@ static void run_tsa(fz_t *f)
         FZ_CHECK(fz_finite(e.x) && fz_finite(e.y) && fz_finite(e.vx) && fz_finite(e.vy) &&
                  fz_finite(e.rho) && fz_finite(e.beta_next));
         FZ_CHECK(e.rho >= PFT_C(0.0) && e.rho <= PFT_C(1.0) + PFT_C(0.01));
-        FZ_CHECK((uint32_t)e.state <= (uint32_t)PFT_TSA_OUT_OF_VIEW);
+        FZ_CHECK((uint32_t)e.state <= (uint32_t)PFT_TSA_REACQUIRED);
         static pft_tsa_particle_t ps[40];
         FZ_CHECK(pft_tsa_particles(&t, ps, fz_u8(f) % 41u) <= c.n_particles + 1u);
         pft_tsa_pt_t ct[16];
