@@ -114,42 +114,85 @@ void grey_range(const Scenario &s, double &lo, double &hi)
     hi = std::max(s.amplitude(), s.background.sigma) + 2.5 * s.background.sigma;
 }
 
-void write_truth_csv(const std::string &path, const std::vector<Truth> &tr)
+/** truth.csv: one row per target and frame, frame,target,range_cell,range_rate_cells_per_frame,
+ *  range_m,active (target 1, 2, ... in the scenario's order; active 0 outside the target's
+ *  start_s..end_s). */
+void write_truth_csv(const std::string &path, const std::vector<std::vector<Truth>> &trs)
 {
     write_text_atomic(path, [&](std::ostream &os) {
         CsvWriter w(os);
-        w.field("frame").field("range_cell").field("range_rate_cells_per_frame").field("range_m");
+        w.field("frame").field("target").field("range_cell").field("range_rate_cells_per_frame");
+        w.field("range_m").field("active");
         w.end_row();
-        for (std::size_t k = 0; k < tr.size(); ++k) {
-            w.field(static_cast<int>(k + 1)).field(tr[k].r).field(tr[k].rdot).field(tr[k].range_m);
-            w.end_row();
-        }
+        std::size_t n = 0;
+        for (const auto &tr : trs)
+            n = std::max(n, tr.size());
+        for (std::size_t k = 0; k < n; ++k)
+            for (std::size_t t = 0; t < trs.size(); ++t) {
+                if (k >= trs[t].size())
+                    continue;
+                const Truth &x = trs[t][k];
+                w.field(static_cast<int>(k + 1)).field(static_cast<int>(t + 1)).field(x.r).field(x.rdot);
+                w.field(x.range_m).field(x.active ? 1 : 0);
+                w.end_row();
+            }
     });
 }
 
-std::vector<Truth> read_truth_csv(const std::string &path)
+/** Reads truth.csv: the layout above, or the single-target layout of earlier versions
+ *  (frame,range_cell,range_rate_cells_per_frame,range_m). Returns [target][frame]. */
+std::vector<std::vector<Truth>> read_truth_csv(const std::string &path)
 {
     std::ifstream in(path);
     if (!in)
         throw InputError(path + ": cannot open truth file");
-    std::vector<Truth> v;
+    std::vector<std::vector<Truth>> v;
     std::string line;
     int ln = 0;
+    bool multi = false;
     while (std::getline(in, line)) {
-        if (++ln == 1 || line.empty())
+        if (!line.empty() && line.back() == '\r')
+            line.pop_back();
+        if (++ln == 1) {
+            multi = line.rfind("frame,target,", 0) == 0;
+            continue;
+        }
+        if (line.empty())
             continue;
         std::stringstream ss(line);
-        std::string c[4];
-        for (auto &x : c)
-            std::getline(ss, x, ',');
+        std::vector<std::string> c;
+        std::string x;
+        while (std::getline(ss, x, ','))
+            c.push_back(x);
+        const std::string layout = multi ? "frame,target,range_cell,range_rate,range_m,active"
+                                         : "frame,range_cell,range_rate,range_m";
+        if (c.size() != (multi ? 6u : 4u))
+            throw InputError(path + ":" + std::to_string(ln) + ": expected " + layout);
         try {
+            const long frame = std::stol(c[0]);
+            const long target = multi ? std::stol(c[1]) : 1;
+            if (frame < 1 || frame > 100000000 || target < 1 || target > 64)
+                throw InputError(path + ":" + std::to_string(ln) + ": frame must be 1.. and target 1..64");
+            const std::size_t o = multi ? 1u : 0u;
             Truth t;
-            t.r = std::stod(c[1]);
-            t.rdot = std::stod(c[2]);
-            t.range_m = std::stod(c[3]);
-            v.push_back(t);
+            t.r = std::stod(c[1 + o]);
+            t.rdot = std::stod(c[2 + o]);
+            t.range_m = std::stod(c[3 + o]);
+            t.active = multi ? std::stol(c[5]) != 0 : true;
+            if (v.size() < static_cast<std::size_t>(target))
+                v.resize(static_cast<std::size_t>(target));
+            auto &tv = v[static_cast<std::size_t>(target - 1)];
+            if (tv.size() < static_cast<std::size_t>(frame)) {
+                Truth absent;
+                absent.active = false;
+                absent.r = -1.0;
+                tv.resize(static_cast<std::size_t>(frame), absent);
+            }
+            tv[static_cast<std::size_t>(frame - 1)] = t;
+        } catch (const InputError &) {
+            throw;
         } catch (const std::exception &) {
-            throw InputError(path + ":" + std::to_string(ln) + ": expected frame,range_cell,range_rate,range_m");
+            throw InputError(path + ":" + std::to_string(ln) + ": expected " + layout);
         }
     }
     return v;
@@ -358,7 +401,8 @@ public:
             ap.commit();
             side = {{"format", "raw_f32"}, {"file", "rangetime.f32"}, {"pixel_gain", 1.0}, {"pixel_offset", 0.0}};
         }
-        write_truth_csv(join_path(o.out, "truth.csv"), q.truth);
+        write_truth_csv(join_path(o.out, "truth.csv"), q.truths.empty() ? std::vector<std::vector<Truth>>{q.truth}
+                                                                        : q.truths);
         double lo, hi;
         grey_range(s, lo, hi);
         save_rangetime_png(join_path(o.out, "rangetime.png"), q.z, &q.truth, {{"range-time image", nullptr}},
@@ -465,20 +509,27 @@ public:
                              " range cells, the scenario has " + std::to_string(s.radar.cells));
         if (o.frames && z.size() > o.frames)
             z.resize(o.frames);
-        std::vector<Truth> truth;
+        std::vector<std::vector<Truth>> truths;
         std::string tpath = !o.truth.empty() ? o.truth : (is_dir ? join_path(dir, "truth.csv") : "");
         bool have_truth = !tpath.empty() && fs::exists(tpath);
         if (!o.truth.empty() && !have_truth)
             throw InputError(o.truth + ": no such truth file");
         if (have_truth) {
-            truth = read_truth_csv(tpath);
-            truth.resize(std::min(truth.size(), z.size()));
+            truths = read_truth_csv(tpath);
+            for (auto &tr : truths) {
+                Truth absent;
+                absent.active = false;
+                absent.r = -1.0;
+                tr.resize(z.size(), absent);  // frames past the file's: absent
+            }
+            have_truth = !truths.empty();
         }
         std::string out = o.out.empty() ? "pft_run_pte" : o.out;
         ensure_dir(out);
         if (!o.quiet)
             std::printf("pft run: %s (%zu frames)\n  %s\n", img_path.c_str(), z.size(), describe(s).c_str());
-        json res = track_and_report(s, z, have_truth ? &truth : nullptr, out, describe(s), o.quiet);
+        json res = track_and_report(s, z, have_truth ? &truths[0] : nullptr, out, describe(s), o.quiet,
+                                    have_truth ? &truths : nullptr);
         json j = {{"tool", "pft run"}, {"kind", "pte"}, {"sequence", img_path}, {"numeric", numeric_name()},
                   {"frames", z.size()}, {"d_c", s.eval.d_c}, {"methods", res}};
         write_json_atomic(join_path(out, "summary.json"), j);
@@ -757,6 +808,24 @@ public:
             Counts g1 = score_runs({t4}, o4, 150, 3.0, false, 5.0, 1.0);
             check("GOSPA c = 5, p = 1: (0.5 + 2.5 + 2.5 + 5) / 4",
                   std::fabs(g1.gospa() - 10.5 / 4.0) < 1e-12 && g1.gospa_c == 5.0);
+        }
+        {
+            // truth.csv keeps every target (and whether it is active) through a write and a read
+            std::vector<std::vector<Truth>> two(2, std::vector<Truth>(3));
+            for (int k = 0; k < 3; ++k) {
+                two[0][k].r = 10.0 + k;
+                two[1][k].r = 50.0 - 0.5 * k;
+                two[1][k].active = k > 0;
+            }
+            const std::string tp =
+                (fs::temp_directory_path() / (std::string("pft_pte_truth_selftest_") + numeric_name() + ".csv")).string();
+            write_truth_csv(tp, two);
+            auto back = read_truth_csv(tp);
+            std::error_code ec;
+            fs::remove(tp, ec);
+            check("truth.csv round trip: 2 targets x 3 frames, positions and activity",
+                  back.size() == 2 && back[0].size() == 3 && back[1].size() == 3 && back[0][2].r == 12.0 &&
+                      back[1][1].r == 49.5 && !back[1][0].active && back[1][2].active);
         }
         Counts c1 = score_runs({tr}, out, 150, 3.0);
         check("several targets, one given: the single-target counts",
