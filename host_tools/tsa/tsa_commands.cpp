@@ -17,6 +17,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "../common/errors.hpp"
+#include "../common/set_metrics.hpp"
 #include "../common/json_field.hpp"
 #include "../common/real.hpp"
 #include "../common/output.hpp"
@@ -43,6 +44,7 @@ struct Scenario {
     std::vector<std::string> bench_trackers{"tsa", "ncv", "ncv200", "ts", "kcf", "csrt", "mosse", "mil"};
     int runs = 50;
     double iou_thr = 0.5, center_thr = 10.0, run_min_fraction = 0.9;
+    double gospa_c = 0.0, gospa_p = 2.0;  ///< GOSPA/OSPA cut-off (0: center_thr) and order
     json reference;
 };
 
@@ -83,6 +85,10 @@ Scenario load_scenario(const Options &o)
         s.reference = o.scenario.at("reference");
     if (o.particles)
         s.tracker.particles = (int)o.particles;
+    if (o.gospa_c)
+        s.gospa_c = *o.gospa_c;
+    if (o.gospa_p)
+        s.gospa_p = *o.gospa_p;
     return s;
 }
 
@@ -169,6 +175,8 @@ constexpr double PROJECT_CENTER_PX = 10.0, PROJECT_IOU = 0.5;
 
 struct RunTrace {
     std::vector<double> err, iou, us, cpu_us, beta, x;
+    double g_loc = 0, g_ospa = 0;   ///< sums over the run's frames of GOSPA localisation^p, OSPA^p
+    long g_missed = 0, g_false = 0, g_frames = 0;
     std::vector<int> ok, ok_project, scored, state;
     bool success = false, success_project = false;
     int reacquire = -2;  // -2: no forced loss in the scenario
@@ -176,6 +184,8 @@ struct RunTrace {
 
 struct Agg {
     std::string name;
+    double g_loc = 0, g_ospa = 0;
+    long g_missed = 0, g_false = 0, g_frames = 0;
     double err_sum = 0, us_sum = 0, cpu_sum = 0;
     long frames = 0, ok_frames = 0, ok_project = 0, timed = 0;
     int runs = 0, runs_ok = 0, runs_ok_project = 0;
@@ -205,6 +215,22 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
         const int sc = s.scene.blank((int)k) ? 0 : 1;
         const int ok = sc && ov > s.iou_thr && e < s.center_thr;
         const int okp = sc && ov > PROJECT_IOU && e < PROJECT_CENTER_PX;
+        {
+            // GOSPA / OSPA: the target's centre while it is in view (not a blank frame), the
+            // tracker's centre while it reports success
+            std::vector<metrics::Point> tp, ep;
+            if (sc)
+                tp.push_back({truth[k].cx, truth[k].cy});
+            if (out.ok)
+                ep.push_back({out.center.x, out.center.y});
+            const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
+            metrics::FrameMetrics fm = metrics::frame_metrics(tp, ep, gc, s.gospa_p);
+            r.g_loc += fm.localisation;
+            r.g_ospa += std::pow(fm.ospa, s.gospa_p);
+            r.g_missed += fm.missed_count;
+            r.g_false += fm.false_count;
+            r.g_frames++;
+        }
         r.err.push_back(e);
         r.iou.push_back(ov);
         r.us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
@@ -283,6 +309,11 @@ EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, in
         for (int i = 0; i < runs; ++i) {
             const RunTrace &r = all[i][j];
             a.runs++;
+            a.g_loc += r.g_loc;
+            a.g_ospa += r.g_ospa;
+            a.g_missed += r.g_missed;
+            a.g_false += r.g_false;
+            a.g_frames += r.g_frames;
             a.runs_ok += r.success;
             a.runs_ok_project += r.success_project;
             long ok = 0, n = 0;
@@ -336,6 +367,22 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                   {"workspace_bytes", a.memory},
                   {"run_success", a.run_success},
                   {"success_vs_iou", curve}};
+        {
+            // power means over every frame of every run (docs/host_tools.md, GOSPA and OSPA)
+            const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr, gp = s.gospa_p;
+            const double half = std::pow(gc, gp) / 2.0, n = (double)a.g_frames;
+            auto pm = [&](double sum) { return a.g_frames ? json(std::pow(sum / n, 1.0 / gp)) : json(nullptr); };
+            t["gospa"] = pm(a.g_loc + half * (double)(a.g_missed + a.g_false));
+            t["gospa_localisation"] = pm(a.g_loc);
+            t["gospa_missed"] = pm(half * (double)a.g_missed);
+            t["gospa_false"] = pm(half * (double)a.g_false);
+            t["gospa_missed_count"] = a.g_frames ? json((double)a.g_missed / n) : json(nullptr);
+            t["gospa_false_count"] = a.g_frames ? json((double)a.g_false / n) : json(nullptr);
+            t["ospa"] = pm(a.g_ospa);
+            t["gospa_c"] = gc;
+            t["gospa_p"] = gp;
+            t["gospa_alpha"] = 2;
+        }
         if (!a.reacquire.empty()) {
             int within = 0;
             for (int q : a.reacquire)
