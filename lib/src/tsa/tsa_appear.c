@@ -10,6 +10,23 @@
 /* Joint bins: 10 r + g (0..99), then 100 + b. */
 #define JBINS_ 110u
 
+/* The bin of a channel value, (v * 10) >> 8, and its multiples used by the codes, as constant
+ * tables (read-only memory, not stack: they were three 256-byte arrays of every view). */
+#define BIN_(v) ((uint8_t)(((uint32_t)(v) * 10u) >> 8))
+#define BIN10_(v) ((uint8_t)(10u * BIN_(v)))
+#define BIN100_(v) ((uint8_t)(100u + BIN_(v)))
+#define R16_(F, b)                                                                            \
+    F((b) + 0u), F((b) + 1u), F((b) + 2u), F((b) + 3u), F((b) + 4u), F((b) + 5u), F((b) + 6u), \
+        F((b) + 7u), F((b) + 8u), F((b) + 9u), F((b) + 10u), F((b) + 11u), F((b) + 12u),      \
+        F((b) + 13u), F((b) + 14u), F((b) + 15u)
+#define T256_(F)                                                                              \
+    R16_(F, 0u), R16_(F, 16u), R16_(F, 32u), R16_(F, 48u), R16_(F, 64u), R16_(F, 80u),          \
+        R16_(F, 96u), R16_(F, 112u), R16_(F, 128u), R16_(F, 144u), R16_(F, 160u),            \
+        R16_(F, 176u), R16_(F, 192u), R16_(F, 208u), R16_(F, 224u), R16_(F, 240u)
+static const uint8_t bin_[256] = {T256_(BIN_)};
+static const uint8_t bin10_[256] = {T256_(BIN10_)};
+static const uint8_t bin100_[256] = {T256_(BIN100_)};
+
 uint32_t pft_tsa_spans_(const pft_tsa_kernel_t *k, pft_tsa_span_t *out, uint32_t cap,
                         uint16_t *w)
 {
@@ -41,11 +58,6 @@ void pft_tsa_view_init_(pft_tsa_view_t_ *v, const pft_frame_t *frame)
 {
     v->f = frame;
     pft_tsa_channels_(frame->format, &v->off[0], &v->off[1], &v->off[2], &v->bpp);
-    for (uint32_t i = 0; i < 256u; ++i) {
-        v->bin[i] = (uint8_t)((i * 10u) >> 8);
-        v->bin10[i] = (uint8_t)(10u * v->bin[i]);
-        v->bin100[i] = (uint8_t)(100u + v->bin[i]);
-    }
     v->map = NULL;
     v->map_b = NULL;
     v->mx0 = 0;
@@ -57,8 +69,8 @@ void pft_tsa_view_init_(pft_tsa_view_t_ *v, const pft_frame_t *frame)
 /* The code of the pixel at p: the joint bin 10 r + g in the low byte, 100 + b in the high. */
 static inline uint32_t code_(const pft_tsa_view_t_ *v, const uint8_t *p)
 {
-    return ((uint32_t)v->bin10[p[v->off[0]]] + v->bin[p[v->off[1]]]) |
-           ((uint32_t)v->bin100[p[v->off[2]]] << 8);
+    return ((uint32_t)bin10_[p[v->off[0]]] + bin_[p[v->off[1]]]) |
+           ((uint32_t)bin100_[p[v->off[2]]] << 8);
 }
 
 void pft_tsa_view_map_(pft_tsa_view_t_ *v, uint8_t *map, size_t cap, int32_t x0, int32_t y0,
@@ -88,8 +100,8 @@ void pft_tsa_view_map_(pft_tsa_view_t_ *v, uint8_t *map, size_t cap, int32_t x0,
         const uint8_t *p2 = p + v->off[2];
         for (int32_t x = 0; x < mw; ++x) {
             const uint32_t o = (uint32_t)x * v->bpp;
-            m[x] = (uint8_t)(v->bin10[p0[o]] + v->bin[p1[o]]);
-            mb[x] = v->bin100[p2[o]];
+            m[x] = (uint8_t)(bin10_[p0[o]] + bin_[p1[o]]);
+            mb[x] = bin100_[p2[o]];
         }
     }
     v->map = map;
@@ -140,12 +152,11 @@ static inline void add_pixels_(const pft_tsa_view_t_ *v, uint32_t *jb, const uin
 
 void pft_tsa_view_hist_(const pft_tsa_view_t_ *v, const pft_tsa_kernel_t *k,
                         const pft_tsa_span_t *sp, uint32_t nsp, const uint16_t *kw, int32_t cx,
-                        int32_t cy, pft_tsa_hist_t *h)
+                        int32_t cy, pft_tsa_hist_t *h, uint32_t *jb)
 {
     const int32_t W = (int32_t)v->f->width;
     const int32_t H = (int32_t)v->f->height;
-    uint32_t jb[JBINS_];
-    memset(jb, 0, sizeof(jb));
+    memset(jb, 0, JBINS_ * sizeof(uint32_t));
     uint32_t total = 0u;
     const bool inside = cx + k->x0 >= 0 && cy + k->y0 >= 0 && cx + k->x1 < W && cy + k->y1 < H;
     const bool mapped = v->mw > 0 && cx + k->x0 >= v->mx0 && cy + k->y0 >= v->my0 &&

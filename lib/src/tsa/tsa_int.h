@@ -182,14 +182,13 @@ static inline void pft_tsa_channels_(pft_pixfmt_t fmt, uint32_t *o0, uint32_t *o
 uint32_t pft_tsa_spans_(const pft_tsa_kernel_t *k, pft_tsa_span_t *out, uint32_t cap,
                         uint16_t *w);
 
-/* One frame as the appearance model reads it: channel offsets, the bin of each channel value,
- * and (when mw > 0) the codes of the region [mx0, mx0 + mw) x [my0, my0 + mh) in two planes,
+/* One frame as the appearance model reads it: channel offsets (the bin of each channel value
+ * comes from constant tables of tsa_appear.c), and (when mw > 0) the codes of the region [mx0, mx0 + mw) x [my0, my0 + mh) in two planes,
  * row-major: map the joint bins 10 r + g, map_b the bins 100 + b. */
 typedef struct {
     const pft_frame_t *f;
     uint32_t off[3];
     uint32_t bpp;
-    uint8_t bin[256], bin10[256], bin100[256]; /* bin, 10 bin, 100 + bin */
     const uint8_t *map, *map_b;
     int32_t mx0, my0, mw, mh;
 } pft_tsa_view_t_;
@@ -204,10 +203,11 @@ void pft_tsa_view_map_(pft_tsa_view_t_ *v, uint8_t *map, size_t cap, int32_t x0,
                        int32_t x1, int32_t y1);
 
 /* The histogram of kernel k (with its spans sp[0..nsp) and weights kw) at origin (cx, cy): the
- * same as pft_tsa_hist's. */
+ * same as pft_tsa_hist's. jb: scratch of 110 uint32 (the joint bins; the tracker's instance
+ * holds it, so that it is not on the stack of the update). */
 void pft_tsa_view_hist_(const pft_tsa_view_t_ *v, const pft_tsa_kernel_t *k,
                         const pft_tsa_span_t *sp, uint32_t nsp, const uint16_t *kw, int32_t cx,
-                        int32_t cy, pft_tsa_hist_t *h);
+                        int32_t cy, pft_tsa_hist_t *h, uint32_t *jb);
 
 /* The square-root form (pft_tsa_hroot_t) of a histogram: with the even shift s that puts
  * total << s into [2^30, 2^32) (every bin is at most total), root = isqrt(total << s) and

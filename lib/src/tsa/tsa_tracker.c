@@ -122,7 +122,7 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
             return t->memo_rho[i];
         }
         if (t->memo_key[i] == 0u) {
-            pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h);
+            pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
             const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
             t->memo_key[i] = key;
             t->memo_rho[i] = r;
@@ -131,7 +131,7 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
         i = i + 1u == t->memo_cap ? 0u : i + 1u;
     }
     /* a full table (more distinct positions than 2 N + 4: not reached) */
-    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h);
+    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
     return pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
 }
 
