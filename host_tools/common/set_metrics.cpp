@@ -227,4 +227,34 @@ double SetMetricSums::false_count() const
     return n ? total(nfal_) / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
 }
 
+void SetMetricSums::merge(const SetMetricSums &o)
+{
+    if (count() == 0 && n_.size() == o.n_.size()) {
+        c_ = o.c_;
+        p_ = o.p_;
+    }
+    const std::size_t n = std::min(n_.size(), o.n_.size());
+    for (std::size_t k = 0; k < n; ++k) {
+        loc_[k] += o.loc_[k];
+        miss_[k] += o.miss_[k];
+        fal_[k] += o.fal_[k];
+        ospa_[k] += o.ospa_[k];
+        nmiss_[k] += o.nmiss_[k];
+        nfal_[k] += o.nfal_[k];
+        n_[k] += o.n_[k];
+    }
+}
+
+nlohmann::json set_metric_fields(const SetMetricSums &s)
+{
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return {{"gospa", num(s.gospa())},
+            {"gospa_localisation", num(s.localisation())},
+            {"gospa_missed", num(s.missed())},
+            {"gospa_false", num(s.false_())},
+            {"gospa_missed_count", num(s.missed_count())},
+            {"gospa_false_count", num(s.false_count())},
+            {"ospa", num(s.ospa())}};
+}
+
 }  // namespace pft::host::metrics

@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace pft::host::metrics {
 
 struct Point {
@@ -57,6 +59,11 @@ public:
     void add(std::size_t k, const FrameMetrics &f);
     /** Adds one run's frame from its stored terms (partial summaries). */
     void add_terms(std::size_t k, double localisation, int missed_count, int false_count, double ospa_pow);
+    /** Adds another accumulation of the same frame count, c and p (e.g. another run's); an
+     *  empty accumulation takes the other's c and p. */
+    void merge(const SetMetricSums &o);
+    /** Frames (run-frames) added over all frames. */
+    long added() const { return count(); }
     std::size_t frames() const { return n_.size(); }
     double c() const { return c_; }
     double p() const { return p_; }
@@ -82,5 +89,9 @@ private:
     double total(const std::vector<double> &v) const;
     long count() const;
 };
+
+/** The averaged fields of a summary: gospa, gospa_localisation, gospa_missed, gospa_false,
+ *  gospa_missed_count, gospa_false_count, ospa (null where nothing was added). */
+nlohmann::json set_metric_fields(const SetMetricSums &s);
 
 }  // namespace pft::host::metrics

@@ -801,13 +801,15 @@ public:
             o4[2] = {rep(10.0), rep(30.0)};
             o4[3] = {rep(20.0)};
             Counts g = score_run(t4, o4, 150, 3.0);
-            check("GOSPA over 4 frames = sqrt(18.25 / 4)", std::fabs(g.gospa() - std::sqrt(18.25 / 4.0)) < 1e-12);
-            check("GOSPA parts: 2 missed, 2 false points", g.g_missed == 2 && g.g_false == 2 &&
-                                                               std::fabs(g.g_loc - 0.25) < 1e-12);
-            check("OSPA over 4 frames = sqrt(22.75 / 4)", std::fabs(g.ospa() - std::sqrt(22.75 / 4.0)) < 1e-12);
+            check("GOSPA over 4 frames = sqrt(18.25 / 4)", std::fabs(g.set.gospa() - std::sqrt(18.25 / 4.0)) < 1e-12);
+            check("GOSPA parts: 2 missed, 2 false points",
+                  std::fabs(g.set.missed_count() * 4.0 - 2.0) < 1e-12 &&
+                      std::fabs(g.set.false_count() * 4.0 - 2.0) < 1e-12 &&
+                      std::fabs(std::pow(g.set.localisation(), 2.0) * 4.0 - 0.25) < 1e-12);
+            check("OSPA over 4 frames = sqrt(22.75 / 4)", std::fabs(g.set.ospa() - std::sqrt(22.75 / 4.0)) < 1e-12);
             Counts g1 = score_runs({t4}, o4, 150, 3.0, false, 5.0, 1.0);
             check("GOSPA c = 5, p = 1: (0.5 + 2.5 + 2.5 + 5) / 4",
-                  std::fabs(g1.gospa() - 10.5 / 4.0) < 1e-12 && g1.gospa_c == 5.0);
+                  std::fabs(g1.set.gospa() - 10.5 / 4.0) < 1e-12 && g1.gospa_c == 5.0);
         }
         {
             // truth.csv keeps every target (and whether it is active) through a write and a read

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../common/set_metrics.hpp"
 
 namespace pft::host::pte {
 
@@ -18,25 +17,12 @@ void Counts::add(const Counts &o)
     frames += o.frames;
     sq += o.sq;
     time_s += o.time_s;
-    gospa_c = o.gospa_c;
-    gospa_p = o.gospa_p;
-    g_loc += o.g_loc;
-    g_ospa += o.g_ospa;
-    g_missed += o.g_missed;
-    g_false += o.g_false;
-    g_frames += o.g_frames;
+    if (set.added() == 0) {
+        gospa_c = o.gospa_c;
+        gospa_p = o.gospa_p;
+    }
+    set.merge(o.set);
 }
-
-double Counts::gospa_part(double sum) const
-{
-    return g_frames ? std::pow(sum / double(g_frames), 1.0 / gospa_p) : NAN;
-}
-double Counts::gospa() const
-{
-    const double half = std::pow(gospa_c, gospa_p) / 2.0;
-    return gospa_part(g_loc + half * double(g_missed + g_false));
-}
-double Counts::ospa() const { return gospa_part(g_ospa); }
 
 namespace {
 /** Adds one frame's GOSPA / OSPA terms: truth and declared positions in cells (1-D). */
@@ -47,12 +33,7 @@ void add_set_metrics(Counts &c, const std::vector<double> &truth, const std::vec
         t.push_back({r, 0.0});
     for (double r : est)
         e.push_back({r, 0.0});
-    metrics::FrameMetrics f = metrics::frame_metrics(t, e, c.gospa_c, c.gospa_p);
-    c.g_loc += f.localisation;
-    c.g_ospa += std::pow(f.ospa, c.gospa_p);
-    c.g_missed += f.missed_count;
-    c.g_false += f.false_count;
-    c.g_frames++;
+    c.set.add(0, metrics::frame_metrics(t, e, c.gospa_c, c.gospa_p));
 }
 }  // namespace
 
@@ -65,17 +46,16 @@ double Counts::us_per_frame() const { return frames ? time_s * 1e6 / frames : NA
 nlohmann::json Counts::to_json() const
 {
     auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    return {{"detection_prob", num(detection_prob())}, {"reliable3_prob", num(reliable3_prob())},
+    nlohmann::json j = {{"detection_prob", num(detection_prob())}, {"reliable3_prob", num(reliable3_prob())},
             {"false_track_prob", num(false_track_prob())}, {"rmse_cells", num(rmse())},
             {"us_per_frame", num(us_per_frame())}, {"true_frames", true_frames}, {"correct_points", correct},
             {"declared_points", declared}, {"false_points", false_points}, {"reliable_frames", rel_num},
-            {"reliable_den", rel_den}, {"frames", frames},
-            {"gospa", num(gospa())}, {"gospa_localisation", num(gospa_part(g_loc))},
-            {"gospa_missed", num(gospa_part(std::pow(gospa_c, gospa_p) / 2.0 * double(g_missed)))},
-            {"gospa_false", num(gospa_part(std::pow(gospa_c, gospa_p) / 2.0 * double(g_false)))},
-            {"gospa_missed_count", num(g_frames ? double(g_missed) / double(g_frames) : NAN)},
-            {"gospa_false_count", num(g_frames ? double(g_false) / double(g_frames) : NAN)},
-            {"ospa", num(ospa())}, {"gospa_c", gospa_c}, {"gospa_p", gospa_p}, {"gospa_alpha", 2}};
+            {"reliable_den", rel_den}, {"frames", frames}};
+    j.update(metrics::set_metric_fields(set));
+    j["gospa_c"] = gospa_c;
+    j["gospa_p"] = gospa_p;
+    j["gospa_alpha"] = 2;
+    return j;
 }
 
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
@@ -85,6 +65,7 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
     Counts c;
     c.gospa_c = gospa_c > 0.0 ? gospa_c : d_c;
     c.gospa_p = gospa_p;
+    c.set = metrics::SetMetricSums(1, c.gospa_c, c.gospa_p);
     std::size_t n = std::min(truth.size(), out.size());
     std::vector<char> ok(n, 0), present(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
@@ -132,6 +113,7 @@ Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vect
     Counts c;
     c.gospa_c = gospa_c > 0.0 ? gospa_c : d_c;
     c.gospa_p = gospa_p;
+    c.set = metrics::SetMetricSums(1, c.gospa_c, c.gospa_p);
     const std::size_t nt = truths.size();
     std::size_t n = out.size();
     for (const auto &tr : truths)

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/set_metrics.hpp"
 #include "methods.hpp"
 #include "sim.hpp"
 
@@ -23,13 +24,9 @@ struct Counts {
     double sq = 0.0;       ///< sum of squared errors of the correct points (cells^2)
     double time_s = 0.0;   ///< update time summed over frames
     /// GOSPA (alpha = 2) and OSPA per frame between the targets present and the declared
-    /// reports (positions in cells), as sums of their p-th-power terms over frames:
+    /// reports (positions in cells), accumulated over every frame (one slot: no per-frame curve)
     double gospa_c = 3.0, gospa_p = 2.0;
-    double g_loc = 0.0, g_ospa = 0.0;  ///< sums of localisation^p and OSPA^p
-    long long g_missed = 0, g_false = 0, g_frames = 0;  ///< missed / false points, frames
-    double gospa() const;              ///< power mean over frames: (sum GOSPA^p / frames)^(1/p)
-    double gospa_part(double sum) const;  ///< the same power mean of one part's p-th powers
-    double ospa() const;
+    metrics::SetMetricSums set{1, 3.0, 2.0};
     void add(const Counts &o);
     double detection_prob() const;
     double reliable3_prob() const;

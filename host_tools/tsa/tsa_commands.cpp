@@ -175,8 +175,7 @@ constexpr double PROJECT_CENTER_PX = 10.0, PROJECT_IOU = 0.5;
 
 struct RunTrace {
     std::vector<double> err, iou, us, cpu_us, beta, x;
-    double g_loc = 0, g_ospa = 0;   ///< sums over the run's frames of GOSPA localisation^p, OSPA^p
-    long g_missed = 0, g_false = 0, g_frames = 0;
+    metrics::SetMetricSums set{1, 10.0, 2.0};  ///< GOSPA / OSPA over the run's frames (one slot)
     std::vector<int> ok, ok_project, scored, state;
     bool success = false, success_project = false;
     int reacquire = -2;  // -2: no forced loss in the scenario
@@ -184,8 +183,7 @@ struct RunTrace {
 
 struct Agg {
     std::string name;
-    double g_loc = 0, g_ospa = 0;
-    long g_missed = 0, g_false = 0, g_frames = 0;
+    metrics::SetMetricSums set{1, 10.0, 2.0};
     double err_sum = 0, us_sum = 0, cpu_sum = 0;
     long frames = 0, ok_frames = 0, ok_project = 0, timed = 0;
     int runs = 0, runs_ok = 0, runs_ok_project = 0;
@@ -224,12 +222,9 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
             if (out.ok)
                 ep.push_back({out.center.x, out.center.y});
             const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
-            metrics::FrameMetrics fm = metrics::frame_metrics(tp, ep, gc, s.gospa_p);
-            r.g_loc += fm.localisation;
-            r.g_ospa += std::pow(fm.ospa, s.gospa_p);
-            r.g_missed += fm.missed_count;
-            r.g_false += fm.false_count;
-            r.g_frames++;
+            if (r.set.added() == 0)
+                r.set = metrics::SetMetricSums(1, gc, s.gospa_p);
+            r.set.add(0, metrics::frame_metrics(tp, ep, gc, s.gospa_p));
         }
         r.err.push_back(e);
         r.iou.push_back(ov);
@@ -309,11 +304,7 @@ EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, in
         for (int i = 0; i < runs; ++i) {
             const RunTrace &r = all[i][j];
             a.runs++;
-            a.g_loc += r.g_loc;
-            a.g_ospa += r.g_ospa;
-            a.g_missed += r.g_missed;
-            a.g_false += r.g_false;
-            a.g_frames += r.g_frames;
+            a.set.merge(r.set);
             a.runs_ok += r.success;
             a.runs_ok_project += r.success_project;
             long ok = 0, n = 0;
@@ -367,22 +358,11 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                   {"workspace_bytes", a.memory},
                   {"run_success", a.run_success},
                   {"success_vs_iou", curve}};
-        {
-            // power means over every frame of every run (docs/host_tools.md, GOSPA and OSPA)
-            const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr, gp = s.gospa_p;
-            const double half = std::pow(gc, gp) / 2.0, n = (double)a.g_frames;
-            auto pm = [&](double sum) { return a.g_frames ? json(std::pow(sum / n, 1.0 / gp)) : json(nullptr); };
-            t["gospa"] = pm(a.g_loc + half * (double)(a.g_missed + a.g_false));
-            t["gospa_localisation"] = pm(a.g_loc);
-            t["gospa_missed"] = pm(half * (double)a.g_missed);
-            t["gospa_false"] = pm(half * (double)a.g_false);
-            t["gospa_missed_count"] = a.g_frames ? json((double)a.g_missed / n) : json(nullptr);
-            t["gospa_false_count"] = a.g_frames ? json((double)a.g_false / n) : json(nullptr);
-            t["ospa"] = pm(a.g_ospa);
-            t["gospa_c"] = gc;
-            t["gospa_p"] = gp;
-            t["gospa_alpha"] = 2;
-        }
+        // power means over every frame of every run (docs/host_tools.md, GOSPA and OSPA)
+        t.update(metrics::set_metric_fields(a.set));
+        t["gospa_c"] = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
+        t["gospa_p"] = s.gospa_p;
+        t["gospa_alpha"] = 2;
         if (!a.reacquire.empty()) {
             int within = 0;
             for (int q : a.reacquire)
