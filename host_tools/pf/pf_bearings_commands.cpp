@@ -150,7 +150,7 @@ json agg_json(const Agg &a, unsigned runs, int steps)
         dref.push_back(std::sqrt(a.sref[k] / runs));
         tref += a.sref[k];
     }
-    return {
+    json j = {
         {"label", a.label},
         {"engine", a.engine},
         {"particles", a.n},
@@ -173,15 +173,10 @@ json agg_json(const Agg &a, unsigned runs, int steps)
         {"rmse_x_per_step", rx},
         {"rmse_y_per_step", ry},
         {"rmse_per_step", rr},
-        {"gospa", num_or_null(a.set.gospa())},
-        {"gospa_localisation", num_or_null(a.set.localisation())},
-        {"gospa_missed", num_or_null(a.set.missed())},
-        {"gospa_false", num_or_null(a.set.false_())},
-        {"gospa_missed_count", num_or_null(a.set.missed_count())},
-        {"gospa_false_count", num_or_null(a.set.false_count())},
-        {"ospa", num_or_null(a.set.ospa())},
         {"gospa_per_step", nums_or_null(gospa_steps(a.set))},
     };
+    j.update(metrics::set_metric_fields(a.set));
+    return j;
 }
 
 void plots(const BearingsScenario &s, const json &sum, const std::string &dir)

@@ -542,13 +542,6 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
         {"true_frames", num_or_null(A.true_frames / ntd)},
         {"rmse", num_or_null(A.n_rmse ? A.rmse / A.n_rmse : kNaN)},
         {"pcrlb", num_or_null(A.floor / ntd)},
-        {"gospa", num_or_null(sm.gospa())},
-        {"gospa_localisation", num_or_null(sm.localisation())},
-        {"gospa_missed", num_or_null(sm.missed())},
-        {"gospa_false", num_or_null(sm.false_())},
-        {"gospa_missed_count", num_or_null(sm.missed_count())},
-        {"gospa_false_count", num_or_null(sm.false_count())},
-        {"ospa", num_or_null(sm.ospa())},
         {"gospa_per_frame", nums_or_null(gpf)},
         {"ospa_per_frame", nums_or_null(opf)},
         {"false_tracks", (unassigned + 0.0) / Rd + A.false_t},
@@ -558,6 +551,7 @@ nlohmann::json summarize(const Scenario &s, const std::vector<RunEval> &runs, bo
         {"pcrlb_matched", num_or_null(A.n_rmse ? A.fm / A.n_rmse : kNaN)},
         {"existence_probability", nt ? json(A.mean_p) : nums_or_null(std::vector<double>(nf, kNaN))},
     };
+    avg.update(metrics::set_metric_fields(sm));
     json j;
     j["targets"] = targets;
     j["averaged"] = avg;
