@@ -633,7 +633,6 @@ static void p_in(pft_pte_input_t *in)
     in->pixel_offset = PFT_C(-32.0);
 }
 
-typedef size_t (*reports_fn)(const void *inst, pft_pte_report_t *out, size_t max);
 
 static void p_check(stat_t *st, const scene_t *s, uint64_t k, const pft_pte_report_t *r,
                     size_t n, size_t max, bool dp)
@@ -656,10 +655,41 @@ static void p_check(stat_t *st, const scene_t *s, uint64_t k, const pft_pte_repo
     count_frame(st, k, false_track, n > 0u);
 }
 
+/* The three range-profile trackers share the loop: update, copy the reports out, check them.
+ * The adapters give the loop one signature for each tracker's update and reports. */
+typedef pft_status_t (*p_update_fn)(void *inst, const pft_frame_t *f);
+typedef size_t (*p_reports_fn)(const void *inst, pft_pte_report_t *out, size_t max);
+
+static bool p_loop(const char *name, void *inst, p_update_fn update, p_reports_fn reports,
+                   size_t max, bool dp, uint64_t n, uint64_t seed, bool quiet)
+{
+    stat_t st = {.name = name};
+    scene_t s;
+    p_scene(&s, seed);
+    for (uint64_t k = 0; k < n; ++k) {
+        scene_step(&s);
+        pft_frame_t f = p_frame(&s, k);
+        if (update(inst, &f) != PFT_OK) {
+            fail(&st, &st.fail_status, k, "update refused", 0.0);
+            continue;
+        }
+        static pft_pte_report_t r[16];
+        size_t nr = reports(inst, r, max);
+        p_check(&st, &s, k, r, nr, max, dp);
+    }
+    return report(&st, quiet);
+}
+
+static pft_status_t pte_update_(void *p, const pft_frame_t *f) { return pft_pte_update(p, f); }
+static size_t pte_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_reports(p, r, m); }
+static pft_status_t dp_update_(void *p, const pft_frame_t *f) { return pft_pte_dp_update(p, f); }
+static size_t dp_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_dp_reports(p, r, m); }
+static pft_status_t dbt_update_(void *p, const pft_frame_t *f) { return pft_pte_dbt_update(p, f); }
+static size_t dbt_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_dbt_reports(p, r, m); }
+
 static bool soak_pte(uint64_t n, uint64_t seed, bool quiet)
 {
     static pft_pte_t p;
-    stat_t st = {.name = "pte"};
     pft_pte_config_t c;
     pft_pte_config_default(&c);
     p_in(&c.in);
@@ -670,26 +700,12 @@ static bool soak_pte(uint64_t n, uint64_t seed, bool quiet)
         printf("pte: configuration refused\n");
         return false;
     }
-    scene_t s;
-    p_scene(&s, seed);
-    for (uint64_t k = 0; k < n; ++k) {
-        scene_step(&s);
-        pft_frame_t f = p_frame(&s, k);
-        if (pft_pte_update(&p, &f) != PFT_OK) {
-            fail(&st, &st.fail_status, k, "update refused", 0.0);
-            continue;
-        }
-        pft_pte_report_t r[3];
-        size_t nr = pft_pte_reports(&p, r, 3u);
-        p_check(&st, &s, k, r, nr, 3u, false);
-    }
-    return report(&st, quiet);
+    return p_loop("pte", &p, pte_update_, pte_reports_, 3u, false, n, seed, quiet);
 }
 
 static bool soak_pte_dp(uint64_t n, uint64_t seed, bool quiet)
 {
     static pft_pte_dp_t p;
-    stat_t st = {.name = "pte_dp"};
     pft_pte_dp_config_t c;
     pft_pte_dp_config_default(&c);
     p_in(&c.in);
@@ -700,26 +716,12 @@ static bool soak_pte_dp(uint64_t n, uint64_t seed, bool quiet)
         printf("pte_dp: configuration refused\n");
         return false;
     }
-    scene_t s;
-    p_scene(&s, seed);
-    for (uint64_t k = 0; k < n; ++k) {
-        scene_step(&s);
-        pft_frame_t f = p_frame(&s, k);
-        if (pft_pte_dp_update(&p, &f) != PFT_OK) {
-            fail(&st, &st.fail_status, k, "update refused", 0.0);
-            continue;
-        }
-        pft_pte_report_t r[3];
-        size_t nr = pft_pte_dp_reports(&p, r, 3u);
-        p_check(&st, &s, k, r, nr, 3u, true);
-    }
-    return report(&st, quiet);
+    return p_loop("pte_dp", &p, dp_update_, dp_reports_, 3u, true, n, seed, quiet);
 }
 
 static bool soak_pte_dbt(uint64_t n, uint64_t seed, bool quiet)
 {
     static pft_pte_dbt_t p;
-    stat_t st = {.name = "pte_dbt"};
     pft_pte_dbt_config_t c;
     pft_pte_dbt_config_default(&c);
     p_in(&c.in);
@@ -730,20 +732,7 @@ static bool soak_pte_dbt(uint64_t n, uint64_t seed, bool quiet)
         printf("pte_dbt: configuration refused\n");
         return false;
     }
-    scene_t s;
-    p_scene(&s, seed);
-    for (uint64_t k = 0; k < n; ++k) {
-        scene_step(&s);
-        pft_frame_t f = p_frame(&s, k);
-        if (pft_pte_dbt_update(&p, &f) != PFT_OK) {
-            fail(&st, &st.fail_status, k, "update refused", 0.0);
-            continue;
-        }
-        static pft_pte_report_t r[16];
-        size_t nr = pft_pte_dbt_reports(&p, r, 16u);
-        p_check(&st, &s, k, r, nr, 16u, false);
-    }
-    return report(&st, quiet);
+    return p_loop("pte_dbt", &p, dbt_update_, dbt_reports_, 16u, false, n, seed, quiet);
 }
 
 /* ------------------------------------ main ------------------------------------------------ */
