@@ -362,6 +362,39 @@ static void pte_in(pft_pte_input_t *in)
 }
 
 
+/* The range-profile trackers: NFR + 3 frames, reset, the same frames again: every update
+ * accepted, at most max_reports reports, the same reports both times. The adapters give the
+ * three trackers one signature. */
+typedef pft_status_t (*pte_update_fn_)(void *inst, const pft_real_t *z);
+typedef size_t (*pte_reports_fn_)(const void *inst, pft_pte_report_t *out, size_t max);
+typedef pft_status_t (*pte_reset_fn_)(void *inst);
+
+static void pte_twice_(void *inst, pte_update_fn_ update, pte_reports_fn_ reports, pte_reset_fn_ reset,
+                       uint32_t seed, size_t cells, uint32_t max_reports)
+{
+    static pft_pte_report_t r[2][NFR + 3u][2];
+    memset(r, 0, sizeof r);
+    for (uint32_t pass = 0; pass < 2u; ++pass) {
+        for (uint32_t k = 0; k < NFR + 3u; ++k) {
+            synth_real(seed, k, cells);
+            FZ_CHECK(update(inst, g_z) == PFT_OK);
+            FZ_CHECK(reports(inst, r[pass][k], 2u) <= max_reports);
+        }
+        FZ_CHECK(reset(inst) == PFT_OK);
+    }
+    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+}
+
+static pft_status_t pte_update_(void *p, const pft_real_t *z) { return pft_pte_update_real(p, z); }
+static size_t pte_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_reports(p, r, m); }
+static pft_status_t pte_reset_(void *p) { return pft_pte_reset(p); }
+static pft_status_t dp_update_(void *p, const pft_real_t *z) { return pft_pte_dp_update_real(p, z); }
+static size_t dp_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_dp_reports(p, r, m); }
+static pft_status_t dp_reset_(void *p) { return pft_pte_dp_reset(p); }
+static pft_status_t dbt_update_(void *p, const pft_real_t *z) { return pft_pte_dbt_update_real(p, z); }
+static size_t dbt_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_dbt_reports(p, r, m); }
+static pft_status_t dbt_reset_(void *p) { return pft_pte_dbt_reset(p); }
+
 static void fuzz_pte(fz_t *f)
 {
     static pft_pte_t p;
@@ -398,17 +431,7 @@ static void fuzz_pte(fz_t *f)
         return;
     }
     uint32_t seed = fz_u32(f);
-    pft_pte_report_t r[2][NFR + 3u][2];
-    memset(r, 0, sizeof r);
-    for (uint32_t pass = 0; pass < 2u; ++pass) {
-        for (uint32_t k = 0; k < NFR + 3u; ++k) {
-            synth_real(seed, k, (size_t)cells);
-            FZ_CHECK(pft_pte_update_real(&p, g_z) == PFT_OK);
-            FZ_CHECK(pft_pte_reports(&p, r[pass][k], 2u) <= c.max_tracks);
-        }
-        FZ_CHECK(pft_pte_reset(&p) == PFT_OK);
-    }
-    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+    pte_twice_(&p, pte_update_, pte_reports_, pte_reset_, seed, (size_t)cells, c.max_tracks);
     pft_real_t vt;
     pft_status_t st = pft_pte_threshold(&p, fz_real(f), fz_u8(f) % 6u, fz_u8(f), &vt);
     FZ_CHECK(st == PFT_OK || st == PFT_ERR_INVAL);
@@ -445,17 +468,7 @@ static void fuzz_pte_dp(fz_t *f)
         return;
     }
     uint32_t seed = fz_u32(f);
-    pft_pte_report_t r[2][NFR + 3u][2];
-    memset(r, 0, sizeof r);
-    for (uint32_t pass = 0; pass < 2u; ++pass) {
-        for (uint32_t k = 0; k < NFR + 3u; ++k) {
-            synth_real(seed, k, (size_t)cells);
-            FZ_CHECK(pft_pte_dp_update_real(&p, g_z) == PFT_OK);
-            FZ_CHECK(pft_pte_dp_reports(&p, r[pass][k], 2u) <= c.max_targets);
-        }
-        FZ_CHECK(pft_pte_dp_reset(&p) == PFT_OK);
-    }
-    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+    pte_twice_(&p, dp_update_, dp_reports_, dp_reset_, seed, (size_t)cells, c.max_targets);
     pft_real_t vt;
     pft_status_t st = pft_pte_dp_threshold(&p, fz_real(f), fz_u8(f) % 6u, fz_u8(f), &vt);
     FZ_CHECK(st == PFT_OK || st == PFT_ERR_INVAL);
@@ -489,17 +502,7 @@ static void fuzz_pte_dbt(fz_t *f)
         return;
     }
     uint32_t seed = fz_u32(f);
-    pft_pte_report_t r[2][NFR + 3u][2];
-    memset(r, 0, sizeof r);
-    for (uint32_t pass = 0; pass < 2u; ++pass) {
-        for (uint32_t k = 0; k < NFR + 3u; ++k) {
-            synth_real(seed, k, (size_t)cells);
-            FZ_CHECK(pft_pte_dbt_update_real(&p, g_z) == PFT_OK);
-            FZ_CHECK(pft_pte_dbt_reports(&p, r[pass][k], 2u) <= c.max_tracks);
-        }
-        FZ_CHECK(pft_pte_dbt_reset(&p) == PFT_OK);
-    }
-    FZ_CHECK(memcmp(r[0], r[1], sizeof r[0]) == 0);
+    pte_twice_(&p, dbt_update_, dbt_reports_, dbt_reset_, seed, (size_t)cells, c.max_tracks);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
