@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../common/errors.hpp"
+#include "../common/plot.hpp"  // natural_less
 
 namespace fs = std::filesystem;
 
@@ -25,32 +26,6 @@ bool is_image(const fs::path &p)
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
     return e == ".png" || e == ".pgm" || e == ".tif" || e == ".tiff" || e == ".bmp" || e == ".jpg" ||
            e == ".jpeg";
-}
-
-/** Natural order: digit runs compare as numbers. */
-bool natural_less(const std::string &a, const std::string &b)
-{
-    std::size_t i = 0, j = 0;
-    while (i < a.size() && j < b.size()) {
-        if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
-            std::size_t i2 = i, j2 = j;
-            while (i2 < a.size() && std::isdigit(static_cast<unsigned char>(a[i2])))
-                ++i2;
-            while (j2 < b.size() && std::isdigit(static_cast<unsigned char>(b[j2])))
-                ++j2;
-            double na = std::stod(a.substr(i, i2 - i)), nb = std::stod(b.substr(j, j2 - j));
-            if (na != nb)
-                return na < nb;
-            i = i2;
-            j = j2;
-            continue;
-        }
-        if (a[i] != b[j])
-            return a[i] < b[j];
-        ++i;
-        ++j;
-    }
-    return a.size() - i < b.size() - j;
 }
 
 float smoothstep01(float t)
