@@ -41,7 +41,7 @@ static uint32_t pft_umag_(int32_t a)
 }
 
 /* Saturating signed result from a magnitude and a sign. */
-static pft_real_t pft_signed_sat_(uint64_t mag, int neg)
+static pft_real_t pft_signed_sat_(uint64_t mag, bool neg)
 {
     if (mag > (uint64_t)INT32_MAX) {
         return neg ? PFT_REAL_MIN : PFT_REAL_MAX;
@@ -131,6 +131,8 @@ static int32_t pft_exp_split_(pft_real_t x, uint32_t *r32)
         } else if (r >= PFT_LN2_Q48_) {
             r -= PFT_LN2_Q48_;
             --k;
+        } else {
+            /* r already in [0, ln 2) */
         }
     }
     *r32 = (uint32_t)((r + 32768) >> 16);
@@ -279,6 +281,8 @@ pft_real_t pft_atan2(pft_real_t y, pft_real_t x)
         total = PFT_PI_Q16_;
     } else if (total < -PFT_PI_Q16_) {
         total = -PFT_PI_Q16_;
+    } else {
+        /* already in [-pi, pi] */
     }
     return (pft_real_t)total;
 }
@@ -293,13 +297,16 @@ static pft_real_t pft_sin_q_(pft_real_t a, uint32_t qoff)
     int64_t n = ((int64_t)a * PFT_INV_TWO_PI_Q32_) >> 48; /* floor(a / 2 pi), +-1 */
     int64_t t, t2, p, v;
     uint32_t q = 0;
-    int use_cos, neg, i;
+    bool use_cos, neg;
+    int i;
     r -= n * PFT_TWO_PI_Q47_;
     for (i = 0; i < 2; ++i) {
         if (r < 0) {
             r += PFT_TWO_PI_Q47_;
         } else if (r >= PFT_TWO_PI_Q47_) {
             r -= PFT_TWO_PI_Q47_;
+        } else {
+            /* r already in [0, 2 pi) */
         }
     }
     for (i = 0; i < 3 && r >= PFT_HALF_PI_Q47_; ++i) {

@@ -38,6 +38,8 @@ pft_real_t pft_pf_bearings_innovation(const pft_real_t *x, pft_real_t z)
             e = pft_sub(e, PFT_TWO_PI);
         } else if (e <= pft_neg(PFT_PI)) {
             e = pft_add(e, PFT_TWO_PI);
+        } else {
+            /* e already in (-pi, pi] */
         }
     }
     return e;

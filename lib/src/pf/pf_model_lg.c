@@ -21,8 +21,8 @@ static void lg_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     uint16_t d = m->cfg.dim;
-    pft_real_t g[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t t[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t g[PFT_PF_LG_MAX_DIM] = {0};
+    pft_real_t t[PFT_PF_LG_MAX_DIM] = {0};
     for (uint16_t c = 0; c < d; ++c) {
         g[c] = pft_rng_gauss(rng);
     }
@@ -42,9 +42,9 @@ static void lg_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
     const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     uint16_t d = m->cfg.dim;
-    pft_real_t g[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t fx[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
-    pft_real_t t[PFT_PF_LG_MAX_DIM] = {PFT_C(0.0)};
+    pft_real_t g[PFT_PF_LG_MAX_DIM] = {0};
+    pft_real_t fx[PFT_PF_LG_MAX_DIM] = {0};
+    pft_real_t t[PFT_PF_LG_MAX_DIM] = {0};
     for (uint16_t c = 0; c < d; ++c) {
         g[c] = pft_rng_gauss(rng);
     }
@@ -59,7 +59,7 @@ static pft_real_t lg_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
     const pft_pf_lg_model_t *m = (const pft_pf_lg_model_t *)ctx;
     const pft_real_t *zz = (const pft_real_t *)z;
-    pft_real_t hx[PFT_PF_LG_MAX_MEAS] = {PFT_C(0.0)};
+    pft_real_t hx[PFT_PF_LG_MAX_MEAS] = {0};
     pft_real_t ll = PFT_C(0.0);
     matvec_(m->cfg.H, x, m->cfg.meas, m->cfg.dim, hx);
     for (uint16_t k = 0; k < m->cfg.meas; ++k) {

@@ -23,6 +23,8 @@ static void col_slide_(uint32_t *col, const uint32_t *add, const uint32_t *sub, 
         for (uint32_t x = 0; x < w; ++x) {
             col[x] -= sub[x];
         }
+    } else {
+        /* neither row: the column sums stay */
     }
 }
 

@@ -156,6 +156,8 @@ static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
             best = cost;
             bx = sx;
             by = sy;
+        } else {
+            /* not better than the best so far */
         }
     }
     const int64_t margin = 6144 / (int64_t)(n > 0u ? pft_pre_isqrt64_(n) : 1u);
@@ -657,16 +659,15 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
              * masked and its background restarts from z (x outside [xa, xb], or every pixel
              * of a row that is not covered) */
             const int32_t ua = covered ? ia : w, ub = covered ? ib : w;
-            for (int32_t x = 0; x < w; ++x) {
-                if (x == ua) {
-                    x = ub; /* skip the covered columns */
-                    if (x >= w) {
-                        break;
+            /* the columns before and after the covered ones [ua, ub) */
+            const int32_t ea = (ua >= 0 && ua < w) ? ua : w, sb = ea < w ? ub : w;
+            const int32_t seg[2][2] = {{0, ea}, {sb, w}};
+            for (int32_t s = 0; s < 2; ++s) {
+                for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
+                    r[x] = PFT_RES16_MASKED;
+                    if (zl[x] >= 0) {
+                        b[x] = (uint16_t)zl[x];
                     }
-                }
-                r[x] = PFT_RES16_MASKED;
-                if (zl[x] >= 0) {
-                    b[x] = (uint16_t)zl[x];
                 }
             }
             acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);

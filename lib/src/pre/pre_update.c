@@ -41,6 +41,8 @@ static bool frame_constant_(const pft_pre_cls_t *c, const pft_frame_t *f, bool *
             } else if (v != ref) {
                 *valid = true;
                 return false;
+            } else {
+                /* the same value as the reference: keep scanning */
             }
         }
     }
@@ -274,6 +276,8 @@ static void peak_add_(pft_pre_t *p, uint32_t x, uint32_t y, int16_t v)
     } else if (peak_below_(&p->peaks[0], &pk, w)) {
         p->peaks[0] = pk;
         heap_down_(p->peaks, k, 0u, w);
+    } else {
+        /* not above the heap's lowest: dropped */
     }
 }
 
@@ -354,6 +358,8 @@ static void row_multipliers_(pft_pre_t *p, uint32_t y)
         ja = j - 1u;
     } else if (y2 > cj && j + 1u < nty) {
         jb = j + 1u;
+    } else {
+        /* y on its tile's centre: no neighbour */
     }
     const uint32_t *ma = p->tmul + (size_t)ja * ntx, *mb = p->tmul + (size_t)jb * ntx;
     if (ja == jb || !p->cfg.sigma_interp) {
@@ -543,6 +549,8 @@ pft_status_t pft_pre_update(pft_pre_t *p, const pft_frame_t *f)
         whiten_(p);
     } else if (p->cfg.peak_max > 0u && p->last_row >= 0) {
         peaks_of_(p, p->last_row);
+    } else {
+        /* fused without peaks: the residual is complete */
     }
     peaks_sort_(p);
     p->st.n_peaks = p->n_peaks;
