@@ -14,7 +14,8 @@
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
- * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work).
+ * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
+ * pf add the existence probability of the search layer / filter after the frame.
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -177,6 +178,16 @@ static void trace(uint64_t k, size_t n)
 {
     if (g_trace) {
         printf("trace %llu %u\n", (unsigned long long)k, (unsigned)n);
+    }
+}
+
+/* tbd and pf: also the existence probability of the search layer / the filter after the frame
+ * (the share of its particles with E = 1 at the next frame follows it; only they are moved
+ * and weighed on the pixels) */
+static void trace_p(uint64_t k, size_t n, double p)
+{
+    if (g_trace) {
+        printf("trace %llu %u %.4f\n", (unsigned long long)k, (unsigned)n, p);
     }
 }
 
@@ -371,7 +382,7 @@ static bool soak_tbd(uint64_t n, uint64_t seed, bool quiet)
             check_real(&st, k, "search x", e.x, IR_LO, IR_HI_X);
             check_real(&st, k, "search y", e.y, IR_LO, IR_HI_Y);
         }
-        trace(k, nt);
+        trace_p(k, nt, R(e.p_exist));
         count_frame(&st, k, false_track, nt > 0u);
     }
     return report(&st, quiet);
@@ -424,7 +435,7 @@ static bool soak_pf(uint64_t n, uint64_t seed, bool quiet)
         check_real(&st, k, "log_evidence", ps.log_evidence, 0.0, 0.0);
         bool track = R(e[PFT_PF_TBD_E]) > 0.5;
         bool false_track = track && nearest(&s, R(e[PFT_PF_TBD_X]), R(e[PFT_PF_TBD_Y])) > IR_GATE;
-        trace(k, track ? 1u : 0u);
+        trace_p(k, track ? 1u : 0u, R(e[PFT_PF_TBD_E]));
         count_frame(&st, k, false_track, track);
     }
     return report(&st, quiet);

@@ -47,7 +47,8 @@ for f in glob.glob(d + "/cg.out.*"):
             tot.append((int(m.group(1)) if m else 0, int(line.split()[1])))
             break
 tot = [v for p, v in sorted(tot)]
-load = [int(l.split()[2]) for l in open(d + "/trace") if l.startswith("trace ")]
+tr = [l.split() for l in open(d + "/trace") if l.startswith("trace ")]
+load = [int(x[2]) for x in tr]
 n = min(len(tot), len(load))
 pairs = list(zip(load[:n], tot[:n]))[warm:]
 vals = [v for _, v in pairs]
@@ -59,6 +60,30 @@ per = "  ".join("load %d: %d frames, max/median %.2f" % (l, len(v), max(v) / sta
                 for l, v in sorted(by.items()))
 print("work %-5s %-8s frames %4d  instructions per update: median %.0f  max %.0f  max/median %.2f  |  %s"
       % (t, k, len(vals), med, max(vals), max(vals) / med, per))
+if tr and len(tr[0]) > 3:
+    # tbd, pf: only particles with E = 1 are moved and weighed on the pixels, and their share at
+    # frame i follows the existence probability p after frame i - 1; least squares
+    # instructions = a + b p(i-1) + c tracks(i-1), and how far any frame lies above that model
+    p = [float(x[3]) for x in tr]
+    rows = [(1.0, p[i - 1], float(load[i - 1]), float(tot[i])) for i in range(max(warm, 1), n)]
+    m = 3 if len(set(r[2] for r in rows)) > 1 else 2
+    A = [[sum(r[a] * r[b] for r in rows) for b in range(m)] for a in range(m)]
+    y = [sum(r[a] * r[3] for r in rows) for a in range(m)]
+    for c in range(m):  # Gauss-Jordan on the normal equations
+        piv = A[c][c]
+        A[c] = [v / piv for v in A[c]]; y[c] /= piv
+        for r2 in range(m):
+            if r2 != c and A[r2][c] != 0.0:
+                f_ = A[r2][c]
+                A[r2] = [u - f_ * v for u, v in zip(A[r2], A[c])]; y[r2] -= f_ * y[c]
+    fit = [sum(y[a] * r[a] for a in range(m)) for r in rows]
+    obs = [r[3] for r in rows]
+    mean = sum(obs) / len(obs)
+    r2 = 1.0 - sum((o - f_) ** 2 for o, f_ in zip(obs, fit)) / sum((o - mean) ** 2 for o in obs)
+    worst = max(o / f_ for o, f_ in zip(obs, fit))
+    print("work %-5s %-8s model a + b p + c tracks: a %.0f  b %.0f%s  R^2 %.3f  max observed/model %.2f"
+          "  (p = 1, no track: %.0f = %.2f x median)"
+          % (t, k, y[0], y[1], ("  c %.0f" % y[2]) if m == 3 else "", r2, worst, y[0] + y[1], (y[0] + y[1]) / med))
 PY
       rm -rf "$d"
     done
