@@ -362,7 +362,7 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
 
 /** Back to the state right after pft_tbd_init (same seeds, no tracks, ids from 1 again,
- *  workspace reused). PFT_ERR_INVAL for NULL or an uninitialised manager. */
+ *  workspace reused). PFT_ERR_INVAL for NULL, PFT_ERR_STATE for an uninitialised manager. */
 pft_status_t pft_tbd_reset(pft_tbd_t *t);
 
 /**
