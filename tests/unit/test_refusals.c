@@ -743,6 +743,229 @@ static void test_pre_init_and_results_refusals(void)
     TEST_ASSERT_TRUE(memcmp(g_snap + sizeof p, g_work, need) != 0);
 }
 
+/* --------------------------------------- tsa ---------------------------------------------- */
+#define AW 64
+#define AH 40
+#define ANP 40
+static uint8_t g_rgb[AH][AW][3];
+
+/* grey texture with a two-coloured 12 x 8 target whose top-left pixel is (x0, y0) */
+static pft_frame_t rgb_frame(int x0, int y0)
+{
+    uint32_t s = 99u;
+    for (int y = 0; y < AH; ++y) {
+        for (int x = 0; x < AW; ++x) {
+            s = s * 1664525u + 1013904223u;
+            const uint8_t g = (uint8_t)(90u + (s >> 27) * 3u);
+            g_rgb[y][x][0] = g;
+            g_rgb[y][x][1] = g;
+            g_rgb[y][x][2] = (uint8_t)(g - 10u);
+        }
+    }
+    for (int y = y0; y < y0 + 8; ++y) {
+        for (int x = x0; x < x0 + 12; ++x) {
+            g_rgb[y][x][0] = x < x0 + 6 ? 200 : 230;
+            g_rgb[y][x][1] = x < x0 + 6 ? 190 : 40;
+            g_rgb[y][x][2] = 40;
+        }
+    }
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_rgb;
+    f.width = AW;
+    f.height = AH;
+    f.stride_bytes = 3u * AW;
+    f.format = PFT_PIX_RGB888;
+    return f;
+}
+
+static void tsa_cfg(pft_tsa_config_t *c)
+{
+    pft_tsa_config_default(c);
+    c->width = AW;
+    c->height = AH;
+    c->max_target_w = 24u;
+    c->max_target_h = 24u;
+    c->n_particles = ANP;
+    c->snake_points = 16u;
+    c->seed = 4u;
+    pft_tsa_snake_params_default(&c->snake, 24u, 24u);
+}
+
+static void test_tsa_results_before_start_and_reset_refusals(void)
+{
+    static pft_tsa_t t;
+    pft_tsa_config_t c;
+    tsa_cfg(&c);
+    const size_t need = pft_tsa_workspace_size(&c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof g_work);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&t, &c, g_work, need));
+    static pft_tsa_hist_t h;
+    static pft_tsa_kpix_t kp[24 * 24];
+    pft_tsa_kernel_t k;
+    memset(&h, 0x5A, sizeof h);
+    memset(kp, 0x5A, sizeof kp);
+    memset(&k, 0, sizeof k);
+    k.pix = kp;
+    k.cap = 24u * 24u;
+    /* IDLE: no template, no kernel yet */
+    snap_begin();
+    snap_add(&t, sizeof t);
+    snap_add(g_work, need);
+    snap_add(&h, sizeof h);
+    snap_add(kp, sizeof kp);
+    REFUSED(PFT_ERR_STATE, pft_tsa_template(&t, &h));
+    REFUSED(PFT_ERR_STATE, pft_tsa_kernel(&t, &k));
+    /* tracking: a kernel larger than the caller's capacity is refused, out untouched */
+    pft_frame_t f = rgb_frame(20, 14);
+    const pft_tsa_pt_t box[4] = {{19, 13}, {32, 13}, {32, 22}, {19, 22}};
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&t, &f, box, 4u));
+    f = rgb_frame(21, 14);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&t, &f));
+    f = rgb_frame(22, 15);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&t, &f));
+    k.cap = 3u;
+    pft_tsa_kernel_t kc = k;
+    snap_begin();
+    snap_add(&t, sizeof t);
+    snap_add(g_work, need);
+    snap_add(kp, sizeof kp);
+    snap_add(&kc, sizeof kc);
+    REFUSED(PFT_ERR_NOMEM, pft_tsa_kernel(&t, &kc));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel(NULL, &kc));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_template(NULL, &h));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_reset(NULL));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_update(NULL, &f));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_start(NULL, &f, box, 4u));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_estimate(NULL, NULL));
+    f = rgb_frame(23, 15);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_update(&t, &f));
+    TEST_ASSERT_TRUE(memcmp(g_snap + sizeof t, g_work, need) != 0);
+    /* never initialised (zeroed): reset and update refused, nothing written */
+    static pft_tsa_t z;
+    memset(&z, 0, sizeof z);
+    snap_begin();
+    snap_add(&z, sizeof z);
+    REFUSED(PFT_ERR_INVAL, pft_tsa_reset(&z));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_update(&z, &f));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_start(&z, &f, box, 4u));
+}
+
+/* Building blocks: the documented outputs stay untouched on a refusal. */
+static void test_tsa_building_block_refusals(void)
+{
+    pft_frame_t f = rgb_frame(20, 14);
+    const pft_tsa_pt_t box[4] = {{19, 13}, {32, 13}, {32, 22}, {19, 22}};
+    static pft_tsa_kpix_t kp[24 * 24];
+    static int32_t cross[PFT_TSA_MAX_POINTS];
+    pft_tsa_kernel_t k;
+    memset(&k, 0, sizeof k);
+    k.pix = kp;
+    k.cap = 24u * 24u;
+    pft_tsa_pt_t origin;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_kernel_build(&k, box, 4u, 16u, cross, &origin));
+    static pft_tsa_hist_t h;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_hist(&f, &k, origin.x, origin.y, &h));
+    /* histogram: NULL, a U16 or F32 frame */
+    snap_begin();
+    snap_add(&h, sizeof h);
+    snap_add(&k, sizeof k);
+    snap_add(kp, sizeof kp);
+    pft_frame_t g = f;
+    g.format = PFT_PIX_U16;
+    REFUSED(PFT_ERR_FORMAT, pft_tsa_hist(&g, &k, origin.x, origin.y, &h));
+    g.format = PFT_PIX_F32;
+    g.stride_bytes = 4u * AW;
+    REFUSED(PFT_ERR_FORMAT, pft_tsa_hist(&g, &k, origin.x, origin.y, &h));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_hist(NULL, &k, origin.x, origin.y, &h));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_hist(&f, NULL, origin.x, origin.y, &h));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_hist(&f, &k, origin.x, origin.y, NULL));
+    /* kernel: k (and its pixels) and origin unchanged on every refusal */
+    pft_tsa_pt_t org2 = {-3, -4};
+    snap_begin();
+    snap_add(&k, sizeof k);
+    snap_add(kp, sizeof kp);
+    snap_add(&org2, sizeof org2);
+    const pft_tsa_pt_t line[3] = {{10, 10}, {20, 20}, {30, 30}};
+    const pft_tsa_pt_t wide[4] = {{0, 0}, {300, 0}, {300, 10}, {0, 10}};
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, box, 2u, 16u, cross, &org2));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, box, PFT_TSA_MAX_POINTS + 1u, 16u, cross, &org2));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, NULL, 4u, 16u, cross, &org2));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, box, 4u, 16u, NULL, &org2));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_kernel_build(&k, box, 4u, 16u, cross, NULL));
+    REFUSED(PFT_ERR_DEGENERATE, pft_tsa_kernel_build(&k, line, 3u, 16u, cross, &org2));
+    REFUSED(PFT_ERR_RANGE, pft_tsa_kernel_build(&k, wide, 4u, 16u, cross, &org2));
+    pft_tsa_kernel_t small = k;
+    small.cap = 5u;
+    snap_add(&small, sizeof small);
+    REFUSED(PFT_ERR_NOMEM, pft_tsa_kernel_build(&small, box, 4u, 16u, cross, &org2));
+    /* polygon resampling: out untouched */
+    static pft_tsa_pt_t pts[16];
+    memset(pts, 0x5A, sizeof pts);
+    snap_begin();
+    snap_add(pts, sizeof pts);
+    const pft_tsa_pt_t dot[3] = {{5, 5}, {5, 5}, {5, 5}};
+    REFUSED(PFT_ERR_INVAL, pft_tsa_poly_resample(box, 2u, pts, 16u));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_poly_resample(NULL, 4u, pts, 16u));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_poly_resample(box, 4u, NULL, 16u));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_poly_resample(dot, 3u, pts, 16u)); /* zero perimeter */
+    /* snake: the contour untouched when refused at the start */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_poly_resample(box, 4u, pts, 16u));
+    pft_tsa_snake_params_t prm;
+    pft_tsa_snake_params_default(&prm, 24u, 24u);
+    static uint8_t flags[16];
+    static uint8_t swork[PFT_TSA_SNAKE_WORK_BYTES(24u, 24u, 6u)];
+    TEST_ASSERT_EQUAL_UINT((unsigned)sizeof swork,
+                           (unsigned)pft_tsa_snake_work_size(24u, 24u, prm.margin));
+    uint32_t done = 77u; /* a refusal reports 0 passes run (not part of the snapshot) */
+    snap_begin();
+    snap_add(pts, sizeof pts);
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(NULL, pts, 16u, &prm, 5u, flags, swork, sizeof swork, &done));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, NULL, 16u, &prm, 5u, flags, swork, sizeof swork, &done));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, pts, PFT_TSA_MIN_POINTS - 1u, &prm, 5u, flags, swork,
+                                         sizeof swork, &done));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, pts, 16u, NULL, 5u, flags, swork, sizeof swork, &done));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, pts, 16u, &prm, 5u, NULL, swork, sizeof swork, &done));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, pts, 16u, &prm, 5u, flags, NULL, sizeof swork, &done));
+    pft_tsa_snake_params_t pb = prm;
+    pb.margin = 2u;
+    REFUSED(PFT_ERR_INVAL, pft_tsa_snake(&f, pts, 16u, &pb, 5u, flags, swork, sizeof swork, &done));
+    REFUSED(PFT_ERR_NOMEM, pft_tsa_snake(&f, pts, 16u, &prm, 5u, flags, swork, sizeof swork - 1u,
+                                         &done));
+    pb = prm;
+    pb.max_w = 8u; /* the contour box (14 x 10) is larger than the work's layout */
+    REFUSED(PFT_ERR_NOMEM, pft_tsa_snake(&f, pts, 16u, &pb, 5u, flags, swork, sizeof swork, &done));
+    g = f;
+    g.format = PFT_PIX_F32;
+    g.stride_bytes = 4u * AW;
+    REFUSED(PFT_ERR_FORMAT, pft_tsa_snake(&g, pts, 16u, &prm, 5u, flags, swork, sizeof swork, &done));
+    TEST_ASSERT_EQUAL_UINT32(0u, done);
+    /* motion: coefficients c untouched outside beta in [0, 64], q in [0, 10000] */
+    pft_tsa_motion_free_t mc;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_motion_free_coef(&mc, R(2.0), R(1.0)));
+    snap_begin();
+    snap_add(&mc, sizeof mc);
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_free_coef(&mc, R(-0.5), R(1.0)));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_free_coef(&mc, R(64.5), R(1.0)));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_free_coef(&mc, R(2.0), R(-1.0)));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_free_coef(&mc, R(2.0), R(10001.0)));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_free_coef(NULL, R(2.0), R(1.0)));
+    /* motion fit: out untouched */
+    const pft_real_t o[4] = {R(1.0), R(2.0), R(3.5), R(5.0)};
+    const pft_real_t zw[4] = {PFT_C(0.0), PFT_C(0.0), PFT_C(0.0), PFT_C(0.0)};
+    pft_tsa_motion_fit_t fit;
+    memset(&fit, 0x5A, sizeof fit);
+    snap_begin();
+    snap_add(&fit, sizeof fit);
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(NULL, NULL, 4u, R(2.0), 2u, &fit));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(o, NULL, 0u, R(2.0), 2u, &fit));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(o, NULL, PFT_TSA_MOTION_MAX_K + 1u, R(2.0), 2u, &fit));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(o, NULL, 4u, PFT_C(0.0), 2u, &fit));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(o, NULL, 4u, R(2.0), 3u, &fit));
+    REFUSED(PFT_ERR_INVAL, pft_tsa_motion_fit(o, zw, 4u, R(2.0), 2u, &fit));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_motion_fit(o, NULL, 4u, R(2.0), 2u, &fit));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -757,5 +980,7 @@ int main(void)
     RUN_TEST(test_pte_dp_dbt_init_and_threshold_refusals);
     RUN_TEST(test_pte_normalize_refusals);
     RUN_TEST(test_pre_init_and_results_refusals);
+    RUN_TEST(test_tsa_results_before_start_and_reset_refusals);
+    RUN_TEST(test_tsa_building_block_refusals);
     return UNITY_END();
 }
