@@ -366,6 +366,11 @@ static void test_tbd_manager_init_and_results_refusals(void)
     REFUSED(PFT_ERR_INVAL, pft_tbd_update(NULL, &fr));
     REFUSED(PFT_ERR_INVAL, pft_tbd_search_estimate(&t, NULL));
     REFUSED(PFT_ERR_INVAL, pft_tbd_search_estimate(NULL, &e));
+    /* a layer of the manager (the live track's) is not a standalone filter: the standalone
+     * calls refuse it and change nothing, neither the layer nor the manager */
+    REFUSED(PFT_ERR_STATE, pft_tbd_filter_reset(&t.tracks[0]));
+    REFUSED(PFT_ERR_STATE, pft_tbd_filter_update(&t.tracks[0], &fr));
+    REFUSED(PFT_ERR_STATE, pft_tbd_filter_update(&t.search, &fr));
     /* still live */
     tbd_frame(&sim, 9, &fr);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &fr));
