@@ -543,7 +543,7 @@ static void test_pte_refusals(void)
     REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, PFT_C(0.0), 100u, 1u, &vt));
     REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, PFT_C(1.0), 100u, 1u, &vt));
     REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, R(0.5), 0u, 1u, &vt));
-    REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, R(0.9), 100000u, 1u, &vt)); /* k > top-k */
+    REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, R(0.5), 4u * PFT_PTE_MC_TOPK, 1u, &vt)); /* k > top-k */
     REFUSED(PFT_ERR_INVAL, pft_pte_threshold(&p, R(0.1), 100u, 1u, NULL));
     REFUSED(PFT_ERR_INVAL, pft_pte_threshold(NULL, R(0.1), 100u, 1u, &vt));
     /* still live */
@@ -590,7 +590,7 @@ static void test_pte_dp_dbt_init_and_threshold_refusals(void)
     REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, PFT_C(0.0), 100u, 1u, &vt));
     REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, PFT_C(1.0), 100u, 1u, &vt));
     REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, R(0.5), 0u, 1u, &vt));
-    REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, R(0.9), 100000u, 1u, &vt));
+    REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, R(0.5), 4u * PFT_PTE_MC_TOPK, 1u, &vt));
     REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dp, R(0.1), 100u, 1u, NULL));
     pte_profile(11.9);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dp_update_real(&dp, g_z));
