@@ -15,7 +15,6 @@
 
 #include "pft_test_support.h"
 #include "pft_tbd_sim.h"
-#include "pft/pft_kalman.h"
 #include "pft/pft_pf.h"
 #include "pft/pft_pf_models.h"
 #include "pft/pft_pre.h"
@@ -595,6 +594,13 @@ static void test_pte_dp_dbt_init_and_threshold_refusals(void)
     pte_profile(11.9);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dp_update_real(&dp, g_z));
     TEST_ASSERT_TRUE(memcmp(g_snap + sizeof dp, g_work, need) != 0);
+    static pft_pte_dp_t dz;
+    memset(&dz, 0, sizeof dz);
+    snap_begin();
+    snap_add(&dz, sizeof dz);
+    REFUSED(PFT_ERR_INVAL, pft_pte_dp_reset(&dz));
+    REFUSED(PFT_ERR_INVAL, pft_pte_dp_update_real(&dz, g_z));
+    REFUSED(PFT_ERR_INVAL, pft_pte_dp_threshold(&dz, R(0.1), 100u, 1u, &vt));
 
     /* DBT: a live instance with a confirmed track */
     static pft_pte_dbt_t b;
@@ -746,6 +752,16 @@ static void test_pre_init_and_results_refusals(void)
     pft_frame_t f = ir_frame(4u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
     TEST_ASSERT_TRUE(memcmp(g_snap + sizeof p, g_work, need) != 0);
+    /* never initialised (zeroed): reset, update and the results refused, nothing written */
+    static pft_pre_t z;
+    memset(&z, 0, sizeof z);
+    memset(&out, 0x5A, sizeof out);
+    snap_begin();
+    snap_add(&z, sizeof z);
+    snap_add(&out, sizeof out);
+    REFUSED(PFT_ERR_INVAL, pft_pre_reset(&z));
+    REFUSED(PFT_ERR_INVAL, pft_pre_update(&z, &f));
+    REFUSED(PFT_ERR_STATE, pft_pre_frame(&z, &out)); /* no frame yet */
 }
 
 /* --------------------------------------- tsa ---------------------------------------------- */
