@@ -301,7 +301,7 @@ static void test_config_and_workspace(void)
     pft_pre_t p;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_init(NULL, &c, g_work, sizeof g_work));
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_init(&p, NULL, g_work, sizeof g_work));
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_init(&p, &c, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_init(&p, &c, NULL, 0));
 }
 
 /* ------------------------------------------------------------------ refused input */

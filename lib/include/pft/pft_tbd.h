@@ -267,7 +267,7 @@ size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg);
  * manager sizes are not used). All particles start with E = 0; the first update draws births
  * with probability eta. The config is copied.
  * @return PFT_ERR_INVAL for NULL arguments, PFT_ERR_CONFIG for a refused cfg, PFT_ERR_NOMEM
- *         when work_len is short (nothing written outside the instance).
+ *         when work_len is short (a refusal writes nothing: instance and workspace unchanged).
  */
 pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len);
@@ -362,7 +362,7 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 pft_status_t pft_tbd_init(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len);
 
 /** Back to the state right after pft_tbd_init (same seeds, no tracks, ids from 1 again,
- *  workspace reused). PFT_ERR_INVAL for NULL or an uninitialised manager. */
+ *  workspace reused). PFT_ERR_INVAL for NULL, PFT_ERR_STATE for an uninitialised manager. */
 pft_status_t pft_tbd_reset(pft_tbd_t *t);
 
 /**

@@ -126,7 +126,7 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
 pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
                           size_t work_len)
 {
-    if (p == NULL || cfg == NULL) {
+    if (p == NULL || cfg == NULL || work == NULL) {
         return PFT_ERR_INVAL;
     }
     if (pft_pre_config_check(cfg, NULL) != PFT_OK) {

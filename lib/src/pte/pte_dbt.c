@@ -96,7 +96,7 @@ size_t pft_pte_dbt_workspace_size(const pft_pte_dbt_config_t *c)
 pft_status_t pft_pte_dbt_init(pft_pte_dbt_t *b, const pft_pte_dbt_config_t *cfg, void *work,
                               size_t work_len)
 {
-    if (b == NULL || cfg == NULL) {
+    if (b == NULL || cfg == NULL || work == NULL) {
         return PFT_ERR_INVAL;
     }
     if (pft_pte_dbt_config_check(cfg, NULL) != PFT_OK) {

@@ -82,7 +82,7 @@ static void core_(const pft_pte_dp_t *dp, pft_pte_core_t_ *c)
 pft_status_t pft_pte_dp_init(pft_pte_dp_t *dp, const pft_pte_dp_config_t *cfg, void *work,
                              size_t work_len)
 {
-    if (dp == NULL || cfg == NULL) {
+    if (dp == NULL || cfg == NULL || work == NULL) {
         return PFT_ERR_INVAL;
     }
     if (pft_pte_dp_config_check(cfg, NULL) != PFT_OK) {

@@ -281,7 +281,7 @@ static pft_status_t carve_(const pft_pte_config_t *cfg, uint32_t yq, void *work,
 
 pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work, size_t work_len)
 {
-    if (p == NULL || cfg == NULL) {
+    if (p == NULL || cfg == NULL || work == NULL) {
         return PFT_ERR_INVAL;
     }
     if (pft_pte_config_check(cfg, NULL) != PFT_OK) {

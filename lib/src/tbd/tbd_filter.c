@@ -558,6 +558,15 @@ pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cf
     if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return PFT_ERR_CONFIG;
     }
+    /* Refuse a short workspace before writing the instance (a live filter stays as it was):
+     * every carve is a multiple of PFT_WS_ALIGN, so one take of the whole size formula less its
+     * start padding fits exactly when all of filter_build_'s takes do. */
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    (void)pft_ws_take(&ws, pft_tbd_filter_workspace_size(cfg) - (PFT_WS_ALIGN - 1u));
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
     return filter_build_(f, cfg, work, work_len) ? PFT_OK : PFT_ERR_NOMEM;
 }
 
