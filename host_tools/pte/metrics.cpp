@@ -58,6 +58,31 @@ nlohmann::json Counts::to_json() const
     return j;
 }
 
+nlohmann::json Counts::raw() const
+{
+    return {{"true_frames", true_frames}, {"correct", correct}, {"declared", declared},
+            {"false_points", false_points}, {"rel_num", rel_num}, {"rel_den", rel_den}, {"frames", frames},
+            {"sq", sq}, {"time_s", time_s}, {"gospa_c", gospa_c}, {"gospa_p", gospa_p}, {"set", set.raw()}};
+}
+
+Counts Counts::from_raw(const nlohmann::json &j)
+{
+    Counts c;
+    c.true_frames = j.at("true_frames").get<long long>();
+    c.correct = j.at("correct").get<long long>();
+    c.declared = j.at("declared").get<long long>();
+    c.false_points = j.at("false_points").get<long long>();
+    c.rel_num = j.at("rel_num").get<long long>();
+    c.rel_den = j.at("rel_den").get<long long>();
+    c.frames = j.at("frames").get<long long>();
+    c.sq = j.at("sq").get<double>();
+    c.time_s = j.at("time_s").get<double>();
+    c.gospa_c = j.at("gospa_c").get<double>();
+    c.gospa_p = j.at("gospa_p").get<double>();
+    c.set = metrics::SetMetricSums::from_raw(j.at("set"));
+    return c;
+}
+
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
                  int cells, double d_c, std::vector<char> *correct, bool with_coasting, double gospa_c,
                  double gospa_p)

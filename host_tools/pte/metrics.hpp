@@ -34,6 +34,10 @@ struct Counts {
     double rmse() const;              ///< NaN without correct points
     double us_per_frame() const;
     nlohmann::json to_json() const;
+    /** Every member exactly (a run's record in a partial summary of `pft eval --shard`);
+     *  from_raw(raw()) adds bit for bit like the original. */
+    nlohmann::json raw() const;
+    static Counts from_raw(const nlohmann::json &j);
 };
 
 /** Scores one run; correct (optional) receives a 0/1 flag per frame. The target counts as

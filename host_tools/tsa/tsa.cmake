@@ -28,3 +28,7 @@ if(PFT_BUILD_TESTS)
   set_tests_properties(host_tsa_kind_alias_vis PROPERTIES LABELS "host" FAIL_REGULAR_EXPRESSION "error"
                        PASS_REGULAR_EXPRESSION "scenario kind \"vis\" is now called \"tsa\"")
 endif()
+# Campaigns: 4 shards + pft merge give the single run's summary (host_tools/tests/shard_merge.cmake).
+if(PFT_BUILD_TESTS AND COMMAND pft_shard_merge_test)
+  pft_shard_merge_test(tsa ${CMAKE_CURRENT_LIST_DIR}/tests/tsa_small.json 8)
+endif()
