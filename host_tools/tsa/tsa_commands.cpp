@@ -964,6 +964,31 @@ public:
         return do_track(in, tr, o.sequence);
     }
 
+    int track(const Options &o) override
+    {
+        TrackCli t;
+        t.sequence = o.sequence;
+        t.box = o.track.box;
+        t.polygon = o.track.polygon;
+        t.init = o.track.init;
+        t.out = o.out.empty() ? "pft_track_out" : o.out;
+        t.scenario = o.scenario_path;
+        t.motion = o.track.motion;
+        t.particles = (int)o.particles;
+        t.set = o.track.set;
+        t.compare = o.track.compare;
+        t.frames = (int)o.frames;
+        t.snapshots = o.track.snapshots;
+        t.max_target = o.track.max_target;
+        t.snapshot_at = o.track.snapshot_at;
+        t.snapshot_format = o.track.snapshot_format;
+        t.snapshot_scale = o.track.snapshot_scale;
+        t.video = o.track.video;
+        t.no_video = o.no_video;
+        t.quiet = o.quiet;
+        return run_track(t);
+    }
+
     int eval(const Options &o) override { return evaluate_cmd(o, false); }
     int bench(const Options &o) override { return evaluate_cmd(o, true); }
 
@@ -1157,43 +1182,6 @@ PFT_REGISTER_KIND("tsa", TsaHandler);
 PFT_REGISTER_KIND_ALIAS("vis", "tsa", tsa_vis);
 
 }  // namespace
-
-CLI::App *add_track_command(CLI::App &app, TrackCli &t)
-{
-    CLI::App *c = app.add_subcommand("track", "pftrack TSA-AK (or ncv/ts) on a video or image folder from a box or polygon");
-    c->add_option("--sequence", t.sequence, "video file, image folder, or an opencv-doc name (vtest.avi, Megamind.avi)")
-        ->required();
-    c->add_option("--box", t.box, "initial box x,y,w,h (pixels; the box's corners are the polygon, so the target's "
-                                  "pixels are x .. x+w-1, y .. y+h-1)");
-    c->add_option("--polygon", t.polygon, "initial polygon x1,y1;x2,y2;...");
-    c->add_option("--init", t.init, "file with {\"box\": [x,y,w,h]} or {\"polygon\": [[x,y],...]} (JSON)");
-    c->add_option("--out", t.out, "output directory (default pft_track_out)");
-    c->add_option("--scenario", t.scenario, "take the tracker parameters from this tsa scenario's \"tracker\" object");
-    c->add_option("--motion", t.motion, "tsa (default), ncv or ts (overrides the scenario)")
-        ->check(CLI::IsMember({"tsa", "ncv", "ts"}));
-    c->add_option("--particles", t.particles, "normal particles (default 100; overrides the scenario)")
-        ->check(CLI::Range(1, 65535));
-    c->add_option("--compare", t.compare, "more trackers on the same frames, drawn in one overlay (comma "
-                                          "separated: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil); "
-                                          "tracks_<name>.csv each")
-        ->delimiter(',');
-    c->add_option("--set", t.set, "tracker parameter name=value (repeatable; any field of pft_tsa_config_t, e.g. "
-                                  "lik_lambda=0, loss_search=false; see docs/host_tools.md)");
-    c->add_option("--frames", t.frames, "stop after this many frames (default: all)")->check(CLI::Range(0, 10000000));
-    c->add_option("--max-target", t.max_target, "largest target side in px (default: 2x the initial box, <= 255)")
-        ->check(CLI::Range(0, 255));
-    c->add_flag("--video", t.video, "write overlay.avi (MJPEG)");
-    c->add_flag("--no-video", t.no_video, "no overlay.avi (the default; kept for older command lines)");
-    c->add_option("--snapshots", t.snapshots, "overlay snapshots evenly spaced over the run (default 0)")
-        ->check(CLI::Range(0, 100));
-    c->add_option("--snapshot-at", t.snapshot_at, "overlay snapshots of these frames (1-based, comma separated)")
-        ->delimiter(',');
-    c->add_option("--snapshot-format", t.snapshot_format, "png (default) or jpg (quality 85)")
-        ->check(CLI::IsMember({"png", "jpg"}));
-    c->add_option("--snapshot-scale", t.snapshot_scale, "scale of the snapshots (default 1)")->check(CLI::Range(0.05, 4.0));
-    c->add_flag("-q,--quiet", t.quiet, "print less");
-    return c;
-}
 
 int run_track(const TrackCli &t)
 {
