@@ -223,7 +223,7 @@ json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &
                       const std::vector<Truth> *truth, const std::string &dir, const std::string &caption,
                       bool quiet, const std::vector<std::vector<Truth>> *truths = nullptr)
 {
-    // several targets (a scenario's `targets`): scored together; the picture shows the first
+    // several targets (a scenario's `targets`): scored together; the picture shows every one
     auto score = [&](const std::vector<std::vector<Report>> &o, bool coasting) {
         if (truths && truths->size() > 1)
             return score_runs(*truths, o, s.radar.cells, s.eval.d_c, coasting);
@@ -263,7 +263,11 @@ json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &
         std::vector<Panel> panels{{"range-time image", nullptr}};
         for (std::size_t m = 0; m < names.size(); ++m)
             panels.push_back({specs[m].label() + " (" + numeric_name() + ")", &outs[m]});
-        save_rangetime_png(join_path(dir, "tracked.png"), z, truth, panels, lo, hi, caption);
+        std::vector<std::vector<Truth>> one;
+        if (truth && !(truths && !truths->empty()))
+            one.push_back(*truth);
+        save_rangetime_png(join_path(dir, "tracked.png"), z, truths && !truths->empty() ? truths : (truth ? &one : nullptr),
+                           panels, lo, hi, caption);
         write_tracks_csv(join_path(dir, "tracks.csv"), names, outs);
     }
     return res;
@@ -336,6 +340,36 @@ void fig5_plots(const std::string &dir, const Scenario &s, const std::vector<Snr
         p.series.push_back(ref);
         save_plot_png(p, join_path(dir, f.file));
     }
+}
+
+/** gospa_per_frame.png: GOSPA per frame over the runs, one curve per method, at the SNR point
+ *  of the sweep nearest the scenario's own SNR (declared points: the detected reports). */
+void gospa_plot(const std::string &dir, const Scenario &s, const std::vector<SnrResult> &res, unsigned runs,
+                const std::map<std::string, std::string> &labels)
+{
+    std::size_t at = 0;
+    for (std::size_t i = 1; i < res.size(); ++i)
+        if (std::fabs(res[i].snr - s.snr_db) < std::fabs(res[at].snr - s.snr_db))
+            at = i;
+    PlotSpec p;
+    p.title = "GOSPA per frame - " + (s.name.empty() ? std::string("pte") : s.name) + ", " +
+              (s.clutter() ? "SCNR " : "SNR ") + fmt(res[at].snr, 1) + " dB, " + std::to_string(runs) + " runs, " +
+              numeric_name();
+    p.xlabel = "frame";
+    p.ylabel = "GOSPA (range cells)";
+    p.ymin = 0.0;
+    for (const auto &m : s.eval.methods) {
+        const Counts &c = res[at].counts.at(m);
+        PlotSeries ser;
+        ser.label = labels.at(m);
+        ser.thickness = 1;
+        for (std::size_t k = 0; k < c.per_frame.frames(); ++k) {
+            ser.x.push_back(static_cast<double>(k + 1));
+            ser.y.push_back(c.per_frame.gospa_at(k));
+        }
+        p.series.push_back(ser);
+    }
+    save_plot_png(p, join_path(dir, "gospa_per_frame.png"));
 }
 
 // ------------------------------------------------------------------------- eval skeleton
@@ -420,7 +454,7 @@ json eval_head(const Options &o, const Scenario &s, const Campaign &c, const std
 }
 
 /** The measures of the runs (summed in run order at every SNR point) added to the head;
- *  summary.json, points/*.json, the Fig. 5 plots and the table. Shared by eval and merge, so
+ *  summary.json, the points/ files, the plots and the table. Shared by eval and merge, so
  *  both give the same summary from the same runs. */
 int finish_eval(const Options &o, const Scenario &s, const std::vector<MethodSpec> &specs, json head,
                 const std::vector<RunCounts> &recs, const std::string &out)
@@ -481,6 +515,8 @@ int finish_eval(const Options &o, const Scenario &s, const std::vector<MethodSpe
     write_json_atomic(join_path(out, "summary.json"), head);
     if (snrs.size() > 1)
         fig5_plots(out, s, res, runs, labels);
+    if (runs > 0)
+        gospa_plot(out, s, res, runs, labels);
     if (!o.quiet) {
         std::printf("\n");
         print_table_header();
@@ -497,7 +533,8 @@ int finish_eval(const Options &o, const Scenario &s, const std::vector<MethodSpe
                         v("detection_prob_above_0.9").c_str(), v("reliable3_above_0.9").c_str(),
                         v("false_track_below_0.1").c_str(), v("rmse_below_3").c_str(), v("all_four").c_str());
         }
-        std::printf("\n  %.1f s wall; wrote %s/summary.json, points/*.json%s\n", head["timing"]["wall_s"].get<double>(),
+        std::printf("\n  %.1f s wall; wrote %s/summary.json, points/*.json, gospa_per_frame.png%s\n",
+                    head["timing"]["wall_s"].get<double>(),
                     out.c_str(),
                     snrs.size() > 1 ? ", fig5a_rmse.png, fig5b_detection.png, fig5c_reliable3.png, fig5d_false.png" : "");
     }
@@ -571,7 +608,7 @@ public:
                                                                         : q.truths);
         double lo, hi;
         grey_range(s, lo, hi);
-        save_rangetime_png(join_path(o.out, "rangetime.png"), q.z, &q.truth, {{"range-time image", nullptr}},
+        save_rangetime_png(join_path(o.out, "rangetime.png"), q.z, &q.truths, {{"range-time image", nullptr}},
                            lo, hi, describe(s));
         side["layout"] = "one row per frame (time), one column per range cell";
         side["cells"] = q.cells;

@@ -177,6 +177,7 @@ constexpr double PROJECT_CENTER_PX = 10.0, PROJECT_IOU = 0.5;
 struct RunTrace {
     std::vector<double> err, iou, us, cpu_us, beta, x;
     metrics::SetMetricSums set{1, 10.0, 2.0};  ///< GOSPA / OSPA over the run's frames (one slot)
+    metrics::SetMetricSums per_frame{0, 10.0, 2.0};  ///< the same, one slot per update (curves)
     std::vector<int> ok, ok_project, scored, state;
     bool success = false, success_project = false;
     int reacquire = -2;  // -2: no forced loss in the scenario
@@ -187,7 +188,7 @@ struct RunTrace {
     {
         return {{"tracker", tracker}, {"err", nums_or_null(err)}, {"iou", nums_or_null(iou)},
                 {"us", nums_or_null(us)}, {"cpu_us", nums_or_null(cpu_us)}, {"beta", nums_or_null(beta)},
-                {"x", nums_or_null(x)}, {"set", set.raw()}, {"ok", ok}, {"ok_project", ok_project},
+                {"x", nums_or_null(x)}, {"set", set.raw()}, {"per_frame", per_frame.raw()}, {"ok", ok}, {"ok_project", ok_project},
                 {"scored", scored}, {"state", state}, {"success", success}, {"success_project", success_project},
                 {"reacquire", reacquire}, {"memory", memory}};
     }
@@ -201,6 +202,7 @@ struct RunTrace {
         r.beta = nulls_to_nan(j.at("beta"));
         r.x = nulls_to_nan(j.at("x"));
         r.set = metrics::SetMetricSums::from_raw(j.at("set"));
+        r.per_frame = metrics::SetMetricSums::from_raw(j.at("per_frame"));
         r.ok = j.at("ok").get<std::vector<int>>();
         r.ok_project = j.at("ok_project").get<std::vector<int>>();
         r.scored = j.at("scored").get<std::vector<int>>();
@@ -220,6 +222,7 @@ struct RunTrace {
 struct Agg {
     std::string name;
     metrics::SetMetricSums set{1, 10.0, 2.0};
+    metrics::SetMetricSums per_frame{0, 10.0, 2.0};
     double err_sum = 0, us_sum = 0, cpu_sum = 0;
     long frames = 0, ok_frames = 0, ok_project = 0, timed = 0;
     int runs = 0, runs_ok = 0, runs_ok_project = 0;
@@ -258,9 +261,13 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
             if (out.ok)
                 ep.push_back({out.center.x, out.center.y});
             const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
-            if (r.set.added() == 0)
+            if (r.set.added() == 0) {
                 r.set = metrics::SetMetricSums(1, gc, s.gospa_p);
-            r.set.add(0, metrics::frame_metrics(tp, ep, gc, s.gospa_p));
+                r.per_frame = metrics::SetMetricSums(frames.size() - 1, gc, s.gospa_p);
+            }
+            const metrics::FrameMetrics fm = metrics::frame_metrics(tp, ep, gc, s.gospa_p);
+            r.set.add(0, fm);
+            r.per_frame.add(k - 1, fm);
         }
         r.err.push_back(e);
         r.iou.push_back(ov);
@@ -386,6 +393,10 @@ EvalResult aggregate(const std::vector<std::string> &names, const std::vector<Ru
             const RunTrace &r = recs[i].traces[j];
             a.runs++;
             a.set.merge(r.set);
+            if (a.per_frame.frames() == 0)
+                a.per_frame = r.per_frame;
+            else
+                a.per_frame.merge(r.per_frame);
             a.runs_ok += r.success;
             a.runs_ok_project += r.success_project;
             long ok = 0, n = 0;
@@ -443,6 +454,15 @@ json trackers_json(const Scenario &s, const EvalResult &r)
                   {"success_vs_iou", curve}};
         // power means over every frame of every run (docs/host_tools.md, GOSPA and OSPA)
         t.update(metrics::set_metric_fields(a.set));
+        {
+            std::vector<double> g, os;
+            for (std::size_t k = 0; k < a.per_frame.frames(); ++k) {
+                g.push_back(a.per_frame.gospa_at(k));
+                os.push_back(a.per_frame.ospa_at(k));
+            }
+            t["gospa_per_frame"] = nums_or_null(g);  // frame k + 2 (the first update is frame 2)
+            t["ospa_per_frame"] = nums_or_null(os);
+        }
         t["gospa_c"] = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
         t["gospa_p"] = s.gospa_p;
         t["gospa_alpha"] = 2;
@@ -515,6 +535,23 @@ void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
         ce.series.push_back(ps);
     }
     save_plot_png(ce, join_path(out, "center_error.png"));
+
+    PlotSpec gp;
+    gp.title = s.name + ": GOSPA per frame over the runs";
+    gp.xlabel = "frame";
+    gp.ylabel = "GOSPA (px)";
+    gp.ymin = 0;
+    for (const auto &a : r.aggs) {
+        PlotSeries ps;
+        ps.label = a.name;
+        ps.thickness = 1;
+        for (std::size_t k = 0; k < a.per_frame.frames(); ++k) {
+            ps.x.push_back((double)k + 2);
+            ps.y.push_back(a.per_frame.gospa_at(k));
+        }
+        gp.series.push_back(ps);
+    }
+    save_plot_png(gp, join_path(out, "gospa_per_frame.png"));
 
     PlotSpec tx;
     tx.title = s.name + ": x trajectory, first run (Fig. 7a / 9a)";
