@@ -63,6 +63,7 @@ int KindHandler::run(const Options &o) { unsupported(o); }
 int KindHandler::eval(const Options &o) { unsupported(o); }
 int KindHandler::bench(const Options &o) { unsupported(o); }
 int KindHandler::demo(const Options &o) { unsupported(o); }
+int KindHandler::track(const Options &o) { unsupported(o); }
 int KindHandler::merge(const Options &o, const MergedRuns &) { unsupported(o); }
 int KindHandler::selftest(const Options &) { return 0; }
 

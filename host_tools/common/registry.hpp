@@ -1,5 +1,5 @@
 // The per-kind handler registry. A scenario file's top-level "kind" selects the module that
-// implements `sim`, `run`, `eval`, `merge`, `bench`, `demo` and `selftest` for it ("tbd",
+// implements `sim`, `run`, `eval`, `merge`, `bench`, `demo`, `track` and `selftest` for it ("tbd",
 // "pf_bearings", "pf_tbd", "tsa", "pte"). A module registers itself with PFT_REGISTER_KIND in
 // one of its .cpp files, which are compiled directly into the `pft` executable.
 #pragma once
@@ -14,10 +14,27 @@
 
 namespace pft::host {
 
+/** `pft track` (kind tsa): the initial region and the tracker and output settings that only
+ *  that command takes (its sequence, scenario, out, particles, frames and quiet are in Options). */
+struct TrackOptions {
+    std::string box;                   ///< --box x,y,w,h
+    std::string polygon;               ///< --polygon x1,y1;x2,y2;...
+    std::string init;                  ///< --init FILE.json ({"box": ...} or {"polygon": ...})
+    std::string motion;                ///< --motion tsa|ncv|ts (empty: the scenario's)
+    std::vector<std::string> set;      ///< --set name=value (repeatable)
+    std::vector<std::string> compare;  ///< --compare a,b,...: more trackers on the same frames
+    int max_target = 0;                ///< --max-target (0: from the initial region)
+    bool video = false;                ///< --video: write overlay.avi
+    int snapshots = 0;                 ///< --snapshots N
+    std::vector<int> snapshot_at;      ///< --snapshot-at k,k,...
+    std::string snapshot_format = "png";
+    double snapshot_scale = 1.0;
+};
+
 /** Command-line options shared by all subcommands; a handler ignores what it does not use
  *  and rejects what makes no sense for it (InputError). */
 struct Options {
-    std::string command;        ///< sim | run | eval | bench | demo | selftest
+    std::string command;        ///< sim | run | eval | bench | demo | track | selftest
     std::string scenario_path;  ///< --scenario
     nlohmann::json scenario;    ///< parsed scenario (null for selftest)
     std::string out;            ///< --out: output directory
@@ -42,6 +59,7 @@ struct Options {
     std::string shard;          ///< --shard K/N (eval): compute shard K of N, write a partial summary
     std::optional<double> gospa_c;  ///< --gospa-c: GOSPA/OSPA cut-off (unset: the kind's default)
     std::optional<double> gospa_p;  ///< --gospa-p: GOSPA/OSPA order (unset: 2)
+    TrackOptions track;         ///< `pft track` only
     std::vector<std::string> argv;  ///< the command line (recorded in summaries)
 };
 
@@ -55,6 +73,9 @@ public:
     virtual int eval(const Options &o);
     virtual int bench(const Options &o);
     virtual int demo(const Options &o);
+    /** `pft track`: a tracker over a recorded video or image folder from an initial region
+     *  (kind tsa; the kind is the --scenario's, else tsa). */
+    virtual int track(const Options &o);
     /** `pft merge`: the summary of the whole campaign from its partial summaries (the kind's
      *  records of every run, read back in run order), written as `eval` writes it. */
     virtual int merge(const Options &o, const MergedRuns &m);

@@ -245,6 +245,29 @@ void SetMetricSums::merge(const SetMetricSums &o)
     }
 }
 
+nlohmann::json SetMetricSums::raw() const
+{
+    return {{"c", c_}, {"p", p_}, {"loc", loc_}, {"miss", miss_}, {"fal", fal_}, {"ospa", ospa_},
+            {"nmiss", nmiss_}, {"nfal", nfal_}, {"n", n_}};
+}
+
+SetMetricSums SetMetricSums::from_raw(const nlohmann::json &j)
+{
+    SetMetricSums s(0, j.at("c").get<double>(), j.at("p").get<double>());
+    s.loc_ = j.at("loc").get<std::vector<double>>();
+    s.miss_ = j.at("miss").get<std::vector<double>>();
+    s.fal_ = j.at("fal").get<std::vector<double>>();
+    s.ospa_ = j.at("ospa").get<std::vector<double>>();
+    s.nmiss_ = j.at("nmiss").get<std::vector<double>>();
+    s.nfal_ = j.at("nfal").get<std::vector<double>>();
+    s.n_ = j.at("n").get<std::vector<long>>();
+    const std::size_t f = s.n_.size();
+    if (s.loc_.size() != f || s.miss_.size() != f || s.fal_.size() != f || s.ospa_.size() != f ||
+        s.nmiss_.size() != f || s.nfal_.size() != f)
+        throw std::runtime_error("set metric sums: arrays of different lengths");
+    return s;
+}
+
 nlohmann::json set_metric_fields(const SetMetricSums &s)
 {
     auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };

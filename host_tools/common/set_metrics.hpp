@@ -62,6 +62,10 @@ public:
     /** Adds another accumulation of the same frame count, c and p (e.g. another run's); an
      *  empty accumulation takes the other's c and p. */
     void merge(const SetMetricSums &o);
+    /** The raw sums, exactly (partial summaries of `pft eval --shard`): {c, p, loc, miss, fal,
+     *  ospa, nmiss, nfal, n}; from_raw(raw()) merges bit for bit like the original. */
+    nlohmann::json raw() const;
+    static SetMetricSums from_raw(const nlohmann::json &j);
     /** Frames (run-frames) added over all frames. */
     long added() const { return count(); }
     std::size_t frames() const { return n_.size(); }

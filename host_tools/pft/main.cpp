@@ -1,5 +1,5 @@
-// pft: the host tool. Subcommands sim, run, eval, bench, demo (dispatched to the handler of
-// the scenario's "kind"), merge (partial summaries of `eval --shard K/N`, dispatched by their
+// pft: the host tool. Subcommands sim, run, eval, bench, demo, track (dispatched to the handler
+// of the scenario's "kind"; track without --scenario: kind tsa), merge (partial summaries of `eval --shard K/N`, dispatched by their
 // kind), selftest (every registered kind), and plot (merges eval summaries into one figure).
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,6 @@
 #include "../common/json_field.hpp"
 #include "../common/plot.hpp"
 #include "../common/registry.hpp"
-#include "../tsa/track.hpp"
 
 using namespace pft::host;
 
@@ -248,8 +247,39 @@ int main(int argc, char **argv)
     pl->add_option("--xlabel", po.xlabel);
     pl->add_option("--ylabel", po.ylabel);
 
-    pft::host::tsa::TrackCli track_cli;
-    pft::host::tsa::add_track_command(app, track_cli);
+    CLI::App *tr = app.add_subcommand("track", "pftrack TSA-AK (or ncv/ts) on a video or image folder from a box or polygon");
+    TrackOptions &t = o.track;
+    tr->add_option("--sequence", o.sequence, "video file, image folder, or an opencv-doc name (vtest.avi, Megamind.avi)")
+        ->required();
+    tr->add_option("--box", t.box, "initial box x,y,w,h (pixels; the box's corners are the polygon, so the target's "
+                                   "pixels are x .. x+w-1, y .. y+h-1)");
+    tr->add_option("--polygon", t.polygon, "initial polygon x1,y1;x2,y2;...");
+    tr->add_option("--init", t.init, "file with {\"box\": [x,y,w,h]} or {\"polygon\": [[x,y],...]} (JSON)");
+    tr->add_option("--out", o.out, "output directory (default pft_track_out)");
+    tr->add_option("--scenario", o.scenario_path, "take the tracker parameters from this tsa scenario's \"tracker\" object");
+    tr->add_option("--motion", t.motion, "tsa (default), ncv or ts (overrides the scenario)")
+        ->check(CLI::IsMember({"tsa", "ncv", "ts"}));
+    tr->add_option("--particles", o.particles, "normal particles (default 100; overrides the scenario)")
+        ->check(CLI::Range(1u, 65535u));
+    tr->add_option("--compare", t.compare, "more trackers on the same frames, drawn in one overlay (comma "
+                                           "separated: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil); "
+                                           "tracks_<name>.csv each")
+        ->delimiter(',');
+    tr->add_option("--set", t.set, "tracker parameter name=value (repeatable; any field of pft_tsa_config_t, e.g. "
+                                   "lik_lambda=0, loss_search=false; see docs/host_tools.md)");
+    tr->add_option("--frames", o.frames, "stop after this many frames (default: all)")->check(CLI::Range(0u, 10000000u));
+    tr->add_option("--max-target", t.max_target, "largest target side in px (default: 2x the initial box, <= 255)")
+        ->check(CLI::Range(0, 255));
+    tr->add_flag("--video", t.video, "write overlay.avi (MJPEG)");
+    tr->add_flag("--no-video", o.no_video, "no overlay.avi (the default; kept for older command lines)");
+    tr->add_option("--snapshots", t.snapshots, "overlay snapshots evenly spaced over the run (default 0)")
+        ->check(CLI::Range(0, 100));
+    tr->add_option("--snapshot-at", t.snapshot_at, "overlay snapshots of these frames (1-based, comma separated)")
+        ->delimiter(',');
+    tr->add_option("--snapshot-format", t.snapshot_format, "png (default) or jpg (quality 85)")
+        ->check(CLI::IsMember({"png", "jpg"}));
+    tr->add_option("--snapshot-scale", t.snapshot_scale, "scale of the snapshots (default 1)")->check(CLI::Range(0.05, 4.0));
+    tr->add_flag("-q,--quiet", o.quiet, "print less");
 
     // --version alone: answered before the parser insists on a subcommand
     if (argc == 2 && std::string(argv[1]) == "--version") {
@@ -290,8 +320,15 @@ int main(int argc, char **argv)
             o.seed = seed;
         if (o.command == "plot")
             return cmd_plot(po);
-        if (o.command == "track")
-            return pft::host::tsa::run_track(track_cli);
+        if (o.command == "track") {
+            // the scenario's kind (its "tracker" object gives the parameters), else tsa
+            std::string kind = "tsa";
+            if (!o.scenario_path.empty()) {
+                o.scenario = load_json_file(o.scenario_path);
+                kind = Field(o.scenario, o.scenario_path).string("kind");
+            }
+            return make_handler(kind)->track(o);
+        }
         if (o.command == "merge") {
             MergedRuns m = read_partials(partials);
             return make_handler(m.kind)->merge(o, m);

@@ -9,7 +9,6 @@
 #include <functional>
 #include <fstream>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <sstream>
 
@@ -17,6 +16,7 @@ extern "C" {
 #include "pft/pft_port_file.h"
 }
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/output.hpp"
@@ -223,7 +223,7 @@ json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &
                       const std::vector<Truth> *truth, const std::string &dir, const std::string &caption,
                       bool quiet, const std::vector<std::vector<Truth>> *truths = nullptr)
 {
-    // several targets (a scenario's `targets`): scored together; the picture shows the first
+    // several targets (a scenario's `targets`): scored together; the picture shows every one
     auto score = [&](const std::vector<std::vector<Report>> &o, bool coasting) {
         if (truths && truths->size() > 1)
             return score_runs(*truths, o, s.radar.cells, s.eval.d_c, coasting);
@@ -263,7 +263,11 @@ json track_and_report(const Scenario &s, const std::vector<std::vector<float>> &
         std::vector<Panel> panels{{"range-time image", nullptr}};
         for (std::size_t m = 0; m < names.size(); ++m)
             panels.push_back({specs[m].label() + " (" + numeric_name() + ")", &outs[m]});
-        save_rangetime_png(join_path(dir, "tracked.png"), z, truth, panels, lo, hi, caption);
+        std::vector<std::vector<Truth>> one;
+        if (truth && !(truths && !truths->empty()))
+            one.push_back(*truth);
+        save_rangetime_png(join_path(dir, "tracked.png"), z, truths && !truths->empty() ? truths : (truth ? &one : nullptr),
+                           panels, lo, hi, caption);
         write_tracks_csv(join_path(dir, "tracks.csv"), names, outs);
     }
     return res;
@@ -338,6 +342,205 @@ void fig5_plots(const std::string &dir, const Scenario &s, const std::vector<Snr
     }
 }
 
+/** gospa_per_frame.png: GOSPA per frame over the runs, one curve per method, at the SNR point
+ *  of the sweep nearest the scenario's own SNR (declared points: the detected reports). */
+void gospa_plot(const std::string &dir, const Scenario &s, const std::vector<SnrResult> &res, unsigned runs,
+                const std::map<std::string, std::string> &labels)
+{
+    std::size_t at = 0;
+    for (std::size_t i = 1; i < res.size(); ++i)
+        if (std::fabs(res[i].snr - s.snr_db) < std::fabs(res[at].snr - s.snr_db))
+            at = i;
+    PlotSpec p;
+    p.title = "GOSPA per frame - " + (s.name.empty() ? std::string("pte") : s.name) + ", " +
+              (s.clutter() ? "SCNR " : "SNR ") + fmt(res[at].snr, 1) + " dB, " + std::to_string(runs) + " runs, " +
+              numeric_name();
+    p.xlabel = "frame";
+    p.ylabel = "GOSPA (range cells)";
+    p.ymin = 0.0;
+    for (const auto &m : s.eval.methods) {
+        const Counts &c = res[at].counts.at(m);
+        PlotSeries ser;
+        ser.label = labels.at(m);
+        ser.thickness = 1;
+        for (std::size_t k = 0; k < c.per_frame.frames(); ++k) {
+            ser.x.push_back(static_cast<double>(k + 1));
+            ser.y.push_back(c.per_frame.gospa_at(k));
+        }
+        p.series.push_back(ser);
+    }
+    save_plot_png(p, join_path(dir, "gospa_per_frame.png"));
+}
+
+// ------------------------------------------------------------------------- eval skeleton
+/** The SNR points of an eval: the scenario's sweep, else its one SNR. */
+std::vector<double> sweep(const Scenario &s)
+{
+    return s.eval.snr_db.empty() ? std::vector<double>{s.snr_db} : s.eval.snr_db;
+}
+
+/** One run (seed) of an eval: per SNR point and method, the counts with the detected reports
+ *  as declared points (det) and with every report (all). A partial summary stores these. */
+struct RunCounts {
+    uint64_t seed = 0;
+    std::vector<std::map<std::string, Counts>> det, all;  ///< [SNR point][method]
+
+    json to_json() const
+    {
+        json pts = json::array();
+        for (std::size_t i = 0; i < det.size(); ++i) {
+            json p = json::object();
+            for (const auto &kv : det[i])
+                p[kv.first] = {{"detected", kv.second.raw()}, {"with_coasting", all[i].at(kv.first).raw()}};
+            pts.push_back(p);
+        }
+        return {{"seed", seed}, {"snr_points", pts}};
+    }
+    static RunCounts from_json(const json &j)
+    {
+        RunCounts r;
+        r.seed = j.at("seed").get<uint64_t>();
+        for (const json &p : j.at("snr_points")) {
+            r.det.emplace_back();
+            r.all.emplace_back();
+            for (auto it = p.begin(); it != p.end(); ++it) {
+                r.det.back()[it.key()] = Counts::from_raw(it.value().at("detected"));
+                r.all.back()[it.key()] = Counts::from_raw(it.value().at("with_coasting"));
+            }
+        }
+        return r;
+    }
+};
+
+void print_thresholds(const Scenario &s, const std::vector<MethodSpec> &specs)
+{
+    for (const auto &sp : specs)
+        std::printf("  %-14s threshold %.3f%s\n", sp.label().c_str(), sp.threshold,
+                    sp.threshold_from_mc ? (s.methods.threshold_background == "scenario"
+                                                ? " (background-only Monte Carlo on the scenario's clutter)"
+                                                : " (noise-only Monte Carlo)")
+                                         : "");
+}
+
+/** The settings part of summary.json (the common header, then the pte fields); a partial
+ *  summary carries the same, so pft merge can check that its shards belong together. */
+json eval_head(const Options &o, const Scenario &s, const Campaign &c, const std::vector<MethodSpec> &specs,
+               unsigned threads, const CampaignTiming &t, double mc_s)
+{
+    SummaryHead h;
+    h.kind = "pte";
+    h.scenario = s.name;
+    h.scenario_file = s.file;
+    h.description = s.description;
+    h.tag = o.tag;
+    h.scenario_json = s.raw;
+    json head = summary_header(o, c, h, threads, t);
+    json settings = json::object();
+    for (const auto &sp : specs)
+        settings[sp.name] = sp.settings();
+    head["declared_points"] = "reports flagged detected (with_coasting: every report)";
+    head["seeds"] = {c.base_seed, c.base_seed + c.runs - 1};  // first and last (every SNR point uses them all)
+    head["snr_db"] = sweep(s);
+    head["d_c"] = s.eval.d_c;
+    head["frames"] = s.frames;
+    head["cells"] = s.radar.cells;
+    head["methods"] = s.eval.methods;
+    head["settings"] = settings;
+    head["timing"]["threshold_monte_carlo_s"] = mc_s;
+    head["scenario_json"] = s.raw;
+    if (!s.reference.is_null())
+        head["reference"] = s.reference;
+    return head;
+}
+
+/** The measures of the runs (summed in run order at every SNR point) added to the head;
+ *  summary.json, the points/ files, the plots and the table. Shared by eval and merge, so
+ *  both give the same summary from the same runs. */
+int finish_eval(const Options &o, const Scenario &s, const std::vector<MethodSpec> &specs, json head,
+                const std::vector<RunCounts> &recs, const std::string &out)
+{
+    const std::vector<double> snrs = sweep(s);
+    const unsigned runs = static_cast<unsigned>(recs.size());
+    std::vector<SnrResult> res(snrs.size());
+    for (std::size_t i = 0; i < snrs.size(); ++i) {
+        res[i].snr = snrs[i];
+        for (const auto &m : s.eval.methods) {
+            res[i].counts[m] = Counts{};
+            res[i].coasting[m] = Counts{};
+        }
+        for (const RunCounts &r : recs) {
+            if (r.det.size() != snrs.size())
+                throw InputError("merge: a run record has " + std::to_string(r.det.size()) + " SNR points, the scenario " +
+                                 std::to_string(snrs.size()));
+            for (const auto &m : s.eval.methods) {
+                res[i].counts[m].add(r.det[i].at(m));
+                res[i].coasting[m].add(r.all[i].at(m));
+            }
+        }
+    }
+    json results = json::array(), reach = json::object();
+    ensure_dir(join_path(out, "points"));
+    std::map<std::string, std::string> labels;
+    for (const auto &sp : specs)
+        labels[sp.name] = sp.label();
+    for (const auto &r : res)
+        for (const auto &m : s.eval.methods) {
+            json p = r.counts.at(m).to_json();
+            p["with_coasting"] = r.coasting.at(m).to_json();
+            p["method"] = m;
+            p["label"] = labels.at(m);
+            p["snr_db"] = r.snr;
+            p["numeric"] = numeric_name();
+            p["tag"] = labels.at(m) + (o.tag.empty() ? "" : " " + o.tag) + " (" + numeric_name() + ")";
+            p["runs"] = runs;
+            results.push_back(p);
+            char name[64];
+            std::snprintf(name, sizeof name, "%s_snr%05.1f.json", m.c_str(), r.snr);
+            write_json_atomic(join_path(join_path(out, "points"), name), p);
+        }
+    for (const auto &m : s.eval.methods) {
+        auto pd = [](const Counts &c) { return c.detection_prob() > 0.9; };
+        auto rel = [](const Counts &c) { return c.reliable3_prob() > 0.9; };
+        auto fa = [](const Counts &c) { return c.declared > 0 && c.false_track_prob() < 0.1; };
+        auto rm = [](const Counts &c) { return std::isfinite(c.rmse()) && c.rmse() < 3.0; };
+        auto all = [&](const Counts &c) { return pd(c) && rel(c) && fa(c) && rm(c); };
+        reach[m] = {{"detection_prob_above_0.9", first_reach(res, m, pd)},
+                    {"reliable3_above_0.9", first_reach(res, m, rel)},
+                    {"false_track_below_0.1", first_reach(res, m, fa)},
+                    {"rmse_below_3", first_reach(res, m, rm)},
+                    {"all_four", first_reach(res, m, all)}};
+    }
+    head["results"] = results;
+    head["first_snr_meeting"] = reach;
+    write_json_atomic(join_path(out, "summary.json"), head);
+    if (snrs.size() > 1)
+        fig5_plots(out, s, res, runs, labels);
+    if (runs > 0)
+        gospa_plot(out, s, res, runs, labels);
+    if (!o.quiet) {
+        std::printf("\n");
+        print_table_header();
+        for (const auto &r : res)
+            for (const auto &m : s.eval.methods)
+                print_row(labels.at(m), r.snr, r.counts.at(m));
+        std::printf("\n  first SNR from which the criterion holds (Pd>0.9, reliable>0.9, false<0.1, RMSE<3; all):\n");
+        for (const auto &m : s.eval.methods) {
+            auto v = [&](const char *k) {
+                const json &x = reach[m][k];
+                return x.is_null() ? std::string("never") : fmt(x.get<double>(), 1);
+            };
+            std::printf("  %-14s %6s %6s %6s %6s | %6s\n", labels.at(m).c_str(),
+                        v("detection_prob_above_0.9").c_str(), v("reliable3_above_0.9").c_str(),
+                        v("false_track_below_0.1").c_str(), v("rmse_below_3").c_str(), v("all_four").c_str());
+        }
+        std::printf("\n  %.1f s wall; wrote %s/summary.json, points/*.json, gospa_per_frame.png%s\n",
+                    head["timing"]["wall_s"].get<double>(),
+                    out.c_str(),
+                    snrs.size() > 1 ? ", fig5a_rmse.png, fig5b_detection.png, fig5c_reliable3.png, fig5d_false.png" : "");
+    }
+    return 0;
+}
+
 // ------------------------------------------------------------------------- handler
 class PteHandler : public KindHandler {
 public:
@@ -405,7 +608,7 @@ public:
                                                                         : q.truths);
         double lo, hi;
         grey_range(s, lo, hi);
-        save_rangetime_png(join_path(o.out, "rangetime.png"), q.z, &q.truth, {{"range-time image", nullptr}},
+        save_rangetime_png(join_path(o.out, "rangetime.png"), q.z, &q.truths, {{"range-time image", nullptr}},
                            lo, hi, describe(s));
         side["layout"] = "one row per frame (time), one column per range cell";
         side["cells"] = q.cells;
@@ -541,10 +744,9 @@ public:
     int eval(const Options &o) override
     {
         Scenario s = load(o);
-        unsigned runs = o.runs ? o.runs : s.eval.runs;
-        uint64_t base = o.seed ? *o.seed : s.eval.base_seed;
+        Campaign c = make_campaign(o.runs ? o.runs : s.eval.runs, o.seed ? *o.seed : s.eval.base_seed, o.shard);
         unsigned threads = resolve_threads(o.threads);
-        std::vector<double> snrs = s.eval.snr_db.empty() ? std::vector<double>{s.snr_db} : s.eval.snr_db;
+        std::vector<double> snrs = sweep(s);
         std::string out = o.out.empty() ? "pft_eval_" + (s.name.empty() ? std::string("pte") : s.name) + "_" +
                                               numeric_name()
                                         : o.out;
@@ -553,125 +755,74 @@ public:
         std::vector<MethodSpec> specs = make_specs(s);
         double mc_s = std::chrono::duration<double>(Clock::now() - t_mc).count();
         if (!o.quiet) {
-            std::printf("pft eval: %s\n  %u runs x %zu SNR points, seeds %llu..%llu (the same seeds at every SNR), "
+            std::printf("pft eval: %s\n  %zu runs x %zu SNR points, seeds %llu..%llu (the same seeds at every SNR)%s, "
                         "%u threads\n",
-                        describe(s).c_str(), runs, snrs.size(), static_cast<unsigned long long>(base),
-                        static_cast<unsigned long long>(base + runs - 1), threads);
-            for (const auto &sp : specs)
-                std::printf("  %-14s threshold %.3f%s\n", sp.label().c_str(), sp.threshold,
-                            sp.threshold_from_mc ? (s.methods.threshold_background == "scenario"
-                                                               ? " (background-only Monte Carlo on the scenario's clutter)"
-                                                               : " (noise-only Monte Carlo)")
-                                                        : "");
+                        describe(s).c_str(), c.count(), snrs.size(), static_cast<unsigned long long>(c.seed(c.first)),
+                        static_cast<unsigned long long>(c.seed(c.end - 1)),
+                        c.partial() ? (" (shard " + std::to_string(c.shard) + "/" + std::to_string(c.shards) +
+                                       " of " + std::to_string(c.runs) + " runs)").c_str()
+                                    : "",
+                        threads);
+            print_thresholds(s, specs);
         }
-        std::vector<SnrResult> res(snrs.size());
-        for (std::size_t i = 0; i < snrs.size(); ++i) {
-            res[i].snr = snrs[i];
-            for (const auto &m : s.eval.methods) {
-                res[i].counts[m] = Counts{};
-                res[i].coasting[m] = Counts{};
+        const double gc = o.gospa_c ? *o.gospa_c : 0.0, gp = o.gospa_p ? *o.gospa_p : 2.0;
+        std::vector<RunCounts> recs(c.count());
+        CampaignTiming t = run_campaign(c, threads, progress_wanted(o.progress), "eval", [&](std::size_t run, uint64_t seed) {
+            RunCounts &r = recs[run - c.first];
+            r.seed = seed;
+            r.det.resize(snrs.size());
+            r.all.resize(snrs.size());
+            for (std::size_t si = 0; si < snrs.size(); ++si) {
+                Scenario sc = s;
+                sc.snr_db = snrs[si];
+                Sequence q = simulate(sc, seed);
+                for (const auto &sp : specs) {
+                    double tm = 0.0;
+                    auto outp = run_method(sp, q.z, &tm);
+                    Counts cd = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, false, gc, gp);
+                    Counts ca = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true, gc, gp);
+                    cd.time_s = ca.time_s = tm;
+                    cd.frames = ca.frames = q.frames;
+                    r.det[si][sp.name] = cd;
+                    r.all[si][sp.name] = ca;
+                }
             }
-        }
-        std::mutex mu;
-        Progress bar(snrs.size() * runs, "eval", progress_wanted(o.progress));
-        auto t0 = Clock::now();
-        parallel_for(snrs.size() * runs, threads, [&](std::size_t job) {
-            std::size_t si = job / runs, run = job % runs;
-            Scenario sc = s;
-            sc.snr_db = snrs[si];
-            Sequence q = simulate(sc, base + run);
-            std::map<std::string, Counts> local, localc;
-            for (const auto &sp : specs) {
-                double t = 0.0;
-                auto outp = run_method(sp, q.z, &t);
-                const double gc = o.gospa_c ? *o.gospa_c : 0.0, gp = o.gospa_p ? *o.gospa_p : 2.0;
-                Counts c = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, false, gc, gp);
-                Counts cc = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true, gc, gp);
-                c.time_s = cc.time_s = t;
-                c.frames = cc.frames = q.frames;
-                local[sp.name] = c;
-                localc[sp.name] = cc;
-            }
-            {
-                std::lock_guard<std::mutex> lk(mu);
-                for (auto &kv : local)
-                    res[si].counts[kv.first].add(kv.second);
-                for (auto &kv : localc)
-                    res[si].coasting[kv.first].add(kv.second);
-            }
-            bar.tick();
         });
-        bar.finish();
-        double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+        json head = eval_head(o, s, c, specs, threads, t, mc_s);
+        if (c.partial()) {
+            json rj = json::array();
+            for (const RunCounts &r : recs)
+                rj.push_back(r.to_json());
+            std::string path = write_partial(out, head, o, c, rj);
+            if (!o.quiet)
+                std::printf("  %.1f s wall; wrote %s (pft merge combines the shards)\n", t.wall_s, path.c_str());
+            return 0;
+        }
+        return finish_eval(o, s, specs, head, recs, out);
+    }
 
-        json results = json::array(), settings = json::object(), reach = json::object();
-        ensure_dir(join_path(out, "points"));
-        std::map<std::string, std::string> labels;
-        for (const auto &sp : specs) {
-            settings[sp.name] = sp.settings();
-            labels[sp.name] = sp.label();
-        }
-        for (const auto &r : res)
-            for (const auto &m : s.eval.methods) {
-                json p = r.counts.at(m).to_json();
-                p["with_coasting"] = r.coasting.at(m).to_json();
-                p["method"] = m;
-                p["label"] = labels.at(m);
-                p["snr_db"] = r.snr;
-                p["numeric"] = numeric_name();
-                p["tag"] = labels.at(m) + (o.tag.empty() ? "" : " " + o.tag) + " (" + numeric_name() + ")";
-                p["runs"] = runs;
-                results.push_back(p);
-                char name[64];
-                std::snprintf(name, sizeof name, "%s_snr%05.1f.json", m.c_str(), r.snr);
-                write_json_atomic(join_path(join_path(out, "points"), name), p);
-            }
-        for (const auto &m : s.eval.methods) {
-            auto pd = [](const Counts &c) { return c.detection_prob() > 0.9; };
-            auto rel = [](const Counts &c) { return c.reliable3_prob() > 0.9; };
-            auto fa = [](const Counts &c) { return c.declared > 0 && c.false_track_prob() < 0.1; };
-            auto rm = [](const Counts &c) { return std::isfinite(c.rmse()) && c.rmse() < 3.0; };
-            auto all = [&](const Counts &c) { return pd(c) && rel(c) && fa(c) && rm(c); };
-            reach[m] = {{"detection_prob_above_0.9", first_reach(res, m, pd)},
-                        {"reliable3_above_0.9", first_reach(res, m, rel)},
-                        {"false_track_below_0.1", first_reach(res, m, fa)},
-                        {"rmse_below_3", first_reach(res, m, rm)},
-                        {"all_four", first_reach(res, m, all)}};
-        }
-        json head = {{"tool", "pft eval"}, {"kind", "pte"}, {"scenario", s.name}, {"scenario_file", s.file},
-                     {"declared_points", "reports flagged detected (with_coasting: every report)"},
-                     {"description", s.description}, {"numeric", numeric_name()}, {"runs", runs},
-                     {"base_seed", base}, {"seeds", {base, base + runs - 1}}, {"snr_db", snrs},
-                     {"d_c", s.eval.d_c}, {"threads", threads}, {"frames", s.frames}, {"cells", s.radar.cells},
-                     {"methods", s.eval.methods}, {"settings", settings}, {"results", results},
-                     {"first_snr_meeting", reach},
-                     {"timing", {{"wall_s", wall}, {"threshold_monte_carlo_s", mc_s}}},
-                     {"scenario_json", s.raw}};
-        if (!s.reference.is_null())
-            head["reference"] = s.reference;
-        write_json_atomic(join_path(out, "summary.json"), head);
-        if (snrs.size() > 1)
-            fig5_plots(out, s, res, runs, labels);
+    int merge(const Options &o, const MergedRuns &m) override
+    {
+        Options eo = m.options;
+        eo.out = o.out;
+        eo.quiet = o.quiet;
+        eo.argv = o.argv;
+        Scenario s = load(eo);
+        std::vector<RunCounts> recs;
+        for (const json &r : m.runs)
+            recs.push_back(RunCounts::from_json(r));
+        ensure_dir(o.out);
+        auto t_mc = Clock::now();
+        std::vector<MethodSpec> specs = make_specs(s);  // the thresholds (the same Monte Carlo as the shards')
+        double mc_s = std::chrono::duration<double>(Clock::now() - t_mc).count();
+        json head = eval_head(eo, s, m.campaign, specs, m.threads, m.timing, mc_s);
+        add_merge_fields(head, m);
         if (!o.quiet) {
-            std::printf("\n");
-            print_table_header();
-            for (const auto &r : res)
-                for (const auto &m : s.eval.methods)
-                    print_row(labels.at(m), r.snr, r.counts.at(m));
-            std::printf("\n  first SNR from which the criterion holds (Pd>0.9, reliable>0.9, false<0.1, RMSE<3; all):\n");
-            for (const auto &m : s.eval.methods) {
-                auto v = [&](const char *k) {
-                    const json &x = reach[m][k];
-                    return x.is_null() ? std::string("never") : fmt(x.get<double>(), 1);
-                };
-                std::printf("  %-14s %6s %6s %6s %6s | %6s\n", labels.at(m).c_str(),
-                            v("detection_prob_above_0.9").c_str(), v("reliable3_above_0.9").c_str(),
-                            v("false_track_below_0.1").c_str(), v("rmse_below_3").c_str(), v("all_four").c_str());
-            }
-            std::printf("\n  %.1f s wall; wrote %s/summary.json, points/*.json%s\n", wall, out.c_str(),
-                        snrs.size() > 1 ? ", fig5a_rmse.png, fig5b_detection.png, fig5c_reliable3.png, fig5d_false.png" : "");
+            std::printf("pft merge: %s\n  %u runs from %zu shards\n", describe(s).c_str(), m.campaign.runs,
+                        m.shards.size());
+            print_thresholds(s, specs);
         }
-        return 0;
+        return finish_eval(eo, s, specs, head, recs, o.out);
     }
 
     int bench(const Options &o) override

@@ -12,7 +12,7 @@
 namespace pft::host::pte {
 
 void save_rangetime_png(const std::string &path, const std::vector<std::vector<float>> &z,
-                        const std::vector<Truth> *truth, const std::vector<Panel> &panels,
+                        const std::vector<std::vector<Truth>> *truths, const std::vector<Panel> &panels,
                         double lo, double hi, const std::string &caption)
 {
     const int frames = static_cast<int>(z.size());
@@ -40,10 +40,15 @@ void save_rangetime_png(const std::string &path, const std::vector<std::vector<f
         int x0 = gap + p * (pw + gap);
         cv::Mat roi = img(cv::Rect(x0, top, pw, ph));
         bgr.copyTo(roi);
-        if (truth && panels[p].points) {
-            for (int k = 1; k < frames && k < static_cast<int>(truth->size()); ++k)
-                cv::line(roi, cv::Point(xpix((*truth)[k - 1].r), ypix(k - 1)),
-                         cv::Point(xpix((*truth)[k].r), ypix(k)), cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
+        if (truths && panels[p].points) {
+            static const cv::Scalar colours[] = {{0, 200, 0}, {255, 140, 0}, {200, 0, 200}, {0, 200, 220}};
+            for (std::size_t t = 0; t < truths->size(); ++t) {
+                const std::vector<Truth> &tr = (*truths)[t];
+                for (int k = 1; k < frames && k < static_cast<int>(tr.size()); ++k)
+                    if (tr[k - 1].active && tr[k].active)
+                        cv::line(roi, cv::Point(xpix(tr[k - 1].r), ypix(k - 1)), cv::Point(xpix(tr[k].r), ypix(k)),
+                                 colours[t % 4], 1, cv::LINE_AA);
+            }
         }
         if (panels[p].points) {
             const auto &pts = *panels[p].points;

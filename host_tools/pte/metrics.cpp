@@ -22,18 +22,24 @@ void Counts::add(const Counts &o)
         gospa_p = o.gospa_p;
     }
     set.merge(o.set);
+    if (per_frame.frames() == 0)
+        per_frame = o.per_frame;
+    else
+        per_frame.merge(o.per_frame);
 }
 
 namespace {
 /** Adds one frame's GOSPA / OSPA terms: truth and declared positions in cells (1-D). */
-void add_set_metrics(Counts &c, const std::vector<double> &truth, const std::vector<double> &est)
+void add_set_metrics(Counts &c, std::size_t k, const std::vector<double> &truth, const std::vector<double> &est)
 {
     std::vector<metrics::Point> t, e;
     for (double r : truth)
         t.push_back({r, 0.0});
     for (double r : est)
         e.push_back({r, 0.0});
-    c.set.add(0, metrics::frame_metrics(t, e, c.gospa_c, c.gospa_p));
+    const metrics::FrameMetrics f = metrics::frame_metrics(t, e, c.gospa_c, c.gospa_p);
+    c.set.add(0, f);
+    c.per_frame.add(k, f);
 }
 }  // namespace
 
@@ -52,10 +58,46 @@ nlohmann::json Counts::to_json() const
             {"declared_points", declared}, {"false_points", false_points}, {"reliable_frames", rel_num},
             {"reliable_den", rel_den}, {"frames", frames}};
     j.update(metrics::set_metric_fields(set));
+    if (per_frame.frames()) {
+        nlohmann::json g = nlohmann::json::array(), o = nlohmann::json::array();
+        for (std::size_t k = 0; k < per_frame.frames(); ++k) {
+            g.push_back(num(per_frame.gospa_at(k)));
+            o.push_back(num(per_frame.ospa_at(k)));
+        }
+        j["gospa_per_frame"] = g;
+        j["ospa_per_frame"] = o;
+    }
     j["gospa_c"] = gospa_c;
     j["gospa_p"] = gospa_p;
     j["gospa_alpha"] = 2;
     return j;
+}
+
+nlohmann::json Counts::raw() const
+{
+    return {{"true_frames", true_frames}, {"correct", correct}, {"declared", declared},
+            {"false_points", false_points}, {"rel_num", rel_num}, {"rel_den", rel_den}, {"frames", frames},
+            {"sq", sq}, {"time_s", time_s}, {"gospa_c", gospa_c}, {"gospa_p", gospa_p}, {"set", set.raw()},
+            {"per_frame", per_frame.raw()}};
+}
+
+Counts Counts::from_raw(const nlohmann::json &j)
+{
+    Counts c;
+    c.true_frames = j.at("true_frames").get<long long>();
+    c.correct = j.at("correct").get<long long>();
+    c.declared = j.at("declared").get<long long>();
+    c.false_points = j.at("false_points").get<long long>();
+    c.rel_num = j.at("rel_num").get<long long>();
+    c.rel_den = j.at("rel_den").get<long long>();
+    c.frames = j.at("frames").get<long long>();
+    c.sq = j.at("sq").get<double>();
+    c.time_s = j.at("time_s").get<double>();
+    c.gospa_c = j.at("gospa_c").get<double>();
+    c.gospa_p = j.at("gospa_p").get<double>();
+    c.set = metrics::SetMetricSums::from_raw(j.at("set"));
+    c.per_frame = metrics::SetMetricSums::from_raw(j.at("per_frame"));
+    return c;
 }
 
 Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<Report>> &out,
@@ -67,6 +109,7 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
     c.gospa_p = gospa_p;
     c.set = metrics::SetMetricSums(1, c.gospa_c, c.gospa_p);
     std::size_t n = std::min(truth.size(), out.size());
+    c.per_frame = metrics::SetMetricSums(n, c.gospa_c, c.gospa_p);
     std::vector<char> ok(n, 0), present(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
         present[k] = truth[k].r >= 0.0 && truth[k].r <= cells - 1.0;
@@ -80,7 +123,7 @@ Counts score_run(const std::vector<Truth> &truth, const std::vector<std::vector<
                 est.push_back(r.pos);
             }
         c.declared += nd;
-        add_set_metrics(c, present[k] ? std::vector<double>{truth[k].r} : std::vector<double>{}, est);
+        add_set_metrics(c, k, present[k] ? std::vector<double>{truth[k].r} : std::vector<double>{}, est);
         if (!present[k]) {
             c.false_points += nd;
             continue;
@@ -118,6 +161,7 @@ Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vect
     std::size_t n = out.size();
     for (const auto &tr : truths)
         n = std::min(n, tr.size());
+    c.per_frame = metrics::SetMetricSums(n, c.gospa_c, c.gospa_p);
     std::vector<std::vector<char>> ok(nt, std::vector<char>(n, 0)), present(nt, std::vector<char>(n, 0));
     for (std::size_t k = 0; k < n; ++k) {
         std::vector<double> pos;
@@ -143,7 +187,7 @@ Counts score_runs(const std::vector<std::vector<Truth>> &truths, const std::vect
         for (std::size_t t = 0; t < nt; ++t)
             if (present[t][k])
                 present_r.push_back(truths[t][k].r);
-        add_set_metrics(c, present_r, pos);
+        add_set_metrics(c, k, present_r, pos);
         std::sort(pairs.begin(), pairs.end(), [](const Pair &a, const Pair &b) {
             return a.d < b.d || (a.d == b.d && (a.t < b.t || (a.t == b.t && a.r < b.r)));
         });

@@ -24,9 +24,11 @@ struct Counts {
     double sq = 0.0;       ///< sum of squared errors of the correct points (cells^2)
     double time_s = 0.0;   ///< update time summed over frames
     /// GOSPA (alpha = 2) and OSPA per frame between the targets present and the declared
-    /// reports (positions in cells), accumulated over every frame (one slot: no per-frame curve)
+    /// reports (positions in cells), accumulated over every frame (set: one slot for the
+    /// averages) and per frame (per_frame: one slot per frame, for the curves over the runs)
     double gospa_c = 3.0, gospa_p = 2.0;
     metrics::SetMetricSums set{1, 3.0, 2.0};
+    metrics::SetMetricSums per_frame{0, 3.0, 2.0};
     void add(const Counts &o);
     double detection_prob() const;
     double reliable3_prob() const;
@@ -34,6 +36,10 @@ struct Counts {
     double rmse() const;              ///< NaN without correct points
     double us_per_frame() const;
     nlohmann::json to_json() const;
+    /** Every member exactly (a run's record in a partial summary of `pft eval --shard`);
+     *  from_raw(raw()) adds bit for bit like the original. */
+    nlohmann::json raw() const;
+    static Counts from_raw(const nlohmann::json &j);
 };
 
 /** Scores one run; correct (optional) receives a 0/1 flag per frame. The target counts as

@@ -32,3 +32,7 @@ if(PFT_BUILD_TESTS)
                    "-DEXPECT=takes no --filter" -P ${CMAKE_CURRENT_LIST_DIR}/../tests/expect_error.cmake)
   set_tests_properties(host_pte_bad_option PROPERTIES LABELS "host")
 endif()
+# Campaigns: 4 shards + pft merge give the single run's summary (host_tools/tests/shard_merge.cmake).
+if(PFT_BUILD_TESTS AND COMMAND pft_shard_merge_test)
+  pft_shard_merge_test(pte ${CMAKE_CURRENT_LIST_DIR}/tests/pte_small.json 8)
+endif()

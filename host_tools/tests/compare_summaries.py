@@ -2,13 +2,13 @@
 """Compares two eval summaries field by field (ctest host_*_shard_merge): every field must be
 equal, numbers bit for bit (JSON numbers from pft round-trip exactly), except the fields that
 record the invocation and the clock: command_line, threads, timing, shards (top level) and
-ns_per_step (measured time per step, anywhere).
+the measured times anywhere: ns_per_step (pf), us_per_frame (pte, tsa) and cpu_us_per_frame (tsa).
 Usage: compare_summaries.py A.json B.json   (exit 0 and "identical" when equal)"""
 import json
 import sys
 
 SKIP_TOP = {'command_line', 'threads', 'timing', 'shards'}
-SKIP_ANY = {'ns_per_step'}
+SKIP_ANY = {'ns_per_step', 'us_per_frame', 'cpu_us_per_frame'}
 
 
 def strip(j, top=True):

@@ -1,12 +1,12 @@
 // `pft track`: pftrack's TSA-AK (or a baseline) over a video or an image folder from an
 // initial box or polygon given on the command line or in a file, with tracker parameters from a
 // scenario and/or flags; writes tracks.csv and tracks.json (wall and CPU time per frame), and
-// on request overlay.avi and overlay snapshots (no frame is kept in memory).
+// on request overlay.avi and overlay snapshots (no frame is kept in memory). The command line
+// is parsed in host_tools/pft/main.cpp into Options::track; the kind registry calls the tsa
+// handler's track(), which fills a TrackCli and calls run_track.
 #pragma once
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 namespace pft::host::tsa {
 
@@ -23,8 +23,6 @@ struct TrackCli {
     bool video = false, no_video = false, quiet = false;
 };
 
-/** Adds the `track` subcommand to app, filling t. */
-CLI::App *add_track_command(CLI::App &app, TrackCli &t);
 /** Runs it; returns the exit status (InputError on bad input). */
 int run_track(const TrackCli &t);
 

@@ -16,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/set_metrics.hpp"
 #include "../common/json_field.hpp"
@@ -176,14 +177,52 @@ constexpr double PROJECT_CENTER_PX = 10.0, PROJECT_IOU = 0.5;
 struct RunTrace {
     std::vector<double> err, iou, us, cpu_us, beta, x;
     metrics::SetMetricSums set{1, 10.0, 2.0};  ///< GOSPA / OSPA over the run's frames (one slot)
+    metrics::SetMetricSums per_frame{0, 10.0, 2.0};  ///< the same, one slot per update (curves)
     std::vector<int> ok, ok_project, scored, state;
     bool success = false, success_project = false;
     int reacquire = -2;  // -2: no forced loss in the scenario
+    std::size_t memory = 0;  ///< the tracker's workspace bytes
+
+    /** Every member exactly (a run's record in a partial summary of `pft eval --shard`). */
+    json to_json(const std::string &tracker) const
+    {
+        return {{"tracker", tracker}, {"err", nums_or_null(err)}, {"iou", nums_or_null(iou)},
+                {"us", nums_or_null(us)}, {"cpu_us", nums_or_null(cpu_us)}, {"beta", nums_or_null(beta)},
+                {"x", nums_or_null(x)}, {"set", set.raw()}, {"per_frame", per_frame.raw()}, {"ok", ok}, {"ok_project", ok_project},
+                {"scored", scored}, {"state", state}, {"success", success}, {"success_project", success_project},
+                {"reacquire", reacquire}, {"memory", memory}};
+    }
+    static RunTrace from_json(const json &j)
+    {
+        RunTrace r;
+        r.err = nulls_to_nan(j.at("err"));
+        r.iou = nulls_to_nan(j.at("iou"));
+        r.us = nulls_to_nan(j.at("us"));
+        r.cpu_us = nulls_to_nan(j.at("cpu_us"));
+        r.beta = nulls_to_nan(j.at("beta"));
+        r.x = nulls_to_nan(j.at("x"));
+        r.set = metrics::SetMetricSums::from_raw(j.at("set"));
+        r.per_frame = metrics::SetMetricSums::from_raw(j.at("per_frame"));
+        r.ok = j.at("ok").get<std::vector<int>>();
+        r.ok_project = j.at("ok_project").get<std::vector<int>>();
+        r.scored = j.at("scored").get<std::vector<int>>();
+        r.state = j.at("state").get<std::vector<int>>();
+        r.success = j.at("success").get<bool>();
+        r.success_project = j.at("success_project").get<bool>();
+        r.reacquire = j.at("reacquire").get<int>();
+        r.memory = j.at("memory").get<std::size_t>();
+        const std::size_t n = r.err.size();
+        if (r.iou.size() != n || r.us.size() != n || r.cpu_us.size() != n || r.ok.size() != n ||
+            r.ok_project.size() != n || r.scored.size() != n)
+            throw InputError("tsa run record: per-frame arrays of different lengths");
+        return r;
+    }
 };
 
 struct Agg {
     std::string name;
     metrics::SetMetricSums set{1, 10.0, 2.0};
+    metrics::SetMetricSums per_frame{0, 10.0, 2.0};
     double err_sum = 0, us_sum = 0, cpu_sum = 0;
     long frames = 0, ok_frames = 0, ok_project = 0, timed = 0;
     int runs = 0, runs_ok = 0, runs_ok_project = 0;
@@ -222,9 +261,13 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
             if (out.ok)
                 ep.push_back({out.center.x, out.center.y});
             const double gc = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
-            if (r.set.added() == 0)
+            if (r.set.added() == 0) {
                 r.set = metrics::SetMetricSums(1, gc, s.gospa_p);
-            r.set.add(0, metrics::frame_metrics(tp, ep, gc, s.gospa_p));
+                r.per_frame = metrics::SetMetricSums(frames.size() - 1, gc, s.gospa_p);
+            }
+            const metrics::FrameMetrics fm = metrics::frame_metrics(tp, ep, gc, s.gospa_p);
+            r.set.add(0, fm);
+            r.per_frame.add(k - 1, fm);
         }
         r.err.push_back(e);
         r.iou.push_back(ov);
@@ -261,50 +304,99 @@ RunTrace run_one(Tracker &t, const std::vector<cv::Mat> &frames, const std::vect
 
 struct EvalResult {
     std::vector<Agg> aggs;
-    std::vector<TruthRow> truth0;  // truth of the first run
+    std::vector<double> truth0_cx;  // truth of the first run: the target's centre x per frame
 };
 
-EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, int runs, uint64_t seed_base,
-                    unsigned threads, int max_frames, bool progress, std::size_t keep_traces)
+/** One run (seed): every tracker's trace on the same frames; the first run of the campaign
+ *  also keeps the truth's x for the trajectory plot. A partial summary stores these. */
+struct RunRecord {
+    uint64_t seed = 0;
+    std::vector<std::string> names;
+    std::vector<RunTrace> traces;
+    std::vector<double> truth_cx;  ///< run 0 only
+
+    json to_json() const
+    {
+        json t = json::array();
+        for (std::size_t j = 0; j < traces.size(); ++j)
+            t.push_back(traces[j].to_json(names[j]));
+        json r = {{"seed", seed}, {"trackers", t}};
+        if (!truth_cx.empty())
+            r["truth_cx"] = nums_or_null(truth_cx);
+        return r;
+    }
+    static RunRecord from_json(const json &j)
+    {
+        RunRecord r;
+        r.seed = j.at("seed").get<uint64_t>();
+        for (const json &t : j.at("trackers")) {
+            r.names.push_back(t.at("tracker").get<std::string>());
+            r.traces.push_back(RunTrace::from_json(t));
+        }
+        if (j.contains("truth_cx"))
+            r.truth_cx = nulls_to_nan(j["truth_cx"]);
+        return r;
+    }
+};
+
+/** Every tracker of `names` on the runs of campaign c (one record per run, in run order). */
+std::vector<RunRecord> run_traces(const Scenario &s, const std::vector<std::string> &names, const Campaign &c,
+                                  unsigned threads, int max_frames, bool progress, CampaignTiming *timing)
 {
     // OpenCV's trackers and image functions run on the calling thread, so the thread CPU time
     // measures them completely and `threads` bounds the cores used
     cv::setNumThreads(0);
+    std::vector<RunRecord> recs(c.count());
+    CampaignTiming t = run_campaign(c, threads, progress, "tsa " + s.name, [&](std::size_t run, uint64_t seed) {
+        std::vector<cv::Mat> frames;
+        std::vector<TruthRow> truth;
+        render_sequence(s.scene, seed, frames, truth, max_frames);
+        RunRecord &r = recs[run - c.first];
+        r.seed = seed;
+        r.names = names;
+        r.traces.resize(names.size());
+        for (std::size_t j = 0; j < names.size(); ++j) {
+            PftParams p = s.tracker;
+            p.seed = seed;
+            auto tr = make_tracker(names[j], p, s.scene.width, s.scene.height);
+            r.traces[j] = run_one(*tr, frames, truth, s);
+            r.traces[j].memory = tr->memory_bytes();
+        }
+        if (run == 0)
+            for (const TruthRow &row : truth)
+                r.truth_cx.push_back(row.cx);
+    });
+    if (timing)
+        *timing = t;
+    return recs;
+}
+
+/** The measures over the runs, in run order; the traces of the first keep_traces runs are kept
+ *  for the plots. */
+EvalResult aggregate(const std::vector<std::string> &names, const std::vector<RunRecord> &recs,
+                     std::size_t keep_traces)
+{
     EvalResult res;
     for (auto &n : names) {
         Agg a;
         a.name = n;
         res.aggs.push_back(a);
     }
-    std::vector<std::vector<RunTrace>> all(runs, std::vector<RunTrace>(names.size()));
-    std::vector<std::size_t> mem(names.size(), 0);
-    std::vector<TruthRow> truth0;
-    Progress bar((std::size_t)runs, "tsa " + s.name, progress);
-    parallel_for((std::size_t)runs, threads, [&](std::size_t i) {
-        std::vector<cv::Mat> frames;
-        std::vector<TruthRow> truth;
-        const uint64_t seed = seed_base + i;
-        render_sequence(s.scene, seed, frames, truth, max_frames);
-        for (std::size_t j = 0; j < names.size(); ++j) {
-            PftParams p = s.tracker;
-            p.seed = seed;
-            auto t = make_tracker(names[j], p, s.scene.width, s.scene.height);
-            all[i][j] = run_one(*t, frames, truth, s);
-            if (i == 0)
-                mem[j] = t->memory_bytes();
-        }
-        if (i == 0)
-            truth0 = truth;
-        bar.tick();
-    });
-    bar.finish();
+    for (const RunRecord &rec : recs)
+        if (rec.names != names)
+            throw InputError("tsa run record of seed " + std::to_string(rec.seed) +
+                             ": other trackers than this build evaluates");
     for (std::size_t j = 0; j < names.size(); ++j) {
         Agg &a = res.aggs[j];
-        a.memory = mem[j];
-        for (int i = 0; i < runs; ++i) {
-            const RunTrace &r = all[i][j];
+        a.memory = recs.empty() ? 0 : recs[0].traces[j].memory;
+        for (std::size_t i = 0; i < recs.size(); ++i) {
+            const RunTrace &r = recs[i].traces[j];
             a.runs++;
             a.set.merge(r.set);
+            if (a.per_frame.frames() == 0)
+                a.per_frame = r.per_frame;
+            else
+                a.per_frame.merge(r.per_frame);
             a.runs_ok += r.success;
             a.runs_ok_project += r.success_project;
             long ok = 0, n = 0;
@@ -327,15 +419,17 @@ EvalResult evaluate(const Scenario &s, const std::vector<std::string> &names, in
             a.run_success.push_back(n ? (double)ok / n : 0.0);
             if (r.reacquire != -2)
                 a.reacquire.push_back(r.reacquire);
-            if ((std::size_t)i < keep_traces)
+            if (i < keep_traces)
                 a.traces.push_back(r);
         }
     }
-    res.truth0 = truth0;
+    if (!recs.empty())
+        res.truth0_cx = recs[0].truth_cx;
     return res;
 }
 
-json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t seed_base, const std::string &what)
+/** The measures of every tracker (the summary's "trackers"). */
+json trackers_json(const Scenario &s, const EvalResult &r)
 {
     json trk = json::array();
     for (const auto &a : r.aggs) {
@@ -360,6 +454,15 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                   {"success_vs_iou", curve}};
         // power means over every frame of every run (docs/host_tools.md, GOSPA and OSPA)
         t.update(metrics::set_metric_fields(a.set));
+        {
+            std::vector<double> g, os;
+            for (std::size_t k = 0; k < a.per_frame.frames(); ++k) {
+                g.push_back(a.per_frame.gospa_at(k));
+                os.push_back(a.per_frame.ospa_at(k));
+            }
+            t["gospa_per_frame"] = nums_or_null(g);  // frame k + 2 (the first update is frame 2)
+            t["ospa_per_frame"] = nums_or_null(os);
+        }
         t["gospa_c"] = s.gospa_c > 0 ? s.gospa_c : s.center_thr;
         t["gospa_p"] = s.gospa_p;
         t["gospa_alpha"] = 2;
@@ -372,6 +475,12 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
         }
         trk.push_back(t);
     }
+    return trk;
+}
+
+/** The settings part of a summary (everything but "trackers"). */
+json settings_json(const Scenario &s, int runs, uint64_t seed_base, const std::string &what)
+{
     return {{"kind", "tsa"}, {"command", what}, {"scenario", s.name}, {"scenario_file", s.file},
             {"numeric", numeric_name()}, {"runs", runs}, {"seed_first", seed_base},
             {"seed_last", seed_base + (uint64_t)runs - 1}, {"frames_per_run", s.scene.frames},
@@ -379,7 +488,14 @@ json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t see
                          {"project_iou", PROJECT_IOU}, {"project_center_px", PROJECT_CENTER_PX},
                          {"reacquire_run", REACQ_RUN}}},
             {"tracker_params", pft_params_json(s.tracker)}, {"scene", scene_to_json(s.scene)},
-            {"trackers", trk}, {"reference", s.reference}};
+            {"reference", s.reference}};
+}
+
+json summary_json(const Scenario &s, const EvalResult &r, int runs, uint64_t seed_base, const std::string &what)
+{
+    json j = settings_json(s, runs, seed_base, what);
+    j["trackers"] = trackers_json(s, r);
+    return j;
 }
 
 void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
@@ -420,6 +536,23 @@ void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
     }
     save_plot_png(ce, join_path(out, "center_error.png"));
 
+    PlotSpec gp;
+    gp.title = s.name + ": GOSPA per frame over the runs";
+    gp.xlabel = "frame";
+    gp.ylabel = "GOSPA (px)";
+    gp.ymin = 0;
+    for (const auto &a : r.aggs) {
+        PlotSeries ps;
+        ps.label = a.name;
+        ps.thickness = 1;
+        for (std::size_t k = 0; k < a.per_frame.frames(); ++k) {
+            ps.x.push_back((double)k + 2);
+            ps.y.push_back(a.per_frame.gospa_at(k));
+        }
+        gp.series.push_back(ps);
+    }
+    save_plot_png(gp, join_path(out, "gospa_per_frame.png"));
+
     PlotSpec tx;
     tx.title = s.name + ": x trajectory, first run (Fig. 7a / 9a)";
     tx.xlabel = "frame";
@@ -429,9 +562,9 @@ void write_plots(const Scenario &s, const EvalResult &r, const std::string &out)
         ps.label = "truth";
         ps.color = cv::Scalar(0, 0, 0);
         ps.dashed = true;
-        for (std::size_t k = 1; k < r.truth0.size(); ++k) {
+        for (std::size_t k = 1; k < r.truth0_cx.size(); ++k) {
             ps.x.push_back((double)k);
-            ps.y.push_back(r.truth0[k].cx);
+            ps.y.push_back(r.truth0_cx[k]);
         }
         tx.series.push_back(ps);
     }
@@ -868,6 +1001,31 @@ public:
         return do_track(in, tr, o.sequence);
     }
 
+    int track(const Options &o) override
+    {
+        TrackCli t;
+        t.sequence = o.sequence;
+        t.box = o.track.box;
+        t.polygon = o.track.polygon;
+        t.init = o.track.init;
+        t.out = o.out.empty() ? "pft_track_out" : o.out;
+        t.scenario = o.scenario_path;
+        t.motion = o.track.motion;
+        t.particles = (int)o.particles;
+        t.set = o.track.set;
+        t.compare = o.track.compare;
+        t.frames = (int)o.frames;
+        t.snapshots = o.track.snapshots;
+        t.max_target = o.track.max_target;
+        t.snapshot_at = o.track.snapshot_at;
+        t.snapshot_format = o.track.snapshot_format;
+        t.snapshot_scale = o.track.snapshot_scale;
+        t.video = o.track.video;
+        t.no_video = o.no_video;
+        t.quiet = o.quiet;
+        return run_track(t);
+    }
+
     int eval(const Options &o) override { return evaluate_cmd(o, false); }
     int bench(const Options &o) override { return evaluate_cmd(o, true); }
 
@@ -925,26 +1083,101 @@ public:
     }
 
 private:
-    int evaluate_cmd(const Options &o, bool bench)
+    /** The trackers of `names` this build has (OpenCV's need the contrib tracking module). */
+    static std::vector<std::string> usable(const std::vector<std::string> &names, bool quiet)
     {
-        Scenario s = load_scenario(o);
-        const std::vector<std::string> &names = bench ? s.bench_trackers : s.eval_trackers;
         std::vector<std::string> use;
         for (auto &n : names)
             if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200" ||
                 n == "tsa_paper")
                 use.push_back(n);
-            else if (!o.quiet)
+            else if (!quiet)
                 std::printf("(skipping %s: OpenCV contrib tracking module not built in)\n", n.c_str());
-        const int runs = o.runs ? (int)o.runs : (bench ? 1 : s.runs);
-        const uint64_t seed = o.seed.value_or(s.scene.seed_base);
+        return use;
+    }
+
+    /** The settings part of summary.json (the common header, then the tsa fields); a partial
+     *  summary carries the same, so pft merge can check that its shards belong together. */
+    static json eval_head(const Options &o, const Scenario &s, const Campaign &c, unsigned threads,
+                          const CampaignTiming &t)
+    {
+        SummaryHead h;
+        h.kind = "tsa";
+        h.scenario = s.name;
+        h.scenario_file = s.file;
+        h.description = s.description;
+        h.tag = o.tag;
+        h.scenario_json = o.scenario;
+        json head = summary_header(o, c, h, threads, t);
+        head.update(settings_json(s, (int)c.runs, c.base_seed, "eval"));
+        return head;
+    }
+
+    int evaluate_cmd(const Options &o, bool bench)
+    {
+        Scenario s = load_scenario(o);
+        const std::vector<std::string> use = usable(bench ? s.bench_trackers : s.eval_trackers, o.quiet);
+        const unsigned runs = o.runs ? o.runs : (bench ? 1u : (unsigned)s.runs);
+        Campaign c = make_campaign(runs, o.seed.value_or(s.scene.seed_base), bench ? std::string() : o.shard);
+        if (c.partial() && o.out.empty())
+            throw InputError("eval --shard " + o.shard + ": --out DIR is required (the partial summary goes there)");
         // bench times trackers one run after another on one thread; eval runs in parallel
         const unsigned threads = bench ? 1u : resolve_threads(o.threads);
-        EvalResult r = evaluate(s, use, runs, seed, threads, o.frames ? (int)o.frames + 1 : -1,
-                                progress_wanted(o.progress) && !o.quiet, 8);
-        json sum = summary_json(s, r, runs, seed, bench ? "bench" : "eval");
-        if (!o.tag.empty())
-            sum["tag"] = o.tag;
+        CampaignTiming t;
+        std::vector<RunRecord> recs = run_traces(s, use, c, threads, o.frames ? (int)o.frames + 1 : -1,
+                                                 progress_wanted(o.progress) && !o.quiet, &t);
+        if (bench) {
+            json sum = summary_json(s, aggregate(use, recs, 8), (int)runs, c.base_seed, "bench");
+            if (!o.tag.empty())
+                sum["tag"] = o.tag;
+            return finish(o, s, use, sum, recs, true);
+        }
+        json head = eval_head(o, s, c, threads, t);
+        if (c.partial()) {
+            json rj = json::array();
+            for (const RunRecord &r : recs)
+                rj.push_back(r.to_json());
+            ensure_dir(o.out);
+            std::string path = write_partial(o.out, head, o, c, rj);
+            if (!o.quiet)
+                std::printf("tsa eval: runs %zu..%zu of %u (shard %u/%u), %.1f s wall; wrote %s (pft merge combines "
+                            "the shards)\n",
+                            c.first, c.end - 1, c.runs, c.shard, c.shards, t.wall_s, path.c_str());
+            return 0;
+        }
+        return finish(o, s, use, head, recs, false);
+    }
+
+public:
+    int merge(const Options &o, const MergedRuns &m) override
+    {
+        Options eo = m.options;
+        eo.out = o.out;
+        eo.quiet = o.quiet;
+        eo.argv = o.argv;
+        Scenario s = load_scenario(eo);
+        const std::vector<std::string> use = usable(s.eval_trackers, true);
+        std::vector<RunRecord> recs;
+        for (const json &r : m.runs)
+            recs.push_back(RunRecord::from_json(r));
+        json head = eval_head(eo, s, m.campaign, m.threads, m.timing);
+        add_merge_fields(head, m);
+        if (!o.quiet)
+            std::printf("pft merge: %s, %u runs from %zu shards\n", s.name.c_str(), m.campaign.runs, m.shards.size());
+        return finish(eo, s, use, head, recs, false);
+    }
+
+private:
+    /** The summary from the runs (head: its settings part; bench: the whole bench.json), the
+     *  table, and with --out the JSON, the plots and the overlay snapshots. Shared by eval and
+     *  merge, so both give the same summary from the same runs. */
+    int finish(const Options &o, const Scenario &s, const std::vector<std::string> &use, json sum,
+               const std::vector<RunRecord> &recs, bool bench)
+    {
+        EvalResult r = aggregate(use, recs, 8);
+        if (!bench)
+            sum["trackers"] = trackers_json(s, r);
+        const uint64_t seed = sum["seed_first"].get<uint64_t>();
         if (!o.quiet)
             print_table(s, sum);
         if (!o.out.empty()) {
@@ -952,7 +1185,7 @@ private:
             write_json_atomic(join_path(o.out, bench ? "bench.json" : "summary.json"), sum);
             write_plots(s, r, o.out);
             // overlay snapshots of the first run of TSA (frames 1/4, 1/2, 3/4, last)
-            if (!bench || true) {
+            {
                 std::vector<cv::Mat> frames;
                 std::vector<TruthRow> truth;
                 render_sequence(s.scene, seed, frames, truth, o.frames ? (int)o.frames + 1 : -1);
@@ -986,43 +1219,6 @@ PFT_REGISTER_KIND("tsa", TsaHandler);
 PFT_REGISTER_KIND_ALIAS("vis", "tsa", tsa_vis);
 
 }  // namespace
-
-CLI::App *add_track_command(CLI::App &app, TrackCli &t)
-{
-    CLI::App *c = app.add_subcommand("track", "pftrack TSA-AK (or ncv/ts) on a video or image folder from a box or polygon");
-    c->add_option("--sequence", t.sequence, "video file, image folder, or an opencv-doc name (vtest.avi, Megamind.avi)")
-        ->required();
-    c->add_option("--box", t.box, "initial box x,y,w,h (pixels; the box's corners are the polygon, so the target's "
-                                  "pixels are x .. x+w-1, y .. y+h-1)");
-    c->add_option("--polygon", t.polygon, "initial polygon x1,y1;x2,y2;...");
-    c->add_option("--init", t.init, "file with {\"box\": [x,y,w,h]} or {\"polygon\": [[x,y],...]} (JSON)");
-    c->add_option("--out", t.out, "output directory (default pft_track_out)");
-    c->add_option("--scenario", t.scenario, "take the tracker parameters from this tsa scenario's \"tracker\" object");
-    c->add_option("--motion", t.motion, "tsa (default), ncv or ts (overrides the scenario)")
-        ->check(CLI::IsMember({"tsa", "ncv", "ts"}));
-    c->add_option("--particles", t.particles, "normal particles (default 100; overrides the scenario)")
-        ->check(CLI::Range(1, 65535));
-    c->add_option("--compare", t.compare, "more trackers on the same frames, drawn in one overlay (comma "
-                                          "separated: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil); "
-                                          "tracks_<name>.csv each")
-        ->delimiter(',');
-    c->add_option("--set", t.set, "tracker parameter name=value (repeatable; any field of pft_tsa_config_t, e.g. "
-                                  "lik_lambda=0, loss_search=false; see docs/host_tools.md)");
-    c->add_option("--frames", t.frames, "stop after this many frames (default: all)")->check(CLI::Range(0, 10000000));
-    c->add_option("--max-target", t.max_target, "largest target side in px (default: 2x the initial box, <= 255)")
-        ->check(CLI::Range(0, 255));
-    c->add_flag("--video", t.video, "write overlay.avi (MJPEG)");
-    c->add_flag("--no-video", t.no_video, "no overlay.avi (the default; kept for older command lines)");
-    c->add_option("--snapshots", t.snapshots, "overlay snapshots evenly spaced over the run (default 0)")
-        ->check(CLI::Range(0, 100));
-    c->add_option("--snapshot-at", t.snapshot_at, "overlay snapshots of these frames (1-based, comma separated)")
-        ->delimiter(',');
-    c->add_option("--snapshot-format", t.snapshot_format, "png (default) or jpg (quality 85)")
-        ->check(CLI::IsMember({"png", "jpg"}));
-    c->add_option("--snapshot-scale", t.snapshot_scale, "scale of the snapshots (default 1)")->check(CLI::Range(0.05, 4.0));
-    c->add_flag("-q,--quiet", t.quiet, "print less");
-    return c;
-}
 
 int run_track(const TrackCli &t)
 {
