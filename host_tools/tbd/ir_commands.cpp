@@ -823,8 +823,9 @@ public:
         if (!o.quiet) {
             std::printf("pft bench: %s\n  %s\n", describe(s).c_str(), describe_pipeline(s).c_str());
             std::printf("  simulation %.2f ms/frame; pipeline per frame: median %.2f ms, max %.2f ms "
-                        "(wall time, this machine); workspace %zu bytes\n",
-                        1e3 * t_sim / q.frames, 1e3 * med, 1e3 * times.back(), pl.workspace_bytes());
+                        "(wall time, this machine); workspace %zu bytes (pft_tbd) + %zu bytes (pft_pre)\n",
+                        1e3 * t_sim / q.frames, 1e3 * med, 1e3 * times.back(), pl.workspace_bytes(),
+                        pl.pre_workspace_bytes());
         }
         if (!o.out.empty()) {
             ensure_dir(o.out);
@@ -833,6 +834,7 @@ public:
                                {"frames", q.frames}, {"width", q.width}, {"height", q.height},
                                {"sim_s_per_frame", t_sim / q.frames}, {"median_s_per_frame", med},
                                {"max_s_per_frame", times.back()}, {"workspace_bytes", pl.workspace_bytes()},
+                               {"pre_workspace_bytes", pl.pre_workspace_bytes()},
                                {"numeric", numeric_name()}});
         }
         return 0;
