@@ -34,8 +34,7 @@ struct PipelineOut {
 
 class IrPipeline {
 public:
-    /** width x height frames of bit_depth bits (U16; U8 frames when bit_depth is 8 and the
-     *  frames are U8). */
+    /** width x height frames of bit_depth bits (8..16), given to the stage as U16. */
     IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width,
                int height, int bit_depth, uint64_t seed);
 
