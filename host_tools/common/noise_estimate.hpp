@@ -1,5 +1,5 @@
 // Robust estimates of the temporal noise sigma of a sequence from its frames, for inputs that
-// come without a sidecar (`pft run`) and for the IR pipeline's stand-in preprocessing.
+// come without a sidecar (`pft run`) and for the noise figure `pft run` prints.
 //  - spatial: r = z - (mean of the 8 neighbours); a plane (any linear gradient) cancels
 //    exactly and white noise of sigma s gives var(r) = (1 + 1/8) s^2, so
 //    sigma = robust_sigma(r) / sqrt(9/8). Structure that is not linear over 3x3 (edges, targets)

@@ -75,15 +75,20 @@ std::string describe(const IrScenario &s)
 
 std::string describe_pipeline(const IrScenario &s)
 {
-    char b[320];
+    char b[640];
     const TrackerSettings &t = s.tracker;
+    std::string pre = t.preprocess == "spatial"
+                          ? "spatial local mean " + std::to_string(2 * t.background_radius + 1) + "x" +
+                                std::to_string(2 * t.background_radius + 1) + " less " +
+                                std::to_string(2 * t.guard_radius + 1) + "x" + std::to_string(2 * t.guard_radius + 1)
+                          : "temporal registered background, alpha " + std::to_string(t.bg_alpha).substr(0, 5);
     std::snprintf(b, sizeof b,
-                  "pipeline: host stand-in preprocessing (local mean %dx%d, guard %dx%d, tile "
-                  "sigma %d px) + pft_tbd manager (%s preset, Ns=%u, Nt=%u, %u tracks, SNR prior "
-                  "%.3g..%.3g dB), %s",
-                  2 * t.background_radius + 1, 2 * t.background_radius + 1, 2 * t.guard_radius + 1,
-                  2 * t.guard_radius + 1, t.tile, t.preset.c_str(), t.particles, t.track_particles,
-                  t.max_targets, t.snr_min_db, t.snr_max_db, numeric_name());
+                  "pipeline: pft_pre (%s, tile sigma %d px) + pft_tbd manager (%s preset, Ns=%u, "
+                  "Nt=%u, %u tracks, SNR prior %.3g..%.3g dB) beside DBT (pfa %.3g per pixel: "
+                  "threshold %.2f sigma, %d of %d, CV Kalman NN), %s",
+                  pre.c_str(), t.tile, t.preset.c_str(), t.particles, t.track_particles, t.max_targets,
+                  t.snr_min_db, t.snr_max_db, s.dbt.pfa, dbt_threshold(s.dbt.pfa), s.dbt.m, s.dbt.n,
+                  numeric_name());
     return b;
 }
 
@@ -146,9 +151,10 @@ void write_platform(const std::string &path, const IrSequence &q)
 }
 
 // ------------------------------------------------------------------------- tracks output
-void write_tracks(const std::string &dir, const std::vector<tbd::FrameOut> &out, const json &meta)
+void write_tracks(const std::string &dir, const std::vector<tbd::FrameOut> &out, const json &meta,
+                  const std::string &prefix = "")
 {
-    write_text_atomic(join_path(dir, "tracks.csv"), [&](std::ostream &os) {
+    write_text_atomic(join_path(dir, prefix + "tracks.csv"), [&](std::ostream &os) {
         CsvWriter w(os);
         w.field("frame").field("track").field("x").field("y").field("vx").field("vy")
             .field("intensity").field("p_exist").field("first_frame");
@@ -182,7 +188,7 @@ void write_tracks(const std::string &dir, const std::vector<tbd::FrameOut> &out,
         j["tracks"].push_back(kv.second);
     j["events"] = events;
     j["tracks_point_format"] = "[frame, x, y, p_exist]";
-    write_json_atomic(join_path(dir, "tracks.json"), j);
+    write_json_atomic(join_path(dir, prefix + "tracks.json"), j);
 }
 
 /** Truth of one frame as the overlay wants it (ids in `ids` order). */
@@ -201,7 +207,7 @@ std::vector<tbd::TruthState> overlay_truth(const std::vector<TruthRow> &rows, in
     return v;
 }
 
-void print_tracks(const std::vector<tbd::FrameOut> &out, const IrRunEval *ev)
+void print_tracks(const std::vector<tbd::FrameOut> &out, const IrRunEval *ev, const char *who = "Tracks found")
 {
     std::map<uint32_t, std::array<double, 6>> h;  // first, last, x0, y0, x1, y1
     for (const tbd::FrameOut &f : out)
@@ -218,26 +224,141 @@ void print_tracks(const std::vector<tbd::FrameOut> &out, const IrRunEval *ev)
     std::set<uint32_t> fals;
     if (ev)
         fals.insert(ev->false_ids.begin(), ev->false_ids.end());
-    std::printf("\nTracks found: %zu\n", h.size());
+    std::printf("\n%s: %zu\n", who, h.size());
     for (auto &kv : h)
         std::printf("  #%-3u frames %3.0f-%-3.0f (%7.2f,%7.2f) .. (%7.2f,%7.2f)%s\n", kv.first,
                     kv.second[0], kv.second[1], kv.second[2], kv.second[3], kv.second[4], kv.second[5],
                     !ev ? "" : fals.count(kv.first) ? "  false track" : "  on a target");
 }
 
+/** Both trackers' outputs over a sequence. */
+struct Tracked {
+    std::vector<tbd::FrameOut> tbd, dbt;
+    long detections = 0;  ///< DBT detections over the sequence
+};
+
 /** Tracks a whole in-memory sequence through the pipeline. */
-std::vector<tbd::FrameOut> track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
+Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
 {
-    IrPipeline pl(s.tracker, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
-    std::vector<tbd::FrameOut> out;
-    out.reserve(static_cast<std::size_t>(q.frames));
-    for (int k = 0; k < q.frames; ++k)
-        out.push_back(pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth,
-                                        static_cast<uint32_t>(k + 1))));
+    IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+    Tracked out;
+    out.tbd.reserve(static_cast<std::size_t>(q.frames));
+    out.dbt.reserve(static_cast<std::size_t>(q.frames));
+    for (int k = 0; k < q.frames; ++k) {
+        PipelineOut po = pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth,
+                                           static_cast<uint32_t>(k + 1)));
+        out.tbd.push_back(std::move(po.tbd));
+        out.dbt.push_back(std::move(po.dbt));
+        out.detections += po.detections;
+    }
     return out;
 }
 
+/** The summary of both trackers: TBD's fields at the top (as before), DBT's under "dbt". */
+json summarize_pair(const std::vector<IrRunEval> &tbd, const std::vector<IrRunEval> &dbt)
+{
+    json sum = summarize_ir(tbd);
+    json d = summarize_ir(dbt);
+    sum["dbt"] = {{"averaged", d["averaged"]}, {"by_kind", d["by_kind"]}, {"per_run", d["per_run"]}};
+    return sum;
+}
+
 // ------------------------------------------------------------------------- selftest
+/** DBT known answers: the threshold of a false-alarm rate; a point moving on a line in noise
+ *  confirmed after m of n frames and ended max_misses frames after it leaves; nothing from a
+ *  frame with no exceedance or an all-masked one. */
+template <class Check>
+int dbt_checks(Check &check)
+{
+    char b[240];
+    check("DBT threshold: pfa 1e-5 -> 4.265 sigma, 1e-3 -> 3.090 sigma",
+          std::fabs(dbt_threshold(1e-5) - 4.26489) < 1e-3 && std::fabs(dbt_threshold(1e-3) - 3.09023) < 1e-3);
+    const int W = 64, H = 48;
+    std::vector<int16_t> zero(static_cast<std::size_t>(W * H), 0), masked(zero.size(), PFT_RES16_MASKED);
+    const double thr = dbt_threshold(1e-5);
+    check("DBT: no detection on a frame with no exceedance, nor on an all-masked one",
+          dbt_detect(zero.data(), W, H, W, thr, 500).empty() && dbt_detect(masked.data(), W, H, W, thr, 500).empty());
+    DbtSettings ds;  // pfa 1e-5, 3 of 5, 3 misses end a track
+    DbtTracker empty(ds);
+    tbd::FrameOut e1 = empty.step(dbt_detect(zero.data(), W, H, W, thr, 500), 1);
+    check("DBT: an empty frame confirms nothing and starts nothing",
+          e1.tracks.empty() && e1.events.empty() && empty.live_tracks() == 0);
+    // unit-sigma Gaussian noise in Q8.8 plus a point of peak 8 sigma (PSF 0.7 px) from (10.2, 12.4)
+    // at (0.8, 0.5) px/frame for 20 frames, then 6 frames of noise only
+    cv::RNG rng(4242);
+    DbtTracker dbt(ds);
+    uint32_t confirmed_at = 0, ended_at = 0, id = 0;
+    int other_confirmed = 0;
+    double err = 1e9;
+    for (uint32_t k = 1; k <= 26; ++k) {
+        cv::Mat z(H, W, CV_32F);
+        rng.fill(z, cv::RNG::NORMAL, 0.0, 1.0);
+        double tx = 10.2 + 0.8 * (k - 1), ty = 12.4 + 0.5 * (k - 1);
+        if (k <= 20)
+            add_point(z, tx, ty, 8.0, 0.7);
+        std::vector<int16_t> q(static_cast<std::size_t>(W * H));
+        for (int i = 0; i < W * H; ++i)
+            q[static_cast<std::size_t>(i)] = static_cast<int16_t>(std::lround(z.at<float>(i / W, i % W) * 256.0));
+        tbd::FrameOut f = dbt.step(dbt_detect(q.data(), W, H, W, thr, 500), k);
+        for (const tbd::EventOut &ev : f.events) {
+            if (ev.kind == PFT_TBD_EV_CONFIRMED && !confirmed_at) {
+                confirmed_at = k;
+                id = ev.id;
+            } else if (ev.kind == PFT_TBD_EV_CONFIRMED) {
+                ++other_confirmed;
+            } else if (ev.kind == PFT_TBD_EV_ENDED && ev.id == id) {
+                ended_at = k;
+            }
+        }
+        if (k == 20)
+            for (const tbd::TrackOut &t : f.tracks)
+                if (t.id == id)
+                    err = std::hypot(t.x - tx, t.y - ty);
+    }
+    std::snprintf(b, sizeof b, "DBT: point on a line confirmed at frame %u (3 of 5: frame 3), ended at %u "
+                  "(3 misses after frame 20: 23), error at frame 20 %.3f px (< 0.5), %d other track(s) (0)",
+                  confirmed_at, ended_at, err, other_confirmed);
+    check(b, confirmed_at == 3 && ended_at == 23 && err < 0.5 && other_confirmed == 0);
+    return 0;
+}
+
+/** The whole pipeline on a small procedural sequence (temporal pft_pre, TBD and DBT): both
+ *  trackers find the two bright targets, and the summary carries DBT's measures beside TBD's. */
+template <class Check>
+int pipeline_sequence_checks(Check &check)
+{
+    char b[320];
+    json sc = {{"kind", "tbd_ir"}, {"image", {{"width", 128}, {"height", 96}}}, {"frames", 40},
+               {"background", {{"source", "procedural"}, {"cloud_cover", 0.0}, {"horizon", nullptr}}},
+               {"sensor", {{"noise_sigma", 20}}},
+               {"targets", {{"count", 0}, {"crossings", 0},
+                            {"list", {{{"id", 1}, {"x", 30}, {"y", 30}, {"vx", 0.5}, {"vy", 0.2}, {"snr_db", 15}},
+                                      {{"id", 2}, {"x", 90}, {"y", 60}, {"vx", -0.4}, {"vy", 0.3}, {"snr_db", 15}}}}}},
+               {"tracker", {{"preprocess", "temporal"}, {"particles", 3000}, {"track_particles", 300}, {"max_targets", 4}}}};
+    IrScenario s = parse_ir_scenario(sc, "<selftest>");
+    IrSequence q = simulate_ir(s, 7);
+    Tracked tr = track_sequence(s, q, 7);
+    IrRunEval te = evaluate_ir(q.truth, tr.tbd, s.eval.d_c, s.eval.d_assoc);
+    IrRunEval de = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
+    auto found = [](const IrRunEval &e) {
+        int n = 0;
+        for (const TargetResult &t : e.targets)
+            n += t.detected ? 1 : 0;
+        return n;
+    };
+    std::snprintf(b, sizeof b, "pipeline (temporal pft_pre) on 128x96 x 40 frames, 2 targets at 15 dB: TBD "
+                  "finds %d (2; %d false track(s), not checked); DBT finds %d (2), %d false (<= 1)",
+                  found(te), te.false_tracks, found(de), de.false_tracks);
+    check(b, found(te) == 2 && found(de) == 2 && de.false_tracks <= 1);
+    json sum = summarize_pair({te}, {de});
+    bool same = sum.contains("dbt") && sum["dbt"].contains("averaged");
+    if (same)
+        for (auto it = sum["averaged"].begin(); it != sum["averaged"].end(); ++it)
+            same = same && sum["dbt"]["averaged"].contains(it.key());
+    check("summary: a \"dbt\" object with every measure of \"averaged\"", same);
+    return 0;
+}
+
 int selftest_checks(bool verbose)
 {
     int fails = 0;
@@ -277,23 +398,35 @@ int selftest_checks(bool verbose)
     NoiseEstimate qe = estimate_noise_spatial({q8f});
     check("8-bit quantised frame: finite positive sigma", std::isfinite(qe.sigma) && qe.sigma > 0);
 
-    // the pipeline's residual on a plane plus noise: local mean over 11x11 minus 5x5 (96 px)
+    // the pipeline runs the library stage (pft_pre, spatial method): local mean over 11x11
+    // minus 5x5 (96 px) on a plane plus noise
     TrackerSettings ts;
-    IrPipeline pl(ts, 0.7, W, H, 14, 1);
+    ts.preprocess = "spatial";
+    IrPipeline pl(ts, DbtSettings{}, 0.7, W, H, 14, 1);
+    check("pipeline: pft_pre configured with the spatial method, 11x11 less 5x5",
+          pl.pre_config().method == PFT_PRE_BG_LOCAL && pl.pre_config().local_outer == 5 &&
+              pl.pre_config().local_guard == 2 && pl.pre_workspace_bytes() > 0);
     cv::Mat u16;
     plane(4000).convertTo(u16, CV_16U);
     pl.step(u16_frame(u16, 14, 1));
     double expect = sigma * std::sqrt(1.0 + 1.0 / 96.0);
-    std::snprintf(b, sizeof b, "pipeline tile sigma on a plane: %.3f, expected %.3f within 5%%", pl.sigma(), expect);
+    std::snprintf(b, sizeof b, "pipeline (pft_pre) mean tile sigma on a plane: %.3f, expected %.3f within 5%%",
+                  pl.sigma(), expect);
     check(b, std::fabs(pl.sigma() / expect - 1.0) < 0.05);
     cv::Mat dead = u16.clone();
     dead.at<uint16_t>(50, 60) = 0;
     dead.at<uint16_t>(70, 80) = 16383;
     pl.step(u16_frame(dead, 14, 2));
-    check("dead and saturated pixels masked (residual 0 there)",
-          pl.masked() == 2 && pl.residual().at<float>(50, 60) == 0.0f && pl.residual().at<float>(70, 80) == 0.0f);
-    // a point on the gradient keeps its SNR: the whitened residual with the point minus the
-    // one without it (same noise) at the point's pixel, against 8 / sqrt(1 + 1/96)
+    check("dead and saturated pixels masked by pft_pre (residual 0 there)",
+          pl.stats().n_dead == 1 && pl.stats().n_saturated == 1 && pl.residual().at<float>(50, 60) == 0.0f &&
+              pl.residual().at<float>(70, 80) == 0.0f);
+    // a point on the gradient keeps its SNR: two pipelines with the same history (the plane
+    // frame), then the same gradient frame without and with the point (same noise): the
+    // difference of their whitened residuals at the point's pixel, against 8 / sqrt(1 + 1/96)
+    IrPipeline pa(ts, DbtSettings{}, 0.7, W, H, 14, 1), pb(ts, DbtSettings{}, 0.7, W, H, 14, 1);
+    plane(4000).convertTo(u16, CV_16U);
+    pa.step(u16_frame(u16, 14, 1));
+    pb.step(u16_frame(u16, 14, 1));
     cv::Mat grad(H, W, CV_32F), noise(H, W, CV_32F);
     for (int r = 0; r < H; ++r)
         for (int c = 0; c < W; ++c)
@@ -302,13 +435,16 @@ int selftest_checks(bool verbose)
     cv::Mat with = grad + noise;
     add_point(with, 100.0, 90.0, 8.0 * sigma, 0.7);
     cv::Mat(grad + noise).convertTo(u16, CV_16U);
-    pl.step(u16_frame(u16, 14, 3));
-    double base = pl.residual().at<float>(90, 100);
+    pa.step(u16_frame(u16, 14, 2));
+    double base = pa.residual().at<float>(90, 100);
     with.convertTo(u16, CV_16U);
-    pl.step(u16_frame(u16, 14, 4));
-    double peak = pl.residual().at<float>(90, 100) - base, want = 8.0 / std::sqrt(1.0 + 1.0 / 96.0);
+    pb.step(u16_frame(u16, 14, 2));
+    double peak = pb.residual().at<float>(90, 100) - base, want = 8.0 / std::sqrt(1.0 + 1.0 / 96.0);
     std::snprintf(b, sizeof b, "point of peak 8 sigma on the gradient: whitened peak %.3f (%.3f within 5%%)", peak, want);
     check(b, std::fabs(peak / want - 1.0) < 0.05);
+
+    fails += dbt_checks(check);
+    fails += pipeline_sequence_checks(check);
 
     // injection and SNR mapping
     cv::Mat z(9, 9, CV_32F, cv::Scalar(0.0));
@@ -479,7 +615,7 @@ public:
                 std::printf("  the first frames are constant: no noise to estimate\n");
             std::printf("  %s\n", describe_pipeline(s).c_str());
         }
-        IrPipeline pl(s.tracker, s.targets.psf_sigma, head[0].cols, head[0].rows, bits, seed);
+        IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, head[0].cols, head[0].rows, bits, seed);
 
         std::string truth_path = !o.truth.empty() ? o.truth : info.truth_csv;
         bool have_truth = !truth_path.empty() && fs::exists(truth_path);
@@ -498,13 +634,15 @@ public:
         if (!o.no_video)
             ov = std::make_unique<tbd::OverlayWriter>(join_path(out_dir, "overlay.avi"), head[0].cols,
                                                       head[0].rows, o.scale, 0.0, 0.0, 1.0, 1.0, 10.0);
-        std::vector<tbd::FrameOut> out;
+        std::vector<tbd::FrameOut> out, dout;
         Progress bar(info.frames > 0 ? static_cast<std::size_t>(info.frames) : 0, "run",
                      progress_wanted(o.progress) && !o.quiet);
         auto t0 = Clock::now();
         pft_frame_t f{};
         while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
-            out.push_back(pl.step(f));
+            PipelineOut po = pl.step(f);
+            out.push_back(std::move(po.tbd));
+            dout.push_back(std::move(po.dbt));
             if (ov)
                 ov->add(frame_to_mat(f, 1.0, 0.0), overlay_truth(truth, static_cast<int>(out.back().frame), ids), ids,
                         out.back());
@@ -518,18 +656,26 @@ public:
                      {"scenario", s.name}, {"numeric", numeric_name()}, {"frames", out.size()},
                      {"skipped_frames", rd->skipped()}, {"seed", seed}, {"bit_depth", bits},
                      {"noise_sigma_spatial", es.sigma}, {"noise_sigma_temporal", et.sigma},
-                     {"workspace_bytes", pl.workspace_bytes()}};
+                     {"workspace_bytes", pl.workspace_bytes()},
+                     {"pre_workspace_bytes", pl.pre_workspace_bytes()}};
         write_tracks(out_dir, out, meta);
-        std::unique_ptr<IrRunEval> ev;
-        if (have_truth)
+        json dmeta = meta;
+        dmeta["tracker"] = "dbt";
+        write_tracks(out_dir, dout, dmeta, "dbt_");
+        std::unique_ptr<IrRunEval> ev, dev;
+        if (have_truth) {
             ev = std::make_unique<IrRunEval>(evaluate_ir(truth, out, s.eval.d_c, s.eval.d_assoc));
+            dev = std::make_unique<IrRunEval>(evaluate_ir(truth, dout, s.eval.d_c, s.eval.d_assoc));
+        }
         if (!o.quiet) {
-            print_tracks(out, ev.get());
+            print_tracks(out, ev.get(), "TBD tracks found");
+            print_tracks(dout, dev.get(), "DBT tracks found");
             if (ev) {
                 std::printf("\nVersus truth (%s):\n", truth_path.c_str());
-                print_ir_summary(summarize_ir({*ev}));
+                print_ir_summary(summarize_pair({*ev}, {*dev}));
             }
-            std::printf("\n  %zu frames in %.2f s (%.1f ms/frame); wrote %s/tracks.csv, tracks.json%s\n",
+            std::printf("\n  %zu frames in %.2f s (%.1f ms/frame); wrote %s/tracks.csv, tracks.json, "
+                        "dbt_tracks.csv, dbt_tracks.json%s\n",
                         out.size(), dt, 1e3 * dt / std::max<std::size_t>(1, out.size()), out_dir.c_str(),
                         o.no_video ? "" : ", overlay.avi");
         }
@@ -554,20 +700,25 @@ public:
         bar.finish();
         double t_sim = seconds_since(t0);
         t0 = Clock::now();
-        std::vector<tbd::FrameOut> out = track_sequence(s, q, seed);
+        Tracked tr = track_sequence(s, q, seed);
+        const std::vector<tbd::FrameOut> &out = tr.tbd;
         double t_trk = seconds_since(t0);
-        std::printf("\nframe | targets present | tracks | search P\n");
+        std::printf("\nframe | targets present | TBD tracks | search P | DBT tracks\n");
         for (std::size_t k = 0; k < out.size(); k += std::max<std::size_t>(1, out.size() / 10)) {
             int present = 0;
             for (const TruthRow &r : q.truth)
                 present += r.frame == static_cast<int>(k + 1);
-            std::printf(" %4zu | %15d | %6zu | %.2f\n", k + 1, present, out[k].tracks.size(), out[k].search_p);
+            std::printf(" %4zu | %15d | %10zu | %8.2f | %10zu\n", k + 1, present, out[k].tracks.size(),
+                        out[k].search_p, tr.dbt[k].tracks.size());
         }
         IrRunEval ev = evaluate_ir(q.truth, out, s.eval.d_c, s.eval.d_assoc);
-        print_tracks(out, &ev);
+        IrRunEval dev = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
+        print_tracks(out, &ev, "TBD tracks found");
+        print_tracks(tr.dbt, &dev, "DBT tracks found");
         std::printf("\nSummary versus truth (this run; appear = frames from the first frame present "
                     "to the first associated, correct = frames within %.1f px):\n", s.eval.d_c);
-        print_ir_summary(summarize_ir({ev}));
+        print_ir_summary(summarize_pair({ev}, {dev}));
+        std::printf("  DBT detections: %.1f per frame\n", static_cast<double>(tr.detections) / std::max(1, q.frames));
         std::printf("\n  %dx%d x %d frames: simulated in %.2f s, tracked in %.2f s (%.1f ms/frame), %s build\n",
                     q.width, q.height, q.frames, t_sim, t_trk, 1e3 * t_trk / std::max(1, q.frames), numeric_name());
         std::printf("  the same sequence on disk: pft sim --scenario %s --out DIR, then pft run --sequence DIR\n",
@@ -590,21 +741,28 @@ public:
                         describe_pipeline(s).c_str(), runs, static_cast<unsigned long long>(base),
                         static_cast<unsigned long long>(base + runs - 1), threads);
         cv::setNumThreads(1);  // the runs are the parallel work
-        std::vector<IrRunEval> res(runs);
+        std::vector<IrRunEval> res(runs), dres(runs);
+        std::vector<long> dets(runs);
         std::vector<std::string> backgrounds(runs);
         Progress bar(runs, "eval", progress_wanted(o.progress));
         auto t0 = Clock::now();
         parallel_for(runs, threads, [&](std::size_t i) {
             uint64_t seed = base + i;
             IrSequence q = simulate_ir(s, seed);
-            res[i] = evaluate_ir(q.truth, track_sequence(s, q, seed), s.eval.d_c, s.eval.d_assoc);
-            res[i].seed = seed;
+            Tracked tr = track_sequence(s, q, seed);
+            res[i] = evaluate_ir(q.truth, tr.tbd, s.eval.d_c, s.eval.d_assoc);
+            dres[i] = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
+            res[i].seed = dres[i].seed = seed;
+            dets[i] = tr.detections;
             backgrounds[i] = q.background;
             bar.tick();
         });
         bar.finish();
         double wall = seconds_since(t0);
-        json sum = summarize_ir(res);
+        json sum = summarize_pair(res, dres);
+        long ndet = 0;
+        for (long v : dets)
+            ndet += v;
         json seeds = json::array();
         for (unsigned i = 0; i < runs; ++i) {
             seeds.push_back(base + i);
@@ -612,19 +770,26 @@ public:
         }
         json head = {{"tool", "pft eval"}, {"kind", "tbd_ir"}, {"scenario", s.name},
                      {"scenario_file", s.file}, {"description", s.description},
-                     {"tag", o.tag.empty() ? "TBD (stand-in preprocessing)" : o.tag},
+                     {"tag", o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag},
                      {"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
                      {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
                      {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
                      {"background", s.background.source == "folder" ? s.background.folder : "procedural"},
-                     {"tracker", {{"preset", s.tracker.preset}, {"particles", s.tracker.particles},
+                     {"tracker", {{"preprocess", s.tracker.preprocess}, {"bg_alpha", s.tracker.bg_alpha},
+                                  {"preset", s.tracker.preset}, {"particles", s.tracker.particles},
                                   {"track_particles", s.tracker.track_particles},
                                   {"max_targets", s.tracker.max_targets},
                                   {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
                                   {"background_radius", s.tracker.background_radius},
                                   {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
                      {"timing", {{"wall_s", wall}}}};
+        sum["dbt"]["settings"] = {{"pfa", s.dbt.pfa}, {"threshold_sigma", dbt_threshold(s.dbt.pfa)},
+                                  {"m", s.dbt.m}, {"n", s.dbt.n}, {"max_misses", s.dbt.max_misses},
+                                  {"gate_chi2", s.dbt.gate_chi2}, {"gate_max_px", s.dbt.gate_max_px},
+                                  {"meas_sigma_px", s.dbt.meas_sigma_px}, {"accel_sigma", s.dbt.accel_sigma},
+                                  {"vel_sigma0", s.dbt.vel_sigma0}, {"max_detections", s.dbt.max_detections}};
+        sum["dbt"]["detections_per_frame"] = s.frames > 0 ? static_cast<double>(ndet) / (static_cast<double>(runs) * s.frames) : 0.0;
         for (auto it = sum.begin(); it != sum.end(); ++it)
             head[it.key()] = it.value();
         head["scenario_json"] = s.raw;
@@ -646,7 +811,7 @@ public:
         auto t0 = Clock::now();
         IrSequence q = simulate_ir(s, seed);
         double t_sim = seconds_since(t0);
-        IrPipeline pl(s.tracker, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+        IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
         std::vector<double> times;
         for (int k = 0; k < q.frames; ++k) {
             auto t1 = Clock::now();
@@ -658,8 +823,9 @@ public:
         if (!o.quiet) {
             std::printf("pft bench: %s\n  %s\n", describe(s).c_str(), describe_pipeline(s).c_str());
             std::printf("  simulation %.2f ms/frame; pipeline per frame: median %.2f ms, max %.2f ms "
-                        "(wall time, this machine); workspace %zu bytes\n",
-                        1e3 * t_sim / q.frames, 1e3 * med, 1e3 * times.back(), pl.workspace_bytes());
+                        "(wall time, this machine); workspace %zu bytes (pft_tbd) + %zu bytes (pft_pre)\n",
+                        1e3 * t_sim / q.frames, 1e3 * med, 1e3 * times.back(), pl.workspace_bytes(),
+                        pl.pre_workspace_bytes());
         }
         if (!o.out.empty()) {
             ensure_dir(o.out);
@@ -668,6 +834,7 @@ public:
                                {"frames", q.frames}, {"width", q.width}, {"height", q.height},
                                {"sim_s_per_frame", t_sim / q.frames}, {"median_s_per_frame", med},
                                {"max_s_per_frame", times.back()}, {"workspace_bytes", pl.workspace_bytes()},
+                               {"pre_workspace_bytes", pl.pre_workspace_bytes()},
                                {"numeric", numeric_name()}});
         }
         return 0;

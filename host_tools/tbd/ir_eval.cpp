@@ -224,27 +224,40 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
 
 void print_ir_summary(const nlohmann::json &sum)
 {
-    std::printf("  %-9s %8s %9s %9s %9s %8s\n", "targets", "count", "detected", "appear", "correct", "RMSE");
-    auto row = [&](const char *name, const nlohmann::json &g) {
-        if (g["targets"].get<long>() == 0)
-            return;
-        std::printf("  %-9s %8ld %8s%% %9s %8s%% %8s\n", name, g["targets"].get<long>(),
-                    f2(g["detection_probability"].is_number()
-                           ? nlohmann::json(100.0 * g["detection_probability"].get<double>())
-                           : nlohmann::json(nullptr), 1).c_str(),
-                    f2(g["appearance_delay"]).c_str(),
-                    f2(g["correct_fraction"].is_number()
-                           ? nlohmann::json(100.0 * g["correct_fraction"].get<double>())
-                           : nlohmann::json(nullptr), 1).c_str(),
-                    f2(g["rmse"], 3).c_str());
+    const bool pair = sum.contains("dbt");
+    std::printf("  %s%-9s %8s %9s %9s %9s %8s %9s\n", pair ? "tracker " : "", "targets", "count", "detected",
+                "appear", "correct", "RMSE", "false/1k");
+    auto block = [&](const char *who, const nlohmann::json &s) {
+        const nlohmann::json &a = s["averaged"];
+        auto row = [&](const char *name, const nlohmann::json &g, bool with_false) {
+            if (g["targets"].get<long>() == 0)
+                return;
+            std::printf("  %s%-9s %8ld %8s%% %9s %8s%% %8s %9s\n", who, name, g["targets"].get<long>(),
+                        f2(g["detection_probability"].is_number()
+                               ? nlohmann::json(100.0 * g["detection_probability"].get<double>())
+                               : nlohmann::json(nullptr), 1).c_str(),
+                        f2(g["appearance_delay"]).c_str(),
+                        f2(g["correct_fraction"].is_number()
+                               ? nlohmann::json(100.0 * g["correct_fraction"].get<double>())
+                               : nlohmann::json(nullptr), 1).c_str(),
+                        f2(g["rmse"], 3).c_str(),
+                        with_false ? f2(a["false_tracks_per_1000_frames"]).c_str() : "");
+        };
+        row("injected", s["by_kind"]["injected"], false);
+        row("labelled", s["by_kind"]["labelled"], false);
+        row("all", a, true);
     };
-    row("injected", sum["by_kind"]["injected"]);
-    row("labelled", sum["by_kind"]["labelled"]);
-    row("all", sum["averaged"]);
-    const nlohmann::json &a = sum["averaged"];
-    std::printf("  tracks per run %.2f, false tracks per run %.2f (%.2f per 1000 frames)\n",
-                a["tracks_per_run"].get<double>(), a["false_tracks_per_run"].get<double>(),
-                a["false_tracks_per_1000_frames"].get<double>());
+    block(pair ? "TBD     " : "", sum);
+    if (pair)
+        block("DBT     ", sum["dbt"]);
+    auto line = [](const char *who, const nlohmann::json &a) {
+        std::printf("  %stracks per run %.2f, false tracks per run %.2f (%.2f per 1000 frames)\n", who,
+                    a["tracks_per_run"].get<double>(), a["false_tracks_per_run"].get<double>(),
+                    a["false_tracks_per_1000_frames"].get<double>());
+    };
+    line(pair ? "TBD: " : "", sum["averaged"]);
+    if (pair)
+        line("DBT: ", sum["dbt"]["averaged"]);
 }
 
 }  // namespace pft::host::tbd_ir

@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../common/errors.hpp"
-#include "../common/noise_estimate.hpp"
 #include "../common/sequence_input.hpp"
 
 namespace pft::host::tbd_ir {
@@ -52,89 +51,92 @@ int detect_bit_depth(int container_bits, const std::vector<cv::Mat> &head)
     return bits;
 }
 
-IrPipeline::IrPipeline(const TrackerSettings &t, double psf_sigma, int width, int height,
-                       int bit_depth, uint64_t seed)
-    : T_(t), w_(width), h_(height), sat_(std::ldexp(1.0, bit_depth) - 1.0)
+pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height, int bit_depth, bool u8)
 {
+    pft_pre_config_t c;
+    pft_pre_config_default(&c);
+    c.width = static_cast<uint16_t>(width);
+    c.height = static_cast<uint16_t>(height);
+    c.format = u8 ? PFT_PIX_U8 : PFT_PIX_U16;
+    c.bit_depth = static_cast<uint8_t>(u8 ? 8 : bit_depth);
+    c.method = t.preprocess == "spatial" ? PFT_PRE_BG_LOCAL : PFT_PRE_BG_TEMPORAL;
+    c.local_outer = static_cast<uint8_t>(t.background_radius);
+    c.local_guard = static_cast<uint8_t>(t.guard_radius);
+    c.bg_alpha = static_cast<uint16_t>(std::clamp(std::lround(t.bg_alpha * 65536.0), 1L, 65535L));
+    c.tile = static_cast<uint8_t>(t.tile);
+    c.peak_max = 0;  // the TBD manager here draws its births itself; the DBT thresholds the residual
+    return c;
+}
+
+IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width,
+                       int height, int bit_depth, uint64_t seed)
+    : T_(t), w_(width), h_(height), bits_(bit_depth), dbt_(d), dbt_thr_(dbt_threshold(d.pfa)),
+      max_det_(d.max_detections)
+{
+    pre_cfg_ = make_pre_config(t, width, height, bit_depth, false);
+    const char *field = nullptr;
+    pft_status_t st = pft_pre_config_check(&pre_cfg_, &field);
+    if (st != PFT_OK)
+        throw InputError(std::string("preprocessing configuration refused (pft_pre_config_check: ") +
+                         pft_status_str(st) + (field ? std::string(", field ") + field : std::string()) + ")");
+    pre_ws_bytes_ = pft_pre_workspace_size(&pre_cfg_);
+    pre_work_.assign((pre_ws_bytes_ + 7) / 8, 0);
+    st = pft_pre_init(&pre_, &pre_cfg_, pre_work_.data(), pre_work_.size() * 8);
+    if (st != PFT_OK)
+        throw InputError(std::string("pft_pre_init: ") + pft_status_str(st));
     tracker_ = std::make_unique<tbd::Tracker>(pipeline_config(t, psf_sigma, width, height, seed), false);
+    resid_.create(h_, w_, CV_32F);
 }
 
-void IrPipeline::preprocess(const cv::Mat &z)
+bool IrPipeline::evidence() const
 {
-    // usable pixels: not dead (0), not saturated
-    cv::Mat valid = (z > 0.0) & (z < sat_);
-    masked_ = static_cast<int>(z.total()) - cv::countNonZero(valid);
-    cv::Mat vf;
-    valid.convertTo(vf, CV_32F, 1.0 / 255.0);
-    cv::Mat zv = z.mul(vf);
-    // local mean over the (2R+1)^2 box without the (2G+1)^2 guard box, usable pixels only
-    const int R = T_.background_radius, G = T_.guard_radius;
-    cv::Mat so, si, no, ni;
-    auto box = [](const cv::Mat &in, cv::Mat &out, int r) {
-        cv::boxFilter(in, out, CV_32F, cv::Size(2 * r + 1, 2 * r + 1), cv::Point(-1, -1), false,
-                      cv::BORDER_CONSTANT);
-    };
-    box(zv, so, R);
-    box(zv, si, G);
-    box(vf, no, R);
-    box(vf, ni, G);
-    cv::Mat n = no - ni, bg;
-    cv::divide(so - si, cv::max(n, 0.5), bg);
-    cv::Mat r = (z - bg).mul(vf);
-    r.setTo(0.0, n < 0.5);
-    // the outer band, where the box is cut by the border, is not scored: a one-sided mean of a
-    // gradient is biased by the gradient times the shift of the box's centre
-    cv::Mat band(h_, w_, CV_8U, cv::Scalar(255));
-    band(cv::Rect(R, R, std::max(0, w_ - 2 * R), std::max(0, h_ - 2 * R))).setTo(0);
-    r.setTo(0.0, band);
-    valid.setTo(0, band);
-    // per-tile robust sigma (usable pixels), empty or flat tiles take the median of the others
-    const int ts = T_.tile;
-    const int tx = (w_ + ts - 1) / ts, ty = (h_ + ts - 1) / ts;
-    cv::Mat sig(ty, tx, CV_32F);
-    std::vector<float> v, all;
-    for (int j = 0; j < ty; ++j)
-        for (int i = 0; i < tx; ++i) {
-            v.clear();
-            for (int rr = j * ts; rr < std::min(h_, (j + 1) * ts); ++rr) {
-                const float *p = r.ptr<float>(rr);
-                const uint8_t *m = valid.ptr<uint8_t>(rr);
-                for (int c = i * ts; c < std::min(w_, (i + 1) * ts); ++c)
-                    if (m[c])
-                        v.push_back(p[c]);
-            }
-            double s = v.size() >= 16 ? robust_sigma(v) : 0.0;
-            sig.at<float>(j, i) = static_cast<float>(s);
-            if (s > 0)
-                all.push_back(static_cast<float>(s));
-        }
-    double med = 1.0;
-    if (!all.empty()) {
-        std::nth_element(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2), all.end());
-        med = all[all.size() / 2];
-    }
-    sigma_ = all.empty() ? 0.0 : med;
-    for (int j = 0; j < ty; ++j)
-        for (int i = 0; i < tx; ++i)
-            if (!(sig.at<float>(j, i) > 0))
-                sig.at<float>(j, i) = static_cast<float>(med);
-    cv::Mat sigmap;
-    cv::resize(sig, sigmap, cv::Size(w_, h_), 0, 0, cv::INTER_LINEAR);
-    cv::divide(r, sigmap, resid_);
+    return (stats_.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED | PFT_PRE_FLAG_REG_LOST)) == 0u;
 }
 
-tbd::FrameOut IrPipeline::step(const pft_frame_t &frame)
+PipelineOut IrPipeline::step(const pft_frame_t &frame)
 {
     if (frame.width != w_ || frame.height != h_)
         throw InputError("frame " + std::to_string(frame.seq) + " is " + std::to_string(frame.width) +
                          "x" + std::to_string(frame.height) + ", the pipeline was set up for " +
                          std::to_string(w_) + "x" + std::to_string(h_));
-    preprocess(frame_to_mat(frame, 1.0, 0.0));
-    if (!resid_.isContinuous())
-        resid_ = resid_.clone();
-    tbd::FrameOut out = tracker_->update_f32(resid_.ptr<float>(0), frame.seq);
+    // the stage takes U16 frames of the pipeline's bit depth: others are converted (rounded,
+    // clipped to the bit depth)
+    pft_frame_t in = frame;
+    if (frame.format != PFT_PIX_U16 || (frame.bit_depth ? frame.bit_depth : 16) != bits_) {
+        cv::Mat z = frame_to_mat(frame, 1.0, 0.0);
+        cv::Mat c = cv::min(cv::max(z, 0.0), std::ldexp(1.0, bits_) - 1.0);
+        c.convertTo(u16_, CV_16U);
+        in.data = u16_.data;
+        in.stride_bytes = static_cast<uint32_t>(u16_.step[0]);
+        in.format = PFT_PIX_U16;
+        in.bit_depth = static_cast<uint8_t>(bits_);
+    }
+    pft_status_t st = pft_pre_update(&pre_, &in);
+    if (st != PFT_OK)
+        throw InputError("frame " + std::to_string(frame.seq) + " refused by pft_pre_update: " + pft_status_str(st));
+    pft_pre_stats(&pre_, &stats_);
+    pft_frame_t rf{};
+    pft_pre_frame(&pre_, &rf);
+    masked_ = static_cast<int>(stats_.n_masked);
+    sigma_ = stats_.sigma_mean / 65536.0;
+    const std::size_t stride = rf.stride_bytes / sizeof(int16_t);
+    const int16_t *res = static_cast<const int16_t *>(rf.data);
+    const bool ev = evidence();
+    for (int y = 0; y < h_; ++y) {
+        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+        float *o = resid_.ptr<float>(y);
+        for (int x = 0; x < w_; ++x)
+            o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
+    }
+    PipelineOut out;
+    out.tbd = tracker_->update_f32(resid_.ptr<float>(0), frame.seq);
+    std::vector<Detection> dets;
+    if (ev)
+        dets = dbt_detect(res, w_, h_, static_cast<int>(stride), dbt_thr_, max_det_);
+    out.detections = static_cast<int>(dets.size());
+    out.dbt = dbt_.step(dets, frame.seq ? frame.seq : out.tbd.frame);
     if (frame.seq)
-        out.frame = frame.seq;
+        out.tbd.frame = frame.seq;
     return out;
 }
 

@@ -1,54 +1,81 @@
 // The IR pipeline of kind tbd_ir: one raw sensor frame in, tracks out.
 //
-// Today it is a host stand-in for the preprocessing stage (OpenCV: a local-mean background
-// with a guard ring, dead and saturated pixels masked, the border band of the box's half-size
-// not scored, the residual whitened by a per-tile robust sigma) followed by the library's multi-target TBD manager (pft_tbd_*) on the whitened
-// residual (noise sigma 1). IrPipeline::step() is the one function to change when the
-// library's preprocessing stage (lib/src/pre) and the full-frame TBD replace them: it takes
-// the frame as the sensor gives it and returns the frame's tracks and events.
+// The library's preprocessing stage (pft_pre_*, lib/include/pft/pft_pre.h: a temporal
+// registered background or a spatial local mean with a guard window, selected by the
+// scenario's tracker.preprocess; column offsets; per-tile MAD sigma; dead and saturated pixels
+// masked) turns the frame into a whitened residual (PFT_PIX_RES16, Q8.8 sigma units). Two
+// trackers run on that same residual: the library's multi-target TBD manager (pft_tbd_*, noise
+// sigma 1; the residual is handed over as an F32 frame with masked pixels at 0, since the
+// manager takes U8/U16/F32 frames) and the host-side detect-before-track baseline (ir_dbt.hpp).
+// step() takes the frame as the sensor gives it and returns both trackers' tracks and events.
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
 extern "C" {
+#include "pft/pft_pre.h"
 #include "pft/pft_types.h"
 }
 
+#include "ir_dbt.hpp"
 #include "ir_scenario.hpp"
 #include "tracker.hpp"
 
 namespace pft::host::tbd_ir {
 
+/** What one frame gives: the TBD manager's output and the DBT baseline's. */
+struct PipelineOut {
+    tbd::FrameOut tbd, dbt;
+    int detections = 0;  ///< DBT detections of the frame
+};
+
 class IrPipeline {
 public:
-    /** width x height frames; bit_depth: pixels at 0 or at 2^bit_depth - 1 are masked. */
-    IrPipeline(const TrackerSettings &t, double psf_sigma, int width, int height, int bit_depth,
-               uint64_t seed);
+    /** width x height frames of bit_depth bits (8..16), given to the stage as U16. */
+    IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width,
+               int height, int bit_depth, uint64_t seed);
 
-    /** The tracker step: preprocessing, then the TBD manager. frame: U8, U16 or F32 of the
-     *  configured size; its seq numbers the output. InputError on a refused frame. */
-    tbd::FrameOut step(const pft_frame_t &frame);
+    /** Preprocessing, then the TBD manager and the DBT baseline. frame: U8 or U16 of the
+     *  configured size (F32 frames are rounded to counts); its seq numbers the output.
+     *  InputError on a refused frame. */
+    PipelineOut step(const pft_frame_t &frame);
 
-    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F)
-    double sigma() const { return sigma_; }              ///< last frame's median tile sigma
+    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0)
+    double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
+    uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*
+    const pft_pre_stats_t &stats() const { return stats_; }
+    /** Whether the last frame carried detection evidence (not constant, all masked or a
+     *  registration restart). */
+    bool evidence() const;
     std::size_t workspace_bytes() const { return tracker_->workspace_bytes(); }
+    std::size_t pre_workspace_bytes() const { return pre_ws_bytes_; }
     const pft_tbd_config_t &config() const { return tracker_->config(); }
+    const pft_pre_config_t &pre_config() const { return pre_cfg_; }
+    double dbt_threshold_sigma() const { return dbt_thr_; }
 
 private:
-    /** Host stand-in for the preprocessing stage: counts -> whitened residual. */
-    void preprocess(const cv::Mat &counts);
-
     TrackerSettings T_;
-    int w_, h_;
-    double sat_;
+    int w_, h_, bits_;
+    pft_pre_config_t pre_cfg_{};
+    std::vector<uint64_t> pre_work_;
+    std::size_t pre_ws_bytes_ = 0;
+    pft_pre_t pre_{};
+    pft_pre_stats_t stats_{};
     std::unique_ptr<tbd::Tracker> tracker_;
-    cv::Mat resid_;
+    DbtTracker dbt_;
+    double dbt_thr_;
+    int max_det_;
+    cv::Mat resid_, u16_;
     double sigma_ = 0;
     int masked_ = 0;
 };
+
+/** The pft_pre configuration of the pipeline (method, windows, tile from the settings). */
+pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height, int bit_depth, bool u8);
 
 /** The pft_tbd configuration of the pipeline (noise sigma 1 on the whitened residual; the
  *  intensity prior from the tracker's SNR range). */

@@ -117,8 +117,11 @@ void parse_targets(const Field &t, IrScenario &s)
 
 void parse_tracker(const Field &t, TrackerSettings &T)
 {
-    t.only({"preset", "particles", "track_particles", "max_targets", "snr_min_db", "snr_max_db",
-            "background_radius", "guard_radius", "tile", "seed_offset", "note"});
+    t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
+            "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
+            "note"});
+    T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
+    T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
     T.particles = static_cast<uint32_t>(t.integer_in("particles", T.particles, 1, 4194304));
     T.track_particles = static_cast<uint32_t>(t.integer_in("track_particles", T.track_particles, 1, 4194304));
@@ -127,12 +130,30 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.snr_max_db = t.number_in("snr_max_db", T.snr_max_db, -20.0, 60.0);
     if (T.snr_max_db <= T.snr_min_db)
         t.at("snr_max_db").fail("must exceed snr_min_db");
-    T.guard_radius = static_cast<int>(t.integer_in("guard_radius", T.guard_radius, 0, 32));
-    T.background_radius = static_cast<int>(t.integer_in("background_radius", T.background_radius, 1, 64));
+    T.guard_radius = static_cast<int>(t.integer_in("guard_radius", T.guard_radius, 0, 6));
+    T.background_radius = static_cast<int>(t.integer_in("background_radius", T.background_radius, 1, 7));
     if (T.background_radius <= T.guard_radius)
         t.at("background_radius").fail("must exceed guard_radius");
-    T.tile = static_cast<int>(t.integer_in("tile", T.tile, 8, 4096));
+    T.tile = static_cast<int>(t.integer_in("tile", T.tile, 8, 255));
     T.seed_offset = static_cast<uint64_t>(t.integer_in("seed_offset", 0, 0, INT64_MAX));
+}
+
+void parse_dbt(const Field &d, DbtSettings &D)
+{
+    d.only({"pfa", "m", "n", "max_misses", "gate_chi2", "gate_max_px", "meas_sigma_px",
+            "accel_sigma", "vel_sigma0", "max_detections", "note"});
+    D.pfa = d.number_in("pfa", D.pfa, 1e-12, 0.5);
+    D.n = static_cast<int>(d.integer_in("n", D.n, 1, 31));
+    D.m = static_cast<int>(d.integer_in("m", D.m, 1, 31));
+    if (D.m > D.n)
+        d.at("m").fail("must not exceed n");
+    D.max_misses = static_cast<int>(d.integer_in("max_misses", D.max_misses, 1, 1000));
+    D.gate_chi2 = d.number_in("gate_chi2", D.gate_chi2, 1e-3, 1e3);
+    D.gate_max_px = d.number_in("gate_max_px", D.gate_max_px, 0.1, 1e3);
+    D.meas_sigma_px = d.number_in("meas_sigma_px", D.meas_sigma_px, 1e-3, 1e2);
+    D.accel_sigma = d.number_in("accel_sigma", D.accel_sigma, 0.0, 1e2);
+    D.vel_sigma0 = d.number_in("vel_sigma0", D.vel_sigma0, 0.0, 1e3);
+    D.max_detections = static_cast<int>(d.integer_in("max_detections", D.max_detections, 1, 1000000));
 }
 
 }  // namespace
@@ -145,7 +166,7 @@ IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
     s.raw = j;
     Field root(j, file);
     root.only({"kind", "name", "description", "image", "frames", "background", "optics_blur_px",
-               "platform", "sensor", "targets", "tracker", "eval", "output", "note"});
+               "platform", "sensor", "targets", "tracker", "dbt", "eval", "output", "note"});
     if (root.string("kind") != "tbd_ir")
         root.at("kind").fail("expected \"tbd_ir\"");
     s.name = root.string_or("name", "");
@@ -191,6 +212,8 @@ IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
         parse_targets(root.at("targets"), s);
     if (root.has("tracker"))
         parse_tracker(root.at("tracker"), s.tracker);
+    if (root.has("dbt"))
+        parse_dbt(root.at("dbt"), s.dbt);
     if (root.has("eval")) {
         Field e = root.at("eval");
         e.only({"runs", "base_seed", "d_c", "d_assoc"});

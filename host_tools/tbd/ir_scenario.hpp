@@ -73,15 +73,30 @@ struct Targets {
     std::vector<TargetSpec> list;
 };
 
-/** Settings of the IR pipeline (host stand-in preprocessing + the library's TBD manager). */
+/** Settings of the IR pipeline (the library's preprocessing stage + its TBD manager). */
 struct TrackerSettings {
+    std::string preprocess = "temporal";        ///< pft_pre background: "temporal" | "spatial"
+    double bg_alpha = 0.15;                     ///< temporal background update weight
     std::string preset = "recommended";         ///< pft_tbd preset to start from
     uint32_t particles = 6000, track_particles = 500;
     uint32_t max_targets = 8;
     double snr_min_db = 6, snr_max_db = 18;     ///< intensity prior over the whitened residual
-    int background_radius = 5, guard_radius = 2;///< local-mean box and its guard (half-sizes)
+    int background_radius = 5, guard_radius = 2;///< spatial: local-mean window and its guard (half-sizes)
     int tile = 32;                              ///< noise-estimate tile side, px
     uint64_t seed_offset = 0;
+};
+
+/** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
+struct DbtSettings {
+    double pfa = 1e-5;          ///< per-pixel false-alarm rate of the threshold (Gaussian residual)
+    int m = 3, n = 5;           ///< M-of-N confirmation
+    int max_misses = 3;         ///< frames in a row without a detection that end a confirmed track
+    double gate_chi2 = 9.21;    ///< gate on the normalised innovation squared (99 % for 2 dof)
+    double gate_max_px = 4.0;   ///< largest gate radius, px
+    double meas_sigma_px = 0.5; ///< detection position noise, px
+    double accel_sigma = 0.05;  ///< white acceleration noise, px/frame^2
+    double vel_sigma0 = 1.0;    ///< initial velocity sd of a new track, px/frame
+    int max_detections = 500;   ///< detections kept per frame (highest peaks)
 };
 
 struct EvalSettings {
@@ -101,6 +116,7 @@ struct IrScenario {
     Sensor sensor;
     Targets targets;
     TrackerSettings tracker;
+    DbtSettings dbt;
     EvalSettings eval;
     std::string output_format = "pgm";          ///< "pgm" (16-bit PGM) | "raw" (frames.u16)
     nlohmann::json raw;                         ///< the file as read

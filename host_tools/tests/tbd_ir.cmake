@@ -40,4 +40,4 @@ endforeach()
 # The pipeline's plumbing: on a clear sky at 15 dB it confirms at least 5 of the 6 targets.
 add_test(NAME host_tbd_ir_clear_sky COMMAND pft demo --scenario ${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/clear_sky_128x96.json)
 set_tests_properties(host_tbd_ir_clear_sky PROPERTIES LABELS "host"
-                     PASS_REGULAR_EXPRESSION "injected +6 +(100\\.0|83\\.3)%")
+                     PASS_REGULAR_EXPRESSION "TBD +injected +6 +(100\\.0|83\\.3)%")
