@@ -77,7 +77,7 @@ PLANS["corr_b"] = [("corr_b_" + s, f"full_6db_{s}.json", {"birth_correction": Tr
 def confirm_plan():
     """Sequential confirmation (confirm_frames m) and theta1: noise and the two-target cases."""
     lines = []
-    for m, th in [(1, 0.6), (2, 0.6), (3, 0.6), (2, 0.7), (3, 0.7), (4, 0.6)]:
+    for m, th in [(1, 0.6), (1, 0.8), (1, 0.9), (2, 0.6), (2, 0.8), (3, 0.6), (3, 0.8), (4, 0.6)]:
         f = {"confirm_frames": m, "theta1": th}
         tag = f"m{m}t{int(th * 10)}"
         lines.append((f"noise_{tag}", "noise_20.json", f))
