@@ -421,6 +421,8 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
             ps->key[0] = k;
             ps->val[0] = v;
             sift_down_(ps->key, ps->val, ps->n, 0u);
+        } else {
+            /* weaker than the K kept: not a candidate */
         }
     }
 }
