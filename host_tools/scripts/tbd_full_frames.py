@@ -46,6 +46,12 @@ PLANS = {
         ("two1_peaks", "two_case1.json", PEAKS),
         ("two2_peaks", "two_case2.json", PEAKS),
         ("two3_peaks", "two_case3.json", PEAKS),
+        ("two1_pkc", "two_case1.json", {**PEAKS, "birth_correction": True}),
+        ("two2_pkc", "two_case2.json", {**PEAKS, "birth_correction": True}),
+        ("two3_pkc", "two_case3.json", {**PEAKS, "birth_correction": True}),
+        ("two1_bc", "two_case1.json", {"birth_correction": True}),
+        ("two2_bc", "two_case2.json", {"birth_correction": True}),
+        ("two3_bc", "two_case3.json", {"birth_correction": True}),
     ],
     # white noise: false tracks
     "noise": [
@@ -72,6 +78,26 @@ PLANS["corr"] = corr_plan()
 PLANS["corr_b"] = [("corr_b_" + s, f"full_6db_{s}.json", {"birth_correction": True})
                    for s in ("20", "64", "256")] + [
                       ("corr_b_noise", "noise_20.json", {"birth_correction": True})]
+
+
+BERN = {"birth_share": 0.5}
+BERN_PK = {"birth_share": 0.5, "birth_peaks": 32, "birth_correction": True}
+PLANS["bern"] = [
+    ("bs5_20", "full_6db_20.json", BERN),
+    ("bs5_64", "full_6db_64.json", BERN),
+    ("bs5_256", "full_6db_256.json", BERN),
+    ("bs5pk_20", "full_6db_20.json", BERN_PK),
+    ("bs5pk_64", "full_6db_64.json", BERN_PK),
+    ("bs5pk_256", "full_6db_256.json", BERN_PK),
+    ("bs5_noise", "noise_20.json", BERN),
+    ("bs5pk_noise", "noise_20.json", BERN_PK),
+    ("two1_bs5", "two_case1.json", BERN),
+    ("two2_bs5", "two_case2.json", BERN),
+    ("two3_bs5", "two_case3.json", BERN),
+    ("two1_bs5pk", "two_case1.json", BERN_PK),
+    ("two2_bs5pk", "two_case2.json", BERN_PK),
+    ("two3_bs5pk", "two_case3.json", BERN_PK),
+]
 
 
 def confirm_plan():

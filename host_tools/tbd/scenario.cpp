@@ -104,7 +104,7 @@ void parse_filter(const Field &f, FilterSettings &F)
             "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
             "seed_offset", "d_region", "residual_search", "residual_tracks",
             "residual_margin", "end_lr_frames", "end_lr_max", "handover_gate", "birth_peaks",
-            "peak_gamma", "confirm_frames"});
+            "peak_gamma", "birth_share", "confirm_frames"});
     F.mode = f.choice_or("mode", "multi", {"multi", "single"});
     F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
     F.preset = f.choice_or("preset", "paper", {"paper", "recommended"});
@@ -164,6 +164,7 @@ void parse_filter(const Field &f, FilterSettings &F)
     integer("birth_peaks", 0, 4096, F.birth_peaks);  // PFT_TBD_MAX_PEAKS
     integer("confirm_frames", 0, 16, F.confirm_frames);
     num("peak_gamma", -1e4, 1e4, F.peak_gamma);
+    num("birth_share", 0.0, 0.95, F.birth_share);
     num("end_lr_max", -1e4, 1e4, F.end_lr_max);
     if (f.has("d_region"))
         F.d_region = f.choice_or("d_region", "window", {"window", "pixel", "none"});

@@ -10,7 +10,8 @@
  * refused frame leaves the manager (with peaks) and its workspace byte-identical. New fields
  * out of range are refused by name. confirm_frames = 3 confirms on the first frame that ends a
  * run of three with P > theta1 of the same search layer (the search layer does not depend on
- * the setting until the first confirmation).
+ * the setting until the first confirmation). birth_share (the Bernoulli search layer): the
+ * existence probability on an empty frame and on a bright point, and its range check.
  */
 #include <math.h>
 #include <string.h>
@@ -320,6 +321,44 @@ static void test_confirm_frames_waits_for_a_run(void)
     TEST_ASSERT_TRUE(f3 >= f1 + 2);
 }
 
+/* birth_share (Bernoulli form, docs/algorithms.md 2.11): on an empty frame (every pixel 0) the
+ * existence probability of the first frame falls below its prior eta (every birth's likelihood
+ * ratio is below 1); a bright point target then takes it above 0.99 within three frames, with
+ * the estimate within half a pixel; the field is refused above 0.95 by name. */
+static void test_birth_share_existence(void)
+{
+    static pft_tbd_t t;
+    pft_tbd_config_t c;
+    const char *field = NULL;
+    cfg_peaks(&c, 0u);
+    c.birth_share = R(0.96);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("birth_share", field);
+    c.birth_share = R(0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+    clear_raw();
+    pft_frame_t f;
+    frame_of(&f);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    pft_tbd_estimate_t e;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
+    TEST_ASSERT_TRUE(D(e.p_exist) < 0.05 && D(e.p_exist) > 0.0);
+    /* a point of peak 20 noise sigmas at (10, 12) (the PSF of an intensity above i_max: the
+     * likelihood still favours the births on it) */
+    for (int k = 0; k < 3; ++k) {
+        clear_raw();
+        for (int dr = -1; dr <= 1; ++dr) {
+            for (int dc = -1; dc <= 1; ++dc) {
+                set_px(10 + dc, 12 + dr, 20.0 * exp(-(dc * dc + dr * dr) / 0.98));
+            }
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    }
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
+    TEST_ASSERT_TRUE_MESSAGE(D(e.p_exist) > 0.99, "existence on a bright point");
+    TEST_ASSERT_TRUE(fabs(D(e.x) - 10.0) < 0.5 && fabs(D(e.y) - 12.0) < 0.5);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -330,5 +369,6 @@ int main(void)
     RUN_TEST(test_new_fields_refused_by_name);
     RUN_TEST(test_refused_frame_leaves_state_untouched);
     RUN_TEST(test_confirm_frames_waits_for_a_run);
+    RUN_TEST(test_birth_share_existence);
     return UNITY_END();
 }

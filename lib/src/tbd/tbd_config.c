@@ -36,6 +36,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->birth_correction = false;
     cfg->birth_peaks = 0u;
     cfg->peak_gamma = PFT_C(1.0);
+    cfg->birth_share = PFT_C(0.0);
     cfg->theta1 = PFT_C(0.6);
     cfg->confirm_frames = 1u;
     cfg->dis_r = 2u;
@@ -207,6 +208,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (!pft_cfg_real_ok_(c->peak_gamma)) {
         return "peak_gamma";
+    }
+    if (!(c->birth_share >= PFT_C(0.0) && c->birth_share <= PFT_C(0.95))) {
+        return "birth_share";
     }
     if (c->confirm_frames > PFT_TBD_MAX_DIS_R + 1u) {
         return "confirm_frames";

@@ -440,6 +440,7 @@ static void confirm_(pft_tbd_t *t)
     rec->age = 0u;
     tf->frames = 0u;
     memset(t->search.cur.e, 0, t->search.n);
+    t->search.bq = PFT_C(0.0); /* birth_share: the search layer starts over */
     t->above = 0u;
     ++t->n_tracks;
     push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);

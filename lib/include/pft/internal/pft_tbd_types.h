@@ -93,6 +93,7 @@ struct pft_tbd_filter_s {
     pft_real_t gamma_w;      /* birth threshold on the whitened frame, gamma/sigma */
     pft_tbd_dyn_t dyn;       /* PF dynamics, births, existence probabilities */
     pft_real_t birth_lw;     /* birth log-weight correction of the current frame */
+    pft_real_t bq;           /* cfg.birth_share > 0: the existence probability of the last frame */
     pft_rng_t rng;
     uint32_t frames;         /* accepted updates */
     pft_tbd_estimate_t est;
