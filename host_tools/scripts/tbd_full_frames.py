@@ -31,13 +31,6 @@ PLANS = {
         ("peaks_64", "full_6db_64.json", PEAKS),
         ("peaks_256", "full_6db_256.json", PEAKS),
     ],
-    # the number of peaks kept and the threshold, at 64x64
-    "k64": [
-        ("k8_64", "full_6db_64.json", {"birth_peaks": 8, "peak_gamma": 1.0}),
-        ("k16_64", "full_6db_64.json", {"birth_peaks": 16, "peak_gamma": 1.0}),
-        ("k64_64", "full_6db_64.json", {"birth_peaks": 64, "peak_gamma": 1.0}),
-        ("k32g2_64", "full_6db_64.json", {"birth_peaks": 32, "peak_gamma": 2.0}),
-    ],
     # the shipped two-target cases, before and after
     "two": [
         ("two1_b", "two_case1.json", {}),
