@@ -390,8 +390,9 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t);
  * frame minus the other tracks' PSFs at their predicted positions) and test disappearance,
  * rebuild the constraint regions from the remaining tracks' estimates, update the search
  * layer (with residual_search, on the frame minus every remaining track's PSF at its current
- * estimate), and confirm a new track when its existence probability exceeds theta1 (if a
- * track slot is free; otherwise the search layer keeps running without confirming).
+ * estimate; births from B_k or, with birth_peaks, from peaks), and confirm a new track when its
+ * existence probability has exceeded theta1 on confirm_frames consecutive frames (if a track
+ * slot is free; otherwise the search layer keeps running without confirming).
  * Refused input leaves everything untouched.
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
