@@ -92,6 +92,11 @@ PLANS["bern"] = [
     ("two3_bs5pk", "two_case3.json", BERN_PK),
 ]
 
+PLANS["eight"] = [
+    ("t8_b", "full_8t_256.json", {}),
+    ("t8_bs5pk", "full_8t_256.json", BERN_PK),
+]
+
 
 def confirm_plan():
     """Sequential confirmation (confirm_frames m) and theta1: noise and the two-target cases."""
