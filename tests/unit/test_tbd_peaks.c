@@ -334,29 +334,62 @@ static void test_birth_share_existence(void)
     c.birth_share = R(0.96);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
     TEST_ASSERT_EQUAL_STRING("birth_share", field);
-    c.birth_share = R(0.5);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
-    clear_raw();
-    pft_frame_t f;
-    frame_of(&f);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
-    pft_tbd_estimate_t e;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
-    TEST_ASSERT_TRUE(D(e.p_exist) < 0.05 && D(e.p_exist) > 0.0);
-    /* a point of peak 20 noise sigmas at (10, 12) (the PSF of an intensity above i_max: the
-     * likelihood still favours the births on it) */
-    for (int k = 0; k < 3; ++k) {
+    for (int kind = 0; kind < 2; ++kind) {
+        cfg_peaks(&c, kind == 0 ? 0u : 8u); /* PF: births from peaks */
+        c.birth_share = R(0.5);
+        c.kind = (pft_tbd_kind_t)kind;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
         clear_raw();
-        for (int dr = -1; dr <= 1; ++dr) {
-            for (int dc = -1; dc <= 1; ++dc) {
-                set_px(10 + dc, 12 + dr, 20.0 * exp(-(dc * dc + dr * dr) / 0.98));
-            }
-        }
+        pft_frame_t f;
+        frame_of(&f);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        pft_tbd_estimate_t e;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
+        TEST_ASSERT_TRUE(D(e.p_exist) < 0.05 && D(e.p_exist) > 0.0);
+        /* a point of peak 20 noise sigmas at (10, 12) (the PSF of an intensity above i_max:
+         * the likelihood still favours the births on it) */
+        for (int k = 0; k < 3; ++k) {
+            clear_raw();
+            for (int dr = -1; dr <= 1; ++dr) {
+                for (int dc = -1; dc <= 1; ++dc) {
+                    set_px(10 + dc, 12 + dr, 20.0 * exp(-(dc * dc + dr * dr) / 0.98));
+                }
+            }
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
+        TEST_ASSERT_TRUE_MESSAGE(D(e.p_exist) > 0.99, "existence on a bright point");
+        TEST_ASSERT_TRUE(fabs(D(e.x) - 10.0) < 0.5 && fabs(D(e.y) - 12.0) < 0.5);
     }
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
-    TEST_ASSERT_TRUE_MESSAGE(D(e.p_exist) > 0.99, "existence on a bright point");
-    TEST_ASSERT_TRUE(fabs(D(e.x) - 10.0) < 0.5 && fabs(D(e.y) - 12.0) < 0.5);
+}
+
+/* The standalone filter in Bernoulli form: the same existence on an empty frame, and a
+ * refused frame leaves it byte-identical. */
+static void test_birth_share_standalone(void)
+{
+    static pft_tbd_filter_t f, f_snap;
+    pft_tbd_config_t c;
+    cfg_peaks(&c, 0u);
+    c.birth_share = R(0.25);
+    size_t need = pft_tbd_filter_workspace_size(&c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, need));
+    clear_raw();
+    pft_frame_t fr;
+    frame_of(&fr);
+    for (int k = 0; k < 3; ++k) {
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &fr));
+    }
+    pft_tbd_estimate_t e;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_estimate(&f, &e));
+    TEST_ASSERT_TRUE(D(e.p_exist) < 0.05);
+    f_snap = f;
+    memcpy(g_snap, g_ws, need);
+    pft_frame_t bad = fr;
+    bad.height = IMG + 1;
+    TEST_ASSERT_NOT_EQUAL(PFT_OK, pft_tbd_filter_update(&f, &bad));
+    TEST_ASSERT_EQUAL_MEMORY(&f_snap, &f, sizeof f);
+    TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws, need);
 }
 
 int main(void)
@@ -370,5 +403,6 @@ int main(void)
     RUN_TEST(test_refused_frame_leaves_state_untouched);
     RUN_TEST(test_confirm_frames_waits_for_a_run);
     RUN_TEST(test_birth_share_existence);
+    RUN_TEST(test_birth_share_standalone);
     return UNITY_END();
 }
