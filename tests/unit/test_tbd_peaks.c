@@ -359,7 +359,13 @@ static void test_birth_share_existence(void)
         }
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
         TEST_ASSERT_TRUE_MESSAGE(D(e.p_exist) > 0.99, "existence on a bright point");
-        TEST_ASSERT_TRUE(fabs(D(e.x) - 10.0) < 0.5 && fabs(D(e.y) - 12.0) < 0.5);
+        /* RBPF within half a pixel; the PF samples velocities (variance 1/3 px^2 per frame,
+         * about 0.6 px of spread per frame for 300 particles): within 1 px (measured when
+         * written, largest coordinate error: 0.10 px RBPF, 0.15 / 0.69 px PF float / q16) */
+        {
+            const double tol = kind == 0 ? 0.5 : 1.0;
+            TEST_ASSERT_TRUE(fabs(D(e.x) - 10.0) < tol && fabs(D(e.y) - 12.0) < tol);
+        }
     }
 }
 
