@@ -110,6 +110,21 @@ def confirm_plan():
     return lines
 
 
+def bern_confirm_plan():
+    """The Bernoulli layer (birth_share 0.5) with theta1 and confirm_frames."""
+    lines = []
+    for m, th in [(1, 0.7), (1, 0.8), (2, 0.6), (2, 0.8)]:
+        f = {**BERN, "confirm_frames": m, "theta1": th}
+        tag = f"bs5m{m}t{int(th * 10)}"
+        lines.append((f"noise_{tag}", "noise_20.json", f))
+        for c in (1, 2, 3):
+            lines.append((f"two{c}_{tag}", f"two_case{c}.json", f))
+    return lines
+
+
+PLANS["bern_confirm"] = bern_confirm_plan()
+
+
 def with_peaks(lines):
     return [(l + "_pk", s, {**PEAKS, **f}) for (l, s, f) in lines]
 
