@@ -103,7 +103,8 @@ void parse_filter(const Field &f, FilterSettings &F)
             "dis_r", "dis_prev", "dis_ratio", "dis_ratio_test", "theta_end", "d_margin",
             "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
             "seed_offset", "d_region", "residual_search", "residual_tracks",
-            "residual_margin", "end_lr_frames", "end_lr_max", "handover_gate"});
+            "residual_margin", "end_lr_frames", "end_lr_max", "handover_gate", "birth_peaks",
+            "peak_gamma", "birth_share", "confirm_frames"});
     F.mode = f.choice_or("mode", "multi", {"multi", "single"});
     F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
     F.preset = f.choice_or("preset", "paper", {"paper", "recommended"});
@@ -160,6 +161,10 @@ void parse_filter(const Field &f, FilterSettings &F)
     integer("residual_margin", 0, 8, F.residual_margin);
     integer("end_lr_frames", 0, 16, F.end_lr_frames);
     integer("handover_gate", 0, 64, F.handover_gate);
+    integer("birth_peaks", 0, 4096, F.birth_peaks);  // PFT_TBD_MAX_PEAKS
+    integer("confirm_frames", 0, 16, F.confirm_frames);
+    num("peak_gamma", -1e4, 1e4, F.peak_gamma);
+    num("birth_share", 0.0, 0.95, F.birth_share);
     num("end_lr_max", -1e4, 1e4, F.end_lr_max);
     if (f.has("d_region"))
         F.d_region = f.choice_or("d_region", "window", {"window", "pixel", "none"});

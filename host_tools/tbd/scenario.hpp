@@ -32,12 +32,13 @@ struct FilterSettings {
     uint32_t max_targets = 4;
     uint64_t seed_offset = 0;         ///< filter seed = run seed + seed_offset
     // overrides of the preset (absent: the library's value)
-    std::optional<double> pb, pd, eta, gamma, i_min, i_max, theta1, dis_ratio, theta_end, end_lr_max;
+    std::optional<double> pb, pd, eta, gamma, i_min, i_max, theta1, dis_ratio, theta_end, end_lr_max, peak_gamma, birth_share;
     std::optional<double> q1, q2, noise_sigma;  ///< model mismatch studies (absent: the scenario's)
     std::optional<std::array<double, 2>> vel_mean, vel_var;
     std::optional<bool> birth_correction, dis_ratio_test, d_current, force_constraint;
     std::optional<bool> residual_search, residual_tracks;
     std::optional<int> dis_r, dis_prev, d_margin, window, residual_margin, end_lr_frames, handover_gate;
+    std::optional<int> birth_peaks, confirm_frames;
     std::optional<std::string> d_region;  ///< "window" | "pixel" | "none"
     std::optional<std::string> kf_variant;
 };

@@ -93,6 +93,12 @@ void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c)
     if (F.end_lr_frames)
         c.end_lr_frames = static_cast<uint8_t>(*F.end_lr_frames);
     R(F.end_lr_max, c.end_lr_max);
+    if (F.birth_peaks)
+        c.birth_peaks = static_cast<uint16_t>(*F.birth_peaks);
+    R(F.peak_gamma, c.peak_gamma);
+    R(F.birth_share, c.birth_share);
+    if (F.confirm_frames)
+        c.confirm_frames = static_cast<uint8_t>(*F.confirm_frames);
 }
 
 nlohmann::json config_to_json(const pft_tbd_config_t &c)
@@ -115,7 +121,9 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
                                                          : "window"},
             {"residual_search", c.residual_search}, {"residual_tracks", c.residual_tracks},
             {"residual_margin", c.residual_margin}, {"end_lr_frames", c.end_lr_frames}, {"handover_gate", c.handover_gate},
-            {"end_lr_max", from_real(c.end_lr_max)}, {"n_search", c.n_search},
+            {"end_lr_max", from_real(c.end_lr_max)}, {"birth_peaks", c.birth_peaks},
+            {"peak_gamma", from_real(c.peak_gamma)}, {"birth_share", from_real(c.birth_share)}, {"confirm_frames", c.confirm_frames},
+            {"n_search", c.n_search},
             {"n_track", c.n_track}, {"max_targets", c.max_targets},
             {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},
             {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"}};

@@ -142,8 +142,9 @@ static void fuzz_tbd(fz_t *f, bool manager)
                          : pft_tbd_filter_init(&flt, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
         return;
     }
-    size_t macro = manager ? PFT_TBD_WORKSPACE_BYTES(c.n_search, c.n_track, c.max_targets,
-                                                     c.kind, c.width, c.height)
+    size_t macro = manager ? PFT_TBD_WORKSPACE_BYTES_PEAKS(c.n_search, c.n_track, c.max_targets,
+                                                           c.kind, c.width, c.height,
+                                                           c.birth_peaks)
                            : PFT_TBD_FILTER_WORKSPACE_BYTES(c.n_search, c.kind, c.width,
                                                             c.height);
     FZ_CHECK(macro == ws);

@@ -68,6 +68,8 @@ typedef struct pft_tbd_s pft_tbd_t;               /**< the multi-target manager 
 #define PFT_TBD_MAX_DIS_R 15u
 /** Largest number of previous windows compared against in the disappearance test. */
 #define PFT_TBD_MAX_DIS_PREV 15u
+/** Largest number of birth peaks (cfg.birth_peaks). */
+#define PFT_TBD_MAX_PEAKS 4096u
 
 /** Filter algorithm. */
 typedef enum {
@@ -120,9 +122,13 @@ typedef struct {
     pft_real_t i_max;        /**< (default 30); i_min <= i_max, and the PSF peak i_max*dx*dy/(2 pi S^2) and its ratio to noise_sigma below 32767 */
     pft_real_t vel_mean[2];  /**< birth velocity prior mean (vx, vy) (default 0, 0) [A]; |vel_mean| * T at most the image span (width*dx, height*dy) */
     pft_real_t vel_var[2];   /**< birth velocity prior variances, diagonal P0 (default 1/3 each) [A]; >= 0, sqrt(vel_var) * T at most the image span */
-    bool birth_correction;   /**< add log(|B_k|/A_allow) to born particles' log-weights [A] (default false: the paper's eq. 20) */
+    bool birth_correction;   /**< add log(|B_k|/A_allow) to born particles' log-weights [A] (default false: the paper's eq. 20); with birth_peaks, |B_k| is the number of peaks kept */
+    uint16_t birth_peaks;    /**< manager's search layer only: 0 (default) draws births from B_k = {z > gamma} (the paper); K >= 1 draws them uniformly from the K strongest local maxima (3 x 3) of the frame correlated with the PSF's 3 x 3 taps above peak_gamma, so that the births do not spread over the image area (docs/algorithms.md 2.11); 0..PFT_TBD_MAX_PEAKS. The standalone filter ignores it [A] */
+    pft_real_t peak_gamma;   /**< threshold of the peaks above, in noise sigmas of the PSF-matched frame (the correlation normalised to unit noise variance) (default 1) */
+    pft_real_t birth_share;  /**< 0 (default): a layer with births keeps the existence variable E in every particle (the paper). In (0, 0.95]: Bernoulli form (docs/algorithms.md 2.11): the existence probability is one number updated in closed form, every particle is a position hypothesis of an existing target, and this share of them is replaced by births each frame (weighted by the birth prior pb (1 - P), with the importance correction of the proposal); applies to the search layer and the standalone filter [A] */
     /* decisions */
     pft_real_t theta1;       /**< appearance threshold on the existence probability (default 0.6) */
+    uint8_t confirm_frames;  /**< the manager confirms a track when the search layer's P > theta1 on this many consecutive frames (default 1: the paper's single crossing; 0 counts as 1), at most PFT_TBD_MAX_DIS_R + 1 [A] */
     uint8_t dis_r;           /**< disappearance window: r + 1 frames (default r = 2), 0..PFT_TBD_MAX_DIS_R */
     uint8_t dis_prev;        /**< previous windows compared against (default 5), 1..PFT_TBD_MAX_DIS_PREV */
     pft_real_t dis_ratio;    /**< gone when L(W_k) < dis_ratio * L_max (default 0.8, i.e. theta2 = L_max/5); in (0, 1] */
@@ -349,6 +355,20 @@ typedef struct {
      PFT_TBD_EVENT_BYTES_(max_targets) +                                                        \
      PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)))
 
+/** @cond internal */
+#define PFT_TBD_PEAK_BYTES_(w, peaks)                                                           \
+    ((size_t)(peaks) > 0u ? PFT_WS_ROUND(6u * (size_t)(w) * sizeof(pft_real_t)) +                \
+                                PFT_WS_ROUND((size_t)(peaks) * sizeof(pft_real_t))             \
+                          : 0u)
+/** @endcond */
+
+/** Workspace bytes of the manager with cfg.birth_peaks = peaks (constant expression; with the
+ *  sizes, kind, image and birth_peaks of cfg it equals pft_tbd_workspace_size). With peaks = 0
+ *  it equals PFT_TBD_WORKSPACE_BYTES; the peak scan adds six image rows and one real per peak. */
+#define PFT_TBD_WORKSPACE_BYTES_PEAKS(n_search, n_track, max_targets, kind, w, h, peaks)       \
+    (PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h) +                      \
+     PFT_TBD_PEAK_BYTES_(w, peaks))
+
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
@@ -370,8 +390,9 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t);
  * frame minus the other tracks' PSFs at their predicted positions) and test disappearance,
  * rebuild the constraint regions from the remaining tracks' estimates, update the search
  * layer (with residual_search, on the frame minus every remaining track's PSF at its current
- * estimate), and confirm a new track when its existence probability exceeds theta1 (if a
- * track slot is free; otherwise the search layer keeps running without confirming).
+ * estimate; births from B_k or, with birth_peaks, from peaks), and confirm a new track when its
+ * existence probability has exceeded theta1 on confirm_frames consecutive frames (if a track
+ * slot is free; otherwise the search layer keeps running without confirming).
  * Refused input leaves everything untouched.
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
@@ -386,6 +407,16 @@ size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
 /** Copies the search layer's estimate at the last frame (p_exist is the appearance
  *  statistic). */
 pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out);
+
+/**
+ * Copies up to max birth candidate pixels of the search layer at the last update into out
+ * (0-based row-major indices, row * width + column) and returns how many there were: with
+ * cfg.birth_peaks = K, the peaks kept (at most K; ordered by the scan's heap, not by value);
+ * otherwise the pixels of B_k = {z > gamma} (or every allowed pixel when B_k was empty). 0
+ * before the first update, after an update that confirmed a track (the buffer is reused by the
+ * hand-over), and for NULL t. out may be NULL with max 0 to ask the count.
+ */
+size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max);
 
 /** Frame number of the last accepted update (1-based; 0 before the first and for NULL). */
 uint32_t pft_tbd_frame(const pft_tbd_t *t);

@@ -34,7 +34,11 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->vel_var[0] = PFT_C(0.333333333333);
     cfg->vel_var[1] = PFT_C(0.333333333333);
     cfg->birth_correction = false;
+    cfg->birth_peaks = 0u;
+    cfg->peak_gamma = PFT_C(1.0);
+    cfg->birth_share = PFT_C(0.0);
     cfg->theta1 = PFT_C(0.6);
+    cfg->confirm_frames = 1u;
     cfg->dis_r = 2u;
     cfg->dis_prev = 5u;
     cfg->dis_ratio = PFT_C(0.8);
@@ -198,6 +202,18 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->handover_gate > 64u) {
         return "handover_gate";
+    }
+    if (c->birth_peaks > PFT_TBD_MAX_PEAKS) {
+        return "birth_peaks";
+    }
+    if (!pft_cfg_real_ok_(c->peak_gamma)) {
+        return "peak_gamma";
+    }
+    if (!(c->birth_share >= PFT_C(0.0) && c->birth_share <= PFT_C(0.95))) {
+        return "birth_share";
+    }
+    if (c->confirm_frames > PFT_TBD_MAX_DIS_R + 1u) {
+        return "confirm_frames";
     }
     return NULL;
 }

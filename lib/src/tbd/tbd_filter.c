@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "tbd_int.h"
+#include "../core/num_int.h"
 #include "../core/resample_int.h"
 
 /* ---------------------------------- layout ------------------------------------------------ */
@@ -46,6 +47,7 @@ void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f)
     f->n_win = 0;
     f->gone = false;
     f->birth_lw = PFT_C(0.0);
+    f->bq = PFT_C(0.0);
 }
 
 void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uint32_t n,
@@ -391,6 +393,133 @@ static void disappearance_(pft_tbd_filter_t *f)
     }
 }
 
+/* ---------------------------------- Bernoulli form (docs/algorithms.md 2.11) -------------- */
+
+/* Log-weight of a particle dropped from the position density (left the image or entered the
+ * exclusion mask): its weight underflows to 0 (pft_kwexp_). */
+#define BERN_DROP_ PFT_C(-30000.0)
+
+/* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
+ * the others move. Counts the births and the survivors. */
+static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
+                       uint32_t *nb, uint32_t *np)
+{
+    pft_tbd_particles_t *P = &f->cur;
+    uint8_t *restrict pe = P->e;
+    const bool rb = x->rb;
+    const uint32_t e_max = x->e_max;
+    pft_rng_t rng = f->rng;
+    uint32_t b = 0u;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        const uint32_t u = pft_tbd_exist_draw_(&rng);
+        uint32_t e = pe[s];
+        if ((e == 0u || u < p16_share) && !x->can_birth) {
+            e = 0u; /* no pixel to be born in: the slot stays empty */
+        } else if (e == 0u || u < p16_share) {
+            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+            pft_rng_t t = rng;
+            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
+            rng = t;
+            e = 1u;
+            ++b;
+        } else {
+            if (rb) {
+                rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
+            } else {
+                pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+                pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
+            }
+            e = e < e_max ? e + 1u : e;
+        }
+        pe[s] = (uint8_t)e;
+    }
+    f->rng = rng;
+    *nb = b;
+    *np = 0u;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        *np += pe[s] > 1u ? 1u : 0u;
+    }
+}
+
+/* Log-weights: the likelihood ratio plus the log prior weight of the particle's group (lb for
+ * births, lp for survivors); dropped particles get BERN_DROP_ and E = 0 (a birth slot next
+ * frame). Returns the largest. */
+static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real_t lb,
+                              pft_real_t lp)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_tbd_meas_t *m = &f->model;
+    uint8_t *restrict pe = P->e;
+    pft_tbd_slot_t *restrict pw = P->w;
+    pft_real_t lmax = BERN_DROP_;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        pft_real_t lw = BERN_DROP_;
+        pft_tbd_cell_t c;
+        if (pe[s] != 0u && pft_tbd_cell_(m, P->x[s], P->y[s], &c) &&
+            (x->mask == NULL || x->mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] == 0u)) {
+            lw = pft_add(pft_tbd_llr_(m, x->tab, x->sc->img, &c, P->in[s]), pe[s] == 1u ? lb : lp);
+        } else {
+            pe[s] = 0u;
+        }
+        pw[s].lw = lw;
+        lmax = pft_max(lmax, lw);
+    }
+    return lmax;
+}
+
+/* log(a) for a > 0, else the drop value. */
+static pft_real_t log_or_drop_(pft_real_t a) { return a > PFT_C(0.0) ? pft_log(a) : BERN_DROP_; }
+
+/* log(e^a + e^b), the larger first. */
+static pft_real_t log_add_(pft_real_t a, pft_real_t b)
+{
+    const pft_real_t hi = pft_max(a, b);
+    const pft_real_t d = pft_max(pft_sub(pft_min(a, b), hi), PFT_C(-20.0));
+    return pft_add(hi, pft_log(pft_add(PFT_C(1.0), pft_exp(d))));
+}
+
+/* One iteration of the Bernoulli form: q_pred = pb (1 - q) + (1 - pd) q (eta on the first
+ * frame); births carry the prior mass pb (1 - q) times the proposal's share c = n_cand / A of
+ * the allowed pixels (1 without the correction's candidates), the rest of that mass, (1 - c),
+ * counts with likelihood ratio 1; survivors carry (1 - pd) q. P = L / (L + 1 - q_pred) with L
+ * the total weighted likelihood ratio. */
+static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_config_t *c = &f->cfg;
+    const bool first = f->frames == 0u;
+    const pft_real_t q = f->bq;
+    const pft_real_t mb = first ? c->eta : pft_mul(c->pb, pft_sub(PFT_C(1.0), q));
+    const pft_real_t ms = first ? PFT_C(0.0) : pft_mul(pft_sub(PFT_C(1.0), c->pd), q);
+    const pft_real_t qp = pft_min(pft_add(mb, ms), PFT_C(1.0));
+    pft_real_t share = PFT_C(1.0);
+    uint32_t nb = 0u, np = 0u;
+    if (x->sc->cand_is_b && x->sc->n_allowed > 0u) {
+        share = pft_ratio((int32_t)x->sc->n_cand, (int32_t)x->sc->n_allowed);
+    }
+    move_bern_(f, x, pft_p16_(c->birth_share), &nb, &np);
+    {
+        const pft_real_t lb = nb > 0u ? pft_sub(log_or_drop_(pft_mul(mb, share)), pft_log_count_(nb))
+                                      : BERN_DROP_;
+        const pft_real_t lp = np > 0u ? pft_sub(log_or_drop_(ms), pft_log_count_(np)) : BERN_DROP_;
+        const pft_real_t lmax = weigh_bern_(f, x, lb, lp);
+        const pft_wacc_t sum = weights_(f, lmax);
+        pft_real_t ll = pft_add(lmax, pft_wacc_log(sum));
+        const pft_real_t m0 = pft_mul(mb, pft_sub(PFT_C(1.0), share));
+        if (m0 > PFT_C(0.0)) {
+            ll = log_add_(ll, pft_log(m0));
+        }
+        f->est.log_mean_lr = pft_sub(ll, log_or_drop_(qp));
+        estimate_and_count_(f, sum);
+        /* P = 1 / (1 + (1 - q_pred) e^-L), the exponent limited to +-10 */
+        {
+            const pft_real_t d = pft_clamp(pft_sub(log_or_drop_(pft_sub(PFT_C(1.0), qp)), ll),
+                                           PFT_C(-10.0), PFT_C(10.0));
+            f->bq = pft_div(PFT_C(1.0), pft_add(PFT_C(1.0), pft_exp(d)));
+        }
+        f->est.p_exist = f->bq;
+    }
+}
+
 /* ---------------------------------- one iteration ----------------------------------------- */
 
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
@@ -407,6 +536,15 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     x.can_birth = f->births && sc->n_cand > 0u;
     x.rb = f->kind == PFT_TBD_RBPF;
     f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
+    if (f->births && c->birth_share > PFT_C(0.0)) {
+        step_bern_(f, &x);
+        disappearance_(f);
+        replicate_(f);
+        if (f->frames < UINT32_MAX) {
+            ++f->frames;
+        }
+        return;
+    }
     /* 1-3. existence, move or birth, log-weights */
     move_(f, &x);
     pft_real_t lmax = weigh_(f, &x);

@@ -69,6 +69,14 @@ void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
                           const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
 
+/* The same with births from peaks (cfg.birth_peaks = K >= 1, docs/algorithms.md 2.11): cand
+ * gets the K strongest 3 x 3 local maxima above peak_gamma of img correlated with the f = 0 PSF
+ * taps of tab, outside the mask (or every allowed pixel when there is none); rows holds six
+ * image rows of scratch and val K reals (the peaks' values). */
+void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, pft_tbd_scene_t_ *sc);
+
 /* The tables of cfg (PSF taps, Kalman quantities by age), and the taps alone (tbd_meas.c). */
 void pft_tbd_tab_setup_(pft_tbd_tab_t *t, const pft_tbd_config_t *cfg);
 void pft_tbd_taps_setup_(pft_tbd_tab_t *t, const pft_tbd_meas_t *m);

@@ -8,8 +8,8 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
     if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_TBD_WORKSPACE_BYTES(cfg->n_search, cfg->n_track, cfg->max_targets, cfg->kind,
-                                   cfg->width, cfg->height);
+    return PFT_TBD_WORKSPACE_BYTES_PEAKS(cfg->n_search, cfg->n_track, cfg->max_targets,
+                                         cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
 }
 
 /* Carves every buffer of the manager from ws. With commit == false nothing is written
@@ -30,6 +30,8 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         ws, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
     pft_tbd_filter_t scratch;
     pft_real_t *res = NULL;
+    pft_real_t *peak_rows = NULL;
+    pft_real_t *peak_val = NULL;
     pft_tbd_filter_t *sf = commit ? &t->search : &scratch;
     sf->n = cfg->n_search;
     sf->kind = cfg->kind;
@@ -41,7 +43,14 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         pft_tbd_particles_carve_(tf, ws);
     }
     res = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
+    if (cfg->birth_peaks > 0u) {
+        /* after every other buffer: the layout without peaks is unchanged */
+        peak_rows = (pft_real_t *)pft_ws_take(ws, 6u * (size_t)cfg->width * sizeof(pft_real_t));
+        peak_val = (pft_real_t *)pft_ws_take(ws, (size_t)cfg->birth_peaks * sizeof(pft_real_t));
+    }
     if (commit) {
+        t->peak_rows = peak_rows;
+        t->peak_val = peak_val;
         t->res = res;
         t->tab = tab;
         t->img = img;
@@ -88,6 +97,10 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
     memset(t->events, 0, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
+    if (cfg->birth_peaks > 0u) {
+        memset(t->peak_rows, 0, 6u * (size_t)cfg->width * sizeof(pft_real_t));
+        memset(t->peak_val, 0, (size_t)cfg->birth_peaks * sizeof(pft_real_t));
+    }
     pft_tbd_filter_clear_(&t->search);
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         pft_tbd_filter_clear_(&t->tracks[k]);
@@ -373,16 +386,31 @@ static void update_search_(pft_tbd_t *t, bool residual)
         simg = t->res;
     }
     pft_tbd_scene_t_ ssc;
-    pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
+    if (cfg->birth_peaks > 0u) {
+        pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
+                             &ssc);
+    } else {
+        pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
+    }
+    t->n_cand = ssc.n_cand;
     pft_tbd_filter_step_(&t->search, &ssc);
 }
 
-/* 4. Appearance: when the search layer's P exceeds theta1 and a slot is free, hand its
- * particles over to a new track layer (docs/algorithms.md 2.7) and clear the search layer. */
+/* 4. Appearance: when the search layer's P has exceeded theta1 on confirm_frames consecutive
+ * frames (docs/algorithms.md 2.11) and a slot is free, hand its particles over to a new track
+ * layer (docs/algorithms.md 2.7) and clear the search layer. */
 static void confirm_(pft_tbd_t *t)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
-    if (!(t->search.est.p_exist > cfg->theta1) || t->n_tracks >= cfg->max_targets) {
+    const uint32_t need = cfg->confirm_frames > 1u ? cfg->confirm_frames : 1u;
+    if (!(t->search.est.p_exist > cfg->theta1)) {
+        t->above = 0u;
+        return;
+    }
+    if (t->above < UINT8_MAX) {
+        ++t->above;
+    }
+    if ((uint32_t)t->above < need || t->n_tracks >= cfg->max_targets) {
         return;
     }
     uint32_t k = 0;
@@ -396,6 +424,7 @@ static void confirm_(pft_tbd_t *t)
     if (cfg->handover_gate > 0u) {
         build_gate_(t);
         gate = t->mask;
+        t->n_cand = 0u; /* t->cand now holds the gate's histogram */
     }
     if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
         return;
@@ -411,6 +440,8 @@ static void confirm_(pft_tbd_t *t)
     rec->age = 0u;
     tf->frames = 0u;
     memset(t->search.cur.e, 0, t->search.n);
+    t->search.bq = PFT_C(0.0); /* birth_share: the search layer starts over */
+    t->above = 0u;
     ++t->n_tracks;
     push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
 }
@@ -499,4 +530,15 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
     }
     pft_tbd_est_pub_(&t->search.model, &t->search.est, out);
     return PFT_OK;
+}
+
+size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max)
+{
+    if (t == NULL || t->cand == NULL) {
+        return 0u;
+    }
+    for (size_t i = 0; i < t->n_cand && i < max && out != NULL; ++i) {
+        out[i] = t->cand[i];
+    }
+    return t->n_cand;
 }

@@ -292,3 +292,197 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
     }
     sc->n_cand = nb;
 }
+
+/* ------------------------------- birth peaks (docs/algorithms.md 2.11) --------------------- */
+
+/* Heap order of the kept peaks: a is weaker than b (smaller value; on a tie, the later pixel). */
+static bool weaker_(pft_real_t va, uint32_t ka, pft_real_t vb, uint32_t kb)
+{
+    return va < vb || (va == vb && ka > kb);
+}
+
+static void heap_swap_(uint32_t *key, pft_real_t *val, uint32_t a, uint32_t b)
+{
+    const uint32_t k = key[a];
+    const pft_real_t v = val[a];
+    key[a] = key[b];
+    val[a] = val[b];
+    key[b] = k;
+    val[b] = v;
+}
+
+/* Min-heap of n entries, the weakest at 0: moves entry i down (i at least doubles each step). */
+static void sift_down_(uint32_t *key, pft_real_t *val, uint32_t n, uint32_t i)
+{
+    uint32_t a = i;
+    while (2u * a + 1u < n) {
+        uint32_t c = 2u * a + 1u;
+        if (c + 1u < n && weaker_(val[c + 1u], key[c + 1u], val[c], key[c])) {
+            ++c;
+        }
+        if (!weaker_(val[c], key[c], val[a], key[a])) {
+            break;
+        }
+        heap_swap_(key, val, a, c);
+        a = c;
+    }
+}
+
+/* Moves entry i up (i at least halves each step). */
+static void sift_up_(uint32_t *key, pft_real_t *val, uint32_t i)
+{
+    uint32_t a = i;
+    while (a > 0u) {
+        const uint32_t p = (a - 1u) / 2u;
+        if (!weaker_(val[a], key[a], val[p], key[p])) {
+            break;
+        }
+        heap_swap_(key, val, a, p);
+        a = p;
+    }
+}
+
+/* Pixels beyond this many noise sigmas count as this many in the peak scan, so that the q16
+ * sums of the 3 x 3 correlation (at most 9 such values with taps <= 1) stay in range. */
+#define PEAK_CLIP_ PFT_C(2048.0)
+
+/* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along row r of the bordered whitened image. */
+static void peak_hrow_(const pft_real_t *img, uint32_t w, uint32_t r, pft_real_t t0,
+                       pft_real_t t1, pft_real_t *hs)
+{
+    const pft_real_t *row = img + (size_t)(r + 1u) * pft_tbd_stride_(w) + 1u;
+    pft_real_t zl = PFT_C(0.0);
+    pft_real_t zc = pft_clamp(row[0], pft_neg(PEAK_CLIP_), PEAK_CLIP_);
+    for (uint32_t c = 0; c < w; ++c) {
+        /* row[w] is the zero border */
+        const pft_real_t zr = pft_clamp(row[c + 1u], pft_neg(PEAK_CLIP_), PEAK_CLIP_);
+        hs[c] = pft_add(pft_mul(t1, zc), pft_mul(t0, pft_add(zl, zr)));
+        zl = zc;
+        zc = zr;
+    }
+}
+
+/* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). */
+static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+                       uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
+{
+    for (uint32_t c = 0; c < w; ++c) {
+        const pft_real_t a = up != NULL ? up[c] : PFT_C(0.0);
+        const pft_real_t b = dn != NULL ? dn[c] : PFT_C(0.0);
+        mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(a, b)));
+    }
+}
+
+/* A strict local maximum of its 3 x 3 neighbourhood (neighbours outside the image ignored); on
+ * a plateau the first pixel in raster order wins: v > the neighbours before it, >= after. */
+static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+                         uint32_t w, uint32_t c)
+{
+    const uint32_t lo = c > 0u ? c - 1u : 0u;
+    const uint32_t hi = c + 1u < w ? c + 1u : c;
+    const pft_real_t v = mid[c];
+    bool ok = true;
+    for (uint32_t k = lo; k <= hi; ++k) {
+        ok = ok && (up == NULL || v > up[k]) && (dn == NULL || v >= dn[k]);
+    }
+    ok = ok && (c == lo || v > mid[lo]) && (c == hi || v >= mid[hi]);
+    return ok;
+}
+
+/* What the scan of one row needs. */
+typedef struct {
+    const uint8_t *mask;
+    uint32_t *key;
+    pft_real_t *val;
+    pft_real_t thr;
+    uint32_t w, k_max, n, na;
+} peak_scan_t;
+
+/* The peaks of row q (mf rows up, mid, dn) into the heap; counts the allowed pixels. */
+static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
+                           const pft_real_t *mid, const pft_real_t *dn)
+{
+    for (uint32_t c = 0; c < ps->w; ++c) {
+        const uint32_t k = q * ps->w + c;
+        const pft_real_t v = mid[c];
+        if (ps->mask != NULL && ps->mask[k] != 0u) {
+            continue;
+        }
+        ++ps->na;
+        if (!(v > ps->thr) || !peak_is_max_(up, mid, dn, ps->w, c)) {
+            continue;
+        }
+        if (ps->n < ps->k_max) {
+            ps->key[ps->n] = k;
+            ps->val[ps->n] = v;
+            sift_up_(ps->key, ps->val, ps->n);
+            ++ps->n;
+        } else if (weaker_(ps->val[0], ps->key[0], v, k)) {
+            ps->key[0] = k;
+            ps->val[0] = v;
+            sift_down_(ps->key, ps->val, ps->n, 0u);
+        } else {
+            /* weaker than the K kept: not a candidate */
+        }
+    }
+}
+
+void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, pft_tbd_scene_t_ *sc)
+{
+    const uint32_t w = cfg->width;
+    const uint32_t h = cfg->height;
+    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
+    const pft_real_t *tx = tab->taps[0][mid];
+    const pft_real_t *ty = tab->taps[1][mid];
+    pft_real_t *hs[3];
+    pft_real_t *mf[3];
+    peak_scan_t ps;
+    for (uint32_t s = 0; s < 3u; ++s) {
+        hs[s] = rows + (size_t)s * w;
+        mf[s] = rows + (size_t)(s + 3u) * w;
+    }
+    ps.mask = mask;
+    ps.key = cand;
+    ps.val = val;
+    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
+    ps.thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(tx[3], ty[3])));
+    ps.w = w;
+    ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
+    ps.n = 0u;
+    ps.na = 0u;
+    /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
+     * and the scan of row rr - 2 */
+    for (uint32_t rr = 0; rr < h + 2u; ++rr) {
+        if (rr < h) {
+            peak_hrow_(img, w, rr, tx[0], tx[1], hs[rr % 3u]);
+        }
+        if (rr >= 1u && rr <= h) {
+            const uint32_t r = rr - 1u;
+            peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
+                       r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
+        }
+        if (rr >= 2u) {
+            const uint32_t q = rr - 2u;
+            peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
+                           q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
+        }
+    }
+    sc->img = img;
+    sc->mask = mask;
+    sc->cand = cand;
+    sc->n_allowed = ps.na;
+    sc->cand_is_b = ps.n > 0u;
+    sc->n_cand = ps.n;
+    if (ps.n == 0u && ps.na > 0u) {
+        /* No peak above the threshold: propose uniformly over the allowed pixels. */
+        uint32_t nb = 0u;
+        for (uint32_t k = 0; k < w * h; ++k) {
+            if (mask == NULL || mask[k] == 0u) {
+                cand[nb++] = k;
+            }
+        }
+        sc->n_cand = nb;
+    }
+}

@@ -93,6 +93,7 @@ struct pft_tbd_filter_s {
     pft_real_t gamma_w;      /* birth threshold on the whitened frame, gamma/sigma */
     pft_tbd_dyn_t dyn;       /* PF dynamics, births, existence probabilities */
     pft_real_t birth_lw;     /* birth log-weight correction of the current frame */
+    pft_real_t bq;           /* cfg.birth_share > 0: the existence probability of the last frame */
     pft_rng_t rng;
     uint32_t frames;         /* accepted updates */
     pft_tbd_estimate_t est;
@@ -116,9 +117,13 @@ struct pft_tbd_s {
     uint32_t *cand;
     pft_tbd_tab_t *tab;          /* tables shared by every layer */
     pft_real_t *res;             /* residual frame (joint likelihood, cfg.residual_*), as img */
+    pft_real_t *peak_rows;       /* cfg.birth_peaks > 0: six rolling image rows of the peak scan */
+    pft_real_t *peak_val;        /* cfg.birth_peaks > 0: the peaks' values (heap) */
     uint32_t frame;              /* frames accepted so far (the last frame number) */
     uint32_t next_id;
+    uint32_t n_cand;             /* birth candidates of the last update (0 after a hand-over) */
     uint16_t n_tracks;           /* active tracks */
+    uint8_t above;               /* consecutive frames with the search layer's P > theta1 */
 };
 
 #ifdef __cplusplus
