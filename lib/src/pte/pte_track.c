@@ -1238,8 +1238,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
 {
     const uint32_t na = p->naxes;
     const pft_pte_axis_t *ap = p->scr->ap;
-    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions */
-    pft_real_t w[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS];
+    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions (in
+     * dir[].w: 81 weights on the stack would put the update above the 1 KiB bound) */
+    pft_pte_dir_t *dir = p->dir;
     pft_real_t lx = PFT_REAL_MIN;
     for (int32_t li = 0; li < ndir; ++li) {
         lx = pft_max(lx, p->dir[li].logw);
@@ -1247,12 +1248,12 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     pft_real_t tot = PFT_C(0.0);
     for (int32_t li = 0; li < ndir; ++li) {
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
-        w[li] = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
-        tot = pft_add(tot, w[li]);
+        dir[li].w = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        tot = pft_add(tot, dir[li].w);
     }
     const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
     for (int32_t li = 0; li < ndir; ++li) {
-        w[li] = pft_mul(w[li], itot);
+        dir[li].w = pft_mul(dir[li].w, itot);
     }
     for (uint32_t a = 0; a < na; ++a) {
         pft_real_t df[3];
@@ -1260,14 +1261,14 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         for (uint32_t i = 0; i < 3u; ++i) {
             acc_t v = 0;
             for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(w[li], p->dir[li].dx[a][i]));
+                v = aadd_(v, amul_(dir[li].w, p->dir[li].dx[a][i]));
             }
             df[i] = ato_(v);
         }
         for (uint32_t i = 0; i < 6u; ++i) {
             acc_t v = 0;
             for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(w[li], p->dir[li].K[a][i]));
+                v = aadd_(v, amul_(dir[li].w, p->dir[li].K[a][i]));
             }
             kw[i] = ato_(v);
         }
@@ -1280,7 +1281,7 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
                 for (int32_t li = 0; li < ndir; ++li) {
                     pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
                     pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
-                    v = aadd_(v, amul_(w[li], pft_mul(di, dj)));
+                    v = aadd_(v, amul_(dir[li].w, pft_mul(di, dj)));
                 }
                 P[4u * i + j] = ato_(v);
                 P[4u * j + i] = P[4u * i + j];
@@ -1292,12 +1293,12 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     }
     acc_t as = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        as = aadd_(as, amul_(w[li], pft_sub(p->dir[li].amp, t->amp)));
+        as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
     }
     pft_real_t amp = pft_add(t->amp, ato_(as));
     acc_t avs = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        avs = aadd_(avs, amul_(w[li], pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
     }
     t->amp = amp;
     t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
