@@ -1327,6 +1327,23 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
     }
 }
 
+/* Signed T from a signed T^2. */
+static pft_real_t signed_t_(pft_real_t t2s)
+{
+    pft_real_t v = pft_sqrt(pft_abs(t2s));
+    return t2s < PFT_C(0.0) ? pft_neg(v) : v;
+}
+
+/* Manoeuvre test: |Z| > man_z with Z = (T_S sqrt(M) - T_L sqrt(Ms)) / sqrt(M - Ms) (M > Ms),
+ * from the largest signed T^2 of the long (M frames) and the short (Ms frames) operators. */
+static bool manoeuvre_(const pft_pte_t *p, int32_t M, pft_real_t t2l, pft_real_t t2s)
+{
+    const int32_t ms = (int32_t)p->short_len;
+    pft_real_t num = pft_sub(pft_mul(signed_t_(t2s), pft_sqrt(pft_from_int(M))),
+                             pft_mul(signed_t_(t2l), pft_sqrt(pft_from_int(ms))));
+    return pft_abs(num) > pft_mul(p->cfg.man_z, pft_sqrt(pft_from_int(M - ms)));
+}
+
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_geom_ g;
@@ -1334,6 +1351,9 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
     step_geometry_(p, t, &g);
+    /* manoeuvre test when the template is longer than the short one (TABLE) */
+    const bool mt = p->short_len > 0u && g.M > (int32_t)p->short_len;
+    pft_real_t t2short = PFT_REAL_MIN;
     pft_real_t t2max = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
         dir_slope_ d = dir_slope_of_(p, &g, li);
@@ -1349,9 +1369,25 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         dir_best_ b = dir_best_of_(p, &g, E, G, c0);
         t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+        if (mt) {
+            /* the same lines over the short window (the slope entry's second window) */
+            dir_sums_(p, &g, &d, li, 1u, &E, &G);
+            dir_best_ bs = dir_best_of_(p, &g, E, G, c0);
+            t2short = pft_max(t2short, bs.t2s);
+        }
     }
     step_fuse_(p, t, g.ndir);
     /* max_l T_l* from the largest signed T^2 */
-    pft_real_t tmax = pft_sqrt(pft_abs(t2max));
-    step_maintain_(p, t, t2max < PFT_C(0.0) ? pft_neg(tmax) : tmax);
+    step_maintain_(p, t, signed_t_(t2max));
+    if (mt && manoeuvre_(p, g.M, t2max, t2short)) {
+        t->n_acc = p->short_len; /* the next step's template: the last Ms frames */
+        /* CA: man_acc_sd^2 more on r'' (scaled by SA^2); CV: (Ms man_acc_sd)^2 on r' (SV^2) */
+        const bool ca = p->cfg.motion == PFT_PTE_MOTION_CA;
+        const uint32_t k = ca ? 2u : 1u;
+        const pft_real_t sd = ca ? pft_mul_i(p->cfg.man_acc_sd, SA_)
+                                 : pft_mul_i(p->cfg.man_acc_sd, SV_ * (int32_t)p->short_len);
+        for (uint32_t a = 0; a < p->naxes; ++a) {
+            t->P[a][5u * k] = pft_add(t->P[a][5u * k], pft_sq(sd));
+        }
+    }
 }
