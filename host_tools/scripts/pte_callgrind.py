@@ -10,7 +10,8 @@ free, so its frames are not alike). With --wall, also the wall time per frame ou
 (median of 5 `pft bench` runs; noisy on a shared machine).
 
 Configurations: the air scenario (150 cells, 300 frames, 6 dB) with PTE-TBD (table and exact
-operators), DP-TBD K = 10 and K = 20 and the DBT; the same target in a ten times wider window
+operators, and with the manoeuvre test), DP-TBD K = 10 and K = 20 and the DBT; the sharp turn
+(air_sharp_turn_6db) with PTE-TBD with and without the manoeuvre test; the same target in a ten times wider window
 (1500 cells) with PTE-TBD and DP-TBD K = 20. Thresholds come from a first ordinary run
 (noise-only Monte Carlo) and are written into the scenario, so valgrind does not run the
 Monte Carlo.
@@ -37,6 +38,10 @@ CONFIGS = [  # (window label, scenario file, method, overrides, row label)
     ('150 cells', 'air_turn_6db.json', 'dp', {'frames': 10}, 'DP-TBD K=10'),
     ('150 cells', 'air_turn_6db.json', 'dp', {'frames': 20}, 'DP-TBD K=20'),
     ('150 cells', 'air_turn_6db.json', 'dbt', {}, 'Kalman DBT'),
+    ('150 cells', 'air_turn_6db.json', 'pte', {'short_len': 10, 'man_z': 1.25}, 'PTE-TBD M=40 Ms=10 (manoeuvre test)'),
+    ('150 cells, sharp turn', 'air_sharp_turn_6db.json', 'pte', {}, 'PTE-TBD M=40'),
+    ('150 cells, sharp turn', 'air_sharp_turn_6db.json', 'pte', {'short_len': 10, 'man_z': 1.25},
+     'PTE-TBD M=40 Ms=10 (manoeuvre test)'),
     ('1500 cells', 'air_turn_wide_bench.json', 'pte', {}, 'PTE-TBD M=40'),
     ('1500 cells', 'air_turn_wide_bench.json', 'dp', {'frames': 20}, 'DP-TBD K=20'),
 ]
