@@ -1383,7 +1383,10 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         t->n_acc = p->short_len; /* the next step's template: the last Ms frames */
         /* CA: man_acc_sd^2 more on r'' (scaled by SA^2); CV: (Ms man_acc_sd)^2 on r' (SV^2) */
         const bool ca = p->cfg.motion == PFT_PTE_MOTION_CA;
-        const uint32_t k = ca ? 2u : 1u;
+        uint32_t k = 1u;
+        if (ca) {
+            k = 2u;
+        }
         const pft_real_t sd = ca ? pft_mul_i(p->cfg.man_acc_sd, SA_)
                                  : pft_mul_i(p->cfg.man_acc_sd, SV_ * (int32_t)p->short_len);
         for (uint32_t a = 0; a < p->naxes; ++a) {
