@@ -168,7 +168,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "init_frames", "init_gate",
                 "init_threshold", "init_period", "max_len", "n_dir", "motion", "sigma_r", "q_sd", "acc_sd0",
                 "q_amp", "dtheta_min", "c_step", "scan_steps", "scan_sigmas", "sigma_w_max", "eta_t",
-                "max_misses", "max_tracks", "dup_cells", "op"});
+                "max_misses", "max_tracks", "dup_cells", "op", "short_len", "man_z", "man_acc_sd"});
         input_override(f, m.pte.in);
         pft_pte_config_t &c = m.pte;
         c.init_frames = u8(f, "init_frames", c.init_frames, 2, PFT_PTE_MAX_FRAMES);
@@ -193,6 +193,9 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         c.max_misses = u8(f, "max_misses", c.max_misses, 1, 255);
         c.max_tracks = u8(f, "max_tracks", c.max_tracks, 1, PFT_PTE_MAX_TRACKS);
         real(f, "dup_cells", c.dup_cells, 0, 1000);
+        c.short_len = u8(f, "short_len", c.short_len, 0, PFT_PTE_MAX_FRAMES);
+        real(f, "man_z", c.man_z, 1e-3, 100);
+        real(f, "man_acc_sd", c.man_acc_sd, 0, 0.1);
         if (const char *bad = nullptr; pft_pte_config_check(&c, &bad) != PFT_OK)
             f.fail(std::string("invalid PTE-TBD configuration: ") + (bad ? bad : "?") + " (pft_pte_config_check)");
         if (f.has("init_threshold")) {
@@ -304,7 +307,8 @@ nlohmann::json pair(const pft_real_t v[2]) { return {from_real(v[0]), from_real(
 std::string MethodSpec::label() const
 {
     if (name == "pte")
-        return "PTE-TBD M=" + std::to_string(pte.max_len);
+        return "PTE-TBD M=" + std::to_string(pte.max_len) +
+               (pte.short_len > 0 ? " Ms=" + std::to_string(pte.short_len) : std::string());
     if (name == "dp")
         return "DP-TBD K=" + std::to_string(dp.frames);
     return method_label(name);
@@ -325,7 +329,9 @@ nlohmann::json MethodSpec::settings() const
              {"dtheta_min", from_real(c.dtheta_min)}, {"c_step", from_real(c.c_step)},
              {"scan_steps", c.scan_steps}, {"scan_sigmas", from_real(c.scan_sigmas)},
              {"sigma_w_max", from_real(c.sigma_w_max)}, {"eta_t", from_real(c.eta_t)},
-             {"max_misses", c.max_misses}, {"max_tracks", c.max_tracks}, {"dup_cells", from_real(c.dup_cells)}};
+             {"max_misses", c.max_misses}, {"max_tracks", c.max_tracks}, {"dup_cells", from_real(c.dup_cells)},
+             {"short_len", c.short_len}, {"man_z", from_real(c.man_z)},
+             {"man_acc_sd", from_real(c.man_acc_sd)}};
     } else if (name == "dp") {
         const auto &c = dp;
         j = {{"input", input_json(c.in)}, {"frames", c.frames}, {"gate", {c.gate[0], c.gate[1]}},

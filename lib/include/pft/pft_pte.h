@@ -211,6 +211,19 @@ typedef enum {
  * turn of the air scenario at 15 dB); in the CA model the measurement of a straight operator
  * is modelled as the least-squares line of the quadratic path (end position r - a(M-1)(M-2)/12,
  * slope v - a(M-1)/2), which removes that lag (docs/results/pte.md) [A].
+ * A turn sharper than the template's window bends the path away from every straight line of
+ * M frames. Manoeuvre test (short_len = Ms > 0, TABLE operators): every step also evaluates
+ * the directions over the last Ms frames (the slope entries slide a second window, no extra
+ * memory); with T_L, T_S the largest signed T of the M- and the Ms-frame operators,
+ * Z = (T_S sqrt(M) - T_L sqrt(Ms)) / sqrt(M - Ms) is N(0, 1)-like on a straight path (the
+ * amplitude estimates of two nested windows differ by noise only). In a turn the recent frames
+ * leave the predicted lines while the older part of the long window still supports them
+ * (Z < 0: the track would run straight on), or the long window stops fitting (Z > 0);
+ * |Z| > man_z restarts the track's template at Ms frames (n_acc = Ms; it grows again by one
+ * frame per step up to max_len) and adds man_acc_sd^2 to the variance of r'' (CV:
+ * (Ms man_acc_sd)^2 to r'), so that the directions and the scan widen and the state can
+ * follow the turn. The low default threshold makes it fire often on straight paths too,
+ * which shortens the template on average (docs/results/radar_multi.md) [A].
  * Range-Doppler frames use the same operator over both axes: L0 x L1 directions, a 2-D scan
  * grid and separable weights g0*g1; the axes are filtered independently (block-diagonal P,
  * cross-axis terms of the fusion spread dropped [A]).
@@ -254,6 +267,10 @@ typedef struct {
     uint8_t max_tracks;        /**< 1..PFT_PTE_MAX_TRACKS (default 4) */
     pft_real_t dup_cells;      /**< duplicate-track distance, >= 0 (default 1.0; 0 disables) */
     pft_pte_op_t op;           /**< operator evaluation (default AUTO: TABLE for range-time, EXACT for range-Doppler) */
+    /* Manoeuvre test (TABLE operators only) */
+    uint8_t short_len;         /**< Ms: frames of the short template of the manoeuvre test, 0 (off) or 2..max_len - 1; needs TABLE operators (default 0: off) */
+    pft_real_t man_z;          /**< threshold of |Z|, the manoeuvre statistic, in (0, 100] (default 1.25) */
+    pft_real_t man_acc_sd;     /**< on a manoeuvre, acceleration standard deviation added to the track's covariance (CA: to r''; CV: Ms times it to r'), cells/frame^2, in [0, 0.1] (default 0.03) */
 } pft_pte_config_t;
 
 /** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */

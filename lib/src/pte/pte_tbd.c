@@ -42,6 +42,9 @@ void pft_pte_config_default(pft_pte_config_t *cfg)
     cfg->max_tracks = 4u;
     cfg->dup_cells = PFT_C(1.0);
     cfg->op = PFT_PTE_OP_AUTO;
+    cfg->short_len = 0u;
+    cfg->man_z = PFT_C(1.25);
+    cfg->man_acc_sd = PFT_C(0.03);
 }
 
 /* 1/c_step when it is an integer 1..8, else 0. */
@@ -181,6 +184,17 @@ static const char *bad_field_(const pft_pte_config_t *c)
         if (c->in.zeta_clip > PFT_C(64.0)) {
             return "in.zeta_clip"; /* TABLE's plain sums need zeta_clip <= 64 */
         }
+    }
+    /* the manoeuvre test reads the slope entries' second window (TABLE only) */
+    if (c->short_len != 0u &&
+        (c->short_len < 2u || c->short_len >= c->max_len || op_of_(c) != PFT_PTE_OP_TABLE)) {
+        return "short_len";
+    }
+    if (!pft_cfg_real_pos_(c->man_z) || c->man_z > PFT_C(100.0)) {
+        return "man_z";
+    }
+    if (!(c->man_acc_sd >= PFT_C(0.0)) || c->man_acc_sd > PFT_C(0.1)) {
+        return "man_acc_sd";
     }
     return NULL;
 }
@@ -328,6 +342,7 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
         p->gtab[i] = pft_exp(pft_neg(pft_mul(pft_sq(t), PFT_C(0.5))));
     }
     p->yq = (uint8_t)yq;
+    p->short_len = cfg->short_len; /* 0 unless TABLE (config check) */
     p->ny = ((uint32_t)cfg->in.n_range + 2u * PFT_PTE_YPAD) * yq;
     p->yring = l.yring;
     p->gq = l.gq;

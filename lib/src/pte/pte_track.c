@@ -1238,8 +1238,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
 {
     const uint32_t na = p->naxes;
     const pft_pte_axis_t *ap = p->scr->ap;
-    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions */
-    pft_real_t w[PFT_PTE_MAX_DIRS * PFT_PTE_MAX_DIRS];
+    /* W_l proportional to exp(logw_l) ssum_l: prior times the sum over scan positions (in
+     * dir[].w: 81 weights on the stack would put the update above the 1 KiB bound) */
+    pft_pte_dir_t *dir = p->dir;
     pft_real_t lx = PFT_REAL_MIN;
     for (int32_t li = 0; li < ndir; ++li) {
         lx = pft_max(lx, p->dir[li].logw);
@@ -1247,12 +1248,12 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     pft_real_t tot = PFT_C(0.0);
     for (int32_t li = 0; li < ndir; ++li) {
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
-        w[li] = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
-        tot = pft_add(tot, w[li]);
+        dir[li].w = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        tot = pft_add(tot, dir[li].w);
     }
     const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
     for (int32_t li = 0; li < ndir; ++li) {
-        w[li] = pft_mul(w[li], itot);
+        dir[li].w = pft_mul(dir[li].w, itot);
     }
     for (uint32_t a = 0; a < na; ++a) {
         pft_real_t df[3];
@@ -1260,14 +1261,14 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         for (uint32_t i = 0; i < 3u; ++i) {
             acc_t v = 0;
             for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(w[li], p->dir[li].dx[a][i]));
+                v = aadd_(v, amul_(dir[li].w, p->dir[li].dx[a][i]));
             }
             df[i] = ato_(v);
         }
         for (uint32_t i = 0; i < 6u; ++i) {
             acc_t v = 0;
             for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(w[li], p->dir[li].K[a][i]));
+                v = aadd_(v, amul_(dir[li].w, p->dir[li].K[a][i]));
             }
             kw[i] = ato_(v);
         }
@@ -1280,7 +1281,7 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
                 for (int32_t li = 0; li < ndir; ++li) {
                     pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
                     pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
-                    v = aadd_(v, amul_(w[li], pft_mul(di, dj)));
+                    v = aadd_(v, amul_(dir[li].w, pft_mul(di, dj)));
                 }
                 P[4u * i + j] = ato_(v);
                 P[4u * j + i] = P[4u * i + j];
@@ -1292,12 +1293,12 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     }
     acc_t as = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        as = aadd_(as, amul_(w[li], pft_sub(p->dir[li].amp, t->amp)));
+        as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
     }
     pft_real_t amp = pft_add(t->amp, ato_(as));
     acc_t avs = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        avs = aadd_(avs, amul_(w[li], pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
     }
     t->amp = amp;
     t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
@@ -1326,6 +1327,23 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
     }
 }
 
+/* Signed T from a signed T^2. */
+static pft_real_t signed_t_(pft_real_t t2s)
+{
+    pft_real_t v = pft_sqrt(pft_abs(t2s));
+    return t2s < PFT_C(0.0) ? pft_neg(v) : v;
+}
+
+/* Manoeuvre test: |Z| > man_z with Z = (T_S sqrt(M) - T_L sqrt(Ms)) / sqrt(M - Ms) (M > Ms),
+ * from the largest signed T^2 of the long (M frames) and the short (Ms frames) operators. */
+static bool manoeuvre_(const pft_pte_t *p, int32_t M, pft_real_t t2l, pft_real_t t2s)
+{
+    const int32_t ms = (int32_t)p->short_len;
+    pft_real_t num = pft_sub(pft_mul(signed_t_(t2s), pft_sqrt(pft_from_int(M))),
+                             pft_mul(signed_t_(t2l), pft_sqrt(pft_from_int(ms))));
+    return pft_abs(num) > pft_mul(p->cfg.man_z, pft_sqrt(pft_from_int(M - ms)));
+}
+
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_geom_ g;
@@ -1333,6 +1351,9 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
     step_geometry_(p, t, &g);
+    /* manoeuvre test when the template is longer than the short one (TABLE) */
+    const bool mt = p->short_len > 0u && g.M > (int32_t)p->short_len;
+    pft_real_t t2short = PFT_REAL_MIN;
     pft_real_t t2max = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
         dir_slope_ d = dir_slope_of_(p, &g, li);
@@ -1348,9 +1369,28 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         dir_best_ b = dir_best_of_(p, &g, E, G, c0);
         t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+        if (mt) {
+            /* the same lines over the short window (the slope entry's second window) */
+            dir_sums_(p, &g, &d, li, 1u, &E, &G);
+            dir_best_ bs = dir_best_of_(p, &g, E, G, c0);
+            t2short = pft_max(t2short, bs.t2s);
+        }
     }
     step_fuse_(p, t, g.ndir);
     /* max_l T_l* from the largest signed T^2 */
-    pft_real_t tmax = pft_sqrt(pft_abs(t2max));
-    step_maintain_(p, t, t2max < PFT_C(0.0) ? pft_neg(tmax) : tmax);
+    step_maintain_(p, t, signed_t_(t2max));
+    if (mt && manoeuvre_(p, g.M, t2max, t2short)) {
+        t->n_acc = p->short_len; /* the next step's template: the last Ms frames */
+        /* CA: man_acc_sd^2 more on r'' (scaled by SA^2); CV: (Ms man_acc_sd)^2 on r' (SV^2) */
+        const bool ca = p->cfg.motion == PFT_PTE_MOTION_CA;
+        uint32_t k = 1u;
+        if (ca) {
+            k = 2u;
+        }
+        const pft_real_t sd = ca ? pft_mul_i(p->cfg.man_acc_sd, SA_)
+                                 : pft_mul_i(p->cfg.man_acc_sd, SV_ * (int32_t)p->short_len);
+        for (uint32_t a = 0; a < p->naxes; ++a) {
+            t->P[a][5u * k] = pft_add(t->P[a][5u * k], pft_sq(sd));
+        }
+    }
 }

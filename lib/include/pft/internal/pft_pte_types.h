@@ -66,6 +66,7 @@ typedef struct {
     pft_real_t logw;     /* log prior + the best scan position's log summand */
     pft_real_t ssum;     /* sum of the summands relative to the best (the likelihood is
                             exp(logw) ssum) */
+    pft_real_t w;        /* its normalised weight in the fusion (kept here, not on the stack) */
 } pft_pte_dir_t;
 
 /* Per-axis operator parameters of one track at one frame. */
