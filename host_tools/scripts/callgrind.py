@@ -15,7 +15,7 @@ Usage: callgrind.py [--only TEXT] [--name-builds] OUT_DIR SPEC.json BUILD_DIR [B
   e.g. host_tools/scripts/callgrind.py build/cg host_tools/scripts/callgrind/tbd.json build/host-float build/host-q16
   --only TEXT    only the cases whose label contains TEXT
   --name-builds  label each row with its build directory too (two builds of one numeric type)
-Specs: host_tools/scripts/callgrind/{tbd,pf,pte,tsa}.json. A spec has "title", "cases" and
+Specs: host_tools/scripts/callgrind/{tbd,pf,pte,tsa,ir}.json. A spec has "title", "cases" and
 optionally "ratios": [{"name": "...", "numerator": LABEL, "denominator": LABEL}] (instructions
 per unit of two cases, per build). A case:
   {"label": "...", "scenario": "tbd/single_6db.json" (under host_tools/scenarios),
