@@ -15,7 +15,7 @@ Usage: callgrind.py [--only TEXT] [--name-builds] OUT_DIR SPEC.json BUILD_DIR [B
   e.g. host_tools/scripts/callgrind.py build/cg host_tools/scripts/callgrind/tbd.json build/host-float build/host-q16
   --only TEXT    only the cases whose label contains TEXT
   --name-builds  label each row with its build directory too (two builds of one numeric type)
-Specs: host_tools/scripts/callgrind/{tbd,pf,pte,tsa,ir}.json. A spec has "title", "cases" and
+Specs: host_tools/scripts/callgrind/{tbd,pf,pte,tsa,ir,pre}.json. A spec has "title", "cases" and
 optionally "ratios": [{"name": "...", "numerator": LABEL, "denominator": LABEL}] (instructions
 per unit of two cases, per build). A case:
   {"label": "...", "scenario": "tbd/single_6db.json" (under host_tools/scenarios),
@@ -45,6 +45,14 @@ per unit of two cases, per build). A case:
                                           extra values: pointers into the output, or fields of a
                                           row of a CSV file the measured command wrote
    "wall": {"runs": 5, "pointer": "/median_s_per_frame", "scale": 1000, "name": "wall ms/frame (median)"}}
+A case may measure a program of the build directory instead of pft (no scenario, no output JSON):
+  {"label": "...", "program": "tests/tools/pre_probe", "function": "pft_pre_update",
+   "setup_commands": [["/usr/bin/python3", "{src}/host_tools/scripts/pre_explore.py", ...]],
+                                          commands run first ({src}: the repository, {build}: the
+                                          build directory, {work}: as above)
+   "command": ["{work}/seq.u16", "384", "288", "14", "method=temporal"],   the program's arguments
+   "per_frame": true, "skip_calls": 1,    drop the first calls (e.g. a background's start)
+   "units": 11}                           a number: the calls counted
 """
 import argparse
 import csv
@@ -147,8 +155,19 @@ def per_call_instructions(prefix):
     return [c for _, c in counts]
 
 
-def subst(args, scen, work):
-    return [a.replace('{scenario}', scen).replace('{work}', work) for a in args]
+SRC = os.path.normpath(os.path.join(HERE, '..', '..'))
+
+
+def subst(args, scen, work, build=''):
+    return [a.replace('{scenario}', scen).replace('{work}', work).replace('{src}', SRC)
+            .replace('{build}', build) for a in args]
+
+
+def numeric_of(build):
+    """float or q16: the number type of a build directory (its generated pft_build_config.h)."""
+    with open(os.path.join(build, 'lib', 'include', 'pft', 'pft_build_config.h')) as f:
+        m = re.search(r'#define PFT_NUMERIC_(\w+) 1', f.read())
+    return m.group(1).lower() if m else '?'
 
 
 def measure(pft, case, scen, out, tag):
@@ -156,20 +175,31 @@ def measure(pft, case, scen, out, tag):
     per_frame), and the output JSON of that run."""
     work = os.path.join(out, tag + '.work')
     os.makedirs(work, exist_ok=True)
+    build = os.path.dirname(os.path.dirname(pft))
+    for s in case.get('setup_commands', []):
+        run(subst(s, scen, work, build))
     for s in case.get('setup', []):
         run([pft, *subst(s, scen, work), '-q'])
     cg = os.path.join(out, tag + '.callgrind.out')
     for old in glob.glob(cg + '*'):
         os.remove(old)
     bdir = os.path.join(out, tag + '.cg')
-    cmd = subst(case.get('command', ['bench', '--scenario', '{scenario}', *case.get('args', [])]), scen, work)
+    cmd = subst(case.get('command', ['bench', '--scenario', '{scenario}', *case.get('args', [])]), scen, work, build)
     fn = case['function']
     vg = ['valgrind', '--tool=callgrind', f'--toggle-collect={fn}', f'--callgrind-out-file={cg}']
     if case.get('per_frame'):
         vg += [f'--dump-after={fn}', '--dump-instr=no', '--dump-line=no']
-    run(vg + [pft, *cmd, '--out', bdir, '-q'], log=os.path.join(out, tag + '.valgrind.log'))
+    log = os.path.join(out, tag + '.valgrind.log')
+    if 'program' in case:
+        run(vg + [os.path.join(build, case['program']), *cmd], log=log)
+    else:
+        run(vg + [pft, *cmd, '--out', bdir, '-q'], log=log)
     per_call = per_call_instructions(cg) if case.get('per_frame') else None
+    if per_call is not None:
+        per_call = per_call[case.get('skip_calls', 0):]
     total = sum(per_call) if per_call is not None else instructions(cg)
+    if 'program' in case:
+        return total, per_call, work, {'numeric': numeric_of(build)}
     return total, per_call, bdir, json.load(open(os.path.join(bdir, case.get('output', 'bench.json'))))
 
 
@@ -218,7 +248,7 @@ def main():
             if c not in cases:
                 continue
             tag = f"{os.path.basename(os.path.normpath(b))}_{i}"
-            scen = scenario_copy(c, a.out, tag, pft)
+            scen = scenario_copy(c, a.out, tag, pft) if 'scenario' in c else ''
             ir, calls, bdir, bj = measure(pft, c, scen, a.out, tag)
             if calls is not None:
                 units = float(len(calls))

@@ -3,7 +3,7 @@
  * little-endian u16 frames and prints one CSV line of statistics per frame; optionally writes
  * the whitened residual (int16 Q8.8, PFT_RES16_MASKED for masked pixels) of every frame.
  * A host exploration tool for docs/results/ir_clutter.md ("Preprocessing building blocks"),
- * driven by tests/tools/pre_explore.py; not a test.
+ * driven by host_tools/scripts/pre_explore.py; not a test.
  *
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
  *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The numbers of docs/results/ir_clutter.md, "Preprocessing building blocks".
-#   bash tests/tools/pre_results.sh OUT_DIR BUILD_DIR_FLOAT BUILD_DIR_Q16 [IR_SKY_DIR]
+#   bash host_tools/scripts/pre_results.sh OUT_DIR BUILD_DIR_FLOAT BUILD_DIR_Q16 [IR_SKY_DIR]
 # 1. instructions per frame (callgrind) per method, float and q16, 384x288 and 640x512;
 # 2. registration accuracy and residual over temporal noise on procedural cloud scenes,
 #    against drift speed and noise;
@@ -12,16 +12,12 @@ out=$1; bf=$2; bq=$3; sky=${4:-}
 src=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$out"
 py=/usr/bin/python3
-ex="$src/tests/tools/pre_explore.py"
+ex="$src/host_tools/scripts/pre_explore.py"
 echo "== 1. instructions (callgrind, pft_pre_update, mean of frames 2..12)"
-for s in 384x288 640x512; do
-  bash "$src/tests/tools/pre_callgrind.sh" "$out/cg" "$s" "$bf" "$bq" | sed "s/^/$s  /"
-done
+python3 "$src/host_tools/scripts/callgrind.py" --only stage "$out/cg" "$src/host_tools/scripts/callgrind/pre.json" "$bf" "$bq"
 echo "-- variants (host q16, 384x288): reg_step 3; bilinear warp; sigma of the frame itself (second pass); sigma held per tile"
-for v in "step=3" "cubic=0" "current=1" "interp=0"; do
-  bash "$src/tests/tools/pre_callgrind.sh" "$out/cg-$v" 384x288 "$bq" -- $v | tail -2 | sed "s/^/$v  /"
-done
-probe="$out/cg/pre_probe_$(basename "$bq")"
+python3 "$src/host_tools/scripts/callgrind.py" --only variant "$out/cg-variants" "$src/host_tools/scripts/callgrind/pre.json" "$bq"
+probe="$bq/tests/tools/pre_probe"
 echo "== 2. procedural scenes (4 scenes x 30 frames, 14 bits, blur 0.7 px, jitter 0.1 px)"
 for d in "0.1 0.05" "0.3 0.2" "0.5 0.3"; do
   for n in 16 64 256; do

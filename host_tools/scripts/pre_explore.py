@@ -9,7 +9,7 @@ optional sensor-fixed column offset N(0, sigma_col) per column, rounded and clip
 The stage runs through tests/tools/pre_probe (built from the library); the script compares the
 registration with the true frame-to-frame shifts and the residual with the temporal noise.
 
-  python3 tests/tools/pre_explore.py PROBE [--images DIR | --procedural N] [options]
+  python3 host_tools/scripts/pre_explore.py PROBE [--images DIR | --procedural N] [options]
 """
 import argparse
 import csv
