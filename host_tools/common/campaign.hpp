@@ -100,6 +100,17 @@ struct MergedRuns {
     CampaignTiming timing;             ///< sums over the shards
     unsigned threads = 0;              ///< the largest of the shards'
     nlohmann::json shards;             ///< per shard: shard, command_line, threads, timing
+
+    /** The shards' eval options with this merge's output directory, quiet flag and command
+     *  line (what a kind's merge loads its scenario with and writes its summary under). */
+    Options eval_options(const Options &merge) const
+    {
+        Options e = options;
+        e.out = merge.out;
+        e.quiet = merge.quiet;
+        e.argv = merge.argv;
+        return e;
+    }
 };
 MergedRuns read_partials(const std::vector<std::string> &files);
 

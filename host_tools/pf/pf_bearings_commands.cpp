@@ -644,10 +644,7 @@ public:
 
     int merge(const Options &o, const MergedRuns &m) override
     {
-        Options eo = m.options;
-        eo.out = o.out;
-        eo.quiet = o.quiet;
-        eo.argv = o.argv;
+        Options eo = m.eval_options(o);
         BearingsScenario s = load(eo);
         EvalRuns er;
         er.res.resize(m.runs.size());

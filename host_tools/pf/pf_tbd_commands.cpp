@@ -585,10 +585,7 @@ public:
 
     int merge(const Options &o, const MergedRuns &m) override
     {
-        Options eo = m.options;
-        eo.out = o.out;
-        eo.quiet = o.quiet;
-        eo.argv = o.argv;
+        Options eo = m.eval_options(o);
         PfTbdScenario s = load(eo);
         TbdEvalRuns er;
         er.res.assign(s.filters.size(), std::vector<tbd::RunEval>(m.runs.size()));

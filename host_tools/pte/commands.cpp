@@ -803,10 +803,7 @@ public:
 
     int merge(const Options &o, const MergedRuns &m) override
     {
-        Options eo = m.options;
-        eo.out = o.out;
-        eo.quiet = o.quiet;
-        eo.argv = o.argv;
+        Options eo = m.eval_options(o);
         Scenario s = load(eo);
         std::vector<RunCounts> recs;
         for (const json &r : m.runs)

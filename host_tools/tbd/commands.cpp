@@ -830,10 +830,7 @@ public:
 
     int merge(const Options &o, const MergedRuns &m) override
     {
-        Options eo = m.options;
-        eo.out = o.out;
-        eo.quiet = o.quiet;
-        eo.argv = o.argv;
+        Options eo = m.eval_options(o);
         Scenario s = load(eo);
         bool single = s.filter.mode == "single";
         std::vector<RunEval> res;

@@ -1151,10 +1151,7 @@ private:
 public:
     int merge(const Options &o, const MergedRuns &m) override
     {
-        Options eo = m.options;
-        eo.out = o.out;
-        eo.quiet = o.quiet;
-        eo.argv = o.argv;
+        Options eo = m.eval_options(o);
         Scenario s = load_scenario(eo);
         const std::vector<std::string> use = usable(s.eval_trackers, true);
         std::vector<RunRecord> recs;
