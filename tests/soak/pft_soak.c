@@ -129,6 +129,20 @@ static int live(const scene_t *s)
     return n;
 }
 
+/* ------------------------------------ work markers --------------------------------------- */
+/* Called just before and just after every tracker update: a QEMU plugin (qemu_marks.c) counts
+ * the guest instructions between them on a Cortex-M or AArch64 target (run_soak.sh work-qemu).
+ * Not inlined, and with different bodies so that the compiler cannot fold them into one. */
+volatile uint32_t g_mark_begins, g_mark_ends;
+__attribute__((noinline)) void pft_soak_mark_begin(void);
+__attribute__((noinline)) void pft_soak_mark_end(void);
+__attribute__((noinline)) void pft_soak_mark_begin(void) { g_mark_begins++; }
+__attribute__((noinline)) void pft_soak_mark_end(void) { g_mark_ends++; }
+
+/* The update of one frame between the markers. */
+#define MARKED(call) (pft_soak_mark_begin(), mark_status_ = (call), pft_soak_mark_end(), mark_status_)
+static pft_status_t mark_status_;
+
 /* ------------------------------------ checks ---------------------------------------------- */
 typedef struct {
     const char *name;
@@ -334,7 +348,11 @@ static void ir_tbd_cfg(pft_tbd_config_t *c)
 #define IR_HI_Y (IR_H - 0.5 + 1.0)
 #define IR_GATE 3.0
 
-static uint8_t g_ws[4u << 20];
+/* One workspace for whichever tracker runs; the bare-metal boards (4 MiB of RAM) get less. */
+#ifndef SOAK_WS_BYTES
+#define SOAK_WS_BYTES (4u << 20)
+#endif
+static uint8_t g_ws[SOAK_WS_BYTES];
 
 static bool soak_tbd(uint64_t n, uint64_t seed, bool quiet)
 {
@@ -353,7 +371,7 @@ static bool soak_tbd(uint64_t n, uint64_t seed, bool quiet)
     for (uint64_t k = 0; k < n; ++k) {
         scene_step(&s);
         pft_frame_t f = ir_frame(&s, k);
-        if (pft_tbd_update(&t, &f) != PFT_OK) {
+        if (MARKED(pft_tbd_update(&t, &f)) != PFT_OK) {
             fail(&st, &st.fail_status, k, "update refused", 0.0);
             continue;
         }
@@ -417,7 +435,7 @@ static bool soak_pf(uint64_t n, uint64_t seed, bool quiet)
     for (uint64_t k = 0; k < n; ++k) {
         scene_step(&s);
         pft_frame_t f = ir_frame(&s, k);
-        if (pft_pf_update(&pf, &f) != PFT_OK) {
+        if (MARKED(pft_pf_update(&pf, &f)) != PFT_OK) {
             fail(&st, &st.fail_status, k, "update refused", 0.0);
             continue;
         }
@@ -550,7 +568,7 @@ static bool soak_tsa(uint64_t n, uint64_t seed, bool quiet)
             count_frame(&st, k, false, false);
             continue;
         }
-        if (pft_tsa_update(&t, &f) != PFT_OK) {
+        if (MARKED(pft_tsa_update(&t, &f)) != PFT_OK) {
             fail(&st, &st.fail_status, k, "update refused", 0.0);
             continue;
         }
@@ -680,7 +698,7 @@ static bool p_loop(const char *name, void *inst, p_update_fn update, p_reports_f
     for (uint64_t k = 0; k < n; ++k) {
         scene_step(&s);
         pft_frame_t f = p_frame(&s, k);
-        if (update(inst, &f) != PFT_OK) {
+        if (MARKED(update(inst, &f)) != PFT_OK) {
             fail(&st, &st.fail_status, k, "update refused", 0.0);
             continue;
         }

@@ -1,22 +1,55 @@
 #!/usr/bin/env bash
-# Long soak runs and the per-frame work sample (docs/reliability.md, "Soak").
+# Long soak runs and the per-frame work sample (docs/reliability.md, "Soak"; docs/size.md,
+# "Per-frame work of every tracker").
 #   bash tests/soak/run_soak.sh long [frames]   pft_soak over `frames` frames per tracker
 #                                               (default 1000000), float and q16, nice 19
 #   bash tests/soak/run_soak.sh work [frames]   per-frame instructions of every tracker's
-#                                               update under callgrind (default 1000 frames
-#                                               after 100 of warm-up): max / median per tracker
-#   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work mode)
-# Builds build/soak-float and build/soak-q16 (Release, library and pft_soak only).
+#                                               update on the host under callgrind (default
+#                                               1000 frames after 100 of warm-up)
+#   bash tests/soak/run_soak.sh work-qemu [frames]
+#                                               the same on the emulated targets: pft_soak of
+#                                               each preset in SOAK_PRESETS (default m3-q16
+#                                               m7-float m7-q16 aarch64-float aarch64-q16) under
+#                                               QEMU with the plugin tests/soak/qemu_marks.c
+#   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work modes)
+# long and work build build/soak-float and build/soak-q16 (Release, library and pft_soak only);
+# work-qemu builds pft_soak in build/<preset> and the plugin in build/qemu-plugin, against the
+# qemu-plugin.h of the installed QEMU's Debian source package (fetched with apt-get source, or
+# taken from $QEMU_PLUGIN_INCLUDE): the header is not part of this repository.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 mode=${1:-long}; frames=${2:-}
-for t in float q16; do
-  cmake -S . -B build/soak-$t -G Ninja -DPFT_NUMERIC=$t -DCMAKE_BUILD_TYPE=Release \
-        -DUNITY_SOURCE_DIR="$PWD/.deps/unity" -DPFT_WERROR=ON >/dev/null
-  cmake --build build/soak-$t --target pft_soak -j 2 >/dev/null
-done
+trackers=${SOAK_TRACKERS:-tbd pf tsa pte pte_dp pte_dbt}
+warm=100
+
+host_builds() {
+  for t in float q16; do
+    cmake -S . -B build/soak-$t -G Ninja -DPFT_NUMERIC=$t -DCMAKE_BUILD_TYPE=Release \
+          -DUNITY_SOURCE_DIR="$PWD/.deps/unity" -DPFT_WERROR=ON >/dev/null
+    cmake --build build/soak-$t --target pft_soak -j 2 >/dev/null
+  done
+}
+
+plugin() {
+  local out=build/qemu-plugin inc=${QEMU_PLUGIN_INCLUDE:-}
+  mkdir -p "$out"
+  if [ -z "$inc" ]; then
+    inc=$out/include
+    if [ ! -f "$inc/qemu-plugin.h" ]; then
+      echo "fetching qemu-plugin.h from the Debian source of the installed QEMU ..." >&2
+      mkdir -p "$out/src" "$inc"
+      (cd "$out/src" && apt-get source --download-only qemu >/dev/null 2>&1) ||
+        { echo "run_soak.sh: apt-get source qemu failed (deb-src lines needed), or set QEMU_PLUGIN_INCLUDE" >&2; exit 1; }
+      tar -xJf "$out"/src/qemu_*.orig.tar.xz -C "$out/src" --wildcards '*/include/qemu/qemu-plugin.h'
+      cp "$out"/src/qemu-*/include/qemu/qemu-plugin.h "$inc/"
+    fi
+  fi
+  gcc -shared -fPIC -O2 -Wall -Wextra -I"$inc" tests/soak/qemu_marks.c -o "$out/qemu_marks.so"
+}
+
 case "$mode" in
 long)
+  host_builds
   for t in float q16; do
     start=$(date +%s)
     nice -n 19 build/soak-$t/tests/soak/pft_soak --frames "${frames:-1000000}" \
@@ -24,69 +57,55 @@ long)
     echo "soak $t: $(( $(date +%s) - start )) s"
   done;;
 work)
+  host_builds
   n=${frames:-1000}
   # tracker -> the public update function called once per frame
   declare -A fn=([tbd]=pft_tbd_update [pf]=pft_pf_update [tsa]=pft_tsa_update
                  [pte]=pft_pte_update [pte_dp]=pft_pte_dp_update [pte_dbt]=pft_pte_dbt_update)
   for t in float q16; do
-    for k in ${SOAK_TRACKERS:-tbd pf tsa pte pte_dp pte_dbt}; do
+    for k in $trackers; do
       d=$(mktemp -d)
-      valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --dump-after="${fn[$k]}" \
-        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + 100)) --seed "${SOAK_SEED:-1}" --quiet \
+      # collect inside the update only (the soak's own frame generation is not the tracker's
+      # work); one dump after every update
+      valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --collect-atstart=no \
+        --toggle-collect="${fn[$k]}" --dump-after="${fn[$k]}" \
+        build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + warm)) --seed "${SOAK_SEED:-1}" --quiet \
         --trace >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
-      # one dump per update: its total instruction count, with the load of that frame (tracks
-      # after the update) from --trace; the first 100 updates are warm-up
-      python3 - "$d" "$t" "$k" 100 <<'PY'
-import glob, re, statistics, sys
-d, t, k, warm = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
-tot = []
-for f in glob.glob(d + "/cg.out.*"):
-    m = re.search(r"\.(\d+)$", f)
-    for line in open(f):
-        if line.startswith("summary:") or line.startswith("totals:"):
-            tot.append((int(m.group(1)) if m else 0, int(line.split()[1])))
-            break
-tot = [v for p, v in sorted(tot)]
-tr = [l.split() for l in open(d + "/trace") if l.startswith("trace ")]
-load = [int(x[2]) for x in tr]
-n = min(len(tot), len(load))
-pairs = list(zip(load[:n], tot[:n]))[warm:]
-vals = [v for _, v in pairs]
-med = statistics.median(vals)
-by = {}
-for l, v in pairs:
-    by.setdefault(l, []).append(v)
-per = "  ".join("load %d: %d frames, max/median %.2f" % (l, len(v), max(v) / statistics.median(v))
-                for l, v in sorted(by.items()))
-print("work %-5s %-8s frames %4d  instructions per update: median %.0f  max %.0f  max/median %.2f  |  %s"
-      % (t, k, len(vals), med, max(vals), max(vals) / med, per))
-if tr and len(tr[0]) > 3:
-    # tbd, pf: only particles with E = 1 are moved and weighed on the pixels, and their share at
-    # frame i follows the existence probability p after frame i - 1; least squares
-    # instructions = a + b p(i-1) + c tracks(i-1), and how far any frame lies above that model
-    p = [float(x[3]) for x in tr]
-    rows = [(1.0, p[i - 1], float(load[i - 1]), float(tot[i])) for i in range(max(warm, 1), n)]
-    m = 3 if len(set(r[2] for r in rows)) > 1 else 2
-    A = [[sum(r[a] * r[b] for r in rows) for b in range(m)] for a in range(m)]
-    y = [sum(r[a] * r[3] for r in rows) for a in range(m)]
-    for c in range(m):  # Gauss-Jordan on the normal equations
-        piv = A[c][c]
-        A[c] = [v / piv for v in A[c]]; y[c] /= piv
-        for r2 in range(m):
-            if r2 != c and A[r2][c] != 0.0:
-                f_ = A[r2][c]
-                A[r2] = [u - f_ * v for u, v in zip(A[r2], A[c])]; y[r2] -= f_ * y[c]
-    fit = [sum(y[a] * r[a] for a in range(m)) for r in rows]
-    obs = [r[3] for r in rows]
-    mean = sum(obs) / len(obs)
-    r2 = 1.0 - sum((o - f_) ** 2 for o, f_ in zip(obs, fit)) / sum((o - mean) ** 2 for o in obs)
-    worst = max(o / f_ for o, f_ in zip(obs, fit))
-    print("work %-5s %-8s model a + b p + c tracks: a %.0f  b %.0f%s  R^2 %.3f  max observed/model %.2f"
-          "  (p = 1, no track: %.0f = %.2f x median)"
-          % (t, k, y[0], y[1], ("  c %.0f" % y[2]) if m == 3 else "", r2, worst, y[0] + y[1], (y[0] + y[1]) / med))
-PY
+      # cg.out.<i> is the i-th update (1-based); cg.out itself, the part after the last update,
+      # is not an update
+      for ((i = 1; ; i++)); do
+        [ -f "$d/cg.out.$i" ] || break
+        awk '/^(summary|totals):/ {print $2; exit}' "$d/cg.out.$i"
+      done >"$d/counts"
+      python3 tests/soak/work_stats.py "$d/counts" "$d/trace" "$t" "$k" $warm
       rm -rf "$d"
     done
   done;;
-*) echo "usage: bash tests/soak/run_soak.sh long|work [frames]"; exit 2;;
+work-qemu)
+  plugin
+  n=${frames:-1000}
+  for p in ${SOAK_PRESETS:-m3-q16 m7-float m7-q16 aarch64-float aarch64-q16}; do
+    cmake --preset "$p" >/dev/null
+    cmake --build --preset "$p" --target pft_soak -j 2 >/dev/null
+    elf=build/$p/tests/soak/pft_soak
+    for k in $trackers; do
+      d=$(mktemp -d)
+      args="--tracker $k --frames $((n + warm)) --seed ${SOAK_SEED:-1} --quiet --trace"
+      plug="$PWD/build/qemu-plugin/qemu_marks.so,out=$d/counts"
+      case "$p" in
+        m3-*|m7-*)
+          board=mps2-an385; [[ $p == m7-* ]] && board=mps2-an500
+          timeout 3600 qemu-system-arm -M $board -nographic -monitor none \
+            -semihosting-config enable=on,target=native -plugin "$plug" -kernel "$elf" \
+            -append "$args" >"$d/trace" 2>"$d/err" || { cat "$d/err" "$d/trace" | tail -5; exit 1; };;
+        aarch64-*)
+          qemu-aarch64 -L /usr/aarch64-linux-gnu -plugin "$plug" "$elf" $args >"$d/trace" 2>"$d/err" ||
+            { cat "$d/err"; exit 1; };;
+        *) echo "run_soak.sh: no emulator for preset $p" >&2; exit 2;;
+      esac
+      python3 tests/soak/work_stats.py "$d/counts" "$d/trace" "$p" "$k" $warm
+      rm -rf "$d"
+    done
+  done;;
+*) echo "usage: bash tests/soak/run_soak.sh long|work|work-qemu [frames]"; exit 2;;
 esac
