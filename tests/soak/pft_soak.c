@@ -134,13 +134,13 @@ static int live(const scene_t *s)
  * the guest instructions between them on a Cortex-M or AArch64 target (run_soak.sh work-qemu).
  * Not inlined, and with different bodies so that the compiler cannot fold them into one. */
 volatile uint32_t g_mark_begins, g_mark_ends;
-__attribute__((noinline)) void pft_soak_mark_begin(void);
-__attribute__((noinline)) void pft_soak_mark_end(void);
-__attribute__((noinline)) void pft_soak_mark_begin(void) { g_mark_begins++; }
-__attribute__((noinline)) void pft_soak_mark_end(void) { g_mark_ends++; }
+__attribute__((noinline)) void pft_work_mark_begin(void);
+__attribute__((noinline)) void pft_work_mark_end(void);
+__attribute__((noinline)) void pft_work_mark_begin(void) { g_mark_begins++; }
+__attribute__((noinline)) void pft_work_mark_end(void) { g_mark_ends++; }
 
 /* The update of one frame between the markers. */
-#define MARKED(call) (pft_soak_mark_begin(), mark_status_ = (call), pft_soak_mark_end(), mark_status_)
+#define MARKED(call) (pft_work_mark_begin(), mark_status_ = (call), pft_work_mark_end(), mark_status_)
 static pft_status_t mark_status_;
 
 /* ------------------------------------ checks ---------------------------------------------- */

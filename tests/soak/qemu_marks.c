@@ -1,7 +1,7 @@
 /*
  * A QEMU TCG plugin (user or system mode) that counts the guest instructions executed between
- * two marker functions of the program under test: every call of `pft_soak_mark_begin` starts
- * a region, the next call of `pft_soak_mark_end` closes it, and the region's instruction count
+ * two marker functions of the program under test: every call of `pft_work_mark_begin` starts
+ * a region, the next call of `pft_work_mark_end` closes it, and the region's instruction count
  * is appended to the output file, one decimal number per line, in execution order. The soak
  * program (pft_soak.c) calls the markers around every tracker update, so this gives, on a
  * Cortex-M or AArch64 guest, what `valgrind --tool=callgrind --toggle-collect` gives on the
@@ -71,9 +71,9 @@ static void on_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     if (sym == NULL) {
         return;
     }
-    if (strcmp(sym, "pft_soak_mark_begin") == 0) {
+    if (strcmp(sym, "pft_work_mark_begin") == 0) {
         qemu_plugin_register_vcpu_insn_exec_cb(first, on_begin, QEMU_PLUGIN_CB_NO_REGS, NULL);
-    } else if (strcmp(sym, "pft_soak_mark_end") == 0) {
+    } else if (strcmp(sym, "pft_work_mark_end") == 0) {
         qemu_plugin_register_vcpu_insn_exec_cb(first, on_end, QEMU_PLUGIN_CB_NO_REGS, NULL);
     }
 }

@@ -48,6 +48,8 @@ plugin() {
 }
 
 case "$mode" in
+plugin)  # build the plugin only (tests/target/run_cycles.sh uses it)
+  plugin;;
 long)
   host_builds
   for t in float q16; do
@@ -107,5 +109,5 @@ work-qemu)
       rm -rf "$d"
     done
   done;;
-*) echo "usage: bash tests/soak/run_soak.sh long|work|work-qemu [frames]"; exit 2;;
+*) echo "usage: bash tests/soak/run_soak.sh long|work|work-qemu|plugin [frames]"; exit 2;;
 esac

@@ -8,6 +8,11 @@
  * of pft_tbd_filter_update per frame (mean and largest) and per particle update; then the
  * two-target manager of two_case1.json (recommended preset, Ns = 6000, Nt = 500, 35 frames,
  * both targets as straight lines) per frame. Frames are rendered outside the timed region.
+ *
+ * Every update is also framed by calls of pft_work_mark_begin / pft_work_mark_end, so that the
+ * QEMU plugin tests/soak/qemu_marks.c counts it exactly on any target (tests/target/run_cycles.sh).
+ * On targets without the mps2 SysTick (AArch64 Linux) the program prints only the sections
+ * ("section <name> frames <F> particles <N>"), and the counts come from the plugin.
  */
 #include <string.h>
 
@@ -23,9 +28,21 @@ void tearDown(void) {}
 #define FRAMES 30
 #define SIGMA_6DB 3.256
 
+#if defined(__ARM_ARCH_7M__) || defined(__ARM_ARCH_7EM__)
+#define HAVE_SYSTICK 1
 #define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
 #define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
+#else
+#define HAVE_SYSTICK 0
+#endif
+
+/* Region markers for the QEMU plugin (not inlined; different bodies so they are not folded). */
+volatile uint32_t g_mark_begins, g_mark_ends;
+__attribute__((noinline)) void pft_work_mark_begin(void);
+__attribute__((noinline)) void pft_work_mark_end(void);
+__attribute__((noinline)) void pft_work_mark_begin(void) { g_mark_begins++; }
+__attribute__((noinline)) void pft_work_mark_end(void) { g_mark_ends++; }
 
 static uint16_t g_raw[W * W];
 #define NT 500u
@@ -34,17 +51,34 @@ static uint16_t g_raw[W * W];
 static uint8_t g_ws[PFT_TBD_FILTER_WORKSPACE_BYTES(N, PFT_TBD_RBPF, W, W) + 64u];
 static uint8_t g_mws[PFT_TBD_WORKSPACE_BYTES(N, NT, MAXT, PFT_TBD_RBPF, W, W) + 64u];
 
+#if HAVE_SYSTICK
 static uint32_t now(void) { return SYST_CVR; }
+#else
+static uint32_t now(void) { return 0u; }
+#endif
 static uint32_t ticks(uint32_t t0, uint32_t t1) { return (t0 - t1) & 0xFFFFFFu; } /* counts down */
 
 static void put(const char *s) { UnityPrint(s); }
 static void eol(void) { UNITY_PRINT_EOL(); }
 static void putu(uint32_t v) { UnityPrintNumberUnsigned(v); }
 
+#if HAVE_SYSTICK
 /* 2 instructions per iteration (subs, bne). */
 static void spin(uint32_t n)
 {
     __asm__ volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
+}
+#endif
+
+static void section(const char *name, uint32_t frames, uint32_t particles)
+{
+    eol();
+    put("section ");
+    put(name);
+    put(" frames ");
+    putu(frames);
+    put(" particles ");
+    putu(particles);
 }
 
 static void run(pft_tbd_kind_t kind, const char *name, uint32_t per_tick)
@@ -59,6 +93,7 @@ static void run(pft_tbd_kind_t kind, const char *name, uint32_t per_tick)
     c.n_search = N;
     c.kind = kind;
     c.seed = 1u;
+    section(name, FRAMES, N);
     static pft_tbd_filter_t f;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, sizeof g_ws));
     pft_sim_truth_t t = {7, 22, 5.0, 6.0, 0.45, 0.25, 20.0};
@@ -70,13 +105,18 @@ static void run(pft_tbd_kind_t kind, const char *name, uint32_t per_tick)
     for (int k = 1; k <= FRAMES; ++k) {
         pft_sim_render_u16(&sim, &t, 1, k, SIGMA_6DB, W, W, g_raw, &fr);
         uint32_t t0 = now();
+        pft_work_mark_begin();
         pft_status_t st = pft_tbd_filter_update(&f, &fr);
+        pft_work_mark_end();
         uint32_t dt = ticks(t0, now());
         TEST_ASSERT_EQUAL_INT(PFT_OK, st);
         total += dt;
         if (dt > worst) {
             worst = dt;
         }
+    }
+    if (!HAVE_SYSTICK) {
+        return;
     }
     eol();
     put(name);
@@ -104,6 +144,7 @@ static void run_manager(uint32_t per_tick)
     c.max_targets = MAXT;
     c.kind = PFT_TBD_RBPF;
     c.seed = 1u;
+    section("manager", FRAMES2, 0u);
     static pft_tbd_t m;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&m, &c, g_mws, sizeof g_mws));
     pft_sim_truth_t t[2] = {{7, 22, 1.0, 1.0, 0.70, 0.35, 20.0}, {17, 32, 2.0, 3.0, 0.55, 0.55, 20.0}};
@@ -115,13 +156,18 @@ static void run_manager(uint32_t per_tick)
     for (int k = 1; k <= FRAMES2; ++k) {
         pft_sim_render_u16(&sim, t, 2, k, SIGMA_6DB, W, W, g_raw, &fr);
         uint32_t t0 = now();
+        pft_work_mark_begin();
         pft_status_t st = pft_tbd_update(&m, &fr);
+        pft_work_mark_end();
         uint32_t dt = ticks(t0, now());
         TEST_ASSERT_EQUAL_INT(PFT_OK, st);
         total += dt;
         if (dt > worst) {
             worst = dt;
         }
+    }
+    if (!HAVE_SYSTICK) {
+        return;
     }
     eol();
     put("manager Ns=6000 Nt=500 (35 frames): instructions/frame mean ");
@@ -133,6 +179,13 @@ static void run_manager(uint32_t per_tick)
 
 static void test_cycles(void)
 {
+#if !HAVE_SYSTICK
+    eol();
+    put("no SysTick here: the counts come from the QEMU plugin (tests/target/run_cycles.sh)");
+    run(PFT_TBD_RBPF, "RBPF-TBD", 0u);
+    run(PFT_TBD_PF, "PF-TBD", 0u);
+    run_manager(0u);
+#else
     SYST_RVR = 0xFFFFFFu;
     SYST_CVR = 0u;
     SYST_CSR = 5u; /* enable, processor clock, no interrupt */
@@ -151,6 +204,7 @@ static void test_cycles(void)
     run(PFT_TBD_RBPF, "RBPF-TBD", per_tick);
     run(PFT_TBD_PF, "PF-TBD", per_tick);
     run_manager(per_tick);
+#endif
 }
 
 int main(void)
