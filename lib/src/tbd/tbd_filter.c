@@ -261,8 +261,10 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
 
 /* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
  * of systematic resampling (step 5): each slot ends holding its particle's replication count.
- * The walk runs over the unnormalised weights, whose total is exact. */
-static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
+ * The walk runs over the unnormalised weights, whose total is exact. Every E = 0 particle has
+ * the same weight e0 (pass 2 gave it the same log-weight), so its share of the total and of
+ * the sum of squares is added once for all of them. */
+static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_weight_t e0)
 {
     pft_tbd_particles_t *P = &f->cur;
     pft_tbd_slot_t *restrict w = P->w;
@@ -274,6 +276,7 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     est_sums_t a;
     pft_sys_t sys;
     pft_wacc_t cum = 0;
+    uint32_t n0 = 0u;
     memset(&a, 0, sizeof a);
     for (int c = 0; c < 5; ++c) {
         a.s[c] = PFT_ACC_ZERO_;
@@ -293,12 +296,14 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
     for (uint32_t s = 0; s < n; ++s) {
         const pft_weight_t e = w[s].w;
-        const pft_weight_t wn = pft_kwnorm_(e, r);
         cum += e;
         w[s].n = pft_sys_take_(&sys, cum);
-        a.w += wn;
-        a.w2 += (pft_wacc_t)wn * wn;
-        if (pe[s] != 0u) {
+        if (pe[s] == 0u) {
+            ++n0; /* weight e0 (pass 2): its terms are added once below */
+        } else {
+            const pft_weight_t wn = pft_kwnorm_(e, r);
+            a.w += wn;
+            a.w2 += (pft_wacc_t)wn * wn;
             /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below stay
              * inside the number range (a particle beyond 181 px counts as 181 px away) */
             const pft_real_t dx = pft_kspread_(px[s] - a.rx);
@@ -313,6 +318,13 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
             a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
         }
+    }
+    {
+        /* every E = 0 particle has lw = 0, so weight e0 and the same normalised weight wn0:
+         * n0 wn0 <= 2^30 and n0 wn0^2 <= 2^60 (q16), the same sums as particle by particle */
+        const pft_weight_t wn0 = pft_kwnorm_(e0, r);
+        a.w += (pft_wacc_t)n0 * wn0;
+        a.w2 += (pft_wacc_t)n0 * ((pft_wacc_t)wn0 * wn0);
     }
     if (pft_sys_left_(&sys) > 0u) {
         /* float only: targets that round up to the total go to the last particle drawn
@@ -509,7 +521,7 @@ static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
             ll = log_add_(ll, pft_log(m0));
         }
         f->est.log_mean_lr = pft_sub(ll, log_or_drop_(qp));
-        estimate_and_count_(f, sum);
+        estimate_and_count_(f, sum, pft_kwexp_(BERN_DROP_, lmax)); /* E = 0: BERN_DROP_ */
         /* P = 1 / (1 + (1 - q_pred) e^-L), the exponent limited to +-10 */
         {
             const pft_real_t d = pft_clamp(pft_sub(log_or_drop_(pft_sub(PFT_C(1.0), qp)), ll),
@@ -551,7 +563,7 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     pft_wacc_t sum = weights_(f, lmax);
     f->est.log_mean_lr = pft_sub(pft_add(lmax, pft_wacc_log(sum)), f->log_n);
     /* 4. estimates from the normalised weights, before resampling; the walk of step 5 */
-    estimate_and_count_(f, sum);
+    estimate_and_count_(f, sum, pft_kwexp_(PFT_C(0.0), lmax)); /* E = 0: lw = 0 */
     disappearance_(f);
     /* 5. systematic resampling, in place */
     replicate_(f);
