@@ -344,7 +344,7 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         while (last > 0u && w[last].n >= SLOT_EMPTY_) {
             --last;
         }
-        w[last].n = w[last].n >= SLOT_EMPTY_ ? pft_sys_left_(&sys) : w[last].n + pft_sys_left_(&sys);
+        w[last].n = (w[last].n >= SLOT_EMPTY_ ? 0u : w[last].n) + pft_sys_left_(&sys);
     }
     est_finish_(&f->est, &a);
     return head;
