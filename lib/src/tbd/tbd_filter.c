@@ -172,7 +172,10 @@ static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
 static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_meas_t *m = &f->model;
+    /* a local copy that no store of the loop can reach: its fields (pitch, size, window) stay
+     * loop invariants */
+    const pft_tbd_meas_t mm = f->model;
+    const pft_tbd_meas_t *m = &mm;
     const pft_real_t *img = x->sc->img;
     const pft_tbd_tab_t *tab = x->tab;
     const uint8_t *mask = x->mask;
