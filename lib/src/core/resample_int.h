@@ -49,14 +49,10 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
     s->n = n;
 }
 
-/* The next target; after the last (k == n) it is past every cumulative weight. */
+/* The next target (exact: T_k = t + fr / d throughout). */
 static inline void pft_sys_next_(pft_sys_t *s)
 {
     s->k += 1u;
-    if (s->k >= s->n) {
-        s->t = UINT64_MAX;
-        return;
-    }
     s->t += s->q;
     s->fr += s->rr;
     if (s->fr >= s->d) {
@@ -65,8 +61,9 @@ static inline void pft_sys_next_(pft_sys_t *s)
     }
 }
 
-/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: the target after the last
- * is past every c. */
+/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: T_n = W (1 + u / (N 2^32))
+ * >= W, so floor(T_n) >= W >= c for every cumulative weight c of the walk (the callers' last
+ * c is W itself): the loop stops at k = n at the latest, without a test of k. */
 static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
 {
     const uint32_t k0 = s->k;
