@@ -82,7 +82,7 @@ static inline pft_real_t pft_zig_fast_(uint64_t p, uint32_t sign_bit)
 static inline pft_real_t pft_zig_sfast_(int64_t p)
 {
 #ifdef PFT_NUMERIC_Q16
-    return (pft_real_t)((p + (int64_t)0x80000000 - (p < 0 ? 1 : 0)) >> 32);
+    return (pft_real_t)((p + (int64_t)0x80000000u - (p < 0 ? 1 : 0)) >> 32);
 #else
     return (float)p * 3.5527136788005009e-15f;
 #endif
