@@ -262,15 +262,16 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
     e->valid = true;
 }
 
-/* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
- * of systematic resampling (step 5): each slot ends holding its particle's replication count.
- * The walk runs over the unnormalised weights, whose total is exact. Every E = 0 particle has
- * the same weight e0 (pass 2 gave it the same log-weight), so its share of the total and of
- * the sum of squares is added once for all of them. */
 /* The count slot of a particle the walk did not draw: this flag and the index of the next such
  * slot (n after the last one). Counts are at most n <= 2^22, so the flag tells them apart. */
 #define SLOT_EMPTY_ 0x80000000u
 
+/* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
+ * of systematic resampling (step 5): each slot ends holding its particle's replication count,
+ * or SLOT_EMPTY_ and the next empty slot (returns the first: the chain replicate_ follows).
+ * The walk runs over the unnormalised weights, whose total is exact. Every E = 0 particle has
+ * the same weight e0 (pass 2 gave them all the same log-weight), so their share of the total
+ * and of the sum of squares is added once for all of them. */
 static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_weight_t e0)
 {
     pft_tbd_particles_t *P = &f->cur;
@@ -333,8 +334,8 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         }
     }
     {
-        /* every E = 0 particle has lw = 0, so weight e0 and the same normalised weight wn0:
-         * n0 wn0 <= 2^30 and n0 wn0^2 <= 2^60 (q16), the same sums as particle by particle */
+        /* every E = 0 particle has weight e0, so the same normalised weight wn0: n0 wn0 <=
+         * 2^30 and n0 wn0^2 <= 2^60 (q16), the same sums as particle by particle */
         const pft_weight_t wn0 = pft_kwnorm_(e0, r);
         a.w += (pft_wacc_t)n0 * wn0;
         a.w2 += (pft_wacc_t)n0 * ((pft_wacc_t)wn0 * wn0);
