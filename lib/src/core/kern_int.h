@@ -119,7 +119,8 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
 {
     uint32_t t;
     (void)n;
-    if (u < 32768 || u >= hi) {
+    /* u in [2^15, hi) as one unsigned comparison (u - 2^15 wraps for u < 2^15) */
+    if ((uint32_t)u - 32768u >= (uint32_t)hi - 32768u) {
         return false;
     }
     t = (uint32_t)u + 32768u;

@@ -8,9 +8,9 @@
  * W = q N + r and q = qh 2^32 + ql with integer parts qh u + (ql u >> 32) and fractional
  * parts over D = N 2^32 (< 2^54); each further target adds q to the integer part and r 2^32
  * to the fraction (< 2 D), with one carry.
- * float: T_k = (W / N)(k + u), as pft_resample's float walk; the number of targets below a
- * cumulative weight c is min(N, ceil(c N / W - u)) directly, so a walk costs the same for any
- * counts.
+ * float: T_k = (W / N)(k + u), as pft_resample's float walk; the targets below a cumulative
+ * weight c are those k < min(N, c N / W - u), counted one by one against k held as an exact
+ * float (the same counts as min(N, ceil(c N / W - u)) at one comparison per target).
  *
  * pft_sys_take_(s, c): the targets below the cumulative weight c not taken yet (the
  * replication count of the particle whose range ends at c), in order of c.
@@ -49,14 +49,10 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
     s->n = n;
 }
 
-/* The next target; after the last (k == n) it is past every cumulative weight. */
+/* The next target (exact: T_k = t + fr / d throughout). */
 static inline void pft_sys_next_(pft_sys_t *s)
 {
     s->k += 1u;
-    if (s->k >= s->n) {
-        s->t = UINT64_MAX;
-        return;
-    }
     s->t += s->q;
     s->fr += s->rr;
     if (s->fr >= s->d) {
@@ -65,8 +61,9 @@ static inline void pft_sys_next_(pft_sys_t *s)
     }
 }
 
-/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: the target after the last
- * is past every c. */
+/* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: T_n = W (1 + u / (N 2^32))
+ * >= W, so floor(T_n) >= W >= c for every cumulative weight c of the walk (the callers' last
+ * c is W itself): the loop stops at k = n at the latest, without a test of k. */
 static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
 {
     const uint32_t k0 = s->k;
@@ -84,6 +81,8 @@ static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }
 typedef struct {
     float inv_step; /* N / W */
     float u;        /* u / 2^32 */
+    float lim;      /* N */
+    float fk;       /* k, exact (k <= N <= 2^22 < 2^24) */
     uint32_t k, n;
 } pft_sys_t;
 
@@ -91,30 +90,25 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
 {
     s->inv_step = total > 0.0f ? (float)n / total : 0.0f;
     s->u = pft_from_u32_frac(u);
+    s->lim = (float)n;
+    s->fk = 0.0f;
     s->k = 0u;
     s->n = n;
 }
 
-/* T_k < c exactly when k < q = c N / W - u: min(n, ceil(q)) targets lie below c. */
+/* T_k < c exactly when k < q = c N / W - u: the targets k, k + 1, ... below min(q, N) are
+ * taken one by one (about one per particle), as many as min(n, ceil(q)) - k when that is
+ * positive. fk < q <= N bounds the loop by N - k. */
 static inline uint32_t pft_sys_take_(pft_sys_t *s, pft_wacc_t c)
 {
-    const float q = c * s->inv_step - s->u;
-    uint32_t kc = 0u;
-    if (q > 0.0f) {
-        const float lim = (float)s->n;
-        if (q >= lim) {
-            kc = s->n;
-        } else {
-            kc = (uint32_t)q; /* truncation of a positive value: the floor */
-            kc += (float)kc < q ? 1u : 0u;
-        }
+    const float q0 = c * s->inv_step - s->u;
+    const float q = q0 < s->lim ? q0 : s->lim;
+    const uint32_t k0 = s->k;
+    while (s->fk < q) {
+        s->fk += 1.0f;
+        s->k += 1u;
     }
-    kc = kc > s->k ? kc : s->k;
-    {
-        const uint32_t cnt = kc - s->k;
-        s->k = kc;
-        return cnt;
-    }
+    return s->k - k0;
 }
 
 static inline uint32_t pft_sys_left_(const pft_sys_t *s) { return s->n - s->k; }

@@ -8,11 +8,12 @@
  * host_tools/scripts/gen_rng_tables.py). One 32-bit word w gives the layer i (bits 0-6), the
  * sign (bit 7) and a 24-bit position m (bits 8-31); when m < k[i] (98.8 % of words) the draw is
  * |x| = m w[i] / 2^48 (the product exact in 64 bits), under the density, and the word is all
- * it consumes. The rest (the wedges beside each layer and the tail beyond r = 3.4426) goes to
- * pft_rng_zig_slow_ in pft_rng.c, which draws more words and forms Q24 magnitudes. The q16
- * build rounds the exact value to Q16.16 once, the float build to a float once, so both
- * builds draw the same Gaussians up to that last rounding (docs/fixed_point.md, "RNG and
- * resampling").
+ * it consumes (the fast path reads k and the signed edge by the low byte, layer and sign at
+ * once, and forms the signed product). The rest (the wedges beside each layer and the tail
+ * beyond r = 3.4426) goes to pft_rng_zig_slow_ in pft_rng.c, which draws more words and forms
+ * Q24 magnitudes. The q16 build rounds the exact value to Q16.16 once, the float build to a
+ * float once, so both builds draw the same Gaussians up to that last rounding
+ * (docs/fixed_point.md, "RNG and resampling").
  */
 #ifndef PFT_CORE_RNG_INT_H
 #define PFT_CORE_RNG_INT_H
@@ -24,6 +25,8 @@
 #define PFT_ZIG_LAYERS 128u
 
 extern const uint32_t pft_zig_kw[PFT_ZIG_LAYERS][2]; /* k[i] (fast acceptance), w[i] (Q24 edge) */
+/* by the word's low byte j (layer j mod 128, sign bit 7): k, and w negated for j >= 128 */
+extern const int32_t pft_zig_ksw[2u * PFT_ZIG_LAYERS][2];
 extern const uint32_t pft_zig_f[PFT_ZIG_LAYERS + 1u];
 extern const uint32_t pft_zig_r_q24;
 extern const uint32_t pft_zig_inv_r_q32;
@@ -72,6 +75,19 @@ static inline pft_real_t pft_zig_fast_(uint64_t p, uint32_t sign_bit)
 #endif
 }
 
+/* pft_zig_fast_ of a signed product p = +-m w (the sign in the product): the same value.
+ * q16: floor((p + 2^31 - [p < 0]) / 2^32) is -floor((|p| + 2^31) / 2^32) for p < 0 (round
+ * half away from zero, as the magnitude's rounding and negation); float: the conversion
+ * rounds symmetrically, so (float)(-a) = -(float)a. */
+static inline pft_real_t pft_zig_sfast_(int64_t p)
+{
+#ifdef PFT_NUMERIC_Q16
+    return (pft_real_t)((p + (int64_t)0x80000000u - (p < 0 ? 1 : 0)) >> 32);
+#else
+    return (float)p * 3.5527136788005009e-15f;
+#endif
+}
+
 /* The draws that word u does not settle at once (pft_rng.c): the generator's words go in as
  * scalars and come back in the result, so that a caller's generator kept in a local never has
  * its address taken (and is never assembled in memory on the fast path). */
@@ -85,11 +101,10 @@ pft_zig_slow_t pft_rng_zig_slow_(uint32_t s0, uint32_t s1, uint32_t s2, uint32_t
 static inline pft_real_t pft_rng_zig_(pft_rng_t *rng)
 {
     const uint32_t u = pft_rng_next_(rng);
-    const uint32_t i = u & (PFT_ZIG_LAYERS - 1u);
     const uint32_t m = u >> 8;
-    const uint32_t *kw = pft_zig_kw[i];
-    if (m < kw[0]) {
-        return pft_zig_fast_((uint64_t)m * kw[1], (u >> 7) & 1u);
+    const int32_t *kw = pft_zig_ksw[u & (2u * PFT_ZIG_LAYERS - 1u)]; /* layer and sign */
+    if (m < (uint32_t)kw[0]) {
+        return pft_zig_sfast_((int64_t)m * kw[1]);
     }
     {
         const pft_zig_slow_t r = pft_rng_zig_slow_(rng->s[0], rng->s[1], rng->s[2], rng->s[3], u);

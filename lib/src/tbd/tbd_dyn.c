@@ -41,8 +41,9 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
     uint32_t p = cand[pft_rng_below(rng, n_cand)];
     uint32_t col = p % c->width;
     uint32_t row = p / c->width;
-    pft_real_t ux = pft_rng_uniform(rng);
-    pft_real_t uy = pft_rng_uniform(rng);
+    /* pft_rng_uniform, inline */
+    pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
+    pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
     /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
     *k->x = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
     *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);

@@ -172,7 +172,10 @@ static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
 static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_meas_t *m = &f->model;
+    /* a local copy that no store of the loop can reach: its fields (pitch, size, window) stay
+     * loop invariants */
+    const pft_tbd_meas_t mm = f->model;
+    const pft_tbd_meas_t *m = &mm;
     const pft_real_t *img = x->sc->img;
     const pft_tbd_tab_t *tab = x->tab;
     const uint8_t *mask = x->mask;
@@ -259,10 +262,17 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
     e->valid = true;
 }
 
+/* The count slot of a particle the walk did not draw: this flag and the index of the next such
+ * slot (n after the last one). Counts are at most n <= 2^22, so the flag tells them apart. */
+#define SLOT_EMPTY_ 0x80000000u
+
 /* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
- * of systematic resampling (step 5): each slot ends holding its particle's replication count.
- * The walk runs over the unnormalised weights, whose total is exact. */
-static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
+ * of systematic resampling (step 5): each slot ends holding its particle's replication count,
+ * or SLOT_EMPTY_ and the next empty slot (returns the first: the chain replicate_ follows).
+ * The walk runs over the unnormalised weights, whose total is exact. Every E = 0 particle has
+ * the same weight e0 (pass 2 gave them all the same log-weight), so their share of the total
+ * and of the sum of squares is added once for all of them. */
+static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_weight_t e0)
 {
     pft_tbd_particles_t *P = &f->cur;
     pft_tbd_slot_t *restrict w = P->w;
@@ -274,6 +284,9 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     est_sums_t a;
     pft_sys_t sys;
     pft_wacc_t cum = 0;
+    uint32_t n0 = 0u;
+    uint32_t head = SLOT_EMPTY_ | n; /* the first empty slot */
+    uint32_t *link = &head;         /* where the next empty slot's index goes */
     memset(&a, 0, sizeof a);
     for (int c = 0; c < 5; ++c) {
         a.s[c] = PFT_ACC_ZERO_;
@@ -293,12 +306,18 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
     pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
     for (uint32_t s = 0; s < n; ++s) {
         const pft_weight_t e = w[s].w;
-        const pft_weight_t wn = pft_kwnorm_(e, r);
         cum += e;
         w[s].n = pft_sys_take_(&sys, cum);
-        a.w += wn;
-        a.w2 += (pft_wacc_t)wn * wn;
-        if (pe[s] != 0u) {
+        if (w[s].n == 0u) {
+            *link = SLOT_EMPTY_ | s;
+            link = &w[s].n;
+        }
+        if (pe[s] == 0u) {
+            ++n0; /* weight e0 (pass 2): its terms are added once below */
+        } else {
+            const pft_weight_t wn = pft_kwnorm_(e, r);
+            a.w += wn;
+            a.w2 += (pft_wacc_t)wn * wn;
             /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below stay
              * inside the number range (a particle beyond 181 px counts as 181 px away) */
             const pft_real_t dx = pft_kspread_(px[s] - a.rx);
@@ -314,40 +333,50 @@ static void estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum)
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
         }
     }
+    {
+        /* every E = 0 particle has weight e0, so the same normalised weight wn0: n0 wn0 <=
+         * 2^30 and n0 wn0^2 <= 2^60 (q16), the same sums as particle by particle */
+        const pft_weight_t wn0 = pft_kwnorm_(e0, r);
+        a.w += (pft_wacc_t)n0 * wn0;
+        a.w2 += (pft_wacc_t)n0 * ((pft_wacc_t)wn0 * wn0);
+    }
+    *link = SLOT_EMPTY_ | n;
     if (pft_sys_left_(&sys) > 0u) {
         /* float only: targets that round up to the total go to the last particle drawn
          * (q16 walks are exact and take every target) */
         uint32_t last = n - 1u;
-        while (last > 0u && !(w[last].n > 0u)) {
+        while (last > 0u && w[last].n >= SLOT_EMPTY_) {
             --last;
         }
-        w[last].n += pft_sys_left_(&sys);
+        w[last].n = (w[last].n >= SLOT_EMPTY_ ? 0u : w[last].n) + pft_sys_left_(&sys);
     }
     est_finish_(&f->est, &a);
+    return head;
 }
 
 /* ---------------------------------- pass 4: resampling in place --------------------------- */
 
-/* Particle s with count r > 1 is copied into the next r - 1 slots whose count is 0; those
- * slots are marked 1 so that the outer loop keeps them when it reaches them. The counts sum
- * to n, so there are exactly as many empty slots as extra copies: the scan j only moves
- * forward and every loop is bounded by n. */
-static void replicate_(pft_tbd_filter_t *f)
+/* Particle s with count r > 1 is copied into the next r - 1 empty slots of the chain that
+ * pass 3 left (head: the first, each empty slot's count holds SLOT_EMPTY_ and the next one's
+ * index); the outer loop skips the empty slots, also those filled already. The counts sum to
+ * n, so there are exactly as many empty slots as extra copies, each taken once, in increasing
+ * order (the same slots as a forward scan for count 0 would take). */
+static void replicate_(pft_tbd_filter_t *f, uint32_t head)
 {
     pft_tbd_particles_t *P = &f->cur;
-    pft_tbd_slot_t *w = P->w;
+    const pft_tbd_slot_t *w = P->w;
     const uint32_t n = f->n;
-    uint32_t j = 0;
+    uint32_t j = head & ~SLOT_EMPTY_;
     for (uint32_t s = 0; s < n; ++s) {
-        for (uint32_t c = w[s].n; c > 1u; --c) {
-            while (j < n && w[j].n != 0u) {
-                ++j;
+        const uint32_t r = w[s].n;
+        if (r - 2u < SLOT_EMPTY_ - 2u) { /* 2 <= r < SLOT_EMPTY_ */
+            for (uint32_t c = r; c > 1u; --c) {
+                if (j >= n) {
+                    return; /* cannot happen: the counts sum to n */
+                }
+                copy_particle_(P, j, P, s);
+                j = w[j].n & ~SLOT_EMPTY_;
             }
-            if (j >= n) {
-                return; /* cannot happen: the counts sum to n */
-            }
-            copy_particle_(P, j, P, s);
-            w[j].n = 1u;
         }
     }
 }
@@ -483,7 +512,7 @@ static pft_real_t log_add_(pft_real_t a, pft_real_t b)
  * the allowed pixels (1 without the correction's candidates), the rest of that mass, (1 - c),
  * counts with likelihood ratio 1; survivors carry (1 - pd) q. P = L / (L + 1 - q_pred) with L
  * the total weighted likelihood ratio. */
-static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
+static uint32_t step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_config_t *c = &f->cfg;
     const bool first = f->frames == 0u;
@@ -492,7 +521,7 @@ static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
     const pft_real_t ms = first ? PFT_C(0.0) : pft_mul(pft_sub(PFT_C(1.0), c->pd), q);
     const pft_real_t qp = pft_min(pft_add(mb, ms), PFT_C(1.0));
     pft_real_t share = PFT_C(1.0);
-    uint32_t nb = 0u, np = 0u;
+    uint32_t nb = 0u, np = 0u, head;
     if (x->sc->cand_is_b && x->sc->n_allowed > 0u) {
         share = pft_ratio((int32_t)x->sc->n_cand, (int32_t)x->sc->n_allowed);
     }
@@ -509,7 +538,8 @@ static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
             ll = log_add_(ll, pft_log(m0));
         }
         f->est.log_mean_lr = pft_sub(ll, log_or_drop_(qp));
-        estimate_and_count_(f, sum);
+        /* E = 0 particles have lw = BERN_DROP_ */
+        head = estimate_and_count_(f, sum, pft_kwexp_(BERN_DROP_, lmax));
         /* P = 1 / (1 + (1 - q_pred) e^-L), the exponent limited to +-10 */
         {
             const pft_real_t d = pft_clamp(pft_sub(log_or_drop_(pft_sub(PFT_C(1.0), qp)), ll),
@@ -518,6 +548,7 @@ static void step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
         }
         f->est.p_exist = f->bq;
     }
+    return head;
 }
 
 /* ---------------------------------- one iteration ----------------------------------------- */
@@ -537,9 +568,9 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     x.rb = f->kind == PFT_TBD_RBPF;
     f->birth_lw = x.can_birth ? pft_tbd_birth_lw_(c, sc) : PFT_C(0.0);
     if (f->births && c->birth_share > PFT_C(0.0)) {
-        step_bern_(f, &x);
+        const uint32_t head = step_bern_(f, &x);
         disappearance_(f);
-        replicate_(f);
+        replicate_(f, head);
         if (f->frames < UINT32_MAX) {
             ++f->frames;
         }
@@ -551,10 +582,11 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     pft_wacc_t sum = weights_(f, lmax);
     f->est.log_mean_lr = pft_sub(pft_add(lmax, pft_wacc_log(sum)), f->log_n);
     /* 4. estimates from the normalised weights, before resampling; the walk of step 5 */
-    estimate_and_count_(f, sum);
+    /* E = 0 particles have lw = 0 */
+    const uint32_t head = estimate_and_count_(f, sum, pft_kwexp_(PFT_C(0.0), lmax));
     disappearance_(f);
     /* 5. systematic resampling, in place */
-    replicate_(f);
+    replicate_(f, head);
     if (f->frames < UINT32_MAX) {
         ++f->frames;
     }

@@ -160,10 +160,11 @@ static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_ta
     const size_t stride = (size_t)m->width + 2u;
     pft_ktaps_(tab->taps[0], c->fx, tx);
     pft_ktaps_(tab->taps[1], c->fy, ty);
-    if (c->i == 1 || c->i == (int32_t)m->width) {
+    /* i = 1 or i = n (i in [1, n]): one unsigned comparison, i - 2 wraps for i = 1 */
+    if ((uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u) {
         pft_tbd_clip_(tx, c->i, (int32_t)m->width);
     }
-    if (c->j == 1 || c->j == (int32_t)m->height) {
+    if ((uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u) {
         pft_tbd_clip_(ty, c->j, (int32_t)m->height);
     }
     return pft_kspot3_(img + (size_t)(c->j - 1) * stride + (size_t)(c->i - 1), stride, tx, ty,
