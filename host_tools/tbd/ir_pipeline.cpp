@@ -33,6 +33,20 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.max_targets = static_cast<uint16_t>(t.max_targets);
     c.kind = PFT_TBD_RBPF;
     c.seed = seed + t.seed_offset;
+    c.birth_peaks = static_cast<uint16_t>(t.birth_peaks);
+    auto R = [](const std::optional<double> &v, pft_real_t &dst) {
+        if (v)
+            dst = to_real(*v);
+    };
+    R(t.peak_gamma, c.peak_gamma);
+    R(t.birth_share, c.birth_share);
+    R(t.theta1, c.theta1);
+    R(t.pb, c.pb);
+    R(t.theta_end, c.theta_end);
+    if (t.confirm_frames)
+        c.confirm_frames = static_cast<uint8_t>(*t.confirm_frames);
+    if (t.birth_correction)
+        c.birth_correction = *t.birth_correction;
     return c;
 }
 

@@ -119,7 +119,8 @@ void parse_tracker(const Field &t, TrackerSettings &T)
 {
     t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
-            "note"});
+            "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
+            "confirm_frames", "birth_correction", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
@@ -136,6 +137,20 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("background_radius").fail("must exceed guard_radius");
     T.tile = static_cast<int>(t.integer_in("tile", T.tile, 8, 255));
     T.seed_offset = static_cast<uint64_t>(t.integer_in("seed_offset", 0, 0, INT64_MAX));
+    T.birth_peaks = static_cast<int>(t.integer_in("birth_peaks", T.birth_peaks, 0, 4096));  // PFT_TBD_MAX_PEAKS
+    auto num = [&](const char *k, double lo, double hi, std::optional<double> &dst) {
+        if (t.has(k))
+            dst = t.number_req_in(k, lo, hi);
+    };
+    num("peak_gamma", -1e4, 1e4, T.peak_gamma);
+    num("birth_share", 0.0, 0.95, T.birth_share);
+    num("theta1", 0.0, 1.0, T.theta1);
+    num("pb", 0.0, 1.0, T.pb);
+    num("theta_end", 0.0, 1.0, T.theta_end);
+    if (t.has("confirm_frames"))
+        T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", 1, 0, 16));
+    if (t.has("birth_correction"))
+        T.birth_correction = t.at("birth_correction").as_bool();
 }
 
 void parse_dbt(const Field &d, DbtSettings &D)

@@ -84,6 +84,12 @@ struct TrackerSettings {
     int background_radius = 5, guard_radius = 2;///< spatial: local-mean window and its guard (half-sizes)
     int tile = 32;                              ///< noise-estimate tile side, px
     uint64_t seed_offset = 0;
+    // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
+    // docs/algorithms.md 2.11); absent: the preset's value
+    int birth_peaks = 0;                        ///< births from the K strongest PSF-matched peaks (0: B_k)
+    std::optional<double> peak_gamma, birth_share, theta1, pb, theta_end;
+    std::optional<int> confirm_frames;
+    std::optional<bool> birth_correction;
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
