@@ -9,7 +9,9 @@
 // manager takes U8/U16/F32 frames) and the host-side detect-before-track baseline (ir_dbt.hpp).
 // step() takes the frame as the sensor gives it and returns both trackers' tracks and events.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -43,7 +45,8 @@ public:
      *  InputError on a refused frame. */
     PipelineOut step(const pft_frame_t &frame);
 
-    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0)
+    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
+    const cv::Mat &clutter_map() const { return cmap_; } ///< mean square residual per pixel, scene-registered (empty without the map)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
     uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*
@@ -70,6 +73,22 @@ private:
     double dbt_thr_;
     int max_det_;
     cv::Mat resid_, u16_;
+    // clutter map: mean square of the whitened residual in scene coordinates (CV_32F), its
+    // warped and blurred copy, the residual in clutter sigmas for the DBT (CV_16S, Q8.8)
+    cv::Mat cmap_, cmean_, cwarp_, cres16_;
+    uint32_t cmap_frames_ = 0;
+    void clutter_step(const int16_t *res, std::size_t stride, bool ev);
+    // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
+    // each of its frames (the last scene_frames + 1), and whether it failed the test
+    struct SceneHist {
+        std::vector<std::array<double, 4>> h;  // x, y, scene x, scene y
+        bool scene = false;
+        uint32_t last = 0;
+    };
+    std::map<uint32_t, SceneHist> hist_;
+    double scene_x_ = 0, scene_y_ = 0;
+    uint32_t frame_no_ = 0;
+    void scene_test(tbd::FrameOut &out);
     double sigma_ = 0;
     int masked_ = 0;
 };

@@ -120,7 +120,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
-            "confirm_frames", "birth_correction", "note"});
+            "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean", "scene_frames", "scene_gate_px", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
@@ -151,6 +151,12 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", 1, 0, 16));
     if (t.has("birth_correction"))
         T.birth_correction = t.at("birth_correction").as_bool();
+    T.clutter_alpha = t.number_in("clutter_alpha", T.clutter_alpha, 0.0, 1.0);
+    T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, 64));
+    T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
+    if (t.has("clutter_mean"))
+        T.clutter_mean = t.at("clutter_mean").as_bool();
+    T.clutter_blur = static_cast<int>(t.integer_in("clutter_blur", T.clutter_blur, 0, 4));
 }
 
 void parse_dbt(const Field &d, DbtSettings &D)

@@ -90,6 +90,18 @@ struct TrackerSettings {
     std::optional<double> peak_gamma, birth_share, theta1, pb, theta_end;
     std::optional<int> confirm_frames;
     std::optional<bool> birth_correction;
+    // clutter map (host side, ir_pipeline.hpp): per-pixel mean square of the whitened residual,
+    // registered to the scene (warped by the stage's measured shift every frame); both trackers
+    // see the residual divided by sqrt(max(1, map)) of the previous frame
+    double clutter_alpha = 0;                   ///< map update weight (0: no map)
+    // scene-motion test (host side): a TBD track whose displacement over the last scene_frames
+    // frames is within scene_gate_px per frame of the scene's (the stage's measured shift) is
+    // clutter drifting with the platform: never reported, and the clutter map is raised where it
+    // is; a track is reported once it has scene_frames frames and has not failed the test
+    int scene_frames = 0;                       ///< frames of the test (0: off)
+    double scene_gate_px = 0.15;                ///< px per frame
+    bool clutter_mean = true;                   ///< subtract the map's mean residual too
+    int clutter_blur = 1;                       ///< half-size of the square the map is read over (its largest value; 0: the pixel)
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
