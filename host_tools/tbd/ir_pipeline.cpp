@@ -103,15 +103,18 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
 }
 
 // The clutter map. The map m holds, per pixel of the scene, the mean square of the whitened
-// residual: every frame it is carried along with the scene (warped by the stage's shift, the
-// convention z(p) = b(p - shift), bilinear; pixels entering the frame start at 1), the
-// residual of the frame is divided by sqrt(max(1, M)), M the largest value of the map within clutter_blur px, before this frame's
-// update (so a pixel is not scored against its own value), then m <- (1 - a) m + a min((r - mu)^2, 64) and mu <- (1 - a) mu + a clamp(r, -8, 8)
-// with a = max(clutter_alpha, 1 / frames) (a running mean at the start). A thin cloud edge or
-// horizon line that leaves several sigmas at the same scene position frame after frame is then
-// scored in its own sigma, while a target moving across the scene meets a map it has not
-// raised. Frames without evidence leave the map as it is (not warped: the stage's shift is not
-// valid then).
+// residual, and mu its mean: every frame both are carried along with the scene (warped by the
+// stage's shift, the convention z(p) = b(p - shift), bilinear; pixels entering the frame start
+// at m = 1, mu = 0). M is the mean of m over the (2 clutter_blur + 1)^2 square around the pixel
+// (clutter_box) or its largest value there, read before this frame's update so that a pixel is
+// not scored against its own value. Every residual r becomes r - mu if clutter_mean (a line
+// the background keeps missing on the same side), and a pixel with M > clutter_thr is clutter:
+// its residual is divided by sqrt(M) too. Then m <- (1 - a) m + a min((r - mu)^2, 64) and
+// mu <- (1 - a) mu + a clamp(r, -8, 8), with a = max(clutter_alpha, 1 / frames) (a running mean
+// at the start). A thin cloud edge or horizon line that leaves several sigmas at the same scene
+// position frame after frame is then scored in its own sigma, while a target moving across the
+// scene meets a map it has not raised. Frames without evidence leave the map as it is (not
+// warped: the stage's shift is not valid then).
 void IrPipeline::clutter_step(const int16_t *res, std::size_t stride, bool ev)
 {
     if (cmap_.empty()) {
@@ -138,8 +141,11 @@ void IrPipeline::clutter_step(const int16_t *res, std::size_t stride, bool ev)
     }
     if (T_.clutter_blur > 0) {
         const int k = 2 * T_.clutter_blur + 1;
-        cv::dilate(cmap_, cwarp_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
-                   cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+        if (T_.clutter_box)
+            cv::blur(cmap_, cwarp_, cv::Size(k, k), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+        else
+            cv::dilate(cmap_, cwarp_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
+                       cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
     } else {
         cmap_.copyTo(cwarp_);
     }
@@ -152,6 +158,7 @@ void IrPipeline::clutter_step(const int16_t *res, std::size_t stride, bool ev)
         float *mu = cmean_.ptr<float>(y);
         const float *mb = cwarp_.ptr<float>(y);
         const bool sub = T_.clutter_mean;
+        const float thr = static_cast<float>(T_.clutter_thr);
         int16_t *q = cres16_.ptr<int16_t>(y);
         for (int x = 0; x < w_; ++x) {
             if (r[x] == PFT_RES16_MASKED) {
@@ -160,8 +167,9 @@ void IrPipeline::clutter_step(const int16_t *res, std::size_t stride, bool ev)
                 continue;
             }
             const float v = static_cast<float>(r[x]) / 256.0f;
+            const bool cl = mb[x] > thr;
             const float c = sub ? v - mu[x] : v;
-            const float w = c / std::sqrt(std::max(1.0f, mb[x]));
+            const float w = cl ? c / std::sqrt(mb[x]) : c;
             o[x] = w;
             q[x] = static_cast<int16_t>(std::clamp(std::lround(w * 256.0f), -32767L, 32767L));
             m[x] += a * (std::min(c * c, 64.0f) - m[x]);

@@ -120,7 +120,8 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
-            "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean", "scene_frames", "scene_gate_px", "note"});
+            "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
+            "clutter_thr", "clutter_box", "scene_frames", "scene_gate_px", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
@@ -154,6 +155,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.clutter_alpha = t.number_in("clutter_alpha", T.clutter_alpha, 0.0, 1.0);
     T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, 64));
     T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
+    T.clutter_thr = t.number_in("clutter_thr", T.clutter_thr, 1.0, 64.0);
+    if (t.has("clutter_box"))
+        T.clutter_box = t.at("clutter_box").as_bool();
     if (t.has("clutter_mean"))
         T.clutter_mean = t.at("clutter_mean").as_bool();
     T.clutter_blur = static_cast<int>(t.integer_in("clutter_blur", T.clutter_blur, 0, 4));

@@ -92,7 +92,7 @@ struct TrackerSettings {
     std::optional<bool> birth_correction;
     // clutter map (host side, ir_pipeline.hpp): per-pixel mean square of the whitened residual,
     // registered to the scene (warped by the stage's measured shift every frame); both trackers
-    // see the residual divided by sqrt(max(1, map)) of the previous frame
+    // see the residual of clutter pixels in the map's sigma (ir_pipeline.cpp, clutter_step)
     double clutter_alpha = 0;                   ///< map update weight (0: no map)
     // scene-motion test (host side): a TBD track whose displacement over the last scene_frames
     // frames is within scene_gate_px per frame of the scene's (the stage's measured shift) is
@@ -100,8 +100,10 @@ struct TrackerSettings {
     // is; a track is reported once it has scene_frames frames and has not failed the test
     int scene_frames = 0;                       ///< frames of the test (0: off)
     double scene_gate_px = 0.15;                ///< px per frame
-    bool clutter_mean = true;                   ///< subtract the map's mean residual too
-    int clutter_blur = 1;                       ///< half-size of the square the map is read over (its largest value; 0: the pixel)
+    double clutter_thr = 1;                     ///< map value (sigma^2) above which a pixel is clutter
+    bool clutter_box = true;                    ///< read the map as its mean over the square (false: its largest value)
+    bool clutter_mean = false;                  ///< subtract the map's mean residual too
+    int clutter_blur = 1;                       ///< half-size of the square the map is read over (0: the pixel)
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
