@@ -75,7 +75,7 @@ std::string describe(const IrScenario &s)
 
 std::string describe_pipeline(const IrScenario &s)
 {
-    char b[640];
+    char b[900];
     const TrackerSettings &t = s.tracker;
     std::string pre = t.preprocess == "spatial"
                           ? "spatial local mean " + std::to_string(2 * t.background_radius + 1) + "x" +
@@ -84,10 +84,12 @@ std::string describe_pipeline(const IrScenario &s)
                           : "temporal registered background, alpha " + std::to_string(t.bg_alpha).substr(0, 5);
     std::snprintf(b, sizeof b,
                   "pipeline: pft_pre (%s, tile sigma %d px) + pft_tbd manager (%s preset, Ns=%u, "
-                  "Nt=%u, %u tracks, SNR prior %.3g..%.3g dB) beside DBT (pfa %.3g per pixel: "
-                  "threshold %.2f sigma, %d of %d, CV Kalman NN), %s",
+                  "Nt=%u, %u tracks, SNR prior %.3g..%.3g dB, births from %d peaks, birth share %.2g, "
+                  "confirm %d frames; clutter map alpha %.3g, scene-motion test %d frames) beside DBT "
+                  "(pfa %.3g per pixel: threshold %.2f sigma, %d of %d, CV Kalman NN), %s",
                   pre.c_str(), t.tile, t.preset.c_str(), t.particles, t.track_particles, t.max_targets,
-                  t.snr_min_db, t.snr_max_db, s.dbt.pfa, dbt_threshold(s.dbt.pfa), s.dbt.m, s.dbt.n,
+                  t.snr_min_db, t.snr_max_db, t.birth_peaks, t.birth_share, t.confirm_frames,
+                  t.clutter_alpha, t.scene_frames, s.dbt.pfa, dbt_threshold(s.dbt.pfa), s.dbt.m, s.dbt.n,
                   numeric_name());
     return b;
 }

@@ -39,14 +39,12 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
             dst = to_real(*v);
     };
     R(t.peak_gamma, c.peak_gamma);
-    R(t.birth_share, c.birth_share);
     R(t.theta1, c.theta1);
     R(t.pb, c.pb);
     R(t.theta_end, c.theta_end);
-    if (t.confirm_frames)
-        c.confirm_frames = static_cast<uint8_t>(*t.confirm_frames);
-    if (t.birth_correction)
-        c.birth_correction = *t.birth_correction;
+    c.birth_share = to_real(t.birth_share);
+    c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
+    c.birth_correction = t.birth_correction;
     return c;
 }
 

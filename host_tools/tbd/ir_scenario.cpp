@@ -144,12 +144,11 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             dst = t.number_req_in(k, lo, hi);
     };
     num("peak_gamma", -1e4, 1e4, T.peak_gamma);
-    num("birth_share", 0.0, 0.95, T.birth_share);
+    T.birth_share = t.number_in("birth_share", T.birth_share, 0.0, 0.95);
     num("theta1", 0.0, 1.0, T.theta1);
     num("pb", 0.0, 1.0, T.pb);
     num("theta_end", 0.0, 1.0, T.theta_end);
-    if (t.has("confirm_frames"))
-        T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", 1, 0, 16));
+    T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", T.confirm_frames, 0, 16));
     if (t.has("birth_correction"))
         T.birth_correction = t.at("birth_correction").as_bool();
     T.clutter_alpha = t.number_in("clutter_alpha", T.clutter_alpha, 0.0, 1.0);
