@@ -113,51 +113,52 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
 // position frame after frame is then scored in its own sigma, while a target moving across the
 // scene meets a map it has not raised. Frames without evidence leave the map as it is (not
 // warped: the stage's shift is not valid then).
-void IrPipeline::clutter_step(const int16_t *res, std::size_t stride, bool ev)
+void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
+                  double sx, double sy, cv::Mat &resid_)
 {
-    if (cmap_.empty()) {
-        cmap_.create(h_, w_, CV_32F);
-        cmap_.setTo(1.0f);
-        cmean_.create(h_, w_, CV_32F);
-        cmean_.setTo(0.0f);
-        cres16_.create(h_, w_, CV_16S);
+    const int w_ = resid_.cols, h_ = resid_.rows;
+    if (c.m.empty()) {
+        c.m.create(h_, w_, CV_32F);
+        c.m.setTo(1.0f);
+        c.mean.create(h_, w_, CV_32F);
+        c.mean.setTo(0.0f);
+        c.res16.create(h_, w_, CV_16S);
     }
     if (!ev) {
         resid_.setTo(0.0f);
-        cres16_.setTo(PFT_RES16_MASKED);
+        c.res16.setTo(PFT_RES16_MASKED);
         return;
     }
-    if (cmap_frames_ > 0) {
-        const double sx = stats_.shift[0] / 65536.0, sy = stats_.shift[1] / 65536.0;
+    if (c.frames > 0) {
         cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, sx, 0, 1, sy);
-        cv::warpAffine(cmap_, cwarp_, M, cmap_.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(1.0));
-        cwarp_.copyTo(cmap_);
+        cv::warpAffine(c.m, c.tmp, M, c.m.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(1.0));
+        c.tmp.copyTo(c.m);
         if (T_.clutter_mean) {
-            cv::warpAffine(cmean_, cwarp_, M, cmean_.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0.0));
-            cwarp_.copyTo(cmean_);
+            cv::warpAffine(c.mean, c.tmp, M, c.mean.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0.0));
+            c.tmp.copyTo(c.mean);
         }
     }
     if (T_.clutter_blur > 0) {
         const int k = 2 * T_.clutter_blur + 1;
         if (T_.clutter_box)
-            cv::blur(cmap_, cwarp_, cv::Size(k, k), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+            cv::blur(c.m, c.tmp, cv::Size(k, k), cv::Point(-1, -1), cv::BORDER_REPLICATE);
         else
-            cv::dilate(cmap_, cwarp_, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
+            cv::dilate(c.m, c.tmp, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
                        cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
     } else {
-        cmap_.copyTo(cwarp_);
+        c.m.copyTo(c.tmp);
     }
-    ++cmap_frames_;
-    const float a = static_cast<float>(std::max(T_.clutter_alpha, 1.0 / cmap_frames_));
+    ++c.frames;
+    const float a = static_cast<float>(std::max(T_.clutter_alpha, 1.0 / c.frames));
     for (int y = 0; y < h_; ++y) {
         const int16_t *r = res + static_cast<std::size_t>(y) * stride;
         float *o = resid_.ptr<float>(y);
-        float *m = cmap_.ptr<float>(y);
-        float *mu = cmean_.ptr<float>(y);
-        const float *mb = cwarp_.ptr<float>(y);
+        float *m = c.m.ptr<float>(y);
+        float *mu = c.mean.ptr<float>(y);
+        const float *mb = c.tmp.ptr<float>(y);
         const bool sub = T_.clutter_mean;
         const float thr = static_cast<float>(T_.clutter_thr);
-        int16_t *q = cres16_.ptr<int16_t>(y);
+        int16_t *q = c.res16.ptr<int16_t>(y);
         for (int x = 0; x < w_; ++x) {
             if (r[x] == PFT_RES16_MASKED) {
                 o[x] = 0.0f;
@@ -201,11 +202,11 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
                 s.scene = true;
         }
         if (s.scene) {
-            if (!cmap_.empty()) {
+            if (!cm_.m.empty()) {
                 const int cx = static_cast<int>(std::lround(t.x)), cy = static_cast<int>(std::lround(t.y));
                 for (int y = std::max(0, cy - 1); y <= std::min(h_ - 1, cy + 1); ++y)
                     for (int x = std::max(0, cx - 1); x <= std::min(w_ - 1, cx + 1); ++x) {
-                        float &m = cmap_.at<float>(y, x);
+                        float &m = cm_.m.at<float>(y, x);
                         m = std::max(m, 16.0f);
                     }
             }
@@ -254,9 +255,9 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     const int16_t *res = static_cast<const int16_t *>(rf.data);
     const bool ev = evidence();
     if (T_.clutter_alpha > 0) {
-        clutter_step(res, stride, ev);
-        res = cres16_.ptr<int16_t>(0);
-        stride = cres16_.step[0] / sizeof(int16_t);
+        clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_);
+        res = cm_.res16.ptr<int16_t>(0);
+        stride = cm_.res16.step[0] / sizeof(int16_t);
     } else {
         for (int y = 0; y < h_; ++y) {
             const int16_t *r = res + static_cast<std::size_t>(y) * stride;

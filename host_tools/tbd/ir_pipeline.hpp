@@ -34,6 +34,20 @@ struct PipelineOut {
     int detections = 0;  ///< DBT detections of the frame
 };
 
+/** The scene-registered clutter map of the pipeline (TrackerSettings::clutter_*). */
+struct ClutterMap {
+    cv::Mat m, mean;  ///< mean square and mean of the whitened residual per scene pixel (CV_32F)
+    cv::Mat tmp;      ///< the map as read (blurred) for the frame
+    cv::Mat res16;    ///< the output residual, Q8.8 sigma units, masked pixels kept (CV_16S)
+    uint32_t frames = 0;
+};
+
+/** One frame of the clutter map: res (PFT_PIX_RES16 of stride px per row) in, resid (CV_32F of
+ *  the frame's size, masked 0) and c.res16 out; (sx, sy) the scene's shift since the last
+ *  frame (z(p) = b(p - shift)); ev false: a frame without evidence (all zero, map unchanged). */
+void clutter_step(ClutterMap &c, const TrackerSettings &t, const int16_t *res, std::size_t stride, bool ev,
+                  double sx, double sy, cv::Mat &resid);
+
 class IrPipeline {
 public:
     /** width x height frames of bit_depth bits (8..16), given to the stage as U16. */
@@ -46,7 +60,7 @@ public:
     PipelineOut step(const pft_frame_t &frame);
 
     const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
-    const cv::Mat &clutter_map() const { return cmap_; } ///< mean square residual per pixel, scene-registered (empty without the map)
+    const cv::Mat &clutter_map() const { return cm_.m; } ///< mean square residual per pixel, scene-registered (empty without the map)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
     uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*
@@ -73,11 +87,7 @@ private:
     double dbt_thr_;
     int max_det_;
     cv::Mat resid_, u16_;
-    // clutter map: mean square of the whitened residual in scene coordinates (CV_32F), its
-    // warped and blurred copy, the residual in clutter sigmas for the DBT (CV_16S, Q8.8)
-    cv::Mat cmap_, cmean_, cwarp_, cres16_;
-    uint32_t cmap_frames_ = 0;
-    void clutter_step(const int16_t *res, std::size_t stride, bool ev);
+    ClutterMap cm_;
     // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
     // each of its frames (the last scene_frames + 1), and whether it failed the test
     struct SceneHist {
