@@ -33,6 +33,18 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.max_targets = static_cast<uint16_t>(t.max_targets);
     c.kind = PFT_TBD_RBPF;
     c.seed = seed + t.seed_offset;
+    c.birth_peaks = static_cast<uint16_t>(t.birth_peaks);
+    auto R = [](const std::optional<double> &v, pft_real_t &dst) {
+        if (v)
+            dst = to_real(*v);
+    };
+    R(t.peak_gamma, c.peak_gamma);
+    R(t.theta1, c.theta1);
+    R(t.pb, c.pb);
+    R(t.theta_end, c.theta_end);
+    c.birth_share = to_real(t.birth_share);
+    c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
+    c.birth_correction = t.birth_correction;
     return c;
 }
 
@@ -88,6 +100,126 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
     resid_.create(h_, w_, CV_32F);
 }
 
+// The clutter map. The map m holds, per pixel of the scene, the mean square of the whitened
+// residual, and mu its mean: every frame both are carried along with the scene (warped by the
+// stage's shift, the convention z(p) = b(p - shift), bilinear; pixels entering the frame start
+// at m = 1, mu = 0). M is the mean of m over the (2 clutter_blur + 1)^2 square around the pixel
+// (clutter_box) or its largest value there, read before this frame's update so that a pixel is
+// not scored against its own value. Every residual r becomes r - mu if clutter_mean (a line
+// the background keeps missing on the same side), and a pixel with M > clutter_thr is clutter:
+// its residual is divided by sqrt(M) too. Then m <- (1 - a) m + a min((r - mu)^2, 64) and
+// mu <- (1 - a) mu + a clamp(r, -8, 8), with a = max(clutter_alpha, 1 / frames) (a running mean
+// at the start). A thin cloud edge or horizon line that leaves several sigmas at the same scene
+// position frame after frame is then scored in its own sigma, while a target moving across the
+// scene meets a map it has not raised. Frames without evidence leave the map as it is (not
+// warped: the stage's shift is not valid then).
+void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
+                  double sx, double sy, cv::Mat &resid_)
+{
+    const int w_ = resid_.cols, h_ = resid_.rows;
+    if (c.m.empty()) {
+        c.m.create(h_, w_, CV_32F);
+        c.m.setTo(1.0f);
+        c.mean.create(h_, w_, CV_32F);
+        c.mean.setTo(0.0f);
+        c.res16.create(h_, w_, CV_16S);
+    }
+    if (!ev) {
+        resid_.setTo(0.0f);
+        c.res16.setTo(PFT_RES16_MASKED);
+        return;
+    }
+    if (c.frames > 0) {
+        cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, sx, 0, 1, sy);
+        cv::warpAffine(c.m, c.tmp, M, c.m.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(1.0));
+        c.tmp.copyTo(c.m);
+        if (T_.clutter_mean) {
+            cv::warpAffine(c.mean, c.tmp, M, c.mean.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0.0));
+            c.tmp.copyTo(c.mean);
+        }
+    }
+    if (T_.clutter_blur > 0) {
+        const int k = 2 * T_.clutter_blur + 1;
+        if (T_.clutter_box)
+            cv::blur(c.m, c.tmp, cv::Size(k, k), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+        else
+            cv::dilate(c.m, c.tmp, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
+                       cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+    } else {
+        c.m.copyTo(c.tmp);
+    }
+    ++c.frames;
+    const float a = static_cast<float>(std::max(T_.clutter_alpha, 1.0 / c.frames));
+    for (int y = 0; y < h_; ++y) {
+        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+        float *o = resid_.ptr<float>(y);
+        float *m = c.m.ptr<float>(y);
+        float *mu = c.mean.ptr<float>(y);
+        const float *mb = c.tmp.ptr<float>(y);
+        const bool sub = T_.clutter_mean;
+        const float thr = static_cast<float>(T_.clutter_thr);
+        int16_t *q = c.res16.ptr<int16_t>(y);
+        for (int x = 0; x < w_; ++x) {
+            if (r[x] == PFT_RES16_MASKED) {
+                o[x] = 0.0f;
+                q[x] = PFT_RES16_MASKED;
+                continue;
+            }
+            const float v = static_cast<float>(r[x]) / 256.0f;
+            const bool cl = mb[x] > thr;
+            const float c = sub ? v - mu[x] : v;
+            const float w = cl ? c / std::sqrt(mb[x]) : c;
+            o[x] = w;
+            q[x] = static_cast<int16_t>(std::clamp(std::lround(w * 256.0f), -32767L, 32767L));
+            m[x] += a * (std::min(c * c, 64.0f) - m[x]);
+            if (sub)
+                mu[x] += a * (std::clamp(v, -8.0f, 8.0f) - mu[x]);
+        }
+    }
+}
+
+// The scene-motion test (TrackerSettings::scene_frames). A track's displacement over its last
+// n = scene_frames frames, less the scene's (the sum of the stage's shifts over those frames), is
+// the track's motion against the scene: below n * scene_gate_px, the track is taken for
+// clutter that drifts with the platform (a cloud edge, the horizon, a structure) for good. Such
+// a track is dropped from the output, and with the clutter map on its map entries (3 x 3 around
+// it) are raised to at least 16 (4 sigma), so that its evidence fades from the next frame and
+// the manager ends it. The other tracks are reported from their n-th frame on.
+void IrPipeline::scene_test(tbd::FrameOut &out)
+{
+    const std::size_t n = static_cast<std::size_t>(T_.scene_frames);
+    std::vector<tbd::TrackOut> kept;
+    for (const tbd::TrackOut &t : out.tracks) {
+        SceneHist &s = hist_[t.id];
+        s.last = frame_no_;
+        s.h.push_back({t.x, t.y, scene_x_, scene_y_});
+        if (s.h.size() > n + 1)
+            s.h.erase(s.h.begin());
+        if (!s.scene && s.h.size() == n + 1) {
+            const auto &a = s.h.front(), &b = s.h.back();
+            const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
+            if (std::hypot(dx, dy) < static_cast<double>(n) * T_.scene_gate_px)
+                s.scene = true;
+        }
+        if (s.scene) {
+            if (!cm_.m.empty()) {
+                const int cx = static_cast<int>(std::lround(t.x)), cy = static_cast<int>(std::lround(t.y));
+                for (int y = std::max(0, cy - 1); y <= std::min(h_ - 1, cy + 1); ++y)
+                    for (int x = std::max(0, cx - 1); x <= std::min(w_ - 1, cx + 1); ++x) {
+                        float &m = cm_.m.at<float>(y, x);
+                        m = std::max(m, 16.0f);
+                    }
+            }
+            continue;
+        }
+        if (s.h.size() >= n + 1)
+            kept.push_back(t);
+    }
+    out.tracks.swap(kept);
+    for (auto it = hist_.begin(); it != hist_.end();)
+        it = it->second.last + 64 < frame_no_ ? hist_.erase(it) : std::next(it);
+}
+
 bool IrPipeline::evidence() const
 {
     return (stats_.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED | PFT_PRE_FLAG_REG_LOST)) == 0u;
@@ -119,17 +251,30 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     pft_pre_frame(&pre_, &rf);
     masked_ = static_cast<int>(stats_.n_masked);
     sigma_ = stats_.sigma_mean / 65536.0;
-    const std::size_t stride = rf.stride_bytes / sizeof(int16_t);
+    std::size_t stride = rf.stride_bytes / sizeof(int16_t);
     const int16_t *res = static_cast<const int16_t *>(rf.data);
     const bool ev = evidence();
-    for (int y = 0; y < h_; ++y) {
-        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
-        float *o = resid_.ptr<float>(y);
-        for (int x = 0; x < w_; ++x)
-            o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
+    if (T_.clutter_alpha > 0) {
+        clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_);
+        res = cm_.res16.ptr<int16_t>(0);
+        stride = cm_.res16.step[0] / sizeof(int16_t);
+    } else {
+        for (int y = 0; y < h_; ++y) {
+            const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+            float *o = resid_.ptr<float>(y);
+            for (int x = 0; x < w_; ++x)
+                o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
+        }
     }
     PipelineOut out;
     out.tbd = tracker_->update_f32(resid_.ptr<float>(0), frame.seq);
+    ++frame_no_;
+    if (ev) {
+        scene_x_ += stats_.shift[0] / 65536.0;
+        scene_y_ += stats_.shift[1] / 65536.0;
+    }
+    if (T_.scene_frames > 0)
+        scene_test(out.tbd);
     std::vector<Detection> dets;
     if (ev)
         dets = dbt_detect(res, w_, h_, static_cast<int>(stride), dbt_thr_, max_det_);

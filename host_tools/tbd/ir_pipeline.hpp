@@ -9,7 +9,9 @@
 // manager takes U8/U16/F32 frames) and the host-side detect-before-track baseline (ir_dbt.hpp).
 // step() takes the frame as the sensor gives it and returns both trackers' tracks and events.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -32,6 +34,20 @@ struct PipelineOut {
     int detections = 0;  ///< DBT detections of the frame
 };
 
+/** The scene-registered clutter map of the pipeline (TrackerSettings::clutter_*). */
+struct ClutterMap {
+    cv::Mat m, mean;  ///< mean square and mean of the whitened residual per scene pixel (CV_32F)
+    cv::Mat tmp;      ///< the map as read (blurred) for the frame
+    cv::Mat res16;    ///< the output residual, Q8.8 sigma units, masked pixels kept (CV_16S)
+    uint32_t frames = 0;
+};
+
+/** One frame of the clutter map: res (PFT_PIX_RES16 of stride px per row) in, resid (CV_32F of
+ *  the frame's size, masked 0) and c.res16 out; (sx, sy) the scene's shift since the last
+ *  frame (z(p) = b(p - shift)); ev false: a frame without evidence (all zero, map unchanged). */
+void clutter_step(ClutterMap &c, const TrackerSettings &t, const int16_t *res, std::size_t stride, bool ev,
+                  double sx, double sy, cv::Mat &resid);
+
 class IrPipeline {
 public:
     /** width x height frames of bit_depth bits (8..16), given to the stage as U16. */
@@ -43,7 +59,8 @@ public:
      *  InputError on a refused frame. */
     PipelineOut step(const pft_frame_t &frame);
 
-    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0)
+    const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
+    const cv::Mat &clutter_map() const { return cm_.m; } ///< mean square residual per pixel, scene-registered (empty without the map)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
     uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*
@@ -70,6 +87,18 @@ private:
     double dbt_thr_;
     int max_det_;
     cv::Mat resid_, u16_;
+    ClutterMap cm_;
+    // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
+    // each of its frames (the last scene_frames + 1), and whether it failed the test
+    struct SceneHist {
+        std::vector<std::array<double, 4>> h;  // x, y, scene x, scene y
+        bool scene = false;
+        uint32_t last = 0;
+    };
+    std::map<uint32_t, SceneHist> hist_;
+    double scene_x_ = 0, scene_y_ = 0;
+    uint32_t frame_no_ = 0;
+    void scene_test(tbd::FrameOut &out);
     double sigma_ = 0;
     int masked_ = 0;
 };

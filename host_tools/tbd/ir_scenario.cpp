@@ -119,7 +119,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
 {
     t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
-            "note"});
+            "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
+            "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
+            "clutter_thr", "clutter_box", "scene_frames", "scene_gate_px", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
@@ -136,6 +138,28 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("background_radius").fail("must exceed guard_radius");
     T.tile = static_cast<int>(t.integer_in("tile", T.tile, 8, 255));
     T.seed_offset = static_cast<uint64_t>(t.integer_in("seed_offset", 0, 0, INT64_MAX));
+    T.birth_peaks = static_cast<int>(t.integer_in("birth_peaks", T.birth_peaks, 0, 4096));  // PFT_TBD_MAX_PEAKS
+    auto num = [&](const char *k, double lo, double hi, std::optional<double> &dst) {
+        if (t.has(k))
+            dst = t.number_req_in(k, lo, hi);
+    };
+    num("peak_gamma", -1e4, 1e4, T.peak_gamma);
+    T.birth_share = t.number_in("birth_share", T.birth_share, 0.0, 0.95);
+    num("theta1", 0.0, 1.0, T.theta1);
+    num("pb", 0.0, 1.0, T.pb);
+    num("theta_end", 0.0, 1.0, T.theta_end);
+    T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", T.confirm_frames, 0, 16));
+    if (t.has("birth_correction"))
+        T.birth_correction = t.at("birth_correction").as_bool();
+    T.clutter_alpha = t.number_in("clutter_alpha", T.clutter_alpha, 0.0, 1.0);
+    T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, 64));
+    T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
+    T.clutter_thr = t.number_in("clutter_thr", T.clutter_thr, 1.0, 64.0);
+    if (t.has("clutter_box"))
+        T.clutter_box = t.at("clutter_box").as_bool();
+    if (t.has("clutter_mean"))
+        T.clutter_mean = t.at("clutter_mean").as_bool();
+    T.clutter_blur = static_cast<int>(t.integer_in("clutter_blur", T.clutter_blur, 0, 4));
 }
 
 void parse_dbt(const Field &d, DbtSettings &D)

@@ -84,6 +84,28 @@ struct TrackerSettings {
     int background_radius = 5, guard_radius = 2;///< spatial: local-mean window and its guard (half-sizes)
     int tile = 32;                              ///< noise-estimate tile side, px
     uint64_t seed_offset = 0;
+    // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
+    // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame
+    // TBD in the pipeline"); the optional ones, absent, keep the preset's value
+    int birth_peaks = 256;                      ///< births from the K strongest PSF-matched peaks (0: B_k, the paper)
+    double birth_share = 0.5;                   ///< Bernoulli search layer (0: the paper's per-particle existence)
+    bool birth_correction = true;               ///< importance correction of the births
+    int confirm_frames = 2;                     ///< consecutive frames with P > theta1 to confirm
+    std::optional<double> peak_gamma, theta1, pb, theta_end;
+    // clutter map (host side, ir_pipeline.hpp): per-pixel mean square of the whitened residual,
+    // registered to the scene (warped by the stage's measured shift every frame); both trackers
+    // see the residual of clutter pixels in the map's sigma (ir_pipeline.cpp, clutter_step)
+    double clutter_alpha = 0.1;                 ///< map update weight (0: no map)
+    // scene-motion test (host side): a TBD track whose displacement over the last scene_frames
+    // frames is within scene_gate_px per frame of the scene's (the stage's measured shift) is
+    // clutter drifting with the platform: never reported, and the clutter map is raised where it
+    // is; a track is reported once it has scene_frames frames and has not failed the test
+    int scene_frames = 5;                       ///< frames of the test (0: off)
+    double scene_gate_px = 0.15;                ///< px per frame
+    double clutter_thr = 2;                     ///< map value (sigma^2) above which a pixel is clutter
+    bool clutter_box = true;                    ///< read the map as its mean over the square (false: its largest value)
+    bool clutter_mean = false;                  ///< subtract the map's mean residual too
+    int clutter_blur = 1;                       ///< half-size of the square the map is read over (0: the pixel)
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
