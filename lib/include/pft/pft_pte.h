@@ -122,6 +122,8 @@ typedef struct {
     uint8_t cfar_ref;        /**< CFAR reference cells per side, 1..PFT_PTE_MAX_CFAR_REF (default 16) */
     uint8_t cfar_guard;      /**< CFAR guard cells per side (default 2) */
     pft_real_t zeta_clip;    /**< |zeta| clamp, in (0, 1000] (default 20) */
+    pft_seq_mode_t seq_mode; /**< PFT_SEQ_IGNORE (default: every frame one period after the previous) or PFT_SEQ_USE: pft_frame_t.seq numbers the frames (docs/design.md, "Time, sequence numbers and lost frames"): a repeated or past seq is refused with PFT_ERR_SEQ (nothing changed); a gap of k periods, 1 < k <= max_gap, predicts the DBT's Kalman tracks over k periods and restarts the window of PTE-TBD and DP-TBD (their operators and paths assume equally spaced frames: tracks end, ids go on); k > max_gap restarts every method. The *_update_real calls carry no seq: they count as the next frame */
+    uint16_t max_gap;        /**< largest gap predicted across, 1..PFT_SEQ_MAX_GAP (default PFT_SEQ_DEFAULT_GAP) */
 } pft_pte_input_t;
 
 /** Fills the input stage defaults (150 x 1 range-time profiles: set n_range, n_doppler after). */
@@ -152,6 +154,8 @@ typedef struct {
     pft_real_t amplitude; /**< amplitude estimate in sigma units (A / sigma; DBT: 0) */
     pft_real_t score;     /**< PTE: max_l T_l*; DP: path merit; DBT: peak zeta of the detection */
     uint32_t age;         /**< frames since the track started (0 at its first report) */
+    uint32_t last_seq;    /**< seq of the frame of the report (its last update; the last pft_frame_t seq + 1 per *_update_real call after it, 0 before any numbered frame) */
+    uint64_t last_timestamp_us; /**< timestamp_us of the last pft_frame_t fed */
 } pft_pte_report_t;
 
 /* ========================================== PTE-TBD ========================================= */
