@@ -155,6 +155,7 @@ typedef struct {
     pft_real_t score;     /**< PTE: max_l T_l*; DP: path merit; DBT: peak zeta of the detection */
     uint32_t age;         /**< frames since the track started (0 at its first report) */
     uint32_t last_seq;    /**< seq of the frame of the report (its last update; the last pft_frame_t seq + 1 per *_update_real call after it, 0 before any numbered frame) */
+    uint32_t gap;         /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the first frame after init or reset and on a restart (a gap above max_gap; PTE-TBD and DP-TBD restart on every gap) (an *_update_real call: 1) */
     uint64_t last_timestamp_us; /**< timestamp_us of the last pft_frame_t fed */
 } pft_pte_report_t;
 

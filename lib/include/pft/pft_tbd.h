@@ -226,6 +226,7 @@ typedef struct {
     pft_real_t n_eff;       /**< effective sample size of the weights */
     bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
     uint32_t last_seq;      /**< seq of the frame of the last update (0 before the first) */
+    uint32_t gap;           /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the first frame after init or reset and on a restart (a gap above max_gap) */
     uint64_t last_timestamp_us; /**< timestamp_us of that frame */
 } pft_tbd_estimate_t;
 

@@ -270,6 +270,7 @@ typedef struct {
     int16_t box_x1;                 /**< last column (inclusive) */
     int16_t box_y1;                 /**< last row (inclusive) */
     uint32_t last_seq;              /**< seq of the frame of the last update (or of the start) */
+    uint32_t gap;                   /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the start frame */
     uint64_t last_timestamp_us;     /**< timestamp_us of that frame */
 } pft_tsa_estimate_t;
 

@@ -468,7 +468,7 @@ static pft_status_t update_(pft_pte_dbt_t *b, const pft_frame_t *frame, const pf
     }
     track_births_(b, taken);
     reports_(b);
-    pft_pte_seq_take_(&b->seq, frame, b->rep, b->n_rep);
+    pft_pte_seq_take_(&b->cfg.in, &b->seq, frame, b->rep, b->n_rep);
     return PFT_OK;
 }
 

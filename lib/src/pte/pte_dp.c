@@ -225,7 +225,7 @@ static pft_status_t update_(pft_pte_dp_t *dp, const pft_frame_t *frame, const pf
     } else {
         dp->n_rep = 0u;
     }
-    pft_pte_seq_take_(&dp->seq, frame, dp->rep, dp->n_rep);
+    pft_pte_seq_take_(&dp->cfg.in, &dp->seq, frame, dp->rep, dp->n_rep);
     return PFT_OK;
 }
 

@@ -88,9 +88,17 @@ pft_status_t pft_pte_seq_check_(const pft_pte_input_t *in, const pft_pte_seq_t *
     return st;
 }
 
-void pft_pte_seq_take_(pft_pte_seq_t *s, const pft_frame_t *frame, pft_pte_report_t *rep,
-                       uint32_t n_rep)
+void pft_pte_seq_take_(const pft_pte_input_t *in, pft_pte_seq_t *s, const pft_frame_t *frame,
+                       pft_pte_report_t *rep, uint32_t n_rep)
 {
+    uint32_t gap = 1u;
+    if (frame != NULL && !s->set) {
+        gap = 0u;
+    } else if (frame != NULL && in->seq_mode == PFT_SEQ_USE) {
+        gap = frame->seq - s->last;
+    } else {
+        /* consecutive */
+    }
     if (frame != NULL) {
         s->last = frame->seq;
         s->ts = frame->timestamp_us;
@@ -103,6 +111,7 @@ void pft_pte_seq_take_(pft_pte_seq_t *s, const pft_frame_t *frame, pft_pte_repor
     for (uint32_t i = 0; i < n_rep; ++i) {
         rep[i].last_seq = s->last;
         rep[i].last_timestamp_us = s->ts;
+        rep[i].gap = gap;
     }
 }
 

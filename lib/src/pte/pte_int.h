@@ -55,8 +55,8 @@ pft_status_t pft_pte_seq_check_(const pft_pte_input_t *in, const pft_pte_seq_t *
                                 const pft_frame_t *frame, uint32_t *k);
 /* After an accepted update: the frame becomes the reference (frame NULL: seq + 1) and the
  * n_rep reports get its seq and timestamp. */
-void pft_pte_seq_take_(pft_pte_seq_t *s, const pft_frame_t *frame, pft_pte_report_t *rep,
-                       uint32_t n_rep);
+void pft_pte_seq_take_(const pft_pte_input_t *in, pft_pte_seq_t *s, const pft_frame_t *frame,
+                       pft_pte_report_t *rep, uint32_t n_rep);
 /* Converts row d of a checked frame to input units. */
 void pft_pte_frame_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
                         pft_real_t *z);

@@ -610,7 +610,7 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         initiate_(p);
     }
     reports_(p);
-    pft_pte_seq_take_(&p->seq, frame, p->rep, p->n_rep);
+    pft_pte_seq_take_(&p->cfg.in, &p->seq, frame, p->rep, p->n_rep);
     return PFT_OK;
 }
 

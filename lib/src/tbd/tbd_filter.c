@@ -772,6 +772,7 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     if (st != PFT_OK) {
         return st;
     }
+    uint32_t seen = f->seq_set ? gap : 0u;
     if (gap == 0u) {
         /* a gap above max_gap: start over on this frame, as after pft_tbd_filter_reset */
         (void)pft_tbd_filter_reset(f);
@@ -794,6 +795,7 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     pft_tbd_filter_step_(f, &sc);
     f->est.last_seq = frame->seq;
     f->est.last_timestamp_us = frame->timestamp_us;
+    f->est.gap = seen;
     return PFT_OK;
 }
 

@@ -502,6 +502,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
         return st; /* nothing touched */
     }
     t->n_events = 0u;
+    const uint32_t seen = t->seq_set ? gap : 0u;
     if (gap == 0u) {
         restart_(t); /* a gap above max_gap: the events of the ended tracks carry their last seq */
         gap = 1u;
@@ -530,6 +531,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     update_search_(t, res_search);
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;
+    t->search.est.gap = seen;
     confirm_(t);
     return PFT_OK;
 }

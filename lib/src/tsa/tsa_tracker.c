@@ -925,6 +925,7 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     } else {
         /* consecutive frames, or searching: the search grows per frame as it is */
     }
+    t->est.gap = t->cfg.seq_mode == PFT_SEQ_USE ? frame->seq - t->est.last_seq : 1u;
     t->est.last_seq = frame->seq;
     t->est.last_timestamp_us = frame->timestamp_us;
     weigh_out_t_ wo;
