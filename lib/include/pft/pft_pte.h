@@ -426,6 +426,8 @@ pft_status_t pft_pte_reset(pft_pte_t *pte);
  * Pushes one frame: updates every live track (Step 3), then runs the initiation when due.
  * Work per frame is bounded by max_tracks * L0*L1 * M_max * (2*scan_steps+1)^naxes *
  * TAPS^naxes operator taps plus (max_tracks + 1) DP passes of N * cells * gate steps.
+ * With in.seq_mode = PFT_SEQ_USE: PFT_ERR_SEQ for a repeated or past seq (nothing changed);
+ * a gap of more than one period restarts the window on this frame (tracks end, ids go on).
  */
 pft_status_t pft_pte_update(pft_pte_t *pte, const pft_frame_t *frame);
 /** Same with a frame given as n_range * n_doppler values in input units. */
@@ -472,7 +474,9 @@ pft_status_t pft_pte_dp_reset(pft_pte_dp_t *dp);
  * Pushes one frame; once K frames are held, runs the batch over the last K frames and
  * replaces the reports (ids follow a path whose last cell stays within +-cancel cells of a
  * previous report). Work per frame: at most (max_targets + 1) DP passes of
- * K * cells * (2*gate0 + 1) * (2*gate1 + 1) steps.
+ * K * cells * (2*gate0 + 1) * (2*gate1 + 1) steps. With in.seq_mode = PFT_SEQ_USE:
+ * PFT_ERR_SEQ for a repeated or past seq (nothing changed); a gap of more than one period
+ * restarts the batch on this frame (ids go on).
  */
 pft_status_t pft_pte_dp_update(pft_pte_dp_t *dp, const pft_frame_t *frame);
 /** Same with a frame given as n_range * n_doppler values in input units. */
@@ -524,7 +528,10 @@ pft_status_t pft_pte_dbt_init(pft_pte_dbt_t *dbt, const pft_pte_dbt_config_t *cf
                               size_t work_len);
 /** Back to the state right after init: tracks forgotten, ids restart at 1. */
 pft_status_t pft_pte_dbt_reset(pft_pte_dbt_t *dbt);
-/** Processes one frame (steps 1-6 above). */
+/** Processes one frame (steps 1-6 above). With in.seq_mode = PFT_SEQ_USE: PFT_ERR_SEQ for a
+ *  repeated or past seq (nothing changed); a gap of k <= in.max_gap periods first predicts
+ *  every live track over k - 1 periods (no miss counted); a larger gap restarts on this frame
+ *  (tracks end, ids go on). */
 pft_status_t pft_pte_dbt_update(pft_pte_dbt_t *dbt, const pft_frame_t *frame);
 /** Same with a frame given as n_range * n_doppler values in input units. */
 pft_status_t pft_pte_dbt_update_real(pft_pte_dbt_t *dbt, const pft_real_t *z);
