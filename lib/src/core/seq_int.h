@@ -26,11 +26,4 @@ static inline pft_status_t pft_seq_gap_(pft_seq_mode_t mode, uint32_t max_gap, b
     return PFT_OK;
 }
 
-/* True when mode and max_gap are valid config values. */
-static inline bool pft_seq_config_ok_(pft_seq_mode_t mode, uint32_t max_gap)
-{
-    return (mode == PFT_SEQ_IGNORE || mode == PFT_SEQ_USE) && max_gap >= 1u &&
-           max_gap <= PFT_SEQ_MAX_GAP;
-}
-
 #endif
