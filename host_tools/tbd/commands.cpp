@@ -32,6 +32,7 @@ extern "C" {
 #include "scenario.hpp"
 #include "sim.hpp"
 #include "tracker.hpp"
+#include <random>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -101,7 +102,30 @@ std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint6
     Tracker tr(make_config(s, seed), s.filter.mode == "single");
     std::vector<FrameOut> out;
     out.reserve(q.frames);
+    // lost frames (eval.drop_prob, eval.drop_frames): not fed to the tracker, which sees the
+    // gap in the sequence numbers; the frame's output is the tracker's last one (what a display
+    // holds), so the metrics count it
+    std::vector<bool> lost(static_cast<std::size_t>(q.frames), false);
+    for (int d : s.eval.drop_frames)
+        if (d >= 2 && d <= q.frames)
+            lost[static_cast<std::size_t>(d - 1)] = true;
+    if (s.eval.drop_prob > 0.0) {
+        std::mt19937_64 gen(seed * 0x9E3779B97F4A7C15ull + 0xD1B54A32D192ED03ull);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (int k = 1; k < q.frames; ++k)
+            if (u(gen) < s.eval.drop_prob)
+                lost[static_cast<std::size_t>(k)] = true;
+    }
     for (int k = 0; k < q.frames; ++k) {
+        if (lost[static_cast<std::size_t>(k)] && !out.empty()) {
+            FrameOut held = out.back();
+            held.frame = static_cast<uint32_t>(k + 1);
+            held.events.clear();
+            out.push_back(held);
+            if (bar)
+                bar->tick();
+            continue;
+        }
         out.push_back(tr.update_f32(q.images[k].data(), static_cast<uint32_t>(k + 1)));
         if (bar)
             bar->tick();

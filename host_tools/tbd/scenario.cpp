@@ -104,7 +104,7 @@ void parse_filter(const Field &f, FilterSettings &F)
             "d_current", "force_constraint", "window", "kf_variant", "q1", "q2", "noise_sigma",
             "seed_offset", "d_region", "residual_search", "residual_tracks",
             "residual_margin", "end_lr_frames", "end_lr_max", "handover_gate", "birth_peaks",
-            "peak_gamma", "birth_share", "confirm_frames"});
+            "peak_gamma", "birth_share", "confirm_frames", "seq_mode", "max_gap"});
     F.mode = f.choice_or("mode", "multi", {"multi", "single"});
     F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
     F.preset = f.choice_or("preset", "paper", {"paper", "recommended"});
@@ -170,6 +170,9 @@ void parse_filter(const Field &f, FilterSettings &F)
         F.d_region = f.choice_or("d_region", "window", {"window", "pixel", "none"});
     if (f.has("kf_variant"))
         F.kf_variant = f.choice_or("kf_variant", "exact", {"exact", "paper"});
+    if (f.has("seq_mode"))
+        F.seq_mode = f.choice_or("seq_mode", "ignore", {"ignore", "use"});
+    integer("max_gap", 1, 64, F.max_gap);  // PFT_SEQ_MAX_GAP
 }
 
 /** "eval" and "output". */
@@ -177,13 +180,23 @@ void parse_eval_output(const Field &root, Scenario &s)
 {
     if (root.has("eval")) {
         Field e = root.at("eval");
-        e.only({"runs", "base_seed", "d_c", "d_assoc", "gospa_c", "gospa_p"});
+        e.only({"runs", "base_seed", "d_c", "d_assoc", "gospa_c", "gospa_p", "drop_prob", "drop_frames"});
         s.eval.runs = static_cast<unsigned>(e.integer_in("runs", 100, 1, 10000000));
         s.eval.base_seed = static_cast<uint64_t>(e.integer_in("base_seed", 1, 0, INT64_MAX));
         s.eval.d_c = e.number_in("d_c", 1.0, 1e-9, 1e9);
         s.eval.d_assoc = e.number_in("d_assoc", 3.0, 1e-9, 1e9);
         s.eval.gospa_c = e.number_in("gospa_c", 0.0, 0.0, 1e9);
         s.eval.gospa_p = e.number_in("gospa_p", 2.0, 1.0, 1e6);
+        s.eval.drop_prob = e.number_in("drop_prob", 0.0, 0.0, 0.9);
+        if (e.has("drop_frames")) {
+            Field d = e.at("drop_frames");
+            for (std::size_t i = 0; i < d.size(); ++i) {
+                int64_t v = d.at(i).as_int();
+                if (v < 2 || v > 1000000)
+                    d.at(i).fail("a 1-based frame number above 1 (the first frame is never lost)");
+                s.eval.drop_frames.push_back(static_cast<int>(v));
+            }
+        }
     }
     if (root.has("output")) {
         Field o = root.at("output");

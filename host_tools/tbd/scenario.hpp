@@ -41,6 +41,8 @@ struct FilterSettings {
     std::optional<int> birth_peaks, confirm_frames;
     std::optional<std::string> d_region;  ///< "window" | "pixel" | "none"
     std::optional<std::string> kf_variant;
+    std::optional<std::string> seq_mode;  ///< "ignore" | "use": frame sequence numbers (docs/design.md)
+    std::optional<int> max_gap;
 };
 
 struct EvalSettings {
@@ -50,6 +52,8 @@ struct EvalSettings {
     double d_assoc = 3.0;             ///< track-to-target association gate (pixels)
     double gospa_c = 0.0;             ///< GOSPA/OSPA cut-off (pixels; 0: d_assoc)
     double gospa_p = 2.0;             ///< GOSPA/OSPA order
+    double drop_prob = 0.0;           ///< each frame after the first is lost with this probability (per run seed)
+    std::vector<int> drop_frames;     ///< 1-based frames lost in every run
 };
 
 struct OutputSettings {

@@ -99,6 +99,10 @@ void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c)
     R(F.birth_share, c.birth_share);
     if (F.confirm_frames)
         c.confirm_frames = static_cast<uint8_t>(*F.confirm_frames);
+    if (F.seq_mode)
+        c.seq_mode = *F.seq_mode == "use" ? PFT_SEQ_USE : PFT_SEQ_IGNORE;
+    if (F.max_gap)
+        c.max_gap = static_cast<uint16_t>(*F.max_gap);
 }
 
 nlohmann::json config_to_json(const pft_tbd_config_t &c)
@@ -126,7 +130,8 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
             {"n_search", c.n_search},
             {"n_track", c.n_track}, {"max_targets", c.max_targets},
             {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},
-            {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"}};
+            {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"},
+            {"seq_mode", c.seq_mode == PFT_SEQ_USE ? "use" : "ignore"}, {"max_gap", c.max_gap}};
 }
 
 namespace {
@@ -179,7 +184,8 @@ FrameOut Tracker::update_single(const pft_frame_t &frame)
     pft_status_t st = pft_tbd_filter_update(&flt_, &frame);
     if (st != PFT_OK)
         lib_error("pft_tbd_filter_update", st);
-    ++frame_;
+    // frame numbers: the source's seq when the tracker reads it (lost frames leave holes)
+    frame_ = cfg_.seq_mode == PFT_SEQ_USE ? frame.seq : frame_ + 1;
     out.frame = frame_;
     active_ = cfg_.n_search;
     pft_tbd_estimate_t e;
@@ -218,7 +224,8 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
     pft_status_t st = pft_tbd_update(&mgr_, &frame);
     if (st != PFT_OK)
         lib_error("pft_tbd_update", st);
-    out.frame = pft_tbd_frame(&mgr_);
+    const bool by_seq = cfg_.seq_mode == PFT_SEQ_USE;  // frame numbers: the source's seq
+    out.frame = by_seq ? frame.seq : pft_tbd_frame(&mgr_);
     pft_tbd_estimate_t e;
     pft_tbd_search_estimate(&mgr_, &e);
     out.search_p = from_real(e.p_exist);
@@ -248,7 +255,7 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
     if (ne > ev.size())
         ne = ev.size();
     for (std::size_t i = 0; i < ne; ++i) {
-        out.events.push_back({static_cast<int>(ev[i].kind), ev[i].id, ev[i].frame,
+        out.events.push_back({static_cast<int>(ev[i].kind), ev[i].id, by_seq ? frame.seq : ev[i].frame,
                               from_real(ev[i].x), from_real(ev[i].y)});
         if (ev[i].kind == PFT_TBD_EV_ENDED)
             ++layers;  // that layer was updated this frame before it ended

@@ -31,6 +31,19 @@
  * a status code before any state is touched: a refused update leaves the instance and its
  * workspace byte-for-byte unchanged.
  *
+ * Time and lost frames (docs/design.md, "Time, sequence numbers and lost frames"): with
+ * cfg.seq_mode = PFT_SEQ_USE the filters read frame->seq. A frame k periods after the last
+ * accepted one (1 < k <= cfg.max_gap) is a frame preceded by k - 1 lost frames: every particle
+ * makes k - 1 moves of the dynamics and of the existence chain (deaths with pd; no births,
+ * because births are drawn from a frame's pixels) before the usual update, which is the k-step
+ * prediction of the model (the RBPF's Kalman velocity takes those moves as its measurements);
+ * the manager's residual likelihood predicts the other tracks over k T. k > cfg.max_gap
+ * restarts (the standalone filter as after reset, the manager ends every track with an ENDED
+ * event and restarts its search layer; track ids stay unique). A repeated seq or one from the
+ * past is refused with PFT_ERR_SEQ, state untouched. Estimates, tracks and events carry the seq
+ * and timestamp of the frame of their last update. The default PFT_SEQ_IGNORE keeps the
+ * behaviour of a source that does not number its frames (seq is recorded only).
+ *
  * Determinism: each filter owns a pft_rng_t seeded from cfg.seed (+ layer index in the
  * manager). Random decisions are made on integers (probabilities are quantised to 1/65536 in
  * both builds), so float and q16 builds consume the same integer stream.
@@ -151,6 +164,9 @@ typedef struct {
     pft_tbd_kind_t kind;     /**< RBPF (default) or PF baseline, for every layer and the standalone filter */
     pft_tbd_kf_variant_t kf_variant; /**< RBPF Kalman variant (default exact) */
     uint64_t seed;           /**< RNG seed; layer l of the manager uses seed + l (default 1) */
+    /* time */
+    pft_seq_mode_t seq_mode; /**< PFT_SEQ_IGNORE (default: every frame is one period T after the previous one) or PFT_SEQ_USE: a frame k > 1 periods after the last accepted one (frame seq numbers) first moves every particle k - 1 times without a frame (existence and dynamics, no births, no weighting), then updates as usual; see "Time and lost frames" above */
+    uint16_t max_gap;        /**< PFT_SEQ_USE: a gap of more than max_gap periods restarts the filter or manager on that frame (the manager ends every track: ENDED events) (default PFT_SEQ_DEFAULT_GAP), 1..PFT_SEQ_MAX_GAP */
 } pft_tbd_config_t;
 
 /**
@@ -209,6 +225,9 @@ typedef struct {
     pft_real_t log_mean_lr; /**< log of the mean unnormalised weight (frame likelihood ratio) */
     pft_real_t n_eff;       /**< effective sample size of the weights */
     bool valid;             /**< false until some particle had E = 1 (x..pos_cov keep their last values) */
+    uint32_t last_seq;      /**< seq of the frame of the last update (0 before the first) */
+    uint32_t gap;           /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the first frame after init or reset and on a restart (a gap above max_gap) */
+    uint64_t last_timestamp_us; /**< timestamp_us of that frame */
 } pft_tbd_estimate_t;
 
 /* ---------------------------------- measurement model -------------------------------------- */
@@ -283,14 +302,16 @@ pft_status_t pft_tbd_filter_init(pft_tbd_filter_t *f, const pft_tbd_config_t *cf
 pft_status_t pft_tbd_filter_reset(pft_tbd_filter_t *f);
 
 /** One frame: existence prediction, propagation and births, weighting, estimates,
- *  systematic resampling. Same as pft_tbd_filter_update_ex with no exclusion regions. */
+ *  systematic resampling (after k - 1 moves without a frame across a seq gap of k, see "Time
+ *  and lost frames"). Same as pft_tbd_filter_update_ex with no exclusion regions. */
 pft_status_t pft_tbd_filter_update(pft_tbd_filter_t *f, const pft_frame_t *frame);
 
 /**
  * One frame with exclusion regions: births are not drawn inside any region (the importance
  * correction counts only allowed pixels) and, when cfg.force_constraint is set, particles
  * whose window centre falls inside a region get E = 0. regions may be NULL when n_regions
- * is 0. Refused input (PFT_ERR_INVAL / PFT_ERR_FORMAT) leaves the filter untouched.
+ * is 0. Refused input (PFT_ERR_INVAL / PFT_ERR_FORMAT / PFT_ERR_SEQ for a repeated or past seq
+ * with PFT_SEQ_USE) leaves the filter untouched.
  */
 pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *frame,
                                       const pft_tbd_region_t *regions, size_t n_regions);
@@ -323,6 +344,8 @@ typedef struct {
     pft_real_t log_mean_lr; /**< track layer frame log likelihood ratio */
     uint32_t first_frame;   /**< frame number at which it was confirmed */
     uint32_t age;           /**< frames since confirmation (0 at the confirmation frame) */
+    uint32_t last_seq;      /**< seq of the frame of its last update */
+    uint64_t last_timestamp_us; /**< timestamp_us of that frame */
 } pft_tbd_track_t;
 
 /** What an event reports. */
@@ -338,6 +361,8 @@ typedef struct {
     uint32_t frame;         /**< frame number of the update */
     pft_real_t x;           /**< column position at the event (ENDED: the last estimate) */
     pft_real_t y;           /**< row position at the event */
+    uint32_t last_seq;      /**< seq of the track's last update: this frame, or the previous accepted frame for a track ended by a gap restart */
+    uint64_t last_timestamp_us; /**< timestamp_us of that frame */
 } pft_tbd_event_t;
 
 /** @cond internal */
@@ -392,8 +417,10 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t);
  * layer (with residual_search, on the frame minus every remaining track's PSF at its current
  * estimate; births from B_k or, with birth_peaks, from peaks), and confirm a new track when its
  * existence probability has exceeded theta1 on confirm_frames consecutive frames (if a track
- * slot is free; otherwise the search layer keeps running without confirming).
- * Refused input leaves everything untouched.
+ * slot is free; otherwise the search layer keeps running without confirming). With
+ * PFT_SEQ_USE, a seq gap of k <= max_gap first moves every layer k - 1 times without a frame; a
+ * gap above max_gap ends every track (ENDED events) and restarts the search layer first.
+ * Refused input (PFT_ERR_INVAL, PFT_ERR_FORMAT, PFT_ERR_SEQ) leaves everything untouched.
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
 

@@ -218,6 +218,16 @@ typedef struct {
      *  (default 48) */
     uint16_t map_margin;
     uint64_t seed;                /**< RNG seed (default 1) */
+    /** PFT_SEQ_IGNORE (default: every frame one period after the previous) or PFT_SEQ_USE
+     *  (docs/design.md, "Time, sequence numbers and lost frames"): the start frame sets the
+     *  reference; a repeated or past seq is refused with PFT_ERR_SEQ (nothing changed); a
+     *  frame k periods on, 1 < k <= max_gap, first runs the motion model k - 1 times without a
+     *  frame (the conservative fit, the free model's propagation with its noise, so the cloud
+     *  widens, and the fit's prediction appended as the reference point of each lost frame);
+     *  k > max_gap enters the loss search at the last good position with loss_search, else
+     *  is predicted over max_gap periods */
+    pft_seq_mode_t seq_mode;
+    uint16_t max_gap;             /**< 1..PFT_SEQ_MAX_GAP (default PFT_SEQ_DEFAULT_GAP) */
 } pft_tsa_config_t;
 
 /** Tracker state reported with each estimate. */
@@ -259,6 +269,9 @@ typedef struct {
     int16_t box_y0;                 /**< first row */
     int16_t box_x1;                 /**< last column (inclusive) */
     int16_t box_y1;                 /**< last row (inclusive) */
+    uint32_t last_seq;              /**< seq of the frame of the last update (or of the start) */
+    uint32_t gap;                   /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the start frame */
+    uint64_t last_timestamp_us;     /**< timestamp_us of that frame */
 } pft_tsa_estimate_t;
 
 /** One particle of the last frame. */
@@ -370,9 +383,10 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
                            uint32_t n);
 
 /**
- * One frame (docs/algorithms.md 4.4 steps 1-7). PFT_ERR_INVAL (NULL, not initialised),
- * PFT_ERR_STATE before pft_tsa_start, PFT_ERR_FORMAT for a bad frame; refusals leave instance
- * and workspace unchanged. Losing the target is not an error: see pft_tsa_estimate_t.state.
+ * One frame (docs/algorithms.md 4.4 steps 1-7), after k - 1 predictions without a frame across
+ * a seq gap of k (cfg.seq_mode). PFT_ERR_INVAL (NULL, not initialised), PFT_ERR_STATE before
+ * pft_tsa_start, PFT_ERR_FORMAT for a bad frame, PFT_ERR_SEQ for a repeated or past seq
+ * (PFT_SEQ_USE); refusals leave instance and workspace unchanged. Losing the target is not an error: see pft_tsa_estimate_t.state.
  */
 pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame);
 

@@ -74,6 +74,26 @@ typedef struct {
 } pft_frame_t;
 
 /**
+ * How a tracker reads pft_frame_t.seq (docs/design.md, "Time, sequence numbers and lost frames").
+ * With PFT_SEQ_USE the first frame after init, reset or start sets the reference; each later
+ * frame is k = seq - previous accepted seq frame periods on (uint32 arithmetic, so the count
+ * wraps from 2^32 - 1 to 0 without a jump): k = 0 (a duplicate) and k >= 2^31 (a frame from the
+ * past) are refused with PFT_ERR_SEQ and change nothing; 1 < k <= max_gap predicts over k
+ * periods; k > max_gap restarts the tracker on that frame (its tracks end). Timestamps are
+ * recorded, not interpreted: the frame period stays the configured T.
+ */
+typedef enum {
+    PFT_SEQ_IGNORE = 0, /**< every frame is one period after the previous one, whatever its seq
+                             (default: sources that do not number their frames; old behaviour) */
+    PFT_SEQ_USE = 1     /**< gaps in seq are lost frames, as above */
+} pft_seq_mode_t;
+
+/** Largest max_gap a tracker config accepts (it bounds the work of one update). */
+#define PFT_SEQ_MAX_GAP 64u
+/** Default max_gap of every tracker config. */
+#define PFT_SEQ_DEFAULT_GAP 8u
+
+/**
  * Checks a frame descriptor: non-NULL data, known format, stride large enough,
  * and, when width/height are non-zero, the exact expected size.
  * @param frame the descriptor to check.

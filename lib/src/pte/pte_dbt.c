@@ -138,6 +138,7 @@ pft_status_t pft_pte_dbt_reset(pft_pte_dbt_t *b)
     memset(b->tracks, 0, (size_t)b->cfg.max_tracks * sizeof(pft_pte_dbt_track_t));
     b->ring.count = 0u;
     b->frames_in = 0u;
+    memset(&b->seq, 0, sizeof(b->seq));
     b->n_plots = 0u;
     b->next_id = 1u;
     b->n_rep = 0u;
@@ -278,6 +279,27 @@ static void assign_(pft_pte_dbt_t *b, bool confirmed, int16_t *asg, bool *taken)
     }
 }
 
+/* Lost frames (a seq gap of periods + 1): every live track's Kalman prediction over periods
+ * more frames (no update, no miss counted, age unchanged); step 2 adds the last one. */
+static void coast_(pft_pte_dbt_t *b, uint32_t periods)
+{
+    static const pft_real_t F[4] = {PFT_C(1.0), PFT_C(1.0), PFT_C(0.0), PFT_C(1.0)};
+    const pft_pte_dbt_config_t *c = &b->cfg;
+    for (uint32_t t = 0; t < c->max_tracks; ++t) {
+        pft_pte_dbt_track_t *tr = &b->tracks[t];
+        for (uint32_t a = 0; tr->live && a < b->naxes; ++a) {
+            pft_real_t Q[4];
+            Q[0] = pft_div_i(c->q[a], 3);
+            Q[1] = pft_div_i(c->q[a], 2);
+            Q[2] = Q[1];
+            Q[3] = c->q[a];
+            for (uint32_t i = 0; i < periods; ++i) {
+                pft_kf2_predict(tr->x[a], tr->P[a], F, Q);
+            }
+        }
+    }
+}
+
 /* Steps 2-3: predicts every live track and fills the gating distances d2[t * np + p]. */
 static void predict_gate_(pft_pte_dbt_t *b)
 {
@@ -408,7 +430,22 @@ static pft_status_t update_(pft_pte_dbt_t *b, const pft_frame_t *frame, const pf
     if (b == NULL || b->tracks == NULL) {
         return PFT_ERR_INVAL;
     }
-    pft_status_t st = pft_pte_push_(&b->cfg.in, &b->ring, b->row, frame, z);
+    uint32_t k = 1u;
+    pft_status_t st = pft_pte_seq_check_(&b->cfg.in, &b->seq, frame, &k);
+    if (st != PFT_OK) {
+        return st; /* nothing touched */
+    }
+    if (k == 0u) {
+        /* a gap above max_gap: start over on this frame (ids go on) */
+        const uint16_t id = b->next_id;
+        (void)pft_pte_dbt_reset(b);
+        b->next_id = id;
+    } else if (k > 1u) {
+        coast_(b, k - 1u);
+    } else {
+        /* consecutive frames */
+    }
+    st = pft_pte_push_(&b->cfg.in, &b->ring, b->row, frame, z);
     if (st != PFT_OK) {
         return st;
     }
@@ -431,6 +468,7 @@ static pft_status_t update_(pft_pte_dbt_t *b, const pft_frame_t *frame, const pf
     }
     track_births_(b, taken);
     reports_(b);
+    pft_pte_seq_take_(&b->cfg.in, &b->seq, frame, b->rep, b->n_rep);
     return PFT_OK;
 }
 

@@ -127,6 +127,7 @@ pft_status_t pft_pte_dp_reset(pft_pte_dp_t *dp)
     dp->ring.count = 0u;
     dp->ring.head = (uint16_t)(dp->ring.len - 1u);
     dp->frames_in = 0u;
+    memset(&dp->seq, 0, sizeof(dp->seq));
     dp->next_id = 1u;
     dp->n_rep = 0u;
     dp->n_prev = 0u;
@@ -203,7 +204,18 @@ static pft_status_t update_(pft_pte_dp_t *dp, const pft_frame_t *frame, const pf
     if (dp == NULL || dp->ring.buf == NULL) {
         return PFT_ERR_INVAL;
     }
-    pft_status_t st = pft_pte_push_(&dp->cfg.in, &dp->ring, dp->row, frame, z);
+    uint32_t k = 1u;
+    pft_status_t st = pft_pte_seq_check_(&dp->cfg.in, &dp->seq, frame, &k);
+    if (st != PFT_OK) {
+        return st; /* nothing touched */
+    }
+    if (k != 1u) {
+        /* lost frames: the batch window restarts on this frame (ids go on) */
+        const uint16_t id = dp->next_id;
+        (void)pft_pte_dp_reset(dp);
+        dp->next_id = id;
+    }
+    st = pft_pte_push_(&dp->cfg.in, &dp->ring, dp->row, frame, z);
     if (st != PFT_OK) {
         return st;
     }
@@ -213,6 +225,7 @@ static pft_status_t update_(pft_pte_dp_t *dp, const pft_frame_t *frame, const pf
     } else {
         dp->n_rep = 0u;
     }
+    pft_pte_seq_take_(&dp->cfg.in, &dp->seq, frame, dp->rep, dp->n_rep);
     return PFT_OK;
 }
 

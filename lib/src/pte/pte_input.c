@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "pte_int.h"
+#include "../core/seq_int.h"
 #include "../core/config_int.h"
 
 void pft_pte_input_default(pft_pte_input_t *in)
@@ -20,6 +21,8 @@ void pft_pte_input_default(pft_pte_input_t *in)
     in->cfar_ref = 16u;
     in->cfar_guard = 2u;
     in->zeta_clip = PFT_C(20.0);
+    in->seq_mode = PFT_SEQ_IGNORE;
+    in->max_gap = (uint16_t)PFT_SEQ_DEFAULT_GAP;
 }
 
 const char *pft_pte_input_bad_(const pft_pte_input_t *in)
@@ -49,6 +52,12 @@ const char *pft_pte_input_bad_(const pft_pte_input_t *in)
     if (in->cfar_ref < 1u || in->cfar_ref > PFT_PTE_MAX_CFAR_REF) {
         return "in.cfar_ref";
     }
+    if (in->seq_mode != PFT_SEQ_IGNORE && in->seq_mode != PFT_SEQ_USE) {
+        return "in.seq_mode";
+    }
+    if (in->max_gap < 1u || in->max_gap > PFT_SEQ_MAX_GAP) {
+        return "in.max_gap";
+    }
     return NULL;
 }
 
@@ -63,6 +72,47 @@ pft_status_t pft_pte_input_check(const pft_pte_input_t *in, const char **field)
     const char *bad = pft_pte_input_bad_(in);
     /* the names without the "in." of a tracker configuration */
     return pft_pte_check_done_(bad == NULL ? NULL : bad + 3, field);
+}
+
+pft_status_t pft_pte_seq_check_(const pft_pte_input_t *in, const pft_pte_seq_t *s,
+                                const pft_frame_t *frame, uint32_t *k)
+{
+    *k = 1u;
+    if (frame == NULL) {
+        return PFT_OK; /* values without a seq: the next frame */
+    }
+    pft_status_t st = pft_pte_frame_check_(in, frame);
+    if (st == PFT_OK) {
+        st = pft_seq_gap_(in->seq_mode, in->max_gap, s->set, s->last, frame->seq, k);
+    }
+    return st;
+}
+
+void pft_pte_seq_take_(const pft_pte_input_t *in, pft_pte_seq_t *s, const pft_frame_t *frame,
+                       pft_pte_report_t *rep, uint32_t n_rep)
+{
+    uint32_t gap = 1u;
+    if (frame != NULL && !s->set) {
+        gap = 0u;
+    } else if (frame != NULL && in->seq_mode == PFT_SEQ_USE) {
+        gap = frame->seq - s->last;
+    } else {
+        /* consecutive */
+    }
+    if (frame != NULL) {
+        s->last = frame->seq;
+        s->ts = frame->timestamp_us;
+        s->set = true;
+    } else if (s->set) {
+        s->last++;
+    } else {
+        /* no numbered frame yet: reports carry 0 */
+    }
+    for (uint32_t i = 0; i < n_rep; ++i) {
+        rep[i].last_seq = s->last;
+        rep[i].last_timestamp_us = s->ts;
+        rep[i].gap = gap;
+    }
 }
 
 pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *frame)

@@ -48,6 +48,15 @@ static inline uint16_t pft_pte_new_id_(uint16_t *next)
 /* ------------------------------------------------------------------ input stage and ring */
 /* Checks a frame against the input stage (size, format, finiteness). */
 pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *frame);
+/* The seq rule (docs/design.md, "Time, sequence numbers and lost frames") before an update
+ * touches anything: the frame check, then *k as pft_seq_gap_ (1 for frame NULL, the
+ * *_update_real calls). */
+pft_status_t pft_pte_seq_check_(const pft_pte_input_t *in, const pft_pte_seq_t *s,
+                                const pft_frame_t *frame, uint32_t *k);
+/* After an accepted update: the frame becomes the reference (frame NULL: seq + 1) and the
+ * n_rep reports get its seq and timestamp. */
+void pft_pte_seq_take_(const pft_pte_input_t *in, pft_pte_seq_t *s, const pft_frame_t *frame,
+                       pft_pte_report_t *rep, uint32_t n_rep);
 /* Converts row d of a checked frame to input units. */
 void pft_pte_frame_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
                         pft_real_t *z);

@@ -370,6 +370,7 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
         memset(p->bank, 0, (size_t)p->cfg.max_tracks * p->nbank * sizeof(pft_pte_bank_t));
     }
     p->frames_in = 0u;
+    memset(&p->seq, 0, sizeof(p->seq));
     p->next_id = 1u;
     p->since_search = 0u;
     p->n_rep = 0u;
@@ -574,7 +575,18 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
     if (p == NULL || p->ring.buf == NULL) {
         return PFT_ERR_INVAL;
     }
-    pft_status_t st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
+    uint32_t k = 1u;
+    pft_status_t st = pft_pte_seq_check_(&p->cfg.in, &p->seq, frame, &k);
+    if (st != PFT_OK) {
+        return st; /* nothing touched */
+    }
+    if (k != 1u) {
+        /* lost frames: the window restarts on this frame (tracks end, ids go on) */
+        const uint16_t id = p->next_id;
+        (void)pft_pte_reset(p);
+        p->next_id = id;
+    }
+    st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
     if (st != PFT_OK) {
         return st;
     }
@@ -598,6 +610,7 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         initiate_(p);
     }
     reports_(p);
+    pft_pte_seq_take_(&p->cfg.in, &p->seq, frame, p->rep, p->n_rep);
     return PFT_OK;
 }
 

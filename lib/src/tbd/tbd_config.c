@@ -60,6 +60,8 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->kind = PFT_TBD_RBPF;
     cfg->kf_variant = PFT_TBD_KF_EXACT;
     cfg->seed = 1u;
+    cfg->seq_mode = PFT_SEQ_IGNORE;
+    cfg->max_gap = (uint16_t)PFT_SEQ_DEFAULT_GAP;
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -235,6 +237,12 @@ static const char *refused_sizes_(const pft_tbd_config_t *c)
     }
     if (c->kf_variant != PFT_TBD_KF_EXACT && c->kf_variant != PFT_TBD_KF_PAPER) {
         return "kf_variant";
+    }
+    if (c->seq_mode != PFT_SEQ_IGNORE && c->seq_mode != PFT_SEQ_USE) {
+        return "seq_mode";
+    }
+    if (c->max_gap < 1u || c->max_gap > PFT_SEQ_MAX_GAP) {
+        return "max_gap";
     }
     return NULL;
 }

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "tbd_int.h"
+#include "../core/seq_int.h"
 #include "../core/num_int.h"
 #include "../core/resample_int.h"
 
@@ -592,6 +593,31 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc)
     }
 }
 
+void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods)
+{
+    const pft_tbd_config_t *c = &f->cfg;
+    const bool bern = f->births && c->birth_share > PFT_C(0.0);
+    step_ctx_t x;
+    memset(&x, 0, sizeof x);
+    x.tab = f->tab;
+    x.T = c->T;
+    x.e_max = (uint8_t)(f->tab->age_cap + 1u);
+    x.can_birth = false; /* x.sc is never read then */
+    x.rb = f->kind == PFT_TBD_RBPF;
+    for (uint32_t i = 0; i < periods; ++i) {
+        if (bern) {
+            uint32_t nb = 0u, np = 0u;
+            const pft_real_t q = f->bq;
+            move_bern_(f, &x, 0u, &nb, &np);
+            f->bq = pft_min(pft_add(pft_mul(c->pb, pft_sub(PFT_C(1.0), q)),
+                                    pft_mul(pft_sub(PFT_C(1.0), c->pd), q)),
+                            PFT_C(1.0));
+        } else {
+            move_(f, &x);
+        }
+    }
+}
+
 /* Estimates of a set with equal weights (the handed-over set): means, then the spread about
  * them. Sums of n <= 2^22 values (q16: each < 2^31, so < 2^53). */
 static void equal_weight_estimate_(pft_tbd_filter_t *f)
@@ -770,8 +796,24 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
         return PFT_ERR_STATE; /* not initialised, or a layer owned by a pft_tbd_t */
     }
     pft_status_t st = pft_tbd_frame_check_(&f->cfg, frame);
+    uint32_t gap = 1u;
+    if (st == PFT_OK) {
+        st = pft_seq_gap_(f->cfg.seq_mode, f->cfg.max_gap, f->seq_set, f->last_seq, frame->seq,
+                          &gap);
+    }
     if (st != PFT_OK) {
         return st;
+    }
+    uint32_t seen = f->seq_set ? gap : 0u;
+    if (gap == 0u) {
+        /* a gap above max_gap: start over on this frame, as after pft_tbd_filter_reset */
+        (void)pft_tbd_filter_reset(f);
+        gap = 1u;
+    }
+    f->seq_set = true;
+    f->last_seq = frame->seq;
+    if (gap > 1u) {
+        pft_tbd_filter_coast_(f, gap - 1u);
     }
     pft_tbd_frame_convert_(&f->cfg, &f->model, frame, f->img);
     size_t npix = (size_t)f->cfg.width * f->cfg.height;
@@ -783,6 +825,9 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
     pft_tbd_scene_build_(&f->cfg, f->gamma_w, f->img, n_regions > 0u ? f->mask : NULL, f->cand,
                          &sc);
     pft_tbd_filter_step_(f, &sc);
+    f->est.last_seq = frame->seq;
+    f->est.last_timestamp_us = frame->timestamp_us;
+    f->est.gap = seen;
     return PFT_OK;
 }
 

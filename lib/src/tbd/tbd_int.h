@@ -95,6 +95,10 @@ void pft_tbd_filter_clear_(pft_tbd_filter_t *f);
 void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f);
 /* One iteration on a prepared scene (docs/algorithms.md 2.5). */
 void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
+/* periods frame periods without a frame (a seq gap, docs/design.md "Time, sequence numbers and
+ * lost frames"): the existence chain and the dynamics of every particle, no births, no weights;
+ * the Bernoulli form's existence probability is predicted as many times. */
+void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods);
 /* Hand-over: fills dst with dst->n particles by systematic resampling (equal weights) of the
  * E = 1 particles of src (only those whose window centre pixel is set in gate, when gate is
  * not NULL) with dst's RNG, ages kept, and sets dst->est from the handed-over set (p_exist and

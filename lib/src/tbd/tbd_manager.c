@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "tbd_int.h"
+#include "../core/seq_int.h"
 
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
 {
@@ -178,6 +179,8 @@ static void push_event_(pft_tbd_t *t, pft_tbd_event_kind_t kind, uint32_t id, pf
     ev->frame = t->frame;
     ev->x = x;
     ev->y = y;
+    ev->last_seq = t->last_seq;
+    ev->last_timestamp_us = t->last_ts;
 }
 
 /* Half-size of the subtracted PSF window. */
@@ -215,12 +218,14 @@ static void subtract_psf_(const pft_tbd_t *t, pft_real_t x, pft_real_t y, pft_re
                      pft_neg(pft_mul(intensity, m->kc)), half);
 }
 
-/* Predicted position of a track record one frame ahead (x + v T). */
-static void predict_(const pft_tbd_config_t *cfg, const pft_tbd_track_t *r, pft_real_t *x,
-                     pft_real_t *y)
+/* Predicted position of a track record at this frame (x + v T, or x + v k T across a seq gap
+ * of k periods). */
+static void predict_(const pft_tbd_t *t, const pft_tbd_track_t *r, pft_real_t *x, pft_real_t *y)
 {
-    *x = pft_add(r->x, pft_mul(r->vx, cfg->T));
-    *y = pft_add(r->y, pft_mul(r->vy, cfg->T));
+    const pft_real_t T =
+        t->gap > 1u ? pft_mul(t->cfg.T, pft_from_int((int32_t)t->gap)) : t->cfg.T;
+    *x = pft_add(r->x, pft_mul(r->vx, T));
+    *y = pft_add(r->y, pft_mul(r->vy, T));
 }
 
 /* The short-window evidence test: log_mean_lr < end_lr_max in each of the last n frames. */
@@ -321,7 +326,7 @@ static void update_tracks_(pft_tbd_t *t, bool residual)
         for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
-                predict_(cfg, &t->records[u], &px, &py);
+                predict_(t, &t->records[u], &px, &py);
                 subtract_psf_(t, px, py, t->records[u].intensity, half);
             }
         }
@@ -329,7 +334,7 @@ static void update_tracks_(pft_tbd_t *t, bool residual)
         for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
-                predict_(cfg, &t->records[u], &px, &py);
+                predict_(t, &t->records[u], &px, &py);
                 restore_psf_(cfg, t->res, t->img, px, py, half);
             }
         }
@@ -359,6 +364,8 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
             continue;
         }
         record_from_est_(rec, &tf->est);
+        rec->last_seq = t->last_seq;
+        rec->last_timestamp_us = t->last_ts;
         if (rec->age < UINT32_MAX) {
             ++rec->age;
         }
@@ -436,6 +443,8 @@ static void confirm_(pft_tbd_t *t)
         tf->est = t->search.est; /* docs/algorithms.md 2.7: the search layer's estimate */
     }
     record_from_est_(rec, &tf->est);
+    rec->last_seq = t->last_seq;
+    rec->last_timestamp_us = t->last_ts;
     rec->first_frame = t->frame;
     rec->age = 0u;
     tf->frames = 0u;
@@ -444,6 +453,35 @@ static void confirm_(pft_tbd_t *t)
     t->above = 0u;
     ++t->n_tracks;
     push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+}
+
+/* periods lost frames (a seq gap): every live layer moves that many times without a frame. */
+static void coast_(pft_tbd_t *t, uint32_t periods)
+{
+    for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
+        if (t->records[k].id != 0u) {
+            pft_tbd_filter_coast_(&t->tracks[k], periods);
+        }
+    }
+    pft_tbd_filter_coast_(&t->search, periods);
+}
+
+/* A seq gap above max_gap: every track ends (an ENDED event at its last estimate), the search
+ * layer starts over as on the first frame; ids and the frame count go on. */
+static void restart_(pft_tbd_t *t)
+{
+    for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
+        pft_tbd_track_t *rec = &t->records[k];
+        if (rec->id != 0u) {
+            push_event_(t, PFT_TBD_EV_ENDED, rec->id, rec->x, rec->y);
+            memset(rec, 0, sizeof(*rec));
+        }
+    }
+    t->n_tracks = 0u;
+    t->above = 0u;
+    memset(t->search.cur.e, 0, t->search.n);
+    pft_tbd_filter_reset_stats_(&t->search);
+    t->search.frames = 0u; /* births with eta, as on the first frame */
 }
 
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
@@ -456,14 +494,31 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     }
     const pft_tbd_config_t *cfg = &t->cfg;
     pft_status_t st = pft_tbd_frame_check_(cfg, frame);
+    uint32_t gap = 1u;
+    if (st == PFT_OK) {
+        st = pft_seq_gap_(cfg->seq_mode, cfg->max_gap, t->seq_set, t->last_seq, frame->seq, &gap);
+    }
     if (st != PFT_OK) {
         return st; /* nothing touched */
     }
+    t->n_events = 0u;
+    const uint32_t seen = t->seq_set ? gap : 0u;
+    if (gap == 0u) {
+        restart_(t); /* a gap above max_gap: the events of the ended tracks carry their last seq */
+        gap = 1u;
+    } else if (gap > 1u) {
+        coast_(t, gap - 1u);
+    } else {
+        /* consecutive frames: nothing to predict beyond the update */
+    }
+    t->gap = gap;
+    t->seq_set = true;
+    t->last_seq = frame->seq;
+    t->last_ts = frame->timestamp_us;
     pft_tbd_frame_convert_(cfg, &t->search.model, frame, t->img);
     if (t->frame < UINT32_MAX) {
         ++t->frame;
     }
-    t->n_events = 0u;
     size_t npix = (size_t)cfg->width * cfg->height;
     memset(t->mask, 0, npix);
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
@@ -474,6 +529,9 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     update_tracks_(t, res_tracks);
     end_or_keep_tracks_(t);
     update_search_(t, res_search);
+    t->search.est.last_seq = frame->seq;
+    t->search.est.last_timestamp_us = frame->timestamp_us;
+    t->search.est.gap = seen;
     confirm_(t);
     return PFT_OK;
 }

@@ -46,6 +46,8 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->reacq_radius = PFT_C(24.0);
     cfg->map_margin = 48u;
     cfg->seed = 1u;
+    cfg->seq_mode = PFT_SEQ_IGNORE;
+    cfg->max_gap = (uint16_t)PFT_SEQ_DEFAULT_GAP;
 }
 
 /* lo <= v <= hi (false for NaN in the float build). */
@@ -147,6 +149,12 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     }
     if (c->map_margin > 4096u) {
         return "map_margin";
+    }
+    if (c->seq_mode != PFT_SEQ_IGNORE && c->seq_mode != PFT_SEQ_USE) {
+        return "seq_mode";
+    }
+    if (c->max_gap < 1u || c->max_gap > PFT_SEQ_MAX_GAP) {
+        return "max_gap";
     }
     return NULL;
 }

@@ -10,6 +10,7 @@
 #include "pft/pft_resample.h"
 #include "../core/acc_int.h"
 #include "tsa_int.h"
+#include "../core/seq_int.h"
 
 /* The reported contour box is clamped to +-BOX_LIMIT_ px (int16 fields). */
 #define BOX_LIMIT_ 32000
@@ -413,6 +414,8 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
     t->est.n_alive = t->cfg.n_particles;
     t->est.ref_is_estimate = true;
     t->est.template_updated = true;
+    t->est.last_seq = frame->seq;
+    t->est.last_timestamp_us = frame->timestamp_us;
     contour_box_(t, origin.x, origin.y);
     return PFT_OK;
 }
@@ -869,6 +872,23 @@ static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uin
     return weigh_(t, fc, N, M);
 }
 
+/* Lost frames (a seq gap of periods + 1, tracking mode): per lost frame the conservative fit,
+ * the propagation of the free model (its noise widens the cloud) and the fit's prediction as
+ * the frame's reference point (weighted as the last estimate). */
+static void coast_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t N, pft_real_t beta,
+                   uint32_t periods)
+{
+    for (uint32_t i = 0; i < periods; ++i) {
+        pft_tsa_motion_fit_t fx;
+        pft_tsa_motion_fit_t fy;
+        conservative_fit_(t, &fx, &fy);
+        propagate_(t, fc, N, beta, &fx, &fy);
+        if (t->cfg.motion != PFT_TSA_MOTION_NCV) {
+            ref_push_(t, fx.x_pred, fy.x_pred, t->est.rho);
+        }
+    }
+}
+
 pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
 {
     if (t == NULL || t->px == NULL) {
@@ -877,7 +897,12 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     if (!t->started) {
         return PFT_ERR_STATE;
     }
-    const pft_status_t st = pft_frame_check(frame, t->cfg.width, t->cfg.height, PFT_TSA_FMT_MASK_);
+    pft_status_t st = pft_frame_check(frame, t->cfg.width, t->cfg.height, PFT_TSA_FMT_MASK_);
+    uint32_t gap = 1u;
+    if (st == PFT_OK) {
+        st = pft_seq_gap_(t->cfg.seq_mode, t->cfg.max_gap, true, t->est.last_seq, frame->seq,
+                          &gap);
+    }
     if (st != PFT_OK) {
         return st;
     }
@@ -893,6 +918,16 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     memset(&fy, 0, sizeof(fy));
     const pft_real_t beta_used =
         t->cfg.motion == PFT_TSA_MOTION_NCV ? PFT_C(0.0) : (tsa ? t->beta : t->cfg.beta0);
+    if (gap == 0u && t->cfg.loss_search && t->mode == PFT_TSA_MODE_TRACK) {
+        search_enter_(t); /* a gap above max_gap: search from the last good position */
+    } else if (gap != 1u && t->mode == PFT_TSA_MODE_TRACK) {
+        coast_(t, &fc, N, beta_used, gap == 0u ? (uint32_t)t->cfg.max_gap - 1u : gap - 1u);
+    } else {
+        /* consecutive frames, or searching: the search grows per frame as it is */
+    }
+    t->est.gap = t->cfg.seq_mode == PFT_SEQ_USE ? frame->seq - t->est.last_seq : 1u;
+    t->est.last_seq = frame->seq;
+    t->est.last_timestamp_us = frame->timestamp_us;
     weigh_out_t_ wo;
     bool reacquired = false;
     if (t->mode == PFT_TSA_MODE_TRACK) {

@@ -119,6 +119,14 @@ typedef struct {
     uint32_t ti;                                 /* slot of the track being stepped */
 } pft_pte_scratch_t;
 
+/* The frame numbering of an instance (docs/design.md, "Time, sequence numbers and lost
+ * frames"): the seq and timestamp of the last accepted frame, valid when set. */
+typedef struct {
+    uint64_t ts;
+    uint32_t last;
+    bool set;
+} pft_pte_seq_t;
+
 struct pft_pte_s {
     pft_pte_config_t cfg;
     pft_pte_ring_t ring;
@@ -161,6 +169,7 @@ struct pft_pte_s {
     pft_real_t kF[2][9];         /* per axis transition of the effective state [r, SV r', SA r''] */
     pft_real_t kQ[2][9];         /* per axis process noise of the effective state */
     uint32_t frames_in;
+    pft_pte_seq_t seq;
     uint16_t next_id;
     uint16_t since_search;
     uint8_t n_rep;
@@ -181,6 +190,7 @@ struct pft_pte_dp_s {
     pft_pte_report_t *rep;        /* reports of the last frame */
     pft_pte_report_t *prev;       /* reports of the frame before (id association) */
     uint32_t frames_in;           /* accepted frames */
+    pft_pte_seq_t seq;
     uint16_t next_id;
     uint8_t n_rep, n_prev;
     pft_real_t peak;              /* best merit of the last batch (first extraction) */
@@ -211,6 +221,7 @@ struct pft_pte_dbt_s {
     pft_pte_report_t *rep;
     pft_real_t *d2;          /* max_tracks * max_dets gating distances */
     uint32_t frames_in;
+    pft_pte_seq_t seq;
     uint16_t n_plots;
     uint16_t next_id;
     uint8_t n_rep;

@@ -102,6 +102,8 @@ struct pft_tbd_filter_s {
     pft_real_t win_hist[PFT_TBD_MAX_DIS_PREV];  /* previous window statistics (newest first) */
     uint32_t n_lr, n_win;
     bool gone;               /* disappearance declared at the last update */
+    bool seq_set;            /* standalone: last_seq holds the reference (cfg.seq_mode) */
+    uint32_t last_seq;       /* standalone: seq of the last accepted frame */
 };
 
 /* The multi-target manager (docs/algorithms.md 2.7). */
@@ -124,6 +126,10 @@ struct pft_tbd_s {
     uint32_t n_cand;             /* birth candidates of the last update (0 after a hand-over) */
     uint16_t n_tracks;           /* active tracks */
     uint8_t above;               /* consecutive frames with the search layer's P > theta1 */
+    bool seq_set;                /* last_seq holds the reference (cfg.seq_mode) */
+    uint32_t last_seq;           /* seq of the last accepted frame */
+    uint64_t last_ts;            /* its timestamp_us */
+    uint32_t gap;                /* frame periods of the current update (1 without a gap) */
 };
 
 #ifdef __cplusplus

@@ -1,0 +1,163 @@
+/*
+ * Frame sequence numbers in the PTE family (docs/design.md, "Time, sequence numbers and lost
+ * frames"): the Kalman DBT keeps a track across 4 lost frames with PFT_SEQ_USE (its prediction
+ * over 5 periods lands on the target) and loses it when the same frames are taken as
+ * consecutive; a repeated seq is refused with PFT_ERR_SEQ leaving instance and workspace
+ * byte-identical; a gap above max_gap restarts (no confirmed track on that frame); reports
+ * carry the seq, gap and timestamp of their frame.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_pte.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define NR 64
+
+static double D(pft_real_t v) { return pft_test_to_double(v); }
+
+static uint64_t g_work[PFT_PTE_DBT_WORKSPACE_BYTES(NR, 1, 32, 64) / 8 + 8];
+static uint64_t g_copy[sizeof(g_work) / 8];
+static float g_px[NR];
+static pft_pte_report_t g_rep[PFT_PTE_DBT_MAX_TRACKS];
+
+/* F32 profile with one clean spike of 10 at cell 10 + k (one cell per frame). */
+static pft_frame_t frame(int k, uint32_t seq)
+{
+    memset(g_px, 0, sizeof g_px);
+    g_px[10 + k] = 10.0f;
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_px;
+    f.width = NR;
+    f.height = 1;
+    f.stride_bytes = 4u * NR;
+    f.format = PFT_PIX_F32;
+    f.seq = seq;
+    f.timestamp_us = 40000u * (uint64_t)seq;
+    return f;
+}
+
+static void init(pft_pte_dbt_t *b, pft_seq_mode_t mode)
+{
+    pft_pte_dbt_config_t c;
+    pft_pte_dbt_config_default(&c);
+    c.in.n_range = NR;
+    c.in.n_doppler = 1u;
+    c.in.seq_mode = mode;
+    c.in.max_gap = 6u;
+    size_t need = pft_pte_dbt_workspace_size(&c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_init(b, &c, g_work, need));
+}
+
+/* Frames 1..7, 8..11 lost, 12..14: the confirmed track's id at 14, 0 if none. */
+static uint16_t run_gap(pft_pte_dbt_t *b, pft_seq_mode_t mode, double *err12)
+{
+    init(b, mode);
+    uint16_t id7 = 0u;
+    *err12 = 1e9;
+    for (int k = 1; k <= 14; ++k) {
+        if (k >= 8 && k <= 11) {
+            continue;
+        }
+        pft_frame_t f = frame(k, 1000u + (uint32_t)k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_update(b, &f));
+        size_t n = pft_pte_dbt_reports(b, g_rep, PFT_PTE_DBT_MAX_TRACKS);
+        if (k == 7) {
+            TEST_ASSERT_EQUAL_UINT(1u, (unsigned)n);
+            id7 = g_rep[0].id;
+            TEST_ASSERT_EQUAL_UINT32(1007u, g_rep[0].last_seq);
+            TEST_ASSERT_EQUAL_UINT32(mode == PFT_SEQ_USE ? 1u : 1u, g_rep[0].gap);
+            TEST_ASSERT_TRUE(g_rep[0].last_timestamp_us == 40280000u);
+        }
+        if (k == 12) {
+            for (size_t i = 0; i < n; ++i) {
+                if (g_rep[i].id == id7 && g_rep[i].detected) {
+                    *err12 = fabs(D(g_rep[i].pos[0]) - (10.0 + 12.0));
+                    TEST_ASSERT_EQUAL_UINT32(mode == PFT_SEQ_USE ? 5u : 1u, g_rep[i].gap);
+                }
+            }
+        }
+        if (k == 14) {
+            for (size_t i = 0; i < n; ++i) {
+                if (g_rep[i].id == id7 && g_rep[i].detected) {
+                    return id7;
+                }
+            }
+        }
+    }
+    return 0u;
+}
+
+static void test_dbt_keeps_track_across_lost_frames(void)
+{
+    static pft_pte_dbt_t b;
+    double e_use = 0.0, e_ign = 0.0;
+    uint16_t use = run_gap(&b, PFT_SEQ_USE, &e_use);
+    uint16_t ign = run_gap(&b, PFT_SEQ_IGNORE, &e_ign);
+    UnityPrint(" err12_use=");
+    UnityPrintFloat(e_use);
+    TEST_ASSERT_TRUE_MESSAGE(use != 0u, "track not kept across the gap with seq used");
+    TEST_ASSERT_TRUE(e_use < 0.5);
+    /* the same frames taken as consecutive: the plot is 4 cells off the one-frame prediction */
+    TEST_ASSERT_TRUE_MESSAGE(ign == 0u, "the test cannot tell the gap from no gap");
+}
+
+static void test_dbt_repeated_seq_refused_untouched(void)
+{
+    static pft_pte_dbt_t b, copy;
+    init(&b, PFT_SEQ_USE);
+    for (int k = 1; k <= 4; ++k) {
+        pft_frame_t f = frame(k, UINT32_MAX - 4u + (uint32_t)k); /* ..., 2^32 - 1 */
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_update(&b, &f));
+    }
+    const uint32_t bad[2] = {UINT32_MAX, UINT32_MAX - 3u};
+    for (int i = 0; i < 2; ++i) {
+        pft_frame_t f = frame(5, bad[i]);
+        copy = b;
+        memcpy(g_copy, g_work, sizeof g_work);
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_SEQ, pft_pte_dbt_update(&b, &f));
+        TEST_ASSERT_EQUAL_MEMORY(&copy, &b, sizeof b);
+        TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
+    }
+    /* wraps to 0: the next frame */
+    pft_frame_t f = frame(5, 0u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_update(&b, &f));
+    size_t n = pft_pte_dbt_reports(&b, g_rep, PFT_PTE_DBT_MAX_TRACKS);
+    TEST_ASSERT_EQUAL_UINT(1u, (unsigned)n);
+    TEST_ASSERT_EQUAL_UINT32(0u, g_rep[0].last_seq);
+    TEST_ASSERT_EQUAL_UINT32(1u, g_rep[0].gap);
+    /* a gap above max_gap (6) restarts: no confirmed track on that frame */
+    f = frame(13, 8u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_update(&b, &f));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_pte_dbt_reports(&b, g_rep, PFT_PTE_DBT_MAX_TRACKS));
+}
+
+static void test_config_fields_checked(void)
+{
+    pft_pte_dbt_config_t c;
+    pft_pte_dbt_config_default(&c);
+    TEST_ASSERT_EQUAL_INT(PFT_SEQ_IGNORE, c.in.seq_mode);
+    TEST_ASSERT_EQUAL_UINT(PFT_SEQ_DEFAULT_GAP, c.in.max_gap);
+    const char *field = NULL;
+    c.in.max_gap = 0u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_dbt_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("in.max_gap", field);
+    c.in.max_gap = 1u;
+    c.in.seq_mode = (pft_seq_mode_t)7;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_dbt_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("in.seq_mode", field);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_config_fields_checked);
+    RUN_TEST(test_dbt_keeps_track_across_lost_frames);
+    RUN_TEST(test_dbt_repeated_seq_refused_untouched);
+    return UNITY_END();
+}
