@@ -111,14 +111,15 @@ pft_real_t *pft_pte_core_stage_(const pft_pte_core_t_ *c, uint32_t j, const pft_
     /* stage j writes ma (j even) or mb (j odd) from the other */
     pft_real_t *cur = (j & 1u) == 0u ? c->ma : c->mb;
     const pft_real_t *prev = (j & 1u) == 0u ? c->mb : c->ma;
+    uint8_t *psi = c->psi + (size_t)j * cells;
     if (j == 0u) {
         for (uint32_t i = 0; i < cells; ++i) {
             cur[i] = ell_(c, zf, mk, i);
         }
     } else if (c->nd == 1u) {
-        step_rt_(c, zf, mk, prev, cur, c->psi + (size_t)j * cells);
+        step_rt_(c, zf, mk, prev, cur, psi);
     } else {
-        step_rd_(c, zf, mk, prev, cur, c->psi + (size_t)j * cells);
+        step_rd_(c, zf, mk, prev, cur, psi);
     }
     return cur;
 }

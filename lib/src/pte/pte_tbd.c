@@ -598,19 +598,21 @@ static bool initiate_spread_(pft_pte_t *p)
     p->init_todo = 0u;
     p->init_run = 0u;
     uint32_t live = n_live_(p);
-    for (uint32_t guard = 0; guard < c->max_tracks && live < c->max_tracks && merit != NULL;
-         ++guard) {
+    bool more = merit != NULL;
+    for (uint32_t guard = 0; guard < c->max_tracks && live < c->max_tracks && more; ++guard) {
         int32_t cell;
         pft_real_t best = pft_pte_core_best_(&core, merit, &cell);
-        if (cell < 0 || !(best > c->init_threshold)) {
-            break;
+        more = cell >= 0 && best > c->init_threshold;
+        if (more) {
+            pft_pte_core_backtrack_(&core, cell, p->path);
+            /* a path crossing a cancelled cell is left to the next search (a re-run could
+             * find another one) */
+            more = pft_pte_core_clear_(&core, p->path);
         }
-        pft_pte_core_backtrack_(&core, cell, p->path);
-        if (!pft_pte_core_clear_(&core, p->path)) {
-            break; /* a re-run could find another path: left to the next search */
+        if (more) {
+            extract_(p, &core, best);
+            live++;
         }
-        extract_(p, &core, best);
-        live++;
     }
     return true;
 }
@@ -721,10 +723,12 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
                 p->since_search = 0u;
             }
         }
-    } else if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
-               (live == 0u || p->since_search >= p->cfg.init_period)) {
-        p->since_search = 0u;
-        initiate_(p);
+    } else {
+        if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
+            (live == 0u || p->since_search >= p->cfg.init_period)) {
+            p->since_search = 0u;
+            initiate_(p);
+        }
     }
     reports_(p);
     return PFT_OK;
