@@ -583,6 +583,9 @@ static bool initiate_spread_(pft_pte_t *p)
     core_(p, &core);
     const uint32_t N = c->init_frames;
     const pft_real_t *merit = NULL;
+    /* init_stage stays below N here: init_stage + init_todo starts at back + 1 <= N -
+     * ceil(N / S) + 1 and grows by one per update, and the stages done after u updates are
+     * min(S u, that sum), so they reach N exactly when the sum does (spread_start_) */
     for (uint32_t s = 0; s < c->init_spread && p->init_todo > 0u; ++s) {
         const uint32_t j = p->init_stage;
         const uint32_t back = (uint32_t)p->init_todo - 1u;
