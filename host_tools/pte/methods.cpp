@@ -174,7 +174,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         c.init_frames = u8(f, "init_frames", c.init_frames, 2, PFT_PTE_MAX_FRAMES);
         int2(f, "init_gate", c.init_gate, 0, PFT_PTE_MAX_GATE);
         c.init_period = u8(f, "init_period", c.init_period, 1, 255);
-        c.init_spread = u8(f, "init_spread", c.init_spread, 0, PFT_PTE_MAX_FRAMES);
+        c.init_spread = u8(f, "init_spread", c.init_spread, 0, 255);
         c.max_len = u8(f, "max_len", c.max_len, 2, PFT_PTE_MAX_FRAMES);
         int2(f, "n_dir", c.n_dir, 1, PFT_PTE_MAX_DIRS);
         if (f.has("motion"))

@@ -499,23 +499,19 @@ static void test_two_targets(void)
 /* init_spread (issue #12): the initiation DP taken one frame at a time gives, for the first
  * search (frames 0..N-1, no live track), the same tracks bit for bit as the whole DP run at
  * frame N-1: two targets 22 cells apart, both extracted by one search (the second path
- * crosses no cancelled cell), with init_spread 0, 1 and 4. init_spread is at most N. */
+ * crosses no cancelled cell), with init_spread 0, 1, 4 and 255 (any value is accepted). */
 static void test_init_spread_same_first_search(void)
 {
     pft_pte_config_t c;
     cfg_default(&c);
-    const char *field = NULL;
-    c.init_spread = (uint8_t)(c.init_frames + 1u);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
-    TEST_ASSERT_EQUAL_STRING("init_spread", field);
-    c.init_spread = c.init_frames;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    c.init_spread = 255u; /* more stages than N: a whole search per update */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, NULL));
     pft_pte_config_default(&c);
     TEST_ASSERT_EQUAL_UINT8(4, c.init_spread);
-    static const uint8_t spread[3] = {0u, 1u, 4u};
-    pft_pte_report_t first[3][PFT_PTE_MAX_TRACKS];
-    uint32_t nfirst[3];
-    for (uint32_t v = 0; v < 3u; ++v) {
+    static const uint8_t spread[4] = {0u, 1u, 4u, 255u};
+    pft_pte_report_t first[4][PFT_PTE_MAX_TRACKS];
+    uint32_t nfirst[4];
+    for (uint32_t v = 0; v < 4u; ++v) {
         cfg_default(&c);
         c.init_spread = spread[v];
         pft_pte_t p;
@@ -534,7 +530,7 @@ static void test_init_spread_same_first_search(void)
         nfirst[v] = (uint32_t)pft_pte_reports(&p, first[v], PFT_PTE_MAX_TRACKS);
     }
     TEST_ASSERT_EQUAL_UINT32(2, nfirst[0]);
-    for (uint32_t v = 1; v < 3u; ++v) {
+    for (uint32_t v = 1; v < 4u; ++v) {
         TEST_ASSERT_EQUAL_UINT32(nfirst[0], nfirst[v]);
         TEST_ASSERT_EQUAL_MEMORY(first[0], first[v], nfirst[0] * sizeof(pft_pte_report_t));
     }

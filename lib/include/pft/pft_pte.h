@@ -258,7 +258,7 @@ typedef struct {
     uint8_t init_gate[2];      /**< DP gate per axis, 0..PFT_PTE_MAX_GATE (default 1, 1) */
     pft_real_t init_threshold; /**< V_T of the N-frame DP (default 18.9: 1e-3 per batch for 150 range cells, see pft_pte_threshold) */
     uint8_t init_period;       /**< search period while tracks are live, >= 1 (default 10) */
-    uint8_t init_spread;       /**< S: at most S initiation DP stages per update, 1..init_frames (bounded work per frame); 0: the whole N-frame DP at the search's frame (default 4) */
+    uint8_t init_spread;       /**< S: at most S initiation DP stages per update (bounded work per frame; S >= init_frames: a whole search in one update while no track is live); 0: the whole N-frame DP at the search's frame (default 4) */
     /* Step 3: track enhancement */
     uint8_t max_len;           /**< M_max, 2..PFT_PTE_MAX_FRAMES (default 40: the paper's template) */
     uint8_t n_dir[2];          /**< L per axis, odd, 1..PFT_PTE_MAX_DIRS (default 5, 5) */

@@ -153,9 +153,6 @@ static const char *bad_field_(const pft_pte_config_t *c)
     if (c->init_period < 1u) {
         return "init_period";
     }
-    if (c->init_spread > c->init_frames) {
-        return "init_spread";
-    }
     if (c->max_len < 2u || c->max_len > PFT_PTE_MAX_FRAMES) {
         return "max_len";
     }
