@@ -166,7 +166,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         m.pte.op = PFT_PTE_OP_TABLE;  // what AUTO selects for the range-time frames simulated here
         Field f(s.methods.pte, s.file, "methods.pte");
         f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "init_frames", "init_gate",
-                "init_threshold", "init_period", "max_len", "n_dir", "motion", "sigma_r", "q_sd", "acc_sd0",
+                "init_threshold", "init_period", "init_spread", "max_len", "n_dir", "motion", "sigma_r", "q_sd", "acc_sd0",
                 "q_amp", "dtheta_min", "c_step", "scan_steps", "scan_sigmas", "sigma_w_max", "eta_t",
                 "max_misses", "max_tracks", "dup_cells", "op", "short_len", "man_z", "man_acc_sd"});
         input_override(f, m.pte.in);
@@ -174,6 +174,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         c.init_frames = u8(f, "init_frames", c.init_frames, 2, PFT_PTE_MAX_FRAMES);
         int2(f, "init_gate", c.init_gate, 0, PFT_PTE_MAX_GATE);
         c.init_period = u8(f, "init_period", c.init_period, 1, 255);
+        c.init_spread = u8(f, "init_spread", c.init_spread, 0, 255);
         c.max_len = u8(f, "max_len", c.max_len, 2, PFT_PTE_MAX_FRAMES);
         int2(f, "n_dir", c.n_dir, 1, PFT_PTE_MAX_DIRS);
         if (f.has("motion"))
@@ -321,7 +322,7 @@ nlohmann::json MethodSpec::settings() const
         const auto &c = pte;
         j = {{"input", input_json(c.in)}, {"init_frames", c.init_frames},
              {"init_gate", {c.init_gate[0], c.init_gate[1]}}, {"init_threshold", from_real(c.init_threshold)},
-             {"init_period", c.init_period}, {"max_len", c.max_len}, {"n_dir", {c.n_dir[0], c.n_dir[1]}},
+             {"init_period", c.init_period}, {"init_spread", c.init_spread}, {"max_len", c.max_len}, {"n_dir", {c.n_dir[0], c.n_dir[1]}},
              {"motion", c.motion == PFT_PTE_MOTION_CA ? "ca" : "cv"},
              {"op", c.op == PFT_PTE_OP_TABLE ? "table" : "exact"},
              {"sigma_r", pair(c.sigma_r)}, {"q_sd", pair(c.q_sd)}, {"acc_sd0", pair(c.acc_sd0)},

@@ -5,7 +5,8 @@
  * target (uniform direction weights would not); the CA model follows an accelerating target
  * that the CV model lags; the manoeuvre test follows a sharp acceleration that the 40-frame
  * template alone runs straight through; termination after the target leaves and re-initiation with a new
- * id; two targets with cancellation (no duplicates); range-Doppler tracking with the 2-D
+ * id; two targets with cancellation (no duplicates); the initiation spread over the updates
+ * (init_spread) finds the same first tracks as the whole DP; range-Doppler tracking with the 2-D
  * operator; refused input leaves every byte unchanged; a cue beyond the free slots is refused;
  * reports are copied out.
  *
@@ -495,6 +496,46 @@ static void test_two_targets(void)
     TEST_ASSERT_TRUE(both >= 9 && both <= 25);
 }
 
+/* init_spread (issue #12): the initiation DP taken one frame at a time gives, for the first
+ * search (frames 0..N-1, no live track), the same tracks bit for bit as the whole DP run at
+ * frame N-1: two targets 22 cells apart, both extracted by one search (the second path
+ * crosses no cancelled cell), with init_spread 0, 1, 4 and 255 (any value is accepted). */
+static void test_init_spread_same_first_search(void)
+{
+    pft_pte_config_t c;
+    cfg_default(&c);
+    c.init_spread = 255u; /* more stages than N: a whole search per update */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, NULL));
+    pft_pte_config_default(&c);
+    TEST_ASSERT_EQUAL_UINT8(4, c.init_spread);
+    static const uint8_t spread[4] = {0u, 1u, 4u, 255u};
+    pft_pte_report_t first[4][PFT_PTE_MAX_TRACKS];
+    uint32_t nfirst[4];
+    for (uint32_t v = 0; v < 4u; ++v) {
+        cfg_default(&c);
+        c.init_spread = spread[v];
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 4242;
+        for (int k = 0; k < 10; ++k) {
+            double pos[2] = {18.0 + 0.3 * k, 40.0 - 0.2 * k};
+            double a[2] = {3.0, 3.0};
+            profile(2, pos, a);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            uint32_t n = (uint32_t)pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS);
+            if (k < 9) {
+                TEST_ASSERT_EQUAL_UINT32(0, n); /* the first search ends at frame N - 1 */
+            }
+        }
+        nfirst[v] = (uint32_t)pft_pte_reports(&p, first[v], PFT_PTE_MAX_TRACKS);
+    }
+    TEST_ASSERT_EQUAL_UINT32(2, nfirst[0]);
+    for (uint32_t v = 1; v < 4u; ++v) {
+        TEST_ASSERT_EQUAL_UINT32(nfirst[0], nfirst[v]);
+        TEST_ASSERT_EQUAL_MEMORY(first[0], first[v], nfirst[0] * sizeof(pft_pte_report_t));
+    }
+}
+
 /* Range-Doppler map 32 x 12, target moving (+0.3, -0.15) cells/frame at A = 4: the 2-D
  * operator (3 x 3 directions, exact taps) tracks it within 0.7 cells on both axes. */
 static void test_range_doppler(void)
@@ -621,6 +662,7 @@ int main(void)
     RUN_TEST(test_manoeuvre_test);
     RUN_TEST(test_termination_and_reinit);
     RUN_TEST(test_two_targets);
+    RUN_TEST(test_init_spread_same_first_search);
     RUN_TEST(test_range_doppler);
     RUN_TEST(test_bad_input_untouched);
     return UNITY_END();

@@ -230,6 +230,7 @@ static inline void pft_pv_cfg_pte_exact(pft_pte_config_t *c)
     c->init_threshold = PFT_C(16.0);
     c->init_period = 5u;
     c->max_tracks = 3u;
+    c->init_spread = 0u; /* the whole initiation DP at the search's frame (the table case spreads it) */
 }
 
 static inline void pft_pv_cfg_dp_slide(pft_pte_dp_config_t *c)

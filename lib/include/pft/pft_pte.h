@@ -243,9 +243,18 @@ typedef enum {
  * P = sigma_r^2 (H'H)^-1 (r'' = 0 with standard deviation acc_sd0); the amplitude is the mean
  * zeta along the path; n_acc = N. Cells within +-3 sigma_w of live tracks (their state
  * extrapolated back over the batch) are cancelled, and further targets are extracted after
- * cancelling each new path. The initiation runs at every frame while no track is live, else
- * every init_period frames while a track slot is free. Two live tracks closer than dup_cells
- * (axis 0, and axis 1 when 2-D) are duplicates: the one with the lower score ends [A].
+ * cancelling each new path. With init_spread = 0 the initiation runs at every frame while no
+ * track is live, else every init_period frames while a track slot is free. With init_spread
+ * = S >= 1 (default 4) it is spread over the updates, at most S DP stages per update: a
+ * search holds the DP merits between updates and gives each frame its stage (the cells of
+ * the tracks live at that update cancelled, their position +-3 sigma_w), oldest first; it
+ * ends at the newest frame, its batch being the last N frames. While tracks are live a search
+ * starts on the newest frame (one stage per update) so that searches end every
+ * max(init_period, N) frames; with no live track it starts on the frames already held and
+ * ends ceil(N / S) updates later. A further target of the same search is extracted only
+ * when the backtracked path of the best remaining final cell crosses no cancelled cell (the
+ * path a re-run would find); otherwise the next search finds it. Two live tracks closer than
+ * dup_cells (axis 0, and axis 1 when 2-D) are duplicates: the one with the lower score ends [A].
  */
 typedef struct {
     pft_pte_input_t in;        /**< input stage */
@@ -254,6 +263,7 @@ typedef struct {
     uint8_t init_gate[2];      /**< DP gate per axis, 0..PFT_PTE_MAX_GATE (default 1, 1) */
     pft_real_t init_threshold; /**< V_T of the N-frame DP (default 18.9: 1e-3 per batch for 150 range cells, see pft_pte_threshold) */
     uint8_t init_period;       /**< search period while tracks are live, >= 1 (default 10) */
+    uint8_t init_spread;       /**< S: at most S initiation DP stages per update (bounded work per frame; S >= init_frames: a whole search in one update while no track is live); 0: the whole N-frame DP at the search's frame (default 4) */
     /* Step 3: track enhancement */
     uint8_t max_len;           /**< M_max, 2..PFT_PTE_MAX_FRAMES (default 40: the paper's template) */
     uint8_t n_dir[2];          /**< L per axis, odd, 1..PFT_PTE_MAX_DIRS (default 5, 5) */

@@ -15,8 +15,8 @@ pft_real_t pft_pte_parabola_(pft_real_t ym, pft_real_t y0, pft_real_t yp)
     return pft_clamp(d, PFT_C(-0.5), PFT_C(0.5));
 }
 
-static pft_real_t ell_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8_t *mk,
-                       uint32_t i)
+static inline pft_real_t ell_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8_t *mk,
+                              uint32_t i)
 {
     if (mk != NULL && mk[i] != 0u) {
         return PFT_PTE_NEG_;
@@ -34,7 +34,7 @@ static void step_rt_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8
 {
     const int32_t nr = (int32_t)c->nr;
     const int32_t g0 = (int32_t)c->g0;
-    const bool plain = mk == NULL && !(c->amp > PFT_C(0.0));
+    const bool known = c->amp > PFT_C(0.0);
     for (int32_t r = 0; r < nr; ++r) {
         pft_real_t best;
         int32_t bo;
@@ -63,7 +63,9 @@ static void step_rt_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8
             }
             bo = bu - r + g0;
         }
-        pft_real_t l = plain ? zf[r] : ell_(c, zf, mk, (uint32_t)r);
+        /* the plain merit zeta unless the cell is cancelled or the amplitude is known */
+        pft_real_t l = (mk != NULL && mk[r] != 0u) ? PFT_PTE_NEG_
+                       : (known ? ell_(c, zf, NULL, (uint32_t)r) : zf[r]);
         cur[r] = pft_add(l, best);
         psi[r] = (uint8_t)bo;
     }
@@ -102,42 +104,65 @@ static void step_rd_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8
     }
 }
 
-pft_real_t pft_pte_core_run_(const pft_pte_core_t_ *c, int32_t *cell)
+pft_real_t *pft_pte_core_stage_(const pft_pte_core_t_ *c, uint32_t j, const pft_real_t *zf)
 {
     const uint32_t cells = (uint32_t)c->nr * c->nd;
-    pft_real_t *prev = c->ma;
-    pft_real_t *cur = c->mb;
-    for (uint32_t j = 0; j < c->k; ++j) {
-        const pft_real_t *zf = pft_pte_ring_get_(c->ring, (uint32_t)c->k - 1u - j);
-        const uint8_t *mk = c->mask != NULL ? c->mask + (size_t)j * cells : NULL;
-        if (j == 0u) {
-            for (uint32_t i = 0; i < cells; ++i) {
-                prev[i] = ell_(c, zf, mk, i);
-            }
-            continue;
+    const uint8_t *mk = c->mask != NULL ? c->mask + (size_t)j * cells : NULL;
+    /* stage j writes ma (j even) or mb (j odd) from the other */
+    pft_real_t *cur = (j & 1u) == 0u ? c->ma : c->mb;
+    const pft_real_t *prev = (j & 1u) == 0u ? c->mb : c->ma;
+    uint8_t *psi = c->psi + (size_t)j * cells;
+    if (j == 0u) {
+        for (uint32_t i = 0; i < cells; ++i) {
+            cur[i] = ell_(c, zf, mk, i);
         }
-        uint8_t *psi = c->psi + (size_t)j * cells;
-        if (c->nd == 1u) {
-            step_rt_(c, zf, mk, prev, cur, psi);
-        } else {
-            step_rd_(c, zf, mk, prev, cur, psi);
-        }
-        pft_real_t *t = prev;
-        prev = cur;
-        cur = t;
+    } else if (c->nd == 1u) {
+        step_rt_(c, zf, mk, prev, cur, psi);
+    } else {
+        step_rd_(c, zf, mk, prev, cur, psi);
     }
-    /* best final cell outside the cancelled set */
+    return cur;
+}
+
+pft_real_t pft_pte_core_best_(const pft_pte_core_t_ *c, const pft_real_t *merit, int32_t *cell)
+{
+    const uint32_t cells = (uint32_t)c->nr * c->nd;
     const uint8_t *mk = c->mask != NULL ? c->mask + (size_t)(c->k - 1u) * cells : NULL;
     pft_real_t best = PFT_REAL_MIN;
     int32_t bc = -1;
     for (uint32_t i = 0; i < cells; ++i) {
-        if ((mk == NULL || mk[i] == 0u) && (bc < 0 || prev[i] > best)) {
-            best = prev[i];
+        if ((mk == NULL || mk[i] == 0u) && (bc < 0 || merit[i] > best)) {
+            best = merit[i];
             bc = (int32_t)i;
         }
     }
     *cell = bc;
     return bc < 0 ? PFT_REAL_MIN : best;
+}
+
+pft_real_t pft_pte_core_run_(const pft_pte_core_t_ *c, int32_t *cell)
+{
+    const pft_real_t *merit = c->ma;
+    for (uint32_t j = 0; j < c->k; ++j) {
+        merit = pft_pte_core_stage_(c, j, pft_pte_ring_get_(c->ring, (uint32_t)c->k - 1u - j));
+    }
+    /* best final cell outside the cancelled set */
+    return pft_pte_core_best_(c, merit, cell);
+}
+
+bool pft_pte_core_clear_(const pft_pte_core_t_ *c, const int16_t *path)
+{
+    const uint32_t cells = (uint32_t)c->nr * c->nd;
+    if (c->mask == NULL) {
+        return true;
+    }
+    for (uint32_t j = 0; j < c->k; ++j) {
+        int32_t i = (int32_t)path[2u * j + 1u] * (int32_t)c->nr + path[2u * j];
+        if (c->mask[(size_t)j * cells + (uint32_t)i] != 0u) {
+            return false;
+        }
+    }
+    return true;
 }
 
 void pft_pte_core_backtrack_(const pft_pte_core_t_ *c, int32_t cell, int16_t *path)

@@ -90,6 +90,15 @@ typedef struct {
 /* Runs the DP over the last k frames of the ring (ring->count >= k). Returns the best final
  * merit and its cell in *cell (-1 and PFT_REAL_MIN if every final cell is cancelled). */
 pft_real_t pft_pte_core_run_(const pft_pte_core_t_ *c, int32_t *cell);
+/* Stage j (0 = oldest frame of the batch) of the DP on frame zf (mask row j and psi row j
+ * used): writes the merits into ma (j even) or mb (j odd) from the other one and returns
+ * them. pft_pte_core_run_ is stages 0..k-1 on the last k frames of the ring. */
+pft_real_t *pft_pte_core_stage_(const pft_pte_core_t_ *c, uint32_t j, const pft_real_t *zf);
+/* Best final merit (merits of stage k-1) outside the cancelled cells of the last frame and
+ * its cell in *cell (-1 and PFT_REAL_MIN if every final cell is cancelled). */
+pft_real_t pft_pte_core_best_(const pft_pte_core_t_ *c, const pft_real_t *merit, int32_t *cell);
+/* true when the path crosses no cancelled cell of the mask (always without a mask). */
+bool pft_pte_core_clear_(const pft_pte_core_t_ *c, const int16_t *path);
 /* Backtracks from final cell into path[2*j + axis], j = 0 oldest .. k-1. */
 void pft_pte_core_backtrack_(const pft_pte_core_t_ *c, int32_t cell, int16_t *path);
 /* Marks cells within +-h0 (range) / +-h1 (Doppler) of path in every frame of the mask. */

@@ -21,6 +21,7 @@ void pft_pte_config_default(pft_pte_config_t *cfg)
     cfg->init_gate[1] = 1u;
     cfg->init_threshold = PFT_C(18.9);
     cfg->init_period = 10u;
+    cfg->init_spread = 4u;
     cfg->max_len = 40u;
     cfg->n_dir[0] = 5u;
     cfg->n_dir[1] = 5u;
@@ -373,6 +374,9 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     memset(&p->seq, 0, sizeof(p->seq));
     p->next_id = 1u;
     p->since_search = 0u;
+    p->init_stage = 0u;
+    p->init_todo = 0u;
+    p->init_run = 0u;
     p->n_rep = 0u;
     return PFT_OK;
 }
@@ -467,6 +471,43 @@ static void cancel_live_(pft_pte_t *p, const pft_pte_core_t_ *core)
     }
 }
 
+/* Starts a track from the backtracked path in p->path (best final merit `best`) in a free
+ * slot and cancels its cells in every frame of the batch. */
+static void extract_(pft_pte_t *p, const pft_pte_core_t_ *core, pft_real_t best)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    const uint32_t N = c->init_frames;
+    pft_real_t pos[2] = {PFT_C(0.0), PFT_C(0.0)};
+    pft_real_t vel[2] = {PFT_C(0.0), PFT_C(0.0)};
+    pft_real_t pv[2] = {PFT_C(1.0), PFT_C(1.0)};
+    pft_real_t vv[2] = {PFT_C(1.0), PFT_C(1.0)};
+    pft_real_t cv[2] = {PFT_C(0.0), PFT_C(0.0)};
+    int32_t h[2] = {0, 0};
+    int32_t n = (int32_t)N;
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        pft_pte_core_fit_(core, p->path, a, &pos[a], &vel[a]);
+        pft_real_t s2 = pft_sq(c->sigma_r[a]);
+        pv[a] = pft_mul(s2, pft_ratio(2 * (2 * n - 1), n * (n + 1)));
+        cv[a] = pft_mul(s2, pft_ratio(6, n * (n + 1)));
+        vv[a] = pft_mul(s2, pft_ratio(12, n * (n * n - 1)));
+        pft_real_t sw = pft_min(pft_sqrt(pft_add(s2, pv[a])), c->sigma_w_max);
+        h[a] = half_cells_(sw);
+    }
+    if (p->naxes != 2u) {
+        pv[1] = PFT_C(1.0);
+        vv[1] = PFT_C(1.0);
+    }
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        if (!p->tracks[i].live) {
+            track_new_(p, &p->tracks[i], pos, vel, pv, vv, cv, pft_pte_core_amp_(core, p->path),
+                       (uint8_t)N);
+            p->tracks[i].score = best;
+            break;
+        }
+    }
+    pft_pte_core_cancel_(core, p->path, h[0], h[1]);
+}
+
 /* Step 2: DP batch over the last init_frames frames outside the live tracks; every path
  * above init_threshold starts a track in a free slot and is cancelled for the next one. */
 static void initiate_(pft_pte_t *p)
@@ -476,7 +517,6 @@ static void initiate_(pft_pte_t *p)
     core_(p, &core);
     const uint32_t N = c->init_frames;
     const uint32_t cells = (uint32_t)c->in.n_range * c->in.n_doppler;
-    const bool two = p->naxes == 2u;
     memset(p->mask, 0, (size_t)N * cells);
     cancel_live_(p, &core);
     uint32_t live = n_live_(p);
@@ -487,37 +527,115 @@ static void initiate_(pft_pte_t *p)
             break;
         }
         pft_pte_core_backtrack_(&core, cell, p->path);
-        pft_real_t pos[2] = {PFT_C(0.0), PFT_C(0.0)};
-        pft_real_t vel[2] = {PFT_C(0.0), PFT_C(0.0)};
-        pft_real_t pv[2] = {PFT_C(1.0), PFT_C(1.0)};
-        pft_real_t vv[2] = {PFT_C(1.0), PFT_C(1.0)};
-        pft_real_t cv[2] = {PFT_C(0.0), PFT_C(0.0)};
-        int32_t h[2] = {0, 0};
-        int32_t n = (int32_t)N;
-        for (uint32_t a = 0; a < p->naxes; ++a) {
-            pft_pte_core_fit_(&core, p->path, a, &pos[a], &vel[a]);
-            pft_real_t s2 = pft_sq(c->sigma_r[a]);
-            pv[a] = pft_mul(s2, pft_ratio(2 * (2 * n - 1), n * (n + 1)));
-            cv[a] = pft_mul(s2, pft_ratio(6, n * (n + 1)));
-            vv[a] = pft_mul(s2, pft_ratio(12, n * (n * n - 1)));
-            pft_real_t sw = pft_min(pft_sqrt(pft_add(s2, pv[a])), c->sigma_w_max);
-            h[a] = half_cells_(sw);
+        extract_(p, &core, best);
+        live++;
+    }
+}
+
+/* init_spread: cancels the cells of every live track at the newest frame in mask row j. */
+static void cancel_live_now_(pft_pte_t *p, uint32_t j)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    const int32_t nr = (int32_t)c->in.n_range;
+    const int32_t nd = (int32_t)c->in.n_doppler;
+    uint8_t *mk = p->mask + (size_t)j * (size_t)nr * (size_t)nd;
+    memset(mk, 0, (size_t)nr * (size_t)nd);
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        const pft_pte_track_t *t = &p->tracks[i];
+        if (!t->live) {
+            continue;
         }
-        if (!two) {
-            pv[1] = PFT_C(1.0);
-            vv[1] = PFT_C(1.0);
+        int32_t lo[2] = {0, 0};
+        int32_t hi[2] = {0, 0};
+        const int32_t n[2] = {nr, nd};
+        for (uint32_t a = 0; a < 2u; ++a) {
+            if (a >= p->naxes) {
+                continue; /* range-time: the one Doppler row */
+            }
+            pft_real_t sw = pft_min(pft_sqrt(pft_add(pft_sq(c->sigma_r[a]), t->P[a][0])),
+                                    c->sigma_w_max);
+            int32_t h = half_cells_(sw);
+            int32_t u = pft_round_int(t->x[a][0]);
+            u = u < -30000 ? -30000 : (u > 30000 ? 30000 : u);
+            lo[a] = u - h < 0 ? 0 : u - h;
+            hi[a] = u + h > n[a] - 1 ? n[a] - 1 : u + h;
         }
-        for (uint32_t i = 0; i < c->max_tracks; ++i) {
-            if (!p->tracks[i].live) {
-                track_new_(p, &p->tracks[i], pos, vel, pv, vv, cv,
-                           pft_pte_core_amp_(&core, p->path), (uint8_t)N);
-                p->tracks[i].score = best;
-                live++;
-                break;
+        for (int32_t d = lo[1]; d <= hi[1]; ++d) {
+            for (int32_t r = lo[0]; r <= hi[0]; ++r) {
+                mk[d * nr + r] = 1u;
             }
         }
-        pft_pte_core_cancel_(&core, p->path, h[0], h[1]);
     }
+}
+
+/* Step 2 spread over the frames (init_spread = S): the running search has done init_stage
+ * DP stages and init_todo frames of the ring (the newest included) wait for theirs; at most S
+ * stages per update, oldest first. At the last stage (the newest frame: the search's batch
+ * is the last N frames of the ring) the best path above init_threshold starts a track, and
+ * so does every next best one whose path crosses no cancelled cell. Returns true when a
+ * search completed. */
+static bool initiate_spread_(pft_pte_t *p)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    pft_pte_core_t_ core;
+    core_(p, &core);
+    const uint32_t N = c->init_frames;
+    const pft_real_t *merit = NULL;
+    /* init_stage stays below N here: init_stage + init_todo starts at back + 1 <= N -
+     * ceil(N / S) + 1 and grows by one per update, and the stages done after u updates are
+     * min(S u, that sum), so they reach N exactly when the sum does (spread_start_) */
+    for (uint32_t s = 0; s < c->init_spread && p->init_todo > 0u; ++s) {
+        const uint32_t j = p->init_stage;
+        const uint32_t back = (uint32_t)p->init_todo - 1u;
+        cancel_live_now_(p, j);
+        merit = pft_pte_core_stage_(&core, j, pft_pte_ring_get_(&p->ring, back));
+        p->init_todo--;
+        p->init_stage = (uint8_t)(j + 1u);
+    }
+    if (p->init_stage < N) {
+        return false;
+    }
+    p->init_stage = 0u;
+    p->init_todo = 0u;
+    p->init_run = 0u;
+    uint32_t live = n_live_(p);
+    bool more = merit != NULL;
+    for (uint32_t guard = 0; guard < c->max_tracks && live < c->max_tracks && more; ++guard) {
+        int32_t cell;
+        pft_real_t best = pft_pte_core_best_(&core, merit, &cell);
+        more = cell >= 0 && best > c->init_threshold;
+        if (more) {
+            pft_pte_core_backtrack_(&core, cell, p->path);
+            /* a path crossing a cancelled cell is left to the next search (a re-run could
+             * find another one) */
+            more = pft_pte_core_clear_(&core, p->path);
+        }
+        if (more) {
+            extract_(p, &core, best);
+            live++;
+        }
+    }
+    return true;
+}
+
+/* init_spread: starts a search when none runs. With no live track it starts on frames
+ * already held so that, at init_spread stages per update, it ends at the newest frame after
+ * ceil(N / init_spread) updates; with live tracks on the newest frame (one stage per update:
+ * their cells at earlier frames are not cancelled). */
+static void spread_start_(pft_pte_t *p, uint32_t live)
+{
+    const uint32_t N = p->cfg.init_frames;
+    const uint32_t S = p->cfg.init_spread;
+    uint32_t back = 0u;
+    if (live == 0u) {
+        back = N - (N + S - 1u) / S;
+        if (back > (uint32_t)p->ring.count - 1u) {
+            back = (uint32_t)p->ring.count - 1u;
+        }
+    }
+    p->init_stage = 0u;
+    p->init_todo = (uint8_t)back; /* the newest frame is counted by the caller */
+    p->init_run = 1u;
 }
 
 static void dedup_(pft_pte_t *p)
@@ -604,10 +722,25 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         p->since_search++;
     }
     uint32_t live = n_live_(p);
-    if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
-        (live == 0u || p->since_search >= p->cfg.init_period)) {
-        p->since_search = 0u;
-        initiate_(p);
+    if (p->cfg.init_spread != 0u) {
+        /* while tracks are live a search completes every max(init_period, N) frames */
+        const int32_t wait = (int32_t)p->cfg.init_period - (int32_t)p->cfg.init_frames + 1;
+        if (p->init_run == 0u && live < p->cfg.max_tracks &&
+            (live == 0u || (int32_t)p->since_search >= wait)) {
+            spread_start_(p, live);
+        }
+        if (p->init_run != 0u) {
+            p->init_todo++; /* the newest frame */
+            if (initiate_spread_(p)) {
+                p->since_search = 0u;
+            }
+        }
+    } else {
+        if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
+            (live == 0u || p->since_search >= p->cfg.init_period)) {
+            p->since_search = 0u;
+            initiate_(p);
+        }
     }
     reports_(p);
     pft_pte_seq_take_(&p->cfg.in, &p->seq, frame, p->rep, p->n_rep);

@@ -172,6 +172,9 @@ struct pft_pte_s {
     pft_pte_seq_t seq;
     uint16_t next_id;
     uint16_t since_search;
+    uint8_t init_run;            /* init_spread: a search is running */
+    uint8_t init_stage;          /* init_spread: DP stages of the running search done */
+    uint8_t init_todo;           /* init_spread: frames of the ring waiting for their stage */
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
