@@ -29,6 +29,8 @@ typedef struct {
 typedef struct {
     uint32_t s[PFT_TSA_BINS];
     uint32_t root;
+    uint8_t nz[PFT_TSA_BINS]; /* the bins u with s_u != 0, ascending */
+    uint32_t n_nz;            /* how many */
 } pft_tsa_hroot_t;
 
 /* Loss handling (cfg.loss_search): tracking, searching around the last good position, or
