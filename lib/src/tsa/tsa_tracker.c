@@ -266,8 +266,10 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     if (hq.total == 0u) {
         return PFT_ERR_DEGENERATE;
     }
+    /* hq's bins are at most its total (pft_tsa_hist), so this is pft_tsa_bhattacharyya(&hq,
+     * &t->q0) without its copies on the stack */
     if (anchor && t->cfg.anchor_rho_min > PFT_C(0.0) &&
-        pft_tsa_bhattacharyya(&hq, &t->q0) < t->cfg.anchor_rho_min) {
+        pft_tsa_rho_hist_(&hq, &t->q0, &t->q0_root) < t->cfg.anchor_rho_min) {
         return PFT_ERR_LOST;
     }
     const pft_tsa_kernel_t tmp = t->kern;
@@ -394,6 +396,7 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
         return st; /* not reached: the contour was checked above */
     }
     t->q0 = t->q;
+    t->q0_root = t->q_root;
     const pft_real_t ox = pft_from_int(origin.x);
     const pft_real_t oy = pft_from_int(origin.y);
     place_particles_(t, ox, oy);
