@@ -128,6 +128,10 @@ void pft_tsa_hroot_(const pft_tsa_hist_t *h, pft_tsa_hroot_t *r)
         /* a bin above the total (not a histogram of this module) is taken as the total */
         const uint32_t b = h->bin[u] < h->total ? h->bin[u] : h->total;
         r->s[u] = pft_tsa_sqrt_approx_(b << s);
+        if (r->s[u] != 0u) {
+            r->nz[r->n_nz] = (uint8_t)u;
+            ++r->n_nz;
+        }
     }
 }
 
@@ -141,6 +145,24 @@ static pft_real_t ratio_(uint64_t num, uint64_t den)
     return pft_wratio_((pft_wacc_t)num, (pft_wacc_t)den);
 }
 
+/* pft_tsa_sqrt_approx_(x) for x > 0, with the usual (x >= 2^24) case first: the same value. */
+static inline uint32_t sqrt_nz_(uint32_t x)
+{
+    uint32_t sh = 0u;
+    if (x < 0x1000000u) {
+        if (x < 0x10000u) {
+            x <<= 16;
+            sh = 16u;
+        }
+        if (x < 0x1000000u) {
+            x <<= 8;
+            sh += 8u;
+        }
+    }
+    const uint32_t t = pft_tsa_norm_tab_[x >> 24];
+    return pft_tsa_sqrt_chord_(x << t) >> ((sh + t) / 2u);
+}
+
 pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
                              const pft_tsa_hroot_t *qr)
 {
@@ -150,14 +172,17 @@ pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
     }
     const uint32_t s = norm_shift_(p->total);
     uint64_t num = 0u;
-    for (uint32_t u = 0; u < PFT_TSA_BINS; ++u) {
-        /* p's bins are at most its total (a histogram of this module; the public
-         * pft_tsa_bhattacharyya clamps its inputs) */
-        if (qr->s[u] != 0u && p->bin[u] != 0u) {
-            num += (uint64_t)pft_tsa_sqrt_approx_(p->bin[u] << s) * qr->s[u];
+    /* only the template's nonzero bins (qr->nz) can contribute; p's bins are at most its total
+     * (a histogram of this module; the public pft_tsa_bhattacharyya clamps its inputs), so
+     * bin << s < 2^32 and is nonzero for a nonzero bin */
+    for (uint32_t k = 0; k < qr->n_nz; ++k) {
+        const uint32_t u = qr->nz[k];
+        const uint32_t b = p->bin[u];
+        if (b != 0u) {
+            num += (uint64_t)sqrt_nz_(b << s) * qr->s[u];
         }
     }
-    return ratio_(num, 3u * (uint64_t)pft_tsa_sqrt_approx_(p->total << s) * qr->root);
+    return ratio_(num, 3u * (uint64_t)sqrt_nz_(p->total << s) * qr->root);
 }
 #else
 /* float twin: sum_u sqrt(p_u q_u) / (3 sqrt(P Q)) with the FPU's square root (products of two

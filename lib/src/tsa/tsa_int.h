@@ -214,12 +214,24 @@ void pft_tsa_view_hist_(const pft_tsa_view_t_ *v, const pft_tsa_kernel_t *k,
  * s_u = isqrt(bin_u << s). All zero for an empty histogram. */
 void pft_tsa_hroot_(const pft_tsa_hist_t *h, pft_tsa_hroot_t *r);
 
-/* rho of histogram p against the template q (root form qr): q16 sum_u s_u(p) s_u(q) /
- * (3 root(p) root(q)) with square roots taken only where both bins are nonzero; float the same
+/* rho of histogram p against the template q (qr: pft_tsa_hroot_ of q): q16 sum_u s_u(p) s_u(q) /
+ * (3 root(p) root(q)) with square roots taken only where both bins are nonzero (the loop runs
+ * over qr's nonzero bins); float the same
  * coefficient with the FPU's square root (a twin: tests/unit/test_tsa_hist.c bounds both against
  * a 64-bit floating-point value). 1 at most, 0 when either is empty. */
 pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
                              const pft_tsa_hroot_t *qr);
+
+/* pft_tsa_motion_free_step with the input's terms given: ux = gamma1 vbar, uv = gamma2 vbar
+ * (the same for every particle of a frame, so computed once). */
+static inline void pft_tsa_motion_free_step_u_(const pft_tsa_motion_free_t *c, pft_real_t *x,
+                                               pft_real_t *v, pft_real_t ux, pft_real_t uv,
+                                               pft_real_t g1, pft_real_t g2)
+{
+    const pft_real_t v0 = *v;
+    *x = pft_add(*x, pft_add(pft_add(pft_mul(c->phi12, v0), ux), pft_mul(c->l11, g1)));
+    *v = pft_add(pft_add(pft_mul(c->phi22, v0), uv), pft_add(pft_mul(c->l21, g1), pft_mul(c->l22, g2)));
+}
 
 /* Inclusive bounding box of integer points. */
 typedef struct {

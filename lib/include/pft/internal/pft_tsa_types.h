@@ -29,6 +29,8 @@ typedef struct {
 typedef struct {
     uint32_t s[PFT_TSA_BINS];
     uint32_t root;
+    uint8_t nz[PFT_TSA_BINS]; /* the bins u with s_u != 0, ascending */
+    uint32_t n_nz;            /* how many */
 } pft_tsa_hroot_t;
 
 /* Loss handling (cfg.loss_search): tracking, searching around the last good position, or
@@ -64,6 +66,7 @@ typedef struct {
     pft_tsa_hist_t h;                 /* scratch */
     uint32_t jb[110];                 /* scratch of the joint-bin histogram (tsa_appear.c) */
     pft_tsa_hroot_t q_root;           /* square-root form of the template */
+    pft_tsa_hroot_t q0_root;          /* square-root form of the first template */
     pft_real_t ref_x[PFT_TSA_MOTION_MAX_K]; /* reference points of the fit, oldest first */
     pft_real_t ref_y[PFT_TSA_MOTION_MAX_K];
     pft_real_t ref_w[PFT_TSA_MOTION_MAX_K];
