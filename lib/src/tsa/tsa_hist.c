@@ -95,26 +95,7 @@ const uint8_t pft_tsa_norm_tab_[256] = {
 };
 
 /* The even shift that puts v (> 0) into [2^30, 2^32). */
-static uint32_t norm_shift_(uint32_t v)
-{
-    uint32_t s = 0u;
-    if (v < 0x10000u) {
-        v <<= 16;
-        s = 16u;
-    }
-    if (v < 0x1000000u) {
-        v <<= 8;
-        s += 8u;
-    }
-    if (v < 0x10000000u) {
-        v <<= 4;
-        s += 4u;
-    }
-    if (v < 0x40000000u) {
-        s += 2u;
-    }
-    return s;
-}
+static uint32_t norm_shift_(uint32_t v) { return pft_tsa_norm_(&v); }
 
 void pft_tsa_hroot_(const pft_tsa_hist_t *h, pft_tsa_hroot_t *r)
 {
@@ -145,24 +126,6 @@ static pft_real_t ratio_(uint64_t num, uint64_t den)
     return pft_wratio_((pft_wacc_t)num, (pft_wacc_t)den);
 }
 
-/* pft_tsa_sqrt_approx_(x) for x > 0, with the usual (x >= 2^24) case first: the same value. */
-static inline uint32_t sqrt_nz_(uint32_t x)
-{
-    uint32_t sh = 0u;
-    if (x < 0x1000000u) {
-        if (x < 0x10000u) {
-            x <<= 16;
-            sh = 16u;
-        }
-        if (x < 0x1000000u) {
-            x <<= 8;
-            sh += 8u;
-        }
-    }
-    const uint32_t t = pft_tsa_norm_tab_[x >> 24];
-    return pft_tsa_sqrt_chord_(x << t) >> ((sh + t) / 2u);
-}
-
 pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
                              const pft_tsa_hroot_t *qr)
 {
@@ -179,10 +142,10 @@ pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
         const uint32_t u = qr->nz[k];
         const uint32_t b = p->bin[u];
         if (b != 0u) {
-            num += (uint64_t)sqrt_nz_(b << s) * qr->s[u];
+            num += (uint64_t)pft_tsa_sqrt_approx_nz_(b << s) * qr->s[u];
         }
     }
-    return ratio_(num, 3u * (uint64_t)sqrt_nz_(p->total << s) * qr->root);
+    return ratio_(num, 3u * (uint64_t)pft_tsa_sqrt_approx_nz_(p->total << s) * qr->root);
 }
 #else
 /* float twin: sum_u sqrt(p_u q_u) / (3 sqrt(P Q)) with the FPU's square root (products of two

@@ -22,13 +22,15 @@ static inline uint32_t pft_tsa_norm_(uint32_t *v)
 {
     uint32_t x = *v;
     uint32_t s = 0u;
-    if (x < 0x10000u) {
-        x <<= 16;
-        s = 16u;
-    }
-    if (x < 0x1000000u) {
-        x <<= 8;
-        s += 8u;
+    if (x < 0x1000000u) { /* the usual case, x >= 2^24, takes one test */
+        if (x < 0x10000u) {
+            x <<= 16;
+            s = 16u;
+        }
+        if (x < 0x1000000u) {
+            x <<= 8;
+            s += 8u;
+        }
     }
     const uint32_t t = pft_tsa_norm_tab_[x >> 24];
     *v = x << t;
@@ -45,14 +47,16 @@ static inline uint32_t pft_tsa_sqrt_chord_(uint32_t x)
 
 /* sqrt(v) to within 2 of sqrt(v 2^s) / 2^(s/2), where s puts v into [2^30, 2^32) (so within
  * 2^-14 relative for v >= 2^30 ...): the chord without the corrections, for the Bhattacharyya
- * coefficient, whose bins are scaled up first. */
-static inline uint32_t pft_tsa_sqrt_approx_(uint32_t v)
+ * coefficient, whose bins are scaled up first. This one for v > 0: */
+static inline uint32_t pft_tsa_sqrt_approx_nz_(uint32_t v)
 {
-    if (v == 0u) {
-        return 0u;
-    }
     const uint32_t s = pft_tsa_norm_(&v);
     return pft_tsa_sqrt_chord_(v) >> (s / 2u);
+}
+/* The same for any v (0 for 0). */
+static inline uint32_t pft_tsa_sqrt_approx_(uint32_t v)
+{
+    return v == 0u ? 0u : pft_tsa_sqrt_approx_nz_(v);
 }
 
 /* floor(sqrt(v)) for a 32-bit v, exactly, without a division: v is shifted left by an even s
