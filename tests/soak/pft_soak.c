@@ -130,14 +130,9 @@ static int live(const scene_t *s)
 }
 
 /* ------------------------------------ work markers --------------------------------------- */
-/* Called just before and just after every tracker update: a QEMU plugin (qemu_marks.c) counts
- * the guest instructions between them on a Cortex-M or AArch64 target (run_soak.sh work-qemu).
- * Not inlined, and with different bodies so that the compiler cannot fold them into one. */
-volatile uint32_t g_mark_begins, g_mark_ends;
-__attribute__((noinline)) void pft_work_mark_begin(void);
-__attribute__((noinline)) void pft_work_mark_end(void);
-__attribute__((noinline)) void pft_work_mark_begin(void) { g_mark_begins++; }
-__attribute__((noinline)) void pft_work_mark_end(void) { g_mark_ends++; }
+/* Called just before and just after every tracker update: the QEMU plugin qemu_marks.c counts
+ * the guest instructions between them (run_soak.sh work-qemu). */
+#include "pft_work_marks.h"
 
 /* The update of one frame between the markers. */
 #define MARKED(call) (pft_work_mark_begin(), mark_status_ = (call), pft_work_mark_end(), mark_status_)

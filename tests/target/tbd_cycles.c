@@ -37,12 +37,7 @@ void tearDown(void) {}
 #define HAVE_SYSTICK 0
 #endif
 
-/* Region markers for the QEMU plugin (not inlined; different bodies so they are not folded). */
-volatile uint32_t g_mark_begins, g_mark_ends;
-__attribute__((noinline)) void pft_work_mark_begin(void);
-__attribute__((noinline)) void pft_work_mark_end(void);
-__attribute__((noinline)) void pft_work_mark_begin(void) { g_mark_begins++; }
-__attribute__((noinline)) void pft_work_mark_end(void) { g_mark_ends++; }
+#include "pft_work_marks.h" /* region markers for the QEMU plugin */
 
 static uint16_t g_raw[W * W];
 #define NT 500u
