@@ -129,7 +129,7 @@ static inline void rbpf_move_(pft_tbd_particles_t *P, uint32_t s, const pft_tbd_
 
 /* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
  * (RBPF or PF) or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. */
-static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+static inline void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     pft_tbd_particles_t *P = &f->cur;
     uint8_t *restrict pe = P->e;
@@ -431,7 +431,7 @@ static void disappearance_(pft_tbd_filter_t *f)
 
 /* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
  * the others move. Counts the births and the survivors. */
-static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
+static inline void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
                        uint32_t *nb, uint32_t *np)
 {
     pft_tbd_particles_t *P = &f->cur;
