@@ -32,7 +32,7 @@ class PortFileReader : public SequenceReader {
 public:
     PortFileReader(const std::string &path, pft_file_layout_t layout, pft_file_encoding_t enc,
                    int w, int h, pft_pixfmt_t fmt, uint32_t first_index, SequenceInfo info)
-        : path_(path)
+        : path_(path), first_index_(first_index)
     {
         info_ = std::move(info);
         std::size_t bpp = fmt == PFT_PIX_F32 ? 4 : 2;
@@ -77,7 +77,8 @@ public:
             pft_status_t st = pft_file_acquire(&fs_, &cur_, 0);
             if (st == PFT_OK) {
                 lent_ = true;
-                ++got_;
+                // frames of the sequence so far, missing ones included (seq is the file index)
+                got_ = static_cast<int>(cur_.seq - first_index_ + 1u);
                 if (!info_.width) {
                     info_.width = cur_.width;
                     info_.height = cur_.height;
@@ -88,13 +89,22 @@ public:
             if (st == PFT_ERR_EOF)
                 return false;
             if (st == PFT_ERR_IO || st == PFT_ERR_FORMAT) {
-                // a lost frame: count it and go on (a concatenated file ends by itself)
-                ++skipped_;
-                std::fprintf(stderr, "pft: warning: %s: frame skipped (%s: %s)\n",
-                             fs_.name[0] ? fs_.name : info_.source.c_str(), pft_status_str(st),
-                             pft_file_error_str(fs_.last_error));
-                if (info_.frames >= 0)
+                // lost frames: count them and go on (a concatenated file ends by itself); the
+                // tracker sees the gap in seq
+                uint32_t missing = fs_.stats.missing - missing_;
+                missing_ = fs_.stats.missing;
+                if (missing > 0u) {
+                    skipped_ += static_cast<int>(missing);
+                    std::fprintf(stderr, "pft: warning: %s: %u missing file(s), a gap in the sequence\n",
+                                 fs_.name[0] ? fs_.name : info_.source.c_str(), missing);
+                    got_ += static_cast<int>(missing);
+                } else {
+                    ++skipped_;
+                    std::fprintf(stderr, "pft: warning: %s: frame skipped (%s: %s)\n",
+                                 fs_.name[0] ? fs_.name : info_.source.c_str(), pft_status_str(st),
+                                 pft_file_error_str(fs_.last_error));
                     ++got_;
+                }
                 continue;
             }
             throw InputError(info_.source + ": read failed (" + pft_status_str(st) + ")");
@@ -108,6 +118,8 @@ private:
     pft_file_source_t fs_{};
     pft_frame_t cur_{};
     bool open_ = false, lent_ = false;
+    uint32_t first_index_ = 0;
+    uint32_t missing_ = 0;  // fs_.stats.missing already reported
     int got_ = 0;
 };
 
@@ -164,7 +176,8 @@ public:
             std::sort(files_.begin(), files_.end(), natural_less);
             if (files_.empty())
                 throw InputError(path + ": no images (png, pgm, ppm, jpg, bmp, tif) in this folder");
-            info_.frames = static_cast<int>(files_.size());
+            number_files();
+            info_.frames = static_cast<int>(seqs_.back());
             std::error_code ec;
             if (fs::exists(fs::path(path) / "truth.csv", ec))
                 info_.truth_csv = (fs::path(path) / "truth.csv").string();
@@ -195,7 +208,15 @@ public:
             for (;;) {
                 if (idx_ >= files_.size())
                     return false;
-                const std::string &file = files_[idx_++];
+                const std::string &file = files_[idx_];
+                uint32_t want = seqs_[idx_++];
+                if (want > seq_ + 1u) {
+                    // numbers missing from the folder: lost frames, seen by the tracker as a gap
+                    skipped_ += static_cast<int>(want - seq_ - 1u);
+                    std::fprintf(stderr, "pft: warning: %s: %u frame(s) missing before it, a gap in the sequence\n",
+                                 file.c_str(), want - seq_ - 1u);
+                }
+                seq_ = want - 1u;
                 img = cv::imread(file, cv::IMREAD_UNCHANGED);
                 if (!img.empty()) {
                     if (lower_ext(file) == ".pgm" && img.depth() == CV_16U)
@@ -203,6 +224,7 @@ public:
                     break;
                 }
                 ++skipped_;
+                seq_ = want;  // its sequence number is used up: the tracker sees the gap
                 std::fprintf(stderr, "pft: warning: %s: unreadable image skipped\n", file.c_str());
             }
         }
@@ -241,8 +263,40 @@ public:
     }
 
 private:
+    /** Sequence numbers of the folder's files: from the last number in each name (f0007.png:
+     *  7) counted from the first file's, when every name has one, they rise by at most
+     *  PFT_FILE_MAX_GAP + 1 and no more numbers are missing than present (then the missing
+     *  numbers are lost frames, a gap in seq); else 1, 2, 3... in name order. */
+    void number_files()
+    {
+        std::vector<uint64_t> num;
+        for (const auto &f : files_) {
+            std::string stem = fs::path(f).stem().string();
+            std::size_t e = stem.find_last_of("0123456789");
+            if (e == std::string::npos)
+                break;
+            std::size_t b = e;
+            while (b > 0 && std::isdigit(static_cast<unsigned char>(stem[b - 1])))
+                --b;
+            if (e - b + 1 > 9)
+                break;
+            num.push_back(std::stoull(stem.substr(b, e - b + 1)));
+        }
+        bool numbered = num.size() == files_.size();
+        for (std::size_t i = 1; numbered && i < num.size(); ++i)
+            numbered = num[i] > num[i - 1] && num[i] - num[i - 1] <= PFT_FILE_MAX_GAP + 1u;
+        // a sequence with holes, not a set of stills that happen to be numbered: at most
+        // PFT_FILE_MAX_GAP numbers missing in a row and no more missing than present
+        if (numbered && num.back() - num.front() + 1u > 2u * num.size())
+            numbered = false;
+        seqs_.resize(files_.size());
+        for (std::size_t i = 0; i < files_.size(); ++i)
+            seqs_[i] = numbered ? static_cast<uint32_t>(num[i] - num[0] + 1u) : static_cast<uint32_t>(i + 1);
+    }
+
     cv::VideoCapture cap_;
     std::vector<std::string> files_;
+    std::vector<uint32_t> seqs_;
     std::size_t idx_ = 0;
     cv::Mat cur_;
     uint32_t seq_ = 0;

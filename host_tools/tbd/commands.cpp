@@ -96,26 +96,34 @@ std::string describe(const Scenario &s)
     return os.str();
 }
 
+/** The frames of a run that are lost (eval.drop_prob, eval.drop_frames), index k = frame
+ *  k + 1: the same for `pft eval` of a seed and `pft sim` of that seed (which writes no file
+ *  for them). The first frame is never lost. */
+std::vector<bool> lost_frames(const Scenario &s, int frames, uint64_t seed)
+{
+    std::vector<bool> lost(static_cast<std::size_t>(frames), false);
+    for (int d : s.eval.drop_frames)
+        if (d >= 2 && d <= frames)
+            lost[static_cast<std::size_t>(d - 1)] = true;
+    if (s.eval.drop_prob > 0.0) {
+        std::mt19937_64 gen(seed * 0x9E3779B97F4A7C15ull + 0xD1B54A32D192ED03ull);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (int k = 1; k < frames; ++k)
+            if (u(gen) < s.eval.drop_prob)
+                lost[static_cast<std::size_t>(k)] = true;
+    }
+    return lost;
+}
+
 /** Runs the tracker over an in-memory sequence. */
 std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint64_t seed, Progress *bar = nullptr)
 {
     Tracker tr(make_config(s, seed), s.filter.mode == "single");
     std::vector<FrameOut> out;
     out.reserve(q.frames);
-    // lost frames (eval.drop_prob, eval.drop_frames): not fed to the tracker, which sees the
-    // gap in the sequence numbers; the frame's output is the tracker's last one (what a display
-    // holds), so the metrics count it
-    std::vector<bool> lost(static_cast<std::size_t>(q.frames), false);
-    for (int d : s.eval.drop_frames)
-        if (d >= 2 && d <= q.frames)
-            lost[static_cast<std::size_t>(d - 1)] = true;
-    if (s.eval.drop_prob > 0.0) {
-        std::mt19937_64 gen(seed * 0x9E3779B97F4A7C15ull + 0xD1B54A32D192ED03ull);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        for (int k = 1; k < q.frames; ++k)
-            if (u(gen) < s.eval.drop_prob)
-                lost[static_cast<std::size_t>(k)] = true;
-    }
+    // lost frames: not fed to the tracker, which sees the gap in the sequence numbers; the
+    // frame's output is the tracker's last one (what a display holds), so the metrics count it
+    std::vector<bool> lost = lost_frames(s, q.frames, seed);
     for (int k = 0; k < q.frames; ++k) {
         if (lost[static_cast<std::size_t>(k)] && !out.empty()) {
             FrameOut held = out.back();
@@ -464,10 +472,20 @@ void eval_plots(const Scenario &s, const json &sum, const std::string &dir, bool
 
 // ------------------------------------------------------------------------- sim output
 /** 16-bit PGM frames raw = offset + gain z (clipped to 0..65535, counted); the sidecar fields. */
-json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &dir, long &clipped, Progress &bar)
+json write_pgm_frames(const Scenario &s, const Sequence &q, const std::string &dir, long &clipped, Progress &bar,
+                      const std::vector<bool> &lost)
 {
     std::vector<uint16_t> px(static_cast<std::size_t>(q.width) * q.height);
     for (int k = 0; k < q.frames; ++k) {
+        if (lost[static_cast<std::size_t>(k)]) {
+            // a lost frame has no file (one left by an earlier sim into the same folder goes)
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
+            std::error_code ec;
+            fs::remove(join_path(dir, name), ec);
+            bar.tick();
+            continue;
+        }
         for (std::size_t i = 0; i < px.size(); ++i) {
             double v = std::nearbyint(s.output.offset + s.output.gain * q.images[k][i]);
             if (v < 0 || v > 65535) {
@@ -705,9 +723,19 @@ public:
         uint64_t seed = o.seed ? *o.seed : s.eval.base_seed;
         ensure_dir(o.out);
         Sequence q = simulate(s, seed);
+        // frames lost on the way (eval.drop_prob / drop_frames, as `pft eval` loses them for
+        // this seed): no file, so the reader sees a gap in the frame numbers
+        std::vector<bool> lost = lost_frames(s, q.frames, seed);
+        json lost_list = json::array();
+        for (int k = 0; k < q.frames; ++k)
+            if (lost[static_cast<std::size_t>(k)])
+                lost_list.push_back(k + 1);
+        if (!lost_list.empty() && format != "pgm")
+            throw InputError(s.file + ": eval.drop_prob / eval.drop_frames lose frames, which only "
+                             "one file per frame can show: use --format pgm");
         long clipped = 0;
         Progress bar(static_cast<std::size_t>(q.frames), "sim", progress_wanted(o.progress));
-        json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped, bar) : write_raw_frames(q, o.out, bar);
+        json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped, bar, lost) : write_raw_frames(q, o.out, bar);
         bar.finish();
         write_truth_csv(join_path(o.out, "truth.csv"), s, q.truth);
         write_mot_file(join_path(o.out, "truth_mot.txt"), truth_mot_rows(s.targets, q.truth, nullptr), mot_box(s));
@@ -716,6 +744,7 @@ public:
         side["width"] = q.width;
         side["height"] = q.height;
         side["truth"] = "truth.csv";
+        side["lost_frames"] = lost_list;
         side["seed"] = seed;
         side["noise_sigma"] = s.noise_sigma;
         side["snr_db"] = s.snr_db;
@@ -730,6 +759,8 @@ public:
                         format == "pgm" ? "16-bit PGM" : "float32 raw");
             if (format == "pgm")
                 std::printf("; raw = %.0f + %.0f * z, %ld pixels clipped", s.output.offset, s.output.gain, clipped);
+            if (!lost_list.empty())
+                std::printf("; %zu frame(s) lost (no file)", lost_list.size());
             std::printf("\n");
         }
         return 0;

@@ -1,7 +1,9 @@
 # cmake -DPFT=pft -DCONV=pft_frames_convert -DWORK=dir -DSRC=host_tools -DMODE=... -P input_forms.cmake
 # MODE setup: simulate and convert (the fixture); tbd, tbd_ir: same tracks from every form;
 # raw_errors: refused --raw specs and truncated dumps; sim_formats: tbd_ir pgm and raw output
-# read back alike; real_frames: a folder background with a YOLO label.
+# read back alike; real_frames: a folder background with a YOLO label; lost_frames: pft sim
+# with lost frames, read back with the gaps in seq.
+cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 function(run_ok)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -160,6 +162,61 @@ elseif(MODE STREQUAL "real_frames")
   expect_refused("[^\n]*no_such_dir: background folder not found"
                  ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${WORK}/no_such_dir
                  --out ${WORK}/bad -q)
+elseif(MODE STREQUAL "lost_frames")
+  # pft sim loses frames as pft eval does (eval.drop_prob, the same per seed): no file for
+  # them, listed in the sidecar; pft run, from the sim directory (port/file pattern) and from
+  # a plain PGM folder (OpenCV, numbers in the names), sees them as gaps in seq: the tracks'
+  # frame numbers are the files' numbers, never a lost one
+  set(drop "${SRC}/scenarios/tbd/two_case1_drop10_use.json")
+  run_ok(${PFT} sim --scenario ${drop} --seed 3 --out ${WORK}/lost_sim -q)
+  file(READ ${WORK}/lost_sim/sequence.json side)
+  string(JSON lost GET "${side}" lost_frames)
+  string(JSON nlost LENGTH "${side}" lost_frames)
+  if(nlost LESS 2)
+    message(FATAL_ERROR "expected lost frames in the sidecar: ${lost}")
+  endif()
+  set(lost_nums "")
+  math(EXPR last "${nlost} - 1")
+  foreach(i RANGE ${last})
+    string(JSON n GET "${side}" lost_frames ${i})
+    list(APPEND lost_nums ${n})
+    string(LENGTH "000${n}" len)
+    math(EXPR from "${len} - 4")
+    string(SUBSTRING "000${n}" ${from} 4 n4)
+    if(EXISTS ${WORK}/lost_sim/frame_${n4}.pgm)
+      message(FATAL_ERROR "lost frame ${n} has a file")
+    endif()
+  endforeach()
+  file(GLOB frames ${WORK}/lost_sim/frame_*.pgm)
+  list(LENGTH frames nfiles)
+  file(COPY ${frames} DESTINATION ${WORK}/lost_pgm)
+  run_ok(${PFT} run --sequence ${WORK}/lost_sim --no-video --out ${WORK}/run_lost_sim)
+  set(out_sim "${run_out}")
+  run_ok(${PFT} run --sequence ${WORK}/lost_pgm --scenario ${drop} --truth ${WORK}/lost_sim/truth.csv
+         --no-video --out ${WORK}/run_lost_pgm)
+  set(out_pgm "${run_out}")
+  foreach(form sim pgm)
+    if(NOT out_${form} MATCHES "${nfiles} frames, [0-9]+ skipped")
+      message(FATAL_ERROR "${form}: expected ${nfiles} frames read and the lost ones skipped:\n${out_${form}}")
+    endif()
+    file(STRINGS ${WORK}/run_lost_${form}/tracks.csv rows)
+    list(REMOVE_AT rows 0)
+    set(maxf 0)
+    foreach(r ${rows})
+      string(REGEX MATCH "^[0-9]+" f "${r}")
+      if(f IN_LIST lost_nums)
+        message(FATAL_ERROR "${form}: a track row at lost frame ${f}")
+      endif()
+      if(f GREATER maxf)
+        set(maxf ${f})
+      endif()
+    endforeach()
+    # frames counted one by one would end at the number of files
+    if(NOT maxf GREATER nfiles)
+      message(FATAL_ERROR "${form}: last track frame ${maxf} is not past the ${nfiles} files: gaps not seen")
+    endif()
+  endforeach()
+  message(STATUS "lost frames ${lost}: no files; both readers see the gaps (last track frame ${maxf} of ${nfiles} files)")
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()

@@ -389,13 +389,23 @@ pft_status_t pft_file_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms)
         }
         FILE *fp = fopen(fs->name, "rb");
         if (fp == NULL) {
-            /* the end of the sequence, or a gap if the next file is there */
+            /* the end of the sequence, or a gap of up to PFT_FILE_MAX_GAP files if a later
+               file is there: skipped in this one call, the next acquire reads that file */
             char next[PFT_FILE_NAME_MAX];
-            if (make_name(next, fs->cfg.path, seq + 1u) && file_exists(next)) {
-                fs->index++;
-                fs->last_error = PFT_FILE_E_OPEN;
-                fs->stats.errors++;
-                return PFT_ERR_IO;
+            for (uint32_t j = 1u; j <= PFT_FILE_MAX_GAP; ++j) {
+                if (seq + j < seq) {
+                    break; /* the index would wrap */
+                }
+                if (!make_name(next, fs->cfg.path, seq + j)) {
+                    break;
+                }
+                if (file_exists(next)) {
+                    fs->index = seq + j;
+                    fs->last_error = PFT_FILE_E_OPEN;
+                    fs->stats.errors++;
+                    fs->stats.missing += j;
+                    return PFT_ERR_IO;
+                }
             }
             fs->ended = true;
             return PFT_ERR_EOF;

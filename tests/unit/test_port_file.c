@@ -2,6 +2,7 @@
  * the runner over a file sequence, argument checks. Files are written and read back under the
  * same relative names, so the test works on the host (cwd = build/tests) and under QEMU
  * semihosting (paths relative to QEMU's cwd, which CTest sets to the same folder). */
+#include <stdio.h>
 #include <string.h>
 #include "pft_test_support.h"
 #include "pft/pft_port_file.h"
@@ -258,30 +259,52 @@ static void test_bad_magic_and_header(void)
     (void)pft_file_remove("pft_tpf_f.pgm");
 }
 
-static void test_gap_in_pattern_is_io_then_continues(void)
+/* Missing pattern files inside the sequence: one PFT_ERR_IO for the whole run of them, then
+ * the later file with its own index as seq (the consumer sees the gap); more than
+ * PFT_FILE_MAX_GAP missing files end the sequence. */
+static void gap_case(uint32_t later, bool found)
 {
     static const char a[] = "P5\n1 1\n255\nA";
     static const char c2[] = "P5\n1 1\n255\nC";
-    (void)pft_file_remove("pft_tpf_g1.pgm");
-    (void)pft_file_remove("pft_tpf_g3.pgm");
-    (void)pft_file_remove("pft_tpf_g4.pgm");
+    char name[64];
+    for (uint32_t i = 1u; i <= PFT_FILE_MAX_GAP + 2u; ++i) {
+        (void)snprintf(name, sizeof name, "pft_tpf_g%u.pgm", (unsigned)i);
+        (void)pft_file_remove(name);
+    }
     write_text("pft_tpf_g0.pgm", a);
-    write_text("pft_tpf_g2.pgm", c2);
+    (void)snprintf(name, sizeof name, "pft_tpf_g%u.pgm", (unsigned)later);
+    write_text(name, c2);
     pft_file_config_t c = cfg_of("pft_tpf_g%u.pgm", PFT_FILE_PER_FRAME, PFT_FILE_PNM);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_source_init(&fs, &c));
     pft_frame_t g;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_acquire(&fs, &g, 0u));
     TEST_ASSERT_EQUAL_UINT8('A', *(const uint8_t *)g.data);
+    TEST_ASSERT_EQUAL_UINT32(0u, g.seq);
     pft_file_release(&fs, &g);
-    TEST_ASSERT_EQUAL_INT(PFT_ERR_IO, pft_file_acquire(&fs, &g, 0u));
-    TEST_ASSERT_EQUAL_INT(PFT_FILE_E_OPEN, fs.last_error);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_acquire(&fs, &g, 0u));
-    TEST_ASSERT_EQUAL_UINT8('C', *(const uint8_t *)g.data);
-    TEST_ASSERT_EQUAL_UINT32(2u, g.seq);
-    pft_file_release(&fs, &g);
+    if (found) {
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_IO, pft_file_acquire(&fs, &g, 0u));
+        TEST_ASSERT_EQUAL_INT(PFT_FILE_E_OPEN, fs.last_error);
+        TEST_ASSERT_EQUAL_UINT32(later - 1u, fs.stats.missing);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_file_acquire(&fs, &g, 0u));
+        TEST_ASSERT_EQUAL_UINT8('C', *(const uint8_t *)g.data);
+        TEST_ASSERT_EQUAL_UINT32(later, g.seq);
+        TEST_ASSERT_EQUAL_UINT64((uint64_t)later * c.frame_period_us, g.timestamp_us);
+        pft_file_release(&fs, &g);
+    } else {
+        TEST_ASSERT_EQUAL_UINT32(0u, fs.stats.missing);
+    }
     TEST_ASSERT_EQUAL_INT(PFT_ERR_EOF, pft_file_acquire(&fs, &g, 0u));
+    TEST_ASSERT_EQUAL_UINT32(found ? 2u : 1u, fs.stats.frames);
     (void)pft_file_remove("pft_tpf_g0.pgm");
-    (void)pft_file_remove("pft_tpf_g2.pgm");
+    (void)pft_file_remove(name);
+}
+
+static void test_gap_in_pattern_is_io_then_continues(void)
+{
+    gap_case(2u, true); /* one file missing */
+    gap_case(4u, true); /* three files missing: one call */
+    gap_case(PFT_FILE_MAX_GAP + 1u, true); /* the longest gap */
+    gap_case(PFT_FILE_MAX_GAP + 2u, false); /* one more: the sequence has ended */
 }
 
 static void test_raw_concat_u16_and_truncated_tail(void)

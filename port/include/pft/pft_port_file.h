@@ -18,10 +18,13 @@
  * lent at once; U16 pixels are converted to the host's byte order in place.
  *
  * Status of acquire (the detail is in pft_file_source_t::last_error, see pft_file_error_str):
- * - PFT_ERR_EOF: the pattern's next file does not exist and neither does the one after it, or
- *   the concatenated file ended cleanly at a frame boundary. Sticky.
- * - PFT_ERR_IO: a pattern file is missing but the next one exists (a gap: skipped), or a read
- *   error. The next acquire goes on with the next file.
+ * - PFT_ERR_EOF: the pattern's next file does not exist and neither does any of the
+ *   PFT_FILE_MAX_GAP files after it, or the concatenated file ended cleanly at a frame
+ *   boundary. Sticky.
+ * - PFT_ERR_IO: pattern files are missing but a later one (at most PFT_FILE_MAX_GAP on)
+ *   exists: the gap is skipped in this one call (stats.missing counts the files), and the
+ *   next acquire reads that later file, whose seq is its index, so the consumer sees the gap
+ *   in seq. Or a read error: the next acquire goes on with the next file.
  * - PFT_ERR_FORMAT: bad magic, malformed header, unsupported variant, geometry not as
  *   configured, frame larger than a slot, or a truncated file (fewer pixel bytes than the
  *   header announces). With one file per frame the next acquire reads the next file; a
@@ -44,6 +47,8 @@ extern "C" {
 
 /** Longest file name a pattern may produce (including the terminating zero). */
 #define PFT_FILE_NAME_MAX 256u
+/** Longest run of missing pattern files taken as a gap (more: the sequence has ended). */
+#define PFT_FILE_MAX_GAP 64u
 /** Most frames lent at once by one file source. */
 #define PFT_FILE_MAX_SLOTS 4u
 
@@ -97,6 +102,7 @@ typedef struct {
 typedef struct {
     uint32_t frames;       /**< frames lent */
     uint32_t errors;       /**< acquires that failed with IO or FORMAT */
+    uint32_t missing;      /**< pattern files missing inside the sequence (gaps skipped) */
     uint32_t released;     /**< frames given back */
     uint32_t bad_releases; /**< releases of frames that were not lent (ignored) */
 } pft_file_stats_t;
