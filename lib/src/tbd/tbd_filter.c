@@ -111,34 +111,44 @@ typedef struct {
 
 /* RBPF survivor of state byte e (age e - 1): the position is sampled from N(x + T m, N_a)
  * per axis, the velocity mean takes the Kalman update of that step (tbd_dyn.c), the intensity
- * a random walk. */
-static inline void rbpf_move_(pft_tbd_particles_t *P, uint32_t s, const pft_tbd_tab_t *tab,
-                              pft_real_t T, pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
+ * a random walk. k points at the particle's state, the tables are tab's for that age. */
+static inline void rbpf_move_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
+                              pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
 {
     const pft_real_t gx = pft_rng_zig_(rng);
     const pft_real_t gy = pft_rng_zig_(rng);
     const pft_real_t gi = pft_rng_zig_(rng);
-    const pft_real_t vx = P->vx[s];
-    const pft_real_t vy = P->vy[s];
-    P->x[s] = pft_kmad2_(P->x[s], T, vx, tab->kf_sd[0][age], gx);
-    P->vx[s] = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
-    P->y[s] = pft_kmad2_(P->y[s], T, vy, tab->kf_sd[1][age], gy);
-    P->vy[s] = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
-    P->in[s] = pft_kmad1_(P->in[s], ch_int, gi);
+    const pft_real_t vx = *k->vx;
+    const pft_real_t vy = *k->vy;
+    *k->x = pft_kmad2_(*k->x, T, vx, tab->kf_sd[0][age], gx);
+    *k->vx = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
+    *k->y = pft_kmad2_(*k->y, T, vy, tab->kf_sd[1][age], gy);
+    *k->vy = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
+    *k->in = pft_kmad1_(*k->in, ch_int, gi);
 }
 
 /* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
- * (RBPF or PF) or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. */
-static inline void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+ * (RBPF or PF: rb is a constant where this is expanded, so the kind is not tested per particle)
+ * or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. Every loop invariant
+ * is a local (the generator too: its address never escapes, copies go to the calls), so no
+ * store of the loop can reach one (in q16 the particle arrays hold int32_t, as many fields of
+ * f do) and the loop compiles the same whether this pass is inlined or called: it has two
+ * callers, the update and the lost-frames coast. */
+static inline void move_run_(pft_tbd_filter_t *f, const step_ctx_t *x, const bool rb)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    uint8_t *restrict pe = P->e;
-    const uint32_t p16_d = f->dyn.p16_d;
+    pft_real_t *const px = f->cur.x;
+    pft_real_t *const py = f->cur.y;
+    pft_real_t *const pin = f->cur.in;
+    pft_real_t *const pvx = f->cur.vx;
+    pft_real_t *const pvy = f->cur.vy;
+    uint8_t *const pe = f->cur.e;
+    const pft_tbd_dyn_t dyn = f->dyn;
+    const pft_tbd_tab_t *const tab = x->tab;
+    const pft_real_t T = x->T;
+    const uint32_t p16_d = dyn.p16_d;
     const uint32_t p_birth = x->can_birth ? x->p_birth : 0u; /* u < 0 never holds */
-    const bool rb = x->rb;
     const uint32_t e_max = x->e_max;
     const uint32_t n = f->n;
-    /* the generator in a local whose address never escapes (copies go to the calls) */
     pft_rng_t rng = f->rng;
     for (uint32_t s = 0; s < n; ++s) {
         const uint32_t u = pft_tbd_exist_draw_(&rng); /* one draw per particle */
@@ -147,16 +157,16 @@ static inline void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
             if (u < p16_d) {
                 e = 0u;
             } else {
+                const pft_tbd_kin_t k = {&px[s], &py[s], &pvx[s], &pvy[s], &pin[s]};
                 if (rb) {
-                    rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
+                    rbpf_move_(&k, tab, T, dyn.ch_int, e - 1u, &rng);
                 } else {
-                    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-                    pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
+                    pft_tbd_pf_move_(&dyn, T, &rng, &k);
                 }
                 e = e < e_max ? e + 1u : e;
             }
         } else if (u < p_birth) {
-            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+            pft_tbd_kin_t k = {&px[s], &py[s], &pvx[s], &pvy[s], &pin[s]};
             pft_rng_t t = rng;
             pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
             rng = t;
@@ -167,10 +177,21 @@ static inline void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
     f->rng = rng;
 }
 
+static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    if (x->rb) {
+        move_run_(f, x, true);
+    } else {
+        move_run_(f, x, false);
+    }
+}
+
 /* Step 3 for every particle: a particle whose window centre leaves the image, or enters the
  * exclusion mask, gets E = 0 [A]; the others get the log-weight of eq. 20 (E = 0: likelihood
- * ratio 1), births (state byte 1) plus the birth correction. Returns the largest log-weight. */
-static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+ * ratio 1), births (state byte 1) plus the birth correction. Returns the largest log-weight.
+ * fast (a constant where this is expanded): the 3 x 3 window, no mask and unit pixel pitches,
+ * so the loop tests none of them per particle (the same values as the general path). */
+static inline pft_real_t weigh_run_(pft_tbd_filter_t *f, const step_ctx_t *x, const bool fast)
 {
     const pft_tbd_particles_t *P = &f->cur;
     /* a local copy that no store of the loop can reach: its fields (pitch, size, window) stay
@@ -193,11 +214,20 @@ static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
         const uint32_t e = pe[s];
         if (e != 0u) {
             pft_tbd_cell_t c;
-            if (!pft_tbd_cell_(m, px[s], py[s], &c) ||
-                (mask != NULL && mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u)) {
+            bool out;
+            if (fast) {
+                out = !(pft_kcell_(px[s], m->hi_x, (int32_t)m->width, &c.i, &c.fx) &&
+                        pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy));
+            } else {
+                out = !pft_tbd_cell_(m, px[s], py[s], &c) ||
+                      (mask != NULL &&
+                       mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u);
+            }
+            if (out) {
                 pe[s] = 0u;
             } else {
-                lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
+                lw = fast ? pft_tbd_llr3_(m, tab, img, &c, pin[s])
+                          : pft_tbd_llr_(m, tab, img, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, birth_lw);
                 }
@@ -207,6 +237,15 @@ static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
         lmax = pft_max(lmax, lw);
     }
     return lmax;
+}
+
+static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_meas_t *m = &f->model;
+    if (m->p == 1u && x->mask == NULL && m->dx == PFT_REAL_ONE && m->dy == PFT_REAL_ONE) {
+        return weigh_run_(f, x, true);
+    }
+    return weigh_run_(f, x, false);
 }
 
 /* ---------------------------------- pass 2: weights --------------------------------------- */
@@ -280,6 +319,9 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
     const uint8_t *restrict pe = P->e;
     const pft_real_t *restrict px = P->x;
     const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pvx = P->vx;
+    const pft_real_t *restrict pvy = P->vy;
+    const pft_real_t *restrict pin = P->in;
     const uint32_t n = f->n;
     const pft_krecip_t r = pft_krecip_(sum);
     est_sums_t a;
@@ -326,9 +368,9 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
             a.we += wn;
             a.s[0] += pft_acc_wx_(wn, px[s]);
             a.s[1] += pft_acc_wx_(wn, py[s]);
-            a.s[2] += pft_acc_wx_(wn, P->vx[s]);
-            a.s[3] += pft_acc_wx_(wn, P->vy[s]);
-            a.s[4] += pft_acc_wx_(wn, P->in[s]);
+            a.s[2] += pft_acc_wx_(wn, pvx[s]);
+            a.s[3] += pft_acc_wx_(wn, pvy[s]);
+            a.s[4] += pft_acc_wx_(wn, pin[s]);
             a.cxx += pft_acc_wx_(wn, pft_kmulr_(dx, dx));
             a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
@@ -364,18 +406,31 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
  * order (the same slots as a forward scan for count 0 would take). */
 static void replicate_(pft_tbd_filter_t *f, uint32_t head)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_slot_t *w = P->w;
+    /* the arrays in locals: the state byte's store (a char) could otherwise reach them */
+    pft_real_t *const px = f->cur.x;
+    pft_real_t *const py = f->cur.y;
+    pft_real_t *const pin = f->cur.in;
+    pft_real_t *const pvx = f->cur.vx;
+    pft_real_t *const pvy = f->cur.vy;
+    uint8_t *const pe = f->cur.e;
+    const pft_tbd_slot_t *const w = f->cur.w;
     const uint32_t n = f->n;
     uint32_t j = head & ~SLOT_EMPTY_;
     for (uint32_t s = 0; s < n; ++s) {
         const uint32_t r = w[s].n;
         if (r - 2u < SLOT_EMPTY_ - 2u) { /* 2 <= r < SLOT_EMPTY_ */
+            const pft_real_t xs = px[s], ys = py[s], is = pin[s], vxs = pvx[s], vys = pvy[s];
+            const uint8_t es = pe[s];
             for (uint32_t c = r; c > 1u; --c) {
                 if (j >= n) {
                     return; /* cannot happen: the counts sum to n */
                 }
-                copy_particle_(P, j, P, s);
+                px[j] = xs;
+                py[j] = ys;
+                pin[j] = is;
+                pvx[j] = vxs;
+                pvy[j] = vys;
+                pe[j] = es;
                 j = w[j].n & ~SLOT_EMPTY_;
             }
         }
@@ -430,45 +485,54 @@ static void disappearance_(pft_tbd_filter_t *f)
 #define BERN_DROP_ PFT_C(-30000.0)
 
 /* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
- * the others move. Counts the births and the survivors. */
-static inline void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
-                       uint32_t *nb, uint32_t *np)
+ * the others move. Counts the births and the survivors. Loop invariants in locals, as in
+ * move_run_ (two callers here too: the update and the coast). */
+static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share, uint32_t *nb,
+                       uint32_t *np)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    uint8_t *restrict pe = P->e;
+    pft_real_t *const px = f->cur.x;
+    pft_real_t *const py = f->cur.y;
+    pft_real_t *const pin = f->cur.in;
+    pft_real_t *const pvx = f->cur.vx;
+    pft_real_t *const pvy = f->cur.vy;
+    uint8_t *const pe = f->cur.e;
+    const pft_tbd_dyn_t dyn = f->dyn;
+    const pft_tbd_tab_t *const tab = x->tab;
+    const pft_real_t T = x->T;
     const bool rb = x->rb;
+    const bool can_birth = x->can_birth;
     const uint32_t e_max = x->e_max;
+    const uint32_t n = f->n;
     pft_rng_t rng = f->rng;
     uint32_t b = 0u;
-    for (uint32_t s = 0; s < f->n; ++s) {
+    uint32_t surv = 0u;
+    for (uint32_t s = 0; s < n; ++s) {
         const uint32_t u = pft_tbd_exist_draw_(&rng);
         uint32_t e = pe[s];
-        if ((e == 0u || u < p16_share) && !x->can_birth) {
+        const pft_tbd_kin_t k = {&px[s], &py[s], &pvx[s], &pvy[s], &pin[s]};
+        if ((e == 0u || u < p16_share) && !can_birth) {
             e = 0u; /* no pixel to be born in: the slot stays empty */
         } else if (e == 0u || u < p16_share) {
-            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
+            pft_tbd_kin_t kb = k;
             pft_rng_t t = rng;
-            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
+            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &kb);
             rng = t;
             e = 1u;
             ++b;
         } else {
             if (rb) {
-                rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
+                rbpf_move_(&k, tab, T, dyn.ch_int, e - 1u, &rng);
             } else {
-                pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-                pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
+                pft_tbd_pf_move_(&dyn, T, &rng, &k);
             }
             e = e < e_max ? e + 1u : e;
         }
         pe[s] = (uint8_t)e;
+        surv += e > 1u ? 1u : 0u;
     }
     f->rng = rng;
     *nb = b;
-    *np = 0u;
-    for (uint32_t s = 0; s < f->n; ++s) {
-        *np += pe[s] > 1u ? 1u : 0u;
-    }
+    *np = surv;
 }
 
 /* Log-weights: the likelihood ratio plus the log prior weight of the particle's group (lb for

@@ -218,7 +218,7 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,
-                                    pft_tbd_kin_t *k)
+                                    const pft_tbd_kin_t *k)
 {
     const pft_real_t g1 = pft_rng_zig_(rng);
     const pft_real_t g2 = pft_rng_zig_(rng);
