@@ -192,6 +192,8 @@ static void move_rbpf_(pft_tbd_filter_t *f, const step_ctx_t *x)
         } else if (u < v.p_birth) {
             rng = move_birth_(f, x, &v, s, rng);
             e = 1u;
+        } else {
+            /* an empty slot without a birth stays empty */
         }
         v.e[s] = (uint8_t)e;
     }
@@ -216,6 +218,8 @@ static void move_pf_(pft_tbd_filter_t *f, const step_ctx_t *x)
         } else if (u < v.p_birth) {
             rng = move_birth_(f, x, &v, s, rng);
             e = 1u;
+        } else {
+            /* an empty slot without a birth stays empty */
         }
         v.e[s] = (uint8_t)e;
     }
