@@ -19,6 +19,7 @@
  * - pft_kmulq_: a b rounded (ties up), saturated: a cheaper pft_mul for products of proven
  *   range; pft_kmulr_ the same without saturation where the caller proves the range;
  *   pft_kspread_: a position difference limited (q16) so that its square fits.
+ * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  */
 #ifndef PFT_CORE_KERN_INT_H
 #define PFT_CORE_KERN_INT_H
@@ -159,6 +160,9 @@ static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b)
 {
     return (pft_real_t)(((int64_t)a * b + 32768) >> 16);
 }
+
+/* An F32 pixel as a real: pft_from_f32 (q16: the IEEE decoding). */
+static inline pft_real_t pft_kfrom_f32_(float v) { return pft_from_f32(v); }
 
 /* a b rounded to nearest (ties up) and saturated. */
 static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b)
@@ -309,6 +313,8 @@ static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_rea
 static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
+/* pft_from_f32 is the identity in the float build: no call per pixel. */
+static inline pft_real_t pft_kfrom_f32_(float v) { return v; }
 
 static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const pft_real_t tx[4],
                                      const pft_real_t ty[4], pft_real_t a)

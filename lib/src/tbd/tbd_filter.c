@@ -111,66 +111,134 @@ typedef struct {
 
 /* RBPF survivor of state byte e (age e - 1): the position is sampled from N(x + T m, N_a)
  * per axis, the velocity mean takes the Kalman update of that step (tbd_dyn.c), the intensity
- * a random walk. */
-static inline void rbpf_move_(pft_tbd_particles_t *P, uint32_t s, const pft_tbd_tab_t *tab,
-                              pft_real_t T, pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
+ * a random walk. k points at the particle's state, the tables are tab's for that age. */
+static inline void rbpf_move_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
+                              pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
 {
     const pft_real_t gx = pft_rng_zig_(rng);
     const pft_real_t gy = pft_rng_zig_(rng);
     const pft_real_t gi = pft_rng_zig_(rng);
-    const pft_real_t vx = P->vx[s];
-    const pft_real_t vy = P->vy[s];
-    P->x[s] = pft_kmad2_(P->x[s], T, vx, tab->kf_sd[0][age], gx);
-    P->vx[s] = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
-    P->y[s] = pft_kmad2_(P->y[s], T, vy, tab->kf_sd[1][age], gy);
-    P->vy[s] = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
-    P->in[s] = pft_kmad1_(P->in[s], ch_int, gi);
+    const pft_real_t vx = *k->vx;
+    const pft_real_t vy = *k->vy;
+    *k->x = pft_kmad2_(*k->x, T, vx, tab->kf_sd[0][age], gx);
+    *k->vx = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
+    *k->y = pft_kmad2_(*k->y, T, vy, tab->kf_sd[1][age], gy);
+    *k->vy = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
+    *k->in = pft_kmad1_(*k->in, ch_int, gi);
+}
+
+/* The loop invariants of the move passes, read once per pass into locals: no store of the
+ * loops can reach them (in q16 the particle arrays hold int32_t, as many fields of f do), so
+ * none is reloaded per particle, and the passes compile the same whether they are inlined or
+ * called (they have two callers: the update and the lost-frames coast). */
+typedef struct {
+    pft_real_t *x, *y, *in, *vx, *vy;
+    uint8_t *e;
+    pft_tbd_dyn_t dyn;
+    const pft_tbd_tab_t *tab;
+    pft_real_t T;
+    uint32_t p_birth; /* 0 when no birth is possible (u < 0 never holds) */
+    uint32_t e_max;
+    uint32_t n;
+} move_inv_t;
+
+static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    move_inv_t v;
+    v.x = f->cur.x;
+    v.y = f->cur.y;
+    v.in = f->cur.in;
+    v.vx = f->cur.vx;
+    v.vy = f->cur.vy;
+    v.e = f->cur.e;
+    v.dyn = f->dyn;
+    v.tab = x->tab;
+    v.T = x->T;
+    v.p_birth = x->can_birth ? x->p_birth : 0u;
+    v.e_max = x->e_max;
+    v.n = f->n;
+    return v;
+}
+
+/* A birth into particle s (the generator passed by value and back, so that the caller's
+ * never has its address taken). */
+static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t *x,
+                                    const move_inv_t *v, uint32_t s, pft_rng_t rng)
+{
+    pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
+    pft_rng_t t = rng;
+    pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !x->rb, &t, &k);
+    return t;
 }
 
 /* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
- * (RBPF or PF) or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. */
-static inline void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+ * or a birth. The new state byte: 0 (no target), 1 (born now), 1 + age. One loop per kind (the
+ * two differ in the survivor's move only), so the kind is not tested per particle. */
+static void move_rbpf_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    uint8_t *restrict pe = P->e;
-    const uint32_t p16_d = f->dyn.p16_d;
-    const uint32_t p_birth = x->can_birth ? x->p_birth : 0u; /* u < 0 never holds */
-    const bool rb = x->rb;
-    const uint32_t e_max = x->e_max;
-    const uint32_t n = f->n;
-    /* the generator in a local whose address never escapes (copies go to the calls) */
+    const move_inv_t v = move_inv_(f, x);
     pft_rng_t rng = f->rng;
-    for (uint32_t s = 0; s < n; ++s) {
+    for (uint32_t s = 0; s < v.n; ++s) {
         const uint32_t u = pft_tbd_exist_draw_(&rng); /* one draw per particle */
-        uint32_t e = pe[s];
+        uint32_t e = v.e[s];
         if (e != 0u) {
-            if (u < p16_d) {
+            if (u < v.dyn.p16_d) {
                 e = 0u;
             } else {
-                if (rb) {
-                    rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
-                } else {
-                    pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-                    pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
-                }
-                e = e < e_max ? e + 1u : e;
+                const pft_tbd_kin_t k = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s], &v.in[s]};
+                rbpf_move_(&k, v.tab, v.T, v.dyn.ch_int, e - 1u, &rng);
+                e = e < v.e_max ? e + 1u : e;
             }
-        } else if (u < p_birth) {
-            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-            pft_rng_t t = rng;
-            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
-            rng = t;
+        } else if (u < v.p_birth) {
+            rng = move_birth_(f, x, &v, s, rng);
             e = 1u;
+        } else {
+            /* an empty slot without a birth stays empty */
         }
-        pe[s] = (uint8_t)e;
+        v.e[s] = (uint8_t)e;
     }
     f->rng = rng;
+}
+
+static void move_pf_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const move_inv_t v = move_inv_(f, x);
+    pft_rng_t rng = f->rng;
+    for (uint32_t s = 0; s < v.n; ++s) {
+        const uint32_t u = pft_tbd_exist_draw_(&rng); /* one draw per particle */
+        uint32_t e = v.e[s];
+        if (e != 0u) {
+            if (u < v.dyn.p16_d) {
+                e = 0u;
+            } else {
+                const pft_tbd_kin_t k = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s], &v.in[s]};
+                pft_tbd_pf_move_(&v.dyn, v.T, &rng, &k);
+                e = e < v.e_max ? e + 1u : e;
+            }
+        } else if (u < v.p_birth) {
+            rng = move_birth_(f, x, &v, s, rng);
+            e = 1u;
+        } else {
+            /* an empty slot without a birth stays empty */
+        }
+        v.e[s] = (uint8_t)e;
+    }
+    f->rng = rng;
+}
+
+static void move_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    if (x->rb) {
+        move_rbpf_(f, x);
+    } else {
+        move_pf_(f, x);
+    }
 }
 
 /* Step 3 for every particle: a particle whose window centre leaves the image, or enters the
  * exclusion mask, gets E = 0 [A]; the others get the log-weight of eq. 20 (E = 0: likelihood
  * ratio 1), births (state byte 1) plus the birth correction. Returns the largest log-weight. */
-static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_particles_t *P = &f->cur;
     /* a local copy that no store of the loop can reach: its fields (pitch, size, window) stay
@@ -207,6 +275,54 @@ static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
         lmax = pft_max(lmax, lw);
     }
     return lmax;
+}
+
+/* The same for the common case, the 3 x 3 window without a mask and with unit pixel pitches,
+ * none of them tested per particle: the same values as weigh_any_. */
+static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_tbd_meas_t mm = f->model;
+    const pft_tbd_meas_t *m = &mm;
+    const pft_real_t *img = x->sc->img;
+    const pft_tbd_tab_t *tab = x->tab;
+    uint8_t *restrict pe = P->e;
+    pft_tbd_slot_t *restrict pw = P->w;
+    const pft_real_t *restrict px = P->x;
+    const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pin = P->in;
+    const pft_real_t birth_lw = f->birth_lw;
+    const uint32_t n = f->n;
+    pft_real_t lmax = PFT_REAL_MIN;
+    for (uint32_t s = 0; s < n; ++s) {
+        pft_real_t lw = PFT_C(0.0);
+        const uint32_t e = pe[s];
+        if (e != 0u) {
+            pft_tbd_cell_t c;
+            /* pft_tbd_cell_ with dx = dy = 1 */
+            if (!(pft_kcell_(px[s], m->hi_x, (int32_t)m->width, &c.i, &c.fx) &&
+                  pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy))) {
+                pe[s] = 0u;
+            } else {
+                lw = pft_tbd_llr3_(m, tab, img, &c, pin[s]);
+                if (e == 1u) {
+                    lw = pft_add(lw, birth_lw);
+                }
+            }
+        }
+        pw[s].lw = lw;
+        lmax = pft_max(lmax, lw);
+    }
+    return lmax;
+}
+
+static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_meas_t *m = &f->model;
+    if (m->p == 1u && x->mask == NULL && m->dx == PFT_REAL_ONE && m->dy == PFT_REAL_ONE) {
+        return weigh_3x3_(f, x);
+    }
+    return weigh_any_(f, x);
 }
 
 /* ---------------------------------- pass 2: weights --------------------------------------- */
@@ -280,6 +396,9 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
     const uint8_t *restrict pe = P->e;
     const pft_real_t *restrict px = P->x;
     const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pvx = P->vx;
+    const pft_real_t *restrict pvy = P->vy;
+    const pft_real_t *restrict pin = P->in;
     const uint32_t n = f->n;
     const pft_krecip_t r = pft_krecip_(sum);
     est_sums_t a;
@@ -326,9 +445,9 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
             a.we += wn;
             a.s[0] += pft_acc_wx_(wn, px[s]);
             a.s[1] += pft_acc_wx_(wn, py[s]);
-            a.s[2] += pft_acc_wx_(wn, P->vx[s]);
-            a.s[3] += pft_acc_wx_(wn, P->vy[s]);
-            a.s[4] += pft_acc_wx_(wn, P->in[s]);
+            a.s[2] += pft_acc_wx_(wn, pvx[s]);
+            a.s[3] += pft_acc_wx_(wn, pvy[s]);
+            a.s[4] += pft_acc_wx_(wn, pin[s]);
             a.cxx += pft_acc_wx_(wn, pft_kmulr_(dx, dx));
             a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
@@ -364,18 +483,31 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
  * order (the same slots as a forward scan for count 0 would take). */
 static void replicate_(pft_tbd_filter_t *f, uint32_t head)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    const pft_tbd_slot_t *w = P->w;
+    /* the arrays in locals: the state byte's store (a char) could otherwise reach them */
+    pft_real_t *const px = f->cur.x;
+    pft_real_t *const py = f->cur.y;
+    pft_real_t *const pin = f->cur.in;
+    pft_real_t *const pvx = f->cur.vx;
+    pft_real_t *const pvy = f->cur.vy;
+    uint8_t *const pe = f->cur.e;
+    const pft_tbd_slot_t *const w = f->cur.w;
     const uint32_t n = f->n;
     uint32_t j = head & ~SLOT_EMPTY_;
     for (uint32_t s = 0; s < n; ++s) {
         const uint32_t r = w[s].n;
         if (r - 2u < SLOT_EMPTY_ - 2u) { /* 2 <= r < SLOT_EMPTY_ */
+            const pft_real_t xs = px[s], ys = py[s], is = pin[s], vxs = pvx[s], vys = pvy[s];
+            const uint8_t es = pe[s];
             for (uint32_t c = r; c > 1u; --c) {
                 if (j >= n) {
                     return; /* cannot happen: the counts sum to n */
                 }
-                copy_particle_(P, j, P, s);
+                px[j] = xs;
+                py[j] = ys;
+                pin[j] = is;
+                pvx[j] = vxs;
+                pvy[j] = vys;
+                pe[j] = es;
                 j = w[j].n & ~SLOT_EMPTY_;
             }
         }
@@ -430,45 +562,41 @@ static void disappearance_(pft_tbd_filter_t *f)
 #define BERN_DROP_ PFT_C(-30000.0)
 
 /* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
- * the others move. Counts the births and the survivors. */
-static inline void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
-                       uint32_t *nb, uint32_t *np)
+ * the others move. Counts the births and the survivors. Loop invariants in locals (move_inv_t;
+ * two callers here too: the update and the coast). */
+static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share, uint32_t *nb,
+                       uint32_t *np)
 {
-    pft_tbd_particles_t *P = &f->cur;
-    uint8_t *restrict pe = P->e;
+    const move_inv_t v = move_inv_(f, x);
     const bool rb = x->rb;
-    const uint32_t e_max = x->e_max;
+    const bool can_birth = x->can_birth;
     pft_rng_t rng = f->rng;
     uint32_t b = 0u;
-    for (uint32_t s = 0; s < f->n; ++s) {
+    uint32_t surv = 0u;
+    for (uint32_t s = 0; s < v.n; ++s) {
         const uint32_t u = pft_tbd_exist_draw_(&rng);
-        uint32_t e = pe[s];
-        if ((e == 0u || u < p16_share) && !x->can_birth) {
+        uint32_t e = v.e[s];
+        if ((e == 0u || u < p16_share) && !can_birth) {
             e = 0u; /* no pixel to be born in: the slot stays empty */
         } else if (e == 0u || u < p16_share) {
-            pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-            pft_rng_t t = rng;
-            pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !rb, &t, &k);
-            rng = t;
+            rng = move_birth_(f, x, &v, s, rng);
             e = 1u;
             ++b;
         } else {
+            const pft_tbd_kin_t k = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s], &v.in[s]};
             if (rb) {
-                rbpf_move_(P, s, x->tab, x->T, f->dyn.ch_int, e - 1u, &rng);
+                rbpf_move_(&k, v.tab, v.T, v.dyn.ch_int, e - 1u, &rng);
             } else {
-                pft_tbd_kin_t k = {&P->x[s], &P->y[s], &P->vx[s], &P->vy[s], &P->in[s]};
-                pft_tbd_pf_move_(&f->dyn, x->T, &rng, &k);
+                pft_tbd_pf_move_(&v.dyn, v.T, &rng, &k);
             }
-            e = e < e_max ? e + 1u : e;
+            e = e < v.e_max ? e + 1u : e;
         }
-        pe[s] = (uint8_t)e;
+        v.e[s] = (uint8_t)e;
+        surv += e > 1u ? 1u : 0u;
     }
     f->rng = rng;
     *nb = b;
-    *np = 0u;
-    for (uint32_t s = 0; s < f->n; ++s) {
-        *np += pe[s] > 1u ? 1u : 0u;
-    }
+    *np = surv;
 }
 
 /* Log-weights: the likelihood ratio plus the log prior weight of the particle's group (lb for

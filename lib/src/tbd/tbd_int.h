@@ -218,18 +218,23 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,
-                                    pft_tbd_kin_t *k)
+                                    const pft_tbd_kin_t *k)
 {
+    /* each axis as soon as its two draws are made (fewer draws live at once; the draws in the
+     * same order) */
     const pft_real_t g1 = pft_rng_zig_(rng);
     const pft_real_t g2 = pft_rng_zig_(rng);
-    const pft_real_t g3 = pft_rng_zig_(rng);
-    const pft_real_t g4 = pft_rng_zig_(rng);
-    const pft_real_t g5 = pft_rng_zig_(rng);
-    *k->x = pft_kmad2_(*k->x, T, *k->vx, d->ch_pos, g1);
-    *k->vx = pft_kmad2_(*k->vx, d->ch_cross, g1, d->ch_vel, g2);
-    *k->y = pft_kmad2_(*k->y, T, *k->vy, d->ch_pos, g3);
-    *k->vy = pft_kmad2_(*k->vy, d->ch_cross, g3, d->ch_vel, g4);
-    *k->in = pft_kmad1_(*k->in, d->ch_int, g5);
+    const pft_real_t vx = *k->vx;
+    *k->x = pft_kmad2_(*k->x, T, vx, d->ch_pos, g1);
+    *k->vx = pft_kmad2_(vx, d->ch_cross, g1, d->ch_vel, g2);
+    {
+        const pft_real_t g3 = pft_rng_zig_(rng);
+        const pft_real_t g4 = pft_rng_zig_(rng);
+        const pft_real_t vy = *k->vy;
+        *k->y = pft_kmad2_(*k->y, T, vy, d->ch_pos, g3);
+        *k->vy = pft_kmad2_(vy, d->ch_cross, g3, d->ch_vel, g4);
+    }
+    *k->in = pft_kmad1_(*k->in, d->ch_int, pft_rng_zig_(rng));
 }
 /* True when the window centre pixel of (x, y) is inside the image (else the target left the
  * surveillance region); *pix is then its 0-based row-major index. */

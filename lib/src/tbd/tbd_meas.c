@@ -235,6 +235,25 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
                             const pft_frame_t *frame, pft_real_t *img)
 {
     const size_t stride = pft_tbd_stride_(cfg->width);
+    if (frame->format == PFT_PIX_F32) {
+        /* the same values as below in one pass: pft_frame_row_to_real reads an F32 pixel as
+         * pft_from_f32 of it, clamped, with no gain or offset */
+        const pft_real_t inv_sn = m->inv_sn;
+        const uint32_t w = cfg->width;
+        for (uint32_t r = 0; r < cfg->height; ++r) {
+            pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
+            const uint8_t *src = pft_frame_row(frame, r);
+            for (uint32_t c = 0; c < w; ++c) {
+                float f;
+                memcpy(&f, src + 4u * c, 4u);
+                row[c] = pft_clamp(pft_mul(pft_clamp(pft_kfrom_f32_(f), PFT_C(-32767.0),
+                                                     PFT_C(32767.0)),
+                                           inv_sn),
+                                   PFT_C(-32767.0), PFT_C(32767.0));
+            }
+        }
+        return;
+    }
     for (uint32_t r = 0; r < cfg->height; ++r) {
         pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
         pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset, row);
