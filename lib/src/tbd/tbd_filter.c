@@ -668,12 +668,15 @@ static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *g
            (pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u);
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
-                              const uint8_t *gate)
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
 {
+    /* one qualification test per particle: its result kept in src's weight slot (free between
+     * updates) for the walk below */
+    pft_tbd_slot_t *q = src->cur.w;
     uint32_t alive = 0;
     for (uint32_t s = 0; s < src->n; ++s) {
-        alive += qualifies_(src, s, gate) ? 1u : 0u;
+        q[s].n = qualifies_(src, s, gate) ? 1u : 0u;
+        alive += q[s].n;
     }
     if (alive == 0u || dst->kind != src->kind) {
         return false;
@@ -684,7 +687,7 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src
     pft_wacc_t cum = 0;
     pft_sys_init_(&sys, (pft_wacc_t)alive, dst->n, pft_rng_next_(&dst->rng));
     for (uint32_t s = 0; s < src->n && k < dst->n; ++s) {
-        if (!qualifies_(src, s, gate)) {
+        if (q[s].n == 0u) {
             continue;
         }
         cum += (pft_wacc_t)1;

@@ -102,9 +102,9 @@ void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods);
 /* Hand-over: fills dst with dst->n particles by systematic resampling (equal weights) of the
  * E = 1 particles of src (only those whose window centre pixel is set in gate, when gate is
  * not NULL) with dst's RNG, ages kept, and sets dst->est from the handed-over set (p_exist and
- * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. */
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
-                              const uint8_t *gate);
+ * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. src's weight
+ * slots (free between updates) are the scratch of the qualification test. */
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
 
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */
