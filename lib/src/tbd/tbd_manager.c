@@ -267,14 +267,15 @@ static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x
 /* Hand-over gate into t->mask: the square of half-size handover_gate around the pixel whose
  * (2p+1)^2 neighbourhood holds the most E = 1 search particles (window centres; the first such
  * pixel in raster order); t->cand is the scratch. Bounded and independent of the window: one
- * pass over the particles (the histogram), one over the pixels turning it into its summed-area
+ * pass over the particles (the histogram; each particle's centre pixel goes into its weight
+ * slot for the hand-over), one over the pixels turning it into its summed-area
  * table in place (S(r, c) = the count over rows <= r and columns <= c; exact in uint32: at most
  * n_search), one reading each pixel's box sum from four entries of the table (issue #12: the
  * direct (2p+1)^2 sum per pixel made the confirmation frame the heaviest of all). */
 static void build_gate_(pft_tbd_t *t)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
-    const pft_tbd_filter_t *sf = &t->search;
+    pft_tbd_filter_t *sf = &t->search;
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
     const size_t npix = (size_t)w * h;
@@ -283,9 +284,12 @@ static void build_gate_(pft_tbd_t *t)
     memset(t->mask, 0, npix);
     for (uint32_t s = 0; s < sf->n; ++s) {
         size_t pix = 0;
+        uint32_t q = PFT_TBD_NO_PIX_;
         if (sf->cur.e[s] != 0u && pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
             ++sat[pix];
+            q = (uint32_t)pix;
         }
+        sf->cur.w[s].n = q; /* for the hand-over's gate test (pft_tbd_filter_handover_) */
     }
     for (uint32_t row = 0; row < h; ++row) {
         uint32_t run = 0u; /* this row's count up to col */
