@@ -13,9 +13,12 @@
  * so float and q16 builds see the same frames.
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
+ *                 [--trace] [--tbd-bern] [--tbd-search N]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
  * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
  * pf add the existence probability of the search layer / filter after the frame.
+ * --tbd-bern runs the tbd manager with its search layer in Bernoulli form (birth_share 0.5);
+ * --tbd-search N gives its search layer N particles instead of 1000.
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -152,6 +155,8 @@ typedef struct {
 static int g_segments = 10;
 static bool g_known;        /* --known: count known defects apart (they do not fail) */
 static bool g_trace;        /* --trace: one line per frame, "trace <frame> <tracks>" */
+static bool g_tbd_bern;     /* --tbd-bern: the tbd manager's search layer in Bernoulli form */
+static uint32_t g_tbd_search; /* --tbd-search N: its search particles (0: the default 1000) */
 static uint64_t g_total;
 
 static stat_t g_known_stat = {.name = "known"};
@@ -356,6 +361,14 @@ static bool soak_tbd(uint64_t n, uint64_t seed, bool quiet)
     pft_tbd_config_t c;
     ir_tbd_cfg(&c);
     c.seed = seed;
+    if (g_tbd_bern) {
+        /* docs/algorithms.md 2.11: every search particle is moved and weighed at every frame,
+         * whatever the existence probability (the per-frame work of docs/reliability.md) */
+        c.birth_share = PFT_C(0.5);
+    }
+    if (g_tbd_search > 0u) {
+        c.n_search = g_tbd_search;
+    }
     size_t ws = pft_tbd_workspace_size(&c);
     if (ws == 0u || ws > sizeof g_ws || pft_tbd_init(&t, &c, g_ws, ws) != PFT_OK) {
         printf("tbd: configuration refused\n");
@@ -785,11 +798,15 @@ int main(int argc, char **argv)
             quiet = true;
         } else if (strcmp(argv[i], "--known") == 0) {
             g_known = true;
+        } else if (strcmp(argv[i], "--tbd-bern") == 0) {
+            g_tbd_bern = true;
+        } else if (strcmp(argv[i], "--tbd-search") == 0 && i + 1 < argc) {
+            g_tbd_search = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--trace") == 0) {
             g_trace = true;
         } else {
             fprintf(stderr, "usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] "
-                            "[--segments K] [--quiet] [--known] [--trace]\n");
+                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-search N]\n");
             return 2;
         }
     }

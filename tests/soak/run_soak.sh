@@ -11,7 +11,8 @@
 #                                               each preset in SOAK_PRESETS (default m3-q16
 #                                               m7-float m7-q16 aarch64-float aarch64-q16) under
 #                                               QEMU with the plugin tests/soak/qemu_marks.c
-#   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work modes)
+#   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work modes);
+#   SOAK_ARGS="--tbd-bern" passes more options to pft_soak (work modes)
 # long and work build build/soak-float and build/soak-q16 (Release, library and pft_soak only);
 # work-qemu builds pft_soak in build/<preset> and the plugin in build/qemu-plugin, against the
 # qemu-plugin.h of the installed QEMU's Debian source package (fetched with apt-get source, or
@@ -72,7 +73,7 @@ work)
       valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --collect-atstart=no \
         --toggle-collect="${fn[$k]}" --dump-after="${fn[$k]}" \
         build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + warm)) --seed "${SOAK_SEED:-1}" --quiet \
-        --trace >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
+        --trace ${SOAK_ARGS:-} >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
       # cg.out.<i> is the i-th update (1-based); cg.out itself, the part after the last update,
       # is not an update
       for ((i = 1; ; i++)); do
@@ -92,7 +93,7 @@ work-qemu)
     elf=build/$p/tests/soak/pft_soak
     for k in $trackers; do
       d=$(mktemp -d)
-      args="--tracker $k --frames $((n + warm)) --seed ${SOAK_SEED:-1} --quiet --trace"
+      args="--tracker $k --frames $((n + warm)) --seed ${SOAK_SEED:-1} --quiet --trace ${SOAK_ARGS:-}"
       plug="$PWD/build/qemu-plugin/qemu_marks.so,out=$d/counts"
       case "$p" in
         m3-*|m7-*)

@@ -785,23 +785,29 @@ static void equal_weight_estimate_(pft_tbd_filter_t *f)
     e->valid = true;
 }
 
-/* Whether particle s of src may be handed over. */
+/* Whether particle s of src may be handed over: E = 1 and, with a gate, its window-centre pixel
+ * (in its weight slot, see pft_tbd_filter_handover_) set in the gate. */
 static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *gate)
 {
-    size_t pix = 0;
     if (src->cur.e[s] == 0u) {
         return false;
     }
-    return gate == NULL ||
-           (pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix) && gate[pix] != 0u);
+    if (gate == NULL) {
+        return true;
+    }
+    const uint32_t pix = src->cur.w[s].n;
+    return pix != PFT_TBD_NO_PIX_ && gate[pix] != 0u;
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
-                              const uint8_t *gate)
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
 {
+    /* one qualification test per particle: its result replaces the pixel in src's weight slot
+     * for the walk below */
+    pft_tbd_slot_t *q = src->cur.w;
     uint32_t alive = 0;
     for (uint32_t s = 0; s < src->n; ++s) {
-        alive += qualifies_(src, s, gate) ? 1u : 0u;
+        q[s].n = qualifies_(src, s, gate) ? 1u : 0u;
+        alive += q[s].n;
     }
     if (alive == 0u || dst->kind != src->kind) {
         return false;
@@ -812,7 +818,7 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src
     pft_wacc_t cum = 0;
     pft_sys_init_(&sys, (pft_wacc_t)alive, dst->n, pft_rng_next_(&dst->rng));
     for (uint32_t s = 0; s < src->n && k < dst->n; ++s) {
-        if (!qualifies_(src, s, gate)) {
+        if (q[s].n == 0u) {
             continue;
         }
         cum += (pft_wacc_t)1;

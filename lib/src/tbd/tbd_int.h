@@ -102,9 +102,12 @@ void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods);
 /* Hand-over: fills dst with dst->n particles by systematic resampling (equal weights) of the
  * E = 1 particles of src (only those whose window centre pixel is set in gate, when gate is
  * not NULL) with dst's RNG, ages kept, and sets dst->est from the handed-over set (p_exist and
- * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. */
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, const pft_tbd_filter_t *src,
-                              const uint8_t *gate);
+ * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. With a gate,
+ * src's weight slots (free between updates) must hold each particle's window-centre pixel
+ * (0-based row-major, PFT_TBD_NO_PIX_ for none), as the manager's gate leaves them; the slots
+ * are the scratch of the qualification test. */
+#define PFT_TBD_NO_PIX_ 0xFFFFFFFFu
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
 
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */

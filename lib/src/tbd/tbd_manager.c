@@ -265,35 +265,64 @@ static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x
 }
 
 /* Hand-over gate into t->mask: the square of half-size handover_gate around the pixel whose
- * (2p+1)^2 neighbourhood holds the most E = 1 search particles (window centres); t->cand is
- * the histogram scratch. Bounded: one pass over the particles, (2p+1)^2 per pixel. */
+ * (2p+1)^2 neighbourhood holds the most E = 1 search particles (window centres; the first such
+ * pixel in raster order); t->cand is the scratch. Bounded and independent of the window: one
+ * pass over the particles (the histogram; each particle's centre pixel goes into its weight
+ * slot for the hand-over), one over the pixels turning it into its summed-area
+ * table in place (S(r, c) = the count over rows <= r and columns <= c; exact in uint32: at most
+ * n_search), one reading each pixel's box sum from four entries of the table (issue #12: the
+ * direct (2p+1)^2 sum per pixel made the confirmation frame the heaviest of all). */
 static void build_gate_(pft_tbd_t *t)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
-    const pft_tbd_filter_t *sf = &t->search;
-    uint32_t w = cfg->width;
-    uint32_t h = cfg->height;
-    size_t npix = (size_t)w * h;
-    memset(t->cand, 0, npix * sizeof(uint32_t));
+    pft_tbd_filter_t *sf = &t->search;
+    const uint32_t w = cfg->width;
+    const uint32_t h = cfg->height;
+    const size_t npix = (size_t)w * h;
+    uint32_t *sat = t->cand;
+    memset(sat, 0, npix * sizeof(uint32_t));
     memset(t->mask, 0, npix);
     for (uint32_t s = 0; s < sf->n; ++s) {
         size_t pix = 0;
+        uint32_t q = PFT_TBD_NO_PIX_;
         if (sf->cur.e[s] != 0u && pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
-            ++t->cand[pix];
+            ++sat[pix];
+            q = (uint32_t)pix;
+        }
+        sf->cur.w[s].n = q; /* for the hand-over's gate test (pft_tbd_filter_handover_) */
+    }
+    for (uint32_t row = 0; row < h; ++row) {
+        uint32_t run = 0u; /* this row's count up to col */
+        uint32_t *cur = sat + (size_t)row * w;
+        const uint32_t *up = row > 0u ? cur - w : NULL;
+        for (uint32_t col = 0; col < w; ++col) {
+            run += cur[col];
+            cur[col] = run + (up != NULL ? up[col] : 0u);
         }
     }
-    int32_t p = (int32_t)cfg->window;
+    const int32_t p = (int32_t)cfg->window;
+    const int32_t wi = (int32_t)w;
+    const int32_t hi = (int32_t)h;
     uint32_t best = 0;
     int32_t bc = 0;
     int32_t br = 0;
-    for (int32_t row = 0; row < (int32_t)h; ++row) {
-        for (int32_t col = 0; col < (int32_t)w; ++col) {
-            uint32_t acc = 0;
-            for (int32_t b = row - p; b <= row + p; ++b) {
-                for (int32_t a = col - p; a <= col + p; ++a) {
-                    if (a >= 0 && b >= 0 && a < (int32_t)w && b < (int32_t)h) {
-                        acc += t->cand[(size_t)b * w + (size_t)a];
-                    }
+    for (int32_t row = 0; row < hi; ++row) {
+        /* rows r0 + 1 .. r1 of the box: S(r1, .) - S(r0, .), r0 = -1 reads as 0 */
+        const int32_t r0 = row - p - 1;
+        const int32_t r1 = row + p < hi - 1 ? row + p : hi - 1;
+        const uint32_t *s1 = sat + (size_t)r1 * w;
+        const uint32_t *s0 = r0 >= 0 ? sat + (size_t)r0 * w : NULL;
+        for (int32_t col = 0; col < wi; ++col) {
+            const int32_t c0 = col - p - 1;
+            const int32_t c1 = col + p < wi - 1 ? col + p : wi - 1;
+            uint32_t acc = s1[c1];
+            if (c0 >= 0) {
+                acc -= s1[c0];
+            }
+            if (s0 != NULL) {
+                acc -= s0[c1];
+                if (c0 >= 0) {
+                    acc += s0[c0];
                 }
             }
             if (acc > best) {
@@ -431,7 +460,7 @@ static void confirm_(pft_tbd_t *t)
     if (cfg->handover_gate > 0u) {
         build_gate_(t);
         gate = t->mask;
-        t->n_cand = 0u; /* t->cand now holds the gate's histogram */
+        t->n_cand = 0u; /* t->cand now holds the gate's scratch */
     }
     if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
         return;
