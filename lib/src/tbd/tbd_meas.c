@@ -368,10 +368,16 @@ static void peak_hrow_(const pft_real_t *img, uint32_t w, uint32_t r, pft_real_t
 static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                        uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
 {
-    for (uint32_t c = 0; c < w; ++c) {
-        const pft_real_t a = up != NULL ? up[c] : PFT_C(0.0);
-        const pft_real_t b = dn != NULL ? dn[c] : PFT_C(0.0);
-        mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(a, b)));
+    if (up != NULL && dn != NULL) { /* every row but the first and the last: one plain loop */
+        for (uint32_t c = 0; c < w; ++c) {
+            mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(up[c], dn[c])));
+        }
+    } else {
+        for (uint32_t c = 0; c < w; ++c) {
+            const pft_real_t a = up != NULL ? up[c] : PFT_C(0.0);
+            const pft_real_t b = dn != NULL ? dn[c] : PFT_C(0.0);
+            mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(a, b)));
+        }
     }
 }
 
@@ -380,6 +386,11 @@ static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_re
 static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                          uint32_t w, uint32_t c)
 {
+    if (up != NULL && dn != NULL && c > 0u && c + 1u < w) { /* interior: the 8 neighbours */
+        const pft_real_t v = mid[c];
+        return v > up[c - 1u] && v > up[c] && v > up[c + 1u] && v > mid[c - 1u] &&
+               v >= mid[c + 1u] && v >= dn[c - 1u] && v >= dn[c] && v >= dn[c + 1u];
+    }
     const uint32_t lo = c > 0u ? c - 1u : 0u;
     const uint32_t hi = c + 1u < w ? c + 1u : c;
     const pft_real_t v = mid[c];
