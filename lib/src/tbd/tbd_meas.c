@@ -236,11 +236,16 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
                             const pft_frame_t *frame, pft_real_t *img)
 {
     const size_t stride = pft_tbd_stride_(cfg->width);
+    const bool unit_sn = !(m->inv_sn < PFT_C(1.0)) && !(m->inv_sn > PFT_C(1.0));
     for (uint32_t r = 0; r < cfg->height; ++r) {
         pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
         pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset, row);
-        for (uint32_t c = 0; c < cfg->width; ++c) {
-            row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
+        /* noise sigma 1 (a whitened input such as the stage's RES16 residual): the product is
+         * the value itself in both builds and the row is clamped already */
+        if (!unit_sn) {
+            for (uint32_t c = 0; c < cfg->width; ++c) {
+                row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
+            }
         }
     }
 }
