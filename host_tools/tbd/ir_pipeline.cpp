@@ -113,6 +113,19 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
 // position frame after frame is then scored in its own sigma, while a target moving across the
 // scene meets a map it has not raised. Frames without evidence leave the map as it is (not
 // warped: the stage's shift is not valid then).
+// w in Q8.8, rounded half away from zero as std::lround (exact: |w * 256| < 2^23 after the
+// clamp, so the fraction t - q is exact) and clamped to +-32767; a libm call per pixel was a
+// fifth of the map's cost.
+static inline int16_t q88(float w)
+{
+    const float t = std::clamp(w * 256.0f, -32767.0f, 32767.0f);
+    const float a = std::fabs(t);
+    int32_t q = static_cast<int32_t>(a);
+    if (a - static_cast<float>(q) >= 0.5f)
+        ++q;
+    return static_cast<int16_t>(t < 0.0f ? -q : q);
+}
+
 void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
                   double sx, double sy, cv::Mat &resid_)
 {
@@ -170,7 +183,7 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
             const float c = sub ? v - mu[x] : v;
             const float w = cl ? c / std::sqrt(mb[x]) : c;
             o[x] = w;
-            q[x] = static_cast<int16_t>(std::clamp(std::lround(w * 256.0f), -32767L, 32767L));
+            q[x] = q88(w);
             m[x] += a * (std::min(c * c, 64.0f) - m[x]);
             if (sub)
                 mu[x] += a * (std::clamp(v, -8.0f, 8.0f) - mu[x]);
@@ -266,8 +279,28 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
                 o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
         }
     }
+    // the manager takes the residual as it is (PFT_PIX_RES16, masked pixels read as 0); a frame
+    // without evidence goes as an all-masked frame
+    pft_frame_t tf{};
+    if (ev) {
+        tf.data = res;
+        tf.stride_bytes = static_cast<uint32_t>(stride * sizeof(int16_t));
+    } else {
+        if (blank_.empty()) {
+            blank_.create(h_, w_, CV_16S);
+            blank_.setTo(PFT_RES16_MASKED);
+        }
+        tf.data = blank_.ptr<int16_t>(0);
+        tf.stride_bytes = static_cast<uint32_t>(blank_.step[0]);
+    }
+    tf.width = static_cast<uint16_t>(w_);
+    tf.height = static_cast<uint16_t>(h_);
+    tf.format = PFT_PIX_RES16;
+    tf.bit_depth = 16u;
+    tf.seq = frame.seq;
+    tf.timestamp_us = static_cast<uint64_t>(frame.seq) * 1000000u;
     PipelineOut out;
-    out.tbd = tracker_->update_f32(resid_.ptr<float>(0), frame.seq);
+    out.tbd = tracker_->update(tf);
     ++frame_no_;
     if (ev) {
         scene_x_ += stats_.shift[0] / 65536.0;

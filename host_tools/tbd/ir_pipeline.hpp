@@ -5,8 +5,8 @@
 // scenario's tracker.preprocess; column offsets; per-tile MAD sigma; dead and saturated pixels
 // masked) turns the frame into a whitened residual (PFT_PIX_RES16, Q8.8 sigma units). Two
 // trackers run on that same residual: the library's multi-target TBD manager (pft_tbd_*, noise
-// sigma 1; the residual is handed over as an F32 frame with masked pixels at 0, since the
-// manager takes U8/U16/F32 frames) and the host-side detect-before-track baseline (ir_dbt.hpp).
+// sigma 1; the residual is handed over as it is, a PFT_PIX_RES16 frame whose masked pixels the
+// manager reads as 0) and the host-side detect-before-track baseline (ir_dbt.hpp).
 // step() takes the frame as the sensor gives it and returns both trackers' tracks and events.
 #pragma once
 #include <array>
@@ -86,7 +86,7 @@ private:
     DbtTracker dbt_;
     double dbt_thr_;
     int max_det_;
-    cv::Mat resid_, u16_;
+    cv::Mat resid_, u16_, blank_;
     ClutterMap cm_;
     // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
     // each of its frames (the last scene_frames + 1), and whether it failed the test

@@ -12,6 +12,7 @@
 
 #include "pft_test_support.h"
 #include "pft/pft_pre.h"
+#include "pft/pft_tbd.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -807,6 +808,89 @@ static void test_res16_frame_and_conversion(void)
                               pft_test_to_double(row[9]));
 }
 
+/* The stage's residual goes to the TBD manager as it is (PFT_PIX_RES16): the manager's state
+ * after each frame is byte for byte the one it reaches from the same residual as an F32 frame
+ * (value / 256, masked pixels 0), peak births included. */
+#define HAND_FRAMES 4
+#define HAND_WS PFT_TBD_WORKSPACE_BYTES_PEAKS(300u, 100u, 2u, PFT_TBD_RBPF, W, H, 16u)
+static int16_t g_hand_res[HAND_FRAMES][NPIX];
+static float g_hand_f32[HAND_FRAMES][NPIX];
+static uint64_t g_hand_ws[(HAND_WS + 7u) / 8u];
+static uint64_t g_hand_snap[(HAND_WS + 7u) / 8u];
+
+static void hand_run(const pft_tbd_config_t *tc, bool res16, pft_tbd_t *t)
+{
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(t, tc, g_hand_ws, sizeof g_hand_ws));
+    for (int k = 0; k < HAND_FRAMES; ++k) {
+        pft_frame_t f;
+        memset(&f, 0, sizeof f);
+        f.width = W;
+        f.height = H;
+        f.seq = (uint32_t)k + 1u;
+        if (res16) {
+            f.data = g_hand_res[k];
+            f.format = PFT_PIX_RES16;
+            f.stride_bytes = 2u * W;
+            f.bit_depth = 16u;
+        } else {
+            f.data = g_hand_f32[k];
+            f.format = PFT_PIX_F32;
+            f.stride_bytes = 4u * W;
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(t, &f));
+    }
+}
+
+static void test_residual_to_tbd_as_res16(void)
+{
+    pft_pre_config_t c;
+    config(&c, PFT_PRE_BG_LOCAL);
+    pft_pre_t p;
+    init(&p, &c);
+    int n_masked = 0;
+    for (int k = 0; k < HAND_FRAMES; ++k) {
+        plane(3000.0, 2.0, 1.0, 25.0);
+        for (int d = -1; d <= 1; ++d) { /* a 6-sigma blob moving right */
+            g_img[(30 + d) * W + 40 + 2 * k] = (uint16_t)(g_img[(30 + d) * W + 40 + 2 * k] + 100u);
+            g_img[30 * W + 40 + 2 * k + d] = (uint16_t)(g_img[30 * W + 40 + 2 * k + d] + 100u);
+        }
+        g_img[50 * W + 50] = 16383; /* saturated: masked */
+        pft_frame_t f = frame_of(g_img, (uint32_t)k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        pft_frame_t r;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(&p, &r));
+        memcpy(g_hand_res[k], r.data, sizeof g_hand_res[k]);
+        for (int i = 0; i < NPIX; ++i) {
+            const int16_t v = g_hand_res[k][i];
+            n_masked += v == PFT_RES16_MASKED ? 1 : 0;
+            g_hand_f32[k][i] = v == PFT_RES16_MASKED ? 0.0f : (float)v / 256.0f;
+        }
+    }
+    TEST_ASSERT_TRUE(n_masked > 0);
+    pft_tbd_config_t tc;
+    pft_tbd_config_recommended(&tc);
+    tc.width = W;
+    tc.height = H;
+    tc.noise_sigma = PFT_C(1.0);
+    tc.pixel_gain = PFT_C(1.0);
+    tc.pixel_offset = PFT_C(0.0);
+    tc.n_search = 300u;
+    tc.n_track = 100u;
+    tc.max_targets = 2u;
+    tc.birth_peaks = 16u;
+    tc.seed = 5u;
+    TEST_ASSERT_TRUE(pft_tbd_workspace_size(&tc) <= sizeof g_hand_ws);
+    pft_tbd_t a;
+    pft_tbd_t b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    hand_run(&tc, true, &a);
+    memcpy(g_hand_snap, g_hand_ws, sizeof g_hand_snap);
+    hand_run(&tc, false, &b);
+    TEST_ASSERT_EQUAL_MEMORY(&a, &b, sizeof a);
+    TEST_ASSERT_EQUAL_MEMORY(g_hand_snap, g_hand_ws, sizeof g_hand_ws);
+}
+
 /* U8 frames and a 12-bit U16 frame are read at their own depth: same sigma in counts. */
 static void test_u8_and_bit_depths(void)
 {
@@ -881,6 +965,7 @@ int main(void)
     RUN_TEST(test_registration_weak_on_flat);
     RUN_TEST(test_column_pattern_removed);
     RUN_TEST(test_res16_frame_and_conversion);
+    RUN_TEST(test_residual_to_tbd_as_res16);
     RUN_TEST(test_u8_and_bit_depths);
     RUN_TEST(test_sigma_options);
     return UNITY_END();

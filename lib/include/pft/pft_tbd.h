@@ -24,8 +24,11 @@
  * Pixels: U8 and U16 frames are converted as z = pixel_gain*raw + pixel_offset (U16: only the
  * low bit_depth bits are significant; higher bits are ignored). F32 frames are taken as
  * intensities as they are (no gain/offset); in the q16 build F32 is converted with
- * pft_from_f32 (meant for host or FPU targets). Converted pixel values are clamped to
- * [-32767, 32767] in both builds (the q16 range).
+ * pft_from_f32 (meant for host or FPU targets). PFT_PIX_RES16 frames (the whitened residual of
+ * pft_pre.h, Q8.8 sigma units) are converted as z = pixel_gain*(raw/256) + pixel_offset, exact
+ * in both builds, a masked pixel as a zero residual (pixel_offset): with noise_sigma 1, gain 1
+ * and offset 0 the stage's output goes to the trackers as it is, no float frame in between.
+ * Converted pixel values are clamped to [-32767, 32767] in both builds (the q16 range).
  *
  * Bad input (NULL, wrong size, unsupported format, NaN/Inf in an F32 frame) is refused with
  * a status code before any state is touched: a refused update leaves the instance and its

@@ -223,7 +223,8 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
 
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame)
 {
-    uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32);
+    uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32) |
+                    PFT_FMT_BIT(PFT_PIX_RES16);
     pft_status_t st = pft_frame_check(frame, cfg->width, cfg->height, fmts);
     if (st != PFT_OK) {
         return st;
@@ -254,11 +255,16 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
         }
         return;
     }
+    const bool unit_sn = !(m->inv_sn < PFT_C(1.0)) && !(m->inv_sn > PFT_C(1.0));
     for (uint32_t r = 0; r < cfg->height; ++r) {
         pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
         pft_frame_row_to_real(frame, r, cfg->width, cfg->pixel_gain, cfg->pixel_offset, row);
-        for (uint32_t c = 0; c < cfg->width; ++c) {
-            row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
+        /* noise sigma 1 (a whitened input such as the stage's RES16 residual): the product is
+         * the value itself in both builds and the row is clamped already */
+        if (!unit_sn) {
+            for (uint32_t c = 0; c < cfg->width; ++c) {
+                row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
+            }
         }
     }
 }
@@ -365,19 +371,20 @@ static void sift_up_(uint32_t *key, pft_real_t *val, uint32_t i)
  * sums of the 3 x 3 correlation (at most 9 such values with taps <= 1) stay in range. */
 #define PEAK_CLIP_ PFT_C(2048.0)
 
-/* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along row r of the bordered whitened image. */
+/* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along row r of the bordered whitened image: the
+ * border columns row[-1] and row[w] are zero, so every column is the same expression (one loop
+ * without a carried value, which compilers vectorise). */
 static void peak_hrow_(const pft_real_t *img, uint32_t w, uint32_t r, pft_real_t t0,
                        pft_real_t t1, pft_real_t *hs)
 {
-    const pft_real_t *row = img + (size_t)(r + 1u) * pft_tbd_stride_(w) + 1u;
-    pft_real_t zl = PFT_C(0.0);
-    pft_real_t zc = pft_clamp(row[0], pft_neg(PEAK_CLIP_), PEAK_CLIP_);
+    const pft_real_t *row = img + (size_t)(r + 1u) * pft_tbd_stride_(w);
+    const pft_real_t lo = pft_neg(PEAK_CLIP_);
     for (uint32_t c = 0; c < w; ++c) {
-        /* row[w] is the zero border */
-        const pft_real_t zr = pft_clamp(row[c + 1u], pft_neg(PEAK_CLIP_), PEAK_CLIP_);
+        /* row[c + 1] is pixel c; row[0] and row[w + 1] the zero border */
+        const pft_real_t zl = pft_clamp(row[c], lo, PEAK_CLIP_);
+        const pft_real_t zc = pft_clamp(row[c + 1u], lo, PEAK_CLIP_);
+        const pft_real_t zr = pft_clamp(row[c + 2u], lo, PEAK_CLIP_);
         hs[c] = pft_add(pft_mul(t1, zc), pft_mul(t0, pft_add(zl, zr)));
-        zl = zc;
-        zc = zr;
     }
 }
 
@@ -385,10 +392,16 @@ static void peak_hrow_(const pft_real_t *img, uint32_t w, uint32_t r, pft_real_t
 static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                        uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
 {
-    for (uint32_t c = 0; c < w; ++c) {
-        const pft_real_t a = up != NULL ? up[c] : PFT_C(0.0);
-        const pft_real_t b = dn != NULL ? dn[c] : PFT_C(0.0);
-        mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(a, b)));
+    if (up != NULL && dn != NULL) { /* every row but the first and the last: one plain loop */
+        for (uint32_t c = 0; c < w; ++c) {
+            mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(up[c], dn[c])));
+        }
+    } else {
+        for (uint32_t c = 0; c < w; ++c) {
+            const pft_real_t a = up != NULL ? up[c] : PFT_C(0.0);
+            const pft_real_t b = dn != NULL ? dn[c] : PFT_C(0.0);
+            mf[c] = pft_add(pft_mul(u1, mid[c]), pft_mul(u0, pft_add(a, b)));
+        }
     }
 }
 
@@ -397,6 +410,11 @@ static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_re
 static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                          uint32_t w, uint32_t c)
 {
+    if (up != NULL && dn != NULL && c > 0u && c + 1u < w) { /* interior: the 8 neighbours */
+        const pft_real_t v = mid[c];
+        return v > up[c - 1u] && v > up[c] && v > up[c + 1u] && v > mid[c - 1u] &&
+               v >= mid[c + 1u] && v >= dn[c - 1u] && v >= dn[c] && v >= dn[c + 1u];
+    }
     const uint32_t lo = c > 0u ? c - 1u : 0u;
     const uint32_t hi = c + 1u < w ? c + 1u : c;
     const pft_real_t v = mid[c];
@@ -417,32 +435,47 @@ typedef struct {
     uint32_t w, k_max, n, na;
 } peak_scan_t;
 
-/* The peaks of row q (mf rows up, mid, dn) into the heap; counts the allowed pixels. */
+/* Pixel c of row q (value v, above the threshold, a local maximum) into the heap of the K
+ * strongest. */
+static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
+{
+    if (ps->n < ps->k_max) {
+        ps->key[ps->n] = k;
+        ps->val[ps->n] = v;
+        sift_up_(ps->key, ps->val, ps->n);
+        ++ps->n;
+    } else if (weaker_(ps->val[0], ps->key[0], v, k)) {
+        ps->key[0] = k;
+        ps->val[0] = v;
+        sift_down_(ps->key, ps->val, ps->n, 0u);
+    } else {
+        /* weaker than the K kept: not a candidate */
+    }
+}
+
+/* The peaks of row q (mf rows up, mid, dn) into the heap; counts the allowed pixels. The
+ * threshold comes first (most pixels fail it), the mask and the 3 x 3 test after; the allowed
+ * pixels are counted in a loop of their own. */
 static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
                            const pft_real_t *mid, const pft_real_t *dn)
 {
+    const uint8_t *mrow = ps->mask != NULL ? ps->mask + (size_t)q * ps->w : NULL;
+    if (mrow == NULL) {
+        ps->na += ps->w;
+    } else {
+        uint32_t na = 0u;
+        for (uint32_t c = 0; c < ps->w; ++c) {
+            na += mrow[c] == 0u ? 1u : 0u;
+        }
+        ps->na += na;
+    }
     for (uint32_t c = 0; c < ps->w; ++c) {
-        const uint32_t k = q * ps->w + c;
         const pft_real_t v = mid[c];
-        if (ps->mask != NULL && ps->mask[k] != 0u) {
+        if (!(v > ps->thr) || (mrow != NULL && mrow[c] != 0u) ||
+            !peak_is_max_(up, mid, dn, ps->w, c)) {
             continue;
         }
-        ++ps->na;
-        if (!(v > ps->thr) || !peak_is_max_(up, mid, dn, ps->w, c)) {
-            continue;
-        }
-        if (ps->n < ps->k_max) {
-            ps->key[ps->n] = k;
-            ps->val[ps->n] = v;
-            sift_up_(ps->key, ps->val, ps->n);
-            ++ps->n;
-        } else if (weaker_(ps->val[0], ps->key[0], v, k)) {
-            ps->key[0] = k;
-            ps->val[0] = v;
-            sift_down_(ps->key, ps->val, ps->n, 0u);
-        } else {
-            /* weaker than the K kept: not a candidate */
-        }
+        peak_keep_(ps, q * ps->w + c, v);
     }
 }
 
