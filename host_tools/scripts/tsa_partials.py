@@ -2,8 +2,10 @@
 """Markdown tables of docs/results/tsa_ak.md from the partial summaries of `pft eval --shard`
 (the shards that finished, even when not all did, so `pft merge` cannot combine them).
 
-Usage: tsa_partials.py OUT
-  OUT/{float,q16}_swing_<level>[_loss]/partial_<k>_of_<n>.json, each with one record per run.
+Usage: tsa_partials.py OUT [LAST_SEED]
+  OUT/{float,q16}_swing_<level>[_loss]/partial_<k>_of_<n>.json, each with one record per run;
+  LAST_SEED: only the runs of seeds up to it (the same seeds for every build and scenario when
+  the shards of one finished earlier than another's).
 
 The measures are those of `pft eval` (host_tools/tsa/tsa_commands.cpp): a frame succeeds at
 IoU > 0.5 and centre error < 20 px (the scenario's), or < 10 px (the project's); a run when
@@ -22,6 +24,14 @@ NAMES = {'tsa': 'TSA-AK', 'tsa_paper': 'TSA, paper settings', 'ncv': 'NCV', 'ts'
 ORDER = ['tsa', 'tsa_paper', 'ncv', 'ts', 'kcf', 'csrt']
 
 
+LAST_SEED = None
+
+
+def listed(items, most=6):
+    """The items, or their count when there are more than `most`."""
+    return ', '.join(items) if len(items) <= most else '%d runs' % len(items)
+
+
 def load(out, b, lv, loss):
     """Per tracker: the list of (seed, run trace) over every partial file found."""
     d = os.path.join(out, '%s_swing_%s%s' % (b, lv, '_loss' if loss else ''))
@@ -29,6 +39,8 @@ def load(out, b, lv, loss):
     for p in sorted(glob.glob(os.path.join(d, 'partial_*_of_*.json'))):
         j = json.load(open(p))
         for r in j['run_records']:
+            if LAST_SEED is not None and r['seed'] > LAST_SEED:
+                continue
             for t in r['trackers']:
                 runs.setdefault(t['tracker'], []).append((r['seed'], t))
     return runs
@@ -69,7 +81,10 @@ def measures(v, run_min=0.9):
 
 
 def main():
+    global LAST_SEED
     out = sys.argv[1]
+    if len(sys.argv) > 2:
+        LAST_SEED = int(sys.argv[2])
     print('### Success on the swing levels (300 frames, 5 sudden reversals)\n')
     print('| level | tracker | build | seeds | frames ok (IoU > 0.5, < 20 px) | frames ok (project: '
           '< 10 px) | runs ok (>= 90 % of frames, 20 px) | runs below 0.9 (seed: rate) '
@@ -84,7 +99,7 @@ def main():
                 m = measures(runs[k])
                 print('| %s | %s | %s | %s | %.3f | %.3f | %d/%d | %s | %.1f / %.1f | %.0f |' % (
                     lab, NAMES[k], b, seeds_of(runs), m['ok'], m['okp'], m['runs_ok'], m['runs'],
-                    ', '.join(m['below']) or '-', m['mean'], m['median'], m['cpu']))
+                    listed(m['below']) or '-', m['mean'], m['median'], m['cpu']))
     print('\n### Forced loss (120 frames, frames 61-70 blank)\n')
     print('| level | tracker | build | seeds | re-acquired within 15 frames | median frames to '
           're-acquire | never | runs above 15 frames (seed: frames) | frames ok outside the '
@@ -106,7 +121,7 @@ def main():
                 print('| %s | %s | %s | %s | %d/%d | %s | %d | %s | %.3f |' % (
                     lab, NAMES[k], b, seeds_of(runs), within, len(q),
                     'never' if med == 10 ** 9 else str(med), sum(1 for x in q if x < 0),
-                    ', '.join(late) or '-', m['ok']))
+                    listed(late) or '-', m['ok']))
 
 
 if __name__ == '__main__':
