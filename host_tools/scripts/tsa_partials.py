@@ -3,7 +3,8 @@
 (the shards that finished, even when not all did, so `pft merge` cannot combine them).
 
 Usage: tsa_partials.py OUT [LAST_SEED]
-  OUT/{float,q16}_swing_<level>[_loss]/partial_<k>_of_<n>.json, each with one record per run;
+  OUT/{float,csrt,q16}_swing_<level>[_loss]/partial_<k>_of_<n>.json, each with one record per
+  run (csrt: a float build's evaluation of the trackers too slow for every seed);
   LAST_SEED: only the runs of seeds up to it (the same seeds for every build and scenario when
   the shards of one finished earlier than another's).
 
@@ -91,8 +92,9 @@ def main():
           '| mean / median centre error px | us/frame CPU |')
     print('|---|---|---|---|---|---|---|---|---|---|')
     for lv, lab in LEVELS:
-        for b in ('float', 'q16'):
-            runs = load(out, b, lv, False)
+        for d in ('float', 'csrt', 'q16'):
+            b = 'q16' if d == 'q16' else 'float'
+            runs = load(out, d, lv, False)
             for k in ORDER:
                 if k not in runs:
                     continue
@@ -106,8 +108,9 @@ def main():
           'blank (20 px) |')
     print('|---|---|---|---|---|---|---|---|---|')
     for lv, lab in LEVELS:
-        for b in ('float', 'q16'):
-            runs = load(out, b, lv, True)
+        for d in ('float', 'csrt', 'q16'):
+            b = 'q16' if d == 'q16' else 'float'
+            runs = load(out, d, lv, True)
             for k in ORDER:
                 if k not in runs:
                     continue
