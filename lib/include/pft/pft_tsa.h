@@ -202,14 +202,20 @@ typedef struct {
     /** loss handling [E] (default true; docs/algorithms.md 4.4): when no particle (nor TSA's
      *  pioneer) reaches rho_min, the estimate stops at the last good position (no
      *  extrapolation) and the particles search a window around it whose half-size grows by
-     *  search_growth px per frame up to the whole frame; a search particle with rho >=
-     *  rho_acquire is a candidate, confirmed when a particle within reacq_radius px of it
-     *  reaches rho_acquire on the next frame: the target is then re-acquired (state
+     *  search_growth px per frame up to the whole frame, one particle per cell of a grid over
+     *  it; the best particle, when it reaches rho_min, climbs to its local best (a pattern
+     *  search of at most 48 placements); a search particle with rho >= rho_acquire is a
+     *  candidate, confirmed when a particle within reacq_radius px of it (placed and refined
+     *  the same way) reaches rho_acquire on the next frame: the target is then re-acquired (state
      *  PFT_TSA_REACQUIRED) and tracking restarts there. Every particle, and so every estimate,
      *  stays within the frame enlarged by the target's box on each side. false: the paper's
      *  behaviour (pioneer-only frames, WEAK fallback weights, extrapolation of the fit) */
     bool loss_search;
-    pft_real_t rho_acquire;       /**< candidate and confirmation threshold (default 0.9) [A] */
+    /** candidate and confirmation threshold (default 0.88 [E]: under 5 % gain flicker the
+     *  best rho on the target after a forced loss varied over 0.85-0.97 from frame to frame,
+     *  so 0.9 needed two good frames in a row; 0.86 re-acquired a background patch;
+     *  docs/results/tsa_ak.md) */
+    pft_real_t rho_acquire;
     pft_real_t search_growth;     /**< px per frame (default 16) [A] */
     pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
     /** margin (px) of the per-frame code map around the largest target box: the map holds

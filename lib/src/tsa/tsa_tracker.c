@@ -776,14 +776,31 @@ static void template_update_(pft_tsa_t *t, const pft_frame_t *f, pft_real_t rho_
 
 /* ----------------------------------------- loss handling --------------------------------- */
 
-/* Integer position uniform in [c - r, c + r] intersected with [0, size - 1] (per axis). */
-static pft_real_t draw_in_(pft_tsa_t *t, pft_real_t c, pft_real_t r, uint16_t size)
+/* Integer position uniform in cell `cell` of `cells` equal cells of [c - r, c + r] intersected
+ * with [0, size - 1] (per axis; one cell: the whole interval). */
+static pft_real_t draw_in_(pft_tsa_t *t, pft_real_t c, pft_real_t r, uint16_t size, uint32_t cell,
+                           uint32_t cells)
 {
     int32_t lo = pft_floor_int(pft_sub(c, r));
     int32_t hi = pft_floor_int(pft_add(c, r));
     lo = lo < 0 ? 0 : (lo > (int32_t)size - 1 ? (int32_t)size - 1 : lo);
     hi = hi < lo ? lo : (hi > (int32_t)size - 1 ? (int32_t)size - 1 : hi);
-    return pft_from_int(lo + (int32_t)pft_rng_below(&t->rng, (uint32_t)(hi - lo + 1)));
+    /* the interval is at most 2^16 px and cells at most 256: no overflow */
+    const int32_t len = hi - lo + 1;
+    const int32_t a = lo + (int32_t)(((uint32_t)len * cell) / cells);
+    int32_t b = lo + (int32_t)(((uint32_t)len * (cell + 1u)) / cells) - 1;
+    b = b < a ? a : b;
+    return pft_from_int(a + (int32_t)pft_rng_below(&t->rng, (uint32_t)(b - a + 1)));
+}
+
+/* The largest g <= 256 with g * g <= m. */
+static uint32_t grid_side_(uint32_t m)
+{
+    uint32_t g = 1u;
+    while (g < 256u && (g + 1u) * (g + 1u) <= m) {
+        ++g;
+    }
+    return g;
 }
 
 /* The search's particles: SEARCH spreads them over the window of half-size r around the last
@@ -806,15 +823,70 @@ static void search_place_(pft_tsa_t *t, uint32_t M)
         const int32_t k = t->weak_run > 4096u ? 4096 : (int32_t)t->weak_run;
         r = pft_min(pft_add(half, pft_mul_i(t->cfg.search_growth, k)), span);
     }
+    /* stratified: the first g * g particles one in each cell of a g x g grid over the window
+     * (no clumps, no holes), the others anywhere in it */
+    const uint32_t g = grid_side_(M);
     for (uint32_t i = 0; i < M; ++i) {
-        t->px[i] = draw_in_(t, cx, r, t->cfg.width);
-        t->py[i] = draw_in_(t, cy, r, t->cfg.height);
+        const bool in_grid = i < g * g;
+        t->px[i] = draw_in_(t, cx, r, t->cfg.width, in_grid ? i % g : 0u, in_grid ? g : 1u);
+        t->py[i] = draw_in_(t, cy, r, t->cfg.height, in_grid ? i / g : 0u, in_grid ? g : 1u);
         t->pvx[i] = PFT_C(0.0);
         t->pvy[i] = PFT_C(0.0);
     }
 }
 
-/* A frame of the search (SEARCH or CONFIRM): the estimate stays at the last good position; a
+/* Rounds of the search's local refinement (8 placements each). */
+#define REFINE_ROUNDS_ 6u
+
+/* The search's local refinement: a pattern search from particle ib (rho best) over the 8
+ * neighbours at a step of a quarter of the kernel's width, halved when none is better, at most
+ * REFINE_ROUNDS_ rounds, within the frame; particle ib moves to the best placement found.
+ * Returns its rho. A random placement rarely lands where rho reaches rho_acquire (a few px
+ * around the target), but often on the target's wider slope: the climb turns those into
+ * candidates. */
+static pft_real_t search_refine_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t ib,
+                                 pft_real_t best)
+{
+    static const int8_t dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+    static const int8_t dy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+    int32_t bx = pft_round_int(t->px[ib]);
+    int32_t by = pft_round_int(t->py[ib]);
+    int32_t step = (t->kern.x1 - t->kern.x0 + 1) / 4;
+    step = step < 1 ? 1 : step;
+    pft_real_t r_best = best;
+    for (uint32_t round = 0; round < REFINE_ROUNDS_; ++round) {
+        int32_t nx = bx;
+        int32_t ny = by;
+        for (uint32_t k = 0; k < 8u; ++k) {
+            const int32_t x = bx + (int32_t)dx[k] * step;
+            const int32_t y = by + (int32_t)dy[k] * step;
+            if (x < 0 || y < 0 || x >= (int32_t)t->cfg.width || y >= (int32_t)t->cfg.height) {
+                continue;
+            }
+            const pft_real_t r = rho_px_(t, fc, x, y);
+            if (r > r_best) {
+                r_best = r;
+                nx = x;
+                ny = y;
+            }
+        }
+        if (nx == bx && ny == by) {
+            if (step == 1) {
+                break;
+            }
+            step /= 2;
+        }
+        bx = nx;
+        by = ny;
+    }
+    t->px[ib] = pft_from_int(bx);
+    t->py[ib] = pft_from_int(by);
+    t->rho[ib] = r_best;
+    return r_best;
+}
+
+/* A frame of the search (SEARCH or CONFIRM): the estimate stays at the last good position; the
+ * best particle, when it reaches rho_min, climbs to its local best (search_refine_); a
  * candidate with rho >= rho_acquire moves SEARCH to CONFIRM, and a confirmation re-acquires
  * (returns true: the caller weighs the particles as a tracking frame). */
 static bool search_frame_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t M)
@@ -827,6 +899,9 @@ static bool search_frame_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t M)
             best = t->rho[i];
             ib = i;
         }
+    }
+    if (best >= t->cfg.rho_min) {
+        best = search_refine_(t, fc, ib, best);
     }
     const bool found = best >= t->cfg.rho_acquire && best >= t->cfg.rho_min;
     if (found && t->mode == PFT_TSA_MODE_CONFIRM) {
