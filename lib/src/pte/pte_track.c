@@ -599,11 +599,14 @@ static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32
     for (int32_t tau = tau0; tau < tau1; ++tau) {
         int32_t o = (int32_t)(acc >> 16) % q;
         o = o < 0 ? o + q : o;
+        acc -= step;
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: no term */
+        }
         for (int32_t r = 0; r < q; ++r) {
             const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
             gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
         }
-        acc -= step;
     }
 }
 
@@ -636,7 +639,14 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     int32_t ro = oo % q;
     rn = rn < 0 ? rn + q : rn;
     ro = ro < 0 ? ro + q : ro;
-    if (rn != ro) {
+    if (p->miss[so] != 0u) {
+        /* the frame leaving the window was lost: it had no term (the newest frame is never
+         * lost: tracks step on received frames only) */
+        pft_real_t *gr = e->gres[w];
+        for (int32_t r = 0; r < q; ++r) {
+            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q];
+        }
+    } else if (rn != ro) {
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
             gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
@@ -771,6 +781,9 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
     }
     for (int32_t tau = 0; tau < m; ++tau) {
         int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: no term */
+        }
         for (int32_t j = 0; j < n; ++j) {
             if (j + d >= 0 && j + d < (int32_t)p->ny) {
                 G[j] = G[j] + p->gq[j + d]; /* bounded as the E sums */
@@ -1111,6 +1124,9 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
     const pft_real_t th0 = d->th[0];
     const bool one = p->naxes == 1u;
     for (int32_t tau = 0; tau < g->M; ++tau) {
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: a missing stage, no E or G term */
+        }
         const pft_real_t *zf = pft_pte_ring_get_(&p->ring, (uint32_t)tau);
         if (one) {
             accum_1d_(p, ap0, R0, line_shift_(th0, tau), zf);
@@ -1342,6 +1358,15 @@ static bool manoeuvre_(const pft_pte_t *p, int32_t M, pft_real_t t2l, pft_real_t
     pft_real_t num = pft_sub(pft_mul(signed_t_(t2s), pft_sqrt(pft_from_int(M))),
                              pft_mul(signed_t_(t2l), pft_sqrt(pft_from_int(ms))));
     return pft_abs(num) > pft_mul(p->cfg.man_z, pft_sqrt(pft_from_int(M - ms)));
+}
+
+void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t)
+{
+    step_predict_(p, t);
+    if (t->n_acc < p->cfg.max_len) {
+        t->n_acc++;
+    }
+    t->age++;
 }
 
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
