@@ -6,7 +6,7 @@
  * byte-identical; a gap above max_gap restarts (no confirmed track on that frame); reports
  * carry the seq, gap and timestamp of their frame. PTE-TBD (TABLE and EXACT operators) keeps
  * its live track across 6 lost frames with PFT_SEQ_USE: the track predicts over the 7 periods
- * and its window holds the lost frames as missing stages (docs/algorithms.md 5.5).
+ * and its window holds the lost frames as missing stages (docs/algorithms.md 5.7).
  */
 #include <math.h>
 #include <string.h>

@@ -694,7 +694,7 @@ static void reports_(pft_pte_t *p)
     p->n_rep = (uint8_t)n;
 }
 
-/* n lost frames (1 < k = n + 1 <= max_gap, live tracks; docs/algorithms.md 5.5): each takes
+/* n lost frames (1 < k = n + 1 <= max_gap, live tracks; docs/algorithms.md 5.7): each takes
  * a ring slot marked missing with zeta = 0 (the noise mean: the operators' E sums gain
  * nothing from it and their normalisers G skip it), and every live track predicts over its
  * period (no miss counted). The running initiation search ends (its batch would span the
