@@ -378,7 +378,6 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     p->init_todo = 0u;
     p->init_run = 0u;
     p->n_rep = 0u;
-    p->run = 0u;
     memset(p->miss, 0, sizeof(p->miss));
     return PFT_OK;
 }
@@ -634,10 +633,6 @@ static void spread_start_(pft_pte_t *p, uint32_t live)
         if (back > (uint32_t)p->ring.count - 1u) {
             back = (uint32_t)p->ring.count - 1u;
         }
-        /* the batch holds no lost frame: only frames received since the last gap */
-        if (back > (uint32_t)p->run - 1u) {
-            back = (uint32_t)p->run - 1u;
-        }
     }
     p->init_stage = 0u;
     p->init_todo = (uint8_t)back; /* the newest frame is counted by the caller */
@@ -694,18 +689,18 @@ static void reports_(pft_pte_t *p)
     p->n_rep = (uint8_t)n;
 }
 
-/* n lost frames (1 < k = n + 1 <= max_gap, live tracks; docs/algorithms.md 5.7): each takes
- * a ring slot marked missing with zeta = 0 (the noise mean: the operators' E sums gain
- * nothing from it and their normalisers G skip it), and every live track predicts over its
- * period (no miss counted). The running initiation search ends (its batch would span the
- * gap); the next one starts on frames received after it. */
+/* n lost frames (1 < k = n + 1 <= max_gap; docs/algorithms.md 5.7): each takes a ring slot
+ * marked missing with zeta = 0 (the noise mean: the operators' E sums gain nothing from it
+ * and their normalisers G skip it; in an initiation batch it is a missing stage, whose merit
+ * adds 0), and every live track predicts over its period (no miss counted). The running
+ * initiation search ends (its last stage would no longer be the newest frame); the next one
+ * starts on the received frame. */
 static void lost_frames_(pft_pte_t *p, uint32_t n)
 {
     const size_t cells = (size_t)p->cfg.in.n_range * p->cfg.in.n_doppler;
     p->init_run = 0u;
     p->init_stage = 0u;
     p->init_todo = 0u;
-    p->run = 0u;
     for (uint32_t f = 0; f < n; ++f) {
         memset(pft_pte_ring_next_(&p->ring), 0, cells * sizeof(pft_real_t));
         pft_pte_ring_commit_(&p->ring);
@@ -733,9 +728,8 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         return st; /* nothing touched */
     }
     if (k != 1u) {
-        if (k == 0u || n_live_(p) == 0u) {
-            /* a gap above max_gap, or nothing to predict: the window restarts on this frame
-             * (tracks end, ids go on) */
+        if (k == 0u) {
+            /* a gap above max_gap: the window restarts on this frame (tracks end, ids go on) */
             const uint16_t id = p->next_id;
             (void)pft_pte_reset(p);
             p->next_id = id;
@@ -751,9 +745,6 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         memset(p->yflag + (size_t)p->ring.head * p->nyblk, 0, p->nyblk);
     }
     p->miss[p->ring.head] = 0u;
-    if (p->run < 0xFFFFu) {
-        p->run++;
-    }
     p->frames_in++;
     for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
         if (p->tracks[i].live) {
@@ -779,7 +770,7 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
             }
         }
     } else {
-        if (p->run >= p->cfg.init_frames && live < p->cfg.max_tracks &&
+        if (p->ring.count >= p->cfg.init_frames && live < p->cfg.max_tracks &&
             (live == 0u || p->since_search >= p->cfg.init_period)) {
             p->since_search = 0u;
             initiate_(p);

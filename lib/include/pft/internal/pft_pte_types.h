@@ -178,7 +178,6 @@ struct pft_pte_s {
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
-    uint16_t run;                /* frames received since the last lost one (saturates) */
     uint8_t miss[PFT_PTE_MAX_FRAMES + 1u]; /* per ring slot: 1 when it holds a lost frame */
 };
 
