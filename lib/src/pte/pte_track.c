@@ -589,7 +589,7 @@ static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
 /* Adds (sign 1) or subtracts the interior normaliser terms of the frames kn - tau, tau in
  * [tau0, tau1), to the residues of window w of entry e: residue r holds the sum over the
  * window of gfull[(r + offset) mod yq]. */
-static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
+static inline void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
                        int32_t tau0, int32_t tau1, int32_t sign)
 {
     const int32_t q = p->yq;
@@ -859,7 +859,7 @@ void pft_pte_model_setup_(pft_pte_t *p)
 
 /* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
  * rounded once) and of the amplitude. */
-static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
 {
     for (uint32_t a = 0; a < p->naxes; ++a) {
         const pft_real_t *F = p->kF[a];
