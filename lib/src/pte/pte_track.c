@@ -652,6 +652,8 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
             gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
                     p->gfull[r + ro < q ? r + ro : r + ro - q];
         }
+    } else {
+        /* the same residue in and out: the terms cancel */
     }
     return true;
 }
