@@ -142,8 +142,8 @@ static void test_dbt_repeated_seq_refused_untouched(void)
 
 /* PTE-TBD: F32 profile of unit noise and a target of amplitude 3 (psf 0.6 cells) at
  * 15 + 0.4 k; frames 30..35 lost (k = 7 <= max_gap 8). Returns the largest position error of
- * the track of frame 29 over frames 40..59 (1e9 when that track is not reported and detected
- * on every one of them). */
+ * the track of frame 29 over frames 40..83 (1e9 when that track is not reported and detected
+ * on every one of them); from frame 76 on the lost frames leave the 40-frame window. */
 static double pte_gap(pft_pte_op_t op, pft_seq_mode_t mode)
 {
     static pft_pte_t p;
@@ -160,7 +160,7 @@ static double pte_gap(pft_pte_op_t op, pft_seq_mode_t mode)
     uint64_t s = 77;
     uint16_t id29 = 0u;
     double worst = 0.0;
-    for (int k = 0; k < 60; ++k) {
+    for (int k = 0; k < 84; ++k) {
         const double pos = 15.0 + 0.4 * k;
         pft_frame_t f = frame(0, 500u + (uint32_t)k); /* the spike is overwritten below */
         for (int u = 0; u < NR; ++u) {
