@@ -1171,15 +1171,29 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     dir_best_ r;
     pft_real_t lmax = PFT_REAL_MIN;
     r.jb = 0;
-    for (int32_t j = 0; j < g->nsc; ++j) {
-        /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
-         * the product saturates at 32768 before the clamp, with the same result) */
-        pft_real_t t2 = sq_over_(E[j], G[j]);
-        pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
-        p->sL[j] = ls;
-        if (ls > lmax) {
-            lmax = ls;
-            r.jb = j;
+    if (g->n1 == 1) {
+        /* one scan axis (range-time): the same sums without the index split */
+        const pft_real_t lc1 = s->lc[1][0];
+        for (int32_t j = 0; j < n0; ++j) {
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), pft_mul(t2, PFT_C(0.5)));
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
+        }
+    } else {
+        for (int32_t j = 0; j < g->nsc; ++j) {
+            /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
+             * the product saturates at 32768 before the clamp, with the same result) */
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
         }
     }
     /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
