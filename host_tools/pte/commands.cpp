@@ -1,5 +1,6 @@
 // The "pte" kind (formerly "radar"): sim, run, eval, bench, demo and selftest for the multi-frame TBD
 // comparison of He et al. 2015 (PTE-TBD, sliding DP-TBD, Kalman DBT) on range-time images.
+#include <random>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,15 +71,19 @@ std::string describe(const Scenario &s)
 
 /** Runs one method over a sequence; per-frame reports and the summed update time. */
 std::vector<std::vector<Report>> run_method(const MethodSpec &spec, const std::vector<std::vector<float>> &z,
-                                            double *time_s)
+                                            double *time_s, const std::vector<bool> *lost = nullptr)
 {
     Method m(spec);
     std::vector<std::vector<Report>> out;
     out.reserve(z.size());
     double t = 0.0;
-    for (const auto &prof : z) {
+    for (std::size_t k = 0; k < z.size(); ++k) {
+        if (lost && k > 0 && (*lost)[k]) {
+            out.push_back(out.back());  // a lost frame is not fed: the last output is held
+            continue;
+        }
         auto t0 = Clock::now();
-        const auto &r = m.update(prof.data());
+        const auto &r = m.update(z[k].data(), static_cast<uint32_t>(k));
         t += std::chrono::duration<double>(Clock::now() - t0).count();
         out.push_back(r);
     }
@@ -776,9 +781,19 @@ public:
                 Scenario sc = s;
                 sc.snr_db = snrs[si];
                 Sequence q = simulate(sc, seed);
+                // lost frames (eval.drop_prob): drawn from the run seed alone, so every method
+                // and mode loses the same frames; a lost frame is not fed and its output is the
+                // method's last one (the metrics count it)
+                std::vector<bool> lost(q.z.size(), false);
+                if (sc.eval.drop_prob > 0.0) {
+                    std::mt19937_64 gen(seed ^ 0x9E3779B97F4A7C15ull);
+                    std::uniform_real_distribution<double> u(0.0, 1.0);
+                    for (std::size_t k = 1; k < lost.size(); ++k)
+                        lost[k] = u(gen) < sc.eval.drop_prob;
+                }
                 for (const auto &sp : specs) {
                     double tm = 0.0;
-                    auto outp = run_method(sp, q.z, &tm);
+                    auto outp = run_method(sp, q.z, &tm, &lost);
                     Counts cd = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, false, gc, gp);
                     Counts ca = score_runs(q.truths, outp, sc.radar.cells, sc.eval.d_c, true, gc, gp);
                     cd.time_s = ca.time_s = tm;

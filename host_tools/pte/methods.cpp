@@ -54,6 +54,10 @@ void input_override(const Field &f, pft_pte_input_t &in)
         in.cfar_guard = static_cast<uint8_t>(f.integer_in("cfar_guard", 2, 0, 64));
     if (f.has("zeta_clip"))
         in.zeta_clip = to_real(f.number_in("zeta_clip", 20.0, 0.1, 1000.0));
+    if (f.has("seq_mode"))
+        in.seq_mode = f.choice_or("seq_mode", "ignore", {"ignore", "use"}) == "use" ? PFT_SEQ_USE : PFT_SEQ_IGNORE;
+    if (f.has("max_gap"))
+        in.max_gap = static_cast<uint16_t>(f.integer_in("max_gap", PFT_SEQ_DEFAULT_GAP, 1, PFT_SEQ_MAX_GAP));
 }
 
 uint8_t u8(const Field &f, const char *k, int64_t d, int64_t lo, int64_t hi)
@@ -165,7 +169,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         input_from(s, m.pte.in);
         m.pte.op = PFT_PTE_OP_TABLE;  // what AUTO selects for the range-time frames simulated here
         Field f(s.methods.pte, s.file, "methods.pte");
-        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "init_frames", "init_gate",
+        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "seq_mode", "max_gap", "init_frames", "init_gate",
                 "init_threshold", "init_period", "init_spread", "max_len", "n_dir", "motion", "sigma_r", "q_sd", "acc_sd0",
                 "q_amp", "dtheta_min", "c_step", "scan_steps", "scan_sigmas", "sigma_w_max", "eta_t",
                 "max_misses", "max_tracks", "dup_cells", "op", "short_len", "man_z", "man_acc_sd"});
@@ -229,7 +233,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         pft_pte_dp_config_default(&m.dp);
         input_from(s, m.dp.in);
         Field f(s.methods.dp, s.file, "methods.dp");
-        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "frames", "gate", "amplitude",
+        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "seq_mode", "max_gap", "frames", "gate", "amplitude",
                 "threshold", "max_targets", "cancel"});
         input_override(f, m.dp.in);
         pft_pte_dp_config_t &c = m.dp;
@@ -271,7 +275,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         input_from(s, m.dbt.in);
         m.dbt.gate = PFT_PTE_DBT_GATE_1AXIS;  // what gate 0 selects for range-time frames
         Field f(s.methods.dbt, s.file, "methods.dbt");
-        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "threshold", "sigma_r", "q",
+        f.only({"noise", "noise_sigma", "cfar_ref", "cfar_guard", "zeta_clip", "seq_mode", "max_gap", "threshold", "sigma_r", "q",
                 "vel_var0", "gate", "confirm_m", "confirm_n", "max_misses", "max_tracks", "max_dets"});
         input_override(f, m.dbt.in);
         pft_pte_dbt_config_t &c = m.dbt;
@@ -300,7 +304,8 @@ nlohmann::json input_json(const pft_pte_input_t &in)
     return {{"n_range", in.n_range}, {"n_doppler", in.n_doppler},
             {"noise", in.noise == PFT_PTE_NOISE_CFAR ? "cfar" : "fixed"},
             {"noise_sigma", from_real(in.noise_sigma)}, {"cfar_ref", in.cfar_ref},
-            {"cfar_guard", in.cfar_guard}, {"zeta_clip", from_real(in.zeta_clip)}};
+            {"cfar_guard", in.cfar_guard}, {"zeta_clip", from_real(in.zeta_clip)},
+            {"seq_mode", in.seq_mode == PFT_SEQ_USE ? "use" : "ignore"}, {"max_gap", in.max_gap}};
 }
 nlohmann::json pair(const pft_real_t v[2]) { return {from_real(v[0]), from_real(v[1])}; }
 }  // namespace
@@ -369,12 +374,12 @@ Method::Method(const MethodSpec &spec) : spec_(spec)
         throw InputError(method_label(spec.name) + ": init refused (" + pft_status_str(st) + ")");
 }
 
-const std::vector<Report> &Method::update(const float *z)
+const std::vector<Report> &Method::update(const float *z, uint32_t seq)
 {
     pft_frame_t f{};
     f.data = z;
     f.format = PFT_PIX_F32;
-    f.seq = seq_++;
+    f.seq = seq;
     std::size_t n = 0;
     pft_status_t st;
     rep_.resize(PFT_PTE_DBT_MAX_TRACKS > PFT_PTE_MAX_TRACKS ? PFT_PTE_DBT_MAX_TRACKS : PFT_PTE_MAX_TRACKS);

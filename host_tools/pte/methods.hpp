@@ -55,7 +55,9 @@ public:
     Method(const Method &) = delete;
     Method &operator=(const Method &) = delete;
     /** Pushes one profile (cells floats, input units); InputError on a library refusal. */
-    const std::vector<Report> &update(const float *z);
+    /** One frame numbered seq (frames lost before it leave holes in the numbering). */
+    const std::vector<Report> &update(const float *z, uint32_t seq);
+    const std::vector<Report> &update(const float *z) { return update(z, seq_++); }
     std::size_t workspace_bytes() const { return ws_bytes_; }
     const MethodSpec &spec() const { return spec_; }
 

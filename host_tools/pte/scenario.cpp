@@ -130,7 +130,8 @@ Scenario parse_scenario(const nlohmann::json &j, const std::string &file)
         s.methods.threshold_background = s.clutter() ? "scenario" : "gaussian";
     if (root.has("eval")) {
         Field e = root.at("eval");
-        e.only({"runs", "base_seed", "d_c", "snr_db", "methods"});
+        e.only({"runs", "base_seed", "d_c", "snr_db", "methods", "drop_prob"});
+        s.eval.drop_prob = e.number_in("drop_prob", 0.0, 0.0, 0.9);
         s.eval.runs = static_cast<unsigned>(e.integer_in("runs", 100, 1, 10000000));
         s.eval.base_seed = static_cast<uint64_t>(e.integer_in("base_seed", 1, 0, INT64_MAX));
         s.eval.d_c = e.number_in("d_c", 3.0, 1e-6, 1e6);

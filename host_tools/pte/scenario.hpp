@@ -72,6 +72,7 @@ struct EvalSettings {
     double d_c = 3.0;               ///< correct-point distance (cells)
     std::vector<double> snr_db;     ///< sweep (empty: the scenario's SNR only)
     std::vector<std::string> methods{"pte", "dp", "dbt"};
+    double drop_prob = 0.0;         ///< each frame after the first is lost with this probability (per run seed)
 };
 
 struct OutputSettings {

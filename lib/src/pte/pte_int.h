@@ -138,5 +138,14 @@ void pft_pte_ytable_setup_(pft_pte_t *p);
 void pft_pte_model_setup_(pft_pte_t *p);
 /* Step 3 for one live track at the newest frame of the ring (the frame is pushed). */
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t);
+/* One lost frame for one live track: the prediction of step 1 over one period, the template
+ * one frame longer (the lost frame is a missing stage of its window), no miss counted. */
+void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t);
+/* 1 when the frame `back` frames ago (back < ring.count) is a lost frame. */
+static inline uint8_t pft_pte_missing_(const pft_pte_t *p, uint32_t back)
+{
+    int32_t slot = (int32_t)p->ring.head - (int32_t)back;
+    return p->miss[slot < 0 ? slot + (int32_t)p->ring.len : slot];
+}
 
 #endif

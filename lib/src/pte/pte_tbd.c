@@ -378,6 +378,7 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     p->init_todo = 0u;
     p->init_run = 0u;
     p->n_rep = 0u;
+    memset(p->miss, 0, sizeof(p->miss));
     return PFT_OK;
 }
 
@@ -688,6 +689,34 @@ static void reports_(pft_pte_t *p)
     p->n_rep = (uint8_t)n;
 }
 
+/* n lost frames (1 < k = n + 1 <= max_gap; docs/algorithms.md 5.7): each takes a ring slot
+ * marked missing with zeta = 0 (the noise mean: the operators' E sums gain nothing from it
+ * and their normalisers G skip it; in an initiation batch it is a missing stage, whose merit
+ * adds 0), and every live track predicts over its period (no miss counted). The running
+ * initiation search ends (its last stage would no longer be the newest frame); the next one
+ * starts on the received frame. */
+static void lost_frames_(pft_pte_t *p, uint32_t n)
+{
+    const size_t cells = (size_t)p->cfg.in.n_range * p->cfg.in.n_doppler;
+    p->init_run = 0u;
+    p->init_stage = 0u;
+    p->init_todo = 0u;
+    for (uint32_t f = 0; f < n; ++f) {
+        memset(pft_pte_ring_next_(&p->ring), 0, cells * sizeof(pft_real_t));
+        pft_pte_ring_commit_(&p->ring);
+        p->miss[p->ring.head] = 1u;
+        if (p->yq > 0u) {
+            memset(p->yflag + (size_t)p->ring.head * p->nyblk, 0, p->nyblk);
+        }
+        p->frames_in++;
+        for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
+            if (p->tracks[i].live) {
+                pft_pte_track_coast_(p, &p->tracks[i]);
+            }
+        }
+    }
+}
+
 static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_real_t *z)
 {
     if (p == NULL || p->ring.buf == NULL) {
@@ -699,10 +728,14 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         return st; /* nothing touched */
     }
     if (k != 1u) {
-        /* lost frames: the window restarts on this frame (tracks end, ids go on) */
-        const uint16_t id = p->next_id;
-        (void)pft_pte_reset(p);
-        p->next_id = id;
+        if (k == 0u) {
+            /* a gap above max_gap: the window restarts on this frame (tracks end, ids go on) */
+            const uint16_t id = p->next_id;
+            (void)pft_pte_reset(p);
+            p->next_id = id;
+        } else {
+            lost_frames_(p, k - 1u);
+        }
     }
     st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
     if (st != PFT_OK) {
@@ -711,6 +744,7 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
     if (p->yq > 0u) {
         memset(p->yflag + (size_t)p->ring.head * p->nyblk, 0, p->nyblk);
     }
+    p->miss[p->ring.head] = 0u;
     p->frames_in++;
     for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
         if (p->tracks[i].live) {

@@ -589,7 +589,7 @@ static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
 /* Adds (sign 1) or subtracts the interior normaliser terms of the frames kn - tau, tau in
  * [tau0, tau1), to the residues of window w of entry e: residue r holds the sum over the
  * window of gfull[(r + offset) mod yq]. */
-static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
+static inline void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32_t kn,
                        int32_t tau0, int32_t tau1, int32_t sign)
 {
     const int32_t q = p->yq;
@@ -599,11 +599,14 @@ static void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w, uint32
     for (int32_t tau = tau0; tau < tau1; ++tau) {
         int32_t o = (int32_t)(acc >> 16) % q;
         o = o < 0 ? o + q : o;
+        acc -= step;
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: no term */
+        }
         for (int32_t r = 0; r < q; ++r) {
             const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
             gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
         }
-        acc -= step;
     }
 }
 
@@ -636,12 +639,21 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     int32_t ro = oo % q;
     rn = rn < 0 ? rn + q : rn;
     ro = ro < 0 ? ro + q : ro;
-    if (rn != ro) {
+    if (p->miss[so] != 0u) {
+        /* the frame leaving the window was lost: it had no term (the newest frame is never
+         * lost: tracks step on received frames only) */
+        pft_real_t *gr = e->gres[w];
+        for (int32_t r = 0; r < q; ++r) {
+            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q];
+        }
+    } else if (rn != ro) {
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
             gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
                     p->gfull[r + ro < q ? r + ro : r + ro - q];
         }
+    } else {
+        /* the same residue in and out: the terms cancel */
     }
     return true;
 }
@@ -741,8 +753,19 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     }
 }
 
-/* G of the lines of entry bi (window w) at frame kn into G[0..n): from the residues when
- * every line stays on the interior of the response grid over the window, else summed. */
+/* Normaliser of response point x outside the interior minus the interior one of its phase:
+ * gq[x] - gfull[x mod yq], with gq = 0 off the response grid. */
+static inline pft_real_t gq_out_(const pft_pte_t *p, int32_t x)
+{
+    const int32_t q = p->yq;
+    int32_t ph = x % q;
+    ph = ph < 0 ? ph + q : ph;
+    const pft_real_t g = (x >= 0 && x < (int32_t)p->ny) ? p->gq[x] : PFT_C(0.0);
+    return g - p->gfull[ph]; /* |g|, |gfull| <= 6.9: no saturation */
+}
+
+/* G of the lines of entry bi (window w) at frame kn into G[0..n): the residues, corrected at
+ * the points of lines that leave the interior of the response grid over the window. */
 static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t kn,
                     int32_t j0, int32_t n, pft_real_t *G)
 {
@@ -754,27 +777,38 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
     int32_t d1 = bank_off_(p, e, kn - (uint32_t)(m > 0 ? m - 1 : 0)) + jl;
     int32_t lo = d0 < d1 ? d0 : d1;
     int32_t hi = (d0 > d1 ? d0 : d1) + n - 1;
+    int32_t r = jl % q;
+    r = r < 0 ? r + q : r;
+    for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
+        G[k] = e->gres[w][r];
+        r = r + 1 == q ? 0 : r + 1;
+    }
+    for (int32_t j = q; j < n; ++j) {
+        G[j] = G[j - q];
+    }
     if (lo >= p->yin_lo && hi <= p->yin_hi) {
-        int32_t r = jl % q;
-        r = r < 0 ? r + q : r;
-        for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
-            G[k] = e->gres[w][r];
-            r = r + 1 == q ? 0 : r + 1;
-        }
-        for (int32_t j = q; j < n; ++j) {
-            G[j] = G[j - q];
-        }
-        return;
+        return; /* every point of every line on the interior: the residues are G */
     }
-    for (int32_t j = 0; j < n; ++j) {
-        G[j] = PFT_C(0.0);
-    }
+    /* Lines that leave the interior: the residues count every point as interior (gfull of its
+     * phase); each point outside the interior [yin_lo, yin_hi] is replaced by its own
+     * normaliser gq (0 off the response grid). Those points are a prefix and a suffix of the
+     * lines at each frame, so this costs O(m + outside points) instead of O(m n). q16: integer
+     * sums, the same bits as summing gq over every point; bounded as the E sums. */
     for (int32_t tau = 0; tau < m; ++tau) {
-        int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
-        for (int32_t j = 0; j < n; ++j) {
-            if (j + d >= 0 && j + d < (int32_t)p->ny) {
-                G[j] = G[j] + p->gq[j + d]; /* bounded as the E sums */
-            }
+        const int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: no term in the residues either */
+        }
+        int32_t ja = p->yin_lo - d; /* lines [0, ja) below the interior */
+        int32_t jb = p->yin_hi - d + 1; /* lines [jb, n) above it */
+        ja = ja > n ? n : ja;
+        jb = jb < 0 ? 0 : jb;
+        jb = jb < ja ? ja : jb;
+        for (int32_t j = 0; j < ja; ++j) {
+            G[j] = G[j] + gq_out_(p, j + d);
+        }
+        for (int32_t j = jb; j < n; ++j) {
+            G[j] = G[j] + gq_out_(p, j + d);
         }
     }
 }
@@ -827,7 +861,7 @@ void pft_pte_model_setup_(pft_pte_t *p)
 
 /* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
  * rounded once) and of the amplitude. */
-static void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
+static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
 {
     for (uint32_t a = 0; a < p->naxes; ++a) {
         const pft_real_t *F = p->kF[a];
@@ -1111,6 +1145,9 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
     const pft_real_t th0 = d->th[0];
     const bool one = p->naxes == 1u;
     for (int32_t tau = 0; tau < g->M; ++tau) {
+        if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
+            continue; /* a lost frame: a missing stage, no E or G term */
+        }
         const pft_real_t *zf = pft_pte_ring_get_(&p->ring, (uint32_t)tau);
         if (one) {
             accum_1d_(p, ap0, R0, line_shift_(th0, tau), zf);
@@ -1134,15 +1171,29 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     dir_best_ r;
     pft_real_t lmax = PFT_REAL_MIN;
     r.jb = 0;
-    for (int32_t j = 0; j < g->nsc; ++j) {
-        /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
-         * the product saturates at 32768 before the clamp, with the same result) */
-        pft_real_t t2 = sq_over_(E[j], G[j]);
-        pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
-        p->sL[j] = ls;
-        if (ls > lmax) {
-            lmax = ls;
-            r.jb = j;
+    if (g->n1 == 1) {
+        /* one scan axis (range-time): the same sums without the index split */
+        const pft_real_t lc1 = s->lc[1][0];
+        for (int32_t j = 0; j < n0; ++j) {
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), pft_mul(t2, PFT_C(0.5)));
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
+        }
+    } else {
+        for (int32_t j = 0; j < g->nsc; ++j) {
+            /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
+             * the product saturates at 32768 before the clamp, with the same result) */
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
         }
     }
     /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
@@ -1342,6 +1393,15 @@ static bool manoeuvre_(const pft_pte_t *p, int32_t M, pft_real_t t2l, pft_real_t
     pft_real_t num = pft_sub(pft_mul(signed_t_(t2s), pft_sqrt(pft_from_int(M))),
                              pft_mul(signed_t_(t2l), pft_sqrt(pft_from_int(ms))));
     return pft_abs(num) > pft_mul(p->cfg.man_z, pft_sqrt(pft_from_int(M - ms)));
+}
+
+void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t)
+{
+    step_predict_(p, t);
+    if (t->n_acc < p->cfg.max_len) {
+        t->n_acc++;
+    }
+    t->age++;
 }
 
 void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)

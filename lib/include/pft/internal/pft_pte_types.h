@@ -178,6 +178,7 @@ struct pft_pte_s {
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
+    uint8_t miss[PFT_PTE_MAX_FRAMES + 1u]; /* per ring slot: 1 when it holds a lost frame */
 };
 
 /* ------------------------------------------------------------------------------ DP-TBD */
