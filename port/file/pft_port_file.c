@@ -392,14 +392,14 @@ pft_status_t pft_file_acquire(void *ctx, pft_frame_t *out, uint32_t timeout_ms)
             /* the end of the sequence, or a gap of up to PFT_FILE_MAX_GAP files if a later
                file is there: skipped in this one call, the next acquire reads that file */
             char next[PFT_FILE_NAME_MAX];
-            for (uint32_t j = 1u; j <= PFT_FILE_MAX_GAP; ++j) {
-                if (seq + j < seq) {
-                    break; /* the index would wrap */
+            /* the index must not wrap, and every name must fit */
+            bool more = true;
+            for (uint32_t j = 1u; more && j <= PFT_FILE_MAX_GAP; ++j) {
+                more = seq + j > seq;
+                if (more) {
+                    more = make_name(next, fs->cfg.path, seq + j);
                 }
-                if (!make_name(next, fs->cfg.path, seq + j)) {
-                    break;
-                }
-                if (file_exists(next)) {
+                if (more && file_exists(next)) {
                     fs->index = seq + j;
                     fs->last_error = PFT_FILE_E_OPEN;
                     fs->stats.errors++;
