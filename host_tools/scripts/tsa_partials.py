@@ -81,6 +81,17 @@ def measures(v, run_min=0.9):
             'cpu': sum(cpu) / len(cpu) if cpu else 0.0, 'reacq': reacq}
 
 
+def rows(out, forced):
+    """(level label, tracker, build, runs, measures) of every table row, in table order."""
+    for lv, lab in LEVELS:
+        for d in ('float', 'csrt', 'q16'):
+            b = 'q16' if d == 'q16' else 'float'
+            runs = load(out, d, lv, forced)
+            for k in ORDER:
+                if k in runs:
+                    yield lab, k, b, runs, measures(runs[k])
+
+
 def main():
     global LAST_SEED
     out = sys.argv[1]
@@ -91,40 +102,26 @@ def main():
           '< 10 px) | runs ok (>= 90 % of frames, 20 px) | runs below 0.9 (seed: rate) '
           '| mean / median centre error px | us/frame CPU |')
     print('|---|---|---|---|---|---|---|---|---|---|')
-    for lv, lab in LEVELS:
-        for d in ('float', 'csrt', 'q16'):
-            b = 'q16' if d == 'q16' else 'float'
-            runs = load(out, d, lv, False)
-            for k in ORDER:
-                if k not in runs:
-                    continue
-                m = measures(runs[k])
-                print('| %s | %s | %s | %s | %.3f | %.3f | %d/%d | %s | %.1f / %.1f | %.0f |' % (
-                    lab, NAMES[k], b, seeds_of(runs), m['ok'], m['okp'], m['runs_ok'], m['runs'],
-                    listed(m['below']) or '-', m['mean'], m['median'], m['cpu']))
+    for lab, k, b, runs, m in rows(out, False):
+        print('| %s | %s | %s | %s | %.3f | %.3f | %d/%d | %s | %.1f / %.1f | %.0f |' % (
+            lab, NAMES[k], b, seeds_of(runs), m['ok'], m['okp'], m['runs_ok'], m['runs'],
+            listed(m['below']) or '-', m['mean'], m['median'], m['cpu']))
     print('\n### Forced loss (120 frames, frames 61-70 blank)\n')
     print('| level | tracker | build | seeds | re-acquired within 15 frames | median frames to '
           're-acquire | never | runs above 15 frames (seed: frames) | frames ok outside the '
           'blank (20 px) |')
     print('|---|---|---|---|---|---|---|---|---|')
-    for lv, lab in LEVELS:
-        for d in ('float', 'csrt', 'q16'):
-            b = 'q16' if d == 'q16' else 'float'
-            runs = load(out, d, lv, True)
-            for k in ORDER:
-                if k not in runs:
-                    continue
-                m = measures(runs[k])
-                q = m['reacq']
-                within = sum(1 for x in q if 0 <= x <= 15)
-                late = ['%d: %d' % (seed, t['reacquire']) for seed, t in runs[k]
-                        if not 0 <= t['reacquire'] <= 15]
-                srt = sorted(x if x >= 0 else 10 ** 9 for x in q)
-                med = srt[len(srt) // 2] if srt else -1
-                print('| %s | %s | %s | %s | %d/%d | %s | %d | %s | %.3f |' % (
-                    lab, NAMES[k], b, seeds_of(runs), within, len(q),
-                    'never' if med == 10 ** 9 else str(med), sum(1 for x in q if x < 0),
-                    listed(late) or '-', m['ok']))
+    for lab, k, b, runs, m in rows(out, True):
+        q = m['reacq']
+        within = sum(1 for x in q if 0 <= x <= 15)
+        late = ['%d: %d' % (seed, t['reacquire']) for seed, t in runs[k]
+                if not 0 <= t['reacquire'] <= 15]
+        srt = sorted(x if x >= 0 else 10 ** 9 for x in q)
+        med = srt[len(srt) // 2] if srt else -1
+        print('| %s | %s | %s | %s | %d/%d | %s | %d | %s | %.3f |' % (
+            lab, NAMES[k], b, seeds_of(runs), within, len(q),
+            'never' if med == 10 ** 9 else str(med), sum(1 for x in q if x < 0),
+            listed(late) or '-', m['ok']))
 
 
 if __name__ == '__main__':
