@@ -3,6 +3,7 @@
 // every host module.
 
 #include <cmath>
+#include <optional>
 
 extern "C" {
 #include "pft/pft_real.h"
@@ -23,6 +24,13 @@ inline pft_real_t to_real(double v)
 #else
     return static_cast<pft_real_t>(v);
 #endif
+}
+
+/** dst = to_real(*v) when v is set (an optional setting overriding a library default). */
+inline void set_real_if(const std::optional<double> &v, pft_real_t &dst)
+{
+    if (v)
+        dst = to_real(*v);
 }
 
 /** pft_real_t -> double. */

@@ -34,14 +34,10 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.kind = PFT_TBD_RBPF;
     c.seed = seed + t.seed_offset;
     c.birth_peaks = static_cast<uint16_t>(t.birth_peaks);
-    auto R = [](const std::optional<double> &v, pft_real_t &dst) {
-        if (v)
-            dst = to_real(*v);
-    };
-    R(t.peak_gamma, c.peak_gamma);
-    R(t.theta1, c.theta1);
-    R(t.pb, c.pb);
-    R(t.theta_end, c.theta_end);
+    set_real_if(t.peak_gamma, c.peak_gamma);
+    set_real_if(t.theta1, c.theta1);
+    set_real_if(t.pb, c.pb);
+    set_real_if(t.theta_end, c.theta_end);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
     c.birth_correction = t.birth_correction;

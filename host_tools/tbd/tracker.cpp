@@ -39,19 +39,15 @@ pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
 
 void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c)
 {
-    auto R = [](const std::optional<double> &v, pft_real_t &dst) {
-        if (v)
-            dst = to_real(*v);
-    };
-    R(F.pb, c.pb);
-    R(F.pd, c.pd);
-    R(F.eta, c.eta);
-    R(F.gamma, c.gamma);
-    R(F.i_min, c.i_min);
-    R(F.i_max, c.i_max);
-    R(F.theta1, c.theta1);
-    R(F.dis_ratio, c.dis_ratio);
-    R(F.theta_end, c.theta_end);
+    set_real_if(F.pb, c.pb);
+    set_real_if(F.pd, c.pd);
+    set_real_if(F.eta, c.eta);
+    set_real_if(F.gamma, c.gamma);
+    set_real_if(F.i_min, c.i_min);
+    set_real_if(F.i_max, c.i_max);
+    set_real_if(F.theta1, c.theta1);
+    set_real_if(F.dis_ratio, c.dis_ratio);
+    set_real_if(F.theta_end, c.theta_end);
     if (F.vel_mean) {
         c.vel_mean[0] = to_real((*F.vel_mean)[0]);
         c.vel_mean[1] = to_real((*F.vel_mean)[1]);
@@ -92,11 +88,11 @@ void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c)
         c.handover_gate = static_cast<uint8_t>(*F.handover_gate);
     if (F.end_lr_frames)
         c.end_lr_frames = static_cast<uint8_t>(*F.end_lr_frames);
-    R(F.end_lr_max, c.end_lr_max);
+    set_real_if(F.end_lr_max, c.end_lr_max);
     if (F.birth_peaks)
         c.birth_peaks = static_cast<uint16_t>(*F.birth_peaks);
-    R(F.peak_gamma, c.peak_gamma);
-    R(F.birth_share, c.birth_share);
+    set_real_if(F.peak_gamma, c.peak_gamma);
+    set_real_if(F.birth_share, c.birth_share);
     if (F.confirm_frames)
         c.confirm_frames = static_cast<uint8_t>(*F.confirm_frames);
     if (F.seq_mode)
