@@ -406,9 +406,31 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
     }
 }
 
+/* The Bernoulli search layer's share of a fixed particle budget (docs/algorithms.md 2.11,
+ * issue #12): with `stepped` track layers stepped at this frame, the search layer moves and
+ * weighs n_search - stepped n_track particles (its first ones), at least n_search / 4, so that
+ * the particles moved and weighed per frame stay n_search whatever the load. Slots that come
+ * back into the set are empty (births at this step). The paper's form keeps all n_search (its
+ * work follows the existence probability instead). */
+static void search_budget_(pft_tbd_t *t, uint32_t stepped)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    if (!(cfg->birth_share > PFT_C(0.0))) {
+        return;
+    }
+    const uint32_t n_min = cfg->n_search / 4u > 0u ? cfg->n_search / 4u : 1u;
+    const uint64_t used = (uint64_t)stepped * cfg->n_track;
+    const uint32_t n = used + n_min >= cfg->n_search ? n_min : cfg->n_search - (uint32_t)used;
+    pft_tbd_filter_t *sf = &t->search;
+    if (n > sf->n) {
+        memset(sf->cur.e + sf->n, 0, (size_t)(n - sf->n));
+    }
+    sf->n = n;
+}
+
 /* 3. The search layer, births outside the regions; with residual, on the frame minus every
  * remaining track's PSF at its current estimate. */
-static void update_search_(pft_tbd_t *t, bool residual)
+static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const pft_real_t *simg = t->img;
@@ -422,6 +444,7 @@ static void update_search_(pft_tbd_t *t, bool residual)
         simg = t->res;
     }
     pft_tbd_scene_t_ ssc;
+    search_budget_(t, stepped);
     if (cfg->birth_peaks > 0u) {
         pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
                              &ssc);
@@ -555,9 +578,10 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (res_tracks || res_search) {
         memcpy(t->res, t->img, pft_tbd_img_len_(cfg->width, cfg->height) * sizeof(pft_real_t));
     }
+    const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
     update_tracks_(t, res_tracks);
     end_or_keep_tracks_(t);
-    update_search_(t, res_search);
+    update_search_(t, res_search, stepped);
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;
     t->search.est.gap = seen;
