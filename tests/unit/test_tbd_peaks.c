@@ -11,7 +11,8 @@
  * out of range are refused by name. confirm_frames = 3 confirms on the first frame that ends a
  * run of three with P > theta1 of the same search layer (the search layer does not depend on
  * the setting until the first confirmation). birth_share (the Bernoulli search layer): the
- * existence probability on an empty frame and on a bright point, and its range check.
+ * existence probability on an empty frame and on a bright point, and its range check; its share
+ * of the per-frame particle budget with 0, 1 and 2 track layers.
  */
 #include <math.h>
 #include <string.h>
@@ -398,6 +399,63 @@ static void test_birth_share_standalone(void)
     TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws, need);
 }
 
+/* Bright points of peak 20 noise sigmas at the first np of (10, 12) and (24, 20). */
+static void points(int np)
+{
+    static const int pt[2][2] = {{10, 12}, {24, 20}};
+    clear_raw();
+    for (int i = 0; i < np; ++i) {
+        for (int dr = -1; dr <= 1; ++dr) {
+            for (int dc = -1; dc <= 1; ++dc) {
+                set_px(pt[i][0] + dc, pt[i][1] + dr, 20.0 * exp(-(dc * dc + dr * dr) / 0.98));
+            }
+        }
+    }
+}
+
+/* The Bernoulli search layer's share of the particle budget (issue #12, docs/algorithms.md
+ * 2.11): at a frame that steps k track layers it moves and weighs n_search - k n_track
+ * particles, at least n_search / 4; the paper's form keeps all n_search. With n_search 200 and
+ * n_track 100: 200, then 100 after the first confirmation, then 50 (the floor) after the
+ * second; back to 200 once the tracks have ended. */
+static void test_birth_share_budget(void)
+{
+    static pft_tbd_t t;
+    pft_tbd_config_t c;
+    pft_frame_t f;
+    cfg_peaks(&c, 0u);
+    c.n_search = 200u;
+    c.theta1 = R(0.6);
+    c.birth_share = R(0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+    frame_of(&f);
+    uint32_t seen[3] = {0u, 0u, 0u}; /* frames seen with 0, 1, 2 layers stepped */
+    for (int k = 0; k < 40; ++k) {
+        points(k < 8 ? 1 : (k < 20 ? 2 : 0));
+        const size_t before = pft_tbd_tracks(&t, NULL, 0u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        TEST_ASSERT_TRUE(before <= 2u);
+        const uint32_t want = before == 0u ? 200u : (before == 1u ? 100u : 50u);
+        TEST_ASSERT_EQUAL_UINT32(want, t.search.n);
+        ++seen[before];
+    }
+    TEST_ASSERT_TRUE_MESSAGE(seen[1] > 0u && seen[2] > 0u, "one and two tracks were reached");
+    TEST_ASSERT_EQUAL_UINT32(200u, t.search.n);
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)pft_tbd_tracks(&t, NULL, 0u));
+    /* the paper's form: every search particle at every frame */
+    c.birth_share = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+    size_t most = 0u;
+    for (int k = 0; k < 12; ++k) {
+        points(1);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        TEST_ASSERT_EQUAL_UINT32(200u, t.search.n);
+        const size_t n = pft_tbd_tracks(&t, NULL, 0u);
+        most = n > most ? n : most;
+    }
+    TEST_ASSERT_TRUE_MESSAGE(most >= 1u, "the paper's form confirmed the point");
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -410,5 +468,6 @@ int main(void)
     RUN_TEST(test_confirm_frames_waits_for_a_run);
     RUN_TEST(test_birth_share_existence);
     RUN_TEST(test_birth_share_standalone);
+    RUN_TEST(test_birth_share_budget);
     return UNITY_END();
 }
