@@ -13,12 +13,14 @@
  * so float and q16 builds see the same frames.
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
- *                 [--trace] [--tbd-bern] [--tbd-search N]
+ *                 [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
  * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
  * pf add the existence probability of the search layer / filter after the frame.
  * --tbd-bern runs the tbd manager with its search layer in Bernoulli form (birth_share 0.5);
- * --tbd-search N gives its search layer N particles instead of 1000.
+ * --tbd-bounded runs it with the settings of pft_tbd_config_bounded over the recommended ones
+ * (Bernoulli form, theta1 0.475) and half the search particles, 500;
+ * --tbd-search N gives its search layer N particles instead of 1000 (or 500).
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -156,6 +158,7 @@ static int g_segments = 10;
 static bool g_known;        /* --known: count known defects apart (they do not fail) */
 static bool g_trace;        /* --trace: one line per frame, "trace <frame> <tracks>" */
 static bool g_tbd_bern;     /* --tbd-bern: the tbd manager's search layer in Bernoulli form */
+static bool g_tbd_bounded;  /* --tbd-bounded: the bounded preset, half the search particles */
 static uint32_t g_tbd_search; /* --tbd-search N: its search particles (0: the default 1000) */
 static uint64_t g_total;
 
@@ -361,6 +364,17 @@ static bool soak_tbd(uint64_t n, uint64_t seed, bool quiet)
     pft_tbd_config_t c;
     ir_tbd_cfg(&c);
     c.seed = seed;
+    if (g_tbd_bounded) {
+        /* what pft_tbd_config_bounded changes over the recommended preset (the Bernoulli search
+         * layer sharing its particle budget with the track layers, theta1), with the search
+         * particles scaled as it scales them (3000 of 6000: 500 of the soak's 1000) */
+        pft_tbd_config_t r, b;
+        pft_tbd_config_recommended(&r);
+        pft_tbd_config_bounded(&b);
+        c.birth_share = b.birth_share;
+        c.theta1 = b.theta1;
+        c.n_search = (uint32_t)((uint64_t)c.n_search * b.n_search / r.n_search);
+    }
     if (g_tbd_bern) {
         /* docs/algorithms.md 2.11: every search particle is moved and weighed at every frame,
          * whatever the existence probability (the per-frame work of docs/reliability.md) */
@@ -800,13 +814,15 @@ int main(int argc, char **argv)
             g_known = true;
         } else if (strcmp(argv[i], "--tbd-bern") == 0) {
             g_tbd_bern = true;
+        } else if (strcmp(argv[i], "--tbd-bounded") == 0) {
+            g_tbd_bounded = true;
         } else if (strcmp(argv[i], "--tbd-search") == 0 && i + 1 < argc) {
             g_tbd_search = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--trace") == 0) {
             g_trace = true;
         } else {
             fprintf(stderr, "usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] "
-                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-search N]\n");
+                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N]\n");
             return 2;
         }
     }

@@ -12,7 +12,7 @@
  * run of three with P > theta1 of the same search layer (the search layer does not depend on
  * the setting until the first confirmation). birth_share (the Bernoulli search layer): the
  * existence probability on an empty frame and on a bright point, and its range check; its share
- * of the per-frame particle budget with 0, 1 and 2 track layers.
+ * of the per-frame particle budget with 0, 1 and 2 track layers; the bounded preset.
  */
 #include <math.h>
 #include <string.h>
@@ -456,6 +456,25 @@ static void test_birth_share_budget(void)
     TEST_ASSERT_TRUE_MESSAGE(most >= 1u, "the paper's form confirmed the point");
 }
 
+/* pft_tbd_config_bounded: the recommended preset with the Bernoulli search layer (birth_share
+ * 0.5), theta1 0.475 and n_search 3000, nothing else changed; it passes the check and NULL is
+ * ignored. */
+static void test_bounded_preset(void)
+{
+    pft_tbd_config_t r, b;
+    pft_tbd_config_recommended(&r);
+    pft_tbd_config_bounded(&b);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&b, NULL));
+    TEST_ASSERT_TRUE(D(b.birth_share) == 0.5);
+    TEST_ASSERT_TRUE(fabs(D(b.theta1) - 0.475) < 1e-4);
+    TEST_ASSERT_EQUAL_UINT32(3000u, b.n_search);
+    r.birth_share = b.birth_share;
+    r.theta1 = b.theta1;
+    r.n_search = b.n_search;
+    TEST_ASSERT_EQUAL_MEMORY(&r, &b, sizeof r);
+    pft_tbd_config_bounded(NULL);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -469,5 +488,6 @@ int main(void)
     RUN_TEST(test_birth_share_existence);
     RUN_TEST(test_birth_share_standalone);
     RUN_TEST(test_birth_share_budget);
+    RUN_TEST(test_bounded_preset);
     return UNITY_END();
 }

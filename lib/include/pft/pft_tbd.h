@@ -194,6 +194,17 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg);
  * targets at 6 dB, 100 runs).
  */
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg);
+/**
+ * The recommended preset with the search layer's work per frame bounded near its typical frame
+ * [A] (issue #12; docs/reliability.md, "Work per frame"): the search layer in Bernoulli form
+ * (birth_share = 0.5: every search particle is moved and weighed at every frame, whatever the
+ * existence probability, and shares the fixed budget of n_search particles with the track
+ * layers, docs/algorithms.md 2.11), half the particles (n_search = 3000, so that its largest
+ * frame is not above the recommended preset's) and theta1 = 0.475 (the recommended preset's
+ * false-track rate on white noise). docs/results/tbd.md compares its detection with the
+ * recommended preset's (100 runs).
+ */
+void pft_tbd_config_bounded(pft_tbd_config_t *cfg);
 
 /**
  * PFT_OK if cfg is usable; PFT_ERR_INVAL for NULL cfg; PFT_ERR_CONFIG for a refused value, and

@@ -80,6 +80,17 @@ void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
     cfg->handover_gate = 2u;
 }
 
+void pft_tbd_config_bounded(pft_tbd_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    pft_tbd_config_recommended(cfg);
+    cfg->birth_share = PFT_C(0.5);
+    cfg->theta1 = PFT_C(0.475);
+    cfg->n_search = 3000u;
+}
+
 static bool in01_(pft_real_t p) { return p >= PFT_C(0.0) && p <= PFT_C(1.0); }
 
 /* The first refused field of the image, sensor and dynamics settings, NULL if none. */
