@@ -159,8 +159,8 @@ int main(int argc, char **argv)
         c->add_option("--filter", o.filter_kind, "override the filter kind")->check(CLI::IsMember({"rbpf", "pf"}));
         c->add_option("--particles", o.particles, "override the particle count (search layer / single filter)")
             ->check(CLI::Range(1u, 4194304u));
-        c->add_option("--preset", o.preset, "override the scenario's parameter preset (tbd: paper | recommended)")
-            ->check(CLI::IsMember({"paper", "recommended"}));
+        c->add_option("--preset", o.preset, "override the scenario's parameter preset (tbd: paper | recommended | bounded)")
+            ->check(CLI::IsMember({"paper", "recommended", "bounded"}));
         c->add_flag("--single", o.single, "single-target filter (existence decision P > theta1) instead of the manager");
         c->add_option("--seed", seed, "seed (sim/demo/bench: the sequence; eval: base seed, run i uses seed + i)");
     };

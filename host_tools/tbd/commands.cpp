@@ -54,6 +54,12 @@ Scenario load(const Options &o)
         s.filter.mode = "single";
     if (!o.preset.empty())
         s.filter.preset = o.preset;
+    if (!o.particles && !s.filter.particles_given) {
+        // no particle count from the file or the command line: the preset's own
+        pft_tbd_config_t c;
+        preset_config(s.filter.preset, &c);
+        s.filter.particles = c.n_search;
+    }
     if (o.gospa_c)
         s.eval.gospa_c = *o.gospa_c;
     if (o.gospa_p)

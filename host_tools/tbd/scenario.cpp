@@ -107,7 +107,8 @@ void parse_filter(const Field &f, FilterSettings &F)
             "peak_gamma", "birth_share", "confirm_frames", "seq_mode", "max_gap"});
     F.mode = f.choice_or("mode", "multi", {"multi", "single"});
     F.kind = f.choice_or("kind", "rbpf", {"rbpf", "pf"});
-    F.preset = f.choice_or("preset", "paper", {"paper", "recommended"});
+    F.preset = f.choice_or("preset", "paper", {"paper", "recommended", "bounded"});
+    F.particles_given = f.has("particles");
     F.particles = static_cast<uint32_t>(f.integer_in("particles", 6000, 1, 4194304));
     F.track_particles = static_cast<uint32_t>(f.integer_in("track_particles", 500, 1, 4194304));
     F.max_targets = static_cast<uint32_t>(f.integer_in("max_targets", 4, 1, 1000));

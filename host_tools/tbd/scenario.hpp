@@ -22,12 +22,14 @@ struct Target {
 };
 
 /** Filter settings: the library's defaults of the chosen preset (pft_tbd_config_default for
- *  "paper", pft_tbd_config_recommended for "recommended"), then every field the file gives. */
+ *  "paper", pft_tbd_config_recommended for "recommended", pft_tbd_config_bounded for "bounded"),
+ *  then every field the file gives. */
 struct FilterSettings {
     std::string mode = "multi";       ///< "multi" (two-layer manager) or "single" (one filter)
     std::string kind = "rbpf";        ///< "rbpf" or "pf"
-    std::string preset = "paper";     ///< "paper" or "recommended" (library defaults to start from)
+    std::string preset = "paper";     ///< "paper", "recommended" or "bounded" (library defaults to start from)
     uint32_t particles = 6000;        ///< search layer (multi) or the single filter
+    bool particles_given = false;     ///< the file gave "particles" (else the preset's n_search)
     uint32_t track_particles = 500;   ///< per track layer (multi)
     uint32_t max_targets = 4;
     uint64_t seed_offset = 0;         ///< filter seed = run seed + seed_offset

@@ -7,14 +7,21 @@
 
 namespace pft::host::tbd {
 
+void preset_config(const std::string &preset, pft_tbd_config_t *c)
+{
+    if (preset == "recommended")
+        pft_tbd_config_recommended(c);
+    else if (preset == "bounded")
+        pft_tbd_config_bounded(c);
+    else
+        pft_tbd_config_default(c);
+}
+
 pft_tbd_config_t make_config(const Scenario &s, uint64_t seed)
 {
     const FilterSettings &F = s.filter;
     pft_tbd_config_t c;
-    if (F.preset == "recommended")
-        pft_tbd_config_recommended(&c);
-    else
-        pft_tbd_config_default(&c);
+    preset_config(F.preset, &c);
     // the scenario's sensor and model
     c.width = static_cast<uint16_t>(s.width);
     c.height = static_cast<uint16_t>(s.height);

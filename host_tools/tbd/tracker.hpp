@@ -44,6 +44,9 @@ struct FrameOut {
 };
 
 /** Library configuration from a scenario (filter settings, model, sigma, image size). */
+/** The library preset named by a scenario's "preset" ("paper", "recommended", "bounded"). */
+void preset_config(const std::string &preset, pft_tbd_config_t *c);
+
 pft_tbd_config_t make_config(const Scenario &s, uint64_t seed);
 /** The scenario's overrides of the preset (every field the file gives) into c. */
 void apply_overrides(const FilterSettings &F, pft_tbd_config_t &c);
