@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
-"""Diagnosis of the IR pipeline in clouds (docs/results/ir_clutter.md, "Clouds: where the false
-tracks sit and why targets are missed"). For each seed: `pft sim` of a sweep point (raw frames),
+"""Diagnosis of the IR pipeline in clouds (docs/results/ir_clutter.md, "Clouds: diagnosis and the
+stage's edge term"). For each seed: `pft sim` of a sweep point (raw frames),
 the stage's whitened residual by tests/tools/pre_probe (the pipeline's stage settings: tile 32,
 temporal background, alpha 0.15), `pft run` of the pipeline on the same frames; then
 
   - the residual against the local gradient of the scene (|grad| of the frame smoothed by a
     Gaussian of 1 px, in temporal sigmas per pixel): rms, share above 3 sigma, 3x3 peaks >= 3
-    per 10^4 pixels, per gradient band, target neighbourhoods left out;
+    per 10^4 pixels and the lag-1 correlation of a pixel's residual over consecutive frames, per
+    gradient band, target neighbourhoods left out;
   - every false TBD track (never within 3 px of a truth point at the same frame): the gradient
     and the residual at its first position;
   - every injected target: detected or not, the gradient along its path, its whitened peak
@@ -98,6 +99,7 @@ def main():
     probe_args = a.probe.split()
     nb = len(GBANDS) - 1
     npx, s2, n3, npk = np.zeros(nb), np.zeros(nb), np.zeros(nb), np.zeros(nb)
+    c1, c1n = np.zeros(nb), np.zeros(nb)  # lag-1 products (same pixel, consecutive frames)
     false_rows, tgt_rows = [], []
     for seed in range(lo, hi + 1):
         z, r, truth, tracks = seq(a.build, a.out, a.snr, seed, patch, probe_args)
@@ -137,6 +139,11 @@ def main():
             np.add.at(s2, idx, wf[sel] ** 2)
             np.add.at(n3, idx, (wf[sel] > 3.0).astype(float))
             np.add.at(npk, np.digitize(g[pk], GBANDS) - 1, 1)
+            vp = r[k - 1] != -32768
+            both = sel & vp
+            wp = r[k - 1][both] / 256.0
+            np.add.at(c1, np.digitize(g[both], GBANDS) - 1, wf[both] * wp)
+            np.add.at(c1n, np.digitize(g[both], GBANDS) - 1, 1)
         for tid, pts in byid.items():
             if tid in assoc:
                 continue
@@ -175,16 +182,17 @@ def main():
         if a.figure and seed == a.figure_seed:
             make_figure(a.figure, z, r, byid, assoc, tpos, a.figure_frame, g_of(a.figure_frame - 1))
     print(f'seeds {lo}-{hi}, {a.snr} dB, patch {json.dumps(patch)}, probe {a.probe!r}, frames > {a.skip}')
-    print('\n| gradient (sigma_t / px) | pixels | residual rms | share > 3 sigma | 3x3 peaks >= 3 per 10^4 px |')
-    print('|---|---|---|---|---|')
+    print('\n| gradient (sigma_t / px) | pixels | residual rms | share > 3 sigma | 3x3 peaks >= 3 per 10^4 px | lag-1 correlation |')
+    print('|---|---|---|---|---|---|')
     for i in range(nb):
         if npx[i] == 0:
             continue
         hi_s = '' if GBANDS[i + 1] > 1e8 else f'{GBANDS[i + 1]:g}'
         print(f'| {GBANDS[i]:g}–{hi_s} | {100 * npx[i] / npx.sum():.1f} % | {np.sqrt(s2[i] / npx[i]):.2f} | '
-              f'{n3[i] / npx[i]:.4f} | {1e4 * npk[i] / npx[i]:.1f} |')
+              f'{n3[i] / npx[i]:.4f} | {1e4 * npk[i] / npx[i]:.1f} | {c1[i] / c1n[i] / (s2[i] / npx[i]):.2f} |')
     tot = npx.sum()
-    print(f'| all | 100 % | {np.sqrt(s2.sum() / tot):.2f} | {n3.sum() / tot:.4f} | {1e4 * npk.sum() / tot:.1f} |')
+    print(f'| all | 100 % | {np.sqrt(s2.sum() / tot):.2f} | {n3.sum() / tot:.4f} | {1e4 * npk.sum() / tot:.1f} | '
+          f'{c1.sum() / c1n.sum() / (s2.sum() / tot):.2f} |')
     print(f'\nfalse tracks: {len(false_rows)}')
     if false_rows:
         fg = np.array([f[6] for f in false_rows])

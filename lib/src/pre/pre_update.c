@@ -395,7 +395,7 @@ static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_
     }
 }
 
-/* Edge term (cfg.edge_k, docs/algorithms.md 9.5): 32768 / sqrt(1 + (i / 16)^2), rounded, the
+/* Edge term (cfg.edge_k, docs/algorithms.md 9.6): 32768 / sqrt(1 + (i / 16)^2), rounded, the
  * factor that takes a residual whitened by the tile sigma to one whitened by
  * sqrt(sigma^2 + s^2), for s / sigma = i / 16 (i = 0..255; larger ratios use the last). */
 static const uint16_t edge_f_[256] = {
