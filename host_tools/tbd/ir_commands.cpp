@@ -82,7 +82,8 @@ std::string describe_pipeline(const IrScenario &s)
                           ? "spatial local mean " + std::to_string(2 * t.background_radius + 1) + "x" +
                                 std::to_string(2 * t.background_radius + 1) + " less " +
                                 std::to_string(2 * t.guard_radius + 1) + "x" + std::to_string(2 * t.guard_radius + 1)
-                          : "temporal registered background, alpha " + std::to_string(t.bg_alpha).substr(0, 5);
+                          : "temporal registered background, alpha " + std::to_string(t.bg_alpha).substr(0, 5) +
+                                ", edge term " + std::to_string(t.edge_k).substr(0, 5) + " px";
     std::snprintf(b, sizeof b,
                   "pipeline: pft_pre (%s, tile sigma %d px) + pft_tbd manager (%s preset, Ns=%u, "
                   "Nt=%u, %u tracks, SNR prior %.3g..%.3g dB, births from %d peaks, birth share %.2g, "
@@ -855,6 +856,7 @@ public:
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
                      {"background", s.background.source == "folder" ? s.background.folder : "procedural"},
                      {"tracker", {{"preprocess", s.tracker.preprocess}, {"bg_alpha", s.tracker.bg_alpha},
+                                  {"edge_k", s.tracker.edge_k},
                                   {"preset", s.tracker.preset}, {"particles", s.tracker.particles},
                                   {"track_particles", s.tracker.track_particles},
                                   {"max_targets", s.tracker.max_targets},

@@ -72,6 +72,8 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.local_guard = static_cast<uint8_t>(t.guard_radius);
     c.bg_alpha = static_cast<uint16_t>(std::clamp(std::lround(t.bg_alpha * 65536.0), 1L, 65535L));
     c.tile = static_cast<uint8_t>(t.tile);
+    // the edge term is the temporal background's (its gradient); the spatial method has none
+    c.edge_k = c.method == PFT_PRE_BG_TEMPORAL ? static_cast<uint16_t>(std::lround(t.edge_k * 4096.0)) : 0u;
     c.peak_max = 0;  // the TBD manager here draws its births itself; the DBT thresholds the residual
     return c;
 }

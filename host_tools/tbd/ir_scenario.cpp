@@ -121,9 +121,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_box", "scene_frames", "scene_gate_px", "note"});
+            "clutter_thr", "clutter_box", "scene_frames", "scene_gate_px", "edge_k", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
+    T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
     T.particles = static_cast<uint32_t>(t.integer_in("particles", T.particles, 1, 4194304));
     T.track_particles = static_cast<uint32_t>(t.integer_in("track_particles", T.track_particles, 1, 4194304));

@@ -83,6 +83,7 @@ struct TrackerSettings {
     double snr_min_db = 6, snr_max_db = 18;     ///< intensity prior over the whitened residual
     int background_radius = 5, guard_radius = 2;///< spatial: local-mean window and its guard (half-sizes)
     int tile = 32;                              ///< noise-estimate tile side, px
+    double edge_k = 0;                          ///< temporal: the stage's edge term (pft_pre edge_k), px; 0: off (docs/results/ir_clutter.md: 0.08 px measured, no gain)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

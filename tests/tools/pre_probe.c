@@ -7,7 +7,7 @@
  *
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
  *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp
- *         floor peaks thr
+ *         floor edge peaks thr
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,6 +69,8 @@ int main(int argc, char **argv)
             cfg.sigma_interp = v != 0;
         } else if (arg_int(argv[i], "floor", &v)) {
             cfg.sigma_floor = (uint16_t)v;
+        } else if (arg_int(argv[i], "edge", &v)) {
+            cfg.edge_k = (uint16_t)v;
         } else if (arg_int(argv[i], "peaks", &v)) {
             cfg.peak_max = (uint16_t)v;
         } else if (arg_int(argv[i], "thr", &v)) {

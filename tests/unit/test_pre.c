@@ -8,6 +8,7 @@
  * scenes are made with integer arithmetic per pixel for the same reason.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pft_test_support.h"
@@ -290,6 +291,17 @@ static void test_config_and_workspace(void)
         pft_pre_t p;
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_init(&p, &c, g_work, sizeof g_work));
     }
+    /* the edge term: at most 1 px, and the temporal background's only */
+    for (int i = 0; i < 2; ++i) {
+        config(&c, i == 0 ? PFT_PRE_BG_TEMPORAL : PFT_PRE_BG_LOCAL);
+        c.edge_k = (uint16_t)(i == 0 ? PFT_PRE_MAX_EDGE_K + 1u : 1u);
+        const char *ef = NULL;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_config_check(&c, &ef));
+        TEST_ASSERT_EQUAL_STRING("edge_k", ef);
+    }
+    config(&c, PFT_PRE_BG_TEMPORAL);
+    c.edge_k = (uint16_t)PFT_PRE_MAX_EDGE_K;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, NULL));
     config(&c, PFT_PRE_BG_LOCAL);
     c.format = PFT_PIX_U8;
     c.bit_depth = 14;
@@ -484,6 +496,86 @@ static void test_point_target_keeps_snr(void)
         TEST_ASSERT_EQUAL_UINT32(n, st.n_candidates);
         TEST_ASSERT_EQUAL_UINT32(n, pft_pre_peaks(&p, NULL, 0));
         TEST_ASSERT_EQUAL_UINT32(n, pft_pre_peaks(&p, g_peaks, 3));
+    }
+}
+
+/* The edge term (edge_k): on a still plane whose left half rises by 40 counts per pixel along
+ * x and whose right half is flat, with noise sigma 20, the temporal residual (sigma
+ * s = 20 sqrt(1 + a / (2 - a))) whitened with edge_k = 0.5 px has the standard deviation
+ * s / sqrt(s^2 + (0.5 * 40)^2) = 0.72 on the slope and 1 on the flat half, within 5 %; without
+ * the term both are 1 (the tile sigma is the noise's: the slope is in the background). Twelve
+ * point targets of 8 sigma on the flat half keep their mean whitened value within 3 % (the
+ * background's own noise, sigma 20 sqrt(a / (2 - a)) = 5.7 counts, gives it a gradient of
+ * about 5 counts per px, an edge spread of 2.5 counts: a factor 0.99 on average, a few
+ * per cent at single pixels). Both whitening paths (this frame's sigmas and the last frame's,
+ * sigma_current) are run. */
+static void test_edge_term_known_answer(void)
+{
+    const double sigma = 20.0, sres = sigma * sqrt(1.0 + 0.15 / (2.0 - 0.15));
+    static const int tx[12] = {54, 62, 70, 78, 86, 58, 66, 74, 82, 54, 70, 86};
+    static const int ty[12] = {12, 12, 12, 12, 12, 36, 36, 36, 36, 58, 58, 58};
+    for (int cur = 0; cur < 2; ++cur) {
+        double sd[2][2] = {{0.0, 0.0}, {0.0, 0.0}}, tgt[2] = {0.0, 0.0};
+        const uint32_t rs0 = g_rs; /* the same frames with and without the term */
+        for (int on = 0; on < 2; ++on) {
+            g_rs = rs0;
+            pft_pre_config_t c;
+            config(&c, PFT_PRE_BG_TEMPORAL);
+            c.edge_k = on != 0 ? 2048u : 0u;
+            c.sigma_current = cur != 0;
+            c.col_alpha = 0u;
+            pft_pre_t p;
+            init(&p, &c);
+            const uint32_t frames = 40u;
+            for (uint32_t k = 0; k < frames; ++k) {
+                const int64_t qs = q10(sigma);
+                for (int y = 0; y < H; ++y) {
+                    for (int x = 0; x < W; ++x) {
+                        const int64_t b = q10(3000.0 + 40.0 * (x < W / 2 ? x : W / 2));
+                        g_img[y * W + x] = clampq10(b + ((qs * nq10()) >> 10), 1, 16000);
+                    }
+                }
+                for (int i = 0; k + 1u == frames && i < 12; ++i) {
+                    g_img[ty[i] * W + tx[i]] = (uint16_t)(g_img[ty[i] * W + tx[i]] + 8.0 * sigma);
+                }
+                pft_frame_t f = frame_of(g_img, k);
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            }
+            pft_frame_t r;
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(&p, &r));
+            const int16_t *v = r.data;
+            for (int half = 0; half < 2; ++half) { /* columns 4..43 and 52..91, rows 4..67 */
+                double s1 = 0.0, s2 = 0.0;
+                int n = 0;
+                for (int y = 4; y < H - 4; ++y) {
+                    for (int x = half == 0 ? 4 : W / 2 + 4; x < (half == 0 ? W / 2 - 4 : W - 4); ++x) {
+                        const int16_t q = v[y * W + x];
+                        bool near = false;
+                        for (int i = 0; half == 1 && i < 12; ++i) {
+                            near = near || (abs(x - tx[i]) <= 1 && abs(y - ty[i]) <= 1);
+                        }
+                        if (q == PFT_RES16_MASKED || near) {
+                            continue;
+                        }
+                        s1 += q / 256.0;
+                        s2 += (q / 256.0) * (q / 256.0);
+                        n++;
+                    }
+                }
+                TEST_ASSERT_TRUE(n > 2000);
+                sd[on][half] = sqrt((s2 - s1 * s1 / n) / (n - 1));
+            }
+            for (int i = 0; i < 12; ++i) {
+                tgt[on] += v[ty[i] * W + tx[i]] / 256.0 / 12.0;
+            }
+        }
+        const double slope = sres / sqrt(sres * sres + 20.0 * 20.0);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05, 1.0, sd[0][0], "slope, no edge term");
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05, 1.0, sd[0][1], "flat, no edge term");
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05 * slope, slope, sd[1][0], "slope, edge term");
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05, 1.0, sd[1][1], "flat, edge term");
+        TEST_ASSERT_TRUE(tgt[0] > 5.0);
+        TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.03 * tgt[0], tgt[0], tgt[1], "targets on the flat half");
     }
 }
 
@@ -958,6 +1050,7 @@ int main(void)
     RUN_TEST(test_reset_is_init);
     RUN_TEST(test_plane_plus_noise_gives_sigma);
     RUN_TEST(test_point_target_keeps_snr);
+    RUN_TEST(test_edge_term_known_answer);
     RUN_TEST(test_dead_saturated_and_listed_pixels_masked);
     RUN_TEST(test_degenerate_frames_flagged);
     RUN_TEST(test_registration_recovers_known_shifts);

@@ -7,7 +7,8 @@
  * jump of several pixels, and one constant frame. pre_gv_compute() runs the temporal and the
  * local stage over it (the local one whitening with the last frame's sigma, and a U8 local
  * case with sigma held per tile) and records, per frame, the status, the
- * statistics, hashes of the residual frame and of the tile sigmas, and the first peaks. The
+ * statistics, hashes of the residual frame and of the tile sigmas, and the first peaks; a
+ * fourth case runs the temporal stage with the edge term (edge_k). The
  * stage is integer arithmetic only, so the float and q16 builds must give the same values.
  */
 #ifndef PFT_PRE_VECTORS_SPEC_H
@@ -19,7 +20,7 @@
 #define PRE_GV_W 64
 #define PRE_GV_H 48
 #define PRE_GV_FRAMES 14u
-#define PRE_GV_CASES 3u
+#define PRE_GV_CASES 4u
 #define PRE_GV_NF 24u     /* values per frame, see pre_gv_record */
 #define PRE_GV_PEAKS 4u   /* peaks recorded per frame (x, y, value) */
 
@@ -146,8 +147,9 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
     }
 }
 
-/* Runs the three cases: 0 temporal, 1 local (U16, sigma_current false), 2 local on the frames
- * as U8 (>> 6, sigma held per tile). */
+/* Runs the four cases: 0 temporal, 1 local (U16, sigma_current false), 2 local on the frames
+ * as U8 (>> 6, sigma held per tile), 3 temporal with the edge term (edge_k, sigma_current
+ * false). */
 static inline void pre_gv_compute(pre_gv_results_t *r)
 {
     static uint16_t img[PRE_GV_W * PRE_GV_H];
@@ -162,8 +164,11 @@ static inline void pre_gv_compute(pre_gv_results_t *r)
         cfg.height = PRE_GV_H;
         cfg.tile = 16;
         cfg.peak_max = 8;
-        cfg.method = c == 0u ? PFT_PRE_BG_TEMPORAL : PFT_PRE_BG_LOCAL;
-        cfg.sigma_current = c != 1u; /* case 1: the last frame's sigma, in one pass */
+        cfg.method = (c == 0u || c == 3u) ? PFT_PRE_BG_TEMPORAL : PFT_PRE_BG_LOCAL;
+        cfg.sigma_current = c != 1u && c != 3u; /* cases 1, 3: the last frame's sigma, in one pass */
+        if (c == 3u) { /* the edge term (0.16 px) */
+            cfg.edge_k = 655u;
+        }
         if (c == 2u) {
             cfg.format = PFT_PIX_U8;
             cfg.bit_depth = 8;

@@ -32,7 +32,8 @@
  *     high-passed across columns);
  *  4. noise: per tile of tile x tile pixels, sigma = 1.4826 median |r| from a histogram
  *     (no sorting), floored at sigma_floor, 1/sigma interpolated bilinearly between tile
- *     centres or held per tile;
+ *     centres or held per tile; TEMPORAL with edge_k > 0: per pixel, the tile sigma widened
+ *     by an edge term, sqrt(sigma^2 + (edge_k |grad b|)^2);
  *  5. whitened residual w = r / sigma in Q8.8 (PFT_PIX_RES16), and its peaks: 3x3 local
  *     maxima of w at or above peak_threshold, the peak_max highest kept.
  *
@@ -79,6 +80,8 @@ extern "C" {
 #define PFT_PRE_MAX_SEARCH 32u
 /** Largest reg_iters. */
 #define PFT_PRE_MAX_ITERS 8u
+/** Largest edge_k (1 px, Q4.12). */
+#define PFT_PRE_MAX_EDGE_K 4096u
 /** Bins of the per-tile histogram of |r| (16 exact bins, then 8 per octave up to 2^15). */
 #define PFT_PRE_BINS 104u
 
@@ -128,6 +131,7 @@ typedef struct {
     bool sigma_interp;       /**< true: 1/sigma interpolated bilinearly between tile centres; false: held per tile (default true) */
     bool sigma_current;      /**< true: each frame is whitened with its own tile sigmas, in a second pass over the residual (default); false: with the last frame's, as the rows are made (one pass over memory, the same instructions; a frame with no earlier estimate uses its own) (default true) */
     uint16_t sigma_floor;    /**< smallest sigma, raw counts Q12.4 (16 = 1 count), >= 1 (default 8 = 0.5 count) */
+    uint16_t edge_k;         /**< TEMPORAL: edge term of the noise, px Q4.12 (4096 = 1 px), 0..4096; 0 disables (default 0). A pixel's sigma becomes sqrt(sigma_tile^2 + (edge_k |grad b|)^2), |grad b| the background's gradient there (counts per px): the residual that a registration and warp error of about edge_k px leaves on a cloud edge is scored in its own sigma (docs/algorithms.md 9.6). Must be 0 with PFT_PRE_BG_LOCAL */
     /* peaks */
     uint16_t peak_max;       /**< peaks kept per frame, 0..PFT_PRE_MAX_PEAKS; 0: no peak search (default 64) */
     int16_t peak_threshold;  /**< smallest whitened value of a peak, Q8.8 sigma units, >= 1 (default 768 = 3 sigma) */

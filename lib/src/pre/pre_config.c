@@ -30,6 +30,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->sigma_interp = true;
     cfg->sigma_current = true;
     cfg->sigma_floor = 8u;
+    cfg->edge_k = 0u;
     cfg->peak_max = 64u;
     cfg->peak_threshold = 768;
 }
@@ -89,6 +90,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->sigma_floor == 0u) {
         return "sigma_floor";
+    }
+    if (c->edge_k > PFT_PRE_MAX_EDGE_K || (c->edge_k != 0u && c->method != PFT_PRE_BG_TEMPORAL)) {
+        return "edge_k";
     }
     if (c->peak_max > PFT_PRE_MAX_PEAKS) {
         return "peak_max";

@@ -395,6 +395,67 @@ static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_
     }
 }
 
+/* Whitening of row y with the edge term: the row's multipliers m (scaled by 2^-e) and the
+ * background rows around y (p->bg, U units; clamped at the image border). |grad b| is taken
+ * as max + min / 2 of the central differences' magnitudes (within 12 % of the Euclidean
+ * norm), the edge spread s = edge_k |grad b| in R units, its ratio to the pixel's sigma
+ * u = s m 2^e / 2^24 in Q4, and w = (r m / 2^sh) edge_f_[u] / 2^15. */
+static void whiten_edge_row_(pft_pre_t *p, uint32_t y, const int16_t *m, uint32_t e, uint32_t sh)
+{
+    /* docs/algorithms.md 9.6: 32768 / sqrt(1 + (i / 16)^2), rounded, the factor that takes a
+     * residual whitened by the tile sigma to one whitened by sqrt(sigma^2 + s^2), for
+     * s / sigma = i / 16 (i = 0..255; larger ratios use the last). */
+    static const uint16_t edge_f_[256] = {
+        32768u, 32704u, 32515u, 32207u, 31790u, 31276u, 30682u, 30021u, 29309u, 28560u,
+        27787u, 27002u, 26214u, 25432u, 24660u, 23905u, 23170u, 22458u, 21770u, 21107u,
+        20470u, 19859u, 19273u, 18713u, 18176u, 17664u, 17174u, 16705u, 16257u, 15829u,
+        15420u, 15029u, 14654u, 14296u, 13953u, 13624u, 13308u, 13006u, 12716u, 12437u,
+        12170u, 11913u, 11665u, 11427u, 11198u, 10978u, 10765u, 10560u, 10362u, 10171u,
+        9987u, 9809u, 9637u, 9470u, 9309u, 9153u, 9002u, 8856u, 8714u, 8576u,
+        8443u, 8314u, 8188u, 8066u, 7947u, 7832u, 7720u, 7611u, 7505u, 7402u,
+        7302u, 7204u, 7108u, 7015u, 6925u, 6837u, 6751u, 6667u, 6585u, 6504u,
+        6426u, 6350u, 6275u, 6203u, 6131u, 6062u, 5994u, 5927u, 5862u, 5798u,
+        5735u, 5674u, 5615u, 5556u, 5498u, 5442u, 5387u, 5333u, 5280u, 5228u,
+        5177u, 5127u, 5078u, 5030u, 4983u, 4936u, 4891u, 4846u, 4802u, 4759u,
+        4717u, 4675u, 4634u, 4594u, 4554u, 4516u, 4477u, 4440u, 4403u, 4366u,
+        4331u, 4296u, 4261u, 4227u, 4193u, 4160u, 4128u, 4096u, 4064u, 4033u,
+        4003u, 3973u, 3943u, 3914u, 3885u, 3857u, 3829u, 3801u, 3774u, 3747u,
+        3721u, 3695u, 3669u, 3644u, 3619u, 3594u, 3570u, 3546u, 3522u, 3499u,
+        3476u, 3453u, 3430u, 3408u, 3386u, 3365u, 3343u, 3322u, 3301u, 3281u,
+        3261u, 3240u, 3221u, 3201u, 3182u, 3163u, 3144u, 3125u, 3107u, 3088u,
+        3070u, 3053u, 3035u, 3018u, 3000u, 2983u, 2967u, 2950u, 2934u, 2917u,
+        2901u, 2885u, 2870u, 2854u, 2839u, 2823u, 2808u, 2793u, 2779u, 2764u,
+        2750u, 2735u, 2721u, 2707u, 2693u, 2680u, 2666u, 2653u, 2639u, 2626u,
+        2613u, 2600u, 2587u, 2575u, 2562u, 2550u, 2537u, 2525u, 2513u, 2501u,
+        2489u, 2478u, 2466u, 2455u, 2443u, 2432u, 2421u, 2410u, 2399u, 2388u,
+        2377u, 2366u, 2356u, 2345u, 2335u, 2324u, 2314u, 2304u, 2294u, 2284u,
+        2274u, 2264u, 2255u, 2245u, 2235u, 2226u, 2216u, 2207u, 2198u, 2189u,
+        2180u, 2171u, 2162u, 2153u, 2144u, 2135u, 2127u, 2118u, 2110u, 2101u,
+        2093u, 2085u, 2076u, 2068u, 2060u, 2052u,
+    };
+    const uint32_t w = p->cfg.width, h = p->cfg.height;
+    const uint16_t *bc = p->bg + (size_t)y * w;
+    const uint16_t *bu = y > 0u ? bc - w : bc, *bd = y + 1u < h ? bc + w : bc;
+    int16_t *r = p->res + (size_t)y * w;
+    const uint32_t k = p->cfg.edge_k, ks = 13u + (uint32_t)(p->bf - p->rs), us = 20u - e;
+    const uint32_t uh = 1u << (us - 1u);
+    const int32_t rnd = (int32_t)(1u << (sh - 1u));
+    for (uint32_t x = 0; x < w; ++x) {
+        const int16_t v = r[x];
+        const uint32_t xl = x > 0u ? x - 1u : x, xr = x + 1u < w ? x + 1u : x;
+        const int32_t gx = (int32_t)bc[xr] - (int32_t)bc[xl], gy = (int32_t)bd[x] - (int32_t)bu[x];
+        const uint32_t ax = (uint32_t)(gx < 0 ? -gx : gx), ay = (uint32_t)(gy < 0 ? -gy : gy);
+        const uint32_t g2 = ax > ay ? ax + (ay >> 1) : ay + (ax >> 1); /* 2 |grad b|, U units */
+        const uint32_t s = (k * g2) >> ks;                               /* R units, < 2^17 */
+        const uint32_t u = (s * (uint32_t)(uint16_t)m[x] + uh) >> us;
+        int32_t q = ((int32_t)v * (int32_t)m[x] + rnd) >> sh;
+        q = q > 65535 ? 65535 : (q < -65535 ? -65535 : q);
+        q = (q * (int32_t)edge_f_[u > 255u ? 255u : u] + 16384) >> 15;
+        int16_t q16 = (int16_t)(q > INT16_MAX ? INT16_MAX : (q < -PFT_PRE_RMAX_ ? -PFT_PRE_RMAX_ : q));
+        r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : q16;
+    }
+}
+
 /* Whitens row y in place: w = r m / 2^16 with m = 2^28 / sigma(R Q4) interpolated; the
  * row's multipliers share one exponent e so that m >> e < 2^15 and the products fit 32 bits
  * (a multiplier 2^k times smaller than the row's largest keeps 15 - k bits). */
@@ -429,6 +490,10 @@ static void whiten_row_(pft_pre_t *p, uint32_t y)
     }
 #undef MS_
     const uint32_t sh = 16u - e;
+    if (p->cfg.edge_k != 0u) {
+        whiten_edge_row_(p, y, m, e, sh);
+        return;
+    }
     const int32_t rnd = (int32_t)(1u << (sh - 1u));
     for (uint32_t x = 0; x < w; ++x) { /* vectorisable: 16 x 16 bit products, saturation */
         const int16_t v = r[x];
