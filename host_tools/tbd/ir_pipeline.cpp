@@ -7,6 +7,7 @@
 
 #include "../common/errors.hpp"
 #include "../common/sequence_input.hpp"
+#include "tracker.hpp"
 
 namespace pft::host::tbd_ir {
 
@@ -14,10 +15,7 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
                                  uint64_t seed)
 {
     pft_tbd_config_t c;
-    if (t.preset == "recommended")
-        pft_tbd_config_recommended(&c);
-    else
-        pft_tbd_config_default(&c);
+    pft::host::tbd::preset_config(t.preset, &c);
     c.width = static_cast<uint16_t>(width);
     c.height = static_cast<uint16_t>(height);
     c.psf_sigma = to_real(psf_sigma);

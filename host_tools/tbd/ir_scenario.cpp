@@ -4,6 +4,7 @@
 #include <set>
 
 #include "../common/json_field.hpp"
+#include "pft/pft_tbd.h"
 
 namespace pft::host::tbd_ir {
 
@@ -125,7 +126,12 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
-    T.preset = t.choice_or("preset", T.preset, {"paper", "recommended"});
+    T.preset = t.choice_or("preset", T.preset, {"paper", "recommended", "bounded"});
+    if (T.preset == "bounded" && !t.has("particles")) {
+        pft_tbd_config_t b;
+        pft_tbd_config_bounded(&b);
+        T.particles = b.n_search;  // the preset's own search-layer size
+    }
     T.particles = static_cast<uint32_t>(t.integer_in("particles", T.particles, 1, 4194304));
     T.track_particles = static_cast<uint32_t>(t.integer_in("track_particles", T.track_particles, 1, 4194304));
     T.max_targets = static_cast<uint32_t>(t.integer_in("max_targets", T.max_targets, 1, 64));
