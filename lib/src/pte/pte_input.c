@@ -204,7 +204,8 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
             uint32_t sh = 134u - ex;
             sh = sh > 31u ? 31u : sh;
             const uint32_t mant = (bits & 0x7FFFFFu) | 0x800000u;
-            mag = (int64_t)((mant + ((1u << sh) >> 1)) >> sh);
+            const uint32_t m = (mant + ((1u << sh) >> 1)) >> sh;
+            mag = (int64_t)m;
         } else {
             const pft_real_t v = f32_in_(row + 4u * u);
             mag = v < 0 ? -(int64_t)v : (int64_t)v;
