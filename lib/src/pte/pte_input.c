@@ -360,10 +360,7 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
                            pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
 {
     if (frame != NULL) {
-        pft_status_t st = pft_pte_frame_check_(in, frame);
-        if (st != PFT_OK) {
-            return st;
-        }
+        /* checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
     } else if (z == NULL) {
         return PFT_ERR_INVAL;
     } else {
