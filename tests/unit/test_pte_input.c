@@ -204,21 +204,23 @@ static void test_frames_u8_u16_f32(void)
 
 /* F32 frames in fixed-noise mode take a one-pass path (IEEE decoding inlined in the q16
  * build): every value equals pft_from_f32, the clamp to +-32767, the multiplication by
- * 1/sigma and the zeta clamp done step by step, bit for bit. Values: random bit patterns
+ * 1/sigma and the zeta clamp done step by step, bit for bit, for two sigma / clip pairs. Values: random bit patterns
  * (finite) over the whole exponent range and over the range around the q16 LSB and 32767,
  * zeros, subnormals and ties. */
 static void test_f32_fast_path_exact(void)
 {
     pft_pte_input_t in;
     input_config(&in, NR, 1);
-    in.noise_sigma = R(0.7);
-    in.zeta_clip = R(1000.0);
     static float px[NR];
     static pft_real_t ref[NR];
-    const pft_real_t inv = pft_recip(in.noise_sigma);
     uint32_t st = 2463534242u;
     long differ = 0;
-    for (int it = 0; it < 400; ++it) {
+    for (int it = 0; it < 800; ++it) {
+        /* half the frames with sigma 0.7 and a clip far out, half with sigma 3 and a clip
+         * at 4 (the clamp active on both signs) */
+        in.noise_sigma = it < 400 ? R(0.7) : R(3.0);
+        in.zeta_clip = it < 400 ? R(1000.0) : R(4.0);
+        const pft_real_t inv = pft_recip(in.noise_sigma);
         for (int u = 0; u < NR; ++u) {
             st ^= st << 13;
             st ^= st >> 17;

@@ -188,13 +188,31 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
     const pft_real_t clip = in->zeta_clip;
     const uint8_t *row = pft_frame_row(frame, d);
 #ifdef PFT_NUMERIC_Q16
-    /* pft_mul's rounding, then the clamp to +-zeta_clip (< 32768) in 64 bits, which also
-     * covers pft_mul's saturation */
+    /* The same values as f32_in_, pft_mul and the clamp to +-zeta_clip, on the magnitude
+     * (inv > 0; pft_mul rounds half away from zero, so the sign can be applied last): a pixel
+     * below 128 in magnitude (exponent below 134, the common case) is
+     * (mant + 2^(sh-1)) >> sh with sh = 134 - exponent, which also gives f32_in_'s 0 for
+     * sh >= 25 (mant < 2^24), so sh is clamped to 31 instead of tested; larger pixels take
+     * f32_in_ itself. */
     const int64_t hi = clip;
     for (uint32_t u = 0; u < in->n_range; ++u) {
-        int64_t v = (int64_t)f32_in_(row + 4u * u) * inv;
-        v = (v >= 0 ? v + 32768 : v + 32767) >> 16;
-        out[u] = (pft_real_t)(v > hi ? hi : (v < -hi ? -hi : v));
+        uint32_t bits;
+        memcpy(&bits, row + 4u * u, 4u);
+        const uint32_t ex = (bits >> 23) & 0xFFu;
+        int64_t mag;
+        if (ex < 134u) {
+            uint32_t sh = 134u - ex;
+            sh = sh > 31u ? 31u : sh;
+            const uint32_t mant = (bits & 0x7FFFFFu) | 0x800000u;
+            const uint32_t m = (mant + ((1u << sh) >> 1)) >> sh;
+            mag = (int64_t)m;
+        } else {
+            const pft_real_t v = f32_in_(row + 4u * u);
+            mag = v < 0 ? -(int64_t)v : (int64_t)v;
+        }
+        int64_t r = (mag * inv + 32768) >> 16;
+        r = r > hi ? hi : r;
+        out[u] = (pft_real_t)((bits >> 31) != 0u ? -r : r);
     }
 #else
     const pft_real_t nclip = pft_neg(clip);
@@ -342,10 +360,7 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
                            pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
 {
     if (frame != NULL) {
-        pft_status_t st = pft_pte_frame_check_(in, frame);
-        if (st != PFT_OK) {
-            return st;
-        }
+        /* checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
     } else if (z == NULL) {
         return PFT_ERR_INVAL;
     } else {

@@ -71,7 +71,7 @@ void pft_pte_ring_commit_(pft_pte_ring_t *r);
 /* Frame back frames ago (0 = newest); back < count. */
 const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back);
 
-/* Pushes a frame (pft_frame_t or values in input units; exactly one non-NULL). Checks first. */
+/* Pushes a frame that passed pft_pte_seq_check_ (not checked again) or values (checked). */
 pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring, pft_real_t *row,
                            const pft_frame_t *frame, const pft_real_t *z);
 
