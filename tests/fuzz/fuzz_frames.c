@@ -288,7 +288,11 @@ static void run_tsa(fz_t *f)
     c.fit_k = (uint8_t)(1u + (v >> 4) % 8u);
     c.fit_sigma = PFT_C(2.0);
     c.lost_frames = 3u;
-    c.seed = fz_u8(f);
+    uint8_t sb = fz_u8(f);
+    c.seed = sb;
+    /* one seed byte in 256 runs the paper's loss handling (no loss search; before the work
+     * caps only fuzz_config reached it, with configurations now above its cap) */
+    c.loss_search = sb != 0x5Au;
     FZ_CHECK(pft_tsa_config_check(&c, NULL) == PFT_OK);
     size_t ws = pft_tsa_workspace_size(&c);
     FZ_CHECK(ws > 0u && ws <= sizeof g_ws);
