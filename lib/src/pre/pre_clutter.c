@@ -1,0 +1,360 @@
+/* Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*; docs/algorithms.md
+ * 9.7). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
+ * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8. */
+#include <string.h>
+
+#include "pft/pft_pre.h"
+#include "pre_int.h"
+
+#define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
+#define CL_MMAX_ 65535u        /* largest map value (64 sigma^2 less one unit) */
+#define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
+#define CL_MUMAX_ 16384        /* 8 sigma in Q4.11 */
+#define CL_MUOFF_ 32768u       /* offset of mu while warped (unsigned arithmetic) */
+
+void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->width = 384u;
+    cfg->height = 288u;
+    cfg->alpha = 6554u;
+    cfg->blur = 1u;
+    cfg->box = true;
+    cfg->mean = false;
+    cfg->thr = 2048u;
+}
+
+pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
+{
+    const char *bad = NULL;
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (cfg->width < 8u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "width";
+    } else if (cfg->height < 8u || cfg->height > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "height";
+    } else if (cfg->alpha == 0u) {
+        bad = "alpha";
+    } else if (cfg->blur > PFT_PRE_CLUTTER_MAX_BLUR) {
+        bad = "blur";
+    } else if (cfg->thr < CL_ONE_) {
+        bad = "thr";
+    } else {
+        /* accepted */
+    }
+    if (bad != NULL) {
+        if (field != NULL) {
+            *field = bad;
+        }
+        return PFT_ERR_CONFIG;
+    }
+    return PFT_OK;
+}
+
+size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
+{
+    if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
+        return 0u;
+    }
+    return PFT_PRE_CLUTTER_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                           cfg->blur);
+}
+
+pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
+                                  void *work, size_t work_len)
+{
+    if (c == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    const size_t w = cfg->width, h = cfg->height;
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    uint16_t *m = pft_ws_take(&ws, w * h * 2u);
+    int16_t *out = pft_ws_take(&ws, w * h * 2u);
+    uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
+    uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
+    uint32_t *vs = pft_ws_take(&ws, w * 4u);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(c, 0, sizeof(*c));
+    c->cfg = *cfg;
+    c->m = m;
+    c->out = out;
+    c->mu = mu;
+    c->ring = ring;
+    c->vs = vs;
+    return pft_pre_clutter_reset(c);
+}
+
+pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
+{
+    if (c == NULL || c->m == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const size_t w = c->cfg.width, npix = w * (size_t)c->cfg.height;
+    for (size_t i = 0u; i < npix; ++i) {
+        c->m[i] = (uint16_t)CL_ONE_;
+    }
+    memset(c->out, 0, npix * 2u);
+    for (size_t i = 0u; c->mu != NULL && i < npix; ++i) {
+        c->mu[i] = (uint16_t)CL_MUOFF_;
+    }
+    memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * w * 2u);
+    memset(c->vs, 0, w * 4u);
+    c->frames = 0u;
+    c->updates = 0u;
+    c->seq = 0u;
+    c->timestamp_us = 0u;
+    return PFT_OK;
+}
+
+/* a * d / 2^16 rounded half away from zero (|a| <= 2^16, |d| < 2^17). */
+static int32_t cl_scale_(uint32_t a, int32_t d)
+{
+    const uint64_t mag = (uint64_t)a * (uint64_t)(d < 0 ? -(int64_t)d : (int64_t)d);
+    const int32_t q = (int32_t)((mag + 32768u) >> 16);
+    return d < 0 ? -q : q;
+}
+
+/* n / d rounded half away from zero (d > 0). */
+static int32_t cl_div_(int32_t n, int32_t d)
+{
+    const int32_t mag = n < 0 ? -n : n;
+    const int32_t q = (mag + d / 2) / d;
+    return n < 0 ? -q : q;
+}
+
+/* Floor and Q8 fraction of a Q16.16 shift, the fraction rounded to 1/256 px. */
+static void cl_split_(int32_t s, int32_t *ip, uint32_t *fp)
+{
+    const int64_t q8 = ((int64_t)s + 128) / 256 - (((int64_t)s + 128) % 256 < 0 ? 1 : 0);
+    /* q8 = floor((s + 128) / 256): the shift in Q8, rounded */
+    const int64_t i = q8 / 256 - ((q8 % 256) < 0 ? 1 : 0);
+    *ip = (int32_t)i;
+    *fp = (uint32_t)(q8 - i * 256);
+}
+
+/* Source value of the warp: v[sy][sx], or border b outside the frame. */
+static uint32_t cl_src_(const uint16_t *v, int32_t sx, int32_t sy, int32_t w, int32_t h,
+                        uint32_t b)
+{
+    if (sx < 0 || sy < 0 || sx >= w || sy >= h) {
+        return b;
+    }
+    return v[(size_t)sy * (size_t)w + (size_t)sx];
+}
+
+/* Warps v (u16 values) in place by (ix + fx / 256, iy + fy / 256) px: out(p) = v(p - shift),
+ * bilinear, b outside. Rows and columns are visited in the order that reads every source
+ * before it is overwritten (descending where the sources lie at lower indices). */
+static void cl_warp_(uint16_t *v, int32_t w, int32_t h, int32_t ix, uint32_t fx, int32_t iy,
+                     uint32_t fy, uint32_t b)
+{
+    const bool xdown = ix >= 0, ydown = iy >= 0;
+    for (int32_t k = 0; k < h; ++k) {
+        const int32_t y = ydown ? h - 1 - k : k;
+        const int32_t y1 = y - iy, y0 = y1 - 1; /* weights 256 - fy, fy */
+        for (int32_t j = 0; j < w; ++j) {
+            const int32_t x = xdown ? w - 1 - j : j;
+            const int32_t x1 = x - ix, x0 = x1 - 1;
+            const uint32_t a1 = cl_src_(v, x1, y1, w, h, b) * (256u - fx) +
+                                cl_src_(v, x0, y1, w, h, b) * fx;
+            const uint32_t a0 = fy == 0u ? 0u
+                                         : cl_src_(v, x1, y0, w, h, b) * (256u - fx) +
+                                               cl_src_(v, x0, y0, w, h, b) * fx;
+            v[(size_t)y * (size_t)w + (size_t)x] = (uint16_t)((a1 * (256u - fy) + a0 * fy + 32768u) >> 16);
+        }
+    }
+}
+
+/* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring. */
+static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
+{
+    const int32_t h = (int32_t)c->cfg.height;
+    const int32_t rr = r < 0 ? 0 : (r >= h ? h - 1 : r);
+    if (rr <= y) {
+        return c->ring + (size_t)((uint32_t)rr % ((uint32_t)c->cfg.blur + 1u)) * c->cfg.width;
+    }
+    return c->m + (size_t)rr * c->cfg.width;
+}
+
+/* Read value of the map at every pixel of row y (before its update): the mean of the square
+ * in Q6.10 (box) or its largest value, into c->vs. */
+static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
+{
+    const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->cfg.width;
+    uint32_t *vs = c->vs;
+    const uint16_t *r0 = cl_row_(c, y - b, y);
+    for (int32_t x = 0; x < w; ++x) {
+        vs[x] = r0[x];
+    }
+    for (int32_t k = -b + 1; k <= b; ++k) {
+        const uint16_t *r = cl_row_(c, y + k, y);
+        if (c->cfg.box) {
+            for (int32_t x = 0; x < w; ++x) {
+                vs[x] += r[x];
+            }
+        } else {
+            for (int32_t x = 0; x < w; ++x) {
+                vs[x] = r[x] > vs[x] ? r[x] : vs[x];
+            }
+        }
+    }
+    if (b == 0) {
+        return;
+    }
+    /* horizontal pass in place: the former values of the last b columns in a small window */
+    uint32_t win[2u * PFT_PRE_CLUTTER_MAX_BLUR + 1u];
+    const uint32_t n = 2u * (uint32_t)b + 1u, area = n * n;
+    for (uint32_t i = 0u; i < n; ++i) {
+        const int32_t x = (int32_t)i - b;
+        win[i] = vs[x < 0 ? 0 : (x >= w ? w - 1 : x)];
+    }
+    for (int32_t x = 0; x < w; ++x) {
+        uint32_t acc = 0u;
+        for (uint32_t i = 0u; i < n; ++i) {
+            acc = c->cfg.box ? acc + win[i] : (win[i] > acc ? win[i] : acc);
+        }
+        vs[x] = c->cfg.box ? (acc + area / 2u) / area : acc;
+        /* slide: column x + b + 1 (replicated at the right edge) */
+        for (uint32_t i = 0u; i + 1u < n; ++i) {
+            win[i] = win[i + 1u];
+        }
+        const int32_t nx = x + b + 1;
+        win[n - 1u] = nx >= w ? win[n - 2u] : vs[nx];
+    }
+}
+
+pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                    int32_t shift_x, int32_t shift_y, bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
+    if (res->format != PFT_PIX_RES16 || res->width != c->cfg.width ||
+        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)w ||
+        (res->stride_bytes & 1u) != 0u) {
+        return PFT_ERR_FORMAT;
+    }
+    const size_t npix = (size_t)w * (size_t)h;
+    c->updates++;
+    c->seq = res->seq;
+    c->timestamp_us = res->timestamp_us;
+    if (!evidence) {
+        for (size_t i = 0u; i < npix; ++i) {
+            c->out[i] = PFT_RES16_MASKED;
+        }
+        return PFT_OK;
+    }
+    if (c->frames > 0u) {
+        int32_t ix, iy;
+        uint32_t fx, fy;
+        cl_split_(shift_x, &ix, &fx);
+        cl_split_(shift_y, &iy, &fy);
+        if (ix != 0 || iy != 0 || fx != 0u || fy != 0u) {
+            /* beyond the frame, every pixel enters: the warp's indices stay in range */
+            ix = ix > w ? w : (ix < -w ? -w : ix);
+            iy = iy > h ? h : (iy < -h ? -h : iy);
+            cl_warp_(c->m, w, h, ix, fx, iy, fy, CL_ONE_);
+            if (c->mu != NULL) {
+                cl_warp_(c->mu, w, h, ix, fx, iy, fy, CL_MUOFF_);
+            }
+        }
+    }
+    c->frames++;
+    const uint32_t a1 = (65536u + c->frames / 2u) / c->frames;
+    const uint32_t a = a1 > c->cfg.alpha ? a1 : c->cfg.alpha;
+    const uint32_t rs = res->stride_bytes / 2u;
+    const uint32_t nring = (uint32_t)c->cfg.blur + 1u;
+    for (int32_t y = 0; y < h; ++y) {
+        uint16_t *mrow = c->m + (size_t)y * (size_t)w;
+        memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
+        cl_read_row_(c, y);
+        const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
+        int16_t *o = c->out + (size_t)y * (size_t)w;
+        uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
+        for (int32_t x = 0; x < w; ++x) {
+            const int32_t v = r[x];
+            if (v == PFT_RES16_MASKED) {
+                o[x] = PFT_RES16_MASKED;
+                continue;
+            }
+            const int32_t cv = mu != NULL ? v - cl_div_((int32_t)mu[x] - (int32_t)CL_MUOFF_, 8) : v;
+            const uint32_t mb = c->vs[x];
+            int32_t wv = cv;
+            if (mb > c->cfg.thr) {
+                const uint32_t s = pft_pre_isqrt64_((uint64_t)mb << 10); /* sqrt(M) in Q10 */
+                wv = cl_div_(cv * 1024, (int32_t)s);
+            }
+            o[x] = (int16_t)pft_pre_rclamp_(wv);
+            const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
+            const uint64_t sq = (uint64_t)ac * ac;
+            const uint32_t t = sq >= CL_SQMAX_ ? CL_MMAX_ : (uint32_t)((sq + 32u) >> 6);
+            const int32_t nm = (int32_t)mrow[x] + cl_scale_(a, (int32_t)(t > CL_MMAX_ ? CL_MMAX_ : t) - (int32_t)mrow[x]);
+            mrow[x] = (uint16_t)(nm < 0 ? 0 : (nm > (int32_t)CL_MMAX_ ? (int32_t)CL_MMAX_ : nm));
+            if (mu != NULL) {
+                const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
+                const int32_t mv = (int32_t)mu[x] - (int32_t)CL_MUOFF_;
+                mu[x] = (uint16_t)(mv + cl_scale_(a, tv - mv) + (int32_t)CL_MUOFF_);
+            }
+        }
+    }
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
+{
+    if (c == NULL || out == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (c->updates == 0u) {
+        return PFT_ERR_STATE;
+    }
+    memset(out, 0, sizeof(*out));
+    out->data = c->out;
+    out->width = c->cfg.width;
+    out->height = c->cfg.height;
+    out->stride_bytes = 2u * (uint32_t)c->cfg.width;
+    out->format = PFT_PIX_RES16;
+    out->bit_depth = 16u;
+    out->timestamp_us = c->timestamp_us;
+    out->seq = c->seq;
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level)
+{
+    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+        return PFT_ERR_INVAL;
+    }
+    const uint32_t w = c->cfg.width, h = c->cfg.height;
+    const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
+    const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
+    for (uint32_t yy = y0; yy <= y1; ++yy) {
+        for (uint32_t xx = x0; xx <= x1; ++xx) {
+            uint16_t *m = &c->m[(size_t)yy * w + xx];
+            *m = *m < level ? level : *m;
+        }
+    }
+    return PFT_OK;
+}
+
+uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y)
+{
+    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+        return 0u;
+    }
+    return c->m[(size_t)y * c->cfg.width + x];
+}
