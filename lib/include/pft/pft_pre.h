@@ -283,14 +283,14 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * the map as it is and gives an all-masked output. Integer arithmetic only: the float and q16
  * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
  * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only) and
- * blur + 1 rows; see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ * blur + 3 rows; see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
  */
 
 /** Workspace bytes of a clutter map for frames w x h, mean (0/1) and blur b. */
 #define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b)                                         \
     ((size_t)(PFT_WS_ALIGN - 1u) + 2u * PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +          \
      ((mean) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                             \
-     PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + PFT_WS_ROUND((size_t)(w) * 4u))
+     PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + 2u * PFT_WS_ROUND((size_t)(w) * 4u))
 
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);

@@ -84,6 +84,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
     uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
     uint32_t *vs = pft_ws_take(&ws, w * 4u);
+    uint32_t *hs = pft_ws_take(&ws, w * 4u);
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -94,6 +95,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     c->mu = mu;
     c->ring = ring;
     c->vs = vs;
+    c->hs = hs;
     return pft_pre_clutter_reset(c);
 }
 
@@ -112,6 +114,7 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     }
     memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * w * 2u);
     memset(c->vs, 0, w * 4u);
+    memset(c->hs, 0, w * 4u);
     c->frames = 0u;
     c->updates = 0u;
     c->seq = 0u;
@@ -155,25 +158,56 @@ static uint32_t cl_src_(const uint16_t *v, int32_t sx, int32_t sy, int32_t w, in
     return v[(size_t)sy * (size_t)w + (size_t)sx];
 }
 
-/* Warps v (u16 values) in place by (ix + fx / 256, iy + fy / 256) px: out(p) = v(p - shift),
- * bilinear, b outside. Rows and columns are visited in the order that reads every source
- * before it is overwritten (descending where the sources lie at lower indices). */
-static void cl_warp_(uint16_t *v, int32_t w, int32_t h, int32_t ix, uint32_t fx, int32_t iy,
-                     uint32_t fy, uint32_t b)
+/* Columns [xa, xb) of row y of the warp (see cl_warp_) into t, sources tested one by one. */
+static void cl_warp_cols_(const uint16_t *v, uint32_t *t, int32_t xa, int32_t xb, int32_t y,
+                          int32_t ix, int32_t iy, int32_t w, int32_t h, uint32_t fx, uint32_t fy,
+                          uint32_t b)
 {
-    const bool xdown = ix >= 0, ydown = iy >= 0;
+    const int32_t y1 = y - iy, y0 = y1 - 1;
+    for (int32_t x = xa; x < xb; ++x) {
+        const uint32_t a1 = cl_src_(v, x - ix, y1, w, h, b) * (256u - fx) +
+                            cl_src_(v, x - ix - 1, y1, w, h, b) * fx;
+        const uint32_t a0 = cl_src_(v, x - ix, y0, w, h, b) * (256u - fx) +
+                            cl_src_(v, x - ix - 1, y0, w, h, b) * fx;
+        t[x] = (a1 * (256u - fy) + a0 * fy + 32768u) >> 16;
+    }
+}
+
+/* Warps v (u16 values) in place by (ix + fx / 256, iy + fy / 256) px: out(p) = v(p - shift),
+ * bilinear, b outside. Each row is made in t (w values) and copied back; rows are visited in
+ * the order that reads every source row before it is overwritten (descending where the
+ * sources lie at lower rows). */
+static void cl_warp_(uint16_t *v, uint32_t *t, int32_t w, int32_t h, int32_t ix, uint32_t fx,
+                     int32_t iy, uint32_t fy, uint32_t b)
+{
+    const bool ydown = iy >= 0;
+    const uint32_t gx = 256u - fx, gy = 256u - fy;
+    /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
+    const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
+    const int32_t xhi = w + ix > w ? w : (w + ix < xlo ? xlo : w + ix);
     for (int32_t k = 0; k < h; ++k) {
         const int32_t y = ydown ? h - 1 - k : k;
         const int32_t y1 = y - iy, y0 = y1 - 1; /* weights 256 - fy, fy */
-        for (int32_t j = 0; j < w; ++j) {
-            const int32_t x = xdown ? w - 1 - j : j;
-            const int32_t x1 = x - ix, x0 = x1 - 1;
-            const uint32_t a1 = cl_src_(v, x1, y1, w, h, b) * (256u - fx) +
-                                cl_src_(v, x0, y1, w, h, b) * fx;
-            const uint32_t a0 = fy == 0u ? 0u
-                                         : cl_src_(v, x1, y0, w, h, b) * (256u - fx) +
-                                               cl_src_(v, x0, y0, w, h, b) * fx;
-            v[(size_t)y * (size_t)w + (size_t)x] = (uint16_t)((a1 * (256u - fy) + a0 * fy + 32768u) >> 16);
+        const bool in1 = y1 >= 0 && y1 < h, in0 = y0 >= 0 && y0 < h;
+        if (in1 && in0 && xlo < xhi) {
+            const size_t c0 = (size_t)(xlo - ix - 1); /* >= 0: the first interior column's x0 */
+            const uint16_t *r1 = v + (size_t)y1 * (size_t)w + c0;
+            const uint16_t *r0 = v + (size_t)y0 * (size_t)w + c0;
+            /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i */
+            for (int32_t x = xlo; x < xhi; ++x) {
+                const int32_t i = x - xlo;
+                const uint32_t a1 = (uint32_t)r1[i + 1] * gx + (uint32_t)r1[i] * fx;
+                const uint32_t a0 = (uint32_t)r0[i + 1] * gx + (uint32_t)r0[i] * fx;
+                t[x] = (a1 * gy + a0 * fy + 32768u) >> 16;
+            }
+        } else {
+            cl_warp_cols_(v, t, xlo, xhi, y, ix, iy, w, h, fx, fy, b);
+        }
+        cl_warp_cols_(v, t, 0, xlo, y, ix, iy, w, h, fx, fy, b);
+        cl_warp_cols_(v, t, xhi, w, y, ix, iy, w, h, fx, fy, b);
+        uint16_t *o = v + (size_t)y * (size_t)w;
+        for (int32_t x = 0; x < w; ++x) {
+            o[x] = (uint16_t)t[x];
         }
     }
 }
@@ -189,8 +223,8 @@ static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
     return c->m + (size_t)rr * c->cfg.width;
 }
 
-/* Read value of the map at every pixel of row y (before its update): the mean of the square
- * in Q6.10 (box) or its largest value, into c->vs. */
+/* Read value of the map at every pixel of row y (before its update): the sum over the square
+ * (box) or its largest value, Q6.10, into c->hs (c->vs: the vertical pass). */
 static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 {
     const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->cfg.width;
@@ -211,28 +245,29 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
             }
         }
     }
-    if (b == 0) {
-        return;
-    }
-    /* horizontal pass in place: the former values of the last b columns in a small window */
-    uint32_t win[2u * PFT_PRE_CLUTTER_MAX_BLUR + 1u];
-    const uint32_t n = 2u * (uint32_t)b + 1u, area = n * n;
-    for (uint32_t i = 0u; i < n; ++i) {
-        const int32_t x = (int32_t)i - b;
-        win[i] = vs[x < 0 ? 0 : (x >= w ? w - 1 : x)];
-    }
-    for (int32_t x = 0; x < w; ++x) {
+    /* horizontal: sum (box) or largest value over 2 b + 1 columns, edges replicated */
+    uint32_t *hs = c->hs;
+    if (c->cfg.box) {
         uint32_t acc = 0u;
-        for (uint32_t i = 0u; i < n; ++i) {
-            acc = c->cfg.box ? acc + win[i] : (win[i] > acc ? win[i] : acc);
+        for (int32_t k = -b; k <= b; ++k) {
+            acc += vs[k < 0 ? 0 : (k >= w ? w - 1 : k)];
         }
-        vs[x] = c->cfg.box ? (acc + area / 2u) / area : acc;
-        /* slide: column x + b + 1 (replicated at the right edge) */
-        for (uint32_t i = 0u; i + 1u < n; ++i) {
-            win[i] = win[i + 1u];
+        for (int32_t x = 0; x < w; ++x) {
+            hs[x] = acc;
+            /* slide: add column x + b + 1, drop column x - b (both replicated at the edges) */
+            const int32_t xa = x + b + 1, xd = x - b;
+            acc += vs[xa >= w ? w - 1 : xa];
+            acc -= vs[xd < 0 ? 0 : xd];
         }
-        const int32_t nx = x + b + 1;
-        win[n - 1u] = nx >= w ? win[n - 2u] : vs[nx];
+    } else {
+        for (int32_t x = 0; x < w; ++x) {
+            uint32_t acc = vs[x];
+            for (int32_t k = -b; k <= b; ++k) {
+                const int32_t xx = x + k < 0 ? 0 : (x + k >= w ? w - 1 : x + k);
+                acc = vs[xx] > acc ? vs[xx] : acc;
+            }
+            hs[x] = acc;
+        }
     }
 }
 
@@ -267,9 +302,9 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
             /* beyond the frame, every pixel enters: the warp's indices stay in range */
             ix = ix > w ? w : (ix < -w ? -w : ix);
             iy = iy > h ? h : (iy < -h ? -h : iy);
-            cl_warp_(c->m, w, h, ix, fx, iy, fy, CL_ONE_);
+            cl_warp_(c->m, c->hs, w, h, ix, fx, iy, fy, CL_ONE_);
             if (c->mu != NULL) {
-                cl_warp_(c->mu, w, h, ix, fx, iy, fy, CL_MUOFF_);
+                cl_warp_(c->mu, c->hs, w, h, ix, fx, iy, fy, CL_MUOFF_);
             }
         }
     }
@@ -278,6 +313,8 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
     const uint32_t a = a1 > c->cfg.alpha ? a1 : c->cfg.alpha;
     const uint32_t rs = res->stride_bytes / 2u;
     const uint32_t nring = (uint32_t)c->cfg.blur + 1u;
+    const uint32_t area = c->cfg.box ? (2u * nring - 1u) * (2u * nring - 1u) : 1u;
+    const uint32_t thr = (uint32_t)c->cfg.thr * area; /* on the square's sum (box) */
     for (int32_t y = 0; y < h; ++y) {
         uint16_t *mrow = c->m + (size_t)y * (size_t)w;
         memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
@@ -292,10 +329,11 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
                 continue;
             }
             const int32_t cv = mu != NULL ? v - cl_div_((int32_t)mu[x] - (int32_t)CL_MUOFF_, 8) : v;
-            const uint32_t mb = c->vs[x];
+            const uint32_t mb = c->hs[x];
             int32_t wv = cv;
-            if (mb > c->cfg.thr) {
-                const uint32_t s = pft_pre_isqrt64_((uint64_t)mb << 10); /* sqrt(M) in Q10 */
+            if (mb > thr) {
+                const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
+                const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
                 wv = cl_div_(cv * 1024, (int32_t)s);
             }
             o[x] = (int16_t)pft_pre_rclamp_(wv);

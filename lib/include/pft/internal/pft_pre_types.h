@@ -64,6 +64,7 @@ struct pft_pre_clutter_s {
     int16_t *out;          /* output, Q8.8 sigma, w * h */
     uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w */
     uint32_t *vs;          /* vertical sums (or maxima) of one row */
+    uint32_t *hs;          /* the square's sums (or maxima) of one row */
     uint32_t frames;       /* frames with evidence since init/reset */
     uint32_t updates;      /* accepted updates since init/reset */
     uint32_t seq;
