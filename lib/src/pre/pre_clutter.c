@@ -184,7 +184,7 @@ static void cl_warp_(uint16_t *v, uint32_t *t, int32_t w, int32_t h, int32_t ix,
     const uint32_t gx = 256u - fx, gy = 256u - fy;
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
-    const int32_t xhi = w + ix > w ? w : (w + ix < xlo ? xlo : w + ix);
+    const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
     for (int32_t k = 0; k < h; ++k) {
         const int32_t y = ydown ? h - 1 - k : k;
         const int32_t y1 = y - iy, y0 = y1 - 1; /* weights 256 - fy, fy */
