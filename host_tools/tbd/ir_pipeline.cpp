@@ -96,7 +96,7 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
     resid_.create(h_, w_, CV_32F);
 }
 
-// The clutter map: the library's pft_pre_clutter_* (pft_pre.h, docs/algorithms.md 9.7): per
+// The clutter map: the library's pft_pre_clutter_* (pft_pre.h, docs/algorithms.md 9.9): per
 // pixel of the scene the running mean square of the whitened residual (and its mean with
 // clutter_mean), carried along with the scene by the stage's shift; a pixel whose map, read
 // over the (2 clutter_blur + 1)^2 square (mean, or largest value), exceeds clutter_thr is

@@ -268,7 +268,7 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
 
 /*
  * Clutter map (pft_pre_clutter_*): a second, optional step after the stage, on its whitened
- * residual (docs/algorithms.md 9.7). Per pixel of the scene it holds the running mean square
+ * residual (docs/algorithms.md 9.9). Per pixel of the scene it holds the running mean square
  * m of the whitened residual (and, with mean, its running mean mu), carried along with the
  * scene every frame by the stage's measured shift (bilinear, pixels entering the frame start
  * at m = 1, mu = 0). Per frame, with M the mean (box) or the largest value (not box) of m over
@@ -282,8 +282,8 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * map it has not raised. A frame without detection evidence (update's evidence false) leaves
  * the map as it is and gives an all-masked output. Integer arithmetic only: the float and q16
  * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
- * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only) and
- * blur + 3 rows; see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), blur + 1
+ * rows of the map and two rows of sums (4 bytes per pixel each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
  */
 
 /** Workspace bytes of a clutter map for frames w x h, mean (0/1) and blur b. */

@@ -1,5 +1,5 @@
 /* Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*; docs/algorithms.md
- * 9.7). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
+ * 9.9). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
  * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8. */
 #include <string.h>
 
