@@ -96,94 +96,61 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
     resid_.create(h_, w_, CV_32F);
 }
 
-// The clutter map. The map m holds, per pixel of the scene, the mean square of the whitened
-// residual, and mu its mean: every frame both are carried along with the scene (warped by the
-// stage's shift, the convention z(p) = b(p - shift), bilinear; pixels entering the frame start
-// at m = 1, mu = 0). M is the mean of m over the (2 clutter_blur + 1)^2 square around the pixel
-// (clutter_box) or its largest value there, read before this frame's update so that a pixel is
-// not scored against its own value. Every residual r becomes r - mu if clutter_mean (a line
-// the background keeps missing on the same side), and a pixel with M > clutter_thr is clutter:
-// its residual is divided by sqrt(M) too. Then m <- (1 - a) m + a min((r - mu)^2, 64) and
-// mu <- (1 - a) mu + a clamp(r, -8, 8), with a = max(clutter_alpha, 1 / frames) (a running mean
-// at the start). A thin cloud edge or horizon line that leaves several sigmas at the same scene
-// position frame after frame is then scored in its own sigma, while a target moving across the
-// scene meets a map it has not raised. Frames without evidence leave the map as it is (not
-// warped: the stage's shift is not valid then).
-// w in Q8.8, rounded half away from zero as std::lround (exact: |w * 256| < 2^23 after the
-// clamp, so the fraction t - q is exact) and clamped to +-32767; a libm call per pixel was a
-// fifth of the map's cost.
-static inline int16_t q88(float w)
+// The clutter map: the library's pft_pre_clutter_* (pft_pre.h, docs/algorithms.md 9.9): per
+// pixel of the scene the running mean square of the whitened residual (and its mean with
+// clutter_mean), carried along with the scene by the stage's shift; a pixel whose map, read
+// over the (2 clutter_blur + 1)^2 square (mean, or largest value), exceeds clutter_thr is
+// scored in that sigma. Until this branch it was host code (float, OpenCV warps) with the same
+// formulas; the library's is integer (docs/results/ir_clutter.md compares the two).
+pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width, int height)
 {
-    const float t = std::clamp(w * 256.0f, -32767.0f, 32767.0f);
-    const float a = std::fabs(t);
-    int32_t q = static_cast<int32_t>(a);
-    if (a - static_cast<float>(q) >= 0.5f)
-        ++q;
-    return static_cast<int16_t>(t < 0.0f ? -q : q);
+    pft_pre_clutter_config_t c;
+    pft_pre_clutter_config_default(&c);
+    c.width = static_cast<uint16_t>(width);
+    c.height = static_cast<uint16_t>(height);
+    c.alpha = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_alpha * 65536.0), 1L, 65535L));
+    c.blur = static_cast<uint8_t>(t.clutter_blur);
+    c.box = t.clutter_box;
+    c.mean = t.clutter_mean;
+    c.thr = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_thr * 1024.0), 1024L, 65535L));
+    return c;
 }
 
 void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
                   double sx, double sy, cv::Mat &resid_)
 {
     const int w_ = resid_.cols, h_ = resid_.rows;
-    if (c.m.empty()) {
-        c.m.create(h_, w_, CV_32F);
-        c.m.setTo(1.0f);
-        c.mean.create(h_, w_, CV_32F);
-        c.mean.setTo(0.0f);
-        c.res16.create(h_, w_, CV_16S);
+    if (c.work.empty()) {
+        c.cfg = make_clutter_config(T_, w_, h_);
+        const char *field = nullptr;
+        if (pft_pre_clutter_config_check(&c.cfg, &field) != PFT_OK)
+            throw InputError(std::string("clutter map configuration refused (field ") + (field ? field : "?") + ")");
+        c.bytes = pft_pre_clutter_workspace_size(&c.cfg);
+        c.work.assign((c.bytes + 7) / 8, 0);
+        const pft_status_t st = pft_pre_clutter_init(&c.c, &c.cfg, c.work.data(), c.work.size() * 8);
+        if (st != PFT_OK)
+            throw InputError(std::string("pft_pre_clutter_init: ") + pft_status_str(st));
     }
-    if (!ev) {
-        resid_.setTo(0.0f);
-        c.res16.setTo(PFT_RES16_MASKED);
-        return;
-    }
-    if (c.frames > 0) {
-        cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, sx, 0, 1, sy);
-        cv::warpAffine(c.m, c.tmp, M, c.m.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(1.0));
-        c.tmp.copyTo(c.m);
-        if (T_.clutter_mean) {
-            cv::warpAffine(c.mean, c.tmp, M, c.mean.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0.0));
-            c.tmp.copyTo(c.mean);
-        }
-    }
-    if (T_.clutter_blur > 0) {
-        const int k = 2 * T_.clutter_blur + 1;
-        if (T_.clutter_box)
-            cv::blur(c.m, c.tmp, cv::Size(k, k), cv::Point(-1, -1), cv::BORDER_REPLICATE);
-        else
-            cv::dilate(c.m, c.tmp, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)),
-                       cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
-    } else {
-        c.m.copyTo(c.tmp);
-    }
-    ++c.frames;
-    const float a = static_cast<float>(std::max(T_.clutter_alpha, 1.0 / c.frames));
+    pft_frame_t f{};
+    f.data = res;
+    f.width = static_cast<uint16_t>(w_);
+    f.height = static_cast<uint16_t>(h_);
+    f.stride_bytes = static_cast<uint32_t>(stride * sizeof(int16_t));
+    f.format = PFT_PIX_RES16;
+    f.bit_depth = 16u;
+    const auto q16 = [](double v) { return static_cast<int32_t>(std::lround(v * 65536.0)); };
+    pft_status_t st = pft_pre_clutter_update(&c.c, &f, q16(sx), q16(sy), ev);
+    pft_frame_t o{};
+    if (st == PFT_OK)
+        st = pft_pre_clutter_frame(&c.c, &o);
+    if (st != PFT_OK)
+        throw InputError(std::string("pft_pre_clutter_update: ") + pft_status_str(st));
+    c.out = static_cast<const int16_t *>(o.data);
     for (int y = 0; y < h_; ++y) {
-        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
-        float *o = resid_.ptr<float>(y);
-        float *m = c.m.ptr<float>(y);
-        float *mu = c.mean.ptr<float>(y);
-        const float *mb = c.tmp.ptr<float>(y);
-        const bool sub = T_.clutter_mean;
-        const float thr = static_cast<float>(T_.clutter_thr);
-        int16_t *q = c.res16.ptr<int16_t>(y);
-        for (int x = 0; x < w_; ++x) {
-            if (r[x] == PFT_RES16_MASKED) {
-                o[x] = 0.0f;
-                q[x] = PFT_RES16_MASKED;
-                continue;
-            }
-            const float v = static_cast<float>(r[x]) / 256.0f;
-            const bool cl = mb[x] > thr;
-            const float c = sub ? v - mu[x] : v;
-            const float w = cl ? c / std::sqrt(mb[x]) : c;
-            o[x] = w;
-            q[x] = q88(w);
-            m[x] += a * (std::min(c * c, 64.0f) - m[x]);
-            if (sub)
-                mu[x] += a * (std::clamp(v, -8.0f, 8.0f) - mu[x]);
-        }
+        const int16_t *q = c.out + static_cast<std::size_t>(y) * static_cast<std::size_t>(w_);
+        float *r = resid_.ptr<float>(y);
+        for (int x = 0; x < w_; ++x)
+            r[x] = q[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(q[x]) / 256.0f;
     }
 }
 
@@ -211,13 +178,11 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
                 s.scene = true;
         }
         if (s.scene) {
-            if (!cm_.m.empty()) {
-                const int cx = static_cast<int>(std::lround(t.x)), cy = static_cast<int>(std::lround(t.y));
-                for (int y = std::max(0, cy - 1); y <= std::min(h_ - 1, cy + 1); ++y)
-                    for (int x = std::max(0, cx - 1); x <= std::min(w_ - 1, cx + 1); ++x) {
-                        float &m = cm_.m.at<float>(y, x);
-                        m = std::max(m, 16.0f);
-                    }
+            if (!cm_.work.empty()) {
+                const long cx = std::clamp(std::lround(t.x), 0L, static_cast<long>(w_ - 1));
+                const long cy = std::clamp(std::lround(t.y), 0L, static_cast<long>(h_ - 1));
+                (void)pft_pre_clutter_raise(&cm_.c, static_cast<uint32_t>(cx), static_cast<uint32_t>(cy),
+                                            16u * 1024u);  // 16 sigma^2 (4 sigma)
             }
             continue;
         }
@@ -265,8 +230,8 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     const bool ev = evidence();
     if (T_.clutter_alpha > 0) {
         clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_);
-        res = cm_.res16.ptr<int16_t>(0);
-        stride = cm_.res16.step[0] / sizeof(int16_t);
+        res = cm_.out;
+        stride = static_cast<std::size_t>(w_);
     } else {
         for (int y = 0; y < h_; ++y) {
             const int16_t *r = res + static_cast<std::size_t>(y) * stride;

@@ -34,17 +34,23 @@ struct PipelineOut {
     int detections = 0;  ///< DBT detections of the frame
 };
 
-/** The scene-registered clutter map of the pipeline (TrackerSettings::clutter_*). */
+/** The scene-registered clutter map of the pipeline (TrackerSettings::clutter_*): the
+ *  library's pft_pre_clutter_* (pft_pre.h) in a workspace of its own. */
 struct ClutterMap {
-    cv::Mat m, mean;  ///< mean square and mean of the whitened residual per scene pixel (CV_32F)
-    cv::Mat tmp;      ///< the map as read (blurred) for the frame
-    cv::Mat res16;    ///< the output residual, Q8.8 sigma units, masked pixels kept (CV_16S)
-    uint32_t frames = 0;
+    pft_pre_clutter_config_t cfg{};
+    pft_pre_clutter_t c{};
+    std::vector<uint64_t> work;
+    const int16_t *out = nullptr;  ///< the last output residual (Q8.8 sigma units, masked pixels kept), stride = width
+    std::size_t bytes = 0;         ///< workspace bytes
 };
 
+/** The pft_pre_clutter configuration of the pipeline's settings (width x height frames). */
+pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width, int height);
+
 /** One frame of the clutter map: res (PFT_PIX_RES16 of stride px per row) in, resid (CV_32F of
- *  the frame's size, masked 0) and c.res16 out; (sx, sy) the scene's shift since the last
- *  frame (z(p) = b(p - shift)); ev false: a frame without evidence (all zero, map unchanged). */
+ *  the frame's size, masked 0) and c.out out; (sx, sy) the scene's shift since the last frame
+ *  (z(p) = b(p - shift)); ev false: a frame without evidence (all masked, map unchanged). The
+ *  map is set up on the first call. */
 void clutter_step(ClutterMap &c, const TrackerSettings &t, const int16_t *res, std::size_t stride, bool ev,
                   double sx, double sy, cv::Mat &resid);
 
@@ -60,7 +66,7 @@ public:
     PipelineOut step(const pft_frame_t &frame);
 
     const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
-    const cv::Mat &clutter_map() const { return cm_.m; } ///< mean square residual per pixel, scene-registered (empty without the map)
+    std::size_t clutter_workspace_bytes() const { return cm_.bytes; } ///< the clutter map's workspace (0 without the map)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
     uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*

@@ -93,7 +93,7 @@ struct TrackerSettings {
     bool birth_correction = true;               ///< importance correction of the births
     int confirm_frames = 2;                     ///< consecutive frames with P > theta1 to confirm
     std::optional<double> peak_gamma, theta1, pb, theta_end;
-    // clutter map (host side, ir_pipeline.hpp): per-pixel mean square of the whitened residual,
+    // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,
     // registered to the scene (warped by the stage's measured shift every frame); both trackers
     // see the residual of clutter pixels in the map's sigma (ir_pipeline.cpp, clutter_step)
     double clutter_alpha = 0.1;                 ///< map update weight (0: no map)

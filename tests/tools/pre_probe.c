@@ -7,7 +7,8 @@
  *
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
  *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp
- *         floor edge peaks thr
+ *         floor edge peaks thr; clutter=1 runs the clutter map (pft_pre_clutter_*) after the
+ *         stage (then out= writes its output), with cmean cblur cbox calpha cthr
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +38,9 @@ int main(int argc, char **argv)
     cfg.height = (uint16_t)atoi(argv[3]);
     cfg.bit_depth = (uint8_t)atoi(argv[4]);
     const char *out_path = NULL;
+    pft_pre_clutter_config_t ccfg;
+    pft_pre_clutter_config_default(&ccfg);
+    int clutter = 0;
     for (int i = 5; i < argc; ++i) {
         long v;
         if (strcmp(argv[i], "method=local") == 0) {
@@ -45,6 +49,18 @@ int main(int argc, char **argv)
             cfg.method = PFT_PRE_BG_TEMPORAL;
         } else if (strncmp(argv[i], "out=", 4) == 0) {
             out_path = argv[i] + 4;
+        } else if (arg_int(argv[i], "clutter", &v)) {
+            clutter = v != 0;
+        } else if (arg_int(argv[i], "cmean", &v)) {
+            ccfg.mean = v != 0;
+        } else if (arg_int(argv[i], "cbox", &v)) {
+            ccfg.box = v != 0;
+        } else if (arg_int(argv[i], "cblur", &v)) {
+            ccfg.blur = (uint8_t)v;
+        } else if (arg_int(argv[i], "calpha", &v)) {
+            ccfg.alpha = (uint16_t)v;
+        } else if (arg_int(argv[i], "cthr", &v)) {
+            ccfg.thr = (uint16_t)v;
         } else if (arg_int(argv[i], "ro", &v)) {
             cfg.local_outer = (uint8_t)v;
         } else if (arg_int(argv[i], "rg", &v)) {
@@ -92,6 +108,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "pre_probe: init failed\n");
         return 1;
     }
+    static pft_pre_clutter_t cl;
+    void *cwork = NULL;
+    if (clutter) {
+        ccfg.width = cfg.width;
+        ccfg.height = cfg.height;
+        if (pft_pre_clutter_config_check(&ccfg, &field) != PFT_OK) {
+            fprintf(stderr, "pre_probe: refused clutter configuration field %s\n", field);
+            return 2;
+        }
+        const size_t cneed = pft_pre_clutter_workspace_size(&ccfg);
+        cwork = malloc(cneed);
+        if (cwork == NULL || pft_pre_clutter_init(&cl, &ccfg, cwork, cneed) != PFT_OK) {
+            fprintf(stderr, "pre_probe: clutter init failed\n");
+            return 1;
+        }
+    }
     FILE *in = fopen(argv[1], "rb");
     FILE *out = out_path != NULL ? fopen(out_path, "wb") : NULL;
     if (in == NULL || (out_path != NULL && out == NULL)) {
@@ -119,6 +151,17 @@ int main(int argc, char **argv)
         }
         pft_pre_stats_t st;
         pft_pre_stats(&pre, &st);
+        if (clutter) {
+            pft_frame_t r;
+            pft_pre_frame(&pre, &r);
+            const bool ev = (st.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED |
+                                         PFT_PRE_FLAG_REG_LOST)) == 0u;
+            s = pft_pre_clutter_update(&cl, &r, st.shift[0], st.shift[1], ev);
+            if (s != PFT_OK) {
+                fprintf(stderr, "pre_probe: clutter frame %u: %s\n", k, pft_status_str(s));
+                return 1;
+            }
+        }
         printf("%u,%u,%.5f,%.5f,%.5f,%.5f,%d,%d,%.3f,%.3f,%.3f,%.3f,%u,%u,%u\n", k, st.flags,
                st.shift[0] / 65536.0, st.shift[1] / 65536.0, st.shift_sd[0] / 65536.0,
                st.shift_sd[1] / 65536.0, st.shift_coarse[0], st.shift_coarse[1],
@@ -126,7 +169,11 @@ int main(int argc, char **argv)
                st.sigma_max / 65536.0, st.n_masked, st.n_peaks, st.n_candidates);
         if (out != NULL) {
             pft_frame_t r;
-            pft_pre_frame(&pre, &r);
+            if (clutter) {
+                pft_pre_clutter_frame(&cl, &r);
+            } else {
+                pft_pre_frame(&pre, &r);
+            }
             fwrite(r.data, 2u, npix, out);
         }
     }
@@ -136,5 +183,6 @@ int main(int argc, char **argv)
     }
     free(buf);
     free(work);
+    free(cwork);
     return 0;
 }

@@ -28,11 +28,19 @@ static void test_sequence_is_sane(void)
     }
     TEST_ASSERT_TRUE((got.frame[0][0][1] & PFT_PRE_FLAG_WARMUP) != 0);
     TEST_ASSERT_TRUE((got.frame[0][6][1] & PFT_PRE_FLAG_CONSTANT) != 0);
+    for (uint32_t j = 0; j < PRE_GV_CLUT; ++j) {
+        for (uint32_t k = 0; k < PRE_GV_FRAMES; ++k) {
+            TEST_ASSERT_EQUAL_INT32(PFT_OK, got.clut[j][k][0]);
+            TEST_ASSERT_EQUAL_INT32((int32_t)(100u + k), got.clut[j][k][4]);
+        }
+    }
 }
 
 static void test_frames_bit_exact(void)
 {
     TEST_ASSERT_EQUAL_INT32_ARRAY_MESSAGE(pre_gv_ws, got.ws, PRE_GV_CASES, "workspace");
+    TEST_ASSERT_EQUAL_INT32_ARRAY_MESSAGE(pre_gv_clut, &got.clut[0][0][0],
+                                          PRE_GV_CLUT * PRE_GV_FRAMES * PRE_GV_CF, "clutter map");
     for (uint32_t c = 0; c < PRE_GV_CASES; ++c) {
         for (uint32_t k = 0; k < PRE_GV_FRAMES; ++k) {
             TEST_ASSERT_EQUAL_INT32_ARRAY_MESSAGE(&pre_gv_frame[(c * PRE_GV_FRAMES + k) * PRE_GV_NF],

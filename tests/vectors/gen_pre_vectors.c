@@ -28,6 +28,7 @@ int main(void)
     EMIT(frame);
     EMIT(peaks);
     EMIT(ws);
+    EMIT(clut);
     printf("#endif\n");
     return 0;
 #endif

@@ -8,7 +8,8 @@
  * local stage over it (the local one whitening with the last frame's sigma, and a U8 local
  * case with sigma held per tile) and records, per frame, the status, the
  * statistics, hashes of the residual frame and of the tile sigmas, and the first peaks; a
- * fourth case runs the temporal stage with the edge term (edge_k). The
+ * fourth case runs the temporal stage with the edge term (edge_k); two clutter maps
+ * (pft_pre_clutter_*) run on the temporal case's residual. The
  * stage is integer arithmetic only, so the float and q16 builds must give the same values.
  */
 #ifndef PFT_PRE_VECTORS_SPEC_H
@@ -23,11 +24,14 @@
 #define PRE_GV_CASES 4u
 #define PRE_GV_NF 24u     /* values per frame, see pre_gv_record */
 #define PRE_GV_PEAKS 4u   /* peaks recorded per frame (x, y, value) */
+#define PRE_GV_CLUT 2u    /* clutter map cases on the temporal case's residual */
+#define PRE_GV_CF 5u      /* clutter values per frame, see pre_gv_clutter */
 
 typedef struct {
     int32_t frame[PRE_GV_CASES][PRE_GV_FRAMES][PRE_GV_NF];
     int32_t peaks[PRE_GV_CASES][PRE_GV_FRAMES][PRE_GV_PEAKS * 3u];
     int32_t ws[PRE_GV_CASES];
+    int32_t clut[PRE_GV_CLUT][PRE_GV_FRAMES][PRE_GV_CF];
 } pre_gv_results_t;
 
 /* FNV-1a over 32-bit words. */
@@ -147,6 +151,65 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
     }
 }
 
+/* The clutter maps (pft_pre_clutter_*) on the temporal case's residual, its shift and its
+ * evidence: 0 the defaults (3 x 3 mean, alpha 0.1, thr 2), 1 with the running mean, read as the
+ * largest value over 5 x 5, alpha 0.2, thr 1.5, and a raise at the target's place on frame 10.
+ * Record: status, hashes of the output and of the map, the workspace bytes, the frames. */
+static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32_t k,
+                                  pft_pre_clutter_t *cl, int32_t out[PRE_GV_CLUT][PRE_GV_FRAMES][PRE_GV_CF])
+{
+    static uint64_t cwork[2][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2) / 8 + 1];
+    pft_pre_stats_t s;
+    memset(&s, 0, sizeof s);
+    (void)pft_pre_stats(pre, &s);
+    const bool ev = pst == PFT_OK &&
+                    (s.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED | PFT_PRE_FLAG_REG_LOST)) == 0u;
+    pft_frame_t r;
+    memset(&r, 0, sizeof r);
+    const pft_status_t fst = pft_pre_frame(pre, &r);
+    for (uint32_t j = 0; j < PRE_GV_CLUT; ++j) {
+        pft_pre_clutter_config_t cfg;
+        pft_pre_clutter_config_default(&cfg);
+        cfg.width = PRE_GV_W;
+        cfg.height = PRE_GV_H;
+        if (j == 1u) {
+            cfg.mean = true;
+            cfg.box = false;
+            cfg.blur = 2u;
+            cfg.alpha = 13107u;
+            cfg.thr = 1536u;
+        }
+        const size_t need = pft_pre_clutter_workspace_size(&cfg);
+        if (k == 0u && (need > sizeof cwork[j] ||
+                        pft_pre_clutter_init(&cl[j], &cfg, cwork[j], need) != PFT_OK)) {
+            continue;
+        }
+        pft_status_t st = fst == PFT_OK ? pft_pre_clutter_update(&cl[j], &r, s.shift[0], s.shift[1], ev) : fst;
+        if (j == 1u && k == 10u) {
+            (void)pft_pre_clutter_raise(&cl[j], 8u + 3u * 10u, 30u - 10u, 20000u);
+        }
+        uint32_t ho = PRE_GV_HASH0, hm = PRE_GV_HASH0;
+        pft_frame_t o;
+        memset(&o, 0, sizeof o);
+        if (pft_pre_clutter_frame(&cl[j], &o) == PFT_OK) {
+            const int16_t *v = o.data;
+            for (int32_t i = 0; i < PRE_GV_W * PRE_GV_H; ++i) {
+                ho = pre_gv_hash(ho, v[i]);
+            }
+        }
+        for (uint32_t y = 0; y < PRE_GV_H; ++y) {
+            for (uint32_t x = 0; x < PRE_GV_W; ++x) {
+                hm = pre_gv_hash(hm, (int32_t)pft_pre_clutter_at(&cl[j], x, y));
+            }
+        }
+        out[j][k][0] = (int32_t)st;
+        out[j][k][1] = (int32_t)ho;
+        out[j][k][2] = (int32_t)hm;
+        out[j][k][3] = (int32_t)need;
+        out[j][k][4] = (int32_t)o.seq;
+    }
+}
+
 /* Runs the four cases: 0 temporal, 1 local (U16, sigma_current false), 2 local on the frames
  * as U8 (>> 6, sigma held per tile), 3 temporal with the edge term (edge_k, sigma_current
  * false). */
@@ -176,6 +239,7 @@ static inline void pre_gv_compute(pre_gv_results_t *r)
             cfg.sigma_interp = false;
         }
         pft_pre_t pre;
+        pft_pre_clutter_t cl[PRE_GV_CLUT];
         const size_t need = pft_pre_workspace_size(&cfg);
         r->ws[c] = (int32_t)need;
         if (need == 0u || need > sizeof work || pft_pre_init(&pre, &cfg, work, need) != PFT_OK) {
@@ -204,6 +268,9 @@ static inline void pre_gv_compute(pre_gv_results_t *r)
             }
             const pft_status_t st = pft_pre_update(&pre, &f);
             pre_gv_record(&pre, st, r->frame[c][k], r->peaks[c][k]);
+            if (c == 0u) {
+                pre_gv_clutter(&pre, st, k, cl, r->clut);
+            }
         }
     }
 }

@@ -177,6 +177,23 @@ void pft_pre_config_default(pft_pre_config_t *cfg);
  */
 pft_status_t pft_pre_config_check(const pft_pre_config_t *cfg, const char **field);
 
+/** Largest blur of the clutter map. */
+#define PFT_PRE_CLUTTER_MAX_BLUR 4u
+
+/** Configuration of the clutter map (integers only). */
+typedef struct {
+    uint16_t width;   /**< frame width, 8..PFT_CFG_MAX_IMAGE_SIDE (default 384) */
+    uint16_t height;  /**< frame height, 8..PFT_CFG_MAX_IMAGE_SIDE (default 288) */
+    uint16_t alpha;   /**< update weight a, Q0.16, 1..65535 (default 6554 = 0.1) */
+    uint8_t blur;     /**< half-size of the square the map is read over, 0..PFT_PRE_CLUTTER_MAX_BLUR (0: the pixel) (default 1: 3 x 3) */
+    bool box;         /**< read the map as its mean over the square (true, default) or its largest value (false) */
+    bool mean;        /**< subtract the running mean of the residual too (default false) */
+    uint16_t thr;     /**< map value above which a pixel is clutter, sigma^2 Q6.10 (1024 = 1), 1024..65535 (default 2048 = 2) */
+} pft_pre_clutter_config_t;
+
+/** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
+typedef struct pft_pre_clutter_s pft_pre_clutter_t;
+
 #ifdef __cplusplus
 }
 #endif
@@ -247,6 +264,67 @@ size_t pft_pre_peaks(const pft_pre_t *pre, pft_pre_peak_t *out, size_t max);
  * number of tiles per row is (width + tile - 1) / tile.
  */
 size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
+
+
+/*
+ * Clutter map (pft_pre_clutter_*): a second, optional step after the stage, on its whitened
+ * residual (docs/algorithms.md 9.9). Per pixel of the scene it holds the running mean square
+ * m of the whitened residual (and, with mean, its running mean mu), carried along with the
+ * scene every frame by the stage's measured shift (bilinear, pixels entering the frame start
+ * at m = 1, mu = 0). Per frame, with M the mean (box) or the largest value (not box) of m over
+ * the (2 blur + 1)^2 square around the pixel (edges replicated), read before this frame's
+ * update:
+ *   c = r - mu (mean) or r;  w = c / sqrt(M) where M > thr, else c;
+ *   m <- m + a (min(c^2, 64) - m);  mu <- mu + a (clamp(r, -8, 8) - mu);
+ * a = max(alpha, 1 / n) after n frames (a running mean at the start). A cloud edge, the
+ * horizon or a structure that the background keeps missing at the same scene position is then
+ * scored in its own sigma after a few frames, while a target moving across the scene meets a
+ * map it has not raised. A frame without detection evidence (update's evidence false) leaves
+ * the map as it is and gives an all-masked output. Integer arithmetic only: the float and q16
+ * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
+ * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), blur + 1
+ * rows of the map and two rows of sums (4 bytes per pixel each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ */
+
+/** Workspace bytes of a clutter map for frames w x h, mean (0/1) and blur b. */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b)                                         \
+    ((size_t)(PFT_WS_ALIGN - 1u) + 2u * PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +          \
+     ((mean) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                             \
+     PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + 2u * PFT_WS_ROUND((size_t)(w) * 4u))
+
+/** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2). */
+void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
+/** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
+ *  the first refused field ("width", "height", "alpha", "blur", "thr"); NULL on success. */
+pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field);
+/** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
+size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg);
+/** Initialises c in work[0..work_len): PFT_ERR_INVAL (NULL), PFT_ERR_CONFIG, PFT_ERR_NOMEM. */
+pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
+                                  void *work, size_t work_len);
+/** Back to the state right after init (map 1, mean 0, no frame). */
+pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c);
+/**
+ * One frame: res is the stage's residual (PFT_PIX_RES16 of the configured size, e.g. from
+ * pft_pre_frame), (shift_x, shift_y) the scene's shift since the last frame in Q16.16 px
+ * (pft_pre_stats_t.shift: z(p) = b(p - shift); 0 for a still scene or the spatial method),
+ * evidence false for a frame without detection evidence (flags CONSTANT, ALL_MASKED or
+ * REG_LOST). PFT_ERR_INVAL for NULL, PFT_ERR_FORMAT for a wrong frame: nothing changes.
+ * Work: a few passes over the pixels (docs/results/ir_clutter.md gives the measured cost).
+ */
+pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                    int32_t shift_x, int32_t shift_y, bool evidence);
+/** The output of the last update (PFT_PIX_RES16, the input's seq and timestamp_us), lent as
+ *  pft_pre_frame lends its residual (valid until the next update, reset or init).
+ *  PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first update. */
+pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out);
+/** Raises the map to at least level (sigma^2 Q6.10) on the 3 x 3 pixels around (x, y)
+ *  (clipped at the frame's edges), e.g. where a track was found to drift with the scene, so
+ *  that its evidence fades from the next frame. PFT_ERR_INVAL for NULL or (x, y) outside the
+ *  frame: nothing changes. */
+pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level);
+/** Map value m at (x, y), sigma^2 Q6.10; 0 for NULL or (x, y) outside the frame. */
+uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y);
 
 #ifdef __cplusplus
 }

@@ -57,6 +57,20 @@ struct pft_pre_s {
     int32_t last_row;      /* fused: the row made last (-1: none) */
 };
 
+struct pft_pre_clutter_s {
+    pft_pre_clutter_config_t cfg;
+    uint16_t *m;           /* map, sigma^2 Q6.10, w * h */
+    uint16_t *mu;          /* mean, sigma Q4.11 plus 32768, w * h (NULL without cfg.mean) */
+    int16_t *out;          /* output, Q8.8 sigma, w * h */
+    uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w */
+    uint32_t *vs;          /* vertical sums (or maxima) of one row */
+    uint32_t *hs;          /* the square's sums (or maxima) of one row */
+    uint32_t frames;       /* frames with evidence since init/reset */
+    uint32_t updates;      /* accepted updates since init/reset */
+    uint32_t seq;
+    uint64_t timestamp_us;
+};
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,398 @@
+/* Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*; docs/algorithms.md
+ * 9.9). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
+ * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8. */
+#include <string.h>
+
+#include "pft/pft_pre.h"
+#include "pre_int.h"
+
+#define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
+#define CL_MMAX_ 65535u        /* largest map value (64 sigma^2 less one unit) */
+#define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
+#define CL_MUMAX_ 16384        /* 8 sigma in Q4.11 */
+#define CL_MUOFF_ 32768u       /* offset of mu while warped (unsigned arithmetic) */
+
+void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->width = 384u;
+    cfg->height = 288u;
+    cfg->alpha = 6554u;
+    cfg->blur = 1u;
+    cfg->box = true;
+    cfg->mean = false;
+    cfg->thr = 2048u;
+}
+
+pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
+{
+    const char *bad = NULL;
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (cfg->width < 8u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "width";
+    } else if (cfg->height < 8u || cfg->height > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "height";
+    } else if (cfg->alpha == 0u) {
+        bad = "alpha";
+    } else if (cfg->blur > PFT_PRE_CLUTTER_MAX_BLUR) {
+        bad = "blur";
+    } else if (cfg->thr < CL_ONE_) {
+        bad = "thr";
+    } else {
+        /* accepted */
+    }
+    if (bad != NULL) {
+        if (field != NULL) {
+            *field = bad;
+        }
+        return PFT_ERR_CONFIG;
+    }
+    return PFT_OK;
+}
+
+size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
+{
+    if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
+        return 0u;
+    }
+    return PFT_PRE_CLUTTER_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                           cfg->blur);
+}
+
+pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
+                                  void *work, size_t work_len)
+{
+    if (c == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    const size_t w = cfg->width, h = cfg->height;
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    uint16_t *m = pft_ws_take(&ws, w * h * 2u);
+    int16_t *out = pft_ws_take(&ws, w * h * 2u);
+    uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
+    uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
+    uint32_t *vs = pft_ws_take(&ws, w * 4u);
+    uint32_t *hs = pft_ws_take(&ws, w * 4u);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(c, 0, sizeof(*c));
+    c->cfg = *cfg;
+    c->m = m;
+    c->out = out;
+    c->mu = mu;
+    c->ring = ring;
+    c->vs = vs;
+    c->hs = hs;
+    return pft_pre_clutter_reset(c);
+}
+
+pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
+{
+    if (c == NULL || c->m == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const size_t w = c->cfg.width, npix = w * (size_t)c->cfg.height;
+    for (size_t i = 0u; i < npix; ++i) {
+        c->m[i] = (uint16_t)CL_ONE_;
+    }
+    memset(c->out, 0, npix * 2u);
+    for (size_t i = 0u; c->mu != NULL && i < npix; ++i) {
+        c->mu[i] = (uint16_t)CL_MUOFF_;
+    }
+    memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * w * 2u);
+    memset(c->vs, 0, w * 4u);
+    memset(c->hs, 0, w * 4u);
+    c->frames = 0u;
+    c->updates = 0u;
+    c->seq = 0u;
+    c->timestamp_us = 0u;
+    return PFT_OK;
+}
+
+/* a * d / 2^16 rounded half away from zero (|a| <= 2^16, |d| < 2^17). */
+static int32_t cl_scale_(uint32_t a, int32_t d)
+{
+    const uint64_t mag = (uint64_t)a * (uint64_t)(d < 0 ? -(int64_t)d : (int64_t)d);
+    const int32_t q = (int32_t)((mag + 32768u) >> 16);
+    return d < 0 ? -q : q;
+}
+
+/* n / d rounded half away from zero (d > 0). */
+static int32_t cl_div_(int32_t n, int32_t d)
+{
+    const int32_t mag = n < 0 ? -n : n;
+    const int32_t q = (mag + d / 2) / d;
+    return n < 0 ? -q : q;
+}
+
+/* Floor and Q8 fraction of a Q16.16 shift, the fraction rounded to 1/256 px. */
+static void cl_split_(int32_t s, int32_t *ip, uint32_t *fp)
+{
+    const int64_t q8 = ((int64_t)s + 128) / 256 - (((int64_t)s + 128) % 256 < 0 ? 1 : 0);
+    /* q8 = floor((s + 128) / 256): the shift in Q8, rounded */
+    const int64_t i = q8 / 256 - ((q8 % 256) < 0 ? 1 : 0);
+    *ip = (int32_t)i;
+    *fp = (uint32_t)(q8 - i * 256);
+}
+
+/* Source value of the warp: v[sy][sx], or border b outside the frame. */
+static uint32_t cl_src_(const uint16_t *v, int32_t sx, int32_t sy, int32_t w, int32_t h,
+                        uint32_t b)
+{
+    if (sx < 0 || sy < 0 || sx >= w || sy >= h) {
+        return b;
+    }
+    return v[(size_t)sy * (size_t)w + (size_t)sx];
+}
+
+/* Columns [xa, xb) of row y of the warp (see cl_warp_) into t, sources tested one by one. */
+static void cl_warp_cols_(const uint16_t *v, uint32_t *t, int32_t xa, int32_t xb, int32_t y,
+                          int32_t ix, int32_t iy, int32_t w, int32_t h, uint32_t fx, uint32_t fy,
+                          uint32_t b)
+{
+    const int32_t y1 = y - iy, y0 = y1 - 1;
+    for (int32_t x = xa; x < xb; ++x) {
+        const uint32_t a1 = cl_src_(v, x - ix, y1, w, h, b) * (256u - fx) +
+                            cl_src_(v, x - ix - 1, y1, w, h, b) * fx;
+        const uint32_t a0 = cl_src_(v, x - ix, y0, w, h, b) * (256u - fx) +
+                            cl_src_(v, x - ix - 1, y0, w, h, b) * fx;
+        t[x] = (a1 * (256u - fy) + a0 * fy + 32768u) >> 16;
+    }
+}
+
+/* Warps v (u16 values) in place by (ix + fx / 256, iy + fy / 256) px: out(p) = v(p - shift),
+ * bilinear, b outside. Each row is made in t (w values) and copied back; rows are visited in
+ * the order that reads every source row before it is overwritten (descending where the
+ * sources lie at lower rows). */
+static void cl_warp_(uint16_t *v, uint32_t *t, int32_t w, int32_t h, int32_t ix, uint32_t fx,
+                     int32_t iy, uint32_t fy, uint32_t b)
+{
+    const bool ydown = iy >= 0;
+    const uint32_t gx = 256u - fx, gy = 256u - fy;
+    /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
+    const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
+    const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
+    for (int32_t k = 0; k < h; ++k) {
+        const int32_t y = ydown ? h - 1 - k : k;
+        const int32_t y1 = y - iy, y0 = y1 - 1; /* weights 256 - fy, fy */
+        const bool in1 = y1 >= 0 && y1 < h, in0 = y0 >= 0 && y0 < h;
+        if (in1 && in0 && xlo < xhi) {
+            const size_t c0 = (size_t)(xlo - ix - 1); /* >= 0: the first interior column's x0 */
+            const uint16_t *r1 = v + (size_t)y1 * (size_t)w + c0;
+            const uint16_t *r0 = v + (size_t)y0 * (size_t)w + c0;
+            /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i */
+            for (int32_t x = xlo; x < xhi; ++x) {
+                const int32_t i = x - xlo;
+                const uint32_t a1 = (uint32_t)r1[i + 1] * gx + (uint32_t)r1[i] * fx;
+                const uint32_t a0 = (uint32_t)r0[i + 1] * gx + (uint32_t)r0[i] * fx;
+                t[x] = (a1 * gy + a0 * fy + 32768u) >> 16;
+            }
+        } else {
+            cl_warp_cols_(v, t, xlo, xhi, y, ix, iy, w, h, fx, fy, b);
+        }
+        cl_warp_cols_(v, t, 0, xlo, y, ix, iy, w, h, fx, fy, b);
+        cl_warp_cols_(v, t, xhi, w, y, ix, iy, w, h, fx, fy, b);
+        uint16_t *o = v + (size_t)y * (size_t)w;
+        for (int32_t x = 0; x < w; ++x) {
+            o[x] = (uint16_t)t[x];
+        }
+    }
+}
+
+/* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring. */
+static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
+{
+    const int32_t h = (int32_t)c->cfg.height;
+    const int32_t rr = r < 0 ? 0 : (r >= h ? h - 1 : r);
+    if (rr <= y) {
+        return c->ring + (size_t)((uint32_t)rr % ((uint32_t)c->cfg.blur + 1u)) * c->cfg.width;
+    }
+    return c->m + (size_t)rr * c->cfg.width;
+}
+
+/* Read value of the map at every pixel of row y (before its update): the sum over the square
+ * (box) or its largest value, Q6.10, into c->hs (c->vs: the vertical pass). */
+static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
+{
+    const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->cfg.width;
+    uint32_t *vs = c->vs;
+    const uint16_t *r0 = cl_row_(c, y - b, y);
+    for (int32_t x = 0; x < w; ++x) {
+        vs[x] = r0[x];
+    }
+    for (int32_t k = -b + 1; k <= b; ++k) {
+        const uint16_t *r = cl_row_(c, y + k, y);
+        if (c->cfg.box) {
+            for (int32_t x = 0; x < w; ++x) {
+                vs[x] += r[x];
+            }
+        } else {
+            for (int32_t x = 0; x < w; ++x) {
+                vs[x] = r[x] > vs[x] ? r[x] : vs[x];
+            }
+        }
+    }
+    /* horizontal: sum (box) or largest value over 2 b + 1 columns, edges replicated */
+    uint32_t *hs = c->hs;
+    if (c->cfg.box) {
+        uint32_t acc = 0u;
+        for (int32_t k = -b; k <= b; ++k) {
+            acc += vs[k < 0 ? 0 : (k >= w ? w - 1 : k)];
+        }
+        for (int32_t x = 0; x < w; ++x) {
+            hs[x] = acc;
+            /* slide: add column x + b + 1, drop column x - b (both replicated at the edges) */
+            const int32_t xa = x + b + 1, xd = x - b;
+            acc += vs[xa >= w ? w - 1 : xa];
+            acc -= vs[xd < 0 ? 0 : xd];
+        }
+    } else {
+        for (int32_t x = 0; x < w; ++x) {
+            uint32_t acc = vs[x];
+            for (int32_t k = -b; k <= b; ++k) {
+                const int32_t xx = x + k < 0 ? 0 : (x + k >= w ? w - 1 : x + k);
+                acc = vs[xx] > acc ? vs[xx] : acc;
+            }
+            hs[x] = acc;
+        }
+    }
+}
+
+pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                    int32_t shift_x, int32_t shift_y, bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
+    if (res->format != PFT_PIX_RES16 || res->width != c->cfg.width ||
+        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)w ||
+        (res->stride_bytes & 1u) != 0u) {
+        return PFT_ERR_FORMAT;
+    }
+    const size_t npix = (size_t)w * (size_t)h;
+    c->updates++;
+    c->seq = res->seq;
+    c->timestamp_us = res->timestamp_us;
+    if (!evidence) {
+        for (size_t i = 0u; i < npix; ++i) {
+            c->out[i] = PFT_RES16_MASKED;
+        }
+        return PFT_OK;
+    }
+    if (c->frames > 0u) {
+        int32_t ix, iy;
+        uint32_t fx, fy;
+        cl_split_(shift_x, &ix, &fx);
+        cl_split_(shift_y, &iy, &fy);
+        if (ix != 0 || iy != 0 || fx != 0u || fy != 0u) {
+            /* beyond the frame, every pixel enters: the warp's indices stay in range */
+            ix = ix > w ? w : (ix < -w ? -w : ix);
+            iy = iy > h ? h : (iy < -h ? -h : iy);
+            cl_warp_(c->m, c->hs, w, h, ix, fx, iy, fy, CL_ONE_);
+            if (c->mu != NULL) {
+                cl_warp_(c->mu, c->hs, w, h, ix, fx, iy, fy, CL_MUOFF_);
+            }
+        }
+    }
+    c->frames++;
+    const uint32_t a1 = (65536u + c->frames / 2u) / c->frames;
+    const uint32_t a = a1 > c->cfg.alpha ? a1 : c->cfg.alpha;
+    const uint32_t rs = res->stride_bytes / 2u;
+    const uint32_t nring = (uint32_t)c->cfg.blur + 1u;
+    const uint32_t area = c->cfg.box ? (2u * nring - 1u) * (2u * nring - 1u) : 1u;
+    const uint32_t thr = (uint32_t)c->cfg.thr * area; /* on the square's sum (box) */
+    for (int32_t y = 0; y < h; ++y) {
+        uint16_t *mrow = c->m + (size_t)y * (size_t)w;
+        memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
+        cl_read_row_(c, y);
+        const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
+        int16_t *o = c->out + (size_t)y * (size_t)w;
+        uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
+        for (int32_t x = 0; x < w; ++x) {
+            const int32_t v = r[x];
+            if (v == PFT_RES16_MASKED) {
+                o[x] = PFT_RES16_MASKED;
+                continue;
+            }
+            const int32_t cv = mu != NULL ? v - cl_div_((int32_t)mu[x] - (int32_t)CL_MUOFF_, 8) : v;
+            const uint32_t mb = c->hs[x];
+            int32_t wv = cv;
+            if (mb > thr) {
+                const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
+                const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
+                wv = cl_div_(cv * 1024, (int32_t)s);
+            }
+            o[x] = (int16_t)pft_pre_rclamp_(wv);
+            const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
+            const uint64_t sq = (uint64_t)ac * ac;
+            const uint32_t t = sq >= CL_SQMAX_ ? CL_MMAX_ : (uint32_t)((sq + 32u) >> 6);
+            const int32_t nm = (int32_t)mrow[x] + cl_scale_(a, (int32_t)(t > CL_MMAX_ ? CL_MMAX_ : t) - (int32_t)mrow[x]);
+            mrow[x] = (uint16_t)(nm < 0 ? 0 : (nm > (int32_t)CL_MMAX_ ? (int32_t)CL_MMAX_ : nm));
+            if (mu != NULL) {
+                const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
+                const int32_t mv = (int32_t)mu[x] - (int32_t)CL_MUOFF_;
+                mu[x] = (uint16_t)(mv + cl_scale_(a, tv - mv) + (int32_t)CL_MUOFF_);
+            }
+        }
+    }
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
+{
+    if (c == NULL || out == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (c->updates == 0u) {
+        return PFT_ERR_STATE;
+    }
+    memset(out, 0, sizeof(*out));
+    out->data = c->out;
+    out->width = c->cfg.width;
+    out->height = c->cfg.height;
+    out->stride_bytes = 2u * (uint32_t)c->cfg.width;
+    out->format = PFT_PIX_RES16;
+    out->bit_depth = 16u;
+    out->timestamp_us = c->timestamp_us;
+    out->seq = c->seq;
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level)
+{
+    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+        return PFT_ERR_INVAL;
+    }
+    const uint32_t w = c->cfg.width, h = c->cfg.height;
+    const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
+    const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
+    for (uint32_t yy = y0; yy <= y1; ++yy) {
+        for (uint32_t xx = x0; xx <= x1; ++xx) {
+            uint16_t *m = &c->m[(size_t)yy * w + xx];
+            *m = *m < level ? level : *m;
+        }
+    }
+    return PFT_OK;
+}
+
+uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y)
+{
+    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+        return 0u;
+    }
+    return c->m[(size_t)y * c->cfg.width + x];
+}

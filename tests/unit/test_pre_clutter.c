@@ -1,0 +1,383 @@
+/*
+ * Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*): configuration check
+ * naming the refused field, workspace size, refused input leaves instance and workspace byte
+ * for byte unchanged, and known answers: a persistent blob is learnt at the documented rate
+ * (m_k = 16 (1 - (1 - a)^k) for a 4 sigma blob after a zero history, the output 4 / sqrt(m_{k-1})
+ * once m_{k-1} > thr), a moving point on unit noise keeps its value exactly, the running mean
+ * removes a persistent offset, the map moves with the scene (integer and half-pixel shifts), a
+ * frame without evidence changes nothing, masked pixels stay masked. 64 x 48 frames, integer
+ * residuals made per pixel, so that it runs on every target.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_pre.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 64
+#define H 48
+#define NPIX (W * H)
+
+static int16_t g_res[NPIX];
+static uint64_t g_work[PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, PFT_PRE_CLUTTER_MAX_BLUR) / 8 + 1];
+static uint64_t g_copy[sizeof(g_work) / 8];
+static uint32_t g_rs = 2463534242u;
+
+/* about N(0, 1) in Q8.8: a sum of four uniforms, sd 256 */
+static int16_t noise_q88(void)
+{
+    int32_t v = 0;
+    for (int i = 0; i < 4; ++i) {
+        g_rs ^= g_rs << 13;
+        g_rs ^= g_rs >> 17;
+        g_rs ^= g_rs << 5;
+        v += (int32_t)(g_rs >> 20) - 2048; /* uniform, sd 1182 */
+    }
+    return (int16_t)(v * 256 / 2365);
+}
+
+static pft_frame_t res_frame(uint32_t seq)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_res;
+    f.width = W;
+    f.height = H;
+    f.stride_bytes = 2u * W;
+    f.format = PFT_PIX_RES16;
+    f.bit_depth = 16u;
+    f.seq = seq;
+    f.timestamp_us = 1000u * seq;
+    return f;
+}
+
+static void init_map(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg)
+{
+    cfg->width = W;
+    cfg->height = H;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(c, cfg, g_work, sizeof g_work));
+}
+
+static const int16_t *out_of(const pft_pre_clutter_t *c)
+{
+    pft_frame_t o;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
+    TEST_ASSERT_EQUAL_INT(PFT_PIX_RES16, o.format);
+    return (const int16_t *)o.data;
+}
+
+static void test_config_and_workspace(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    const char *field = "x";
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_config_check(&cfg, &field));
+    TEST_ASSERT_NULL(field);
+    TEST_ASSERT_EQUAL_UINT16(6554u, cfg.alpha);
+    TEST_ASSERT_EQUAL_UINT16(2048u, cfg.thr);
+    TEST_ASSERT_EQUAL_UINT8(1u, cfg.blur);
+    TEST_ASSERT_TRUE(cfg.box);
+    TEST_ASSERT_FALSE(cfg.mean);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_config_check(NULL, &field));
+    static const struct {
+        const char *name;
+        int which;
+    } bad[] = {{"width", 0}, {"height", 1}, {"alpha", 2}, {"blur", 3}, {"thr", 4}, {"width", 5}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        pft_pre_clutter_config_t b = cfg;
+        switch (bad[i].which) {
+        case 0: b.width = 7u; break;
+        case 1: b.height = 7u; break;
+        case 2: b.alpha = 0u; break;
+        case 3: b.blur = (uint8_t)(PFT_PRE_CLUTTER_MAX_BLUR + 1u); break;
+        case 4: b.thr = 1023u; break;
+        default: b.width = (uint16_t)(PFT_CFG_MAX_IMAGE_SIDE + 1u); break;
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_config_check(&b, &field));
+        TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
+        TEST_ASSERT_EQUAL_UINT32((uint32_t)(0u), (uint32_t)pft_pre_clutter_workspace_size(&b));
+        pft_pre_clutter_t c;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_init(&c, &b, g_work, sizeof g_work));
+    }
+    cfg.width = W;
+    cfg.height = H;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 0, 1)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    cfg.mean = true;
+    cfg.blur = 3u;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, 3)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    pft_pre_clutter_t c;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_clutter_init(&c, &cfg, g_work,
+                                                              pft_pre_clutter_workspace_size(&cfg) - 8u));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work,
+                                                       pft_pre_clutter_workspace_size(&cfg)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_init(NULL, &cfg, g_work, sizeof g_work));
+    pft_frame_t o;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_pre_clutter_frame(&c, &o));
+    TEST_ASSERT_EQUAL_UINT32(1024u, pft_pre_clutter_at(&c, 3u, 4u));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_at(&c, W, 4u));
+}
+
+static void test_refused_input_changes_nothing(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    for (uint32_t k = 0; k < 5u; ++k) {
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = noise_q88();
+        }
+        g_res[10 * W + 10] = 1024;
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 19661, -6554, true));
+    }
+    pft_pre_clutter_t saved = c;
+    memcpy(g_copy, g_work, sizeof g_work);
+    pft_frame_t f = res_frame(9u);
+    pft_frame_t b = f;
+    b.format = PFT_PIX_U16;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    b = f;
+    b.width = W - 1;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    b = f;
+    b.height = H + 1;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    b = f;
+    b.stride_bytes = 2u * W - 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    b = f;
+    b.stride_bytes = 2u * W + 1u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    b = f;
+    b.data = NULL;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_update(&c, &b, 0, 0, true));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_update(&c, NULL, 0, 0, true));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_raise(&c, W, 0u, 16384u));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_raise(&c, 0u, H, 16384u));
+    TEST_ASSERT_EQUAL_MEMORY(&saved, &c, sizeof c);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
+    /* reset is init */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_reset(&c));
+    saved = c;
+    memcpy(g_copy, g_work, sizeof g_work);
+    pft_pre_clutter_t c2;
+    memset(g_work, 0xA5, sizeof g_work);
+    init_map(&c2, &cfg);
+    TEST_ASSERT_EQUAL_MEMORY(&saved, &c2, sizeof c2);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, pft_pre_clutter_workspace_size(&c2.cfg) - (PFT_WS_ALIGN - 1u));
+}
+
+/* A 3 x 3 blob of 4 sigma at a fixed place of a still scene, after 12 zero frames: its centre's
+ * map follows m_k = 16 (1 - 0.9^k) (alpha 0.1; the 1/n weight of the start is below 0.1 by
+ * then) and its output is 4 sigma while the map read before the frame is <= 2, then
+ * 4 / sqrt(m_{k-1}). */
+static void test_persistent_blob_learnt_at_rate(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    memset(g_res, 0, sizeof g_res);
+    for (uint32_t k = 0; k < 12u; ++k) {
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_at(&c, 20u, 20u));
+    const int bx = 20, by = 20;
+    double m_prev = 0.0;
+    for (int k = 1; k <= 40; ++k) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                g_res[(by + dy) * W + bx + dx] = 1024; /* 4 sigma */
+            }
+        }
+        pft_frame_t f = res_frame(100u + (uint32_t)k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        double pw = 1.0;
+        for (int i = 0; i < k; ++i) {
+            pw *= 0.9;
+        }
+        const double m = 16.0 * (1.0 - pw);
+        const double got = pft_pre_clutter_at(&c, bx, by) / 1024.0;
+        TEST_ASSERT_DOUBLE_WITHIN(0.01 * m + 0.01, m, got);
+        const double want = m_prev > 2.0 ? 4.0 / sqrt(m_prev) : 4.0;
+        const double out = out_of(&c)[by * W + bx] / 256.0;
+        TEST_ASSERT_DOUBLE_WITHIN(0.01 * want + 0.01, want, out);
+        m_prev = m;
+    }
+    /* after 40 frames the blob is scored near its own sigma (4 / sqrt(15.8) = 1.01) */
+    TEST_ASSERT_TRUE(out_of(&c)[by * W + bx] < 270);
+    /* far from it, the zero residual stays zero */
+    TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[5 * W + 50]);
+}
+
+/* Unit noise and a point of 4 sigma moving 1 px per frame along a row: after the start (20
+ * frames) the map stays near 1 (below thr 2 read as a 3 x 3 mean): the point, read over a
+ * square that holds its trail's last pixel, and the noise away from the trail's rows come out
+ * bit for bit as they went in. */
+static void test_moving_point_keeps_snr(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    uint32_t changed = 0u;
+    for (uint32_t k = 0; k < 40u; ++k) {
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = noise_q88();
+        }
+        const int px = 10 + (int)k, py = 24;
+        g_res[py * W + px] = (int16_t)(g_res[py * W + px] + 1024);
+        const int16_t in = g_res[py * W + px];
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        if (k < 20u) { /* the start: a running mean of few frames, noisy */
+            continue;
+        }
+        const int16_t *o = out_of(&c);
+        TEST_ASSERT_EQUAL_INT16(in, o[py * W + px]);
+        for (int i = 0; i < NPIX; ++i) {
+            /* the trail's rows excepted: its raised map reaches the noise next to it */
+            const int y = i / W;
+            changed += (y < py - 1 || y > py + 1) && o[i] != g_res[i] ? 1u : 0u;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, changed);
+    /* the noise's map is about 1 (mean square of unit noise) */
+    uint64_t s = 0u;
+    for (uint32_t y = 30u; y < 40u; ++y) {
+        for (uint32_t x = 0u; x < W; ++x) {
+            s += pft_pre_clutter_at(&c, x, y);
+        }
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(0.1, 1.0, (double)s / (10.0 * W) / 1024.0);
+}
+
+/* With mean: a persistent offset of +3 sigma on unit noise is learnt and removed (output mean
+ * near 0 after 60 frames), the noise elsewhere passes unchanged in distribution. */
+static void test_mean_removes_offset(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    double sum = 0.0;
+    int n = 0;
+    for (uint32_t k = 0; k < 60u; ++k) {
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = noise_q88();
+        }
+        for (int y = 10; y < 20; ++y) {
+            for (int x = 30; x < 34; ++x) {
+                g_res[y * W + x] = (int16_t)(g_res[y * W + x] + 768);
+            }
+        }
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        if (k >= 40u) {
+            const int16_t *o = out_of(&c);
+            for (int y = 11; y < 19; ++y) {
+                for (int x = 31; x < 33; ++x) {
+                    sum += o[y * W + x] / 256.0;
+                    ++n;
+                }
+            }
+        }
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(0.25, 0.0, sum / n);
+}
+
+/* The map moves with the scene: a learnt blob, then frames of zero residual with the scene
+ * shifted by (+2, -1) px (integer) and then +0.5 px along x. */
+static void test_map_moves_with_scene(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.alpha = 6554u;
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    memset(g_res, 0, sizeof g_res);
+    for (uint32_t k = 0; k < 12u; ++k) {
+        g_res[20 * W + 20] = (k >= 2u) ? 1024 : 0;
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    }
+    const uint32_t m0 = pft_pre_clutter_at(&c, 20u, 20u);
+    TEST_ASSERT_TRUE(m0 > 8000u);
+    memset(g_res, 0, sizeof g_res);
+    pft_frame_t f = res_frame(50u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 2 * 65536, -65536, true));
+    /* warped to (22, 19), then updated with a zero residual: m0 (1 - 0.1) */
+    const uint32_t m1 = pft_pre_clutter_at(&c, 22u, 19u);
+    TEST_ASSERT_UINT32_WITHIN(2u, (m0 * 9u + 5u) / 10u, m1);
+    TEST_ASSERT_TRUE(pft_pre_clutter_at(&c, 20u, 20u) < 100u);
+    const uint32_t e0 = pft_pre_clutter_at(&c, 0u, 30u);
+    f = res_frame(51u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 32768, 0, true));
+    /* half a pixel: shared by (22, 19) and (23, 19), each m1 / 2 then (1 - 0.1) */
+    const uint32_t half = (m1 + 1u) / 2u * 9u / 10u;
+    TEST_ASSERT_UINT32_WITHIN(3u, half, pft_pre_clutter_at(&c, 22u, 19u));
+    TEST_ASSERT_UINT32_WITHIN(3u, half, pft_pre_clutter_at(&c, 23u, 19u));
+    /* column 0: half of it entered the frame with the shift, at 1 sigma^2 */
+    TEST_ASSERT_UINT32_WITHIN(3u, (e0 + 1024u + 1u) / 2u * 9u / 10u, pft_pre_clutter_at(&c, 0u, 30u));
+}
+
+/* A frame without evidence: all masked out, map unchanged; masked input pixels pass masked and
+ * keep their map; raise sets a 3 x 3 floor. */
+static void test_no_evidence_masked_and_raise(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    for (int i = 0; i < NPIX; ++i) {
+        g_res[i] = noise_q88();
+    }
+    pft_frame_t f = res_frame(1u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    memcpy(g_copy, g_work, sizeof g_work);
+    const uint16_t *m = c.m;
+    uint16_t before = m[5 * W + 5];
+    f = res_frame(2u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 65536, 0, false));
+    const int16_t *o = out_of(&c);
+    for (int i = 0; i < NPIX; ++i) {
+        TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, o[i]);
+    }
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, c.m, (size_t)NPIX * 2u);
+    TEST_ASSERT_EQUAL_UINT16(before, m[5 * W + 5]);
+    g_res[5 * W + 5] = PFT_RES16_MASKED;
+    f = res_frame(3u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, out_of(&c)[5 * W + 5]);
+    TEST_ASSERT_EQUAL_UINT16(before, m[5 * W + 5]);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, 0u, 0u, 16384u));
+    TEST_ASSERT_EQUAL_UINT32(16384u, pft_pre_clutter_at(&c, 1u, 1u));
+    TEST_ASSERT_TRUE(pft_pre_clutter_at(&c, 2u, 2u) < 16384u);
+    /* the next frame at (0, 0) is read over its 3 x 3 (replicated edge): scored at
+     * r / sqrt(M) with M about 16 */
+    g_res[0] = 1024;
+    g_res[5 * W + 5] = 0;
+    f = res_frame(4u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    TEST_ASSERT_INT16_WITHIN(10, 256, out_of(&c)[0]);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_config_and_workspace);
+    RUN_TEST(test_refused_input_changes_nothing);
+    RUN_TEST(test_persistent_blob_learnt_at_rate);
+    RUN_TEST(test_moving_point_keeps_snr);
+    RUN_TEST(test_mean_removes_offset);
+    RUN_TEST(test_map_moves_with_scene);
+    RUN_TEST(test_no_evidence_masked_and_raise);
+    return UNITY_END();
+}
