@@ -10,13 +10,14 @@ namespace pft::host::pf {
 EngineSpec parse_engine(const Field &f, bool with_particles)
 {
     if (with_particles)
-        f.only({"label", "engine", "scheme", "policy", "ess_threshold", "particles", "match_time_of"});
+        f.only({"label", "engine", "scheme", "policy", "ess_threshold", "particles", "match_time_of", "budget"});
     else
         f.only({"label", "engine", "scheme", "policy", "ess_threshold", "first_r_sd"});
     EngineSpec e;
     if (with_particles) {
         e.particles = static_cast<uint32_t>(f.integer_in("particles", 0, 0, PFT_CFG_MAX_PARTICLES));
         e.match_time_of = f.string_or("match_time_of", "");
+        e.budget = static_cast<uint32_t>(f.integer_in("budget", 0, 0, PFT_CFG_MAX_PARTICLES));
         if ((e.particles == 0) == e.match_time_of.empty())
             f.fail("give exactly one of \"particles\" and \"match_time_of\"");
     }
@@ -73,6 +74,8 @@ nlohmann::json engine_json(const EngineSpec &e)
                         {"ess_threshold", e.ess_threshold}};
     if (e.first_r_sd > 0)
         j["first_r_sd"] = e.first_r_sd;
+    if (e.budget > 0)
+        j["budget"] = e.budget;
     return j;
 }
 

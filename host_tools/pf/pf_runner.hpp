@@ -29,6 +29,7 @@ struct EngineSpec {
     uint32_t particles = 0;        ///< particle count of this filter
     std::string match_time_of;     ///< label of a filter whose time per frame this one matches
                                    ///< (its particle count is then calibrated, "equal compute")
+    uint32_t budget = 0;           ///< the TBD model's birth budget (pft_pf_tbd_model_set_budget; 0: off)
 };
 
 /** Reads one entry of a "filters" array (object with the fields above; unknown fields refused;

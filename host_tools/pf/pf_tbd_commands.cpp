@@ -139,6 +139,7 @@ public:
             mwork_.assign(pft_pf_tbd_model_workspace_size(&cfg) / 8 + 1, 0);
             if (pft_pf_tbd_model_init(model_.get(), &cfg, mwork_.data(), mwork_.size() * 8, &iface_) != PFT_OK)
                 throw InputError("pft_pf_tbd_model_init refused the configuration of " + s_.file);
+            (void)pft_pf_tbd_model_set_budget(model_.get(), e_.budget);
             runner_ = std::make_unique<PfRunner>(engine_config(e_, n_, cfg.seed), iface_);
         }
         runner_->reset(cfg.seed); // also the model's reset hook: frame 1 is a first frame again

@@ -238,6 +238,8 @@ static void fuzz_pf(fz_t *f)
         FZ_CHECK(pft_pf_tbd_model_init(&mt, &tc, g_ws2, mws - 1u, &c.model) == PFT_ERR_NOMEM);
         ms = pft_pf_tbd_model_init(&mt, &tc, g_ws2, mws, &c.model);
         FZ_CHECK(ms == PFT_OK);
+        /* the birth budget: 0 (off) .. 255 particles, against n_particles patched below */
+        FZ_CHECK(pft_pf_tbd_model_set_budget(&mt, fz_u8(f)) == PFT_OK);
     }
     FZ_CHECK(ms == PFT_OK || ms == PFT_ERR_CONFIG);
     if (ms != PFT_OK) {

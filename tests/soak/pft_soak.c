@@ -13,7 +13,7 @@
  * so float and q16 builds see the same frames.
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
- *                 [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N]
+ *                 [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
  * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
  * pf add the existence probability of the search layer / filter after the frame.
@@ -21,6 +21,8 @@
  * --tbd-bounded runs it with the settings of pft_tbd_config_bounded over the recommended ones
  * (Bernoulli form, theta1 0.475) and half the search particles, 500;
  * --tbd-search N gives its search layer N particles instead of 1000 (or 500).
+ * --pf-budget K runs pf with the TBD model's birth budget K (pft_pf_tbd_model_set_budget; of
+ * its 500 particles).
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -159,6 +161,7 @@ static bool g_known;        /* --known: count known defects apart (they do not f
 static bool g_trace;        /* --trace: one line per frame, "trace <frame> <tracks>" */
 static bool g_tbd_bern;     /* --tbd-bern: the tbd manager's search layer in Bernoulli form */
 static bool g_tbd_bounded;  /* --tbd-bounded: the bounded preset, half the search particles */
+static uint32_t g_pf_budget; /* --pf-budget K: the TBD model's birth budget (0: off) */
 static uint32_t g_tbd_search; /* --tbd-search N: its search particles (0: the default 1000) */
 static uint64_t g_total;
 
@@ -446,6 +449,7 @@ static bool soak_pf(uint64_t n, uint64_t seed, bool quiet)
         printf("pf: model configuration refused\n");
         return false;
     }
+    (void)pft_pf_tbd_model_set_budget(&m, g_pf_budget);
     size_t ws = pft_pf_workspace_size(&c);
     if (ws == 0u || ws > sizeof g_ws || pft_pf_init(&pf, &c, g_ws, ws) != PFT_OK) {
         printf("pf: configuration refused\n");
@@ -816,13 +820,15 @@ int main(int argc, char **argv)
             g_tbd_bern = true;
         } else if (strcmp(argv[i], "--tbd-bounded") == 0) {
             g_tbd_bounded = true;
+        } else if (strcmp(argv[i], "--pf-budget") == 0 && i + 1 < argc) {
+            g_pf_budget = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--tbd-search") == 0 && i + 1 < argc) {
             g_tbd_search = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--trace") == 0) {
             g_trace = true;
         } else {
             fprintf(stderr, "usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] "
-                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N]\n");
+                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K]\n");
             return 2;
         }
     }

@@ -17,7 +17,8 @@
  *  1. a resampling decided at the end of the previous update is carried out now (SIR, and
  *     APF with a post-resampling policy): indices from the normalised weights with
  *     cfg.scheme, states copied, log-weights reset to -log N;
- *  2. SIS / SIR: every particle is propagated in place and its log-weight increased by
+ *  2. model->prepare(ctx, x, N) if set; then
+ *     SIS / SIR: every particle is propagated in place and its log-weight increased by
  *     loglik(x, z) (the bootstrap proposal).
  *     APF: first stage mu_i = predict(x_i), fl_i = loglik_first(mu_i, z) (loglik when
  *     NULL), first-stage weights lambda_i ~ w_i exp(fl_i); N indices j_m ~ lambda by
@@ -116,6 +117,12 @@ typedef struct {
      *  drawn: the model forgets what it kept from earlier measurements (e.g. the TBD model's
      *  frame count, so the next frame is a first frame again). */
     void (*reset)(void *ctx);
+    /** Optional: called once per update just before the first propagate, with the n
+     *  particles about to be propagated (SIS / SIR: the set after step 1's resampling; APF:
+     *  the chosen parents copies x_{j_m}). Read only; the model may count them to plan the
+     *  step's proposal (e.g. the TBD model's birth budget, pft_pf_tbd_model_set_budget). The
+     *  engine then calls propagate(x_i) immediately followed by loglik(x_i) for i = 0..n-1. */
+    void (*prepare)(void *ctx, const pft_real_t *x, uint32_t n);
 } pft_pf_model_t;
 
 /** Engine. */

@@ -167,6 +167,24 @@ size_t pft_pf_tbd_model_workspace_size(const pft_tbd_config_t *cfg);
 pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t *cfg, void *work,
                                  size_t work_len, pft_pf_model_t *iface);
 
+/**
+ * Birth budget of the TBD model (docs/algorithms.md 3.4; default 0: off, the model as above).
+ * With budget K > 0 the births of a step are proposed in a fixed number instead of by one
+ * Bernoulli(pb) draw per E = 0 particle, so that about K particles are weighed on the pixels
+ * at every step whatever the existence probability: with n1 particles of E != 0 and n0 of
+ * E = 0 before the step (counted by the interface's prepare hook), exactly
+ * b = min(max(K - n1, ceil(pb n0), 1), n0 - 1) E = 0 particles, chosen uniformly without
+ * replacement, propose a birth (q = b / n0 each) and the others stay at E = 0; the weights are
+ * corrected by the proposal ratio, pb / q for a birth and (1 - pb) / (1 - q) for one that
+ * stays (pb: eta on a first frame, quantised to 1/65536 as the draw it replaces), so the
+ * weighted set targets the same posterior as without the budget (importance sampling of the
+ * existence transition). Survivors are unchanged. A step with fewer than 2 E = 0 particles,
+ * no birth candidate or pb of 0 or 1 runs without the budget. The work per step is then
+ * about max(K, n1 + b) weighed particles (at most N, as without the budget). PFT_ERR_INVAL
+ * for NULL. Call after pft_pf_tbd_model_init (which sets 0), before the engine runs.
+ */
+pft_status_t pft_pf_tbd_model_set_budget(pft_pf_tbd_model_t *m, uint32_t budget);
+
 #ifdef __cplusplus
 }
 #endif

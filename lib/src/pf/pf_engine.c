@@ -96,6 +96,9 @@ static void resample_(pft_pf_t *pf)
 static pft_real_t step_bootstrap_(pft_pf_t *pf, const void *z)
 {
     const pft_pf_model_t *md = &pf->cfg.model;
+    if (md->prepare != NULL) {
+        md->prepare(md->ctx, pf->x, pf->n);
+    }
     for (uint32_t i = 0; i < pf->n; ++i) {
         pft_real_t *xi = pf->x + (size_t)i * pf->dim;
         md->propagate(md->ctx, xi, &pf->rng);
@@ -129,9 +132,14 @@ static pft_real_t step_apf_(pft_pf_t *pf, const void *z)
     }
     /* 4-5. propagate the chosen parents; second-stage weight p(z | x_m) / p(z | mu_{j_m}) */
     for (uint32_t m = 0; m < pf->n; ++m) {
+        memcpy(pf->x_alt + (size_t)m * pf->dim, pf->x + (size_t)pf->idx[m] * pf->dim, row);
+    }
+    if (md->prepare != NULL) {
+        md->prepare(md->ctx, pf->x_alt, pf->n);
+    }
+    for (uint32_t m = 0; m < pf->n; ++m) {
         uint32_t j = pf->idx[m];
         pft_real_t *xm = pf->x_alt + (size_t)m * pf->dim;
-        memcpy(xm, pf->x + (size_t)j * pf->dim, row);
         md->propagate(md->ctx, xm, &pf->rng);
         pf->lw[m] = floor_lw_(pft_sub(md->loglik(md->ctx, xm, z), pf->fl[j]));
     }

@@ -23,6 +23,8 @@ static void tbd_reset_(void *ctx)
     m->frames = 0u;
     m->birth_lw = PFT_C(0.0);
     memset(m->last, 0, sizeof(m->last));
+    m->plan_on = false;
+    m->pend_x = NULL;
 }
 
 /* ---- interface callbacks ---- */
@@ -46,7 +48,51 @@ static pft_status_t tbd_begin_(void *ctx, const void *z)
     if (m->frames < UINT32_MAX) {
         ++m->frames;
     }
+    m->plan_on = false; /* until prepare plans this step */
+    m->pend_x = NULL;
     return PFT_OK;
+}
+
+/* log(p16 / 65536) for 0 < p16 < 65536 */
+static pft_real_t log_p16_(uint32_t p16)
+{
+    return pft_sub(pft_log_count_(p16), PFT_C(11.0903548889591)); /* 16 log 2 */
+}
+
+/* The birth budget's plan of a step (docs/algorithms.md 3.4): count the particles with and
+ * without a target, choose the number of births b and the weight corrections. */
+static void tbd_prepare_(void *ctx, const pft_real_t *x, uint32_t n)
+{
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
+    m->plan_on = false;
+    m->pend_x = NULL;
+    if (m->budget == 0u) {
+        return;
+    }
+    uint32_t n1 = 0u;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (x[(size_t)i * PFT_PF_TBD_DIM + PFT_PF_TBD_E] != PFT_C(0.0)) {
+            ++n1;
+        }
+    }
+    const uint32_t n0 = n - n1;
+    const uint32_t p16 = pft_tbd_p_birth_(&m->dyn, m->frames <= 1u);
+    if (n0 < 2u || m->n_cand == 0u || p16 == 0u || p16 >= 65536u) {
+        return; /* the plain Bernoulli draws */
+    }
+    uint32_t b = m->budget > n1 ? m->budget - n1 : 0u;
+    const uint32_t natural = (uint32_t)(((uint64_t)p16 * n0 + 65535u) >> 16); /* ceil(pb n0) */
+    b = b > natural ? b : natural;
+    b = b > 1u ? b : 1u;
+    b = b < n0 - 1u ? b : n0 - 1u;
+    const pft_real_t ln0 = pft_log_count_(n0);
+    m->lc_born = pft_sub(pft_add(log_p16_(p16), ln0), pft_log_count_(b));
+    m->lc_stay = pft_sub(pft_add(log_p16_(65536u - p16), ln0), pft_log_count_(n0 - b));
+    m->n0 = n0;
+    m->nb = b;
+    m->seen0 = 0u;
+    m->sel0 = 0u;
+    m->plan_on = true;
 }
 
 static void tbd_prior_(void *ctx, pft_real_t *x, pft_rng_t *rng)
@@ -87,11 +133,41 @@ static void leave_image_(const pft_pf_tbd_model_t *m, pft_real_t *x)
     }
 }
 
+/* A birth: E = 2 (born at this step: gets the birth correction), position drawn. */
+static void birth_(const pft_pf_tbd_model_t *m, pft_real_t *x, pft_rng_t *rng)
+{
+    pft_tbd_kin_t k = kin_(x);
+    pft_tbd_birth_(&m->cfg, &m->dyn, m->cand, m->n_cand, true, rng, &k);
+    x[PFT_PF_TBD_E] = PFT_C(2.0);
+    leave_image_(m, x);
+    to_pub_(m, x);
+}
+
+/* An E = 0 particle under the budget's plan: selection sampling (Knuth's algorithm S) draws
+ * exactly nb of the n0 for a birth, each with probability nb / n0; the proposal ratio waits
+ * for loglik in pend_c. */
+static void planned_(pft_pf_tbd_model_t *m, pft_real_t *x, pft_rng_t *rng)
+{
+    const uint32_t left = m->n0 - m->seen0;
+    const uint32_t need = m->nb - m->sel0;
+    const uint32_t r = pft_rng_next_(rng);
+    ++m->seen0;
+    m->pend_x = x;
+    if ((uint64_t)r * left < ((uint64_t)need << 32)) {
+        ++m->sel0;
+        m->pend_c = m->lc_born;
+        birth_(m, x, rng);
+    } else {
+        m->pend_c = m->lc_stay;
+    }
+}
+
 static void tbd_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
 {
-    const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
     pft_tbd_kin_t k = kin_(x);
     uint32_t u = pft_tbd_exist_draw_(rng); /* one draw per particle, as the tbd module */
+    m->pend_x = NULL;
     if (x[PFT_PF_TBD_E] != PFT_C(0.0)) {
         if (u < m->dyn.p16_d) {
             x[PFT_PF_TBD_E] = PFT_C(0.0);
@@ -104,11 +180,12 @@ static void tbd_propagate_(void *ctx, pft_real_t *x, pft_rng_t *rng)
         to_pub_(m, x);
         return;
     }
+    if (m->plan_on && m->seen0 < m->n0) {
+        planned_(m, x, rng);
+        return;
+    }
     if (m->n_cand > 0u && u < pft_tbd_p_birth_(&m->dyn, m->frames <= 1u)) {
-        pft_tbd_birth_(&m->cfg, &m->dyn, m->cand, m->n_cand, true, rng, &k);
-        x[PFT_PF_TBD_E] = PFT_C(2.0); /* born at this step: gets the birth correction */
-        leave_image_(m, x);
-        to_pub_(m, x);
+        birth_(m, x, rng);
     }
 }
 
@@ -131,12 +208,17 @@ static pft_real_t llr_int_(const pft_pf_tbd_model_t *m, const pft_real_t *xi)
 
 static pft_real_t tbd_loglik_(void *ctx, const pft_real_t *x, const void *z)
 {
-    const pft_pf_tbd_model_t *m = (const pft_pf_tbd_model_t *)ctx;
+    pft_pf_tbd_model_t *m = (pft_pf_tbd_model_t *)ctx;
     (void)z; /* the converted frame of begin() */
     pft_real_t xi[PFT_PF_TBD_DIM];
     memcpy(xi, x, sizeof xi);
     to_int_(m, xi);
-    return llr_int_(m, xi);
+    pft_real_t ll = llr_int_(m, xi);
+    if (m->pend_x == x) { /* the budget's proposal ratio of the particle just propagated */
+        ll = pft_add(ll, m->pend_c);
+        m->pend_x = NULL;
+    }
+    return ll;
 }
 
 /* The APF's characteristic point mu = Phi x, kept in the internal frame: it is read only by
@@ -230,5 +312,17 @@ pft_status_t pft_pf_tbd_model_init(pft_pf_tbd_model_t *m, const pft_tbd_config_t
     iface->loglik_first = tbd_loglik_first_;
     iface->estimate = tbd_estimate_;
     iface->reset = tbd_reset_;
+    iface->prepare = tbd_prepare_;
+    return PFT_OK;
+}
+
+pft_status_t pft_pf_tbd_model_set_budget(pft_pf_tbd_model_t *m, uint32_t budget)
+{
+    if (m == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    m->budget = budget;
+    m->plan_on = false;
+    m->pend_x = NULL;
     return PFT_OK;
 }

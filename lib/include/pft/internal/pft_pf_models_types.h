@@ -43,6 +43,14 @@ struct pft_pf_tbd_model_s {
     pft_real_t birth_lw;   /* birth correction of the current frame */
     pft_tbd_dyn_t dyn;     /* the tbd module's PF-TBD constants */
     pft_real_t last[5];    /* last kinematic estimate [x, vx, y, vy, I] */
+    /* birth budget (pft_pf_tbd_model_set_budget; 0: off) and the plan of the current step */
+    uint32_t budget;
+    bool plan_on;          /* this step draws a fixed number of births */
+    uint32_t n0, nb;       /* E = 0 particles before the step, births to draw among them */
+    uint32_t seen0, sel0;  /* E = 0 particles propagated so far, births drawn so far */
+    pft_real_t lc_born, lc_stay; /* log weight corrections of a birth / an E = 0 that stays */
+    const pft_real_t *pend_x;    /* the particle last propagated, its correction pending */
+    pft_real_t pend_c;
 };
 
 #ifdef __cplusplus
