@@ -14,7 +14,8 @@
 #   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work modes);
 #   SOAK_ARGS="--tbd-bern" passes more options to pft_soak (work modes)
 #   SOAK_KEEP=DIR (work mode) keeps the per-update callgrind dumps (self-contained: uncompressed
-X
+#   names, so `callgrind_annotate --inclusive=yes DIR/<build>-<tracker>/cg.out.<i>` gives the
+#   functions of update i, 1-based, warm-up included)
 #   and the trace in DIR instead of deleting them
 # long and work build build/soak-float and build/soak-q16 (Release, library and pft_soak only);
 # work-qemu builds pft_soak in build/<preset> and the plugin in build/qemu-plugin, against the
