@@ -13,6 +13,10 @@
 #                                               QEMU with the plugin tests/soak/qemu_marks.c
 #   SOAK_SEED=S, SOAK_TRACKERS="tsa ..." choose the scene's seed and the trackers (work modes);
 #   SOAK_ARGS="--tbd-bern" passes more options to pft_soak (work modes)
+#   SOAK_KEEP=DIR (work mode) keeps the per-update callgrind dumps (self-contained: uncompressed
+#   names, so `callgrind_annotate --inclusive=yes DIR/<build>-<tracker>/cg.out.<i>` gives the
+#   functions of update i, 1-based, warm-up included)
+#   and the trace in DIR instead of deleting them
 # long and work build build/soak-float and build/soak-q16 (Release, library and pft_soak only);
 # work-qemu builds pft_soak in build/<preset> and the plugin in build/qemu-plugin, against the
 # qemu-plugin.h of the installed QEMU's Debian source package (fetched with apt-get source, or
@@ -67,10 +71,15 @@ work)
                  [pte]=pft_pte_update [pte_dp]=pft_pte_dp_update [pte_dbt]=pft_pte_dbt_update)
   for t in float q16; do
     for k in $trackers; do
-      d=$(mktemp -d)
+      if [ -n "${SOAK_KEEP:-}" ]; then
+        d=$SOAK_KEEP/$t-$k; rm -rf "$d"; mkdir -p "$d"
+      else
+        d=$(mktemp -d)
+      fi
       # collect inside the update only (the soak's own frame generation is not the tracker's
       # work); one dump after every update
       valgrind --tool=callgrind --callgrind-out-file="$d/cg.out" --collect-atstart=no \
+        --compress-strings=no --compress-pos=no \
         --toggle-collect="${fn[$k]}" --dump-after="${fn[$k]}" \
         build/soak-$t/tests/soak/pft_soak --tracker $k --frames $((n + warm)) --seed "${SOAK_SEED:-1}" --quiet \
         --trace ${SOAK_ARGS:-} >"$d/trace" 2>"$d/err" || { cat "$d/err"; exit 1; }
@@ -81,7 +90,7 @@ work)
         awk '/^(summary|totals):/ {print $2; exit}' "$d/cg.out.$i"
       done >"$d/counts"
       python3 tests/soak/work_stats.py "$d/counts" "$d/trace" "$t" "$k" $warm
-      rm -rf "$d"
+      [ -n "${SOAK_KEEP:-}" ] || rm -rf "$d"
     done
   done;;
 work-qemu)

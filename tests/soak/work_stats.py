@@ -5,7 +5,7 @@ work_stats.py COUNTS TRACE BUILD TRACKER WARM
 COUNTS: one instruction count per update, in order (from callgrind's per-update dumps or from
 the QEMU plugin qemu_marks.c); TRACE: pft_soak --trace output, one "trace <frame> <tracks> [p]"
 line per update. The first WARM updates are left out. Prints median, mean, max and max/median,
-the same per load (tracks after the update) and, for tbd and pf, a least-squares model
+the same per load (tracks after the update; and by the tracks before it) and, for tbd and pf, a least-squares model
 instructions = a + b p + c tracks of the state after the frame before.
 """
 import statistics, sys
@@ -26,6 +26,13 @@ per = "  ".join("load %d: %d frames, max/median %.2f" % (l, len(v), max(v) / sta
                 for l, v in sorted(by.items()))
 print("work %-5s %-8s frames %4d  instructions per update: median %.0f  mean %.0f  max %.0f  max/median %.2f  |  %s"
       % (t, k, len(vals), med, statistics.mean(vals), max(vals), max(vals) / med, per))
+# the same grouped by the tracks live before the update (the ones it steps)
+byb = {}
+for i in range(max(warm, 1), n):
+    byb.setdefault(load[i - 1], []).append(tot[i])
+print("work %-5s %-8s by tracks before the update: %s" % (t, k, "  ".join(
+    "%d: %d frames, median %.0f, max %.0f, max/median %.2f"
+    % (l, len(v), statistics.median(v), max(v), max(v) / statistics.median(v)) for l, v in sorted(byb.items()))))
 if tr and len(tr[0]) > 3:
     # tbd, pf: only particles with E = 1 are moved and weighed on the pixels, and their share at
     # frame i follows the existence probability p after frame i - 1; least squares

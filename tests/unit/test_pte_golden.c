@@ -28,7 +28,8 @@ static pft_pv_results_t got;
 #endif
 
 static const char *const inst_name[PFT_PV_N_INST] = {
-    "pte_table", "pte_exact", "dp_slide", "dp_batch", "dbt", "dbt_cfar", "pte_rd", "dp_rd", "dbt_rd"};
+    "pte_table", "pte_exact", "dp_slide", "dp_batch", "dbt", "dbt_cfar", "pte_rd", "dp_rd", "dbt_rd",
+    "pte_edge"};
 
 static void fail_at(const char *what, uint32_t i, uint32_t k, long ref, long val)
 {
@@ -51,10 +52,11 @@ static long pos_tol(uint32_t i, uint32_t k)
     if (EXACT) {
         return 0;
     }
-    if (i == PFT_PV_PTE_TABLE && k >= 48u && k <= 66u) {
+    if ((i == PFT_PV_PTE_TABLE || i == PFT_PV_PTE_EDGE) && k >= 48u && k <= 66u) {
         return (long)(1.1 * 65536.0);
     }
-    if (i == PFT_PV_PTE_TABLE || i == PFT_PV_PTE_EXACT || i == PFT_PV_PTE_RD) {
+    if (i == PFT_PV_PTE_TABLE || i == PFT_PV_PTE_EXACT || i == PFT_PV_PTE_RD ||
+        i == PFT_PV_PTE_EDGE) {
         return (long)(0.25 * 65536.0);
     }
     return (long)(0.01 * 65536.0);
@@ -93,6 +95,7 @@ static void test_pte_range_time(void)
 {
     check_instance(PFT_PV_PTE_TABLE);
     check_instance(PFT_PV_PTE_EXACT);
+    check_instance(PFT_PV_PTE_EDGE);
     TEST_ASSERT_EQUAL_INT32(pv_cue[0], got.cue_status);
     TEST_ASSERT_EQUAL_INT32(pv_cue[1], got.cue_id);
 }

@@ -39,6 +39,8 @@ enum {
     PFT_PV_PTE_RD,        /* range-Doppler, EXACT 2-D operators */
     PFT_PV_DP_RD,         /* range-Doppler, sliding K = 6 */
     PFT_PV_DBT_RD,        /* range-Doppler */
+    PFT_PV_PTE_EDGE,      /* as PTE_TABLE, with a cue at the low end moving inward (its
+                             operator lines run off the response grid: the edge normaliser) */
     PFT_PV_N_INST
 };
 
@@ -333,6 +335,7 @@ typedef struct {
     pft_pte_t p;
     bool values;     /* frames as values in input units (update_real) */
     bool cue;        /* a cue at frame 30 */
+    bool edge;       /* a cue at frame 30 at cell 0.5 moving inward (not recorded) */
     pft_pv_results_t *res;
 } pft_pv_pte_ctx_t;
 
@@ -342,7 +345,6 @@ static inline pft_status_t pft_pv_pte_step(void *ctx, uint32_t k, const pft_fram
     static pft_real_t z[PFT_PV_PIX];
     pft_pv_pte_ctx_t *c = (pft_pv_pte_ctx_t *)ctx;
     pft_status_t st;
-    (void)h;
     if (c->values) {
         pft_pv_values(pft_pv_pix, (uint32_t)f->width * f->height, z);
         st = pft_pte_update_real(&c->p, z);
@@ -359,7 +361,24 @@ static inline pft_status_t pft_pv_pte_step(void *ctx, uint32_t k, const pft_fram
         c->res->cue_status = (int32_t)pft_pte_start(&c->p, pos, vel, pv, vv, PFT_C(3.0), 10u, &id);
         c->res->cue_id = (int32_t)id;
     }
+    if (c->edge && k == 30u) {
+        /* 20 frames of template back from cell 0.5 at 0.6 cells per frame: the operator
+         * lines' older points lie beyond the response grid's padding */
+        pft_real_t pos[2] = {PFT_C(0.5), PFT_C(0.0)};
+        pft_real_t vel[2] = {PFT_C(0.6), PFT_C(0.0)};
+        pft_real_t pv[2] = {PFT_C(0.2), PFT_C(1.0)};
+        pft_real_t vv[2] = {PFT_C(0.01), PFT_C(1.0)};
+        uint16_t id = 0;
+        (void)pft_pte_start(&c->p, pos, vel, pv, vv, PFT_C(3.0), 20u, &id);
+    }
     *n = (uint32_t)pft_pte_reports(&c->p, rep, PFT_PTE_MAX_TRACKS);
+    for (uint32_t j = 0; c->edge && j < *n; ++j) {
+        /* every report, not only the first: the cue's track is not the oldest */
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(rep[j].pos[0]));
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(rep[j].vel[0]));
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(rep[j].var[0]));
+        *h = pft_pv_fnv(*h, PFT_GV_RAW(rep[j].score));
+    }
     return st;
 }
 
@@ -369,6 +388,7 @@ static inline void pft_pv_run_pte(pft_pv_results_t *res, uint32_t inst,
     static pft_pv_pte_ctx_t ctx;
     ctx.values = values;
     ctx.cue = cue;
+    ctx.edge = inst == PFT_PV_PTE_EDGE;
     ctx.res = res;
     if (pft_pte_init(&ctx.p, c, pft_pv_ws, sizeof(pft_pv_ws)) == PFT_OK) {
         pft_pv_loop(res, inst, c->in.n_doppler > 1u, pft_pv_pte_step, &ctx);
@@ -496,6 +516,8 @@ static inline void pft_pv_compute(pft_pv_results_t *res)
     bc.in.n_doppler = PFT_PV_ND2;
     pft_pv_input(&bc.in);
     pft_pv_run_dbt(res, PFT_PV_DBT_RD, &bc);
+    pft_pv_cfg_pte_table(&pc);
+    pft_pv_run_pte(res, PFT_PV_PTE_EDGE, &pc, false, false);
     pft_pv_thresholds(res);
 }
 #endif

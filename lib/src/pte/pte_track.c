@@ -159,6 +159,18 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
             p->ytap4_w[ph][p->ytap_lo[ph] - lo4 + k] = p->ytap[ph][k];
         }
     }
+    /* the normaliser of a point whose taps all lie on the profile, per phase, and the range of
+     * such points (the slope bank's G per residue holds there) */
+    for (int32_t ph = 0; ph < q; ++ph) {
+        pft_real_t g2 = PFT_C(0.0);
+        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
+            g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
+        }
+        p->gfull[ph] = g2;
+    }
+    /* per response point, its own normaliser minus the interior one of its phase (0 in the
+     * interior): the correction bank_g_ adds where a line leaves the interior. Plain
+     * difference: |g2|, |gfull| <= 6.9, no saturation. */
     for (uint32_t i = 0; i < p->ny; ++i) {
         int32_t ph = (int32_t)i % q;
         int32_t u0 = (int32_t)i / q - (int32_t)PFT_PTE_YPAD + p->ytap_lo[ph];
@@ -168,16 +180,7 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
                 g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
             }
         }
-        p->gq[i] = g2;
-    }
-    /* the normaliser of a point whose taps all lie on the profile, per phase, and the range of
-     * such points (the slope bank's G per residue holds there) */
-    for (int32_t ph = 0; ph < q; ++ph) {
-        pft_real_t g2 = PFT_C(0.0);
-        for (int32_t k = 0; k < p->ytap_n[ph]; ++k) {
-            g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
-        }
-        p->gfull[ph] = g2;
+        p->gq[i] = g2 - p->gfull[ph];
     }
     p->yin_lo = (int32_t)p->ny;
     p->yin_hi = -1;
@@ -753,15 +756,17 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     }
 }
 
-/* Normaliser of response point x outside the interior minus the interior one of its phase:
- * gq[x] - gfull[x mod yq], with gq = 0 off the response grid. */
-static inline pft_real_t gq_out_(const pft_pte_t *p, int32_t x)
+/* Subtracts the interior normaliser gfull of its phase from G[j], j in [j0, j1), for the
+ * points j + d off the response grid (their own normaliser is 0). */
+static void g_off_(const pft_pte_t *p, pft_real_t *G, int32_t j0, int32_t j1, int32_t d)
 {
     const int32_t q = p->yq;
-    int32_t ph = x % q;
+    int32_t ph = (j0 + d) % q;
     ph = ph < 0 ? ph + q : ph;
-    const pft_real_t g = (x >= 0 && x < (int32_t)p->ny) ? p->gq[x] : PFT_C(0.0);
-    return g - p->gfull[ph]; /* |g|, |gfull| <= 6.9: no saturation */
+    for (int32_t j = j0; j < j1; ++j) {
+        G[j] = G[j] - p->gfull[ph]; /* |gfull| <= 6.9: no saturation */
+        ph = ph + 1 == q ? 0 : ph + 1;
+    }
 }
 
 /* G of the lines of entry bi (window w) at frame kn into G[0..n): the residues, corrected at
@@ -794,6 +799,8 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
      * normaliser gq (0 off the response grid). Those points are a prefix and a suffix of the
      * lines at each frame, so this costs O(m + outside points) instead of O(m n). q16: integer
      * sums, the same bits as summing gq over every point; bounded as the E sums. */
+    const pft_real_t *restrict cq = p->gq; /* gq - gfull of the phase, per grid point */
+    const int32_t ny = (int32_t)p->ny;
     for (int32_t tau = 0; tau < m; ++tau) {
         const int32_t d = bank_off_(p, e, kn - (uint32_t)tau) + jl;
         if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
@@ -804,11 +811,21 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
         ja = ja > n ? n : ja;
         jb = jb < 0 ? 0 : jb;
         jb = jb < ja ? ja : jb;
-        for (int32_t j = 0; j < ja; ++j) {
-            G[j] = G[j] + gq_out_(p, j + d);
+        if (ja > 0) {
+            int32_t jo = -d; /* lines [0, jo) off the grid, [jo, ja) on its edge band */
+            jo = jo < 0 ? 0 : (jo > ja ? ja : jo);
+            g_off_(p, G, 0, jo, d);
+            for (int32_t j = jo; j < ja; ++j) {
+                G[j] = G[j] + cq[j + d];
+            }
         }
-        for (int32_t j = jb; j < n; ++j) {
-            G[j] = G[j] + gq_out_(p, j + d);
+        if (jb < n) {
+            int32_t jg = ny - d; /* lines [jb, jg) on the edge band, [jg, n) off the grid */
+            jg = jg < jb ? jb : (jg > n ? n : jg);
+            for (int32_t j = jb; j < jg; ++j) {
+                G[j] = G[j] + cq[j + d];
+            }
+            g_off_(p, G, jg, n, d);
         }
     }
 }
