@@ -359,11 +359,11 @@ const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back)
 pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
                            pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
 {
-    if (frame != NULL) {
-        /* checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
-    } else if (z == NULL) {
-        return PFT_ERR_INVAL;
-    } else {
+    /* a frame was checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
+    if (frame == NULL) {
+        if (z == NULL) {
+            return PFT_ERR_INVAL;
+        }
         /* float build: refuse NaN/Inf values (the comparison is false for them); q16: no-op */
         uint32_t cells = (uint32_t)in->n_range * in->n_doppler;
         for (uint32_t i = 0; i < cells; ++i) {
