@@ -100,8 +100,8 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
 // pixel of the scene the running mean square of the whitened residual (and its mean with
 // clutter_mean), carried along with the scene by the stage's shift; a pixel whose map, read
 // over the (2 clutter_blur + 1)^2 square (mean, or largest value), exceeds clutter_thr is
-// scored in that sigma. Until this branch it was host code (float, OpenCV warps) with the same
-// formulas; the library's is integer (docs/results/ir_clutter.md compares the two).
+// scored in that sigma. It was host code (float, OpenCV warps) with the same formulas until
+// 2026-12-02; the library's is integer (docs/results/ir_clutter.md compares the two).
 pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width, int height)
 {
     pft_pre_clutter_config_t c;
@@ -121,13 +121,13 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
 {
     const int w_ = resid_.cols, h_ = resid_.rows;
     if (c.work.empty()) {
-        c.cfg = make_clutter_config(T_, w_, h_);
+        const pft_pre_clutter_config_t cfg = make_clutter_config(T_, w_, h_);
         const char *field = nullptr;
-        if (pft_pre_clutter_config_check(&c.cfg, &field) != PFT_OK)
+        if (pft_pre_clutter_config_check(&cfg, &field) != PFT_OK)
             throw InputError(std::string("clutter map configuration refused (field ") + (field ? field : "?") + ")");
-        c.bytes = pft_pre_clutter_workspace_size(&c.cfg);
+        c.bytes = pft_pre_clutter_workspace_size(&cfg);
         c.work.assign((c.bytes + 7) / 8, 0);
-        const pft_status_t st = pft_pre_clutter_init(&c.c, &c.cfg, c.work.data(), c.work.size() * 8);
+        const pft_status_t st = pft_pre_clutter_init(&c.c, &cfg, c.work.data(), c.work.size() * 8);
         if (st != PFT_OK)
             throw InputError(std::string("pft_pre_clutter_init: ") + pft_status_str(st));
     }

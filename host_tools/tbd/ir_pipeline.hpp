@@ -37,8 +37,7 @@ struct PipelineOut {
 /** The scene-registered clutter map of the pipeline (TrackerSettings::clutter_*): the
  *  library's pft_pre_clutter_* (pft_pre.h) in a workspace of its own. */
 struct ClutterMap {
-    pft_pre_clutter_config_t cfg{};
-    pft_pre_clutter_t c{};
+    pft_pre_clutter_t c{};  ///< the map (its configuration is c.cfg)
     std::vector<uint64_t> work;
     const int16_t *out = nullptr;  ///< the last output residual (Q8.8 sigma units, masked pixels kept), stride = width
     std::size_t bytes = 0;         ///< workspace bytes
