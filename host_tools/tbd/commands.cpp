@@ -32,7 +32,6 @@ extern "C" {
 #include "scenario.hpp"
 #include "sim.hpp"
 #include "tracker.hpp"
-#include <random>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -102,25 +101,6 @@ std::string describe(const Scenario &s)
     return os.str();
 }
 
-/** The frames of a run that are lost (eval.drop_prob, eval.drop_frames), index k = frame
- *  k + 1: the same for `pft eval` of a seed and `pft sim` of that seed (which writes no file
- *  for them). The first frame is never lost. */
-std::vector<bool> lost_frames(const Scenario &s, int frames, uint64_t seed)
-{
-    std::vector<bool> lost(static_cast<std::size_t>(frames), false);
-    for (int d : s.eval.drop_frames)
-        if (d >= 2 && d <= frames)
-            lost[static_cast<std::size_t>(d - 1)] = true;
-    if (s.eval.drop_prob > 0.0) {
-        std::mt19937_64 gen(seed * 0x9E3779B97F4A7C15ull + 0xD1B54A32D192ED03ull);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        for (int k = 1; k < frames; ++k)
-            if (u(gen) < s.eval.drop_prob)
-                lost[static_cast<std::size_t>(k)] = true;
-    }
-    return lost;
-}
-
 /** Runs the tracker over an in-memory sequence. */
 std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint64_t seed, Progress *bar = nullptr)
 {
@@ -129,7 +109,7 @@ std::vector<FrameOut> track_sequence(const Scenario &s, const Sequence &q, uint6
     out.reserve(q.frames);
     // lost frames: not fed to the tracker, which sees the gap in the sequence numbers; the
     // frame's output is the tracker's last one (what a display holds), so the metrics count it
-    std::vector<bool> lost = lost_frames(s, q.frames, seed);
+    std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
     for (int k = 0; k < q.frames; ++k) {
         if (lost[static_cast<std::size_t>(k)] && !out.empty()) {
             FrameOut held = out.back();
@@ -731,7 +711,7 @@ public:
         Sequence q = simulate(s, seed);
         // frames lost on the way (eval.drop_prob / drop_frames, as `pft eval` loses them for
         // this seed): no file, so the reader sees a gap in the frame numbers
-        std::vector<bool> lost = lost_frames(s, q.frames, seed);
+        std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
         json lost_list = json::array();
         for (int k = 0; k < q.frames; ++k)
             if (lost[static_cast<std::size_t>(k)])

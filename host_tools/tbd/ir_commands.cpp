@@ -71,7 +71,14 @@ std::string describe(const IrScenario &s)
                   s.sensor.bit_depth, s.sensor.noise_sigma, s.sensor.column_fpn_sigma,
                   s.platform.drift_px[0], s.platform.drift_px[1], s.platform.jitter_px,
                   count.c_str(), s.targets.crossings, s.targets.list.size(), snr.c_str());
-    return b;
+    std::string d = b;
+    if (s.eval.loss.any()) {
+        std::snprintf(b, sizeof b, "; frames lost: %.3g of them at random", s.eval.loss.drop_prob);
+        d += b;
+        if (!s.eval.loss.drop_frames.empty())
+            d += " + " + std::to_string(s.eval.loss.drop_frames.size()) + " listed";
+    }
+    return d;
 }
 
 std::string describe_pipeline(const IrScenario &s)
@@ -112,10 +119,14 @@ pft_frame_t u16_frame(const cv::Mat &m, int bits, uint32_t seq)
 
 // ------------------------------------------------------------------------- sim output
 json write_frames(const IrScenario &s, const IrSequence &q, const std::string &dir,
-                  const std::string &format, Progress &bar)
+                  const std::string &format, Progress &bar, const std::vector<bool> &lost)
 {
     if (format == "pgm") {
         for (int k = 0; k < q.frames; ++k) {
+            if (lost[static_cast<std::size_t>(k)]) {
+                bar.tick();  // lost on the way: no file, the reader sees a gap in the numbers
+                continue;
+            }
             char name[64];
             std::snprintf(name, sizeof name, "frame_%04d.pgm", k + 1);
             AtomicPath ap(join_path(dir, name));
@@ -239,16 +250,31 @@ void print_tracks(const std::vector<tbd::FrameOut> &out, const IrRunEval *ev, co
 struct Tracked {
     std::vector<tbd::FrameOut> tbd, dbt;
     long detections = 0;  ///< DBT detections over the sequence
+    int lost = 0;         ///< frames lost on the way (not fed; outputs held)
 };
 
-/** Tracks a whole in-memory sequence through the pipeline. */
+/** Tracks a whole in-memory sequence through the pipeline. The frames the scenario loses for
+ *  this seed (eval.drop_prob, eval.drop_frames) are not fed: the pipeline sees the gap in seq,
+ *  and the frame's output is the last one of each tracker (what a display holds), which the
+ *  metrics count. */
 Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
 {
     IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
     Tracked out;
     out.tbd.reserve(static_cast<std::size_t>(q.frames));
     out.dbt.reserve(static_cast<std::size_t>(q.frames));
+    const std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
     for (int k = 0; k < q.frames; ++k) {
+        if (lost[static_cast<std::size_t>(k)] && !out.tbd.empty()) {
+            for (std::vector<tbd::FrameOut> *v : {&out.tbd, &out.dbt}) {
+                tbd::FrameOut held = v->back();
+                held.frame = static_cast<uint32_t>(k + 1);
+                held.events.clear();
+                v->push_back(std::move(held));
+            }
+            ++out.lost;
+            continue;
+        }
         PipelineOut po = pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth,
                                            static_cast<uint32_t>(k + 1)));
         out.tbd.push_back(std::move(po.tbd));
@@ -606,7 +632,17 @@ public:
         Progress bar(static_cast<std::size_t>(2 * s.frames), "sim", progress_wanted(o.progress) && !o.quiet);
         IrSequence q = simulate_ir(s, seed, &bar);
         double t_sim = seconds_since(t0);
-        json side = write_frames(s, q, o.out, format, bar);
+        // frames lost on the way (eval.drop_prob / drop_frames, as `pft eval` loses them for
+        // this seed): no file, so the reader sees a gap in the frame numbers
+        const std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
+        json lost_list = json::array();
+        for (int k = 0; k < q.frames; ++k)
+            if (lost[static_cast<std::size_t>(k)])
+                lost_list.push_back(k + 1);
+        if (!lost_list.empty() && format != "pgm")
+            throw InputError(s.file + ": eval.drop_prob / eval.drop_frames lose frames, which only "
+                             "one file per frame can show: use --format pgm");
+        json side = write_frames(s, q, o.out, format, bar, lost);
         bar.finish();
         write_ir_truth(join_path(o.out, "truth.csv"), q.truth);
         write_platform(join_path(o.out, "platform.csv"), q);
@@ -621,6 +657,7 @@ public:
         side["noise_units"] = "counts (temporal noise of the sensor)";
         side["truth"] = "truth.csv";
         side["platform"] = "platform.csv";
+        side["lost_frames"] = lost_list;
         side["background"] = q.background;
         side["labelled_objects"] = q.labelled_objects;
         side["seed"] = seed;
@@ -645,6 +682,9 @@ public:
                         static_cast<unsigned long long>(seed), o.out.c_str(), q.frames, q.width, q.height,
                         format == "pgm" ? "16-bit PGM" : "raw u16 little-endian", q.bit_depth,
                         q.background.c_str(), inj.size(), most, lab.size(), t_sim, seconds_since(t0));
+            if (!lost_list.empty())
+                std::printf("  %zu frame(s) lost on the way (no file): %s\n", lost_list.size(),
+                            lost_list.dump().c_str());
         }
         return 0;
     }
@@ -753,9 +793,9 @@ public:
                 std::printf("\nVersus truth (%s):\n", truth_path.c_str());
                 print_ir_summary(summarize_pair({*ev}, {*dev}));
             }
-            std::printf("\n  %zu frames in %.2f s (%.1f ms/frame); wrote %s/tracks.csv, tracks.json, "
+            std::printf("\n  %zu frames, %d skipped, in %.2f s (%.1f ms/frame); wrote %s/tracks.csv, tracks.json, "
                         "dbt_tracks.csv, dbt_tracks.json%s\n",
-                        out.size(), dt, 1e3 * dt / std::max<std::size_t>(1, out.size()), out_dir.c_str(),
+                        out.size(), rd->skipped(), dt, 1e3 * dt / std::max<std::size_t>(1, out.size()), out_dir.c_str(),
                         o.no_video ? "" : ", overlay.avi");
         }
         return 0;
@@ -798,6 +838,8 @@ public:
                     "to the first associated, correct = frames within %.1f px):\n", s.eval.d_c);
         print_ir_summary(summarize_pair({ev}, {dev}));
         std::printf("  DBT detections: %.1f per frame\n", static_cast<double>(tr.detections) / std::max(1, q.frames));
+        if (tr.lost > 0)
+            std::printf("  %d frame(s) lost on the way (not fed; each tracker's output held)\n", tr.lost);
         std::printf("\n  %dx%d x %d frames: simulated in %.2f s, tracked in %.2f s (%.1f ms/frame), %s build\n",
                     q.width, q.height, q.frames, t_sim, t_trk, 1e3 * t_trk / std::max(1, q.frames), numeric_name());
         std::printf("  the same sequence on disk: pft sim --scenario %s --out DIR, then pft run --sequence DIR\n",
@@ -822,6 +864,7 @@ public:
         cv::setNumThreads(1);  // the runs are the parallel work
         std::vector<IrRunEval> res(runs), dres(runs);
         std::vector<long> dets(runs);
+        std::vector<int> lost_n(runs);
         std::vector<std::string> backgrounds(runs);
         Progress bar(runs, "eval", progress_wanted(o.progress));
         auto t0 = Clock::now();
@@ -833,6 +876,7 @@ public:
             dres[i] = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
             res[i].seed = dres[i].seed = seed;
             dets[i] = tr.detections;
+            lost_n[i] = tr.lost;
             backgrounds[i] = q.background;
             bar.tick();
         });
@@ -846,6 +890,7 @@ public:
         for (unsigned i = 0; i < runs; ++i) {
             seeds.push_back(base + i);
             sum["per_run"][i]["background"] = backgrounds[i];
+            sum["per_run"][i]["lost_frames"] = lost_n[i];
         }
         json head = {{"tool", "pft eval"}, {"kind", "tbd_ir"}, {"scenario", s.name},
                      {"scenario_file", s.file}, {"description", s.description},
@@ -854,6 +899,7 @@ public:
                      {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
                      {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
+                     {"drop_prob", s.eval.loss.drop_prob}, {"drop_frames", s.eval.loss.drop_frames},
                      {"background", s.background.source == "folder" ? s.background.folder : "procedural"},
                      {"tracker", {{"preprocess", s.tracker.preprocess}, {"bg_alpha", s.tracker.bg_alpha},
                                   {"edge_k", s.tracker.edge_k},

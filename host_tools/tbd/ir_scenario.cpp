@@ -247,11 +247,12 @@ IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
         parse_dbt(root.at("dbt"), s.dbt);
     if (root.has("eval")) {
         Field e = root.at("eval");
-        e.only({"runs", "base_seed", "d_c", "d_assoc"});
+        e.only({"runs", "base_seed", "d_c", "d_assoc", "drop_prob", "drop_frames"});
         s.eval.runs = static_cast<unsigned>(e.integer_in("runs", s.eval.runs, 1, 10000000));
         s.eval.base_seed = static_cast<uint64_t>(e.integer_in("base_seed", 1, 0, INT64_MAX));
         s.eval.d_c = e.number_in("d_c", 1.0, 1e-6, 1e4);
         s.eval.d_assoc = e.number_in("d_assoc", 3.0, 1e-6, 1e4);
+        s.eval.loss = parse_frame_loss(e);
     }
     if (root.has("output")) {
         Field o = root.at("output");

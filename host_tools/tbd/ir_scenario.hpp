@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/frame_loss.hpp"
+
 namespace pft::host::tbd_ir {
 
 /** Built-in procedural sky (levels are fractions of the sensor's full scale). */
@@ -126,6 +128,7 @@ struct EvalSettings {
     unsigned runs = 20;
     uint64_t base_seed = 1;
     double d_c = 1.0, d_assoc = 3.0;            ///< correct / association distances, px
+    FrameLoss loss;                             ///< drop_prob, drop_frames: frames lost in a run
 };
 
 struct IrScenario {

@@ -188,16 +188,7 @@ void parse_eval_output(const Field &root, Scenario &s)
         s.eval.d_assoc = e.number_in("d_assoc", 3.0, 1e-9, 1e9);
         s.eval.gospa_c = e.number_in("gospa_c", 0.0, 0.0, 1e9);
         s.eval.gospa_p = e.number_in("gospa_p", 2.0, 1.0, 1e6);
-        s.eval.drop_prob = e.number_in("drop_prob", 0.0, 0.0, 0.9);
-        if (e.has("drop_frames")) {
-            Field d = e.at("drop_frames");
-            for (std::size_t i = 0; i < d.size(); ++i) {
-                int64_t v = d.at(i).as_int();
-                if (v < 2 || v > 1000000)
-                    d.at(i).fail("a 1-based frame number above 1 (the first frame is never lost)");
-                s.eval.drop_frames.push_back(static_cast<int>(v));
-            }
-        }
+        s.eval.loss = parse_frame_loss(e);
     }
     if (root.has("output")) {
         Field o = root.at("output");

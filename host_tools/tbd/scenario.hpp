@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/frame_loss.hpp"
+
 namespace pft::host::tbd {
 
 enum class Motion { StochasticCV, Line };
@@ -54,8 +56,7 @@ struct EvalSettings {
     double d_assoc = 3.0;             ///< track-to-target association gate (pixels)
     double gospa_c = 0.0;             ///< GOSPA/OSPA cut-off (pixels; 0: d_assoc)
     double gospa_p = 2.0;             ///< GOSPA/OSPA order
-    double drop_prob = 0.0;           ///< each frame after the first is lost with this probability (per run seed)
-    std::vector<int> drop_frames;     ///< 1-based frames lost in every run
+    FrameLoss loss;                   ///< drop_prob, drop_frames: frames lost in a run (common/frame_loss.hpp)
 };
 
 struct OutputSettings {
