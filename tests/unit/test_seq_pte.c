@@ -6,7 +6,8 @@
  * byte-identical; a gap above max_gap restarts (no confirmed track on that frame); reports
  * carry the seq, gap and timestamp of their frame. PTE-TBD (TABLE and EXACT operators) keeps
  * its live track across 6 lost frames with PFT_SEQ_USE: the track predicts over the 7 periods
- * and its window holds the lost frames as missing stages (docs/algorithms.md 5.7).
+ * and its window holds the lost frames as missing stages (docs/algorithms.md 5.7). DP-TBD's
+ * sliding batch holds a lost frame as a missing stage and reports on the next frame.
  */
 #include <math.h>
 #include <string.h>
@@ -213,6 +214,52 @@ static void test_pte_keeps_track_across_lost_frames(void)
     }
 }
 
+/* DP-TBD, K = 5, seq used: frames 1..6, frame 7 lost, frame 8. The lost frame is a missing
+ * stage of the sliding window, so frame 8 already has the batch's report, on the target (cell
+ * 18), with the id of frame 6 and gap 2. Before lost frames were taken as missing stages the
+ * gap restarted the batch: no report until K frames were held again. */
+static uint64_t g_dwork[PFT_PTE_DP_WORKSPACE_BYTES(NR, 1, 5, 4) / 8 + 8];
+
+static void test_dp_keeps_batch_across_lost_frames(void)
+{
+    pft_pte_dp_config_t c;
+    pft_pte_dp_config_default(&c);
+    c.in.n_range = NR;
+    c.in.n_doppler = 1u;
+    c.in.seq_mode = PFT_SEQ_USE;
+    c.in.max_gap = 6u;
+    c.frames = 5u;
+    size_t need = pft_pte_dp_workspace_size(&c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_dwork));
+    pft_pte_dp_t dp;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dp_init(&dp, &c, g_dwork, need));
+    uint16_t id6 = 0u;
+    for (int k = 1; k <= 8; ++k) {
+        if (k == 7) {
+            continue;
+        }
+        pft_frame_t f = frame(k, 500u + (uint32_t)k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dp_update(&dp, &f));
+        size_t n = pft_pte_dp_reports(&dp, g_rep, PFT_PTE_DBT_MAX_TRACKS);
+        if (k == 6) {
+            TEST_ASSERT_TRUE(n >= 1u);
+            id6 = g_rep[0].id;
+            TEST_ASSERT_FLOAT_WITHIN(0.5, 16.0, D(g_rep[0].pos[0]));
+        }
+        if (k == 8) {
+            TEST_ASSERT_TRUE_MESSAGE(n >= 1u, "no report after the lost frame: the batch restarted");
+            TEST_ASSERT_EQUAL_UINT16(id6, g_rep[0].id);
+            TEST_ASSERT_FLOAT_WITHIN(0.5, 18.0, D(g_rep[0].pos[0]));
+            TEST_ASSERT_EQUAL_UINT32(2u, g_rep[0].gap);
+            TEST_ASSERT_EQUAL_UINT32(508u, g_rep[0].last_seq);
+        }
+    }
+    /* a gap above max_gap still restarts: no report on the received frame */
+    pft_frame_t f = frame(9, 508u + 7u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dp_update(&dp, &f));
+    TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_pte_dp_reports(&dp, g_rep, PFT_PTE_DBT_MAX_TRACKS));
+}
+
 static void test_config_fields_checked(void)
 {
     pft_pte_dbt_config_t c;
@@ -236,5 +283,6 @@ int main(void)
     RUN_TEST(test_dbt_keeps_track_across_lost_frames);
     RUN_TEST(test_dbt_repeated_seq_refused_untouched);
     RUN_TEST(test_pte_keeps_track_across_lost_frames);
+    RUN_TEST(test_dp_keeps_batch_across_lost_frames);
     return UNITY_END();
 }

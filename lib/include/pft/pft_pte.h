@@ -122,7 +122,7 @@ typedef struct {
     uint8_t cfar_ref;        /**< CFAR reference cells per side, 1..PFT_PTE_MAX_CFAR_REF (default 16) */
     uint8_t cfar_guard;      /**< CFAR guard cells per side (default 2) */
     pft_real_t zeta_clip;    /**< |zeta| clamp, in (0, 1000] (default 20) */
-    pft_seq_mode_t seq_mode; /**< PFT_SEQ_IGNORE (default: every frame one period after the previous) or PFT_SEQ_USE: pft_frame_t.seq numbers the frames (docs/design.md, "Time, sequence numbers and lost frames"): a repeated or past seq is refused with PFT_ERR_SEQ (nothing changed); a gap of k periods, 1 < k <= max_gap, predicts the DBT's Kalman tracks and PTE-TBD's live tracks over k periods (PTE-TBD's window holds the k - 1 lost frames as missing frames) and restarts the batch of DP-TBD (ids go on); k > max_gap restarts every method. The *_update_real calls carry no seq: they count as the next frame */
+    pft_seq_mode_t seq_mode; /**< PFT_SEQ_IGNORE (default: every frame one period after the previous) or PFT_SEQ_USE: pft_frame_t.seq numbers the frames (docs/design.md, "Time, sequence numbers and lost frames"): a repeated or past seq is refused with PFT_ERR_SEQ (nothing changed); a gap of k periods, 1 < k <= max_gap, predicts the DBT's Kalman tracks and PTE-TBD's live tracks over k periods (the windows of PTE-TBD and DP-TBD hold the k - 1 lost frames as missing frames, zeta = 0: a missing stage adds nothing to a merit); k > max_gap restarts every method. The *_update_real calls carry no seq: they count as the next frame */
     uint16_t max_gap;        /**< largest gap predicted across, 1..PFT_SEQ_MAX_GAP (default PFT_SEQ_DEFAULT_GAP) */
 } pft_pte_input_t;
 
@@ -155,7 +155,7 @@ typedef struct {
     pft_real_t score;     /**< PTE: max_l T_l*; DP: path merit; DBT: peak zeta of the detection */
     uint32_t age;         /**< frames since the track started (0 at its first report) */
     uint32_t last_seq;    /**< seq of the frame of the report (its last update; the last pft_frame_t seq + 1 per *_update_real call after it, 0 before any numbered frame) */
-    uint32_t gap;         /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the first frame after init or reset and on a restart (a gap above max_gap; DP-TBD restarts on every gap) (an *_update_real call: 1) */
+    uint32_t gap;         /**< frame periods from the previous accepted frame to this one: the seq difference k with PFT_SEQ_USE (k - 1 frames lost), 1 with PFT_SEQ_IGNORE, 0 on the first frame after init or reset and on a restart (a gap above max_gap) (an *_update_real call: 1) */
     uint64_t last_timestamp_us; /**< timestamp_us of the last pft_frame_t fed */
 } pft_pte_report_t;
 
@@ -489,8 +489,10 @@ pft_status_t pft_pte_dp_reset(pft_pte_dp_t *dp);
  * replaces the reports (ids follow a path whose last cell stays within +-cancel cells of a
  * previous report). Work per frame: at most (max_targets + 1) DP passes of
  * K * cells * (2*gate0 + 1) * (2*gate1 + 1) steps. With in.seq_mode = PFT_SEQ_USE:
- * PFT_ERR_SEQ for a repeated or past seq (nothing changed); a gap of more than one period
- * restarts the batch on this frame (ids go on).
+ * PFT_ERR_SEQ for a repeated or past seq (nothing changed); a gap of k periods,
+ * 1 < k <= in.max_gap: the k - 1 lost frames take window slots with zeta = 0 (missing stages:
+ * a path moves over their periods and its merit gains nothing from them), then the batch runs
+ * as usual; k > in.max_gap restarts the batch on this frame (ids go on).
  */
 pft_status_t pft_pte_dp_update(pft_pte_dp_t *dp, const pft_frame_t *frame);
 /** Same with a frame given as n_range * n_doppler values in input units. */

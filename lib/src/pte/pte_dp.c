@@ -209,11 +209,21 @@ static pft_status_t update_(pft_pte_dp_t *dp, const pft_frame_t *frame, const pf
     if (st != PFT_OK) {
         return st; /* nothing touched */
     }
-    if (k != 1u) {
-        /* lost frames: the batch window restarts on this frame (ids go on) */
+    if (k == 0u) {
+        /* a gap above max_gap: the batch restarts on this frame (ids go on) */
         const uint16_t id = dp->next_id;
         (void)pft_pte_dp_reset(dp);
         dp->next_id = id;
+    } else {
+        /* k - 1 lost frames (docs/algorithms.md 5.7): each takes a ring slot with zeta = 0, the
+         * noise mean, so it is a missing stage of every path (its merit adds nothing) while
+         * the paths move over its period; more than K of them only clear the window */
+        const size_t cells = (size_t)dp->cfg.in.n_range * dp->cfg.in.n_doppler;
+        for (uint32_t f = 1u; f < k && f <= (uint32_t)dp->cfg.frames; ++f) {
+            (void)memset(pft_pte_ring_next_(&dp->ring), 0, cells * sizeof(pft_real_t));
+            pft_pte_ring_commit_(&dp->ring);
+        }
+        dp->frames_in += k - 1u;
     }
     st = pft_pte_push_(&dp->cfg.in, &dp->ring, dp->row, frame, z);
     if (st != PFT_OK) {
