@@ -2,6 +2,8 @@
 
 #include <random>
 
+#include "errors.hpp"
+
 namespace pft::host {
 
 FrameLoss parse_frame_loss(const Field &e)
@@ -34,6 +36,20 @@ std::vector<bool> lost_frame_mask(const FrameLoss &loss, int frames, uint64_t se
                 lost[static_cast<std::size_t>(k)] = true;
     }
     return lost;
+}
+
+SimLoss sim_lost_frames(const FrameLoss &loss, int frames, uint64_t seed, const std::string &format,
+                        const std::string &scenario_file)
+{
+    SimLoss l;
+    l.mask = lost_frame_mask(loss, frames, seed);
+    for (int k = 0; k < frames; ++k)
+        if (l.mask[static_cast<std::size_t>(k)])
+            l.numbers.push_back(k + 1);
+    if (!l.numbers.empty() && format != "pgm")
+        throw InputError(scenario_file + ": eval.drop_prob / eval.drop_frames lose frames, which only "
+                         "one file per frame can show: use --format pgm");
+    return l;
 }
 
 }  // namespace pft::host

@@ -3,6 +3,7 @@
 // draw the same frames for a seed. Kinds tbd and tbd_ir (docs/host_tools.md).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "json_field.hpp"
@@ -21,5 +22,15 @@ FrameLoss parse_frame_loss(const Field &eval);
 
 /** Which frames of a run are lost: index k is frame k + 1; the first frame is never lost. */
 std::vector<bool> lost_frame_mask(const FrameLoss &loss, int frames, uint64_t seed);
+
+/** The frames `pft sim` loses for a seed (no file for them; the reader sees a gap in the
+ *  numbers): the mask and their 1-based numbers. Losing frames needs one file per frame:
+ *  with another output format than "pgm" it is refused (InputError naming the scenario file). */
+struct SimLoss {
+    std::vector<bool> mask;
+    std::vector<int> numbers;
+};
+SimLoss sim_lost_frames(const FrameLoss &loss, int frames, uint64_t seed, const std::string &format,
+                        const std::string &scenario_file);
 
 }  // namespace pft::host

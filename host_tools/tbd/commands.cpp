@@ -711,14 +711,9 @@ public:
         Sequence q = simulate(s, seed);
         // frames lost on the way (eval.drop_prob / drop_frames, as `pft eval` loses them for
         // this seed): no file, so the reader sees a gap in the frame numbers
-        std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
-        json lost_list = json::array();
-        for (int k = 0; k < q.frames; ++k)
-            if (lost[static_cast<std::size_t>(k)])
-                lost_list.push_back(k + 1);
-        if (!lost_list.empty() && format != "pgm")
-            throw InputError(s.file + ": eval.drop_prob / eval.drop_frames lose frames, which only "
-                             "one file per frame can show: use --format pgm");
+        const SimLoss loss = sim_lost_frames(s.eval.loss, q.frames, seed, format, s.file);
+        const std::vector<bool> &lost = loss.mask;
+        const json lost_list = loss.numbers;
         long clipped = 0;
         Progress bar(static_cast<std::size_t>(q.frames), "sim", progress_wanted(o.progress));
         json side = format == "pgm" ? write_pgm_frames(s, q, o.out, clipped, bar, lost) : write_raw_frames(q, o.out, bar);

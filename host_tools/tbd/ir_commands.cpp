@@ -634,14 +634,9 @@ public:
         double t_sim = seconds_since(t0);
         // frames lost on the way (eval.drop_prob / drop_frames, as `pft eval` loses them for
         // this seed): no file, so the reader sees a gap in the frame numbers
-        const std::vector<bool> lost = lost_frame_mask(s.eval.loss, q.frames, seed);
-        json lost_list = json::array();
-        for (int k = 0; k < q.frames; ++k)
-            if (lost[static_cast<std::size_t>(k)])
-                lost_list.push_back(k + 1);
-        if (!lost_list.empty() && format != "pgm")
-            throw InputError(s.file + ": eval.drop_prob / eval.drop_frames lose frames, which only "
-                             "one file per frame can show: use --format pgm");
+        const SimLoss loss = sim_lost_frames(s.eval.loss, q.frames, seed, format, s.file);
+        const std::vector<bool> &lost = loss.mask;
+        const json lost_list = loss.numbers;
         json side = write_frames(s, q, o.out, format, bar, lost);
         bar.finish();
         write_ir_truth(join_path(o.out, "truth.csv"), q.truth);

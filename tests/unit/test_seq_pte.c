@@ -45,14 +45,20 @@ static pft_frame_t frame(int k, uint32_t seq)
     return f;
 }
 
+/* The input stage of every tracker here: NR range cells, the seq mode, max_gap 6. */
+static void set_input(pft_pte_input_t *in, pft_seq_mode_t mode)
+{
+    in->n_range = NR;
+    in->n_doppler = 1u;
+    in->seq_mode = mode;
+    in->max_gap = 6u;
+}
+
 static void init(pft_pte_dbt_t *b, pft_seq_mode_t mode)
 {
     pft_pte_dbt_config_t c;
     pft_pte_dbt_config_default(&c);
-    c.in.n_range = NR;
-    c.in.n_doppler = 1u;
-    c.in.seq_mode = mode;
-    c.in.max_gap = 6u;
+    set_input(&c.in, mode);
     size_t need = pft_pte_dbt_workspace_size(&c);
     TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_dbt_init(b, &c, g_work, need));
@@ -224,10 +230,7 @@ static void test_dp_keeps_batch_across_lost_frames(void)
 {
     pft_pte_dp_config_t c;
     pft_pte_dp_config_default(&c);
-    c.in.n_range = NR;
-    c.in.n_doppler = 1u;
-    c.in.seq_mode = PFT_SEQ_USE;
-    c.in.max_gap = 6u;
+    set_input(&c.in, PFT_SEQ_USE);
     c.frames = 5u;
     size_t need = pft_pte_dp_workspace_size(&c);
     TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_dwork));
