@@ -198,6 +198,13 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
  * time an operator reads them, and kept beside the frame in the ring; only the neighbourhood
  * of live tracks is ever computed. */
 
+/* Marks block blk of ring slot `slot` computed (one bit per block). */
+static inline void yflag_set_(pft_pte_t *p, uint32_t slot, int32_t blk)
+{
+    uint8_t *f = p->yflag + (size_t)slot * p->nyblk + (size_t)(blk >> 3);
+    *f = (uint8_t)(*f | (1u << (uint32_t)(blk & 7)));
+}
+
 static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
 {
     const int32_t q = p->yq;
@@ -221,7 +228,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
                             mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
             }
         }
-        p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+        yflag_set_(p, slot, blk);
         return;
     }
     for (; cell < c1; ++cell) {
@@ -247,7 +254,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             y[cell * q + ph] = acc;
         }
     }
-    p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+    yflag_set_(p, slot, blk);
 }
 
 /* ------------------------------------------------------------------- operator geometry */
@@ -536,17 +543,33 @@ static inline pft_real_t *bank_e_(const pft_pte_t *p, uint32_t ti, uint32_t bi, 
     return p->bsum + (((size_t)ti * p->nbank + bi) * PFT_PTE_NWIN_ + w) * p->nline;
 }
 
+/* Computes the blocks [b0, b1] of ring slot `slot` (back frames ago) not yet computed. */
+static void yrow_fill_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t b0, int32_t b1)
+{
+    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    for (int32_t blk = b0; blk <= b1; ++blk) {
+        if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
+            yblock_(p, slot, back, blk);
+        }
+    }
+}
+
 /* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
 static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
                                       int32_t i1)
 {
     const int32_t sh = p->yblk_shift;
     const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    const int32_t b0 = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq);
     const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / (YBLK_ * (int32_t)p->yq);
-    for (int32_t blk = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq); blk <= b1; ++blk) {
-        if (fl[blk] == 0u) {
-            yblock_(p, slot, back, blk);
-        }
+    /* one bit per block (bit blk & 7 of byte blk >> 3): up to 8 blocks tested at once in the
+     * two bytes from b0's (the bits use (nyblk + 7) / 8 of the nyblk >= 2 bytes of a slot, so
+     * the second byte is always inside the slot; bits of other blocks are masked off) */
+    const int32_t w0 = b0 >> 3;
+    const uint32_t bits = (uint32_t)fl[w0] | ((uint32_t)fl[w0 + 1] << 8);
+    const uint32_t m = ((2u << ((uint32_t)(b1 - b0) & 7u)) - 1u) << (uint32_t)(b0 & 7);
+    if (b1 - b0 >= 8 || (bits & m) != m) {
+        yrow_fill_(p, slot, back, b0, b1);
     }
     return p->yring + (size_t)slot * p->ny;
 }

@@ -138,7 +138,7 @@ struct pft_pte_s {
     pft_real_t *gw[2];           /* per-axis weight tables, PFT_PTE_GW_SIZE each (axis 1 only for range-Doppler) */
     pft_real_t *yring;           /* TABLE: matched responses, ring.len * ny */
     pft_real_t *gq;              /* TABLE: sum of g^2 of each response point minus gfull of its phase, ny */
-    uint8_t *yflag;              /* TABLE: computed blocks of 8 cells, ring.len * nyblk */
+    uint8_t *yflag;              /* TABLE: computed blocks of 8 cells, one bit each, ring.len * nyblk bytes */
     uint16_t nyblk;              /* TABLE: blocks per response row */
     pft_real_t ytap[8][PFT_PTE_MAX_TAPS]; /* TABLE: tap weights per grid phase */
     int16_t ytap_lo[8];          /* TABLE: first tap offset per phase (cells from floor(p)) */
