@@ -939,22 +939,38 @@ static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
     t->amp_var = pft_add(t->amp_var, p->cfg.q_amp);
 }
 
-/* Log prior -d^2 / (2 sc2) of every scan position of axis a, d = off + j c_step its distance
- * from the predicted end position (off: that of the first position). */
+/* Log prior -d^2 / (2 sc2) of the scan positions of axis a, d = off + j c_step their distance
+ * from the predicted end position (off: that of the first position), as a recurrence:
+ * -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k, so lc_{j+1} =
+ * lc_j + dl_j with lc_0 = -off^2 k, dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd. */
+typedef struct {
+    pft_real_t lc, dl, dd;
+} prior_rec_;
+
+static prior_rec_ prior_rec_of_(const pft_pte_t *p, uint32_t a, pft_real_t off)
+{
+    const pft_pte_axis_t *ap = &p->scr->ap[a];
+    const pft_real_t cs = p->cfg.c_step;
+    prior_rec_ r;
+    r.lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    r.dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
+    r.dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
+    return r;
+}
+
+/* The log prior of every scan position of axis a into lc[a] (EXACT; TABLE runs the recurrence
+ * inside the direction scan). */
 static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
 {
     pft_pte_scratch_t *s = p->scr;
     const pft_pte_axis_t *ap = &s->ap[a];
-    /* -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k: lc_{j+1} =
-     * lc_j + dl_j with dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd */
-    const pft_real_t cs = p->cfg.c_step;
-    pft_real_t lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
-    pft_real_t dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
-    pft_real_t dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
+    prior_rec_ r = prior_rec_of_(p, a, off);
+    pft_real_t lc = r.lc;
+    pft_real_t dl = r.dl;
     for (int32_t j = 0; j < ap->ns; ++j) {
         s->lc[a][j] = lc;
         lc = pft_add(lc, dl);
-        dl = pft_add(dl, dd);
+        dl = pft_add(dl, r.dd);
     }
 }
 
@@ -1080,7 +1096,9 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     memset(ap, 0, 2u * sizeof(*ap));
     for (uint32_t a = 0; a < na; ++a) {
         axis_setup_(p, t->x[a], t->P[a], a, M, &ap[a]);
-        scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
+        if (p->yq == 0u) { /* TABLE: per direction, in the direction scan */
+            scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
+        }
     }
     g->reach64[0] = 0;
     g->reach64[1] = 0;
@@ -1204,14 +1222,30 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
  * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
  * position per axis. */
 static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
-                              const pft_real_t *G, const pft_real_t c0[2])
+                              const pft_real_t *G, const pft_real_t c0[2], const prior_rec_ *pr)
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
     dir_best_ r;
     pft_real_t lmax = PFT_REAL_MIN;
     r.jb = 0;
-    if (g->n1 == 1) {
+    if (pr != NULL) {
+        /* TABLE (range-time): the log prior by its recurrence (the same additions as
+         * scan_prior_; the Doppler term lc[1][0] is 0 and adding it changes no bit) */
+        pft_real_t lc = pr->lc;
+        pft_real_t dl = pr->dl;
+        for (int32_t j = 0; j < n0; ++j) {
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(lc, pft_mul(t2, PFT_C(0.5)));
+            lc = pft_add(lc, dl);
+            dl = pft_add(dl, pr->dd);
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
+        }
+    } else if (g->n1 == 1) {
         /* one scan axis (range-time): the same sums without the index split */
         const pft_real_t lc1 = s->lc[1][0];
         for (int32_t j = 0; j < n0; ++j) {
@@ -1461,18 +1495,21 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         const pft_real_t *G;
         dir_sums_(p, &g, &d, li, 0u, &E, &G);
         pft_real_t c0[2] = {s->ap[0].c0, s->ap[1].c0};
+        prior_rec_ pr;
+        const prior_rec_ *prp = NULL;
         if (p->yq > 0u) {
             /* TABLE: the scan positions of the direction's lines at this frame */
             c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
-            scan_prior_(p, 0u, s->boff[li]);
+            pr = prior_rec_of_(p, 0u, s->boff[li]);
+            prp = &pr;
         }
-        dir_best_ b = dir_best_of_(p, &g, E, G, c0);
+        dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);
         t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
         if (mt) {
             /* the same lines over the short window (the slope entry's second window) */
             dir_sums_(p, &g, &d, li, 1u, &E, &G);
-            dir_best_ bs = dir_best_of_(p, &g, E, G, c0);
+            dir_best_ bs = dir_best_of_(p, &g, E, G, c0, prp);
             t2short = pft_max(t2short, bs.t2s);
         }
     }
