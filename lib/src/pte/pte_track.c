@@ -1270,12 +1270,13 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             }
         }
     }
-    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
+    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway); the best
+     * position's term is exp(0) = 1 exactly (both builds), added in its place without the call */
     pft_real_t ssum = PFT_C(0.0);
     const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
         if (p->sL[j] > lcut) {
-            ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+            ssum = pft_add(ssum, j == r.jb ? PFT_C(1.0) : pft_exp(pft_sub(p->sL[j], lmax)));
         }
     }
     r.lmax = lmax;
@@ -1373,7 +1374,10 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     pft_real_t tot = PFT_C(0.0);
     for (int32_t li = 0; li < ndir; ++li) {
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
-        dir[li].w = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        /* the best direction: exp(0) = 1 exactly and 1 * ssum = ssum, without the calls */
+        dir[li].w = dl > PFT_C(-12.0)
+                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(pft_exp(dl), p->dir[li].ssum))
+                        : PFT_C(0.0);
         tot = pft_add(tot, dir[li].w);
     }
     const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
