@@ -87,7 +87,11 @@ static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
     int64_t v = (int64_t)a * b;
     return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
 }
+/* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
+ * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
+static inline pft_real_t half_t2_(pft_real_t t2) { return (t2 + 1) >> 1; }
 #else
+static inline pft_real_t half_t2_(pft_real_t t2) { return t2 * 0.5f; }
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
 typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
@@ -1236,7 +1240,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
         pft_real_t dl = pr->dl;
         for (int32_t j = 0; j < n0; ++j) {
             pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(lc, pft_mul(t2, PFT_C(0.5)));
+            pft_real_t ls = pft_add(lc, half_t2_(t2));
             lc = pft_add(lc, dl);
             dl = pft_add(dl, pr->dd);
             p->sL[j] = ls;
@@ -1250,7 +1254,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
         const pft_real_t lc1 = s->lc[1][0];
         for (int32_t j = 0; j < n0; ++j) {
             pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), pft_mul(t2, PFT_C(0.5)));
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), half_t2_(t2));
             p->sL[j] = ls;
             if (ls > lmax) {
                 lmax = ls;
@@ -1262,7 +1266,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
              * the product saturates at 32768 before the clamp, with the same result) */
             pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), half_t2_(t2));
             p->sL[j] = ls;
             if (ls > lmax) {
                 lmax = ls;
