@@ -171,6 +171,7 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
             g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
         }
         p->gfull[ph] = g2;
+        p->gfull[ph + q] = g2; /* a second period: gfull[r + o] for r, o < q needs no wrap */
     }
     /* per response point, its own normaliser minus the interior one of its phase (0 in the
      * interior): the correction bank_g_ adds where a line leaves the interior. Plain
@@ -634,7 +635,7 @@ static inline void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w,
             continue; /* a lost frame: no term */
         }
         for (int32_t r = 0; r < q; ++r) {
-            const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
+            const pft_real_t g = p->gfull[r + o];
             gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
         }
     }
@@ -674,13 +675,13 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
          * lost: tracks step on received frames only) */
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
-            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q];
+            gr[r] = gr[r] + p->gfull[r + rn];
         }
     } else if (rn != ro) {
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
-            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
-                    p->gfull[r + ro < q ? r + ro : r + ro - q];
+            gr[r] = gr[r] + p->gfull[r + rn] -
+                    p->gfull[r + ro];
         }
     } else {
         /* the same residue in and out: the terms cancel */

@@ -151,7 +151,7 @@ struct pft_pte_s {
     uint8_t yq;                  /* TABLE: grid points per cell (0: EXACT mode) */
     pft_pte_bank_t *bank;        /* TABLE: slope entries, max_tracks * nbank */
     pft_real_t *bsum;            /* TABLE: their E sums, max_tracks * nbank * NWIN * nline */
-    pft_real_t gfull[8];         /* TABLE: normaliser of an interior grid point per phase */
+    pft_real_t gfull[16];        /* TABLE: normaliser of an interior grid point per phase, twice */
     int32_t yin_lo, yin_hi;      /* TABLE: interior grid points (gq = gfull) */
     int64_t lat_u;               /* TABLE: lattice step of the slopes, 1/65536 grid points per frame */
     int64_t lat_t;               /* TABLE: the same as a scaled slope (SV r'), 1/65536 */
