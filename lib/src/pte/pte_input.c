@@ -217,7 +217,12 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
 #else
     const pft_real_t nclip = pft_neg(clip);
     for (uint32_t u = 0; u < in->n_range; ++u) {
-        out[u] = pft_clamp(pft_mul(f32_in_(row + 4u * u), inv), nclip, clip);
+        /* pft_clamp(v, -clip, clip) as a max then a min (a form the compiler vectorises): the
+         * same value for every v of a checked frame (no NaN; +-inf clamp alike), and the same
+         * sign of zero because clip > 0 (config check) */
+        pft_real_t v = pft_mul(f32_in_(row + 4u * u), inv);
+        v = v > nclip ? v : nclip;
+        out[u] = v < clip ? v : clip;
     }
 #endif
 }

@@ -87,7 +87,11 @@ static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
     int64_t v = (int64_t)a * b;
     return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
 }
+/* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
+ * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
+static inline pft_real_t half_t2_(pft_real_t t2) { return (t2 + 1) >> 1; }
 #else
+static inline pft_real_t half_t2_(pft_real_t t2) { return t2 * 0.5f; }
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
 typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
@@ -167,6 +171,7 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
             g2 = pft_add(g2, pft_sq(p->ytap[ph][k]));
         }
         p->gfull[ph] = g2;
+        p->gfull[ph + q] = g2; /* a second period: gfull[r + o] for r, o < q needs no wrap */
     }
     /* per response point, its own normaliser minus the interior one of its phase (0 in the
      * interior): the correction bank_g_ adds where a line leaves the interior. Plain
@@ -198,6 +203,13 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
  * time an operator reads them, and kept beside the frame in the ring; only the neighbourhood
  * of live tracks is ever computed. */
 
+/* Marks block blk of ring slot `slot` computed (one bit per block). */
+static inline void yflag_set_(pft_pte_t *p, uint32_t slot, int32_t blk)
+{
+    uint8_t *f = p->yflag + (size_t)slot * p->nyblk + (size_t)(blk >> 3);
+    *f = (uint8_t)(*f | (1u << (uint32_t)(blk & 7)));
+}
+
 static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
 {
     const int32_t q = p->yq;
@@ -221,7 +233,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
                             mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
             }
         }
-        p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+        yflag_set_(p, slot, blk);
         return;
     }
     for (; cell < c1; ++cell) {
@@ -247,7 +259,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             y[cell * q + ph] = acc;
         }
     }
-    p->yflag[(size_t)slot * p->nyblk + (size_t)blk] = 1u;
+    yflag_set_(p, slot, blk);
 }
 
 /* ------------------------------------------------------------------- operator geometry */
@@ -536,17 +548,33 @@ static inline pft_real_t *bank_e_(const pft_pte_t *p, uint32_t ti, uint32_t bi, 
     return p->bsum + (((size_t)ti * p->nbank + bi) * PFT_PTE_NWIN_ + w) * p->nline;
 }
 
+/* Computes the blocks [b0, b1] of ring slot `slot` (back frames ago) not yet computed. */
+static void yrow_fill_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t b0, int32_t b1)
+{
+    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    for (int32_t blk = b0; blk <= b1; ++blk) {
+        if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
+            yblock_(p, slot, back, blk);
+        }
+    }
+}
+
 /* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
 static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
                                       int32_t i1)
 {
     const int32_t sh = p->yblk_shift;
     const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    const int32_t b0 = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq);
     const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / (YBLK_ * (int32_t)p->yq);
-    for (int32_t blk = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq); blk <= b1; ++blk) {
-        if (fl[blk] == 0u) {
-            yblock_(p, slot, back, blk);
-        }
+    /* one bit per block (bit blk & 7 of byte blk >> 3): up to 8 blocks tested at once in the
+     * two bytes from b0's (the bits use (nyblk + 7) / 8 of the nyblk >= 2 bytes of a slot, so
+     * the second byte is always inside the slot; bits of other blocks are masked off) */
+    const int32_t w0 = b0 >> 3;
+    const uint32_t bits = (uint32_t)fl[w0] | ((uint32_t)fl[w0 + 1] << 8);
+    const uint32_t m = ((2u << ((uint32_t)(b1 - b0) & 7u)) - 1u) << (uint32_t)(b0 & 7);
+    if (b1 - b0 >= 8 || (bits & m) != m) {
+        yrow_fill_(p, slot, back, b0, b1);
     }
     return p->yring + (size_t)slot * p->ny;
 }
@@ -607,7 +635,7 @@ static inline void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w,
             continue; /* a lost frame: no term */
         }
         for (int32_t r = 0; r < q; ++r) {
-            const pft_real_t g = p->gfull[r + o < q ? r + o : r + o - q];
+            const pft_real_t g = p->gfull[r + o];
             gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
         }
     }
@@ -647,13 +675,13 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
          * lost: tracks step on received frames only) */
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
-            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q];
+            gr[r] = gr[r] + p->gfull[r + rn];
         }
     } else if (rn != ro) {
         pft_real_t *gr = e->gres[w];
         for (int32_t r = 0; r < q; ++r) {
-            gr[r] = gr[r] + p->gfull[r + rn < q ? r + rn : r + rn - q] -
-                    p->gfull[r + ro < q ? r + ro : r + ro - q];
+            gr[r] = gr[r] + p->gfull[r + rn] -
+                    p->gfull[r + ro];
         }
     } else {
         /* the same residue in and out: the terms cancel */
@@ -916,22 +944,38 @@ static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
     t->amp_var = pft_add(t->amp_var, p->cfg.q_amp);
 }
 
-/* Log prior -d^2 / (2 sc2) of every scan position of axis a, d = off + j c_step its distance
- * from the predicted end position (off: that of the first position). */
+/* Log prior -d^2 / (2 sc2) of the scan positions of axis a, d = off + j c_step their distance
+ * from the predicted end position (off: that of the first position), as a recurrence:
+ * -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k, so lc_{j+1} =
+ * lc_j + dl_j with lc_0 = -off^2 k, dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd. */
+typedef struct {
+    pft_real_t lc, dl, dd;
+} prior_rec_;
+
+static prior_rec_ prior_rec_of_(const pft_pte_t *p, uint32_t a, pft_real_t off)
+{
+    const pft_pte_axis_t *ap = &p->scr->ap[a];
+    const pft_real_t cs = p->cfg.c_step;
+    prior_rec_ r;
+    r.lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    r.dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
+    r.dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
+    return r;
+}
+
+/* The log prior of every scan position of axis a into lc[a] (EXACT; TABLE runs the recurrence
+ * inside the direction scan). */
 static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
 {
     pft_pte_scratch_t *s = p->scr;
     const pft_pte_axis_t *ap = &s->ap[a];
-    /* -(off + j cs)^2 k has the constant second difference dd = -2 cs^2 k: lc_{j+1} =
-     * lc_j + dl_j with dl_0 = -(2 off cs + cs^2) k and dl_{j+1} = dl_j + dd */
-    const pft_real_t cs = p->cfg.c_step;
-    pft_real_t lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
-    pft_real_t dd = pft_neg(pft_mul_i(pft_mul(pft_sq(cs), ap->lck), 2));
-    pft_real_t dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), pft_sq(cs)), ap->lck));
+    prior_rec_ r = prior_rec_of_(p, a, off);
+    pft_real_t lc = r.lc;
+    pft_real_t dl = r.dl;
     for (int32_t j = 0; j < ap->ns; ++j) {
         s->lc[a][j] = lc;
         lc = pft_add(lc, dl);
-        dl = pft_add(dl, dd);
+        dl = pft_add(dl, r.dd);
     }
 }
 
@@ -1057,7 +1101,9 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     memset(ap, 0, 2u * sizeof(*ap));
     for (uint32_t a = 0; a < na; ++a) {
         axis_setup_(p, t->x[a], t->P[a], a, M, &ap[a]);
-        scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
+        if (p->yq == 0u) { /* TABLE: per direction, in the direction scan */
+            scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
+        }
     }
     g->reach64[0] = 0;
     g->reach64[1] = 0;
@@ -1181,19 +1227,35 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
  * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
  * position per axis. */
 static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
-                              const pft_real_t *G, const pft_real_t c0[2])
+                              const pft_real_t *G, const pft_real_t c0[2], const prior_rec_ *pr)
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
     dir_best_ r;
     pft_real_t lmax = PFT_REAL_MIN;
     r.jb = 0;
-    if (g->n1 == 1) {
+    if (pr != NULL) {
+        /* TABLE (range-time): the log prior by its recurrence (the same additions as
+         * scan_prior_; the Doppler term lc[1][0] is 0 and adding it changes no bit) */
+        pft_real_t lc = pr->lc;
+        pft_real_t dl = pr->dl;
+        for (int32_t j = 0; j < n0; ++j) {
+            pft_real_t t2 = sq_over_(E[j], G[j]);
+            pft_real_t ls = pft_add(lc, half_t2_(t2));
+            lc = pft_add(lc, dl);
+            dl = pft_add(dl, pr->dd);
+            p->sL[j] = ls;
+            if (ls > lmax) {
+                lmax = ls;
+                r.jb = j;
+            }
+        }
+    } else if (g->n1 == 1) {
         /* one scan axis (range-time): the same sums without the index split */
         const pft_real_t lc1 = s->lc[1][0];
         for (int32_t j = 0; j < n0; ++j) {
             pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), pft_mul(t2, PFT_C(0.5)));
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j], lc1), half_t2_(t2));
             p->sL[j] = ls;
             if (ls > lmax) {
                 lmax = ls;
@@ -1205,7 +1267,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             /* max(T, 0)^2 = E (E / G) for E > 0, clamped at 150^2 (no square root here; q16:
              * the product saturates at 32768 before the clamp, with the same result) */
             pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), pft_mul(t2, PFT_C(0.5)));
+            pft_real_t ls = pft_add(pft_add(s->lc[0][j % n0], s->lc[1][j / n0]), half_t2_(t2));
             p->sL[j] = ls;
             if (ls > lmax) {
                 lmax = ls;
@@ -1213,12 +1275,13 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             }
         }
     }
-    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway) */
+    /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway); the best
+     * position's term is exp(0) = 1 exactly (both builds), added in its place without the call */
     pft_real_t ssum = PFT_C(0.0);
     const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
         if (p->sL[j] > lcut) {
-            ssum = pft_add(ssum, pft_exp(pft_sub(p->sL[j], lmax)));
+            ssum = pft_add(ssum, j == r.jb ? PFT_C(1.0) : pft_exp(pft_sub(p->sL[j], lmax)));
         }
     }
     r.lmax = lmax;
@@ -1316,7 +1379,10 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     pft_real_t tot = PFT_C(0.0);
     for (int32_t li = 0; li < ndir; ++li) {
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
-        dir[li].w = dl > PFT_C(-12.0) ? pft_mul(pft_exp(dl), p->dir[li].ssum) : PFT_C(0.0);
+        /* the best direction: exp(0) = 1 exactly and 1 * ssum = ssum, without the calls */
+        dir[li].w = dl > PFT_C(-12.0)
+                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(pft_exp(dl), p->dir[li].ssum))
+                        : PFT_C(0.0);
         tot = pft_add(tot, dir[li].w);
     }
     const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
@@ -1438,18 +1504,21 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         const pft_real_t *G;
         dir_sums_(p, &g, &d, li, 0u, &E, &G);
         pft_real_t c0[2] = {s->ap[0].c0, s->ap[1].c0};
+        prior_rec_ pr;
+        const prior_rec_ *prp = NULL;
         if (p->yq > 0u) {
             /* TABLE: the scan positions of the direction's lines at this frame */
             c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
-            scan_prior_(p, 0u, s->boff[li]);
+            pr = prior_rec_of_(p, 0u, s->boff[li]);
+            prp = &pr;
         }
-        dir_best_ b = dir_best_of_(p, &g, E, G, c0);
+        dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);
         t2max = pft_max(t2max, b.t2s);
         dir_update_(p, t, &g, &d, &b, &p->dir[li]);
         if (mt) {
             /* the same lines over the short window (the slope entry's second window) */
             dir_sums_(p, &g, &d, li, 1u, &E, &G);
-            dir_best_ bs = dir_best_of_(p, &g, E, G, c0);
+            dir_best_ bs = dir_best_of_(p, &g, E, G, c0, prp);
             t2short = pft_max(t2short, bs.t2s);
         }
     }

@@ -138,7 +138,7 @@ struct pft_pte_s {
     pft_real_t *gw[2];           /* per-axis weight tables, PFT_PTE_GW_SIZE each (axis 1 only for range-Doppler) */
     pft_real_t *yring;           /* TABLE: matched responses, ring.len * ny */
     pft_real_t *gq;              /* TABLE: sum of g^2 of each response point minus gfull of its phase, ny */
-    uint8_t *yflag;              /* TABLE: computed blocks of 8 cells, ring.len * nyblk */
+    uint8_t *yflag;              /* TABLE: computed blocks of 8 cells, one bit each, ring.len * nyblk bytes */
     uint16_t nyblk;              /* TABLE: blocks per response row */
     pft_real_t ytap[8][PFT_PTE_MAX_TAPS]; /* TABLE: tap weights per grid phase */
     int16_t ytap_lo[8];          /* TABLE: first tap offset per phase (cells from floor(p)) */
@@ -151,7 +151,7 @@ struct pft_pte_s {
     uint8_t yq;                  /* TABLE: grid points per cell (0: EXACT mode) */
     pft_pte_bank_t *bank;        /* TABLE: slope entries, max_tracks * nbank */
     pft_real_t *bsum;            /* TABLE: their E sums, max_tracks * nbank * NWIN * nline */
-    pft_real_t gfull[8];         /* TABLE: normaliser of an interior grid point per phase */
+    pft_real_t gfull[16];        /* TABLE: normaliser of an interior grid point per phase, twice */
     int32_t yin_lo, yin_hi;      /* TABLE: interior grid points (gq = gfull) */
     int64_t lat_u;               /* TABLE: lattice step of the slopes, 1/65536 grid points per frame */
     int64_t lat_t;               /* TABLE: the same as a scaled slope (SV r'), 1/65536 */
