@@ -268,7 +268,10 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
             for (uint32_t c = 0; c < cfg->width; ++c) {
                 int16_t v;
                 memcpy(&v, src + 2u * c, 2u);
-                row[c] = v == PFT_RES16_MASKED ? PFT_C(0.0) : pft_kres16_(v);
+                /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop
+                 * vectorises in both builds) */
+                const int32_t keep = v != PFT_RES16_MASKED ? (int32_t)1 : (int32_t)0;
+                row[c] = pft_kres16_((int16_t)((int32_t)v * keep));
             }
         }
         return;
