@@ -369,6 +369,95 @@ static void test_no_evidence_masked_and_raise(void)
     TEST_ASSERT_INT16_WITHIN(10, 256, out_of(&c)[0]);
 }
 
+/* Reference of one update without the running mean, written from docs/algorithms.md 9.9 with
+ * plain loops: the square's sum over the former map with the edges replicated, the output
+ * r / sqrt(mean) where the sum exceeds thr times the area, the map moved towards the square of
+ * the residual by a rounded a (t - m). */
+static uint32_t ref_isqrt(uint64_t v)
+{
+    uint64_t r = 0u;
+    while ((r + 1u) * (r + 1u) <= v) {
+        r += 1u;
+    }
+    return (uint32_t)r;
+}
+
+static int32_t ref_div(int32_t n, int32_t d)
+{
+    const int32_t q = ((n < 0 ? -n : n) + d / 2) / d;
+    return n < 0 ? -q : q;
+}
+
+static uint16_t g_m0[NPIX];
+
+static void test_row_passes_match_reference(void)
+{
+    static const uint8_t blurs[3] = {0u, 2u, PFT_PRE_CLUTTER_MAX_BLUR};
+    for (uint32_t bi = 0u; bi < 3u; ++bi) {
+        pft_pre_clutter_config_t cfg;
+        pft_pre_clutter_config_default(&cfg);
+        cfg.blur = blurs[bi];
+        pft_pre_clutter_t c;
+        init_map(&c, &cfg);
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = noise_q88();
+        }
+        pft_frame_t f = res_frame(1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        /* clutter at the corners, on the edges and inside */
+        static const uint32_t px[7][2] = {{0u, 0u},  {W - 1u, H - 1u}, {W - 1u, 0u}, {20u, 0u},
+                                          {0u, 30u}, {30u, 20u},       {W - 2u, 25u}};
+        for (uint32_t k = 0u; k < 7u; ++k) {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, px[k][0], px[k][1], 30000u));
+        }
+        memcpy(g_m0, c.m, sizeof g_m0);
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = (int16_t)(((i * 7919) % 8001) - 4000); /* -4000 .. 4000: up to 15.6 sigma */
+        }
+        g_res[3 * W + 1] = PFT_RES16_MASKED;
+        g_res[0] = PFT_RES16_MASKED + 1; /* the most negative residual */
+        f = res_frame(2u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        const int16_t *o = out_of(&c);
+        const int32_t b = (int32_t)cfg.blur;
+        const uint32_t area = (uint32_t)((2 * b + 1) * (2 * b + 1));
+        const uint32_t a = 32768u; /* max(alpha, 1/2) at the second frame */
+        uint32_t n_scored = 0u;
+        for (int32_t y = 0; y < H; ++y) {
+            for (int32_t x = 0; x < W; ++x) {
+                uint32_t sum = 0u;
+                for (int32_t dy = -b; dy <= b; ++dy) {
+                    for (int32_t dx = -b; dx <= b; ++dx) {
+                        const int32_t yy = y + dy < 0 ? 0 : (y + dy >= H ? H - 1 : y + dy);
+                        const int32_t xx = x + dx < 0 ? 0 : (x + dx >= W ? W - 1 : x + dx);
+                        sum += g_m0[yy * W + xx];
+                    }
+                }
+                const int32_t v = g_res[y * W + x];
+                const uint16_t m0 = g_m0[y * W + x];
+                if (v == PFT_RES16_MASKED) {
+                    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, o[y * W + x]);
+                    TEST_ASSERT_EQUAL_UINT16(m0, c.m[y * W + x]);
+                    continue;
+                }
+                int32_t want = v;
+                if (sum > 2048u * area) {
+                    const uint32_t mm = (sum + area / 2u) / area;
+                    want = ref_div(v * 1024, (int32_t)ref_isqrt((uint64_t)mm << 10));
+                    ++n_scored;
+                }
+                TEST_ASSERT_EQUAL_INT16((int16_t)want, o[y * W + x]);
+                const int64_t sq = (int64_t)v * v;
+                const int64_t t = (sq + 32) / 64 > 65535 ? 65535 : (sq + 32) / 64;
+                const int64_t d = t - (int64_t)m0;
+                const int64_t q = ((int64_t)a * (d < 0 ? -d : d) + 32768) / 65536;
+                TEST_ASSERT_EQUAL_UINT16((uint16_t)(m0 + (d < 0 ? -q : q)), c.m[y * W + x]);
+            }
+        }
+        TEST_ASSERT_TRUE(n_scored > 7u); /* the clutter squares were scored */
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -379,5 +468,6 @@ int main(void)
     RUN_TEST(test_mean_removes_offset);
     RUN_TEST(test_map_moves_with_scene);
     RUN_TEST(test_no_evidence_masked_and_raise);
+    RUN_TEST(test_row_passes_match_reference);
     return UNITY_END();
 }

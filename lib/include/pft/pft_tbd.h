@@ -266,6 +266,10 @@ pft_real_t pft_tbd_meas_llr(const pft_tbd_meas_t *m, const pft_real_t *img, pft_
 
 /** Largest half-size accepted by pft_tbd_meas_add_psf. */
 #define PFT_TBD_MAX_PSF_HALF (2u * PFT_TBD_MAX_WINDOW)
+/** @cond internal */
+/* Reals the manager saves per track while its PSF is subtracted from the frame in place. */
+#define PFT_TBD_PSF_SAVE_REALS_ ((2u * PFT_TBD_MAX_PSF_HALF + 1u) * (2u * PFT_TBD_MAX_PSF_HALF + 1u))
+/** @endcond */
 
 /**
  * img += h(c, r; x, y, intensity) over the (2 half + 1)^2 pixels around (round(x/dx),
@@ -392,7 +396,7 @@ typedef struct {
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
      PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
      PFT_TBD_EVENT_BYTES_(max_targets) +                                                        \
-     PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)))
+     PFT_WS_ROUND((size_t)(max_targets) * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t)))
 
 /** @cond internal */
 #define PFT_TBD_PEAK_BYTES_(w, peaks)                                                           \

@@ -18,7 +18,9 @@
  *   whitened (noise-normalised) window: a sum_ij tx_i ty_j z_ij - a^2/2 (sum tx^2)(sum ty^2).
  * - pft_kmulq_: a b rounded (ties up), saturated: a cheaper pft_mul for products of proven
  *   range; pft_kmulr_ the same without saturation where the caller proves the range;
- *   pft_kspread_: a position difference limited (q16) so that its square fits.
+ *   pft_kspread_: a position difference limited (q16) so that its square fits;
+ *   pft_kmula_, pft_kaddr_: pft_mul and pft_add without saturation (the same bits where the
+ *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly.
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  */
 #ifndef PFT_CORE_KERN_INT_H
@@ -160,6 +162,18 @@ static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b)
 {
     return (pft_real_t)(((int64_t)a * b + 32768) >> 16);
 }
+
+/* a b rounded to nearest, ties away from zero (pft_mul's rounding, so the same bits as
+ * pft_mul) without saturation, for |a b| < 2^46 (the caller proves it). */
+static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b)
+{
+    const int64_t p = (int64_t)a * b;
+    return (pft_real_t)((p + (p >= 0 ? (int64_t)32768 : (int64_t)32767)) >> 16);
+}
+/* a + b without saturation (pft_add's bits where the caller proves |a + b| <= INT32_MAX). */
+static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
+/* A RES16 value (Q8.8 sigma) as a real, exactly (res / 256). */
+static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)((int32_t)res * 256); }
 
 /* An F32 pixel as a real: pft_from_f32 (q16: the IEEE decoding). */
 static inline pft_real_t pft_kfrom_f32_(float v) { return pft_from_f32(v); }
@@ -312,6 +326,9 @@ static inline void pft_ktaps_(const pft_real_t (*tab)[8], pft_kfrac_t g, pft_rea
 
 static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b) { return a * b; }
+static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
+static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)res * 0.00390625f; }
 static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
 /* pft_from_f32 is the identity in the float build: no call per pixel. */
 static inline pft_real_t pft_kfrom_f32_(float v) { return v; }

@@ -248,16 +248,25 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
     /* horizontal: sum (box) or largest value over 2 b + 1 columns, edges replicated */
     uint32_t *hs = c->hs;
     if (c->cfg.box) {
-        uint32_t acc = 0u;
-        for (int32_t k = -b; k <= b; ++k) {
-            acc += vs[k < 0 ? 0 : (k >= w ? w - 1 : k)];
+        /* interior columns b .. w - b - 1: the 2 b + 1 terms summed directly, one plain
+         * (vectorisable) pass per term; the same sums as the running box of the edges */
+        const int32_t xi0 = b, xi1 = w - b > b ? w - b : b;
+        for (int32_t x = xi0; x < xi1; ++x) {
+            hs[x] = vs[x - b];
         }
-        for (int32_t x = 0; x < w; ++x) {
+        for (int32_t k = -b + 1; k <= b; ++k) {
+            for (int32_t x = xi0; x < xi1; ++x) {
+                hs[x] += vs[x + k];
+            }
+        }
+        /* the edge columns: the same sum with the columns beyond the edge replicated */
+        for (int32_t e = 0; e < 2 * b; ++e) {
+            const int32_t x = e < b ? e : xi1 + (e - b); /* columns 0 .. b - 1, w - b .. w - 1 */
+            uint32_t acc = 0u;
+            for (int32_t k = -b; k <= b; ++k) {
+                acc += vs[x + k < 0 ? 0 : (x + k >= w ? w - 1 : x + k)];
+            }
             hs[x] = acc;
-            /* slide: add column x + b + 1, drop column x - b (both replicated at the edges) */
-            const int32_t xa = x + b + 1, xd = x - b;
-            acc += vs[xa >= w ? w - 1 : xa];
-            acc -= vs[xd < 0 ? 0 : xd];
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
@@ -268,6 +277,43 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
             }
             hs[x] = acc;
         }
+    }
+}
+
+/* Row y without the running mean (the default): the same values as the general loop of
+ * pft_pre_clutter_update in three plain passes. The output is the residual itself except
+ * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
+ * value is within +-PFT_PRE_RMAX_ already); the map's update runs on every pixel and is kept
+ * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535 and
+ * a |t - m| + 32768 < 2^32 for a <= 2^16 (cl_scale_ in 32 bits). */
+static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
+                          int32_t w, uint32_t a, uint32_t thr, uint32_t area)
+{
+    memcpy(o, r, (size_t)w * 2u);
+    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
+    for (int32_t x = 0; x < w; ++x) {
+        any |= hs[x] > thr ? 1u : 0u;
+    }
+    for (int32_t x = 0; any != 0u && x < w; ++x) {
+        const int32_t v = r[x];
+        if (hs[x] > thr && v != PFT_RES16_MASKED) {
+            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
+            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
+            o[x] = (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+        }
+    }
+    for (int32_t x = 0; x < w; ++x) {
+        const int32_t v = r[x];
+        const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
+        const uint32_t sq = ac * ac;                    /* <= 2^30 */
+        /* sq >= 2^22 (CL_SQMAX_) gives (sq + 32) >> 6 >= 65536: the clamp alone is the
+         * general loop's two tests */
+        const uint32_t t0 = (sq + 32u) >> 6;
+        const uint32_t t = t0 > CL_MMAX_ ? CL_MMAX_ : t0;
+        const uint32_t m = mrow[x];
+        const uint32_t q = (a * (t >= m ? t - m : m - t) + 32768u) >> 16;
+        const uint32_t nm = t >= m ? m + q : m - q; /* between m and t: no clamp needed */
+        mrow[x] = v == PFT_RES16_MASKED ? (uint16_t)m : (uint16_t)nm;
     }
 }
 
@@ -322,6 +368,10 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
         const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
         int16_t *o = c->out + (size_t)y * (size_t)w;
         uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
+        if (mu == NULL) {
+            cl_row_plain_(r, o, mrow, c->hs, w, a, thr, area);
+            continue;
+        }
         for (int32_t x = 0; x < w; ++x) {
             const int32_t v = r[x];
             if (v == PFT_RES16_MASKED) {

@@ -43,7 +43,8 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         tf->kind = cfg->kind;
         pft_tbd_particles_carve_(tf, ws);
     }
-    res = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
+    res = (pft_real_t *)pft_ws_take(ws, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ *
+                                            sizeof(pft_real_t));
     if (cfg->birth_peaks > 0u) {
         /* after every other buffer: the layout without peaks is unchanged */
         peak_rows = (pft_real_t *)pft_ws_take(ws, 6u * (size_t)cfg->width * sizeof(pft_real_t));
@@ -93,7 +94,7 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
         t->tracks[k].tab = t->tab;
     }
     memset(t->img, 0, nimg * sizeof(pft_real_t));
-    memset(t->res, 0, nimg * sizeof(pft_real_t));
+    memset(t->res, 0, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t));
     memset(t->mask, 0, npix);
     memset(t->cand, 0, npix * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
@@ -189,9 +190,13 @@ static uint8_t psf_half_(const pft_tbd_config_t *cfg)
     return (uint8_t)(cfg->window + cfg->residual_margin);
 }
 
-/* res = img on the pixels subtract_psf_(.., x, y, .., half) touched. */
-static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft_real_t *img,
-                         pft_real_t x, pft_real_t y, uint8_t half)
+/* The pixels subtract_psf_(.., x, y, .., half) touches: the window grown to half-size half,
+ * clipped to the image (at most (2 PFT_TBD_MAX_PSF_HALF + 1)^2 pixels). With restore false
+ * they are copied from img into save (one slot of t->res), with restore true back from save:
+ * the tracks' PSFs are subtracted from img in place and put back exactly, so the manager
+ * holds no second full frame. */
+static void psf_save_(const pft_tbd_config_t *cfg, pft_real_t *img, pft_real_t *save,
+                      pft_real_t x, pft_real_t y, uint8_t half, bool restore)
 {
     pft_tbd_region_t r = pft_tbd_window_int_(cfg, x, y);
     int32_t dp = (int32_t)half - (int32_t)cfg->window;
@@ -200,21 +205,29 @@ static void restore_psf_(const pft_tbd_config_t *cfg, pft_real_t *res, const pft
     int32_t rlo = r.row_lo - dp < 0 ? 0 : r.row_lo - dp;
     int32_t rhi = r.row_hi + dp > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r.row_hi + dp;
     const size_t stride = pft_tbd_stride_(cfg->width);
+    size_t k = 0u;
     for (int32_t row = rlo; row <= rhi; ++row) {
         size_t o = (size_t)(row + 1) * stride + 1u;
         for (int32_t col = clo; col <= chi; ++col) {
-            res[o + (size_t)col] = img[o + (size_t)col];
+            if (restore) {
+                img[o + (size_t)col] = save[k];
+            } else {
+                save[k] = img[o + (size_t)col];
+            }
+            ++k;
         }
     }
 }
 
-/* res -= h / sigma of a track record's intensity at (x, y) (internal frame). */
+/* img -= h / sigma of a track record's intensity at (x, y) (internal frame), the pixels it
+ * touches saved first into slot `slot` of t->res. */
 static void subtract_psf_(const pft_tbd_t *t, pft_real_t x, pft_real_t y, pft_real_t intensity,
-                          uint8_t half)
+                          uint8_t half, uint32_t slot)
 {
     const pft_tbd_meas_t *m = &t->search.model;
     const uint32_t stride = pft_tbd_stride_(t->cfg.width);
-    pft_tbd_psf_add_(m, t->res, (size_t)stride + 1u, stride, x, y,
+    psf_save_(&t->cfg, t->img, t->res + (size_t)slot * PFT_TBD_PSF_SAVE_REALS_, x, y, half, false);
+    pft_tbd_psf_add_(m, t->img, (size_t)stride + 1u, stride, x, y,
                      pft_neg(pft_mul(intensity, m->kc)), half);
 }
 
@@ -351,20 +364,26 @@ static void update_tracks_(pft_tbd_t *t, bool residual)
         if (t->records[k].id == 0u) {
             continue;
         }
-        tsc.img = residual ? t->res : t->img;
+        tsc.img = t->img;
+        uint32_t slot = 0u;
         for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
                 predict_(t, &t->records[u], &px, &py);
-                subtract_psf_(t, px, py, t->records[u].intensity, half);
+                subtract_psf_(t, px, py, t->records[u].intensity, half, slot);
+                ++slot;
             }
         }
         pft_tbd_filter_step_(&t->tracks[k], &tsc);
-        for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+        /* put the pixels back in the reverse order (overlapping windows restore exactly) */
+        for (uint32_t uu = cfg->max_targets; residual && uu > 0u; --uu) {
+            const uint32_t u = uu - 1u;
             if (u != k && t->records[u].id != 0u) {
                 pft_real_t px, py;
                 predict_(t, &t->records[u], &px, &py);
-                restore_psf_(cfg, t->res, t->img, px, py, half);
+                --slot;
+                psf_save_(cfg, t->img, t->res + (size_t)slot * PFT_TBD_PSF_SAVE_REALS_, px, py,
+                          half, true);
             }
         }
     }
@@ -434,14 +453,14 @@ static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const pft_real_t *simg = t->img;
-    if (residual && t->n_tracks > 0u) {
-        for (uint32_t u = 0; u < cfg->max_targets; ++u) {
-            if (t->records[u].id != 0u) {
-                subtract_psf_(t, t->records[u].x, t->records[u].y, t->records[u].intensity,
-                              psf_half_(cfg));
-            }
+    const bool sub = residual && t->n_tracks > 0u;
+    uint32_t slot = 0u;
+    for (uint32_t u = 0; sub && u < cfg->max_targets; ++u) {
+        if (t->records[u].id != 0u) {
+            subtract_psf_(t, t->records[u].x, t->records[u].y, t->records[u].intensity,
+                          psf_half_(cfg), slot);
+            ++slot;
         }
-        simg = t->res;
     }
     pft_tbd_scene_t_ ssc;
     search_budget_(t, stepped);
@@ -453,6 +472,14 @@ static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
     }
     t->n_cand = ssc.n_cand;
     pft_tbd_filter_step_(&t->search, &ssc);
+    for (uint32_t uu = cfg->max_targets; sub && uu > 0u; --uu) {
+        const pft_tbd_track_t *rec = &t->records[uu - 1u];
+        if (rec->id != 0u) {
+            --slot;
+            psf_save_(cfg, t->img, t->res + (size_t)slot * PFT_TBD_PSF_SAVE_REALS_, rec->x, rec->y,
+                      psf_half_(cfg), true);
+        }
+    }
 }
 
 /* 4. Appearance: when the search layer's P has exceeded theta1 on confirm_frames consecutive
@@ -575,9 +602,6 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     memset(t->mask, 0, npix);
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
-    if (res_tracks || res_search) {
-        memcpy(t->res, t->img, pft_tbd_img_len_(cfg->width, cfg->height) * sizeof(pft_real_t));
-    }
     const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
     update_tracks_(t, res_tracks);
     end_or_keep_tracks_(t);

@@ -118,7 +118,7 @@ struct pft_tbd_s {
     uint8_t *mask;
     uint32_t *cand;
     pft_tbd_tab_t *tab;          /* tables shared by every layer */
-    pft_real_t *res;             /* residual frame (joint likelihood, cfg.residual_*), as img */
+    pft_real_t *res;             /* img's pixels under the tracks' PSFs while they are subtracted in place (cfg.residual_*): max_targets slots of PFT_TBD_PSF_SAVE_REALS_ */
     pft_real_t *peak_rows;       /* cfg.birth_peaks > 0: six rolling image rows of the peak scan */
     pft_real_t *peak_val;        /* cfg.birth_peaks > 0: the peaks' values (heap) */
     uint32_t frame;              /* frames accepted so far (the last frame number) */
