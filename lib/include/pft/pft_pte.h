@@ -260,9 +260,8 @@ typedef enum {
  * live tracks that waited longest first; the others predict over the frame as over a lost
  * frame and take its data in at their next step, their TABLE line sums slid over the frames
  * they missed (templates capped at max_len + 1 - ceil(max_tracks / B) frames so the frames
- * leaving a window are still in the ring). A new track's template starts at 2 frames and
- * grows by one per frame. This bounds the steps per frame, not the work of a step
- * (docs/algorithms.md 5.8).
+ * leaving a window are still in the ring). This bounds the steps per frame, not the work of
+ * a step (docs/algorithms.md 5.8).
  */
 typedef struct {
     pft_pte_input_t in;        /**< input stage */
@@ -295,7 +294,7 @@ typedef struct {
     pft_real_t man_z;          /**< threshold of |Z|, the manoeuvre statistic, in (0, 100] (default 1.25) */
     pft_real_t man_acc_sd;     /**< on a manoeuvre, acceleration standard deviation added to the track's covariance (CA: to r''; CV: Ms times it to r'), cells/frame^2, in [0, 0.1] (default 0.03) */
     /* Per-frame work bound */
-    uint8_t step_budget;       /**< B: at most B track steps per update, 0..max_tracks (default 0: off, every live track steps at every frame). With B >= 1 the live tracks that waited longest step (ties: lower slot), the others predict over the frame as over a lost one and step later over the frames they missed; a new track's template starts at 2 frames and grows by one per step; templates are at most max_len + 1 - ceil(max_tracks / B) frames, which must be >= 2 and above short_len (docs/algorithms.md 5.8) */
+    uint8_t step_budget;       /**< B: at most B track steps per update, 0..max_tracks (default 0: off, every live track steps at every frame). With B >= 1 the live tracks that waited longest step (ties: lower slot), the others predict over the frame as over a lost one and step later over the frames they missed; templates are at most max_len + 1 - ceil(max_tracks / B) frames, which must be >= 2 and above short_len (docs/algorithms.md 5.8) */
 } pft_pte_config_t;
 
 /** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */

@@ -514,10 +514,8 @@ static void extract_(pft_pte_t *p, const pft_pte_core_t_ *core, pft_real_t best)
     }
     for (uint32_t i = 0; i < c->max_tracks; ++i) {
         if (!p->tracks[i].live) {
-            /* step_budget: the template starts at 2 frames (the first fill spread over the
-             * track's first steps: one frame more per step) */
             track_new_(p, &p->tracks[i], pos, vel, pv, vv, cv, pft_pte_core_amp_(core, p->path),
-                       (uint8_t)(c->step_budget != 0u ? 2u : N));
+                       (uint8_t)N);
             p->tracks[i].score = best;
             break;
         }
