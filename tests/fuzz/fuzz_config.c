@@ -427,6 +427,7 @@ static void fuzz_pte(fz_t *f)
     c.scan_steps = 4u;
     c.max_tracks = 2u;
     c.init_threshold = PFT_C(8.0);
+    c.step_budget = (uint8_t)(fz_u8(f) % 3u); /* off, 1 or 2 of the 2 slots */
     FZ_PATCH(f, c, 12u);
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_pte_config_check(&c, &g_field));

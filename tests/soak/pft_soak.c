@@ -14,6 +14,7 @@
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
  *                 [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K]
+ *                 [--pte-budget B]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
  * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
  * pf add the existence probability of the search layer / filter after the frame.
@@ -23,6 +24,7 @@
  * --tbd-search N gives its search layer N particles instead of 1000 (or 500).
  * --pf-budget K runs pf with the TBD model's birth budget K (pft_pf_tbd_model_set_budget; of
  * its 500 particles).
+ * --pte-budget B runs pte with step_budget B (at most B track steps per update; of its 3 slots).
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -162,6 +164,7 @@ static bool g_trace;        /* --trace: one line per frame, "trace <frame> <trac
 static bool g_tbd_bern;     /* --tbd-bern: the tbd manager's search layer in Bernoulli form */
 static bool g_tbd_bounded;  /* --tbd-bounded: the bounded preset, half the search particles */
 static uint32_t g_pf_budget; /* --pf-budget K: the TBD model's birth budget (0: off) */
+static uint32_t g_pte_budget; /* --pte-budget B: PTE-TBD's step_budget (0: off) */
 static uint32_t g_tbd_search; /* --tbd-search N: its search particles (0: the default 1000) */
 static uint64_t g_total;
 
@@ -750,6 +753,7 @@ static bool soak_pte(uint64_t n, uint64_t seed, bool quiet)
     p_in(&c.in);
     c.max_len = 20u;
     c.max_tracks = 3u;
+    c.step_budget = (uint8_t)g_pte_budget;
     size_t ws = pft_pte_workspace_size(&c);
     if (ws == 0u || ws > sizeof g_ws || pft_pte_init(&p, &c, g_ws, ws) != PFT_OK) {
         printf("pte: configuration refused\n");
@@ -822,13 +826,15 @@ int main(int argc, char **argv)
             g_tbd_bounded = true;
         } else if (strcmp(argv[i], "--pf-budget") == 0 && i + 1 < argc) {
             g_pf_budget = (uint32_t)strtoul(argv[++i], NULL, 10);
+        } else if (strcmp(argv[i], "--pte-budget") == 0 && i + 1 < argc) {
+            g_pte_budget = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--tbd-search") == 0 && i + 1 < argc) {
             g_tbd_search = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--trace") == 0) {
             g_trace = true;
         } else {
             fprintf(stderr, "usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] "
-                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K]\n");
+                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K] [--pte-budget B]\n");
             return 2;
         }
     }

@@ -6,7 +6,8 @@
  * that the CV model lags; the manoeuvre test follows a sharp acceleration that the 40-frame
  * template alone runs straight through; termination after the target leaves and re-initiation with a new
  * id; two targets with cancellation (no duplicates); the initiation spread over the updates
- * (init_spread) finds the same first tracks as the whole DP; range-Doppler tracking with the 2-D
+ * (init_spread) finds the same first tracks as the whole DP; the step budget (step_budget)
+ * steps at most B tracks per update and, when it never bites, changes nothing; range-Doppler tracking with the 2-D
  * operator; refused input leaves every byte unchanged; a cue beyond the free slots is refused;
  * reports are copied out.
  *
@@ -536,6 +537,175 @@ static void test_init_spread_same_first_search(void)
     }
 }
 
+/* step_budget (issue #12): configuration check names the field. */
+static void test_step_budget_config(void)
+{
+    pft_pte_config_t c;
+    const char *field = NULL;
+    cfg_default(&c);
+    TEST_ASSERT_EQUAL_UINT8(0, c.step_budget); /* off by default */
+    c.step_budget = (uint8_t)(c.max_tracks + 1u);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("step_budget", field);
+    c.step_budget = 1u; /* max_tracks 4: tracks wait up to 4 frames, templates <= max_len - 3 */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    c.max_len = 4u; /* templates of 1 frame */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("step_budget", field);
+    c.max_len = 5u; /* templates of 2 frames */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    cfg_default(&c);
+    c.op = PFT_PTE_OP_TABLE;
+    c.step_budget = 1u;
+    c.short_len = 37u; /* the longest template is 37 frames: no longer template to test */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("step_budget", field);
+    c.short_len = 36u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+}
+
+/* step_budget = 1 on the two targets of test_two_targets: no update steps more than one
+ * track, exactly one while two are live (the budget bites), and both targets are still
+ * found and followed within 1 cell (the waiting track reports its prediction). Without the
+ * budget every live track steps at every update. */
+static void test_step_budget_bound(void)
+{
+    for (uint32_t v = 0; v < 2u; ++v) {
+        pft_pte_config_t c;
+        cfg_default(&c);
+        c.step_budget = (uint8_t)v;
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 31;
+        int both = -1, bitten = 0;
+        uint32_t live_before = 0;
+        for (int k = 0; k < 70; ++k) {
+            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
+            double amp[2] = {3.0, 2.5};
+            profile(2, pos, amp);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            if (v == 0u) {
+                TEST_ASSERT_EQUAL_UINT32(live_before, p.n_steps);
+            } else {
+                TEST_ASSERT_EQUAL_UINT32(live_before > 0u ? 1u : 0u, p.n_steps);
+                bitten += live_before > 1u ? 1 : 0;
+            }
+            const pft_pte_report_t *r = g_rep;
+            uint32_t n = (uint32_t)pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS);
+            live_before = n; /* dedup ends tracks before the reports: live = reported */
+            TEST_ASSERT_TRUE(n <= 2u);
+            if (n == 2u && both < 0) {
+                both = k;
+            }
+            if (both >= 0 && k >= both) {
+                TEST_ASSERT_EQUAL_UINT32(2, n);
+                double a0 = D(r[0].pos[0]), a1 = D(r[1].pos[0]);
+                double lo = a0 < a1 ? a0 : a1, hi = a0 < a1 ? a1 : a0;
+                TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[0], lo);
+                TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[1], hi);
+            }
+        }
+        note(v == 0u ? "both_from_off" : "both_from_budget1", both);
+        TEST_ASSERT_TRUE(both >= 9 && both <= 25);
+        if (v == 1u) {
+            TEST_ASSERT_TRUE(bitten >= 40); /* frames with two live tracks and one step */
+        }
+    }
+}
+
+static float g_f32[NR];
+
+/* g_z as an F32 frame with sequence number seq */
+static pft_frame_t frame_of_z(uint32_t seq)
+{
+    for (int u = 0; u < NR; ++u) {
+        g_f32[u] = (float)D(g_z[u]);
+    }
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_f32;
+    f.width = NR;
+    f.height = 1;
+    f.stride_bytes = 4u * NR;
+    f.format = PFT_PIX_F32;
+    f.seq = seq;
+    return f;
+}
+
+/* A budget that never bites (step_budget = max_tracks, tracks started with pft_pte_start,
+ * no initiation) gives the same reports as no budget, bit for bit while no frame is lost.
+ * Over 3 lost frames the budget's line sums slide over the gap (anchored where they were)
+ * where the default sums them afresh (anchored at the new frame), so the lines' rounding to
+ * the response grid differs by at most one grid point (c_step = 0.25 cells): both runs keep
+ * both tracks within 1 cell of the targets (as test_two_targets) and their positions differ
+ * by at most 0.25 cells. */
+static void test_step_budget_never_bites(void)
+{
+    static pft_pte_report_t rep[2][80][PFT_PTE_MAX_TRACKS];
+    uint32_t nrep[2][80];
+    double truth[80][2];
+    for (uint32_t v = 0; v < 2u; ++v) {
+        pft_pte_config_t c;
+        cfg_default(&c);
+        c.init_threshold = R(1.0e4); /* no initiation: only the two cued tracks */
+        c.step_budget = v == 0u ? 0u : c.max_tracks;
+        c.in.seq_mode = PFT_SEQ_USE;
+        c.in.max_gap = 4u;
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 99;
+        for (int k = 0; k < 80; ++k) {
+            double pos[2] = {15.0 + 0.1 * k, 40.0 - 0.05 * k};
+            double amp[2] = {3.0, 3.0};
+            truth[k][0] = pos[0];
+            truth[k][1] = pos[1];
+            profile(2, pos, amp);
+            if (k == 0) {
+                for (int i = 0; i < 2; ++i) {
+                    pft_real_t ps[2] = {R(pos[i]), R(0.0)};
+                    pft_real_t vs[2] = {R(i == 0 ? 0.1 : -0.05), R(0.0)};
+                    pft_real_t pv[2] = {R(0.1), R(1.0)};
+                    pft_real_t vv[2] = {R(0.001), R(1.0)};
+                    uint16_t id = 0;
+                    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_start(&p, ps, vs, pv, vv, R(3.0), 10u, &id));
+                }
+            }
+            nrep[v][k] = 0u;
+            if (k >= 30 && k < 33) {
+                continue; /* frames 30..32 lost */
+            }
+            pft_frame_t f = frame_of_z((uint32_t)k + 1u);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update(&p, &f));
+            nrep[v][k] = (uint32_t)pft_pte_reports(&p, rep[v][k], PFT_PTE_MAX_TRACKS);
+        }
+    }
+    double worst = 0.0, diff = 0.0;
+    for (int k = 0; k < 80; ++k) {
+        TEST_ASSERT_EQUAL_UINT32(nrep[0][k], nrep[1][k]);
+        if (k >= 30 && k < 33) {
+            continue;
+        }
+        TEST_ASSERT_EQUAL_UINT32(2, nrep[0][k]);
+        if (k < 30) {
+            TEST_ASSERT_EQUAL_MEMORY(rep[0][k], rep[1][k], 2u * sizeof(pft_pte_report_t));
+        }
+        for (uint32_t v = 0; v < 2u; ++v) {
+            for (uint32_t i = 0; i < 2u; ++i) {
+                double e = fabs(D(rep[v][k][i].pos[0]) - truth[k][i]);
+                worst = e > worst ? e : worst;
+            }
+        }
+        for (uint32_t i = 0; i < 2u; ++i) {
+            double d = fabs(D(rep[0][k][i].pos[0]) - D(rep[1][k][i].pos[0]));
+            diff = d > diff ? d : diff;
+        }
+    }
+    note("worst_pos_err", worst);
+    note("worst_diff", diff);
+    TEST_ASSERT_TRUE(worst <= 1.0);
+    TEST_ASSERT_TRUE(diff <= 0.25);
+}
+
 /* Range-Doppler map 32 x 12, target moving (+0.3, -0.15) cells/frame at A = 4: the 2-D
  * operator (3 x 3 directions, exact taps) tracks it within 0.7 cells on both axes. */
 static void test_range_doppler(void)
@@ -663,6 +833,9 @@ int main(void)
     RUN_TEST(test_termination_and_reinit);
     RUN_TEST(test_two_targets);
     RUN_TEST(test_init_spread_same_first_search);
+    RUN_TEST(test_step_budget_config);
+    RUN_TEST(test_step_budget_bound);
+    RUN_TEST(test_step_budget_never_bites);
     RUN_TEST(test_range_doppler);
     RUN_TEST(test_bad_input_untouched);
     return UNITY_END();

@@ -255,6 +255,13 @@ typedef enum {
  * when the backtracked path of the best remaining final cell crosses no cancelled cell (the
  * path a re-run would find); otherwise the next search finds it. Two live tracks closer than
  * dup_cells (axis 0, and axis 1 when 2-D) are duplicates: the one with the lower score ends [A].
+ *
+ * Step budget (step_budget = B >= 1; default 0: off): at most B track steps per update, the
+ * live tracks that waited longest first; the others predict over the frame as over a lost
+ * frame and take its data in at their next step, their TABLE line sums slid over the frames
+ * they missed (templates capped at max_len + 1 - ceil(max_tracks / B) frames so the frames
+ * leaving a window are still in the ring). This bounds the steps per frame, not the work of
+ * a step (docs/algorithms.md 5.8).
  */
 typedef struct {
     pft_pte_input_t in;        /**< input stage */
@@ -286,6 +293,8 @@ typedef struct {
     uint8_t short_len;         /**< Ms: frames of the short template of the manoeuvre test, 0 (off) or 2..max_len - 1; needs TABLE operators (default 0: off) */
     pft_real_t man_z;          /**< threshold of |Z|, the manoeuvre statistic, in (0, 100] (default 1.25) */
     pft_real_t man_acc_sd;     /**< on a manoeuvre, acceleration standard deviation added to the track's covariance (CA: to r''; CV: Ms times it to r'), cells/frame^2, in [0, 0.1] (default 0.03) */
+    /* Per-frame work bound */
+    uint8_t step_budget;       /**< B: at most B track steps per update, 0..max_tracks (default 0: off, every live track steps at every frame). With B >= 1 the live tracks that waited longest step (ties: lower slot), the others predict over the frame as over a lost one and step later over the frames they missed; templates are at most max_len + 1 - ceil(max_tracks / B) frames, which must be >= 2 and above short_len (docs/algorithms.md 5.8) */
 } pft_pte_config_t;
 
 /** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */

@@ -134,6 +134,15 @@ static const char *bad_operator_field_(const pft_pte_config_t *c)
     return NULL;
 }
 
+/* step_budget = B >= 1: the longest template, max_len + 1 - ceil(max_tracks / B) frames (a
+ * track waits at most ceil(max_tracks / B) frames between two steps, and its slope entries
+ * slide over them with the frames leaving its window still in the ring of max_len + 1). */
+static uint32_t budget_len_(const pft_pte_config_t *c)
+{
+    const uint32_t wait = ((uint32_t)c->max_tracks + c->step_budget - 1u) / c->step_budget;
+    return (uint32_t)c->max_len + 1u < wait + 2u ? 0u : (uint32_t)c->max_len + 1u - wait;
+}
+
 /* First refused field in struct order (TABLE's requirements name op, c_step, in.zeta_clip). */
 static const char *bad_field_(const pft_pte_config_t *c)
 {
@@ -196,6 +205,10 @@ static const char *bad_field_(const pft_pte_config_t *c)
     }
     if (!(c->man_acc_sd >= PFT_C(0.0)) || c->man_acc_sd > PFT_C(0.1)) {
         return "man_acc_sd";
+    }
+    if (c->step_budget > c->max_tracks ||
+        (c->step_budget != 0u && (budget_len_(c) < 2u || c->short_len >= budget_len_(c)))) {
+        return "step_budget";
     }
     return NULL;
 }
@@ -377,6 +390,7 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     p->init_stage = 0u;
     p->init_todo = 0u;
     p->init_run = 0u;
+    p->n_steps = 0u;
     p->n_rep = 0u;
     memset(p->miss, 0, sizeof(p->miss));
     return PFT_OK;
@@ -717,6 +731,61 @@ static void lost_frames_(pft_pte_t *p, uint32_t n)
     }
 }
 
+/* Step 3 of every live track, or under step_budget = B the B live tracks that waited
+ * longest (ties: the lower slot); the others predict over the frame as over a lost one
+ * (pft_pte_track_coast_) and slide their line sums over the frames they missed at their
+ * next step. Templates are capped at budget_len_ frames before the steps. */
+static void steps_(pft_pte_t *p)
+{
+    const pft_pte_config_t *c = &p->cfg;
+    uint32_t n = 0u;
+    if (c->step_budget == 0u) {
+        for (uint32_t i = 0; i < c->max_tracks; ++i) {
+            if (p->tracks[i].live) {
+                pft_pte_track_step_(p, &p->tracks[i]);
+                n++;
+            }
+        }
+        p->n_steps = (uint8_t)n;
+        return;
+    }
+    const uint8_t cap = (uint8_t)budget_len_(c);
+    bool go[PFT_PTE_MAX_TRACKS];
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        pft_pte_track_t *t = &p->tracks[i];
+        go[i] = false;
+        if (t->live) {
+            t->n_acc = t->n_acc > cap ? cap : t->n_acc;
+            t->wait = (uint8_t)(t->wait < 0xFFu ? t->wait + 1u : t->wait);
+        }
+    }
+    for (uint32_t b = 0; b < c->step_budget; ++b) {
+        int32_t best = -1;
+        for (uint32_t i = 0; i < c->max_tracks; ++i) {
+            if (p->tracks[i].live && !go[i] &&
+                (best < 0 || p->tracks[i].wait > p->tracks[best].wait)) {
+                best = (int32_t)i;
+            }
+        }
+        if (best >= 0) {
+            go[best] = true;
+        }
+    }
+    for (uint32_t i = 0; i < c->max_tracks; ++i) {
+        pft_pte_track_t *t = &p->tracks[i];
+        if (t->live && go[i]) {
+            pft_pte_track_step_(p, t);
+            t->wait = 0u;
+            n++;
+        } else if (t->live) {
+            pft_pte_track_coast_(p, t);
+        } else {
+            /* a free slot */
+        }
+    }
+    p->n_steps = (uint8_t)n;
+}
+
 static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_real_t *z)
 {
     if (p == NULL || p->ring.buf == NULL) {
@@ -746,11 +815,7 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
     }
     p->miss[p->ring.head] = 0u;
     p->frames_in++;
-    for (uint32_t i = 0; i < p->cfg.max_tracks; ++i) {
-        if (p->tracks[i].live) {
-            pft_pte_track_step_(p, &p->tracks[i]);
-        }
-    }
+    steps_(p);
     dedup_(p);
     if (p->since_search < 0xFFFFu) {
         p->since_search++;

@@ -747,18 +747,20 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
                 bank_gres_(p, e, w, kn, 0, mn, 1);
                 continue;
             }
-            if (mn == mo && bank_slide_(p, ti, bi, w, k0, k1, kn, mn)) {
+            /* dk frames since the entry's last frame (above 1 only under step_budget) */
+            const int32_t dk = (int32_t)(kn - e->kl);
+            if (dk == 1 && mn == mo && bank_slide_(p, ti, bi, w, k0, k1, kn, mn)) {
                 continue; /* the common case: one frame in, one out */
             }
-            /* newest frame in; then the far end from mo + 1 frames to mn frames */
-            bank_lines_(p, ti, bi, w, k0, k1, kn, 0, 1, 1);
-            bank_gres_(p, e, w, kn, 0, 1, 1);
-            if (mn <= mo) {
-                bank_lines_(p, ti, bi, w, k0, k1, kn, mn, mo + 1, -1);
-                bank_gres_(p, e, w, kn, mn, mo + 1, -1);
+            /* the dk newest frames in; then the far end from mo + dk frames to mn frames */
+            bank_lines_(p, ti, bi, w, k0, k1, kn, 0, dk, 1);
+            bank_gres_(p, e, w, kn, 0, dk, 1);
+            if (mn <= mo + dk - 1) {
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mn, mo + dk, -1);
+                bank_gres_(p, e, w, kn, mn, mo + dk, -1);
             } else {
-                bank_lines_(p, ti, bi, w, k0, k1, kn, mo + 1, mn, 1);
-                bank_gres_(p, e, w, kn, mo + 1, mn, 1);
+                bank_lines_(p, ti, bi, w, k0, k1, kn, mo + dk, mn, 1);
+                bank_gres_(p, e, w, kn, mo + dk, mn, 1);
             }
         }
     } else {
@@ -1058,7 +1060,12 @@ static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     margin = margin > MARGIN_ ? MARGIN_ : margin;
     for (int32_t i = 0; i < nw; ++i) {
         pft_pte_bank_t *e = &bank[sel[i]];
-        bool keep = e->live && e->kl + 1u == kn && kn - e->k0 < RENEW_;
+        /* step_budget: an entry also slides over the frames its track waited (the frames
+         * leaving its window still in the ring) */
+        bool keep = e->live && (e->kl + 1u == kn ||
+                                (p->cfg.step_budget != 0u && kn - e->kl > 1u &&
+                                 (uint32_t)e->m[0] + (kn - e->kl) <= (uint32_t)p->ring.count)) &&
+                    kn - e->k0 < RENEW_;
         if (!keep) {
             e->k0 = kn; /* a fresh entry is anchored at this frame */
         }

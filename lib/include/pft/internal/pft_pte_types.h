@@ -54,6 +54,7 @@ typedef struct {
     uint8_t misses;
     bool live;
     bool detected;
+    uint8_t wait;        /* step_budget: frames since its last step (0 after a step) */
 } pft_pte_track_t;
 
 /* Result of one operator direction within a track step: the Kalman gain and state change of
@@ -175,6 +176,7 @@ struct pft_pte_s {
     uint8_t init_run;            /* init_spread: a search is running */
     uint8_t init_stage;          /* init_spread: DP stages of the running search done */
     uint8_t init_todo;           /* init_spread: frames of the ring waiting for their stage */
+    uint8_t n_steps;             /* track steps of the last update (step_budget bounds it) */
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
