@@ -162,7 +162,6 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
 // a track is dropped from the output, and with the clutter map on its map entries (3 x 3 around
 // it) are raised to at least 16 (4 sigma), so that its evidence fades from the next frame and
 // the manager ends it. The other tracks are reported from their n-th frame on.
-namespace {
 // rms distance (px) of positions h[i] (x, y; one per frame) from their least-squares straight
 // line at constant speed, x(i) = x0 + vx i and y(i) = y0 + vy i (TrackerSettings::scene_fit_px)
 double line_fit_rms(const std::vector<std::array<double, 4>> &h)
@@ -191,7 +190,6 @@ double line_fit_rms(const std::vector<std::array<double, 4>> &h)
     }
     return std::sqrt(ss / n);
 }
-}  // namespace
 
 void IrPipeline::scene_test(tbd::FrameOut &out)
 {
