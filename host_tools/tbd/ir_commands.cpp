@@ -550,6 +550,18 @@ int selftest_checks(bool verbose)
     fails += dbt_checks(check);
     fails += pipeline_sequence_checks(check);
     fails += clutter_checks(check);
+    {
+        // the straight-line test's fit: 6 points on a line at (0.7, -0.3) px/frame fit it
+        // exactly; alternating +-0.5 px about a still point: rms sqrt(0.25 - 1.5^2 / 105) = 0.4781
+        std::vector<std::array<double, 4>> line, zig;
+        for (int i = 0; i < 6; ++i) {
+            line.push_back({10.0 + 0.7 * i, 20.0 - 0.3 * i, 0.0, 0.0});
+            zig.push_back({10.0 + (i % 2 ? -0.5 : 0.5), 20.0, 0.0, 0.0});
+        }
+        const double a = line_fit_rms(line), z = line_fit_rms(zig);
+        std::snprintf(b, sizeof b, "straight-line test: a straight track fits within %.2g px (< 1e-9), a zigzag of +-0.5 px %.4f (0.4781)", a, z);
+        check(b, a < 1e-9 && std::fabs(z - 0.478091) < 1e-4);
+    }
 
     // injection and SNR mapping
     cv::Mat z(9, 9, CV_32F, cv::Scalar(0.0));

@@ -113,6 +113,7 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.box = t.clutter_box;
     c.mean = t.clutter_mean;
     c.thr = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_thr * 1024.0), 1024L, 65535L));
+    c.veto = t.clutter_veto > 0 ? static_cast<uint16_t>(std::clamp(std::lround(t.clutter_veto * 1024.0), static_cast<long>(c.thr), 65535L)) : 0u;
     return c;
 }
 
@@ -161,6 +162,35 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
 // a track is dropped from the output, and with the clutter map on its map entries (3 x 3 around
 // it) are raised to at least 16 (4 sigma), so that its evidence fades from the next frame and
 // the manager ends it. The other tracks are reported from their n-th frame on.
+// rms distance (px) of positions h[i] (x, y; one per frame) from their least-squares straight
+// line at constant speed, x(i) = x0 + vx i and y(i) = y0 + vy i (TrackerSettings::scene_fit_px)
+double line_fit_rms(const std::vector<std::array<double, 4>> &h)
+{
+    const double n = static_cast<double>(h.size());
+    if (h.size() < 3)
+        return 0.0;
+    const double tm = (n - 1.0) / 2.0;
+    double stt = 0, mx = 0, my = 0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        mx += h[i][0] / n;
+        my += h[i][1] / n;
+        stt += (static_cast<double>(i) - tm) * (static_cast<double>(i) - tm);
+    }
+    double stx = 0, sty = 0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        stx += (static_cast<double>(i) - tm) * (h[i][0] - mx);
+        sty += (static_cast<double>(i) - tm) * (h[i][1] - my);
+    }
+    const double vx = stx / stt, vy = sty / stt;
+    double ss = 0;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        const double ti = static_cast<double>(i) - tm;
+        const double rx = h[i][0] - mx - vx * ti, ry = h[i][1] - my - vy * ti;
+        ss += rx * rx + ry * ry;
+    }
+    return std::sqrt(ss / n);
+}
+
 void IrPipeline::scene_test(tbd::FrameOut &out)
 {
     const std::size_t n = static_cast<std::size_t>(T_.scene_frames);
@@ -186,7 +216,7 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
             }
             continue;
         }
-        if (s.h.size() >= n + 1)
+        if (s.h.size() >= n + 1 && (T_.scene_fit_px <= 0 || line_fit_rms(s.h) <= T_.scene_fit_px))
             kept.push_back(t);
     }
     out.tracks.swap(kept);

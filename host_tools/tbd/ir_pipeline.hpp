@@ -108,6 +108,11 @@ private:
     int masked_ = 0;
 };
 
+/** rms distance (px) of the positions h[i][0..1] (one per frame) from their least-squares
+ *  straight line at constant speed (0 for fewer than 3); the straight-line test of reported
+ *  tracks (TrackerSettings::scene_fit_px). */
+double line_fit_rms(const std::vector<std::array<double, 4>> &h);
+
 /** The pft_pre configuration of the pipeline (method, windows, tile from the settings). */
 pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height, int bit_depth, bool u8);
 

@@ -5,7 +5,8 @@
  * (m_k = 16 (1 - (1 - a)^k) for a 4 sigma blob after a zero history, the output 4 / sqrt(m_{k-1})
  * once m_{k-1} > thr), a moving point on unit noise keeps its value exactly, the running mean
  * removes a persistent offset, the map moves with the scene (integer and half-pixel shifts), a
- * frame without evidence changes nothing, masked pixels stay masked. 64 x 48 frames, integer
+ * frame without evidence changes nothing, masked pixels stay masked, the veto zeroes a learnt
+ * blob from the documented frame on. 64 x 48 frames, integer
  * residuals made per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -81,11 +82,12 @@ static void test_config_and_workspace(void)
     TEST_ASSERT_EQUAL_UINT8(1u, cfg.blur);
     TEST_ASSERT_TRUE(cfg.box);
     TEST_ASSERT_FALSE(cfg.mean);
+    TEST_ASSERT_EQUAL_UINT16(0u, cfg.veto);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_config_check(NULL, &field));
     static const struct {
         const char *name;
         int which;
-    } bad[] = {{"width", 0}, {"height", 1}, {"alpha", 2}, {"blur", 3}, {"thr", 4}, {"width", 5}};
+    } bad[] = {{"width", 0}, {"height", 1}, {"alpha", 2}, {"blur", 3}, {"thr", 4}, {"veto", 6}, {"width", 5}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_pre_clutter_config_t b = cfg;
         switch (bad[i].which) {
@@ -94,6 +96,7 @@ static void test_config_and_workspace(void)
         case 2: b.alpha = 0u; break;
         case 3: b.blur = (uint8_t)(PFT_PRE_CLUTTER_MAX_BLUR + 1u); break;
         case 4: b.thr = 1023u; break;
+        case 6: b.veto = (uint16_t)(b.thr - 1u); break;
         default: b.width = (uint16_t)(PFT_CFG_MAX_IMAGE_SIDE + 1u); break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_config_check(&b, &field));
@@ -214,6 +217,53 @@ static void test_persistent_blob_learnt_at_rate(void)
     TEST_ASSERT_TRUE(out_of(&c)[by * W + bx] < 270);
     /* far from it, the zero residual stays zero */
     TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[5 * W + 50]);
+}
+
+/* The veto (8 sigma^2): the 4 sigma blob of the test above, learnt at the same rate, comes
+ * out as 4 / sqrt(m_{k-1}) while the map read is at most 8 and as 0 from the frame after the
+ * one where m_{k-1} > 8 (k >= 8: 16 (1 - 0.9^7) = 8.35); the zero residual elsewhere stays 0. */
+static void test_veto_zeroes_learnt_clutter(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.veto = 8192u;
+    pft_pre_clutter_t c;
+    init_map(&c, &cfg);
+    memset(g_res, 0, sizeof g_res);
+    for (uint32_t k = 0; k < 12u; ++k) {
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    }
+    const int bx = 20, by = 20;
+    double m_prev = 0.0;
+    uint32_t vetoed = 0u;
+    for (int k = 1; k <= 20; ++k) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                g_res[(by + dy) * W + bx + dx] = 1024; /* 4 sigma */
+            }
+        }
+        pft_frame_t f = res_frame(100u + (uint32_t)k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        double pw = 1.0;
+        for (int i = 0; i < k; ++i) {
+            pw *= 0.9;
+        }
+        const double m = 16.0 * (1.0 - pw);
+        const double out = out_of(&c)[by * W + bx] / 256.0;
+        if (m_prev > 8.05) {
+            TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[by * W + bx]);
+            ++vetoed;
+        } else if (m_prev < 7.95) {
+            const double want = m_prev > 2.0 ? 4.0 / sqrt(m_prev) : 4.0;
+            TEST_ASSERT_DOUBLE_WITHIN(0.01 * want + 0.01, want, out);
+        } else {
+            /* within the rounding of the threshold: either answer */
+        }
+        TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[5 * W + 5]);
+        m_prev = m;
+    }
+    TEST_ASSERT_EQUAL_UINT32(13u, vetoed); /* k = 8 .. 20 */
 }
 
 /* Unit noise and a point of 4 sigma moving 1 px per frame along a row: after the start (20
@@ -464,6 +514,7 @@ int main(void)
     RUN_TEST(test_config_and_workspace);
     RUN_TEST(test_refused_input_changes_nothing);
     RUN_TEST(test_persistent_blob_learnt_at_rate);
+    RUN_TEST(test_veto_zeroes_learnt_clutter);
     RUN_TEST(test_moving_point_keeps_snr);
     RUN_TEST(test_mean_removes_offset);
     RUN_TEST(test_map_moves_with_scene);

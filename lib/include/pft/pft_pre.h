@@ -189,6 +189,7 @@ typedef struct {
     bool box;         /**< read the map as its mean over the square (true, default) or its largest value (false) */
     bool mean;        /**< subtract the running mean of the residual too (default false) */
     uint16_t thr;     /**< map value above which a pixel is clutter, sigma^2 Q6.10 (1024 = 1), 1024..65535 (default 2048 = 2) */
+    uint16_t veto;    /**< map value above which the output is 0 (no births, no evidence there), sigma^2 Q6.10; 0 (default) off, else thr..65535 */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -274,7 +275,8 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * at m = 1, mu = 0). Per frame, with M the mean (box) or the largest value (not box) of m over
  * the (2 blur + 1)^2 square around the pixel (edges replicated), read before this frame's
  * update:
- *   c = r - mu (mean) or r;  w = c / sqrt(M) where M > thr, else c;
+ *   c = r - mu (mean) or r;  w = c / sqrt(M) where M > thr, else c;  w = 0 where M > veto
+ *   (veto not 0);
  *   m <- m + a (min(c^2, 64) - m);  mu <- mu + a (clamp(r, -8, 8) - mu);
  * a = max(alpha, 1 / n) after n frames (a running mean at the start). A cloud edge, the
  * horizon or a structure that the background keeps missing at the same scene position is then
@@ -295,7 +297,7 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
- *  the first refused field ("width", "height", "alpha", "blur", "thr"); NULL on success. */
+ *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto"); NULL on success. */
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg);

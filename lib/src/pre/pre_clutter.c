@@ -25,6 +25,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->box = true;
     cfg->mean = false;
     cfg->thr = 2048u;
+    cfg->veto = 0u;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -46,6 +47,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "blur";
     } else if (cfg->thr < CL_ONE_) {
         bad = "thr";
+    } else if (cfg->veto != 0u && cfg->veto < cfg->thr) {
+        bad = "veto";
     } else {
         /* accepted */
     }
@@ -361,6 +364,7 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
     const uint32_t nring = (uint32_t)c->cfg.blur + 1u;
     const uint32_t area = c->cfg.box ? (2u * nring - 1u) * (2u * nring - 1u) : 1u;
     const uint32_t thr = (uint32_t)c->cfg.thr * area; /* on the square's sum (box) */
+    const uint32_t veto = c->cfg.veto != 0u ? (uint32_t)c->cfg.veto * area : UINT32_MAX;
     for (int32_t y = 0; y < h; ++y) {
         uint16_t *mrow = c->m + (size_t)y * (size_t)w;
         memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
@@ -384,7 +388,7 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
             if (mb > thr) {
                 const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
                 const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-                wv = cl_div_(cv * 1024, (int32_t)s);
+                wv = mb > veto ? 0 : cl_div_(cv * 1024, (int32_t)s);
             }
             o[x] = (int16_t)pft_pre_rclamp_(wv);
             const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
