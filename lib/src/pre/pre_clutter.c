@@ -286,11 +286,11 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 /* Row y without the running mean (the default): the same values as the general loop of
  * pft_pre_clutter_update in three plain passes. The output is the residual itself except
  * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
- * value is within +-PFT_PRE_RMAX_ already); the map's update runs on every pixel and is kept
+ * value is within +-PFT_PRE_RMAX_ already), and 0 where it exceeds veto; the map's update runs on every pixel and is kept
  * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535 and
  * a |t - m| + 32768 < 2^32 for a <= 2^16 (cl_scale_ in 32 bits). */
 static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
-                          int32_t w, uint32_t a, uint32_t thr, uint32_t area)
+                          int32_t w, uint32_t a, uint32_t thr, uint32_t veto, uint32_t area)
 {
     memcpy(o, r, (size_t)w * 2u);
     uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
@@ -302,7 +302,7 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
         if (hs[x] > thr && v != PFT_RES16_MASKED) {
             const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
             const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-            o[x] = (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
         }
     }
     for (int32_t x = 0; x < w; ++x) {
@@ -373,7 +373,7 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
         int16_t *o = c->out + (size_t)y * (size_t)w;
         uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
         if (mu == NULL) {
-            cl_row_plain_(r, o, mrow, c->hs, w, a, thr, area);
+            cl_row_plain_(r, o, mrow, c->hs, w, a, thr, veto, area);
             continue;
         }
         for (int32_t x = 0; x < w; ++x) {
