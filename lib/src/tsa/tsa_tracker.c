@@ -245,7 +245,6 @@ static bool contour_acceptable_(pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t are
 
 /* The bank's gain i in 1/256: 256 + 13 (i - GAIN_UNITY_), i.e. 0.85 .. 1.15 in steps of 0.05. */
 #define GAIN_UNITY_ 3u
-#define GAIN_MARGIN_ PFT_C(0.02)
 static uint32_t gain_q8_(uint32_t i)
 {
     return 256u + 13u * i - 13u * GAIN_UNITY_;
@@ -973,15 +972,14 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
     const int32_t x = pft_round_int(pft_clamp(t->prior_x, fc->lo_x, fc->hi_x));
     const int32_t y = pft_round_int(pft_clamp(t->prior_y, fc->lo_y, fc->hi_y));
     pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x, y, &t->h, t->jb);
-    /* another gain only when it matches clearly better (GAIN_MARGIN_) and as well as a
-     * re-acquisition needs (rho_acquire): the prediction on the target. On a scene without
-     * flicker the choice among near-equal templates, or at a prediction off the target (a
-     * reversal), only added noise */
-    pft_real_t best = pft_add(
-        pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]), GAIN_MARGIN_);
+    /* another gain only when it matches better and reaches rho_min (the prediction on the
+     * target): at a prediction off the target (a sudden reversal) the choice among templates
+     * that all match badly only added noise (TS lost tests/unit/test_tsa_reversal.c's
+     * reversal in 3 of 8 seeds, q16) */
+    pft_real_t best = pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]);
     for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
         const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
-        if (r > best && r >= t->cfg.rho_acquire) {
+        if (r > best && r >= t->cfg.rho_min) {
             best = r;
             t->gsel = g;
         }
