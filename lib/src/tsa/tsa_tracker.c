@@ -958,7 +958,6 @@ static pft_tsa_state_t search_report_(pft_tsa_t *t, uint32_t M)
 
 /* ------------------------------------------ update ---------------------------------------- */
 
-/* A tracking frame: resample, fit, propagate, weigh; returns the weighing's result. */
 /* gain_select: the template of the bank that matches the histogram at the prior mean (this
  * frame's prediction) best is this frame's; the camera's gain changes from frame to frame and
  * moves whole bins (docs/results/tsa_ak.md, "gain flicker"). Reads the histogram directly, so
@@ -986,6 +985,7 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
     }
 }
 
+/* A tracking frame: resample, fit, propagate, weigh; returns the weighing's result. */
 static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uint32_t M,
                                  pft_real_t beta_used, pft_tsa_motion_fit_t *fx,
                                  pft_tsa_motion_fit_t *fy)
