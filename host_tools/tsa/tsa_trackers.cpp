@@ -70,6 +70,7 @@ const std::vector<ParamDef> &param_defs()
         PFT_REAL_PARAM(max_area_change, 1, 1000),
         PFT_INT_PARAM(lost_frames, uint16_t, 0, 65535),
         PFT_BOOL_PARAM(loss_search),
+        PFT_BOOL_PARAM(gain_select),
         PFT_REAL_PARAM(rho_acquire, 0, 1),
         PFT_REAL_PARAM(search_growth, 0, 4096),
         PFT_REAL_PARAM(reacq_radius, 0, 4096),
@@ -414,6 +415,7 @@ std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &
         p.set["spread_gain"] = 0;
         p.set["theta_u"] = 0.9;
         p.set["loss_search"] = 0;
+        p.set["gain_select"] = 0;
     } else {
         auto t = make_cv_tracker(name);
         if (!t)

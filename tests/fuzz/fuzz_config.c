@@ -303,6 +303,7 @@ static void fuzz_tsa(fz_t *f)
     FZ_PATCH(f, c, 12u);
     FZ_BOOL(c.fit_rho_weights);
     FZ_BOOL(c.loss_search);
+    FZ_BOOL(c.gain_select);
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_tsa_config_check(&c, &g_field));
     size_t ws = pft_tsa_workspace_size(&c);

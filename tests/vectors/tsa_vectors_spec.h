@@ -383,6 +383,10 @@ static inline void tsa_gv_config(pft_tsa_config_t *c, uint32_t cs)
         c->fit_v_max = 0;
         c->lost_frames = 3u;
         c->loss_search = false;
+        /* the paper's behaviour, as pft's tsa_paper: one template. With gain selection the
+         * float tracker of this case (unbounded fit) left the target on frames 21-23 (7-20 px,
+         * q16 on it) */
+        c->gain_select = false;
     }
     if (cs == 5u) {
         c->theta_u = 0;

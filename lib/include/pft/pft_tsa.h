@@ -211,6 +211,14 @@ typedef struct {
      *  stays within the frame enlarged by the target's box on each side. false: the paper's
      *  behaviour (pioneer-only frames, WEAK fallback weights, extrapolation of the fit) */
     bool loss_search;
+    /** gain selection [E] (default true; docs/algorithms.md 4.4): the template is kept under
+     *  seven camera gains 0.85 .. 1.15 (step 0.05, channel values scaled and clamped to 255);
+     *  each tracking frame weighs its particles with the one that best matches the histogram
+     *  at the prediction (the prior mean), gain 1 unless another matches better and reaches
+     *  rho_min. Under 5 % per-frame gain flicker a white vehicle's body moved between two
+     *  bins and the template matched the background better than the target
+     *  (docs/results/tsa_ak.md). Search frames use gain 1. false: one template */
+    bool gain_select;
     /** candidate and confirmation threshold (default 0.88 [E]: under 5 % gain flicker the
      *  best rho on the target after a forced loss varied over 0.85-0.97 from frame to frame,
      *  so 0.9 needed two good frames in a row; 0.86 re-acquired a background patch;

@@ -41,6 +41,7 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->max_area_change = PFT_C(2.0);
     cfg->lost_frames = 10u;
     cfg->loss_search = true;
+    cfg->gain_select = true;
     cfg->rho_acquire = PFT_C(0.88);
     cfg->search_growth = PFT_C(16.0);
     cfg->reacq_radius = PFT_C(24.0);

@@ -18,6 +18,46 @@ static inline void add_pixel_(uint32_t *bin, const uint8_t *p, const uint32_t of
     bin[20u + (((uint32_t)p[off[2]] * 10u) >> 8)] += w;
 }
 
+/* The channel value v under the gain g / 256, rounded and clamped to 255 (v itself for g =
+ * 256). */
+static inline uint32_t gained_(uint32_t v, uint32_t g)
+{
+    const uint32_t u = (v * g + 128u) >> 8;
+    return u > 255u ? 255u : u;
+}
+
+/* add_pixel_ of the pixel's values under the gain g / 256. */
+static inline void add_pixel_gain_(uint32_t *bin, const uint8_t *p, const uint32_t off[3],
+                                   uint32_t w, uint32_t g)
+{
+    bin[(gained_((uint32_t)p[off[0]], g) * 10u) >> 8] += w;
+    bin[10u + ((gained_((uint32_t)p[off[1]], g) * 10u) >> 8)] += w;
+    bin[20u + ((gained_((uint32_t)p[off[2]], g) * 10u) >> 8)] += w;
+}
+
+void pft_tsa_hist_gain_(const pft_frame_t *frame, const pft_tsa_kernel_t *k, int32_t cx,
+                        int32_t cy, uint32_t gain, pft_tsa_hist_t *h)
+{
+    const int32_t W = (int32_t)frame->width;
+    const int32_t H = (int32_t)frame->height;
+    uint32_t off[3];
+    uint32_t bpp;
+    pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], &bpp);
+    memset(h->bin, 0, sizeof(h->bin));
+    h->total = 0u;
+    for (uint32_t i = 0; i < k->n; ++i) {
+        const pft_tsa_kpix_t *kp = &k->pix[i];
+        const int32_t x = cx + kp->dx;
+        const int32_t y = cy + kp->dy;
+        if (x < 0 || y < 0 || x >= W || y >= H) {
+            continue;
+        }
+        add_pixel_gain_(h->bin, pft_frame_row(frame, (uint32_t)y) + (uint32_t)x * bpp, off,
+                        kp->w, gain);
+        h->total += kp->w;
+    }
+}
+
 pft_status_t pft_tsa_hist(const pft_frame_t *frame, const pft_tsa_kernel_t *k, int32_t cx,
                           int32_t cy, pft_tsa_hist_t *h)
 {

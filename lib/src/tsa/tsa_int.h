@@ -213,6 +213,11 @@ void pft_tsa_view_hist_(const pft_tsa_view_t_ *v, const pft_tsa_kernel_t *k,
                         const pft_tsa_span_t *sp, uint32_t nsp, const uint16_t *kw, int32_t cx,
                         int32_t cy, pft_tsa_hist_t *h, uint32_t *jb);
 
+/* pft_tsa_hist of a checked frame with every channel value v taken as min(255, round(v gain /
+ * 256)) (gain 256: the same histogram); kernel and h not NULL. */
+void pft_tsa_hist_gain_(const pft_frame_t *frame, const pft_tsa_kernel_t *k, int32_t cx,
+                        int32_t cy, uint32_t gain, pft_tsa_hist_t *h);
+
 /* The square-root form (pft_tsa_hroot_t) of a histogram: with the even shift s that puts
  * total << s into [2^30, 2^32) (every bin is at most total), root = isqrt(total << s) and
  * s_u = isqrt(bin_u << s). All zero for an empty histogram. */

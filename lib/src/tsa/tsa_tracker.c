@@ -124,7 +124,7 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
         }
         if (t->memo_key[i] == 0u) {
             pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
-            const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
+            const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
             t->memo_key[i] = key;
             t->memo_rho[i] = r;
             return r;
@@ -133,7 +133,7 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
     }
     /* a full table (more distinct positions than 2 N + 4: not reached) */
     pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
-    return pft_tsa_rho_hist_(&t->h, &t->q, &t->q_root);
+    return pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
 }
 
 static pft_real_t rho_at_(pft_tsa_t *t, const frame_ctx_t_ *fc, pft_real_t x, pft_real_t y)
@@ -243,6 +243,13 @@ static bool contour_acceptable_(pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t are
     return pft_tsa_poly_count_(p, t->cfg.snake_points, t->cross) > 0u;
 }
 
+/* The bank's gain i in 1/256: 256 + 13 (i - GAIN_UNITY_), i.e. 0.85 .. 1.15 in steps of 0.05. */
+#define GAIN_UNITY_ 3u
+static uint32_t gain_q8_(uint32_t i)
+{
+    return 256u + 13u * i - 13u * GAIN_UNITY_;
+}
+
 /* Builds kernel, spans and template from cwork (frame coordinates) into the alternate kernel
  * and commits them (kernel, spans, template, contour, area); returns the new origin. On an
  * error nothing is committed: PFT_ERR_DEGENERATE for an empty kernel or template, PFT_ERR_LOST
@@ -286,6 +293,11 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     t->kw_alt = kw;
     t->q = hq;
     pft_tsa_hroot_(&t->q, &t->q_root);
+    /* the template under each gain of the bank (index GAIN_UNITY_: q itself) */
+    for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+        pft_tsa_hist_gain_(f, &t->kern, origin->x, origin->y, gain_q8_(g), &t->qg[g]);
+        pft_tsa_hroot_(&t->qg[g], &t->qg_root[g]);
+    }
     for (uint32_t i = 0; i < t->cfg.snake_points; ++i) {
         t->contour[i].x = (int16_t)(t->cwork[i].x - origin->x);
         t->contour[i].y = (int16_t)(t->cwork[i].y - origin->y);
@@ -401,6 +413,7 @@ pft_status_t pft_tsa_start(pft_tsa_t *t, const pft_frame_t *frame, const pft_tsa
     const pft_real_t ox = pft_from_int(origin.x);
     const pft_real_t oy = pft_from_int(origin.y);
     place_particles_(t, ox, oy);
+    t->gsel = GAIN_UNITY_;
     t->started = true;
     memset(&t->est, 0, sizeof(t->est));
     t->est.snake_passes = (uint8_t)passes;
@@ -945,6 +958,33 @@ static pft_tsa_state_t search_report_(pft_tsa_t *t, uint32_t M)
 
 /* ------------------------------------------ update ---------------------------------------- */
 
+/* gain_select: the template of the bank that matches the histogram at the prior mean (this
+ * frame's prediction) best is this frame's; the camera's gain changes from frame to frame and
+ * moves whole bins (docs/results/tsa_ak.md, "gain flicker"). Reads the histogram directly, so
+ * the similarity cache stays empty. */
+static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
+{
+    t->gsel = GAIN_UNITY_;
+    if (!t->cfg.gain_select) {
+        return;
+    }
+    const int32_t x = pft_round_int(pft_clamp(t->prior_x, fc->lo_x, fc->hi_x));
+    const int32_t y = pft_round_int(pft_clamp(t->prior_y, fc->lo_y, fc->hi_y));
+    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x, y, &t->h, t->jb);
+    /* another gain only when it matches better and reaches rho_min (the prediction on the
+     * target): at a prediction off the target (a sudden reversal) the choice among templates
+     * that all match badly only added noise (TS lost tests/unit/test_tsa_reversal.c's
+     * reversal in 3 of 8 seeds, q16) */
+    pft_real_t best = pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]);
+    for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+        const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
+        if (r > best && r >= t->cfg.rho_min) {
+            best = r;
+            t->gsel = g;
+        }
+    }
+}
+
 /* A tracking frame: resample, fit, propagate, weigh; returns the weighing's result. */
 static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uint32_t M,
                                  pft_real_t beta_used, pft_tsa_motion_fit_t *fx,
@@ -954,6 +994,7 @@ static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uin
     conservative_fit_(t, fx, fy);
     propagate_(t, fc, N, beta_used, fx, fy);
     frame_prepare_(t, fc, M);
+    gain_select_(t, fc);
     return weigh_(t, fc, N, M);
 }
 
@@ -1018,6 +1059,7 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     if (t->mode == PFT_TSA_MODE_TRACK) {
         wo = track_frame_(t, &fc, N, M, beta_used, &fx, &fy);
     } else {
+        t->gsel = GAIN_UNITY_;
         search_place_(t, M);
         frame_prepare_(t, &fc, M);
         reacquired = search_frame_(t, &fc, M);

@@ -24,8 +24,12 @@ typedef struct {
                             ? ((size_t)(n_pts) / 2u)                                            \
                             : (((size_t)(max_w) + 1u) / 2u)))
 
+/* Templates under the camera gains (256 + 13 (i - 3)) / 256, i = 0..6 (cfg.gain_select). */
+#define PFT_TSA_GAINS_ 7u
+
 /* The square-root form of a histogram (Bhattacharyya coefficient): s_u / root = sqrt(bin_u /
  * total) to 2^-15. */
+
 typedef struct {
     uint32_t s[PFT_TSA_BINS];
     uint32_t root;
@@ -67,6 +71,9 @@ typedef struct {
     uint32_t jb[110];                 /* scratch of the joint-bin histogram (tsa_appear.c) */
     pft_tsa_hroot_t q_root;           /* square-root form of the template */
     pft_tsa_hroot_t q0_root;          /* square-root form of the first template */
+    pft_tsa_hist_t qg[PFT_TSA_GAINS_]; /* the template under the gains of tsa_tracker.c */
+    pft_tsa_hroot_t qg_root[PFT_TSA_GAINS_];
+    uint32_t gsel;                    /* the gain of this frame: an index into qg */
     pft_real_t ref_x[PFT_TSA_MOTION_MAX_K]; /* reference points of the fit, oldest first */
     pft_real_t ref_y[PFT_TSA_MOTION_MAX_K];
     pft_real_t ref_w[PFT_TSA_MOTION_MAX_K];
