@@ -175,6 +175,34 @@ static void test_refused_input_changes_nothing(void)
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, pft_pre_clutter_workspace_size(&c2.cfg) - (PFT_WS_ALIGN - 1u));
 }
 
+/* Twelve all-zero residual frames (seq 1..12): the map settles at 0 everywhere. */
+static void settle_on_zero(pft_pre_clutter_t *c)
+{
+    memset(g_res, 0, sizeof g_res);
+    for (uint32_t k = 0; k < 12u; ++k) {
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(c, &f, 0, 0, true));
+    }
+}
+
+/* Frame k (seq 100 + k) of a 4 sigma 3 x 3 blob at (bx, by) on the zero residual; returns the
+ * map value the default alpha 0.1 learns there after it, 16 (1 - 0.9^k) sigma^2. */
+static double blob_frame(pft_pre_clutter_t *c, int k, int bx, int by)
+{
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            g_res[(by + dy) * W + bx + dx] = 1024; /* 4 sigma */
+        }
+    }
+    pft_frame_t f = res_frame(100u + (uint32_t)k);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(c, &f, 0, 0, true));
+    double pw = 1.0;
+    for (int i = 0; i < k; ++i) {
+        pw *= 0.9;
+    }
+    return 16.0 * (1.0 - pw);
+}
+
 /* A 3 x 3 blob of 4 sigma at a fixed place of a still scene, after 12 zero frames: its centre's
  * map follows m_k = 16 (1 - 0.9^k) (alpha 0.1; the 1/n weight of the start is below 0.1 by
  * then) and its output is 4 sigma while the map read before the frame is <= 2, then
@@ -185,27 +213,12 @@ static void test_persistent_blob_learnt_at_rate(void)
     pft_pre_clutter_config_default(&cfg);
     pft_pre_clutter_t c;
     init_map(&c, &cfg);
-    memset(g_res, 0, sizeof g_res);
-    for (uint32_t k = 0; k < 12u; ++k) {
-        pft_frame_t f = res_frame(k + 1u);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-    }
+    settle_on_zero(&c);
     TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_at(&c, 20u, 20u));
     const int bx = 20, by = 20;
     double m_prev = 0.0;
     for (int k = 1; k <= 40; ++k) {
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                g_res[(by + dy) * W + bx + dx] = 1024; /* 4 sigma */
-            }
-        }
-        pft_frame_t f = res_frame(100u + (uint32_t)k);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-        double pw = 1.0;
-        for (int i = 0; i < k; ++i) {
-            pw *= 0.9;
-        }
-        const double m = 16.0 * (1.0 - pw);
+        const double m = blob_frame(&c, k, bx, by);
         const double got = pft_pre_clutter_at(&c, bx, by) / 1024.0;
         TEST_ASSERT_DOUBLE_WITHIN(0.01 * m + 0.01, m, got);
         const double want = m_prev > 2.0 ? 4.0 / sqrt(m_prev) : 4.0;
@@ -229,27 +242,12 @@ static void test_veto_zeroes_learnt_clutter(void)
     cfg.veto = 8192u;
     pft_pre_clutter_t c;
     init_map(&c, &cfg);
-    memset(g_res, 0, sizeof g_res);
-    for (uint32_t k = 0; k < 12u; ++k) {
-        pft_frame_t f = res_frame(k + 1u);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-    }
+    settle_on_zero(&c);
     const int bx = 20, by = 20;
     double m_prev = 0.0;
     uint32_t vetoed = 0u;
     for (int k = 1; k <= 20; ++k) {
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                g_res[(by + dy) * W + bx + dx] = 1024; /* 4 sigma */
-            }
-        }
-        pft_frame_t f = res_frame(100u + (uint32_t)k);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-        double pw = 1.0;
-        for (int i = 0; i < k; ++i) {
-            pw *= 0.9;
-        }
-        const double m = 16.0 * (1.0 - pw);
+        const double m = blob_frame(&c, k, bx, by);
         const double out = out_of(&c)[by * W + bx] / 256.0;
         if (m_prev > 8.05) {
             TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[by * W + bx]);

@@ -464,6 +464,26 @@ static void test_termination_and_reinit(void)
     TEST_ASSERT_TRUE(id2 != id1);
 }
 
+/* Frame k's reports of the two targets at pos: at most two; from the first frame with two
+ * (*both, -1 before it) on, two, one within 1 cell of each target. Returns how many. */
+static uint32_t check_two(const pft_pte_t *p, const double pos[2], int k, int *both)
+{
+    const pft_pte_report_t *r = g_rep;
+    uint32_t n = (uint32_t)pft_pte_reports(p, g_rep, PFT_PTE_MAX_TRACKS);
+    TEST_ASSERT_TRUE(n <= 2u);
+    if (n == 2u && *both < 0) {
+        *both = k;
+    }
+    if (*both >= 0 && k >= *both) {
+        TEST_ASSERT_EQUAL_UINT32(2, n);
+        double a0 = D(r[0].pos[0]), a1 = D(r[1].pos[0]);
+        double lo = a0 < a1 ? a0 : a1, hi = a0 < a1 ? a1 : a0;
+        TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[0], lo);
+        TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[1], hi);
+    }
+    return n;
+}
+
 /* Two targets 22 cells apart crossing nothing: two tracks, never a duplicate. */
 static void test_two_targets(void)
 {
@@ -478,19 +498,7 @@ static void test_two_targets(void)
         double amp[2] = {3.0, 2.5};
         profile(2, pos, amp);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
-        const pft_pte_report_t *r = g_rep;
-        uint32_t n = (uint32_t)pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS);
-        TEST_ASSERT_TRUE(n <= 2u);
-        if (n == 2u && both < 0) {
-            both = k;
-        }
-        if (both >= 0 && k >= both) {
-            TEST_ASSERT_EQUAL_UINT32(2, n);
-            double a0 = D(r[0].pos[0]), a1 = D(r[1].pos[0]);
-            double lo = a0 < a1 ? a0 : a1, hi = a0 < a1 ? a1 : a0;
-            TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[0], lo);
-            TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[1], hi);
-        }
+        (void)check_two(&p, pos, k, &both);
     }
     note("both_from", both);
     /* the second target is found by the search during tracking (init_period 10) */
@@ -590,20 +598,8 @@ static void test_step_budget_bound(void)
                 TEST_ASSERT_EQUAL_UINT32(live_before > 0u ? 1u : 0u, p.n_steps);
                 bitten += live_before > 1u ? 1 : 0;
             }
-            const pft_pte_report_t *r = g_rep;
-            uint32_t n = (uint32_t)pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS);
-            live_before = n; /* dedup ends tracks before the reports: live = reported */
-            TEST_ASSERT_TRUE(n <= 2u);
-            if (n == 2u && both < 0) {
-                both = k;
-            }
-            if (both >= 0 && k >= both) {
-                TEST_ASSERT_EQUAL_UINT32(2, n);
-                double a0 = D(r[0].pos[0]), a1 = D(r[1].pos[0]);
-                double lo = a0 < a1 ? a0 : a1, hi = a0 < a1 ? a1 : a0;
-                TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[0], lo);
-                TEST_ASSERT_DOUBLE_WITHIN(1.0, pos[1], hi);
-            }
+            /* dedup ends tracks before the reports: live = reported */
+            live_before = check_two(&p, pos, k, &both);
         }
         note(v == 0u ? "both_from_off" : "both_from_budget1", both);
         TEST_ASSERT_TRUE(both >= 9 && both <= 25);
