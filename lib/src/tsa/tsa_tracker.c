@@ -293,8 +293,14 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     t->kw_alt = kw;
     t->q = hq;
     pft_tsa_hroot_(&t->q, &t->q_root);
-    /* the template under each gain of the bank (index GAIN_UNITY_: q itself) */
+    /* the template under each gain of the bank; index GAIN_UNITY_ is q itself (gain 256/256
+     * leaves every value as it is) */
     for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+        if (g == GAIN_UNITY_) {
+            t->qg[g] = t->q;
+            t->qg_root[g] = t->q_root;
+            continue;
+        }
         pft_tsa_hist_gain_(f, &t->kern, origin->x, origin->y, gain_q8_(g), &t->qg[g]);
         pft_tsa_hroot_(&t->qg[g], &t->qg_root[g]);
     }
@@ -977,6 +983,9 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
      * reversal in 3 of 8 seeds, q16) */
     pft_real_t best = pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]);
     for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+        if (g == GAIN_UNITY_) {
+            continue; /* best already */
+        }
         const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
         if (r > best && r >= t->cfg.rho_min) {
             best = r;
