@@ -14,7 +14,7 @@
  *
  * Usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] [--segments K] [--quiet] [--known]
  *                 [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K]
- *                 [--pte-budget B]
+ *                 [--pte-budget B] [--pte-lines W]
  * --trace prints "trace <frame> <tracks>" after every update (tracks: confirmed tracks or
  * reports; tsa: 1 while tracking), to group per-frame work by load (run_soak.sh work); tbd and
  * pf add the existence probability of the search layer / filter after the frame.
@@ -25,6 +25,8 @@
  * --pf-budget K runs pf with the TBD model's birth budget K (pft_pf_tbd_model_set_budget; of
  * its 500 particles).
  * --pte-budget B runs pte with step_budget B (at most B track steps per update; of its 3 slots).
+ * --pte-lines W runs pte with line_budget W (at most W line x frame sums per update) and checks
+ * after every update that it did no more (the count of the last update, a white-box read).
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -165,6 +167,7 @@ static bool g_tbd_bern;     /* --tbd-bern: the tbd manager's search layer in Ber
 static bool g_tbd_bounded;  /* --tbd-bounded: the bounded preset, half the search particles */
 static uint32_t g_pf_budget; /* --pf-budget K: the TBD model's birth budget (0: off) */
 static uint32_t g_pte_budget; /* --pte-budget B: PTE-TBD's step_budget (0: off) */
+static uint32_t g_pte_lines;  /* --pte-lines W: PTE-TBD's line_budget (0: off) */
 static uint32_t g_tbd_search; /* --tbd-search N: its search particles (0: the default 1000) */
 static uint64_t g_total;
 
@@ -738,7 +741,14 @@ static bool p_loop(const char *name, void *inst, p_update_fn update, p_reports_f
     return report(&st, quiet);
 }
 
-static pft_status_t pte_update_(void *p, const pft_frame_t *f) { return pft_pte_update(p, f); }
+static uint32_t g_pte_lines_max; /* --pte-lines: most line x frame sums of one update */
+static pft_status_t pte_update_(void *p, const pft_frame_t *f)
+{
+    pft_status_t st = pft_pte_update(p, f);
+    const uint32_t ops = ((const pft_pte_t *)p)->n_line_ops;
+    g_pte_lines_max = ops > g_pte_lines_max ? ops : g_pte_lines_max;
+    return st;
+}
 static size_t pte_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_reports(p, r, m); }
 static pft_status_t dp_update_(void *p, const pft_frame_t *f) { return pft_pte_dp_update(p, f); }
 static size_t dp_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_dp_reports(p, r, m); }
@@ -754,12 +764,23 @@ static bool soak_pte(uint64_t n, uint64_t seed, bool quiet)
     c.max_len = 20u;
     c.max_tracks = 3u;
     c.step_budget = (uint8_t)g_pte_budget;
+    c.line_budget = (uint16_t)g_pte_lines;
     size_t ws = pft_pte_workspace_size(&c);
     if (ws == 0u || ws > sizeof g_ws || pft_pte_init(&p, &c, g_ws, ws) != PFT_OK) {
         printf("pte: configuration refused\n");
         return false;
     }
-    return p_loop("pte", &p, pte_update_, pte_reports_, 3u, false, n, seed, quiet);
+    g_pte_lines_max = 0u;
+    bool ok = p_loop("pte", &p, pte_update_, pte_reports_, 3u, false, n, seed, quiet);
+    if (g_pte_lines != 0u) {
+        printf("pte: line_budget %u, most line x frame sums in one update %u\n",
+               (unsigned)g_pte_lines, (unsigned)g_pte_lines_max);
+        if (g_pte_lines_max > g_pte_lines) {
+            printf("pte: line_budget exceeded\n");
+            ok = false;
+        }
+    }
+    return ok;
 }
 
 static bool soak_pte_dp(uint64_t n, uint64_t seed, bool quiet)
@@ -828,13 +849,15 @@ int main(int argc, char **argv)
             g_pf_budget = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--pte-budget") == 0 && i + 1 < argc) {
             g_pte_budget = (uint32_t)strtoul(argv[++i], NULL, 10);
+        } else if (strcmp(argv[i], "--pte-lines") == 0 && i + 1 < argc) {
+            g_pte_lines = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--tbd-search") == 0 && i + 1 < argc) {
             g_tbd_search = (uint32_t)strtoul(argv[++i], NULL, 10);
         } else if (strcmp(argv[i], "--trace") == 0) {
             g_trace = true;
         } else {
             fprintf(stderr, "usage: pft_soak [--frames N] [--tracker NAME|all] [--seed S] "
-                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K] [--pte-budget B]\n");
+                            "[--segments K] [--quiet] [--known] [--trace] [--tbd-bern] [--tbd-bounded] [--tbd-search N] [--pf-budget K] [--pte-budget B] [--pte-lines W]\n");
             return 2;
         }
     }

@@ -702,6 +702,112 @@ static void test_step_budget_never_bites(void)
     TEST_ASSERT_TRUE(diff <= 0.25);
 }
 
+/* line_budget (issue #12): configuration check names the field (TABLE only; at least
+ * 2 (2 scan_steps + 1) n_dir[0] per window: one slide of every entry of a track). */
+static void test_line_budget_config(void)
+{
+    pft_pte_config_t c;
+    const char *field = NULL;
+    cfg_default(&c);
+    TEST_ASSERT_EQUAL_UINT16(0, c.line_budget); /* off by default */
+    c.line_budget = 329u; /* 2 * 33 * 5 = 330 */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("line_budget", field);
+    c.line_budget = 330u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    c.op = PFT_PTE_OP_TABLE;
+    c.short_len = 10u; /* two windows */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("line_budget", field);
+    c.line_budget = 660u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    cfg_default(&c);
+    c.op = PFT_PTE_OP_EXACT; /* no slope entries */
+    c.line_budget = 1000u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("line_budget", field);
+}
+
+/* line_budget = W on the two targets of test_two_targets, W = 330 (the smallest) and 500: no
+ * update does more than W line x frame sums, while without the budget some update does more
+ * (a new track's entries summed over its template: the budget bites), and both targets are
+ * still found and followed within 1 cell. */
+static void test_line_budget_bound(void)
+{
+    static const uint16_t wv[3] = {0u, 330u, 500u};
+    uint32_t peak[3] = {0u, 0u, 0u};
+    for (uint32_t v = 0; v < 3u; ++v) {
+        pft_pte_config_t c;
+        cfg_default(&c);
+        c.line_budget = wv[v];
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 31;
+        int both = -1, coasted = 0;
+        uint32_t live_before = 0;
+        for (int k = 0; k < 70; ++k) {
+            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
+            double amp[2] = {3.0, 2.5};
+            profile(2, pos, amp);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            peak[v] = p.n_line_ops > peak[v] ? p.n_line_ops : peak[v];
+            if (v > 0u) {
+                TEST_ASSERT_TRUE(p.n_line_ops <= wv[v]);
+                TEST_ASSERT_TRUE(p.n_line_ops <= p.line_used);
+            }
+            TEST_ASSERT_TRUE(p.n_steps <= live_before);
+            coasted += (int)(live_before - p.n_steps);
+            live_before = check_two(&p, pos, k, &both);
+        }
+        note(v == 0u ? "both_from_off" : (v == 1u ? "both_from_330" : "both_from_500"), both);
+        note("peak_line_ops", (double)peak[v]);
+        note("coasted", (double)coasted);
+        TEST_ASSERT_TRUE(both >= 9 && both <= 25);
+        if (v == 0u) {
+            TEST_ASSERT_EQUAL_INT(0, coasted);
+        } else {
+            TEST_ASSERT_TRUE(coasted > 0); /* some track waited for its entries */
+        }
+    }
+    TEST_ASSERT_TRUE(peak[0] > wv[2]); /* the budgets bite */
+}
+
+/* A line budget that never bites (the largest, 65535) gives the same reports and the same
+ * line x frame sums as no budget, bit for bit, on the two targets. */
+static void test_line_budget_never_bites(void)
+{
+    static pft_pte_report_t rep[2][70][PFT_PTE_MAX_TRACKS];
+    uint32_t nrep[2][70];
+    uint32_t ops[2][70];
+    for (uint32_t v = 0; v < 2u; ++v) {
+        pft_pte_config_t c;
+        cfg_default(&c);
+        c.line_budget = v == 0u ? 0u : 65535u;
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 31;
+        for (int k = 0; k < 70; ++k) {
+            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
+            double amp[2] = {3.0, 2.5};
+            profile(2, pos, amp);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            nrep[v][k] = (uint32_t)pft_pte_reports(&p, rep[v][k], PFT_PTE_MAX_TRACKS);
+            ops[v][k] = p.n_line_ops;
+        }
+    }
+    uint32_t most = 0u;
+    for (int k = 0; k < 70; ++k) {
+        TEST_ASSERT_EQUAL_UINT32(nrep[0][k], nrep[1][k]);
+        if (nrep[0][k] > 0u) {
+            TEST_ASSERT_EQUAL_MEMORY(rep[0][k], rep[1][k], nrep[0][k] * sizeof(pft_pte_report_t));
+        }
+        TEST_ASSERT_EQUAL_UINT32(ops[0][k], ops[1][k]);
+        most = ops[0][k] > most ? ops[0][k] : most;
+    }
+    note("peak_line_ops", (double)most);
+    TEST_ASSERT_TRUE(most > 0u);
+}
+
 /* Range-Doppler map 32 x 12, target moving (+0.3, -0.15) cells/frame at A = 4: the 2-D
  * operator (3 x 3 directions, exact taps) tracks it within 0.7 cells on both axes. */
 static void test_range_doppler(void)
@@ -832,6 +938,9 @@ int main(void)
     RUN_TEST(test_step_budget_config);
     RUN_TEST(test_step_budget_bound);
     RUN_TEST(test_step_budget_never_bites);
+    RUN_TEST(test_line_budget_config);
+    RUN_TEST(test_line_budget_bound);
+    RUN_TEST(test_line_budget_never_bites);
     RUN_TEST(test_range_doppler);
     RUN_TEST(test_bad_input_untouched);
     return UNITY_END();

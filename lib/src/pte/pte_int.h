@@ -136,8 +136,9 @@ pft_real_t pft_pte_shift_(pft_real_t th, pft_real_t acc, int32_t tau);
 void pft_pte_ytable_setup_(pft_pte_t *p);
 /* Transition and process noise of every axis into the instance (at init, after cfg). */
 void pft_pte_model_setup_(pft_pte_t *p);
-/* Step 3 for one live track at the newest frame of the ring (the frame is pushed). */
-void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t);
+/* Step 3 for one live track at the newest frame of the ring (the frame is pushed). False
+ * when line_budget left its slope entries incomplete: the track predicted over the frame. */
+bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t);
 /* One lost frame for one live track: the prediction of step 1 over one period, the template
  * one frame longer (the lost frame is a missing stage of its window), no miss counted. */
 void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t);

@@ -143,6 +143,14 @@ static uint32_t budget_len_(const pft_pte_config_t *c)
     return (uint32_t)c->max_len + 1u < wait + 2u ? 0u : (uint32_t)c->max_len + 1u - wait;
 }
 
+/* Smallest line_budget: two line sums (one frame in, one out) of every line of every window
+ * of every slope entry of one track, so that a track's entries always gain on the frames. */
+static uint32_t line_budget_min_(const pft_pte_config_t *c)
+{
+    const uint32_t nwin = c->short_len != 0u ? 2u : 1u;
+    return 2u * (2u * (uint32_t)c->scan_steps + 1u) * (uint32_t)c->n_dir[0] * nwin;
+}
+
 /* First refused field in struct order (TABLE's requirements name op, c_step, in.zeta_clip). */
 static const char *bad_field_(const pft_pte_config_t *c)
 {
@@ -209,6 +217,11 @@ static const char *bad_field_(const pft_pte_config_t *c)
     if (c->step_budget > c->max_tracks ||
         (c->step_budget != 0u && (budget_len_(c) < 2u || c->short_len >= budget_len_(c)))) {
         return "step_budget";
+    }
+    /* line_budget: TABLE slope entries only; at least one slide of every entry of a track */
+    if (c->line_budget != 0u &&
+        (op_of_(c) != PFT_PTE_OP_TABLE || c->line_budget < line_budget_min_(c))) {
+        return "line_budget";
     }
     return NULL;
 }
@@ -391,6 +404,8 @@ pft_status_t pft_pte_reset(pft_pte_t *p)
     p->init_todo = 0u;
     p->init_run = 0u;
     p->n_steps = 0u;
+    p->n_line_ops = 0u;
+    p->line_used = 0u;
     p->n_rep = 0u;
     memset(p->miss, 0, sizeof(p->miss));
     return PFT_OK;
@@ -734,22 +749,26 @@ static void lost_frames_(pft_pte_t *p, uint32_t n)
 /* Step 3 of every live track, or under step_budget = B the B live tracks that waited
  * longest (ties: the lower slot); the others predict over the frame as over a lost one
  * (pft_pte_track_coast_) and slide their line sums over the frames they missed at their
- * next step. Templates are capped at budget_len_ frames before the steps. */
+ * next step. Templates are capped at budget_len_ frames before the steps. Under line_budget
+ * the tracks try in the same order (every live one without step_budget) and a track whose
+ * slope entries the budget left incomplete predicts over the frame; wait counts the frames
+ * since a completed step. */
 static void steps_(pft_pte_t *p)
 {
     const pft_pte_config_t *c = &p->cfg;
     uint32_t n = 0u;
-    if (c->step_budget == 0u) {
+    if (c->step_budget == 0u && c->line_budget == 0u) {
         for (uint32_t i = 0; i < c->max_tracks; ++i) {
             if (p->tracks[i].live) {
-                pft_pte_track_step_(p, &p->tracks[i]);
+                (void)pft_pte_track_step_(p, &p->tracks[i]);
                 n++;
             }
         }
         p->n_steps = (uint8_t)n;
         return;
     }
-    const uint8_t cap = (uint8_t)budget_len_(c);
+    const uint8_t cap = c->step_budget != 0u ? (uint8_t)budget_len_(c) : 0xFFu;
+    const uint32_t nb = c->step_budget != 0u ? c->step_budget : c->max_tracks;
     bool go[PFT_PTE_MAX_TRACKS];
     for (uint32_t i = 0; i < c->max_tracks; ++i) {
         pft_pte_track_t *t = &p->tracks[i];
@@ -759,7 +778,7 @@ static void steps_(pft_pte_t *p)
             t->wait = (uint8_t)(t->wait < 0xFFu ? t->wait + 1u : t->wait);
         }
     }
-    for (uint32_t b = 0; b < c->step_budget; ++b) {
+    for (uint32_t b = 0; b < nb; ++b) {
         int32_t best = -1;
         for (uint32_t i = 0; i < c->max_tracks; ++i) {
             if (p->tracks[i].live && !go[i] &&
@@ -768,19 +787,18 @@ static void steps_(pft_pte_t *p)
             }
         }
         if (best >= 0) {
+            /* in this order (the steps of different tracks share no state but the budget) */
             go[best] = true;
+            if (pft_pte_track_step_(p, &p->tracks[best])) {
+                p->tracks[best].wait = 0u;
+                n++;
+            }
         }
     }
     for (uint32_t i = 0; i < c->max_tracks; ++i) {
         pft_pte_track_t *t = &p->tracks[i];
-        if (t->live && go[i]) {
-            pft_pte_track_step_(p, t);
-            t->wait = 0u;
-            n++;
-        } else if (t->live) {
+        if (t->live && !go[i]) {
             pft_pte_track_coast_(p, t);
-        } else {
-            /* a free slot */
         }
     }
     p->n_steps = (uint8_t)n;
@@ -815,6 +833,8 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
     }
     p->miss[p->ring.head] = 0u;
     p->frames_in++;
+    p->n_line_ops = 0u;
+    p->line_used = 0u;
     steps_(p);
     dedup_(p);
     if (p->since_search < 0xFFFFu) {

@@ -601,6 +601,7 @@ static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
         const int32_t a = j0 + d < 0 ? -d : j0;
         const int32_t b = j1 + d > ny ? ny - d : j1;
         if (a < b) {
+            p->n_line_ops += (uint32_t)(b - a);
             const pft_real_t *restrict y = yrow_(p, (uint32_t)slot, (uint32_t)tau, a + d, b + d) + d;
             if (sign > 0) {
                 for (int32_t j = a; j < b; ++j) {
@@ -656,6 +657,7 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     if (j0 >= j1 || j0 + dn < 0 || j1 + dn > ny || j0 + dold < 0 || j1 + dold > ny) {
         return false;
     }
+    p->n_line_ops += 2u * (uint32_t)(j1 - j0);
     const int32_t len = p->ring.len;
     int32_t so = (int32_t)p->ring.head - m;
     so = so < 0 ? so + len : so;
@@ -784,6 +786,122 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     if (k1 < n) {
         bank_fill_(p, ti, bi, k1, n, kn);
     }
+}
+
+/* line_budget: an upper bound of the line x frame sums bank_sync_ does for these arguments
+ * (the lines kept slide or catch up over dk frames, the others are summed in full). */
+static uint32_t sync_cost_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t jlo, int32_t n,
+                           const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+{
+    int32_t kept = 0;
+    if (keep) {
+        const int32_t a = jlo > e->jlo ? jlo : e->jlo;
+        const int32_t b = jlo + n < e->jlo + (int32_t)e->n ? jlo + n : e->jlo + (int32_t)e->n;
+        kept = a < b ? b - a : 0;
+    }
+    const int32_t dk = (int32_t)(kn - e->kl);
+    uint32_t c = 0u;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        const int32_t mn = m[w];
+        const int32_t mo = e->m[w];
+        int32_t f = mo + dk - mn;
+        f = f < 0 ? -f : f;
+        c += (uint32_t)(n - kept) * (uint32_t)mn; /* lines summed in full */
+        if (kept > 0 && mn > 0) {
+            c += (uint32_t)kept * (uint32_t)(mo == 0 ? mn : dk + f);
+        }
+    }
+    (void)p;
+    return c;
+}
+
+/* line_budget: brings entry bi as far towards lines [jlo, jlo + n) and windows m[] at frame
+ * kn as the budget left in this update allows, one frame of all its lines at a time (the
+ * frames after its last one first, oldest first; then each window's far end). An entry that
+ * holds other lines, or whose frames would leave the ring, starts empty at frame kn. Returns
+ * true when the entry is complete (then the step may use it). */
+static bool bank_part_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
+                       const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+{
+    pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const uint32_t mx = e->m[0] > e->m[1] ? e->m[0] : e->m[1];
+    if (!keep || jlo != e->jlo || n != (int32_t)e->n || mx + (kn - e->kl) > p->ring.count) {
+        e->jlo = jlo;
+        e->n = (uint16_t)n;
+        e->kl = kn;
+        e->m[0] = 0u;
+        e->m[1] = 0u;
+    }
+    uint32_t nw = 0u;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        if (m[w] == 0u) {
+            e->m[w] = 0u; /* a window no longer used */
+        } else {
+            nw++;
+        }
+        if (e->m[w] == 0u) { /* empty: its sums start at 0 */
+            pft_real_t *se = bank_e_(p, ti, bi, w);
+            for (int32_t j = 0; j < n; ++j) {
+                se[j] = PFT_C(0.0);
+            }
+            for (int32_t r = 0; r < (int32_t)p->yq; ++r) {
+                e->gres[w][r] = PFT_C(0.0);
+            }
+        }
+    }
+    e->live = 1u;
+    const uint32_t one = (uint32_t)n * nw; /* one frame of every line of every window used */
+    while (e->kl != kn && p->line_used + one <= p->cfg.line_budget) {
+        const int32_t tau = (int32_t)(kn - e->kl) - 1;
+        for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+            if (m[w] != 0u) {
+                bank_lines_(p, ti, bi, w, 0, n, kn, tau, tau + 1, 1);
+                bank_gres_(p, e, w, kn, tau, tau + 1, 1);
+                e->m[w]++;
+            }
+        }
+        e->kl++;
+        p->line_used += one;
+    }
+    bool done = e->kl == kn;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_ && e->kl == kn; ++w) {
+        const int32_t mo = e->m[w];
+        const int32_t mn = m[w];
+        const int32_t left = (int32_t)((p->cfg.line_budget - p->line_used) / (uint32_t)n);
+        int32_t f = mo > mn ? mo - mn : mn - mo;
+        f = f < left ? f : left;
+        if (mo > mn) { /* the oldest frames out */
+            bank_lines_(p, ti, bi, w, 0, n, kn, mo - f, mo, -1);
+            bank_gres_(p, e, w, kn, mo - f, mo, -1);
+            e->m[w] = (uint8_t)(mo - f);
+        } else { /* older frames in */
+            bank_lines_(p, ti, bi, w, 0, n, kn, mo, mo + f, 1);
+            bank_gres_(p, e, w, kn, mo, mo + f, 1);
+            e->m[w] = (uint8_t)(mo + f);
+        }
+        p->line_used += (uint32_t)(f * n);
+        done = done && e->m[w] == m[w];
+    }
+    return done;
+}
+
+/* bank_sync_ under line_budget (0: always): in full when its cost fits in the budget left,
+ * else as far as it goes (bank_part_). True when the entry is complete. */
+static bool bank_sync_budget_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
+                              const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+{
+    if (p->cfg.line_budget == 0u) {
+        bank_sync_(p, ti, bi, jlo, n, m, kn, keep);
+        return true;
+    }
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const uint32_t cost = sync_cost_(p, e, jlo, n, m, kn, keep);
+    if (p->line_used + cost <= p->cfg.line_budget) {
+        p->line_used += cost;
+        bank_sync_(p, ti, bi, jlo, n, m, kn, keep);
+        return true;
+    }
+    return bank_part_(p, ti, bi, jlo, n, m, kn, keep);
 }
 
 /* Subtracts the interior normaliser gfull of its phase from G[j], j in [j0, j1), for the
@@ -990,7 +1108,7 @@ static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
  * directions are brought to this frame (entries of slopes no longer wanted are freed first;
  * a direction set moving by one lattice point costs one new entry at spacing dtheta_min).
  * Also the first scan line of each direction in its entry and its end position. */
-static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
+static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
 {
     pft_pte_scratch_t *s = p->scr;
     pft_pte_axis_t *ap = &s->ap[0];
@@ -1058,13 +1176,20 @@ static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
      * intervals moving back and forth cost nothing and new lines are summed a few at a time */
     int32_t margin = ((int32_t)p->nline - ap->ns) / 2;
     margin = margin > MARGIN_ ? MARGIN_ : margin;
-    for (int32_t i = 0; i < nw; ++i) {
+    bool any = false; /* an entry complete (every one without line_budget) */
+    const bool lb = p->cfg.line_budget != 0u;
+    for (int32_t k = 0; k < nw; ++k) {
+        /* line_budget: the entry of the predicted slope first, then outwards (h, h - 1,
+         * h + 1, ...), so that a track steps on its central directions first */
+        const int32_t i = lb ? h + ((k + 1) / 2) * ((k & 1) != 0 ? -1 : 1) : k;
         pft_pte_bank_t *e = &bank[sel[i]];
-        /* step_budget: an entry also slides over the frames its track waited (the frames
-         * leaving its window still in the ring) */
+        bool ok;
+        /* step_budget, line_budget: an entry also slides over the frames its track waited
+         * (the frames leaving its windows still in the ring) */
+        const uint32_t mx = e->m[0] > e->m[1] ? e->m[0] : e->m[1];
         bool keep = e->live && (e->kl + 1u == kn ||
-                                (p->cfg.step_budget != 0u && kn - e->kl > 1u &&
-                                 (uint32_t)e->m[0] + (kn - e->kl) <= (uint32_t)p->ring.count)) &&
+                                ((p->cfg.step_budget != 0u || p->cfg.line_budget != 0u) &&
+                                 kn - e->kl > 1u && mx + (kn - e->kl) <= (uint32_t)p->ring.count)) &&
                     kn - e->k0 < RENEW_;
         if (!keep) {
             e->k0 = kn; /* a fresh entry is anchored at this frame */
@@ -1073,11 +1198,14 @@ static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
         int64_t jc = (zg - sh + 32768) >> 16;
         int32_t jlo = (int32_t)(jc - half);
         if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
-            bank_sync_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
+            ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
         } else {
-            bank_sync_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m, kn, keep);
+            ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m,
+                                   kn, keep);
         }
+        any = any || ok;
         if (i < L) {
+            s->bok[i] = ok ? 1u : 0u;
             s->bsel[i] = sel[i];
             s->bj0[i] = jlo - e->jlo;
             /* first scan position minus zc, cells: ((jc - half) 2^16 + sh - zg) / (2^16 q) */
@@ -1085,11 +1213,13 @@ static void step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
             s->boff[i] = from_fix16_(d16 >= 0 ? (d16 + q / 2) / q : -((-d16 + q / 2) / q));
         }
     }
+    return any;
 }
 
 /* 2. Operator parameters of both axes, the log prior of every scan position, the EXACT
- * weight tables or the TABLE slope entries (computed once per step). */
-static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
+ * weight tables or the TABLE slope entries (computed once per step). False when line_budget
+ * left every slope entry incomplete. */
+static bool step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
 {
     const pft_pte_config_t *c = &p->cfg;
     const uint32_t na = p->naxes;
@@ -1130,9 +1260,7 @@ static void step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     int32_t m1 = M > 1 ? M : 2;
     g->mm = m1 * m1 - 1;
     g->dprior = PFT_C(0.0);
-    if (p->yq > 0u) {
-        step_bank_(p, t, g);
-    }
+    return p->yq > 0u ? step_bank_(p, t, g) : true;
 }
 
 /* Slopes and log prior of direction li (index l0 + L0 l1). */
@@ -1494,18 +1622,35 @@ void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t)
     t->age++;
 }
 
-void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
+bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_geom_ g;
     pft_pte_scratch_t *s = p->scr;
     s->ti = (uint32_t)(t - p->tracks);
     step_predict_(p, t);
-    step_geometry_(p, t, &g);
+    if (!step_geometry_(p, t, &g)) {
+        /* line_budget: every entry is still being summed; the frame is predicted over as a
+         * lost one (pft_pte_track_coast_ after its prediction) */
+        if (t->n_acc < p->cfg.max_len) {
+            t->n_acc++;
+        }
+        t->age++;
+        return false;
+    }
     /* manoeuvre test when the template is longer than the short one (TABLE) */
     const bool mt = p->short_len > 0u && g.M > (int32_t)p->short_len;
     pft_real_t t2short = PFT_REAL_MIN;
     pft_real_t t2max = PFT_REAL_MIN;
     for (int32_t li = 0; li < g.ndir; ++li) {
+        if (p->yq > 0u && s->bok[li] == 0u) {
+            /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
+            pft_pte_dir_t *o = &p->dir[li];
+            memset(o, 0, sizeof(*o));
+            o->amp = t->amp;
+            o->amp_var = t->amp_var;
+            o->logw = PFT_REAL_MIN;
+            continue;
+        }
         dir_slope_ d = dir_slope_of_(p, &g, li);
         const pft_real_t *E;
         const pft_real_t *G;
@@ -1546,4 +1691,5 @@ void pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
             t->P[a][5u * k] = pft_add(t->P[a][5u * k], pft_sq(sd));
         }
     }
+    return true;
 }

@@ -114,6 +114,7 @@ typedef struct {
     int32_t bsel[PFT_PTE_MAX_DIRS];              /* TABLE: bank entry of each direction */
     int32_t bj0[PFT_PTE_MAX_DIRS];               /* TABLE: its first scan line in the entry */
     pft_real_t boff[PFT_PTE_MAX_DIRS];           /* TABLE: first scan position - predicted end */
+    uint8_t bok[PFT_PTE_MAX_DIRS];               /* TABLE: its entry is complete (line_budget) */
     int32_t blo[PFT_PTE_MAX_SCAN_];              /* EXACT 2-D taps per phase: first cell, */
     int32_t bcnt[PFT_PTE_MAX_SCAN_];             /* count, */
     pft_real_t bg[PFT_PTE_MAX_SCAN_];            /* and sum of squared weights */
@@ -177,6 +178,8 @@ struct pft_pte_s {
     uint8_t init_stage;          /* init_spread: DP stages of the running search done */
     uint8_t init_todo;           /* init_spread: frames of the ring waiting for their stage */
     uint8_t n_steps;             /* track steps of the last update (step_budget bounds it) */
+    uint32_t n_line_ops;         /* TABLE: line x frame sums of the last update (line_budget bounds them) */
+    uint32_t line_used;          /* line_budget: sums charged in this update (upper bounds) */
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
