@@ -428,7 +428,10 @@ static void fuzz_pte(fz_t *f)
     c.scan_steps = 4u;
     c.max_tracks = 2u;
     c.init_threshold = PFT_C(8.0);
-    c.step_budget = (uint8_t)(fz_u8(f) % 3u); /* off, 1 or 2 of the 2 slots */
+    const uint8_t bud = fz_u8(f);
+    c.step_budget = (uint8_t)(bud % 3u); /* off, 1 or 2 of the 2 slots */
+    /* line_budget off, 60 (below its smallest, 90: refused), 120 or 180 (the same byte) */
+    c.line_budget = (uint16_t)(((uint32_t)bud / 3u % 4u) * 60u);
     FZ_PATCH(f, c, 12u);
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_pte_config_check(&c, &g_field));

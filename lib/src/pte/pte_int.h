@@ -139,6 +139,9 @@ void pft_pte_model_setup_(pft_pte_t *p);
 /* Step 3 for one live track at the newest frame of the ring (the frame is pushed). False
  * when line_budget left its slope entries incomplete: the track predicted over the frame. */
 bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t);
+/* line_budget, after a frame a track predicted over without stepping: it ends when it left
+ * the image (as in step 7) or has waited max_len frames (a whole template predicted). */
+void pft_pte_track_waited_(const pft_pte_t *p, pft_pte_track_t *t);
 /* One lost frame for one live track: the prediction of step 1 over one period, the template
  * one frame longer (the lost frame is a missing stage of its window), no miss counted. */
 void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t);

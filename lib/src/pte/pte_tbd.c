@@ -799,6 +799,9 @@ static void steps_(pft_pte_t *p)
         pft_pte_track_t *t = &p->tracks[i];
         if (t->live && !go[i]) {
             pft_pte_track_coast_(p, t);
+            if (c->line_budget != 0u) {
+                pft_pte_track_waited_(p, t);
+            }
         }
     }
     p->n_steps = (uint8_t)n;

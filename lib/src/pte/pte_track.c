@@ -1613,6 +1613,19 @@ static bool manoeuvre_(const pft_pte_t *p, int32_t M, pft_real_t t2l, pft_real_t
     return pft_abs(num) > pft_mul(p->cfg.man_z, pft_sqrt(pft_from_int(M - ms)));
 }
 
+void pft_pte_track_waited_(const pft_pte_t *p, pft_pte_track_t *t)
+{
+    for (uint32_t a = 0; a < p->naxes; ++a) {
+        const int32_t n = a == 0u ? (int32_t)p->cfg.in.n_range : (int32_t)p->cfg.in.n_doppler;
+        if (t->x[a][0] < PFT_C(-2.0) || t->x[a][0] > pft_from_int(n + 1)) {
+            t->live = false; /* as in step 7 */
+        }
+    }
+    if (t->wait >= p->cfg.max_len) {
+        t->live = false;
+    }
+}
+
 void pft_pte_track_coast_(pft_pte_t *p, pft_pte_track_t *t)
 {
     step_predict_(p, t);
@@ -1635,6 +1648,7 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
             t->n_acc++;
         }
         t->age++;
+        pft_pte_track_waited_(p, t);
         return false;
     }
     /* manoeuvre test when the template is longer than the short one (TABLE) */
