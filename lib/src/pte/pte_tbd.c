@@ -147,7 +147,10 @@ static uint32_t budget_len_(const pft_pte_config_t *c)
  * of every slope entry of one track, so that a track's entries always gain on the frames. */
 static uint32_t line_budget_min_(const pft_pte_config_t *c)
 {
-    const uint32_t nwin = c->short_len != 0u ? 2u : 1u;
+    uint32_t nwin = 1u;
+    if (c->short_len != 0u) {
+        nwin = 2u;
+    }
     return 2u * (2u * (uint32_t)c->scan_steps + 1u) * (uint32_t)c->n_dir[0] * nwin;
 }
 
