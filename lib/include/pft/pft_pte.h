@@ -269,11 +269,13 @@ typedef enum {
  * step in the order of the frames they waited (every live one, or the step_budget ones);
  * an entry is brought to the frame in full when that fits in what is left, else one frame of
  * all its lines at a time as far as the budget goes (the frames it missed first, then the
- * far end of each window), and the rest is carried to the next update: a track with an
- * incomplete entry predicts over the frame as over a lost one and steps when its entries are
- * complete, so a new entry is summed over its whole template a few frames at a time before
- * the track's first step with it. W >= 2 (2 scan_steps + 1) n_dir[0] (2 with short_len,
- * else 1): at least one slide of every entry of one track (docs/algorithms.md 5.8).
+ * far end of each window), and the rest is carried to the next update: a direction whose
+ * entry is incomplete takes no part in the step (no weight in the fusion, no say in the
+ * detection test); a track none of whose entries is complete predicts over the frame as over
+ * a lost one and steps when one is (it ends when it left the image or has waited max_len
+ * frames). So a new entry is summed over its whole template a few frames at a time before the
+ * track steps with it. W >= 2 (2 scan_steps + 1) n_dir[0] (2 with short_len, else 1): at
+ * least one slide of every entry of one track (docs/algorithms.md 5.8).
  */
 typedef struct {
     pft_pte_input_t in;        /**< input stage */
@@ -307,7 +309,7 @@ typedef struct {
     pft_real_t man_acc_sd;     /**< on a manoeuvre, acceleration standard deviation added to the track's covariance (CA: to r''; CV: Ms times it to r'), cells/frame^2, in [0, 0.1] (default 0.03) */
     /* Per-frame work bound */
     uint8_t step_budget;       /**< B: at most B track steps per update, 0..max_tracks (default 0: off, every live track steps at every frame). With B >= 1 the live tracks that waited longest step (ties: lower slot), the others predict over the frame as over a lost one and step later over the frames they missed; templates are at most max_len + 1 - ceil(max_tracks / B) frames, which must be >= 2 and above short_len (docs/algorithms.md 5.8) */
-    uint16_t line_budget;      /**< W: at most W line x frame sums of the TABLE slope entries per update (default 0: off). TABLE only, W >= 2 (2 scan_steps + 1) n_dir[0] (twice that with short_len); a track whose entries the budget left incomplete predicts over the frame and steps once they are complete (see "Line budget" above; docs/algorithms.md 5.8) */
+    uint16_t line_budget;      /**< W: at most W line x frame sums of the TABLE slope entries per update (default 0: off). TABLE only, W >= 2 (2 scan_steps + 1) n_dir[0] (twice that with short_len); a direction whose entry the budget left incomplete takes no part in the step, a track with no complete entry predicts over the frame (see "Line budget" above; docs/algorithms.md 5.8) */
 } pft_pte_config_t;
 
 /** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */
