@@ -33,6 +33,8 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.seed = seed + t.seed_offset;
     c.birth_peaks = static_cast<uint16_t>(t.birth_peaks);
     set_real_if(t.peak_gamma, c.peak_gamma);
+    c.peak_tile = static_cast<uint8_t>(t.peak_tile);
+    c.peak_quota = static_cast<uint8_t>(t.peak_quota);
     set_real_if(t.theta1, c.theta1);
     set_real_if(t.pb, c.pb);
     set_real_if(t.theta_end, c.theta_end);

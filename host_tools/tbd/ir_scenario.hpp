@@ -91,6 +91,7 @@ struct TrackerSettings {
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame
     // TBD in the pipeline"); the optional ones, absent, keep the preset's value
     int birth_peaks = 256;                      ///< births from the K strongest PSF-matched peaks (0: B_k, the paper)
+    int peak_tile = 0, peak_quota = 0;          ///< at most peak_quota birth peaks per peak_tile x peak_tile tile (0: off)
     double birth_share = 0.5;                   ///< Bernoulli search layer (0: the paper's per-particle existence)
     bool birth_correction = true;               ///< importance correction of the births
     int confirm_frames = 2;                     ///< consecutive frames with P > theta1 to confirm
