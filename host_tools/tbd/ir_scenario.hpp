@@ -106,8 +106,8 @@ struct TrackerSettings {
     // is; a track is reported once it has scene_frames frames and has not failed the test
     int scene_frames = 5;                       ///< frames of the test (0: off)
     double scene_gate_px = 0.15;                ///< px per frame
-    double scene_fit_px = 0.3;                  ///< report a track only while its last scene_frames + 1 positions fit a straight line at constant speed within this rms (px; 0: off)
-    double scene_early_px = 0;                  ///< report a track from its 4th estimate when it moved against the scene by more than this per frame over its last 3 frames (and fits the line); 0: off
+    double scene_fit_px = 0.2;                  ///< report a track only while its last scene_frames + 1 positions fit a straight line at constant speed within this rms (px; 0: off)
+    double scene_early_px = 0.5;                ///< report a track from its 4th estimate when it moved against the scene by more than this per frame over its last 3 frames (and fits the line); 0: off (docs/results/ir_clutter.md, "Clear sky: why targets are missed")
     double clutter_thr = 2;                     ///< map value (sigma^2) above which a pixel is clutter
     double clutter_veto = 0;                    ///< map value (sigma^2) above which the residual is 0 (no births there; 0: off)
     bool clutter_box = true;                    ///< read the map as its mean over the square (false: its largest value)
