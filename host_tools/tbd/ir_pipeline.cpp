@@ -33,6 +33,8 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.seed = seed + t.seed_offset;
     c.birth_peaks = static_cast<uint16_t>(t.birth_peaks);
     set_real_if(t.peak_gamma, c.peak_gamma);
+    c.peak_tile = static_cast<uint8_t>(t.peak_tile);
+    c.peak_quota = static_cast<uint8_t>(t.peak_quota);
     set_real_if(t.theta1, c.theta1);
     set_real_if(t.pb, c.pb);
     set_real_if(t.theta_end, c.theta_end);
@@ -216,7 +218,16 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
             }
             continue;
         }
-        if (s.h.size() >= n + 1 && (T_.scene_fit_px <= 0 || line_fit_rms(s.h) <= T_.scene_fit_px))
+        // early report (scene_early_px > 0): from the 4th estimate on, a track already moving
+        // against the scene by more than scene_early_px per frame (over its last 3 frames)
+        // that fits a straight line is reported before the test's n + 1 estimates
+        bool early = false;
+        if (T_.scene_early_px > 0 && s.h.size() >= 4 && s.h.size() < n + 1) {
+            const auto &a = s.h[s.h.size() - 4], &b = s.h.back();
+            const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
+            early = std::hypot(dx, dy) >= 3.0 * T_.scene_early_px;
+        }
+        if ((s.h.size() >= n + 1 || early) && (T_.scene_fit_px <= 0 || line_fit_rms(s.h) <= T_.scene_fit_px))
             kept.push_back(t);
     }
     out.tracks.swap(kept);

@@ -120,9 +120,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
 {
     t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
-            "birth_peaks", "peak_gamma", "birth_share", "theta1", "pb", "theta_end",
+            "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "scene_frames", "scene_gate_px", "scene_fit_px", "edge_k", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "edge_k", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -151,6 +151,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             dst = t.number_req_in(k, lo, hi);
     };
     num("peak_gamma", -1e4, 1e4, T.peak_gamma);
+    T.peak_tile = static_cast<int>(t.integer_in("peak_tile", T.peak_tile, 0, 255));
+    T.peak_quota = static_cast<int>(t.integer_in("peak_quota", T.peak_quota, 0, 255));
+    if (T.peak_quota > 0 && T.peak_tile < 4)
+        t.at("peak_quota").fail("needs peak_tile of at least 4 px");
     T.birth_share = t.number_in("birth_share", T.birth_share, 0.0, 0.95);
     num("theta1", 0.0, 1.0, T.theta1);
     num("pb", 0.0, 1.0, T.pb);
@@ -162,6 +166,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, 64));
     T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
     T.scene_fit_px = t.number_in("scene_fit_px", T.scene_fit_px, 0.0, 100.0);
+    T.scene_early_px = t.number_in("scene_early_px", T.scene_early_px, 0.0, 100.0);
     T.clutter_thr = t.number_in("clutter_thr", T.clutter_thr, 1.0, 64.0);
     T.clutter_veto = t.number_in("clutter_veto", T.clutter_veto, 0.0, 64.0);
     if (T.clutter_veto > 0 && T.clutter_veto < T.clutter_thr)

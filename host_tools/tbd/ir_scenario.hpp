@@ -91,6 +91,7 @@ struct TrackerSettings {
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame
     // TBD in the pipeline"); the optional ones, absent, keep the preset's value
     int birth_peaks = 256;                      ///< births from the K strongest PSF-matched peaks (0: B_k, the paper)
+    int peak_tile = 0, peak_quota = 0;          ///< at most peak_quota birth peaks per peak_tile x peak_tile tile (0: off)
     double birth_share = 0.5;                   ///< Bernoulli search layer (0: the paper's per-particle existence)
     bool birth_correction = true;               ///< importance correction of the births
     int confirm_frames = 2;                     ///< consecutive frames with P > theta1 to confirm
@@ -105,7 +106,8 @@ struct TrackerSettings {
     // is; a track is reported once it has scene_frames frames and has not failed the test
     int scene_frames = 5;                       ///< frames of the test (0: off)
     double scene_gate_px = 0.15;                ///< px per frame
-    double scene_fit_px = 0.3;                  ///< report a track only while its last scene_frames + 1 positions fit a straight line at constant speed within this rms (px; 0: off)
+    double scene_fit_px = 0.2;                  ///< report a track only while its last scene_frames + 1 positions fit a straight line at constant speed within this rms (px; 0: off)
+    double scene_early_px = 0.5;                ///< report a track from its 4th estimate when it moved against the scene by more than this per frame over its last 3 frames (and fits the line); 0: off (docs/results/ir_clutter.md, "Clear sky: why targets are missed")
     double clutter_thr = 2;                     ///< map value (sigma^2) above which a pixel is clutter
     double clutter_veto = 0;                    ///< map value (sigma^2) above which the residual is 0 (no births there; 0: off)
     bool clutter_box = true;                    ///< read the map as its mean over the square (false: its largest value)

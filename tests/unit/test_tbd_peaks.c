@@ -151,6 +151,59 @@ static void test_plateau_gives_one_peak_and_threshold_counts(void)
     TEST_ASSERT_EQUAL_UINT((unsigned)(IMG * IMG), (unsigned)pft_tbd_birth_candidates(&t, NULL, 0u));
 }
 
+/* Tile quota (cfg.peak_tile, cfg.peak_quota): the points of g_pts in 16 x 16 tiles are
+ * tile 0: 6, 12, 18, 21; tile 1: 15; tile 3: 9, 24 (tile 2 only the point below the
+ * threshold). With at most Q per tile the candidates are the K strongest of each tile's Q
+ * strongest; without the quota they are the 7 (test above). */
+static void test_tile_quota_keeps_the_strongest_per_tile(void)
+{
+    static pft_tbd_t t;
+    const struct {
+        uint16_t k;
+        uint8_t q;
+        int n;
+        int pts[5];
+    } cs[4] = {{KMAX, 1u, 3, {5, 3, 6, 0, 0}},
+               {KMAX, 2u, 5, {5, 4, 3, 6, 1}},
+               {3u, 2u, 3, {6, 5, 4, 0, 0}},
+               {2u, 1u, 2, {6, 5, 0, 0, 0}}};
+    for (int q = 0; q < 4; ++q) {
+        pft_tbd_config_t c;
+        cfg_peaks(&c, cs[q].k);
+        c.peak_tile = 16u;
+        c.peak_quota = cs[q].q;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+        clear_raw();
+        for (int p = 0; p < NPTS; ++p) {
+            set_px(g_pts[p][0], g_pts[p][1], g_val[p]);
+        }
+        pft_frame_t f;
+        frame_of(&f);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        uint32_t cand[KMAX];
+        size_t n = pft_tbd_birth_candidates(&t, cand, KMAX);
+        TEST_ASSERT_EQUAL_UINT((unsigned)cs[q].n, (unsigned)n);
+        for (int p = 0; p < cs[q].n; ++p) {
+            const int j = cs[q].pts[p];
+            TEST_ASSERT_TRUE_MESSAGE(has(cand, n, (uint32_t)(g_pts[j][1] * IMG + g_pts[j][0])),
+                                     "quota peak set");
+        }
+    }
+    /* a tile side of 0 leaves the quota off: the 7 points */
+    pft_tbd_config_t c;
+    cfg_peaks(&c, KMAX);
+    c.peak_quota = 1u;
+    c.peak_tile = 0u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, NULL));
+    c.peak_quota = 0u;
+    c.peak_tile = 16u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+    pft_frame_t f;
+    frame_of(&f);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    TEST_ASSERT_EQUAL_UINT(7u, (unsigned)pft_tbd_birth_candidates(&t, NULL, 0u));
+}
+
 /* With peaks off the candidates are B_k = {z > gamma} as before. */
 static void test_without_peaks_candidates_are_b(void)
 {
@@ -219,6 +272,18 @@ static void test_new_fields_refused_by_name(void)
     c.confirm_frames = (uint8_t)(PFT_TBD_MAX_DIS_R + 2u);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
     TEST_ASSERT_EQUAL_STRING("confirm_frames", field);
+    cfg_peaks(&c, KMAX);
+    c.peak_quota = 1u;
+    c.peak_tile = 3u; /* a quota needs tiles of 4 px or more */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("peak_tile", field);
+    c.peak_tile = 4u; /* 64 tiles: K + 64 counters must fit the 1024 pixels */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    c.birth_peaks = 961u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("peak_quota", field);
+    c.birth_peaks = 960u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
 #ifndef PFT_NUMERIC_Q16
     cfg_peaks(&c, 4u);
     c.peak_gamma = NAN;
@@ -480,6 +545,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_peaks_are_the_bright_points_capped_at_k);
     RUN_TEST(test_plateau_gives_one_peak_and_threshold_counts);
+    RUN_TEST(test_tile_quota_keeps_the_strongest_per_tile);
     RUN_TEST(test_without_peaks_candidates_are_b);
     RUN_TEST(test_workspace_with_peaks_is_exact);
     RUN_TEST(test_new_fields_refused_by_name);

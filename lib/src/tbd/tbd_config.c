@@ -36,6 +36,8 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->birth_correction = false;
     cfg->birth_peaks = 0u;
     cfg->peak_gamma = PFT_C(1.0);
+    cfg->peak_tile = 0u;
+    cfg->peak_quota = 0u;
     cfg->birth_share = PFT_C(0.0);
     cfg->theta1 = PFT_C(0.6);
     cfg->confirm_frames = 1u;
@@ -221,6 +223,16 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (!pft_cfg_real_ok_(c->peak_gamma)) {
         return "peak_gamma";
+    }
+    if (c->peak_quota > 0u && c->peak_tile < 4u) {
+        return "peak_tile";
+    }
+    if (c->peak_quota > 0u && c->peak_tile > 0u) {
+        const uint32_t nt = (((uint32_t)c->width + c->peak_tile - 1u) / c->peak_tile) *
+                            (((uint32_t)c->height + c->peak_tile - 1u) / c->peak_tile);
+        if ((uint32_t)c->birth_peaks + nt > (uint32_t)c->width * c->height) {
+            return "peak_quota";
+        }
     }
     if (!(c->birth_share >= PFT_C(0.0) && c->birth_share <= PFT_C(0.95))) {
         return "birth_share";

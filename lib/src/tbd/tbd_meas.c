@@ -449,30 +449,69 @@ static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_
     return ok;
 }
 
-/* What the scan of one row needs. */
+/* What the scan of one row needs. With a tile quota (quota > 0) cnt[t] counts the kept peaks
+ * of tile t (tiles of tile x tile pixels, ntx per tile row). */
 typedef struct {
     const uint8_t *mask;
     uint32_t *key;
     pft_real_t *val;
+    uint32_t *cnt;
     pft_real_t thr;
-    uint32_t w, k_max, n, na;
+    uint32_t w, k_max, n, na, tile, ntx, quota;
 } peak_scan_t;
 
+/* The tile of pixel k (quota on). */
+static uint32_t peak_tile_of_(const peak_scan_t *ps, uint32_t k)
+{
+    return ((k / ps->w) / ps->tile) * ps->ntx + (k % ps->w) / ps->tile;
+}
+
+/* Tile quota (cfg.peak_quota): pixel k (value v) of tile tk, which holds quota kept peaks
+ * already, replaces the weakest of them if it is stronger (the heap's weakest only grows). */
+static void peak_keep_full_tile_(peak_scan_t *ps, uint32_t tk, uint32_t k, pft_real_t v)
+{
+    uint32_t iw = ps->n;
+    for (uint32_t i = 0; i < ps->n; ++i) {
+        if (peak_tile_of_(ps, ps->key[i]) == tk &&
+            (iw == ps->n || weaker_(ps->val[i], ps->key[i], ps->val[iw], ps->key[iw]))) {
+            iw = i;
+        }
+    }
+    if (iw < ps->n && weaker_(ps->val[iw], ps->key[iw], v, k)) {
+        ps->key[iw] = k;
+        ps->val[iw] = v;
+        sift_down_(ps->key, ps->val, ps->n, iw);
+    }
+}
+
 /* Pixel c of row q (value v, above the threshold, a local maximum) into the heap of the K
- * strongest. */
+ * strongest (with a tile quota: of the K strongest with at most quota per tile). */
 static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
 {
-    if (ps->n < ps->k_max) {
+    const bool full = ps->n >= ps->k_max;
+    if (full && !weaker_(ps->val[0], ps->key[0], v, k)) {
+        return; /* weaker than the K kept: not a candidate */
+    }
+    if (ps->quota > 0u) {
+        const uint32_t tk = peak_tile_of_(ps, k);
+        if (ps->cnt[tk] >= ps->quota) {
+            peak_keep_full_tile_(ps, tk, k, v);
+            return;
+        }
+        ++ps->cnt[tk];
+        if (full) {
+            --ps->cnt[peak_tile_of_(ps, ps->key[0])];
+        }
+    }
+    if (!full) {
         ps->key[ps->n] = k;
         ps->val[ps->n] = v;
         sift_up_(ps->key, ps->val, ps->n);
         ++ps->n;
-    } else if (weaker_(ps->val[0], ps->key[0], v, k)) {
+    } else {
         ps->key[0] = k;
         ps->val[0] = v;
         sift_down_(ps->key, ps->val, ps->n, 0u);
-    } else {
-        /* weaker than the K kept: not a candidate */
     }
 }
 
@@ -527,6 +566,16 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
     ps.n = 0u;
     ps.na = 0u;
+    ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
+    ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
+    ps.ntx = (w + ps.tile - 1u) / ps.tile;
+    ps.cnt = cand + ps.k_max; /* the config check keeps K + the tile count within w h */
+    if (ps.quota > 0u) {
+        const uint32_t nt = ps.ntx * ((h + ps.tile - 1u) / ps.tile);
+        for (uint32_t t = 0; t < nt; ++t) {
+            ps.cnt[t] = 0u;
+        }
+    }
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
