@@ -245,6 +245,8 @@ static bool contour_acceptable_(pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t are
 
 /* The bank's gain i in 1/256: 256 + 13 (i - GAIN_UNITY_), i.e. 0.85 .. 1.15 in steps of 0.05. */
 #define GAIN_UNITY_ 3u
+/* Placements at which gain_select_ compares the bank's templates. */
+#define GAIN_PROBES_ 5u
 static uint32_t gain_q8_(uint32_t i)
 {
     return 256u + 13u * i - 13u * GAIN_UNITY_;
@@ -976,21 +978,39 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
     }
     const int32_t x = pft_round_int(pft_clamp(t->prior_x, fc->lo_x, fc->hi_x));
     const int32_t y = pft_round_int(pft_clamp(t->prior_y, fc->lo_y, fc->hi_y));
-    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x, y, &t->h, t->jb);
+    /* the gain is chosen jointly with the position: at the prior mean and at GAIN_PROBES_ - 1
+     * placements a quarter of the kernel's width / height away from it on each axis. At the
+     * prior mean alone a prediction a few px off the target chose a darker gain whose template
+     * matches the off-target placement best (background in the kernel), and the particles
+     * weighed with it held the estimate there (docs/results/tsa_ak.md, branch tsa11) */
+    int32_t sx = (t->kern.x1 - t->kern.x0 + 1) / 4;
+    int32_t sy = (t->kern.y1 - t->kern.y0 + 1) / 4;
+    sx = sx < 1 ? 1 : sx;
+    sy = sy < 1 ? 1 : sy;
+    const int32_t ox[GAIN_PROBES_] = {0, sx, -sx, 0, 0};
+    const int32_t oy[GAIN_PROBES_] = {0, 0, 0, sy, -sy};
+    pft_real_t best_unity = PFT_C(-1.0);
+    pft_real_t best = PFT_C(-1.0);
+    uint32_t gbest = GAIN_UNITY_;
+    for (uint32_t p = 0; p < GAIN_PROBES_; ++p) {
+        pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x + ox[p], y + oy[p],
+                           &t->h, t->jb);
+        for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+            const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
+            if (g == GAIN_UNITY_) {
+                best_unity = pft_max(best_unity, r);
+            } else if (r > best) {
+                best = r;
+                gbest = g;
+            }
+        }
+    }
     /* another gain only when it matches better and reaches rho_min (the prediction on the
      * target): at a prediction off the target (a sudden reversal) the choice among templates
      * that all match badly only added noise (TS lost tests/unit/test_tsa_reversal.c's
      * reversal in 3 of 8 seeds, q16) */
-    pft_real_t best = pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]);
-    for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
-        if (g == GAIN_UNITY_) {
-            continue; /* best already */
-        }
-        const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
-        if (r > best && r >= t->cfg.rho_min) {
-            best = r;
-            t->gsel = g;
-        }
+    if (best > best_unity && best >= t->cfg.rho_min) {
+        t->gsel = gbest;
     }
 }
 
