@@ -2,6 +2,10 @@
 """Lines up the frames a TSA-AK run fails with the scenario's events and the tracker's state.
 
 Usage: tsa_failed_frames.py SIM_DIR RUN_DIR [--diag DIAG_FILE] [--window W] [--all]
+       tsa_failed_frames.py --partials EVAL_DIR [--tracker tsa]
+  --partials: every failed frame of every run in the partial summaries of `pft eval --shard`
+           (EVAL_DIR/partial_*_of_*.json): per seed the frame numbers (1-based, frame 1 is the
+           start), centre error and IoU, and the totals;
   SIM_DIR: `pft sim --scenario S --seed K --out SIM_DIR` (truth.csv: per frame the truth box,
            the camera's swing velocity camera_vx, the sensor gain, the motion blur length and
            the sudden reversals taken);
@@ -20,6 +24,7 @@ failed frames against the others.
 import argparse
 import csv
 import math
+import sys
 
 
 def read_csv(path):
@@ -37,7 +42,38 @@ def iou(a, b):
     return inter / u if u > 0 else 0.0
 
 
+def partials(d, tracker):
+    """Failed frames per run of the partial summaries in d."""
+    import glob
+    import json
+    total = failed = 0
+    per = []
+    for p in sorted(glob.glob(d + '/partial_*_of_*.json')):
+        for r in json.load(open(p))['run_records']:
+            for t in r['trackers']:
+                if t['tracker'] != tracker:
+                    continue
+                bad = [(k + 2, t['err'][k], t['iou'][k]) for k in range(len(t['ok']))
+                       if t['scored'][k] and not t['ok'][k]]
+                total += sum(t['scored'])
+                failed += len(bad)
+                if bad:
+                    per.append((r['seed'], bad))
+    for seed, bad in sorted(per, key=lambda x: -len(x[1])):
+        print('seed %d: %d failed: %s' % (seed, len(bad), ', '.join(
+            '%d (%.1f px, IoU %.2f)' % b for b in bad)))
+    print('failed %d of %d scored frames (%.4f ok) in %d runs' % (
+        failed, total, 1 - failed / total if total else 0, len(per)))
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == '--partials':
+        ap = argparse.ArgumentParser()
+        ap.add_argument('--partials')
+        ap.add_argument('--tracker', default='tsa')
+        a = ap.parse_args()
+        partials(a.partials, a.tracker)
+        return
     ap = argparse.ArgumentParser()
     ap.add_argument('sim')
     ap.add_argument('run')
