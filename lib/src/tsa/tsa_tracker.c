@@ -1044,6 +1044,8 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
             } else if (r > best) {
                 best = r;
                 gbest = g;
+            } else {
+                /* not better than the other gains' best so far */
             }
         }
     }
