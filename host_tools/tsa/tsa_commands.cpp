@@ -944,12 +944,13 @@ public:
         }
         write_text_atomic(join_path(o.out, "truth.csv"), [&](std::ostream &os) {
             CsvWriter w(os);
-            for (const char *h : {"frame", "cx", "cy", "box_x", "box_y", "box_w", "box_h", "camera_vx"})
+            for (const char *h : {"frame", "cx", "cy", "box_x", "box_y", "box_w", "box_h", "camera_vx", "gain", "blur_px",
+                                  "reversal"})
                 w.field(h);
             w.end_row();
             for (auto &t : truth) {
                 w.field(t.frame + 1).field(t.cx).field(t.cy).field(t.box.x).field(t.box.y).field(t.box.width)
-                    .field(t.box.height).field(t.cam_vx);
+                    .field(t.box.height).field(t.cam_vx).field(t.gain).field(t.blur_px).field(t.reversal ? 1 : 0);
                 w.end_row();
             }
         });

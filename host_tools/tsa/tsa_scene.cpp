@@ -242,6 +242,8 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
     }
     for (int k = 0; k < n; ++k) {
         double vt;
+        double gain = 1.0, blur_px = 0.0;
+        bool rev_taken = false;
         if (sine) {
             const double u = std::clamp(X / A, -1.0, 1.0);
             const double sp = s.swing_speed * std::max(std::sqrt(1.0 - u * u), 0.1);
@@ -254,6 +256,7 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
                 std::abs(v) >= 0.7 * s.swing_speed && v * dir > 0) {
                 dir = -dir;
                 ++next_rev;
+                rev_taken = true;
             }
             vt = dir * sp;
         } else {
@@ -307,6 +310,7 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
         if (s.motion_blur > 0) {
             // the ground's apparent displacement over the frame: the camera's, negated and rotated
             const cv::Point2d d = cam - cam_prev;
+            blur_px = std::hypot(d.x, d.y) * z * s.motion_blur;
             motion_blur(img, cv::Point2d(-(zc * d.x - zs * d.y), -(zs * d.x + zc * d.y)) * s.motion_blur);
         }
         if (s.blur_sigma > 0)
@@ -314,6 +318,7 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
         if (s.gain_flicker > 0) {
             const double g = std::clamp(1.0 + s.gain_flicker * fx_nd(fx_gen), 0.5, 1.5);
             img.convertTo(img, -1, g, 0.0);
+            gain = g;
         }
         if (s.blank(k))
             img.setTo(cv::Scalar(128, 128, 128));
@@ -336,7 +341,7 @@ void render_sequence(const SceneSpec &s, uint64_t seed, std::vector<cv::Mat> &fr
                 y1 = std::max(y1, q.y);
             }
         const cv::Point2d c = to_img(tgt);
-        truth.push_back({k, c.x, c.y, cv::Rect2d(x0, y0, x1 - x0, y1 - y0), v});
+        truth.push_back({k, c.x, c.y, cv::Rect2d(x0, y0, x1 - x0, y1 - y0), v, gain, blur_px, rev_taken});
         frames.push_back(img);
     }
 }

@@ -58,6 +58,9 @@ struct TruthRow {
     double cx, cy;                  ///< target centre in the image
     cv::Rect2d box;                 ///< axis-aligned box of the target in the image
     double cam_vx;                  ///< camera swing velocity (px/frame), for plots
+    double gain = 1.0;              ///< the frame's sensor gain (gain flicker; 1 without it)
+    double blur_px = 0.0;           ///< length of the frame's motion blur, px (0 without it)
+    bool reversal = false;          ///< a sudden reversal of the swing was taken at this frame
 };
 
 SceneSpec parse_scene(const nlohmann::json &j, const std::string &file);

@@ -213,9 +213,9 @@ typedef struct {
     bool loss_search;
     /** gain selection [E] (default true; docs/algorithms.md 4.4): the template is kept under
      *  seven camera gains 0.85 .. 1.15 (step 0.05, channel values scaled and clamped to 255);
-     *  each tracking frame weighs its particles with the one that best matches the histogram
-     *  at the prediction (the prior mean), gain 1 unless another matches better and reaches
-     *  rho_min. Under 5 % per-frame gain flicker a white vehicle's body moved between two
+     *  each tracking frame weighs its particles with the one that best matches the histograms
+     *  at the prediction (the prior mean) and at four placements a quarter of the kernel away
+     *  from it, gain 1 unless another matches better and reaches rho_min. Under 5 % per-frame gain flicker a white vehicle's body moved between two
      *  bins and the template matched the background better than the target
      *  (docs/results/tsa_ak.md). Search frames use gain 1. false: one template */
     bool gain_select;

@@ -208,6 +208,38 @@ pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
 }
 #endif
 
+#ifdef PFT_NUMERIC_Q16
+void pft_tsa_rho_bank_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q, const pft_tsa_hroot_t *qr,
+                       uint32_t n, pft_real_t *out)
+{
+    (void)q;
+    /* p's square roots once for the n templates: the same values as pft_tsa_rho_hist_ (p's
+     * bins are at most its total, so hroot_'s clamp changes nothing; a zero bin has root 0) */
+    pft_tsa_hroot_t pr;
+    pft_tsa_hroot_(p, &pr);
+    for (uint32_t g = 0; g < n; ++g) {
+        if (pr.root == 0u || qr[g].root == 0u) {
+            out[g] = PFT_C(0.0);
+            continue;
+        }
+        uint64_t num = 0u;
+        for (uint32_t k = 0; k < qr[g].n_nz; ++k) {
+            const uint32_t u = qr[g].nz[k];
+            num += (uint64_t)pr.s[u] * qr[g].s[u];
+        }
+        out[g] = ratio_(num, 3u * (uint64_t)pr.root * qr[g].root);
+    }
+}
+#else
+void pft_tsa_rho_bank_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q, const pft_tsa_hroot_t *qr,
+                       uint32_t n, pft_real_t *out)
+{
+    for (uint32_t g = 0; g < n; ++g) {
+        out[g] = pft_tsa_rho_hist_(p, &q[g], &qr[g]);
+    }
+}
+#endif
+
 pft_real_t pft_tsa_bhattacharyya(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q)
 {
     if (p == NULL || q == NULL) {

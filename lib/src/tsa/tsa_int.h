@@ -231,6 +231,11 @@ void pft_tsa_hroot_(const pft_tsa_hist_t *h, pft_tsa_hroot_t *r);
 pft_real_t pft_tsa_rho_hist_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q,
                              const pft_tsa_hroot_t *qr);
 
+/* pft_tsa_rho_hist_ of p against the n templates q[0..n) (roots qr[0..n)) into out[0..n), the
+ * same values; q16 takes p's square roots once for all of them. */
+void pft_tsa_rho_bank_(const pft_tsa_hist_t *p, const pft_tsa_hist_t *q, const pft_tsa_hroot_t *qr,
+                       uint32_t n, pft_real_t *out);
+
 /* pft_tsa_motion_free_step with the input's terms given: ux = gamma1 vbar, uv = gamma2 vbar
  * (the same for every particle of a frame, so computed once). */
 static inline void pft_tsa_motion_free_step_u_(const pft_tsa_motion_free_t *c, pft_real_t *x,

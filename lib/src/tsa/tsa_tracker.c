@@ -136,6 +136,22 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
     return pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
 }
 
+/* Stores rho of the template at pixel (cx, cy) in the similarity cache (a full table: not
+ * stored). */
+static void rho_put_(pft_tsa_t *t, int32_t cx, int32_t cy, pft_real_t r)
+{
+    const uint32_t key = ((uint32_t)(cx + 32768) << 16) | (uint32_t)(cy + 32768);
+    uint32_t i = (uint32_t)(((uint64_t)(key * 2654435761u) * t->memo_cap) >> 32);
+    for (uint32_t probe = 0; probe < t->memo_cap; ++probe) {
+        if (t->memo_key[i] == key || t->memo_key[i] == 0u) {
+            t->memo_key[i] = key;
+            t->memo_rho[i] = r;
+            return;
+        }
+        i = i + 1u == t->memo_cap ? 0u : i + 1u;
+    }
+}
+
 static pft_real_t rho_at_(pft_tsa_t *t, const frame_ctx_t_ *fc, pft_real_t x, pft_real_t y)
 {
     return rho_px_(t, fc, pft_round_int(x), pft_round_int(y));
@@ -153,15 +169,37 @@ static void position_box_(const pft_tsa_t *t, frame_ctx_t_ *fc)
     fc->hi_y = pft_from_int((int32_t)t->cfg.height - 1 + kh);
 }
 
-/* Codes the region that the placements of the first m particles cover, and clears the
- * similarity cache. */
-static void frame_prepare_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t m)
+/* The offsets of gain_select_'s placements from the prior mean: a quarter of the kernel's width
+ * and height, at least 1. */
+static int32_t probe_dx_(const pft_tsa_t *t)
+{
+    const int32_t s = (t->kern.x1 - t->kern.x0 + 1) / 4;
+    return s < 1 ? 1 : s;
+}
+
+static int32_t probe_dy_(const pft_tsa_t *t)
+{
+    const int32_t s = (t->kern.y1 - t->kern.y0 + 1) / 4;
+    return s < 1 ? 1 : s;
+}
+
+/* Codes the region that the placements of the first m particles cover (with probes, also
+ * gain_select_'s placements around the prior mean), and clears the similarity cache. */
+static void frame_prepare_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t m, bool probes)
 {
     memset(t->memo_key, 0, (size_t)t->memo_cap * sizeof(uint32_t));
     int32_t x0 = INT32_MAX;
     int32_t y0 = INT32_MAX;
     int32_t x1 = INT32_MIN;
     int32_t y1 = INT32_MIN;
+    if (probes) {
+        const int32_t px = pft_round_int(pft_clamp(t->prior_x, fc->lo_x, fc->hi_x));
+        const int32_t py = pft_round_int(pft_clamp(t->prior_y, fc->lo_y, fc->hi_y));
+        x0 = px - probe_dx_(t);
+        x1 = px + probe_dx_(t);
+        y0 = py - probe_dy_(t);
+        y1 = py + probe_dy_(t);
+    }
     for (uint32_t i = 0; i < m; ++i) {
         const int32_t x = pft_round_int(t->px[i]);
         const int32_t y = pft_round_int(t->py[i]);
@@ -245,6 +283,8 @@ static bool contour_acceptable_(pft_tsa_t *t, const pft_tsa_pt_t *p, int64_t are
 
 /* The bank's gain i in 1/256: 256 + 13 (i - GAIN_UNITY_), i.e. 0.85 .. 1.15 in steps of 0.05. */
 #define GAIN_UNITY_ 3u
+/* Placements at which gain_select_ compares the bank's templates. */
+#define GAIN_PROBES_ 5u
 static uint32_t gain_q8_(uint32_t i)
 {
     return 256u + 13u * i - 13u * GAIN_UNITY_;
@@ -966,8 +1006,8 @@ static pft_tsa_state_t search_report_(pft_tsa_t *t, uint32_t M)
 
 /* gain_select: the template of the bank that matches the histogram at the prior mean (this
  * frame's prediction) best is this frame's; the camera's gain changes from frame to frame and
- * moves whole bins (docs/results/tsa_ak.md, "gain flicker"). Reads the histogram directly, so
- * the similarity cache stays empty. */
+ * moves whole bins (docs/results/tsa_ak.md, "gain flicker"). Reads the histograms directly and
+ * leaves the prior mean's rho under the chosen gain in the similarity cache. */
 static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
 {
     t->gsel = GAIN_UNITY_;
@@ -976,22 +1016,48 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
     }
     const int32_t x = pft_round_int(pft_clamp(t->prior_x, fc->lo_x, fc->hi_x));
     const int32_t y = pft_round_int(pft_clamp(t->prior_y, fc->lo_y, fc->hi_y));
-    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x, y, &t->h, t->jb);
+    /* the gain is chosen jointly with the position: at the prior mean and at GAIN_PROBES_ - 1
+     * placements a quarter of the kernel's width / height away from it on each axis. At the
+     * prior mean alone a prediction a few px off the target chose a darker gain whose template
+     * matches the off-target placement best (background in the kernel), and the particles
+     * weighed with it held the estimate there (docs/results/tsa_ak.md, branch tsa11) */
+    const int32_t sx = probe_dx_(t);
+    const int32_t sy = probe_dy_(t);
+    const int32_t ox[GAIN_PROBES_] = {0, sx, -sx, 0, 0};
+    const int32_t oy[GAIN_PROBES_] = {0, 0, 0, sy, -sy};
+    pft_real_t best_unity = PFT_C(-1.0);
+    pft_real_t best = PFT_C(-1.0);
+    uint32_t gbest = GAIN_UNITY_;
+    pft_real_t r0[PFT_TSA_GAINS_]; /* at the prior mean, for the similarity cache */
+    for (uint32_t p = 0; p < GAIN_PROBES_; ++p) {
+        pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, x + ox[p], y + oy[p],
+                           &t->h, t->jb);
+        pft_real_t rg[PFT_TSA_GAINS_];
+        pft_tsa_rho_bank_(&t->h, t->qg, t->qg_root, PFT_TSA_GAINS_, rg);
+        for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
+            const pft_real_t r = rg[g];
+            if (p == 0u) {
+                r0[g] = r;
+            }
+            if (g == GAIN_UNITY_) {
+                best_unity = pft_max(best_unity, r);
+            } else if (r > best) {
+                best = r;
+                gbest = g;
+            } else {
+                /* not better than the other gains' best so far */
+            }
+        }
+    }
     /* another gain only when it matches better and reaches rho_min (the prediction on the
      * target): at a prediction off the target (a sudden reversal) the choice among templates
      * that all match badly only added noise (TS lost tests/unit/test_tsa_reversal.c's
      * reversal in 3 of 8 seeds, q16) */
-    pft_real_t best = pft_tsa_rho_hist_(&t->h, &t->qg[GAIN_UNITY_], &t->qg_root[GAIN_UNITY_]);
-    for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
-        if (g == GAIN_UNITY_) {
-            continue; /* best already */
-        }
-        const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[g], &t->qg_root[g]);
-        if (r > best && r >= t->cfg.rho_min) {
-            best = r;
-            t->gsel = g;
-        }
+    if (best > best_unity && best >= t->cfg.rho_min) {
+        t->gsel = gbest;
     }
+    /* particles often land on the prior mean's pixel: its rho under the chosen gain is known */
+    rho_put_(t, x, y, r0[t->gsel]);
 }
 
 /* A tracking frame: resample, fit, propagate, weigh; returns the weighing's result. */
@@ -1002,7 +1068,7 @@ static weigh_out_t_ track_frame_(pft_tsa_t *t, frame_ctx_t_ *fc, uint32_t N, uin
     resample_(t, N, M);
     conservative_fit_(t, fx, fy);
     propagate_(t, fc, N, beta_used, fx, fy);
-    frame_prepare_(t, fc, M);
+    frame_prepare_(t, fc, M, t->cfg.gain_select);
     gain_select_(t, fc);
     return weigh_(t, fc, N, M);
 }
@@ -1070,7 +1136,7 @@ pft_status_t pft_tsa_update(pft_tsa_t *t, const pft_frame_t *frame)
     } else {
         t->gsel = GAIN_UNITY_;
         search_place_(t, M);
-        frame_prepare_(t, &fc, M);
+        frame_prepare_(t, &fc, M, false);
         reacquired = search_frame_(t, &fc, M);
         if (reacquired) {
             /* weigh the confirmation's particles as a tracking frame */
