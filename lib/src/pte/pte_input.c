@@ -215,14 +215,19 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
         out[u] = (pft_real_t)((bits >> 31) != 0u ? -r : r);
     }
 #else
-    const pft_real_t nclip = pft_neg(clip);
+    /* f32_in_'s clamp to +-32767 folded into the clip: v inv is non-decreasing in v (inv > 0,
+     * rounded products are monotone), so clamp(clamp(v, +-32767) inv, +-clip) =
+     * clamp(v inv, +-hi) with hi = min(clip, 32767 inv) for every finite v of a checked frame
+     * (v inv may round to +-inf when inv > 1: clamped alike); the same sign of zero because
+     * hi > 0. The clamp as a max then a min, a form the compiler vectorises. */
+    const pft_real_t hi = pft_min(clip, pft_mul(PFT_C(32767.0), inv));
+    const pft_real_t nhi = pft_neg(hi);
     for (uint32_t u = 0; u < in->n_range; ++u) {
-        /* pft_clamp(v, -clip, clip) as a max then a min (a form the compiler vectorises): the
-         * same value for every v of a checked frame (no NaN; +-inf clamp alike), and the same
-         * sign of zero because clip > 0 (config check) */
-        pft_real_t v = pft_mul(f32_in_(row + 4u * u), inv);
-        v = v > nclip ? v : nclip;
-        out[u] = v < clip ? v : clip;
+        float x;
+        memcpy(&x, row + 4u * u, 4u);
+        pft_real_t v = pft_mul(x, inv);
+        v = v > nhi ? v : nhi;
+        out[u] = v < hi ? v : hi;
     }
 #endif
 }
