@@ -85,7 +85,10 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
 {
     int64_t v = (int64_t)a * b;
-    return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
+    /* v >> 63 is -1 for v < 0, else 0 (arithmetic shift, as pft_real.h's q16 helpers
+     * assume): v + 32768 + (v >> 63) is v + 32768 or v + 32767, the same rounding without a
+     * branch or select */
+    return (pft_real_t)((v + 32768 + (v >> 63)) >> 16);
 }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
@@ -1414,14 +1417,29 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
             kw[i] = ato_(v);
         }
         pft_real_t *P = t->P[a];
+#ifdef PFT_NUMERIC_Q16
+        /* q16: the deviations dx - dX once per direction (dx is not read again this step), not
+         * once per pair (i, j) with the saturating pft_sub: the same values. The float build
+         * keeps the subtractions in the pair loop (fewer instructions there, measured). */
+        for (int32_t li = 0; li < ndir; ++li) {
+            for (uint32_t i = 0; i < 3u; ++i) {
+                dir[li].dx[a][i] = pft_sub(dir[li].dx[a][i], df[i]);
+            }
+        }
+#endif
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
                 acc_t v = afrom_(P[4u * i + j]);
                 v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
                 v = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
                 for (int32_t li = 0; li < ndir; ++li) {
-                    pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
-                    pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
+#ifdef PFT_NUMERIC_Q16
+                    const pft_real_t di = dir[li].dx[a][i];
+                    const pft_real_t dj = dir[li].dx[a][j];
+#else
+                    const pft_real_t di = pft_sub(dir[li].dx[a][i], df[i]);
+                    const pft_real_t dj = pft_sub(dir[li].dx[a][j], df[j]);
+#endif
                     v = aadd_(v, amul_(dir[li].w, pft_mul(di, dj)));
                 }
                 P[4u * i + j] = ato_(v);
