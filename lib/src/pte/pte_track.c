@@ -9,7 +9,7 @@
 /* TABLE: the age at which a float build sums a slope entry afresh, and the lines a slope
  * entry holds beyond the scan interval on each side (see the slope bank) */
 #define RENEW_ 256u
-#define MARGIN_ 3
+#define MARGIN_ 6
 /* TABLE: cells per block of lazily computed responses */
 #define YBLK_ 8
 
