@@ -227,6 +227,29 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
         /* interior block, at most 4 taps per phase (sigma_y <= ~0.6 cells): the taps of every
          * phase padded to 4 from one common first offset; the zero weights add exact zeros,
          * so the sums are those of the general loop below (plain sums, bounded there) */
+        if (q == 4) {
+            /* the common 4 phases per cell: the four responses of a cell side by side, each
+             * the same sum in the same order as in the loop below (a form the compiler
+             * vectorises across the phases) */
+            const pft_real_t *w0 = p->ytap4_w[0];
+            const pft_real_t *w1 = p->ytap4_w[1];
+            const pft_real_t *w2 = p->ytap4_w[2];
+            const pft_real_t *w3 = p->ytap4_w[3];
+            const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
+            pft_real_t *yy = y + cell * 4;
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                const pft_real_t z0 = zz[k];
+                const pft_real_t z1 = zz[k + 1];
+                const pft_real_t z2 = zz[k + 2];
+                const pft_real_t z3 = zz[k + 3];
+                yy[4 * k] = mul_nb_(w0[0], z0) + mul_nb_(w0[1], z1) + mul_nb_(w0[2], z2) + mul_nb_(w0[3], z3);
+                yy[4 * k + 1] = mul_nb_(w1[0], z0) + mul_nb_(w1[1], z1) + mul_nb_(w1[2], z2) + mul_nb_(w1[3], z3);
+                yy[4 * k + 2] = mul_nb_(w2[0], z0) + mul_nb_(w2[1], z1) + mul_nb_(w2[2], z2) + mul_nb_(w2[3], z3);
+                yy[4 * k + 3] = mul_nb_(w3[0], z0) + mul_nb_(w3[1], z1) + mul_nb_(w3[2], z2) + mul_nb_(w3[3], z3);
+            }
+            yflag_set_(p, slot, blk);
+            return;
+        }
         for (int32_t ph = 0; ph < q; ++ph) {
             const pft_real_t *w = p->ytap4_w[ph];
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
