@@ -85,10 +85,9 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
 {
     int64_t v = (int64_t)a * b;
-    /* v >> 63 is -1 for v < 0, else 0 (arithmetic shift, as pft_real.h's q16 helpers
-     * assume): v + 32768 + (v >> 63) is v + 32768 or v + 32767, the same rounding without a
-     * branch or select */
-    return (pft_real_t)((v + 32768 + (v >> 63)) >> 16);
+    /* the sign bit s of v (1 for v < 0): v + 32768 - s is v + 32768 or v + 32767, the same
+     * rounding without a branch or select */
+    return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
 }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
