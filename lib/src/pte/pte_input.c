@@ -192,8 +192,8 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
      * (inv > 0; pft_mul rounds half away from zero, so the sign can be applied last): a pixel
      * below 128 in magnitude (exponent below 134, the common case) is
      * (mant + 2^(sh-1)) >> sh with sh = 134 - exponent, which also gives f32_in_'s 0 for
-     * sh >= 25 (mant < 2^24), so sh is clamped to 31 instead of tested; larger pixels take
-     * f32_in_ itself. */
+     * sh >= 25 (mant < 2^24), so sh is clamped to 31 instead of tested (below: sh - 1 clamped
+     * to 30); larger pixels take f32_in_ itself. */
     const int64_t hi = clip;
     for (uint32_t u = 0; u < in->n_range; ++u) {
         uint32_t bits;
@@ -201,10 +201,12 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
         const uint32_t ex = (bits >> 23) & 0xFFu;
         int64_t mag;
         if (ex < 134u) {
-            uint32_t sh = 134u - ex;
-            sh = sh > 31u ? 31u : sh;
+            /* (mant + 2^(sh-1)) >> sh as ((mant >> (sh - 1)) + 1) >> 1 (sh >= 1): the same
+             * floor((mant / 2^(sh-1) + 1) / 2), the dropped low bits never carrying into it */
+            uint32_t sh1 = 133u - ex;
+            sh1 = sh1 > 30u ? 30u : sh1;
             const uint32_t mant = (bits & 0x7FFFFFu) | 0x800000u;
-            const uint32_t m = (mant + ((1u << sh) >> 1)) >> sh;
+            const uint32_t m = ((mant >> sh1) + 1u) >> 1;
             mag = (int64_t)m;
         } else {
             const pft_real_t v = f32_in_(row + 4u * u);
@@ -215,14 +217,19 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
         out[u] = (pft_real_t)((bits >> 31) != 0u ? -r : r);
     }
 #else
-    const pft_real_t nclip = pft_neg(clip);
+    /* f32_in_'s clamp to +-32767 folded into the clip: v inv is non-decreasing in v (inv > 0,
+     * rounded products are monotone), so clamp(clamp(v, +-32767) inv, +-clip) =
+     * clamp(v inv, +-hi) with hi = min(clip, 32767 inv) for every finite v of a checked frame
+     * (v inv may round to +-inf when inv > 1: clamped alike); the same sign of zero because
+     * hi > 0. The clamp as a max then a min, a form the compiler vectorises. */
+    const pft_real_t hi = pft_min(clip, pft_mul(PFT_C(32767.0), inv));
+    const pft_real_t nhi = pft_neg(hi);
     for (uint32_t u = 0; u < in->n_range; ++u) {
-        /* pft_clamp(v, -clip, clip) as a max then a min (a form the compiler vectorises): the
-         * same value for every v of a checked frame (no NaN; +-inf clamp alike), and the same
-         * sign of zero because clip > 0 (config check) */
-        pft_real_t v = pft_mul(f32_in_(row + 4u * u), inv);
-        v = v > nclip ? v : nclip;
-        out[u] = v < clip ? v : clip;
+        float x;
+        memcpy(&x, row + 4u * u, 4u);
+        pft_real_t v = pft_mul(x, inv);
+        v = v > nhi ? v : nhi;
+        out[u] = v < hi ? v : hi;
     }
 #endif
 }

@@ -9,7 +9,7 @@
 /* TABLE: the age at which a float build sums a slope entry afresh, and the lines a slope
  * entry holds beyond the scan interval on each side (see the slope bank) */
 #define RENEW_ 256u
-#define MARGIN_ 3
+#define MARGIN_ 6
 /* TABLE: cells per block of lazily computed responses */
 #define YBLK_ 8
 
@@ -85,7 +85,9 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
 {
     int64_t v = (int64_t)a * b;
-    return (pft_real_t)((v >= 0 ? v + 32768 : v + 32767) >> 16);
+    /* the sign bit s of v (1 for v < 0): v + 32768 - s is v + 32768 or v + 32767, the same
+     * rounding without a branch or select */
+    return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
 }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
@@ -224,6 +226,29 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
         /* interior block, at most 4 taps per phase (sigma_y <= ~0.6 cells): the taps of every
          * phase padded to 4 from one common first offset; the zero weights add exact zeros,
          * so the sums are those of the general loop below (plain sums, bounded there) */
+        if (q == 4) {
+            /* the common 4 phases per cell: the four responses of a cell side by side, each
+             * the same sum in the same order as in the loop below (a form the compiler
+             * vectorises across the phases) */
+            const pft_real_t *w0 = p->ytap4_w[0];
+            const pft_real_t *w1 = p->ytap4_w[1];
+            const pft_real_t *w2 = p->ytap4_w[2];
+            const pft_real_t *w3 = p->ytap4_w[3];
+            const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
+            pft_real_t *yy = y + cell * 4;
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                const pft_real_t z0 = zz[k];
+                const pft_real_t z1 = zz[k + 1];
+                const pft_real_t z2 = zz[k + 2];
+                const pft_real_t z3 = zz[k + 3];
+                yy[4 * k] = mul_nb_(w0[0], z0) + mul_nb_(w0[1], z1) + mul_nb_(w0[2], z2) + mul_nb_(w0[3], z3);
+                yy[4 * k + 1] = mul_nb_(w1[0], z0) + mul_nb_(w1[1], z1) + mul_nb_(w1[2], z2) + mul_nb_(w1[3], z3);
+                yy[4 * k + 2] = mul_nb_(w2[0], z0) + mul_nb_(w2[1], z1) + mul_nb_(w2[2], z2) + mul_nb_(w2[3], z3);
+                yy[4 * k + 3] = mul_nb_(w3[0], z0) + mul_nb_(w3[1], z1) + mul_nb_(w3[2], z2) + mul_nb_(w3[3], z3);
+            }
+            yflag_set_(p, slot, blk);
+            return;
+        }
         for (int32_t ph = 0; ph < q; ++ph) {
             const pft_real_t *w = p->ytap4_w[ph];
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
@@ -1542,14 +1567,29 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
             kw[i] = ato_(v);
         }
         pft_real_t *P = t->P[a];
+#ifdef PFT_NUMERIC_Q16
+        /* q16: the deviations dx - dX once per direction (dx is not read again this step), not
+         * once per pair (i, j) with the saturating pft_sub: the same values. The float build
+         * keeps the subtractions in the pair loop (fewer instructions there, measured). */
+        for (int32_t li = 0; li < ndir; ++li) {
+            for (uint32_t i = 0; i < 3u; ++i) {
+                dir[li].dx[a][i] = pft_sub(dir[li].dx[a][i], df[i]);
+            }
+        }
+#endif
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
                 acc_t v = afrom_(P[4u * i + j]);
                 v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
                 v = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
                 for (int32_t li = 0; li < ndir; ++li) {
-                    pft_real_t di = pft_sub(p->dir[li].dx[a][i], df[i]);
-                    pft_real_t dj = pft_sub(p->dir[li].dx[a][j], df[j]);
+#ifdef PFT_NUMERIC_Q16
+                    const pft_real_t di = dir[li].dx[a][i];
+                    const pft_real_t dj = dir[li].dx[a][j];
+#else
+                    const pft_real_t di = pft_sub(dir[li].dx[a][i], df[i]);
+                    const pft_real_t dj = pft_sub(dir[li].dx[a][j], df[j]);
+#endif
                     v = aadd_(v, amul_(dir[li].w, pft_mul(di, dj)));
                 }
                 P[4u * i + j] = ato_(v);
