@@ -931,7 +931,7 @@ static bool bank_sync_budget_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jl
 
 /* Subtracts the interior normaliser gfull of its phase from G[j], j in [j0, j1), for the
  * points j + d off the response grid (their own normaliser is 0). */
-static void g_off_(const pft_pte_t *p, pft_real_t *G, int32_t j0, int32_t j1, int32_t d)
+static void g_off_(const pft_pte_t *p, pft_real_t *restrict G, int32_t j0, int32_t j1, int32_t d)
 {
     const int32_t q = p->yq;
     int32_t ph = (j0 + d) % q;
@@ -945,7 +945,7 @@ static void g_off_(const pft_pte_t *p, pft_real_t *G, int32_t j0, int32_t j1, in
 /* G of the lines of entry bi (window w) at frame kn into G[0..n): the residues, corrected at
  * the points of lines that leave the interior of the response grid over the window. */
 static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t kn,
-                    int32_t j0, int32_t n, pft_real_t *G)
+                    int32_t j0, int32_t n, pft_real_t *restrict G)
 {
     const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
     const int32_t q = p->yq;
