@@ -66,9 +66,10 @@ static pft_frame_t frame(void)
     return f;
 }
 
-/* Tracks FRAMES frames (target moving right 1 px/frame, gain 1 and 0.95 alternately); returns
- * the frames not TRACKING, the largest centre error and the smallest rho at the estimate. */
-static int run(pft_tsa_motion_kind_t m, bool gain_select, double *max_err, double *min_rho)
+/* Initialises the tracker (motion m, gain selection on or off, the kernel the given box) and
+ * starts it on the target's box at left column x0, gain 1; *ox, *oy: the estimate's offset from
+ * the box's top-left corner, which the error measures keep. */
+static void start_at(pft_tsa_motion_kind_t m, bool gain_select, int x0, double *ox, double *oy)
 {
     pft_tsa_config_t c;
     pft_tsa_config_default(&c);
@@ -84,7 +85,6 @@ static int run(pft_tsa_motion_kind_t m, bool gain_select, double *max_err, doubl
     pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     const int y0 = (H - TH) / 2;
-    int x0 = 20;
     render(x0, 256u);
     pft_frame_t f = frame();
     pft_tsa_pt_t b[4];
@@ -95,7 +95,20 @@ static int run(pft_tsa_motion_kind_t m, bool gain_select, double *max_err, doubl
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
     pft_tsa_estimate_t e;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_estimate(&trk, &e));
-    const double ox = (double)pft_to_float(e.x) - x0, oy = (double)pft_to_float(e.y) - y0;
+    *ox = (double)pft_to_float(e.x) - x0;
+    *oy = (double)pft_to_float(e.y) - y0;
+}
+
+/* Tracks FRAMES frames (target moving right 1 px/frame, gain 1 and 0.95 alternately); returns
+ * the frames not TRACKING, the largest centre error and the smallest rho at the estimate. */
+static int run(pft_tsa_motion_kind_t m, bool gain_select, double *max_err, double *min_rho)
+{
+    const int y0 = (H - TH) / 2;
+    int x0 = 20;
+    double ox, oy;
+    start_at(m, gain_select, x0, &ox, &oy);
+    pft_frame_t f = frame();
+    pft_tsa_estimate_t e;
     int not_tracking = 0;
     *max_err = 0.0;
     *min_rho = 1.0;
@@ -145,31 +158,12 @@ static void test_one_template_loses_the_dimmed_frames(void)
 static double run_steps(pft_tsa_motion_kind_t m, int *not_tracking)
 {
     static const uint32_t gains[8] = {256u, 230u, 269u, 218u, 243u, 282u, 224u, 262u};
-    pft_tsa_config_t c;
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    c.n_particles = NP;
-    c.snake_points = PTS;
-    c.init_passes = 0;
-    c.motion = m;
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     const int y0 = (H - TH) / 2;
     int x0 = 12;
-    render(x0, 256u);
+    double ox, oy;
+    start_at(m, true, x0, &ox, &oy);
     pft_frame_t f = frame();
-    pft_tsa_pt_t b[4];
-    b[0].x = (int16_t)x0; b[0].y = (int16_t)y0;
-    b[1].x = (int16_t)(x0 + TW - 1); b[1].y = (int16_t)y0;
-    b[2].x = (int16_t)(x0 + TW - 1); b[2].y = (int16_t)(y0 + TH - 1);
-    b[3].x = (int16_t)x0; b[3].y = (int16_t)(y0 + TH - 1);
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
     pft_tsa_estimate_t e;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_estimate(&trk, &e));
-    const double ox = (double)pft_to_float(e.x) - x0, oy = (double)pft_to_float(e.y) - y0;
     double worst = 0.0;
     *not_tracking = 0;
     for (int k = 1; k < FRAMES * 2 && x0 + TW + 2 * JUMP < W; ++k) {
