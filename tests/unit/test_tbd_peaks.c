@@ -94,6 +94,18 @@ static bool has(const uint32_t *c, size_t n, uint32_t k)
     return false;
 }
 
+/* one update on the frame of the NPTS known points */
+static void update_on_points(pft_tbd_t *t)
+{
+    clear_raw();
+    for (int p = 0; p < NPTS; ++p) {
+        set_px(g_pts[p][0], g_pts[p][1], g_val[p]);
+    }
+    pft_frame_t f;
+    frame_of(&f);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(t, &f));
+}
+
 static void test_peaks_are_the_bright_points_capped_at_k(void)
 {
     static pft_tbd_t t;
@@ -103,13 +115,7 @@ static void test_peaks_are_the_bright_points_capped_at_k(void)
         cfg_peaks(&c, ks[q]);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
         TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_birth_candidates(&t, NULL, 0u));
-        clear_raw();
-        for (int p = 0; p < NPTS; ++p) {
-            set_px(g_pts[p][0], g_pts[p][1], g_val[p]);
-        }
-        pft_frame_t f;
-        frame_of(&f);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        update_on_points(&t);
         TEST_ASSERT_EQUAL_UINT(0u, (unsigned)pft_tbd_tracks(&t, NULL, 0u));
         uint32_t cand[KMAX];
         size_t n = pft_tbd_birth_candidates(&t, cand, KMAX);
@@ -173,13 +179,7 @@ static void test_tile_quota_keeps_the_strongest_per_tile(void)
         c.peak_tile = 16u;
         c.peak_quota = cs[q].q;
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
-        clear_raw();
-        for (int p = 0; p < NPTS; ++p) {
-            set_px(g_pts[p][0], g_pts[p][1], g_val[p]);
-        }
-        pft_frame_t f;
-        frame_of(&f);
-        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+        update_on_points(&t);
         uint32_t cand[KMAX];
         size_t n = pft_tbd_birth_candidates(&t, cand, KMAX);
         TEST_ASSERT_EQUAL_UINT((unsigned)cs[q].n, (unsigned)n);
