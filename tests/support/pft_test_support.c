@@ -88,3 +88,15 @@ void pft_test_check_rows(const char *name, const char *row_name, const uint32_t 
         }
     }
 }
+
+pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = data;
+    f.width = w;
+    f.height = h;
+    f.stride_bytes = 3u * (uint32_t)w;
+    f.format = PFT_PIX_RGB888;
+    return f;
+}

@@ -7,6 +7,8 @@
 /* Real <-> double for assertions (tests may use double; the library never does). */
 double pft_test_to_double(pft_real_t v);
 pft_real_t pft_test_from_double(double v);
+/* An RGB888 frame over w x h packed pixels at data (stride 3 w, every other field 0). */
+pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
 double pft_test_lsb(double v);
 

@@ -54,17 +54,7 @@ static void render(int x0, uint32_t g256)
     }
 }
 
-static pft_frame_t frame(void)
-{
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = img;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 3 * W;
-    f.format = PFT_PIX_RGB888;
-    return f;
-}
+static pft_frame_t frame(void) { return pft_test_rgb_frame(img, W, H); }
 
 /* Initialises the tracker (motion m, gain selection on or off, the kernel the given box) and
  * starts it on the target's box at left column x0, gain 1; *ox, *oy: the estimate's offset from

@@ -85,17 +85,7 @@ static void render(double cx, double cy, bool blank)
     }
 }
 
-static pft_frame_t frame(void)
-{
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = img;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 3 * W;
-    f.format = PFT_PIX_RGB888;
-    return f;
-}
+static pft_frame_t frame(void) { return pft_test_rgb_frame(img, W, H); }
 
 static void config(pft_tsa_config_t *c, pft_tsa_motion_kind_t m, uint32_t n, uint64_t seed)
 {
