@@ -60,6 +60,16 @@ static void profile(int n, const double *pos, const double *amp)
     }
 }
 
+/* frame k of the two-target scene (cells 15 and 40 moving 0.1 cell per frame, amplitudes 3 and
+ * 2.5); pos: the targets' positions at k */
+static void two_targets(int k, double pos[2])
+{
+    pos[0] = 15.0 + 0.1 * k;
+    pos[1] = 40.0 + 0.1 * k;
+    const double amp[2] = {3.0, 2.5};
+    profile(2, pos, amp);
+}
+
 static void cfg_default(pft_pte_config_t *c)
 {
     pte_config(c, NR, 1);
@@ -494,9 +504,8 @@ static void test_two_targets(void)
     g_s = 31;
     int both = -1;
     for (int k = 0; k < 70; ++k) {
-        double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
-        double amp[2] = {3.0, 2.5};
-        profile(2, pos, amp);
+        double pos[2];
+        two_targets(k, pos);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
         (void)check_two(&p, pos, k, &both);
     }
@@ -588,9 +597,8 @@ static void test_step_budget_bound(void)
         int both = -1, bitten = 0;
         uint32_t live_before = 0;
         for (int k = 0; k < 70; ++k) {
-            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
-            double amp[2] = {3.0, 2.5};
-            profile(2, pos, amp);
+            double pos[2];
+            two_targets(k, pos);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
             if (v == 0u) {
                 TEST_ASSERT_EQUAL_UINT32(live_before, p.n_steps);
@@ -746,9 +754,8 @@ static void test_line_budget_bound(void)
         int both = -1, coasted = 0;
         uint32_t live_before = 0;
         for (int k = 0; k < 70; ++k) {
-            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
-            double amp[2] = {3.0, 2.5};
-            profile(2, pos, amp);
+            double pos[2];
+            two_targets(k, pos);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
             peak[v] = p.n_line_ops > peak[v] ? p.n_line_ops : peak[v];
             if (v > 0u) {
@@ -787,9 +794,8 @@ static void test_line_budget_never_bites(void)
         init_pte(&p, &c);
         g_s = 31;
         for (int k = 0; k < 70; ++k) {
-            double pos[2] = {15.0 + 0.1 * k, 40.0 + 0.1 * k};
-            double amp[2] = {3.0, 2.5};
-            profile(2, pos, amp);
+            double pos[2];
+            two_targets(k, pos);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
             nrep[v][k] = (uint32_t)pft_pte_reports(&p, rep[v][k], PFT_PTE_MAX_TRACKS);
             ops[v][k] = p.n_line_ops;
