@@ -111,44 +111,54 @@ typedef struct {
     pft_real_t lo_x, hi_x, lo_y, hi_y; /* the box every position is kept in */
 } frame_ctx_t_;
 
+/* The key of pixel (cx, cy) in the similarity cache (positions are kept within the frame
+ * enlarged by the kernel, |c| < 2^15 - 1). */
+static uint32_t memo_key_of_(int32_t cx, int32_t cy)
+{
+    return ((uint32_t)(cx + 32768) << 16) | (uint32_t)(cy + 32768);
+}
+
+/* The cache slot that holds key, or else the first empty slot on its probe path; memo_cap
+ * when neither (a full table: more distinct positions than 2 N + 4, not reached). */
+static uint32_t memo_slot_(const pft_tsa_t *t, uint32_t key)
+{
+    uint32_t i = (uint32_t)(((uint64_t)(key * 2654435761u) * t->memo_cap) >> 32);
+    for (uint32_t probe = 0; probe < t->memo_cap; ++probe) {
+        if (t->memo_key[i] == key || t->memo_key[i] == 0u) {
+            return i;
+        }
+        i = i + 1u == t->memo_cap ? 0u : i + 1u;
+    }
+    return t->memo_cap;
+}
+
 /* Similarity of the template to the kernel placed at pixel (cx, cy), cached per position for
  * this frame (the particles of a cloud often share pixels). */
 static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int32_t cy)
 {
-    /* positions are kept within the frame enlarged by the kernel (|c| < 2^15 - 1) */
-    const uint32_t key = ((uint32_t)(cx + 32768) << 16) | (uint32_t)(cy + 32768);
-    uint32_t i = (uint32_t)(((uint64_t)(key * 2654435761u) * t->memo_cap) >> 32);
-    for (uint32_t probe = 0; probe < t->memo_cap; ++probe) {
-        if (t->memo_key[i] == key) {
-            return t->memo_rho[i];
-        }
-        if (t->memo_key[i] == 0u) {
-            pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
-            const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
-            t->memo_key[i] = key;
-            t->memo_rho[i] = r;
-            return r;
-        }
-        i = i + 1u == t->memo_cap ? 0u : i + 1u;
+    const uint32_t key = memo_key_of_(cx, cy);
+    const uint32_t i = memo_slot_(t, key);
+    if (i < t->memo_cap && t->memo_key[i] == key) {
+        return t->memo_rho[i];
     }
-    /* a full table (more distinct positions than 2 N + 4: not reached) */
     pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
-    return pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
+    const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
+    if (i < t->memo_cap) {
+        t->memo_key[i] = key;
+        t->memo_rho[i] = r;
+    }
+    return r;
 }
 
 /* Stores rho of the template at pixel (cx, cy) in the similarity cache (a full table: not
  * stored). */
 static void rho_put_(pft_tsa_t *t, int32_t cx, int32_t cy, pft_real_t r)
 {
-    const uint32_t key = ((uint32_t)(cx + 32768) << 16) | (uint32_t)(cy + 32768);
-    uint32_t i = (uint32_t)(((uint64_t)(key * 2654435761u) * t->memo_cap) >> 32);
-    for (uint32_t probe = 0; probe < t->memo_cap; ++probe) {
-        if (t->memo_key[i] == key || t->memo_key[i] == 0u) {
-            t->memo_key[i] = key;
-            t->memo_rho[i] = r;
-            return;
-        }
-        i = i + 1u == t->memo_cap ? 0u : i + 1u;
+    const uint32_t key = memo_key_of_(cx, cy);
+    const uint32_t i = memo_slot_(t, key);
+    if (i < t->memo_cap) {
+        t->memo_key[i] = key;
+        t->memo_rho[i] = r;
     }
 }
 
