@@ -68,34 +68,26 @@ pft_status_t pft_tsa_hist(const pft_frame_t *frame, const pft_tsa_kernel_t *k, i
     if (st != PFT_OK) {
         return st;
     }
-    const int32_t W = (int32_t)frame->width;
-    const int32_t H = (int32_t)frame->height;
+    if (cx + k->x0 < 0 || cy + k->y0 < 0 || cx + k->x1 >= (int32_t)frame->width ||
+        cy + k->y1 >= (int32_t)frame->height) {
+        /* the kernel is clipped by the frame: the gain loop, which skips the pixels outside,
+         * at gain 256 / 256 (every value as it is) */
+        pft_tsa_hist_gain_(frame, k, cx, cy, 256u, h);
+        return PFT_OK;
+    }
+    /* fast path: the whole kernel lies inside the frame */
     uint32_t off[3];
     uint32_t bpp;
     pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], &bpp);
     uint32_t bin[PFT_TSA_BINS];
     uint32_t total = 0u;
     memset(bin, 0, sizeof(bin));
-    if (cx + k->x0 >= 0 && cy + k->y0 >= 0 && cx + k->x1 < W && cy + k->y1 < H) {
-        /* fast path: the whole kernel lies inside the frame */
-        for (uint32_t i = 0; i < k->n; ++i) {
-            const pft_tsa_kpix_t *kp = &k->pix[i];
-            const uint8_t *p = pft_frame_row(frame, (uint32_t)(cy + kp->dy)) +
-                               (uint32_t)(cx + kp->dx) * bpp;
-            add_pixel_(bin, p, off, kp->w);
-            total += kp->w;
-        }
-    } else {
-        for (uint32_t i = 0; i < k->n; ++i) {
-            const pft_tsa_kpix_t *kp = &k->pix[i];
-            const int32_t x = cx + kp->dx;
-            const int32_t y = cy + kp->dy;
-            if (x < 0 || y < 0 || x >= W || y >= H) {
-                continue;
-            }
-            add_pixel_(bin, pft_frame_row(frame, (uint32_t)y) + (uint32_t)x * bpp, off, kp->w);
-            total += kp->w;
-        }
+    for (uint32_t i = 0; i < k->n; ++i) {
+        const pft_tsa_kpix_t *kp = &k->pix[i];
+        const uint8_t *p = pft_frame_row(frame, (uint32_t)(cy + kp->dy)) +
+                           (uint32_t)(cx + kp->dx) * bpp;
+        add_pixel_(bin, p, off, kp->w);
+        total += kp->w;
     }
     memcpy(h->bin, bin, sizeof(bin));
     h->total = total;
