@@ -1211,10 +1211,10 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
         bool ok;
         /* step_budget, line_budget: an entry also slides over the frames its track waited
          * (the frames leaving its windows still in the ring) */
-        const uint32_t mx = e->m[0] > e->m[1] ? e->m[0] : e->m[1];
         bool keep = e->live && (e->kl + 1u == kn ||
-                                ((p->cfg.step_budget != 0u || p->cfg.line_budget != 0u) &&
-                                 kn - e->kl > 1u && mx + (kn - e->kl) <= (uint32_t)p->ring.count)) &&
+                                ((p->cfg.step_budget != 0u || lb) && kn - e->kl > 1u &&
+                                 (uint32_t)(e->m[0] > e->m[1] ? e->m[0] : e->m[1]) + (kn - e->kl) <=
+                                     (uint32_t)p->ring.count)) &&
                     kn - e->k0 < RENEW_;
         if (!keep) {
             e->k0 = kn; /* a fresh entry is anchored at this frame */
@@ -1222,21 +1222,27 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
         int64_t sh = (int64_t)e->s * p->lat_u * (int64_t)(int32_t)(kn - e->k0);
         int64_t jc = (zg - sh + 32768) >> 16;
         int32_t jlo = (int32_t)(jc - half);
-        if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
+        if (!lb) { /* without line_budget: every entry is brought to the frame */
+            if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
+                bank_sync_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
+            } else {
+                bank_sync_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m, kn, keep);
+            }
+            ok = true;
+        } else if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
             ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
         } else {
             ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m,
                                    kn, keep);
         }
         any = any || ok;
-        if (i < L) {
-            s->bok[i] = ok ? 1u : 0u;
-            s->bsel[i] = sel[i];
-            s->bj0[i] = jlo - e->jlo;
-            /* first scan position minus zc, cells: ((jc - half) 2^16 + sh - zg) / (2^16 q) */
-            int64_t d16 = (jc - half) * 65536 + sh - zg;
-            s->boff[i] = from_fix16_(d16 >= 0 ? (d16 + q / 2) / q : -((-d16 + q / 2) / q));
-        }
+        /* i < L in either order (L odd) */
+        s->bok[i] = ok ? 1u : 0u;
+        s->bsel[i] = sel[i];
+        s->bj0[i] = jlo - e->jlo;
+        /* first scan position minus zc, cells: ((jc - half) 2^16 + sh - zg) / (2^16 q) */
+        int64_t d16 = (jc - half) * 65536 + sh - zg;
+        s->boff[i] = from_fix16_(d16 >= 0 ? (d16 + q / 2) / q : -((-d16 + q / 2) / q));
     }
     return any;
 }
