@@ -957,12 +957,29 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
     int32_t hi = (d0 > d1 ? d0 : d1) + n - 1;
     int32_t r = jl % q;
     r = r < 0 ? r + q : r;
-    for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
-        G[k] = e->gres[w][r];
-        r = r + 1 == q ? 0 : r + 1;
-    }
-    for (int32_t j = q; j < n; ++j) {
-        G[j] = G[j - q];
+    if (q == 4) {
+        /* the common 4 phases per cell: the period held in four values and stored four at a
+         * time (the same values as the loops below) */
+        const pft_real_t *gr = e->gres[w];
+        const pft_real_t g4[4] = {gr[r], gr[(r + 1) & 3], gr[(r + 2) & 3], gr[(r + 3) & 3]};
+        int32_t j = 0;
+        for (; j + 4 <= n; j += 4) {
+            G[j] = g4[0];
+            G[j + 1] = g4[1];
+            G[j + 2] = g4[2];
+            G[j + 3] = g4[3];
+        }
+        for (int32_t k = 0; j + k < n; ++k) {
+            G[j + k] = g4[k];
+        }
+    } else {
+        for (int32_t k = 0; k < q && k < n; ++k) { /* one period, then copies of it */
+            G[k] = e->gres[w][r];
+            r = r + 1 == q ? 0 : r + 1;
+        }
+        for (int32_t j = q; j < n; ++j) {
+            G[j] = G[j - q];
+        }
     }
     if (lo >= p->yin_lo && hi <= p->yin_hi) {
         return; /* every point of every line on the interior: the residues are G */
