@@ -584,14 +584,22 @@ static void yrow_fill_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t b0, i
     }
 }
 
-/* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
-static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
-                                      int32_t i1)
+/* The points [lo, hi) of a ring slot whose blocks are all computed (a span that grows with
+ * the reads), kept as two uint16 in the last 4 of the slot's nyblk flag bytes when
+ * nyblk >= YSPAN_MIN_: the bits and yrow_'s two-byte read use at most (nyblk - 1) / 8 + 2 of
+ * them. Cleared with the flags (lo = hi = 0: empty, since every read has i1 >= 1). Points
+ * are below (PFT_CFG_MAX_IMAGE_SIDE + 2 PFT_PTE_YPAD + 7) 8 yq <= 65535 (yq <= 8). */
+#define YSPAN_MIN_ 6u
+
+/* yrow_ when [i0, i1) is not inside the slot's span: the bit test of its blocks (computing
+ * the missing ones), then the span extended by them (or replaced when they do not touch). */
+static void yrow_blocks_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0, int32_t i1)
 {
     const int32_t sh = p->yblk_shift;
-    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
-    const int32_t b0 = sh > 0 ? i0 >> sh : i0 / (YBLK_ * (int32_t)p->yq);
-    const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / (YBLK_ * (int32_t)p->yq);
+    uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    const int32_t bs = YBLK_ * (int32_t)p->yq;
+    const int32_t b0 = sh > 0 ? i0 >> sh : i0 / bs;
+    const int32_t b1 = sh > 0 ? (i1 - 1) >> sh : (i1 - 1) / bs;
     /* one bit per block (bit blk & 7 of byte blk >> 3): up to 8 blocks tested at once in the
      * two bytes from b0's (the bits use (nyblk + 7) / 8 of the nyblk >= 2 bytes of a slot, so
      * the second byte is always inside the slot; bits of other blocks are masked off) */
@@ -600,6 +608,33 @@ static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back
     const uint32_t m = ((2u << ((uint32_t)(b1 - b0) & 7u)) - 1u) << (uint32_t)(b0 & 7);
     if (b1 - b0 >= 8 || (bits & m) != m) {
         yrow_fill_(p, slot, back, b0, b1);
+    }
+    if (p->nyblk >= YSPAN_MIN_) {
+        uint16_t sp[2];
+        memcpy(sp, fl + p->nyblk - 4u, sizeof(sp));
+        int32_t c0 = b0 * bs;
+        int32_t c1 = (b1 + 1) * bs;
+        if (sp[1] > sp[0] && c0 <= (int32_t)sp[1] && c1 >= (int32_t)sp[0]) {
+            c0 = c0 < (int32_t)sp[0] ? c0 : (int32_t)sp[0];
+            c1 = c1 > (int32_t)sp[1] ? c1 : (int32_t)sp[1];
+        }
+        sp[0] = (uint16_t)c0;
+        sp[1] = (uint16_t)c1;
+        memcpy(fl + p->nyblk - 4u, sp, sizeof(sp));
+    }
+}
+
+/* Response row of ring slot `slot` (back frames ago), its blocks over [i0, i1) computed. */
+static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
+                                      int32_t i1)
+{
+    const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+    uint16_t sp[2] = {0u, 0u};
+    if (p->nyblk >= YSPAN_MIN_) {
+        memcpy(sp, fl + p->nyblk - 4u, sizeof(sp));
+    }
+    if (i0 < (int32_t)sp[0] || i1 > (int32_t)sp[1]) {
+        yrow_blocks_(p, slot, back, i0, i1);
     }
     return p->yring + (size_t)slot * p->ny;
 }
