@@ -1610,48 +1610,58 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     for (uint32_t a = 0; a < na; ++a) {
         pft_real_t df[3];
         pft_real_t kw[6];
-        for (uint32_t i = 0; i < 3u; ++i) {
-            acc_t v = 0;
-            for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(dir[li].w, p->dir[li].dx[a][i]));
+        /* the nine weighted sums in one pass over the directions: each sum adds the same
+         * terms in the same order (li ascending) as a loop of its own */
+        acc_t vd[3] = {0, 0, 0};
+        acc_t vk[6] = {0, 0, 0, 0, 0, 0};
+        for (int32_t li = 0; li < ndir; ++li) {
+            const pft_real_t w = dir[li].w;
+            for (uint32_t i = 0; i < 3u; ++i) {
+                vd[i] = aadd_(vd[i], amul_(w, p->dir[li].dx[a][i]));
             }
-            df[i] = ato_(v);
+            for (uint32_t i = 0; i < 6u; ++i) {
+                vk[i] = aadd_(vk[i], amul_(w, p->dir[li].K[a][i]));
+            }
+        }
+        for (uint32_t i = 0; i < 3u; ++i) {
+            df[i] = ato_(vd[i]);
         }
         for (uint32_t i = 0; i < 6u; ++i) {
-            acc_t v = 0;
-            for (int32_t li = 0; li < ndir; ++li) {
-                v = aadd_(v, amul_(dir[li].w, p->dir[li].K[a][i]));
-            }
-            kw[i] = ato_(v);
+            kw[i] = ato_(vk[i]);
         }
         pft_real_t *P = t->P[a];
-#ifdef PFT_NUMERIC_Q16
-        /* q16: the deviations dx - dX once per direction (dx is not read again this step), not
-         * once per pair (i, j) with the saturating pft_sub: the same values. The float build
-         * keeps the subtractions in the pair loop (fewer instructions there, measured). */
-        for (int32_t li = 0; li < ndir; ++li) {
-            for (uint32_t i = 0; i < 3u; ++i) {
-                dir[li].dx[a][i] = pft_sub(dir[li].dx[a][i], df[i]);
-            }
-        }
-#endif
+        /* the six covariance sums (i, j >= i) in one pass over the directions, each started
+         * and summed as before; the deviations dx - dX once per direction (the same values) */
+        acc_t vp[6];
+        uint32_t k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
                 acc_t v = afrom_(P[4u * i + j]);
                 v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
-                v = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
-                for (int32_t li = 0; li < ndir; ++li) {
-#ifdef PFT_NUMERIC_Q16
-                    const pft_real_t di = dir[li].dx[a][i];
-                    const pft_real_t dj = dir[li].dx[a][j];
-#else
-                    const pft_real_t di = pft_sub(dir[li].dx[a][i], df[i]);
-                    const pft_real_t dj = pft_sub(dir[li].dx[a][j], df[j]);
-#endif
-                    v = aadd_(v, amul_(dir[li].w, pft_mul(di, dj)));
+                vp[k] = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
+                k++;
+            }
+        }
+        for (int32_t li = 0; li < ndir; ++li) {
+            const pft_real_t w = dir[li].w;
+            pft_real_t dv[3];
+            for (uint32_t i = 0; i < 3u; ++i) {
+                dv[i] = pft_sub(dir[li].dx[a][i], df[i]);
+            }
+            k = 0u;
+            for (uint32_t i = 0; i < 3u; ++i) {
+                for (uint32_t j = i; j < 3u; ++j) {
+                    vp[k] = aadd_(vp[k], amul_(w, pft_mul(dv[i], dv[j])));
+                    k++;
                 }
-                P[4u * i + j] = ato_(v);
+            }
+        }
+        k = 0u;
+        for (uint32_t i = 0; i < 3u; ++i) {
+            for (uint32_t j = i; j < 3u; ++j) {
+                P[4u * i + j] = ato_(vp[k]);
                 P[4u * j + i] = P[4u * i + j];
+                k++;
             }
             t->x[a][i] = pft_add(t->x[a][i], df[i]);
         }
