@@ -695,9 +695,16 @@ static inline void bank_gres_(const pft_pte_t *p, pft_pte_bank_t *e, uint32_t w,
         if (pft_pte_missing_(p, (uint32_t)tau) != 0u) {
             continue; /* a lost frame: no term */
         }
+        const pft_real_t *gf = p->gfull + o;
+        if (q == 4 && sign > 0) { /* the common 4 phases per cell, unrolled: the same sums */
+            gr[0] = gr[0] + gf[0];
+            gr[1] = gr[1] + gf[1];
+            gr[2] = gr[2] + gf[2];
+            gr[3] = gr[3] + gf[3];
+            continue;
+        }
         for (int32_t r = 0; r < q; ++r) {
-            const pft_real_t g = p->gfull[r + o];
-            gr[r] = sign > 0 ? gr[r] + g : gr[r] - g;
+            gr[r] = sign > 0 ? gr[r] + gf[r] : gr[r] - gf[r];
         }
     }
 }
@@ -741,9 +748,17 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
         }
     } else if (rn != ro) {
         pft_real_t *gr = e->gres[w];
-        for (int32_t r = 0; r < q; ++r) {
-            gr[r] = gr[r] + p->gfull[r + rn] -
-                    p->gfull[r + ro];
+        const pft_real_t *gn = p->gfull + rn;
+        const pft_real_t *go = p->gfull + ro;
+        if (q == 4) { /* the common 4 phases per cell, unrolled: the same sums */
+            gr[0] = gr[0] + gn[0] - go[0];
+            gr[1] = gr[1] + gn[1] - go[1];
+            gr[2] = gr[2] + gn[2] - go[2];
+            gr[3] = gr[3] + gn[3] - go[3];
+        } else {
+            for (int32_t r = 0; r < q; ++r) {
+                gr[r] = gr[r] + gn[r] - go[r];
+            }
         }
     } else {
         /* the same residue in and out: the terms cancel */
