@@ -610,17 +610,20 @@ static void yrow_blocks_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t i0,
         yrow_fill_(p, slot, back, b0, b1);
     }
     if (p->nyblk >= YSPAN_MIN_) {
-        uint16_t sp[2];
-        memcpy(sp, fl + p->nyblk - 4u, sizeof(sp));
+        uint16_t lo;
+        uint16_t hi;
+        memcpy(&lo, fl + p->nyblk - 4u, sizeof(lo));
+        memcpy(&hi, fl + p->nyblk - 2u, sizeof(hi));
         int32_t c0 = b0 * bs;
         int32_t c1 = (b1 + 1) * bs;
-        if (sp[1] > sp[0] && c0 <= (int32_t)sp[1] && c1 >= (int32_t)sp[0]) {
-            c0 = c0 < (int32_t)sp[0] ? c0 : (int32_t)sp[0];
-            c1 = c1 > (int32_t)sp[1] ? c1 : (int32_t)sp[1];
+        if (hi > lo && c0 <= (int32_t)hi && c1 >= (int32_t)lo) {
+            c0 = c0 < (int32_t)lo ? c0 : (int32_t)lo;
+            c1 = c1 > (int32_t)hi ? c1 : (int32_t)hi;
         }
-        sp[0] = (uint16_t)c0;
-        sp[1] = (uint16_t)c1;
-        memcpy(fl + p->nyblk - 4u, sp, sizeof(sp));
+        lo = (uint16_t)c0;
+        hi = (uint16_t)c1;
+        memcpy(fl + p->nyblk - 4u, &lo, sizeof(lo));
+        memcpy(fl + p->nyblk - 2u, &hi, sizeof(hi));
     }
 }
 
@@ -629,11 +632,13 @@ static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back
                                       int32_t i1)
 {
     const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
-    uint16_t sp[2] = {0u, 0u};
+    uint16_t lo = 0u;
+    uint16_t hi = 0u;
     if (p->nyblk >= YSPAN_MIN_) {
-        memcpy(sp, fl + p->nyblk - 4u, sizeof(sp));
+        memcpy(&lo, fl + p->nyblk - 4u, sizeof(lo));
+        memcpy(&hi, fl + p->nyblk - 2u, sizeof(hi));
     }
-    if (i0 < (int32_t)sp[0] || i1 > (int32_t)sp[1]) {
+    if (i0 < (int32_t)lo || i1 > (int32_t)hi) {
         yrow_blocks_(p, slot, back, i0, i1);
     }
     return p->yring + (size_t)slot * p->ny;
@@ -1627,27 +1632,27 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         pft_real_t kw[6];
         /* the nine weighted sums in one pass over the directions: each sum adds the same
          * terms in the same order (li ascending) as a loop of its own */
-        acc_t vd[3] = {0, 0, 0};
-        acc_t vk[6] = {0, 0, 0, 0, 0, 0};
+        acc_t v9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* dX sums, then K W sums */
         for (int32_t li = 0; li < ndir; ++li) {
             const pft_real_t w = dir[li].w;
             for (uint32_t i = 0; i < 3u; ++i) {
-                vd[i] = aadd_(vd[i], amul_(w, p->dir[li].dx[a][i]));
+                v9[i] = aadd_(v9[i], amul_(w, p->dir[li].dx[a][i]));
             }
             for (uint32_t i = 0; i < 6u; ++i) {
-                vk[i] = aadd_(vk[i], amul_(w, p->dir[li].K[a][i]));
+                v9[3u + i] = aadd_(v9[3u + i], amul_(w, p->dir[li].K[a][i]));
             }
         }
         for (uint32_t i = 0; i < 3u; ++i) {
-            df[i] = ato_(vd[i]);
+            df[i] = ato_(v9[i]);
         }
         for (uint32_t i = 0; i < 6u; ++i) {
-            kw[i] = ato_(vk[i]);
+            kw[i] = ato_(v9[3u + i]);
         }
         pft_real_t *P = t->P[a];
         /* the six covariance sums (i, j >= i) in one pass over the directions, each started
-         * and summed as before; the deviations dx - dX once per direction (the same values) */
-        acc_t vp[6];
+         * and summed as before; the deviations dx - dX once per direction (the same values);
+         * in v9[0..6) (its sums are read) */
+        acc_t *vp = v9;
         uint32_t k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
