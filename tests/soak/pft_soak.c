@@ -747,6 +747,9 @@ static pft_status_t pte_update_(void *p, const pft_frame_t *f)
     pft_status_t st = pft_pte_update(p, f);
     const uint32_t ops = ((const pft_pte_t *)p)->n_line_ops;
     g_pte_lines_max = ops > g_pte_lines_max ? ops : g_pte_lines_max;
+    if (g_trace) {
+        printf("pte_units %u\n", (unsigned)ops); /* the update's line_budget units */
+    }
     return st;
 }
 static size_t pte_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_reports(p, r, m); }
