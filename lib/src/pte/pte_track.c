@@ -835,22 +835,39 @@ static uint32_t blk_units_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t 
     const int32_t sh = p->yblk_shift;
     const int32_t bp = YBLK_ * (int32_t)p->yq;
     const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u; /* offsets as bank_lines_ steps them */
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    int32_t slot = (int32_t)p->ring.head - tau0 % len;
+    slot = slot < 0 ? slot + len : slot;
     uint32_t c = 0u;
     for (int32_t tau = tau0; tau < tau1; ++tau) {
-        int32_t a = bank_off_(p, e, kn - (uint32_t)tau) + jlo;
+        int32_t a = (int32_t)(acc >> 16) + jlo;
         int32_t b = a + n;
         a = a < 0 ? 0 : a;
         b = b > ny ? ny : b;
-        int32_t slot = (int32_t)p->ring.head - tau % len;
-        slot = slot < 0 ? slot + len : slot;
-        const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
-        const int32_t b0 = sh > 0 ? a >> sh : a / bp;
-        const int32_t b1 = a >= b ? b0 - 1 : (sh > 0 ? (b - 1) >> sh : (b - 1) / bp);
-        for (int32_t blk = b0; blk <= b1; ++blk) {
-            if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
-                c += BLK_UNITS_;
+        if (a < b) {
+            const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+            const int32_t b0 = sh > 0 ? a >> sh : a / bp;
+            const int32_t b1 = sh > 0 ? (b - 1) >> sh : (b - 1) / bp;
+            if (b1 - b0 < 8) {
+                /* the blocks' bits in the two bytes from b0's, as yrow_ tests them */
+                const int32_t w0 = b0 >> 3;
+                const uint32_t bits = (uint32_t)fl[w0] | ((uint32_t)fl[w0 + 1] << 8);
+                uint32_t x = ~bits & (((2u << (uint32_t)(b1 - b0)) - 1u) << (uint32_t)(b0 & 7));
+                while (x != 0u) { /* at most 8 bits */
+                    x &= x - 1u;
+                    c += BLK_UNITS_;
+                }
+            } else {
+                for (int32_t blk = b0; blk <= b1; ++blk) {
+                    if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
+                        c += BLK_UNITS_;
+                    }
+                }
             }
         }
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
     }
     return c;
 }
