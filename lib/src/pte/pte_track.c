@@ -847,22 +847,16 @@ static uint32_t blk_units_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t 
         b = b > ny ? ny : b;
         if (a < b) {
             const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
-            const int32_t b0 = sh > 0 ? a >> sh : a / bp;
             const int32_t b1 = sh > 0 ? (b - 1) >> sh : (b - 1) / bp;
-            if (b1 - b0 < 8) {
-                /* the blocks' bits in the two bytes from b0's, as yrow_ tests them */
+            for (int32_t b0 = sh > 0 ? a >> sh : a / bp; b0 <= b1; b0 += 8) {
+                /* up to 8 blocks' bits in the two bytes from b0's, as yrow_ tests them */
                 const int32_t w0 = b0 >> 3;
+                const int32_t nb = b1 - b0 < 7 ? b1 - b0 : 7;
                 const uint32_t bits = (uint32_t)fl[w0] | ((uint32_t)fl[w0 + 1] << 8);
-                uint32_t x = ~bits & (((2u << (uint32_t)(b1 - b0)) - 1u) << (uint32_t)(b0 & 7));
+                uint32_t x = ~bits & (((2u << (uint32_t)nb) - 1u) << (uint32_t)(b0 & 7));
                 while (x != 0u) { /* at most 8 bits */
                     x &= x - 1u;
                     c += BLK_UNITS_;
-                }
-            } else {
-                for (int32_t blk = b0; blk <= b1; ++blk) {
-                    if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
-                        c += BLK_UNITS_;
-                    }
                 }
             }
         }
