@@ -25,8 +25,10 @@
  * --pf-budget K runs pf with the TBD model's birth budget K (pft_pf_tbd_model_set_budget; of
  * its 500 particles).
  * --pte-budget B runs pte with step_budget B (at most B track steps per update; of its 3 slots).
- * --pte-lines W runs pte with line_budget W (at most W line x frame sums per update) and checks
- * after every update that it did no more (the count of the last update, a white-box read).
+ * --pte-lines W runs pte with line_budget W (at most W units per update: line x frame sums,
+ * response blocks and edge rows, docs/algorithms.md 5.8) and checks after every update that
+ * it did no more (the count of the last update, a white-box read); with --trace it prints
+ * "pte_units <units>" before each update's trace line.
  * --known counts the known open defects listed in docs/reliability.md apart instead of
  * failing on them (the ctest soak_short uses it; soak_short_strict, disabled, does not).
  * Exit code 0 and the line "pft_soak: PASS" when every check held. docs/reliability.md gives
@@ -741,12 +743,15 @@ static bool p_loop(const char *name, void *inst, p_update_fn update, p_reports_f
     return report(&st, quiet);
 }
 
-static uint32_t g_pte_lines_max; /* --pte-lines: most line x frame sums of one update */
+static uint32_t g_pte_lines_max; /* --pte-lines: most line_budget units of one update */
 static pft_status_t pte_update_(void *p, const pft_frame_t *f)
 {
     pft_status_t st = pft_pte_update(p, f);
     const uint32_t ops = ((const pft_pte_t *)p)->n_line_ops;
     g_pte_lines_max = ops > g_pte_lines_max ? ops : g_pte_lines_max;
+    if (g_trace) {
+        printf("pte_units %u\n", (unsigned)ops); /* the update's line_budget units */
+    }
     return st;
 }
 static size_t pte_reports_(const void *p, pft_pte_report_t *r, size_t m) { return pft_pte_reports(p, r, m); }
@@ -773,7 +778,7 @@ static bool soak_pte(uint64_t n, uint64_t seed, bool quiet)
     g_pte_lines_max = 0u;
     bool ok = p_loop("pte", &p, pte_update_, pte_reports_, 3u, false, n, seed, quiet);
     if (g_pte_lines != 0u) {
-        printf("pte: line_budget %u, most line x frame sums in one update %u\n",
+        printf("pte: line_budget %u, most units in one update %u\n",
                (unsigned)g_pte_lines, (unsigned)g_pte_lines_max);
         if (g_pte_lines_max > g_pte_lines) {
             printf("pte: line_budget exceeded\n");

@@ -736,13 +736,13 @@ static void test_line_budget_config(void)
     TEST_ASSERT_EQUAL_STRING("line_budget", field);
 }
 
-/* line_budget = W on the two targets of test_two_targets, W = 330 (the smallest) and 500: no
- * update does more than W line x frame sums, while without the budget some update does more
- * (a new track's entries summed over its template: the budget bites), and both targets are
- * still found and followed within 1 cell. */
+/* line_budget = W on the two targets of test_two_targets, W = 1000 and 1500 units: no update
+ * spends more than W units (line x frame sums, response blocks, edge rows and points), while
+ * without the budget some update spends more (a new track's entries summed over its template:
+ * the budget bites), and both targets are still found and followed within 1 cell. */
 static void test_line_budget_bound(void)
 {
-    static const uint16_t wv[3] = {0u, 330u, 500u};
+    static const uint16_t wv[3] = {0u, 1000u, 1500u};
     uint32_t peak[3] = {0u, 0u, 0u};
     for (uint32_t v = 0; v < 3u; ++v) {
         pft_pte_config_t c;
@@ -766,7 +766,7 @@ static void test_line_budget_bound(void)
             coasted += (int)(live_before - p.n_steps);
             live_before = check_two(&p, pos, k, &both);
         }
-        note(v == 0u ? "both_from_off" : (v == 1u ? "both_from_330" : "both_from_500"), both);
+        note(v == 0u ? "both_from_off" : (v == 1u ? "both_from_1000" : "both_from_1500"), both);
         note("peak_line_ops", (double)peak[v]);
         note("coasted", (double)coasted);
         TEST_ASSERT_TRUE(both >= 9 && both <= 25);
@@ -777,6 +777,66 @@ static void test_line_budget_bound(void)
         }
     }
     TEST_ASSERT_TRUE(peak[0] > wv[2]); /* the budgets bite */
+}
+
+/* line_budget at the window's edge: a cue at cell 1.5 moving inward 0.1 cell per frame (its
+ * lines run off the response grid: the edge correction of the normaliser, bank_g_, works on
+ * every step, and the cue's entries are filled from empty). W = 800 units: no update spends
+ * more than W units or more than it charged; without the budget some update spends more; the
+ * track is followed within 1 cell once it steps, and the budget made it wait some frames. */
+static void test_line_budget_edge(void)
+{
+    uint32_t peak[2] = {0u, 0u};
+    for (uint32_t v = 0; v < 2u; ++v) {
+        pft_pte_config_t c;
+        cfg_default(&c);
+        c.init_threshold = R(10000.0); /* the cue only */
+        c.line_budget = v == 0u ? 0u : 800u;
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 77;
+        const double a = 4.0;
+        int reported = 0, coasted = 0;
+        double emax = 0.0;
+        for (int k = 0; k < 60; ++k) {
+            double pos = 1.5 + 0.1 * k;
+            profile(1, &pos, &a);
+            if (k == 10) {
+                pft_real_t pos0[2] = {R(pos), R(0.0)};
+                pft_real_t vel0[2] = {R(0.1), R(0.0)};
+                pft_real_t pv[2] = {R(0.1), R(1.0)};
+                pft_real_t vv[2] = {R(0.001), R(1.0)};
+                uint16_t id = 0;
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_start(&p, pos0, vel0, pv, vv, R(a), 10, &id));
+            }
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            peak[v] = p.n_line_ops > peak[v] ? p.n_line_ops : peak[v];
+            if (v > 0u) {
+                TEST_ASSERT_TRUE(p.n_line_ops <= 800u);
+                TEST_ASSERT_TRUE(p.n_line_ops <= p.line_used);
+            }
+            if (k >= 10) {
+                coasted += p.n_steps == 0u ? 1 : 0;
+                if (pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS) == 1u && p.n_steps == 1u) {
+                    double e = fabs(D(g_rep[0].pos[0]) - pos);
+                    emax = e > emax ? e : emax;
+                    reported++;
+                }
+            }
+        }
+        note(v == 0u ? "edge_off_reported" : "edge_800_reported", reported);
+        note("coasted", coasted);
+        note("max_pos_err", emax);
+        note("peak_units", (double)peak[v]);
+        TEST_ASSERT_TRUE(reported >= 30);
+        TEST_ASSERT_TRUE(emax <= 1.0);
+        if (v == 0u) {
+            TEST_ASSERT_EQUAL_INT(0, coasted);
+        } else {
+            TEST_ASSERT_TRUE(coasted > 0); /* the cue waited for its entries */
+        }
+    }
+    TEST_ASSERT_TRUE(peak[0] > 800u); /* the budget bites */
 }
 
 /* A line budget that never bites (the largest, 65535) gives the same reports and the same
@@ -947,6 +1007,7 @@ int main(void)
     RUN_TEST(test_line_budget_config);
     RUN_TEST(test_line_budget_bound);
     RUN_TEST(test_line_budget_never_bites);
+    RUN_TEST(test_line_budget_edge);
     RUN_TEST(test_range_doppler);
     RUN_TEST(test_bad_input_untouched);
     return UNITY_END();

@@ -263,9 +263,16 @@ typedef enum {
  * leaving a window are still in the ring). This bounds the steps per frame, not the work of
  * a step (docs/algorithms.md 5.8).
  *
- * Line budget (line_budget = W >= 1; default 0: off; TABLE operators only): at most W line x
- * frame sums of the slope entries per update (one response added to or removed from one
- * line sum; counted from an upper bound before each part is done). The live tracks try to
+ * Line budget (line_budget = W >= 1; default 0: off; TABLE operators only): at most W units
+ * of the slope entries' work per update, in one currency: one line x frame sum (one response
+ * added to or removed from one line sum) is 1 unit, one response block computed for them
+ * (8 cells) 47 units in the float build and 116 in the q16 build, and each frame of the edge
+ * correction of a direction's normaliser (lines leaving the interior of the response grid)
+ * 4 units plus 1 per point corrected (the weights are measured instruction ratios:
+ * docs/algorithms.md 5.8). Every part is charged from an upper bound before it is done
+ * (the blocks not yet computed under the lines it reads; the edge correction of the lines a
+ * step reads is reserved per direction after its entry, and when it does not fit the direction
+ * waits as one whose entry is incomplete). The live tracks try to
  * step in the order of the frames they waited (every live one, or the step_budget ones);
  * an entry is brought to the frame in full when that fits in what is left, else one frame of
  * all its lines at a time as far as the budget goes (the frames it missed first, then the
@@ -274,8 +281,10 @@ typedef enum {
  * detection test); a track none of whose entries is complete predicts over the frame as over
  * a lost one and steps when one is (it ends when it left the image or has waited max_len
  * frames). So a new entry is summed over its whole template a few frames at a time before the
- * track steps with it. W >= 2 (2 scan_steps + 1) n_dir[0] (2 with short_len, else 1): at
- * least one slide of every entry of one track (docs/algorithms.md 5.8).
+ * track steps with it. W >= 2 (2 scan_steps + 1) n_dir[0] (2 with short_len, else 1): the
+ * line x frame sums of one slide of every entry of one track; a W below what a track's slides
+ * and their response blocks cost per frame (median 344 units float, 482-582 q16 in the soak's
+ * scene) makes tracks wait often (docs/algorithms.md 5.8).
  */
 typedef struct {
     pft_pte_input_t in;        /**< input stage */
@@ -309,7 +318,7 @@ typedef struct {
     pft_real_t man_acc_sd;     /**< on a manoeuvre, acceleration standard deviation added to the track's covariance (CA: to r''; CV: Ms times it to r'), cells/frame^2, in [0, 0.1] (default 0.03) */
     /* Per-frame work bound */
     uint8_t step_budget;       /**< B: at most B track steps per update, 0..max_tracks (default 0: off, every live track steps at every frame). With B >= 1 the live tracks that waited longest step (ties: lower slot), the others predict over the frame as over a lost one and step later over the frames they missed; templates are at most max_len + 1 - ceil(max_tracks / B) frames, which must be >= 2 and above short_len (docs/algorithms.md 5.8) */
-    uint16_t line_budget;      /**< W: at most W line x frame sums of the TABLE slope entries per update (default 0: off). TABLE only, W >= 2 (2 scan_steps + 1) n_dir[0] (twice that with short_len); a direction whose entry the budget left incomplete takes no part in the step, a track with no complete entry predicts over the frame (see "Line budget" above; docs/algorithms.md 5.8) */
+    uint16_t line_budget;      /**< W: at most W units of the TABLE slope entries' work per update (line x frame sums 1 each, response blocks 47 float / 116 q16, edge-correction rows 4 plus 1 per point; default 0: off). TABLE only, W >= 2 (2 scan_steps + 1) n_dir[0] (twice that with short_len); a direction whose entry the budget left incomplete takes no part in the step, a track with no complete entry predicts over the frame (see "Line budget" above; docs/algorithms.md 5.8) */
 } pft_pte_config_t;
 
 /** Fills every field of cfg with its default (150 x 1 range-time profiles: set cfg->in sizes after). */

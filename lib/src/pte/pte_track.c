@@ -12,6 +12,18 @@
 #define MARGIN_ 6
 /* TABLE: cells per block of lazily computed responses */
 #define YBLK_ 8
+/* line_budget's currency (docs/algorithms.md 5.8): units of one line x frame sum. A response
+ * block computed costs BLK_UNITS_ units and each frame of a line set's edge correction
+ * (bank_g_) EDGE_ROW_UNITS_ units plus 1 per point corrected: their instructions over the
+ * mean instructions of one line x frame sum of the bank (callgrind, the soak's pte work
+ * sample; docs/results/pte.md "Branch ptework4"). */
+#ifdef PFT_NUMERIC_Q16
+#define BLK_UNITS_ 116u
+#define EDGE_ROW_UNITS_ 4u
+#else
+#define BLK_UNITS_ 47u
+#define EDGE_ROW_UNITS_ 4u
+#endif
 
 /* v as a signed 16.16 fixed-point integer (any range of pft_real_t, both builds). */
 static int64_t fix16_(pft_real_t v)
@@ -580,6 +592,7 @@ static void yrow_fill_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t b0, i
     for (int32_t blk = b0; blk <= b1; ++blk) {
         if ((fl[blk >> 3] & (1u << (uint32_t)(blk & 7))) == 0u) {
             yblock_(p, slot, back, blk);
+            p->n_line_ops += BLK_UNITS_; /* line_budget's units */
         }
     }
 }
@@ -868,8 +881,49 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     }
 }
 
-/* line_budget: an upper bound of the line x frame sums bank_sync_ does for these arguments
- * (the lines kept slide or catch up over dk frames, the others are summed in full). */
+/* line_budget: the response blocks not yet computed under lines [jlo, jlo + n) of entry e
+ * (anchored as it will be summed) at the frames kn - tau, tau in [tau0, tau1), in units. */
+static uint32_t blk_units_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t jlo, int32_t n,
+                           uint32_t kn, int32_t tau0, int32_t tau1)
+{
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t sh = p->yblk_shift;
+    const int32_t bp = YBLK_ * (int32_t)p->yq;
+    const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u; /* offsets as bank_lines_ steps them */
+    int64_t acc = step * (int64_t)(int32_t)(kn - (uint32_t)tau0 - e->k0) + 32768;
+    int32_t slot = (int32_t)p->ring.head - tau0 % len;
+    slot = slot < 0 ? slot + len : slot;
+    uint32_t c = 0u;
+    for (int32_t tau = tau0; tau < tau1; ++tau) {
+        int32_t a = (int32_t)(acc >> 16) + jlo;
+        int32_t b = a + n;
+        a = a < 0 ? 0 : a;
+        b = b > ny ? ny : b;
+        if (a < b) {
+            const uint8_t *fl = p->yflag + (size_t)slot * p->nyblk;
+            const int32_t b1 = sh > 0 ? (b - 1) >> sh : (b - 1) / bp;
+            for (int32_t b0 = sh > 0 ? a >> sh : a / bp; b0 <= b1; b0 += 8) {
+                /* up to 8 blocks' bits in the two bytes from b0's, as yrow_ tests them */
+                const int32_t w0 = b0 >> 3;
+                const int32_t nb = b1 - b0 < 7 ? b1 - b0 : 7;
+                const uint32_t bits = (uint32_t)fl[w0] | ((uint32_t)fl[w0 + 1] << 8);
+                uint32_t x = ~bits & (((2u << (uint32_t)nb) - 1u) << (uint32_t)(b0 & 7));
+                while (x != 0u) { /* at most 8 bits */
+                    x &= x - 1u;
+                    c += BLK_UNITS_;
+                }
+            }
+        }
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
+    }
+    return c;
+}
+
+/* line_budget: an upper bound of the units bank_sync_ spends for these arguments (the lines
+ * kept slide or catch up over dk frames, the others are summed in full; the response blocks
+ * of the frames read, not yet computed). */
 static uint32_t sync_cost_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t jlo, int32_t n,
                            const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
 {
@@ -891,7 +945,30 @@ static uint32_t sync_cost_(const pft_pte_t *p, const pft_pte_bank_t *e, int32_t 
             c += (uint32_t)kept * (uint32_t)(mo == 0 ? mn : dk + f);
         }
     }
-    (void)p;
+    /* the frames read: all of the windows' when a line or a window is summed in full, else
+     * the dk newest and each window's far end */
+    int32_t hi = 0;
+    bool full = false;
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        const int32_t mn = m[w];
+        const int32_t mo = keep ? (int32_t)e->m[w] + dk : 0;
+        if (mn > 0) {
+            full = full || n > kept || e->m[w] == 0u;
+            hi = mn > hi ? mn : hi;
+            hi = mo > hi ? mo : hi;
+        }
+    }
+    if (full) {
+        return c + blk_units_(p, e, jlo, n, kn, 0, hi);
+    }
+    c += blk_units_(p, e, jlo, n, kn, 0, dk);
+    for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        const int32_t mn = m[w];
+        const int32_t mo = (int32_t)e->m[w] + dk;
+        if (mn > 0) {
+            c += blk_units_(p, e, jlo, n, kn, mn < mo ? mn : mo, mn < mo ? mo : mn);
+        }
+    }
     return c;
 }
 
@@ -931,8 +1008,13 @@ static bool bank_part_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     }
     e->live = 1u;
     const uint32_t one = (uint32_t)n * nw; /* one frame of every line of every window used */
-    while (e->kl != kn && p->line_used + one <= p->cfg.line_budget) {
+    while (e->kl != kn) {
         const int32_t tau = (int32_t)(kn - e->kl) - 1;
+        const uint32_t cost = one + blk_units_(p, e, jlo, n, kn, tau, tau + 1);
+        if (p->line_used + cost > p->cfg.line_budget) {
+            break;
+        }
+        const uint32_t before = p->n_line_ops;
         for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
             if (m[w] != 0u) {
                 bank_lines_(p, ti, bi, w, 0, n, kn, tau, tau + 1, 1);
@@ -941,15 +1023,25 @@ static bool bank_part_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
             }
         }
         e->kl++;
-        p->line_used += one;
+        p->line_used += p->n_line_ops - before;
     }
     bool done = e->kl == kn;
     for (uint32_t w = 0; w < PFT_PTE_NWIN_ && e->kl == kn; ++w) {
         const int32_t mo = e->m[w];
         const int32_t mn = m[w];
-        const int32_t left = (int32_t)((p->cfg.line_budget - p->line_used) / (uint32_t)n);
-        int32_t f = mo > mn ? mo - mn : mn - mo;
-        f = f < left ? f : left;
+        const int32_t need = mo > mn ? mo - mn : mn - mo;
+        int32_t f = 0; /* the frames whose lines and blocks fit in what is left */
+        uint32_t cost = 0u;
+        while (f < need) {
+            const int32_t tau = mo > mn ? mo - 1 - f : mo + f;
+            const uint32_t cf = (uint32_t)n + blk_units_(p, e, jlo, n, kn, tau, tau + 1);
+            if (p->line_used + cost + cf > p->cfg.line_budget) {
+                break;
+            }
+            cost += cf;
+            f++;
+        }
+        const uint32_t before = p->n_line_ops;
         if (mo > mn) { /* the oldest frames out */
             bank_lines_(p, ti, bi, w, 0, n, kn, mo - f, mo, -1);
             bank_gres_(p, e, w, kn, mo - f, mo, -1);
@@ -959,7 +1051,7 @@ static bool bank_part_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
             bank_gres_(p, e, w, kn, mo, mo + f, 1);
             e->m[w] = (uint8_t)(mo + f);
         }
-        p->line_used += (uint32_t)(f * n);
+        p->line_used += p->n_line_ops - before;
         done = done && e->m[w] == m[w];
     }
     return done;
@@ -977,8 +1069,9 @@ static bool bank_sync_budget_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jl
     const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
     const uint32_t cost = sync_cost_(p, e, jlo, n, m, kn, keep);
     if (p->line_used + cost <= p->cfg.line_budget) {
-        p->line_used += cost;
+        const uint32_t before = p->n_line_ops;
         bank_sync_(p, ti, bi, jlo, n, m, kn, keep);
+        p->line_used += p->n_line_ops - before; /* what it spent, at most cost */
         return true;
     }
     return bank_part_(p, ti, bi, jlo, n, m, kn, keep);
@@ -1056,6 +1149,9 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
         ja = ja > n ? n : ja;
         jb = jb < 0 ? 0 : jb;
         jb = jb < ja ? ja : jb;
+        if (ja > 0 || jb < n) { /* line_budget's units: the row and its points */
+            p->n_line_ops += EDGE_ROW_UNITS_ + (uint32_t)(ja > 0 ? ja : 0) + (uint32_t)(jb < n ? n - jb : 0);
+        }
         if (ja > 0) {
             int32_t jo = -d; /* lines [0, jo) off the grid, [jo, ja) on its edge band */
             jo = jo < 0 ? 0 : (jo > ja ? ja : jo);
@@ -1073,6 +1169,26 @@ static void bank_g_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, uint32_t
             g_off_(p, G, jg, n, d);
         }
     }
+}
+
+/* line_budget: an upper bound of the units bank_g_ spends on window w of entry e for its
+ * lines [j0, j0 + n) at frame kn: every frame of the window a row, each with at most the
+ * points of the lines' span over the window outside the interior. */
+static uint32_t edge_units_(const pft_pte_t *p, const pft_pte_bank_t *e, uint32_t w,
+                            uint32_t kn, int32_t j0, int32_t n)
+{
+    const int32_t m = e->m[w];
+    const int32_t jl = e->jlo + j0;
+    const int32_t d0 = bank_off_(p, e, kn) + jl;
+    const int32_t d1 = bank_off_(p, e, kn - (uint32_t)(m > 0 ? m - 1 : 0)) + jl;
+    const int32_t lo = d0 < d1 ? d0 : d1;
+    const int32_t hi = (d0 > d1 ? d0 : d1) + n - 1;
+    if (lo >= p->yin_lo && hi <= p->yin_hi) {
+        return 0u;
+    }
+    int32_t out = (p->yin_lo > lo ? p->yin_lo - lo : 0) + (hi > p->yin_hi ? hi - p->yin_hi : 0);
+    out = out > n ? n : out;
+    return (uint32_t)m * (EDGE_ROW_UNITS_ + (uint32_t)out);
 }
 
 /* ------------------------------------------------------------------------ track step */
@@ -1306,6 +1422,16 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
         } else {
             ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m,
                                    kn, keep);
+        }
+        if (lb && ok) {
+            /* line_budget: the edge correction of the lines the step reads (bank_g_, the
+             * window and the short one when the manoeuvre test runs) is reserved here; when
+             * it does not fit the direction waits as an incomplete one */
+            const bool mt = p->short_len > 0u && g->M > (int32_t)p->short_len;
+            const uint32_t ec = edge_units_(p, e, 0u, kn, jlo - e->jlo, ap->ns) +
+                                (mt ? edge_units_(p, e, 1u, kn, jlo - e->jlo, ap->ns) : 0u);
+            ok = p->line_used + ec <= p->cfg.line_budget;
+            p->line_used += ok ? ec : 0u;
         }
         any = any || ok;
         /* i < L in either order (L odd) */

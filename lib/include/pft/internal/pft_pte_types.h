@@ -178,8 +178,8 @@ struct pft_pte_s {
     uint8_t init_stage;          /* init_spread: DP stages of the running search done */
     uint8_t init_todo;           /* init_spread: frames of the ring waiting for their stage */
     uint8_t n_steps;             /* track steps of the last update (step_budget bounds it) */
-    uint32_t n_line_ops;         /* TABLE: line x frame sums of the last update (line_budget bounds them) */
-    uint32_t line_used;          /* line_budget: sums charged in this update (upper bounds) */
+    uint32_t n_line_ops;         /* TABLE: line_budget units of the last update (line x frame sums, response blocks, edge rows and points; line_budget bounds them) */
+    uint32_t line_used;          /* line_budget: units charged in this update (what was spent, and the edge reservations) */
     uint8_t n_rep;
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
