@@ -287,11 +287,10 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * like m, 0 where pixels enter) counts how long residuals beyond the gate's level have held
  * there:
  *   p <- min(p + 1, 2 k) where |r| > excess, else max(p - 1/2, 0);
- * a fresh excess is |r| > excess with p < k after this frame; the mean takes the frame's
- * residual only where neither the pixel nor one of its 4 neighbours holds a fresh excess, and
+ * the mean takes the frame's residual only where |r| <= excess or p >= k after this frame, and
  * keeps its value elsewhere (the map m is updated as above): a target that moves across the
- * scene leaves its counter behind and its mean (PSF wings included) is not learnt; clutter
- * that stays put is, k frames later. A cloud edge, the
+ * scene leaves its counter behind and its mean is not learnt; clutter that stays put is, k
+ * frames later. A cloud edge, the
  * horizon or a structure that the background keeps missing at the same scene position is then
  * scored in its own sigma after a few frames, while a target moving across the scene meets a
  * map it has not raised. A frame without detection evidence (update's evidence false) leaves

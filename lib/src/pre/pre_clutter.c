@@ -382,29 +382,6 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
     /* persistence gate: the counter in frames Q8, its cap 2 k and its opening level k */
     const uint32_t pk = (uint32_t)c->cfg.persist * 256u, pcap = 2u * pk;
     const uint32_t exc = c->cfg.excess;
-    if (c->pc != NULL) {
-        /* the gate's counters first, so that the mean's pass can read the neighbours' flags:
-         * bit 0 of a counter (a step is 128) marks a fresh excess, |r| > excess with the
-         * counter below k after this frame; masked pixels keep their counter, unflagged. The
-         * gate reads the stage's residual r: clutter that the mean has learnt keeps its
-         * counter. */
-        for (int32_t y = 0; y < h; ++y) {
-            const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
-            uint16_t *pc = c->pc + (size_t)y * (size_t)w;
-            for (int32_t x = 0; x < w; ++x) {
-                const int32_t v = r[x];
-                const uint32_t p0 = (uint32_t)pc[x] & ~1u;
-                if (v == PFT_RES16_MASKED) {
-                    pc[x] = (uint16_t)p0;
-                    continue;
-                }
-                const uint32_t av = (uint32_t)(v < 0 ? -v : v);
-                const uint32_t p1 = av > exc ? (p0 + 256u > pcap ? pcap : p0 + 256u)
-                                             : (p0 > 128u ? p0 - 128u : 0u);
-                pc[x] = (uint16_t)((p1 & ~1u) | (av > exc && p1 < pk ? 1u : 0u));
-            }
-        }
-    }
     for (int32_t y = 0; y < h; ++y) {
         uint16_t *mrow = c->m + (size_t)y * (size_t)w;
         memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
@@ -432,13 +409,16 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
                 wv = mb > veto ? 0 : cl_div_(cv * 1024, (int32_t)s);
             }
             o[x] = (int16_t)pft_pre_rclamp_(wv);
-            /* whether the mean takes this frame's residual: not at a fresh excess nor next
-             * to one (the pixel and its 4 neighbours: a target's PSF wings stay unlearnt) */
-            bool learn = true;
+            bool learn = true; /* whether the mean takes this frame's residual */
             if (pc != NULL) {
-                const uint32_t up = y > 0 ? pc[x - w] : 0u, dn = y + 1 < h ? pc[x + w] : 0u;
-                const uint32_t lf = x > 0 ? pc[x - 1] : 0u, rt = x + 1 < w ? pc[x + 1] : 0u;
-                learn = ((pc[x] | up | dn | lf | rt) & 1u) == 0u;
+                /* the gate reads the stage's residual v: clutter that the mean has learnt
+                 * keeps its counter */
+                const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+                const uint32_t p0 = pc[x];
+                const uint32_t p1 = av > exc ? (p0 + 256u > pcap ? pcap : p0 + 256u)
+                                             : (p0 > 128u ? p0 - 128u : 0u);
+                pc[x] = (uint16_t)p1;
+                learn = av <= exc || p1 >= pk; /* else an excess that has not persisted */
             }
             const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
             const uint64_t sq = (uint64_t)ac * ac;
