@@ -178,6 +178,8 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.clutter_blur = static_cast<int>(t.integer_in("clutter_blur", T.clutter_blur, 0, 4));
     T.clutter_persist = static_cast<int>(t.integer_in("clutter_persist", T.clutter_persist, 0, 32));
     T.clutter_excess = t.number_in("clutter_excess", T.clutter_excess, 0.01, 127.0);
+    if (T.clutter_persist > 0 && !T.clutter_mean)
+        t.at("clutter_persist").fail("gates the map's mean: needs clutter_mean true");
 }
 
 void parse_dbt(const Field &d, DbtSettings &D)
