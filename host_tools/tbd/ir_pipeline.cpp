@@ -116,6 +116,8 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.mean = t.clutter_mean;
     c.thr = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_thr * 1024.0), 1024L, 65535L));
     c.veto = t.clutter_veto > 0 ? static_cast<uint16_t>(std::clamp(std::lround(t.clutter_veto * 1024.0), static_cast<long>(c.thr), 65535L)) : 0u;
+    c.persist = static_cast<uint8_t>(t.clutter_persist);
+    c.excess = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_excess * 256.0), 1L, 32767L));
     return c;
 }
 

@@ -112,6 +112,8 @@ struct TrackerSettings {
     double clutter_veto = 0;                    ///< map value (sigma^2) above which the residual is 0 (no births there; 0: off)
     bool clutter_box = true;                    ///< read the map as its mean over the square (false: its largest value)
     bool clutter_mean = false;                  ///< subtract the map's mean residual too
+    int clutter_persist = 0;                    ///< map's persistence gate (frames; 0: off): a residual beyond clutter_excess is learnt only once it has held this long at the same scene position
+    double clutter_excess = 1.5;                ///< level of the persistence gate (sigma)
     int clutter_blur = 1;                       ///< half-size of the square the map is read over (0: the pixel)
 };
 

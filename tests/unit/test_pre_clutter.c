@@ -6,7 +6,8 @@
  * once m_{k-1} > thr), a moving point on unit noise keeps its value exactly, the running mean
  * removes a persistent offset, the map moves with the scene (integer and half-pixel shifts), a
  * frame without evidence changes nothing, masked pixels stay masked, the veto zeroes a learnt
- * blob from the documented frame on. 64 x 48 frames, integer
+ * blob from the documented frame on, the persistence gate learns a blob that stays put in the
+ * scene and not a point that moves against it. 64 x 48 frames, integer
  * residuals made per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -23,7 +24,7 @@ void tearDown(void) {}
 #define NPIX (W * H)
 
 static int16_t g_res[NPIX];
-static uint64_t g_work[PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, PFT_PRE_CLUTTER_MAX_BLUR) / 8 + 1];
+static uint64_t g_work[PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, PFT_PRE_CLUTTER_MAX_BLUR, 1) / 8 + 1];
 static uint64_t g_copy[sizeof(g_work) / 8];
 static uint32_t g_rs = 2463534242u;
 
@@ -83,11 +84,19 @@ static void test_config_and_workspace(void)
     TEST_ASSERT_TRUE(cfg.box);
     TEST_ASSERT_FALSE(cfg.mean);
     TEST_ASSERT_EQUAL_UINT16(0u, cfg.veto);
+    TEST_ASSERT_EQUAL_UINT8(0u, cfg.persist);
+    TEST_ASSERT_EQUAL_UINT16(384u, cfg.excess);
+    {
+        pft_pre_clutter_config_t e = cfg; /* excess is not read without persist */
+        e.excess = 0u;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_config_check(&e, &field));
+    }
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_config_check(NULL, &field));
     static const struct {
         const char *name;
         int which;
-    } bad[] = {{"width", 0}, {"height", 1}, {"alpha", 2}, {"blur", 3}, {"thr", 4}, {"veto", 6}, {"width", 5}};
+    } bad[] = {{"width", 0}, {"height", 1}, {"alpha", 2}, {"blur", 3}, {"thr", 4}, {"veto", 6}, {"width", 5},
+               {"persist", 7}, {"excess", 8}, {"excess", 9}, {"persist", 10}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_pre_clutter_config_t b = cfg;
         switch (bad[i].which) {
@@ -97,6 +106,10 @@ static void test_config_and_workspace(void)
         case 3: b.blur = (uint8_t)(PFT_PRE_CLUTTER_MAX_BLUR + 1u); break;
         case 4: b.thr = 1023u; break;
         case 6: b.veto = (uint16_t)(b.thr - 1u); break;
+        case 7: b.mean = true; b.persist = (uint8_t)(PFT_PRE_CLUTTER_MAX_PERSIST + 1u); break;
+        case 8: b.mean = true; b.persist = 4u; b.excess = 0u; break;
+        case 9: b.mean = true; b.persist = 4u; b.excess = 32768u; break;
+        case 10: b.persist = 4u; break; /* the gate is the mean's: refused without it */
         default: b.width = (uint16_t)(PFT_CFG_MAX_IMAGE_SIDE + 1u); break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_config_check(&b, &field));
@@ -107,10 +120,13 @@ static void test_config_and_workspace(void)
     }
     cfg.width = W;
     cfg.height = H;
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 0, 1)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 0, 1, 0)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
     cfg.mean = true;
     cfg.blur = 3u;
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, 3)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, 3, 0)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    cfg.persist = 4u;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, 3, 1)), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, 3, 0) + (size_t)W * H * 2u), (uint32_t)pft_pre_clutter_workspace_size(&cfg));
     pft_pre_clutter_t c;
     TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_clutter_init(&c, &cfg, g_work,
                                                               pft_pre_clutter_workspace_size(&cfg) - 8u));
@@ -128,6 +144,7 @@ static void test_refused_input_changes_nothing(void)
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     cfg.mean = true;
+    cfg.persist = 3u; /* every buffer of the workspace in use */
     pft_pre_clutter_t c;
     init_map(&c, &cfg);
     for (uint32_t k = 0; k < 5u; ++k) {
@@ -376,6 +393,56 @@ static void test_map_moves_with_scene(void)
     TEST_ASSERT_UINT32_WITHIN(3u, (e0 + 1024u + 1u) / 2u * 9u / 10u, pft_pre_clutter_at(&c, 0u, 30u));
 }
 
+/* The persistence gate (persist 4, excess 1.5 sigma) with the running mean (alpha 0.1, thr at
+ * its largest so that the output is r - mu exactly), after the settle on zero, 30 frames of a
+ * zero residual holding a 3 x 3 blob of 3 sigma that stays put in the scene and a point of
+ * 3 sigma that moves against it: (a) a still scene, the point moving 1 px every second frame
+ * (0.5 px per frame); (b) the scene moving +1 px per frame in x (shift 65536), the blob with
+ * it, the point fixed in the image (1 px per frame against the scene). Known answers: the
+ * point comes out as it went in, bit for bit, in every frame (its map and mean are never
+ * taken: no pixel of the scene holds it for 4 frames); the blob's centre comes out at 3 sigma
+ * until its 4th frame, then 3 (0.9)^(k - 4): learnt from the frame its counter reaches 4.
+ * Without the gate (persist 0) the point is learnt from its second frame at a pixel (case a)
+ * and the blob from its first frame (both checked to fail then). */
+static void test_persistence_gate_learns_what_stays_put(void)
+{
+    for (int cs = 0; cs < 2; ++cs) {
+        pft_pre_clutter_config_t cfg;
+        pft_pre_clutter_config_default(&cfg);
+        cfg.mean = true;
+        cfg.thr = 65535u;
+        cfg.persist = 4u;
+        pft_pre_clutter_t c;
+        init_map(&c, &cfg);
+        settle_on_zero(&c);
+        const int32_t sx = cs == 0 ? 0 : 65536;
+        uint32_t point_same = 0u;
+        for (int k = 1; k <= 30; ++k) {
+            memset(g_res, 0, sizeof g_res);
+            const int bx = 10 + (cs == 0 ? 0 : k), by = 12;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    g_res[(by + dy) * W + bx + dx] = 768; /* 3 sigma */
+                }
+            }
+            const int px = cs == 0 ? 20 + k / 2 : 40, py = 32;
+            g_res[py * W + px] = 768;
+            pft_frame_t f = res_frame(100u + (uint32_t)k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, 0, true));
+            const int16_t *o = out_of(&c);
+            point_same += o[py * W + px] == 768 ? 1u : 0u;
+            double want = 3.0;
+            for (int i = 4; i < k; ++i) {
+                want *= 0.9;
+            }
+            TEST_ASSERT_DOUBLE_WITHIN(0.01 * want + 0.01, want, o[by * W + bx] / 256.0);
+        }
+        TEST_ASSERT_EQUAL_UINT32(30u, point_same);
+        /* where the point has been, the mean is still 0: nothing of it was learnt */
+        TEST_ASSERT_EQUAL_UINT16(32768u, c.mu[32 * W + (cs == 0 ? 25 : 40)]);
+    }
+}
+
 /* A frame without evidence: all masked out, map unchanged; masked input pixels pass masked and
  * keep their map; raise sets a 3 x 3 floor. */
 static void test_no_evidence_masked_and_raise(void)
@@ -518,5 +585,6 @@ int main(void)
     RUN_TEST(test_map_moves_with_scene);
     RUN_TEST(test_no_evidence_masked_and_raise);
     RUN_TEST(test_row_passes_match_reference);
+    RUN_TEST(test_persistence_gate_learns_what_stays_put);
     return UNITY_END();
 }

@@ -158,7 +158,7 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
 static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32_t k,
                                   pft_pre_clutter_t *cl, int32_t out[PRE_GV_CLUT][PRE_GV_FRAMES][PRE_GV_CF])
 {
-    static uint64_t cwork[2][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2) / 8 + 1];
+    static uint64_t cwork[2][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2, 0) / 8 + 1];
     pft_pre_stats_t s;
     memset(&s, 0, sizeof s);
     (void)pft_pre_stats(pre, &s);

@@ -179,6 +179,8 @@ pft_status_t pft_pre_config_check(const pft_pre_config_t *cfg, const char **fiel
 
 /** Largest blur of the clutter map. */
 #define PFT_PRE_CLUTTER_MAX_BLUR 4u
+/** Largest persistence (frames) of the clutter map's gate. */
+#define PFT_PRE_CLUTTER_MAX_PERSIST 32u
 
 /** Configuration of the clutter map (integers only). */
 typedef struct {
@@ -190,6 +192,8 @@ typedef struct {
     bool mean;        /**< subtract the running mean of the residual too (default false) */
     uint16_t thr;     /**< map value above which a pixel is clutter, sigma^2 Q6.10 (1024 = 1), 1024..65535 (default 2048 = 2) */
     uint16_t veto;    /**< map value above which the output is 0 (no births, no evidence there), sigma^2 Q6.10; 0 (default) off, else thr..65535 */
+    uint8_t persist;  /**< persistence gate of the running mean (needs mean): a residual beyond +-excess updates the mean only once such residuals have held at the same scene position for this many frames, so that a target moving across the scene is not learnt; 0 (default) off, else 1..PFT_PRE_CLUTTER_MAX_PERSIST */
+    uint16_t excess;  /**< level of the persistence gate, Q8.8 sigma (256 = 1), 1..32767 (default 384 = 1.5); read only with persist */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -278,26 +282,38 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  *   c = r - mu (mean) or r;  w = c / sqrt(M) where M > thr, else c;  w = 0 where M > veto
  *   (veto not 0);
  *   m <- m + a (min(c^2, 64) - m);  mu <- mu + a (clamp(r, -8, 8) - mu);
- * a = max(alpha, 1 / n) after n frames (a running mean at the start). A cloud edge, the
+ * a = max(alpha, 1 / n) after n frames (a running mean at the start). With mean and
+ * persist = k > 0 a counter p per pixel of the scene (frames, Q8, carried along with the scene
+ * like m, 0 where pixels enter) counts how long residuals beyond the gate's level have held
+ * there:
+ *   p <- min(p + 1, 2 k) where |r| > excess, else max(p - 1/2, 0);
+ * the mean takes the frame's residual only where |r| <= excess or p >= k after this frame, and
+ * keeps its value elsewhere (the map m is updated as above): a target that moves across the
+ * scene leaves its counter behind and its mean is not learnt; clutter that stays put is, k
+ * frames later. A cloud edge, the
  * horizon or a structure that the background keeps missing at the same scene position is then
  * scored in its own sigma after a few frames, while a target moving across the scene meets a
  * map it has not raised. A frame without detection evidence (update's evidence false) leaves
  * the map as it is and gives an all-masked output. Integer arithmetic only: the float and q16
  * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
- * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), blur + 1
- * rows of the map and two rows of sums (4 bytes per pixel each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), the counter
+ * (2, with persist only), blur + 1 rows of the map and two rows of sums (4 bytes per pixel
+ * each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
  */
 
-/** Workspace bytes of a clutter map for frames w x h, mean (0/1) and blur b. */
-#define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b)                                         \
+/** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1). */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b, persist)                                \
     ((size_t)(PFT_WS_ALIGN - 1u) + 2u * PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +          \
      ((mean) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                             \
+     ((persist) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                          \
      PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + 2u * PFT_WS_ROUND((size_t)(w) * 4u))
 
-/** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2). */
+/** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2, no veto, no
+ *  persistence gate, excess 1.5). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
- *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto"); NULL on success. */
+ *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto", "persist",
+ *  "excess"); NULL on success. */
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg);

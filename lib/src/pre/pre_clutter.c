@@ -26,6 +26,8 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->mean = false;
     cfg->thr = 2048u;
     cfg->veto = 0u;
+    cfg->persist = 0u;
+    cfg->excess = 384u;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -49,6 +51,10 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "thr";
     } else if (cfg->veto != 0u && cfg->veto < cfg->thr) {
         bad = "veto";
+    } else if (cfg->persist > PFT_PRE_CLUTTER_MAX_PERSIST || (cfg->persist != 0u && !cfg->mean)) {
+        bad = "persist";
+    } else if (cfg->persist != 0u && (cfg->excess == 0u || cfg->excess > 32767u)) {
+        bad = "excess";
     } else {
         /* accepted */
     }
@@ -67,7 +73,7 @@ size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
         return 0u;
     }
     return PFT_PRE_CLUTTER_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
-                                           cfg->blur);
+                                           cfg->blur, cfg->persist != 0u ? 1u : 0u);
 }
 
 pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
@@ -85,6 +91,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     uint16_t *m = pft_ws_take(&ws, w * h * 2u);
     int16_t *out = pft_ws_take(&ws, w * h * 2u);
     uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
+    uint16_t *pc = cfg->persist != 0u ? pft_ws_take(&ws, w * h * 2u) : NULL;
     uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
     uint32_t *vs = pft_ws_take(&ws, w * 4u);
     uint32_t *hs = pft_ws_take(&ws, w * 4u);
@@ -96,6 +103,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     c->m = m;
     c->out = out;
     c->mu = mu;
+    c->pc = pc;
     c->ring = ring;
     c->vs = vs;
     c->hs = hs;
@@ -114,6 +122,9 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     memset(c->out, 0, npix * 2u);
     for (size_t i = 0u; c->mu != NULL && i < npix; ++i) {
         c->mu[i] = (uint16_t)CL_MUOFF_;
+    }
+    if (c->pc != NULL) {
+        memset(c->pc, 0, npix * 2u);
     }
     memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * w * 2u);
     memset(c->vs, 0, w * 4u);
@@ -355,6 +366,9 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
             if (c->mu != NULL) {
                 cl_warp_(c->mu, c->hs, w, h, ix, fx, iy, fy, CL_MUOFF_);
             }
+            if (c->pc != NULL) {
+                cl_warp_(c->pc, c->hs, w, h, ix, fx, iy, fy, 0u);
+            }
         }
     }
     c->frames++;
@@ -365,6 +379,9 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
     const uint32_t area = c->cfg.box ? (2u * nring - 1u) * (2u * nring - 1u) : 1u;
     const uint32_t thr = (uint32_t)c->cfg.thr * area; /* on the square's sum (box) */
     const uint32_t veto = c->cfg.veto != 0u ? (uint32_t)c->cfg.veto * area : UINT32_MAX;
+    /* persistence gate: the counter in frames Q8, its cap 2 k and its opening level k */
+    const uint32_t pk = (uint32_t)c->cfg.persist * 256u, pcap = 2u * pk;
+    const uint32_t exc = c->cfg.excess;
     for (int32_t y = 0; y < h; ++y) {
         uint16_t *mrow = c->m + (size_t)y * (size_t)w;
         memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
@@ -372,7 +389,8 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
         const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
         int16_t *o = c->out + (size_t)y * (size_t)w;
         uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
-        if (mu == NULL) {
+        uint16_t *pc = c->pc != NULL ? c->pc + (size_t)y * (size_t)w : NULL;
+        if (mu == NULL && pc == NULL) {
             cl_row_plain_(r, o, mrow, c->hs, w, a, thr, veto, area);
             continue;
         }
@@ -391,12 +409,23 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
                 wv = mb > veto ? 0 : cl_div_(cv * 1024, (int32_t)s);
             }
             o[x] = (int16_t)pft_pre_rclamp_(wv);
+            bool learn = true; /* whether the mean takes this frame's residual */
+            if (pc != NULL) {
+                /* the gate reads the stage's residual v: clutter that the mean has learnt
+                 * keeps its counter */
+                const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+                const uint32_t p0 = pc[x];
+                const uint32_t p1 = av > exc ? (p0 + 256u > pcap ? pcap : p0 + 256u)
+                                             : (p0 > 128u ? p0 - 128u : 0u);
+                pc[x] = (uint16_t)p1;
+                learn = av <= exc || p1 >= pk; /* else an excess that has not persisted */
+            }
             const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
             const uint64_t sq = (uint64_t)ac * ac;
             const uint32_t t = sq >= CL_SQMAX_ ? CL_MMAX_ : (uint32_t)((sq + 32u) >> 6);
             const int32_t nm = (int32_t)mrow[x] + cl_scale_(a, (int32_t)(t > CL_MMAX_ ? CL_MMAX_ : t) - (int32_t)mrow[x]);
             mrow[x] = (uint16_t)(nm < 0 ? 0 : (nm > (int32_t)CL_MMAX_ ? (int32_t)CL_MMAX_ : nm));
-            if (mu != NULL) {
+            if (mu != NULL && learn) {
                 const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
                 const int32_t mv = (int32_t)mu[x] - (int32_t)CL_MUOFF_;
                 mu[x] = (uint16_t)(mv + cl_scale_(a, tv - mv) + (int32_t)CL_MUOFF_);
