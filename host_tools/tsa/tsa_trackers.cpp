@@ -416,6 +416,7 @@ std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &
         p.set["theta_u"] = 0.9;
         p.set["loss_search"] = 0;
         p.set["gain_select"] = 0;
+        p.set["init_passes"] = 50;
     } else {
         auto t = make_cv_tracker(name);
         if (!t)

@@ -66,7 +66,8 @@ std::unique_ptr<Tracker> make_cv_tracker(const std::string &name);
 bool have_cv_tracking();
 /** A named tracker of the eval / bench lists: tsa, ts, ncv, ncv200 (NCV with 200 particles),
  *  tsa_paper (the paper's variant: w = rho, unbounded fit over K = 10, position diffusion 2 px,
- *  template updates, no loss search), kcf, csrt, mosse, mil. */
+ *  template updates, no loss search, no gain selection, 50 initial snake passes), kcf, csrt,
+ *  mosse, mil. */
 std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &base, int width, int height);
 
 }  // namespace pft::host::tsa

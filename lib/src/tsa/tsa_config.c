@@ -34,7 +34,7 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->anchor_rho_min = PFT_C(0.8);
     cfg->k_s = PFT_C(1.5);
     cfg->update_max_passes = 3u;
-    cfg->init_passes = 50u;
+    cfg->init_passes = 0u;
     cfg->snake_points = 40u;
     pft_tsa_snake_params_default(&cfg->snake, cfg->max_target_w, cfg->max_target_h);
     cfg->kernel_c = PFT_C(1.0);
