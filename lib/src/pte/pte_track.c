@@ -1057,24 +1057,15 @@ static bool bank_part_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
     return done;
 }
 
-/* bank_sync_ under line_budget (0: always): in full when its cost fits in the budget left,
- * else as far as it goes (bank_part_). True when the entry is complete. */
-static bool bank_sync_budget_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
-                              const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
+/* line_budget: true when bank_sync_ for these arguments fits in the budget left (the caller
+ * then runs it and charges what it spent, at most its cost; else bank_part_ brings the entry
+ * as far as the budget goes). Kept apart from bank_sync_'s call so that the frames of the
+ * cost and of bank_part_ are not on the stack under bank_sync_. */
+static bool sync_fits_(const pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int32_t n,
+                       const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
 {
-    if (p->cfg.line_budget == 0u) {
-        bank_sync_(p, ti, bi, jlo, n, m, kn, keep);
-        return true;
-    }
     const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
-    const uint32_t cost = sync_cost_(p, e, jlo, n, m, kn, keep);
-    if (p->line_used + cost <= p->cfg.line_budget) {
-        const uint32_t before = p->n_line_ops;
-        bank_sync_(p, ti, bi, jlo, n, m, kn, keep);
-        p->line_used += p->n_line_ops - before; /* what it spent, at most cost */
-        return true;
-    }
-    return bank_part_(p, ti, bi, jlo, n, m, kn, keep);
+    return p->line_used + sync_cost_(p, e, jlo, n, m, kn, keep) <= p->cfg.line_budget;
 }
 
 /* Subtracts the interior normaliser gfull of its phase from G[j], j in [j0, j1), for the
@@ -1345,11 +1336,9 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     int64_t c = num >= 0 ? num / (2 * lt) : -((-num + 2 * lt - 1) / (2 * lt));
     const int64_t cmax = (int64_t)1 << 24; /* |slope| far beyond any track */
     c = c > cmax ? cmax : (c < -cmax ? -cmax : c);
-    int32_t want[PFT_PTE_MAX_DIRS];
+    /* the slope wanted for direction i: c + (i - h) mult (formed where it is used, so that
+     * no array of them sits on the stack of the track step) */
     const int32_t nw = L;
-    for (int32_t l = 0; l < L; ++l) {
-        want[l] = (int32_t)(c + (l - h) * mult);
-    }
     int32_t sel[PFT_PTE_MAX_DIRS];
     for (uint32_t b = 0; b < p->nbank; ++b) {
         bank[b].used = 0u;
@@ -1357,7 +1346,7 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     for (int32_t i = 0; i < nw; ++i) {
         sel[i] = -1;
         for (uint32_t b = 0; b < p->nbank; ++b) {
-            if (bank[b].live && !bank[b].used && bank[b].s == want[i]) {
+            if (bank[b].live && !bank[b].used && bank[b].s == (int32_t)(c + (i - h) * mult)) {
                 sel[i] = (int32_t)b;
                 bank[b].used = 1u;
                 break;
@@ -1374,7 +1363,7 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
             if (!bank[b].used) {
                 sel[i] = (int32_t)b;
                 bank[b].used = 1u;
-                bank[b].s = want[i];
+                bank[b].s = (int32_t)(c + (i - h) * mult);
             }
         }
     }
@@ -1417,11 +1406,20 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
                 bank_sync_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m, kn, keep);
             }
             ok = true;
-        } else if (keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n) {
-            ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], e->jlo, e->n, m, kn, keep);
         } else {
-            ok = bank_sync_budget_(p, ti, (uint32_t)sel[i], jlo - margin, ap->ns + 2 * margin, m,
-                                   kn, keep);
+            /* line_budget: in full when its cost fits in the budget left, else as far as it
+             * goes (bank_part_) */
+            const bool held = keep && jlo >= e->jlo && jlo + ap->ns <= e->jlo + (int32_t)e->n;
+            const int32_t sj = held ? e->jlo : jlo - margin;
+            const int32_t sn = held ? (int32_t)e->n : ap->ns + 2 * margin;
+            if (sync_fits_(p, ti, (uint32_t)sel[i], sj, sn, m, kn, keep)) {
+                const uint32_t before = p->n_line_ops;
+                bank_sync_(p, ti, (uint32_t)sel[i], sj, sn, m, kn, keep);
+                p->line_used += p->n_line_ops - before; /* what it spent, at most its cost */
+                ok = true;
+            } else {
+                ok = bank_part_(p, ti, (uint32_t)sel[i], sj, sn, m, kn, keep);
+            }
         }
         if (lb && ok) {
             /* line_budget: the edge correction of the lines the step reads (bank_g_, the
