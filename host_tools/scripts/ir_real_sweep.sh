@@ -1,0 +1,34 @@
+#!/bin/bash
+# The real-background SNR sweep of docs/results/ir_clutter.md ("Branch irsweep (2026-12-03):
+# real backgrounds, 3-15 dB, per kind of background"): the shipped sweep points
+# host_tools/scenarios/tbd_ir/sweep_snr_{03,06,09,12,15}db.json (TBD beside DBT, the
+# scenarios' defaults) over the ir_sky development set (evaluation only; run i on image
+# (i - 1) mod 29), for each build given. One pft eval per build, SNR and block of seeds;
+# evaluations already in OUT are skipped. 1 thread, nice (the machine is shared).
+#
+# Usage: host_tools/scripts/ir_real_sweep.sh OUT IR_SKY_DIR BASE_SEED RUNS BUILD...
+#   e.g. host_tools/scripts/ir_real_sweep.sh build/ir-real ../shared/data/ir_sky 1 29 \
+#          build/host-float build/host-q16
+#        host_tools/scripts/ir_real_sweep.sh build/ir-real ../shared/data/ir_sky 30 87 build/host-float
+# Then: python3 host_tools/scripts/ir_real_kinds.py tables OUT
+set -euo pipefail
+OUT=$1
+BG=$2
+BASE=$3
+RUNS=$4
+shift 4
+HERE=$(cd "$(dirname "$0")" && pwd)
+SC=$HERE/../scenarios/tbd_ir
+THREADS=${THREADS:-1}
+for build in "$@"; do
+  bin=$build/host_tools/pft
+  num=$(basename "$build")
+  num=${num#host-}
+  for db in 03 06 09 12 15; do
+    dir=$OUT/${num}_${db}_s${BASE}
+    [ -f "$dir/summary.json" ] && continue
+    echo "$(date -u +%H:%M:%S) $num $db dB seeds $BASE..$((BASE + RUNS - 1))"
+    nice "$bin" eval --scenario "$SC/sweep_snr_${db}db.json" --runs "$RUNS" --seed "$BASE" \
+      --threads "$THREADS" --backgrounds "$BG" --out "$dir" -q 2>/dev/null
+  done
+done
