@@ -242,7 +242,7 @@ def origins(G, nums, dbs, ir_sky, res):
     from PIL import Image
     from scipy import ndimage
     grad, share = {}, {}
-    bands = [(0, 1), (1, 3), (3, 10), (10, 1e9)]
+    bands = [(0, 3), (3, 10), (10, 30), (30, 1e9)]
     for png in glob.glob(os.path.join(ir_sky, '*.png')):
         img = np.asarray(Image.open(png).convert('L'), dtype=np.float64)
         name = os.path.basename(png)
@@ -253,13 +253,22 @@ def origins(G, nums, dbs, ir_sky, res):
           'start; "area" is the share of the images\' pixels in the band (the same images, each once).\n')
     hdr = ' | '.join(f'{lo}–{hi if hi < 1e9 else "∞"} σ/px' for lo, hi in bands)
     print(f'| kind | tracker | build | false tracks | {hdr} | reported 1–2 frames | first frame <= 10 |'
-          ' within 8 px of the frame edge |')
-    print('|---' * (7 + len(bands)) + '|')
+          ' within 8 px of the frame edge | within 10 px of a labelled object |')
+    print('|---' * (8 + len(bands)) + '|')
     scen = next(iter(res.values()))['scenario']
     scale = 2.0 ** (scen.get('sensor', {}).get('bit_depth', 14) - 8)
     sig = scen.get('sensor', {}).get('noise_sigma', 20)
     W = scen.get('image', {}).get('width', 384)
     H = scen.get('image', {}).get('height', 288)
+    labels = {}
+    for name, img in grad.items():
+        txt = os.path.join(ir_sky, name[:-4] + '.txt')
+        labels[name] = []
+        if os.path.exists(txt):
+            for ln in open(txt):
+                p = ln.split()
+                if len(p) >= 5:
+                    labels[name].append((float(p[1]) * img.shape[1], float(p[2]) * img.shape[0]))
     gmax = {}
     for name, img in grad.items():
         g = ndimage.gaussian_gradient_magnitude(img * scale, 1.0) / sig
@@ -286,7 +295,7 @@ def origins(G, nums, dbs, ir_sky, res):
                     if g:
                         fl += g['false_list']
                 if not fl:
-                    print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | 0 |' + ' – |' * (len(bands) + 3))
+                    print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | 0 |' + ' – |' * (len(bands) + 4))
                     continue
                 v = np.array([at(t['image'], t['scene_x'], t['scene_y']) for t in fl])
                 cells = ' | '.join(f'{100 * ((v >= lo) & (v < hi)).mean():.0f} % ({100 * a:.0f} %)'
@@ -294,9 +303,27 @@ def origins(G, nums, dbs, ir_sky, res):
                 short = np.mean([t['reported_frames'] <= 2 for t in fl])
                 early = np.mean([t['first_frame'] <= 10 for t in fl])
                 edge = np.mean([min(t['x'], t['y'], W - 1 - t['x'], H - 1 - t['y']) < 8 for t in fl])
+                near = np.mean([any(math.hypot(t['scene_x'] - lx, t['scene_y'] - ly) <= 10
+                                    for lx, ly in labels[t['image']]) for t in fl])
                 print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | {len(fl)} | {cells} | '
-                      f'{100 * short:.0f} % | {100 * early:.0f} % | {100 * edge:.0f} % |')
+                      f'{100 * short:.0f} % | {100 * early:.0f} % | {100 * edge:.0f} % | {100 * near:.0f} % |')
     print('\n(band cells: share of the false tracks (share of the area); all SNRs pooled)\n')
+    print('Images with the most false tracks (all SNRs pooled; false tracks per 1000 frames):\n')
+    for who in ('tbd', 'dbt'):
+        for num in nums:
+            per, frames = defaultdict(int), defaultdict(int)
+            for d in dbs:
+                e = res.get((num, d))
+                if not e:
+                    continue
+                for r in e[who]:
+                    per[r['image']] += r['false_tracks']
+                    frames[r['image']] += r['frames']
+            for kind in KINDS:
+                top = sorted((n for n in frames if kinds.get(n) == kind), key=lambda n: -per[n] / frames[n])[:4]
+                print(f"- {who.upper()} {num}, {KIND_TITLE[kind]}: " +
+                      ', '.join(f"{n[:-4]} {1000.0 * per[n] / frames[n]:.0f}" for n in top))
+    print()
 
 
 def plot(G, nums, dbs, path):
