@@ -13,7 +13,7 @@ irsweep (2026-12-03): real backgrounds, 3-15 dB, per kind of background").
         cloud_edges  the rest.
       Prints the figures and the kind per image, and where it differs from the CSV.
 
-  tables OUT [--kinds CSV] [--max-seed N] [--plot PNG] [--ir-sky DIR]
+  tables OUT [--kinds CSV] [--max-seed N] [--plot PNG] [--ir-sky DIR] [--tag TAG]
       Reads every OUT/<numeric>_<dB>_s<seed>/summary.json written by ir_real_sweep.sh
       (blocks of seeds of one build and SNR are pooled; runs with a seed above N are left
       out), maps each run to the kind of its background image and prints, per kind, SNR,
@@ -100,12 +100,12 @@ def cmd_classify(args):
 
 
 # ----------------------------------------------------------------------------- tables
-def load_runs(out, max_seed):
+def load_runs(out, max_seed, tag=None):
     """{(numeric, db): {'tbd': [run], 'dbt': [run], 'scenario': json}}, runs with their image."""
     res = {}
     for p in sorted(glob.glob(os.path.join(out, '*', 'summary.json'))):
-        m = re.match(r'(float|q16)_(\d\d)_s(\d+)$', os.path.basename(os.path.dirname(p)))
-        if not m:
+        m = re.match(r'(float|q16)_(\d\d)_s(\d+)(?:_(.+))?$', os.path.basename(os.path.dirname(p)))
+        if not m or (m.group(4) or '') != (tag or ''):
             continue
         s = json.load(open(p))
         key = (m.group(1), int(m.group(2)))
@@ -168,7 +168,7 @@ def f(v, p=1, pct=False):
 
 def cmd_tables(args):
     kinds = read_kinds(args.kinds)
-    res = load_runs(args.out, args.max_seed)
+    res = load_runs(args.out, args.max_seed, args.tag)
     if not res:
         sys.exit(f'{args.out}: no summaries')
     nums = [n for n in ('float', 'q16') if any(k[0] == n for k in res)]
@@ -371,6 +371,7 @@ def main():
     t.add_argument('--max-seed', type=int, default=0)
     t.add_argument('--plot')
     t.add_argument('--ir-sky')
+    t.add_argument('--tag', help='the variant of ir_real_sweep.sh (TAG) to read instead of the shipped sweep')
     args = ap.parse_args()
     return cmd_classify(args) if args.cmd == 'classify' else cmd_tables(args)
 
