@@ -25,6 +25,11 @@ irsweep (2026-12-03): real backgrounds, 3-15 dB, per kind of background").
       in temporal sigmas per pixel, against the image's share of pixels in each band.
       --plot writes Pd against SNR per kind, TBD beside DBT, float and q16.
 
+  tradeoff OUT --tags TAG,TAG [--max-seed N] [--build float]
+      Per kind and SNR: TBD (the shipped sweep) beside DBT at the shipped false-alarm rate and
+      at the variants TAG (e.g. pfa1e-4, pfa1e-3 written by ir_real_sweep.sh with a PATCH of
+      dbt.pfa): Pd and false tracks per 1000 frames, on the same runs (seeds <= N).
+
 Needs numpy (and scipy, PIL for classify and --ir-sky, matplotlib for --plot). Not a test;
 the ir_sky images are evaluation data and never needed by a test.
 """
@@ -359,6 +364,34 @@ def plot(G, nums, dbs, path):
     print(f'wrote {path}')
 
 
+def cmd_tradeoff(args):
+    kinds = read_kinds(args.kinds)
+    tags = [''] + [t for t in args.tags.split(',') if t]
+    data = {t: load_runs(args.out, args.max_seed, t) for t in tags}
+    dbs = sorted({k[1] for k in data[''] if k[0] == args.build})
+    print(f'| kind: SNR dB | TBD: Pd | false / 1000 fr. | ' +
+          ' | '.join(f'DBT {t or "shipped"}: Pd | false / 1000 fr.' for t in tags) + ' | targets |')
+    print('|---' * (4 + 2 * len(tags)) + '|')
+    for kind in KINDS + [None]:
+        for db in dbs:
+            e = data[''].get((args.build, db))
+            if not e:
+                continue
+            t = group(e['tbd'], kind, kinds)
+            cells = [f"{f(t['pd'], pct=True)} | {f(t['false_rate'])}"]
+            for tag in tags:
+                d = data[tag].get((args.build, db))
+                if not d:
+                    cells.append('– | –')
+                    continue
+                g = group(d['dbt'], kind, kinds)
+                if g['targets'] != t['targets']:
+                    sys.exit(f'{tag} {db} dB: not the same runs as the shipped sweep')
+                cells.append(f"{f(g['pd'], pct=True)} | {f(g['false_rate'])}")
+            print(f"| {KIND_TITLE.get(kind, 'all')}: {db:02d} | {' | '.join(cells)} | {t['targets']} |")
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest='cmd', required=True)
@@ -372,8 +405,14 @@ def main():
     t.add_argument('--plot')
     t.add_argument('--ir-sky')
     t.add_argument('--tag', help='the variant of ir_real_sweep.sh (TAG) to read instead of the shipped sweep')
+    o = sub.add_parser('tradeoff')
+    o.add_argument('out')
+    o.add_argument('--tags', required=True)
+    o.add_argument('--kinds', default=DEFAULT_KINDS)
+    o.add_argument('--max-seed', type=int, default=0)
+    o.add_argument('--build', default='float')
     args = ap.parse_args()
-    return cmd_classify(args) if args.cmd == 'classify' else cmd_tables(args)
+    return {'classify': cmd_classify, 'tables': cmd_tables, 'tradeoff': cmd_tradeoff}[args.cmd](args)
 
 
 if __name__ == '__main__':
