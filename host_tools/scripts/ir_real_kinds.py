@@ -258,8 +258,8 @@ def origins(G, nums, dbs, ir_sky, res):
           'start; "area" is the share of the images\' pixels in the band (the same images, each once).\n')
     hdr = ' | '.join(f'{lo}–{hi if hi < 1e9 else "∞"} σ/px' for lo, hi in bands)
     print(f'| kind | tracker | build | false tracks | {hdr} | reported 1–2 frames | first frame <= 10 |'
-          ' within 8 px of the frame edge | within 10 px of a labelled object |')
-    print('|---' * (8 + len(bands)) + '|')
+          ' within 8 px of the frame edge | within 10 px of a labelled object | in the image\'s lowest third |')
+    print('|---' * (9 + len(bands)) + '|')
     scen = next(iter(res.values()))['scenario']
     scale = 2.0 ** (scen.get('sensor', {}).get('bit_depth', 14) - 8)
     sig = scen.get('sensor', {}).get('noise_sigma', 20)
@@ -300,7 +300,7 @@ def origins(G, nums, dbs, ir_sky, res):
                     if g:
                         fl += g['false_list']
                 if not fl:
-                    print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | 0 |' + ' – |' * (len(bands) + 4))
+                    print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | 0 |' + ' – |' * (len(bands) + 5))
                     continue
                 v = np.array([at(t['image'], t['scene_x'], t['scene_y']) for t in fl])
                 cells = ' | '.join(f'{100 * ((v >= lo) & (v < hi)).mean():.0f} % ({100 * a:.0f} %)'
@@ -310,8 +310,10 @@ def origins(G, nums, dbs, ir_sky, res):
                 edge = np.mean([min(t['x'], t['y'], W - 1 - t['x'], H - 1 - t['y']) < 8 for t in fl])
                 near = np.mean([any(math.hypot(t['scene_x'] - lx, t['scene_y'] - ly) <= 10
                                     for lx, ly in labels[t['image']]) for t in fl])
+                low = np.mean([t['scene_y'] >= 2.0 * grad[t['image']].shape[0] / 3.0 for t in fl])
                 print(f'| {KIND_TITLE[kind]} | {who.upper()} | {num} | {len(fl)} | {cells} | '
-                      f'{100 * short:.0f} % | {100 * early:.0f} % | {100 * edge:.0f} % | {100 * near:.0f} % |')
+                      f'{100 * short:.0f} % | {100 * early:.0f} % | {100 * edge:.0f} % | {100 * near:.0f} % | '
+                      f'{100 * low:.0f} % |')
     print('\n(band cells: share of the false tracks (share of the area); all SNRs pooled)\n')
     print('Images with the most false tracks (all SNRs pooled; false tracks per 1000 frames):\n')
     for who in ('tbd', 'dbt'):
