@@ -6,10 +6,10 @@
 # (i - 1) mod 29), for each build given. One pft eval per build, SNR and block of seeds;
 # evaluations already in OUT are skipped. 1 thread, nice (the machine is shared).
 #
-# Usage: host_tools/scripts/ir_real_sweep.sh OUT IR_SKY_DIR BASE_SEED RUNS BUILD...
-#   e.g. host_tools/scripts/ir_real_sweep.sh build/ir-real ../shared/data/ir_sky 1 29 \
+# Usage: host_tools/scripts/ir_real_sweep.sh OUT IR_SKY BASE_SEED RUNS BUILD...   (IR_SKY: the ir_sky folder)
+#   e.g. host_tools/scripts/ir_real_sweep.sh build/ir-real IR_SKY 1 29 \
 #          build/host-float build/host-q16
-#        host_tools/scripts/ir_real_sweep.sh build/ir-real ../shared/data/ir_sky 30 87 build/host-float
+#        host_tools/scripts/ir_real_sweep.sh build/ir-real IR_SKY 30 87 build/host-float
 #   TAG=pfa1e-4 PATCH='{"dbt": {"pfa": 1e-4}}' host_tools/scripts/ir_real_sweep.sh ...  (a variant:
 #        the patch updates the sweep point's sections; its outputs go to OUT/<build>_<dB>_s<seed>_TAG)
 # Then: python3 host_tools/scripts/ir_real_kinds.py tables OUT [--tag TAG]
