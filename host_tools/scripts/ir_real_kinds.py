@@ -13,7 +13,7 @@ irsweep (2026-12-03): real backgrounds, 3-15 dB, per kind of background").
         cloud_edges  the rest.
       Prints the figures and the kind per image, and where it differs from the CSV.
 
-  tables OUT [--kinds CSV] [--max-seed N] [--plot PNG] [--ir-sky DIR] [--tag TAG]
+  tables OUT [--kinds CSV] [--max-seed N] [--plot PNG [--plot-tag TAG]] [--ir-sky DIR] [--tag TAG]
       Reads every OUT/<numeric>_<dB>_s<seed>/summary.json written by ir_real_sweep.sh
       (blocks of seeds of one build and SNR are pooled; runs with a seed above N are left
       out), maps each run to the kind of its background image and prints, per kind, SNR,
@@ -208,7 +208,13 @@ def cmd_tables(args):
     if args.ir_sky:
         origins(G, nums, dbs, args.ir_sky, res)
     if args.plot:
-        plot(G, nums, dbs, args.plot)
+        extra = {}
+        if args.plot_tag:
+            for (num, db), e in load_runs(args.out, args.max_seed, args.plot_tag).items():
+                if num == 'float':
+                    for kind in KINDS:
+                        extra[(kind, db)] = group(e['dbt'], kind, kinds)
+        plot(G, nums, dbs, args.plot, extra, args.plot_tag)
 
 
 def goals(G, nums, dbs):
@@ -333,7 +339,7 @@ def origins(G, nums, dbs, ir_sky, res):
     print()
 
 
-def plot(G, nums, dbs, path):
+def plot(G, nums, dbs, path, extra=None, extra_tag=None):
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -350,7 +356,13 @@ def plot(G, nums, dbs, path):
                 e = [100 * g['pd_se'] for _, g in pts]
                 fr = sum(g['false'] for _, g in pts) * 1000.0 / max(1, sum(g['frames'] for _, g in pts))
                 ax.errorbar(x, y, yerr=e, color=col, ls=ls, marker=mk, ms=4, capsize=2,
-                            label=f'{who.upper()} {num} ({fr:.0f} false / 1000 fr.)')
+                            label=f'{who.upper()} {num} ({fr:.1f} false / 1000 fr.)')
+        pts = [(d, extra[(kind, d)]) for d in dbs if extra and (kind, d) in extra]
+        if pts:
+            fr = sum(g['false'] for _, g in pts) * 1000.0 / max(1, sum(g['frames'] for _, g in pts))
+            ax.errorbar([d for d, _ in pts], [100 * g['pd'] for _, g in pts],
+                        yerr=[100 * g['pd_se'] for _, g in pts], color='tab:orange', ls=':', marker='^',
+                        ms=4, capsize=2, label=f'DBT float, {extra_tag} ({fr:.1f} false / 1000 fr.)')
         n = G.get((kind, 9, 'tbd', 'float'))
         ax.set_title(f"{KIND_TITLE[kind]} ({n['runs'] if n else 0} runs, "
                      f"{n['targets'] if n else 0} targets per point)")
@@ -406,6 +418,7 @@ def main():
     t.add_argument('--max-seed', type=int, default=0)
     t.add_argument('--plot')
     t.add_argument('--ir-sky')
+    t.add_argument('--plot-tag', help='also plot DBT (float) of this variant, e.g. pfa1e-4')
     t.add_argument('--tag', help='the variant of ir_real_sweep.sh (TAG) to read instead of the shipped sweep')
     o = sub.add_parser('tradeoff')
     o.add_argument('out')
