@@ -105,10 +105,23 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
         ++t.present;
     }
     std::map<uint32_t, bool> track_assoc;                 // track id -> ever associated
+    std::map<uint32_t, FalseTrack> track_span;            // track id -> first/last report
     std::map<std::size_t, std::set<uint32_t>> tgt_tracks; // target -> tracks
     for (const tbd::FrameOut &f : out) {
-        for (const tbd::TrackOut &tr : f.tracks)
+        for (const tbd::TrackOut &tr : f.tracks) {
             track_assoc.emplace(tr.id, false);
+            auto sp = track_span.find(tr.id);
+            if (sp == track_span.end()) {
+                FalseTrack ft;
+                ft.id = tr.id;
+                ft.first = static_cast<int>(f.frame);
+                ft.x = tr.x;
+                ft.y = tr.y;
+                sp = track_span.emplace(tr.id, ft).first;
+            }
+            sp->second.last = static_cast<int>(f.frame);
+            ++sp->second.frames;
+        }
         auto bf = by_frame.find(static_cast<int>(f.frame));
         if (bf == by_frame.end())
             continue;
@@ -147,6 +160,7 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
         if (!kv.second) {
             ++ev.false_tracks;
             ev.false_ids.push_back(kv.first);
+            ev.false_list.push_back(track_span[kv.first]);
         }
     return ev;
 }
@@ -211,9 +225,16 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
                           {"first_frame", t.first}, {"last_frame", t.last}, {"present_frames", t.present},
                           {"detected", t.detected},
                           {"appearance_delay", t.detected ? nlohmann::json(t.appear_delay) : nlohmann::json(nullptr)},
-                          {"correct_frames", t.correct}, {"tracks", t.tracks}});
+                          {"correct_frames", t.correct}, {"correct_sq_error_px2", t.sq_correct},
+                          {"tracks", t.tracks}});
+        nlohmann::json fl = nlohmann::json::array();
+        auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+        for (const FalseTrack &f : r.false_list)
+            fl.push_back({{"id", f.id}, {"first_frame", f.first}, {"last_frame", f.last},
+                          {"reported_frames", f.frames}, {"x", f.x}, {"y", f.y},
+                          {"scene_x", num(f.scene_x)}, {"scene_y", num(f.scene_y)}});
         per.push_back({{"seed", r.seed}, {"frames", r.frames}, {"tracks", r.tracks},
-                       {"false_tracks", r.false_tracks}, {"targets", ts}});
+                       {"false_tracks", r.false_tracks}, {"targets", ts}, {"false_track_list", fl}});
     }
     return {{"runs", runs.size()},
             {"frames_total", frames},

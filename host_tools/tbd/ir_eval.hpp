@@ -31,12 +31,21 @@ struct TargetResult {
     int tracks = 0;                        ///< distinct tracks associated with it
 };
 
+/** Where and when a false track was reported (frame coordinates, 1-based frames). */
+struct FalseTrack {
+    uint32_t id = 0;
+    int first = 0, last = 0, frames = 0;   ///< first and last reported frame, frames reported
+    double x = 0, y = 0;                   ///< position in its first reported frame
+    double scene_x = NAN, scene_y = NAN;   ///< the same in the background image (set by the caller)
+};
+
 struct IrRunEval {
     uint64_t seed = 0;
     int frames = 0;
     std::vector<TargetResult> targets;
     int tracks = 0, false_tracks = 0;
     std::vector<uint32_t> false_ids;
+    std::vector<FalseTrack> false_list;    ///< one per false track, in the order of false_ids
 };
 
 /** truth.csv of tbd_ir: frame,id,x,y,snr_db,kind; InputError naming the file and line. */
