@@ -167,7 +167,7 @@ static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t 
 {
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
     pft_rng_t t = rng;
-    pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !x->rb, &t, &k);
+    pft_tbd_birth_scene_(&f->cfg, &f->dyn, x->sc, !x->rb, &t, &k);
     return t;
 }
 
@@ -786,8 +786,8 @@ static void equal_weight_estimate_(pft_tbd_filter_t *f)
 }
 
 /* Whether particle s of src may be handed over: E = 1 and, with a gate, its window-centre pixel
- * (in its weight slot, see pft_tbd_filter_handover_) set in the gate. */
-static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *gate)
+ * inside the gate region. */
+static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const pft_tbd_region_t *gate)
 {
     if (src->cur.e[s] == 0u) {
         return false;
@@ -795,11 +795,18 @@ static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *g
     if (gate == NULL) {
         return true;
     }
-    const uint32_t pix = src->cur.w[s].n;
-    return pix != PFT_TBD_NO_PIX_ && gate[pix] != 0u;
+    size_t pix = 0u;
+    if (!pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix)) {
+        return false;
+    }
+    const int32_t col = (int32_t)(pix % src->model.width);
+    const int32_t row = (int32_t)(pix / src->model.width);
+    return col >= gate->col_lo && col <= gate->col_hi && row >= gate->row_lo &&
+           row <= gate->row_hi;
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
+                              const pft_tbd_region_t *gate)
 {
     /* one qualification test per particle: its result replaces the pixel in src's weight slot
      * for the walk below */

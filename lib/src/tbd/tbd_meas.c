@@ -325,6 +325,9 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
     sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
+    sc->row_pre = NULL;
+    sc->width = w;
+    sc->height = cfg->height;
     sc->n_allowed = na;
     sc->cand_is_b = nb > 0u;
     if (nb == 0u && na > 0u) {
@@ -449,15 +452,19 @@ static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_
     return ok;
 }
 
-/* What the scan of one row needs. With a tile quota (quota > 0) cnt[t] counts the kept peaks
- * of tile t (tiles of tile x tile pixels, ntx per tile row). */
+/* What the scan of one row needs. With a tile quota (quota > 0) cnt[c] counts the kept peaks
+ * of tile column c of the current tile row (tiles of tile x tile pixels, ntx per tile row,
+ * tile row trow): the scan is in raster order, so a new peak always falls in the current tile
+ * row, and the counts of the tile rows above are never read again. row_pre[q + 1] gets the
+ * allowed pixels of rows 0 .. q. */
 typedef struct {
     const uint8_t *mask;
     uint32_t *key;
     pft_real_t *val;
     uint32_t *cnt;
+    uint32_t *row_pre;
     pft_real_t thr;
-    uint32_t w, k_max, n, na, tile, ntx, quota;
+    uint32_t w, k_max, n, na, tile, ntx, quota, trow;
 } peak_scan_t;
 
 /* The tile of pixel k (quota on). */
@@ -494,13 +501,14 @@ static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
     }
     if (ps->quota > 0u) {
         const uint32_t tk = peak_tile_of_(ps, k);
-        if (ps->cnt[tk] >= ps->quota) {
+        const uint32_t tc = (k % ps->w) / ps->tile;
+        if (ps->cnt[tc] >= ps->quota) {
             peak_keep_full_tile_(ps, tk, k, v);
             return;
         }
-        ++ps->cnt[tk];
-        if (full) {
-            --ps->cnt[peak_tile_of_(ps, ps->key[0])];
+        ++ps->cnt[tc];
+        if (full && (ps->key[0] / ps->w) / ps->tile == ps->trow) {
+            --ps->cnt[(ps->key[0] % ps->w) / ps->tile]; /* the evicted peak's tile, this tile row */
         }
     }
     if (!full) {
@@ -531,6 +539,14 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
         }
         ps->na += na;
     }
+    ps->row_pre[q + 1u] = ps->na;
+    if (ps->quota > 0u && q % ps->tile == 0u) {
+        /* a new tile row: none of its tiles holds a kept peak yet */
+        ps->trow = q / ps->tile;
+        for (uint32_t t = 0; t < ps->ntx; ++t) {
+            ps->cnt[t] = 0u;
+        }
+    }
     for (uint32_t c = 0; c < ps->w; ++c) {
         const pft_real_t v = mid[c];
         if (!(v > ps->thr) || (mrow != NULL && mrow[c] != 0u) ||
@@ -543,7 +559,7 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
 
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
-                          pft_real_t *val, uint32_t *cand, pft_tbd_scene_t_ *sc)
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
 {
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
@@ -569,13 +585,10 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
     ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
     ps.ntx = (w + ps.tile - 1u) / ps.tile;
-    ps.cnt = cand + ps.k_max; /* the config check keeps K + the tile count within w h */
-    if (ps.quota > 0u) {
-        const uint32_t nt = ps.ntx * ((h + ps.tile - 1u) / ps.tile);
-        for (uint32_t t = 0; t < nt; ++t) {
-            ps.cnt[t] = 0u;
-        }
-    }
+    ps.row_pre = lines;           /* h + 1 entries */
+    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
+    ps.trow = 0u;
+    lines[0] = 0u;
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
@@ -596,17 +609,46 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
+    sc->row_pre = lines;
+    sc->width = w;
+    sc->height = h;
     sc->n_allowed = ps.na;
     sc->cand_is_b = ps.n > 0u;
     sc->n_cand = ps.n;
     if (ps.n == 0u && ps.na > 0u) {
-        /* No peak above the threshold: propose uniformly over the allowed pixels. */
-        uint32_t nb = 0u;
-        for (uint32_t k = 0; k < w * h; ++k) {
-            if (mask == NULL || mask[k] == 0u) {
-                cand[nb++] = k;
-            }
-        }
-        sc->n_cand = nb;
+        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
+         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
+        sc->cand = NULL;
+        sc->n_cand = ps.na;
     }
+}
+
+uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n)
+{
+    const uint32_t w = sc->width;
+    if (sc->mask == NULL || sc->n_allowed == w * sc->height) {
+        return n; /* nothing masked: the n-th pixel */
+    }
+    /* the row r with row_pre[r] <= n < row_pre[r + 1]: row_pre[0] = 0 <= n < row_pre[h] */
+    uint32_t lo = 0u;
+    uint32_t hi = sc->height;
+    while (hi - lo > 1u) {
+        const uint32_t mid = lo + (hi - lo) / 2u;
+        if (sc->row_pre[mid] <= n) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    uint32_t left = n - sc->row_pre[lo];
+    const uint8_t *mrow = sc->mask + (size_t)lo * w;
+    for (uint32_t c = 0; c < w; ++c) {
+        if (mrow[c] == 0u) {
+            if (left == 0u) {
+                return lo * w + c;
+            }
+            --left;
+        }
+    }
+    return lo * w; /* cannot happen: row lo holds more than left allowed pixels */
 }
