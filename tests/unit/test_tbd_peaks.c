@@ -506,6 +506,7 @@ static void test_uniform_births_skip_region(void)
     c.peak_gamma = R(1000.0);
     c.theta1 = R(0.6);
     c.birth_share = R(0.5);
+    c.theta_end = R(0.0);           /* the track is not ended by a low P at the next frame */
     c.d_region = PFT_TBD_D_WINDOW;  /* 3 x 3 window grown by d_margin 1: 5 x 5 pixels */
     c.force_constraint = false;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
