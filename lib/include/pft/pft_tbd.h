@@ -289,7 +289,9 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
 #define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
     (5u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) + PFT_WS_ROUND((size_t)(n)) +         \
      PFT_WS_ROUND((size_t)(n) * sizeof(pft_tbd_slot_t)) + 0u * (size_t)(kind))
-#define PFT_TBD_MASK_BYTES_(w, h) PFT_WS_ROUND((size_t)(w) * (size_t)(h))
+/* The constraint mask: one bit per pixel, each row in whole 32-bit words. */
+#define PFT_TBD_MASK_BYTES_(w, h)                                                               \
+    PFT_WS_ROUND((size_t)(h) * (((size_t)(w) + 31u) / 32u) * sizeof(uint32_t))
 #define PFT_TBD_IMAGE_BYTES_(w, h)                                                              \
     (PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                \
      PFT_TBD_MASK_BYTES_(w, h) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))

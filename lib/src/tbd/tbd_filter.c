@@ -101,7 +101,7 @@ static void copy_particle_(pft_tbd_particles_t *b, uint32_t s, const pft_tbd_par
 typedef struct {
     const pft_tbd_scene_t_ *sc;
     const pft_tbd_tab_t *tab;
-    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
+    const uint32_t *mask; /* exclusion mask applied to window centres (NULL: none) */
     pft_real_t T;
     uint32_t p_birth;
     uint8_t e_max; /* largest state byte: 1 + the age cap */
@@ -247,7 +247,8 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
     const pft_tbd_meas_t *m = &mm;
     const pft_real_t *img = x->sc->img;
     const pft_tbd_tab_t *tab = x->tab;
-    const uint8_t *mask = x->mask;
+    const uint32_t *mask = x->mask;
+    const uint32_t mwords = pft_tbd_mask_words_(m->width);
     uint8_t *restrict pe = P->e;
     pft_tbd_slot_t *restrict pw = P->w;
     const pft_real_t *restrict px = P->x;
@@ -262,7 +263,8 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
         if (e != 0u) {
             pft_tbd_cell_t c;
             if (!pft_tbd_cell_(m, px[s], py[s], &c) ||
-                (mask != NULL && mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u)) {
+                (mask != NULL &&
+                 pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
                 pe[s] = 0u;
             } else {
                 lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
@@ -614,7 +616,8 @@ static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real
         pft_real_t lw = BERN_DROP_;
         pft_tbd_cell_t c;
         if (pe[s] != 0u && pft_tbd_cell_(m, P->x[s], P->y[s], &c) &&
-            (x->mask == NULL || x->mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] == 0u)) {
+            (x->mask == NULL || !pft_tbd_masked_(x->mask, pft_tbd_mask_words_(m->width),
+                                                 (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
             lw = pft_add(pft_tbd_llr_(m, x->tab, x->sc->img, &c, P->in[s]), pe[s] == 1u ? lb : lp);
         } else {
             pe[s] = 0u;
@@ -864,7 +867,8 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, nimg * sizeof(pft_real_t));
-    uint8_t *mask = (uint8_t *)pft_ws_take(&ws, npix);
+    size_t nmask = pft_tbd_mask_len_(cfg->width, cfg->height);
+    uint32_t *mask = (uint32_t *)pft_ws_take(&ws, nmask * sizeof(uint32_t));
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
     pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(&ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_setup_(f, cfg, cfg->n_search, cfg->kind, true, cfg->force_constraint,
@@ -880,7 +884,7 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     pft_tbd_tab_setup_(tab, cfg);
     f->tab = tab;
     memset(img, 0, nimg * sizeof(pft_real_t));
-    memset(mask, 0, npix);
+    memset(mask, 0, nmask * sizeof(uint32_t));
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_filter_clear_(f);
     return true;
@@ -957,8 +961,7 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
         pft_tbd_filter_coast_(f, gap - 1u);
     }
     pft_tbd_frame_convert_(&f->cfg, &f->model, frame, f->img);
-    size_t npix = (size_t)f->cfg.width * f->cfg.height;
-    memset(f->mask, 0, npix);
+    memset(f->mask, 0, pft_tbd_mask_len_(f->cfg.width, f->cfg.height) * sizeof(uint32_t));
     for (size_t r = 0; r < n_regions; ++r) {
         pft_tbd_mask_add_(&f->cfg, f->mask, &regions[r]);
     }

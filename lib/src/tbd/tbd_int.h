@@ -31,11 +31,27 @@ static inline size_t pft_tbd_img_len_(uint32_t width, uint32_t height)
     return (size_t)(width + 2u) * (height + 2u);
 }
 
+/* The exclusion (constraint) mask: one bit per pixel, bit col % 32 of word col / 32 of its
+ * row, each row in pft_tbd_mask_words_(width) words (the bits past the width stay 0). */
+static inline uint32_t pft_tbd_mask_words_(uint32_t width) { return (width + 31u) / 32u; }
+static inline size_t pft_tbd_mask_len_(uint32_t width, uint32_t height)
+{
+    return (size_t)height * pft_tbd_mask_words_(width);
+}
+/* The bit of pixel (col, row), 0-based, in a mask of `words` words per row. */
+static inline bool pft_tbd_masked_(const uint32_t *mask, uint32_t words, uint32_t col,
+                                   uint32_t row)
+{
+    return ((mask[(size_t)row * words + (col >> 5u)] >> (col & 31u)) & 1u) != 0u;
+}
+/* Pixels of row `row` outside the mask. */
+uint32_t pft_tbd_mask_row_free_(const uint32_t *mask, uint32_t width, uint32_t row);
+
 /* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
 typedef struct {
     const pft_real_t *img; /* whitened, bordered (above) */
-    const uint8_t *mask;   /* width x height, row-major, 0-based */
+    const uint32_t *mask;  /* bits (pft_tbd_masked_), or NULL */
     const uint32_t *cand;  /* 0-based row-major pixel indices; NULL: every allowed pixel, in
                               raster order, counted per row in row_pre */
     const uint32_t *row_pre; /* cand NULL: row_pre[r] allowed pixels in rows 0 .. r - 1
@@ -67,11 +83,11 @@ pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t
 void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m,
                             const pft_frame_t *frame, pft_real_t *img);
 /* mask |= region (0-based, clipped to the image). */
-void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r);
+void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint32_t *mask, const pft_tbd_region_t *r);
 /* Fills cand and the counts of sc from the bordered whitened img (birth threshold gamma_w =
  * gamma / sigma) and mask (may be NULL). */
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
-                          const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
+                          const uint32_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
 
 /* The same with births from peaks (cfg.birth_peaks = K >= 1, docs/algorithms.md 2.11): cand
  * (min(K, w h) slots) gets the K strongest 3 x 3 local maxima above peak_gamma of img
@@ -80,7 +96,7 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
  * rows holds six image rows of scratch, val K reals (the peaks' values), lines w + h + 1
  * counts (the allowed pixels per row, and the tile quota's counts of the current tile row). */
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
-                          const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc);
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand
  * NULL): a binary search of row_pre, then the row's mask. */

@@ -29,10 +29,10 @@ static size_t lines_n_(const pft_tbd_config_t *cfg)
  * anywhere (a dry run that only checks the size). */
 static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, bool commit)
 {
-    size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     pft_real_t *img = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
-    uint8_t *mask = (uint8_t *)pft_ws_take(ws, npix);
+    uint32_t *mask =
+        (uint32_t *)pft_ws_take(ws, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     uint32_t *cand = (uint32_t *)pft_ws_take(ws, cand_n_(cfg) * sizeof(uint32_t));
     pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
@@ -89,10 +89,9 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
                           cfg->force_constraint, cfg->seed);
     pft_ws_t ws2;
     pft_ws_init(&ws2, work, work_len);
-    size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     (void)pft_ws_take(&ws2, nimg * sizeof(pft_real_t));
-    (void)pft_ws_take(&ws2, npix);
+    (void)pft_ws_take(&ws2, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     (void)pft_ws_take(&ws2, cand_n_(cfg) * sizeof(uint32_t));
     (void)pft_ws_take(&ws2, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
@@ -110,7 +109,7 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     }
     memset(t->img, 0, nimg * sizeof(pft_real_t));
     memset(t->res, 0, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t));
-    memset(t->mask, 0, npix);
+    memset(t->mask, 0, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     memset(t->cand, 0, cand_n_(cfg) * sizeof(uint32_t));
     memset(t->lines, 0, lines_n_(cfg) * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
@@ -273,7 +272,7 @@ static bool lr_says_gone_(const pft_tbd_config_t *cfg, const pft_tbd_filter_t *t
 }
 
 /* Constraint region D of a track at (x, y) (internal frame) into the mask. */
-static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x, pft_real_t y)
+static void add_region_(const pft_tbd_config_t *cfg, uint32_t *mask, pft_real_t x, pft_real_t y)
 {
     if (cfg->d_region == PFT_TBD_D_NONE) {
         return;
@@ -650,8 +649,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (t->frame < UINT32_MAX) {
         ++t->frame;
     }
-    size_t npix = (size_t)cfg->width * cfg->height;
-    memset(t->mask, 0, npix);
+    memset(t->mask, 0, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
     const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
@@ -734,7 +732,8 @@ size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max)
     const size_t npix = (size_t)t->cfg.width * t->cfg.height;
     size_t i = 0u;
     for (size_t k = 0; k < npix && i < max && i < t->n_cand && out != NULL; ++k) {
-        if (t->mask[k] == 0u) {
+        if (!pft_tbd_masked_(t->mask, pft_tbd_mask_words_(t->cfg.width),
+                             (uint32_t)(k % t->cfg.width), (uint32_t)(k / t->cfg.width))) {
             out[i++] = (uint32_t)k;
         }
     }

@@ -84,7 +84,7 @@ struct pft_tbd_filter_s {
     pft_tbd_particles_t cur;
     const pft_tbd_tab_t *tab; /* tables (workspace; shared by the manager's layers) */
     pft_real_t *img;         /* standalone only: converted frame (whitened, 1-pixel zero border) */
-    uint8_t *mask;           /* standalone only: exclusion mask */
+    uint32_t *mask;          /* standalone only: exclusion mask (bits, pft_tbd_masked_) */
     uint32_t *cand;          /* standalone only: birth candidate pixels */
     /* derived constants */
     pft_tbd_meas_t model;
@@ -115,7 +115,7 @@ struct pft_tbd_s {
     pft_tbd_event_t *events;     /* max_targets + 1 (workspace) */
     uint32_t n_events;
     pft_real_t *img;             /* converted frame (whitened, 1-pixel zero border) */
-    uint8_t *mask;
+    uint32_t *mask;              /* constraint mask: one bit per pixel, rows in whole 32-bit words */
     uint32_t *cand;              /* birth candidates: w h slots (B_k), or min(birth_peaks, w h) */
     uint32_t *lines;             /* w + h + 1 per-line counts: the allowed pixels per row of the peak scan's uniform proposal and its tile quota, or the hand-over gate's row lists and column counts */
     pft_tbd_tab_t *tab;          /* tables shared by every layer */
