@@ -35,9 +35,8 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
     return PFT_C(0.0);
 }
 
-/* A birth in pixel p (drawn already): everything after the pixel's draw. */
-static void birth_at_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
-                      bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
+void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
+                        bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
 {
     uint32_t col = p % c->width;
     uint32_t row = p / c->width;
@@ -60,16 +59,7 @@ static void birth_at_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
                     uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
 {
-    birth_at_(c, d, cand[pft_rng_below(rng, n_cand)], sample_vel, rng, k);
-}
-
-void pft_tbd_birth_scene_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
-                          const pft_tbd_scene_t_ *sc, bool sample_vel, pft_rng_t *rng,
-                          pft_tbd_kin_t *k)
-{
-    const uint32_t n = pft_rng_below(rng, sc->n_cand);
-    birth_at_(c, d, sc->cand != NULL ? sc->cand[n] : pft_tbd_scene_pick_(sc, n), sample_vel, rng,
-              k);
+    pft_tbd_birth_pix_(c, d, cand[pft_rng_below(rng, n_cand)], sample_vel, rng, k);
 }
 
 /* The RBPF's velocity filter per axis as a function of age (docs/algorithms.md 2.3): from

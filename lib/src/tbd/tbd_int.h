@@ -243,11 +243,11 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
  * Kalman variance is that of age 0). n_cand >= 1. */
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
                     uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
-/* The same from a scene: its candidate list, or its n-th allowed pixel without a list
- * (pft_tbd_scene_pick_); the same draws in the same order. */
-void pft_tbd_birth_scene_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
-                          const pft_tbd_scene_t_ *sc, bool sample_vel, pft_rng_t *rng,
-                          pft_tbd_kin_t *k);
+/* The same in pixel p drawn by the caller (its draw pft_rng_below(rng, n_cand) first, as
+ * above): everything after the pixel's draw. A scene's pixel is its candidate list's entry or,
+ * without a list, its n-th allowed pixel (pft_tbd_scene_pick_). */
+void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
+                        bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,
