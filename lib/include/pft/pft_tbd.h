@@ -477,9 +477,9 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
  * Copies up to max birth candidate pixels of the search layer at the last update into out
  * (0-based row-major indices, row * width + column) and returns how many there were: with
  * cfg.birth_peaks = K, the peaks kept (at most K; ordered by the scan's heap, not by value);
- * otherwise the pixels of B_k = {z > gamma} (or every allowed pixel when B_k was empty). 0
- * before the first update, after an update that confirmed a track (the buffer is reused by the
- * hand-over), and for NULL t. out may be NULL with max 0 to ask the count.
+ * otherwise the pixels of B_k = {z > gamma}; every allowed pixel in raster order when there was
+ * no peak or B_k was empty. 0 before the first update, after an update that confirmed a track
+ * with cfg.handover_gate > 0, and for NULL t. out may be NULL with max 0 to ask the count.
  */
 size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max);
 
