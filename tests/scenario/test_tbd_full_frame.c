@@ -47,7 +47,10 @@ void tearDown(void) {}
 
 static uint16_t g_raw[NFRAMES][IMG * IMG]; /* one run's frames, shared by both births */
 static pft_frame_t g_fr[NFRAMES];
-static uint8_t g_ws[PFT_TBD_WORKSPACE_BYTES_PEAKS(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG, KPEAKS)];
+/* one workspace for both births: B_k's list holds one index per pixel, the peaks' K only */
+#define WS_PEAKS PFT_TBD_WORKSPACE_BYTES_PEAKS(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG, KPEAKS)
+#define WS_BK PFT_TBD_WORKSPACE_BYTES(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG)
+static uint8_t g_ws[WS_PEAKS > WS_BK ? WS_PEAKS : WS_BK];
 static const pft_sim_truth_t g_tr = {4, 19, 28.0, 30.0, 0.45, 0.25, 20.0};
 
 static void note(const char *name, double v)

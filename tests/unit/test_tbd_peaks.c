@@ -34,8 +34,12 @@ static pft_real_t R(double v) { return pft_test_from_double(v); }
 static double D(pft_real_t v) { return pft_test_to_double(v); }
 
 #define WS_BYTES PFT_TBD_WORKSPACE_BYTES_PEAKS(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG, KMAX)
-static uint8_t g_ws[WS_BYTES + 64];
-static uint8_t g_snap[WS_BYTES + 64];
+/* the tests run the manager with and without peaks in one buffer: B_k's list holds one index
+ * per pixel, the peaks' K only */
+#define WS_BK PFT_TBD_WORKSPACE_BYTES(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG)
+#define WS_ANY (WS_BYTES > WS_BK ? WS_BYTES : WS_BK)
+static uint8_t g_ws[WS_ANY + 64];
+static uint8_t g_snap[WS_ANY + 64];
 static uint16_t g_raw[IMG * IMG];
 
 /* U16 frames: z = raw / 256 - 64 (zero background at raw 16384), sigma 1 so z is whitened. */
@@ -241,7 +245,12 @@ static void test_workspace_with_peaks_is_exact(void)
     cfg_peaks(&c, KMAX);
     size_t need = pft_tbd_workspace_size(&c);
     TEST_ASSERT_EQUAL_UINT((unsigned)WS_BYTES, (unsigned)need);
-    TEST_ASSERT_TRUE(need > PFT_TBD_WORKSPACE_BYTES(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG));
+    /* the candidate list holds K indices, not one per pixel (issue #9's memory goal): the
+     * workspace is smaller than with B_k's list by at least (IMG^2 - K) indices less the peak
+     * scan's six rows and K values (exact sizes: the macro, above) */
+    TEST_ASSERT_TRUE(need + ((size_t)IMG * IMG - KMAX) * sizeof(uint32_t) -
+                         (6u * IMG + KMAX) * sizeof(pft_real_t) - 2u * PFT_WS_ALIGN <=
+                     PFT_TBD_WORKSPACE_BYTES(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG));
     size_t off = misalign(g_ws);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tbd_init(&t, &c, g_ws + off, need - 1u));
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws + off, need));
@@ -478,6 +487,74 @@ static void points(int np)
     }
 }
 
+/* Frames without peaks and a constraint region: the uniform proposal over the allowed pixels
+ * (drawn from per-row counts without a list) puts every birth outside the region, spreads
+ * them over the frame, and pft_tbd_birth_candidates lists exactly the allowed pixels in
+ * raster order. No frame has a peak (peak_gamma 1000); force_constraint off, so that a birth
+ * inside the region would survive the weighing and be seen; Bernoulli form, so that about half
+ * of the NS particles are born at every frame (a pick that ignored the mask would put each
+ * birth in the 25-pixel region with probability 25/1024, so that none of ~150 births lands
+ * there with probability (1 - 0.024)^150 = 0.03; the spread tests below catch a pick confined
+ * to the first rows). */
+static void test_uniform_births_skip_region(void)
+{
+    static pft_tbd_t t;
+    static uint32_t cand[IMG * IMG];
+    pft_tbd_config_t c;
+    pft_frame_t f;
+    cfg_peaks(&c, KMAX);
+    c.peak_gamma = R(1000.0);
+    c.theta1 = R(0.6);
+    c.birth_share = R(0.5);
+    c.theta_end = R(0.0);           /* the track is not ended by a low P at the next frame */
+    c.d_region = PFT_TBD_D_WINDOW;  /* 3 x 3 window grown by d_margin 1: 5 x 5 pixels */
+    c.force_constraint = false;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
+    frame_of(&f);
+    points(1);
+    for (int k = 0; k < 30 && pft_tbd_tracks(&t, NULL, 0u) == 0u; ++k) {
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(1u, (uint32_t)pft_tbd_tracks(&t, NULL, 0u), "confirmed");
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f)); /* a frame with the region */
+    pft_tbd_track_t tr;
+    TEST_ASSERT_EQUAL_UINT32(1u, (uint32_t)pft_tbd_tracks(&t, &tr, 1u));
+    pft_tbd_region_t r = pft_tbd_window_region(&c, tr.x, tr.y);
+    r.col_lo -= 1;
+    r.col_hi += 1;
+    r.row_lo -= 1;
+    r.row_hi += 1;
+    TEST_ASSERT_TRUE(r.col_lo >= 0 && r.col_hi < IMG && r.row_lo >= 0 && r.row_hi < IMG);
+    const uint32_t area = (uint32_t)((r.col_hi - r.col_lo + 1) * (r.row_hi - r.row_lo + 1));
+    const size_t n = pft_tbd_birth_candidates(&t, cand, IMG * IMG);
+    TEST_ASSERT_EQUAL_UINT32(IMG * IMG - area, (uint32_t)n);
+    for (size_t i = 0; i < n; ++i) {
+        const int32_t col = (int32_t)(cand[i] % IMG);
+        const int32_t row = (int32_t)(cand[i] / IMG);
+        TEST_ASSERT_FALSE(col >= r.col_lo && col <= r.col_hi && row >= r.row_lo && row <= r.row_hi);
+        TEST_ASSERT_TRUE(i == 0u || cand[i] > cand[i - 1u]);
+    }
+    uint32_t born = 0u, below = 0u, beside = 0u;
+    for (uint32_t s = 0; s < t.search.n; ++s) {
+        if (t.search.cur.e[s] != 1u) {
+            continue; /* not born at this frame */
+        }
+        /* 0-based window centre: round(x) of the internal 1-based position, less 1 */
+        const int32_t col = (int32_t)floor(D(t.search.cur.x[s]) + 0.5) - 1;
+        const int32_t row = (int32_t)floor(D(t.search.cur.y[s]) + 0.5) - 1;
+        TEST_ASSERT_FALSE(col >= r.col_lo && col <= r.col_hi && row >= r.row_lo && row <= r.row_hi);
+        ++born;
+        below += row > r.row_hi ? 1u : 0u;
+        beside += row >= r.row_lo && row <= r.row_hi ? 1u : 0u;
+    }
+    /* about NS / 2 births (binomial, sd ~9) spread uniformly: rows below the region hold
+     * (IMG - 1 - row_hi) / IMG of them, at least 1/4 here, so expecting 10 or more is safe;
+     * the region's rows 5/32 of them (expect ~23: at least 3) */
+    TEST_ASSERT_TRUE_MESSAGE(born >= 100u, "births at the frame without peaks");
+    TEST_ASSERT_TRUE_MESSAGE(below >= 10u, "births below the region");
+    TEST_ASSERT_TRUE_MESSAGE(beside >= 3u, "births beside the region, in its rows");
+}
+
 /* The Bernoulli search layer's share of the particle budget (issue #12, docs/algorithms.md
  * 2.11): at a frame that steps k track layers it moves and weighs n_search - k n_track
  * particles, at least n_search / 4; the paper's form keeps all n_search. With n_search 200 and
@@ -554,6 +631,7 @@ int main(void)
     RUN_TEST(test_birth_share_existence);
     RUN_TEST(test_birth_share_standalone);
     RUN_TEST(test_birth_share_budget);
+    RUN_TEST(test_uniform_births_skip_region);
     RUN_TEST(test_bounded_preset);
     return UNITY_END();
 }

@@ -289,10 +289,12 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
 #define PFT_TBD_PARTICLE_BYTES_(n, kind)                                                        \
     (5u * PFT_WS_ROUND((size_t)(n) * sizeof(pft_real_t)) + PFT_WS_ROUND((size_t)(n)) +         \
      PFT_WS_ROUND((size_t)(n) * sizeof(pft_tbd_slot_t)) + 0u * (size_t)(kind))
+/* The constraint mask: one bit per pixel, each row in whole 32-bit words. */
+#define PFT_TBD_MASK_BYTES_(w, h)                                                               \
+    PFT_WS_ROUND((size_t)(h) * (((size_t)(w) + 31u) / 32u) * sizeof(uint32_t))
 #define PFT_TBD_IMAGE_BYTES_(w, h)                                                              \
     (PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                \
-     PFT_WS_ROUND((size_t)(w) * (size_t)(h)) +                                                   \
-     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
+     PFT_TBD_MASK_BYTES_(w, h) + PFT_WS_ROUND((size_t)(w) * (size_t)(h) * sizeof(uint32_t)))
 #define PFT_TBD_TAB_BYTES_ PFT_WS_ROUND(sizeof(pft_tbd_tab_t))
 /** @endcond */
 
@@ -389,30 +391,46 @@ typedef struct {
 #define PFT_TBD_EVENT_BYTES_(maxt) PFT_WS_ROUND((size_t)((maxt) + 1u) * sizeof(pft_tbd_event_t))
 /** @endcond */
 
-/** Workspace bytes of the manager (constant expression; with the sizes, kind and image of cfg
- *  it equals pft_tbd_workspace_size). */
-#define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
-    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_TBD_IMAGE_BYTES_(w, h) + PFT_TBD_TAB_BYTES_ +             \
-     PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                                                  \
-     (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
-     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
-     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
-     PFT_TBD_EVENT_BYTES_(max_targets) +                                                        \
-     PFT_WS_ROUND((size_t)(max_targets) * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t)))
-
 /** @cond internal */
+/* The manager's birth candidate slots: every pixel (B_k, peaks = 0), or min(peaks, w h). */
+#define PFT_TBD_CAND_N_(w, h, peaks)                                                            \
+    ((size_t)(peaks) > 0u && (size_t)(peaks) < (size_t)(w) * (size_t)(h)                        \
+         ? (size_t)(peaks)                                                                      \
+         : (size_t)(w) * (size_t)(h))
+/* The peak scan: six image rows of scratch and one real per peak. */
 #define PFT_TBD_PEAK_BYTES_(w, peaks)                                                           \
     ((size_t)(peaks) > 0u ? PFT_WS_ROUND(6u * (size_t)(w) * sizeof(pft_real_t)) +                \
                                 PFT_WS_ROUND((size_t)(peaks) * sizeof(pft_real_t))             \
                           : 0u)
+#define PFT_TBD_MGR_BYTES_(n_search, n_track, max_targets, kind, w, h, peaks)                  \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                \
+     PFT_TBD_MASK_BYTES_(w, h) + PFT_WS_ROUND(PFT_TBD_CAND_N_(w, h, peaks) * sizeof(uint32_t)) + \
+     PFT_TBD_TAB_BYTES_ + PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                             \
+     (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
+     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_filter_t)) +                           \
+     PFT_WS_ROUND((size_t)(max_targets) * sizeof(pft_tbd_track_t)) +                            \
+     PFT_TBD_EVENT_BYTES_(max_targets) +                                                        \
+     PFT_WS_ROUND((size_t)(max_targets) * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t)) +       \
+     PFT_WS_ROUND(((size_t)(w) + (size_t)(h) + 1u) * sizeof(uint32_t)) +                        \
+     PFT_TBD_PEAK_BYTES_(w, peaks))
 /** @endcond */
+
+/** Workspace bytes of the manager with cfg.birth_peaks = 0 (constant expression; with the
+ *  sizes, kind and image of cfg it equals pft_tbd_workspace_size). Per pixel: the whitened
+ *  frame with its one-pixel border (one real), the constraint mask and the birth candidate list
+ *  B_k (one index per pixel); per image line, the hand-over gate's counts. */
+#define PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h)                    \
+    PFT_TBD_MGR_BYTES_(n_search, n_track, max_targets, kind, w, h, 0u)
 
 /** Workspace bytes of the manager with cfg.birth_peaks = peaks (constant expression; with the
  *  sizes, kind, image and birth_peaks of cfg it equals pft_tbd_workspace_size). With peaks = 0
- *  it equals PFT_TBD_WORKSPACE_BYTES; the peak scan adds six image rows and one real per peak. */
+ *  it equals PFT_TBD_WORKSPACE_BYTES. With peaks = K >= 1 the candidate list holds K pixel
+ *  indices instead of one per pixel (the uniform proposal of a frame without peaks draws the
+ *  n-th allowed pixel from per-row counts instead of a list), and the peak scan adds six image
+ *  rows and one real per peak. */
 #define PFT_TBD_WORKSPACE_BYTES_PEAKS(n_search, n_track, max_targets, kind, w, h, peaks)       \
-    (PFT_TBD_WORKSPACE_BYTES(n_search, n_track, max_targets, kind, w, h) +                      \
-     PFT_TBD_PEAK_BYTES_(w, peaks))
+    PFT_TBD_MGR_BYTES_(n_search, n_track, max_targets, kind, w, h, peaks)
 
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
@@ -459,9 +477,9 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
  * Copies up to max birth candidate pixels of the search layer at the last update into out
  * (0-based row-major indices, row * width + column) and returns how many there were: with
  * cfg.birth_peaks = K, the peaks kept (at most K; ordered by the scan's heap, not by value);
- * otherwise the pixels of B_k = {z > gamma} (or every allowed pixel when B_k was empty). 0
- * before the first update, after an update that confirmed a track (the buffer is reused by the
- * hand-over), and for NULL t. out may be NULL with max 0 to ask the count.
+ * otherwise the pixels of B_k = {z > gamma}; every allowed pixel in raster order when there was
+ * no peak or B_k was empty. 0 before the first update, after an update that confirmed a track
+ * with cfg.handover_gate > 0, and for NULL t. out may be NULL with max 0 to ask the count.
  */
 size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max);
 

@@ -35,10 +35,9 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
     return PFT_C(0.0);
 }
 
-void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
-                    uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
+void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
+                        bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
 {
-    uint32_t p = cand[pft_rng_below(rng, n_cand)];
     uint32_t col = p % c->width;
     uint32_t row = p / c->width;
     /* pft_rng_uniform, inline */
@@ -55,6 +54,12 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
         *k->vx = c->vel_mean[0];
         *k->vy = c->vel_mean[1];
     }
+}
+
+void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
+                    uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
+{
+    pft_tbd_birth_pix_(c, d, cand[pft_rng_below(rng, n_cand)], sample_vel, rng, k);
 }
 
 /* The RBPF's velocity filter per axis as a function of age (docs/algorithms.md 2.3): from

@@ -101,7 +101,7 @@ static void copy_particle_(pft_tbd_particles_t *b, uint32_t s, const pft_tbd_par
 typedef struct {
     const pft_tbd_scene_t_ *sc;
     const pft_tbd_tab_t *tab;
-    const uint8_t *mask; /* exclusion mask applied to window centres (NULL: none) */
+    const uint32_t *mask; /* exclusion mask applied to window centres (NULL: none) */
     pft_real_t T;
     uint32_t p_birth;
     uint8_t e_max; /* largest state byte: 1 + the age cap */
@@ -167,7 +167,10 @@ static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t 
 {
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
     pft_rng_t t = rng;
-    pft_tbd_birth_(&f->cfg, &f->dyn, x->sc->cand, x->sc->n_cand, !x->rb, &t, &k);
+    const pft_tbd_scene_t_ *sc = x->sc;
+    const uint32_t n = pft_rng_below(&t, sc->n_cand); /* the pixel's draw comes first */
+    const uint32_t p = sc->cand != NULL ? sc->cand[n] : pft_tbd_scene_pick_(sc, n);
+    pft_tbd_birth_pix_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
     return t;
 }
 
@@ -247,7 +250,8 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
     const pft_tbd_meas_t *m = &mm;
     const pft_real_t *img = x->sc->img;
     const pft_tbd_tab_t *tab = x->tab;
-    const uint8_t *mask = x->mask;
+    const uint32_t *mask = x->mask;
+    const uint32_t mwords = pft_tbd_mask_words_(m->width);
     uint8_t *restrict pe = P->e;
     pft_tbd_slot_t *restrict pw = P->w;
     const pft_real_t *restrict px = P->x;
@@ -262,7 +266,8 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
         if (e != 0u) {
             pft_tbd_cell_t c;
             if (!pft_tbd_cell_(m, px[s], py[s], &c) ||
-                (mask != NULL && mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] != 0u)) {
+                (mask != NULL &&
+                 pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
                 pe[s] = 0u;
             } else {
                 lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
@@ -614,7 +619,8 @@ static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real
         pft_real_t lw = BERN_DROP_;
         pft_tbd_cell_t c;
         if (pe[s] != 0u && pft_tbd_cell_(m, P->x[s], P->y[s], &c) &&
-            (x->mask == NULL || x->mask[(size_t)(c.j - 1) * m->width + (size_t)(c.i - 1)] == 0u)) {
+            (x->mask == NULL || !pft_tbd_masked_(x->mask, pft_tbd_mask_words_(m->width),
+                                                 (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
             lw = pft_add(pft_tbd_llr_(m, x->tab, x->sc->img, &c, P->in[s]), pe[s] == 1u ? lb : lp);
         } else {
             pe[s] = 0u;
@@ -786,8 +792,8 @@ static void equal_weight_estimate_(pft_tbd_filter_t *f)
 }
 
 /* Whether particle s of src may be handed over: E = 1 and, with a gate, its window-centre pixel
- * (in its weight slot, see pft_tbd_filter_handover_) set in the gate. */
-static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *gate)
+ * inside the gate region. */
+static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const pft_tbd_region_t *gate)
 {
     if (src->cur.e[s] == 0u) {
         return false;
@@ -795,11 +801,18 @@ static bool qualifies_(const pft_tbd_filter_t *src, uint32_t s, const uint8_t *g
     if (gate == NULL) {
         return true;
     }
-    const uint32_t pix = src->cur.w[s].n;
-    return pix != PFT_TBD_NO_PIX_ && gate[pix] != 0u;
+    size_t pix = 0u;
+    if (!pft_tbd_centre_(&src->model, src->cur.x[s], src->cur.y[s], &pix)) {
+        return false;
+    }
+    const int32_t col = (int32_t)(pix % src->model.width);
+    const int32_t row = (int32_t)(pix / src->model.width);
+    return col >= gate->col_lo && col <= gate->col_hi && row >= gate->row_lo &&
+           row <= gate->row_hi;
 }
 
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate)
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
+                              const pft_tbd_region_t *gate)
 {
     /* one qualification test per particle: its result replaces the pixel in src's weight slot
      * for the walk below */
@@ -857,7 +870,8 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     pft_real_t *img = (pft_real_t *)pft_ws_take(&ws, nimg * sizeof(pft_real_t));
-    uint8_t *mask = (uint8_t *)pft_ws_take(&ws, npix);
+    size_t nmask = pft_tbd_mask_len_(cfg->width, cfg->height);
+    uint32_t *mask = (uint32_t *)pft_ws_take(&ws, nmask * sizeof(uint32_t));
     uint32_t *cand = (uint32_t *)pft_ws_take(&ws, npix * sizeof(uint32_t));
     pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(&ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_setup_(f, cfg, cfg->n_search, cfg->kind, true, cfg->force_constraint,
@@ -873,7 +887,7 @@ static bool filter_build_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, void
     pft_tbd_tab_setup_(tab, cfg);
     f->tab = tab;
     memset(img, 0, nimg * sizeof(pft_real_t));
-    memset(mask, 0, npix);
+    memset(mask, 0, nmask * sizeof(uint32_t));
     memset(cand, 0, npix * sizeof(uint32_t));
     pft_tbd_filter_clear_(f);
     return true;
@@ -950,8 +964,7 @@ pft_status_t pft_tbd_filter_update_ex(pft_tbd_filter_t *f, const pft_frame_t *fr
         pft_tbd_filter_coast_(f, gap - 1u);
     }
     pft_tbd_frame_convert_(&f->cfg, &f->model, frame, f->img);
-    size_t npix = (size_t)f->cfg.width * f->cfg.height;
-    memset(f->mask, 0, npix);
+    memset(f->mask, 0, pft_tbd_mask_len_(f->cfg.width, f->cfg.height) * sizeof(uint32_t));
     for (size_t r = 0; r < n_regions; ++r) {
         pft_tbd_mask_add_(&f->cfg, f->mask, &regions[r]);
     }

@@ -31,12 +31,32 @@ static inline size_t pft_tbd_img_len_(uint32_t width, uint32_t height)
     return (size_t)(width + 2u) * (height + 2u);
 }
 
+/* The exclusion (constraint) mask: one bit per pixel, bit col % 32 of word col / 32 of its
+ * row, each row in pft_tbd_mask_words_(width) words (the bits past the width stay 0). */
+static inline uint32_t pft_tbd_mask_words_(uint32_t width) { return (width + 31u) / 32u; }
+static inline size_t pft_tbd_mask_len_(uint32_t width, uint32_t height)
+{
+    return (size_t)height * pft_tbd_mask_words_(width);
+}
+/* The bit of pixel (col, row), 0-based, in a mask of `words` words per row. */
+static inline bool pft_tbd_masked_(const uint32_t *mask, uint32_t words, uint32_t col,
+                                   uint32_t row)
+{
+    return ((mask[(size_t)row * words + (col >> 5u)] >> (col & 31u)) & 1u) != 0u;
+}
+/* Pixels of row `row` outside the mask. */
+uint32_t pft_tbd_mask_row_free_(const uint32_t *mask, uint32_t width, uint32_t row);
+
 /* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
 typedef struct {
     const pft_real_t *img; /* whitened, bordered (above) */
-    const uint8_t *mask;   /* width x height, row-major, 0-based */
-    const uint32_t *cand;  /* 0-based row-major pixel indices */
+    const uint32_t *mask;  /* bits (pft_tbd_masked_), or NULL */
+    const uint32_t *cand;  /* 0-based row-major pixel indices; NULL: every allowed pixel, in
+                              raster order, counted per row in row_pre */
+    const uint32_t *row_pre; /* cand NULL: row_pre[r] allowed pixels in rows 0 .. r - 1
+                                (height + 1 entries, row_pre[height] = n_allowed) */
+    uint32_t width, height;
     uint32_t n_cand;    /* pixels proposed for births (B_k, or all allowed pixels) */
     uint32_t n_allowed; /* pixels outside the exclusion mask */
     bool cand_is_b;     /* cand holds B_k (z > gamma): the importance correction applies */
@@ -63,19 +83,24 @@ pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t
 void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m,
                             const pft_frame_t *frame, pft_real_t *img);
 /* mask |= region (0-based, clipped to the image). */
-void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r);
+void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint32_t *mask, const pft_tbd_region_t *r);
 /* Fills cand and the counts of sc from the bordered whitened img (birth threshold gamma_w =
  * gamma / sigma) and mask (may be NULL). */
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
-                          const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
+                          const uint32_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
 
 /* The same with births from peaks (cfg.birth_peaks = K >= 1, docs/algorithms.md 2.11): cand
- * gets the K strongest 3 x 3 local maxima above peak_gamma of img correlated with the f = 0 PSF
- * taps of tab, outside the mask (or every allowed pixel when there is none); rows holds six
- * image rows of scratch and val K reals (the peaks' values). */
+ * (min(K, w h) slots) gets the K strongest 3 x 3 local maxima above peak_gamma of img
+ * correlated with the f = 0 PSF taps of tab, outside the mask; when there is none the scene
+ * proposes every allowed pixel without a list (sc->cand NULL, the per-row counts in lines).
+ * rows holds six image rows of scratch, val K reals (the peaks' values), lines w + h + 1
+ * counts (the allowed pixels per row, and the tile quota's counts of the current tile row). */
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
-                          const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
-                          pft_real_t *val, uint32_t *cand, pft_tbd_scene_t_ *sc);
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc);
+/* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand
+ * NULL): a binary search of row_pre, then the row's mask. */
+uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n);
 
 /* The tables of cfg (PSF taps, Kalman quantities by age), and the taps alone (tbd_meas.c). */
 void pft_tbd_tab_setup_(pft_tbd_tab_t *t, const pft_tbd_config_t *cfg);
@@ -100,14 +125,14 @@ void pft_tbd_filter_step_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc);
  * the Bernoulli form's existence probability is predicted as many times. */
 void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods);
 /* Hand-over: fills dst with dst->n particles by systematic resampling (equal weights) of the
- * E = 1 particles of src (only those whose window centre pixel is set in gate, when gate is
- * not NULL) with dst's RNG, ages kept, and sets dst->est from the handed-over set (p_exist and
- * log_mean_lr: src's). Returns false (dst untouched) if no particle qualifies. With a gate,
- * src's weight slots (free between updates) must hold each particle's window-centre pixel
- * (0-based row-major, PFT_TBD_NO_PIX_ for none), as the manager's gate leaves them; the slots
- * are the scratch of the qualification test. */
+ * E = 1 particles of src (only those whose window centre pixel lies in the 0-based region
+ * gate, when gate is not NULL) with dst's RNG, ages kept, and sets dst->est from the
+ * handed-over set (p_exist and log_mean_lr: src's). Returns false (dst untouched) if no
+ * particle qualifies. src's weight slots (free between updates) are the scratch of the
+ * qualification test. */
 #define PFT_TBD_NO_PIX_ 0xFFFFFFFFu
-bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src, const uint8_t *gate);
+bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
+                              const pft_tbd_region_t *gate);
 
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */
@@ -218,6 +243,11 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
  * Kalman variance is that of age 0). n_cand >= 1. */
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,
                     uint32_t n_cand, bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* The same in pixel p drawn by the caller (its draw pft_rng_below(rng, n_cand) first, as
+ * above): everything after the pixel's draw. A scene's pixel is its candidate list's entry or,
+ * without a list, its n-th allowed pixel (pft_tbd_scene_pick_). */
+void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
+                        bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,

@@ -13,15 +13,27 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
                                          cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
 }
 
+/* Birth candidate slots: one per pixel for B_k, K with birth peaks (PFT_TBD_CAND_N_). */
+static size_t cand_n_(const pft_tbd_config_t *cfg)
+{
+    return PFT_TBD_CAND_N_(cfg->width, cfg->height, cfg->birth_peaks);
+}
+
+/* Per-line counts: w + h + 1 (the peak scan's rows and tiles, the hand-over gate). */
+static size_t lines_n_(const pft_tbd_config_t *cfg)
+{
+    return (size_t)cfg->width + cfg->height + 1u;
+}
+
 /* Carves every buffer of the manager from ws. With commit == false nothing is written
  * anywhere (a dry run that only checks the size). */
 static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, bool commit)
 {
-    size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     pft_real_t *img = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
-    uint8_t *mask = (uint8_t *)pft_ws_take(ws, npix);
-    uint32_t *cand = (uint32_t *)pft_ws_take(ws, npix * sizeof(uint32_t));
+    uint32_t *mask =
+        (uint32_t *)pft_ws_take(ws, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
+    uint32_t *cand = (uint32_t *)pft_ws_take(ws, cand_n_(cfg) * sizeof(uint32_t));
     pft_tbd_tab_t *tab = (pft_tbd_tab_t *)pft_ws_take(ws, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
         (pft_tbd_filter_t *)pft_ws_take(ws, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
@@ -31,6 +43,7 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         ws, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
     pft_tbd_filter_t scratch;
     pft_real_t *res = NULL;
+    uint32_t *lines = NULL;
     pft_real_t *peak_rows = NULL;
     pft_real_t *peak_val = NULL;
     pft_tbd_filter_t *sf = commit ? &t->search : &scratch;
@@ -45,6 +58,7 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
     }
     res = (pft_real_t *)pft_ws_take(ws, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ *
                                             sizeof(pft_real_t));
+    lines = (uint32_t *)pft_ws_take(ws, lines_n_(cfg) * sizeof(uint32_t));
     if (cfg->birth_peaks > 0u) {
         /* after every other buffer: the layout without peaks is unchanged */
         peak_rows = (pft_real_t *)pft_ws_take(ws, 6u * (size_t)cfg->width * sizeof(pft_real_t));
@@ -58,6 +72,7 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         t->img = img;
         t->mask = mask;
         t->cand = cand;
+        t->lines = lines;
         t->tracks = tracks;
         t->records = records;
         t->events = events;
@@ -74,11 +89,10 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
                           cfg->force_constraint, cfg->seed);
     pft_ws_t ws2;
     pft_ws_init(&ws2, work, work_len);
-    size_t npix = (size_t)cfg->width * cfg->height;
     size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
     (void)pft_ws_take(&ws2, nimg * sizeof(pft_real_t));
-    (void)pft_ws_take(&ws2, npix);
-    (void)pft_ws_take(&ws2, npix * sizeof(uint32_t));
+    (void)pft_ws_take(&ws2, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
+    (void)pft_ws_take(&ws2, cand_n_(cfg) * sizeof(uint32_t));
     (void)pft_ws_take(&ws2, sizeof(pft_tbd_tab_t));
     pft_tbd_filter_t *tracks =
         (pft_tbd_filter_t *)pft_ws_take(&ws2, (size_t)cfg->max_targets * sizeof(pft_tbd_filter_t));
@@ -95,8 +109,9 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     }
     memset(t->img, 0, nimg * sizeof(pft_real_t));
     memset(t->res, 0, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t));
-    memset(t->mask, 0, npix);
-    memset(t->cand, 0, npix * sizeof(uint32_t));
+    memset(t->mask, 0, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
+    memset(t->cand, 0, cand_n_(cfg) * sizeof(uint32_t));
+    memset(t->lines, 0, lines_n_(cfg) * sizeof(uint32_t));
     memset(t->records, 0, (size_t)cfg->max_targets * sizeof(pft_tbd_track_t));
     memset(t->events, 0, ((size_t)cfg->max_targets + 1u) * sizeof(pft_tbd_event_t));
     if (cfg->birth_peaks > 0u) {
@@ -257,7 +272,7 @@ static bool lr_says_gone_(const pft_tbd_config_t *cfg, const pft_tbd_filter_t *t
 }
 
 /* Constraint region D of a track at (x, y) (internal frame) into the mask. */
-static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x, pft_real_t y)
+static void add_region_(const pft_tbd_config_t *cfg, uint32_t *mask, pft_real_t x, pft_real_t y)
 {
     if (cfg->d_region == PFT_TBD_D_NONE) {
         return;
@@ -277,65 +292,98 @@ static void add_region_(const pft_tbd_config_t *cfg, uint8_t *mask, pft_real_t x
     pft_tbd_mask_add_(cfg, mask, &d);
 }
 
-/* Hand-over gate into t->mask: the square of half-size handover_gate around the pixel whose
- * (2p+1)^2 neighbourhood holds the most E = 1 search particles (window centres; the first such
- * pixel in raster order); t->cand is the scratch. Bounded and independent of the window: one
- * pass over the particles (the histogram; each particle's centre pixel goes into its weight
- * slot for the hand-over), one over the pixels turning it into its summed-area
- * table in place (S(r, c) = the count over rows <= r and columns <= c; exact in uint32: at most
- * n_search), one reading each pixel's box sum from four entries of the table (issue #12: the
- * direct (2p+1)^2 sum per pixel made the confirmation frame the heaviest of all). */
-static void build_gate_(pft_tbd_t *t)
+/* Window-centre row and column of search particle s (false: outside the image). */
+static bool centre_rc_(const pft_tbd_filter_t *sf, uint32_t s, uint32_t *row, uint32_t *col)
+{
+    size_t pix = 0;
+    if (!pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
+        return false;
+    }
+    *row = (uint32_t)(pix / sf->model.width);
+    *col = (uint32_t)(pix % sf->model.width);
+    return true;
+}
+
+/* Adds (add true) or takes away the particles of row list `row` to or from the column counts
+ * cc; returns how many there were. */
+static uint32_t gate_row_(const pft_tbd_filter_t *sf, const uint32_t *head, uint32_t row,
+                          uint32_t *cc, bool add)
+{
+    uint32_t k = 0u;
+    for (uint32_t s = head[row]; s != PFT_TBD_NO_PIX_; s = sf->cur.w[s].n) {
+        uint32_t r = 0u;
+        uint32_t c = 0u;
+        (void)centre_rc_(sf, s, &r, &c); /* on the list: inside, in this row */
+        if (add) {
+            ++cc[c];
+        } else {
+            --cc[c];
+        }
+        ++k;
+    }
+    return k;
+}
+
+/* Hand-over gate (docs/algorithms.md 2.7): the square of half-size handover_gate around the
+ * pixel whose (2p+1)^2 neighbourhood (clipped to the image) holds the most E = 1 search
+ * particles (window centres; the first such pixel in raster order). Bounded and independent of
+ * the window (issue #12): the E = 1 particles are chained into one list per row through their
+ * weight slots (free between updates; t->lines holds the h list heads, then w column counts);
+ * the rows are visited in order with the column counts of the band of rows r - p .. r + p (the
+ * list of row r + p added, that of row r - p - 1 taken away), and along a row the box sum is a
+ * running sum of 2p + 1 column counts. A row whose band holds no particle is skipped (its box
+ * sums are 0 and cannot beat the best). The same box sums, and the same first maximum, as a
+ * summed-area table of the whole image, with per-line memory instead of one count per pixel. */
+static pft_tbd_region_t build_gate_(pft_tbd_t *t)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     pft_tbd_filter_t *sf = &t->search;
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
-    const size_t npix = (size_t)w * h;
-    uint32_t *sat = t->cand;
-    memset(sat, 0, npix * sizeof(uint32_t));
-    memset(t->mask, 0, npix);
+    const uint32_t p = cfg->window;
+    uint32_t *head = t->lines;
+    uint32_t *cc = t->lines + h;
+    for (uint32_t r = 0; r < h; ++r) {
+        head[r] = PFT_TBD_NO_PIX_;
+    }
+    memset(cc, 0, (size_t)w * sizeof(uint32_t));
     for (uint32_t s = 0; s < sf->n; ++s) {
-        size_t pix = 0;
-        uint32_t q = PFT_TBD_NO_PIX_;
-        if (sf->cur.e[s] != 0u && pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
-            ++sat[pix];
-            q = (uint32_t)pix;
+        uint32_t r = 0u;
+        uint32_t c = 0u;
+        if (sf->cur.e[s] != 0u && centre_rc_(sf, s, &r, &c)) {
+            sf->cur.w[s].n = head[r];
+            head[r] = s;
         }
-        sf->cur.w[s].n = q; /* for the hand-over's gate test (pft_tbd_filter_handover_) */
+    }
+    uint32_t best = 0;
+    uint32_t bc = 0;
+    uint32_t br = 0;
+    uint32_t band = 0u; /* particles in the band */
+    for (uint32_t r = 0; r < p && r < h; ++r) {
+        band += gate_row_(sf, head, r, cc, true);
     }
     for (uint32_t row = 0; row < h; ++row) {
-        uint32_t run = 0u; /* this row's count up to col */
-        uint32_t *cur = sat + (size_t)row * w;
-        const uint32_t *up = row > 0u ? cur - w : NULL;
-        for (uint32_t col = 0; col < w; ++col) {
-            run += cur[col];
-            cur[col] = run + (up != NULL ? up[col] : 0u);
+        if (row + p < h) {
+            band += gate_row_(sf, head, row + p, cc, true);
         }
-    }
-    const int32_t p = (int32_t)cfg->window;
-    const int32_t wi = (int32_t)w;
-    const int32_t hi = (int32_t)h;
-    uint32_t best = 0;
-    int32_t bc = 0;
-    int32_t br = 0;
-    for (int32_t row = 0; row < hi; ++row) {
-        /* rows r0 + 1 .. r1 of the box: S(r1, .) - S(r0, .), r0 = -1 reads as 0 */
-        const int32_t r0 = row - p - 1;
-        const int32_t r1 = row + p < hi - 1 ? row + p : hi - 1;
-        const uint32_t *s1 = sat + (size_t)r1 * w;
-        const uint32_t *s0 = r0 >= 0 ? sat + (size_t)r0 * w : NULL;
-        for (int32_t col = 0; col < wi; ++col) {
-            const int32_t c0 = col - p - 1;
-            const int32_t c1 = col + p < wi - 1 ? col + p : wi - 1;
-            uint32_t acc = s1[c1];
-            if (c0 >= 0) {
-                acc -= s1[c0];
-            }
-            if (s0 != NULL) {
-                acc -= s0[c1];
-                if (c0 >= 0) {
-                    acc += s0[c0];
+        if (row >= p + 1u) {
+            band -= gate_row_(sf, head, row - p - 1u, cc, false);
+        }
+        if (band == 0u) {
+            continue;
+        }
+        /* the box of column 0: columns 0 .. p */
+        uint32_t acc = 0u;
+        for (uint32_t c = 0; c <= p && c < w; ++c) {
+            acc += cc[c];
+        }
+        for (uint32_t col = 0; col < w; ++col) {
+            if (col > 0u) {
+                if (col + p < w) {
+                    acc += cc[col + p];
+                }
+                if (col >= p + 1u) {
+                    acc -= cc[col - p - 1u];
                 }
             }
             if (acc > best) {
@@ -345,9 +393,10 @@ static void build_gate_(pft_tbd_t *t)
             }
         }
     }
-    int32_t g = (int32_t)cfg->handover_gate;
-    pft_tbd_region_t r = {bc - g, bc + g, br - g, br + g};
-    pft_tbd_mask_add_(cfg, t->mask, &r);
+    const int32_t g = (int32_t)cfg->handover_gate;
+    const pft_tbd_region_t r = {(int32_t)bc - g, (int32_t)bc + g, (int32_t)br - g,
+                                (int32_t)br + g};
+    return r;
 }
 
 /* 1a. Track layers (no births). With residual_tracks, track k sees the frame minus the other
@@ -466,11 +515,12 @@ static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
     search_budget_(t, stepped);
     if (cfg->birth_peaks > 0u) {
         pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
-                             &ssc);
+                             t->lines, &ssc);
     } else {
         pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
     }
     t->n_cand = ssc.n_cand;
+    t->cand_listed = ssc.cand != NULL;
     pft_tbd_filter_step_(&t->search, &ssc);
     for (uint32_t uu = cfg->max_targets; sub && uu > 0u; --uu) {
         const pft_tbd_track_t *rec = &t->records[uu - 1u];
@@ -506,11 +556,12 @@ static void confirm_(pft_tbd_t *t)
     pft_tbd_filter_t *tf = &t->tracks[k];
     pft_rng_seed(&tf->rng, cfg->seed + t->next_id);
     pft_tbd_filter_reset_stats_(tf);
-    const uint8_t *gate = NULL;
+    pft_tbd_region_t gate_box;
+    const pft_tbd_region_t *gate = NULL;
     if (cfg->handover_gate > 0u) {
-        build_gate_(t);
-        gate = t->mask;
-        t->n_cand = 0u; /* t->cand now holds the gate's scratch */
+        gate_box = build_gate_(t);
+        gate = &gate_box;
+        t->n_cand = 0u; /* pft_tbd_birth_candidates: none after a gated hand-over, as before */
     }
     if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
         return;
@@ -598,8 +649,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (t->frame < UINT32_MAX) {
         ++t->frame;
     }
-    size_t npix = (size_t)cfg->width * cfg->height;
-    memset(t->mask, 0, npix);
+    memset(t->mask, 0, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
     const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
@@ -672,8 +722,20 @@ size_t pft_tbd_birth_candidates(const pft_tbd_t *t, uint32_t *out, size_t max)
     if (t == NULL || t->cand == NULL) {
         return 0u;
     }
-    for (size_t i = 0; i < t->n_cand && i < max && out != NULL; ++i) {
-        out[i] = t->cand[i];
+    if (t->cand_listed) {
+        for (size_t i = 0; i < t->n_cand && i < max && out != NULL; ++i) {
+            out[i] = t->cand[i];
+        }
+        return t->n_cand;
+    }
+    /* the uniform proposal without a list: every allowed pixel in raster order */
+    const size_t npix = (size_t)t->cfg.width * t->cfg.height;
+    size_t i = 0u;
+    for (size_t k = 0; k < npix && i < max && i < t->n_cand && out != NULL; ++k) {
+        if (!pft_tbd_masked_(t->mask, pft_tbd_mask_words_(t->cfg.width),
+                             (uint32_t)(k % t->cfg.width), (uint32_t)(k / t->cfg.width))) {
+            out[i++] = (uint32_t)k;
+        }
     }
     return t->n_cand;
 }

@@ -289,23 +289,46 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
     }
 }
 
-void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint8_t *mask, const pft_tbd_region_t *r)
+void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint32_t *mask, const pft_tbd_region_t *r)
 {
     int32_t clo = r->col_lo < 0 ? 0 : r->col_lo;
     int32_t chi = r->col_hi > (int32_t)cfg->width - 1 ? (int32_t)cfg->width - 1 : r->col_hi;
     int32_t rlo = r->row_lo < 0 ? 0 : r->row_lo;
     int32_t rhi = r->row_hi > (int32_t)cfg->height - 1 ? (int32_t)cfg->height - 1 : r->row_hi;
+    const uint32_t words = pft_tbd_mask_words_(cfg->width);
     for (int32_t row = rlo; row <= rhi; ++row) {
+        uint32_t *mrow = mask + (size_t)row * words;
         for (int32_t col = clo; col <= chi; ++col) {
-            mask[(size_t)row * cfg->width + (size_t)col] = 1u;
+            mrow[(uint32_t)col >> 5u] |= 1u << ((uint32_t)col & 31u);
         }
     }
 }
 
+/* Set bits of a word (the usual parallel count). */
+static uint32_t popcount32_(uint32_t v)
+{
+    uint32_t x = v - ((v >> 1u) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2u) & 0x33333333u);
+    x = (x + (x >> 4u)) & 0x0F0F0F0Fu;
+    return (x * 0x01010101u) >> 24u;
+}
+
+uint32_t pft_tbd_mask_row_free_(const uint32_t *mask, uint32_t width, uint32_t row)
+{
+    const uint32_t words = pft_tbd_mask_words_(width);
+    const uint32_t *mrow = mask + (size_t)row * words;
+    uint32_t set = 0u;
+    for (uint32_t k = 0; k < words; ++k) {
+        set += popcount32_(mrow[k]); /* the bits past the width are never set */
+    }
+    return width - set;
+}
+
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
-                          const uint8_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc)
+                          const uint32_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc)
 {
     const uint32_t w = cfg->width;
+    const uint32_t words = pft_tbd_mask_words_(w);
     const uint32_t stride = pft_tbd_stride_(w);
     uint32_t npix = w * cfg->height;
     uint32_t nb = 0;
@@ -313,7 +336,7 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
     for (uint32_t r = 0, k = 0; r < cfg->height; ++r) {
         const pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
         for (uint32_t c = 0; c < w; ++c, ++k) {
-            if (mask != NULL && mask[k] != 0u) {
+            if (mask != NULL && pft_tbd_masked_(mask, words, c, r)) {
                 continue;
             }
             ++na;
@@ -325,12 +348,15 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
     sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
+    sc->row_pre = NULL;
+    sc->width = w;
+    sc->height = cfg->height;
     sc->n_allowed = na;
     sc->cand_is_b = nb > 0u;
     if (nb == 0u && na > 0u) {
         /* No pixel above gamma: propose uniformly over the allowed pixels, correction 0. */
         for (uint32_t k = 0; k < npix; ++k) {
-            if (mask == NULL || mask[k] == 0u) {
+            if (mask == NULL || !pft_tbd_masked_(mask, words, k % w, k / w)) {
                 cand[nb++] = k;
             }
         }
@@ -449,15 +475,19 @@ static bool peak_is_max_(const pft_real_t *up, const pft_real_t *mid, const pft_
     return ok;
 }
 
-/* What the scan of one row needs. With a tile quota (quota > 0) cnt[t] counts the kept peaks
- * of tile t (tiles of tile x tile pixels, ntx per tile row). */
+/* What the scan of one row needs. With a tile quota (quota > 0) cnt[c] counts the kept peaks
+ * of tile column c of the current tile row (tiles of tile x tile pixels, ntx per tile row,
+ * tile row trow): the scan is in raster order, so a new peak always falls in the current tile
+ * row, and the counts of the tile rows above are never read again. row_pre[q + 1] gets the
+ * allowed pixels of rows 0 .. q. */
 typedef struct {
-    const uint8_t *mask;
+    const uint32_t *mask;
     uint32_t *key;
     pft_real_t *val;
     uint32_t *cnt;
+    uint32_t *row_pre;
     pft_real_t thr;
-    uint32_t w, k_max, n, na, tile, ntx, quota;
+    uint32_t w, k_max, n, na, tile, ntx, quota, trow;
 } peak_scan_t;
 
 /* The tile of pixel k (quota on). */
@@ -494,13 +524,14 @@ static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
     }
     if (ps->quota > 0u) {
         const uint32_t tk = peak_tile_of_(ps, k);
-        if (ps->cnt[tk] >= ps->quota) {
+        const uint32_t tc = (k % ps->w) / ps->tile;
+        if (ps->cnt[tc] >= ps->quota) {
             peak_keep_full_tile_(ps, tk, k, v);
             return;
         }
-        ++ps->cnt[tk];
-        if (full) {
-            --ps->cnt[peak_tile_of_(ps, ps->key[0])];
+        ++ps->cnt[tc];
+        if (full && (ps->key[0] / ps->w) / ps->tile == ps->trow) {
+            --ps->cnt[(ps->key[0] % ps->w) / ps->tile]; /* the evicted peak's tile, this tile row */
         }
     }
     if (!full) {
@@ -521,19 +552,20 @@ static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
 static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
                            const pft_real_t *mid, const pft_real_t *dn)
 {
-    const uint8_t *mrow = ps->mask != NULL ? ps->mask + (size_t)q * ps->w : NULL;
-    if (mrow == NULL) {
-        ps->na += ps->w;
-    } else {
-        uint32_t na = 0u;
-        for (uint32_t c = 0; c < ps->w; ++c) {
-            na += mrow[c] == 0u ? 1u : 0u;
+    const uint32_t *mrow =
+        ps->mask != NULL ? ps->mask + (size_t)q * pft_tbd_mask_words_(ps->w) : NULL;
+    ps->na += mrow == NULL ? ps->w : pft_tbd_mask_row_free_(ps->mask, ps->w, q);
+    ps->row_pre[q + 1u] = ps->na;
+    if (ps->quota > 0u && q % ps->tile == 0u) {
+        /* a new tile row: none of its tiles holds a kept peak yet */
+        ps->trow = q / ps->tile;
+        for (uint32_t t = 0; t < ps->ntx; ++t) {
+            ps->cnt[t] = 0u;
         }
-        ps->na += na;
     }
     for (uint32_t c = 0; c < ps->w; ++c) {
         const pft_real_t v = mid[c];
-        if (!(v > ps->thr) || (mrow != NULL && mrow[c] != 0u) ||
+        if (!(v > ps->thr) || (mrow != NULL && pft_tbd_masked_(mrow, 0u, c, 0u)) ||
             !peak_is_max_(up, mid, dn, ps->w, c)) {
             continue;
         }
@@ -542,8 +574,8 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
 }
 
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
-                          const pft_real_t *img, const uint8_t *mask, pft_real_t *rows,
-                          pft_real_t *val, uint32_t *cand, pft_tbd_scene_t_ *sc)
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
 {
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
@@ -569,13 +601,10 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
     ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
     ps.ntx = (w + ps.tile - 1u) / ps.tile;
-    ps.cnt = cand + ps.k_max; /* the config check keeps K + the tile count within w h */
-    if (ps.quota > 0u) {
-        const uint32_t nt = ps.ntx * ((h + ps.tile - 1u) / ps.tile);
-        for (uint32_t t = 0; t < nt; ++t) {
-            ps.cnt[t] = 0u;
-        }
-    }
+    ps.row_pre = lines;           /* h + 1 entries */
+    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
+    ps.trow = 0u;
+    lines[0] = 0u;
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
@@ -596,17 +625,46 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
+    sc->row_pre = lines;
+    sc->width = w;
+    sc->height = h;
     sc->n_allowed = ps.na;
     sc->cand_is_b = ps.n > 0u;
     sc->n_cand = ps.n;
     if (ps.n == 0u && ps.na > 0u) {
-        /* No peak above the threshold: propose uniformly over the allowed pixels. */
-        uint32_t nb = 0u;
-        for (uint32_t k = 0; k < w * h; ++k) {
-            if (mask == NULL || mask[k] == 0u) {
-                cand[nb++] = k;
-            }
-        }
-        sc->n_cand = nb;
+        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
+         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
+        sc->cand = NULL;
+        sc->n_cand = ps.na;
     }
+}
+
+uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n)
+{
+    const uint32_t w = sc->width;
+    if (sc->mask == NULL || sc->n_allowed == w * sc->height) {
+        return n; /* nothing masked: the n-th pixel */
+    }
+    /* the row r with row_pre[r] <= n < row_pre[r + 1]: row_pre[0] = 0 <= n < row_pre[h] */
+    uint32_t lo = 0u;
+    uint32_t hi = sc->height;
+    while (hi - lo > 1u) {
+        const uint32_t mid = lo + (hi - lo) / 2u;
+        if (sc->row_pre[mid] <= n) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    uint32_t left = n - sc->row_pre[lo];
+    const uint32_t *mrow = sc->mask + (size_t)lo * pft_tbd_mask_words_(w);
+    for (uint32_t c = 0; c < w; ++c) {
+        if (!pft_tbd_masked_(mrow, 0u, c, 0u)) {
+            if (left == 0u) {
+                return lo * w + c;
+            }
+            --left;
+        }
+    }
+    return lo * w; /* cannot happen: row lo holds more than left allowed pixels */
 }

@@ -84,7 +84,7 @@ struct pft_tbd_filter_s {
     pft_tbd_particles_t cur;
     const pft_tbd_tab_t *tab; /* tables (workspace; shared by the manager's layers) */
     pft_real_t *img;         /* standalone only: converted frame (whitened, 1-pixel zero border) */
-    uint8_t *mask;           /* standalone only: exclusion mask */
+    uint32_t *mask;          /* standalone only: exclusion mask (bits, pft_tbd_masked_) */
     uint32_t *cand;          /* standalone only: birth candidate pixels */
     /* derived constants */
     pft_tbd_meas_t model;
@@ -115,8 +115,9 @@ struct pft_tbd_s {
     pft_tbd_event_t *events;     /* max_targets + 1 (workspace) */
     uint32_t n_events;
     pft_real_t *img;             /* converted frame (whitened, 1-pixel zero border) */
-    uint8_t *mask;
-    uint32_t *cand;
+    uint32_t *mask;              /* constraint mask: one bit per pixel, rows in whole 32-bit words */
+    uint32_t *cand;              /* birth candidates: w h slots (B_k), or min(birth_peaks, w h) */
+    uint32_t *lines;             /* w + h + 1 per-line counts: the allowed pixels per row of the peak scan's uniform proposal and its tile quota, or the hand-over gate's row lists and column counts */
     pft_tbd_tab_t *tab;          /* tables shared by every layer */
     pft_real_t *res;             /* img's pixels under the tracks' PSFs while they are subtracted in place (cfg.residual_*): max_targets slots of PFT_TBD_PSF_SAVE_REALS_ */
     pft_real_t *peak_rows;       /* cfg.birth_peaks > 0: six rolling image rows of the peak scan */
@@ -124,6 +125,7 @@ struct pft_tbd_s {
     uint32_t frame;              /* frames accepted so far (the last frame number) */
     uint32_t next_id;
     uint32_t n_cand;             /* birth candidates of the last update (0 after a hand-over) */
+    bool cand_listed;            /* they are in cand (else every allowed pixel of mask) */
     uint16_t n_tracks;           /* active tracks */
     uint8_t above;               /* consecutive frames with the search layer's P > theta1 */
     bool seq_set;                /* last_seq holds the reference (cfg.seq_mode) */
