@@ -46,13 +46,19 @@ static pft_real_t from_fix16_(int64_t v)
 
 /* ------------------------------------------------------------ wide accumulation */
 
-/* Sums of products rounded once (q16: exact Q32.32 products in int64 with saturating sums;
- * float: float), for the small Kalman algebra of a track step. */
+/* Sums of products rounded once (q16: exact Q32.32 products in int64; float: float), for the
+ * small Kalman algebra of a track step. q16: aadd_ is a plain int64 sum. Every call site
+ * adds terms whose magnitudes are bounded so that no partial sum can reach 2^63 (operands
+ * are pft_real_t in [-INT32_MAX, INT32_MAX], so a product is below 2^62; the bound of each
+ * site is stated there and in docs/fixed_point.md, "PTE-TBD Kalman algebra"): the same
+ * values as the saturating sum it replaces. aadd_sat_ saturates, for the one sum that has no
+ * such bound (the fusion's covariance start). */
 #ifdef PFT_NUMERIC_Q16
 typedef int64_t acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return (int64_t)a * b; }
 static inline acc_t afrom_(pft_real_t a) { return (int64_t)a * 65536; }
-static inline acc_t aadd_(acc_t x, acc_t y)
+static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline acc_t aadd_sat_(acc_t x, acc_t y)
 {
     if (y > 0 && x > INT64_MAX - y) {
         return INT64_MAX;
@@ -111,6 +117,7 @@ typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline acc_t afrom_(pft_real_t a) { return a; }
 static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline acc_t aadd_sat_(acc_t x, acc_t y) { return x + y; }
 static inline pft_real_t ato_(acc_t v) { return v; }
 static inline pft_real_t adiv_(acc_t num, acc_t den) { return num / den; }
 static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
@@ -343,7 +350,9 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     ap->prior_k = pft_recip(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
     ap->sc2 = pft_add(scc, sr2);
     ap->lck = pft_recip(pft_mul_i(ap->sc2, 2));
-    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' */
+    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' (q16
+     * plain sums: M <= PFT_PTE_MAX_FRAMES = 64, so |h2| <= 63 62 / 3072 and |h6| <= 63 16 /
+     * 512 are below 2 (2^17) and each sum is below 2^47 + 2^48) */
     for (uint32_t i = 0; i < 3u; ++i) {
         ap->pht[2u * i] = ato_(aadd_(afrom_(P[4u * i]), amul_(P[4u * i + 2u], h2)));
         ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
@@ -1229,7 +1238,8 @@ void pft_pte_model_setup_(pft_pte_t *p)
 }
 
 /* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
- * rounded once) and of the amplitude. */
+ * rounded once) and of the amplitude. q16 plain sums: every entry of F is at most 1 (2^16),
+ * so each product with F is below 2^47 and Q 2^16 below 2^47: sums of four stay below 2^49. */
 static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
 {
     for (uint32_t a = 0; a < p->naxes; ++a) {
@@ -1691,6 +1701,7 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
                                 pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
         pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(c->sigma_r[a])), r0);
         pft_real_t s11 = pft_add(x->stt, r3);
+        /* q16 plain sums of two products, each below 2^62 in magnitude: below 2^63 */
         acc_t det = aadd_(amul_(s00, s11), -amul_(x->s01, x->s01));
         if (!(s00 > PFT_C(0.0)) || !(det > 0)) {
             continue;
@@ -1722,6 +1733,19 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
     out->ssum = b->ssum;
 }
 
+/* Start of covariance sum (i, j) of the fusion: P_ij - kw_i0 pht_j0 - kw_i1 pht_j1, summed
+ * saturating (the only wide sum of the track step without a bound on its terms). Reads the
+ * upper triangle of P only (j >= i). */
+#ifdef PFT_NUMERIC_Q16
+static inline acc_t fuse_start_(const pft_real_t *P, const pft_real_t kw[6],
+                                const pft_real_t pht[6], uint32_t i, uint32_t j)
+{
+    acc_t v = afrom_(P[4u * i + j]);
+    v = aadd_sat_(v, -amul_(kw[2u * i], pht[2u * j]));
+    return aadd_sat_(v, -amul_(kw[2u * i + 1u], pht[2u * j + 1u]));
+}
+#endif
+
 /* 6. Fusion of the directions with their normalised likelihoods W:
  * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
  * which is sum W (P_l + (X_l - X)(X_l - X)') when the weights sum to 1. Deviations from the
@@ -1751,6 +1775,10 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     for (int32_t li = 0; li < ndir; ++li) {
         dir[li].w = pft_mul(dir[li].w, itot);
     }
+    /* q16 bounds of the sums below: tot >= 2^16 (the best direction's ssum includes its exact
+     * 1), so itot <= 2^16; each w before the product is at most tot, so w <= (w tot^-1 2^32 +
+     * w / 2) / 2^16 + 1 < 2^17. A term w x of a pft_real_t x is then below 2^48, and a sum of
+     * at most PFT_PTE_MAX_DIRS^2 = 81 of them below 2^55: plain sums (aadd_). */
     for (uint32_t a = 0; a < na; ++a) {
         pft_real_t df[3];
         pft_real_t kw[6];
@@ -1773,16 +1801,26 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
             kw[i] = ato_(v9[3u + i]);
         }
         pft_real_t *P = t->P[a];
-        /* the six covariance sums (i, j >= i) in one pass over the directions, each started
-         * and summed as before; the deviations dx - dX once per direction (the same values);
-         * in v9[0..6) (its sums are read) */
+        /* the six covariance sums (i, j >= i) in one pass over the directions; the deviations
+         * dx - dX once per direction (the same values); in v9[0..6) (its sums are read).
+         * q16: the start P - kw pht has two products of unbounded pft_real_t values and is
+         * summed saturating (aadd_sat_); the terms of the directions (below 2^55 in all, see
+         * above) are summed plain from 0 and added to the start once, at the end. The same
+         * value after ato_ as adding them to the start one at a time with saturation: when
+         * |start| < 2^62 nothing saturates either way (|partial sums| < 2^62 + 2^55);
+         * otherwise both sums keep the start's sign and a magnitude above 2^61, which ato_
+         * saturates alike. float: the terms added to the start one at a time, as before. */
         acc_t *vp = v9;
         uint32_t k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
+#ifdef PFT_NUMERIC_Q16
+                vp[k] = 0;
+#else
                 acc_t v = afrom_(P[4u * i + j]);
                 v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
                 vp[k] = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
+#endif
                 k++;
             }
         }
@@ -1803,7 +1841,11 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
+#ifdef PFT_NUMERIC_Q16
+                P[4u * i + j] = ato_(aadd_sat_(fuse_start_(P, kw, ap[a].pht, i, j), vp[k]));
+#else
                 P[4u * i + j] = ato_(vp[k]);
+#endif
                 P[4u * j + i] = P[4u * i + j];
                 k++;
             }
