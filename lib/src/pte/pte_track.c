@@ -1297,6 +1297,22 @@ static prior_rec_ prior_rec_of_(const pft_pte_t *p, uint32_t a, pft_real_t off)
     return r;
 }
 
+#ifdef PFT_NUMERIC_Q16
+/* True when the recurrence of r over n steps, and each value plus half a squared statistic
+ * (half_t2_, at most 737280000 < 2^30), stays inside the q16 range without saturating: with
+ * exact sums dl_j = dl_0 + j dd and lc_j = lc_0 + sum_{i<j} dl_i, so for j <= n
+ * |dl_j|, |lc_j| <= B = |lc_0| + n |dl_0| + n^2 |dd|; B < 2^30 keeps every partial sum and
+ * lc_j + half_t2_ below 2^31 - 1 in magnitude (docs/fixed_point.md, "PTE-TBD direction
+ * scan"). Then plain sums give the bits of pft_add. */
+static inline bool prior_small_(const prior_rec_ *r, int32_t n)
+{
+    const int64_t lc = r->lc < 0 ? -(int64_t)r->lc : (int64_t)r->lc;
+    const int64_t dl = r->dl < 0 ? -(int64_t)r->dl : (int64_t)r->dl;
+    const int64_t dd = r->dd < 0 ? -(int64_t)r->dd : (int64_t)r->dd;
+    return lc + (int64_t)n * dl + (int64_t)n * n * dd < ((int64_t)1 << 30);
+}
+#endif
+
 /* The log prior of every scan position of axis a into lc[a] (EXACT; TABLE runs the recurrence
  * inside the direction scan). */
 static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
@@ -1611,15 +1627,32 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
          * scan_prior_; the Doppler term lc[1][0] is 0 and adding it changes no bit) */
         pft_real_t lc = pr->lc;
         pft_real_t dl = pr->dl;
-        for (int32_t j = 0; j < n0; ++j) {
-            pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(lc, half_t2_(t2));
-            lc = pft_add(lc, dl);
-            dl = pft_add(dl, pr->dd);
-            p->sL[j] = ls;
-            if (ls > lmax) {
-                lmax = ls;
-                r.jb = j;
+#ifdef PFT_NUMERIC_Q16
+        if (prior_small_(pr, n0)) {
+            /* the same recurrence with plain sums: prior_small_ proves that no sum saturates */
+            for (int32_t j = 0; j < n0; ++j) {
+                const pft_real_t ls = lc + half_t2_(sq_over_(E[j], G[j]));
+                lc = lc + dl;
+                dl = dl + pr->dd;
+                p->sL[j] = ls;
+                if (ls > lmax) {
+                    lmax = ls;
+                    r.jb = j;
+                }
+            }
+        } else
+#endif
+        {
+            for (int32_t j = 0; j < n0; ++j) {
+                pft_real_t t2 = sq_over_(E[j], G[j]);
+                pft_real_t ls = pft_add(lc, half_t2_(t2));
+                lc = pft_add(lc, dl);
+                dl = pft_add(dl, pr->dd);
+                p->sL[j] = ls;
+                if (ls > lmax) {
+                    lmax = ls;
+                    r.jb = j;
+                }
             }
         }
     } else if (g->n1 == 1) {
