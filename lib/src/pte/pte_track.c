@@ -44,6 +44,43 @@ static pft_real_t from_fix16_(int64_t v)
 #endif
 }
 
+/* ------------------------------------------------------------ square root */
+
+#ifdef PFT_NUMERIC_Q16
+/* pft_sqrt with the same bits in fewer steps: its digit-by-digit root starts at bit 2^46 and
+ * leaves root = 0 and n unchanged at every step whose bit is above n (n < root + bit), so
+ * the steps are started at the highest power of 4 not above n instead (at most 23 skipped,
+ * each a shift and a compare). docs/fixed_point.md, "PTE-TBD Kalman algebra and square root". */
+static pft_real_t sqrt_(pft_real_t a)
+{
+    uint64_t n;
+    uint64_t root = 0;
+    uint64_t bit = (uint64_t)1 << 46;
+    if (a <= 0) {
+        return 0;
+    }
+    n = (uint64_t)(uint32_t)a << 16; /* >= 2^16, so the first loop ends by bit 2^16 */
+    while (bit > n) {
+        bit >>= 2;
+    }
+    while (bit != 0u) { /* at most 24 steps, one result bit each, as pft_sqrt */
+        if (n >= root + bit) {
+            n -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    if (n > root) { /* round to nearest, as pft_sqrt */
+        ++root;
+    }
+    return (pft_real_t)root;
+}
+#else
+static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
+#endif
+
 /* ------------------------------------------------------------ wide accumulation */
 
 /* Sums of products rounded once (q16: exact Q32.32 products in int64; float: float), for the
@@ -106,6 +143,12 @@ static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
     /* the sign bit s of v (1 for v < 0): v + 32768 - s is v + 32768 or v + 32767, the same
      * rounding without a branch or select */
     return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
+}
+/* mul_nb_(w, z) for a weight w >= 0, with r = 32767 for z < 0 and 32768 otherwise: the
+ * product w z is negative only when z is (w > 0), and for w = 0 both terms round 0 to 0 */
+static inline pft_real_t mul_r_(pft_real_t w, int64_t z, int64_t r)
+{
+    return (pft_real_t)(((int64_t)w * z + r) >> 16);
 }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
@@ -255,6 +298,25 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *w3 = p->ytap4_w[3];
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * 4;
+#ifdef PFT_NUMERIC_Q16
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                /* mul_nb_ with its rounding term taken from the sign of z: the tap weights are
+                 * >= 0, so the product's sign is z's (or it is 0, which rounds to 0 with either
+                 * term); the same bits with the term formed once per z instead of per product */
+                const int64_t z0 = zz[k];
+                const int64_t z1 = zz[k + 1];
+                const int64_t z2 = zz[k + 2];
+                const int64_t z3 = zz[k + 3];
+                const int64_t r0 = z0 < 0 ? 32767 : 32768;
+                const int64_t r1 = z1 < 0 ? 32767 : 32768;
+                const int64_t r2 = z2 < 0 ? 32767 : 32768;
+                const int64_t r3 = z3 < 0 ? 32767 : 32768;
+                yy[4 * k] = mul_r_(w0[0], z0, r0) + mul_r_(w0[1], z1, r1) + mul_r_(w0[2], z2, r2) + mul_r_(w0[3], z3, r3);
+                yy[4 * k + 1] = mul_r_(w1[0], z0, r0) + mul_r_(w1[1], z1, r1) + mul_r_(w1[2], z2, r2) + mul_r_(w1[3], z3, r3);
+                yy[4 * k + 2] = mul_r_(w2[0], z0, r0) + mul_r_(w2[1], z1, r1) + mul_r_(w2[2], z2, r2) + mul_r_(w2[3], z3, r3);
+                yy[4 * k + 3] = mul_r_(w3[0], z0, r0) + mul_r_(w3[1], z1, r1) + mul_r_(w3[2], z2, r2) + mul_r_(w3[3], z3, r3);
+            }
+#else
             for (int32_t k = 0; k < c1 - cell; ++k) {
                 const pft_real_t z0 = zz[k];
                 const pft_real_t z1 = zz[k + 1];
@@ -265,6 +327,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
                 yy[4 * k + 2] = mul_nb_(w2[0], z0) + mul_nb_(w2[1], z1) + mul_nb_(w2[2], z2) + mul_nb_(w2[3], z3);
                 yy[4 * k + 3] = mul_nb_(w3[0], z0) + mul_nb_(w3[1], z1) + mul_nb_(w3[2], z2) + mul_nb_(w3[3], z3);
             }
+#endif
             yflag_set_(p, slot, blk);
             return;
         }
@@ -336,14 +399,14 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     ap->stt = stt;
     pft_real_t sr2 = pft_sq(c->sigma_r[a]);
     ap->sw2 = pft_add(sr2, scc);
-    ap->sw = p->yq > 0u ? p->sigma_y : pft_min(pft_sqrt(ap->sw2), c->sigma_w_max);
+    ap->sw = p->yq > 0u ? p->sigma_y : pft_min(sqrt_(ap->sw2), c->sigma_w_max);
     ap->sw2 = pft_sq(ap->sw);
     ap->inv_sw = pft_recip(ap->sw);
     ap->reach = pft_mul_i(ap->sw, 3);
     ap->L = (int32_t)c->n_dir[a];
     ap->dth = pft_mul_i(c->dtheta_min, SV_);
     if (ap->L > 1) {
-        ap->dth = pft_max(pft_div_i(pft_mul_i(pft_sqrt(stt), 4), ap->L - 1), ap->dth);
+        ap->dth = pft_max(pft_div_i(pft_mul_i(sqrt_(stt), 4), ap->L - 1), ap->dth);
     }
     /* dth^2 / (2 (S_tt + dth^2/12)) = 1 / (2 (S_tt/dth^2 + 1/12)) (scale-free) */
     pft_real_t rho = pft_div(stt, pft_sq(ap->dth));
@@ -358,7 +421,7 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
         ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
     }
     ap->s01 = ato_(aadd_(afrom_(ap->pht[1]), amul_(h2, ap->pht[5])));
-    int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, pft_sqrt(ap->sc2)), c->c_step));
+    int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, sqrt_(ap->sc2)), c->c_step));
     if (half < 1) {
         half = 1;
     }
@@ -1926,7 +1989,7 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
 /* Signed T from a signed T^2. */
 static pft_real_t signed_t_(pft_real_t t2s)
 {
-    pft_real_t v = pft_sqrt(pft_abs(t2s));
+    pft_real_t v = sqrt_(pft_abs(t2s));
     return t2s < PFT_C(0.0) ? pft_neg(v) : v;
 }
 
