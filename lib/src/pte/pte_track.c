@@ -1576,7 +1576,19 @@ static bool step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     int32_t m1 = M > 1 ? M : 2;
     g->mm = m1 * m1 - 1;
     g->dprior = PFT_C(0.0);
-    return p->yq > 0u ? step_bank_(p, t, g) : true;
+    const bool ok = p->yq > 0u ? step_bank_(p, t, g) : true;
+#ifdef PFT_NUMERIC_Q16
+    /* q16: the terms of each direction's measurement noise and innovation covariance that do
+     * not depend on the direction (dir_update_), once per step (after step_bank_, which sets
+     * dth for TABLE); the float build forms them per direction (cheaper there: measured) */
+    for (uint32_t a = 0; a < na; ++a) {
+        ap[a].r0c = pft_div_i(pft_sq(c->c_step), 12);
+        ap[a].r3c = pft_div_i(pft_sq(ap[a].dth), 12);
+        ap[a].sw12 = pft_mul_i(ap[a].sw2, 12 * SV_ * SV_);
+        ap[a].s00c = pft_sub(ap[a].sc2, pft_sq(c->sigma_r[a]));
+    }
+#endif
+    return ok;
 }
 
 /* Slopes and log prior of direction li (index l0 + L0 l1). */
@@ -1783,7 +1795,6 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
 static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step_geom_ *g,
                         const dir_slope_ *d, const dir_best_ *b, pft_pte_dir_t *out)
 {
-    const pft_pte_config_t *c = &p->cfg;
     const pft_pte_axis_t *ap = p->scr->ap;
     const pft_real_t itc = pft_recip(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
     memset(out->dx, 0, sizeof(out->dx));
@@ -1792,10 +1803,16 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
         const pft_pte_axis_t *x = &ap[a];
         /* R: sigma_w^2 / T^2 + c_step^2 / 12 and dth^2 / 12 + 12 sigma_w^2 / ((M^2 - 1) T^2),
          * the latter scaled by SV^2 */
-        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(c->c_step), 12));
+#ifdef PFT_NUMERIC_Q16
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), x->r0c);
+        pft_real_t r3 = pft_add(x->r3c, pft_div_i(pft_mul(x->sw12, itc), g->mm));
+        pft_real_t s00 = pft_add(x->s00c, r0);
+#else
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(p->cfg.c_step), 12));
         pft_real_t r3 = pft_add(pft_div_i(pft_sq(x->dth), 12),
                                 pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
-        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(c->sigma_r[a])), r0);
+        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(p->cfg.sigma_r[a])), r0);
+#endif
         pft_real_t s11 = pft_add(x->stt, r3);
         /* q16 plain sums of two products, each below 2^62 in magnitude: below 2^63 */
         acc_t det = aadd_(amul_(s00, s11), -amul_(x->s01, x->s01));
