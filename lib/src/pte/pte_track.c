@@ -77,8 +77,41 @@ static pft_real_t sqrt_(pft_real_t a)
     }
     return (pft_real_t)root;
 }
+
+/* pft_div, pft_recip and pft_div_i of pft_real_q16.c written inline (the same magnitudes,
+ * rounded quotient, sign and saturation, so the same bits), without the calls: the track
+ * step divides about 20 times per step. */
+static inline pft_real_t sat_mag_(uint64_t mag, bool neg)
+{
+    if (mag > (uint64_t)INT32_MAX) {
+        return neg ? PFT_REAL_MIN : PFT_REAL_MAX;
+    }
+    return neg ? -(pft_real_t)mag : (pft_real_t)mag;
+}
+static inline uint32_t umag_(pft_real_t a) { return a < 0 ? 0u - (uint32_t)a : (uint32_t)a; }
+static inline pft_real_t div_(pft_real_t a, pft_real_t b)
+{
+    if (b == 0) {
+        return a > 0 ? PFT_REAL_MAX : (a < 0 ? PFT_REAL_MIN : 0);
+    }
+    const uint64_t n = (uint64_t)umag_(a) << 16;
+    const uint64_t d = umag_(b);
+    return sat_mag_((n + (d >> 1)) / d, (a < 0) != (b < 0));
+}
+static inline pft_real_t recip_(pft_real_t a) { return div_(PFT_REAL_ONE, a); }
+static inline pft_real_t div_i_(pft_real_t a, int32_t k)
+{
+    if (k <= 0) {
+        return div_(a, 0);
+    }
+    const uint64_t d = (uint64_t)k;
+    return sat_mag_(((uint64_t)umag_(a) + (d >> 1)) / d, a < 0);
+}
 #else
 static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
+static inline pft_real_t div_(pft_real_t a, pft_real_t b) { return pft_div(a, b); }
+static inline pft_real_t recip_(pft_real_t a) { return pft_recip(a); }
+static inline pft_real_t div_i_(pft_real_t a, int32_t k) { return pft_div_i(a, k); }
 #endif
 
 /* ------------------------------------------------------------ wide accumulation */
@@ -87,8 +120,8 @@ static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
  * small Kalman algebra of a track step. q16: aadd_ is a plain int64 sum. Every call site
  * adds terms whose magnitudes are bounded so that no partial sum can reach 2^63 (operands
  * are pft_real_t in [-INT32_MAX, INT32_MAX], so a product is below 2^62; the bound of each
- * site is stated there and in docs/fixed_point.md, "PTE-TBD Kalman algebra"): the same
- * values as the saturating sum it replaces. aadd_sat_ saturates, for the one sum that has no
+ * site is stated there and in docs/fixed_point.md, "PTE-TBD Kalman algebra and square
+ * root"): the same values as the saturating sum it replaces. aadd_sat_ saturates, for the one sum that has no
  * such bound (the fusion's covariance start). */
 #ifdef PFT_NUMERIC_Q16
 typedef int64_t acc_t;
@@ -194,7 +227,7 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
     }
     p->lat_t = (p->lat_u * SV_ + q / 2) / q;
     p->lat_t = p->lat_t < 1 ? 1 : p->lat_t;
-    pft_real_t inv = pft_recip(p->sigma_y);
+    pft_real_t inv = recip_(p->sigma_y);
     pft_real_t reach = pft_mul_i(p->sigma_y, 3);
     for (int32_t ph = 0; ph < q; ++ph) {
         pft_real_t f = pft_ratio(ph, q);
@@ -401,18 +434,18 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     ap->sw2 = pft_add(sr2, scc);
     ap->sw = p->yq > 0u ? p->sigma_y : pft_min(sqrt_(ap->sw2), c->sigma_w_max);
     ap->sw2 = pft_sq(ap->sw);
-    ap->inv_sw = pft_recip(ap->sw);
+    ap->inv_sw = recip_(ap->sw);
     ap->reach = pft_mul_i(ap->sw, 3);
     ap->L = (int32_t)c->n_dir[a];
     ap->dth = pft_mul_i(c->dtheta_min, SV_);
     if (ap->L > 1) {
-        ap->dth = pft_max(pft_div_i(pft_mul_i(sqrt_(stt), 4), ap->L - 1), ap->dth);
+        ap->dth = pft_max(div_i_(pft_mul_i(sqrt_(stt), 4), ap->L - 1), ap->dth);
     }
     /* dth^2 / (2 (S_tt + dth^2/12)) = 1 / (2 (S_tt/dth^2 + 1/12)) (scale-free) */
-    pft_real_t rho = pft_div(stt, pft_sq(ap->dth));
-    ap->prior_k = pft_recip(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
+    pft_real_t rho = div_(stt, pft_sq(ap->dth));
+    ap->prior_k = recip_(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
     ap->sc2 = pft_add(scc, sr2);
-    ap->lck = pft_recip(pft_mul_i(ap->sc2, 2));
+    ap->lck = recip_(pft_mul_i(ap->sc2, 2));
     /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' (q16
      * plain sums: M <= PFT_PTE_MAX_FRAMES = 64, so |h2| <= 63 62 / 3072 and |h6| <= 63 16 /
      * 512 are below 2 (2^17) and each sum is below 2^47 + 2^48) */
@@ -421,7 +454,7 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
         ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
     }
     ap->s01 = ato_(aadd_(afrom_(ap->pht[1]), amul_(h2, ap->pht[5])));
-    int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, sqrt_(ap->sc2)), c->c_step));
+    int32_t half = pft_floor_int(div_(pft_mul(c->scan_sigmas, sqrt_(ap->sc2)), c->c_step));
     if (half < 1) {
         half = 1;
     }
@@ -585,15 +618,15 @@ static void accum_1d_(const pft_pte_t *p, const pft_pte_axis_t *ap, int32_t R, p
 
 pft_real_t pft_pte_shift_(pft_real_t th, pft_real_t acc, int32_t tau)
 {
-    pft_real_t v = pft_div_i(pft_mul_i(th, tau), SV_);
-    pft_real_t q = pft_div_i(pft_mul_i(acc, tau * tau), 2 * SA_);
+    pft_real_t v = div_i_(pft_mul_i(th, tau), SV_);
+    pft_real_t q = div_i_(pft_mul_i(acc, tau * tau), 2 * SA_);
     return pft_sub(v, q);
 }
 
 /* Displacement of a straight operator path (scaled slope). */
 static pft_real_t line_shift_(pft_real_t th, int32_t tau)
 {
-    return pft_div_i(pft_mul_i(th, tau), SV_);
+    return div_i_(pft_mul_i(th, tau), SV_);
 }
 
 /* Transition and process noise of the scaled state (T = 1 frame). The noise intensity is
@@ -614,16 +647,16 @@ static void model_(const pft_pte_config_t *c, uint32_t a, pft_real_t F[16], pft_
         F[2] = pft_ratio(1, 2 * SA_);
         F[6] = pft_ratio(SV_, SA_);
         /* white jerk: q [[1/20, 1/8, 1/6], [1/8, 1/3, 1/2], [1/6, 1/2, 1]], scaled by S Q S */
-        Q[0] = pft_div_i(qv, SV_ * SV_ * 20);
-        Q[1] = pft_div_i(qv, SV_ * 8);
-        Q[2] = pft_div_i(qv, 6);             /* SA q / 6 = SV^2 q / 6 (SA = SV^2) */
-        Q[5] = pft_div_i(qv, 3);
-        Q[6] = pft_div_i(qa, 2 * SV_);       /* SV SA q / 2 */
+        Q[0] = div_i_(qv, SV_ * SV_ * 20);
+        Q[1] = div_i_(qv, SV_ * 8);
+        Q[2] = div_i_(qv, 6);             /* SA q / 6 = SV^2 q / 6 (SA = SV^2) */
+        Q[5] = div_i_(qv, 3);
+        Q[6] = div_i_(qa, 2 * SV_);       /* SV SA q / 2 */
         Q[10] = qa;
     } else {
         /* white acceleration: q [[1/3, 1/2], [1/2, 1]] */
-        Q[0] = pft_div_i(qv, SV_ * SV_ * 3);
-        Q[1] = pft_div_i(qv, SV_ * 2);
+        Q[0] = div_i_(qv, SV_ * SV_ * 3);
+        Q[1] = div_i_(qv, SV_ * 2);
         Q[5] = qv;
     }
     Q[4] = Q[1];
@@ -1365,8 +1398,8 @@ static prior_rec_ prior_rec_of_(const pft_pte_t *p, uint32_t a, pft_real_t off)
  * (half_t2_, at most 737280000 < 2^30), stays inside the q16 range without saturating: with
  * exact sums dl_j = dl_0 + j dd and lc_j = lc_0 + sum_{i<j} dl_i, so for j <= n
  * |dl_j|, |lc_j| <= B = |lc_0| + n |dl_0| + n^2 |dd|; B < 2^30 keeps every partial sum and
- * lc_j + half_t2_ below 2^31 - 1 in magnitude (docs/fixed_point.md, "PTE-TBD direction
- * scan"). Then plain sums give the bits of pft_add. */
+ * lc_j + half_t2_ below 2^31 - 1 in magnitude (docs/fixed_point.md, "PTE-TBD Kalman algebra
+ * and square root"). Then plain sums give the bits of pft_add. */
 static inline bool prior_small_(const prior_rec_ *r, int32_t n)
 {
     const int64_t lc = r->lc < 0 ? -(int64_t)r->lc : (int64_t)r->lc;
@@ -1414,11 +1447,11 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     const pft_real_t lat = from_fix16_(p->lat_t);
     int32_t mult = 1;
     if (ap->dth > pft_mul(lat, PFT_C(2.5))) {
-        mult = pft_round_int(pft_div(ap->dth, lat));
+        mult = pft_round_int(div_(ap->dth, lat));
         mult = mult > 4096 ? 4096 : mult;
     }
     ap->dth = pft_mul_i(lat, mult);
-    g->dprior = pft_recip(pft_mul_i(pft_add(ap->stt, pft_div_i(pft_sq(ap->dth), 12)), 2));
+    g->dprior = recip_(pft_mul_i(pft_add(ap->stt, div_i_(pft_sq(ap->dth), 12)), 2));
     /* lattice point nearest to the predicted slope */
     const int64_t lt = p->lat_t;
     const int64_t num = 2 * fix16_(ap->zt) + lt;
@@ -1582,8 +1615,8 @@ static bool step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
      * not depend on the direction (dir_update_), once per step (after step_bank_, which sets
      * dth for TABLE); the float build forms them per direction (cheaper there: measured) */
     for (uint32_t a = 0; a < na; ++a) {
-        ap[a].r0c = pft_div_i(pft_sq(c->c_step), 12);
-        ap[a].r3c = pft_div_i(pft_sq(ap[a].dth), 12);
+        ap[a].r0c = div_i_(pft_sq(c->c_step), 12);
+        ap[a].r3c = div_i_(pft_sq(ap[a].dth), 12);
         ap[a].sw12 = pft_mul_i(ap[a].sw2, 12 * SV_ * SV_);
         ap[a].s00c = pft_sub(ap[a].sc2, pft_sq(c->sigma_r[a]));
     }
@@ -1796,7 +1829,7 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
                         const dir_slope_ *d, const dir_best_ *b, pft_pte_dir_t *out)
 {
     const pft_pte_axis_t *ap = p->scr->ap;
-    const pft_real_t itc = pft_recip(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
+    const pft_real_t itc = recip_(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
     memset(out->dx, 0, sizeof(out->dx));
     memset(out->K, 0, sizeof(out->K));
     for (uint32_t a = 0; a < p->naxes; ++a) {
@@ -1805,12 +1838,12 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
          * the latter scaled by SV^2 */
 #ifdef PFT_NUMERIC_Q16
         pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), x->r0c);
-        pft_real_t r3 = pft_add(x->r3c, pft_div_i(pft_mul(x->sw12, itc), g->mm));
+        pft_real_t r3 = pft_add(x->r3c, div_i_(pft_mul(x->sw12, itc), g->mm));
         pft_real_t s00 = pft_add(x->s00c, r0);
 #else
-        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(p->cfg.c_step), 12));
-        pft_real_t r3 = pft_add(pft_div_i(pft_sq(x->dth), 12),
-                                pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), div_i_(pft_sq(p->cfg.c_step), 12));
+        pft_real_t r3 = pft_add(div_i_(pft_sq(x->dth), 12),
+                                div_i_(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
         pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(p->cfg.sigma_r[a])), r0);
 #endif
         pft_real_t s11 = pft_add(x->stt, r3);
@@ -1836,7 +1869,7 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
     pft_real_t am = t->amp;
     pft_real_t av = t->amp_var;
     if (b->g > PFT_C(0.0)) {
-        pft_real_t inv = pft_recip(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
+        pft_real_t inv = recip_(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
         am = pft_add(am, pft_mul(pft_mul(av, pft_sub(b->e, pft_mul(am, b->g))), inv));
         av = pft_mul(av, inv);
     }
@@ -1884,7 +1917,7 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
                         : PFT_C(0.0);
         tot = pft_add(tot, dir[li].w);
     }
-    const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
+    const pft_real_t itot = recip_(tot); /* tot >= 1: the best direction's ssum */
     for (int32_t li = 0; li < ndir; ++li) {
         dir[li].w = pft_mul(dir[li].w, itot);
     }
