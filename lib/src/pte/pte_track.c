@@ -1409,6 +1409,20 @@ static inline bool prior_small_(const prior_rec_ *r, int32_t n)
 }
 #endif
 
+#ifdef PFT_NUMERIC_Q16
+/* prior_rec_of_ for the axis ap with c_step cs, given cs2 = cs^2 and its dd (the same
+ * expressions, so the same bits) */
+static inline prior_rec_ prior_rec_off_(const pft_pte_axis_t *ap, pft_real_t cs,
+                                        pft_real_t cs2, pft_real_t dd, pft_real_t off)
+{
+    prior_rec_ r;
+    r.lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    r.dd = dd;
+    r.dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), cs2), ap->lck));
+    return r;
+}
+#endif
+
 /* The log prior of every scan position of axis a into lc[a] (EXACT; TABLE runs the recurrence
  * inside the direction scan). */
 static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
@@ -2095,6 +2109,11 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     const bool mt = p->short_len > 0u && g.M > (int32_t)p->short_len;
     pft_real_t t2short = PFT_REAL_MIN;
     pft_real_t t2max = PFT_REAL_MIN;
+#ifdef PFT_NUMERIC_Q16
+    /* prior_rec_of_'s c_step^2 and dd of axis 0 (the same for every direction) */
+    const pft_real_t pcs2 = pft_sq(p->cfg.c_step);
+    const pft_real_t pdd = pft_neg(pft_mul_i(pft_mul(pcs2, s->ap[0].lck), 2));
+#endif
     for (int32_t li = 0; li < g.ndir; ++li) {
         if (p->yq > 0u && s->bok[li] == 0u) {
             /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
@@ -2115,7 +2134,12 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         if (p->yq > 0u) {
             /* TABLE: the scan positions of the direction's lines at this frame */
             c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
+#ifdef PFT_NUMERIC_Q16
+            /* prior_rec_of_ with its direction-independent terms formed once per step */
+            pr = prior_rec_off_(&s->ap[0], p->cfg.c_step, pcs2, pdd, s->boff[li]);
+#else
             pr = prior_rec_of_(p, 0u, s->boff[li]);
+#endif
             prp = &pr;
         }
         dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);
