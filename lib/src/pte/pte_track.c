@@ -107,7 +107,41 @@ static inline pft_real_t div_i_(pft_real_t a, int32_t k)
     const uint64_t d = (uint64_t)k;
     return sat_mag_(((uint64_t)umag_(a) + (d >> 1)) / d, a < 0);
 }
+
+/* pft_exp for -12 < x <= 0, inline: pft_real_q16.c's reduction (x = k ln 2 - r, ln 2 in
+ * Q48) and degree-11 Horner on the Q0.32 remainder, step for step, so the same bits; on this
+ * domain k <= 0, and neither the saturation above ln 32768 nor the cut below -13 applies. */
+static inline pft_real_t exp_neg_(pft_real_t x)
+{
+    static const uint64_t c[12] = {4294967296u, 4294967296u, 2147483648u, 715827883u,
+                                   178956971u,  35791394u,   5965232u,    852176u,
+                                   106522u,     11836u,      1184u,       108u};
+    const int64_t ln2 = (int64_t)195103586505167; /* ln 2 * 2^48 */
+    const int64_t xq = (int64_t)x * ((int64_t)1 << 32);
+    int64_t k = (((int64_t)x * (int64_t)1549082005) >> 46) + 1; /* 2^30 / ln 2 */
+    int64_t r = k * ln2 - xq;
+    for (int32_t i = 0; i < 2; ++i) {
+        if (r < 0) {
+            r += ln2;
+            ++k;
+        } else if (r >= ln2) {
+            r -= ln2;
+            --k;
+        } else {
+            /* r already in [0, ln 2) */
+        }
+    }
+    const uint32_t r32 = (uint32_t)((r + 32768) >> 16);
+    uint64_t e = c[11];
+    for (int32_t i = 10; i >= 0; --i) {
+        e = c[i] - ((e * r32 + 0x80000000u) >> 32);
+    }
+    const int32_t sh = 16 - (int32_t)k; /* >= 16 */
+    const uint64_t v = (e + ((uint64_t)1 << (sh - 1))) >> sh;
+    return v > (uint64_t)INT32_MAX ? PFT_REAL_MAX : (pft_real_t)v;
+}
 #else
+static inline pft_real_t exp_neg_(pft_real_t x) { return pft_exp(x); }
 static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
 static inline pft_real_t div_(pft_real_t a, pft_real_t b) { return pft_div(a, b); }
 static inline pft_real_t recip_(pft_real_t a) { return pft_recip(a); }
@@ -1808,7 +1842,9 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
         if (p->sL[j] > lcut) {
-            ssum = pft_add(ssum, j == r.jb ? PFT_C(1.0) : pft_exp(pft_sub(p->sL[j], lmax)));
+            /* lcut < sL[j] <= lmax: the difference is in (-12, 0] (pft_sub would not
+             * saturate) and ssum, at most nsc <= 33^2 terms of at most 1, stays below 2^27 */
+            ssum = ssum + (j == r.jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
         }
     }
     r.lmax = lmax;
@@ -1927,7 +1963,7 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
         /* the best direction: exp(0) = 1 exactly and 1 * ssum = ssum, without the calls */
         dir[li].w = dl > PFT_C(-12.0)
-                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(pft_exp(dl), p->dir[li].ssum))
+                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(exp_neg_(dl), p->dir[li].ssum))
                         : PFT_C(0.0);
         tot = pft_add(tot, dir[li].w);
     }
