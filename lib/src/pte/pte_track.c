@@ -374,10 +374,10 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
                 const int64_t z1 = zz[k + 1];
                 const int64_t z2 = zz[k + 2];
                 const int64_t z3 = zz[k + 3];
-                const int64_t r0 = z0 < 0 ? 32767 : 32768;
-                const int64_t r1 = z1 < 0 ? 32767 : 32768;
-                const int64_t r2 = z2 < 0 ? 32767 : 32768;
-                const int64_t r3 = z3 < 0 ? 32767 : 32768;
+                const int64_t r0 = z0 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r1 = z1 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r2 = z2 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r3 = z3 < 0 ? (int64_t)32767 : (int64_t)32768;
                 yy[4 * k] = mul_r_(w0[0], z0, r0) + mul_r_(w0[1], z1, r1) + mul_r_(w0[2], z2, r2) + mul_r_(w0[3], z3, r3);
                 yy[4 * k + 1] = mul_r_(w1[0], z0, r0) + mul_r_(w1[1], z1, r1) + mul_r_(w1[2], z2, r2) + mul_r_(w1[3], z3, r3);
                 yy[4 * k + 2] = mul_r_(w2[0], z0, r0) + mul_r_(w2[1], z1, r1) + mul_r_(w2[2], z2, r2) + mul_r_(w2[3], z3, r3);
