@@ -198,16 +198,17 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
     for (uint32_t u = 0; u < in->n_range; ++u) {
         uint32_t bits;
         memcpy(&bits, row + 4u * u, 4u);
-        const uint32_t ex = (bits >> 23) & 0xFFu;
+        /* sh - 1 = 133 - exponent, as an unsigned difference: above 133 (a wrapped one) for
+         * the pixels of 128 or more */
+        const uint32_t sh1 = 133u - ((bits >> 23) & 0xFFu);
         int64_t mag;
-        if (ex < 134u) {
+        if (sh1 <= 30u) {
             /* (mant + 2^(sh-1)) >> sh as ((mant >> (sh - 1)) + 1) >> 1 (sh >= 1): the same
              * floor((mant / 2^(sh-1) + 1) / 2), the dropped low bits never carrying into it */
-            uint32_t sh1 = 133u - ex;
-            sh1 = sh1 > 30u ? 30u : sh1;
             const uint32_t mant = (bits & 0x7FFFFFu) | 0x800000u;
-            const uint32_t m = ((mant >> sh1) + 1u) >> 1;
-            mag = (int64_t)m;
+            mag = (int64_t)(((mant >> sh1) + 1u) >> 1);
+        } else if (sh1 <= 133u) {
+            mag = 0; /* sh - 1 clamped to 30: ((mant >> 30) + 1) >> 1 = 0 (mant < 2^24) */
         } else {
             const pft_real_t v = f32_in_(row + 4u * u);
             mag = v < 0 ? -(int64_t)v : (int64_t)v;

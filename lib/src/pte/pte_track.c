@@ -44,15 +44,125 @@ static pft_real_t from_fix16_(int64_t v)
 #endif
 }
 
+/* ------------------------------------------------------------ square root */
+
+#ifdef PFT_NUMERIC_Q16
+/* pft_sqrt with the same bits in fewer steps: its digit-by-digit root starts at bit 2^46 and
+ * leaves root = 0 and n unchanged at every step whose bit is above n (n < root + bit), so
+ * the steps are started at the highest power of 4 not above n instead (at most 23 skipped,
+ * each a shift and a compare). docs/fixed_point.md, "PTE-TBD Kalman algebra and square root". */
+static pft_real_t sqrt_(pft_real_t a)
+{
+    uint64_t n;
+    uint64_t root = 0;
+    uint64_t bit = (uint64_t)1 << 46;
+    if (a <= 0) {
+        return 0;
+    }
+    n = (uint64_t)(uint32_t)a << 16; /* >= 2^16, so the first loop ends by bit 2^16 */
+    while (bit > n) {
+        bit >>= 2;
+    }
+    while (bit != 0u) { /* at most 24 steps, one result bit each, as pft_sqrt */
+        if (n >= root + bit) {
+            n -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    if (n > root) { /* round to nearest, as pft_sqrt */
+        ++root;
+    }
+    return (pft_real_t)root;
+}
+
+/* pft_div, pft_recip and pft_div_i of pft_real_q16.c written inline (the same magnitudes,
+ * rounded quotient, sign and saturation, so the same bits), without the calls: the track
+ * step divides about 20 times per step. */
+static inline pft_real_t sat_mag_(uint64_t mag, bool neg)
+{
+    if (mag > (uint64_t)INT32_MAX) {
+        return neg ? PFT_REAL_MIN : PFT_REAL_MAX;
+    }
+    return neg ? -(pft_real_t)mag : (pft_real_t)mag;
+}
+static inline uint32_t umag_(pft_real_t a) { return a < 0 ? 0u - (uint32_t)a : (uint32_t)a; }
+static inline pft_real_t div_(pft_real_t a, pft_real_t b)
+{
+    if (b == 0) {
+        return a > 0 ? PFT_REAL_MAX : (a < 0 ? PFT_REAL_MIN : 0);
+    }
+    const uint64_t n = (uint64_t)umag_(a) << 16;
+    const uint64_t d = umag_(b);
+    return sat_mag_((n + (d >> 1)) / d, (a < 0) != (b < 0));
+}
+static inline pft_real_t recip_(pft_real_t a) { return div_(PFT_REAL_ONE, a); }
+static inline pft_real_t div_i_(pft_real_t a, int32_t k)
+{
+    if (k <= 0) {
+        return div_(a, 0);
+    }
+    const uint64_t d = (uint64_t)k;
+    return sat_mag_(((uint64_t)umag_(a) + (d >> 1)) / d, a < 0);
+}
+
+/* pft_exp for -12 < x <= 0, inline: pft_real_q16.c's reduction (x = k ln 2 - r, ln 2 in
+ * Q48) and degree-11 Horner on the Q0.32 remainder, step for step, so the same bits; on this
+ * domain k <= 0, and neither the saturation above ln 32768 nor the cut below -13 applies. */
+static inline pft_real_t exp_neg_(pft_real_t x)
+{
+    static const uint64_t c[12] = {4294967296u, 4294967296u, 2147483648u, 715827883u,
+                                   178956971u,  35791394u,   5965232u,    852176u,
+                                   106522u,     11836u,      1184u,       108u};
+    const int64_t ln2 = (int64_t)195103586505167; /* ln 2 * 2^48 */
+    const int64_t xq = (int64_t)x * ((int64_t)1 << 32);
+    int64_t k = (((int64_t)x * (int64_t)1549082005) >> 46) + 1; /* 2^30 / ln 2 */
+    int64_t r = k * ln2 - xq;
+    for (int32_t i = 0; i < 2; ++i) {
+        if (r < 0) {
+            r += ln2;
+            ++k;
+        } else if (r >= ln2) {
+            r -= ln2;
+            --k;
+        } else {
+            /* r already in [0, ln 2) */
+        }
+    }
+    const uint32_t r32 = (uint32_t)((r + 32768) >> 16);
+    uint64_t e = c[11];
+    for (int32_t i = 10; i >= 0; --i) {
+        e = c[i] - ((e * r32 + 0x80000000u) >> 32);
+    }
+    const int32_t sh = 16 - (int32_t)k; /* >= 16 */
+    const uint64_t v = (e + ((uint64_t)1 << (sh - 1))) >> sh;
+    return v > (uint64_t)INT32_MAX ? PFT_REAL_MAX : (pft_real_t)v;
+}
+#else
+static inline pft_real_t exp_neg_(pft_real_t x) { return pft_exp(x); }
+static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
+static inline pft_real_t div_(pft_real_t a, pft_real_t b) { return pft_div(a, b); }
+static inline pft_real_t recip_(pft_real_t a) { return pft_recip(a); }
+static inline pft_real_t div_i_(pft_real_t a, int32_t k) { return pft_div_i(a, k); }
+#endif
+
 /* ------------------------------------------------------------ wide accumulation */
 
-/* Sums of products rounded once (q16: exact Q32.32 products in int64 with saturating sums;
- * float: float), for the small Kalman algebra of a track step. */
+/* Sums of products rounded once (q16: exact Q32.32 products in int64; float: float), for the
+ * small Kalman algebra of a track step. q16: aadd_ is a plain int64 sum. Every call site
+ * adds terms whose magnitudes are bounded so that no partial sum can reach 2^63 (operands
+ * are pft_real_t in [-INT32_MAX, INT32_MAX], so a product is below 2^62; the bound of each
+ * site is stated there and in docs/fixed_point.md, "PTE-TBD Kalman algebra and square
+ * root"): the same values as the saturating sum it replaces. aadd_sat_ saturates, for the one sum that has no
+ * such bound (the fusion's covariance start). */
 #ifdef PFT_NUMERIC_Q16
 typedef int64_t acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return (int64_t)a * b; }
 static inline acc_t afrom_(pft_real_t a) { return (int64_t)a * 65536; }
-static inline acc_t aadd_(acc_t x, acc_t y)
+static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline acc_t aadd_sat_(acc_t x, acc_t y)
 {
     if (y > 0 && x > INT64_MAX - y) {
         return INT64_MAX;
@@ -101,6 +211,12 @@ static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
      * rounding without a branch or select */
     return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
 }
+/* mul_nb_(w, z) for a weight w >= 0, with r = 32767 for z < 0 and 32768 otherwise: the
+ * product w z is negative only when z is (w > 0), and for w = 0 both terms round 0 to 0 */
+static inline pft_real_t mul_r_(pft_real_t w, int64_t z, int64_t r)
+{
+    return (pft_real_t)(((int64_t)w * z + r) >> 16);
+}
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
 static inline pft_real_t half_t2_(pft_real_t t2) { return (t2 + 1) >> 1; }
@@ -111,6 +227,7 @@ typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline acc_t afrom_(pft_real_t a) { return a; }
 static inline acc_t aadd_(acc_t x, acc_t y) { return x + y; }
+static inline acc_t aadd_sat_(acc_t x, acc_t y) { return x + y; }
 static inline pft_real_t ato_(acc_t v) { return v; }
 static inline pft_real_t adiv_(acc_t num, acc_t den) { return num / den; }
 static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
@@ -144,7 +261,7 @@ void pft_pte_ytable_setup_(pft_pte_t *p)
     }
     p->lat_t = (p->lat_u * SV_ + q / 2) / q;
     p->lat_t = p->lat_t < 1 ? 1 : p->lat_t;
-    pft_real_t inv = pft_recip(p->sigma_y);
+    pft_real_t inv = recip_(p->sigma_y);
     pft_real_t reach = pft_mul_i(p->sigma_y, 3);
     for (int32_t ph = 0; ph < q; ++ph) {
         pft_real_t f = pft_ratio(ph, q);
@@ -248,6 +365,25 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *w3 = p->ytap4_w[3];
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * 4;
+#ifdef PFT_NUMERIC_Q16
+            for (int32_t k = 0; k < c1 - cell; ++k) {
+                /* mul_nb_ with its rounding term taken from the sign of z: the tap weights are
+                 * >= 0, so the product's sign is z's (or it is 0, which rounds to 0 with either
+                 * term); the same bits with the term formed once per z instead of per product */
+                const int64_t z0 = zz[k];
+                const int64_t z1 = zz[k + 1];
+                const int64_t z2 = zz[k + 2];
+                const int64_t z3 = zz[k + 3];
+                const int64_t r0 = z0 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r1 = z1 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r2 = z2 < 0 ? (int64_t)32767 : (int64_t)32768;
+                const int64_t r3 = z3 < 0 ? (int64_t)32767 : (int64_t)32768;
+                yy[4 * k] = mul_r_(w0[0], z0, r0) + mul_r_(w0[1], z1, r1) + mul_r_(w0[2], z2, r2) + mul_r_(w0[3], z3, r3);
+                yy[4 * k + 1] = mul_r_(w1[0], z0, r0) + mul_r_(w1[1], z1, r1) + mul_r_(w1[2], z2, r2) + mul_r_(w1[3], z3, r3);
+                yy[4 * k + 2] = mul_r_(w2[0], z0, r0) + mul_r_(w2[1], z1, r1) + mul_r_(w2[2], z2, r2) + mul_r_(w2[3], z3, r3);
+                yy[4 * k + 3] = mul_r_(w3[0], z0, r0) + mul_r_(w3[1], z1, r1) + mul_r_(w3[2], z2, r2) + mul_r_(w3[3], z3, r3);
+            }
+#else
             for (int32_t k = 0; k < c1 - cell; ++k) {
                 const pft_real_t z0 = zz[k];
                 const pft_real_t z1 = zz[k + 1];
@@ -258,6 +394,7 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
                 yy[4 * k + 2] = mul_nb_(w2[0], z0) + mul_nb_(w2[1], z1) + mul_nb_(w2[2], z2) + mul_nb_(w2[3], z3);
                 yy[4 * k + 3] = mul_nb_(w3[0], z0) + mul_nb_(w3[1], z1) + mul_nb_(w3[2], z2) + mul_nb_(w3[3], z3);
             }
+#endif
             yflag_set_(p, slot, blk);
             return;
         }
@@ -329,27 +466,29 @@ static void axis_setup_(const pft_pte_t *p, const pft_real_t x[4], const pft_rea
     ap->stt = stt;
     pft_real_t sr2 = pft_sq(c->sigma_r[a]);
     ap->sw2 = pft_add(sr2, scc);
-    ap->sw = p->yq > 0u ? p->sigma_y : pft_min(pft_sqrt(ap->sw2), c->sigma_w_max);
+    ap->sw = p->yq > 0u ? p->sigma_y : pft_min(sqrt_(ap->sw2), c->sigma_w_max);
     ap->sw2 = pft_sq(ap->sw);
-    ap->inv_sw = pft_recip(ap->sw);
+    ap->inv_sw = recip_(ap->sw);
     ap->reach = pft_mul_i(ap->sw, 3);
     ap->L = (int32_t)c->n_dir[a];
     ap->dth = pft_mul_i(c->dtheta_min, SV_);
     if (ap->L > 1) {
-        ap->dth = pft_max(pft_div_i(pft_mul_i(pft_sqrt(stt), 4), ap->L - 1), ap->dth);
+        ap->dth = pft_max(div_i_(pft_mul_i(sqrt_(stt), 4), ap->L - 1), ap->dth);
     }
     /* dth^2 / (2 (S_tt + dth^2/12)) = 1 / (2 (S_tt/dth^2 + 1/12)) (scale-free) */
-    pft_real_t rho = pft_div(stt, pft_sq(ap->dth));
-    ap->prior_k = pft_recip(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
+    pft_real_t rho = div_(stt, pft_sq(ap->dth));
+    ap->prior_k = recip_(pft_mul_i(pft_add(rho, PFT_C(0.0833333333333)), 2));
     ap->sc2 = pft_add(scc, sr2);
-    ap->lck = pft_recip(pft_mul_i(ap->sc2, 2));
-    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' */
+    ap->lck = recip_(pft_mul_i(ap->sc2, 2));
+    /* P H' on the effective state [r, SV r', SA r''], and the off-diagonal of H P H' (q16
+     * plain sums: M <= PFT_PTE_MAX_FRAMES = 64, so |h2| <= 63 62 / 3072 and |h6| <= 63 16 /
+     * 512 are below 2 (2^17) and each sum is below 2^47 + 2^48) */
     for (uint32_t i = 0; i < 3u; ++i) {
         ap->pht[2u * i] = ato_(aadd_(afrom_(P[4u * i]), amul_(P[4u * i + 2u], h2)));
         ap->pht[2u * i + 1u] = ato_(aadd_(afrom_(P[4u * i + 1u]), amul_(P[4u * i + 2u], h6)));
     }
     ap->s01 = ato_(aadd_(afrom_(ap->pht[1]), amul_(h2, ap->pht[5])));
-    int32_t half = pft_floor_int(pft_div(pft_mul(c->scan_sigmas, pft_sqrt(ap->sc2)), c->c_step));
+    int32_t half = pft_floor_int(div_(pft_mul(c->scan_sigmas, sqrt_(ap->sc2)), c->c_step));
     if (half < 1) {
         half = 1;
     }
@@ -513,15 +652,15 @@ static void accum_1d_(const pft_pte_t *p, const pft_pte_axis_t *ap, int32_t R, p
 
 pft_real_t pft_pte_shift_(pft_real_t th, pft_real_t acc, int32_t tau)
 {
-    pft_real_t v = pft_div_i(pft_mul_i(th, tau), SV_);
-    pft_real_t q = pft_div_i(pft_mul_i(acc, tau * tau), 2 * SA_);
+    pft_real_t v = div_i_(pft_mul_i(th, tau), SV_);
+    pft_real_t q = div_i_(pft_mul_i(acc, tau * tau), 2 * SA_);
     return pft_sub(v, q);
 }
 
 /* Displacement of a straight operator path (scaled slope). */
 static pft_real_t line_shift_(pft_real_t th, int32_t tau)
 {
-    return pft_div_i(pft_mul_i(th, tau), SV_);
+    return div_i_(pft_mul_i(th, tau), SV_);
 }
 
 /* Transition and process noise of the scaled state (T = 1 frame). The noise intensity is
@@ -542,16 +681,16 @@ static void model_(const pft_pte_config_t *c, uint32_t a, pft_real_t F[16], pft_
         F[2] = pft_ratio(1, 2 * SA_);
         F[6] = pft_ratio(SV_, SA_);
         /* white jerk: q [[1/20, 1/8, 1/6], [1/8, 1/3, 1/2], [1/6, 1/2, 1]], scaled by S Q S */
-        Q[0] = pft_div_i(qv, SV_ * SV_ * 20);
-        Q[1] = pft_div_i(qv, SV_ * 8);
-        Q[2] = pft_div_i(qv, 6);             /* SA q / 6 = SV^2 q / 6 (SA = SV^2) */
-        Q[5] = pft_div_i(qv, 3);
-        Q[6] = pft_div_i(qa, 2 * SV_);       /* SV SA q / 2 */
+        Q[0] = div_i_(qv, SV_ * SV_ * 20);
+        Q[1] = div_i_(qv, SV_ * 8);
+        Q[2] = div_i_(qv, 6);             /* SA q / 6 = SV^2 q / 6 (SA = SV^2) */
+        Q[5] = div_i_(qv, 3);
+        Q[6] = div_i_(qa, 2 * SV_);       /* SV SA q / 2 */
         Q[10] = qa;
     } else {
         /* white acceleration: q [[1/3, 1/2], [1/2, 1]] */
-        Q[0] = pft_div_i(qv, SV_ * SV_ * 3);
-        Q[1] = pft_div_i(qv, SV_ * 2);
+        Q[0] = div_i_(qv, SV_ * SV_ * 3);
+        Q[1] = div_i_(qv, SV_ * 2);
         Q[5] = qv;
     }
     Q[4] = Q[1];
@@ -1229,7 +1368,8 @@ void pft_pte_model_setup_(pft_pte_t *p)
 }
 
 /* 1. Kalman prediction of the state (x = F x, P = F P F' + Q, products summed wide and
- * rounded once) and of the amplitude. */
+ * rounded once) and of the amplitude. q16 plain sums: every entry of F is at most 1 (2^16),
+ * so each product with F is below 2^47 and Q 2^16 below 2^47: sums of four stay below 2^49. */
 static inline void step_predict_(const pft_pte_t *p, pft_pte_track_t *t)
 {
     for (uint32_t a = 0; a < p->naxes; ++a) {
@@ -1287,6 +1427,36 @@ static prior_rec_ prior_rec_of_(const pft_pte_t *p, uint32_t a, pft_real_t off)
     return r;
 }
 
+#ifdef PFT_NUMERIC_Q16
+/* True when the recurrence of r over n steps, and each value plus half a squared statistic
+ * (half_t2_, at most 737280000 < 2^30), stays inside the q16 range without saturating: with
+ * exact sums dl_j = dl_0 + j dd and lc_j = lc_0 + sum_{i<j} dl_i, so for j <= n
+ * |dl_j|, |lc_j| <= B = |lc_0| + n |dl_0| + n^2 |dd|; B < 2^30 keeps every partial sum and
+ * lc_j + half_t2_ below 2^31 - 1 in magnitude (docs/fixed_point.md, "PTE-TBD Kalman algebra
+ * and square root"). Then plain sums give the bits of pft_add. */
+static inline bool prior_small_(const prior_rec_ *r, int32_t n)
+{
+    const int64_t lc = r->lc < 0 ? -(int64_t)r->lc : (int64_t)r->lc;
+    const int64_t dl = r->dl < 0 ? -(int64_t)r->dl : (int64_t)r->dl;
+    const int64_t dd = r->dd < 0 ? -(int64_t)r->dd : (int64_t)r->dd;
+    return lc + (int64_t)n * dl + (int64_t)n * n * dd < ((int64_t)1 << 30);
+}
+#endif
+
+#ifdef PFT_NUMERIC_Q16
+/* prior_rec_of_ for the axis ap with c_step cs, given cs2 = cs^2 and its dd (the same
+ * expressions, so the same bits) */
+static inline prior_rec_ prior_rec_off_(const pft_pte_axis_t *ap, pft_real_t cs,
+                                        pft_real_t cs2, pft_real_t dd, pft_real_t off)
+{
+    prior_rec_ r;
+    r.lc = pft_neg(pft_mul(pft_sq(off), ap->lck));
+    r.dd = dd;
+    r.dl = pft_neg(pft_mul(pft_add(pft_mul_i(pft_mul(off, cs), 2), cs2), ap->lck));
+    return r;
+}
+#endif
+
 /* The log prior of every scan position of axis a into lc[a] (EXACT; TABLE runs the recurrence
  * inside the direction scan). */
 static void scan_prior_(const pft_pte_t *p, uint32_t a, pft_real_t off)
@@ -1325,11 +1495,11 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     const pft_real_t lat = from_fix16_(p->lat_t);
     int32_t mult = 1;
     if (ap->dth > pft_mul(lat, PFT_C(2.5))) {
-        mult = pft_round_int(pft_div(ap->dth, lat));
+        mult = pft_round_int(div_(ap->dth, lat));
         mult = mult > 4096 ? 4096 : mult;
     }
     ap->dth = pft_mul_i(lat, mult);
-    g->dprior = pft_recip(pft_mul_i(pft_add(ap->stt, pft_div_i(pft_sq(ap->dth), 12)), 2));
+    g->dprior = recip_(pft_mul_i(pft_add(ap->stt, div_i_(pft_sq(ap->dth), 12)), 2));
     /* lattice point nearest to the predicted slope */
     const int64_t lt = p->lat_t;
     const int64_t num = 2 * fix16_(ap->zt) + lt;
@@ -1487,7 +1657,19 @@ static bool step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
     int32_t m1 = M > 1 ? M : 2;
     g->mm = m1 * m1 - 1;
     g->dprior = PFT_C(0.0);
-    return p->yq > 0u ? step_bank_(p, t, g) : true;
+    const bool ok = p->yq > 0u ? step_bank_(p, t, g) : true;
+#ifdef PFT_NUMERIC_Q16
+    /* q16: the terms of each direction's measurement noise and innovation covariance that do
+     * not depend on the direction (dir_update_), once per step (after step_bank_, which sets
+     * dth for TABLE); the float build forms them per direction (cheaper there: measured) */
+    for (uint32_t a = 0; a < na; ++a) {
+        ap[a].r0c = div_i_(pft_sq(c->c_step), 12);
+        ap[a].r3c = div_i_(pft_sq(ap[a].dth), 12);
+        ap[a].sw12 = pft_mul_i(ap[a].sw2, 12 * SV_ * SV_);
+        ap[a].s00c = pft_sub(ap[a].sc2, pft_sq(c->sigma_r[a]));
+    }
+#endif
+    return ok;
 }
 
 /* Slopes and log prior of direction li (index l0 + L0 l1). */
@@ -1601,15 +1783,32 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
          * scan_prior_; the Doppler term lc[1][0] is 0 and adding it changes no bit) */
         pft_real_t lc = pr->lc;
         pft_real_t dl = pr->dl;
-        for (int32_t j = 0; j < n0; ++j) {
-            pft_real_t t2 = sq_over_(E[j], G[j]);
-            pft_real_t ls = pft_add(lc, half_t2_(t2));
-            lc = pft_add(lc, dl);
-            dl = pft_add(dl, pr->dd);
-            p->sL[j] = ls;
-            if (ls > lmax) {
-                lmax = ls;
-                r.jb = j;
+#ifdef PFT_NUMERIC_Q16
+        if (prior_small_(pr, n0)) {
+            /* the same recurrence with plain sums: prior_small_ proves that no sum saturates */
+            for (int32_t j = 0; j < n0; ++j) {
+                const pft_real_t ls = lc + half_t2_(sq_over_(E[j], G[j]));
+                lc = lc + dl;
+                dl = dl + pr->dd;
+                p->sL[j] = ls;
+                if (ls > lmax) {
+                    lmax = ls;
+                    r.jb = j;
+                }
+            }
+        } else
+#endif
+        {
+            for (int32_t j = 0; j < n0; ++j) {
+                pft_real_t t2 = sq_over_(E[j], G[j]);
+                pft_real_t ls = pft_add(lc, half_t2_(t2));
+                lc = pft_add(lc, dl);
+                dl = pft_add(dl, pr->dd);
+                p->sL[j] = ls;
+                if (ls > lmax) {
+                    lmax = ls;
+                    r.jb = j;
+                }
             }
         }
     } else if (g->n1 == 1) {
@@ -1643,7 +1842,9 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
     const pft_real_t lcut = pft_sub(lmax, PFT_C(12.0));
     for (int32_t j = 0; j < g->nsc; ++j) {
         if (p->sL[j] > lcut) {
-            ssum = pft_add(ssum, j == r.jb ? PFT_C(1.0) : pft_exp(pft_sub(p->sL[j], lmax)));
+            /* lcut < sL[j] <= lmax: the difference is in (-12, 0] (pft_sub would not
+             * saturate) and ssum, at most nsc <= 33^2 terms of at most 1, stays below 2^27 */
+            ssum = ssum + (j == r.jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
         }
     }
     r.lmax = lmax;
@@ -1677,20 +1878,26 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
 static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step_geom_ *g,
                         const dir_slope_ *d, const dir_best_ *b, pft_pte_dir_t *out)
 {
-    const pft_pte_config_t *c = &p->cfg;
     const pft_pte_axis_t *ap = p->scr->ap;
-    const pft_real_t itc = pft_recip(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
+    const pft_real_t itc = recip_(pft_max(pft_abs(b->t2s), PFT_C(1.0)));
     memset(out->dx, 0, sizeof(out->dx));
     memset(out->K, 0, sizeof(out->K));
     for (uint32_t a = 0; a < p->naxes; ++a) {
         const pft_pte_axis_t *x = &ap[a];
         /* R: sigma_w^2 / T^2 + c_step^2 / 12 and dth^2 / 12 + 12 sigma_w^2 / ((M^2 - 1) T^2),
          * the latter scaled by SV^2 */
-        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), pft_div_i(pft_sq(c->c_step), 12));
-        pft_real_t r3 = pft_add(pft_div_i(pft_sq(x->dth), 12),
-                                pft_div_i(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
-        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(c->sigma_r[a])), r0);
+#ifdef PFT_NUMERIC_Q16
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), x->r0c);
+        pft_real_t r3 = pft_add(x->r3c, div_i_(pft_mul(x->sw12, itc), g->mm));
+        pft_real_t s00 = pft_add(x->s00c, r0);
+#else
+        pft_real_t r0 = pft_add(pft_mul(x->sw2, itc), div_i_(pft_sq(p->cfg.c_step), 12));
+        pft_real_t r3 = pft_add(div_i_(pft_sq(x->dth), 12),
+                                div_i_(pft_mul(pft_mul_i(x->sw2, 12 * SV_ * SV_), itc), g->mm));
+        pft_real_t s00 = pft_add(pft_sub(x->sc2, pft_sq(p->cfg.sigma_r[a])), r0);
+#endif
         pft_real_t s11 = pft_add(x->stt, r3);
+        /* q16 plain sums of two products, each below 2^62 in magnitude: below 2^63 */
         acc_t det = aadd_(amul_(s00, s11), -amul_(x->s01, x->s01));
         if (!(s00 > PFT_C(0.0)) || !(det > 0)) {
             continue;
@@ -1712,7 +1919,7 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
     pft_real_t am = t->amp;
     pft_real_t av = t->amp_var;
     if (b->g > PFT_C(0.0)) {
-        pft_real_t inv = pft_recip(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
+        pft_real_t inv = recip_(pft_add(pft_mul(av, b->g), PFT_C(1.0)));
         am = pft_add(am, pft_mul(pft_mul(av, pft_sub(b->e, pft_mul(am, b->g))), inv));
         av = pft_mul(av, inv);
     }
@@ -1721,6 +1928,19 @@ static void dir_update_(const pft_pte_t *p, const pft_pte_track_t *t, const step
     out->logw = pft_add(d->prior, b->lmax);
     out->ssum = b->ssum;
 }
+
+/* Start of covariance sum (i, j) of the fusion: P_ij - kw_i0 pht_j0 - kw_i1 pht_j1, summed
+ * saturating (the only wide sum of the track step without a bound on its terms). Reads the
+ * upper triangle of P only (j >= i). */
+#ifdef PFT_NUMERIC_Q16
+static inline acc_t fuse_start_(const pft_real_t *P, const pft_real_t kw[6],
+                                const pft_real_t pht[6], uint32_t i, uint32_t j)
+{
+    acc_t v = afrom_(P[4u * i + j]);
+    v = aadd_sat_(v, -amul_(kw[2u * i], pht[2u * j]));
+    return aadd_sat_(v, -amul_(kw[2u * i + 1u], pht[2u * j + 1u]));
+}
+#endif
 
 /* 6. Fusion of the directions with their normalised likelihoods W:
  * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
@@ -1743,14 +1963,18 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         pft_real_t dl = pft_sub(p->dir[li].logw, lx);
         /* the best direction: exp(0) = 1 exactly and 1 * ssum = ssum, without the calls */
         dir[li].w = dl > PFT_C(-12.0)
-                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(pft_exp(dl), p->dir[li].ssum))
+                        ? (dl == PFT_C(0.0) ? p->dir[li].ssum : pft_mul(exp_neg_(dl), p->dir[li].ssum))
                         : PFT_C(0.0);
         tot = pft_add(tot, dir[li].w);
     }
-    const pft_real_t itot = pft_recip(tot); /* tot >= 1: the best direction's ssum */
+    const pft_real_t itot = recip_(tot); /* tot >= 1: the best direction's ssum */
     for (int32_t li = 0; li < ndir; ++li) {
         dir[li].w = pft_mul(dir[li].w, itot);
     }
+    /* q16 bounds of the sums below: tot >= 2^16 (the best direction's ssum includes its exact
+     * 1), so itot <= 2^16; each w before the product is at most tot, so w <= (w tot^-1 2^32 +
+     * w / 2) / 2^16 + 1 < 2^17. A term w x of a pft_real_t x is then below 2^48, and a sum of
+     * at most PFT_PTE_MAX_DIRS^2 = 81 of them below 2^55: plain sums (aadd_). */
     for (uint32_t a = 0; a < na; ++a) {
         pft_real_t df[3];
         pft_real_t kw[6];
@@ -1773,16 +1997,26 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
             kw[i] = ato_(v9[3u + i]);
         }
         pft_real_t *P = t->P[a];
-        /* the six covariance sums (i, j >= i) in one pass over the directions, each started
-         * and summed as before; the deviations dx - dX once per direction (the same values);
-         * in v9[0..6) (its sums are read) */
+        /* the six covariance sums (i, j >= i) in one pass over the directions; the deviations
+         * dx - dX once per direction (the same values); in v9[0..6) (its sums are read).
+         * q16: the start P - kw pht has two products of unbounded pft_real_t values and is
+         * summed saturating (aadd_sat_); the terms of the directions (below 2^55 in all, see
+         * above) are summed plain from 0 and added to the start once, at the end. The same
+         * value after ato_ as adding them to the start one at a time with saturation: when
+         * |start| < 2^62 nothing saturates either way (|partial sums| < 2^62 + 2^55);
+         * otherwise both sums keep the start's sign and a magnitude above 2^61, which ato_
+         * saturates alike. float: the terms added to the start one at a time, as before. */
         acc_t *vp = v9;
         uint32_t k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
+#ifdef PFT_NUMERIC_Q16
+                vp[k] = 0;
+#else
                 acc_t v = afrom_(P[4u * i + j]);
                 v = aadd_(v, -amul_(kw[2u * i], ap[a].pht[2u * j]));
                 vp[k] = aadd_(v, -amul_(kw[2u * i + 1u], ap[a].pht[2u * j + 1u]));
+#endif
                 k++;
             }
         }
@@ -1803,7 +2037,11 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         k = 0u;
         for (uint32_t i = 0; i < 3u; ++i) {
             for (uint32_t j = i; j < 3u; ++j) {
+#ifdef PFT_NUMERIC_Q16
+                P[4u * i + j] = ato_(aadd_sat_(fuse_start_(P, kw, ap[a].pht, i, j), vp[k]));
+#else
                 P[4u * i + j] = ato_(vp[k]);
+#endif
                 P[4u * j + i] = P[4u * i + j];
                 k++;
             }
@@ -1851,7 +2089,7 @@ static void step_maintain_(const pft_pte_t *p, pft_pte_track_t *t, pft_real_t tm
 /* Signed T from a signed T^2. */
 static pft_real_t signed_t_(pft_real_t t2s)
 {
-    pft_real_t v = pft_sqrt(pft_abs(t2s));
+    pft_real_t v = sqrt_(pft_abs(t2s));
     return t2s < PFT_C(0.0) ? pft_neg(v) : v;
 }
 
@@ -1907,6 +2145,11 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     const bool mt = p->short_len > 0u && g.M > (int32_t)p->short_len;
     pft_real_t t2short = PFT_REAL_MIN;
     pft_real_t t2max = PFT_REAL_MIN;
+#ifdef PFT_NUMERIC_Q16
+    /* prior_rec_of_'s c_step^2 and dd of axis 0 (the same for every direction) */
+    const pft_real_t pcs2 = pft_sq(p->cfg.c_step);
+    const pft_real_t pdd = pft_neg(pft_mul_i(pft_mul(pcs2, s->ap[0].lck), 2));
+#endif
     for (int32_t li = 0; li < g.ndir; ++li) {
         if (p->yq > 0u && s->bok[li] == 0u) {
             /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
@@ -1927,7 +2170,12 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
         if (p->yq > 0u) {
             /* TABLE: the scan positions of the direction's lines at this frame */
             c0[0] = pft_add(s->ap[0].zc, s->boff[li]);
+#ifdef PFT_NUMERIC_Q16
+            /* prior_rec_of_ with its direction-independent terms formed once per step */
+            pr = prior_rec_off_(&s->ap[0], p->cfg.c_step, pcs2, pdd, s->boff[li]);
+#else
             pr = prior_rec_of_(p, 0u, s->boff[li]);
+#endif
             prp = &pr;
         }
         dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);

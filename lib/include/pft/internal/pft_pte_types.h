@@ -83,6 +83,10 @@ typedef struct {
     pft_real_t pht[6];                 /* P H', 3 x 2 row-major (effective state) */
     pft_real_t s01;                    /* H P H' off-diagonal (the diagonal: sc2 - sigma_r^2, stt) */
     pft_real_t lck;                    /* 1 / (2 sc2): scan-position log prior per d^2 */
+    pft_real_t r0c, r3c;               /* c_step^2 / 12 and dth^2 / 12: the constant terms of
+                                          a direction's measurement noise R (per step) */
+    pft_real_t sw12;                   /* 12 SV^2 sigma_w^2 (per step) */
+    pft_real_t s00c;                   /* sc2 - sigma_r^2, the first diagonal of H P H' */
     int32_t ns;                        /* scan positions */
     int32_t L;                         /* directions */
     int32_t ncell;                     /* cells along the axis */
