@@ -16,12 +16,11 @@
 #include <string.h>
 
 #include "pft/pft_real.h"
+#include "q16_int.h"
 
 #ifdef PFT_NUMERIC_Q16
 
 /* ---- constants (each rounded to nearest at the stated scale) ---- */
-#define PFT_LN2_Q48_ ((int64_t)195103586505167)    /* ln 2 * 2^48 */
-#define PFT_INV_LN2_Q30_ ((int64_t)1549082005)     /* 2^30 / ln 2 */
 #define PFT_LN2_Q47_ ((int64_t)97551793252584)     /* ln 2 * 2^47 */
 #define PFT_SQRT2_Q32_ ((uint64_t)6074001000u)     /* sqrt 2 * 2^32 */
 #define PFT_PI_Q29_ ((int64_t)1686629713)          /* pi * 2^29 */
@@ -34,42 +33,14 @@
 #define PFT_HALF_PI_Q16_ ((pft_real_t)102944)
 #define PFT_P32_ ((uint64_t)1 << 32)
 
-/* Magnitude of an int32 as uint32 (INT32_MIN -> 2^31, no overflow). */
-static uint32_t pft_umag_(int32_t a)
-{
-    return a < 0 ? 0u - (uint32_t)a : (uint32_t)a;
-}
-
-/* Saturating signed result from a magnitude and a sign. */
-static pft_real_t pft_signed_sat_(uint64_t mag, bool neg)
-{
-    if (mag > (uint64_t)INT32_MAX) {
-        return neg ? PFT_REAL_MIN : PFT_REAL_MAX;
-    }
-    return neg ? -(pft_real_t)mag : (pft_real_t)mag;
-}
-
 pft_real_t pft_div(pft_real_t a, pft_real_t b)
 {
-    uint64_t n, d;
-    if (b == 0) {
-        return a > 0 ? PFT_REAL_MAX : (a < 0 ? PFT_REAL_MIN : 0);
-    }
-    n = (uint64_t)pft_umag_(a) << 16; /* < 2^48 */
-    d = pft_umag_(b);
-    /* round to nearest, ties away from zero (applied to the magnitude) */
-    return pft_signed_sat_((n + (d >> 1)) / d, (a < 0) != (b < 0));
+    return pft_q16_div_(a, b); /* round to nearest, ties away from zero; q16_int.h */
 }
 
 pft_real_t pft_div_i(pft_real_t a, int32_t k)
 {
-    uint64_t n, d;
-    if (k <= 0) {
-        return pft_div(a, 0);
-    }
-    n = pft_umag_(a);
-    d = (uint64_t)k;
-    return pft_signed_sat_((n + (d >> 1)) / d, a < 0);
+    return pft_q16_div_i_(a, k);
 }
 
 pft_real_t pft_recip(pft_real_t a)
@@ -79,81 +50,19 @@ pft_real_t pft_recip(pft_real_t a)
 
 pft_real_t pft_sqrt(pft_real_t a)
 {
-    uint64_t n, root = 0, bit = (uint64_t)1 << 46;
-    int i;
-    if (a <= 0) {
-        return 0;
-    }
-    n = (uint64_t)(uint32_t)a << 16; /* a in Q32: sqrt of it is Q16 */
-    /* digit-by-digit integer square root: 24 result bits, one per step */
-    for (i = 0; i < 24; ++i) {
-        if (n >= root + bit) {
-            n -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    /* root = floor(sqrt(N)), n = N - root^2; round up iff N > root^2 + root */
-    if (n > root) {
-        ++root;
-    }
-    return (pft_real_t)root;
-}
-
-/* exp(-r) for r in [0, ln 2], r in Q0.32; result in Q0.32, in [2^31, 2^32].
- * Taylor to degree 11 (remainder < 2.6e-11), Horner with rounding, all terms positive. */
-static uint64_t pft_expneg_q32_(uint32_t r)
-{
-    static const uint64_t c[12] = {4294967296u, 4294967296u, 2147483648u, 715827883u,
-                                   178956971u,  35791394u,   5965232u,    852176u,
-                                   106522u,     11836u,      1184u,       108u};
-    uint64_t p = c[11];
-    int i;
-    for (i = 10; i >= 0; --i) {
-        p = c[i] - ((p * r + 0x80000000u) >> 32);
-    }
-    return p;
-}
-
-/* Splits x (Q16.16) as x = k ln2 - r with r in [0, ln 2); returns k, r in Q0.32 (rounded). */
-static int32_t pft_exp_split_(pft_real_t x, uint32_t *r32)
-{
-    int64_t xq = (int64_t)x * (int64_t)PFT_P32_; /* x in Q48, exact */
-    int64_t k = (((int64_t)x * PFT_INV_LN2_Q30_) >> 46) + 1; /* ceil(x / ln2), +-1 */
-    int64_t r = k * PFT_LN2_Q48_ - xq;
-    int i;
-    for (i = 0; i < 2; ++i) {
-        if (r < 0) {
-            r += PFT_LN2_Q48_;
-            ++k;
-        } else if (r >= PFT_LN2_Q48_) {
-            r -= PFT_LN2_Q48_;
-            --k;
-        } else {
-            /* r already in [0, ln 2) */
-        }
-    }
-    *r32 = (uint32_t)((r + 32768) >> 16);
-    return (int32_t)k;
+    return pft_q16_sqrt_(a); /* digit by digit, rounded to nearest; q16_int.h */
 }
 
 pft_real_t pft_exp(pft_real_t x)
 {
-    uint32_t r;
-    int32_t k, s;
-    uint64_t e, v;
+    uint64_t v;
     if (x >= (pft_real_t)681392) { /* 15 ln2 = ln 32768 = 681391.6 LSB */
         return PFT_REAL_MAX;
     }
     if (x < -(pft_real_t)(13 * 65536)) { /* exp < 2.3e-6 = 0.15 LSB */
         return 0;
     }
-    k = pft_exp_split_(x, &r); /* -18 <= k <= 15 */
-    e = pft_expneg_q32_(r);   /* exp(x) = e * 2^(k - 32) */
-    s = 16 - k;               /* Q32 -> Q16 with the 2^k factor: shift right by s >= 1 */
-    v = (e + ((uint64_t)1 << (s - 1))) >> s;
+    v = pft_q16_exp_core_(x); /* -18 <= k <= 15 */
     return v > (uint64_t)INT32_MAX ? PFT_REAL_MAX : (pft_real_t)v;
 }
 
@@ -168,8 +77,8 @@ pft_weight_t pft_wexp(pft_real_t x)
     if (x < -(pft_real_t)(23 * 65536)) { /* exp < 1.1e-10 = 0.11 LSB of Q2.30 */
         return 0;
     }
-    k = pft_exp_split_(x, &r); /* -33 <= k <= 0 */
-    e = pft_expneg_q32_(r);
+    k = pft_q16_exp_split_(x, &r); /* -33 <= k <= 0 */
+    e = pft_q16_expneg_q32_(r);
     s = 2 - k; /* Q32 * 2^k -> Q30 */
     return (pft_weight_t)((e + ((uint64_t)1 << (s - 1))) >> s);
 }
@@ -379,7 +288,7 @@ pft_real_t pft_from_f32(float v)
     } else {
         mag = 0;
     }
-    return pft_signed_sat_(mag, (bits >> 31) != 0);
+    return pft_q16_signed_sat_(mag, (bits >> 31) != 0);
 }
 
 #else /* PFT_NUMERIC_FLOAT */

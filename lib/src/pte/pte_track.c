@@ -3,6 +3,7 @@
  * TABLE responses), direction likelihoods, per-direction Kalman updates, fusion, detection
  * and maintenance. */
 #include "pte_int.h"
+#include "../core/q16_int.h"
 
 #define SV_ PFT_PTE_SV_
 #define SA_ PFT_PTE_SA_
@@ -44,102 +45,20 @@ static pft_real_t from_fix16_(int64_t v)
 #endif
 }
 
-/* ------------------------------------------------------------ square root */
+/* ------------------------------------------------------------ square root, divisions, exp */
 
 #ifdef PFT_NUMERIC_Q16
-/* pft_sqrt with the same bits in fewer steps: its digit-by-digit root starts at bit 2^46 and
- * leaves root = 0 and n unchanged at every step whose bit is above n (n < root + bit), so
- * the steps are started at the highest power of 4 not above n instead (at most 23 skipped,
- * each a shift and a compare). docs/fixed_point.md, "PTE-TBD Kalman algebra and square root". */
-static pft_real_t sqrt_(pft_real_t a)
-{
-    uint64_t n;
-    uint64_t root = 0;
-    uint64_t bit = (uint64_t)1 << 46;
-    if (a <= 0) {
-        return 0;
-    }
-    n = (uint64_t)(uint32_t)a << 16; /* >= 2^16, so the first loop ends by bit 2^16 */
-    while (bit > n) {
-        bit >>= 2;
-    }
-    while (bit != 0u) { /* at most 24 steps, one result bit each, as pft_sqrt */
-        if (n >= root + bit) {
-            n -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    if (n > root) { /* round to nearest, as pft_sqrt */
-        ++root;
-    }
-    return (pft_real_t)root;
-}
-
-/* pft_div, pft_recip and pft_div_i of pft_real_q16.c written inline (the same magnitudes,
- * rounded quotient, sign and saturation, so the same bits), without the calls: the track
- * step divides about 20 times per step. */
-static inline pft_real_t sat_mag_(uint64_t mag, bool neg)
-{
-    if (mag > (uint64_t)INT32_MAX) {
-        return neg ? PFT_REAL_MIN : PFT_REAL_MAX;
-    }
-    return neg ? -(pft_real_t)mag : (pft_real_t)mag;
-}
-static inline uint32_t umag_(pft_real_t a) { return a < 0 ? 0u - (uint32_t)a : (uint32_t)a; }
-static inline pft_real_t div_(pft_real_t a, pft_real_t b)
-{
-    if (b == 0) {
-        return a > 0 ? PFT_REAL_MAX : (a < 0 ? PFT_REAL_MIN : 0);
-    }
-    const uint64_t n = (uint64_t)umag_(a) << 16;
-    const uint64_t d = umag_(b);
-    return sat_mag_((n + (d >> 1)) / d, (a < 0) != (b < 0));
-}
-static inline pft_real_t recip_(pft_real_t a) { return div_(PFT_REAL_ONE, a); }
-static inline pft_real_t div_i_(pft_real_t a, int32_t k)
-{
-    if (k <= 0) {
-        return div_(a, 0);
-    }
-    const uint64_t d = (uint64_t)k;
-    return sat_mag_(((uint64_t)umag_(a) + (d >> 1)) / d, a < 0);
-}
-
-/* pft_exp for -12 < x <= 0, inline: pft_real_q16.c's reduction (x = k ln 2 - r, ln 2 in
- * Q48) and degree-11 Horner on the Q0.32 remainder, step for step, so the same bits; on this
- * domain k <= 0, and neither the saturation above ln 32768 nor the cut below -13 applies. */
-static inline pft_real_t exp_neg_(pft_real_t x)
-{
-    static const uint64_t c[12] = {4294967296u, 4294967296u, 2147483648u, 715827883u,
-                                   178956971u,  35791394u,   5965232u,    852176u,
-                                   106522u,     11836u,      1184u,       108u};
-    const int64_t ln2 = (int64_t)195103586505167; /* ln 2 * 2^48 */
-    const int64_t xq = (int64_t)x * ((int64_t)1 << 32);
-    int64_t k = (((int64_t)x * (int64_t)1549082005) >> 46) + 1; /* 2^30 / ln 2 */
-    int64_t r = k * ln2 - xq;
-    for (int32_t i = 0; i < 2; ++i) {
-        if (r < 0) {
-            r += ln2;
-            ++k;
-        } else if (r >= ln2) {
-            r -= ln2;
-            --k;
-        } else {
-            /* r already in [0, ln 2) */
-        }
-    }
-    const uint32_t r32 = (uint32_t)((r + 32768) >> 16);
-    uint64_t e = c[11];
-    for (int32_t i = 10; i >= 0; --i) {
-        e = c[i] - ((e * r32 + 0x80000000u) >> 32);
-    }
-    const int32_t sh = 16 - (int32_t)k; /* >= 16 */
-    const uint64_t v = (e + ((uint64_t)1 << (sh - 1))) >> sh;
-    return v > (uint64_t)INT32_MAX ? PFT_REAL_MAX : (pft_real_t)v;
-}
+/* The number layer's q16 kernels inline (lib/src/core/q16_int.h: the same bits as pft_sqrt,
+ * pft_div, pft_recip, pft_div_i and pft_exp, without the calls): the track step divides about
+ * 20 times per step and takes a square root and exps per direction. docs/fixed_point.md,
+ * "PTE-TBD Kalman algebra and square root". */
+static inline pft_real_t sqrt_(pft_real_t a) { return pft_q16_sqrt_(a); }
+static inline pft_real_t div_(pft_real_t a, pft_real_t b) { return pft_q16_div_(a, b); }
+static inline pft_real_t recip_(pft_real_t a) { return pft_q16_div_(PFT_REAL_ONE, a); }
+static inline pft_real_t div_i_(pft_real_t a, int32_t k) { return pft_q16_div_i_(a, k); }
+/* pft_exp for -12 < x <= 0: k <= 0 there, so neither pft_exp's saturation above ln 32768 nor
+ * its cut below -13 applies and the result fits. */
+static inline pft_real_t exp_neg_(pft_real_t x) { return (pft_real_t)pft_q16_exp_core_(x); }
 #else
 static inline pft_real_t exp_neg_(pft_real_t x) { return pft_exp(x); }
 static inline pft_real_t sqrt_(pft_real_t a) { return pft_sqrt(a); }
