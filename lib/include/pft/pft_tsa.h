@@ -227,6 +227,19 @@ typedef struct {
      *  so 0.9 needed two good frames in a row; 0.86 re-acquired a background patch;
      *  docs/results/tsa_ak.md) */
     pft_real_t rho_acquire;
+    /** background-weighted target model [E] (docs/algorithms.md 4.3): 0 = off (default: the
+     *  paper's template); else 1 < bg_ring <= 8, the scale of a box around the kernel's box
+     *  (its width and height times bg_ring, the same centre): whenever the template is built
+     *  (start, template update), the unit-weight histogram o of the ring between the two boxes
+     *  (clipped to the frame) weighs each template bin u by v_u = min(o* / o_u, 1), o* the
+     *  smallest nonzero bin of o in that channel (1 where o_u = 0), and each channel is
+     *  renormalised to the template's total; the same under every gain of gain_select (the
+     *  ring read under that gain). Candidates are not weighted. Every rho the tracker uses
+     *  (weights, rho_min, rho_acquire, the reported rho) is multiplied by 1 / rho0, rho0 the
+     *  weighted template's similarity to the unweighted histogram it was built from (at most
+     *  16 times; not clamped, so it can exceed 1): the target as first seen scores 1. Colours
+     *  the target shares with its surroundings count less in rho (docs/algorithms.md 4.3) */
+    pft_real_t bg_ring;
     pft_real_t search_growth;     /**< px per frame (default 16) [A] */
     pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
     /** margin (px) of the per-frame code map around the largest target box: the map holds
