@@ -56,7 +56,7 @@ static void render(void)
 }
 
 /* Starts a tracker with bg_ring ring on the target's box; its template, kernel and origin. */
-static void start(double ring, pft_tsa_hist_t *q, pft_tsa_kernel_t *k, int *ox, int *oy)
+static void start(double ring, double alpha, pft_tsa_hist_t *q, pft_tsa_kernel_t *k, int *ox, int *oy)
 {
     k->pix = kpix[ring > 0.0 ? 1 : 0];
     k->cap = MAXT * MAXT;
@@ -70,6 +70,7 @@ static void start(double ring, pft_tsa_hist_t *q, pft_tsa_kernel_t *k, int *ox, 
     c.snake_points = PTS;
     c.init_passes = 0; /* the kernel is the given box */
     c.bg_ring = pft_from_f32((float)ring);
+    c.bg_alpha = pft_from_f32((float)alpha);
     pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     render();
@@ -97,8 +98,8 @@ static void test_shared_colour_weighs_less(void)
     pft_tsa_hist_t q0, q;
     pft_tsa_kernel_t k0, k;
     int ox0, oy0, ox, oy;
-    start(0.0, &q0, &k0, &ox0, &oy0);
-    start(3.0, &q, &k, &ox, &oy);
+    start(0.0, 1.0, &q0, &k0, &ox0, &oy0);
+    start(3.0, 1.0, &q, &k, &ox, &oy);
     /* the same kernel at the same place: only the weighting differs */
     TEST_ASSERT_EQUAL_INT(ox0, ox);
     TEST_ASSERT_EQUAL_INT(oy0, oy);
@@ -164,6 +165,29 @@ static void test_shared_colour_weighs_less(void)
                      pft_to_float(pft_tsa_bhattacharyya(&pa, &q)));
 }
 
+/* bg_alpha 0.5: half the weighted template, half the unweighted one, bin by bin */
+static void test_alpha_mixes(void)
+{
+    pft_tsa_hist_t q0, q1, qh;
+    pft_tsa_kernel_t k;
+    int ox, oy;
+    start(0.0, 1.0, &q0, &k, &ox, &oy);
+    start(3.0, 1.0, &q1, &k, &ox, &oy);
+    start(3.0, 0.5, &qh, &k, &ox, &oy);
+    uint32_t sum[3] = {0u, 0u, 0u};
+    for (int u = 0; u < 30; ++u) {
+        /* tolerance: the mix of the two integer bins is rounded down (< 1) and the channel's
+         * rounding remainder (< 10 units, one per bin) goes to one bin */
+        TEST_ASSERT_DOUBLE_WITHIN(11.0, 0.5 * ((double)q0.bin[u] + (double)q1.bin[u]),
+                                  (double)qh.bin[u]);
+        sum[u / 10] += qh.bin[u];
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+        TEST_ASSERT_EQUAL_UINT32(qh.total, sum[ch]);
+    }
+    TEST_ASSERT_TRUE(qh.bin[bin_a(0)] < q0.bin[bin_a(0)] && qh.bin[bin_a(0)] > q1.bin[bin_a(0)]);
+}
+
 static void test_config_range(void)
 {
     pft_tsa_config_t c;
@@ -178,6 +202,14 @@ static void test_config_range(void)
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
         TEST_ASSERT_EQUAL_STRING("bg_ring", field);
     }
+    c.bg_ring = pft_from_f32(2.0f);
+    const float bad_alpha[] = {0.0f, -0.5f, 1.5f};
+    for (unsigned i = 0; i < sizeof bad_alpha / sizeof bad_alpha[0]; ++i) {
+        c.bg_alpha = pft_from_f32(bad_alpha[i]);
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tsa_config_check(&c, &field));
+        TEST_ASSERT_EQUAL_STRING("bg_alpha", field);
+    }
+    c.bg_alpha = PFT_REAL_ONE;
     c.bg_ring = pft_from_f32(2.5f);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_config_check(&c, &field));
     c.bg_ring = pft_from_f32(8.0f);
@@ -188,6 +220,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_shared_colour_weighs_less);
+    RUN_TEST(test_alpha_mixes);
     RUN_TEST(test_config_range);
     return UNITY_END();
 }

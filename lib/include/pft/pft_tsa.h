@@ -240,6 +240,11 @@ typedef struct {
      *  16 times; not clamped, so it can exceed 1): the target as first seen scores 1. Colours
      *  the target shares with its surroundings count less in rho (docs/algorithms.md 4.3) */
     pft_real_t bg_ring;
+    /** bg_ring > 0: the share of the weighted template in the one used, 0 < bg_alpha <= 1
+     *  (default 1: the weighted template alone); the rest is the unweighted template (bin by
+     *  bin, alpha v_u q_u renormalised + (1 - alpha) q_u), which keeps the target's whole
+     *  colour distribution in the model beside its distinctive colours [E] */
+    pft_real_t bg_alpha;
     pft_real_t search_growth;     /**< px per frame (default 16) [A] */
     pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
     /** margin (px) of the per-frame code map around the largest target box: the map holds

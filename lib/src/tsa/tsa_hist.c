@@ -121,7 +121,7 @@ void pft_tsa_ring_hist_(const pft_frame_t *frame, const pft_tsa_box_t_ *in, int3
     }
 }
 
-void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o)
+void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o, uint32_t a16)
 {
     for (uint32_t c = 0; c < 3u; ++c) {
         uint32_t *qb = &q->bin[10u * c];
@@ -151,7 +151,9 @@ void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o)
          * assumes); the remainder of the rounding goes to the largest bin */
         uint32_t acc = 0u;
         for (uint32_t u = 0; u < 10u; ++u) {
-            qb[u] = (uint32_t)(((uint64_t)wb[u] * q->total) / wsum);
+            const uint64_t wq = ((uint64_t)wb[u] * q->total) / wsum;
+            /* a16 / 65536 of the weighted bin, the rest of the unweighted one */
+            qb[u] = (uint32_t)((wq * a16 + (uint64_t)qb[u] * (65536u - a16)) >> 16);
             acc += qb[u];
         }
         qb[umax] += q->total - acc;

@@ -359,6 +359,7 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     const pft_real_t grow = pft_sub(t->cfg.bg_ring, PFT_REAL_ONE);
     const int32_t mx = bg ? pft_round_int(pft_mul_i(grow, kb.x1 - kb.x0 + 1)) / 2 : 0;
     const int32_t my = bg ? pft_round_int(pft_mul_i(grow, kb.y1 - kb.y0 + 1)) / 2 : 0;
+    const uint32_t a16 = (uint32_t)pft_tsa_q16_(t->cfg.bg_alpha); /* 1..65536 (checked) */
     /* the template under each gain of the bank (unity first: hq itself, gain 256/256 leaves
      * every value as it is; then each gain's histogram in hq); with bg_ring each weighted by its
      * ring under the same gain (t->h is the ring's scratch) and its similarities scaled by
@@ -372,7 +373,7 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
         t->qg_scale[g] = PFT_REAL_ONE;
         if (bg) {
             pft_tsa_ring_hist_(f, &kb, mx, my, gain_q8_(g), &t->h);
-            pft_tsa_bg_weight_(&t->qg[g], &t->h);
+            pft_tsa_bg_weight_(&t->qg[g], &t->h, a16);
         }
         pft_tsa_hroot_(&t->qg[g], &t->qg_root[g]);
         if (bg) {
