@@ -438,6 +438,7 @@ std::unique_ptr<Tracker> make_tracker(const std::string &label, const PftParams 
         p.set["loss_search"] = 0;
         p.set["gain_select"] = 0;
         p.set["init_passes"] = 50;
+        p.set["bg_ring"] = 0;
     } else {
         auto t = name == label ? make_cv_tracker(name) : nullptr;
         if (!t)

@@ -43,8 +43,8 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->loss_search = true;
     cfg->gain_select = true;
     cfg->rho_acquire = PFT_C(0.88);
-    cfg->bg_ring = PFT_C(0.0);
-    cfg->bg_alpha = PFT_REAL_ONE;
+    cfg->bg_ring = PFT_C(2.5);
+    cfg->bg_alpha = PFT_C(0.5);
     cfg->search_growth = PFT_C(16.0);
     cfg->reacq_radius = PFT_C(24.0);
     cfg->map_margin = 48u;

@@ -1269,6 +1269,10 @@ pft_status_t pft_tsa_estimate(const pft_tsa_t *t, pft_tsa_estimate_t *out)
         return PFT_ERR_INVAL;
     }
     *out = t->est;
+    /* bg_ring scales the similarities the tracker uses by 1 / rho0 (rho_scaled_): reported at
+     * most 1, as the coefficient itself */
+    out->rho = pft_min(out->rho, PFT_REAL_ONE);
+    out->rho_pioneer = pft_min(out->rho_pioneer, PFT_REAL_ONE);
     return PFT_OK;
 }
 
@@ -1283,7 +1287,7 @@ size_t pft_tsa_particles(const pft_tsa_t *t, pft_tsa_particle_t *out, size_t max
         for (size_t i = 0; i < m; ++i) {
             out[i].x = t->px[i];
             out[i].y = t->py[i];
-            out[i].rho = t->rho[i];
+            out[i].rho = t->rho[i]; /* as weighed: with bg_ring scaled, up to 16 */
         }
     }
     return n;
