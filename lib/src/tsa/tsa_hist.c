@@ -150,7 +150,7 @@ void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o, uint32_t a16
         /* renormalised to the total (the bins of a channel sum to total, as pft_tsa_rho_hist_
          * assumes); the remainder of the rounding goes to the largest bin */
         uint32_t acc = 0u;
-        const uint64_t rest = 65536u - a16;
+        const uint32_t rest = 65536u - a16;
         for (uint32_t u = 0; u < 10u; ++u) {
             const uint64_t wq = ((uint64_t)wb[u] * q->total) / wsum;
             /* a16 / 65536 of the weighted bin, the rest of the unweighted one */
