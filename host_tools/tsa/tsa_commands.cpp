@@ -1088,12 +1088,14 @@ private:
     static std::vector<std::string> usable(const std::vector<std::string> &names, bool quiet)
     {
         std::vector<std::string> use;
-        for (auto &n : names)
-            if (make_cv_tracker(n) || n == "tsa" || n == "ts" || n == "ncv" || n == "ncv100" || n == "ncv200" ||
-                n == "tsa_paper")
+        for (auto &n : names) {
+            const std::string b = n.substr(0, n.find('+'));  // a variant NAME+field=value of make_tracker
+            if ((b == n && make_cv_tracker(n)) || b == "tsa" || b == "ts" || b == "ncv" || b == "ncv100" ||
+                b == "ncv200" || b == "tsa_paper")
                 use.push_back(n);
             else if (!quiet)
                 std::printf("(skipping %s: OpenCV contrib tracking module not built in)\n", n.c_str());
+        }
         return use;
     }
 

@@ -72,6 +72,8 @@ const std::vector<ParamDef> &param_defs()
         PFT_BOOL_PARAM(loss_search),
         PFT_BOOL_PARAM(gain_select),
         PFT_REAL_PARAM(rho_acquire, 0, 1),
+        PFT_REAL_PARAM(bg_ring, 0, 8),
+        PFT_REAL_PARAM(bg_alpha, 0.0001, 1),
         PFT_REAL_PARAM(search_growth, 0, 4096),
         PFT_REAL_PARAM(reacq_radius, 0, 4096),
         PFT_INT_PARAM(map_margin, uint16_t, 0, 4096),
@@ -390,9 +392,28 @@ std::unique_ptr<Tracker> make_cv_tracker(const std::string &name)
     return nullptr;
 }
 
-std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &base, int width, int height)
+std::unique_ptr<Tracker> make_tracker(const std::string &label, const PftParams &base, int width, int height)
 {
     PftParams p = base;
+    // "NAME+field=value+...": the pftrack tracker NAME with those fields of pft_tsa_config_t set
+    // on top of its own (a variant evaluated on the same frames as NAME)
+    const std::string name = label.substr(0, label.find('+'));
+    std::map<std::string, double> over;
+    for (std::size_t at = label.find('+'); at != std::string::npos;) {
+        const std::size_t next = label.find('+', at + 1);
+        const std::string kv = label.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+        const std::size_t eq = kv.find('=');
+        const ParamDef *d = eq == std::string::npos ? nullptr : find_param(kv.substr(0, eq));
+        if (!d)
+            throw InputError("tracker \"" + label + "\": expected NAME+field=value (fields: " + known_params() + ")");
+        char *end = nullptr;
+        const std::string vs = kv.substr(eq + 1);
+        const double v = std::strtod(vs.c_str(), &end);
+        if (vs.empty() || *end != '\0' || !(v >= d->lo && v <= d->hi))
+            throw InputError("tracker \"" + label + "\": " + d->name + " out of range or not a number");
+        at = next;
+        over[d->name] = v;
+    }
     if (name == "tsa") {
         p.motion = "tsa";
     } else if (name == "ts") {
@@ -417,14 +438,17 @@ std::unique_ptr<Tracker> make_tracker(const std::string &name, const PftParams &
         p.set["loss_search"] = 0;
         p.set["gain_select"] = 0;
         p.set["init_passes"] = 50;
+        p.set["bg_ring"] = 0;
     } else {
-        auto t = make_cv_tracker(name);
+        auto t = name == label ? make_cv_tracker(name) : nullptr;
         if (!t)
             throw InputError("tracker \"" + name + "\": unknown, or OpenCV's contrib tracking module is not available "
                              "(known: tsa, ts, ncv, ncv200, tsa_paper, kcf, csrt, mosse, mil)");
         return t;
     }
-    return make_pft_tracker(name, p, width, height);
+    for (const auto &kv : over)  // on top of the named tracker's own settings
+        p.set[kv.first] = kv.second;
+    return make_pft_tracker(label, p, width, height);
 }
 
 }  // namespace pft::host::tsa

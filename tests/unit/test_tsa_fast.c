@@ -99,6 +99,7 @@ static void run_and_check(uint16_t map_margin, bool u8, int dx, int frames)
     c.max_target_h = MAXT;
     pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     c.gain_select = false; /* the reference below is the gain-1 template (pft_tsa_template) */
+    c.bg_ring = 0;         /* ... and its rho unscaled (bg_ring scales rho by 1 / rho0) */
     c.n_particles = NP;
     c.snake_points = PTS;
     c.map_margin = map_margin;

@@ -227,6 +227,29 @@ typedef struct {
      *  so 0.9 needed two good frames in a row; 0.86 re-acquired a background patch;
      *  docs/results/tsa_ak.md) */
     pft_real_t rho_acquire;
+    /** background-weighted target model [E] (docs/algorithms.md 4.3): 0 = off (the paper's
+     *  template; tsa_paper); else 1 < bg_ring <= 8 (default 2.5 [E]: with bg_alpha 0.5 no
+     *  failed frame at 8/3 and 15/5 where the plain template failed 2 and 11, mean centre
+     *  error halved, docs/results/tsa_ak.md "Branch tsa14"), the scale of a box around the kernel's box
+     *  (its width and height times bg_ring, the same centre): whenever the template is built
+     *  (start, template update), the unit-weight histogram o of the ring between the two boxes
+     *  (clipped to the frame) weighs each template bin u by v_u = min(o* / o_u, 1), o* the
+     *  smallest nonzero bin of o in that channel (1 where o_u = 0), and each channel is
+     *  renormalised to the template's total; the same under every gain of gain_select (the
+     *  ring read under that gain). Candidates are not weighted. Every rho the tracker uses
+     *  (weights, rho_min, rho_acquire) is multiplied by 1 / rho0, rho0 the weighted
+     *  template's similarity to the unweighted histogram it was built from (at most 16 times;
+     *  not clamped, so the order of placements is kept: pft_tsa_particles reports these
+     *  values; the rho and rho_pioneer of pft_tsa_estimate are clamped to 1): the target as
+     *  first seen scores 1. Colours
+     *  the target shares with its surroundings count less in rho (docs/algorithms.md 4.3) */
+    pft_real_t bg_ring;
+    /** bg_ring > 0: the share of the weighted template in the one used, 0 < bg_alpha <= 1
+     *  (default 0.5 [E]); the rest is the unweighted template (bin by bin, alpha v_u q_u
+     *  renormalised + (1 - alpha) q_u), which keeps the target's whole colour distribution in
+     *  the model beside its distinctive colours: the weighted template alone (1) slipped 7-16
+     *  px off for tens of frames on some 15/5 runs (docs/results/tsa_ak.md "Branch tsa14") */
+    pft_real_t bg_alpha;
     pft_real_t search_growth;     /**< px per frame (default 16) [A] */
     pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
     /** margin (px) of the per-frame code map around the largest target box: the map holds
@@ -295,7 +318,7 @@ typedef struct {
 typedef struct {
     pft_real_t x;    /**< position (kernel origin), column */
     pft_real_t y;    /**< position (kernel origin), row */
-    pft_real_t rho;  /**< its similarity to the template */
+    pft_real_t rho;  /**< its similarity to the template (with bg_ring scaled by 1 / rho0, up to 16) */
 } pft_tsa_particle_t;
 
 /** Kernel-weighted colour histogram: bin[b] sums the Q4 kernel weights of the pixels whose

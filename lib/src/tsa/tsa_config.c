@@ -43,6 +43,8 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->loss_search = true;
     cfg->gain_select = true;
     cfg->rho_acquire = PFT_C(0.88);
+    cfg->bg_ring = PFT_C(2.5);
+    cfg->bg_alpha = PFT_C(0.5);
     cfg->search_growth = PFT_C(16.0);
     cfg->reacq_radius = PFT_C(24.0);
     cfg->map_margin = 48u;
@@ -141,6 +143,14 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     }
     if (!in_range_(c->rho_acquire, PFT_C(0.0), PFT_REAL_ONE)) {
         return "rho_acquire";
+    }
+    /* 0 (off) or 1 < bg_ring <= 8 */
+    if (!(in_range_(c->bg_ring, PFT_C(0.0), PFT_C(0.0)) ||
+          (c->bg_ring > PFT_REAL_ONE && c->bg_ring <= PFT_C(8.0)))) {
+        return "bg_ring";
+    }
+    if (!(c->bg_alpha > PFT_C(0.0) && c->bg_alpha <= PFT_REAL_ONE)) {
+        return "bg_alpha";
     }
     if (!in_range_(c->search_growth, PFT_C(0.0), PFT_C(4096.0))) {
         return "search_growth";

@@ -94,6 +94,73 @@ pft_status_t pft_tsa_hist(const pft_frame_t *frame, const pft_tsa_kernel_t *k, i
     return PFT_OK;
 }
 
+void pft_tsa_ring_hist_(const pft_frame_t *frame, const pft_tsa_box_t_ *in, int32_t mx, int32_t my,
+                        uint32_t gain, pft_tsa_hist_t *h)
+{
+    const int32_t W = (int32_t)frame->width;
+    const int32_t H = (int32_t)frame->height;
+    uint32_t off[3];
+    uint32_t bpp;
+    pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], &bpp);
+    memset(h->bin, 0, sizeof(h->bin));
+    h->total = 0u;
+    const int32_t x0 = in->x0 - mx < 0 ? 0 : in->x0 - mx;
+    const int32_t y0 = in->y0 - my < 0 ? 0 : in->y0 - my;
+    const int32_t x1 = in->x1 + mx >= W ? W - 1 : in->x1 + mx;
+    const int32_t y1 = in->y1 + my >= H ? H - 1 : in->y1 + my;
+    for (int32_t y = y0; y <= y1; ++y) {
+        const uint8_t *row = pft_frame_row(frame, (uint32_t)y);
+        const bool inner_row = y >= in->y0 && y <= in->y1;
+        for (int32_t x = x0; x <= x1; ++x) {
+            if (inner_row && x >= in->x0 && x <= in->x1) {
+                continue;
+            }
+            add_pixel_gain_(h->bin, row + (uint32_t)x * bpp, off, 1u, gain);
+            ++h->total;
+        }
+    }
+}
+
+void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o, uint32_t a16)
+{
+    for (uint32_t c = 0; c < 3u; ++c) {
+        uint32_t *qb = &q->bin[10u * c];
+        const uint32_t *ob = &o->bin[10u * c];
+        uint32_t ostar = 0u;
+        for (uint32_t u = 0; u < 10u; ++u) {
+            if (ob[u] != 0u && (ostar == 0u || ob[u] < ostar)) {
+                ostar = ob[u];
+            }
+        }
+        if (ostar == 0u) {
+            continue; /* no background seen in this channel: the bins stay as they are */
+        }
+        /* v_u q_u with v_u = min(o* / o_u, 1) (1 where o_u = 0), rounded down */
+        uint32_t wb[10];
+        uint64_t wsum = 0u;
+        uint32_t umax = 0u;
+        for (uint32_t u = 0; u < 10u; ++u) {
+            wb[u] = ob[u] > ostar ? (uint32_t)(((uint64_t)qb[u] * ostar) / ob[u]) : qb[u];
+            wsum += wb[u];
+            umax = wb[u] > wb[umax] ? u : umax;
+        }
+        if (wsum == 0u) {
+            continue; /* every bin rounded to zero (not reached for a template of this module) */
+        }
+        /* renormalised to the total (the bins of a channel sum to total, as pft_tsa_rho_hist_
+         * assumes); the remainder of the rounding goes to the largest bin */
+        uint32_t acc = 0u;
+        const uint32_t rest = 65536u - a16;
+        for (uint32_t u = 0; u < 10u; ++u) {
+            const uint64_t wq = ((uint64_t)wb[u] * q->total) / wsum;
+            /* a16 / 65536 of the weighted bin, the rest of the unweighted one */
+            qb[u] = (uint32_t)((wq * a16 + (uint64_t)qb[u] * rest) >> 16);
+            acc += qb[u];
+        }
+        qb[umax] += q->total - acc;
+    }
+}
+
 const uint32_t pft_tsa_sqrt_tab_[193] = {
     32768u, 33023u, 33276u, 33527u, 33776u, 34024u, 34270u, 34514u, 34756u, 34996u, 35235u,
     35472u, 35708u, 35942u, 36175u, 36406u, 36636u, 36864u, 37091u, 37316u, 37540u, 37763u,

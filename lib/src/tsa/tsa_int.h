@@ -255,6 +255,22 @@ typedef struct {
 /* Bounding box of pts[0..n) (n >= 1). */
 pft_tsa_box_t_ pft_tsa_bbox_(const pft_tsa_pt_t *pts, uint32_t n);
 
+/* The unit-weight histogram of the ring between the box in (frame coordinates, inclusive) and
+ * that box grown by mx columns and my rows on each side, clipped to the frame, with every channel
+ * value taken under the gain / 256 as in pft_tsa_hist_gain_ (the background-weighted model,
+ * config bg_ring); frame checked, h not NULL. */
+void pft_tsa_ring_hist_(const pft_frame_t *frame, const pft_tsa_box_t_ *in, int32_t mx, int32_t my,
+                        uint32_t gain, pft_tsa_hist_t *h);
+
+/* Weighs the template q (each channel summing to q->total) by the background histogram o: bin u
+ * times v_u = min(o* / o_u, 1), o* the smallest nonzero bin of o in u's channel (v_u = 1 where
+ * o_u = 0; a channel with no background bin is left as it is), then each channel renormalised to
+ * sum to q->total and mixed with the unweighted bins: a16 / 65536 of the weighted bin plus the rest
+ * of the unweighted one (a16 = 65536: the weighted template alone), each channel summing to
+ * q->total exactly (integer arithmetic, the same in both builds; the remainder of the rounding
+ * added to the channel's largest weighted bin). */
+void pft_tsa_bg_weight_(pft_tsa_hist_t *q, const pft_tsa_hist_t *o, uint32_t a16);
+
 /* Pixel centres inside the polygon poly[0..n) (n >= 3; 0 for a zero area); cross: scratch of n
  * int32. */
 uint32_t pft_tsa_poly_count_(const pft_tsa_pt_t *poly, uint32_t n, int32_t *cross);

@@ -132,6 +132,15 @@ static uint32_t memo_slot_(const pft_tsa_t *t, uint32_t key)
     return t->memo_cap;
 }
 
+/* rho against the template of gain g as the tracker uses it: with bg_ring scaled by qg_scale
+ * (the weighted template's similarity to the unweighted target at its build taken as 1; not
+ * clamped, so a placement that matches better than the target did scores above 1 and the
+ * order of the placements is kept); without, r itself. */
+static pft_real_t rho_scaled_(const pft_tsa_t *t, uint32_t g, pft_real_t r)
+{
+    return t->cfg.bg_ring > PFT_REAL_ONE ? pft_mul(r, t->qg_scale[g]) : r;
+}
+
 /* Similarity of the template to the kernel placed at pixel (cx, cy), cached per position for
  * this frame (the particles of a cloud often share pixels). */
 static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int32_t cy)
@@ -142,7 +151,8 @@ static pft_real_t rho_px_(pft_tsa_t *t, const frame_ctx_t_ *fc, int32_t cx, int3
         return t->memo_rho[i];
     }
     pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, cx, cy, &t->h, t->jb);
-    const pft_real_t r = pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]);
+    const pft_real_t r =
+        rho_scaled_(t, t->gsel, pft_tsa_rho_hist_(&t->h, &t->qg[t->gsel], &t->qg_root[t->gsel]));
     if (i < t->memo_cap) {
         t->memo_key[i] = key;
         t->memo_rho[i] = r;
@@ -341,19 +351,39 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
     uint16_t *kw = t->kw;
     t->kw = t->kw_alt;
     t->kw_alt = kw;
-    t->q = hq;
-    pft_tsa_hroot_(&t->q, &t->q_root);
-    /* the template under each gain of the bank; index GAIN_UNITY_ is q itself (gain 256/256
-     * leaves every value as it is) */
-    for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
-        if (g == GAIN_UNITY_) {
-            t->qg[g] = t->q;
-            t->qg_root[g] = t->q_root;
-            continue;
+    /* bg_ring: the ring between the kernel's box and that box bg_ring times as large (the same
+     * centre), (bg_ring - 1) w / 2 columns and (bg_ring - 1) h / 2 rows on each side */
+    const bool bg = t->cfg.bg_ring > PFT_REAL_ONE;
+    const pft_tsa_box_t_ kb = {origin->x + t->kern.x0, origin->y + t->kern.y0,
+                               origin->x + t->kern.x1, origin->y + t->kern.y1};
+    const pft_real_t grow = pft_sub(t->cfg.bg_ring, PFT_REAL_ONE);
+    const int32_t mx = bg ? pft_round_int(pft_mul_i(grow, kb.x1 - kb.x0 + 1)) / 2 : 0;
+    const int32_t my = bg ? pft_round_int(pft_mul_i(grow, kb.y1 - kb.y0 + 1)) / 2 : 0;
+    const uint32_t a16 = (uint32_t)pft_tsa_q16_(t->cfg.bg_alpha); /* 1..65536 (checked) */
+    /* the template under each gain of the bank (unity first: hq itself, gain 256/256 leaves
+     * every value as it is; then each gain's histogram in hq); with bg_ring each weighted by its
+     * ring under the same gain (t->h is the ring's scratch) and its similarities scaled by
+     * 1 / rho(hq, weighted template), so that the target as it was seen scores 1 again */
+    for (uint32_t i = 0; i < PFT_TSA_GAINS_; ++i) {
+        const uint32_t g = i == 0u ? GAIN_UNITY_ : (i <= GAIN_UNITY_ ? i - 1u : i);
+        if (g != GAIN_UNITY_) {
+            pft_tsa_hist_gain_(f, &t->kern, origin->x, origin->y, gain_q8_(g), &hq);
         }
-        pft_tsa_hist_gain_(f, &t->kern, origin->x, origin->y, gain_q8_(g), &t->qg[g]);
+        t->qg[g] = hq;
+        t->qg_scale[g] = PFT_REAL_ONE;
+        if (bg) {
+            pft_tsa_ring_hist_(f, &kb, mx, my, gain_q8_(g), &t->h);
+            pft_tsa_bg_weight_(&t->qg[g], &t->h, a16);
+        }
         pft_tsa_hroot_(&t->qg[g], &t->qg_root[g]);
+        if (bg) {
+            const pft_real_t r0 = pft_tsa_rho_hist_(&hq, &t->qg[g], &t->qg_root[g]);
+            /* at most 16 (a weighted template that hardly matches its own target) */
+            t->qg_scale[g] = r0 > PFT_C(0.0625) ? pft_div(PFT_REAL_ONE, r0) : PFT_C(16.0);
+        }
     }
+    t->q = t->qg[GAIN_UNITY_];
+    t->q_root = t->qg_root[GAIN_UNITY_];
     for (uint32_t i = 0; i < t->cfg.snake_points; ++i) {
         t->contour[i].x = (int16_t)(t->cwork[i].x - origin->x);
         t->contour[i].y = (int16_t)(t->cwork[i].y - origin->y);
@@ -1045,7 +1075,7 @@ static void gain_select_(pft_tsa_t *t, const frame_ctx_t_ *fc)
         pft_real_t rg[PFT_TSA_GAINS_];
         pft_tsa_rho_bank_(&t->h, t->qg, t->qg_root, PFT_TSA_GAINS_, rg);
         for (uint32_t g = 0; g < PFT_TSA_GAINS_; ++g) {
-            const pft_real_t r = rg[g];
+            const pft_real_t r = rho_scaled_(t, g, rg[g]);
             if (p == 0u) {
                 r0[g] = r;
             }
@@ -1239,6 +1269,10 @@ pft_status_t pft_tsa_estimate(const pft_tsa_t *t, pft_tsa_estimate_t *out)
         return PFT_ERR_INVAL;
     }
     *out = t->est;
+    /* bg_ring scales the similarities the tracker uses by 1 / rho0 (rho_scaled_): reported at
+     * most 1, as the coefficient itself */
+    out->rho = pft_min(out->rho, PFT_REAL_ONE);
+    out->rho_pioneer = pft_min(out->rho_pioneer, PFT_REAL_ONE);
     return PFT_OK;
 }
 
@@ -1253,7 +1287,7 @@ size_t pft_tsa_particles(const pft_tsa_t *t, pft_tsa_particle_t *out, size_t max
         for (size_t i = 0; i < m; ++i) {
             out[i].x = t->px[i];
             out[i].y = t->py[i];
-            out[i].rho = t->rho[i];
+            out[i].rho = t->rho[i]; /* as weighed: with bg_ring scaled, up to 16 */
         }
     }
     return n;
