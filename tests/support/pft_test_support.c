@@ -100,3 +100,16 @@ pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h)
     f.format = PFT_PIX_RGB888;
     return f;
 }
+
+void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
+                         uint8_t pts)
+{
+    pft_tsa_config_default(c);
+    c->width = w;
+    c->height = h;
+    c->max_target_w = maxt;
+    c->max_target_h = maxt;
+    c->n_particles = n;
+    c->snake_points = pts;
+    pft_tsa_snake_params_default(&c->snake, maxt, maxt);
+}

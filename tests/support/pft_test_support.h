@@ -9,6 +9,10 @@ double pft_test_to_double(pft_real_t v);
 pft_real_t pft_test_from_double(double v);
 /* An RGB888 frame over w x h packed pixels at data (stride 3 w, every other field 0). */
 pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h);
+/* A TSA-AK configuration for the unit tests: the defaults, a w x h frame, targets up to
+ * maxt x maxt, n particles, pts snake points, and the snake parameters for that target size. */
+void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
+                         uint8_t pts);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
 double pft_test_lsb(double v);
 

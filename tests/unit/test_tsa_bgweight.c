@@ -61,17 +61,10 @@ static void start(double ring, double alpha, pft_tsa_hist_t *q, pft_tsa_kernel_t
     k->pix = kpix[ring > 0.0 ? 1 : 0];
     k->cap = MAXT * MAXT;
     pft_tsa_config_t c;
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    c.n_particles = NP;
-    c.snake_points = PTS;
+    pft_test_tsa_config(&c, W, H, MAXT, NP, PTS);
     c.init_passes = 0; /* the kernel is the given box */
     c.bg_ring = pft_from_f32((float)ring);
     c.bg_alpha = pft_from_f32((float)alpha);
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     render();
     pft_frame_t f = pft_test_rgb_frame(img, W, H);

@@ -92,16 +92,9 @@ static void run_and_check(uint16_t map_margin, bool u8, int dx, int frames)
 {
     pft_tsa_config_t c;
     pft_tsa_pt_t b[4];
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
+    pft_test_tsa_config(&c, W, H, MAXT, NP, PTS);
     c.gain_select = false; /* the reference below is the gain-1 template (pft_tsa_template) */
     c.bg_ring = 0;         /* ... and its rho unscaled (bg_ring scales rho by 1 / rho0) */
-    c.n_particles = NP;
-    c.snake_points = PTS;
     c.map_margin = map_margin;
     c.seed = 3u;
     TEST_ASSERT_TRUE(pft_tsa_workspace_size(&c) <= sizeof work);

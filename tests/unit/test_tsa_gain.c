@@ -62,17 +62,10 @@ static pft_frame_t frame(void) { return pft_test_rgb_frame(img, W, H); }
 static void start_at(pft_tsa_motion_kind_t m, bool gain_select, int x0, double *ox, double *oy)
 {
     pft_tsa_config_t c;
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    c.n_particles = NP;
-    c.snake_points = PTS;
+    pft_test_tsa_config(&c, W, H, MAXT, NP, PTS);
     c.init_passes = 0; /* the kernel is the given box */
     c.motion = m;
     c.gain_select = gain_select;
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     const int y0 = (H - TH) / 2;
     render(x0, 256u);

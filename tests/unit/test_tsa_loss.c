@@ -89,16 +89,9 @@ static pft_frame_t frame(void) { return pft_test_rgb_frame(img, W, H); }
 
 static void config(pft_tsa_config_t *c, pft_tsa_motion_kind_t m, uint32_t n, uint64_t seed)
 {
-    pft_tsa_config_default(c);
-    c->width = W;
-    c->height = H;
-    c->max_target_w = MAXT;
-    c->max_target_h = MAXT;
-    c->n_particles = n;
-    c->snake_points = PTS;
+    pft_test_tsa_config(c, W, H, MAXT, n, PTS);
     c->motion = m;
     c->seed = seed;
-    pft_tsa_snake_params_default(&c->snake, MAXT, MAXT);
 }
 
 static void start_at(double cx, double cy)

@@ -86,14 +86,7 @@ static double run(pft_tsa_motion_kind_t m, uint64_t seed, bool paper)
     pft_tsa_config_t c;
     pft_frame_t f;
     pft_tsa_estimate_t e;
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
-    c.n_particles = NP;
-    c.snake_points = PTS;
+    pft_test_tsa_config(&c, W, H, MAXT, NP, PTS);
     c.motion = m;
     c.seed = seed;
     if (paper) {
