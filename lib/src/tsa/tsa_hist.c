@@ -35,6 +35,16 @@ static inline void add_pixel_gain_(uint32_t *bin, const uint8_t *p, const uint32
     bin[20u + ((gained_((uint32_t)p[off[2]], g) * 10u) >> 8)] += w;
 }
 
+/* The channel offsets and bytes per pixel of the frame's format, and h emptied: the start of
+ * the two histograms that skip pixels outside the frame. */
+static void hist_start_(const pft_frame_t *frame, uint32_t off[3], uint32_t *bpp,
+                        pft_tsa_hist_t *h)
+{
+    pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], bpp);
+    memset(h->bin, 0, sizeof(h->bin));
+    h->total = 0u;
+}
+
 void pft_tsa_hist_gain_(const pft_frame_t *frame, const pft_tsa_kernel_t *k, int32_t cx,
                         int32_t cy, uint32_t gain, pft_tsa_hist_t *h)
 {
@@ -42,9 +52,7 @@ void pft_tsa_hist_gain_(const pft_frame_t *frame, const pft_tsa_kernel_t *k, int
     const int32_t H = (int32_t)frame->height;
     uint32_t off[3];
     uint32_t bpp;
-    pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], &bpp);
-    memset(h->bin, 0, sizeof(h->bin));
-    h->total = 0u;
+    hist_start_(frame, off, &bpp, h);
     for (uint32_t i = 0; i < k->n; ++i) {
         const pft_tsa_kpix_t *kp = &k->pix[i];
         const int32_t x = cx + kp->dx;
@@ -101,9 +109,7 @@ void pft_tsa_ring_hist_(const pft_frame_t *frame, const pft_tsa_box_t_ *in, int3
     const int32_t H = (int32_t)frame->height;
     uint32_t off[3];
     uint32_t bpp;
-    pft_tsa_channels_(frame->format, &off[0], &off[1], &off[2], &bpp);
-    memset(h->bin, 0, sizeof(h->bin));
-    h->total = 0u;
+    hist_start_(frame, off, &bpp, h);
     const int32_t x0 = in->x0 - mx < 0 ? 0 : in->x0 - mx;
     const int32_t y0 = in->y0 - my < 0 ? 0 : in->y0 - my;
     const int32_t x1 = in->x1 + mx >= W ? W - 1 : in->x1 + mx;
