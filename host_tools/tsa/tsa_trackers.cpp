@@ -74,6 +74,7 @@ const std::vector<ParamDef> &param_defs()
         PFT_REAL_PARAM(rho_acquire, 0, 1),
         PFT_REAL_PARAM(bg_ring, 0, 8),
         PFT_REAL_PARAM(bg_alpha, 0.0001, 1),
+        PFT_INT_PARAM(acquire_on, uint8_t, 0, 2),
         PFT_REAL_PARAM(search_growth, 0, 4096),
         PFT_REAL_PARAM(reacq_radius, 0, 4096),
         PFT_INT_PARAM(map_margin, uint16_t, 0, 4096),

@@ -250,6 +250,16 @@ typedef struct {
      *  the model beside its distinctive colours: the weighted template alone (1) slipped 7-16
      *  px off for tens of frames on some 15/5 runs (docs/results/tsa_ak.md "Branch tsa14") */
     pft_real_t bg_alpha;
+    /** bg_ring > 0: the similarities a search candidate and its confirmation must bring to
+     *  rho_acquire [E] (docs/algorithms.md 4.4): 0 = the tracker's rho alone (scaled by
+     *  1 / rho0; branch tsa14); 1 = that and also the rho of the unweighted template (gain 1)
+     *  at the best placement (default 1 [E]); 2 = that and also the unscaled rho (the weighted
+     *  template's, times rho0). The 1 / rho0 scale lifts background of the target's
+     *  distinctive colours too: on vtest.avi with 0 a dark window scored 0.90 and was
+     *  re-acquired and held to the end; with 1 TSA-AK re-acquires on people, and the forced
+     *  loss of the swing levels re-acquires 50/50 at every level as with 0 (2: 47/50 at 8/3;
+     *  docs/results/tsa_ak.md "Branch tsa15"). Without bg_ring: ignored */
+    uint8_t acquire_on;
     pft_real_t search_growth;     /**< px per frame (default 16) [A] */
     pft_real_t reacq_radius;      /**< px (default 24: above the largest step expected) [A] */
     /** margin (px) of the per-frame code map around the largest target box: the map holds

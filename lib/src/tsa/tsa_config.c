@@ -45,6 +45,7 @@ void pft_tsa_config_default(pft_tsa_config_t *cfg)
     cfg->rho_acquire = PFT_C(0.88);
     cfg->bg_ring = PFT_C(2.5);
     cfg->bg_alpha = PFT_C(0.5);
+    cfg->acquire_on = 1u;
     cfg->search_growth = PFT_C(16.0);
     cfg->reacq_radius = PFT_C(24.0);
     cfg->map_margin = 48u;
@@ -151,6 +152,9 @@ static const char *refused_field_(const pft_tsa_config_t *c)
     }
     if (!(c->bg_alpha > PFT_C(0.0) && c->bg_alpha <= PFT_REAL_ONE)) {
         return "bg_alpha";
+    }
+    if (c->acquire_on > 2u) {
+        return "acquire_on";
     }
     if (!in_range_(c->search_growth, PFT_C(0.0), PFT_C(4096.0))) {
         return "search_growth";

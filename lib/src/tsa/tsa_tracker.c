@@ -371,6 +371,10 @@ static pft_status_t rebuild_(pft_tsa_t *t, const pft_frame_t *f, pft_tsa_pt_t *o
         }
         t->qg[g] = hq;
         t->qg_scale[g] = PFT_REAL_ONE;
+        if (bg && g == GAIN_UNITY_) {
+            t->qp = hq;
+            pft_tsa_hroot_(&t->qp, &t->qp_root);
+        }
         if (bg) {
             pft_tsa_ring_hist_(f, &kb, mx, my, gain_q8_(g), &t->h);
             pft_tsa_bg_weight_(&t->qg[g], &t->h, a16);
@@ -984,6 +988,19 @@ static pft_real_t search_refine_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t 
     return r_best;
 }
 
+/* acquire_on (with bg_ring): the second similarity of search particle ib (rho best, as the
+ * tracker scales it) that must reach rho_acquire: 1, the unweighted template's at gain 1; 2,
+ * best unscaled (times rho0). Neither is lifted by the 1 / rho0 scale. */
+static pft_real_t acquire_rho_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t ib, pft_real_t best)
+{
+    if (t->cfg.acquire_on == 2u) {
+        return pft_div(best, t->qg_scale[t->gsel]);
+    }
+    pft_tsa_view_hist_(&fc->v, &t->kern, t->spans, t->n_spans, t->kw, pft_round_int(t->px[ib]),
+                       pft_round_int(t->py[ib]), &t->h, t->jb);
+    return pft_tsa_rho_hist_(&t->h, &t->qp, &t->qp_root);
+}
+
 /* A frame of the search (SEARCH or CONFIRM): the estimate stays at the last good position; the
  * best particle, when it reaches rho_min, climbs to its local best (search_refine_); a
  * candidate with rho >= rho_acquire moves SEARCH to CONFIRM, and a confirmation re-acquires
@@ -1002,7 +1019,10 @@ static bool search_frame_(pft_tsa_t *t, const frame_ctx_t_ *fc, uint32_t M)
     if (best >= t->cfg.rho_min) {
         best = search_refine_(t, fc, ib, best);
     }
-    const bool found = best >= t->cfg.rho_acquire && best >= t->cfg.rho_min;
+    bool found = best >= t->cfg.rho_acquire && best >= t->cfg.rho_min;
+    if (found && t->cfg.acquire_on != 0u && t->cfg.bg_ring > PFT_REAL_ONE) {
+        found = acquire_rho_(t, fc, ib, best) >= t->cfg.rho_acquire;
+    }
     if (found && t->mode == PFT_TSA_MODE_CONFIRM) {
         return true;
     }

@@ -74,6 +74,8 @@ typedef struct {
     pft_tsa_hist_t qg[PFT_TSA_GAINS_]; /* the template under the gains of tsa_tracker.c */
     pft_tsa_hroot_t qg_root[PFT_TSA_GAINS_];
     pft_real_t qg_scale[PFT_TSA_GAINS_]; /* bg_ring: 1 / rho(target, weighted template) per gain */
+    pft_tsa_hist_t qp;                /* bg_ring: the unweighted template at gain 1 (acquire_on 1) */
+    pft_tsa_hroot_t qp_root;
     uint32_t gsel;                    /* the gain of this frame: an index into qg */
     pft_real_t ref_x[PFT_TSA_MOTION_MAX_K]; /* reference points of the fit, oldest first */
     pft_real_t ref_y[PFT_TSA_MOTION_MAX_K];
