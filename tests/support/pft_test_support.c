@@ -113,3 +113,15 @@ void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t m
     c->snake_points = pts;
     pft_tsa_snake_params_default(&c->snake, maxt, maxt);
 }
+
+void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1)
+{
+    b[0].x = (int16_t)x0;
+    b[0].y = (int16_t)y0;
+    b[1].x = (int16_t)x1;
+    b[1].y = (int16_t)y0;
+    b[2].x = (int16_t)x1;
+    b[2].y = (int16_t)y1;
+    b[3].x = (int16_t)x0;
+    b[3].y = (int16_t)y1;
+}

@@ -11,6 +11,8 @@ pft_real_t pft_test_from_double(double v);
 pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h);
 /* A TSA-AK configuration for the unit tests: the defaults, a w x h frame, targets up to
  * maxt x maxt, n particles, pts snake points, and the snake parameters for that target size. */
+/* The four corners of the box x0..x1, y0..y1 (inclusive), clockwise from the top left. */
+void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1);
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */

@@ -79,26 +79,16 @@ static void render(int tx, int ty, bool decoy)
 static void start(uint8_t acquire_on)
 {
     pft_tsa_config_t c;
-    pft_tsa_config_default(&c);
-    c.width = W;
-    c.height = H;
-    c.max_target_w = MAXT;
-    c.max_target_h = MAXT;
-    c.n_particles = NP;
-    c.snake_points = PTS;
+    pft_test_tsa_config(&c, W, H, MAXT, NP, PTS);
     c.init_passes = 0;
     c.bg_ring = PFT_C(3.0);
     c.bg_alpha = PFT_C(1.0);
     c.acquire_on = acquire_on;
-    pft_tsa_snake_params_default(&c.snake, MAXT, MAXT);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_init(&trk, &c, work, sizeof work));
     render(T0, T0, false);
     pft_frame_t f = pft_test_rgb_frame(img, W, H);
     pft_tsa_pt_t b[4];
-    b[0].x = T0; b[0].y = T0;
-    b[1].x = T0 + TS - 1; b[1].y = T0;
-    b[2].x = T0 + TS - 1; b[2].y = T0 + TS - 1;
-    b[3].x = T0; b[3].y = T0 + TS - 1;
+    pft_test_box_corners(b, T0, T0, T0 + TS - 1, T0 + TS - 1);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
 }
 

@@ -69,10 +69,7 @@ static void start(double ring, double alpha, pft_tsa_hist_t *q, pft_tsa_kernel_t
     render();
     pft_frame_t f = pft_test_rgb_frame(img, W, H);
     pft_tsa_pt_t b[4];
-    b[0].x = T0; b[0].y = T0;
-    b[1].x = T0 + TS - 1; b[1].y = T0;
-    b[2].x = T0 + TS - 1; b[2].y = T0 + TS - 1;
-    b[3].x = T0; b[3].y = T0 + TS - 1;
+    pft_test_box_corners(b, T0, T0, T0 + TS - 1, T0 + TS - 1);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_template(&trk, q));
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_kernel(&trk, k));

@@ -71,10 +71,7 @@ static void start_at(pft_tsa_motion_kind_t m, bool gain_select, int x0, double *
     render(x0, 256u);
     pft_frame_t f = frame();
     pft_tsa_pt_t b[4];
-    b[0].x = (int16_t)x0; b[0].y = (int16_t)y0;
-    b[1].x = (int16_t)(x0 + TW - 1); b[1].y = (int16_t)y0;
-    b[2].x = (int16_t)(x0 + TW - 1); b[2].y = (int16_t)(y0 + TH - 1);
-    b[3].x = (int16_t)x0; b[3].y = (int16_t)(y0 + TH - 1);
+    pft_test_box_corners(b, x0, y0, x0 + TW - 1, y0 + TH - 1);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_start(&trk, &f, b, 4));
     pft_tsa_estimate_t e;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tsa_estimate(&trk, &e));
