@@ -489,13 +489,13 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
 
 /* Row y of the frame in U units with the column offsets off, clamped to [0, 65535]; -1 for a
  * masked pixel. Returns the number of masked pixels. */
-static uint32_t zrow_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
-                      const int32_t *cn, int32_t *zl)
+static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
+                       const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1)
 {
     const uint8_t *row = pft_frame_row(f, y);
-    const uint32_t w = f->width, lo = c->lo, span = c->span, mask = c->mask;
+    const uint32_t lo = c->lo, span = c->span, mask = c->mask;
     uint32_t ninv = 0u;
-    for (uint32_t x = 0; x < w; ++x) {
+    for (uint32_t x = x0; x < x1; ++x) {
         const uint32_t v = pft_pre_raw_(row, x, c) & mask;
         int32_t zu = (int32_t)(v << bf) - cn[x];
         zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
@@ -504,12 +504,58 @@ static uint32_t zrow_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, 
         ninv += ok ? 0u : 1u;
     }
     if (c->map != NULL) {
-        for (uint32_t x = 0; x < w; ++x) {
+        for (uint32_t x = x0; x < x1; ++x) {
             if (zl[x] >= 0 && pft_pre_bad_(c, x, y)) {
                 zl[x] = -1;
                 ninv++;
             }
         }
+    }
+    return ninv;
+}
+
+static uint32_t zrow_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
+                      const int32_t *cn, int32_t *zl)
+{
+    return zspan_(c, f, y, bf, cn, zl, 0u, f->width);
+}
+
+/* The covered columns [x0, x1) of a U16 row without a bad-pixel map in one pass (the frame
+ * row's conversion of zrow_, the horizontal taps of hcubic_ unclamped, and the update and
+ * residual of the row loop of pft_pre_temporal_pass_, the same integer operations on each
+ * pixel, without the two intermediate lines): the background b and the residual r of those
+ * columns; returns their masked pixels. */
+typedef struct {
+    const int32_t *vb, *cn;
+    int32_t kx, w0, w1, w2, w3, a15, k1;
+    uint32_t bf;
+} fused_t;
+
+static uint32_t fused_span_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
+                            uint16_t *b, int16_t *r, int32_t x0, int32_t x1)
+{
+    const uint32_t lo = c->lo, span = c->span, mask = c->mask, bf = u->bf;
+    const int32_t *vb = u->vb + u->kx, *cn = u->cn;
+    const int32_t w0 = u->w0, w1 = u->w1, w2 = u->w2, w3 = u->w3, a15 = u->a15, k1 = u->k1;
+    uint32_t ninv = 0u;
+    for (int32_t x = x0; x < x1; ++x) { /* vectorisable */
+        uint16_t raw;
+        memcpy(&raw, row + 2 * x, 2u);
+        const uint32_t v = (uint32_t)raw & mask;
+        int32_t zu = (int32_t)(v << bf) - cn[x];
+        zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
+        const bool ok = v - lo < span;
+        zu = ok ? zu : -1;
+        ninv += ok ? 0u : 1u;
+        const int32_t s = (w0 * vb[x - 1] + w1 * vb[x] + w2 * vb[x + 1] + w3 * vb[x + 2] + 2048) >> 12;
+        const int32_t bx = s < 0 ? 0 : (s > 65535 ? 65535 : s);
+        const int32_t e = zu - bx;
+        /* the update's step masked by and-ing (a select here stops gcc's vectoriser) */
+        const int32_t okm = ok ? -1 : 0;
+        const int32_t nb = bx + (((e * a15 + 16384) >> 15) & okm);
+        const int32_t rr = pft_pre_rclamp_((e + k1) >> k1);
+        b[x] = (uint16_t)nb;
+        r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
     }
     return ninv;
 }
@@ -606,10 +652,30 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         }
         return;
     }
+    /* prediction: exact taps inside [xa, xb] = [ia, ib), clamped outside (for masked pixels) */
+    const int32_t ia = xa < w ? xa : w, ib = xb + 1 > ia ? xb + 1 : ia;
+    fused_t fu;
+    fu.vb = p->vb;
+    fu.cn = p->colnow;
+    fu.kx = g.kx;
+    fu.w0 = wx[0];
+    fu.w1 = wx[1];
+    fu.w2 = wx[2];
+    fu.w3 = wx[3];
+    fu.a15 = a15;
+    fu.k1 = (int32_t)k1;
+    fu.bf = p->bf;
     for (int32_t yi = 0; yi < h; ++yi) {
         const int32_t y = yup ? yi : h - 1 - yi;
-        const uint32_t ninv = zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
-        if (ninv > 0u) {
+        const int32_t r0 = y + g.ky;
+        const bool covered = r0 + tylo >= 0 && r0 + tyhi <= h - 1;
+        /* a covered row of a U16 frame without a bad-pixel map: its covered columns in one
+         * pass (fused_span_), the frame row converted only outside them */
+        const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8;
+        uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia) +
+                                   zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w)
+                             : zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
+        if (!fast && ninv > 0u) {
             count_row_(&c, f, (uint32_t)y, acc);
         }
         uint16_t *b = p->bg + (size_t)y * (size_t)w;
@@ -624,8 +690,6 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         } else {
             /* tap rows y + ky - 1 .. y + ky + 2, clamped; the row written last is read from its
              * copy; the row is covered when those of non-zero weight are inside */
-            const int32_t r0 = y + g.ky;
-            const bool covered = r0 + tylo >= 0 && r0 + tyhi <= h - 1;
             const uint16_t *tr[4];
             for (int32_t i = 0; i < 4; ++i) {
                 const int32_t rr = clampi_(r0 - 1 + i, 0, h - 1);
@@ -647,31 +711,46 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
             }
             memcpy(p->prev, b, (size_t)w * 2u);
             yprev = y;
-            /* prediction: exact taps inside [xa, xb], clamped outside (for masked pixels) */
-            const int32_t ia = xa < w ? xa : w, ib = xb + 1 > ia ? xb + 1 : ia;
-            hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
-            hcubic_(vb, g.kx, wx, w, ia, ib, false, bw);
-            hcubic_(vb, g.kx, wx, w, ib, w, true, bw);
-            for (int32_t x = 0; x < w; ++x) { /* vectorisable: update and residual */
-                const int32_t zu = zl[x], bx = bw[x], e = zu - bx;
-                const int32_t nb = bx + ((e * a15 + 16384) >> 15);
-                const int32_t rr = pft_pre_rclamp_((e + (int32_t)k1) >> k1);
-                b[x] = (uint16_t)(zu < 0 ? bx : nb);
-                r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
-            }
-            /* a pixel with a tap outside the image (the last frame's view) sees a part of the
-             * scene the background has not seen, or has only extrapolated: its residual is
-             * masked and its background restarts from z (x outside [xa, xb], or every pixel
-             * of a row that is not covered) */
-            const int32_t ua = covered ? ia : w, ub = covered ? ib : w;
-            /* the columns before and after the covered ones [ua, ub) */
-            const int32_t ea = (ua >= 0 && ua < w) ? ua : w, sb = ea < w ? ub : w;
-            const int32_t seg[2][2] = {{0, ea}, {sb, w}};
-            for (int32_t s = 0; s < 2; ++s) {
-                for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
-                    r[x] = PFT_RES16_MASKED;
-                    if (zl[x] >= 0) {
-                        b[x] = (uint16_t)zl[x];
+            if (fast) {
+                /* outside [ia, ib): masked, the background restarts from z (as below) */
+                hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
+                hcubic_(vb, g.kx, wx, w, ib, w, true, bw);
+                const int32_t seg[2][2] = {{0, ia}, {ib, w}};
+                for (int32_t s = 0; s < 2; ++s) {
+                    for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
+                        r[x] = PFT_RES16_MASKED;
+                        b[x] = (uint16_t)(zl[x] >= 0 ? zl[x] : bw[x]);
+                    }
+                }
+                ninv += fused_span_(&c, pft_frame_row(f, (uint32_t)y), &fu, b, r, ia, ib);
+                if (ninv > 0u) {
+                    count_row_(&c, f, (uint32_t)y, acc);
+                }
+            } else {
+                hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
+                hcubic_(vb, g.kx, wx, w, ia, ib, false, bw);
+                hcubic_(vb, g.kx, wx, w, ib, w, true, bw);
+                for (int32_t x = 0; x < w; ++x) { /* vectorisable: update and residual */
+                    const int32_t zu = zl[x], bx = bw[x], e = zu - bx;
+                    const int32_t nb = bx + ((e * a15 + 16384) >> 15);
+                    const int32_t rr = pft_pre_rclamp_((e + (int32_t)k1) >> k1);
+                    b[x] = (uint16_t)(zu < 0 ? bx : nb);
+                    r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
+                }
+                /* a pixel with a tap outside the image (the last frame's view) sees a part of the
+                 * scene the background has not seen, or has only extrapolated: its residual is
+                 * masked and its background restarts from z (x outside [xa, xb], or every pixel
+                 * of a row that is not covered) */
+                const int32_t ua = covered ? ia : w, ub = covered ? ib : w;
+                /* the columns before and after the covered ones [ua, ub) */
+                const int32_t ea = (ua >= 0 && ua < w) ? ua : w, sb = ea < w ? ub : w;
+                const int32_t seg[2][2] = {{0, ea}, {sb, w}};
+                for (int32_t s = 0; s < 2; ++s) {
+                    for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
+                        r[x] = PFT_RES16_MASKED;
+                        if (zl[x] >= 0) {
+                            b[x] = (uint16_t)zl[x];
+                        }
                     }
                 }
             }
