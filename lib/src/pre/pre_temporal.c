@@ -531,12 +531,16 @@ typedef struct {
     uint32_t bf;
 } fused_t;
 
-static uint32_t fused_span_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
-                            uint16_t *b, int16_t *r, int32_t x0, int32_t x1)
+/* k1 (0 or 1) is a constant of each call (the function is inlined twice): with k1 = 1 the
+ * residual (e + 1) / 2 of an unmasked pixel is at least -32767 (|e| <= 65535), so only its
+ * upper clamp can act. */
+static inline uint32_t fused_loop_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
+                                   uint16_t *b, int16_t *r, int32_t x0, int32_t x1,
+                                   const int32_t k1)
 {
     const uint32_t lo = c->lo, span = c->span, mask = c->mask, bf = u->bf;
     const int32_t *vb = u->vb + u->kx, *cn = u->cn;
-    const int32_t w0 = u->w0, w1 = u->w1, w2 = u->w2, w3 = u->w3, a15 = u->a15, k1 = u->k1;
+    const int32_t w0 = u->w0, w1 = u->w1, w2 = u->w2, w3 = u->w3, a15 = u->a15;
     uint32_t ninv = 0u;
     for (int32_t x = x0; x < x1; ++x) { /* vectorisable */
         uint16_t raw;
@@ -553,11 +557,18 @@ static uint32_t fused_span_(const pft_pre_cls_t *c, const uint8_t *row, const fu
         /* the update's step masked by and-ing (a select here stops gcc's vectoriser) */
         const int32_t okm = ok ? -1 : 0;
         const int32_t nb = bx + (((e * a15 + 16384) >> 15) & okm);
-        const int32_t rr = pft_pre_rclamp_((e + k1) >> k1);
+        const int32_t rh = (e + k1) >> k1;
+        const int32_t rr = k1 != 0 ? (rh > PFT_PRE_RMAX_ ? PFT_PRE_RMAX_ : rh) : pft_pre_rclamp_(rh);
         b[x] = (uint16_t)nb;
         r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
     }
     return ninv;
+}
+
+static uint32_t fused_span_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
+                            uint16_t *b, int16_t *r, int32_t x0, int32_t x1)
+{
+    return u->k1 != 0 ? fused_loop_(c, row, u, b, r, x0, x1, 1) : fused_loop_(c, row, u, b, r, x0, x1, 0);
 }
 
 /* Counts the masked pixels of row y by cause (rows with masked pixels only). */
