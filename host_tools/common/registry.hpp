@@ -52,6 +52,7 @@ struct Options {
     bool single = false;        ///< --single: single-target filter instead of the manager
     bool progress = false;      ///< --progress: draw the bar even when stderr is no terminal
     bool no_video = false;      ///< --no-video (run)
+    std::string residual_out;   ///< --residual-out FILE (run, tbd_ir): the residual the TBD manager sees, every frame
     bool quiet = false;         ///< --quiet
     std::string format;         ///< --format pgm|raw (sim)
     int scale = 0;              ///< --scale: overlay upscale factor (run)

@@ -463,6 +463,51 @@ int clutter_checks(const std::function<void(const std::string &, bool)> &check)
     return 0;
 }
 
+// residual_hp (ir_pipeline.hpp, residual_highpass) on a synthetic residual of unit noise, 120 x 90,
+// plus a smooth offset 1.5 + 0.01 x sigma (what the temporal background leaves under
+// vignetting), a point of 5 sigma at (60, 45) and a masked pixel at (30, 30). With R = 8 the
+// interior's mean must fall below 0.05 sigma (the offset's curvature is 0; the noise's own
+// 17 x 17 mean has sd 1/17 = 0.06 per pixel, averaged over the interior far below 0.05), the
+// point must keep 5 sigma within 0.3 (it loses its share 5/289 = 0.02 of the square and the
+// noise mean of the square, sd 0.06, at most 5 sd) and the masked pixel must stay masked.
+int highpass_checks(const std::function<void(const std::string &, bool)> &check)
+{
+    const int W = 120, H = 90;
+    cv::RNG rng(4242);
+    cv::Mat n(H, W, CV_32F), r16(H, W, CV_16S), out;
+    rng.fill(n, cv::RNG::NORMAL, 0.0, 1.0);
+    cv::Mat pure(H, W, CV_32F);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            double v = n.at<float>(y, x) + 1.5 + 0.01 * x;
+            if (x == 60 && y == 45)
+                v += 5.0;
+            r16.at<int16_t>(y, x) = static_cast<int16_t>(std::lround(v * 256.0));
+        }
+    r16.at<int16_t>(30, 30) = PFT_RES16_MASKED;
+    residual_highpass(r16.ptr<int16_t>(0), W, W, H, 8, out);
+    double in_mean = 0, out_mean = 0;
+    int cnt = 0;
+    for (int y = 8; y < H - 8; ++y)
+        for (int x = 8; x < W - 8; ++x) {
+            if (r16.at<int16_t>(y, x) == PFT_RES16_MASKED)
+                continue;
+            in_mean += r16.at<int16_t>(y, x) / 256.0;
+            out_mean += out.at<int16_t>(y, x) / 256.0;
+            ++cnt;
+        }
+    in_mean /= cnt;
+    out_mean /= cnt;
+    const double point = out.at<int16_t>(45, 60) / 256.0 - n.at<float>(45, 60);
+    char b[200];
+    std::snprintf(b, sizeof b, "residual_hp 8: interior mean %.3f sigma (in %.3f; |.| < 0.05)", out_mean, in_mean);
+    check(b, std::fabs(out_mean) < 0.05);
+    std::snprintf(b, sizeof b, "residual_hp 8: a point of 5 sigma on the offset comes out at %.3f (5 within 0.3)", point);
+    check(b, std::fabs(point - 5.0) < 0.3);
+    check("residual_hp 8: a masked pixel stays masked", out.at<int16_t>(30, 30) == PFT_RES16_MASKED);
+    return 0;
+}
+
 int selftest_checks(bool verbose)
 {
     int fails = 0;
@@ -550,6 +595,7 @@ int selftest_checks(bool verbose)
     fails += dbt_checks(check);
     fails += pipeline_sequence_checks(check);
     fails += clutter_checks(check);
+    fails += highpass_checks(check);
     {
         // the straight-line test's fit: 6 points on a line at (0.7, -0.3) px/frame fit it
         // exactly; alternating +-0.5 px about a still point: rms sqrt(0.25 - 1.5^2 / 105) = 0.4781
@@ -765,8 +811,23 @@ public:
                      progress_wanted(o.progress) && !o.quiet);
         auto t0 = Clock::now();
         pft_frame_t f{};
+        std::FILE *rout = nullptr;  // --residual-out: a debug dump, int16 Q8.8 per pixel and frame
+        if (!o.residual_out.empty() && !(rout = std::fopen(o.residual_out.c_str(), "wb")))
+            throw InputError(o.residual_out + ": cannot write");
+        std::vector<int16_t> rrow;
         while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
             PipelineOut po = pl.step(f);
+            if (rout) {
+                const cv::Mat &r = pl.residual();
+                rrow.resize(static_cast<std::size_t>(r.cols));
+                for (int y = 0; y < r.rows; ++y) {
+                    const float *p = r.ptr<float>(y);
+                    for (int x = 0; x < r.cols; ++x)
+                        rrow[static_cast<std::size_t>(x)] = static_cast<int16_t>(
+                            std::clamp(std::lround(p[x] * 256.0f), -32767L, 32767L));
+                    std::fwrite(rrow.data(), sizeof(int16_t), rrow.size(), rout);
+                }
+            }
             out.push_back(std::move(po.tbd));
             dout.push_back(std::move(po.dbt));
             if (ov)
@@ -775,6 +836,8 @@ public:
             bar.tick();
         }
         bar.finish();
+        if (rout)
+            std::fclose(rout);
         double dt = seconds_since(t0);
         if (ov)
             ov->close();

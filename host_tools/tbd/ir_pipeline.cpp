@@ -159,6 +159,41 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
     }
 }
 
+// residual_hp (TrackerSettings): the residual less its mean over the (2R + 1)^2 square around
+// each pixel, masked pixels left out of the mean and kept masked. It takes off the slowly varying
+// offset that the temporal background leaves where a sensor-fixed gain (vignetting) meets a
+// drifting bright scene (docs/results/ir_clutter.md, "Branch irdet").
+void residual_highpass(const int16_t *res, std::size_t stride, int w, int h, int R, cv::Mat &out)
+{
+    cv::Mat v(h, w, CV_32F), m(h, w, CV_32F), vs, ms;
+    for (int y = 0; y < h; ++y) {
+        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+        float *pv = v.ptr<float>(y), *pm = m.ptr<float>(y);
+        for (int x = 0; x < w; ++x) {
+            const bool ok = r[x] != PFT_RES16_MASKED;
+            pv[x] = ok ? static_cast<float>(r[x]) : 0.0f;
+            pm[x] = ok ? 1.0f : 0.0f;
+        }
+    }
+    const cv::Size box(2 * R + 1, 2 * R + 1);
+    cv::boxFilter(v, vs, CV_32F, box, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+    cv::boxFilter(m, ms, CV_32F, box, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+    out.create(h, w, CV_16S);
+    for (int y = 0; y < h; ++y) {
+        const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+        const float *s = vs.ptr<float>(y), *n = ms.ptr<float>(y);
+        int16_t *o = out.ptr<int16_t>(y);
+        for (int x = 0; x < w; ++x) {
+            if (r[x] == PFT_RES16_MASKED) {
+                o[x] = PFT_RES16_MASKED;
+                continue;
+            }
+            const double mean = n[x] > 0.5f ? static_cast<double>(s[x]) / static_cast<double>(n[x]) : 0.0;
+            o[x] = static_cast<int16_t>(std::clamp(std::lround(r[x] - mean), -32767L, 32767L));
+        }
+    }
+}
+
 // The scene-motion test (TrackerSettings::scene_frames). A track's displacement over its last
 // n = scene_frames frames, less the scene's (the sum of the stage's shifts over those frames), is
 // the track's motion against the scene: below n * scene_gate_px, the track is taken for
@@ -271,6 +306,11 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     std::size_t stride = rf.stride_bytes / sizeof(int16_t);
     const int16_t *res = static_cast<const int16_t *>(rf.data);
     const bool ev = evidence();
+    if (T_.residual_hp > 0 && ev) {
+        residual_highpass(res, stride, w_, h_, T_.residual_hp, hp_);
+        res = hp_.ptr<int16_t>(0);
+        stride = static_cast<std::size_t>(w_);
+    }
     if (T_.clutter_alpha > 0) {
         clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_);
         res = cm_.out;

@@ -44,6 +44,9 @@ struct ClutterMap {
 };
 
 /** The pft_pre_clutter configuration of the pipeline's settings (width x height frames). */
+/** TrackerSettings::residual_hp: out (CV_16S, Q8.8) = res less its mean over the (2R + 1)^2 square,
+ *  masked pixels (PFT_RES16_MASKED) left out of the mean and kept masked. */
+void residual_highpass(const int16_t *res, std::size_t stride, int w, int h, int R, cv::Mat &out);
 pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width, int height);
 
 /** One frame of the clutter map: res (PFT_PIX_RES16 of stride px per row) in, resid (CV_32F of
@@ -92,6 +95,7 @@ private:
     double dbt_thr_;
     int max_det_;
     cv::Mat resid_, u16_, blank_;
+    cv::Mat hp_;  // residual_hp: the high-passed residual (CV_16S, Q8.8)
     ClutterMap cm_;
     // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
     // each of its frames (the last scene_frames + 1), and whether it failed the test

@@ -36,7 +36,7 @@ std::array<double, 2> pair_or(const Field &f, const char *key, std::array<double
 
 void parse_background(const Field &b, IrScenario &s)
 {
-    b.only({"source", "folder", "files", "index", "labels", "scale", "sky_top", "sky_horizon",
+    b.only({"source", "folder", "files", "index", "labels", "scale", "smooth_px", "sky_top", "sky_horizon",
             "cloud_cover", "cloud_scale_px", "cloud_level", "cloud_texture", "cloud_edge_px",
             "horizon", "ground_level", "ground_texture", "structures", "note"});
     Background &B = s.background;
@@ -51,6 +51,7 @@ void parse_background(const Field &b, IrScenario &s)
         B.index = static_cast<int>(b.integer_in("index", 0, 0, 1000000));
     B.labels = b.boolean_or("labels", true);
     B.scale = b.number_in("scale", 0.0, 0.0, 1e6);
+    B.smooth_px = b.number_in("smooth_px", 0.0, 0.0, 20.0);
     Procedural &P = B.proc;
     P.sky_top = b.number_in("sky_top", P.sky_top, 0.0, 1.0);
     P.sky_horizon = b.number_in("sky_horizon", P.sky_horizon, 0.0, 1.0);
@@ -122,7 +123,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "edge_k", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "edge_k", "residual_hp", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -176,6 +177,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     if (t.has("clutter_mean"))
         T.clutter_mean = t.at("clutter_mean").as_bool();
     T.clutter_blur = static_cast<int>(t.integer_in("clutter_blur", T.clutter_blur, 0, 4));
+    T.residual_hp = static_cast<int>(t.integer_in("residual_hp", T.residual_hp, 0, 64));
     T.clutter_persist = static_cast<int>(t.integer_in("clutter_persist", T.clutter_persist, 0, 32));
     T.clutter_excess = t.number_in("clutter_excess", T.clutter_excess, 0.01, 127.0);
     if (T.clutter_persist > 0 && !T.clutter_mean)

@@ -37,6 +37,7 @@ struct Background {
     std::optional<int> index;                   ///< fixed image; absent: (seed - 1) mod count
     bool labels = true;                         ///< read YOLO label files beside the images
     double scale = 0;                           ///< counts per image unit (0: 2^(bits - image bits))
+    double smooth_px = 0;                       ///< Gaussian sigma (image px) applied to a folder image before scaling: takes out its quantisation steps and frozen pixel noise (0: off)
 };
 
 struct Platform {
@@ -115,6 +116,9 @@ struct TrackerSettings {
     int clutter_persist = 0;                    ///< map's persistence gate (frames; 0: off): a residual beyond clutter_excess is learnt only once it has held this long at the same scene position
     double clutter_excess = 1.5;                ///< level of the persistence gate (sigma)
     int clutter_blur = 1;                       ///< half-size of the square the map is read over (0: the pixel)
+    // residual high-pass (host prototype, docs/results/ir_clutter.md "Branch irdet"): the stage's residual less its
+    // mean over the (2 residual_hp + 1)^2 square (masked pixels left out), before the clutter map and both trackers
+    int residual_hp = 0;                        ///< half-size of the square, px (0: off)
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */

@@ -236,6 +236,12 @@ Scene image_scene(const IrScenario &s, const std::string &file)
     double scale = s.background.scale > 0 ? s.background.scale
                                            : std::pow(2.0, s.sensor.bit_depth - sc.image_bits);
     img.convertTo(sc.counts, CV_32F, scale);
+    // smooth_px: the image's own quantisation steps (one 8-bit level is 64 counts, 3.2 temporal
+    // sigmas, at 14 bits) and frozen pixel noise would move with the scene as texture that a
+    // sensor of this bit depth does not see (docs/results/ir_clutter.md, "Branch irdet")
+    if (s.background.smooth_px > 0)
+        cv::GaussianBlur(sc.counts, sc.counts, cv::Size(0, 0), s.background.smooth_px, s.background.smooth_px,
+                         cv::BORDER_REFLECT_101);
     if (s.optics_blur_px > 0)
         cv::GaussianBlur(sc.counts, sc.counts, cv::Size(0, 0), s.optics_blur_px, s.optics_blur_px,
                          cv::BORDER_REFLECT_101);
