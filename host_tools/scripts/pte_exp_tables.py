@@ -13,6 +13,7 @@ Usage: pte_exp_tables.py          print the C arrays
                                   integer steps), printing every argument where they differ
 """
 import math
+import re
 import sys
 
 SIZES = (('hi', 96, 2.0 ** 13 / 2.0 ** 16), ('mid', 128, 2.0 ** 6 / 2.0 ** 16), ('lo', 64, 2.0 ** -16))
@@ -60,15 +61,23 @@ def pft_exp_core(x):
 
 def main():
     t = tables()
-    if '--check' not in sys.argv[1:]:
+    if '--check' not in sys.argv[1:] and '--verify' not in sys.argv[1:]:
         for name, vals in t.items():
             print(f'static const uint32_t exp_{name}_[{len(vals)}] = {{')
             for i in range(0, len(vals), 6):
                 print('    ' + ', '.join(f'{v}u' for v in vals[i:i + 6]) + ',')
             print('};')
         return
+    if '--verify' in sys.argv[1:]:
+        src = open(sys.argv[sys.argv.index('--verify') + 1]).read()
+        for name, vals in t.items():
+            m = re.search(r'exp_%s_\[(\d+)\] = \{([^}]*)\}' % name, src)
+            got = [int(v.strip().rstrip('u')) for v in m.group(2).split(',') if v.strip()] if m else None
+            if got != vals:
+                sys.exit(f'exp_{name}_ in the source is not the generated table')
     worst = 0.0
     diff = 0
+    wdiff = 0
     for u in range(DOMAIN):
         e = math.exp(-u / 65536.0) * 65536.0
         k = kernel(t, u)
@@ -76,9 +85,12 @@ def main():
         h = pft_exp_core(-u)
         if h != k:
             diff += 1
+            wdiff = max(wdiff, abs(h - k))
             print(f'u = {u}: table {k}, pft_exp {h}, exp {e:.7f} ({abs(e - math.floor(e) - 0.5):.1e} LSB from a tie)')
     print(f'{DOMAIN} arguments: largest error of the table kernel {worst:.6f} LSB; '
           f'{diff} differ from pft_exp')
+    if '--verify' in sys.argv[1:] and (worst > 0.50003 or diff > 6 or wdiff > 1):
+        sys.exit('the table kernel is outside its documented bounds')
 
 
 if __name__ == '__main__':
