@@ -22,6 +22,9 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.noise_sigma = to_real(1.0);
     c.pixel_gain = to_real(1.0);
     c.pixel_offset = to_real(0.0);
+    // the manager takes only the stage's residual (PFT_PIX_RES16, gain 1, offset 0, sigma 1)
+    // and reads it in place: its workspace holds no real-valued frame
+    c.frame_format = PFT_PIX_RES16;
     // intensity I = 2 pi S^2 A for a peak A = 10^(SNR/20) noise sigmas (dx = dy = 1)
     const double area = 2.0 * M_PI * psf_sigma * psf_sigma;
     c.i_min = to_real(area * std::pow(10.0, t.snr_min_db / 20.0));

@@ -27,7 +27,9 @@
  * pft_from_f32 (meant for host or FPU targets). PFT_PIX_RES16 frames (the whitened residual of
  * pft_pre.h, Q8.8 sigma units) are converted as z = pixel_gain*(raw/256) + pixel_offset, exact
  * in both builds, a masked pixel as a zero residual (pixel_offset): with noise_sigma 1, gain 1
- * and offset 0 the stage's output goes to the trackers as it is, no float frame in between.
+ * and offset 0 the stage's output goes to the trackers as it is, no float frame in between;
+ * with cfg.frame_format = PFT_PIX_RES16 the manager also keeps no real-valued frame of its own
+ * and reads the frame's pixels in place (the same values, the same results).
  * Converted pixel values are clamped to [-32767, 32767] in both builds (the q16 range).
  *
  * Bad input (NULL, wrong size, unsupported format, NaN/Inf in an F32 frame) is refused with
@@ -172,6 +174,8 @@ typedef struct {
     /* time */
     pft_seq_mode_t seq_mode; /**< PFT_SEQ_IGNORE (default: every frame is one period T after the previous one) or PFT_SEQ_USE: a frame k > 1 periods after the last accepted one (frame seq numbers) first moves every particle k - 1 times without a frame (existence and dynamics, no births, no weighting), then updates as usual; see "Time and lost frames" above */
     uint16_t max_gap;        /**< PFT_SEQ_USE: a gap of more than max_gap periods restarts the filter or manager on that frame (the manager ends every track: ENDED events) (default PFT_SEQ_DEFAULT_GAP), 1..PFT_SEQ_MAX_GAP */
+    /* input */
+    pft_pixfmt_t frame_format; /**< 0 (default): frames of any supported format, converted into a real-valued frame that the workspace holds (one real per pixel and a one-pixel border). PFT_PIX_RES16 (needs pixel_gain 1, pixel_offset 0, noise_sigma 1: the stage's residual as it is): only RES16 frames are accepted (others PFT_ERR_FORMAT) and the manager reads them in place, with the same values (res / 256, a masked pixel 0) and the same results, so its workspace holds no frame (PFT_TBD_WORKSPACE_BYTES_RES16; the tracks' PSFs subtracted by the residual likelihood are real-valued patches over the frame); the standalone filter still converts (docs/algorithms.md 2.7) [E] */
 } pft_tbd_config_t;
 
 /**
@@ -402,9 +406,20 @@ typedef struct {
     ((size_t)(peaks) > 0u ? PFT_WS_ROUND(6u * (size_t)(w) * sizeof(pft_real_t)) +                \
                                 PFT_WS_ROUND((size_t)(peaks) * sizeof(pft_real_t))             \
                           : 0u)
+/* The manager's real-valued frame with its border (none when the frame is read in place), and
+ * what reading it in place needs instead: the patches' rectangles, per-row flags, one row with
+ * its border and the exact kernel's (2 PFT_TBD_MAX_WINDOW + 1)^2 window. */
+#define PFT_TBD_FRAME_BYTES_(w, h)                                                              \
+    PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t))
+#define PFT_TBD_INPLACE_BYTES_(max_targets, w, h)                                               \
+    (PFT_WS_ROUND(4u * (size_t)(max_targets) * sizeof(int32_t)) + PFT_WS_ROUND((size_t)(h)) +   \
+     PFT_WS_ROUND(((size_t)(w) + 2u + (2u * PFT_TBD_MAX_WINDOW + 1u) *                          \
+                                         (2u * PFT_TBD_MAX_WINDOW + 1u)) *                      \
+                  sizeof(pft_real_t)))
 #define PFT_TBD_MGR_BYTES_(n_search, n_track, max_targets, kind, w, h, peaks)                  \
+    (PFT_TBD_FRAME_BYTES_(w, h) + PFT_TBD_MGR_REST_(n_search, n_track, max_targets, kind, w, h, peaks))
+#define PFT_TBD_MGR_REST_(n_search, n_track, max_targets, kind, w, h, peaks)                   \
     ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
-     PFT_WS_ROUND(((size_t)(w) + 2u) * ((size_t)(h) + 2u) * sizeof(pft_real_t)) +                \
      PFT_TBD_MASK_BYTES_(w, h) + PFT_WS_ROUND(PFT_TBD_CAND_N_(w, h, peaks) * sizeof(uint32_t)) + \
      PFT_TBD_TAB_BYTES_ + PFT_TBD_PARTICLE_BYTES_(n_search, kind) +                             \
      (size_t)(max_targets) * PFT_TBD_PARTICLE_BYTES_(n_track, kind) +                           \
@@ -431,6 +446,15 @@ typedef struct {
  *  rows and one real per peak. */
 #define PFT_TBD_WORKSPACE_BYTES_PEAKS(n_search, n_track, max_targets, kind, w, h, peaks)       \
     PFT_TBD_MGR_BYTES_(n_search, n_track, max_targets, kind, w, h, peaks)
+
+/** Workspace bytes of the manager with cfg.frame_format = PFT_PIX_RES16 and cfg.birth_peaks =
+ *  peaks (constant expression; with the sizes, kind, image and birth_peaks of cfg it equals
+ *  pft_tbd_workspace_size): PFT_TBD_WORKSPACE_BYTES_PEAKS without the real-valued frame (one
+ *  real per pixel and the border), plus per line one row of reals and one flag byte, per
+ *  track slot one patch rectangle, and one (2 PFT_TBD_MAX_WINDOW + 1)^2 window of reals. */
+#define PFT_TBD_WORKSPACE_BYTES_RES16(n_search, n_track, max_targets, kind, w, h, peaks)       \
+    (PFT_TBD_MGR_REST_(n_search, n_track, max_targets, kind, w, h, peaks) +                     \
+     PFT_TBD_INPLACE_BYTES_(max_targets, w, h))
 
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);

@@ -64,6 +64,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->seed = 1u;
     cfg->seq_mode = PFT_SEQ_IGNORE;
     cfg->max_gap = (uint16_t)PFT_SEQ_DEFAULT_GAP;
+    cfg->frame_format = (pft_pixfmt_t)0;
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -243,6 +244,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     return NULL;
 }
 
+/* a == b, written without an equality test of reals. */
+static bool is_value_(pft_real_t a, pft_real_t b) { return !(a < b) && !(a > b); }
+
 /* The first refused size or algorithm choice, NULL if none. */
 static const char *refused_sizes_(const pft_tbd_config_t *c)
 {
@@ -266,6 +270,12 @@ static const char *refused_sizes_(const pft_tbd_config_t *c)
     }
     if (c->max_gap < 1u || c->max_gap > PFT_SEQ_MAX_GAP) {
         return "max_gap";
+    }
+    /* the frame read in place: its values are res / 256 only with gain 1, offset 0, sigma 1 */
+    if (c->frame_format != (pft_pixfmt_t)0 &&
+        (c->frame_format != PFT_PIX_RES16 || !is_value_(c->pixel_gain, PFT_REAL_ONE) ||
+         !is_value_(c->pixel_offset, PFT_C(0.0)) || !is_value_(c->noise_sigma, PFT_REAL_ONE))) {
+        return "frame_format";
     }
     return NULL;
 }

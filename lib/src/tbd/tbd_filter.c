@@ -248,7 +248,7 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
      * loop invariants */
     const pft_tbd_meas_t mm = f->model;
     const pft_tbd_meas_t *m = &mm;
-    const pft_real_t *img = x->sc->img;
+    const pft_tbd_scene_t_ *sc = x->sc;
     const pft_tbd_tab_t *tab = x->tab;
     const uint32_t *mask = x->mask;
     const uint32_t mwords = pft_tbd_mask_words_(m->width);
@@ -270,7 +270,7 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
                  pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
                 pe[s] = 0u;
             } else {
-                lw = pft_tbd_llr_(m, tab, img, &c, pin[s]);
+                lw = pft_tbd_llr_sc_(m, tab, sc, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, birth_lw);
                 }
@@ -289,7 +289,8 @@ static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
     const pft_tbd_particles_t *P = &f->cur;
     const pft_tbd_meas_t mm = f->model;
     const pft_tbd_meas_t *m = &mm;
-    const pft_real_t *img = x->sc->img;
+    const pft_tbd_scene_t_ *sc = x->sc;
+    const pft_real_t *img = sc->img;
     const pft_tbd_tab_t *tab = x->tab;
     uint8_t *restrict pe = P->e;
     pft_tbd_slot_t *restrict pw = P->w;
@@ -309,7 +310,9 @@ static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
                   pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy))) {
                 pe[s] = 0u;
             } else {
-                lw = pft_tbd_llr3_(m, tab, img, &c, pin[s]);
+                /* the real-valued frame, or the RES16 frame read in place */
+                lw = img != NULL ? pft_tbd_llr3_(m, tab, img, &c, pin[s])
+                                 : pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, birth_lw);
                 }
@@ -621,7 +624,7 @@ static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real
         if (pe[s] != 0u && pft_tbd_cell_(m, P->x[s], P->y[s], &c) &&
             (x->mask == NULL || !pft_tbd_masked_(x->mask, pft_tbd_mask_words_(m->width),
                                                  (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
-            lw = pft_add(pft_tbd_llr_(m, x->tab, x->sc->img, &c, P->in[s]), pe[s] == 1u ? lb : lp);
+            lw = pft_add(pft_tbd_llr_sc_(m, x->tab, x->sc, &c, P->in[s]), pe[s] == 1u ? lb : lp);
         } else {
             pe[s] = 0u;
         }

@@ -11,6 +11,8 @@
 #ifndef PFT_TBD_INT_H
 #define PFT_TBD_INT_H
 
+#include <string.h>
+
 #include "pft/pft_tbd.h"
 #include "pft/pft_resample.h"
 #include "../core/acc_int.h"
@@ -47,10 +49,25 @@ static inline bool pft_tbd_masked_(const uint32_t *mask, uint32_t words, uint32_
 /* Pixels of row `row` outside the mask. */
 uint32_t pft_tbd_mask_row_free_(const uint32_t *mask, uint32_t width, uint32_t row);
 
-/* What one frame offers a filter step: the converted image, the exclusion mask (NULL: none)
+/* What one frame offers a filter step: the converted image (or the RES16 frame read in place,
+ * with the real-valued patches of the tracks' PSFs over it), the exclusion mask (NULL: none)
  * and the birth candidate list with its sizes. */
 typedef struct {
-    const pft_real_t *img; /* whitened, bordered (above) */
+    const pft_real_t *img; /* whitened, bordered (above); NULL: the RES16 frame r16 */
+    /* cfg.frame_format PFT_PIX_RES16 (img NULL): the frame's pixels read in place, pixel
+     * (col, row) 0-based at r16 + row r16_stride + 2 col, each res / 256 (a masked pixel 0),
+     * 0 outside the image; where patch k (0 .. n_patch - 1) lies, its value instead (the
+     * highest k that covers the pixel): the frame minus the tracks' PSFs, exactly as they were
+     * subtracted from img (pft_tbd_psf_patch_). */
+    const uint8_t *r16;
+    size_t r16_stride;
+    const int32_t *prect;   /* patch k: col_lo, col_hi, row_lo, row_hi at prect[4 k] (0-based,
+                               inside the image; col_hi < col_lo: empty) */
+    const pft_real_t *pval; /* patch k's values, row-major, at pval + k PFT_TBD_PSF_SAVE_REALS_ */
+    const uint8_t *pflag;   /* per row: nonzero when a patch covers it or a row beside it */
+    pft_real_t *rowbuf;     /* scratch: one row with its zero border (w + 2 reals), then the
+                               window of the exact kernel (PFT_TBD_WIN_REALS_) */
+    uint32_t n_patch;
     const uint32_t *mask;  /* bits (pft_tbd_masked_), or NULL */
     const uint32_t *cand;  /* 0-based row-major pixel indices; NULL: every allowed pixel, in
                               raster order, counted per row in row_pre */
@@ -61,6 +78,34 @@ typedef struct {
     uint32_t n_allowed; /* pixels outside the exclusion mask */
     bool cand_is_b;     /* cand holds B_k (z > gamma): the importance correction applies */
 } pft_tbd_scene_t_;
+
+/* Reals of the exact kernel's window scratch: (2 PFT_TBD_MAX_WINDOW + 1)^2. */
+#define PFT_TBD_WIN_REALS_ ((2u * PFT_TBD_MAX_WINDOW + 1u) * (2u * PFT_TBD_MAX_WINDOW + 1u))
+
+/* A RES16 pixel as the converted frame holds it: res / 256, a masked pixel 0. */
+static inline pft_real_t pft_tbd_r16_(const uint8_t *p)
+{
+    int16_t v;
+    memcpy(&v, p, 2u);
+    return v != PFT_RES16_MASKED ? pft_kres16_(v) : PFT_C(0.0);
+}
+/* The pixels (col0 + a, row0 + b), a < nx, b < ny, of a RES16 scene (sc->img NULL) into z
+ * (row-major, nx per row) as the bordered real-valued frame would hold them: 0 outside the
+ * image, the patches over the frame. */
+void pft_tbd_fetch_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
+                    uint32_t ny, pft_real_t *z);
+/* The patches' values over the window z of pft_tbd_fetch_ (the frame's values already in z). */
+void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
+                         uint32_t ny, pft_real_t *z);
+/* Row r (0-based) of the scene with its zero border: element 0 is the border, 1 .. w the
+ * pixels, w + 1 the border (img's own row, or the scene's row buffer filled). */
+const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r);
+/* Patch `slot` (= sc->n_patch: the patches below it already in sc) of the PSF that
+ * pft_tbd_psf_add_(m, img, .., x, y, coef, half) adds: its rectangle into rect (4 int32) and
+ * the pixels' values plus the PSF into val, the same arithmetic as on the real-valued frame. */
+void pft_tbd_psf_patch_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc, int32_t *rect,
+                        pft_real_t *val, pft_real_t x, pft_real_t y, pft_real_t coef,
+                        uint8_t half);
 
 /* pft_tbd_meas_init without the checks (cfg already passed pft_tbd_config_check). */
 void pft_tbd_meas_setup_(pft_tbd_meas_t *m, const pft_tbd_config_t *cfg);
@@ -85,7 +130,8 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
 /* mask |= region (0-based, clipped to the image). */
 void pft_tbd_mask_add_(const pft_tbd_config_t *cfg, uint32_t *mask, const pft_tbd_region_t *r);
 /* Fills cand and the counts of sc from the bordered whitened img (birth threshold gamma_w =
- * gamma / sigma) and mask (may be NULL). */
+ * gamma / sigma) and mask (may be NULL). img NULL: from the RES16 source the caller set in sc
+ * (r16 .. n_patch); else sc's source becomes img. */
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
                           const uint32_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc);
 
@@ -94,7 +140,8 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
  * correlated with the f = 0 PSF taps of tab, outside the mask; when there is none the scene
  * proposes every allowed pixel without a list (sc->cand NULL, the per-row counts in lines).
  * rows holds six image rows of scratch, val K reals (the peaks' values), lines w + h + 1
- * counts (the allowed pixels per row, and the tile quota's counts of the current tile row). */
+ * counts (the allowed pixels per row, and the tile quota's counts of the current tile row).
+ * img NULL: the RES16 source of sc, as above. */
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc);
@@ -203,6 +250,46 @@ static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_ta
                        pft_kmulq_(intensity, m->kc));
 }
 
+/* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values
+ * (directly from the frame inside the image away from the patches, else through
+ * pft_tbd_fetch_), the same arithmetic. */
+static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                           const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                           pft_real_t intensity)
+{
+    pft_real_t tx[4], ty[4], z[9];
+    pft_ktaps_(tab->taps[0], c->fx, tx);
+    pft_ktaps_(tab->taps[1], c->fy, ty);
+    const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
+    const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
+    if (ex) {
+        pft_tbd_clip_(tx, c->i, (int32_t)m->width);
+    }
+    if (ey) {
+        pft_tbd_clip_(ty, c->j, (int32_t)m->height);
+    }
+    if (ex || ey) {
+        pft_tbd_fetch_(sc, c->i - 2, c->j - 2, 3u, 3u, z);
+    } else {
+        const size_t st = sc->r16_stride;
+        const uint8_t *p = sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2);
+        for (uint32_t b = 0; b < 3u; ++b) {
+            z[3u * b] = pft_tbd_r16_(p + (size_t)b * st);
+            z[3u * b + 1u] = pft_tbd_r16_(p + (size_t)b * st + 2u);
+            z[3u * b + 2u] = pft_tbd_r16_(p + (size_t)b * st + 4u);
+        }
+        if (sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u) {
+            pft_tbd_patch_over_(sc, c->i - 2, c->j - 2, 3u, 3u, z);
+        }
+    }
+    return pft_kspot3_(z, 3u, tx, ty, pft_kmulq_(intensity, m->kc));
+}
+
+/* pft_tbd_llr_exact_ on a scene's RES16 frame (the window fetched into sc->rowbuf's window
+ * scratch). */
+pft_real_t pft_tbd_llr_exact_r16_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc,
+                                  const pft_tbd_cell_t *c, pft_real_t intensity);
+
 /* The filters' likelihood: the tabulated 3 x 3 kernel for p = 1, the exact one otherwise (on a
  * copy of the cell, so that the caller's never has its address taken by a call). */
 static inline pft_real_t pft_tbd_llr_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
@@ -215,6 +302,23 @@ static inline pft_real_t pft_tbd_llr_(const pft_tbd_meas_t *m, const pft_tbd_tab
     {
         const pft_tbd_cell_t cc = *c;
         return pft_tbd_llr_exact_(m, img, &cc, intensity);
+    }
+}
+
+/* The same on a scene: its real-valued frame, or its RES16 frame read in place. */
+static inline pft_real_t pft_tbd_llr_sc_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                         const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                         pft_real_t intensity)
+{
+    if (sc->img != NULL) {
+        return pft_tbd_llr_(m, tab, sc->img, c, intensity);
+    }
+    if (m->p == 1u) {
+        return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
+    }
+    {
+        const pft_tbd_cell_t cc = *c;
+        return pft_tbd_llr_exact_r16_(m, sc, &cc, intensity);
     }
 }
 

@@ -9,6 +9,10 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
     if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
+    if (cfg->frame_format == PFT_PIX_RES16) {
+        return PFT_TBD_WORKSPACE_BYTES_RES16(cfg->n_search, cfg->n_track, cfg->max_targets,
+                                             cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
+    }
     return PFT_TBD_WORKSPACE_BYTES_PEAKS(cfg->n_search, cfg->n_track, cfg->max_targets,
                                          cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
 }
@@ -25,12 +29,21 @@ static size_t lines_n_(const pft_tbd_config_t *cfg)
     return (size_t)cfg->width + cfg->height + 1u;
 }
 
+/* The frame is read in place (cfg.frame_format PFT_PIX_RES16): no real-valued frame. */
+static bool in_place_(const pft_tbd_config_t *cfg) { return cfg->frame_format == PFT_PIX_RES16; }
+
+/* Reals of the real-valued frame (0 when the frame is read in place). */
+static size_t img_n_(const pft_tbd_config_t *cfg)
+{
+    return in_place_(cfg) ? 0u : pft_tbd_img_len_(cfg->width, cfg->height);
+}
+
 /* Carves every buffer of the manager from ws. With commit == false nothing is written
  * anywhere (a dry run that only checks the size). */
 static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, bool commit)
 {
-    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
-    pft_real_t *img = (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t));
+    const size_t nimg = img_n_(cfg);
+    pft_real_t *img = nimg > 0u ? (pft_real_t *)pft_ws_take(ws, nimg * sizeof(pft_real_t)) : NULL;
     uint32_t *mask =
         (uint32_t *)pft_ws_take(ws, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     uint32_t *cand = (uint32_t *)pft_ws_take(ws, cand_n_(cfg) * sizeof(uint32_t));
@@ -64,7 +77,21 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         peak_rows = (pft_real_t *)pft_ws_take(ws, 6u * (size_t)cfg->width * sizeof(pft_real_t));
         peak_val = (pft_real_t *)pft_ws_take(ws, (size_t)cfg->birth_peaks * sizeof(pft_real_t));
     }
+    int32_t *prect = NULL;
+    uint8_t *pflag = NULL;
+    pft_real_t *rowbuf = NULL;
+    if (in_place_(cfg)) {
+        /* after every other buffer: the frame's patches, row flags, row and window scratch */
+        prect = (int32_t *)pft_ws_take(ws, 4u * (size_t)cfg->max_targets * sizeof(int32_t));
+        pflag = (uint8_t *)pft_ws_take(ws, (size_t)cfg->height);
+        rowbuf = (pft_real_t *)pft_ws_take(
+            ws, ((size_t)cfg->width + 2u + PFT_TBD_WIN_REALS_) * sizeof(pft_real_t));
+    }
     if (commit) {
+        t->base = nimg > 0u ? (void *)img : (void *)mask;
+        t->prect = prect;
+        t->pflag = pflag;
+        t->rowbuf = rowbuf;
         t->peak_rows = peak_rows;
         t->peak_val = peak_val;
         t->res = res;
@@ -89,8 +116,10 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
                           cfg->force_constraint, cfg->seed);
     pft_ws_t ws2;
     pft_ws_init(&ws2, work, work_len);
-    size_t nimg = pft_tbd_img_len_(cfg->width, cfg->height);
-    (void)pft_ws_take(&ws2, nimg * sizeof(pft_real_t));
+    const size_t nimg = img_n_(cfg);
+    if (nimg > 0u) {
+        (void)pft_ws_take(&ws2, nimg * sizeof(pft_real_t));
+    }
     (void)pft_ws_take(&ws2, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     (void)pft_ws_take(&ws2, cand_n_(cfg) * sizeof(uint32_t));
     (void)pft_ws_take(&ws2, sizeof(pft_tbd_tab_t));
@@ -107,7 +136,13 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         t->tracks[k].tab = t->tab;
     }
-    memset(t->img, 0, nimg * sizeof(pft_real_t));
+    if (nimg > 0u) {
+        memset(t->img, 0, nimg * sizeof(pft_real_t));
+    } else {
+        memset(t->prect, 0, 4u * (size_t)cfg->max_targets * sizeof(int32_t));
+        memset(t->pflag, 0, (size_t)cfg->height);
+        memset(t->rowbuf, 0, ((size_t)cfg->width + 2u + PFT_TBD_WIN_REALS_) * sizeof(pft_real_t));
+    }
     memset(t->res, 0, (size_t)cfg->max_targets * PFT_TBD_PSF_SAVE_REALS_ * sizeof(pft_real_t));
     memset(t->mask, 0, pft_tbd_mask_len_(cfg->width, cfg->height) * sizeof(uint32_t));
     memset(t->cand, 0, cand_n_(cfg) * sizeof(uint32_t));
@@ -148,13 +183,13 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t)
     if (t == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (t->img == NULL) {
+    if (t->base == NULL) {
         return PFT_ERR_STATE;
     }
-    /* the workspace starts at the (aligned) image buffer: build it again from there */
+    /* the workspace starts at the (aligned) first buffer: build it again from there */
     pft_tbd_config_t cfg = t->cfg;
     size_t len = pft_tbd_workspace_size(&cfg) - (PFT_WS_ALIGN - 1u);
-    build_(t, &cfg, t->img, len);
+    build_(t, &cfg, t->base, len);
     return PFT_OK;
 }
 
@@ -244,6 +279,52 @@ static void subtract_psf_(const pft_tbd_t *t, pft_real_t x, pft_real_t y, pft_re
     psf_save_(&t->cfg, t->img, t->res + (size_t)slot * PFT_TBD_PSF_SAVE_REALS_, x, y, half, false);
     pft_tbd_psf_add_(m, t->img, (size_t)stride + 1u, stride, x, y,
                      pft_neg(pft_mul(intensity, m->kc)), half);
+}
+
+/* The pixel source of a scene: the real-valued frame, or the RES16 frame read in place with
+ * no patch yet. */
+static void scene_src_(const pft_tbd_t *t, const pft_frame_t *frame, pft_tbd_scene_t_ *sc)
+{
+    memset(sc, 0, sizeof(*sc));
+    sc->img = t->img;
+    sc->width = t->cfg.width;
+    sc->height = t->cfg.height;
+    if (t->img == NULL) {
+        sc->r16 = (const uint8_t *)frame->data;
+        sc->r16_stride = frame->stride_bytes;
+        sc->prect = t->prect;
+        sc->pval = t->res;
+        sc->pflag = t->pflag;
+        sc->rowbuf = t->rowbuf;
+    }
+}
+
+/* The RES16 frame read in place: the frame minus h / sigma of a track record's intensity at
+ * (x, y) (internal frame) as the next patch of sc (subtract_psf_'s values), its rows (and the
+ * rows beside them) flagged. */
+static void patch_psf_(const pft_tbd_t *t, pft_tbd_scene_t_ *sc, pft_real_t x, pft_real_t y,
+                       pft_real_t intensity, uint8_t half)
+{
+    const pft_tbd_meas_t *m = &t->search.model;
+    const uint32_t k = sc->n_patch;
+    int32_t *rect = t->prect + 4u * (size_t)k;
+    pft_tbd_psf_patch_(m, sc, rect, t->res + (size_t)k * PFT_TBD_PSF_SAVE_REALS_, x, y,
+                       pft_neg(pft_mul(intensity, m->kc)), half);
+    const int32_t rlo = rect[2] > 0 ? rect[2] - 1 : 0;
+    const int32_t rhi = rect[3] + 1 < (int32_t)t->cfg.height ? rect[3] + 1 : (int32_t)t->cfg.height - 1;
+    for (int32_t r = rlo; r <= rhi; ++r) {
+        t->pflag[r] = 1u;
+    }
+    sc->n_patch = k + 1u;
+}
+
+/* Drops the patches of sc (the frame as it is again). */
+static void patch_drop_(const pft_tbd_t *t, pft_tbd_scene_t_ *sc)
+{
+    if (sc->n_patch > 0u) {
+        memset(t->pflag, 0, (size_t)t->cfg.height);
+    }
+    sc->n_patch = 0u;
 }
 
 /* Predicted position of a track record at this frame (x + v T, or x + v k T across a seq gap
@@ -402,18 +483,30 @@ static pft_tbd_region_t build_gate_(pft_tbd_t *t)
 /* 1a. Track layers (no births). With residual_tracks, track k sees the frame minus the other
  * tracks' PSFs at their predicted positions (the records still hold frame k - 1); t->res is
  * restored to the frame after each layer. */
-static void update_tracks_(pft_tbd_t *t, bool residual)
+static void update_tracks_(pft_tbd_t *t, const pft_frame_t *frame, bool residual)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     uint8_t half = psf_half_(cfg);
     pft_tbd_scene_t_ tsc;
-    memset(&tsc, 0, sizeof tsc);
+    scene_src_(t, frame, &tsc);
     tsc.cand = t->cand;
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         if (t->records[k].id == 0u) {
             continue;
         }
-        tsc.img = t->img;
+        if (t->img == NULL) {
+            /* the frame read in place: the other tracks' PSFs as patches over it */
+            for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
+                if (u != k && t->records[u].id != 0u) {
+                    pft_real_t px, py;
+                    predict_(t, &t->records[u], &px, &py);
+                    patch_psf_(t, &tsc, px, py, t->records[u].intensity, half);
+                }
+            }
+            pft_tbd_filter_step_(&t->tracks[k], &tsc);
+            patch_drop_(t, &tsc);
+            continue;
+        }
         uint32_t slot = 0u;
         for (uint32_t u = 0; residual && u < cfg->max_targets; ++u) {
             if (u != k && t->records[u].id != 0u) {
@@ -498,20 +591,28 @@ static void search_budget_(pft_tbd_t *t, uint32_t stepped)
 
 /* 3. The search layer, births outside the regions; with residual, on the frame minus every
  * remaining track's PSF at its current estimate. */
-static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
+static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual,
+                           uint32_t stepped)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const pft_real_t *simg = t->img;
     const bool sub = residual && t->n_tracks > 0u;
+    pft_tbd_scene_t_ ssc;
+    scene_src_(t, frame, &ssc);
     uint32_t slot = 0u;
     for (uint32_t u = 0; sub && u < cfg->max_targets; ++u) {
-        if (t->records[u].id != 0u) {
+        if (t->records[u].id == 0u) {
+            continue;
+        }
+        if (simg == NULL) {
+            patch_psf_(t, &ssc, t->records[u].x, t->records[u].y, t->records[u].intensity,
+                       psf_half_(cfg));
+        } else {
             subtract_psf_(t, t->records[u].x, t->records[u].y, t->records[u].intensity,
                           psf_half_(cfg), slot);
             ++slot;
         }
     }
-    pft_tbd_scene_t_ ssc;
     search_budget_(t, stepped);
     if (cfg->birth_peaks > 0u) {
         pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
@@ -522,7 +623,8 @@ static void update_search_(pft_tbd_t *t, bool residual, uint32_t stepped)
     t->n_cand = ssc.n_cand;
     t->cand_listed = ssc.cand != NULL;
     pft_tbd_filter_step_(&t->search, &ssc);
-    for (uint32_t uu = cfg->max_targets; sub && uu > 0u; --uu) {
+    patch_drop_(t, &ssc);
+    for (uint32_t uu = cfg->max_targets; sub && simg != NULL && uu > 0u; --uu) {
         const pft_tbd_track_t *rec = &t->records[uu - 1u];
         if (rec->id != 0u) {
             --slot;
@@ -619,7 +721,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     if (t == NULL || frame == NULL) {
         return PFT_ERR_INVAL;
     }
-    if (t->img == NULL) {
+    if (t->base == NULL) {
         return PFT_ERR_STATE;
     }
     const pft_tbd_config_t *cfg = &t->cfg;
@@ -645,7 +747,9 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     t->seq_set = true;
     t->last_seq = frame->seq;
     t->last_ts = frame->timestamp_us;
-    pft_tbd_frame_convert_(cfg, &t->search.model, frame, t->img);
+    if (t->img != NULL) {
+        pft_tbd_frame_convert_(cfg, &t->search.model, frame, t->img);
+    } /* else the RES16 frame is read in place (cfg.frame_format) */
     if (t->frame < UINT32_MAX) {
         ++t->frame;
     }
@@ -653,9 +757,9 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     bool res_tracks = cfg->residual_tracks && t->n_tracks > 1u;
     bool res_search = cfg->residual_search && t->n_tracks > 0u;
     const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
-    update_tracks_(t, res_tracks);
+    update_tracks_(t, frame, res_tracks);
     end_or_keep_tracks_(t);
-    update_search_(t, res_search, stepped);
+    update_search_(t, frame, res_search, stepped);
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;
     t->search.est.gap = seen;

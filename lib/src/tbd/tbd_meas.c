@@ -131,28 +131,52 @@ void pft_tbd_psf_add_(const pft_tbd_meas_t *m, pft_real_t *img, size_t origin, u
     }
 }
 
+/* The exact kernel's window around cell c, clipped to the image (internal 1-based ranges), and
+ * its taps. */
+static void exact_taps_(const pft_tbd_meas_t *m, const pft_tbd_cell_t *c, win_t *w,
+                        pft_real_t *tx, pft_real_t *ty)
+{
+    const int32_t p = (int32_t)m->p;
+    w->ilo = c->i - p < 1 ? 1 : c->i - p;
+    w->ihi = c->i + p > (int32_t)m->width ? (int32_t)m->width : c->i + p;
+    w->jlo = c->j - p < 1 ? 1 : c->j - p;
+    w->jhi = c->j + p > (int32_t)m->height ? (int32_t)m->height : c->j + p;
+    /* offsets from the particle in pixels: (i - u) for u = i0 + f */
+    for (int32_t i = w->ilo; i <= w->ihi; ++i) {
+        pft_real_t d = pft_mul(pft_sub(pft_from_int(i - c->i), pft_kfrac_off_(c->fx)), m->dx);
+        tx[i - w->ilo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    }
+    for (int32_t j = w->jlo; j <= w->jhi; ++j) {
+        pft_real_t d = pft_mul(pft_sub(pft_from_int(j - c->j), pft_kfrac_off_(c->fy)), m->dy);
+        ty[j - w->jlo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
+    }
+}
+
 pft_real_t pft_tbd_llr_exact_(const pft_tbd_meas_t *m, const pft_real_t *img,
                               const pft_tbd_cell_t *c, pft_real_t intensity)
 {
-    const int32_t p = (int32_t)m->p;
-    const int32_t ilo = c->i - p < 1 ? 1 : c->i - p;
-    const int32_t ihi = c->i + p > (int32_t)m->width ? (int32_t)m->width : c->i + p;
-    const int32_t jlo = c->j - p < 1 ? 1 : c->j - p;
-    const int32_t jhi = c->j + p > (int32_t)m->height ? (int32_t)m->height : c->j + p;
     const size_t stride = (size_t)m->width + 2u;
     pft_real_t tx[2u * PFT_TBD_MAX_WINDOW + 1u];
     pft_real_t ty[2u * PFT_TBD_MAX_WINDOW + 1u];
-    /* offsets from the particle in pixels: (i - u) for u = i0 + f */
-    for (int32_t i = ilo; i <= ihi; ++i) {
-        pft_real_t d = pft_mul(pft_sub(pft_from_int(i - c->i), pft_kfrac_off_(c->fx)), m->dx);
-        tx[i - ilo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
-    }
-    for (int32_t j = jlo; j <= jhi; ++j) {
-        pft_real_t d = pft_mul(pft_sub(pft_from_int(j - c->j), pft_kfrac_off_(c->fy)), m->dy);
-        ty[j - jlo] = pft_exp(pft_neg(pft_mul(pft_sq(d), m->inv_2s2)));
-    }
-    return pft_kspot_(img + (size_t)jlo * stride + (size_t)ilo, stride, tx, (uint32_t)(ihi - ilo + 1),
-                      ty, (uint32_t)(jhi - jlo + 1), pft_mul(intensity, m->kc));
+    win_t w;
+    exact_taps_(m, c, &w, tx, ty);
+    return pft_kspot_(img + (size_t)w.jlo * stride + (size_t)w.ilo, stride, tx,
+                      (uint32_t)(w.ihi - w.ilo + 1), ty, (uint32_t)(w.jhi - w.jlo + 1),
+                      pft_mul(intensity, m->kc));
+}
+
+pft_real_t pft_tbd_llr_exact_r16_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc,
+                                  const pft_tbd_cell_t *c, pft_real_t intensity)
+{
+    pft_real_t tx[2u * PFT_TBD_MAX_WINDOW + 1u];
+    pft_real_t ty[2u * PFT_TBD_MAX_WINDOW + 1u];
+    win_t w;
+    exact_taps_(m, c, &w, tx, ty);
+    const uint32_t nx = (uint32_t)(w.ihi - w.ilo + 1);
+    const uint32_t ny = (uint32_t)(w.jhi - w.jlo + 1);
+    pft_real_t *z = sc->rowbuf + (size_t)m->width + 2u; /* the window scratch */
+    pft_tbd_fetch_(sc, w.ilo - 1, w.jlo - 1, nx, ny, z);
+    return pft_kspot_(z, nx, tx, nx, ty, ny, pft_mul(intensity, m->kc));
 }
 
 /* The tap table of pitch d: row n holds g((k - 1 - f_n) d), k = 0..2, and their sum of squares
@@ -223,13 +247,31 @@ void pft_tbd_meas_add_psf(const pft_tbd_meas_t *m, pft_real_t *img, pft_real_t x
 
 pft_status_t pft_tbd_frame_check_(const pft_tbd_config_t *cfg, const pft_frame_t *frame)
 {
-    uint32_t fmts = PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_F32) |
-                    PFT_FMT_BIT(PFT_PIX_RES16);
+    /* cfg.frame_format PFT_PIX_RES16: the manager reads the frame in place, no other format */
+    uint32_t fmts = cfg->frame_format == PFT_PIX_RES16
+                        ? PFT_FMT_BIT(PFT_PIX_RES16)
+                        : PFT_FMT_BIT(PFT_PIX_U8) | PFT_FMT_BIT(PFT_PIX_U16) |
+                              PFT_FMT_BIT(PFT_PIX_F32) | PFT_FMT_BIT(PFT_PIX_RES16);
     pft_status_t st = pft_frame_check(frame, cfg->width, cfg->height, fmts);
     if (st != PFT_OK) {
         return st;
     }
     return pft_frame_check_finite(frame);
+}
+
+/* One RES16 row (w pixels from src) as reals: res / 256, a masked pixel 0. The index is a
+ * size_t: with a 32-bit one 2 c could wrap, and GCC did not vectorise the loop (14 instead of
+ * about 2 instructions per pixel, callgrind, x86-64). */
+static void r16_row_(const uint8_t *src, uint32_t w, pft_real_t *row)
+{
+    for (size_t c = 0; c < (size_t)w; ++c) {
+        int16_t v;
+        memcpy(&v, src + 2u * c, 2u);
+        /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises
+         * in both builds) */
+        const int32_t keep = v != PFT_RES16_MASKED ? (int32_t)1 : (int32_t)0;
+        row[c] = pft_kres16_((int16_t)((int32_t)v * keep));
+    }
 }
 
 void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m,
@@ -263,16 +305,7 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
          * values (res / 256, |res / 256| < 128 needs no clamp; a masked pixel reads 0) in a
          * loop without products */
         for (uint32_t r = 0; r < cfg->height; ++r) {
-            pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
-            const uint8_t *src = pft_frame_row(frame, r);
-            for (uint32_t c = 0; c < cfg->width; ++c) {
-                int16_t v;
-                memcpy(&v, src + 2u * c, 2u);
-                /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop
-                 * vectorises in both builds) */
-                const int32_t keep = v != PFT_RES16_MASKED ? (int32_t)1 : (int32_t)0;
-                row[c] = pft_kres16_((int16_t)((int32_t)v * keep));
-            }
+            r16_row_(pft_frame_row(frame, r), cfg->width, img + (size_t)(r + 1u) * stride + 1u);
         }
         return;
     }
@@ -285,6 +318,115 @@ void pft_tbd_frame_convert_(const pft_tbd_config_t *cfg, const pft_tbd_meas_t *m
             for (uint32_t c = 0; c < cfg->width; ++c) {
                 row[c] = pft_clamp(pft_mul(row[c], m->inv_sn), PFT_C(-32767.0), PFT_C(32767.0));
             }
+        }
+    }
+}
+
+/* ------------------------- the RES16 frame read in place (cfg.frame_format) ---------------- */
+
+void pft_tbd_fetch_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
+                    uint32_t ny, pft_real_t *z)
+{
+    /* called on a RES16 scene only (sc->img NULL) */
+    const int32_t w = (int32_t)sc->width;
+    const int32_t h = (int32_t)sc->height;
+    for (uint32_t b = 0; b < ny; ++b) {
+        const int32_t row = row0 + (int32_t)b;
+        pft_real_t *zr = z + (size_t)b * nx;
+        if (row < 0 || row >= h) {
+            for (uint32_t a = 0; a < nx; ++a) {
+                zr[a] = PFT_C(0.0);
+            }
+            continue;
+        }
+        const uint8_t *src = sc->r16 + (size_t)row * sc->r16_stride;
+        for (uint32_t a = 0; a < nx; ++a) {
+            const int32_t col = col0 + (int32_t)a;
+            zr[a] = col < 0 || col >= w ? PFT_C(0.0) : pft_tbd_r16_(src + 2u * (uint32_t)col);
+        }
+    }
+    pft_tbd_patch_over_(sc, col0, row0, nx, ny, z);
+}
+
+void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
+                         uint32_t ny, pft_real_t *z)
+{
+    /* the patches in their order: a later one holds the value of a pixel two of them cover */
+    const int32_t c1 = col0 + (int32_t)nx - 1;
+    const int32_t r1 = row0 + (int32_t)ny - 1;
+    for (uint32_t k = 0; k < sc->n_patch; ++k) {
+        const int32_t *pr = sc->prect + 4u * k;
+        const int32_t clo = pr[0] > col0 ? pr[0] : col0;
+        const int32_t chi = pr[1] < c1 ? pr[1] : c1;
+        const int32_t rlo = pr[2] > row0 ? pr[2] : row0;
+        const int32_t rhi = pr[3] < r1 ? pr[3] : r1;
+        const uint32_t pw = (uint32_t)(pr[1] - pr[0] + 1);
+        const pft_real_t *pv = sc->pval + (size_t)k * PFT_TBD_PSF_SAVE_REALS_;
+        for (int32_t row = rlo; row <= rhi; ++row) {
+            for (int32_t col = clo; col <= chi; ++col) {
+                z[(size_t)(row - row0) * nx + (size_t)(col - col0)] =
+                    pv[(size_t)(row - pr[2]) * pw + (size_t)(col - pr[0])];
+            }
+        }
+    }
+}
+
+const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r)
+{
+    const uint32_t w = sc->width;
+    if (sc->img != NULL) {
+        return sc->img + (size_t)(r + 1u) * pft_tbd_stride_(w);
+    }
+    pft_real_t *row = sc->rowbuf;
+    const uint8_t *src = sc->r16 + (size_t)r * sc->r16_stride;
+    r16_row_(src, w, row + 1);
+    row[0] = PFT_C(0.0);
+    row[w + 1u] = PFT_C(0.0);
+    if (sc->n_patch > 0u && sc->pflag[r] != 0u) {
+        for (uint32_t k = 0; k < sc->n_patch; ++k) {
+            const int32_t *pr = sc->prect + 4u * k;
+            if ((int32_t)r < pr[2] || (int32_t)r > pr[3]) {
+                continue;
+            }
+            const uint32_t pw = (uint32_t)(pr[1] - pr[0] + 1);
+            const pft_real_t *pv =
+                sc->pval + (size_t)k * PFT_TBD_PSF_SAVE_REALS_ + (size_t)((int32_t)r - pr[2]) * pw;
+            for (int32_t col = pr[0]; col <= pr[1]; ++col) {
+                row[col + 1] = pv[col - pr[0]];
+            }
+        }
+    }
+    return row;
+}
+
+void pft_tbd_psf_patch_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc, int32_t *rect,
+                        pft_real_t *val, pft_real_t x, pft_real_t y, pft_real_t coef,
+                        uint8_t half)
+{
+    int32_t p = half > PFT_TBD_MAX_PSF_HALF ? (int32_t)PFT_TBD_MAX_PSF_HALF : (int32_t)half;
+    win_t w;
+    if (!window_(m, x, y, p, &w)) {
+        rect[0] = 0;
+        rect[1] = -1;
+        rect[2] = 0;
+        rect[3] = -1;
+        return;
+    }
+    rect[0] = w.ilo - 1;
+    rect[1] = w.ihi - 1;
+    rect[2] = w.jlo - 1;
+    rect[3] = w.jhi - 1;
+    const uint32_t nx = (uint32_t)(w.ihi - w.ilo + 1);
+    const uint32_t ny = (uint32_t)(w.jhi - w.jlo + 1);
+    pft_tbd_fetch_(sc, rect[0], rect[2], nx, ny, val);
+    /* pft_tbd_psf_add_'s arithmetic on these values */
+    pft_real_t ax[2u * PFT_TBD_MAX_PSF_HALF + 1u];
+    psf_columns_(m, &w, x, coef, ax);
+    for (int32_t j = w.jlo; j <= w.jhi; ++j) {
+        pft_real_t g = psf_row_(m, j, y);
+        pft_real_t *row = val + (size_t)(j - w.jlo) * nx;
+        for (int32_t i = w.ilo; i <= w.ihi; ++i) {
+            row[i - w.ilo] = pft_add(row[i - w.ilo], pft_mul(ax[i - w.ilo], g));
         }
     }
 }
@@ -324,17 +466,34 @@ uint32_t pft_tbd_mask_row_free_(const uint32_t *mask, uint32_t width, uint32_t r
     return width - set;
 }
 
+/* The pixel source of a scene: img, or (img NULL) the RES16 source already in sc. */
+static void scene_source_(pft_tbd_scene_t_ *sc, const pft_real_t *img, uint32_t w, uint32_t h)
+{
+    if (img != NULL) {
+        sc->img = img;
+        sc->r16 = NULL;
+        sc->r16_stride = 0u;
+        sc->prect = NULL;
+        sc->pval = NULL;
+        sc->pflag = NULL;
+        sc->rowbuf = NULL;
+        sc->n_patch = 0u;
+    }
+    sc->width = w;
+    sc->height = h;
+}
+
 void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const pft_real_t *img,
                           const uint32_t *mask, uint32_t *cand, pft_tbd_scene_t_ *sc)
 {
     const uint32_t w = cfg->width;
     const uint32_t words = pft_tbd_mask_words_(w);
-    const uint32_t stride = pft_tbd_stride_(w);
     uint32_t npix = w * cfg->height;
     uint32_t nb = 0;
     uint32_t na = 0;
+    scene_source_(sc, img, w, cfg->height);
     for (uint32_t r = 0, k = 0; r < cfg->height; ++r) {
-        const pft_real_t *row = img + (size_t)(r + 1u) * stride + 1u;
+        const pft_real_t *row = pft_tbd_row_(sc, r) + 1;
         for (uint32_t c = 0; c < w; ++c, ++k) {
             if (mask != NULL && pft_tbd_masked_(mask, words, c, r)) {
                 continue;
@@ -345,7 +504,6 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
             }
         }
     }
-    sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
     sc->row_pre = NULL;
@@ -417,13 +575,12 @@ static void sift_up_(uint32_t *key, pft_real_t *val, uint32_t i)
  * sums of the 3 x 3 correlation (at most 9 such values with taps <= 1) stay in range. */
 #define PEAK_CLIP_ PFT_C(2048.0)
 
-/* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along row r of the bordered whitened image: the
- * border columns row[-1] and row[w] are zero, so every column is the same expression (one loop
- * without a carried value, which compilers vectorise). */
-static void peak_hrow_(const pft_real_t *img, uint32_t w, uint32_t r, pft_real_t t0,
-                       pft_real_t t1, pft_real_t *hs)
+/* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along a row of the bordered whitened image
+ * (pft_tbd_row_): row[0] and row[w + 1] are the zero border, so every column is the same
+ * expression (one loop without a carried value, which compilers vectorise). */
+static void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_real_t t1,
+                       pft_real_t *hs)
 {
-    const pft_real_t *row = img + (size_t)(r + 1u) * pft_tbd_stride_(w);
     const pft_real_t lo = pft_neg(PEAK_CLIP_);
     for (uint32_t c = 0; c < w; ++c) {
         /* row[c + 1] is pixel c; row[0] and row[w + 1] the zero border */
@@ -589,6 +746,7 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
         hs[s] = rows + (size_t)s * w;
         mf[s] = rows + (size_t)(s + 3u) * w;
     }
+    scene_source_(sc, img, w, h);
     ps.mask = mask;
     ps.key = cand;
     ps.val = val;
@@ -609,7 +767,7 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
         if (rr < h) {
-            peak_hrow_(img, w, rr, tx[0], tx[1], hs[rr % 3u]);
+            peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
         }
         if (rr >= 1u && rr <= h) {
             const uint32_t r = rr - 1u;
@@ -622,7 +780,6 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                            q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
         }
     }
-    sc->img = img;
     sc->mask = mask;
     sc->cand = cand;
     sc->row_pre = lines;

@@ -114,12 +114,16 @@ struct pft_tbd_s {
     pft_tbd_track_t *records;    /* max_targets slots (workspace); id 0 marks a free slot */
     pft_tbd_event_t *events;     /* max_targets + 1 (workspace) */
     uint32_t n_events;
-    pft_real_t *img;             /* converted frame (whitened, 1-pixel zero border) */
+    void *base;                  /* the workspace's first (aligned) byte: its first buffer */
+    pft_real_t *img;             /* converted frame (whitened, 1-pixel zero border); NULL with cfg.frame_format PFT_PIX_RES16 (the frame read in place) */
+    int32_t *prect;              /* cfg.frame_format PFT_PIX_RES16: max_targets patch rectangles (4 each), the values in res */
+    uint8_t *pflag;              /* cfg.frame_format PFT_PIX_RES16: per row, a patch on it or beside it */
+    pft_real_t *rowbuf;          /* cfg.frame_format PFT_PIX_RES16: one row with its border, then the exact kernel's window */
     uint32_t *mask;              /* constraint mask: one bit per pixel, rows in whole 32-bit words */
     uint32_t *cand;              /* birth candidates: w h slots (B_k), or min(birth_peaks, w h) */
     uint32_t *lines;             /* w + h + 1 per-line counts: the allowed pixels per row of the peak scan's uniform proposal and its tile quota, or the hand-over gate's row lists and column counts */
     pft_tbd_tab_t *tab;          /* tables shared by every layer */
-    pft_real_t *res;             /* img's pixels under the tracks' PSFs while they are subtracted in place (cfg.residual_*): max_targets slots of PFT_TBD_PSF_SAVE_REALS_ */
+    pft_real_t *res;             /* img's pixels under the tracks' PSFs while they are subtracted in place (cfg.residual_*), or with PFT_PIX_RES16 the patches' values: max_targets slots of PFT_TBD_PSF_SAVE_REALS_ */
     pft_real_t *peak_rows;       /* cfg.birth_peaks > 0: six rolling image rows of the peak scan */
     pft_real_t *peak_val;        /* cfg.birth_peaks > 0: the peaks' values (heap) */
     uint32_t frame;              /* frames accepted so far (the last frame number) */
