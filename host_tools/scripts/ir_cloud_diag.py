@@ -27,6 +27,8 @@ import subprocess
 import numpy as np
 from scipy import ndimage
 
+from ir_diag_assoc import associate, tracks_by_id
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SC = os.path.join(HERE, '..', 'scenarios', 'tbd_ir')
 W, H, SIGMA_T = 384, 288, 20.0
@@ -108,15 +110,8 @@ def main():
         for t in truth:
             tpos.setdefault(int(t['frame']), []).append((float(t['x']), float(t['y']), int(t['id']), t['kind']))
         # tracks: associated if within 3 px of a truth point at the same frame, at any frame
-        byid = {}
-        for t in tracks:
-            byid.setdefault(int(t['track']), []).append((int(t['frame']), float(t['x']), float(t['y'])))
-        assoc = {}
-        for tid, pts in byid.items():
-            for fr, x, y in pts:
-                for tx, ty, gid, _ in tpos.get(fr, []):
-                    if (x - tx) ** 2 + (y - ty) ** 2 <= 9.0:
-                        assoc.setdefault(tid, set()).add(gid)
+        byid = tracks_by_id(tracks)
+        assoc = associate(truth, byid)
         gcache = {}
 
         def g_of(k):

@@ -30,6 +30,8 @@ import subprocess
 import numpy as np
 from scipy import ndimage as nd
 
+from ir_diag_assoc import associate, tracks_by_id
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SC = os.path.join(HERE, '..', 'scenarios', 'tbd_ir', 'sweep_snr_09db.json')
 KINDS = os.path.join(HERE, 'ir_sky_kinds.csv')
@@ -66,18 +68,8 @@ def one_seed(a, seed, patch, files, kinds, rows, frows, stats):
     nf = r.shape[0]
     truth = list(csv.DictReader(open(os.path.join(d, 'truth.csv'))))
     tracks = list(csv.DictReader(open(os.path.join(d, 'run', 'tracks.csv'))))
-    tp = {}
-    for t in truth:
-        tp.setdefault(int(t['frame']), []).append((float(t['x']), float(t['y']), int(t['id'])))
-    byid = {}
-    for t in tracks:
-        byid.setdefault(int(t['track']), []).append((int(t['frame']), float(t['x']), float(t['y'])))
-    assoc = {}
-    for tid, pts in byid.items():
-        for fr, x, y in pts:
-            for tx, ty, gid in tp.get(fr, []):
-                if (x - tx) ** 2 + (y - ty) ** 2 <= 9:
-                    assoc.setdefault(tid, set()).add(gid)
+    byid = tracks_by_id(tracks)
+    assoc = associate(truth, byid)
     cache = {}
 
     def matched(k):
