@@ -723,19 +723,26 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
             memcpy(p->prev, b, (size_t)w * 2u);
             yprev = y;
             if (fast) {
+                /* in place, the row is made in a scratch line (the column projections, free
+                 * after the registration) and copied over the frame row only after
+                 * count_row_ has read the row's raw values */
+                int16_t *ro = p->cfg.inplace ? (int16_t *)(void *)p->pzc : r;
                 /* outside [ia, ib): masked, the background restarts from z (as below) */
                 hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
                 hcubic_(vb, g.kx, wx, w, ib, w, true, bw);
                 const int32_t seg[2][2] = {{0, ia}, {ib, w}};
                 for (int32_t s = 0; s < 2; ++s) {
                     for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
-                        r[x] = PFT_RES16_MASKED;
+                        ro[x] = PFT_RES16_MASKED;
                         b[x] = (uint16_t)(zl[x] >= 0 ? zl[x] : bw[x]);
                     }
                 }
-                ninv += fused_span_(&c, pft_frame_row(f, (uint32_t)y), &fu, b, r, ia, ib);
+                ninv += fused_span_(&c, pft_frame_row(f, (uint32_t)y), &fu, b, ro, ia, ib);
                 if (ninv > 0u) {
                     count_row_(&c, f, (uint32_t)y, acc);
+                }
+                if (ro != r) {
+                    memcpy(r, ro, (size_t)w * 2u);
                 }
             } else {
                 hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
