@@ -7,10 +7,11 @@
  * vertical drift reversed, so the temporal row pass walks the rows the other way), for the
  * temporal and the local method, whitening with this frame's or the last frame's sigma, with
  * the edge term and with a bad-pixel map. No tolerance: the stage is integer arithmetic and the
- * two paths must give the same bits. A row overwritten before the stage has read its raw
- * values changes the result (checked: the fused row of the temporal pass written straight into
- * the frame row, before count_row_ reads it, gives other n_dead/n_saturated counts and fails
- * here on the first frame after the background starts).
+ * two paths must give the same bits. A row read after it was overwritten changes the result
+ * (checked: the masked pixels of a temporal row counted by cause from the raw row after the
+ * fused loop has written the residual over it gives other n_saturated counts and fails here on
+ * frame 1 of case 0; the same count after the row is written in the rows without the fused
+ * loop fails on frame 1 of case 4).
  */
 #include "pft_test_support.h"
 #include "pre_vectors_spec.h"
