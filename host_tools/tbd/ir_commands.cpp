@@ -565,7 +565,10 @@ int selftest_checks(bool verbose)
     cv::Mat dead = u16.clone();
     dead.at<uint16_t>(50, 60) = 0;
     dead.at<uint16_t>(70, 80) = 16383;
+    const cv::Mat dead_before = dead.clone();
     pl.step(u16_frame(dead, 14, 2));
+    check("pipeline: the stage writes in place over its own copy, the caller's frame is unchanged",
+          pl.pre_config().inplace && cv::countNonZero(dead != dead_before) == 0);
     check("dead and saturated pixels masked by pft_pre (residual 0 there)",
           pl.stats().n_dead == 1 && pl.stats().n_saturated == 1 && pl.residual().at<float>(50, 60) == 0.0f &&
               pl.residual().at<float>(70, 80) == 0.0f);

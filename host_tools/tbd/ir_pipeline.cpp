@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <opencv2/imgproc.hpp>
 
@@ -78,6 +79,9 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     // the edge term is the temporal background's (its gradient); the spatial method has none
     c.edge_k = c.method == PFT_PRE_BG_TEMPORAL ? static_cast<uint16_t>(std::lround(t.edge_k * 4096.0)) : 0u;
     c.peak_max = 0;  // the TBD manager here draws its births itself; the DBT thresholds the residual
+    // the residual over the pipeline's own copy of the frame (pft_pre_update_inplace): the
+    // stage's workspace holds no residual (docs/porting.md)
+    c.inplace = !u8;
     return c;
 }
 
@@ -288,17 +292,30 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
                          std::to_string(w_) + "x" + std::to_string(h_));
     // the stage takes U16 frames of the pipeline's bit depth: others are converted (rounded,
     // clipped to the bit depth)
+    // With inplace (make_pre_config) the stage writes its residual over the frame it is given:
+    // the pipeline gives it its own copy, u16_, since the caller's frame stays the caller's
+    // (shown in the video, read again by the caller); the copy is the host's memory, as a
+    // sensor's frame buffer would be on a target.
     pft_frame_t in = frame;
-    if (frame.format != PFT_PIX_U16 || (frame.bit_depth ? frame.bit_depth : 16) != bits_) {
+    const bool convert = frame.format != PFT_PIX_U16 || (frame.bit_depth ? frame.bit_depth : 16) != bits_;
+    if (convert) {
         cv::Mat z = frame_to_mat(frame, 1.0, 0.0);
         cv::Mat c = cv::min(cv::max(z, 0.0), std::ldexp(1.0, bits_) - 1.0);
         c.convertTo(u16_, CV_16U);
+    } else if (pre_cfg_.inplace) {
+        u16_.create(h_, w_, CV_16U);
+        for (int y = 0; y < h_; ++y)
+            std::memcpy(u16_.ptr<uint16_t>(y), pft_frame_row(&frame, static_cast<uint32_t>(y)),
+                        static_cast<std::size_t>(w_) * 2u);
+    }
+    if (convert || pre_cfg_.inplace) {
         in.data = u16_.data;
         in.stride_bytes = static_cast<uint32_t>(u16_.step[0]);
         in.format = PFT_PIX_U16;
         in.bit_depth = static_cast<uint8_t>(bits_);
     }
-    pft_status_t st = pft_pre_update(&pre_, &in);
+    pft_status_t st = pre_cfg_.inplace ? pft_pre_update_inplace(&pre_, &in, u16_.ptr<uint16_t>(0))
+                                       : pft_pre_update(&pre_, &in);
     if (st != PFT_OK)
         throw InputError("frame " + std::to_string(frame.seq) + " refused by pft_pre_update: " + pft_status_str(st));
     pft_pre_stats(&pre_, &stats_);

@@ -51,7 +51,21 @@
  *
  * Memory: the caller's workspace holds the residual (2 bytes per pixel), the temporal
  * background (2 bytes per pixel, PFT_PRE_BG_TEMPORAL only) and O(width + height + tiles) of
- * line, column and tile buffers; see PFT_PRE_WORKSPACE_BYTES.
+ * line, column and tile buffers; see PFT_PRE_WORKSPACE_BYTES. With inplace set the residual
+ * is written over the input frame instead (the frame buffer is the caller's, not workspace):
+ *  - call pft_pre_update_inplace(pre, frame, pixels) with pixels the frame's own buffer
+ *    (pixels == frame->data, writable, U16, stride_bytes == 2 width); pft_pre_update refuses
+ *    such an instance (PFT_ERR_STATE);
+ *  - the frame buffer is overwritten: after an accepted call it holds the whitened residual
+ *    (int16 per pixel, PFT_PIX_RES16, the same values as pft_pre_update writes into the
+ *    workspace) and no longer the raw frame: copy the raw frame first if it is needed later
+ *    (display, another detector); pft_pre_frame then describes that buffer, which the caller
+ *    must keep unchanged for as long as a tracker reads the residual;
+ *  - every row is overwritten only once nothing later in the call reads its raw values (the
+ *    constancy scan and the registration read the whole frame before any write; the row pass
+ *    reads raw row y, LOCAL rows up to y + local_outer, before it writes row y);
+ *  - a refused call (NULL, a wrong frame, pixels != frame->data, a stride other than
+ *    2 width) changes nothing: instance, workspace and frame buffer stay byte for byte.
  *
  * Refused input (NULL, a frame of the wrong size, format or bit depth, a stride too small)
  * returns a status before anything changes: the instance and its workspace stay byte for byte
@@ -135,6 +149,8 @@ typedef struct {
     /* peaks */
     uint16_t peak_max;       /**< peaks kept per frame, 0..PFT_PRE_MAX_PEAKS; 0: no peak search (default 64) */
     int16_t peak_threshold;  /**< smallest whitened value of a peak, Q8.8 sigma units, >= 1 (default 768 = 3 sigma) */
+    /* memory */
+    bool inplace;            /**< U16 only: the residual is written over the caller's frame buffer by pft_pre_update_inplace (pft_pre_update is then refused) and the workspace holds no residual (PFT_PRE_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it. Must be false with PFT_PIX_U8 (default false) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */
@@ -230,6 +246,10 @@ extern "C" {
                 PFT_WS_ROUND((2u * (size_t)(ro) + 2u) * (size_t)(w) * 4u)) +                    \
      PFT_WS_ROUND((size_t)(k) * sizeof(pft_pre_peak_t)))
 
+/** Workspace bytes with inplace set: PFT_PRE_WORKSPACE_BYTES without the residual (2 w h). */
+#define PFT_PRE_WORKSPACE_BYTES_INPLACE(w, h, m, ro, t, k)                                      \
+    (PFT_PRE_WORKSPACE_BYTES(w, h, m, ro, t, k) - PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u))
+
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_workspace_size(const pft_pre_config_t *cfg);
 /**
@@ -249,10 +269,20 @@ pft_status_t pft_pre_reset(pft_pre_t *pre);
  */
 pft_status_t pft_pre_update(pft_pre_t *pre, const pft_frame_t *frame);
 /**
+ * pft_pre_update for an instance configured with inplace: the whitened residual is written
+ * over the frame's own pixels (see "Memory" above for the rules). pixels must be frame->data
+ * (the same buffer, writable) and the frame U16 with stride_bytes == 2 width. PFT_ERR_INVAL
+ * for NULL or pixels != frame->data, PFT_ERR_STATE for an instance without inplace,
+ * PFT_ERR_FORMAT for a wrong frame or stride: nothing changes, the frame buffer included.
+ */
+pft_status_t pft_pre_update_inplace(pft_pre_t *pre, const pft_frame_t *frame, uint16_t *pixels);
+/**
  * The whitened residual of the last update as a frame: PFT_PIX_RES16, the configured size,
  * the input frame's seq and timestamp_us. The descriptor lends the instance's residual buffer
  * (the one exception to copying results out, so that no frame-sized copy is needed): read-only,
- * valid until the next pft_pre_update, pft_pre_reset or pft_pre_init of this instance.
+ * valid until the next pft_pre_update, pft_pre_reset or pft_pre_init of this instance. With
+ * inplace it describes the caller's frame buffer of the last pft_pre_update_inplace (valid
+ * while the caller keeps that buffer unchanged, and until the next reset or init).
  * PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first update.
  */
 pft_status_t pft_pre_frame(const pft_pre_t *pre, pft_frame_t *out);

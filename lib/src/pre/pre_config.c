@@ -100,6 +100,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->peak_threshold < 1) {
         return "peak_threshold";
     }
+    if (c->inplace && c->format != PFT_PIX_U16) {
+        return "inplace"; /* a U8 frame has 1 byte per pixel, the residual 2 */
+    }
     return NULL;
 }
 
@@ -123,8 +126,10 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
     if (pft_pre_config_check(c, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer, c->tile,
-                                   c->peak_max);
+    return c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
+                                                        c->local_outer, c->tile, c->peak_max)
+                      : PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer,
+                                                c->tile, c->peak_max);
 }
 
 pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
@@ -142,7 +147,7 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     const size_t ro = cfg->local_outer;
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
-    int16_t *res = pft_ws_take(&ws, npix * 2u);
+    int16_t *res = cfg->inplace ? NULL : pft_ws_take(&ws, npix * 2u);
     uint16_t *bg = temporal ? pft_ws_take(&ws, npix * 2u) : NULL;
     int32_t *colq = pft_ws_take(&ws, w * 4u);
     int32_t *colnow = pft_ws_take(&ws, w * 4u);
@@ -211,12 +216,16 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
 
 pft_status_t pft_pre_reset(pft_pre_t *p)
 {
-    if (p == NULL || p->res == NULL) {
+    if (p == NULL || p->line == NULL) {
         return PFT_ERR_INVAL;
     }
     const size_t w = p->cfg.width, h = p->cfg.height, npix = w * h;
     const size_t nt = (size_t)p->ntx * p->nty;
-    memset(p->res, 0, npix * 2u);
+    if (p->cfg.inplace) {
+        p->res = NULL; /* the caller's buffer: not ours to clear */
+    } else {
+        memset(p->res, 0, npix * 2u);
+    }
     if (p->bg != NULL) {
         memset(p->bg, 0, npix * 2u);
         memset(p->pzc, 0, w * 4u);

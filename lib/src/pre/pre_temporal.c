@@ -533,15 +533,17 @@ typedef struct {
 
 /* k1 (0 or 1) is a constant of each call (the function is inlined twice): with k1 = 1 the
  * residual (e + 1) / 2 of an unmasked pixel is at least -32767 (|e| <= 65535), so only its
- * upper clamp can act. */
+ * upper clamp can act. The masked pixels are counted, and among them the dead ones (*ndead:
+ * raw below lo; without a bad-pixel map the others are saturated), so that the raw row is not
+ * read again after the residual is written: in place (pft_pre_update_inplace) r is that row. */
 static inline uint32_t fused_loop_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
                                    uint16_t *b, int16_t *r, int32_t x0, int32_t x1,
-                                   const int32_t k1)
+                                   const int32_t k1, uint32_t *ndead)
 {
     const uint32_t lo = c->lo, span = c->span, mask = c->mask, bf = u->bf;
     const int32_t *vb = u->vb + u->kx, *cn = u->cn;
     const int32_t w0 = u->w0, w1 = u->w1, w2 = u->w2, w3 = u->w3, a15 = u->a15;
-    uint32_t ninv = 0u;
+    uint32_t ninv = 0u, nd = 0u;
     for (int32_t x = x0; x < x1; ++x) { /* vectorisable */
         uint16_t raw;
         memcpy(&raw, row + 2 * x, 2u);
@@ -551,6 +553,7 @@ static inline uint32_t fused_loop_(const pft_pre_cls_t *c, const uint8_t *row, c
         const bool ok = v - lo < span;
         zu = ok ? zu : -1;
         ninv += ok ? 0u : 1u;
+        nd += v < lo ? 1u : 0u;
         const int32_t s = (w0 * vb[x - 1] + w1 * vb[x] + w2 * vb[x + 1] + w3 * vb[x + 2] + 2048) >> 12;
         const int32_t bx = s < 0 ? 0 : (s > 65535 ? 65535 : s);
         const int32_t e = zu - bx;
@@ -562,13 +565,28 @@ static inline uint32_t fused_loop_(const pft_pre_cls_t *c, const uint8_t *row, c
         b[x] = (uint16_t)nb;
         r[x] = (int16_t)(zu < 0 ? PFT_RES16_MASKED : rr);
     }
+    *ndead = nd;
     return ninv;
 }
 
 static uint32_t fused_span_(const pft_pre_cls_t *c, const uint8_t *row, const fused_t *u,
-                            uint16_t *b, int16_t *r, int32_t x0, int32_t x1)
+                            uint16_t *b, int16_t *r, int32_t x0, int32_t x1, uint32_t *ndead)
 {
-    return u->k1 != 0 ? fused_loop_(c, row, u, b, r, x0, x1, 1) : fused_loop_(c, row, u, b, r, x0, x1, 0);
+    return u->k1 != 0 ? fused_loop_(c, row, u, b, r, x0, x1, 1, ndead)
+                      : fused_loop_(c, row, u, b, r, x0, x1, 0, ndead);
+}
+
+/* Counts the masked pixels of row y in columns [x0, x1) by cause. */
+static void count_span_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t x0,
+                        uint32_t x1, pft_pre_acc_t *acc)
+{
+    const uint8_t *row = pft_frame_row(f, y);
+    for (uint32_t x = x0; x < x1; ++x) {
+        const uint32_t v = pft_pre_raw_(row, x, c);
+        if (!pft_pre_valid_(c, v, x, y)) {
+            pft_pre_count_masked_(c, v, acc);
+        }
+    }
 }
 
 /* Counts the masked pixels of row y by cause (rows with masked pixels only). */
@@ -686,6 +704,10 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia) +
                                    zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w)
                              : zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
+        if (fast && ninv > 0u) { /* the columns outside the fused span, counted by cause now */
+            count_span_(&c, f, (uint32_t)y, 0u, (uint32_t)ia, acc);
+            count_span_(&c, f, (uint32_t)y, (uint32_t)ib, (uint32_t)w, acc);
+        }
         if (!fast && ninv > 0u) {
             count_row_(&c, f, (uint32_t)y, acc);
         }
@@ -733,10 +755,13 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                         b[x] = (uint16_t)(zl[x] >= 0 ? zl[x] : bw[x]);
                     }
                 }
-                ninv += fused_span_(&c, pft_frame_row(f, (uint32_t)y), &fu, b, r, ia, ib);
-                if (ninv > 0u) {
-                    count_row_(&c, f, (uint32_t)y, acc);
-                }
+                /* the span's masked pixels counted in the loop (dead, else saturated: no map
+                 * here), so that the raw row is not read after it (in place, r is that row) */
+                uint32_t nd = 0u;
+                const uint32_t nspan = fused_span_(&c, pft_frame_row(f, (uint32_t)y), &fu, b, r, ia, ib, &nd);
+                ninv += nspan;
+                acc->n_dead += nd;
+                acc->n_sat += nspan - nd;
             } else {
                 hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
                 hcubic_(vb, g.kx, wx, w, ia, ib, false, bw);

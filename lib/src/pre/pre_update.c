@@ -715,15 +715,9 @@ static pft_status_t check_frame_(const pft_pre_t *p, const pft_frame_t *f)
     return PFT_OK;
 }
 
-pft_status_t pft_pre_update(pft_pre_t *p, const pft_frame_t *f)
+/* One accepted frame (checked): the residual goes to p->res. */
+static void update_(pft_pre_t *p, const pft_frame_t *f)
 {
-    if (p == NULL || p->res == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    const pft_status_t s = check_frame_(p, f);
-    if (s != PFT_OK) {
-        return s;
-    }
     pft_pre_acc_t acc;
     memset(&acc, 0, sizeof acc);
     pft_pre_cls_t cls;
@@ -788,5 +782,45 @@ pft_status_t pft_pre_update(pft_pre_t *p, const pft_frame_t *f)
     p->st.n_saturated = acc.n_sat;
     p->st.n_dead = acc.n_dead;
     p->st.n_bad = acc.n_bad;
+}
+
+pft_status_t pft_pre_update(pft_pre_t *p, const pft_frame_t *f)
+{
+    if (p == NULL || p->line == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (p->cfg.inplace) {
+        return PFT_ERR_STATE; /* pft_pre_update_inplace: the residual has no buffer here */
+    }
+    const pft_status_t s = check_frame_(p, f);
+    if (s != PFT_OK) {
+        return s;
+    }
+    update_(p, f);
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_update_inplace(pft_pre_t *p, const pft_frame_t *f, uint16_t *pixels)
+{
+    if (p == NULL || p->line == NULL || f == NULL || pixels == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (!p->cfg.inplace) {
+        return PFT_ERR_STATE;
+    }
+    if (f->data != (const void *)pixels) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_status_t s = check_frame_(p, f);
+    if (s != PFT_OK) {
+        return s;
+    }
+    if (f->stride_bytes != 2u * (uint32_t)f->width) {
+        return PFT_ERR_FORMAT; /* the residual's rows are packed */
+    }
+    /* every check is above: from here the frame buffer becomes the residual, row by row, each
+     * row once its raw values are no longer read (pft_pre.h, "Memory") */
+    p->res = (int16_t *)(void *)pixels;
+    update_(p, f);
     return PFT_OK;
 }

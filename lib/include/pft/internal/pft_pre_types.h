@@ -21,7 +21,8 @@ extern "C" {
 struct pft_pre_s {
     pft_pre_config_t cfg;  /* sat_level resolved */
     /* workspace buffers */
-    int16_t *res;          /* residual (R units) then whitened (Q8.8), w * h */
+    int16_t *res;          /* residual (R units) then whitened (Q8.8), w * h; inplace: the
+                              caller's frame buffer of the last accepted update (NULL before) */
     uint16_t *bg;          /* TEMPORAL background (U units), w * h */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
