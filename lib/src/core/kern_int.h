@@ -20,7 +20,9 @@
  *   range; pft_kmulr_ the same without saturation where the caller proves the range;
  *   pft_kspread_: a position difference limited (q16) so that its square fits;
  *   pft_kmula_, pft_kaddr_: pft_mul and pft_add without saturation (the same bits where the
- *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly.
+ *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly;
+ *   pft_kmul_r16_: pft_kmula_ of a tap (prepared by pft_kr16_tap_) and a RES16 value given as
+ *   its integer, the same bits without converting the value.
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  */
 #ifndef PFT_CORE_KERN_INT_H
@@ -174,6 +176,24 @@ static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b)
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 /* A RES16 value (Q8.8 sigma) as a real, exactly (res / 256). */
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)((int32_t)res * 256); }
+/* A tap prepared for pft_kmul_r16_ (q16: the tap itself), and whether the preparation is exact
+ * (always in q16). */
+static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t; }
+static inline bool pft_kr16_tap_ok_(pft_real_t t)
+{
+    (void)t;
+    return true;
+}
+/* pft_kmula_(t, z) for z = v / 256 with an integer v, |v| <= 2^16 (a RES16 value as
+ * pft_kres16_ gives it, or the sum of two): z = 256 v in Q16, so p = 256 q with q = t v
+ * (|q| < 2^47), and (p + 32768) >> 16 = (q + 128) >> 8 for p >= 0, (p + 32767) >> 16 =
+ * (q + 127) >> 8 for p < 0 (256 (q + 127) + 255 never reaches the next multiple of 2^16):
+ * the same bits from the integer, without the conversion. */
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int32_t v)
+{
+    const int64_t q = (int64_t)t * v;
+    return (pft_real_t)((q + 128 + (q >> 63)) >> 8);
+}
 
 /* An F32 pixel as a real: pft_from_f32 (q16: the IEEE decoding). */
 static inline pft_real_t pft_kfrom_f32_(float v) { return pft_from_f32(v); }
@@ -329,6 +349,11 @@ static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; 
 static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)res * 0.00390625f; }
+/* t 2^-8: then t' v is t (v 2^-8) to the bit (the same real number, rounded once), when t'
+ * is exact (pft_kr16_tap_ok_: t 2^-8 is not a subnormal that lost bits). */
+static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t * 0.00390625f; }
+static inline bool pft_kr16_tap_ok_(pft_real_t t) { return (t * 0.00390625f) * 256.0f == t; }
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int32_t v) { return t * (float)v; }
 static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
 /* pft_from_f32 is the identity in the float build: no call per pixel. */
 static inline pft_real_t pft_kfrom_f32_(float v) { return v; }
