@@ -610,10 +610,11 @@ static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_re
                            pft_real_t *hs)
 {
     if (w < 2u) {
-        hs[0] = pft_kmul_r16_(t1, r16_int_(src, 0u));
+        hs[0] = pft_kmul_r16_(t1, r16_int_(src, 0u), 0);
         return;
     }
-    hs[0] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, 0u)), pft_kmul_r16_(t0, r16_int_(src, 1u)));
+    hs[0] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, 0u), 0),
+                       pft_kmul_r16_(t0, r16_int_(src, 1u), 0));
     for (size_t c = 1u; c + 1u < (size_t)w; ++c) {
         /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises) */
         int16_t a, b, d;
@@ -623,17 +624,23 @@ static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_re
         const int32_t zl = (int32_t)a * (a != PFT_RES16_MASKED ? 1 : 0);
         const int32_t zc = (int32_t)b * (b != PFT_RES16_MASKED ? 1 : 0);
         const int32_t zr = (int32_t)d * (d != PFT_RES16_MASKED ? 1 : 0);
-        hs[c] = pft_kaddr_(pft_kmul_r16_(t1, zc), pft_kmul_r16_(t0, zl + zr));
+        hs[c] = pft_kaddr_(pft_kmul_r16_(t1, zc, 0), pft_kmul_r16_(t0, zl, zr));
     }
-    hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u)),
-                            pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u)));
+    hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
+                            pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
 }
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). */
 static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                        uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
 {
-    if (up != NULL && dn != NULL) { /* every row but the first and the last: one plain loop */
+    if (up != NULL && dn != NULL && pft_kmul_u_ok_(u0) && pft_kmul_u_ok_(u1)) {
+        /* every row but the first and the last: one plain loop; pft_kmul_u_ is pft_kmula_
+         * for taps in [0, 1] and |values| < 2^14 (q16: in 32-bit arithmetic) */
+        for (uint32_t c = 0; c < w; ++c) {
+            mf[c] = pft_kaddr_(pft_kmul_u_(u1, mid[c]), pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+        }
+    } else if (up != NULL && dn != NULL) {
         for (uint32_t c = 0; c < w; ++c) {
             /* |hs| < 3 2^11 and taps <= 1: sums below 2^14 (see peak_hrow_) */
             mf[c] = pft_kaddr_(pft_kmula_(u1, mid[c]), pft_kmula_(u0, pft_kaddr_(up[c], dn[c])));
