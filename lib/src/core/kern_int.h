@@ -187,13 +187,16 @@ static inline bool pft_kr16_tap_ok_(pft_real_t t) { return t >= 0 && t <= PFT_RE
  * for p >= 0, (p + 32767) >> 16 = (q + 127) >> 8 for p < 0 (256 (q + 127) + 255 never reaches
  * the next multiple of 2^16). With t = 256 th + tl (th <= 256, tl < 256): the result is
  * th (a + b) + (tl (a + b) + 128 - [a + b < 0]) >> 8, every term below 2^25, each product
- * of two 16-bit values (compilers vectorise them). The same bits, without the conversion. */
-static inline pft_real_t pft_kmul_r16_(pft_real_t t, int32_t a, int32_t b)
+ * of two int16 values (compilers vectorise them as widening multiplies). The same bits,
+ * without the conversion. */
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int16_t a, int16_t b)
 {
-    const int32_t th = t >> 8;
-    const int32_t tl = t & 255;
-    const int32_t neg = a + b < 0 ? 1 : 0;
-    return th * a + th * b + ((tl * a + tl * b + 128 - neg) >> 8);
+    const int16_t th = (int16_t)(t >> 8);
+    const int16_t tl = (int16_t)(t & 255);
+    const int32_t neg = (int32_t)a + (int32_t)b < 0 ? 1 : 0;
+    /* products of two int16 values (widening multiplies) */
+    return (int32_t)th * a + (int32_t)th * b +
+           (((int32_t)tl * a + (int32_t)tl * b + 128 - neg) >> 8);
 }
 /* pft_kmula_(t, z) for 0 <= t <= 2^16 and |z| < 2^30 in 32-bit arithmetic: with z = 2^16 zh +
  * zl (zh = z >> 16, 0 <= zl < 2^16), p = 2^16 t zh + t zl, so the rounded product is
@@ -366,9 +369,9 @@ static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)res * 0.0
  * when t' is exact (pft_kr16_tap_ok_: t 2^-8 is not a subnormal that lost bits). */
 static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t * 0.00390625f; }
 static inline bool pft_kr16_tap_ok_(pft_real_t t) { return (t * 0.00390625f) * 256.0f == t; }
-static inline pft_real_t pft_kmul_r16_(pft_real_t t, int32_t a, int32_t b)
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int16_t a, int16_t b)
 {
-    return t * (float)(a + b);
+    return t * (float)((int32_t)a + (int32_t)b);
 }
 static inline bool pft_kmul_u_ok_(pft_real_t t)
 {

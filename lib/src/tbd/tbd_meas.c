@@ -594,11 +594,11 @@ static void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_rea
 }
 
 /* Pixel c of a RES16 row as the integer the converted frame holds times 256: a masked pixel 0. */
-static inline int32_t r16_int_(const uint8_t *src, size_t c)
+static inline int16_t r16_int_(const uint8_t *src, size_t c)
 {
     int16_t v;
     memcpy(&v, src + 2u * c, 2u);
-    return v != PFT_RES16_MASKED ? (int32_t)v : 0;
+    return v != PFT_RES16_MASKED ? v : (int16_t)0;
 }
 
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
@@ -621,9 +621,9 @@ static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_re
         memcpy(&a, src + 2u * (c - 1u), 2u);
         memcpy(&b, src + 2u * c, 2u);
         memcpy(&d, src + 2u * (c + 1u), 2u);
-        const int32_t zl = (int32_t)a * (a != PFT_RES16_MASKED ? 1 : 0);
-        const int32_t zc = (int32_t)b * (b != PFT_RES16_MASKED ? 1 : 0);
-        const int32_t zr = (int32_t)d * (d != PFT_RES16_MASKED ? 1 : 0);
+        const int16_t zl = (int16_t)((int32_t)a * (a != PFT_RES16_MASKED ? 1 : 0));
+        const int16_t zc = (int16_t)((int32_t)b * (b != PFT_RES16_MASKED ? 1 : 0));
+        const int16_t zr = (int16_t)((int32_t)d * (d != PFT_RES16_MASKED ? 1 : 0));
         hs[c] = pft_kaddr_(pft_kmul_r16_(t1, zc, 0), pft_kmul_r16_(t0, zl, zr));
     }
     hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
@@ -637,6 +637,13 @@ static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_re
     if (up != NULL && dn != NULL && pft_kmul_u_ok_(u0) && pft_kmul_u_ok_(u1)) {
         /* every row but the first and the last: one plain loop; pft_kmul_u_ is pft_kmula_
          * for taps in [0, 1] and |values| < 2^14 (q16: in 32-bit arithmetic) */
+        if (u1 == PFT_REAL_ONE) {
+            /* the centre tap at offset 0 is exp(0) = 1: pft_kmula_(1, v) is v in both builds */
+            for (uint32_t c = 0; c < w; ++c) {
+                mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+            }
+            return;
+        }
         for (uint32_t c = 0; c < w; ++c) {
             mf[c] = pft_kaddr_(pft_kmul_u_(u1, mid[c]), pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
         }
