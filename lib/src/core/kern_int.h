@@ -193,7 +193,8 @@ static inline pft_real_t pft_kmul_r16_(pft_real_t t, int16_t a, int16_t b)
 {
     const int16_t th = (int16_t)(t >> 8);
     const int16_t tl = (int16_t)(t & 255);
-    const int32_t neg = (int32_t)a + (int32_t)b < 0 ? 1 : 0;
+    const int32_t sum = (int32_t)a + (int32_t)b;
+    const int32_t neg = sum < 0 ? (int32_t)1 : (int32_t)0;
     /* products of two int16 values (widening multiplies) */
     return (int32_t)th * a + (int32_t)th * b +
            (((int32_t)tl * a + (int32_t)tl * b + 128 - neg) >> 8);

@@ -857,6 +857,8 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
             peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, t0p, t1p, hs[rr % 3u]);
         } else if (rr < h) {
             peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
+        } else {
+            /* rows h and h + 1 of the rolling steps: no new row */
         }
         if (rr >= 1u && rr <= h) {
             const uint32_t r = rr - 1u;
