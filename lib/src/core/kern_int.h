@@ -20,7 +20,10 @@
  *   range; pft_kmulr_ the same without saturation where the caller proves the range;
  *   pft_kspread_: a position difference limited (q16) so that its square fits;
  *   pft_kmula_, pft_kaddr_: pft_mul and pft_add without saturation (the same bits where the
- *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly.
+ *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly;
+ *   pft_kmul_r16_: pft_kmula_ of a tap (prepared by pft_kr16_tap_) and a RES16 value (or the
+ *   sum of two) given as integers, the same bits without converting them; pft_kmul_u_:
+ *   pft_kmula_ of a tap in [0, 1] and a value below 2^14 in 32-bit arithmetic.
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  */
 #ifndef PFT_CORE_KERN_INT_H
@@ -174,6 +177,40 @@ static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b)
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 /* A RES16 value (Q8.8 sigma) as a real, exactly (res / 256). */
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)((int32_t)res * 256); }
+/* A tap prepared for pft_kmul_r16_ (q16: the tap itself), and whether the helpers below apply
+ * to it (q16: 0 <= t <= 1). */
+static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t; }
+static inline bool pft_kr16_tap_ok_(pft_real_t t) { return t >= 0 && t <= PFT_REAL_ONE; }
+/* pft_kmula_(t, z) for z = (a + b) / 256 with RES16 integers a, b (|a|, |b| <= 32767, as
+ * pft_kres16_ reads them; b = 0 for one value) and 0 <= t <= 2^16, in 32-bit arithmetic: z is
+ * 256 (a + b) in Q16, so p = 256 q with q = t (a + b), and (p + 32768) >> 16 = (q + 128) >> 8
+ * for p >= 0, (p + 32767) >> 16 = (q + 127) >> 8 for p < 0 (256 (q + 127) + 255 never reaches
+ * the next multiple of 2^16). With t = 256 th + tl (th <= 256, tl < 256): the result is
+ * th (a + b) + (tl (a + b) + 128 - [a + b < 0]) >> 8, every term below 2^25, each product
+ * of two int16 values (compilers vectorise them as widening multiplies). The same bits,
+ * without the conversion. */
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int16_t a, int16_t b)
+{
+    const int16_t th = (int16_t)(t >> 8);
+    const int16_t tl = (int16_t)(t & 255);
+    const int32_t sum = (int32_t)a + (int32_t)b;
+    const int32_t neg = sum < 0 ? (int32_t)1 : (int32_t)0;
+    /* products of two int16 values (widening multiplies) */
+    return (int32_t)th * a + (int32_t)th * b +
+           (((int32_t)tl * a + (int32_t)tl * b + 128 - neg) >> 8);
+}
+/* pft_kmula_(t, z) for 0 <= t <= 2^16 and |z| < 2^30 in 32-bit arithmetic: with z = 2^16 zh +
+ * zl (zh = z >> 16, 0 <= zl < 2^16), p = 2^16 t zh + t zl, so the rounded product is
+ * t zh + (t zl + 32768 - [z < 0]) >> 16 (t zl + 32768 < 2^32 in unsigned arithmetic;
+ * |t zh| <= 2^30). The same bits as pft_kmula_. */
+static inline bool pft_kmul_u_ok_(pft_real_t t) { return t >= 0 && t <= PFT_REAL_ONE; }
+static inline pft_real_t pft_kmul_u_(pft_real_t t, pft_real_t z)
+{
+    const uint32_t zl = (uint32_t)z & 0xFFFFu;
+    const int32_t zh = z >> 16;
+    const uint32_t r = ((uint32_t)t * zl + 32768u - (z < 0 ? 1u : 0u)) >> 16;
+    return t * zh + (int32_t)r;
+}
 
 /* An F32 pixel as a real: pft_from_f32 (q16: the IEEE decoding). */
 static inline pft_real_t pft_kfrom_f32_(float v) { return pft_from_f32(v); }
@@ -329,6 +366,20 @@ static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; 
 static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)res * 0.00390625f; }
+/* t 2^-8: then t' (a + b) is t ((a + b) 2^-8) to the bit (the same real number, rounded once),
+ * when t' is exact (pft_kr16_tap_ok_: t 2^-8 is not a subnormal that lost bits). */
+static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t * 0.00390625f; }
+static inline bool pft_kr16_tap_ok_(pft_real_t t) { return (t * 0.00390625f) * 256.0f == t; }
+static inline pft_real_t pft_kmul_r16_(pft_real_t t, int16_t a, int16_t b)
+{
+    return t * (float)((int32_t)a + (int32_t)b);
+}
+static inline bool pft_kmul_u_ok_(pft_real_t t)
+{
+    (void)t;
+    return true;
+}
+static inline pft_real_t pft_kmul_u_(pft_real_t t, pft_real_t z) { return t * z; }
 static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
 /* pft_from_f32 is the identity in the float build: no call per pixel. */
 static inline pft_real_t pft_kfrom_f32_(float v) { return v; }
