@@ -79,6 +79,11 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     // the edge term is the temporal background's (its gradient); the spatial method has none
     c.edge_k = c.method == PFT_PRE_BG_TEMPORAL ? static_cast<uint16_t>(std::lround(t.edge_k * 4096.0)) : 0u;
     c.peak_max = 0;  // the TBD manager here draws its births itself; the DBT thresholds the residual
+    c.reg_step = static_cast<uint8_t>(t.reg_step);
+    c.reg_iters = static_cast<uint8_t>(t.reg_iters);
+    c.warp_cubic = t.warp_cubic;
+    c.sigma_step = static_cast<uint8_t>(t.sigma_step);
+    c.sigma_interp = t.sigma_interp;
     // the residual over the pipeline's own copy of the frame (pft_pre_update_inplace): the
     // stage's workspace holds no residual (docs/porting.md)
     c.inplace = !u8;

@@ -87,6 +87,12 @@ struct TrackerSettings {
     int background_radius = 5, guard_radius = 2;///< spatial: local-mean window and its guard (half-sizes)
     int tile = 32;                              ///< noise-estimate tile side, px
     double edge_k = 0;                          ///< temporal: the stage's edge term (pft_pre edge_k), px; 0: off (docs/results/ir_clutter.md: 0.08 px measured, no gain)
+    // the stage's cost levers (pft_pre.h; docs/results/ir_clutter.md, "Branch ircost6"); the library's defaults
+    int reg_step = 2;                           ///< temporal: registration on every reg_step-th pixel of every reg_step-th row (pft_pre reg_step, 1..8)
+    int reg_iters = 2;                          ///< temporal: Lucas-Kanade iterations (pft_pre reg_iters, 0..8)
+    bool warp_cubic = true;                     ///< temporal: cubic (true) or bilinear (false) warp of the background (pft_pre warp_cubic)
+    int sigma_step = 1;                         ///< tile sigmas from every sigma_step-th pixel of every sigma_step-th row (pft_pre sigma_step, 1..4)
+    bool sigma_interp = true;                   ///< 1/sigma interpolated between tile centres (true) or held per tile (false) (pft_pre sigma_interp)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

@@ -5,9 +5,10 @@
  * A host exploration tool for docs/results/ir_clutter.md ("Preprocessing building blocks"),
  * driven by host_tools/scripts/pre_explore.py; not a test.
  *
- *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16]
+ *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16] [sig=SIGMA.u32]
+ *   (sig= writes every frame's tile sigmas, pft_pre_sigma: uint32 Q16.16 counts, row-major)
  *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp
- *         floor edge peaks thr; clutter=1 runs the clutter map (pft_pre_clutter_*) after the
+ *         floor edge peaks thr sstep; clutter=1 runs the clutter map (pft_pre_clutter_*) after the
  *         stage (then out= writes its output), with cmean cblur cbox calpha cthr
  */
 #include <stdio.h>
@@ -37,7 +38,7 @@ int main(int argc, char **argv)
     cfg.width = (uint16_t)atoi(argv[2]);
     cfg.height = (uint16_t)atoi(argv[3]);
     cfg.bit_depth = (uint8_t)atoi(argv[4]);
-    const char *out_path = NULL;
+    const char *out_path = NULL, *sig_path = NULL;
     pft_pre_clutter_config_t ccfg;
     pft_pre_clutter_config_default(&ccfg);
     int clutter = 0;
@@ -49,6 +50,8 @@ int main(int argc, char **argv)
             cfg.method = PFT_PRE_BG_TEMPORAL;
         } else if (strncmp(argv[i], "out=", 4) == 0) {
             out_path = argv[i] + 4;
+        } else if (strncmp(argv[i], "sig=", 4) == 0) {
+            sig_path = argv[i] + 4;
         } else if (arg_int(argv[i], "clutter", &v)) {
             clutter = v != 0;
         } else if (arg_int(argv[i], "cmean", &v)) {
@@ -75,6 +78,8 @@ int main(int argc, char **argv)
             cfg.warp_cubic = v != 0;
         } else if (arg_int(argv[i], "step", &v)) {
             cfg.reg_step = (uint8_t)v;
+        } else if (arg_int(argv[i], "sstep", &v)) {
+            cfg.sigma_step = (uint8_t)v;
         } else if (arg_int(argv[i], "col", &v)) {
             cfg.col_alpha = (uint16_t)v;
         } else if (arg_int(argv[i], "tile", &v)) {
@@ -130,6 +135,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "pre_probe: cannot open files\n");
         return 1;
     }
+    FILE *sig = sig_path != NULL ? fopen(sig_path, "wb") : NULL;
+    if (sig_path != NULL && sig == NULL) {
+        fprintf(stderr, "pre_probe: cannot open %s\n", sig_path);
+        return 1;
+    }
     const size_t npix = (size_t)cfg.width * cfg.height;
     uint16_t *buf = malloc(npix * 2u);
     printf("frame,flags,shift_x,shift_y,sd_x,sd_y,coarse_x,coarse_y,reg_rms,sigma_min,sigma_mean,"
@@ -167,6 +177,11 @@ int main(int argc, char **argv)
                st.shift_sd[1] / 65536.0, st.shift_coarse[0], st.shift_coarse[1],
                st.reg_rms / 65536.0, st.sigma_min / 65536.0, st.sigma_mean / 65536.0,
                st.sigma_max / 65536.0, st.n_masked, st.n_peaks, st.n_candidates);
+        if (sig != NULL) { /* every tile's sigma, uint32 Q16.16 counts, row-major */
+            static uint32_t tsig[4096];
+            const size_t nt = pft_pre_sigma(&pre, tsig, 4096u);
+            fwrite(tsig, 4u, nt < 4096u ? nt : 4096u, sig);
+        }
         if (out != NULL) {
             pft_frame_t r;
             if (clutter) {
@@ -178,6 +193,9 @@ int main(int argc, char **argv)
         }
     }
     fclose(in);
+    if (sig != NULL) {
+        fclose(sig);
+    }
     if (out != NULL) {
         fclose(out);
     }

@@ -262,7 +262,7 @@ static void test_config_and_workspace(void)
                                         "sat_level", "dead_level", "local_outer",
                                         "local_guard", "bg_alpha", "reg_search", "reg_iters",
                                         "reg_step", "tile", "sigma_floor", "peak_max",
-                                        "peak_threshold"};
+                                        "peak_threshold", "sigma_step", "sigma_step"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         config(&c, PFT_PRE_BG_LOCAL);
         switch (i) {
@@ -282,7 +282,9 @@ static void test_config_and_workspace(void)
         case 13: c.tile = 7; break;
         case 14: c.sigma_floor = 0; break;
         case 15: c.peak_max = PFT_PRE_MAX_PEAKS + 1u; break;
-        default: c.peak_threshold = 0; break;
+        case 16: c.peak_threshold = 0; break;
+        case 17: c.sigma_step = PFT_PRE_MAX_SIGMA_STEP + 1u; break;
+        default: c.sigma_step = 4; break; /* tile 24 < 8 x 4 */
         }
         const char *field = NULL;
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_config_check(&c, &field));
@@ -396,15 +398,23 @@ static void test_reset_is_init(void)
  * sqrt(1 + 1/72) for the 9 x 9 window less its 3 x 3 guard; sqrt(1 + alpha/(2 - alpha)) for
  * the converged temporal background of a still scene), within 5 %, and the whitened residual
  * has unit standard deviation within 5 %. Three frames averaged: the MAD of 1728 pixels per
- * frame has a standard error of about 2 %. */
+ * frame has a standard error of about 2 %. With sigma_step 2 (every 2nd pixel of every 2nd
+ * row: 144 of a tile's 576 pixels, a tile's sigma has a standard error of 1.17 / sqrt(144) =
+ * 9.7 %, the mean of the 12 tiles 2.8 % per frame) the same 5 % holds over 8 frames averaged
+ * (1.0 %: 5 standard errors), and every tile within 40 % (4 of its standard errors, as the
+ * 20 % of every pixel's 5 %). */
 static void test_plane_plus_noise_gives_sigma(void)
 {
-    for (int m = 0; m < 2; ++m) {
-        for (int bd = 0; bd < 3; ++bd) {
+    for (int ms = 0; ms < 6; ++ms) {
+        const int m = ms % 2, ss = ms < 4 ? 1 : 2, bd = ms < 4 ? ms / 2 : 0;
+        {
             static const uint8_t depths[3] = {14, 12, 16};
             pft_pre_config_t c;
             config(&c, (pft_pre_bg_t)m);
             c.bit_depth = depths[bd];
+            c.sigma_step = (uint8_t)ss;
+            const uint32_t navg = ss == 1 ? 3u : 8u;
+            const double tile_tol = ss == 1 ? 0.2 : 0.4;
             pft_pre_t p;
             init(&p, &c);
             const double scale = bd == 0 ? 1.0 : (bd == 1 ? 0.25 : 4.0);
@@ -412,7 +422,7 @@ static void test_plane_plus_noise_gives_sigma(void)
             const double expect = sigma * (m == 0 ? sqrt(1.0 + 1.0 / 72.0)
                                                   : sqrt(1.0 + 0.15 / (2.0 - 0.15)));
             double ssum = 0.0, wsum = 0.0;
-            const uint32_t frames = m == 0 ? 3u : 33u;
+            const uint32_t frames = m == 0 ? navg : 33u;
             for (uint32_t k = 0; k < frames; ++k) {
                 const int64_t qa = q10(3000.0 * scale), qx = q10(12.0 * scale);
                 const int64_t qy = q10(-7.0 * scale), qs = q10(sigma);
@@ -425,20 +435,60 @@ static void test_plane_plus_noise_gives_sigma(void)
                 pft_frame_t f = frame_of(g_img, k);
                 f.bit_depth = depths[bd];
                 TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
-                if (k + 3u >= frames) {
+                if (k + navg >= frames) {
                     ssum += sigma_mean(&p);
                     wsum += whitened_sd(&p, 0, NULL);
                 }
             }
-            const double s = ssum / 3.0, wsd = wsum / 3.0;
+            const double s = ssum / navg, wsd = wsum / navg;
             TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05 * expect, expect, s, "tile sigma");
             TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05, 1.0, wsd, "whitened sd");
             /* every tile within 20 % (one tile: 576 pixels, MAD standard error 5 %) */
             const size_t nt = pft_pre_sigma(&p, g_sig, 64);
             TEST_ASSERT_EQUAL_UINT32(4u * 3u, nt);
             for (size_t i = 0; i < nt; ++i) {
-                TEST_ASSERT_DOUBLE_WITHIN(0.2 * expect, expect, g_sig[i] / 65536.0);
+                TEST_ASSERT_DOUBLE_WITHIN(tile_tol * expect, expect, g_sig[i] / 65536.0);
             }
+        }
+    }
+}
+
+/* sigma_step samples the documented grid: on a still plane whose pixels at even columns of
+ * even rows carry noise of sigma 20 counts and every other pixel 60, the tile sigmas with
+ * sigma_step 2 are those of the sampled pixels alone, 20 sqrt(1 + alpha/(2 - alpha)) (the
+ * converged temporal background, as above) within 5 % (the mean of 12 tiles of 144 samples
+ * over the last 8 frames: 1.0 % standard error, as in test_plane_plus_noise_gives_sigma);
+ * with every pixel (sigma_step 1) the same frames give above 40 counts (the median of the
+ * mixture: about 2.5 times the sampled pixels' sigma), so the check tells the two apart. */
+static void test_sigma_step_samples_its_grid(void)
+{
+    for (int ss = 1; ss <= 2; ++ss) {
+        pft_pre_config_t c;
+        config(&c, PFT_PRE_BG_TEMPORAL);
+        c.sigma_step = (uint8_t)ss;
+        pft_pre_t p;
+        init(&p, &c);
+        g_rs = 12345u;
+        const uint32_t frames = 33u, navg = 8u;
+        double ssum = 0.0;
+        for (uint32_t k = 0; k < frames; ++k) {
+            for (int y = 0; y < H; ++y) {
+                for (int x = 0; x < W; ++x) {
+                    const int64_t qs = q10((x % 2 == 0 && y % 2 == 0) ? 20.0 : 60.0);
+                    g_img[y * W + x] = clampq10(q10(3000.0 + 12.0 * x - 7.0 * y) + ((qs * nq10()) >> 10), 1, 16000);
+                }
+            }
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            if (k + navg >= frames) {
+                ssum += sigma_mean(&p);
+            }
+        }
+        const double s = ssum / navg, expect = 20.0 * sqrt(1.0 + 0.15 / (2.0 - 0.15));
+        if (ss == 2) {
+            TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(0.05 * expect, expect, s, "sampled pixels' sigma");
+        } else {
+            TEST_ASSERT_TRUE_MESSAGE(s > 40.0, "every pixel's sigma");
         }
     }
 }
@@ -1049,6 +1099,7 @@ int main(void)
     RUN_TEST(test_refused_input_changes_nothing);
     RUN_TEST(test_reset_is_init);
     RUN_TEST(test_plane_plus_noise_gives_sigma);
+    RUN_TEST(test_sigma_step_samples_its_grid);
     RUN_TEST(test_point_target_keeps_snr);
     RUN_TEST(test_edge_term_known_answer);
     RUN_TEST(test_dead_saturated_and_listed_pixels_masked);

@@ -96,6 +96,8 @@ extern "C" {
 #define PFT_PRE_MAX_ITERS 8u
 /** Largest edge_k (1 px, Q4.12). */
 #define PFT_PRE_MAX_EDGE_K 4096u
+/** Largest sigma_step. */
+#define PFT_PRE_MAX_SIGMA_STEP 4u
 /** Bins of the per-tile histogram of |r| (16 exact bins, then 8 per octave up to 2^15). */
 #define PFT_PRE_BINS 104u
 
@@ -151,6 +153,8 @@ typedef struct {
     int16_t peak_threshold;  /**< smallest whitened value of a peak, Q8.8 sigma units, >= 1 (default 768 = 3 sigma) */
     /* memory */
     bool inplace;            /**< U16 only: the residual is written over the caller's frame buffer by pft_pre_update_inplace (pft_pre_update is then refused) and the workspace holds no residual (PFT_PRE_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it. Must be false with PFT_PIX_U8 (default false) */
+    /* cost levers (docs/algorithms.md 9.5, docs/tuning.md "pre") */
+    uint8_t sigma_step;      /**< the tile sigmas' histograms take every sigma_step-th pixel of every sigma_step-th row (columns and rows that are multiples of it), 0..PFT_PRE_MAX_SIGMA_STEP, 0 and 1: every pixel; tile must be at least 8 sigma_step. A tile's sigma then rests on 1/sigma_step^2 of its pixels (its standard error sigma_step times larger); the masked-pixel counts and the column offsets still see every pixel (default 1) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */

@@ -33,6 +33,8 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->edge_k = 0u;
     cfg->peak_max = 64u;
     cfg->peak_threshold = 768;
+    cfg->inplace = false;
+    cfg->sigma_step = 1u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -102,6 +104,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->inplace && c->format != PFT_PIX_U16) {
         return "inplace"; /* a U8 frame has 1 byte per pixel, the residual 2 */
+    }
+    if (c->sigma_step > PFT_PRE_MAX_SIGMA_STEP || (uint32_t)c->tile < 8u * c->sigma_step) {
+        return "sigma_step"; /* at least 8 x 8 samples in a whole tile */
     }
     return NULL;
 }

@@ -227,7 +227,32 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
     const int16_t *r = p->res + (size_t)y * w;
     int32_t *cs = p->csum;
     const bool colrow = y % PFT_PRE_COL_ROWS_ == 0u; /* column sums: every 4th row */
+    const uint32_t ss = p->cfg.sigma_step > 1u ? p->cfg.sigma_step : 1u;
     uint32_t nm = 0u;
+    if (ss > 1u) {
+        /* sigma_step: the histograms take the sampled pixels of the sampled rows; the masked
+         * pixels and the column sums every pixel */
+        for (uint32_t x = 0; x < w; ++x) { /* vectorisable: a 16-bit compare */
+            nm += r[x] == PFT_RES16_MASKED ? 1u : 0u;
+        }
+        const bool hrow = y % ss == 0u;
+        for (uint32_t i = 0; i < p->ntx; ++i) {
+            const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
+            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
+            for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
+                const int16_t v = r[x];
+                const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
+                cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+            }
+            uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
+            for (uint32_t x = (x0 + ss - 1u) / ss * ss; hrow && x < x1; x += ss) {
+                const int32_t v = r[x];
+                const uint32_t k = (uint32_t)(v + (PFT_PRE_BIN_LUT_ - 1));
+                hist[k < PFT_PRE_BIN_N_ ? bin_lut_[k] : pft_pre_bin_((uint32_t)(v < 0 ? -v : v))]++;
+            }
+        }
+        return nm;
+    }
     for (uint32_t i = 0; i < p->ntx; ++i) {
         const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
         const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
@@ -260,8 +285,11 @@ void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
         for (uint32_t k = 0; k < PFT_PRE_BINS; ++k) {
             n += hist[k];
         }
-        /* at least 1/16 of the tile's pixels, and 16 */
-        const uint32_t need = (nx * ny) / 16u > 16u ? (nx * ny) / 16u : 16u;
+        /* at least 1/16 of the tile's pixels (of its sampled ones with sigma_step), and 16 */
+        const uint32_t ss = p->cfg.sigma_step > 1u ? p->cfg.sigma_step : 1u;
+        const uint32_t nxs = (x0 + nx + ss - 1u) / ss - (x0 + ss - 1u) / ss;
+        const uint32_t nys = (y0 + ny + ss - 1u) / ss - (y0 + ss - 1u) / ss;
+        const uint32_t need = (nxs * nys) / 16u > 16u ? (nxs * nys) / 16u : 16u;
         uint32_t *ts = &p->tsig[j * p->ntx + i];
         if (n >= need) {
             *ts = tile_sigma_(hist, n);
