@@ -232,9 +232,11 @@ static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
  * gradient. Built from pixels the sample does not use, its noise is independent of the
  * sample's, so the Gauss-Newton fixed point (sum g e = 0) is not pulled towards the cell
  * centre by the background's own noise (the two forward differences inside the cell would
- * correlate with the sample as 2 fx - 1). */
-static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
-                     const warp_t *g, int32_t st, lk_sums_t *s)
+ * correlate with the sample as 2 fx - 1). plain (a constant of each call: the function is
+ * inlined twice) is a U16 frame without a bad-pixel map, whose samples are read without the
+ * per-sample tests of the format and the map (the same values, the same sums). */
+static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                            const warp_t *g, int32_t st, lk_sums_t *s, const bool plain)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height;
     const uint32_t bf = p->bf;
@@ -245,7 +247,7 @@ static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
     /* the sampling grid starts at a multiple of st so that it does not move with the shift */
     const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
     const int32_t *cn = p->colnow;
-    const uint32_t lo = c->lo, span = c->span;
+    const uint32_t lo = c->lo, span = c->span, mask = c->mask;
     int64_t sxx = 0, sxy = 0, syy = 0, sxe = 0, sye = 0, see = 0;
     uint32_t n = 0u;
     for (int32_t y = y0; y <= yb; y += st) {
@@ -255,9 +257,19 @@ static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
         const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w;
         const uint16_t *b0 = bm + w, *b1 = b0 + w, *b2 = b1 + w;
         for (int32_t xs = x0; xs <= xb; xs += st) {
-            const uint32_t v = pft_pre_raw_(row, (uint32_t)xs, c);
-            if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)xs, (uint32_t)y))) {
-                continue;
+            uint32_t v;
+            if (plain) {
+                uint16_t raw;
+                memcpy(&raw, row + 2 * xs, 2u);
+                v = (uint32_t)raw & mask;
+                if (v - lo >= span) {
+                    continue;
+                }
+            } else {
+                v = pft_pre_raw_(row, (uint32_t)xs, c);
+                if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)xs, (uint32_t)y))) {
+                    continue;
+                }
             }
             const int32_t x = xs + g->kx; /* the left tap column */
             const uint32_t b00 = b0[x], b01 = b0[x + 1], b10 = b1[x], b11 = b1[x + 1];
@@ -282,6 +294,16 @@ static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
     s->sye = sye;
     s->see = see;
     s->n = n;
+}
+
+static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                     const warp_t *g, int32_t st, lk_sums_t *s)
+{
+    if (!c->u8 && c->map == NULL) {
+        lk_loop_(p, f, c, g, st, s, true);
+    } else {
+        lk_loop_(p, f, c, g, st, s, false);
+    }
 }
 
 /* Leading zeros of a 64-bit value (64 for 0). */
