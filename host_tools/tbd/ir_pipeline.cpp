@@ -124,6 +124,7 @@ pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int 
     c.block = static_cast<uint8_t>(t.flat_block);
     c.alpha = static_cast<uint16_t>(std::clamp(std::lround(t.flat_alpha * 65536.0), 1L, 65535L));
     c.gate = static_cast<uint16_t>(std::clamp(std::lround(t.flat_gate * 256.0), 1L, 32767L));
+    c.relative = t.flat_relative;
     return c;
 }
 
@@ -330,6 +331,16 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
             std::memcpy(u16_.ptr<uint16_t>(y), pft_frame_row(&frame, static_cast<uint32_t>(y)),
                         static_cast<std::size_t>(w_) * 2u);
     }
+    // flat_relative: the level frame is the raw frame the stage takes (the caller's, or a copy
+    // of the converted one, since the stage writes its residual over u16_)
+    pft_frame_t lev = frame;
+    if (T_.flat_block > 0 && T_.flat_relative && convert) {
+        u16_.copyTo(level_);
+        lev.data = level_.data;
+        lev.stride_bytes = static_cast<uint32_t>(level_.step[0]);
+        lev.format = PFT_PIX_U16;
+        lev.bit_depth = static_cast<uint8_t>(bits_);
+    }
     if (convert || pre_cfg_.inplace) {
         in.data = u16_.data;
         in.stride_bytes = static_cast<uint32_t>(u16_.step[0]);
@@ -365,7 +376,7 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
         pft_frame_t ff = rf;
         ff.data = px;
         ff.stride_bytes = static_cast<uint32_t>(stride * sizeof(int16_t));
-        st = pft_pre_flat_update(&flat_, &ff, px, ev);
+        st = pft_pre_flat_update(&flat_, &ff, px, T_.flat_relative ? &lev : nullptr, ev);
         if (st != PFT_OK)
             throw InputError(std::string("pft_pre_flat_update: ") + pft_status_str(st));
         res = px;

@@ -103,6 +103,7 @@ private:
     std::vector<uint64_t> flat_work_;
     std::size_t flat_bytes_ = 0;
     cv::Mat flat_res_;  // the residual's copy when the stage does not work in place (CV_16S)
+    cv::Mat level_;     // flat_relative: the converted raw frame (the stage overwrites u16_)
     // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
     // each of its frames (the last scene_frames + 1), and whether it failed the test
     struct SceneHist {

@@ -125,6 +125,7 @@ struct TrackerSettings {
     int flat_block = 0;                         ///< block side, px, a power of two 4..64 (0: off)
     double flat_alpha = 0.05;                   ///< update weight of the block means
     double flat_gate = 2.0;                     ///< a pixel enters its block's mean only within this many sigma of the current offset
+    bool flat_relative = false;                 ///< the offset is a sensor-fixed factor times the raw frame's level (the form a sensor-fixed gain leaves under a drifting scene)
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */

@@ -5,7 +5,8 @@
  * sensor-fixed offset plane under unit noise is learnt to within its derived error while a
  * bright blob moves across it (the gate keeps the blob out), the output is the input less the
  * offset that pft_pre_flat_at reports, masked pixels stay masked, a frame without evidence
- * is corrected but leaves the map. 128 x 96 frames, 16 x 16 blocks, integer residuals made
+ * is corrected but leaves the map; with relative, an offset proportional to a drifting scene's
+ * level times a sensor-fixed factor is learnt to within its derived error. 128 x 96 frames, 16 x 16 blocks, integer residuals made
  * per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -25,6 +26,7 @@ void tearDown(void) {}
 
 static int16_t g_res[NPIX];
 static int16_t g_in[NPIX];
+static uint16_t g_lev[NPIX];
 static uint64_t g_work[PFT_PRE_FLAT_WORKSPACE_BYTES(W, H, PFT_PRE_FLAT_MIN_BLOCK) / 8 + 1];
 static uint64_t g_copy[sizeof(g_work) / 8];
 static uint32_t g_rs = 2463534242u;
@@ -145,7 +147,7 @@ static void test_plane_learnt_blob_kept_out(void)
         pft_frame_t f = res_frame((uint32_t)k + 1u);
         /* the output is the input less the offset pft_pre_flat_at reports before the update */
         const int32_t off = pft_pre_flat_at(&fl, 77u, 13u);
-        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, true));
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
         TEST_ASSERT_EQUAL_INT32(g_in[13 * W + 77] - off, g_res[13 * W + 77]);
     }
     double worst = 0.0;
@@ -165,6 +167,68 @@ static void test_plane_learnt_blob_kept_out(void)
     TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(&fl, W, 0u));
 }
 
+/* relative: the sensor-fixed factor, sigma per count, and the drifting scene, counts */
+static double kfac(int x, int y)
+{
+    return 1e-4 + 4e-7 * (x - 64) - 3e-7 * (y - 48);
+}
+
+static double scene(int x, int y, int k)
+{
+    return 3000.0 + 1000.0 * sin(6.2832 * (x + 0.3 * k) / 200.0) * cos(6.2832 * (y + 0.1 * k) / 150.0);
+}
+
+/* The relative known answer: residual kfac(x, y) scene(x, y, k) + unit noise, level frame the
+ * scene: after 200 frames the map (sigma per count Q24) equals kfac. Tolerance: 0.05 sigma of
+ * offset at the pixel's level, |m - kfac| scene <= 0.05, from the map's error: a block's ratio
+ * sum(v) / sum(l) per frame has sd 0.056 / l_mean sigma per count (the noise of the offset
+ * mode's mean over the block's mean level), the running mean keeps 0.16 of it: 0.009 sigma at
+ * the block's level; the level varies by at most 8 % over a block (a gradient of at most 31
+ * counts per px), so the ratio of sums weighs kfac by at most a 0.2 px shift of the block's
+ * centre (8e-8 sigma per count: 0.0003 sigma), and kfac is linear (bilinear interpolation
+ * exact); 0.05 is 5 sd. */
+static void test_relative_learnt(void)
+{
+    pft_pre_flat_config_t cfg;
+    pft_pre_flat_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.block = B;
+    cfg.relative = true;
+    pft_pre_flat_t fl;
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
+    pft_frame_t lev;
+    memset(&lev, 0, sizeof lev);
+    lev.data = g_lev;
+    lev.width = W;
+    lev.height = H;
+    lev.stride_bytes = 2u * W;
+    lev.format = PFT_PIX_U16;
+    lev.bit_depth = 14u;
+    pft_frame_t f = res_frame(1u);
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    for (int k = 0; k < 200; ++k) {
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                const double l = scene(x, y, k);
+                g_lev[y * W + x] = (uint16_t)lround(l);
+                g_res[y * W + x] = (int16_t)(lround(256.0 * kfac(x, y) * l) + noise_q88());
+            }
+        }
+        f = res_frame((uint32_t)k + 1u);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
+    }
+    double worst = 0.0;
+    for (int y = B / 2; y < H - B / 2; ++y) {
+        for (int x = B / 2; x < W - B / 2; ++x) {
+            const double m = pft_pre_flat_at(&fl, (uint32_t)x, (uint32_t)y) / 16777216.0;
+            const double e = fabs(m - kfac(x, y)) * scene(x, y, 199);
+            worst = e > worst ? e : worst;
+        }
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(0.05, 0.0, worst);
+}
+
 /* Masked pixels stay masked; a frame without evidence is corrected and leaves the map. */
 static void test_masked_and_no_evidence(void)
 {
@@ -173,7 +237,7 @@ static void test_masked_and_no_evidence(void)
     for (int k = 0; k < 30; ++k) {
         make_frame(k);
         pft_frame_t f = res_frame((uint32_t)k + 1u);
-        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, true));
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
     }
     make_frame(30);
     g_res[5 * W + 9] = (int16_t)PFT_RES16_MASKED;
@@ -182,7 +246,7 @@ static void test_masked_and_no_evidence(void)
     const int32_t off = pft_pre_flat_at(&fl, 50u, 50u);
     TEST_ASSERT_TRUE(off > 64); /* about 0.5 sigma learnt by now */
     pft_frame_t f = res_frame(31u);
-    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, false));
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, false));
     TEST_ASSERT_EQUAL_INT16((int16_t)PFT_RES16_MASKED, g_res[5 * W + 9]);
     TEST_ASSERT_EQUAL_INT32(g_in[50 * W + 50] - off, g_res[50 * W + 50]);
     /* the map (first part of the workspace after alignment) is unchanged: the offset too */
@@ -199,21 +263,21 @@ static void test_refused_input(void)
     for (int k = 0; k < 5; ++k) {
         make_frame(k);
         pft_frame_t f = res_frame((uint32_t)k + 1u);
-        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, true));
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
     }
     make_frame(5);
     pft_pre_flat_t inst = fl;
     memcpy(g_copy, g_work, sizeof g_work);
     pft_frame_t f = res_frame(6u);
-    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(NULL, &f, g_res, true));
-    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, NULL, g_res, true));
-    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, NULL, true));
-    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_in, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(NULL, &f, g_res, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, NULL, g_res, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, NULL, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_in, NULL, true));
     f.width = W - 1;
-    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
     f = res_frame(6u);
     f.format = PFT_PIX_U16;
-    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
     TEST_ASSERT_EQUAL_MEMORY(&inst, &fl, sizeof fl);
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
     TEST_ASSERT_EQUAL_MEMORY(g_in, g_res, sizeof g_res);
@@ -226,6 +290,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_config);
     RUN_TEST(test_plane_learnt_blob_kept_out);
+    RUN_TEST(test_relative_learnt);
     RUN_TEST(test_masked_and_no_evidence);
     RUN_TEST(test_refused_input);
     return UNITY_END();

@@ -1,11 +1,11 @@
 /* Flat-field offset correction of the whitened residual, in sensor coordinates (pft_pre.h,
  * pft_pre_flat_*; docs/algorithms.md 9.10). Integer arithmetic only: the block map in sigma
- * Q16 (65536 = 1 sigma), residuals in Q8.8 sigma. */
+ * Q16 (65536 = 1 sigma; relative: sigma per count Q24), residuals in Q8.8 sigma. */
 #include <string.h>
 
 #include "pft/pft_pre.h"
 
-#define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 */
+#define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ (1 << 30)        /* bias that makes a shifted value non-negative */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
@@ -19,6 +19,7 @@ void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
     cfg->block = 16u;
     cfg->alpha = 3277u;
     cfg->gate = 512u;
+    cfg->relative = false;
 }
 
 pft_status_t pft_pre_flat_config_check(const pft_pre_flat_config_t *cfg, const char **field)
@@ -77,6 +78,7 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     int32_t *m = pft_ws_take(&ws, nbx * nby * 4u);
     int32_t *sum = pft_ws_take(&ws, nbx * nby * 4u);
     uint32_t *cnt = pft_ws_take(&ws, nbx * nby * 4u);
+    uint32_t *lsum = pft_ws_take(&ws, nbx * nby * 4u);
     int32_t *rowv = pft_ws_take(&ws, nbx * 4u);
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
@@ -86,6 +88,7 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     fl->m = m;
     fl->sum = sum;
     fl->cnt = cnt;
+    fl->lsum = lsum;
     fl->rowv = rowv;
     fl->nbx = (uint32_t)nbx;
     fl->nby = (uint32_t)nby;
@@ -106,6 +109,7 @@ pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl)
     memset(fl->m, 0, nb * 4u);
     memset(fl->sum, 0, nb * 4u);
     memset(fl->cnt, 0, nb * 4u);
+    memset(fl->lsum, 0, nb * 4u);
     memset(fl->rowv, 0, (size_t)fl->nbx * 4u);
     fl->frames = 0u;
     return PFT_OK;
@@ -171,18 +175,40 @@ int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
     int32_t rv[2];
     rv[0] = fl_shr_(a[i0] * (d - (int32_t)t) + b[i0] * (int32_t)t, fl->lb + 1u);
     rv[1] = fl_shr_(a[i1] * (d - (int32_t)t) + b[i1] * (int32_t)t, fl->lb + 1u);
-    return fl_shr_(rv[0] * (d - (int32_t)u) + rv[1] * (int32_t)u, fl->lb + 9u);
+    return fl_shr_(rv[0] * (d - (int32_t)u) + rv[1] * (int32_t)u, fl->lb + (fl->cfg.relative ? 1u : 9u));
+}
+
+/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, l counts). */
+static int32_t fl_lev_(int32_t k, uint32_t l)
+{
+    const int64_t q = (int64_t)k * (int64_t)l;
+    const int64_t mag = q < 0 ? -q : q;
+    const int32_t o = (int32_t)((mag + 32768) / 65536);
+    return q < 0 ? -o : o;
+}
+
+/* Level (counts) of pixel x of a U16 or U8 row. */
+static uint32_t fl_level_(const uint8_t *row, uint32_t x, bool u8)
+{
+    if (u8) {
+        return row[x];
+    }
+    uint16_t v;
+    memcpy(&v, row + 2u * x, 2u);
+    return v;
 }
 
 /* Corrects row r (w pixels) with the offsets of the row's block values fl->rowv; with learn,
  * books the gated corrected values into the sums of block row jb. The columns are walked
  * segment by segment between block centres (the weight steps by 2 per pixel). */
-static void fl_row_(pft_pre_flat_t *fl, int16_t *r, bool learn, uint32_t jb)
+static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
+                    uint32_t jb)
 {
     const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
     const int32_t d = (int32_t)(2u << lb), gate = (int32_t)fl->cfg.gate;
     int32_t *sum = fl->sum + (size_t)jb * nbx;
     uint32_t *cnt = fl->cnt + (size_t)jb * nbx;
+    uint32_t *lsum = fl->lsum + (size_t)jb * nbx;
     const int32_t *rv = fl->rowv;
     uint32_t x = 0u;
     for (uint32_t s = 0u; s <= nbx; ++s) {
@@ -197,13 +223,21 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, bool learn, uint32_t jb)
                 continue;
             }
             const int32_t t = (s == 0u || s == nbx) ? 0 : (int32_t)(2u * x) - c2;
-            const int32_t off = fl_shr_(a0 * (d - t) + a1 * t, lb + 9u);
+            uint32_t l = 0u;
+            int32_t off;
+            if (lrow != NULL) {
+                l = fl_level_(lrow, x, u8);
+                off = fl_lev_(fl_shr_(a0 * (d - t) + a1 * t, lb + 1u), l);
+            } else {
+                off = fl_shr_(a0 * (d - t) + a1 * t, lb + 9u);
+            }
             int32_t o = (int32_t)v - off;
             o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
             r[x] = (int16_t)o;
             if (learn && (o <= gate && o >= -gate)) {
                 sum[x >> lb] += o;
                 cnt[x >> lb] += 1u;
+                lsum[x >> lb] += l;
             }
         }
     }
@@ -230,8 +264,17 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
             if (n == 0u || 4u * n < bw * bh) {
                 continue;
             }
-            /* the mean of the corrected values, sigma Q16, is the map's error */
-            const int64_t mean = fl_div_((int64_t)fl->sum[k] * 256, (int64_t)n);
+            /* the mean of the corrected values, sigma Q16, is the map's error; relative: their
+             * sum over the sum of the levels, sigma per count Q24 */
+            int64_t mean;
+            if (fl->cfg.relative) {
+                if (fl->lsum[k] == 0u) {
+                    continue;
+                }
+                mean = fl_div_((int64_t)fl->sum[k] * 65536, (int64_t)fl->lsum[k]);
+            } else {
+                mean = fl_div_((int64_t)fl->sum[k] * 256, (int64_t)n);
+            }
             int64_t m = (int64_t)fl->m[k] + fl_div_(mean * (int64_t)a, 65536);
             m = m > FL_MMAX_ ? FL_MMAX_ : (m < -FL_MMAX_ ? -FL_MMAX_ : m);
             fl->m[k] = (int32_t)m;
@@ -240,7 +283,7 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
 }
 
 pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,
-                                 bool evidence)
+                                 const pft_frame_t *level, bool evidence)
 {
     if (fl == NULL || fl->m == NULL || res == NULL || pixels == NULL) {
         return PFT_ERR_INVAL;
@@ -253,15 +296,27 @@ pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int
     if (s != PFT_OK) {
         return s;
     }
+    if (fl->cfg.relative) {
+        if (level == NULL) {
+            return PFT_ERR_INVAL;
+        }
+        const pft_status_t sl = pft_frame_check(level, fl->cfg.width, fl->cfg.height,
+                                                PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_U8));
+        if (sl != PFT_OK) {
+            return sl;
+        }
+    }
+    const bool rel = fl->cfg.relative, u8 = rel && level->format == PFT_PIX_U8;
     const uint32_t h = fl->cfg.height, nb = fl->nbx * fl->nby;
     if (evidence) {
         memset(fl->sum, 0, (size_t)nb * 4u);
         memset(fl->cnt, 0, (size_t)nb * 4u);
+        memset(fl->lsum, 0, (size_t)nb * 4u);
     }
     for (uint32_t y = 0u; y < h; ++y) {
         fl_rowv_(fl, y);
         int16_t *r = (int16_t *)(void *)((uint8_t *)(void *)pixels + (size_t)y * res->stride_bytes);
-        fl_row_(fl, r, evidence, y >> fl->lb);
+        fl_row_(fl, r, rel ? pft_frame_row(level, y) : NULL, u8, evidence, y >> fl->lb);
     }
     if (evidence) {
         fl->frames = fl->frames < 0xFFFFFFFFu ? fl->frames + 1u : fl->frames;
