@@ -334,8 +334,21 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     // flat_relative: the level frame is the raw frame the stage takes (the caller's, or a copy
     // of the converted one, since the stage writes its residual over u16_)
     pft_frame_t lev = frame;
-    if (T_.flat_block > 0 && T_.flat_relative && convert) {
-        u16_.copyTo(level_);
+    if (T_.flat_block > 0 && T_.flat_relative && (convert || T_.flat_level_blocks)) {
+        if (convert)
+            u16_.copyTo(level_);
+        else
+            frame_to_mat(frame, 1.0, 0.0).convertTo(level_, CV_16U);
+        if (T_.flat_level_blocks) {
+            // host experiment: the level at the blocks' resolution only (the frame's mean per
+            // block, bilinear between block centres), what a workspace of O(blocks) could hold
+            const int b = T_.flat_block, nbx = (w_ + b - 1) / b, nby = (h_ + b - 1) / b;
+            cv::Mat f, small;
+            level_.convertTo(f, CV_32F);
+            cv::resize(f, small, cv::Size(nbx, nby), 0, 0, cv::INTER_AREA);
+            cv::resize(small, f, cv::Size(nbx * b, nby * b), 0, 0, cv::INTER_LINEAR);
+            f(cv::Rect(0, 0, w_, h_)).convertTo(level_, CV_16U);
+        }
         lev.data = level_.data;
         lev.stride_bytes = static_cast<uint32_t>(level_.step[0]);
         lev.format = PFT_PIX_U16;

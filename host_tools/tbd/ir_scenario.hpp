@@ -126,6 +126,7 @@ struct TrackerSettings {
     double flat_alpha = 0.05;                   ///< update weight of the block means
     double flat_gate = 2.0;                     ///< a pixel enters its block's mean only within this many sigma of the current offset
     bool flat_relative = false;                 ///< the offset is a sensor-fixed factor times the raw frame's level (the form a sensor-fixed gain leaves under a drifting scene)
+    bool flat_level_blocks = false;             ///< host experiment: with flat_relative, the level frame at the blocks' resolution (block means, bilinear) instead of the raw frame
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
