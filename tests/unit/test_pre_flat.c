@@ -27,6 +27,7 @@ void tearDown(void) {}
 static int16_t g_res[NPIX];
 static int16_t g_in[NPIX];
 static uint16_t g_lev[NPIX];
+static int16_t g_plane[NPIX]; /* plane(x, y) in Q8.8, made once (soft-float targets) */
 static uint64_t g_work[PFT_PRE_FLAT_WORKSPACE_BYTES(W, H, PFT_PRE_FLAT_MIN_BLOCK) / 8 + 1];
 static uint64_t g_copy[sizeof(g_work) / 8];
 static uint32_t g_rs = 2463534242u;
@@ -79,9 +80,16 @@ static void init_flat(pft_pre_flat_t *fl)
 static void make_frame(int k)
 {
     const int bx = 20 + k / 4, by = 40;
+    if (g_plane[0] == 0) {
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                g_plane[y * W + x] = (int16_t)lround(256.0 * plane(x, y));
+            }
+        }
+    }
     for (int y = 0; y < H; ++y) {
         for (int x = 0; x < W; ++x) {
-            int32_t v = (int32_t)lround(256.0 * plane(x, y)) + noise_q88();
+            int32_t v = (int32_t)g_plane[y * W + x] + noise_q88();
             if (abs(x - bx) <= 1 && abs(y - by) <= 1) {
                 v += 6 * 256;
             }
@@ -207,12 +215,27 @@ static void test_relative_learnt(void)
     lev.bit_depth = 14u;
     pft_frame_t f = res_frame(1u);
     TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    /* kfac in sigma per count Q24, and the scene's separable factors per frame, as integers
+     * (the frames are made in integer arithmetic: soft-float targets under QEMU) */
+    static int32_t kq[NPIX];
+    static int32_t sx[W], cy[H];
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            kq[y * W + x] = (int32_t)lround(16777216.0 * kfac(x, y));
+        }
+    }
     for (int k = 0; k < 200; ++k) {
+        for (int x = 0; x < W; ++x) {
+            sx[x] = (int32_t)lround(1000.0 * sin(6.2832 * (x + 0.3 * k) / 200.0));
+        }
+        for (int y = 0; y < H; ++y) {
+            cy[y] = (int32_t)lround(1024.0 * cos(6.2832 * (y + 0.1 * k) / 150.0));
+        }
         for (int y = 0; y < H; ++y) {
             for (int x = 0; x < W; ++x) {
-                const double l = scene(x, y, k);
-                g_lev[y * W + x] = (uint16_t)lround(l);
-                g_res[y * W + x] = (int16_t)(lround(256.0 * kfac(x, y) * l) + noise_q88());
+                const int32_t l = 3000 + sx[x] * cy[y] / 1024; /* scene(x, y, k) within 1 count */
+                g_lev[y * W + x] = (uint16_t)l;
+                g_res[y * W + x] = (int16_t)((kq[y * W + x] * l + 32768) / 65536 + noise_q88());
             }
         }
         f = res_frame((uint32_t)k + 1u);
