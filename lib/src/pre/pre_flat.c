@@ -6,7 +6,7 @@
 #include "pft/pft_pre.h"
 
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
-#define FL_BIAS_ (1 << 30)        /* bias that makes a shifted value non-negative */
+#define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -125,7 +125,8 @@ static int32_t fl_shr_(int32_t v, uint32_t k)
 /* Doubled coordinate of the centre of block i (block side 2^lb): 2 i b + b - 1. */
 static int32_t fl_c2_(uint32_t i, uint32_t lb)
 {
-    return (int32_t)((2u * i + 1u) << lb) - 1;
+    const uint32_t c = (2u * i + 1u) << lb;
+    return (int32_t)c - 1;
 }
 
 /* Lower block index j0 and the weight t of block j0 + 1 (0..2b - 1; 0 also where held) of the
@@ -155,7 +156,8 @@ static void fl_rowv_(pft_pre_flat_t *fl, uint32_t y)
 {
     uint32_t j0, j1, t;
     fl_locate_(2u * y, fl->nby, fl->lb, &j0, &j1, &t);
-    const int32_t d = (int32_t)(2u << fl->lb);
+    const uint32_t d2 = 2u << fl->lb;
+    const int32_t d = (int32_t)d2;
     const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
     for (uint32_t i = 0u; i < fl->nbx; ++i) {
         fl->rowv[i] = fl_shr_(a[i] * (d - (int32_t)t) + b[i] * (int32_t)t, fl->lb + 1u);
@@ -170,7 +172,8 @@ int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
     uint32_t j0, j1, t, i0, i1, u;
     fl_locate_(2u * y, fl->nby, fl->lb, &j0, &j1, &t);
     fl_locate_(2u * x, fl->nbx, fl->lb, &i0, &i1, &u);
-    const int32_t d = (int32_t)(2u << fl->lb);
+    const uint32_t d2 = 2u << fl->lb;
+    const int32_t d = (int32_t)d2;
     const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
     int32_t rv[2];
     rv[0] = fl_shr_(a[i0] * (d - (int32_t)t) + b[i0] * (int32_t)t, fl->lb + 1u);
@@ -205,7 +208,8 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
                     uint32_t jb)
 {
     const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
-    const int32_t d = (int32_t)(2u << lb), gate = (int32_t)fl->cfg.gate;
+    const uint32_t d2 = 2u << lb;
+    const int32_t d = (int32_t)d2, gate = (int32_t)fl->cfg.gate;
     int32_t *sum = fl->sum + (size_t)jb * nbx;
     uint32_t *cnt = fl->cnt + (size_t)jb * nbx;
     uint32_t *lsum = fl->lsum + (size_t)jb * nbx;
@@ -222,7 +226,8 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
             if (v == PFT_RES16_MASKED) {
                 continue;
             }
-            const int32_t t = (s == 0u || s == nbx) ? 0 : (int32_t)(2u * x) - c2;
+            const uint32_t x2 = 2u * x;
+            const int32_t t = (s == 0u || s == nbx) ? 0 : (int32_t)x2 - c2;
             uint32_t l = 0u;
             int32_t off;
             if (lrow != NULL) {
