@@ -414,7 +414,7 @@ uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y);
  * behind). Integer arithmetic only: float and q16 builds give the same bits (m in sigma Q16,
  * relative sigma per count Q24). Memory: per block 16 bytes (the map, the frame's sums,
  * counts and level sums) and one row of interpolated values: 16 / block^2 bytes per pixel
- * (16 x 16 blocks: 0.0625 B/px); see PFT_PRE_FLAT_WORKSPACE_BYTES. With relative the caller
+ * (16 x 16 blocks: 0.063 B/px at 384 x 288); see PFT_PRE_FLAT_WORKSPACE_BYTES. With relative the caller
  * keeps the level frame (e.g. the raw frame) until the update: with a stage that writes its
  * residual over the raw frame (inplace) that is a copy of the frame. Refused input changes
  * nothing (instance, workspace, frame).
