@@ -108,6 +108,29 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
         throw InputError(std::string("pft_pre_init: ") + pft_status_str(st));
     tracker_ = std::make_unique<tbd::Tracker>(pipeline_config(t, psf_sigma, width, height, seed), false);
     resid_.create(h_, w_, CV_32F);
+    if (t.flat_block > 0) {
+        const pft_pre_flat_config_t fc = make_flat_config(t, width, height);
+        if (pft_pre_flat_config_check(&fc, &field) != PFT_OK)
+            throw InputError(std::string("flat-field configuration refused (field ") + (field ? field : "?") + ")");
+        flat_bytes_ = pft_pre_flat_workspace_size(&fc);
+        flat_work_.assign((flat_bytes_ + 7) / 8, 0);
+        st = pft_pre_flat_init(&flat_, &fc, flat_work_.data(), flat_work_.size() * 8);
+        if (st != PFT_OK)
+            throw InputError(std::string("pft_pre_flat_init: ") + pft_status_str(st));
+    }
+}
+
+pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int height)
+{
+    pft_pre_flat_config_t c;
+    pft_pre_flat_config_default(&c);
+    c.width = static_cast<uint16_t>(width);
+    c.height = static_cast<uint16_t>(height);
+    c.block = static_cast<uint8_t>(t.flat_block);
+    c.alpha = static_cast<uint16_t>(std::clamp(std::lround(t.flat_alpha * 65536.0), 1L, 65535L));
+    c.gate = static_cast<uint16_t>(std::clamp(std::lround(t.flat_gate * 256.0), 1L, 32767L));
+    c.relative = t.flat_relative;
+    return c;
 }
 
 // The clutter map: the library's pft_pre_clutter_* (pft_pre.h, docs/algorithms.md 9.9): per
@@ -313,6 +336,29 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
             std::memcpy(u16_.ptr<uint16_t>(y), pft_frame_row(&frame, static_cast<uint32_t>(y)),
                         static_cast<std::size_t>(w_) * 2u);
     }
+    // flat_relative: the level frame is the raw frame the stage takes (the caller's, or a copy
+    // of the converted one, since the stage writes its residual over u16_)
+    pft_frame_t lev = frame;
+    if (T_.flat_block > 0 && T_.flat_relative && (convert || T_.flat_level_blocks)) {
+        if (convert)
+            u16_.copyTo(level_);
+        else
+            frame_to_mat(frame, 1.0, 0.0).convertTo(level_, CV_16U);
+        if (T_.flat_level_blocks) {
+            // host experiment: the level at the blocks' resolution only (the frame's mean per
+            // block, bilinear between block centres), what a workspace of O(blocks) could hold
+            const int b = T_.flat_block, nbx = (w_ + b - 1) / b, nby = (h_ + b - 1) / b;
+            cv::Mat f, small;
+            level_.convertTo(f, CV_32F);
+            cv::resize(f, small, cv::Size(nbx, nby), 0, 0, cv::INTER_AREA);
+            cv::resize(small, f, cv::Size(nbx * b, nby * b), 0, 0, cv::INTER_LINEAR);
+            f(cv::Rect(0, 0, w_, h_)).convertTo(level_, CV_16U);
+        }
+        lev.data = level_.data;
+        lev.stride_bytes = static_cast<uint32_t>(level_.step[0]);
+        lev.format = PFT_PIX_U16;
+        lev.bit_depth = static_cast<uint8_t>(bits_);
+    }
     if (convert || pre_cfg_.inplace) {
         in.data = u16_.data;
         in.stride_bytes = static_cast<uint32_t>(u16_.step[0]);
@@ -331,6 +377,28 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     std::size_t stride = rf.stride_bytes / sizeof(int16_t);
     const int16_t *res = static_cast<const int16_t *>(rf.data);
     const bool ev = evidence();
+    if (T_.flat_block > 0) {
+        // the stage's residual is the pipeline's own buffer with inplace (u16_): corrected
+        // there; otherwise in a copy
+        int16_t *px;
+        if (pre_cfg_.inplace) {
+            px = reinterpret_cast<int16_t *>(u16_.ptr<uint16_t>(0));
+        } else {
+            flat_res_.create(h_, w_, CV_16S);
+            for (int y = 0; y < h_; ++y)
+                std::memcpy(flat_res_.ptr<int16_t>(y), res + static_cast<std::size_t>(y) * stride,
+                            static_cast<std::size_t>(w_) * 2u);
+            px = flat_res_.ptr<int16_t>(0);
+            stride = static_cast<std::size_t>(w_);
+        }
+        pft_frame_t ff = rf;
+        ff.data = px;
+        ff.stride_bytes = static_cast<uint32_t>(stride * sizeof(int16_t));
+        st = pft_pre_flat_update(&flat_, &ff, px, T_.flat_relative ? &lev : nullptr, ev);
+        if (st != PFT_OK)
+            throw InputError(std::string("pft_pre_flat_update: ") + pft_status_str(st));
+        res = px;
+    }
     if (T_.residual_hp > 0 && ev) {
         residual_highpass(res, stride, w_, h_, T_.residual_hp, hp_);
         res = hp_.ptr<int16_t>(0);

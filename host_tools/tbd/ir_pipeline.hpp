@@ -69,6 +69,7 @@ public:
 
     const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
     std::size_t clutter_workspace_bytes() const { return cm_.bytes; } ///< the clutter map's workspace (0 without the map)
+    std::size_t flat_workspace_bytes() const { return flat_bytes_; } ///< the flat-field correction's workspace (0 without it)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
     int masked() const { return masked_; }               ///< last frame's masked pixels
     uint32_t flags() const { return stats_.flags; }      ///< last frame's PFT_PRE_FLAG_*
@@ -97,6 +98,12 @@ private:
     cv::Mat resid_, u16_, blank_;
     cv::Mat hp_;  // residual_hp: the high-passed residual (CV_16S, Q8.8)
     ClutterMap cm_;
+    // flat_block > 0: the flat-field offset correction (pft_pre_flat_*), on the residual
+    pft_pre_flat_t flat_{};
+    std::vector<uint64_t> flat_work_;
+    std::size_t flat_bytes_ = 0;
+    cv::Mat flat_res_;  // the residual's copy when the stage does not work in place (CV_16S)
+    cv::Mat level_;     // flat_relative: the converted raw frame (the stage overwrites u16_)
     // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
     // each of its frames (the last scene_frames + 1), and whether it failed the test
     struct SceneHist {
@@ -116,6 +123,9 @@ private:
  *  straight line at constant speed (0 for fewer than 3); the straight-line test of reported
  *  tracks (TrackerSettings::scene_fit_px). */
 double line_fit_rms(const std::vector<std::array<double, 4>> &h);
+
+/** The pft_pre_flat configuration of the pipeline's settings (width x height frames). */
+pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int height);
 
 /** The pft_pre configuration of the pipeline (method, windows, tile from the settings). */
 pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height, int bit_depth, bool u8);

@@ -125,6 +125,14 @@ struct TrackerSettings {
     // residual high-pass (host prototype, docs/results/ir_clutter.md "Branch irdet"): the stage's residual less its
     // mean over the (2 residual_hp + 1)^2 square (masked pixels left out), before the clutter map and both trackers
     int residual_hp = 0;                        ///< half-size of the square, px (0: off)
+    // flat-field offset correction (the library's pft_pre_flat_*, docs/algorithms.md 9.10): the
+    // stage's residual less a running mean per block of the SENSOR (bilinear between block
+    // centres, gated at flat_gate), before residual_hp, the clutter map and both trackers
+    int flat_block = 0;                         ///< block side, px, a power of two 4..64 (0: off)
+    double flat_alpha = 0.05;                   ///< update weight of the block means
+    double flat_gate = 2.0;                     ///< a pixel enters its block's mean only within this many sigma of the current offset
+    bool flat_relative = false;                 ///< the offset is a sensor-fixed factor times the raw frame's level (the form a sensor-fixed gain leaves under a drifting scene)
+    bool flat_level_blocks = false;             ///< host experiment: with flat_relative, the level frame at the blocks' resolution (block means, bilinear) instead of the raw frame
 };
 
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */

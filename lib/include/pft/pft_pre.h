@@ -219,6 +219,26 @@ typedef struct {
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
 typedef struct pft_pre_clutter_s pft_pre_clutter_t;
 
+/* Flat-field offset correction (pft_pre_flat_*, described with its calls below). */
+
+/** Smallest block side of the flat-field correction (px). */
+#define PFT_PRE_FLAT_MIN_BLOCK 4u
+/** Largest block side of the flat-field correction (px). */
+#define PFT_PRE_FLAT_MAX_BLOCK 64u
+
+/** Configuration of the flat-field offset correction (integers only). */
+typedef struct {
+    uint16_t width;   /**< frame width, 8..PFT_CFG_MAX_IMAGE_SIDE (default 384) */
+    uint16_t height;  /**< frame height, 8..PFT_CFG_MAX_IMAGE_SIDE (default 288) */
+    uint8_t block;    /**< block side, px, a power of two PFT_PRE_FLAT_MIN_BLOCK..PFT_PRE_FLAT_MAX_BLOCK (default 16) */
+    uint16_t alpha;   /**< update weight a of the block means, Q0.16, 1..65535 (default 3277 = 0.05) */
+    uint16_t gate;    /**< a pixel enters its block's mean only when |r - m| <= gate, Q8.8 sigma (256 = 1), 1..32767 (default 512 = 2) */
+    bool relative;    /**< false (default): the map is an offset (sigma); true: the offset is proportional to the level of the pixel in a level frame given to each update (e.g. the raw frame): m is sigma per count and the pixel's offset m(x, y) l(x, y), the form of the residual that a sensor-fixed gain leaves under a drifting scene (docs/algorithms.md 9.10) */
+} pft_pre_flat_config_t;
+
+/** Flat-field correction instance (layout in pft/internal/pft_pre_types.h, not API). */
+typedef struct pft_pre_flat_s pft_pre_flat_t;
+
 #ifdef __cplusplus
 }
 #endif
@@ -377,6 +397,74 @@ pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
 pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level);
 /** Map value m at (x, y), sigma^2 Q6.10; 0 for NULL or (x, y) outside the frame. */
 uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y);
+
+/*
+ * Flat-field offset correction (pft_pre_flat_*): an optional step after the stage, on its
+ * whitened residual, that removes a slowly varying offset fixed to the SENSOR (not to the
+ * scene), e.g. the residual that a sensor-fixed gain such as vignetting leaves under a
+ * drifting scene (docs/algorithms.md 9.10 [E]). The sensor is cut into blocks of
+ * block x block pixels; per block it holds a running value m, read at any pixel bilinearly
+ * between the block centres (held beyond the outermost centres). The pixel's offset is
+ * o = m(x, y) (sigma), or with relative o = m(x, y) l(x, y), l the pixel's value in the level
+ * frame of the update (counts; m in sigma per count). Per frame, for every unmasked pixel r:
+ *   v = r - o                       (the output, written over r; masked pixels stay masked)
+ * and, when the frame carries detection evidence, per block over its unmasked pixels with
+ * |v| <= gate (a target, a bright residual or an outlier does not enter), with n of them:
+ *   m <- m + a sum(v) / n           (relative: m <- m + a sum(v) / sum(l))
+ * where n >= block^2 / 4 (else the block keeps its value), a = max(alpha, 1 / k) on the k-th
+ * frame with evidence (a running mean at the start); m is clamped to +-8 sigma (relative:
+ * +-1/32 sigma per count). The gate is centred on the current estimate, so that a Gaussian
+ * residual gives an unbiased mean. The map is the one before this frame's update (one frame
+ * behind). Integer arithmetic only: float and q16 builds give the same bits (m in sigma Q16,
+ * relative sigma per count Q24). Memory: per block 16 bytes (the map, the frame's sums,
+ * counts and level sums) and one row of interpolated values: 16 / block^2 bytes per pixel
+ * (16 x 16 blocks: 0.063 B/px at 384 x 288); see PFT_PRE_FLAT_WORKSPACE_BYTES. With relative the caller
+ * keeps the level frame (e.g. the raw frame) until the update: with a stage that writes its
+ * residual over the raw frame (inplace) that is a copy of the frame. Refused input changes
+ * nothing (instance, workspace, frame).
+ */
+
+
+/** Blocks along a side of n pixels for block side b (not API). */
+#define PFT_PRE_FLAT_NB_(n, b) (((size_t)(n) + (size_t)(b) - 1u) / (size_t)(b))
+
+/** Workspace bytes of a flat-field correction for frames w x h and block side b: the map, the
+ *  sums, the counts and the level sums of the blocks (4 bytes each per block) and one row of
+ *  block values. */
+#define PFT_PRE_FLAT_WORKSPACE_BYTES(w, h, b)                                                   \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     4u * PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * PFT_PRE_FLAT_NB_(h, b) * 4u) +                  \
+     PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * 4u))
+
+/** Fills every field with its default (384 x 288, 16 x 16 blocks, alpha 0.05, gate 2 sigma). */
+void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg);
+/** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
+ *  the first refused field ("width", "height", "block", "alpha", "gate"); NULL on success. */
+pft_status_t pft_pre_flat_config_check(const pft_pre_flat_config_t *cfg, const char **field);
+/** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
+size_t pft_pre_flat_workspace_size(const pft_pre_flat_config_t *cfg);
+/** Initialises fl in work[0..work_len): PFT_ERR_INVAL (NULL), PFT_ERR_CONFIG, PFT_ERR_NOMEM. */
+pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *cfg, void *work,
+                               size_t work_len);
+/** Back to the state right after init (map 0, no frame). PFT_ERR_INVAL for NULL. */
+pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl);
+/**
+ * One frame: res is a whitened residual (PFT_PIX_RES16 of the configured size, e.g. from
+ * pft_pre_frame of a stage with inplace, whose buffer is the caller's), pixels its own buffer
+ * (pixels == res->data, writable): the corrected residual is written over it. level: with
+ * relative, the level frame (U16 or U8 of the configured size, its values as counts, e.g.
+ * the raw frame the stage took); read only; ignored (may be NULL) without relative. evidence
+ * false (a frame flagged CONSTANT, ALL_MASKED or REG_LOST) corrects the frame but leaves the
+ * map. PFT_ERR_INVAL for NULL (level NULL with relative) or pixels != res->data,
+ * PFT_ERR_FORMAT for a wrong frame: nothing changes, the frame buffer included. Work: one
+ * pass over the pixels plus O(blocks).
+ */
+pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,
+                                 const pft_frame_t *level, bool evidence);
+/** The map at pixel (x, y), interpolated: without relative the offset the next update
+ *  subtracts there, Q8.8 sigma (rounded); with relative the factor of the level, sigma per
+ *  count Q24. 0 for NULL or (x, y) outside the frame. */
+int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y);
 
 #ifdef __cplusplus
 }

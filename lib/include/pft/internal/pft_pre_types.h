@@ -73,6 +73,18 @@ struct pft_pre_clutter_s {
     uint64_t timestamp_us;
 };
 
+struct pft_pre_flat_s {
+    pft_pre_flat_config_t cfg;
+    int32_t *m;            /* map per block: running mean, sigma Q16 (relative: sigma per count Q24), nbx * nby */
+    int32_t *sum;          /* this frame's sums of the gated residual per block, Q8.8 */
+    uint32_t *cnt;         /* this frame's pixels per block that entered the sum */
+    uint32_t *lsum;        /* relative: this frame's sums of their levels (counts) per block */
+    int32_t *rowv;         /* the map interpolated to one row at the block columns, sigma Q16 */
+    uint32_t nbx, nby;     /* blocks per row, per column */
+    uint32_t lb;           /* log2(block) */
+    uint32_t frames;       /* frames with evidence since init/reset */
+};
+
 #ifdef __cplusplus
 }
 #endif

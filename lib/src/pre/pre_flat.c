@@ -1,0 +1,333 @@
+/* Flat-field offset correction of the whitened residual, in sensor coordinates (pft_pre.h,
+ * pft_pre_flat_*; docs/algorithms.md 9.10). Integer arithmetic only: the block map in sigma
+ * Q16 (65536 = 1 sigma; relative: sigma per count Q24), residuals in Q8.8 sigma. */
+#include <string.h>
+
+#include "pft/pft_pre.h"
+
+#define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
+#define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
+
+void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->width = 384u;
+    cfg->height = 288u;
+    cfg->block = 16u;
+    cfg->alpha = 3277u;
+    cfg->gate = 512u;
+    cfg->relative = false;
+}
+
+pft_status_t pft_pre_flat_config_check(const pft_pre_flat_config_t *cfg, const char **field)
+{
+    const char *bad = NULL;
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const uint32_t b = cfg->block;
+    if (cfg->width < 8u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "width";
+    } else if (cfg->height < 8u || cfg->height > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "height";
+    } else if (b < PFT_PRE_FLAT_MIN_BLOCK || b > PFT_PRE_FLAT_MAX_BLOCK || (b & (b - 1u)) != 0u) {
+        bad = "block";
+    } else if (cfg->alpha == 0u) {
+        bad = "alpha";
+    } else if (cfg->gate == 0u || cfg->gate > 32767u) {
+        bad = "gate";
+    } else {
+        /* accepted */
+    }
+    if (bad != NULL) {
+        if (field != NULL) {
+            *field = bad;
+        }
+        return PFT_ERR_CONFIG;
+    }
+    return PFT_OK;
+}
+
+size_t pft_pre_flat_workspace_size(const pft_pre_flat_config_t *cfg)
+{
+    if (pft_pre_flat_config_check(cfg, NULL) != PFT_OK) {
+        return 0u;
+    }
+    return PFT_PRE_FLAT_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->block);
+}
+
+pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *cfg, void *work,
+                               size_t work_len)
+{
+    if (fl == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_pre_flat_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    const size_t nbx = PFT_PRE_FLAT_NB_(cfg->width, cfg->block);
+    const size_t nby = PFT_PRE_FLAT_NB_(cfg->height, cfg->block);
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    int32_t *m = pft_ws_take(&ws, nbx * nby * 4u);
+    int32_t *sum = pft_ws_take(&ws, nbx * nby * 4u);
+    uint32_t *cnt = pft_ws_take(&ws, nbx * nby * 4u);
+    uint32_t *lsum = pft_ws_take(&ws, nbx * nby * 4u);
+    int32_t *rowv = pft_ws_take(&ws, nbx * 4u);
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(fl, 0, sizeof(*fl));
+    fl->cfg = *cfg;
+    fl->m = m;
+    fl->sum = sum;
+    fl->cnt = cnt;
+    fl->lsum = lsum;
+    fl->rowv = rowv;
+    fl->nbx = (uint32_t)nbx;
+    fl->nby = (uint32_t)nby;
+    uint32_t lb = 0u;
+    while ((1u << lb) < (uint32_t)cfg->block) {
+        lb++;
+    }
+    fl->lb = lb;
+    return pft_pre_flat_reset(fl);
+}
+
+pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl)
+{
+    if (fl == NULL || fl->m == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const size_t nb = (size_t)fl->nbx * fl->nby;
+    memset(fl->m, 0, nb * 4u);
+    memset(fl->sum, 0, nb * 4u);
+    memset(fl->cnt, 0, nb * 4u);
+    memset(fl->lsum, 0, nb * 4u);
+    memset(fl->rowv, 0, (size_t)fl->nbx * 4u);
+    fl->frames = 0u;
+    return PFT_OK;
+}
+
+/* v / 2^k rounded half up, for |v| < 2^29 and 1 <= k <= 29 (no shift of a negative value). */
+static int32_t fl_shr_(int32_t v, uint32_t k)
+{
+    const uint32_t u = (uint32_t)(v + FL_BIAS_) + (1u << (k - 1u));
+    return (int32_t)(u >> k) - (int32_t)((uint32_t)FL_BIAS_ >> k);
+}
+
+/* Doubled coordinate of the centre of block i (block side 2^lb): 2 i b + b - 1. */
+static int32_t fl_c2_(uint32_t i, uint32_t lb)
+{
+    const uint32_t c = (2u * i + 1u) << lb;
+    return (int32_t)c - 1;
+}
+
+/* Lower block index j0 and the weight t of block j0 + 1 (0..2b - 1; 0 also where held) of the
+ * doubled coordinate p2 between the centres of n blocks. */
+static void fl_locate_(uint32_t p2, uint32_t n, uint32_t lb, uint32_t *j0, uint32_t *j1,
+                       uint32_t *t)
+{
+    const uint32_t b = 1u << lb;
+    if (n == 1u || (int32_t)p2 <= fl_c2_(0u, lb)) {
+        *j0 = 0u;
+        *j1 = 0u;
+        *t = 0u;
+    } else if ((int32_t)p2 >= fl_c2_(n - 1u, lb)) {
+        *j0 = n - 1u;
+        *j1 = n - 1u;
+        *t = 0u;
+    } else {
+        const uint32_t j = (p2 - (b - 1u)) >> (lb + 1u);
+        *j0 = j;
+        *j1 = j + 1u;
+        *t = p2 - (uint32_t)fl_c2_(j, lb);
+    }
+}
+
+/* The map interpolated to row y at every block column (sigma Q16) into fl->rowv. */
+static void fl_rowv_(pft_pre_flat_t *fl, uint32_t y)
+{
+    uint32_t j0, j1, t;
+    fl_locate_(2u * y, fl->nby, fl->lb, &j0, &j1, &t);
+    const uint32_t d2 = 2u << fl->lb;
+    const int32_t d = (int32_t)d2;
+    const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
+    for (uint32_t i = 0u; i < fl->nbx; ++i) {
+        fl->rowv[i] = fl_shr_(a[i] * (d - (int32_t)t) + b[i] * (int32_t)t, fl->lb + 1u);
+    }
+}
+
+int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
+{
+    if (fl == NULL || fl->m == NULL || x >= fl->cfg.width || y >= fl->cfg.height) {
+        return 0;
+    }
+    uint32_t j0, j1, t, i0, i1, u;
+    fl_locate_(2u * y, fl->nby, fl->lb, &j0, &j1, &t);
+    fl_locate_(2u * x, fl->nbx, fl->lb, &i0, &i1, &u);
+    const uint32_t d2 = 2u << fl->lb;
+    const int32_t d = (int32_t)d2;
+    const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
+    int32_t rv[2];
+    rv[0] = fl_shr_(a[i0] * (d - (int32_t)t) + b[i0] * (int32_t)t, fl->lb + 1u);
+    rv[1] = fl_shr_(a[i1] * (d - (int32_t)t) + b[i1] * (int32_t)t, fl->lb + 1u);
+    return fl_shr_(rv[0] * (d - (int32_t)u) + rv[1] * (int32_t)u, fl->lb + (fl->cfg.relative ? 1u : 9u));
+}
+
+/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, l counts). */
+static int32_t fl_lev_(int32_t k, uint32_t l)
+{
+    const int64_t q = (int64_t)k * (int64_t)l;
+    const int64_t mag = q < 0 ? -q : q;
+    const int32_t o = (int32_t)((mag + 32768) / 65536);
+    return q < 0 ? -o : o;
+}
+
+/* Level (counts) of pixel x of a U16 or U8 row. */
+static uint32_t fl_level_(const uint8_t *row, uint32_t x, bool u8)
+{
+    if (u8) {
+        return row[x];
+    }
+    uint16_t v;
+    memcpy(&v, row + 2u * x, 2u);
+    return v;
+}
+
+/* Corrects row r (w pixels) with the offsets of the row's block values fl->rowv; with learn,
+ * books the gated corrected values into the sums of block row jb. The columns are walked
+ * segment by segment between block centres (the weight steps by 2 per pixel). */
+static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
+                    uint32_t jb)
+{
+    const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
+    const uint32_t d2 = 2u << lb;
+    const int32_t d = (int32_t)d2, gate = (int32_t)fl->cfg.gate;
+    int32_t *sum = fl->sum + (size_t)jb * nbx;
+    uint32_t *cnt = fl->cnt + (size_t)jb * nbx;
+    uint32_t *lsum = fl->lsum + (size_t)jb * nbx;
+    const int32_t *rv = fl->rowv;
+    uint32_t x = 0u;
+    for (uint32_t s = 0u; s <= nbx; ++s) {
+        /* segment s: columns up to the centre of block s (s == nbx: to the end) */
+        uint32_t xe = s < nbx ? (s << lb) + b / 2u : w;
+        xe = xe > w ? w : xe;
+        const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
+        const int32_t c2 = s == 0u ? 0 : fl_c2_(s - 1u, lb);
+        for (; x < xe; ++x) {
+            const int16_t v = r[x];
+            if (v == PFT_RES16_MASKED) {
+                continue;
+            }
+            const uint32_t x2 = 2u * x;
+            const int32_t t = (s == 0u || s == nbx) ? 0 : (int32_t)x2 - c2;
+            uint32_t l = 0u;
+            int32_t off;
+            if (lrow != NULL) {
+                l = fl_level_(lrow, x, u8);
+                off = fl_lev_(fl_shr_(a0 * (d - t) + a1 * t, lb + 1u), l);
+            } else {
+                off = fl_shr_(a0 * (d - t) + a1 * t, lb + 9u);
+            }
+            int32_t o = (int32_t)v - off;
+            o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+            r[x] = (int16_t)o;
+            if (learn && (o <= gate && o >= -gate)) {
+                sum[x >> lb] += o;
+                cnt[x >> lb] += 1u;
+                lsum[x >> lb] += l;
+            }
+        }
+    }
+}
+
+/* n / d rounded half away from zero (d > 0). */
+static int64_t fl_div_(int64_t n, int64_t d)
+{
+    const int64_t mag = n < 0 ? -n : n;
+    const int64_t q = (mag + d / 2) / d;
+    return n < 0 ? -q : q;
+}
+
+/* The blocks' means of this frame into the map, with weight a (Q0.16). */
+static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
+{
+    const uint32_t w = fl->cfg.width, h = fl->cfg.height, lb = fl->lb, b = 1u << lb;
+    for (uint32_t j = 0u; j < fl->nby; ++j) {
+        const uint32_t bh = (j + 1u) * b > h ? h - j * b : b;
+        for (uint32_t i = 0u; i < fl->nbx; ++i) {
+            const uint32_t bw = (i + 1u) * b > w ? w - i * b : b;
+            const size_t k = (size_t)j * fl->nbx + i;
+            const uint32_t n = fl->cnt[k];
+            if (n == 0u || 4u * n < bw * bh) {
+                continue;
+            }
+            /* the mean of the corrected values, sigma Q16, is the map's error; relative: their
+             * sum over the sum of the levels, sigma per count Q24 */
+            int64_t mean;
+            if (fl->cfg.relative) {
+                if (fl->lsum[k] == 0u) {
+                    continue;
+                }
+                mean = fl_div_((int64_t)fl->sum[k] * 65536, (int64_t)fl->lsum[k]);
+            } else {
+                mean = fl_div_((int64_t)fl->sum[k] * 256, (int64_t)n);
+            }
+            int64_t m = (int64_t)fl->m[k] + fl_div_(mean * (int64_t)a, 65536);
+            m = m > FL_MMAX_ ? FL_MMAX_ : (m < -FL_MMAX_ ? -FL_MMAX_ : m);
+            fl->m[k] = (int32_t)m;
+        }
+    }
+}
+
+pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,
+                                 const pft_frame_t *level, bool evidence)
+{
+    if (fl == NULL || fl->m == NULL || res == NULL || pixels == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (res->data != (const void *)pixels) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_status_t s =
+        pft_frame_check(res, fl->cfg.width, fl->cfg.height, PFT_FMT_BIT(PFT_PIX_RES16));
+    if (s != PFT_OK) {
+        return s;
+    }
+    if (fl->cfg.relative) {
+        if (level == NULL) {
+            return PFT_ERR_INVAL;
+        }
+        const pft_status_t sl = pft_frame_check(level, fl->cfg.width, fl->cfg.height,
+                                                PFT_FMT_BIT(PFT_PIX_U16) | PFT_FMT_BIT(PFT_PIX_U8));
+        if (sl != PFT_OK) {
+            return sl;
+        }
+    }
+    const bool rel = fl->cfg.relative, u8 = rel && level->format == PFT_PIX_U8;
+    const uint32_t h = fl->cfg.height, nb = fl->nbx * fl->nby;
+    if (evidence) {
+        memset(fl->sum, 0, (size_t)nb * 4u);
+        memset(fl->cnt, 0, (size_t)nb * 4u);
+        memset(fl->lsum, 0, (size_t)nb * 4u);
+    }
+    for (uint32_t y = 0u; y < h; ++y) {
+        fl_rowv_(fl, y);
+        int16_t *r = (int16_t *)(void *)((uint8_t *)(void *)pixels + (size_t)y * res->stride_bytes);
+        fl_row_(fl, r, rel ? pft_frame_row(level, y) : NULL, u8, evidence, y >> fl->lb);
+    }
+    if (evidence) {
+        fl->frames = fl->frames < 0xFFFFFFFFu ? fl->frames + 1u : fl->frames;
+        const uint32_t run = fl->frames >= 65536u ? 1u : 65536u / fl->frames;
+        const uint32_t a = run > (uint32_t)fl->cfg.alpha ? run : (uint32_t)fl->cfg.alpha;
+        fl_learn_(fl, a);
+    }
+    return PFT_OK;
+}

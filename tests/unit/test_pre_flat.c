@@ -1,0 +1,320 @@
+/*
+ * Flat-field offset correction of the whitened residual (pft_pre.h, pft_pre_flat_*): the
+ * configuration check naming the refused field, the workspace size, refused input leaving
+ * instance, workspace and frame buffer byte for byte unchanged, and known answers: a
+ * sensor-fixed offset plane under unit noise is learnt to within its derived error while a
+ * bright blob moves across it (the gate keeps the blob out), the output is the input less the
+ * offset that pft_pre_flat_at reports, masked pixels stay masked, a frame without evidence
+ * is corrected but leaves the map; with relative, an offset proportional to a drifting scene's
+ * level times a sensor-fixed factor is learnt to within its derived error. 128 x 96 frames, 16 x 16 blocks, integer residuals made
+ * per pixel, so that it runs on every target.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_pre.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 128
+#define H 96
+#define B 16
+#define NPIX (W * H)
+
+static int16_t g_res[NPIX];
+static int16_t g_in[NPIX];
+static uint16_t g_lev[NPIX];
+static int16_t g_plane[NPIX]; /* plane(x, y) in Q8.8, made once (soft-float targets) */
+static uint64_t g_work[PFT_PRE_FLAT_WORKSPACE_BYTES(W, H, PFT_PRE_FLAT_MIN_BLOCK) / 8 + 1];
+static uint64_t g_copy[sizeof(g_work) / 8];
+static uint32_t g_rs = 2463534242u;
+
+/* about N(0, 1) in Q8.8: a sum of four uniforms, sd 256 */
+static int32_t noise_q88(void)
+{
+    int32_t v = 0;
+    for (int i = 0; i < 4; ++i) {
+        g_rs ^= g_rs << 13;
+        g_rs ^= g_rs >> 17;
+        g_rs ^= g_rs << 5;
+        v += (int32_t)(g_rs >> 20) - 2048; /* uniform, sd 1182 */
+    }
+    return v * 256 / 2365;
+}
+
+/* the sensor-fixed offset plane, sigma: 0.5 at the centre, slopes 0.004 and -0.003 per px */
+static double plane(int x, int y)
+{
+    return 0.5 + 0.004 * (x - 64) - 0.003 * (y - 48);
+}
+
+static pft_frame_t res_frame(uint32_t seq)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_res;
+    f.width = W;
+    f.height = H;
+    f.stride_bytes = 2u * W;
+    f.format = PFT_PIX_RES16;
+    f.bit_depth = 16u;
+    f.seq = seq;
+    return f;
+}
+
+static void init_flat(pft_pre_flat_t *fl)
+{
+    pft_pre_flat_config_t cfg;
+    pft_pre_flat_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.block = B;
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(fl, &cfg, g_work, sizeof g_work));
+}
+
+/* frame k: plane + unit noise + a 3 x 3 blob of 6 sigma at (20 + k / 4, 40) (0.25 px per
+ * frame: it stays about 64 frames in each block it crosses), into g_res and g_in */
+static void make_frame(int k)
+{
+    const int bx = 20 + k / 4, by = 40;
+    if (g_plane[0] == 0) {
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                g_plane[y * W + x] = (int16_t)lround(256.0 * plane(x, y));
+            }
+        }
+    }
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            int32_t v = (int32_t)g_plane[y * W + x] + noise_q88();
+            if (abs(x - bx) <= 1 && abs(y - by) <= 1) {
+                v += 6 * 256;
+            }
+            g_res[y * W + x] = (int16_t)v;
+        }
+    }
+    memcpy(g_in, g_res, sizeof g_res);
+}
+
+static void test_config(void)
+{
+    pft_pre_flat_config_t cfg;
+    const char *field = "x";
+    pft_pre_flat_config_default(&cfg);
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_config_check(&cfg, &field));
+    TEST_ASSERT_NULL(field);
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_config_check(NULL, &field));
+    const struct {
+        uint8_t block;
+        uint16_t alpha, gate;
+        const char *name;
+    } bad[] = {{2u, 3277u, 512u, "block"},  {12u, 3277u, 512u, "block"},
+               {128u, 3277u, 512u, "block"}, {16u, 0u, 512u, "alpha"},
+               {16u, 3277u, 0u, "gate"},     {16u, 3277u, 40000u, "gate"}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        pft_pre_flat_config_default(&cfg);
+        cfg.block = bad[i].block;
+        cfg.alpha = bad[i].alpha;
+        cfg.gate = bad[i].gate;
+        TEST_ASSERT_EQUAL(PFT_ERR_CONFIG, pft_pre_flat_config_check(&cfg, &field));
+        TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
+        TEST_ASSERT_EQUAL(0u, pft_pre_flat_workspace_size(&cfg));
+    }
+    pft_pre_flat_config_default(&cfg);
+    cfg.width = 4u;
+    TEST_ASSERT_EQUAL(PFT_ERR_CONFIG, pft_pre_flat_config_check(&cfg, &field));
+    TEST_ASSERT_EQUAL_STRING("width", field);
+    /* 384 x 288, 16 x 16 blocks: 24 x 18 blocks of 12 bytes and a row of 24 values, well
+     * under 1 byte per pixel */
+    pft_pre_flat_config_default(&cfg);
+    const size_t n = pft_pre_flat_workspace_size(&cfg);
+    TEST_ASSERT_EQUAL(PFT_PRE_FLAT_WORKSPACE_BYTES(384, 288, 16), n);
+    TEST_ASSERT_TRUE(n < 384u * 288u / 10u);
+    pft_pre_flat_t fl;
+    TEST_ASSERT_EQUAL(PFT_ERR_NOMEM, pft_pre_flat_init(&fl, &cfg, g_work, 64u));
+}
+
+/* The known answer: after 200 frames the map equals the plane. Tolerance 0.05 sigma, from the
+ * map's error: a block's mean of the gated noise per frame has sd 0.88 / sqrt(244) = 0.056
+ * (244 of 256 pixels within +-2 sigma, truncated sd 0.88), the running mean with alpha 0.05
+ * keeps sqrt(0.05 / 1.95) = 0.16 of it: 0.009 sigma; an interpolated value is a convex mix of
+ * block values (sd <= 0.009); the plane is linear, so its block means are its values at the
+ * block centres and the bilinear interpolation between centres is exact (Q8.8 rounding:
+ * 0.004). 0.05 is 5 sd, for 48 blocks. The blob, 6 sigma over 9 px, would add 0.21 sigma to
+ * the mean of a block it sits in if it entered (its 64 frames there are about 3 time
+ * constants of the running mean): the gate keeps it out. */
+static void test_plane_learnt_blob_kept_out(void)
+{
+    pft_pre_flat_t fl;
+    init_flat(&fl);
+    for (int k = 0; k < 200; ++k) {
+        make_frame(k);
+        pft_frame_t f = res_frame((uint32_t)k + 1u);
+        /* the output is the input less the offset pft_pre_flat_at reports before the update */
+        const int32_t off = pft_pre_flat_at(&fl, 77u, 13u);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+        TEST_ASSERT_EQUAL_INT32(g_in[13 * W + 77] - off, g_res[13 * W + 77]);
+    }
+    double worst = 0.0;
+    for (int y = B / 2; y < H - B / 2; ++y) {
+        for (int x = B / 2; x < W - B / 2; ++x) {
+            const double e = pft_pre_flat_at(&fl, (uint32_t)x, (uint32_t)y) / 256.0 - plane(x, y);
+            worst = fabs(e) > worst ? fabs(e) : worst;
+        }
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(0.05, 0.0, worst);
+    /* the blob comes out at its value: 6 sigma over the corrected noise (+-4 sigma of noise
+     * at most for a sum of four uniforms: 3.46 sigma) */
+    const int bx = 20 + 199 / 4;
+    TEST_ASSERT_TRUE(g_res[40 * W + bx] > (int16_t)(2 * 256));
+    /* outside the centres the map is held: pixel (0, 0) reads the corner block's value */
+    TEST_ASSERT_EQUAL_INT32(pft_pre_flat_at(&fl, 7u, 7u), pft_pre_flat_at(&fl, 0u, 0u));
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(&fl, W, 0u));
+}
+
+/* relative: the sensor-fixed factor, sigma per count, and the drifting scene, counts */
+static double kfac(int x, int y)
+{
+    return 1e-4 + 4e-7 * (x - 64) - 3e-7 * (y - 48);
+}
+
+static double scene(int x, int y, int k)
+{
+    return 3000.0 + 1000.0 * sin(6.2832 * (x + 0.3 * k) / 200.0) * cos(6.2832 * (y + 0.1 * k) / 150.0);
+}
+
+/* The relative known answer: residual kfac(x, y) scene(x, y, k) + unit noise, level frame the
+ * scene: after 200 frames the map (sigma per count Q24) equals kfac. Tolerance: 0.05 sigma of
+ * offset at the pixel's level, |m - kfac| scene <= 0.05, from the map's error: a block's ratio
+ * sum(v) / sum(l) per frame has sd 0.056 / l_mean sigma per count (the noise of the offset
+ * mode's mean over the block's mean level), the running mean keeps 0.16 of it: 0.009 sigma at
+ * the block's level; the level varies by at most 8 % over a block (a gradient of at most 31
+ * counts per px), so the ratio of sums weighs kfac by at most a 0.2 px shift of the block's
+ * centre (8e-8 sigma per count: 0.0003 sigma), and kfac is linear (bilinear interpolation
+ * exact); 0.05 is 5 sd. */
+static void test_relative_learnt(void)
+{
+    pft_pre_flat_config_t cfg;
+    pft_pre_flat_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.block = B;
+    cfg.relative = true;
+    pft_pre_flat_t fl;
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
+    pft_frame_t lev;
+    memset(&lev, 0, sizeof lev);
+    lev.data = g_lev;
+    lev.width = W;
+    lev.height = H;
+    lev.stride_bytes = 2u * W;
+    lev.format = PFT_PIX_U16;
+    lev.bit_depth = 14u;
+    pft_frame_t f = res_frame(1u);
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    /* kfac in sigma per count Q24, and the scene's separable factors per frame, as integers
+     * (the frames are made in integer arithmetic: soft-float targets under QEMU) */
+    static int32_t kq[NPIX];
+    static int32_t sx[W], cy[H];
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            kq[y * W + x] = (int32_t)lround(16777216.0 * kfac(x, y));
+        }
+    }
+    for (int k = 0; k < 200; ++k) {
+        for (int x = 0; x < W; ++x) {
+            sx[x] = (int32_t)lround(1000.0 * sin(6.2832 * (x + 0.3 * k) / 200.0));
+        }
+        for (int y = 0; y < H; ++y) {
+            cy[y] = (int32_t)lround(1024.0 * cos(6.2832 * (y + 0.1 * k) / 150.0));
+        }
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                const int32_t l = 3000 + sx[x] * cy[y] / 1024; /* scene(x, y, k) within 1 count */
+                g_lev[y * W + x] = (uint16_t)l;
+                g_res[y * W + x] = (int16_t)((kq[y * W + x] * l + 32768) / 65536 + noise_q88());
+            }
+        }
+        f = res_frame((uint32_t)k + 1u);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
+    }
+    double worst = 0.0;
+    for (int y = B / 2; y < H - B / 2; ++y) {
+        for (int x = B / 2; x < W - B / 2; ++x) {
+            const double m = pft_pre_flat_at(&fl, (uint32_t)x, (uint32_t)y) / 16777216.0;
+            const double e = fabs(m - kfac(x, y)) * scene(x, y, 199);
+            worst = e > worst ? e : worst;
+        }
+    }
+    TEST_ASSERT_DOUBLE_WITHIN(0.05, 0.0, worst);
+}
+
+/* Masked pixels stay masked; a frame without evidence is corrected and leaves the map. */
+static void test_masked_and_no_evidence(void)
+{
+    pft_pre_flat_t fl;
+    init_flat(&fl);
+    for (int k = 0; k < 30; ++k) {
+        make_frame(k);
+        pft_frame_t f = res_frame((uint32_t)k + 1u);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    }
+    make_frame(30);
+    g_res[5 * W + 9] = (int16_t)PFT_RES16_MASKED;
+    memcpy(g_in, g_res, sizeof g_res);
+    memcpy(g_copy, g_work, sizeof g_work);
+    const int32_t off = pft_pre_flat_at(&fl, 50u, 50u);
+    TEST_ASSERT_TRUE(off > 64); /* about 0.5 sigma learnt by now */
+    pft_frame_t f = res_frame(31u);
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, false));
+    TEST_ASSERT_EQUAL_INT16((int16_t)PFT_RES16_MASKED, g_res[5 * W + 9]);
+    TEST_ASSERT_EQUAL_INT32(g_in[50 * W + 50] - off, g_res[50 * W + 50]);
+    /* the map (first part of the workspace after alignment) is unchanged: the offset too */
+    TEST_ASSERT_EQUAL_INT32(off, pft_pre_flat_at(&fl, 50u, 50u));
+    TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_reset(&fl));
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(&fl, 50u, 50u));
+}
+
+/* Refused input: NULL, a foreign buffer, a wrong frame: nothing changes. */
+static void test_refused_input(void)
+{
+    pft_pre_flat_t fl;
+    init_flat(&fl);
+    for (int k = 0; k < 5; ++k) {
+        make_frame(k);
+        pft_frame_t f = res_frame((uint32_t)k + 1u);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    }
+    make_frame(5);
+    pft_pre_flat_t inst = fl;
+    memcpy(g_copy, g_work, sizeof g_work);
+    pft_frame_t f = res_frame(6u);
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(NULL, &f, g_res, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, NULL, g_res, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, NULL, NULL, true));
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_update(&fl, &f, g_in, NULL, true));
+    f.width = W - 1;
+    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    f = res_frame(6u);
+    f.format = PFT_PIX_U16;
+    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    TEST_ASSERT_EQUAL_MEMORY(&inst, &fl, sizeof fl);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
+    TEST_ASSERT_EQUAL_MEMORY(g_in, g_res, sizeof g_res);
+    TEST_ASSERT_EQUAL(PFT_ERR_INVAL, pft_pre_flat_reset(NULL));
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(NULL, 0u, 0u));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_config);
+    RUN_TEST(test_plane_learnt_blob_kept_out);
+    RUN_TEST(test_relative_learnt);
+    RUN_TEST(test_masked_and_no_evidence);
+    RUN_TEST(test_refused_input);
+    return UNITY_END();
+}
