@@ -168,9 +168,9 @@ static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t 
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
     pft_rng_t t = rng;
     const pft_tbd_scene_t_ *sc = x->sc;
-    const uint32_t n = pft_rng_below(&t, sc->n_cand); /* the pixel's draw comes first */
+    const uint32_t n = pft_rng_below_(&t, sc->n_cand); /* the pixel's draw comes first */
     const uint32_t p = sc->cand != NULL ? sc->cand[n] : pft_tbd_scene_pick_(sc, n);
-    pft_tbd_birth_pix_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
+    pft_tbd_birth_pix_in_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
     return t;
 }
 
