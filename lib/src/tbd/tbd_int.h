@@ -287,6 +287,12 @@ static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tb
     return pft_tbd_llr3_r16_win_(sc, c->i, c->j, tx, ty, amp, ex || ey);
 }
 
+/* pft_tbd_llr3_r16_ called (tbd_meas.c): the inline kernel has one call site in the filters'
+ * hot loops (tbd_filter.c, weigh_r16_); the other cases call this. */
+pft_real_t pft_tbd_llr3_r16_call_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                  const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                  pft_real_t intensity);
+
 /* pft_tbd_llr_exact_ on a scene's RES16 frame (the window fetched into sc->rowbuf's window
  * scratch). */
 pft_real_t pft_tbd_llr_exact_r16_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc,
@@ -315,11 +321,11 @@ static inline pft_real_t pft_tbd_llr_sc_(const pft_tbd_meas_t *m, const pft_tbd_
     if (sc->img != NULL) {
         return pft_tbd_llr_(m, tab, sc->img, c, intensity);
     }
-    if (m->p == 1u) {
-        return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
-    }
     {
         const pft_tbd_cell_t cc = *c;
+        if (m->p == 1u) {
+            return pft_tbd_llr3_r16_call_(m, tab, sc, &cc, intensity);
+        }
         return pft_tbd_llr_exact_r16_(m, sc, &cc, intensity);
     }
 }

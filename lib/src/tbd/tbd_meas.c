@@ -165,6 +165,13 @@ pft_real_t pft_tbd_llr_exact_(const pft_tbd_meas_t *m, const pft_real_t *img,
                       pft_mul(intensity, m->kc));
 }
 
+pft_real_t pft_tbd_llr3_r16_call_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                  const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                  pft_real_t intensity)
+{
+    return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
+}
+
 pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
                                  const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
                                  bool edge)
