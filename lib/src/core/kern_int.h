@@ -42,6 +42,14 @@
 
 extern const uint32_t pft_kexp2_tab[129];
 
+/* A RES16 pixel as an integer, a masked pixel 0 (pft_kres16_ of it is the pixel's real). */
+static inline int32_t pft_kr16_int_(const uint8_t *p)
+{
+    int16_t v;
+    memcpy(&v, p, 2u);
+    return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
+}
+
 #ifdef PFT_NUMERIC_Q16
 
 typedef uint64_t pft_krecip_t;
@@ -255,14 +263,6 @@ static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const p
     return pft_kspot_end_(s1, tx[3], ty[3], a);
 }
 
-/* A RES16 pixel as an integer, a masked pixel 0 (pft_kres16_ of it is the pixel's real). */
-static inline int32_t pft_kr16_int_(const uint8_t *p)
-{
-    int16_t v;
-    memcpy(&v, p, 2u);
-    return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
-}
-
 /* Whether the taps of a table row (value t, difference d to the next row; every tap the
  * linear interpolation of pft_ktaps_ can give lies between t and t + d) let pft_kspot3_r16_
  * give pft_kspot3_'s bits: always in q16. */
@@ -433,13 +433,6 @@ static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const p
                      ty[1] * (tx[0] * z1[0] + tx[1] * z1[1] + tx[2] * z1[2]) +
                      ty[2] * (tx[0] * z2[0] + tx[1] * z2[1] + tx[2] * z2[2]);
     return a * (s1 - 0.5f * a * tx[3] * ty[3]);
-}
-
-static inline int32_t pft_kr16_int_(const uint8_t *p)
-{
-    int16_t v;
-    memcpy(&v, p, 2u);
-    return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
 }
 
 /* float: tx (v 2^-8) rounds to (tx v) 2^-8 exactly, and sums and products of such values to
