@@ -12,6 +12,14 @@
  * 2^-8 and 1 - 2^-16, odd values; pft_kmul_u_ over z spread through +-2^14 (both signs, the
  * values just below and above each multiple of 2^-16 boundary in q16, i.e. every 16-bit low
  * half near 0 and 2^15).
+ *
+ * The particle kernel on a RES16 window (lib/src/tbd/tbd_int.h, pft_tbd_llr3_r16_):
+ * pft_kspot3_r16_ on the frame's int16 pixels is pft_kspot3_ on the converted window (each
+ * pixel pft_kres16_, a masked one 0) bit for bit, no tolerance (the log-weights decide
+ * resampling, so any other rounding would change the tracks): 6000 windows of random pixels
+ * (extremes, the masked code, small and large values) with separable PSF taps of sigma 0.5,
+ * 0.7, 1.0 and 2.0 at window offsets across [-1/2, 1/2] (all of which pass
+ * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200.
  */
 #include <math.h>
 #include <stdio.h>
@@ -101,10 +109,81 @@ static void test_kmul_u_is_kmula(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
+/* The three taps g((k - 1 - f)) of a unit-pitch PSF of sigma sg at offset f, and their sum
+ * of squares, as the tap table holds them (lane 3). */
+static void psf_taps_(double sg, double f, pft_real_t t[4])
+{
+    double ss = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = (double)(k - 1) - f;
+        const double g = exp(-d * d / (2.0 * sg * sg));
+        t[k] = pft_test_from_double(g);
+        ss += g * g;
+    }
+    t[3] = pft_test_from_double(ss);
+}
+
+static uint32_t lcg_(uint32_t *st)
+{
+    *st = *st * 1664525u + 1013904223u;
+    return *st >> 8;
+}
+
+static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
+{
+    enum { W = 5, H = 3 };
+    static const double sig[4] = {0.5, 0.7, 1.0, 2.0};
+    static const double amp[5] = {0.5, 3.0, 11.7, 47.25, 200.0};
+    uint8_t frame[2u * W * H];
+    pft_real_t z[9];
+    uint32_t st = 12345u;
+    uint32_t bad = 0u;
+    for (uint32_t rep = 0; rep < 6000u; ++rep) {
+        for (uint32_t q = 0; q < (uint32_t)(W * H); ++q) {
+            const uint32_t r = lcg_(&st);
+            int16_t v;
+            switch (r % 8u) {
+            case 0u: v = INT16_MIN; break; /* PFT_RES16_MASKED */
+            case 1u: v = (r & 256u) != 0u ? (int16_t)32767 : (int16_t)-32767; break;
+            case 2u: v = (int16_t)((int32_t)(r >> 9) % 64 - 32); break;
+            default: v = (int16_t)((int32_t)(r >> 4) % 6000 - 3000); break;
+            }
+            memcpy(frame + 2u * q, &v, 2u);
+        }
+        pft_real_t tx[4], ty[4];
+        const double sg = sig[rep % 4u];
+        psf_taps_(sg, -0.5 + (double)(lcg_(&st) % 1024u) / 1024.0, tx);
+        psf_taps_(sg, -0.5 + (double)(lcg_(&st) % 1024u) / 1024.0, ty);
+        for (int k = 0; k < 3; ++k) {
+            TEST_ASSERT_TRUE(pft_kr16_sum_ok_(tx[k], PFT_C(0.0)));
+            TEST_ASSERT_TRUE(pft_kr16_sum_ok_(ty[k], PFT_C(0.0)));
+        }
+        const pft_real_t a = pft_test_from_double(amp[rep % 5u]);
+        /* the window at column 1 of the three rows, rows 2 W bytes apart */
+        const uint8_t *p = frame + 2u;
+        for (uint32_t b = 0; b < 3u; ++b) {
+            for (uint32_t c = 0; c < 3u; ++c) {
+                int16_t v;
+                memcpy(&v, p + (size_t)b * 2u * W + 2u * c, 2u);
+                z[3u * b + c] = v != INT16_MIN ? pft_kres16_(v) : PFT_C(0.0);
+            }
+        }
+        const pft_real_t want = pft_kspot3_(z, 3u, tx, ty, a);
+        const pft_real_t got = pft_kspot3_r16_(p, 2u * W, tx, ty, a);
+        if (memcmp(&want, &got, sizeof want) != 0 && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "window %u sigma %.1f a %.2f: %.9g, pft_kspot3_ %.9g",
+                     (unsigned)rep, sg, amp[rep % 5u], pft_test_to_double(got),
+                     pft_test_to_double(want));
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
+    RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     return UNITY_END();
 }

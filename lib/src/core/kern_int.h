@@ -24,6 +24,9 @@
  *   pft_kmul_r16_: pft_kmula_ of a tap (prepared by pft_kr16_tap_) and a RES16 value (or the
  *   sum of two) given as integers, the same bits without converting them; pft_kmul_u_:
  *   pft_kmula_ of a tap in [0, 1] and a value below 2^14 in 32-bit arithmetic.
+ * - pft_kspot3_r16_: pft_kspot3_ on a 3 x 3 window of RES16 pixels read in place, the same
+ *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
+ *   float only where pft_kr16_sum_ok_ holds for every tap the window can get).
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  */
 #ifndef PFT_CORE_KERN_INT_H
@@ -38,6 +41,14 @@
 #define PFT_KTAP_STEPS 64u
 
 extern const uint32_t pft_kexp2_tab[129];
+
+/* A RES16 pixel as an integer, a masked pixel 0 (pft_kres16_ of it is the pixel's real). */
+static inline int32_t pft_kr16_int_(const uint8_t *p)
+{
+    int16_t v;
+    memcpy(&v, p, 2u);
+    return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
+}
 
 #ifdef PFT_NUMERIC_Q16
 
@@ -252,6 +263,35 @@ static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const p
     return pft_kspot_end_(s1, tx[3], ty[3], a);
 }
 
+/* Whether the taps of a table row (value t, difference d to the next row; every tap the
+ * linear interpolation of pft_ktaps_ can give lies between t and t + d) let pft_kspot3_r16_
+ * give pft_kspot3_'s bits: always in q16. */
+static inline bool pft_kr16_sum_ok_(pft_real_t t, pft_real_t d)
+{
+    (void)t;
+    (void)d;
+    return true;
+}
+
+/* pft_kspot3_ on the 3 x 3 RES16 window whose top-left pixel is at p (rows st bytes apart),
+ * every pixel read as pft_kres16_ of pft_kr16_int_: with z = 256 v (Q16.16 of v / 256) a row's
+ * 2^16-scaled sum is 256 S for S = sum tx v, and floor((256 S + 2^15) / 2^16) =
+ * floor((S + 2^7) / 2^8) exactly, so pft_krow3_ is (S + 128) >> 8 without the conversion
+ * (|S| < 3 2^31, int64). The rest is pft_kspot3_'s. */
+static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_real_t tx[4],
+                                         const pft_real_t ty[4], pft_real_t a)
+{
+    int64_t s1 = 0;
+    for (uint32_t b = 0; b < 3u; ++b) {
+        const uint8_t *q = p + (size_t)b * st;
+        const int64_t r = ((int64_t)tx[0] * pft_kr16_int_(q) + (int64_t)tx[1] * pft_kr16_int_(q + 2u) +
+                           (int64_t)tx[2] * pft_kr16_int_(q + 4u) + 128) >>
+                          8;
+        s1 += ty[b] * r;
+    }
+    return pft_kspot_end_(s1, tx[3], ty[3], a);
+}
+
 /* The same for an nx x ny window (n <= 9): the arithmetic of pft_kspot3_ exactly. */
 static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,
                                     uint32_t nx, const pft_real_t *ty, uint32_t ny, pft_real_t a)
@@ -392,6 +432,36 @@ static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const p
     const float s1 = ty[0] * (tx[0] * z[0] + tx[1] * z[1] + tx[2] * z[2]) +
                      ty[1] * (tx[0] * z1[0] + tx[1] * z1[1] + tx[2] * z1[2]) +
                      ty[2] * (tx[0] * z2[0] + tx[1] * z2[1] + tx[2] * z2[2]);
+    return a * (s1 - 0.5f * a * tx[3] * ty[3]);
+}
+
+/* float: tx (v 2^-8) rounds to (tx v) 2^-8 exactly, and sums and products of such values to
+ * 2^-8 times those of the unscaled ones, as long as no result is a subnormal that lost bits.
+ * With every tap 0 or at least 2^-19 (the interpolated tap t + r d, 0 <= r <= 1, is at least
+ * min(t, fl(t + d)): checked on the row), a nonzero product tx v (|v| >= 1) is at least 2^-19,
+ * so a multiple of 2^-42, a nonzero row sum at least 2^-42, ty times it at least 2^-61 and the
+ * window sum, scaled, at least 2^-92: every scaled value normal or 0 (a clipped tap is 0). */
+static inline bool pft_kr16_sum_ok_(pft_real_t t, pft_real_t d)
+{
+    const float lo = 1.9073486328125e-6f; /* 2^-19 */
+    return t >= lo && t + d >= lo;
+}
+
+/* pft_kspot3_ on a 3 x 3 RES16 window (pixels v as integers, z = v 2^-8): the window sum from
+ * the integers, scaled by 2^-8 once, is pft_kspot3_'s s1 to the bit when every tap passed
+ * pft_kr16_sum_ok_ (the same operations in the same order). */
+static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_real_t tx[4],
+                                         const pft_real_t ty[4], pft_real_t a)
+{
+    const uint8_t *p1 = p + st;
+    const uint8_t *p2 = p1 + st;
+    const float r0 = tx[0] * (float)pft_kr16_int_(p) + tx[1] * (float)pft_kr16_int_(p + 2u) +
+                     tx[2] * (float)pft_kr16_int_(p + 4u);
+    const float r1 = tx[0] * (float)pft_kr16_int_(p1) + tx[1] * (float)pft_kr16_int_(p1 + 2u) +
+                     tx[2] * (float)pft_kr16_int_(p1 + 4u);
+    const float r2 = tx[0] * (float)pft_kr16_int_(p2) + tx[1] * (float)pft_kr16_int_(p2 + 2u) +
+                     tx[2] * (float)pft_kr16_int_(p2 + 4u);
+    const float s1 = (ty[0] * r0 + ty[1] * r1 + ty[2] * r2) * 0.00390625f;
     return a * (s1 - 0.5f * a * tx[3] * ty[3]);
 }
 

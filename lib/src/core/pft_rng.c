@@ -10,11 +10,6 @@
 #include "rng_int.h"
 #include "kern_int.h"
 
-/* Upper bound on Lemire rejection rounds. One round is rejected with probability
- * (2^32 mod n) / 2^32 < 1/2, so reaching the bound has probability below 2^-64; the loop is
- * bounded anyway (rule: every loop bounded), and the last candidate is then used as is. */
-#define PFT_RNG_MAX_REJECT 64u
-
 static uint64_t pft_splitmix64_(uint64_t *state)
 {
     uint64_t z;
@@ -45,29 +40,7 @@ void pft_rng_seed(pft_rng_t *rng, uint64_t seed)
 
 uint32_t pft_rng_u32(pft_rng_t *rng) { return pft_rng_next_(rng); }
 
-uint32_t pft_rng_below(pft_rng_t *rng, uint32_t n)
-{
-    /* Lemire 2019, "Fast random integer generation in an interval": the high word of the
-     * 64-bit product x*n is uniform on [0, n) once products whose low word falls below
-     * 2^32 mod n are rejected. */
-    uint64_t m;
-    uint32_t lo;
-    if (n <= 1u) {
-        return 0u;
-    }
-    m = (uint64_t)pft_rng_u32(rng) * n;
-    lo = (uint32_t)m;
-    if (lo < n) {
-        const uint32_t thresh = (uint32_t)(0u - n) % n; /* 2^32 mod n */
-        uint32_t round = 0u;
-        while (lo < thresh && round < PFT_RNG_MAX_REJECT) {
-            m = (uint64_t)pft_rng_u32(rng) * n;
-            lo = (uint32_t)m;
-            ++round;
-        }
-    }
-    return (uint32_t)(m >> 32);
-}
+uint32_t pft_rng_below(pft_rng_t *rng, uint32_t n) { return pft_rng_below_(rng, n); }
 
 pft_real_t pft_rng_uniform(pft_rng_t *rng)
 {
@@ -76,31 +49,7 @@ pft_real_t pft_rng_uniform(pft_rng_t *rng)
 
 pft_real_t pft_rng_uniform_range(pft_rng_t *rng, pft_real_t lo, pft_real_t hi)
 {
-    const uint32_t u = pft_rng_u32(rng);
-    if (!(lo < hi)) {
-        return lo;
-    }
-#ifdef PFT_NUMERIC_Q16
-    {
-        /* Exact: lo + floor((hi - lo) * u16 / 2^16) with a 64-bit span, so the result is in
-         * [lo, hi) even when hi - lo does not fit in Q16.16. */
-        const int64_t span = (int64_t)hi - (int64_t)lo; /* in (0, 2^32) */
-        const int64_t off = (span * (int64_t)(u >> 16)) >> 16;
-        return (pft_real_t)((int64_t)lo + off);
-    }
-#else
-    {
-        const pft_real_t f = pft_from_u32_frac(u);
-        const pft_real_t span = pft_sub(hi, lo);
-        /* hi - lo may overflow to infinity (inf * 0 would be NaN): then use the convex form,
-         * whose two terms have opposite signs. */
-        const pft_real_t r = span <= PFT_REAL_MAX
-                                 ? pft_add(lo, pft_mul(span, f))
-                                 : pft_add(pft_mul(lo, pft_sub(PFT_REAL_ONE, f)), pft_mul(hi, f));
-        /* Rounding may land on hi: step back inside. */
-        return r < hi ? (r < lo ? lo : r) : nextafterf(hi, lo);
-    }
-#endif
+    return pft_rng_uniform_range_(rng, lo, hi);
 }
 
 pft_real_t pft_rng_gauss(pft_rng_t *rng)

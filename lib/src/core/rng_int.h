@@ -1,6 +1,7 @@
 /* The random stream's hot paths, inline for the particle loops (private, not installed).
  *
- * pft_rng_next_: one xoshiro128** step (pft_rng_u32 is this, called).
+ * pft_rng_next_: one xoshiro128** step (pft_rng_u32 is this, called); pft_rng_below_ and
+ * pft_rng_uniform_range_: pft_rng_below and pft_rng_uniform_range (which call them).
  *
  * pft_rng_zig_: a standard normal draw by the ziggurat of Marsaglia & Tsang (2000) in integer
  * arithmetic only, the same in both builds and on every target. 128 layers of equal area
@@ -45,6 +46,65 @@ static inline uint32_t pft_rng_next_(pft_rng_t *rng)
     s[2] ^= t;
     s[3] = pft_rng_rotl_(s[3], 11u);
     return result;
+}
+
+/* Upper bound on Lemire rejection rounds. One round is rejected with probability
+ * (2^32 mod n) / 2^32 < 1/2, so reaching the bound has probability below 2^-64; the loop is
+ * bounded anyway (rule: every loop bounded), and the last candidate is then used as is. */
+#define PFT_RNG_MAX_REJECT 64u
+
+/* pft_rng_below inline (the births' pixel draw): Lemire 2019, "Fast random integer generation
+ * in an interval": the high word of the 64-bit product x*n is uniform on [0, n) once products
+ * whose low word falls below 2^32 mod n are rejected. */
+static inline uint32_t pft_rng_below_(pft_rng_t *rng, uint32_t n)
+{
+    uint64_t m;
+    uint32_t lo;
+    if (n <= 1u) {
+        return 0u;
+    }
+    m = (uint64_t)pft_rng_next_(rng) * n;
+    lo = (uint32_t)m;
+    if (lo < n) {
+        const uint32_t thresh = (uint32_t)(0u - n) % n; /* 2^32 mod n */
+        uint32_t round = 0u;
+        while (lo < thresh && round < PFT_RNG_MAX_REJECT) {
+            m = (uint64_t)pft_rng_next_(rng) * n;
+            lo = (uint32_t)m;
+            ++round;
+        }
+    }
+    return (uint32_t)(m >> 32);
+}
+
+/* pft_rng_uniform_range inline (the births' intensity draw). */
+static inline pft_real_t pft_rng_uniform_range_(pft_rng_t *rng, pft_real_t lo, pft_real_t hi)
+{
+    const uint32_t u = pft_rng_next_(rng);
+    if (!(lo < hi)) {
+        return lo;
+    }
+#ifdef PFT_NUMERIC_Q16
+    {
+        /* Exact: lo + floor((hi - lo) * u16 / 2^16) with a 64-bit span, so the result is in
+         * [lo, hi) even when hi - lo does not fit in Q16.16. */
+        const int64_t span = (int64_t)hi - (int64_t)lo; /* in (0, 2^32) */
+        const int64_t off = (span * (int64_t)(u >> 16)) >> 16;
+        return (pft_real_t)((int64_t)lo + off);
+    }
+#else
+    {
+        const pft_real_t f = pft_from_u32_frac(u);
+        const pft_real_t span = pft_sub(hi, lo);
+        /* hi - lo may overflow to infinity (inf * 0 would be NaN): then use the convex form,
+         * whose two terms have opposite signs. */
+        const pft_real_t r = span <= PFT_REAL_MAX
+                                 ? pft_add(lo, pft_mul(span, f))
+                                 : pft_add(pft_mul(lo, pft_sub(PFT_REAL_ONE, f)), pft_mul(hi, f));
+        /* Rounding may land on hi: step back inside. */
+        return r < hi ? (r < lo ? lo : r) : nextafterf(hi, lo);
+    }
+#endif
 }
 
 /* A Q24 magnitude and a sign as the build's real (q16: rounded to Q16.16; float: exact

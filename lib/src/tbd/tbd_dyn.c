@@ -38,22 +38,7 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
 void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
                         bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
 {
-    uint32_t col = p % c->width;
-    uint32_t row = p / c->width;
-    /* pft_rng_uniform, inline */
-    pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
-    pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
-    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    *k->x = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
-    *k->in = pft_rng_uniform_range(rng, c->i_min, c->i_max);
-    if (sample_vel) {
-        *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
-        *k->vy = pft_kmad1_(c->vel_mean[1], d->vel_sd[1], pft_rng_zig_(rng));
-    } else {
-        *k->vx = c->vel_mean[0];
-        *k->vy = c->vel_mean[1];
-    }
+    pft_tbd_birth_pix_in_(c, d, p, sample_vel, rng, k);
 }
 
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,

@@ -168,9 +168,9 @@ static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t 
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
     pft_rng_t t = rng;
     const pft_tbd_scene_t_ *sc = x->sc;
-    const uint32_t n = pft_rng_below(&t, sc->n_cand); /* the pixel's draw comes first */
+    const uint32_t n = pft_rng_below_(&t, sc->n_cand); /* the pixel's draw comes first */
     const uint32_t p = sc->cand != NULL ? sc->cand[n] : pft_tbd_scene_pick_(sc, n);
-    pft_tbd_birth_pix_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
+    pft_tbd_birth_pix_in_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
     return t;
 }
 
@@ -282,8 +282,8 @@ static pft_real_t weigh_any_(pft_tbd_filter_t *f, const step_ctx_t *x)
     return lmax;
 }
 
-/* The same for the common case, the 3 x 3 window without a mask and with unit pixel pitches,
- * none of them tested per particle: the same values as weigh_any_. */
+/* The same for the common case, the 3 x 3 window on the real-valued frame without a mask and
+ * with unit pixel pitches, none of them tested per particle: the same values as weigh_any_. */
 static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_particles_t *P = &f->cur;
@@ -310,9 +310,7 @@ static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
                   pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy))) {
                 pe[s] = 0u;
             } else {
-                /* the real-valued frame, or the RES16 frame read in place */
-                lw = img != NULL ? pft_tbd_llr3_(m, tab, img, &c, pin[s])
-                                 : pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
+                lw = pft_tbd_llr3_(m, tab, img, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, birth_lw);
                 }
@@ -324,9 +322,76 @@ static pft_real_t weigh_3x3_(pft_tbd_filter_t *f, const step_ctx_t *x)
     return lmax;
 }
 
+/* The Bernoulli form (docs/algorithms.md 2.11, below): log-weight of a particle dropped from the position density (left the image or entered the
+ * exclusion mask): its weight underflows to 0 (pft_kwexp_). */
+#define BERN_DROP_ PFT_C(-30000.0)
+
+/* The IR pipeline's case (cfg.frame_format PFT_PIX_RES16): the 3 x 3 window on the frame
+ * read in place, unit pixel pitches. */
+static bool weigh_r16_case_(const pft_tbd_filter_t *f, const step_ctx_t *x)
+{
+    const pft_tbd_meas_t *m = &f->model;
+    return m->p == 1u && x->sc->img == NULL && m->dx == PFT_REAL_ONE && m->dy == PFT_REAL_ONE;
+}
+
+/* weigh_any_ (bern false) and weigh_bern_any_ (bern true, the group log prior weights lb and
+ * lp) in that case, the mask tested when set: one loop for both forms, so that the kernel
+ * (pft_tbd_llr3_r16_) has one call site and is inlined in both builds, with the loop
+ * invariants in locals. The same values as those two. */
+static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern, pft_real_t lb,
+                             pft_real_t lp)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_tbd_meas_t mm = f->model;
+    const pft_tbd_meas_t *m = &mm;
+    const pft_tbd_scene_t_ *sc = x->sc;
+    const pft_tbd_tab_t *tab = x->tab;
+    const uint32_t *mask = x->mask;
+    const uint32_t mwords = pft_tbd_mask_words_(m->width);
+    uint8_t *restrict pe = P->e;
+    pft_tbd_slot_t *restrict pw = P->w;
+    const pft_real_t *restrict px = P->x;
+    const pft_real_t *restrict py = P->y;
+    const pft_real_t *restrict pin = P->in;
+    /* the paper's form: E = 0 and dropped particles have log-weight 0, births the correction */
+    const pft_real_t dead = bern ? BERN_DROP_ : PFT_C(0.0);
+    const pft_real_t l1 = bern ? lb : f->birth_lw;
+    const uint32_t n = f->n;
+    pft_real_t lmax = bern ? BERN_DROP_ : PFT_REAL_MIN;
+    for (uint32_t s = 0; s < n; ++s) {
+        pft_real_t lw = dead;
+        const uint32_t e = pe[s];
+        pft_tbd_cell_t c;
+        if (e != 0u) {
+            /* pft_tbd_cell_ with dx = dy = 1 */
+            if (pft_kcell_(px[s], m->hi_x, (int32_t)m->width, &c.i, &c.fx) &&
+                pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy) &&
+                (mask == NULL ||
+                 !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
+                lw = pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
+                if (e == 1u) {
+                    lw = pft_add(lw, l1);
+                } else if (bern) {
+                    lw = pft_add(lw, lp);
+                } else {
+                    /* a survivor of the paper's form: the likelihood ratio alone */
+                }
+            } else {
+                pe[s] = 0u;
+            }
+        }
+        pw[s].lw = lw;
+        lmax = pft_max(lmax, lw);
+    }
+    return lmax;
+}
+
 static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
 {
     const pft_tbd_meas_t *m = &f->model;
+    if (weigh_r16_case_(f, x)) {
+        return weigh_r16_(f, x, false, PFT_C(0.0), PFT_C(0.0));
+    }
     if (m->p == 1u && x->mask == NULL && m->dx == PFT_REAL_ONE && m->dy == PFT_REAL_ONE) {
         return weigh_3x3_(f, x);
     }
@@ -565,10 +630,6 @@ static void disappearance_(pft_tbd_filter_t *f)
 
 /* ---------------------------------- Bernoulli form (docs/algorithms.md 2.11) -------------- */
 
-/* Log-weight of a particle dropped from the position density (left the image or entered the
- * exclusion mask): its weight underflows to 0 (pft_kwexp_). */
-#define BERN_DROP_ PFT_C(-30000.0)
-
 /* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
  * the others move. Counts the births and the survivors. Loop invariants in locals (move_inv_t;
  * two callers here too: the update and the coast). */
@@ -610,8 +671,8 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
 /* Log-weights: the likelihood ratio plus the log prior weight of the particle's group (lb for
  * births, lp for survivors); dropped particles get BERN_DROP_ and E = 0 (a birth slot next
  * frame). Returns the largest. */
-static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real_t lb,
-                              pft_real_t lp)
+static pft_real_t weigh_bern_any_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real_t lb,
+                                  pft_real_t lp)
 {
     const pft_tbd_particles_t *P = &f->cur;
     const pft_tbd_meas_t *m = &f->model;
@@ -632,6 +693,15 @@ static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real
         lmax = pft_max(lmax, lw);
     }
     return lmax;
+}
+
+static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real_t lb,
+                              pft_real_t lp)
+{
+    if (weigh_r16_case_(f, x)) {
+        return weigh_r16_(f, x, true, lb, lp);
+    }
+    return weigh_bern_any_(f, x, lb, lp);
 }
 
 /* log(a) for a > 0, else the drop value. */

@@ -250,40 +250,48 @@ static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_ta
                        pft_kmulq_(intensity, m->kc));
 }
 
-/* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values
- * (directly from the frame inside the image away from the patches, else through
- * pft_tbd_fetch_), the same arithmetic. */
+/* pft_tbd_llr3_r16_ where the window needs more than the frame's pixels (tbd_meas.c): at an
+ * image edge (edge true: the window fetched, 0 outside) or on a row a patch may cover (the
+ * pixels read, the patches over them), or with taps that pft_kspot3_r16_ cannot take
+ * (tab->r16_sum 0): the values of the bordered real-valued frame, then pft_kspot3_. Cell
+ * (i, j) by value (the caller's cell never has its address taken). */
+pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
+                                 const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
+                                 bool edge);
+
+/* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
+ * the same arithmetic. Inside the image away from the patches (the common case) the window
+ * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
+ * else pft_tbd_llr3_r16_win_. */
 static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)
 {
-    pft_real_t tx[4], ty[4], z[9];
+    pft_real_t tx[4], ty[4];
     pft_ktaps_(tab->taps[0], c->fx, tx);
     pft_ktaps_(tab->taps[1], c->fy, ty);
     const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
     const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
+    const pft_real_t amp = pft_kmulq_(intensity, m->kc);
+    if (!(ex || ey) && tab->r16_sum != 0u && !(sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u)) {
+        const size_t st = sc->r16_stride;
+        return pft_kspot3_r16_(sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2), st,
+                               tx, ty, amp);
+    }
     if (ex) {
         pft_tbd_clip_(tx, c->i, (int32_t)m->width);
     }
     if (ey) {
         pft_tbd_clip_(ty, c->j, (int32_t)m->height);
     }
-    if (ex || ey) {
-        pft_tbd_fetch_(sc, c->i - 2, c->j - 2, 3u, 3u, z);
-    } else {
-        const size_t st = sc->r16_stride;
-        const uint8_t *p = sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2);
-        for (uint32_t b = 0; b < 3u; ++b) {
-            z[3u * b] = pft_tbd_r16_(p + (size_t)b * st);
-            z[3u * b + 1u] = pft_tbd_r16_(p + (size_t)b * st + 2u);
-            z[3u * b + 2u] = pft_tbd_r16_(p + (size_t)b * st + 4u);
-        }
-        if (sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u) {
-            pft_tbd_patch_over_(sc, c->i - 2, c->j - 2, 3u, 3u, z);
-        }
-    }
-    return pft_kspot3_(z, 3u, tx, ty, pft_kmulq_(intensity, m->kc));
+    return pft_tbd_llr3_r16_win_(sc, c->i, c->j, tx, ty, amp, ex || ey);
 }
+
+/* pft_tbd_llr3_r16_ called (tbd_meas.c): the inline kernel has one call site in the filters'
+ * hot loops (tbd_filter.c, weigh_r16_); the other cases call this. */
+pft_real_t pft_tbd_llr3_r16_call_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                  const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                  pft_real_t intensity);
 
 /* pft_tbd_llr_exact_ on a scene's RES16 frame (the window fetched into sc->rowbuf's window
  * scratch). */
@@ -313,11 +321,11 @@ static inline pft_real_t pft_tbd_llr_sc_(const pft_tbd_meas_t *m, const pft_tbd_
     if (sc->img != NULL) {
         return pft_tbd_llr_(m, tab, sc->img, c, intensity);
     }
-    if (m->p == 1u) {
-        return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
-    }
     {
         const pft_tbd_cell_t cc = *c;
+        if (m->p == 1u) {
+            return pft_tbd_llr3_r16_call_(m, tab, sc, &cc, intensity);
+        }
         return pft_tbd_llr_exact_r16_(m, sc, &cc, intensity);
     }
 }
@@ -352,6 +360,29 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
  * without a list, its n-th allowed pixel (pft_tbd_scene_pick_). */
 void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
                         bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* pft_tbd_birth_pix_ inline (the search layer's births: its draws inline too, so that the
+ * layer's generator, a local of the move pass, stays in registers). */
+static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
+                                         uint32_t p, bool sample_vel, pft_rng_t *rng,
+                                         const pft_tbd_kin_t *k)
+{
+    const uint32_t col = p % c->width;
+    const uint32_t row = p / c->width;
+    /* pft_rng_uniform, inline */
+    const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
+    const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
+    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
+    *k->x = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
+    *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
+    *k->in = pft_rng_uniform_range_(rng, c->i_min, c->i_max);
+    if (sample_vel) {
+        *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
+        *k->vy = pft_kmad1_(c->vel_mean[1], d->vel_sd[1], pft_rng_zig_(rng));
+    } else {
+        *k->vx = c->vel_mean[0];
+        *k->vy = c->vel_mean[1];
+    }
+}
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,

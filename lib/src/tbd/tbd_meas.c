@@ -165,6 +165,35 @@ pft_real_t pft_tbd_llr_exact_(const pft_tbd_meas_t *m, const pft_real_t *img,
                       pft_mul(intensity, m->kc));
 }
 
+pft_real_t pft_tbd_llr3_r16_call_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                  const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                  pft_real_t intensity)
+{
+    return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
+}
+
+pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
+                                 const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
+                                 bool edge)
+{
+    pft_real_t z[9];
+    if (edge) {
+        pft_tbd_fetch_(sc, i - 2, j - 2, 3u, 3u, z);
+    } else {
+        const size_t st = sc->r16_stride;
+        const uint8_t *p = sc->r16 + (size_t)(j - 2) * st + 2u * (size_t)(i - 2);
+        for (uint32_t b = 0; b < 3u; ++b) {
+            z[3u * b] = pft_tbd_r16_(p + (size_t)b * st);
+            z[3u * b + 1u] = pft_tbd_r16_(p + (size_t)b * st + 2u);
+            z[3u * b + 2u] = pft_tbd_r16_(p + (size_t)b * st + 4u);
+        }
+        if (sc->n_patch > 0u && sc->pflag[j - 1] != 0u) {
+            pft_tbd_patch_over_(sc, i - 2, j - 2, 3u, 3u, z);
+        }
+    }
+    return pft_kspot3_(z, 3u, tx, ty, amp);
+}
+
 pft_real_t pft_tbd_llr_exact_r16_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc,
                                   const pft_tbd_cell_t *c, pft_real_t intensity)
 {
@@ -207,8 +236,18 @@ static void taps_fill_(const pft_tbd_meas_t *m, pft_real_t d, pft_real_t (*rows)
 
 void pft_tbd_taps_setup_(pft_tbd_tab_t *t, const pft_tbd_meas_t *m)
 {
+    bool ok = true;
     taps_fill_(m, m->dx, t->taps[0]);
     taps_fill_(m, m->dy, t->taps[1]);
+    /* every tap pft_ktaps_ can give (lanes 0-2, each between a row's value and the next's) */
+    for (uint32_t a = 0; a < 2u; ++a) {
+        for (uint32_t n = 0; n < PFT_TBD_TAP_STEPS; ++n) {
+            for (uint32_t k = 0; k < 3u; ++k) {
+                ok = ok && pft_kr16_sum_ok_(t->taps[a][n][k], t->taps[a][n][k + 4u]);
+            }
+        }
+    }
+    t->r16_sum = ok ? 1u : 0u;
 }
 
 /* ---- public calls: 0-based coordinates (pixel column c, row r centred at (c dx, r dy)) ---- */

@@ -48,6 +48,8 @@ typedef struct {
     pft_real_t kf_sd[2][PFT_TBD_KF_AGES];
     pft_real_t kf_gsd[2][PFT_TBD_KF_AGES];
     uint8_t age_cap;
+    uint8_t r16_sum; /* nonzero: every tap lets the 3 x 3 kernel on a RES16 frame sum the
+                        pixels' integers and scale once (always in q16; float: lib/src/core/kern_int.h) */
 } pft_tbd_tab_t;
 
 /* One particle's weight slot, used in turn for its log-weight, its weight and its replication
