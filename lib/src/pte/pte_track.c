@@ -1753,12 +1753,11 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
     *G = p->sG;
 }
 
-/* 4. Test statistic and log summand of every scan position, the best one and the sum of
- * the others relative to it (the direction likelihood is their log-sum; the fusion needs
- * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
- * position per axis. */
-static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
-                              const pft_real_t *G, const pft_real_t c0[2], const prior_rec_ *pr)
+/* 4. Test statistic and log summand of every scan position (into sL), the best one, its E,
+ * G and T^2 (dir_finish_ adds the sum of the others relative to it and the refined best
+ * position, which only a direction with a weight in the fusion needs). */
+static dir_best_ dir_scan_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
+                           const pft_real_t *G, const prior_rec_ *pr)
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
@@ -1823,6 +1822,27 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             }
         }
     }
+    r.lmax = lmax;
+    r.ssum = PFT_C(0.0);
+    r.cstar[0] = PFT_C(0.0);
+    r.cstar[1] = PFT_C(0.0);
+    r.e = E[r.jb];
+    r.g = G[r.jb];
+    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
+    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
+    return r;
+}
+
+/* 4, the rest for a direction of the fusion: the sum of the terms of the scan positions
+ * relative to the best one (the direction likelihood is their log-sum; the fusion needs no
+ * logarithm) and the best position, parabola refined per axis (sL as dir_scan_ left it).
+ * c0: first scan position per axis. */
+static void dir_finish_(const pft_pte_t *p, const step_geom_ *g, const pft_real_t c0[2],
+                        dir_best_ *rb)
+{
+    const int32_t n0 = g->n0;
+    dir_best_ r = *rb;
+    const pft_real_t lmax = r.lmax;
     /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway); the best
      * position's term is exp(0) = 1 exactly (both builds), added in its place without the call */
     pft_real_t ssum = PFT_C(0.0);
@@ -1834,11 +1854,8 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             ssum = ssum + (j == r.jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
         }
     }
-    r.lmax = lmax;
     r.ssum = ssum;
     const int32_t jb = r.jb;
-    r.cstar[0] = PFT_C(0.0);
-    r.cstar[1] = PFT_C(0.0);
     for (uint32_t a = 0; a < p->naxes; ++a) {
         int32_t ja = a == 0u ? jb % n0 : jb / n0;
         int32_t na_ = a == 0u ? n0 : g->n1;
@@ -1849,11 +1866,7 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
         }
         r.cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
     }
-    r.e = E[jb];
-    r.g = G[jb];
-    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
-    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
-    return r;
+    *rb = r;
 }
 
 /* 5. Kalman update of the track's prediction with the direction's measurement [c*, theta]
@@ -1929,6 +1942,16 @@ static inline acc_t fuse_start_(const pft_real_t *P, const pft_real_t kw[6],
 }
 #endif
 
+/* q16: a direction of weight 0 is left out of the fusion's sums: each of its terms is an
+ * integer product with w = 0, exactly 0 (directions skipped in the scan have w = 0 and no
+ * state change or gain). float: every direction is summed, as before (0 times a value is
+ * not always +0 there). */
+#ifdef PFT_NUMERIC_Q16
+#define W0_SKIP_ 1
+#else
+#define W0_SKIP_ 0
+#endif
+
 /* 6. Fusion of the directions with their normalised likelihoods W:
  * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
  * which is sum W (P_l + (X_l - X)(X_l - X)') when the weights sum to 1. Deviations from the
@@ -1970,6 +1993,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         acc_t v9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* dX sums, then K W sums */
         for (int32_t li = 0; li < ndir; ++li) {
             const pft_real_t w = dir[li].w;
+            if (W0_SKIP_ && w == 0) {
+                continue; /* q16: its terms are 0 exactly (see W0_SKIP_) */
+            }
             for (uint32_t i = 0; i < 3u; ++i) {
                 v9[i] = aadd_(v9[i], amul_(w, p->dir[li].dx[a][i]));
             }
@@ -2009,6 +2035,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         }
         for (int32_t li = 0; li < ndir; ++li) {
             const pft_real_t w = dir[li].w;
+            if (W0_SKIP_ && w == 0) {
+                continue;
+            }
             pft_real_t dv[3];
             for (uint32_t i = 0; i < 3u; ++i) {
                 dv[i] = pft_sub(dir[li].dx[a][i], df[i]);
@@ -2039,12 +2068,16 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     }
     acc_t as = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
+        if (!(W0_SKIP_ && dir[li].w == 0)) {
+            as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
+        }
     }
     pft_real_t amp = pft_add(t->amp, ato_(as));
     acc_t avs = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        if (!(W0_SKIP_ && dir[li].w == 0)) {
+            avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        }
     }
     t->amp = amp;
     t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
@@ -2137,7 +2170,24 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     const pft_real_t pcs2 = pft_sq(p->cfg.c_step);
     const pft_real_t pdd = pft_neg(pft_mul_i(pft_mul(pcs2, s->ap[0].lck), 2));
 #endif
-    for (int32_t li = 0; li < g.ndir; ++li) {
+    /* q16: a direction whose log weight is 12 or more below that of a direction already
+     * scanned gets the fusion weight 0 (its dl there is at most the one tested here, so
+     * dl <= -12), and every term it adds to the fusion is 0 exactly (integer products with
+     * w = 0): it skips the rest of step 4 and step 5 (the same values; docs/fixed_point.md,
+     * "PTE-TBD direction scan"). The central direction first, usually the most likely. The
+     * order changes no value: each direction's results go to its own dir[li], and t2max and
+     * t2short are maxima. The float build runs every direction in full, as before. */
+#ifdef PFT_NUMERIC_Q16
+    const bool lazy = true;
+#else
+    const bool lazy = false;
+#endif
+    const int32_t hc = (g.ndir - 1) / 2;
+    pft_real_t lx_seen = PFT_REAL_MIN;
+    bool seen = false;
+    for (int32_t k = 0; k < g.ndir; ++k) {
+        /* hc, 0, 1, ..., hc - 1, hc + 1, ..., ndir - 1 */
+        const int32_t li = k == 0 ? hc : (k <= hc ? k - 1 : k);
         if (p->yq > 0u && s->bok[li] == 0u) {
             /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
             pft_pte_dir_t *o = &p->dir[li];
@@ -2165,13 +2215,22 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 #endif
             prp = &pr;
         }
-        dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);
+        dir_best_ b = dir_scan_(p, &g, E, G, prp);
         t2max = pft_max(t2max, b.t2s);
-        dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+        const pft_real_t logw = pft_add(d.prior, b.lmax);
+        if (lazy && seen && pft_sub(logw, lx_seen) <= PFT_C(-12.0)) {
+            p->dir[li].logw = logw; /* weight 0 in the fusion (step_fuse_) */
+        } else {
+            dir_finish_(p, &g, c0, &b);
+            dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+            lx_seen = seen ? pft_max(lx_seen, logw) : logw;
+            seen = true;
+        }
         if (mt) {
-            /* the same lines over the short window (the slope entry's second window) */
+            /* the same lines over the short window (the slope entry's second window): only
+             * its T^2 is used */
             dir_sums_(p, &g, &d, li, 1u, &E, &G);
-            dir_best_ bs = dir_best_of_(p, &g, E, G, c0, prp);
+            dir_best_ bs = dir_scan_(p, &g, E, G, prp);
             t2short = pft_max(t2short, bs.t2s);
         }
     }
