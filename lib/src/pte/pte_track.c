@@ -188,28 +188,21 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
     int64_t q = ((int64_t)e * e + g / 2) / g;
     return q > (int64_t)22500 * 65536 ? (pft_real_t)(22500 * 65536) : (pft_real_t)q;
 }
-/* pft_mul without the saturation, for products and sums proven inside the range (each call
- * site states the bound): the same rounding, so the same bits whenever pft_mul would not
- * saturate */
-static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
-{
-    int64_t v = (int64_t)a * b;
-    /* the sign bit s of v (1 for v < 0): v + 32768 - s is v + 32768 or v + 32767, the same
-     * rounding without a branch or select */
-    return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
-}
-/* mul_nb_(w, z) for a weight w >= 0, with r = 32767 for z < 0 and 32768 otherwise: the
- * product w z is negative only when z is (w > 0), and for w = 0 both terms round 0 to 0 */
-static inline pft_real_t mul_r_(pft_real_t w, int64_t z, int64_t r)
-{
-    return (pft_real_t)(((int64_t)w * z + r) >> 16);
-}
+/* A response of the TABLE operators (yblock_): the exact Q32 products of its taps summed in
+ * int64 and rounded once, half up (docs/fixed_point.md, "PTE-TBD response blocks rounded
+ * once") */
+typedef int64_t yacc_t;
+static inline yacc_t yterm_(pft_real_t w, pft_real_t z) { return (int64_t)w * z; }
+static inline pft_real_t yround_(yacc_t v) { return (pft_real_t)((v + 32768) >> 16); }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
 static inline pft_real_t half_t2_(pft_real_t t2) { return (t2 + 1) >> 1; }
 #else
 static inline pft_real_t half_t2_(pft_real_t t2) { return t2 * 0.5f; }
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
+typedef float yacc_t;
+static inline yacc_t yterm_(pft_real_t w, pft_real_t z) { return w * z; }
+static inline pft_real_t yround_(yacc_t v) { return v; }
 typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline acc_t afrom_(pft_real_t a) { return a; }
@@ -353,22 +346,23 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * 4;
 #ifdef PFT_NUMERIC_Q16
+            /* each response the exact sum of its four Q32 products, rounded once (half up):
+             * |z| <= zeta_clip <= 64 (2^22) and 0 <= w <= 1 (2^16), so every sum is below
+             * 2^40 and the result below 2^24 (docs/fixed_point.md, "PTE-TBD response blocks
+             * rounded once") */
+            const int64_t a00 = w0[0], a01 = w0[1], a02 = w0[2], a03 = w0[3];
+            const int64_t a10 = w1[0], a11 = w1[1], a12 = w1[2], a13 = w1[3];
+            const int64_t a20 = w2[0], a21 = w2[1], a22 = w2[2], a23 = w2[3];
+            const int64_t a30 = w3[0], a31 = w3[1], a32 = w3[2], a33 = w3[3];
             for (int32_t k = 0; k < c1 - cell; ++k) {
-                /* mul_nb_ with its rounding term taken from the sign of z: the tap weights are
-                 * >= 0, so the product's sign is z's (or it is 0, which rounds to 0 with either
-                 * term); the same bits with the term formed once per z instead of per product */
                 const int64_t z0 = zz[k];
                 const int64_t z1 = zz[k + 1];
                 const int64_t z2 = zz[k + 2];
                 const int64_t z3 = zz[k + 3];
-                const int64_t r0 = z0 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r1 = z1 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r2 = z2 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r3 = z3 < 0 ? (int64_t)32767 : (int64_t)32768;
-                yy[4 * k] = mul_r_(w0[0], z0, r0) + mul_r_(w0[1], z1, r1) + mul_r_(w0[2], z2, r2) + mul_r_(w0[3], z3, r3);
-                yy[4 * k + 1] = mul_r_(w1[0], z0, r0) + mul_r_(w1[1], z1, r1) + mul_r_(w1[2], z2, r2) + mul_r_(w1[3], z3, r3);
-                yy[4 * k + 2] = mul_r_(w2[0], z0, r0) + mul_r_(w2[1], z1, r1) + mul_r_(w2[2], z2, r2) + mul_r_(w2[3], z3, r3);
-                yy[4 * k + 3] = mul_r_(w3[0], z0, r0) + mul_r_(w3[1], z1, r1) + mul_r_(w3[2], z2, r2) + mul_r_(w3[3], z3, r3);
+                yy[4 * k] = (pft_real_t)((a00 * z0 + a01 * z1 + a02 * z2 + a03 * z3 + 32768) >> 16);
+                yy[4 * k + 1] = (pft_real_t)((a10 * z0 + a11 * z1 + a12 * z2 + a13 * z3 + 32768) >> 16);
+                yy[4 * k + 2] = (pft_real_t)((a20 * z0 + a21 * z1 + a22 * z2 + a23 * z3 + 32768) >> 16);
+                yy[4 * k + 3] = (pft_real_t)((a30 * z0 + a31 * z1 + a32 * z2 + a33 * z3 + 32768) >> 16);
             }
 #else
             for (int32_t k = 0; k < c1 - cell; ++k) {
@@ -390,8 +384,8 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * q + ph;
             for (int32_t k = 0; k < c1 - cell; ++k) {
-                yy[k * q] = mul_nb_(w[0], zz[k]) + mul_nb_(w[1], zz[k + 1]) +
-                            mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
+                yy[k * q] = yround_(yterm_(w[0], zz[k]) + yterm_(w[1], zz[k + 1]) +
+                                    yterm_(w[2], zz[k + 2]) + yterm_(w[3], zz[k + 3]));
             }
         }
         yflag_set_(p, slot, blk);
@@ -403,21 +397,22 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             int32_t n = p->ytap_n[ph];
             const pft_real_t *w = p->ytap[ph];
             /* plain sums: |zeta| <= zeta_clip <= 64 (TABLE), 0 <= w <= 1 and at most
-             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (the values pft_mul/pft_add would give) */
-            pft_real_t acc = PFT_C(0.0);
+             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (q16: exact Q32 products, below 2^42 in
+             * all, rounded once) */
+            yacc_t acc = 0;
             if (u0 >= 0 && u0 + n <= nr) {
                 const pft_real_t *zz = z + u0;
                 for (int32_t k = 0; k < n; ++k) {
-                    acc = acc + mul_nb_(w[k], zz[k]);
+                    acc = acc + yterm_(w[k], zz[k]);
                 }
             } else {
                 for (int32_t k = 0; k < n; ++k) {
                     if (u0 + k >= 0 && u0 + k < nr) {
-                        acc = acc + mul_nb_(w[k], z[u0 + k]);
+                        acc = acc + yterm_(w[k], z[u0 + k]);
                     }
                 }
             }
-            y[cell * q + ph] = acc;
+            y[cell * q + ph] = yround_(acc);
         }
     }
     yflag_set_(p, slot, blk);
