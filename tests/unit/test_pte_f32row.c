@@ -10,9 +10,9 @@
  *   fixed_row_); q16 within 1 LSB, and different on some pixels (the single rounding: without
  *   the one-product row the two are the same code and this test fails).
  * Tolerance: 1 LSB, the bound of docs/fixed_point.md "PTE-TBD F32 input row by one product"
- * for noise_sigma > 0.5: fixed_row_ is within inv/2 + 1/2 LSB of the exact zeta (the pixel
- * rounded to 1/2 LSB, times inv = 1/noise_sigma < 2, then rounded), the one-product row within
- * 1/2 LSB, so two integers less than 2 apart.
+ * for noise_sigma > 0.52: fixed_row_ is within inv/2 + 1/2 LSB of the exact zeta (the pixel
+ * rounded to 1/2 LSB, times inv = 1/noise_sigma < 1.94, then rounded), the one-product row
+ * within 1/2 + 1/32 LSB, so two integers less than 2 apart.
  */
 #include <string.h>
 
