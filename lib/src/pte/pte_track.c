@@ -1836,8 +1836,8 @@ static void dir_finish_(const pft_pte_t *p, const step_geom_ *g, const pft_real_
                         dir_best_ *rb)
 {
     const int32_t n0 = g->n0;
-    dir_best_ r = *rb;
-    const pft_real_t lmax = r.lmax;
+    dir_best_ *r = rb;
+    const pft_real_t lmax = r->lmax;
     /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway); the best
      * position's term is exp(0) = 1 exactly (both builds), added in its place without the call */
     pft_real_t ssum = PFT_C(0.0);
@@ -1846,11 +1846,11 @@ static void dir_finish_(const pft_pte_t *p, const step_geom_ *g, const pft_real_
         if (p->sL[j] > lcut) {
             /* lcut < sL[j] <= lmax: the difference is in (-12, 0] (pft_sub would not
              * saturate) and ssum, at most nsc <= 33^2 terms of at most 1, stays below 2^27 */
-            ssum = ssum + (j == r.jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
+            ssum = ssum + (j == r->jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
         }
     }
-    r.ssum = ssum;
-    const int32_t jb = r.jb;
+    r->ssum = ssum;
+    const int32_t jb = r->jb;
     for (uint32_t a = 0; a < p->naxes; ++a) {
         int32_t ja = a == 0u ? jb % n0 : jb / n0;
         int32_t na_ = a == 0u ? n0 : g->n1;
@@ -1859,9 +1859,8 @@ static void dir_finish_(const pft_pte_t *p, const step_geom_ *g, const pft_real_
         if (ja > 0 && ja < na_ - 1) {
             off = pft_pte_parabola_(p->sL[jb - stride], p->sL[jb], p->sL[jb + stride]);
         }
-        r.cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
+        r->cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
     }
-    *rb = r;
 }
 
 /* 5. Kalman update of the track's prediction with the direction's measurement [c*, theta]
@@ -2181,8 +2180,8 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     pft_real_t lx_seen = PFT_REAL_MIN;
     bool seen = false;
     for (int32_t k = 0; k < g.ndir; ++k) {
-        /* hc, 0, 1, ..., hc - 1, hc + 1, ..., ndir - 1 */
-        const int32_t li = k == 0 ? hc : (k <= hc ? k - 1 : k);
+        /* q16: hc, 0, 1, ..., hc - 1, hc + 1, ..., ndir - 1; float: in index order */
+        const int32_t li = !lazy ? k : (k == 0 ? hc : (k <= hc ? k - 1 : k));
         if (p->yq > 0u && s->bok[li] == 0u) {
             /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
             pft_pte_dir_t *o = &p->dir[li];
