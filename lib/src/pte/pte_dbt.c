@@ -445,7 +445,7 @@ static pft_status_t update_(pft_pte_dbt_t *b, const pft_frame_t *frame, const pf
     } else {
         /* consecutive frames */
     }
-    st = pft_pte_push_(&b->cfg.in, &b->ring, b->row, frame, z, NULL);
+    st = pft_pte_push_(&b->cfg.in, &b->ring, b->row, frame, z);
     if (st != PFT_OK) {
         return st;
     }

@@ -225,7 +225,7 @@ static pft_status_t update_(pft_pte_dp_t *dp, const pft_frame_t *frame, const pf
         }
         dp->frames_in += k - 1u;
     }
-    st = pft_pte_push_(&dp->cfg.in, &dp->ring, dp->row, frame, z, NULL);
+    st = pft_pte_push_(&dp->cfg.in, &dp->ring, dp->row, frame, z);
     if (st != PFT_OK) {
         return st;
     }

@@ -439,9 +439,11 @@ const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back)
     return r->buf + (size_t)slot * r->cells;
 }
 
-pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
-                           pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
-                           const uint32_t *f32t)
+/* pft_pte_push_ and pft_pte_push_f32t_: f32t NULL, a constant in the first, so DP-TBD and the
+ * DBT run the code they ran before the one-product row */
+static inline pft_status_t push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                                 pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
+                                 const uint32_t *f32t)
 {
     /* a frame was checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
     if (frame == NULL) {
@@ -479,3 +481,18 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
     pft_pte_ring_commit_(ring);
     return PFT_OK;
 }
+
+pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring, pft_real_t *row,
+                           const pft_frame_t *frame, const pft_real_t *z)
+{
+    return push_(in, ring, row, frame, z, NULL);
+}
+
+#ifdef PFT_NUMERIC_Q16
+pft_status_t pft_pte_push_f32t_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                                pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
+                                const uint32_t *f32t)
+{
+    return push_(in, ring, row, frame, z, f32t);
+}
+#endif

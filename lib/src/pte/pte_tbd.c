@@ -834,9 +834,9 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
         }
     }
 #ifdef PFT_NUMERIC_Q16
-    st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z, p->f32t);
+    st = pft_pte_push_f32t_(&p->cfg.in, &p->ring, p->row, frame, z, p->f32t);
 #else
-    st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z, NULL);
+    st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
 #endif
     if (st != PFT_OK) {
         return st;
