@@ -296,7 +296,8 @@ static void table_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
     for (uint32_t u = 0; u < in->n_range; ++u) {
         uint32_t bits;
         memcpy(&bits, row + 4u * u, 4u);
-        const uint64_t mant = (uint64_t)((bits & 0x7FFFFFu) | 0x800000u);
+        const uint32_t m32 = (bits & 0x7FFFFFu) | 0x800000u;
+        const uint64_t mant = m32;
         uint64_t r = (mant * tab[(bits >> 23) & 0xFFu] + ((uint64_t)1 << 27)) >> 28;
         r = r > hi ? hi : r;
         const int32_t s = -(int32_t)(bits >> 31); /* 0 or -1 */
