@@ -235,6 +235,77 @@ static void fixed_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint
 #endif
 }
 
+#ifdef PFT_NUMERIC_Q16
+/* fixed_row_'s clamp: zeta_clip, or what a pixel clamped to +-32767 (f32_in_) becomes when
+ * that is less (the same rounded product as fixed_row_) */
+static int64_t f32_hi_(const pft_pte_input_t *in)
+{
+    const int64_t inv = pft_recip(in->noise_sigma);
+    const int64_t sat = ((int64_t)2147418112 * inv + 32768) >> 16;
+    return (int64_t)in->zeta_clip < sat ? (int64_t)in->zeta_clip : sat;
+}
+
+void pft_pte_f32_table_(const pft_pte_input_t *in, uint32_t tab[256])
+{
+    /* A finite pixel of exponent ex (1..254) is mant 2^(ex - 150) with 2^23 <= mant < 2^24,
+     * so its zeta in Q16.16 is mant inv 2^(ex - 150), inv = pft_recip(noise_sigma) in Q16.16:
+     * (mant T + 2^27) >> 28 with T = inv 2^(ex - 122) (exact for ex >= 122, rounded below).
+     * From the first exponent whose smallest pixel, inv 2^(ex - 127), reaches the clamp hi,
+     * T = 32 hi, which gives at least hi for every mantissa (and every larger exponent is
+     * clamped too). Every other T is below 32 hi < 2^31 (hi <= zeta_clip <= 1000), and
+     * mant T < 2^55. Exponent 0 (zero, subnormals) and 255 (refused by the frame check): 0. */
+    const int64_t inv = pft_recip(in->noise_sigma);
+    const int64_t hi = f32_hi_(in);
+    bool cap = false;
+    for (uint32_t ex = 0; ex < 256u; ++ex) {
+        int64_t t = 0;
+        if (ex >= 1u && ex <= 254u && inv > 0) {
+            if (!cap) {
+                if (ex >= 127u) {
+                    cap = ex - 127u >= 31u || (inv << (ex - 127u)) >= hi;
+                } else {
+                    cap = 127u - ex < 32u && inv >= (hi << (127u - ex));
+                }
+            }
+            if (cap) {
+                t = 32 * hi;
+            } else if (ex >= 122u) {
+                t = inv << (ex - 122u);
+            } else if (122u - ex < 40u) {
+                const uint32_t sh = 122u - ex;
+                t = (inv + ((int64_t)1 << (sh - 1u))) >> sh;
+            } else {
+                t = 0; /* below 2^-40 of inv: rounds to 0 */
+            }
+        }
+        tab[ex] = (uint32_t)t;
+    }
+}
+
+/* Fixed-noise F32 row by one product per pixel (PTE-TBD, q16): the magnitude
+ * (mant T[ex] + 2^27) >> 28 rounded once (half up), clamped to hi, then the pixel's sign.
+ * It is fixed_row_'s value whenever inv 2^(ex - 122) is an integer for every exponent that
+ * rounds to a nonzero zeta (e.g. noise_sigma = 1: inv = 2^16, every exponent >= 106), else
+ * within 1 LSB of it (fixed_row_ rounds twice). docs/fixed_point.md, "PTE-TBD F32 input row
+ * by one product". */
+static void table_row_(const pft_pte_input_t *in, const pft_frame_t *frame, uint32_t d,
+                       const uint32_t *tab, pft_real_t *out)
+{
+    const uint64_t hi = (uint64_t)f32_hi_(in);
+    const uint8_t *row = pft_frame_row(frame, d);
+    for (uint32_t u = 0; u < in->n_range; ++u) {
+        uint32_t bits;
+        memcpy(&bits, row + 4u * u, 4u);
+        const uint32_t m32 = (bits & 0x7FFFFFu) | 0x800000u;
+        const uint64_t mant = m32;
+        uint64_t r = (mant * tab[(bits >> 23) & 0xFFu] + ((uint64_t)1 << 27)) >> 28;
+        r = r > hi ? hi : r;
+        const int32_t s = -(int32_t)(bits >> 31); /* 0 or -1 */
+        out[u] = ((pft_real_t)r ^ s) - s;
+    }
+}
+#endif
+
 /* |z| / ref: one CFAR term (the same expression when a cell enters and leaves a window, so
  * the q16 running sums are exact). */
 static pft_real_t cfar_term_(const pft_real_t *z, int32_t i, pft_real_t inv_ref)
@@ -369,8 +440,11 @@ const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back)
     return r->buf + (size_t)slot * r->cells;
 }
 
-pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
-                           pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z)
+/* pft_pte_push_ and pft_pte_push_f32t_: f32t NULL, a constant in the first, so DP-TBD and the
+ * DBT run the code they ran before the one-product row */
+static inline pft_status_t push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                                 pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
+                                 const uint32_t *f32t)
 {
     /* a frame was checked by the caller's pft_pte_seq_check_ (the same frame and input stage) */
     if (frame == NULL) {
@@ -389,6 +463,14 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
     for (uint32_t d = 0; d < in->n_doppler; ++d) {
         pft_real_t *out = dst + (size_t)d * in->n_range;
         if (frame != NULL && frame->format == PFT_PIX_F32 && in->noise == PFT_PTE_NOISE_FIXED) {
+#ifdef PFT_NUMERIC_Q16
+            if (f32t != NULL) {
+                table_row_(in, frame, d, f32t, out);
+                continue;
+            }
+#else
+            (void)f32t; /* q16 only */
+#endif
             fixed_row_(in, frame, d, out);
         } else if (frame != NULL) {
             pft_pte_frame_row_(in, frame, d, row);
@@ -400,3 +482,18 @@ pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
     pft_pte_ring_commit_(ring);
     return PFT_OK;
 }
+
+pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring, pft_real_t *row,
+                           const pft_frame_t *frame, const pft_real_t *z)
+{
+    return push_(in, ring, row, frame, z, NULL);
+}
+
+#ifdef PFT_NUMERIC_Q16
+pft_status_t pft_pte_push_f32t_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                                pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
+                                const uint32_t *f32t)
+{
+    return push_(in, ring, row, frame, z, f32t);
+}
+#endif

@@ -74,6 +74,16 @@ const pft_real_t *pft_pte_ring_get_(const pft_pte_ring_t *r, uint32_t back);
 /* Pushes a frame that passed pft_pte_seq_check_ (not checked again) or values (checked). */
 pft_status_t pft_pte_push_(const pft_pte_input_t *in, pft_pte_ring_t *ring, pft_real_t *row,
                            const pft_frame_t *frame, const pft_real_t *z);
+#ifdef PFT_NUMERIC_Q16
+/* pft_pte_push_ for PTE-TBD (q16): fixed-noise F32 rows with one product per pixel through
+ * f32t, the table of pft_pte_f32_table_, instead of fixed_row_'s decoding. */
+pft_status_t pft_pte_push_f32t_(const pft_pte_input_t *in, pft_pte_ring_t *ring,
+                                pft_real_t *row, const pft_frame_t *frame, const pft_real_t *z,
+                                const uint32_t *f32t);
+/* q16: the multipliers of the one-product F32 row for the input stage in (fixed noise), one per
+ * IEEE exponent (docs/fixed_point.md, "PTE-TBD F32 input row by one product"). */
+void pft_pte_f32_table_(const pft_pte_input_t *in, uint32_t tab[256]);
+#endif
 
 /* ------------------------------------------------------------------------------ DP core */
 typedef struct {

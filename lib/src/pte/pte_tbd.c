@@ -385,6 +385,9 @@ pft_status_t pft_pte_init(pft_pte_t *p, const pft_pte_config_t *cfg, void *work,
     if (yq > 0u) {
         pft_pte_ytable_setup_(p);
     }
+#ifdef PFT_NUMERIC_Q16
+    pft_pte_f32_table_(&p->cfg.in, p->f32t);
+#endif
     return pft_pte_reset(p);
 }
 
@@ -830,7 +833,11 @@ static pft_status_t update_(pft_pte_t *p, const pft_frame_t *frame, const pft_re
             lost_frames_(p, k - 1u);
         }
     }
+#ifdef PFT_NUMERIC_Q16
+    st = pft_pte_push_f32t_(&p->cfg.in, &p->ring, p->row, frame, z, p->f32t);
+#else
     st = pft_pte_push_(&p->cfg.in, &p->ring, p->row, frame, z);
+#endif
     if (st != PFT_OK) {
         return st;
     }

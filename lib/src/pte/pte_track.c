@@ -188,28 +188,21 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
     int64_t q = ((int64_t)e * e + g / 2) / g;
     return q > (int64_t)22500 * 65536 ? (pft_real_t)(22500 * 65536) : (pft_real_t)q;
 }
-/* pft_mul without the saturation, for products and sums proven inside the range (each call
- * site states the bound): the same rounding, so the same bits whenever pft_mul would not
- * saturate */
-static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b)
-{
-    int64_t v = (int64_t)a * b;
-    /* the sign bit s of v (1 for v < 0): v + 32768 - s is v + 32768 or v + 32767, the same
-     * rounding without a branch or select */
-    return (pft_real_t)((v + 32768 - (int64_t)((uint64_t)v >> 63)) >> 16);
-}
-/* mul_nb_(w, z) for a weight w >= 0, with r = 32767 for z < 0 and 32768 otherwise: the
- * product w z is negative only when z is (w > 0), and for w = 0 both terms round 0 to 0 */
-static inline pft_real_t mul_r_(pft_real_t w, int64_t z, int64_t r)
-{
-    return (pft_real_t)(((int64_t)w * z + r) >> 16);
-}
+/* A response of the TABLE operators (yblock_): the exact Q32 products of its taps summed in
+ * int64 and rounded once, half up (docs/fixed_point.md, "PTE-TBD response blocks rounded
+ * once") */
+typedef int64_t yacc_t;
+static inline yacc_t yterm_(pft_real_t w, pft_real_t z) { return (int64_t)w * z; }
+static inline pft_real_t yround_(yacc_t v) { return (pft_real_t)((v + 32768) >> 16); }
 /* pft_mul(t2, 0.5) for 0 <= t2 <= 22500 (sq_over_'s range): (32768 t2 + 32768) >> 16 =
  * (t2 + 1) >> 1, never near saturation; the same bits without the 64-bit product */
 static inline pft_real_t half_t2_(pft_real_t t2) { return (t2 + 1) >> 1; }
 #else
 static inline pft_real_t half_t2_(pft_real_t t2) { return t2 * 0.5f; }
 static inline pft_real_t mul_nb_(pft_real_t a, pft_real_t b) { return a * b; }
+typedef float yacc_t;
+static inline yacc_t yterm_(pft_real_t w, pft_real_t z) { return w * z; }
+static inline pft_real_t yround_(yacc_t v) { return v; }
 typedef float acc_t;
 static inline acc_t amul_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline acc_t afrom_(pft_real_t a) { return a; }
@@ -353,22 +346,23 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * 4;
 #ifdef PFT_NUMERIC_Q16
+            /* each response the exact sum of its four Q32 products, rounded once (half up):
+             * |z| <= zeta_clip <= 64 (2^22) and 0 <= w <= 1 (2^16), so every sum is below
+             * 2^40 and the result below 2^24 (docs/fixed_point.md, "PTE-TBD response blocks
+             * rounded once") */
+            const int64_t a00 = w0[0], a01 = w0[1], a02 = w0[2], a03 = w0[3];
+            const int64_t a10 = w1[0], a11 = w1[1], a12 = w1[2], a13 = w1[3];
+            const int64_t a20 = w2[0], a21 = w2[1], a22 = w2[2], a23 = w2[3];
+            const int64_t a30 = w3[0], a31 = w3[1], a32 = w3[2], a33 = w3[3];
             for (int32_t k = 0; k < c1 - cell; ++k) {
-                /* mul_nb_ with its rounding term taken from the sign of z: the tap weights are
-                 * >= 0, so the product's sign is z's (or it is 0, which rounds to 0 with either
-                 * term); the same bits with the term formed once per z instead of per product */
                 const int64_t z0 = zz[k];
                 const int64_t z1 = zz[k + 1];
                 const int64_t z2 = zz[k + 2];
                 const int64_t z3 = zz[k + 3];
-                const int64_t r0 = z0 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r1 = z1 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r2 = z2 < 0 ? (int64_t)32767 : (int64_t)32768;
-                const int64_t r3 = z3 < 0 ? (int64_t)32767 : (int64_t)32768;
-                yy[4 * k] = mul_r_(w0[0], z0, r0) + mul_r_(w0[1], z1, r1) + mul_r_(w0[2], z2, r2) + mul_r_(w0[3], z3, r3);
-                yy[4 * k + 1] = mul_r_(w1[0], z0, r0) + mul_r_(w1[1], z1, r1) + mul_r_(w1[2], z2, r2) + mul_r_(w1[3], z3, r3);
-                yy[4 * k + 2] = mul_r_(w2[0], z0, r0) + mul_r_(w2[1], z1, r1) + mul_r_(w2[2], z2, r2) + mul_r_(w2[3], z3, r3);
-                yy[4 * k + 3] = mul_r_(w3[0], z0, r0) + mul_r_(w3[1], z1, r1) + mul_r_(w3[2], z2, r2) + mul_r_(w3[3], z3, r3);
+                yy[4 * k] = (pft_real_t)((a00 * z0 + a01 * z1 + a02 * z2 + a03 * z3 + 32768) >> 16);
+                yy[4 * k + 1] = (pft_real_t)((a10 * z0 + a11 * z1 + a12 * z2 + a13 * z3 + 32768) >> 16);
+                yy[4 * k + 2] = (pft_real_t)((a20 * z0 + a21 * z1 + a22 * z2 + a23 * z3 + 32768) >> 16);
+                yy[4 * k + 3] = (pft_real_t)((a30 * z0 + a31 * z1 + a32 * z2 + a33 * z3 + 32768) >> 16);
             }
 #else
             for (int32_t k = 0; k < c1 - cell; ++k) {
@@ -390,8 +384,8 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             const pft_real_t *zz = z + cell - (int32_t)PFT_PTE_YPAD + p->ytap4_lo;
             pft_real_t *yy = y + cell * q + ph;
             for (int32_t k = 0; k < c1 - cell; ++k) {
-                yy[k * q] = mul_nb_(w[0], zz[k]) + mul_nb_(w[1], zz[k + 1]) +
-                            mul_nb_(w[2], zz[k + 2]) + mul_nb_(w[3], zz[k + 3]);
+                yy[k * q] = yround_(yterm_(w[0], zz[k]) + yterm_(w[1], zz[k + 1]) +
+                                    yterm_(w[2], zz[k + 2]) + yterm_(w[3], zz[k + 3]));
             }
         }
         yflag_set_(p, slot, blk);
@@ -403,21 +397,22 @@ static void yblock_(pft_pte_t *p, uint32_t slot, uint32_t back, int32_t blk)
             int32_t n = p->ytap_n[ph];
             const pft_real_t *w = p->ytap[ph];
             /* plain sums: |zeta| <= zeta_clip <= 64 (TABLE), 0 <= w <= 1 and at most
-             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (the values pft_mul/pft_add would give) */
-            pft_real_t acc = PFT_C(0.0);
+             * PFT_PTE_MAX_TAPS taps, so |acc| <= 960 (q16: exact Q32 products, below 2^42 in
+             * all, rounded once) */
+            yacc_t acc = 0;
             if (u0 >= 0 && u0 + n <= nr) {
                 const pft_real_t *zz = z + u0;
                 for (int32_t k = 0; k < n; ++k) {
-                    acc = acc + mul_nb_(w[k], zz[k]);
+                    acc = acc + yterm_(w[k], zz[k]);
                 }
             } else {
                 for (int32_t k = 0; k < n; ++k) {
                     if (u0 + k >= 0 && u0 + k < nr) {
-                        acc = acc + mul_nb_(w[k], z[u0 + k]);
+                        acc = acc + yterm_(w[k], z[u0 + k]);
                     }
                 }
             }
-            y[cell * q + ph] = acc;
+            y[cell * q + ph] = yround_(acc);
         }
     }
     yflag_set_(p, slot, blk);
@@ -1753,12 +1748,11 @@ static void dir_sums_(pft_pte_t *p, const step_geom_ *g, const dir_slope_ *d, in
     *G = p->sG;
 }
 
-/* 4. Test statistic and log summand of every scan position, the best one and the sum of
- * the others relative to it (the direction likelihood is their log-sum; the fusion needs
- * no logarithm), the best position (parabola refined per axis) and its T^2. c0: first scan
- * position per axis. */
-static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
-                              const pft_real_t *G, const pft_real_t c0[2], const prior_rec_ *pr)
+/* 4. Test statistic and log summand of every scan position (into sL), the best one, its E,
+ * G and T^2 (dir_finish_ adds the sum of the others relative to it and the refined best
+ * position, which only a direction with a weight in the fusion needs). */
+static dir_best_ dir_scan_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *E,
+                           const pft_real_t *G, const prior_rec_ *pr)
 {
     const pft_pte_scratch_t *s = p->scr;
     const int32_t n0 = g->n0;
@@ -1823,6 +1817,27 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
             }
         }
     }
+    r.lmax = lmax;
+    r.ssum = PFT_C(0.0);
+    r.cstar[0] = PFT_C(0.0);
+    r.cstar[1] = PFT_C(0.0);
+    r.e = E[r.jb];
+    r.g = G[r.jb];
+    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
+    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
+    return r;
+}
+
+/* 4, the rest for a direction of the fusion: the sum of the terms of the scan positions
+ * relative to the best one (the direction likelihood is their log-sum; the fusion needs no
+ * logarithm) and the best position, parabola refined per axis (sL as dir_scan_ left it).
+ * c0: first scan position per axis. */
+static void dir_finish_(const pft_pte_t *p, const step_geom_ *g, const pft_real_t c0[2],
+                        dir_best_ *rb)
+{
+    const int32_t n0 = g->n0;
+    dir_best_ *r = rb;
+    const pft_real_t lmax = r->lmax;
     /* terms below exp(-12) are skipped (q16: pft_exp rounds them to 0 anyway); the best
      * position's term is exp(0) = 1 exactly (both builds), added in its place without the call */
     pft_real_t ssum = PFT_C(0.0);
@@ -1831,14 +1846,11 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
         if (p->sL[j] > lcut) {
             /* lcut < sL[j] <= lmax: the difference is in (-12, 0] (pft_sub would not
              * saturate) and ssum, at most nsc <= 33^2 terms of at most 1, stays below 2^27 */
-            ssum = ssum + (j == r.jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
+            ssum = ssum + (j == r->jb ? PFT_C(1.0) : exp_neg_(p->sL[j] - lmax));
         }
     }
-    r.lmax = lmax;
-    r.ssum = ssum;
-    const int32_t jb = r.jb;
-    r.cstar[0] = PFT_C(0.0);
-    r.cstar[1] = PFT_C(0.0);
+    r->ssum = ssum;
+    const int32_t jb = r->jb;
     for (uint32_t a = 0; a < p->naxes; ++a) {
         int32_t ja = a == 0u ? jb % n0 : jb / n0;
         int32_t na_ = a == 0u ? n0 : g->n1;
@@ -1847,13 +1859,8 @@ static dir_best_ dir_best_of_(pft_pte_t *p, const step_geom_ *g, const pft_real_
         if (ja > 0 && ja < na_ - 1) {
             off = pft_pte_parabola_(p->sL[jb - stride], p->sL[jb], p->sL[jb + stride]);
         }
-        r.cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
+        r->cstar[a] = pft_add(c0[a], pft_mul(p->cfg.c_step, pft_add(pft_from_int(ja), off)));
     }
-    r.e = E[jb];
-    r.g = G[jb];
-    /* T^2 = E^2 / G clamped at 150^2 as T is; negative when E is */
-    r.t2s = r.e < PFT_C(0.0) ? pft_neg(sq_over_(pft_neg(r.e), r.g)) : sq_over_(r.e, r.g);
-    return r;
 }
 
 /* 5. Kalman update of the track's prediction with the direction's measurement [c*, theta]
@@ -1929,6 +1936,16 @@ static inline acc_t fuse_start_(const pft_real_t *P, const pft_real_t kw[6],
 }
 #endif
 
+/* q16: a direction of weight 0 is left out of the fusion's sums: each of its terms is an
+ * integer product with w = 0, exactly 0 (directions skipped in the scan have w = 0 and no
+ * state change or gain). float: every direction is summed, as before (0 times a value is
+ * not always +0 there). */
+#ifdef PFT_NUMERIC_Q16
+#define W0_SKIP_ 1
+#else
+#define W0_SKIP_ 0
+#endif
+
 /* 6. Fusion of the directions with their normalised likelihoods W:
  * X = X_pred + sum W K nu and P = P_pred - (sum W K) H P_pred + sum W (dx - dX)(dx - dX)',
  * which is sum W (P_l + (X_l - X)(X_l - X)') when the weights sum to 1. Deviations from the
@@ -1970,6 +1987,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         acc_t v9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* dX sums, then K W sums */
         for (int32_t li = 0; li < ndir; ++li) {
             const pft_real_t w = dir[li].w;
+            if (W0_SKIP_ && w == 0) {
+                continue; /* q16: its terms are 0 exactly (see W0_SKIP_) */
+            }
             for (uint32_t i = 0; i < 3u; ++i) {
                 v9[i] = aadd_(v9[i], amul_(w, p->dir[li].dx[a][i]));
             }
@@ -2009,6 +2029,9 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
         }
         for (int32_t li = 0; li < ndir; ++li) {
             const pft_real_t w = dir[li].w;
+            if (W0_SKIP_ && w == 0) {
+                continue;
+            }
             pft_real_t dv[3];
             for (uint32_t i = 0; i < 3u; ++i) {
                 dv[i] = pft_sub(dir[li].dx[a][i], df[i]);
@@ -2039,12 +2062,16 @@ static void step_fuse_(pft_pte_t *p, pft_pte_track_t *t, int32_t ndir)
     }
     acc_t as = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
+        if (!(W0_SKIP_ && dir[li].w == 0)) {
+            as = aadd_(as, amul_(dir[li].w, pft_sub(p->dir[li].amp, t->amp)));
+        }
     }
     pft_real_t amp = pft_add(t->amp, ato_(as));
     acc_t avs = 0;
     for (int32_t li = 0; li < ndir; ++li) {
-        avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        if (!(W0_SKIP_ && dir[li].w == 0)) {
+            avs = aadd_(avs, amul_(dir[li].w, pft_add(p->dir[li].amp_var, pft_sq(pft_sub(p->dir[li].amp, amp)))));
+        }
     }
     t->amp = amp;
     t->amp_var = pft_max(ato_(avs), PFT_REAL_EPS);
@@ -2137,7 +2164,24 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     const pft_real_t pcs2 = pft_sq(p->cfg.c_step);
     const pft_real_t pdd = pft_neg(pft_mul_i(pft_mul(pcs2, s->ap[0].lck), 2));
 #endif
-    for (int32_t li = 0; li < g.ndir; ++li) {
+    /* q16: a direction whose log weight is 12 or more below that of a direction already
+     * scanned gets the fusion weight 0 (its dl there is at most the one tested here, so
+     * dl <= -12), and every term it adds to the fusion is 0 exactly (integer products with
+     * w = 0): it skips the rest of step 4 and step 5 (the same values; docs/fixed_point.md,
+     * "PTE-TBD direction scan"). The central direction first, usually the most likely. The
+     * order changes no value: each direction's results go to its own dir[li], and t2max and
+     * t2short are maxima. The float build runs every direction in full, as before. */
+#ifdef PFT_NUMERIC_Q16
+    const bool lazy = true;
+#else
+    const bool lazy = false;
+#endif
+    const int32_t hc = (g.ndir - 1) / 2;
+    pft_real_t lx_seen = PFT_REAL_MIN;
+    bool seen = false;
+    for (int32_t k = 0; k < g.ndir; ++k) {
+        /* q16: hc, 0, 1, ..., hc - 1, hc + 1, ..., ndir - 1; float: in index order */
+        const int32_t li = !lazy ? k : (k == 0 ? hc : (k <= hc ? k - 1 : k));
         if (p->yq > 0u && s->bok[li] == 0u) {
             /* line_budget: an incomplete entry; the direction gets no weight in the fusion */
             pft_pte_dir_t *o = &p->dir[li];
@@ -2165,13 +2209,22 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
 #endif
             prp = &pr;
         }
-        dir_best_ b = dir_best_of_(p, &g, E, G, c0, prp);
+        dir_best_ b = dir_scan_(p, &g, E, G, prp);
         t2max = pft_max(t2max, b.t2s);
-        dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+        const pft_real_t logw = pft_add(d.prior, b.lmax);
+        if (lazy && seen && pft_sub(logw, lx_seen) <= PFT_C(-12.0)) {
+            p->dir[li].logw = logw; /* weight 0 in the fusion (step_fuse_) */
+        } else {
+            dir_finish_(p, &g, c0, &b);
+            dir_update_(p, t, &g, &d, &b, &p->dir[li]);
+            lx_seen = seen ? pft_max(lx_seen, logw) : logw;
+            seen = true;
+        }
         if (mt) {
-            /* the same lines over the short window (the slope entry's second window) */
+            /* the same lines over the short window (the slope entry's second window): only
+             * its T^2 is used */
             dir_sums_(p, &g, &d, li, 1u, &E, &G);
-            dir_best_ bs = dir_best_of_(p, &g, E, G, c0, prp);
+            dir_best_ bs = dir_scan_(p, &g, E, G, prp);
             t2short = pft_max(t2short, bs.t2s);
         }
     }

@@ -188,6 +188,10 @@ struct pft_pte_s {
     uint8_t naxes;
     uint8_t period;              /* 1/c_step when an integer <= 8 (tap reuse), else 0 */
     uint8_t miss[PFT_PTE_MAX_FRAMES + 1u]; /* per ring slot: 1 when it holds a lost frame */
+#ifdef PFT_NUMERIC_Q16
+    uint32_t f32t[256];          /* q16: multiplier of the one-product F32 input row per IEEE
+                                    exponent (pft_pte_f32_table_) */
+#endif
 };
 
 /* ------------------------------------------------------------------------------ DP-TBD */
