@@ -8,6 +8,7 @@
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
 #define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
+#define FL_QBIAS16_ 16777216       /* FL_QBIAS_ / 2^16 */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -189,7 +190,7 @@ static int32_t fl_lev_(int32_t k, uint32_t l)
 {
     const int64_t q = (int64_t)k * (int64_t)l;
     const uint64_t u = (uint64_t)(q + (FL_QBIAS_ + 32768)) - (q < 0 ? 1u : 0u);
-    return (int32_t)(u >> 16u) - (int32_t)(FL_QBIAS_ >> 16u);
+    return (int32_t)(u >> 16u) - FL_QBIAS16_;
 }
 
 /* Sums of the gated corrected values of one span (corrected value, count, level). */
