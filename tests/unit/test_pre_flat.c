@@ -278,6 +278,84 @@ static void test_masked_and_no_evidence(void)
     TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(&fl, 50u, 50u));
 }
 
+/* Every pixel of one update against the per-pixel definition: the output is r less the
+ * offset pft_pre_flat_at reports at (x, y) (offset form: Q8.8; relative: the factor, Q24,
+ * times the level, rounded half away from zero), clamped to +-32767; masked pixels stay
+ * masked. A frame of 123 x 90 (not whole blocks), blocks 4, 16 and 64, the offset form and
+ * the relative form with U16 and U8 levels, a map of random values up to the clamp set
+ * through the instance's layout (pft_pre_types.h), random residuals (some masked, some at
+ * +-32767) and levels. Exact: the update and pft_pre_flat_at compute the same integers (the
+ * update steps the interpolation along the row, pft_pre_flat_at computes it per pixel), so
+ * the tolerance is 0. */
+static void test_every_pixel_against_at(void)
+{
+    static const uint8_t blocks[3] = {4u, 16u, 64u};
+    static uint8_t lev8[NPIX];
+    const int w = 123, h = 90;
+    for (int bi = 0; bi < 3; ++bi) {
+        for (int form = 0; form < 3; ++form) { /* 0 offset, 1 relative U16, 2 relative U8 */
+            pft_pre_flat_config_t cfg;
+            pft_pre_flat_config_default(&cfg);
+            cfg.width = (uint16_t)w;
+            cfg.height = (uint16_t)h;
+            cfg.block = blocks[bi];
+            cfg.relative = form != 0;
+            pft_pre_flat_t fl;
+            TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
+            const uint32_t nb = fl.nbx * fl.nby;
+            for (uint32_t i = 0u; i < nb; ++i) {
+                g_rs ^= g_rs << 13;
+                g_rs ^= g_rs >> 17;
+                g_rs ^= g_rs << 5;
+                fl.m[i] = (int32_t)(g_rs % 1048577u) - 524288; /* +-8 sigma (Q16), +-2^19 */
+            }
+            for (int i = 0; i < w * h; ++i) {
+                g_rs ^= g_rs << 13;
+                g_rs ^= g_rs >> 17;
+                g_rs ^= g_rs << 5;
+                int32_t v = (int32_t)(g_rs % 8193u) - 4096;
+                v = (g_rs >> 24) == 0u ? PFT_RES16_MASKED : v;
+                v = (g_rs >> 24) == 1u ? 32767 : ((g_rs >> 24) == 2u ? -32767 : v);
+                g_res[i] = (int16_t)v;
+                g_lev[i] = (uint16_t)(g_rs >> 8);
+                lev8[i] = (uint8_t)(g_rs >> 13);
+            }
+            memcpy(g_in, g_res, sizeof g_res);
+            pft_frame_t f = res_frame(1u);
+            f.width = (uint16_t)w;
+            f.height = (uint16_t)h;
+            f.stride_bytes = 2u * (uint32_t)w;
+            pft_frame_t lev;
+            memset(&lev, 0, sizeof lev);
+            lev.data = form == 2 ? (const void *)lev8 : (const void *)g_lev;
+            lev.width = (uint16_t)w;
+            lev.height = (uint16_t)h;
+            lev.stride_bytes = (form == 2 ? 1u : 2u) * (uint32_t)w;
+            lev.format = form == 2 ? PFT_PIX_U8 : PFT_PIX_U16;
+            static int32_t want[NPIX];
+            for (int y = 0; y < h; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    const int i = y * w + x;
+                    const int32_t a = pft_pre_flat_at(&fl, (uint32_t)x, (uint32_t)y);
+                    int64_t off = a;
+                    if (form != 0) {
+                        const int64_t q = (int64_t)a * (form == 2 ? lev8[i] : g_lev[i]);
+                        const int64_t mag = (q < 0 ? -q : q) + 32768;
+                        off = q < 0 ? -(mag / 65536) : mag / 65536;
+                    }
+                    int64_t o = (int64_t)g_in[i] - off;
+                    o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+                    want[i] = g_in[i] == PFT_RES16_MASKED ? PFT_RES16_MASKED : (int32_t)o;
+                }
+            }
+            TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, form != 0 ? &lev : NULL, true));
+            for (int i = 0; i < w * h; ++i) {
+                TEST_ASSERT_EQUAL_INT32(want[i], g_res[i]);
+            }
+        }
+    }
+}
+
 /* Refused input: NULL, a foreign buffer, a wrong frame: nothing changes. */
 static void test_refused_input(void)
 {
@@ -315,6 +393,7 @@ int main(void)
     RUN_TEST(test_plane_learnt_blob_kept_out);
     RUN_TEST(test_relative_learnt);
     RUN_TEST(test_masked_and_no_evidence);
+    RUN_TEST(test_every_pixel_against_at);
     RUN_TEST(test_refused_input);
     return UNITY_END();
 }

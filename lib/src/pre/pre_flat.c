@@ -7,6 +7,8 @@
 
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
+#define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
+#define FL_QBIAS16_ 16777216       /* FL_QBIAS_ / 2^16 */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -181,34 +183,93 @@ int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
     return fl_shr_(rv[0] * (d - (int32_t)u) + rv[1] * (int32_t)u, fl->lb + (fl->cfg.relative ? 1u : 9u));
 }
 
-/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, l counts). */
+/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, |k| <= 2^23,
+ * l counts): floor((q + 2^15 - [q < 0]) / 2^16) of q = k l, the floor taken on q biased to a
+ * non-negative value (the same integers as rounding |q| half up and restoring the sign). */
 static int32_t fl_lev_(int32_t k, uint32_t l)
 {
     const int64_t q = (int64_t)k * (int64_t)l;
-    const int64_t mag = q < 0 ? -q : q;
-    const int32_t o = (int32_t)((mag + 32768) / 65536);
-    return q < 0 ? -o : o;
+    const uint64_t u = (uint64_t)(q + (FL_QBIAS_ + 32768)) - (q < 0 ? 1u : 0u);
+    return (int32_t)(u >> 16u) - FL_QBIAS16_;
 }
 
-/* Level (counts) of pixel x of a U16 or U8 row. */
-static uint32_t fl_level_(const uint8_t *row, uint32_t x, bool u8)
+/* Sums of the gated corrected values of one span (corrected value, count, level). */
+typedef struct {
+    int32_t sum;
+    uint32_t cnt;
+    uint32_t lsum;
+} fl_acc_t;
+
+/* The tail of one unmasked pixel: v (the residual) less off, clamped, written to *rx; booked
+ * into acc when within the gate (branch-free). */
+static void fl_px_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate, fl_acc_t *acc)
 {
-    if (u8) {
-        return row[x];
+    int32_t o = v - off;
+    o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+    *rx = (int16_t)o;
+    const bool in = (uint32_t)(o + gate) <= 2u * (uint32_t)gate;
+    acc->sum += in ? o : 0;
+    acc->cnt += in ? 1u : 0u;
+    acc->lsum += in ? l : 0u;
+}
+
+/* Pixels x0..x1-1 of row r (one block, between two block centres). *u is the block values'
+ * interpolation at x0 as fl_shr_ takes it: (numerator + FL_BIAS_) + 2^(k-1), so that
+ * (*u >> k) - (FL_BIAS_ >> k) is the value; it steps by st per pixel (modulo 2^32, exact as
+ * every value is in range) and is left at x1. lrow: the level row (NULL: offset form). */
+static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint32_t x1,
+                     uint32_t *u, uint32_t st, uint32_t k, int32_t gate, fl_acc_t *acc)
+{
+    const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
+    uint32_t uu = *u;
+    fl_acc_t a = *acc;
+    if (lrow == NULL) {
+        for (uint32_t x = x0; x < x1; ++x) {
+            const int32_t off = (int32_t)(uu >> k) - cb;
+            uu += st;
+            const int32_t v = r[x];
+            if (v != PFT_RES16_MASKED) {
+                fl_px_(&r[x], v, off, 0u, gate, &a);
+            }
+        }
+    } else if (u8) {
+        for (uint32_t x = x0; x < x1; ++x) {
+            const int32_t kv = (int32_t)(uu >> k) - cb;
+            uu += st;
+            const int32_t v = r[x];
+            if (v != PFT_RES16_MASKED) {
+                const uint32_t l = lrow[x];
+                fl_px_(&r[x], v, fl_lev_(kv, l), l, gate, &a);
+            }
+        }
+    } else {
+        for (uint32_t x = x0; x < x1; ++x) {
+            const int32_t kv = (int32_t)(uu >> k) - cb;
+            uu += st;
+            const int32_t v = r[x];
+            if (v != PFT_RES16_MASKED) {
+                uint16_t l16;
+                memcpy(&l16, lrow + 2u * x, 2u);
+                const uint32_t l = l16;
+                fl_px_(&r[x], v, fl_lev_(kv, l), l, gate, &a);
+            }
+        }
     }
-    uint16_t v;
-    memcpy(&v, row + 2u * x, 2u);
-    return v;
+    *u = uu;
+    *acc = a;
 }
 
 /* Corrects row r (w pixels) with the offsets of the row's block values fl->rowv; with learn,
  * books the gated corrected values into the sums of block row jb. The columns are walked
- * segment by segment between block centres (the weight steps by 2 per pixel). */
+ * segment by segment between block centres (the weight t steps by 2 per pixel, so the
+ * interpolation's numerator a0 (d - t) + a1 t by 2 (a1 - a0)), each segment in its two block
+ * spans, whose sums are booked once per span. */
 static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
                     uint32_t jb)
 {
     const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
     const uint32_t d2 = 2u << lb;
+    const uint32_t k = lrow != NULL ? lb + 1u : lb + 9u;
     const int32_t d = (int32_t)d2, gate = (int32_t)fl->cfg.gate;
     int32_t *sum = fl->sum + (size_t)jb * nbx;
     uint32_t *cnt = fl->cnt + (size_t)jb * nbx;
@@ -219,31 +280,26 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
         /* segment s: columns up to the centre of block s (s == nbx: to the end) */
         uint32_t xe = s < nbx ? (s << lb) + b / 2u : w;
         xe = xe > w ? w : xe;
+        if (x >= xe) {
+            continue;
+        }
         const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
-        const int32_t c2 = s == 0u ? 0 : fl_c2_(s - 1u, lb);
-        for (; x < xe; ++x) {
-            const int16_t v = r[x];
-            if (v == PFT_RES16_MASKED) {
-                continue;
+        const bool held = s == 0u || s == nbx;
+        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(s - 1u, lb);
+        uint32_t u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
+        const uint32_t st = held ? 0u : (uint32_t)(2 * (a1 - a0));
+        while (x < xe) {
+            const uint32_t blk = x >> lb;
+            uint32_t xb = (blk + 1u) << lb;
+            xb = xb > xe ? xe : xb;
+            fl_acc_t acc = {0, 0u, 0u};
+            fl_span_(r, lrow, u8, x, xb, &u, st, k, gate, &acc);
+            if (learn) {
+                sum[blk] += acc.sum;
+                cnt[blk] += acc.cnt;
+                lsum[blk] += acc.lsum;
             }
-            const uint32_t x2 = 2u * x;
-            const int32_t t = (s == 0u || s == nbx) ? 0 : (int32_t)x2 - c2;
-            uint32_t l = 0u;
-            int32_t off;
-            if (lrow != NULL) {
-                l = fl_level_(lrow, x, u8);
-                off = fl_lev_(fl_shr_(a0 * (d - t) + a1 * t, lb + 1u), l);
-            } else {
-                off = fl_shr_(a0 * (d - t) + a1 * t, lb + 9u);
-            }
-            int32_t o = (int32_t)v - off;
-            o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
-            r[x] = (int16_t)o;
-            if (learn && (o <= gate && o >= -gate)) {
-                sum[x >> lb] += o;
-                cnt[x >> lb] += 1u;
-                lsum[x >> lb] += l;
-            }
+            x = xb;
         }
     }
 }
