@@ -3,7 +3,7 @@
  * Q16 (65536 = 1 sigma; relative: sigma per count Q24), residuals in Q8.8 sigma. */
 #include <string.h>
 
-#include "pft/pft_pre.h"
+#include "pre_int.h"
 
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
@@ -94,11 +94,7 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     fl->rowv = rowv;
     fl->nbx = (uint32_t)nbx;
     fl->nby = (uint32_t)nby;
-    uint32_t lb = 0u;
-    while ((1u << lb) < (uint32_t)cfg->block) {
-        lb++;
-    }
-    fl->lb = lb;
+    fl->lb = pft_pre_log2_((uint32_t)cfg->block); /* block: a power of two */
     return pft_pre_flat_reset(fl);
 }
 
@@ -129,6 +125,12 @@ static int32_t fl_c2_(uint32_t i, uint32_t lb)
 {
     const uint32_t c = (2u * i + 1u) << lb;
     return (int32_t)c - 1;
+}
+
+/* (a0 (d - t) + a1 t) / 2^k rounded half up: the blend of two block values at weight t of d. */
+static int32_t fl_mix_(int32_t a0, int32_t a1, int32_t t, int32_t d, uint32_t k)
+{
+    return fl_shr_(a0 * (d - t) + a1 * t, k);
 }
 
 /* Lower block index j0 and the weight t of block j0 + 1 (0..2b - 1; 0 also where held) of the
@@ -162,7 +164,7 @@ static void fl_rowv_(pft_pre_flat_t *fl, uint32_t y)
     const int32_t d = (int32_t)d2;
     const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
     for (uint32_t i = 0u; i < fl->nbx; ++i) {
-        fl->rowv[i] = fl_shr_(a[i] * (d - (int32_t)t) + b[i] * (int32_t)t, fl->lb + 1u);
+        fl->rowv[i] = fl_mix_(a[i], b[i], (int32_t)t, d, fl->lb + 1u);
     }
 }
 
@@ -177,10 +179,9 @@ int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
     const uint32_t d2 = 2u << fl->lb;
     const int32_t d = (int32_t)d2;
     const int32_t *a = fl->m + (size_t)j0 * fl->nbx, *b = fl->m + (size_t)j1 * fl->nbx;
-    int32_t rv[2];
-    rv[0] = fl_shr_(a[i0] * (d - (int32_t)t) + b[i0] * (int32_t)t, fl->lb + 1u);
-    rv[1] = fl_shr_(a[i1] * (d - (int32_t)t) + b[i1] * (int32_t)t, fl->lb + 1u);
-    return fl_shr_(rv[0] * (d - (int32_t)u) + rv[1] * (int32_t)u, fl->lb + (fl->cfg.relative ? 1u : 9u));
+    const int32_t r0 = fl_mix_(a[i0], b[i0], (int32_t)t, d, fl->lb + 1u);
+    const int32_t r1 = fl_mix_(a[i1], b[i1], (int32_t)t, d, fl->lb + 1u);
+    return fl_mix_(r0, r1, (int32_t)u, d, fl->lb + (fl->cfg.relative ? 1u : 9u));
 }
 
 /* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, |k| <= 2^23,
@@ -304,14 +305,6 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
     }
 }
 
-/* n / d rounded half away from zero (d > 0). */
-static int64_t fl_div_(int64_t n, int64_t d)
-{
-    const int64_t mag = n < 0 ? -n : n;
-    const int64_t q = (mag + d / 2) / d;
-    return n < 0 ? -q : q;
-}
-
 /* The blocks' means of this frame into the map, with weight a (Q0.16). */
 static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
 {
@@ -332,11 +325,11 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
                 if (fl->lsum[k] == 0u) {
                     continue;
                 }
-                mean = fl_div_((int64_t)fl->sum[k] * 65536, (int64_t)fl->lsum[k]);
+                mean = pft_pre_div_rnd_((int64_t)fl->sum[k] * 65536, (int64_t)fl->lsum[k]);
             } else {
-                mean = fl_div_((int64_t)fl->sum[k] * 256, (int64_t)n);
+                mean = pft_pre_div_rnd_((int64_t)fl->sum[k] * 256, (int64_t)n);
             }
-            int64_t m = (int64_t)fl->m[k] + fl_div_(mean * (int64_t)a, 65536);
+            int64_t m = (int64_t)fl->m[k] + pft_pre_div_rnd_(mean * (int64_t)a, 65536);
             m = m > FL_MMAX_ ? FL_MMAX_ : (m < -FL_MMAX_ ? -FL_MMAX_ : m);
             fl->m[k] = (int32_t)m;
         }

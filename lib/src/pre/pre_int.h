@@ -91,6 +91,13 @@ static inline void pft_pre_count_masked_(const pft_pre_cls_t *c, uint32_t v, pft
 }
 
 
+/* n / d rounded half away from zero, d > 0 (per frame or per block, not per pixel: a 64-bit
+ * division). */
+static inline int64_t pft_pre_div_rnd_(int64_t n, int64_t d)
+{
+    return (n >= 0 ? n + d / 2 : n - d / 2) / d;
+}
+
 /* Floor of log2(v) for v >= 1. */
 static inline uint32_t pft_pre_log2_(uint32_t v)
 {

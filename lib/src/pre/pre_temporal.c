@@ -15,11 +15,6 @@
 static int32_t fl_(int32_t a, uint32_t k) { return a >> k; }
 static int32_t rnd_(int32_t a, uint32_t k) { return (int32_t)(((int64_t)a + (1 << k >> 1)) >> k); }
 
-static int64_t div_rnd_(int64_t n, int64_t d) /* d > 0 */
-{
-    return (n >= 0 ? n + d / 2 : n - d / 2) / d;
-}
-
 static int64_t abs64_(int64_t v) { return v < 0 ? -v : v; }
 
 static int32_t clampi_(int32_t v, int32_t lo, int32_t hi)
@@ -371,8 +366,8 @@ static bool lk_solve_(const lk_sums_t *s, int32_t delta[2], int32_t sd[2])
     }
     const int64_t nx = -6 * (d * vx - b * vy), ny = -6 * (a * vy - b * vx);
     const int64_t lim = (int64_t)1 << 46;
-    const int64_t qx = div_rnd_((nx > lim ? lim : (nx < -lim ? -lim : nx)) * 65536, det);
-    const int64_t qy = div_rnd_((ny > lim ? lim : (ny < -lim ? -lim : ny)) * 65536, det);
+    const int64_t qx = pft_pre_div_rnd_((nx > lim ? lim : (nx < -lim ? -lim : nx)) * 65536, det);
+    const int64_t qy = pft_pre_div_rnd_((ny > lim ? lim : (ny < -lim ? -lim : ny)) * 65536, det);
     const int64_t one = 65536; /* at most one pixel per step */
     delta[0] = (int32_t)(qx > one ? one : (qx < -one ? -one : qx));
     delta[1] = (int32_t)(qy > one ? one : (qy < -one ? -one : qy));
