@@ -258,6 +258,13 @@ static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_ta
 pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
                                  const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
                                  bool edge);
+/* The rest of pft_tbd_llr3_r16_ when the window cannot be summed from the frame's integers
+ * (an image edge, a patch row, or tab->r16_sum 0): the taps of cell (i, j, fx, fy), clipped at
+ * an edge, then pft_tbd_llr3_r16_win_ (tbd_meas.c). Everything by value, so that the inline
+ * kernel's taps never go through memory on the common path. */
+pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                 const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
+                                 pft_kfrac_t fy, pft_real_t amp);
 
 /* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
  * the same arithmetic. Inside the image away from the patches (the common case) the window
@@ -267,24 +274,18 @@ static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tb
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)
 {
-    pft_real_t tx[4], ty[4];
-    pft_ktaps_(tab->taps[0], c->fx, tx);
-    pft_ktaps_(tab->taps[1], c->fy, ty);
     const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
     const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
     const pft_real_t amp = pft_kmulq_(intensity, m->kc);
     if (!(ex || ey) && tab->r16_sum != 0u && !(sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u)) {
         const size_t st = sc->r16_stride;
+        pft_real_t tx[4], ty[4];
+        pft_ktaps_(tab->taps[0], c->fx, tx);
+        pft_ktaps_(tab->taps[1], c->fy, ty);
         return pft_kspot3_r16_(sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2), st,
                                tx, ty, amp);
     }
-    if (ex) {
-        pft_tbd_clip_(tx, c->i, (int32_t)m->width);
-    }
-    if (ey) {
-        pft_tbd_clip_(ty, c->j, (int32_t)m->height);
-    }
-    return pft_tbd_llr3_r16_win_(sc, c->i, c->j, tx, ty, amp, ex || ey);
+    return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
 }
 
 /* pft_tbd_llr3_r16_ called (tbd_meas.c): the inline kernel has one call site in the filters'
