@@ -250,18 +250,13 @@ static inline pft_real_t pft_tbd_llr3_(const pft_tbd_meas_t *m, const pft_tbd_ta
                        pft_kmulq_(intensity, m->kc));
 }
 
-/* pft_tbd_llr3_r16_ where the window needs more than the frame's pixels (tbd_meas.c): at an
- * image edge (edge true: the window fetched, 0 outside) or on a row a patch may cover (the
- * pixels read, the patches over them), or with taps that pft_kspot3_r16_ cannot take
- * (tab->r16_sum 0): the values of the bordered real-valued frame, then pft_kspot3_. Cell
- * (i, j) by value (the caller's cell never has its address taken). */
-pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
-                                 const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
-                                 bool edge);
 /* The rest of pft_tbd_llr3_r16_ when the window cannot be summed from the frame's integers
- * (an image edge, a patch row, or tab->r16_sum 0): the taps of cell (i, j, fx, fy), clipped at
- * an edge, then pft_tbd_llr3_r16_win_ (tbd_meas.c). Everything by value, so that the inline
- * kernel's taps never go through memory on the common path. */
+ * (tbd_meas.c): at an image edge (the taps clipped, the window fetched, 0 outside), on a row a
+ * patch may cover (the pixels read, the patches over them), or with taps that pft_kspot3_r16_
+ * cannot take (tab->r16_sum 0): the taps of cell (i, j, fx, fy), the values of the bordered
+ * real-valued frame, then pft_kspot3_. Everything by value, so that the inline kernel's taps
+ * never go through memory on the common path (and the caller's cell never has its address
+ * taken). */
 pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
                                  const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
                                  pft_kfrac_t fy, pft_real_t amp);
@@ -269,7 +264,7 @@ pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *t
 /* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
  * the same arithmetic. Inside the image away from the patches (the common case) the window
  * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
- * else pft_tbd_llr3_r16_win_. */
+ * else pft_tbd_llr3_r16_out_. */
 static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)

@@ -172,12 +172,23 @@ pft_real_t pft_tbd_llr3_r16_call_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *
     return pft_tbd_llr3_r16_(m, tab, sc, c, intensity);
 }
 
-pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t j,
-                                 const pft_real_t tx[4], const pft_real_t ty[4], pft_real_t amp,
-                                 bool edge)
+pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                 const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
+                                 pft_kfrac_t fy, pft_real_t amp)
 {
+    pft_real_t tx[4], ty[4];
     pft_real_t z[9];
-    if (edge) {
+    const bool ex = (uint32_t)(i - 2) >= (uint32_t)m->width - 2u;
+    const bool ey = (uint32_t)(j - 2) >= (uint32_t)m->height - 2u;
+    pft_ktaps_(tab->taps[0], fx, tx);
+    pft_ktaps_(tab->taps[1], fy, ty);
+    if (ex) {
+        pft_tbd_clip_(tx, i, (int32_t)m->width);
+    }
+    if (ey) {
+        pft_tbd_clip_(ty, j, (int32_t)m->height);
+    }
+    if (ex || ey) {
         pft_tbd_fetch_(sc, i - 2, j - 2, 3u, 3u, z);
     } else {
         const size_t st = sc->r16_stride;
@@ -192,24 +203,6 @@ pft_real_t pft_tbd_llr3_r16_win_(const pft_tbd_scene_t_ *sc, int32_t i, int32_t 
         }
     }
     return pft_kspot3_(z, 3u, tx, ty, amp);
-}
-
-pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
-                                 const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
-                                 pft_kfrac_t fy, pft_real_t amp)
-{
-    pft_real_t tx[4], ty[4];
-    const bool ex = (uint32_t)(i - 2) >= (uint32_t)m->width - 2u;
-    const bool ey = (uint32_t)(j - 2) >= (uint32_t)m->height - 2u;
-    pft_ktaps_(tab->taps[0], fx, tx);
-    pft_ktaps_(tab->taps[1], fy, ty);
-    if (ex) {
-        pft_tbd_clip_(tx, i, (int32_t)m->width);
-    }
-    if (ey) {
-        pft_tbd_clip_(ty, j, (int32_t)m->height);
-    }
-    return pft_tbd_llr3_r16_win_(sc, i, j, tx, ty, amp, ex || ey);
 }
 
 pft_real_t pft_tbd_llr_exact_r16_(const pft_tbd_meas_t *m, const pft_tbd_scene_t_ *sc,
