@@ -27,47 +27,98 @@ static inline pft_real_t ell_(const pft_pte_core_t_ *c, const pft_real_t *zf, co
     return zf[i];
 }
 
+/* The best of prev[r - g0 .. r + g0] (clipped to the row) and its offset in the gate (psi):
+ * the first maximum in index order. */
+static inline pft_real_t gate_max_(const pft_real_t *prev, int32_t r, int32_t nr, int32_t g0,
+                                   int32_t *bo)
+{
+    int32_t rlo = r - g0 < 0 ? 0 : r - g0;
+    int32_t rhi = r + g0 > nr - 1 ? nr - 1 : r + g0;
+    pft_real_t best = prev[rlo];
+    int32_t bu = rlo;
+    for (int32_t rr = rlo + 1; rr <= rhi; ++rr) {
+        if (prev[rr] > best) {
+            best = prev[rr];
+            bu = rr;
+        }
+    }
+    *bo = bu - r + g0;
+    return best;
+}
+
+/* The cancelled cells of one stage, after its cells were formed as if none was: cur[i] =
+ * NEG + prev[i + psi[i] - g0] (the gate's best, whose offset psi[i] does not depend on the
+ * mask; j == 0, prev NULL: NEG), the merit the test inside the cell loop gave. The mask is
+ * read 8 cells at a time (a stage has a few cancelled cells or none). */
+static void patch_(const uint8_t *mk, uint32_t n, const pft_real_t *prev, const uint8_t *psi,
+                   int32_t g0, pft_real_t *cur)
+{
+    uint32_t i0 = 0u;
+    while (i0 < n) {
+        uint32_t i1 = i0 + 8u <= n ? i0 + 8u : n;
+        uint64_t w = 0u;
+        if (i1 - i0 == 8u) {
+            memcpy(&w, mk + i0, sizeof(w));
+        } else {
+            w = 1u; /* the tail: cell by cell */
+        }
+        if (w != 0u) {
+            for (uint32_t i = i0; i < i1; ++i) {
+                if (mk[i] != 0u) {
+                    cur[i] = prev == NULL
+                                 ? PFT_PTE_NEG_
+                                 : pft_add(PFT_PTE_NEG_,
+                                           prev[(int32_t)i + (int32_t)psi[i] - g0]);
+                }
+            }
+        }
+        i0 = i1;
+    }
+}
+
 /* One range-time step of the recursion: cur[r] = l(r) + max over |r - r'| <= g0 of prev[r'],
- * psi[r] the offset of the maximum (a sliding maximum). */
+ * psi[r] the offset of the maximum (a sliding maximum). The cells are formed without the
+ * mask and its cancelled cells patched after (patch_): the same merits as testing the mask in
+ * the loop, whose test cost every cell although few are cancelled (docs/results/pte.md,
+ * "Branch pte13"). */
 static void step_rt_(const pft_pte_core_t_ *c, const pft_real_t *zf, const uint8_t *mk,
                      const pft_real_t *prev, pft_real_t *cur, uint8_t *psi)
 {
     const int32_t nr = (int32_t)c->nr;
     const int32_t g0 = (int32_t)c->g0;
     const bool known = c->amp > PFT_C(0.0);
-    for (int32_t r = 0; r < nr; ++r) {
-        pft_real_t best;
+    /* cells whose gate is the common one cell per frame inside the row: unrolled */
+    const int32_t ulo = g0 == 1 ? 1 : nr;
+    const int32_t uhi = g0 == 1 ? nr - 1 : nr;
+    int32_t r = 0;
+    for (; r < ulo; ++r) {
         int32_t bo;
-        if (g0 == 1 && r > 0 && r < nr - 1) {
-            /* the common gate of one cell per frame, unrolled */
-            best = prev[r - 1];
-            bo = 0;
-            if (prev[r] > best) {
-                best = prev[r];
-                bo = 1;
-            }
-            if (prev[r + 1] > best) {
-                best = prev[r + 1];
-                bo = 2;
-            }
-        } else {
-            int32_t rlo = r - g0 < 0 ? 0 : r - g0;
-            int32_t rhi = r + g0 > nr - 1 ? nr - 1 : r + g0;
-            best = prev[rlo];
-            int32_t bu = rlo;
-            for (int32_t rr = rlo + 1; rr <= rhi; ++rr) {
-                if (prev[rr] > best) {
-                    best = prev[rr];
-                    bu = rr;
-                }
-            }
-            bo = bu - r + g0;
-        }
-        /* the plain merit zeta unless the cell is cancelled or the amplitude is known */
-        pft_real_t l = (mk != NULL && mk[r] != 0u) ? PFT_PTE_NEG_
-                       : (known ? ell_(c, zf, NULL, (uint32_t)r) : zf[r]);
-        cur[r] = pft_add(l, best);
+        pft_real_t best = gate_max_(prev, r, nr, g0, &bo);
+        cur[r] = pft_add(known ? ell_(c, zf, NULL, (uint32_t)r) : zf[r], best);
         psi[r] = (uint8_t)bo;
+    }
+    for (; r < uhi; ++r) {
+        pft_real_t best = prev[r - 1];
+        uint8_t bo = 0u;
+        if (prev[r] > best) {
+            best = prev[r];
+            bo = 1u;
+        }
+        if (prev[r + 1] > best) {
+            best = prev[r + 1];
+            bo = 2u;
+        }
+        cur[r] = pft_add(known ? ell_(c, zf, NULL, (uint32_t)r) : zf[r], best);
+        psi[r] = bo;
+    }
+    for (; r < nr; ++r) {
+        int32_t bo;
+        pft_real_t best = gate_max_(prev, r, nr, g0, &bo);
+        cur[r] = pft_add(known ? ell_(c, zf, NULL, (uint32_t)r) : zf[r], best);
+        psi[r] = (uint8_t)bo;
+    }
+    if (mk != NULL) {
+        patch_(mk, (uint32_t)nr, prev, psi, g0, cur);
     }
 }
 
@@ -114,7 +165,10 @@ pft_real_t *pft_pte_core_stage_(const pft_pte_core_t_ *c, uint32_t j, const pft_
     uint8_t *psi = c->psi + (size_t)j * cells;
     if (j == 0u) {
         for (uint32_t i = 0; i < cells; ++i) {
-            cur[i] = ell_(c, zf, mk, i);
+            cur[i] = ell_(c, zf, NULL, i);
+        }
+        if (mk != NULL) {
+            patch_(mk, cells, NULL, psi, 0, cur);
         }
     } else if (c->nd == 1u) {
         step_rt_(c, zf, mk, prev, cur, psi);
