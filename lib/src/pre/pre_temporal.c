@@ -291,21 +291,22 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
     s->n = n;
 }
 
-/* reg_bin (docs/algorithms.md 9.3 [E]): the sums over 2 x 2 boxes of pixels, box
+/* reg_bin (docs/algorithms.md 9.4 [E]): the sums over 2 x 2 boxes of pixels, box
  * (xs, xs + 1) x (y, y + 1) at the samples of lk_loop_: z the box's sum, the background B
  * the box sums of b (B(x, r) = b[r][x] + b[r][x + 1] + b[r + 1][x] + b[r + 1][x + 1]),
- * bilinear in its cell (x, x + 1) x (r, r + 1) with x = xs + kx, r = y + ky, so that e and the
- * gradients are 4 times the pixel ones (U units times 4). The gradient is taken across the
- * cell from the boxes just outside it (B(x + 3) - B(x - 2), summed over the cell's two rows:
- * 10 times the gradient of B; the solver takes gain 10), from background pixels the cell does
- * not use, as in lk_loop_. Background columns x - 2 .. x + 4 and rows r - 2 .. r + 4. */
+ * bilinear in its cell (x, x + 1) x (r, r + 1) with x = xs + kx, r = y + ky, so that e is 4
+ * times a pixel's (U units times 4). The gradient is taken across the cell from the background
+ * columns just outside the three it uses, b[.][x + 3] - b[.][x - 1] over its rows r, r + 1,
+ * r + 2 weighted 1, 2, 1 (4 times the gradient of B; the solver takes gain 4), and the same
+ * along y: from pixels the cell does not use, as in lk_loop_. Background columns x - 1 .. x + 3
+ * and rows r - 1 .. r + 3. */
 static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                                 const warp_t *g, int32_t st, lk_sums_t *s, const bool plain)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height;
     const uint32_t bf = p->bf;
-    const int32_t xa = 2 - g->kx > 0 ? 2 - g->kx : 0, xb = (w - 5 - g->kx < w - 2 ? w - 5 - g->kx : w - 2);
-    const int32_t ya = 2 - g->ky > 0 ? 2 - g->ky : 0, yb = (h - 5 - g->ky < h - 2 ? h - 5 - g->ky : h - 2);
+    const int32_t xa = 1 - g->kx > 0 ? 1 - g->kx : 0, xb = (w - 4 - g->kx < w - 2 ? w - 4 - g->kx : w - 2);
+    const int32_t ya = 1 - g->ky > 0 ? 1 - g->ky : 0, yb = (h - 4 - g->ky < h - 2 ? h - 4 - g->ky : h - 2);
     const uint64_t fx = g->fx, fy = g->fy, gx0 = 256u - fx, gy0 = 256u - fy;
     const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
     const int32_t *cn = p->colnow;
@@ -314,9 +315,8 @@ static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const 
     uint32_t n = 0u;
     for (int32_t y = y0; y <= yb; y += st) {
         const uint8_t *ra = pft_frame_row(f, (uint32_t)y), *rb = pft_frame_row(f, (uint32_t)y + 1u);
-        const uint16_t *q0 = p->bg + (size_t)(y + g->ky - 2) * (size_t)w; /* row r - 2 */
-        const uint16_t *q1 = q0 + w, *q2 = q1 + w, *q3 = q2 + w, *q4 = q3 + w, *q5 = q4 + w;
-        const uint16_t *q6 = q5 + w;
+        const uint16_t *q1 = p->bg + (size_t)(y + g->ky - 1) * (size_t)w; /* row r - 1 */
+        const uint16_t *q2 = q1 + w, *q3 = q2 + w, *q4 = q3 + w, *q5 = q4 + w;
         for (int32_t xs = x0; xs <= xb; xs += st) {
             uint32_t v0, v1, v2, v3;
             if (plain) {
@@ -352,14 +352,10 @@ static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const 
             const int32_t bw = (int32_t)((h0 * gy0 + h1 * fy + 32768u) >> 16);
             const int32_t zs = (int32_t)((v0 + v1 + v2 + v3) << bf) - 2 * (cn[xs] + cn[xs + 1]);
             const int32_t e = zs - bw;
-            const int32_t d2 = ((int32_t)q2[x + 3] + q2[x + 4]) - ((int32_t)q2[x - 2] + q2[x - 1]);
-            const int32_t d3 = ((int32_t)q3[x + 3] + q3[x + 4]) - ((int32_t)q3[x - 2] + q3[x - 1]);
-            const int32_t d4 = ((int32_t)q4[x + 3] + q4[x + 4]) - ((int32_t)q4[x - 2] + q4[x - 1]);
-            const int32_t gx = d2 + 2 * d3 + d4;
-            const int32_t e0 = ((int32_t)q5[x] + q6[x]) - ((int32_t)q0[x] + q1[x]);
-            const int32_t e1 = ((int32_t)q5[x + 1] + q6[x + 1]) - ((int32_t)q0[x + 1] + q1[x + 1]);
-            const int32_t e2 = ((int32_t)q5[x + 2] + q6[x + 2]) - ((int32_t)q0[x + 2] + q1[x + 2]);
-            const int32_t gy = e0 + 2 * e1 + e2;
+            const int32_t gx = ((int32_t)q2[x + 3] - q2[x - 1]) + 2 * ((int32_t)q3[x + 3] - q3[x - 1]) +
+                               ((int32_t)q4[x + 3] - q4[x - 1]);
+            const int32_t gy = ((int32_t)q5[x] - q1[x]) + 2 * ((int32_t)q5[x + 1] - q1[x + 1]) +
+                               ((int32_t)q5[x + 2] - q1[x + 2]);
             sxx += (int64_t)gx * gx;
             sxy += (int64_t)gx * gy;
             syy += (int64_t)gy * gy;
@@ -565,7 +561,7 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         int32_t dl[2];
         const bool last = it + 1u == p->cfg.reg_iters;
         rms = rms_counts_(&sums, p->bf, p->cfg.reg_bin);
-        if (!lk_solve_(&sums, p->cfg.reg_bin ? 10 : 6, dl, sd)) {
+        if (!lk_solve_(&sums, p->cfg.reg_bin ? 4 : 6, dl, sd)) {
             ok = false;
             break;
         }
