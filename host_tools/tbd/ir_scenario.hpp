@@ -93,6 +93,8 @@ struct TrackerSettings {
     bool warp_cubic = true;                     ///< temporal: cubic (true) or bilinear (false) warp of the background (pft_pre warp_cubic)
     int sigma_step = 1;                         ///< tile sigmas from every sigma_step-th pixel of every sigma_step-th row (pft_pre sigma_step, 1..4)
     bool sigma_interp = true;                   ///< 1/sigma interpolated between tile centres (true) or held per tile (false) (pft_pre sigma_interp)
+    int sigma_every = 1;                        ///< tile sigmas of each tile row estimated every sigma_every-th frame (pft_pre sigma_every, 1..8)
+    bool reg_bin = false;                       ///< temporal: registration sums on 2 x 2 boxes of pixels (pft_pre reg_bin; reg_step at least 2)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

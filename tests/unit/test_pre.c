@@ -262,7 +262,8 @@ static void test_config_and_workspace(void)
                                         "sat_level", "dead_level", "local_outer",
                                         "local_guard", "bg_alpha", "reg_search", "reg_iters",
                                         "reg_step", "tile", "sigma_floor", "peak_max",
-                                        "peak_threshold", "sigma_step", "sigma_step"};
+                                        "peak_threshold", "sigma_step", "sigma_step",
+                                        "sigma_every", "reg_bin"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         config(&c, PFT_PRE_BG_LOCAL);
         switch (i) {
@@ -284,7 +285,9 @@ static void test_config_and_workspace(void)
         case 15: c.peak_max = PFT_PRE_MAX_PEAKS + 1u; break;
         case 16: c.peak_threshold = 0; break;
         case 17: c.sigma_step = PFT_PRE_MAX_SIGMA_STEP + 1u; break;
-        default: c.sigma_step = 4; break; /* tile 24 < 8 x 4 */
+        case 18: c.sigma_step = 4; break; /* tile 24 < 8 x 4 */
+        case 19: c.sigma_every = PFT_PRE_MAX_SIGMA_EVERY + 1u; break;
+        default: c.reg_bin = true; c.reg_step = 1; break; /* boxes would overlap */
         }
         const char *field = NULL;
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_config_check(&c, &field));
@@ -491,6 +494,101 @@ static void test_sigma_step_samples_its_grid(void)
             TEST_ASSERT_TRUE_MESSAGE(s > 40.0, "every pixel's sigma");
         }
     }
+}
+
+/* sigma_every 2 (local background, 3 tile rows of 24): the noise steps from 20 to 60 counts at
+ * frame 6; tile rows 0 and 2 are estimated on even frames, row 1 on odd ones, so after frame 6
+ * rows 0 and 2 read about 60 and row 1 still about 20, and after frame 7 every row reads about
+ * 60. With sigma_every 1 every row reads about 60 after frame 6. Bounds 30 and 45: a tile's MAD
+ * sigma over its 400..576 unmasked pixels has a standard error of about 5 % (Gaussian MAD:
+ * 1.36 / n in relative variance), so 20 and 60 are each more than 5 standard errors from
+ * them. */
+static void test_sigma_every_keeps_rows(void)
+{
+    for (int every = 1; every <= 2; ++every) {
+        pft_pre_config_t c;
+        config(&c, PFT_PRE_BG_LOCAL);
+        c.sigma_every = (uint8_t)every;
+        pft_pre_t p;
+        init(&p, &c);
+        const size_t nt = (size_t)(W / TILE) * (H / TILE);
+        for (uint32_t k = 0; k < 8u; ++k) {
+            plane(3000.0, 5.0, 5.0, k < 6u ? 20.0 : 60.0);
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            if (k < 6u) {
+                continue;
+            }
+            TEST_ASSERT_EQUAL_UINT32(nt, pft_pre_sigma(&p, g_sig, 64));
+            for (size_t t = 0; t < nt; ++t) {
+                const double s = g_sig[t] / 65536.0;
+                const bool old = every == 2 && k == 6u && t / (W / TILE) == 1u;
+                if (old) {
+                    TEST_ASSERT_TRUE_MESSAGE(s < 30.0, "a tile row not estimated keeps its sigma");
+                } else {
+                    TEST_ASSERT_TRUE_MESSAGE(s > 45.0, "an estimated tile row follows the noise");
+                }
+            }
+        }
+    }
+}
+
+/* A paraboloid 3000 + ((x - 48 - sx)^2 + (y - 36 - sy)^2) counts plus noise of sigma: the
+ * scene shifted by (sx, sy), exactly (gradients up to 96 counts per pixel, in every direction). */
+static void paraboloid(double sx, double sy, double sigma)
+{
+    const int64_t qs = q10(sigma);
+    for (int y = 0; y < H; ++y) {
+        for (int x = 0; x < W; ++x) {
+            const double dx = x - 48.0 - sx, dy = y - 36.0 - sy;
+            g_img[y * W + x] = clampq10(q10(3000.0 + dx * dx + dy * dy) + ((qs * nq10()) >> 10), 1, 16000);
+        }
+    }
+}
+
+/* reg_bin with reg_step 4 on a drifting paraboloid with noise of 15 counts: the shift within
+ * 0.05 px (the bound of test_registration_recovers_known_shifts), and the predicted standard
+ * deviation, averaged over the frames, below 0.6 times the one of single pixels on the same
+ * grid. On a quadratic scene the warp (cubic), the bilinear taps of the sums and the central
+ * differences are exact up to rounding, so the shift error is the noise's: a box sum has 4
+ * times a pixel's gradient and twice its noise, and the ratio is 1/2 (sqrt(n / n') / 2 with
+ * the boxes' wider margin leaving n' of n samples; 0.52 measured); 0.6 leaves 20 % for the
+ * residual's own spread. Without the boxes the ratio is 1 (the test fails, checked). */
+static void test_reg_bin_halves_shift_sd(void)
+{
+    static const double steps[][2] = {{0.0, 0.0},    {0.30, -0.20}, {0.35, -0.15}, {0.25, -0.25},
+                                      {0.40, -0.10}, {0.10, 0.30},  {-0.20, 0.45}, {0.30, 0.20},
+                                      {0.30, -0.20}, {0.20, -0.30}, {0.33, 0.17}};
+    const size_t nk = sizeof steps / sizeof steps[0];
+    double sdm[2] = {0.0, 0.0};
+    for (int bin = 0; bin < 2; ++bin) {
+        pft_pre_config_t c;
+        config(&c, PFT_PRE_BG_TEMPORAL);
+        c.reg_step = 4u;
+        c.reg_bin = bin != 0;
+        pft_pre_t p;
+        init(&p, &c);
+        g_rs = 777u;
+        double sx = 0.0, sy = 0.0;
+        for (uint32_t k = 0; k < nk; ++k) {
+            sx += steps[k][0];
+            sy += steps[k][1];
+            paraboloid(sx, sy, 15.0);
+            pft_frame_t f = frame_of(g_img, k);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+            if (k == 0u) {
+                continue;
+            }
+            pft_pre_stats_t st;
+            pft_pre_stats(&p, &st);
+            TEST_ASSERT_EQUAL_UINT32(0, st.flags & (PFT_PRE_FLAG_REG_WEAK | PFT_PRE_FLAG_REG_LOST));
+            TEST_ASSERT_DOUBLE_WITHIN(0.05, steps[k][0], st.shift[0] / 65536.0);
+            TEST_ASSERT_DOUBLE_WITHIN(0.05, steps[k][1], st.shift[1] / 65536.0);
+            sdm[bin] += (st.shift_sd[0] + st.shift_sd[1]) / 65536.0 / (double)(2u * (nk - 1u));
+        }
+    }
+    TEST_ASSERT_TRUE(sdm[0] > 0.0);
+    TEST_ASSERT_TRUE_MESSAGE(sdm[1] < 0.6 * sdm[0], "boxes: predicted sd");
 }
 
 /* Point targets of 8 sigma on a steep gradient (40 counts per pixel, 2 sigma) with the
@@ -1100,6 +1198,8 @@ int main(void)
     RUN_TEST(test_reset_is_init);
     RUN_TEST(test_plane_plus_noise_gives_sigma);
     RUN_TEST(test_sigma_step_samples_its_grid);
+    RUN_TEST(test_sigma_every_keeps_rows);
+    RUN_TEST(test_reg_bin_halves_shift_sd);
     RUN_TEST(test_point_target_keeps_snr);
     RUN_TEST(test_edge_term_known_answer);
     RUN_TEST(test_dead_saturated_and_listed_pixels_masked);

@@ -98,6 +98,8 @@ extern "C" {
 #define PFT_PRE_MAX_EDGE_K 4096u
 /** Largest sigma_step. */
 #define PFT_PRE_MAX_SIGMA_STEP 4u
+/** Largest sigma_every. */
+#define PFT_PRE_MAX_SIGMA_EVERY 8u
 /** Bins of the per-tile histogram of |r| (16 exact bins, then 8 per octave up to 2^15). */
 #define PFT_PRE_BINS 104u
 
@@ -155,6 +157,8 @@ typedef struct {
     bool inplace;            /**< U16 only: the residual is written over the caller's frame buffer by pft_pre_update_inplace (pft_pre_update is then refused) and the workspace holds no residual (PFT_PRE_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it. Must be false with PFT_PIX_U8 (default false) */
     /* cost levers (docs/algorithms.md 9.5, docs/tuning.md "pre") */
     uint8_t sigma_step;      /**< the tile sigmas' histograms take every sigma_step-th pixel of every sigma_step-th row (columns and rows that are multiples of it), 0..PFT_PRE_MAX_SIGMA_STEP, 0 and 1: every pixel; tile must be at least 8 sigma_step. A tile's sigma then rests on 1/sigma_step^2 of its pixels (its standard error sigma_step times larger); the masked-pixel counts and the column offsets still see every pixel (default 1) */
+    uint8_t sigma_every;     /**< the tile sigmas of tile row j are estimated on the frames n (counted from init or reset) with (n + j) % sigma_every == 0, and kept from the last estimate on the others, 0..PFT_PRE_MAX_SIGMA_EVERY, 0 and 1: every frame; every tile row is estimated until the first estimate exists. A tile's sigma is then up to sigma_every - 1 frames old; the masked-pixel counts and the column offsets still see every frame (default 1) */
+    bool reg_bin;            /**< TEMPORAL: the Lucas-Kanade sums of the registration take 2 x 2 boxes of pixels (their sums) at the samples of reg_step, which must then be at least 2, instead of single pixels: a box sum has 4 times the gradient and twice the noise of a pixel, 4 times the information per sample where the noise sets the shift error. A cost lever with reg_step 4 (about 1.1 M instructions less per 384 x 288 frame than the defaults, the shift error of the defaults on smooth scenes, 1.4-1.7 times it on the real frames of docs/results/ir_clutter.md) and a precision lever with reg_step 2 (default false) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */

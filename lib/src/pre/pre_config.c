@@ -35,6 +35,8 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->peak_threshold = 768;
     cfg->inplace = false;
     cfg->sigma_step = 1u;
+    cfg->sigma_every = 1u;
+    cfg->reg_bin = false;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -107,6 +109,12 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->sigma_step > PFT_PRE_MAX_SIGMA_STEP || (uint32_t)c->tile < 8u * c->sigma_step) {
         return "sigma_step"; /* at least 8 x 8 samples in a whole tile */
+    }
+    if (c->sigma_every > PFT_PRE_MAX_SIGMA_EVERY) {
+        return "sigma_every";
+    }
+    if (c->reg_bin && c->reg_step < 2u) {
+        return "reg_bin"; /* boxes of 2 x 2 pixels on a grid of step 1 would overlap */
     }
     return NULL;
 }

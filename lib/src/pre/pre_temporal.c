@@ -291,9 +291,100 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
     s->n = n;
 }
 
+/* reg_bin (docs/algorithms.md 9.4 [E]): the sums over 2 x 2 boxes of pixels, box
+ * (xs, xs + 1) x (y, y + 1) at the samples of lk_loop_: z the box's sum, the background B
+ * the box sums of b (B(x, r) = b[r][x] + b[r][x + 1] + b[r + 1][x] + b[r + 1][x + 1]),
+ * bilinear in its cell (x, x + 1) x (r, r + 1) with x = xs + kx, r = y + ky, so that e is 4
+ * times a pixel's (U units times 4). The gradient is taken across the cell from the background
+ * columns just outside the three it uses, b[.][x + 3] - b[.][x - 1] over its rows r, r + 1,
+ * r + 2 weighted 1, 2, 1 (4 times the gradient of B; the solver takes gain 4), and the same
+ * along y: from pixels the cell does not use, as in lk_loop_. Background columns x - 1 .. x + 3
+ * and rows r - 1 .. r + 3. */
+static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                                const warp_t *g, int32_t st, lk_sums_t *s, const bool plain)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const uint32_t bf = p->bf;
+    const int32_t xa = 1 - g->kx > 0 ? 1 - g->kx : 0, xb = (w - 4 - g->kx < w - 2 ? w - 4 - g->kx : w - 2);
+    const int32_t ya = 1 - g->ky > 0 ? 1 - g->ky : 0, yb = (h - 4 - g->ky < h - 2 ? h - 4 - g->ky : h - 2);
+    const uint64_t fx = g->fx, fy = g->fy, gx0 = 256u - fx, gy0 = 256u - fy;
+    const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
+    const int32_t *cn = p->colnow;
+    const uint32_t lo = c->lo, span = c->span, mask = c->mask;
+    int64_t sxx = 0, sxy = 0, syy = 0, sxe = 0, sye = 0, see = 0;
+    uint32_t n = 0u;
+    for (int32_t y = y0; y <= yb; y += st) {
+        const uint8_t *ra = pft_frame_row(f, (uint32_t)y), *rb = pft_frame_row(f, (uint32_t)y + 1u);
+        const uint16_t *q1 = p->bg + (size_t)(y + g->ky - 1) * (size_t)w; /* row r - 1 */
+        const uint16_t *q2 = q1 + w, *q3 = q2 + w, *q4 = q3 + w, *q5 = q4 + w;
+        for (int32_t xs = x0; xs <= xb; xs += st) {
+            uint32_t v0, v1, v2, v3;
+            if (plain) {
+                uint16_t a[2], b[2];
+                memcpy(a, ra + 2 * xs, 4u);
+                memcpy(b, rb + 2 * xs, 4u);
+                v0 = (uint32_t)a[0] & mask;
+                v1 = (uint32_t)a[1] & mask;
+                v2 = (uint32_t)b[0] & mask;
+                v3 = (uint32_t)b[1] & mask;
+                if (v0 - lo >= span || v1 - lo >= span || v2 - lo >= span || v3 - lo >= span) {
+                    continue;
+                }
+            } else {
+                const uint32_t ux = (uint32_t)xs, uy = (uint32_t)y;
+                v0 = pft_pre_raw_(ra, ux, c);
+                v1 = pft_pre_raw_(ra, ux + 1u, c);
+                v2 = pft_pre_raw_(rb, ux, c);
+                v3 = pft_pre_raw_(rb, ux + 1u, c);
+                if (!pft_pre_valid_(c, v0, ux, uy) || !pft_pre_valid_(c, v1, ux + 1u, uy) ||
+                    !pft_pre_valid_(c, v2, ux, uy + 1u) || !pft_pre_valid_(c, v3, ux + 1u, uy + 1u)) {
+                    continue;
+                }
+            }
+            const int32_t x = xs + g->kx; /* the cell's left column */
+            /* pairs of the cell's rows r .. r + 2 at columns x and x + 1 */
+            const uint32_t m1 = q3[x + 1];
+            const uint32_t p20 = (uint32_t)q2[x] + q2[x + 1], p21 = (uint32_t)q2[x + 1] + q2[x + 2];
+            const uint32_t p30 = (uint32_t)q3[x] + m1, p31 = m1 + q3[x + 2];
+            const uint32_t p40 = (uint32_t)q4[x] + q4[x + 1], p41 = (uint32_t)q4[x + 1] + q4[x + 2];
+            const uint64_t h0 = (uint64_t)(p20 + p30) * gx0 + (uint64_t)(p21 + p31) * fx;
+            const uint64_t h1 = (uint64_t)(p30 + p40) * gx0 + (uint64_t)(p31 + p41) * fx;
+            const int32_t bw = (int32_t)((h0 * gy0 + h1 * fy + 32768u) >> 16);
+            const int32_t zs = (int32_t)((v0 + v1 + v2 + v3) << bf) - 2 * (cn[xs] + cn[xs + 1]);
+            const int32_t e = zs - bw;
+            const int32_t gx = ((int32_t)q2[x + 3] - q2[x - 1]) + 2 * ((int32_t)q3[x + 3] - q3[x - 1]) +
+                               ((int32_t)q4[x + 3] - q4[x - 1]);
+            const int32_t gy = ((int32_t)q5[x] - q1[x]) + 2 * ((int32_t)q5[x + 1] - q1[x + 1]) +
+                               ((int32_t)q5[x + 2] - q1[x + 2]);
+            sxx += (int64_t)gx * gx;
+            sxy += (int64_t)gx * gy;
+            syy += (int64_t)gy * gy;
+            sxe += (int64_t)gx * e;
+            sye += (int64_t)gy * e;
+            see += (int64_t)e * e;
+            n++;
+        }
+    }
+    s->sxx = sxx;
+    s->sxy = sxy;
+    s->syy = syy;
+    s->sxe = sxe;
+    s->sye = sye;
+    s->see = see;
+    s->n = n;
+}
+
 static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                      const warp_t *g, int32_t st, lk_sums_t *s)
 {
+    if (p->cfg.reg_bin) {
+        if (!c->u8 && c->map == NULL) {
+            lk_bin_loop_(p, f, c, g, st, s, true);
+        } else {
+            lk_bin_loop_(p, f, c, g, st, s, false);
+        }
+        return;
+    }
     if (!c->u8 && c->map == NULL) {
         lk_loop_(p, f, c, g, st, s, true);
     } else {
@@ -340,11 +431,12 @@ static uint64_t scaled_ratio_(uint64_t num, int32_t sh, uint64_t den)
     return num / (den >> rest);
 }
 
-/* Solves the Gauss-Newton step delta = -6 A^-1 v (A = [sxx sxy; sxy syy], v = [sxe sye],
- * from g = 6 grad b) in Q16.16 px; false when A is singular or worse conditioned than
- * 1 : 1000 (too little texture, or texture in one direction only). When sd is not NULL, also
- * the predicted standard deviations sd = sqrt(36 (see/n) diag(A^-1)) in Q16.16 px. */
-static bool lk_solve_(const lk_sums_t *s, int32_t delta[2], int32_t sd[2])
+/* Solves the Gauss-Newton step delta = -k A^-1 v (A = [sxx sxy; sxy syy], v = [sxe sye],
+ * from g = k grad b, gain k = 6, or 10 with reg_bin) in Q16.16 px; false when A is singular
+ * or worse conditioned than 1 : 1000 (too little texture, or texture in one direction only).
+ * When sd is not NULL, also the predicted standard deviations sd = sqrt(k^2 (see/n)
+ * diag(A^-1)) in Q16.16 px. */
+static bool lk_solve_(const lk_sums_t *s, int64_t gain, int32_t delta[2], int32_t sd[2])
 {
     if (s->n < 16u || s->sxx <= 0 || s->syy <= 0) {
         return false;
@@ -364,7 +456,7 @@ static bool lk_solve_(const lk_sums_t *s, int32_t delta[2], int32_t sd[2])
     if (det <= 0 || det < (tr * tr) / 1024) {
         return false;
     }
-    const int64_t nx = -6 * (d * vx - b * vy), ny = -6 * (a * vy - b * vx);
+    const int64_t nx = -gain * (d * vx - b * vy), ny = -gain * (a * vy - b * vx);
     const int64_t lim = (int64_t)1 << 46;
     const int64_t qx = pft_pre_div_rnd_((nx > lim ? lim : (nx < -lim ? -lim : nx)) * 65536, det);
     const int64_t qy = pft_pre_div_rnd_((ny > lim ? lim : (ny < -lim ? -lim : ny)) * 65536, det);
@@ -372,25 +464,28 @@ static bool lk_solve_(const lk_sums_t *s, int32_t delta[2], int32_t sd[2])
     delta[0] = (int32_t)(qx > one ? one : (qx < -one ? -one : qx));
     delta[1] = (int32_t)(qy > one ? one : (qy < -one ? -one : qy));
     if (sd != NULL) {
-        /* var_x = 36 (see/n) d / (det 2^k) px^2; in Q32: (36 (see/n) d) * 2^(32-k) / det */
+        /* var_x = k^2 (see/n) d / (det 2^k) px^2; in Q32: (k^2 (see/n) d) * 2^(32-k) / det
+         * (k^2 e2s d < 100 2^33 2^23 < 2^64) */
         const uint64_t e2 = (uint64_t)s->see / s->n;
         const uint32_t ez = clz64_(e2 > 0u ? e2 : 1u);
         const int32_t se = ez < 31u ? (int32_t)(31u - ez) : 0; /* keep e2 below 2^33 */
         const uint64_t e2s = e2 >> se;
         const int32_t sh = 32 - (int32_t)k + se;
-        sd[0] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(36u * e2s * (uint64_t)d, sh, (uint64_t)det));
-        sd[1] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(36u * e2s * (uint64_t)a, sh, (uint64_t)det));
+        const uint64_t g2 = (uint64_t)(gain * gain);
+        sd[0] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(g2 * e2s * (uint64_t)d, sh, (uint64_t)det));
+        sd[1] = (int32_t)pft_pre_isqrt64_(scaled_ratio_(g2 * e2s * (uint64_t)a, sh, (uint64_t)det));
     }
     return true;
 }
 
-/* RMS of e over the sums' pixels in counts, Q16.16: sqrt(see/n) * 2^(16 - bf). */
-static uint32_t rms_counts_(const lk_sums_t *s, uint32_t bf)
+/* RMS of e over the sums' pixels in counts, Q16.16: sqrt(see/n) * 2^(16 - bf); with reg_bin
+ * (box sums) of the boxes' means, sqrt(see/(16 n)) * 2^(16 - bf). */
+static uint32_t rms_counts_(const lk_sums_t *s, uint32_t bf, bool bin)
 {
     if (s->n == 0u) {
         return 0u;
     }
-    const uint64_t m = (uint64_t)s->see / s->n;
+    const uint64_t m = (uint64_t)s->see / s->n / (bin ? 16u : 1u);
     const uint32_t sh = 32u - 2u * bf;
     return pft_pre_isqrt64_(m >= ((uint64_t)1 << (63u - sh)) ? ~(uint64_t)0 >> 1 : m << sh);
 }
@@ -465,8 +560,8 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         lk_sums_(p, f, &c, &g, st, &sums);
         int32_t dl[2];
         const bool last = it + 1u == p->cfg.reg_iters;
-        rms = rms_counts_(&sums, p->bf);
-        if (!lk_solve_(&sums, dl, sd)) {
+        rms = rms_counts_(&sums, p->bf, p->cfg.reg_bin);
+        if (!lk_solve_(&sums, p->cfg.reg_bin ? 4 : 6, dl, sd)) {
             ok = false;
             break;
         }

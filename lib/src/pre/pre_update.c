@@ -84,6 +84,15 @@ static uint32_t tile_sigma_(const uint16_t *h, uint32_t n)
     return 0u;
 }
 
+/* Whether the sigmas of tile row j are estimated in this frame (sigma_every, docs/algorithms.md
+ * 9.6): every frame until a sigma is known, then tile row j on the frames n with
+ * (n + j) % sigma_every == 0 (the rows take turns, so that every frame costs the same). */
+static bool tilerow_fresh_(const pft_pre_t *p, uint32_t j)
+{
+    const uint32_t k = p->cfg.sigma_every;
+    return k <= 1u || !p->sig_known || (p->frames + j) % k == 0u;
+}
+
 /* pft_pre_bin_(|v|) for |v| < PFT_PRE_BIN_LUT_ (most residuals) at index v + PFT_PRE_BIN_LUT_ - 1,
  * looked up instead of computed (on x86-64 about 3 instructions instead of 7 with |v|);
  * every entry equals the function's value (host_tools/scripts/pre_bin_table.py --check, the
@@ -229,13 +238,15 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
     const bool colrow = y % PFT_PRE_COL_ROWS_ == 0u; /* column sums: every 4th row */
     const uint32_t ss = p->cfg.sigma_step > 1u ? p->cfg.sigma_step : 1u;
     uint32_t nm = 0u;
-    if (ss > 1u) {
-        /* sigma_step: the histograms take the sampled pixels of the sampled rows; the masked
-         * pixels and the column sums every pixel */
+    const bool fresh = tilerow_fresh_(p, j);
+    if (ss > 1u || !fresh) {
+        /* sigma_step: the histograms take the sampled pixels of the sampled rows; sigma_every:
+         * only in the frames that estimate this tile row; the masked pixels and the column sums
+         * every pixel */
         for (uint32_t x = 0; x < w; ++x) { /* vectorisable: a 16-bit compare */
             nm += r[x] == PFT_RES16_MASKED ? 1u : 0u;
         }
-        const bool hrow = y % ss == 0u;
+        const bool hrow = fresh && y % ss == 0u;
         for (uint32_t i = 0; i < p->ntx; ++i) {
             const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
             const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
@@ -278,6 +289,9 @@ void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
 {
     const uint32_t t = p->cfg.tile, w = p->cfg.width, h = p->cfg.height;
     const uint32_t y0 = j * t, ny = (y0 + t > h ? h : y0 + t) - y0;
+    if (!tilerow_fresh_(p, j)) {
+        return; /* sigma_every: the row's sigmas are kept (its histograms are empty) */
+    }
     for (uint32_t i = 0; i < p->ntx; ++i) {
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
         const uint32_t x0 = i * t, nx = (x0 + t > w ? w : x0 + t) - x0;
