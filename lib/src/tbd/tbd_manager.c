@@ -577,6 +577,8 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
             push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
         } else if (rec->age < UINT32_MAX) {
             ++rec->age;
+        } else {
+            /* the age stays at its limit */
         }
         rec->last_seq = t->last_seq;
         rec->last_timestamp_us = t->last_ts;
