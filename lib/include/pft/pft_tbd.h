@@ -176,6 +176,11 @@ typedef struct {
     uint16_t max_gap;        /**< PFT_SEQ_USE: a gap of more than max_gap periods restarts the filter or manager on that frame (the manager ends every track: ENDED events) (default PFT_SEQ_DEFAULT_GAP), 1..PFT_SEQ_MAX_GAP */
     /* input */
     pft_pixfmt_t frame_format; /**< 0 (default): frames of any supported format, converted into a real-valued frame that the workspace holds (one real per pixel and a one-pixel border). PFT_PIX_RES16 (needs pixel_gain 1, pixel_offset 0, noise_sigma 1: the stage's residual as it is): only RES16 frames are accepted (others PFT_ERR_FORMAT) and the manager reads them in place, with the same values (res / 256, a masked pixel 0) and the same results, so its workspace holds no frame (PFT_TBD_WORKSPACE_BYTES_RES16; the tracks' PSFs subtracted by the residual likelihood are real-valued patches over the frame); the standalone filter still converts (docs/algorithms.md 2.7) [E] */
+    /* sequential confirmation (manager) */
+    pft_real_t sprt_accept;  /**< 0 (default): off, a track is reported from its hand-over (the paper). > 0: Wald's sequential probability ratio test on each new track (docs/algorithms.md 2.12): the track layer is tentative after the hand-over, its frame log likelihood ratios (log_mean_lr) are summed from the next frame on, and it is confirmed (reported, CONFIRMED event) when the sum reaches sprt_accept = log((1 - beta)/alpha); a tentative track that ends or whose sum falls to sprt_reject is dropped without being reported (no event). At most 10000 [E] */
+    pft_real_t sprt_reject;  /**< lower bound log(beta/(1 - alpha)) of the test above, <= 0, at least -10000 (default -5); only with sprt_accept > 0 [E] */
+    /* shape test at the hand-over (manager) */
+    pft_real_t shape_ring;   /**< 0 (default): off. > 0: a hand-over needs the search layer's estimate to look like a point on the frame (docs/algorithms.md 2.12): the mean of the 16 pixels at distance 2 (Chebyshev) around the estimate's pixel at most shape_ring times the PSF amplitude fitted to its 3 x 3 pixels; otherwise the search layer's hypothesis is dropped (its particles cleared, as at a hand-over) and no track is made. At most 100 [E] */
 } pft_tbd_config_t;
 
 /**
@@ -372,11 +377,12 @@ typedef struct {
     uint32_t age;           /**< frames since confirmation (0 at the confirmation frame) */
     uint32_t last_seq;      /**< seq of the frame of its last update */
     uint64_t last_timestamp_us; /**< timestamp_us of that frame */
+    pft_real_t sprt_llr;    /**< with cfg.sprt_accept > 0: the sum of the layer's frame log likelihood ratios from the frame after its hand-over to its confirmation (then kept); 0 otherwise */
 } pft_tbd_track_t;
 
 /** What an event reports. */
 typedef enum {
-    PFT_TBD_EV_CONFIRMED = 1, /**< the search layer's P > theta1: a new track */
+    PFT_TBD_EV_CONFIRMED = 1, /**< the search layer's P > theta1: a new track (with cfg.sprt_accept > 0: its sequential test accepted it) */
     PFT_TBD_EV_ENDED = 2      /**< disappearance declared: the track was removed */
 } pft_tbd_event_kind_t;
 
@@ -487,7 +493,8 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t);
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
 
 /** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist (out may
- *  be NULL with max 0 to ask the count). */
+ *  be NULL with max 0 to ask the count). Tentative tracks of the sequential test
+ *  (cfg.sprt_accept > 0) are not reported, so their ids may be missing from the sequence. */
 size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
 
 /** Copies up to max events of the last update into out; returns how many happened. */

@@ -65,6 +65,9 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->seq_mode = PFT_SEQ_IGNORE;
     cfg->max_gap = (uint16_t)PFT_SEQ_DEFAULT_GAP;
     cfg->frame_format = (pft_pixfmt_t)0;
+    cfg->sprt_accept = PFT_C(0.0);
+    cfg->sprt_reject = PFT_C(-5.0);
+    cfg->shape_ring = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -240,6 +243,15 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->confirm_frames > PFT_TBD_MAX_DIS_R + 1u) {
         return "confirm_frames";
+    }
+    if (!(c->sprt_accept >= PFT_C(0.0) && c->sprt_accept <= PFT_C(10000.0))) {
+        return "sprt_accept";
+    }
+    if (!(c->sprt_reject <= PFT_C(0.0) && c->sprt_reject >= PFT_C(-10000.0))) {
+        return "sprt_reject";
+    }
+    if (!(c->shape_ring >= PFT_C(0.0) && c->shape_ring <= PFT_C(100.0))) {
+        return "shape_ring";
     }
     return NULL;
 }

@@ -531,6 +531,15 @@ static void update_tracks_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
     }
 }
 
+/* The sequential confirmation test (docs/algorithms.md 2.12): a tentative track adds its layer's
+ * frame log likelihood ratio to its sum; true when the sum has fallen to sprt_reject (the track
+ * is dropped). Nothing is added once a bound is reached (the track is then confirmed or gone). */
+static bool sprt_step_(const pft_tbd_config_t *cfg, pft_tbd_track_t *rec, const pft_tbd_filter_t *tf)
+{
+    rec->sprt_llr = pft_add(rec->sprt_llr, tf->est.log_mean_lr);
+    return rec->sprt_llr <= cfg->sprt_reject;
+}
+
 /* 1b. Disappearance: a track ends on its layer's test, on P < theta_end, with no live
  * particle left or on the short-window LR test. 2. The surviving tracks take their layers'
  * estimates and add their constraint regions (around the estimates of the previous frame, or
@@ -546,19 +555,33 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
         pft_tbd_filter_t *tf = &t->tracks[k];
         pft_real_t dx0 = rec->x;
         pft_real_t dy0 = rec->y;
-        if (tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u ||
-            lr_says_gone_(cfg, tf)) {
-            push_event_(t, PFT_TBD_EV_ENDED, rec->id, tf->est.x, tf->est.y);
+        const bool tentative = rec->first_frame == 0u; /* of the sequential test */
+        bool ends = tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u ||
+                    lr_says_gone_(cfg, tf);
+        if (!ends && tentative) {
+            ends = sprt_step_(cfg, rec, tf);
+        }
+        if (ends) {
+            if (!tentative) {
+                push_event_(t, PFT_TBD_EV_ENDED, rec->id, tf->est.x, tf->est.y);
+            } /* a tentative track of the sequential test is dropped unreported */
             memset(rec, 0, sizeof(*rec));
             --t->n_tracks;
             continue;
         }
         record_from_est_(rec, &tf->est);
+        if (tentative && rec->sprt_llr >= cfg->sprt_accept) {
+            /* the sequential test accepts: reported from this frame on */
+            rec->first_frame = t->frame;
+            rec->age = 0u;
+            push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+        } else if (rec->age < UINT32_MAX) {
+            ++rec->age;
+        } else {
+            /* the age stays at its limit */
+        }
         rec->last_seq = t->last_seq;
         rec->last_timestamp_us = t->last_ts;
-        if (rec->age < UINT32_MAX) {
-            ++rec->age;
-        }
         if (cfg->d_current) {
             dx0 = rec->x;
             dy0 = rec->y;
@@ -634,10 +657,65 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
     }
 }
 
+/* The PSF shape test at the hand-over (cfg.shape_ring, docs/algorithms.md 2.12): on the frame
+ * the search layer was weighed on (the tracks' PSFs not subtracted), around the pixel of the
+ * search layer's estimate, the PSF's amplitude fitted to the 3 x 3 pixels,
+ * a = sum g z / sum g^2 (g the PSF's taps at a zero sub-pixel offset), and the mean m of the
+ * ring of pixels at distance 2 (Chebyshev; those inside the image). True (a point) when
+ * m <= shape_ring * a; a step, a ridge or a blob wider than the PSF raises the ring. */
+static bool shape_ok_(const pft_tbd_t *t, const pft_frame_t *frame)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    size_t pix = 0u;
+    if (!(cfg->shape_ring > PFT_C(0.0)) ||
+        !pft_tbd_centre_(&t->search.model, t->search.est.x, t->search.est.y, &pix)) {
+        return true;
+    }
+    const int32_t w = (int32_t)cfg->width;
+    const int32_t h = (int32_t)cfg->height;
+    const int32_t c0 = (int32_t)(pix % (size_t)cfg->width);
+    const int32_t r0 = (int32_t)(pix / (size_t)cfg->width);
+    const pft_real_t two_s2 = pft_mul_i(pft_sq(cfg->psf_sigma), 2);
+    const pft_real_t gx = pft_exp(pft_neg(pft_div(pft_sq(cfg->dx), two_s2)));
+    const pft_real_t gy = pft_exp(pft_neg(pft_div(pft_sq(cfg->dy), two_s2)));
+    pft_tbd_scene_t_ sc;
+    scene_src_(t, frame, &sc);
+    pft_real_t fit = PFT_C(0.0);
+    pft_real_t ring = PFT_C(0.0);
+    int32_t n_ring = 0;
+    for (int32_t b = -2; b <= 2; ++b) {
+        const int32_t r = r0 + b;
+        if (r < 0 || r >= h) {
+            continue;
+        }
+        const pft_real_t *row = pft_tbd_row_(&sc, (uint32_t)r) + 1;
+        const int32_t ab = b < 0 ? -b : b;
+        for (int32_t a = -2; a <= 2; ++a) {
+            const int32_t c = c0 + a;
+            const int32_t aa = a < 0 ? -a : a;
+            if (c < 0 || c >= w) {
+                continue;
+            }
+            if (aa == 2 || ab == 2) {
+                ring = pft_add(ring, row[c]);
+                ++n_ring;
+            } else {
+                const pft_real_t g = pft_mul(aa == 1 ? gx : PFT_REAL_ONE, ab == 1 ? gy : PFT_REAL_ONE);
+                fit = pft_add(fit, pft_mul(g, row[c]));
+            }
+        }
+    }
+    const pft_real_t den = pft_mul(pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gx), 2)),
+                                   pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gy), 2)));
+    const pft_real_t amp = pft_div(fit, den);
+    const pft_real_t mean = n_ring > 0 ? pft_div_i(ring, n_ring) : PFT_C(0.0);
+    return !(mean > pft_mul(cfg->shape_ring, amp));
+}
+
 /* 4. Appearance: when the search layer's P has exceeded theta1 on confirm_frames consecutive
  * frames (docs/algorithms.md 2.11) and a slot is free, hand its particles over to a new track
  * layer (docs/algorithms.md 2.7) and clear the search layer. */
-static void confirm_(pft_tbd_t *t)
+static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const uint32_t need = cfg->confirm_frames > 1u ? cfg->confirm_frames : 1u;
@@ -649,6 +727,13 @@ static void confirm_(pft_tbd_t *t)
         ++t->above;
     }
     if ((uint32_t)t->above < need || t->n_tracks >= cfg->max_targets) {
+        return;
+    }
+    if (!shape_ok_(t, frame)) {
+        /* not a point: the hypothesis is dropped and the search layer starts over */
+        memset(t->search.cur.e, 0, t->search.n);
+        t->search.bq = PFT_C(0.0);
+        t->above = 0u;
         return;
     }
     uint32_t k = 0;
@@ -677,14 +762,17 @@ static void confirm_(pft_tbd_t *t)
     record_from_est_(rec, &tf->est);
     rec->last_seq = t->last_seq;
     rec->last_timestamp_us = t->last_ts;
-    rec->first_frame = t->frame;
+    rec->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
     rec->age = 0u;
+    rec->sprt_llr = PFT_C(0.0);
     tf->frames = 0u;
     memset(t->search.cur.e, 0, t->search.n);
     t->search.bq = PFT_C(0.0); /* birth_share: the search layer starts over */
     t->above = 0u;
     ++t->n_tracks;
-    push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+    if (rec->first_frame != 0u) {
+        push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
+    } /* else confirmed (and reported) when its sequential test accepts it */
 }
 
 /* periods lost frames (a seq gap): every live layer moves that many times without a frame. */
@@ -705,7 +793,9 @@ static void restart_(pft_tbd_t *t)
     for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
         pft_tbd_track_t *rec = &t->records[k];
         if (rec->id != 0u) {
-            push_event_(t, PFT_TBD_EV_ENDED, rec->id, rec->x, rec->y);
+            if (rec->first_frame != 0u) {
+                push_event_(t, PFT_TBD_EV_ENDED, rec->id, rec->x, rec->y);
+            } /* a tentative track ends unreported */
             memset(rec, 0, sizeof(*rec));
         }
     }
@@ -763,7 +853,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;
     t->search.est.gap = seen;
-    confirm_(t);
+    confirm_(t, frame);
     return PFT_OK;
 }
 
@@ -773,6 +863,10 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         return 0u;
     }
     size_t n = 0;
+    size_t n_conf = 0; /* the tracks less the tentative ones of the sequential test */
+    for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
+        n_conf += t->records[k].id != 0u && t->records[k].first_frame != 0u ? 1u : 0u;
+    }
     uint32_t last = 0;
     for (uint32_t pass = 0; pass < t->cfg.max_targets && n < max && out != NULL; ++pass) {
         /* next smallest id above `last` */
@@ -781,7 +875,7 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         bool found = false;
         for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
             uint32_t id = t->records[k].id;
-            if (id != 0u && id > last && id <= best) {
+            if (id != 0u && t->records[k].first_frame != 0u && id > last && id <= best) {
                 best = id;
                 bk = k;
                 found = true;
@@ -796,7 +890,7 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         ++n;
         last = best;
     }
-    return t->n_tracks;
+    return n_conf;
 }
 
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max)
