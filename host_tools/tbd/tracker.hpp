@@ -68,7 +68,8 @@ public:
     std::size_t workspace_bytes() const { return ws_bytes_; }
     bool single() const { return single_; }
     const pft_tbd_config_t &config() const { return cfg_; }
-    /** Particles updated at the last frame (multi: search + active tracks). */
+    /** Particles updated at the last frame (multi: n_search + n_track per track layer live
+     *  before the frame, reported or tentative (cfg.sprt_accept > 0)). */
     uint64_t active_particles() const { return active_; }
 
 private:
