@@ -256,6 +256,20 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
         t.first_frame = tr[i].first_frame;
         out.tracks.push_back(t);
     }
+    for (uint32_t k = 0; cfg_.sprt_accept > to_real(0.0) && k < cfg_.max_targets; ++k) {
+        const pft_tbd_track_t &r = mgr_.records[k];  // the manager's slots: id 0 free, first_frame 0 tentative
+        if (r.id == 0u || r.first_frame != 0u || r.age == 0u)
+            continue;  // age 0: the hand-over frame, whose position is the search layer's estimate
+        TrackOut t;
+        t.id = r.id;
+        t.x = from_real(r.x);
+        t.y = from_real(r.y);
+        t.vx = from_real(r.vx);
+        t.vy = from_real(r.vy);
+        t.intensity = from_real(r.intensity);
+        t.p_exist = from_real(r.p_exist);
+        out.tentative.push_back(t);
+    }
     std::vector<pft_tbd_event_t> ev(static_cast<std::size_t>(cfg_.max_targets) + 1u);
     std::size_t ne = pft_tbd_events(&mgr_, ev.data(), ev.size());
     if (ne > ev.size())
