@@ -45,6 +45,7 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.sprt_accept, c.sprt_accept);
     set_real_if(t.sprt_reject, c.sprt_reject);
     set_real_if(t.shape_ring, c.shape_ring);
+    c.sprt_start = static_cast<uint8_t>(t.sprt_start);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
     c.birth_correction = t.birth_correction;
