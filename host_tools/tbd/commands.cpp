@@ -1068,6 +1068,31 @@ private:
                   sum["targets"][0].contains("rmse") && sum["targets"][0].contains("false_tracks") &&
                   sum["averaged"]["existence_probability"].size() == 30);
         check("summary: line floor 0.386 at 6 dB", std::fabs(sum["targets"][0]["pcrlb"].get<double>() - 0.386) < 5e-4);
+        // Tracker::active_particles counts the tentative layers of the sequential test: with
+        // bounds it never reaches (sprt_accept 10000, sprt_reject -10000) every layer is
+        // tentative and steps as without the test (docs/algorithms.md 2.12), so the counts
+        // per frame are equal (exact: same layers), and above n_search once a layer exists
+        {
+            json j2 = j;
+            j2["noise"]["snr_db"] = 12;  // a hand-over within the 30 frames
+            Scenario s2 = parse_scenario(j2, "<selftest>");
+            Sequence q2 = simulate(s2, 7, 0, true);
+            pft_tbd_config_t c0 = make_config(s2, 7), c1 = c0;
+            c1.sprt_accept = to_real(10000.0);
+            c1.sprt_reject = to_real(-10000.0);
+            Tracker a(c0, false), b(c1, false);
+            bool same = true;
+            int with_layer = 0, reported = 0;
+            for (int k = 0; k < q2.frames; ++k) {
+                const FrameOut oa = a.update_f32(q2.images[k].data(), static_cast<uint32_t>(k + 1));
+                const FrameOut ob = b.update_f32(q2.images[k].data(), static_cast<uint32_t>(k + 1));
+                same = same && a.active_particles() == b.active_particles();
+                with_layer += b.active_particles() > c1.n_search ? 1 : 0;
+                reported += static_cast<int>(ob.tracks.size());
+                (void)oa;
+            }
+            check("cost: tentative layers counted in active_particles", same && with_layer > 0 && reported == 0);
+        }
         return fails;
     }
 };

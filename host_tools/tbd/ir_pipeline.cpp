@@ -45,6 +45,7 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.sprt_accept, c.sprt_accept);
     set_real_if(t.sprt_reject, c.sprt_reject);
     set_real_if(t.shape_ring, c.shape_ring);
+    c.sprt_start = static_cast<uint8_t>(t.sprt_start);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
     c.birth_correction = t.birth_correction;
@@ -240,7 +241,12 @@ void residual_highpass(const int16_t *res, std::size_t stride, int w, int h, int
 // clutter that drifts with the platform (a cloud edge, the horizon, a structure) for good. Such
 // a track is dropped from the output, and with the clutter map on its map entries (3 x 3 around
 // it) are raised to at least 16 (4 sigma), so that its evidence fades from the next frame and
-// the manager ends it. The other tracks are reported from their n-th frame on.
+// the manager ends it. The other tracks are reported from their n-th frame on. With the
+// library's sequential test (sprt_accept > 0) a track is tentative for some frames after its
+// hand-over; with scene_tentative its positions count from the frame after the hand-over on
+// (FrameOut::tentative), so that both tests run over the same frames, and a tentative track found
+// moving with the scene raises the map too (off by default: measured, it delays the reports,
+// docs/results/ir_clutter.md "Branch irseq2").
 // rms distance (px) of positions h[i] (x, y; one per frame) from their least-squares straight
 // line at constant speed, x(i) = x0 + vx i and y(i) = y0 + vy i (TrackerSettings::scene_fit_px)
 double line_fit_rms(const std::vector<std::array<double, 4>> &h)
@@ -274,7 +280,11 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
 {
     const std::size_t n = static_cast<std::size_t>(T_.scene_frames);
     std::vector<tbd::TrackOut> kept;
-    for (const tbd::TrackOut &t : out.tracks) {
+    const std::size_t n_rep = out.tracks.size();
+    const std::size_t n_all = n_rep + (T_.scene_tentative ? out.tentative.size() : 0u);
+    for (std::size_t i = 0; i < n_all; ++i) {
+        const bool tentative = i >= n_rep;
+        const tbd::TrackOut &t = tentative ? out.tentative[i - n_rep] : out.tracks[i];
         SceneHist &s = hist_[t.id];
         s.last = frame_no_;
         s.h.push_back({t.x, t.y, scene_x_, scene_y_});
@@ -295,6 +305,8 @@ void IrPipeline::scene_test(tbd::FrameOut &out)
             }
             continue;
         }
+        if (tentative)
+            continue;  // not reported yet: its positions are kept for the test
         // early report (scene_early_px > 0): from the 4th estimate on, a track already moving
         // against the scene by more than scene_early_px per frame (over its last 3 frames)
         // that fits a straight line is reported before the test's n + 1 estimates

@@ -107,6 +107,7 @@ struct TrackerSettings {
     std::optional<double> peak_gamma, theta1, pb, theta_end;
     std::optional<double> sprt_accept, sprt_reject; ///< sequential confirmation (pft_tbd sprt_*; absent: the library default, off)
     std::optional<double> shape_ring;               ///< PSF shape test at the hand-over (pft_tbd shape_ring; absent: off)
+    int sprt_start = 0;                             ///< what the sequential test starts from (pft_tbd sprt_start: 0 zero, 1 the search layer's ratios over its confirmation, 2 its log odds)
     // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,
     // registered to the scene (warped by the stage's measured shift every frame); both trackers
     // see the residual of clutter pixels in the map's sigma (ir_pipeline.cpp, clutter_step)
@@ -118,6 +119,7 @@ struct TrackerSettings {
     int scene_frames = 5;                       ///< frames of the test (0: off)
     double scene_gate_px = 0.15;                ///< px per frame
     double scene_fit_px = 0.2;                  ///< report a track only while its last scene_frames + 1 positions fit a straight line at constant speed within this rms (px; 0: off)
+    bool scene_tentative = false;               ///< with sprt_accept: the test also counts a track's tentative frames (from the frame after its hand-over), not only its reported ones (docs/results/ir_clutter.md, "Branch irseq2")
     double scene_early_px = 0.5;                ///< report a track from its 4th estimate when it moved against the scene by more than this per frame over its last 3 frames (and fits the line); 0: off (docs/results/ir_clutter.md, "Clear sky: why targets are missed")
     double clutter_thr = 2;                     ///< map value (sigma^2) above which a pixel is clutter
     double clutter_veto = 0;                    ///< map value (sigma^2) above which the residual is 0 (no births there; 0: off)

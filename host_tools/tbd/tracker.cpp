@@ -224,6 +224,10 @@ FrameOut Tracker::update_single(const pft_frame_t &frame)
 FrameOut Tracker::update_multi(const pft_frame_t &frame)
 {
     FrameOut out;
+    // the layers stepped at this frame are those live before it: reported tracks and, with the
+    // sequential test (cfg.sprt_accept > 0), tentative ones, which pft_tbd_tracks and the events
+    // do not show; a hand-over of this frame comes after the step
+    const uint64_t live = mgr_.n_tracks;
     pft_status_t st = pft_tbd_update(&mgr_, &frame);
     if (st != PFT_OK)
         lib_error("pft_tbd_update", st);
@@ -239,7 +243,7 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
     std::size_t n = pft_tbd_tracks(&mgr_, tr.data(), tr.size());
     if (n > tr.size())
         n = tr.size();
-    active_ = cfg_.n_search;
+    active_ = cfg_.n_search + live * cfg_.n_track;
     for (std::size_t i = 0; i < n; ++i) {
         TrackOut t;
         t.id = tr[i].id;
@@ -252,20 +256,28 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
         t.first_frame = tr[i].first_frame;
         out.tracks.push_back(t);
     }
+    for (uint32_t k = 0; cfg_.sprt_accept > to_real(0.0) && k < cfg_.max_targets; ++k) {
+        const pft_tbd_track_t &r = mgr_.records[k];  // the manager's slots: id 0 free, first_frame 0 tentative
+        if (r.id == 0u || r.first_frame != 0u || r.age == 0u)
+            continue;  // age 0: the hand-over frame, whose position is the search layer's estimate
+        TrackOut t;
+        t.id = r.id;
+        t.x = from_real(r.x);
+        t.y = from_real(r.y);
+        t.vx = from_real(r.vx);
+        t.vy = from_real(r.vy);
+        t.intensity = from_real(r.intensity);
+        t.p_exist = from_real(r.p_exist);
+        out.tentative.push_back(t);
+    }
     std::vector<pft_tbd_event_t> ev(static_cast<std::size_t>(cfg_.max_targets) + 1u);
     std::size_t ne = pft_tbd_events(&mgr_, ev.data(), ev.size());
-    std::size_t layers = n;
     if (ne > ev.size())
         ne = ev.size();
     for (std::size_t i = 0; i < ne; ++i) {
         out.events.push_back({static_cast<int>(ev[i].kind), ev[i].id, by_seq ? frame.seq : ev[i].frame,
                               from_real(ev[i].x), from_real(ev[i].y)});
-        if (ev[i].kind == PFT_TBD_EV_ENDED)
-            ++layers;  // that layer was updated this frame before it ended
-        else if (ev[i].kind == PFT_TBD_EV_CONFIRMED && layers > 0)
-            --layers;  // created after the search update: not updated yet
     }
-    active_ += static_cast<uint64_t>(layers) * cfg_.n_track;
     return out;
 }
 

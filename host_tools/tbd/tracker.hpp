@@ -38,6 +38,9 @@ struct FrameOut {
     uint32_t frame = 0;
     std::vector<TrackOut> tracks;
     std::vector<EventOut> events;
+    /// multi with cfg.sprt_accept > 0: the tentative tracks of the sequential test (not reported,
+    /// docs/algorithms.md 2.12), id, position and velocity from the hand-over on; first_frame 0
+    std::vector<TrackOut> tentative;
     double search_p = 0;  ///< multi: search layer P; single: the filter's P
     double search_x = 0, search_y = 0;
     bool search_valid = false;
@@ -68,7 +71,8 @@ public:
     std::size_t workspace_bytes() const { return ws_bytes_; }
     bool single() const { return single_; }
     const pft_tbd_config_t &config() const { return cfg_; }
-    /** Particles updated at the last frame (multi: search + active tracks). */
+    /** Particles updated at the last frame (multi: n_search + n_track per track layer live
+     *  before the frame, reported or tentative (cfg.sprt_accept > 0)). */
     uint64_t active_particles() const { return active_; }
 
 private:

@@ -45,6 +45,8 @@ static uint8_t g_snap[WS_BYTES + 64];
 static uint16_t g_raw[IMG * IMG];
 
 /* The recommended preset on 32 x 32 U16 frames of sigma 2 (z = raw / 256 - 64). */
+static uint8_t g_start; /* cfg.sprt_start of the next run */
+
 static void cfg_of(pft_tbd_config_t *c, double accept, double reject)
 {
     pft_tbd_config_recommended(c);
@@ -61,6 +63,7 @@ static void cfg_of(pft_tbd_config_t *c, double accept, double reject)
     c->seed = 3u;
     c->sprt_accept = R(accept);
     c->sprt_reject = R(reject);
+    c->sprt_start = g_start;
 }
 
 /* What one run saw per frame (index k - 1). */
@@ -74,6 +77,10 @@ typedef struct {
     int ended[FRAMES];          /* ENDED events */
     int layers[FRAMES];         /* track layers running, tentative ones included (the
                                    instance's n_tracks, pft/internal/pft_tbd_types.h) */
+    int start_seen[FRAMES];     /* track id 1 tentative at its hand-over frame (age 0) */
+    double start[FRAMES];       /* then its sprt_llr (the start of its sum) */
+    double start1[FRAMES];      /* and what sprt_start 1 and 2 give, from the search layer */
+    double start2[FRAMES];      /* (internal layout), in double */
 } run_t;
 
 static pft_tbd_t g_t;
@@ -97,6 +104,23 @@ static void run(double accept, double reject, int last, double theta_end, run_t 
         size_t n = pft_tbd_tracks(&g_t, tk, MAXT);
         o->n_tracks[k - 1] = (int)n;
         o->layers[k - 1] = (int)g_t.n_tracks;
+        for (uint32_t u = 0; u < MAXT; ++u) {
+            const pft_tbd_track_t *rec = &g_t.records[u];
+            if (rec->id == 1u && rec->first_frame == 0u && rec->age == 0u) {
+                const pft_tbd_filter_t *sf = &g_t.search;
+                const uint32_t need = c.confirm_frames > 1u ? c.confirm_frames : 1u;
+                double s1 = 0.0;
+                for (uint32_t q = 0; q < need && q < sf->n_lr; ++q) {
+                    s1 += D(sf->lr_hist[q]);
+                }
+                const double p = D(sf->est.p_exist);
+                const double s2 = log(fmax(p, 1e-4) / fmax(1.0 - p, 1e-4));
+                o->start_seen[k - 1] = 1;
+                o->start[k - 1] = D(rec->sprt_llr);
+                o->start1[k - 1] = fmax(s1, 0.0);
+                o->start2[k - 1] = fmax(s2, 0.0);
+            }
+        }
         for (size_t i = 0; i < n && i < MAXT; ++i) {
             if (tk[i].id == 1u) {
                 o->has1[k - 1] = 1;
@@ -250,6 +274,55 @@ static void test_fields_refused_by_name(void)
     c.sprt_reject = R(-10001.0);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
     TEST_ASSERT_EQUAL_STRING("sprt_reject", field);
+    c.sprt_reject = R(-5.0);
+    TEST_ASSERT_EQUAL_INT(0, c.sprt_start); /* default: from 0 */
+    c.sprt_start = 3u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("sprt_start", field);
+}
+
+/* cfg.sprt_start: the tentative track's sum at its hand-over frame is 0 (mode 0), the search
+ * layer's ratios over the confirm_frames frames of its confirmation (1) or its log odds (2),
+ * floored at 0, read from the search layer at that frame; on this bright target both are
+ * positive (the sum does start higher), so that the bound is reached no later than from 0, and
+ * the layers are those of the run from 0 (the start changes the sum only). Tolerance SUM_TOL:
+ * the same values added in the same order; in q16 pft_div and pft_log are within 1 step of
+ * 2^-16 (test_real), far inside 1e-3 for the ratios below 1e4 met here. */
+static void test_start_from_the_search_layer(void)
+{
+    static run_t r0, r1, r2;
+    const double accept = 12.0;
+    g_start = 0u;
+    run(accept, -5.0, FRAMES, 0.5, &r0);
+    g_start = 1u;
+    run(accept, -5.0, FRAMES, 0.5, &r1);
+    g_start = 2u;
+    run(accept, -5.0, FRAMES, 0.5, &r2);
+    g_start = 0u;
+    int h = -1;
+    for (int k = 1; k <= FRAMES; ++k) {
+        if (r0.start_seen[k - 1]) {
+            h = k;
+            break;
+        }
+    }
+    TEST_ASSERT_TRUE_MESSAGE(h > 0, "the bright target is handed over");
+    TEST_ASSERT_TRUE(r1.start_seen[h - 1] && r2.start_seen[h - 1]);
+    TEST_ASSERT_DOUBLE_WITHIN(SUM_TOL, 0.0, r0.start[h - 1]);
+    TEST_ASSERT_TRUE(r1.start1[h - 1] > 0.5 && r2.start2[h - 1] > 0.5);
+    TEST_ASSERT_DOUBLE_WITHIN(SUM_TOL, r1.start1[h - 1], r1.start[h - 1]);
+    TEST_ASSERT_DOUBLE_WITHIN(SUM_TOL, r2.start2[h - 1], r2.start[h - 1]);
+    int a0 = -1, a1 = -1, a2 = -1;
+    for (int k = FRAMES; k >= 1; --k) {
+        a0 = r0.confirmed[k - 1] ? k : a0;
+        a1 = r1.confirmed[k - 1] ? k : a1;
+        a2 = r2.confirmed[k - 1] ? k : a2;
+        TEST_ASSERT_EQUAL_INT(r0.layers[k - 1], r1.layers[k - 1]);
+        TEST_ASSERT_EQUAL_INT(r0.layers[k - 1], r2.layers[k - 1]);
+    }
+    TEST_ASSERT_TRUE_MESSAGE(a0 > h, "accepted from 0 after the hand-over");
+    TEST_ASSERT_TRUE(a1 > h && a1 <= a0 && a2 > h && a2 <= a0);
+    TEST_ASSERT_TRUE_MESSAGE(a1 < a0 || a2 < a0, "a head start accepts earlier");
 }
 
 static void test_refused_frame_leaves_a_tentative_track_untouched(void)
@@ -355,5 +428,6 @@ int main(void)
     RUN_TEST(test_reject_bound_drops_the_tentative_track);
     RUN_TEST(test_refused_frame_leaves_a_tentative_track_untouched);
     RUN_TEST(test_shape_test_passes_a_point_and_stops_a_blob);
+    RUN_TEST(test_start_from_the_search_layer);
     return UNITY_END();
 }

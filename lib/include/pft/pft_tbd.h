@@ -181,6 +181,8 @@ typedef struct {
     pft_real_t sprt_reject;  /**< lower bound log(beta/(1 - alpha)) of the test above, <= 0, at least -10000 (default -5); only with sprt_accept > 0 [E] */
     /* shape test at the hand-over (manager) */
     pft_real_t shape_ring;   /**< 0 (default): off. > 0: a hand-over needs the search layer's estimate to look like a point on the frame (docs/algorithms.md 2.12): the mean of the 16 pixels at distance 2 (Chebyshev) around the estimate's pixel at most shape_ring times the PSF amplitude fitted to its 3 x 3 pixels; otherwise the search layer's hypothesis is dropped (its particles cleared, as at a hand-over) and no track is made. At most 100 [E] */
+    /* start of the sequential test (manager) */
+    uint8_t sprt_start;      /**< with sprt_accept > 0, the sum the sequential test starts from at a hand-over (docs/algorithms.md 2.12): 0 (default): 0 (Wald's test on the track layer alone); 1: the search layer's frame log likelihood ratios summed over the frames of its confirmation (the last confirm_frames frames, at most PFT_TBD_MAX_DIS_R + 1), floored at 0; 2: the search layer's log odds of existence at the hand-over, log(P / (1 - P)) with P and 1 - P at least 1e-4, floored at 0. At most 2 [E] */
 } pft_tbd_config_t;
 
 /**
@@ -377,7 +379,7 @@ typedef struct {
     uint32_t age;           /**< frames since confirmation (0 at the confirmation frame) */
     uint32_t last_seq;      /**< seq of the frame of its last update */
     uint64_t last_timestamp_us; /**< timestamp_us of that frame */
-    pft_real_t sprt_llr;    /**< with cfg.sprt_accept > 0: the sum of the layer's frame log likelihood ratios from the frame after its hand-over to its confirmation (then kept); 0 otherwise */
+    pft_real_t sprt_llr;    /**< with cfg.sprt_accept > 0: the sum of the layer's frame log likelihood ratios from the frame after its hand-over to its confirmation (then kept), started from the value cfg.sprt_start gives (0 by default); 0 otherwise */
 } pft_tbd_track_t;
 
 /** What an event reports. */

@@ -68,6 +68,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->sprt_accept = PFT_C(0.0);
     cfg->sprt_reject = PFT_C(-5.0);
     cfg->shape_ring = PFT_C(0.0);
+    cfg->sprt_start = 0u;
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -252,6 +253,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (!(c->shape_ring >= PFT_C(0.0) && c->shape_ring <= PFT_C(100.0))) {
         return "shape_ring";
+    }
+    if (c->sprt_start > 2u) {
+        return "sprt_start";
     }
     return NULL;
 }

@@ -712,6 +712,34 @@ static bool shape_ok_(const pft_tbd_t *t, const pft_frame_t *frame)
     return !(mean > pft_mul(cfg->shape_ring, amp));
 }
 
+/* The sum the sequential test of a new track starts from (cfg.sprt_start, docs/algorithms.md
+ * 2.12), read from the search layer before it is cleared: 0; its frame log likelihood ratios over
+ * the frames of its confirmation; or its log odds of existence. Never below 0. */
+static pft_real_t sprt_start_(const pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    const pft_tbd_filter_t *sf = &t->search;
+    pft_real_t s = PFT_C(0.0);
+    if (!(cfg->sprt_accept > PFT_C(0.0))) {
+        return s;
+    }
+    if (cfg->sprt_start == 1u) {
+        const uint32_t need = cfg->confirm_frames > 1u ? cfg->confirm_frames : 1u;
+        const uint32_t n = need < sf->n_lr ? need : sf->n_lr;
+        for (uint32_t q = 0; q < n; ++q) {
+            s = pft_add(s, sf->lr_hist[q]);
+        }
+    } else if (cfg->sprt_start == 2u) {
+        const pft_real_t lo = PFT_C(0.0001);
+        const pft_real_t p = pft_max(sf->est.p_exist, lo);
+        const pft_real_t q = pft_max(pft_sub(PFT_REAL_ONE, sf->est.p_exist), lo);
+        s = pft_log(pft_div(p, q));
+    } else {
+        /* 0: Wald's test on the track layer alone */
+    }
+    return pft_max(s, PFT_C(0.0));
+}
+
 /* 4. Appearance: when the search layer's P has exceeded theta1 on confirm_frames consecutive
  * frames (docs/algorithms.md 2.11) and a slot is free, hand its particles over to a new track
  * layer (docs/algorithms.md 2.7) and clear the search layer. */
@@ -764,7 +792,7 @@ static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
     rec->last_timestamp_us = t->last_ts;
     rec->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
     rec->age = 0u;
-    rec->sprt_llr = PFT_C(0.0);
+    rec->sprt_llr = sprt_start_(t);
     tf->frames = 0u;
     memset(t->search.cur.e, 0, t->search.n);
     t->search.bq = PFT_C(0.0); /* birth_share: the search layer starts over */
