@@ -171,6 +171,18 @@ typedef struct {
     uint32_t n;
 } lk_sums_t;
 
+/* One Lucas-Kanade sample added to the sums: gradient (gx, gy), error e. */
+static inline void lk_add_(lk_sums_t *a, int32_t gx, int32_t gy, int32_t e)
+{
+    a->sxx += (int64_t)gx * gx;
+    a->sxy += (int64_t)gx * gy;
+    a->syy += (int64_t)gy * gy;
+    a->sxe += (int64_t)gx * e;
+    a->sye += (int64_t)gy * e;
+    a->see += (int64_t)e * e;
+    a->n++;
+}
+
 /* Warp geometry of a shift s (Q16.16): the sample of pixel x is b at x - s, taps x + k and
  * x + k + 1 with weights 256 - fr and fr (per axis). */
 typedef struct {
@@ -243,8 +255,7 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
     const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
     const int32_t *cn = p->colnow;
     const uint32_t lo = c->lo, span = c->span, mask = c->mask;
-    int64_t sxx = 0, sxy = 0, syy = 0, sxe = 0, sye = 0, see = 0;
-    uint32_t n = 0u;
+    lk_sums_t acc = {0, 0, 0, 0, 0, 0, 0u}; /* a local, kept in registers */
     for (int32_t y = y0; y <= yb; y += st) {
         const uint8_t *row = pft_frame_row(f, (uint32_t)y);
         /* rows y + ky - 1 .. y + ky + 2 of the background, columns from x + kx - 1 (all inside:
@@ -273,22 +284,10 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
             const int32_t e = (int32_t)(v << bf) - cn[xs] - bw;
             const int32_t gx = ((int32_t)b0[x + 2] - b0[x - 1]) + ((int32_t)b1[x + 2] - b1[x - 1]);
             const int32_t gy = ((int32_t)b2[x] - bm[x]) + ((int32_t)b2[x + 1] - bm[x + 1]);
-            sxx += (int64_t)gx * gx;
-            sxy += (int64_t)gx * gy;
-            syy += (int64_t)gy * gy;
-            sxe += (int64_t)gx * e;
-            sye += (int64_t)gy * e;
-            see += (int64_t)e * e;
-            n++;
+            lk_add_(&acc, gx, gy, e);
         }
     }
-    s->sxx = sxx;
-    s->sxy = sxy;
-    s->syy = syy;
-    s->sxe = sxe;
-    s->sye = sye;
-    s->see = see;
-    s->n = n;
+    *s = acc;
 }
 
 /* reg_bin (docs/algorithms.md 9.4 [E]): the sums over 2 x 2 boxes of pixels, box
@@ -311,8 +310,7 @@ static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const 
     const int32_t x0 = (xa + st - 1) / st * st, y0 = (ya + st - 1) / st * st;
     const int32_t *cn = p->colnow;
     const uint32_t lo = c->lo, span = c->span, mask = c->mask;
-    int64_t sxx = 0, sxy = 0, syy = 0, sxe = 0, sye = 0, see = 0;
-    uint32_t n = 0u;
+    lk_sums_t acc = {0, 0, 0, 0, 0, 0, 0u}; /* a local, kept in registers */
     for (int32_t y = y0; y <= yb; y += st) {
         const uint8_t *ra = pft_frame_row(f, (uint32_t)y), *rb = pft_frame_row(f, (uint32_t)y + 1u);
         const uint16_t *q1 = p->bg + (size_t)(y + g->ky - 1) * (size_t)w; /* row r - 1 */
@@ -356,22 +354,10 @@ static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const 
                                ((int32_t)q4[x + 3] - q4[x - 1]);
             const int32_t gy = ((int32_t)q5[x] - q1[x]) + 2 * ((int32_t)q5[x + 1] - q1[x + 1]) +
                                ((int32_t)q5[x + 2] - q1[x + 2]);
-            sxx += (int64_t)gx * gx;
-            sxy += (int64_t)gx * gy;
-            syy += (int64_t)gy * gy;
-            sxe += (int64_t)gx * e;
-            sye += (int64_t)gy * e;
-            see += (int64_t)e * e;
-            n++;
+            lk_add_(&acc, gx, gy, e);
         }
     }
-    s->sxx = sxx;
-    s->sxy = sxy;
-    s->syy = syy;
-    s->sxe = sxe;
-    s->sye = sye;
-    s->see = see;
-    s->n = n;
+    *s = acc;
 }
 
 static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
