@@ -129,7 +129,8 @@ pft_status_t pft_pte_frame_check_(const pft_pte_input_t *in, const pft_frame_t *
         for (uint32_t x = 0; x < frame->width; ++x) {
             uint32_t bits;
             memcpy(&bits, row + 4u * x, 4u); /* integer test: no float ops (q16 builds) */
-            bad |= (uint32_t)((bits & 0x7F800000u) == 0x7F800000u);
+            /* all ones or 0: a vector compare's own lanes, no masking to 0/1 */
+            bad |= (bits & 0x7F800000u) == 0x7F800000u ? 0xFFFFFFFFu : 0u;
         }
         if (bad != 0u) {
             return PFT_ERR_FORMAT;

@@ -217,6 +217,23 @@ static inline pft_real_t sq_over_(pft_real_t e, pft_real_t g)
     }
     return pft_min(e * e / g, 22500.0f);
 }
+/* v when c is 1, +0 when c is 0, by a mask of its bits (selects of a float on the sign of
+ * another one keep gcc from vectorising a loop under the default -ftrapping-math) */
+static inline pft_real_t keep_if_(pft_real_t v, int c)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof(u));
+    u &= 0u - (uint32_t)c;
+    memcpy(&v, &u, sizeof(v));
+    return v;
+}
+/* sq_over_ without branches, the same value for every input (the quotient is formed always and
+ * kept only when e > 0 and g > 0; otherwise +0 as sq_over_'s 0.0f), for loops gcc vectorises */
+static inline pft_real_t sq_over_v_(pft_real_t e, pft_real_t g)
+{
+    const pft_real_t t = e * e / g;
+    return keep_if_(t < 22500.0f ? t : 22500.0f, (e > 0.0f) & (g > 0.0f));
+}
 #endif
 
 /* ----------------------------------------------------------------- TABLE operators */
@@ -778,6 +795,29 @@ static inline const pft_real_t *yrow_(pft_pte_t *p, uint32_t slot, uint32_t back
     return p->yring + (size_t)slot * p->ny;
 }
 
+/* s[j] += y[j], s[j] -= y[j] and s[j] += yn[j] - yo[j] for j < n: the loops of the line sums,
+ * with restrict parameters so that gcc vectorises them without a run-time overlap test (the
+ * sums and the response rows are distinct arrays of the instance) */
+static inline void rows_add_(pft_real_t *restrict s, const pft_real_t *restrict y, int32_t n)
+{
+    for (int32_t j = 0; j < n; ++j) {
+        s[j] = s[j] + y[j];
+    }
+}
+static inline void rows_sub_(pft_real_t *restrict s, const pft_real_t *restrict y, int32_t n)
+{
+    for (int32_t j = 0; j < n; ++j) {
+        s[j] = s[j] - y[j];
+    }
+}
+static inline void rows_slide_(pft_real_t *restrict s, const pft_real_t *restrict yn,
+                               const pft_real_t *restrict yo, int32_t n)
+{
+    for (int32_t j = 0; j < n; ++j) {
+        s[j] = s[j] + yn[j] - yo[j];
+    }
+}
+
 /* Adds (sign 1) or subtracts (sign -1) the responses of the frames kn - tau, tau in
  * [tau0, tau1), along the lines [j0, j1) of entry bi (local indices from its jlo) to its E
  * sums of window w. Points off the response grid count 0. q16: plain integer sums, so adding
@@ -803,13 +843,9 @@ static void bank_lines_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
             p->n_line_ops += (uint32_t)(b - a);
             const pft_real_t *restrict y = yrow_(p, (uint32_t)slot, (uint32_t)tau, a + d, b + d) + d;
             if (sign > 0) {
-                for (int32_t j = a; j < b; ++j) {
-                    se[j] = se[j] + y[j];
-                }
+                rows_add_(se + a, y + a, b - a);
             } else {
-                for (int32_t j = a; j < b; ++j) {
-                    se[j] = se[j] - y[j];
-                }
+                rows_sub_(se + a, y + a, b - a);
             }
         }
         acc -= step;
@@ -870,9 +906,7 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     const pft_real_t *restrict yn = yrow_(p, p->ring.head, 0u, j0 + dn, j1 + dn) + dn;
     const pft_real_t *restrict yo = yrow_(p, (uint32_t)so, (uint32_t)m, j0 + dold, j1 + dold) + dold;
     pft_real_t *restrict se = bank_e_(p, ti, bi, w);
-    for (int32_t j = j0; j < j1; ++j) {
-        se[j] = se[j] + yn[j] - yo[j]; /* plain sums, bounded as in bank_lines_ */
-    }
+    rows_slide_(se + j0, yn + j0, yo + j0, j1 - j0); /* plain sums, bounded as in bank_lines_ */
     const int32_t q = p->yq;
     int32_t rn = on % q;
     int32_t ro = oo % q;
@@ -1772,6 +1806,28 @@ static dir_best_ dir_scan_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *
                 lc = lc + dl;
                 dl = dl + pr->dd;
                 p->sL[j] = ls;
+                if (ls > lmax) {
+                    lmax = ls;
+                    r.jb = j;
+                }
+            }
+        } else
+#endif
+#ifndef PFT_NUMERIC_Q16
+        if (n0 > 0) {
+            /* float: the same sums in two passes, so that the first one (half the squared
+             * statistic of every position, no loop-carried value) is vectorised; the second
+             * adds the prior by its recurrence (the same sums in the same order) and finds
+             * the first largest term, as the loop below does */
+            pft_real_t *restrict sl = p->sL;
+            for (int32_t j = 0; j < n0; ++j) {
+                sl[j] = half_t2_(sq_over_v_(E[j], G[j]));
+            }
+            for (int32_t j = 0; j < n0; ++j) {
+                const pft_real_t ls = lc + sl[j];
+                lc = lc + dl;
+                dl = dl + pr->dd;
+                sl[j] = ls;
                 if (ls > lmax) {
                     lmax = ls;
                     r.jb = j;
