@@ -234,6 +234,15 @@ static inline pft_real_t sq_over_v_(pft_real_t e, pft_real_t g)
     const pft_real_t t = e * e / g;
     return keep_if_(t < 22500.0f ? t : 22500.0f, (e > 0.0f) & (g > 0.0f));
 }
+/* out[j] = half_t2_(sq_over_v_(E[j], G[j])) for j < n; restrict parameters (sL, the E sums and
+ * G are distinct arrays), so the vector loop needs no run-time overlap test */
+static inline void half_t2_rows_(pft_real_t *restrict out, const pft_real_t *restrict E,
+                                 const pft_real_t *restrict G, int32_t n)
+{
+    for (int32_t j = 0; j < n; ++j) {
+        out[j] = half_t2_(sq_over_v_(E[j], G[j]));
+    }
+}
 #endif
 
 /* ----------------------------------------------------------------- TABLE operators */
@@ -1820,9 +1829,7 @@ static dir_best_ dir_scan_(pft_pte_t *p, const step_geom_ *g, const pft_real_t *
              * adds the prior by its recurrence (the same sums in the same order) and finds
              * the first largest term, as the loop below does */
             pft_real_t *restrict sl = p->sL;
-            for (int32_t j = 0; j < n0; ++j) {
-                sl[j] = half_t2_(sq_over_v_(E[j], G[j]));
-            }
+            half_t2_rows_(sl, E, G, n0);
             for (int32_t j = 0; j < n0; ++j) {
                 const pft_real_t ls = lc + sl[j];
                 lc = lc + dl;
