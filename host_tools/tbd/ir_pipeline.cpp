@@ -90,6 +90,8 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.sigma_interp = t.sigma_interp;
     c.sigma_every = static_cast<uint8_t>(t.sigma_every);
     c.reg_bin = t.reg_bin;
+    c.sigma_current = t.sigma_current;
+    c.sigma_bracket = t.sigma_bracket;
     // the residual over the pipeline's own copy of the frame (pft_pre_update_inplace): the
     // stage's workspace holds no residual (docs/porting.md)
     c.inplace = !u8;

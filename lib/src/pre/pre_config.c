@@ -37,6 +37,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->sigma_step = 1u;
     cfg->sigma_every = 1u;
     cfg->reg_bin = false;
+    cfg->sigma_bracket = false;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -115,6 +116,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->reg_bin && c->reg_step < 2u) {
         return "reg_bin"; /* boxes of 2 x 2 pixels on a grid of step 1 would overlap */
+    }
+    if (c->sigma_bracket && (c->sigma_step > 1u || c->sigma_every > 1u)) {
+        return "sigma_bracket"; /* counts of every pixel of every frame */
     }
     return NULL;
 }

@@ -93,6 +93,68 @@ static bool tilerow_fresh_(const pft_pre_t *p, uint32_t j)
     return k <= 1u || !p->sig_known || (p->frames + j) % k == 0u;
 }
 
+/* sigma_bracket (docs/algorithms.md 9.6): once a sigma is known, each tile counts its |r|
+ * below PFT_PRE_BRK_K_ thresholds around the median of its last sigma (m / 2 .. 2 m, ratio
+ * sqrt 2) instead of a histogram; the tile's slots of p->hist hold the counts (0..K - 1),
+ * the unmasked count (PFT_PRE_BRK_N_) and the thresholds (from PFT_PRE_BRK_T_; 0: not yet
+ * set in this tile row). */
+#define PFT_PRE_BRK_K_ 5u
+#define PFT_PRE_BRK_N_ 5u
+#define PFT_PRE_BRK_T_ 8u
+
+static bool bracket_on_(const pft_pre_t *p)
+{
+    return p->cfg.sigma_bracket && p->sig_known;
+}
+
+/* The thresholds of tile (j, i) from its last sigma s (R units Q4): integers T_k, a count of
+ * |r| < T_k placing the edge at T_k - 1/2, nearest to m 2^((k - 2) / 2), m = s / 1.4826 the
+ * last median; T_0 >= 1 and increasing. */
+static void bracket_set_(uint16_t *hist, uint32_t s)
+{
+    /* 2^((k - 2) / 2) / 1.4826 in Q16 */
+    static const uint32_t ratio_[PFT_PRE_BRK_K_] = {22102u, 31257u, 44204u, 62514u, 88408u};
+    uint32_t prev = 0u;
+    for (uint32_t k = 0; k < PFT_PRE_BRK_K_; ++k) {
+        /* edge (Q4) = s ratio; T = edge + 1/2 rounded: (edge + 8 + 8) >> 4 */
+        const uint64_t e = ((uint64_t)s * ratio_[k] + 32768u) >> 16;
+        uint32_t tk = (uint32_t)((e + 16u) >> 4);
+        tk = tk <= prev ? prev + 1u : tk;
+        tk = tk > (uint32_t)PFT_PRE_RMAX_ ? (uint32_t)PFT_PRE_RMAX_ : tk;
+        hist[PFT_PRE_BRK_T_ + k] = (uint16_t)tk;
+        prev = tk;
+    }
+}
+
+/* Sigma (R units Q4) from the counts of n unmasked pixels: 1.4826 times the median, found
+ * between the edges T_k - 1/2 around it and interpolated linearly; outside the edges by the
+ * straight line from 0 through the nearest one: below the lowest (m / 2) the estimate falls
+ * at most 4 times a frame, above the highest (2 m) a Gaussian's median is read within 7 %
+ * low up to 5 times m (a straight line from 0 for the distribution of |r|), larger jumps
+ * followed over the next frames. */
+static uint32_t bracket_sigma_(const uint16_t *h, uint32_t n)
+{
+    uint64_t med; /* Q4 */
+    const uint32_t kt = PFT_PRE_BRK_K_ - 1u;
+    if (2u * (uint32_t)h[kt] <= n) {
+        const uint64_t top = 16u * (uint64_t)h[PFT_PRE_BRK_T_ + kt] - 8u;
+        const uint32_t c = h[kt] > 0u ? h[kt] : 1u;
+        med = (top * n) / (2u * (uint64_t)c);
+    } else {
+        uint32_t k = 0u;
+        while (2u * (uint32_t)h[k] <= n) { /* ends: 2 h[K - 1] > n */
+            k++;
+        }
+        const uint32_t ca = k > 0u ? h[k - 1u] : 0u, cb = h[k];
+        const uint64_t ea = k > 0u ? 16u * (uint64_t)h[PFT_PRE_BRK_T_ + k - 1u] - 8u : 0u;
+        const uint64_t eb = 16u * (uint64_t)h[PFT_PRE_BRK_T_ + k] - 8u;
+        /* ca <= n / 2 < cb */
+        med = ea + ((eb - ea) * (n - 2u * ca)) / (2u * (uint64_t)(cb - ca));
+    }
+    const uint64_t s = (med * PFT_PRE_MAD_K_ + 32768u) >> 16;
+    return s > 0x7FFFFFFFu ? 0x7FFFFFFFu : (uint32_t)s;
+}
+
 /* pft_pre_bin_(|v|) for |v| < PFT_PRE_BIN_LUT_ (most residuals) at index v + PFT_PRE_BIN_LUT_ - 1,
  * looked up instead of computed (on x86-64 about 3 instructions instead of 7 with |v|);
  * every entry equals the function's value (host_tools/scripts/pre_bin_table.py --check, the
@@ -239,6 +301,44 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
     const uint32_t ss = p->cfg.sigma_step > 1u ? p->cfg.sigma_step : 1u;
     uint32_t nm = 0u;
     const bool fresh = tilerow_fresh_(p, j);
+    if (bracket_on_(p)) {
+        /* sigma_bracket: counts below the tile's thresholds (16-bit compares, vectorisable) */
+        for (uint32_t i = 0; i < p->ntx; ++i) {
+            const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
+            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
+            for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
+                const int16_t v = r[x];
+                const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
+                cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+            }
+            uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
+            if (hist[PFT_PRE_BRK_T_] == 0u) {
+                bracket_set_(hist, p->tsig[j * p->ntx + i] & ~PFT_PRE_TILE_STALE_);
+            }
+            const uint16_t t0 = hist[PFT_PRE_BRK_T_], t1 = hist[PFT_PRE_BRK_T_ + 1u];
+            const uint16_t t2 = hist[PFT_PRE_BRK_T_ + 2u], t3 = hist[PFT_PRE_BRK_T_ + 3u];
+            const uint16_t t4 = hist[PFT_PRE_BRK_T_ + 4u];
+            uint16_t c0 = 0u, c1 = 0u, c2 = 0u, c3 = 0u, c4 = 0u, cn = 0u;
+            for (uint32_t x = x0; x < x1; ++x) { /* vectorisable: 16-bit compares */
+                const int32_t v = r[x];
+                const uint16_t a = (uint16_t)(v < 0 ? -v : v); /* masked: 32768 */
+                c0 = (uint16_t)(c0 + (a < t0 ? 1u : 0u));
+                c1 = (uint16_t)(c1 + (a < t1 ? 1u : 0u));
+                c2 = (uint16_t)(c2 + (a < t2 ? 1u : 0u));
+                c3 = (uint16_t)(c3 + (a < t3 ? 1u : 0u));
+                c4 = (uint16_t)(c4 + (a < t4 ? 1u : 0u));
+                cn = (uint16_t)(cn + (a < 32768u ? 1u : 0u));
+            }
+            hist[0] = (uint16_t)(hist[0] + c0);
+            hist[1] = (uint16_t)(hist[1] + c1);
+            hist[2] = (uint16_t)(hist[2] + c2);
+            hist[3] = (uint16_t)(hist[3] + c3);
+            hist[4] = (uint16_t)(hist[4] + c4);
+            hist[PFT_PRE_BRK_N_] = (uint16_t)(hist[PFT_PRE_BRK_N_] + cn);
+            nm += (x1 - x0) - cn;
+        }
+        return nm;
+    }
     if (ss > 1u || !fresh) {
         /* sigma_step: the histograms take the sampled pixels of the sampled rows; sigma_every:
          * only in the frames that estimate this tile row; the masked pixels and the column sums
@@ -292,13 +392,15 @@ void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
     if (!tilerow_fresh_(p, j)) {
         return; /* sigma_every: the row's sigmas are kept (its histograms are empty) */
     }
+    const bool brk = bracket_on_(p);
     for (uint32_t i = 0; i < p->ntx; ++i) {
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
         const uint32_t x0 = i * t, nx = (x0 + t > w ? w : x0 + t) - x0;
         uint32_t n = 0u;
-        for (uint32_t k = 0; k < PFT_PRE_BINS; ++k) {
+        for (uint32_t k = 0; !brk && k < PFT_PRE_BINS; ++k) {
             n += hist[k];
         }
+        n = brk ? hist[PFT_PRE_BRK_N_] : n;
         /* at least 1/16 of the tile's pixels (of its sampled ones with sigma_step), and 16 */
         const uint32_t ss = p->cfg.sigma_step > 1u ? p->cfg.sigma_step : 1u;
         const uint32_t nxs = (x0 + nx + ss - 1u) / ss - (x0 + ss - 1u) / ss;
@@ -306,7 +408,7 @@ void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
         const uint32_t need = (nxs * nys) / 16u > 16u ? (nxs * nys) / 16u : 16u;
         uint32_t *ts = &p->tsig[j * p->ntx + i];
         if (n >= need) {
-            *ts = tile_sigma_(hist, n);
+            *ts = brk ? bracket_sigma_(hist, n) : tile_sigma_(hist, n);
         } else {
             *ts = (*ts & ~PFT_PRE_TILE_STALE_) | PFT_PRE_TILE_STALE_;
         }
