@@ -862,9 +862,123 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
     }
 }
 
+/* Largest stored sum of the integration (1/64 noise sigmas): S << 2 fits 16 bits. */
+#define INTEG_MAX_ 16383
+
+/* One bin row br of the integration (docs/algorithms.md 2.13) from the PSF-matched rows r0 and
+ * r1 (pixel rows 2 br and 2 br + 1; r1 NULL past the last row): per bin the largest of its
+ * pixels, m in 1/64 sigmas, plus a_q / 256 times the largest last-frame sum of the 3 x 3 bins
+ * around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and squares
+ * added to sum[0], sum[1]. Integer arithmetic after m: the same in both builds. */
+static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                       const pft_real_t *r1, uint32_t w, uint64_t *sum)
+{
+    const int32_t pr = (int32_t)br - ig->sy;
+    const int32_t bw = (int32_t)ig->bw;
+    const int32_t bh = (int32_t)ig->bh;
+    const int32_t rlo = pr - 1 < 0 ? 0 : pr - 1;
+    const int32_t rhi = pr + 1 > bh - 1 ? bh - 1 : pr + 1;
+    uint16_t *out = ig->cur + (size_t)br * ig->bw;
+    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+        const uint32_t c0 = 2u * bc;
+        pft_real_t best = r0[c0];
+        uint16_t idx = 0u;
+        if (c0 + 1u < w && r0[c0 + 1u] > best) {
+            best = r0[c0 + 1u];
+            idx = 1u;
+        }
+        if (r1 != NULL && r1[c0] > best) {
+            best = r1[c0];
+            idx = 2u;
+        }
+        if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
+            best = r1[c0 + 1u];
+            idx = 3u;
+        }
+        const int32_t pc = (int32_t)bc - ig->sx;
+        const int32_t clo = pc - 1 < 0 ? 0 : pc - 1;
+        const int32_t chi = pc + 1 > bw - 1 ? bw - 1 : pc + 1;
+        uint32_t mx = 0u;
+        for (int32_t r = rlo; r <= rhi; ++r) {
+            const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
+            for (int32_t c = clo; c <= chi; ++c) {
+                const uint32_t v = (uint32_t)prow[c] >> 2;
+                mx = v > mx ? v : mx;
+            }
+        }
+        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, pft_neg(PEAK_CLIP_), PEAK_CLIP_), 64));
+        sq += (int32_t)((ig->a_q * mx + 128u) >> 8);
+        sq = sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq);
+        out[bc] = (uint16_t)(((uint32_t)sq << 2) | idx);
+        sum[0] += (uint64_t)sq;
+        sum[1] += (uint64_t)sq * (uint64_t)sq;
+    }
+}
+
+/* floor(sqrt(v)), bit by bit (32 steps). */
+static uint32_t isqrt64_(uint64_t v)
+{
+    uint64_t r = 0u;
+    for (int32_t b = 31; b >= 0; --b) {
+        const uint64_t t = r | ((uint64_t)1u << (uint32_t)b);
+        if (t * t <= v) {
+            r = t;
+        }
+    }
+    return (uint32_t)r;
+}
+
+/* Sum of bin (br, bc) of the integration (0 outside). */
+static uint32_t integ_at_(const pft_tbd_integ_t_ *ig, int32_t br, int32_t bc)
+{
+    if (br < 0 || bc < 0 || br >= (int32_t)ig->bh || bc >= (int32_t)ig->bw) {
+        return 0u;
+    }
+    return (uint32_t)ig->cur[(size_t)br * ig->bw + (size_t)bc] >> 2;
+}
+
+/* The peaks of the integration into the heap: the 3 x 3 local maxima of the bins' sums (a
+ * plateau's first bin in raster order, as peak_is_max_) above ps->thr, each at its bin's
+ * largest pixel of this frame, when that pixel is allowed. */
+static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
+{
+    pft_real_t te = peak_te_(ps);
+    for (uint32_t br = 0; br < ig->bh; ++br) {
+        const uint16_t *row = ig->cur + (size_t)br * ig->bw;
+        for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+            const uint32_t v = (uint32_t)row[bc] >> 2;
+            const pft_real_t vr = pft_from_int((int32_t)v);
+            if (!(vr > te)) {
+                continue;
+            }
+            bool is_max = true;
+            for (int32_t a = -1; a <= 1 && is_max; ++a) {
+                for (int32_t b = -1; b <= 1 && is_max; ++b) {
+                    const uint32_t n = integ_at_(ig, (int32_t)br + a, (int32_t)bc + b);
+                    const bool before = a < 0 || (a == 0 && b < 0);
+                    is_max = (a == 0 && b == 0) || (before ? v > n : v >= n);
+                }
+            }
+            if (!is_max) {
+                continue;
+            }
+            const uint32_t idx = (uint32_t)row[bc] & 3u;
+            const uint32_t pr = 2u * br + (idx >> 1);
+            const uint32_t pc = 2u * bc + (idx & 1u);
+            if (ps->mask != NULL &&
+                pft_tbd_masked_(ps->mask, pft_tbd_mask_words_(ps->w), pc, pr)) {
+                continue;
+            }
+            peak_keep_(ps, pr * ps->w + pc, vr);
+            te = peak_te_(ps);
+        }
+    }
+}
+
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
-                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
+                          const pft_tbd_integ_t_ *ig)
 {
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
@@ -900,6 +1014,7 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     ps.cnt = lines + h + 1u;      /* ntx <= w entries */
     ps.trow = 0u;
     lines[0] = 0u;
+    uint64_t isum[2] = {0u, 0u};
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
@@ -915,11 +1030,38 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
             peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
                        r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
         }
-        if (rr >= 2u) {
+        if (ig != NULL && rr >= 1u && rr <= h) {
+            /* the integration's bin row of PSF-matched rows r - 1 and r (r odd), or of the last
+             * row alone (h odd) */
+            const uint32_t r = rr - 1u;
+            if (r % 2u == 1u) {
+                integ_row_(ig, r / 2u, mf[(r + 2u) % 3u], mf[r % 3u], w, isum);
+            } else if (r + 1u == h) {
+                integ_row_(ig, r / 2u, mf[r % 3u], NULL, w, isum);
+            } else {
+                /* the first row of a pair: its bin row comes with the next row */
+            }
+        }
+        if (rr >= 2u && ig == NULL) {
             const uint32_t q = rr - 2u;
             peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
                            q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
         }
+    }
+    if (ig != NULL) {
+        /* the allowed pixels per row, then the peaks of the sums above their frame mean plus
+         * peak_gamma frame standard deviations (1/64 sigmas) */
+        for (uint32_t q = 0; q < h; ++q) {
+            ps.na += mask == NULL ? w : pft_tbd_mask_row_free_(mask, w, q);
+            lines[q + 1u] = ps.na;
+        }
+        const uint64_t nb = (uint64_t)ig->bw * ig->bh;
+        const uint64_t mean = isum[0] / nb;
+        const uint64_t msq = isum[1] / nb;
+        const uint32_t sd = isqrt64_(msq > mean * mean ? msq - mean * mean : 0u);
+        ps.thr = pft_add(pft_from_int((int32_t)mean),
+                         pft_mul(cfg->peak_gamma, pft_from_int((int32_t)sd)));
+        integ_scan_(&ps, ig);
     }
     sc->mask = mask;
     sc->cand = cand;

@@ -1,0 +1,235 @@
+/*
+ * TBD manager: births from the peaks of a multi-frame integration (cfg.integ_alpha,
+ * docs/algorithms.md 2.13) and the platform shift (pft_tbd_set_shift).
+ *
+ * Known answers: a dim point (peak 2 noise sigmas, PSF 0.7 px) moving 1 px per frame in white
+ * Gaussian noise (64 x 64, unit sigma) is among the K = 4 birth peaks after 8 frames far more
+ * often with the integration than with the current frame's peaks alone, over the same 32 seeds
+ * and the same frames; a point moving 4 px per frame (outside the integration's 3 x 3 bin gate)
+ * is found with pft_tbd_set_shift(4, 0) and not without. The workspace formula with the
+ * integration equals the function and init needs every byte of it. Refused config values
+ * (integ_alpha out of [0, 1), with no birth peaks or with a tile quota), a refused frame and a
+ * refused shift leave everything byte-identical.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_tbd.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define IMG 64
+#define NS 200u
+#define NT 50u
+#define MAXT 1u
+#define KMAX 4u
+#define NSEED 32
+#define LFR 8
+#define AMP 2.0
+
+static pft_real_t R(double v) { return pft_test_from_double(v); }
+
+#define WS_BYTES                                                                               \
+    (PFT_TBD_WORKSPACE_BYTES_PEAKS(NS, NT, MAXT, PFT_TBD_RBPF, IMG, IMG, KMAX) +               \
+     PFT_TBD_INTEG_BYTES(IMG, IMG))
+static uint64_t g_ws64[(WS_BYTES + 64) / 8 + 2];
+static uint8_t g_snap[WS_BYTES + 64];
+static uint16_t g_raw[IMG * IMG];
+
+/* U16 frames: z = raw / 256 - 64 (zero at raw 16384), sigma 1 so z is whitened. */
+static void cfg_integ(pft_tbd_config_t *c, double alpha)
+{
+    pft_tbd_config_recommended(c);
+    c->width = IMG;
+    c->height = IMG;
+    c->noise_sigma = R(1.0);
+    c->pixel_gain = R(1.0 / 256.0);
+    c->pixel_offset = R(-64.0);
+    c->n_search = NS;
+    c->n_track = NT;
+    c->max_targets = MAXT;
+    c->birth_peaks = KMAX;
+    c->peak_gamma = R(1.0);
+    c->theta1 = R(1.0); /* no confirmation: the peaks depend on the frames alone */
+    c->integ_alpha = R(alpha);
+    c->seed = 5u;
+}
+
+/* Frame k (1-based) of seed s: N(0, 1) noise plus a point of peak amp at (x0 + v (k - 1), y0),
+ * pixel-sampled Gaussian PSF of sigma 0.7 px. */
+static void render(uint64_t *st, int k, double x0, double y0, double v, double amp,
+                   pft_frame_t *f)
+{
+    const double x = x0 + v * (double)(k - 1);
+    for (int r = 0; r < IMG; ++r) {
+        for (int c = 0; c < IMG; ++c) {
+            const double d2 = (c - x) * (c - x) + (r - y0) * (r - y0);
+            const double z = pft_test_gauss(st) + amp * exp(-d2 / (2.0 * 0.49));
+            g_raw[r * IMG + c] = (uint16_t)lround(16384.0 + z * 256.0);
+        }
+    }
+    memset(f, 0, sizeof(*f));
+    f->data = g_raw;
+    f->width = IMG;
+    f->height = IMG;
+    f->stride_bytes = IMG * 2u;
+    f->format = PFT_PIX_U16;
+    f->bit_depth = 16u;
+    f->seq = (uint32_t)k;
+}
+
+/* Runs LFR frames of seed s; true when a birth peak of the last frame is within 1 px
+ * (Chebyshev) of the point's pixel at that frame. shift: given before every update. */
+static bool found_after_l(double alpha, uint64_t s, double v, double shift)
+{
+    static pft_tbd_t t;
+    pft_tbd_config_t c;
+    cfg_integ(&c, alpha);
+    const size_t need = pft_tbd_workspace_size(&c);
+    TEST_ASSERT_TRUE(need > 0u && need <= sizeof g_ws64);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws64, need));
+    uint64_t st = 0x9E3779B97F4A7C15ull * (s + 1u);
+    const double x0 = 12.0;
+    const double y0 = 31.0;
+    for (int k = 1; k <= LFR; ++k) {
+        pft_frame_t f;
+        render(&st, k, x0, y0, v, AMP, &f);
+        if (k > 1 && shift != 0.0) {
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_set_shift(&t, R(shift), R(0.0)));
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    }
+    uint32_t cand[KMAX];
+    const size_t n = pft_tbd_birth_candidates(&t, cand, KMAX);
+    const long tc = lround(x0 + v * (LFR - 1));
+    const long tr = lround(y0);
+    for (size_t i = 0; i < n && i < KMAX; ++i) {
+        const long cc = (long)(cand[i] % IMG);
+        const long rr = (long)(cand[i] / IMG);
+        if (labs(cc - tc) <= 1 && labs(rr - tr) <= 1) {
+            return true;
+        }
+    }
+    return false;
+}
+
+static void test_integration_finds_a_dim_mover(void)
+{
+    int with = 0;
+    int without = 0;
+    for (uint64_t s = 1u; s <= NSEED; ++s) {
+        with += found_after_l(0.7, s, 1.0, 0.0) ? 1 : 0;
+        without += found_after_l(0.0, s, 1.0, 0.0) ? 1 : 0;
+    }
+    /* Tolerance: measured 25 of 32 with, 10 of 32 without (float and q16 alike). A
+     * 2-sigma point's PSF-matched value is about 2.5 sigma, near the 4th largest of the ~800
+     * noise maxima of a 64 x 64 frame, so one frame finds it by chance. The bounds are about
+     * 2.6 binomial standard errors (sqrt(32 p (1 - p)) <= 2.5) from the measured counts and
+     * apart from each other: without the integration `with` would be the `without` count. */
+    TEST_ASSERT_GREATER_OR_EQUAL_INT(19, with);
+    TEST_ASSERT_LESS_OR_EQUAL_INT(15, without);
+}
+
+static void test_shift_follows_a_fast_mover(void)
+{
+    int with = 0;
+    int without = 0;
+    for (uint64_t s = 1u; s <= NSEED; ++s) {
+        with += found_after_l(0.7, s, 4.0, 4.0) ? 1 : 0;
+        without += found_after_l(0.7, s, 4.0, 0.0) ? 1 : 0;
+    }
+    /* 4 px per frame is two bins: outside the 3 x 3 bin gate unless the shift moves the sum.
+     * Tolerance as above (measured 24 of 32 with the shift, 8 of 32 without, float and
+     * q16 alike). */
+    TEST_ASSERT_GREATER_OR_EQUAL_INT(19, with);
+    TEST_ASSERT_LESS_OR_EQUAL_INT(15, without);
+}
+
+static void test_workspace_with_integration_is_exact(void)
+{
+    static pft_tbd_t t;
+    pft_tbd_config_t c;
+    cfg_integ(&c, 0.7);
+    const size_t need = pft_tbd_workspace_size(&c);
+    TEST_ASSERT_EQUAL_UINT((unsigned)WS_BYTES, (unsigned)need);
+    /* 2 x 2 bins of two 16-bit sums: one byte per pixel */
+    TEST_ASSERT_EQUAL_UINT(IMG * IMG, (unsigned)PFT_TBD_INTEG_BYTES(IMG, IMG));
+    /* a start one byte past an aligned address needs the whole alignment slack */
+    uint8_t *w1 = (uint8_t *)g_ws64 + 1;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tbd_init(&t, &c, w1, need - 1u));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, w1, need));
+    cfg_integ(&c, 0.0);
+    TEST_ASSERT_EQUAL_UINT((unsigned)PFT_TBD_WORKSPACE_BYTES_PEAKS(NS, NT, MAXT, PFT_TBD_RBPF,
+                                                                   IMG, IMG, KMAX),
+                           (unsigned)pft_tbd_workspace_size(&c));
+}
+
+static void test_integ_alpha_refused_by_name(void)
+{
+    pft_tbd_config_t c;
+    const char *field = NULL;
+    const double bad[3] = {-0.1, 1.0, 1.5};
+    for (int i = 0; i < 3; ++i) {
+        cfg_integ(&c, bad[i]);
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+        TEST_ASSERT_EQUAL_STRING("integ_alpha", field);
+    }
+    cfg_integ(&c, 0.5);
+    c.birth_peaks = 0u; /* the integration replaces the peaks' frame: it needs peaks */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("integ_alpha", field);
+    cfg_integ(&c, 0.5);
+    c.peak_tile = 8u;
+    c.peak_quota = 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("integ_alpha", field);
+    cfg_integ(&c, 0.99);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    pft_tbd_config_default(&c);
+    TEST_ASSERT_TRUE(pft_test_to_double(c.integ_alpha) == 0.0);
+}
+
+static void test_refused_input_leaves_state_untouched(void)
+{
+    static pft_tbd_t t, t_snap;
+    pft_tbd_config_t c;
+    cfg_integ(&c, 0.7);
+    const size_t need = pft_tbd_workspace_size(&c);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws64, need));
+    uint64_t st = 77u;
+    for (int k = 1; k <= 4; ++k) {
+        pft_frame_t f;
+        render(&st, k, 20.0, 20.0, 1.0, 3.0, &f);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_set_shift(&t, R(0.75), R(-0.25)));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    }
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_set_shift(&t, R(1.5), R(0.5)));
+    t_snap = t;
+    memcpy(g_snap, g_ws64, need);
+    pft_frame_t bad;
+    render(&st, 5, 20.0, 20.0, 1.0, 3.0, &bad);
+    bad.width = IMG - 1; /* wrong size */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_tbd_update(&t, &bad));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_set_shift(&t, R(IMG + 1.0), R(0.0)));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_set_shift(&t, R(0.0), R(-IMG - 1.0)));
+#ifndef PFT_NUMERIC_Q16
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_set_shift(&t, NAN, R(0.0)));
+#endif
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_set_shift(NULL, R(0.0), R(0.0)));
+    TEST_ASSERT_EQUAL_MEMORY(&t_snap, &t, sizeof t);
+    TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws64, need);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_integration_finds_a_dim_mover);
+    RUN_TEST(test_shift_follows_a_fast_mover);
+    RUN_TEST(test_workspace_with_integration_is_exact);
+    RUN_TEST(test_integ_alpha_refused_by_name);
+    RUN_TEST(test_refused_input_leaves_state_untouched);
+    return UNITY_END();
+}
