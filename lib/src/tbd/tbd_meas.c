@@ -867,22 +867,38 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
 
 /* One bin row br of the integration (docs/algorithms.md 2.13) from the PSF-matched rows r0 and
  * r1 (pixel rows 2 br and 2 br + 1; r1 NULL past the last row): per bin the largest of its
- * pixels, m in 1/64 sigmas, plus a_q / 256 times the largest last-frame sum of the 3 x 3 bins
- * around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and squares
- * added to sum[0], sum[1]. Integer arithmetic after m: the same in both builds. */
+ * pixels, m in 1/64 sigmas (rounded), plus a_q / 256 times the largest last-frame sum of the
+ * 3 x 3 bins around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and
+ * squares added to sum[0], sum[1]. vm is bw + 2 words of scratch: the largest last-frame sum
+ * of the three rows per column, with a zero column on each side. Integer arithmetic after m:
+ * the same in both builds. */
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
-                       const pft_real_t *r1, uint32_t w, uint64_t *sum)
+                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
 {
     const int32_t pr = (int32_t)br - ig->sy;
     const int32_t bw = (int32_t)ig->bw;
     const int32_t bh = (int32_t)ig->bh;
     const int32_t rlo = pr - 1 < 0 ? 0 : pr - 1;
     const int32_t rhi = pr + 1 > bh - 1 ? bh - 1 : pr + 1;
+    vm[0] = 0u;
+    vm[ig->bw + 1u] = 0u;
+    for (uint32_t c = 0; c < ig->bw; ++c) {
+        vm[c + 1u] = 0u;
+    }
+    for (int32_t r = rlo; r <= rhi; ++r) {
+        const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
+        for (uint32_t c = 0; c < ig->bw; ++c) {
+            const uint32_t v = (uint32_t)prow[c] >> 2;
+            vm[c + 1u] = v > vm[c + 1u] ? v : vm[c + 1u];
+        }
+    }
+    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
+    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
     uint16_t *out = ig->cur + (size_t)br * ig->bw;
     for (uint32_t bc = 0; bc < ig->bw; ++bc) {
         const uint32_t c0 = 2u * bc;
         pft_real_t best = r0[c0];
-        uint16_t idx = 0u;
+        uint32_t idx = 0u;
         if (c0 + 1u < w && r0[c0 + 1u] > best) {
             best = r0[c0 + 1u];
             idx = 1u;
@@ -895,18 +911,17 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
             best = r1[c0 + 1u];
             idx = 3u;
         }
+        /* the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2] (padded by one) */
         const int32_t pc = (int32_t)bc - ig->sx;
-        const int32_t clo = pc - 1 < 0 ? 0 : pc - 1;
-        const int32_t chi = pc + 1 > bw - 1 ? bw - 1 : pc + 1;
         uint32_t mx = 0u;
-        for (int32_t r = rlo; r <= rhi; ++r) {
-            const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
-            for (int32_t c = clo; c <= chi; ++c) {
-                const uint32_t v = (uint32_t)prow[c] >> 2;
-                mx = v > mx ? v : mx;
-            }
+        if (pc >= -1 && pc <= bw) {
+            const uint32_t a = pc >= 0 ? vm[pc] : 0u;
+            const uint32_t b = vm[pc + 1];
+            const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
+            mx = a > b ? a : b;
+            mx = d > mx ? d : mx;
         }
-        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, pft_neg(PEAK_CLIP_), PEAK_CLIP_), 64));
+        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, lo, hi), 64));
         sq += (int32_t)((ig->a_q * mx + 128u) >> 8);
         sq = sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq);
         out[bc] = (uint16_t)(((uint32_t)sq << 2) | idx);
@@ -1035,9 +1050,9 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
             if (r % 2u == 1u) {
-                integ_row_(ig, r / 2u, mf[(r + 2u) % 3u], mf[r % 3u], w, isum);
+                integ_row_(ig, r / 2u, mf[(r + 2u) % 3u], mf[r % 3u], w, lines, isum);
             } else if (r + 1u == h) {
-                integ_row_(ig, r / 2u, mf[r % 3u], NULL, w, isum);
+                integ_row_(ig, r / 2u, mf[r % 3u], NULL, w, lines, isum);
             } else {
                 /* the first row of a pair: its bin row comes with the next row */
             }
@@ -1049,8 +1064,9 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
         }
     }
     if (ig != NULL) {
-        /* the allowed pixels per row, then the peaks of the sums above their frame mean plus
+        /* (lines was the integration's scratch) the allowed pixels per row, then the peaks of the sums above their frame mean plus
          * peak_gamma frame standard deviations (1/64 sigmas) */
+        lines[0] = 0u;
         for (uint32_t q = 0; q < h; ++q) {
             ps.na += mask == NULL ? w : pft_tbd_mask_row_free_(mask, w, q);
             lines[q + 1u] = ps.na;
