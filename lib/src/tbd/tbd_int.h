@@ -155,6 +155,10 @@ typedef struct {
 } pft_tbd_integ_t_;
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc);
+/* The same with the peaks of the integration instead (ig->cur written, ig->prev read). */
+void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
                           const pft_tbd_integ_t_ *ig);
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand

@@ -709,9 +709,14 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
         if (integ) {
             integ_prepare_(t, &ig);
         }
-        pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
-                             t->lines, &ssc, integ ? &ig : NULL);
-        t->integ_i = integ ? (uint8_t)(1u - t->integ_i) : t->integ_i; /* this frame's sums are the last */
+        if (integ) {
+            pft_tbd_scene_integ_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
+                                 t->lines, &ssc, &ig);
+            t->integ_i = (uint8_t)(1u - t->integ_i); /* this frame's sums are the last */
+        } else {
+            pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
+                                 t->lines, &ssc);
+        }
     } else {
         pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
     }

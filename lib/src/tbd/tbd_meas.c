@@ -628,7 +628,7 @@ static void sift_up_(uint32_t *key, pft_real_t *val, uint32_t i)
 /* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along a row of the bordered whitened image
  * (pft_tbd_row_): row[0] and row[w + 1] are the zero border, so every column is the same
  * expression (one loop without a carried value, which compilers vectorise). */
-static void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_real_t t1,
+static inline void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs)
 {
     const pft_real_t lo = pft_neg(PEAK_CLIP_);
@@ -656,7 +656,7 @@ static inline int16_t r16_int_(const uint8_t *src, size_t c)
  * exactly, and pft_kmul_r16_ gives pft_kmula_'s bits (kern_int.h); t0, t1 prepared by
  * pft_kr16_tap_. The same values as peak_hrow_ on pft_tbd_row_ in both builds, without the
  * row's conversion. */
-static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                            pft_real_t *hs)
 {
     if (w < 2u) {
@@ -681,7 +681,7 @@ static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_re
 }
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). */
-static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                        uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
 {
     if (up != NULL && dn != NULL && pft_kmul_u_ok_(u0) && pft_kmul_u_ok_(u1)) {
@@ -773,7 +773,7 @@ static void peak_keep_full_tile_(peak_scan_t *ps, uint32_t tk, uint32_t k, pft_r
 
 /* Pixel c of row q (value v, above the threshold, a local maximum) into the heap of the K
  * strongest (with a tile quota: of the K strongest with at most quota per tile). */
-static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
+static inline void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
 {
     const bool full = ps->n >= ps->k_max;
     if (full && !weaker_(ps->val[0], ps->key[0], v, k)) {
@@ -992,6 +992,84 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
 
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
+{
+    const uint32_t w = cfg->width;
+    const uint32_t h = cfg->height;
+    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
+    const pft_real_t *tx = tab->taps[0][mid];
+    const pft_real_t *ty = tab->taps[1][mid];
+    pft_real_t *hs[3];
+    pft_real_t *mf[3];
+    peak_scan_t ps;
+    for (uint32_t s = 0; s < 3u; ++s) {
+        hs[s] = rows + (size_t)s * w;
+        mf[s] = rows + (size_t)(s + 3u) * w;
+    }
+    scene_source_(sc, img, w, h);
+    /* a RES16 scene's rows without a patch go through the integers (peak_hrow_r16_) when the
+     * prepared taps are exact (always in q16; in float unless a tap is below 2^-118) */
+    const pft_real_t t0p = pft_kr16_tap_(tx[0]);
+    const pft_real_t t1p = pft_kr16_tap_(tx[1]);
+    const bool r16 = img == NULL && pft_kr16_tap_ok_(tx[0]) && pft_kr16_tap_ok_(tx[1]);
+    ps.mask = mask;
+    ps.key = cand;
+    ps.val = val;
+    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
+    ps.thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(tx[3], ty[3])));
+    ps.w = w;
+    ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
+    ps.n = 0u;
+    ps.na = 0u;
+    ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
+    ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
+    ps.ntx = (w + ps.tile - 1u) / ps.tile;
+    ps.row_pre = lines;           /* h + 1 entries */
+    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
+    ps.trow = 0u;
+    lines[0] = 0u;
+    /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
+     * and the scan of row rr - 2 */
+    for (uint32_t rr = 0; rr < h + 2u; ++rr) {
+        if (rr < h && r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
+            peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, t0p, t1p, hs[rr % 3u]);
+        } else if (rr < h) {
+            peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
+        } else {
+            /* rows h and h + 1 of the rolling steps: no new row */
+        }
+        if (rr >= 1u && rr <= h) {
+            const uint32_t r = rr - 1u;
+            peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
+                       r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
+        }
+        if (rr >= 2u) {
+            const uint32_t q = rr - 2u;
+            peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
+                           q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
+        }
+    }
+    sc->mask = mask;
+    sc->cand = cand;
+    sc->row_pre = lines;
+    sc->width = w;
+    sc->height = h;
+    sc->n_allowed = ps.na;
+    sc->cand_is_b = ps.n > 0u;
+    sc->n_cand = ps.n;
+    if (ps.n == 0u && ps.na > 0u) {
+        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
+         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
+        sc->cand = NULL;
+        sc->n_cand = ps.na;
+    }
+}
+
+/* pft_tbd_scene_peaks_ with the integration (docs/algorithms.md 2.13): the same PSF-matched
+ * rows, folded into the bins' sums instead of scanned; kept apart so that the scan without it
+ * compiles as before (its cost unchanged). */
+void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
                           const pft_tbd_integ_t_ *ig)
 {
@@ -1045,7 +1123,7 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
             peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
                        r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
         }
-        if (ig != NULL && rr >= 1u && rr <= h) {
+        if (rr >= 1u && rr <= h) {
             /* the integration's bin row of PSF-matched rows r - 1 and r (r odd), or of the last
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
@@ -1057,13 +1135,8 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                 /* the first row of a pair: its bin row comes with the next row */
             }
         }
-        if (rr >= 2u && ig == NULL) {
-            const uint32_t q = rr - 2u;
-            peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
-                           q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
-        }
     }
-    if (ig != NULL) {
+    {
         /* (lines was the integration's scratch) the allowed pixels per row, then the peaks of the sums above their frame mean plus
          * peak_gamma frame standard deviations (1/64 sigmas) */
         lines[0] = 0u;
