@@ -125,6 +125,22 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
         auto bf = by_frame.find(static_cast<int>(f.frame));
         if (bf == by_frame.end())
             continue;
+        for (const TruthRow *r : bf->second) {
+            if (r->labelled || f.frame <= 1 || f.width <= 0)
+                continue;
+            const long xi = std::lround(r->x), yi = std::lround(r->y);
+            if (xi < 0 || yi < 0 || xi >= f.width || yi >= f.height)
+                continue;
+            ++ev.birth_frames;
+            for (uint32_t k : f.births) {
+                const long c = static_cast<long>(k % static_cast<uint32_t>(f.width));
+                const long rr = static_cast<long>(k / static_cast<uint32_t>(f.width));
+                if (std::labs(c - xi) <= 1 && std::labs(rr - yi) <= 1) {
+                    ++ev.birth_hits;
+                    break;
+                }
+            }
+        }
         struct Cand { double d; std::size_t tr, tg; };
         std::vector<Cand> c;
         for (std::size_t i = 0; i < f.tracks.size(); ++i)
@@ -206,8 +222,10 @@ std::string f2(const nlohmann::json &v, int prec = 2)
 
 nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
 {
-    long frames = 0, fals = 0, tracks = 0;
+    long frames = 0, fals = 0, tracks = 0, bfr = 0, bhit = 0;
     for (const IrRunEval &r : runs) {
+        bfr += r.birth_frames;
+        bhit += r.birth_hits;
         frames += r.frames;
         fals += r.false_tracks;
         tracks += r.tracks;
@@ -216,6 +234,9 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
     a["tracks_per_run"] = runs.empty() ? 0.0 : static_cast<double>(tracks) / runs.size();
     a["false_tracks_per_run"] = runs.empty() ? 0.0 : static_cast<double>(fals) / runs.size();
     a["false_tracks_per_1000_frames"] = frames ? 1000.0 * fals / frames : 0.0;
+    // the search layer's birth candidates near the injected targets (TBD only; 0 for DBT)
+    a["birth_hit_share"] = bfr ? static_cast<double>(bhit) / bfr : 0.0;
+    a["birth_target_frames"] = bfr;
     nlohmann::json per = nlohmann::json::array();
     for (const IrRunEval &r : runs) {
         nlohmann::json ts = nlohmann::json::array();

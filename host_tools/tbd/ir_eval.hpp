@@ -46,6 +46,9 @@ struct IrRunEval {
     int tracks = 0, false_tracks = 0;
     std::vector<uint32_t> false_ids;
     std::vector<FalseTrack> false_list;    ///< one per false track, in the order of false_ids
+    /// injected targets' frames (1-based frame > 1, inside the image), and those with a birth
+    /// candidate of the search layer within 1 px (Chebyshev) of the target's nearest pixel
+    long birth_frames = 0, birth_hits = 0;
 };
 
 /** truth.csv of tbd_ir: frame,id,x,y,snr_db,kind; InputError naming the file and line. */

@@ -46,6 +46,7 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.sprt_reject, c.sprt_reject);
     set_real_if(t.shape_ring, c.shape_ring);
     c.sprt_start = static_cast<uint8_t>(t.sprt_start);
+    set_real_if(t.integ_alpha, c.integ_alpha);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
     c.birth_correction = t.birth_correction;
@@ -456,6 +457,8 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     tf.seq = frame.seq;
     tf.timestamp_us = static_cast<uint64_t>(frame.seq) * 1000000u;
     PipelineOut out;
+    if (T_.integ_shift && ev)
+        tracker_->set_shift(stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0);
     out.tbd = tracker_->update(tf);
     ++frame_no_;
     if (ev) {

@@ -123,7 +123,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -164,6 +164,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     num("sprt_reject", -10000.0, 0.0, T.sprt_reject);
     num("shape_ring", 0.0, 100.0, T.shape_ring);
     T.sprt_start = static_cast<int>(t.integer_in("sprt_start", T.sprt_start, 0, 2));
+    num("integ_alpha", 0.0, 0.99, T.integ_alpha);
+    if (t.has("integ_shift"))
+        T.integ_shift = t.at("integ_shift").as_bool();
     T.confirm_frames = static_cast<int>(t.integer_in("confirm_frames", T.confirm_frames, 0, 16));
     if (t.has("birth_correction"))
         T.birth_correction = t.at("birth_correction").as_bool();

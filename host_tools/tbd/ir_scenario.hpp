@@ -109,6 +109,8 @@ struct TrackerSettings {
     std::optional<double> peak_gamma, theta1, pb, theta_end;
     std::optional<double> sprt_accept, sprt_reject; ///< sequential confirmation (pft_tbd sprt_*; absent: the library default, off)
     std::optional<double> shape_ring;               ///< PSF shape test at the hand-over (pft_tbd shape_ring; absent: off)
+    std::optional<double> integ_alpha;              ///< multi-frame integration of the birth peaks (pft_tbd integ_alpha; absent: off)
+    bool integ_shift = false;                       ///< give the manager the stage's measured shift per frame (pft_tbd_set_shift) for the integration
     int sprt_start = 0;                             ///< what the sequential test starts from (pft_tbd sprt_start: 0 zero, 1 the search layer's ratios over its confirmation, 2 its log odds)
     // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,
     // registered to the scene (warped by the stage's measured shift every frame); both trackers

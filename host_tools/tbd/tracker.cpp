@@ -134,7 +134,8 @@ nlohmann::json config_to_json(const pft_tbd_config_t &c)
             {"n_track", c.n_track}, {"max_targets", c.max_targets},
             {"kind", c.kind == PFT_TBD_PF ? "pf" : "rbpf"},
             {"kf_variant", c.kf_variant == PFT_TBD_KF_PAPER ? "paper" : "exact"},
-            {"seq_mode", c.seq_mode == PFT_SEQ_USE ? "use" : "ignore"}, {"max_gap", c.max_gap}};
+            {"seq_mode", c.seq_mode == PFT_SEQ_USE ? "use" : "ignore"}, {"max_gap", c.max_gap},
+            {"integ_alpha", from_real(c.integ_alpha)}};
 }
 
 namespace {
@@ -173,6 +174,15 @@ FrameOut Tracker::update_f32(const float *img, uint32_t seq)
     f.seq = seq;
     f.timestamp_us = static_cast<uint64_t>(seq) * 1000000u;
     return update(f);
+}
+
+void Tracker::set_shift(double dx, double dy)
+{
+    if (single_)
+        return;
+    pft_status_t st = pft_tbd_set_shift(&mgr_, to_real(dx), to_real(dy));
+    if (st != PFT_OK)
+        lib_error("pft_tbd_set_shift", st);
 }
 
 FrameOut Tracker::update(const pft_frame_t &frame)
@@ -239,6 +249,15 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
     out.search_x = from_real(e.x);
     out.search_y = from_real(e.y);
     out.search_valid = e.valid;
+    out.width = cfg_.width;
+    out.height = cfg_.height;
+    if (cfg_.birth_peaks > 0) {
+        const std::size_t nb = pft_tbd_birth_candidates(&mgr_, nullptr, 0);
+        if (nb <= cfg_.birth_peaks) {
+            out.births.resize(nb);
+            pft_tbd_birth_candidates(&mgr_, out.births.data(), nb);
+        }
+    }
     std::vector<pft_tbd_track_t> tr(cfg_.max_targets);
     std::size_t n = pft_tbd_tracks(&mgr_, tr.data(), tr.size());
     if (n > tr.size())

@@ -36,6 +36,7 @@ struct EventOut {
 
 struct FrameOut {
     uint32_t frame = 0;
+    int width = 0, height = 0;  ///< multi: the image size (for births below)
     std::vector<TrackOut> tracks;
     std::vector<EventOut> events;
     /// multi with cfg.sprt_accept > 0: the tentative tracks of the sequential test (not reported,
@@ -44,6 +45,9 @@ struct FrameOut {
     double search_p = 0;  ///< multi: search layer P; single: the filter's P
     double search_x = 0, search_y = 0;
     bool search_valid = false;
+    /// multi: the search layer's birth candidates of the frame (pixel indices row * width +
+    /// column, pft_tbd_birth_candidates), when listed (births from peaks or B_k; empty otherwise)
+    std::vector<uint32_t> births;
 };
 
 /** Library configuration from a scenario (filter settings, model, sigma, image size). */
@@ -65,6 +69,8 @@ public:
 
     /** Pushes one frame; InputError with the library's status on refusal. */
     FrameOut update(const pft_frame_t &frame);
+    /** The manager's pft_tbd_set_shift for the next update (pixels); the single filter ignores it. */
+    void set_shift(double dx, double dy);
     /** Same, for an F32 image of the configured size. */
     FrameOut update_f32(const float *img, uint32_t seq);
 

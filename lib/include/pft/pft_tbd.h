@@ -183,6 +183,8 @@ typedef struct {
     pft_real_t shape_ring;   /**< 0 (default): off. > 0: a hand-over needs the search layer's estimate to look like a point on the frame (docs/algorithms.md 2.12): the mean of the 16 pixels at distance 2 (Chebyshev) around the estimate's pixel at most shape_ring times the PSF amplitude fitted to its 3 x 3 pixels; otherwise the search layer's hypothesis is dropped (its particles cleared, as at a hand-over) and no track is made. At most 100 [E] */
     /* start of the sequential test (manager) */
     uint8_t sprt_start;      /**< with sprt_accept > 0, the sum the sequential test starts from at a hand-over (docs/algorithms.md 2.12): 0 (default): 0 (Wald's test on the track layer alone); 1: the search layer's frame log likelihood ratios summed over the frames of its confirmation (the last confirm_frames frames, at most PFT_TBD_MAX_DIS_R + 1), floored at 0; 2: the search layer's log odds of existence at the hand-over, log(P / (1 - P)) with P and 1 - P at least 1e-4, floored at 0. At most 2 [E] */
+    /* multi-frame integration of the birth peaks (manager) */
+    pft_real_t integ_alpha;  /**< 0 (default): off, the birth peaks are those of the current frame. In (0, 1) (needs birth_peaks > 0 and peak_quota 0): the manager's search layer draws its births from the peaks of a recursive max-filter sum over frames instead (docs/algorithms.md 2.13): on 2 x 2 bins of pixels, S_t(b) = max(0, m_t(b) + integ_alpha max S_{t-1}(q)), m_t(b) the largest value of the PSF-matched unit-noise frame in bin b and q the 3 x 3 bins around b less the platform's shift (pft_tbd_set_shift, 0 by default); the K = birth_peaks strongest 3 x 3 local maxima of S above its frame mean plus peak_gamma of its frame standard deviations are the peaks, each at the pixel of its bin that is largest in the current frame. The factor is used in steps of 1/256; S is kept in 1/64 noise sigmas as two 16-bit sums per bin (PFT_TBD_INTEG_BYTES). The particle filters are unchanged [E] */
 } pft_tbd_config_t;
 
 /**
@@ -464,6 +466,12 @@ typedef struct {
     (PFT_TBD_MGR_REST_(n_search, n_track, max_targets, kind, w, h, peaks) +                     \
      PFT_TBD_INPLACE_BYTES_(max_targets, w, h))
 
+/** Workspace bytes that cfg.integ_alpha > 0 adds to the PFT_TBD_WORKSPACE_BYTES* figure of a
+ *  w x h image (constant expression): two 16-bit sums per 2 x 2 bin of pixels (1 byte per
+ *  pixel). */
+#define PFT_TBD_INTEG_BYTES(w, h)                                                               \
+    (2u * PFT_WS_ROUND((((size_t)(w) + 1u) / 2u) * (((size_t)(h) + 1u) / 2u) * sizeof(uint16_t)))
+
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
@@ -493,6 +501,18 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t);
  * Refused input (PFT_ERR_INVAL, PFT_ERR_FORMAT, PFT_ERR_SEQ) leaves everything untouched.
  */
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame);
+
+/**
+ * The platform's shift of the scene from the last accepted frame to the next frame given to
+ * pft_tbd_update, in pixels (dx along the columns, dy down the rows: a fixed point of the scene
+ * at (x, y) in the last frame is at (x + dx, y + dy) in the next). Only the multi-frame
+ * integration of the birth peaks (cfg.integ_alpha > 0, docs/algorithms.md 2.13) reads it: the
+ * sum of the last frames is moved by the shift, in whole 2 x 2 bins (the remainder is carried
+ * to the next frame). It holds for the next accepted update only (0 when not set: a sensor
+ * that does not move). PFT_ERR_INVAL for NULL t, or |dx| > width or |dy| > height (NaN
+ * included; nothing changed); PFT_ERR_STATE for an uninitialised manager.
+ */
+pft_status_t pft_tbd_set_shift(pft_tbd_t *t, pft_real_t dx, pft_real_t dy);
 
 /** Copies up to max confirmed tracks (ordered by id) into out; returns how many exist (out may
  *  be NULL with max 0 to ask the count). Tentative tracks of the sequential test

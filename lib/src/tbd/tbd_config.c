@@ -69,6 +69,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->sprt_reject = PFT_C(-5.0);
     cfg->shape_ring = PFT_C(0.0);
     cfg->sprt_start = 0u;
+    cfg->integ_alpha = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -256,6 +257,10 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->sprt_start > 2u) {
         return "sprt_start";
+    }
+    if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
+        (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {
+        return "integ_alpha";
     }
     return NULL;
 }

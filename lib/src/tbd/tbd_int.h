@@ -142,9 +142,25 @@ void pft_tbd_scene_build_(const pft_tbd_config_t *cfg, pft_real_t gamma_w, const
  * rows holds six image rows of scratch, val K reals (the peaks' values), lines w + h + 1
  * counts (the allowed pixels per row, and the tile quota's counts of the current tile row).
  * img NULL: the RES16 source of sc, as above. */
+/* The multi-frame integration of the peak scan (cfg.integ_alpha > 0, docs/algorithms.md 2.13):
+ * prev the last frame's sums, cur this frame's (bw x bh bins of 2 x 2 pixels, row-major, each
+ * (S << 2) | i, S in 1/64 noise sigmas, i the bin's largest pixel: row 2 (i / 2), column i % 2);
+ * (sx, sy) the platform's shift to this frame in whole bins; a_q = integ_alpha in 1/256. */
+typedef struct {
+    const uint16_t *prev;
+    uint16_t *cur;
+    uint32_t bw, bh;
+    int32_t sx, sy;
+    uint32_t a_q;
+} pft_tbd_integ_t_;
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc);
+/* The same with the peaks of the integration instead (ig->cur written, ig->prev read). */
+void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
+                          const pft_tbd_integ_t_ *ig);
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand
  * NULL): a binary search of row_pre, then the row's mask. */
 uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n);

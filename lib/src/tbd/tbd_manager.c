@@ -9,12 +9,25 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
     if (pft_tbd_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
+    const size_t integ =
+        cfg->integ_alpha > PFT_C(0.0) ? PFT_TBD_INTEG_BYTES(cfg->width, cfg->height) : 0u;
     if (cfg->frame_format == PFT_PIX_RES16) {
         return PFT_TBD_WORKSPACE_BYTES_RES16(cfg->n_search, cfg->n_track, cfg->max_targets,
-                                             cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
+                                             cfg->kind, cfg->width, cfg->height,
+                                             cfg->birth_peaks) +
+               integ;
     }
     return PFT_TBD_WORKSPACE_BYTES_PEAKS(cfg->n_search, cfg->n_track, cfg->max_targets,
-                                         cfg->kind, cfg->width, cfg->height, cfg->birth_peaks);
+                                         cfg->kind, cfg->width, cfg->height, cfg->birth_peaks) +
+           integ;
+}
+
+/* The integration's bins (cfg.integ_alpha > 0): 2 x 2 pixels each, 0 when off. */
+static size_t integ_n_(const pft_tbd_config_t *cfg)
+{
+    return cfg->integ_alpha > PFT_C(0.0)
+               ? (((size_t)cfg->width + 1u) / 2u) * (((size_t)cfg->height + 1u) / 2u)
+               : 0u;
 }
 
 /* Birth candidate slots: one per pixel for B_k, K with birth peaks (PFT_TBD_CAND_N_). */
@@ -87,7 +100,16 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         rowbuf = (pft_real_t *)pft_ws_take(
             ws, ((size_t)cfg->width + 2u + PFT_TBD_WIN_REALS_) * sizeof(pft_real_t));
     }
+    uint16_t *integ0 = NULL;
+    uint16_t *integ1 = NULL;
+    if (integ_n_(cfg) > 0u) {
+        /* after every other buffer: the layout without the integration is unchanged */
+        integ0 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
+        integ1 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
+    }
     if (commit) {
+        t->integ[0] = integ0;
+        t->integ[1] = integ1;
         t->base = nimg > 0u ? (void *)img : (void *)mask;
         t->prect = prect;
         t->pflag = pflag;
@@ -152,6 +174,10 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     if (cfg->birth_peaks > 0u) {
         memset(t->peak_rows, 0, 6u * (size_t)cfg->width * sizeof(pft_real_t));
         memset(t->peak_val, 0, (size_t)cfg->birth_peaks * sizeof(pft_real_t));
+    }
+    if (integ_n_(cfg) > 0u) {
+        memset(t->integ[0], 0, integ_n_(cfg) * sizeof(uint16_t));
+        memset(t->integ[1], 0, integ_n_(cfg) * sizeof(uint16_t));
     }
     pft_tbd_filter_clear_(&t->search);
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
@@ -612,6 +638,46 @@ static void search_budget_(pft_tbd_t *t, uint32_t stepped)
     sf->n = n;
 }
 
+/* The integration of this frame (docs/algorithms.md 2.13): the last frame's sums, this frame's
+ * buffer, the factor in 1/256 and the shift given by pft_tbd_set_shift in whole bins (added to
+ * the remainder carried from the frames before, the new remainder kept). */
+static void integ_prepare_(pft_tbd_t *t, pft_tbd_integ_t_ *ig)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    ig->prev = t->integ[t->integ_i];
+    ig->cur = t->integ[1u - t->integ_i];
+    ig->bw = ((uint32_t)cfg->width + 1u) / 2u;
+    ig->bh = ((uint32_t)cfg->height + 1u) / 2u;
+    ig->a_q = (uint32_t)pft_round_int(pft_mul_i(cfg->integ_alpha, 256));
+    int32_t d[2];
+    for (uint32_t k = 0; k < 2u; ++k) {
+        const pft_real_t acc = pft_add(t->shift_acc[k], t->shift_next[k]);
+        d[k] = pft_round_int(pft_mul(acc, PFT_C(0.5)));
+        t->shift_acc[k] = pft_sub(acc, pft_from_int(2 * d[k]));
+        t->shift_next[k] = PFT_C(0.0);
+    }
+    ig->sx = d[0];
+    ig->sy = d[1];
+}
+
+pft_status_t pft_tbd_set_shift(pft_tbd_t *t, pft_real_t dx, pft_real_t dy)
+{
+    if (t == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (t->base == NULL) {
+        return PFT_ERR_STATE;
+    }
+    const pft_real_t w = pft_from_int((int32_t)t->cfg.width);
+    const pft_real_t h = pft_from_int((int32_t)t->cfg.height);
+    if (!(dx >= pft_neg(w) && dx <= w && dy >= pft_neg(h) && dy <= h)) {
+        return PFT_ERR_INVAL;
+    }
+    t->shift_next[0] = dx;
+    t->shift_next[1] = dy;
+    return PFT_OK;
+}
+
 /* 3. The search layer, births outside the regions; with residual, on the frame minus every
  * remaining track's PSF at its current estimate. */
 static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual,
@@ -638,8 +704,19 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
     }
     search_budget_(t, stepped);
     if (cfg->birth_peaks > 0u) {
-        pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
-                             t->lines, &ssc);
+        pft_tbd_integ_t_ ig;
+        const bool integ = integ_n_(cfg) > 0u;
+        if (integ) {
+            integ_prepare_(t, &ig);
+        }
+        if (integ) {
+            pft_tbd_scene_integ_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
+                                 t->lines, &ssc, &ig);
+            t->integ_i = (uint8_t)(1u - t->integ_i); /* this frame's sums are the last */
+        } else {
+            pft_tbd_scene_peaks_(cfg, t->tab, simg, t->mask, t->peak_rows, t->peak_val, t->cand,
+                                 t->lines, &ssc);
+        }
     } else {
         pft_tbd_scene_build_(cfg, t->search.gamma_w, simg, t->mask, t->cand, &ssc);
     }
@@ -832,6 +909,12 @@ static void restart_(pft_tbd_t *t)
     memset(t->search.cur.e, 0, t->search.n);
     pft_tbd_filter_reset_stats_(&t->search);
     t->search.frames = 0u; /* births with eta, as on the first frame */
+    if (integ_n_(&t->cfg) > 0u) {
+        /* the integration starts over too (the scene may have moved anywhere) */
+        memset(t->integ[t->integ_i], 0, integ_n_(&t->cfg) * sizeof(uint16_t));
+        t->shift_acc[0] = PFT_C(0.0);
+        t->shift_acc[1] = PFT_C(0.0);
+    }
 }
 
 pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)

@@ -628,7 +628,7 @@ static void sift_up_(uint32_t *key, pft_real_t *val, uint32_t i)
 /* hs[c] = t1 z(c) + t0 (z(c - 1) + z(c + 1)) along a row of the bordered whitened image
  * (pft_tbd_row_): row[0] and row[w + 1] are the zero border, so every column is the same
  * expression (one loop without a carried value, which compilers vectorise). */
-static void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_real_t t1,
+static inline void peak_hrow_(const pft_real_t *row, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs)
 {
     const pft_real_t lo = pft_neg(PEAK_CLIP_);
@@ -656,7 +656,7 @@ static inline int16_t r16_int_(const uint8_t *src, size_t c)
  * exactly, and pft_kmul_r16_ gives pft_kmula_'s bits (kern_int.h); t0, t1 prepared by
  * pft_kr16_tap_. The same values as peak_hrow_ on pft_tbd_row_ in both builds, without the
  * row's conversion. */
-static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                            pft_real_t *hs)
 {
     if (w < 2u) {
@@ -681,7 +681,7 @@ static void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_re
 }
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). */
-static void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                        uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
 {
     if (up != NULL && dn != NULL && pft_kmul_u_ok_(u0) && pft_kmul_u_ok_(u1)) {
@@ -773,7 +773,7 @@ static void peak_keep_full_tile_(peak_scan_t *ps, uint32_t tk, uint32_t k, pft_r
 
 /* Pixel c of row q (value v, above the threshold, a local maximum) into the heap of the K
  * strongest (with a tile quota: of the K strongest with at most quota per tile). */
-static void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
+static inline void peak_keep_(peak_scan_t *ps, uint32_t k, pft_real_t v)
 {
     const bool full = ps->n >= ps->k_max;
     if (full && !weaker_(ps->val[0], ps->key[0], v, k)) {
@@ -862,6 +862,134 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
     }
 }
 
+/* Largest stored sum of the integration (1/64 noise sigmas): S << 2 fits 16 bits. */
+#define INTEG_MAX_ 16383
+
+/* One bin row br of the integration (docs/algorithms.md 2.13) from the PSF-matched rows r0 and
+ * r1 (pixel rows 2 br and 2 br + 1; r1 NULL past the last row): per bin the largest of its
+ * pixels, m in 1/64 sigmas (rounded), plus a_q / 256 times the largest last-frame sum of the
+ * 3 x 3 bins around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and
+ * squares added to sum[0], sum[1]. vm is bw + 2 words of scratch: the largest last-frame sum
+ * of the three rows per column, with a zero column on each side. Integer arithmetic after m:
+ * the same in both builds. */
+static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
+{
+    const int32_t pr = (int32_t)br - ig->sy;
+    const int32_t bw = (int32_t)ig->bw;
+    const int32_t bh = (int32_t)ig->bh;
+    const int32_t rlo = pr - 1 < 0 ? 0 : pr - 1;
+    const int32_t rhi = pr + 1 > bh - 1 ? bh - 1 : pr + 1;
+    vm[0] = 0u;
+    vm[ig->bw + 1u] = 0u;
+    for (uint32_t c = 0; c < ig->bw; ++c) {
+        vm[c + 1u] = 0u;
+    }
+    for (int32_t r = rlo; r <= rhi; ++r) {
+        const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
+        for (uint32_t c = 0; c < ig->bw; ++c) {
+            const uint32_t v = (uint32_t)prow[c] >> 2;
+            vm[c + 1u] = v > vm[c + 1u] ? v : vm[c + 1u];
+        }
+    }
+    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
+    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
+    uint16_t *out = ig->cur + (size_t)br * ig->bw;
+    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+        const uint32_t c0 = 2u * bc;
+        pft_real_t best = r0[c0];
+        uint32_t idx = 0u;
+        if (c0 + 1u < w && r0[c0 + 1u] > best) {
+            best = r0[c0 + 1u];
+            idx = 1u;
+        }
+        if (r1 != NULL && r1[c0] > best) {
+            best = r1[c0];
+            idx = 2u;
+        }
+        if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
+            best = r1[c0 + 1u];
+            idx = 3u;
+        }
+        /* the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2] (padded by one) */
+        const int32_t pc = (int32_t)bc - ig->sx;
+        uint32_t mx = 0u;
+        if (pc >= -1 && pc <= bw) {
+            const uint32_t a = pc >= 0 ? vm[pc] : 0u;
+            const uint32_t b = vm[pc + 1];
+            const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
+            mx = a > b ? a : b;
+            mx = d > mx ? d : mx;
+        }
+        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, lo, hi), 64));
+        sq += (int32_t)((ig->a_q * mx + 128u) >> 8);
+        sq = sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq);
+        out[bc] = (uint16_t)(((uint32_t)sq << 2) | idx);
+        sum[0] += (uint64_t)sq;
+        sum[1] += (uint64_t)sq * (uint64_t)sq;
+    }
+}
+
+/* floor(sqrt(v)), bit by bit (32 steps). */
+static uint32_t isqrt64_(uint64_t v)
+{
+    uint64_t r = 0u;
+    for (int32_t b = 31; b >= 0; --b) {
+        const uint64_t t = r | ((uint64_t)1u << (uint32_t)b);
+        if (t * t <= v) {
+            r = t;
+        }
+    }
+    return (uint32_t)r;
+}
+
+/* Sum of bin (br, bc) of the integration (0 outside). */
+static uint32_t integ_at_(const pft_tbd_integ_t_ *ig, int32_t br, int32_t bc)
+{
+    if (br < 0 || bc < 0 || br >= (int32_t)ig->bh || bc >= (int32_t)ig->bw) {
+        return 0u;
+    }
+    return (uint32_t)ig->cur[(size_t)br * ig->bw + (size_t)bc] >> 2;
+}
+
+/* The peaks of the integration into the heap: the 3 x 3 local maxima of the bins' sums (a
+ * plateau's first bin in raster order, as peak_is_max_) above ps->thr, each at its bin's
+ * largest pixel of this frame, when that pixel is allowed. */
+static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
+{
+    pft_real_t te = peak_te_(ps);
+    for (uint32_t br = 0; br < ig->bh; ++br) {
+        const uint16_t *row = ig->cur + (size_t)br * ig->bw;
+        for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+            const uint32_t v = (uint32_t)row[bc] >> 2;
+            const pft_real_t vr = pft_from_int((int32_t)v);
+            if (!(vr > te)) {
+                continue;
+            }
+            bool is_max = true;
+            for (int32_t a = -1; a <= 1 && is_max; ++a) {
+                for (int32_t b = -1; b <= 1 && is_max; ++b) {
+                    const uint32_t n = integ_at_(ig, (int32_t)br + a, (int32_t)bc + b);
+                    const bool before = a < 0 || (a == 0 && b < 0);
+                    is_max = (a == 0 && b == 0) || (before ? v > n : v >= n);
+                }
+            }
+            if (!is_max) {
+                continue;
+            }
+            const uint32_t idx = (uint32_t)row[bc] & 3u;
+            const uint32_t pr = 2u * br + (idx >> 1);
+            const uint32_t pc = 2u * bc + (idx & 1u);
+            if (ps->mask != NULL &&
+                pft_tbd_masked_(ps->mask, pft_tbd_mask_words_(ps->w), pc, pr)) {
+                continue;
+            }
+            peak_keep_(ps, pr * ps->w + pc, vr);
+            te = peak_te_(ps);
+        }
+    }
+}
+
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
@@ -920,6 +1048,109 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
             peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
                            q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
         }
+    }
+    sc->mask = mask;
+    sc->cand = cand;
+    sc->row_pre = lines;
+    sc->width = w;
+    sc->height = h;
+    sc->n_allowed = ps.na;
+    sc->cand_is_b = ps.n > 0u;
+    sc->n_cand = ps.n;
+    if (ps.n == 0u && ps.na > 0u) {
+        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
+         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
+        sc->cand = NULL;
+        sc->n_cand = ps.na;
+    }
+}
+
+/* pft_tbd_scene_peaks_ with the integration (docs/algorithms.md 2.13): the same PSF-matched
+ * rows, folded into the bins' sums instead of scanned; kept apart so that the scan without it
+ * compiles as before (its cost unchanged). */
+void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
+                          const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
+                          pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
+                          const pft_tbd_integ_t_ *ig)
+{
+    const uint32_t w = cfg->width;
+    const uint32_t h = cfg->height;
+    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
+    const pft_real_t *tx = tab->taps[0][mid];
+    const pft_real_t *ty = tab->taps[1][mid];
+    pft_real_t *hs[3];
+    pft_real_t *mf[3];
+    peak_scan_t ps;
+    for (uint32_t s = 0; s < 3u; ++s) {
+        hs[s] = rows + (size_t)s * w;
+        mf[s] = rows + (size_t)(s + 3u) * w;
+    }
+    scene_source_(sc, img, w, h);
+    /* a RES16 scene's rows without a patch go through the integers (peak_hrow_r16_) when the
+     * prepared taps are exact (always in q16; in float unless a tap is below 2^-118) */
+    const pft_real_t t0p = pft_kr16_tap_(tx[0]);
+    const pft_real_t t1p = pft_kr16_tap_(tx[1]);
+    const bool r16 = img == NULL && pft_kr16_tap_ok_(tx[0]) && pft_kr16_tap_ok_(tx[1]);
+    ps.mask = mask;
+    ps.key = cand;
+    ps.val = val;
+    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
+    ps.thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(tx[3], ty[3])));
+    ps.w = w;
+    ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
+    ps.n = 0u;
+    ps.na = 0u;
+    ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
+    ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
+    ps.ntx = (w + ps.tile - 1u) / ps.tile;
+    ps.row_pre = lines;           /* h + 1 entries */
+    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
+    ps.trow = 0u;
+    lines[0] = 0u;
+    uint64_t isum[2] = {0u, 0u};
+    /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
+     * and the scan of row rr - 2 */
+    for (uint32_t rr = 0; rr < h + 2u; ++rr) {
+        if (rr < h && r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
+            peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, t0p, t1p, hs[rr % 3u]);
+        } else if (rr < h) {
+            peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
+        } else {
+            /* rows h and h + 1 of the rolling steps: no new row */
+        }
+        if (rr >= 1u && rr <= h) {
+            const uint32_t r = rr - 1u;
+            peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
+                       r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
+        }
+        if (rr >= 1u && rr <= h) {
+            /* the integration's bin row of PSF-matched rows r - 1 and r (r odd), or of the last
+             * row alone (h odd) */
+            const uint32_t r = rr - 1u;
+            if (r % 2u == 1u) {
+                integ_row_(ig, r / 2u, mf[(r + 2u) % 3u], mf[r % 3u], w, lines, isum);
+            } else if (r + 1u == h) {
+                integ_row_(ig, r / 2u, mf[r % 3u], NULL, w, lines, isum);
+            } else {
+                /* the first row of a pair: its bin row comes with the next row */
+            }
+        }
+    }
+    {
+        /* (lines was the integration's scratch) the allowed pixels per row, then the peaks of the sums above their frame mean plus
+         * peak_gamma frame standard deviations (1/64 sigmas) */
+        lines[0] = 0u;
+        for (uint32_t q = 0; q < h; ++q) {
+            ps.na += mask == NULL ? w : pft_tbd_mask_row_free_(mask, w, q);
+            lines[q + 1u] = ps.na;
+        }
+        const uint64_t nb = (uint64_t)ig->bw * ig->bh;
+        const uint64_t mean = isum[0] / nb;
+        const uint64_t msq = isum[1] / nb;
+        const uint32_t sd = isqrt64_(msq > mean * mean ? msq - mean * mean : 0u);
+        ps.thr = pft_add(pft_from_int((int32_t)mean),
+                         pft_mul(cfg->peak_gamma, pft_from_int((int32_t)sd)));
+        integ_scan_(&ps, ig);
     }
     sc->mask = mask;
     sc->cand = cand;

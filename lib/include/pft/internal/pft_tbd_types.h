@@ -138,6 +138,10 @@ struct pft_tbd_s {
     uint32_t last_seq;           /* seq of the last accepted frame */
     uint64_t last_ts;            /* its timestamp_us */
     uint32_t gap;                /* frame periods of the current update (1 without a gap) */
+    uint16_t *integ[2];          /* cfg.integ_alpha > 0: the integrated sums S of the last frame and of this one, per 2 x 2 bin ((S << 2) | the bin's best pixel) */
+    uint8_t integ_i;             /* which of integ[] holds the last frame's sums */
+    pft_real_t shift_next[2];    /* pft_tbd_set_shift's shift to the next frame (pixels) */
+    pft_real_t shift_acc[2];     /* the shift not yet applied in whole bins (pixels) */
 };
 
 #ifdef __cplusplus
