@@ -154,6 +154,10 @@ static void fuzz_tbd(fz_t *f, bool manager)
                                                            c.birth_peaks)
                            : PFT_TBD_FILTER_WORKSPACE_BYTES(c.n_search, c.kind, c.width,
                                                             c.height);
+    if (manager && c.integ_alpha > PFT_C(0.0)) {
+        /* the header's rule: the integration adds PFT_TBD_INTEG_BYTES to the figure */
+        macro += PFT_TBD_INTEG_BYTES(c.width, c.height);
+    }
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;
