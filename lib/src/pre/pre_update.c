@@ -162,6 +162,19 @@ static uint32_t bracket_sigma_(const uint16_t *h, uint32_t n)
 #define PFT_PRE_BIN_LUT_ 1024
 #define PFT_PRE_BIN_N_ 2047u /* 2 PFT_PRE_BIN_LUT_ - 1 entries */
 
+/* The column sums of one tile's span of a residual row, each value clipped to +-clip and a
+ * masked pixel counted as 0 (every PFT_PRE_COL_ROWS_-th row; vectorisable: 16-bit min/max). */
+static inline void colsum_add_(int32_t *cs, const int16_t *r, uint32_t x0, uint32_t x1,
+                               int16_t clip)
+{
+    const int16_t nclip = (int16_t)-clip;
+    for (uint32_t x = x0; x < x1; ++x) {
+        const int16_t v = r[x];
+        const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
+        cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+    }
+}
+
 uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
 {
     static const uint8_t bin_lut_[PFT_PRE_BIN_N_] = {
@@ -305,11 +318,9 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         /* sigma_bracket: counts below the tile's thresholds (16-bit compares, vectorisable) */
         for (uint32_t i = 0; i < p->ntx; ++i) {
             const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
-            for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
-                const int16_t v = r[x];
-                const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
-                cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
+            if (colrow) {
+                colsum_add_(cs, r, x0, x1, clip);
             }
             uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
             if (hist[PFT_PRE_BRK_T_] == 0u) {
@@ -349,11 +360,9 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         const bool hrow = fresh && y % ss == 0u;
         for (uint32_t i = 0; i < p->ntx; ++i) {
             const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
-            for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
-                const int16_t v = r[x];
-                const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
-                cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
+            if (colrow) {
+                colsum_add_(cs, r, x0, x1, clip);
             }
             uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
             for (uint32_t x = (x0 + ss - 1u) / ss * ss; hrow && x < x1; x += ss) {
@@ -366,11 +375,9 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
     }
     for (uint32_t i = 0; i < p->ntx; ++i) {
         const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-        const int16_t clip = (int16_t)pft_pre_clip_(p, j, i), nclip = (int16_t)-clip;
-        for (uint32_t x = x0; colrow && x < x1; ++x) { /* vectorisable: 16-bit min/max */
-            const int16_t v = r[x];
-            const int16_t c = v < nclip ? nclip : (v > clip ? clip : v);
-            cs[x] += v == PFT_RES16_MASKED ? 0 : c;
+        const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
+        if (colrow) {
+            colsum_add_(cs, r, x0, x1, clip);
         }
         /* a masked pixel (|INT16_MIN| = 32768) lands in the extra bin PFT_PRE_BINS */
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
