@@ -205,6 +205,7 @@ int main(int argc, char **argv)
     filter_opts(ev);
     set_metric_opts(ev);
     ev->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
+    ev->add_option("--trace", o.trace, "tbd_ir: write a diagnostic trace of the TBD manager per run into this folder (s<seed>_targets.csv, s<seed>_tracks.csv; the summary is unchanged)");
     common(ev);
 
     CLI::App *be = app.add_subcommand("bench", "per-frame time, particles/s and workspace bytes (not a test)");

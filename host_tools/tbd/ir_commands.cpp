@@ -30,6 +30,7 @@ extern "C" {
 #include "ir_scenario.hpp"
 #include "ir_scene.hpp"
 #include "ir_sim.hpp"
+#include "ir_trace.hpp"
 #include "overlay.hpp"
 
 namespace fs = std::filesystem;
@@ -257,7 +258,7 @@ struct Tracked {
  *  this seed (eval.drop_prob, eval.drop_frames) are not fed: the pipeline sees the gap in seq,
  *  and the frame's output is the last one of each tracker (what a display holds), which the
  *  metrics count. */
-Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
+Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed, IrTrace *trace = nullptr)
 {
     IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
     Tracked out;
@@ -277,6 +278,8 @@ Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed)
         }
         PipelineOut po = pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth,
                                            static_cast<uint32_t>(k + 1)));
+        if (trace != nullptr)
+            trace->frame(k + 1, pl, po.tbd);
         out.tbd.push_back(std::move(po.tbd));
         out.dbt.push_back(std::move(po.dbt));
         out.detections += po.detections;
@@ -935,6 +938,8 @@ public:
                         describe_pipeline(s).c_str(), runs, static_cast<unsigned long long>(base),
                         static_cast<unsigned long long>(base + runs - 1), threads);
         cv::setNumThreads(1);  // the runs are the parallel work
+        if (!o.trace.empty())
+            ensure_dir(o.trace);
         std::vector<IrRunEval> res(runs), dres(runs);
         std::vector<long> dets(runs);
         std::vector<int> lost_n(runs);
@@ -944,7 +949,10 @@ public:
         parallel_for(runs, threads, [&](std::size_t i) {
             uint64_t seed = base + i;
             IrSequence q = simulate_ir(s, seed);
-            Tracked tr = track_sequence(s, q, seed);
+            std::unique_ptr<IrTrace> trace;
+            if (!o.trace.empty())
+                trace = std::make_unique<IrTrace>(s, q, seed);
+            Tracked tr = track_sequence(s, q, seed, trace.get());
             res[i] = evaluate_ir(q.truth, tr.tbd, s.eval.d_c, s.eval.d_assoc);
             dres[i] = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
             res[i].seed = dres[i].seed = seed;
@@ -955,6 +963,8 @@ public:
                         f.scene_x = f.x + p[0];
                         f.scene_y = f.y + p[1];
                     }
+            if (trace)
+                trace->write(o.trace, res[i]);
             dets[i] = tr.detections;
             lost_n[i] = tr.lost;
             backgrounds[i] = q.background;

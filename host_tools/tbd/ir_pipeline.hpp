@@ -80,6 +80,15 @@ public:
     std::size_t workspace_bytes() const { return tracker_->workspace_bytes(); }
     std::size_t pre_workspace_bytes() const { return pre_ws_bytes_; }
     const pft_tbd_config_t &config() const { return tracker_->config(); }
+    const tbd::Tracker &tracker() const { return *tracker_; }  ///< the TBD manager (diagnostics, ir_trace.hpp)
+    /** Whether the scene-motion test has found TBD track `id` moving with the scene. */
+    bool scene_flagged(uint32_t id) const
+    {
+        auto it = hist_.find(id);
+        return it != hist_.end() && it->second.scene;
+    }
+    /** The scene's cumulative shift (the stage's measured shifts summed), px. */
+    std::array<double, 2> scene_shift() const { return {scene_x_, scene_y_}; }
     const pft_pre_config_t &pre_config() const { return pre_cfg_; }
     double dbt_threshold_sigma() const { return dbt_thr_; }
 

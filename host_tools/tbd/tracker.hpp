@@ -80,6 +80,8 @@ public:
     /** Particles updated at the last frame (multi: n_search + n_track per track layer live
      *  before the frame, reported or tentative (cfg.sprt_accept > 0)). */
     uint64_t active_particles() const { return active_; }
+    /** The manager (not the single filter): for host diagnostics (ir_trace.hpp) only. */
+    const pft_tbd_t &manager() const { return mgr_; }
 
 private:
     FrameOut update_single(const pft_frame_t &frame);
