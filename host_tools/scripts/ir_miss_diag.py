@@ -17,8 +17,9 @@ order of the pipeline (the decision rules are printed with the table):
   c_dropped     a track layer on it (within 3 px in at least one frame), ended by the manager
                 before the pipeline reported it (the end test read from the layer: existence
                 probability below theta_end, the disappearance test, no live particle, ...);
-  c_scene       a track layer on it alive long enough, never reported: the scene-motion test
-                (moving with the scene) or the straight-line test held it back;
+  c_scene       a track layer on it never reported, but not ended early: alive at the run's
+                end (too late) or longer than the scene-motion test's frames (the scene-motion
+                or the straight-line test held it back);
   d_shared      a track reported within 3 px of it, which the evaluation (one track per target
                 and frame, nearest first) gave to another target: the two targets of a crossing
                 pair under one track, the second never with a track of its own;

@@ -22,7 +22,8 @@ namespace pft::host::tbd_ir {
 
 class IrTrace {
 public:
-    /** psf_sigma: the matched filter's Gaussian (the scenario's PSF). */
+    /** For the run of seed `seed` over q (its truth); the matched filter is the scenario's PSF
+     *  (targets.psf_sigma). s and q must outlive the trace. */
     IrTrace(const IrScenario &s, const IrSequence &q, uint64_t seed);
     /** After the pipeline's step of frame k (1-based): the manager's state, the residual it
      *  saw, the tracks reported. */
