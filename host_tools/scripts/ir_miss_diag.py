@@ -95,6 +95,8 @@ def main():
             rr = rows.get(tid, [])
             # residual strength per frame (frames after the first, inside the image)
             zs, share, ranks = [], [], []
+            busy = 0  # frames with the search layer's P > 0.5 and under half its particles near the target
+            full = 0  # frames with every track slot taken
             for r in rr:
                 if int(r['frame']) <= 1:
                     continue
@@ -103,6 +105,8 @@ def main():
                     zs.append((fnum(r['mf_at']) - fnum(r['loc_med'])) / sd)
                 alive = int(r['alive'])
                 share.append(int(r['alive_near']) / alive if alive else 0.0)
+                busy += fnum(r['search_p']) > 0.5 and share[-1] < 0.5
+                full += int(r['n_tracks']) >= summ.get('tracker', {}).get('max_targets', 8)
                 ranks.append(int(r['rank']))
             zmed = sorted(zs)[len(zs) // 2] if zs else float('nan')
             weak = (sum(z < WEAK_Z for z in zs) > len(zs) / 2) if zs else True
@@ -148,6 +152,8 @@ def main():
             allz[c + '_rank'].append(sorted(ranks)[len(ranks) // 2] if ranks else -1)
             allz[c + '_evid'].append(evid)
             allz[c + '_b3'].append(sum(int(r['births3']) > 0 for r in rr) / max(1, len(rr)))
+            allz[c + '_busy'].append(busy / max(1, len(share)))
+            slot_full[c] += full
             lines.append((seed, tid, kind, c, zmed, evid, len(on), t['present_frames']))
         for tr in tracks:
             if tr['is_false'] == '1':
@@ -167,6 +173,11 @@ def main():
         print(f'{c:15s} {cnt["all"]:5d} ' + ' '.join(f'{cnt[k]:12d}' for k in KINDS) +
               (f'   {zz[len(zz)//2]:8.2f}   {rk[len(rk)//2]:11d}   {ev[len(ev)//2]:14.2f}   {sum(b3)/len(b3):.2f}'
                if zz else ''))
+    for c in cats:
+        bz = sorted(allz[c + '_busy'])
+        if bz:
+            print(f'  {c}: search layer held elsewhere (P > 0.5, < 50 % of it within 3 px) in a median '
+                  f'{bz[len(bz) // 2]:.2f} of the frames; frames with every track slot taken: {slot_full[c]}')
     for c, s in sub.items():
         print(f'  {c}: ' + ', '.join(f'{k} {v}' for k, v in s.most_common()))
     # the residual strength of every injected target, by detection
