@@ -46,6 +46,7 @@ void pft_pte_config_default(pft_pte_config_t *cfg)
     cfg->short_len = 0u;
     cfg->man_z = PFT_C(1.25);
     cfg->man_acc_sd = PFT_C(0.03);
+    cfg->steady_dirs = 0u;
 }
 
 /* 1/c_step when it is an integer 1..8, else 0. */
@@ -225,6 +226,14 @@ static const char *bad_field_(const pft_pte_config_t *c)
     if (c->line_budget != 0u &&
         (op_of_(c) != PFT_PTE_OP_TABLE || c->line_budget < line_budget_min_(c))) {
         return "line_budget";
+    }
+    /* steady_dirs: odd, 3 or more (a single direction's slope, the lattice point nearest the
+     * prediction, would say nothing of the slope) and below n_dir[0]; TABLE slope entries */
+    if (c->steady_dirs != 0u &&
+        ((c->steady_dirs & 1u) == 0u || c->steady_dirs < 3u ||
+         (uint32_t)c->steady_dirs + 2u > c->n_dir[0] ||
+         op_of_(c) != PFT_PTE_OP_TABLE)) {
+        return "steady_dirs";
     }
     return NULL;
 }

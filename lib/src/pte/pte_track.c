@@ -1664,6 +1664,13 @@ static bool step_geometry_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g
             scan_prior_(p, a, pft_neg(pft_mul_i(c->c_step, (ap[a].ns - 1) / 2)));
         }
     }
+    /* steady_dirs (TABLE, one axis): a steady track whose n_dir[0] directions would sit at
+     * the lattice step (step_bank_'s spacing dtheta_min) scans only the steady_dirs around
+     * its predicted slope, at that step */
+    if (c->steady_dirs != 0u && t->steady != 0u &&
+        ap[0].dth <= pft_mul(from_fix16_(p->lat_t), PFT_C(2.5))) {
+        ap[0].L = (int32_t)c->steady_dirs;
+    }
     g->reach64[0] = 0;
     g->reach64[1] = 0;
     for (uint32_t a = 0; a < na && p->yq == 0u; ++a) {
@@ -2242,6 +2249,7 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     const int32_t hc = (g.ndir - 1) / 2;
     pft_real_t lx_seen = PFT_REAL_MIN;
     bool seen = false;
+    bool cin = false;
     for (int32_t k = 0; k < g.ndir; ++k) {
         /* q16: hc, 0, 1, ..., hc - 1, hc + 1, ..., ndir - 1; float: in index order */
         const int32_t li = !lazy ? k : (k == 0 ? hc : (k <= hc ? k - 1 : k));
@@ -2279,6 +2287,12 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
             p->dir[li].logw = logw; /* weight 0 in the fusion (step_fuse_) */
         } else {
             dir_finish_(p, &g, c0, &b);
+            /* steady_dirs' gate: the central direction's end position within one standard
+             * deviation of the predicted one, (c* - zc)^2 <= P_cc + sigma_R^2 (q16: the
+             * central direction is scanned first, so it always gets here) */
+            if (p->cfg.steady_dirs != 0u && li == hc) {
+                cin = pft_sq(pft_sub(b.cstar[0], s->ap[0].zc)) <= s->ap[0].sc2;
+            }
             dir_update_(p, t, &g, &d, &b, &p->dir[li]);
             lx_seen = seen ? pft_max(lx_seen, logw) : logw;
             seen = true;
@@ -2294,6 +2308,15 @@ bool pft_pte_track_step_(pft_pte_t *p, pft_pte_track_t *t)
     step_fuse_(p, t, g.ndir);
     /* max_l T_l* from the largest signed T^2 */
     step_maintain_(p, t, signed_t_(t2max));
+    if (p->cfg.steady_dirs != 0u) {
+        /* steady_dirs: steady when detected with the central direction the likeliest (the
+         * first largest fusion weight) */
+        int32_t lb = 0;
+        for (int32_t li = 1; li < g.ndir; ++li) {
+            lb = p->dir[li].w > p->dir[lb].w ? li : lb;
+        }
+        t->steady = (t->detected && lb == hc && cin) ? 1u : 0u;
+    }
     if (mt && manoeuvre_(p, g.M, t2max, t2short)) {
         t->n_acc = p->short_len; /* the next step's template: the last Ms frames */
         /* CA: man_acc_sd^2 more on r'' (scaled by SA^2); CV: (Ms man_acc_sd)^2 on r' (SV^2) */

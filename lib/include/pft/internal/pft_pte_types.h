@@ -55,6 +55,7 @@ typedef struct {
     bool live;
     bool detected;
     uint8_t wait;        /* step_budget: frames since its last step (0 after a step) */
+    uint8_t steady;      /* steady_dirs: the last step detected with the central direction the likeliest */
 } pft_pte_track_t;
 
 /* Result of one operator direction within a track step: the Kalman gain and state change of
