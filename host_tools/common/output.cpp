@@ -134,4 +134,13 @@ void CsvWriter::end_row()
     first_ = true;
 }
 
+std::string fixed_text(double v, int prec, const char *missing)
+{
+    if (!std::isfinite(v))
+        return missing;
+    char b[48];
+    std::snprintf(b, sizeof b, "%.*f", prec, v);
+    return b;
+}
+
 }  // namespace pft::host

@@ -37,6 +37,8 @@ void write_json_atomic(const std::string &path, const nlohmann::json &j);
 void ensure_dir(const std::string &dir);
 /** dir + "/" + name, or name when dir is empty. */
 std::string join_path(const std::string &dir, const std::string &name);
+/** v in fixed notation with prec decimals, or `missing` when v is not finite (tables, CSV). */
+std::string fixed_text(double v, int prec, const char *missing);
 
 /** Minimal CSV row writer: numbers with full precision, strings quoted when needed. */
 class CsvWriter {

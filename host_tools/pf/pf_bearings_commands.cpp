@@ -62,11 +62,7 @@ SetMetricParams set_params(const Options &o, const BearingsScenario &s)
 
 std::string fmt(double v, int prec = 4)
 {
-    if (!std::isfinite(v))
-        return "-";
-    char b[40];
-    std::snprintf(b, sizeof b, "%.*f", prec, v);
-    return b;
+    return fixed_text(v, prec, "-");
 }
 
 std::string fmt_e(double v)

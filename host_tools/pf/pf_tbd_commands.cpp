@@ -208,11 +208,7 @@ private:
 
 std::string fmt(double v, int prec = 3)
 {
-    if (!std::isfinite(v))
-        return "-";
-    char b[40];
-    std::snprintf(b, sizeof b, "%.*f", prec, v);
-    return b;
+    return fixed_text(v, prec, "-");
 }
 
 double jnum(const json &j, const char *key)

@@ -52,11 +52,7 @@ Scenario load(const Options &o)
 
 std::string fmt(double v, int prec = 3)
 {
-    if (!std::isfinite(v))
-        return "-";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.*f", prec, v);
-    return b;
+    return fixed_text(v, prec, "-");
 }
 
 std::string describe(const Scenario &s)

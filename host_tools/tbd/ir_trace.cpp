@@ -1,5 +1,7 @@
 #include "ir_trace.hpp"
 
+#include "../common/output.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,11 +33,7 @@ void robust(std::vector<float> &v, double &med, double &sd)
 
 std::string num(double v, int prec = 3)
 {
-    if (!std::isfinite(v))
-        return "";
-    char b[40];
-    std::snprintf(b, sizeof b, "%.*f", prec, v);
-    return b;
+    return fixed_text(v, prec, "");
 }
 
 // "id:frames;id:frames" of a map truth id -> frames.
@@ -252,19 +250,18 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
 void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
 {
     const std::string base = dir + "/s" + std::to_string(seed_);
-    {
-        std::ofstream f(base + "_targets.csv");
-        if (!f)
-            throw InputError(base + "_targets.csv: cannot write");
+    write_text_atomic(base + "_targets.csv", [&](std::ostream &f) {
         f << "seed,frame,tid,labelled,x,y,mf_at,mf3,loc_med,loc_sd,res_sd,rank,n_peaks,search_p,search_d,"
              "search_n,alive,alive_near,births1,births3,n_births,trk_d,trk_id,trk_tentative,rep_d,rep_id,"
              "n_tracks,above,search_int,trk_int\n";
         for (const std::string &r : rows_)
             f << r << "\n";
-    }
-    std::ofstream f(base + "_tracks.csv");
-    if (!f)
-        throw InputError(base + "_tracks.csv: cannot write");
+    });
+    write_text_atomic(base + "_tracks.csv", [&](std::ostream &f) { write_tracks_(f, ev); });
+}
+
+void IrTrace::write_tracks_(std::ostream &f, const IrRunEval &ev) const
+{
     f << "seed,id,handover,hx,hy,hp,hi,li,end,reason,merged,alive,scene_flag,reported,first_reported,last_reported,"
          "lx,ly,scene_dx,scene_dy,near_tid,near_frames,near_rep_tid,near_rep_frames,near_all,near_rep_all,is_false,false_x,false_y,"
          "false_scene_x,false_scene_y\n";

@@ -9,6 +9,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ public:
     void write(const std::string &dir, const IrRunEval &ev) const;
 
 private:
+    void write_tracks_(std::ostream &f, const IrRunEval &ev) const;
     struct TrackLife {
         uint32_t id = 0;
         int handover = 0, end = 0, alive = 0, reported = 0, first_reported = 0, last_reported = 0;
