@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check (or print) the stage's histogram-bin table in lib/src/pre/pre_update.c.
 
-The table `bin_lut_` of `pft_pre_book_row_` holds, at index v + 1023 for |v| < 1024, the bin
+The table `bin_lut_` of lib/src/pre/pre_update.c (read by `hist_add_`) holds, at index v + 1023 for |v| < 1024, the bin
 that `pft_pre_bin_(|v|)` (lib/src/pre/pre_int.h) computes: |v| itself below 16, then 8 bins
 per octave, bin 8 (e - 3) + (|v| >> (e - 3)) with e = floor(log2(|v| | 8)).
 

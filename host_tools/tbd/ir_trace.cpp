@@ -1,15 +1,13 @@
 #include "ir_trace.hpp"
 
-#include "../common/output.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include <opencv2/imgproc.hpp>
 
 #include "../common/errors.hpp"
+#include "../common/output.hpp"
 #include "../common/real.hpp"
 
 namespace pft::host::tbd_ir {

@@ -175,7 +175,10 @@ static inline void colsum_add_(int32_t *cs, const int16_t *r, uint32_t x0, uint3
     }
 }
 
-uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
+
+/* One residual into its tile histogram: the table for |v| < PFT_PRE_BIN_LUT_, pft_pre_bin_
+ * beyond (a masked pixel, |INT16_MIN| = 32768, lands in the extra bin PFT_PRE_BINS). */
+static inline void hist_add_(uint16_t *hist, int32_t v)
 {
     static const uint8_t bin_lut_[PFT_PRE_BIN_N_] = {
         63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63,
@@ -307,6 +310,39 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63,
         63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63, 63,
     };
+    const uint32_t k = (uint32_t)(v + (PFT_PRE_BIN_LUT_ - 1));
+    hist[k < PFT_PRE_BIN_N_ ? bin_lut_[k] : pft_pre_bin_((uint32_t)(v < 0 ? -v : v))]++;
+}
+
+/* sigma_bracket: the counts of one tile's span below the tile's five thresholds, and of its
+ * unmasked pixels, added to the tile's record; returns the masked pixels of the span. */
+static inline uint32_t bracket_add_(uint16_t *hist, const int16_t *r, uint32_t x0, uint32_t x1)
+{
+    const uint16_t t0 = hist[PFT_PRE_BRK_T_], t1 = hist[PFT_PRE_BRK_T_ + 1u];
+    const uint16_t t2 = hist[PFT_PRE_BRK_T_ + 2u], t3 = hist[PFT_PRE_BRK_T_ + 3u];
+    const uint16_t t4 = hist[PFT_PRE_BRK_T_ + 4u];
+    uint16_t c0 = 0u, c1 = 0u, c2 = 0u, c3 = 0u, c4 = 0u, cn = 0u;
+    for (uint32_t x = x0; x < x1; ++x) { /* vectorisable: 16-bit compares */
+        const int32_t v = r[x];
+        const uint16_t a = (uint16_t)(v < 0 ? -v : v); /* masked: 32768 */
+        c0 = (uint16_t)(c0 + (a < t0 ? 1u : 0u));
+        c1 = (uint16_t)(c1 + (a < t1 ? 1u : 0u));
+        c2 = (uint16_t)(c2 + (a < t2 ? 1u : 0u));
+        c3 = (uint16_t)(c3 + (a < t3 ? 1u : 0u));
+        c4 = (uint16_t)(c4 + (a < t4 ? 1u : 0u));
+        cn = (uint16_t)(cn + (a < 32768u ? 1u : 0u));
+    }
+    hist[0] = (uint16_t)(hist[0] + c0);
+    hist[1] = (uint16_t)(hist[1] + c1);
+    hist[2] = (uint16_t)(hist[2] + c2);
+    hist[3] = (uint16_t)(hist[3] + c3);
+    hist[4] = (uint16_t)(hist[4] + c4);
+    hist[PFT_PRE_BRK_N_] = (uint16_t)(hist[PFT_PRE_BRK_N_] + cn);
+    return (x1 - x0) - cn;
+}
+
+uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
+{
     const uint32_t w = p->cfg.width, t = p->cfg.tile, j = y / t;
     const int16_t *r = p->res + (size_t)y * w;
     int32_t *cs = p->csum;
@@ -318,35 +354,14 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         /* sigma_bracket: counts below the tile's thresholds (16-bit compares, vectorisable) */
         for (uint32_t i = 0; i < p->ntx; ++i) {
             const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
             if (colrow) {
-                colsum_add_(cs, r, x0, x1, clip);
+                colsum_add_(cs, r, x0, x1, (int16_t)pft_pre_clip_(p, j, i));
             }
             uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
             if (hist[PFT_PRE_BRK_T_] == 0u) {
                 bracket_set_(hist, p->tsig[j * p->ntx + i] & ~PFT_PRE_TILE_STALE_);
             }
-            const uint16_t t0 = hist[PFT_PRE_BRK_T_], t1 = hist[PFT_PRE_BRK_T_ + 1u];
-            const uint16_t t2 = hist[PFT_PRE_BRK_T_ + 2u], t3 = hist[PFT_PRE_BRK_T_ + 3u];
-            const uint16_t t4 = hist[PFT_PRE_BRK_T_ + 4u];
-            uint16_t c0 = 0u, c1 = 0u, c2 = 0u, c3 = 0u, c4 = 0u, cn = 0u;
-            for (uint32_t x = x0; x < x1; ++x) { /* vectorisable: 16-bit compares */
-                const int32_t v = r[x];
-                const uint16_t a = (uint16_t)(v < 0 ? -v : v); /* masked: 32768 */
-                c0 = (uint16_t)(c0 + (a < t0 ? 1u : 0u));
-                c1 = (uint16_t)(c1 + (a < t1 ? 1u : 0u));
-                c2 = (uint16_t)(c2 + (a < t2 ? 1u : 0u));
-                c3 = (uint16_t)(c3 + (a < t3 ? 1u : 0u));
-                c4 = (uint16_t)(c4 + (a < t4 ? 1u : 0u));
-                cn = (uint16_t)(cn + (a < 32768u ? 1u : 0u));
-            }
-            hist[0] = (uint16_t)(hist[0] + c0);
-            hist[1] = (uint16_t)(hist[1] + c1);
-            hist[2] = (uint16_t)(hist[2] + c2);
-            hist[3] = (uint16_t)(hist[3] + c3);
-            hist[4] = (uint16_t)(hist[4] + c4);
-            hist[PFT_PRE_BRK_N_] = (uint16_t)(hist[PFT_PRE_BRK_N_] + cn);
-            nm += (x1 - x0) - cn;
+            nm += bracket_add_(hist, r, x0, x1);
         }
         return nm;
     }
@@ -360,32 +375,26 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         const bool hrow = fresh && y % ss == 0u;
         for (uint32_t i = 0; i < p->ntx; ++i) {
             const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-            const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
             if (colrow) {
-                colsum_add_(cs, r, x0, x1, clip);
+                colsum_add_(cs, r, x0, x1, (int16_t)pft_pre_clip_(p, j, i));
             }
             uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
             for (uint32_t x = (x0 + ss - 1u) / ss * ss; hrow && x < x1; x += ss) {
-                const int32_t v = r[x];
-                const uint32_t k = (uint32_t)(v + (PFT_PRE_BIN_LUT_ - 1));
-                hist[k < PFT_PRE_BIN_N_ ? bin_lut_[k] : pft_pre_bin_((uint32_t)(v < 0 ? -v : v))]++;
+                hist_add_(hist, r[x]);
             }
         }
         return nm;
     }
     for (uint32_t i = 0; i < p->ntx; ++i) {
         const uint32_t x0 = i * t, x1 = x0 + t > w ? w : x0 + t;
-        const int16_t clip = (int16_t)pft_pre_clip_(p, j, i);
         if (colrow) {
-            colsum_add_(cs, r, x0, x1, clip);
+            colsum_add_(cs, r, x0, x1, (int16_t)pft_pre_clip_(p, j, i));
         }
         /* a masked pixel (|INT16_MIN| = 32768) lands in the extra bin PFT_PRE_BINS */
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
         const uint16_t before = hist[PFT_PRE_BINS];
         for (uint32_t x = x0; x < x1; ++x) {
-            const int32_t v = r[x];
-            const uint32_t k = (uint32_t)(v + (PFT_PRE_BIN_LUT_ - 1));
-            hist[k < PFT_PRE_BIN_N_ ? bin_lut_[k] : pft_pre_bin_((uint32_t)(v < 0 ? -v : v))]++;
+            hist_add_(hist, r[x]);
         }
         nm += (uint16_t)(hist[PFT_PRE_BINS] - before);
     }
