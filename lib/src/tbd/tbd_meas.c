@@ -990,84 +990,124 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
     }
 }
 
+/* What both scene scans (pft_tbd_scene_peaks_, pft_tbd_scene_integ_) hold: the taps at offset
+ * 0, the RES16 path's prepared taps, the rolling rows (hs: horizontal sums, mf: PSF-matched)
+ * and the peak scan. */
+typedef struct {
+    const pft_real_t *tx;
+    const pft_real_t *ty;
+    pft_real_t *hs[3];
+    pft_real_t *mf[3];
+    pft_real_t t0p, t1p;
+    bool r16;
+} scene_scan_t;
+
+/* Sets up a scene scan: returns the rows and taps, fills the peak scan *ps (kept apart, so
+ * that the returned value stays in registers in the callers' loops). */
+static inline scene_scan_t scene_scan_init_(peak_scan_t *ps, const pft_tbd_config_t *cfg,
+                                     const pft_tbd_tab_t *tab, const pft_real_t *img,
+                                     const uint32_t *mask, pft_real_t *rows, pft_real_t *val,
+                                     uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
+{
+    const uint32_t w = cfg->width;
+    const uint32_t h = cfg->height;
+    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
+    scene_scan_t ss;
+    ss.tx = tab->taps[0][mid];
+    ss.ty = tab->taps[1][mid];
+    for (uint32_t s = 0; s < 3u; ++s) {
+        ss.hs[s] = rows + (size_t)s * w;
+        ss.mf[s] = rows + (size_t)(s + 3u) * w;
+    }
+    scene_source_(sc, img, w, h);
+    /* a RES16 scene's rows without a patch go through the integers (peak_hrow_r16_) when the
+     * prepared taps are exact (always in q16; in float unless a tap is below 2^-118) */
+    ss.t0p = pft_kr16_tap_(ss.tx[0]);
+    ss.t1p = pft_kr16_tap_(ss.tx[1]);
+    ss.r16 = img == NULL && pft_kr16_tap_ok_(ss.tx[0]) && pft_kr16_tap_ok_(ss.tx[1]);
+    ps->mask = mask;
+    ps->key = cand;
+    ps->val = val;
+    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
+    ps->thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(ss.tx[3], ss.ty[3])));
+    ps->w = w;
+    ps->k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
+    ps->n = 0u;
+    ps->na = 0u;
+    ps->quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
+    ps->tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
+    ps->ntx = (w + ps->tile - 1u) / ps->tile;
+    ps->row_pre = lines;           /* h + 1 entries */
+    ps->cnt = lines + h + 1u;      /* ntx <= w entries */
+    ps->trow = 0u;
+    lines[0] = 0u;
+    return ss;
+}
+
+/* Rolling step rr (0 .. h + 1) of a scene scan: the horizontal sums of row rr and the
+ * PSF-matched row rr - 1. */
+static inline void scene_scan_rows_(const scene_scan_t *ss, const pft_tbd_scene_t_ *sc,
+                                    uint32_t rr, uint32_t w, uint32_t h)
+{
+    if (rr < h && ss->r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
+        peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, ss->t0p, ss->t1p,
+                       ss->hs[rr % 3u]);
+    } else if (rr < h) {
+        peak_hrow_(pft_tbd_row_(sc, rr), w, ss->tx[0], ss->tx[1], ss->hs[rr % 3u]);
+    } else {
+        /* rows h and h + 1 of the rolling steps: no new row */
+    }
+    if (rr >= 1u && rr <= h) {
+        const uint32_t r = rr - 1u;
+        peak_vrow_(r >= 1u ? ss->hs[(r + 2u) % 3u] : NULL, ss->hs[r % 3u],
+                   r + 1u < h ? ss->hs[(r + 1u) % 3u] : NULL, w, ss->ty[0], ss->ty[1],
+                   ss->mf[r % 3u]);
+    }
+}
+
+/* The scene's candidates after a scan: the kept peaks, or with none every allowed pixel. */
+static void scene_scan_done_(pft_tbd_scene_t_ *sc, const peak_scan_t *ps, const uint32_t *mask,
+                             uint32_t *cand, uint32_t *lines, uint32_t w, uint32_t h)
+{
+    sc->mask = mask;
+    sc->cand = cand;
+    sc->row_pre = lines;
+    sc->width = w;
+    sc->height = h;
+    sc->n_allowed = ps->na;
+    sc->cand_is_b = ps->n > 0u;
+    sc->n_cand = ps->n;
+    if (ps->n == 0u && ps->na > 0u) {
+        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
+         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
+        sc->cand = NULL;
+        sc->n_cand = ps->na;
+    }
+}
+
 void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc)
 {
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
-    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
-    const pft_real_t *tx = tab->taps[0][mid];
-    const pft_real_t *ty = tab->taps[1][mid];
-    pft_real_t *hs[3];
-    pft_real_t *mf[3];
     peak_scan_t ps;
-    for (uint32_t s = 0; s < 3u; ++s) {
-        hs[s] = rows + (size_t)s * w;
-        mf[s] = rows + (size_t)(s + 3u) * w;
-    }
-    scene_source_(sc, img, w, h);
-    /* a RES16 scene's rows without a patch go through the integers (peak_hrow_r16_) when the
-     * prepared taps are exact (always in q16; in float unless a tap is below 2^-118) */
-    const pft_real_t t0p = pft_kr16_tap_(tx[0]);
-    const pft_real_t t1p = pft_kr16_tap_(tx[1]);
-    const bool r16 = img == NULL && pft_kr16_tap_ok_(tx[0]) && pft_kr16_tap_ok_(tx[1]);
-    ps.mask = mask;
-    ps.key = cand;
-    ps.val = val;
-    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
-    ps.thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(tx[3], ty[3])));
-    ps.w = w;
-    ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
-    ps.n = 0u;
-    ps.na = 0u;
-    ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
-    ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
-    ps.ntx = (w + ps.tile - 1u) / ps.tile;
-    ps.row_pre = lines;           /* h + 1 entries */
-    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
-    ps.trow = 0u;
-    lines[0] = 0u;
+    const scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
-        if (rr < h && r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
-            peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, t0p, t1p, hs[rr % 3u]);
-        } else if (rr < h) {
-            peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
-        } else {
-            /* rows h and h + 1 of the rolling steps: no new row */
-        }
-        if (rr >= 1u && rr <= h) {
-            const uint32_t r = rr - 1u;
-            peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
-                       r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
-        }
+        scene_scan_rows_(&ss, sc, rr, w, h);
         if (rr >= 2u) {
             const uint32_t q = rr - 2u;
-            peak_scan_row_(&ps, q, q >= 1u ? mf[(q + 2u) % 3u] : NULL, mf[q % 3u],
-                           q + 1u < h ? mf[(q + 1u) % 3u] : NULL);
+            peak_scan_row_(&ps, q, q >= 1u ? ss.mf[(q + 2u) % 3u] : NULL, ss.mf[q % 3u],
+                           q + 1u < h ? ss.mf[(q + 1u) % 3u] : NULL);
         }
     }
-    sc->mask = mask;
-    sc->cand = cand;
-    sc->row_pre = lines;
-    sc->width = w;
-    sc->height = h;
-    sc->n_allowed = ps.na;
-    sc->cand_is_b = ps.n > 0u;
-    sc->n_cand = ps.n;
-    if (ps.n == 0u && ps.na > 0u) {
-        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
-         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
-        sc->cand = NULL;
-        sc->n_cand = ps.na;
-    }
+    scene_scan_done_(sc, &ps, mask, cand, lines, w, h);
 }
 
 /* pft_tbd_scene_peaks_ with the integration (docs/algorithms.md 2.13): the same PSF-matched
- * rows, folded into the bins' sums instead of scanned; kept apart so that the scan without it
- * compiles as before (its cost unchanged). */
+ * rows, folded into the bins' sums instead of scanned. */
 void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
@@ -1075,62 +1115,19 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
 {
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
-    const uint32_t mid = PFT_TBD_TAP_STEPS / 2u; /* tap row of offset f = 0 */
-    const pft_real_t *tx = tab->taps[0][mid];
-    const pft_real_t *ty = tab->taps[1][mid];
-    pft_real_t *hs[3];
-    pft_real_t *mf[3];
     peak_scan_t ps;
-    for (uint32_t s = 0; s < 3u; ++s) {
-        hs[s] = rows + (size_t)s * w;
-        mf[s] = rows + (size_t)(s + 3u) * w;
-    }
-    scene_source_(sc, img, w, h);
-    /* a RES16 scene's rows without a patch go through the integers (peak_hrow_r16_) when the
-     * prepared taps are exact (always in q16; in float unless a tap is below 2^-118) */
-    const pft_real_t t0p = pft_kr16_tap_(tx[0]);
-    const pft_real_t t1p = pft_kr16_tap_(tx[1]);
-    const bool r16 = img == NULL && pft_kr16_tap_ok_(tx[0]) && pft_kr16_tap_ok_(tx[1]);
-    ps.mask = mask;
-    ps.key = cand;
-    ps.val = val;
-    /* noise of the correlation: variance (sum tx^2)(sum ty^2) in whitened units */
-    ps.thr = pft_mul(cfg->peak_gamma, pft_sqrt(pft_mul(tx[3], ty[3])));
-    ps.w = w;
-    ps.k_max = (uint32_t)cfg->birth_peaks < w * h ? (uint32_t)cfg->birth_peaks : w * h;
-    ps.n = 0u;
-    ps.na = 0u;
-    ps.quota = cfg->peak_tile > 0u ? cfg->peak_quota : 0u;
-    ps.tile = cfg->peak_tile > 0u ? cfg->peak_tile : 1u;
-    ps.ntx = (w + ps.tile - 1u) / ps.tile;
-    ps.row_pre = lines;           /* h + 1 entries */
-    ps.cnt = lines + h + 1u;      /* ntx <= w entries */
-    ps.trow = 0u;
-    lines[0] = 0u;
+    const scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
     uint64_t isum[2] = {0u, 0u};
-    /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
-     * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
-        if (rr < h && r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
-            peak_hrow_r16_(sc->r16 + (size_t)rr * sc->r16_stride, w, t0p, t1p, hs[rr % 3u]);
-        } else if (rr < h) {
-            peak_hrow_(pft_tbd_row_(sc, rr), w, tx[0], tx[1], hs[rr % 3u]);
-        } else {
-            /* rows h and h + 1 of the rolling steps: no new row */
-        }
-        if (rr >= 1u && rr <= h) {
-            const uint32_t r = rr - 1u;
-            peak_vrow_(r >= 1u ? hs[(r + 2u) % 3u] : NULL, hs[r % 3u],
-                       r + 1u < h ? hs[(r + 1u) % 3u] : NULL, w, ty[0], ty[1], mf[r % 3u]);
-        }
+        scene_scan_rows_(&ss, sc, rr, w, h);
         if (rr >= 1u && rr <= h) {
             /* the integration's bin row of PSF-matched rows r - 1 and r (r odd), or of the last
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
             if (r % 2u == 1u) {
-                integ_row_(ig, r / 2u, mf[(r + 2u) % 3u], mf[r % 3u], w, lines, isum);
+                integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum);
             } else if (r + 1u == h) {
-                integ_row_(ig, r / 2u, mf[r % 3u], NULL, w, lines, isum);
+                integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum);
             } else {
                 /* the first row of a pair: its bin row comes with the next row */
             }
@@ -1149,23 +1146,10 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
         const uint64_t msq = isum[1] / nb;
         const uint32_t sd = isqrt64_(msq > mean * mean ? msq - mean * mean : 0u);
         ps.thr = pft_add(pft_from_int((int32_t)mean),
-                         pft_mul(cfg->peak_gamma, pft_from_int((int32_t)sd)));
+                            pft_mul(cfg->peak_gamma, pft_from_int((int32_t)sd)));
         integ_scan_(&ps, ig);
     }
-    sc->mask = mask;
-    sc->cand = cand;
-    sc->row_pre = lines;
-    sc->width = w;
-    sc->height = h;
-    sc->n_allowed = ps.na;
-    sc->cand_is_b = ps.n > 0u;
-    sc->n_cand = ps.n;
-    if (ps.n == 0u && ps.na > 0u) {
-        /* No peak above the threshold: propose uniformly over the allowed pixels, the n-th
-         * of them found from the per-row counts (pft_tbd_scene_pick_) instead of a list. */
-        sc->cand = NULL;
-        sc->n_cand = ps.na;
-    }
+    scene_scan_done_(sc, &ps, mask, cand, lines, w, h);
 }
 
 uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n)
