@@ -1046,7 +1046,7 @@ static inline scene_scan_t scene_scan_init_(peak_scan_t *ps, const pft_tbd_confi
 
 /* Rolling step rr (0 .. h + 1) of a scene scan: the horizontal sums of row rr and the
  * PSF-matched row rr - 1. */
-static inline void scene_scan_rows_(const scene_scan_t *ss, const pft_tbd_scene_t_ *sc,
+static inline void scene_scan_rows_(scene_scan_t *ss, const pft_tbd_scene_t_ *sc,
                                     uint32_t rr, uint32_t w, uint32_t h)
 {
     if (rr < h && ss->r16 && (sc->n_patch == 0u || sc->pflag[rr] == 0u)) {
@@ -1092,7 +1092,7 @@ void pft_tbd_scene_peaks_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
     peak_scan_t ps;
-    const scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
+    scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
     /* rolling rows: at step rr the horizontal sums of row rr, the correlation of row rr - 1
      * and the scan of row rr - 2 */
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
@@ -1116,7 +1116,7 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
     peak_scan_t ps;
-    const scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
+    scene_scan_t ss = scene_scan_init_(&ps, cfg, tab, img, mask, rows, val, cand, lines, sc);
     uint64_t isum[2] = {0u, 0u};
     for (uint32_t rr = 0; rr < h + 2u; ++rr) {
         scene_scan_rows_(&ss, sc, rr, w, h);
