@@ -22,7 +22,7 @@
  * "?") inside the odd-numbered regions (1st, 3rd, ...) and inside the even-numbered ones, one
  * line per function "odd even name", largest first; a program that alternates two measured
  * calls (tests/tools/ir_probe: stage, manager) gets one profile of each
- * (host_tools/scripts/ir_cost_targets.sh prof).
+ * (docs/results/ir_clutter.md, "Branch ira53", gives the command).
  */
 #include <inttypes.h>
 #include <stdio.h>
