@@ -256,34 +256,40 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
     const int32_t *cn = p->colnow;
     const uint32_t lo = c->lo, span = c->span, mask = c->mask;
     lk_sums_t acc = {0, 0, 0, 0, 0, 0, 0u}; /* a local, kept in registers */
-    for (int32_t y = y0; y <= yb; y += st) {
+    /* the rows' columns from c0 = x0 + kx - 1 (>= 0: x0 >= xa >= 1 - kx), the left tap column
+     * less one of the first sample, so that one index i = xs - x0 reads every array */
+    const int32_t c0 = x0 + g->kx - 1;
+    for (int32_t y = y0; x0 <= xb && y <= yb; y += st) {
         const uint8_t *row = pft_frame_row(f, (uint32_t)y);
-        /* rows y + ky - 1 .. y + ky + 2 of the background, columns from x + kx - 1 (all inside:
-         * indices, never a pointer before the buffer) */
-        const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w;
+        const uint8_t *rz = row + 2 * x0;
+        const int32_t *cz = cn + x0;
+        /* rows y + ky - 1 .. y + ky + 2 of the background from column c0 (all inside: c0 and
+         * the last tap column are in [0, w - 1]) */
+        const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w + (size_t)c0;
         const uint16_t *b0 = bm + w, *b1 = b0 + w, *b2 = b1 + w;
-        for (int32_t xs = x0; xs <= xb; xs += st) {
+        for (int32_t i = 0; i <= xb - x0; i += st) {
             uint32_t v;
             if (plain) {
                 uint16_t raw;
-                memcpy(&raw, row + 2 * xs, 2u);
+                memcpy(&raw, rz + 2 * i, 2u);
                 v = (uint32_t)raw & mask;
                 if (v - lo >= span) {
                     continue;
                 }
             } else {
+                const int32_t xs = x0 + i;
                 v = pft_pre_raw_(row, (uint32_t)xs, c);
                 if (v - lo >= span || (c->map != NULL && pft_pre_bad_(c, (uint32_t)xs, (uint32_t)y))) {
                     continue;
                 }
             }
-            const int32_t x = xs + g->kx; /* the left tap column */
-            const uint32_t b00 = b0[x], b01 = b0[x + 1], b10 = b1[x], b11 = b1[x + 1];
+            /* column i + 1 is the left tap column xs + kx */
+            const uint32_t b00 = b0[i + 1], b01 = b0[i + 2], b10 = b1[i + 1], b11 = b1[i + 2];
             const uint32_t h0 = b00 * gx0 + b01 * fx, h1 = b10 * gx0 + b11 * fx;
             const int32_t bw = (int32_t)((h0 * gy0 + h1 * fy + 32768u) >> 16);
-            const int32_t e = (int32_t)(v << bf) - cn[xs] - bw;
-            const int32_t gx = ((int32_t)b0[x + 2] - b0[x - 1]) + ((int32_t)b1[x + 2] - b1[x - 1]);
-            const int32_t gy = ((int32_t)b2[x] - bm[x]) + ((int32_t)b2[x + 1] - bm[x + 1]);
+            const int32_t e = (int32_t)(v << bf) - cz[i] - bw;
+            const int32_t gx = ((int32_t)b0[i + 3] - b0[i]) + ((int32_t)b1[i + 3] - b1[i]);
+            const int32_t gy = ((int32_t)b2[i + 1] - bm[i + 1]) + ((int32_t)b2[i + 2] - bm[i + 2]);
             lk_add_(&acc, gx, gy, e);
         }
     }

@@ -393,7 +393,14 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         /* a masked pixel (|INT16_MIN| = 32768) lands in the extra bin PFT_PRE_BINS */
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
         const uint16_t before = hist[PFT_PRE_BINS];
-        for (uint32_t x = x0; x < x1; ++x) {
+        uint32_t x = x0;
+        for (; x + 3u < x1; x += 4u) { /* four pixels per iteration: a quarter of the loop's own work */
+            hist_add_(hist, r[x]);
+            hist_add_(hist, r[x + 1u]);
+            hist_add_(hist, r[x + 2u]);
+            hist_add_(hist, r[x + 3u]);
+        }
+        for (; x < x1; ++x) {
             hist_add_(hist, r[x]);
         }
         nm += (uint16_t)(hist[PFT_PRE_BINS] - before);

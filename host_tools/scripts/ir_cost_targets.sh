@@ -1,0 +1,141 @@
+#!/usr/bin/env bash
+# Instructions per frame of the IR pipeline's library calls on every instruction set
+# (docs/results/ir_clutter.md, "Branch ira53"; docs/size.md, "Per-frame work"): the stage
+# (pft_pre_update_inplace) and the TBD manager (pft_tbd_update), each and summed, mean and max
+# over frames 2..N, for the shipped scenario tbd_ir/procedural_384x288.json (seed 1) and the same
+# at 640 x 512, float and q16, on
+#   x86       x86-64 under callgrind (Release, the host presets' flags: the goal's figure)
+#   x86v2     the same with -DCMAKE_C_FLAGS=-march=x86-64-v2 (SSE4.1/SSE4.2/POPCNT)
+#   aarch64   the aarch64-float / aarch64-q16 presets under qemu-aarch64 with the plugin
+#             tests/soak/qemu_marks.c (guest instructions between the work markers)
+#   m7        the m7-float / m7-q16 presets (Cortex-M7, qemu-system-arm mps2-an500, same plugin;
+#             a frame size whose buffers exceed the board's 4 MiB of RAM is reported as such)
+# The frames are made once by `pft sim --format raw` (a host-float build's pft) and the same
+# .u16 bytes go to tests/tools/ir_probe of every build, which runs stage, clutter map and manager
+# with pft run's settings (its confirmed tracks are printed; the script reports whether every
+# build printed the same tracks as x86 float / q16).
+#
+#   bash host_tools/scripts/ir_cost_targets.sh [FRAMES]      (default 30: frames 2..30 counted)
+#   IRC_TARGETS="x86 x86v2 aarch64 m7"  IRC_SIZES="384x288 640x512"  IRC_NUMERIC="float q16"
+#   IRC_OUT=build/ir-cost (frames, logs, counts; the table is printed and kept as table.md)
+#   IRC_TAG=name  adds a suffix to the build directories (build/irc-<target>-<numeric><tag>):
+#                 a before / after comparison keeps two sets of builds
+#   PFT=path      the pft that makes the frames (default build/host-float/host_tools/pft)
+# Every long job runs under nice; one job at a time.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+N=${1:-30}
+targets=${IRC_TARGETS:-x86 x86v2 aarch64 m7}
+sizes=${IRC_SIZES:-384x288 640x512}
+numerics=${IRC_NUMERIC:-float q16}
+out=${IRC_OUT:-build/ir-cost}
+tag=${IRC_TAG:-}
+pft=${PFT:-build/host-float/host_tools/pft}
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+
+if [ ! -x "$pft" ]; then
+  echo "ir_cost_targets.sh: $pft not found (cmake --preset host-float && cmake --build --preset host-float)" >&2
+  exit 2
+fi
+# the frames: once per size, the same bytes for every build
+for sz in $sizes; do
+  w=${sz%x*}; h=${sz#*x}
+  d=$out/frames-$sz
+  if [ ! -f "$d/frames.u16" ]; then
+    python3 - "$w" "$h" "$out/scenario-$sz.json" <<'EOF'
+import json, sys
+s = json.load(open('host_tools/scenarios/tbd_ir/procedural_384x288.json'))
+s['image'] = {'width': int(sys.argv[1]), 'height': int(sys.argv[2])}
+json.dump(s, open(sys.argv[3], 'w'), indent=1)
+EOF
+    nice -n 10 "$pft" sim --scenario "$out/scenario-$sz.json" --seed 1 --format raw --out "$d" -q
+  fi
+done
+
+build() {  # build <target> <numeric>: prints the ir_probe path
+  local t=$1 n=$2 dir
+  case "$t" in
+    x86|x86v2)
+      dir=build/irc-$t-$n$tag
+      local flags=""; [ "$t" = x86v2 ] && flags="-march=x86-64-v2"
+      cmake -S . -B "$dir" -G Ninja -DPFT_NUMERIC="$n" -DCMAKE_BUILD_TYPE=Release \
+            -DCMAKE_C_FLAGS="$flags" -DUNITY_SOURCE_DIR="$PWD/.deps/unity" -DPFT_WERROR=ON >/dev/null;;
+    aarch64|m7)
+      dir=build/irc-$t-$n$tag
+      cmake --preset "$t-$n" -B "$dir" >/dev/null;;
+    *) echo "ir_cost_targets.sh: unknown target $t" >&2; exit 2;;
+  esac
+  nice -n 10 cmake --build "$dir" --target ir_probe -j 2 >/dev/null
+  echo "$dir/tests/tools/ir_probe"
+}
+
+need_plugin=0
+for t in $targets; do [[ $t == aarch64 || $t == m7 ]] && need_plugin=1; done
+[ $need_plugin = 1 ] && bash tests/soak/run_soak.sh plugin >/dev/null
+plug=$PWD/build/qemu-plugin/qemu_marks.so
+
+: >"$out/rows.csv"
+for t in $targets; do
+  for n in $numerics; do
+    exe=$(build "$t" "$n")
+    for sz in $sizes; do
+      w=${sz%x*}; h=${sz#*x}
+      in=$out/frames-$sz/frames.u16
+      r=$out/run-$t-$n-$sz$tag; rm -rf "$r"; mkdir -p "$r"
+      args="$in $w $h 14 $N 1 12000"
+      status=ok
+      case "$t" in
+        x86|x86v2)
+          nice -n 10 valgrind --tool=callgrind --callgrind-out-file="$r/cg.out" --collect-atstart=no \
+            --toggle-collect=irp_measured --dump-after=irp_measured "$exe" $args >"$r/log" 2>"$r/err" || status=fail
+          for ((i = 1; ; i++)); do
+            [ -f "$r/cg.out.$i" ] || break
+            awk '/^(summary|totals):/ {print $2; exit}' "$r/cg.out.$i"
+          done >"$r/counts"
+          rm -f "$r"/cg.out*;;
+        aarch64)
+          nice -n 10 qemu-aarch64 -L /usr/aarch64-linux-gnu -plugin "$plug,out=$r/counts" "$exe" $args \
+            >"$r/log" 2>"$r/err" || status=fail;;
+        m7)
+          nice -n 10 timeout 3600 qemu-system-arm -M mps2-an500 -nographic -monitor none \
+            -semihosting-config enable=on,target=native -plugin "$plug,out=$r/counts" -kernel "$exe" \
+            -append "$args" >"$r/log" 2>"$r/err" || status=fail;;
+      esac
+      if grep -q "arena of .* too small" "$r/log" "$r/err"; then status=no-fit; fi
+      if [ $status = ok ] && ! grep -q "ir_probe: done" "$r/log"; then status=fail; fi
+      echo "$t,$n,$sz,$status,$r" >>"$out/rows.csv"
+      echo "$t $n $sz: $status" >&2
+    done
+  done
+done
+
+python3 - "$out/rows.csv" "$N" <<'EOF' | tee "$out/table$tag.md"
+import sys
+rows = [l.strip().split(',') for l in open(sys.argv[1]) if l.strip()]
+N = int(sys.argv[2])
+def tracks(run):
+    return [l for l in open(run + '/log') if l[:1].isdigit()]
+ref = {}
+for t, n, sz, st, run in rows:
+    if t == 'x86' and st == 'ok':
+        ref[(n, sz)] = tracks(run)
+print(f'| target | numeric | frame | stage mean | stage max | manager mean | manager max | '
+      f'sum mean | sum max | tracks as x86 |')
+print('|---|---|---|---:|---:|---:|---:|---:|---:|---|')
+for t, n, sz, st, run in rows:
+    if st != 'ok':
+        print(f'| {t} | {n} | {sz} | {st} | | | | | | |')
+        continue
+    c = [int(x) for x in open(run + '/counts').read().split()]
+    if len(c) != 2 * N:
+        print(f'| {t} | {n} | {sz} | {len(c)} counts, expected {2 * N} | | | | | | |')
+        continue
+    pre, tbd = c[0::2][1:], c[1::2][1:]   # frames 2..N
+    s = [a + b for a, b in zip(pre, tbd)]
+    m = lambda v: f'{sum(v) / len(v) / 1e6:.2f} M'
+    x = lambda v: f'{max(v) / 1e6:.2f} M'
+    same = 'yes' if ref.get((n, sz)) == tracks(run) else 'no'
+    print(f'| {t} | {n} | {sz} | {m(pre)} | {x(pre)} | {m(tbd)} | {x(tbd)} | {m(s)} | {x(s)} | {same} |')
+print(f'\nframes 2..{N} of seed 1 ({N - 1} frames); instructions per frame, M = 10^6')
+EOF

@@ -1,0 +1,348 @@
+/*
+ * ir_probe: the IR pipeline's library calls (the preprocessing stage, the clutter map and the
+ * TBD manager) over a headerless raw sequence of little-endian u16 frames, with the settings
+ * `pft run` gives them for the shipped IR scenarios (host_tools/tbd/ir_pipeline.cpp with the
+ * defaults of TrackerSettings: temporal background, clutter map, the recommended preset with
+ * full-frame births, the scene-motion test raising the map). It builds on every preset (host,
+ * AArch64 Linux, bare-metal Cortex-M with semihosting file input), so the same frame bytes
+ * give the instructions per frame of pft_pre_update_inplace and pft_tbd_update on every
+ * instruction set: each call is bracketed by pft_work_mark_begin / pft_work_mark_end (the QEMU
+ * plugin tests/soak/qemu_marks.c counts between them) inside irp_measured (callgrind's --toggle-collect and --dump-after on the host). Measurement tool, not a test:
+ * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53").
+ *
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES
+ *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
+ *   procedural_384x288.json)
+ * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
+ * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
+ * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pft/pft_pre.h"
+#include "pft/pft_tbd.h"
+#include "pft_work_marks.h"
+
+#ifndef IRP_ARENA_BYTES
+#define IRP_ARENA_BYTES (96u * 1024u * 1024u)
+#endif
+
+static uint64_t g_arena[IRP_ARENA_BYTES / 8u];
+static size_t g_used;
+
+static void *arena_take(size_t n)
+{
+    const size_t words = (n + 7u) / 8u;
+    if (words > sizeof g_arena / 8u - g_used) {
+        return NULL;
+    }
+    void *p = &g_arena[g_used];
+    g_used += words;
+    return p;
+}
+
+/* double -> pft_real_t as the host tools convert (host_tools/common/real.hpp) */
+static pft_real_t to_real(double v)
+{
+#ifdef PFT_NUMERIC_Q16
+    const double s = nearbyint(v * 65536.0);
+    if (s > 2147483647.0) {
+        return PFT_REAL_MAX;
+    }
+    if (s < -2147483647.0) {
+        return PFT_REAL_MIN;
+    }
+    return (pft_real_t)s;
+#else
+    return (pft_real_t)v;
+#endif
+}
+
+static double from_real(pft_real_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return (double)v / 65536.0;
+#else
+    return (double)v;
+#endif
+}
+
+/* The scene-motion test of ir_pipeline.cpp (IrPipeline::scene_test, scene_frames 5, scene_gate_px
+ * 0.15): only the part that reaches the library, the map raise under a track found moving with
+ * the scene. */
+#define SCENE_N 5u
+#define SCENE_SLOTS 64u
+typedef struct {
+    uint32_t id;  /* 0: free */
+    uint32_t last;
+    uint32_t n;   /* positions held, at most SCENE_N + 1 */
+    int scene;
+    double h[SCENE_N + 1u][4];
+} scene_hist_t;
+static scene_hist_t g_hist[SCENE_SLOTS];
+
+static scene_hist_t *hist_of(uint32_t id)
+{
+    scene_hist_t *free_slot = NULL;
+    for (uint32_t i = 0; i < SCENE_SLOTS; ++i) {
+        if (g_hist[i].id == id) {
+            return &g_hist[i];
+        }
+        if (g_hist[i].id == 0u && free_slot == NULL) {
+            free_slot = &g_hist[i];
+        }
+    }
+    if (free_slot != NULL) {
+        memset(free_slot, 0, sizeof *free_slot);
+        free_slot->id = id;
+    }
+    return free_slot;
+}
+
+/* The two measured calls go through one function that callgrind toggles on and dumps after
+ * (host: --toggle-collect=irp_measured --dump-after=irp_measured; two functions each with both
+ * options gave empty dumps with valgrind 3.19), so the dumps alternate stage, manager; and the
+ * work markers bracket each call for the QEMU plugin. A count is the library call and a few
+ * constant instructions of the call itself. */
+__attribute__((noinline, noclone)) pft_status_t irp_measured(pft_pre_t *pre, const pft_frame_t *f,
+                                                             uint16_t *buf, pft_tbd_t *tbd);
+__attribute__((noinline, noclone)) pft_status_t irp_measured(pft_pre_t *pre, const pft_frame_t *f,
+                                                             uint16_t *buf, pft_tbd_t *tbd)
+{
+    pft_work_mark_begin();
+    const pft_status_t s = pre != NULL ? pft_pre_update_inplace(pre, f, buf) : pft_tbd_update(tbd, f);
+    pft_work_mark_end();
+    return s;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 8) {
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES\n");
+        return 2;
+    }
+    const uint16_t W = (uint16_t)atoi(argv[2]), H = (uint16_t)atoi(argv[3]);
+    const uint8_t bits = (uint8_t)atoi(argv[4]);
+    const uint32_t frames = (uint32_t)atol(argv[5]);
+    const uint32_t seed = (uint32_t)atol(argv[6]);
+    const uint32_t particles = (uint32_t)atol(argv[7]);
+    const size_t npix = (size_t)W * H;
+    const char *field = NULL;
+
+    /* make_pre_config (ir_pipeline.cpp) with TrackerSettings' defaults */
+    pft_pre_config_t pc;
+    pft_pre_config_default(&pc);
+    pc.width = W;
+    pc.height = H;
+    pc.format = PFT_PIX_U16;
+    pc.bit_depth = bits;
+    pc.method = PFT_PRE_BG_TEMPORAL;
+    pc.local_outer = 5u;
+    pc.local_guard = 2u;
+    pc.bg_alpha = (uint16_t)lround(0.15 * 65536.0);
+    pc.tile = 32u;
+    pc.edge_k = 0u;
+    pc.peak_max = 0u;
+    pc.reg_step = 2u;
+    pc.reg_iters = 2u;
+    pc.warp_cubic = true;
+    pc.sigma_step = 1u;
+    pc.sigma_interp = true;
+    pc.sigma_every = 1u;
+    pc.reg_bin = false;
+    pc.sigma_current = true;
+    pc.sigma_bracket = false;
+    pc.inplace = true;
+    if (pft_pre_config_check(&pc, &field) != PFT_OK) {
+        fprintf(stderr, "ir_probe: stage configuration refused (%s)\n", field ? field : "?");
+        return 2;
+    }
+    /* make_clutter_config: clutter_alpha 0.1, blur 1, box, thr 2, excess 1.5 */
+    pft_pre_clutter_config_t cc;
+    pft_pre_clutter_config_default(&cc);
+    cc.width = W;
+    cc.height = H;
+    cc.alpha = (uint16_t)lround(0.1 * 65536.0);
+    cc.blur = 1u;
+    cc.box = true;
+    cc.mean = false;
+    cc.thr = (uint16_t)lround(2.0 * 1024.0);
+    cc.veto = 0u;
+    cc.persist = 0u;
+    cc.excess = (uint16_t)lround(1.5 * 256.0);
+    if (pft_pre_clutter_config_check(&cc, &field) != PFT_OK) {
+        fprintf(stderr, "ir_probe: clutter configuration refused (%s)\n", field ? field : "?");
+        return 2;
+    }
+    /* pipeline_config: the recommended preset, psf 0.7, SNR 6..18 dB, 500 track particles,
+     * 8 targets, RBPF, 256 birth peaks, birth_share 0.5, confirm_frames 2 */
+    pft_tbd_config_t tc;
+    pft_tbd_config_recommended(&tc);
+    tc.width = W;
+    tc.height = H;
+    tc.psf_sigma = to_real(0.7);
+    tc.noise_sigma = to_real(1.0);
+    tc.pixel_gain = to_real(1.0);
+    tc.pixel_offset = to_real(0.0);
+    tc.frame_format = PFT_PIX_RES16;
+    {
+        const double area = 2.0 * 3.14159265358979323846 * 0.7 * 0.7;
+        tc.i_min = to_real(area * pow(10.0, 6.0 / 20.0));
+        tc.i_max = to_real(area * pow(10.0, 18.0 / 20.0));
+    }
+    tc.n_search = particles;
+    tc.n_track = 500u;
+    tc.max_targets = 8u;
+    tc.kind = PFT_TBD_RBPF;
+    tc.seed = seed;
+    tc.birth_peaks = 256u;
+    tc.peak_tile = 0u;
+    tc.peak_quota = 0u;
+    tc.sprt_start = 0u;
+    tc.birth_share = to_real(0.5);
+    tc.confirm_frames = 2u;
+    tc.birth_correction = true;
+    if (pft_tbd_config_check(&tc, &field) != PFT_OK) {
+        fprintf(stderr, "ir_probe: manager configuration refused (%s)\n", field ? field : "?");
+        return 2;
+    }
+    const size_t pre_b = pft_pre_workspace_size(&pc), cl_b = pft_pre_clutter_workspace_size(&cc),
+                 tbd_b = pft_tbd_workspace_size(&tc);
+    uint16_t *buf = arena_take(npix * 2u);
+    int16_t *blank = arena_take(npix * 2u);
+    void *pre_w = arena_take(pre_b), *cl_w = arena_take(cl_b), *tbd_w = arena_take(tbd_b);
+    printf("workspace bytes: stage %lu, clutter map %lu, manager %lu, frame and blank %lu\n",
+           (unsigned long)pre_b, (unsigned long)cl_b, (unsigned long)tbd_b,
+           (unsigned long)(npix * 4u));
+    if (buf == NULL || blank == NULL || pre_w == NULL || cl_w == NULL || tbd_w == NULL) {
+        fprintf(stderr, "ir_probe: arena of %lu bytes too small (needs %lu)\n",
+                (unsigned long)IRP_ARENA_BYTES,
+                (unsigned long)(npix * 4u + pre_b + cl_b + tbd_b + 40u));
+        return 3;
+    }
+    static pft_pre_t pre;
+    static pft_pre_clutter_t cl;
+    static pft_tbd_t tbd;
+    if (pft_pre_init(&pre, &pc, pre_w, pre_b) != PFT_OK ||
+        pft_pre_clutter_init(&cl, &cc, cl_w, cl_b) != PFT_OK ||
+        pft_tbd_init(&tbd, &tc, tbd_w, tbd_b) != PFT_OK) {
+        fprintf(stderr, "ir_probe: init failed\n");
+        return 1;
+    }
+    for (size_t i = 0; i < npix; ++i) {
+        blank[i] = PFT_RES16_MASKED;
+    }
+    FILE *in = fopen(argv[1], "rb");
+    if (in == NULL) {
+        fprintf(stderr, "ir_probe: cannot open %s\n", argv[1]);
+        return 1;
+    }
+    double scene_x = 0.0, scene_y = 0.0;
+    uint32_t frame_no = 0;
+    for (uint32_t seq = 1; seq <= frames; ++seq) {
+        if (fread(buf, 2u, npix, in) != npix) {
+            fprintf(stderr, "ir_probe: %s holds fewer than %lu frames\n", argv[1], (unsigned long)frames);
+            return 1;
+        }
+        pft_frame_t f;
+        memset(&f, 0, sizeof f);
+        f.data = buf;
+        f.width = W;
+        f.height = H;
+        f.stride_bytes = 2u * W;
+        f.format = PFT_PIX_U16;
+        f.bit_depth = bits;
+        f.seq = seq;
+        pft_status_t s = irp_measured(&pre, &f, buf, NULL);
+        if (s != PFT_OK) {
+            fprintf(stderr, "ir_probe: frame %lu: stage: %s\n", (unsigned long)seq, pft_status_str(s));
+            return 1;
+        }
+        pft_pre_stats_t st;
+        pft_pre_stats(&pre, &st);
+        pft_frame_t rf;
+        pft_pre_frame(&pre, &rf);
+        const int ev = (st.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED |
+                                    PFT_PRE_FLAG_REG_LOST)) == 0u;
+        s = pft_pre_clutter_update(&cl, &rf, st.shift[0], st.shift[1], ev != 0);
+        pft_frame_t co;
+        if (s == PFT_OK) {
+            s = pft_pre_clutter_frame(&cl, &co);
+        }
+        if (s != PFT_OK) {
+            fprintf(stderr, "ir_probe: frame %lu: clutter map: %s\n", (unsigned long)seq, pft_status_str(s));
+            return 1;
+        }
+        pft_frame_t tf;
+        memset(&tf, 0, sizeof tf);
+        tf.data = ev ? co.data : (const void *)blank;
+        tf.stride_bytes = 2u * W;
+        tf.width = W;
+        tf.height = H;
+        tf.format = PFT_PIX_RES16;
+        tf.bit_depth = 16u;
+        tf.seq = seq;
+        tf.timestamp_us = (uint64_t)seq * 1000000u;
+        s = irp_measured(NULL, &tf, NULL, &tbd);
+        if (s != PFT_OK) {
+            fprintf(stderr, "ir_probe: frame %lu: manager: %s\n", (unsigned long)seq, pft_status_str(s));
+            return 1;
+        }
+        ++frame_no;
+        if (ev) {
+            scene_x += st.shift[0] / 65536.0;
+            scene_y += st.shift[1] / 65536.0;
+        }
+        pft_tbd_track_t tr[8];
+        size_t n = pft_tbd_tracks(&tbd, tr, 8u);
+        if (n > 8u) {
+            n = 8u;
+        }
+        printf("%lu,%u", (unsigned long)seq, (unsigned)st.flags);
+        for (size_t i = 0; i < n; ++i) {
+            const double x = from_real(tr[i].x), y = from_real(tr[i].y);
+            printf(",%lu %.3f %.3f", (unsigned long)tr[i].id, x, y);
+            scene_hist_t *h = hist_of(tr[i].id);
+            if (h == NULL) {
+                fprintf(stderr, "ir_probe: more than %u tracks in the scene test\n", SCENE_SLOTS);
+                return 1;
+            }
+            h->last = frame_no;
+            if (h->n == SCENE_N + 1u) {
+                memmove(h->h[0], h->h[1], sizeof h->h[0] * SCENE_N);
+                h->n--;
+            }
+            h->h[h->n][0] = x;
+            h->h[h->n][1] = y;
+            h->h[h->n][2] = scene_x;
+            h->h[h->n][3] = scene_y;
+            h->n++;
+            if (!h->scene && h->n == SCENE_N + 1u) {
+                const double *a = h->h[0], *b = h->h[SCENE_N];
+                const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
+                if (hypot(dx, dy) < (double)SCENE_N * 0.15) {
+                    h->scene = 1;
+                }
+            }
+            if (h->scene) {
+                long cx = lround(x), cy = lround(y);
+                cx = cx < 0 ? 0 : cx > (long)W - 1 ? (long)W - 1 : cx;
+                cy = cy < 0 ? 0 : cy > (long)H - 1 ? (long)H - 1 : cy;
+                (void)pft_pre_clutter_raise(&cl, (uint32_t)cx, (uint32_t)cy, 16u * 1024u);
+            }
+        }
+        for (uint32_t i = 0; i < SCENE_SLOTS; ++i) {
+            if (g_hist[i].id != 0u && g_hist[i].last + 64u < frame_no) {
+                g_hist[i].id = 0u;
+            }
+        }
+        printf("\n");
+    }
+    fclose(in);
+    printf("ir_probe: done, %lu frames\n", (unsigned long)frames);
+    return 0;
+}
