@@ -948,12 +948,96 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     return true;
 }
 
+/* The sums of W (a constant where it is inlined) lines from local line j of a slope entry over
+ * m frames, kept in a local array across the frames and stored once: per line the additions
+ * of bank_lines_ from 0 in the same order (tau = 0, 1, ..., m - 1), so the same values in both
+ * builds; the loads and stores of the sums per frame are saved. acc0, step, jlo and the slot
+ * walk are bank_lines_'s; every line is inside the response grid at every frame and the
+ * frames' blocks are computed (bank_fresh_). */
+#define FRESH_W_ 16
+static inline void fresh_cols_(pft_real_t *restrict se, const pft_real_t *restrict yr,
+                               int32_t ny, int32_t head, int32_t len, int64_t acc0,
+                               int64_t step, int32_t jlo, int32_t j, int32_t m, int32_t W)
+{
+    pft_real_t s[FRESH_W_];
+    for (int32_t k = 0; k < W; ++k) {
+        s[k] = PFT_C(0.0);
+    }
+    int64_t acc = acc0;
+    const pft_real_t *row = yr + (size_t)head * (size_t)ny + (jlo + j);
+    const pft_real_t *const last = yr + (size_t)(len - 1) * (size_t)ny + (jlo + j);
+    const pft_real_t *const first = yr + (jlo + j);
+    for (int32_t tau = 0; tau < m; ++tau) {
+        const pft_real_t *restrict y = row + (int32_t)(acc >> 16);
+        for (int32_t k = 0; k < W; ++k) {
+            s[k] = s[k] + y[k];
+        }
+        acc -= step;
+        row = row == first ? last : row - ny;
+    }
+    for (int32_t k = 0; k < W; ++k) {
+        se[j + k] = s[k];
+    }
+}
+
+/* Window w of entry bi summed afresh over lines [j0, j1) and its last m frames, as zeroing
+ * the sums and bank_lines_ (tau 0 .. m - 1, sign 1) do, with the same values, response blocks
+ * and line_budget units, when every line stays inside the response grid at every frame
+ * (false, nothing done, otherwise): a line's offset is monotone in tau, so the first and last
+ * frames bound it. First the frames' blocks (yrow_, in bank_lines_'s order), then the sums by
+ * groups of lines held across the frames (fresh_cols_). */
+static bool bank_fresh_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t m)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    const int64_t acc0 = step * (int64_t)(int32_t)(kn - e->k0) + 32768;
+    const int32_t da = (int32_t)(acc0 >> 16) + e->jlo;
+    const int32_t db = (int32_t)((acc0 - step * (m - 1)) >> 16) + e->jlo;
+    if (m < 1 || j0 >= j1 || j0 + da < 0 || j0 + db < 0 || j1 + da > ny || j1 + db > ny) {
+        return false;
+    }
+    int64_t acc = acc0;
+    int32_t slot = (int32_t)p->ring.head;
+    for (int32_t tau = 0; tau < m; ++tau) {
+        const int32_t d = (int32_t)(acc >> 16) + e->jlo;
+        p->n_line_ops += (uint32_t)(j1 - j0);
+        (void)yrow_(p, (uint32_t)slot, (uint32_t)tau, j0 + d, j1 + d);
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
+    }
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    const pft_real_t *restrict yr = p->yring;
+    const int32_t head = (int32_t)p->ring.head;
+    int32_t j = j0;
+    for (; j + FRESH_W_ <= j1; j += FRESH_W_) {
+        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, FRESH_W_);
+    }
+    if (j + 8 <= j1) {
+        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 8);
+        j += 8;
+    }
+    if (j + 4 <= j1) {
+        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 4);
+        j += 4;
+    }
+    for (; j < j1; ++j) {
+        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 1);
+    }
+    return true;
+}
+
 /* Sums the lines [j0, j1) of entry bi afresh over the last m[w] frames of every window. */
 static void bank_fill_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t j0, int32_t j1,
                        uint32_t kn)
 {
     const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
     for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        if (bank_fresh_(p, ti, bi, w, j0, j1, kn, (int32_t)e->m[w])) {
+            continue;
+        }
         pft_real_t *se = bank_e_(p, ti, bi, w);
         for (int32_t j = j0; j < j1; ++j) {
             se[j] = PFT_C(0.0);
