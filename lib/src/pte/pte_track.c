@@ -1615,6 +1615,30 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     int64_t c = num >= 0 ? num / (2 * lt) : -((-num + 2 * lt - 1) / (2 * lt));
     const int64_t cmax = (int64_t)1 << 24; /* |slope| far beyond any track */
     c = c > cmax ? cmax : (c < -cmax ? -cmax : c);
+    /* slope_hold = hh: when the previous step's entries (at frame kn - 1) are the L consecutive
+     * lattice slopes of spacing 1 centred on cp, one lattice step from c, and this step's
+     * spacing is 1 too, the centre stays cp while |zt - cp lat| <= (1/2 + hh) lat (in 16.16:
+     * |zt - cp lt| 2^16 <= (2^15 + hh 2^16) lt; |zt - cp lt| < 3/2 lt, so no overflow) */
+    if (p->cfg.slope_hold > PFT_C(0.0) && mult == 1) {
+        int64_t slo = INT64_MAX;
+        int64_t shi = INT64_MIN;
+        int32_t nl = 0;
+        for (uint32_t b = 0; b < p->nbank; ++b) {
+            if (bank[b].live && bank[b].kl + 1u == kn) {
+                nl++;
+                slo = bank[b].s < slo ? bank[b].s : slo;
+                shi = bank[b].s > shi ? bank[b].s : shi;
+            }
+        }
+        const int64_t cp = slo + h;
+        if (nl == L && shi - slo == L - 1 && (cp - c == 1 || c - cp == 1)) {
+            int64_t dz = fix16_(ap->zt) - cp * lt;
+            dz = dz < 0 ? -dz : dz;
+            if (dz * 65536 <= (32768 + fix16_(p->cfg.slope_hold)) * lt) {
+                c = cp;
+            }
+        }
+    }
     /* the slope wanted for direction i: c + (i - h) mult (formed where it is used, so that
      * no array of them sits on the stack of the track step) */
     const int32_t nw = L;
