@@ -1055,6 +1055,15 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
                        const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
 {
     pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    /* the common case first: a kept entry one frame on, its lines and one window (no short
+     * one) unchanged, slid in one pass; what the general path below does for it, and the
+     * same state after (lines, windows, frame) */
+    if (keep && jlo == e->jlo && n == (int32_t)e->n && e->kl + 1u == kn && m[1] == 0u &&
+        e->m[1] == 0u && m[0] != 0u && m[0] == e->m[0] &&
+        bank_slide_(p, ti, bi, 0u, 0, n, kn, (int32_t)m[0])) {
+        e->kl = kn;
+        return;
+    }
     int32_t k0 = 0; /* held lines kept: [k0, k1) in the new local indices */
     int32_t k1 = 0;
     const int32_t a = jlo > e->jlo ? jlo : e->jlo;
