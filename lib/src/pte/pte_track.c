@@ -948,32 +948,34 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     return true;
 }
 
-/* The sums of W (a constant where it is inlined) lines from local line j of a slope entry over
- * m frames, kept in a local array across the frames and stored once: per line the additions
- * of bank_lines_ from 0 in the same order (tau = 0, 1, ..., m - 1), so the same values in both
- * builds; the loads and stores of the sums per frame are saved. acc0, step, jlo and the slot
- * walk are bank_lines_'s; every line is inside the response grid at every frame and the
- * frames' blocks are computed (bank_fresh_). */
+/* The sums of W (a constant where gcc specialises it) lines from local line j of slope entry e
+ * over its last m frames at frame kn, kept in a local array across the frames and stored once
+ * into se: per line the additions of bank_lines_ from 0 in the same order (tau = 0, 1, ...,
+ * m - 1), so the same values in both builds; the loads and stores of the sums per frame are
+ * saved. Every line is inside the response grid at every frame and the frames' blocks are
+ * computed (bank_fresh_). Few arguments, so that a caller's frame holds none on the stack
+ * (the M3 stack bound, docs/size.md). */
 #define FRESH_W_ 16
-static inline void fresh_cols_(pft_real_t *restrict se, const pft_real_t *restrict yr,
-                               int32_t ny, int32_t head, int32_t len, int64_t acc0,
-                               int64_t step, int32_t jlo, int32_t j, int32_t m, int32_t W)
+static void fresh_cols_(const pft_pte_t *p, const pft_pte_bank_t *e, pft_real_t *restrict se,
+                        uint32_t kn, int32_t j, int32_t m, int32_t W)
 {
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    const size_t ny = p->ny;
+    const pft_real_t *restrict yr = p->yring + (e->jlo + j);
     pft_real_t s[FRESH_W_];
     for (int32_t k = 0; k < W; ++k) {
         s[k] = PFT_C(0.0);
     }
-    int64_t acc = acc0;
-    const pft_real_t *row = yr + (size_t)head * (size_t)ny + (jlo + j);
-    const pft_real_t *const last = yr + (size_t)(len - 1) * (size_t)ny + (jlo + j);
-    const pft_real_t *const first = yr + (jlo + j);
+    int64_t acc = step * (int64_t)(int32_t)(kn - e->k0) + 32768;
+    const pft_real_t *row = yr + (size_t)p->ring.head * ny;
+    const pft_real_t *const last = yr + (size_t)(p->ring.len - 1u) * ny;
     for (int32_t tau = 0; tau < m; ++tau) {
         const pft_real_t *restrict y = row + (int32_t)(acc >> 16);
         for (int32_t k = 0; k < W; ++k) {
             s[k] = s[k] + y[k];
         }
         acc -= step;
-        row = row == first ? last : row - ny;
+        row = row == yr ? last : row - ny;
     }
     for (int32_t k = 0; k < W; ++k) {
         se[j + k] = s[k];
@@ -1009,22 +1011,20 @@ static bool bank_fresh_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
         slot = slot == 0 ? len - 1 : slot - 1;
     }
     pft_real_t *restrict se = bank_e_(p, ti, bi, w);
-    const pft_real_t *restrict yr = p->yring;
-    const int32_t head = (int32_t)p->ring.head;
     int32_t j = j0;
     for (; j + FRESH_W_ <= j1; j += FRESH_W_) {
-        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, FRESH_W_);
+        fresh_cols_(p, e, se, kn, j, m, FRESH_W_);
     }
     if (j + 8 <= j1) {
-        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 8);
+        fresh_cols_(p, e, se, kn, j, m, 8);
         j += 8;
     }
     if (j + 4 <= j1) {
-        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 4);
+        fresh_cols_(p, e, se, kn, j, m, 4);
         j += 4;
     }
     for (; j < j1; ++j) {
-        fresh_cols_(se, yr, ny, head, len, acc0, step, e->jlo, j, m, 1);
+        fresh_cols_(p, e, se, kn, j, m, 1);
     }
     return true;
 }
