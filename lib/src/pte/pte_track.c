@@ -1629,8 +1629,8 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
      * spacing is 1 too, the centre stays cp while |zt - cp lat| <= (1/2 + hh) lat (in 16.16:
      * |zt - cp lt| 2^16 <= (2^15 + hh 2^16) lt; |zt - cp lt| < 3/2 lt, so no overflow) */
     if (p->cfg.slope_hold > PFT_C(0.0) && mult == 1) {
-        int64_t slo = INT64_MAX;
-        int64_t shi = INT64_MIN;
+        int64_t slo = 2147483647; /* above every int32 slope */
+        int64_t shi = -2147483647 - 1;
         int32_t nl = 0;
         for (uint32_t b = 0; b < p->nbank; ++b) {
             if (bank[b].live && bank[b].kl + 1u == kn) {
