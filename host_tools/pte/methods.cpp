@@ -173,7 +173,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
                 "init_threshold", "init_period", "init_spread", "max_len", "n_dir", "motion", "sigma_r", "q_sd", "acc_sd0",
                 "q_amp", "dtheta_min", "c_step", "scan_steps", "scan_sigmas", "sigma_w_max", "eta_t",
                 "max_misses", "max_tracks", "dup_cells", "op", "short_len", "man_z", "man_acc_sd", "step_budget",
-                "line_budget", "steady_dirs"});
+                "line_budget", "steady_dirs", "slope_hold"});
         input_override(f, m.pte.in);
         pft_pte_config_t &c = m.pte;
         c.init_frames = u8(f, "init_frames", c.init_frames, 2, PFT_PTE_MAX_FRAMES);
@@ -205,6 +205,7 @@ MethodSpec make_spec(const Scenario &s, const std::string &name)
         c.step_budget = u8(f, "step_budget", c.step_budget, 0, PFT_PTE_MAX_TRACKS);
         c.line_budget = static_cast<uint16_t>(f.integer_in("line_budget", c.line_budget, 0, 65535));
         c.steady_dirs = u8(f, "steady_dirs", c.steady_dirs, 0, PFT_PTE_MAX_DIRS);
+        real(f, "slope_hold", c.slope_hold, 0, 0.5);
         if (const char *bad = nullptr; pft_pte_config_check(&c, &bad) != PFT_OK)
             f.fail(std::string("invalid PTE-TBD configuration: ") + (bad ? bad : "?") + " (pft_pte_config_check)");
         if (f.has("init_threshold")) {
@@ -342,7 +343,8 @@ nlohmann::json MethodSpec::settings() const
              {"max_misses", c.max_misses}, {"max_tracks", c.max_tracks}, {"dup_cells", from_real(c.dup_cells)},
              {"short_len", c.short_len}, {"man_z", from_real(c.man_z)},
              {"man_acc_sd", from_real(c.man_acc_sd)}, {"step_budget", c.step_budget},
-             {"line_budget", c.line_budget}, {"steady_dirs", c.steady_dirs}};
+             {"line_budget", c.line_budget}, {"steady_dirs", c.steady_dirs},
+             {"slope_hold", from_real(c.slope_hold)}};
     } else if (name == "dp") {
         const auto &c = dp;
         j = {{"input", input_json(c.in)}, {"frames", c.frames}, {"gate", {c.gate[0], c.gate[1]}},

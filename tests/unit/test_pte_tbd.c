@@ -947,6 +947,69 @@ static void test_steady_dirs(void)
 }
 
 
+/* slope_hold: off by default, in [0, 0.5], TABLE only. A target at 0.31 cells/frame, 15.5
+ * lattice steps of dtheta_min = 0.02: the predicted slope wavers about the midpoint of two
+ * lattice slopes, so without the hold the direction set moves by one lattice point and back
+ * (each move sums one entry afresh over the window); with h = 0.5 it stays, and the line x
+ * frame sums over frames 30..79 fall while the track keeps run_accuracy's bounds. */
+static void test_slope_hold(void)
+{
+    pft_pte_config_t c;
+    const char *field = NULL;
+    cfg_default(&c);
+    TEST_ASSERT_TRUE(D(c.slope_hold) == 0.0); /* off by default */
+    c.slope_hold = R(0.6);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("slope_hold", field);
+    c.slope_hold = R(-0.1);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("slope_hold", field);
+    c.slope_hold = R(0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_config_check(&c, &field));
+    c.op = PFT_PTE_OP_EXACT; /* no slope entries */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pte_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("slope_hold", field);
+    static const double hv[2] = {0.0, 0.5};
+    double ops[2] = {0.0, 0.0};
+    for (uint32_t v = 0; v < 2u; ++v) {
+        cfg_default(&c);
+        c.slope_hold = R(hv[v]);
+        pft_pte_t p;
+        init_pte(&p, &c);
+        g_s = 2024;
+        int first = -1, n = 0;
+        double se = 0.0;
+        const pft_pte_report_t *r = g_rep;
+        for (int k = 0; k < 80; ++k) {
+            double pos = 20.0 + 0.31 * k, a = 2.0;
+            profile(1, &pos, &a);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pte_update_real(&p, g_z));
+            uint32_t m = (uint32_t)pft_pte_reports(&p, g_rep, PFT_PTE_MAX_TRACKS);
+            TEST_ASSERT_TRUE(m <= 1u);
+            if (m == 1u && first < 0) {
+                first = k;
+            }
+            if (k >= 30) {
+                TEST_ASSERT_EQUAL_UINT32(1, m);
+                TEST_ASSERT_TRUE(r[0].detected);
+                double e = D(r[0].pos[0]) - pos;
+                se += e * e;
+                n++;
+                ops[v] += (double)p.n_line_ops;
+            }
+        }
+        double rms = sqrt(se / n);
+        note(v == 0u ? "off_rms" : "hold_rms", rms);
+        note("line_ops", ops[v]);
+        TEST_ASSERT_TRUE(first >= 9 && first <= 12);
+        TEST_ASSERT_TRUE(rms < 0.4);
+        TEST_ASSERT_DOUBLE_WITHIN(0.05, 0.31, D(r[0].vel[0]));
+    }
+    note("ratio", ops[1] / ops[0]);
+    TEST_ASSERT_TRUE(ops[1] < 0.95 * ops[0]);
+}
+
+
 /* Range-Doppler map 32 x 12, target moving (+0.3, -0.15) cells/frame at A = 4: the 2-D
  * operator (3 x 3 directions, exact taps) tracks it within 0.7 cells on both axes. */
 static void test_range_doppler(void)
@@ -1082,6 +1145,7 @@ int main(void)
     RUN_TEST(test_line_budget_never_bites);
     RUN_TEST(test_line_budget_edge);
     RUN_TEST(test_steady_dirs);
+    RUN_TEST(test_slope_hold);
     RUN_TEST(test_range_doppler);
     RUN_TEST(test_bad_input_untouched);
     return UNITY_END();

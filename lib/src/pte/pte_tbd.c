@@ -47,6 +47,7 @@ void pft_pte_config_default(pft_pte_config_t *cfg)
     cfg->man_z = PFT_C(1.25);
     cfg->man_acc_sd = PFT_C(0.03);
     cfg->steady_dirs = 0u;
+    cfg->slope_hold = PFT_C(0.0);
 }
 
 /* 1/c_step when it is an integer 1..8, else 0. */
@@ -234,6 +235,11 @@ static const char *bad_field_(const pft_pte_config_t *c)
          (uint32_t)c->steady_dirs + 2u > c->n_dir[0] ||
          op_of_(c) != PFT_PTE_OP_TABLE)) {
         return "steady_dirs";
+    }
+    /* slope_hold: up to half a lattice step beyond the midpoint; TABLE slope entries */
+    if (!(c->slope_hold >= PFT_C(0.0)) || c->slope_hold > PFT_C(0.5) ||
+        (c->slope_hold > PFT_C(0.0) && op_of_(c) != PFT_PTE_OP_TABLE)) {
+        return "slope_hold";
     }
     return NULL;
 }

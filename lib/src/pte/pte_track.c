@@ -948,12 +948,96 @@ static bool bank_slide_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int3
     return true;
 }
 
+/* The sums of W (a constant where gcc specialises it) lines from local line j of slope entry e
+ * over its last m frames at frame kn, kept in a local array across the frames and stored once
+ * into se: per line the additions of bank_lines_ from 0 in the same order (tau = 0, 1, ...,
+ * m - 1), so the same values in both builds; the loads and stores of the sums per frame are
+ * saved. Every line is inside the response grid at every frame and the frames' blocks are
+ * computed (bank_fresh_). Few arguments, so that a caller's frame holds none on the stack
+ * (the M3 stack bound, docs/size.md). */
+#define FRESH_W_ 16
+static void fresh_cols_(const pft_pte_t *p, const pft_pte_bank_t *e, pft_real_t *restrict se,
+                        uint32_t kn, int32_t j, int32_t m, int32_t W)
+{
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    const size_t ny = p->ny;
+    const pft_real_t *restrict yr = p->yring + (e->jlo + j);
+    pft_real_t s[FRESH_W_];
+    for (int32_t k = 0; k < W; ++k) {
+        s[k] = PFT_C(0.0);
+    }
+    int64_t acc = step * (int64_t)(int32_t)(kn - e->k0) + 32768;
+    const pft_real_t *row = yr + (size_t)p->ring.head * ny;
+    const pft_real_t *const last = yr + (size_t)(p->ring.len - 1u) * ny;
+    for (int32_t tau = 0; tau < m; ++tau) {
+        const pft_real_t *restrict y = row + (int32_t)(acc >> 16);
+        for (int32_t k = 0; k < W; ++k) {
+            s[k] = s[k] + y[k];
+        }
+        acc -= step;
+        row = row == yr ? last : row - ny;
+    }
+    for (int32_t k = 0; k < W; ++k) {
+        se[j + k] = s[k];
+    }
+}
+
+/* Window w of entry bi summed afresh over lines [j0, j1) and its last m frames, as zeroing
+ * the sums and bank_lines_ (tau 0 .. m - 1, sign 1) do, with the same values, response blocks
+ * and line_budget units, when every line stays inside the response grid at every frame
+ * (false, nothing done, otherwise): a line's offset is monotone in tau, so the first and last
+ * frames bound it. First the frames' blocks (yrow_, in bank_lines_'s order), then the sums by
+ * groups of lines held across the frames (fresh_cols_). */
+static bool bank_fresh_(pft_pte_t *p, uint32_t ti, uint32_t bi, uint32_t w, int32_t j0,
+                        int32_t j1, uint32_t kn, int32_t m)
+{
+    const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    const int32_t ny = (int32_t)p->ny;
+    const int32_t len = p->ring.len;
+    const int64_t step = (int64_t)e->s * p->lat_u;
+    const int64_t acc0 = step * (int64_t)(int32_t)(kn - e->k0) + 32768;
+    const int32_t da = (int32_t)(acc0 >> 16) + e->jlo;
+    const int32_t db = (int32_t)((acc0 - step * (m - 1)) >> 16) + e->jlo;
+    if (m < 1 || j0 >= j1 || j0 + da < 0 || j0 + db < 0 || j1 + da > ny || j1 + db > ny) {
+        return false;
+    }
+    int64_t acc = acc0;
+    int32_t slot = (int32_t)p->ring.head;
+    for (int32_t tau = 0; tau < m; ++tau) {
+        const int32_t d = (int32_t)(acc >> 16) + e->jlo;
+        p->n_line_ops += (uint32_t)(j1 - j0);
+        (void)yrow_(p, (uint32_t)slot, (uint32_t)tau, j0 + d, j1 + d);
+        acc -= step;
+        slot = slot == 0 ? len - 1 : slot - 1;
+    }
+    pft_real_t *restrict se = bank_e_(p, ti, bi, w);
+    int32_t j = j0;
+    for (; j + FRESH_W_ <= j1; j += FRESH_W_) {
+        fresh_cols_(p, e, se, kn, j, m, FRESH_W_);
+    }
+    if (j + 8 <= j1) {
+        fresh_cols_(p, e, se, kn, j, m, 8);
+        j += 8;
+    }
+    if (j + 4 <= j1) {
+        fresh_cols_(p, e, se, kn, j, m, 4);
+        j += 4;
+    }
+    for (; j < j1; ++j) {
+        fresh_cols_(p, e, se, kn, j, m, 1);
+    }
+    return true;
+}
+
 /* Sums the lines [j0, j1) of entry bi afresh over the last m[w] frames of every window. */
 static void bank_fill_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t j0, int32_t j1,
                        uint32_t kn)
 {
     const pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
     for (uint32_t w = 0; w < PFT_PTE_NWIN_; ++w) {
+        if (bank_fresh_(p, ti, bi, w, j0, j1, kn, (int32_t)e->m[w])) {
+            continue;
+        }
         pft_real_t *se = bank_e_(p, ti, bi, w);
         for (int32_t j = j0; j < j1; ++j) {
             se[j] = PFT_C(0.0);
@@ -971,6 +1055,15 @@ static void bank_sync_(pft_pte_t *p, uint32_t ti, uint32_t bi, int32_t jlo, int3
                        const uint8_t m[PFT_PTE_NWIN_], uint32_t kn, bool keep)
 {
     pft_pte_bank_t *e = &p->bank[(size_t)ti * p->nbank + bi];
+    /* the common case first: a kept entry one frame on, its lines and one window (no short
+     * one) unchanged, slid in one pass; what the general path below does for it, and the
+     * same state after (lines, windows, frame) */
+    if (keep && jlo == e->jlo && n == (int32_t)e->n && e->kl + 1u == kn && m[1] == 0u &&
+        e->m[1] == 0u && m[0] != 0u && m[0] == e->m[0] &&
+        bank_slide_(p, ti, bi, 0u, 0, n, kn, (int32_t)m[0])) {
+        e->kl = kn;
+        return;
+    }
     int32_t k0 = 0; /* held lines kept: [k0, k1) in the new local indices */
     int32_t k1 = 0;
     const int32_t a = jlo > e->jlo ? jlo : e->jlo;
@@ -1531,6 +1624,30 @@ static bool step_bank_(pft_pte_t *p, const pft_pte_track_t *t, step_geom_ *g)
     int64_t c = num >= 0 ? num / (2 * lt) : -((-num + 2 * lt - 1) / (2 * lt));
     const int64_t cmax = (int64_t)1 << 24; /* |slope| far beyond any track */
     c = c > cmax ? cmax : (c < -cmax ? -cmax : c);
+    /* slope_hold = hh: when the previous step's entries (at frame kn - 1) are the L consecutive
+     * lattice slopes of spacing 1 centred on cp, one lattice step from c, and this step's
+     * spacing is 1 too, the centre stays cp while |zt - cp lat| <= (1/2 + hh) lat (in 16.16:
+     * |zt - cp lt| 2^16 <= (2^15 + hh 2^16) lt; |zt - cp lt| < 3/2 lt, so no overflow) */
+    if (p->cfg.slope_hold > PFT_C(0.0) && mult == 1) {
+        int64_t slo = 2147483647; /* above every int32 slope */
+        int64_t shi = -2147483647 - 1;
+        int32_t nl = 0;
+        for (uint32_t b = 0; b < p->nbank; ++b) {
+            if (bank[b].live && bank[b].kl + 1u == kn) {
+                nl++;
+                slo = bank[b].s < slo ? bank[b].s : slo;
+                shi = bank[b].s > shi ? bank[b].s : shi;
+            }
+        }
+        const int64_t cp = slo + h;
+        if (nl == L && shi - slo == L - 1 && (cp - c == 1 || c - cp == 1)) {
+            int64_t dz = fix16_(ap->zt) - cp * lt;
+            dz = dz < 0 ? -dz : dz;
+            if (dz * 65536 <= (32768 + fix16_(p->cfg.slope_hold)) * lt) {
+                c = cp;
+            }
+        }
+    }
     /* the slope wanted for direction i: c + (i - h) mult (formed where it is used, so that
      * no array of them sits on the stack of the track step) */
     const int32_t nw = L;
