@@ -231,6 +231,10 @@ def cmd_clutter(a):
         if os.path.exists(out):
             continue
         q, res, truth, plat = load(a.sim, a.run, a.db, seed)
+        if a.white:  # the reference: the same search on white unit Gaussian noise in place of the residual
+            ev0 = np.array([bool(fr.any()) for fr in res])
+            res = np.random.default_rng(1000 + seed).standard_normal(res.shape).astype(np.float32)
+            res[~ev0] = 0.0
         scene_v = (-(plat[-1][0] - plat[0][0]) / (len(plat) - 1), -(plat[-1][1] - plat[0][1]) / (len(plat) - 1))
         if tree is None:
             order, flags, npaths = path_tree(kmax, a.dv, a.vmin, a.vmax, scene_v, a.scene_gate, a.phases)
@@ -519,7 +523,7 @@ def cmd_report(a):
                 for t, h in zip(allt, hit):
                     byk[t['kind']][0] += h
                     byk[t['kind']][1] += 1
-                first = [min((te for te, v in t['sums'][K] if v > T[K, r]), default=None) for t in allt]
+                first = [min((te for te, v in t['sums'][K] if v > Tev[K, r]), default=None) for t in allt]
                 delay = [f - t['first'] for f, t in zip(first, allt) if f is not None]
                 row = dict(db=db, rate=r, K=K, T=T[K, r], pd=sum(hit) / n, n=n, pd_ns=sum(hit_ns) / n,
                            Tns=Tns[K, r], kinds={k: v[0] / v[1] for k, v in byk.items()},
@@ -546,13 +550,18 @@ def cmd_report(a):
             fr = 100.0 * len(src[K])
             curves[(db, K, 'event')] = [(1000 * e / fr, np.mean([t['best'][K] > x for t in allt]))
                                         for x, e in zip(ts, ev[K]) if e > 0]
+            for rr in a.at_rates or []:
+                # the largest detection whose threshold gives at most rr distinct false objects per 1000 frames
+                ok = [y for x, y in curves[(db, K, 'event')] if x <= rr]
+                print(f'  {db} dB K {K}: at <= {rr} distinct false objects per 1000 frames: '
+                      f'{100 * max(ok, default=0):.0f} %')
             curves[(db, K, 'moving')] = [(1000 * e / fr, np.mean([t['best'][K] > x and t['rel'] > gate for t in allt]))
                                          for x, e in zip(ts, evm[K]) if e > 0]
         if det:
             tb = tbd[db]['averaged'] if 'averaged' in tbd[db] else {}
             print(f'  TBD measured on the same seeds: {sum(det.values())} of {len(det)} detected')
     print('\nclairvoyant detection (a target counts when its true-path K-sum exceeds T in one window of its life):')
-    print('SNR  rate/1000  K  | per frame: T   Pd    clear/cloud/struct (n)         frames to 1st | no scene paths: T  Pd '
+    print('SNR  rate/1000  K  | per frame: T   Pd    clear/cloud/struct (n)         frames to 1st (Tev) | no scene paths: T  Pd '
           '| distinct objects: Tev  Pd   clear/cloud/struct | moving objects: Tmv  Pd | paired with TBD at Tev '
           '(both / bound only / TBD only), bound-only by irmiss category')
     for r in res_rows:
@@ -628,6 +637,8 @@ def main():
             p.add_argument('--phases', type=int, default=1, help='sub-pixel start phases per axis of the paths')
             p.add_argument('--ks', type=int, nargs='+', default=[3, 5, 8, 12], help='window lengths (frames)')
             p.add_argument('--tag', default='', help='suffix of the cache files (a variant)')
+            p.add_argument('--white', action='store_true',
+                           help='search white unit Gaussian noise instead of the residual (a reference; use a --tag)')
     p = sp.add_parser('report')
     p.add_argument('--cache', required=True)
     p.add_argument('--dbs', nargs='+', default=['06', '09', '12'])
@@ -640,6 +651,7 @@ def main():
     p.add_argument('--seed-label', default='1-29', help='seeds named in the figure titles')
     p.add_argument('--radius', type=float, default=4.0, help='px: candidates this close in scene coordinates are one object')
     p.add_argument('--fig')
+    p.add_argument('--at-rates', type=float, nargs='*', help='print the detection at these false objects / 1000 frames')
     a = ap.parse_args()
     {'inputs': cmd_inputs, 'targets': cmd_targets, 'clutter': cmd_clutter, 'report': cmd_report}[a.cmd](a)
 
