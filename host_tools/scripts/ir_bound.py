@@ -57,9 +57,10 @@ import sys
 import numpy as np
 from scipy import ndimage
 
+from ir_real_kinds import DEFAULT_KINDS, KINDS, read_kinds  # the kinds of the ir_sky images
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 KS = (3, 5, 8, 12, 20, 30)
-KINDS = ['clear_sky', 'cloud_edges', 'structures']
 
 
 def seeds_arg(s):
@@ -308,10 +309,6 @@ def cmd_clutter(a):
 
 
 # ---------------------------------------------------------------- report
-def kinds_map():
-    return {r['file']: r['kind'] for r in csv.DictReader(open(os.path.join(HERE, 'ir_sky_kinds.csv')))}
-
-
 def gpd_tail(m):
     """(u, p_u, genpareto params) for the maxima above their 90th percentile."""
     from scipy import stats
@@ -383,7 +380,7 @@ def event_counts(cl, K, sd, ts, radius, gate, min_span=5):
 
 
 def cmd_report(a):
-    km = kinds_map()
+    km = read_kinds(DEFAULT_KINDS)
     import re
     src = {}  # K -> the clutter files holding it (the first tag that has it)
     for tag in a.clutter_tags:
