@@ -1,0 +1,572 @@
+#!/usr/bin/env python3
+"""A cycle model of the IR pipeline on a Cortex-A53 (docs/results/ir_clutter.md, "Branch irmca").
+
+QEMU counts the instructions of the aarch64 presets' build (section "Branch ira53"); this script
+turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It is a model:
+
+1. `run`: tests/tools/ir_probe of an aarch64 build (or another program with the work markers,
+   --exe/--args) under qemu-aarch64 with the plugin tests/soak/qemu_marks.c: out= the
+   instructions per call, prof= per function, blocks= per translated block, and with --mem its
+   data-cache model (mem=). Odd regions are ir_probe's stage calls, even ones the manager's.
+2. `model`: maps the block counts onto `objdump -d` of the same executable (the library's
+   objects as linked: -O3, no LTO), finds in each function of >= 0.5 % of its region its hot
+   loops (from each backward-branch target, the dominant path: at every conditional branch the
+   more used edge, back to the start), feeds each loop body to `llvm-mca -mtriple=aarch64
+   -mcpu=cortex-a53` (and, for comparison, cortex-a55), and weights each loop's cycles per
+   instruction by the instructions of the block profile it covers; a function's instructions
+   outside its modelled loops get its region's mean loop CPI. llvm-mca models in-order dual
+   issue, the units and latencies of LLVM's scheduling model, every load an L1 hit, every branch
+   predicted, a call as free (replaced by a nop; the callee is modelled where it is). What it
+   leaves out is estimated beside it: cache misses from the plugin's cache model at an assumed
+   L2 and DRAM latency (with and without the strided misses prefetched), and one misprediction
+   per departure from a loop's dominant path at an assumed penalty.
+3. `check`: llvm-mca on small kernels whose A53 timing is known (the dual-issue rule and
+   published measurements on an A53), to show where the model is right and where it is not.
+
+  bash tests/soak/run_soak.sh plugin
+  python3 host_tools/scripts/a53_mca.py run --build build/aarch64-float \
+      --frames build/ir-cost/frames-384x288/frames.u16 --n 100 --out build/a53-mca/float --mem
+  python3 host_tools/scripts/a53_mca.py model --build build/aarch64-float --run build/a53-mca/float \
+      [--debug-exe build/a53-g-float/tests/tools/ir_probe]
+  python3 host_tools/scripts/a53_mca.py check
+
+(--debug-exe: the same preset built with -DCMAKE_C_FLAGS=-g into another directory; the script
+checks its code is instruction for instruction the same and names each loop's source line.)
+Needs qemu-aarch64, aarch64-linux-gnu binutils and llvm-mca (Debian's `llvm`, 14).
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
+PLUGIN = os.path.join(ROOT, 'build', 'qemu-plugin', 'qemu_marks.so')
+MCA_ITER = 200
+CLOCK = 1.2e9
+
+COND_BR = re.compile(r'^(b\.\w+|cbz|cbnz|tbz|tbnz)$')
+
+
+def sh(cmd, **kw):
+    return subprocess.run(cmd, check=True, capture_output=True, text=True, **kw).stdout
+
+
+# ---------------------------------------------------------------------------------------- run
+def cmd_run(a):
+    exe = a.exe or os.path.join(a.build, 'tests', 'tools', 'ir_probe')
+    w, h = a.size.split('x')
+    os.makedirs(a.out, exist_ok=True)
+    plug = '%s,out=%s,prof=%s,blocks=%s' % (PLUGIN, os.path.join(a.out, 'counts.txt'),
+                                             os.path.join(a.out, 'prof.txt'),
+                                             os.path.join(a.out, 'blocks.txt'))
+    if a.mem:
+        plug += ',mem=%s,l1=%d,l2=%d' % (os.path.join(a.out, 'mem.txt'), a.l1, a.l2)
+    args = a.args.split() if a.args else [a.frames, w, h, '14', str(a.n), '1', '12000']
+    cmd = ['nice', '-n', '10', 'qemu-aarch64', '-L', '/usr/aarch64-linux-gnu', '-plugin', plug, exe] + args
+    log = subprocess.run(cmd, capture_output=True, text=True)
+    open(os.path.join(a.out, 'log.txt'), 'w').write(log.stdout + log.stderr)
+    if log.returncode != 0 or (not a.args and 'ir_probe: done' not in log.stdout):
+        sys.exit('a53_mca.py: ir_probe failed, see %s/log.txt' % a.out)
+    print('a53_mca.py: %s' % a.out)
+
+
+# ----------------------------------------------------------------------------- disassembly
+def disassemble(exe):
+    """{name: [(addr, mnemonic, operands)]} of every function of the executable."""
+    funcs, cur = {}, None
+    out = sh(['aarch64-linux-gnu-objdump', '-d', '--no-show-raw-insn', exe])
+    for line in out.splitlines():
+        m = re.match(r'^([0-9a-f]+) <(.+)>:$', line)
+        if m:
+            cur = funcs.setdefault(m.group(2), [])
+            continue
+        m = re.match(r'^\s+([0-9a-f]+):\s+(\S+)\s*(.*)$', line)
+        if m and cur is not None:
+            ops = m.group(3).split('//')[0].strip()
+            cur.append((int(m.group(1), 16), m.group(2), ops))
+    return funcs
+
+
+def branch_target(mn, ops):
+    if mn == 'b' or mn == 'bl' or COND_BR.match(mn):
+        m = re.search(r'([0-9a-f]+) <', ops)
+        if m:
+            return int(m.group(1), 16)
+    return None
+
+
+def mca_text(body):
+    """The loop body as llvm-mca input: branch targets and pc-relative symbols become a label; a
+    call becomes a nop (llvm-mca would charge it 100 cycles; the callee's instructions are
+    modelled in the callee, the call and return themselves are not)."""
+    lines = ['L0:']
+    for _, mn, ops in body:
+        if mn in ('bl', 'blr'):
+            lines.append('\tnop')
+            continue
+        ops = re.sub(r'[0-9a-f]+ <[^>]*>', 'L0', ops)
+        ops = re.sub(r'#(-?[0-9]+)\s*$', r'#\1', ops)
+        lines.append('\t%s\t%s' % (mn, ops) if ops else '\t' + mn)
+    return '\n'.join(lines) + '\n'
+
+
+def llvm_mca(text, mca='llvm-mca', cpu='cortex-a53'):
+    with tempfile.NamedTemporaryFile('w', suffix='.s', delete=False) as f:
+        f.write(text)
+        path = f.name
+    try:
+        out = subprocess.run([mca, '-mtriple=aarch64', '-mcpu=' + cpu, '-iterations=%d' % MCA_ITER,
+                              '-bottleneck-analysis', path], capture_output=True, text=True)
+    finally:
+        os.unlink(path)
+    if out.returncode != 0:
+        raise RuntimeError(out.stderr)
+    s = out.stdout
+    r = {'cycles': int(re.search(r'Total Cycles:\s+(\d+)', s).group(1)),
+         'insns': int(re.search(r'Instructions:\s+(\d+)', s).group(1)),
+         'ipc': float(re.search(r'IPC:\s+([0-9.]+)', s).group(1))}
+    rp = re.search(r'Resource Pressure\s+\[\s*([0-9.]+)%', s)
+    dd = re.search(r'Data Dependencies:\s+\[\s*([0-9.]+)%', s)
+    r['res_pct'] = float(rp.group(1)) if rp else 0.0
+    r['dep_pct'] = float(dd.group(1)) if dd else 0.0
+    # resource pressure per iteration: the busiest unit
+    names = dict(re.findall(r'^\[([0-9.]+)\]\s+-\s+(\S+)$', s, re.M))
+    m = re.search(r'Resource pressure per iteration:\n(.*)\n(.*)\n', s)
+    busiest = ('-', 0.0)
+    if m:
+        heads = re.findall(r'\[([0-9.]+)\]', m.group(1))
+        vals = m.group(2).split()
+        per_unit = {}
+        for hd, v in zip(heads, vals):
+            name = names.get(hd, hd)
+            if name == 'A53UnitALU':
+                name = 'A53UnitALU (2)'
+            per_unit[name] = per_unit.get(name, 0.0) + (0.0 if v == '-' else float(v))
+        if 'A53UnitALU (2)' in per_unit:
+            per_unit['A53UnitALU (2)'] /= 2.0  # two ALU pipes: pressure per pipe
+        busiest = max(per_unit.items(), key=lambda kv: kv[1])
+    r['busiest'] = busiest
+    info = s.split('Instruction Info:')[1].split('Resources:')[0] if 'Instruction Info:' in s else ''
+    r['lat'] = []
+    for line in info.splitlines():
+        m = re.match(r'^\s*(\d+)\s+(\d+)\s+([0-9.]+)\s+(?:[*U]\s+)*(\S+)', line)
+        if m:
+            r['lat'].append((m.group(4), int(m.group(2))))
+    return r
+
+
+def bottleneck(r, n):
+    """What bounds the loop in llvm-mca's model: the issue width (two a cycle), the busiest unit,
+    or (neither) the in-order stalls on results; then the kinds of the longest latencies."""
+    cyc = r['cycles'] / MCA_ITER
+    unit, load = r['busiest']
+    if cyc <= (n / 2.0) * 1.1:
+        return 'issue width (2 per cycle)'
+    if load >= 0.9 * cyc:
+        return '%s busy %.0f of %.0f cycles' % (unit.replace('A53Unit', ''), load, cyc)
+    kinds = {}
+    for mn, lat in r['lat']:
+        if lat < 4 or mn.startswith('st'):
+            continue  # a store's latency holds nothing up
+        if mn.startswith('ld'):
+            k = 'loads'
+        elif mn in ('udiv', 'sdiv', 'fdiv', 'fsqrt'):
+            k = mn
+        elif mn.startswith(('mul', 'madd', 'msub', 'umull', 'smull', 'umulh', 'smulh', 'umaddl', 'smaddl')):
+            k = 'integer multiplies'
+        else:
+            k = 'FP/SIMD'
+        c, l = kinds.get(k, (0, 0))
+        kinds[k] = (c + 1, max(l, lat))
+    top = sorted(kinds.items(), key=lambda kv: -kv[1][0] * kv[1][1])[:2]
+    return 'result latency: ' + ', '.join('%d %s (%d cycles)' % (c, k, l) for k, (c, l) in top)
+
+
+# --------------------------------------------------------------------------------- profile
+def load_blocks(path, funcs):
+    """Per-instruction entry counts [odd, even] keyed by the executable's address."""
+    addr_of = {n: ins[0][0] for n, ins in funcs.items() if ins}
+    blocks = []
+    base = None
+    for line in open(path):
+        if line.startswith('#'):
+            sys.exit('a53_mca.py: %s: %s' % (path, line.strip()))
+        v, n, o, e, name = line.split(None, 4)
+        v, n, o, e, name = int(v, 16), int(n), int(o), int(e), name.strip()
+        blocks.append((v, n, o, e))
+        if base is None and name == 'pft_work_mark_begin':
+            base = v - addr_of[name]
+    if base is None:
+        sys.exit('a53_mca.py: no block of pft_work_mark_begin in %s' % path)
+    cnt = {}
+    for v, n, o, e in blocks:
+        for k in range(n):
+            c = cnt.setdefault(v - base + 4 * k, [0, 0])
+            c[0] += o
+            c[1] += e
+    return cnt
+
+
+def branch_targets(ins):
+    """{target address: number of branches to it} inside the function."""
+    tg = {}
+    for addr, mn, ops in ins:
+        t = branch_target(mn, ops)
+        if t is not None and mn != 'bl':
+            tg[t] = tg.get(t, 0) + 1
+    return tg
+
+
+def edges(ins, idx, i, cnt, reg, tg):
+    """(taken, fall-through) counts of the conditional branch ins[i]. Exact when the next
+    instruction is reached only by falling through (fall-through = its count, taken = the rest);
+    otherwise, when the target is reached only by this branch, taken = the target's count;
+    otherwise the two successors' counts (an approximation at a join)."""
+    addr, mn, ops = ins[i]
+    t = branch_target(mn, ops)
+    c = cnt.get(addr, (0, 0))[reg]
+    ft = ins[i + 1][0] if i + 1 < len(ins) else None
+    cf = cnt.get(ft, (0, 0))[reg]
+    if ft is not None and ft not in tg:
+        return max(0, c - cf), cf
+    ct = cnt.get(t, (0, 0))[reg]
+    prev_falls = t in idx and idx[t] > 0 and ins[idx[t] - 1][1] not in ('b', 'ret', 'br')
+    if tg.get(t, 0) == 1 and not prev_falls:
+        return ct, max(0, c - ct)
+    return ct, cf
+
+
+def dominant_loop(ins, idx, start, cnt, reg, tg):
+    """The dominant path from instruction index `start` back to it (at every conditional
+    branch the more used edge), or None if it leaves the function or closes elsewhere."""
+    seen, path, i = set(), [], start
+    while True:
+        if i in seen or i < 0 or i >= len(ins) or len(path) > 3000:
+            return None
+        seen.add(i)
+        addr, mn, ops = ins[i]
+        path.append(ins[i])
+        if mn in ('ret', 'br', 'blr'):
+            return None
+        t = branch_target(mn, ops)
+        nxt = i + 1
+        if mn == 'b':
+            if t not in idx:
+                return None
+            nxt = idx[t]
+        elif COND_BR.match(mn) and t in idx:
+            taken, fall = edges(ins, idx, i, cnt, reg, tg)
+            if taken > fall:
+                nxt = idx[t]
+        if nxt == start:
+            return path
+        i = nxt
+
+
+def departures(ins, idx, path, cnt, reg, tg):
+    """How often execution leaves the loop's dominant path: at each conditional branch of the
+    path, the count of the edge the path does not take (a loop exit or a branch going its
+    rarer way; an upper estimate of the mispredictions if each departure costs one)."""
+    n = 0
+    for k, (addr, mn, ops) in enumerate(path):
+        if not COND_BR.match(mn) or branch_target(mn, ops) not in idx:
+            continue
+        taken, fall = edges(ins, idx, idx[addr], cnt, reg, tg)
+        nxt = path[(k + 1) % len(path)][0]
+        n += fall if nxt == branch_target(mn, ops) else taken
+    return n
+
+
+def find_loops(ins, cnt, r, tot):
+    """The function's hot loops in region r: (start index, path, iterations, covered), the
+    heaviest first, until 97 % of its instructions are covered (at most 6 loops)."""
+    idx = {addr: i for i, (addr, _, _) in enumerate(ins)}
+    tg = branch_targets(ins)
+    cands = set()
+    for addr, mn, ops in ins:
+        t = branch_target(mn, ops)
+        if t is not None and mn != 'bl' and t <= addr and t in idx:
+            cands.add(idx[t])
+    found = []
+    for s in cands:
+        p = dominant_loop(ins, idx, s, cnt, r, tg)
+        if p:
+            it = cnt.get(ins[s][0], (0, 0))[r]
+            # instructions of the path executed in its iterations (an instruction of the
+            # path cannot run more often than the loop's start for the path's sake)
+            cov = sum(min(cnt.get(x[0], (0, 0))[r], it) for x in p)
+            found.append((cov, s, p, it))
+    found.sort(key=lambda f: -f[0])
+    chosen, used, covered = [], set(), 0
+    for cov, s, p, it in found:
+        if cov < 0.01 * tot or len(chosen) >= 6 or covered >= 0.97 * tot:
+            break
+        if ins[s][0] in used:
+            continue
+        chosen.append((s, p, it, cov, departures(ins, idx, p, cnt, r, tg)))
+        used.update(x[0] for x in p)
+        covered += cov
+    return chosen
+
+
+def cmd_model(a):
+    exe = a.exe or os.path.join(a.build, 'tests', 'tools', 'ir_probe')
+    cpus = a.cpus.split(',')
+    regions = a.regions.split(',')
+    funcs = disassemble(exe)
+    cnt = load_blocks(os.path.join(a.run, 'blocks.txt'), funcs)
+    counts = [int(x) for x in open(os.path.join(a.run, 'counts.txt')).read().split()]
+    nf = len(counts) // 2
+    per = [counts[0::2], counts[1::2]]
+    prof = {}
+    for line in open(os.path.join(a.run, 'prof.txt')):
+        o, e, name = line.split(None, 2)
+        prof[name.strip()] = (int(o), int(e))
+    ptot = [sum(v[r] for v in prof.values()) for r in (0, 1)]
+
+    loops, fns, rtot = [], [], [0, 0]
+    for name, ins in funcs.items():
+        for r in (0, 1):
+            tot = sum(cnt.get(addr, (0, 0))[r] for addr, _, _ in ins)
+            if tot == 0:
+                continue
+            rtot[r] += tot
+            fl = []
+            if tot >= a.min_share * ptot[r]:
+                for s, p, it, cov, dep in find_loops(ins, cnt, r, tot):
+                    text = mca_text(p)
+                    m = {c: llvm_mca(text, a.mca, c) for c in cpus}
+                    fl.append({'fn': name, 'reg': r, 'start': ins[s][0], 'n': len(p), 'iters': it,
+                               'cov': cov, 'dep': dep, 'mca': m,
+                               'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
+                               'bn': bottleneck(m[cpus[0]], len(p))})
+            fns.append({'fn': name, 'reg': r, 'tot': tot, 'loops': fl})
+            loops.extend(fl)
+    # fallback CPI: the region's modelled loops, weighted by the instructions they cover
+    fb = {}
+    for r in (0, 1):
+        cv = sum(l['cov'] for l in loops if l['reg'] == r)
+        for c in cpus:
+            fb[r, c] = sum(l['cov'] * l['cpi'][c] for l in loops if l['reg'] == r) / cv
+    cyc = {(r, c): 0.0 for r in (0, 1) for c in cpus}
+    for f in fns:
+        cv = min(sum(l['cov'] for l in f['loops']), f['tot'])
+        scale = cv / sum(l['cov'] for l in f['loops']) if f['loops'] else 0.0
+        f['cv'] = cv
+        f['cpi'] = {}
+        for c in cpus:
+            y = sum(l['cov'] * l['cpi'][c] for l in f['loops']) * scale + (f['tot'] - cv) * fb[f['reg'], c]
+            cyc[f['reg'], c] += y
+            f['cpi'][c] = y / f['tot']
+    cpi = {(r, c): cyc[r, c] / rtot[r] for r in (0, 1) for c in cpus}
+    where = {}
+    if a.debug_exe:
+        # the same code built with -g (gcc's -g changes no instruction; the script checks the
+        # disassembly is identical) gives each loop's source line
+        if [x[1:] for f in disassemble(a.debug_exe).values() for x in f] != [x[1:] for f in funcs.values() for x in f]:
+            sys.exit('a53_mca.py: %s is not the same code as %s' % (a.debug_exe, exe))
+        addrs = ['0x%x' % l['start'] for l in loops]
+        # -i prints the inline chain (innermost first): one address at a time
+        for ad in addrs:
+            o = sh(['aarch64-linux-gnu-addr2line', '-e', a.debug_exe, '-f', '-i', ad]).split('\n')
+            fn, fl = o[0], o[1]
+            where[int(ad, 16)] = '%s:%s' % (os.path.basename(fl.split(' ')[0]).split(':')[0] if ':' in fl else fl,
+                                            fl.split(':')[1].split(' ')[0] if ':' in fl else '?') + (' (%s)' % fn)
+    cov_r = [sum(f['cv'] for f in fns if f['reg'] == r) / rtot[r] for r in (0, 1)]
+
+    out = []
+    P = out.append
+    c0 = cpus[0]
+    P('%s, run %s: %d calls of each region (%s = odd, %s = even); instructions from the block '
+      'profile %.0f / %.0f, from prof= %.0f / %.0f.' % (exe, a.run, nf, regions[0], regions[1],
+                                                        rtot[0], rtot[1], ptot[0], ptot[1]))
+    P('')
+    P('Loops (per call of the region: instructions of the function, iterations; share = the '
+      'function\'s instructions the loop covers; cycles per iteration and IPC of llvm-mca %s, '
+      'its bottleneck; %s for comparison):' % (c0, ', '.join(cpus[1:])))
+    P('')
+    P('| region | function | instructions / call | loop at | instructions / iteration | iterations / call | share | %s cycles / iteration | IPC | bottleneck | %s |'
+      % (c0, ' | '.join('%s cycles / iteration' % c for c in cpus[1:])))
+    P('|---|---|---:|---|---:|---:|---:|---:|---:|---|%s' % ('---:|' * (len(cpus) - 1)))
+    for f in sorted(fns, key=lambda f: (f['reg'], -f['tot'])):
+        for l in f['loops']:
+            m = l['mca']
+            P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
+              % (regions[l['reg']], l['fn'], f['tot'] / nf / 1e6, l['start'],
+                 ' ' + where[l['start']] if l['start'] in where else '', l['n'], l['iters'] / nf,
+                 100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'], l['bn'],
+                 ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
+    P('')
+    P('Functions (the part outside the modelled loops at its region\'s mean loop CPI):')
+    P('')
+    P('| region | function | instructions / call | in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
+    P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
+    for f in sorted(fns, key=lambda f: -f['tot']):
+        if f['loops']:
+            P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (regions[f['reg']], f['fn'], f['tot'] / nf / 1e6,
+                                                      100.0 * f['cv'] / f['tot'],
+                                                      ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
+    P('')
+    P('| region | instructions in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
+    P('|---|---:|%s' % ('---:|' * len(cpus)))
+    for r in (0, 1):
+        P('| %s | %.1f %% | %s |' % (regions[r], 100 * cov_r[r], ' | '.join('%.3f' % cpi[r, c] for c in cpus)))
+    P('')
+
+    # what the model leaves out: cache misses (the plugin's cache model, mem=) and mispredictions
+    mem = {}
+    mpath = os.path.join(a.run, 'mem.txt')
+    if os.path.exists(mpath):
+        for line in open(mpath):
+            f = line.split()
+            k = (f[0], int(f[1]))
+            mem[k] = [x + int(y) for x, y in zip(mem.get(k, [0] * 5), f[2:7])]
+    lat = a.dram_ns * 1e-9 * CLOCK
+    extra = {}
+    for r in (0, 1):
+        acc, l1, l1s, l2, l2s = [sum(v[i] for k, v in mem.items() if k[1] == r) for i in range(5)]
+        # no prefetch: every L1 miss waits the L2, every L2 miss the DRAM; with a stride
+        # prefetcher that keeps up, only the misses off a stride wait
+        npf = (l1 - l2) * a.l2_cycles + l2 * lat
+        pf = ((l1 - l1s) - (l2 - l2s)) * a.l2_cycles + (l2 - l2s) * lat
+        mp = sum(l['dep'] for l in loops if l['reg'] == r) * a.mispredict
+        extra[r] = (pf / nf, npf / nf, mp / nf, (acc, l1, l1s, l2, l2s))
+    if mem:
+        P('Cache model (the plugin\'s mem=: L1 %s, L2 %s; per call; strided = within 2 lines of the same '
+          'instruction\'s previous miss):' % (a.l1_label, a.l2_label))
+        P('')
+        P('| region | function | accesses | L1 misses | of them strided | L2 misses | of them strided |')
+        P('|---|---|---:|---:|---:|---:|---:|')
+        for (name, r), v in sorted(mem.items(), key=lambda kv: (kv[0][1], -kv[1][1])):
+            if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000:
+                P('| %s | `%s` | %.0f | %.0f | %.0f %% | %.0f | %.0f %% |'
+                  % (regions[r], name, v[0] / nf, v[1] / nf, 100.0 * v[2] / max(v[1], 1), v[3] / nf,
+                     100.0 * v[4] / max(v[3], 1)))
+        P('')
+    P('Left out by llvm-mca, estimated per call (assumptions: an L1 miss that hits the L2 waits %d '
+      'cycles, an L2 miss %.0f ns = %.0f cycles, a mispredicted branch %d cycles; each departure from a '
+      'modelled loop\'s dominant path counted as one misprediction; in-order: nothing hides a wait):'
+      % (a.l2_cycles, a.dram_ns, lat, a.mispredict))
+    P('')
+    P('| region | L1 misses | L2 misses | stall, no prefetch | stall, strided misses prefetched | departures | their cost |')
+    P('|---|---:|---:|---:|---:|---:|---:|')
+    for r in (0, 1):
+        pf, npf, mp, (acc, l1, l1s, l2, l2s) = extra[r]
+        P('| %s | %.0f | %.0f | %.2f M cycles | %.2f M cycles | %.0f | %.2f M cycles |'
+          % (regions[r], l1 / nf, l2 / nf, npf / 1e6, pf / 1e6, mp / a.mispredict, mp / 1e6))
+    P('')
+    if a.frames_from > 0:
+        fr = list(range(a.frames_from - 1, nf))
+        big = max(fr, key=lambda i: per[0][i] + per[1][i])
+        rows = [('mean of calls %d..%d' % (a.frames_from, nf), [sum(per[r][i] for i in fr) / len(fr) for r in (0, 1)]),
+                ('largest (call %d)' % (big + 1), [per[0][big], per[1][big]])]
+        allm = [sum(per[r]) / nf for r in (0, 1)]
+        P('Per frame at %.1f GHz (the stalls scaled by the frame\'s instructions against the mean of all calls; the largest frame at the mean\'s CPI):' % (CLOCK / 1e9))
+        P('')
+        P('| frame | model | instructions | cycles | CPI | frames/s | + stalls, strided misses prefetched: CPI | frames/s | + stalls, no prefetch: CPI | frames/s |')
+        P('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
+        for label, ins in rows:
+            for c in cpus:
+                base = sum(ins[r] * cpi[r, c] for r in (0, 1))
+                sc = [ins[r] / allm[r] for r in (0, 1)]
+                e1 = sum((extra[r][0] + extra[r][2]) * sc[r] for r in (0, 1))  # strided prefetched
+                e2 = sum((extra[r][1] + extra[r][2]) * sc[r] for r in (0, 1))  # no prefetch
+                n = sum(ins)
+                P('| %s | %s | %.2f M | %.2f M | %.2f | %.1f | %.2f | %.1f | %.2f | %.1f |'
+                  % (label, c, n / 1e6, base / 1e6, base / n, CLOCK / base, (base + e1) / n, CLOCK / (base + e1),
+                     (base + e2) / n, CLOCK / (base + e2)))
+    else:
+        # every call the same kind (e.g. one tracker of pft_soak): per call, both parities
+        allc = [(counts[i], i % 2) for i in range(a.skip, len(counts))]
+        allm = [sum(per[r]) / nf for r in (0, 1)]
+        P('Per call (calls %d..%d, both parities; the stalls scaled by the call\'s instructions):' % (a.skip + 1, len(counts)))
+        P('')
+        P('| call | model | instructions | cycles | CPI | + stalls, strided prefetched: CPI | + stalls, no prefetch: CPI |')
+        P('|---|---|---:|---:|---:|---:|---:|')
+        big = max(allc, key=lambda x: x[0])
+        for label, sel in (('mean', allc), ('largest', [big])):
+            for c in cpus:
+                ins = sum(x[0] for x in sel) / len(sel)
+                base = sum(x[0] * cpi[x[1], c] for x in sel) / len(sel)
+                e1 = sum((extra[x[1]][0] + extra[x[1]][2]) * x[0] / allm[x[1]] for x in sel) / len(sel)
+                e2 = sum((extra[x[1]][1] + extra[x[1]][2]) * x[0] / allm[x[1]] for x in sel) / len(sel)
+                P('| %s | %s | %.0f | %.0f | %.2f | %.2f | %.2f |' % (label, c, ins, base, base / ins,
+                                                                   (base + e1) / ins, (base + e2) / ins))
+    print('\n'.join(out))
+
+
+# ----------------------------------------------------------------------------------- check
+# Small kernels, llvm-mca's steady state per iteration against what the A53 does. "expected":
+# from the pipeline's dual-issue rule (two ALU instructions a cycle) and from measurements on
+# an A53 published with daniestevez/qsdr (qsdr-benchmarks/tests/instruction_benchmark/aarch64:
+# add result latency 1; fadd and fmul .4s issue 1, result latency 4; ldr d result latency 3;
+# ldr q and ldp issue 2 cycles), as a loop-carried chain would see them.
+CHECKS = [
+    ('8 independent adds', 'add x1, x1, #1\nadd x2, x2, #1\nadd x3, x3, #1\nadd x4, x4, #1\n'
+     'add x5, x5, #1\nadd x6, x6, #1\nadd x7, x7, #1\nadd x8, x8, #1\n', 4.0,
+     'dual issue of two ALU instructions'),
+    ('8 dependent adds', 'add x1, x1, #1\n' * 8, 8.0, 'add result latency 1 (qsdr: at most 8)'),
+    ('4 dependent fadd s', 'fadd s0, s0, s1\n' * 4, 16.0, 'fadd result latency 4 (qsdr, .4s)'),
+    ('4 dependent fmul s', 'fmul s0, s0, s1\n' * 4, 16.0, 'fmul result latency 4 (qsdr, .4s)'),
+    ('4 independent fmul .4s', 'fmul v0.4s, v0.4s, v31.4s\nfmul v1.4s, v1.4s, v31.4s\n'
+     'fmul v2.4s, v2.4s, v31.4s\nfmul v3.4s, v3.4s, v31.4s\n', 4.0, 'fmul .4s issue 1 (qsdr)'),
+    ('4 (ldr d, dependent fadd) pairs, fadd chain', 'ldr d0, [x0]\nfadd d1, d1, d0\nldr d2, [x0, #8]\n'
+     'fadd d1, d1, d2\nldr d3, [x0, #16]\nfadd d1, d1, d3\nldr d4, [x0, #24]\nfadd d1, d1, d4\n', 16.0,
+     'the fadd chain (4 x 4), the loads hidden (ldr d latency 3, qsdr)'),
+    ('pointer chase: ldr x0, [x0]', 'ldr x0, [x0]\n', 3.0, 'load-to-use 3 (qsdr: ldr d; assumed the same for x)'),
+    ('4 independent ldr q', 'ldr q0, [x0]\nldr q1, [x0, #16]\nldr q2, [x0, #32]\nldr q3, [x0, #48]\n', 8.0,
+     'ldr q issues in 2 cycles (qsdr)'),
+    ('2 independent ldp d', 'ldp d0, d1, [x0]\nldp d2, d3, [x0, #16]\n', 4.0, 'ldp issues in 2 cycles (qsdr)'),
+]
+
+
+def cmd_check(a):
+    print('| kernel | expected on the A53 | llvm-mca cortex-a53 | llvm-mca cortex-a55 | source of the expectation |')
+    print('|---|---:|---:|---:|---|')
+    for name, body, exp, why in CHECKS:
+        r = [llvm_mca('L0:\n' + body, a.mca, cpu) for cpu in ('cortex-a53', 'cortex-a55')]
+        print('| %s | %.0f | %.2f | %.2f | %s |' % (name, exp, r[0]['cycles'] / MCA_ITER, r[1]['cycles'] / MCA_ITER, why))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest='cmd', required=True)
+    r = sub.add_parser('run')
+    r.add_argument('--build', help='an aarch64 build: its tests/tools/ir_probe runs')
+    r.add_argument('--exe', help='another program with the work markers (e.g. tests/soak/pft_soak)')
+    r.add_argument('--args', help='its arguments (one string; default: ir_probe\'s)')
+    r.add_argument('--frames', help='ir_probe\'s frames (pft sim --format raw)')
+    r.add_argument('--size', default='384x288')
+    r.add_argument('--n', type=int, default=100)
+    r.add_argument('--out', required=True)
+    r.add_argument('--mem', action='store_true', help='also the plugin\'s cache model (mem=, slow)')
+    r.add_argument('--l1', type=int, default=32768, help='L1 data cache bytes (4-way)')
+    r.add_argument('--l2', type=int, default=524288, help='L2 bytes (16-way)')
+    m = sub.add_parser('model')
+    m.add_argument('--build', help='an aarch64 build: its tests/tools/ir_probe')
+    m.add_argument('--exe', help='the executable that ran (default: BUILD/tests/tools/ir_probe)')
+    m.add_argument('--debug-exe', help='the same program built with -g: each loop\'s source line')
+    m.add_argument('--regions', default='stage,manager', help='names of the odd and the even regions')
+    m.add_argument('--cpus', default='cortex-a53,cortex-a55', help='llvm-mca models, the first is the model')
+    m.add_argument('--frames-from', type=int, default=2,
+                   help='per-frame table (stage + manager) over frames N..end; 0: a per-call table instead')
+    m.add_argument('--skip', type=int, default=0, help='with --frames-from 0: calls left out at the start')
+    m.add_argument('--run', required=True)
+    m.add_argument('--min-share', type=float, default=0.005,
+                   help='functions below this share of their region keep the fallback CPI')
+    m.add_argument('--mca', default='llvm-mca')
+    m.add_argument('--dram-ns', type=float, default=150.0, help='DRAM latency per missed line, ns')
+    m.add_argument('--l2-cycles', type=int, default=13, help='L2 hit latency, cycles (assumed)')
+    m.add_argument('--mispredict', type=int, default=8, help='cycles lost per mispredicted branch')
+    m.add_argument('--l1-label', default='32 KB 4-way', help='the cache model the run used (for the table)')
+    m.add_argument('--l2-label', default='512 KB 16-way', help='the cache model the run used (for the table)')
+    c = sub.add_parser('check')
+    c.add_argument('--mca', default='llvm-mca')
+    a = ap.parse_args()
+    {'run': cmd_run, 'model': cmd_model, 'check': cmd_check}[a.cmd](a)
+
+
+if __name__ == '__main__':
+    main()
