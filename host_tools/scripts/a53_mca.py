@@ -238,9 +238,10 @@ def edges(ins, idx, i, cnt, reg, tg):
     return ct, cf
 
 
-def dominant_loop(ins, idx, start, cnt, reg, tg):
+def dominant_loop(ins, idx, start, cnt, reg, tg, to_ret=False):
     """The dominant path from instruction index `start` back to it (at every conditional
-    branch the more used edge), or None if it leaves the function or closes elsewhere."""
+    branch the more used edge), or None if it leaves the function or closes elsewhere; with
+    to_ret, the dominant path from `start` to the function's return instead."""
     seen, path, i = set(), [], start
     while True:
         if i in seen or i < 0 or i >= len(ins) or len(path) > 3000:
@@ -248,6 +249,8 @@ def dominant_loop(ins, idx, start, cnt, reg, tg):
         seen.add(i)
         addr, mn, ops = ins[i]
         path.append(ins[i])
+        if to_ret and mn == 'ret':
+            return path
         if mn in ('ret', 'br', 'blr'):
             return None
         t = branch_target(mn, ops)
@@ -298,6 +301,13 @@ def find_loops(ins, cnt, r, tot):
             # path cannot run more often than the loop's start for the path's sake)
             cov = sum(min(cnt.get(x[0], (0, 0))[r], it) for x in p)
             found.append((cov, s, p, it))
+    if not found and ins:
+        # no loop: a function called once per particle or pixel; its dominant path from the
+        # entry to the return, as if the calls ran back to back
+        p = dominant_loop(ins, idx, 0, cnt, r, tg, to_ret=True)
+        if p:
+            it = cnt.get(ins[0][0], (0, 0))[r]
+            found.append((sum(min(cnt.get(x[0], (0, 0))[r], it) for x in p), 0, p, it))
     found.sort(key=lambda f: -f[0])
     chosen, used, covered = [], set(), 0
     for cov, s, p, it in found:
@@ -404,7 +414,7 @@ def cmd_model(a):
     P('| region | function | instructions / call | in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
     P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
     for f in sorted(fns, key=lambda f: -f['tot']):
-        if f['loops']:
+        if f['tot'] >= a.min_share * ptot[f['reg']]:
             P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (regions[f['reg']], f['fn'], f['tot'] / nf / 1e6,
                                                       100.0 * f['cv'] / f['tot'],
                                                       ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
