@@ -349,6 +349,7 @@ def cmd_model(a):
                     text = mca_text(p)
                     m = {c: llvm_mca(text, a.mca, c) for c in cpus}
                     fl.append({'fn': name, 'reg': r, 'start': ins[s][0], 'n': len(p), 'iters': it,
+                               'body': p[-1][1] == 'ret',
                                'cov': cov, 'dep': dep, 'mca': m,
                                'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
                                'bn': bottleneck(m[cpus[0]], len(p))})
@@ -405,7 +406,8 @@ def cmd_model(a):
             m = l['mca']
             P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
               % (regions[l['reg']], l['fn'], f['tot'] / nf / 1e6, l['start'],
-                 ' ' + where[l['start']] if l['start'] in where else '', l['n'], l['iters'] / nf,
+                 (' ' + where[l['start']] if l['start'] in where else '') + (' [entry to return]' if l['body'] else ''),
+                 l['n'], l['iters'] / nf,
                  100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'], l['bn'],
                  ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
     P('')
