@@ -520,8 +520,8 @@ CHECKS = [
      'add x5, x5, #1\nadd x6, x6, #1\nadd x7, x7, #1\nadd x8, x8, #1\n', 4.0,
      'dual issue of two ALU instructions'),
     ('8 dependent adds', 'add x1, x1, #1\n' * 8, 8.0, 'add result latency 1 (qsdr: at most 8)'),
-    ('4 dependent fadd s', 'fadd s0, s0, s1\n' * 4, 16.0, 'fadd result latency 4 (qsdr, .4s)'),
-    ('4 dependent fmul s', 'fmul s0, s0, s1\n' * 4, 16.0, 'fmul result latency 4 (qsdr, .4s)'),
+    ('4 dependent fadd s', 'fadd s0, s0, s1\n' * 4, 16.0, 'fadd result latency 4 (qsdr: .4s; scalar assumed the same)'),
+    ('4 dependent fmul s', 'fmul s0, s0, s1\n' * 4, 16.0, 'fmul result latency 4 (qsdr: .4s; scalar assumed the same)'),
     ('4 independent fmul .4s', 'fmul v0.4s, v0.4s, v31.4s\nfmul v1.4s, v1.4s, v31.4s\n'
      'fmul v2.4s, v2.4s, v31.4s\nfmul v3.4s, v3.4s, v31.4s\n', 4.0, 'fmul .4s issue 1 (qsdr)'),
     ('4 (ldr d, dependent fadd) pairs, fadd chain', 'ldr d0, [x0]\nfadd d1, d1, d0\nldr d2, [x0, #8]\n'
