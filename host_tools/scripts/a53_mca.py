@@ -63,6 +63,9 @@ def cmd_run(a):
                                              os.path.join(a.out, 'blocks.txt'))
     if a.mem:
         plug += ',mem=%s,l1=%d,l2=%d' % (os.path.join(a.out, 'mem.txt'), a.l1, a.l2)
+    if a.calls:
+        i, j = a.calls.split('-')
+        plug += ',from=%d,to=%d' % (int(i), int(j))
     args = a.args.split() if a.args else [a.frames, w, h, '14', str(a.n), '1', '12000']
     cmd = ['nice', '-n', '10', 'qemu-aarch64', '-L', '/usr/aarch64-linux-gnu', '-plugin', plug, exe] + args
     log = subprocess.run(cmd, capture_output=True, text=True)
@@ -328,6 +331,12 @@ def cmd_model(a):
     funcs = disassemble(exe)
     cnt = load_blocks(os.path.join(a.run, 'blocks.txt'), funcs)
     counts = [int(x) for x in open(os.path.join(a.run, 'counts.txt')).read().split()]
+    first = 1
+    if a.calls:  # the run profiled only these calls (run --calls)
+        first, last = (int(x) for x in a.calls.split('-'))
+        counts = counts[first - 1:last]
+    if (first - 1) % 2:
+        sys.exit('a53_mca.py: --calls must start at an odd call (the profile\'s parities)')
     nf = len(counts) // 2
     per = [counts[0::2], counts[1::2]]
     prof = {}
@@ -553,6 +562,7 @@ def main():
     r.add_argument('--size', default='384x288')
     r.add_argument('--n', type=int, default=100)
     r.add_argument('--out', required=True)
+    r.add_argument('--calls', help='I-J: profile only calls I..J (a program running several trackers in turn)')
     r.add_argument('--mem', action='store_true', help='also the plugin\'s cache model (mem=, slow)')
     r.add_argument('--l1', type=int, default=32768, help='L1 data cache bytes (4-way)')
     r.add_argument('--l2', type=int, default=524288, help='L2 bytes (16-way)')
@@ -564,6 +574,7 @@ def main():
     m.add_argument('--cpus', default='cortex-a53,cortex-a55', help='llvm-mca models, the first is the model')
     m.add_argument('--frames-from', type=int, default=2,
                    help='per-frame table (stage + manager) over frames N..end; 0: a per-call table instead')
+    m.add_argument('--calls', help='I-J: the calls the run profiled (run --calls)')
     m.add_argument('--skip', type=int, default=0, help='with --frames-from 0: calls left out at the start')
     m.add_argument('--run', required=True)
     m.add_argument('--min-share', type=float, default=0.005,

@@ -40,6 +40,9 @@
  * l2_misses_strided", where a strided miss is one whose line lies 1 or 2 lines from the line
  * of the same instruction's previous miss (what a stride prefetcher would have fetched). A
  * model, not the A53: no prefetcher, no write streaming mode, no instruction fetches.
+ *
+ * from=I, to=J: prof=, blocks= and mem= count only the regions I..J (1-based); out= still
+ * lists every region (tests/target/tbd_cycles runs three trackers one after the other).
  */
 #include <inttypes.h>
 #include <stdio.h>
@@ -55,6 +58,14 @@ static uint64_t g_start;     /* g_count at the open region's begin marker */
 static int g_open;           /* a region is open */
 static FILE *g_out;
 static uint64_t g_regions;
+static uint64_t g_first = 1u, g_last = UINT64_MAX; /* from=, to=: the regions profiled */
+
+/* prof=, blocks= and mem= count only regions g_first..g_last (1-based; all by default): a
+ * program that runs several trackers one after the other gets a profile of each */
+static int g_profiled(void)
+{
+    return g_regions + 1u >= g_first && g_regions + 1u <= g_last;
+}
 static uint64_t g_unmatched; /* an end without a begin, or a begin inside an open region */
 
 /* prof=FILE: per-function counts (a linear table: a few hundred functions, looked up at
@@ -185,10 +196,10 @@ static void on_end(unsigned int vcpu, void *udata)
     }
     g_open = 0;
     fprintf(g_out, "%" PRIu64 "\n", g_count - g_start);
-    for (size_t i = 0; i < g_nprof; ++i) {
+    for (size_t i = 0; g_profiled() && i < g_nprof; ++i) {
         g_prof[i].in[g_regions % 2u] += g_prof[i].count - g_prof[i].start;
     }
-    for (size_t i = 0; i < g_nblk; ++i) {
+    for (size_t i = 0; g_profiled() && i < g_nblk; ++i) {
         g_blk[i].in[g_regions % 2u] += g_blk[i].count - g_blk[i].start;
     }
     g_regions++;
@@ -212,7 +223,7 @@ static void on_mem(unsigned int vcpu, qemu_plugin_meminfo_t info, uint64_t vaddr
      * those inside a region are counted */
     insn_t *in = udata;
     memc_t dummy = {0, 0, 0, 0, 0};
-    memc_t *m = g_open ? &g_memc[in->prof][g_regions % 2u] : &dummy;
+    memc_t *m = g_open && g_profiled() ? &g_memc[in->prof][g_regions % 2u] : &dummy;
     const uint64_t line = vaddr >> 6;
     m->acc++;
     if (cache_access(&g_l1, line)) {
@@ -345,6 +356,10 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                 fprintf(stderr, "qemu_marks: cannot write %s\n", argv[i] + 4);
                 return -1;
             }
+        } else if (strncmp(argv[i], "from=", 5) == 0) {
+            g_first = strtoull(argv[i] + 5, NULL, 10);
+        } else if (strncmp(argv[i], "to=", 3) == 0) {
+            g_last = strtoull(argv[i] + 3, NULL, 10);
         } else if (strncmp(argv[i], "l1=", 3) == 0) {
             g_l1_bytes = strtoull(argv[i] + 3, NULL, 10);
         } else if (strncmp(argv[i], "l2=", 3) == 0) {
@@ -356,7 +371,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                 return -1;
             }
         } else {
-            fprintf(stderr, "qemu_marks: unknown argument %s (expected out=FILE, prof=FILE, blocks=FILE, mem=FILE, l1=, l2=)\n",
+            fprintf(stderr, "qemu_marks: unknown argument %s (expected out=FILE, prof=FILE, blocks=FILE, mem=FILE, l1=, l2=, from=, to=)\n",
                     argv[i]);
             return -1;
         }
