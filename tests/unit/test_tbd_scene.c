@@ -87,7 +87,7 @@ static void test_config_and_workspace(void)
         case 1: b.frames = PFT_TBD_SCENE_MAX_FRAMES + 1u; break;
         case 2: b.max_tracks = 0u; break;
         case 3: b.max_tracks = PFT_TBD_SCENE_MAX_TRACKS + 1u; break;
-        case 4: b.gate_px = PFT_C(0.0); break;
+        case 4: b.gate_px = PFT_C(-0.125); break;
         case 5: b.gate_px = PFT_C(256.5); break;
         case 6: b.fit_px = PFT_C(-0.25); break;
         case 7: b.fit_px = PFT_C(257.0); break;
@@ -159,6 +159,14 @@ static void test_with_scene_marked_after_n_plus_1(void)
     /* then it moves away against the scene: CLUTTER for good */
     pft_tbd_scene_out_t o = one(&s, trk(7u, PFT_C(100.0), PFT_C(100.0), false), 0, 0);
     TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_CLUTTER, o.decision);
+    /* gate_px 0: nothing is CLUTTER; the same track is reported from its 6th frame */
+    cfg.gate_px = PFT_C(0.0);
+    init(&s, &cfg);
+    for (int32_t k = 1; k <= 7; ++k) {
+        o = one(&s, trk(7u, pft_add(PFT_C(50.0), pft_mul_i(PFT_C(0.25), k)), PFT_C(20.0), false), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 6 ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+    }
+    cfg.gate_px = PFT_C(0.15);
     /* at the gate: 5 frames at 9830 / 65536 px per frame against the scene (the gate 0.15 px in
      * Q16.16) is not below 5 * gate: not CLUTTER; one LSB per frame less is */
     TEST_ASSERT_EQUAL_INT32(9830, Q(0.15)); /* 0.15 * 65536 = 9830.4 */

@@ -72,7 +72,7 @@ extern "C" {
 typedef struct {
     uint32_t frames;        /**< n, frames of the test (default 5): 1..PFT_TBD_SCENE_MAX_FRAMES */
     uint32_t max_tracks;    /**< history slots (default 16): 1..PFT_TBD_SCENE_MAX_TRACKS; at least the manager's max_targets */
-    pft_real_t gate_px;     /**< px per frame (default 0.15): CLUTTER below n * gate_px against the scene; (0, 256] */
+    pft_real_t gate_px;     /**< px per frame (default 0.15): CLUTTER below n * gate_px against the scene (0: no track is CLUTTER); [0, 256] */
     pft_real_t fit_px;      /**< rms of the straight-line fit, px (default 0.2; 0: off); [0, 256] */
     pft_real_t early_px;    /**< px per frame (default 0.5; 0: off): early report from the 4th position; [0, 256] */
     uint32_t forget_frames; /**< frames after its last one that an id's history is kept (default 64): 1..2^30 */
@@ -105,6 +105,7 @@ typedef struct {
     uint32_t positions;                /**< positions in its history after this frame (0 with NO_SLOT) */
 } pft_tbd_scene_out_t;
 
+/** The scene-motion test's instance (declare it statically; its layout is not API). */
 typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 
 /** @cond internal */

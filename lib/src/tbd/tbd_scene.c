@@ -24,7 +24,8 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->height = 288u;
 }
 
-/* a threshold in (0, 256] px (zero_ok: [0, 256]) */
+/* a threshold in (0, 256] px (zero_ok: [0, 256]); every threshold is zero_ok today, the
+ * parameter keeps the bound explicit at each call */
 static bool sc_thr_ok_(pft_real_t v, bool zero_ok)
 {
     const pft_real_t hi = PFT_C(256.0);
@@ -47,7 +48,7 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "frames";
     } else if (cfg->max_tracks < 1u || cfg->max_tracks > PFT_TBD_SCENE_MAX_TRACKS) {
         bad = "max_tracks";
-    } else if (!sc_thr_ok_(cfg->gate_px, false)) {
+    } else if (!sc_thr_ok_(cfg->gate_px, true)) {
         bad = "gate_px";
     } else if (!sc_thr_ok_(cfg->fit_px, true)) {
         bad = "fit_px";
