@@ -116,7 +116,7 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 /** Workspace bytes for max_tracks slots of frames + 1 positions (the same as
  *  pft_tbd_scene_workspace_size). */
 #define PFT_TBD_SCENE_WORKSPACE_BYTES(max_tracks, frames)                                          \
-    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(max_tracks) * PFT_TBD_SCENE_SLOT_BYTES_) + \
+    ((size_t)PFT_WS_ALIGN - 1u + PFT_WS_ROUND((size_t)(max_tracks) * PFT_TBD_SCENE_SLOT_BYTES_) +   \
      PFT_WS_ROUND((size_t)(max_tracks) * ((size_t)(frames) + 1u) * PFT_TBD_SCENE_POS_BYTES_))
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,

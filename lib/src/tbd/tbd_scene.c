@@ -201,7 +201,7 @@ static int64_t sc_div_round_(int64_t a, int64_t b)
  * limited to 2^30 (16384 px), so the sum stays below 2^61 */
 static int64_t sc_disp2_(const pft_tbd_scene_pos_t *a, const pft_tbd_scene_pos_t *b)
 {
-    const int64_t lim = (int64_t)1 << 30;
+    const int64_t lim = (int64_t)1073741824; /* 2^30 */
     /* |x| < 2^31 and |sx| grows by at most 2^31 per frame: no int64 overflow for < 2^31 frames */
     const int64_t dx = sc_clamp_(((int64_t)b->x - a->x) - (b->sx - a->sx), lim);
     const int64_t dy = sc_clamp_(((int64_t)b->y - a->y) - (b->sy - a->sy), lim);
@@ -216,7 +216,7 @@ static bool sc_fit_ok_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl,
 {
     const uint32_t mm = s->cfg.frames + 1u;
     const int64_t m = (int64_t)sl->count;
-    const int64_t rlim = (int64_t)1 << 26; /* 1024 px */
+    const int64_t rlim = (int64_t)67108864; /* 2^26: 1024 px */
     int64_t kk = 0, ss = 0, fit2;
     int64_t su[2] = {0, 0}, sku[2] = {0, 0};
     int32_t x0[2];
@@ -257,7 +257,7 @@ static uint32_t sc_pix_(int32_t q, uint32_t side)
     if (q < 0) {
         return 0u;
     }
-    v = (uint32_t)(((int64_t)q + 32768) >> 16);
+    v = ((uint32_t)q + 32768u) >> 16; /* 0 <= q <= 2^31 - 1: no wrap */
     return v > side - 1u ? side - 1u : v;
 }
 
