@@ -35,14 +35,15 @@
  *
  * Arithmetic: integers only, the same bits in the float and q16 builds. Positions are taken
  * to Q16.16 px (exact in the q16 build; float positions rounded to the nearest 2^-16 px,
- * |x|, |y| saturated at 32767 px), the scene's cumulative shift is an int64 Q16.16 sum (exact),
+ * |x|, |y| saturated at 32768 px), the scene's cumulative shift is an int64 Q16.16 sum (exact),
  * gate_px, early_px and fit_px are taken to Q16.16 at init. The gate and early tests compare
  * squared displacements in Q32.32 exactly; the line fit's residuals are exact rationals
  * rounded to 2^-16 px (|residual| saturated at 1024 px), summed squared in Q32.32 and compared
- * with (n + 1) fit_px^2. Against the host's former double arithmetic a decision can differ
- * only when a displacement lies within the rounding of the thresholds to Q16.16 (gate 0.15 px
- * is 0.149994 px) or, in the float build, a fit rms within about 1e-5 px of fit_px
- * (docs/results/ir_clutter.md, "Branch irscene").
+ * with k fit_px^2 (k the positions held). Against the host's former double arithmetic a
+ * decision can differ only where a displacement lies within the thresholds' rounding to
+ * Q16.16 (gate 0.15 px is 0.149994 px, fit 0.2 px is 0.199997 px), or within about 1e-5 px of
+ * a threshold (the fit's residuals rounded to 2^-16 px; in the float build also the
+ * positions) (docs/results/ir_clutter.md, "Branch irscene").
  *
  * Use, per frame, after pft_tbd_update: list the manager's reported tracks (pft_tbd_tracks;
  * tentative = false) and, if wanted, its tentative ones (tentative = true), call
