@@ -4,7 +4,7 @@
 # PFT_DOCS_CLEAN_HEADERS, and on any warning at all with PFT_DOCS_WERROR=ON; add a header to
 # the list once it is clean, so it stays clean.
 set(PFT_DOCS_CLEAN_HEADERS pft_types.h pft_real.h pft_rng.h pft_resample.h pft_kalman.h
-    pft_workspace.h pft_config.h pft.h pft_pf.h pft_pte.h pft_pre.h pft_tbd.h pft_pf_models.h pft_tsa.h
+    pft_workspace.h pft_config.h pft.h pft_pf.h pft_pte.h pft_pre.h pft_tbd.h pft_tbd_scene.h pft_pf_models.h pft_tsa.h
     pft_port.h pft_port_file.h pft_port_mem.h pft_port_template.h pft_port_mps2.h)
 find_package(Doxygen QUIET)
 if(DOXYGEN_FOUND)

@@ -603,16 +603,31 @@ int selftest_checks(bool verbose)
     fails += clutter_checks(check);
     fails += highpass_checks(check);
     {
-        // the straight-line test's fit: 6 points on a line at (0.7, -0.3) px/frame fit it
-        // exactly; alternating +-0.5 px about a still point: rms sqrt(0.25 - 1.5^2 / 105) = 0.4781
-        std::vector<std::array<double, 4>> line, zig;
-        for (int i = 0; i < 6; ++i) {
-            line.push_back({10.0 + 0.7 * i, 20.0 - 0.3 * i, 0.0, 0.0});
-            zig.push_back({10.0 + (i % 2 ? -0.5 : 0.5), 20.0, 0.0, 0.0});
-        }
-        const double a = line_fit_rms(line), z = line_fit_rms(zig);
-        std::snprintf(b, sizeof b, "straight-line test: a straight track fits within %.2g px (< 1e-9), a zigzag of +-0.5 px %.4f (0.4781)", a, z);
-        check(b, a < 1e-9 && std::fabs(z - 0.478091) < 1e-4);
+        // the straight-line test's fit (the library's pft_tbd_scene): 6 points on a line at
+        // (0.7, -0.3) px/frame fit it exactly; alternating +-0.5 px about a point moving at
+        // 1 px/frame has rms sqrt(0.25 - 1.5^2 / 105) = 0.4781: held with fit_px 0.47,
+        // reported with 0.49 (still scene: the track moves against it)
+        auto sixth = [](double fit, bool zig) {
+            pft_tbd_scene_config_t c;
+            pft_tbd_scene_config_default(&c);
+            c.fit_px = to_real(fit);
+            c.early_px = to_real(0.0);
+            std::vector<uint64_t> w((pft_tbd_scene_workspace_size(&c) + 7) / 8);
+            pft_tbd_scene_t s;
+            if (pft_tbd_scene_init(&s, &c, w.data(), w.size() * 8) != PFT_OK)
+                return -1;
+            pft_tbd_scene_out_t o{};
+            for (int i = 0; i < 6; ++i) {
+                const pft_tbd_scene_track_t t{1u, to_real(zig ? 10.0 + i + (i % 2 ? -0.5 : 0.5) : 10.0 + 0.7 * i),
+                                              to_real(zig ? 20.0 : 20.0 - 0.3 * i), false};
+                if (pft_tbd_scene_update(&s, &t, 1, 0, 0, &o) != PFT_OK)
+                    return -1;
+            }
+            return static_cast<int>(o.decision);
+        };
+        const int a = sixth(1e-4, false), z47 = sixth(0.47, true), z49 = sixth(0.49, true);
+        std::snprintf(b, sizeof b, "straight-line test (pft_tbd_scene): a straight track reported with fit 1e-4 px (%d), a zigzag of +-0.5 px (rms 0.4781) held at 0.47 (%d), reported at 0.49 (%d)", a, z47, z49);
+        check(b, a == PFT_TBD_SCENE_REPORT && z47 == PFT_TBD_SCENE_HOLD && z49 == PFT_TBD_SCENE_REPORT);
     }
 
     // injection and SNR mapping

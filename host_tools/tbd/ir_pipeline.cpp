@@ -127,6 +127,17 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
         if (st != PFT_OK)
             throw InputError(std::string("pft_pre_flat_init: ") + pft_status_str(st));
     }
+    if (t.scene_frames > 0) {
+        const pft_tbd_scene_config_t sc = make_scene_config(t, width, height);
+        if (pft_tbd_scene_config_check(&sc, &field) != PFT_OK)
+            throw InputError(std::string("scene-motion test configuration refused (pft_tbd_scene_config_check: field ") +
+                             (field ? field : "?") + ")");
+        scene_bytes_ = pft_tbd_scene_workspace_size(&sc);
+        scene_work_.assign((scene_bytes_ + 7) / 8, 0);
+        st = pft_tbd_scene_init(&scene_, &sc, scene_work_.data(), scene_work_.size() * 8);
+        if (st != PFT_OK)
+            throw InputError(std::string("pft_tbd_scene_init: ") + pft_status_str(st));
+    }
 }
 
 pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int height)
@@ -238,93 +249,59 @@ void residual_highpass(const int16_t *res, std::size_t stride, int w, int h, int
     }
 }
 
-// The scene-motion test (TrackerSettings::scene_frames). A track's displacement over its last
+// The scene-motion test (TrackerSettings::scene_frames), the library's pft_tbd_scene_*
+// (pft_tbd_scene.h, docs/algorithms.md 9.11). A track's displacement over its last
 // n = scene_frames frames, less the scene's (the sum of the stage's shifts over those frames), is
 // the track's motion against the scene: below n * scene_gate_px, the track is taken for
 // clutter that drifts with the platform (a cloud edge, the horizon, a structure) for good. Such
 // a track is dropped from the output, and with the clutter map on its map entries (3 x 3 around
 // it) are raised to at least 16 (4 sigma), so that its evidence fades from the next frame and
-// the manager ends it. The other tracks are reported from their n-th frame on. With the
+// the manager ends it. The other tracks are reported from their n-th frame on (or early, and
+// only while they fit a straight line: scene_early_px, scene_fit_px). With the
 // library's sequential test (sprt_accept > 0) a track is tentative for some frames after its
 // hand-over; with scene_tentative its positions count from the frame after the hand-over on
 // (FrameOut::tentative), so that both tests run over the same frames, and a tentative track found
 // moving with the scene raises the map too (off by default: measured, it delays the reports,
 // docs/results/ir_clutter.md "Branch irseq2").
-// rms distance (px) of positions h[i] (x, y; one per frame) from their least-squares straight
-// line at constant speed, x(i) = x0 + vx i and y(i) = y0 + vy i (TrackerSettings::scene_fit_px)
-double line_fit_rms(const std::vector<std::array<double, 4>> &h)
+pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, int height)
 {
-    const double n = static_cast<double>(h.size());
-    if (h.size() < 3)
-        return 0.0;
-    const double tm = (n - 1.0) / 2.0;
-    double stt = 0, mx = 0, my = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) {
-        mx += h[i][0] / n;
-        my += h[i][1] / n;
-        stt += (static_cast<double>(i) - tm) * (static_cast<double>(i) - tm);
-    }
-    double stx = 0, sty = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) {
-        stx += (static_cast<double>(i) - tm) * (h[i][0] - mx);
-        sty += (static_cast<double>(i) - tm) * (h[i][1] - my);
-    }
-    const double vx = stx / stt, vy = sty / stt;
-    double ss = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) {
-        const double ti = static_cast<double>(i) - tm;
-        const double rx = h[i][0] - mx - vx * ti, ry = h[i][1] - my - vy * ti;
-        ss += rx * rx + ry * ry;
-    }
-    return std::sqrt(ss / n);
+    pft_tbd_scene_config_t c;
+    pft_tbd_scene_config_default(&c);
+    c.frames = static_cast<uint32_t>(t.scene_frames);
+    c.max_tracks = static_cast<uint32_t>(t.max_targets);  // the manager holds at most max_targets ids (reported and tentative)
+    c.gate_px = to_real(t.scene_gate_px);
+    c.fit_px = to_real(t.scene_fit_px);
+    c.early_px = to_real(t.scene_early_px);
+    c.width = static_cast<uint32_t>(width);
+    c.height = static_cast<uint32_t>(height);
+    return c;
 }
 
-void IrPipeline::scene_test(tbd::FrameOut &out)
+void IrPipeline::scene_test(tbd::FrameOut &out, int32_t shift_x, int32_t shift_y)
 {
-    const std::size_t n = static_cast<std::size_t>(T_.scene_frames);
-    std::vector<tbd::TrackOut> kept;
     const std::size_t n_rep = out.tracks.size();
     const std::size_t n_all = n_rep + (T_.scene_tentative ? out.tentative.size() : 0u);
+    std::vector<pft_tbd_scene_track_t> in(n_all);
     for (std::size_t i = 0; i < n_all; ++i) {
         const bool tentative = i >= n_rep;
         const tbd::TrackOut &t = tentative ? out.tentative[i - n_rep] : out.tracks[i];
-        SceneHist &s = hist_[t.id];
-        s.last = frame_no_;
-        s.h.push_back({t.x, t.y, scene_x_, scene_y_});
-        if (s.h.size() > n + 1)
-            s.h.erase(s.h.begin());
-        if (!s.scene && s.h.size() == n + 1) {
-            const auto &a = s.h.front(), &b = s.h.back();
-            const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
-            if (std::hypot(dx, dy) < static_cast<double>(n) * T_.scene_gate_px)
-                s.scene = true;
-        }
-        if (s.scene) {
-            if (!cm_.work.empty()) {
-                const long cx = std::clamp(std::lround(t.x), 0L, static_cast<long>(w_ - 1));
-                const long cy = std::clamp(std::lround(t.y), 0L, static_cast<long>(h_ - 1));
-                (void)pft_pre_clutter_raise(&cm_.c, static_cast<uint32_t>(cx), static_cast<uint32_t>(cy),
-                                            16u * 1024u);  // 16 sigma^2 (4 sigma)
-            }
-            continue;
-        }
-        if (tentative)
-            continue;  // not reported yet: its positions are kept for the test
-        // early report (scene_early_px > 0): from the 4th estimate on, a track already moving
-        // against the scene by more than scene_early_px per frame (over its last 3 frames)
-        // that fits a straight line is reported before the test's n + 1 estimates
-        bool early = false;
-        if (T_.scene_early_px > 0 && s.h.size() >= 4 && s.h.size() < n + 1) {
-            const auto &a = s.h[s.h.size() - 4], &b = s.h.back();
-            const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
-            early = std::hypot(dx, dy) >= 3.0 * T_.scene_early_px;
-        }
-        if ((s.h.size() >= n + 1 || early) && (T_.scene_fit_px <= 0 || line_fit_rms(s.h) <= T_.scene_fit_px))
-            kept.push_back(t);
+        in[i].id = t.id;
+        in[i].x = to_real(t.x);  // exact: t.x is the manager's pft_real_t
+        in[i].y = to_real(t.y);
+        in[i].tentative = tentative;
+    }
+    std::vector<pft_tbd_scene_out_t> dec(n_all);
+    const pft_status_t st = pft_tbd_scene_update(&scene_, in.data(), n_all, shift_x, shift_y, dec.data());
+    if (st != PFT_OK)
+        throw InputError(std::string("pft_tbd_scene_update: ") + pft_status_str(st));
+    std::vector<tbd::TrackOut> kept;
+    for (std::size_t i = 0; i < n_all; ++i) {
+        if (dec[i].decision == PFT_TBD_SCENE_CLUTTER && !cm_.work.empty())
+            (void)pft_pre_clutter_raise(&cm_.c, dec[i].px, dec[i].py, 16u * 1024u);  // 16 sigma^2 (4 sigma)
+        if (i < n_rep && dec[i].decision == PFT_TBD_SCENE_REPORT)
+            kept.push_back(out.tracks[i]);
     }
     out.tracks.swap(kept);
-    for (auto it = hist_.begin(); it != hist_.end();)
-        it = it->second.last + 64 < frame_no_ ? hist_.erase(it) : std::next(it);
 }
 
 bool IrPipeline::evidence() const
@@ -460,13 +437,12 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     if (T_.integ_shift && ev)
         tracker_->set_shift(stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0);
     out.tbd = tracker_->update(tf);
-    ++frame_no_;
     if (ev) {
         scene_x_ += stats_.shift[0] / 65536.0;
         scene_y_ += stats_.shift[1] / 65536.0;
     }
     if (T_.scene_frames > 0)
-        scene_test(out.tbd);
+        scene_test(out.tbd, ev ? stats_.shift[0] : 0, ev ? stats_.shift[1] : 0);
     std::vector<Detection> dets;
     if (ev)
         dets = dbt_detect(res, w_, h_, static_cast<int>(stride), dbt_thr_, max_det_);

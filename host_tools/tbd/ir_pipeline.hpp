@@ -19,6 +19,7 @@
 
 extern "C" {
 #include "pft/pft_pre.h"
+#include "pft/pft_tbd_scene.h"
 #include "pft/pft_types.h"
 }
 
@@ -82,11 +83,8 @@ public:
     const pft_tbd_config_t &config() const { return tracker_->config(); }
     const tbd::Tracker &tracker() const { return *tracker_; }  ///< the TBD manager (diagnostics, ir_trace.hpp)
     /** Whether the scene-motion test has found TBD track `id` moving with the scene. */
-    bool scene_flagged(uint32_t id) const
-    {
-        auto it = hist_.find(id);
-        return it != hist_.end() && it->second.scene;
-    }
+    bool scene_flagged(uint32_t id) const { return T_.scene_frames > 0 && pft_tbd_scene_is_clutter(&scene_, id); }
+    std::size_t scene_workspace_bytes() const { return scene_bytes_; } ///< the scene-motion test's workspace (0 without it)
     /** The scene's cumulative shift (the stage's measured shifts summed), px. */
     std::array<double, 2> scene_shift() const { return {scene_x_, scene_y_}; }
     const pft_pre_config_t &pre_config() const { return pre_cfg_; }
@@ -113,25 +111,19 @@ private:
     std::size_t flat_bytes_ = 0;
     cv::Mat flat_res_;  // the residual's copy when the stage does not work in place (CV_16S)
     cv::Mat level_;     // flat_relative: the converted raw frame (the stage overwrites u16_)
-    // scene-motion test: per TBD track id, its positions and the scene's cumulative shift at
-    // each of its frames (the last scene_frames + 1), and whether it failed the test
-    struct SceneHist {
-        std::vector<std::array<double, 4>> h;  // x, y, scene x, scene y
-        bool scene = false;
-        uint32_t last = 0;
-    };
-    std::map<uint32_t, SceneHist> hist_;
-    double scene_x_ = 0, scene_y_ = 0;
-    uint32_t frame_no_ = 0;
-    void scene_test(tbd::FrameOut &out);
+    // scene-motion test (scene_frames > 0): the library's pft_tbd_scene_* (pft_tbd_scene.h)
+    pft_tbd_scene_t scene_{};
+    std::vector<uint64_t> scene_work_;
+    std::size_t scene_bytes_ = 0;
+    double scene_x_ = 0, scene_y_ = 0;  // the scene's cumulative shift (scene_shift)
+    void scene_test(tbd::FrameOut &out, int32_t shift_x, int32_t shift_y);
     double sigma_ = 0;
     int masked_ = 0;
 };
 
-/** rms distance (px) of the positions h[i][0..1] (one per frame) from their least-squares
- *  straight line at constant speed (0 for fewer than 3); the straight-line test of reported
- *  tracks (TrackerSettings::scene_fit_px). */
-double line_fit_rms(const std::vector<std::array<double, 4>> &h);
+/** The pft_tbd_scene configuration of the pipeline's settings (scene_frames > 0; width x
+ *  height frames, max_targets slots). */
+pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, int height);
 
 /** The pft_pre_flat configuration of the pipeline's settings (width x height frames). */
 pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int height);

@@ -5,6 +5,7 @@
 
 #include "../common/json_field.hpp"
 #include "pft/pft_tbd.h"
+#include "pft/pft_tbd_scene.h"
 
 namespace pft::host::tbd_ir {
 
@@ -171,7 +172,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     if (t.has("birth_correction"))
         T.birth_correction = t.at("birth_correction").as_bool();
     T.clutter_alpha = t.number_in("clutter_alpha", T.clutter_alpha, 0.0, 1.0);
-    T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, 64));
+    T.scene_frames = static_cast<int>(t.integer_in("scene_frames", T.scene_frames, 0, PFT_TBD_SCENE_MAX_FRAMES));  // the library's bound (pft_tbd_scene.h)
     T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
     T.scene_fit_px = t.number_in("scene_fit_px", T.scene_fit_px, 0.0, 100.0);
     T.scene_early_px = t.number_in("scene_early_px", T.scene_early_px, 0.0, 100.0);

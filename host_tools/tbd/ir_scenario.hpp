@@ -116,7 +116,7 @@ struct TrackerSettings {
     // registered to the scene (warped by the stage's measured shift every frame); both trackers
     // see the residual of clutter pixels in the map's sigma (ir_pipeline.cpp, clutter_step)
     double clutter_alpha = 0.1;                 ///< map update weight (0: no map)
-    // scene-motion test (host side): a TBD track whose displacement over the last scene_frames
+    // scene-motion test (the library's pft_tbd_scene_*, lib/include/pft/pft_tbd_scene.h): a TBD track whose displacement over the last scene_frames
     // frames is within scene_gate_px per frame of the scene's (the stage's measured shift) is
     // clutter drifting with the platform: never reported, and the clutter map is raised where it
     // is; a track is reported once it has scene_frames frames and has not failed the test

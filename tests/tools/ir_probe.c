@@ -3,7 +3,7 @@
  * TBD manager) over a headerless raw sequence of little-endian u16 frames, with the settings
  * `pft run` gives them for the shipped IR scenarios (host_tools/tbd/ir_pipeline.cpp with the
  * defaults of TrackerSettings: temporal background, clutter map, the recommended preset with
- * full-frame births, the scene-motion test raising the map). It builds on every preset (host,
+ * full-frame births, the scene-motion test pft_tbd_scene raising the map). It builds on every preset (host,
  * AArch64 Linux, bare-metal Cortex-M with semihosting file input), so the same frame bytes
  * give the instructions per frame of pft_pre_update_inplace and pft_tbd_update on every
  * instruction set: each call is bracketed by pft_work_mark_begin / pft_work_mark_end (the QEMU
@@ -25,6 +25,7 @@
 
 #include "pft/pft_pre.h"
 #include "pft/pft_tbd.h"
+#include "pft/pft_tbd_scene.h"
 #include "pft_work_marks.h"
 
 #ifndef IRP_ARENA_BYTES
@@ -69,38 +70,6 @@ static double from_real(pft_real_t v)
 #else
     return (double)v;
 #endif
-}
-
-/* The scene-motion test of ir_pipeline.cpp (IrPipeline::scene_test, scene_frames 5, scene_gate_px
- * 0.15): only the part that reaches the library, the map raise under a track found moving with
- * the scene. */
-#define SCENE_N 5u
-#define SCENE_SLOTS 64u
-typedef struct {
-    uint32_t id;  /* 0: free */
-    uint32_t last;
-    uint32_t n;   /* positions held, at most SCENE_N + 1 */
-    int scene;
-    double h[SCENE_N + 1u][4];
-} scene_hist_t;
-static scene_hist_t g_hist[SCENE_SLOTS];
-
-static scene_hist_t *hist_of(uint32_t id)
-{
-    scene_hist_t *free_slot = NULL;
-    for (uint32_t i = 0; i < SCENE_SLOTS; ++i) {
-        if (g_hist[i].id == id) {
-            return &g_hist[i];
-        }
-        if (g_hist[i].id == 0u && free_slot == NULL) {
-            free_slot = &g_hist[i];
-        }
-    }
-    if (free_slot != NULL) {
-        memset(free_slot, 0, sizeof *free_slot);
-        free_slot->id = id;
-    }
-    return free_slot;
 }
 
 /* The two measured calls go through one function that callgrind toggles on and dumps after
@@ -210,24 +179,38 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: manager configuration refused (%s)\n", field ? field : "?");
         return 2;
     }
+    /* make_scene_config: scene_frames 5, gates 0.15, fit 0.2, early 0.5 px, max_targets slots */
+    pft_tbd_scene_config_t sc;
+    pft_tbd_scene_config_default(&sc);
+    sc.max_tracks = tc.max_targets;
+    sc.width = W;
+    sc.height = H;
+    if (pft_tbd_scene_config_check(&sc, &field) != PFT_OK) {
+        fprintf(stderr, "ir_probe: scene test configuration refused (%s)\n", field ? field : "?");
+        return 2;
+    }
     const size_t pre_b = pft_pre_workspace_size(&pc), cl_b = pft_pre_clutter_workspace_size(&cc),
-                 tbd_b = pft_tbd_workspace_size(&tc);
+                 tbd_b = pft_tbd_workspace_size(&tc), scn_b = pft_tbd_scene_workspace_size(&sc);
     uint16_t *buf = arena_take(npix * 2u);
     int16_t *blank = arena_take(npix * 2u);
     void *pre_w = arena_take(pre_b), *cl_w = arena_take(cl_b), *tbd_w = arena_take(tbd_b);
+    void *scn_w = arena_take(scn_b);
     printf("workspace bytes: stage %lu, clutter map %lu, manager %lu, frame and blank %lu\n",
            (unsigned long)pre_b, (unsigned long)cl_b, (unsigned long)tbd_b,
            (unsigned long)(npix * 4u));
-    if (buf == NULL || blank == NULL || pre_w == NULL || cl_w == NULL || tbd_w == NULL) {
+    printf("workspace bytes: scene test %lu\n", (unsigned long)scn_b);
+    if (buf == NULL || blank == NULL || pre_w == NULL || cl_w == NULL || tbd_w == NULL || scn_w == NULL) {
         fprintf(stderr, "ir_probe: arena of %lu bytes too small (needs %lu)\n",
                 (unsigned long)IRP_ARENA_BYTES,
-                (unsigned long)(npix * 4u + pre_b + cl_b + tbd_b + 40u));
+                (unsigned long)(npix * 4u + pre_b + cl_b + tbd_b + scn_b + 48u));
         return 3;
     }
     static pft_pre_t pre;
     static pft_pre_clutter_t cl;
     static pft_tbd_t tbd;
+    static pft_tbd_scene_t scn;
     if (pft_pre_init(&pre, &pc, pre_w, pre_b) != PFT_OK ||
+        pft_tbd_scene_init(&scn, &sc, scn_w, scn_b) != PFT_OK ||
         pft_pre_clutter_init(&cl, &cc, cl_w, cl_b) != PFT_OK ||
         pft_tbd_init(&tbd, &tc, tbd_w, tbd_b) != PFT_OK) {
         fprintf(stderr, "ir_probe: init failed\n");
@@ -241,8 +224,6 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: cannot open %s\n", argv[1]);
         return 1;
     }
-    double scene_x = 0.0, scene_y = 0.0;
-    uint32_t frame_no = 0;
     for (uint32_t seq = 1; seq <= frames; ++seq) {
         if (fread(buf, 2u, npix, in) != npix) {
             fprintf(stderr, "ir_probe: %s holds fewer than %lu frames\n", argv[1], (unsigned long)frames);
@@ -292,52 +273,31 @@ int main(int argc, char **argv)
             fprintf(stderr, "ir_probe: frame %lu: manager: %s\n", (unsigned long)seq, pft_status_str(s));
             return 1;
         }
-        ++frame_no;
-        if (ev) {
-            scene_x += st.shift[0] / 65536.0;
-            scene_y += st.shift[1] / 65536.0;
-        }
         pft_tbd_track_t tr[8];
         size_t n = pft_tbd_tracks(&tbd, tr, 8u);
         if (n > 8u) {
             n = 8u;
         }
         printf("%lu,%u", (unsigned long)seq, (unsigned)st.flags);
+        /* the scene-motion test (IrPipeline::scene_test): the map raised under the tracks
+         * found moving with the scene */
+        pft_tbd_scene_track_t sin[8];
+        pft_tbd_scene_out_t sout[8];
         for (size_t i = 0; i < n; ++i) {
-            const double x = from_real(tr[i].x), y = from_real(tr[i].y);
-            printf(",%lu %.3f %.3f", (unsigned long)tr[i].id, x, y);
-            scene_hist_t *h = hist_of(tr[i].id);
-            if (h == NULL) {
-                fprintf(stderr, "ir_probe: more than %u tracks in the scene test\n", SCENE_SLOTS);
-                return 1;
-            }
-            h->last = frame_no;
-            if (h->n == SCENE_N + 1u) {
-                memmove(h->h[0], h->h[1], sizeof h->h[0] * SCENE_N);
-                h->n--;
-            }
-            h->h[h->n][0] = x;
-            h->h[h->n][1] = y;
-            h->h[h->n][2] = scene_x;
-            h->h[h->n][3] = scene_y;
-            h->n++;
-            if (!h->scene && h->n == SCENE_N + 1u) {
-                const double *a = h->h[0], *b = h->h[SCENE_N];
-                const double dx = (b[0] - a[0]) - (b[2] - a[2]), dy = (b[1] - a[1]) - (b[3] - a[3]);
-                if (hypot(dx, dy) < (double)SCENE_N * 0.15) {
-                    h->scene = 1;
-                }
-            }
-            if (h->scene) {
-                long cx = lround(x), cy = lround(y);
-                cx = cx < 0 ? 0 : cx > (long)W - 1 ? (long)W - 1 : cx;
-                cy = cy < 0 ? 0 : cy > (long)H - 1 ? (long)H - 1 : cy;
-                (void)pft_pre_clutter_raise(&cl, (uint32_t)cx, (uint32_t)cy, 16u * 1024u);
-            }
+            printf(",%lu %.3f %.3f", (unsigned long)tr[i].id, from_real(tr[i].x), from_real(tr[i].y));
+            sin[i].id = tr[i].id;
+            sin[i].x = tr[i].x;
+            sin[i].y = tr[i].y;
+            sin[i].tentative = false;
         }
-        for (uint32_t i = 0; i < SCENE_SLOTS; ++i) {
-            if (g_hist[i].id != 0u && g_hist[i].last + 64u < frame_no) {
-                g_hist[i].id = 0u;
+        s = pft_tbd_scene_update(&scn, sin, n, ev ? st.shift[0] : 0, ev ? st.shift[1] : 0, sout);
+        if (s != PFT_OK) {
+            fprintf(stderr, "ir_probe: frame %lu: scene test: %s\n", (unsigned long)seq, pft_status_str(s));
+            return 1;
+        }
+        for (size_t i = 0; i < n; ++i) {
+            if (sout[i].decision == PFT_TBD_SCENE_CLUTTER) {
+                (void)pft_pre_clutter_raise(&cl, sout[i].px, sout[i].py, 16u * 1024u);
             }
         }
         printf("\n");

@@ -12,6 +12,7 @@
 #include "pft/pft_workspace.h"
 #include "pft/pft_kalman.h"
 #include "pft/pft_tbd.h"
+#include "pft/pft_tbd_scene.h"
 #include "pft/pft_pf.h"
 #include "pft/pft_pf_models.h"
 #include "pft/pft_tsa.h"

@@ -1,0 +1,402 @@
+/*
+ * The scene-motion test of the IR pipeline (pft_tbd_scene.h; docs/algorithms.md 9.11).
+ * Integer arithmetic only, so that the float and q16 builds decide alike: positions in Q16.16
+ * px (int32), the scene's cumulative shift in Q16.16 px (int64), squared distances in Q32.32
+ * (int64). Bounds that keep every product inside int64 are given at each step.
+ */
+#include <string.h>
+
+#include "pft/pft_tbd_scene.h"
+
+void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->frames = 5u;
+    cfg->max_tracks = 16u;
+    cfg->gate_px = PFT_C(0.15);
+    cfg->fit_px = PFT_C(0.2);
+    cfg->early_px = PFT_C(0.5);
+    cfg->forget_frames = 64u;
+    cfg->width = 384u;
+    cfg->height = 288u;
+}
+
+/* a threshold in (0, 256] px (zero_ok: [0, 256]); every threshold is zero_ok today, the
+ * parameter keeps the bound explicit at each call */
+static bool sc_thr_ok_(pft_real_t v, bool zero_ok)
+{
+    const pft_real_t hi = PFT_C(256.0);
+    if (zero_ok && v == PFT_C(0.0)) {
+        return true;
+    }
+    return v > PFT_C(0.0) && v <= hi;
+}
+
+pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field)
+{
+    const char *bad = NULL;
+    if (field != NULL) {
+        *field = NULL;
+    }
+    if (cfg == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (cfg->frames < 1u || cfg->frames > PFT_TBD_SCENE_MAX_FRAMES) {
+        bad = "frames";
+    } else if (cfg->max_tracks < 1u || cfg->max_tracks > PFT_TBD_SCENE_MAX_TRACKS) {
+        bad = "max_tracks";
+    } else if (!sc_thr_ok_(cfg->gate_px, true)) {
+        bad = "gate_px";
+    } else if (!sc_thr_ok_(cfg->fit_px, true)) {
+        bad = "fit_px";
+    } else if (!sc_thr_ok_(cfg->early_px, true)) {
+        bad = "early_px";
+    } else if (cfg->forget_frames < 1u || cfg->forget_frames > (1u << 30)) {
+        bad = "forget_frames";
+    } else if (cfg->width < 1u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "width";
+    } else if (cfg->height < 1u || cfg->height > PFT_CFG_MAX_IMAGE_SIDE) {
+        bad = "height";
+    } else {
+        /* accepted */
+    }
+    if (bad != NULL) {
+        if (field != NULL) {
+            *field = bad;
+        }
+        return PFT_ERR_CONFIG;
+    }
+    return PFT_OK;
+}
+
+size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg)
+{
+    if (pft_tbd_scene_config_check(cfg, NULL) != PFT_OK) {
+        return 0u;
+    }
+    return PFT_TBD_SCENE_WORKSPACE_BYTES(cfg->max_tracks, cfg->frames);
+}
+
+/* v (px) in Q16.16, rounded to nearest; saturated to +-(2^31 - 1) (+-32768 px) */
+static int32_t sc_q16_(pft_real_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    return v;
+#else
+    float t = v * 65536.0f; /* exact: a power of two */
+    if (t >= 2147483648.0f) {
+        return INT32_MAX;
+    }
+    if (t <= -2147483648.0f) {
+        return -INT32_MAX;
+    }
+    if (fabsf(t) < 8388608.0f) {
+        t = floorf(t + 0.5f); /* exact below 2^23; above, t is already an integer */
+    }
+    return (int32_t)t;
+#endif
+}
+
+/* whether v is a number (float build: not NaN; q16: always) */
+static bool sc_finite_(pft_real_t v)
+{
+#ifdef PFT_NUMERIC_Q16
+    (void)v;
+    return true;
+#else
+    return v >= -3.402823466e+38f && v <= 3.402823466e+38f;
+#endif
+}
+
+pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t *cfg, void *work,
+                                size_t work_len)
+{
+    if (s == NULL || cfg == NULL || work == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (pft_tbd_scene_config_check(cfg, NULL) != PFT_OK) {
+        return PFT_ERR_CONFIG;
+    }
+    pft_ws_t ws;
+    pft_ws_init(&ws, work, work_len);
+    pft_tbd_scene_slot_t *slot = pft_ws_take(&ws, (size_t)cfg->max_tracks * sizeof(pft_tbd_scene_slot_t));
+    pft_tbd_scene_pos_t *pos =
+        pft_ws_take(&ws, (size_t)cfg->max_tracks * ((size_t)cfg->frames + 1u) * sizeof(pft_tbd_scene_pos_t));
+    if (pft_ws_status(&ws) != PFT_OK) {
+        return PFT_ERR_NOMEM;
+    }
+    memset(s, 0, sizeof(*s));
+    s->cfg = *cfg;
+    s->slot = slot;
+    s->pos = pos;
+    s->gate_q = sc_q16_(cfg->gate_px);
+    s->early_q = sc_q16_(cfg->early_px);
+    s->fit_q = sc_q16_(cfg->fit_px);
+    return pft_tbd_scene_reset(s);
+}
+
+pft_status_t pft_tbd_scene_reset(pft_tbd_scene_t *s)
+{
+    if (s == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    memset(s->slot, 0, (size_t)s->cfg.max_tracks * sizeof(pft_tbd_scene_slot_t));
+    memset(s->pos, 0, (size_t)s->cfg.max_tracks * ((size_t)s->cfg.frames + 1u) * sizeof(pft_tbd_scene_pos_t));
+    s->scene_x = 0;
+    s->scene_y = 0;
+    s->frame = 0u;
+    s->overflows = 0u;
+    return PFT_OK;
+}
+
+/* the slot holding id, or max_tracks */
+static uint32_t sc_find_(const pft_tbd_scene_t *s, uint32_t id)
+{
+    uint32_t k;
+    for (k = 0u; k < s->cfg.max_tracks; ++k) {
+        if (s->slot[k].id == id) {
+            return k;
+        }
+    }
+    return s->cfg.max_tracks;
+}
+
+/* a slot for a new id: a free one, else the unmarked one fed least recently (lowest on a
+ * tie), else max_tracks */
+static uint32_t sc_take_(const pft_tbd_scene_t *s)
+{
+    uint32_t k, best = s->cfg.max_tracks, best_age = 0u;
+    for (k = 0u; k < s->cfg.max_tracks; ++k) {
+        const pft_tbd_scene_slot_t *sl = &s->slot[k];
+        if (sl->id == 0u) {
+            return k;
+        }
+        if (sl->mark == 0u) {
+            const uint32_t age = s->frame - sl->last; /* wrap-safe */
+            if (best == s->cfg.max_tracks || age > best_age) {
+                best = k;
+                best_age = age;
+            }
+        }
+    }
+    return best;
+}
+
+/* |v| limited to lim */
+static int64_t sc_clamp_(int64_t v, int64_t lim)
+{
+    return v > lim ? lim : (v < -lim ? -lim : v);
+}
+
+/* a / b rounded to nearest, ties away from zero; b > 0 */
+static int64_t sc_div_round_(int64_t a, int64_t b)
+{
+    return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b);
+}
+
+/* squared displacement against the scene (Q32.32) from position a to b; each component
+ * limited to 2^30 (16384 px), so the sum stays below 2^61 */
+static int64_t sc_disp2_(const pft_tbd_scene_pos_t *a, const pft_tbd_scene_pos_t *b)
+{
+    const int64_t lim = (int64_t)1073741824; /* 2^30 */
+    /* |x| < 2^31 and |sx| grows by at most 2^31 per frame: no int64 overflow for < 2^31 frames */
+    const int64_t dx = sc_clamp_(((int64_t)b->x - a->x) - (b->sx - a->sx), lim);
+    const int64_t dy = sc_clamp_(((int64_t)b->y - a->y) - (b->sy - a->sy), lim);
+    return dx * dx + dy * dy;
+}
+
+/* whether the m positions h(0..m) (ring of slot sl) fit a straight line at constant speed
+ * within rms fit: sum of squared residuals <= m fit^2. With k_i = 2 i - (m - 1), K = sum k_i^2,
+ * u_i = x_i - x_0, the residual is r_i = (m K u_i - K sum u - m (sum k u) k_i) / (m K), exact
+ * before its rounding to Q16.16: m <= 32, K <= 10912, |u| < 2^32, so every term is below 2^53. */
+static bool sc_fit_ok_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring)
+{
+    const uint32_t mm = s->cfg.frames + 1u;
+    const int64_t m = (int64_t)sl->count;
+    const int64_t rlim = (int64_t)67108864; /* 2^26: 1024 px */
+    int64_t kk = 0, ss = 0, fit2;
+    int64_t su[2] = {0, 0}, sku[2] = {0, 0};
+    int32_t x0[2];
+    uint32_t i, c;
+    if (sl->count < 3u) {
+        return true;
+    }
+    x0[0] = ring[sl->head].x;
+    x0[1] = ring[sl->head].y;
+    for (i = 0u; i < sl->count; ++i) {
+        const pft_tbd_scene_pos_t *p = &ring[(sl->head + i) % mm];
+        const int64_t k = 2 * (int64_t)i - (m - 1);
+        const int64_t u[2] = {(int64_t)p->x - x0[0], (int64_t)p->y - x0[1]};
+        kk += k * k;
+        for (c = 0u; c < 2u; ++c) {
+            su[c] += u[c];
+            sku[c] += k * u[c];
+        }
+    }
+    for (i = 0u; i < sl->count; ++i) {
+        const pft_tbd_scene_pos_t *p = &ring[(sl->head + i) % mm];
+        const int64_t k = 2 * (int64_t)i - (m - 1);
+        const int64_t u[2] = {(int64_t)p->x - x0[0], (int64_t)p->y - x0[1]};
+        for (c = 0u; c < 2u; ++c) {
+            const int64_t num = m * kk * u[c] - kk * su[c] - m * sku[c] * k;
+            const int64_t r = sc_clamp_(sc_div_round_(num, m * kk), rlim);
+            ss += r * r; /* < 2^52 each, 64 terms at most */
+        }
+    }
+    fit2 = (int64_t)s->fit_q * s->fit_q; /* fit <= 256 px: < 2^48 */
+    return ss <= m * fit2;
+}
+
+/* round(q) (Q16.16) clamped to [0, side - 1] */
+static uint32_t sc_pix_(int32_t q, uint32_t side)
+{
+    uint32_t v;
+    if (q < 0) {
+        return 0u;
+    }
+    v = ((uint32_t)q + 32768u) >> 16; /* 0 <= q <= 2^31 - 1: no wrap */
+    return v > side - 1u ? side - 1u : v;
+}
+
+pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_t *tracks, size_t n,
+                                  int32_t shift_x, int32_t shift_y, pft_tbd_scene_out_t *out)
+{
+    size_t i, j;
+    uint32_t k;
+    if (s == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    const uint32_t mm = s->cfg.frames + 1u;
+    if (n > 0u && (tracks == NULL || out == NULL)) {
+        return PFT_ERR_INVAL;
+    }
+    for (i = 0u; i < n; ++i) {
+        if (tracks[i].id == 0u || !sc_finite_(tracks[i].x) || !sc_finite_(tracks[i].y)) {
+            return PFT_ERR_INVAL;
+        }
+        for (j = 0u; j < i; ++j) {
+            if (tracks[j].id == tracks[i].id) {
+                return PFT_ERR_INVAL;
+            }
+        }
+    }
+    /* accepted: from here on the instance changes */
+    s->frame += 1u;
+    s->scene_x += shift_x;
+    s->scene_y += shift_y;
+    for (k = 0u; k < s->cfg.max_tracks; ++k) {
+        s->slot[k].mark = 0u;
+    }
+    for (i = 0u; i < n; ++i) {
+        k = sc_find_(s, tracks[i].id);
+        if (k < s->cfg.max_tracks) {
+            s->slot[k].mark = 1u;
+        }
+    }
+    for (i = 0u; i < n; ++i) {
+        const pft_tbd_scene_track_t *t = &tracks[i];
+        pft_tbd_scene_out_t *o = &out[i];
+        pft_tbd_scene_slot_t *sl;
+        pft_tbd_scene_pos_t *ring, *p;
+        pft_tbd_scene_pos_t pnew;
+        bool early = false;
+        pnew.x = sc_q16_(t->x);
+        pnew.y = sc_q16_(t->y);
+        pnew.sx = s->scene_x;
+        pnew.sy = s->scene_y;
+        o->id = t->id;
+        o->px = sc_pix_(pnew.x, s->cfg.width);
+        o->py = sc_pix_(pnew.y, s->cfg.height);
+        k = sc_find_(s, t->id);
+        if (k == s->cfg.max_tracks) {
+            k = sc_take_(s);
+            if (k == s->cfg.max_tracks) {
+                o->decision = PFT_TBD_SCENE_NO_SLOT;
+                o->positions = 0u;
+                s->overflows += 1u;
+                continue;
+            }
+            memset(&s->slot[k], 0, sizeof(s->slot[k]));
+            s->slot[k].id = t->id;
+            s->slot[k].mark = 1u;
+        }
+        sl = &s->slot[k];
+        ring = &s->pos[(size_t)k * mm];
+        sl->last = s->frame;
+        if (sl->count < mm) {
+            ring[(sl->head + sl->count) % mm] = pnew;
+            sl->count += 1u;
+        } else {
+            ring[sl->head] = pnew;
+            sl->head = (sl->head + 1u) % mm;
+        }
+        o->positions = sl->count;
+        if (sl->clutter == 0u && sl->count == mm) {
+            /* displacement over the last n frames against the scene below n * gate */
+            const int64_t g = (int64_t)s->cfg.frames * s->gate_q; /* < 2^31 */
+            if (sc_disp2_(&ring[sl->head], &ring[(sl->head + mm - 1u) % mm]) < g * g) {
+                sl->clutter = 1u;
+            }
+        }
+        if (sl->clutter != 0u) {
+            o->decision = PFT_TBD_SCENE_CLUTTER;
+            continue;
+        }
+        if (t->tentative) {
+            o->decision = PFT_TBD_SCENE_HOLD;
+            continue;
+        }
+        if (s->early_q > 0 && sl->count >= 4u && sl->count < mm) {
+            /* early report: against the scene by at least 3 early_px over the last 3 frames */
+            const int64_t e = 3 * (int64_t)s->early_q; /* < 2^27 */
+            p = &ring[(sl->head + sl->count - 1u) % mm];
+            early = sc_disp2_(&ring[(sl->head + sl->count - 4u) % mm], p) >= e * e;
+        }
+        if ((sl->count >= mm || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
+            o->decision = PFT_TBD_SCENE_REPORT;
+        } else {
+            o->decision = PFT_TBD_SCENE_HOLD;
+        }
+    }
+    /* forget the histories forget_frames frames after their last frame */
+    for (k = 0u; k < s->cfg.max_tracks; ++k) {
+        pft_tbd_scene_slot_t *sl = &s->slot[k];
+        if (sl->id != 0u && s->frame - sl->last > s->cfg.forget_frames) {
+            memset(sl, 0, sizeof(*sl));
+        }
+    }
+    return PFT_OK;
+}
+
+uint32_t pft_tbd_scene_positions(const pft_tbd_scene_t *s, uint32_t id)
+{
+    uint32_t k;
+    if (s == NULL || id == 0u) {
+        return 0u;
+    }
+    k = sc_find_(s, id);
+    return k < s->cfg.max_tracks ? s->slot[k].count : 0u;
+}
+
+bool pft_tbd_scene_is_clutter(const pft_tbd_scene_t *s, uint32_t id)
+{
+    uint32_t k;
+    if (s == NULL || id == 0u) {
+        return false;
+    }
+    k = sc_find_(s, id);
+    return k < s->cfg.max_tracks && s->slot[k].clutter != 0u;
+}
+
+uint32_t pft_tbd_scene_overflows(const pft_tbd_scene_t *s)
+{
+    return s == NULL ? 0u : s->overflows;
+}
+
+uint32_t pft_tbd_scene_frame(const pft_tbd_scene_t *s)
+{
+    return s == NULL ? 0u : s->frame;
+}

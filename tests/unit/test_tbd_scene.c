@@ -1,0 +1,388 @@
+/*
+ * The scene-motion test of the IR pipeline (pft_tbd_scene.h): configuration check naming the
+ * refused field, workspace size (the macro, one word less refused), refused input leaves
+ * instance, workspace and output byte for byte unchanged, reset, and known answers: a track
+ * moving with the scene is CLUTTER at its n + 1-th frame and not before (and stays so, with its
+ * clamped pixel); a track moving at 0.5 px/frame against the scene is reported from its 4th
+ * frame (the early report), one at 0.25 px/frame from its n + 1-th; a curved path (a parabola)
+ * fails the line fit and is never reported, but is from its 4th frame with the fit off; a
+ * tentative track is held, and found CLUTTER like the others; a full table gives NO_SLOT and
+ * takes over the slot of the id fed least recently; a history is forgotten forget_frames
+ * frames after its last frame. Positions and shifts are multiples of 2^-16 px, so that both
+ * builds give the same answers exactly.
+ */
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_tbd_scene.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define SLOTS 4u
+static uint64_t g_work[PFT_TBD_SCENE_WORKSPACE_BYTES(SLOTS, PFT_TBD_SCENE_MAX_FRAMES) / 8u + 1u];
+static uint64_t g_copy[sizeof(g_work) / 8u];
+
+/* Q16.16 px */
+#define Q(v) ((int32_t)((v) * 65536.0))
+
+/* a Q16.16 count of px as a pft_real_t (exact in both builds below 2^24 LSB) */
+static pft_real_t rq(int32_t q)
+{
+#ifdef PFT_NUMERIC_Q16
+    return q;
+#else
+    return (float)q / 65536.0f;
+#endif
+}
+
+static void init(pft_tbd_scene_t *s, pft_tbd_scene_config_t *cfg)
+{
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_init(s, cfg, g_work, pft_tbd_scene_workspace_size(cfg)));
+}
+
+static pft_tbd_scene_track_t trk(uint32_t id, pft_real_t x, pft_real_t y, bool tentative)
+{
+    pft_tbd_scene_track_t t;
+    memset(&t, 0, sizeof t);
+    t.id = id;
+    t.x = x;
+    t.y = y;
+    t.tentative = tentative;
+    return t;
+}
+
+/* one track, one frame: its decision */
+static pft_tbd_scene_out_t one(pft_tbd_scene_t *s, pft_tbd_scene_track_t t, int32_t sx, int32_t sy)
+{
+    pft_tbd_scene_out_t o;
+    memset(&o, 0xA5, sizeof o);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(s, &t, 1u, sx, sy, &o));
+    TEST_ASSERT_EQUAL_UINT32(t.id, o.id);
+    return o;
+}
+
+static void test_config_and_workspace(void)
+{
+    pft_tbd_scene_config_t cfg;
+    const char *field = "x";
+    pft_tbd_scene_config_default(&cfg);
+    TEST_ASSERT_EQUAL_UINT32(5u, cfg.frames);
+    TEST_ASSERT_EQUAL_UINT32(64u, cfg.forget_frames);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
+    TEST_ASSERT_NULL(field);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_config_check(NULL, &field));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)pft_tbd_scene_workspace_size(NULL));
+    static const struct {
+        const char *name;
+        int which;
+    } bad[] = {{"frames", 0}, {"frames", 1}, {"max_tracks", 2}, {"max_tracks", 3}, {"gate_px", 4},
+               {"gate_px", 5}, {"fit_px", 6}, {"fit_px", 7}, {"early_px", 8}, {"early_px", 9},
+               {"forget_frames", 10}, {"forget_frames", 11}, {"width", 12}, {"width", 13},
+               {"height", 14}, {"height", 15}};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        pft_tbd_scene_config_t b = cfg;
+        switch (bad[i].which) {
+        case 0: b.frames = 0u; break;
+        case 1: b.frames = PFT_TBD_SCENE_MAX_FRAMES + 1u; break;
+        case 2: b.max_tracks = 0u; break;
+        case 3: b.max_tracks = PFT_TBD_SCENE_MAX_TRACKS + 1u; break;
+        case 4: b.gate_px = PFT_C(-0.125); break;
+        case 5: b.gate_px = PFT_C(256.5); break;
+        case 6: b.fit_px = PFT_C(-0.25); break;
+        case 7: b.fit_px = PFT_C(257.0); break;
+        case 8: b.early_px = PFT_C(-1.0); break;
+        case 9: b.early_px = PFT_C(300.0); break;
+        case 10: b.forget_frames = 0u; break;
+        case 11: b.forget_frames = (1u << 30) + 1u; break;
+        case 12: b.width = 0u; break;
+        case 13: b.width = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
+        case 14: b.height = 0u; break;
+        default: b.height = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
+        }
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
+        TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
+        TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)pft_tbd_scene_workspace_size(&b));
+        pft_tbd_scene_t s;
+        memset(&s, 0x5A, sizeof s);
+        pft_tbd_scene_t s0 = s;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_init(&s, &b, g_work, sizeof g_work));
+        TEST_ASSERT_EQUAL_MEMORY(&s0, &s, sizeof s);
+    }
+    /* the fit and the early report can be off; the bounds are accepted */
+    cfg.fit_px = PFT_C(0.0);
+    cfg.early_px = PFT_C(0.0);
+    cfg.gate_px = PFT_C(256.0);
+    cfg.frames = PFT_TBD_SCENE_MAX_FRAMES;
+    cfg.max_tracks = SLOTS;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
+    const size_t ws = pft_tbd_scene_workspace_size(&cfg);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)PFT_TBD_SCENE_WORKSPACE_BYTES(SLOTS, PFT_TBD_SCENE_MAX_FRAMES), (uint32_t)ws);
+    /* 4 slots of 32 positions: the slots and the positions, 8-byte aligned, and the alignment slack */
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(7u + 4u * 24u + 4u * 32u * 24u), (uint32_t)ws);
+    pft_tbd_scene_t s;
+    memset(&s, 0x5A, sizeof s);
+    pft_tbd_scene_t s0 = s;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_tbd_scene_init(&s, &cfg, g_work, ws - 8u));
+    TEST_ASSERT_EQUAL_MEMORY(&s0, &s, sizeof s);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_init(NULL, &cfg, g_work, ws));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_init(&s, NULL, g_work, ws));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_init(&s, &cfg, NULL, ws));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_init(&s, &cfg, g_work, ws));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_reset(NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_frame(&s));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_frame(NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_overflows(NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(NULL, 1u));
+    TEST_ASSERT_FALSE(pft_tbd_scene_is_clutter(NULL, 1u));
+}
+
+/* moves exactly with the scene (0.25, -0.125 px per frame): CLUTTER at the 6th frame, HOLD
+ * before; it stays CLUTTER; its pixel is round(x), round(y) clamped to the frame */
+static void test_with_scene_marked_after_n_plus_1(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 9u; ++k) {
+        const pft_real_t x = pft_add(PFT_C(382.5), pft_mul_i(PFT_C(0.25), (int32_t)k));
+        const pft_real_t y = pft_sub(PFT_C(10.375), pft_mul_i(PFT_C(0.125), (int32_t)k));
+        pft_tbd_scene_out_t o = one(&s, trk(7u, x, y, false), Q(0.25), Q(-0.125));
+        TEST_ASSERT_EQUAL_UINT32(k < 6u ? k : 6u, o.positions);
+        TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o.decision);
+        TEST_ASSERT_EQUAL_UINT32(383u, o.px); /* 382.75 .. 384.75, clamped to 383 */
+        TEST_ASSERT_EQUAL_UINT32(k <= 7u ? 10u : 9u, o.py); /* 10.25 .. 9.5 (ties up), 9.375, 9.25 */
+        TEST_ASSERT_EQUAL(k >= 6u, pft_tbd_scene_is_clutter(&s, 7u));
+    }
+    /* then it moves away against the scene: CLUTTER for good */
+    pft_tbd_scene_out_t o = one(&s, trk(7u, PFT_C(100.0), PFT_C(100.0), false), 0, 0);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_CLUTTER, o.decision);
+    /* gate_px 0: nothing is CLUTTER; the same track is reported from its 6th frame */
+    cfg.gate_px = PFT_C(0.0);
+    init(&s, &cfg);
+    for (int32_t k = 1; k <= 7; ++k) {
+        o = one(&s, trk(7u, pft_add(PFT_C(50.0), pft_mul_i(PFT_C(0.25), k)), PFT_C(20.0), false), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 6 ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+    }
+    cfg.gate_px = PFT_C(0.15);
+    /* at the gate: 5 frames at 9830 / 65536 px per frame against the scene (the gate 0.15 px in
+     * Q16.16) is not below 5 * gate: not CLUTTER; one LSB per frame less is */
+    TEST_ASSERT_EQUAL_INT32(9830, Q(0.15)); /* 0.15 * 65536 = 9830.4 */
+    for (int32_t step = 9830; step >= 9829; --step) {
+        init(&s, &cfg);
+        for (int32_t k = 1; k <= 8; ++k) {
+            o = one(&s, trk(3u, rq(Q(50.0) + k * (Q(0.25) + step)), PFT_C(20.0), false), Q(0.25), 0);
+            if (k < 6) {
+                TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_HOLD, o.decision);
+            } else {
+                TEST_ASSERT_EQUAL_INT(step == 9830 ? PFT_TBD_SCENE_REPORT : PFT_TBD_SCENE_CLUTTER, o.decision);
+            }
+        }
+    }
+}
+
+/* 0.5 px per frame against the scene (scene 0.25, track 0.75 px per frame, straight): the early
+ * report from the 4th frame; 0.25 px per frame: from the 6th */
+static void test_against_scene_reported_early(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 8u; ++k) {
+        pft_tbd_scene_track_t t[2];
+        pft_tbd_scene_out_t o[2];
+        t[0] = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
+        t[1] = trk(2u, pft_add(PFT_C(60.0), pft_mul_i(PFT_C(0.5), (int32_t)k)), PFT_C(40.0), false);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, Q(0.25), 0, o));
+        TEST_ASSERT_EQUAL_INT(k < 4u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o[0].decision);
+        TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o[1].decision);
+    }
+    /* the early report off: from the 6th frame */
+    cfg.early_px = PFT_C(0.0);
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 7u; ++k) {
+        pft_tbd_scene_out_t o =
+            one(&s, trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+    }
+    /* a tentative track is held however it moves, and counts its positions */
+    cfg.early_px = PFT_C(0.5);
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 7u; ++k) {
+        pft_tbd_scene_out_t o =
+            one(&s, trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), true), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_HOLD, o.decision);
+    }
+    pft_tbd_scene_out_t o = one(&s, trk(1u, PFT_C(26.0), PFT_C(40.0), false), Q(0.25), 0);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_REPORT, o.decision);
+    /* a tentative track moving with the scene is found CLUTTER at its 6th frame */
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 6u; ++k) {
+        o = one(&s, trk(9u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.25), (int32_t)k)), PFT_C(40.0), true), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o.decision);
+    }
+}
+
+/* x = 100 + k + 0.25 k^2: rms about the fitted line 0.25 px over 4 frames, 0.418 over 5, 0.624
+ * over 6 (every window of 6): never within 0.2; with the fit off, reported from the 4th frame
+ * (early); with fit 0.25, reported at the 4th (rms exactly 0.25), held at the 5th and on */
+static void test_curved_path_fails_the_fit(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    static const pft_real_t fits[3] = {PFT_C(0.2), PFT_C(0.0), PFT_C(0.25)};
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    for (int f = 0; f < 3; ++f) {
+        cfg.fit_px = fits[f];
+        init(&s, &cfg);
+        for (int32_t k = 1; k <= 12; ++k) {
+            const pft_real_t x = pft_add(pft_from_int(100 + k), pft_mul_i(PFT_C(0.25), k * k));
+            pft_tbd_scene_out_t o = one(&s, trk(5u, x, PFT_C(30.0), false), 0, 0);
+            int want = PFT_TBD_SCENE_HOLD;
+            if (f == 1 && k >= 4) {
+                want = PFT_TBD_SCENE_REPORT;
+            }
+            if (f == 2 && k == 4) {
+                want = PFT_TBD_SCENE_REPORT;
+            }
+            TEST_ASSERT_EQUAL_INT(want, o.decision);
+        }
+    }
+}
+
+/* a full table: 2 slots, 3 tracks in one list: the third gets NO_SLOT; a new id takes over the
+ * slot of the id fed least recently (lowest slot on a tie) */
+static void test_full_table(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    pft_tbd_scene_track_t t[3];
+    pft_tbd_scene_out_t o[3];
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = 2u;
+    init(&s, &cfg);
+    t[0] = trk(1u, PFT_C(10.0), PFT_C(10.0), false);
+    t[1] = trk(2u, PFT_C(20.0), PFT_C(10.0), false);
+    t[2] = trk(3u, PFT_C(30.0), PFT_C(10.0), false);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 3u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_HOLD, o[0].decision);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_HOLD, o[1].decision);
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_NO_SLOT, o[2].decision);
+    TEST_ASSERT_EQUAL_UINT32(0u, o[2].positions);
+    TEST_ASSERT_EQUAL_UINT32(30u, o[2].px);
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_tbd_scene_overflows(&s));
+    TEST_ASSERT_EQUAL_UINT32(2u, pft_tbd_scene_positions(&s, 1u));
+    TEST_ASSERT_EQUAL_UINT32(2u, pft_tbd_scene_positions(&s, 2u));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(&s, 3u));
+    /* id 2 alone, then id 3: it takes id 1's slot (fed at frame 2, id 2 at frame 3) */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, &t[1], 1u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, &t[2], 1u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_HOLD, o[0].decision);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(&s, 1u));
+    TEST_ASSERT_EQUAL_UINT32(3u, pft_tbd_scene_positions(&s, 2u));
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_tbd_scene_positions(&s, 3u));
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_tbd_scene_overflows(&s));
+    /* ids 3 and 1 (new): 1 takes id 2's slot, 3 keeps its own */
+    t[0] = trk(3u, PFT_C(30.0), PFT_C(10.0), false);
+    t[1] = trk(1u, PFT_C(10.0), PFT_C(10.0), false);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+    TEST_ASSERT_EQUAL_UINT32(2u, o[0].positions);
+    TEST_ASSERT_EQUAL_UINT32(1u, o[1].positions);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(&s, 2u));
+    /* a tie (ids 1 and 2 both fed at frame 1): the new id takes the lower slot, id 1's */
+    init(&s, &cfg);
+    t[0] = trk(1u, PFT_C(10.0), PFT_C(10.0), false);
+    t[1] = trk(2u, PFT_C(20.0), PFT_C(10.0), false);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+    t[0] = trk(5u, PFT_C(50.0), PFT_C(10.0), false);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 1u, 0, 0, o));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(&s, 1u));
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_tbd_scene_positions(&s, 2u));
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_tbd_scene_positions(&s, 5u));
+}
+
+/* a history is kept forget_frames (64) frames after its last frame and forgotten after */
+static void test_forget(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    init(&s, &cfg);
+    (void)one(&s, trk(4u, PFT_C(10.0), PFT_C(10.0), false), 0, 0);
+    (void)one(&s, trk(4u, PFT_C(10.0), PFT_C(10.0), false), 0, 0); /* frame 2 */
+    for (uint32_t f = 3u; f <= 66u; ++f) {
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, NULL, 0u, Q(1.0), 0, NULL));
+        TEST_ASSERT_EQUAL_UINT32(f, pft_tbd_scene_frame(&s));
+        TEST_ASSERT_EQUAL_UINT32(2u, pft_tbd_scene_positions(&s, 4u)); /* f - 2 <= 64 */
+    }
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, NULL, 0u, 0, 0, NULL)); /* frame 67 */
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(&s, 4u));
+    /* it starts over */
+    pft_tbd_scene_out_t o = one(&s, trk(4u, PFT_C(10.0), PFT_C(10.0), false), 0, 0);
+    TEST_ASSERT_EQUAL_UINT32(1u, o.positions);
+}
+
+/* refused input: NULL, id 0, an id twice, NaN (float): instance, workspace and output unchanged;
+ * reset gives the bytes of a fresh init */
+static void test_refused_input_and_reset(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s, s0;
+    pft_tbd_scene_track_t t[3];
+    pft_tbd_scene_out_t o[3], o0[3];
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    init(&s, &cfg);
+    s0 = s;
+    memcpy(g_copy, g_work, sizeof g_work);
+    for (int32_t k = 1; k <= 7; ++k) {
+        t[0] = trk(1u, pft_from_int(10 + k), PFT_C(10.0), false);
+        t[1] = trk(2u, PFT_C(20.0), PFT_C(10.0), false);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, Q(0.5), Q(-0.25), o));
+    }
+    pft_tbd_scene_t s1 = s;
+    static uint64_t w1[sizeof(g_work) / 8u];
+    memcpy(w1, g_work, sizeof g_work);
+    memset(o, 0x3C, sizeof o);
+    memcpy(o0, o, sizeof o);
+    t[2] = trk(3u, PFT_C(1.0), PFT_C(1.0), false);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(NULL, t, 2u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, NULL, 2u, 0, 0, o));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 2u, 0, 0, NULL));
+    t[1].id = 0u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 3u, 0, 0, o));
+    t[1].id = 3u; /* id 3 twice */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 3u, 0, 0, o));
+#ifdef PFT_NUMERIC_FLOAT
+    t[1] = trk(2u, PFT_C(20.0), PFT_C(10.0), false);
+    volatile float zero = 0.0f;
+    t[2].y = zero / zero; /* NaN */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 3u, 0, 0, o));
+#endif
+    TEST_ASSERT_EQUAL_MEMORY(&s1, &s, sizeof s);
+    TEST_ASSERT_EQUAL_MEMORY(w1, g_work, sizeof g_work);
+    TEST_ASSERT_EQUAL_MEMORY(o0, o, sizeof o);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_reset(&s));
+    TEST_ASSERT_EQUAL_MEMORY(&s0, &s, sizeof s);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_config_and_workspace);
+    RUN_TEST(test_with_scene_marked_after_n_plus_1);
+    RUN_TEST(test_against_scene_reported_early);
+    RUN_TEST(test_curved_path_fails_the_fit);
+    RUN_TEST(test_full_table);
+    RUN_TEST(test_forget);
+    RUN_TEST(test_refused_input_and_reset);
+    return UNITY_END();
+}
