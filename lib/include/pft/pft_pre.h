@@ -219,6 +219,7 @@ typedef struct {
     uint16_t veto;    /**< map value above which the output is 0 (no births, no evidence there), sigma^2 Q6.10; 0 (default) off, else thr..65535 */
     uint8_t persist;  /**< persistence gate of the running mean (needs mean): a residual beyond +-excess updates the mean only once such residuals have held at the same scene position for this many frames, so that a target moving across the scene is not learnt; 0 (default) off, else 1..PFT_PRE_CLUTTER_MAX_PERSIST */
     uint16_t excess;  /**< level of the persistence gate, Q8.8 sigma (256 = 1), 1..32767 (default 384 = 1.5); read only with persist */
+    bool inplace;     /**< the output is written over the caller's residual buffer by pft_pre_clutter_update_inplace (pft_pre_clutter_update is then refused) and the workspace holds no output (PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it (default false) */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -357,7 +358,12 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
  * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), the counter
  * (2, with persist only), blur + 1 rows of the map and two rows of sums (4 bytes per pixel
- * each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ * each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. With inplace the output is written over the
+ * caller's residual (pft_pre_clutter_update_inplace; PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE,
+ * no output buffer): each residual row is read before its output is written and never after,
+ * so the values are those of pft_pre_clutter_update; the caller's residual is gone afterwards
+ * (e.g. the stage's residual written over the frame buffer with pft_pre_update_inplace, when
+ * nothing reads it after the map). Refused input changes nothing.
  */
 
 /** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1). */
@@ -367,8 +373,13 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
      ((persist) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                          \
      PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + 2u * PFT_WS_ROUND((size_t)(w) * 4u))
 
+/** Workspace bytes with inplace set: PFT_PRE_CLUTTER_WORKSPACE_BYTES without the output (2 w h). */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE(w, h, mean, b, persist)                        \
+    (PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b, persist) -                                 \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u))
+
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2, no veto, no
- *  persistence gate, excess 1.5). */
+ *  persistence gate, excess 1.5, not in place). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto", "persist",
@@ -391,9 +402,21 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c);
  */
 pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
                                     int32_t shift_x, int32_t shift_y, bool evidence);
+/**
+ * pft_pre_clutter_update for an instance configured with inplace: the output is written over
+ * the residual's own pixels (see "Memory" above). pixels must be res->data (the same buffer,
+ * writable) with stride_bytes == 2 width. PFT_ERR_INVAL for NULL or pixels != res->data,
+ * PFT_ERR_STATE for an instance without inplace (and pft_pre_clutter_update on one with it),
+ * PFT_ERR_FORMAT for a wrong frame or stride: nothing changes, the residual included.
+ */
+pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                            int16_t *pixels, int32_t shift_x, int32_t shift_y,
+                                            bool evidence);
 /** The output of the last update (PFT_PIX_RES16, the input's seq and timestamp_us), lent as
- *  pft_pre_frame lends its residual (valid until the next update, reset or init).
- *  PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first update. */
+ *  pft_pre_frame lends its residual (valid until the next update, reset or init; with inplace
+ *  it describes the caller's buffer of the last pft_pre_clutter_update_inplace, valid while
+ *  the caller keeps it unchanged). PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first
+ *  update. */
 pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out);
 /** Raises the map to at least level (sigma^2 Q6.10) on the 3 x 3 pixels around (x, y)
  *  (clipped at the frame's edges), e.g. where a track was found to drift with the scene, so

@@ -28,6 +28,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->veto = 0u;
     cfg->persist = 0u;
     cfg->excess = 384u;
+    cfg->inplace = false;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -72,6 +73,10 @@ size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
     if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
+    if (cfg->inplace) {
+        return PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                                       cfg->blur, cfg->persist != 0u ? 1u : 0u);
+    }
     return PFT_PRE_CLUTTER_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
                                            cfg->blur, cfg->persist != 0u ? 1u : 0u);
 }
@@ -89,7 +94,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
     uint16_t *m = pft_ws_take(&ws, w * h * 2u);
-    int16_t *out = pft_ws_take(&ws, w * h * 2u);
+    int16_t *out = cfg->inplace ? NULL : pft_ws_take(&ws, w * h * 2u);
     uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
     uint16_t *pc = cfg->persist != 0u ? pft_ws_take(&ws, w * h * 2u) : NULL;
     uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
@@ -119,7 +124,11 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     for (size_t i = 0u; i < npix; ++i) {
         c->m[i] = (uint16_t)CL_ONE_;
     }
-    memset(c->out, 0, npix * 2u);
+    if (c->cfg.inplace) {
+        c->out = NULL; /* the caller's buffer of the next update */
+    } else {
+        memset(c->out, 0, npix * 2u);
+    }
     for (size_t i = 0u; c->mu != NULL && i < npix; ++i) {
         c->mu[i] = (uint16_t)CL_MUOFF_;
     }
@@ -295,7 +304,8 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 }
 
 /* Row y without the running mean (the default): the same values as the general loop of
- * pft_pre_clutter_update in three plain passes. The output is the residual itself except
+ * pft_pre_clutter_update in plain passes: the map's update (it reads r), then the output
+ * (which may be r itself, inplace). The output is the residual itself except
  * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
  * value is within +-PFT_PRE_RMAX_ already), and 0 where it exceeds veto; the map's update runs on every pixel and is kept
  * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535 and
@@ -303,19 +313,7 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
                           int32_t w, uint32_t a, uint32_t thr, uint32_t veto, uint32_t area)
 {
-    memcpy(o, r, (size_t)w * 2u);
-    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
-    for (int32_t x = 0; x < w; ++x) {
-        any |= hs[x] > thr ? 1u : 0u;
-    }
-    for (int32_t x = 0; any != 0u && x < w; ++x) {
-        const int32_t v = r[x];
-        if (hs[x] > thr && v != PFT_RES16_MASKED) {
-            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
-            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
-        }
-    }
+    /* the map's update first: it reads the residual, which o may be (inplace) */
     for (int32_t x = 0; x < w; ++x) {
         const int32_t v = r[x];
         const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
@@ -329,20 +327,41 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
         const uint32_t nm = t >= m ? m + q : m - q; /* between m and t: no clamp needed */
         mrow[x] = v == PFT_RES16_MASKED ? (uint16_t)m : (uint16_t)nm;
     }
+    if (o != r) {
+        memcpy(o, r, (size_t)w * 2u);
+    }
+    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
+    for (int32_t x = 0; x < w; ++x) {
+        any |= hs[x] > thr ? 1u : 0u;
+    }
+    for (int32_t x = 0; any != 0u && x < w; ++x) {
+        const int32_t v = o[x]; /* r[x]: o is its copy, or r itself */
+        if (hs[x] > thr && v != PFT_RES16_MASKED) {
+            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
+            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
+            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+        }
+    }
 }
 
-pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
-                                    int32_t shift_x, int32_t shift_y, bool evidence)
+/* PFT_OK or PFT_ERR_FORMAT: whether res is a residual frame of the configured size. */
+static pft_status_t cl_check_frame_(const pft_pre_clutter_t *c, const pft_frame_t *res)
 {
-    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
-        return PFT_ERR_INVAL;
-    }
-    const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
     if (res->format != PFT_PIX_RES16 || res->width != c->cfg.width ||
-        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)w ||
+        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)c->cfg.width ||
         (res->stride_bytes & 1u) != 0u) {
         return PFT_ERR_FORMAT;
     }
+    return PFT_OK;
+}
+
+/* One accepted frame; the output goes to c->out (packed rows), which is the residual's own
+ * buffer with inplace: each residual row is read before its output row is written, and not
+ * after. */
+static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shift_x,
+                       int32_t shift_y, bool evidence)
+{
+    const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
     const size_t npix = (size_t)w * (size_t)h;
     c->updates++;
     c->seq = res->seq;
@@ -351,7 +370,7 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
         for (size_t i = 0u; i < npix; ++i) {
             c->out[i] = PFT_RES16_MASKED;
         }
-        return PFT_OK;
+        return;
     }
     if (c->frames > 0u) {
         int32_t ix, iy;
@@ -432,6 +451,48 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
             }
         }
     }
+}
+
+pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                    int32_t shift_x, int32_t shift_y, bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (c->cfg.inplace) {
+        return PFT_ERR_STATE; /* pft_pre_clutter_update_inplace: the output has no buffer here */
+    }
+    const pft_status_t s = cl_check_frame_(c, res);
+    if (s != PFT_OK) {
+        return s;
+    }
+    cl_update_(c, res, shift_x, shift_y, evidence);
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                            int16_t *pixels, int32_t shift_x, int32_t shift_y,
+                                            bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || pixels == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (!c->cfg.inplace) {
+        return PFT_ERR_STATE;
+    }
+    if (res->data != (const void *)pixels) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_status_t s = cl_check_frame_(c, res);
+    if (s != PFT_OK) {
+        return s;
+    }
+    if (res->stride_bytes != 2u * (uint32_t)res->width) {
+        return PFT_ERR_FORMAT; /* the output's rows are packed */
+    }
+    /* every check is above: from here the residual becomes the output, row by row */
+    c->out = pixels;
+    cl_update_(c, res, shift_x, shift_y, evidence);
     return PFT_OK;
 }
 

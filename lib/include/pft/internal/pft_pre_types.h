@@ -63,7 +63,7 @@ struct pft_pre_clutter_s {
     uint16_t *m;           /* map, sigma^2 Q6.10, w * h */
     uint16_t *mu;          /* mean, sigma Q4.11 plus 32768, w * h (NULL without cfg.mean) */
     uint16_t *pc;          /* persistence counter, frames Q8, w * h (NULL without cfg.persist) */
-    int16_t *out;          /* output, Q8.8 sigma, w * h */
+    int16_t *out;          /* output, Q8.8 sigma, w * h (inplace: the caller's buffer of the last update, NULL before) */
     uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w */
     uint32_t *vs;          /* vertical sums (or maxima) of one row */
     uint32_t *hs;          /* the square's sums (or maxima) of one row */
