@@ -23,6 +23,7 @@
 #                 a before / after comparison keeps two sets of builds
 #   PFT=path      the pft that makes the frames (default build/host-float/host_tools/pft)
 #   IRC_MAP=inplace|copy  how ir_probe runs the clutter map (default inplace, as pft run does)
+#   IRC_BLOCK=0|2|4       the map's block (pft_pre_clutter_config_t.block; default 0, as pft run)
 # Every long job runs under nice; one job at a time.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -34,6 +35,7 @@ out=${IRC_OUT:-build/ir-cost}
 tag=${IRC_TAG:-}
 pft=${PFT:-build/host-float/host_tools/pft}
 map=${IRC_MAP:-inplace}
+block=${IRC_BLOCK:-0}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
@@ -86,7 +88,7 @@ for t in $targets; do
       w=${sz%x*}; h=${sz#*x}
       in=$out/frames-$sz/frames.u16
       r=$out/run-$t-$n-$sz$tag; rm -rf "$r"; mkdir -p "$r"
-      args="$in $w $h 14 $N 1 12000 $map"
+      args="$in $w $h 14 $N 1 12000 $map $block"
       status=ok
       case "$t" in
         x86|x86v2)
@@ -113,7 +115,7 @@ for t in $targets; do
   done
 done
 
-python3 - "$out/rows.csv" "$N" "$map" <<'EOF' | tee "$out/table$tag.md"
+python3 - "$out/rows.csv" "$N" "$map block $block" <<'EOF' | tee "$out/table$tag.md"
 import sys
 rows = [l.strip().split(',') for l in open(sys.argv[1]) if l.strip()]
 N = int(sys.argv[2])

@@ -162,6 +162,7 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.veto = t.clutter_veto > 0 ? static_cast<uint16_t>(std::clamp(std::lround(t.clutter_veto * 1024.0), static_cast<long>(c.thr), 65535L)) : 0u;
     c.persist = static_cast<uint8_t>(t.clutter_persist);
     c.excess = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_excess * 256.0), 1L, 32767L));
+    c.block = static_cast<uint8_t>(t.clutter_block);
     return c;
 }
 

@@ -14,10 +14,11 @@
  * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53", "Branch
  * irmap").
  *
- *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP]
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK]]
  *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
  *   procedural_384x288.json; MAP: inplace (default, as pft run: the map's output over the
- *   stage's residual) or copy (the map's own output buffer, as before branch irmap))
+ *   stage's residual) or copy (the map's own output buffer, as before branch irmap); BLOCK: the
+ *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4)
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
  * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
@@ -146,7 +147,7 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
@@ -204,6 +205,7 @@ int main(int argc, char **argv)
     cc.persist = 0u;
     cc.excess = (uint16_t)lround(1.5 * 256.0);
     cc.inplace = map_inplace != 0;
+    cc.block = (uint8_t)(argc >= 10 ? atoi(argv[9]) : 0);
     if (pft_pre_clutter_config_check(&cc, &field) != PFT_OK) {
         fprintf(stderr, "ir_probe: clutter configuration refused (%s)\n", field ? field : "?");
         return 2;
