@@ -398,7 +398,41 @@ static void cl_update_blocks_(pft_pre_clutter_t *c, const pft_frame_t *res, uint
         memset(smu, 0, (size_t)gw * 8u);
         uint16_t *mu = c->mu != NULL ? c->mu + (size_t)j * (size_t)gw : NULL;
         uint16_t *pc = c->pc != NULL ? c->pc + (size_t)j * (size_t)gw : NULL;
-        const uint32_t y0 = (uint32_t)j << lb, y1 = y0 + (1u << lb) < (uint32_t)h ? y0 + (1u << lb) : (uint32_t)h;
+        const uint32_t y0 = (uint32_t)j << lb;
+        uint32_t y1 = y0 + (1u << lb) < (uint32_t)h ? y0 + (1u << lb) : (uint32_t)h;
+        if (mu == NULL) {
+            /* without the mean (c = r): plain passes per row, the same values: the block sums
+             * of t first (they read r), then the output (r itself where the block's read is
+             * not above thr, which may be r's own buffer, inplace) */
+            uint32_t any = 0u;
+            for (int32_t i = 0; i < gw; ++i) {
+                any |= sc[i];
+            }
+            for (uint32_t y = y0; y < y1; ++y) {
+                const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
+                int16_t *o = c->out + (size_t)y * (size_t)w;
+                for (int32_t x = 0; x < w; ++x) {
+                    const int32_t v = r[x];
+                    const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
+                    const uint32_t t0 = (ac * ac + 32u) >> 6;       /* >= 65536 where sq >= CL_SQMAX_ */
+                    const uint32_t in = v == PFT_RES16_MASKED ? 0u : 1u;
+                    const uint32_t i = (uint32_t)x >> lb;
+                    st[i] += in * (t0 > CL_MMAX_ ? CL_MMAX_ : t0);
+                    sn[i] += in;
+                }
+                if (o != r) {
+                    memcpy(o, r, (size_t)w * 2u);
+                }
+                for (int32_t x = 0; any != 0u && x < w; ++x) {
+                    const int32_t v = o[x]; /* r[x] */
+                    const uint32_t sv_ = sc[(uint32_t)x >> lb];
+                    if (sv_ != 0u && v != PFT_RES16_MASKED) {
+                        o[x] = sv_ == UINT32_MAX ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)sv_));
+                    }
+                }
+            }
+            y1 = y0; /* the rows are done */
+        }
         for (uint32_t y = y0; y < y1; ++y) {
             const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
             int16_t *o = c->out + (size_t)y * (size_t)w;
