@@ -380,7 +380,7 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK.
  */
 
-/** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1). */
+/** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1), per pixel (block 0), not in place. */
 #define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b, persist)                                \
     ((size_t)(PFT_WS_ALIGN - 1u) + 2u * PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +          \
      ((mean) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                             \

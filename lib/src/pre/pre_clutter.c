@@ -92,7 +92,14 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     }
     const size_t w = cfg->width, h = cfg->height;
     /* the map's grid: pixels, or blocks of block x block pixels (the last ones cut) */
-    const uint32_t lb = cfg->block == 4u ? 2u : (cfg->block == 2u ? 1u : 0u);
+    uint32_t lb = 0u; /* per pixel */
+    if (cfg->block == 4u) {
+        lb = 2u;
+    } else if (cfg->block == 2u) {
+        lb = 1u;
+    } else {
+        /* block 0: the grid is the frame */
+    }
     const size_t k = (size_t)1u << lb;
     const size_t gw = (w + k - 1u) / k, gh = (h + k - 1u) / k;
     pft_ws_t ws;
@@ -181,7 +188,7 @@ static int32_t cl_div_(int32_t n, int32_t d)
  * rounded to 1/256 step. */
 static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
 {
-    const int64_t d = (int64_t)256 << lb;
+    const int64_t d = (int64_t)((uint64_t)256u << lb);
     const int64_t q8 = ((int64_t)s + d / 2) / d - (((int64_t)s + d / 2) % d < 0 ? 1 : 0);
     /* q8 = floor((s + d / 2) / d): the shift in Q8 steps, rounded (lb 0: floor((s + 128) / 256)) */
     const int64_t i = q8 / 256 - ((q8 % 256) < 0 ? 1 : 0);
@@ -415,7 +422,10 @@ static void cl_update_blocks_(pft_pre_clutter_t *c, const pft_frame_t *res, uint
                     const int32_t v = r[x];
                     const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
                     const uint32_t t0 = (ac * ac + 32u) >> 6;       /* >= 65536 where sq >= CL_SQMAX_ */
-                    const uint32_t in = v == PFT_RES16_MASKED ? 0u : 1u;
+                    uint32_t in = 1u; /* whether the pixel enters its block's sums */
+                    if (v == PFT_RES16_MASKED) {
+                        in = 0u;
+                    }
                     const uint32_t i = (uint32_t)x >> lb;
                     st[i] += in * (t0 > CL_MMAX_ ? CL_MMAX_ : t0);
                     sn[i] += in;
