@@ -143,7 +143,7 @@ for t, n, sz, st, run in rows:
     s3 = [a + b for a, b in zip(s, cl)]
     m = lambda v: f'{sum(v) / len(v) / 1e6:.2f} M'
     x = lambda v: f'{max(v) / 1e6:.2f} M'
-    same = 'yes' if ref.get((n, sz)) == tracks(run) else 'no'
+    same = 'n/a (no x86 run)' if (n, sz) not in ref else ('yes' if ref[(n, sz)] == tracks(run) else 'no')
     print(f'| {t} | {n} | {sz} | {m(pre)} | {x(pre)} | {m(tbd)} | {x(tbd)} | {m(s)} | {x(s)} | '
           f'{m(cl)} | {x(cl)} | {m(s3)} | {x(s3)} | {same} |')
 print(f'\nframes 2..{N} of seed 1 ({N - 1} frames); instructions per frame, M = 10^6; '
