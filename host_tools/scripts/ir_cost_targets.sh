@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Instructions per frame of the IR pipeline's library calls on every instruction set
-# (docs/results/ir_clutter.md, "Branch ira53"; docs/size.md, "Per-frame work"): the stage
-# (pft_pre_update_inplace) and the TBD manager (pft_tbd_update), each and summed, mean and max
-# over frames 2..N, for the shipped scenario tbd_ir/procedural_384x288.json (seed 1) and the same
+# (docs/results/ir_clutter.md, "Branch ira53", "Branch irmap"; docs/size.md, "Per-frame work"):
+# the stage (pft_pre_update_inplace) and the TBD manager (pft_tbd_update), each and summed (the
+# goal's figure), the clutter map between them (pft_pre_clutter_update_inplace, or with
+# IRC_MAP=copy pft_pre_clutter_update) and the sum of the three, mean and max over frames 2..N, for the shipped scenario tbd_ir/procedural_384x288.json (seed 1) and the same
 # at 640 x 512, float and q16, on
 #   x86       x86-64 under callgrind (Release, the host presets' flags: the goal's figure)
 #   x86v2     the same with -DCMAKE_C_FLAGS=-march=x86-64-v2 (SSE4.1/SSE4.2/POPCNT)
@@ -21,6 +22,8 @@
 #   IRC_TAG=name  adds a suffix to the build directories (build/irc-<target>-<numeric><tag>):
 #                 a before / after comparison keeps two sets of builds
 #   PFT=path      the pft that makes the frames (default build/host-float/host_tools/pft)
+#   IRC_MAP=inplace|copy  how ir_probe runs the clutter map (default inplace, as pft run does)
+#   IRC_BLOCK=0|2|4       the map's block (pft_pre_clutter_config_t.block; default 0, as pft run)
 # Every long job runs under nice; one job at a time.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -31,6 +34,8 @@ numerics=${IRC_NUMERIC:-float q16}
 out=${IRC_OUT:-build/ir-cost}
 tag=${IRC_TAG:-}
 pft=${PFT:-build/host-float/host_tools/pft}
+map=${IRC_MAP:-inplace}
+block=${IRC_BLOCK:-0}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
@@ -83,7 +88,7 @@ for t in $targets; do
       w=${sz%x*}; h=${sz#*x}
       in=$out/frames-$sz/frames.u16
       r=$out/run-$t-$n-$sz$tag; rm -rf "$r"; mkdir -p "$r"
-      args="$in $w $h 14 $N 1 12000"
+      args="$in $w $h 14 $N 1 12000 $map $block"
       status=ok
       case "$t" in
         x86|x86v2)
@@ -110,7 +115,7 @@ for t in $targets; do
   done
 done
 
-python3 - "$out/rows.csv" "$N" <<'EOF' | tee "$out/table$tag.md"
+python3 - "$out/rows.csv" "$N" "$map block $block" <<'EOF' | tee "$out/table$tag.md"
 import sys
 rows = [l.strip().split(',') for l in open(sys.argv[1]) if l.strip()]
 N = int(sys.argv[2])
@@ -120,22 +125,27 @@ ref = {}
 for t, n, sz, st, run in rows:
     if t == 'x86' and st == 'ok':
         ref[(n, sz)] = tracks(run)
+# sum: stage + manager (the goal's figure, as before the map was counted); all three: stage,
+# map and manager
 print(f'| target | numeric | frame | stage mean | stage max | manager mean | manager max | '
-      f'sum mean | sum max | tracks as x86 |')
-print('|---|---|---|---:|---:|---:|---:|---:|---:|---|')
+      f'sum mean | sum max | map mean | map max | all three mean | all three max | tracks as x86 |')
+print('|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|')
 for t, n, sz, st, run in rows:
     if st != 'ok':
-        print(f'| {t} | {n} | {sz} | {st} | | | | | | |')
+        print(f'| {t} | {n} | {sz} | {st} | | | | | | | | | | |')
         continue
     c = [int(x) for x in open(run + '/counts').read().split()]
-    if len(c) != 2 * N:
-        print(f'| {t} | {n} | {sz} | {len(c)} counts, expected {2 * N} | | | | | | |')
+    if len(c) != 3 * N:
+        print(f'| {t} | {n} | {sz} | {len(c)} counts, expected {3 * N} | | | | | | | | | | |')
         continue
-    pre, tbd = c[0::2][1:], c[1::2][1:]   # frames 2..N
+    pre, cl, tbd = c[0::3][1:], c[1::3][1:], c[2::3][1:]   # frames 2..N
     s = [a + b for a, b in zip(pre, tbd)]
+    s3 = [a + b for a, b in zip(s, cl)]
     m = lambda v: f'{sum(v) / len(v) / 1e6:.2f} M'
     x = lambda v: f'{max(v) / 1e6:.2f} M'
-    same = 'yes' if ref.get((n, sz)) == tracks(run) else 'no'
-    print(f'| {t} | {n} | {sz} | {m(pre)} | {x(pre)} | {m(tbd)} | {x(tbd)} | {m(s)} | {x(s)} | {same} |')
-print(f'\nframes 2..{N} of seed 1 ({N - 1} frames); instructions per frame, M = 10^6')
+    same = 'n/a (no x86 run)' if (n, sz) not in ref else ('yes' if ref[(n, sz)] == tracks(run) else 'no')
+    print(f'| {t} | {n} | {sz} | {m(pre)} | {x(pre)} | {m(tbd)} | {x(tbd)} | {m(s)} | {x(s)} | '
+          f'{m(cl)} | {x(cl)} | {m(s3)} | {x(s3)} | {same} |')
+print(f'\nframes 2..{N} of seed 1 ({N - 1} frames); instructions per frame, M = 10^6; '
+      f'sum = stage + manager (the goal\'s figure), all three = stage + map + manager; map: {sys.argv[3]}')
 EOF

@@ -173,15 +173,17 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.veto = t.clutter_veto > 0 ? static_cast<uint16_t>(std::clamp(std::lround(t.clutter_veto * 1024.0), static_cast<long>(c.thr), 65535L)) : 0u;
     c.persist = static_cast<uint8_t>(t.clutter_persist);
     c.excess = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_excess * 256.0), 1L, 32767L));
+    c.block = static_cast<uint8_t>(t.clutter_block);
     return c;
 }
 
 void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
-                  double sx, double sy, cv::Mat &resid_)
+                  double sx, double sy, cv::Mat &resid_, bool inplace)
 {
     const int w_ = resid_.cols, h_ = resid_.rows;
     if (c.work.empty()) {
-        const pft_pre_clutter_config_t cfg = make_clutter_config(T_, w_, h_);
+        pft_pre_clutter_config_t cfg = make_clutter_config(T_, w_, h_);
+        cfg.inplace = inplace;
         const char *field = nullptr;
         if (pft_pre_clutter_config_check(&cfg, &field) != PFT_OK)
             throw InputError(std::string("clutter map configuration refused (field ") + (field ? field : "?") + ")");
@@ -199,7 +201,11 @@ void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, 
     f.format = PFT_PIX_RES16;
     f.bit_depth = 16u;
     const auto q16 = [](double v) { return static_cast<int32_t>(std::lround(v * 65536.0)); };
-    pft_status_t st = pft_pre_clutter_update(&c.c, &f, q16(sx), q16(sy), ev);
+    // inplace: res is the pipeline's own buffer (the stage's residual written over its copy of
+    // the frame) and nothing reads that residual after the map
+    pft_status_t st = inplace ? pft_pre_clutter_update_inplace(&c.c, &f, const_cast<int16_t *>(res), q16(sx),
+                                                               q16(sy), ev)
+                              : pft_pre_clutter_update(&c.c, &f, q16(sx), q16(sy), ev);
     pft_frame_t o{};
     if (st == PFT_OK)
         st = pft_pre_clutter_frame(&c.c, &o);
@@ -402,7 +408,12 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
         stride = static_cast<std::size_t>(w_);
     }
     if (T_.clutter_alpha > 0) {
-        clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_);
+        // With the stage in place (pre_cfg_.inplace) the residual is the pipeline's own buffer
+        // (u16_, or hp_ with residual_hp), rows packed, and nothing reads it after the map
+        // (DBT, the manager and --residual-out read the map's output): the map writes its
+        // output over it and its workspace holds no output buffer
+        clutter_step(cm_, T_, res, stride, ev, stats_.shift[0] / 65536.0, stats_.shift[1] / 65536.0, resid_,
+                     pre_cfg_.inplace);
         res = cm_.out;
         stride = static_cast<std::size_t>(w_);
     } else {

@@ -53,9 +53,11 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
 /** One frame of the clutter map: res (PFT_PIX_RES16 of stride px per row) in, resid (CV_32F of
  *  the frame's size, masked 0) and c.out out; (sx, sy) the scene's shift since the last frame
  *  (z(p) = b(p - shift)); ev false: a frame without evidence (all masked, map unchanged). The
- *  map is set up on the first call. */
+ *  map is set up on the first call. With inplace (the same on every call) res is the caller's
+ *  writable buffer with stride = width: the map is configured inplace and its output is written
+ *  over res (pft_pre_clutter_update_inplace), c.out is then res; the same values. */
 void clutter_step(ClutterMap &c, const TrackerSettings &t, const int16_t *res, std::size_t stride, bool ev,
-                  double sx, double sy, cv::Mat &resid);
+                  double sx, double sy, cv::Mat &resid, bool inplace = false);
 
 class IrPipeline {
 public:

@@ -5,14 +5,20 @@
  * defaults of TrackerSettings: temporal background, clutter map, the recommended preset with
  * full-frame births, the scene-motion test pft_tbd_scene raising the map). It builds on every preset (host,
  * AArch64 Linux, bare-metal Cortex-M with semihosting file input), so the same frame bytes
- * give the instructions per frame of pft_pre_update_inplace and pft_tbd_update on every
- * instruction set: each call is bracketed by pft_work_mark_begin / pft_work_mark_end (the QEMU
- * plugin tests/soak/qemu_marks.c counts between them) inside irp_measured (callgrind's --toggle-collect and --dump-after on the host). Measurement tool, not a test:
- * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53").
+ * give the instructions per frame of pft_pre_update_inplace, the clutter map
+ * (pft_pre_clutter_update_inplace, or pft_pre_clutter_update with MAP copy) and pft_tbd_update
+ * on every instruction set: each call is bracketed by pft_work_mark_begin / pft_work_mark_end
+ * (the QEMU plugin tests/soak/qemu_marks.c counts between them) inside irp_measured
+ * (callgrind's --toggle-collect and --dump-after on the host), so the counts come in threes per
+ * frame: stage, map, manager. Measurement tool, not a test:
+ * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53", "Branch
+ * irmap").
  *
- *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK]]
  *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
- *   procedural_384x288.json)
+ *   procedural_384x288.json; MAP: inplace (default, as pft run: the map's output over the
+ *   stage's residual) or copy (the map's own output buffer, as before branch irmap); BLOCK: the
+ *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4)
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
  * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
@@ -72,18 +78,37 @@ static double from_real(pft_real_t v)
 #endif
 }
 
-/* The two measured calls go through one function that callgrind toggles on and dumps after
+/* One measured call: the stage (pre), the clutter map (cl) or the manager (tbd). */
+typedef struct {
+    pft_pre_t *pre;
+    pft_pre_clutter_t *cl;
+    pft_tbd_t *tbd;
+    const pft_frame_t *f;
+    uint16_t *buf;   /* stage: the frame's buffer; map in place: the residual's */
+    int32_t sx, sy;  /* map: the scene's shift */
+    int ev;          /* map: evidence */
+    int inplace;     /* map: pft_pre_clutter_update_inplace */
+} irp_call_t;
+
+/* The three measured calls go through one function that callgrind toggles on and dumps after
  * (host: --toggle-collect=irp_measured --dump-after=irp_measured; two functions each with both
- * options gave empty dumps with valgrind 3.19), so the dumps alternate stage, manager; and the
- * work markers bracket each call for the QEMU plugin. A count is the library call and a few
- * constant instructions of the call itself. */
-__attribute__((noinline, noclone)) pft_status_t irp_measured(pft_pre_t *pre, const pft_frame_t *f,
-                                                             uint16_t *buf, pft_tbd_t *tbd);
-__attribute__((noinline, noclone)) pft_status_t irp_measured(pft_pre_t *pre, const pft_frame_t *f,
-                                                             uint16_t *buf, pft_tbd_t *tbd)
+ * options gave empty dumps with valgrind 3.19), so the dumps come in the order stage, map,
+ * manager; and the work markers bracket each call for the QEMU plugin. A count is the library
+ * call and a few constant instructions of the call itself. */
+__attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c);
+__attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c)
 {
+    pft_status_t s;
     pft_work_mark_begin();
-    const pft_status_t s = pre != NULL ? pft_pre_update_inplace(pre, f, buf) : pft_tbd_update(tbd, f);
+    if (c->pre != NULL) {
+        s = pft_pre_update_inplace(c->pre, c->f, c->buf);
+    } else if (c->cl != NULL) {
+        s = c->inplace ? pft_pre_clutter_update_inplace(c->cl, c->f, (int16_t *)(void *)c->buf,
+                                                        c->sx, c->sy, c->ev != 0)
+                       : pft_pre_clutter_update(c->cl, c->f, c->sx, c->sy, c->ev != 0);
+    } else {
+        s = pft_tbd_update(c->tbd, c->f);
+    }
     pft_work_mark_end();
     return s;
 }
@@ -91,7 +116,12 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(pft_pre_t *pre, con
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK]]\n");
+        return 2;
+    }
+    const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
+    if (argc >= 9 && map_inplace && strcmp(argv[8], "inplace") != 0) {
+        fprintf(stderr, "ir_probe: MAP is inplace or copy, not %s\n", argv[8]);
         return 2;
     }
     const uint16_t W = (uint16_t)atoi(argv[2]), H = (uint16_t)atoi(argv[3]);
@@ -143,6 +173,8 @@ int main(int argc, char **argv)
     cc.veto = 0u;
     cc.persist = 0u;
     cc.excess = (uint16_t)lround(1.5 * 256.0);
+    cc.inplace = map_inplace != 0;
+    cc.block = (uint8_t)(argc >= 10 ? atoi(argv[9]) : 0);
     if (pft_pre_clutter_config_check(&cc, &field) != PFT_OK) {
         fprintf(stderr, "ir_probe: clutter configuration refused (%s)\n", field ? field : "?");
         return 2;
@@ -238,7 +270,12 @@ int main(int argc, char **argv)
         f.format = PFT_PIX_U16;
         f.bit_depth = bits;
         f.seq = seq;
-        pft_status_t s = irp_measured(&pre, &f, buf, NULL);
+        irp_call_t call;
+        memset(&call, 0, sizeof call);
+        call.pre = &pre;
+        call.f = &f;
+        call.buf = buf;
+        pft_status_t s = irp_measured(&call);
         if (s != PFT_OK) {
             fprintf(stderr, "ir_probe: frame %lu: stage: %s\n", (unsigned long)seq, pft_status_str(s));
             return 1;
@@ -249,7 +286,15 @@ int main(int argc, char **argv)
         pft_pre_frame(&pre, &rf);
         const int ev = (st.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED |
                                     PFT_PRE_FLAG_REG_LOST)) == 0u;
-        s = pft_pre_clutter_update(&cl, &rf, st.shift[0], st.shift[1], ev != 0);
+        memset(&call, 0, sizeof call);
+        call.cl = &cl;
+        call.f = &rf;
+        call.buf = buf; /* the stage's residual is the frame's buffer (inplace) */
+        call.sx = st.shift[0];
+        call.sy = st.shift[1];
+        call.ev = ev;
+        call.inplace = map_inplace;
+        s = irp_measured(&call);
         pft_frame_t co;
         if (s == PFT_OK) {
             s = pft_pre_clutter_frame(&cl, &co);
@@ -268,7 +313,10 @@ int main(int argc, char **argv)
         tf.bit_depth = 16u;
         tf.seq = seq;
         tf.timestamp_us = (uint64_t)seq * 1000000u;
-        s = irp_measured(NULL, &tf, NULL, &tbd);
+        memset(&call, 0, sizeof call);
+        call.tbd = &tbd;
+        call.f = &tf;
+        s = irp_measured(&call);
         if (s != PFT_OK) {
             fprintf(stderr, "ir_probe: frame %lu: manager: %s\n", (unsigned long)seq, pft_status_str(s));
             return 1;

@@ -8,7 +8,7 @@
  * local stage over it (the local one whitening with the last frame's sigma, and a U8 local
  * case with sigma held per tile) and records, per frame, the status, the
  * statistics, hashes of the residual frame and of the tile sigmas, and the first peaks; a
- * fourth case runs the temporal stage with the edge term (edge_k); two clutter maps
+ * fourth case runs the temporal stage with the edge term (edge_k); three clutter maps
  * (pft_pre_clutter_*) run on the temporal case's residual. The
  * stage is integer arithmetic only, so the float and q16 builds must give the same values.
  */
@@ -24,7 +24,7 @@
 #define PRE_GV_CASES 4u
 #define PRE_GV_NF 24u     /* values per frame, see pre_gv_record */
 #define PRE_GV_PEAKS 4u   /* peaks recorded per frame (x, y, value) */
-#define PRE_GV_CLUT 2u    /* clutter map cases on the temporal case's residual */
+#define PRE_GV_CLUT 3u    /* clutter map cases on the temporal case's residual */
 #define PRE_GV_CF 5u      /* clutter values per frame, see pre_gv_clutter */
 
 typedef struct {
@@ -153,12 +153,14 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
 
 /* The clutter maps (pft_pre_clutter_*) on the temporal case's residual, its shift and its
  * evidence: 0 the defaults (3 x 3 mean, alpha 0.1, thr 2), 1 with the running mean, read as the
- * largest value over 5 x 5, alpha 0.2, thr 1.5, and a raise at the target's place on frame 10.
+ * largest value over 5 x 5, alpha 0.2, thr 1.5, and a raise at the target's place on frame 10;
+ * 2 the map on 2 x 2 blocks (block 2) with the gated running mean (persist 3), alpha 0.2, and
+ * the same raise.
  * Record: status, hashes of the output and of the map, the workspace bytes, the frames. */
 static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32_t k,
                                   pft_pre_clutter_t *cl, int32_t out[PRE_GV_CLUT][PRE_GV_FRAMES][PRE_GV_CF])
 {
-    static uint64_t cwork[2][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2, 0) / 8 + 1];
+    static uint64_t cwork[PRE_GV_CLUT][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2, 0) / 8 + 1];
     pft_pre_stats_t s;
     memset(&s, 0, sizeof s);
     (void)pft_pre_stats(pre, &s);
@@ -179,13 +181,19 @@ static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32
             cfg.alpha = 13107u;
             cfg.thr = 1536u;
         }
+        if (j == 2u) {
+            cfg.block = 2u;
+            cfg.mean = true;
+            cfg.persist = 3u;
+            cfg.alpha = 13107u;
+        }
         const size_t need = pft_pre_clutter_workspace_size(&cfg);
         if (k == 0u && (need > sizeof cwork[j] ||
                         pft_pre_clutter_init(&cl[j], &cfg, cwork[j], need) != PFT_OK)) {
             continue;
         }
         pft_status_t st = fst == PFT_OK ? pft_pre_clutter_update(&cl[j], &r, s.shift[0], s.shift[1], ev) : fst;
-        if (j == 1u && k == 10u) {
+        if (j >= 1u && k == 10u) {
             (void)pft_pre_clutter_raise(&cl[j], 8u + 3u * 10u, 30u - 10u, 20000u);
         }
         uint32_t ho = PRE_GV_HASH0, hm = PRE_GV_HASH0;

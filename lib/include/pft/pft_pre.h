@@ -219,6 +219,8 @@ typedef struct {
     uint16_t veto;    /**< map value above which the output is 0 (no births, no evidence there), sigma^2 Q6.10; 0 (default) off, else thr..65535 */
     uint8_t persist;  /**< persistence gate of the running mean (needs mean): a residual beyond +-excess updates the mean only once such residuals have held at the same scene position for this many frames, so that a target moving across the scene is not learnt; 0 (default) off, else 1..PFT_PRE_CLUTTER_MAX_PERSIST */
     uint16_t excess;  /**< level of the persistence gate, Q8.8 sigma (256 = 1), 1..32767 (default 384 = 1.5); read only with persist */
+    bool inplace;     /**< the output is written over the caller's residual buffer by pft_pre_clutter_update_inplace (pft_pre_clutter_update is then refused) and the workspace holds no output (PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it (default false) */
+    uint8_t block;    /**< side B of the blocks of the scene the map (m, mu, the counter) is held on, px: 0 (default: per pixel, the map of docs/algorithms.md 9.9 as before), 2 or 4: each pixel is scored with its block's map read over (2 blur + 1)^2 blocks, each block updated with the means of its unmasked pixels' terms (see "Blocks" below); the map's memory is divided by B^2. Changes values */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -357,22 +359,59 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * builds give the same bits (m in Q6.10 sigma^2, mu in Q4.11 sigma, output Q8.8 sigma).
  * Memory: the map (2 bytes per pixel), the output (2), mu (2, with mean only), the counter
  * (2, with persist only), blur + 1 rows of the map and two rows of sums (4 bytes per pixel
- * each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. Refused input changes nothing.
+ * each); see PFT_PRE_CLUTTER_WORKSPACE_BYTES. With inplace the output is written over the
+ * caller's residual (pft_pre_clutter_update_inplace; PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE,
+ * no output buffer): each residual row is read before its output is written and never after,
+ * so the values are those of pft_pre_clutter_update; the caller's residual is gone afterwards
+ * (e.g. the stage's residual written over the frame buffer with pft_pre_update_inplace, when
+ * nothing reads it after the map). Refused input changes nothing.
+ * Blocks (block = B, 2 or 4): the map is held on the grid of B x B blocks of the frame
+ * (ceil(w / B) x ceil(h / B), the last blocks cut at the frame's edge) and carried by the
+ * shift / B in grid steps (bilinear); the square of the read is (2 blur + 1)^2 blocks around
+ * the pixel's block, M the same for every pixel of a block; per block, with n its unmasked
+ * pixels this frame (a block with n = 0 keeps its values):
+ *   m <- m + a (mean over the n pixels of min(c^2, 64) - m);
+ *   mu <- mu + a (mean of clamp(r, -8, 8) - mu);  c = r - mu of the pixel's block;
+ *   p <- min(p + 1, 2 k) where |mean of r| > excess, else max(p - 1/2, 0) (the gate reads the
+ *   block's mean residual; the mean learns where it is <= excess or p >= k).
+ * The map, mu and the counter take 2 / B^2 bytes per pixel each; the output (without inplace)
+ * stays 2 bytes per pixel; pft_pre_clutter_raise raises the blocks that hold the 3 x 3
+ * pixels, pft_pre_clutter_at reads the pixel's block. See
+ * PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK.
  */
 
-/** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1). */
+/** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1), per pixel (block 0), not in place. */
 #define PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b, persist)                                \
     ((size_t)(PFT_WS_ALIGN - 1u) + 2u * PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +          \
      ((mean) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                             \
      ((persist) ? PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) : 0u) +                          \
      PFT_WS_ROUND(((size_t)(b) + 1u) * (size_t)(w) * 2u) + 2u * PFT_WS_ROUND((size_t)(w) * 4u))
 
+/** Workspace bytes with inplace set: PFT_PRE_CLUTTER_WORKSPACE_BYTES without the output (2 w h). */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE(w, h, mean, b, persist)                        \
+    (PFT_PRE_CLUTTER_WORKSPACE_BYTES(w, h, mean, b, persist) -                                 \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u))
+
+/** Map grid side for frames of n pixels and blocks of k (0: per pixel). */
+#define PFT_PRE_CLUTTER_GRID_(n, k) (((size_t)(n) + ((k) > 1u ? (size_t)(k) : 1u) - 1u) / ((k) > 1u ? (size_t)(k) : 1u))
+/** Workspace bytes of a clutter map for every configuration: frames w x h, mean (0/1), blur b,
+ *  persist (0/1), block k (0, 2, 4) and inplace (0/1); with k 0 it is
+ *  PFT_PRE_CLUTTER_WORKSPACE_BYTES (inplace 0) or PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE. */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK(w, h, mean, b, persist, k, inplace)                 \
+    ((size_t)(PFT_WS_ALIGN - 1u) +                                                               \
+     (1u + ((mean) ? 1u : 0u) + ((persist) ? 1u : 0u)) *                                         \
+         PFT_WS_ROUND(PFT_PRE_CLUTTER_GRID_(w, k) * PFT_PRE_CLUTTER_GRID_(h, k) * 2u) +           \
+     ((inplace) ? 0u : PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u)) +                           \
+     PFT_WS_ROUND(((size_t)(b) + 1u) * PFT_PRE_CLUTTER_GRID_(w, k) * 2u) +                        \
+     2u * PFT_WS_ROUND(PFT_PRE_CLUTTER_GRID_(w, k) * 4u) +                                        \
+     ((k) > 1u ? 2u * PFT_WS_ROUND(PFT_PRE_CLUTTER_GRID_(w, k) * 8u) : 0u))
+
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2, no veto, no
- *  persistence gate, excess 1.5). */
+ *  persistence gate, excess 1.5, not in place, per pixel). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto", "persist",
- *  "excess"); NULL on success. */
+ *  "excess", "block"); NULL on success. */
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg);
@@ -391,9 +430,21 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c);
  */
 pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
                                     int32_t shift_x, int32_t shift_y, bool evidence);
+/**
+ * pft_pre_clutter_update for an instance configured with inplace: the output is written over
+ * the residual's own pixels (see "Memory" above). pixels must be res->data (the same buffer,
+ * writable) with stride_bytes == 2 width. PFT_ERR_INVAL for NULL or pixels != res->data,
+ * PFT_ERR_STATE for an instance without inplace (and pft_pre_clutter_update on one with it),
+ * PFT_ERR_FORMAT for a wrong frame or stride: nothing changes, the residual included.
+ */
+pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                            int16_t *pixels, int32_t shift_x, int32_t shift_y,
+                                            bool evidence);
 /** The output of the last update (PFT_PIX_RES16, the input's seq and timestamp_us), lent as
- *  pft_pre_frame lends its residual (valid until the next update, reset or init).
- *  PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first update. */
+ *  pft_pre_frame lends its residual (valid until the next update, reset or init; with inplace
+ *  it describes the caller's buffer of the last pft_pre_clutter_update_inplace, valid while
+ *  the caller keeps it unchanged). PFT_ERR_INVAL for NULL, PFT_ERR_STATE before the first
+ *  update. */
 pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out);
 /** Raises the map to at least level (sigma^2 Q6.10) on the 3 x 3 pixels around (x, y)
  *  (clipped at the frame's edges), e.g. where a track was found to drift with the scene, so

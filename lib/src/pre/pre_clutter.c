@@ -28,6 +28,8 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->veto = 0u;
     cfg->persist = 0u;
     cfg->excess = 384u;
+    cfg->inplace = false;
+    cfg->block = 0u;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -55,6 +57,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "persist";
     } else if (cfg->persist != 0u && (cfg->excess == 0u || cfg->excess > 32767u)) {
         bad = "excess";
+    } else if (cfg->block != 0u && cfg->block != 2u && cfg->block != 4u) {
+        bad = "block";
     } else {
         /* accepted */
     }
@@ -72,8 +76,9 @@ size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
     if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_PRE_CLUTTER_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
-                                           cfg->blur, cfg->persist != 0u ? 1u : 0u);
+    return PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                                 cfg->blur, cfg->persist != 0u ? 1u : 0u,
+                                                 cfg->block, cfg->inplace ? 1u : 0u);
 }
 
 pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
@@ -86,20 +91,38 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
         return PFT_ERR_CONFIG;
     }
     const size_t w = cfg->width, h = cfg->height;
+    /* the map's grid: pixels, or blocks of block x block pixels (the last ones cut) */
+    uint32_t lb = 0u; /* per pixel */
+    if (cfg->block == 4u) {
+        lb = 2u;
+    } else if (cfg->block == 2u) {
+        lb = 1u;
+    } else {
+        /* block 0: the grid is the frame */
+    }
+    const size_t k = (size_t)1u << lb;
+    const size_t gw = (w + k - 1u) / k, gh = (h + k - 1u) / k;
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
-    uint16_t *m = pft_ws_take(&ws, w * h * 2u);
-    int16_t *out = pft_ws_take(&ws, w * h * 2u);
-    uint16_t *mu = cfg->mean ? pft_ws_take(&ws, w * h * 2u) : NULL;
-    uint16_t *pc = cfg->persist != 0u ? pft_ws_take(&ws, w * h * 2u) : NULL;
-    uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * w * 2u);
-    uint32_t *vs = pft_ws_take(&ws, w * 4u);
-    uint32_t *hs = pft_ws_take(&ws, w * 4u);
+    uint16_t *m = pft_ws_take(&ws, gw * gh * 2u);
+    int16_t *out = cfg->inplace ? NULL : pft_ws_take(&ws, w * h * 2u);
+    uint16_t *mu = cfg->mean ? pft_ws_take(&ws, gw * gh * 2u) : NULL;
+    uint16_t *pc = cfg->persist != 0u ? pft_ws_take(&ws, gw * gh * 2u) : NULL;
+    uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * gw * 2u);
+    uint32_t *vs = pft_ws_take(&ws, gw * 4u);
+    uint32_t *hs = pft_ws_take(&ws, gw * 4u);
+    uint32_t *acc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
+    int32_t *sacc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
     memset(c, 0, sizeof(*c));
     c->cfg = *cfg;
+    c->gw = (uint32_t)gw;
+    c->gh = (uint32_t)gh;
+    c->lb = lb;
+    c->acc = acc;
+    c->sacc = sacc;
     c->m = m;
     c->out = out;
     c->mu = mu;
@@ -115,20 +138,29 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     if (c == NULL || c->m == NULL) {
         return PFT_ERR_INVAL;
     }
-    const size_t w = c->cfg.width, npix = w * (size_t)c->cfg.height;
-    for (size_t i = 0u; i < npix; ++i) {
+    const size_t npix = (size_t)c->cfg.width * (size_t)c->cfg.height;
+    const size_t gw = c->gw, ng = gw * (size_t)c->gh; /* the map's grid */
+    for (size_t i = 0u; i < ng; ++i) {
         c->m[i] = (uint16_t)CL_ONE_;
     }
-    memset(c->out, 0, npix * 2u);
-    for (size_t i = 0u; c->mu != NULL && i < npix; ++i) {
+    if (c->cfg.inplace) {
+        c->out = NULL; /* the caller's buffer of the next update */
+    } else {
+        memset(c->out, 0, npix * 2u);
+    }
+    for (size_t i = 0u; c->mu != NULL && i < ng; ++i) {
         c->mu[i] = (uint16_t)CL_MUOFF_;
     }
     if (c->pc != NULL) {
-        memset(c->pc, 0, npix * 2u);
+        memset(c->pc, 0, ng * 2u);
     }
-    memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * w * 2u);
-    memset(c->vs, 0, w * 4u);
-    memset(c->hs, 0, w * 4u);
+    memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * gw * 2u);
+    memset(c->vs, 0, gw * 4u);
+    memset(c->hs, 0, gw * 4u);
+    if (c->acc != NULL) {
+        memset(c->acc, 0, gw * 8u);
+        memset(c->sacc, 0, gw * 8u);
+    }
     c->frames = 0u;
     c->updates = 0u;
     c->seq = 0u;
@@ -152,11 +184,13 @@ static int32_t cl_div_(int32_t n, int32_t d)
     return n < 0 ? -q : q;
 }
 
-/* Floor and Q8 fraction of a Q16.16 shift, the fraction rounded to 1/256 px. */
-static void cl_split_(int32_t s, int32_t *ip, uint32_t *fp)
+/* Floor and Q8 fraction of a Q16.16 shift of s / 2^lb grid steps (lb 0: pixels), the fraction
+ * rounded to 1/256 step. */
+static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
 {
-    const int64_t q8 = ((int64_t)s + 128) / 256 - (((int64_t)s + 128) % 256 < 0 ? 1 : 0);
-    /* q8 = floor((s + 128) / 256): the shift in Q8, rounded */
+    const int64_t d = (int64_t)((uint64_t)256u << lb);
+    const int64_t q8 = ((int64_t)s + d / 2) / d - (((int64_t)s + d / 2) % d < 0 ? 1 : 0);
+    /* q8 = floor((s + d / 2) / d): the shift in Q8 steps, rounded (lb 0: floor((s + 128) / 256)) */
     const int64_t i = q8 / 256 - ((q8 % 256) < 0 ? 1 : 0);
     *ip = (int32_t)i;
     *fp = (uint32_t)(q8 - i * 256);
@@ -229,19 +263,19 @@ static void cl_warp_(uint16_t *v, uint32_t *t, int32_t w, int32_t h, int32_t ix,
 /* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring. */
 static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
 {
-    const int32_t h = (int32_t)c->cfg.height;
+    const int32_t h = (int32_t)c->gh;
     const int32_t rr = r < 0 ? 0 : (r >= h ? h - 1 : r);
     if (rr <= y) {
-        return c->ring + (size_t)((uint32_t)rr % ((uint32_t)c->cfg.blur + 1u)) * c->cfg.width;
+        return c->ring + (size_t)((uint32_t)rr % ((uint32_t)c->cfg.blur + 1u)) * c->gw;
     }
-    return c->m + (size_t)rr * c->cfg.width;
+    return c->m + (size_t)rr * c->gw;
 }
 
 /* Read value of the map at every pixel of row y (before its update): the sum over the square
  * (box) or its largest value, Q6.10, into c->hs (c->vs: the vertical pass). */
 static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 {
-    const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->cfg.width;
+    const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->gw;
     uint32_t *vs = c->vs;
     const uint16_t *r0 = cl_row_(c, y - b, y);
     for (int32_t x = 0; x < w; ++x) {
@@ -295,7 +329,8 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 }
 
 /* Row y without the running mean (the default): the same values as the general loop of
- * pft_pre_clutter_update in three plain passes. The output is the residual itself except
+ * pft_pre_clutter_update in plain passes: the map's update (it reads r), then the output
+ * (which may be r itself, inplace). The output is the residual itself except
  * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
  * value is within +-PFT_PRE_RMAX_ already), and 0 where it exceeds veto; the map's update runs on every pixel and is kept
  * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535 and
@@ -303,19 +338,7 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
                           int32_t w, uint32_t a, uint32_t thr, uint32_t veto, uint32_t area)
 {
-    memcpy(o, r, (size_t)w * 2u);
-    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
-    for (int32_t x = 0; x < w; ++x) {
-        any |= hs[x] > thr ? 1u : 0u;
-    }
-    for (int32_t x = 0; any != 0u && x < w; ++x) {
-        const int32_t v = r[x];
-        if (hs[x] > thr && v != PFT_RES16_MASKED) {
-            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
-            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
-        }
-    }
+    /* the map's update first: it reads the residual, which o may be (inplace) */
     for (int32_t x = 0; x < w; ++x) {
         const int32_t v = r[x];
         const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
@@ -329,20 +352,169 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
         const uint32_t nm = t >= m ? m + q : m - q; /* between m and t: no clamp needed */
         mrow[x] = v == PFT_RES16_MASKED ? (uint16_t)m : (uint16_t)nm;
     }
+    if (o != r) {
+        memcpy(o, r, (size_t)w * 2u);
+    }
+    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
+    for (int32_t x = 0; x < w; ++x) {
+        any |= hs[x] > thr ? 1u : 0u;
+    }
+    for (int32_t x = 0; any != 0u && x < w; ++x) {
+        const int32_t v = o[x]; /* r[x]: o is its copy, or r itself */
+        if (hs[x] > thr && v != PFT_RES16_MASKED) {
+            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
+            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
+            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+        }
+    }
 }
 
-pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
-                                    int32_t shift_x, int32_t shift_y, bool evidence)
+/* The map on blocks (cfg.block): block row j (rows j B .. j B + B - 1 of the frame, B =
+ * 2^lb) is read once over the block grid (cl_read_row_), every pixel of it is scored with its
+ * block's read, then each block of the row is updated with the means over its unmasked pixels
+ * of this frame's terms (t = min(c^2, 64), the mean's clamp(r, -8, 8), the gate's r): the
+ * formulas of the per-pixel map with the pixel's terms replaced by their block means. A block
+ * without an unmasked pixel keeps its values. Each residual row is read before its output row
+ * is written (inplace). */
+static void cl_update_blocks_(pft_pre_clutter_t *c, const pft_frame_t *res, uint32_t a,
+                              uint32_t thr, uint32_t veto, uint32_t area)
 {
-    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
-        return PFT_ERR_INVAL;
-    }
     const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
+    const int32_t gw = (int32_t)c->gw, gh = (int32_t)c->gh;
+    const uint32_t lb = c->lb, nring = (uint32_t)c->cfg.blur + 1u;
+    const uint32_t rs = res->stride_bytes / 2u;
+    const uint32_t pk = (uint32_t)c->cfg.persist * 256u, pcap = 2u * pk;
+    const uint32_t exc = c->cfg.excess;
+    uint32_t *st = c->acc, *sn = c->acc + gw;       /* sum of t (<= 16 * 65535), count */
+    int32_t *smu = c->sacc, *sv = c->sacc + gw;     /* sum of clamp(8 r) (Q4.11), sum of r (Q8.8) */
+    uint32_t *sc = c->vs;                           /* per block: 0 plain, UINT32_MAX veto, else sqrt(M) Q10 */
+    for (int32_t j = 0; j < gh; ++j) {
+        uint16_t *mrow = c->m + (size_t)j * (size_t)gw;
+        memcpy(c->ring + (size_t)((uint32_t)j % nring) * (size_t)gw, mrow, (size_t)gw * 2u);
+        cl_read_row_(c, j);
+        for (int32_t i = 0; i < gw; ++i) {
+            const uint32_t mb = c->hs[i];
+            if (mb > thr) {
+                const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
+                sc[i] = mb > veto ? UINT32_MAX : pft_pre_isqrt64_((uint64_t)mm << 10);
+            } else {
+                sc[i] = 0u;
+            }
+        }
+        memset(st, 0, (size_t)gw * 8u);
+        memset(smu, 0, (size_t)gw * 8u);
+        uint16_t *mu = c->mu != NULL ? c->mu + (size_t)j * (size_t)gw : NULL;
+        uint16_t *pc = c->pc != NULL ? c->pc + (size_t)j * (size_t)gw : NULL;
+        const uint32_t y0 = (uint32_t)j << lb;
+        uint32_t y1 = y0 + (1u << lb) < (uint32_t)h ? y0 + (1u << lb) : (uint32_t)h;
+        if (mu == NULL) {
+            /* without the mean (c = r): plain passes per row, the same values: the block sums
+             * of t first (they read r), then the output (r itself where the block's read is
+             * not above thr, which may be r's own buffer, inplace) */
+            uint32_t any = 0u;
+            for (int32_t i = 0; i < gw; ++i) {
+                any |= sc[i];
+            }
+            for (uint32_t y = y0; y < y1; ++y) {
+                const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
+                int16_t *o = c->out + (size_t)y * (size_t)w;
+                for (int32_t x = 0; x < w; ++x) {
+                    const int32_t v = r[x];
+                    const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
+                    const uint32_t t0 = (ac * ac + 32u) >> 6;       /* >= 65536 where sq >= CL_SQMAX_ */
+                    uint32_t in = 1u; /* whether the pixel enters its block's sums */
+                    if (v == PFT_RES16_MASKED) {
+                        in = 0u;
+                    }
+                    const uint32_t i = (uint32_t)x >> lb;
+                    st[i] += in * (t0 > CL_MMAX_ ? CL_MMAX_ : t0);
+                    sn[i] += in;
+                }
+                if (o != r) {
+                    memcpy(o, r, (size_t)w * 2u);
+                }
+                for (int32_t x = 0; any != 0u && x < w; ++x) {
+                    const int32_t v = o[x]; /* r[x] */
+                    const uint32_t sv_ = sc[(uint32_t)x >> lb];
+                    if (sv_ != 0u && v != PFT_RES16_MASKED) {
+                        o[x] = sv_ == UINT32_MAX ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)sv_));
+                    }
+                }
+            }
+            y1 = y0; /* the rows are done */
+        }
+        for (uint32_t y = y0; y < y1; ++y) {
+            const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
+            int16_t *o = c->out + (size_t)y * (size_t)w;
+            for (int32_t x = 0; x < w; ++x) {
+                const int32_t v = r[x];
+                if (v == PFT_RES16_MASKED) {
+                    o[x] = PFT_RES16_MASKED;
+                    continue;
+                }
+                const uint32_t i = (uint32_t)x >> lb;
+                const int32_t cv = mu != NULL ? v - cl_div_((int32_t)mu[i] - (int32_t)CL_MUOFF_, 8) : v;
+                const uint32_t s = sc[i];
+                const int32_t wv = s == 0u ? cv : (s == UINT32_MAX ? 0 : cl_div_(cv * 1024, (int32_t)s));
+                o[x] = (int16_t)pft_pre_rclamp_(wv);
+                const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
+                const uint64_t sq = (uint64_t)ac * ac;
+                st[i] += sq >= CL_SQMAX_ ? CL_MMAX_ : (uint32_t)((sq + 32u) >> 6);
+                sn[i] += 1u;
+                if (mu != NULL) {
+                    smu[i] += v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
+                    sv[i] += v;
+                }
+            }
+        }
+        for (int32_t i = 0; i < gw; ++i) {
+            const uint32_t n = sn[i];
+            if (n == 0u) {
+                continue; /* every pixel of the block masked: its values kept */
+            }
+            const uint32_t t = (st[i] + n / 2u) / n;
+            const int32_t nm = (int32_t)mrow[i] + cl_scale_(a, (int32_t)t - (int32_t)mrow[i]);
+            mrow[i] = (uint16_t)(nm < 0 ? 0 : (nm > (int32_t)CL_MMAX_ ? (int32_t)CL_MMAX_ : nm));
+            if (mu == NULL) {
+                continue;
+            }
+            bool learn = true;
+            if (pc != NULL) {
+                const int32_t rb = cl_div_(sv[i], (int32_t)n); /* the block's mean r, Q8.8 */
+                const uint32_t av = (uint32_t)(rb < 0 ? -rb : rb);
+                const uint32_t p0 = pc[i];
+                const uint32_t p1 = av > exc ? (p0 + 256u > pcap ? pcap : p0 + 256u)
+                                             : (p0 > 128u ? p0 - 128u : 0u);
+                pc[i] = (uint16_t)p1;
+                learn = av <= exc || p1 >= pk;
+            }
+            if (learn) {
+                const int32_t tv = cl_div_(smu[i], (int32_t)n);
+                const int32_t mv = (int32_t)mu[i] - (int32_t)CL_MUOFF_;
+                mu[i] = (uint16_t)(mv + cl_scale_(a, tv - mv) + (int32_t)CL_MUOFF_);
+            }
+        }
+    }
+}
+
+/* PFT_OK or PFT_ERR_FORMAT: whether res is a residual frame of the configured size. */
+static pft_status_t cl_check_frame_(const pft_pre_clutter_t *c, const pft_frame_t *res)
+{
     if (res->format != PFT_PIX_RES16 || res->width != c->cfg.width ||
-        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)w ||
+        res->height != c->cfg.height || res->stride_bytes < 2u * (uint32_t)c->cfg.width ||
         (res->stride_bytes & 1u) != 0u) {
         return PFT_ERR_FORMAT;
     }
+    return PFT_OK;
+}
+
+/* One accepted frame; the output goes to c->out (packed rows), which is the residual's own
+ * buffer with inplace: each residual row is read before its output row is written, and not
+ * after. */
+static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shift_x,
+                       int32_t shift_y, bool evidence)
+{
+    const int32_t w = (int32_t)c->cfg.width, h = (int32_t)c->cfg.height;
     const size_t npix = (size_t)w * (size_t)h;
     c->updates++;
     c->seq = res->seq;
@@ -351,23 +523,24 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
         for (size_t i = 0u; i < npix; ++i) {
             c->out[i] = PFT_RES16_MASKED;
         }
-        return PFT_OK;
+        return;
     }
     if (c->frames > 0u) {
         int32_t ix, iy;
         uint32_t fx, fy;
-        cl_split_(shift_x, &ix, &fx);
-        cl_split_(shift_y, &iy, &fy);
+        const int32_t gw = (int32_t)c->gw, gh = (int32_t)c->gh;
+        cl_split_(shift_x, c->lb, &ix, &fx);
+        cl_split_(shift_y, c->lb, &iy, &fy);
         if (ix != 0 || iy != 0 || fx != 0u || fy != 0u) {
             /* beyond the frame, every pixel enters: the warp's indices stay in range */
-            ix = ix > w ? w : (ix < -w ? -w : ix);
-            iy = iy > h ? h : (iy < -h ? -h : iy);
-            cl_warp_(c->m, c->hs, w, h, ix, fx, iy, fy, CL_ONE_);
+            ix = ix > gw ? gw : (ix < -gw ? -gw : ix);
+            iy = iy > gh ? gh : (iy < -gh ? -gh : iy);
+            cl_warp_(c->m, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
             if (c->mu != NULL) {
-                cl_warp_(c->mu, c->hs, w, h, ix, fx, iy, fy, CL_MUOFF_);
+                cl_warp_(c->mu, c->hs, gw, gh, ix, fx, iy, fy, CL_MUOFF_);
             }
             if (c->pc != NULL) {
-                cl_warp_(c->pc, c->hs, w, h, ix, fx, iy, fy, 0u);
+                cl_warp_(c->pc, c->hs, gw, gh, ix, fx, iy, fy, 0u);
             }
         }
     }
@@ -382,6 +555,10 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
     /* persistence gate: the counter in frames Q8, its cap 2 k and its opening level k */
     const uint32_t pk = (uint32_t)c->cfg.persist * 256u, pcap = 2u * pk;
     const uint32_t exc = c->cfg.excess;
+    if (c->lb != 0u) {
+        cl_update_blocks_(c, res, a, thr, veto, area);
+        return;
+    }
     for (int32_t y = 0; y < h; ++y) {
         uint16_t *mrow = c->m + (size_t)y * (size_t)w;
         memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
@@ -432,6 +609,48 @@ pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res
             }
         }
     }
+}
+
+pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                    int32_t shift_x, int32_t shift_y, bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (c->cfg.inplace) {
+        return PFT_ERR_STATE; /* pft_pre_clutter_update_inplace: the output has no buffer here */
+    }
+    const pft_status_t s = cl_check_frame_(c, res);
+    if (s != PFT_OK) {
+        return s;
+    }
+    cl_update_(c, res, shift_x, shift_y, evidence);
+    return PFT_OK;
+}
+
+pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_frame_t *res,
+                                            int16_t *pixels, int32_t shift_x, int32_t shift_y,
+                                            bool evidence)
+{
+    if (c == NULL || c->m == NULL || res == NULL || pixels == NULL) {
+        return PFT_ERR_INVAL;
+    }
+    if (!c->cfg.inplace) {
+        return PFT_ERR_STATE;
+    }
+    if (res->data != (const void *)pixels) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_status_t s = cl_check_frame_(c, res);
+    if (s != PFT_OK) {
+        return s;
+    }
+    if (res->stride_bytes != 2u * (uint32_t)res->width) {
+        return PFT_ERR_FORMAT; /* the output's rows are packed */
+    }
+    /* every check is above: from here the residual becomes the output, row by row */
+    c->out = pixels;
+    cl_update_(c, res, shift_x, shift_y, evidence);
     return PFT_OK;
 }
 
@@ -460,12 +679,13 @@ pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y,
     if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
         return PFT_ERR_INVAL;
     }
-    const uint32_t w = c->cfg.width, h = c->cfg.height;
+    const uint32_t w = c->cfg.width, h = c->cfg.height, lb = c->lb;
     const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
     const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
-    for (uint32_t yy = y0; yy <= y1; ++yy) {
-        for (uint32_t xx = x0; xx <= x1; ++xx) {
-            uint16_t *m = &c->m[(size_t)yy * w + xx];
+    /* the entries of the map that hold those pixels (blocks: each once) */
+    for (uint32_t yy = y0 >> lb; yy <= y1 >> lb; ++yy) {
+        for (uint32_t xx = x0 >> lb; xx <= x1 >> lb; ++xx) {
+            uint16_t *m = &c->m[(size_t)yy * c->gw + xx];
             *m = *m < level ? level : *m;
         }
     }
@@ -477,5 +697,5 @@ uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y)
     if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
         return 0u;
     }
-    return c->m[(size_t)y * c->cfg.width + x];
+    return c->m[(size_t)(y >> c->lb) * c->gw + (x >> c->lb)];
 }
