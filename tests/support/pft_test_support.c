@@ -65,6 +65,23 @@ double pft_test_gauss(uint64_t *state)
     return sqrt(-2.0 * log(u[0])) * cos(6.283185307179586 * u[1]);
 }
 
+uint32_t pft_test_xorshift32(uint32_t *state)
+{
+    *state ^= *state << 13;
+    *state ^= *state >> 17;
+    *state ^= *state << 5;
+    return *state;
+}
+
+int32_t pft_test_noise_q88(uint32_t *state)
+{
+    int32_t v = 0;
+    for (int i = 0; i < 4; ++i) {
+        v += (int32_t)(pft_test_xorshift32(state) >> 20) - 2048;
+    }
+    return v * 256 / 2365;
+}
+
 void pft_test_check_rows(const char *name, const char *row_name, const uint32_t *ref,
                          const uint32_t *val, size_t rows, size_t cols)
 {

@@ -22,6 +22,13 @@ double pft_test_lsb(double v);
  * state must be non-zero. Independent of the library's RNG, for test inputs. */
 double pft_test_gauss(uint64_t *state);
 
+/* One step of a 32-bit xorshift (13, 17, 5) on a non-zero state; returns the new state. */
+uint32_t pft_test_xorshift32(uint32_t *state);
+
+/* About N(0, 1) in Q8.8 (sd 256): the sum of four uniforms from the top 12 bits of four
+ * pft_test_xorshift32 steps, centred and scaled (sd 1182 each, 2365 for the sum). */
+int32_t pft_test_noise_q88(uint32_t *state);
+
 /* Compares two tables of rows x cols uint32 values bit for bit; on the first difference prints
  * "name <row_name> r column c: expected .. got .." (rows counted from 1) and fails the test. */
 void pft_test_check_rows(const char *name, const char *row_name, const uint32_t *ref,

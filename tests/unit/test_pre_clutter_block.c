@@ -31,14 +31,7 @@ static uint32_t g_rs = 1234567u;
 
 static int16_t noise_q88(void)
 {
-    int32_t v = 0;
-    for (int i = 0; i < 4; ++i) {
-        g_rs ^= g_rs << 13;
-        g_rs ^= g_rs >> 17;
-        g_rs ^= g_rs << 5;
-        v += (int32_t)(g_rs >> 20) - 2048;
-    }
-    return (int16_t)(v * 256 / 2365);
+    return (int16_t)pft_test_noise_q88(&g_rs);
 }
 
 static pft_frame_t res_frame(uint32_t seq)

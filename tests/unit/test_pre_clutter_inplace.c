@@ -33,20 +33,13 @@ static uint32_t g_rs = 88172645u;
 
 static uint32_t rnd(void)
 {
-    g_rs ^= g_rs << 13;
-    g_rs ^= g_rs >> 17;
-    g_rs ^= g_rs << 5;
-    return g_rs;
+    return pft_test_xorshift32(&g_rs);
 }
 
 /* about N(0, 1) in Q8.8: a sum of four uniforms, sd 256 */
 static int16_t noise_q88(void)
 {
-    int32_t v = 0;
-    for (int i = 0; i < 4; ++i) {
-        v += (int32_t)(rnd() >> 20) - 2048;
-    }
-    return (int16_t)(v * 256 / 2365);
+    return (int16_t)pft_test_noise_q88(&g_rs);
 }
 
 static pft_frame_t frame_of(int16_t *px, uint32_t seq)

@@ -35,14 +35,7 @@ static uint32_t g_rs = 2463534242u;
 /* about N(0, 1) in Q8.8: a sum of four uniforms, sd 256 */
 static int32_t noise_q88(void)
 {
-    int32_t v = 0;
-    for (int i = 0; i < 4; ++i) {
-        g_rs ^= g_rs << 13;
-        g_rs ^= g_rs >> 17;
-        g_rs ^= g_rs << 5;
-        v += (int32_t)(g_rs >> 20) - 2048; /* uniform, sd 1182 */
-    }
-    return v * 256 / 2365;
+    return pft_test_noise_q88(&g_rs);
 }
 
 /* the sensor-fixed offset plane, sigma: 0.5 at the centre, slopes 0.004 and -0.003 per px */
@@ -304,15 +297,11 @@ static void test_every_pixel_against_at(void)
             TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
             const uint32_t nb = fl.nbx * fl.nby;
             for (uint32_t i = 0u; i < nb; ++i) {
-                g_rs ^= g_rs << 13;
-                g_rs ^= g_rs >> 17;
-                g_rs ^= g_rs << 5;
+                (void)pft_test_xorshift32(&g_rs);
                 fl.m[i] = (int32_t)(g_rs % 1048577u) - 524288; /* +-8 sigma (Q16), +-2^19 */
             }
             for (int i = 0; i < w * h; ++i) {
-                g_rs ^= g_rs << 13;
-                g_rs ^= g_rs >> 17;
-                g_rs ^= g_rs << 5;
+                (void)pft_test_xorshift32(&g_rs);
                 int32_t v = (int32_t)(g_rs % 8193u) - 4096;
                 v = (g_rs >> 24) == 0u ? PFT_RES16_MASKED : v;
                 v = (g_rs >> 24) == 1u ? 32767 : ((g_rs >> 24) == 2u ? -32767 : v);
