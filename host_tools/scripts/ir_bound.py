@@ -25,7 +25,7 @@ these filters, left to right, before the matched filter, in targets, clutter and
 the cache files carry the suffix _post-<spec> so the unfiltered files and outputs stay as they are, and
 report --post reads that filter's files. dir:d=2 (for 4 orientations r less the mean of the pixels at
 +-d along it, the smallest of the four), mean:n=15,g=5 (the mean of the n x n square less its g x g core
-subtracted), median:n=9,g=3 (the same with the median; slow), rms:n=15,g=5[,robust=abs|mad|rms][,floor=0.25]
+subtracted), median:n=9,g=3 (the same with the median; slow), rms:n=15,g=5[,robust=abs|mad|rms][,floor=0.25][,valid=1]
 (each pixel in the local rms of the n x n square less its g x g core).
 
 The statistic. MF_t = the residual of frame t correlated with the 7 x 7 point-sampled PSF
@@ -163,10 +163,13 @@ def post_median(r, n=9, g=3):
     return np.stack([fr - ndimage.median_filter(fr, footprint=fp, mode='constant') for fr in r])
 
 
-def post_rms(r, n=15, g=5, floor=0.25, robust='abs'):
+def post_rms(r, n=15, g=5, floor=0.25, robust='abs', valid=0):
     """(c) each pixel in the local rms of the n x n neighbourhood less its g x g guard core: robust
     'abs' = sqrt(pi / 2) x the mean |r| there (1 for unit Gaussian noise), 'mad' = 1.4826 x the median
-    |r| (slower), 'rms' = the plain rms; the scale held at >= floor (the zero borders)."""
+    |r| (slower), 'rms' = the plain rms; the scale held at >= floor. valid 0: the ring's mean over all
+    its n^2 - g^2 places, zeros outside the frame and at zero pixels counted (the scale too low within
+    n / 2 px of the border, which raises the border: the first form measured); valid 1: over the
+    ring's nonzero pixels only ('abs' and 'rms')."""
     if robust == 'mad':
         fp = _ring_fp(n, g)
         s = np.stack([1.4826 * ndimage.median_filter(np.abs(fr), footprint=fp, mode='constant') for fr in r])
@@ -174,6 +177,11 @@ def post_rms(r, n=15, g=5, floor=0.25, robust='abs'):
         s = np.sqrt(np.maximum(_ring_mean(r * r, n, g), 0.0))
     else:
         s = math.sqrt(math.pi / 2.0) * _ring_mean(np.abs(r), n, g)
+    if valid and robust != 'mad':
+        share = _ring_mean((r != 0).astype(np.float32), n, g)
+        s = np.where(share > 0.25, s / np.maximum(share, 0.25), 0.0)
+        if robust == 'rms':
+            s = s * np.sqrt(np.maximum(share, 0.25))  # s was sqrt(mean r^2 over all places)
     return r / np.maximum(s, floor)
 
 
