@@ -17,7 +17,16 @@ and sequence.json from the sim folder; the frames themselves are not read).
   ir_bound.py targets  --sim SIM --run RUN --db 09 --seeds 1-29 --cache C
   ir_bound.py clutter  --sim SIM --run RUN --db 09 --seeds 1-29 --cache C [--every 5] [--dv 0.05]
   ir_bound.py report   --cache C --dbs 06 09 12 [--tbd DB=SUMMARY.json ...] [--trace-list FILE]
-                       [--fig PNG] [--max-seed 29]
+                       [--fig PNG] [--max-seed 29] [--curves-out CURVES.json]
+  ir_bound.py roc      LABEL=CURVES.json ... --db 09 --ks 12 20 --fig PNG   (curves of several reports in one figure)
+
+--post NAME[:k=v,...][+NAME...] (targets, clutter, report; "Branch irdir"): each residual frame goes through
+these filters, left to right, before the matched filter, in targets, clutter and its --white reference;
+the cache files carry the suffix _post-<spec> so the unfiltered files and outputs stay as they are, and
+report --post reads that filter's files. dir:d=2 (for 4 orientations r less the mean of the pixels at
++-d along it, the smallest of the four), mean:n=15,g=5 (the mean of the n x n square less its g x g core
+subtracted), median:n=9,g=3 (the same with the median; slow), rms:n=15,g=5[,robust=abs|mad|rms][,floor=0.25][,valid=1]
+(each pixel in the local rms of the n x n square less its g x g core).
 
 The statistic. MF_t = the residual of frame t correlated with the 7 x 7 point-sampled PSF
 (Gaussian, sigma 0.7 px, the sim's) normalised to unit energy (unit variance under white unit
@@ -52,6 +61,7 @@ import glob
 import json
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -98,6 +108,122 @@ def robust_sd(v):
     return 1.4826 * float(np.median(np.abs(v - np.median(v))))
 
 
+# ---------------------------------------------------------------- post-processing of the residual (--post)
+def _shift(r, dx, dy):
+    """r[..., y + dy, x + dx], zero outside the frame."""
+    out = np.zeros_like(r)
+    h, w = r.shape[-2:]
+    ys, yd = (slice(dy, h), slice(0, h - dy)) if dy >= 0 else (slice(0, h + dy), slice(-dy, h))
+    xs, xd = (slice(dx, w), slice(0, w - dx)) if dx >= 0 else (slice(0, w + dx), slice(-dx, w))
+    out[..., yd, xd] = r[..., ys, xs]
+    return out
+
+
+def _ring_mean(r, n, g):
+    """Mean over the n x n square less its g x g core (g 0: no core), per frame."""
+    a = ndimage.uniform_filter(r, size=(1, n, n), mode='constant') * float(n * n)
+    if g > 0:
+        a -= ndimage.uniform_filter(r, size=(1, g, g), mode='constant') * float(g * g)
+    return a / float(n * n - g * g)
+
+
+def _ring_fp(n, g):
+    fp = np.ones((n, n), bool)
+    if g > 0:
+        c0 = (n - g) // 2
+        fp[c0:c0 + g, c0:c0 + g] = False
+    return fp
+
+
+def post_dir(r, d=2, center=1):
+    """(a) directional difference: per pixel and for 4 orientations (0, 90, 45, 135 degrees), r less
+    the mean of the two pixels at +-d px along it (diagonals at (+-d, +-d)); the smallest of the four;
+    with center 1, less its median over the frame's nonzero pixels (the smallest of four differences is
+    biased low, about -0.73 of the noise's sd on white noise, and the search needs a zero-centred field)."""
+    out = None
+    for ox, oy in ((1, 0), (0, 1), (1, 1), (1, -1)):
+        v = r - 0.5 * (_shift(r, d * ox, d * oy) + _shift(r, -d * ox, -d * oy))
+        out = v if out is None else np.minimum(out, v)
+    if center:
+        for t in range(len(out)):
+            nz = r[t] != 0
+            if nz.any():
+                out[t] -= np.float32(np.median(out[t][nz]))
+    return out
+
+
+def post_mean(r, n=15, g=5):
+    """(b) the mean of the n x n neighbourhood less its g x g guard core subtracted."""
+    return r - _ring_mean(r, n, g)
+
+
+def post_median(r, n=9, g=3):
+    """(b') the median of the n x n neighbourhood less its g x g guard core subtracted."""
+    fp = _ring_fp(n, g)
+    return np.stack([fr - ndimage.median_filter(fr, footprint=fp, mode='constant') for fr in r])
+
+
+def post_rms(r, n=15, g=5, floor=0.25, robust='abs', valid=0):
+    """(c) each pixel in the local rms of the n x n neighbourhood less its g x g guard core: robust
+    'abs' = sqrt(pi / 2) x the mean |r| there (1 for unit Gaussian noise), 'mad' = 1.4826 x the median
+    |r| (slower), 'rms' = the plain rms; the scale held at >= floor. valid 0: the ring's mean over all
+    its n^2 - g^2 places, zeros outside the frame and at zero pixels counted (the scale too low within
+    n / 2 px of the border, which raises the border: the first form measured); valid 1: over the
+    ring's nonzero pixels only ('abs' and 'rms')."""
+    if robust == 'mad':
+        fp = _ring_fp(n, g)
+        s = np.stack([1.4826 * ndimage.median_filter(np.abs(fr), footprint=fp, mode='constant') for fr in r])
+    elif robust == 'rms':
+        s = np.sqrt(np.maximum(_ring_mean(r * r, n, g), 0.0))
+    else:
+        s = math.sqrt(math.pi / 2.0) * _ring_mean(np.abs(r), n, g)
+    if valid and robust != 'mad':
+        share = _ring_mean((r != 0).astype(np.float32), n, g)
+        s = np.where(share > 0.25, s / np.maximum(share, 0.25), 0.0)
+        if robust == 'rms':
+            s = s * np.sqrt(np.maximum(share, 0.25))  # s was sqrt(mean r^2 over all places)
+    return r / np.maximum(s, floor)
+
+
+POSTS = {'dir': post_dir, 'mean': post_mean, 'median': post_median, 'rms': post_rms}
+
+
+def parse_post(spec):
+    """'NAME[:k=v,...][+NAME[:k=v,...]]...' -> [(function, kwargs)], applied left to right."""
+    steps = []
+    for part in spec.split('+'):
+        name, _, params = part.partition(':')
+        kw = {}
+        for kv in filter(None, params.split(',')):
+            k, _, v = kv.partition('=')
+            try:
+                kw[k] = int(v)
+            except ValueError:
+                try:
+                    kw[k] = float(v)
+                except ValueError:
+                    kw[k] = v
+        steps.append((POSTS[name], kw))
+    return steps
+
+
+def post_tag(spec):
+    """The cache files' suffix of a --post spec ('' without one)."""
+    return '' if not spec else '_post-' + re.sub(r'[^A-Za-z0-9.=-]+', '_', spec)
+
+
+def apply_post(res, spec):
+    """The residual stack (frames, h, w) through the --post filters; frames without a residual
+    (all zero) stay zero."""
+    if not spec:
+        return res
+    ev = np.array([bool(fr.any()) for fr in res])
+    for fn, kw in parse_post(spec):
+        res = fn(res, **kw).astype(np.float32)
+    res[~ev] = 0.0
+    return res
+
+
 # ---------------------------------------------------------------- inputs
 def cmd_inputs(a):
     import subprocess
@@ -123,10 +249,11 @@ def cmd_inputs(a):
 def cmd_targets(a):
     os.makedirs(a.cache, exist_ok=True)
     for seed in seeds_arg(a.seeds):
-        out = os.path.join(a.cache, f'tg_{a.db}_s{seed}.json')
+        out = os.path.join(a.cache, f'tg_{a.db}_s{seed}{post_tag(a.post)}.json')
         if os.path.exists(out):
             continue
         q, res, truth, _ = load(a.sim, a.run, a.db, seed)
+        res = apply_post(res, a.post)
         f, h, w = res.shape
         mf = matched(res)
         ev = [bool(res[t].any()) for t in range(f)]  # frames with a residual (1-based t+1)
@@ -228,7 +355,7 @@ def cmd_clutter(a):
     kmax = max(ks)
     tree = None
     for seed in seeds_arg(a.seeds):
-        out = os.path.join(a.cache, f'cl_{a.db}_s{seed}{a.tag}.json')
+        out = os.path.join(a.cache, f'cl_{a.db}_s{seed}{post_tag(a.post)}{a.tag}.json')
         if os.path.exists(out):
             continue
         q, res, truth, plat = load(a.sim, a.run, a.db, seed)
@@ -236,6 +363,7 @@ def cmd_clutter(a):
             ev0 = np.array([bool(fr.any()) for fr in res])
             res = np.random.default_rng(1000 + seed).standard_normal(res.shape).astype(np.float32)
             res[~ev0] = 0.0
+        res = apply_post(res, a.post)
         scene_v = (-(plat[-1][0] - plat[0][0]) / (len(plat) - 1), -(plat[-1][1] - plat[0][1]) / (len(plat) - 1))
         if tree is None:
             order, flags, npaths = path_tree(kmax, a.dv, a.vmin, a.vmax, scene_v, a.scene_gate, a.phases)
@@ -381,10 +509,9 @@ def event_counts(cl, K, sd, ts, radius, gate, min_span=5):
 
 def cmd_report(a):
     km = read_kinds(DEFAULT_KINDS)
-    import re
     src = {}  # K -> the clutter files holding it (the first tag that has it)
     for tag in a.clutter_tags:
-        pat = re.compile(rf'cl_{a.clutter_db}_s\d+{re.escape(tag)}\.json$')
+        pat = re.compile(rf'cl_{a.clutter_db}_s\d+{re.escape(post_tag(a.post) + tag)}\.json$')
         cl = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(a.cache, f'cl_{a.clutter_db}_s*.json')))
               if pat.search(os.path.basename(p))]
         cl = [c for c in cl if c['seed'] <= a.max_seed]
@@ -467,7 +594,9 @@ def cmd_report(a):
     res_rows = []
     curves = {}
     for db in a.dbs:
-        tg = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(a.cache, f'tg_{db}_s*.json')))]
+        tpat = re.compile(rf'tg_{db}_s\d+{re.escape(post_tag(a.post))}\.json$')
+        tg = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(a.cache, f'tg_{db}_s*.json')))
+              if tpat.search(os.path.basename(p))]
         tg = [t for t in tg if t['seed'] <= a.max_seed]
         if not tg:
             continue
@@ -572,6 +701,10 @@ def cmd_report(a):
         av = d.get('averaged', {})
         print(f'TBD / DBT measured {db} dB: ' + json.dumps({k: av.get(k) for k in sorted(av) if 'tbd' in k.lower()
                                                             or 'dbt' in k.lower()})[:600])
+    if a.curves_out:
+        json.dump(dict(post=a.post, curves=[dict(db=db, K=K, kind=kd, points=c) for (db, K, kd), c in curves.items()]),
+                  open(a.curves_out, 'w'))
+        print(f'wrote {a.curves_out}')
     if a.fig:
         import matplotlib
         matplotlib.use('Agg')
@@ -607,6 +740,36 @@ def cmd_report(a):
         print(f'wrote {a.fig}')
 
 
+def cmd_roc(a):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.2, 3.8))
+    styles = ['-', '--', '-.', ':']
+    for i, spec in enumerate(a.curves):
+        label, _, path = spec.partition('=')
+        d = json.load(open(path))
+        for j, K in enumerate(a.ks):
+            c = [x for x in d['curves'] if x['db'] == a.db and x['K'] == K and x['kind'] == 'event']
+            if c:
+                pts = c[0]['points']
+                ax.plot([max(x, 1e-2) for x, _ in pts], [100 * y for _, y in pts], color=f'C{j}',
+                        ls=styles[i % len(styles)], label=f'{label}, K={K}')
+    ax.axvline(1.0, color='grey', ls=':', lw=1)
+    ax.axhline(90, color='grey', ls=':', lw=1)
+    ax.set_xscale('log')
+    ax.set_xlim(1e-1, 1e3)
+    ax.set_ylim(0, 100)
+    ax.set_xlabel('distinct false objects per 1000 frames')
+    ax.set_ylabel('targets detected (%)')
+    ax.set_title(a.title, fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc='upper left')
+    fig.tight_layout()
+    fig.savefig(a.fig, dpi=90)
+    print(f'wrote {a.fig}')
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     sp = ap.add_subparsers(dest='cmd', required=True)
@@ -622,6 +785,8 @@ def main():
         p.add_argument('--seeds', required=True)
         if name != 'inputs':
             p.add_argument('--cache', required=True)
+            p.add_argument('--post', default='', help='NAME[:k=v,...][+NAME...]: filter each residual frame before '
+                           'the matched filter (dir, mean, median, rms; see post_*); its own cache files')
         if name == 'clutter':
             p.add_argument('--every', type=int, default=5, help='windows end at every N-th frame')
             p.add_argument('--dv', type=float, default=0.05, help='velocity grid step, px/frame')
@@ -648,9 +813,19 @@ def main():
     p.add_argument('--seed-label', default='1-29', help='seeds named in the figure titles')
     p.add_argument('--radius', type=float, default=4.0, help='px: candidates this close in scene coordinates are one object')
     p.add_argument('--fig')
+    p.add_argument('--post', default='', help='read the cache files of this --post filter (targets and clutter)')
     p.add_argument('--at-rates', type=float, nargs='*', help='print the detection at these false objects / 1000 frames')
+    p.add_argument('--curves-out', help='write the ROC curves (distinct objects and frames, per SNR and K) to this JSON')
+    p = sp.add_parser('roc', help='one ROC figure from several report --curves-out files (e.g. a --post filter '
+                      'beside the unfiltered residual)')
+    p.add_argument('curves', nargs='+', help='LABEL=FILE.json')
+    p.add_argument('--db', default='09')
+    p.add_argument('--ks', type=int, nargs='+', default=[12, 20])
+    p.add_argument('--title', default='')
+    p.add_argument('--fig', required=True)
     a = ap.parse_args()
-    {'inputs': cmd_inputs, 'targets': cmd_targets, 'clutter': cmd_clutter, 'report': cmd_report}[a.cmd](a)
+    {'inputs': cmd_inputs, 'targets': cmd_targets, 'clutter': cmd_clutter, 'report': cmd_report,
+     'roc': cmd_roc}[a.cmd](a)
 
 
 if __name__ == '__main__':
