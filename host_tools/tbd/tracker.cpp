@@ -275,9 +275,13 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
         t.first_frame = tr[i].first_frame;
         out.tracks.push_back(t);
     }
-    for (uint32_t k = 0; cfg_.sprt_accept > to_real(0.0) && k < cfg_.max_targets; ++k) {
-        const pft_tbd_track_t &r = mgr_.records[k];  // the manager's slots: id 0 free, first_frame 0 tentative
-        if (r.id == 0u || r.first_frame != 0u || r.age == 0u)
+    std::vector<pft_tbd_track_t> tent(cfg_.max_targets);
+    std::size_t n_tent = pft_tbd_tentative(&mgr_, tent.data(), tent.size());
+    if (n_tent > tent.size())
+        n_tent = tent.size();
+    for (std::size_t k = 0; k < n_tent; ++k) {
+        const pft_tbd_track_t &r = tent[k];  // the sequential test's tentative tracks (public coordinates)
+        if (r.age == 0u)
             continue;  // age 0: the hand-over frame, whose position is the search layer's estimate
         TrackOut t;
         t.id = r.id;

@@ -81,6 +81,11 @@ typedef struct {
     double start[FRAMES];       /* then its sprt_llr (the start of its sum) */
     double start1[FRAMES];      /* and what sprt_start 1 and 2 give, from the search layer */
     double start2[FRAMES];      /* (internal layout), in double */
+    double rx[FRAMES], ry[FRAMES]; /* track id 1's position from pft_tbd_tracks */
+    int tent1[FRAMES];          /* track id 1 listed by pft_tbd_tentative */
+    int n_tent[FRAMES];         /* pft_tbd_tentative's count */
+    double tx[FRAMES], ty[FRAMES]; /* then its position */
+    uint32_t tage[FRAMES];      /* and its age */
 } run_t;
 
 static pft_tbd_t g_t;
@@ -127,6 +132,20 @@ static void run(double accept, double reject, int last, double theta_end, run_t 
                 o->llr[k - 1] = D(tk[i].log_mean_lr);
                 o->sprt[k - 1] = D(tk[i].sprt_llr);
                 o->first[k - 1] = tk[i].first_frame;
+                o->rx[k - 1] = D(tk[i].x);
+                o->ry[k - 1] = D(tk[i].y);
+            }
+        }
+        pft_tbd_track_t tt[MAXT];
+        const size_t nt = pft_tbd_tentative(&g_t, tt, MAXT);
+        o->n_tent[k - 1] = (int)nt;
+        for (size_t i = 0; i < nt && i < MAXT; ++i) {
+            TEST_ASSERT_EQUAL_UINT32(0u, tt[i].first_frame);
+            if (tt[i].id == 1u) {
+                o->tent1[k - 1] = 1;
+                o->tx[k - 1] = D(tt[i].x);
+                o->ty[k - 1] = D(tt[i].y);
+                o->tage[k - 1] = tt[i].age;
             }
         }
         pft_tbd_event_t ev[MAXT + 1u];
@@ -219,6 +238,36 @@ static void test_a_short_track_is_never_reported(void)
     TEST_ASSERT_EQUAL_INT(0, conf_on);
     TEST_ASSERT_EQUAL_INT(0, ended_on);
     TEST_ASSERT_EQUAL_INT(0, rep_on);
+}
+
+/* pft_tbd_tentative lists the tentative track at the position, in the coordinates of
+ * pft_tbd_tracks, that the run without the test reports for it: the same layer on the same
+ * frames. With the test off it lists nothing. */
+static void test_tentative_tracks_listed_where_reported_without_the_test(void)
+{
+    static run_t off, on;
+    run(0.0, -5.0, FRAMES, 0.5, &off);
+    const int h = handover(&off);
+    TEST_ASSERT_TRUE_MESSAGE(h > 0 && h < FRAMES - 6, "the bright target is handed over early");
+    run(1000.0, -1000.0, FRAMES, 0.5, &on); /* never accepted, never rejected */
+    int seen = 0;
+    for (int k = 1; k <= FRAMES; ++k) {
+        TEST_ASSERT_EQUAL_INT(0, off.n_tent[k - 1]);
+        TEST_ASSERT_EQUAL_INT(0, on.n_tracks[k - 1]);
+        TEST_ASSERT_EQUAL_INT(off.has1[k - 1], on.tent1[k - 1]);
+        if (on.tent1[k - 1]) {
+            TEST_ASSERT_EQUAL_UINT32((uint32_t)(k - h), on.tage[k - 1]);
+            TEST_ASSERT_TRUE(on.tx[k - 1] == off.rx[k - 1]);
+            TEST_ASSERT_TRUE(on.ty[k - 1] == off.ry[k - 1]);
+            /* and near the target ((12, 14) + k (0.3, 0.2) in 0-based pixels) */
+            TEST_ASSERT_DOUBLE_WITHIN(1.0, 12.0 + 0.3 * k, on.tx[k - 1]);
+            TEST_ASSERT_DOUBLE_WITHIN(1.0, 14.0 + 0.2 * k, on.ty[k - 1]);
+            ++seen;
+        }
+    }
+    TEST_ASSERT_TRUE_MESSAGE(seen >= 6, "the tentative track lives for several frames");
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)pft_tbd_tentative(NULL, NULL, 0u));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)on.n_tent[FRAMES - 1], (uint32_t)pft_tbd_tentative(&g_t, NULL, 0u));
 }
 
 static void test_reject_bound_drops_the_tentative_track(void)
@@ -425,6 +474,7 @@ int main(void)
     RUN_TEST(test_fields_refused_by_name);
     RUN_TEST(test_accepts_at_the_bound_with_the_known_sum);
     RUN_TEST(test_a_short_track_is_never_reported);
+    RUN_TEST(test_tentative_tracks_listed_where_reported_without_the_test);
     RUN_TEST(test_reject_bound_drops_the_tentative_track);
     RUN_TEST(test_refused_frame_leaves_a_tentative_track_untouched);
     RUN_TEST(test_shape_test_passes_a_point_and_stops_a_blob);

@@ -519,6 +519,14 @@ pft_status_t pft_tbd_set_shift(pft_tbd_t *t, pft_real_t dx, pft_real_t dy);
  *  (cfg.sprt_accept > 0) are not reported, so their ids may be missing from the sequence. */
 size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
 
+/** Copies up to max tentative tracks of the sequential test (cfg.sprt_accept > 0: handed over
+ *  to a track layer, not yet confirmed; first_frame 0) into out, ordered by id, in the same
+ *  coordinates as pft_tbd_tracks; returns how many exist (out may be NULL with max 0 to ask the
+ *  count). A track's hand-over frame has age 0 and the search layer's estimate as its position.
+ *  0 when the test is off or t is NULL. A flight pipeline feeds these to the scene-motion test
+ *  with its tentative flag (pft_tbd_scene.h). */
+size_t pft_tbd_tentative(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
+
 /** Copies up to max events of the last update into out; returns how many happened. */
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
 

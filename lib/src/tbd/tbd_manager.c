@@ -968,15 +968,17 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     return PFT_OK;
 }
 
-size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
+/* The records of the confirmed tracks (tentative false) or of the sequential test's tentative
+ * ones (first_frame 0), ordered by id, positions in public coordinates; returns how many exist. */
+static size_t tracks_by_id_(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max, bool tentative)
 {
     if (t == NULL || t->records == NULL) {
         return 0u;
     }
     size_t n = 0;
-    size_t n_conf = 0; /* the tracks less the tentative ones of the sequential test */
+    size_t n_sel = 0; /* the records of the kind asked for */
     for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
-        n_conf += t->records[k].id != 0u && t->records[k].first_frame != 0u ? 1u : 0u;
+        n_sel += t->records[k].id != 0u && ((t->records[k].first_frame == 0u) == tentative) ? 1u : 0u;
     }
     uint32_t last = 0;
     for (uint32_t pass = 0; pass < t->cfg.max_targets && n < max && out != NULL; ++pass) {
@@ -986,7 +988,7 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         bool found = false;
         for (uint32_t k = 0; k < t->cfg.max_targets; ++k) {
             uint32_t id = t->records[k].id;
-            if (id != 0u && t->records[k].first_frame != 0u && id > last && id <= best) {
+            if (id != 0u && ((t->records[k].first_frame == 0u) == tentative) && id > last && id <= best) {
                 best = id;
                 bk = k;
                 found = true;
@@ -1001,7 +1003,20 @@ size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
         ++n;
         last = best;
     }
-    return n_conf;
+    return n_sel;
+}
+
+size_t pft_tbd_tracks(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
+{
+    return tracks_by_id_(t, out, max, false);
+}
+
+size_t pft_tbd_tentative(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max)
+{
+    if (t == NULL || !(t->cfg.sprt_accept > PFT_C(0.0))) {
+        return 0u; /* no sequential test: every handed-over track is confirmed */
+    }
+    return tracks_by_id_(t, out, max, true);
 }
 
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max)
