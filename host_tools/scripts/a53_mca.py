@@ -7,7 +7,9 @@ turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It 
 1. `run`: tests/tools/ir_probe of an aarch64 build (or another program with the work markers,
    --exe/--args) under qemu-aarch64 with the plugin tests/soak/qemu_marks.c: out= the
    instructions per call, prof= per function, blocks= per translated block, and with --mem its
-   data-cache model (mem=). Odd regions are ir_probe's stage calls, even ones the manager's.
+   data-cache model (mem=). Odd regions are ir_probe's stage calls, even ones the manager's
+   (ir_probe's MARKS argument 2, which run passes: the clutter map between them is not
+   bracketed, so it is not modelled).
 2. `model`: maps the block counts onto `objdump -d` of the same executable (the library's
    objects as linked: -O3, no LTO), finds in each function of >= 0.5 % of its region its hot
    loops (from each backward-branch target, the dominant path: at every conditional branch the
@@ -66,7 +68,9 @@ def cmd_run(a):
     if a.calls:
         i, j = a.calls.split('-')
         plug += ',from=%d,to=%d' % (int(i), int(j))
-    args = a.args.split() if a.args else [a.frames, w, h, '14', str(a.n), '1', '12000']
+    # MARKS 2: ir_probe leaves the clutter map's call outside the work markers, so the plugin's
+    # regions alternate stage (odd), manager (even), as the model reads them
+    args = a.args.split() if a.args else [a.frames, w, h, '14', str(a.n), '1', '12000', 'inplace', '0', '2']
     cmd = ['nice', '-n', '10', 'qemu-aarch64', '-L', '/usr/aarch64-linux-gnu', '-plugin', plug, exe] + args
     log = subprocess.run(cmd, capture_output=True, text=True)
     open(os.path.join(a.out, 'log.txt'), 'w').write(log.stdout + log.stderr)

@@ -14,11 +14,14 @@
  * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53", "Branch
  * irmap").
  *
- *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK]]
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK [MARKS]]]
  *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
  *   procedural_384x288.json; MAP: inplace (default, as pft run: the map's output over the
  *   stage's residual) or copy (the map's own output buffer, as before branch irmap); BLOCK: the
- *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4)
+ *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4; MARKS: 3 (default:
+ *   the work markers bracket the stage, the map and the manager) or 2 (the map's call is not
+ *   bracketed, so the QEMU plugin's regions alternate stage, manager, odd and even, as
+ *   host_tools/scripts/a53_mca.py reads them; callgrind's dumps stay three per frame))
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
  * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
@@ -88,6 +91,7 @@ typedef struct {
     int32_t sx, sy;  /* map: the scene's shift */
     int ev;          /* map: evidence */
     int inplace;     /* map: pft_pre_clutter_update_inplace */
+    int unmarked;    /* no work markers around this call (MARKS 2, the map) */
 } irp_call_t;
 
 /* The three measured calls go through one function that callgrind toggles on and dumps after
@@ -99,7 +103,9 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c)
 {
     pft_status_t s;
-    pft_work_mark_begin();
+    if (!c->unmarked) {
+        pft_work_mark_begin();
+    }
     if (c->pre != NULL) {
         s = pft_pre_update_inplace(c->pre, c->f, c->buf);
     } else if (c->cl != NULL) {
@@ -109,19 +115,26 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
     } else {
         s = pft_tbd_update(c->tbd, c->f);
     }
-    pft_work_mark_end();
+    if (!c->unmarked) {
+        pft_work_mark_end();
+    }
     return s;
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK]]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2]]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
     if (argc >= 9 && map_inplace && strcmp(argv[8], "inplace") != 0) {
         fprintf(stderr, "ir_probe: MAP is inplace or copy, not %s\n", argv[8]);
+        return 2;
+    }
+    const int marks = argc >= 11 ? atoi(argv[10]) : 3;
+    if (marks != 2 && marks != 3) {
+        fprintf(stderr, "ir_probe: MARKS is 3 or 2, not %s\n", argv[10]);
         return 2;
     }
     const uint16_t W = (uint16_t)atoi(argv[2]), H = (uint16_t)atoi(argv[3]);
@@ -294,6 +307,7 @@ int main(int argc, char **argv)
         call.sy = st.shift[1];
         call.ev = ev;
         call.inplace = map_inplace;
+        call.unmarked = marks == 2;
         s = irp_measured(&call);
         pft_frame_t co;
         if (s == PFT_OK) {
