@@ -118,6 +118,22 @@ pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h)
     return f;
 }
 
+pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint32_t seq,
+                                 uint64_t timestamp_us)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = px;
+    f.width = w;
+    f.height = h;
+    f.stride_bytes = 2u * (uint32_t)w;
+    f.format = PFT_PIX_RES16;
+    f.bit_depth = 16u;
+    f.seq = seq;
+    f.timestamp_us = timestamp_us;
+    return f;
+}
+
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts)
 {

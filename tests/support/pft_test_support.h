@@ -9,6 +9,9 @@ double pft_test_to_double(pft_real_t v);
 pft_real_t pft_test_from_double(double v);
 /* An RGB888 frame over w x h packed pixels at data (stride 3 w, every other field 0). */
 pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h);
+/* A PFT_PIX_RES16 frame (bit depth 16, rows of 2 w bytes) over px, with seq and timestamp_us. */
+pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint32_t seq,
+                                 uint64_t timestamp_us);
 /* A TSA-AK configuration for the unit tests: the defaults, a w x h frame, targets up to
  * maxt x maxt, n particles, pts snake points, and the snake parameters for that target size. */
 /* The four corners of the box x0..x1, y0..y1 (inclusive), clockwise from the top left. */

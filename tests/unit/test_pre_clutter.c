@@ -36,17 +36,7 @@ static int16_t noise_q88(void)
 
 static pft_frame_t res_frame(uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = g_res;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_RES16;
-    f.bit_depth = 16u;
-    f.seq = seq;
-    f.timestamp_us = 1000u * seq;
-    return f;
+    return pft_test_res16_frame(g_res, W, H, seq, 1000u * seq);
 }
 
 static void init_map(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg)

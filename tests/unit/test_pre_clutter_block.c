@@ -36,16 +36,7 @@ static int16_t noise_q88(void)
 
 static pft_frame_t res_frame(uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = g_res;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_RES16;
-    f.bit_depth = 16u;
-    f.seq = seq;
-    return f;
+    return pft_test_res16_frame(g_res, W, H, seq, 0u);
 }
 
 static const int16_t *out_of(const pft_pre_clutter_t *c)

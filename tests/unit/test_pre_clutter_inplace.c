@@ -44,17 +44,7 @@ static int16_t noise_q88(void)
 
 static pft_frame_t frame_of(int16_t *px, uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = px;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_RES16;
-    f.bit_depth = 16u;
-    f.seq = seq;
-    f.timestamp_us = 1000u * seq;
-    return f;
+    return pft_test_res16_frame(px, W, H, seq, 1000u * seq);
 }
 
 /* Frame k: noise, a 4 sigma blob fixed in the scene (the scene drifts, see shift_of), a 6 sigma

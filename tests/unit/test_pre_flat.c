@@ -46,16 +46,7 @@ static double plane(int x, int y)
 
 static pft_frame_t res_frame(uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = g_res;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_RES16;
-    f.bit_depth = 16u;
-    f.seq = seq;
-    return f;
+    return pft_test_res16_frame(g_res, W, H, seq, 0u);
 }
 
 static void init_flat(pft_pre_flat_t *fl)

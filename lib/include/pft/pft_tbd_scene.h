@@ -39,7 +39,7 @@
  * gate_px, early_px and fit_px are taken to Q16.16 at init. The gate and early tests compare
  * squared displacements in Q32.32 exactly; the line fit's residuals are exact rationals
  * rounded to 2^-16 px (|residual| saturated at 1024 px), summed squared in Q32.32 and compared
- * with k fit_px^2 (k the positions held). Against the host's former double arithmetic a
+ * with k fit_px^2 (k the positions held). Against the host's former 64-bit floating-point arithmetic a
  * decision can differ only where a displacement lies within the thresholds' rounding to
  * Q16.16 (gate 0.15 px is 0.149994 px, fit 0.2 px is 0.199997 px), or within about 1e-5 px of
  * a threshold (the fit's residuals rounded to 2^-16 px; in the float build also the

@@ -8,6 +8,8 @@
 
 #include "pft/pft_tbd_scene.h"
 
+#include "../core/config_int.h"
+
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -38,11 +40,8 @@ static bool sc_thr_ok_(pft_real_t v, bool zero_ok)
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field)
 {
     const char *bad = NULL;
-    if (field != NULL) {
-        *field = NULL;
-    }
     if (cfg == NULL) {
-        return PFT_ERR_INVAL;
+        return pft_config_verdict_(false, NULL, field);
     }
     if (cfg->frames < 1u || cfg->frames > PFT_TBD_SCENE_MAX_FRAMES) {
         bad = "frames";
@@ -63,13 +62,7 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
     } else {
         /* accepted */
     }
-    if (bad != NULL) {
-        if (field != NULL) {
-            *field = bad;
-        }
-        return PFT_ERR_CONFIG;
-    }
-    return PFT_OK;
+    return pft_config_verdict_(true, bad, field);
 }
 
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg)
