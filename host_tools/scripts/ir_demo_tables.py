@@ -39,6 +39,8 @@ def ratio(num, den):
     if D == 0 or R < 2:
         return float('nan'), float('nan')
     p = N / D
+    if sum(1 for b in den if b) < 2:  # one run holds all of it: no spread to estimate from
+        return p, float('nan')
     var = sum((a - p * b) ** 2 for a, b in zip(num, den)) / (R * (R - 1))
     return p, math.sqrt(var) / (D / R)
 
@@ -148,6 +150,11 @@ def grad_bands(rows, pft, scenario, work):
     return {lab: [mean_se([v[i] for v in c.values()]) for i in range(3)] for lab, c in counts.items()}
 
 
+def emit(*a):
+    """print, with a standard error that cannot be estimated shown as a dash"""
+    print(*(x.replace('(± nan)', '(± –)').replace('nan', '–') if isinstance(x, str) else x for x in a))
+
+
 def main():
     rows = []
     args = sys.argv[1:]
@@ -166,36 +173,36 @@ def main():
                 s['per_run'] += one['per_run']
                 s['dbt']['per_run'] += one['dbt']['per_run']
         rows.append((label, s, tracker(s['per_run']), tracker(s['dbt']['per_run']), kinds(s['per_run'])))
-    print('| setting | runs | TBD detected (± s.e.) | delay | RMSE (px) | false / 1000 fr. | '
+    emit('| setting | runs | TBD detected (± s.e.) | delay | RMSE (px) | false / 1000 fr. | '
           'DBT detected | DBT delay | DBT RMSE | DBT false / 1000 fr. |')
-    print('|---|---|---|---|---|---|---|---|---|---|')
+    emit('|---|---|---|---|---|---|---|---|---|---|')
     for label, s, t, d, _ in rows:
-        print(f"| {label} | {s['runs']} | {t['det']} / {t['inj']} = {100 * t['pd']:.1f} % (± {100 * t['pd_se']:.1f}) "
+        emit(f"| {label} | {s['runs']} | {t['det']} / {t['inj']} = {100 * t['pd']:.1f} % (± {100 * t['pd_se']:.1f}) "
               f"| {t['delay']:.1f} (± {t['delay_se']:.1f}) | {t['rmse']:.3f} (± {t['rmse_se']:.3f}) "
               f"| {t['fa']:.1f} (± {t['fa_se']:.1f}) "
               f"| {d['det']} / {d['inj']} = {100 * d['pd']:.1f} % (± {100 * d['pd_se']:.1f}) "
               f"| {d['delay']:.1f} (± {d['delay_se']:.1f}) | {d['rmse']:.3f} (± {d['rmse_se']:.3f}) "
               f"| {d['fa']:.1f} (± {d['fa_se']:.1f}) |")
-    print()
-    print('| setting | TBD false / 1000 fr.: right border x ≥ 352 | other borders | interior |')
-    print('|---|---|---|---|')
+    emit()
+    emit('| setting | TBD false / 1000 fr.: right border x ≥ 352 | other borders | interior |')
+    emit('|---|---|---|---|')
     for label, s, t, d, k in rows:
-        print(f"| {label} | " + ' | '.join(f'{m:.1f} (± {e:.1f})' for m, e in k) + ' |')
+        emit(f"| {label} | " + ' | '.join(f'{m:.1f} (± {e:.1f})' for m, e in k) + ' |')
     if grad:
         gb = grad_bands(rows, *grad)
-        print()
-        print('| setting | interior false / 1000 fr.: scene gradient < 2 σ/px | 2–8 | ≥ 8 (cloud edges, horizon, structures) |')
-        print('|---|---|---|---|')
+        emit()
+        emit('| setting | interior false / 1000 fr.: scene gradient < 2 σ/px | 2–8 | ≥ 8 (cloud edges, horizon, structures) |')
+        emit('|---|---|---|---|')
         for label, *_ in rows:
-            print(f"| {label} | " + ' | '.join(f'{m:.1f} (± {e:.1f})' for m, e in gb[label]) + ' |')
-    print()
-    print(f'| setting | TBD detection minus {rows[0][0]}\'s, points (± s.e., paired by seed) | '
+            emit(f"| {label} | " + ' | '.join(f'{m:.1f} (± {e:.1f})' for m, e in gb[label]) + ' |')
+    emit()
+    emit(f'| setting | TBD detection minus {rows[0][0]}\'s, points (± s.e., paired by seed) | '
           'TBD false / 1000 fr. minus (± s.e.) | DBT detection minus | DBT false / 1000 fr. minus |')
-    print('|---|---|---|---|---|')
+    emit('|---|---|---|---|---|')
     for label, s, t, d, k in rows[1:]:
         (m1, e1), (m2, e2) = paired(rows[0][1]['per_run'], s['per_run'])
         (m3, e3), (m4, e4) = paired(rows[0][1]['dbt']['per_run'], s['dbt']['per_run'])
-        print(f"| {label} | {100 * m1:+.1f} (± {100 * e1:.1f}) | {m2:+.1f} (± {e2:.1f}) "
+        emit(f"| {label} | {100 * m1:+.1f} (± {100 * e1:.1f}) | {m2:+.1f} (± {e2:.1f}) "
               f"| {100 * m3:+.1f} (± {100 * e3:.1f}) | {m4:+.1f} (± {e4:.1f}) |")
 
 
