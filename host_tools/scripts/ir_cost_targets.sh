@@ -13,9 +13,8 @@
 #             a frame size whose buffers exceed the board's 4 MiB of RAM is reported as such)
 # The frames are made once by `pft sim --format raw` (a host-float build's pft) and the same
 # .u16 bytes go to tests/tools/ir_probe of every build, which runs stage, clutter map and manager
-# with the pipeline's default settings (its confirmed tracks are printed; the script reports
-# whether every build printed the same tracks as x86 float / q16). The scenario gives the frames
-# only: its tracker block (the gated clutter mean since branch irdemo) is not what ir_probe runs.
+# with pft run's settings (its confirmed tracks are printed; the script reports whether every
+# build printed the same tracks as x86 float / q16).
 #
 #   bash host_tools/scripts/ir_cost_targets.sh [FRAMES]      (default 30: frames 2..30 counted)
 #   IRC_TARGETS="x86 x86v2 aarch64 m7"  IRC_SIZES="384x288 640x512"  IRC_NUMERIC="float q16"

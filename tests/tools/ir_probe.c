@@ -1,11 +1,9 @@
 /*
  * ir_probe: the IR pipeline's library calls (the preprocessing stage, the clutter map and the
  * TBD manager) over a headerless raw sequence of little-endian u16 frames, with the settings
- * `pft run` gives them with the defaults of TrackerSettings (host_tools/tbd/ir_pipeline.cpp:
- * temporal background, clutter map without its running mean, the recommended preset with
- * full-frame births, the scene-motion test pft_tbd_scene raising the map; the tracker block of
- * procedural_384x288.json adds the map's gated running mean since branch irdemo, which this
- * probe does not run: docs/results/ir_clutter.md, "Branch irdemo"). It builds on every preset (host,
+ * `pft run` gives them for the shipped IR scenarios (host_tools/tbd/ir_pipeline.cpp with the
+ * defaults of TrackerSettings: temporal background, clutter map, the recommended preset with
+ * full-frame births, the scene-motion test pft_tbd_scene raising the map). It builds on every preset (host,
  * AArch64 Linux, bare-metal Cortex-M with semihosting file input), so the same frame bytes
  * give the instructions per frame of pft_pre_update_inplace, the clutter map
  * (pft_pre_clutter_update_inplace, or pft_pre_clutter_update with MAP copy) and pft_tbd_update
