@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "pft/pft_pre.h"
+#include "../core/config_int.h"
 #include "pre_int.h"
 
 #define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
@@ -35,11 +36,8 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
 {
     const char *bad = NULL;
-    if (field != NULL) {
-        *field = NULL;
-    }
     if (cfg == NULL) {
-        return PFT_ERR_INVAL;
+        return pft_config_verdict_(false, NULL, field);
     }
     if (cfg->width < 8u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
         bad = "width";
@@ -62,13 +60,7 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
     } else {
         /* accepted */
     }
-    if (bad != NULL) {
-        if (field != NULL) {
-            *field = bad;
-        }
-        return PFT_ERR_CONFIG;
-    }
-    return PFT_OK;
+    return pft_config_verdict_(true, bad, field);
 }
 
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
