@@ -463,27 +463,45 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
     }
 }
 
+/* (d a + 2^15) >> 16 for d <= 65535 and a <= 2^16 (a16 = min(a, 65535), full: a = 2^16,
+ * where it is d): with a < 2^16 the product's high half plus bit 15 of its low half, in 16-bit
+ * halves (a form the compiler maps to 16-bit multiplies). */
+static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
+{
+    const uint32_t p = (uint32_t)d * (uint32_t)a16;
+    const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+    return full != 0u ? d : q;
+}
+
 /* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v, and c
- * + 2^16 into *cs (0 where v is masked: nothing changes there). */
-static inline void cl_mean_px_(int32_t v, uint32_t learn, uint32_t a, uint16_t *m, uint16_t *mu,
-                               uint32_t *cs)
+ * + 2^16 into *cs (0 where v is masked: nothing changes there). In 16-bit lanes: |c| <= 2^15 +
+ * 2^11 < 2^16, t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of c^2 as in
+ * cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535, |tv - mv| <= 2^15; the signs
+ * applied by two's complement in 16 bits (m + -q and mv + -qe stay in range). */
+static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t full,
+                               uint16_t *m, uint16_t *mu, uint32_t *cs)
 {
     const uint32_t msk = v == PFT_RES16_MASKED ? 1u : 0u;
     const uint16_t mu0 = *mu;
     const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
     const int32_t dm = ((mv < 0 ? -mv : mv) + 4) >> 3; /* cl_div_(mv, 8) in magnitude */
     const int32_t cv = v - (mv < 0 ? -dm : dm);
-    const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
-    const uint32_t t0 = (ac * ac + 32u) >> 6;
-    const uint32_t t = t0 > CL_MMAX_ ? CL_MMAX_ : t0;
-    const uint32_t m0 = *m;
-    const uint32_t q = (a * (t >= m0 ? t - m0 : m0 - t) + 32768u) >> 16;
-    *m = msk != 0u ? (uint16_t)m0 : (uint16_t)(t >= m0 ? m0 + q : m0 - q);
+    const uint16_t ac = (uint16_t)(cv < 0 ? -cv : cv);
+    const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
+    const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
+    const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
+    const uint16_t t = ac >= 2048u ? (uint16_t)CL_MMAX_ : tl;
+    const uint16_t m0 = *m;
+    const uint16_t neg = (uint16_t)(t >= m0 ? 0u : 0xFFFFu); /* t < m */
+    const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m0) ^ neg) - neg); /* |t - m| */
+    const uint16_t q = cl_round_scale_(d, a16, full);
+    *m = msk != 0u ? m0 : (uint16_t)(m0 + (uint16_t)((uint16_t)(q ^ neg) - neg));
     const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
     const int32_t e = tv - mv;
-    const int32_t qe = (int32_t)((a * (uint32_t)(e < 0 ? -e : e) + 32768u) >> 16);
-    const int32_t nmu = mv + (e < 0 ? -qe : qe) + (int32_t)CL_MUOFF_;
-    *mu = (msk | (learn ^ 1u)) != 0u ? mu0 : (uint16_t)nmu;
+    const uint16_t ne = (uint16_t)(e < 0 ? 0xFFFFu : 0u);
+    const uint16_t qe = cl_round_scale_((uint16_t)(e < 0 ? -e : e), a16, full);
+    const uint16_t nmu = (uint16_t)(mu0 + (uint16_t)((uint16_t)(qe ^ ne) - ne));
+    *mu = (msk | (learn ^ 1u)) != 0u ? mu0 : nmu;
     *cs = msk != 0u ? 0u : (uint32_t)(cv + 65536);
 }
 
@@ -500,6 +518,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
                          uint32_t *cs, const uint32_t *hs, int32_t w, uint32_t a, uint32_t thr,
                          uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap)
 {
+    const uint16_t a16 = (uint16_t)(a > 65535u ? 65535u : a), full = (uint16_t)(a > 65535u ? 1u : 0u);
     if (pc != NULL) {
         for (int32_t x = 0; x < w; ++x) {
             /* the gate reads the stage's residual v */
@@ -515,11 +534,11 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
             cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
         }
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(r[x], cs[x], a, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(r[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(r[x], 1u, a, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(r[x], 1u, a16, full, &mrow[x], &mu[x], &cs[x]);
         }
     }
     for (int32_t x = 0; x < w; ++x) {
