@@ -361,15 +361,6 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
     }
 }
 
-/* Starting points of pft_pre_sqrt_q10_'s iteration: floor(sqrt((k + 1) 2^20)) for mm in
- * [k 2^10, (k + 1) 2^10), k = 0..63 (k 0 unused). */
-static const uint16_t cl_sqrt_top_[64] = {
-    1024u, 1448u, 1773u, 2048u, 2289u, 2508u, 2709u, 2896u, 3072u, 3238u, 3396u, 3547u, 3692u,
-    3831u, 3965u, 4096u, 4222u, 4344u, 4463u, 4579u, 4692u, 4802u, 4910u, 5016u, 5120u, 5221u,
-    5320u, 5418u, 5514u, 5608u, 5701u, 5792u, 5882u, 5970u, 6058u, 6144u, 6228u, 6312u, 6394u,
-    6476u, 6556u, 6636u, 6714u, 6792u, 6869u, 6945u, 7020u, 7094u, 7168u, 7240u, 7312u, 7384u,
-    7454u, 7524u, 7594u, 7662u, 7731u, 7798u, 7865u, 7931u, 7997u, 8062u, 8127u, 8192u};
-
 /* floor(sqrt(x)), x = mm 2^10 < 2^26: for mm >= 2^10 (every scored pixel of a map with thr >=
  * 1 sigma^2 has its mean M >= thr) Newton's integer iteration s <- (s + x / s) / 2 from s0 =
  * cl_sqrt_top_[mm >> 10] >= floor(sqrt(x)) (x < (k + 1) 2^20): while s > floor(sqrt(x)) the
@@ -379,6 +370,14 @@ static const uint16_t cl_sqrt_top_[64] = {
  * pft_pre_isqrt64_ for every mm in 0..65535. */
 uint32_t pft_pre_sqrt_q10_(uint32_t mm)
 {
+    /* the iteration's starting points: floor(sqrt((k + 1) 2^20)) for mm in
+     * [k 2^10, (k + 1) 2^10), k = 0..63 (k 0 unused). */
+    static const uint16_t cl_sqrt_top_[64] = {
+        1024u, 1448u, 1773u, 2048u, 2289u, 2508u, 2709u, 2896u, 3072u, 3238u, 3396u, 3547u, 3692u,
+        3831u, 3965u, 4096u, 4222u, 4344u, 4463u, 4579u, 4692u, 4802u, 4910u, 5016u, 5120u, 5221u,
+        5320u, 5418u, 5514u, 5608u, 5701u, 5792u, 5882u, 5970u, 6058u, 6144u, 6228u, 6312u, 6394u,
+        6476u, 6556u, 6636u, 6714u, 6792u, 6869u, 6945u, 7020u, 7094u, 7168u, 7240u, 7312u, 7384u,
+        7454u, 7524u, 7594u, 7662u, 7731u, 7798u, 7865u, 7931u, 7997u, 8062u, 8127u, 8192u};
     if (mm < 1024u || mm > 65535u) {
         return pft_pre_isqrt64_((uint64_t)mm << 10);
     }
@@ -481,10 +480,11 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
 static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t full,
                                uint16_t *m, uint16_t *mu, uint32_t *cs)
 {
-    const uint32_t msk = v == PFT_RES16_MASKED ? 1u : 0u;
+    const uint32_t msk = (uint32_t)(v == PFT_RES16_MASKED ? 1u : 0u);
     const uint16_t mu0 = *mu;
     const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
-    const int32_t dm = ((mv < 0 ? -mv : mv) + 4) >> 3; /* cl_div_(mv, 8) in magnitude */
+    const uint32_t amv = (uint32_t)(mv < 0 ? -mv : mv);
+    const int32_t dm = (int32_t)((amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
     const int32_t cv = v - (mv < 0 ? -dm : dm);
     const uint16_t ac = (uint16_t)(cv < 0 ? -cv : cv);
     const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
@@ -527,7 +527,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
             const uint32_t p0 = pc[x];
             const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
             const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
-            const uint32_t ex = av > exc ? 1u : 0u;
+            const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
             const uint32_t p1 = ex != 0u ? pu : pd;
             pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
             /* whether the mean takes this residual, kept in cs for the next pass */
