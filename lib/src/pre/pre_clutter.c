@@ -393,15 +393,15 @@ uint32_t pft_pre_sqrt_q10_(uint32_t mm)
     return s;
 }
 
-/* Row y without the running mean (the default): the same values as the general loop of
- * pft_pre_clutter_update in plain passes: the map's update (it reads r), then the output
+/* Row y without the running mean (the default): the per-pixel formulas of pft_pre.h
+ * (docs/algorithms.md 9.9) in plain passes: the map's update (it reads r), then the output
  * (which may be r itself, inplace). The output is the residual itself except
  * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
  * value is within +-PFT_PRE_RMAX_ already), and 0 where it exceeds veto; the map's update runs on every pixel and is kept
  * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535, and
  * a <= 65535 but on the first frame (a = 2^16, where the update gives m = t): the update in
  * 16-bit lanes with a 16 x 16 -> 32-bit product (a |t - m| + 32768 < 2^32). The output in
- * chunks of 16 columns: a chunk whose reads are all <= thr (hs and thr < 2^23, so compared as
+ * chunks of 32 columns: a chunk whose reads are all <= thr (hs and thr < 2^23, so compared as
  * signed) is the residual itself. */
 static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
                           int32_t w, uint32_t a, uint32_t thr, uint32_t veto, uint32_t area)
@@ -505,8 +505,8 @@ static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t
     *cs = msk != 0u ? 0u : (uint32_t)(cv + 65536);
 }
 
-/* Row y with the running mean (mean; the gate with persist): the values of the general
- * per-pixel loop (docs/algorithms.md 9.9) in plain passes. Pass 1 reads the residual and
+/* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
+ * pft_pre.h (docs/algorithms.md 9.9) in plain passes. Pass 1 reads the residual and
  * updates the map, the mean and the counter, and keeps c = r - mu (before mu's update) in cs
  * as c + 2^16 (0: a masked pixel); pass 2 writes the output from cs (which may be r's own
  * buffer, inplace: r is no longer read); pass 3 scores, in chunks of 32 columns, the pixels
