@@ -24,6 +24,9 @@
 #   PFT=path      the pft that makes the frames (default build/host-float/host_tools/pft)
 #   IRC_MAP=inplace|copy  how ir_probe runs the clutter map (default inplace, as pft run does)
 #   IRC_BLOCK=0|2|4       the map's block (pft_pre_clutter_config_t.block; default 0, as pft run)
+#   IRC_CLUTTER="MEAN PERSIST ALPHA"  the map's tracker fields clutter_mean (0|1), clutter_persist
+#                 and clutter_alpha (ir_probe's last three arguments; unset: the pipeline's
+#                 defaults 0 0 0.1); "1 4 0.2" is the best setting of docs/results/ir_clutter.md
 # Every long job runs under nice; one job at a time.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -36,6 +39,7 @@ tag=${IRC_TAG:-}
 pft=${PFT:-build/host-float/host_tools/pft}
 map=${IRC_MAP:-inplace}
 block=${IRC_BLOCK:-0}
+clutter=${IRC_CLUTTER:-}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
@@ -89,6 +93,7 @@ for t in $targets; do
       in=$out/frames-$sz/frames.u16
       r=$out/run-$t-$n-$sz$tag; rm -rf "$r"; mkdir -p "$r"
       args="$in $w $h 14 $N 1 12000 $map $block"
+      [ -n "$clutter" ] && args="$args 3 $clutter"
       status=ok
       case "$t" in
         x86|x86v2)
@@ -115,7 +120,7 @@ for t in $targets; do
   done
 done
 
-python3 - "$out/rows.csv" "$N" "$map block $block" <<'EOF' | tee "$out/table$tag.md"
+python3 - "$out/rows.csv" "$N" "$map block $block${clutter:+ mean persist alpha $clutter}" <<'EOF' | tee "$out/table$tag.md"
 import sys
 rows = [l.strip().split(',') for l in open(sys.argv[1]) if l.strip()]
 N = int(sys.argv[2])

@@ -14,14 +14,18 @@
  * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53", "Branch
  * irmap").
  *
- *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK [MARKS]]]
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK [MARKS [MEAN PERSIST ALPHA]]]]
  *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
  *   procedural_384x288.json; MAP: inplace (default, as pft run: the map's output over the
  *   stage's residual) or copy (the map's own output buffer, as before branch irmap); BLOCK: the
  *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4; MARKS: 3 (default:
  *   the work markers bracket the stage, the map and the manager) or 2 (the map's call is not
  *   bracketed, so the QEMU plugin's regions alternate stage, manager, odd and even, as
- *   host_tools/scripts/a53_mca.py reads them; callgrind's dumps stay three per frame))
+ *   host_tools/scripts/a53_mca.py reads them; callgrind's dumps stay three per frame);
+ *   MEAN PERSIST ALPHA: the tracker fields clutter_mean (0 or 1), clutter_persist (0..) and
+ *   clutter_alpha (a real, as in the scenario) the map is configured with, as
+ *   make_clutter_config does; default 0 0 0.1, the pipeline's defaults; "1 4 0.2" is the best
+ *   setting of docs/results/ir_clutter.md)
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
  * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
@@ -124,7 +128,7 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2]]]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2 [MEAN PERSIST ALPHA]]]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
@@ -135,6 +139,17 @@ int main(int argc, char **argv)
     const int marks = argc >= 11 ? atoi(argv[10]) : 3;
     if (marks != 2 && marks != 3) {
         fprintf(stderr, "ir_probe: MARKS is 3 or 2, not %s\n", argv[10]);
+        return 2;
+    }
+    if (argc > 11 && argc != 14) {
+        fprintf(stderr, "ir_probe: MEAN PERSIST ALPHA come together\n");
+        return 2;
+    }
+    const int cl_mean = argc >= 14 ? atoi(argv[11]) : 0;
+    const int cl_persist = argc >= 14 ? atoi(argv[12]) : 0;
+    const double cl_alpha = argc >= 14 ? atof(argv[13]) : 0.1;
+    if ((cl_mean != 0 && cl_mean != 1) || cl_persist < 0 || cl_persist > 255 || !(cl_alpha > 0.0)) {
+        fprintf(stderr, "ir_probe: MEAN is 0 or 1, PERSIST 0..255, ALPHA > 0\n");
         return 2;
     }
     const uint16_t W = (uint16_t)atoi(argv[2]), H = (uint16_t)atoi(argv[3]);
@@ -173,18 +188,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: stage configuration refused (%s)\n", field ? field : "?");
         return 2;
     }
-    /* make_clutter_config: clutter_alpha 0.1, blur 1, box, thr 2, excess 1.5 */
+    /* make_clutter_config: clutter_alpha 0.1, blur 1, box, thr 2, excess 1.5 (mean, persist
+     * and alpha from MEAN PERSIST ALPHA when given) */
     pft_pre_clutter_config_t cc;
     pft_pre_clutter_config_default(&cc);
     cc.width = W;
     cc.height = H;
-    cc.alpha = (uint16_t)lround(0.1 * 65536.0);
+    {
+        const long al = lround(cl_alpha * 65536.0);
+        cc.alpha = (uint16_t)(al < 1L ? 1L : (al > 65535L ? 65535L : al));
+    }
     cc.blur = 1u;
     cc.box = true;
-    cc.mean = false;
+    cc.mean = cl_mean != 0;
     cc.thr = (uint16_t)lround(2.0 * 1024.0);
     cc.veto = 0u;
-    cc.persist = 0u;
+    cc.persist = (uint8_t)cl_persist;
     cc.excess = (uint16_t)lround(1.5 * 256.0);
     cc.inplace = map_inplace != 0;
     cc.block = (uint8_t)(argc >= 10 ? atoi(argv[9]) : 0);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "pft/pft_pre.h"
+#include "../core/config_int.h"
 #include "pre_int.h"
 
 #define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
@@ -35,11 +36,8 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
 {
     const char *bad = NULL;
-    if (field != NULL) {
-        *field = NULL;
-    }
     if (cfg == NULL) {
-        return PFT_ERR_INVAL;
+        return pft_config_verdict_(false, NULL, field);
     }
     if (cfg->width < 8u || cfg->width > PFT_CFG_MAX_IMAGE_SIDE) {
         bad = "width";
@@ -62,13 +60,7 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
     } else {
         /* accepted */
     }
-    if (bad != NULL) {
-        if (field != NULL) {
-            *field = bad;
-        }
-        return PFT_ERR_CONFIG;
-    }
-    return PFT_OK;
+    return pft_config_verdict_(true, bad, field);
 }
 
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
@@ -196,67 +188,71 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
     *fp = (uint32_t)(q8 - i * 256);
 }
 
-/* Source value of the warp: v[sy][sx], or border b outside the frame. */
-static uint32_t cl_src_(const uint16_t *v, int32_t sx, int32_t sy, int32_t w, int32_t h,
-                        uint32_t b)
+/* The warp's horizontal pass over source row sy (the map's grid w x h): hr[x] =
+ * v[sy][x - ix] (256 - fx) + v[sy][x - ix - 1] fx, a source outside the frame counting b (a row
+ * outside: b 256 in every column, which the vertical pass turns back into b). Columns [xlo,
+ * xhi) have both sources inside (cl_warp_). Each term <= 65535 * 256 < 2^24. */
+static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, int32_t h,
+                       int32_t ix, uint32_t fx, uint32_t b, int32_t xlo, int32_t xhi)
 {
-    if (sx < 0 || sy < 0 || sx >= w || sy >= h) {
-        return b;
+    if (sy < 0 || sy >= h) {
+        for (int32_t x = 0; x < w; ++x) {
+            hr[x] = b * 256u;
+        }
+        return;
     }
-    return v[(size_t)sy * (size_t)w + (size_t)sx];
+    const uint16_t gx = (uint16_t)(256u - fx), f = (uint16_t)fx;
+    const uint16_t *row = v + (size_t)sy * (size_t)w;
+    if (xlo < xhi) {
+        /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i (>= 0) */
+        const uint16_t *r = row + (size_t)(xlo - ix - 1);
+        uint32_t *o = hr + xlo;
+        const int32_t n = xhi - xlo;
+        for (int32_t i = 0; i < n; ++i) {
+            o[i] = (uint32_t)r[i + 1] * (uint32_t)gx + (uint32_t)r[i] * (uint32_t)f;
+        }
+    }
+    /* the edge columns: sources beyond the frame count b */
+    for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
+        const int32_t x = e < xlo ? e : xhi + (e - xlo);
+        const int32_t s1 = x - ix, s0 = s1 - 1;
+        const uint32_t v1 = s1 >= 0 && s1 < w ? (uint32_t)row[s1] : b;
+        const uint32_t v0 = s0 >= 0 && s0 < w ? (uint32_t)row[s0] : b;
+        hr[x] = v1 * (uint32_t)gx + v0 * fx;
+    }
 }
 
-/* Columns [xa, xb) of row y of the warp (see cl_warp_) into t, sources tested one by one. */
-static void cl_warp_cols_(const uint16_t *v, uint32_t *t, int32_t xa, int32_t xb, int32_t y,
-                          int32_t ix, int32_t iy, int32_t w, int32_t h, uint32_t fx, uint32_t fy,
-                          uint32_t b)
-{
-    const int32_t y1 = y - iy, y0 = y1 - 1;
-    for (int32_t x = xa; x < xb; ++x) {
-        const uint32_t a1 = cl_src_(v, x - ix, y1, w, h, b) * (256u - fx) +
-                            cl_src_(v, x - ix - 1, y1, w, h, b) * fx;
-        const uint32_t a0 = cl_src_(v, x - ix, y0, w, h, b) * (256u - fx) +
-                            cl_src_(v, x - ix - 1, y0, w, h, b) * fx;
-        t[x] = (a1 * (256u - fy) + a0 * fy + 32768u) >> 16;
-    }
-}
-
-/* Warps v (u16 values) in place by (ix + fx / 256, iy + fy / 256) px: out(p) = v(p - shift),
- * bilinear, b outside. Each row is made in t (w values) and copied back; rows are visited in
+/* Warps v (u16 values, w x h) in place by (ix + fx / 256, iy + fy / 256) px: out(p) =
+ * v(p - shift), bilinear, b outside:
+ *   out(x, y) = (H(y - iy)[x] (256 - fy) + H(y - iy - 1)[x] fy + 2^15) >> 16
+ * with H the horizontal pass (cl_warp_h_), made once per source row: the rows are visited in
  * the order that reads every source row before it is overwritten (descending where the
- * sources lie at lower rows). */
-static void cl_warp_(uint16_t *v, uint32_t *t, int32_t w, int32_t h, int32_t ix, uint32_t fx,
-                     int32_t iy, uint32_t fy, uint32_t b)
+ * sources lie at lower rows), so one row's second source row is the next row's first, kept
+ * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32. */
+static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
+                     uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
 {
     const bool ydown = iy >= 0;
-    const uint32_t gx = 256u - fx, gy = 256u - fy;
+    const uint32_t gy = 256u - fy;
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
     const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
+    uint32_t *hc = ta, *hn = tb; /* hc: the source row shared with the row before */
+    int32_t y = ydown ? h - 1 : 0;
+    /* descending, row y's first source y - iy; ascending, its second y - iy - 1 */
+    cl_warp_h_(v, hc, ydown ? y - iy : y - iy - 1, w, h, ix, fx, b, xlo, xhi);
     for (int32_t k = 0; k < h; ++k) {
-        const int32_t y = ydown ? h - 1 - k : k;
-        const int32_t y1 = y - iy, y0 = y1 - 1; /* weights 256 - fy, fy */
-        const bool in1 = y1 >= 0 && y1 < h, in0 = y0 >= 0 && y0 < h;
-        if (in1 && in0 && xlo < xhi) {
-            const size_t c0 = (size_t)(xlo - ix - 1); /* >= 0: the first interior column's x0 */
-            const uint16_t *r1 = v + (size_t)y1 * (size_t)w + c0;
-            const uint16_t *r0 = v + (size_t)y0 * (size_t)w + c0;
-            /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i */
-            for (int32_t x = xlo; x < xhi; ++x) {
-                const int32_t i = x - xlo;
-                const uint32_t a1 = (uint32_t)r1[i + 1] * gx + (uint32_t)r1[i] * fx;
-                const uint32_t a0 = (uint32_t)r0[i + 1] * gx + (uint32_t)r0[i] * fx;
-                t[x] = (a1 * gy + a0 * fy + 32768u) >> 16;
-            }
-        } else {
-            cl_warp_cols_(v, t, xlo, xhi, y, ix, iy, w, h, fx, fy, b);
-        }
-        cl_warp_cols_(v, t, 0, xlo, y, ix, iy, w, h, fx, fy, b);
-        cl_warp_cols_(v, t, xhi, w, y, ix, iy, w, h, fx, fy, b);
+        /* the other source row: not yet overwritten (below y descending, above ascending) */
+        cl_warp_h_(v, hn, ydown ? y - iy - 1 : y - iy, w, h, ix, fx, b, xlo, xhi);
+        const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
         uint16_t *o = v + (size_t)y * (size_t)w;
         for (int32_t x = 0; x < w; ++x) {
-            o[x] = (uint16_t)t[x];
+            o[x] = (uint16_t)((h1[x] * gy + h0[x] * fy + 32768u) >> 16);
         }
+        uint32_t *t = hc;
+        hc = hn;
+        hn = t;
+        y = ydown ? y - 1 : y + 1;
     }
 }
 
@@ -272,22 +268,46 @@ static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
 }
 
 /* Read value of the map at every pixel of row y (before its update): the sum over the square
- * (box) or its largest value, Q6.10, into c->hs (c->vs: the vertical pass). */
+ * (box) or its largest value, Q6.10, into c->hs (c->vs: the vertical pass). The box's sums in
+ * plain (vectorisable) passes of up to three terms each: the same integer sums in another
+ * order (every sum <= 81 * 65535 < 2^32). */
 static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
 {
     const int32_t b = (int32_t)c->cfg.blur, w = (int32_t)c->gw;
     uint32_t *vs = c->vs;
     const uint16_t *r0 = cl_row_(c, y - b, y);
-    for (int32_t x = 0; x < w; ++x) {
-        vs[x] = r0[x];
-    }
-    for (int32_t k = -b + 1; k <= b; ++k) {
-        const uint16_t *r = cl_row_(c, y + k, y);
-        if (c->cfg.box) {
+    if (c->cfg.box) {
+        /* rows y - b .. y + b: the first three (or the one of blur 0) in one pass, then two
+         * per pass */
+        if (b == 0) {
             for (int32_t x = 0; x < w; ++x) {
-                vs[x] += r[x];
+                vs[x] = r0[x];
             }
         } else {
+            const uint16_t *r1 = cl_row_(c, y - b + 1, y), *r2 = cl_row_(c, y - b + 2, y);
+            for (int32_t x = 0; x < w; ++x) {
+                vs[x] = (uint32_t)r0[x] + (uint32_t)r1[x] + (uint32_t)r2[x];
+            }
+        }
+        for (int32_t k = -b + 3; k <= b; k += 2) {
+            const uint16_t *ra = cl_row_(c, y + k, y);
+            if (k + 1 <= b) {
+                const uint16_t *rb = cl_row_(c, y + k + 1, y);
+                for (int32_t x = 0; x < w; ++x) {
+                    vs[x] += (uint32_t)ra[x] + (uint32_t)rb[x];
+                }
+            } else {
+                for (int32_t x = 0; x < w; ++x) {
+                    vs[x] += ra[x];
+                }
+            }
+        }
+    } else {
+        for (int32_t x = 0; x < w; ++x) {
+            vs[x] = r0[x];
+        }
+        for (int32_t k = -b + 1; k <= b; ++k) {
+            const uint16_t *r = cl_row_(c, y + k, y);
             for (int32_t x = 0; x < w; ++x) {
                 vs[x] = r[x] > vs[x] ? r[x] : vs[x];
             }
@@ -296,15 +316,28 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
     /* horizontal: sum (box) or largest value over 2 b + 1 columns, edges replicated */
     uint32_t *hs = c->hs;
     if (c->cfg.box) {
-        /* interior columns b .. w - b - 1: the 2 b + 1 terms summed directly, one plain
-         * (vectorisable) pass per term; the same sums as the running box of the edges */
+        /* interior columns b .. w - b - 1: the 2 b + 1 terms summed directly, three in the
+         * first pass (blur 0: the one), two per further pass; the same sums as the running
+         * box of the edges */
         const int32_t xi0 = b, xi1 = w - b > b ? w - b : b;
-        for (int32_t x = xi0; x < xi1; ++x) {
-            hs[x] = vs[x - b];
-        }
-        for (int32_t k = -b + 1; k <= b; ++k) {
+        if (b == 0) {
             for (int32_t x = xi0; x < xi1; ++x) {
-                hs[x] += vs[x + k];
+                hs[x] = vs[x];
+            }
+        } else {
+            for (int32_t x = xi0; x < xi1; ++x) {
+                hs[x] = vs[x - b] + vs[x - b + 1] + vs[x - b + 2];
+            }
+        }
+        for (int32_t k = -b + 3; k <= b; k += 2) {
+            if (k + 1 <= b) {
+                for (int32_t x = xi0; x < xi1; ++x) {
+                    hs[x] += vs[x + k] + vs[x + k + 1];
+                }
+            } else {
+                for (int32_t x = xi0; x < xi1; ++x) {
+                    hs[x] += vs[x + k];
+                }
             }
         }
         /* the edge columns: the same sum with the columns beyond the edge replicated */
@@ -328,43 +361,208 @@ static void cl_read_row_(pft_pre_clutter_t *c, int32_t y)
     }
 }
 
-/* Row y without the running mean (the default): the same values as the general loop of
- * pft_pre_clutter_update in plain passes: the map's update (it reads r), then the output
+/* floor(sqrt(x)), x = mm 2^10 < 2^26: for mm >= 2^10 (every scored pixel of a map with thr >=
+ * 1 sigma^2 has its mean M >= thr) Newton's integer iteration s <- (s + x / s) / 2 from s0 =
+ * cl_sqrt_top_[mm >> 10] >= floor(sqrt(x)) (x < (k + 1) 2^20): while s > floor(sqrt(x)) the
+ * next s is smaller and >= floor(sqrt(x)) (AM-GM), and at s = floor(sqrt(x)) it is not
+ * smaller, so the first step that does not decrease s ends at floor(sqrt(x)); 3 to 5 steps
+ * (s0 within 42 % above). Below 2^10, pft_pre_isqrt64_. test_pre_sqrt compares it with
+ * pft_pre_isqrt64_ for every mm in 0..65535. */
+uint32_t pft_pre_sqrt_q10_(uint32_t mm)
+{
+    /* the iteration's starting points: floor(sqrt((k + 1) 2^20)) for mm in
+     * [k 2^10, (k + 1) 2^10), k = 0..63 (k 0 unused). */
+    static const uint16_t cl_sqrt_top_[64] = {
+        1024u, 1448u, 1773u, 2048u, 2289u, 2508u, 2709u, 2896u, 3072u, 3238u, 3396u, 3547u, 3692u,
+        3831u, 3965u, 4096u, 4222u, 4344u, 4463u, 4579u, 4692u, 4802u, 4910u, 5016u, 5120u, 5221u,
+        5320u, 5418u, 5514u, 5608u, 5701u, 5792u, 5882u, 5970u, 6058u, 6144u, 6228u, 6312u, 6394u,
+        6476u, 6556u, 6636u, 6714u, 6792u, 6869u, 6945u, 7020u, 7094u, 7168u, 7240u, 7312u, 7384u,
+        7454u, 7524u, 7594u, 7662u, 7731u, 7798u, 7865u, 7931u, 7997u, 8062u, 8127u, 8192u};
+    if (mm < 1024u || mm > 65535u) {
+        return pft_pre_isqrt64_((uint64_t)mm << 10);
+    }
+    const uint32_t x = mm << 10;
+    uint32_t s = cl_sqrt_top_[mm >> 10];
+    for (uint32_t i = 0u; i < 16u; ++i) { /* at most 5 steps are taken; 16 bounds the loop */
+        const uint32_t n = (s + x / s) >> 1;
+        if (n >= s) {
+            break;
+        }
+        s = n;
+    }
+    return s;
+}
+
+/* Row y without the running mean (the default): the per-pixel formulas of pft_pre.h
+ * (docs/algorithms.md 9.9) in plain passes: the map's update (it reads r), then the output
  * (which may be r itself, inplace). The output is the residual itself except
  * where the square's read exceeds thr (a masked pixel stays PFT_RES16_MASKED, any other
  * value is within +-PFT_PRE_RMAX_ already), and 0 where it exceeds veto; the map's update runs on every pixel and is kept
- * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535 and
- * a |t - m| + 32768 < 2^32 for a <= 2^16 (cl_scale_ in 32 bits). */
+ * where the pixel is not masked. Its ranges: t and m in 0..65535, so |t - m| <= 65535, and
+ * a <= 65535 but on the first frame (a = 2^16, where the update gives m = t): the update in
+ * 16-bit lanes with a 16 x 16 -> 32-bit product (a |t - m| + 32768 < 2^32). The output in
+ * chunks of 32 columns: a chunk whose reads are all <= thr (hs and thr < 2^23, so compared as
+ * signed) is the residual itself. */
 static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const uint32_t *hs,
                           int32_t w, uint32_t a, uint32_t thr, uint32_t veto, uint32_t area)
 {
     /* the map's update first: it reads the residual, which o may be (inplace) */
-    for (int32_t x = 0; x < w; ++x) {
-        const int32_t v = r[x];
-        const uint32_t ac = (uint32_t)(v < 0 ? -v : v); /* <= 2^15 */
-        const uint32_t sq = ac * ac;                    /* <= 2^30 */
-        /* sq >= 2^22 (CL_SQMAX_) gives (sq + 32) >> 6 >= 65536: the clamp alone is the
-         * general loop's two tests */
-        const uint32_t t0 = (sq + 32u) >> 6;
-        const uint32_t t = t0 > CL_MMAX_ ? CL_MMAX_ : t0;
-        const uint32_t m = mrow[x];
-        const uint32_t q = (a * (t >= m ? t - m : m - t) + 32768u) >> 16;
-        const uint32_t nm = t >= m ? m + q : m - q; /* between m and t: no clamp needed */
-        mrow[x] = v == PFT_RES16_MASKED ? (uint16_t)m : (uint16_t)nm;
+    if (a > 65535u) {
+        for (int32_t x = 0; x < w; ++x) {
+            const int32_t v = r[x];
+            const uint32_t ac = (uint32_t)(v < 0 ? -v : v);
+            const uint32_t t0 = (ac * ac + 32u) >> 6;
+            mrow[x] = v == PFT_RES16_MASKED ? mrow[x] : (uint16_t)(t0 > CL_MMAX_ ? CL_MMAX_ : t0);
+        }
+    } else {
+        const uint16_t a16 = (uint16_t)a;
+        for (int32_t x = 0; x < w; ++x) {
+            const int16_t v = r[x];
+            /* |v| <= 2^15 (2^15: the mask, whose update is not kept) */
+            const uint16_t ac = (uint16_t)(v < 0 ? (uint16_t)(0u - (uint16_t)v) : (uint16_t)v);
+            /* t = min((ac^2 + 32) >> 6, 65535) in 16-bit halves of ac^2 = hi 2^16 + lo:
+             * (ac^2 + 32) >> 6 = hi 2^10 + (lo >> 6) + bit 5 of lo (<= 65473 for ac <= 2047);
+             * ac >= 2048 gives ac^2 >= 2^22, the clamp */
+            const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
+            const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
+            const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
+            const uint16_t t = ac >= 2048u ? (uint16_t)CL_MMAX_ : tl;
+            const uint16_t m = mrow[x];
+            const uint16_t neg = (uint16_t)(t >= m ? 0u : 0xFFFFu);       /* t < m */
+            const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m) ^ neg) - neg); /* |t - m| */
+            /* q = (d a + 2^15) >> 16: the product's high half plus bit 15 of its low half */
+            const uint32_t p = (uint32_t)d * (uint32_t)a16;
+            const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+            const uint16_t nm = (uint16_t)(m + (uint16_t)((uint16_t)(q ^ neg) - neg)); /* m +- q */
+            mrow[x] = v == PFT_RES16_MASKED ? m : nm;
+        }
     }
     if (o != r) {
         memcpy(o, r, (size_t)w * 2u);
     }
-    uint32_t any = 0u; /* whether some read of the row exceeds thr (a plain pass) */
-    for (int32_t x = 0; x < w; ++x) {
-        any |= hs[x] > thr ? 1u : 0u;
+    const int32_t sthr = (int32_t)thr;
+    for (int32_t x0 = 0; x0 < w; x0 += 32) {
+        const int32_t x1 = w - x0 >= 32 ? x0 + 32 : w;
+        int32_t any = -1; /* negative where some read of the chunk exceeds thr */
+        if (x1 - x0 == 32) {
+            const uint32_t *hc = hs + x0;
+            any = 0;
+            for (int32_t i = 0; i < 32; ++i) {
+                any |= sthr - (int32_t)hc[i];
+            }
+        }
+        for (int32_t x = x0; any < 0 && x < x1; ++x) {
+            const int32_t v = o[x]; /* r[x]: o is its copy, or r itself */
+            if (hs[x] > thr && v != PFT_RES16_MASKED) {
+                const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
+                const uint32_t s = pft_pre_sqrt_q10_(mm);         /* sqrt(M) in Q10 */
+                o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+            }
+        }
     }
-    for (int32_t x = 0; any != 0u && x < w; ++x) {
-        const int32_t v = o[x]; /* r[x]: o is its copy, or r itself */
-        if (hs[x] > thr && v != PFT_RES16_MASKED) {
-            const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
-            const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-            o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(v * 1024, (int32_t)s));
+}
+
+/* (d a + 2^15) >> 16 for d <= 65535 and a <= 2^16 (a16 = min(a, 65535), full: a = 2^16,
+ * where it is d): with a < 2^16 the product's high half plus bit 15 of its low half, in 16-bit
+ * halves (a form the compiler maps to 16-bit multiplies). */
+static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
+{
+    const uint32_t p = (uint32_t)d * (uint32_t)a16;
+    const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+    return full != 0u ? d : q;
+}
+
+/* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v, and c
+ * + 2^16 into *cs (0 where v is masked: nothing changes there). In 16-bit lanes: |c| <= 2^15 +
+ * 2^11 < 2^16, t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of c^2 as in
+ * cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535, |tv - mv| <= 2^15; the signs
+ * applied by two's complement in 16 bits (m + -q and mv + -qe stay in range). */
+static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t full,
+                               uint16_t *m, uint16_t *mu, uint32_t *cs)
+{
+    const uint32_t msk = (uint32_t)(v == PFT_RES16_MASKED ? 1u : 0u);
+    const uint16_t mu0 = *mu;
+    const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
+    const uint32_t amv = (uint32_t)(mv < 0 ? -mv : mv);
+    const int32_t dm = (int32_t)((amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
+    const int32_t cv = v - (mv < 0 ? -dm : dm);
+    const uint16_t ac = (uint16_t)(cv < 0 ? -cv : cv);
+    const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
+    const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
+    const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
+    const uint16_t t = ac >= 2048u ? (uint16_t)CL_MMAX_ : tl;
+    const uint16_t m0 = *m;
+    const uint16_t neg = (uint16_t)(t >= m0 ? 0u : 0xFFFFu); /* t < m */
+    const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m0) ^ neg) - neg); /* |t - m| */
+    const uint16_t q = cl_round_scale_(d, a16, full);
+    *m = msk != 0u ? m0 : (uint16_t)(m0 + (uint16_t)((uint16_t)(q ^ neg) - neg));
+    const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
+    const int32_t e = tv - mv;
+    const uint16_t ne = (uint16_t)(e < 0 ? 0xFFFFu : 0u);
+    const uint16_t qe = cl_round_scale_((uint16_t)(e < 0 ? -e : e), a16, full);
+    const uint16_t nmu = (uint16_t)(mu0 + (uint16_t)((uint16_t)(qe ^ ne) - ne));
+    *mu = (msk | (learn ^ 1u)) != 0u ? mu0 : nmu;
+    *cs = msk != 0u ? 0u : (uint32_t)(cv + 65536);
+}
+
+/* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
+ * pft_pre.h (docs/algorithms.md 9.9) in plain passes. Pass 1 reads the residual and
+ * updates the map, the mean and the counter, and keeps c = r - mu (before mu's update) in cs
+ * as c + 2^16 (0: a masked pixel); pass 2 writes the output from cs (which may be r's own
+ * buffer, inplace: r is no longer read); pass 3 scores, in chunks of 32 columns, the pixels
+ * whose read exceeds thr. Ranges: mu - 2^15 in [-2^14, 2^14] (a mean of values clamped
+ * there), so |c| <= 2^15 + 2^11 and c^2 < 2^31; t and m in 0..65535 and a <= 2^16, so
+ * a |t - m| + 2^15 < 2^32 and m + -q lies between m and t (q <= |t - m|), likewise the mean's
+ * step (|tv - mv| <= 2^15); the cl_scale_ and cl_div_ roundings written out. */
+static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc,
+                         uint32_t *cs, const uint32_t *hs, int32_t w, uint32_t a, uint32_t thr,
+                         uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap)
+{
+    const uint16_t a16 = (uint16_t)(a > 65535u ? 65535u : a), full = (uint16_t)(a > 65535u ? 1u : 0u);
+    if (pc != NULL) {
+        for (int32_t x = 0; x < w; ++x) {
+            /* the gate reads the stage's residual v */
+            const int32_t v = r[x];
+            const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+            const uint32_t p0 = pc[x];
+            const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
+            const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
+            const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
+            const uint32_t p1 = ex != 0u ? pu : pd;
+            pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
+            /* whether the mean takes this residual, kept in cs for the next pass */
+            cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+        }
+        for (int32_t x = 0; x < w; ++x) {
+            cl_mean_px_(r[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
+        }
+    } else {
+        for (int32_t x = 0; x < w; ++x) {
+            cl_mean_px_(r[x], 1u, a16, full, &mrow[x], &mu[x], &cs[x]);
+        }
+    }
+    for (int32_t x = 0; x < w; ++x) {
+        const int32_t cv = (int32_t)cs[x] - 65536;
+        o[x] = cs[x] == 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
+    }
+    const int32_t sthr = (int32_t)thr;
+    for (int32_t x0 = 0; x0 < w; x0 += 32) {
+        const int32_t x1 = w - x0 >= 32 ? x0 + 32 : w;
+        int32_t any = -1; /* negative where some read of the chunk exceeds thr */
+        if (x1 - x0 == 32) {
+            const uint32_t *hc = hs + x0;
+            any = 0;
+            for (int32_t i = 0; i < 32; ++i) {
+                any |= sthr - (int32_t)hc[i];
+            }
+        }
+        for (int32_t x = x0; any < 0 && x < x1; ++x) {
+            if (hs[x] > thr && cs[x] != 0u) {
+                const int32_t cv = (int32_t)cs[x] - 65536;
+                const uint32_t mm = (hs[x] + area / 2u) / area; /* the square's mean, Q6.10 */
+                const uint32_t s = pft_pre_sqrt_q10_(mm);         /* sqrt(M) in Q10 */
+                o[x] = hs[x] > veto ? (int16_t)0 : (int16_t)pft_pre_rclamp_(cl_div_(cv * 1024, (int32_t)s));
+            }
         }
     }
 }
@@ -396,7 +594,7 @@ static void cl_update_blocks_(pft_pre_clutter_t *c, const pft_frame_t *res, uint
             const uint32_t mb = c->hs[i];
             if (mb > thr) {
                 const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
-                sc[i] = mb > veto ? UINT32_MAX : pft_pre_isqrt64_((uint64_t)mm << 10);
+                sc[i] = mb > veto ? UINT32_MAX : pft_pre_sqrt_q10_(mm);
             } else {
                 sc[i] = 0u;
             }
@@ -535,12 +733,12 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             /* beyond the frame, every pixel enters: the warp's indices stay in range */
             ix = ix > gw ? gw : (ix < -gw ? -gw : ix);
             iy = iy > gh ? gh : (iy < -gh ? -gh : iy);
-            cl_warp_(c->m, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
+            cl_warp_(c->m, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
             if (c->mu != NULL) {
-                cl_warp_(c->mu, c->hs, gw, gh, ix, fx, iy, fy, CL_MUOFF_);
+                cl_warp_(c->mu, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_MUOFF_);
             }
             if (c->pc != NULL) {
-                cl_warp_(c->pc, c->hs, gw, gh, ix, fx, iy, fy, 0u);
+                cl_warp_(c->pc, c->vs, c->hs, gw, gh, ix, fx, iy, fy, 0u);
             }
         }
     }
@@ -567,46 +765,12 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
         int16_t *o = c->out + (size_t)y * (size_t)w;
         uint16_t *mu = c->mu != NULL ? c->mu + (size_t)y * (size_t)w : NULL;
         uint16_t *pc = c->pc != NULL ? c->pc + (size_t)y * (size_t)w : NULL;
-        if (mu == NULL && pc == NULL) {
+        if (mu == NULL) {
+            /* without the mean there is no counter (persist needs mean) */
             cl_row_plain_(r, o, mrow, c->hs, w, a, thr, veto, area);
-            continue;
-        }
-        for (int32_t x = 0; x < w; ++x) {
-            const int32_t v = r[x];
-            if (v == PFT_RES16_MASKED) {
-                o[x] = PFT_RES16_MASKED;
-                continue;
-            }
-            const int32_t cv = mu != NULL ? v - cl_div_((int32_t)mu[x] - (int32_t)CL_MUOFF_, 8) : v;
-            const uint32_t mb = c->hs[x];
-            int32_t wv = cv;
-            if (mb > thr) {
-                const uint32_t mm = (mb + area / 2u) / area; /* the square's mean, Q6.10 */
-                const uint32_t s = pft_pre_isqrt64_((uint64_t)mm << 10); /* sqrt(M) in Q10 */
-                wv = mb > veto ? 0 : cl_div_(cv * 1024, (int32_t)s);
-            }
-            o[x] = (int16_t)pft_pre_rclamp_(wv);
-            bool learn = true; /* whether the mean takes this frame's residual */
-            if (pc != NULL) {
-                /* the gate reads the stage's residual v: clutter that the mean has learnt
-                 * keeps its counter */
-                const uint32_t av = (uint32_t)(v < 0 ? -v : v);
-                const uint32_t p0 = pc[x];
-                const uint32_t p1 = av > exc ? (p0 + 256u > pcap ? pcap : p0 + 256u)
-                                             : (p0 > 128u ? p0 - 128u : 0u);
-                pc[x] = (uint16_t)p1;
-                learn = av <= exc || p1 >= pk; /* else an excess that has not persisted */
-            }
-            const uint32_t ac = (uint32_t)(cv < 0 ? -cv : cv);
-            const uint64_t sq = (uint64_t)ac * ac;
-            const uint32_t t = sq >= CL_SQMAX_ ? CL_MMAX_ : (uint32_t)((sq + 32u) >> 6);
-            const int32_t nm = (int32_t)mrow[x] + cl_scale_(a, (int32_t)(t > CL_MMAX_ ? CL_MMAX_ : t) - (int32_t)mrow[x]);
-            mrow[x] = (uint16_t)(nm < 0 ? 0 : (nm > (int32_t)CL_MMAX_ ? (int32_t)CL_MMAX_ : nm));
-            if (mu != NULL && learn) {
-                const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
-                const int32_t mv = (int32_t)mu[x] - (int32_t)CL_MUOFF_;
-                mu[x] = (uint16_t)(mv + cl_scale_(a, tv - mv) + (int32_t)CL_MUOFF_);
-            }
+        } else {
+            /* the vertical sums c->vs are spent: they keep c */
+            cl_row_mean_(r, o, mrow, mu, pc, c->vs, c->hs, w, a, thr, veto, area, exc, pk, pcap);
         }
     }
 }

@@ -156,5 +156,8 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
 
 /* Integer square root of a 64-bit value (floor). */
 uint32_t pft_pre_isqrt64_(uint64_t v);
+/* floor(sqrt(mm 2^10)) for mm <= 65535 (the clutter map's sqrt(M) in Q10): the value of
+ * pft_pre_isqrt64_((uint64_t)mm << 10) in fewer instructions (pre_clutter.c). */
+uint32_t pft_pre_sqrt_q10_(uint32_t mm);
 
 #endif

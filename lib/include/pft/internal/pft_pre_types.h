@@ -65,8 +65,8 @@ struct pft_pre_clutter_s {
     uint16_t *pc;          /* persistence counter, frames Q8, w * h (NULL without cfg.persist) */
     int16_t *out;          /* output, Q8.8 sigma, w * h (inplace: the caller's buffer of the last update, NULL before) */
     uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w */
-    uint32_t *vs;          /* vertical sums (or maxima) of one row */
-    uint32_t *hs;          /* the square's sums (or maxima) of one row */
+    uint32_t *vs;          /* vertical sums (or maxima) of one row; the warp's row buffer; c of a row with the mean */
+    uint32_t *hs;          /* the square's sums (or maxima) of one row; the warp's row buffer */
     uint32_t *acc;         /* block: per block of a row, the sum of t and the count (NULL per pixel) */
     int32_t *sacc;         /* block: per block of a row, the sums of clamp(8 r) and r (NULL per pixel) */
     uint32_t gw, gh;       /* the map's grid: w x h, or the blocks' ceil(w / B) x ceil(h / B) */
