@@ -21,7 +21,9 @@
  *   map's pft_pre_clutter_config_t.block, 0 (default, as pft run), 2 or 4; MARKS: 3 (default:
  *   the work markers bracket the stage, the map and the manager) or 2 (the map's call is not
  *   bracketed, so the QEMU plugin's regions alternate stage, manager, odd and even, as
- *   host_tools/scripts/a53_mca.py reads them; callgrind's dumps stay three per frame);
+ *   host_tools/scripts/a53_mca.py reads them; callgrind's dumps stay three per frame) or 1 (the
+ *   stage's call is not bracketed: the regions alternate map, manager, for a53_mca.py model
+ *   --regions map,manager);
  *   MEAN PERSIST ALPHA: the tracker fields clutter_mean (0 or 1), clutter_persist (0..) and
  *   clutter_alpha (a real, as in the scenario) the map is configured with, as
  *   make_clutter_config does; default 0 0 0.1, the pipeline's defaults; "1 4 0.2" is the best
@@ -95,7 +97,7 @@ typedef struct {
     int32_t sx, sy;  /* map: the scene's shift */
     int ev;          /* map: evidence */
     int inplace;     /* map: pft_pre_clutter_update_inplace */
-    int unmarked;    /* no work markers around this call (MARKS 2, the map) */
+    int unmarked;    /* no work markers around this call (MARKS 2: the map; 1: the stage) */
 } irp_call_t;
 
 /* The three measured calls go through one function that callgrind toggles on and dumps after
@@ -128,7 +130,7 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2 [MEAN PERSIST ALPHA]]]]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA]]]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
@@ -137,8 +139,8 @@ int main(int argc, char **argv)
         return 2;
     }
     const int marks = argc >= 11 ? atoi(argv[10]) : 3;
-    if (marks != 2 && marks != 3) {
-        fprintf(stderr, "ir_probe: MARKS is 3 or 2, not %s\n", argv[10]);
+    if (marks < 1 || marks > 3) {
+        fprintf(stderr, "ir_probe: MARKS is 3, 2 or 1, not %s\n", argv[10]);
         return 2;
     }
     if (argc > 11 && argc != 14) {
@@ -307,6 +309,7 @@ int main(int argc, char **argv)
         call.pre = &pre;
         call.f = &f;
         call.buf = buf;
+        call.unmarked = marks == 1;
         pft_status_t s = irp_measured(&call);
         if (s != PFT_OK) {
             fprintf(stderr, "ir_probe: frame %lu: stage: %s\n", (unsigned long)seq, pft_status_str(s));
