@@ -22,7 +22,11 @@ turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It 
    leaves out is estimated beside it: cache misses from the plugin's cache model at an assumed
    L2 and DRAM latency (with and without the strided misses prefetched), and one misprediction
    per departure from a loop's dominant path at an assumed penalty.
-3. `check`: llvm-mca on small kernels whose A53 timing is known (the dual-issue rule and
+3. `three`: the clutter map as well ("Lead: the A53 model with the clutter map"): a run with
+   ir_probe's MARKS 2 (stage, manager) and one with MARKS 1 (map, manager) on the same frames
+   and settings (--args), each modelled (the second with --regions map,manager), give the three
+   calls' modelled cycles per frame; the manager's counts must agree between the two runs.
+4. `check`: llvm-mca on small kernels whose A53 timing is known (the dual-issue rule and
    published measurements on an A53), to show where the model is right and where it is not.
 
   bash tests/soak/run_soak.sh plugin
@@ -30,6 +34,7 @@ turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It 
       --frames build/ir-cost/frames-384x288/frames.u16 --n 100 --out build/a53-mca/float --mem
   python3 host_tools/scripts/a53_mca.py model --build build/aarch64-float --run build/a53-mca/float \
       [--debug-exe build/a53-g-float/tests/tools/ir_probe]
+  python3 host_tools/scripts/a53_mca.py three --run-stage R2 --model-stage R2.md --run-map R1 --model-map R1.md
   python3 host_tools/scripts/a53_mca.py check
 
 (--debug-exe: the same preset built with -DCMAKE_C_FLAGS=-g into another directory; the script
@@ -547,6 +552,50 @@ CHECKS = [
 ]
 
 
+def model_cpis(path):
+    """The region CPI rows of a model report: {region: [cpi per llvm-mca model]}, and the models."""
+    cpis, cpus, on = {}, None, False
+    for line in open(path):
+        if line.startswith('| region | instructions in modelled loops'):
+            cpus = [c.strip()[4:] for c in line.strip().strip('|').split('|')[2:]]
+            on = True
+        elif on and line.startswith('|') and not line.startswith('|---'):
+            f = [c.strip() for c in line.strip().strip('|').split('|')]
+            cpis[f[0]] = [float(x) for x in f[2:]]
+        elif on and not line.startswith('|'):
+            break
+    if not cpis:
+        sys.exit('a53_mca.py: no region CPI table in %s' % path)
+    return cpis, cpus
+
+
+def cmd_three(a):
+    """The three calls of ir_probe per frame from two runs: MARKS 2 (stage, manager) and MARKS 1
+    (map, manager), each with its model report; the manager's counts must be the same in both."""
+    def counts(run):
+        c = [int(x) for x in open(os.path.join(run, 'counts.txt')).read().split()]
+        return c[0::2], c[1::2]
+    st, mg = counts(a.run_stage)
+    mp, mg1 = counts(a.run_map)
+    if mg != mg1:
+        sys.exit('a53_mca.py: the two runs\' manager counts differ: not the same frames or settings')
+    c2, cpus = model_cpis(a.model_stage)
+    c1, cpus1 = model_cpis(a.model_map)
+    if cpus != cpus1:
+        sys.exit('a53_mca.py: the two reports used different llvm-mca models')
+    fr = range(a.frames_from - 1, len(st))
+    print('| model | instructions (stage + map + manager) | stage / map / manager CPI | cycles | CPI | frames/s at %.1f GHz | largest frame: cycles | frames/s |' % (CLOCK / 1e9))
+    print('|---|---:|---|---:|---:|---:|---:|---:|')
+    for k, cpu in enumerate(cpus):
+        cs, cm, cg = c2['stage'][k], c1['map'][k], c1['manager'][k]
+        ins = [st[i] + mp[i] + mg[i] for i in fr]
+        cyc = [st[i] * cs + mp[i] * cm + mg[i] * cg for i in fr]
+        mi, mc, xc = sum(ins) / len(fr), sum(cyc) / len(fr), max(cyc)
+        print('| %s | %.2f M (%.2f / %.2f / %.2f) | %.3f / %.3f / %.3f | %.2f M | %.2f | %.1f | %.2f M | %.1f |'
+              % (cpu, mi / 1e6, sum(st[i] for i in fr) / len(fr) / 1e6, sum(mp[i] for i in fr) / len(fr) / 1e6,
+                 sum(mg[i] for i in fr) / len(fr) / 1e6, cs, cm, cg, mc / 1e6, mc / mi, CLOCK / mc, xc / 1e6, CLOCK / xc))
+
+
 def cmd_check(a):
     print('| kernel | expected on the A53 | llvm-mca cortex-a53 | llvm-mca cortex-a55 | source of the expectation |')
     print('|---|---:|---:|---:|---|')
@@ -589,10 +638,16 @@ def main():
     m.add_argument('--mispredict', type=int, default=8, help='cycles lost per mispredicted branch')
     m.add_argument('--l1-label', default='32 KB 4-way', help='the cache model the run used (for the table)')
     m.add_argument('--l2-label', default='512 KB 16-way', help='the cache model the run used (for the table)')
+    t = sub.add_parser('three', help='the three calls per frame from a MARKS 2 and a MARKS 1 run')
+    t.add_argument('--run-stage', required=True, help='run with ir_probe MARKS 2 (stage, manager)')
+    t.add_argument('--model-stage', required=True, help='its model report')
+    t.add_argument('--run-map', required=True, help='run with ir_probe MARKS 1 (map, manager), same frames and settings')
+    t.add_argument('--model-map', required=True, help='its model report (model --regions map,manager)')
+    t.add_argument('--frames-from', type=int, default=2)
     c = sub.add_parser('check')
     c.add_argument('--mca', default='llvm-mca')
     a = ap.parse_args()
-    {'run': cmd_run, 'model': cmd_model, 'check': cmd_check}[a.cmd](a)
+    {'run': cmd_run, 'model': cmd_model, 'three': cmd_three, 'check': cmd_check}[a.cmd](a)
 
 
 if __name__ == '__main__':
