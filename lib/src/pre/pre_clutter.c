@@ -228,12 +228,13 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
  * with H the horizontal pass (cl_warp_h_), made once per source row: the rows are visited in
  * the order that reads every source row before it is overwritten (descending where the
  * sources lie at lower rows), so one row's second source row is the next row's first, kept
- * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32. */
+ * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32, so it is computed as
+ * H1 2^8 + (H0 - H1) fy + 2^15 modulo 2^32 (unsigned: one multiply a pixel instead of two, the
+ * same value). */
 static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
                      uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
 {
     const bool ydown = iy >= 0;
-    const uint32_t gy = 256u - fy;
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
     const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
@@ -247,7 +248,7 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
         const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
         uint16_t *o = v + (size_t)y * (size_t)w;
         for (int32_t x = 0; x < w; ++x) {
-            o[x] = (uint16_t)((h1[x] * gy + h0[x] * fy + 32768u) >> 16);
+            o[x] = (uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16);
         }
         uint32_t *t = hc;
         hc = hn;
