@@ -394,6 +394,16 @@ uint32_t pft_pre_sqrt_q10_(uint32_t mm)
     return s;
 }
 
+/* (d a + 2^15) >> 16 for d, a < 2^16: the high half of the product d a plus bit 15 of its low
+ * half, each half computed on its own (a form the compiler maps to 16-bit multiplies, high and
+ * low). */
+static inline uint16_t cl_round_scale16_(uint16_t d, uint16_t a)
+{
+    const uint16_t hi = (uint16_t)(((uint32_t)d * (uint32_t)a) >> 16);
+    const uint16_t lo = (uint16_t)((uint32_t)d * (uint32_t)a);
+    return (uint16_t)(hi + (uint16_t)(lo >> 15));
+}
+
 /* Row y without the running mean (the default): the per-pixel formulas of pft_pre.h
  * (docs/algorithms.md 9.9) in plain passes: the map's update (it reads r), then the output
  * (which may be r itself, inplace). The output is the residual itself except
@@ -432,8 +442,7 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
             const uint16_t neg = (uint16_t)(t >= m ? 0u : 0xFFFFu);       /* t < m */
             const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m) ^ neg) - neg); /* |t - m| */
             /* q = (d a + 2^15) >> 16: the product's high half plus bit 15 of its low half */
-            const uint32_t p = (uint32_t)d * (uint32_t)a16;
-            const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+            const uint16_t q = cl_round_scale16_(d, a16);
             const uint16_t nm = (uint16_t)(m + (uint16_t)((uint16_t)(q ^ neg) - neg)); /* m +- q */
             mrow[x] = v == PFT_RES16_MASKED ? m : nm;
         }
@@ -468,8 +477,7 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
  * halves (a form the compiler maps to 16-bit multiplies). */
 static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
 {
-    const uint32_t p = (uint32_t)d * (uint32_t)a16;
-    const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+    const uint16_t q = cl_round_scale16_(d, a16);
     return full != 0u ? d : q;
 }
 
