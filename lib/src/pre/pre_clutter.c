@@ -520,8 +520,7 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
  * residual (or r's own buffer, inplace; each pass reads and writes o at the same column
- * only). With persist, a first pass updates the counter and keeps the learn flags in its bit
- * 15. The
+ * only). With persist, a first pass updates the counter and keeps the learn flags in cs. The
  * mean pass reads the residual, updates the map and the mean, keeps c = r - mu (before mu's
  * update) in cs as c + 2^16 (0: a masked pixel) and writes the output before scoring (the
  * mask, or c clamped) over the residual; the last pass scores, in chunks of 32 columns, the
@@ -539,27 +538,21 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
         memcpy(o, r, (size_t)w * 2u);
     }
     if (pc != NULL) {
-        /* in 16-bit lanes: the counter <= pcap <= 2^14 (persist <= 32), |v| <= 2^15 and exc <
-         * 2^15; whether the mean takes this residual kept in bit 15 of the counter (free), which
-         * the mean pass reads and clears (a masked pixel keeps its counter, bit 15 clear) */
-        const uint16_t pk16 = (uint16_t)pk, pcap16 = (uint16_t)pcap, exc16 = (uint16_t)exc;
         for (int32_t x = 0; x < w; ++x) {
             /* the gate reads the stage's residual v */
-            const int16_t v = o[x];
-            const uint16_t av = (uint16_t)(v < 0 ? (uint16_t)(0u - (uint16_t)v) : (uint16_t)v);
-            const uint16_t p0 = pc[x];
-            const uint16_t pi = (uint16_t)(p0 + 256u);
-            const uint16_t pu = pi > pcap16 ? pcap16 : pi;
-            const uint16_t pd = p0 > 128u ? (uint16_t)(p0 - 128u) : (uint16_t)0u;
-            const uint16_t ex = (uint16_t)(av > exc16 ? 1u : 0u);
-            const uint16_t p1 = ex != 0u ? pu : pd;
-            const uint16_t lf = (uint16_t)((ex ^ 1u) | (p1 >= pk16 ? 1u : 0u));
-            pc[x] = v == PFT_RES16_MASKED ? p0 : (uint16_t)(p1 | (uint16_t)(lf << 15));
+            const int32_t v = o[x];
+            const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+            const uint32_t p0 = pc[x];
+            const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
+            const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
+            const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
+            const uint32_t p1 = ex != 0u ? pu : pd;
+            pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
+            /* whether the mean takes this residual, kept in cs for the next pass */
+            cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
         }
         for (int32_t x = 0; x < w; ++x) {
-            const uint16_t pv = pc[x];
-            pc[x] = (uint16_t)(pv & 0x7FFFu);
-            cl_mean_px_(&o[x], (uint32_t)pv >> 15, a16, full, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
