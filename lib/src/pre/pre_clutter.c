@@ -228,12 +228,13 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
  * with H the horizontal pass (cl_warp_h_), made once per source row: the rows are visited in
  * the order that reads every source row before it is overwritten (descending where the
  * sources lie at lower rows), so one row's second source row is the next row's first, kept
- * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32. */
+ * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32, so it is computed as
+ * H1 2^8 + (H0 - H1) fy + 2^15 modulo 2^32 (unsigned: one multiply a pixel instead of two, the
+ * same value). */
 static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
                      uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
 {
     const bool ydown = iy >= 0;
-    const uint32_t gy = 256u - fy;
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
     const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
@@ -247,7 +248,7 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
         const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
         uint16_t *o = v + (size_t)y * (size_t)w;
         for (int32_t x = 0; x < w; ++x) {
-            o[x] = (uint16_t)((h1[x] * gy + h0[x] * fy + 32768u) >> 16);
+            o[x] = (uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16);
         }
         uint32_t *t = hc;
         hc = hn;
@@ -393,6 +394,16 @@ uint32_t pft_pre_sqrt_q10_(uint32_t mm)
     return s;
 }
 
+/* (d a + 2^15) >> 16 for d, a < 2^16: the high half of the product d a plus bit 15 of its low
+ * half, each half computed on its own (a form the compiler maps to 16-bit multiplies, high and
+ * low). */
+static inline uint16_t cl_round_scale16_(uint16_t d, uint16_t a)
+{
+    const uint16_t hi = (uint16_t)(((uint32_t)d * (uint32_t)a) >> 16);
+    const uint16_t lo = (uint16_t)((uint32_t)d * (uint32_t)a);
+    return (uint16_t)(hi + (uint16_t)(lo >> 15));
+}
+
 /* Row y without the running mean (the default): the per-pixel formulas of pft_pre.h
  * (docs/algorithms.md 9.9) in plain passes: the map's update (it reads r), then the output
  * (which may be r itself, inplace). The output is the residual itself except
@@ -431,8 +442,7 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
             const uint16_t neg = (uint16_t)(t >= m ? 0u : 0xFFFFu);       /* t < m */
             const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m) ^ neg) - neg); /* |t - m| */
             /* q = (d a + 2^15) >> 16: the product's high half plus bit 15 of its low half */
-            const uint32_t p = (uint32_t)d * (uint32_t)a16;
-            const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+            const uint16_t q = cl_round_scale16_(d, a16);
             const uint16_t nm = (uint16_t)(m + (uint16_t)((uint16_t)(q ^ neg) - neg)); /* m +- q */
             mrow[x] = v == PFT_RES16_MASKED ? m : nm;
         }
@@ -467,19 +477,20 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
  * halves (a form the compiler maps to 16-bit multiplies). */
 static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
 {
-    const uint32_t p = (uint32_t)d * (uint32_t)a16;
-    const uint16_t q = (uint16_t)((uint16_t)(p >> 16) + (uint16_t)((uint16_t)p >> 15));
+    const uint16_t q = cl_round_scale16_(d, a16);
     return full != 0u ? d : q;
 }
 
-/* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v, and c
- * + 2^16 into *cs (0 where v is masked: nothing changes there). In 16-bit lanes: |c| <= 2^15 +
+/* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v = *ov, c
+ * + 2^16 into *cs (0 where v is masked: nothing changes there) and the output before scoring,
+ * the masked value or clamp(c), over v in *ov. In 16-bit lanes: |c| <= 2^15 +
  * 2^11 < 2^16, t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of c^2 as in
  * cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535, |tv - mv| <= 2^15; the signs
  * applied by two's complement in 16 bits (m + -q and mv + -qe stay in range). */
-static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t full,
+static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16_t full,
                                uint16_t *m, uint16_t *mu, uint32_t *cs)
 {
+    const int32_t v = *ov;
     const uint32_t msk = (uint32_t)(v == PFT_RES16_MASKED ? 1u : 0u);
     const uint16_t mu0 = *mu;
     const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
@@ -503,14 +514,17 @@ static inline void cl_mean_px_(int32_t v, uint32_t learn, uint16_t a16, uint16_t
     const uint16_t nmu = (uint16_t)(mu0 + (uint16_t)((uint16_t)(qe ^ ne) - ne));
     *mu = (msk | (learn ^ 1u)) != 0u ? mu0 : nmu;
     *cs = msk != 0u ? 0u : (uint32_t)(cv + 65536);
+    *ov = msk != 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
 }
 
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
- * pft_pre.h (docs/algorithms.md 9.9) in plain passes. Pass 1 reads the residual and
- * updates the map, the mean and the counter, and keeps c = r - mu (before mu's update) in cs
- * as c + 2^16 (0: a masked pixel); pass 2 writes the output from cs (which may be r's own
- * buffer, inplace: r is no longer read); pass 3 scores, in chunks of 32 columns, the pixels
- * whose read exceeds thr. Ranges: mu - 2^15 in [-2^14, 2^14] (a mean of values clamped
+ * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
+ * residual (or r's own buffer, inplace; each pass reads and writes o at the same column
+ * only). With persist, a first pass updates the counter and keeps the learn flags in cs. The
+ * mean pass reads the residual, updates the map and the mean, keeps c = r - mu (before mu's
+ * update) in cs as c + 2^16 (0: a masked pixel) and writes the output before scoring (the
+ * mask, or c clamped) over the residual; the last pass scores, in chunks of 32 columns, the
+ * pixels whose read exceeds thr. Ranges: mu - 2^15 in [-2^14, 2^14] (a mean of values clamped
  * there), so |c| <= 2^15 + 2^11 and c^2 < 2^31; t and m in 0..65535 and a <= 2^16, so
  * a |t - m| + 2^15 < 2^32 and m + -q lies between m and t (q <= |t - m|), likewise the mean's
  * step (|tv - mv| <= 2^15); the cl_scale_ and cl_div_ roundings written out. */
@@ -519,10 +533,14 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
                          uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap)
 {
     const uint16_t a16 = (uint16_t)(a > 65535u ? 65535u : a), full = (uint16_t)(a > 65535u ? 1u : 0u);
+    /* the passes read and write o at the same column only (o may be r, inplace) */
+    if (o != r) {
+        memcpy(o, r, (size_t)w * 2u);
+    }
     if (pc != NULL) {
         for (int32_t x = 0; x < w; ++x) {
             /* the gate reads the stage's residual v */
-            const int32_t v = r[x];
+            const int32_t v = o[x];
             const uint32_t av = (uint32_t)(v < 0 ? -v : v);
             const uint32_t p0 = pc[x];
             const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
@@ -534,16 +552,12 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
             cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
         }
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(r[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(r[x], 1u, a16, full, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, full, &mrow[x], &mu[x], &cs[x]);
         }
-    }
-    for (int32_t x = 0; x < w; ++x) {
-        const int32_t cv = (int32_t)cs[x] - 65536;
-        o[x] = cs[x] == 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
     }
     const int32_t sthr = (int32_t)thr;
     for (int32_t x0 = 0; x0 < w; x0 += 32) {
