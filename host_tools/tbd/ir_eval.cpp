@@ -177,6 +177,8 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
             ++ev.false_tracks;
             ev.false_ids.push_back(kv.first);
             ev.false_list.push_back(track_span[kv.first]);
+        } else {
+            ev.target_list.push_back(track_span[kv.first]);
         }
     return ev;
 }
@@ -254,8 +256,13 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
             fl.push_back({{"id", f.id}, {"first_frame", f.first}, {"last_frame", f.last},
                           {"reported_frames", f.frames}, {"x", f.x}, {"y", f.y},
                           {"scene_x", num(f.scene_x)}, {"scene_y", num(f.scene_y)}});
+        nlohmann::json tl = nlohmann::json::array();
+        for (const FalseTrack &f : r.target_list)
+            tl.push_back({{"id", f.id}, {"first_frame", f.first}, {"last_frame", f.last},
+                          {"reported_frames", f.frames}});
         per.push_back({{"seed", r.seed}, {"frames", r.frames}, {"tracks", r.tracks},
-                       {"false_tracks", r.false_tracks}, {"targets", ts}, {"false_track_list", fl}});
+                       {"false_tracks", r.false_tracks}, {"targets", ts}, {"false_track_list", fl},
+                       {"target_track_list", tl}});
     }
     return {{"runs", runs.size()},
             {"frames_total", frames},

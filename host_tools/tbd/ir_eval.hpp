@@ -46,6 +46,7 @@ struct IrRunEval {
     int tracks = 0, false_tracks = 0;
     std::vector<uint32_t> false_ids;
     std::vector<FalseTrack> false_list;    ///< one per false track, in the order of false_ids
+    std::vector<FalseTrack> target_list;   ///< the same spans for the tracks associated with a target in some frame, by id
     /// injected targets' frames (1-based frame > 1, inside the image), and those with a birth
     /// candidate of the search layer within 1 px (Chebyshev) of the target's nearest pixel
     long birth_frames = 0, birth_hits = 0;

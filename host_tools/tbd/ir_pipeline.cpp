@@ -280,6 +280,7 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.early_px = to_real(t.scene_early_px);
     c.width = static_cast<uint32_t>(width);
     c.height = static_cast<uint32_t>(height);
+    c.hold_frames = static_cast<uint32_t>(t.scene_hold);
     return c;
 }
 

@@ -124,7 +124,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -176,6 +176,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.scene_gate_px = t.number_in("scene_gate_px", T.scene_gate_px, 0.0, 10.0);
     T.scene_fit_px = t.number_in("scene_fit_px", T.scene_fit_px, 0.0, 100.0);
     T.scene_early_px = t.number_in("scene_early_px", T.scene_early_px, 0.0, 100.0);
+    T.scene_hold = static_cast<int>(t.integer_in("scene_hold", T.scene_hold, 1, PFT_TBD_SCENE_MAX_HOLD));  // the library's bound (pft_tbd_scene.h)
     if (t.has("scene_tentative"))
         T.scene_tentative = t.at("scene_tentative").as_bool();
     T.clutter_thr = t.number_in("clutter_thr", T.clutter_thr, 1.0, 64.0);

@@ -8,7 +8,8 @@
  * fails the line fit and is never reported, but is from its 4th frame with the fit off; a
  * tentative track is held, and found CLUTTER like the others; a full table gives NO_SLOT and
  * takes over the slot of the id fed least recently; a history is forgotten forget_frames
- * frames after its last frame. Positions and shifts are multiples of 2^-16 px, so that both
+ * frames after its last frame; the report hold (hold_frames k) reports a track from the k-th
+ * frame it passes the tests, counting no tentative frame, and leaves CLUTTER as it is. Positions and shifts are multiples of 2^-16 px, so that both
  * builds give the same answers exactly.
  */
 #include <string.h>
@@ -69,6 +70,7 @@ static void test_config_and_workspace(void)
     pft_tbd_scene_config_default(&cfg);
     TEST_ASSERT_EQUAL_UINT32(5u, cfg.frames);
     TEST_ASSERT_EQUAL_UINT32(64u, cfg.forget_frames);
+    TEST_ASSERT_EQUAL_UINT32(1u, cfg.hold_frames);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
     TEST_ASSERT_NULL(field);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_config_check(NULL, &field));
@@ -79,7 +81,7 @@ static void test_config_and_workspace(void)
     } bad[] = {{"frames", 0}, {"frames", 1}, {"max_tracks", 2}, {"max_tracks", 3}, {"gate_px", 4},
                {"gate_px", 5}, {"fit_px", 6}, {"fit_px", 7}, {"early_px", 8}, {"early_px", 9},
                {"forget_frames", 10}, {"forget_frames", 11}, {"width", 12}, {"width", 13},
-               {"height", 14}, {"height", 15}};
+               {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -98,7 +100,9 @@ static void test_config_and_workspace(void)
         case 12: b.width = 0u; break;
         case 13: b.width = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
         case 14: b.height = 0u; break;
-        default: b.height = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
+        case 15: b.height = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
+        case 16: b.hold_frames = 0u; break;
+        default: b.hold_frames = PFT_TBD_SCENE_MAX_HOLD + 1u; break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -115,6 +119,7 @@ static void test_config_and_workspace(void)
     cfg.gate_px = PFT_C(256.0);
     cfg.frames = PFT_TBD_SCENE_MAX_FRAMES;
     cfg.max_tracks = SLOTS;
+    cfg.hold_frames = PFT_TBD_SCENE_MAX_HOLD;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
     const size_t ws = pft_tbd_scene_workspace_size(&cfg);
     TEST_ASSERT_EQUAL_UINT32((uint32_t)PFT_TBD_SCENE_WORKSPACE_BYTES(SLOTS, PFT_TBD_SCENE_MAX_FRAMES), (uint32_t)ws);
@@ -224,6 +229,59 @@ static void test_against_scene_reported_early(void)
     for (uint32_t k = 1u; k <= 6u; ++k) {
         o = one(&s, trk(9u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.25), (int32_t)k)), PFT_C(40.0), true), Q(0.25), 0);
         TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o.decision);
+    }
+}
+
+/* the report hold: a track at 0.5 px/frame against the scene passes the tests from its 4th
+ * frame (the early report); with hold k it is reported from its (3 + k)-th frame and on every
+ * frame after; k = 1 is no hold. A track held by the fit for a while counts only the frames it
+ * passes; tentative frames count none; a track moving with the scene is CLUTTER whatever k. */
+static void test_report_hold(void)
+{
+    static const uint32_t holds[] = {1u, 2u, 3u, 5u};
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    for (size_t h = 0u; h < sizeof holds / sizeof holds[0]; ++h) {
+        const uint32_t hold = holds[h];
+        pft_tbd_scene_config_default(&cfg);
+        cfg.max_tracks = SLOTS;
+        cfg.hold_frames = hold;
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 12u; ++k) {
+            pft_tbd_scene_track_t t[2];
+            pft_tbd_scene_out_t o[2];
+            t[0] = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
+            t[1] = trk(2u, pft_add(PFT_C(60.0), pft_mul_i(PFT_C(0.25), (int32_t)k)), PFT_C(40.0), false);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, Q(0.25), 0, o));
+            TEST_ASSERT_EQUAL_INT(k < 3u + hold ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o[0].decision);
+            TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o[1].decision);
+        }
+        /* tentative for its first 7 frames (positions count, passes do not): then it passes on
+         * every frame (n + 1 positions, a straight line) and is reported from its (7 + k)-th */
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 14u; ++k) {
+            pft_tbd_scene_out_t o = one(
+                &s, trk(3u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), k <= 7u), Q(0.25), 0);
+            TEST_ASSERT_EQUAL_INT(k < 7u + hold ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+        }
+        /* passes on frames 4..6, jumps off its line at frame 7 (held by the fit until the jump
+         * has left its last n + 1 positions, frame 13), then passes again: the passes before
+         * the jump count, so hold k reports at frame 3 + k for k <= 3, and k = 5 at frame 14 */
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 16u; ++k) {
+            const pft_real_t x = pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k));
+            const pft_real_t y = k == 7u ? PFT_C(43.0) : PFT_C(40.0);
+            pft_tbd_scene_out_t o = one(&s, trk(4u, x, y, false), Q(0.25), 0);
+            bool rep;
+            if (k >= 7u && k <= 12u) {
+                rep = false;
+            } else if (hold <= 3u) {
+                rep = k >= 3u + hold;
+            } else {
+                rep = k >= 14u; /* passes 4, 5, 6, 13, 14: the 5th at frame 14 */
+            }
+            TEST_ASSERT_EQUAL_INT(rep ? PFT_TBD_SCENE_REPORT : PFT_TBD_SCENE_HOLD, o.decision);
+        }
     }
 }
 
@@ -380,6 +438,7 @@ int main(void)
     RUN_TEST(test_config_and_workspace);
     RUN_TEST(test_with_scene_marked_after_n_plus_1);
     RUN_TEST(test_against_scene_reported_early);
+    RUN_TEST(test_report_hold);
     RUN_TEST(test_curved_path_fails_the_fit);
     RUN_TEST(test_full_table);
     RUN_TEST(test_forget);

@@ -66,6 +66,8 @@ extern "C" {
 
 /** Largest cfg.frames (the test's n). */
 #define PFT_TBD_SCENE_MAX_FRAMES 31u
+/** Largest cfg.hold_frames. */
+#define PFT_TBD_SCENE_MAX_HOLD 64u
 /** Largest cfg.max_tracks. */
 #define PFT_TBD_SCENE_MAX_TRACKS 1024u
 
@@ -79,6 +81,7 @@ typedef struct {
     uint32_t forget_frames; /**< frames after its last one that an id's history is kept (default 64): 1..2^30 */
     uint32_t width;         /**< frame width, px (default 384): clamps px; 1..PFT_CFG_MAX_IMAGE_SIDE */
     uint32_t height;        /**< frame height, px (default 288): clamps py; 1..PFT_CFG_MAX_IMAGE_SIDE */
+    uint32_t hold_frames;   /**< report hold k (default 1: none): a track is reported from the k-th frame it passes the tests on; 1..PFT_TBD_SCENE_MAX_HOLD */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -121,11 +124,11 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
      PFT_WS_ROUND((size_t)(max_tracks) * ((size_t)(frames) + 1u) * PFT_TBD_SCENE_POS_BYTES_))
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
- *  forget 64 frames, 384 x 288). */
+ *  forget 64 frames, 384 x 288, hold 1 frame: no hold). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
- *  "forget_frames", "width", "height"); NULL on success. */
+ *  "forget_frames", "width", "height", "hold_frames"); NULL on success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);

@@ -24,6 +24,7 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->forget_frames = 64u;
     cfg->width = 384u;
     cfg->height = 288u;
+    cfg->hold_frames = 1u;
 }
 
 /* a threshold in (0, 256] px (zero_ok: [0, 256]); every threshold is zero_ok today, the
@@ -59,6 +60,8 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "width";
     } else if (cfg->height < 1u || cfg->height > PFT_CFG_MAX_IMAGE_SIDE) {
         bad = "height";
+    } else if (cfg->hold_frames < 1u || cfg->hold_frames > PFT_TBD_SCENE_MAX_HOLD) {
+        bad = "hold_frames";
     } else {
         /* accepted */
     }
@@ -349,7 +352,11 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             early = sc_disp2_(&ring[(sl->head + sl->count - 4u) % mm], p) >= e * e;
         }
         if ((sl->count >= mm || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
-            o->decision = PFT_TBD_SCENE_REPORT;
+            /* the report hold: reported from the hold_frames-th frame that passes */
+            if (sl->passed < s->cfg.hold_frames) {
+                sl->passed = (uint16_t)(sl->passed + 1u);
+            }
+            o->decision = sl->passed >= s->cfg.hold_frames ? PFT_TBD_SCENE_REPORT : PFT_TBD_SCENE_HOLD;
         } else {
             o->decision = PFT_TBD_SCENE_HOLD;
         }

@@ -30,7 +30,8 @@ typedef struct {
     uint32_t count;    /* positions held, 0..frames + 1 */
     uint32_t head;     /* ring index of the oldest position */
     uint32_t clutter;  /* 1: found moving with the scene */
-    uint32_t mark;     /* scratch of one update: 1 while its id is in the update's list */
+    uint16_t mark;     /* scratch of one update: 1 while its id is in the update's list */
+    uint16_t passed;   /* frames it passed the report tests, saturated at cfg.hold_frames (<= 64) */
 } pft_tbd_scene_slot_t;
 /** @endcond */
 
