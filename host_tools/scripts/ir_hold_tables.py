@@ -23,9 +23,11 @@ Usage:
   python3 host_tools/scripts/ir_hold_tables.py plot OUT.png TITLE HOLD_LABELS... -- LEVER_LABELS... -- LABEL=DIR ...
 """
 import json
-import math
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ir_demo_tables import mean_se, ratio  # noqa: E402  (one form of the tables' statistics)
 
 
 def load(dirs):
@@ -35,23 +37,6 @@ def load(dirs):
             per += json.load(f)['per_run']
     per.sort(key=lambda r: r['seed'])
     return per
-
-
-def ratio(num, den):
-    R = len(num)
-    N, D = sum(num), sum(den)
-    if D == 0 or R < 2:
-        return float('nan'), float('nan')
-    p = N / D
-    var = sum((a - p * b) ** 2 for a, b in zip(num, den)) / (R * (R - 1))
-    return p, math.sqrt(var) / (D / R)
-
-
-def mean_se(v):
-    R = len(v)
-    m = sum(v) / R
-    sd = math.sqrt(sum((x - m) ** 2 for x in v) / (R - 1)) if R > 1 else float('nan')
-    return m, sd / math.sqrt(R)
 
 
 def per_seed(per):

@@ -394,6 +394,22 @@ uint32_t pft_pre_sqrt_q10_(uint32_t mm)
     return s;
 }
 
+/* The chunked scoring's test for the columns x0..x1 - 1 of a row's reads hs (x1 - x0 <= 32):
+ * negative when some read may exceed thr (a full chunk: the OR of thr - hs, all < 2^23, so
+ * negative exactly when some hs > thr; a shorter last chunk: always, it is scored per pixel). */
+static inline int32_t cl_chunk_any_(const uint32_t *hs, int32_t sthr, int32_t x0, int32_t x1)
+{
+    int32_t any = -1;
+    if (x1 - x0 == 32) {
+        const uint32_t *hc = hs + x0;
+        any = 0;
+        for (int32_t i = 0; i < 32; ++i) {
+            any |= sthr - (int32_t)hc[i];
+        }
+    }
+    return any;
+}
+
 /* (d a + 2^15) >> 16 for d, a < 2^16: the high half of the product d a plus bit 15 of its low
  * half, each half computed on its own (a form the compiler maps to 16-bit multiplies, high and
  * low). */
@@ -453,14 +469,7 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
     const int32_t sthr = (int32_t)thr;
     for (int32_t x0 = 0; x0 < w; x0 += 32) {
         const int32_t x1 = w - x0 >= 32 ? x0 + 32 : w;
-        int32_t any = -1; /* negative where some read of the chunk exceeds thr */
-        if (x1 - x0 == 32) {
-            const uint32_t *hc = hs + x0;
-            any = 0;
-            for (int32_t i = 0; i < 32; ++i) {
-                any |= sthr - (int32_t)hc[i];
-            }
-        }
+        const int32_t any = cl_chunk_any_(hs, sthr, x0, x1);
         for (int32_t x = x0; any < 0 && x < x1; ++x) {
             const int32_t v = o[x]; /* r[x]: o is its copy, or r itself */
             if (hs[x] > thr && v != PFT_RES16_MASKED) {
@@ -562,14 +571,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
     const int32_t sthr = (int32_t)thr;
     for (int32_t x0 = 0; x0 < w; x0 += 32) {
         const int32_t x1 = w - x0 >= 32 ? x0 + 32 : w;
-        int32_t any = -1; /* negative where some read of the chunk exceeds thr */
-        if (x1 - x0 == 32) {
-            const uint32_t *hc = hs + x0;
-            any = 0;
-            for (int32_t i = 0; i < 32; ++i) {
-                any |= sthr - (int32_t)hc[i];
-            }
-        }
+        const int32_t any = cl_chunk_any_(hs, sthr, x0, x1);
         for (int32_t x = x0; any < 0 && x < x1; ++x) {
             if (hs[x] > thr && cs[x] != 0u) {
                 const int32_t cv = (int32_t)cs[x] - 65536;
