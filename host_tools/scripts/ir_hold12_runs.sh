@@ -5,7 +5,7 @@
 # Every scenario is a copy of host_tools/scenarios/tbd_ir/sweep_snr_<dB>db.json with the page's
 # best setting + integ_alpha 0.7 and `scene_hold` k in its tracker block (real<dB>_h<k>), and,
 # for DBT, the k = 1 copy with dbt.pfa patched (real<dB>_h1_pfa<P>); ship15* are the shipped
-# 15 dB file (DBT's shipped setting) and its dbt.pfa 3e-5 and 1e-4 copies. One pft eval per scenario
+# 15 dB file (DBT's shipped setting) and its dbt.pfa 3e-6, 3e-5 and 1e-4 copies. One pft eval per scenario
 # and block of seeds, 1 thread, nice; evaluations already in OUT are skipped.
 #
 # Usage: host_tools/scripts/ir_hold12_runs.sh OUT IR_SKY PFT BASE_SEED RUNS TAG NAME...
@@ -40,7 +40,7 @@ for db in ('09', '12', '15'):
         s['tracker']['scene_hold'] = 1
         s['dbt'] = {'pfa': float(pfa)}
         json.dump(s, open(f'{out}/real{db}_h1_pfa{pfa}.json', 'w'), indent=1)
-for pfa in (None, '3e-5', '1e-4'):
+for pfa in (None, '3e-6', '3e-5', '1e-4'):
     s = json.load(open(f'{src}/sweep_snr_15db.json'))
     if pfa:
         s['dbt'] = {'pfa': float(pfa)}

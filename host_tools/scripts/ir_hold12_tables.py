@@ -137,12 +137,14 @@ def plot(argv):
     for lab, trk, dirs in pts:
         groups.setdefault(lab.split(' ')[0], []).append((lab, trk, dirs))
     styles = ['o-', 's--', '^-.', 'd:']
+    ymin = 100.0
     for i, (g, lst) in enumerate(groups.items()):
         xs, ys, xe, ye, ls = [], [], [], [], []
         for lab, trk, dirs in lst:
             st = stats(per_seed(load(trk, dirs)))
             xs.append(st['false'][0]); xe.append(st['false'][1])
             ys.append(100 * st['pd'][0]); ye.append(100 * st['pd'][1]); ls.append(lab.split(' ', 1)[-1])
+        ymin = min([ymin] + [y - e for y, e in zip(ys, ye)])
         o = sorted(range(len(xs)), key=lambda k: xs[k])
         ax.errorbar([xs[k] for k in o], [ys[k] for k in o], xerr=[xe[k] for k in o], yerr=[ye[k] for k in o],
                     fmt=styles[i % len(styles)], capsize=3, label=g)
@@ -152,7 +154,7 @@ def plot(argv):
     ax.set_xlabel('false tracks per 1000 frames (± 1 s.e.; linear below 1)')
     ax.set_ylabel('injected targets detected, % (± 1 s.e.)')
     ax.set_title(title, fontsize=9)
-    ax.set_ylim(0, 100)
+    ax.set_ylim(max(0.0, 10.0 * int(ymin / 10.0) - 10.0), 100)
     ax.legend(fontsize=8, loc='lower right')
     fig.tight_layout()
     fig.savefig(out, dpi=110)
