@@ -27,15 +27,10 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->hold_frames = 1u;
 }
 
-/* a threshold in (0, 256] px (zero_ok: [0, 256]); every threshold is zero_ok today, the
- * parameter keeps the bound explicit at each call */
-static bool sc_thr_ok_(pft_real_t v, bool zero_ok)
+/* a threshold in [0, 256] px (0: the test it sets is off) */
+static bool sc_thr_ok_(pft_real_t v)
 {
-    const pft_real_t hi = PFT_C(256.0);
-    if (zero_ok && v == PFT_C(0.0)) {
-        return true;
-    }
-    return v > PFT_C(0.0) && v <= hi;
+    return v >= PFT_C(0.0) && v <= PFT_C(256.0);
 }
 
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field)
@@ -48,11 +43,11 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "frames";
     } else if (cfg->max_tracks < 1u || cfg->max_tracks > PFT_TBD_SCENE_MAX_TRACKS) {
         bad = "max_tracks";
-    } else if (!sc_thr_ok_(cfg->gate_px, true)) {
+    } else if (!sc_thr_ok_(cfg->gate_px)) {
         bad = "gate_px";
-    } else if (!sc_thr_ok_(cfg->fit_px, true)) {
+    } else if (!sc_thr_ok_(cfg->fit_px)) {
         bad = "fit_px";
-    } else if (!sc_thr_ok_(cfg->early_px, true)) {
+    } else if (!sc_thr_ok_(cfg->early_px)) {
         bad = "early_px";
     } else if (cfg->forget_frames < 1u || cfg->forget_frames > (1u << 30)) {
         bad = "forget_frames";
