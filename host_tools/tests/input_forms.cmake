@@ -1,7 +1,8 @@
 # cmake -DPFT=pft -DCONV=pft_frames_convert -DWORK=dir -DSRC=host_tools -DMODE=... -P input_forms.cmake
 # MODE setup: simulate and convert (the fixture); tbd, tbd_ir: same tracks from every form;
 # raw_errors: refused --raw specs and truncated dumps; sim_formats: tbd_ir pgm and raw output
-# read back alike; real_frames: a folder background with a YOLO label; lost_frames: pft sim
+# read back alike; real_frames: a folder background with a YOLO label (and the low-false-rate
+# twin of real_frames.json on it); lost_frames: pft sim
 # with lost frames, read back with the gaps in seq.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 function(run_ok)
@@ -187,6 +188,27 @@ elseif(MODE STREQUAL "real_frames")
   expect_refused("[^\n]*no_such_dir: background folder not found"
                  ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${WORK}/no_such_dir
                  --out ${WORK}/bad -q)
+  # its low-false-rate twin (docs/tuning.md, IR operating points) simulates the same sequence
+  # (the pairing of the results pages rests on it) and `pft run` accepts its tracker block
+  set(low ${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json)
+  run_ok(${PFT} sim --scenario ${low} --backgrounds ${WORK}/bg --out ${WORK}/ir_real_low -q)
+  file(GLOB fa RELATIVE ${WORK}/ir_real ${WORK}/ir_real/frame_*.pgm)
+  file(GLOB fb RELATIVE ${WORK}/ir_real_low ${WORK}/ir_real_low/frame_*.pgm)
+  list(LENGTH fa na)
+  if(NOT fa STREQUAL fb OR na LESS 2)
+    message(FATAL_ERROR "real_frames_low_false_rate.json: not the frames of real_frames.json (${na})")
+  endif()
+  foreach(f ${fa} truth.csv)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/ir_real/${f} ${WORK}/ir_real_low/${f}
+                    RESULT_VARIABLE diff)
+    if(NOT diff EQUAL 0)
+      message(FATAL_ERROR "real_frames_low_false_rate.json simulates another ${f} than real_frames.json")
+    endif()
+  endforeach()
+  run_ok(${PFT} run --scenario ${low} --sequence ${WORK}/ir_real_low --out ${WORK}/run_real_low --no-video -q)
+  if(NOT EXISTS ${WORK}/run_real_low/tracks.csv)
+    message(FATAL_ERROR "pft run of real_frames_low_false_rate.json wrote no tracks.csv")
+  endif()
 elseif(MODE STREQUAL "lost_frames")
   # pft sim loses frames as pft eval does (eval.drop_prob, the same per seed): no file for
   # them, listed in the sidecar; pft run, from the sim directory (port/file pattern) and from

@@ -29,15 +29,22 @@ pft_input_test(host_input_lost_frames lost_frames)
 add_test(NAME host_tbd_ir_selftest COMMAND pft selftest --kind tbd_ir)
 set_tests_properties(host_tbd_ir_selftest PROPERTIES LABELS "host"
                      PASS_REGULAR_EXPRESSION "tbd_ir selftest: passed" FAIL_REGULAR_EXPRESSION "FAIL")
-# Every shipped procedural tbd_ir scenario simulates and tracks 2 frames.
+# Every shipped procedural tbd_ir scenario simulates and tracks 2 frames (the real_frames*
+# files need a folder of images: host_tbd_ir_real_frames runs them on a fixture).
 file(GLOB PFT_TBD_IR_SCENARIOS CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/*.json")
 foreach(sc ${PFT_TBD_IR_SCENARIOS})
   get_filename_component(n ${sc} NAME_WE)
-  if(NOT n STREQUAL "real_frames")
+  if(NOT n MATCHES "^real_frames")
     add_test(NAME host_tbd_ir_scenario_${n} COMMAND pft bench --scenario ${sc} --frames 2 -q)
     set_tests_properties(host_tbd_ir_scenario_${n} PROPERTIES LABELS "host")
   endif()
 endforeach()
+# The low-false-rate procedural file's tracker block reaches the pipeline (the hold, the
+# flat-field correction, the gated mean, the integration): host_tools/tests/operating_points.cmake
+add_test(NAME host_tbd_ir_operating_points
+         COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/operating_points
+                 -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/operating_points.cmake)
+set_tests_properties(host_tbd_ir_operating_points PROPERTIES LABELS "host")
 # The pipeline's plumbing: on a clear sky at 15 dB it confirms at least 5 of the 6 targets.
 add_test(NAME host_tbd_ir_clear_sky COMMAND pft demo --scenario ${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/clear_sky_128x96.json)
 set_tests_properties(host_tbd_ir_clear_sky PROPERTIES LABELS "host"

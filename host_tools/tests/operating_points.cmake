@@ -1,0 +1,119 @@
+# cmake -DPFT=pft -DWORK=dir -DSRC=host_tools -P operating_points.cmake
+# The low-false-rate twin of the procedural demo file (scenarios/tbd_ir/procedural_low_false_rate.json,
+# docs/tuning.md "IR operating points"): its tracker block reaches the pipeline. A copy of the
+# shipped file with a small sequence (128x96, 40 frames, 3 targets at 15 dB, 3000 search
+# particles; every other tracker field as shipped) is simulated once and run by `pft run` as
+# shipped and with one field of its block undone at a time:
+#  - scene_hold 5 against 1: the held run's tracks.csv is the unheld run's rows less the first
+#    4 reported rows of every track (and the unheld run has a track of at least 5 rows, so the
+#    check can fail);
+#  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
+#  - integ_alpha removed: the tracks change (the births come from the integration).
+# Needs nothing outside the source tree.
+cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
+function(run_ok)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+endfunction()
+
+set(shipped "${SRC}/scenarios/tbd_ir/procedural_low_false_rate.json")
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+file(READ ${shipped} js)
+
+# the shipped block is the documented one (a change of the file must change this test and docs);
+# CMake reads JSON true as ON and prints doubles with 17 digits (0.2, 0.7)
+foreach(kv "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
+           "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "scene_hold=5")
+  string(REPLACE "=" ";" kv "${kv}")
+  list(GET kv 0 k)
+  list(GET kv 1 v)
+  string(JSON got GET "${js}" tracker ${k})
+  if(NOT got STREQUAL v)
+    message(FATAL_ERROR "${shipped}: tracker.${k} is '${got}', the documented setting is '${v}'")
+  endif()
+endforeach()
+
+string(JSON js SET "${js}" image "{\"width\": 128, \"height\": 96}")
+string(JSON js SET "${js}" frames 40)
+string(JSON js SET "${js}" targets snr_db 15)
+string(JSON js SET "${js}" targets count 3)
+string(JSON js SET "${js}" tracker particles 3000)
+file(WRITE ${WORK}/lf.json "${js}")
+string(JSON v SET "${js}" tracker scene_hold 1)
+file(WRITE ${WORK}/hold1.json "${v}")
+string(JSON v SET "${js}" tracker flat_block 0)
+file(WRITE ${WORK}/noflat.json "${v}")
+string(JSON v SET "${js}" tracker clutter_mean false)
+string(JSON v SET "${v}" tracker clutter_persist 0)
+file(WRITE ${WORK}/nomean.json "${v}")
+string(JSON v REMOVE "${js}" tracker integ_alpha)
+file(WRITE ${WORK}/nointeg.json "${v}")
+
+run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
+foreach(c lf hold1 noflat nomean nointeg)
+  run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
+         --residual-out ${WORK}/run_${c}/res.i16)
+endforeach()
+
+# tracks.csv rows per track id, in order, without the header
+function(rows_by_track file prefix)
+  file(STRINGS ${file} rows)
+  list(REMOVE_AT rows 0)
+  set(ids "")
+  foreach(r ${rows})
+    string(REPLACE "," ";" f "${r}")
+    list(GET f 1 id)
+    if(NOT id IN_LIST ids)
+      list(APPEND ids ${id})
+      set(${prefix}_${id} "")
+    endif()
+    list(APPEND ${prefix}_${id} "${r}")
+  endforeach()
+  set(${prefix}_ids ${ids} PARENT_SCOPE)
+  foreach(id ${ids})
+    set(${prefix}_${id} "${${prefix}_${id}}" PARENT_SCOPE)
+  endforeach()
+endfunction()
+
+rows_by_track(${WORK}/run_hold1/tracks.csv k1)
+rows_by_track(${WORK}/run_lf/tracks.csv k5)
+set(expect "")
+set(long 0)
+foreach(id ${k1_ids})
+  list(LENGTH k1_${id} n)
+  if(n GREATER 4)
+    math(EXPR long "${long} + 1")
+    list(SUBLIST k1_${id} 4 -1 kept)
+    list(APPEND expect ${kept})
+  endif()
+endforeach()
+if(long EQUAL 0)
+  message(FATAL_ERROR "scene_hold 1 gave no track of 5 or more reported rows: the hold cannot be seen")
+endif()
+file(STRINGS ${WORK}/run_lf/tracks.csv got)
+list(REMOVE_AT got 0)
+list(SORT expect)
+list(SORT got)
+if(NOT expect STREQUAL got)
+  message(FATAL_ERROR "the shipped file's tracks are not scene_hold 1's less the first 4 reported rows of "
+                      "each track (scene_hold 5 not in effect?)\nexpected: ${expect}\ngot: ${got}")
+endif()
+list(LENGTH got ngot)
+message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
+
+foreach(c noflat nomean)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/res.i16 ${WORK}/run_${c}/res.i16
+                  RESULT_VARIABLE same)
+  if(same EQUAL 0)
+    message(FATAL_ERROR "${c}: the residual is the shipped file's: its field does not reach the pipeline")
+  endif()
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/tracks.csv ${WORK}/run_nointeg/tracks.csv
+                RESULT_VARIABLE same)
+if(same EQUAL 0)
+  message(FATAL_ERROR "nointeg: the tracks are the shipped file's: integ_alpha does not reach the manager")
+endif()
+message(STATUS "flat_block and clutter_mean change the residual, integ_alpha the tracks")
