@@ -1,6 +1,11 @@
 /* Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*; docs/algorithms.md
  * 9.9). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
- * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8. */
+ * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8.
+ * The gate's counter pc (frames Q8) needs its 16 bits: its values run from 0 to the cap 2 k
+ * 256 = 512 k >= 512 (persist k >= 1; reached exactly by 2 k frames beyond excess without a
+ * shift), and the warp's rounding makes intermediate integers (a capped counter next to a zero
+ * one carried by f / 256 px gives 2 k (256 - f) and 2 k f: 257 distinct values for every k),
+ * so no 8-bit code holds them with the same outputs (docs/algorithms.md 9.9). */
 #include <string.h>
 
 #include "pft/pft_pre.h"
