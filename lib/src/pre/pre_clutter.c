@@ -223,19 +223,32 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
  * gives that code for every dz; a quotient of 64 is the next octave's first code (32 e + 32 =
  * 32 (e + 1) + 0, the same value 2^(e + 9)). With dz uniform the expected decoded value is v
  * within 1/256 step. In 16-bit lanes (the row functions below vectorise it): the octave from 6
- * comparisons, the step p2 = 2^(e + 3) and 2^16 / p2 as sums of masked bits, the two shifts as
+ * threshold bits, the step p2 = 2^(e + 3) and 2^16 / p2 as sums of masked bits, the two shifts as
  * high halves of 16 x 16-bit products (v + d <= 64512 + 1023 < 2^16). */
-static inline uint16_t cl_mask8_(uint32_t cond01)
+static inline uint16_t cl_mask8_(uint16_t x01)
 {
-    return (uint16_t)(0u - cond01); /* 0 or 0xFFFF (cond01 is 0 or 1) */
+    return (uint16_t)(0u - (uint32_t)x01); /* 0 or 0xFFFF (x01 is 0 or 1) */
+}
+
+/* 1 where v >= 2^k, else 0, for v <= 64512 and k = 10..15 (v >> k <= 63, so (v >> k) + 63 < 2^7
+ * and its bit 6 tells whether v >> k >= 1); arithmetic only, so the row loops vectorise. */
+static inline uint16_t cl_ge2k_(uint16_t v, uint32_t k)
+{
+    return (uint16_t)((uint16_t)((uint16_t)(v >> k) + 63u) >> 6);
+}
+
+/* 1 where c >= t, else 0, for c <= 255 and t = 1..256 (bit 8 of c + 256 - t < 2^9). */
+static inline uint16_t cl_gec_(uint16_t c, uint32_t t)
+{
+    return (uint16_t)((uint16_t)(c + (256u - t)) >> 8);
 }
 
 static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
 {
     const uint16_t v = v0 > 64512u ? (uint16_t)64512u : v0;
-    const uint16_t m1 = cl_mask8_((uint32_t)(v >= 1024u)), m2 = cl_mask8_((uint32_t)(v >= 2048u));
-    const uint16_t m3 = cl_mask8_((uint32_t)(v >= 4096u)), m4 = cl_mask8_((uint32_t)(v >= 8192u));
-    const uint16_t m5 = cl_mask8_((uint32_t)(v >= 16384u)), m6 = cl_mask8_((uint32_t)(v >= 32768u));
+    const uint16_t m1 = cl_mask8_(cl_ge2k_(v, 10u)), m2 = cl_mask8_(cl_ge2k_(v, 11u));
+    const uint16_t m3 = cl_mask8_(cl_ge2k_(v, 12u)), m4 = cl_mask8_(cl_ge2k_(v, 13u));
+    const uint16_t m5 = cl_mask8_(cl_ge2k_(v, 14u)), m6 = cl_mask8_(cl_ge2k_(v, 15u));
     const uint16_t p2 = (uint16_t)(16u + (m1 & 16u) + (m2 & 32u) + (m3 & 64u) + (m4 & 128u) + (m5 & 256u) + (m6 & 512u));
     const uint16_t inv = (uint16_t)(4096u - (m1 & 2048u) - (m2 & 1024u) - (m3 & 512u) - (m4 & 256u) - (m5 & 128u) - (m6 & 64u));
     const uint16_t base = (uint16_t)((m1 & 32u) + (m2 & 32u) + (m3 & 32u) + (m4 & 32u) + (m5 & 32u) + (m6 & 32u));
@@ -249,9 +262,9 @@ static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
 static inline uint16_t cl_dec8_(uint8_t c8)
 {
     const uint16_t c = c8;
-    const uint16_t n2 = cl_mask8_((uint32_t)(c >= 64u)), n3 = cl_mask8_((uint32_t)(c >= 96u));
-    const uint16_t n4 = cl_mask8_((uint32_t)(c >= 128u)), n5 = cl_mask8_((uint32_t)(c >= 160u));
-    const uint16_t n6 = cl_mask8_((uint32_t)(c >= 192u)), n7 = cl_mask8_((uint32_t)(c >= 224u));
+    const uint16_t n2 = cl_mask8_(cl_gec_(c, 64u)), n3 = cl_mask8_(cl_gec_(c, 96u));
+    const uint16_t n4 = cl_mask8_(cl_gec_(c, 128u)), n5 = cl_mask8_(cl_gec_(c, 160u));
+    const uint16_t n6 = cl_mask8_(cl_gec_(c, 192u)), n7 = cl_mask8_(cl_gec_(c, 224u));
     const uint16_t p2 = (uint16_t)(16u + (n2 & 16u) + (n3 & 32u) + (n4 & 64u) + (n5 & 128u) + (n6 & 256u) + (n7 & 512u));
     /* the mantissa: c below 64, else 32 + c mod 32 = c - (c - 32 - c mod 32) */
     const uint16_t mant = (uint16_t)(c - (n2 & (uint16_t)((c & 0xE0u) - 32u)));
