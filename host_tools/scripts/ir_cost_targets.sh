@@ -26,7 +26,8 @@
 #   IRC_BLOCK=0|2|4       the map's block (pft_pre_clutter_config_t.block; default 0, as pft run)
 #   IRC_CLUTTER="MEAN PERSIST ALPHA"  the map's tracker fields clutter_mean (0|1), clutter_persist
 #                 and clutter_alpha (ir_probe's last three arguments; unset: the pipeline's
-#                 defaults 0 0 0.1); "1 4 0.2" is the best setting of docs/results/ir_clutter.md
+#                 defaults 0 0 0.1); "1 4 0.2" is the best setting of docs/results/ir_clutter.md;
+#                 a fourth value 1 sets the map's 8-bit form (map8, clutter_map8): "0 0 0.1 1"
 # Every long job runs under nice; one job at a time.
 set -euo pipefail
 cd "$(dirname "$0")/../.."

@@ -130,7 +130,7 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA]]]]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA [MAP8]]]]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
@@ -143,7 +143,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: MARKS is 3, 2 or 1, not %s\n", argv[10]);
         return 2;
     }
-    if (argc > 11 && argc != 14) {
+    if (argc > 11 && argc != 14 && argc != 15) {
         fprintf(stderr, "ir_probe: MEAN PERSIST ALPHA come together\n");
         return 2;
     }
@@ -209,6 +209,7 @@ int main(int argc, char **argv)
     cc.excess = (uint16_t)lround(1.5 * 256.0);
     cc.inplace = map_inplace != 0;
     cc.block = (uint8_t)(argc >= 10 ? atoi(argv[9]) : 0);
+    cc.map8 = argc >= 15 && atoi(argv[14]) != 0; /* MAP8: pft_pre_clutter_config_t.map8 */
     if (pft_pre_clutter_config_check(&cc, &field) != PFT_OK) {
         fprintf(stderr, "ir_probe: clutter configuration refused (%s)\n", field ? field : "?");
         return 2;

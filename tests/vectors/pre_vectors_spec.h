@@ -24,7 +24,7 @@
 #define PRE_GV_CASES 4u
 #define PRE_GV_NF 24u     /* values per frame, see pre_gv_record */
 #define PRE_GV_PEAKS 4u   /* peaks recorded per frame (x, y, value) */
-#define PRE_GV_CLUT 3u    /* clutter map cases on the temporal case's residual */
+#define PRE_GV_CLUT 4u    /* clutter map cases on the temporal case's residual */
 #define PRE_GV_CF 5u      /* clutter values per frame, see pre_gv_clutter */
 
 typedef struct {
@@ -155,12 +155,13 @@ static inline void pre_gv_record(const pft_pre_t *p, pft_status_t st, int32_t *o
  * evidence: 0 the defaults (3 x 3 mean, alpha 0.1, thr 2), 1 with the running mean, read as the
  * largest value over 5 x 5, alpha 0.2, thr 1.5, and a raise at the target's place on frame 10;
  * 2 the map on 2 x 2 blocks (block 2) with the gated running mean (persist 3), alpha 0.2, and
- * the same raise.
+ * the same raise; 3 the map in 8 bits (map8) with the gated running mean (persist 3), alpha
+ * 0.2, and the same raise.
  * Record: status, hashes of the output and of the map, the workspace bytes, the frames. */
 static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32_t k,
                                   pft_pre_clutter_t *cl, int32_t out[PRE_GV_CLUT][PRE_GV_FRAMES][PRE_GV_CF])
 {
-    static uint64_t cwork[PRE_GV_CLUT][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2, 0) / 8 + 1];
+    static uint64_t cwork[PRE_GV_CLUT][PFT_PRE_CLUTTER_WORKSPACE_BYTES(PRE_GV_W, PRE_GV_H, 1, 2, 1) / 8 + 1];
     pft_pre_stats_t s;
     memset(&s, 0, sizeof s);
     (void)pft_pre_stats(pre, &s);
@@ -180,6 +181,12 @@ static inline void pre_gv_clutter(const pft_pre_t *pre, pft_status_t pst, uint32
             cfg.blur = 2u;
             cfg.alpha = 13107u;
             cfg.thr = 1536u;
+        }
+        if (j == 3u) {
+            cfg.map8 = true;
+            cfg.mean = true;
+            cfg.persist = 3u;
+            cfg.alpha = 13107u;
         }
         if (j == 2u) {
             cfg.block = 2u;

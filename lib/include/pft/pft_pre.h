@@ -221,6 +221,7 @@ typedef struct {
     uint16_t excess;  /**< level of the persistence gate, Q8.8 sigma (256 = 1), 1..32767 (default 384 = 1.5); read only with persist */
     bool inplace;     /**< the output is written over the caller's residual buffer by pft_pre_clutter_update_inplace (pft_pre_clutter_update is then refused) and the workspace holds no output (PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it (default false) */
     uint8_t block;    /**< side B of the blocks of the scene the map (m, mu, the counter) is held on, px: 0 (default: per pixel, the map of docs/algorithms.md 9.9 as before), 2 or 4: each pixel is scored with its block's map read over (2 blur + 1)^2 blocks, each block updated with the means of its unmasked pixels' terms (see "Blocks" below); the map's memory is divided by B^2. Changes values */
+    bool map8;        /**< the map m held in 8 bits per pixel instead of 16: a code of sigma^2 with 3 exponent and 5 mantissa bits (value (32 + f) 2^(e + 3) in Q6.10 for code 32 e + f, e >= 1; code * 16 below 64), 1/64 relative precision from 0.5 sigma^2 up to 63 sigma^2, 1/64 sigma^2 absolute below; the map is decoded to Q6.10 to be read, warped and updated, and the update's result is stored with a deterministic dither so that its expected value is kept (see "8-bit map" below). Per pixel only (block must be 0). 1 byte per pixel less (PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8). Changes values (default false: 16 bits, today's values) */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -378,6 +379,17 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * stays 2 bytes per pixel; pft_pre_clutter_raise raises the blocks that hold the 3 x 3
  * pixels, pft_pre_clutter_at reads the pixel's block. See
  * PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK.
+ * 8-bit map (map8, per pixel only): m is stored as an 8-bit code c of its Q6.10 value v:
+ * c = v / 16 (rounded) below v = 1024 (1 sigma^2), else 32 (e - 1) + v / 2^(e + 3) (rounded)
+ * with e = 2..7 the octave of v (2^(e + 8) <= v < 2^(e + 9)), decoded as c * 16 (c < 64) or
+ * (32 + c mod 32) 2^(c / 32 + 3); code 255 (63 sigma^2) is the largest. Every code decodes to
+ * a value that encodes back to itself, and the decoded value of a rounded code is within
+ * max(8, v / 64) of v. The map is decoded row by row to be read, warped and updated with the
+ * formulas above; the warp's result is stored rounded to the nearest code, the update's with
+ * a deterministic dither (the rounding offset of column x is (o + 167 x) mod 256 256ths of the
+ * code's step, o from a hash of the row and the frame count), so that a small step a (t - m)
+ * lands in expectation instead of never.
+ * Workspace: PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8.
  */
 
 /** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1), per pixel (block 0), not in place. */
@@ -406,8 +418,19 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
      2u * PFT_WS_ROUND(PFT_PRE_CLUTTER_GRID_(w, k) * 4u) +                                        \
      ((k) > 1u ? 2u * PFT_WS_ROUND(PFT_PRE_CLUTTER_GRID_(w, k) * 8u) : 0u))
 
+/** Workspace bytes of a clutter map with map8 (per pixel): frames w x h, mean (0/1), blur b,
+ *  persist (0/1), inplace (0/1): the map 1 byte per pixel, mu and the counter 2 each, the
+ *  output 2 (not inplace), 2 b + 1 decoded rows of the map and one row being updated (2 bytes
+ *  per column each), two rows of sums (4 bytes per column each). */
+#define PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(w, h, mean, b, persist, inplace)                    \
+    ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h)) +                     \
+     (((mean) ? 1u : 0u) + ((persist) ? 1u : 0u) + ((inplace) ? 0u : 1u)) *                      \
+         PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +                                          \
+     PFT_WS_ROUND((2u * (size_t)(b) + 1u) * (size_t)(w) * 2u) + PFT_WS_ROUND((size_t)(w) * 2u) + \
+     2u * PFT_WS_ROUND((size_t)(w) * 4u))
+
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2, no veto, no
- *  persistence gate, excess 1.5, not in place, per pixel). */
+ *  persistence gate, excess 1.5, not in place, per pixel, the map in 16 bits). */
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto", "persist",

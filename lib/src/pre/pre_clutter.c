@@ -1,6 +1,11 @@
 /* Clutter map of the whitened residual (pft_pre.h, pft_pre_clutter_*; docs/algorithms.md
  * 9.9). Integer arithmetic only: the map m in sigma^2 Q6.10 (u16), the mean mu in sigma Q4.11
- * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8. */
+ * (u16, offset by 2^15), residuals in Q8.8 sigma; the warp's weights in Q8.
+ * The gate's counter pc (frames Q8) needs its 16 bits: its values run from 0 to the cap 2 k
+ * 256 = 512 k >= 512 (persist k >= 1; reached exactly by 2 k frames beyond excess without a
+ * shift), and the warp's rounding makes intermediate integers (a capped counter next to a zero
+ * one carried by f / 256 px gives 2 k (256 - f) and 2 k f: 257 distinct values for every k),
+ * so no 8-bit code holds them with the same outputs (docs/algorithms.md 9.9). */
 #include <string.h>
 
 #include "pft/pft_pre.h"
@@ -12,6 +17,8 @@
 #define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
 #define CL_MUMAX_ 16384        /* 8 sigma in Q4.11 */
 #define CL_MUOFF_ 32768u       /* offset of mu while warped (unsigned arithmetic) */
+#define CL_ONE8_ 64u           /* map8: the code of 1 sigma^2 (1024 Q6.10, exact) */
+#define CL_HALF8_ 128u         /* map8: the rounding offset of the nearest code (half a step, in 1/256) */
 
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
 {
@@ -31,6 +38,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->excess = 384u;
     cfg->inplace = false;
     cfg->block = 0u;
+    cfg->map8 = false;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -57,6 +65,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "excess";
     } else if (cfg->block != 0u && cfg->block != 2u && cfg->block != 4u) {
         bad = "block";
+    } else if (cfg->map8 && cfg->block != 0u) {
+        bad = "map8";
     } else {
         /* accepted */
     }
@@ -67,6 +77,11 @@ size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
 {
     if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
+    }
+    if (cfg->map8) {
+        return PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                                    cfg->blur, cfg->persist != 0u ? 1u : 0u,
+                                                    cfg->inplace ? 1u : 0u);
     }
     return PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
                                                  cfg->blur, cfg->persist != 0u ? 1u : 0u,
@@ -96,11 +111,15 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     const size_t gw = (w + k - 1u) / k, gh = (h + k - 1u) / k;
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
-    uint16_t *m = pft_ws_take(&ws, gw * gh * 2u);
+    /* map8 (per pixel): the map's codes, 2 blur + 1 decoded rows and the row being updated */
+    uint16_t *m = cfg->map8 ? NULL : pft_ws_take(&ws, gw * gh * 2u);
+    uint8_t *m8 = cfg->map8 ? pft_ws_take(&ws, gw * gh) : NULL;
     int16_t *out = cfg->inplace ? NULL : pft_ws_take(&ws, w * h * 2u);
     uint16_t *mu = cfg->mean ? pft_ws_take(&ws, gw * gh * 2u) : NULL;
     uint16_t *pc = cfg->persist != 0u ? pft_ws_take(&ws, gw * gh * 2u) : NULL;
-    uint16_t *ring = pft_ws_take(&ws, ((size_t)cfg->blur + 1u) * gw * 2u);
+    const size_t nring = cfg->map8 ? 2u * (size_t)cfg->blur + 1u : (size_t)cfg->blur + 1u;
+    uint16_t *ring = pft_ws_take(&ws, nring * gw * 2u);
+    uint16_t *row = cfg->map8 ? pft_ws_take(&ws, gw * 2u) : NULL;
     uint32_t *vs = pft_ws_take(&ws, gw * 4u);
     uint32_t *hs = pft_ws_take(&ws, gw * 4u);
     uint32_t *acc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
@@ -116,6 +135,8 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     c->acc = acc;
     c->sacc = sacc;
     c->m = m;
+    c->m8 = m8;
+    c->row = row;
     c->out = out;
     c->mu = mu;
     c->pc = pc;
@@ -127,13 +148,19 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
 
 pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
 {
-    if (c == NULL || c->m == NULL) {
+    if (c == NULL || (c->m == NULL && c->m8 == NULL)) {
         return PFT_ERR_INVAL;
     }
     const size_t npix = (size_t)c->cfg.width * (size_t)c->cfg.height;
     const size_t gw = c->gw, ng = gw * (size_t)c->gh; /* the map's grid */
-    for (size_t i = 0u; i < ng; ++i) {
-        c->m[i] = (uint16_t)CL_ONE_;
+    const size_t nring = c->m8 != NULL ? 2u * (size_t)c->cfg.blur + 1u : (size_t)c->cfg.blur + 1u;
+    if (c->m8 != NULL) {
+        memset(c->m8, (int)CL_ONE8_, ng);
+        memset(c->row, 0, gw * 2u);
+    } else {
+        for (size_t i = 0u; i < ng; ++i) {
+            c->m[i] = (uint16_t)CL_ONE_;
+        }
     }
     if (c->cfg.inplace) {
         c->out = NULL; /* the caller's buffer of the next update */
@@ -146,7 +173,7 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     if (c->pc != NULL) {
         memset(c->pc, 0, ng * 2u);
     }
-    memset(c->ring, 0, ((size_t)c->cfg.blur + 1u) * gw * 2u);
+    memset(c->ring, 0, nring * gw * 2u);
     memset(c->vs, 0, gw * 4u);
     memset(c->hs, 0, gw * 4u);
     if (c->acc != NULL) {
@@ -186,6 +213,80 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
     const int64_t i = q8 / 256 - ((q8 % 256) < 0 ? 1 : 0);
     *ip = (int32_t)i;
     *fp = (uint32_t)(q8 - i * 256);
+}
+
+/* map8: the code of v (Q6.10, <= 65535) with the rounding offset dz / 256 of the code's step
+ * (dz 0..255; CL_HALF8_: the nearest code). With v clamped to 64512 (the largest code's value:
+ * every v above it has code 255 either way) and e its octave (1 below 2^10, else 2..7 with
+ * 2^(e + 8) <= v < 2^(e + 9)): c = 32 (e - 1) + floor((v + d) / 2^(e + 3)), d = floor(dz 2^(e +
+ * 3) / 256) < 2^(e + 3), at most 192 + 63. A code's decoded value (a multiple of its step)
+ * gives that code for every dz; a quotient of 64 is the next octave's first code (32 e + 32 =
+ * 32 (e + 1) + 0, the same value 2^(e + 9)). With dz uniform the expected decoded value is v
+ * within 1/256 step. In 16-bit lanes (the row functions below vectorise it): the octave from 6
+ * threshold bits, the step p2 = 2^(e + 3) and 2^16 / p2 as sums of masked bits, the two shifts as
+ * high halves of 16 x 16-bit products (v + d <= 64512 + 1023 < 2^16). */
+static inline uint16_t cl_mask8_(uint16_t x01)
+{
+    return (uint16_t)(0u - (uint32_t)x01); /* 0 or 0xFFFF (x01 is 0 or 1) */
+}
+
+/* 1 where v >= 2^k, else 0, for v <= 64512 and k = 10..15 (v >> k <= 63, so (v >> k) + 63 < 2^7
+ * and its bit 6 tells whether v >> k >= 1); arithmetic only, so the row loops vectorise. */
+static inline uint16_t cl_ge2k_(uint16_t v, uint32_t k)
+{
+    return (uint16_t)((uint16_t)((uint16_t)(v >> k) + 63u) >> 6);
+}
+
+/* 1 where c >= t, else 0, for c <= 255 and t = 1..256 (bit 8 of c + 256 - t < 2^9). */
+static inline uint16_t cl_gec_(uint16_t c, uint32_t t)
+{
+    return (uint16_t)((uint16_t)(c + (256u - t)) >> 8);
+}
+
+static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
+{
+    const uint16_t v = v0 > 64512u ? (uint16_t)64512u : v0;
+    const uint16_t m1 = cl_mask8_(cl_ge2k_(v, 10u)), m2 = cl_mask8_(cl_ge2k_(v, 11u));
+    const uint16_t m3 = cl_mask8_(cl_ge2k_(v, 12u)), m4 = cl_mask8_(cl_ge2k_(v, 13u));
+    const uint16_t m5 = cl_mask8_(cl_ge2k_(v, 14u)), m6 = cl_mask8_(cl_ge2k_(v, 15u));
+    const uint16_t p2 = (uint16_t)(16u + (m1 & 16u) + (m2 & 32u) + (m3 & 64u) + (m4 & 128u) + (m5 & 256u) + (m6 & 512u));
+    const uint16_t inv = (uint16_t)(4096u - (m1 & 2048u) - (m2 & 1024u) - (m3 & 512u) - (m4 & 256u) - (m5 & 128u) - (m6 & 64u));
+    const uint16_t base = (uint16_t)((m1 & 32u) + (m2 & 32u) + (m3 & 32u) + (m4 & 32u) + (m5 & 32u) + (m6 & 32u));
+    const uint16_t d = (uint16_t)(((uint32_t)(uint16_t)(dz << 8) * (uint32_t)p2) >> 16);
+    const uint16_t q = (uint16_t)(((uint32_t)(uint16_t)(v + d) * (uint32_t)inv) >> 16);
+    return (uint8_t)(base + q);
+}
+
+/* map8: the Q6.10 value of code c: c 16 below 64, else (32 + c mod 32) 2^(c / 32 + 3) (the two
+ * forms agree on 32..63), as the mantissa times the step, in 16-bit lanes; largest 64512. */
+static inline uint16_t cl_dec8_(uint8_t c8)
+{
+    const uint16_t c = c8;
+    const uint16_t n2 = cl_mask8_(cl_gec_(c, 64u)), n3 = cl_mask8_(cl_gec_(c, 96u));
+    const uint16_t n4 = cl_mask8_(cl_gec_(c, 128u)), n5 = cl_mask8_(cl_gec_(c, 160u));
+    const uint16_t n6 = cl_mask8_(cl_gec_(c, 192u)), n7 = cl_mask8_(cl_gec_(c, 224u));
+    const uint16_t p2 = (uint16_t)(16u + (n2 & 16u) + (n3 & 32u) + (n4 & 64u) + (n5 & 128u) + (n6 & 256u) + (n7 & 512u));
+    /* the mantissa: c below 64, else 32 + c mod 32 = c - (c - 32 - c mod 32) */
+    const uint16_t mant = (uint16_t)(c - (n2 & (uint16_t)((c & 0xE0u) - 32u)));
+    return (uint16_t)(mant * p2);
+}
+
+uint32_t pft_pre_clutter_enc8_(uint32_t v, uint32_t dz)
+{
+    return cl_enc8_((uint16_t)(v > 65535u ? 65535u : v), (uint16_t)(dz & 255u));
+}
+
+uint32_t pft_pre_clutter_dec8_(uint32_t c)
+{
+    return cl_dec8_((uint8_t)c);
+}
+
+/* map8: a row of codes decoded (w values). */
+static void cl_dec8_row_(const uint8_t *src, uint16_t *dst, int32_t w)
+{
+    for (int32_t x = 0; x < w; ++x) {
+        dst[x] = cl_dec8_(src[x]);
+    }
 }
 
 /* The warp's horizontal pass over source row sy (the map's grid w x h): hr[x] =
@@ -257,11 +358,52 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
     }
 }
 
-/* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring. */
+/* cl_warp_ on the 8-bit map v8 (map8, per pixel): each source row is decoded into dec (w
+ * values) just before its horizontal pass, in the same order as cl_warp_ reads it, and the
+ * interpolated value (<= 64512, the largest code's) is stored as its nearest code. */
+static void cl_warp8_(uint8_t *v8, uint16_t *dec, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h,
+                      int32_t ix, uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
+{
+    const bool ydown = iy >= 0;
+    const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
+    const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
+    uint32_t *hc = ta, *hn = tb;
+    int32_t y = ydown ? h - 1 : 0;
+    for (int32_t k = -1; k < h; ++k) {
+        /* k = -1: row y's shared source row into hc; else the other source row into hn */
+        const int32_t sy = k < 0 ? (ydown ? y - iy : y - iy - 1) : (ydown ? y - iy - 1 : y - iy);
+        uint32_t *hr = k < 0 ? hc : hn;
+        if (sy >= 0 && sy < h) {
+            cl_dec8_row_(v8 + (size_t)sy * (size_t)w, dec, w);
+            cl_warp_h_(dec, hr, 0, w, 1, ix, fx, b, xlo, xhi);
+        } else {
+            cl_warp_h_(dec, hr, -1, w, 1, ix, fx, b, xlo, xhi); /* a row outside: b */
+        }
+        if (k < 0) {
+            continue;
+        }
+        const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc;
+        uint8_t *o = v8 + (size_t)y * (size_t)w;
+        for (int32_t x = 0; x < w; ++x) {
+            /* the interpolated value <= 64512 (a mix of code values) */
+            o[x] = cl_enc8_((uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16), (uint16_t)CL_HALF8_);
+        }
+        uint32_t *t = hc;
+        hc = hn;
+        hn = t;
+        y = ydown ? y - 1 : y + 1;
+    }
+}
+
+/* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring
+ * (map8: every row, decoded). */
 static const uint16_t *cl_row_(const pft_pre_clutter_t *c, int32_t r, int32_t y)
 {
     const int32_t h = (int32_t)c->gh;
     const int32_t rr = r < 0 ? 0 : (r >= h ? h - 1 : r);
+    if (c->m8 != NULL) {
+        return c->ring + (size_t)((uint32_t)rr % (2u * (uint32_t)c->cfg.blur + 1u)) * c->gw;
+    }
     if (rr <= y) {
         return c->ring + (size_t)((uint32_t)rr % ((uint32_t)c->cfg.blur + 1u)) * c->gw;
     }
@@ -722,6 +864,40 @@ static pft_status_t cl_check_frame_(const pft_pre_clutter_t *c, const pft_frame_
     return PFT_OK;
 }
 
+/* map8, before row y's update: row y + blur decoded into the ring (rows 0 .. blur - 1 as well
+ * before row 0), so that the ring holds the rows y - blur .. y + blur as they were before this
+ * frame's update (cl_row_); row y's copied into c->row, where the 16-bit row functions update
+ * it. */
+static uint16_t *cl_row8_begin_(pft_pre_clutter_t *c, int32_t y)
+{
+    const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh, b = (int32_t)c->cfg.blur;
+    const uint32_t nring = 2u * (uint32_t)b + 1u;
+    for (int32_t r = y == 0 ? 0 : y + b; r <= y + b && r < h; ++r) {
+        cl_dec8_row_(c->m8 + (size_t)r * (size_t)w, c->ring + (size_t)((uint32_t)r % nring) * (size_t)w, w);
+    }
+    memcpy(c->row, c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, (size_t)w * 2u);
+    return c->row;
+}
+
+/* map8, after row y's update: c->row stored as codes with the dither: the rounding offset of
+ * column x is (o + 167 x) mod 256 (167 odd: a permutation of 0..255 over 256 columns), o a
+ * hash of the row and the frame count, so a pixel's offset is drawn anew every frame. A masked
+ * pixel's value is its code's own, which every offset gives back. */
+static void cl_row8_end_(pft_pre_clutter_t *c, int32_t y)
+{
+    const int32_t w = (int32_t)c->gw;
+    uint32_t z = ((uint32_t)y * 0x85EBCA77u) ^ (c->frames * 0xC2B2AE3Du);
+    z ^= z >> 15;
+    z *= 0x2C1B3C6Du;
+    z ^= z >> 13;
+    const uint32_t o = z >> 24;
+    const uint16_t *v = c->row;
+    uint8_t *m8 = c->m8 + (size_t)y * (size_t)w;
+    for (int32_t x = 0; x < w; ++x) {
+        m8[x] = cl_enc8_(v[x], (uint16_t)((o + 167u * (uint32_t)x) & 255u));
+    }
+}
+
 /* One accepted frame; the output goes to c->out (packed rows), which is the residual's own
  * buffer with inplace: each residual row is read before its output row is written, and not
  * after. */
@@ -749,7 +925,11 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             /* beyond the frame, every pixel enters: the warp's indices stay in range */
             ix = ix > gw ? gw : (ix < -gw ? -gw : ix);
             iy = iy > gh ? gh : (iy < -gh ? -gh : iy);
-            cl_warp_(c->m, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
+            if (c->m8 != NULL) {
+                cl_warp8_(c->m8, c->row, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
+            } else {
+                cl_warp_(c->m, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
+            }
             if (c->mu != NULL) {
                 cl_warp_(c->mu, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_MUOFF_);
             }
@@ -774,8 +954,11 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
         return;
     }
     for (int32_t y = 0; y < h; ++y) {
-        uint16_t *mrow = c->m + (size_t)y * (size_t)w;
-        memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
+        /* map8: the decoded row, stored back after the update (cl_row8_begin_, cl_row8_end_) */
+        uint16_t *mrow = c->m8 != NULL ? cl_row8_begin_(c, y) : c->m + (size_t)y * (size_t)w;
+        if (c->m8 == NULL) {
+            memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
+        }
         cl_read_row_(c, y);
         const int16_t *r = (const int16_t *)res->data + (size_t)y * rs;
         int16_t *o = c->out + (size_t)y * (size_t)w;
@@ -788,13 +971,16 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             /* the vertical sums c->vs are spent: they keep c */
             cl_row_mean_(r, o, mrow, mu, pc, c->vs, c->hs, w, a, thr, veto, area, exc, pk, pcap);
         }
+        if (c->m8 != NULL) {
+            cl_row8_end_(c, y);
+        }
     }
 }
 
 pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
                                     int32_t shift_x, int32_t shift_y, bool evidence)
 {
-    if (c == NULL || c->m == NULL || res == NULL || res->data == NULL) {
+    if (c == NULL || (c->m == NULL && c->m8 == NULL) || res == NULL || res->data == NULL) {
         return PFT_ERR_INVAL;
     }
     if (c->cfg.inplace) {
@@ -812,7 +998,7 @@ pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_fram
                                             int16_t *pixels, int32_t shift_x, int32_t shift_y,
                                             bool evidence)
 {
-    if (c == NULL || c->m == NULL || res == NULL || pixels == NULL) {
+    if (c == NULL || (c->m == NULL && c->m8 == NULL) || res == NULL || pixels == NULL) {
         return PFT_ERR_INVAL;
     }
     if (!c->cfg.inplace) {
@@ -856,10 +1042,22 @@ pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
 
 pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level)
 {
-    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+    if (c == NULL || (c->m == NULL && c->m8 == NULL) || x >= c->cfg.width || y >= c->cfg.height) {
         return PFT_ERR_INVAL;
     }
     const uint32_t w = c->cfg.width, h = c->cfg.height, lb = c->lb;
+    if (c->m8 != NULL) {
+        /* the smallest code at or above level (the largest, 63 sigma^2, above it) */
+        uint32_t lc = pft_pre_clutter_enc8_(level, CL_HALF8_);
+        lc = pft_pre_clutter_dec8_(lc) < (uint32_t)level && lc < 255u ? lc + 1u : lc;
+        for (uint32_t yy = y > 0u ? y - 1u : 0u; yy <= (y + 1u < h ? y + 1u : h - 1u); ++yy) {
+            for (uint32_t xx = x > 0u ? x - 1u : 0u; xx <= (x + 1u < w ? x + 1u : w - 1u); ++xx) {
+                uint8_t *m8 = &c->m8[(size_t)yy * w + xx];
+                *m8 = *m8 < lc ? (uint8_t)lc : *m8;
+            }
+        }
+        return PFT_OK;
+    }
     const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
     const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
     /* the entries of the map that hold those pixels (blocks: each once) */
@@ -874,8 +1072,11 @@ pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y,
 
 uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y)
 {
-    if (c == NULL || c->m == NULL || x >= c->cfg.width || y >= c->cfg.height) {
+    if (c == NULL || (c->m == NULL && c->m8 == NULL) || x >= c->cfg.width || y >= c->cfg.height) {
         return 0u;
+    }
+    if (c->m8 != NULL) {
+        return pft_pre_clutter_dec8_(c->m8[(size_t)y * c->gw + x]);
     }
     return c->m[(size_t)(y >> c->lb) * c->gw + (x >> c->lb)];
 }

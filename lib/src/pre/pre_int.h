@@ -159,5 +159,9 @@ uint32_t pft_pre_isqrt64_(uint64_t v);
 /* floor(sqrt(mm 2^10)) for mm <= 65535 (the clutter map's sqrt(M) in Q10): the value of
  * pft_pre_isqrt64_((uint64_t)mm << 10) in fewer instructions (pre_clutter.c). */
 uint32_t pft_pre_sqrt_q10_(uint32_t mm);
+/* The clutter map's 8-bit code (map8, pre_clutter.c): the code of a Q6.10 value v <= 65535
+ * with the rounding offset dz / 256 of a step (128: the nearest code), and a code's value. */
+uint32_t pft_pre_clutter_enc8_(uint32_t v, uint32_t dz);
+uint32_t pft_pre_clutter_dec8_(uint32_t c);
 
 #endif

@@ -60,11 +60,13 @@ struct pft_pre_s {
 
 struct pft_pre_clutter_s {
     pft_pre_clutter_config_t cfg;
-    uint16_t *m;           /* map, sigma^2 Q6.10, w * h */
+    uint16_t *m;           /* map, sigma^2 Q6.10, w * h (NULL with cfg.map8) */
+    uint8_t *m8;           /* map8: the map's 8-bit codes, w * h (NULL without cfg.map8) */
+    uint16_t *row;         /* map8: the row being updated, decoded, w (NULL without cfg.map8) */
     uint16_t *mu;          /* mean, sigma Q4.11 plus 32768, w * h (NULL without cfg.mean) */
     uint16_t *pc;          /* persistence counter, frames Q8, w * h (NULL without cfg.persist) */
     int16_t *out;          /* output, Q8.8 sigma, w * h (inplace: the caller's buffer of the last update, NULL before) */
-    uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w */
+    uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w (map8: the decoded rows y - blur .. y + blur, (2 blur + 1) * w) */
     uint32_t *vs;          /* vertical sums (or maxima) of one row; the warp's row buffer; c of a row with the mean */
     uint32_t *hs;          /* the square's sums (or maxima) of one row; the warp's row buffer */
     uint32_t *acc;         /* block: per block of a row, the sum of t and the count (NULL per pixel) */

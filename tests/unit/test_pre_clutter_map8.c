@@ -1,0 +1,338 @@
+/*
+ * The clutter map held in 8 bits per pixel (pft_pre_clutter_config_t.map8, pft_pre.h "8-bit
+ * map"; docs/algorithms.md 9.9): the code's known answers, its round trip (every code decodes
+ * to a value that encodes back to it, with any rounding offset) and its error bound (every
+ * Q6.10 value v within max(8, v / 64) of its nearest code's value); the dither's expectation
+ * (over the 256 offsets, within 1/256 of a step of v); the configuration (map8 with block
+ * refused, named "map8"; the workspace PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8, W H - 4 W bytes
+ * less than the 16-bit map's at blur 1); a persistent blob learnt at the documented rate and a
+ * constant residual learnt in expectation (the dither's point: with the nearest code the map
+ * would stop about 10 % short); the 8-bit map against the 16-bit one on drifting noise; the
+ * raise; a refused call changes nothing. 64 x 48 frames, integer residuals: every target.
+ * The code functions are internal to the library (lib/src/pre/pre_int.h); the test declares
+ * them itself.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "pft_test_support.h"
+#include "pft/pft_pre.h"
+
+uint32_t pft_pre_clutter_enc8_(uint32_t v, uint32_t dz);
+uint32_t pft_pre_clutter_dec8_(uint32_t c);
+
+void setUp(void) {}
+void tearDown(void) {}
+
+#define W 64
+#define H 48
+#define NPIX (W * H)
+
+static int16_t g_res[NPIX];
+static uint64_t g_work[PFT_PRE_CLUTTER_WORKSPACE_BYTES(W, H, 1, PFT_PRE_CLUTTER_MAX_BLUR, 1) / 8 + 1];
+static uint64_t g_work2[sizeof(g_work) / 8];
+static uint64_t g_copy[sizeof(g_work) / 8];
+static uint32_t g_rs = 7654321u;
+
+static pft_frame_t res_frame(uint32_t seq)
+{
+    return pft_test_res16_frame(g_res, W, H, seq, 0u);
+}
+
+/* the step of the code around v (Q6.10): 16 below 1024, else 2^(e + 3) for 2^(e + 8) <= v */
+static uint32_t step_of(uint32_t v)
+{
+    uint32_t s = 16u;
+    for (uint32_t lo = 1024u; lo <= v && lo <= 32768u; lo *= 2u) {
+        s *= 2u;
+    }
+    return s;
+}
+
+static void test_code_known_answers_and_round_trip(void)
+{
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_dec8_(0u));
+    TEST_ASSERT_EQUAL_UINT32(512u, pft_pre_clutter_dec8_(32u));
+    TEST_ASSERT_EQUAL_UINT32(1024u, pft_pre_clutter_dec8_(64u)); /* 1 sigma^2 exactly */
+    TEST_ASSERT_EQUAL_UINT32(2048u, pft_pre_clutter_dec8_(96u));
+    TEST_ASSERT_EQUAL_UINT32(8192u, pft_pre_clutter_dec8_(160u));
+    TEST_ASSERT_EQUAL_UINT32(16384u, pft_pre_clutter_dec8_(192u)); /* the raise's 16 sigma^2 */
+    TEST_ASSERT_EQUAL_UINT32(64512u, pft_pre_clutter_dec8_(255u)); /* 63 sigma^2, the largest */
+    TEST_ASSERT_EQUAL_UINT32(64u, pft_pre_clutter_enc8_(1024u, 128u));
+    TEST_ASSERT_EQUAL_UINT32(65u, pft_pre_clutter_enc8_(1040u, 128u)); /* 1040 + 16 = 33 steps of 32 */
+    TEST_ASSERT_EQUAL_UINT32(64u, pft_pre_clutter_enc8_(1039u, 128u));
+    TEST_ASSERT_EQUAL_UINT32(64u, pft_pre_clutter_enc8_(1016u, 128u)); /* 1016 + 8 = 64 steps of 16 */
+    TEST_ASSERT_EQUAL_UINT32(255u, pft_pre_clutter_enc8_(65535u, 128u));
+    TEST_ASSERT_EQUAL_UINT32(255u, pft_pre_clutter_enc8_(65535u, 0u));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_enc8_(7u, 128u));
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_pre_clutter_enc8_(8u, 128u));
+    uint32_t prev = 0u;
+    for (uint32_t c = 0u; c < 256u; ++c) {
+        const uint32_t v = pft_pre_clutter_dec8_(c);
+        if (c > 0u) {
+            TEST_ASSERT_TRUE(v > prev); /* strictly increasing */
+        }
+        prev = v;
+        for (uint32_t dz = 0u; dz < 256u; ++dz) {
+            TEST_ASSERT_EQUAL_UINT32(c, pft_pre_clutter_enc8_(v, dz));
+        }
+    }
+}
+
+static void test_code_error_bound_every_value(void)
+{
+    uint32_t bad = 0u, worst_v = 0u;
+    double worst = 0.0;
+    for (uint32_t v = 0u; v <= 65535u; ++v) {
+        const double err = fabs((double)pft_pre_clutter_dec8_(pft_pre_clutter_enc8_(v, 128u)) - (double)v);
+        /* the bound of pft_pre.h: half a step, 8 below 1024 and v / 64 above (the clamp at code
+         * 255 included: 65535 - 64512 = 1023 <= 65535 / 64) */
+        const double bound = v < 512u ? 8.0 : (double)v / 64.0;
+        if (err > bound) {
+            ++bad;
+        }
+        if (err / (v < 512u ? 512.0 : (double)v) > worst) {
+            worst = err / (v < 512u ? 512.0 : (double)v);
+            worst_v = v;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, bad);
+    TEST_ASSERT_TRUE(worst <= 1.0 / 64.0);
+    TEST_ASSERT_TRUE(worst_v > 0u);
+}
+
+static void test_dither_expectation(void)
+{
+    for (uint32_t v = 0u; v < 64512u; v += 37u) {
+        double sum = 0.0;
+        for (uint32_t dz = 0u; dz < 256u; ++dz) {
+            sum += (double)pft_pre_clutter_dec8_(pft_pre_clutter_enc8_(v, dz));
+        }
+        /* floor((v + d) / s) over d = floor(dz s / 256): the mean of the decoded values is v
+         * within s / 256 (the offsets are uniform in steps of s / 256, or exactly s / 16 ones
+         * when s = 16) */
+        const double s = (double)step_of(v);
+        TEST_ASSERT_DOUBLE_WITHIN(s / 256.0 + 1e-9, (double)v, sum / 256.0);
+    }
+}
+
+static void test_config_and_workspace(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    TEST_ASSERT_FALSE(cfg.map8);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.map8 = true;
+    for (uint8_t k = 2u; k <= 4u; k = (uint8_t)(k + 2u)) {
+        pft_pre_clutter_config_t b = cfg;
+        b.block = k;
+        const char *field = NULL;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_config_check(&b, &field));
+        TEST_ASSERT_EQUAL_STRING("map8", field);
+        TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)pft_pre_clutter_workspace_size(&b));
+        pft_pre_clutter_t c;
+        memset(&c, 0x5A, sizeof c);
+        const pft_pre_clutter_t before = c;
+        TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_clutter_init(&c, &b, g_work, sizeof g_work));
+        TEST_ASSERT_EQUAL_MEMORY(&before, &c, sizeof c);
+    }
+    for (int mean = 0; mean < 2; ++mean) {
+        for (int inplace = 0; inplace < 2; ++inplace) {
+            for (uint8_t blur = 0u; blur <= PFT_PRE_CLUTTER_MAX_BLUR; ++blur) {
+                cfg.mean = mean != 0;
+                cfg.persist = mean != 0 ? 4u : 0u;
+                cfg.inplace = inplace != 0;
+                cfg.blur = blur;
+                cfg.map8 = true;
+                const size_t n8 = pft_pre_clutter_workspace_size(&cfg);
+                TEST_ASSERT_EQUAL_UINT32((uint32_t)PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(W, H, mean, blur, mean, inplace),
+                                         (uint32_t)n8);
+                cfg.map8 = false;
+                const size_t n16 = pft_pre_clutter_workspace_size(&cfg);
+                /* the map's plane W H bytes less; the ring 2 blur + 1 rows instead of blur + 1
+                 * and the updated row: (blur + 1) 2 W bytes more (W 2 is a multiple of the
+                 * workspace's alignment here) */
+                TEST_ASSERT_EQUAL_UINT32((uint32_t)(NPIX - ((size_t)blur + 1u) * 2u * W), (uint32_t)(n16 - n8));
+                cfg.map8 = true;
+                pft_pre_clutter_t c;
+                TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_clutter_init(&c, &cfg, g_work, n8 - 8u));
+                TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work, n8));
+                TEST_ASSERT_EQUAL_UINT32(1024u, pft_pre_clutter_at(&c, W - 1u, H - 1u));
+            }
+        }
+    }
+}
+
+static void test_persistent_blob_learnt_at_rate(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg); /* alpha 0.1, blur 1, thr 2 */
+    cfg.width = W;
+    cfg.height = H;
+    cfg.map8 = true;
+    pft_pre_clutter_t c;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work, sizeof g_work));
+    /* settle on a zero residual (the first frame sets m = 0; from the 11th frame on a =
+     * alpha, 1 / n being smaller) */
+    memset(g_res, 0, sizeof g_res);
+    for (uint32_t n = 1u; n <= 10u; ++n) {
+        pft_frame_t f = res_frame(n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    }
+    /* a 4 sigma blob on x, y 16..47 (whole columns 16..47, rows 16..47 of 48) */
+    for (int y = 16; y < H; ++y) {
+        for (int x = 16; x < 48; ++x) {
+            g_res[y * W + x] = 1024;
+        }
+    }
+    const double a = 6554.0 / 65536.0;
+    for (int n = 1; n <= 20; ++n) {
+        pft_frame_t f = res_frame(100u + (uint32_t)n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        const double m = 16.0 * (1.0 - pow(1.0 - a, n));
+        /* the mean over the blob's 24 x 24 inner pixels (each with its own dither): the
+         * expectation is the 16-bit map's (within its 1 % of Q6.10 roundings, as in
+         * test_pre_clutter_block); the spread of one pixel is a few steps of 1/32 at most, of
+         * the mean over 576 pixels a tenth of that: 2 % */
+        double sum = 0.0;
+        for (uint32_t y = 20u; y < 44u; ++y) {
+            for (uint32_t x = 20u; x < 44u; ++x) {
+                sum += pft_pre_clutter_at(&c, x, y) / 1024.0;
+            }
+        }
+        TEST_ASSERT_DOUBLE_WITHIN(0.02 * m, m, sum / 576.0);
+    }
+}
+
+static void test_constant_residual_learnt_in_expectation(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.map8 = true;
+    pft_pre_clutter_t c;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work, sizeof g_work));
+    /* 1.2 sigma everywhere: t = (307^2 + 32) >> 6 = 1473 (Q6.10); the map starts at 1024 (the
+     * first frame sets m = t, so two frames of 1 sigma first) */
+    for (int i = 0; i < NPIX; ++i) {
+        g_res[i] = 256;
+    }
+    for (uint32_t n = 1u; n <= 2u; ++n) {
+        pft_frame_t f = res_frame(n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    }
+    for (int i = 0; i < NPIX; ++i) {
+        g_res[i] = 307;
+    }
+    double sum = 0.0;
+    for (uint32_t n = 3u; n <= 202u; ++n) {
+        pft_frame_t f = res_frame(n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        if (n > 102u) {
+            for (uint32_t y = 0u; y < H; ++y) {
+                for (uint32_t x = 0u; x < W; ++x) {
+                    sum += (double)pft_pre_clutter_at(&c, x, y);
+                }
+            }
+        }
+    }
+    /* a = 0.1: the nearest code (steps of 32 here) would stop where a (t - m) < 16, m <= 1313,
+     * 11 % short; the dither's expectation is t within the 16-bit map's own rounding (a
+     * unit or two) and the pixels' spread averages out over 100 frames x 3072 pixels: 1 % */
+    TEST_ASSERT_DOUBLE_WITHIN(0.01 * 1473.0, 1473.0, sum / (100.0 * NPIX));
+}
+
+static void test_against_16_bit_map_on_drifting_noise(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.mean = true;
+    cfg.persist = 3u;
+    cfg.alpha = 13107u;
+    pft_pre_clutter_t c16, c8;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c16, &cfg, g_work2, sizeof g_work2));
+    cfg.map8 = true;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c8, &cfg, g_work, sizeof g_work));
+    double worst = 0.0;
+    for (uint32_t n = 1u; n <= 40u; ++n) {
+        /* unit noise, 3 sigma on the left third (clutter); the scene drifts by (0.3, -0.2) px */
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                const int32_t v = pft_test_noise_q88(&g_rs) * (x < W / 3 ? 3 : 1);
+                g_res[y * W + x] = (int16_t)(v > 32767 ? 32767 : (v < -32767 ? -32767 : v));
+            }
+        }
+        pft_frame_t f = res_frame(n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c16, &f, 19661, -13107, true));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c8, &f, 19661, -13107, true));
+        double s16 = 0.0, s8 = 0.0;
+        for (uint32_t y = 0u; y < H; ++y) {
+            for (uint32_t x = 0u; x < W; ++x) {
+                s16 += pft_pre_clutter_at(&c16, x, y);
+                s8 += pft_pre_clutter_at(&c8, x, y);
+            }
+        }
+        const double rel = fabs(s8 - s16) / s16;
+        worst = rel > worst ? rel : worst;
+    }
+    /* the frame's mean map: the update's dither keeps the expectation, the warp's nearest
+     * code is unbiased on spread values; per pixel the codes differ by a few steps of 1/32,
+     * over 3072 pixels the mean by well under 1 % */
+    TEST_ASSERT_TRUE(worst < 0.01);
+}
+
+static void test_raise_and_refused_input(void)
+{
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.width = W;
+    cfg.height = H;
+    cfg.mean = true;
+    cfg.persist = 2u;
+    cfg.map8 = true;
+    pft_pre_clutter_t c;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work, sizeof g_work));
+    for (uint32_t n = 1u; n <= 3u; ++n) {
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = (int16_t)pft_test_noise_q88(&g_rs);
+        }
+        pft_frame_t f = res_frame(n);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 40000, -70000, true));
+    }
+    const pft_pre_clutter_t saved = c;
+    memcpy(g_copy, g_work, sizeof g_work);
+    pft_frame_t f = res_frame(9u);
+    f.width = W + 1;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_FORMAT, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_STATE, pft_pre_clutter_update_inplace(&c, &f, g_res, 0, 0, true));
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_pre_clutter_raise(&c, W, 0u, 16384u));
+    TEST_ASSERT_EQUAL_MEMORY(&saved, &c, sizeof c);
+    TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
+    /* the raise: at least the level on the 3 x 3 (16 sigma^2 is a code; 20000 is not: the
+     * next code up, 20480), nothing beyond it raised to it */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, 8u, 8u, 16384u));
+    TEST_ASSERT_EQUAL_UINT32(16384u, pft_pre_clutter_at(&c, 7u, 9u));
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, 20u, 20u, 20000u));
+    TEST_ASSERT_EQUAL_UINT32(20480u, pft_pre_clutter_at(&c, 21u, 19u));
+    TEST_ASSERT_TRUE(pft_pre_clutter_at(&c, 22u, 20u) < 16384u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, 30u, 30u, 65535u));
+    TEST_ASSERT_EQUAL_UINT32(64512u, pft_pre_clutter_at(&c, 30u, 30u)); /* the largest code */
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_code_known_answers_and_round_trip);
+    RUN_TEST(test_code_error_bound_every_value);
+    RUN_TEST(test_dither_expectation);
+    RUN_TEST(test_config_and_workspace);
+    RUN_TEST(test_persistent_blob_learnt_at_rate);
+    RUN_TEST(test_constant_residual_learnt_in_expectation);
+    RUN_TEST(test_against_16_bit_map_on_drifting_noise);
+    RUN_TEST(test_raise_and_refused_input);
+    return UNITY_END();
+}
