@@ -49,6 +49,20 @@ static inline int32_t pft_kr16_int_(const uint8_t *p)
     memcpy(&v, p, 2u);
     return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
 }
+/* The same value without a compare and select: x, or x + 2^15 = 0 for the masked value. The
+ * float build's pft_kspot3_r16_ reads its pixels with it: there gcc (12, AArch64 and x86-64)
+ * turned pft_kr16_int_'s select into a branch around each pixel's conversion, nine per 3 x 3
+ * window, and no instruction is scheduled across a branch, so an in-order core (the
+ * Cortex-A53) waited on each pixel's load, conversion and product in turn. The q16 build keeps
+ * pft_kr16_int_ (its products take the integer, and a mask form there cost more). */
+static inline int32_t pft_kr16_intb_(const uint8_t *p)
+{
+    int16_t v;
+    int32_t x;
+    memcpy(&v, p, 2u);
+    x = (int32_t)v;
+    return x + (int32_t)((uint32_t)(x == (int32_t)INT16_MIN) << 15u);
+}
 
 #ifdef PFT_NUMERIC_Q16
 
@@ -455,12 +469,12 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
 {
     const uint8_t *p1 = p + st;
     const uint8_t *p2 = p1 + st;
-    const float r0 = tx[0] * (float)pft_kr16_int_(p) + tx[1] * (float)pft_kr16_int_(p + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p + 4u);
-    const float r1 = tx[0] * (float)pft_kr16_int_(p1) + tx[1] * (float)pft_kr16_int_(p1 + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p1 + 4u);
-    const float r2 = tx[0] * (float)pft_kr16_int_(p2) + tx[1] * (float)pft_kr16_int_(p2 + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p2 + 4u);
+    const float r0 = tx[0] * (float)pft_kr16_intb_(p) + tx[1] * (float)pft_kr16_intb_(p + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p + 4u);
+    const float r1 = tx[0] * (float)pft_kr16_intb_(p1) + tx[1] * (float)pft_kr16_intb_(p1 + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p1 + 4u);
+    const float r2 = tx[0] * (float)pft_kr16_intb_(p2) + tx[1] * (float)pft_kr16_intb_(p2 + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p2 + 4u);
     const float s1 = (ty[0] * r0 + ty[1] * r1 + ty[2] * r2) * 0.00390625f;
     return a * (s1 - 0.5f * a * tx[3] * ty[3]);
 }
