@@ -160,6 +160,14 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
     return true;
 }
 
+/* pft_kcell_ of both coordinates of a position: (u, pixel i, offset g) and (v, j, h). */
+static inline bool pft_kcell2_(pft_real_t u, pft_real_t v, pft_real_t hu, pft_real_t hv,
+                               int32_t nu, int32_t nv, int32_t *i, pft_kfrac_t *g, int32_t *j,
+                               pft_kfrac_t *h)
+{
+    return pft_kcell_(u, hu, nu, i, g) && pft_kcell_(v, hv, nv, j, h);
+}
+
 /* f = u - i as a real. */
 static inline pft_real_t pft_kfrac_off_(pft_kfrac_t g) { return (pft_real_t)g - 32768; }
 
@@ -399,6 +407,42 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
     }
     g->n = q & ((int32_t)PFT_KTAP_STEPS - 1);
     g->r = t - (float)q;
+    return true;
+}
+
+/* pft_kcell_ of both coordinates of a position: (u, pixel i, offset g) and (v, j, h), the same
+ * values as two calls. Both range tests come first, then both coordinates' arithmetic in one
+ * block, then the rare clamps: two calls put a branch after each coordinate's chain of
+ * dependent FP operations, so an in-order core ran the two chains one after the other. */
+static inline bool pft_kcell2_(pft_real_t u, pft_real_t v, pft_real_t hu, pft_real_t hv,
+                               int32_t nu, int32_t nv, int32_t *i, pft_kfrac_t *g, int32_t *j,
+                               pft_kfrac_t *h)
+{
+    float tu, tv;
+    int32_t qu, qv;
+    if (!(u >= 0.5f && u < hu) || !(v >= 0.5f && v < hv)) {
+        return false;
+    }
+    tu = (u + 0.5f) * (float)PFT_KTAP_STEPS;
+    tv = (v + 0.5f) * (float)PFT_KTAP_STEPS;
+    qu = (int32_t)tu;
+    qv = (int32_t)tv;
+    *i = qu >> 6;
+    *j = qv >> 6;
+    g->n = qu & ((int32_t)PFT_KTAP_STEPS - 1);
+    g->r = tu - (float)qu;
+    h->n = qv & ((int32_t)PFT_KTAP_STEPS - 1);
+    h->r = tv - (float)qv;
+    if (*i > nu) {
+        *i = nu;
+        g->n = (int32_t)PFT_KTAP_STEPS - 1;
+        g->r = 1.0f;
+    }
+    if (*j > nv) {
+        *j = nv;
+        h->n = (int32_t)PFT_KTAP_STEPS - 1;
+        h->r = 1.0f;
+    }
     return true;
 }
 

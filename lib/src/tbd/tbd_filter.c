@@ -364,8 +364,8 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
         pft_tbd_cell_t c;
         if (e != 0u) {
             /* pft_tbd_cell_ with dx = dy = 1 */
-            if (pft_kcell_(px[s], m->hi_x, (int32_t)m->width, &c.i, &c.fx) &&
-                pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy) &&
+            if (pft_kcell2_(px[s], py[s], m->hi_x, m->hi_y, (int32_t)m->width,
+                            (int32_t)m->height, &c.i, &c.fx, &c.j, &c.fy) &&
                 (mask == NULL ||
                  !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
                 lw = pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
