@@ -117,6 +117,14 @@ static inline pft_weight_t pft_kwexp_(pft_real_t x, pft_real_t m)
     return (v + ((1u << k) >> 1)) >> k;
 }
 
+/* pft_kwexp_ of two values (the float build overlaps their polynomials). */
+static inline void pft_kwexp2_(pft_real_t xa, pft_real_t xb, pft_real_t m, pft_weight_t *ea,
+                               pft_weight_t *eb)
+{
+    *ea = pft_kwexp_(xa, m);
+    *eb = pft_kwexp_(xb, m);
+}
+
 /* 2^62 / s for a weight sum s >= 2^30 (the largest weight is PFT_W_ONE): at most 2^32. */
 static inline pft_krecip_t pft_krecip_(pft_wacc_t s)
 {
@@ -347,18 +355,41 @@ static inline pft_real_t pft_kmad2_(pft_real_t a, pft_real_t b, pft_real_t c, pf
  * (-1, 0]: 2^f by
  * a degree-5 polynomial (Chebyshev nodes; relative error below 2.2e-7, measured in
  * test_kern), 2^k from the exponent bits. x = 0 gives exactly 1; x <= -87 gives 0. */
+static inline pft_weight_t pft_kwexp_poly_(float x);
 static inline pft_weight_t pft_kwexp_(pft_real_t xx, pft_real_t m)
 {
     const float x = xx - m;
-    float y, f, p, sc;
-    int32_t k;
-    uint32_t bits;
     if (x >= 0.0f) {
         return 1.0f;
     }
     if (!(x > -87.0f)) {
         return 0.0f;
     }
+    return pft_kwexp_poly_(x);
+}
+/* pft_kwexp_ of two values, the same bits as two calls: when both x - m lie in (-87, 0) (the
+ * common case) the two polynomials in one block, so that their chains of dependent FP
+ * operations overlap on an in-order core (one after the other in two calls, each behind its
+ * range tests' branches). */
+static inline void pft_kwexp2_(pft_real_t xa, pft_real_t xb, pft_real_t m, pft_weight_t *ea,
+                               pft_weight_t *eb)
+{
+    const float a = xa - m;
+    const float b = xb - m;
+    if (a < 0.0f && a > -87.0f && b < 0.0f && b > -87.0f) {
+        *ea = pft_kwexp_poly_(a);
+        *eb = pft_kwexp_poly_(b);
+    } else {
+        *ea = pft_kwexp_(xa, m);
+        *eb = pft_kwexp_(xb, m);
+    }
+}
+/* pft_kwexp_'s value for x in (-87, 0). */
+static inline pft_weight_t pft_kwexp_poly_(float x)
+{
+    float y, f, p, sc;
+    int32_t k;
+    uint32_t bits;
     y = x * 1.44269504f;
     k = (int32_t)y;
     f = y - (float)k;

@@ -407,8 +407,27 @@ static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
 {
     pft_tbd_slot_t *restrict w = f->cur.w;
     const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
+    const uint32_t n = f->n;
     pft_wacc_t sum = 0;
-    for (uint32_t s = 0; s < f->n; ++s) {
+    uint32_t s = 0u;
+    /* two particles at a time (pft_kwexp2_: in the float build their two exponentials
+     * overlap), summed in the particles' order: the same bits */
+    for (; s + 1u < n; s += 2u) {
+        const pft_real_t la = w[s].lw;
+        const pft_real_t lb = w[s + 1u].lw;
+        pft_weight_t ea, eb;
+        if (la != PFT_C(0.0) && lb != PFT_C(0.0)) {
+            pft_kwexp2_(la, lb, lmax, &ea, &eb);
+        } else {
+            ea = la == PFT_C(0.0) ? e0 : pft_kwexp_(la, lmax);
+            eb = lb == PFT_C(0.0) ? e0 : pft_kwexp_(lb, lmax);
+        }
+        w[s].w = ea;
+        w[s + 1u].w = eb;
+        sum += ea;
+        sum += eb;
+    }
+    if (s < n) {
         const pft_real_t lw = w[s].lw;
         const pft_weight_t e = lw == PFT_C(0.0) ? e0 : pft_kwexp_(lw, lmax);
         w[s].w = e;
