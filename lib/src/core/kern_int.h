@@ -61,7 +61,7 @@ static inline int32_t pft_kr16_intb_(const uint8_t *p)
     int32_t x;
     memcpy(&v, p, 2u);
     x = (int32_t)v;
-    return x + (int32_t)((uint32_t)(x == (int32_t)INT16_MIN) << 15u);
+    return x + (x == (int32_t)INT16_MIN ? 32768 : 0);
 }
 
 #ifdef PFT_NUMERIC_Q16

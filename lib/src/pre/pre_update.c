@@ -868,23 +868,20 @@ static void whiten_row_(pft_pre_t *p, uint32_t y)
     if ((int64_t)amax * mhi + rnd < ((int64_t)1 << (15u + sh))) {
         /* vectorisable: 16 x 16 bit products; the row in two halves, a pixel of each per
          * iteration, so that the vector loop has two independent chains for an in-order core
-         * to overlap (the same value per pixel); rr and mm: the row and the multipliers (the
-         * row buffer p->line) are apart */
-        int16_t *restrict rr = r;
-        const int16_t *restrict mm = m;
+         * to overlap (the same value per pixel) */
         const uint32_t hw = w / 2u;
         for (uint32_t x = 0; x < hw; ++x) {
-            const int16_t v = rr[x];
-            const int16_t v2 = rr[x + hw];
-            const int32_t q = ((int32_t)v * (int32_t)mm[x] + rnd) >> sh;
-            const int32_t q2 = ((int32_t)v2 * (int32_t)mm[x + hw] + rnd) >> sh;
-            rr[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
-            rr[x + hw] = v2 == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q2;
+            const int16_t v = r[x];
+            const int16_t v2 = r[x + hw];
+            const int32_t q = ((int32_t)v * (int32_t)m[x] + rnd) >> sh;
+            const int32_t q2 = ((int32_t)v2 * (int32_t)m[x + hw] + rnd) >> sh;
+            r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
+            r[x + hw] = v2 == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q2;
         }
         for (uint32_t x = 2u * hw; x < w; ++x) {
-            const int16_t v = rr[x];
-            const int32_t q = ((int32_t)v * (int32_t)mm[x] + rnd) >> sh;
-            rr[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
+            const int16_t v = r[x];
+            const int32_t q = ((int32_t)v * (int32_t)m[x] + rnd) >> sh;
+            r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
         }
         return;
     }
