@@ -49,8 +49,8 @@ static inline int32_t pft_kr16_int_(const uint8_t *p)
     memcpy(&v, p, 2u);
     return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
 }
-/* The same value without a compare and select: x, or x + 2^15 = 0 for the masked value. The
- * float build's pft_kspot3_r16_ reads its pixels with it: there gcc (12, AArch64 and x86-64)
+/* The same value as an addition to the pixel: x, or x + 2^15 = 0 for the masked value (gcc
+ * 12 makes the constant's select a flag, no branch). The float build's pft_kspot3_r16_ reads its pixels with it: there gcc (12, AArch64 and x86-64)
  * turned pft_kr16_int_'s select into a branch around each pixel's conversion, nine per 3 x 3
  * window, and no instruction is scheduled across a branch, so an in-order core (the
  * Cortex-A53) waited on each pixel's load, conversion and product in turn. The q16 build keeps
