@@ -49,6 +49,20 @@ static inline int32_t pft_kr16_int_(const uint8_t *p)
     memcpy(&v, p, 2u);
     return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
 }
+/* The same value as an addition to the pixel: x, or x + 2^15 = 0 for the masked value (gcc
+ * 12 makes the constant's select a flag, no branch). The float build's pft_kspot3_r16_ reads its pixels with it: there gcc (12, AArch64 and x86-64)
+ * turned pft_kr16_int_'s select into a branch around each pixel's conversion, nine per 3 x 3
+ * window, and no instruction is scheduled across a branch, so an in-order core (the
+ * Cortex-A53) waited on each pixel's load, conversion and product in turn. The q16 build keeps
+ * pft_kr16_int_ (its products take the integer, and a mask form there cost more). */
+static inline int32_t pft_kr16_intb_(const uint8_t *p)
+{
+    int16_t v;
+    int32_t x;
+    memcpy(&v, p, 2u);
+    x = (int32_t)v;
+    return x + (x == (int32_t)INT16_MIN ? 32768 : 0);
+}
 
 #ifdef PFT_NUMERIC_Q16
 
@@ -103,6 +117,14 @@ static inline pft_weight_t pft_kwexp_(pft_real_t x, pft_real_t m)
     return (v + ((1u << k) >> 1)) >> k;
 }
 
+/* pft_kwexp_ of two values (the float build overlaps their polynomials). */
+static inline void pft_kwexp2_(pft_real_t xa, pft_real_t xb, pft_real_t m, pft_weight_t *ea,
+                               pft_weight_t *eb)
+{
+    *ea = pft_kwexp_(xa, m);
+    *eb = pft_kwexp_(xb, m);
+}
+
 /* 2^62 / s for a weight sum s >= 2^30 (the largest weight is PFT_W_ONE): at most 2^32. */
 static inline pft_krecip_t pft_krecip_(pft_wacc_t s)
 {
@@ -144,6 +166,14 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
     *i = (int32_t)(t >> 16);
     *g = t & 0xFFFFu;
     return true;
+}
+
+/* pft_kcell_ of both coordinates of a position: (u, pixel i, offset g) and (v, j, h). */
+static inline bool pft_kcell2_(pft_real_t u, pft_real_t v, pft_real_t hu, pft_real_t hv,
+                               int32_t nu, int32_t nv, int32_t *i, pft_kfrac_t *g, int32_t *j,
+                               pft_kfrac_t *h)
+{
+    return pft_kcell_(u, hu, nu, i, g) && pft_kcell_(v, hv, nv, j, h);
 }
 
 /* f = u - i as a real. */
@@ -325,18 +355,41 @@ static inline pft_real_t pft_kmad2_(pft_real_t a, pft_real_t b, pft_real_t c, pf
  * (-1, 0]: 2^f by
  * a degree-5 polynomial (Chebyshev nodes; relative error below 2.2e-7, measured in
  * test_kern), 2^k from the exponent bits. x = 0 gives exactly 1; x <= -87 gives 0. */
+static inline pft_weight_t pft_kwexp_poly_(float x);
 static inline pft_weight_t pft_kwexp_(pft_real_t xx, pft_real_t m)
 {
     const float x = xx - m;
-    float y, f, p, sc;
-    int32_t k;
-    uint32_t bits;
     if (x >= 0.0f) {
         return 1.0f;
     }
     if (!(x > -87.0f)) {
         return 0.0f;
     }
+    return pft_kwexp_poly_(x);
+}
+/* pft_kwexp_ of two values, the same bits as two calls: when both x - m lie in (-87, 0) (the
+ * common case) the two polynomials in one block, so that their chains of dependent FP
+ * operations overlap on an in-order core (one after the other in two calls, each behind its
+ * range tests' branches). */
+static inline void pft_kwexp2_(pft_real_t xa, pft_real_t xb, pft_real_t m, pft_weight_t *ea,
+                               pft_weight_t *eb)
+{
+    const float a = xa - m;
+    const float b = xb - m;
+    if (a < 0.0f && a > -87.0f && b < 0.0f && b > -87.0f) {
+        *ea = pft_kwexp_poly_(a);
+        *eb = pft_kwexp_poly_(b);
+    } else {
+        *ea = pft_kwexp_(xa, m);
+        *eb = pft_kwexp_(xb, m);
+    }
+}
+/* pft_kwexp_'s value for x in (-87, 0). */
+static inline pft_weight_t pft_kwexp_poly_(float x)
+{
+    float y, f, p, sc;
+    int32_t k;
+    uint32_t bits;
     y = x * 1.44269504f;
     k = (int32_t)y;
     f = y - (float)k;
@@ -385,6 +438,42 @@ static inline bool pft_kcell_(pft_real_t u, pft_real_t hi, int32_t n, int32_t *i
     }
     g->n = q & ((int32_t)PFT_KTAP_STEPS - 1);
     g->r = t - (float)q;
+    return true;
+}
+
+/* pft_kcell_ of both coordinates of a position: (u, pixel i, offset g) and (v, j, h), the same
+ * values as two calls. Both range tests come first, then both coordinates' arithmetic in one
+ * block, then the rare clamps: two calls put a branch after each coordinate's chain of
+ * dependent FP operations, so an in-order core ran the two chains one after the other. */
+static inline bool pft_kcell2_(pft_real_t u, pft_real_t v, pft_real_t hu, pft_real_t hv,
+                               int32_t nu, int32_t nv, int32_t *i, pft_kfrac_t *g, int32_t *j,
+                               pft_kfrac_t *h)
+{
+    float tu, tv;
+    int32_t qu, qv;
+    if (!(u >= 0.5f && u < hu) || !(v >= 0.5f && v < hv)) {
+        return false;
+    }
+    tu = (u + 0.5f) * (float)PFT_KTAP_STEPS;
+    tv = (v + 0.5f) * (float)PFT_KTAP_STEPS;
+    qu = (int32_t)tu;
+    qv = (int32_t)tv;
+    *i = qu >> 6;
+    *j = qv >> 6;
+    g->n = qu & ((int32_t)PFT_KTAP_STEPS - 1);
+    g->r = tu - (float)qu;
+    h->n = qv & ((int32_t)PFT_KTAP_STEPS - 1);
+    h->r = tv - (float)qv;
+    if (*i > nu) {
+        *i = nu;
+        g->n = (int32_t)PFT_KTAP_STEPS - 1;
+        g->r = 1.0f;
+    }
+    if (*j > nv) {
+        *j = nv;
+        h->n = (int32_t)PFT_KTAP_STEPS - 1;
+        h->r = 1.0f;
+    }
     return true;
 }
 
@@ -455,12 +544,12 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
 {
     const uint8_t *p1 = p + st;
     const uint8_t *p2 = p1 + st;
-    const float r0 = tx[0] * (float)pft_kr16_int_(p) + tx[1] * (float)pft_kr16_int_(p + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p + 4u);
-    const float r1 = tx[0] * (float)pft_kr16_int_(p1) + tx[1] * (float)pft_kr16_int_(p1 + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p1 + 4u);
-    const float r2 = tx[0] * (float)pft_kr16_int_(p2) + tx[1] * (float)pft_kr16_int_(p2 + 2u) +
-                     tx[2] * (float)pft_kr16_int_(p2 + 4u);
+    const float r0 = tx[0] * (float)pft_kr16_intb_(p) + tx[1] * (float)pft_kr16_intb_(p + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p + 4u);
+    const float r1 = tx[0] * (float)pft_kr16_intb_(p1) + tx[1] * (float)pft_kr16_intb_(p1 + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p1 + 4u);
+    const float r2 = tx[0] * (float)pft_kr16_intb_(p2) + tx[1] * (float)pft_kr16_intb_(p2 + 2u) +
+                     tx[2] * (float)pft_kr16_intb_(p2 + 4u);
     const float s1 = (ty[0] * r0 + ty[1] * r1 + ty[2] * r2) * 0.00390625f;
     return a * (s1 - 0.5f * a * tx[3] * ty[3]);
 }

@@ -364,8 +364,8 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
         pft_tbd_cell_t c;
         if (e != 0u) {
             /* pft_tbd_cell_ with dx = dy = 1 */
-            if (pft_kcell_(px[s], m->hi_x, (int32_t)m->width, &c.i, &c.fx) &&
-                pft_kcell_(py[s], m->hi_y, (int32_t)m->height, &c.j, &c.fy) &&
+            if (pft_kcell2_(px[s], py[s], m->hi_x, m->hi_y, (int32_t)m->width,
+                            (int32_t)m->height, &c.i, &c.fx, &c.j, &c.fy) &&
                 (mask == NULL ||
                  !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
                 lw = pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
@@ -407,8 +407,27 @@ static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
 {
     pft_tbd_slot_t *restrict w = f->cur.w;
     const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
+    const uint32_t n = f->n;
     pft_wacc_t sum = 0;
-    for (uint32_t s = 0; s < f->n; ++s) {
+    uint32_t s = 0u;
+    /* two particles at a time (pft_kwexp2_: in the float build their two exponentials
+     * overlap), summed in the particles' order: the same bits */
+    for (; s + 1u < n; s += 2u) {
+        const pft_real_t la = w[s].lw;
+        const pft_real_t lb = w[s + 1u].lw;
+        pft_weight_t ea, eb;
+        if (la != PFT_C(0.0) && lb != PFT_C(0.0)) {
+            pft_kwexp2_(la, lb, lmax, &ea, &eb);
+        } else {
+            ea = la == PFT_C(0.0) ? e0 : pft_kwexp_(la, lmax);
+            eb = lb == PFT_C(0.0) ? e0 : pft_kwexp_(lb, lmax);
+        }
+        w[s].w = ea;
+        w[s + 1u].w = eb;
+        sum += ea;
+        sum += eb;
+    }
+    if (s < n) {
         const pft_real_t lw = w[s].lw;
         const pft_weight_t e = lw == PFT_C(0.0) ? e0 : pft_kwexp_(lw, lmax);
         w[s].w = e;

@@ -399,15 +399,17 @@ static void add_region_(const pft_tbd_config_t *cfg, uint32_t *mask, pft_real_t 
     pft_tbd_mask_add_(cfg, mask, &d);
 }
 
-/* Window-centre row and column of search particle s (false: outside the image). */
+/* Window-centre row and column of search particle s (false: outside the image): those of
+ * pft_tbd_centre_'s pixel, (j - 1) width + (i - 1), taken from the cell (i in [1, width]), so
+ * without the division and remainder that split that index. */
 static bool centre_rc_(const pft_tbd_filter_t *sf, uint32_t s, uint32_t *row, uint32_t *col)
 {
-    size_t pix = 0;
-    if (!pft_tbd_centre_(&sf->model, sf->cur.x[s], sf->cur.y[s], &pix)) {
+    pft_tbd_cell_t c;
+    if (!pft_tbd_cell_(&sf->model, sf->cur.x[s], sf->cur.y[s], &c)) {
         return false;
     }
-    *row = (uint32_t)(pix / sf->model.width);
-    *col = (uint32_t)(pix % sf->model.width);
+    *row = (uint32_t)(c.j - 1);
+    *col = (uint32_t)(c.i - 1);
     return true;
 }
 

@@ -680,21 +680,36 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
 }
 
-/* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). */
+/* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). mf is
+ * none of the three rows (scene_scan_rows_: ss->mf and ss->hs are apart). */
 static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
-                       uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *mf)
+                       uint32_t w, pft_real_t u0, pft_real_t u1, pft_real_t *restrict mf)
 {
     if (up != NULL && dn != NULL && pft_kmul_u_ok_(u0) && pft_kmul_u_ok_(u1)) {
         /* every row but the first and the last: one plain loop; pft_kmul_u_ is pft_kmula_
          * for taps in [0, 1] and |values| < 2^14 (q16: in 32-bit arithmetic) */
+        /* the row in two halves, a pixel of each per iteration: the two are independent, so
+         * the vectorised loop has two chains to overlap on an in-order core (one chain of
+         * dependent SIMD results per iteration otherwise); each pixel's value is the same */
+        const uint32_t h = w / 2u;
         if (u1 == PFT_REAL_ONE) {
             /* the centre tap at offset 0 is exp(0) = 1: pft_kmula_(1, v) is v in both builds */
-            for (uint32_t c = 0; c < w; ++c) {
+            for (uint32_t c = 0; c < h; ++c) {
+                const uint32_t d = c + h;
+                mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+                mf[d] = pft_kaddr_(mid[d], pft_kmul_u_(u0, pft_kaddr_(up[d], dn[d])));
+            }
+            for (uint32_t c = 2u * h; c < w; ++c) {
                 mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
             }
             return;
         }
-        for (uint32_t c = 0; c < w; ++c) {
+        for (uint32_t c = 0; c < h; ++c) {
+            const uint32_t d = c + h;
+            mf[c] = pft_kaddr_(pft_kmul_u_(u1, mid[c]), pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+            mf[d] = pft_kaddr_(pft_kmul_u_(u1, mid[d]), pft_kmul_u_(u0, pft_kaddr_(up[d], dn[d])));
+        }
+        for (uint32_t c = 2u * h; c < w; ++c) {
             mf[c] = pft_kaddr_(pft_kmul_u_(u1, mid[c]), pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
         }
     } else if (up != NULL && dn != NULL) {
