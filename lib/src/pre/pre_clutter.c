@@ -237,12 +237,6 @@ static inline uint16_t cl_ge2k_(uint16_t v, uint32_t k)
     return (uint16_t)((uint16_t)((uint16_t)(v >> k) + 63u) >> 6);
 }
 
-/* 1 where c >= t, else 0, for c <= 255 and t = 1..256 (bit 8 of c + 256 - t < 2^9). */
-static inline uint16_t cl_gec_(uint16_t c, uint32_t t)
-{
-    return (uint16_t)((uint16_t)(c + (256u - t)) >> 8);
-}
-
 static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
 {
     const uint16_t v = v0 > 64512u ? (uint16_t)64512u : v0;
@@ -258,16 +252,20 @@ static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
 }
 
 /* map8: the Q6.10 value of code c: c 16 below 64, else (32 + c mod 32) 2^(c / 32 + 3) (the two
- * forms agree on 32..63), as the mantissa times the step, in 16-bit lanes; largest 64512. */
+ * forms agree on 32..63), as the mantissa times the step, in 16-bit lanes; largest 64512. With
+ * e = c / 32 and j = max(e - 1, 0) (0..6): the mantissa c - 32 j (c below 64, else 32 + c mod
+ * 32) and the step 16 2^j, made from j's three bits (three selects, no variable shift). */
 static inline uint16_t cl_dec8_(uint8_t c8)
 {
     const uint16_t c = c8;
-    const uint16_t n2 = cl_mask8_(cl_gec_(c, 64u)), n3 = cl_mask8_(cl_gec_(c, 96u));
-    const uint16_t n4 = cl_mask8_(cl_gec_(c, 128u)), n5 = cl_mask8_(cl_gec_(c, 160u));
-    const uint16_t n6 = cl_mask8_(cl_gec_(c, 192u)), n7 = cl_mask8_(cl_gec_(c, 224u));
-    const uint16_t p2 = (uint16_t)(16u + (n2 & 16u) + (n3 & 32u) + (n4 & 64u) + (n5 & 128u) + (n6 & 256u) + (n7 & 512u));
-    /* the mantissa: c below 64, else 32 + c mod 32 = c - (c - 32 - c mod 32) */
-    const uint16_t mant = (uint16_t)(c - (n2 & (uint16_t)((c & 0xE0u) - 32u)));
+    const uint16_t e = (uint16_t)(c >> 5);
+    const uint16_t j = (uint16_t)(e - (uint16_t)((uint16_t)(e + 7u) >> 3)); /* max(e - 1, 0) */
+    const uint16_t mant = (uint16_t)(c - (uint16_t)(j << 5));
+    const uint16_t b0 = cl_mask8_((uint16_t)(j & 1u)), b1 = cl_mask8_((uint16_t)((j >> 1) & 1u));
+    const uint16_t b2 = cl_mask8_((uint16_t)(j >> 2));
+    const uint16_t p0 = (uint16_t)(16u + (b0 & 16u));
+    const uint16_t p1 = (uint16_t)((b1 & (uint16_t)(p0 << 2)) | (uint16_t)(~b1 & p0));
+    const uint16_t p2 = (uint16_t)((b2 & (uint16_t)(p1 << 4)) | (uint16_t)(~b2 & p1));
     return (uint16_t)(mant * p2);
 }
 
