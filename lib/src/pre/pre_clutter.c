@@ -216,7 +216,7 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
 }
 
 /* map8: the code of v (Q6.10, <= 65535) with the rounding offset dz / 256 of the code's step
- * (dz 0..255; CL_HALF8_: the nearest code). With v clamped to 64512 (the largest code's value:
+ * (dz 0..255; CL_HALF8_: the nearest code; only dz's low 8 bits are read). With v clamped to 64512 (the largest code's value:
  * every v above it has code 255 either way) and e its octave (1 below 2^10, else 2..7 with
  * 2^(e + 8) <= v < 2^(e + 9)): c = 32 (e - 1) + floor((v + d) / 2^(e + 3)), d = floor(dz 2^(e +
  * 3) / 256) < 2^(e + 3), at most 192 + 63. A code's decoded value (a multiple of its step)
@@ -895,8 +895,12 @@ static void cl_row8_end_(pft_pre_clutter_t *c, int32_t y)
     const uint32_t o = z >> 24;
     const uint16_t *v = c->row;
     uint8_t *m8 = c->m8 + (size_t)y * (size_t)w;
+    /* the offset as a 16-bit running sum: cl_enc8_ reads dz's low 8 bits only, which are
+     * (o + 167 x) mod 256 */
+    uint16_t dz = (uint16_t)o;
     for (int32_t x = 0; x < w; ++x) {
-        m8[x] = cl_enc8_(v[x], (uint16_t)((o + 167u * (uint32_t)x) & 255u));
+        m8[x] = cl_enc8_(v[x], dz);
+        dz = (uint16_t)(dz + 167u);
     }
 }
 
