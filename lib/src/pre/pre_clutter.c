@@ -224,7 +224,7 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
  * 32 (e + 1) + 0, the same value 2^(e + 9)). With dz uniform the expected decoded value is v
  * within 1/256 step. In 16-bit lanes (the row functions below vectorise it): the octave from the
  * bits of v >> 10 smeared down (2^(e - 1) - 1) and their count e - 1, the step p2 = 2^(e + 3) and
- * 2^16 / p2 from them (selects, no variable shift), the two shifts as high halves of 16 x 16-bit
+ * 2^16 / p2 from them (selects a ^ (mask & (a ^ b)), no variable shift), the two shifts as high halves of 16 x 16-bit
  * products (v + d <= 64512 + 1023 < 2^16). */
 static inline uint16_t cl_mask8_(uint16_t x01)
 {
@@ -248,8 +248,8 @@ static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
     const uint16_t b0 = cl_mask8_((uint16_t)(j & 1u)), b1 = cl_mask8_((uint16_t)((j >> 1) & 1u));
     const uint16_t b2 = cl_mask8_((uint16_t)(j >> 2));
     const uint16_t i0 = (uint16_t)(4096u - (b0 & 2048u));
-    const uint16_t i1 = (uint16_t)((b1 & (uint16_t)(i0 >> 2)) | (uint16_t)(~b1 & i0));
-    const uint16_t inv = (uint16_t)((b2 & (uint16_t)(i1 >> 4)) | (uint16_t)(~b2 & i1));
+    const uint16_t i1 = (uint16_t)(i0 ^ (b1 & (uint16_t)(i0 ^ (uint16_t)(i0 >> 2))));
+    const uint16_t inv = (uint16_t)(i1 ^ (b2 & (uint16_t)(i1 ^ (uint16_t)(i1 >> 4))));
     const uint16_t d = (uint16_t)(((uint32_t)(uint16_t)(dz << 8) * (uint32_t)p2) >> 16);
     const uint16_t q = (uint16_t)(((uint32_t)(uint16_t)(v + d) * (uint32_t)inv) >> 16);
     return (uint8_t)((uint16_t)(j << 5) + q);
@@ -268,8 +268,8 @@ static inline uint16_t cl_dec8_(uint8_t c8)
     const uint16_t b0 = cl_mask8_((uint16_t)(j & 1u)), b1 = cl_mask8_((uint16_t)((j >> 1) & 1u));
     const uint16_t b2 = cl_mask8_((uint16_t)(j >> 2));
     const uint16_t p0 = (uint16_t)(16u + (b0 & 16u));
-    const uint16_t p1 = (uint16_t)((b1 & (uint16_t)(p0 << 2)) | (uint16_t)(~b1 & p0));
-    const uint16_t p2 = (uint16_t)((b2 & (uint16_t)(p1 << 4)) | (uint16_t)(~b2 & p1));
+    const uint16_t p1 = (uint16_t)(p0 ^ (b1 & (uint16_t)(p0 ^ (uint16_t)(p0 << 2))));
+    const uint16_t p2 = (uint16_t)(p1 ^ (b2 & (uint16_t)(p1 ^ (uint16_t)(p1 << 4))));
     return (uint16_t)(mant * p2);
 }
 
