@@ -79,6 +79,42 @@ static void test_code_known_answers_and_round_trip(void)
     }
 }
 
+/* The code's definition written plainly (pft_pre_clutter.c: c = 32 (e - 1) + floor((v + d) /
+ * 2^(e + 3)), d = floor(dz 2^(e + 3) / 256), v clamped to 64512; the value 16 c below 64, else
+ * (32 + c mod 32) 2^(c / 32 + 3)): the library's 16-bit-lane arithmetic gives exactly these codes
+ * and values, for every value with eight offsets and every offset on a stride of values. */
+static uint32_t ref_enc(uint32_t v0, uint32_t dz)
+{
+    const uint32_t v = v0 > 64512u ? 64512u : v0;
+    const uint32_t s = step_of(v);
+    uint32_t base = 0u;
+    for (uint32_t t = 16u; t < s; t *= 2u) {
+        base += 32u;
+    }
+    return base + (v + (dz * s) / 256u) / s;
+}
+
+static void test_code_against_definition(void)
+{
+    for (uint32_t c = 0u; c < 256u; ++c) {
+        const uint32_t ref = c < 64u ? 16u * c : (32u + c % 32u) << (c / 32u + 3u);
+        TEST_ASSERT_EQUAL_UINT32(ref, pft_pre_clutter_dec8_(c));
+    }
+    static const uint32_t dzs[8] = {0u, 1u, 64u, 127u, 128u, 129u, 200u, 255u};
+    uint32_t bad = 0u;
+    for (uint32_t v = 0u; v <= 65535u; ++v) {
+        for (uint32_t k = 0u; k < 8u; ++k) {
+            bad += pft_pre_clutter_enc8_(v, dzs[k]) != ref_enc(v, dzs[k]) ? 1u : 0u;
+        }
+    }
+    for (uint32_t v = 0u; v <= 65535u; v += 53u) {
+        for (uint32_t dz = 0u; dz < 256u; ++dz) {
+            bad += pft_pre_clutter_enc8_(v, dz) != ref_enc(v, dz) ? 1u : 0u;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(0u, bad);
+}
+
 static void test_code_error_bound_every_value(void)
 {
     uint32_t bad = 0u, worst_v = 0u;
@@ -327,6 +363,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_code_known_answers_and_round_trip);
+    RUN_TEST(test_code_against_definition);
     RUN_TEST(test_code_error_bound_every_value);
     RUN_TEST(test_dither_expectation);
     RUN_TEST(test_config_and_workspace);

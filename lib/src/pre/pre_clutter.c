@@ -216,58 +216,60 @@ static void cl_split_(int32_t s, uint32_t lb, int32_t *ip, uint32_t *fp)
 }
 
 /* map8: the code of v (Q6.10, <= 65535) with the rounding offset dz / 256 of the code's step
- * (dz 0..255; CL_HALF8_: the nearest code). With v clamped to 64512 (the largest code's value:
+ * (dz 0..255; CL_HALF8_: the nearest code; only dz's low 8 bits are read). With v clamped to 64512 (the largest code's value:
  * every v above it has code 255 either way) and e its octave (1 below 2^10, else 2..7 with
  * 2^(e + 8) <= v < 2^(e + 9)): c = 32 (e - 1) + floor((v + d) / 2^(e + 3)), d = floor(dz 2^(e +
  * 3) / 256) < 2^(e + 3), at most 192 + 63. A code's decoded value (a multiple of its step)
  * gives that code for every dz; a quotient of 64 is the next octave's first code (32 e + 32 =
  * 32 (e + 1) + 0, the same value 2^(e + 9)). With dz uniform the expected decoded value is v
- * within 1/256 step. In 16-bit lanes (the row functions below vectorise it): the octave from 6
- * threshold bits, the step p2 = 2^(e + 3) and 2^16 / p2 as sums of masked bits, the two shifts as
- * high halves of 16 x 16-bit products (v + d <= 64512 + 1023 < 2^16). */
+ * within 1/256 step. In 16-bit lanes (the row functions below vectorise it): the octave from the
+ * bits of v >> 10 smeared down (2^(e - 1) - 1) and their count e - 1, the step p2 = 2^(e + 3) and
+ * 2^16 / p2 from them (selects a ^ (mask & (a ^ b)), no variable shift), the two shifts as high halves of 16 x 16-bit
+ * products (v + d <= 64512 + 1023 < 2^16). */
 static inline uint16_t cl_mask8_(uint16_t x01)
 {
     return (uint16_t)(0u - (uint32_t)x01); /* 0 or 0xFFFF (x01 is 0 or 1) */
 }
 
-/* 1 where v >= 2^k, else 0, for v <= 64512 and k = 10..15 (v >> k <= 63, so (v >> k) + 63 < 2^7
- * and its bit 6 tells whether v >> k >= 1); arithmetic only, so the row loops vectorise. */
-static inline uint16_t cl_ge2k_(uint16_t v, uint32_t k)
-{
-    return (uint16_t)((uint16_t)((uint16_t)(v >> k) + 63u) >> 6);
-}
-
-/* 1 where c >= t, else 0, for c <= 255 and t = 1..256 (bit 8 of c + 256 - t < 2^9). */
-static inline uint16_t cl_gec_(uint16_t c, uint32_t t)
-{
-    return (uint16_t)((uint16_t)(c + (256u - t)) >> 8);
-}
-
 static inline uint8_t cl_enc8_(uint16_t v0, uint16_t dz)
 {
     const uint16_t v = v0 > 64512u ? (uint16_t)64512u : v0;
-    const uint16_t m1 = cl_mask8_(cl_ge2k_(v, 10u)), m2 = cl_mask8_(cl_ge2k_(v, 11u));
-    const uint16_t m3 = cl_mask8_(cl_ge2k_(v, 12u)), m4 = cl_mask8_(cl_ge2k_(v, 13u));
-    const uint16_t m5 = cl_mask8_(cl_ge2k_(v, 14u)), m6 = cl_mask8_(cl_ge2k_(v, 15u));
-    const uint16_t p2 = (uint16_t)(16u + (m1 & 16u) + (m2 & 32u) + (m3 & 64u) + (m4 & 128u) + (m5 & 256u) + (m6 & 512u));
-    const uint16_t inv = (uint16_t)(4096u - (m1 & 2048u) - (m2 & 1024u) - (m3 & 512u) - (m4 & 256u) - (m5 & 128u) - (m6 & 64u));
-    const uint16_t base = (uint16_t)((m1 & 32u) + (m2 & 32u) + (m3 & 32u) + (m4 & 32u) + (m5 & 32u) + (m6 & 32u));
+    /* the bits of v >> 10 (< 64) smeared down: s = 2^j - 1, j = e - 1 the number of k = 10..15
+     * with v >= 2^k; j = s's bit count (pairs, then the nibbles: s < 64) */
+    uint16_t s = (uint16_t)(v >> 10);
+    s = (uint16_t)(s | (uint16_t)(s >> 1));
+    s = (uint16_t)(s | (uint16_t)(s >> 2));
+    s = (uint16_t)(s | (uint16_t)(s >> 4));
+    const uint16_t s2 = (uint16_t)(s - (uint16_t)((uint16_t)(s >> 1) & 0x15u));
+    const uint16_t s4 = (uint16_t)((uint16_t)(s2 & 0x33u) + (uint16_t)((uint16_t)(s2 >> 2) & 0x33u));
+    const uint16_t j = (uint16_t)((uint16_t)(s4 & 0x0Fu) + (uint16_t)(s4 >> 4));
+    /* the step 2^(e + 3) = 16 (s + 1); 2^16 / step = 4096 >> j by j's three bits */
+    const uint16_t p2 = (uint16_t)((uint16_t)(s + 1u) << 4);
+    const uint16_t b0 = cl_mask8_((uint16_t)(j & 1u)), b1 = cl_mask8_((uint16_t)((j >> 1) & 1u));
+    const uint16_t b2 = cl_mask8_((uint16_t)(j >> 2));
+    const uint16_t i0 = (uint16_t)(4096u - (b0 & 2048u));
+    const uint16_t i1 = (uint16_t)(i0 ^ (b1 & (uint16_t)(i0 ^ (uint16_t)(i0 >> 2))));
+    const uint16_t inv = (uint16_t)(i1 ^ (b2 & (uint16_t)(i1 ^ (uint16_t)(i1 >> 4))));
     const uint16_t d = (uint16_t)(((uint32_t)(uint16_t)(dz << 8) * (uint32_t)p2) >> 16);
     const uint16_t q = (uint16_t)(((uint32_t)(uint16_t)(v + d) * (uint32_t)inv) >> 16);
-    return (uint8_t)(base + q);
+    return (uint8_t)((uint16_t)(j << 5) + q);
 }
 
 /* map8: the Q6.10 value of code c: c 16 below 64, else (32 + c mod 32) 2^(c / 32 + 3) (the two
- * forms agree on 32..63), as the mantissa times the step, in 16-bit lanes; largest 64512. */
+ * forms agree on 32..63), as the mantissa times the step, in 16-bit lanes; largest 64512. With
+ * e = c / 32 and j = max(e - 1, 0) (0..6): the mantissa c - 32 j (c below 64, else 32 + c mod
+ * 32) and the step 16 2^j, made from j's three bits (three selects, no variable shift). */
 static inline uint16_t cl_dec8_(uint8_t c8)
 {
     const uint16_t c = c8;
-    const uint16_t n2 = cl_mask8_(cl_gec_(c, 64u)), n3 = cl_mask8_(cl_gec_(c, 96u));
-    const uint16_t n4 = cl_mask8_(cl_gec_(c, 128u)), n5 = cl_mask8_(cl_gec_(c, 160u));
-    const uint16_t n6 = cl_mask8_(cl_gec_(c, 192u)), n7 = cl_mask8_(cl_gec_(c, 224u));
-    const uint16_t p2 = (uint16_t)(16u + (n2 & 16u) + (n3 & 32u) + (n4 & 64u) + (n5 & 128u) + (n6 & 256u) + (n7 & 512u));
-    /* the mantissa: c below 64, else 32 + c mod 32 = c - (c - 32 - c mod 32) */
-    const uint16_t mant = (uint16_t)(c - (n2 & (uint16_t)((c & 0xE0u) - 32u)));
+    const uint16_t e = (uint16_t)(c >> 5);
+    const uint16_t j = (uint16_t)(e - (uint16_t)((uint16_t)(e + 7u) >> 3)); /* max(e - 1, 0) */
+    const uint16_t mant = (uint16_t)(c - (uint16_t)(j << 5));
+    const uint16_t b0 = cl_mask8_((uint16_t)(j & 1u)), b1 = cl_mask8_((uint16_t)((j >> 1) & 1u));
+    const uint16_t b2 = cl_mask8_((uint16_t)(j >> 2));
+    const uint16_t p0 = (uint16_t)(16u + (b0 & 16u));
+    const uint16_t p1 = (uint16_t)(p0 ^ (b1 & (uint16_t)(p0 ^ (uint16_t)(p0 << 2))));
+    const uint16_t p2 = (uint16_t)(p1 ^ (b2 & (uint16_t)(p1 ^ (uint16_t)(p1 << 4))));
     return (uint16_t)(mant * p2);
 }
 
@@ -893,8 +895,12 @@ static void cl_row8_end_(pft_pre_clutter_t *c, int32_t y)
     const uint32_t o = z >> 24;
     const uint16_t *v = c->row;
     uint8_t *m8 = c->m8 + (size_t)y * (size_t)w;
+    /* the offset as a 16-bit running sum: cl_enc8_ reads dz's low 8 bits only, which are
+     * (o + 167 x) mod 256 */
+    uint16_t dz = (uint16_t)o;
     for (int32_t x = 0; x < w; ++x) {
-        m8[x] = cl_enc8_(v[x], (uint16_t)((o + 167u * (uint32_t)x) & 255u));
+        m8[x] = cl_enc8_(v[x], dz);
+        dz = (uint16_t)(dz + 167u);
     }
 }
 
