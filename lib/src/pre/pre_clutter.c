@@ -589,15 +589,18 @@ static void cl_row_plain_(const int16_t *r, int16_t *o, uint16_t *mrow, const ui
         const uint16_t a16 = (uint16_t)a;
         for (int32_t x = 0; x < w; ++x) {
             const int16_t v = r[x];
-            /* |v| <= 2^15 (2^15: the mask, whose update is not kept) */
-            const uint16_t ac = (uint16_t)(v < 0 ? (uint16_t)(0u - (uint16_t)v) : (uint16_t)v);
-            /* t = min((ac^2 + 32) >> 6, 65535) in 16-bit halves of ac^2 = hi 2^16 + lo:
-             * (ac^2 + 32) >> 6 = hi 2^10 + (lo >> 6) + bit 5 of lo (<= 65473 for ac <= 2047);
-             * ac >= 2048 gives ac^2 >= 2^22, the clamp */
-            const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
-            const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
+            /* |v| <= 2^15 (2^15: the mask, whose update is not kept), and ac^2 = v^2 <= 2^30,
+             * formed from v itself (a signed 16 x 16 -> 32-bit product: no absolute value on
+             * the chain). t = min((ac^2 + 32) >> 6, 65535) in 16-bit halves of ac^2 = hi 2^16
+             * + lo: (ac^2 + 32) >> 6 = hi 2^10 + (lo >> 6) + bit 5 of lo (<= 65473 for ac <=
+             * 2047); ac >= 2048 gives ac^2 >= 2^22, the clamp: all ones ORed in, tested on v
+             * itself (v + 2047 as uint16 exceeds 4094 exactly when v >= 2048 or v <= -2048) */
+            const uint32_t sq = (uint32_t)((int32_t)v * (int32_t)v);
+            const uint16_t hi = (uint16_t)(sq >> 16);
+            const uint16_t lo = (uint16_t)sq;
             const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
-            const uint16_t t = ac >= 2048u ? (uint16_t)CL_MMAX_ : tl;
+            const uint16_t big = (uint16_t)(0u - (uint16_t)((uint16_t)((int32_t)v + 2047) > 4094u ? 1u : 0u));
+            const uint16_t t = (uint16_t)(tl | big);
             const uint16_t m = mrow[x];
             const uint16_t neg = (uint16_t)(t >= m ? 0u : 0xFFFFu);       /* t < m */
             const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m) ^ neg) - neg); /* |t - m| */
