@@ -434,7 +434,7 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
 void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("width", "height", "alpha", "blur", "thr", "veto", "persist",
- *  "excess", "block"); NULL on success. */
+ *  "excess", "block", "map8": set with a block); NULL on success. */
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg);
