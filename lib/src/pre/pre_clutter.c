@@ -146,9 +146,15 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     return pft_pre_clutter_reset(c);
 }
 
+/* An initialised map: its plane is the 16-bit m or, with map8, the 8-bit m8. */
+static bool cl_ready_(const pft_pre_clutter_t *c)
+{
+    return c != NULL && (c->m != NULL || c->m8 != NULL);
+}
+
 pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
 {
-    if (c == NULL || (c->m == NULL && c->m8 == NULL)) {
+    if (!cl_ready_(c)) {
         return PFT_ERR_INVAL;
     }
     const size_t npix = (size_t)c->cfg.width * (size_t)c->cfg.height;
@@ -989,7 +995,7 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
 pft_status_t pft_pre_clutter_update(pft_pre_clutter_t *c, const pft_frame_t *res,
                                     int32_t shift_x, int32_t shift_y, bool evidence)
 {
-    if (c == NULL || (c->m == NULL && c->m8 == NULL) || res == NULL || res->data == NULL) {
+    if (!cl_ready_(c) || res == NULL || res->data == NULL) {
         return PFT_ERR_INVAL;
     }
     if (c->cfg.inplace) {
@@ -1007,7 +1013,7 @@ pft_status_t pft_pre_clutter_update_inplace(pft_pre_clutter_t *c, const pft_fram
                                             int16_t *pixels, int32_t shift_x, int32_t shift_y,
                                             bool evidence)
 {
-    if (c == NULL || (c->m == NULL && c->m8 == NULL) || res == NULL || pixels == NULL) {
+    if (!cl_ready_(c) || res == NULL || pixels == NULL) {
         return PFT_ERR_INVAL;
     }
     if (!c->cfg.inplace) {
@@ -1051,24 +1057,24 @@ pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
 
 pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y, uint16_t level)
 {
-    if (c == NULL || (c->m == NULL && c->m8 == NULL) || x >= c->cfg.width || y >= c->cfg.height) {
+    if (!cl_ready_(c) || x >= c->cfg.width || y >= c->cfg.height) {
         return PFT_ERR_INVAL;
     }
     const uint32_t w = c->cfg.width, h = c->cfg.height, lb = c->lb;
+    const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
+    const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
     if (c->m8 != NULL) {
-        /* the smallest code at or above level (the largest, 63 sigma^2, above it) */
+        /* per pixel: the smallest code at or above level (the largest, 63 sigma^2, above it) */
         uint32_t lc = pft_pre_clutter_enc8_(level, CL_HALF8_);
         lc = pft_pre_clutter_dec8_(lc) < (uint32_t)level && lc < 255u ? lc + 1u : lc;
-        for (uint32_t yy = y > 0u ? y - 1u : 0u; yy <= (y + 1u < h ? y + 1u : h - 1u); ++yy) {
-            for (uint32_t xx = x > 0u ? x - 1u : 0u; xx <= (x + 1u < w ? x + 1u : w - 1u); ++xx) {
+        for (uint32_t yy = y0; yy <= y1; ++yy) {
+            for (uint32_t xx = x0; xx <= x1; ++xx) {
                 uint8_t *m8 = &c->m8[(size_t)yy * w + xx];
                 *m8 = *m8 < lc ? (uint8_t)lc : *m8;
             }
         }
         return PFT_OK;
     }
-    const uint32_t y0 = y > 0u ? y - 1u : 0u, y1 = y + 1u < h ? y + 1u : h - 1u;
-    const uint32_t x0 = x > 0u ? x - 1u : 0u, x1 = x + 1u < w ? x + 1u : w - 1u;
     /* the entries of the map that hold those pixels (blocks: each once) */
     for (uint32_t yy = y0 >> lb; yy <= y1 >> lb; ++yy) {
         for (uint32_t xx = x0 >> lb; xx <= x1 >> lb; ++xx) {
@@ -1081,7 +1087,7 @@ pft_status_t pft_pre_clutter_raise(pft_pre_clutter_t *c, uint32_t x, uint32_t y,
 
 uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y)
 {
-    if (c == NULL || (c->m == NULL && c->m8 == NULL) || x >= c->cfg.width || y >= c->cfg.height) {
+    if (!cl_ready_(c) || x >= c->cfg.width || y >= c->cfg.height) {
         return 0u;
     }
     if (c->m8 != NULL) {
