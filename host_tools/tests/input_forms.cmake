@@ -5,14 +5,7 @@
 # twin of real_frames.json on it); lost_frames: pft sim
 # with lost frames, read back with the gaps in seq.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
-function(run_ok)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(run_out "${out}" PARENT_SCOPE)
-  set(run_err "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
 
 # the command must exit with status 2 and print `pft: error: <regex>` on stderr
 function(expect_refused regex)

@@ -11,12 +11,7 @@
 #  - integ_alpha removed: the tracks change (the births come from the integration).
 # Needs nothing outside the source tree.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
-function(run_ok)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
 
 set(shipped "${SRC}/scenarios/tbd_ir/procedural_low_false_rate.json")
 file(REMOVE_RECURSE ${WORK})

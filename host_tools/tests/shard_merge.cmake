@@ -3,17 +3,12 @@
 # summaries identical apart from the invocation and clock fields.
 # -DPFT=... -DSCENARIO=... -DRUNS=... -DOUT=... -DPYTHON=... -DCOMPARE=... [-DEXTRA=arg;arg]
 file(REMOVE_RECURSE ${OUT})
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "FAIL: ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
-run(${PFT} eval --scenario ${SCENARIO} --runs ${RUNS} --threads 2 --out ${OUT}/single -q ${EXTRA})
+include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
+run_ok(${PFT} eval --scenario ${SCENARIO} --runs ${RUNS} --threads 2 --out ${OUT}/single -q ${EXTRA})
 foreach(k 1 2 3 4)
-  run(${PFT} eval --scenario ${SCENARIO} --runs ${RUNS} --threads 1 --shard ${k}/4 --out ${OUT}/parts -q ${EXTRA})
+  run_ok(${PFT} eval --scenario ${SCENARIO} --runs ${RUNS} --threads 1 --shard ${k}/4 --out ${OUT}/parts -q ${EXTRA})
 endforeach()
-run(${PFT} merge ${OUT}/parts/partial_4_of_4.json ${OUT}/parts/partial_2_of_4.json
+run_ok(${PFT} merge ${OUT}/parts/partial_4_of_4.json ${OUT}/parts/partial_2_of_4.json
                ${OUT}/parts/partial_1_of_4.json ${OUT}/parts/partial_3_of_4.json --out ${OUT}/merged -q)
 execute_process(COMMAND ${PYTHON} ${COMPARE} ${OUT}/single/summary.json ${OUT}/merged/summary.json
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out)
