@@ -972,7 +972,7 @@ public:
             dres[i] = evaluate_ir(q.truth, tr.dbt, s.eval.d_c, s.eval.d_assoc);
             res[i].seed = dres[i].seed = seed;
             for (IrRunEval *e : {&res[i], &dres[i]})
-                for (FalseTrack &f : e->false_list)
+                for (TrackSpan &f : e->false_list)
                     if (f.first >= 1 && static_cast<std::size_t>(f.first) <= q.platform.size()) {
                         const auto &p = q.platform[static_cast<std::size_t>(f.first - 1)];
                         f.scene_x = f.x + p[0];

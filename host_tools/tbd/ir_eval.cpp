@@ -105,14 +105,14 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
         ++t.present;
     }
     std::map<uint32_t, bool> track_assoc;                 // track id -> ever associated
-    std::map<uint32_t, FalseTrack> track_span;            // track id -> first/last report
+    std::map<uint32_t, TrackSpan> track_span;            // track id -> first/last report
     std::map<std::size_t, std::set<uint32_t>> tgt_tracks; // target -> tracks
     for (const tbd::FrameOut &f : out) {
         for (const tbd::TrackOut &tr : f.tracks) {
             track_assoc.emplace(tr.id, false);
             auto sp = track_span.find(tr.id);
             if (sp == track_span.end()) {
-                FalseTrack ft;
+                TrackSpan ft;
                 ft.id = tr.id;
                 ft.first = static_cast<int>(f.frame);
                 ft.x = tr.x;
@@ -252,12 +252,12 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
                           {"tracks", t.tracks}});
         nlohmann::json fl = nlohmann::json::array();
         auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-        for (const FalseTrack &f : r.false_list)
+        for (const TrackSpan &f : r.false_list)
             fl.push_back({{"id", f.id}, {"first_frame", f.first}, {"last_frame", f.last},
                           {"reported_frames", f.frames}, {"x", f.x}, {"y", f.y},
                           {"scene_x", num(f.scene_x)}, {"scene_y", num(f.scene_y)}});
         nlohmann::json tl = nlohmann::json::array();
-        for (const FalseTrack &f : r.target_list)
+        for (const TrackSpan &f : r.target_list)
             tl.push_back({{"id", f.id}, {"first_frame", f.first}, {"last_frame", f.last},
                           {"reported_frames", f.frames}});
         per.push_back({{"seed", r.seed}, {"frames", r.frames}, {"tracks", r.tracks},

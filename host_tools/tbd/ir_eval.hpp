@@ -31,8 +31,9 @@ struct TargetResult {
     int tracks = 0;                        ///< distinct tracks associated with it
 };
 
-/** Where and when a false track was reported (frame coordinates, 1-based frames). */
-struct FalseTrack {
+/** Where and when a track was reported (frame coordinates, 1-based frames): the entries of
+ *  IrRunEval's false_list and target_list. */
+struct TrackSpan {
     uint32_t id = 0;
     int first = 0, last = 0, frames = 0;   ///< first and last reported frame, frames reported
     double x = 0, y = 0;                   ///< position in its first reported frame
@@ -45,8 +46,8 @@ struct IrRunEval {
     std::vector<TargetResult> targets;
     int tracks = 0, false_tracks = 0;
     std::vector<uint32_t> false_ids;
-    std::vector<FalseTrack> false_list;    ///< one per false track, in the order of false_ids
-    std::vector<FalseTrack> target_list;   ///< the same spans for the tracks associated with a target in some frame, by id
+    std::vector<TrackSpan> false_list;    ///< one per false track, in the order of false_ids
+    std::vector<TrackSpan> target_list;   ///< the same spans for the tracks associated with a target in some frame, by id
     /// injected targets' frames (1-based frame > 1, inside the image), and those with a birth
     /// candidate of the search layer within 1 px (Chebyshev) of the target's nearest pixel
     long birth_frames = 0, birth_hits = 0;

@@ -277,8 +277,8 @@ void IrTrace::write_tracks_(std::ostream &f, const IrRunEval &ev) const
                 rf = p.second;
             }
         bool fals = false;
-        const FalseTrack *ft = nullptr;
-        for (const FalseTrack &x : ev.false_list)
+        const TrackSpan *ft = nullptr;
+        for (const TrackSpan &x : ev.false_list)
             if (x.id == L.id) {
                 fals = true;
                 ft = &x;
