@@ -29,7 +29,10 @@
  *   make_clutter_config does; default 0 0 0.1, the pipeline's defaults; "1 4 0.2" is the best
  *   setting of docs/results/ir_clutter.md)
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
- * and at the end the workspace sizes. Memory: one static arena of IRP_ARENA_BYTES (the
+ * and at the end the workspace sizes and three FNV-1a checksums over all frames, outside the
+ * measured calls: of the stage's residual, of the map's output and of every confirmed track's
+ * fields (all their bits, not the 3 decimals), so that two builds' outputs can be compared bit
+ * for bit under QEMU. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
  */
 #include <math.h>
@@ -59,6 +62,44 @@ static void *arena_take(size_t n)
     void *p = &g_arena[g_used];
     g_used += words;
     return p;
+}
+
+/* FNV-1a, 64 bits, over n bytes */
+static uint64_t fnv1a(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)p;
+    for (size_t i = 0; i < n; ++i) {
+        h = (h ^ b[i]) * 1099511628211ull;
+    }
+    return h;
+}
+
+/* the frame's rows (w 16-bit pixels each) into h */
+static uint64_t fnv1a_frame(uint64_t h, const pft_frame_t *f)
+{
+    for (uint32_t r = 0; r < f->height; ++r) {
+        h = fnv1a(h, (const unsigned char *)f->data + (size_t)r * f->stride_bytes, 2u * (size_t)f->width);
+    }
+    return h;
+}
+
+/* a confirmed track's fields (no padding bytes) into h */
+static uint64_t fnv1a_track(uint64_t h, const pft_tbd_track_t *t)
+{
+    h = fnv1a(h, &t->id, sizeof t->id);
+    h = fnv1a(h, &t->x, sizeof t->x);
+    h = fnv1a(h, &t->y, sizeof t->y);
+    h = fnv1a(h, &t->vx, sizeof t->vx);
+    h = fnv1a(h, &t->vy, sizeof t->vy);
+    h = fnv1a(h, &t->intensity, sizeof t->intensity);
+    h = fnv1a(h, t->pos_cov, sizeof t->pos_cov);
+    h = fnv1a(h, &t->p_exist, sizeof t->p_exist);
+    h = fnv1a(h, &t->log_mean_lr, sizeof t->log_mean_lr);
+    h = fnv1a(h, &t->first_frame, sizeof t->first_frame);
+    h = fnv1a(h, &t->age, sizeof t->age);
+    h = fnv1a(h, &t->last_seq, sizeof t->last_seq);
+    h = fnv1a(h, &t->last_timestamp_us, sizeof t->last_timestamp_us);
+    return fnv1a(h, &t->sprt_llr, sizeof t->sprt_llr);
 }
 
 /* double -> pft_real_t as the host tools convert (host_tools/common/real.hpp) */
@@ -291,6 +332,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: cannot open %s\n", argv[1]);
         return 1;
     }
+    uint64_t h_res = 14695981039346656037ull, h_map = h_res, h_trk = h_res;
     for (uint32_t seq = 1; seq <= frames; ++seq) {
         if (fread(buf, 2u, npix, in) != npix) {
             fprintf(stderr, "ir_probe: %s holds fewer than %lu frames\n", argv[1], (unsigned long)frames);
@@ -320,6 +362,7 @@ int main(int argc, char **argv)
         pft_pre_stats(&pre, &st);
         pft_frame_t rf;
         pft_pre_frame(&pre, &rf);
+        h_res = fnv1a_frame(h_res, &rf);
         const int ev = (st.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED |
                                     PFT_PRE_FLAG_REG_LOST)) == 0u;
         memset(&call, 0, sizeof call);
@@ -340,6 +383,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "ir_probe: frame %lu: clutter map: %s\n", (unsigned long)seq, pft_status_str(s));
             return 1;
         }
+        h_map = fnv1a_frame(h_map, &co);
         pft_frame_t tf;
         memset(&tf, 0, sizeof tf);
         tf.data = ev ? co.data : (const void *)blank;
@@ -370,6 +414,7 @@ int main(int argc, char **argv)
         pft_tbd_scene_out_t sout[8];
         for (size_t i = 0; i < n; ++i) {
             printf(",%lu %.3f %.3f", (unsigned long)tr[i].id, from_real(tr[i].x), from_real(tr[i].y));
+            h_trk = fnv1a_track(h_trk, &tr[i]);
             sin[i].id = tr[i].id;
             sin[i].x = tr[i].x;
             sin[i].y = tr[i].y;
@@ -388,6 +433,8 @@ int main(int argc, char **argv)
         printf("\n");
     }
     fclose(in);
+    printf("ir_probe: checksums (FNV-1a 64) residual %016llx, map %016llx, tracks %016llx\n",
+           (unsigned long long)h_res, (unsigned long long)h_map, (unsigned long long)h_trk);
     printf("ir_probe: done, %lu frames\n", (unsigned long)frames);
     return 0;
 }
