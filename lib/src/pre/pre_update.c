@@ -728,8 +728,16 @@ static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_
     const int64_t d = x2b - x2a, dm = (int64_t)(mb - ma) * 65536;
     const int64_t b0 = (int64_t)ma * 65536 + (dm * (2 * (int64_t)x0 - x2a)) / d;
     const int32_t base = (int32_t)b0, step2 = (int32_t)((2 * dm) / d);
+    /* s = base + (x - x0) step2 + 32768 as a running sum modulo 2^32 (unsigned: no overflow,
+     * also past the last pixel), so that the vectorised loop adds a step per vector; m[x] is
+     * its upper half read as a signed 16-bit number, floor(s / 2^16): the int32 sum's
+     * arithmetic shift, the same value */
+    uint32_t s = (uint32_t)base + 32768u;
+    const uint32_t st = (uint32_t)step2;
     for (uint32_t x = x0; x < x1; ++x) {
-        m[x] = (int16_t)((base + (int32_t)(x - x0) * step2 + 32768) >> 16);
+        const int32_t hi = (int32_t)(s >> 16) - (int32_t)((s >> 15) & 0x10000u);
+        m[x] = (int16_t)hi;
+        s += st;
     }
 }
 
