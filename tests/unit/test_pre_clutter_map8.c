@@ -4,11 +4,12 @@
  * to a value that encodes back to it, with any rounding offset) and its error bound (every
  * Q6.10 value v within max(8, v / 64) of its nearest code's value); the dither's expectation
  * (over the 256 offsets, within 1/256 of a step of v); the configuration (map8 with block
- * refused, named "map8"; the workspace PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8, W H - 4 W bytes
+ * refused, named "map8"; the workspace PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8, W H - 12 W bytes
  * less than the 16-bit map's at blur 1); a persistent blob learnt at the documented rate and a
  * constant residual learnt in expectation (the dither's point: with the nearest code the map
  * would stop about 10 % short); the 8-bit map against the 16-bit one on drifting noise; the
- * raise; a refused call changes nothing. 64 x 48 frames, integer residuals: every target.
+ * raise; a refused call changes nothing; the update with a shift (the warp fused with it, row
+ * by row) bit for bit against a plain reference, shifts of both signs, whole and fractional. 64 x 48 frames, integer residuals: every target.
  * The code functions are internal to the library (lib/src/pre/pre_int.h); the test declares
  * them itself.
  */
@@ -20,6 +21,7 @@
 
 uint32_t pft_pre_clutter_enc8_(uint32_t v, uint32_t dz);
 uint32_t pft_pre_clutter_dec8_(uint32_t c);
+uint32_t pft_pre_sqrt_q10_(uint32_t mm);
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -187,9 +189,10 @@ static void test_config_and_workspace(void)
                 cfg.map8 = false;
                 const size_t n16 = pft_pre_clutter_workspace_size(&cfg);
                 /* the map's plane W H bytes less; the ring 2 blur + 1 rows instead of blur + 1
-                 * and the updated row: (blur + 1) 2 W bytes more (W 2 is a multiple of the
-                 * workspace's alignment here) */
-                TEST_ASSERT_EQUAL_UINT32((uint32_t)(NPIX - ((size_t)blur + 1u) * 2u * W), (uint32_t)(n16 - n8));
+                 * and the updated row: (blur + 1) 2 W bytes more; the warp's two rows of
+                 * horizontal passes 8 W more (W 2 is a multiple of the workspace's alignment
+                 * here) */
+                TEST_ASSERT_EQUAL_UINT32((uint32_t)(NPIX - ((size_t)blur + 1u) * 2u * W - 8u * W), (uint32_t)(n16 - n8));
                 cfg.map8 = true;
                 pft_pre_clutter_t c;
                 TEST_ASSERT_EQUAL_INT(PFT_ERR_NOMEM, pft_pre_clutter_init(&c, &cfg, g_work, n8 - 8u));
@@ -359,6 +362,147 @@ static void test_raise_and_refused_input(void)
     TEST_ASSERT_EQUAL_UINT32(64512u, pft_pre_clutter_at(&c, 30u, 30u)); /* the largest code */
 }
 
+/* The plain reference of map8's update with a shift (pft_pre.h "8-bit map", the formulas of the
+ * per-pixel map without the mean): the whole plane decoded and warped first (bilinear, 1
+ * sigma^2 outside, each value rounded to its nearest code's), then every pixel read (the box
+ * sum over the (2 blur + 1)^2 square of the warped map, edges replicated), scored and updated,
+ * and stored with the dither's offset (o + 167 x) mod 256, o the library's hash of the row and
+ * the frame count (pre_clutter.c, cl_row8_end_). */
+static uint8_t g_ref8[NPIX];
+static uint16_t g_refw[NPIX];
+static int16_t g_refo[NPIX];
+
+static int32_t floor_div(int32_t n, int32_t d)
+{
+    return n / d - ((n % d) != 0 && (n < 0) ? 1 : 0);
+}
+
+static uint32_t ref_warped(int32_t sx, int32_t sy, int32_t ix, uint32_t fx)
+{
+    /* the horizontal pass of source row sy at output column sx */
+    if (sy < 0 || sy >= H) {
+        return 1024u * 256u;
+    }
+    const int32_t x1 = sx - ix, x0 = x1 - 1;
+    const uint32_t v1 = x1 >= 0 && x1 < W ? pft_pre_clutter_dec8_(g_ref8[sy * W + x1]) : 1024u;
+    const uint32_t v0 = x0 >= 0 && x0 < W ? pft_pre_clutter_dec8_(g_ref8[sy * W + x0]) : 1024u;
+    return v1 * (256u - fx) + v0 * fx;
+}
+
+static void ref_frame(uint32_t frames, uint8_t blur, int32_t shx, int32_t shy)
+{
+    if (frames > 0u && (shx != 0 || shy != 0)) {
+        /* the shift in Q8 px (its Q16.16 value a multiple of 256 here: exact) */
+        const int32_t qx = floor_div(shx + 128, 256), qy = floor_div(shy + 128, 256);
+        int32_t ix = floor_div(qx, 256), iy = floor_div(qy, 256);
+        const uint32_t fx = (uint32_t)(qx - 256 * ix), fy = (uint32_t)(qy - 256 * iy);
+        ix = ix > W ? W : (ix < -W ? -W : ix);
+        iy = iy > H ? H : (iy < -H ? -H : iy);
+        for (int32_t y = 0; y < H; ++y) {
+            for (int32_t x = 0; x < W; ++x) {
+                const uint64_t s = (uint64_t)ref_warped(x, y - iy, ix, fx) * (256u - fy) +
+                                   (uint64_t)ref_warped(x, y - iy - 1, ix, fx) * fy + 32768u;
+                g_refw[y * W + x] = (uint16_t)pft_pre_clutter_dec8_(pft_pre_clutter_enc8_((uint32_t)(s >> 16), 128u));
+            }
+        }
+    } else {
+        for (int i = 0; i < NPIX; ++i) {
+            g_refw[i] = (uint16_t)pft_pre_clutter_dec8_(g_ref8[i]);
+        }
+    }
+    const uint32_t n = frames + 1u;
+    const uint32_t a1 = (65536u + n / 2u) / n, a = a1 > 6554u ? a1 : 6554u;
+    const int32_t b = blur;
+    const uint32_t area = (2u * blur + 1u) * (2u * blur + 1u), thr = 2048u * area;
+    for (int32_t y = 0; y < H; ++y) {
+        uint32_t z = ((uint32_t)y * 0x85EBCA77u) ^ (n * 0xC2B2AE3Du);
+        z ^= z >> 15;
+        z *= 0x2C1B3C6Du;
+        z ^= z >> 13;
+        const uint32_t o = z >> 24;
+        for (int32_t x = 0; x < W; ++x) {
+            uint32_t hs = 0u;
+            for (int32_t dy = -b; dy <= b; ++dy) {
+                for (int32_t dx = -b; dx <= b; ++dx) {
+                    const int32_t yy = y + dy < 0 ? 0 : (y + dy >= H ? H - 1 : y + dy);
+                    const int32_t xx = x + dx < 0 ? 0 : (x + dx >= W ? W - 1 : x + dx);
+                    hs += g_refw[yy * W + xx];
+                }
+            }
+            const int32_t v = g_res[y * W + x];
+            int32_t out = v;
+            if (hs > thr && v != PFT_RES16_MASKED) {
+                const int32_t s = (int32_t)pft_pre_sqrt_q10_((hs + area / 2u) / area);
+                const int32_t mag = ((v < 0 ? -v : v) * 1024 + s / 2) / s;
+                out = v < 0 ? -mag : mag;
+                out = out > 32767 ? 32767 : (out < -32767 ? -32767 : out);
+            }
+            g_refo[y * W + x] = (int16_t)out;
+            const int32_t m = g_refw[y * W + x];
+            int32_t nm = m;
+            if (v != PFT_RES16_MASKED) {
+                const uint32_t ac = (uint32_t)(v < 0 ? -v : v);
+                const uint32_t t0 = (ac * ac + 32u) >> 6;
+                const int32_t d = (int32_t)(t0 > 65535u ? 65535u : t0) - m;
+                const int32_t q = (int32_t)(((uint64_t)a * (uint64_t)(d < 0 ? -d : d) + 32768u) >> 16);
+                nm = m + (d < 0 ? -q : q);
+            }
+            g_ref8[y * W + x] = (uint8_t)pft_pre_clutter_enc8_((uint32_t)nm, (o + 167u * (uint32_t)x) & 255u);
+        }
+    }
+}
+
+/* The library's map8 (the warp fused with the update, row by row in the warp's order) against
+ * the plain reference above, bit for bit (every code and every output value), over a run of
+ * shifts of both signs, whole and fractional pixels, each axis alone and beyond the frame, at
+ * blur 0, 1 and 2; the residual unit noise, 3 sigma on the left third (the map's read above
+ * thr there), a few pixels masked. */
+static void test_fused_warp_against_plain_reference(void)
+{
+    /* shifts in 1/256 px (x, y): (0, 0) frames first, then 0.3 and 0.1; -0.7 and -1.2; whole
+     * pixels (2, -1), (-3, 2); x alone (1.5, 0) and y alone (0, -0.25); (-0.5, 0.5); beyond the
+     * frame (70, 3) and (0, -50); (0, 1) whole y only; (-1, 0) whole x only */
+    static const int32_t sh[][2] = {{0, 0},     {0, 0},      {0, 0},      {77, 26},  {-179, -307},
+                                    {512, -256}, {-768, 512}, {384, 0},    {0, -64},  {-128, 128},
+                                    {77, 26},   {17920, 768}, {0, -12800}, {0, 256}, {-256, 0},
+                                    {-179, -307}, {230, 51},  {0, 0}};
+    const uint32_t nsh = (uint32_t)(sizeof sh / sizeof sh[0]);
+    for (uint8_t blur = 0u; blur <= 2u; ++blur) {
+        pft_pre_clutter_config_t cfg;
+        pft_pre_clutter_config_default(&cfg);
+        cfg.width = W;
+        cfg.height = H;
+        cfg.blur = blur;
+        cfg.map8 = true;
+        pft_pre_clutter_t c;
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(&c, &cfg, g_work, sizeof g_work));
+        memset(g_ref8, 64, sizeof g_ref8);
+        uint32_t rs = 24681357u;
+        for (uint32_t n = 0u; n < nsh; ++n) {
+            for (int y = 0; y < H; ++y) {
+                for (int x = 0; x < W; ++x) {
+                    const int32_t v = pft_test_noise_q88(&rs) * (x < W / 3 ? 3 : 1);
+                    g_res[y * W + x] = (int16_t)(v > 32767 ? 32767 : (v < -32767 ? -32767 : v));
+                }
+            }
+            g_res[(int)((n * 7u + 5u) % (uint32_t)NPIX)] = PFT_RES16_MASKED;
+            g_res[(int)((n * 131u + 1000u) % (uint32_t)NPIX)] = PFT_RES16_MASKED;
+            ref_frame(n, blur, sh[n][0] * 256, sh[n][1] * 256);
+            pft_frame_t f = res_frame(n + 1u);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sh[n][0] * 256, sh[n][1] * 256, true));
+            pft_frame_t out;
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(&c, &out));
+            TEST_ASSERT_EQUAL_INT16_ARRAY(g_refo, (const int16_t *)out.data, NPIX);
+            for (uint32_t y = 0u; y < H; ++y) {
+                for (uint32_t x = 0u; x < W; ++x) {
+                    /* a code's value is the code (the decode is one to one) */
+                    TEST_ASSERT_EQUAL_UINT32(pft_pre_clutter_dec8_(g_ref8[y * W + x]), pft_pre_clutter_at(&c, x, y));
+                }
+            }
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -371,5 +515,6 @@ int main(void)
     RUN_TEST(test_constant_residual_learnt_in_expectation);
     RUN_TEST(test_against_16_bit_map_on_drifting_noise);
     RUN_TEST(test_raise_and_refused_input);
+    RUN_TEST(test_fused_warp_against_plain_reference);
     return UNITY_END();
 }

@@ -385,7 +385,8 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * (32 + c mod 32) 2^(c / 32 + 3); code 255 (63 sigma^2) is the largest. Every code decodes to
  * a value that encodes back to itself, and the decoded value of a rounded code is within
  * max(8, v / 64) of v. The map is decoded row by row to be read, warped and updated with the
- * formulas above; the warp's result is stored rounded to the nearest code, the update's with
+ * formulas above; the warp's result is rounded to its nearest code's value (the warp runs row
+ * by row within the update: one decode and one encode per pixel), the update's is stored with
  * a deterministic dither (the rounding offset of column x is (o + 167 x) mod 256 256ths of the
  * code's step, o from a hash of the row and the frame count), so that a small step a (t - m)
  * lands in expectation instead of never.
@@ -421,13 +422,14 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
 /** Workspace bytes of a clutter map with map8 (per pixel): frames w x h, mean (0/1), blur b,
  *  persist (0/1), inplace (0/1): the map 1 byte per pixel, mu and the counter 2 each, the
  *  output 2 (not inplace), 2 b + 1 decoded rows of the map and one row being updated (2 bytes
- *  per column each), two rows of sums (4 bytes per column each). */
+ *  per column each), two rows of sums (4 bytes per column each) and the warp's two rows of
+ *  horizontal passes (4 bytes per column each; the warp runs row by row within the update). */
 #define PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(w, h, mean, b, persist, inplace)                    \
     ((size_t)(PFT_WS_ALIGN - 1u) + PFT_WS_ROUND((size_t)(w) * (size_t)(h)) +                     \
      (((mean) ? 1u : 0u) + ((persist) ? 1u : 0u) + ((inplace) ? 0u : 1u)) *                      \
          PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +                                          \
      PFT_WS_ROUND((2u * (size_t)(b) + 1u) * (size_t)(w) * 2u) + PFT_WS_ROUND((size_t)(w) * 2u) + \
-     2u * PFT_WS_ROUND((size_t)(w) * 4u))
+     2u * PFT_WS_ROUND((size_t)(w) * 4u) + PFT_WS_ROUND((size_t)(w) * 8u))
 
 /** Fills every field with its default (384 x 288, alpha 0.1, 3 x 3 mean, thr 2, no veto, no
  *  persistence gate, excess 1.5, not in place, per pixel, the map in 16 bits). */

@@ -122,7 +122,8 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     uint16_t *row = cfg->map8 ? pft_ws_take(&ws, gw * 2u) : NULL;
     uint32_t *vs = pft_ws_take(&ws, gw * 4u);
     uint32_t *hs = pft_ws_take(&ws, gw * 4u);
-    uint32_t *acc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
+    /* blocks: the per-block sums; map8: the fused warp's two horizontal passes (cl_fuse8_) */
+    uint32_t *acc = lb != 0u || cfg->map8 ? pft_ws_take(&ws, gw * 8u) : NULL;
     int32_t *sacc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
@@ -184,6 +185,8 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     memset(c->hs, 0, gw * 4u);
     if (c->acc != NULL) {
         memset(c->acc, 0, gw * 8u);
+    }
+    if (c->sacc != NULL) {
         memset(c->sacc, 0, gw * 8u);
     }
     c->frames = 0u;
@@ -366,41 +369,105 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
     }
 }
 
-/* cl_warp_ on the 8-bit map v8 (map8, per pixel): each source row is decoded into dec (w
- * values) just before its horizontal pass, in the same order as cl_warp_ reads it, and the
- * interpolated value (<= 64512, the largest code's) is stored as its nearest code. */
-static void cl_warp8_(uint8_t *v8, uint16_t *dec, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h,
-                      int32_t ix, uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
+/* map8: the value of v's nearest code, pft_pre_clutter_dec8_(pft_pre_clutter_enc8_(v,
+ * CL_HALF8_)) for every v (test_pre_clutter_map8 compares the two for every v): with v clamped
+ * to 64512 and its step p2 = 2^(e + 3) as in cl_enc8_ (the bits of v >> 10 smeared down, s =
+ * 2^(e - 1) - 1, p2 = 16 (s + 1)), the code's quotient is floor((v + p2 / 2) / p2) and its
+ * value that quotient times p2 (a quotient of 64 is the next octave's first code, the same
+ * value): (v + p2 / 2) with the bits below p2 cleared (v + p2 / 2 <= 64512 + 512 < 2^16). */
+static inline uint16_t cl_round8_(uint16_t v0)
 {
-    const bool ydown = iy >= 0;
-    const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
-    const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
-    uint32_t *hc = ta, *hn = tb;
-    int32_t y = ydown ? h - 1 : 0;
-    for (int32_t k = -1; k < h; ++k) {
-        /* k = -1: row y's shared source row into hc; else the other source row into hn */
-        const int32_t sy = k < 0 ? (ydown ? y - iy : y - iy - 1) : (ydown ? y - iy - 1 : y - iy);
-        uint32_t *hr = k < 0 ? hc : hn;
-        if (sy >= 0 && sy < h) {
-            cl_dec8_row_(v8 + (size_t)sy * (size_t)w, dec, w);
-            cl_warp_h_(dec, hr, 0, w, 1, ix, fx, b, xlo, xhi);
-        } else {
-            cl_warp_h_(dec, hr, -1, w, 1, ix, fx, b, xlo, xhi); /* a row outside: b */
-        }
-        if (k < 0) {
-            continue;
-        }
-        const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc;
-        uint8_t *o = v8 + (size_t)y * (size_t)w;
-        for (int32_t x = 0; x < w; ++x) {
-            /* the interpolated value <= 64512 (a mix of code values) */
-            o[x] = cl_enc8_((uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16), (uint16_t)CL_HALF8_);
-        }
-        uint32_t *t = hc;
-        hc = hn;
-        hn = t;
-        y = ydown ? y - 1 : y + 1;
+    const uint16_t v = v0 > 64512u ? (uint16_t)64512u : v0;
+    uint16_t s = (uint16_t)(v >> 10);
+    s = (uint16_t)(s | (uint16_t)(s >> 1));
+    s = (uint16_t)(s | (uint16_t)(s >> 2));
+    s = (uint16_t)(s | (uint16_t)(s >> 4));
+    const uint16_t p2 = (uint16_t)((uint16_t)(s + 1u) << 4);
+    return (uint16_t)((uint16_t)(v + (uint16_t)(p2 >> 1)) & (uint16_t)(0u - (uint32_t)p2));
+}
+
+/* map8 with a shift: the warp (cl_warp_'s formulas on the decoded map, each value rounded to
+ * its nearest code's, cl_round8_) fused with the update. The update of row y reads only the
+ * ring of the rows y - blur .. y + blur as they are before this frame's update (after the warp)
+ * and writes row y only, so the rows can be updated in the warp's order: descending when iy >=
+ * 0 (warped row y reads source rows y - iy and y - iy - 1, both <= y), ascending otherwise
+ * (sources > y). The warp puts each warped row straight into its ring slot; row y is updated
+ * and stored as codes once the rows up to y - blur (descending) or y + blur (ascending) are
+ * warped, and every row warped after that reads source rows beyond them (< y, or > y), so no
+ * source row is read after its codes are replaced. One decode (of the warp's source row) and
+ * one encode (the update's, with the dither) per pixel and frame, the same values as the warp
+ * over the whole plane stored as nearest codes and decoded again by the update. The
+ * horizontal passes of a warped row's two source rows live in c->acc (hc, hn: w values each),
+ * since c->vs and c->hs serve the update between two warped rows. */
+typedef struct {
+    uint32_t *hc;  /* the horizontal pass of the source row shared with the row warped before */
+    uint32_t *hn;  /* the other source row's */
+    int32_t ix;    /* the shift: whole grid steps and Q8 fractions, as cl_warp_ */
+    int32_t iy;
+    uint32_t fx;
+    uint32_t fy;
+    int32_t xlo;   /* columns [xlo, xhi) have both sources inside */
+    int32_t xhi;
+    int32_t next;  /* the next row to warp */
+    bool on;       /* this frame's update warps (map8 with a shift) */
+    bool down;     /* rows in descending order (on and iy >= 0) */
+} cl_fuse8_t;
+
+/* cl_fuse8_t for a map8 update with the shift (ix + fx / 256, iy + fy / 256). */
+static void cl_fuse8_init_(const pft_pre_clutter_t *c, cl_fuse8_t *fz, int32_t ix, uint32_t fx,
+                           int32_t iy, uint32_t fy)
+{
+    const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh;
+    fz->hc = c->acc;
+    fz->hn = c->acc + c->gw;
+    fz->ix = ix;
+    fz->iy = iy;
+    fz->fx = fx;
+    fz->fy = fy;
+    /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
+    fz->xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
+    fz->xhi = ix > 0 ? w : (w + ix < fz->xlo ? fz->xlo : w + ix);
+    fz->down = iy >= 0;
+    fz->next = fz->down ? h - 1 : 0;
+    fz->on = true;
+}
+
+/* The horizontal pass of source row sy (decoded into c->row first) into hr; a row outside the
+ * frame gives b = 1 sigma^2 in every column. */
+static void cl_fuse8_h_(pft_pre_clutter_t *c, const cl_fuse8_t *fz, uint32_t *hr, int32_t sy)
+{
+    const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh;
+    if (sy >= 0 && sy < h) {
+        cl_dec8_row_(c->m8 + (size_t)sy * (size_t)w, c->row, w);
+        cl_warp_h_(c->row, hr, 0, w, 1, fz->ix, fz->fx, CL_ONE_, fz->xlo, fz->xhi);
+    } else {
+        cl_warp_h_(c->row, hr, -1, w, 1, fz->ix, fz->fx, CL_ONE_, fz->xlo, fz->xhi);
     }
+}
+
+/* Warps row fz->next into its ring slot (cl_warp_'s order and sums: the first row's shared
+ * source row first, then per row the other one) and moves fz->next on. */
+static void cl_fuse8_row_(pft_pre_clutter_t *c, cl_fuse8_t *fz)
+{
+    const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh;
+    const int32_t y = fz->next, iy = fz->iy;
+    const bool down = fz->down;
+    if (y == (down ? h - 1 : 0)) {
+        /* descending, row y's first source y - iy; ascending, its second y - iy - 1 */
+        cl_fuse8_h_(c, fz, fz->hc, down ? y - iy : y - iy - 1);
+    }
+    cl_fuse8_h_(c, fz, fz->hn, down ? y - iy - 1 : y - iy);
+    const uint32_t *h1 = down ? fz->hc : fz->hn, *h0 = down ? fz->hn : fz->hc; /* weights 256 - fy, fy */
+    const uint32_t fy = fz->fy;
+    uint16_t *o = c->ring + (size_t)((uint32_t)y % (2u * (uint32_t)c->cfg.blur + 1u)) * (size_t)w;
+    for (int32_t x = 0; x < w; ++x) {
+        /* the interpolated value <= 64512 (a mix of code values) */
+        o[x] = cl_round8_((uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16));
+    }
+    uint32_t *t = fz->hc;
+    fz->hc = fz->hn;
+    fz->hn = t;
+    fz->next = down ? y - 1 : y + 1;
 }
 
 /* The map's former row r (0..h-1) while row y is updated: rows above y come from the ring
@@ -875,16 +942,26 @@ static pft_status_t cl_check_frame_(const pft_pre_clutter_t *c, const pft_frame_
     return PFT_OK;
 }
 
-/* map8, before row y's update: row y + blur decoded into the ring (rows 0 .. blur - 1 as well
- * before row 0), so that the ring holds the rows y - blur .. y + blur as they were before this
- * frame's update (cl_row_); row y's copied into c->row, where the 16-bit row functions update
- * it. */
-static uint16_t *cl_row8_begin_(pft_pre_clutter_t *c, int32_t y)
+/* map8, before row y's update: the ring made to hold the rows y - blur .. y + blur as they are
+ * before this frame's update (cl_row_): without a shift (rows ascending) row y + blur decoded
+ * into it (rows 0 .. blur - 1 as well before row 0); with a shift (fz->on) the rows warped
+ * into it up to y - blur (descending) or y + blur (ascending), clamped to the frame (the rows
+ * beyond it read the edge row, cl_row_). Row y's copied into c->row, where the 16-bit row
+ * functions update it. */
+static uint16_t *cl_row8_begin_(pft_pre_clutter_t *c, cl_fuse8_t *fz, int32_t y)
 {
     const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh, b = (int32_t)c->cfg.blur;
     const uint32_t nring = 2u * (uint32_t)b + 1u;
-    for (int32_t r = y == 0 ? 0 : y + b; r <= y + b && r < h; ++r) {
-        cl_dec8_row_(c->m8 + (size_t)r * (size_t)w, c->ring + (size_t)((uint32_t)r % nring) * (size_t)w, w);
+    if (fz->on) {
+        const int32_t last = fz->down ? (y - b < 0 ? 0 : y - b) : (y + b >= h ? h - 1 : y + b);
+        /* each row is warped once: at most h rows over the frame */
+        for (int32_t k = 0; k < h && (fz->down ? fz->next >= last : fz->next <= last); ++k) {
+            cl_fuse8_row_(c, fz);
+        }
+    } else {
+        for (int32_t r = y == 0 ? 0 : y + b; r <= y + b && r < h; ++r) {
+            cl_dec8_row_(c->m8 + (size_t)r * (size_t)w, c->ring + (size_t)((uint32_t)r % nring) * (size_t)w, w);
+        }
     }
     memcpy(c->row, c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, (size_t)w * 2u);
     return c->row;
@@ -930,6 +1007,8 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
         }
         return;
     }
+    cl_fuse8_t fz; /* map8 with a shift: the warp runs within the row loop below */
+    memset(&fz, 0, sizeof(fz));
     if (c->frames > 0u) {
         int32_t ix, iy;
         uint32_t fx, fy;
@@ -941,7 +1020,7 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             ix = ix > gw ? gw : (ix < -gw ? -gw : ix);
             iy = iy > gh ? gh : (iy < -gh ? -gh : iy);
             if (c->m8 != NULL) {
-                cl_warp8_(c->m8, c->row, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
+                cl_fuse8_init_(c, &fz, ix, fx, iy, fy);
             } else {
                 cl_warp_(c->m, c->vs, c->hs, gw, gh, ix, fx, iy, fy, CL_ONE_);
             }
@@ -968,9 +1047,11 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
         cl_update_blocks_(c, res, a, thr, veto, area);
         return;
     }
-    for (int32_t y = 0; y < h; ++y) {
+    for (int32_t k = 0; k < h; ++k) {
+        /* rows ascending, but in the warp's order with map8 and a shift (descending when iy >= 0) */
+        const int32_t y = fz.down ? h - 1 - k : k;
         /* map8: the decoded row, stored back after the update (cl_row8_begin_, cl_row8_end_) */
-        uint16_t *mrow = c->m8 != NULL ? cl_row8_begin_(c, y) : c->m + (size_t)y * (size_t)w;
+        uint16_t *mrow = c->m8 != NULL ? cl_row8_begin_(c, &fz, y) : c->m + (size_t)y * (size_t)w;
         if (c->m8 == NULL) {
             memcpy(c->ring + (size_t)((uint32_t)y % nring) * (size_t)w, mrow, (size_t)w * 2u);
         }
