@@ -69,7 +69,7 @@ struct pft_pre_clutter_s {
     uint16_t *ring;        /* former values of the last blur + 1 rows, (blur + 1) * w (map8: the decoded rows y - blur .. y + blur, (2 blur + 1) * w) */
     uint32_t *vs;          /* vertical sums (or maxima) of one row; the warp's row buffer; c of a row with the mean */
     uint32_t *hs;          /* the square's sums (or maxima) of one row; the warp's row buffer */
-    uint32_t *acc;         /* block: per block of a row, the sum of t and the count (NULL per pixel) */
+    uint32_t *acc;         /* block: per block of a row, the sum of t and the count; per pixel with map8: the fused warp's two carried rows (NULL per pixel without map8) */
     int32_t *sacc;         /* block: per block of a row, the sums of clamp(8 r) and r (NULL per pixel) */
     uint32_t gw, gh;       /* the map's grid: w x h, or the blocks' ceil(w / B) x ceil(h / B) */
     uint32_t lb;           /* log2(B), 0 per pixel */
