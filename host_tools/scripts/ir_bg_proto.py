@@ -36,10 +36,16 @@ v = sensor.vignetting of the scenario in sequence.json; ir_sim.cpp), the clairvo
 the library's flat field: without it the background's lag behind the vignetting ("Branch irnuc")
 leaves a smooth residual offset (about 0.27 sigma rms on seed 1) that dominates the K-frame sums.
 
+--map applies a float emulation of the library's clutter map with the gated mean (docs/algorithms.md
+9.9: m and mu carried with the scene by the true shift, bilinear; M the 3 x 3 box mean of m before the
+update; c = r - mu, w = c / sqrt(M) where M > 2; m <- m + a (min(c^2, 64) - m), mu <- mu + a (clip(r, +-8) - mu)
+where |r| <= 1.5 or the persistence counter >= 4 frames; a = max(0.2, 1/n)): the settings of the best
+setting's scenario (clutter_alpha 0.2, clutter_persist 4), without the library's integer rounding.
+
   ir_bg_proto.py --sim SIM --out RUNX --db 09 --seeds 1-29 --method anchor [--interp cubic]
-                 [--alpha 0.15] [--gain none|true] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
+                 [--alpha 0.15] [--gain none|true] [--map] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
                  all zero: the library's frames without evidence)
-Needs numpy.
+Needs numpy (and scipy for --map).
 """
 import argparse
 import csv
@@ -155,6 +161,44 @@ def column_update(c, r, ok, sigmap, gamma=1.0 / 16):
     return c + gamma * (m - m17)
 
 
+class ClutterMap:
+    """Float emulation of pft_pre_clutter_* with the gated mean (9.9), on the whitened residual."""
+
+    def __init__(self, h, w, alpha=0.2, thr=2.0, persist=4, excess=1.5, blur=1):
+        self.m = np.ones((h, w))
+        self.mu = np.zeros((h, w))
+        self.p = np.zeros((h, w))
+        self.n = 0
+        self.h, self.w = h, w
+        self.alpha, self.thr, self.persist, self.excess, self.blur = alpha, thr, persist, excess, blur
+
+    def carry(self, d):
+        """Frame k's pixel x sees what frame k-1 saw at x + d: bilinear, new pixels reset."""
+        nx, fx = split(d[0])
+        ny, fy = split(d[1])
+        out = []
+        for arr, fill in ((self.m, 1.0), (self.mu, 0.0), (self.p, 0.0)):
+            v, ok = warp2(arr, np.ones(arr.shape, bool), nx, fx, ny, fy, self.h, self.w, 'linear')
+            out.append(np.where(ok, v, fill))
+        self.m, self.mu, self.p = out
+
+    def step(self, r, ok):
+        from scipy import ndimage
+        n = 2 * self.blur + 1
+        M = ndimage.uniform_filter(self.m, size=n, mode='nearest')
+        c = r - self.mu
+        w = np.where(M > self.thr, c / np.sqrt(np.maximum(M, 1e-9)), c) * ok
+        self.n += 1
+        a = max(self.alpha, 1.0 / self.n)
+        big = np.abs(r) > self.excess
+        self.p = np.where(ok, np.where(big, np.minimum(self.p + 1, 2 * self.persist), np.maximum(self.p - 0.5, 0)),
+                          self.p)
+        self.m = np.where(ok, self.m + a * (np.minimum(c * c, 64.0) - self.m), self.m)
+        learn = ok & (~big | (self.p >= self.persist))
+        self.mu = np.where(learn, self.mu + a * (np.clip(r, -8, 8) - self.mu), self.mu)
+        return w
+
+
 def run_seed(a, seed):
     sd = os.path.join(a.sim, f'{a.db}_s{seed}')
     q = json.load(open(os.path.join(sd, 'sequence.json')))
@@ -176,6 +220,7 @@ def run_seed(a, seed):
     sig = Sigma(H, W)
     c = np.zeros(W)
     nb = 0  # frames the background holds (the library's warm-up count)
+    cmap = ClutterMap(H, W) if a.map else None
     alpha = a.alpha
     ip = a.interp
     if a.method != 'rewarp':
@@ -212,7 +257,12 @@ def run_seed(a, seed):
             r = np.where(ok, zc - bh, 0.0)
             sig.update(r, ok)
             if evid[k]:
-                out[k] = (r * sig.per_pixel() * ok).astype(np.float32)
+                wr = r * sig.per_pixel() * ok
+                if cmap is not None:
+                    if cmap.n > 0:
+                        cmap.carry(plat[k] - plat[k - 1])
+                    wr = cmap.step(wr, ok)
+                out[k] = wr.astype(np.float32)
             c = column_update(c, r, ok, sig.tile_map())
         # background update
         ae = max(alpha, 1.0 / (nb + 1))
@@ -262,6 +312,7 @@ def main():
     ap.add_argument('--alpha', type=float, default=0.15)
     ap.add_argument('--gain', choices=('none', 'true'), default='none',
                     help='true: divide by the sim\'s true vignetting gain (a clairvoyant flat field)')
+    ap.add_argument('--map', action='store_true', help='the clutter map with the gated mean after the stage')
     ap.add_argument('--nmed', type=int, default=9, help='anchor_median: frames in the median')
     ap.add_argument('--evidence-from', help='RUN folder of pft run --residual-out: its all-zero frames stay zero')
     a = ap.parse_args()
