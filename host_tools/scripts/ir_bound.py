@@ -9,7 +9,9 @@ best setting + integ_alpha 0.7):
   pft run --sequence SIM/<db>_s<N> --scenario S --no-video --out RUN/<db>_s<N> \\
           --residual-out RUN/<db>_s<N>/res.i16
 (the residual the TBD manager sees, int16 Q8.8 in units of the stage's tile sigma; truth.csv
-and sequence.json from the sim folder; the frames themselves are not read).
+and sequence.json from the sim folder; the frames themselves are not read). targets and clutter take
+another residual of the same layout with --res NAME (NAME.f32: float32 in tile-sigma units, e.g. a
+prototype of host_tools/scripts/ir_bg_proto.py, "Branch irbg"); each residual needs its own --cache.
 
   ir_bound.py inputs   --pft build/host-float/host_tools/pft --scenario S --backgrounds IR_SKY \\
                        --sim SIM --run RUN --db 09 --seeds 1-29      (the two commands above per seed,
@@ -85,12 +87,18 @@ def psf(dx=0.0, dy=0.0, sigma=0.7, half=3):
     return k / np.sqrt((k ** 2).sum())
 
 
-def load(sim, run, db, seed):
+def load(sim, run, db, seed, res_name='res.i16'):
+    """The sim's truth and platform path, and the residual RUN/<db>_s<seed>/<res_name>: int16 Q8.8
+    (pft run --residual-out) or, for a name ending in .f32, float32 in the same units and layout
+    (a prototype's residual, e.g. host_tools/scripts/ir_bg_proto.py)."""
     sd = os.path.join(sim, f'{db}_s{seed}')
     q = json.load(open(os.path.join(sd, 'sequence.json')))
     w, h, f = q['width'], q['height'], q['frames']
-    res = np.fromfile(os.path.join(run, f'{db}_s{seed}', 'res.i16'), '<i2')
-    res = res.reshape(f, h, w).astype(np.float32) / 256.0
+    path = os.path.join(run, f'{db}_s{seed}', res_name)
+    if res_name.endswith('.f32'):
+        res = np.fromfile(path, '<f4').reshape(f, h, w).astype(np.float32)
+    else:
+        res = np.fromfile(path, '<i2').reshape(f, h, w).astype(np.float32) / 256.0
     truth = collections.defaultdict(list)
     for r in csv.DictReader(open(os.path.join(sd, 'truth.csv'))):
         truth[int(r['frame'])].append((int(r['id']), float(r['x']), float(r['y']), r['kind']))
@@ -241,7 +249,8 @@ def cmd_inputs(a):
                             '--no-video', '--residual-out', os.path.join(rd, 'res.i16.tmp')], check=True,
                            stdout=log, stderr=subprocess.STDOUT)
         os.replace(os.path.join(rd, 'res.i16.tmp'), os.path.join(rd, 'res.i16'))
-        os.remove(os.path.join(sd, 'frames.u16'))
+        if not a.keep_frames:
+            os.remove(os.path.join(sd, 'frames.u16'))
         print(f'inputs {a.db} seed {seed}', flush=True)
 
 
@@ -252,7 +261,7 @@ def cmd_targets(a):
         out = os.path.join(a.cache, f'tg_{a.db}_s{seed}{post_tag(a.post)}.json')
         if os.path.exists(out):
             continue
-        q, res, truth, _ = load(a.sim, a.run, a.db, seed)
+        q, res, truth, _ = load(a.sim, a.run, a.db, seed, a.res)
         res = apply_post(res, a.post)
         f, h, w = res.shape
         mf = matched(res)
@@ -358,7 +367,7 @@ def cmd_clutter(a):
         out = os.path.join(a.cache, f'cl_{a.db}_s{seed}{post_tag(a.post)}{a.tag}.json')
         if os.path.exists(out):
             continue
-        q, res, truth, plat = load(a.sim, a.run, a.db, seed)
+        q, res, truth, plat = load(a.sim, a.run, a.db, seed, a.res)
         if a.white:  # the reference: the same search on white unit Gaussian noise in place of the residual
             ev0 = np.array([bool(fr.any()) for fr in res])
             res = np.random.default_rng(1000 + seed).standard_normal(res.shape).astype(np.float32)
@@ -779,12 +788,17 @@ def main():
             p.add_argument('--pft', required=True)
             p.add_argument('--scenario', required=True)
             p.add_argument('--backgrounds', required=True)
+            p.add_argument('--keep-frames', action='store_true',
+                           help='keep the sim\'s frames.u16 (for ir_bg_proto.py); deleted by default')
         p.add_argument('--sim', required=True)
         p.add_argument('--run', required=True)
         p.add_argument('--db', required=True)
         p.add_argument('--seeds', required=True)
         if name != 'inputs':
             p.add_argument('--cache', required=True)
+            p.add_argument('--res', default='res.i16',
+                           help='the residual file in RUN/<db>_s<N>/: res.i16 (int16 Q8.8, pft run) or NAME.f32 '
+                           '(float32, tile-sigma units, e.g. ir_bg_proto.py); give each residual its own --cache')
             p.add_argument('--post', default='', help='NAME[:k=v,...][+NAME...]: filter each residual frame before '
                            'the matched filter (dir, mean, median, rms; see post_*); its own cache files')
         if name == 'clutter':
