@@ -516,18 +516,14 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         a.ry = pft_mul(f->model.hi_y, pft_mul(f->model.dy, PFT_C(0.5)));
     }
     pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
+    /* two loops over the particles, the sums and then the walk: in one, their live values
+     * (eleven sums, the walk's state, seven arrays) did not fit the registers. The walk
+     * overwrites the weights with the counts, so it comes second. */
     for (uint32_t s = 0; s < n; ++s) {
-        const pft_weight_t e = w[s].w;
-        cum += e;
-        w[s].n = pft_sys_take_(&sys, cum);
-        if (w[s].n == 0u) {
-            *link = SLOT_EMPTY_ | s;
-            link = &w[s].n;
-        }
         if (pe[s] == 0u) {
             ++n0; /* weight e0 (pass 2): its terms are added once below */
         } else {
-            const pft_weight_t wn = pft_kwnorm_(e, r);
+            const pft_weight_t wn = pft_kwnorm_(w[s].w, r);
             a.w += wn;
             a.w2 += (pft_wacc_t)wn * wn;
             /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below stay
@@ -551,6 +547,14 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         const pft_weight_t wn0 = pft_kwnorm_(e0, r);
         a.w += (pft_wacc_t)n0 * wn0;
         a.w2 += (pft_wacc_t)n0 * ((pft_wacc_t)wn0 * wn0);
+    }
+    for (uint32_t s = 0; s < n; ++s) {
+        cum += w[s].w;
+        w[s].n = pft_sys_take_(&sys, cum);
+        if (w[s].n == 0u) {
+            *link = SLOT_EMPTY_ | s;
+            link = &w[s].n;
+        }
     }
     *link = SLOT_EMPTY_ | n;
     if (pft_sys_left_(&sys) > 0u) {
