@@ -54,7 +54,7 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
 static inline void pft_sys_next_(pft_sys_t *s)
 {
     const uint64_t fr = s->fr + s->rr;
-    const uint64_t c = fr >= s->d ? 1u : 0u;
+    const uint64_t c = fr >= s->d ? (uint64_t)1 : (uint64_t)0;
     s->k += 1u;
     s->fr = fr - (s->d & (0u - c));
     s->t += s->q + c;
