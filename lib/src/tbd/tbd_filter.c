@@ -492,13 +492,14 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
 static inline uint32_t *walk_slot_(pft_tbd_slot_t *w, uint32_t s, pft_weight_t e, pft_sys_t *sys,
                                    pft_wacc_t *cum, uint32_t *link)
 {
+    uint32_t *next = link;
     *cum += e;
     w[s].n = pft_sys_take_(sys, *cum);
     if (w[s].n == 0u) {
         *link = SLOT_EMPTY_ | s;
-        return &w[s].n;
+        next = &w[s].n;
     }
-    return link;
+    return next;
 }
 
 /* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
