@@ -49,16 +49,15 @@ static inline void pft_sys_init_(pft_sys_t *s, pft_wacc_t total, uint32_t n, uin
     s->n = n;
 }
 
-/* The next target (exact: T_k = t + fr / d throughout). */
+/* The next target (exact: T_k = t + fr / d throughout). fr, rr < d, so fr + rr < 2 d and one
+ * carry c (0 or 1) brings it back below d; c is formed as a value and a mask, not a branch. */
 static inline void pft_sys_next_(pft_sys_t *s)
 {
+    const uint64_t fr = s->fr + s->rr;
+    const uint64_t c = fr >= s->d ? (uint64_t)1 : (uint64_t)0;
     s->k += 1u;
-    s->t += s->q;
-    s->fr += s->rr;
-    if (s->fr >= s->d) {
-        s->fr -= s->d;
-        s->t += 1u;
-    }
+    s->fr = fr - (s->d & (0u - c));
+    s->t += s->q + c;
 }
 
 /* c_j > T_k exactly when c_j > floor(T_k) (c_j an integer). Ends: T_n = W (1 + u / (N 2^32))

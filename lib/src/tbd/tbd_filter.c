@@ -475,6 +475,33 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
  * slot (n after the last one). Counts are at most n <= 2^22, so the flag tells them apart. */
 #define SLOT_EMPTY_ 0x80000000u
 
+/* Whether pass 3 runs its sums and its walk as two loops over the particles. q16: in one loop
+ * their live values (eleven 64-bit sums, the walk's state, seven arrays) do not fit the
+ * registers and spill; two loops read the weights twice and spill nothing. float: the sums
+ * live in FP registers, and in one loop the walk's serial chain overlaps them. The same
+ * values either way (every sum adds the same terms in the same order). */
+#ifdef PFT_NUMERIC_Q16
+#define EST_TWO_LOOPS_ 1
+#else
+#define EST_TWO_LOOPS_ 0
+#endif
+
+/* One step of pass 3's walk: slot s (weight e; cum: the weights before it, then with it)
+ * takes its replication count, and when that is 0 joins the chain of empty slots after the
+ * one link names; returns where the next empty slot's index goes. */
+static inline uint32_t *walk_slot_(pft_tbd_slot_t *w, uint32_t s, pft_weight_t e, pft_sys_t *sys,
+                                   pft_wacc_t *cum, uint32_t *link)
+{
+    uint32_t *next = link;
+    *cum += e;
+    w[s].n = pft_sys_take_(sys, *cum);
+    if (w[s].n == 0u) {
+        *link = SLOT_EMPTY_ | s;
+        next = &w[s].n;
+    }
+    return next;
+}
+
 /* Step 4 of docs/algorithms.md 2.5 from the weights of pass 2 (sum sum), fused with the walk
  * of systematic resampling (step 5): each slot ends holding its particle's replication count,
  * or SLOT_EMPTY_ and the next empty slot (returns the first: the chain replicate_ follows).
@@ -518,12 +545,9 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
     pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
     for (uint32_t s = 0; s < n; ++s) {
         const pft_weight_t e = w[s].w;
-        cum += e;
-        w[s].n = pft_sys_take_(&sys, cum);
-        if (w[s].n == 0u) {
-            *link = SLOT_EMPTY_ | s;
-            link = &w[s].n;
-        }
+#if !EST_TWO_LOOPS_
+        link = walk_slot_(w, s, e, &sys, &cum, link);
+#endif
         if (pe[s] == 0u) {
             ++n0; /* weight e0 (pass 2): its terms are added once below */
         } else {
@@ -552,6 +576,12 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         a.w += (pft_wacc_t)n0 * wn0;
         a.w2 += (pft_wacc_t)n0 * ((pft_wacc_t)wn0 * wn0);
     }
+#if EST_TWO_LOOPS_
+    /* the walk after the sums: it overwrites the weights with the counts */
+    for (uint32_t s = 0; s < n; ++s) {
+        link = walk_slot_(w, s, w[s].w, &sys, &cum, link);
+    }
+#endif
     *link = SLOT_EMPTY_ | n;
     if (pft_sys_left_(&sys) > 0u) {
         /* float only: targets that round up to the total go to the last particle drawn
