@@ -8,7 +8,11 @@ and writes a residual of the layout of `pft run --residual-out` (frames x height
 as float32 in units of the tile sigma (res.f32; 0 at masked pixels and on frames without
 evidence), which `ir_bound.py targets|clutter --res res.f32` reads in place of res.i16.
 The platform path is the sim's TRUE one (platform.csv: frame k's pixel (x, y) sees the scene at
-(x + px_k, y + py_k)), so registration error is out of the comparison.
+(x + px_k, y + py_k)), so registration error is out of the comparison; or, with
+--shifts estimated:RUN, the path summed from the library's own frame-to-frame estimates
+(RUN/<db>_s<N>/stage.csv of `pft run --stage-out`: p_k = p_1 - sum of the stage's shifts of frames
+2..k, anchored at the true p_1), used for everything the true path drives (the re-warp's step, the
+anchored grid's position, the clutter map's carry).
 
 Methods (--method):
   rewarp   today's scheme (docs/algorithms.md 9.4): the background b, in the previous frame's
@@ -43,7 +47,7 @@ where |r| <= 1.5 or the persistence counter >= 4 frames; a = max(0.2, 1/n)): the
 setting's scenario (clutter_alpha 0.2, clutter_persist 4), without the library's integer rounding.
 
   ir_bg_proto.py --sim SIM --out RUNX --db 09 --seeds 1-29 --method anchor [--interp cubic]
-                 [--alpha 0.15] [--gain none|true] [--map] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
+                 [--alpha 0.15] [--gain none|true] [--map] [--shifts true|estimated:RUN] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
                  all zero: the library's frames without evidence)
 Needs numpy (and scipy for --map).
 """
@@ -199,6 +203,19 @@ class ClutterMap:
         return w
 
 
+def estimated_path(path, plat, F):
+    """The platform path summed from `pft run --stage-out`'s per-frame shifts: the stage's shift of
+    frame k (z(p) = b(p - shift)) is the scene's move, -(p_k - p_{k-1}) in platform.csv's terms, so
+    p_k = p_1 - sum_{j=2..k} shift_j, anchored at the true p_1 (a constant offset of the whole path
+    changes nothing but the grid's origin). Rows are frames 1..F in order; frame 1's shift is 0."""
+    rows = list(csv.DictReader(open(path)))
+    if len(rows) != F:
+        raise SystemExit(f'{path}: {len(rows)} rows for {F} frames')
+    s = np.array([(float(r['shift_x_px']), float(r['shift_y_px'])) for r in rows])
+    s[0] = 0.0
+    return plat[0][None, :] - np.cumsum(s, axis=0)
+
+
 def run_seed(a, seed):
     sd = os.path.join(a.sim, f'{a.db}_s{seed}')
     q = json.load(open(os.path.join(sd, 'sequence.json')))
@@ -206,6 +223,8 @@ def run_seed(a, seed):
     fs = (1 << bits) - 1
     frames = np.fromfile(os.path.join(sd, 'frames.u16'), '<u2').reshape(F, H, W)
     plat = np.array([(float(r['x']), float(r['y'])) for r in csv.DictReader(open(os.path.join(sd, 'platform.csv')))])
+    if a.shifts != 'true':
+        plat = estimated_path(os.path.join(a.shifts.split(':', 1)[1], f'{a.db}_s{seed}', 'stage.csv'), plat, F)
     gain = np.ones((H, W))
     if a.gain == 'true':
         v = float(q['scenario']['sensor'].get('vignetting', 0.0))
@@ -313,6 +332,9 @@ def main():
     ap.add_argument('--gain', choices=('none', 'true'), default='none',
                     help='true: divide by the sim\'s true vignetting gain (a clairvoyant flat field)')
     ap.add_argument('--map', action='store_true', help='the clutter map with the gated mean after the stage')
+    ap.add_argument('--shifts', default='true',
+                    help='true: the sim\'s platform.csv; estimated:RUN: the path summed from RUN/<db>_s<N>/stage.csv '
+                         '(pft run --stage-out), for the background and the clutter map alike')
     ap.add_argument('--nmed', type=int, default=9, help='anchor_median: frames in the median')
     ap.add_argument('--evidence-from', help='RUN folder of pft run --residual-out: its all-zero frames stay zero')
     a = ap.parse_args()
