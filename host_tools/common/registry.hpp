@@ -53,6 +53,7 @@ struct Options {
     bool progress = false;      ///< --progress: draw the bar even when stderr is no terminal
     bool no_video = false;      ///< --no-video (run)
     std::string residual_out;   ///< --residual-out FILE (run, tbd_ir): the residual the TBD manager sees, every frame
+    std::string stage_out;      ///< --stage-out FILE (run, tbd_ir): the stage's pft_pre_stats per frame, CSV
     std::string trace;          ///< --trace DIR (eval, tbd_ir): per-run diagnostic trace of the TBD manager (ir_trace.hpp)
     bool quiet = false;         ///< --quiet
     std::string format;         ///< --format pgm|raw (sim)

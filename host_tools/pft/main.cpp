@@ -190,6 +190,7 @@ int main(int argc, char **argv)
     run->add_option("--scale", o.scale, "overlay upscale factor (default: about 480 px)")->check(CLI::Range(1, 64));
     run->add_flag("--no-video", o.no_video, "do not write the overlay video");
     run->add_option("--residual-out", o.residual_out, "tbd_ir: write the residual the TBD manager sees, every frame (headerless int16, Q8.8 sigma units, width x height per frame)");
+    run->add_option("--stage-out", o.stage_out, "tbd_ir: write the stage's statistics, one CSV row per frame (frame, seq, shift_x_px, shift_y_px, flags, sigma_mean, n_masked)");
     run->add_option("--frames", o.frames, "stop after this many frames")->check(CLI::Range(1u, 100000000u));
     filter_opts(run);
     set_metric_opts(run);

@@ -8,7 +8,11 @@ and writes a residual of the layout of `pft run --residual-out` (frames x height
 as float32 in units of the tile sigma (res.f32; 0 at masked pixels and on frames without
 evidence), which `ir_bound.py targets|clutter --res res.f32` reads in place of res.i16.
 The platform path is the sim's TRUE one (platform.csv: frame k's pixel (x, y) sees the scene at
-(x + px_k, y + py_k)), so registration error is out of the comparison.
+(x + px_k, y + py_k)), so registration error is out of the comparison; or, with
+--shifts estimated:RUN, the path summed from the library's own frame-to-frame estimates
+(RUN/<db>_s<N>/stage.csv of `pft run --stage-out`: p_k = p_1 - sum of the stage's shifts of frames
+2..k, anchored at the true p_1), used for everything the true path drives (the re-warp's step, the
+anchored grid's position, the clutter map's carry).
 
 Methods (--method):
   rewarp   today's scheme (docs/algorithms.md 9.4): the background b, in the previous frame's
@@ -36,6 +40,7 @@ v = sensor.vignetting of the scenario in sequence.json; ir_sim.cpp), the clairvo
 the library's flat field: without it the background's lag behind the vignetting ("Branch irnuc")
 leaves a smooth residual offset (about 0.27 sigma rms on seed 1) that dominates the K-frame sums.
 
+--map-anchor: the same map kept on an integer grid of the scene (nearest cell; no carry warp).
 --map applies a float emulation of the library's clutter map with the gated mean (docs/algorithms.md
 9.9: m and mu carried with the scene by the true shift, bilinear; M the 3 x 3 box mean of m before the
 update; c = r - mu, w = c / sqrt(M) where M > 2; m <- m + a (min(c^2, 64) - m), mu <- mu + a (clip(r, +-8) - mu)
@@ -43,7 +48,7 @@ where |r| <= 1.5 or the persistence counter >= 4 frames; a = max(0.2, 1/n)): the
 setting's scenario (clutter_alpha 0.2, clutter_persist 4), without the library's integer rounding.
 
   ir_bg_proto.py --sim SIM --out RUNX --db 09 --seeds 1-29 --method anchor [--interp cubic]
-                 [--alpha 0.15] [--gain none|true] [--map] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
+                 [--alpha 0.15] [--gain none|true] [--map] [--shifts true|estimated:RUN] [--evidence-from RUN]   (zero the frames that RUN's res.i16 has
                  all zero: the library's frames without evidence)
 Needs numpy (and scipy for --map).
 """
@@ -199,6 +204,56 @@ class ClutterMap:
         return w
 
 
+def estimated_path(path, plat, F):
+    """The platform path summed from `pft run --stage-out`'s per-frame shifts: the stage's shift of
+    frame k (z(p) = b(p - shift)) is the scene's move, -(p_k - p_{k-1}) in platform.csv's terms, so
+    p_k = p_1 - sum_{j=2..k} shift_j, anchored at the true p_1 (a constant offset of the whole path
+    changes nothing but the grid's origin). Rows are frames 1..F in order; frame 1's shift is 0."""
+    rows = list(csv.DictReader(open(path)))
+    if len(rows) != F:
+        raise SystemExit(f'{path}: {len(rows)} rows for {F} frames')
+    s = np.array([(float(r['shift_x_px']), float(r['shift_y_px'])) for r in rows])
+    s[0] = 0.0
+    return plat[0][None, :] - np.cumsum(s, axis=0)
+
+
+class AnchoredClutterMap(ClutterMap):
+    """--map-anchor: the same map kept on an integer grid of the scene (the canvas of the whole
+    path) instead of carried by a bilinear warp at every frame: frame pixel (y, x) reads and
+    writes the cell (y + round(py_k) - oy, x + round(px_k) - ox), no interpolation (the cell's
+    statistics are those of scene points up to 0.5 px from the pixel). Cells not seen yet hold
+    what the carry gives a new pixel (m 1, mu 0, counter 0)."""
+
+    def __init__(self, h, w, ch, cw, origin):
+        super().__init__(ch, cw)
+        self.fh, self.fw, self.origin = h, w, origin
+        self.at = (0, 0)
+
+    def carry(self, d):  # unused: the position is set by place()
+        raise AssertionError
+
+    def place(self, p):
+        self.at = (int(np.round(p[1])) - self.origin[1], int(np.round(p[0])) - self.origin[0])
+
+    def step(self, r, ok):
+        from scipy import ndimage
+        y0, x0 = self.at
+        sl = (slice(y0, y0 + self.fh), slice(x0, x0 + self.fw))
+        n = 2 * self.blur + 1
+        M = ndimage.uniform_filter(self.m, size=n, mode='nearest')[sl]
+        m, mu, p = self.m[sl], self.mu[sl], self.p[sl]
+        c = r - mu
+        w = np.where(M > self.thr, c / np.sqrt(np.maximum(M, 1e-9)), c) * ok
+        self.n += 1
+        a = max(self.alpha, 1.0 / self.n)
+        big = np.abs(r) > self.excess
+        self.p[sl] = np.where(ok, np.where(big, np.minimum(p + 1, 2 * self.persist), np.maximum(p - 0.5, 0)), p)
+        self.m[sl] = np.where(ok, m + a * (np.minimum(c * c, 64.0) - m), m)
+        learn = ok & (~big | (self.p[sl] >= self.persist))
+        self.mu[sl] = np.where(learn, mu + a * (np.clip(r, -8, 8) - mu), mu)
+        return w
+
+
 def run_seed(a, seed):
     sd = os.path.join(a.sim, f'{a.db}_s{seed}')
     q = json.load(open(os.path.join(sd, 'sequence.json')))
@@ -206,6 +261,8 @@ def run_seed(a, seed):
     fs = (1 << bits) - 1
     frames = np.fromfile(os.path.join(sd, 'frames.u16'), '<u2').reshape(F, H, W)
     plat = np.array([(float(r['x']), float(r['y'])) for r in csv.DictReader(open(os.path.join(sd, 'platform.csv')))])
+    if a.shifts != 'true':
+        plat = estimated_path(os.path.join(a.shifts.split(':', 1)[1], f'{a.db}_s{seed}', 'stage.csv'), plat, F)
     gain = np.ones((H, W))
     if a.gain == 'true':
         v = float(q['scenario']['sensor'].get('vignetting', 0.0))
@@ -220,7 +277,12 @@ def run_seed(a, seed):
     sig = Sigma(H, W)
     c = np.zeros(W)
     nb = 0  # frames the background holds (the library's warm-up count)
-    cmap = ClutterMap(H, W) if a.map else None
+    cmap = ClutterMap(H, W) if a.map and not a.map_anchor else None
+    if a.map_anchor:
+        mox, moy = int(np.round(plat[:, 0].min())) - 1, int(np.round(plat[:, 1].min())) - 1
+        MW = W + int(np.round(plat[:, 0].max())) - int(np.round(plat[:, 0].min())) + 2
+        MH = H + int(np.round(plat[:, 1].max())) - int(np.round(plat[:, 1].min())) + 2
+        cmap = AnchoredClutterMap(H, W, MH, MW, (mox, moy))
     alpha = a.alpha
     ip = a.interp
     if a.method != 'rewarp':
@@ -259,7 +321,9 @@ def run_seed(a, seed):
             if evid[k]:
                 wr = r * sig.per_pixel() * ok
                 if cmap is not None:
-                    if cmap.n > 0:
+                    if a.map_anchor:
+                        cmap.place(plat[k])
+                    elif cmap.n > 0:
                         cmap.carry(plat[k] - plat[k - 1])
                     wr = cmap.step(wr, ok)
                 out[k] = wr.astype(np.float32)
@@ -313,9 +377,16 @@ def main():
     ap.add_argument('--gain', choices=('none', 'true'), default='none',
                     help='true: divide by the sim\'s true vignetting gain (a clairvoyant flat field)')
     ap.add_argument('--map', action='store_true', help='the clutter map with the gated mean after the stage')
+    ap.add_argument('--map-anchor', action='store_true',
+                    help='the clutter map (implies --map) kept on an integer grid of the scene, read and written '
+                         'at the nearest cell, instead of carried by a bilinear warp at every frame')
+    ap.add_argument('--shifts', default='true',
+                    help='true: the sim\'s platform.csv; estimated:RUN: the path summed from RUN/<db>_s<N>/stage.csv '
+                         '(pft run --stage-out), for the background and the clutter map alike')
     ap.add_argument('--nmed', type=int, default=9, help='anchor_median: frames in the median')
     ap.add_argument('--evidence-from', help='RUN folder of pft run --residual-out: its all-zero frames stay zero')
     a = ap.parse_args()
+    a.map = a.map or a.map_anchor
     for seed in seeds_arg(a.seeds):
         if os.path.exists(os.path.join(a.out, f'{a.db}_s{seed}', 'res.f32')):
             continue

@@ -836,8 +836,25 @@ public:
         if (!o.residual_out.empty() && !(rout = std::fopen(o.residual_out.c_str(), "wb")))
             throw InputError(o.residual_out + ": cannot write");
         std::vector<int16_t> rrow;
+        std::FILE *sout = nullptr;  // --stage-out: the stage's statistics, one CSV row per frame
+        if (!o.stage_out.empty()) {
+            if (!(sout = std::fopen(o.stage_out.c_str(), "w"))) {
+                if (rout)
+                    std::fclose(rout);
+                throw InputError(o.stage_out + ": cannot write");
+            }
+            std::fprintf(sout, "frame,seq,shift_x_px,shift_y_px,flags,sigma_mean,n_masked\n");
+        }
         while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
             PipelineOut po = pl.step(f);
+            if (sout) {
+                // z(p) = b(p - shift): the scene's translation since the last frame, Q16.16 px
+                const pft_pre_stats_t &st = pl.stats();
+                std::fprintf(sout, "%u,%u,%.6f,%.6f,%u,%.4f,%u\n", static_cast<unsigned>(po.tbd.frame),
+                             static_cast<unsigned>(f.seq), st.shift[0] / 65536.0, st.shift[1] / 65536.0,
+                             static_cast<unsigned>(st.flags), st.sigma_mean / 65536.0,
+                             static_cast<unsigned>(st.n_masked));
+            }
             if (rout) {
                 const cv::Mat &r = pl.residual();
                 rrow.resize(static_cast<std::size_t>(r.cols));
@@ -859,6 +876,8 @@ public:
         bar.finish();
         if (rout)
             std::fclose(rout);
+        if (sout)
+            std::fclose(sout);
         double dt = seconds_since(t0);
         if (ov)
             ov->close();

@@ -45,6 +45,12 @@ add_test(NAME host_tbd_ir_operating_points
          COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/operating_points
                  -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/operating_points.cmake)
 set_tests_properties(host_tbd_ir_operating_points PROPERTIES LABELS "host")
+# `pft run --stage-out`: one row per frame, the stage's shifts against the sim's platform steps
+# (and the CSV parsed in integer micro-pixels): host_tools/tests/stage_out.cmake
+add_test(NAME host_tbd_ir_stage_out
+         COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/stage_out
+                 -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/stage_out.cmake)
+set_tests_properties(host_tbd_ir_stage_out PROPERTIES LABELS "host")
 # The pipeline's plumbing: on a clear sky at 15 dB it confirms at least 5 of the 6 targets.
 add_test(NAME host_tbd_ir_clear_sky COMMAND pft demo --scenario ${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/clear_sky_128x96.json)
 set_tests_properties(host_tbd_ir_clear_sky PROPERTIES LABELS "host"
