@@ -687,7 +687,8 @@ def cmd_report(a):
                                         for x, e in zip(ts, ev[K]) if e > 0]
             for rr in a.at_rates or []:
                 # the largest detection whose threshold gives at most rr distinct false objects per 1000 frames
-                ok = [y for x, y in curves[(db, K, 'event')] if x <= rr]
+                # (thresholds with no false object at all count too: the curve leaves them out for its log axis)
+                ok = [np.mean([t['best'][K] > x for t in allt]) for x, e in zip(ts, ev[K]) if 1000 * e / fr <= rr]
                 print(f'  {db} dB K {K}: at <= {rr} distinct false objects per 1000 frames: '
                       f'{100 * max(ok, default=0):.0f} %')
             curves[(db, K, 'moving')] = [(1000 * e / fr, np.mean([t['best'][K] > x and t['rel'] > gate for t in allt]))
