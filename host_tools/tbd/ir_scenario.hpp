@@ -43,6 +43,14 @@ struct Background {
 struct Platform {
     std::array<double, 2> drift_px{0.3, 0.1};   ///< scene motion in px per frame (x, y)
     double jitter_px = 0.1;                     ///< white jitter, sigma per axis, px
+    /// how a frame is cut out of the scene at the platform's sub-pixel position:
+    /// "opencv" (default, every sequence so far): cv::warpAffine, INTER_CUBIC (Keys a = -0.75),
+    /// the position rounded to 1/32 px; its phase error moves low frequencies by up to 0.047 px
+    /// at fractions near 1/4 and 3/4 (docs/results/ir_clutter.md, "Branch irreg"), so the
+    /// frames are not at platform.csv's positions to better than that.
+    /// "bspline": the exact position, cubic B-spline interpolation (the scene prefiltered once);
+    /// "catmull_rom": the exact position, Catmull-Rom cubic (Keys a = -0.5, the stage's own warp).
+    std::string warp = "opencv";
 };
 
 struct Sensor {
