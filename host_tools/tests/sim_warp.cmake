@@ -6,7 +6,7 @@
 # Both exact warps reproduce a linear function, so every checked pixel (interior: 10 px or more
 # from the frame's border, where the B-spline's mirrored ends have decayed to 0.268^10) is within
 # 1 count of it (the frame's rounding to u16 is 0.5). "opencv" (cv::warpAffine's INTER_CUBIC, Keys
-# a = -0.75, positions rounded to 1/32 px) moves a ramp by up to 0.047 px per axis, up to 9 counts here: with
+# a = -0.75, positions rounded to 1/32 px) moves a ramp by up to 0.048 px per axis, up to 9 counts here: with
 # WARP=opencv the test expects an error above 2 counts somewhere (it documents why the default
 # frames are not at platform.csv's positions, docs/results/ir_clutter.md "Branch irreg").
 # Values in integer micro-counts (CMake's math is integer). Needs nothing outside the source tree.
