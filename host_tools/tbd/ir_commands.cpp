@@ -42,6 +42,57 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A file that `pft run` streams one frame at a time (--residual-out, --stage-out): closed, so
+// flushed, whatever ends the run, a bad frame's exception included; finish() closes it on the
+// normal path and reports a failed write.
+class StreamFile {
+public:
+    StreamFile() = default;
+    StreamFile(const std::string &path, const char *mode) : path_(path), f_(std::fopen(path.c_str(), mode))
+    {
+        if (!f_)
+            throw InputError(path + ": cannot write");
+    }
+    StreamFile(const StreamFile &) = delete;
+    StreamFile &operator=(const StreamFile &) = delete;
+    StreamFile(StreamFile &&o) noexcept : path_(std::move(o.path_)), f_(o.f_) { o.f_ = nullptr; }
+    StreamFile &operator=(StreamFile &&o) noexcept
+    {
+        if (this != &o) {
+            close_quietly();
+            path_ = std::move(o.path_);
+            f_ = o.f_;
+            o.f_ = nullptr;
+        }
+        return *this;
+    }
+    ~StreamFile() { close_quietly(); }
+    std::FILE *get() const { return f_; }
+    explicit operator bool() const { return f_ != nullptr; }
+    /** Closes the file; throws an InputError when a write or the close failed. */
+    void finish()
+    {
+        if (!f_)
+            return;
+        bool bad = std::ferror(f_) != 0;
+        bad = std::fclose(f_) != 0 || bad;
+        f_ = nullptr;
+        if (bad)
+            throw InputError(path_ + ": write failed");
+    }
+    /** Closes the file, errors ignored (the run is already ending with an error). */
+    void close_quietly()
+    {
+        if (f_)
+            (void)std::fclose(f_);
+        f_ = nullptr;
+    }
+
+private:
+    std::string path_;
+    std::FILE *f_ = nullptr;
+};
+
 double seconds_since(Clock::time_point t0)
 {
     return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -832,52 +883,73 @@ public:
                      progress_wanted(o.progress) && !o.quiet);
         auto t0 = Clock::now();
         pft_frame_t f{};
-        std::FILE *rout = nullptr;  // --residual-out: a debug dump, int16 Q8.8 per pixel and frame
-        if (!o.residual_out.empty() && !(rout = std::fopen(o.residual_out.c_str(), "wb")))
-            throw InputError(o.residual_out + ": cannot write");
+        StreamFile rout;  // --residual-out: a debug dump, int16 Q8.8 per pixel and frame
+        if (!o.residual_out.empty())
+            rout = StreamFile(o.residual_out, "wb");
         std::vector<int16_t> rrow;
-        std::FILE *sout = nullptr;  // --stage-out: the stage's statistics, one CSV row per frame
+        StreamFile sout;  // --stage-out: the stage's statistics, one CSV row per frame
         if (!o.stage_out.empty()) {
-            if (!(sout = std::fopen(o.stage_out.c_str(), "w"))) {
-                if (rout)
-                    std::fclose(rout);
-                throw InputError(o.stage_out + ": cannot write");
-            }
-            std::fprintf(sout, "frame,seq,shift_x_px,shift_y_px,flags,sigma_mean,n_masked\n");
+            sout = StreamFile(o.stage_out, "w");
+            std::fprintf(sout.get(), "frame,seq,shift_x_px,shift_y_px,flags,sigma_mean,n_masked\n");
         }
-        while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
-            PipelineOut po = pl.step(f);
-            if (sout) {
-                // z(p) = b(p - shift): the scene's translation since the last frame, Q16.16 px
-                const pft_pre_stats_t &st = pl.stats();
-                std::fprintf(sout, "%u,%u,%.6f,%.6f,%u,%.4f,%u\n", static_cast<unsigned>(po.tbd.frame),
-                             static_cast<unsigned>(f.seq), st.shift[0] / 65536.0, st.shift[1] / 65536.0,
-                             static_cast<unsigned>(st.flags), st.sigma_mean / 65536.0,
-                             static_cast<unsigned>(st.n_masked));
-            }
-            if (rout) {
-                const cv::Mat &r = pl.residual();
-                rrow.resize(static_cast<std::size_t>(r.cols));
-                for (int y = 0; y < r.rows; ++y) {
-                    const float *p = r.ptr<float>(y);
-                    for (int x = 0; x < r.cols; ++x)
-                        rrow[static_cast<std::size_t>(x)] = static_cast<int16_t>(
-                            std::clamp(std::lround(p[x] * 256.0f), -32767L, 32767L));
-                    std::fwrite(rrow.data(), sizeof(int16_t), rrow.size(), rout);
+        // A frame that throws (a bad frame part-way through the sequence, a refused input) ends
+        // the run with the streamed outputs closed: --residual-out and --stage-out keep every
+        // frame before it, the overlay is finished with them; the error names the frame.
+        auto stop_outputs = [&]() {
+            rout.close_quietly();
+            sout.close_quietly();
+            if (ov) {
+                try {
+                    ov->close();
+                } catch (...) {  // the run's own error is the one to report
                 }
             }
-            out.push_back(std::move(po.tbd));
-            dout.push_back(std::move(po.dbt));
-            if (ov)
-                ov->add(frame_to_mat(f, 1.0, 0.0), overlay_truth(truth, static_cast<int>(out.back().frame), ids), ids,
-                        out.back());
-            bar.tick();
+        };
+        try {
+            while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
+                PipelineOut po = pl.step(f);
+                if (sout) {
+                    // z(p) = b(p - shift): the scene's translation since the last frame, Q16.16 px
+                    const pft_pre_stats_t &st = pl.stats();
+                    std::fprintf(sout.get(), "%u,%u,%.6f,%.6f,%u,%.4f,%u\n", static_cast<unsigned>(po.tbd.frame),
+                                 static_cast<unsigned>(f.seq), st.shift[0] / 65536.0, st.shift[1] / 65536.0,
+                                 static_cast<unsigned>(st.flags), st.sigma_mean / 65536.0,
+                                 static_cast<unsigned>(st.n_masked));
+                }
+                if (rout) {
+                    const cv::Mat &r = pl.residual();
+                    rrow.resize(static_cast<std::size_t>(r.cols));
+                    for (int y = 0; y < r.rows; ++y) {
+                        const float *p = r.ptr<float>(y);
+                        for (int x = 0; x < r.cols; ++x)
+                            rrow[static_cast<std::size_t>(x)] = static_cast<int16_t>(
+                                std::clamp(std::lround(p[x] * 256.0f), -32767L, 32767L));
+                        std::fwrite(rrow.data(), sizeof(int16_t), rrow.size(), rout.get());
+                    }
+                }
+                out.push_back(std::move(po.tbd));
+                dout.push_back(std::move(po.dbt));
+                if (ov)
+                    ov->add(frame_to_mat(f, 1.0, 0.0), overlay_truth(truth, static_cast<int>(out.back().frame), ids),
+                            ids, out.back());
+                bar.tick();
+            }
+        } catch (const InputError &e) {
+            stop_outputs();
+            const std::size_t n = out.size();
+            throw InputError("run: " + o.sequence + ": stopped at input frame " + std::to_string(n + 1) + ": " +
+                             e.what() + " (" + std::to_string(n) + " frame(s) processed before it" +
+                             (n > 0 && (!o.residual_out.empty() || !o.stage_out.empty() || ov)
+                                  ? "; the streamed outputs keep them"
+                                  : "") +
+                             ")");
+        } catch (...) {
+            stop_outputs();
+            throw;
         }
         bar.finish();
-        if (rout)
-            std::fclose(rout);
-        if (sout)
-            std::fclose(sout);
+        rout.finish();
+        sout.finish();
         double dt = seconds_since(t0);
         if (ov)
             ov->close();

@@ -279,9 +279,10 @@ IrScenario parse_ir_scenario(const nlohmann::json &j, const std::string &file,
         root.fail("background.folder: required for source \"folder\" (or give --backgrounds DIR)");
     if (root.has("platform")) {
         Field p = root.at("platform");
-        p.only({"drift_px", "jitter_px", "note"});
+        p.only({"drift_px", "jitter_px", "warp", "note"});
         s.platform.drift_px = pair_or(p, "drift_px", s.platform.drift_px, -50.0, 50.0);
         s.platform.jitter_px = p.number_in("jitter_px", s.platform.jitter_px, 0.0, 50.0);
+        s.platform.warp = p.choice_or("warp", s.platform.warp, {"opencv", "bspline", "catmull_rom"});
     }
     if (root.has("sensor")) {
         Field se = root.at("sensor");

@@ -43,6 +43,15 @@ struct Background {
 struct Platform {
     std::array<double, 2> drift_px{0.3, 0.1};   ///< scene motion in px per frame (x, y)
     double jitter_px = 0.1;                     ///< white jitter, sigma per axis, px
+    /// how a frame is cut out of the scene at the platform's sub-pixel position:
+    /// "opencv" (default, every sequence so far): cv::warpAffine, INTER_CUBIC (Keys a = -0.75),
+    /// the position rounded to 1/32 px; its phase error moves low frequencies by
+    /// g(t) = 0.5 t (1 - t)(1 - 2t) px at the position's fraction t, up to 0.048 px at t = 0.21
+    /// and 0.79 (docs/results/ir_clutter.md, "Branch irreg"), so the frames are not at
+    /// platform.csv's positions to better than that.
+    /// "bspline": the exact position, cubic B-spline interpolation (the scene prefiltered once);
+    /// "catmull_rom": the exact position, Catmull-Rom cubic (Keys a = -0.5, the stage's own warp).
+    std::string warp = "opencv";
 };
 
 struct Sensor {

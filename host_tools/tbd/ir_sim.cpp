@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -128,6 +130,103 @@ std::array<TargetPath, 2> crossing_pair(const IrScenario &s, Draw &d, int id, in
     return best;
 }
 
+/** Cubic B-spline coefficients of img (CV_32F), computed in double: the causal and anticausal
+ *  recursions of the pole sqrt(3) - 2 along rows, then columns, mirror-symmetric ends. */
+cv::Mat bspline_coefficients(const cv::Mat &img)
+{
+    const double z = std::sqrt(3.0) - 2.0;
+    cv::Mat c;
+    img.convertTo(c, CV_64F);
+    std::vector<double> v;
+    auto filt = [&]() {
+        const int n = static_cast<int>(v.size());
+        if (n < 2)
+            return;
+        double sum = 0.0, zk = 1.0;  // causal start for mirror-symmetric ends: sum of z^k v[k], |z|^40 < 1e-22
+        for (int k = 0; k < std::min(n, 40); ++k) {
+            sum += zk * v[static_cast<std::size_t>(k)];
+            zk *= z;
+        }
+        v[0] = sum;
+        for (int k = 1; k < n; ++k)
+            v[static_cast<std::size_t>(k)] += z * v[static_cast<std::size_t>(k - 1)];
+        v[static_cast<std::size_t>(n - 1)] =
+            z / (z * z - 1.0) * (v[static_cast<std::size_t>(n - 1)] + z * v[static_cast<std::size_t>(n - 2)]);
+        for (int k = n - 2; k >= 0; --k)
+            v[static_cast<std::size_t>(k)] = z * (v[static_cast<std::size_t>(k + 1)] - v[static_cast<std::size_t>(k)]);
+        for (double &x : v)
+            x *= 6.0;
+    };
+    for (int r = 0; r < c.rows; ++r) {
+        v.assign(c.ptr<double>(r), c.ptr<double>(r) + c.cols);
+        filt();
+        std::copy(v.begin(), v.end(), c.ptr<double>(r));
+    }
+    v.resize(static_cast<std::size_t>(c.rows));
+    for (int col = 0; col < c.cols; ++col) {
+        for (int r = 0; r < c.rows; ++r)
+            v[static_cast<std::size_t>(r)] = c.at<double>(r, col);
+        filt();
+        for (int r = 0; r < c.rows; ++r)
+            c.at<double>(r, col) = v[static_cast<std::size_t>(r)];
+    }
+    return c;
+}
+
+/** The four weights of taps -1, 0, 1, 2 at fraction t in [0, 1). */
+void cubic_weights(double t, bool bspline, double w[4])
+{
+    if (bspline) {
+        const double u = 1.0 - t;
+        w[0] = u * u * u / 6.0;
+        w[1] = (4.0 - 6.0 * t * t + 3.0 * t * t * t) / 6.0;
+        w[2] = (1.0 + 3.0 * t + 3.0 * t * t - 3.0 * t * t * t) / 6.0;
+        w[3] = t * t * t / 6.0;
+        return;
+    }
+    // Catmull-Rom (Keys a = -0.5)
+    w[0] = ((-0.5 * t + 1.0) * t - 0.5) * t;
+    w[1] = (1.5 * t - 2.5) * t * t + 1.0;
+    w[2] = ((-1.5 * t + 2.0) * t + 0.5) * t;
+    w[3] = (0.5 * t - 0.5) * t * t;
+}
+
+/** dst(r, c) = the scene at (c + px, r + py), exact position; src: the scene (CV_32F) or its
+ *  B-spline coefficients (CV_64F) when bspline. Separable: rows first, then columns. */
+void translate_exact(const cv::Mat &src, bool bspline, double px, double py, int W, int H, cv::Mat &dst)
+{
+    const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
+    double wx[4], wy[4];
+    cubic_weights(px - ix, bspline, wx);
+    cubic_weights(py - iy, bspline, wy);
+    std::vector<int> cols(static_cast<std::size_t>(W) + 3);
+    for (int c = 0; c < W + 3; ++c)
+        cols[static_cast<std::size_t>(c)] = cv::borderInterpolate(ix - 1 + c, src.cols, cv::BORDER_REFLECT_101);
+    cv::Mat tmp(H + 3, W, CV_64F);
+    for (int r = 0; r < H + 3; ++r) {
+        const int sr = cv::borderInterpolate(iy - 1 + r, src.rows, cv::BORDER_REFLECT_101);
+        double *tp = tmp.ptr<double>(r);
+        for (int c = 0; c < W; ++c) {
+            double v = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                const int sc = cols[static_cast<std::size_t>(c + j)];
+                v += wx[j] * (bspline ? src.at<double>(sr, sc) : static_cast<double>(src.at<float>(sr, sc)));
+            }
+            tp[c] = v;
+        }
+    }
+    dst.create(H, W, CV_32F);
+    for (int r = 0; r < H; ++r) {
+        float *dp = dst.ptr<float>(r);
+        for (int c = 0; c < W; ++c) {
+            double v = 0.0;
+            for (int i = 0; i < 4; ++i)
+                v += wy[i] * tmp.at<double>(r + i, c);
+            dp[c] = static_cast<float>(v);
+        }
+    }
+}
+
 }  // namespace
 
 void add_point(cv::Mat &img, double x, double y, double amplitude, double psf_sigma)
@@ -172,6 +271,7 @@ std::vector<TargetPath> make_targets(const IrScenario &s, int w, int h, uint64_t
         p.amplitude = s.amplitude(p.snr_db);
     return v;
 }
+
 
 IrSequence simulate_ir(const IrScenario &s, uint64_t seed, Progress *bar)
 {
@@ -257,13 +357,20 @@ IrSequence simulate_ir(const IrScenario &s, uint64_t seed, Progress *bar)
     }
     const double fs = s.sensor.full_scale();
 
+    // platform.warp: "opencv" (cv::warpAffine below, every sequence so far) or an exact translation
+    const bool exact_warp = s.platform.warp != "opencv", bspline = s.platform.warp == "bspline";
+    const cv::Mat coef = bspline ? bspline_coefficients(sc.counts) : cv::Mat();
+
     cv::Mat bg, nz(H, W, CV_32F);
     q.images.reserve(static_cast<std::size_t>(s.frames));
     for (int k = 1; k <= s.frames; ++k) {
         const auto &p = q.platform[static_cast<std::size_t>(k - 1)];
         cv::Matx23d M(1, 0, p[0], 0, 1, p[1]);
-        cv::warpAffine(sc.counts, bg, M, cv::Size(W, H), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP,
-                       cv::BORDER_REFLECT_101);
+        if (exact_warp)
+            translate_exact(bspline ? coef : sc.counts, bspline, p[0], p[1], W, H, bg);
+        else
+            cv::warpAffine(sc.counts, bg, M, cv::Size(W, H), cv::INTER_CUBIC | cv::WARP_INVERSE_MAP,
+                           cv::BORDER_REFLECT_101);
         cv::multiply(bg, vig, bg);
         for (const TargetPath &t : q.targets)
             if (t.present(k))

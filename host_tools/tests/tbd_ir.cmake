@@ -51,6 +51,21 @@ add_test(NAME host_tbd_ir_stage_out
          COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/stage_out
                  -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/stage_out.cmake)
 set_tests_properties(host_tbd_ir_stage_out PROPERTIES LABELS "host")
+# `pft run` stopped by a bad frame part-way: exit 2, the frame named, the streamed outputs
+# (--stage-out, --residual-out, the overlay) closed with the frames before it:
+# host_tools/tests/run_stop.cmake
+add_test(NAME host_tbd_ir_run_stop
+         COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/run_stop
+                 -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/run_stop.cmake)
+set_tests_properties(host_tbd_ir_run_stop PROPERTIES LABELS "host")
+# `pft sim`'s platform.warp: the exact warps put a ramp scene at platform.csv's positions to
+# within 1 count, the default (OpenCV's cubic) does not: host_tools/tests/sim_warp.cmake
+foreach(_warp opencv bspline catmull_rom)
+  add_test(NAME host_tbd_ir_sim_warp_${_warp}
+           COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/sim_warp_${_warp}
+                   -DWARP=${_warp} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/sim_warp.cmake)
+  set_tests_properties(host_tbd_ir_sim_warp_${_warp} PROPERTIES LABELS "host")
+endforeach()
 # The pipeline's plumbing: on a clear sky at 15 dB it confirms at least 5 of the 6 targets.
 add_test(NAME host_tbd_ir_clear_sky COMMAND pft demo --scenario ${CMAKE_CURRENT_SOURCE_DIR}/scenarios/tbd_ir/clear_sky_128x96.json)
 set_tests_properties(host_tbd_ir_clear_sky PROPERTIES LABELS "host"
