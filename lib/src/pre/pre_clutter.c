@@ -1118,6 +1118,8 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
                 cl_warp_(c->pc, c->vs, c->hs, gw, gh, ix, fx, iy, fy, 0u);
             }
         }
+    } else {
+        /* the first frame with evidence: nothing to carry */
     }
     c->frames++;
     const uint32_t a1 = (65536u + c->frames / 2u) / c->frames;
