@@ -124,7 +124,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "clutter_map8", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -223,6 +223,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         T.clutter_map8 = t.at("clutter_map8").as_bool();
     if (T.clutter_map8 && T.clutter_block != 0)
         t.at("clutter_map8").fail("the 8-bit map is per pixel: needs clutter_block 0");
+    if (t.has("clutter_anchor"))
+        T.clutter_anchor = t.at("clutter_anchor").as_bool();
+    if (T.clutter_anchor && T.clutter_block != 0)
+        t.at("clutter_anchor").fail("the anchored map is per pixel: needs clutter_block 0");
 }
 
 void parse_dbt(const Field &d, DbtSettings &D)

@@ -142,6 +142,7 @@ struct TrackerSettings {
     double clutter_excess = 1.5;                ///< level of the persistence gate (sigma)
     int clutter_block = 0;                      ///< map held on B x B blocks of the scene (pft_pre_clutter_config_t.block): 0 (per pixel), 2 or 4
     bool clutter_map8 = false;                  ///< map held in 8 bits per pixel (pft_pre_clutter_config_t.map8; per pixel only: clutter_block 0)
+    bool clutter_anchor = false;                ///< map held on an integer grid of the scene, moved by whole pixels, instead of carried by a bilinear warp (pft_pre_clutter_config_t.anchor; per pixel only: clutter_block 0)
     int clutter_blur = 1;                       ///< half-size of the square the map is read over (0: the pixel)
     // residual high-pass (host prototype, docs/results/ir_clutter.md "Branch irdet"): the stage's residual less its
     // mean over the (2 residual_hp + 1)^2 square (masked pixels left out), before the clutter map and both trackers

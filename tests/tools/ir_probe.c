@@ -14,7 +14,7 @@
  * host_tools/scripts/ir_cost_targets.sh, docs/results/ir_clutter.md ("Branch ira53", "Branch
  * irmap").
  *
- *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK [MARKS [MEAN PERSIST ALPHA]]]]
+ *   ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [MAP [BLOCK [MARKS [MEAN PERSIST ALPHA [MAP8 [ANCHOR]]]]]]
  *   (the scenario's bit depth, frame count, seed and search particles: 14, N, 1, 12000 for
  *   procedural_384x288.json; MAP: inplace (default, as pft run: the map's output over the
  *   stage's residual) or copy (the map's own output buffer, as before branch irmap); BLOCK: the
@@ -27,7 +27,8 @@
  *   MEAN PERSIST ALPHA: the tracker fields clutter_mean (0 or 1), clutter_persist (0..) and
  *   clutter_alpha (a real, as in the scenario) the map is configured with, as
  *   make_clutter_config does; default 0 0 0.1, the pipeline's defaults; "1 4 0.2" is the best
- *   setting of docs/results/ir_clutter.md)
+ *   setting of docs/results/ir_clutter.md; MAP8: 1 for pft_pre_clutter_config_t.map8; ANCHOR: 1
+ *   for pft_pre_clutter_config_t.anchor, default 0)
  * Prints per frame: seq, the stage's flags, then every confirmed track (id x y, 3 decimals),
  * and at the end the workspace sizes and three FNV-1a checksums over all frames, outside the
  * measured calls: of the stage's residual, of the map's output and of every confirmed track's
@@ -171,7 +172,7 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
 int main(int argc, char **argv)
 {
     if (argc < 8) {
-        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA [MAP8]]]]]\n");
+        fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA [MAP8 [ANCHOR]]]]]]\n");
         return 2;
     }
     const int map_inplace = argc < 9 || strcmp(argv[8], "copy") != 0;
@@ -184,7 +185,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "ir_probe: MARKS is 3, 2 or 1, not %s\n", argv[10]);
         return 2;
     }
-    if (argc > 11 && argc != 14 && argc != 15) {
+    if (argc > 11 && argc != 14 && argc != 15 && argc != 16) {
         fprintf(stderr, "ir_probe: MEAN PERSIST ALPHA come together\n");
         return 2;
     }
@@ -251,6 +252,7 @@ int main(int argc, char **argv)
     cc.inplace = map_inplace != 0;
     cc.block = (uint8_t)(argc >= 10 ? atoi(argv[9]) : 0);
     cc.map8 = argc >= 15 && atoi(argv[14]) != 0; /* MAP8: pft_pre_clutter_config_t.map8 */
+    cc.anchor = argc >= 16 && atoi(argv[15]) != 0; /* ANCHOR: pft_pre_clutter_config_t.anchor */
     if (pft_pre_clutter_config_check(&cc, &field) != PFT_OK) {
         fprintf(stderr, "ir_probe: clutter configuration refused (%s)\n", field ? field : "?");
         return 2;

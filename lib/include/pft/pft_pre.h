@@ -222,6 +222,7 @@ typedef struct {
     bool inplace;     /**< the output is written over the caller's residual buffer by pft_pre_clutter_update_inplace (pft_pre_clutter_update is then refused) and the workspace holds no output (PFT_PRE_CLUTTER_WORKSPACE_BYTES_INPLACE: 2 bytes per pixel less); the same values as without it (default false) */
     uint8_t block;    /**< side B of the blocks of the scene the map (m, mu, the counter) is held on, px: 0 (default: per pixel, the map of docs/algorithms.md 9.9 as before), 2 or 4: each pixel is scored with its block's map read over (2 blur + 1)^2 blocks, each block updated with the means of its unmasked pixels' terms (see "Blocks" below); the map's memory is divided by B^2. Changes values */
     bool map8;        /**< the map m held in 8 bits per pixel instead of 16: a code of sigma^2 with 3 exponent and 5 mantissa bits (value (32 + f) 2^(e + 3) in Q6.10 for code 32 e + f, e >= 1; code * 16 below 64), 1/64 relative precision from 0.5 sigma^2 up to 63 sigma^2, 1/64 sigma^2 absolute below; the map is decoded to Q6.10 to be read, warped and updated, and the update's result is stored with a deterministic dither so that its expected value is kept (see "8-bit map" below). Per pixel only (block must be 0). 1 byte per pixel less (PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8). Changes values (default false: 16 bits, today's values) */
+    bool anchor;      /**< the map (m, mu, the counter) held on an integer grid of the scene instead of carried by a bilinear warp every frame: the instance sums the shifts it is given (Q16.16, exactly, on every accepted update, with or without evidence) and each pixel of a frame reads and updates the cell under its position rounded to the nearest grid point; when the rounded position moves by whole pixels the stored arrays move by whole pixels (exact copies), the cells that enter holding a new pixel's values (m 1 sigma^2, mu 0, counter 0); no interpolation, so a cell's statistics are those of scene points up to 0.5 px from the pixel (see "Anchored map" below; docs/algorithms.md 9.9). Per pixel only (block must be 0); works with mean, persist, veto, inplace and map8. Same workspace. Changes values (default false: the bilinear carry, today's values) */
 } pft_pre_clutter_config_t;
 
 /** Clutter map instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -391,6 +392,16 @@ size_t pft_pre_sigma(const pft_pre_t *pre, uint32_t *out, size_t max);
  * code's step, o from a hash of the row and the frame count), so that a small step a (t - m)
  * lands in expectation instead of never.
  * Workspace: PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8.
+ * Anchored map (anchor, per pixel only): the instance keeps the sum S of the shifts given to
+ * every accepted update since init/reset (Q16.16, 64 bits, exact) and the position P at which
+ * the stored arrays lie, P = S rounded per axis to the nearest integer (halves upwards),
+ * taken at each update with evidence (set without a move at the first one). A frame's pixel p
+ * reads and updates the stored cell p, which holds the scene's cell p - P; when P changes by
+ * d the arrays (m or map8's codes, mu, the counter) are moved by d whole pixels first (out(p)
+ * = v(p - d), row copies), the cells that enter taking m 1 sigma^2, mu 0 and counter 0, as a
+ * pixel entering the frame does without anchor. Nothing is interpolated: no bilinear carry
+ * and none of its smoothing of m, and no work on frames where P does not move. The read's
+ * square, the formulas and the edges are those above.
  */
 
 /** Workspace bytes of a clutter map for frames w x h, mean (0/1), blur b and persist (0/1), per pixel (block 0), not in place. */

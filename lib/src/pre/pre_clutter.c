@@ -39,6 +39,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->inplace = false;
     cfg->block = 0u;
     cfg->map8 = false;
+    cfg->anchor = false;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -67,6 +68,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "block";
     } else if (cfg->map8 && cfg->block != 0u) {
         bad = "map8";
+    } else if (cfg->anchor && cfg->block != 0u) {
+        bad = "anchor"; /* the anchored grid is the pixels' (a block grid would need its own rounding) */
     } else {
         /* accepted */
     }
@@ -189,6 +192,10 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     if (c->sacc != NULL) {
         memset(c->sacc, 0, gw * 8u);
     }
+    c->ax = 0;
+    c->ay = 0;
+    c->px = 0;
+    c->py = 0;
     c->frames = 0u;
     c->updates = 0u;
     c->seq = 0u;
@@ -990,6 +997,80 @@ static void cl_row8_end_(pft_pre_clutter_t *c, int32_t y)
     }
 }
 
+/* anchor: a Q16.16 position rounded to the nearest integer, halves upwards (floor((a + 2^15) /
+ * 2^16); |a| < 2^62: the sum of fewer than 2^31 shifts of int32). */
+static int64_t cl_round16_(int64_t a)
+{
+    const int64_t t = a + 32768;
+    return t / 65536 - (t % 65536 < 0 ? 1 : 0);
+}
+
+/* anchor: the w x h array of es-byte values (es 1 or 2) at base moved by (dx, dy) whole
+ * pixels, out(x, y) = v(x - dx, y - dy), fill where the source is outside (|dx| <= w, |dy| <=
+ * h). Rows are visited in the order that reads every source row before it is overwritten
+ * (descending for dy > 0); a row's values are moved by one memmove, the entering columns and
+ * rows filled. */
+static void cl_move_(uint8_t *base, size_t es, int32_t w, int32_t h, int32_t dx, int32_t dy,
+                     uint16_t fill)
+{
+    const size_t rb = (size_t)w * es;
+    const int32_t adx = dx < 0 ? -dx : dx;
+    uint8_t fb[2];
+    memcpy(fb, &fill, sizeof fb); /* the fill's bytes in memory order (es 1: its low byte) */
+    if (es == 1u) {
+        fb[0] = (uint8_t)fill;
+    }
+    for (int32_t k = 0; k < h; ++k) {
+        const int32_t y = dy > 0 ? h - 1 - k : k;
+        const int32_t sy = y - dy;
+        uint8_t *dst = base + (size_t)y * rb;
+        int32_t f0 = 0, f1 = w; /* the columns to fill: [f0, f1) */
+        if (sy >= 0 && sy < h) {
+            const uint8_t *src = base + (size_t)sy * rb;
+            if (adx < w) {
+                memmove(dst + (size_t)(dx > 0 ? dx : 0) * es, src + (size_t)(dx < 0 ? -dx : 0) * es,
+                        (size_t)(w - adx) * es);
+            }
+            f0 = dx > 0 ? 0 : w - adx;
+            f1 = dx > 0 ? dx : w;
+        }
+        if (es == 1u) {
+            memset(dst + f0, (int)fb[0], (size_t)(f1 - f0));
+        } else {
+            for (int32_t x = f0; x < f1; ++x) {
+                memcpy(dst + (size_t)x * es, fb, es);
+            }
+        }
+    }
+}
+
+/* anchor, at an update with evidence: the arrays moved to the rounded position of the summed
+ * shifts (set without a move at the first frame, when every cell holds the reset's values). */
+static void cl_anchor_(pft_pre_clutter_t *c)
+{
+    const int64_t nx = cl_round16_(c->ax), ny = cl_round16_(c->ay);
+    const int32_t w = (int32_t)c->gw, h = (int32_t)c->gh;
+    if (c->frames > 0u && (nx != c->px || ny != c->py)) {
+        const int64_t ex = nx - c->px, ey = ny - c->py;
+        /* beyond the frame, every cell enters */
+        const int32_t dx = (int32_t)(ex > w ? w : (ex < -w ? -w : ex));
+        const int32_t dy = (int32_t)(ey > h ? h : (ey < -h ? -h : ey));
+        if (c->m8 != NULL) {
+            cl_move_(c->m8, 1u, w, h, dx, dy, (uint16_t)CL_ONE8_);
+        } else {
+            cl_move_((uint8_t *)c->m, 2u, w, h, dx, dy, (uint16_t)CL_ONE_);
+        }
+        if (c->mu != NULL) {
+            cl_move_((uint8_t *)c->mu, 2u, w, h, dx, dy, (uint16_t)CL_MUOFF_);
+        }
+        if (c->pc != NULL) {
+            cl_move_((uint8_t *)c->pc, 2u, w, h, dx, dy, 0u);
+        }
+    }
+    c->px = nx;
+    c->py = ny;
+}
+
 /* One accepted frame; the output goes to c->out (packed rows), which is the residual's own
  * buffer with inplace: each residual row is read before its output row is written, and not
  * after. */
@@ -1001,6 +1082,10 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
     c->updates++;
     c->seq = res->seq;
     c->timestamp_us = res->timestamp_us;
+    if (c->cfg.anchor) {
+        c->ax += shift_x; /* the scene's position moves with or without evidence */
+        c->ay += shift_y;
+    }
     if (!evidence) {
         for (size_t i = 0u; i < npix; ++i) {
             c->out[i] = PFT_RES16_MASKED;
@@ -1009,7 +1094,9 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
     }
     cl_fuse8_t fz; /* map8 with a shift: the warp runs within the row loop below */
     memset(&fz, 0, sizeof(fz));
-    if (c->frames > 0u) {
+    if (c->cfg.anchor) {
+        cl_anchor_(c); /* whole pixels only: no carry warp */
+    } else if (c->frames > 0u) {
         int32_t ix, iy;
         uint32_t fx, fy;
         const int32_t gw = (int32_t)c->gw, gh = (int32_t)c->gh;
@@ -1031,6 +1118,8 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
                 cl_warp_(c->pc, c->vs, c->hs, gw, gh, ix, fx, iy, fy, 0u);
             }
         }
+    } else {
+        /* the first frame with evidence: nothing to carry */
     }
     c->frames++;
     const uint32_t a1 = (65536u + c->frames / 2u) / c->frames;

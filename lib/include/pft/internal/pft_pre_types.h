@@ -73,6 +73,8 @@ struct pft_pre_clutter_s {
     int32_t *sacc;         /* block: per block of a row, the sums of clamp(8 r) and r (NULL per pixel) */
     uint32_t gw, gh;       /* the map's grid: w x h, or the blocks' ceil(w / B) x ceil(h / B) */
     uint32_t lb;           /* log2(B), 0 per pixel */
+    int64_t ax, ay;        /* anchor: the sum of the shifts given since init/reset, Q16.16 px */
+    int64_t px, py;        /* anchor: the rounded position at which the stored arrays lie, px */
     uint32_t frames;       /* frames with evidence since init/reset */
     uint32_t updates;      /* accepted updates since init/reset */
     uint32_t seq;
