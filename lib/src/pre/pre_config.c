@@ -212,8 +212,8 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     }
     p->res = res;
     p->bg = bg;
-    p->bgv = anchor ? bg + (w + 3u) + 1u : bg;
-    p->bgs = (uint32_t)(anchor ? w + 3u : w);
+    p->bgv = anchor ? (uint16_t *)(void *)res : bg; /* bg_anchor: the grid read into res */
+    p->bgs = (uint32_t)w;
     p->aring = aring;
     p->colq = colq;
     p->colnow = colnow;

@@ -164,6 +164,11 @@ static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
     return true;
 }
 
+/* bg_anchor: the grid read at the last frame's position into the residual buffer (free until
+ * the residual pass), the background that registration compares the frame with (pre_config.c
+ * points p->bgv there). */
+static void anchor_view_(pft_pre_t *p);
+
 /* ------------------------------------------------------------------ Lucas-Kanade */
 
 typedef struct {
@@ -501,6 +506,9 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         acc->flags |= PFT_PRE_FLAG_REG_WEAK;
         return; /* a constant frame: nothing to register; background and offsets held */
     }
+    if (p->cfg.bg_anchor) {
+        anchor_view_(p); /* the grid read at the last frame's position: the step as in 9.4 */
+    }
     projections_(p, f, &c);
     /* prediction: the last shift times the frame gap (1..16) */
     uint32_t gap = f->seq - p->last_seq;
@@ -510,9 +518,6 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         const int64_t v = (int64_t)p->shift_prev[a] * gap;
         const int64_t lim = (int64_t)PFT_PRE_MAX_SEARCH << 16;
         pred[a] = (int32_t)(v > lim ? lim : (v < -lim ? -lim : v));
-        /* bg_anchor: the frame is compared with the grid read at the predicted position, the
-         * grid's cell x being the last frame's pixel x - phi (docs/algorithms.md 9.12) */
-        pred[a] -= p->cfg.bg_anchor ? p->aphi[a] : 0;
     }
     const int32_t rad = p->cfg.reg_search;
     const int32_t cx = rnd_(pred[0], 16), cy = rnd_(pred[1], 16);
@@ -585,9 +590,8 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
         sd[0] = 0;
         sd[1] = 0;
     }
-    /* bg_anchor: back from the grid's coordinates to the step since the last frame */
-    p->st.shift[0] = s[0] + (p->cfg.bg_anchor ? p->aphi[0] : 0);
-    p->st.shift[1] = s[1] + (p->cfg.bg_anchor ? p->aphi[1] : 0);
+    p->st.shift[0] = s[0];
+    p->st.shift[1] = s[1];
     p->st.shift_sd[0] = sd[0];
     p->st.shift_sd[1] = sd[1];
     p->st.reg_rms = rms;
@@ -821,6 +825,32 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
     }
 }
 
+static void anchor_view_(pft_pre_t *p)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
+    agx_t gx, gy;
+    agx_of_(p->aphi[0], p->cfg.warp_cubic, &gx);
+    agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
+    int32_t *vb = p->aring;
+    uint16_t *out = (uint16_t *)(void *)p->res;
+    for (int32_t y = 0; y < h; ++y) {
+        const uint16_t *t[4];
+        for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
+            t[i] = p->bg + (size_t)clampi_(y + gy.k + i, 0, h + 2) * (size_t)sw;
+        }
+        for (int32_t i = 0; i < sw; ++i) {
+            vb[i] = (gy.wr[0] * t[0][i] + gy.wr[1] * t[1][i] + gy.wr[2] * t[2][i] + gy.wr[3] * t[3][i] + 8) >> 4;
+        }
+        uint16_t *o = out + (size_t)y * (size_t)w;
+        for (int32_t x = 0; x < w; ++x) {
+            const int32_t i = x + gx.k; /* storage columns i .. i + 3, clamped */
+            const int32_t sv = (gx.wr[0] * vb[i] + gx.wr[1] * vb[i + 1] + gx.wr[2] * vb[i + 2] +
+                                gx.wr[3] * vb[clampi_(i + 3, 0, sw - 1)] + 2048) >> 12;
+            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+    }
+}
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -959,7 +989,6 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             have = y;
         }
         const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
-        const bool newy = jy >= p->avlo[1] && jy <= p->avhi[1];
         for (int32_t j = -1; j <= w + 1; ++j) {
             int32_t zt = PFT_PRE_ANONE_;
             if (oy && j >= olo[0] && j <= ohi[0]) {
@@ -979,8 +1008,11 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const int32_t bx = b[j + 1];
             if (zt != PFT_PRE_ANONE_) {
                 b[j + 1] = (uint16_t)(old ? bx + (((zt - bx) * a15 + 16384) >> 15) : zt);
-            } else if (!old && newy && j >= p->avlo[0] && j <= p->avhi[0]) {
-                /* a cell that entered without an interpolated value: from its nearest pixel */
+            } else if (!old) {
+                /* a cell outside the scene held so far without an interpolated value (one that
+                 * entered, or a margin cell the frame does not cover): from its nearest pixel,
+                 * so that the registration's view of the grid (anchor_view_) holds no cells
+                 * carried in from the other end of a row by the anchor's move */
                 const int32_t z = anchor_zpix_(p, c, f, &gx, &gy, j, jy);
                 b[j + 1] = (uint16_t)(z >= 0 ? z : bx);
             } else {

@@ -24,8 +24,8 @@ struct pft_pre_s {
     int16_t *res;          /* residual (R units) then whitened (Q8.8), w * h; inplace: the
                               caller's frame buffer of the last accepted update (NULL before) */
     uint16_t *bg;          /* TEMPORAL background (U units), w * h; bg_anchor: (w + 3) * (h + 3) cells */
-    uint16_t *bgv;         /* the background as registration reads it: bg, or bg_anchor's cell (0, 0) */
-    uint32_t bgs;          /* row stride of bgv (elements): w, or w + 3 */
+    uint16_t *bgv;         /* the background as registration reads it: bg, or (bg_anchor) the grid read at the last frame's position into res */
+    uint32_t bgs;          /* row stride of bgv (elements): w */
     int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
