@@ -756,7 +756,7 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
 /* ------------------------------------------------------------------ bg_anchor (9.12) */
 
 /* Value of an invalid interpolated sample (a masked tap or a tap outside the frame). */
-#define PFT_PRE_ANONE_ INT32_MIN
+#define PFT_PRE_ANONE_ ((int32_t)-1073741824) /* below any value: |interpolated| < 2^22 */
 
 /* Geometry of one axis of the anchored grid for the position fraction phi (Q16): the read
  * (pixel x reads cells x + k - 1 .. x + k + 2 with weights wr, non-zero from rlo to rhi) and
@@ -828,7 +828,8 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
 static void anchor_view_(pft_pre_t *p)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
-    agx_t gx, gy;
+    agx_t gx;
+    agx_t gy;
     agx_of_(p->aphi[0], p->cfg.warp_cubic, &gx);
     agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
     int32_t *vb = p->aring;
@@ -906,7 +907,8 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->aphi[a] = (int32_t)(v - fa * 65536);
     }
     anchor_move_(p, dA[0], dA[1]);
-    agx_t gx, gy;
+    agx_t gx;
+    agx_t gy;
     agx_of_(p->aphi[0], cubic, &gx);
     agx_of_(p->aphi[1], cubic, &gy);
     const int32_t ovlo[2] = {p->avlo[0], p->avlo[1]}, ovhi[2] = {p->avhi[0], p->avhi[1]};
@@ -954,11 +956,11 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     }
     /* update: cells whose update taps are all inside the frame are observed */
     int32_t olo[2], ohi[2];
-    const agx_t *gg[2] = {&gx, &gy};
     const int32_t nn[2] = {w, h};
     for (uint32_t a = 0; a < 2u; ++a) {
-        olo[a] = clampi_(-gg[a]->ub - gg[a]->ulo, -1, nn[a] + 2);
-        ohi[a] = clampi_(nn[a] - 1 - gg[a]->ub - gg[a]->uhi, -2, nn[a] + 1);
+        const agx_t *ga = a == 0u ? &gx : &gy;
+        olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
+        ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
         const bool empty = ovlo[a] > ovhi[a];
         p->avlo[a] = empty || olo[a] < ovlo[a] ? olo[a] : ovlo[a];
         p->avhi[a] = empty || ohi[a] > ovhi[a] ? ohi[a] : ovhi[a];
