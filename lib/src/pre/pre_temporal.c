@@ -756,7 +756,9 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
 /* ------------------------------------------------------------------ bg_anchor (9.12) */
 
 /* Value of an invalid interpolated sample (a masked tap or a tap outside the frame). */
-#define PFT_PRE_ANONE_ ((int32_t)-1073741824) /* below any value: |interpolated| < 2^22 */
+#define PFT_PRE_ANONE_ ((int32_t)-4194304) /* -2^22: below any interpolated row value (U * 16,
+                                            * above -2^21), and times the weights (their |sum|
+                                            * below 512) still inside int32 */
 
 /* Geometry of one axis of the anchored grid for the position fraction phi (Q16): the read
  * (pixel x reads cells x + k - 1 .. x + k + 2 with weights wr, non-zero from rlo to rhi) and
@@ -843,10 +845,18 @@ static void anchor_view_(pft_pre_t *p)
             vb[i] = (gy.wr[0] * t[0][i] + gy.wr[1] * t[1][i] + gy.wr[2] * t[2][i] + gy.wr[3] * t[3][i] + 8) >> 4;
         }
         uint16_t *o = out + (size_t)y * (size_t)w;
-        for (int32_t x = 0; x < w; ++x) {
-            const int32_t i = x + gx.k; /* storage columns i .. i + 3, clamped */
-            const int32_t sv = (gx.wr[0] * vb[i] + gx.wr[1] * vb[i + 1] + gx.wr[2] * vb[i + 2] +
-                                gx.wr[3] * vb[clampi_(i + 3, 0, sw - 1)] + 2048) >> 12;
+        /* storage columns x + k .. x + k + 3; the last pixel's fourth tap (k = 1) clamped */
+        const int32_t *v = vb + gx.k;
+        const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
+        const int32_t xe = w - gx.k; /* x < xe: x + k + 3 <= w + 2 */
+        for (int32_t x = 0; x < xe; ++x) { /* vectorisable */
+            const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+        for (int32_t x = xe; x < w; ++x) {
+            const int32_t i = x + gx.k;
+            const int32_t sv = (w0 * vb[i] + w1 * vb[i + 1] + w2 * vb[i + 2] +
+                                w3 * vb[clampi_(i + 3, 0, sw - 1)] + 2048) >> 12;
             o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
         }
     }
@@ -938,16 +948,23 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
                 vb[i] = (v + 8) >> 4; /* U * 16 */
             }
         }
-        for (int32_t x = 0; x < w; ++x) {
-            int32_t rr = PFT_RES16_MASKED;
-            if (covered && x >= xa && x <= xb && zl[x] >= 0) {
-                const int32_t i = x + gx.k - 1 + 1;
-                const int32_t sv = (gx.wr[0] * vb[i] + gx.wr[1] * vb[i + 1] + gx.wr[2] * vb[i + 2] +
-                                    gx.wr[3] * vb[i + 3] + 2048) >> 12;
+        /* masked outside the covered span [xa, xb] (or the whole row), and where z is */
+        const int32_t ca = covered ? xa : w, cb = covered ? xb : w - 1;
+        for (int32_t x = 0; x < ca; ++x) {
+            r[x] = PFT_RES16_MASKED;
+        }
+        {
+            const int32_t *v = vb + gx.k; /* storage columns x + k .. x + k + 3 */
+            const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
+            for (int32_t x = ca; x <= cb; ++x) { /* vectorisable */
+                const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
                 const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-                rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+                const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+                r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
             }
-            r[x] = (int16_t)rr;
+        }
+        for (int32_t x = cb + 1; x < w; ++x) {
+            r[x] = PFT_RES16_MASKED;
         }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {
@@ -973,6 +990,25 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         for (int32_t y = have + 1; oy && y <= yb + gy.uhi; ++y) {
             int32_t *hz = p->aring + (size_t)(y & 3) * (size_t)sw;
             (void)zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl);
+            if (gx.ulo == -1 && gx.uhi == 2) {
+                /* four taps of non-zero weight (the usual case): a masked tap (-1) makes the
+                 * taps' OR negative, a valid one is >= 0; the same values as the loop below */
+                const int32_t *zb = zl + gx.ub;
+                const int32_t w0 = gx.wu[0], w1 = gx.wu[1], w2 = gx.wu[2], w3 = gx.wu[3];
+                for (int32_t j = -1; j < olo[0]; ++j) {
+                    hz[j + 1] = PFT_PRE_ANONE_;
+                }
+                for (int32_t j = olo[0]; j <= ohi[0]; ++j) {
+                    const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
+                    const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
+                    hz[j + 1] = (z0 | z1 | z2 | z3) < 0 ? PFT_PRE_ANONE_ : v;
+                }
+                for (int32_t j = ohi[0] + 1; j <= w + 1; ++j) {
+                    hz[j + 1] = PFT_PRE_ANONE_;
+                }
+                have = y;
+                continue;
+            }
             for (int32_t j = -1; j <= w + 1; ++j) {
                 int32_t v = PFT_PRE_ANONE_;
                 if (j >= olo[0] && j <= ohi[0]) {
@@ -991,7 +1027,32 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             have = y;
         }
         const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
+        int32_t fs0 = 0, fs1 = -1; /* the cells done by the fast span (none) */
+        if (oy && iny && gy.ulo == -1 && gy.uhi == 2) {
+            /* observed cells of a row held so far, four taps of non-zero weight: the blend of
+             * the loop below with the same values; a cell with an invalid tap is kept there too */
+            const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
+            const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
+            const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
+            const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
+            const int32_t w0 = gy.wu[0], w1 = gy.wu[1], w2 = gy.wu[2], w3 = gy.wu[3];
+            fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
+            fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
+            for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
+                const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+                const bool inv = (v0 == PFT_PRE_ANONE_) | (v1 == PFT_PRE_ANONE_) |
+                                 (v2 == PFT_PRE_ANONE_) | (v3 == PFT_PRE_ANONE_);
+                int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+                sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                const int32_t bx = b[j + 1];
+                const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
+                b[j + 1] = (uint16_t)(inv ? bx : nb);
+            }
+        }
         for (int32_t j = -1; j <= w + 1; ++j) {
+            if (j >= fs0 && j <= fs1) {
+                continue; /* done above */
+            }
             int32_t zt = PFT_PRE_ANONE_;
             if (oy && j >= olo[0] && j <= ohi[0]) {
                 int32_t sv = 0;
