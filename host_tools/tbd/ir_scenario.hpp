@@ -106,6 +106,7 @@ struct TrackerSettings {
     bool reg_bin = false;                       ///< temporal: registration sums on 2 x 2 boxes of pixels (pft_pre reg_bin; reg_step at least 2)
     bool sigma_current = true;                  ///< whiten each frame with its own tile sigmas (true) or with the last frame's (pft_pre sigma_current)
     bool sigma_bracket = false;                 ///< tile sigmas from counts around the last median instead of histograms (pft_pre sigma_bracket)
+    bool bg_anchor = false;                     ///< temporal background kept on a scene-anchored grid (pft_pre bg_anchor; the stage then runs without inplace)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

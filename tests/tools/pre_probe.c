@@ -8,7 +8,7 @@
  *   pre_probe IN.u16 W H BITS [key=value ...] [out=RES.i16] [sig=SIGMA.u32]
  *   (sig= writes every frame's tile sigmas, pft_pre_sigma: uint32 Q16.16 counts, row-major)
  *   keys: method=local|temporal ro rg alpha search iters step cubic col tile current interp
- *         floor edge peaks thr sstep severy rbin sbrk; clutter=1 runs the clutter map (pft_pre_clutter_*) after the
+ *         floor edge peaks thr sstep severy rbin sbrk anchor; clutter=1 runs the clutter map (pft_pre_clutter_*) after the
  *         stage (then out= writes its output), with cmean cblur cbox calpha cthr
  */
 #include <stdio.h>
@@ -86,6 +86,8 @@ int main(int argc, char **argv)
             cfg.reg_bin = v != 0;
         } else if (arg_int(argv[i], "sbrk", &v)) {
             cfg.sigma_bracket = v != 0;
+        } else if (arg_int(argv[i], "anchor", &v)) {
+            cfg.bg_anchor = v != 0;
         } else if (arg_int(argv[i], "col", &v)) {
             cfg.col_alpha = (uint16_t)v;
         } else if (arg_int(argv[i], "tile", &v)) {

@@ -160,6 +160,7 @@ typedef struct {
     uint8_t sigma_every;     /**< the tile sigmas of tile row j are estimated on the frames n (counted from init or reset) with (n + j) % sigma_every == 0, and kept from the last estimate on the others, 0..PFT_PRE_MAX_SIGMA_EVERY, 0 and 1: every frame; every tile row is estimated until the first estimate exists. A tile's sigma is then up to sigma_every - 1 frames old; the masked-pixel counts and the column offsets still see every frame (default 1) */
     bool reg_bin;            /**< TEMPORAL: the Lucas-Kanade sums of the registration take 2 x 2 boxes of pixels (their sums) at the samples of reg_step, which must then be at least 2, instead of single pixels: a box sum has 4 times the gradient and twice the noise of a pixel, 4 times the information per sample where the noise sets the shift error. A cost lever with reg_step 4 (about 1.1 M instructions less per 384 x 288 frame than the defaults, the shift error of the defaults on smooth scenes, 1.4-1.7 times it on the real frames of docs/results/ir_clutter.md) and a precision lever with reg_step 2 (default false) */
     bool sigma_bracket;      /**< once a sigma is known, each tile's sigma comes from the counts of its |r| below 5 thresholds around the median of its last sigma (m / 2, m / sqrt 2, m, sqrt 2 m, 2 m), interpolated linearly between the two around the median, instead of a histogram of 104 bins (a cost lever: about 0.14 M instructions less per 384 x 288 frame, docs/results/ir_clutter.md "Branch ircost9"); a median outside m / 2 .. 2 m is read on the straight line from 0 through the nearest threshold's count, so the estimate falls at most 4 times a frame and reads a Gaussian's rise within 7 % up to 5 times (larger jumps followed over the next frames). Must be used with sigma_step and sigma_every at most 1 (default false) */
+    bool bg_anchor;          /**< TEMPORAL: the background is kept on a grid of the scene, (width + 3) x (height + 3) cells anchored at the integer part of the accumulated scene position, instead of being re-warped into each frame's coordinates (docs/algorithms.md 9.12 [E]): each frame reads it once (Catmull-Rom at the position's fraction) for the residual and is interpolated once into it (at the inverse fraction) for the update, alpha and the warm-up as without it; a whole-pixel move of the anchor moves the stored cells by whole cells (exact), the cells that enter restart from the frame and the residual that reads them is masked. The registration estimates the step as without it, against the grid read at the last frame's position (written into the residual buffer before the residual). Changes values. Needs PFT_PRE_BG_TEMPORAL, inplace false and edge_k 0; workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR (default false: the background re-warped at every frame, today's values) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */
@@ -282,6 +283,15 @@ extern "C" {
 /** Workspace bytes with inplace set: PFT_PRE_WORKSPACE_BYTES without the residual (2 w h). */
 #define PFT_PRE_WORKSPACE_BYTES_INPLACE(w, h, m, ro, t, k)                                      \
     (PFT_PRE_WORKSPACE_BYTES(w, h, m, ro, t, k) - PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u))
+
+/** Workspace bytes with bg_anchor set (TEMPORAL, not inplace): PFT_PRE_WORKSPACE_BYTES with the
+ *  background on (w + 3) x (h + 3) cells instead of w x h, plus 4 rows of (w + 3) int32 (the
+ *  frame's rows interpolated along x, for the update). */
+#define PFT_PRE_WORKSPACE_BYTES_ANCHOR(w, h, ro, t, k)                                           \
+    (PFT_PRE_WORKSPACE_BYTES(w, h, PFT_PRE_BG_TEMPORAL, ro, t, k) -                             \
+     PFT_WS_ROUND((size_t)(w) * (size_t)(h) * 2u) +                                             \
+     PFT_WS_ROUND(((size_t)(w) + 3u) * ((size_t)(h) + 3u) * 2u) +                               \
+     PFT_WS_ROUND(4u * ((size_t)(w) + 3u) * 4u))
 
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_workspace_size(const pft_pre_config_t *cfg);

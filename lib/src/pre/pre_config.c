@@ -38,6 +38,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->sigma_every = 1u;
     cfg->reg_bin = false;
     cfg->sigma_bracket = false;
+    cfg->bg_anchor = false;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -120,6 +121,10 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->sigma_bracket && (c->sigma_step > 1u || c->sigma_every > 1u)) {
         return "sigma_bracket"; /* counts of every pixel of every frame */
     }
+    if (c->bg_anchor && (c->method != PFT_PRE_BG_TEMPORAL || c->inplace || c->edge_k != 0u)) {
+        return "bg_anchor"; /* the grid lives in scene coordinates: no in-place ring (not built)
+                             * and no edge term (it reads the background in frame coordinates) */
+    }
     return NULL;
 }
 
@@ -143,6 +148,10 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
     if (pft_pre_config_check(c, NULL) != PFT_OK) {
         return 0u;
     }
+    if (c->bg_anchor) {
+        return PFT_PRE_WORKSPACE_BYTES_ANCHOR(c->width, c->height, c->local_outer, c->tile,
+                                              c->peak_max);
+    }
     return c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
                                                         c->local_outer, c->tile, c->peak_max)
                       : PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer,
@@ -165,7 +174,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     pft_ws_t ws;
     pft_ws_init(&ws, work, work_len);
     int16_t *res = cfg->inplace ? NULL : pft_ws_take(&ws, npix * 2u);
-    uint16_t *bg = temporal ? pft_ws_take(&ws, npix * 2u) : NULL;
+    const bool anchor = cfg->bg_anchor;
+    const size_t nbg = anchor ? (w + 3u) * (h + 3u) : npix;
+    uint16_t *bg = temporal ? pft_ws_take(&ws, nbg * 2u) : NULL;
     int32_t *colq = pft_ws_take(&ws, w * 4u);
     int32_t *colnow = pft_ws_take(&ws, w * 4u);
     int32_t *csum = pft_ws_take(&ws, w * 4u);
@@ -189,6 +200,7 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
         c = pft_ws_take(&ws, (2u * ro + 2u) * w * 4u);
     }
     pft_pre_peak_t *peaks = pft_ws_take(&ws, (size_t)cfg->peak_max * sizeof(pft_pre_peak_t));
+    int32_t *aring = anchor ? pft_ws_take(&ws, 4u * (w + 3u) * 4u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -200,6 +212,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     }
     p->res = res;
     p->bg = bg;
+    p->bgv = anchor ? (uint16_t *)(void *)res : bg; /* bg_anchor: the grid read into res */
+    p->bgs = (uint32_t)w;
+    p->aring = aring;
     p->colq = colq;
     p->colnow = colnow;
     p->csum = csum;
@@ -244,7 +259,10 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
         memset(p->res, 0, npix * 2u);
     }
     if (p->bg != NULL) {
-        memset(p->bg, 0, npix * 2u);
+        memset(p->bg, 0, (p->cfg.bg_anchor ? (w + 3u) * (h + 3u) : npix) * 2u);
+        if (p->aring != NULL) {
+            memset(p->aring, 0, 4u * (w + 3u) * 4u);
+        }
         memset(p->pzc, 0, w * 4u);
         memset(p->pbc, 0, w * 4u);
         memset(p->vb, 0, w * 4u);
@@ -275,6 +293,12 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
     p->shift_prev[0] = 0;
     p->shift_prev[1] = 0;
     p->jumped = false;
+    p->aphi[0] = 0;
+    p->aphi[1] = 0;
+    p->avlo[0] = 0;
+    p->avlo[1] = 0;
+    p->avhi[0] = -1;
+    p->avhi[1] = -1;
     memset(&p->st, 0, sizeof(p->st));
     p->n_peaks = 0u;
     p->sig_known = false;

@@ -34,7 +34,7 @@ static void projections_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     memset(pbc, 0, (size_t)w * 4u);
     for (uint32_t y = 0; y < h; ++y) {
         const uint8_t *row = pft_frame_row(f, y);
-        const uint16_t *b = p->bg + (size_t)y * w;
+        const uint16_t *b = p->bgv + (size_t)y * p->bgs;
         const bool col = y % st == 0u;
         int32_t sz = 0, sb = 0;
         if (c->u8) {
@@ -134,7 +134,7 @@ static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
         n = 0u;
         for (int32_t y = my; y < h - my; y += st) {
             const uint8_t *row = pft_frame_row(f, (uint32_t)y);
-            const uint16_t *b = p->bg + (size_t)(y - sy) * (size_t)w; /* y - sy >= 0 */
+            const uint16_t *b = p->bgv + (size_t)(y - sy) * (size_t)p->bgs; /* y - sy >= 0 */
             for (int32_t x = mx; x < w - mx; x += st) {
                 const uint32_t v = pft_pre_raw_(row, (uint32_t)x, c);
                 if (!pft_pre_valid_(c, v, (uint32_t)x, (uint32_t)y)) {
@@ -163,6 +163,11 @@ static bool jump_2d_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
     *iy = by;
     return true;
 }
+
+/* bg_anchor: the grid read at the last frame's position into the residual buffer (free until
+ * the residual pass), the background that registration compares the frame with (pre_config.c
+ * points p->bgv there). */
+static void anchor_view_(pft_pre_t *p);
 
 /* ------------------------------------------------------------------ Lucas-Kanade */
 
@@ -245,7 +250,7 @@ static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
 static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                             const warp_t *g, int32_t st, lk_sums_t *s, const bool plain)
 {
-    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const int32_t w = p->cfg.width, h = p->cfg.height, bs = (int32_t)p->bgs;
     const uint32_t bf = p->bf;
     /* taps x + kx - 1 .. x + kx + 2 inside [0, w - 1], the same for rows */
     const int32_t xa = 1 - g->kx > 0 ? 1 - g->kx : 0, xb = (w - 3 - g->kx < w - 1 ? w - 3 - g->kx : w - 1);
@@ -265,8 +270,8 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
         const int32_t *cz = cn + x0;
         /* rows y + ky - 1 .. y + ky + 2 of the background from column c0 (all inside: c0 and
          * the last tap column are in [0, w - 1]) */
-        const uint16_t *bm = p->bg + (size_t)(y + g->ky - 1) * (size_t)w + (size_t)c0;
-        const uint16_t *b0 = bm + w, *b1 = b0 + w, *b2 = b1 + w;
+        const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
+        const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
         for (int32_t i = 0; i <= xb - x0; i += st) {
             uint32_t v;
             if (plain) {
@@ -308,7 +313,7 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
 static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                                 const warp_t *g, int32_t st, lk_sums_t *s, const bool plain)
 {
-    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const int32_t w = p->cfg.width, h = p->cfg.height, bs = (int32_t)p->bgs;
     const uint32_t bf = p->bf;
     const int32_t xa = 1 - g->kx > 0 ? 1 - g->kx : 0, xb = (w - 4 - g->kx < w - 2 ? w - 4 - g->kx : w - 2);
     const int32_t ya = 1 - g->ky > 0 ? 1 - g->ky : 0, yb = (h - 4 - g->ky < h - 2 ? h - 4 - g->ky : h - 2);
@@ -319,8 +324,8 @@ static inline void lk_bin_loop_(const pft_pre_t *p, const pft_frame_t *f, const 
     lk_sums_t acc = {0, 0, 0, 0, 0, 0, 0u}; /* a local, kept in registers */
     for (int32_t y = y0; y <= yb; y += st) {
         const uint8_t *ra = pft_frame_row(f, (uint32_t)y), *rb = pft_frame_row(f, (uint32_t)y + 1u);
-        const uint16_t *q1 = p->bg + (size_t)(y + g->ky - 1) * (size_t)w; /* row r - 1 */
-        const uint16_t *q2 = q1 + w, *q3 = q2 + w, *q4 = q3 + w, *q5 = q4 + w;
+        const uint16_t *q1 = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs; /* row r - 1 */
+        const uint16_t *q2 = q1 + bs, *q3 = q2 + bs, *q4 = q3 + bs, *q5 = q4 + bs;
         for (int32_t xs = x0; xs <= xb; xs += st) {
             uint32_t v0, v1, v2, v3;
             if (plain) {
@@ -500,6 +505,9 @@ void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
     if ((acc->flags & PFT_PRE_FLAG_HELD) != 0u) {
         acc->flags |= PFT_PRE_FLAG_REG_WEAK;
         return; /* a constant frame: nothing to register; background and offsets held */
+    }
+    if (p->cfg.bg_anchor) {
+        anchor_view_(p); /* the grid read at the last frame's position: the step as in 9.4 */
     }
     projections_(p, f, &c);
     /* prediction: the last shift times the frame gap (1..16) */
@@ -745,6 +753,343 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
     }
 }
 
+/* ------------------------------------------------------------------ bg_anchor (9.12) */
+
+/* Value of an invalid interpolated sample (a masked tap or a tap outside the frame). */
+#define PFT_PRE_ANONE_ ((int32_t)-4194304) /* -2^22: below any interpolated row value (U * 16,
+                                            * above -2^21), and times the weights (their |sum|
+                                            * below 512) still inside int32 */
+
+/* Geometry of one axis of the anchored grid for the position fraction phi (Q16): the read
+ * (pixel x reads cells x + k - 1 .. x + k + 2 with weights wr, non-zero from rlo to rhi) and
+ * the update (cell j is frame position j - phi: taps j + ub - 1 .. j + ub + 2 with weights wu,
+ * non-zero from ulo to uhi), both at the fraction rounded to 1/256 px. */
+typedef struct {
+    int32_t k, ub;
+    int32_t wr[4], wu[4];
+    int32_t rlo, rhi, ulo, uhi;
+} agx_t;
+
+static void agx_of_(int32_t phi, bool cubic, agx_t *g)
+{
+    const int32_t u = (phi + 128) >> 8; /* 0 .. 256 */
+    const uint32_t fr = (uint32_t)(u & 255);
+    g->k = u >> 8;
+    warp_q8_(fr, cubic, g->wr);
+    if (fr == 0u) {
+        g->ub = -g->k; /* the cell is a pixel */
+        warp_q8_(0u, cubic, g->wu);
+    } else {
+        g->ub = -g->k - 1; /* pixel j - k - 1 plus the fraction 1 - fr / 256 */
+        warp_q8_(256u - fr, cubic, g->wu);
+    }
+    g->rlo = g->wr[0] != 0 ? -1 : 0;
+    g->rhi = g->wr[3] != 0 ? 2 : (g->wr[2] != 0 ? 1 : 0);
+    g->ulo = g->wu[0] != 0 ? -1 : 0;
+    g->uhi = g->wu[3] != 0 ? 2 : (g->wu[2] != 0 ? 1 : 0);
+}
+
+/* The U value of the frame pixel nearest to cell j (and row cell jy) of the grid, clamped
+ * into the frame; -1 when that pixel is masked. */
+static int32_t anchor_zpix_(const pft_pre_t *p, const pft_pre_cls_t *c, const pft_frame_t *f,
+                            const agx_t *gx, const agx_t *gy, int32_t j, int32_t jy)
+{
+    const int32_t xn = j + gx->ub + (gx->ub != -gx->k ? 1 : 0), yn = jy + gy->ub + (gy->ub != -gy->k ? 1 : 0);
+    const uint32_t x = (uint32_t)clampi_(xn, 0, (int32_t)p->cfg.width - 1);
+    const uint32_t y = (uint32_t)clampi_(yn, 0, (int32_t)p->cfg.height - 1);
+    const uint32_t v = pft_pre_raw_(pft_frame_row(f, y), x, c);
+    if (!pft_pre_valid_(c, v, x, y)) {
+        return -1;
+    }
+    const int32_t zu = (int32_t)(v << p->bf) - p->colnow[x];
+    return zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
+}
+
+/* A whole-cell move of the anchor by (dx, dy): new cell (j, J) holds old cell (j + dx,
+ * J + dy), by one memmove of the stored values (exact; the cells that wrap around a row end
+ * are outside the valid ranges, moved with the anchor and cut to the grid). */
+static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
+{
+    const int32_t sw = (int32_t)p->cfg.width + 3, sh = (int32_t)p->cfg.height + 3;
+    const int64_t n = (int64_t)sw * sh, d = (int64_t)dy * sw + dx;
+    if (d > 0 && d < n) {
+        memmove(p->bg, p->bg + d, (size_t)(n - d) * 2u);
+    } else if (d < 0 && -d < n) {
+        memmove(p->bg - d, p->bg, (size_t)(n + d) * 2u);
+    } else {
+        /* no move, or none of the cells stays in the grid */
+    }
+    const int32_t dd[2] = {dx, dy}, top[2] = {sw - 2, sh - 2};
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const int64_t lo = (int64_t)p->avlo[a] - dd[a], hi = (int64_t)p->avhi[a] - dd[a];
+        p->avlo[a] = (int32_t)(lo < -1 ? -1 : (lo > top[a] ? top[a] + 1 : lo));
+        p->avhi[a] = (int32_t)(hi > top[a] ? top[a] : (hi < -1 ? -2 : hi));
+    }
+}
+
+static void anchor_view_(pft_pre_t *p)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
+    agx_t gx;
+    agx_t gy;
+    agx_of_(p->aphi[0], p->cfg.warp_cubic, &gx);
+    agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
+    int32_t *vb = p->aring;
+    uint16_t *out = (uint16_t *)(void *)p->res;
+    for (int32_t y = 0; y < h; ++y) {
+        const uint16_t *t[4];
+        for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
+            t[i] = p->bg + (size_t)clampi_(y + gy.k + i, 0, h + 2) * (size_t)sw;
+        }
+        for (int32_t i = 0; i < sw; ++i) {
+            vb[i] = (gy.wr[0] * t[0][i] + gy.wr[1] * t[1][i] + gy.wr[2] * t[2][i] + gy.wr[3] * t[3][i] + 8) >> 4;
+        }
+        uint16_t *o = out + (size_t)y * (size_t)w;
+        /* storage columns x + k .. x + k + 3; the last pixel's fourth tap (k = 1) clamped */
+        const int32_t *v = vb + gx.k;
+        const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
+        const int32_t xe = w - gx.k; /* x < xe: x + k + 3 <= w + 2 */
+        for (int32_t x = 0; x < xe; ++x) { /* vectorisable */
+            const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+        for (int32_t x = xe; x < w; ++x) {
+            const int32_t i = x + gx.k;
+            const int32_t sv = (w0 * vb[i] + w1 * vb[i + 1] + w2 * vb[i + 2] +
+                                w3 * vb[clampi_(i + 3, 0, sw - 1)] + 2048) >> 12;
+            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+    }
+}
+
+/* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
+ * fraction, then B updated with the frame interpolated into the grid. */
+static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
+                         pft_pre_acc_t *acc, bool first, int32_t a15, uint32_t k1)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, t = p->cfg.tile, sw = w + 3;
+    const bool cubic = p->cfg.warp_cubic;
+    int32_t *zl = p->line;
+    if (first) {
+        /* every cell from its nearest pixel (the last unmasked value for a masked one); the
+         * cells of the frame's pixels hold the scene */
+        p->aphi[0] = 0;
+        p->aphi[1] = 0;
+        agx_t g0;
+        agx_of_(0, cubic, &g0);
+        int32_t carry = 0;
+        for (int32_t jy = -1; jy <= h + 1; ++jy) {
+            uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+            for (int32_t j = -1; j <= w + 1; ++j) {
+                const int32_t z = anchor_zpix_(p, c, f, &g0, &g0, j, jy);
+                carry = z >= 0 ? z : carry;
+                b[j + 1] = (uint16_t)carry;
+            }
+        }
+        p->avlo[0] = 0;
+        p->avlo[1] = 0;
+        p->avhi[0] = w - 1;
+        p->avhi[1] = h - 1;
+        for (int32_t y = 0; y < h; ++y) {
+            if (zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+                count_row_(c, f, (uint32_t)y, acc);
+            }
+            int16_t *r = p->res + (size_t)y * (size_t)w;
+            for (int32_t x = 0; x < w; ++x) {
+                r[x] = PFT_RES16_MASKED;
+            }
+            acc->n_masked += (uint32_t)w;
+            if (y + 1 == h || (y + 1) % t == 0) {
+                pft_pre_tilerow_done_(p, (uint32_t)(y / t));
+            }
+        }
+        p->bg_frames++;
+        p->shift_prev[0] = 0;
+        p->shift_prev[1] = 0;
+        return;
+    }
+    /* the new position p_k = p_{k-1} - shift (shift: the scene's move) */
+    int32_t dA[2];
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const int64_t v = (int64_t)p->aphi[a] - p->st.shift[a];
+        const int64_t fa = v >= 0 ? v / 65536 : -((-v + 65535) / 65536);
+        dA[a] = (int32_t)fa;
+        p->aphi[a] = (int32_t)(v - fa * 65536);
+    }
+    anchor_move_(p, dA[0], dA[1]);
+    agx_t gx;
+    agx_t gy;
+    agx_of_(p->aphi[0], cubic, &gx);
+    agx_of_(p->aphi[1], cubic, &gy);
+    const int32_t ovlo[2] = {p->avlo[0], p->avlo[1]}, ovhi[2] = {p->avhi[0], p->avhi[1]};
+    /* residual: pixels whose read taps are all valid cells */
+    const int32_t xa = clampi_(ovlo[0] - gx.k - gx.rlo, 0, w), xb = clampi_(ovhi[0] - gx.k - gx.rhi, -1, w - 1);
+    int32_t *vb = p->aring; /* (w + 3) cells of one row: the ring is free until the update */
+    for (int32_t y = 0; y < h; ++y) {
+        if (zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+            count_row_(c, f, (uint32_t)y, acc);
+        }
+        int16_t *r = p->res + (size_t)y * (size_t)w;
+        const int32_t r0 = y + gy.k; /* taps r0 - 1 .. r0 + 2 */
+        const bool covered = r0 + gy.rlo >= ovlo[1] && r0 + gy.rhi <= ovhi[1] && xa <= xb;
+        if (covered) {
+            /* storage rows r0 .. r0 + 3 (cells r0 - 1 .. r0 + 2), clamped to the grid: a tap
+             * outside it has weight 0 (covered) */
+            const uint16_t *tr[4];
+            for (int32_t i = 0; i < 4; ++i) {
+                tr[i] = p->bg + (size_t)clampi_(r0 + i, 0, h + 2) * (size_t)sw;
+            }
+            const uint16_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
+            /* storage columns of the taps (x + k .. x + k + 3); vb has 4 (w + 3) entries, so
+             * that the zero-weight tap past the grid reads a finite value */
+            const int32_t c0 = xa + gx.k, c1 = xb + gx.k + 3 > w + 2 ? w + 2 : xb + gx.k + 3;
+            for (int32_t i = c0; i <= c1; ++i) {
+                const int32_t v = gy.wr[0] * t0[i] + gy.wr[1] * t1[i] + gy.wr[2] * t2[i] + gy.wr[3] * t3[i];
+                vb[i] = (v + 8) >> 4; /* U * 16 */
+            }
+        }
+        /* masked outside the covered span [xa, xb] (or the whole row), and where z is */
+        const int32_t ca = covered ? xa : w, cb = covered ? xb : w - 1;
+        for (int32_t x = 0; x < ca; ++x) {
+            r[x] = PFT_RES16_MASKED;
+        }
+        {
+            const int32_t *v = vb + gx.k; /* storage columns x + k .. x + k + 3 */
+            const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
+            for (int32_t x = ca; x <= cb; ++x) { /* vectorisable */
+                const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+                const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+                r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
+            }
+        }
+        for (int32_t x = cb + 1; x < w; ++x) {
+            r[x] = PFT_RES16_MASKED;
+        }
+        acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
+        if (y + 1 == h || (y + 1) % t == 0) {
+            pft_pre_tilerow_done_(p, (uint32_t)(y / t));
+        }
+    }
+    /* update: cells whose update taps are all inside the frame are observed */
+    int32_t olo[2], ohi[2];
+    const int32_t nn[2] = {w, h};
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const agx_t *ga = a == 0u ? &gx : &gy;
+        olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
+        ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
+        const bool empty = ovlo[a] > ovhi[a];
+        p->avlo[a] = empty || olo[a] < ovlo[a] ? olo[a] : ovlo[a];
+        p->avhi[a] = empty || ohi[a] > ovhi[a] ? ohi[a] : ovhi[a];
+    }
+    int32_t have = -1; /* the frame rows interpolated along x so far: 0 .. have */
+    for (int32_t jy = -1; jy <= h + 1; ++jy) {
+        uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+        const bool oy = jy >= olo[1] && jy <= ohi[1];
+        const int32_t yb = jy + gy.ub; /* taps yb - 1 .. yb + 2 */
+        for (int32_t y = have + 1; oy && y <= yb + gy.uhi; ++y) {
+            int32_t *hz = p->aring + (size_t)(y & 3) * (size_t)sw;
+            (void)zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl);
+            if (gx.ulo == -1 && gx.uhi == 2) {
+                /* four taps of non-zero weight (the usual case): a masked tap (-1) makes the
+                 * taps' OR negative, a valid one is >= 0; the same values as the loop below */
+                const int32_t *zb = zl + gx.ub;
+                const int32_t w0 = gx.wu[0], w1 = gx.wu[1], w2 = gx.wu[2], w3 = gx.wu[3];
+                for (int32_t j = -1; j < olo[0]; ++j) {
+                    hz[j + 1] = PFT_PRE_ANONE_;
+                }
+                for (int32_t j = olo[0]; j <= ohi[0]; ++j) {
+                    const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
+                    const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
+                    hz[j + 1] = (z0 | z1 | z2 | z3) < 0 ? PFT_PRE_ANONE_ : v;
+                }
+                for (int32_t j = ohi[0] + 1; j <= w + 1; ++j) {
+                    hz[j + 1] = PFT_PRE_ANONE_;
+                }
+                have = y;
+                continue;
+            }
+            for (int32_t j = -1; j <= w + 1; ++j) {
+                int32_t v = PFT_PRE_ANONE_;
+                if (j >= olo[0] && j <= ohi[0]) {
+                    const int32_t xb0 = j + gx.ub;
+                    int32_t sv = 0;
+                    bool ok = true;
+                    for (int32_t i = gx.ulo; i <= gx.uhi; ++i) {
+                        const int32_t z = zl[xb0 + i];
+                        ok = ok && z >= 0;
+                        sv += gx.wu[i + 1] * z;
+                    }
+                    v = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+                }
+                hz[j + 1] = v;
+            }
+            have = y;
+        }
+        const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
+        int32_t fs0 = 0, fs1 = -1; /* the cells done by the fast span (none) */
+        if (oy && iny && gy.ulo == -1 && gy.uhi == 2) {
+            /* observed cells of a row held so far, four taps of non-zero weight: the blend of
+             * the loop below with the same values; a cell with an invalid tap is kept there too */
+            const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
+            const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
+            const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
+            const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
+            const int32_t w0 = gy.wu[0], w1 = gy.wu[1], w2 = gy.wu[2], w3 = gy.wu[3];
+            fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
+            fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
+            for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
+                const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+                const bool inv = (v0 == PFT_PRE_ANONE_) | (v1 == PFT_PRE_ANONE_) |
+                                 (v2 == PFT_PRE_ANONE_) | (v3 == PFT_PRE_ANONE_);
+                int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+                sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                const int32_t bx = b[j + 1];
+                const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
+                b[j + 1] = (uint16_t)(inv ? bx : nb);
+            }
+        }
+        for (int32_t j = -1; j <= w + 1; ++j) {
+            if (j >= fs0 && j <= fs1) {
+                continue; /* done above */
+            }
+            int32_t zt = PFT_PRE_ANONE_;
+            if (oy && j >= olo[0] && j <= ohi[0]) {
+                int32_t sv = 0;
+                bool ok = true;
+                for (int32_t i = gy.ulo; i <= gy.uhi; ++i) {
+                    const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
+                    ok = ok && v != PFT_PRE_ANONE_;
+                    sv += ok ? gy.wu[i + 1] * v : 0;
+                }
+                if (ok) {
+                    sv = (sv + 2048) >> 12;
+                    zt = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                }
+            }
+            const bool old = iny && j >= ovlo[0] && j <= ovhi[0];
+            const int32_t bx = b[j + 1];
+            if (zt != PFT_PRE_ANONE_) {
+                b[j + 1] = (uint16_t)(old ? bx + (((zt - bx) * a15 + 16384) >> 15) : zt);
+            } else if (!old) {
+                /* a cell outside the scene held so far without an interpolated value (one that
+                 * entered, or a margin cell the frame does not cover): from its nearest pixel,
+                 * so that the registration's view of the grid (anchor_view_) holds no cells
+                 * carried in from the other end of a row by the anchor's move */
+                const int32_t z = anchor_zpix_(p, c, f, &gx, &gy, j, jy);
+                b[j + 1] = (uint16_t)(z >= 0 ? z : bx);
+            } else {
+                /* kept */
+            }
+        }
+    }
+    p->bg_frames++;
+    if (!p->jumped) {
+        p->shift_prev[0] = p->st.shift[0];
+        p->shift_prev[1] = p->st.shift[1];
+    }
+}
+
 void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height, t = p->cfg.tile;
@@ -779,6 +1124,10 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
     const uint32_t k1 = (uint32_t)(p->bf - p->rs); /* 0 or 1 */
     /* alpha with 15 bits so that e * alpha fits 32 bits (|e| <= 65535) */
     const int32_t a15 = (int32_t)((alpha + 1) >> 1);
+    if (p->cfg.bg_anchor && !held) {
+        anchor_pass_(p, f, &c, acc, first, a15, k1);
+        return;
+    }
     int32_t *zl = p->line, *bw = p->bwl;
     int32_t carry = 0;  /* first frame: the last unmasked value, for masked pixels */
     int32_t yprev = -1; /* the row written last; p->prev holds its former values */

@@ -23,7 +23,10 @@ struct pft_pre_s {
     /* workspace buffers */
     int16_t *res;          /* residual (R units) then whitened (Q8.8), w * h; inplace: the
                               caller's frame buffer of the last accepted update (NULL before) */
-    uint16_t *bg;          /* TEMPORAL background (U units), w * h */
+    uint16_t *bg;          /* TEMPORAL background (U units), w * h; bg_anchor: (w + 3) * (h + 3) cells */
+    uint16_t *bgv;         /* the background as registration reads it: bg, or (bg_anchor) the grid read at the last frame's position into res */
+    uint32_t bgs;          /* row stride of bgv (elements): w */
+    int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
     int32_t *csum;         /* column sums of the clipped residual (R units) */
@@ -51,6 +54,8 @@ struct pft_pre_s {
     uint32_t last_seq;
     int32_t shift_prev[2]; /* last shift, Q16.16 px (the prediction's base) */
     bool jumped;           /* this frame: the integer search found a jump */
+    int32_t aphi[2];       /* bg_anchor: fraction of the scene position of pixel (0, 0), Q16 in [0, 65536) */
+    int32_t avlo[2], avhi[2]; /* bg_anchor: cells (x, then y; -1 .. w + 1) holding the scene, inclusive */
     pft_pre_stats_t st;
     uint32_t n_peaks;
     bool sig_known;        /* some tile sigma was estimated since init/reset */
