@@ -8,7 +8,8 @@
 #    4 reported rows of every track (and the unheld run has a track of at least 5 rows, so the
 #    check can fail);
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
-#  - integ_alpha removed: the tracks change (the births come from the integration).
+#  - integ_alpha removed: the tracks change (the births come from the integration);
+#  - bg_anchor, clutter_anchor toggled: the residual the manager sees changes.
 # Needs nothing outside the source tree.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
@@ -46,9 +47,20 @@ string(JSON v SET "${v}" tracker clutter_persist 0)
 file(WRITE ${WORK}/nomean.json "${v}")
 string(JSON v REMOVE "${js}" tracker integ_alpha)
 file(WRITE ${WORK}/nointeg.json "${v}")
+# the anchored background and the anchored clutter map: each toggled against the shipped block
+# (absent reads as false)
+foreach(f bg_anchor clutter_anchor)
+  string(JSON cur ERROR_VARIABLE err GET "${js}" tracker ${f})
+  if(err OR NOT cur)
+    string(JSON v SET "${js}" tracker ${f} true)
+  else()
+    string(JSON v SET "${js}" tracker ${f} false)
+  endif()
+  file(WRITE ${WORK}/tog_${f}.json "${v}")
+endforeach()
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
-foreach(c lf hold1 noflat nomean nointeg)
+foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
 endforeach()
@@ -99,7 +111,7 @@ endif()
 list(LENGTH got ngot)
 message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
 
-foreach(c noflat nomean)
+foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/res.i16 ${WORK}/run_${c}/res.i16
                   RESULT_VARIABLE same)
   if(same EQUAL 0)
@@ -111,4 +123,4 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/tracks.
 if(same EQUAL 0)
   message(FATAL_ERROR "nointeg: the tracks are the shipped file's: integ_alpha does not reach the manager")
 endif()
-message(STATUS "flat_block and clutter_mean change the residual, integ_alpha the tracks")
+message(STATUS "flat_block, clutter_mean, bg_anchor and clutter_anchor change the residual, integ_alpha the tracks")
