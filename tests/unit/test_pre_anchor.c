@@ -79,7 +79,7 @@ static void rects(double sx, double sy, int32_t sigma)
             for (int k = 0; k < NREC; ++k) {
                 v += (int64_t)g_ox[k][x] * g_oy[k][y] * (int32_t)k_rect[k][4];
             }
-            v += ((int64_t)sigma * noise_unit_q10()) << 14;
+            v += (int64_t)sigma * noise_unit_q10() * 16384; /* << 14, defined for negatives */
             const int64_t r = (v + ((int64_t)1 << 23)) >> 24;
             g_img[y * W + x] = (uint16_t)(r < 0 ? 0 : (r > 16383 ? 16383 : r));
         }
