@@ -1031,10 +1031,11 @@ static void cl_move_(uint8_t *base, size_t es, int32_t w, int32_t h, int32_t dx,
                 memmove(dst + (size_t)(dx > 0 ? dx : 0) * es, src + (size_t)(dx < 0 ? -dx : 0) * es,
                         (size_t)(w - adx) * es);
             }
-            f0 = dx > 0 ? 0 : w - adx;
-            f1 = dx > 0 ? dx : w;
+            /* a move of the whole width or more fills the row (clamped: never outside it) */
+            f0 = dx > 0 ? 0 : (adx < w ? w - adx : 0);
+            f1 = dx > 0 ? (adx < w ? dx : w) : w;
         }
-        if (es == 1u) {
+        if (es == 1u && f1 > f0) {
             memset(dst + f0, (int)fb[0], (size_t)(f1 - f0));
         } else {
             for (int32_t x = f0; x < f1; ++x) {
