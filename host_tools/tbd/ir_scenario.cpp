@@ -205,6 +205,8 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         T.sigma_bracket = t.at("sigma_bracket").as_bool();
     if (t.has("bg_anchor"))
         T.bg_anchor = t.at("bg_anchor").as_bool();
+    if (T.bg_anchor && T.preprocess != "temporal")
+        t.at("bg_anchor").fail("anchors the temporal background: needs preprocess \"temporal\"");
     T.flat_block = static_cast<int>(t.integer_in("flat_block", T.flat_block, 0, 64));
     if (T.flat_block != 0 && (T.flat_block < 4 || (T.flat_block & (T.flat_block - 1)) != 0))
         t.at("flat_block").fail("must be 0 (off) or a power of two 4..64");
