@@ -895,6 +895,14 @@ public:
         // A frame that throws (a bad frame part-way through the sequence, a refused input) ends
         // the run with the streamed outputs closed: --residual-out and --stage-out keep every
         // frame before it, the overlay is finished with them; the error names the frame.
+        auto run_meta = [&](std::size_t frames) {
+            return json{{"tool", "pft run"}, {"kind", "tbd_ir"}, {"sequence", o.sequence},
+                        {"scenario", s.name}, {"numeric", numeric_name()}, {"frames", frames},
+                        {"skipped_frames", rd->skipped()}, {"seed", seed}, {"bit_depth", bits},
+                        {"noise_sigma_spatial", es.sigma}, {"noise_sigma_temporal", et.sigma},
+                        {"workspace_bytes", pl.workspace_bytes()},
+                        {"pre_workspace_bytes", pl.pre_workspace_bytes()}};
+        };
         auto stop_outputs = [&]() {
             rout.close_quietly();
             sout.close_quietly();
@@ -937,11 +945,29 @@ public:
         } catch (const InputError &e) {
             stop_outputs();
             const std::size_t n = out.size();
+            // the tracks of the frames before it are written too, marked as a stopped run
+            bool wrote = false;
+            if (n > 0) {
+                try {
+                    json meta = run_meta(out.size());
+                    meta["stopped_at_input_frame"] = n + 1;
+                    meta["stop_reason"] = e.what();
+                    write_tracks(out_dir, out, meta);
+                    json dmeta = meta;
+                    dmeta["tracker"] = "dbt";
+                    write_tracks(out_dir, dout, dmeta, "dbt_");
+                    wrote = true;
+                } catch (...) {  // the run's own error is the one to report
+                }
+            }
             throw InputError("run: " + o.sequence + ": stopped at input frame " + std::to_string(n + 1) + ": " +
                              e.what() + " (" + std::to_string(n) + " frame(s) processed before it" +
-                             (n > 0 && (!o.residual_out.empty() || !o.stage_out.empty() || ov)
-                                  ? "; the streamed outputs keep them"
-                                  : "") +
+                             (wrote ? "; " + out_dir + "/tracks.csv, tracks.json" +
+                                          (!o.residual_out.empty() || !o.stage_out.empty() || ov
+                                               ? " and the streamed outputs"
+                                               : "") +
+                                          " keep them"
+                                    : "") +
                              ")");
         } catch (...) {
             stop_outputs();
@@ -953,12 +979,7 @@ public:
         double dt = seconds_since(t0);
         if (ov)
             ov->close();
-        json meta = {{"tool", "pft run"}, {"kind", "tbd_ir"}, {"sequence", o.sequence},
-                     {"scenario", s.name}, {"numeric", numeric_name()}, {"frames", out.size()},
-                     {"skipped_frames", rd->skipped()}, {"seed", seed}, {"bit_depth", bits},
-                     {"noise_sigma_spatial", es.sigma}, {"noise_sigma_temporal", et.sigma},
-                     {"workspace_bytes", pl.workspace_bytes()},
-                     {"pre_workspace_bytes", pl.pre_workspace_bytes()}};
+        json meta = run_meta(out.size());
         write_tracks(out_dir, out, meta);
         json dmeta = meta;
         dmeta["tracker"] = "dbt";

@@ -5,7 +5,9 @@
 # and one `pft: error:` line naming input frame 10 and the 9 frames processed before it, and
 # the streamed outputs must be closed with those 9 frames in them: --stage-out's header and
 # rows 1..9 (frame and seq 1..9, in order), --residual-out exactly 9 frames of 96 x 72 int16,
-# and the overlay (overlay.avi) finished, not dropped. Needs nothing outside the source tree.
+# and the overlay (overlay.avi) finished, not dropped; tracks.csv and tracks.json (and the DBT's
+# dbt_tracks.*) written for those 9 frames, tracks.json marked "stopped_at_input_frame": 10 with
+# "frames": 9. Needs nothing outside the source tree.
 include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
 
 file(REMOVE_RECURSE ${WORK})
@@ -32,7 +34,7 @@ execute_process(COMMAND ${PFT} run --scenario ${sc} --sequence ${WORK}/frames --
 if(NOT rc STREQUAL "2")
   message(FATAL_ERROR "expected exit status 2, got ${rc}\n${out}\n${err}")
 endif()
-if(NOT err MATCHES "(^|\n)pft: error: run: [^\n]*: stopped at input frame 10: [^\n]*frame 10 is 4x4, the first was 96x72 \\(9 frame\\(s\\) processed before it; the streamed outputs keep them\\)")
+if(NOT err MATCHES "(^|\n)pft: error: run: [^\n]*: stopped at input frame 10: [^\n]*frame 10 is 4x4, the first was 96x72 \\(9 frame\\(s\\) processed before it; [^\n]*/run/tracks.csv, tracks.json and the streamed outputs keep them\\)")
   message(FATAL_ERROR "stderr does not name the bad frame and the frames kept:\n${err}")
 endif()
 
@@ -64,5 +66,20 @@ endif()
 file(SIZE ${WORK}/run/overlay.avi vbytes)
 if(vbytes EQUAL 0)
   message(FATAL_ERROR "run/overlay.avi is empty")
+endif()
+foreach(f tracks.csv tracks.json dbt_tracks.csv dbt_tracks.json)
+  if(NOT EXISTS ${WORK}/run/${f})
+    message(FATAL_ERROR "run/${f}: not written for the 9 frames before the bad one")
+  endif()
+endforeach()
+file(STRINGS ${WORK}/run/tracks.csv trows LIMIT_COUNT 1)
+if(NOT trows STREQUAL "frame,track,x,y,vx,vy,intensity,p_exist,first_frame")
+  message(FATAL_ERROR "run/tracks.csv header: '${trows}'")
+endif()
+file(READ ${WORK}/run/tracks.json tj)
+string(JSON stopped ERROR_VARIABLE jerr GET "${tj}" stopped_at_input_frame)
+string(JSON nfr GET "${tj}" frames)
+if(jerr OR NOT stopped EQUAL 10 OR NOT nfr EQUAL 9)
+  message(FATAL_ERROR "run/tracks.json: stopped_at_input_frame '${stopped}' (${jerr}), frames '${nfr}'; expected 10 and 9")
 endif()
 message(STATUS "run_stop: passed (exit 2, 9 rows, ${bytes} residual bytes, overlay ${vbytes} bytes)")
