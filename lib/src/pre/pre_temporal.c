@@ -857,26 +857,53 @@ typedef struct {
     int32_t a15;
 } anchor_geom_t;
 
+/* Cell j (observed) of a frame row zl interpolated along x at the update's fraction: taps
+ * ulo .. uhi, U * 16, PFT_PRE_ANONE_ when one of them is masked. */
+static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
+{
+    const int32_t xb0 = j + gx->ub;
+    int32_t sv = 0;
+    bool ok = true;
+    for (int32_t i = gx->ulo; i <= gx->uhi; ++i) {
+        const int32_t z = zl[xb0 + i];
+        ok = ok && z >= 0;
+        sv += gx->wu[i + 1] * z;
+    }
+    return ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+}
+
 /* Frame row zl (U units, -1 masked) interpolated along x at the update's fraction into hz
  * (w + 3 cells, U * 16; PFT_PRE_ANONE_ where a tap is masked or the cell is not observed). */
 static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz)
 {
     const agx_t *gx = &g->gx;
     const int32_t olo = g->olo[0], ohi = g->ohi[0];
-    if (gx->ulo == -1 && gx->uhi == 2) {
-        /* four taps of non-zero weight (the usual case): a masked tap (-1) makes the taps' OR
-         * negative, a valid one is >= 0; the same values as the loop below */
+    /* the cells whose four taps j + ub - 1 .. j + ub + 2 are all in the row: the loop below
+     * with the same values, a tap of weight 0 adding 0; a masked tap (-1) among those the
+     * loop below tests (ulo .. uhi) makes the OR of the masked taps negative, a valid one is
+     * >= 0 */
+    const int32_t fa = olo > 1 - gx->ub ? olo : 1 - gx->ub;
+    const int32_t fb = ohi < w - 3 - gx->ub ? ohi : w - 3 - gx->ub;
+    if (fa <= fb) {
         const int32_t *zb = zl + gx->ub;
         const int32_t w0 = gx->wu[0], w1 = gx->wu[1], w2 = gx->wu[2], w3 = gx->wu[3];
+        const int32_t m0 = gx->ulo == -1 ? -1 : 0, m2 = gx->uhi >= 1 ? -1 : 0;
+        const int32_t m3 = gx->uhi == 2 ? -1 : 0;
         for (int32_t j = -1; j < olo; ++j) {
             hz[j + 1] = PFT_PRE_ANONE_;
         }
-        for (int32_t j = olo; j <= ohi; ++j) {
+        for (int32_t j = olo; j < fa; ++j) {
+            hz[j + 1] = hcell_(gx, zl, j);
+        }
+        for (int32_t j = fa; j <= fb; ++j) { /* vectorisable */
             const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
             const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
-            hz[j + 1] = (z0 | z1 | z2 | z3) < 0 ? PFT_PRE_ANONE_ : v;
+            hz[j + 1] = ((z0 & m0) | z1 | (z2 & m2) | (z3 & m3)) < 0 ? PFT_PRE_ANONE_ : v;
         }
-        for (int32_t j = ohi + 1; j <= w + 1; ++j) {
+        for (int32_t j = fb + 1; j <= ohi; ++j) {
+            hz[j + 1] = hcell_(gx, zl, j);
+        }
+        for (int32_t j = (ohi + 1 > -1 ? ohi + 1 : -1); j <= w + 1; ++j) {
             hz[j + 1] = PFT_PRE_ANONE_;
         }
         return;
@@ -912,20 +939,25 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
     const int32_t yb = jy + gy->ub; /* taps yb - 1 .. yb + 2 */
     const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
     int32_t fs0 = 0, fs1 = -1; /* the cells done by the fast span (none) */
-    if (oy && iny && gy->ulo == -1 && gy->uhi == 2) {
-        /* observed cells of a row held so far, four taps of non-zero weight: the blend of
-         * the loop below with the same values; a cell with an invalid tap is kept there too */
+    if (oy && iny) {
+        /* observed cells of a row held so far: the blend of the loop below with the same
+         * values (a tap of weight 0 adds 0, and only the taps of non-zero weight, which are
+         * frame rows, are tested); a cell with an invalid tap is kept there too */
         const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
         const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
         const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
         const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
         const int32_t w0 = gy->wu[0], w1 = gy->wu[1], w2 = gy->wu[2], w3 = gy->wu[3];
+        /* PFT_PRE_ANONE_ for the taps ulo .. uhi that the loop below tests (the others have
+         * weight 0), else a value no ring cell holds (a cell is PFT_PRE_ANONE_ or above -2^18) */
+        const int32_t nv = PFT_PRE_ANONE_ + 1;
+        const int32_t n0 = gy->ulo == -1 ? PFT_PRE_ANONE_ : nv, n1 = PFT_PRE_ANONE_;
+        const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
         fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
         fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
         for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
             const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
-            const bool inv = (v0 == PFT_PRE_ANONE_) | (v1 == PFT_PRE_ANONE_) |
-                             (v2 == PFT_PRE_ANONE_) | (v3 == PFT_PRE_ANONE_);
+            const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
             int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
             sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
             const int32_t bx = b[j + 1];
