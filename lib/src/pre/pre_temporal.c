@@ -852,7 +852,8 @@ static void anchor_view_(pft_pre_t *p)
 /* The geometry of one frame's anchored pass: the read and update taps per axis, the valid
  * ranges before the update (ov) and the observed cells (o), alpha in 15 bits. */
 typedef struct {
-    agx_t gx, gy;
+    agx_t gx;
+    agx_t gy;
     int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
     int32_t a15;
 } anchor_geom_t;
@@ -932,7 +933,8 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
 static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const int32_t *zn)
 {
     const int32_t w = p->cfg.width, sw = w + 3, a15 = g->a15;
-    const agx_t *gx = &g->gx, *gy = &g->gy;
+    const agx_t *gx = &g->gx;
+    const agx_t *gy = &g->gy;
     const int32_t *olo = g->olo, *ohi = g->ohi, *ovlo = g->ovlo, *ovhi = g->ovhi;
     uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
     const bool oy = jy >= olo[1] && jy <= ohi[1];
@@ -1078,7 +1080,8 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->avlo[a] = empty || g.olo[a] < g.ovlo[a] ? g.olo[a] : g.ovlo[a];
         p->avhi[a] = empty || g.ohi[a] > g.ovhi[a] ? g.ohi[a] : g.ovhi[a];
     }
-    const agx_t *gx = &g.gx, *gy = &g.gy;
+    const agx_t *gx = &g.gx;
+    const agx_t *gy = &g.gy;
     const int16_t gw0 = (int16_t)gy->wr[0], gw1 = (int16_t)gy->wr[1], gw2 = (int16_t)gy->wr[2];
     const int16_t gw3 = (int16_t)gy->wr[3];
     const int32_t *ovlo = g.ovlo, *ovhi = g.ovhi;
