@@ -789,22 +789,6 @@ static void agx_of_(int32_t phi, bool cubic, agx_t *g)
     g->uhi = g->wu[3] != 0 ? 2 : (g->wu[2] != 0 ? 1 : 0);
 }
 
-/* The U value of the frame pixel nearest to cell j (and row cell jy) of the grid, clamped
- * into the frame; -1 when that pixel is masked. */
-static int32_t anchor_zpix_(const pft_pre_t *p, const pft_pre_cls_t *c, const pft_frame_t *f,
-                            const agx_t *gx, const agx_t *gy, int32_t j, int32_t jy)
-{
-    const int32_t xn = j + gx->ub + (gx->ub != -gx->k ? 1 : 0), yn = jy + gy->ub + (gy->ub != -gy->k ? 1 : 0);
-    const uint32_t x = (uint32_t)clampi_(xn, 0, (int32_t)p->cfg.width - 1);
-    const uint32_t y = (uint32_t)clampi_(yn, 0, (int32_t)p->cfg.height - 1);
-    const uint32_t v = pft_pre_raw_(pft_frame_row(f, y), x, c);
-    if (!pft_pre_valid_(c, v, x, y)) {
-        return -1;
-    }
-    const int32_t zu = (int32_t)(v << p->bf) - p->colnow[x];
-    return zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
-}
-
 /* A whole-cell move of the anchor by (dx, dy): new cell (j, J) holds old cell (j + dx,
  * J + dy), by one memmove of the stored values (exact; the cells that wrap around a row end
  * are outside the valid ranges, moved with the anchor and cut to the grid). */
@@ -836,13 +820,16 @@ static void anchor_view_(pft_pre_t *p)
     agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
     int32_t *vb = p->aring;
     uint16_t *out = (uint16_t *)(void *)p->res;
+    const int16_t gw0 = (int16_t)gy.wr[0], gw1 = (int16_t)gy.wr[1], gw2 = (int16_t)gy.wr[2];
+    const int16_t gw3 = (int16_t)gy.wr[3];
     for (int32_t y = 0; y < h; ++y) {
         const uint16_t *t[4];
         for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
             t[i] = p->bg + (size_t)clampi_(y + gy.k + i, 0, h + 2) * (size_t)sw;
         }
-        for (int32_t i = 0; i < sw; ++i) {
-            vb[i] = (gy.wr[0] * t[0][i] + gy.wr[1] * t[1][i] + gy.wr[2] * t[2][i] + gy.wr[3] * t[3][i] + 8) >> 4;
+        /* (sum of wr t + 8) >> 4 in 16 x 16-bit products (vtap_: the weights sum to 256) */
+        for (int32_t i = 0; i < sw; ++i) { /* vectorisable */
+            vb[i] = vtap_(t[0], t[1], t[2], t[3], gw0, gw1, gw2, gw3, i);
         }
         uint16_t *o = out + (size_t)y * (size_t)w;
         /* storage columns x + k .. x + k + 3; the last pixel's fourth tap (k = 1) clamped */
@@ -862,6 +849,158 @@ static void anchor_view_(pft_pre_t *p)
     }
 }
 
+/* The geometry of one frame's anchored pass: the read and update taps per axis, the valid
+ * ranges before the update (ov) and the observed cells (o), alpha in 15 bits. */
+typedef struct {
+    agx_t gx;
+    agx_t gy;
+    int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
+    int32_t a15;
+} anchor_geom_t;
+
+/* Cell j (observed) of a frame row zl interpolated along x at the update's fraction: taps
+ * ulo .. uhi, U * 16, PFT_PRE_ANONE_ when one of them is masked. */
+static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
+{
+    const int32_t xb0 = j + gx->ub;
+    int32_t sv = 0;
+    bool ok = true;
+    for (int32_t i = gx->ulo; i <= gx->uhi; ++i) {
+        const int32_t z = zl[xb0 + i];
+        ok = ok && z >= 0;
+        sv += gx->wu[i + 1] * z;
+    }
+    return ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+}
+
+/* Frame row zl (U units, -1 masked) interpolated along x at the update's fraction into hz
+ * (w + 3 cells, U * 16; PFT_PRE_ANONE_ where a tap is masked or the cell is not observed). */
+static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz)
+{
+    const agx_t *gx = &g->gx;
+    const int32_t olo = g->olo[0], ohi = g->ohi[0];
+    /* the cells whose four taps j + ub - 1 .. j + ub + 2 are all in the row: the loop below
+     * with the same values, a tap of weight 0 adding 0; a masked tap (-1) among those the
+     * loop below tests (ulo .. uhi) makes the OR of the masked taps negative, a valid one is
+     * >= 0 */
+    const int32_t fa = olo > 1 - gx->ub ? olo : 1 - gx->ub;
+    const int32_t fb = ohi < w - 3 - gx->ub ? ohi : w - 3 - gx->ub;
+    if (fa <= fb) {
+        const int32_t *zb = zl + gx->ub;
+        const int32_t w0 = gx->wu[0], w1 = gx->wu[1], w2 = gx->wu[2], w3 = gx->wu[3];
+        const int32_t m0 = gx->ulo == -1 ? -1 : 0, m2 = gx->uhi >= 1 ? -1 : 0;
+        const int32_t m3 = gx->uhi == 2 ? -1 : 0;
+        for (int32_t j = -1; j < olo; ++j) {
+            hz[j + 1] = PFT_PRE_ANONE_;
+        }
+        for (int32_t j = olo; j < fa; ++j) {
+            hz[j + 1] = hcell_(gx, zl, j);
+        }
+        for (int32_t j = fa; j <= fb; ++j) { /* vectorisable */
+            const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
+            const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
+            hz[j + 1] = ((z0 & m0) | z1 | (z2 & m2) | (z3 & m3)) < 0 ? PFT_PRE_ANONE_ : v;
+        }
+        for (int32_t j = fb + 1; j <= ohi; ++j) {
+            hz[j + 1] = hcell_(gx, zl, j);
+        }
+        for (int32_t j = (ohi + 1 > -1 ? ohi + 1 : -1); j <= w + 1; ++j) {
+            hz[j + 1] = PFT_PRE_ANONE_;
+        }
+        return;
+    }
+    for (int32_t j = -1; j <= w + 1; ++j) {
+        int32_t v = PFT_PRE_ANONE_;
+        if (j >= olo && j <= ohi) {
+            const int32_t xb0 = j + gx->ub;
+            int32_t sv = 0;
+            bool ok = true;
+            for (int32_t i = gx->ulo; i <= gx->uhi; ++i) {
+                const int32_t z = zl[xb0 + i];
+                ok = ok && z >= 0;
+                sv += gx->wu[i + 1] * z;
+            }
+            v = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+        }
+        hz[j + 1] = v;
+    }
+}
+
+/* The update of grid row jy from the ring (the frame rows interpolated along x, taps
+ * jy + ub - 1 .. jy + ub + 2, all held); zn is the converted frame row of the cells' nearest
+ * pixels (row jy - k clamped), for the cells outside the valid ranges without an interpolated
+ * value. */
+static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const int32_t *zn)
+{
+    const int32_t w = p->cfg.width, sw = w + 3, a15 = g->a15;
+    const agx_t *gx = &g->gx;
+    const agx_t *gy = &g->gy;
+    const int32_t *olo = g->olo, *ohi = g->ohi, *ovlo = g->ovlo, *ovhi = g->ovhi;
+    uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+    const bool oy = jy >= olo[1] && jy <= ohi[1];
+    const int32_t yb = jy + gy->ub; /* taps yb - 1 .. yb + 2 */
+    const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
+    int32_t fs0 = 0, fs1 = -1; /* the cells done by the fast span (none) */
+    if (oy && iny) {
+        /* observed cells of a row held so far: the blend of the loop below with the same
+         * values (a tap of weight 0 adds 0, and only the taps of non-zero weight, which are
+         * frame rows, are tested); a cell with an invalid tap is kept there too */
+        const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
+        const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
+        const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
+        const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
+        const int32_t w0 = gy->wu[0], w1 = gy->wu[1], w2 = gy->wu[2], w3 = gy->wu[3];
+        /* PFT_PRE_ANONE_ for the taps ulo .. uhi that the loop below tests (the others have
+         * weight 0), else a value no ring cell holds (a cell is PFT_PRE_ANONE_ or above -2^18) */
+        const int32_t nv = PFT_PRE_ANONE_ + 1;
+        const int32_t n0 = gy->ulo == -1 ? PFT_PRE_ANONE_ : nv, n1 = PFT_PRE_ANONE_;
+        const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
+        fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
+        fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
+        for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
+            const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+            const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+            int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+            sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+            const int32_t bx = b[j + 1];
+            const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
+            b[j + 1] = (uint16_t)(inv ? bx : nb);
+        }
+    }
+    /* the cells before and after the fast span [fs0, fs1] (done above) */
+    const int32_t ja = fs0 <= fs1 ? fs0 : w + 2, jb = fs0 <= fs1 ? fs1 + 1 : w + 2;
+    for (int32_t j = ja > -1 ? -1 : jb; j <= w + 1; j = j + 1 == ja ? jb : j + 1) {
+        int32_t zt = PFT_PRE_ANONE_;
+        if (oy && j >= olo[0] && j <= ohi[0]) {
+            int32_t sv = 0;
+            bool ok = true;
+            for (int32_t i = gy->ulo; i <= gy->uhi; ++i) {
+                const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
+                ok = ok && v != PFT_PRE_ANONE_;
+                sv += ok ? gy->wu[i + 1] * v : 0;
+            }
+            if (ok) {
+                sv = (sv + 2048) >> 12;
+                zt = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+            }
+        }
+        const bool old = iny && j >= ovlo[0] && j <= ovhi[0];
+        const int32_t bx = b[j + 1];
+        if (zt != PFT_PRE_ANONE_) {
+            b[j + 1] = (uint16_t)(old ? bx + (((zt - bx) * a15 + 16384) >> 15) : zt);
+        } else if (!old) {
+            /* a cell outside the scene held so far without an interpolated value (one that
+             * entered, or a margin cell the frame does not cover): from its nearest pixel
+             * (j - k, jy - k) clamped into the frame, so that the registration's view of the grid (anchor_view_)
+             * holds no cells carried in from the other end of a row by the anchor's move */
+            const int32_t z = zn[clampi_(j - gx->k, 0, w - 1)];
+            b[j + 1] = (uint16_t)(z >= 0 ? z : bx);
+        } else {
+            /* kept */
+        }
+    }
+}
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -875,14 +1014,23 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
          * cells of the frame's pixels hold the scene */
         p->aphi[0] = 0;
         p->aphi[1] = 0;
-        agx_t g0;
-        agx_of_(0, cubic, &g0);
         int32_t carry = 0;
+        /* cell (j, jy) from pixel (j, jy) clamped into the frame (its nearest pixel), in the
+         * order of the cells; each frame row converted once, its masked pixels counted */
         for (int32_t jy = -1; jy <= h + 1; ++jy) {
             uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
-            for (int32_t j = -1; j <= w + 1; ++j) {
-                const int32_t z = anchor_zpix_(p, c, f, &g0, &g0, j, jy);
-                carry = z >= 0 ? z : carry;
+            const int32_t y = clampi_(jy, 0, h - 1);
+            if ((jy == -1 || (jy == y && jy > 0)) && zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+                count_row_(c, f, (uint32_t)y, acc);
+            }
+            carry = zl[0] >= 0 ? zl[0] : carry; /* cell -1 */
+            b[0] = (uint16_t)carry;
+            for (int32_t j = 0; j < w; ++j) {
+                carry = zl[j] >= 0 ? zl[j] : carry;
+                b[j + 1] = (uint16_t)carry;
+            }
+            for (int32_t j = w; j <= w + 1; ++j) {
+                carry = zl[w - 1] >= 0 ? zl[w - 1] : carry;
                 b[j + 1] = (uint16_t)carry;
             }
         }
@@ -891,9 +1039,6 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->avhi[0] = w - 1;
         p->avhi[1] = h - 1;
         for (int32_t y = 0; y < h; ++y) {
-            if (zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
-                count_row_(c, f, (uint32_t)y, acc);
-            }
             int16_t *r = p->res + (size_t)y * (size_t)w;
             for (int32_t x = 0; x < w; ++x) {
                 r[x] = PFT_RES16_MASKED;
@@ -917,21 +1062,50 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->aphi[a] = (int32_t)(v - fa * 65536);
     }
     anchor_move_(p, dA[0], dA[1]);
-    agx_t gx;
-    agx_t gy;
-    agx_of_(p->aphi[0], cubic, &gx);
-    agx_of_(p->aphi[1], cubic, &gy);
-    const int32_t ovlo[2] = {p->avlo[0], p->avlo[1]}, ovhi[2] = {p->avhi[0], p->avhi[1]};
+    anchor_geom_t g;
+    agx_of_(p->aphi[0], cubic, &g.gx);
+    agx_of_(p->aphi[1], cubic, &g.gy);
+    g.ovlo[0] = p->avlo[0];
+    g.ovlo[1] = p->avlo[1];
+    g.ovhi[0] = p->avhi[0];
+    g.ovhi[1] = p->avhi[1];
+    g.a15 = a15;
+    /* update: cells whose update taps are all inside the frame are observed */
+    const int32_t nn[2] = {w, h};
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const agx_t *ga = a == 0u ? &g.gx : &g.gy;
+        g.olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
+        g.ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
+        const bool empty = g.ovlo[a] > g.ovhi[a];
+        p->avlo[a] = empty || g.olo[a] < g.ovlo[a] ? g.olo[a] : g.ovlo[a];
+        p->avhi[a] = empty || g.ohi[a] > g.ovhi[a] ? g.ohi[a] : g.ovhi[a];
+    }
+    const agx_t *gx = &g.gx;
+    const agx_t *gy = &g.gy;
+    const int16_t gw0 = (int16_t)gy->wr[0], gw1 = (int16_t)gy->wr[1], gw2 = (int16_t)gy->wr[2];
+    const int16_t gw3 = (int16_t)gy->wr[3];
+    const int32_t *ovlo = g.ovlo, *ovhi = g.ovhi;
     /* residual: pixels whose read taps are all valid cells */
-    const int32_t xa = clampi_(ovlo[0] - gx.k - gx.rlo, 0, w), xb = clampi_(ovhi[0] - gx.k - gx.rhi, -1, w - 1);
-    int32_t *vb = p->aring; /* (w + 3) cells of one row: the ring is free until the update */
+    const int32_t xa = clampi_(ovlo[0] - gx->k - gx->rlo, 0, w), xb = clampi_(ovhi[0] - gx->k - gx->rhi, -1, w - 1);
+    /* One pass over the frame rows: row y is converted once (into zl, the row before kept in
+     * zp), its residual made from the grid as it was, its horizontal interpolation put in the
+     * ring, and then grid row y + k - 1, which no later residual row reads and whose update
+     * taps are frame rows up to y, is updated (its cells without an interpolated value from
+     * the nearest pixel, frame row y + k - 1 - k clamped: zp, or zl on row 0). */
+    int32_t jn = -1; /* the next grid row to update */
+    /* two rows that the whitening (pft_pre_row_out_, which uses p->line) leaves alone */
+    zl = p->vb;
+    int32_t *zp = p->bwl;
     for (int32_t y = 0; y < h; ++y) {
         if (zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
             count_row_(c, f, (uint32_t)y, acc);
         }
+        /* the ring's slot of row y holds row y - 4, read by no update after the last one:
+         * (w + 3) cells of scratch for the residual's vertical blends */
+        int32_t *vb = p->aring + (size_t)(y & 3) * (size_t)sw;
         int16_t *r = p->res + (size_t)y * (size_t)w;
-        const int32_t r0 = y + gy.k; /* taps r0 - 1 .. r0 + 2 */
-        const bool covered = r0 + gy.rlo >= ovlo[1] && r0 + gy.rhi <= ovhi[1] && xa <= xb;
+        const int32_t r0 = y + gy->k; /* taps r0 - 1 .. r0 + 2 */
+        const bool covered = r0 + gy->rlo >= ovlo[1] && r0 + gy->rhi <= ovhi[1] && xa <= xb;
         if (covered) {
             /* storage rows r0 .. r0 + 3 (cells r0 - 1 .. r0 + 2), clamped to the grid: a tap
              * outside it has weight 0 (covered) */
@@ -940,12 +1114,10 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
                 tr[i] = p->bg + (size_t)clampi_(r0 + i, 0, h + 2) * (size_t)sw;
             }
             const uint16_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
-            /* storage columns of the taps (x + k .. x + k + 3); vb has 4 (w + 3) entries, so
-             * that the zero-weight tap past the grid reads a finite value */
-            const int32_t c0 = xa + gx.k, c1 = xb + gx.k + 3 > w + 2 ? w + 2 : xb + gx.k + 3;
-            for (int32_t i = c0; i <= c1; ++i) {
-                const int32_t v = gy.wr[0] * t0[i] + gy.wr[1] * t1[i] + gy.wr[2] * t2[i] + gy.wr[3] * t3[i];
-                vb[i] = (v + 8) >> 4; /* U * 16 */
+            /* storage columns of the taps (x + k .. x + k + 3), at most w + 2 */
+            const int32_t c0 = xa + gx->k, c1 = xb + gx->k + 3 > w + 2 ? w + 2 : xb + gx->k + 3;
+            for (int32_t i = c0; i <= c1; ++i) { /* vectorisable: U * 16, as anchor_view_ */
+                vb[i] = vtap_(t0, t1, t2, t3, gw0, gw1, gw2, gw3, i);
             }
         }
         /* masked outside the covered span [xa, xb] (or the whole row), and where z is */
@@ -954,10 +1126,23 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             r[x] = PFT_RES16_MASKED;
         }
         {
-            const int32_t *v = vb + gx.k; /* storage columns x + k .. x + k + 3 */
-            const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
-            for (int32_t x = ca; x <= cb; ++x) { /* vectorisable */
+            /* storage columns x + k .. x + k + 3, inside the slot (w + 3 cells) for x < xe;
+             * a tap past it (x + k + i > w + 2) is past the covered taps: weight 0, left out */
+            const int32_t *v = vb + gx->k;
+            const int32_t w0 = gx->wr[0], w1 = gx->wr[1], w2 = gx->wr[2], w3 = gx->wr[3];
+            const int32_t xe = cb < w - 1 - gx->k ? cb : w - 1 - gx->k;
+            for (int32_t x = ca; x <= xe; ++x) { /* vectorisable */
                 const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+                const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+                r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
+            }
+            for (int32_t x = (xe + 1 > ca ? xe + 1 : ca); x <= cb; ++x) {
+                int32_t sv = 2048;
+                for (int32_t i = 0; i < 4 && x + gx->k + i <= w + 2; ++i) {
+                    sv += gx->wr[i] * v[x + i];
+                }
+                sv >>= 12;
                 const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
                 const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
                 r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
@@ -970,118 +1155,16 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
         }
+        anchor_hrow_(&g, zl, w, vb);
+        for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
+            anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
+        }
+        int32_t *zs = zp;
+        zp = zl;
+        zl = zs;
     }
-    /* update: cells whose update taps are all inside the frame are observed */
-    int32_t olo[2], ohi[2];
-    const int32_t nn[2] = {w, h};
-    for (uint32_t a = 0; a < 2u; ++a) {
-        const agx_t *ga = a == 0u ? &gx : &gy;
-        olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
-        ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
-        const bool empty = ovlo[a] > ovhi[a];
-        p->avlo[a] = empty || olo[a] < ovlo[a] ? olo[a] : ovlo[a];
-        p->avhi[a] = empty || ohi[a] > ovhi[a] ? ohi[a] : ovhi[a];
-    }
-    int32_t have = -1; /* the frame rows interpolated along x so far: 0 .. have */
-    for (int32_t jy = -1; jy <= h + 1; ++jy) {
-        uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
-        const bool oy = jy >= olo[1] && jy <= ohi[1];
-        const int32_t yb = jy + gy.ub; /* taps yb - 1 .. yb + 2 */
-        for (int32_t y = have + 1; oy && y <= yb + gy.uhi; ++y) {
-            int32_t *hz = p->aring + (size_t)(y & 3) * (size_t)sw;
-            (void)zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl);
-            if (gx.ulo == -1 && gx.uhi == 2) {
-                /* four taps of non-zero weight (the usual case): a masked tap (-1) makes the
-                 * taps' OR negative, a valid one is >= 0; the same values as the loop below */
-                const int32_t *zb = zl + gx.ub;
-                const int32_t w0 = gx.wu[0], w1 = gx.wu[1], w2 = gx.wu[2], w3 = gx.wu[3];
-                for (int32_t j = -1; j < olo[0]; ++j) {
-                    hz[j + 1] = PFT_PRE_ANONE_;
-                }
-                for (int32_t j = olo[0]; j <= ohi[0]; ++j) {
-                    const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
-                    const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
-                    hz[j + 1] = (z0 | z1 | z2 | z3) < 0 ? PFT_PRE_ANONE_ : v;
-                }
-                for (int32_t j = ohi[0] + 1; j <= w + 1; ++j) {
-                    hz[j + 1] = PFT_PRE_ANONE_;
-                }
-                have = y;
-                continue;
-            }
-            for (int32_t j = -1; j <= w + 1; ++j) {
-                int32_t v = PFT_PRE_ANONE_;
-                if (j >= olo[0] && j <= ohi[0]) {
-                    const int32_t xb0 = j + gx.ub;
-                    int32_t sv = 0;
-                    bool ok = true;
-                    for (int32_t i = gx.ulo; i <= gx.uhi; ++i) {
-                        const int32_t z = zl[xb0 + i];
-                        ok = ok && z >= 0;
-                        sv += gx.wu[i + 1] * z;
-                    }
-                    v = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
-                }
-                hz[j + 1] = v;
-            }
-            have = y;
-        }
-        const bool iny = jy >= ovlo[1] && jy <= ovhi[1];
-        int32_t fs0 = 0, fs1 = -1; /* the cells done by the fast span (none) */
-        if (oy && iny && gy.ulo == -1 && gy.uhi == 2) {
-            /* observed cells of a row held so far, four taps of non-zero weight: the blend of
-             * the loop below with the same values; a cell with an invalid tap is kept there too */
-            const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
-            const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
-            const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
-            const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
-            const int32_t w0 = gy.wu[0], w1 = gy.wu[1], w2 = gy.wu[2], w3 = gy.wu[3];
-            fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
-            fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
-            for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
-                const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
-                const bool inv = (v0 == PFT_PRE_ANONE_) | (v1 == PFT_PRE_ANONE_) |
-                                 (v2 == PFT_PRE_ANONE_) | (v3 == PFT_PRE_ANONE_);
-                int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
-                sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-                const int32_t bx = b[j + 1];
-                const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
-                b[j + 1] = (uint16_t)(inv ? bx : nb);
-            }
-        }
-        for (int32_t j = -1; j <= w + 1; ++j) {
-            if (j >= fs0 && j <= fs1) {
-                continue; /* done above */
-            }
-            int32_t zt = PFT_PRE_ANONE_;
-            if (oy && j >= olo[0] && j <= ohi[0]) {
-                int32_t sv = 0;
-                bool ok = true;
-                for (int32_t i = gy.ulo; i <= gy.uhi; ++i) {
-                    const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
-                    ok = ok && v != PFT_PRE_ANONE_;
-                    sv += ok ? gy.wu[i + 1] * v : 0;
-                }
-                if (ok) {
-                    sv = (sv + 2048) >> 12;
-                    zt = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-                }
-            }
-            const bool old = iny && j >= ovlo[0] && j <= ovhi[0];
-            const int32_t bx = b[j + 1];
-            if (zt != PFT_PRE_ANONE_) {
-                b[j + 1] = (uint16_t)(old ? bx + (((zt - bx) * a15 + 16384) >> 15) : zt);
-            } else if (!old) {
-                /* a cell outside the scene held so far without an interpolated value (one that
-                 * entered, or a margin cell the frame does not cover): from its nearest pixel,
-                 * so that the registration's view of the grid (anchor_view_) holds no cells
-                 * carried in from the other end of a row by the anchor's move */
-                const int32_t z = anchor_zpix_(p, c, f, &gx, &gy, j, jy);
-                b[j + 1] = (uint16_t)(z >= 0 ? z : bx);
-            } else {
-                /* kept */
-            }
-        }
+    for (; jn <= h + 1; ++jn) { /* grid rows past the last frame row's (their pixel: row h - 1) */
+        anchor_urow_(p, &g, jn, zp);
     }
     p->bg_frames++;
     if (!p->jumped) {

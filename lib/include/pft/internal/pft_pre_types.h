@@ -26,7 +26,7 @@ struct pft_pre_s {
     uint16_t *bg;          /* TEMPORAL background (U units), w * h; bg_anchor: (w + 3) * (h + 3) cells */
     uint16_t *bgv;         /* the background as registration reads it: bg, or (bg_anchor) the grid read at the last frame's position into res */
     uint32_t bgs;          /* row stride of bgv (elements): w */
-    int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each */
+    int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each (the slot of row y - 4 also the residual's vertical blends of row y) */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
     int32_t *csum;         /* column sums of the clipped residual (R units) */
@@ -37,8 +37,8 @@ struct pft_pre_s {
     int32_t *pzc, *pbc;    /* TEMPORAL column projections of z and of b */
     int32_t *pzr, *pbr;    /* TEMPORAL row projections */
     int32_t *line;         /* one row: TEMPORAL z - c in U units (-1: masked), LOCAL b (R units) */
-    int32_t *vb;           /* TEMPORAL vertical blend of the tap rows of one row */
-    int32_t *bwl;          /* TEMPORAL background prediction of one row */
+    int32_t *vb;           /* TEMPORAL vertical blend of the tap rows of one row; bg_anchor: with bwl, the converted frame rows y and y - 1 (in turns) */
+    int32_t *bwl;          /* TEMPORAL background prediction of one row; bg_anchor: with vb, the converted frame rows y and y - 1 */
     uint16_t *prev;        /* TEMPORAL former values of the background row written last */
     uint32_t *colo, *colg; /* LOCAL column sums (outer, guard), padded by ro + 1 each side */
     uint32_t *ring;        /* LOCAL packed rows, (2 ro + 2) * w */
