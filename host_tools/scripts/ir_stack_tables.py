@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""Paired tables of docs/results/ir_clutter.md, section "Branch irstack": TBD's detection and
+false tracks per 1000 frames for variants of one tracker block on the real backgrounds, paired by
+seed against the first point, from `pft eval` summaries of the tbd_ir kind. Not a test.
+
+The measures and the paired differences are ir_hold12_tables.py's (detected: ratio of sums over
+runs; false tracks per 1000 frames: mean of the per-run rates); this adds a seed range (to read
+seeds 1-29 out of a 1-116 evaluation), the false tracks' count and the false rate's upper end
+(mean + 1 s.e.).
+
+Usage:
+  python3 host_tools/scripts/ir_stack_tables.py [--seeds A-B] POINT [POINT ...]
+      POINT = LABEL=tbd:DIR (or dbt:DIR; DIR1,DIR2 pools evaluations), as in ir_hold12_tables.py
+"""
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from ir_hold12_tables import load, parse, paired, per_seed, stats, fmt  # noqa: E402
+
+
+def main():
+    args = sys.argv[1:]
+    lo, hi = 1, 10 ** 9
+    if len(args) >= 2 and args[0] == '--seeds':
+        a, b = args[1].split('-')
+        lo, hi = int(a), int(b)
+        args = args[2:]
+    if not args:
+        sys.exit(__doc__)
+    ref = None
+    print('| point | runs | targets | detected (± s.e.) | false tracks | false / 1000 fr. (± s.e.) | upper end |'
+          ' detected − first, points (paired ± s.e.) | false − first (paired ± s.e.) |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    for lab, trk, dirs in (parse(x) for x in args):
+        per = [r for r in load(trk, dirs) if lo <= r['seed'] <= hi]
+        st = stats(per_seed(per))
+        nf = sum(r['false_tracks'] for r in per)
+        if ref is None:
+            ref, dd, df = st, '–', '–'
+        else:
+            (a, b), (c, d) = paired(st, ref)
+            dd, df = '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)
+        print('| %s | %d | %d | %s | %d | %s | %.1f | %s | %s |' % (
+            lab, st['runs'], st['targets'], fmt(st['pd'], 100, ' %'), nf, fmt(st['false']),
+            st['false'][0] + st['false'][1], dd, df))
+
+
+if __name__ == '__main__':
+    main()
