@@ -23,7 +23,7 @@ file(READ ${shipped} js)
 # CMake reads JSON true as ON and prints doubles with 17 digits (0.2, 0.7)
 foreach(kv "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "scene_hold=5"
-           "clutter_anchor=ON" "bg_anchor=ON")
+           "clutter_anchor=ON" "bg_anchor=ON" "theta_end=0.20000000000000001" "particles=24000")
   string(REPLACE "=" ";" kv "${kv}")
   list(GET kv 0 k)
   list(GET kv 1 v)
