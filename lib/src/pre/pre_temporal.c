@@ -910,19 +910,7 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
         return;
     }
     for (int32_t j = -1; j <= w + 1; ++j) {
-        int32_t v = PFT_PRE_ANONE_;
-        if (j >= olo && j <= ohi) {
-            const int32_t xb0 = j + gx->ub;
-            int32_t sv = 0;
-            bool ok = true;
-            for (int32_t i = gx->ulo; i <= gx->uhi; ++i) {
-                const int32_t z = zl[xb0 + i];
-                ok = ok && z >= 0;
-                sv += gx->wu[i + 1] * z;
-            }
-            v = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
-        }
-        hz[j + 1] = v;
+        hz[j + 1] = j >= olo && j <= ohi ? hcell_(gx, zl, j) : PFT_PRE_ANONE_;
     }
 }
 
