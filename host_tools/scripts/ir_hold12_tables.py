@@ -97,6 +97,14 @@ def fmt(x, scale=1.0, unit=''):
     return '%.1f%s (± %.1f)' % (scale * x[0], unit, scale * x[1])
 
 
+def paired_cells(st, ref):
+    """The two paired-difference cells of a row against the reference row (None: the first)."""
+    if ref is None:
+        return '–', '–'
+    (a, b), (c, d) = paired(st, ref)
+    return '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)
+
+
 def table(points):
     ref = None
     print('| point | runs | targets | detected (± s.e.) | delay, frames (± s.e.) | false / 1000 fr. (± s.e.) |'
@@ -104,11 +112,8 @@ def table(points):
     print('|---|---|---|---|---|---|---|---|')
     for lab, trk, dirs in points:
         st = stats(per_seed(load(trk, dirs)))
-        if ref is None:
-            ref, dd, df = st, '–', '–'
-        else:
-            (a, b), (c, d) = paired(st, ref)
-            dd, df = '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)
+        dd, df = paired_cells(st, ref)
+        ref = ref or st
         print('| %s | %d | %d | %s | %s | %s | %s | %s |' % (
             lab, st['runs'], st['targets'], fmt(st['pd'], 100, ' %'),
             fmt(st['delay']), fmt(st['false']), dd, df))

@@ -17,7 +17,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from ir_hold12_tables import load, parse, paired, per_seed, stats, fmt  # noqa: E402
+from ir_hold12_tables import load, parse, paired_cells, per_seed, stats, fmt  # noqa: E402
 
 
 def main():
@@ -37,11 +37,8 @@ def main():
         per = [r for r in load(trk, dirs) if lo <= r['seed'] <= hi]
         st = stats(per_seed(per))
         nf = sum(r['false_tracks'] for r in per)
-        if ref is None:
-            ref, dd, df = st, '–', '–'
-        else:
-            (a, b), (c, d) = paired(st, ref)
-            dd, df = '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)
+        dd, df = paired_cells(st, ref)
+        ref = ref or st
         print('| %s | %d | %d | %s | %d | %s | %.1f | %s | %s |' % (
             lab, st['runs'], st['targets'], fmt(st['pd'], 100, ' %'), nf, fmt(st['false']),
             st['false'][0] + st['false'][1], dd, df))
