@@ -407,6 +407,15 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
             throw InputError(std::string("pft_pre_flat_update: ") + pft_status_str(st));
         res = px;
     }
+    if (keep_stage_) {
+        stage_resid_.create(h_, w_, CV_32F);
+        for (int y = 0; y < h_; ++y) {
+            const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+            float *o = stage_resid_.ptr<float>(y);
+            for (int x = 0; x < w_; ++x)
+                o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
+        }
+    }
     if (T_.residual_hp > 0 && ev) {
         residual_highpass(res, stride, w_, h_, T_.residual_hp, hp_);
         res = hp_.ptr<int16_t>(0);
