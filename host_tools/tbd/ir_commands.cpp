@@ -312,6 +312,7 @@ struct Tracked {
 Tracked track_sequence(const IrScenario &s, const IrSequence &q, uint64_t seed, IrTrace *trace = nullptr)
 {
     IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+    pl.keep_stage_residual(trace != nullptr);
     Tracked out;
     out.tbd.reserve(static_cast<std::size_t>(q.frames));
     out.dbt.reserve(static_cast<std::size_t>(q.frames));

@@ -93,6 +93,8 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.reg_bin = t.reg_bin;
     c.sigma_current = t.sigma_current;
     c.sigma_bracket = t.sigma_bracket;
+    c.bg_gate = static_cast<uint16_t>(std::lround(t.bg_gate * 256.0));  // 0 (off) or 64..4096: the scenario reader's range
+    c.bg_gate_shift = static_cast<uint8_t>(t.bg_gate_shift);
     c.bg_anchor = t.bg_anchor;  // with the spatial method refused: by the scenario reader, else by pft_pre_config_check
     // the residual over the pipeline's own copy of the frame (pft_pre_update_inplace): the
     // stage's workspace holds no residual (docs/porting.md); bg_anchor has no in-place form
@@ -406,6 +408,15 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
         if (st != PFT_OK)
             throw InputError(std::string("pft_pre_flat_update: ") + pft_status_str(st));
         res = px;
+    }
+    if (keep_stage_) {
+        stage_resid_.create(h_, w_, CV_32F);
+        for (int y = 0; y < h_; ++y) {
+            const int16_t *r = res + static_cast<std::size_t>(y) * stride;
+            float *o = stage_resid_.ptr<float>(y);
+            for (int x = 0; x < w_; ++x)
+                o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
+        }
     }
     if (T_.residual_hp > 0 && ev) {
         residual_highpass(res, stride, w_, h_, T_.residual_hp, hp_);

@@ -71,6 +71,12 @@ public:
     PipelineOut step(const pft_frame_t &frame);
 
     const cv::Mat &residual() const { return resid_; }  ///< last whitened residual (CV_32F, masked 0; in clutter sigmas with the clutter map)
+    /** Diagnostics (ir_trace.hpp): keep a copy of the stage's residual after the flat-field
+     *  correction and before the clutter map (stage_residual()); off by default (no cost). */
+    void keep_stage_residual(bool on) { keep_stage_ = on; }
+    /** The stage's residual of the last frame (CV_32F, sigma units, masked 0) when
+     *  keep_stage_residual(true), else empty. */
+    const cv::Mat &stage_residual() const { return stage_resid_; }
     std::size_t clutter_workspace_bytes() const { return cm_.bytes; } ///< the clutter map's workspace (0 without the map)
     std::size_t flat_workspace_bytes() const { return flat_bytes_; } ///< the flat-field correction's workspace (0 without it)
     double sigma() const { return sigma_; }              ///< last frame's mean tile sigma, counts
@@ -105,6 +111,8 @@ private:
     double dbt_thr_;
     int max_det_;
     cv::Mat resid_, u16_, blank_;
+    bool keep_stage_ = false;  // keep_stage_residual
+    cv::Mat stage_resid_;      // stage_residual
     cv::Mat hp_;  // residual_hp: the high-passed residual (CV_16S, Q8.8)
     ClutterMap cm_;
     // flat_block > 0: the flat-field offset correction (pft_pre_flat_*), on the residual

@@ -107,6 +107,8 @@ struct TrackerSettings {
     bool sigma_current = true;                  ///< whiten each frame with its own tile sigmas (true) or with the last frame's (pft_pre sigma_current)
     bool sigma_bracket = false;                 ///< tile sigmas from counts around the last median instead of histograms (pft_pre sigma_bracket)
     bool bg_anchor = false;                     ///< temporal background kept on a scene-anchored grid (pft_pre bg_anchor; the stage then runs without inplace)
+    double bg_gate = 0.0;                       ///< with bg_anchor: the background's update innovation clipped to +-bg_gate tile sigmas (pft_pre bg_gate, 0 off or 0.25..16)
+    int bg_gate_shift = 0;                      ///< with bg_gate: 0 clips the innovation beyond the gate; 1..15 updates those cells with alpha / 2^shift (pft_pre bg_gate_shift)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

@@ -78,6 +78,12 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                 peaks.push_back(p[x]);
     }
     std::sort(peaks.begin(), peaks.end(), std::greater<float>());
+    // the stage's residual before the clutter map (kept by the pipeline while tracing): its
+    // matched filter, for the same z at the target before the map
+    cv::Mat mfs;
+    const bool stage = !pl.stage_residual().empty();
+    if (stage)
+        cv::filter2D(pl.stage_residual(), mfs, CV_32F, kern_, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
     const std::array<double, 2> sc = pl.scene_shift();
     scene_x_ = sc[0];
     scene_y_ = sc[1];
@@ -182,7 +188,7 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                     mf3 = std::max(mf3, mf.at<float>(static_cast<int>(y), static_cast<int>(x)));
             }
         // the matched filter and the residual around it: 31 x 31 less the 7 x 7 core
-        std::vector<float> lm, lr;
+        std::vector<float> lm, lr, ls;
         for (long b = -15; b <= 15; ++b)
             for (long a = -15; a <= 15; ++a) {
                 const long x = xi + a, y = yi + b;
@@ -190,10 +196,15 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                     continue;
                 lm.push_back(mf.at<float>(static_cast<int>(y), static_cast<int>(x)));
                 lr.push_back(res.at<float>(static_cast<int>(y), static_cast<int>(x)));
+                if (stage)
+                    ls.push_back(mfs.at<float>(static_cast<int>(y), static_cast<int>(x)));
             }
-        double lmed, lsd, rmed, rsd;
+        double lmed, lsd, rmed, rsd, smed = NAN, ssd = NAN;
         robust(lm, lmed, lsd);
         robust(lr, rmed, rsd);
+        const double mf_stage = stage ? mfs.at<float>(static_cast<int>(yi), static_cast<int>(xi)) : NAN;
+        if (stage)
+            robust(ls, smed, ssd);
         const long rank = std::upper_bound(peaks.begin(), peaks.end(), mf3, std::greater<float>()) - peaks.begin();
         uint32_t alive = 0, near = 0;
         for (uint32_t p = 0; p < sf.n; ++p) {
@@ -240,7 +251,8 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                           std::to_string(out.births.size()) + "," + (tid ? num(td, 2) : std::string()) + "," +
                           std::to_string(tid) + "," + (tent ? "1" : "0") + "," + (rid ? num(rd, 2) : std::string()) +
                           "," + std::to_string(rid) + "," + std::to_string(m.n_tracks) + "," +
-                          std::to_string(m.above) + "," + num(from_real(sf.est.intensity), 2) + "," + num(tin, 2);
+                          std::to_string(m.above) + "," + num(from_real(sf.est.intensity), 2) + "," + num(tin, 2) + "," +
+                          num(mf_stage) + "," + num(smed) + "," + num(ssd);
         rows_.push_back(row);
     }
 }
@@ -251,7 +263,7 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
     write_text_atomic(base + "_targets.csv", [&](std::ostream &f) {
         f << "seed,frame,tid,labelled,x,y,mf_at,mf3,loc_med,loc_sd,res_sd,rank,n_peaks,search_p,search_d,"
              "search_n,alive,alive_near,births1,births3,n_births,trk_d,trk_id,trk_tentative,rep_d,rep_id,"
-             "n_tracks,above,search_int,trk_int\n";
+             "n_tracks,above,search_int,trk_int,mf_stage,loc_med_stage,loc_sd_stage\n";
         for (const std::string &r : rows_)
             f << r << "\n";
     });

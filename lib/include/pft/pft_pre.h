@@ -96,6 +96,12 @@ extern "C" {
 #define PFT_PRE_MAX_ITERS 8u
 /** Largest edge_k (1 px, Q4.12). */
 #define PFT_PRE_MAX_EDGE_K 4096u
+/** Smallest non-zero bg_gate (0.25 sigma, Q8.8). */
+#define PFT_PRE_MIN_BG_GATE 64u
+/** Largest bg_gate (16 sigma, Q8.8). */
+#define PFT_PRE_MAX_BG_GATE 4096u
+/** Largest bg_gate_shift. */
+#define PFT_PRE_MAX_BG_GATE_SHIFT 15u
 /** Largest sigma_step. */
 #define PFT_PRE_MAX_SIGMA_STEP 4u
 /** Largest sigma_every. */
@@ -161,6 +167,8 @@ typedef struct {
     bool reg_bin;            /**< TEMPORAL: the Lucas-Kanade sums of the registration take 2 x 2 boxes of pixels (their sums) at the samples of reg_step, which must then be at least 2, instead of single pixels: a box sum has 4 times the gradient and twice the noise of a pixel, 4 times the information per sample where the noise sets the shift error. A cost lever with reg_step 4 (about 1.1 M instructions less per 384 x 288 frame than the defaults, the shift error of the defaults on smooth scenes, 1.4-1.7 times it on the real frames of docs/results/ir_clutter.md) and a precision lever with reg_step 2 (default false) */
     bool sigma_bracket;      /**< once a sigma is known, each tile's sigma comes from the counts of its |r| below 5 thresholds around the median of its last sigma (m / 2, m / sqrt 2, m, sqrt 2 m, 2 m), interpolated linearly between the two around the median, instead of a histogram of 104 bins (a cost lever: about 0.14 M instructions less per 384 x 288 frame, docs/results/ir_clutter.md "Branch ircost9"); a median outside m / 2 .. 2 m is read on the straight line from 0 through the nearest threshold's count, so the estimate falls at most 4 times a frame and reads a Gaussian's rise within 7 % up to 5 times (larger jumps followed over the next frames). Must be used with sigma_step and sigma_every at most 1 (default false) */
     bool bg_anchor;          /**< TEMPORAL: the background is kept on a grid of the scene, (width + 3) x (height + 3) cells anchored at the integer part of the accumulated scene position, instead of being re-warped into each frame's coordinates (docs/algorithms.md 9.12 [E]): each frame reads it once (Catmull-Rom at the position's fraction) for the residual and is interpolated once into it (at the inverse fraction) for the update, alpha and the warm-up as without it; a whole-pixel move of the anchor moves the stored cells by whole cells (exact), the cells that enter restart from the frame and the residual that reads them is masked. The registration estimates the step as without it, against the grid read at the last frame's position (written into the residual buffer before the residual). Changes values. Needs PFT_PRE_BG_TEMPORAL, inplace false and edge_k 0; workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR (default false: the background re-warped at every frame, today's values) */
+    uint16_t bg_gate;        /**< TEMPORAL with bg_anchor: the gate g of the background's update, Q8.8 sigma units (256 = 1 sigma), 0 or 64..4096 (docs/algorithms.md 9.13 [E]). A cell whose innovation e = z - B (the frame interpolated into the grid less the grid) exceeds g sigma in magnitude, sigma the last estimate of the tile of the cell's nearest pixel (no gate while that tile has none), is updated with e clipped to +-g sigma (bg_gate_shift 0) or with the weight alpha / 2^bg_gate_shift; the others as without it. A point that stays on the same few scene pixels (a target slow against the scene) then enters the background more slowly; a change of the scene of D sigma is still learnt: linearly at alpha g sigma per frame until it is within g sigma (clip), or with the time constant 2^bg_gate_shift / alpha frames (weight). Changes values; no workspace. Needs bg_anchor (default 0: off, today's values) */
+    uint8_t bg_gate_shift;   /**< with bg_gate: 0 clips the innovation of a cell beyond the gate to +-bg_gate sigmas (default); 1..15 leaves it unclipped and updates such a cell with the weight alpha / 2^bg_gate_shift instead (a change of the scene beyond the gate is then learnt with the time constant 2^bg_gate_shift / alpha frames until it is within the gate) (default 0) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */

@@ -39,6 +39,8 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->reg_bin = false;
     cfg->sigma_bracket = false;
     cfg->bg_anchor = false;
+    cfg->bg_gate = 0u;
+    cfg->bg_gate_shift = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -124,6 +126,13 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_anchor && (c->method != PFT_PRE_BG_TEMPORAL || c->inplace || c->edge_k != 0u)) {
         return "bg_anchor"; /* the grid lives in scene coordinates: no in-place ring (not built)
                              * and no edge term (it reads the background in frame coordinates) */
+    }
+    if (c->bg_gate != 0u && (!c->bg_anchor || c->bg_gate < PFT_PRE_MIN_BG_GATE ||
+                             c->bg_gate > PFT_PRE_MAX_BG_GATE)) {
+        return "bg_gate"; /* built in the anchored update only */
+    }
+    if (c->bg_gate_shift > PFT_PRE_MAX_BG_GATE_SHIFT || (c->bg_gate_shift != 0u && c->bg_gate == 0u)) {
+        return "bg_gate_shift";
     }
     return NULL;
 }

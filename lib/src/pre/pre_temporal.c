@@ -856,7 +856,34 @@ typedef struct {
     agx_t gy;
     int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
     int32_t a15;
+    bool gate; /* bg_gate set */
 } anchor_geom_t;
+
+/* bg_gate (docs/algorithms.md 9.13): the clip of the update's innovation for grid cell
+ * (j, jy), U units: g sigma with sigma the last estimate of the tile of the cell's nearest
+ * pixel (j, jy clamped into the frame); 65535 (no clip) while that tile has none. */
+static int32_t gate_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+{
+    const int32_t t = (int32_t)p->cfg.tile;
+    const uint32_t ty = (uint32_t)(clampi_(jy, 0, (int32_t)p->cfg.height - 1) / t);
+    const uint32_t tx = (uint32_t)(clampi_(j, 0, (int32_t)p->cfg.width - 1) / t);
+    const uint32_t s = p->tsig[ty * p->ntx + tx] & ~PFT_PRE_TILE_STALE_; /* R units Q4 */
+    if (s == 0u) {
+        return 65535;
+    }
+    /* g (Q8.8) s (R Q4) 2^(bf - rs) / 2^12, rounded: U units */
+    const uint64_t v = (((uint64_t)p->cfg.bg_gate * s << (uint32_t)(p->bf - p->rs)) + 2048u) >> 12;
+    return v < 1u ? 1 : (v > 65535u ? 65535 : (int32_t)v);
+}
+
+/* The last cell of the tile column of cell j (cells -1 and w, w + 1 belong to the first and
+ * last tile columns). */
+static int32_t gate_span_end_(const pft_pre_t *p, int32_t j)
+{
+    const int32_t w = (int32_t)p->cfg.width, t = (int32_t)p->cfg.tile;
+    const int32_t tx = clampi_(j, 0, w - 1) / t;
+    return (tx + 1) * t >= w ? w + 1 : (tx + 1) * t - 1;
+}
 
 /* Cell j (observed) of a frame row zl interpolated along x at the update's fraction: taps
  * ulo .. uhi, U * 16, PFT_PRE_ANONE_ when one of them is masked. */
@@ -945,14 +972,39 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
         const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
         fs0 = olo[0] > ovlo[0] ? olo[0] : ovlo[0];
         fs1 = ohi[0] < ovhi[0] ? ohi[0] : ovhi[0];
-        for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
-            const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
-            const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
-            int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
-            sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-            const int32_t bx = b[j + 1];
-            const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
-            b[j + 1] = (uint16_t)(inv ? bx : nb);
+        if (!g->gate) {
+            for (int32_t j = fs0; j <= fs1; ++j) { /* vectorisable */
+                const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+                const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+                int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+                sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                const int32_t bx = b[j + 1];
+                const int32_t nb = bx + (((sv - bx) * a15 + 16384) >> 15);
+                b[j + 1] = (uint16_t)(inv ? bx : nb);
+            }
+        } else {
+            /* bg_gate: the same blend, per tile column, where |e| > lim the innovation clipped
+             * to +-lim (bg_gate_shift 0) or the weight alpha / 2^bg_gate_shift */
+            const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
+            const int32_t ag = wsh == 0 ? a15 : a15 >> wsh;
+            int32_t je = fs0 - 1; /* the span's last cell: at least its first */
+            for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
+                const int32_t se = gate_span_end_(p, ja0);
+                je = se < fs1 ? se : fs1;
+                const int32_t lim = gate_lim_(p, jy, ja0);
+                for (int32_t j = ja0; j <= je; ++j) { /* vectorisable */
+                    const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+                    const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+                    int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+                    sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                    const int32_t bx = b[j + 1];
+                    int32_t e = sv - bx;
+                    const int32_t ae = e < 0 ? -e : e;
+                    e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
+                    const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+                    b[j + 1] = (uint16_t)(inv ? bx : nb);
+                }
+            }
         }
     }
     /* the cells before and after the fast span [fs0, fs1] (done above) */
@@ -975,7 +1027,20 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
         const bool old = iny && j >= ovlo[0] && j <= ovhi[0];
         const int32_t bx = b[j + 1];
         if (zt != PFT_PRE_ANONE_) {
-            b[j + 1] = (uint16_t)(old ? bx + (((zt - bx) * a15 + 16384) >> 15) : zt);
+            int32_t e = zt - bx;
+            int32_t a = a15;
+            if (g->gate && old) {
+                const int32_t lim = gate_lim_(p, jy, j);
+                const int32_t ae = e < 0 ? -e : e;
+                if (ae > lim && p->cfg.bg_gate_shift == 0u) {
+                    e = e < 0 ? -lim : lim;
+                } else if (ae > lim) {
+                    a = a15 >> p->cfg.bg_gate_shift;
+                } else {
+                    /* below the gate: as without it */
+                }
+            }
+            b[j + 1] = (uint16_t)(old ? bx + ((e * a + 16384) >> 15) : zt);
         } else if (!old) {
             /* a cell outside the scene held so far without an interpolated value (one that
              * entered, or a margin cell the frame does not cover): from its nearest pixel
@@ -1058,6 +1123,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     g.ovhi[0] = p->avhi[0];
     g.ovhi[1] = p->avhi[1];
     g.a15 = a15;
+    g.gate = p->cfg.bg_gate != 0u;
     /* update: cells whose update taps are all inside the frame are observed */
     const int32_t nn[2] = {w, h};
     for (uint32_t a = 0; a < 2u; ++a) {
