@@ -12,8 +12,9 @@
  *   frames h + 1 .. h + K), and ends at the first frame after them at which its P, read from
  *   the run without the option, is below 1 (or at the frame the run without the option ends
  *   it, if that comes first).
- * - Persist 2: the run without the option ends the track at frame e, after the target has
- *   gone; with the option the track is still listed at e with end_below 1 and P below
+ * - Persist 2 (the target fading to intensity 6 after LAST instead of leaving, so that the
+ *   layer keeps live particles below theta_end): the run without the option ends the track at
+ *   frame e, after LAST; with the option the track is still listed at e with end_below 1 and P below
  *   theta_end, the runs are the same before e, and from e on the track ends exactly at the
  *   second frame in a row with P below theta_end (end_below counts them; never 2 on a listed
  *   track).
@@ -46,6 +47,7 @@ static uint8_t g_ws[WS_BYTES + 64];
 static uint8_t g_snap[WS_BYTES + 64];
 static uint16_t g_raw[IMG * IMG];
 static pft_tbd_t g_t;
+static double g_dim = 0.0; /* the target's intensity after LAST (0: gone) */
 
 /* The recommended preset on 32 x 32 U16 frames of sigma 2 (z = raw / 256 - 64). */
 static void cfg_of(pft_tbd_config_t *c)
@@ -85,11 +87,13 @@ static void run(const pft_tbd_config_t *c, run_t *o)
     memset(o, 0, sizeof(*o));
     pft_rng_t sim;
     pft_rng_seed(&sim, 21u);
-    const pft_sim_truth_t tr = {1, LAST, 12.0, 14.0, 0.3, 0.2, 22.0};
+    /* after LAST the target goes on at intensity g_dim (0: gone) */
+    const pft_sim_truth_t tr[2] = {{1, LAST, 12.0, 14.0, 0.3, 0.2, 22.0},
+                                   {LAST + 1, FRAMES, 12.0 + 0.3 * LAST, 14.0 + 0.2 * LAST, 0.3, 0.2, g_dim}};
     int slot = -1; /* id 1's slot */
     for (int k = 1; k <= FRAMES; ++k) {
         pft_frame_t fr;
-        pft_sim_render_u16(&sim, &tr, 1, k, 2.0, IMG, IMG, g_raw, &fr);
+        pft_sim_render_u16(&sim, tr, g_dim > 0.0 ? 2 : 1, k, 2.0, IMG, IMG, g_raw, &fr);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&g_t, &fr));
         o->lp[k - 1] = -1.0;
         if (slot >= 0 && (g_t.records[slot].id == 0u || g_t.records[slot].id == 1u)) {
@@ -218,10 +222,13 @@ static void test_persist_ends_on_the_second_frame_in_a_row(void)
 {
     static run_t off, on;
     pft_tbd_config_t c;
+    /* the target fades to intensity 6 after LAST (0.27 of its 22): the track's P falls below
+     * theta_end while its layer keeps live particles, so end tests in a row are seen */
+    g_dim = 6.0;
     cfg_of(&c);
     run(&c, &off);
     const int e = first_frame_of(off.ended1);
-    TEST_ASSERT_TRUE_MESSAGE(e > LAST && e < FRAMES - 2, "the track ends after its target has gone");
+    TEST_ASSERT_TRUE_MESSAGE(e > LAST && e < FRAMES - 2, "the track ends after its target has faded");
     cfg_of(&c);
     c.end_persist = 2u;
     run(&c, &on);
@@ -260,6 +267,7 @@ static void test_persist_ends_on_the_second_frame_in_a_row(void)
     /* at its end: the third frame in a row below theta_end, or no live particle left (read
      * from its layer unless a hand-over took the slot at once) */
     TEST_ASSERT_TRUE(on3.below[end3 - 2] == 2u || on3.lp[end3 - 1] < 0.0 || on3.live[end3 - 1] == 0u);
+    g_dim = 0.0;
 }
 
 static void test_fields_refused_by_name_and_state_kept(void)
