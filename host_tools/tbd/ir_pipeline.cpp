@@ -47,6 +47,10 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.shape_ring, c.shape_ring);
     c.sprt_start = static_cast<uint8_t>(t.sprt_start);
     set_real_if(t.integ_alpha, c.integ_alpha);
+    c.end_grace_frames = static_cast<uint8_t>(t.end_grace_frames);
+    set_real_if(t.theta_end_grace, c.theta_end_grace);
+    c.end_persist = static_cast<uint8_t>(t.end_persist);
+    set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);
     c.birth_correction = t.birth_correction;

@@ -122,6 +122,10 @@ struct TrackerSettings {
     std::optional<double> sprt_accept, sprt_reject; ///< sequential confirmation (pft_tbd sprt_*; absent: the library default, off)
     std::optional<double> shape_ring;               ///< PSF shape test at the hand-over (pft_tbd shape_ring; absent: off)
     std::optional<double> integ_alpha;              ///< multi-frame integration of the birth peaks (pft_tbd integ_alpha; absent: off)
+    int end_grace_frames = 0;                       ///< a young track's existence test uses theta_end_grace for its first end_grace_frames frames (pft_tbd end_grace_frames; 0: off)
+    std::optional<double> theta_end_grace;          ///< the young tracks' existence threshold (pft_tbd theta_end_grace; absent: the library default, 0)
+    std::optional<double> q2;                       ///< intensity process noise of every layer (pft_tbd q2; absent: the preset's, 0.01)
+    int end_persist = 0;                            ///< a track ends on its existence probability only after this many end tests in a row below its threshold (pft_tbd end_persist; 0 or 1: the first)
     bool integ_shift = false;                       ///< give the manager the stage's measured shift per frame (pft_tbd_set_shift) for the integration
     int sprt_start = 0;                             ///< what the sequential test starts from (pft_tbd sprt_start: 0 zero, 1 the search layer's ratios over its confirmation, 2 its log odds)
     // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,

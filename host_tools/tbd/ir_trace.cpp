@@ -160,6 +160,33 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
             if (std::hypot(r.x - t->x, r.y - t->y) <= 3.0)
                 ++L.near[t->id];
     }
+    // per live track layer: age, state, existence and the nearest truth point
+    for (uint32_t k2 = 0; k2 < c.max_targets; ++k2) {
+        const pft_tbd_track_t &r = m.records[k2];
+        if (r.id == 0u)
+            continue;
+        const double x = from_real(r.x) - dx, y = from_real(r.y) - dy;
+        double td = 1e9;
+        int tid = 0;
+        bool lab = false;
+        for (const TruthRow *t : truth) {
+            const double d = std::hypot(x - t->x, y - t->y);
+            if (d < td) {
+                td = d;
+                tid = t->id;
+                lab = t->labelled;
+            }
+        }
+        bool rep = false;
+        for (const tbd::TrackOut &t : out.tracks)
+            rep = rep || t.id == r.id;
+        layer_rows_.push_back(std::to_string(seed_) + "," + std::to_string(k) + "," + std::to_string(r.id) + "," +
+                              std::to_string(k - life_[r.id].handover) + "," + num(x, 2) + "," + num(y, 2) + "," +
+                              num(from_real(r.p_exist), 4) + "," + num(from_real(r.intensity), 2) + "," +
+                              num(from_real(r.log_mean_lr), 3) + "," + (r.first_frame == 0u ? "1" : "0") + "," +
+                              (rep ? "1" : "0") + "," + std::to_string(tid) + "," + (lab ? "1" : "0") + "," +
+                              (tid ? num(td, 2) : std::string()));
+    }
     for (const tbd::TrackOut &t : out.tracks) {
         auto it = life_.find(t.id);
         if (it == life_.end())
@@ -268,6 +295,11 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
             f << r << "\n";
     });
     write_text_atomic(base + "_tracks.csv", [&](std::ostream &f) { write_tracks_(f, ev); });
+    write_text_atomic(base + "_layers.csv", [&](std::ostream &f) {
+        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d\n";
+        for (const std::string &r : layer_rows_)
+            f << r << "\n";
+    });
 }
 
 void IrTrace::write_tracks_(std::ostream &f, const IrRunEval &ev) const

@@ -30,7 +30,9 @@ public:
      *  saw, the tracks reported. */
     void frame(int k, const IrPipeline &pl, const tbd::FrameOut &out);
     /** Writes DIR/s<seed>_targets.csv (one row per frame and truth point) and
-     *  DIR/s<seed>_tracks.csv (one row per track layer), the false tracks of ev marked. */
+     *  DIR/s<seed>_tracks.csv (one row per track layer), the false tracks of ev marked, and
+     *  DIR/s<seed>_layers.csv (one row per frame and live track layer: its age, position,
+     *  existence probability, intensity, frame log likelihood ratio, the nearest truth point). */
     void write(const std::string &dir, const IrRunEval &ev) const;
 
 private:
@@ -54,6 +56,7 @@ private:
     uint64_t seed_;
     cv::Mat kern_;
     std::vector<std::string> rows_;
+    std::vector<std::string> layer_rows_;
     std::vector<uint32_t> slot_id_;
     std::map<uint32_t, TrackLife> life_;
     double scene_x_ = 0, scene_y_ = 0;

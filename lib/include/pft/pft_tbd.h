@@ -86,6 +86,8 @@ typedef struct pft_tbd_s pft_tbd_t;               /**< the multi-target manager 
 #define PFT_TBD_MAX_DIS_R 15u
 /** Largest number of previous windows compared against in the disappearance test. */
 #define PFT_TBD_MAX_DIS_PREV 15u
+/** Largest number of end tests in a row that cfg.end_persist can ask for. */
+#define PFT_TBD_MAX_END_PERSIST 16u
 /** Largest number of birth peaks (cfg.birth_peaks). */
 #define PFT_TBD_MAX_PEAKS 4096u
 
@@ -185,6 +187,10 @@ typedef struct {
     uint8_t sprt_start;      /**< with sprt_accept > 0, the sum the sequential test starts from at a hand-over (docs/algorithms.md 2.12): 0 (default): 0 (Wald's test on the track layer alone); 1: the search layer's frame log likelihood ratios summed over the frames of its confirmation (the last confirm_frames frames, at most PFT_TBD_MAX_DIS_R + 1), floored at 0; 2: the search layer's log odds of existence at the hand-over, log(P / (1 - P)) with P and 1 - P at least 1e-4, floored at 0. At most 2 [E] */
     /* multi-frame integration of the birth peaks (manager) */
     pft_real_t integ_alpha;  /**< 0 (default): off, the birth peaks are those of the current frame. In (0, 1) (needs birth_peaks > 0 and peak_quota 0): the manager's search layer draws its births from the peaks of a recursive max-filter sum over frames instead (docs/algorithms.md 2.13): on 2 x 2 bins of pixels, S_t(b) = max(0, m_t(b) + integ_alpha max S_{t-1}(q)), m_t(b) the largest value of the PSF-matched unit-noise frame in bin b and q the 3 x 3 bins around b less the platform's shift (pft_tbd_set_shift, 0 by default); the K = birth_peaks strongest 3 x 3 local maxima of S above its frame mean plus peak_gamma of its frame standard deviations are the peaks, each at the pixel of its bin that is largest in the current frame. The factor is used in steps of 1/256; S is kept in 1/64 noise sigmas as two 16-bit sums per bin (PFT_TBD_INTEG_BYTES). The particle filters are unchanged [E] */
+    /* existence test of young tracks (manager) */
+    uint8_t end_grace_frames; /**< 0 (default): off, every track is ended on theta_end. k >= 1: the existence test of a track whose record age is below k (its first k end tests after the hand-over, or after its confirmation by the sequential test) compares its layer's existence probability with theta_end_grace instead of theta_end (docs/algorithms.md 2.6); the other end tests are unchanged [E] */
+    pft_real_t theta_end_grace; /**< the existence threshold of the young tracks above, in [0, 1] (default 0: a young track is not ended on its existence probability); only with end_grace_frames > 0 [E] */
+    uint8_t end_persist;     /**< 0 or 1 (default): a track ends at the first end test with its layer's existence probability below its threshold (theta_end, or theta_end_grace while young). k >= 2: only once it has been below it on k end tests in a row (docs/algorithms.md 2.6); the other end tests are unchanged. At most PFT_TBD_MAX_END_PERSIST [E] */
 } pft_tbd_config_t;
 
 /**
@@ -382,6 +388,7 @@ typedef struct {
     uint32_t last_seq;      /**< seq of the frame of its last update */
     uint64_t last_timestamp_us; /**< timestamp_us of that frame */
     pft_real_t sprt_llr;    /**< with cfg.sprt_accept > 0: the sum of the layer's frame log likelihood ratios from the frame after its hand-over to its confirmation (then kept), started from the value cfg.sprt_start gives (0 by default); 0 otherwise */
+    uint8_t end_below;      /**< with cfg.end_persist >= 2: the end tests in a row, up to this frame, at which its layer's existence probability was below its threshold; 0 otherwise */
 } pft_tbd_track_t;
 
 /** What an event reports. */

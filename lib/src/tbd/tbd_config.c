@@ -70,6 +70,9 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->shape_ring = PFT_C(0.0);
     cfg->sprt_start = 0u;
     cfg->integ_alpha = PFT_C(0.0);
+    cfg->end_grace_frames = 0u;
+    cfg->theta_end_grace = PFT_C(0.0);
+    cfg->end_persist = 0u;
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -182,9 +185,9 @@ static const char *refused_birth_(const pft_tbd_config_t *c)
 /* The first refused field of the existence, birth and decision settings, NULL if none. */
 static const char *refused_decisions_(const pft_tbd_config_t *c)
 {
-    const pft_real_t probs[5] = {c->pb, c->pd, c->eta, c->theta1, c->theta_end};
-    static const char *const names[5] = {"pb", "pd", "eta", "theta1", "theta_end"};
-    for (int k = 0; k < 5; ++k) {
+    const pft_real_t probs[6] = {c->pb, c->pd, c->eta, c->theta1, c->theta_end, c->theta_end_grace};
+    static const char *const names[6] = {"pb", "pd", "eta", "theta1", "theta_end", "theta_end_grace"};
+    for (int k = 0; k < 6; ++k) {
         if (!in01_(probs[k])) {
             return names[k];
         }
@@ -257,6 +260,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->sprt_start > 2u) {
         return "sprt_start";
+    }
+    if (c->end_persist > PFT_TBD_MAX_END_PERSIST) {
+        return "end_persist";
     }
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {

@@ -568,7 +568,28 @@ static bool sprt_step_(const pft_tbd_config_t *cfg, pft_tbd_track_t *rec, const 
     return rec->sprt_llr <= cfg->sprt_reject;
 }
 
-/* 1b. Disappearance: a track ends on its layer's test, on P < theta_end, with no live
+/* The existence threshold of a track: theta_end_grace while its record is younger than
+ * end_grace_frames (docs/algorithms.md 2.6), theta_end otherwise. */
+static pft_real_t end_threshold_(const pft_tbd_config_t *cfg, const pft_tbd_track_t *rec)
+{
+    return rec->age < (uint32_t)cfg->end_grace_frames ? cfg->theta_end_grace : cfg->theta_end;
+}
+
+/* The existence test of a track (docs/algorithms.md 2.6): true when its layer's P is below
+ * its threshold, with end_persist >= 2 only on the end_persist-th such test in a row (the count
+ * kept in the record, 0 otherwise). */
+static bool existence_ends_(const pft_tbd_config_t *cfg, pft_tbd_track_t *rec, const pft_tbd_filter_t *tf)
+{
+    const bool below = tf->est.p_exist < end_threshold_(cfg, rec);
+    if (cfg->end_persist < 2u) {
+        return below;
+    }
+    rec->end_below = below ? (uint8_t)(rec->end_below + 1u) : 0u;
+    return rec->end_below >= cfg->end_persist;
+}
+
+/* 1b. Disappearance: a track ends on its layer's test, on P below its existence threshold
+ * (theta_end, or theta_end_grace while young; end_persist tests in a row), with no live
  * particle left or on the short-window LR test. 2. The surviving tracks take their layers'
  * estimates and add their constraint regions (around the estimates of the previous frame, or
  * of this one with d_current) to t->mask. */
@@ -584,7 +605,7 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
         pft_real_t dx0 = rec->x;
         pft_real_t dy0 = rec->y;
         const bool tentative = rec->first_frame == 0u; /* of the sequential test */
-        bool ends = tf->gone || tf->est.p_exist < cfg->theta_end || count_alive_(tf) == 0u ||
+        bool ends = tf->gone || existence_ends_(cfg, rec, tf) || count_alive_(tf) == 0u ||
                     lr_says_gone_(cfg, tf);
         if (!ends && tentative) {
             ends = sprt_step_(cfg, rec, tf);
