@@ -9,7 +9,10 @@
 #    check can fail);
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
 #  - integ_alpha removed: the tracks change (the births come from the integration);
-#  - bg_anchor, clutter_anchor toggled: the residual the manager sees changes.
+#  - bg_anchor, clutter_anchor toggled: the residual the manager sees changes;
+#  - bg_gate 0.25 set (the real-frame twin's gated background update): the residual changes.
+# The real-frame twin (real_frames_low_false_rate.json) needs real backgrounds to run; only its
+# documented block is checked here.
 # Needs nothing outside the source tree.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
@@ -30,6 +33,21 @@ foreach(kv "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist
   string(JSON got GET "${js}" tracker ${k})
   if(NOT got STREQUAL v)
     message(FATAL_ERROR "${shipped}: tracker.${k} is '${got}', the documented setting is '${v}'")
+  endif()
+endforeach()
+
+# the real-frame twin's block is the documented one too
+set(real "${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json")
+file(READ ${real} rjs)
+foreach(kv "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
+           "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "scene_hold=3"
+           "bg_anchor=ON" "bg_gate=0.25" "theta_end=0.20000000000000001" "particles=24000")
+  string(REPLACE "=" ";" kv "${kv}")
+  list(GET kv 0 k)
+  list(GET kv 1 v)
+  string(JSON got GET "${rjs}" tracker ${k})
+  if(NOT got STREQUAL v)
+    message(FATAL_ERROR "${real}: tracker.${k} is '${got}', the documented setting is '${v}'")
   endif()
 endforeach()
 
@@ -59,9 +77,11 @@ foreach(f bg_anchor clutter_anchor)
   endif()
   file(WRITE ${WORK}/tog_${f}.json "${v}")
 endforeach()
+string(JSON v SET "${js}" tracker bg_gate 0.25)
+file(WRITE ${WORK}/gate.json "${v}")
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
-foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor)
+foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor gate)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
 endforeach()
@@ -112,7 +132,7 @@ endif()
 list(LENGTH got ngot)
 message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
 
-foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor)
+foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor gate)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/res.i16 ${WORK}/run_${c}/res.i16
                   RESULT_VARIABLE same)
   if(same EQUAL 0)
@@ -124,4 +144,4 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/tracks.
 if(same EQUAL 0)
   message(FATAL_ERROR "nointeg: the tracks are the shipped file's: integ_alpha does not reach the manager")
 endif()
-message(STATUS "flat_block, clutter_mean, bg_anchor and clutter_anchor change the residual, integ_alpha the tracks")
+message(STATUS "flat_block, clutter_mean, bg_anchor, clutter_anchor and bg_gate change the residual, integ_alpha the tracks")
