@@ -118,6 +118,21 @@ pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h)
     return f;
 }
 
+pft_frame_t pft_test_u16_frame(const uint16_t *px, uint16_t w, uint16_t h, uint8_t bits, uint32_t seq)
+{
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = px;
+    f.width = w;
+    f.height = h;
+    f.stride_bytes = 2u * (uint32_t)w;
+    f.format = PFT_PIX_U16;
+    f.bit_depth = bits;
+    f.seq = seq;
+    f.timestamp_us = 1000u * (uint64_t)seq;
+    return f;
+}
+
 pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint32_t seq,
                                  uint64_t timestamp_us)
 {

@@ -9,6 +9,9 @@ double pft_test_to_double(pft_real_t v);
 pft_real_t pft_test_from_double(double v);
 /* An RGB888 frame over w x h packed pixels at data (stride 3 w, every other field 0). */
 pft_frame_t pft_test_rgb_frame(const void *data, uint16_t w, uint16_t h);
+/* A PFT_PIX_U16 frame of the given bit depth (rows of 2 w bytes) over px, with seq and
+ * timestamp_us 1000 seq (the preprocessing tests' frames). */
+pft_frame_t pft_test_u16_frame(const uint16_t *px, uint16_t w, uint16_t h, uint8_t bits, uint32_t seq);
 /* A PFT_PIX_RES16 frame (bit depth 16, rows of 2 w bytes) over px, with seq and timestamp_us. */
 pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint32_t seq,
                                  uint64_t timestamp_us);

@@ -138,17 +138,7 @@ static void textured(double sx, double sy, double sigma)
 
 static pft_frame_t frame_of(const void *data, uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = data;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_U16;
-    f.bit_depth = 14;
-    f.seq = seq;
-    f.timestamp_us = 1000u * seq;
-    return f;
+    return pft_test_u16_frame(data, W, H, 14u, seq);
 }
 
 static void config(pft_pre_config_t *c, pft_pre_bg_t method)

@@ -88,17 +88,7 @@ static void rects(double sx, double sy, int32_t sigma)
 
 static pft_frame_t frame_of(uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = g_img;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_U16;
-    f.bit_depth = 14;
-    f.seq = seq;
-    f.timestamp_us = 1000u * seq;
-    return f;
+    return pft_test_u16_frame(g_img, W, H, 14u, seq);
 }
 
 static void config(pft_pre_config_t *c, bool anchor)

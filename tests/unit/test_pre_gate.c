@@ -77,17 +77,7 @@ static void render(double sx, double sy, double tx, double ty, double amp, doubl
 
 static pft_frame_t frame_of(uint32_t seq)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = g_img;
-    f.width = W;
-    f.height = H;
-    f.stride_bytes = 2u * W;
-    f.format = PFT_PIX_U16;
-    f.bit_depth = 14;
-    f.seq = seq;
-    f.timestamp_us = 1000u * seq;
-    return f;
+    return pft_test_u16_frame(g_img, W, H, 14u, seq);
 }
 
 static void config(pft_pre_config_t *c, uint16_t gate, uint8_t shift)
