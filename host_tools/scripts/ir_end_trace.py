@@ -22,23 +22,14 @@ Needs only the standard library. Not a test.
 """
 import argparse
 import collections
-import csv
 import json
 import math
 import os
+import sys
 
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def near_map(s):
-    return {int(a): int(b) for a, b in (p.split(':') for p in s.split(';') if p)}
-
-
-def fnum(v):
-    return float(v) if v not in ('', None) else float('nan')
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from ir_miss_diag import read_csv, near_map, fnum  # noqa: E402
 
 
 def q(v, p):
