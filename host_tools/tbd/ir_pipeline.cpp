@@ -50,6 +50,7 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     c.end_grace_frames = static_cast<uint8_t>(t.end_grace_frames);
     set_real_if(t.theta_end_grace, c.theta_end_grace);
     c.end_persist = static_cast<uint8_t>(t.end_persist);
+    set_real_if(t.handover_in_scale, c.handover_in_scale);
     set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);

@@ -124,7 +124,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "q2", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "handover_in_scale", "q2", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
@@ -169,6 +169,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.end_grace_frames = static_cast<int>(t.integer_in("end_grace_frames", T.end_grace_frames, 0, 255));
     num("theta_end_grace", 0.0, 1.0, T.theta_end_grace);
     num("q2", 0.0, 100.0, T.q2);
+    num("handover_in_scale", 0.0, 1.0, T.handover_in_scale);  // the library's range (pft_tbd.h)
     T.end_persist = static_cast<int>(t.integer_in("end_persist", T.end_persist, 0, PFT_TBD_MAX_END_PERSIST));  // the library's bound (pft_tbd.h)
     if (T.theta_end_grace && T.end_grace_frames == 0)
         t.at("theta_end_grace").fail("needs end_grace_frames of at least 1");

@@ -191,6 +191,8 @@ typedef struct {
     uint8_t end_grace_frames; /**< 0 (default): off, every track is ended on theta_end. k >= 1: the existence test of a track whose record age is below k (its first k end tests after the hand-over, or after its confirmation by the sequential test) compares its layer's existence probability with theta_end_grace instead of theta_end (docs/algorithms.md 2.6); the other end tests are unchanged [E] */
     pft_real_t theta_end_grace; /**< the existence threshold of the young tracks above, in [0, 1] (default 0: a young track is not ended on its existence probability); only with end_grace_frames > 0 [E] */
     uint8_t end_persist;     /**< 0 or 1 (default): a track ends at the first end test with its layer's existence probability below its threshold (theta_end, or theta_end_grace while young). k >= 2: only once it has been below it on k end tests in a row (docs/algorithms.md 2.6); the other end tests are unchanged. At most PFT_TBD_MAX_END_PERSIST [E] */
+    /* intensity of a new track layer (manager) */
+    pft_real_t handover_in_scale; /**< 0 (default) or 1: off, a new track layer starts from the intensities of the search particles handed over to it (the paper). In (0, 1): each handed-over particle's intensity, and the layer's first estimate of it, is multiplied by this factor at the hand-over (docs/algorithms.md 2.7): the confirming frames are the strongest of the target's, so the intensity they hand over is above the target's own. At most 1 [E] */
 } pft_tbd_config_t;
 
 /**

@@ -73,6 +73,7 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->end_grace_frames = 0u;
     cfg->theta_end_grace = PFT_C(0.0);
     cfg->end_persist = 0u;
+    cfg->handover_in_scale = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -263,6 +264,9 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->end_persist > PFT_TBD_MAX_END_PERSIST) {
         return "end_persist";
+    }
+    if (!(c->handover_in_scale >= PFT_C(0.0) && c->handover_in_scale <= PFT_REAL_ONE)) {
+        return "handover_in_scale";
     }
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {

@@ -887,6 +887,13 @@ static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
     if (gate == NULL) {
         tf->est = t->search.est; /* docs/algorithms.md 2.7: the search layer's estimate */
     }
+    if (cfg->handover_in_scale > PFT_C(0.0) && cfg->handover_in_scale < PFT_REAL_ONE) {
+        /* docs/algorithms.md 2.7 [E]: the new layer starts from a lower intensity */
+        for (uint32_t s = 0; s < tf->n; ++s) {
+            tf->cur.in[s] = pft_mul(tf->cur.in[s], cfg->handover_in_scale);
+        }
+        tf->est.intensity = pft_mul(tf->est.intensity, cfg->handover_in_scale);
+    }
     record_from_est_(rec, &tf->est);
     rec->last_seq = t->last_seq;
     rec->last_timestamp_us = t->last_ts;
