@@ -1,4 +1,5 @@
 /* Multi-target RBPF-TBD / PF-TBD manager: search layer + track layers (docs/algorithms.md 2.6-2.7). */
+#include <stddef.h>
 #include <string.h>
 
 #include "tbd_int.h"
@@ -131,8 +132,17 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
 /* Sets up t (cfg checked, work_len enough) on work: every layer seeded, no tracks. */
 static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t work_len)
 {
-    memset(t, 0, sizeof(*t));
-    t->cfg = *cfg;
+    if (cfg != &t->cfg) {
+        memset(t, 0, sizeof(*t));
+        t->cfg = *cfg;
+    } else {
+        /* pft_tbd_reset: the instance's own configuration stays in place (no copy of it on the
+         * stack), everything around it is cleared as above */
+        const size_t off = offsetof(pft_tbd_t, cfg);
+        const size_t end = off + sizeof(t->cfg);
+        memset(t, 0, off);
+        memset((unsigned char *)t + end, 0, sizeof(*t) - end);
+    }
     /* setup_ clears a filter's buffer pointers: set up first, carve after. */
     pft_tbd_filter_setup_(&t->search, cfg, cfg->n_search, cfg->kind, true,
                           cfg->force_constraint, cfg->seed);
@@ -212,10 +222,10 @@ pft_status_t pft_tbd_reset(pft_tbd_t *t)
     if (t->base == NULL) {
         return PFT_ERR_STATE;
     }
-    /* the workspace starts at the (aligned) first buffer: build it again from there */
-    pft_tbd_config_t cfg = t->cfg;
-    size_t len = pft_tbd_workspace_size(&cfg) - (PFT_WS_ALIGN - 1u);
-    build_(t, &cfg, t->base, len);
+    /* the workspace starts at the (aligned) first buffer: build it again from there, with the
+     * configuration kept where it is */
+    const size_t len = pft_tbd_workspace_size(&t->cfg) - (PFT_WS_ALIGN - 1u);
+    build_(t, &t->cfg, t->base, len);
     return PFT_OK;
 }
 
