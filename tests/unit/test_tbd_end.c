@@ -1,6 +1,8 @@
 /*
- * TBD manager: the existence test of young tracks (cfg.end_grace_frames, theta_end_grace) and
- * the end test over several frames in a row (cfg.end_persist), docs/algorithms.md 2.6.
+ * TBD manager, the options of a track layer's start and end, on one scene and one run helper:
+ * the existence test of young tracks (cfg.end_grace_frames, theta_end_grace) and the end test
+ * over several frames in a row (cfg.end_persist), docs/algorithms.md 2.6; the intensity a new
+ * track layer starts from (cfg.handover_in_scale), docs/algorithms.md 2.7.
  *
  * Known answers, from a run of the same manager with the option off: an option changes only
  * whether a track ends at an end test, so on the same frames the two runs are the same, frame
@@ -20,6 +22,16 @@
  *   track).
  * - The default (0) leaves end_below 0; fields out of range are refused by name, and the
  *   refused configuration leaves an initialised manager and its workspace byte-identical.
+ *
+ * Hand-over scale. Known answers, from a run of the same manager with the option off (0): the
+ * option acts only at a hand-over, so the two runs are the same, frame by frame and bit for bit,
+ * before the first hand-over at frame h; at h the new track has the same position and existence
+ * probability and k times the intensity (one multiplication: within one rounding of the number
+ * type); from h + 1 on its layer carries the scaled particles, so its intensity stays below the
+ * run without the option's (with only the estimate scaled, the layers, and so these values,
+ * would be the same). The value 1 is off too (the same run as 0 on every frame); values outside
+ * [0, 1] are refused by name, and the refused configuration leaves an initialised manager and
+ * its workspace byte-identical.
  */
 #include <math.h>
 #include <string.h>
@@ -307,6 +319,80 @@ static void test_fields_refused_by_name_and_state_kept(void)
     TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws, sizeof g_ws);
 }
 
+static void test_default_and_one_are_off(void)
+{
+    pft_tbd_config_t c;
+    pft_tbd_config_default(&c);
+    TEST_ASSERT_TRUE(D(c.handover_in_scale) == 0.0);
+    static run_t off, one;
+    cfg_of(&c);
+    run(&c, &off);
+    TEST_ASSERT_TRUE_MESSAGE(first_frame_of(off.confirmed1) > 0, "the target is handed over");
+    cfg_of(&c);
+    c.handover_in_scale = R(1.0);
+    run(&c, &one);
+    assert_same_until(&off, &one, FRAMES);
+}
+
+static void test_new_layer_starts_from_k_times_the_intensity(void)
+{
+    static run_t off, on;
+    pft_tbd_config_t c;
+    cfg_of(&c);
+    run(&c, &off);
+    const int h = first_frame_of(off.confirmed1);
+    TEST_ASSERT_TRUE_MESSAGE(h > 0 && h < LAST - 2, "the bright target is handed over early");
+    TEST_ASSERT_EQUAL_INT(1, off.has1[h]);
+    const double ks[2] = {0.8, 0.5};
+    for (int i = 0; i < 2; ++i) {
+        cfg_of(&c);
+        c.handover_in_scale = R(ks[i]);
+        const double k = D(c.handover_in_scale); /* the factor as the number type holds it */
+        run(&c, &on);
+        assert_same_until(&off, &on, h - 1);
+        TEST_ASSERT_EQUAL_INT(h, first_frame_of(on.confirmed1));
+        TEST_ASSERT_TRUE(on.x[h - 1] == off.x[h - 1] && on.y[h - 1] == off.y[h - 1]);
+        TEST_ASSERT_TRUE(on.p[h - 1] == off.p[h - 1]);
+        /* tolerance: one multiplication, rounded once: 2^-16 in q16 (its resolution), a
+         * relative 2^-24 in float (1e-6 of the value covers it) */
+        TEST_ASSERT_DOUBLE_WITHIN(1.0 / 65536.0 + 1e-6 * off.in[h - 1], k * off.in[h - 1],
+                                  on.in[h - 1]);
+        /* the next frame: the layer itself started lower */
+        TEST_ASSERT_EQUAL_INT(1, on.has1[h]);
+        TEST_ASSERT_TRUE_MESSAGE(on.in[h] < off.in[h], "the layer's particles were scaled");
+    }
+}
+
+static void test_out_of_range_refused_by_name_and_state_kept(void)
+{
+    pft_tbd_config_t c;
+    const char *field = NULL;
+    cfg_of(&c);
+    c.handover_in_scale = R(1.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    c.handover_in_scale = R(-0.1);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("handover_in_scale", field);
+    c.handover_in_scale = R(1.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("handover_in_scale", field);
+    /* a refused configuration leaves a running manager and its workspace as they were */
+    static run_t r;
+    cfg_of(&c);
+    c.handover_in_scale = R(0.8);
+    run(&c, &r);
+    static pft_tbd_t snap;
+    memcpy(&snap, &g_t, sizeof snap);
+    memcpy(g_snap, g_ws, sizeof g_ws);
+    pft_tbd_config_t bad = c;
+    bad.handover_in_scale = R(1.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_init(&g_t, &bad, g_ws, sizeof g_ws));
+    bad.handover_in_scale = R(-0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_init(&g_t, &bad, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_MEMORY(&snap, &g_t, sizeof snap);
+    TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws, sizeof g_ws);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -314,5 +400,8 @@ int main(void)
     RUN_TEST(test_grace_keeps_a_young_track_for_k_end_tests);
     RUN_TEST(test_persist_ends_on_the_second_frame_in_a_row);
     RUN_TEST(test_fields_refused_by_name_and_state_kept);
+    RUN_TEST(test_default_and_one_are_off);
+    RUN_TEST(test_new_layer_starts_from_k_times_the_intensity);
+    RUN_TEST(test_out_of_range_refused_by_name_and_state_kept);
     return UNITY_END();
 }
