@@ -136,15 +136,8 @@ pft_frame_t pft_test_u16_frame(const uint16_t *px, uint16_t w, uint16_t h, uint8
 pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint32_t seq,
                                  uint64_t timestamp_us)
 {
-    pft_frame_t f;
-    memset(&f, 0, sizeof f);
-    f.data = px;
-    f.width = w;
-    f.height = h;
-    f.stride_bytes = 2u * (uint32_t)w;
+    pft_frame_t f = pft_test_u16_frame((const uint16_t *)(const void *)px, w, h, 16u, seq);
     f.format = PFT_PIX_RES16;
-    f.bit_depth = 16u;
-    f.seq = seq;
     f.timestamp_us = timestamp_us;
     return f;
 }
