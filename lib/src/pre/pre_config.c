@@ -41,6 +41,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_anchor = false;
     cfg->bg_gate = 0u;
     cfg->bg_gate_shift = 0u;
+    cfg->bg_gate_young = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -134,6 +135,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_gate_shift > PFT_PRE_MAX_BG_GATE_SHIFT || (c->bg_gate_shift != 0u && c->bg_gate == 0u)) {
         return "bg_gate_shift";
     }
+    if (c->bg_gate_young != 0u && c->bg_gate == 0u) {
+        return "bg_gate_young"; /* the cells exempt from a gate */
+    }
     return NULL;
 }
 
@@ -156,6 +160,10 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
 {
     if (pft_pre_config_check(c, NULL) != PFT_OK) {
         return 0u;
+    }
+    if (c->bg_anchor && c->bg_gate_young != 0u) {
+        return PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG(c->width, c->height, c->local_outer, c->tile,
+                                                    c->peak_max);
     }
     if (c->bg_anchor) {
         return PFT_PRE_WORKSPACE_BYTES_ANCHOR(c->width, c->height, c->local_outer, c->tile,
@@ -210,6 +218,7 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     }
     pft_pre_peak_t *peaks = pft_ws_take(&ws, (size_t)cfg->peak_max * sizeof(pft_pre_peak_t));
     int32_t *aring = anchor ? pft_ws_take(&ws, 4u * (w + 3u) * 4u) : NULL;
+    uint8_t *agex = anchor && cfg->bg_gate_young != 0u ? pft_ws_take(&ws, w + h + 6u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -224,6 +233,8 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->bgv = anchor ? (uint16_t *)(void *)res : bg; /* bg_anchor: the grid read into res */
     p->bgs = (uint32_t)w;
     p->aring = aring;
+    p->agex = agex;
+    p->agey = agex != NULL ? agex + w + 3u : NULL;
     p->colq = colq;
     p->colnow = colnow;
     p->csum = csum;
@@ -271,6 +282,9 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
         memset(p->bg, 0, (p->cfg.bg_anchor ? (w + 3u) * (h + 3u) : npix) * 2u);
         if (p->aring != NULL) {
             memset(p->aring, 0, 4u * (w + 3u) * 4u);
+        }
+        if (p->agex != NULL) {
+            memset(p->agex, 0, w + h + 6u);
         }
         memset(p->pzc, 0, w * 4u);
         memset(p->pbc, 0, w * 4u);

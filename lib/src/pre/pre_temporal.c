@@ -789,6 +789,35 @@ static void agx_of_(int32_t phi, bool cubic, agx_t *g)
     g->uhi = g->wu[3] != 0 ? 2 : (g->wu[2] != 0 ? 1 : 0);
 }
 
+/* bg_gate_young: the ages of n grid columns (or rows) after a whole-cell move by d: new
+ * entry i holds old entry i + d; the entries that come in are 0 (they hold no scene yet). */
+static void age_move_(uint8_t *age, int32_t n, int32_t d)
+{
+    if (d > 0 && d < n) {
+        memmove(age, age + d, (size_t)(n - d));
+        memset(age + (n - d), 0, (size_t)d);
+    } else if (d < 0 && -d < n) {
+        memmove(age - d, age, (size_t)(n + d));
+        memset(age, 0, (size_t)-d);
+    } else if (d != 0) {
+        memset(age, 0, (size_t)n);
+    } else {
+        /* no move */
+    }
+}
+
+/* bg_gate_young: after a frame's update, the columns (rows) in the valid range both before
+ * (ovlo .. ovhi) and after it (avlo .. avhi) one frame older (at most 255), the others 0 (they
+ * entered with this frame or hold no scene). Cell j is entry j + 1. */
+static void age_step_(uint8_t *age, int32_t n, int32_t ovlo, int32_t ovhi, int32_t avlo, int32_t avhi)
+{
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t j = i - 1;
+        const bool kept = j >= ovlo && j <= ovhi && j >= avlo && j <= avhi;
+        age[i] = (uint8_t)(kept ? (age[i] < 255u ? age[i] + 1u : 255u) : 0u);
+    }
+}
+
 /* A whole-cell move of the anchor by (dx, dy): new cell (j, J) holds old cell (j + dx,
  * J + dy), by one memmove of the stored values (exact; the cells that wrap around a row end
  * are outside the valid ranges, moved with the anchor and cut to the grid). */
@@ -804,6 +833,10 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
         /* no move, or none of the cells stays in the grid */
     }
     const int32_t dd[2] = {dx, dy}, top[2] = {sw - 2, sh - 2};
+    if (p->agex != NULL) {
+        age_move_(p->agex, sw, dx);
+        age_move_(p->agey, sh, dy);
+    }
     for (uint32_t a = 0; a < 2u; ++a) {
         const int64_t lo = (int64_t)p->avlo[a] - dd[a], hi = (int64_t)p->avhi[a] - dd[a];
         p->avlo[a] = (int32_t)(lo < -1 ? -1 : (lo > top[a] ? top[a] + 1 : lo));
@@ -987,11 +1020,15 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
              * to +-lim (bg_gate_shift 0) or the weight alpha / 2^bg_gate_shift */
             const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
             const int32_t ag = wsh == 0 ? a15 : a15 >> wsh;
+            /* bg_gate_young: no gate (a limit of 65535) in a young row, or at a young column */
+            const uint8_t *ax = p->agex != NULL ? p->agex + 1 : NULL; /* ax[j]: column j */
+            const uint32_t ny = p->cfg.bg_gate_young;
+            const bool ryoung = ax != NULL && p->agey[jy + 1] < ny;
             int32_t je = fs0 - 1; /* the span's last cell: at least its first */
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
                 je = se < fs1 ? se : fs1;
-                const int32_t lim = gate_lim_(p, jy, ja0);
+                const int32_t lim = ryoung ? 65535 : gate_lim_(p, jy, ja0);
                 for (int32_t j = ja0; j <= je; ++j) { /* vectorisable */
                     const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
                     const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
@@ -1000,8 +1037,9 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                     const int32_t bx = b[j + 1];
                     int32_t e = sv - bx;
                     const int32_t ae = e < 0 ? -e : e;
-                    e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
-                    const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+                    const int32_t lj = ax != NULL && ax[j] < ny ? 65535 : lim;
+                    e = wsh == 0 && ae > lj ? (e < 0 ? -lj : lj) : e;
+                    const int32_t nb = bx + ((e * (ae > lj ? ag : a15) + 16384) >> 15);
                     b[j + 1] = (uint16_t)(inv ? bx : nb);
                 }
             }
@@ -1029,7 +1067,9 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
         if (zt != PFT_PRE_ANONE_) {
             int32_t e = zt - bx;
             int32_t a = a15;
-            if (g->gate && old) {
+            const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
+                                                    p->agey[jy + 1] < p->cfg.bg_gate_young);
+            if (g->gate && old && !young) {
                 const int32_t lim = gate_lim_(p, jy, j);
                 const int32_t ae = e < 0 ? -e : e;
                 if (ae > lim && p->cfg.bg_gate_shift == 0u) {
@@ -1100,6 +1140,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             if (y + 1 == h || (y + 1) % t == 0) {
                 pft_pre_tilerow_done_(p, (uint32_t)(y / t));
             }
+        }
+        if (p->agex != NULL) { /* every cell enters: age 0 */
+            memset(p->agex, 0, (size_t)sw + (size_t)h + 3u);
         }
         p->bg_frames++;
         p->shift_prev[0] = 0;
@@ -1219,6 +1262,10 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     }
     for (; jn <= h + 1; ++jn) { /* grid rows past the last frame row's (their pixel: row h - 1) */
         anchor_urow_(p, &g, jn, zp);
+    }
+    if (p->agex != NULL) {
+        age_step_(p->agex, sw, ovlo[0], ovhi[0], p->avlo[0], p->avhi[0]);
+        age_step_(p->agey, h + 3, ovlo[1], ovhi[1], p->avlo[1], p->avhi[1]);
     }
     p->bg_frames++;
     if (!p->jumped) {

@@ -27,6 +27,7 @@ struct pft_pre_s {
     uint16_t *bgv;         /* the background as registration reads it: bg, or (bg_anchor) the grid read at the last frame's position into res */
     uint32_t bgs;          /* row stride of bgv (elements): w */
     int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each (the slot of row y - 4 also the residual's vertical blends of row y) */
+    uint8_t *agex, *agey;  /* bg_gate_young: frames each grid column (w + 3) and row (h + 3) has held the scene before this frame, saturating at 255 (NULL without it) */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
     int32_t *csum;         /* column sums of the clipped residual (R units) */
