@@ -974,6 +974,37 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     }
 }
 
+/* bg_gate: the ring rows of one grid row's update, their vertical weights, the values marking
+ * an invalid tap, and the weights inside and beyond the gate. */
+typedef struct {
+    const int32_t *q[4];
+    int32_t w[4], n[4];
+    int32_t wsh, ag, a15;
+} gate_row_t;
+
+/* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, the innovation
+ * beyond lim clipped to +-lim (wsh 0) or weighted ag instead of a15 (wsh > 0); lim 65535: no
+ * gate. A cell with an invalid tap is kept. */
+static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
+{
+    const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
+    const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
+    const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    for (int32_t j = ja; j <= jb; ++j) { /* vectorisable */
+        const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+        const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+        int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+        sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t bx = b[j + 1];
+        int32_t e = sv - bx;
+        const int32_t ae = e < 0 ? -e : e;
+        e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
+        const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+        b[j + 1] = (uint16_t)(inv ? bx : nb);
+    }
+}
+
 /* The update of grid row jy from the ring (the frame rows interpolated along x, taps
  * jy + ub - 1 .. jy + ub + 2, all held); zn is the converted frame row of the cells' nearest
  * pixels (row jy - k clamped), for the cells outside the valid ranges without an interpolated
@@ -1024,24 +1055,27 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             const uint8_t *ax = p->agex != NULL ? p->agex + 1 : NULL; /* ax[j]: column j */
             const uint32_t ny = p->cfg.bg_gate_young;
             const bool ryoung = ax != NULL && p->agey[jy + 1] < ny;
+            const gate_row_t gr = {{q0, q1, q2, q3}, {w0, w1, w2, w3}, {n0, n1, n2, n3}, wsh, ag, a15};
             int32_t je = fs0 - 1; /* the span's last cell: at least its first */
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
                 je = se < fs1 ? se : fs1;
                 const int32_t lim = ryoung ? 65535 : gate_lim_(p, jy, ja0);
-                for (int32_t j = ja0; j <= je; ++j) { /* vectorisable */
-                    const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
-                    const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
-                    int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
-                    sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-                    const int32_t bx = b[j + 1];
-                    int32_t e = sv - bx;
-                    const int32_t ae = e < 0 ? -e : e;
-                    const int32_t lj = ax != NULL && ax[j] < ny ? 65535 : lim;
-                    e = wsh == 0 && ae > lj ? (e < 0 ? -lj : lj) : e;
-                    const int32_t nb = bx + ((e * (ae > lj ? ag : a15) + 16384) >> 15);
-                    b[j + 1] = (uint16_t)(inv ? bx : nb);
+                /* bg_gate_young: the span's young columns ungated. Columns enter only at the
+                 * ends of the valid range, so their ages rise from each end inwards: the young
+                 * ones are a prefix [ja0, ma) and a suffix (mb, je] of the span */
+                int32_t ma = ja0, mb = je;
+                if (ax != NULL && !ryoung) {
+                    while (ma <= je && ax[ma] < ny) {
+                        ma++;
+                    }
+                    while (mb >= ma && ax[mb] < ny) {
+                        mb--;
+                    }
                 }
+                gate_run_(&gr, b, ja0, ma - 1, 65535);
+                gate_run_(&gr, b, ma, mb, lim);
+                gate_run_(&gr, b, mb + 1, je, 65535);
             }
         }
     }
