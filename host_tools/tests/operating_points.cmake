@@ -10,7 +10,9 @@
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
 #  - integ_alpha removed: the tracks change (the births come from the integration);
 #  - bg_anchor, clutter_anchor toggled: the residual the manager sees changes;
-#  - bg_gate 0.25 set (the real-frame twin's gated background update): the residual changes.
+#  - bg_gate 0.25 set (the real-frame twin's gated background update): the residual changes;
+#    bg_gate_young 16 on top of it: the residual changes again (the young cells ungated);
+#  - handover_in_scale 0.8 (the real-frame twin's): the tracks change.
 # The real-frame twin (real_frames_low_false_rate.json) needs real backgrounds to run; only its
 # documented block is checked here.
 # Needs nothing outside the source tree.
@@ -41,7 +43,8 @@ set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist
            "theta_end=0.20000000000000001" "particles=24000")
 check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
-check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=3" "bg_gate=0.25")
+check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=4" "bg_gate=0.25"
+            "bg_gate_young=16" "handover_in_scale=0.80000000000000004")
 
 string(JSON js SET "${js}" image "{\"width\": 128, \"height\": 96}")
 string(JSON js SET "${js}" frames 40)
@@ -71,9 +74,13 @@ foreach(f bg_anchor clutter_anchor)
 endforeach()
 string(JSON v SET "${js}" tracker bg_gate 0.25)
 file(WRITE ${WORK}/gate.json "${v}")
+string(JSON v SET "${v}" tracker bg_gate_young 16)
+file(WRITE ${WORK}/young.json "${v}")
+string(JSON v SET "${js}" tracker handover_in_scale 0.8)
+file(WRITE ${WORK}/hand.json "${v}")
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
-foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor gate)
+foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor gate young hand)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
 endforeach()
@@ -131,9 +138,16 @@ foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor gate)
     message(FATAL_ERROR "${c}: the residual is the shipped file's: its field does not reach the pipeline")
   endif()
 endforeach()
-execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/tracks.csv ${WORK}/run_nointeg/tracks.csv
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_gate/res.i16 ${WORK}/run_young/res.i16
                 RESULT_VARIABLE same)
 if(same EQUAL 0)
-  message(FATAL_ERROR "nointeg: the tracks are the shipped file's: integ_alpha does not reach the manager")
+  message(FATAL_ERROR "young: the residual is bg_gate's alone: bg_gate_young does not reach the pipeline")
 endif()
-message(STATUS "flat_block, clutter_mean, bg_anchor, clutter_anchor and bg_gate change the residual, integ_alpha the tracks")
+foreach(c nointeg hand)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/tracks.csv ${WORK}/run_${c}/tracks.csv
+                  RESULT_VARIABLE same)
+  if(same EQUAL 0)
+    message(FATAL_ERROR "${c}: the tracks are the shipped file's: its field does not reach the manager")
+  endif()
+endforeach()
+message(STATUS "flat_block, clutter_mean, bg_anchor, clutter_anchor, bg_gate and bg_gate_young change the residual, integ_alpha and handover_in_scale the tracks")
