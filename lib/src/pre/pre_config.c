@@ -134,6 +134,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_gate_shift > PFT_PRE_MAX_BG_GATE_SHIFT || (c->bg_gate_shift != 0u && c->bg_gate == 0u)) {
         return "bg_gate_shift";
     }
+    if (c->bg_gate_local > PFT_PRE_GATE_LOCAL_RELATIVE || (c->bg_gate_local != 0u && c->bg_gate == 0u)) {
+        return "bg_gate_local"; /* the local part is taken off the gate's innovation */
+    }
     return NULL;
 }
 
@@ -156,6 +159,10 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
 {
     if (pft_pre_config_check(c, NULL) != PFT_OK) {
         return 0u;
+    }
+    if (c->bg_anchor && c->bg_gate_local != 0u) {
+        return PFT_PRE_WORKSPACE_BYTES_ANCHOR_LOCAL(c->width, c->height, c->local_outer, c->tile,
+                                                    c->peak_max);
     }
     if (c->bg_anchor) {
         return PFT_PRE_WORKSPACE_BYTES_ANCHOR(c->width, c->height, c->local_outer, c->tile,
@@ -210,6 +217,11 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     }
     pft_pre_peak_t *peaks = pft_ws_take(&ws, (size_t)cfg->peak_max * sizeof(pft_pre_peak_t));
     int32_t *aring = anchor ? pft_ws_take(&ws, 4u * (w + 3u) * 4u) : NULL;
+    /* bg_gate_local: per tile the sums of e and of B (int64), then m and the count (32 bits) */
+    const bool glocal = cfg->bg_gate_local != 0u;
+    int64_t *gsum = glocal ? pft_ws_take(&ws, ntx * nty * 16u) : NULL;
+    int32_t *gm = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
+    uint32_t *gcnt = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -224,6 +236,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->bgv = anchor ? (uint16_t *)(void *)res : bg; /* bg_anchor: the grid read into res */
     p->bgs = (uint32_t)w;
     p->aring = aring;
+    p->gsum = gsum;
+    p->gm = gm;
+    p->gcnt = gcnt;
     p->colq = colq;
     p->colnow = colnow;
     p->csum = csum;
@@ -293,6 +308,11 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
     memset(p->tsig, 0, nt * 4u);
     memset(p->tmul, 0, nt * 4u);
     memset(p->rowm, 0, (size_t)p->ntx * 4u);
+    if (p->gsum != NULL) {
+        memset(p->gsum, 0, nt * 16u);
+        memset(p->gm, 0, nt * 4u);
+        memset(p->gcnt, 0, nt * 4u);
+    }
     if (p->cfg.peak_max > 0u) {
         memset(p->peaks, 0, (size_t)p->cfg.peak_max * sizeof(pft_pre_peak_t));
     }
