@@ -110,6 +110,7 @@ struct TrackerSettings {
     double bg_gate = 0.0;                       ///< with bg_anchor: the background's update innovation clipped to +-bg_gate tile sigmas (pft_pre bg_gate, 0 off or 0.25..16)
     int bg_gate_shift = 0;                      ///< with bg_gate: 0 clips the innovation beyond the gate; 1..15 updates those cells with alpha / 2^shift (pft_pre bg_gate_shift)
     int bg_gate_young = 0;                      ///< with bg_gate: frames a grid cell that entered the scene is updated without the gate (pft_pre bg_gate_young, 0 off or 1..255)
+    std::string bg_gate_local = "off";          ///< with bg_gate: "mean" or "relative" gates the innovation less its tile's part from the last frame (pft_pre bg_gate_local), "off"
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

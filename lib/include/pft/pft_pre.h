@@ -102,6 +102,10 @@ extern "C" {
 #define PFT_PRE_MAX_BG_GATE 4096u
 /** Largest bg_gate_shift. */
 #define PFT_PRE_MAX_BG_GATE_SHIFT 15u
+/** bg_gate_local: the tile's mean innovation of the last frame. */
+#define PFT_PRE_GATE_LOCAL_MEAN 1u
+/** bg_gate_local: the tile's innovation relative to the level, times the cell's level. */
+#define PFT_PRE_GATE_LOCAL_RELATIVE 2u
 /** Largest sigma_step. */
 #define PFT_PRE_MAX_SIGMA_STEP 4u
 /** Largest sigma_every. */
@@ -170,6 +174,7 @@ typedef struct {
     uint16_t bg_gate;        /**< TEMPORAL with bg_anchor: the gate g of the background's update, Q8.8 sigma units (256 = 1 sigma), 0 or 64..4096 (docs/algorithms.md 9.13 [E]). A cell whose innovation e = z - B (the frame interpolated into the grid less the grid) exceeds g sigma in magnitude, sigma the last estimate of the tile of the cell's nearest pixel (no gate while that tile has none), is updated with e clipped to +-g sigma (bg_gate_shift 0) or with the weight alpha / 2^bg_gate_shift; the others as without it. A point that stays on the same few scene pixels (a target slow against the scene) then enters the background more slowly; a change of the scene of D sigma is still learnt: linearly at alpha g sigma per frame until it is within g sigma (clip), or with the time constant 2^bg_gate_shift / alpha frames (weight). Changes values; no workspace. Needs bg_anchor (default 0: off, today's values) */
     uint8_t bg_gate_shift;   /**< with bg_gate: 0 clips the innovation of a cell beyond the gate to +-bg_gate sigmas (default); 1..15 leaves it unclipped and updates such a cell with the weight alpha / 2^bg_gate_shift instead (a change of the scene beyond the gate is then learnt with the time constant 2^bg_gate_shift / alpha frames until it is within the gate) (default 0) */
     uint8_t bg_gate_young;   /**< with bg_gate: the grid cells that entered the scene in the last bg_gate_young frames (a grid column or row that the frame covers for the first time, counted per column and per row) are updated without the gate, 0..255 (docs/algorithms.md 9.13 [E]). Such a cell starts from one frame, noise included; gated, it would shed that error at only alpha g sigma per frame, and the strip of young cells along the frame edge where the scene enters would hold a residual of larger spread than the rest (false tracks fixed to that edge); ungated for N frames it converges at the rate alpha as without the gate. Workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG (the ages, one byte per grid column and row). Changes values. Needs bg_gate (default 0: every cell gated, today's values) */
+    uint8_t bg_gate_local;   /**< with bg_gate: the gate applied to the innovation less its local smooth part (docs/algorithms.md 9.13 [E]), so that a level change shared by a tile (sensor-fixed shading under a drifting scene, a global drift) is learnt at the full alpha while a point is still gated. 0: off (default, today's values); PFT_PRE_GATE_LOCAL_MEAN: m is the mean innovation of the cell's tile (the tile of its nearest pixel) in the last frame's update; PFT_PRE_GATE_LOCAL_RELATIVE: m = rho B, rho = (sum of e) / (sum of B) over that tile in the last frame's update (a gain fixed to the sensor changes each cell's level in proportion to it). The cell is updated with alpha m plus the gate's update of e - m (clip or weight, bg_gate_shift); a tile with no update in the last frame has m = 0. Changes values; workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_LOCAL (24 bytes per tile more, rounded). Needs bg_gate (default 0) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */
@@ -302,10 +307,22 @@ extern "C" {
      PFT_WS_ROUND(((size_t)(w) + 3u) * ((size_t)(h) + 3u) * 2u) +                               \
      PFT_WS_ROUND(4u * ((size_t)(w) + 3u) * 4u))
 
-/** Workspace bytes with bg_anchor and bg_gate_young set: PFT_PRE_WORKSPACE_BYTES_ANCHOR plus
- *  the ages of the grid's (w + 3) columns and (h + 3) rows, one byte each. */
+/** The bytes that bg_gate_young adds to the anchored workspace: the ages of the grid's (w + 3)
+ *  columns and (h + 3) rows, one byte each. */
+#define PFT_PRE_YOUNG_BYTES(w, h) PFT_WS_ROUND((size_t)(w) + (size_t)(h) + 6u)
+/** The bytes that bg_gate_local adds to the anchored workspace: 24 bytes per tile (each tile's
+ *  sums of the innovation and of the level, its m and its count; three buffers, each rounded to
+ *  PFT_WS_ALIGN). */
+#define PFT_PRE_LOCAL_BYTES(w, h, t)                                                            \
+    (PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 16u) +                                \
+     2u * PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 4u))
+/** Workspace bytes with bg_anchor and bg_gate_young set (bg_gate_local off). With both options
+ *  the workspace is PFT_PRE_WORKSPACE_BYTES_ANCHOR + PFT_PRE_YOUNG_BYTES + PFT_PRE_LOCAL_BYTES. */
 #define PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG(w, h, ro, t, k)                                     \
-    (PFT_PRE_WORKSPACE_BYTES_ANCHOR(w, h, ro, t, k) + PFT_WS_ROUND((size_t)(w) + (size_t)(h) + 6u))
+    (PFT_PRE_WORKSPACE_BYTES_ANCHOR(w, h, ro, t, k) + PFT_PRE_YOUNG_BYTES(w, h))
+/** Workspace bytes with bg_anchor and bg_gate_local set (bg_gate_young off). */
+#define PFT_PRE_WORKSPACE_BYTES_ANCHOR_LOCAL(w, h, ro, t, k)                                     \
+    (PFT_PRE_WORKSPACE_BYTES_ANCHOR(w, h, ro, t, k) + PFT_PRE_LOCAL_BYTES(w, h, t))
 
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_pre_workspace_size(const pft_pre_config_t *cfg);

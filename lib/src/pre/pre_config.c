@@ -138,6 +138,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_gate_young != 0u && c->bg_gate == 0u) {
         return "bg_gate_young"; /* the cells exempt from a gate */
     }
+    if (c->bg_gate_local > PFT_PRE_GATE_LOCAL_RELATIVE || (c->bg_gate_local != 0u && c->bg_gate == 0u)) {
+        return "bg_gate_local"; /* the local part is taken off the gate's innovation */
+    }
     return NULL;
 }
 
@@ -161,13 +164,12 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
     if (pft_pre_config_check(c, NULL) != PFT_OK) {
         return 0u;
     }
-    if (c->bg_anchor && c->bg_gate_young != 0u) {
-        return PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG(c->width, c->height, c->local_outer, c->tile,
-                                                    c->peak_max);
-    }
     if (c->bg_anchor) {
+        /* the ages of bg_gate_young and the tile sums of bg_gate_local, each beyond the grid */
         return PFT_PRE_WORKSPACE_BYTES_ANCHOR(c->width, c->height, c->local_outer, c->tile,
-                                              c->peak_max);
+                                              c->peak_max) +
+               (c->bg_gate_young != 0u ? PFT_PRE_YOUNG_BYTES(c->width, c->height) : 0u) +
+               (c->bg_gate_local != 0u ? PFT_PRE_LOCAL_BYTES(c->width, c->height, c->tile) : 0u);
     }
     return c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
                                                         c->local_outer, c->tile, c->peak_max)
@@ -219,6 +221,11 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     pft_pre_peak_t *peaks = pft_ws_take(&ws, (size_t)cfg->peak_max * sizeof(pft_pre_peak_t));
     int32_t *aring = anchor ? pft_ws_take(&ws, 4u * (w + 3u) * 4u) : NULL;
     uint8_t *agex = anchor && cfg->bg_gate_young != 0u ? pft_ws_take(&ws, w + h + 6u) : NULL;
+    /* bg_gate_local: per tile the sums of e and of B (int64), then m and the count (32 bits) */
+    const bool glocal = cfg->bg_gate_local != 0u;
+    int64_t *gsum = glocal ? pft_ws_take(&ws, ntx * nty * 16u) : NULL;
+    int32_t *gm = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
+    uint32_t *gcnt = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -235,6 +242,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->aring = aring;
     p->agex = agex;
     p->agey = agex != NULL ? agex + w + 3u : NULL;
+    p->gsum = gsum;
+    p->gm = gm;
+    p->gcnt = gcnt;
     p->colq = colq;
     p->colnow = colnow;
     p->csum = csum;
@@ -307,6 +317,11 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
     memset(p->tsig, 0, nt * 4u);
     memset(p->tmul, 0, nt * 4u);
     memset(p->rowm, 0, (size_t)p->ntx * 4u);
+    if (p->gsum != NULL) {
+        memset(p->gsum, 0, nt * 16u);
+        memset(p->gm, 0, nt * 4u);
+        memset(p->gcnt, 0, nt * 4u);
+    }
     if (p->cfg.peak_max > 0u) {
         memset(p->peaks, 0, (size_t)p->cfg.peak_max * sizeof(pft_pre_peak_t));
     }

@@ -918,6 +918,41 @@ static int32_t gate_span_end_(const pft_pre_t *p, int32_t j)
     return (tx + 1) * t >= w ? w + 1 : (tx + 1) * t - 1;
 }
 
+/* bg_gate_local (docs/algorithms.md 9.13): the tile of grid cell (j, jy), that of its nearest
+ * pixel, as gate_lim_. */
+static uint32_t gate_tile_(const pft_pre_t *p, int32_t jy, int32_t j)
+{
+    const int32_t t = (int32_t)p->cfg.tile;
+    const uint32_t ty = (uint32_t)(clampi_(jy, 0, (int32_t)p->cfg.height - 1) / t);
+    const uint32_t tx = (uint32_t)(clampi_(j, 0, (int32_t)p->cfg.width - 1) / t);
+    return ty * p->ntx + tx;
+}
+
+/* bg_gate_local: the local part m of cell value bx's innovation, U units: the tile's mean
+ * (gm, U units) or rho bx (gm: rho, Q16, |rho| <= 1/4), |m| <= 16383. */
+static int32_t gate_m_(bool rel, int32_t gm, int32_t bx)
+{
+    return rel ? (gm * bx + 32768) >> 16 : gm;
+}
+
+/* bg_gate_local: the gated update of cell value bx with innovation e, local part mc, gate lim
+ * (U units), alpha a15 and beyond the gate ag (the weight form, wsh >= 1): bx + alpha mc plus
+ * the gate's update of e - mc, clamped to the background's range. */
+static int32_t gate_local_nb_(int32_t bx, int32_t e, int32_t mc, int32_t lim, int32_t a15,
+                              int32_t ag, int32_t wsh)
+{
+    int32_t d = e - mc; /* |d| <= 65535 + 16383 */
+    const int32_t ad = d < 0 ? -d : d;
+    d = wsh == 0 && ad > lim ? (d < 0 ? -lim : lim) : d;
+    /* the two products rounded apart, each within 32 bits (a15 <= 2^15): |mc a15| < 2^29;
+     * |d| <= lim <= 65535 with a15, |d| <= 81918 only beyond the weight form's gate, with
+     * ag <= a15 / 2. With mc 0 this is the gate's update without bg_gate_local. */
+    const int32_t am = (mc * a15 + 16384) >> 15;
+    const int32_t dd = (d * (ad > lim ? ag : a15) + 16384) >> 15;
+    const int32_t nb = bx + am + dd;
+    return nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
+}
+
 /* Cell j (observed) of a frame row zl interpolated along x at the update's fraction: taps
  * ulo .. uhi, U * 16, PFT_PRE_ANONE_ when one of them is masked. */
 static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
@@ -971,6 +1006,70 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     }
     for (int32_t j = -1; j <= w + 1; ++j) {
         hz[j + 1] = j >= olo && j <= ohi ? hcell_(gx, zl, j) : PFT_PRE_ANONE_;
+    }
+}
+
+/* bg_gate_local: the gated update of the observed cells ja0 .. je of grid row jy (one tile
+ * column; b the row's storage, q0 .. q3 the ring rows of its taps, as anchor_urow_'s fast
+ * span), with this frame's sums of the tile. */
+static void gate_local_span_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, int32_t ja0,
+                             int32_t je, int32_t lim, int32_t ag, const int32_t *q0,
+                             const int32_t *q1, const int32_t *q2, const int32_t *q3, uint16_t *b)
+{
+    const agx_t *gy = &g->gy;
+    const int32_t a15 = g->a15, wsh = (int32_t)p->cfg.bg_gate_shift;
+    const int32_t w0 = gy->wu[0], w1 = gy->wu[1], w2 = gy->wu[2], w3 = gy->wu[3];
+    const int32_t nv = PFT_PRE_ANONE_ + 1;
+    const int32_t n0 = gy->ulo == -1 ? PFT_PRE_ANONE_ : nv, n1 = PFT_PRE_ANONE_;
+    const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
+    const uint32_t ti = gate_tile_(p, jy, ja0);
+    const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
+    const int32_t gm = p->gm[ti];
+    int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
+    for (int32_t j = ja0; j <= je; ++j) {
+        const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+        const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+        int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+        sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t bx = b[j + 1];
+        const int32_t e = sv - bx;
+        if (!inv) {
+            se += e;
+            sl += bx;
+            n++;
+            b[j + 1] = (uint16_t)gate_local_nb_(bx, e, gate_m_(rel, gm, bx), lim, a15, ag, wsh);
+        }
+    }
+    p->gsum[2u * ti] += se;
+    p->gsum[2u * ti + 1u] += sl;
+    p->gcnt[ti] += (uint32_t)n;
+}
+
+/* bg_gate_local: m of every tile from the sums of the last frame's update (mean: the mean
+ * innovation, rounded, within +-16383; relative: rho = sum e / sum B in Q16 within +-1/4), the
+ * sums cleared for this frame. A tile without cells has m 0. */
+static void gate_local_start_(pft_pre_t *p)
+{
+    const uint32_t nt = p->ntx * p->nty;
+    const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
+    for (uint32_t i = 0; i < nt; ++i) {
+        const int64_t se = p->gsum[2u * i], sl = p->gsum[2u * i + 1u];
+        const int64_t n = (int64_t)p->gcnt[i];
+        int64_t m = 0;
+        if (rel && sl > 0) {
+            const int64_t num = se * 65536;
+            m = (num >= 0 ? num + sl / 2 : num - sl / 2) / sl;
+            m = m > 16384 ? 16384 : (m < -16384 ? -16384 : m);
+        } else if (!rel && n > 0) {
+            m = (se >= 0 ? se + n / 2 : se - n / 2) / n;
+            m = m > 16383 ? 16383 : (m < -16383 ? -16383 : m);
+        } else {
+            /* no cell: m 0 */
+        }
+        p->gm[i] = (int32_t)m;
+        p->gsum[2u * i] = 0;
+        p->gsum[2u * i + 1u] = 0;
+        p->gcnt[i] = 0u;
     }
 }
 
@@ -1073,6 +1172,12 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                         mb--;
                     }
                 }
+                if (p->gsum != NULL) { /* bg_gate_local */
+                    gate_local_span_(p, g, jy, ja0, ma - 1, 65535, ag, q0, q1, q2, q3, b);
+                    gate_local_span_(p, g, jy, ma, mb, lim, ag, q0, q1, q2, q3, b);
+                    gate_local_span_(p, g, jy, mb + 1, je, 65535, ag, q0, q1, q2, q3, b);
+                    continue;
+                }
                 gate_run_(&gr, b, ja0, ma - 1, 65535);
                 gate_run_(&gr, b, ma, mb, lim);
                 gate_run_(&gr, b, mb + 1, je, 65535);
@@ -1103,6 +1208,18 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             int32_t a = a15;
             const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
                                                     p->agey[jy + 1] < p->cfg.bg_gate_young);
+            if (g->gate && old && p->gsum != NULL) {
+                const int32_t lim = young ? 65535 : gate_lim_(p, jy, j);
+                const uint32_t ti = gate_tile_(p, jy, j);
+                const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
+                const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
+                p->gsum[2u * ti] += e;
+                p->gsum[2u * ti + 1u] += bx;
+                p->gcnt[ti]++;
+                b[j + 1] = (uint16_t)gate_local_nb_(bx, e, gate_m_(rel, p->gm[ti], bx), lim, a15,
+                                                    wsh == 0 ? a15 : a15 >> wsh, wsh);
+                continue;
+            }
             if (g->gate && old && !young) {
                 const int32_t lim = gate_lim_(p, jy, j);
                 const int32_t ae = e < 0 ? -e : e;
@@ -1181,7 +1298,13 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->bg_frames++;
         p->shift_prev[0] = 0;
         p->shift_prev[1] = 0;
+        if (p->gsum != NULL) {
+            gate_local_start_(p); /* a restart: no sums, m 0 */
+        }
         return;
+    }
+    if (p->gsum != NULL) {
+        gate_local_start_(p);
     }
     /* the new position p_k = p_{k-1} - shift (shift: the scene's move) */
     int32_t dA[2];
