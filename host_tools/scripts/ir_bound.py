@@ -20,6 +20,8 @@ prototype of host_tools/scripts/ir_bg_proto.py, "Branch irbg"); each residual ne
   ir_bound.py clutter  --sim SIM --run RUN --db 09 --seeds 1-29 --cache C [--every 5] [--dv 0.05]
   ir_bound.py report   --cache C --dbs 06 09 12 [--tbd DB=SUMMARY.json ...] [--trace-list FILE]
                        [--fig PNG] [--max-seed 29] [--curves-out CURVES.json]
+  ir_bound.py objects  --cache C --k 12 --above 11 [--tag T]   (the distinct clutter objects above a threshold:
+                       seed, position in the frame and the scene, speed against the scene; "Branch irbound2")
   ir_bound.py roc      LABEL=CURVES.json ... --db 09 --ks 12 20 --fig PNG   (curves of several reports in one figure)
 
 --post NAME[:k=v,...][+NAME...] (targets, clutter, report; "Branch irdir"): each residual frame goes through
@@ -675,6 +677,13 @@ def cmd_report(a):
                         gap = collections.Counter(cats.get((t['seed'], t['id']), '?') for t, h in zip(allt, hit_ev)
                                                   if h and not det.get((t['seed'], t['id'])))
                         row['gap'] = dict(gap)
+                    # the same pairing for the moving-objects threshold (Tmv; targets slow against the scene missed)
+                    row['paired_mv'] = tuple(sum(1 for t, h in zip(allt, hit_mv) if h == hb and bool(det.get(
+                        (t['seed'], t['id']))) == db_) for hb, db_ in ((True, True), (True, False), (False, True)))
+                    if cats:
+                        row['gap_mv'] = dict(collections.Counter(
+                            cats.get((t['seed'], t['id']), '?') for t, h in zip(allt, hit_mv)
+                            if h and not det.get((t['seed'], t['id']))))
                 res_rows.append(row)
         # ROC per K: Pd against false detections per 1000 frames
         for K in ks:
@@ -699,14 +708,15 @@ def cmd_report(a):
     print('\nclairvoyant detection (a target counts when its true-path K-sum exceeds T in one window of its life):')
     print('SNR  rate/1000  K  | per frame: T   Pd    clear/cloud/struct (n)         frames to 1st (Tev) | no scene paths: T  Pd '
           '| distinct objects: Tev  Pd   clear/cloud/struct | moving objects: Tmv  Pd | paired with TBD at Tev '
-          '(both / bound only / TBD only), bound-only by irmiss category')
+          '(both / bound only / TBD only), bound-only by irmiss category | the same at Tmv')
     for r in res_rows:
         kd = ' / '.join(f'{r["kinds"].get(k, float("nan")):.0%} ({r["kinds_n"].get(k, 0)})' for k in KINDS)
         ke = ' / '.join(f'{r["kinds_ev"].get(k, float("nan")):.0%}' for k in KINDS)
         print(f'{r["db"]}   {1000 * r["rate"]:5.0f}    {r["K"]:2d} | {r["T"]:5.2f}  {r["pd"]:5.1%}  {kd:30s} '
               f'{r["delay"] if r["delay"] is not None else "-":>6} | {r["Tns"]:5.2f} {r["pd_ns"]:5.1%} | '
               f'{r["Tev"]:5.2f} {r["pd_ev"]:5.1%}  {ke:16s} | {r["Tmv"]:5.2f} {r["pd_mv"]:5.1%} | '
-              f'{r.get("paired", "")}  {r.get("gap", "")}')
+              f'{r.get("paired", "")}  {r.get("gap", "")}'
+              + (f' | at Tmv: {r["paired_mv"]}  {r.get("gap_mv", "")}' if 'paired_mv' in r else ''))
     for db, d in tbd.items():
         av = d.get('averaged', {})
         print(f'TBD / DBT measured {db} dB: ' + json.dumps({k: av.get(k) for k in sorted(av) if 'tbd' in k.lower()
@@ -748,6 +758,52 @@ def cmd_report(a):
         fig.tight_layout()
         fig.savefig(a.fig, dpi=110)
         print(f'wrote {a.fig}')
+
+
+# ---------------------------------------------------------------- objects
+def cmd_objects(a):
+    """The distinct clutter objects above --above (units of sd_K) of one K, as report's distinct-object
+    count links them (candidates within --radius px in scene coordinates, any frame of the run): per
+    object its seed, background, largest S_K, windows, first and last end frame, position of the
+    largest (scene and frame) and, for objects spanning >= 5 frames, its fitted speed against the
+    scene (report's Tmv drops those at <= the clutter files' scene gate). sd_K as report computes it."""
+    from scipy.sparse import csgraph, coo_matrix
+    from scipy.spatial import cKDTree
+    k = str(a.k)
+    pat = re.compile(rf'cl_{a.clutter_db}_s\d+{re.escape(post_tag(a.post) + a.tag)}\.json$')
+    cl = [json.load(open(p)) for p in sorted(glob.glob(os.path.join(a.cache, f'cl_{a.clutter_db}_s*.json')))
+          if pat.search(os.path.basename(p))]
+    cl = sorted((c for c in cl if c['seed'] <= a.max_seed and any(w.get(k) for w in c['windows'])),
+                key=lambda c: c['seed'])
+    if not cl:
+        sys.exit('no clutter files with K = %s' % k)
+    sd = float(np.median([np.median([w[k]['sd'] for w in c['windows'] if w.get(k) and w[k]['sd']]) for c in cl
+                          if any(w.get(k) and w[k]['sd'] for w in c['windows'])]))
+    gate = cl[0]['scene_gate']
+    print(f'K {a.k}: sd_K {sd:.3f}; {len(cl)} seeds; objects above {a.above} sd_K (linked within {a.radius} px '
+          f'in scene coordinates); scene-fixed: >= 5 frames, fitted speed against the scene <= {gate} px/frame')
+    for c in cl:
+        cand = [(v / sd, xs, ys, w['t'], x, y) for w in c['windows'] if w.get(k) and w[k].get('cands')
+                for v, x, y, xs, ys in w[k]['cands']]
+        cand = np.array(cand) if cand else np.zeros((0, 6))
+        sub = cand[cand[:, 0] > a.above]
+        if len(sub) == 0:
+            continue
+        pairs = cKDTree(sub[:, 1:3]).query_pairs(a.radius, output_type='ndarray')
+        g = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(sub), len(sub))) \
+            if len(pairs) else coo_matrix((len(sub), len(sub)))
+        n, lab = csgraph.connected_components(g, directed=False)
+        for L in range(n):
+            m = sub[lab == L]
+            span = m[:, 3].max() - m[:, 3].min()
+            v = (math.hypot(np.polyfit(m[:, 3], m[:, 1], 1)[0], np.polyfit(m[:, 3], m[:, 2], 1)[0])
+                 if span >= 5 else None)
+            i = int(m[:, 0].argmax())
+            print(f'seed {c["seed"]:3d} {os.path.basename(c["background"])} max {m[i, 0]:5.1f} windows {len(m):3d} '
+                  f'end frames {int(m[:, 3].min())}-{int(m[:, 3].max())} scene ({m[i, 1]:.0f}, {m[i, 2]:.0f}) '
+                  f'frame ({m[i, 4]:.0f}, {m[i, 5]:.0f}) '
+                  + ('speed against the scene -' if v is None else
+                     f'speed against the scene {v:.2f}' + (' (scene-fixed)' if v <= gate else '')))
 
 
 def cmd_roc(a):
@@ -831,6 +887,16 @@ def main():
     p.add_argument('--post', default='', help='read the cache files of this --post filter (targets and clutter)')
     p.add_argument('--at-rates', type=float, nargs='*', help='print the detection at these false objects / 1000 frames')
     p.add_argument('--curves-out', help='write the ROC curves (distinct objects and frames, per SNR and K) to this JSON')
+    p = sp.add_parser('objects', help='the distinct clutter objects above a threshold of one K (what sets report\'s '
+                      'Tev and Tmv), with their seed, position and speed against the scene')
+    p.add_argument('--cache', required=True)
+    p.add_argument('--k', type=int, default=12)
+    p.add_argument('--above', type=float, default=10.0, help='threshold, units of sd_K')
+    p.add_argument('--clutter-db', default='09')
+    p.add_argument('--tag', default='', help='the clutter files of this clutter --tag')
+    p.add_argument('--post', default='')
+    p.add_argument('--radius', type=float, default=4.0)
+    p.add_argument('--max-seed', type=int, default=1000)
     p = sp.add_parser('roc', help='one ROC figure from several report --curves-out files (e.g. a --post filter '
                       'beside the unfiltered residual)')
     p.add_argument('curves', nargs='+', help='LABEL=FILE.json')
@@ -840,7 +906,7 @@ def main():
     p.add_argument('--fig', required=True)
     a = ap.parse_args()
     {'inputs': cmd_inputs, 'targets': cmd_targets, 'clutter': cmd_clutter, 'report': cmd_report,
-     'roc': cmd_roc}[a.cmd](a)
+     'objects': cmd_objects, 'roc': cmd_roc}[a.cmd](a)
 
 
 if __name__ == '__main__':
