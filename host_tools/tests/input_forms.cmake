@@ -202,6 +202,20 @@ elseif(MODE STREQUAL "real_frames")
   if(NOT EXISTS ${WORK}/run_real_low/tracks.csv)
     message(FATAL_ERROR "pft run of real_frames_low_false_rate.json wrote no tracks.csv")
   endif()
+  # the twin for a shaded sensor (vignetting 0.2, bg_gate_local): simulated and run on the same
+  # fixture; its frames are not real_frames.json's (the shading)
+  set(shaded ${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json)
+  run_ok(${PFT} sim --scenario ${shaded} --backgrounds ${WORK}/bg --out ${WORK}/ir_real_shaded -q)
+  list(GET fa 0 f0)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/ir_real/${f0} ${WORK}/ir_real_shaded/${f0}
+                  RESULT_VARIABLE diff)
+  if(diff EQUAL 0)
+    message(FATAL_ERROR "real_frames_shaded_low_false_rate.json: ${f0} has no shading")
+  endif()
+  run_ok(${PFT} run --scenario ${shaded} --sequence ${WORK}/ir_real_shaded --out ${WORK}/run_real_shaded --no-video -q)
+  if(NOT EXISTS ${WORK}/run_real_shaded/tracks.csv)
+    message(FATAL_ERROR "pft run of real_frames_shaded_low_false_rate.json wrote no tracks.csv")
+  endif()
 elseif(MODE STREQUAL "lost_frames")
   # pft sim loses frames as pft eval does (eval.drop_prob, the same per seed): no file for
   # them, listed in the sidecar; pft run, from the sim directory (port/file pattern) and from

@@ -13,8 +13,8 @@
 #  - bg_gate 0.25 set (the real-frame twin's gated background update): the residual changes;
 #    bg_gate_young 16 on top of it: the residual changes again (the young cells ungated);
 #  - handover_in_scale 0.8 (the real-frame twin's): the tracks change.
-# The real-frame twin (real_frames_low_false_rate.json) needs real backgrounds to run; only its
-# documented block is checked here.
+# The real-frame twins (real_frames_low_false_rate.json and real_frames_shaded_low_false_rate.json)
+# need real backgrounds to run; only their documented blocks are checked here.
 # Needs nothing outside the source tree.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
@@ -45,6 +45,9 @@ check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=4" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004")
+# its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
+check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=5" "bg_gate=0.25"
+            "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative")
 
 string(JSON js SET "${js}" image "{\"width\": 128, \"height\": 96}")
 string(JSON js SET "${js}" frames 40)
