@@ -42,6 +42,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_gate = 0u;
     cfg->bg_gate_shift = 0u;
     cfg->bg_gate_young = 0u;
+    cfg->bg_gate_local = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
