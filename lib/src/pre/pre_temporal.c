@@ -1024,21 +1024,35 @@ static void gate_local_span_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, i
     const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
     const uint32_t ti = gate_tile_(p, jy, ja0);
     const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
-    const int32_t gm = p->gm[ti];
+    /* gate_m_ as m = ((gr bx + 32768) >> 16) + gc: relative gr rho, gc 0; mean gr 0 (the
+     * shift then gives 0), gc the mean; |gr bx| <= 2^14 (2^16 - 1) < 2^30 */
+    const int32_t gr = rel ? p->gm[ti] : 0, gc = rel ? 0 : p->gm[ti];
+    const bool clip = wsh == 0; /* gate_local_nb_'s clip to +-lim (else the weight ag) */
+    /* the loop below is gate_local_nb_ on the cells without an invalid tap, in selects so that
+     * it vectorises: an invalid cell is stored back unchanged and adds 0 to the sums. Its
+     * values stay in the bounds of gate_local_nb_ (sv and bx in 0 .. 65535 whatever the taps,
+     * the taps' sum inside int32 as in gate_run_), so computing them is defined. */
     int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
-    for (int32_t j = ja0; j <= je; ++j) {
+    for (int32_t j = ja0; j <= je; ++j) { /* vectorisable */
         const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
         const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
         int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
         sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
         const int32_t bx = b[j + 1];
         const int32_t e = sv - bx;
-        if (!inv) {
-            se += e;
-            sl += bx;
-            n++;
-            b[j + 1] = (uint16_t)gate_local_nb_(bx, e, gate_m_(rel, gm, bx), lim, a15, ag, wsh);
-        }
+        const int32_t mc = ((gr * bx + 32768) >> 16) + gc; /* gate_m_ */
+        int32_t d = e - mc;                                  /* |d| <= 65535 + 16384 */
+        const int32_t ad = d < 0 ? -d : d;
+        const bool out = ad > lim;
+        d = clip && out ? (d < 0 ? -lim : lim) : d;
+        const int32_t am = (mc * a15 + 16384) >> 15;
+        const int32_t dd = (d * (out ? ag : a15) + 16384) >> 15;
+        int32_t nb = bx + am + dd;
+        nb = nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
+        se += inv ? 0 : e;
+        sl += inv ? 0 : bx;
+        n += inv ? 0 : 1;
+        b[j + 1] = (uint16_t)(inv ? bx : nb);
     }
     p->gsum[2u * ti] += se;
     p->gsum[2u * ti + 1u] += sl;
