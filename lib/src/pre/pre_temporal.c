@@ -892,15 +892,22 @@ typedef struct {
     bool gate; /* bg_gate set */
 } anchor_geom_t;
 
-/* bg_gate (docs/algorithms.md 9.13): the clip of the update's innovation for grid cell
- * (j, jy), U units: g sigma with sigma the last estimate of the tile of the cell's nearest
- * pixel (j, jy clamped into the frame); 65535 (no clip) while that tile has none. */
-static int32_t gate_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+/* bg_gate (docs/algorithms.md 9.13): the tile of grid cell (j, jy), that of its nearest pixel
+ * (j, jy clamped into the frame). */
+static uint32_t gate_tile_(const pft_pre_t *p, int32_t jy, int32_t j)
 {
     const int32_t t = (int32_t)p->cfg.tile;
     const uint32_t ty = (uint32_t)(clampi_(jy, 0, (int32_t)p->cfg.height - 1) / t);
     const uint32_t tx = (uint32_t)(clampi_(j, 0, (int32_t)p->cfg.width - 1) / t);
-    const uint32_t s = p->tsig[ty * p->ntx + tx] & ~PFT_PRE_TILE_STALE_; /* R units Q4 */
+    return ty * p->ntx + tx;
+}
+
+/* bg_gate: the clip of the update's innovation for grid cell (j, jy), U units: g sigma with
+ * sigma the last estimate of the cell's tile (gate_tile_); 65535 (no clip) while that tile has
+ * none. */
+static int32_t gate_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+{
+    const uint32_t s = p->tsig[gate_tile_(p, jy, j)] & ~PFT_PRE_TILE_STALE_; /* R units Q4 */
     if (s == 0u) {
         return 65535;
     }
@@ -918,39 +925,11 @@ static int32_t gate_span_end_(const pft_pre_t *p, int32_t j)
     return (tx + 1) * t >= w ? w + 1 : (tx + 1) * t - 1;
 }
 
-/* bg_gate_local (docs/algorithms.md 9.13): the tile of grid cell (j, jy), that of its nearest
- * pixel, as gate_lim_. */
-static uint32_t gate_tile_(const pft_pre_t *p, int32_t jy, int32_t j)
-{
-    const int32_t t = (int32_t)p->cfg.tile;
-    const uint32_t ty = (uint32_t)(clampi_(jy, 0, (int32_t)p->cfg.height - 1) / t);
-    const uint32_t tx = (uint32_t)(clampi_(j, 0, (int32_t)p->cfg.width - 1) / t);
-    return ty * p->ntx + tx;
-}
-
 /* bg_gate_local: the local part m of cell value bx's innovation, U units: the tile's mean
  * (gm, U units) or rho bx (gm: rho, Q16, |rho| <= 1/4), |m| <= 16383. */
 static int32_t gate_m_(bool rel, int32_t gm, int32_t bx)
 {
     return rel ? (gm * bx + 32768) >> 16 : gm;
-}
-
-/* bg_gate_local: the gated update of cell value bx with innovation e, local part mc, gate lim
- * (U units), alpha a15 and beyond the gate ag (the weight form, wsh >= 1): bx + alpha mc plus
- * the gate's update of e - mc, clamped to the background's range. */
-static int32_t gate_local_nb_(int32_t bx, int32_t e, int32_t mc, int32_t lim, int32_t a15,
-                              int32_t ag, int32_t wsh)
-{
-    int32_t d = e - mc; /* |d| <= 65535 + 16383 */
-    const int32_t ad = d < 0 ? -d : d;
-    d = wsh == 0 && ad > lim ? (d < 0 ? -lim : lim) : d;
-    /* the two products rounded apart, each within 32 bits (a15 <= 2^15): |mc a15| < 2^29;
-     * |d| <= lim <= 65535 with a15, |d| <= 81918 only beyond the weight form's gate, with
-     * ag <= a15 / 2. With mc 0 this is the gate's update without bg_gate_local. */
-    const int32_t am = (mc * a15 + 16384) >> 15;
-    const int32_t dd = (d * (ad > lim ? ag : a15) + 16384) >> 15;
-    const int32_t nb = bx + am + dd;
-    return nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
 }
 
 /* Cell j (observed) of a frame row zl interpolated along x at the update's fraction: taps
@@ -1009,56 +988,6 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     }
 }
 
-/* bg_gate_local: the gated update of the observed cells ja0 .. je of grid row jy (one tile
- * column; b the row's storage, q0 .. q3 the ring rows of its taps, as anchor_urow_'s fast
- * span), with this frame's sums of the tile. */
-static void gate_local_span_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, int32_t ja0,
-                             int32_t je, int32_t lim, int32_t ag, const int32_t *q0,
-                             const int32_t *q1, const int32_t *q2, const int32_t *q3, uint16_t *b)
-{
-    const agx_t *gy = &g->gy;
-    const int32_t a15 = g->a15, wsh = (int32_t)p->cfg.bg_gate_shift;
-    const int32_t w0 = gy->wu[0], w1 = gy->wu[1], w2 = gy->wu[2], w3 = gy->wu[3];
-    const int32_t nv = PFT_PRE_ANONE_ + 1;
-    const int32_t n0 = gy->ulo == -1 ? PFT_PRE_ANONE_ : nv, n1 = PFT_PRE_ANONE_;
-    const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
-    const uint32_t ti = gate_tile_(p, jy, ja0);
-    const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
-    /* gate_m_ as m = ((gr bx + 32768) >> 16) + gc: relative gr rho, gc 0; mean gr 0 (the
-     * shift then gives 0), gc the mean; |gr bx| <= 2^14 (2^16 - 1) < 2^30 */
-    const int32_t gr = rel ? p->gm[ti] : 0, gc = rel ? 0 : p->gm[ti];
-    const bool clip = wsh == 0; /* gate_local_nb_'s clip to +-lim (else the weight ag) */
-    /* the loop below is gate_local_nb_ on the cells without an invalid tap, in selects so that
-     * it vectorises: an invalid cell is stored back unchanged and adds 0 to the sums. Its
-     * values stay in the bounds of gate_local_nb_ (sv and bx in 0 .. 65535 whatever the taps,
-     * the taps' sum inside int32 as in gate_run_), so computing them is defined. */
-    int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
-    for (int32_t j = ja0; j <= je; ++j) { /* vectorisable */
-        const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
-        const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
-        int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
-        sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-        const int32_t bx = b[j + 1];
-        const int32_t e = sv - bx;
-        const int32_t mc = ((gr * bx + 32768) >> 16) + gc; /* gate_m_ */
-        int32_t d = e - mc;                                  /* |d| <= 65535 + 16384 */
-        const int32_t ad = d < 0 ? -d : d;
-        const bool out = ad > lim;
-        d = clip && out ? (d < 0 ? -lim : lim) : d;
-        const int32_t am = (mc * a15 + 16384) >> 15;
-        const int32_t dd = (d * (out ? ag : a15) + 16384) >> 15;
-        int32_t nb = bx + am + dd;
-        nb = nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
-        se += inv ? 0 : e;
-        sl += inv ? 0 : bx;
-        n += inv ? 0 : 1;
-        b[j + 1] = (uint16_t)(inv ? bx : nb);
-    }
-    p->gsum[2u * ti] += se;
-    p->gsum[2u * ti + 1u] += sl;
-    p->gcnt[ti] += (uint32_t)n;
-}
-
 /* bg_gate_local: m of every tile from the sums of the last frame's update (mean: the mean
  * innovation, rounded, within +-16383; relative: rho = sum e / sum B in Q16 within +-1/4), the
  * sums cleared for this frame. A tile without cells has m 0. */
@@ -1087,6 +1016,26 @@ static void gate_local_start_(pft_pre_t *p)
     }
 }
 
+/* bg_gate: the update of grid cell value bx with innovation e, local part mc (0 without
+ * bg_gate_local), gate lim (U units; 65535: no gate), alpha a15 and beyond the gate ag (the
+ * weight form, wsh >= 1): bx + alpha mc plus the gate's update of e - mc (clipped to +-lim with
+ * wsh 0), clamped to the background's range (with mc 0 the clamp never acts: the update moves
+ * bx toward bx + e, inside 0 .. 65535). */
+static inline int32_t gate_nb_(int32_t bx, int32_t e, int32_t mc, int32_t lim, int32_t a15,
+                               int32_t ag, int32_t wsh)
+{
+    int32_t d = e - mc; /* |d| <= 65535 + 16384 */
+    const int32_t ad = d < 0 ? -d : d;
+    d = wsh == 0 && ad > lim ? (d < 0 ? -lim : lim) : d;
+    /* the two products rounded apart, each within 32 bits (a15 <= 2^15): |mc a15| < 2^29;
+     * |d| <= lim <= 65535 with a15, |d| <= 81919 only beyond the weight form's gate, with
+     * ag <= a15 / 2 */
+    const int32_t am = (mc * a15 + 16384) >> 15;
+    const int32_t dd = (d * (ad > lim ? ag : a15) + 16384) >> 15;
+    const int32_t nb = bx + am + dd;
+    return nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
+}
+
 /* bg_gate: the ring rows of one grid row's update, their vertical weights, the values marking
  * an invalid tap, and the weights inside and beyond the gate. */
 typedef struct {
@@ -1095,9 +1044,8 @@ typedef struct {
     int32_t wsh, ag, a15;
 } gate_row_t;
 
-/* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, the innovation
- * beyond lim clipped to +-lim (wsh 0) or weighted ag instead of a15 (wsh > 0); lim 65535: no
- * gate. A cell with an invalid tap is kept. */
+/* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, gate_nb_
+ * without a local part; lim 65535: no gate. A cell with an invalid tap is kept. */
 static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
@@ -1110,12 +1058,47 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
         int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
         sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
         const int32_t bx = b[j + 1];
+        /* gate_nb_ with mc 0, written out: without the clamp, which cannot act, the loop costs
+         * about 0.26 M instructions less per 384 x 288 frame (x86-64) */
         int32_t e = sv - bx;
         const int32_t ae = e < 0 ? -e : e;
         e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
         const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
         b[j + 1] = (uint16_t)(inv ? bx : nb);
     }
+}
+
+/* bg_gate_local: gate_run_ with the local part of tile ti taken off the innovation (gate_m_,
+ * written ((gr bx + 32768) >> 16) + gc: relative gr rho, gc 0; mean gr 0, gc the mean;
+ * |gr bx| <= 2^14 (2^16 - 1) < 2^30), and the cells' e and B added to this frame's sums of the
+ * tile. An invalid cell is stored back unchanged and adds 0 to the sums (selects, so that the
+ * loop vectorises; its values stay in gate_nb_'s bounds). */
+static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
+                             int32_t ja, int32_t jb, int32_t lim)
+{
+    const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
+    const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
+    const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
+    const int32_t gr = rel ? p->gm[ti] : 0, gc = rel ? 0 : p->gm[ti];
+    int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
+    for (int32_t j = ja; j <= jb; ++j) { /* vectorisable */
+        const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+        const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+        int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+        sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t bx = b[j + 1];
+        const int32_t e = sv - bx;
+        const int32_t nb = gate_nb_(bx, e, ((gr * bx + 32768) >> 16) + gc, lim, a15, ag, wsh);
+        se += inv ? 0 : e;
+        sl += inv ? 0 : bx;
+        n += inv ? 0 : 1;
+        b[j + 1] = (uint16_t)(inv ? bx : nb);
+    }
+    p->gsum[2u * ti] += se;
+    p->gsum[2u * ti + 1u] += sl;
+    p->gcnt[ti] += (uint32_t)n;
 }
 
 /* The update of grid row jy from the ring (the frame rows interpolated along x, taps
@@ -1187,9 +1170,10 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                     }
                 }
                 if (p->gsum != NULL) { /* bg_gate_local */
-                    gate_local_span_(p, g, jy, ja0, ma - 1, 65535, ag, q0, q1, q2, q3, b);
-                    gate_local_span_(p, g, jy, ma, mb, lim, ag, q0, q1, q2, q3, b);
-                    gate_local_span_(p, g, jy, mb + 1, je, 65535, ag, q0, q1, q2, q3, b);
+                    const uint32_t ti = gate_tile_(p, jy, ja0);
+                    gate_local_span_(p, &gr, ti, b, ja0, ma - 1, 65535);
+                    gate_local_span_(p, &gr, ti, b, ma, mb, lim);
+                    gate_local_span_(p, &gr, ti, b, mb + 1, je, 65535);
                     continue;
                 }
                 gate_run_(&gr, b, ja0, ma - 1, 65535);
@@ -1218,34 +1202,25 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
         const bool old = iny && j >= ovlo[0] && j <= ovhi[0];
         const int32_t bx = b[j + 1];
         if (zt != PFT_PRE_ANONE_) {
-            int32_t e = zt - bx;
-            int32_t a = a15;
-            const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
-                                                    p->agey[jy + 1] < p->cfg.bg_gate_young);
-            if (g->gate && old && p->gsum != NULL) {
+            const int32_t e = zt - bx;
+            if (g->gate && old) {
+                /* gate_run_'s or gate_local_span_'s update of this one cell */
+                const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
+                                                        p->agey[jy + 1] < p->cfg.bg_gate_young);
                 const int32_t lim = young ? 65535 : gate_lim_(p, jy, j);
-                const uint32_t ti = gate_tile_(p, jy, j);
                 const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
-                const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
-                p->gsum[2u * ti] += e;
-                p->gsum[2u * ti + 1u] += bx;
-                p->gcnt[ti]++;
-                b[j + 1] = (uint16_t)gate_local_nb_(bx, e, gate_m_(rel, p->gm[ti], bx), lim, a15,
-                                                    wsh == 0 ? a15 : a15 >> wsh, wsh);
-                continue;
-            }
-            if (g->gate && old && !young) {
-                const int32_t lim = gate_lim_(p, jy, j);
-                const int32_t ae = e < 0 ? -e : e;
-                if (ae > lim && p->cfg.bg_gate_shift == 0u) {
-                    e = e < 0 ? -lim : lim;
-                } else if (ae > lim) {
-                    a = a15 >> p->cfg.bg_gate_shift;
-                } else {
-                    /* below the gate: as without it */
+                int32_t mc = 0;
+                if (p->gsum != NULL) {
+                    const uint32_t ti = gate_tile_(p, jy, j);
+                    mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
+                    p->gsum[2u * ti] += e;
+                    p->gsum[2u * ti + 1u] += bx;
+                    p->gcnt[ti]++;
                 }
+                b[j + 1] = (uint16_t)gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+            } else {
+                b[j + 1] = (uint16_t)(old ? bx + ((e * a15 + 16384) >> 15) : zt);
             }
-            b[j + 1] = (uint16_t)(old ? bx + ((e * a + 16384) >> 15) : zt);
         } else if (!old) {
             /* a cell outside the scene held so far without an interpolated value (one that
              * entered, or a margin cell the frame does not cover): from its nearest pixel
