@@ -39,6 +39,16 @@ def q(v, p):
     return v[min(len(v) - 1, int(p * len(v)))]
 
 
+
+def age_table(groups, ages, cell, width):
+    """One row per layer group, one cell per age: cell(the layer rows of that age)."""
+    for g in ['target_reported', 'c_target', 'target_other', 'false', 'clutter']:
+        L = groups.get(g, [])
+        if not L:
+            continue
+        cells = [cell([r for _, lr in L for r in lr if int(r['age']) == x]) for x in ages]
+        print(f'{g:16s} ' + ' '.join(f'{c:>{width}s}' for c in cells))
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('trace')
@@ -92,26 +102,18 @@ def main():
               + ', '.join(f'{k} {v}' for k, v in why.most_common()))
     print('\nexistence probability P by age (median; share of layers alive at that age with P < 0.5):')
     print(f'{"group":16s} ' + ' '.join(f'{"age " + str(x):>14s}' for x in ages))
-    for g in ['target_reported', 'c_target', 'target_other', 'false', 'clutter']:
-        L = groups.get(g, [])
-        if not L:
-            continue
-        cells = []
-        for x in ages:
-            ps = [fnum(r['p_exist']) for _, lr in L for r in lr if int(r['age']) == x]
-            cells.append(f'{q(ps, .5):.2f} {sum(p < 0.5 for p in ps) / max(1, len(ps)):.2f} n{len(ps):<4d}'
-                         if ps else '-')
-        print(f'{g:16s} ' + ' '.join(f'{c:>14s}' for c in cells))
+
+    def p_cell(rows):
+        ps = [fnum(r['p_exist']) for r in rows]
+        return f'{q(ps, .5):.2f} {sum(p < 0.5 for p in ps) / max(1, len(ps)):.2f} n{len(ps):<4d}' if ps else '-'
+
+    def lr_cell(rows):
+        v = [fnum(r['log_mean_lr']) for r in rows]
+        return f'{q(v, .5):+.2f}' if v else '-'
+
+    age_table(groups, ages, p_cell, 14)
     print('\nframe log likelihood ratio log_mean_lr by age (median):')
-    for g in ['target_reported', 'c_target', 'target_other', 'false', 'clutter']:
-        L = groups.get(g, [])
-        if not L:
-            continue
-        cells = []
-        for x in ages:
-            v = [fnum(r['log_mean_lr']) for _, lr in L for r in lr if int(r['age']) == x]
-            cells.append(f'{q(v, .5):+.2f}' if v else '-')
-        print(f'{g:16s} ' + ' '.join(f'{c:>8s}' for c in cells))
+    age_table(groups, ages, lr_cell, 8)
     print('\nper layer (medians): hand-over P, intensity at the hand-over and at its last row (the '
           'frame before the end), P and log_mean_lr there, its distance to the nearest truth point there '
           '(rows whose nearest is an injected target; the share within 1.5 px), and the sum and largest '

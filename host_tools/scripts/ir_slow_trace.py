@@ -43,11 +43,6 @@ def stage_z(trace, seeds):
     return out
 
 
-def med(v):
-    v = [x for x in v if x == x]
-    return statistics.median(v) if v else float('nan')
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('blocks', nargs='+')
@@ -75,8 +70,8 @@ def main():
                 continue
             band = 'all' if (blo, bhi) == (0.0, 9.0) else f'[{blo:.2f}, {bhi:.2f})'
             print('| %s | %s | %d | %d | %.2f | %.2f | %+.2f |' % (
-                name, band, len(ks), sum(c[k] == 'detected' for k in ks), med(zs.get(k, float('nan')) for k in ks),
-                med(p[k]['z'] for k in ks), med(p[k]['z'] - zs.get(k, float('nan')) for k in ks)))
+                name, band, len(ks), sum(c[k] == 'detected' for k in ks), ir_stack_pair.med(zs.get(k, float('nan')) for k in ks),
+                ir_stack_pair.med(p[k]['z'] for k in ks), ir_stack_pair.med(p[k]['z'] - zs.get(k, float('nan')) for k in ks)))
 
 
 if __name__ == '__main__':
