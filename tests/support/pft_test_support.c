@@ -73,13 +73,28 @@ uint32_t pft_test_xorshift32(uint32_t *state)
     return *state;
 }
 
-int32_t pft_test_noise_q88(uint32_t *state)
+void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma)
+{
+    pft_tbd_config_recommended(c);
+    c->width = side;
+    c->height = side;
+    c->noise_sigma = pft_test_from_double(sigma);
+    c->pixel_gain = pft_test_from_double(1.0 / 256.0);
+    c->pixel_offset = pft_test_from_double(-64.0);
+}
+
+int32_t pft_test_noise_sum4(uint32_t *state)
 {
     int32_t v = 0;
     for (int i = 0; i < 4; ++i) {
         v += (int32_t)(pft_test_xorshift32(state) >> 20) - 2048;
     }
-    return v * 256 / 2365;
+    return v;
+}
+
+int32_t pft_test_noise_q88(uint32_t *state)
+{
+    return pft_test_noise_sum4(state) * 256 / 2365;
 }
 
 void pft_test_check_rows(const char *name, const char *row_name, const uint32_t *ref,

@@ -21,6 +21,9 @@ pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint
 void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1);
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts);
+/* The recommended TBD preset on side x side PFT_PIX_U16 frames read as z = raw / 256 - 64 (zero
+ * background at raw 16384) with noise sd sigma (the TBD manager tests' frames). */
+void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
 double pft_test_lsb(double v);
 
@@ -31,8 +34,10 @@ double pft_test_gauss(uint64_t *state);
 /* One step of a 32-bit xorshift (13, 17, 5) on a non-zero state; returns the new state. */
 uint32_t pft_test_xorshift32(uint32_t *state);
 
-/* About N(0, 1) in Q8.8 (sd 256): the sum of four uniforms from the top 12 bits of four
- * pft_test_xorshift32 steps, centred and scaled (sd 1182 each, 2365 for the sum). */
+/* The sum of four uniforms from the top 12 bits of four pft_test_xorshift32 steps, centred:
+ * about N(0, 2365^2) (sd 1182 each). */
+int32_t pft_test_noise_sum4(uint32_t *state);
+/* About N(0, 1) in Q8.8 (sd 256): pft_test_noise_sum4 scaled by 256 / 2365. */
 int32_t pft_test_noise_q88(uint32_t *state);
 
 /* Compares two tables of rows x cols uint32 values bit for bit; on the first difference prints

@@ -51,14 +51,7 @@ static int32_t overlap_q12(int p, double s, double a, double b)
 /* xorshift noise, a sum of four uniforms: sd 4 * 4096 / sqrt(12) / 4096... scaled below */
 static int32_t noise_unit_q10(void)
 {
-    int32_t v = 0;
-    for (int i = 0; i < 4; ++i) {
-        g_rs ^= g_rs << 13;
-        g_rs ^= g_rs >> 17;
-        g_rs ^= g_rs << 5;
-        v += (int32_t)(g_rs >> 20) - 2048;
-    }
-    return (v * 1024) / 2365; /* sd 2365: N(0, 1) nearly, Q10 */
+    return (pft_test_noise_sum4(&g_rs) * 1024) / 2365; /* sd 2365: N(0, 1) nearly, Q10 */
 }
 
 /* The rectangles area-integrated over each pixel (sharp edges: one pixel of transition), the

@@ -37,14 +37,7 @@ static double g_level; /* counts added to every pixel of the next render (a leve
 /* xorshift noise, a sum of four uniforms scaled to unit sd (nearly Gaussian) */
 static double noise_unit(void)
 {
-    int32_t v = 0;
-    for (int i = 0; i < 4; ++i) {
-        g_rs ^= g_rs << 13;
-        g_rs ^= g_rs >> 17;
-        g_rs ^= g_rs << 5;
-        v += (int32_t)(g_rs >> 20) - 2048;
-    }
-    return v / 2365.0;
+    return pft_test_noise_sum4(&g_rs) / 2365.0;
 }
 
 /* The frame of a smooth texture (wavelengths 11 to 23 px, 60 to 110 sigma_t) shifted by

@@ -312,12 +312,7 @@ static uint16_t g_raw[TIMG * TIMG];
 
 static void tbd_cfg(pft_tbd_config_t *c)
 {
-    pft_tbd_config_recommended(c);
-    c->width = TIMG;
-    c->height = TIMG;
-    c->noise_sigma = R(1.1552);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, TIMG, 1.1552);
     c->n_search = 300u;
     c->n_track = 150u;
     c->max_targets = 2u;

@@ -46,12 +46,7 @@ static void frame(pft_rng_t *r, const pft_sim_truth_t *t, int k, uint32_t seq, p
 
 static void cfg_(pft_tbd_config_t *c, pft_seq_mode_t mode, uint64_t seed)
 {
-    pft_tbd_config_recommended(c);
-    c->width = IMG;
-    c->height = IMG;
-    c->noise_sigma = R(SIGMA_15DB);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, IMG, SIGMA_15DB);
     c->n_search = NF;
     c->n_track = 300u;
     c->max_targets = 2u;

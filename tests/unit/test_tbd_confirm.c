@@ -49,12 +49,7 @@ static uint8_t g_start; /* cfg.sprt_start of the next run */
 
 static void cfg_of(pft_tbd_config_t *c, double accept, double reject)
 {
-    pft_tbd_config_recommended(c);
-    c->width = IMG;
-    c->height = IMG;
-    c->noise_sigma = R(2.0);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, IMG, 2.0);
     c->n_search = NS;
     c->n_track = NT;
     c->max_targets = MAXT;

@@ -64,12 +64,7 @@ static double g_dim = 0.0; /* the target's intensity after LAST (0: gone) */
 /* The recommended preset on 32 x 32 U16 frames of sigma 2 (z = raw / 256 - 64). */
 static void cfg_of(pft_tbd_config_t *c)
 {
-    pft_tbd_config_recommended(c);
-    c->width = IMG;
-    c->height = IMG;
-    c->noise_sigma = R(2.0);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, IMG, 2.0);
     c->n_search = NS;
     c->n_track = NT;
     c->max_targets = MAXT;

@@ -43,12 +43,7 @@ static void render(pft_rng_t *r, const pft_sim_truth_t *t, int k, double sigma, 
 
 static void small_cfg(pft_tbd_config_t *c, double sigma, uint64_t seed)
 {
-    pft_tbd_config_recommended(c);
-    c->width = IMG;
-    c->height = IMG;
-    c->noise_sigma = R(sigma);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, IMG, sigma);
     c->n_search = 400u;
     c->n_track = 200u;
     c->max_targets = 2u;

@@ -45,12 +45,7 @@ static uint16_t g_raw[IMG * IMG];
 /* U16 frames: z = raw / 256 - 64 (zero background at raw 16384), sigma 1 so z is whitened. */
 static void cfg_peaks(pft_tbd_config_t *c, uint16_t k)
 {
-    pft_tbd_config_recommended(c);
-    c->width = IMG;
-    c->height = IMG;
-    c->noise_sigma = R(1.0);
-    c->pixel_gain = R(1.0 / 256.0);
-    c->pixel_offset = R(-64.0);
+    pft_test_tbd_u16_config(c, IMG, 1.0);
     c->n_search = NS;
     c->n_track = NT;
     c->max_targets = MAXT;
