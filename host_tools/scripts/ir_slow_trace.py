@@ -19,7 +19,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import ir_stack_pair  # noqa: E402
-import collections, csv, statistics  # noqa: E402,E401
+import collections, statistics  # noqa: E402,E401
 
 BANDS = ((0.0, 0.15), (0.15, 0.3), (0.3, 0.6), (0.6, 1.0), (1.0, 9.0))
 
@@ -27,17 +27,17 @@ BANDS = ((0.0, 0.15), (0.15, 0.3), (0.3, 0.6), (0.6, 1.0), (1.0, 9.0))
 def stage_z(trace, seeds):
     out = {}
     for seed in seeds:
-        f = os.path.join(trace, f's{seed}_targets.csv')
-        if not os.path.exists(f):
+        trows = ir_stack_pair.target_rows(trace, seed)
+        if trows is None:
             continue
         rows = collections.defaultdict(list)
-        with open(f) as fh:
-            for r in csv.DictReader(fh):
+        for tid, rr in trows.items():
+            for r in rr:
                 if r['labelled'] == '1' or int(r['frame']) <= 1:
                     continue
                 s = float(r.get('loc_sd_stage') or 0)
                 if s > 0:
-                    rows[int(r['tid'])].append((float(r['mf_stage']) - float(r['loc_med_stage'])) / s)
+                    rows[tid].append((float(r['mf_stage']) - float(r['loc_med_stage'])) / s)
         for tid, z in rows.items():
             out[(seed, tid)] = statistics.median(z)
     return out

@@ -35,17 +35,25 @@ def cats(trace, summary):
     return c
 
 
+def target_rows(trace, seed):
+    """The rows of s<seed>_targets.csv of a `pft eval --trace` folder by target id, or None."""
+    f = os.path.join(trace, f's{seed}_targets.csv')
+    if not os.path.exists(f):
+        return None
+    rows = collections.defaultdict(list)
+    with open(f) as fh:
+        for r in csv.DictReader(fh):
+            rows[int(r['tid'])].append(r)
+    return rows
+
+
 def traces(trace, max_seed):
     per = {}
     scene = {}
     for seed in range(1, max_seed + 1):
-        f = os.path.join(trace, f's{seed}_targets.csv')
-        if not os.path.exists(f):
+        rows = target_rows(trace, seed)
+        if rows is None:
             continue
-        rows = collections.defaultdict(list)
-        with open(f) as fh:
-            for r in csv.DictReader(fh):
-                rows[int(r['tid'])].append(r)
         vl = []
         for tid, rr in rows.items():
             rr.sort(key=lambda r: int(r['frame']))
