@@ -140,8 +140,9 @@ def main():
     print(f'{len(keys)} injected targets in every block, seeds {lo}-{hi}; amplitude {amp:.3f} sigma, psf {a.psf}')
     print('| block | speed vs scene, px/frame | targets | ideal sub-pixel | ideal nearest pixel | z stage | '
           'z stage / ideal nearest, dB | z after map | signal (stage sigma) | matched sd (stage sigma) | '
-          'pixel sd (stage sigma) | z stage − first (paired, mean ± s.e.) | sub-pixel z stage | sub-pixel z after map |')
-    print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
+          'pixel sd (stage sigma) | z stage − first (paired, mean ± s.e.) | sub-pixel z stage | sub-pixel z after map | '
+          'sub-pixel z after map − first (paired) |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
     for name, d in data:
         for blo, bhi in BANDS:
             ks = [k for k in keys if blo <= base[k]['vs'] < bhi]
@@ -152,12 +153,17 @@ def main():
             m = statistics.mean(diff)
             se = statistics.stdev(diff) / math.sqrt(len(diff)) if len(diff) > 1 else float('nan')
             zs, zn = med(d[k]['z_stage'] for k in ks), med(d[k]['ideal_near'] for k in ks)
-            print('| %s | %s | %d | %.2f | %.2f | %.2f | %+.2f | %.2f | %.2f | %.3f | %.3f | %s | %.2f | %.2f |' % (
+            dsub = [d[k]['zsub_map'] - base[k]['zsub_map'] for k in ks]
+            dsub = [x for x in dsub if x == x]
+            msub = statistics.mean(dsub) if dsub else float('nan')
+            ssub = statistics.stdev(dsub) / math.sqrt(len(dsub)) if len(dsub) > 1 else float('nan')
+            print('| %s | %s | %d | %.2f | %.2f | %.2f | %+.2f | %.2f | %.2f | %.3f | %.3f | %s | %.2f | %.2f | %s |' % (
                 name, band, len(ks), med(d[k]['ideal_sub'] for k in ks), zn, zs,
                 20 * math.log10(zs / zn) if zs > 0 else float('nan'), med(d[k]['z_map'] for k in ks),
                 med(d[k]['s_stage'] for k in ks), med(d[k]['n_stage'] for k in ks), med(d[k]['p_stage'] for k in ks),
                 '–' if d is base else '%+.2f ± %.2f' % (m, se),
-                med(d[k]['zsub_stage'] for k in ks), med(d[k]['zsub_map'] for k in ks)))
+                med(d[k]['zsub_stage'] for k in ks), med(d[k]['zsub_map'] for k in ks),
+                '–' if d is base else '%+.2f ± %.2f' % (msub, ssub)))
     if a.csv:
         with open(a.csv, 'w', newline='') as fh:
             w = csv.writer(fh)
