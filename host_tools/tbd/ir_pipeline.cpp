@@ -85,6 +85,7 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.local_outer = static_cast<uint8_t>(t.background_radius);
     c.local_guard = static_cast<uint8_t>(t.guard_radius);
     c.bg_alpha = static_cast<uint16_t>(std::clamp(std::lround(t.bg_alpha * 65536.0), 1L, 65535L));
+    c.col_alpha = static_cast<uint16_t>(std::clamp(std::lround(t.col_alpha * 65536.0), 0L, 65535L));
     c.tile = static_cast<uint8_t>(t.tile);
     // the edge term is the temporal background's (its gradient); the spatial method has none
     c.edge_k = c.method == PFT_PRE_BG_TEMPORAL ? static_cast<uint16_t>(std::lround(t.edge_k * 4096.0)) : 0u;
@@ -186,6 +187,7 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.veto = t.clutter_veto > 0 ? static_cast<uint16_t>(std::clamp(std::lround(t.clutter_veto * 1024.0), static_cast<long>(c.thr), 65535L)) : 0u;
     c.persist = static_cast<uint8_t>(t.clutter_persist);
     c.excess = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_excess * 256.0), 1L, 32767L));
+    c.mean_floor = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_mean_floor * 256.0), 0L, 2048L));
     c.block = static_cast<uint8_t>(t.clutter_block);
     c.map8 = t.clutter_map8;
     c.anchor = t.clutter_anchor;

@@ -120,13 +120,14 @@ void parse_targets(const Field &t, IrScenario &s)
 
 void parse_tracker(const Field &t, TrackerSettings &T)
 {
-    t.only({"preprocess", "bg_alpha", "preset", "particles", "track_particles", "max_targets",
+    t.only({"preprocess", "bg_alpha", "col_alpha", "preset", "particles", "track_particles", "max_targets",
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young", "bg_gate_local", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "handover_in_scale", "q2", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young", "bg_gate_local", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "handover_in_scale", "q2", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
+    T.col_alpha = t.number_in("col_alpha", T.col_alpha, 0.0, 65535.0 / 65536.0);
     T.edge_k = t.number_in("edge_k", T.edge_k, 0.0, 1.0);
     T.preset = t.choice_or("preset", T.preset, {"paper", "recommended", "bounded"});
     if (T.preset == "bounded" && !t.has("particles")) {
@@ -241,6 +242,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.clutter_excess = t.number_in("clutter_excess", T.clutter_excess, 0.01, 127.0);
     if (T.clutter_persist > 0 && !T.clutter_mean)
         t.at("clutter_persist").fail("gates the map's mean: needs clutter_mean true");
+    T.clutter_mean_floor = t.number_in("clutter_mean_floor", T.clutter_mean_floor, 0.0, 8.0);
+    if (T.clutter_mean_floor > 0 && !T.clutter_mean)
+        t.at("clutter_mean_floor").fail("a floor of the map's mean: needs clutter_mean true");
     T.clutter_block = static_cast<int>(t.integer_in("clutter_block", T.clutter_block, 0, 4));
     if (T.clutter_block != 0 && T.clutter_block != 2 && T.clutter_block != 4)
         t.at("clutter_block").fail("must be 0 (per pixel), 2 or 4");

@@ -89,6 +89,7 @@ struct Targets {
 struct TrackerSettings {
     std::string preprocess = "temporal";        ///< pft_pre background: "temporal" | "spatial"
     double bg_alpha = 0.15;                     ///< temporal background update weight
+    double col_alpha = 1.0 / 16.0;              ///< update weight of the stage's column offsets (pft_pre col_alpha; 0: off)
     std::string preset = "recommended";         ///< pft_tbd preset to start from
     uint32_t particles = 6000, track_particles = 500;
     uint32_t max_targets = 8;
@@ -150,6 +151,7 @@ struct TrackerSettings {
     bool clutter_mean = false;                  ///< subtract the map's mean residual too
     int clutter_persist = 0;                    ///< map's persistence gate (frames; 0: off): a residual beyond clutter_excess is learnt only once it has held this long at the same scene position
     double clutter_excess = 1.5;                ///< level of the persistence gate (sigma)
+    double clutter_mean_floor = 0;              ///< with clutter_mean: the mean is subtracted only where its magnitude exceeds this (sigma; pft_pre_clutter_config_t.mean_floor; 0: off)
     int clutter_block = 0;                      ///< map held on B x B blocks of the scene (pft_pre_clutter_config_t.block): 0 (per pixel), 2 or 4
     bool clutter_map8 = false;                  ///< map held in 8 bits per pixel (pft_pre_clutter_config_t.map8; per pixel only: clutter_block 0)
     bool clutter_anchor = false;                ///< map held on an integer grid of the scene, moved by whole pixels, instead of carried by a bilinear warp (pft_pre_clutter_config_t.anchor; per pixel only: clutter_block 0)

@@ -215,7 +215,7 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                     mf3 = std::max(mf3, mf.at<float>(static_cast<int>(y), static_cast<int>(x)));
             }
         // the matched filter and the residual around it: 31 x 31 less the 7 x 7 core
-        std::vector<float> lm, lr, ls;
+        std::vector<float> lm, lr, ls, lrs;
         for (long b = -15; b <= 15; ++b)
             for (long a = -15; a <= 15; ++a) {
                 const long x = xi + a, y = yi + b;
@@ -223,15 +223,40 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                     continue;
                 lm.push_back(mf.at<float>(static_cast<int>(y), static_cast<int>(x)));
                 lr.push_back(res.at<float>(static_cast<int>(y), static_cast<int>(x)));
-                if (stage)
+                if (stage) {
                     ls.push_back(mfs.at<float>(static_cast<int>(y), static_cast<int>(x)));
+                    lrs.push_back(pl.stage_residual().at<float>(static_cast<int>(y), static_cast<int>(x)));
+                }
             }
-        double lmed, lsd, rmed, rsd, smed = NAN, ssd = NAN;
+        double lmed, lsd, rmed, rsd, smed = NAN, ssd = NAN, srmed = NAN, srsd = NAN;
         robust(lm, lmed, lsd);
         robust(lr, rmed, rsd);
         const double mf_stage = stage ? mfs.at<float>(static_cast<int>(yi), static_cast<int>(xi)) : NAN;
-        if (stage)
+        if (stage) {
             robust(ls, smed, ssd);
+            robust(lrs, srmed, srsd);
+        }
+        // the matched filter centred on the true sub-pixel position (what a likelihood at the
+        // true position weighs): sum r(p) g(p - x) / sqrt(sum g(p - x)^2) over the 7 x 7 pixels
+        // around the nearest one, on the map's residual and on the stage's
+        double sub_map = 0, sub_stage = stage ? 0.0 : NAN, gg = 0;
+        {
+            const double ps = s_.targets.psf_sigma;
+            for (long b = -3; b <= 3; ++b)
+                for (long a = -3; a <= 3; ++a) {
+                    const long x = xi + a, y = yi + b;
+                    if (x < 0 || y < 0 || x >= W || y >= H)
+                        continue;
+                    const double ex = static_cast<double>(x) - t->x, ey = static_cast<double>(y) - t->y;
+                    const double g = std::exp(-(ex * ex + ey * ey) / (2.0 * ps * ps));
+                    gg += g * g;
+                    sub_map += g * res.at<float>(static_cast<int>(y), static_cast<int>(x));
+                    if (stage)
+                        sub_stage += g * pl.stage_residual().at<float>(static_cast<int>(y), static_cast<int>(x));
+                }
+            sub_map /= std::sqrt(gg);
+            sub_stage /= std::sqrt(gg);
+        }
         const long rank = std::upper_bound(peaks.begin(), peaks.end(), mf3, std::greater<float>()) - peaks.begin();
         uint32_t alive = 0, near = 0;
         for (uint32_t p = 0; p < sf.n; ++p) {
@@ -279,7 +304,8 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                           std::to_string(tid) + "," + (tent ? "1" : "0") + "," + (rid ? num(rd, 2) : std::string()) +
                           "," + std::to_string(rid) + "," + std::to_string(m.n_tracks) + "," +
                           std::to_string(m.above) + "," + num(from_real(sf.est.intensity), 2) + "," + num(tin, 2) + "," +
-                          num(mf_stage) + "," + num(smed) + "," + num(ssd);
+                          num(mf_stage) + "," + num(smed) + "," + num(ssd) + "," + num(srsd) + "," + num(sub_map) + "," +
+                          num(sub_stage);
         rows_.push_back(row);
     }
 }
@@ -290,7 +316,7 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
     write_text_atomic(base + "_targets.csv", [&](std::ostream &f) {
         f << "seed,frame,tid,labelled,x,y,mf_at,mf3,loc_med,loc_sd,res_sd,rank,n_peaks,search_p,search_d,"
              "search_n,alive,alive_near,births1,births3,n_births,trk_d,trk_id,trk_tentative,rep_d,rep_id,"
-             "n_tracks,above,search_int,trk_int,mf_stage,loc_med_stage,loc_sd_stage\n";
+             "n_tracks,above,search_int,trk_int,mf_stage,loc_med_stage,loc_sd_stage,res_sd_stage,mfsub_at,mfsub_stage\n";
         for (const std::string &r : rows_)
             f << r << "\n";
     });

@@ -17,6 +17,7 @@
 #define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
 #define CL_MUMAX_ 16384        /* 8 sigma in Q4.11 */
 #define CL_MUOFF_ 32768u       /* offset of mu while warped (unsigned arithmetic) */
+#define CL_FLOORMAX_ 2048u     /* largest mean_floor, Q8.8 sigma (8: the mean's clamp) */
 #define CL_ONE8_ 64u           /* map8: the code of 1 sigma^2 (1024 Q6.10, exact) */
 #define CL_HALF8_ 128u         /* map8: the rounding offset of the nearest code (half a step, in 1/256) */
 
@@ -40,6 +41,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->block = 0u;
     cfg->map8 = false;
     cfg->anchor = false;
+    cfg->mean_floor = 0u;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -70,6 +72,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "map8";
     } else if (cfg->anchor && cfg->block != 0u) {
         bad = "anchor"; /* the anchored grid is the pixels' (a block grid would need its own rounding) */
+    } else if (cfg->mean_floor != 0u && (!cfg->mean || cfg->block != 0u || cfg->mean_floor > CL_FLOORMAX_)) {
+        bad = "mean_floor";
     } else {
         /* accepted */
     }
@@ -723,7 +727,7 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
  * 2^11 < 2^16, t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of c^2 as in
  * cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535, |tv - mv| <= 2^15; the signs
  * applied by two's complement in 16 bits (m + -q and mv + -qe stay in range). */
-static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16_t full,
+static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16_t full, int32_t mfl,
                                uint16_t *m, uint16_t *mu, uint32_t *cs)
 {
     const int32_t v = *ov;
@@ -731,7 +735,8 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
     const uint16_t mu0 = *mu;
     const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
     const uint32_t amv = (uint32_t)(mv < 0 ? -mv : mv);
-    const int32_t dm = (int32_t)((amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
+    const int32_t dr = (int32_t)((amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
+    const int32_t dm = dr > mfl ? dr : 0;        /* mean_floor (0: dm = dr) */
     const int32_t cv = v - (mv < 0 ? -dm : dm);
     const uint16_t ac = (uint16_t)(cv < 0 ? -cv : cv);
     const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
@@ -766,7 +771,7 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
  * step (|tv - mv| <= 2^15); the cl_scale_ and cl_div_ roundings written out. */
 static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc,
                          uint32_t *cs, const uint32_t *hs, int32_t w, uint32_t a, uint32_t thr,
-                         uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap)
+                         uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap, int32_t mfl)
 {
     const uint16_t a16 = (uint16_t)(a > 65535u ? 65535u : a), full = (uint16_t)(a > 65535u ? 1u : 0u);
     /* the passes read and write o at the same column only (o may be r, inplace) */
@@ -788,11 +793,11 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
             cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
         }
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], cs[x], a16, full, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], cs[x], a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
         }
     }
     const int32_t sthr = (int32_t)thr;
@@ -1155,7 +1160,8 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             cl_row_plain_(r, o, mrow, c->hs, w, a, thr, veto, area);
         } else {
             /* the vertical sums c->vs are spent: they keep c */
-            cl_row_mean_(r, o, mrow, mu, pc, c->vs, c->hs, w, a, thr, veto, area, exc, pk, pcap);
+            cl_row_mean_(r, o, mrow, mu, pc, c->vs, c->hs, w, a, thr, veto, area, exc, pk, pcap,
+                         (int32_t)c->cfg.mean_floor);
         }
         if (c->m8 != NULL) {
             cl_row8_end_(c, y);
