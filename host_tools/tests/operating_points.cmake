@@ -46,8 +46,10 @@ check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON")
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=4" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004")
 # its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
+# and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all")
 check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=5" "bg_gate=0.25"
-            "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative")
+            "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative"
+            "bg_masked_taps=all")
 
 string(JSON js SET "${js}" image "{\"width\": 128, \"height\": 96}")
 string(JSON js SET "${js}" frames 40)

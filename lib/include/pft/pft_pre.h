@@ -106,6 +106,10 @@ extern "C" {
 #define PFT_PRE_GATE_LOCAL_MEAN 1u
 /** bg_gate_local: the tile's innovation relative to the level, times the cell's level. */
 #define PFT_PRE_GATE_LOCAL_RELATIVE 2u
+/** bg_masked_taps: the cells of young grid columns (bg_gate_young) only. */
+#define PFT_PRE_MASKED_TAPS_YOUNG 1u
+/** bg_masked_taps: every observed cell. */
+#define PFT_PRE_MASKED_TAPS_ALL 2u
 /** Largest sigma_step. */
 #define PFT_PRE_MAX_SIGMA_STEP 4u
 /** Largest sigma_every. */
@@ -175,6 +179,7 @@ typedef struct {
     uint8_t bg_gate_shift;   /**< with bg_gate: 0 clips the innovation of a cell beyond the gate to +-bg_gate sigmas (default); 1..15 leaves it unclipped and updates such a cell with the weight alpha / 2^bg_gate_shift instead (a change of the scene beyond the gate is then learnt with the time constant 2^bg_gate_shift / alpha frames until it is within the gate) (default 0) */
     uint8_t bg_gate_young;   /**< with bg_gate: the grid cells that entered the scene in the last bg_gate_young frames (a grid column or row that the frame covers for the first time, counted per column and per row) are updated without the gate, 0..255 (docs/algorithms.md 9.13 [E]). Such a cell starts from one frame, noise included; gated, it would shed that error at only alpha g sigma per frame, and the strip of young cells along the frame edge where the scene enters would hold a residual of larger spread than the rest (false tracks fixed to that edge); ungated for N frames it converges at the rate alpha as without the gate. Workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG (the ages, one byte per grid column and row). Changes values. Needs bg_gate (default 0: every cell gated, today's values) */
     uint8_t bg_gate_local;   /**< with bg_gate: the gate applied to the innovation less its local smooth part (docs/algorithms.md 9.13 [E]), so that a level change shared by a tile (sensor-fixed shading under a drifting scene, a global drift) is learnt at the full alpha while a point is still gated. 0: off (default, today's values); PFT_PRE_GATE_LOCAL_MEAN: m is the mean innovation of the cell's tile (the tile of its nearest pixel) in the last frame's update; PFT_PRE_GATE_LOCAL_RELATIVE: m = rho B, rho = (sum of e) / (sum of B) over that tile in the last frame's update (a gain fixed to the sensor changes each cell's level in proportion to it). The cell is updated with alpha m plus the gate's update of e - m (clip or weight, bg_gate_shift); a tile with no update in the last frame has m = 0. Changes values; workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_LOCAL (24 bytes per tile more, rounded). Needs bg_gate (default 0) */
+    uint8_t bg_masked_taps;  /**< TEMPORAL with bg_anchor: what the background's update does with a grid cell one of whose horizontal update taps (the frame pixels it is interpolated from along x) is masked (docs/algorithms.md 9.13 [E]). 0: the cell is kept, not updated, on that frame (default, today's values); PFT_PRE_MASKED_TAPS_YOUNG: in the young grid columns (bg_gate_young; needs it) the frame is interpolated into the cell from the valid taps of its row with their weights renormalised to sum to 1, when those weights sum to at least 1/2 (else kept); PFT_PRE_MASKED_TAPS_ALL: the same for every observed cell. A cell that enters the scene next to a masked pixel fixed to the sensor is otherwise kept at its first value for most of its young frames (about 4 px of drift), and the residual there carries that value's error and the shading it missed (false tracks fixed to the frame). Changes values; no workspace */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */

@@ -43,6 +43,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_gate_shift = 0u;
     cfg->bg_gate_young = 0u;
     cfg->bg_gate_local = 0u;
+    cfg->bg_masked_taps = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -141,6 +142,10 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->bg_gate_local > PFT_PRE_GATE_LOCAL_RELATIVE || (c->bg_gate_local != 0u && c->bg_gate == 0u)) {
         return "bg_gate_local"; /* the local part is taken off the gate's innovation */
+    }
+    if (c->bg_masked_taps > PFT_PRE_MASKED_TAPS_ALL || (c->bg_masked_taps != 0u && !c->bg_anchor) ||
+        (c->bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && c->bg_gate_young == 0u)) {
+        return "bg_masked_taps"; /* built in the anchored update; the young columns are bg_gate_young's */
     }
     return NULL;
 }

@@ -988,6 +988,48 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     }
 }
 
+/* bg_masked_taps (docs/algorithms.md 9.13): cell j (observed) of frame row zl interpolated
+ * along x from its valid taps, their weights renormalised (U * 16, clamped to 0 .. 65535 * 16);
+ * PFT_PRE_ANONE_ when the valid taps' weights sum to less than 1/2 (128 of 256). */
+static int32_t hcell_renorm_(const agx_t *gx, const int32_t *zl, int32_t j)
+{
+    const int32_t xb0 = j + gx->ub;
+    int32_t sv = 0, ws = 0; /* |sv| <= 294 * 65535 (the weights' absolute sum at most 294) */
+    for (int32_t i = gx->ulo; i <= gx->uhi; ++i) {
+        const int32_t z = zl[xb0 + i];
+        sv += z >= 0 ? gx->wu[i + 1] * z : 0;
+        ws += z >= 0 ? gx->wu[i + 1] : 0;
+    }
+    if (ws < 128) {
+        return PFT_PRE_ANONE_;
+    }
+    const int64_t num = (int64_t)sv * 16;
+    const int64_t v = (num >= 0 ? num + ws / 2 : num - ws / 2) / ws;
+    return (int32_t)(v < 0 ? 0 : (v > 65535 * 16 ? 65535 * 16 : v));
+}
+
+/* bg_masked_taps: the cells of row hz (anchor_hrow_'s) with a masked tap among ulo .. uhi,
+ * observed (olo .. ohi) and, with ax, in a column younger than ny (ax[j]: column j's age),
+ * from their valid taps (hcell_renorm_). */
+static void anchor_hrow_masked_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz,
+                                const uint8_t *ax, uint32_t ny)
+{
+    const agx_t *gx = &g->gx;
+    for (int32_t x = 0; x < w; ++x) {
+        if (zl[x] >= 0) {
+            continue;
+        }
+        /* the cells whose taps j + ub + ulo .. j + ub + uhi hold x */
+        const int32_t ja = x - gx->ub - gx->uhi > g->olo[0] ? x - gx->ub - gx->uhi : g->olo[0];
+        const int32_t jb = x - gx->ub - gx->ulo < g->ohi[0] ? x - gx->ub - gx->ulo : g->ohi[0];
+        for (int32_t j = ja; j <= jb; ++j) {
+            if (hz[j + 1] == PFT_PRE_ANONE_ && (ax == NULL || ax[j] < ny)) {
+                hz[j + 1] = hcell_renorm_(gx, zl, j);
+            }
+        }
+    }
+}
+
 /* bg_gate_local: m of every tile from the sums of the last frame's update (mean: the mean
  * innovation, rounded, within +-16383; relative: rho = sum e / sum B in Q16 within +-1/4), the
  * sums cleared for this frame. A tile without cells has m 0. */
@@ -1340,7 +1382,8 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     zl = p->vb;
     int32_t *zp = p->bwl;
     for (int32_t y = 0; y < h; ++y) {
-        if (zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u) {
+        const bool masked = zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u;
+        if (masked) {
             count_row_(c, f, (uint32_t)y, acc);
         }
         /* the ring's slot of row y holds row y - 4, read by no update after the last one:
@@ -1399,6 +1442,10 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
         }
         anchor_hrow_(&g, zl, w, vb);
+        if (masked && p->cfg.bg_masked_taps != 0u) {
+            const bool young = p->cfg.bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && p->agex != NULL;
+            anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
+        }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
         }
