@@ -307,12 +307,15 @@ static void test_moving_point_keeps_snr(void)
 }
 
 /* With mean: a persistent offset of +3 sigma on unit noise is learnt and removed (output mean
- * near 0 after 60 frames), the noise elsewhere passes unchanged in distribution. */
-static void test_mean_removes_offset(void)
+ * near 0 after 60 frames), the noise elsewhere passes unchanged in distribution. With the mean's
+ * floor (mean_floor, Q8.8 sigma) the same: the floor's share of a converged mean is none once
+ * |mu| exceeds it, and the tolerance covers the mean's noise at alpha 0.1. */
+static void mean_removes_offset_(uint16_t floor)
 {
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     cfg.mean = true;
+    cfg.mean_floor = floor;
     pft_pre_clutter_t c;
     init_map(&c, &cfg);
     double sum = 0.0;
@@ -339,6 +342,17 @@ static void test_mean_removes_offset(void)
         }
     }
     TEST_ASSERT_DOUBLE_WITHIN(0.25, 0.0, sum / n);
+}
+
+static void test_mean_removes_offset(void)
+{
+    mean_removes_offset_(0u);
+}
+
+/* The same with the floor at 1 sigma (docs/algorithms.md 9.9, mean_floor). */
+static void test_mean_removes_offset_with_floor(void)
+{
+    mean_removes_offset_(256u);
 }
 
 /* The map moves with the scene: a learnt blob, then frames of zero residual with the scene
@@ -565,6 +579,7 @@ int main(void)
     RUN_TEST(test_veto_zeroes_learnt_clutter);
     RUN_TEST(test_moving_point_keeps_snr);
     RUN_TEST(test_mean_removes_offset);
+    RUN_TEST(test_mean_removes_offset_with_floor);
     RUN_TEST(test_map_moves_with_scene);
     RUN_TEST(test_no_evidence_masked_and_raise);
     RUN_TEST(test_row_passes_match_reference);
