@@ -157,6 +157,22 @@ pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint
     return f;
 }
 
+void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,
+                           void *work, size_t len)
+{
+    cfg->width = w;
+    cfg->height = h;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(c, cfg, work, len));
+}
+
+const int16_t *pft_test_clutter_out(const pft_pre_clutter_t *c)
+{
+    pft_frame_t o;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
+    TEST_ASSERT_EQUAL_INT(PFT_PIX_RES16, o.format);
+    return (const int16_t *)o.data;
+}
+
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts)
 {

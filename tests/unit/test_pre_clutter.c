@@ -39,21 +39,6 @@ static pft_frame_t res_frame(uint32_t seq)
     return pft_test_res16_frame(g_res, W, H, seq, 1000u * seq);
 }
 
-static void init_map(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg)
-{
-    cfg->width = W;
-    cfg->height = H;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(c, cfg, g_work, sizeof g_work));
-}
-
-static const int16_t *out_of(const pft_pre_clutter_t *c)
-{
-    pft_frame_t o;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
-    TEST_ASSERT_EQUAL_INT(PFT_PIX_RES16, o.format);
-    return (const int16_t *)o.data;
-}
-
 static void test_config_and_workspace(void)
 {
     pft_pre_clutter_config_t cfg;
@@ -129,7 +114,7 @@ static void test_refused_input_changes_nothing(void)
     cfg.mean = true;
     cfg.persist = 3u; /* every buffer of the workspace in use */
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     for (uint32_t k = 0; k < 5u; ++k) {
         for (int i = 0; i < NPIX; ++i) {
             g_res[i] = noise_q88();
@@ -170,7 +155,7 @@ static void test_refused_input_changes_nothing(void)
     memcpy(g_copy, g_work, sizeof g_work);
     pft_pre_clutter_t c2;
     memset(g_work, 0xA5, sizeof g_work);
-    init_map(&c2, &cfg);
+    pft_test_clutter_init(&c2, &cfg, W, H, g_work, sizeof g_work);
     TEST_ASSERT_EQUAL_MEMORY(&saved, &c2, sizeof c2);
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, pft_pre_clutter_workspace_size(&c2.cfg) - (PFT_WS_ALIGN - 1u));
 }
@@ -212,7 +197,7 @@ static void test_persistent_blob_learnt_at_rate(void)
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     settle_on_zero(&c);
     TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_clutter_at(&c, 20u, 20u));
     const int bx = 20, by = 20;
@@ -222,14 +207,14 @@ static void test_persistent_blob_learnt_at_rate(void)
         const double got = pft_pre_clutter_at(&c, bx, by) / 1024.0;
         TEST_ASSERT_DOUBLE_WITHIN(0.01 * m + 0.01, m, got);
         const double want = m_prev > 2.0 ? 4.0 / sqrt(m_prev) : 4.0;
-        const double out = out_of(&c)[by * W + bx] / 256.0;
+        const double out = pft_test_clutter_out(&c)[by * W + bx] / 256.0;
         TEST_ASSERT_DOUBLE_WITHIN(0.01 * want + 0.01, want, out);
         m_prev = m;
     }
     /* after 40 frames the blob is scored near its own sigma (4 / sqrt(15.8) = 1.01) */
-    TEST_ASSERT_TRUE(out_of(&c)[by * W + bx] < 270);
+    TEST_ASSERT_TRUE(pft_test_clutter_out(&c)[by * W + bx] < 270);
     /* far from it, the zero residual stays zero */
-    TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[5 * W + 50]);
+    TEST_ASSERT_EQUAL_INT16(0, pft_test_clutter_out(&c)[5 * W + 50]);
 }
 
 /* The veto (8 sigma^2): the 4 sigma blob of the test above, learnt at the same rate, comes
@@ -241,16 +226,16 @@ static void test_veto_zeroes_learnt_clutter(void)
     pft_pre_clutter_config_default(&cfg);
     cfg.veto = 8192u;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     settle_on_zero(&c);
     const int bx = 20, by = 20;
     double m_prev = 0.0;
     uint32_t vetoed = 0u;
     for (int k = 1; k <= 20; ++k) {
         const double m = blob_frame(&c, k, bx, by);
-        const double out = out_of(&c)[by * W + bx] / 256.0;
+        const double out = pft_test_clutter_out(&c)[by * W + bx] / 256.0;
         if (m_prev > 8.05) {
-            TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[by * W + bx]);
+            TEST_ASSERT_EQUAL_INT16(0, pft_test_clutter_out(&c)[by * W + bx]);
             ++vetoed;
         } else if (m_prev < 7.95) {
             const double want = m_prev > 2.0 ? 4.0 / sqrt(m_prev) : 4.0;
@@ -258,7 +243,7 @@ static void test_veto_zeroes_learnt_clutter(void)
         } else {
             /* within the rounding of the threshold: either answer */
         }
-        TEST_ASSERT_EQUAL_INT16(0, out_of(&c)[5 * W + 5]);
+        TEST_ASSERT_EQUAL_INT16(0, pft_test_clutter_out(&c)[5 * W + 5]);
         m_prev = m;
     }
     TEST_ASSERT_EQUAL_UINT32(13u, vetoed); /* k = 8 .. 20 */
@@ -273,7 +258,7 @@ static void test_moving_point_keeps_snr(void)
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     uint32_t changed = 0u;
     for (uint32_t k = 0; k < 40u; ++k) {
         for (int i = 0; i < NPIX; ++i) {
@@ -287,7 +272,7 @@ static void test_moving_point_keeps_snr(void)
         if (k < 20u) { /* the start: a running mean of few frames, noisy */
             continue;
         }
-        const int16_t *o = out_of(&c);
+        const int16_t *o = pft_test_clutter_out(&c);
         TEST_ASSERT_EQUAL_INT16(in, o[py * W + px]);
         for (int i = 0; i < NPIX; ++i) {
             /* the trail's rows excepted: its raised map reaches the noise next to it */
@@ -317,7 +302,7 @@ static void mean_removes_offset_(uint16_t floor)
     cfg.mean = true;
     cfg.mean_floor = floor;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     double sum = 0.0;
     int n = 0;
     for (uint32_t k = 0; k < 60u; ++k) {
@@ -332,7 +317,7 @@ static void mean_removes_offset_(uint16_t floor)
         pft_frame_t f = res_frame(k + 1u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
         if (k >= 40u) {
-            const int16_t *o = out_of(&c);
+            const int16_t *o = pft_test_clutter_out(&c);
             for (int y = 11; y < 19; ++y) {
                 for (int x = 31; x < 33; ++x) {
                     sum += o[y * W + x] / 256.0;
@@ -363,7 +348,7 @@ static void test_map_moves_with_scene(void)
     pft_pre_clutter_config_default(&cfg);
     cfg.alpha = 6554u;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     memset(g_res, 0, sizeof g_res);
     for (uint32_t k = 0; k < 12u; ++k) {
         g_res[20 * W + 20] = (k >= 2u) ? 1024 : 0;
@@ -410,7 +395,7 @@ static void test_persistence_gate_learns_what_stays_put(void)
         cfg.thr = 65535u;
         cfg.persist = 4u;
         pft_pre_clutter_t c;
-        init_map(&c, &cfg);
+        pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
         settle_on_zero(&c);
         const int32_t sx = cs == 0 ? 0 : 65536;
         uint32_t point_same = 0u;
@@ -426,7 +411,7 @@ static void test_persistence_gate_learns_what_stays_put(void)
             g_res[py * W + px] = 768;
             pft_frame_t f = res_frame(100u + (uint32_t)k);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, 0, true));
-            const int16_t *o = out_of(&c);
+            const int16_t *o = pft_test_clutter_out(&c);
             point_same += o[py * W + px] == 768 ? 1u : 0u;
             double want = 3.0;
             for (int i = 4; i < k; ++i) {
@@ -447,7 +432,7 @@ static void test_no_evidence_masked_and_raise(void)
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     for (int i = 0; i < NPIX; ++i) {
         g_res[i] = noise_q88();
     }
@@ -458,7 +443,7 @@ static void test_no_evidence_masked_and_raise(void)
     uint16_t before = m[5 * W + 5];
     f = res_frame(2u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 65536, 0, false));
-    const int16_t *o = out_of(&c);
+    const int16_t *o = pft_test_clutter_out(&c);
     for (int i = 0; i < NPIX; ++i) {
         TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, o[i]);
     }
@@ -467,7 +452,7 @@ static void test_no_evidence_masked_and_raise(void)
     g_res[5 * W + 5] = PFT_RES16_MASKED;
     f = res_frame(3u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, out_of(&c)[5 * W + 5]);
+    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, pft_test_clutter_out(&c)[5 * W + 5]);
     TEST_ASSERT_EQUAL_UINT16(before, m[5 * W + 5]);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_raise(&c, 0u, 0u, 16384u));
     TEST_ASSERT_EQUAL_UINT32(16384u, pft_pre_clutter_at(&c, 1u, 1u));
@@ -478,7 +463,7 @@ static void test_no_evidence_masked_and_raise(void)
     g_res[5 * W + 5] = 0;
     f = res_frame(4u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-    TEST_ASSERT_INT16_WITHIN(10, 256, out_of(&c)[0]);
+    TEST_ASSERT_INT16_WITHIN(10, 256, pft_test_clutter_out(&c)[0]);
 }
 
 /* Reference of one update without the running mean, written from docs/algorithms.md 9.9 with
@@ -510,7 +495,7 @@ static void test_row_passes_match_reference(void)
         pft_pre_clutter_config_default(&cfg);
         cfg.blur = blurs[bi];
         pft_pre_clutter_t c;
-        init_map(&c, &cfg);
+        pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
         for (int i = 0; i < NPIX; ++i) {
             g_res[i] = noise_q88();
         }
@@ -530,7 +515,7 @@ static void test_row_passes_match_reference(void)
         g_res[0] = PFT_RES16_MASKED + 1; /* the most negative residual */
         f = res_frame(2u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-        const int16_t *o = out_of(&c);
+        const int16_t *o = pft_test_clutter_out(&c);
         const int32_t b = (int32_t)cfg.blur;
         const uint32_t area = (uint32_t)((2 * b + 1) * (2 * b + 1));
         const uint32_t a = 32768u; /* max(alpha, 1/2) at the second frame */

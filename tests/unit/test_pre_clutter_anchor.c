@@ -43,20 +43,6 @@ static pft_frame_t res_frame(int16_t *px, uint32_t seq)
     return pft_test_res16_frame(px, W, H, seq, 1000u * seq);
 }
 
-static void init_map(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint64_t *work, size_t len)
-{
-    cfg->width = W;
-    cfg->height = H;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(c, cfg, work, len));
-}
-
-static const int16_t *out_of(const pft_pre_clutter_t *c)
-{
-    pft_frame_t o;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
-    return (const int16_t *)o.data;
-}
-
 /* The drift of the known-answer tests: frame k's shift (Q16.16 px), sub-pixel steps of both
  * signs and one jump of 3.3 px. */
 static void drift(int k, int32_t *sx, int32_t *sy)
@@ -127,7 +113,7 @@ static void test_refused_input_changes_nothing(void)
     cfg.mean = true;
     cfg.persist = 3u;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg, g_work, sizeof g_work);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     int64_t ax = 0, ay = 0;
     for (int k = 0; k < 6; ++k) {
         int32_t sx, sy;
@@ -168,7 +154,7 @@ static void test_refused_input_changes_nothing(void)
     memcpy(g_copy, g_work, sizeof g_work);
     pft_pre_clutter_t c2;
     memset(g_work, 0xA5, sizeof g_work);
-    init_map(&c2, &cfg, g_work, sizeof g_work);
+    pft_test_clutter_init(&c2, &cfg, W, H, g_work, sizeof g_work);
     TEST_ASSERT_EQUAL_MEMORY(&saved, &c2, sizeof c2);
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, pft_pre_clutter_workspace_size(&c2.cfg) - (PFT_WS_ALIGN - 1u));
 }
@@ -188,9 +174,9 @@ static void test_drifting_scene_equals_still_scene(void)
     cfg.persist = 3u;
     pft_pre_clutter_t ca, cs;
     cfg.anchor = true;
-    init_map(&ca, &cfg, g_work, sizeof g_work);
+    pft_test_clutter_init(&ca, &cfg, W, H, g_work, sizeof g_work);
     cfg.anchor = false;
-    init_map(&cs, &cfg, g_work2, sizeof g_work2);
+    pft_test_clutter_init(&cs, &cfg, W, H, g_work2, sizeof g_work2);
     int64_t ax = 0, ay = 0;
     int32_t pxmin = 0, pxmax = 0, pymin = 0, pymax = 0;
     int compared = 0;
@@ -224,7 +210,7 @@ static void test_drifting_scene_equals_still_scene(void)
         if (!ev) {
             continue; /* the arrays move at the next frame with evidence */
         }
-        const int16_t *oa = out_of(&ca), *os = out_of(&cs);
+        const int16_t *oa = pft_test_clutter_out(&ca), *os = pft_test_clutter_out(&cs);
         for (int32_t y = ylo; y < yhi; ++y) {
             for (int32_t x = xlo; x < xhi; ++x) {
                 const uint32_t ma = pft_pre_clutter_at(&ca, (uint32_t)x, (uint32_t)y);
@@ -264,7 +250,7 @@ static void run_blob(bool map8, bool anchor, int32_t *centre_out, int32_t *probe
     cfg.map8 = map8;
     cfg.anchor = anchor;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg, g_work, sizeof g_work);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     int64_t ax = 0, ay = 0;
     for (int k = 0; k < NF; ++k) {
         int32_t sx, sy;
@@ -283,7 +269,7 @@ static void run_blob(bool map8, bool anchor, int32_t *centre_out, int32_t *probe
         pft_frame_t f = res_frame(g_res, (uint32_t)k + 1u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, sy, true));
         if (k == NF - 1) {
-            const int16_t *o = out_of(&c);
+            const int16_t *o = pft_test_clutter_out(&c);
             *centre_out = o[(20 + py) * W + 30 + px];
             *probe_out = o[(20 + py) * W + 33 + px];
             *centre_m = pft_pre_clutter_at(&c, (uint32_t)(30 + px), (uint32_t)(20 + py));
@@ -319,9 +305,9 @@ static void test_inplace_same_values(void)
     cfg.mean = true;
     cfg.persist = 2u;
     pft_pre_clutter_t c, ci;
-    init_map(&c, &cfg, g_work, sizeof g_work);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     cfg.inplace = true;
-    init_map(&ci, &cfg, g_work2, sizeof g_work2);
+    pft_test_clutter_init(&ci, &cfg, W, H, g_work2, sizeof g_work2);
     int64_t ax = 0, ay = 0;
     for (int k = 0; k < 12; ++k) {
         int32_t sx, sy;
@@ -338,7 +324,7 @@ static void test_inplace_same_values(void)
         pft_frame_t fi = res_frame(g_res2, (uint32_t)k + 1u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, sy, true));
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update_inplace(&ci, &fi, g_res2, sx, sy, true));
-        memcpy(g_out, out_of(&c), sizeof g_out);
+        memcpy(g_out, pft_test_clutter_out(&c), sizeof g_out);
         TEST_ASSERT_EQUAL_INT16_ARRAY(g_out, g_res2, NPIX);
     }
 }

@@ -39,13 +39,6 @@ static pft_frame_t res_frame(uint32_t seq)
     return pft_test_res16_frame(g_res, W, H, seq, 0u);
 }
 
-static const int16_t *out_of(const pft_pre_clutter_t *c)
-{
-    pft_frame_t o;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
-    return (const int16_t *)o.data;
-}
-
 static void test_config_and_workspace(void)
 {
     pft_pre_clutter_config_t cfg;
@@ -241,7 +234,7 @@ static void test_matches_reference(void)
             pft_frame_t f = res_frame(n);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
             ref_frame(&cfg, n);
-            const int16_t *o = out_of(&c);
+            const int16_t *o = pft_test_clutter_out(&c);
             for (int i = 0; i < NPIX; ++i) {
                 TEST_ASSERT_EQUAL_INT16(r_out[i], o[i]);
                 scored += (o[i] != g_res[i] && cfg.mean == false) ? 1 : 0;
@@ -296,7 +289,7 @@ static void test_persistent_blob_learnt_at_rate(void)
             const double m = 16.0 * (1.0 - pow(1.0 - a, n));
             /* tolerance 1 %: the Q6.10 rounding of each step, at most n / 2 units of 1/1024 */
             TEST_ASSERT_DOUBLE_WITHIN(0.01 * m, m, pft_pre_clutter_at(&c, 24u, 24u) / 1024.0);
-            const double got = out_of(&c)[24 * W + 24] / 256.0;
+            const double got = pft_test_clutter_out(&c)[24 * W + 24] / 256.0;
             if (m_prev > 2.0 * 1.01) {
                 /* scored in its sigma: 4 / sqrt(m_{n-1}), within the Q8.8 and the map's 1 % */
                 TEST_ASSERT_DOUBLE_WITHIN(0.01 * 4.0 / sqrt(m_prev) + 1.0 / 256.0, 4.0 / sqrt(m_prev), got);
@@ -342,7 +335,7 @@ static void test_moving_point_keeps_value(void)
             g_res[y * W + x] = 1280;
             pft_frame_t f = res_frame(100u + (uint32_t)n);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-            TEST_ASSERT_EQUAL_INT16(1280, out_of(&c)[y * W + x]);
+            TEST_ASSERT_EQUAL_INT16(1280, pft_test_clutter_out(&c)[y * W + x]);
             for (int i = 0; i < gw * gh; ++i) {
                 bm[i] += a * ((i == bi ? 25.0 / (k * k) : 0.0) - bm[i]);
             }
@@ -399,7 +392,7 @@ static void test_map_moves_with_scene(void)
                 }
             }
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, n > 0 ? (int32_t)k * 65536 : 0, 0, true));
-            const int16_t *om = out_of(&c), *os = out_of(&g_still);
+            const int16_t *om = pft_test_clutter_out(&c), *os = pft_test_clutter_out(&g_still);
             /* blocks whose history and whose 3 x 3 read stayed inside: still-scene columns
              * from k (one block) to W - (n + 1) k */
             for (int y = 0; y < H; ++y) {

@@ -32,20 +32,6 @@ static pft_frame_t res_frame(uint32_t seq)
     return pft_test_res16_frame(g_res, W, H, seq, 1000u * seq);
 }
 
-static void init_map(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg)
-{
-    cfg->width = W;
-    cfg->height = H;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_init(c, cfg, g_work, sizeof g_work));
-}
-
-static const int16_t *out_of(const pft_pre_clutter_t *c)
-{
-    pft_frame_t o;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_frame(c, &o));
-    return (const int16_t *)o.data;
-}
-
 static void test_config(void)
 {
     pft_pre_clutter_config_t cfg;
@@ -99,7 +85,7 @@ static void test_output_is_r_less_mu_above_floor(void)
         cfg.thr = 65535u;
         cfg.mean_floor = floors[fi];
         pft_pre_clutter_t c;
-        init_map(&c, &cfg);
+        pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
         uint32_t n_above = 0u, n_below = 0u;
         for (uint32_t k = 0; k < 40u; ++k) {
             for (int i = 0; i < NPIX; ++i) {
@@ -114,7 +100,7 @@ static void test_output_is_r_less_mu_above_floor(void)
             memcpy(g_m0, c.m, sizeof g_m0);
             pft_frame_t f = res_frame(k + 1u);
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
-            const int16_t *o = out_of(&c);
+            const int16_t *o = pft_test_clutter_out(&c);
             const uint32_t a = k + 1u < 10u ? (65536u + (k + 1u) / 2u) / (k + 1u) : 6554u; /* max(alpha, 1/n) */
             for (int i = 0; i < NPIX; ++i) {
                 const int32_t mq = mu_q88(g_mu0[i]);
@@ -154,7 +140,7 @@ static void test_refused_input_changes_nothing(void)
     cfg.persist = 3u;
     cfg.mean_floor = 128u;
     pft_pre_clutter_t c;
-    init_map(&c, &cfg);
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
     for (uint32_t k = 0; k < 5u; ++k) {
         for (int i = 0; i < NPIX; ++i) {
             g_res[i] = (int16_t)pft_test_noise_q88(&g_rs);
