@@ -278,4 +278,124 @@ static inline bool fz_same(const void *inst, size_t isz, const void *ws, size_t 
 /* Statuses a refused call may return (anything but OK). */
 static inline bool fz_refused(pft_status_t st) { return st != PFT_OK; }
 
+/* ---------------------------- preprocessing (pft_pre_*) helpers --------------------------- */
+/* Largest frame side of the preprocessing inputs whose updates run (docs/reliability.md,
+ * "Per-input work"): 64 x 64 pixels, a few passes each, plus the registration's integer search
+ * (2 reg_search + 1)(w + h) <= 65 x 128 sums. */
+#define FZ_PRE_SIDE 64u
+
+/* Raw frame kinds of the preprocessing inputs. */
+enum { FZ_PRE_NOISE = 0, FZ_PRE_CONST = 1, FZ_PRE_ZERO = 2, FZ_PRE_SAT = 3, FZ_PRE_KINDS = 4 };
+
+/* A raw U8 or U16 frame of w x h packed pixels (bit_depth bits, 0 reads as 16) in buf: noise
+ * around a quarter of full scale with a bright blob and a drift of k px per frame (kind
+ * FZ_PRE_NOISE), a constant, all zero or all saturated (every bit of bit_depth set). */
+static inline pft_frame_t fz_pre_raw(uint8_t *buf, uint32_t seed, uint32_t k, uint16_t w,
+                                     uint16_t h, pft_pixfmt_t fmt, uint8_t bit_depth,
+                                     uint32_t kind)
+{
+    pft_frame_t fr;
+    memset(&fr, 0, sizeof fr);
+    uint32_t bits = (fmt == PFT_PIX_U8) ? 8u : (bit_depth == 0u ? 16u : bit_depth);
+    uint32_t full = (bits >= 16u) ? 65535u : (1u << bits) - 1u;
+    uint32_t bpp = (fmt == PFT_PIX_U8) ? 1u : 2u;
+    fr.width = w;
+    fr.height = h;
+    fr.format = fmt;
+    fr.bit_depth = (fmt == PFT_PIX_U16) ? bit_depth : 0u;
+    fr.stride_bytes = (uint32_t)w * bpp;
+    fr.seq = k;
+    fr.timestamp_us = 1000u * (uint64_t)k;
+    fr.data = buf;
+    uint32_t s = (seed * 2654435761u + k) | 1u;
+    uint32_t cx = seed % (w + 1u), cy = (seed >> 8) % (h + 1u);
+    uint32_t amp = (full >> 6) + 1u;
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            uint32_t v;
+            if (kind == FZ_PRE_CONST) {
+                v = (seed % full) + 1u;
+            } else if (kind == FZ_PRE_ZERO) {
+                v = 0u;
+            } else if (kind == FZ_PRE_SAT) {
+                v = full;
+            } else {
+                /* a smooth scene (drifting with k), noise, and a 3 x 3 target */
+                uint32_t sx = x + k, scene = ((sx * 7u + y * 3u) % 64u) * (full >> 8);
+                v = (full >> 2) + scene / 4u + fz_xorshift(&s) % amp;
+                uint32_t dx = x > cx ? x - cx : cx - x, dy = y > cy ? y - cy : cy - y;
+                if (dx < 2u && dy < 2u) {
+                    v += full >> 3;
+                }
+                v = (v > full) ? full : v;
+            }
+            if (bpp == 1u) {
+                buf[(size_t)y * w + x] = (uint8_t)v;
+            } else {
+                uint16_t u = (uint16_t)v;
+                memcpy(buf + 2u * ((size_t)y * w + x), &u, 2u);
+            }
+        }
+    }
+    return fr;
+}
+
+/* A whitened residual (PFT_PIX_RES16) of w x h packed pixels in buf: Q8.8 noise of about one
+ * sigma, a bright 3 x 3 point, and every 16th pixel (from the seed) masked. */
+static inline pft_frame_t fz_pre_res(int16_t *buf, uint32_t seed, uint32_t k, uint16_t w,
+                                     uint16_t h)
+{
+    pft_frame_t fr;
+    memset(&fr, 0, sizeof fr);
+    fr.width = w;
+    fr.height = h;
+    fr.format = PFT_PIX_RES16;
+    fr.stride_bytes = 2u * (uint32_t)w;
+    fr.seq = k;
+    fr.data = buf;
+    uint32_t s = (seed * 2654435761u + k) | 1u;
+    uint32_t cx = (seed + k) % (w + 1u), cy = (seed >> 8) % (h + 1u);
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            uint32_t r = fz_xorshift(&s);
+            int32_t v = (int32_t)(r & 1023u) - 512;
+            uint32_t dx = x > cx ? x - cx : cx - x, dy = y > cy ? y - cy : cy - y;
+            if (dx < 2u && dy < 2u) {
+                v += 2048;
+            }
+            buf[(size_t)y * w + x] = ((r >> 16) % 16u == 0u) ? (int16_t)PFT_RES16_MASKED : (int16_t)v;
+        }
+    }
+    return fr;
+}
+
+/* Sane statistics of an accepted pft_pre update of a w x h frame with peak_max pk. */
+static inline void fz_pre_check_stats(const pft_pre_t *p, uint16_t w, uint16_t h, uint16_t pk,
+                                      int16_t thr)
+{
+    pft_pre_stats_t st;
+    FZ_CHECK(pft_pre_stats(p, &st) == PFT_OK);
+    uint32_t n = (uint32_t)w * h;
+    FZ_CHECK(st.n_masked <= n && st.n_saturated <= n && st.n_dead <= n && st.n_bad <= n);
+    FZ_CHECK(st.n_saturated + st.n_dead + st.n_bad <= n);
+    FZ_CHECK((st.flags & ~0x1FFu) == 0u);
+    FZ_CHECK(st.n_peaks <= pk && st.n_peaks <= st.n_candidates && st.n_candidates <= n);
+    FZ_CHECK(st.sigma_min <= st.sigma_mean && st.sigma_mean <= st.sigma_max);
+    /* ALL_MASKED: no pixel passed the mask, so every residual is masked (the converse does not
+     * hold: the border band of LOCAL and the first frame of TEMPORAL mask valid pixels too) */
+    FZ_CHECK((st.flags & PFT_PRE_FLAG_ALL_MASKED) == 0u || st.n_masked == n);
+    static pft_pre_peak_t pks[PFT_PRE_MAX_PEAKS];
+    size_t np = pft_pre_peaks(p, pks, PFT_PRE_MAX_PEAKS);
+    FZ_CHECK(np == st.n_peaks);
+    for (size_t i = 0; i < np; ++i) {
+        FZ_CHECK(pks[i].x < w && pks[i].y < h && pks[i].value >= thr);
+        FZ_CHECK(i == 0u || pks[i].value <= pks[i - 1u].value);
+    }
+    pft_frame_t out;
+    FZ_CHECK(pft_pre_frame(p, &out) == PFT_OK);
+    FZ_CHECK(out.format == PFT_PIX_RES16 && out.width == w && out.height == h &&
+             out.data != NULL && out.stride_bytes >= 2u * (uint32_t)w);
+}
+
+
 #endif

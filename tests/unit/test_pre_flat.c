@@ -359,6 +359,15 @@ static void test_refused_input(void)
     f = res_frame(6u);
     f.format = PFT_PIX_U16;
     TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, g_res, NULL, true));
+    /* an odd stride puts rows of int16 at odd addresses: refused, the buffer unchanged (was
+     * accepted and read misaligned before the fuzz finding F9, docs/reliability.md) */
+    static int16_t odd[NPIX + H];
+    memcpy(odd, g_in, sizeof g_in);
+    f = res_frame(6u);
+    f.data = odd;
+    f.stride_bytes = 2u * W + 1u;
+    TEST_ASSERT_EQUAL(PFT_ERR_FORMAT, pft_pre_flat_update(&fl, &f, odd, NULL, true));
+    TEST_ASSERT_EQUAL_MEMORY(g_in, odd, sizeof g_in);
     TEST_ASSERT_EQUAL_MEMORY(&inst, &fl, sizeof fl);
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
     TEST_ASSERT_EQUAL_MEMORY(g_in, g_res, sizeof g_res);

@@ -595,7 +595,8 @@ pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl);
  * the raw frame the stage took); read only; ignored (may be NULL) without relative. evidence
  * false (a frame flagged CONSTANT, ALL_MASKED or REG_LOST) corrects the frame but leaves the
  * map. PFT_ERR_INVAL for NULL (level NULL with relative) or pixels != res->data,
- * PFT_ERR_FORMAT for a wrong frame: nothing changes, the frame buffer included. Work: one
+ * PFT_ERR_FORMAT for a wrong frame (an odd stride_bytes of res among them): nothing changes,
+ * the frame buffer included. Work: one
  * pass over the pixels plus O(blocks).
  */
 pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,

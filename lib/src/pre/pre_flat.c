@@ -350,6 +350,9 @@ pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int
     if (s != PFT_OK) {
         return s;
     }
+    if ((res->stride_bytes & 1u) != 0u) {
+        return PFT_ERR_FORMAT; /* rows of int16 at odd addresses (as the clutter map refuses) */
+    }
     if (fl->cfg.relative) {
         if (level == NULL) {
             return PFT_ERR_INVAL;
