@@ -552,6 +552,16 @@ static pft_frame_t res_frame(fz_t *f, uint16_t w, uint16_t h)
     return fr;
 }
 
+/* The chain builds only valid configurations: a refusal is a harness defect, named on stderr. */
+static void built_valid_(pft_status_t st, const char *what, const char *const *field)
+{
+    /* *field read here, after the check that wrote it (not as an argument beside the call) */
+    if (st != PFT_OK) {
+        fprintf(stderr, "pft fuzz: %s refused: %s\n", what, *field != NULL ? *field : "?");
+    }
+    FZ_CHECK(st == PFT_OK && *field == NULL);
+}
+
 static void run_pre(fz_t *f)
 {
     static pft_pre_t p;
@@ -619,10 +629,7 @@ static void run_pre(fz_t *f)
         fz_bytes(f, g_bad, sizeof g_bad);
         c.bad_map = g_bad;
     }
-    if (pft_pre_config_check(&c, &bad_field) != PFT_OK) {
-        fprintf(stderr, "pft fuzz: c refused: %s\n", bad_field);
-    }
-    FZ_CHECK(bad_field == NULL);
+    built_valid_(pft_pre_config_check(&c, &bad_field), "c", &bad_field);
     size_t ws = pft_pre_workspace_size(&c);
     FZ_CHECK(ws > 0u && ws <= sizeof g_ws);
     FZ_CHECK(pft_pre_init(&p, &c, g_ws, ws) == PFT_OK);
@@ -642,10 +649,7 @@ static void run_pre(fz_t *f)
     mc.mean_floor = (mc.mean && mc.block == 0u && (mo & 32u)) ? 256u : 0u;
     mc.box = (mo & 2u) == 0u;
     mc.blur = (uint8_t)(fz_u8(f) % (PFT_PRE_CLUTTER_MAX_BLUR + 1u));
-    if (pft_pre_clutter_config_check(&mc, &bad_field) != PFT_OK) {
-        fprintf(stderr, "pft fuzz: mc refused: %s\n", bad_field);
-    }
-    FZ_CHECK(bad_field == NULL);
+    built_valid_(pft_pre_clutter_config_check(&mc, &bad_field), "mc", &bad_field);
     size_t mws = pft_pre_clutter_workspace_size(&mc);
     FZ_CHECK(mws > 0u && mws <= sizeof g_ws2);
     FZ_CHECK(pft_pre_clutter_init(&m, &mc, g_ws2, mws) == PFT_OK);
@@ -658,10 +662,7 @@ static void run_pre(fz_t *f)
     fc.block = (uint8_t)(PFT_PRE_FLAT_MIN_BLOCK << (fo % 5u)); /* 4..64 */
     fc.relative = (fo & 8u) != 0u;
     fc.gate = (uint16_t)(1u + (fo >> 4) * 128u);
-    if (pft_pre_flat_config_check(&fc, &bad_field) != PFT_OK) {
-        fprintf(stderr, "pft fuzz: fc refused: %s\n", bad_field);
-    }
-    FZ_CHECK(bad_field == NULL);
+    built_valid_(pft_pre_flat_config_check(&fc, &bad_field), "fc", &bad_field);
     size_t fws = pft_pre_flat_workspace_size(&fc);
     FZ_CHECK(fws > 0u && fws <= sizeof g_ws3);
     FZ_CHECK(pft_pre_flat_init(&fl, &fc, g_ws3, fws) == PFT_OK);
