@@ -79,10 +79,8 @@ static pft_frame_t frame_of(uint32_t seq)
     return pft_test_u16_frame(g_img, W, H, 14u, seq);
 }
 
-static uint8_t g_young; /* bg_gate_young of config() */
-static uint8_t g_local; /* bg_gate_local of the next config() */
 
-static void config(pft_pre_config_t *c, uint16_t gate, uint8_t shift)
+static void config(pft_pre_config_t *c, uint16_t gate, uint8_t shift, uint8_t young, uint8_t local)
 {
     pft_pre_config_default(c);
     c->width = W;
@@ -92,8 +90,8 @@ static void config(pft_pre_config_t *c, uint16_t gate, uint8_t shift)
     c->bg_anchor = true;
     c->bg_gate = gate;
     c->bg_gate_shift = shift;
-    c->bg_gate_young = gate != 0u ? g_young : 0u;
-    c->bg_gate_local = gate != 0u ? g_local : 0u;
+    c->bg_gate_young = gate != 0u ? young : 0u;
+    c->bg_gate_local = gate != 0u ? local : 0u;
 }
 
 static void init(pft_pre_t *p, const pft_pre_config_t *c)
@@ -128,7 +126,7 @@ static void test_config(void)
     pft_pre_config_default(&c);
     TEST_ASSERT_EQUAL_UINT16(0u, c.bg_gate); /* off by default */
     const char *field = NULL;
-    config(&c, 256u, 0u);
+    config(&c, 256u, 0u, 0u, 0u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, &field));
     pft_pre_config_t d = c;
     d.bg_gate = PFT_PRE_MIN_BG_GATE;
@@ -199,12 +197,12 @@ static void test_config(void)
  * (between the measured values: a gate that did not act, or acted on the wrong cells, fails). */
 /* The share kept (above) of a point of 6 SIGMA_T peak at scene position (x0, y0) + (0.05, 0.04) k
  * on frame k, present from frame k_on, averaged over frames k_from .. k_end - 1, on the texture
- * drifting by (0.3, 0.2) px per frame; the stage configured by config(gate, shift). */
-static double slow_point_share(uint16_t gate, uint8_t shift, double x0, double y0, uint32_t k_on,
-                               uint32_t k_from, uint32_t k_end)
+ * drifting by (0.3, 0.2) px per frame; the stage configured by config(gate, shift, young, local). */
+static double slow_point_share(uint16_t gate, uint8_t shift, uint8_t young, uint8_t local, double x0,
+                               double y0, uint32_t k_on, uint32_t k_from, uint32_t k_end)
 {
     pft_pre_config_t c;
-    config(&c, gate, shift);
+    config(&c, gate, shift, young, local);
     pft_pre_t p;
     init(&p, &c);
     g_rs = 2463534242u;
@@ -229,14 +227,14 @@ static double slow_point_share(uint16_t gate, uint8_t shift, double x0, double y
     return sum / n;
 }
 
-static double slow_point_kept(uint16_t gate, uint8_t shift)
+static double slow_point_kept(uint16_t gate, uint8_t shift, uint8_t local)
 {
-    return slow_point_share(gate, shift, 40.0, 30.0, 0u, 20u, 40u);
+    return slow_point_share(gate, shift, 0u, local, 40.0, 30.0, 0u, 20u, 40u);
 }
 
 static void test_slow_point_kept(void)
 {
-    const double off = slow_point_kept(0u, 0u), on = slow_point_kept(128u, 0u), ws = slow_point_kept(384u, 3u);
+    const double off = slow_point_kept(0u, 0u, 0u), on = slow_point_kept(128u, 0u, 0u), ws = slow_point_kept(384u, 3u, 0u);
     char msg[128];
     snprintf(msg, sizeof msg, "share kept: %.3f off, %.3f clip 0.5 sigma, %.3f weight 1/8 beyond 1.5 sigma", off, on, ws);
     UnityPrint(msg);
@@ -254,9 +252,7 @@ static void test_local_slow_point_kept(void)
 {
     char msg[128];
     for (uint8_t m = PFT_PRE_GATE_LOCAL_MEAN; m <= PFT_PRE_GATE_LOCAL_RELATIVE; ++m) {
-        g_local = m;
-        const double on = slow_point_kept(128u, 0u);
-        g_local = 0u;
+        const double on = slow_point_kept(128u, 0u, m);
         snprintf(msg, sizeof msg, "share kept, clip 0.5 sigma, bg_gate_local %u: %.3f", (unsigned)m, on);
         UnityPrint(msg);
         UNITY_PRINT_EOL();
@@ -281,9 +277,7 @@ static void test_local_slow_point_kept(void)
 static double ramp_lag(uint16_t gate, uint8_t local)
 {
     pft_pre_config_t c;
-    g_local = local;
-    config(&c, gate, 0u);
-    g_local = 0u;
+    config(&c, gate, 0u, 0u, local);
     pft_pre_t p;
     init(&p, &c);
     g_rs = 2463534242u;
@@ -341,7 +335,7 @@ static void test_local_follows_ramp(void)
 static double patch_left(uint16_t gate, uint8_t shift)
 {
     pft_pre_config_t c;
-    config(&c, gate, shift);
+    config(&c, gate, shift, 0u, 0u);
     pft_pre_t p;
     init(&p, &c);
     g_rs = 2463534242u;
@@ -386,7 +380,7 @@ static void test_young_config(void)
     pft_pre_config_t c;
     pft_pre_config_default(&c);
     TEST_ASSERT_EQUAL_UINT8(0u, c.bg_gate_young); /* off by default */
-    config(&c, 64u, 0u);
+    config(&c, 64u, 0u, 0u, 0u);
     const char *field = NULL;
     c.bg_gate_young = 255u;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, &field));
@@ -427,12 +421,8 @@ static void test_young_config(void)
  * young cells, not on the interior's gate). */
 static void young_strip(uint8_t young, uint8_t local, double *edge, double *inner)
 {
-    g_young = young;
-    g_local = local;
     pft_pre_config_t c;
-    config(&c, 64u, 0u);
-    g_young = 0u;
-    g_local = 0u;
+    config(&c, 64u, 0u, young, local);
     pft_pre_t p;
     init(&p, &c);
     g_rs = 2463534242u;
@@ -501,10 +491,7 @@ static void test_young_edge(void)
  * (the point is kept: its cells are gated). */
 static double slow_point_late(uint16_t gate, uint8_t young)
 {
-    g_young = young;
-    const double r = slow_point_share(gate, 0u, 30.0, 25.0, 20u, 30u, 50u);
-    g_young = 0u;
-    return r;
+    return slow_point_share(gate, 0u, young, 0u, 30.0, 25.0, 20u, 30u, 50u);
 }
 
 static void test_young_interior_gated(void)
@@ -535,13 +522,9 @@ static void test_young_interior_gated(void)
  * in from the other end of the row); young 0.307 against 0.340, all the same. */
 static void masked_edge(uint8_t masked, double *near, double *ctl)
 {
-    g_young = 16u;
-    g_local = PFT_PRE_GATE_LOCAL_RELATIVE;
     pft_pre_config_t c;
-    config(&c, 64u, 0u);
+    config(&c, 64u, 0u, 16u, PFT_PRE_GATE_LOCAL_RELATIVE);
     c.bg_masked_taps = masked;
-    g_young = 0u;
-    g_local = 0u;
     pft_pre_t p;
     init(&p, &c);
     g_rs = 2463534242u;
@@ -584,7 +567,7 @@ static void test_masked_taps_config(void)
     pft_pre_config_default(&c);
     TEST_ASSERT_EQUAL_UINT8(0u, c.bg_masked_taps); /* off by default */
     const char *field = NULL;
-    config(&c, 0u, 0u);
+    config(&c, 0u, 0u, 0u, 0u);
     const size_t base = pft_pre_workspace_size(&c);
     c.bg_masked_taps = PFT_PRE_MASKED_TAPS_ALL; /* needs bg_anchor only */
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_config_check(&c, &field));
@@ -632,9 +615,7 @@ static void test_masked_entering_edge(void)
 static void refused_changes_nothing(uint8_t local)
 {
     pft_pre_config_t c;
-    g_local = local;
-    config(&c, 384u, 3u);
-    g_local = 0u;
+    config(&c, 384u, 3u, 0u, local);
     pft_pre_t p;
     init(&p, &c);
     const size_t need = pft_pre_workspace_size(&c);
