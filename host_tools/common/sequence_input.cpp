@@ -219,8 +219,13 @@ public:
                 seq_ = want - 1u;
                 img = cv::imread(file, cv::IMREAD_UNCHANGED);
                 if (!img.empty()) {
-                    if (lower_ext(file) == ".pgm" && img.depth() == CV_16U)
+                    if (lower_ext(file) == ".pgm" && img.depth() == CV_16U) {
                         bits = pgm_bits(file);
+                        // the first frame's maxval below 65535 declares the depth (16383: 14
+                        // bits); 65535 is only the container's (OpenCV writes it always)
+                        if (!info_.width && bits > 0 && bits < 16)
+                            info_.bit_depth = bits;
+                    }
                     break;
                 }
                 ++skipped_;
@@ -319,7 +324,9 @@ public:
         info_.kind = "raw-u16";
         info_.width = spec.width;
         info_.height = spec.height;
-        info_.bit_depth = spec.bits;
+        // a sidecar's bit depth or --raw's bits declare the depth; a spec without bits does not
+        if (!info_.bit_depth && spec.bits_given)
+            info_.bit_depth = spec.bits;
         std::error_code ec;
         if (fs::is_directory(path, ec))
             throw InputError(path + ": " + what + " names a folder; it needs one file of frames");
@@ -433,6 +440,7 @@ std::unique_ptr<SequenceReader> open_sidecar(const std::string &dir)
         spec.width = info.width;
         spec.height = info.height;
         spec.bits = info.bit_depth ? info.bit_depth : 16;
+        spec.bits_given = info.bit_depth > 0;
         spec.big_endian = f.choice_or("endian", "le", {"le", "be"}) == "be";
         spec.skip = static_cast<uint64_t>(f.integer_in("skip", 0, 0, INT64_MAX));
         std::string file = (fs::path(dir) / f.string_or("file", "frames.u16")).string();
@@ -514,6 +522,7 @@ RawSpec parse_raw_spec(const std::string &spec, const std::string &source)
                 throw InputError(where + ": field bits: given twice" + syntax);
             seen_bits = true;
             r.bits = spec_int(t, "bits", 1, 16, where);
+            r.bits_given = true;
         } else {
             throw InputError(where + ": field " + std::to_string(i + 1) + " (\"" + t +
                              "\"): expected bits (1..16), le, be or skip=BYTES" + syntax);

@@ -743,6 +743,29 @@ int selftest_checks(bool verbose)
     return fails;
 }
 
+/** `pft run`: a U16 frame whose container holds more bits than the pipeline's depth must have
+ *  no pixel above that depth; the pipeline would clip such pixels to full scale and the stage
+ *  would mask them as saturated, silently. Refused with the count, the largest value and the
+ *  remedy (a --raw dump whose bits are declared keeps its documented rule: the high bits are
+ *  ignored, with a warning on frame 1). */
+void check_frame_bits(const pft_frame_t &f, int bits, const std::string &bits_how)
+{
+    const int container = f.bit_depth ? f.bit_depth : 16;
+    if (f.format != PFT_PIX_U16 || container <= bits)
+        return;
+    cv::Mat view(f.height, f.width, CV_16UC1, const_cast<void *>(f.data), f.stride_bytes);
+    const double top = std::ldexp(1.0, bits) - 1.0;
+    double mx = 0.0;
+    cv::minMaxLoc(view, nullptr, &mx);
+    if (mx <= top)
+        return;
+    const int over = cv::countNonZero(view > top);
+    throw InputError("frame " + std::to_string(f.seq) + " has " + std::to_string(over) + " pixel(s) above " +
+                     std::to_string(bits) + " bits (largest " + std::to_string(static_cast<long>(mx)) + " > " +
+                     std::to_string(static_cast<long>(top)) + "; the bit depth was " + bits_how +
+                     "): clipped, they would be masked as saturated; give the sensor's bit depth with --bits (8..16)");
+}
+
 // ------------------------------------------------------------------------- handler
 class TbdIrHandler : public KindHandler {
 public:
@@ -839,7 +862,16 @@ public:
                         : info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned()
                             ? info.sidecar["seed"].get<uint64_t>()
                             : s.eval.base_seed;
-        int bits = detect_bit_depth(info.bit_depth, head);
+        // The bit depth: --bits, else the input's declaration (a sidecar's bit_depth, --raw's
+        // bits, a PGM's maxval below 65535), else detected: the smallest of 8..16 that holds
+        // the largest value of the head frames. A later frame with pixels above a detected or
+        // --bits depth is refused (below): clipped, they would be masked as saturated.
+        const int bits = o.bits > 0 ? o.bits : info.bit_depth > 0 ? info.bit_depth : detect_bit_depth(0, head);
+        const std::string bits_how =
+            o.bits > 0 ? "given by --bits"
+            : info.bit_depth > 0
+                ? "declared by the input"
+                : "detected from the largest value of the first " + std::to_string(head.size()) + " frame(s)";
         // noise of the input, for the log (the pipeline estimates its own per tile and frame)
         cv::Mat usable = (head[0] > 0.0) & (head[0] < std::ldexp(1.0, bits) - 1.0);
         NoiseEstimate es = estimate_noise_spatial(head, usable);
@@ -850,6 +882,8 @@ public:
             std::printf("pft run: %s (%s, %dx%d, %s frames, %d bits)\n", o.sequence.c_str(), info.kind.c_str(),
                         head[0].cols, head[0].rows,
                         info.frames >= 0 ? std::to_string(info.frames).c_str() : "?", bits);
+            std::printf("  bit depth %d %s%s\n", bits, bits_how.c_str(),
+                        o.bits > 0 || info.bit_depth > 0 ? "" : " (give the sensor's with --bits)");
             std::printf("  noise sigma estimated from the first %d frames: %.4g counts (spatial: robust sigma of "
                         "the frame minus its 8-neighbour mean), %.4g counts (temporal: frame "
                         "differences)%s\n", es.frames, es.sigma, et.sigma,
@@ -916,6 +950,7 @@ public:
         };
         try {
             while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
+                check_frame_bits(f, bits, bits_how);
                 PipelineOut po = pl.step(f);
                 if (sout) {
                     // z(p) = b(p - shift): the scene's translation since the last frame, Q16.16 px

@@ -291,6 +291,43 @@ elseif(MODE STREQUAL "lost_frames")
   expect_refused("[^\n]*clear_sky_128x96_drop10.json: eval.drop_prob / eval.drop_frames lose frames"
                  ${PFT} sim --scenario ${irdrop} --format raw --out ${WORK}/ir_lost_raw -q)
   message(STATUS "tbd_ir lost frames ${ir_lost}: no files, gaps seen by pft run (last track frame ${maxf} of ${nir} files), pft eval the same")
+elseif(MODE STREQUAL "bit_depth")
+  # kind tbd_ir's bit depth (docs/host_tools.md, "Bit depth"): a declared depth is honoured,
+  # a detected one covers only the first 8 frames, and a later frame with pixels above it is
+  # refused (before: clipped and masked as saturated without a word)
+  set(d ${WORK}/bits)
+  file(REMOVE_RECURSE ${d})
+  file(MAKE_DIRECTORY ${d})
+  # the 14-bit sim frames (saturated pixels at 16383) with the first 8 shifted to 12 bits
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/dim_head png shift=2 first=8)
+  expect_refused("run: [^\n]*dim_head: stopped at input frame 9: frame 9 has [0-9]+ pixel\\(s\\) above 12 bits \\(largest 16383 > 4095; the bit depth was detected from the largest value of the first 8 frame\\(s\\)\\)[^\n]*--bits"
+                 ${PFT} run --sequence ${d}/dim_head --no-video --out ${d}/run_dim)
+  run_ok(${PFT} run --sequence ${d}/dim_head --bits 14 --no-video --out ${d}/run_dim14)
+  if(NOT run_out MATCHES "bit depth 14 given by --bits" OR NOT run_out MATCHES "24 frames, 0 skipped")
+    message(FATAL_ERROR "--bits 14: expected 24 frames at 14 bits:\n${run_out}")
+  endif()
+  expect_refused("run: [^\n]*dim_head: stopped at input frame 1: frame 1 has [0-9]+ pixel\\(s\\) above 10 bits [^\n]*given by --bits"
+                 ${PFT} run --sequence ${d}/dim_head --bits 10 --no-video --out ${d}/run_dim10)
+  # a dump of 12-bit values declared 14 bits stays 14 bits (before: lowered to 12); without
+  # bits in the spec the depth is detected
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/all12.u16 raw shift=2)
+  run_ok(${PFT} run --sequence ${d}/all12.u16 --raw 96x72:14 --no-video --frames 2 --out ${d}/run_raw14)
+  if(NOT run_out MATCHES "96x72, 24 frames, 14 bits" OR NOT run_out MATCHES "bit depth 14 declared by the input")
+    message(FATAL_ERROR "--raw 96x72:14: the declared 14 bits were not kept:\n${run_out}")
+  endif()
+  run_ok(${PFT} run --sequence ${d}/all12.u16 --raw 96x72 --no-video --frames 2 --out ${d}/run_raw)
+  if(NOT run_out MATCHES "96x72, 24 frames, 12 bits" OR NOT run_out MATCHES "bit depth 12 detected")
+    message(FATAL_ERROR "--raw 96x72: expected 12 bits detected:\n${run_out}")
+  endif()
+  # a PGM's maxval (16383) declares 14 bits
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_pgm --no-video --frames 2 --out ${d}/run_pgm)
+  if(NOT run_out MATCHES "bit depth 14 declared by the input")
+    message(FATAL_ERROR "PGM maxval 16383: expected 14 bits declared:\n${run_out}")
+  endif()
+  # only kind tbd_ir takes --bits
+  expect_refused("--bits 14: only kind tbd_ir takes a bit depth \\(this is kind tbd"
+                 ${PFT} run --sequence ${WORK}/tbd_pgm --scenario ${two} --bits 14 --no-video --out ${d}/run_tbd)
+  message(STATUS "bit depth: declared kept, detected checked on every frame, --bits honoured")
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()
