@@ -98,9 +98,37 @@ double seconds_since(Clock::time_point t0)
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/** The command line on a tbd_ir scenario: --particles and --preset set the tracker block's
+ *  `particles` and `preset` (checked by the parser like the file's own); the options this kind
+ *  has no use for are refused, not ignored (before, `--particles 700` ran the file's count and
+ *  `--shard 1/2` computed every run and wrote summary.json, which pft merge cannot take). */
+void apply_cli(json &scen, const Options &o)
+{
+    auto refuse = [](const std::string &opt, const std::string &why) {
+        throw InputError(opt + ": kind tbd_ir " + why);
+    };
+    if (!o.shard.empty())
+        refuse("--shard " + o.shard, "has no sharded campaigns (pft merge cannot combine them): run the "
+                                     "campaign whole, or split it into evals of other --seed and --runs");
+    if (o.filter_kind == "pf")
+        refuse("--filter pf", "runs the RBPF-TBD manager only");
+    if (o.single)
+        refuse("--single", "runs the multi-target manager only");
+    if (o.gospa_c || o.gospa_p)
+        refuse(o.gospa_c ? "--gospa-c" : "--gospa-p", "computes no GOSPA or OSPA");
+    if (!scen.is_object())
+        return;
+    if (o.particles)
+        scen["tracker"]["particles"] = o.particles;
+    if (!o.preset.empty())
+        scen["tracker"]["preset"] = o.preset;
+}
+
 IrScenario load(const Options &o)
 {
-    return parse_ir_scenario(o.scenario, o.scenario_path, o.backgrounds);
+    json scen = o.scenario;
+    apply_cli(scen, o);
+    return parse_ir_scenario(scen, o.scenario_path, o.backgrounds);
 }
 
 std::string describe(const IrScenario &s)
@@ -854,6 +882,7 @@ public:
             scen_path = default_scenario();
             scen = load_json_file(scen_path);
         }
+        apply_cli(scen, o);
         IrScenario s = parse_ir_scenario(scen, scen_path, "");
         const std::vector<cv::Mat> &head = rd->head(8);
         if (head.empty())
