@@ -16,6 +16,7 @@ extern "C" {
 #include "pft/pft_port_file.h"
 }
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/noise_estimate.hpp"
@@ -1136,10 +1137,11 @@ public:
         std::vector<long> dets(runs);
         std::vector<int> lost_n(runs);
         std::vector<std::string> backgrounds(runs);
-        Progress bar(runs, "eval", progress_wanted(o.progress));
-        auto t0 = Clock::now();
-        parallel_for(runs, threads, [&](std::size_t i) {
-            uint64_t seed = base + i;
+        // the campaign skeleton of every kind (common/campaign.hpp): the same run loop, progress
+        // bar and summary header (tool_version, git_describe, scenario_hash, command_line, timing)
+        const Campaign camp = make_campaign(runs, base, "");
+        const CampaignTiming timing = run_campaign(camp, threads, progress_wanted(o.progress), "eval",
+                                                   [&](std::size_t i, uint64_t seed) {
             IrSequence q = simulate_ir(s, seed);
             std::unique_ptr<IrTrace> trace;
             if (!o.trace.empty())
@@ -1160,10 +1162,8 @@ public:
             dets[i] = tr.detections;
             lost_n[i] = tr.lost;
             backgrounds[i] = q.background;
-            bar.tick();
         });
-        bar.finish();
-        double wall = seconds_since(t0);
+        const double wall = timing.wall_s;
         json sum = summarize_pair(res, dres);
         long ndet = 0;
         for (long v : dets)
@@ -1174,10 +1174,15 @@ public:
             sum["per_run"][i]["background"] = backgrounds[i];
             sum["per_run"][i]["lost_frames"] = lost_n[i];
         }
-        json head = {{"tool", "pft eval"}, {"kind", "tbd_ir"}, {"scenario", s.name},
-                     {"scenario_file", s.file}, {"description", s.description},
-                     {"tag", o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag},
-                     {"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
+        SummaryHead sh;
+        sh.kind = "tbd_ir";
+        sh.scenario = s.name;
+        sh.scenario_file = s.file;
+        sh.description = s.description;
+        sh.tag = o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag;
+        sh.scenario_json = s.raw;
+        json head = summary_header(o, camp, sh, threads, timing);
+        head.update(json{{"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
                      {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
                      {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
@@ -1190,8 +1195,7 @@ public:
                                   {"max_targets", s.tracker.max_targets},
                                   {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
                                   {"background_radius", s.tracker.background_radius},
-                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
-                     {"timing", {{"wall_s", wall}}}};
+                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}}});
         sum["dbt"]["settings"] = {{"pfa", s.dbt.pfa}, {"threshold_sigma", dbt_threshold(s.dbt.pfa)},
                                   {"m", s.dbt.m}, {"n", s.dbt.n}, {"max_misses", s.dbt.max_misses},
                                   {"gate_chi2", s.dbt.gate_chi2}, {"gate_max_px", s.dbt.gate_max_px},
