@@ -345,7 +345,10 @@ int main(int argc, char **argv)
                     fails += make_handler(k)->selftest(o) ? 1 : 0;
             return fails ? 1 : 0;
         }
-        if (o.scenario_path.empty() && o.command == "demo")
+        // demo without --scenario: the default two-target simulation; with --sequence, the
+        // sequence's sidecar or the IR pipeline, as pft run (before, a sequence was always given
+        // to the tbd kind's two-target settings, a tbd_ir sim directory's sidecar ignored)
+        if (o.scenario_path.empty() && o.command == "demo" && o.sequence.empty())
             o.scenario_path = make_handler("tbd")->default_scenario();
         std::string kind;
         if (!o.scenario_path.empty()) {

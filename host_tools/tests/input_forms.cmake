@@ -126,6 +126,13 @@ elseif(MODE STREQUAL "tbd_ir")
   if(NOT run_out MATCHES "Versus truth")
     message(FATAL_ERROR "the pft sim directory's truth was not used:\n${run_out}")
   endif()
+  # pft demo --sequence without --scenario takes the sidecar's scenario, as pft run does (before:
+  # the tbd kind's two-target settings, refused on the tbd_ir truth file)
+  run_ok(${PFT} demo --sequence ${WORK}/tbd_ir_sim --out ${WORK}/demo_ir_sim)
+  if(NOT run_out MATCHES "Versus truth" OR NOT run_out MATCHES "DBT tracks found")
+    message(FATAL_ERROR "pft demo --sequence: not the IR pipeline on the sidecar's scenario:\n${run_out}")
+  endif()
+  same_tracks(${WORK}/run_ir_sim/tracks.csv ${WORK}/demo_ir_sim/tracks.csv)
   message(STATUS "same tracks from PGM, PNG, TIFF, raw le and raw be")
 
 elseif(MODE STREQUAL "raw_errors")
