@@ -130,29 +130,6 @@ std::string lower_ext(const fs::path &p)
     return ext;
 }
 
-/** Significant bits of a binary PGM from its maxval (0 when it is not one or cannot tell). */
-int pgm_bits(const std::string &path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    if (!(in >> magic) || magic != "P5")
-        return 0;
-    long v[3];
-    for (long &x : v) {
-        in >> std::ws;
-        while (in.peek() == '#') {
-            std::string line;
-            std::getline(in, line);
-            in >> std::ws;
-        }
-        if (!(in >> x))
-            return 0;
-    }
-    int bits = 1;
-    while (bits < 16 && (1L << bits) - 1 < v[2])
-        ++bits;
-    return bits;
-}
 
 const uint64_t kFramePeriodUs = 40000;  // image folders and raw dumps: 25 frames/s
 
@@ -473,6 +450,29 @@ int spec_int(const std::string &text, const std::string &field, long lo, long hi
 }
 
 }  // namespace
+
+int pgm_bits(const std::string &path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    if (!(in >> magic) || magic != "P5")
+        return 0;
+    long v[3];
+    for (long &x : v) {
+        in >> std::ws;
+        while (in.peek() == '#') {
+            std::string line;
+            std::getline(in, line);
+            in >> std::ws;
+        }
+        if (!(in >> x))
+            return 0;
+    }
+    int bits = 1;
+    while (bits < 16 && (1L << bits) - 1 < v[2])
+        ++bits;
+    return bits;
+}
 
 RawSpec parse_raw_spec(const std::string &spec, const std::string &source)
 {

@@ -62,6 +62,10 @@ struct RawSpec {
     uint64_t skip = 0;         ///< header bytes before the first frame
 };
 
+/** Significant bits of a binary 16-bit PGM from its maxval (16383: 14); 0 when the file is not
+ *  a binary PGM or its header cannot be read. */
+int pgm_bits(const std::string &path);
+
 /** Parses a --raw spec; InputError "SOURCE: --raw SPEC: field F: what is wrong". */
 RawSpec parse_raw_spec(const std::string &spec, const std::string &source);
 

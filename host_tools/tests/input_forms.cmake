@@ -366,6 +366,21 @@ elseif(MODE STREQUAL "eval_backgrounds")
     message(FATAL_ERROR "summary: hash ${hash}, backgrounds ${b0} ${b1}, particles ${np}, labelled ${lab} ${e}")
   endif()
   message(STATUS "eval on a 16-bit PGM and an 8-bit JPEG background: header complete (cpu_s ${cpu}), label read")
+  # a 16-bit PNG does not say its bit depth (a PGM does, by its maxval): without
+  # background.scale one whose values leave the top bit free is refused, not scaled by
+  # 2^(14 - 16); with "scale": 1 it is read as frames of the sensor's depth
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/png16 png)
+  file(MAKE_DIRECTORY ${d}/bg16)
+  file(COPY ${d}/png16/frame_0001.png DESTINATION ${d}/bg16)
+  expect_refused("[^\n]*frame_0001.png: a 16-bit image whose values fit in 14 bits \\(largest 16383\\)[^\n]*give background.scale"
+                 ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${d}/bg16 --out ${d}/sim16 -q)
+  if(EXISTS ${d}/sim16/sequence.json)
+    message(FATAL_ERROR "a refused background left a sequence.json")
+  endif()
+  file(READ ${SRC}/scenarios/tbd_ir/real_frames.json sc)
+  string(JSON sc SET "${sc}" background scale 1)
+  file(WRITE ${d}/scale1.json "${sc}")
+  run_ok(${PFT} sim --scenario ${d}/scale1.json --backgrounds ${d}/bg16 --out ${d}/sim16s -q)
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()
