@@ -971,7 +971,11 @@ public:
         auto stop_outputs = [&]() {
             rout.close_quietly();
             sout.close_quietly();
-            if (ov) {
+            if (ov && out.empty()) {
+                // no frame was processed: no video (its temporary file is removed; a good
+                // overlay.avi of an earlier run in this folder stays as it was)
+                ov.reset();
+            } else if (ov) {
                 try {
                     ov->close();
                 } catch (...) {  // the run's own error is the one to report
