@@ -235,13 +235,15 @@ Scene image_scene(const IrScenario &s, const std::string &file)
     if (!sc.image_bits)
         throw InputError(file + ": background images must be 8- or 16-bit");
     if (sc.image_bits == 16) {
-        // a 16-bit PGM declares its bits by its maxval (16383: 14 bits); a 16-bit PNG or TIFF
-        // does not, and a sensor's 12- or 14-bit frames saved in one would be scaled by
+        // a 16-bit PGM declares its bits by a maxval below 65535 (16383: 14 bits); a 16-bit PNG
+        // or TIFF does not, and a sensor's 12- or 14-bit frames saved in one would be scaled by
         // 2^(bit_depth - 16), their clutter squeezed 4 or 16 times: unless background.scale
         // says how to read it, such an image is refused when its values leave the top bit free
         std::string ext = fs::path(file).extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-        const int declared = ext == ".pgm" ? pgm_bits(file) : 0;
+        // (a maxval of 65535 is only the container's: OpenCV writes it for every 16-bit PGM)
+        const int maxval_bits = ext == ".pgm" ? pgm_bits(file) : 0;
+        const int declared = maxval_bits < 16 ? maxval_bits : 0;
         if (declared > 0)
             sc.image_bits = declared;
         else if (s.background.scale <= 0) {

@@ -382,6 +382,10 @@ elseif(MODE STREQUAL "eval_backgrounds")
   if(EXISTS ${d}/sim16/sequence.json)
     message(FATAL_ERROR "a refused background left a sequence.json")
   endif()
+  # the same frame as a PGM of maxval 65535 (as OpenCV writes it): refused alike
+  run_ok(${CONV} ${d}/bg16 ${d}/bg16pgm pgm)
+  expect_refused("[^\n]*frame_0001.pgm: a 16-bit image whose values fit in 14 bits"
+                 ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${d}/bg16pgm --out ${d}/sim16p -q)
   file(READ ${SRC}/scenarios/tbd_ir/real_frames.json sc)
   string(JSON sc SET "${sc}" background scale 1)
   file(WRITE ${d}/scale1.json "${sc}")
