@@ -41,6 +41,7 @@ struct Options {
     std::string sequence;       ///< --sequence: input (run, demo)
     std::string truth;          ///< --truth: ground-truth CSV (run)
     std::string raw;            ///< --raw WxH[:bits][:le|be][:skip=BYTES]: --sequence is a u16 dump
+    int bits = 0;               ///< --bits (run, demo; kind tbd_ir): the sensor's significant bits (0: the input's)
     std::string backgrounds;    ///< --backgrounds DIR: background images (kind tbd_ir)
     unsigned runs = 0;          ///< --runs (0: scenario or default)
     unsigned threads = 0;       ///< --threads (0: hardware concurrency)

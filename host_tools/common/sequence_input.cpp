@@ -130,29 +130,6 @@ std::string lower_ext(const fs::path &p)
     return ext;
 }
 
-/** Significant bits of a binary PGM from its maxval (0 when it is not one or cannot tell). */
-int pgm_bits(const std::string &path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    if (!(in >> magic) || magic != "P5")
-        return 0;
-    long v[3];
-    for (long &x : v) {
-        in >> std::ws;
-        while (in.peek() == '#') {
-            std::string line;
-            std::getline(in, line);
-            in >> std::ws;
-        }
-        if (!(in >> x))
-            return 0;
-    }
-    int bits = 1;
-    while (bits < 16 && (1L << bits) - 1 < v[2])
-        ++bits;
-    return bits;
-}
 
 const uint64_t kFramePeriodUs = 40000;  // image folders and raw dumps: 25 frames/s
 
@@ -219,8 +196,13 @@ public:
                 seq_ = want - 1u;
                 img = cv::imread(file, cv::IMREAD_UNCHANGED);
                 if (!img.empty()) {
-                    if (lower_ext(file) == ".pgm" && img.depth() == CV_16U)
+                    if (lower_ext(file) == ".pgm" && img.depth() == CV_16U) {
                         bits = pgm_bits(file);
+                        // the first frame's maxval below 65535 declares the depth (16383: 14
+                        // bits); 65535 is only the container's (OpenCV writes it always)
+                        if (!info_.width && bits > 0 && bits < 16)
+                            info_.bit_depth = bits;
+                    }
                     break;
                 }
                 ++skipped_;
@@ -319,7 +301,9 @@ public:
         info_.kind = "raw-u16";
         info_.width = spec.width;
         info_.height = spec.height;
-        info_.bit_depth = spec.bits;
+        // a sidecar's bit depth or --raw's bits declare the depth; a spec without bits does not
+        if (!info_.bit_depth && spec.bits_given)
+            info_.bit_depth = spec.bits;
         std::error_code ec;
         if (fs::is_directory(path, ec))
             throw InputError(path + ": " + what + " names a folder; it needs one file of frames");
@@ -433,6 +417,7 @@ std::unique_ptr<SequenceReader> open_sidecar(const std::string &dir)
         spec.width = info.width;
         spec.height = info.height;
         spec.bits = info.bit_depth ? info.bit_depth : 16;
+        spec.bits_given = info.bit_depth > 0;
         spec.big_endian = f.choice_or("endian", "le", {"le", "be"}) == "be";
         spec.skip = static_cast<uint64_t>(f.integer_in("skip", 0, 0, INT64_MAX));
         std::string file = (fs::path(dir) / f.string_or("file", "frames.u16")).string();
@@ -465,6 +450,29 @@ int spec_int(const std::string &text, const std::string &field, long lo, long hi
 }
 
 }  // namespace
+
+int pgm_bits(const std::string &path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    if (!(in >> magic) || magic != "P5")
+        return 0;
+    long v[3];
+    for (long &x : v) {
+        in >> std::ws;
+        while (in.peek() == '#') {
+            std::string line;
+            std::getline(in, line);
+            in >> std::ws;
+        }
+        if (!(in >> x))
+            return 0;
+    }
+    int bits = 1;
+    while (bits < 16 && (1L << bits) - 1 < v[2])
+        ++bits;
+    return bits;
+}
 
 RawSpec parse_raw_spec(const std::string &spec, const std::string &source)
 {
@@ -514,6 +522,7 @@ RawSpec parse_raw_spec(const std::string &spec, const std::string &source)
                 throw InputError(where + ": field bits: given twice" + syntax);
             seen_bits = true;
             r.bits = spec_int(t, "bits", 1, 16, where);
+            r.bits_given = true;
         } else {
             throw InputError(where + ": field " + std::to_string(i + 1) + " (\"" + t +
                              "\"): expected bits (1..16), le, be or skip=BYTES" + syntax);

@@ -33,7 +33,8 @@ struct SequenceInfo {
     double pixel_offset = 0.0;
     bool has_scaling = false;  ///< gain/offset come from a sidecar (else 1 and 0: unknown units)
     double noise_sigma = NAN;  ///< the sidecar's noise sigma in intensity units (NaN: none)
-    int bit_depth = 0;         ///< significant bits when the source says (sidecar, --raw, PGM)
+    int bit_depth = 0;         ///< significant bits when the source declares them (sidecar, --raw
+                               ///< with bits, a PGM's maxval below 65535); 0: not declared
     std::string truth_csv;     ///< ground truth next to the sequence ("" if none)
     nlohmann::json sidecar;    ///< sequence.json when present (its "scenario" member included)
 };
@@ -56,9 +57,14 @@ protected:
 struct RawSpec {
     int width = 0, height = 0;
     int bits = 16;             ///< significant bits, 1..16
+    bool bits_given = false;   ///< bits was in the spec (else 16, the container, not a declaration)
     bool big_endian = false;
     uint64_t skip = 0;         ///< header bytes before the first frame
 };
+
+/** Significant bits of a binary 16-bit PGM from its maxval (16383: 14); 0 when the file is not
+ *  a binary PGM or its header cannot be read. */
+int pgm_bits(const std::string &path);
 
 /** Parses a --raw spec; InputError "SOURCE: --raw SPEC: field F: what is wrong". */
 RawSpec parse_raw_spec(const std::string &spec, const std::string &source);

@@ -192,6 +192,7 @@ int main(int argc, char **argv)
     run->add_option("--residual-out", o.residual_out, "tbd_ir: write the residual the TBD manager sees, every frame (headerless int16, Q8.8 sigma units, width x height per frame)");
     run->add_option("--stage-out", o.stage_out, "tbd_ir: write the stage's statistics, one CSV row per frame (frame, seq, shift_x_px, shift_y_px, flags, sigma_mean, n_masked)");
     run->add_option("--frames", o.frames, "stop after this many frames")->check(CLI::Range(1u, 100000000u));
+    run->add_option("--bits", o.bits, "tbd_ir: the sensor's significant bits (default: the input's declaration - sidecar, --raw bits, PGM maxval - else detected from the first 8 frames)")->check(CLI::Range(8, 16));
     filter_opts(run);
     set_metric_opts(run);
     common(run);
@@ -223,6 +224,7 @@ int main(int argc, char **argv)
     de->add_option("--sequence", o.sequence, "track this sequence instead of simulating");
     de->add_option("--raw", o.raw, "--sequence is a headerless u16 dump: WxH[:bits][:le|be][:skip=BYTES]");
     de->add_option("--out", o.out, "output directory when --sequence is given");
+    de->add_option("--bits", o.bits, "tbd_ir with --sequence: the sensor's significant bits (as pft run --bits)")->check(CLI::Range(8, 16));
     filter_opts(de);
     set_metric_opts(de);
     de->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
@@ -343,7 +345,10 @@ int main(int argc, char **argv)
                     fails += make_handler(k)->selftest(o) ? 1 : 0;
             return fails ? 1 : 0;
         }
-        if (o.scenario_path.empty() && o.command == "demo")
+        // demo without --scenario: the default two-target simulation; with --sequence, the
+        // sequence's sidecar or the IR pipeline, as pft run (before, a sequence was always given
+        // to the tbd kind's two-target settings, a tbd_ir sim directory's sidecar ignored)
+        if (o.scenario_path.empty() && o.command == "demo" && o.sequence.empty())
             o.scenario_path = make_handler("tbd")->default_scenario();
         std::string kind;
         if (!o.scenario_path.empty()) {
@@ -372,6 +377,9 @@ int main(int argc, char **argv)
                                  o.scenario_path.c_str());
             }
         }
+        if (o.bits && kind != "tbd_ir")
+            throw InputError("--bits " + std::to_string(o.bits) + ": only kind tbd_ir takes a bit depth (this is kind " +
+                             kind + ", which reads its pixel scaling from the sidecar or the frames)");
         auto h = make_handler(kind);
         if (o.command == "sim")
             return h->sim(o);

@@ -16,6 +16,7 @@ extern "C" {
 #include "pft/pft_port_file.h"
 }
 
+#include "../common/campaign.hpp"
 #include "../common/errors.hpp"
 #include "../common/json_field.hpp"
 #include "../common/noise_estimate.hpp"
@@ -98,9 +99,37 @@ double seconds_since(Clock::time_point t0)
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/** The command line on a tbd_ir scenario: --particles and --preset set the tracker block's
+ *  `particles` and `preset` (checked by the parser like the file's own); the options this kind
+ *  has no use for are refused, not ignored (before, `--particles 700` ran the file's count and
+ *  `--shard 1/2` computed every run and wrote summary.json, which pft merge cannot take). */
+void apply_cli(json &scen, const Options &o)
+{
+    auto refuse = [](const std::string &opt, const std::string &why) {
+        throw InputError(opt + ": kind tbd_ir " + why);
+    };
+    if (!o.shard.empty())
+        refuse("--shard " + o.shard, "has no sharded campaigns (pft merge cannot combine them): run the "
+                                     "campaign whole, or split it into evals of other --seed and --runs");
+    if (o.filter_kind == "pf")
+        refuse("--filter pf", "runs the RBPF-TBD manager only");
+    if (o.single)
+        refuse("--single", "runs the multi-target manager only");
+    if (o.gospa_c || o.gospa_p)
+        refuse(o.gospa_c ? "--gospa-c" : "--gospa-p", "computes no GOSPA or OSPA");
+    if (!scen.is_object())
+        return;
+    if (o.particles)
+        scen["tracker"]["particles"] = o.particles;
+    if (!o.preset.empty())
+        scen["tracker"]["preset"] = o.preset;
+}
+
 IrScenario load(const Options &o)
 {
-    return parse_ir_scenario(o.scenario, o.scenario_path, o.backgrounds);
+    json scen = o.scenario;
+    apply_cli(scen, o);
+    return parse_ir_scenario(scen, o.scenario_path, o.backgrounds);
 }
 
 std::string describe(const IrScenario &s)
@@ -743,6 +772,29 @@ int selftest_checks(bool verbose)
     return fails;
 }
 
+/** `pft run`: a U16 frame whose container holds more bits than the pipeline's depth must have
+ *  no pixel above that depth; the pipeline would clip such pixels to full scale and the stage
+ *  would mask them as saturated, silently. Refused with the count, the largest value and the
+ *  remedy (a --raw dump whose bits are declared keeps its documented rule: the high bits are
+ *  ignored, with a warning on frame 1). */
+void check_frame_bits(const pft_frame_t &f, int bits, const std::string &bits_how)
+{
+    const int container = f.bit_depth ? f.bit_depth : 16;
+    if (f.format != PFT_PIX_U16 || container <= bits)
+        return;
+    cv::Mat view(f.height, f.width, CV_16UC1, const_cast<void *>(f.data), f.stride_bytes);
+    const double top = std::ldexp(1.0, bits) - 1.0;
+    double mx = 0.0;
+    cv::minMaxLoc(view, nullptr, &mx);
+    if (mx <= top)
+        return;
+    const int over = cv::countNonZero(view > top);
+    throw InputError("frame " + std::to_string(f.seq) + " has " + std::to_string(over) + " pixel(s) above " +
+                     std::to_string(bits) + " bits (largest " + std::to_string(static_cast<long>(mx)) + " > " +
+                     std::to_string(static_cast<long>(top)) + "; the bit depth was " + bits_how +
+                     "): clipped, they would be masked as saturated; give the sensor's bit depth with --bits (8..16)");
+}
+
 // ------------------------------------------------------------------------- handler
 class TbdIrHandler : public KindHandler {
 public:
@@ -831,6 +883,7 @@ public:
             scen_path = default_scenario();
             scen = load_json_file(scen_path);
         }
+        apply_cli(scen, o);
         IrScenario s = parse_ir_scenario(scen, scen_path, "");
         const std::vector<cv::Mat> &head = rd->head(8);
         if (head.empty())
@@ -839,7 +892,16 @@ public:
                         : info.sidecar.contains("seed") && info.sidecar["seed"].is_number_unsigned()
                             ? info.sidecar["seed"].get<uint64_t>()
                             : s.eval.base_seed;
-        int bits = detect_bit_depth(info.bit_depth, head);
+        // The bit depth: --bits, else the input's declaration (a sidecar's bit_depth, --raw's
+        // bits, a PGM's maxval below 65535), else detected: the smallest of 8..16 that holds
+        // the largest value of the head frames. A later frame with pixels above a detected or
+        // --bits depth is refused (below): clipped, they would be masked as saturated.
+        const int bits = o.bits > 0 ? o.bits : info.bit_depth > 0 ? info.bit_depth : detect_bit_depth(0, head);
+        const std::string bits_how =
+            o.bits > 0 ? "given by --bits"
+            : info.bit_depth > 0
+                ? "declared by the input"
+                : "detected from the largest value of the first " + std::to_string(head.size()) + " frame(s)";
         // noise of the input, for the log (the pipeline estimates its own per tile and frame)
         cv::Mat usable = (head[0] > 0.0) & (head[0] < std::ldexp(1.0, bits) - 1.0);
         NoiseEstimate es = estimate_noise_spatial(head, usable);
@@ -850,6 +912,8 @@ public:
             std::printf("pft run: %s (%s, %dx%d, %s frames, %d bits)\n", o.sequence.c_str(), info.kind.c_str(),
                         head[0].cols, head[0].rows,
                         info.frames >= 0 ? std::to_string(info.frames).c_str() : "?", bits);
+            std::printf("  bit depth %d %s%s\n", bits, bits_how.c_str(),
+                        o.bits > 0 || info.bit_depth > 0 ? "" : " (give the sensor's with --bits)");
             std::printf("  noise sigma estimated from the first %d frames: %.4g counts (spatial: robust sigma of "
                         "the frame minus its 8-neighbour mean), %.4g counts (temporal: frame "
                         "differences)%s\n", es.frames, es.sigma, et.sigma,
@@ -907,7 +971,11 @@ public:
         auto stop_outputs = [&]() {
             rout.close_quietly();
             sout.close_quietly();
-            if (ov) {
+            if (ov && out.empty()) {
+                // no frame was processed: no video (its temporary file is removed; a good
+                // overlay.avi of an earlier run in this folder stays as it was)
+                ov.reset();
+            } else if (ov) {
                 try {
                     ov->close();
                 } catch (...) {  // the run's own error is the one to report
@@ -916,6 +984,7 @@ public:
         };
         try {
             while ((!o.frames || out.size() < o.frames) && rd->next(f)) {
+                check_frame_bits(f, bits, bits_how);
                 PipelineOut po = pl.step(f);
                 if (sout) {
                     // z(p) = b(p - shift): the scene's translation since the last frame, Q16.16 px
@@ -1072,10 +1141,11 @@ public:
         std::vector<long> dets(runs);
         std::vector<int> lost_n(runs);
         std::vector<std::string> backgrounds(runs);
-        Progress bar(runs, "eval", progress_wanted(o.progress));
-        auto t0 = Clock::now();
-        parallel_for(runs, threads, [&](std::size_t i) {
-            uint64_t seed = base + i;
+        // the campaign skeleton of every kind (common/campaign.hpp): the same run loop, progress
+        // bar and summary header (tool_version, git_describe, scenario_hash, command_line, timing)
+        const Campaign camp = make_campaign(runs, base, "");
+        const CampaignTiming timing = run_campaign(camp, threads, progress_wanted(o.progress), "eval",
+                                                   [&](std::size_t i, uint64_t seed) {
             IrSequence q = simulate_ir(s, seed);
             std::unique_ptr<IrTrace> trace;
             if (!o.trace.empty())
@@ -1096,10 +1166,8 @@ public:
             dets[i] = tr.detections;
             lost_n[i] = tr.lost;
             backgrounds[i] = q.background;
-            bar.tick();
         });
-        bar.finish();
-        double wall = seconds_since(t0);
+        const double wall = timing.wall_s;
         json sum = summarize_pair(res, dres);
         long ndet = 0;
         for (long v : dets)
@@ -1110,10 +1178,15 @@ public:
             sum["per_run"][i]["background"] = backgrounds[i];
             sum["per_run"][i]["lost_frames"] = lost_n[i];
         }
-        json head = {{"tool", "pft eval"}, {"kind", "tbd_ir"}, {"scenario", s.name},
-                     {"scenario_file", s.file}, {"description", s.description},
-                     {"tag", o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag},
-                     {"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
+        SummaryHead sh;
+        sh.kind = "tbd_ir";
+        sh.scenario = s.name;
+        sh.scenario_file = s.file;
+        sh.description = s.description;
+        sh.tag = o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag;
+        sh.scenario_json = s.raw;
+        json head = summary_header(o, camp, sh, threads, timing);
+        head.update(json{{"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
                      {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
                      {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
@@ -1126,8 +1199,7 @@ public:
                                   {"max_targets", s.tracker.max_targets},
                                   {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
                                   {"background_radius", s.tracker.background_radius},
-                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
-                     {"timing", {{"wall_s", wall}}}};
+                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}}});
         sum["dbt"]["settings"] = {{"pfa", s.dbt.pfa}, {"threshold_sigma", dbt_threshold(s.dbt.pfa)},
                                   {"m", s.dbt.m}, {"n", s.dbt.n}, {"max_misses", s.dbt.max_misses},
                                   {"gate_chi2", s.dbt.gate_chi2}, {"gate_max_px", s.dbt.gate_max_px},

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../common/errors.hpp"
+#include "../common/sequence_input.hpp"
 #include "../common/plot.hpp"  // natural_less
 
 namespace fs = std::filesystem;
@@ -233,6 +234,33 @@ Scene image_scene(const IrScenario &s, const std::string &file)
     sc.image_bits = img.depth() == CV_8U ? 8 : img.depth() == CV_16U ? 16 : 0;
     if (!sc.image_bits)
         throw InputError(file + ": background images must be 8- or 16-bit");
+    if (sc.image_bits == 16) {
+        // a 16-bit PGM declares its bits by a maxval below 65535 (16383: 14 bits); a 16-bit PNG
+        // or TIFF does not, and a sensor's 12- or 14-bit frames saved in one would be scaled by
+        // 2^(bit_depth - 16), their clutter squeezed 4 or 16 times: unless background.scale
+        // says how to read it, such an image is refused when its values leave the top bit free
+        std::string ext = fs::path(file).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        // (a maxval of 65535 is only the container's: OpenCV writes it for every 16-bit PGM)
+        const int maxval_bits = ext == ".pgm" ? pgm_bits(file) : 0;
+        const int declared = maxval_bits < 16 ? maxval_bits : 0;
+        if (declared > 0)
+            sc.image_bits = declared;
+        else if (s.background.scale <= 0) {
+            double mx = 0.0;
+            cv::minMaxLoc(img, nullptr, &mx);
+            int used = 1;
+            while (used < 16 && std::ldexp(1.0, used) - 1.0 < mx)
+                ++used;
+            if (used < 16)
+                throw InputError(file + ": a 16-bit image whose values fit in " + std::to_string(used) +
+                                 " bits (largest " + std::to_string(static_cast<long>(mx)) +
+                                 "): its own bit depth is not known, so background.scale cannot default to 2^(" +
+                                 std::to_string(s.sensor.bit_depth) + " - 16); give background.scale (counts "
+                                 "per image unit: 2^(" + std::to_string(s.sensor.bit_depth) +
+                                 " - B) for B-bit data, 1 for frames of this sensor's depth)");
+        }
+    }
     double scale = s.background.scale > 0 ? s.background.scale
                                            : std::pow(2.0, s.sensor.bit_depth - sc.image_bits);
     img.convertTo(sc.counts, CV_32F, scale);

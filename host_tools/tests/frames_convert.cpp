@@ -6,6 +6,8 @@
 //        all frames back to back (little-endian unless be), N header bytes first, the last N
 //        bytes cut off (a truncated dump)
 //   pft_frames_convert IN_FILE OUT_PNG png8                 one 16-bit image as 8-bit (>> 6)
+// Any form but png8 also takes shift=S [first=K]: the pixel values of the first K frames (all
+// without first=) shifted right by S bits (a sensor's dim first frames, a lower bit depth).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -26,7 +28,7 @@ int main(int argc, char **argv)
     }
     std::string in = argv[1], out = argv[2], form = argv[3];
     bool be = false;
-    long skip = 0, cut = 0;
+    long skip = 0, cut = 0, shift = 0, first = -1;
     for (int i = 4; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "be")
@@ -35,6 +37,10 @@ int main(int argc, char **argv)
             skip = std::stol(a.substr(5));
         else if (a.rfind("cut=", 0) == 0)
             cut = std::stol(a.substr(4));
+        else if (a.rfind("shift=", 0) == 0)
+            shift = std::stol(a.substr(6));
+        else if (a.rfind("first=", 0) == 0)
+            first = std::stol(a.substr(6));
     }
     if (form == "png8") {
         cv::Mat m = cv::imread(in, cv::IMREAD_UNCHANGED), o;
@@ -52,10 +58,17 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "%s: no frames\n", in.c_str());
         return 1;
     }
+    long index = 0;
+    auto shifted = [&](cv::Mat m) {
+        if (shift > 0 && (first < 0 || index < first) && m.depth() == CV_16U)
+            m.convertTo(m, CV_16U, 1.0 / static_cast<double>(1L << shift), -0.49);  // floor
+        ++index;
+        return m;
+    };
     if (form == "raw") {
         std::vector<char> bytes(static_cast<std::size_t>(skip), static_cast<char>(0xAB));
         for (const std::string &f : files) {
-            cv::Mat m = cv::imread(f, cv::IMREAD_UNCHANGED);
+            cv::Mat m = shifted(cv::imread(f, cv::IMREAD_UNCHANGED));
             if (m.depth() != CV_16U || m.channels() != 1) {
                 std::fprintf(stderr, "%s: not a 16-bit grey image\n", f.c_str());
                 return 1;
@@ -80,7 +93,7 @@ int main(int argc, char **argv)
     }
     fs::create_directories(out);
     for (const std::string &f : files) {
-        cv::Mat m = cv::imread(f, cv::IMREAD_UNCHANGED);
+        cv::Mat m = shifted(cv::imread(f, cv::IMREAD_UNCHANGED));
         std::string name = (fs::path(out) / fs::path(f).stem()).string() + ext;
         if (m.empty() || !cv::imwrite(name, m)) {
             std::fprintf(stderr, "%s: cannot convert\n", f.c_str());

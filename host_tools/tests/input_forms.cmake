@@ -126,6 +126,13 @@ elseif(MODE STREQUAL "tbd_ir")
   if(NOT run_out MATCHES "Versus truth")
     message(FATAL_ERROR "the pft sim directory's truth was not used:\n${run_out}")
   endif()
+  # pft demo --sequence without --scenario takes the sidecar's scenario, as pft run does (before:
+  # the tbd kind's two-target settings, refused on the tbd_ir truth file)
+  run_ok(${PFT} demo --sequence ${WORK}/tbd_ir_sim --out ${WORK}/demo_ir_sim)
+  if(NOT run_out MATCHES "Versus truth" OR NOT run_out MATCHES "DBT tracks found")
+    message(FATAL_ERROR "pft demo --sequence: not the IR pipeline on the sidecar's scenario:\n${run_out}")
+  endif()
+  same_tracks(${WORK}/run_ir_sim/tracks.csv ${WORK}/demo_ir_sim/tracks.csv)
   message(STATUS "same tracks from PGM, PNG, TIFF, raw le and raw be")
 
 elseif(MODE STREQUAL "raw_errors")
@@ -291,6 +298,98 @@ elseif(MODE STREQUAL "lost_frames")
   expect_refused("[^\n]*clear_sky_128x96_drop10.json: eval.drop_prob / eval.drop_frames lose frames"
                  ${PFT} sim --scenario ${irdrop} --format raw --out ${WORK}/ir_lost_raw -q)
   message(STATUS "tbd_ir lost frames ${ir_lost}: no files, gaps seen by pft run (last track frame ${maxf} of ${nir} files), pft eval the same")
+elseif(MODE STREQUAL "bit_depth")
+  # kind tbd_ir's bit depth (docs/host_tools.md, "Bit depth"): a declared depth is honoured,
+  # a detected one covers only the first 8 frames, and a later frame with pixels above it is
+  # refused (before: clipped and masked as saturated without a word)
+  set(d ${WORK}/bits)
+  file(REMOVE_RECURSE ${d})
+  file(MAKE_DIRECTORY ${d})
+  # the 14-bit sim frames (saturated pixels at 16383) with the first 8 shifted to 12 bits
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/dim_head png shift=2 first=8)
+  expect_refused("run: [^\n]*dim_head: stopped at input frame 9: frame 9 has [0-9]+ pixel\\(s\\) above 12 bits \\(largest 16383 > 4095; the bit depth was detected from the largest value of the first 8 frame\\(s\\)\\)[^\n]*--bits"
+                 ${PFT} run --sequence ${d}/dim_head --no-video --out ${d}/run_dim)
+  run_ok(${PFT} run --sequence ${d}/dim_head --bits 14 --no-video --out ${d}/run_dim14)
+  if(NOT run_out MATCHES "bit depth 14 given by --bits" OR NOT run_out MATCHES "24 frames, 0 skipped")
+    message(FATAL_ERROR "--bits 14: expected 24 frames at 14 bits:\n${run_out}")
+  endif()
+  # refused at frame 1: no frame processed, so no overlay.avi (before: a video of 0 frames)
+  expect_refused("run: [^\n]*dim_head: stopped at input frame 1: frame 1 has [0-9]+ pixel\\(s\\) above 10 bits [^\n]*given by --bits"
+                 ${PFT} run --sequence ${d}/dim_head --bits 10 --out ${d}/run_dim10)
+  file(GLOB left ${d}/run_dim10/*)
+  if(left)
+    message(FATAL_ERROR "a run refused at its first frame left files: ${left}")
+  endif()
+  # a dump of 12-bit values declared 14 bits stays 14 bits (before: lowered to 12); without
+  # bits in the spec the depth is detected
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/all12.u16 raw shift=2)
+  run_ok(${PFT} run --sequence ${d}/all12.u16 --raw 96x72:14 --no-video --frames 2 --out ${d}/run_raw14)
+  if(NOT run_out MATCHES "96x72, 24 frames, 14 bits" OR NOT run_out MATCHES "bit depth 14 declared by the input")
+    message(FATAL_ERROR "--raw 96x72:14: the declared 14 bits were not kept:\n${run_out}")
+  endif()
+  run_ok(${PFT} run --sequence ${d}/all12.u16 --raw 96x72 --no-video --frames 2 --out ${d}/run_raw)
+  if(NOT run_out MATCHES "96x72, 24 frames, 12 bits" OR NOT run_out MATCHES "bit depth 12 detected")
+    message(FATAL_ERROR "--raw 96x72: expected 12 bits detected:\n${run_out}")
+  endif()
+  # a PGM's maxval (16383) declares 14 bits
+  run_ok(${PFT} run --sequence ${WORK}/tbd_ir_pgm --no-video --frames 2 --out ${d}/run_pgm)
+  if(NOT run_out MATCHES "bit depth 14 declared by the input")
+    message(FATAL_ERROR "PGM maxval 16383: expected 14 bits declared:\n${run_out}")
+  endif()
+  # only kind tbd_ir takes --bits
+  expect_refused("--bits 14: only kind tbd_ir takes a bit depth \\(this is kind tbd"
+                 ${PFT} run --sequence ${WORK}/tbd_pgm --scenario ${two} --bits 14 --no-video --out ${d}/run_tbd)
+  message(STATUS "bit depth: declared kept, detected checked on every frame, --bits honoured")
+elseif(MODE STREQUAL "eval_backgrounds")
+  # pft eval of a folder scenario on backgrounds of other sizes and depths than 384x288 8-bit:
+  # a 16-bit PGM (96x72, 14-bit values) and an 8-bit JPEG with a YOLO label; the summary keeps
+  # the header every kind's summary starts with (docs/host_tools.md, "eval summary")
+  set(d ${WORK}/eval_bg)
+  file(REMOVE_RECURSE ${d})
+  file(MAKE_DIRECTORY ${d}/bg)
+  file(COPY ${WORK}/tbd_ir_sim/frame_0001.pgm DESTINATION ${d}/bg)
+  run_ok(${CONV} ${WORK}/tbd_ir_sim/frame_0002.pgm ${d}/bg/frame_0002.jpg png8)
+  file(WRITE ${d}/bg/frame_0002.txt "0 0.5 0.5 0.04 0.05\n")
+  run_ok(${PFT} eval --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${d}/bg
+         --runs 2 --threads 1 --particles 2000 --out ${d}/ev -q)
+  file(READ ${d}/ev/summary.json sum)
+  foreach(key tool tool_version git_describe kind scenario scenario_file scenario_hash description tag
+          numeric runs base_seed seeds threads command_line timing averaged by_kind per_run dbt)
+    string(JSON t ERROR_VARIABLE e TYPE "${sum}" ${key})
+    if(e)
+      message(FATAL_ERROR "summary.json has no ${key} (the header of every kind's summary)")
+    endif()
+  endforeach()
+  string(JSON cpu GET "${sum}" timing cpu_s)
+  string(JSON hash GET "${sum}" scenario_hash)
+  string(JSON b0 GET "${sum}" per_run 0 background)
+  string(JSON b1 GET "${sum}" per_run 1 background)
+  string(JSON np GET "${sum}" tracker particles)
+  string(JSON lab ERROR_VARIABLE e GET "${sum}" by_kind labelled targets)
+  if(NOT hash MATCHES "^fnv1a64:" OR NOT b0 MATCHES "frame_0001.pgm$" OR NOT b1 MATCHES "frame_0002.jpg$"
+     OR NOT np EQUAL 2000 OR e OR NOT lab EQUAL 1)
+    message(FATAL_ERROR "summary: hash ${hash}, backgrounds ${b0} ${b1}, particles ${np}, labelled ${lab} ${e}")
+  endif()
+  message(STATUS "eval on a 16-bit PGM and an 8-bit JPEG background: header complete (cpu_s ${cpu}), label read")
+  # a 16-bit PNG does not say its bit depth (a PGM does, by its maxval): without
+  # background.scale one whose values leave the top bit free is refused, not scaled by
+  # 2^(14 - 16); with "scale": 1 it is read as frames of the sensor's depth
+  run_ok(${CONV} ${WORK}/tbd_ir_sim ${d}/png16 png)
+  file(MAKE_DIRECTORY ${d}/bg16)
+  file(COPY ${d}/png16/frame_0001.png DESTINATION ${d}/bg16)
+  expect_refused("[^\n]*frame_0001.png: a 16-bit image whose values fit in 14 bits \\(largest 16383\\)[^\n]*give background.scale"
+                 ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${d}/bg16 --out ${d}/sim16 -q)
+  if(EXISTS ${d}/sim16/sequence.json)
+    message(FATAL_ERROR "a refused background left a sequence.json")
+  endif()
+  # the same frame as a PGM of maxval 65535 (as OpenCV writes it): refused alike
+  run_ok(${CONV} ${d}/bg16 ${d}/bg16pgm pgm)
+  expect_refused("[^\n]*frame_0001.pgm: a 16-bit image whose values fit in 14 bits"
+                 ${PFT} sim --scenario ${SRC}/scenarios/tbd_ir/real_frames.json --backgrounds ${d}/bg16pgm --out ${d}/sim16p -q)
+  file(READ ${SRC}/scenarios/tbd_ir/real_frames.json sc)
+  string(JSON sc SET "${sc}" background scale 1)
+  file(WRITE ${d}/scale1.json "${sc}")
+  run_ok(${PFT} sim --scenario ${d}/scale1.json --backgrounds ${d}/bg16 --out ${d}/sim16s -q)
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()

@@ -25,6 +25,8 @@ pft_input_test(host_input_raw_errors raw_errors)
 pft_input_test(host_tbd_ir_sim_formats sim_formats)
 pft_input_test(host_tbd_ir_real_frames real_frames)
 pft_input_test(host_input_lost_frames lost_frames)
+pft_input_test(host_input_bit_depth bit_depth)
+pft_input_test(host_tbd_ir_eval_backgrounds eval_backgrounds)
 
 add_test(NAME host_tbd_ir_selftest COMMAND pft selftest --kind tbd_ir)
 set_tests_properties(host_tbd_ir_selftest PROPERTIES LABELS "host"
