@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -164,7 +165,7 @@ std::string describe(const IrScenario &s)
 
 std::string describe_pipeline(const IrScenario &s)
 {
-    char b[900];
+    char b[1400];
     const TrackerSettings &t = s.tracker;
     std::string pre = t.preprocess == "spatial"
                           ? "spatial local mean " + std::to_string(2 * t.background_radius + 1) + "x" +
@@ -181,6 +182,15 @@ std::string describe_pipeline(const IrScenario &s)
                   t.snr_min_db, t.snr_max_db, t.birth_peaks, t.birth_share, t.confirm_frames,
                   t.clutter_alpha, t.scene_frames, s.dbt.pfa, dbt_threshold(s.dbt.pfa), s.dbt.m, s.dbt.n,
                   numeric_name());
+    if (s.dbt.preprocess) {
+        // dbt.preprocess: said only when set, so that the line of a scenario without it is unchanged
+        const TrackerSettings &d = *s.dbt.preprocess;
+        std::snprintf(b + std::strlen(b), sizeof b - std::strlen(b),
+                      "; DBT on its own preprocessing (dbt.preprocess: %s background%s, tile sigma %d px, "
+                      "flat-field block %d, clutter map alpha %.3g%s)",
+                      d.preprocess.c_str(), d.bg_anchor ? " anchored" : "", d.tile, d.flat_block, d.clutter_alpha,
+                      d.clutter_mean ? " with its mean" : "");
+    }
     return b;
 }
 
@@ -433,6 +443,50 @@ int dbt_checks(Check &check)
                   "(3 misses after frame 20: 23), error at frame 20 %.3f px (< 0.5), %d other track(s) (0)",
                   confirmed_at, ended_at, err, other_confirmed);
     check(b, confirmed_at == 3 && ended_at == 23 && err < 0.5 && other_confirmed == 0);
+
+    // dbt.preprocess: every preprocessing field is read by the tracker block's code there (a
+    // bad value is refused by that code, not as an unknown field), every field of the TBD
+    // manager is refused by name, and the two lists cover the tracker block's fields
+    auto refusal = [](const json &pre) -> std::string {
+        try {
+            parse_ir_scenario({{"kind", "tbd_ir"}, {"dbt", {{"preprocess", pre}}}}, "t.json");
+        } catch (const InputError &e) {
+            return e.what();
+        }
+        return "";
+    };
+    int n_pre = 0, n_pre_ok = 0, n_trk = 0, n_trk_ok = 0;
+    for (const char *const *f = kPreprocessFields; *f != nullptr; ++f) {
+        const std::string m = refusal({{*f, json::array()}});  // a value no field accepts
+        n_pre += std::string(*f) != "note";
+        n_pre_ok += std::string(*f) != "note" && !m.empty() && m.find("unknown field") == std::string::npos &&
+                    m.find("TBD manager") == std::string::npos;
+    }
+    for (const char *const *f = kTrackerOnlyFields; *f != nullptr; ++f) {
+        ++n_trk;
+        n_trk_ok += refusal({{*f, 1}}).find(std::string("dbt.preprocess.") + *f + ": a field of the TBD manager") !=
+                    std::string::npos;
+    }
+    json all = json::object();  // every field of both lists in a tracker block: only "unknown" ones would be refused as such
+    for (const char *const *f = kPreprocessFields; *f != nullptr; ++f)
+        all[*f] = json::array();
+    for (const char *const *f = kTrackerOnlyFields; *f != nullptr; ++f)
+        all[*f] = json::array();
+    std::string unknown;
+    for (auto it = all.begin(); it != all.end(); ++it) {
+        try {
+            parse_ir_scenario({{"kind", "tbd_ir"}, {"tracker", {{it.key(), it.value()}}}}, "t.json");
+        } catch (const InputError &e) {
+            if (std::string(e.what()).find("unknown field") != std::string::npos)
+                unknown += " " + it.key();
+        }
+    }
+    std::snprintf(b, sizeof b, "dbt.preprocess: %d of %d preprocessing fields read there, %d of %d manager fields "
+                  "refused by name; unknown to the tracker block:%s", n_pre_ok, n_pre, n_trk_ok, n_trk,
+                  unknown.empty() ? " none" : unknown.c_str());
+    // 75: the names parse_tracker (ir_scenario.cpp) allows, note included; a new tracker field
+    // must be put in one of the two lists
+    check(b, n_pre_ok == n_pre && n_trk_ok == n_trk && unknown.empty() && n_pre + n_trk + 1 == 75);
     return 0;
 }
 
@@ -966,7 +1020,8 @@ public:
                         {"skipped_frames", rd->skipped()}, {"seed", seed}, {"bit_depth", bits},
                         {"noise_sigma_spatial", es.sigma}, {"noise_sigma_temporal", et.sigma},
                         {"workspace_bytes", pl.workspace_bytes()},
-                        {"pre_workspace_bytes", pl.pre_workspace_bytes()}};
+                        {"pre_workspace_bytes", pl.pre_workspace_bytes()},
+                        {"dbt_preprocess", pl.dbt_own_preprocess() ? "own" : "shared"}};
         };
         auto stop_outputs = [&]() {
             rout.close_quietly();
@@ -1199,7 +1254,8 @@ public:
                                   {"max_targets", s.tracker.max_targets},
                                   {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
                                   {"background_radius", s.tracker.background_radius},
-                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}}});
+                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
+                     {"dbt_preprocess", s.dbt.preprocess ? "own" : "shared"}});
         sum["dbt"]["settings"] = {{"pfa", s.dbt.pfa}, {"threshold_sigma", dbt_threshold(s.dbt.pfa)},
                                   {"m", s.dbt.m}, {"n", s.dbt.n}, {"max_misses", s.dbt.max_misses},
                                   {"gate_chi2", s.dbt.gate_chi2}, {"gate_max_px", s.dbt.gate_max_px},

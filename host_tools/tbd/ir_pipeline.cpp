@@ -118,6 +118,12 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
 
 IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width,
                        int height, int bit_depth, uint64_t seed)
+    : IrPipeline(t, d, psf_sigma, width, height, bit_depth, seed, false)
+{
+}
+
+IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width,
+                       int height, int bit_depth, uint64_t seed, bool pre_only)
     : T_(t), w_(width), h_(height), bits_(bit_depth), dbt_(d), dbt_thr_(dbt_threshold(d.pfa)),
       max_det_(d.max_detections)
 {
@@ -132,8 +138,16 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
     st = pft_pre_init(&pre_, &pre_cfg_, pre_work_.data(), pre_work_.size() * 8);
     if (st != PFT_OK)
         throw InputError(std::string("pft_pre_init: ") + pft_status_str(st));
-    tracker_ = std::make_unique<tbd::Tracker>(pipeline_config(t, psf_sigma, width, height, seed), false);
+    if (!pre_only)
+        tracker_ = std::make_unique<tbd::Tracker>(pipeline_config(t, psf_sigma, width, height, seed), false);
     resid_.create(h_, w_, CV_32F);
+    if (!pre_only && d.preprocess) {
+        // DBT's own preprocessing: a pipeline of the stage, the flat-field step, residual_hp and
+        // the clutter map only (no manager, no scene-motion test), with its own workspaces
+        TrackerSettings dp = *d.preprocess;
+        dp.scene_frames = 0;
+        dbt_pre_.reset(new IrPipeline(dp, d, psf_sigma, width, height, bit_depth, seed, true));
+    }
     if (t.flat_block > 0) {
         const pft_pre_flat_config_t fc = make_flat_config(t, width, height);
         if (pft_pre_flat_config_check(&fc, &field) != PFT_OK)
@@ -144,7 +158,7 @@ IrPipeline::IrPipeline(const TrackerSettings &t, const DbtSettings &d, double ps
         if (st != PFT_OK)
             throw InputError(std::string("pft_pre_flat_init: ") + pft_status_str(st));
     }
-    if (t.scene_frames > 0) {
+    if (!pre_only && t.scene_frames > 0) {
         const pft_tbd_scene_config_t sc = make_scene_config(t, width, height);
         if (pft_tbd_scene_config_check(&sc, &field) != PFT_OK)
             throw InputError(std::string("scene-motion test configuration refused (pft_tbd_scene_config_check: field ") +
@@ -336,7 +350,7 @@ bool IrPipeline::evidence() const
     return (stats_.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED | PFT_PRE_FLAG_REG_LOST)) == 0u;
 }
 
-PipelineOut IrPipeline::step(const pft_frame_t &frame)
+const int16_t *IrPipeline::preprocess(const pft_frame_t &frame, std::size_t &stride_out, bool &ev_out)
 {
     if (frame.width != w_ || frame.height != h_)
         throw InputError("frame " + std::to_string(frame.seq) + " is " + std::to_string(frame.width) +
@@ -454,6 +468,16 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
                 o[x] = !ev || r[x] == PFT_RES16_MASKED ? 0.0f : static_cast<float>(r[x]) / 256.0f;
         }
     }
+    stride_out = stride;
+    ev_out = ev;
+    return res;
+}
+
+PipelineOut IrPipeline::step(const pft_frame_t &frame)
+{
+    std::size_t stride = 0;
+    bool ev = false;
+    const int16_t *res = preprocess(frame, stride, ev);
     // the manager takes the residual as it is (PFT_PIX_RES16, masked pixels read as 0); a frame
     // without evidence goes as an all-masked frame
     pft_frame_t tf{};
@@ -484,6 +508,10 @@ PipelineOut IrPipeline::step(const pft_frame_t &frame)
     }
     if (T_.scene_frames > 0)
         scene_test(out.tbd, ev ? stats_.shift[0] : 0, ev ? stats_.shift[1] : 0);
+    // DBT reads the TBD pipeline's residual (shared), or with dbt.preprocess the residual of its
+    // own preprocessing fed the same frame (own)
+    if (dbt_pre_)
+        res = dbt_pre_->preprocess(frame, stride, ev);
     std::vector<Detection> dets;
     if (ev)
         dets = dbt_detect(res, w_, h_, static_cast<int>(stride), dbt_thr_, max_det_);

@@ -6,7 +6,10 @@
 // masked) turns the frame into a whitened residual (PFT_PIX_RES16, Q8.8 sigma units). Two
 // trackers run on that same residual: the library's multi-target TBD manager (pft_tbd_*, noise
 // sigma 1; the residual is handed over as it is, a PFT_PIX_RES16 frame whose masked pixels the
-// manager reads as 0) and the host-side detect-before-track baseline (ir_dbt.hpp).
+// manager reads as 0) and the host-side detect-before-track baseline (ir_dbt.hpp). With the
+// scenario's dbt.preprocess the baseline reads instead the residual of a second preprocessing
+// (stage, flat-field step, residual_hp, clutter map: its own settings and workspaces, no
+// scene-motion test) fed the same frames; TBD's side is unchanged.
 // step() takes the frame as the sensor gives it and returns both trackers' tracks and events.
 #pragma once
 #include <array>
@@ -97,8 +100,20 @@ public:
     std::array<double, 2> scene_shift() const { return {scene_x_, scene_y_}; }
     const pft_pre_config_t &pre_config() const { return pre_cfg_; }
     double dbt_threshold_sigma() const { return dbt_thr_; }
+    /** Whether DBT reads its own preprocessing (dbt.preprocess) instead of the TBD pipeline's
+     *  residual. */
+    bool dbt_own_preprocess() const { return dbt_pre_ != nullptr; }
 
 private:
+    /** pre_only: the preprocessing alone (no manager, no scene-motion test, no DBT pipeline of
+     *  its own): DBT's own preprocessing. */
+    IrPipeline(const TrackerSettings &t, const DbtSettings &d, double psf_sigma, int width, int height,
+               int bit_depth, uint64_t seed, bool pre_only);
+    /** The stage, the flat-field step, residual_hp and the clutter map on one frame: the
+     *  residual the trackers read (stride px per row; ev false for a frame without evidence);
+     *  residual() and stats() updated. */
+    const int16_t *preprocess(const pft_frame_t &frame, std::size_t &stride, bool &ev);
+    std::unique_ptr<IrPipeline> dbt_pre_;  // dbt.preprocess: DBT's own preprocessing
     TrackerSettings T_;
     int w_, h_, bits_;
     pft_pre_config_t pre_cfg_{};

@@ -14,6 +14,23 @@ double IrScenario::amplitude(double snr_db) const
     return sensor.noise_sigma * std::pow(10.0, snr_db / 20.0);
 }
 
+const char *const kPreprocessFields[] = {
+    "preprocess", "bg_alpha", "col_alpha", "background_radius", "guard_radius", "tile", "edge_k",
+    "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin",
+    "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young",
+    "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
+    "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
+    "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor",
+    "clutter_block", "clutter_map8", "clutter_anchor", "note", nullptr};
+
+const char *const kTrackerOnlyFields[] = {
+    "preset", "particles", "track_particles", "max_targets", "snr_min_db", "snr_max_db", "seed_offset",
+    "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
+    "confirm_frames", "birth_correction", "scene_frames", "scene_gate_px", "scene_fit_px",
+    "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
+    "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist",
+    "handover_in_scale", "q2", nullptr};
+
 namespace {
 
 std::array<double, 2> pair_or(const Field &f, const char *key, std::array<double, 2> dflt,
@@ -266,7 +283,32 @@ void parse_tracker(const Field &t, TrackerSettings &T)
 void parse_dbt(const Field &d, DbtSettings &D)
 {
     d.only({"pfa", "m", "n", "max_misses", "gate_chi2", "gate_max_px", "meas_sigma_px",
-            "accel_sigma", "vel_sigma0", "max_detections", "note"});
+            "accel_sigma", "vel_sigma0", "max_detections", "preprocess", "note"});
+    if (d.has("preprocess")) {
+        // DBT's own preprocessing: the tracker block's reader over a block that sets nothing
+        // else (the library's defaults, never the scenario's tracker block); the TBD manager's
+        // fields are refused by name, any other name not a preprocessing field as unknown (the list
+        // of allowed names gives only the preprocessing fields)
+        const Field p = d.at("preprocess");
+        if (!p.is_object())
+            p.fail("expected an object of preprocessing fields (those of the tracker block that set the stage, the flat-field step and the clutter map)");
+        std::string allowed;
+        for (const char *const *f = kPreprocessFields; *f != nullptr; ++f)
+            allowed += (allowed.empty() ? "" : ", ") + std::string(*f);
+        for (auto it = p.node().begin(); it != p.node().end(); ++it) {
+            bool known = false;
+            for (const char *const *f = kTrackerOnlyFields; *f != nullptr; ++f)
+                if (it.key() == *f)
+                    p.at(it.key()).fail("a field of the TBD manager, not of the preprocessing: set it in the tracker block (dbt.preprocess takes only the stage, flat-field, residual_hp and clutter map fields)");
+            for (const char *const *f = kPreprocessFields; *f != nullptr; ++f)
+                known = known || it.key() == *f;
+            if (!known)
+                p.at(it.key()).fail("unknown field (allowed here: " + allowed + ")");
+        }
+        TrackerSettings t;
+        parse_tracker(p, t);
+        D.preprocess = t;
+    }
     D.pfa = d.number_in("pfa", D.pfa, 1e-12, 0.5);
     D.n = static_cast<int>(d.integer_in("n", D.n, 1, 31));
     D.m = static_cast<int>(d.integer_in("m", D.m, 1, 31));

@@ -171,8 +171,21 @@ struct TrackerSettings {
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };
 
+/** The tracker block's fields that set the preprocessing (the stage, the flat-field step,
+ *  residual_hp and the clutter map): the only fields dbt.preprocess takes. */
+extern const char *const kPreprocessFields[];
+/** The tracker block's fields of the TBD manager and its scene-motion test, refused in
+ *  dbt.preprocess with a message that says so. */
+extern const char *const kTrackerOnlyFields[];
+
 /** The detect-before-track baseline (ir_dbt.hpp), section "dbt" of the scenario. */
 struct DbtSettings {
+    /// dbt.preprocess: DBT's own preprocessing (a second stage + flat-field step + clutter map
+    /// with their own workspaces, fed the same frames), read by the tracker block's code with
+    /// only the preprocessing fields allowed; the fields it does not give take the defaults of a
+    /// tracker block that sets nothing (never the scenario's tracker block). Absent: DBT reads
+    /// the TBD pipeline's residual ("shared").
+    std::optional<TrackerSettings> preprocess;
     double pfa = 1e-5;          ///< per-pixel false-alarm rate of the threshold (Gaussian residual)
     int m = 3, n = 5;           ///< M-of-N confirmation
     int max_misses = 3;         ///< frames in a row without a detection that end a confirmed track

@@ -14,7 +14,8 @@
 #    bg_gate_young 16 on top of it: the residual changes again (the young cells ungated);
 #  - handover_in_scale 0.8 (the real-frame twin's): the tracks change.
 # The real-frame twins (real_frames_low_false_rate.json and real_frames_shaded_low_false_rate.json)
-# need real backgrounds to run; only their documented blocks are checked here.
+# need real backgrounds to run; only their documented blocks are checked here, and the three
+# files' dbt.preprocess (DBT on their default twins' preprocessing).
 # Needs nothing outside the source tree.
 cmake_policy(SET CMP0057 NEW) # if(IN_LIST)
 include(${CMAKE_CURRENT_LIST_DIR}/run_ok.cmake)
@@ -51,6 +52,25 @@ check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${com
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative"
             "bg_masked_taps=all")
 
+# DBT's own preprocessing in the three files (dbt.preprocess): their default twins' (real_frames.json
+# sets no preprocessing field; procedural_384x288.json's tracker block sets the ones below)
+function(check_dbt file)
+  file(READ ${file} j)
+  foreach(kv ${ARGN})
+    string(REPLACE "=" ";" kv "${kv}")
+    list(GET kv 0 k)
+    list(GET kv 1 v)
+    string(JSON got GET "${j}" dbt preprocess ${k})
+    if(NOT got STREQUAL v)
+      message(FATAL_ERROR "${file}: dbt.preprocess.${k} is '${got}', the documented setting is '${v}'")
+    endif()
+  endforeach()
+endfunction()
+set(real_pre "preprocess=temporal" "bg_anchor=OFF" "flat_block=0" "clutter_alpha=0.10000000000000001" "clutter_mean=OFF")
+check_dbt(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${real_pre})
+check_dbt(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${real_pre})
+check_dbt(${shipped} "preprocess=temporal" "clutter_mean=ON" "clutter_persist=4" "clutter_alpha=0.20000000000000001"
+          "clutter_anchor=ON" "background_radius=5" "guard_radius=2" "tile=32")
 string(JSON js SET "${js}" image "{\"width\": 128, \"height\": 96}")
 string(JSON js SET "${js}" frames 40)
 string(JSON js SET "${js}" targets snr_db 15)

@@ -47,6 +47,13 @@ add_test(NAME host_tbd_ir_operating_points
          COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/operating_points
                  -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/operating_points.cmake)
 set_tests_properties(host_tbd_ir_operating_points PROPERTIES LABELS "host")
+# dbt.preprocess (DBT's own preprocessing): the summary says "shared" or "own", the setting
+# changes DBT's figures only, and the same settings give the shared figures:
+# host_tools/tests/dbt_preprocess.cmake
+add_test(NAME host_tbd_ir_dbt_preprocess
+         COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/dbt_preprocess
+                 -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/dbt_preprocess.cmake)
+set_tests_properties(host_tbd_ir_dbt_preprocess PROPERTIES LABELS "host")
 # `pft run --stage-out`: one row per frame, the stage's shifts against the sim's platform steps
 # (and the CSV parsed in integer micro-pixels): host_tools/tests/stage_out.cmake
 add_test(NAME host_tbd_ir_stage_out
