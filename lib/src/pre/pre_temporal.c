@@ -832,6 +832,15 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
     } else {
         /* no move, or none of the cells stays in the grid */
     }
+    if (p->sage != NULL) { /* bg_stale_reinit: the ages move with their cells */
+        if (d > 0 && d < n) {
+            memmove(p->sage, p->sage + d, (size_t)(n - d));
+        } else if (d < 0 && -d < n) {
+            memmove(p->sage - d, p->sage, (size_t)(n + d));
+        } else {
+            /* no move, or none of the cells stays in the grid */
+        }
+    }
     const int32_t dd[2] = {dx, dy}, top[2] = {sw - 2, sh - 2};
     if (p->agex != NULL) {
         age_move_(p->agex, sw, dx);
@@ -1276,6 +1285,151 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
     }
 }
 
+/* ------------------------------------------------------------------ bg_stale_reinit (9.14) */
+
+/* Largest age of a background value. A value never learnt (a masked pixel of the first frame,
+ * filled from the last unmasked pixel before it) starts at its distance to that pixel, in
+ * pixels: a single dead pixel 1, the far side of a block its width. */
+#define PFT_PRE_AGE_NEVER_ 127u
+/* Flag of an age: the value reads a stale tap on this frame. */
+#define PFT_PRE_AGE_STALE_ 128u
+
+/* bg_stale_reinit without bg_anchor: the ages (w x h, frame coordinates) carried to this frame
+ * as the background is (b(p - s)): each the bilinear blend of the ages at p - s (the two central
+ * taps per axis, clamped), with PFT_PRE_AGE_STALE_ set where a tap of non-zero weight of the
+ * warp (x + kx + txlo .. txhi, y + ky + tylo .. tyhi, clamped) holds an age above n. In place,
+ * rows walked as the background's (yup: upwards), the former values of the row written last
+ * kept in sline[0 .. w), the new row made in sline[w + 3 ..); the vertical passes in p->vb and
+ * p->bwl (free before the update pass). */
+static void stale_plain_(pft_pre_t *p, const warp_t *g, int32_t txlo, int32_t txhi,
+                         int32_t tylo, int32_t tyhi, uint32_t n)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const bool yup = g->ky >= 0;
+    uint8_t *prev = p->sline, *nrow = p->sline + w + 3;
+    int32_t *vm = p->vb, *va = p->bwl;
+    const int32_t fx = (int32_t)g->fx, fy = (int32_t)g->fy;
+    int32_t yprev = -1;
+    for (int32_t yi = 0; yi < h; ++yi) {
+        const int32_t y = yup ? yi : h - 1 - yi;
+        const int32_t r0 = y + g->ky;
+        const uint8_t *tr[4];
+        for (int32_t i = 0; i < 4; ++i) {
+            const int32_t rr = clampi_(r0 - 1 + i, 0, h - 1);
+            tr[i] = rr == yprev ? prev : p->sage + (size_t)rr * (size_t)w;
+        }
+        for (int32_t x = 0; x < w; ++x) {
+            int32_t m = 0;
+            for (int32_t i = tylo; i <= tyhi; ++i) {
+                const int32_t a = tr[i + 1][x];
+                m = a > m ? a : m;
+            }
+            vm[x] = m;
+            va[x] = (int32_t)tr[1][x] * (256 - fy) + (int32_t)tr[2][x] * fy;
+        }
+        for (int32_t x = 0; x < w; ++x) {
+            const int32_t c = x + g->kx;
+            int32_t m = 0;
+            for (int32_t i = txlo; i <= txhi; ++i) {
+                const int32_t a = vm[clampi_(c + i, 0, w - 1)];
+                m = a > m ? a : m;
+            }
+            const int32_t a = (va[clampi_(c, 0, w - 1)] * (256 - fx) + va[clampi_(c + 1, 0, w - 1)] * fx +
+                               32768) >> 16;
+            nrow[x] = (uint8_t)((uint32_t)a | ((uint32_t)m > n ? PFT_PRE_AGE_STALE_ : 0u));
+        }
+        uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+        memcpy(prev, ar, (size_t)w);
+        yprev = y;
+        memcpy(ar, nrow, (size_t)w);
+    }
+}
+
+/* bg_stale_reinit without bg_anchor, after row y's update: a pixel flagged stale has its
+ * residual masked and its background restarted from z (when z is valid); the ages become 0
+ * where z is valid (learnt or restarted), one more (at most PFT_PRE_AGE_NEVER_) where it is
+ * masked. */
+static void stale_plain_row_(pft_pre_t *p, int32_t y, const int32_t *zl, uint16_t *b, int16_t *r)
+{
+    const int32_t w = p->cfg.width;
+    uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+    for (int32_t x = 0; x < w; ++x) {
+        const uint32_t a = ar[x];
+        if ((a & PFT_PRE_AGE_STALE_) != 0u) {
+            r[x] = PFT_RES16_MASKED;
+            b[x] = zl[x] >= 0 ? (uint16_t)zl[x] : b[x];
+        }
+        const uint32_t a1 = (a & ~PFT_PRE_AGE_STALE_) + 1u;
+        ar[x] = (uint8_t)(zl[x] >= 0 ? 0u : (a1 > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a1));
+    }
+}
+
+/* bg_stale_reinit with bg_anchor, residual row y (covered, pixels ca .. cb): a pixel whose read
+ * taps of non-zero weight (grid rows r0 - 1 + i, columns x + k - 1 + i, storage + 1) reach a
+ * cell older than n is masked. */
+static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, int32_t r0,
+                              int32_t ca, int32_t cb, uint32_t n, int16_t *r)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
+    uint8_t *hm = p->sline;
+    bool any = false;
+    for (int32_t c = 0; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
+            const uint32_t a = p->sage[(size_t)clampi_(r0 + i + 1, 0, h + 2) * (size_t)sw + (size_t)c];
+            m = a > m ? a : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+        any = any || m > n;
+    }
+    if (!any) {
+        return;
+    }
+    for (int32_t x = ca; x <= cb; ++x) {
+        bool st = false;
+        for (int32_t i = gx->rlo; i <= gx->rhi; ++i) {
+            st = st || hm[clampi_(x + gx->k + i + 1, 0, sw - 1)] != 0u;
+        }
+        r[x] = st ? PFT_RES16_MASKED : r[x];
+    }
+}
+
+/* bg_stale_reinit with bg_anchor, after grid row jy's update: an observed cell with a frame
+ * value (its update taps all valid) older than n restarts from it; its age becomes 0. An
+ * observed cell without one (a masked tap) ages by one frame (at most PFT_PRE_AGE_NEVER_); the
+ * cells the frame does not observe keep their ages. */
+static void stale_anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, uint32_t n)
+{
+    const int32_t w = p->cfg.width, sw = w + 3;
+    const agx_t *gy = &g->gy;
+    if (jy < g->olo[1] || jy > g->ohi[1]) {
+        return;
+    }
+    uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+    uint8_t *ar = p->sage + (size_t)(jy + 1) * (size_t)sw;
+    const int32_t yb = jy + gy->ub;
+    for (int32_t j = g->olo[0]; j <= g->ohi[0]; ++j) {
+        int32_t sv = 0;
+        bool ok = true;
+        for (int32_t i = gy->ulo; i <= gy->uhi; ++i) {
+            const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
+            ok = ok && v != PFT_PRE_ANONE_;
+            sv += ok ? gy->wu[i + 1] * v : 0;
+        }
+        const uint32_t a = ar[j + 1];
+        if (ok) {
+            if (a > n) {
+                sv = (sv + 2048) >> 12;
+                b[j + 1] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+            }
+            ar[j + 1] = 0u;
+        } else {
+            ar[j + 1] = (uint8_t)(a + 1u > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a + 1u);
+        }
+    }
+}
+
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -1290,6 +1444,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->aphi[0] = 0;
         p->aphi[1] = 0;
         int32_t carry = 0;
+        uint32_t run = 0u; /* bg_stale_reinit: the cells since the last unmasked pixel */
         /* cell (j, jy) from pixel (j, jy) clamped into the frame (its nearest pixel), in the
          * order of the cells; each frame row converted once, its masked pixels counted */
         for (int32_t jy = -1; jy <= h + 1; ++jy) {
@@ -1307,6 +1462,13 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             for (int32_t j = w; j <= w + 1; ++j) {
                 carry = zl[w - 1] >= 0 ? zl[w - 1] : carry;
                 b[j + 1] = (uint16_t)carry;
+            }
+            if (p->sage != NULL) { /* bg_stale_reinit: a cell whose nearest pixel is masked: never learnt, its age the distance to the pixel it was filled from */
+                uint8_t *ar = p->sage + (size_t)(jy + 1) * (size_t)sw;
+                for (int32_t j = -1; j <= w + 1; ++j) {
+                    run = zl[clampi_(j, 0, w - 1)] >= 0 ? 0u : run + 1u;
+                    ar[j + 1] = (uint8_t)(run > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : run);
+                }
             }
         }
         p->avlo[0] = 0;
@@ -1437,6 +1599,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         for (int32_t x = cb + 1; x < w; ++x) {
             r[x] = PFT_RES16_MASKED;
         }
+        if (p->sage != NULL && covered) {
+            stale_anchor_res_(p, gx, gy, r0, ca, cb, p->cfg.bg_stale_reinit, r);
+        }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
@@ -1448,6 +1613,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
+            if (p->sage != NULL) {
+                stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit);
+            }
         }
         int32_t *zs = zp;
         zp = zl;
@@ -1455,6 +1623,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     }
     for (; jn <= h + 1; ++jn) { /* grid rows past the last frame row's (their pixel: row h - 1) */
         anchor_urow_(p, &g, jn, zp);
+        if (p->sage != NULL) {
+            stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit);
+        }
     }
     if (p->agex != NULL) {
         age_step_(p->agex, sw, ovlo[0], ovhi[0], p->avlo[0], p->avhi[0]);
@@ -1507,6 +1678,7 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
     }
     int32_t *zl = p->line, *bw = p->bwl;
     int32_t carry = 0;  /* first frame: the last unmasked value, for masked pixels */
+    uint32_t run = 0u;  /* first frame, bg_stale_reinit: the pixels since the last unmasked one */
     int32_t yprev = -1; /* the row written last; p->prev holds its former values */
     if (held) {
         /* a constant frame (a glitch, a shutter): the background is kept as it is and the
@@ -1525,6 +1697,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
             }
         }
         return;
+    }
+    if (p->sage != NULL && !first) {
+        stale_plain_(p, &g, txlo, txhi, tylo, tyhi, p->cfg.bg_stale_reinit);
     }
     /* prediction: exact taps inside [xa, xb] = [ia, ib), clamped outside (for masked pixels) */
     const int32_t ia = xa < w ? xa : w, ib = xb + 1 > ia ? xb + 1 : ia;
@@ -1545,7 +1720,7 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         const bool covered = r0 + tylo >= 0 && r0 + tyhi <= h - 1;
         /* a covered row of a U16 frame without a bad-pixel map: its covered columns in one
          * pass (fused_span_), the frame row converted only outside them */
-        const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8;
+        const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8 && p->sage == NULL;
         uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia) +
                                    zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w)
                              : zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
@@ -1563,6 +1738,13 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                 carry = zl[x] >= 0 ? zl[x] : carry;
                 b[x] = (uint16_t)carry;
                 r[x] = PFT_RES16_MASKED;
+            }
+            if (p->sage != NULL) { /* bg_stale_reinit: a masked pixel's value was never learnt, its age the distance to the pixel it was filled from */
+                uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+                for (int32_t x = 0; x < w; ++x) {
+                    run = zl[x] >= 0 ? 0u : run + 1u;
+                    ar[x] = (uint8_t)(run > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : run);
+                }
             }
             acc->n_masked += (uint32_t)w;
         } else {
@@ -1635,6 +1817,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                             b[x] = (uint16_t)zl[x];
                         }
                     }
+                }
+                if (p->sage != NULL) {
+                    stale_plain_row_(p, y, zl, b, r);
                 }
             }
             acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
