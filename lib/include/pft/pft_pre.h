@@ -327,9 +327,11 @@ extern "C" {
      2u * PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 4u))
 /** The bytes that bg_stale_reinit adds to the workspace (with or without bg_anchor): the age of
  *  every background value, one byte per grid cell ((w + 3) x (h + 3); w x h of them without
- *  bg_anchor), and two lines of (w + 3) bytes. */
+ *  bg_anchor), the largest age of each row (h + 3 bytes) and a scratch of 2 (w + 3) + h + 3
+ *  bytes. */
 #define PFT_PRE_STALE_BYTES(w, h)                                                               \
-    (PFT_WS_ROUND(((size_t)(w) + 3u) * ((size_t)(h) + 3u)) + PFT_WS_ROUND(2u * ((size_t)(w) + 3u)))
+    (PFT_WS_ROUND(((size_t)(w) + 3u) * ((size_t)(h) + 3u)) +                                    \
+     PFT_WS_ROUND(2u * ((size_t)(w) + 3u) + (size_t)(h) + 3u) + PFT_WS_ROUND((size_t)(h) + 3u))
 /** Workspace bytes with bg_anchor and bg_gate_young set (bg_gate_local off). With both options
  *  the workspace is PFT_PRE_WORKSPACE_BYTES_ANCHOR + PFT_PRE_YOUNG_BYTES + PFT_PRE_LOCAL_BYTES. */
 #define PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG(w, h, ro, t, k)                                     \

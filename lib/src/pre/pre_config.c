@@ -242,7 +242,8 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     /* bg_stale_reinit: the ages (one byte per background value) and two lines */
     const bool stale = cfg->bg_stale_reinit != 0u;
     uint8_t *sage = stale ? pft_ws_take(&ws, (w + 3u) * (h + 3u)) : NULL;
-    uint8_t *sline = stale ? pft_ws_take(&ws, 2u * (w + 3u)) : NULL;
+    uint8_t *sline = stale ? pft_ws_take(&ws, 2u * (w + 3u) + h + 3u) : NULL;
+    uint8_t *srow = stale ? pft_ws_take(&ws, h + 3u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -262,6 +263,7 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->gsum = gsum;
     p->sage = sage;
     p->sline = sline;
+    p->srow = srow;
     p->gm = gm;
     p->gcnt = gcnt;
     p->colq = colq;
@@ -317,7 +319,8 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
         }
         if (p->sage != NULL) {
             memset(p->sage, 0, (w + 3u) * (h + 3u));
-            memset(p->sline, 0, 2u * (w + 3u));
+            memset(p->sline, 0, 2u * (w + 3u) + h + 3u);
+            memset(p->srow, 0, h + 3u);
         }
         memset(p->pzc, 0, w * 4u);
         memset(p->pbc, 0, w * 4u);
