@@ -141,7 +141,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
             "snr_min_db", "snr_max_db", "background_radius", "guard_radius", "tile", "seed_offset",
             "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
             "confirm_frames", "birth_correction", "clutter_alpha", "clutter_blur", "clutter_mean",
-            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "handover_in_scale", "q2", "note"});
+            "clutter_thr", "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor", "clutter_block", "clutter_map8", "clutter_anchor", "scene_frames", "scene_gate_px", "scene_fit_px", "scene_early_px", "scene_tentative", "edge_k", "residual_hp", "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin", "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young", "bg_gate_local", "bg_masked_taps", "bg_stale_reinit", "flat_block", "flat_alpha", "flat_gate", "flat_relative", "flat_level_blocks", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start", "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist", "handover_in_scale", "q2", "note"});
     T.preprocess = t.choice_or("preprocess", T.preprocess, {"temporal", "spatial"});
     T.bg_alpha = t.number_in("bg_alpha", T.bg_alpha, 1.0 / 65536.0, 65535.0 / 65536.0);
     T.col_alpha = t.number_in("col_alpha", T.col_alpha, 0.0, 65535.0 / 65536.0);
@@ -247,6 +247,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     if (T.bg_gate_local != "off" && T.bg_gate == 0.0)
         t.at("bg_gate_local").fail("takes the tile's part off bg_gate's innovation: needs bg_gate");
     T.bg_masked_taps = t.choice_or("bg_masked_taps", T.bg_masked_taps, {"off", "young", "all"});
+    T.bg_stale_reinit = static_cast<int>(t.integer_in("bg_stale_reinit", T.bg_stale_reinit, 0, 126));
+    if (T.bg_stale_reinit != 0 && T.preprocess != "temporal")
+        t.at("bg_stale_reinit").fail("restarts stale values of the temporal background: needs preprocess \"temporal\"");
     if (T.bg_masked_taps != "off" && !T.bg_anchor)
         t.at("bg_masked_taps").fail("renormalises the anchored background's update taps: needs bg_anchor");
     if (T.bg_masked_taps == "young" && T.bg_gate_young == 0)

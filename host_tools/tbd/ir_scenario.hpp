@@ -113,6 +113,7 @@ struct TrackerSettings {
     int bg_gate_young = 0;                      ///< with bg_gate: frames a grid cell that entered the scene is updated without the gate (pft_pre bg_gate_young, 0 off or 1..255)
     std::string bg_gate_local = "off";          ///< with bg_gate: "mean" or "relative" gates the innovation less its tile's part from the last frame (pft_pre bg_gate_local), "off"
     std::string bg_masked_taps = "off";         ///< with bg_anchor: "young" (needs bg_gate_young) or "all" updates a grid cell with a masked horizontal tap from its valid taps renormalised (pft_pre bg_masked_taps), "off" keeps it
+    int bg_stale_reinit = 0;                    ///< temporal: a background value not learnt for more than N frames (or never) because its pixel was masked restarts from the frame, the residual reading it masked (pft_pre bg_stale_reinit, 0 off or 1..126)
     uint64_t seed_offset = 0;
     // full-frame options of the TBD manager (pft_tbd_config_t fields of the same names,
     // docs/algorithms.md 2.11), tuned on the shipped sweep (docs/results/ir_clutter.md, "Full-frame

@@ -48,7 +48,7 @@ function(check_block file)
 endfunction()
 set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "bg_anchor=ON"
-           "theta_end=0.20000000000000001" "particles=24000")
+           "theta_end=0.20000000000000001" "particles=24000" "bg_stale_reinit=32")
 check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)

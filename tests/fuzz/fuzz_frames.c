@@ -599,6 +599,7 @@ static void run_pre(fz_t *f)
             c.bg_masked_taps = 0u;
         }
     }
+    c.bg_stale_reinit = (uint8_t)(temporal && (o & 128u) ? 1u + (o >> 8) % 4u : 0u);
     uint8_t e = fz_u8(f);
     c.tile = (uint8_t)(8u << (e % 4u)); /* 8..64 */
     c.local_outer = (uint8_t)(1u + (e >> 2) % PFT_PRE_MAX_OUTER);

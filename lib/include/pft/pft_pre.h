@@ -110,6 +110,8 @@ extern "C" {
 #define PFT_PRE_MASKED_TAPS_YOUNG 1u
 /** bg_masked_taps: every observed cell. */
 #define PFT_PRE_MASKED_TAPS_ALL 2u
+/** Largest bg_stale_reinit (frames). */
+#define PFT_PRE_MAX_BG_STALE 126u
 /** Largest sigma_step. */
 #define PFT_PRE_MAX_SIGMA_STEP 4u
 /** Largest sigma_every. */
@@ -180,6 +182,7 @@ typedef struct {
     uint8_t bg_gate_young;   /**< with bg_gate: the grid cells that entered the scene in the last bg_gate_young frames (a grid column or row that the frame covers for the first time, counted per column and per row) are updated without the gate, 0..255 (docs/algorithms.md 9.13 [E]). Such a cell starts from one frame, noise included; gated, it would shed that error at only alpha g sigma per frame, and the strip of young cells along the frame edge where the scene enters would hold a residual of larger spread than the rest (false tracks fixed to that edge); ungated for N frames it converges at the rate alpha as without the gate. Workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG (the ages, one byte per grid column and row). Changes values. Needs bg_gate (default 0: every cell gated, today's values) */
     uint8_t bg_gate_local;   /**< with bg_gate: the gate applied to the innovation less its local smooth part (docs/algorithms.md 9.13 [E]), so that a level change shared by a tile (sensor-fixed shading under a drifting scene, a global drift) is learnt at the full alpha while a point is still gated. 0: off (default, today's values); PFT_PRE_GATE_LOCAL_MEAN: m is the mean innovation of the cell's tile (the tile of its nearest pixel) in the last frame's update; PFT_PRE_GATE_LOCAL_RELATIVE: m = rho B, rho = (sum of e) / (sum of B) over that tile in the last frame's update (a gain fixed to the sensor changes each cell's level in proportion to it). The cell is updated with alpha m plus the gate's update of e - m (clip or weight, bg_gate_shift); a tile with no update in the last frame has m = 0. Changes values; workspace PFT_PRE_WORKSPACE_BYTES_ANCHOR_LOCAL (24 bytes per tile more, rounded). Needs bg_gate (default 0) */
     uint8_t bg_masked_taps;  /**< TEMPORAL with bg_anchor: what the background's update does with a grid cell one of whose horizontal update taps (the frame pixels it is interpolated from along x) is masked (docs/algorithms.md 9.13 [E]). 0: the cell is kept, not updated, on that frame (default, today's values); PFT_PRE_MASKED_TAPS_YOUNG: in the young grid columns (bg_gate_young; needs it) the frame is interpolated into the cell from the valid taps of its row with their weights renormalised to sum to 1, when those weights sum to at least 1/2 (else kept); PFT_PRE_MASKED_TAPS_ALL: the same for every observed cell. A cell that enters the scene next to a masked pixel fixed to the sensor is otherwise kept at its first value for most of its young frames (about 4 px of drift), and the residual there carries that value's error and the shading it missed (false tracks fixed to the frame). Changes values; no workspace */
+    uint8_t bg_stale_reinit; /**< TEMPORAL: a background value that has not been learnt for more than bg_stale_reinit frames (or never) because its pixel was masked restarts from the first valid frame value it meets, and the residual of a pixel that reads it (any interpolation tap of non-zero weight) is masked on that frame, as at the frame border's entering edge (docs/algorithms.md 9.14 [E]); 0..PFT_PRE_MAX_BG_STALE. Without it, the part of the scene that comes out from under a masked block fixed to the sensor (a cluster of dead or saturated pixels, a glint, a saturated part of the airframe) meets a background kept from before it went under, or never learnt, and the residual beside the block's trailing edge holds the difference (tens of sigma on a gradient). Each background value carries its age (frames since learnt, 127: never): without bg_anchor the age is carried with the scene by the warp's bilinear weights, with bg_anchor it is kept per grid cell and moves with the anchor. A value never learnt (masked on the first frame) starts at its distance in pixels to the pixel the first frame filled it from. A single dead pixel in a scene drifting v px per frame keeps an age of about 1/v frames without bg_anchor (its neighbours' values drift over it) and about 4/v with it (a grid cell is kept while any of its 4 x 4 update taps is masked): N below that restarts cells around it too. Workspace PFT_PRE_STALE_BYTES more. Changes values. Needs PFT_PRE_BG_TEMPORAL (default 0: off, today's values) */
 } pft_pre_config_t;
 
 /** One peak of the whitened residual: a 3x3 local maximum at or above peak_threshold. */
@@ -322,6 +325,13 @@ extern "C" {
 #define PFT_PRE_LOCAL_BYTES(w, h, t)                                                            \
     (PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 16u) +                                \
      2u * PFT_WS_ROUND(PFT_PRE_NT_(w, t) * PFT_PRE_NT_(h, t) * 4u))
+/** The bytes that bg_stale_reinit adds to the workspace (with or without bg_anchor): the age of
+ *  every background value, one byte per grid cell ((w + 3) x (h + 3); w x h of them without
+ *  bg_anchor), the largest age of each row (h + 3 bytes) and a scratch of 2 (w + 3) + h + 3
+ *  bytes. */
+#define PFT_PRE_STALE_BYTES(w, h)                                                               \
+    (PFT_WS_ROUND(((size_t)(w) + 3u) * ((size_t)(h) + 3u)) +                                    \
+     PFT_WS_ROUND(2u * ((size_t)(w) + 3u) + (size_t)(h) + 3u) + PFT_WS_ROUND((size_t)(h) + 3u))
 /** Workspace bytes with bg_anchor and bg_gate_young set (bg_gate_local off). With both options
  *  the workspace is PFT_PRE_WORKSPACE_BYTES_ANCHOR + PFT_PRE_YOUNG_BYTES + PFT_PRE_LOCAL_BYTES. */
 #define PFT_PRE_WORKSPACE_BYTES_ANCHOR_YOUNG(w, h, ro, t, k)                                     \

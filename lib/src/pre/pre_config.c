@@ -44,6 +44,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_gate_young = 0u;
     cfg->bg_gate_local = 0u;
     cfg->bg_masked_taps = 0u;
+    cfg->bg_stale_reinit = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -147,6 +148,10 @@ static const char *refused_field_(const pft_pre_config_t *c)
         (c->bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && c->bg_gate_young == 0u)) {
         return "bg_masked_taps"; /* built in the anchored update; the young columns are bg_gate_young's */
     }
+    if (c->bg_stale_reinit > PFT_PRE_MAX_BG_STALE ||
+        (c->bg_stale_reinit != 0u && c->method != PFT_PRE_BG_TEMPORAL)) {
+        return "bg_stale_reinit"; /* ages up to 127 (never learnt) */
+    }
     return NULL;
 }
 
@@ -175,12 +180,14 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
         return PFT_PRE_WORKSPACE_BYTES_ANCHOR(c->width, c->height, c->local_outer, c->tile,
                                               c->peak_max) +
                (c->bg_gate_young != 0u ? PFT_PRE_YOUNG_BYTES(c->width, c->height) : 0u) +
-               (c->bg_gate_local != 0u ? PFT_PRE_LOCAL_BYTES(c->width, c->height, c->tile) : 0u);
+               (c->bg_gate_local != 0u ? PFT_PRE_LOCAL_BYTES(c->width, c->height, c->tile) : 0u) +
+               (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u);
     }
-    return c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
-                                                        c->local_outer, c->tile, c->peak_max)
-                      : PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer,
-                                                c->tile, c->peak_max);
+    return (c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
+                                                         c->local_outer, c->tile, c->peak_max)
+                       : PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer,
+                                                 c->tile, c->peak_max)) +
+           (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u);
 }
 
 pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
@@ -232,6 +239,11 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     int64_t *gsum = glocal ? pft_ws_take(&ws, ntx * nty * 16u) : NULL;
     int32_t *gm = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
     uint32_t *gcnt = glocal ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
+    /* bg_stale_reinit: the ages (one byte per background value) and two lines */
+    const bool stale = cfg->bg_stale_reinit != 0u;
+    uint8_t *sage = stale ? pft_ws_take(&ws, (w + 3u) * (h + 3u)) : NULL;
+    uint8_t *sline = stale ? pft_ws_take(&ws, 2u * (w + 3u) + h + 3u) : NULL;
+    uint8_t *srow = stale ? pft_ws_take(&ws, h + 3u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -249,6 +261,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->agex = agex;
     p->agey = agex != NULL ? agex + w + 3u : NULL;
     p->gsum = gsum;
+    p->sage = sage;
+    p->sline = sline;
+    p->srow = srow;
     p->gm = gm;
     p->gcnt = gcnt;
     p->colq = colq;
@@ -301,6 +316,11 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
         }
         if (p->agex != NULL) {
             memset(p->agex, 0, w + h + 6u);
+        }
+        if (p->sage != NULL) {
+            memset(p->sage, 0, (w + 3u) * (h + 3u));
+            memset(p->sline, 0, 2u * (w + 3u) + h + 3u);
+            memset(p->srow, 0, h + 3u);
         }
         memset(p->pzc, 0, w * 4u);
         memset(p->pbc, 0, w * 4u);

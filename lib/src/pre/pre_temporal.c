@@ -832,6 +832,28 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
     } else {
         /* no move, or none of the cells stays in the grid */
     }
+    if (p->sage != NULL) { /* bg_stale_reinit: the ages move with their cells */
+        if (d > 0 && d < n) {
+            memmove(p->sage, p->sage + d, (size_t)(n - d));
+        } else if (d < 0 && -d < n) {
+            memmove(p->sage - d, p->sage, (size_t)(n + d));
+        } else {
+            /* no move, or none of the cells stays in the grid */
+        }
+        /* the rows' largest ages, an upper bound: new row r holds cells of old rows r + dy and
+         * r + dy + 1 (dx > 0) or r + dy - 1 (dx < 0) */
+        if (d != 0) {
+            const int32_t e = dx > 0 ? 1 : (dx < 0 ? -1 : 0);
+            uint8_t *sr = p->srow, *tmp = p->sline;
+            memcpy(tmp, sr, (size_t)sh);
+            for (int32_t r = 0; r < sh; ++r) {
+                const int32_t r1 = r + dy, r2 = r + dy + e;
+                const uint32_t m1 = r1 >= 0 && r1 < sh ? tmp[r1] : 0u;
+                const uint32_t m2 = r2 >= 0 && r2 < sh ? tmp[r2] : 0u;
+                sr[r] = (uint8_t)(m1 > m2 ? m1 : m2);
+            }
+        }
+    }
     const int32_t dd[2] = {dx, dy}, top[2] = {sw - 2, sh - 2};
     if (p->agex != NULL) {
         age_move_(p->agex, sw, dx);
@@ -1276,6 +1298,240 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
     }
 }
 
+/* ------------------------------------------------------------------ bg_stale_reinit (9.14) */
+
+/* Largest age of a background value. A value never learnt (a masked pixel of the first frame,
+ * filled from the last unmasked pixel before it) starts at its distance to that pixel, in
+ * pixels: a single dead pixel 1, the far side of a block its width. */
+#define PFT_PRE_AGE_NEVER_ 127u
+/* Flag of an age: the value reads a stale tap on this frame. */
+#define PFT_PRE_AGE_STALE_ 128u
+
+/* Largest of n bytes. */
+static uint32_t max_u8_(const uint8_t *a, int32_t n)
+{
+    uint32_t m = 0u;
+    for (int32_t i = 0; i < n; ++i) { /* vectorisable */
+        m = a[i] > m ? a[i] : m;
+    }
+    return m;
+}
+
+/* stale_plain_: the new age of the pixel whose taps are around column c of the vertical passes
+ * (vm: maxima of the taps of non-zero weight, va: bilinear blends Q8), clamped to the row. */
+static uint32_t stale_col_(const int32_t *vm, const int32_t *va, int32_t c, int32_t w, int32_t txlo,
+                           int32_t txhi, int32_t fx, int32_t n)
+{
+    int32_t m = 0;
+    for (int32_t i = txlo; i <= txhi; ++i) {
+        const int32_t a = vm[clampi_(c + i, 0, w - 1)];
+        m = a > m ? a : m;
+    }
+    const int32_t a = (va[clampi_(c, 0, w - 1)] * (256 - fx) + va[clampi_(c + 1, 0, w - 1)] * fx + 32768) >> 16;
+    return (uint32_t)a | (m > n ? PFT_PRE_AGE_STALE_ : 0u);
+}
+
+/* bg_stale_reinit without bg_anchor: the ages (w x h, frame coordinates) carried to this frame
+ * as the background is (b(p - s)): each the bilinear blend of the ages at p - s (the two central
+ * taps per axis, clamped), with PFT_PRE_AGE_STALE_ set where a tap of non-zero weight of the
+ * warp (x + kx + txlo .. txhi, y + ky + tylo .. tyhi, clamped) holds an age above n. In place,
+ * rows walked as the background's (yup: upwards), the former values of the row written last
+ * kept in sline[0 .. w), the new row made in sline[w + 3 ..); the vertical passes in p->vb and
+ * p->bwl (free before the update pass). srow[y] is the largest age of row y: a row whose source
+ * rows are all 0 is 0 (skipped). */
+static void stale_plain_(pft_pre_t *p, const warp_t *g, int32_t txlo, int32_t txhi,
+                         int32_t tylo, int32_t tyhi, uint32_t n)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height;
+    const bool yup = g->ky >= 0;
+    uint8_t *prev = p->sline, *nrow = p->sline + w + 3;
+    int32_t *vm = p->vb, *va = p->bwl;
+    const int32_t fx = (int32_t)g->fx, fy = (int32_t)g->fy;
+    int32_t yprev = -1;
+    uint32_t mprev = 0u; /* the former largest age of row yprev */
+    for (int32_t yi = 0; yi < h; ++yi) {
+        const int32_t y = yup ? yi : h - 1 - yi;
+        const int32_t r0 = y + g->ky;
+        const uint8_t *tr[4];
+        uint32_t msrc = 0u;
+        for (int32_t i = 0; i < 4; ++i) {
+            const int32_t rr = clampi_(r0 - 1 + i, 0, h - 1);
+            tr[i] = rr == yprev ? prev : p->sage + (size_t)rr * (size_t)w;
+            const uint32_t mr = rr == yprev ? mprev : p->srow[rr];
+            msrc = mr > msrc ? mr : msrc;
+        }
+        uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+        const uint32_t mold = p->srow[y];
+        if (msrc == 0u) {
+            /* every source age 0: the row's ages are 0 */
+            if (mold != 0u) {
+                memcpy(prev, ar, (size_t)w);
+                memset(ar, 0, (size_t)w);
+            }
+            yprev = mold != 0u ? y : yprev;
+            mprev = mold != 0u ? mold : mprev;
+            p->srow[y] = 0u;
+            continue;
+        }
+        /* the taps of weight 0 masked out of the maxima (ages >= 0) */
+        const int32_t my0 = tylo == -1 ? -1 : 0, my2 = tyhi >= 1 ? -1 : 0, my3 = tyhi == 2 ? -1 : 0;
+        const uint8_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
+        for (int32_t x = 0; x < w; ++x) { /* vectorisable */
+            const int32_t a0 = (int32_t)t0[x] & my0, a1 = t1[x], a2 = (int32_t)t2[x] & my2;
+            const int32_t a3 = (int32_t)t3[x] & my3;
+            const int32_t m01 = a0 > a1 ? a0 : a1, m23 = a2 > a3 ? a2 : a3;
+            vm[x] = m01 > m23 ? m01 : m23;
+            va[x] = a1 * (256 - fy) + (int32_t)t2[x] * fy;
+        }
+        const int32_t mx0 = txlo == -1 ? -1 : 0, mx2 = txhi >= 1 ? -1 : 0, mx3 = txhi == 2 ? -1 : 0;
+        const int32_t kx = g->kx, nn = (int32_t)n;
+        /* columns whose taps c - 1 .. c + 2 (c = x + kx) are inside the row: [xa, xb] */
+        const int32_t xa = clampi_(1 - kx, 0, w), xb = clampi_(w - 3 - kx, -1, w - 1);
+        const bool inner = xa <= xb;
+        uint32_t mnew = 0u;
+        for (int32_t x = 0; x < (inner ? xa : w); ++x) {
+            const uint32_t v = stale_col_(vm, va, x + kx, w, txlo, txhi, fx, nn);
+            nrow[x] = (uint8_t)v;
+            mnew = v > mnew ? v : mnew;
+        }
+        for (int32_t x = xa; x <= xb; ++x) { /* vectorisable */
+            const int32_t c = x + kx;
+            const int32_t a0 = vm[c - 1] & mx0, a1 = vm[c], a2 = vm[c + 1] & mx2, a3 = vm[c + 2] & mx3;
+            const int32_t m01 = a0 > a1 ? a0 : a1, m23 = a2 > a3 ? a2 : a3;
+            const int32_t m = m01 > m23 ? m01 : m23;
+            const int32_t a = (va[c] * (256 - fx) + va[c + 1] * fx + 32768) >> 16;
+            const uint32_t v = (uint32_t)a | (m > nn ? PFT_PRE_AGE_STALE_ : 0u);
+            nrow[x] = (uint8_t)v;
+            mnew = v > mnew ? v : mnew;
+        }
+        for (int32_t x = (inner ? xb + 1 : w); x < w; ++x) {
+            const uint32_t v = stale_col_(vm, va, x + kx, w, txlo, txhi, fx, nn);
+            nrow[x] = (uint8_t)v;
+            mnew = v > mnew ? v : mnew;
+        }
+        memcpy(prev, ar, (size_t)w);
+        yprev = y;
+        mprev = mold;
+        memcpy(ar, nrow, (size_t)w);
+        p->srow[y] = (uint8_t)mnew;
+    }
+}
+
+/* bg_stale_reinit without bg_anchor, after row y's update (its masked input pixels ninv): a
+ * pixel flagged stale (only on rows made without the fused span: zl whole) has its residual
+ * masked and its background restarted from z (when z is valid); the ages become 0 where z is
+ * valid (learnt or restarted), one more (at most PFT_PRE_AGE_NEVER_) where it is masked: in the
+ * covered span [ua, ub) the residual is masked exactly there, outside it zl tells. */
+static void stale_plain_row_(pft_pre_t *p, int32_t y, const int32_t *zl, uint16_t *b, int16_t *r,
+                             int32_t ua, int32_t ub, uint32_t ninv)
+{
+    const int32_t w = p->cfg.width;
+    if (p->srow[y] == 0u && ninv == 0u) {
+        return; /* ages 0, every pixel learnt: 0 */
+    }
+    uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+    uint32_t mnew = 0u;
+    for (int32_t x = 0; x < w; ++x) {
+        const uint32_t a = ar[x];
+        const bool valid = (x >= ua && x < ub) ? r[x] != PFT_RES16_MASKED : zl[x] >= 0;
+        if ((a & PFT_PRE_AGE_STALE_) != 0u) {
+            r[x] = PFT_RES16_MASKED;
+            b[x] = valid ? (uint16_t)zl[x] : b[x];
+        }
+        const uint32_t a1 = (a & ~PFT_PRE_AGE_STALE_) + 1u;
+        const uint32_t v = valid ? 0u : (a1 > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a1);
+        ar[x] = (uint8_t)v;
+        mnew = v > mnew ? v : mnew;
+    }
+    p->srow[y] = (uint8_t)mnew;
+}
+
+/* bg_stale_reinit with bg_anchor, residual row y (covered, pixels ca .. cb): a pixel whose read
+ * taps of non-zero weight (grid rows r0 - 1 + i, columns x + k - 1 + i, storage + 1) reach a
+ * cell older than n is masked. Nothing to do when those rows hold no such cell (srow: an upper
+ * bound of each grid row's largest age). */
+static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, int32_t r0,
+                              int32_t ca, int32_t cb, uint32_t n, int16_t *r)
+{
+    const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
+    uint32_t mr = 0u;
+    for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
+        const uint32_t a = p->srow[clampi_(r0 + i + 1, 0, h + 2)];
+        mr = a > mr ? a : mr;
+    }
+    if (mr <= n) {
+        return;
+    }
+    uint8_t *hm = p->sline;
+    for (int32_t c = 0; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
+            const uint32_t a = p->sage[(size_t)clampi_(r0 + i + 1, 0, h + 2) * (size_t)sw + (size_t)c];
+            m = a > m ? a : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+    }
+    for (int32_t x = ca; x <= cb; ++x) {
+        bool st = false;
+        for (int32_t i = gx->rlo; i <= gx->rhi; ++i) {
+            st = st || hm[clampi_(x + gx->k + i + 1, 0, sw - 1)] != 0u;
+        }
+        r[x] = st ? PFT_RES16_MASKED : r[x];
+    }
+}
+
+/* bg_stale_reinit with bg_anchor, after grid row jy's update: an observed cell with a frame
+ * value (its update taps all valid) older than n restarts from it; its age becomes 0. An
+ * observed cell without one (a masked tap) ages by one frame (at most PFT_PRE_AGE_NEVER_); the
+ * cells the frame does not observe keep their ages. Nothing to do when the row's ages are 0 and
+ * none of its update taps' frame rows holds a masked pixel (mrow: per ring slot). */
+static void stale_anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, uint32_t n,
+                               const bool mrow[4])
+{
+    const int32_t w = p->cfg.width, sw = w + 3;
+    const agx_t *gy = &g->gy;
+    if (jy < g->olo[1] || jy > g->ohi[1]) {
+        return;
+    }
+    const int32_t yb = jy + gy->ub;
+    bool anym = false;
+    for (int32_t i = gy->ulo; i <= gy->uhi; ++i) {
+        anym = anym || mrow[(yb + i) & 3];
+    }
+    if (!anym && p->srow[jy + 1] == 0u) {
+        return;
+    }
+    uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+    uint8_t *ar = p->sage + (size_t)(jy + 1) * (size_t)sw + 1; /* ar[j]: cell j */
+    const int32_t *q0 = p->aring + (size_t)((yb - 1) & 3) * (size_t)sw + 1;
+    const int32_t *q1 = p->aring + (size_t)(yb & 3) * (size_t)sw + 1;
+    const int32_t *q2 = p->aring + (size_t)((yb + 1) & 3) * (size_t)sw + 1;
+    const int32_t *q3 = p->aring + (size_t)((yb + 2) & 3) * (size_t)sw + 1;
+    /* PFT_PRE_ANONE_ for the taps ulo .. uhi (the others have weight 0), else a value no ring
+     * cell holds (as anchor_urow_) */
+    const int32_t nv = PFT_PRE_ANONE_ + 1;
+    const int32_t n0 = gy->ulo == -1 ? PFT_PRE_ANONE_ : nv, n1 = PFT_PRE_ANONE_;
+    const int32_t n2 = gy->uhi >= 1 ? PFT_PRE_ANONE_ : nv, n3 = gy->uhi == 2 ? PFT_PRE_ANONE_ : nv;
+    const int32_t ja = g->olo[0], jb = g->ohi[0];
+    if (p->srow[jy + 1] > n) { /* some cell may be older than n: restarts */
+        const int32_t w0 = gy->wu[0], w1 = gy->wu[1], w2 = gy->wu[2], w3 = gy->wu[3];
+        for (int32_t j = ja; j <= jb; ++j) {
+            const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
+            const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
+            if (!inv && ar[j] > n) {
+                int32_t sv = (w0 * v0 + w1 * v1 + w2 * v2 + w3 * v3 + 2048) >> 12;
+                b[j + 1] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+            }
+        }
+    }
+    for (int32_t j = ja; j <= jb; ++j) { /* vectorisable */
+        const bool inv = (q0[j] == n0) | (q1[j] == n1) | (q2[j] == n2) | (q3[j] == n3);
+        const uint32_t a1 = (uint32_t)ar[j] + 1u;
+        ar[j] = (uint8_t)(inv ? (a1 > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a1) : 0u);
+    }
+    p->srow[jy + 1] = (uint8_t)max_u8_(ar - 1, sw);
+}
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -1290,6 +1546,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->aphi[0] = 0;
         p->aphi[1] = 0;
         int32_t carry = 0;
+        uint32_t run = 0u; /* bg_stale_reinit: the cells since the last unmasked pixel */
         /* cell (j, jy) from pixel (j, jy) clamped into the frame (its nearest pixel), in the
          * order of the cells; each frame row converted once, its masked pixels counted */
         for (int32_t jy = -1; jy <= h + 1; ++jy) {
@@ -1307,6 +1564,14 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             for (int32_t j = w; j <= w + 1; ++j) {
                 carry = zl[w - 1] >= 0 ? zl[w - 1] : carry;
                 b[j + 1] = (uint16_t)carry;
+            }
+            if (p->sage != NULL) { /* bg_stale_reinit: a cell whose nearest pixel is masked: never learnt, its age the distance to the pixel it was filled from */
+                uint8_t *ar = p->sage + (size_t)(jy + 1) * (size_t)sw;
+                for (int32_t j = -1; j <= w + 1; ++j) {
+                    run = zl[clampi_(j, 0, w - 1)] >= 0 ? 0u : run + 1u;
+                    ar[j + 1] = (uint8_t)(run > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : run);
+                }
+                p->srow[jy + 1] = (uint8_t)max_u8_(ar, sw);
             }
         }
         p->avlo[0] = 0;
@@ -1378,11 +1643,13 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
      * taps are frame rows up to y, is updated (its cells without an interpolated value from
      * the nearest pixel, frame row y + k - 1 - k clamped: zp, or zl on row 0). */
     int32_t jn = -1; /* the next grid row to update */
+    bool mrow[4] = {false, false, false, false}; /* bg_stale_reinit: frame rows of the ring's slots with masked pixels */
     /* two rows that the whitening (pft_pre_row_out_, which uses p->line) leaves alone */
     zl = p->vb;
     int32_t *zp = p->bwl;
     for (int32_t y = 0; y < h; ++y) {
         const bool masked = zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u;
+        mrow[y & 3] = masked;
         if (masked) {
             count_row_(c, f, (uint32_t)y, acc);
         }
@@ -1437,6 +1704,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         for (int32_t x = cb + 1; x < w; ++x) {
             r[x] = PFT_RES16_MASKED;
         }
+        if (p->sage != NULL && covered) {
+            stale_anchor_res_(p, gx, gy, r0, ca, cb, p->cfg.bg_stale_reinit, r);
+        }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
@@ -1448,6 +1718,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
+            if (p->sage != NULL) {
+                stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+            }
         }
         int32_t *zs = zp;
         zp = zl;
@@ -1455,6 +1728,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     }
     for (; jn <= h + 1; ++jn) { /* grid rows past the last frame row's (their pixel: row h - 1) */
         anchor_urow_(p, &g, jn, zp);
+        if (p->sage != NULL) {
+            stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+        }
     }
     if (p->agex != NULL) {
         age_step_(p->agex, sw, ovlo[0], ovhi[0], p->avlo[0], p->avhi[0]);
@@ -1507,6 +1783,7 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
     }
     int32_t *zl = p->line, *bw = p->bwl;
     int32_t carry = 0;  /* first frame: the last unmasked value, for masked pixels */
+    uint32_t run = 0u;  /* first frame, bg_stale_reinit: the pixels since the last unmasked one */
     int32_t yprev = -1; /* the row written last; p->prev holds its former values */
     if (held) {
         /* a constant frame (a glitch, a shutter): the background is kept as it is and the
@@ -1525,6 +1802,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
             }
         }
         return;
+    }
+    if (p->sage != NULL && !first) {
+        stale_plain_(p, &g, txlo, txhi, tylo, tyhi, p->cfg.bg_stale_reinit);
     }
     /* prediction: exact taps inside [xa, xb] = [ia, ib), clamped outside (for masked pixels) */
     const int32_t ia = xa < w ? xa : w, ib = xb + 1 > ia ? xb + 1 : ia;
@@ -1545,7 +1825,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         const bool covered = r0 + tylo >= 0 && r0 + tyhi <= h - 1;
         /* a covered row of a U16 frame without a bad-pixel map: its covered columns in one
          * pass (fused_span_), the frame row converted only outside them */
-        const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8;
+        /* bg_stale_reinit: a row with stale pixels is made without the fused span (zl whole) */
+        const bool srow_stale = p->sage != NULL && !first && (p->srow[y] & PFT_PRE_AGE_STALE_) != 0u;
+        const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8 && !srow_stale;
         uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia) +
                                    zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w)
                              : zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
@@ -1563,6 +1845,14 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                 carry = zl[x] >= 0 ? zl[x] : carry;
                 b[x] = (uint16_t)carry;
                 r[x] = PFT_RES16_MASKED;
+            }
+            if (p->sage != NULL) { /* bg_stale_reinit: a masked pixel's value was never learnt, its age the distance to the pixel it was filled from */
+                uint8_t *ar = p->sage + (size_t)y * (size_t)w;
+                for (int32_t x = 0; x < w; ++x) {
+                    run = zl[x] >= 0 ? 0u : run + 1u;
+                    ar[x] = (uint8_t)(run > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : run);
+                }
+                p->srow[y] = (uint8_t)max_u8_(ar, w);
             }
             acc->n_masked += (uint32_t)w;
         } else {
@@ -1609,6 +1899,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                 ninv += nspan;
                 acc->n_dead += nd;
                 acc->n_sat += nspan - nd;
+                if (p->sage != NULL) { /* no stale pixel on this row (srow_stale) */
+                    stale_plain_row_(p, y, zl, b, r, ia, ib, ninv);
+                }
             } else {
                 hcubic_(vb, g.kx, wx, w, 0, ia, true, bw);
                 hcubic_(vb, g.kx, wx, w, ia, ib, false, bw);
@@ -1635,6 +1928,9 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
                             b[x] = (uint16_t)zl[x];
                         }
                     }
+                }
+                if (p->sage != NULL) {
+                    stale_plain_row_(p, y, zl, b, r, ea, sb, ninv);
                 }
             }
             acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);

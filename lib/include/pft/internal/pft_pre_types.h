@@ -28,6 +28,9 @@ struct pft_pre_s {
     uint32_t bgs;          /* row stride of bgv (elements): w */
     int32_t *aring;        /* bg_anchor: 4 frame rows interpolated along x, (w + 3) each (the slot of row y - 4 also the residual's vertical blends of row y) */
     uint8_t *agex, *agey;  /* bg_gate_young: frames each grid column (w + 3) and row (h + 3) has held the scene before this frame, saturating at 255 (NULL without it) */
+    uint8_t *sage;         /* bg_stale_reinit: the age of every background value (frames since learnt, 127: never; w * h, bg_anchor (w + 3) * (h + 3)) (NULL without it) */
+    uint8_t *sline;        /* bg_stale_reinit: scratch, 2 (w + 3) + h + 3 bytes */
+    uint8_t *srow;         /* bg_stale_reinit: the largest age of each row (h; bg_anchor h + 3 grid rows, an upper bound), with PFT_PRE_AGE_STALE_ (128) on a re-warped row with stale pixels */
     int64_t *gsum;         /* bg_gate_local: per tile the sums of the innovation e and (relative) of the level B over the cells updated in this frame, U units, 2 * ntx * nty (NULL without it) */
     int32_t *gm;           /* bg_gate_local: per tile m of the last frame's update (mean: U units; relative: rho, Q16), ntx * nty */
     uint32_t *gcnt;        /* bg_gate_local: per tile the cells in gsum, ntx * nty */
