@@ -1220,7 +1220,15 @@ pft_status_t pft_pre_clutter_frame(const pft_pre_clutter_t *c, pft_frame_t *out)
     if (c->updates == 0u) {
         return PFT_ERR_STATE;
     }
-    pft_pre_res16_frame_(out, c->out, c->cfg.width, c->cfg.height, c->timestamp_us, c->seq);
+    memset(out, 0, sizeof(*out));
+    out->data = c->out;
+    out->width = c->cfg.width;
+    out->height = c->cfg.height;
+    out->stride_bytes = 2u * (uint32_t)c->cfg.width;
+    out->format = PFT_PIX_RES16;
+    out->bit_depth = 16u;
+    out->timestamp_us = c->timestamp_us;
+    out->seq = c->seq;
     return PFT_OK;
 }
 

@@ -379,7 +379,15 @@ pft_status_t pft_pre_frame(const pft_pre_t *p, pft_frame_t *out)
     if (p->frames == 0u) {
         return PFT_ERR_STATE;
     }
-    pft_pre_res16_frame_(out, p->res, p->cfg.width, p->cfg.height, p->st.timestamp_us, p->st.seq);
+    memset(out, 0, sizeof(*out));
+    out->data = p->res;
+    out->width = p->cfg.width;
+    out->height = p->cfg.height;
+    out->stride_bytes = 2u * (uint32_t)p->cfg.width;
+    out->format = PFT_PIX_RES16;
+    out->bit_depth = 16u;
+    out->timestamp_us = p->st.timestamp_us;
+    out->seq = p->st.seq;
     return PFT_OK;
 }
 

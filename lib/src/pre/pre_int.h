@@ -33,22 +33,6 @@ typedef struct {
     uint32_t flags;
 } pft_pre_acc_t;
 
-/* Describes a packed RES16 plane (the stage's residual, the clutter map's output) as a frame
- * for the trackers: the shared body of pft_pre_frame and pft_pre_clutter_frame. */
-static inline void pft_pre_res16_frame_(pft_frame_t *out, const int16_t *data, uint16_t width,
-                                        uint16_t height, uint64_t timestamp_us, uint32_t seq)
-{
-    memset(out, 0, sizeof(*out));
-    out->data = data;
-    out->width = width;
-    out->height = height;
-    out->stride_bytes = 2u * (uint32_t)width;
-    out->format = PFT_PIX_RES16;
-    out->bit_depth = 16u;
-    out->timestamp_us = timestamp_us;
-    out->seq = seq;
-}
-
 /* Classification limits of a frame: valid iff raw - lo < span (unsigned) and not in the map. */
 typedef struct {
     uint32_t lo, span;
