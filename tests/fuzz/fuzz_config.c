@@ -618,6 +618,8 @@ static void fuzz_pre_stage(fz_t *f)
         macro = PFT_PRE_WORKSPACE_BYTES(c.width, c.height, c.method, c.local_outer, c.tile,
                                         c.peak_max);
     }
+    /* the header's rule for bg_stale_reinit: PFT_PRE_STALE_BYTES more, with or without bg_anchor */
+    macro += (c.bg_stale_reinit != 0u) ? PFT_PRE_STALE_BYTES(c.width, c.height) : 0u;
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;
