@@ -157,6 +157,15 @@ pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint
     return f;
 }
 
+void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size_t cap)
+{
+    const char *field = NULL;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_pre_config_check(c, &field), field);
+    const size_t need = pft_pre_workspace_size(c);
+    TEST_ASSERT_TRUE(need > 0u && need <= cap);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, work, need));
+}
+
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,
                            void *work, size_t len)
 {

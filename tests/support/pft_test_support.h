@@ -19,6 +19,9 @@ pft_frame_t pft_test_res16_frame(const int16_t *px, uint16_t w, uint16_t h, uint
  * maxt x maxt, n particles, pts snake points, and the snake parameters for that target size. */
 /* The four corners of the box x0..x1, y0..y1 (inclusive), clockwise from the top left. */
 void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1);
+/* The stage's tests: check c (the refused field named on failure), then init p with exactly its
+ * workspace size from work (cap bytes, asserted enough). */
+void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size_t cap);
 /* The clutter map's tests: init for a w x h residual (cfg's size set) and assert PFT_OK; the
  * map's last output (PFT_PIX_RES16 asserted). */
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,

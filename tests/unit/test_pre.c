@@ -152,11 +152,7 @@ static void config(pft_pre_config_t *c, pft_pre_bg_t method)
 
 static void init(pft_pre_t *p, const pft_pre_config_t *c)
 {
-    const char *field = NULL;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_pre_config_check(c, &field), field);
-    const size_t need = pft_pre_workspace_size(c);
-    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, g_work, need));
+    pft_test_pre_init(p, c, g_work, sizeof(g_work));
 }
 
 /* pixels of the border band the local background masks (its window would be clipped) */

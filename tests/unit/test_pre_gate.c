@@ -96,11 +96,7 @@ static void config(pft_pre_config_t *c, uint16_t gate, uint8_t shift, uint8_t yo
 
 static void init(pft_pre_t *p, const pft_pre_config_t *c)
 {
-    const char *field = NULL;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_pre_config_check(c, &field), field);
-    const size_t need = pft_pre_workspace_size(c);
-    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, g_work, need));
+    pft_test_pre_init(p, c, g_work, sizeof(g_work));
 }
 
 /* The residual at pixel (x, y) in counts (whitened value times its tile's sigma); NAN when

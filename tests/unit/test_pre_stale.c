@@ -81,11 +81,7 @@ static void config(pft_pre_config_t *c, bool anchor, bool gate, uint8_t stale)
 
 static void init(pft_pre_t *p, const pft_pre_config_t *c)
 {
-    const char *field = NULL;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(PFT_OK, pft_pre_config_check(c, &field), field);
-    const size_t need = pft_pre_workspace_size(c);
-    TEST_ASSERT_TRUE(need > 0u && need <= sizeof(g_work));
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, g_work, need));
+    pft_test_pre_init(p, c, g_work, sizeof(g_work));
 }
 
 /* The residual of pixel (x, y) in units of SIGMA_T (whitened value times its tile's sigma);
