@@ -166,6 +166,22 @@ void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, work, need));
 }
 
+double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y)
+{
+    pft_frame_t r;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(p, &r));
+    const int tile = (int)p->cfg.tile;
+    const int ntx = ((int)r.width + tile - 1) / tile, nty = ((int)r.height + tile - 1) / tile;
+    uint32_t sig[64];
+    TEST_ASSERT_TRUE(ntx * nty <= 64);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(ntx * nty), (uint32_t)pft_pre_sigma(p, sig, 64));
+    const int16_t q = ((const int16_t *)r.data)[y * (int)r.width + x];
+    if (q == PFT_RES16_MASKED) {
+        return NAN;
+    }
+    return q / 256.0 * (sig[(y / tile) * ntx + x / tile] / 65536.0);
+}
+
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,
                            void *work, size_t len)
 {

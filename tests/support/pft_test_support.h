@@ -22,6 +22,9 @@ void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1);
 /* The stage's tests: check c (the refused field named on failure), then init p with exactly its
  * workspace size from work (cap bytes, asserted enough). */
 void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size_t cap);
+/* The stage's last residual at pixel (x, y) in counts: the whitened value times the sigma of its
+ * tile (exact with sigma_interp false); NAN where masked. */
+double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y);
 /* The clutter map's tests: init for a w x h residual (cfg's size set) and assert PFT_OK; the
  * map's last output (PFT_PIX_RES16 asserted). */
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,

@@ -84,19 +84,10 @@ static void init(pft_pre_t *p, const pft_pre_config_t *c)
     pft_test_pre_init(p, c, g_work, sizeof(g_work));
 }
 
-/* The residual of pixel (x, y) in units of SIGMA_T (whitened value times its tile's sigma);
- * NAN when masked. */
+/* The residual of pixel (x, y) in units of SIGMA_T; NAN when masked. */
 static double res_t(const pft_pre_t *p, int x, int y)
 {
-    pft_frame_t r;
-    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_frame(p, &r));
-    uint32_t sig[16];
-    TEST_ASSERT_EQUAL_UINT32(12u, (uint32_t)pft_pre_sigma(p, sig, 16)); /* 4 x 3 tiles */
-    const int16_t q = ((const int16_t *)r.data)[y * W + x];
-    if (q == PFT_RES16_MASKED) {
-        return NAN;
-    }
-    return q / 256.0 * (sig[(y / TILE) * 4 + x / TILE] / 65536.0) / SIGMA_T;
+    return pft_test_pre_res_counts(p, x, y) / SIGMA_T;
 }
 
 /* Runs NFR frames with the block; from frame 21 on, the rms residual (SIGMA_T units) of the
