@@ -340,10 +340,8 @@ static inline pft_frame_t fz_pre_raw(uint8_t *buf, uint32_t seed, uint32_t k, ui
     return fr;
 }
 
-/* A whitened residual (PFT_PIX_RES16) of w x h packed pixels in buf: Q8.8 noise of about one
- * sigma, a bright 3 x 3 point, and every 16th pixel (from the seed) masked. */
-static inline pft_frame_t fz_pre_res(int16_t *buf, uint32_t seed, uint32_t k, uint16_t w,
-                                     uint16_t h)
+/* The descriptor of a packed w x h PFT_PIX_RES16 plane in buf, frame seq. */
+static inline pft_frame_t fz_res16_frame(const int16_t *buf, uint16_t w, uint16_t h, uint32_t seq)
 {
     pft_frame_t fr;
     memset(&fr, 0, sizeof fr);
@@ -351,8 +349,17 @@ static inline pft_frame_t fz_pre_res(int16_t *buf, uint32_t seed, uint32_t k, ui
     fr.height = h;
     fr.format = PFT_PIX_RES16;
     fr.stride_bytes = 2u * (uint32_t)w;
-    fr.seq = k;
+    fr.seq = seq;
     fr.data = buf;
+    return fr;
+}
+
+/* A whitened residual (PFT_PIX_RES16) of w x h packed pixels in buf: Q8.8 noise of about one
+ * sigma, a bright 3 x 3 point, and every 16th pixel (from the seed) masked. */
+static inline pft_frame_t fz_pre_res(int16_t *buf, uint32_t seed, uint32_t k, uint16_t w,
+                                     uint16_t h)
+{
+    pft_frame_t fr = fz_res16_frame(buf, w, h, k);
     uint32_t s = (seed * 2654435761u + k) | 1u;
     uint32_t cx = (seed + k) % (w + 1u), cy = (seed >> 8) % (h + 1u);
     for (uint32_t y = 0; y < h; ++y) {

@@ -730,14 +730,7 @@ static void run_pre(fz_t *f)
                                      PFT_PRE_FLAG_REG_LOST)) == 0u;
 
         /* the clutter map: the residual, or now and then a hostile RES16 frame */
-        pft_frame_t rf;
-        memset(&rf, 0, sizeof rf);
-        rf.data = g_res;
-        rf.width = c.width;
-        rf.height = c.height;
-        rf.stride_bytes = 2u * c.width;
-        rf.format = PFT_PIX_RES16;
-        rf.seq = fr.seq;
+        pft_frame_t rf = fz_res16_frame(g_res, c.width, c.height, fr.seq);
         uint8_t mop = fz_u8(f);
         int16_t *mpx = g_res;
         if (mop >= 224u) {
