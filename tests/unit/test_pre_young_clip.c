@@ -24,7 +24,8 @@ void tearDown(void) {}
 #define SIGMA_T 16.0 /* temporal noise, counts */
 
 static uint16_t g_img[NPIX];
-static uint64_t g_work[(PFT_PRE_WORKSPACE_BYTES_ANCHOR(W, H, 4, TILE, 64) + PFT_PRE_YOUNG_BYTES(W, H)) / 8 + 8];
+static uint64_t g_work[(PFT_PRE_WORKSPACE_BYTES_ANCHOR(W, H, 4, TILE, 64) + PFT_PRE_YOUNG_BYTES(W, H) +
+                        PFT_PRE_LOCAL_BYTES(W, H, TILE)) / 8 + 8];
 static uint64_t g_copy[sizeof(g_work) / 8];
 static uint32_t g_rs = 2463534242u;
 static double g_cx[W], g_cy[H], g_sx[W], g_sy[H];
@@ -58,8 +59,8 @@ static void render(double sx, double tx, double ty, double amp)
 }
 
 /* The real-frame block's background: anchored, the clip at 0.25 sigma, bg_gate_young 16, and
- * bg_young_clip `clip` (Q8.8 sigma). */
-static void config(pft_pre_config_t *c, uint16_t clip)
+ * bg_young_clip `clip` (Q8.8 sigma); bg_gate_local `local` (the shaded file's relative form). */
+static void config_local(pft_pre_config_t *c, uint16_t clip, uint8_t local)
 {
     pft_pre_config_default(c);
     c->width = W;
@@ -70,6 +71,12 @@ static void config(pft_pre_config_t *c, uint16_t clip)
     c->bg_gate = 64u;
     c->bg_gate_young = 16u;
     c->bg_young_clip = clip;
+    c->bg_gate_local = local;
+}
+
+static void config(pft_pre_config_t *c, uint16_t clip)
+{
+    config_local(c, clip, 0u);
 }
 
 /* ------------------------------------------------------------------ configuration */
@@ -113,13 +120,14 @@ static void test_config(void)
  * spends on them. The share of the point's own value left in the residual at its nearest
  * pixel, mean over frames 50..79 (the point at x 6..12). Without the option the young cells
  * learn it at the rate alpha; with the clip at 1 sigma at most alpha sigma per frame. Measured
- * (both builds alike, the stage is integer): 0.678 without, 0.777 with the clip at 1 sigma.
- * Bounds: without below 0.72, with above 0.74 and at least 0.06 above it (the option's effect;
- * equal shares, the option doing nothing, fail). */
-static double entering_share(uint16_t clip)
+ * (both builds alike, the stage is integer): 0.678 without, 0.777 with the clip at 1 sigma;
+ * with bg_gate_local relative as well 0.683 and 0.775. Bounds, for both: without below 0.72,
+ * with above 0.74 and at least 0.06 above it (the option's effect; equal shares, the option
+ * doing nothing, fail). */
+static double entering_share(uint16_t clip, uint8_t local)
 {
     pft_pre_config_t c;
-    config(&c, clip);
+    config_local(&c, clip, local);
     pft_pre_t p;
     pft_test_pre_init(&p, &c, g_work, sizeof(g_work));
     g_rs = 2463534242u;
@@ -146,13 +154,20 @@ static double entering_share(uint16_t clip)
 
 static void test_entering_point_kept(void)
 {
-    const double off = entering_share(0u), on = entering_share(256u);
+    const double off = entering_share(0u, 0u), on = entering_share(256u, 0u);
     char msg[128];
     snprintf(msg, sizeof msg, "share kept: %.3f without bg_young_clip, %.3f with 1 sigma", off, on);
     UnityPrint(msg);
     UNITY_PRINT_EOL();
     TEST_ASSERT_TRUE_MESSAGE(off < 0.72, msg);
     TEST_ASSERT_TRUE_MESSAGE(on > 0.74 && on > off + 0.06, msg);
+    /* with bg_gate_local relative too (its own path through the young cells) */
+    const double loff = entering_share(0u, PFT_PRE_GATE_LOCAL_RELATIVE), lon = entering_share(256u, PFT_PRE_GATE_LOCAL_RELATIVE);
+    snprintf(msg, sizeof msg, "with bg_gate_local relative: %.3f without bg_young_clip, %.3f with 1 sigma", loff, lon);
+    UnityPrint(msg);
+    UNITY_PRINT_EOL();
+    TEST_ASSERT_TRUE_MESSAGE(loff < 0.72, msg);
+    TEST_ASSERT_TRUE_MESSAGE(lon > 0.74 && lon > loff + 0.06, msg);
 }
 
 /* ------------------------------------------------------------------ the entering strip */
