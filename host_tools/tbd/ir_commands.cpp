@@ -388,6 +388,62 @@ json summarize_pair(const std::vector<IrRunEval> &tbd, const std::vector<IrRunEv
 }
 
 // ------------------------------------------------------------------------- selftest
+/** The eval summary's by_entry (docs/host_tools.md, "eval summary"): six injected targets on a
+ *  40 x 30 frame, one per border (first truth point within 2 px of it: left, right, top,
+ *  bottom), one inside and one labelled object at the right border (not counted), the inside
+ *  one and the right one detected by a track on them; the border of a target whose first truth
+ *  point is not its first row in the file is that of its earliest frame. */
+template <class Check>
+int entry_checks(Check &check)
+{
+    std::vector<TruthRow> truth;
+    auto row = [&](int frame, int id, double x, double y, bool lab) {
+        TruthRow r;
+        r.frame = frame;
+        r.id = id;
+        r.x = x;
+        r.y = y;
+        r.snr_db = 9.0;
+        r.labelled = lab;
+        truth.push_back(r);
+    };
+    row(2, 1, 1.5, 10.0, false);  // left
+    row(1, 2, 20.0, 0.5, false);  // top
+    row(1, 3, 20.0, 28.0, false); // bottom (y > 30 - 3)
+    row(3, 4, 37.5, 12.0, false); // right (x > 40 - 3)
+    row(2, 4, 37.6, 12.1, false); // ... its earliest frame is 2, also at the right border
+    row(1, 5, 20.0, 15.0, false); // inside
+    row(1, 6, 39.0, 15.0, true);  // labelled: not in by_entry
+    row(4, 4, 36.0, 12.0, false);
+    std::vector<tbd::FrameOut> out(4);
+    for (int k = 0; k < 4; ++k) {
+        out[k].frame = static_cast<uint32_t>(k + 1);
+        out[k].width = 40;
+        out[k].height = 30;
+    }
+    tbd::TrackOut a, c;
+    a.id = 7;
+    a.x = 20.2;
+    a.y = 15.1;
+    c.id = 8;
+    c.x = 36.1;
+    c.y = 12.0;
+    out[0].tracks.push_back(a);
+    out[3].tracks.push_back(c);
+    std::vector<IrRunEval> runs{evaluate_ir(truth, out, 1.0, 3.0)};
+    const nlohmann::json e = summarize_ir(runs)["by_entry"];
+    bool ok = true;
+    const char *names[5] = {"left", "right", "top", "bottom", "inside"};
+    const long want_n[5] = {1, 1, 1, 1, 1}, want_d[5] = {0, 1, 0, 0, 1};
+    for (int i = 0; i < 5; ++i)
+        ok = ok && e.contains(names[i]) && e[names[i]]["targets"].get<long>() == want_n[i] &&
+             e[names[i]]["detected"].get<long>() == want_d[i];
+    ok = ok && e["right"]["detection_probability"].get<double>() == 1.0 && e.size() == 5u;
+    check("eval summary by_entry: one injected target per border and one inside, the labelled one left out",
+          ok);
+    return 0;
+}
+
 /** DBT known answers: the threshold of a false-alarm rate; a point moving on a line in noise
  *  confirmed after m of n frames and ended max_misses frames after it leaves; nothing from a
  *  frame with no exceedance or an all-masked one. */
@@ -484,9 +540,9 @@ int dbt_checks(Check &check)
     std::snprintf(b, sizeof b, "dbt.preprocess: %d of %d preprocessing fields read there, %d of %d manager fields "
                   "refused by name; unknown to the tracker block:%s", n_pre_ok, n_pre, n_trk_ok, n_trk,
                   unknown.empty() ? " none" : unknown.c_str());
-    // 75: the names parse_tracker (ir_scenario.cpp) allows, note included; a new tracker field
+    // 76: the names parse_tracker (ir_scenario.cpp) allows, note included; a new tracker field
     // must be put in one of the two lists
-    check(b, n_pre_ok == n_pre && n_trk_ok == n_trk && unknown.empty() && n_pre + n_trk + 1 == 75);
+    check(b, n_pre_ok == n_pre && n_trk_ok == n_trk && unknown.empty() && n_pre + n_trk + 1 == 76);
     return 0;
 }
 
@@ -734,6 +790,7 @@ int selftest_checks(bool verbose)
     check(b, std::fabs(peak / want - 1.0) < 0.05);
 
     fails += dbt_checks(check);
+    fails += entry_checks(check);
     fails += pipeline_sequence_checks(check);
     fails += clutter_checks(check);
     fails += highpass_checks(check);

@@ -100,9 +100,31 @@ IrRunEval evaluate_ir(const std::vector<TruthRow> &truth, const std::vector<tbd:
             ev.targets.push_back(t);
         }
         TargetResult &t = ev.targets[it->second];
+        if (r.frame <= t.first || !std::isfinite(t.first_x)) {
+            t.first_x = r.x;
+            t.first_y = r.y;
+        }
         t.first = std::min(t.first, r.frame);
         t.last = std::max(t.last, r.frame);
         ++t.present;
+    }
+    // the border each target entered by (its first truth point within 2 px of it), in the
+    // frame's coordinates: the lost side of the scene's drift is where new scene comes in
+    int fw = 0, fh = 0;
+    for (const tbd::FrameOut &f : out)
+        if (f.width > 0 && f.height > 0) {
+            fw = f.width;
+            fh = f.height;
+            break;
+        }
+    for (TargetResult &t : ev.targets) {
+        if (fw <= 0)
+            continue;
+        t.entry = t.first_x < 2.0        ? "left"
+                  : t.first_x > fw - 3.0 ? "right"
+                  : t.first_y < 2.0      ? "top"
+                  : t.first_y > fh - 3.0 ? "bottom"
+                                         : "inside";
     }
     std::map<uint32_t, bool> track_assoc;                 // track id -> ever associated
     std::map<uint32_t, TrackSpan> track_span;            // track id -> first/last report
@@ -211,6 +233,25 @@ nlohmann::json group_summary(const std::vector<IrRunEval> &runs, int kind /* -1 
             {"rmse", num(correct ? std::sqrt(sq / correct) : NAN)}};
 }
 
+// the injected targets by the border they entered by (TargetResult::entry)
+nlohmann::json entry_summary(const std::vector<IrRunEval> &runs)
+{
+    nlohmann::json e = nlohmann::json::object();
+    for (const char *k : {"left", "right", "top", "bottom", "inside"}) {
+        long n = 0, det = 0;
+        for (const IrRunEval &r : runs)
+            for (const TargetResult &t : r.targets)
+                if (!t.labelled && t.entry == k) {
+                    ++n;
+                    det += t.detected ? 1 : 0;
+                }
+        e[k] = {{"targets", n},
+                {"detected", det},
+                {"detection_probability", n ? nlohmann::json(static_cast<double>(det) / n) : nlohmann::json(nullptr)}};
+    }
+    return e;
+}
+
 std::string f2(const nlohmann::json &v, int prec = 2)
 {
     if (!v.is_number())
@@ -249,7 +290,7 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
                           {"detected", t.detected},
                           {"appearance_delay", t.detected ? nlohmann::json(t.appear_delay) : nlohmann::json(nullptr)},
                           {"correct_frames", t.correct}, {"correct_sq_error_px2", t.sq_correct},
-                          {"tracks", t.tracks}});
+                          {"tracks", t.tracks}, {"entry", t.entry}});
         nlohmann::json fl = nlohmann::json::array();
         auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
         for (const TrackSpan &f : r.false_list)
@@ -268,6 +309,7 @@ nlohmann::json summarize_ir(const std::vector<IrRunEval> &runs)
             {"frames_total", frames},
             {"averaged", a},
             {"by_kind", {{"injected", group_summary(runs, 0)}, {"labelled", group_summary(runs, 1)}}},
+            {"by_entry", entry_summary(runs)},
             {"per_run", per}};
 }
 

@@ -29,6 +29,8 @@ struct TargetResult {
     int correct = 0;
     double sq_correct = 0;
     int tracks = 0;                        ///< distinct tracks associated with it
+    double first_x = NAN, first_y = NAN;   ///< its truth position in its first frame
+    std::string entry;                     ///< the frame border it entered by ("left", "right", "top", "bottom": its first truth point within 2 px of it, checked in that order), "inside", or "" when the frame size is unknown
 };
 
 /** Where and when a track was reported (frame coordinates, 1-based frames): the entries of

@@ -102,6 +102,7 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.bg_gate = static_cast<uint16_t>(std::lround(t.bg_gate * 256.0));  // 0 (off) or 64..4096: the scenario reader's range
     c.bg_gate_shift = static_cast<uint8_t>(t.bg_gate_shift);
     c.bg_gate_young = static_cast<uint8_t>(t.bg_gate_young);
+    c.bg_young_clip = static_cast<uint16_t>(std::lround(t.bg_young_clip * 256.0));  // 0 (off) or 64..4096: the scenario reader's range
     c.bg_gate_local = t.bg_gate_local == "mean"       ? static_cast<uint8_t>(PFT_PRE_GATE_LOCAL_MEAN)
                       : t.bg_gate_local == "relative" ? static_cast<uint8_t>(PFT_PRE_GATE_LOCAL_RELATIVE)
                                                       : uint8_t{0};

@@ -111,6 +111,7 @@ struct TrackerSettings {
     double bg_gate = 0.0;                       ///< with bg_anchor: the background's update innovation clipped to +-bg_gate tile sigmas (pft_pre bg_gate, 0 off or 0.25..16)
     int bg_gate_shift = 0;                      ///< with bg_gate: 0 clips the innovation beyond the gate; 1..15 updates those cells with alpha / 2^shift (pft_pre bg_gate_shift)
     int bg_gate_young = 0;                      ///< with bg_gate: frames a grid cell that entered the scene is updated without the gate (pft_pre bg_gate_young, 0 off or 1..255)
+    double bg_young_clip = 0.0;                 ///< with bg_gate_young: a cell that enters the scene starts within this many tile sigmas of the nearest cell held so far, and young cells are updated with this clip instead of no gate (pft_pre bg_young_clip, 0 off or 0.25..16)
     std::string bg_gate_local = "off";          ///< with bg_gate: "mean" or "relative" gates the innovation less its tile's part from the last frame (pft_pre bg_gate_local), "off"
     std::string bg_masked_taps = "off";         ///< with bg_anchor: "young" (needs bg_gate_young) or "all" updates a grid cell with a masked horizontal tap from its valid taps renormalised (pft_pre bg_masked_taps), "off" keeps it
     int bg_stale_reinit = 0;                    ///< temporal: a background value not learnt for more than N frames (or never) because its pixel was masked restarts from the frame, the residual reading it masked (pft_pre bg_stale_reinit, 0 off or 1..126)

@@ -45,6 +45,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_gate_local = 0u;
     cfg->bg_masked_taps = 0u;
     cfg->bg_stale_reinit = 0u;
+    cfg->bg_young_clip = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -151,6 +152,10 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_stale_reinit > PFT_PRE_MAX_BG_STALE ||
         (c->bg_stale_reinit != 0u && c->method != PFT_PRE_BG_TEMPORAL)) {
         return "bg_stale_reinit"; /* ages up to 127 (never learnt) */
+    }
+    if (c->bg_young_clip != 0u && (c->bg_gate_young == 0u || c->bg_young_clip < PFT_PRE_MIN_BG_GATE ||
+                                   c->bg_young_clip > PFT_PRE_MAX_BG_GATE)) {
+        return "bg_young_clip"; /* acts on bg_gate_young's young cells */
     }
     return NULL;
 }

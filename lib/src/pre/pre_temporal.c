@@ -927,15 +927,27 @@ static uint32_t gate_tile_(const pft_pre_t *p, int32_t jy, int32_t j)
 /* bg_gate: the clip of the update's innovation for grid cell (j, jy), U units: g sigma with
  * sigma the last estimate of the cell's tile (gate_tile_); 65535 (no clip) while that tile has
  * none. */
-static int32_t gate_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+static int32_t gate_lim_g_(const pft_pre_t *p, int32_t jy, int32_t j, uint32_t gq)
 {
     const uint32_t s = p->tsig[gate_tile_(p, jy, j)] & ~PFT_PRE_TILE_STALE_; /* R units Q4 */
     if (s == 0u) {
         return 65535;
     }
     /* g (Q8.8) s (R Q4) 2^(bf - rs) / 2^12, rounded: U units */
-    const uint64_t v = (((uint64_t)p->cfg.bg_gate * s << (uint32_t)(p->bf - p->rs)) + 2048u) >> 12;
+    const uint64_t v = (((uint64_t)gq * s << (uint32_t)(p->bf - p->rs)) + 2048u) >> 12;
     return v < 1u ? 1 : (v > 65535u ? 65535 : (int32_t)v);
+}
+
+static int32_t gate_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+{
+    return gate_lim_g_(p, jy, j, p->cfg.bg_gate);
+}
+
+/* bg_young_clip (docs/algorithms.md 9.13): the limit of a young cell's update, U units: no
+ * gate (65535) without the option, else the clip bg_young_clip sigma of the cell's tile. */
+static int32_t young_lim_(const pft_pre_t *p, int32_t jy, int32_t j)
+{
+    return p->cfg.bg_young_clip == 0u ? 65535 : gate_lim_g_(p, jy, j, p->cfg.bg_young_clip);
 }
 
 /* The last cell of the tile column of cell j (cells -1 and w, w + 1 belong to the first and
@@ -1211,7 +1223,8 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
              * to +-lim (bg_gate_shift 0) or the weight alpha / 2^bg_gate_shift */
             const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
             const int32_t ag = wsh == 0 ? a15 : a15 >> wsh;
-            /* bg_gate_young: no gate (a limit of 65535) in a young row, or at a young column */
+            /* bg_gate_young: no gate (a limit of 65535; bg_young_clip: its clip) in a young row, or
+             * at a young column */
             const uint8_t *ax = p->agex != NULL ? p->agex + 1 : NULL; /* ax[j]: column j */
             const uint32_t ny = p->cfg.bg_gate_young;
             const bool ryoung = ax != NULL && p->agey[jy + 1] < ny;
@@ -1220,7 +1233,8 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
                 je = se < fs1 ? se : fs1;
-                const int32_t lim = ryoung ? 65535 : gate_lim_(p, jy, ja0);
+                const int32_t lim = ryoung ? young_lim_(p, jy, ja0) : gate_lim_(p, jy, ja0);
+                const int32_t ylim = young_lim_(p, jy, ja0);
                 /* bg_gate_young: the span's young columns ungated. Columns enter only at the
                  * ends of the valid range, so their ages rise from each end inwards: the young
                  * ones are a prefix [ja0, ma) and a suffix (mb, je] of the span */
@@ -1235,14 +1249,14 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                 }
                 if (p->gsum != NULL) { /* bg_gate_local */
                     const uint32_t ti = gate_tile_(p, jy, ja0);
-                    gate_local_span_(p, &gr, ti, b, ja0, ma - 1, 65535);
+                    gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim);
                     gate_local_span_(p, &gr, ti, b, ma, mb, lim);
-                    gate_local_span_(p, &gr, ti, b, mb + 1, je, 65535);
+                    gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim);
                     continue;
                 }
-                gate_run_(&gr, b, ja0, ma - 1, 65535);
+                gate_run_(&gr, b, ja0, ma - 1, ylim);
                 gate_run_(&gr, b, ma, mb, lim);
-                gate_run_(&gr, b, mb + 1, je, 65535);
+                gate_run_(&gr, b, mb + 1, je, ylim);
             }
         }
     }
@@ -1271,7 +1285,7 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                 /* gate_run_'s or gate_local_span_'s update of this one cell */
                 const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
                                                         p->agey[jy + 1] < p->cfg.bg_gate_young);
-                const int32_t lim = young ? 65535 : gate_lim_(p, jy, j);
+                const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
                 const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
                 int32_t mc = 0;
                 if (p->gsum != NULL) {
