@@ -199,16 +199,25 @@ std::vector<double> Field::numbers(const std::string &key, std::size_t n) const
 
 void Field::only(std::initializer_list<const char *> allowed) const
 {
+    std::vector<const char *> names(allowed);
+    names.push_back(nullptr);
+    only({names.data()});
+}
+
+void Field::only(std::initializer_list<const char *const *> lists) const
+{
     if (!node_->is_object())
         fail("expected an object, got " + brief(*node_));
     for (auto it = node_->begin(); it != node_->end(); ++it) {
         bool ok = false;
-        for (const char *a : allowed)
-            ok = ok || it.key() == a;
+        for (const char *const *l : lists)
+            for (const char *const *a = l; *a != nullptr; ++a)
+                ok = ok || it.key() == *a;
         if (!ok) {
             std::string list;
-            for (const char *a : allowed)
-                list += (list.empty() ? "" : ", ") + std::string(a);
+            for (const char *const *l : lists)
+                for (const char *const *a = l; *a != nullptr; ++a)
+                    list += (list.empty() ? "" : ", ") + std::string(*a);
             throw InputError(file_ + ": " + child_path(it.key()) +
                              ": unknown field (allowed here: " + list + ")");
         }

@@ -58,6 +58,8 @@ public:
 
     /** InputError naming the first member not in `allowed` (catches typos in scenario files). */
     void only(std::initializer_list<const char *> allowed) const;
+    /** The same over null-terminated name lists: a member must be in one of them. */
+    void only(std::initializer_list<const char *const *> lists) const;
 
 private:
     const json *node_;
