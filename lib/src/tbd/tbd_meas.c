@@ -880,13 +880,70 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
 /* Largest stored sum of the integration (1/64 noise sigmas): S << 2 fits 16 bits. */
 #define INTEG_MAX_ 16383
 
+/* The largest last-frame sum of the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2]
+ * (vm padded by one zero column on each side), 0 outside. */
+static inline uint32_t integ_mx_(const uint32_t *vm, int32_t pc, int32_t bw)
+{
+    uint32_t mx = 0u;
+    if (pc >= -1 && pc <= bw) {
+        const uint32_t a = pc >= 0 ? vm[pc] : 0u;
+        const uint32_t b = vm[pc + 1];
+        const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
+        mx = a > b ? a : b;
+        mx = d > mx ? d : mx;
+    }
+    return mx;
+}
+
+/* A bin's stored sum: its largest pixel best in 1/64 sigmas (rounded; pft_kround64_ is
+ * pft_round_int(pft_mul_i(best, 64)) on the clamped value) plus a_q / 256 times mx, floored
+ * at 0 and capped at INTEG_MAX_. */
+static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
+{
+    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
+    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
+    /* pft_clamp(best, lo, hi) in two selections that both always run (the same value, NaN
+     * kept: a branch-free form the compiler can vectorise in float as well) */
+    const pft_real_t b1 = best < lo ? lo : best;
+    const pft_real_t b2 = b1 > hi ? hi : b1;
+    int32_t sq = pft_kround64_(b2);
+    sq += (int32_t)((a_q * mx + 128u) >> 8);
+    return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
+}
+
+/* Bin bc of row br in general (any column, r1 NULL past the last row). */
+static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const pft_real_t *r1,
+                       uint32_t w, const uint32_t *vm, uint32_t bc, uint16_t *out)
+{
+    const uint32_t c0 = 2u * bc;
+    pft_real_t best = r0[c0];
+    uint32_t idx = 0u;
+    if (c0 + 1u < w && r0[c0 + 1u] > best) {
+        best = r0[c0 + 1u];
+        idx = 1u;
+    }
+    if (r1 != NULL && r1[c0] > best) {
+        best = r1[c0];
+        idx = 2u;
+    }
+    if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
+        best = r1[c0 + 1u];
+        idx = 3u;
+    }
+    const uint32_t mx = integ_mx_(vm, (int32_t)bc - ig->sx, (int32_t)ig->bw);
+    out[bc] = (uint16_t)((integ_sq_(best, mx, ig->a_q) << 2) | idx);
+}
+
 /* One bin row br of the integration (docs/algorithms.md 2.13) from the PSF-matched rows r0 and
  * r1 (pixel rows 2 br and 2 br + 1; r1 NULL past the last row): per bin the largest of its
  * pixels, m in 1/64 sigmas (rounded), plus a_q / 256 times the largest last-frame sum of the
  * 3 x 3 bins around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and
  * squares added to sum[0], sum[1]. vm is bw + 2 words of scratch: the largest last-frame sum
  * of the three rows per column, with a zero column on each side. Integer arithmetic after m:
- * the same in both builds. */
+ * the same in both builds. The bins with both pixel rows and columns whose 3 x 3 neighbourhood
+ * lies inside the last frame's row (bc - sx in 0 .. bw - 1) go through one branch-free loop
+ * (the same selections as integ_bin_, ties to the earlier pixel), the others through
+ * integ_bin_; the sums after the row, over its stored values. */
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
 {
@@ -907,42 +964,52 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
             vm[c + 1u] = v > vm[c + 1u] ? v : vm[c + 1u];
         }
     }
-    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
-    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
     uint16_t *out = ig->cur + (size_t)br * ig->bw;
-    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
-        const uint32_t c0 = 2u * bc;
-        pft_real_t best = r0[c0];
-        uint32_t idx = 0u;
-        if (c0 + 1u < w && r0[c0 + 1u] > best) {
-            best = r0[c0 + 1u];
-            idx = 1u;
-        }
-        if (r1 != NULL && r1[c0] > best) {
-            best = r1[c0];
-            idx = 2u;
-        }
-        if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
-            best = r1[c0 + 1u];
-            idx = 3u;
-        }
-        /* the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2] (padded by one) */
-        const int32_t pc = (int32_t)bc - ig->sx;
-        uint32_t mx = 0u;
-        if (pc >= -1 && pc <= bw) {
-            const uint32_t a = pc >= 0 ? vm[pc] : 0u;
-            const uint32_t b = vm[pc + 1];
-            const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
-            mx = a > b ? a : b;
-            mx = d > mx ? d : mx;
-        }
-        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, lo, hi), 64));
-        sq += (int32_t)((ig->a_q * mx + 128u) >> 8);
-        sq = sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq);
-        out[bc] = (uint16_t)(((uint32_t)sq << 2) | idx);
-        sum[0] += (uint64_t)sq;
-        sum[1] += (uint64_t)sq * (uint64_t)sq;
+    /* the fast bins: bc in [b0, b1) with sx <= bc < sx + bw and 2 bc + 1 < w, r1 not NULL */
+    const int32_t sx = ig->sx;
+    const int32_t nfull = (int32_t)(w / 2u);
+    int32_t b0 = sx < 0 ? 0 : (sx > bw ? bw : sx);
+    int32_t b1 = sx > nfull - bw ? nfull : sx + bw;
+    b1 = r1 == NULL || b1 < b0 ? b0 : b1;
+    for (int32_t bc = 0; bc < b0; ++bc) {
+        integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
     }
+    {
+        const uint32_t a_q = ig->a_q;
+        for (int32_t bc = b0; bc < b1; ++bc) {
+            const pft_real_t x0 = r0[2 * bc];
+            const pft_real_t x1 = r0[2 * bc + 1];
+            const pft_real_t x2 = r1[2 * bc];
+            const pft_real_t x3 = r1[2 * bc + 1];
+            pft_real_t best = x0;
+            uint32_t idx = 0u;
+            idx = x1 > best ? 1u : idx;
+            best = x1 > best ? x1 : best;
+            idx = x2 > best ? 2u : idx;
+            best = x2 > best ? x2 : best;
+            idx = x3 > best ? 3u : idx;
+            best = x3 > best ? x3 : best;
+            /* pc = bc - sx in 0 .. bw - 1: vm[pc .. pc + 2] inside */
+            const uint32_t a = vm[bc - sx];
+            const uint32_t b = vm[bc - sx + 1];
+            const uint32_t d = vm[bc - sx + 2];
+            uint32_t mx = a > b ? a : b;
+            mx = d > mx ? d : mx;
+            out[bc] = (uint16_t)((integ_sq_(best, mx, a_q) << 2) | idx);
+        }
+    }
+    for (int32_t bc = b1; bc < bw; ++bc) {
+        integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
+    }
+    uint64_t s0 = 0u;
+    uint64_t s1 = 0u;
+    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+        const uint32_t sq = (uint32_t)out[bc] >> 2;
+        s0 += sq;
+        s1 += (uint64_t)sq * sq;
+    }
+    sum[0] += s0;
+    sum[1] += s1;
 }
 
 /* floor(sqrt(v)), bit by bit (32 steps). */
