@@ -952,19 +952,28 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     const int32_t bh = (int32_t)ig->bh;
     const int32_t rlo = pr - 1 < 0 ? 0 : pr - 1;
     const int32_t rhi = pr + 1 > bh - 1 ? bh - 1 : pr + 1;
+    const uint32_t bwu = ig->bw; /* a local: vm's stores could alias ig->bw otherwise */
     vm[0] = 0u;
-    vm[ig->bw + 1u] = 0u;
-    for (uint32_t c = 0; c < ig->bw; ++c) {
-        vm[c + 1u] = 0u;
-    }
-    for (int32_t r = rlo; r <= rhi; ++r) {
-        const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
-        for (uint32_t c = 0; c < ig->bw; ++c) {
-            const uint32_t v = (uint32_t)prow[c] >> 2;
-            vm[c + 1u] = v > vm[c + 1u] ? v : vm[c + 1u];
+    vm[bwu + 1u] = 0u;
+    if (rhi < rlo) {
+        for (uint32_t c = 0; c < bwu; ++c) {
+            vm[c + 1u] = 0u;
+        }
+    } else {
+        /* the largest of rows rlo .. rhi (one to three; a row repeated when fewer) in one
+         * pass: max(a, b) >> 2 = max(a >> 2, b >> 2) */
+        const uint16_t *p0 = ig->prev + (size_t)rlo * bwu;
+        const uint16_t *p1 = ig->prev + (size_t)(rlo + 1 <= rhi ? rlo + 1 : rlo) * bwu;
+        const uint16_t *p2 = ig->prev + (size_t)rhi * bwu;
+        for (uint32_t c = 0; c < bwu; ++c) {
+            const uint16_t a = p0[c];
+            const uint16_t b = p1[c];
+            const uint16_t d = p2[c];
+            const uint16_t m = a > b ? a : b;
+            vm[c + 1u] = (uint32_t)(d > m ? d : m) >> 2;
         }
     }
-    uint16_t *out = ig->cur + (size_t)br * ig->bw;
+    uint16_t *out = ig->cur + (size_t)br * bwu;
     /* the fast bins: bc in [b0, b1) with sx <= bc < sx + bw and 2 bc + 1 < w, r1 not NULL */
     const int32_t sx = ig->sx;
     const int32_t nfull = (int32_t)(w / 2u);
@@ -1003,7 +1012,7 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     uint64_t s0 = 0u;
     uint64_t s1 = 0u;
-    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+    for (uint32_t bc = 0; bc < bwu; ++bc) {
         const uint32_t sq = (uint32_t)out[bc] >> 2;
         s0 += sq;
         s1 += (uint64_t)sq * sq;
