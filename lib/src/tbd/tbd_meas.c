@@ -896,17 +896,11 @@ static inline uint32_t integ_mx_(const uint32_t *vm, int32_t pc, int32_t bw)
 }
 
 /* A bin's stored sum: its largest pixel best in 1/64 sigmas (rounded; pft_kround64_ is
- * pft_round_int(pft_mul_i(best, 64)) on the clamped value) plus a_q / 256 times mx, floored
- * at 0 and capped at INTEG_MAX_. */
+ * pft_round_int(pft_mul_i(pft_clamp(best, -257, 257), 64))) plus a_q / 256 times mx, floored
+ * at 0 and capped at INTEG_MAX_ (-257 .. 257: INTEG_MAX_ / 64 + 1 either way). */
 static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
 {
-    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
-    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
-    /* pft_clamp(best, lo, hi) in two selections that both always run (the same value, NaN
-     * kept: a branch-free form the compiler can vectorise in float as well) */
-    const pft_real_t b1 = best < lo ? lo : best;
-    const pft_real_t b2 = b1 > hi ? hi : b1;
-    int32_t sq = pft_kround64_(b2);
+    int32_t sq = pft_kround64_(best);
     sq += (int32_t)((a_q * mx + 128u) >> 8);
     return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
 }
@@ -990,14 +984,18 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
             const pft_real_t x1 = r0[2 * bc + 1];
             const pft_real_t x2 = r1[2 * bc];
             const pft_real_t x3 = r1[2 * bc + 1];
+            /* idx by masks from the same compares (a form the compiler vectorises) */
             pft_real_t best = x0;
             uint32_t idx = 0u;
-            idx = x1 > best ? 1u : idx;
+            const uint32_t g1 = 0u - (uint32_t)(x1 > best);
             best = x1 > best ? x1 : best;
-            idx = x2 > best ? 2u : idx;
+            idx = (idx & ~g1) | (1u & g1);
+            const uint32_t g2 = 0u - (uint32_t)(x2 > best);
             best = x2 > best ? x2 : best;
-            idx = x3 > best ? 3u : idx;
+            idx = (idx & ~g2) | (2u & g2);
+            const uint32_t g3 = 0u - (uint32_t)(x3 > best);
             best = x3 > best ? x3 : best;
+            idx = (idx & ~g3) | (3u & g3);
             /* pc = bc - sx in 0 .. bw - 1: vm[pc .. pc + 2] inside */
             const uint32_t a = vm[bc - sx];
             const uint32_t b = vm[bc - sx + 1];
