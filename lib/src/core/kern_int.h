@@ -535,9 +535,9 @@ static inline pft_real_t pft_kfrom_f32_(float v) { return v; }
 static inline int32_t pft_kround64_(pft_real_t a)
 {
     const float x = a * 64.0f;
-    const uint32_t lo = 0u - (uint32_t)(x < -16448.0f);
-    const uint32_t hi = 0u - (uint32_t)(x > 16448.0f);
-    const uint32_t ok = ~(lo | hi) & (0u - (uint32_t)(x == x));
+    const uint32_t lo = (x < -16448.0f) ? 0xFFFFFFFFu : 0u;
+    const uint32_t hi = (x > 16448.0f) ? 0xFFFFFFFFu : 0u;
+    const uint32_t ok = ~(lo | hi) & ((x == x) ? 0xFFFFFFFFu : 0u);
     uint32_t bits;
     memcpy(&bits, &x, sizeof bits);
     bits &= ok;
@@ -545,7 +545,7 @@ static inline int32_t pft_kround64_(pft_real_t a)
     memcpy(&xs, &bits, sizeof xs);
     const int32_t t = (int32_t)xs;
     const float f = xs - (float)t;
-    const uint32_t r = (uint32_t)t + (uint32_t)(f >= 0.5f) - (uint32_t)(f < -0.5f);
+    const uint32_t r = (uint32_t)t + ((f >= 0.5f) ? 1u : 0u) - ((f < -0.5f) ? 1u : 0u);
     return (int32_t)((r & ok) | ((uint32_t)-16448 & lo) | (16448u & hi));
 }
 

@@ -191,16 +191,17 @@ typedef struct {
 
 /* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, |k| <=
  * FL_MMAX_ = 2^19, the map's values and their interpolations; l <= 65535 counts), that is
- * floor((k l + 2^15 - [k l < 0]) / 2^16), in 32-bit arithmetic: with k = kh 2^16 + kl (kh = k
- * >> 16, arithmetic; kl in 0 .. 65535), k l = kh l 2^16 + kl l, so the value is kh l + ((kl l +
- * 2^15 - [k l < 0]) >> 16): kl l + 2^15 < 2^32, |kh l| <= 8 * 65535; k l < 0 exactly when k < 0
- * and l > 0 (the sign bits of k and of -l, l < 2^31). */
+ * floor((k l + 2^15 - [k l < 0]) / 2^16), in 32-bit arithmetic: with k = kh 2^16 + kl (kh =
+ * floor(k / 2^16), from the non-negative k + 2^19; kl in 0 .. 65535), k l = kh l 2^16 + kl l,
+ * so the value is kh l + ((kl l + 2^15 - [k l < 0]) >> 16): kl l + 2^15 < 2^32, |kh l| <= 8 *
+ * 65535; k l < 0 exactly when k < 0 and l > 0 (the sign bits of k and of -l, l < 2^31). */
 static inline int32_t fl_lev32_(int32_t k, uint32_t l)
 {
-    const int32_t kh = k >> 16;
+    const int32_t kh = (int32_t)((uint32_t)(k + FL_MMAX_) >> 16) - 8; /* k >> 16: k + 2^19 >= 0 */
     const uint32_t kl = (uint32_t)k & 0xFFFFu;
     const uint32_t neg = ((uint32_t)k >> 31) & ((0u - l) >> 31);
-    return kh * (int32_t)l + (int32_t)((kl * l + 32768u - neg) >> 16);
+    const int32_t lo = (int32_t)((kl * l + 32768u - neg) >> 16);
+    return (kh * (int32_t)l) + lo;
 }
 
 /* One pixel of a span without a branch: v (the residual) less off, clamped, written to *rx and
@@ -210,9 +211,9 @@ static inline void fl_px_bf_(int16_t *rx, int32_t v, int32_t off, uint32_t l, in
 {
     int32_t o = v - off;
     o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
-    const uint32_t ok = (uint32_t)(v != PFT_RES16_MASKED);
+    const uint32_t ok = (uint32_t)((v != PFT_RES16_MASKED) ? 1u : 0u);
     *rx = (int16_t)(ok != 0u ? o : v);
-    const uint32_t in = ok & (uint32_t)((uint32_t)(o + gate) <= 2u * (uint32_t)gate);
+    const uint32_t in = ok & (((uint32_t)(o + gate) <= (2u * (uint32_t)gate)) ? 1u : 0u);
     *sum += (int32_t)((uint32_t)o & (0u - in));
     *cnt += in;
     *lsum += l & (0u - in);

@@ -977,7 +977,7 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     for (int32_t bc = 0; bc < b0; ++bc) {
         integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
     }
-    {
+    if (r1 != NULL) { /* always when b0 < b1 (b1 = b0 without r1) */
         const uint32_t a_q = ig->a_q;
         for (int32_t bc = b0; bc < b1; ++bc) {
             const pft_real_t x0 = r0[2 * bc];
@@ -987,13 +987,13 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
             /* idx by masks from the same compares (a form the compiler vectorises) */
             pft_real_t best = x0;
             uint32_t idx = 0u;
-            const uint32_t g1 = 0u - (uint32_t)(x1 > best);
+            const uint32_t g1 = (x1 > best) ? 0xFFFFFFFFu : 0u;
             best = x1 > best ? x1 : best;
             idx = (idx & ~g1) | (1u & g1);
-            const uint32_t g2 = 0u - (uint32_t)(x2 > best);
+            const uint32_t g2 = (x2 > best) ? 0xFFFFFFFFu : 0u;
             best = x2 > best ? x2 : best;
             idx = (idx & ~g2) | (2u & g2);
-            const uint32_t g3 = 0u - (uint32_t)(x3 > best);
+            const uint32_t g3 = (x3 > best) ? 0xFFFFFFFFu : 0u;
             best = x3 > best ? x3 : best;
             idx = (idx & ~g3) | (3u & g3);
             /* pc = bc - sx in 0 .. bw - 1: vm[pc .. pc + 2] inside */
