@@ -28,6 +28,9 @@
  *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
  *   float only where pft_kr16_sum_ok_ holds for every tap the window can get).
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
+ * - pft_kround64_: pft_round_int(pft_mul_i(pft_clamp(a, -257, 257), 64)) (the integration's
+ *   bins, tbd_meas.c), the same value in plain 32-bit lanes (no int64, no floorf, float
+ *   selections as bit masks) so that a row of them vectorises.
  */
 #ifndef PFT_CORE_KERN_INT_H
 #define PFT_CORE_KERN_INT_H
@@ -255,6 +258,16 @@ static inline pft_real_t pft_kmul_u_(pft_real_t t, pft_real_t z)
 
 /* An F32 pixel as a real: pft_from_f32 (q16: the IEEE decoding). */
 static inline pft_real_t pft_kfrom_f32_(float v) { return pft_from_f32(v); }
+/* a clamped to [-257, 257] (in 2^16 units); then |a| 64 + 2^15 <= 16448 * 2^16 + 2^15 < 2^31, so
+ * pft_mul_i does not saturate and the sum fits 32 bits; the shift is pft_round_int's
+ * (arithmetic). */
+static inline int32_t pft_kround64_(pft_real_t a)
+{
+    const pft_real_t lim = 257 * 65536;
+    const pft_real_t a1 = a < -lim ? -lim : a;
+    const pft_real_t a2 = a1 > lim ? lim : a1;
+    return (a2 * 64 + 32768) >> 16;
+}
 
 /* a b rounded to nearest (ties up) and saturated. */
 static inline pft_real_t pft_kmulq_(pft_real_t a, pft_real_t b)
@@ -512,6 +525,29 @@ static inline pft_real_t pft_kmul_u_(pft_real_t t, pft_real_t z) { return t * z;
 static inline pft_real_t pft_kspread_(pft_real_t d) { return d; }
 /* pft_from_f32 is the identity in the float build: no call per pixel. */
 static inline pft_real_t pft_kfrom_f32_(float v) { return v; }
+/* x = 64 a is 64 pft_clamp(a, -257, 257) clamped to [-16448, 16448] (a power of two scales
+ * exactly; an overflow gives an infinity, clamped as a would be). The selections as masks
+ * from compares of x itself (the compiler vectorises no compare of a selected float): below,
+ * above, NaN (0, as pft_round_int). In range, the truncation t of x and f = x - t are exact (|x|
+ * < 2^15), and t + (f >= 1/2) - (f < -1/2) is pft_round_int's floorf(x) + (x - floorf(x) >=
+ * 1/2) (for x < 0 not integral floorf(x) = t - 1 and x - floorf(x) = f + 1); out of range xs
+ * is 0 and the mask picks the limit. */
+static inline int32_t pft_kround64_(pft_real_t a)
+{
+    const float x = a * 64.0f;
+    const uint32_t lo = (x < -16448.0f) ? 0xFFFFFFFFu : 0u;
+    const uint32_t hi = (x > 16448.0f) ? 0xFFFFFFFFu : 0u;
+    const uint32_t ok = ~(lo | hi) & ((x == x) ? 0xFFFFFFFFu : 0u);
+    uint32_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits &= ok;
+    float xs;
+    memcpy(&xs, &bits, sizeof xs);
+    const int32_t t = (int32_t)xs;
+    const float f = xs - (float)t;
+    const uint32_t r = (uint32_t)t + ((f >= 0.5f) ? 1u : 0u) - ((f < -0.5f) ? 1u : 0u);
+    return (int32_t)((r & ok) | ((uint32_t)-16448 & lo) | (16448u & hi));
+}
 
 static inline pft_real_t pft_kspot3_(const pft_real_t *z, size_t stride, const pft_real_t tx[4],
                                      const pft_real_t ty[4], pft_real_t a)

@@ -780,7 +780,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
     }
     if (pc != NULL) {
         for (int32_t x = 0; x < w; ++x) {
-            /* the gate reads the stage's residual v */
+            /* the gate reads the stage's residual v (o[x] before the mean pass writes it) */
             const int32_t v = o[x];
             const uint32_t av = (uint32_t)(v < 0 ? -v : v);
             const uint32_t p0 = pc[x];
@@ -789,11 +789,9 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
             const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
             const uint32_t p1 = ex != 0u ? pu : pd;
             pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
-            /* whether the mean takes this residual, kept in cs for the next pass */
-            cs[x] = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
-        }
-        for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], cs[x], a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+            /* whether the mean takes this residual: the same pixel's mean pass, fused */
+            const uint32_t learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+            cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {

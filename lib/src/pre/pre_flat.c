@@ -7,8 +7,6 @@
 
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
-#define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
-#define FL_QBIAS16_ 16777216       /* FL_QBIAS_ / 2^16 */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -184,16 +182,6 @@ int32_t pft_pre_flat_at(const pft_pre_flat_t *fl, uint32_t x, uint32_t y)
     return fl_mix_(r0, r1, (int32_t)u, d, fl->lb + (fl->cfg.relative ? 1u : 9u));
 }
 
-/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, |k| <= 2^23,
- * l counts): floor((q + 2^15 - [q < 0]) / 2^16) of q = k l, the floor taken on q biased to a
- * non-negative value (the same integers as rounding |q| half up and restoring the sign). */
-static int32_t fl_lev_(int32_t k, uint32_t l)
-{
-    const int64_t q = (int64_t)k * (int64_t)l;
-    const uint64_t u = (uint64_t)(q + (FL_QBIAS_ + 32768)) - (q < 0 ? 1u : 0u);
-    return (int32_t)(u >> 16u) - FL_QBIAS16_;
-}
-
 /* Sums of the gated corrected values of one span (corrected value, count, level). */
 typedef struct {
     int32_t sum;
@@ -201,63 +189,74 @@ typedef struct {
     uint32_t lsum;
 } fl_acc_t;
 
-/* The tail of one unmasked pixel: v (the residual) less off, clamped, written to *rx; booked
- * into acc when within the gate (branch-free). */
-static void fl_px_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate, fl_acc_t *acc)
+/* k * l / 2^16 rounded half away from zero (relative offset: k sigma per count Q24, |k| <=
+ * FL_MMAX_ = 2^19, the map's values and their interpolations; l <= 65535 counts), that is
+ * floor((k l + 2^15 - [k l < 0]) / 2^16), in 32-bit arithmetic: with k = kh 2^16 + kl (kh =
+ * floor(k / 2^16), from the non-negative k + 2^19; kl in 0 .. 65535), k l = kh l 2^16 + kl l,
+ * so the value is kh l + ((kl l + 2^15 - [k l < 0]) >> 16): kl l + 2^15 < 2^32, |kh l| <= 8 *
+ * 65535; k l < 0 exactly when k < 0 and l > 0 (the sign bits of k and of -l, l < 2^31). */
+static inline int32_t fl_lev32_(int32_t k, uint32_t l)
+{
+    const int32_t kh = (int32_t)((uint32_t)(k + FL_MMAX_) >> 16) - 8; /* k >> 16: k + 2^19 >= 0 */
+    const uint32_t kl = (uint32_t)k & 0xFFFFu;
+    const uint32_t neg = ((uint32_t)k >> 31) & ((0u - l) >> 31);
+    const int32_t lo = (int32_t)((kl * l + 32768u - neg) >> 16);
+    return (kh * (int32_t)l) + lo;
+}
+
+/* One pixel of a span without a branch: v (the residual) less off, clamped, written to *rx and
+ * booked into the sums when within the gate; a masked pixel left as it is and not booked. */
+static inline void fl_px_bf_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate,
+                             int32_t *sum, uint32_t *cnt, uint32_t *lsum)
 {
     int32_t o = v - off;
     o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
-    *rx = (int16_t)o;
-    const bool in = (uint32_t)(o + gate) <= 2u * (uint32_t)gate;
-    acc->sum += in ? o : 0;
-    acc->cnt += in ? 1u : 0u;
-    acc->lsum += in ? l : 0u;
+    const uint32_t ok = (uint32_t)((v != PFT_RES16_MASKED) ? 1u : 0u);
+    *rx = (int16_t)(ok != 0u ? o : v);
+    const uint32_t in = ok & (((uint32_t)(o + gate) <= (2u * (uint32_t)gate)) ? 1u : 0u);
+    *sum += (int32_t)((uint32_t)o & (0u - in));
+    *cnt += in;
+    *lsum += l & (0u - in);
 }
 
 /* Pixels x0..x1-1 of row r (one block, between two block centres). *u is the block values'
  * interpolation at x0 as fl_shr_ takes it: (numerator + FL_BIAS_) + 2^(k-1), so that
  * (*u >> k) - (FL_BIAS_ >> k) is the value; it steps by st per pixel (modulo 2^32, exact as
- * every value is in range) and is left at x1. lrow: the level row (NULL: offset form). */
+ * every value is in range) and is left at x1. lrow: the level row (NULL: offset form). Each
+ * form is one branch-free loop (fl_px_bf_, fl_lev32_), the interpolation's value at x from u0
+ * and x - x0, the sums in locals: a form the compiler vectorises. */
 static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint32_t x1,
                      uint32_t *u, uint32_t st, uint32_t k, int32_t gate, fl_acc_t *acc)
 {
     const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
-    uint32_t uu = *u;
-    fl_acc_t a = *acc;
+    const uint32_t u0 = *u;
+    int32_t sum = acc->sum;
+    uint32_t cnt = acc->cnt;
+    uint32_t lsum = acc->lsum;
     if (lrow == NULL) {
         for (uint32_t x = x0; x < x1; ++x) {
-            const int32_t off = (int32_t)(uu >> k) - cb;
-            uu += st;
-            const int32_t v = r[x];
-            if (v != PFT_RES16_MASKED) {
-                fl_px_(&r[x], v, off, 0u, gate, &a);
-            }
+            const int32_t off = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
+            fl_px_bf_(&r[x], r[x], off, 0u, gate, &sum, &cnt, &lsum);
         }
     } else if (u8) {
         for (uint32_t x = x0; x < x1; ++x) {
-            const int32_t kv = (int32_t)(uu >> k) - cb;
-            uu += st;
-            const int32_t v = r[x];
-            if (v != PFT_RES16_MASKED) {
-                const uint32_t l = lrow[x];
-                fl_px_(&r[x], v, fl_lev_(kv, l), l, gate, &a);
-            }
+            const int32_t kv = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
+            const uint32_t l = lrow[x];
+            fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
     } else {
         for (uint32_t x = x0; x < x1; ++x) {
-            const int32_t kv = (int32_t)(uu >> k) - cb;
-            uu += st;
-            const int32_t v = r[x];
-            if (v != PFT_RES16_MASKED) {
-                uint16_t l16;
-                memcpy(&l16, lrow + 2u * x, 2u);
-                const uint32_t l = l16;
-                fl_px_(&r[x], v, fl_lev_(kv, l), l, gate, &a);
-            }
+            const int32_t kv = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
+            uint16_t l16;
+            memcpy(&l16, lrow + 2u * x, 2u);
+            const uint32_t l = l16;
+            fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
     }
-    *u = uu;
-    *acc = a;
+    *u = u0 + (x1 - x0) * st;
+    acc->sum = sum;
+    acc->cnt = cnt;
+    acc->lsum = lsum;
 }
 
 /* Corrects row r (w pixels) with the offsets of the row's block values fl->rowv; with learn,

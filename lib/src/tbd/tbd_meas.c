@@ -880,13 +880,64 @@ static void peak_scan_row_(peak_scan_t *ps, uint32_t q, const pft_real_t *up,
 /* Largest stored sum of the integration (1/64 noise sigmas): S << 2 fits 16 bits. */
 #define INTEG_MAX_ 16383
 
+/* The largest last-frame sum of the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2]
+ * (vm padded by one zero column on each side), 0 outside. */
+static inline uint32_t integ_mx_(const uint32_t *vm, int32_t pc, int32_t bw)
+{
+    uint32_t mx = 0u;
+    if (pc >= -1 && pc <= bw) {
+        const uint32_t a = pc >= 0 ? vm[pc] : 0u;
+        const uint32_t b = vm[pc + 1];
+        const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
+        mx = a > b ? a : b;
+        mx = d > mx ? d : mx;
+    }
+    return mx;
+}
+
+/* A bin's stored sum: its largest pixel best in 1/64 sigmas (rounded; pft_kround64_ is
+ * pft_round_int(pft_mul_i(pft_clamp(best, -257, 257), 64))) plus a_q / 256 times mx, floored
+ * at 0 and capped at INTEG_MAX_ (-257 .. 257: INTEG_MAX_ / 64 + 1 either way). */
+static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
+{
+    int32_t sq = pft_kround64_(best);
+    sq += (int32_t)((a_q * mx + 128u) >> 8);
+    return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
+}
+
+/* Bin bc of row br in general (any column, r1 NULL past the last row). */
+static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const pft_real_t *r1,
+                       uint32_t w, const uint32_t *vm, uint32_t bc, uint16_t *out)
+{
+    const uint32_t c0 = 2u * bc;
+    pft_real_t best = r0[c0];
+    uint32_t idx = 0u;
+    if (c0 + 1u < w && r0[c0 + 1u] > best) {
+        best = r0[c0 + 1u];
+        idx = 1u;
+    }
+    if (r1 != NULL && r1[c0] > best) {
+        best = r1[c0];
+        idx = 2u;
+    }
+    if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
+        best = r1[c0 + 1u];
+        idx = 3u;
+    }
+    const uint32_t mx = integ_mx_(vm, (int32_t)bc - ig->sx, (int32_t)ig->bw);
+    out[bc] = (uint16_t)((integ_sq_(best, mx, ig->a_q) << 2) | idx);
+}
+
 /* One bin row br of the integration (docs/algorithms.md 2.13) from the PSF-matched rows r0 and
  * r1 (pixel rows 2 br and 2 br + 1; r1 NULL past the last row): per bin the largest of its
  * pixels, m in 1/64 sigmas (rounded), plus a_q / 256 times the largest last-frame sum of the
  * 3 x 3 bins around the bin less the shift, floored at 0 and capped at INTEG_MAX_; the sums and
  * squares added to sum[0], sum[1]. vm is bw + 2 words of scratch: the largest last-frame sum
  * of the three rows per column, with a zero column on each side. Integer arithmetic after m:
- * the same in both builds. */
+ * the same in both builds. The bins with both pixel rows and columns whose 3 x 3 neighbourhood
+ * lies inside the last frame's row (bc - sx in 0 .. bw - 1) go through one branch-free loop
+ * (the same selections as integ_bin_, ties to the earlier pixel), the others through
+ * integ_bin_; the sums after the row, over its stored values. */
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
 {
@@ -895,54 +946,77 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     const int32_t bh = (int32_t)ig->bh;
     const int32_t rlo = pr - 1 < 0 ? 0 : pr - 1;
     const int32_t rhi = pr + 1 > bh - 1 ? bh - 1 : pr + 1;
+    const uint32_t bwu = ig->bw; /* a local: vm's stores could alias ig->bw otherwise */
     vm[0] = 0u;
-    vm[ig->bw + 1u] = 0u;
-    for (uint32_t c = 0; c < ig->bw; ++c) {
-        vm[c + 1u] = 0u;
-    }
-    for (int32_t r = rlo; r <= rhi; ++r) {
-        const uint16_t *prow = ig->prev + (size_t)r * ig->bw;
-        for (uint32_t c = 0; c < ig->bw; ++c) {
-            const uint32_t v = (uint32_t)prow[c] >> 2;
-            vm[c + 1u] = v > vm[c + 1u] ? v : vm[c + 1u];
+    vm[bwu + 1u] = 0u;
+    if (rhi < rlo) {
+        for (uint32_t c = 0; c < bwu; ++c) {
+            vm[c + 1u] = 0u;
+        }
+    } else {
+        /* the largest of rows rlo .. rhi (one to three; a row repeated when fewer) in one
+         * pass: max(a, b) >> 2 = max(a >> 2, b >> 2) */
+        const uint16_t *p0 = ig->prev + (size_t)rlo * bwu;
+        const uint16_t *p1 = ig->prev + (size_t)(rlo + 1 <= rhi ? rlo + 1 : rlo) * bwu;
+        const uint16_t *p2 = ig->prev + (size_t)rhi * bwu;
+        for (uint32_t c = 0; c < bwu; ++c) {
+            const uint16_t a = p0[c];
+            const uint16_t b = p1[c];
+            const uint16_t d = p2[c];
+            const uint16_t m = a > b ? a : b;
+            vm[c + 1u] = (uint32_t)(d > m ? d : m) >> 2;
         }
     }
-    const pft_real_t lo = pft_from_int(-INTEG_MAX_ / 64 - 1);
-    const pft_real_t hi = pft_from_int(INTEG_MAX_ / 64 + 1);
-    uint16_t *out = ig->cur + (size_t)br * ig->bw;
-    for (uint32_t bc = 0; bc < ig->bw; ++bc) {
-        const uint32_t c0 = 2u * bc;
-        pft_real_t best = r0[c0];
-        uint32_t idx = 0u;
-        if (c0 + 1u < w && r0[c0 + 1u] > best) {
-            best = r0[c0 + 1u];
-            idx = 1u;
-        }
-        if (r1 != NULL && r1[c0] > best) {
-            best = r1[c0];
-            idx = 2u;
-        }
-        if (r1 != NULL && c0 + 1u < w && r1[c0 + 1u] > best) {
-            best = r1[c0 + 1u];
-            idx = 3u;
-        }
-        /* the 3 x 3 bins around column pc = bc - sx: vm[pc .. pc + 2] (padded by one) */
-        const int32_t pc = (int32_t)bc - ig->sx;
-        uint32_t mx = 0u;
-        if (pc >= -1 && pc <= bw) {
-            const uint32_t a = pc >= 0 ? vm[pc] : 0u;
-            const uint32_t b = vm[pc + 1];
-            const uint32_t d = pc + 2 <= bw + 1 ? vm[pc + 2] : 0u;
-            mx = a > b ? a : b;
+    uint16_t *out = ig->cur + (size_t)br * bwu;
+    /* the fast bins: bc in [b0, b1) with sx <= bc < sx + bw and 2 bc + 1 < w, r1 not NULL */
+    const int32_t sx = ig->sx;
+    const int32_t nfull = (int32_t)(w / 2u);
+    int32_t b0 = sx < 0 ? 0 : (sx > bw ? bw : sx);
+    int32_t b1 = sx > nfull - bw ? nfull : sx + bw;
+    b1 = r1 == NULL || b1 < b0 ? b0 : b1;
+    for (int32_t bc = 0; bc < b0; ++bc) {
+        integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
+    }
+    if (r1 != NULL) { /* always when b0 < b1 (b1 = b0 without r1) */
+        const uint32_t a_q = ig->a_q;
+        for (int32_t bc = b0; bc < b1; ++bc) {
+            const pft_real_t x0 = r0[2 * bc];
+            const pft_real_t x1 = r0[2 * bc + 1];
+            const pft_real_t x2 = r1[2 * bc];
+            const pft_real_t x3 = r1[2 * bc + 1];
+            /* idx by masks from the same compares (a form the compiler vectorises) */
+            pft_real_t best = x0;
+            uint32_t idx = 0u;
+            const uint32_t g1 = (x1 > best) ? 0xFFFFFFFFu : 0u;
+            best = x1 > best ? x1 : best;
+            idx = (idx & ~g1) | (1u & g1);
+            const uint32_t g2 = (x2 > best) ? 0xFFFFFFFFu : 0u;
+            best = x2 > best ? x2 : best;
+            idx = (idx & ~g2) | (2u & g2);
+            const uint32_t g3 = (x3 > best) ? 0xFFFFFFFFu : 0u;
+            best = x3 > best ? x3 : best;
+            idx = (idx & ~g3) | (3u & g3);
+            /* pc = bc - sx in 0 .. bw - 1: vm[pc .. pc + 2] inside */
+            const uint32_t a = vm[bc - sx];
+            const uint32_t b = vm[bc - sx + 1];
+            const uint32_t d = vm[bc - sx + 2];
+            uint32_t mx = a > b ? a : b;
             mx = d > mx ? d : mx;
+            out[bc] = (uint16_t)((integ_sq_(best, mx, a_q) << 2) | idx);
         }
-        int32_t sq = pft_round_int(pft_mul_i(pft_clamp(best, lo, hi), 64));
-        sq += (int32_t)((ig->a_q * mx + 128u) >> 8);
-        sq = sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq);
-        out[bc] = (uint16_t)(((uint32_t)sq << 2) | idx);
-        sum[0] += (uint64_t)sq;
-        sum[1] += (uint64_t)sq * (uint64_t)sq;
     }
+    for (int32_t bc = b1; bc < bw; ++bc) {
+        integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
+    }
+    uint64_t s0 = 0u;
+    uint64_t s1 = 0u;
+    for (uint32_t bc = 0; bc < bwu; ++bc) {
+        const uint32_t sq = (uint32_t)out[bc] >> 2;
+        s0 += sq;
+        s1 += (uint64_t)sq * sq;
+    }
+    sum[0] += s0;
+    sum[1] += s1;
 }
 
 /* floor(sqrt(v)), bit by bit (32 steps). */
