@@ -9,6 +9,11 @@
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
 #define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
 #define FL_QBIAS16_ 16777216       /* FL_QBIAS_ / 2^16 */
+#define FL_S1_ 65536              /* rescale: sd 1 sigma, Q16 */
+#define FL_SMIN_ 4096             /* rescale: the sd's clamp, 1/16 .. 16 sigma (Q16) */
+#define FL_SMAX_ 1048576
+#define FL_MADQ_ 44204            /* rescale: 0.6745 (the median of |N(0, 1)|), Q16 */
+#define FL_NEWTON_ 76437          /* rescale: 1 / (2 * 0.4287), Q16 (0.4287 = d P(|x| <= q s) / d log s at the median) */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -22,6 +27,7 @@ void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
     cfg->alpha = 3277u;
     cfg->gate = 512u;
     cfg->relative = false;
+    cfg->rescale = false;
 }
 
 pft_status_t pft_pre_flat_config_check(const pft_pre_flat_config_t *cfg, const char **field)
@@ -61,7 +67,8 @@ size_t pft_pre_flat_workspace_size(const pft_pre_flat_config_t *cfg)
     if (pft_pre_flat_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_PRE_FLAT_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->block);
+    return cfg->rescale ? PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE(cfg->width, cfg->height, cfg->block)
+                        : PFT_PRE_FLAT_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->block);
 }
 
 pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *cfg, void *work,
@@ -82,6 +89,15 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     uint32_t *cnt = pft_ws_take(&ws, nbx * nby * 4u);
     uint32_t *lsum = pft_ws_take(&ws, nbx * nby * 4u);
     int32_t *rowv = pft_ws_take(&ws, nbx * 4u);
+    int32_t *sc = NULL, *sq = NULL, *rowq = NULL;
+    uint32_t *nall = NULL, *nlo = NULL;
+    if (cfg->rescale) {
+        sc = pft_ws_take(&ws, nbx * nby * 4u);
+        sq = pft_ws_take(&ws, nbx * nby * 4u);
+        nall = pft_ws_take(&ws, nbx * nby * 4u);
+        nlo = pft_ws_take(&ws, nbx * nby * 4u);
+        rowq = pft_ws_take(&ws, nbx * 4u);
+    }
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -92,6 +108,11 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     fl->cnt = cnt;
     fl->lsum = lsum;
     fl->rowv = rowv;
+    fl->sc = sc;
+    fl->sq = sq;
+    fl->nall = nall;
+    fl->nlo = nlo;
+    fl->rowq = rowq;
     fl->nbx = (uint32_t)nbx;
     fl->nby = (uint32_t)nby;
     fl->lb = pft_pre_log2_((uint32_t)cfg->block); /* block: a power of two */
@@ -109,6 +130,15 @@ pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl)
     memset(fl->cnt, 0, nb * 4u);
     memset(fl->lsum, 0, nb * 4u);
     memset(fl->rowv, 0, (size_t)fl->nbx * 4u);
+    if (fl->sc != NULL) {
+        for (size_t k = 0u; k < nb; ++k) {
+            fl->sc[k] = FL_S1_;
+            fl->sq[k] = FL_S1_;
+        }
+        memset(fl->nall, 0, nb * 4u);
+        memset(fl->nlo, 0, nb * 4u);
+        memset(fl->rowq, 0, (size_t)fl->nbx * 4u);
+    }
     fl->frames = 0u;
     return PFT_OK;
 }
@@ -336,6 +366,71 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
     }
 }
 
+/* rescale: row r (w pixels, corrected) times the multipliers 1/s interpolated bilinearly (the
+ * block rows' values in fl->rowq, then per pixel between the block columns), rounded half away
+ * from zero and clamped; with learn, counts per block of row jb its unmasked pixels and those
+ * with |v| <= 0.6745 s of the block's own s (before the multiplication). */
+static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn, uint32_t jb)
+{
+    const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx;
+    const int32_t d = (int32_t)(2u << lb);
+    uint32_t j0, j1, t;
+    fl_locate_(2u * y, fl->nby, lb, &j0, &j1, &t);
+    const int32_t *a = fl->sq + (size_t)j0 * nbx, *b = fl->sq + (size_t)j1 * nbx;
+    for (uint32_t i = 0u; i < nbx; ++i) {
+        fl->rowq[i] = fl_mix_(a[i], b[i], (int32_t)t, d, lb + 1u);
+    }
+    const int32_t *sc = fl->sc + (size_t)jb * nbx;
+    uint32_t *nall = fl->nall + (size_t)jb * nbx, *nlo = fl->nlo + (size_t)jb * nbx;
+    for (uint32_t x = 0u; x < w; ++x) {
+        const int32_t v = r[x];
+        if (v == PFT_RES16_MASKED) {
+            continue;
+        }
+        const uint32_t blk = x >> lb;
+        if (learn) {
+            /* the block's median threshold 0.6745 s in Q8.8 (s Q16 <= 2^20, the product < 2^36) */
+            const int64_t thr = ((int64_t)sc[blk] * FL_MADQ_ + ((int64_t)1 << 23)) >> 24;
+            const int64_t av = v < 0 ? -(int64_t)v : (int64_t)v;
+            nall[blk] += 1u;
+            nlo[blk] += av <= thr ? 1u : 0u;
+        }
+        uint32_t i0, i1, u;
+        fl_locate_(2u * x, nbx, lb, &i0, &i1, &u);
+        const int32_t q = fl_mix_(fl->rowq[i0], fl->rowq[i1], (int32_t)u, d, lb + 1u);
+        int64_t o = pft_pre_div_rnd_((int64_t)v * (int64_t)q, 65536);
+        o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+        r[x] = (int16_t)o;
+    }
+}
+
+/* rescale: the blocks' sd from this frame's counts, one damped Newton step on log s towards
+ * the median of |v| per block (weight a, Q0.16; the step before the weight within +-1/2). */
+static void fl_learn_scale_(pft_pre_flat_t *fl, uint32_t a)
+{
+    const uint32_t w = fl->cfg.width, h = fl->cfg.height, lb = fl->lb, b = 1u << lb;
+    for (uint32_t j = 0u; j < fl->nby; ++j) {
+        const uint32_t bh = (j + 1u) * b > h ? h - j * b : b;
+        for (uint32_t i = 0u; i < fl->nbx; ++i) {
+            const uint32_t bw = (i + 1u) * b > w ? w - i * b : b;
+            const size_t k = (size_t)j * fl->nbx + i;
+            const uint32_t n = fl->nall[k];
+            if (n == 0u || 4u * n < bw * bh) {
+                continue;
+            }
+            /* e > 0: more than half of |v| below the threshold, s too large */
+            const int64_t e = 2 * (int64_t)fl->nlo[k] - (int64_t)n;
+            int64_t st = pft_pre_div_rnd_(e * FL_NEWTON_, (int64_t)n);
+            st = st > 32768 ? 32768 : (st < -32768 ? -32768 : st);
+            st = pft_pre_div_rnd_(st * (int64_t)a, 65536);
+            int64_t s = (int64_t)fl->sc[k] - pft_pre_div_rnd_((int64_t)fl->sc[k] * st, 65536);
+            s = s > FL_SMAX_ ? FL_SMAX_ : (s < FL_SMIN_ ? FL_SMIN_ : s);
+            fl->sc[k] = (int32_t)s;
+            fl->sq[k] = (int32_t)pft_pre_div_rnd_((int64_t)1 << 32, s);
+        }
+    }
+}
+
 pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,
                                  const pft_frame_t *level, bool evidence)
 {
@@ -369,17 +464,27 @@ pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int
         memset(fl->sum, 0, (size_t)nb * 4u);
         memset(fl->cnt, 0, (size_t)nb * 4u);
         memset(fl->lsum, 0, (size_t)nb * 4u);
+        if (fl->sc != NULL) {
+            memset(fl->nall, 0, (size_t)nb * 4u);
+            memset(fl->nlo, 0, (size_t)nb * 4u);
+        }
     }
     for (uint32_t y = 0u; y < h; ++y) {
         fl_rowv_(fl, y);
         int16_t *r = (int16_t *)(void *)((uint8_t *)(void *)pixels + (size_t)y * res->stride_bytes);
         fl_row_(fl, r, rel ? pft_frame_row(level, y) : NULL, u8, evidence, y >> fl->lb);
+        if (fl->sc != NULL) {
+            fl_scale_row_(fl, r, y, evidence, y >> fl->lb);
+        }
     }
     if (evidence) {
         fl->frames = fl->frames < 0xFFFFFFFFu ? fl->frames + 1u : fl->frames;
         const uint32_t run = fl->frames >= 65536u ? 1u : 65536u / fl->frames;
         const uint32_t a = run > (uint32_t)fl->cfg.alpha ? run : (uint32_t)fl->cfg.alpha;
         fl_learn_(fl, a);
+        if (fl->sc != NULL) {
+            fl_learn_scale_(fl, a);
+        }
     }
     return PFT_OK;
 }
