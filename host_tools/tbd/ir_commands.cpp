@@ -484,9 +484,9 @@ int dbt_checks(Check &check)
     std::snprintf(b, sizeof b, "dbt.preprocess: %d of %d preprocessing fields read there, %d of %d manager fields "
                   "refused by name; unknown to the tracker block:%s", n_pre_ok, n_pre, n_trk_ok, n_trk,
                   unknown.empty() ? " none" : unknown.c_str());
-    // 75: the names parse_tracker (ir_scenario.cpp) allows, note included; a new tracker field
+    // 76: the names parse_tracker (ir_scenario.cpp) allows, note included; a new tracker field
     // must be put in one of the two lists
-    check(b, n_pre_ok == n_pre && n_trk_ok == n_trk && unknown.empty() && n_pre + n_trk + 1 == 75);
+    check(b, n_pre_ok == n_pre && n_trk_ok == n_trk && unknown.empty() && n_pre + n_trk + 1 == 76);
     return 0;
 }
 
