@@ -366,41 +366,74 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
     }
 }
 
+/* v q / 2^16 rounded half away from zero (|v| <= 2^15, 0 < q <= 2^20: |v q| < 2^39), the
+ * floor taken on the product biased to a non-negative value, as fl_lev_ (the same integers as
+ * a rounded division). */
+static int32_t fl_mulq_(int32_t v, int32_t q)
+{
+    const int64_t p = (int64_t)v * (int64_t)q;
+    const uint64_t u = (uint64_t)(p + (FL_QBIAS_ + 32768)) - (p < 0 ? 1u : 0u);
+    return (int32_t)(u >> 16u) - FL_QBIAS16_;
+}
+
 /* rescale: row r (w pixels, corrected) times the multipliers 1/s interpolated bilinearly (the
- * block rows' values in fl->rowq, then per pixel between the block columns), rounded half away
- * from zero and clamped; with learn, counts per block of row jb its unmasked pixels and those
- * with |v| <= 0.6745 s of the block's own s (before the multiplication). */
+ * block rows' values in fl->rowq, then per pixel between the block columns, walked segment by
+ * segment between block centres as fl_row_), rounded half away from zero and clamped; with
+ * learn, counts per block of row jb its unmasked pixels and those with |v| <= 0.6745 s of the
+ * block's own s (before the multiplication). */
 static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn, uint32_t jb)
 {
-    const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx;
+    const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
     const int32_t d = (int32_t)(2u << lb);
-    uint32_t j0, j1, t;
-    fl_locate_(2u * y, fl->nby, lb, &j0, &j1, &t);
-    const int32_t *a = fl->sq + (size_t)j0 * nbx, *b = fl->sq + (size_t)j1 * nbx;
+    uint32_t j0, j1, t0;
+    fl_locate_(2u * y, fl->nby, lb, &j0, &j1, &t0);
+    const int32_t *qa = fl->sq + (size_t)j0 * nbx, *qb = fl->sq + (size_t)j1 * nbx;
     for (uint32_t i = 0u; i < nbx; ++i) {
-        fl->rowq[i] = fl_mix_(a[i], b[i], (int32_t)t, d, lb + 1u);
+        fl->rowq[i] = fl_mix_(qa[i], qb[i], (int32_t)t0, d, lb + 1u);
     }
     const int32_t *sc = fl->sc + (size_t)jb * nbx;
     uint32_t *nall = fl->nall + (size_t)jb * nbx, *nlo = fl->nlo + (size_t)jb * nbx;
-    for (uint32_t x = 0u; x < w; ++x) {
-        const int32_t v = r[x];
-        if (v == PFT_RES16_MASKED) {
+    const int32_t *rq = fl->rowq;
+    const uint32_t k = lb + 1u;
+    const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
+    uint32_t x = 0u;
+    for (uint32_t sg = 0u; sg <= nbx; ++sg) {
+        uint32_t xe = sg < nbx ? (sg << lb) + b / 2u : w;
+        xe = xe > w ? w : xe;
+        if (x >= xe) {
             continue;
         }
-        const uint32_t blk = x >> lb;
-        if (learn) {
-            /* the block's median threshold 0.6745 s in Q8.8 (s Q16 <= 2^20, the product < 2^36) */
-            const int64_t thr = ((int64_t)sc[blk] * FL_MADQ_ + ((int64_t)1 << 23)) >> 24;
-            const int64_t av = v < 0 ? -(int64_t)v : (int64_t)v;
-            nall[blk] += 1u;
-            nlo[blk] += av <= thr ? 1u : 0u;
+        const int32_t a0 = rq[sg == 0u ? 0u : sg - 1u], a1 = rq[sg < nbx ? sg : nbx - 1u];
+        const bool held = sg == 0u || sg == nbx;
+        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(sg - 1u, lb);
+        /* fl_shr_'s biased numerator of fl_mix_(a0, a1, t, d, k), stepping by st per pixel */
+        uint32_t u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
+        const uint32_t st = held ? 0u : (uint32_t)(2 * (a1 - a0));
+        while (x < xe) {
+            const uint32_t blk = x >> lb;
+            uint32_t xb = (blk + 1u) << lb;
+            xb = xb > xe ? xe : xb;
+            /* the block's median threshold 0.6745 s in Q8.8 (s Q16 <= 2^20: the product < 2^36) */
+            const int32_t thr = (int32_t)(((int64_t)sc[blk] * FL_MADQ_ + ((int64_t)1 << 23)) >> 24);
+            uint32_t na = 0u, nl = 0u;
+            for (; x < xb; ++x) {
+                const int32_t q = (int32_t)(u >> k) - cb;
+                u += st;
+                const int32_t v = r[x];
+                if (v == PFT_RES16_MASKED) {
+                    continue;
+                }
+                na += 1u;
+                nl += (v <= thr && v >= -thr) ? 1u : 0u;
+                int32_t o = fl_mulq_(v, q);
+                o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+                r[x] = (int16_t)o;
+            }
+            if (learn) {
+                nall[blk] += na;
+                nlo[blk] += nl;
+            }
         }
-        uint32_t i0, i1, u;
-        fl_locate_(2u * x, nbx, lb, &i0, &i1, &u);
-        const int32_t q = fl_mix_(fl->rowq[i0], fl->rowq[i1], (int32_t)u, d, lb + 1u);
-        int64_t o = pft_pre_div_rnd_((int64_t)v * (int64_t)q, 65536);
-        o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
-        r[x] = (int16_t)o;
     }
 }
 
