@@ -13,6 +13,7 @@
 #define FL_SMIN_ 4096             /* rescale: the sd's clamp, 1/16 .. 16 sigma (Q16) */
 #define FL_SMAX_ 1048576
 #define FL_MADQ_ 44204            /* rescale: 0.6745 (the median of |N(0, 1)|), Q16 */
+#define FL_Q32_ ((int64_t)4294967296) /* rescale: 2^32, the multiplier's numerator (Q16 / Q16 -> Q16) */
 #define FL_NEWTON_ 76437          /* rescale: 1 / (2 * 0.4287), Q16 (0.4287 = d P(|x| <= q s) / d log s at the median) */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
@@ -413,8 +414,8 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
             const uint32_t blk = x >> lb;
             uint32_t xb = (blk + 1u) << lb;
             xb = xb > xe ? xe : xb;
-            /* the block's median threshold 0.6745 s in Q8.8 (s Q16 <= 2^20: the product < 2^36) */
-            const int32_t thr = (int32_t)(((int64_t)sc[blk] * FL_MADQ_ + ((int64_t)1 << 23)) >> 24);
+            /* the block's median threshold 0.6745 s in Q8.8 (0 < s Q16 <= 2^20: the product < 2^36) */
+            const int32_t thr = (int32_t)(((uint64_t)(uint32_t)sc[blk] * (uint64_t)FL_MADQ_ + 8388608u) >> 24u);
             uint32_t na = 0u, nl = 0u;
             for (; x < xb; ++x) {
                 const int32_t q = (int32_t)(u >> k) - cb;
@@ -459,7 +460,7 @@ static void fl_learn_scale_(pft_pre_flat_t *fl, uint32_t a)
             int64_t s = (int64_t)fl->sc[k] - pft_pre_div_rnd_((int64_t)fl->sc[k] * st, 65536);
             s = s > FL_SMAX_ ? FL_SMAX_ : (s < FL_SMIN_ ? FL_SMIN_ : s);
             fl->sc[k] = (int32_t)s;
-            fl->sq[k] = (int32_t)pft_pre_div_rnd_((int64_t)1 << 32, s);
+            fl->sq[k] = (int32_t)pft_pre_div_rnd_(FL_Q32_, s);
         }
     }
 }
