@@ -183,6 +183,7 @@ pft_pre_flat_config_t make_flat_config(const TrackerSettings &t, int width, int 
     c.alpha = static_cast<uint16_t>(std::clamp(std::lround(t.flat_alpha * 65536.0), 1L, 65535L));
     c.gate = static_cast<uint16_t>(std::clamp(std::lround(t.flat_gate * 256.0), 1L, 32767L));
     c.relative = t.flat_relative;
+    c.rescale = t.flat_rescale;
     return c;
 }
 

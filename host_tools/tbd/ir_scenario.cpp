@@ -19,7 +19,7 @@ const char *const kPreprocessFields[] = {
     "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin",
     "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young",
     "bg_young_clip", "bg_stale_reinit", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
-    "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
+    "flat_rescale", "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
     "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor",
     "clutter_block", "clutter_map8", "clutter_anchor", "note", nullptr};
 
@@ -264,6 +264,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.flat_gate = t.number_in("flat_gate", T.flat_gate, 1.0 / 256.0, 127.0);
     if (t.has("flat_relative"))
         T.flat_relative = t.at("flat_relative").as_bool();
+    if (t.has("flat_rescale"))
+        T.flat_rescale = t.at("flat_rescale").as_bool();
+    if (T.flat_rescale && T.flat_block == 0)
+        t.at("flat_rescale").fail("rescales the flat-field step's output: needs flat_block");
     if (t.has("flat_level_blocks"))
         T.flat_level_blocks = t.at("flat_level_blocks").as_bool();
     T.clutter_persist = static_cast<int>(t.integer_in("clutter_persist", T.clutter_persist, 0, 32));

@@ -169,6 +169,7 @@ struct TrackerSettings {
     double flat_alpha = 0.05;                   ///< update weight of the block means
     double flat_gate = 2.0;                     ///< a pixel enters its block's mean only within this many sigma of the current offset
     bool flat_relative = false;                 ///< the offset is a sensor-fixed factor times the raw frame's level (the form a sensor-fixed gain leaves under a drifting scene)
+    bool flat_rescale = false;                  ///< the flat-field step divides its output by a running robust sd per block (pft_pre_flat_config_t.rescale): the stage's tile sigma is inflated by the offset the step removes (docs/algorithms.md 9.10)
     bool flat_level_blocks = false;             ///< host experiment: with flat_relative, the level frame at the blocks' resolution (block means, bilinear) instead of the raw frame
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };

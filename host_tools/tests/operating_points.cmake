@@ -14,7 +14,8 @@
 #  - the gated background update (bg_gate 0.25 with bg_gate_young 16 and bg_gate_local
 #    "relative", the shaded real-frame twin's) removed: the residual changes; bg_gate_young,
 #    bg_gate_local and bg_masked_taps "all" each removed alone: the residual changes;
-#  - handover_in_scale 0.8 removed: the tracks change.
+#  - handover_in_scale 0.8 removed: the tracks change;
+#  - flat_rescale removed: the residual changes (flat_block 0 removes it too: it needs flat_block).
 # The real-frame twins (real_frames_low_false_rate.json and real_frames_shaded_low_false_rate.json)
 # need real backgrounds to run; only their documented blocks are checked here, and the three
 # files' dbt.preprocess (DBT on their default twins' preprocessing).
@@ -50,15 +51,16 @@ set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "bg_anchor=ON"
            "theta_end=0.20000000000000001" "particles=24000" "bg_stale_reinit=32")
 check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
-            "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004")
+            "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=4" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004")
 # its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
-# and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all")
-check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=5" "bg_gate=0.25"
+# and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all"), the flat-field
+# step's output over its running robust sd (flat_rescale, branch irshade3) with scene_hold 6
+check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=6" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative"
-            "bg_masked_taps=all")
+            "bg_masked_taps=all" "flat_rescale=ON")
 
 # DBT's own preprocessing in the three files (dbt.preprocess): their default twins' (real_frames.json
 # sets no preprocessing field; procedural_384x288.json's tracker block sets the ones below)
@@ -79,6 +81,7 @@ file(WRITE ${WORK}/lf.json "${js}")
 string(JSON v SET "${js}" tracker scene_hold 1)
 file(WRITE ${WORK}/hold1.json "${v}")
 string(JSON v SET "${js}" tracker flat_block 0)
+string(JSON v REMOVE "${v}" tracker flat_rescale)
 file(WRITE ${WORK}/noflat.json "${v}")
 string(JSON v SET "${js}" tracker clutter_mean false)
 string(JSON v SET "${v}" tracker clutter_persist 0)
@@ -107,14 +110,14 @@ string(JSON v REMOVE "${js}" tracker bg_gate)
 string(JSON v REMOVE "${v}" tracker bg_gate_young)
 string(JSON v REMOVE "${v}" tracker bg_gate_local)
 file(WRITE ${WORK}/nogate.json "${v}")
-foreach(f bg_gate_young bg_gate_local bg_masked_taps handover_in_scale)
+foreach(f bg_gate_young bg_gate_local bg_masked_taps handover_in_scale flat_rescale)
   string(JSON v REMOVE "${js}" tracker ${f})
   file(WRITE ${WORK}/no_${f}.json "${v}")
 endforeach()
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
 foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local
-          no_bg_masked_taps no_handover_in_scale)
+          no_bg_masked_taps no_handover_in_scale no_flat_rescale)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
 endforeach()
@@ -165,7 +168,8 @@ endif()
 list(LENGTH got ngot)
 message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
 
-foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local no_bg_masked_taps)
+foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local no_bg_masked_taps
+          no_flat_rescale)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/res.i16 ${WORK}/run_${c}/res.i16
                   RESULT_VARIABLE same)
   if(same EQUAL 0)
@@ -179,4 +183,4 @@ foreach(c nointeg no_handover_in_scale)
     message(FATAL_ERROR "${c}: the tracks are the shipped file's: its field does not reach the manager")
   endif()
 endforeach()
-message(STATUS "flat_block, clutter_mean, bg_anchor, clutter_anchor, bg_gate, bg_gate_young, bg_gate_local and bg_masked_taps change the residual, integ_alpha and handover_in_scale the tracks")
+message(STATUS "flat_block, flat_rescale, clutter_mean, bg_anchor, clutter_anchor, bg_gate, bg_gate_young, bg_gate_local and bg_masked_taps change the residual, integ_alpha and handover_in_scale the tracks")

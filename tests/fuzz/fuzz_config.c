@@ -773,8 +773,10 @@ static void fuzz_pre_flat(fz_t *f)
     c.block = 8u;
     uint8_t o = fz_u8(f);
     c.relative = (o & 1u) != 0u;
+    c.rescale = (o & 2u) != 0u;
     FZ_PATCH(f, c, 12u);
     FZ_BOOL(c.relative);
+    FZ_BOOL(c.rescale);
     g_field = (const char *)&g_field;
     bool ok = check_contract(pft_pre_flat_config_check(&c, &g_field));
     size_t ws = pft_pre_flat_workspace_size(&c);
@@ -783,7 +785,9 @@ static void fuzz_pre_flat(fz_t *f)
         FZ_CHECK(pft_pre_flat_init(&fl, &c, g_ws, WS_CAP) == PFT_ERR_CONFIG);
         return;
     }
-    FZ_CHECK(ws == PFT_PRE_FLAT_WORKSPACE_BYTES(c.width, c.height, c.block));
+    /* the header's rule for rescale: PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE */
+    FZ_CHECK(ws == (c.rescale ? PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE(c.width, c.height, c.block)
+                              : PFT_PRE_FLAT_WORKSPACE_BYTES(c.width, c.height, c.block)));
     if (ws > WS_CAP) {
         return;
     }

@@ -268,6 +268,7 @@ typedef struct {
     uint16_t alpha;   /**< update weight a of the block means, Q0.16, 1..65535 (default 3277 = 0.05) */
     uint16_t gate;    /**< a pixel enters its block's mean only when |r - m| <= gate, Q8.8 sigma (256 = 1), 1..32767 (default 512 = 2) */
     bool relative;    /**< false (default): the map is an offset (sigma); true: the offset is proportional to the level of the pixel in a level frame given to each update (e.g. the raw frame): m is sigma per count and the pixel's offset m(x, y) l(x, y), the form of the residual that a sensor-fixed gain leaves under a drifting scene (docs/algorithms.md 9.10) */
+    bool rescale;     /**< false (default): the corrected residual is written as it is; true: per block a running robust sd s of the corrected residual (its median |v| over 0.6745, followed with the map's weight a), and the output is v / s, the multiplier 1/s interpolated bilinearly between the block centres like the map: the stage's tile sigma, a MAD about zero taken before this step, is inflated by the offset this step removes (docs/algorithms.md 9.10 [E]); workspace PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE */
 } pft_pre_flat_config_t;
 
 /** Flat-field correction instance (layout in pft/internal/pft_pre_types.h, not API). */
@@ -583,6 +584,14 @@ uint32_t pft_pre_clutter_at(const pft_pre_clutter_t *c, uint32_t x, uint32_t y);
  *  block values. */
 #define PFT_PRE_FLAT_WORKSPACE_BYTES(w, h, b)                                                   \
     ((size_t)(PFT_WS_ALIGN - 1u) +                                                              \
+     4u * PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * PFT_PRE_FLAT_NB_(h, b) * 4u) +                  \
+     PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * 4u))
+
+/** Workspace bytes of a flat-field correction with rescale: PFT_PRE_FLAT_WORKSPACE_BYTES and,
+ *  per block, the scale, its multiplier and the frame's two counts (4 bytes each), and one row
+ *  of interpolated multipliers. */
+#define PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE(w, h, b)                                           \
+    (PFT_PRE_FLAT_WORKSPACE_BYTES(w, h, b) +                                                    \
      4u * PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * PFT_PRE_FLAT_NB_(h, b) * 4u) +                  \
      PFT_WS_ROUND(PFT_PRE_FLAT_NB_(w, b) * 4u))
 

@@ -7,6 +7,14 @@
 
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
+#define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
+#define FL_QBIAS16_ 16777216       /* FL_QBIAS_ / 2^16 */
+#define FL_S1_ 65536              /* rescale: sd 1 sigma, Q16 */
+#define FL_SMIN_ 4096             /* rescale: the sd's clamp, 1/16 .. 16 sigma (Q16) */
+#define FL_SMAX_ 1048576
+#define FL_MADQ_ 44204            /* rescale: 0.6745 (the median of |N(0, 1)|), Q16 */
+#define FL_Q32_ ((int64_t)4294967296) /* rescale: 2^32, the multiplier's numerator (Q16 / Q16 -> Q16) */
+#define FL_NEWTON_ 76437          /* rescale: 1 / (2 * 0.4287), Q16 (0.4287 = d P(|x| <= q s) / d log s at the median) */
 
 void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
 {
@@ -20,6 +28,7 @@ void pft_pre_flat_config_default(pft_pre_flat_config_t *cfg)
     cfg->alpha = 3277u;
     cfg->gate = 512u;
     cfg->relative = false;
+    cfg->rescale = false;
 }
 
 pft_status_t pft_pre_flat_config_check(const pft_pre_flat_config_t *cfg, const char **field)
@@ -59,7 +68,8 @@ size_t pft_pre_flat_workspace_size(const pft_pre_flat_config_t *cfg)
     if (pft_pre_flat_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_PRE_FLAT_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->block);
+    return cfg->rescale ? PFT_PRE_FLAT_WORKSPACE_BYTES_RESCALE(cfg->width, cfg->height, cfg->block)
+                        : PFT_PRE_FLAT_WORKSPACE_BYTES(cfg->width, cfg->height, cfg->block);
 }
 
 pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *cfg, void *work,
@@ -80,6 +90,15 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     uint32_t *cnt = pft_ws_take(&ws, nbx * nby * 4u);
     uint32_t *lsum = pft_ws_take(&ws, nbx * nby * 4u);
     int32_t *rowv = pft_ws_take(&ws, nbx * 4u);
+    int32_t *sc = NULL, *sq = NULL, *rowq = NULL;
+    uint32_t *nall = NULL, *nlo = NULL;
+    if (cfg->rescale) {
+        sc = pft_ws_take(&ws, nbx * nby * 4u);
+        sq = pft_ws_take(&ws, nbx * nby * 4u);
+        nall = pft_ws_take(&ws, nbx * nby * 4u);
+        nlo = pft_ws_take(&ws, nbx * nby * 4u);
+        rowq = pft_ws_take(&ws, nbx * 4u);
+    }
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -90,6 +109,11 @@ pft_status_t pft_pre_flat_init(pft_pre_flat_t *fl, const pft_pre_flat_config_t *
     fl->cnt = cnt;
     fl->lsum = lsum;
     fl->rowv = rowv;
+    fl->sc = sc;
+    fl->sq = sq;
+    fl->nall = nall;
+    fl->nlo = nlo;
+    fl->rowq = rowq;
     fl->nbx = (uint32_t)nbx;
     fl->nby = (uint32_t)nby;
     fl->lb = pft_pre_log2_((uint32_t)cfg->block); /* block: a power of two */
@@ -107,6 +131,15 @@ pft_status_t pft_pre_flat_reset(pft_pre_flat_t *fl)
     memset(fl->cnt, 0, nb * 4u);
     memset(fl->lsum, 0, nb * 4u);
     memset(fl->rowv, 0, (size_t)fl->nbx * 4u);
+    if (fl->sc != NULL) {
+        for (size_t k = 0u; k < nb; ++k) {
+            fl->sc[k] = FL_S1_;
+            fl->sq[k] = FL_S1_;
+        }
+        memset(fl->nall, 0, nb * 4u);
+        memset(fl->nlo, 0, nb * 4u);
+        memset(fl->rowq, 0, (size_t)fl->nbx * 4u);
+    }
     fl->frames = 0u;
     return PFT_OK;
 }
@@ -335,6 +368,104 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
     }
 }
 
+/* v q / 2^16 rounded half away from zero (|v| <= 2^15, 0 < q <= 2^20: |v q| < 2^39), the
+ * floor taken on the product biased to a non-negative value, as fl_lev_ (the same integers as
+ * a rounded division). */
+static int32_t fl_mulq_(int32_t v, int32_t q)
+{
+    const int64_t p = (int64_t)v * (int64_t)q;
+    const uint64_t u = (uint64_t)(p + (FL_QBIAS_ + 32768)) - (p < 0 ? 1u : 0u);
+    return (int32_t)(u >> 16u) - FL_QBIAS16_;
+}
+
+/* rescale: row r (w pixels, corrected) times the multipliers 1/s interpolated bilinearly (the
+ * block rows' values in fl->rowq, then per pixel between the block columns, walked segment by
+ * segment between block centres as fl_row_), rounded half away from zero and clamped; with
+ * learn, counts per block of row jb its unmasked pixels and those with |v| <= 0.6745 s of the
+ * block's own s (before the multiplication). */
+static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn, uint32_t jb)
+{
+    const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
+    const int32_t d = (int32_t)(2u << lb);
+    uint32_t j0, j1, t0;
+    fl_locate_(2u * y, fl->nby, lb, &j0, &j1, &t0);
+    const int32_t *qa = fl->sq + (size_t)j0 * nbx, *qb = fl->sq + (size_t)j1 * nbx;
+    for (uint32_t i = 0u; i < nbx; ++i) {
+        fl->rowq[i] = fl_mix_(qa[i], qb[i], (int32_t)t0, d, lb + 1u);
+    }
+    const int32_t *sc = fl->sc + (size_t)jb * nbx;
+    uint32_t *nall = fl->nall + (size_t)jb * nbx, *nlo = fl->nlo + (size_t)jb * nbx;
+    const int32_t *rq = fl->rowq;
+    const uint32_t k = lb + 1u;
+    const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
+    uint32_t x = 0u;
+    for (uint32_t sg = 0u; sg <= nbx; ++sg) {
+        uint32_t xe = sg < nbx ? (sg << lb) + b / 2u : w;
+        xe = xe > w ? w : xe;
+        if (x >= xe) {
+            continue;
+        }
+        const int32_t a0 = rq[sg == 0u ? 0u : sg - 1u], a1 = rq[sg < nbx ? sg : nbx - 1u];
+        const bool held = sg == 0u || sg == nbx;
+        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(sg - 1u, lb);
+        /* fl_shr_'s biased numerator of fl_mix_(a0, a1, t, d, k), stepping by st per pixel */
+        uint32_t u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
+        const uint32_t st = held ? 0u : (uint32_t)(2 * (a1 - a0));
+        while (x < xe) {
+            const uint32_t blk = x >> lb;
+            uint32_t xb = (blk + 1u) << lb;
+            xb = xb > xe ? xe : xb;
+            /* the block's median threshold 0.6745 s in Q8.8 (0 < s Q16 <= 2^20: the product < 2^36) */
+            const int32_t thr = (int32_t)(((uint64_t)(uint32_t)sc[blk] * (uint64_t)FL_MADQ_ + 8388608u) >> 24u);
+            uint32_t na = 0u, nl = 0u;
+            for (; x < xb; ++x) {
+                const int32_t q = (int32_t)(u >> k) - cb;
+                u += st;
+                const int32_t v = r[x];
+                if (v == PFT_RES16_MASKED) {
+                    continue;
+                }
+                na += 1u;
+                nl += (v <= thr && v >= -thr) ? 1u : 0u;
+                int32_t o = fl_mulq_(v, q);
+                o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+                r[x] = (int16_t)o;
+            }
+            if (learn) {
+                nall[blk] += na;
+                nlo[blk] += nl;
+            }
+        }
+    }
+}
+
+/* rescale: the blocks' sd from this frame's counts, one damped Newton step on log s towards
+ * the median of |v| per block (weight a, Q0.16; the step before the weight within +-1/2). */
+static void fl_learn_scale_(pft_pre_flat_t *fl, uint32_t a)
+{
+    const uint32_t w = fl->cfg.width, h = fl->cfg.height, lb = fl->lb, b = 1u << lb;
+    for (uint32_t j = 0u; j < fl->nby; ++j) {
+        const uint32_t bh = (j + 1u) * b > h ? h - j * b : b;
+        for (uint32_t i = 0u; i < fl->nbx; ++i) {
+            const uint32_t bw = (i + 1u) * b > w ? w - i * b : b;
+            const size_t k = (size_t)j * fl->nbx + i;
+            const uint32_t n = fl->nall[k];
+            if (n == 0u || 4u * n < bw * bh) {
+                continue;
+            }
+            /* e > 0: more than half of |v| below the threshold, s too large */
+            const int64_t e = 2 * (int64_t)fl->nlo[k] - (int64_t)n;
+            int64_t st = pft_pre_div_rnd_(e * FL_NEWTON_, (int64_t)n);
+            st = st > 32768 ? 32768 : (st < -32768 ? -32768 : st);
+            st = pft_pre_div_rnd_(st * (int64_t)a, 65536);
+            int64_t s = (int64_t)fl->sc[k] - pft_pre_div_rnd_((int64_t)fl->sc[k] * st, 65536);
+            s = s > FL_SMAX_ ? FL_SMAX_ : (s < FL_SMIN_ ? FL_SMIN_ : s);
+            fl->sc[k] = (int32_t)s;
+            fl->sq[k] = (int32_t)pft_pre_div_rnd_(FL_Q32_, s);
+        }
+    }
+}
+
 pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int16_t *pixels,
                                  const pft_frame_t *level, bool evidence)
 {
@@ -368,17 +499,27 @@ pft_status_t pft_pre_flat_update(pft_pre_flat_t *fl, const pft_frame_t *res, int
         memset(fl->sum, 0, (size_t)nb * 4u);
         memset(fl->cnt, 0, (size_t)nb * 4u);
         memset(fl->lsum, 0, (size_t)nb * 4u);
+        if (fl->sc != NULL) {
+            memset(fl->nall, 0, (size_t)nb * 4u);
+            memset(fl->nlo, 0, (size_t)nb * 4u);
+        }
     }
     for (uint32_t y = 0u; y < h; ++y) {
         fl_rowv_(fl, y);
         int16_t *r = (int16_t *)(void *)((uint8_t *)(void *)pixels + (size_t)y * res->stride_bytes);
         fl_row_(fl, r, rel ? pft_frame_row(level, y) : NULL, u8, evidence, y >> fl->lb);
+        if (fl->sc != NULL) {
+            fl_scale_row_(fl, r, y, evidence, y >> fl->lb);
+        }
     }
     if (evidence) {
         fl->frames = fl->frames < 0xFFFFFFFFu ? fl->frames + 1u : fl->frames;
         const uint32_t run = fl->frames >= 65536u ? 1u : 65536u / fl->frames;
         const uint32_t a = run > (uint32_t)fl->cfg.alpha ? run : (uint32_t)fl->cfg.alpha;
         fl_learn_(fl, a);
+        if (fl->sc != NULL) {
+            fl_learn_scale_(fl, a);
+        }
     }
     return PFT_OK;
 }

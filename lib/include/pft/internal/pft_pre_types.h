@@ -103,6 +103,11 @@ struct pft_pre_flat_s {
     uint32_t nbx, nby;     /* blocks per row, per column */
     uint32_t lb;           /* log2(block) */
     uint32_t frames;       /* frames with evidence since init/reset */
+    int32_t *sc;           /* rescale: per block the corrected residual's robust sd, sigma Q16 (NULL without) */
+    int32_t *sq;           /* rescale: per block the multiplier 2^32 / sc (Q16) */
+    uint32_t *nall;        /* rescale: this frame's unmasked pixels per block */
+    uint32_t *nlo;         /* rescale: this frame's pixels per block with |v| <= 0.6745 sc */
+    int32_t *rowq;         /* rescale: the multipliers interpolated to one row at the block columns */
 };
 
 #ifdef __cplusplus
