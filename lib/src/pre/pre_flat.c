@@ -297,10 +297,32 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
  * segment by segment between block centres (the weight t steps by 2 per pixel, so the
  * interpolation's numerator a0 (d - t) + a1 t by 2 (a1 - a0)), each segment in its two block
  * spans, whose sums are booked once per span. */
+/* Segment s of a row walk between block centres (columns from x up to the centre of block s;
+ * s == nbx: to the row's end w): its end *xe and, when it holds a column, the biased numerator
+ * *u of fl_shr_(fl_mix_(a0, a1, t, d, k)) at x and its step *st per pixel (0 where the value is
+ * held: before the first centre and after the last). False when the segment is empty. */
+static inline bool fl_seg_(const int32_t *rv, uint32_t s, uint32_t x, uint32_t nbx, uint32_t lb,
+                           uint32_t w, int32_t d, uint32_t k, uint32_t *xe, uint32_t *u,
+                           uint32_t *st)
+{
+    uint32_t e = s < nbx ? (s << lb) + ((1u << lb) / 2u) : w;
+    e = e > w ? w : e;
+    *xe = e;
+    if (x >= e) {
+        return false;
+    }
+    const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
+    const bool held = (s == 0u) || (s == nbx);
+    const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(s - 1u, lb);
+    *u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
+    *st = held ? 0u : (uint32_t)(2 * (a1 - a0));
+    return true;
+}
+
 static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
                     uint32_t jb)
 {
-    const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
+    const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx;
     const uint32_t d2 = 2u << lb;
     const uint32_t k = lrow != NULL ? lb + 1u : lb + 9u;
     const int32_t d = (int32_t)d2, gate = (int32_t)fl->cfg.gate;
@@ -311,16 +333,10 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
     uint32_t x = 0u;
     for (uint32_t s = 0u; s <= nbx; ++s) {
         /* segment s: columns up to the centre of block s (s == nbx: to the end) */
-        uint32_t xe = s < nbx ? (s << lb) + b / 2u : w;
-        xe = xe > w ? w : xe;
-        if (x >= xe) {
+        uint32_t xe, u, st;
+        if (!fl_seg_(rv, s, x, nbx, lb, w, d, k, &xe, &u, &st)) {
             continue;
         }
-        const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
-        const bool held = s == 0u || s == nbx;
-        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(s - 1u, lb);
-        uint32_t u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
-        const uint32_t st = held ? 0u : (uint32_t)(2 * (a1 - a0));
         while (x < xe) {
             const uint32_t blk = x >> lb;
             uint32_t xb = (blk + 1u) << lb;
@@ -385,7 +401,7 @@ static int32_t fl_mulq_(int32_t v, int32_t q)
  * block's own s (before the multiplication). */
 static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn, uint32_t jb)
 {
-    const uint32_t w = fl->cfg.width, lb = fl->lb, b = 1u << lb, nbx = fl->nbx;
+    const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx;
     const int32_t d = (int32_t)(2u << lb);
     uint32_t j0, j1, t0;
     fl_locate_(2u * y, fl->nby, lb, &j0, &j1, &t0);
@@ -400,17 +416,10 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
     const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
     uint32_t x = 0u;
     for (uint32_t sg = 0u; sg <= nbx; ++sg) {
-        uint32_t xe = sg < nbx ? (sg << lb) + b / 2u : w;
-        xe = xe > w ? w : xe;
-        if (x >= xe) {
+        uint32_t xe, u, st;
+        if (!fl_seg_(rq, sg, x, nbx, lb, w, d, k, &xe, &u, &st)) {
             continue;
         }
-        const int32_t a0 = rq[sg == 0u ? 0u : sg - 1u], a1 = rq[sg < nbx ? sg : nbx - 1u];
-        const bool held = sg == 0u || sg == nbx;
-        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(sg - 1u, lb);
-        /* fl_shr_'s biased numerator of fl_mix_(a0, a1, t, d, k), stepping by st per pixel */
-        uint32_t u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
-        const uint32_t st = held ? 0u : (uint32_t)(2 * (a1 - a0));
         while (x < xe) {
             const uint32_t blk = x >> lb;
             uint32_t xb = (blk + 1u) << lb;
