@@ -298,25 +298,26 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
  * interpolation's numerator a0 (d - t) + a1 t by 2 (a1 - a0)), each segment in its two block
  * spans, whose sums are booked once per span. */
 /* Segment s of a row walk between block centres (columns from x up to the centre of block s;
- * s == nbx: to the row's end w): its end *xe and, when it holds a column, the biased numerator
- * *u of fl_shr_(fl_mix_(a0, a1, t, d, k)) at x and its step *st per pixel (0 where the value is
- * held: before the first centre and after the last). False when the segment is empty. */
-static inline bool fl_seg_(const int32_t *rv, uint32_t s, uint32_t x, uint32_t nbx, uint32_t lb,
-                           uint32_t w, int32_t d, uint32_t k, uint32_t *xe, uint32_t *u,
-                           uint32_t *st)
+ * s == nbx: to the row's end w): its end xe and, when it holds a column (x < xe), the biased
+ * numerator u of fl_shr_(fl_mix_(a0, a1, t, d, k)) at x and its step st per pixel (0 where the
+ * value is held: before the first centre and after the last). */
+typedef struct {
+    uint32_t xe, u, st;
+} fl_seg_t;
+
+static inline fl_seg_t fl_seg_(const int32_t *rv, uint32_t s, uint32_t x, uint32_t nbx, uint32_t lb,
+                               uint32_t w, int32_t d, uint32_t k)
 {
-    uint32_t e = s < nbx ? (s << lb) + ((1u << lb) / 2u) : w;
-    e = e > w ? w : e;
-    *xe = e;
-    if (x >= e) {
-        return false;
+    fl_seg_t g = {s < nbx ? (s << lb) + ((1u << lb) / 2u) : w, 0u, 0u};
+    g.xe = g.xe > w ? w : g.xe;
+    if (x < g.xe) {
+        const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
+        const bool held = (s == 0u) || (s == nbx);
+        const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(s - 1u, lb);
+        g.u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
+        g.st = held ? 0u : (uint32_t)(2 * (a1 - a0));
     }
-    const int32_t a0 = rv[s == 0u ? 0u : s - 1u], a1 = rv[s < nbx ? s : nbx - 1u];
-    const bool held = (s == 0u) || (s == nbx);
-    const int32_t t = held ? 0 : (int32_t)(2u * x) - fl_c2_(s - 1u, lb);
-    *u = (uint32_t)(a0 * (d - t) + a1 * t + FL_BIAS_) + (1u << (k - 1u));
-    *st = held ? 0u : (uint32_t)(2 * (a1 - a0));
-    return true;
+    return g;
 }
 
 static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
@@ -333,8 +334,10 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
     uint32_t x = 0u;
     for (uint32_t s = 0u; s <= nbx; ++s) {
         /* segment s: columns up to the centre of block s (s == nbx: to the end) */
-        uint32_t xe, u, st;
-        if (!fl_seg_(rv, s, x, nbx, lb, w, d, k, &xe, &u, &st)) {
+        const fl_seg_t g = fl_seg_(rv, s, x, nbx, lb, w, d, k);
+        const uint32_t xe = g.xe, st = g.st;
+        uint32_t u = g.u;
+        if (x >= xe) {
             continue;
         }
         while (x < xe) {
@@ -416,8 +419,10 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
     const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
     uint32_t x = 0u;
     for (uint32_t sg = 0u; sg <= nbx; ++sg) {
-        uint32_t xe, u, st;
-        if (!fl_seg_(rq, sg, x, nbx, lb, w, d, k, &xe, &u, &st)) {
+        const fl_seg_t g = fl_seg_(rq, sg, x, nbx, lb, w, d, k);
+        const uint32_t xe = g.xe, st = g.st;
+        uint32_t u = g.u;
+        if (x >= xe) {
             continue;
         }
         while (x < xe) {
