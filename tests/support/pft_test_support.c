@@ -166,6 +166,23 @@ void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_init(p, c, work, need));
 }
 
+void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *work, size_t need,
+                                     void *copy)
+{
+    const pft_pre_t before = *p;
+    memcpy(copy, work, need);
+    pft_frame_t bad[3] = {f, f, f};
+    bad[0].data = NULL;
+    bad[1].width = (uint16_t)(f.width - 1u);
+    bad[2].bit_depth = f.bit_depth == 12u ? 14u : 12u;
+    const pft_status_t want[3] = {PFT_ERR_INVAL, PFT_ERR_FORMAT, PFT_ERR_FORMAT};
+    for (int i = 0; i < 3; ++i) {
+        TEST_ASSERT_EQUAL_INT(want[i], pft_pre_update(p, &bad[i]));
+        TEST_ASSERT_EQUAL_MEMORY(&before, p, sizeof *p);
+        TEST_ASSERT_EQUAL_MEMORY(copy, work, need);
+    }
+}
+
 double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y)
 {
     pft_frame_t r;

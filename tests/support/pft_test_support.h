@@ -22,6 +22,11 @@ void pft_test_box_corners(pft_tsa_pt_t b[4], int x0, int y0, int x1, int y1);
 /* The stage's tests: check c (the refused field named on failure), then init p with exactly its
  * workspace size from work (cap bytes, asserted enough). */
 void pft_test_pre_init(pft_pre_t *p, const pft_pre_config_t *c, void *work, size_t cap);
+/* The stage's refusal of three frames made from the valid frame f (data NULL: PFT_ERR_INVAL;
+ * width one less, bit depth 12 where f's is not: PFT_ERR_FORMAT): each leaves p and its
+ * workspace (need bytes at work; copy: need bytes of scratch) byte-identical. */
+void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *work, size_t need,
+                                     void *copy);
 /* The stage's last residual at pixel (x, y) in counts: the whitened value times the sigma of its
  * tile (exact with sigma_interp false); NAN where masked. */
 double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y);

@@ -612,21 +612,8 @@ static void refused_changes_nothing(uint8_t local)
         pft_frame_t f = frame_of(k + 1u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
     }
+    pft_test_pre_bad_frames_refused(&p, frame_of(9), g_work, need, g_copy);
     const pft_pre_t before = p;
-    memcpy(g_copy, g_work, need);
-    pft_frame_t bad[3];
-    for (int i = 0; i < 3; ++i) {
-        bad[i] = frame_of(9);
-    }
-    bad[0].data = NULL;
-    bad[1].width = W - 1;
-    bad[2].bit_depth = 12;
-    const pft_status_t want[3] = {PFT_ERR_INVAL, PFT_ERR_FORMAT, PFT_ERR_FORMAT};
-    for (int i = 0; i < 3; ++i) {
-        TEST_ASSERT_EQUAL_INT(want[i], pft_pre_update(&p, &bad[i]));
-        TEST_ASSERT_EQUAL_MEMORY(&before, &p, sizeof p);
-        TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, need);
-    }
     /* refused configurations: init refuses each and touches neither */
     pft_pre_config_t d[3] = {c, c, c};
     d[0].bg_gate = PFT_PRE_MAX_BG_GATE + 1u;
