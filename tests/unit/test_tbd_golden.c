@@ -1,7 +1,8 @@
 /*
  * Cross-target determinism of the tbd family: replays the calls behind
  * tests/vectors/tbd_q16_vectors.h (standalone RBPF-TBD and PF-TBD filters, the manager with the
- * paper, recommended and a variant preset, measurement-model calls; tbd_vectors_spec.h) and
+ * paper, recommended and a variant preset and with births from the multi-frame integration
+ * (integ_alpha), measurement-model calls; tbd_vectors_spec.h) and
  * compares with the q16 results of a host build.
  *   q16 builds (host, Cortex-M3, Cortex-M7, AArch64): every value bit-identical.
  *   float builds: the trackers' random decisions diverge from q16 within a few frames, so the
@@ -41,14 +42,16 @@ static void test_manager(void)
                PFT_TV_MGR_FRAMES, PFT_TV_MROW);
     check_rows("manager variant", REF(&tv_mgr_var[0][0], &again.mgr_var[0][0]), &got.mgr_var[0][0],
                PFT_TV_MGR_FRAMES, PFT_TV_MROW);
+    check_rows("manager integration", REF(&tv_mgr_integ[0][0], &again.mgr_integ[0][0]),
+               &got.mgr_integ[0][0], PFT_TV_MGR_FRAMES, PFT_TV_MROW);
 }
 
 /* The scene must exercise what the vectors are for: confirmations and endings in every
  * manager run (checked on the results of this build, q16 or float). */
 static void test_scene_has_events(void)
 {
-    const uint32_t(*runs[3])[PFT_TV_MROW] = {got.mgr_paper, got.mgr_rec, got.mgr_var};
-    for (int m = 0; m < 3; ++m) {
+    const uint32_t(*runs[4])[PFT_TV_MROW] = {got.mgr_paper, got.mgr_rec, got.mgr_var, got.mgr_integ};
+    for (int m = 0; m < 4; ++m) {
         uint32_t most = 0, events = 0;
         for (int k = 0; k < PFT_TV_MGR_FRAMES; ++k) {
             most = runs[m][k][5] > most ? runs[m][k][5] : most;

@@ -41,6 +41,7 @@ typedef struct {
     uint32_t mgr_paper[PFT_TV_MGR_FRAMES][PFT_TV_MROW];
     uint32_t mgr_rec[PFT_TV_MGR_FRAMES][PFT_TV_MROW];
     uint32_t mgr_var[PFT_TV_MGR_FRAMES][PFT_TV_MROW];
+    uint32_t mgr_integ[PFT_TV_MGR_FRAMES][PFT_TV_MROW];
     uint32_t meas[PFT_TV_MEAS];
 } pft_tv_results_t;
 
@@ -141,15 +142,20 @@ static inline void pft_tv_run_filter(pft_tbd_kind_t kind, uint32_t rows[][PFT_TV
 }
 
 /* ---- manager ---- */
-static uint64_t pft_tv_mwork[PFT_TBD_WORKSPACE_BYTES(PFT_TV_NS, PFT_TV_NT, PFT_TV_MAXT, PFT_TBD_RBPF,
-                                                     PFT_GV_SCENE_W, PFT_GV_SCENE_H) / 8u + 1u];
+/* birth peaks of the integration case (the recommended preset with births from the peaks of
+ * the multi-frame integration, cfg.integ_alpha) */
+#define PFT_TV_PEAKS 8u
+/* one workspace for every manager case: the largest, the integration case's */
+static uint64_t pft_tv_mwork[(PFT_TBD_WORKSPACE_BYTES_PEAKS(PFT_TV_NS, PFT_TV_NT, PFT_TV_MAXT, PFT_TBD_RBPF,
+                                                            PFT_GV_SCENE_W, PFT_GV_SCENE_H, PFT_TV_PEAKS) +
+                              PFT_TBD_INTEG_BYTES(PFT_GV_SCENE_W, PFT_GV_SCENE_H)) / 8u + 1u];
 static pft_tbd_t pft_tv_mgr;
 
 static inline void pft_tv_run_manager(const pft_tbd_config_t *c, uint64_t sim_seed,
                                       uint32_t rows[][PFT_TV_MROW])
 {
     memset(pft_tv_mwork, 0, sizeof pft_tv_mwork);
-    if (pft_tbd_init(&pft_tv_mgr, c, pft_tv_mwork, sizeof pft_tv_mwork) != PFT_OK) {
+    if (pft_tbd_init(&pft_tv_mgr, c, pft_tv_mwork, pft_tbd_workspace_size(c)) != PFT_OK) {
         return;
     }
     pft_rng_t sim;
@@ -266,6 +272,10 @@ static inline void pft_tv_compute(pft_tv_results_t *r)
     c.residual_tracks = true;
     c.handover_gate = 3u;
     pft_tv_run_manager(&c, 203u, r->mgr_var);
+    pft_tv_config(&c, 1, 24u);
+    c.birth_peaks = PFT_TV_PEAKS;
+    c.integ_alpha = PFT_C(0.7);
+    pft_tv_run_manager(&c, 204u, r->mgr_integ);
     pft_tv_run_meas(r->meas);
 }
 
