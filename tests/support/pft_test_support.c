@@ -183,6 +183,27 @@ void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *wo
     }
 }
 
+void pft_test_pre_strip_acc(const pft_pre_t *p, int y0, int y1, int xe, int xi, int w, double sd,
+                            double *se, int *ne, double *si, int *ni)
+{
+    for (int y = y0; y < y1; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const double r = x < xe || x >= xi ? pft_test_pre_res_counts(p, x, y) : NAN;
+            if (isnan(r)) {
+                continue;
+            }
+            const double q = (r / sd) * (r / sd);
+            if (x < xe) {
+                *se += q;
+                (*ne)++;
+            } else {
+                *si += q;
+                (*ni)++;
+            }
+        }
+    }
+}
+
 double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y)
 {
     pft_frame_t r;

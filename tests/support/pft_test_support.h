@@ -30,6 +30,11 @@ void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *wo
 /* The stage's last residual at pixel (x, y) in counts: the whitened value times the sigma of its
  * tile (exact with sigma_interp false); NAN where masked. */
 double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y);
+/* The stage's last residual squared in units of sd counts over rows y0 .. y1 - 1 of a frame w
+ * wide: columns x < xe added to *se (count *ne), columns x >= xi to *si (count *ni); masked
+ * pixels skipped (the entering-edge strip tests). */
+void pft_test_pre_strip_acc(const pft_pre_t *p, int y0, int y1, int xe, int xi, int w, double sd,
+                            double *se, int *ne, double *si, int *ni);
 /* The clutter map's tests: init for a w x h residual (cfg's size set) and assert PFT_OK; the
  * map's last output (PFT_PIX_RES16 asserted). */
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,

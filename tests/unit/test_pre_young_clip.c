@@ -196,22 +196,7 @@ static void strip(uint16_t clip, double *edge, double *inner)
         if (k < 20u) {
             continue;
         }
-        for (int y = 4; y < 68; ++y) {
-            for (int x = 0; x < 64; ++x) {
-                const double r = x < 8 || x >= 40 ? pft_test_pre_res_counts(&p, x, y) : NAN;
-                if (isnan(r)) {
-                    continue;
-                }
-                const double q = (r / SIGMA_T) * (r / SIGMA_T);
-                if (x < 8) {
-                    se += q;
-                    ne++;
-                } else {
-                    si += q;
-                    ni++;
-                }
-            }
-        }
+        pft_test_pre_strip_acc(&p, 4, 68, 8, 40, 64, SIGMA_T, &se, &ne, &si, &ni);
     }
     TEST_ASSERT_TRUE(ne > 40 * 64 * 4 && ni == 40 * 64 * 24); /* most edge pixels unmasked */
     *edge = se / ne;
