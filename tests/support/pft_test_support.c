@@ -183,6 +183,16 @@ void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *wo
     }
 }
 
+void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *work, size_t need,
+                               void *copy)
+{
+    const pft_pre_t before = *p;
+    memcpy(copy, work, need);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_pre_init(p, d, work, need));
+    TEST_ASSERT_EQUAL_MEMORY(&before, p, sizeof *p);
+    TEST_ASSERT_EQUAL_MEMORY(copy, work, need);
+}
+
 void pft_test_pre_strip_acc(const pft_pre_t *p, int y0, int y1, int xe, int xi, int w, double sd,
                             double *se, int *ne, double *si, int *ni)
 {

@@ -30,6 +30,10 @@ void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *wo
 /* The stage's last residual at pixel (x, y) in counts: the whitened value times the sigma of its
  * tile (exact with sigma_interp false); NAN where masked. */
 double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y);
+/* pft_pre_init refuses the configuration d (PFT_ERR_CONFIG) given need bytes at work, and leaves
+ * p and the workspace byte-identical (copy: need bytes of scratch). */
+void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *work, size_t need,
+                               void *copy);
 /* The stage's last residual squared in units of sd counts over rows y0 .. y1 - 1 of a frame w
  * wide: columns x < xe added to *se (count *ne), columns x >= xi to *si (count *ni); masked
  * pixels skipped (the entering-edge strip tests). */
