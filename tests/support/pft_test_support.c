@@ -183,6 +183,36 @@ void pft_test_pre_bad_frames_refused(pft_pre_t *p, pft_frame_t f, const void *wo
     }
 }
 
+void pft_test_texture(uint16_t *img, int w, int h, const pft_test_texture_t *t, uint32_t *rs, double *cx,
+                      double *sxr, double *cy, double *syr)
+{
+    const double pi2 = 6.283185307179586;
+    for (int x = 0; x < w; ++x) {
+        const double u = x - t->sx;
+        cx[x] = 1500.0 * sin(pi2 * u / 23.0) + 900.0 * sin(pi2 * u / 11.0 + 1.0);
+        sxr[x] = sin(pi2 * u / 13.0);
+    }
+    for (int y = 0; y < h; ++y) {
+        const double v = y - t->sy;
+        cy[y] = 1200.0 * sin(pi2 * v / 17.0 + 0.5);
+        syr[y] = 1000.0 * sin(pi2 * v / 19.0 + 2.0);
+    }
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const double u = x - t->sx - t->tx, v = y - t->sy - t->ty;
+            double z = 6000.0 + t->level + cx[x] + cy[y] + sxr[x] * syr[y];
+            z += t->amp * exp(-(u * u + v * v) / (2.0 * 0.49));
+            const double px = x - t->sx, py = y - t->sy;
+            if (px >= 60.0 && px < 68.0 && py >= 20.0 && py < 28.0) {
+                z += t->patch;
+            }
+            z += t->sigma * (pft_test_noise_sum4(rs) / 2365.0);
+            const double r = floor(z + 0.5);
+            img[y * w + x] = (uint16_t)(r < 0.0 ? 0.0 : (r > 16383.0 ? 16383.0 : r));
+        }
+    }
+}
+
 void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *work, size_t need,
                                void *copy)
 {

@@ -39,6 +39,17 @@ void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *wo
  * pixels skipped (the entering-edge strip tests). */
 void pft_test_pre_strip_acc(const pft_pre_t *p, int y0, int y1, int xe, int xi, int w, double sd,
                             double *se, int *ne, double *si, int *ni);
+/* The stage tests' drifting scene (test_pre_gate, test_pre_young_clip): a smooth texture
+ * (wavelengths 11 to 23 px, 60 to 110 sd of 16 counts) about 6000 + level counts, shifted by
+ * (sx, sy) (pixel p shows the scene at p - s), plus a Gaussian point (sd 0.7 px, peak amp
+ * counts) at scene position (tx, ty), plus patch counts over the scene square [60, 68) x
+ * [20, 28), plus noise of sd sigma (pft_test_noise_sum4 on *rs), rounded and clipped to 14 bits. */
+typedef struct {
+    double sx, sy, level, tx, ty, amp, patch, sigma;
+} pft_test_texture_t;
+/* Renders t into img (w x h); cx, sxr (w doubles) and cy, syr (h doubles) are scratch. */
+void pft_test_texture(uint16_t *img, int w, int h, const pft_test_texture_t *t, uint32_t *rs, double *cx,
+                      double *sxr, double *cy, double *syr);
 /* The clutter map's tests: init for a w x h residual (cfg's size set) and assert PFT_OK; the
  * map's last output (PFT_PIX_RES16 asserted). */
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,

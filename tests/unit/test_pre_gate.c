@@ -35,43 +35,13 @@ static uint32_t g_rs = 2463534242u;
 static double g_cx[W], g_cy[H], g_sx[W], g_sy[H];
 static double g_level; /* counts added to every pixel of the next render (a level ramp) */
 
-/* xorshift noise, a sum of four uniforms scaled to unit sd (nearly Gaussian) */
-static double noise_unit(void)
-{
-    return pft_test_noise_sum4(&g_rs) / 2365.0;
-}
-
-/* The frame of a smooth texture (wavelengths 11 to 23 px, 60 to 110 sigma_t) shifted by
- * (sx, sy) (pixel p shows the scene at p - s), plus a Gaussian point (sd 0.7 px, peak `amp`
- * counts) at scene position (tx, ty), plus a patch of `patch` counts over the scene square
- * [60, 68) x [20, 28), plus noise of SIGMA_T. */
+/* The frame of pft_test_texture (the support's smooth texture) shifted by (sx, sy), with the
+ * point of peak `amp` at scene position (tx, ty), `patch` counts over its scene square, the
+ * level g_level and noise of SIGMA_T. */
 static void render(double sx, double sy, double tx, double ty, double amp, double patch)
 {
-    const double pi2 = 6.283185307179586;
-    for (int x = 0; x < W; ++x) {
-        const double u = x - sx;
-        g_cx[x] = 1500.0 * sin(pi2 * u / 23.0) + 900.0 * sin(pi2 * u / 11.0 + 1.0);
-        g_sx[x] = sin(pi2 * u / 13.0);
-    }
-    for (int y = 0; y < H; ++y) {
-        const double v = y - sy;
-        g_cy[y] = 1200.0 * sin(pi2 * v / 17.0 + 0.5);
-        g_sy[y] = 1000.0 * sin(pi2 * v / 19.0 + 2.0);
-    }
-    for (int y = 0; y < H; ++y) {
-        for (int x = 0; x < W; ++x) {
-            const double u = x - sx - tx, v = y - sy - ty;
-            double z = 6000.0 + g_level + g_cx[x] + g_cy[y] + g_sx[x] * g_sy[y];
-            z += amp * exp(-(u * u + v * v) / (2.0 * 0.49));
-            const double px = x - sx, py = y - sy;
-            if (px >= 60.0 && px < 68.0 && py >= 20.0 && py < 28.0) {
-                z += patch;
-            }
-            z += SIGMA_T * noise_unit();
-            const double r = floor(z + 0.5);
-            g_img[y * W + x] = (uint16_t)(r < 0.0 ? 0.0 : (r > 16383.0 ? 16383.0 : r));
-        }
-    }
+    const pft_test_texture_t t = {sx, sy, g_level, tx, ty, amp, patch, SIGMA_T};
+    pft_test_texture(g_img, W, H, &t, &g_rs, g_cx, g_sx, g_cy, g_sy);
 }
 
 static pft_frame_t frame_of(uint32_t seq)

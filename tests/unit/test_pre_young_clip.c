@@ -30,32 +30,13 @@ static uint64_t g_copy[sizeof(g_work) / 8];
 static uint32_t g_rs = 2463534242u;
 static double g_cx[W], g_cy[H], g_sx[W], g_sy[H];
 
-/* The smooth texture of test_pre_gate (wavelengths 11 to 23 px, 60 to 110 sigma_t) shifted by
- * sx along x (pixel x shows the scene at x - sx: the scene enters at the left edge), plus a
- * Gaussian point (sd 0.7 px, peak `amp` counts) at scene position (tx, ty), plus noise of
- * SIGMA_T. */
+/* The smooth texture of test_pre_gate (pft_test_texture) shifted by sx along x (pixel x shows
+ * the scene at x - sx: the scene enters at the left edge), plus a Gaussian point (sd 0.7 px,
+ * peak `amp` counts) at scene position (tx, ty), plus noise of SIGMA_T. */
 static void render(double sx, double tx, double ty, double amp)
 {
-    const double pi2 = 6.283185307179586;
-    for (int x = 0; x < W; ++x) {
-        const double u = x - sx;
-        g_cx[x] = 1500.0 * sin(pi2 * u / 23.0) + 900.0 * sin(pi2 * u / 11.0 + 1.0);
-        g_sx[x] = sin(pi2 * u / 13.0);
-    }
-    for (int y = 0; y < H; ++y) {
-        g_cy[y] = 1200.0 * sin(pi2 * y / 17.0 + 0.5);
-        g_sy[y] = 1000.0 * sin(pi2 * y / 19.0 + 2.0);
-    }
-    for (int y = 0; y < H; ++y) {
-        for (int x = 0; x < W; ++x) {
-            const double u = x - sx - tx, v = y - ty;
-            double z = 6000.0 + g_cx[x] + g_cy[y] + g_sx[x] * g_sy[y];
-            z += amp * exp(-(u * u + v * v) / (2.0 * 0.49));
-            z += SIGMA_T * pft_test_noise_sum4(&g_rs) / 2365.0;
-            const double r = floor(z + 0.5);
-            g_img[y * W + x] = (uint16_t)(r < 0.0 ? 0.0 : (r > 16383.0 ? 16383.0 : r));
-        }
-    }
+    const pft_test_texture_t t = {sx, 0.0, 0.0, tx, ty, amp, 0.0, SIGMA_T};
+    pft_test_texture(g_img, W, H, &t, &g_rs, g_cx, g_sx, g_cy, g_sy);
 }
 
 /* The real-frame block's background: anchored, the clip at 0.25 sigma, bg_gate_young 16, and
