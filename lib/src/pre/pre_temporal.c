@@ -1233,8 +1233,8 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
                 je = se < fs1 ? se : fs1;
-                const int32_t lim = ryoung ? young_lim_(p, jy, ja0) : gate_lim_(p, jy, ja0);
                 const int32_t ylim = young_lim_(p, jy, ja0);
+                const int32_t lim = ryoung ? ylim : gate_lim_(p, jy, ja0);
                 /* bg_gate_young: the span's young columns ungated. Columns enter only at the
                  * ends of the valid range, so their ages rise from each end inwards: the young
                  * ones are a prefix [ja0, ma) and a suffix (mb, je] of the span */
