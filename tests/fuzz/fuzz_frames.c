@@ -592,6 +592,10 @@ static void run_pre(fz_t *f)
         c.bg_gate_shift = (uint8_t)((o & 32u) ? 1u + (o >> 18) % 15u : 0u);
         c.bg_gate_young = (uint8_t)((o & 64u) ? 1u + (o >> 22) % 16u : 0u);
         c.bg_gate_local = (uint8_t)((o >> 26) % 3u);
+        if (c.bg_gate_young != 0u && (o & 0x80000000u) != 0u) {
+            c.bg_young_clip = (uint16_t)(PFT_PRE_MIN_BG_GATE +
+                                         (o >> 9) % (PFT_PRE_MAX_BG_GATE - PFT_PRE_MIN_BG_GATE + 1u));
+        }
     }
     if (c.bg_anchor) {
         c.bg_masked_taps = (uint8_t)((o >> 28) % 3u);
@@ -662,6 +666,7 @@ static void run_pre(fz_t *f)
     uint8_t fo = fz_u8(f);
     fc.block = (uint8_t)(PFT_PRE_FLAT_MIN_BLOCK << (fo % 5u)); /* 4..64 */
     fc.relative = (fo & 8u) != 0u;
+    fc.rescale = (fo & 4u) != 0u;
     fc.gate = (uint16_t)(1u + (fo >> 4) * 128u);
     built_valid_(pft_pre_flat_config_check(&fc, &bad_field), "fc", &bad_field);
     size_t fws = pft_pre_flat_workspace_size(&fc);
