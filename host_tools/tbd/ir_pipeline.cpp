@@ -99,6 +99,7 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
     c.reg_bin = t.reg_bin;
     c.sigma_current = t.sigma_current;
     c.sigma_bracket = t.sigma_bracket;
+    c.sigma_level = t.sigma_level;
     c.bg_gate = static_cast<uint16_t>(std::lround(t.bg_gate * 256.0));  // 0 (off) or 64..4096: the scenario reader's range
     c.bg_gate_shift = static_cast<uint8_t>(t.bg_gate_shift);
     c.bg_gate_young = static_cast<uint8_t>(t.bg_gate_young);

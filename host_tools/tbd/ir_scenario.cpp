@@ -17,7 +17,7 @@ double IrScenario::amplitude(double snr_db) const
 const char *const kPreprocessFields[] = {
     "preprocess", "bg_alpha", "col_alpha", "background_radius", "guard_radius", "tile", "edge_k",
     "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin",
-    "sigma_current", "sigma_bracket", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young",
+    "sigma_current", "sigma_bracket", "sigma_level", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young",
     "bg_young_clip", "bg_stale_reinit", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
     "flat_rescale", "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
     "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor",
@@ -226,6 +226,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         T.sigma_current = t.at("sigma_current").as_bool();
     if (t.has("sigma_bracket"))
         T.sigma_bracket = t.at("sigma_bracket").as_bool();
+    if (t.has("sigma_level"))
+        T.sigma_level = t.at("sigma_level").as_bool();
+    if (T.sigma_level && (T.sigma_step > 1 || T.sigma_every > 1 || T.sigma_bracket))
+        t.at("sigma_level").fail("takes the tile sigma about the tile's level in the histogram of every pixel: needs sigma_step 1, sigma_every 1 and sigma_bracket false");
     if (t.has("bg_anchor"))
         T.bg_anchor = t.at("bg_anchor").as_bool();
     if (T.bg_anchor && T.preprocess != "temporal")

@@ -107,6 +107,7 @@ struct TrackerSettings {
     bool reg_bin = false;                       ///< temporal: registration sums on 2 x 2 boxes of pixels (pft_pre reg_bin; reg_step at least 2)
     bool sigma_current = true;                  ///< whiten each frame with its own tile sigmas (true) or with the last frame's (pft_pre sigma_current)
     bool sigma_bracket = false;                 ///< tile sigmas from counts around the last median instead of histograms (pft_pre sigma_bracket)
+    bool sigma_level = false;                   ///< tile sigmas taken about each tile's level (the mean of its clipped residual in the last frame) instead of about zero (pft_pre sigma_level, docs/algorithms.md 9.6)
     bool bg_anchor = false;                     ///< temporal background kept on a scene-anchored grid (pft_pre bg_anchor; the stage then runs without inplace)
     double bg_gate = 0.0;                       ///< with bg_anchor: the background's update innovation clipped to +-bg_gate tile sigmas (pft_pre bg_gate, 0 off or 0.25..16)
     int bg_gate_shift = 0;                      ///< with bg_gate: 0 clips the innovation beyond the gate; 1..15 updates those cells with alpha / 2^shift (pft_pre bg_gate_shift)

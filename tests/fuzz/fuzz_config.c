@@ -575,7 +575,9 @@ static void fuzz_pre_stage(fz_t *f)
     c.edge_k = (o & 8192u) ? 1024u : 0u;
     c.reg_bin = (o & 16384u) != 0u;
     bool bad = (o & 32768u) != 0u;
+    c.sigma_level = d >= 192u; /* o's bits are all used */
     FZ_PATCH(f, c, 12u);
+    FZ_BOOL(c.sigma_level);
     FZ_BOOL(c.warp_cubic);
     FZ_BOOL(c.sigma_interp);
     FZ_BOOL(c.sigma_current);
@@ -620,6 +622,8 @@ static void fuzz_pre_stage(fz_t *f)
     }
     /* the header's rule for bg_stale_reinit: PFT_PRE_STALE_BYTES more, with or without bg_anchor */
     macro += (c.bg_stale_reinit != 0u) ? PFT_PRE_STALE_BYTES(c.width, c.height) : 0u;
+    /* and for sigma_level: PFT_PRE_LEVEL_BYTES more, with or without bg_anchor */
+    macro += c.sigma_level ? PFT_PRE_LEVEL_BYTES(c.width, c.height, c.tile) : 0u;
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;

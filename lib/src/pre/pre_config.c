@@ -46,6 +46,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_masked_taps = 0u;
     cfg->bg_stale_reinit = 0u;
     cfg->bg_young_clip = 0u;
+    cfg->sigma_level = false;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -157,6 +158,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
                                    c->bg_young_clip > PFT_PRE_MAX_BG_GATE)) {
         return "bg_young_clip"; /* acts on bg_gate_young's young cells */
     }
+    if (c->sigma_level && (c->sigma_step > 1u || c->sigma_every > 1u || c->sigma_bracket)) {
+        return "sigma_level"; /* built in the histogram of every pixel of every frame */
+    }
     return NULL;
 }
 
@@ -186,13 +190,15 @@ size_t pft_pre_workspace_size(const pft_pre_config_t *c)
                                               c->peak_max) +
                (c->bg_gate_young != 0u ? PFT_PRE_YOUNG_BYTES(c->width, c->height) : 0u) +
                (c->bg_gate_local != 0u ? PFT_PRE_LOCAL_BYTES(c->width, c->height, c->tile) : 0u) +
-               (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u);
+               (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u) +
+               (c->sigma_level ? PFT_PRE_LEVEL_BYTES(c->width, c->height, c->tile) : 0u);
     }
     return (c->inplace ? PFT_PRE_WORKSPACE_BYTES_INPLACE(c->width, c->height, c->method,
                                                          c->local_outer, c->tile, c->peak_max)
                        : PFT_PRE_WORKSPACE_BYTES(c->width, c->height, c->method, c->local_outer,
                                                  c->tile, c->peak_max)) +
-           (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u);
+           (c->bg_stale_reinit != 0u ? PFT_PRE_STALE_BYTES(c->width, c->height) : 0u) +
+           (c->sigma_level ? PFT_PRE_LEVEL_BYTES(c->width, c->height, c->tile) : 0u);
 }
 
 pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
@@ -249,6 +255,9 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     uint8_t *sage = stale ? pft_ws_take(&ws, (w + 3u) * (h + 3u)) : NULL;
     uint8_t *sline = stale ? pft_ws_take(&ws, 2u * (w + 3u) + h + 3u) : NULL;
     uint8_t *srow = stale ? pft_ws_take(&ws, h + 3u) : NULL;
+    /* sigma_level: the tiles' levels, the sums and counts of one tile row */
+    int32_t *tlev = cfg->sigma_level ? pft_ws_take(&ws, ntx * nty * 4u) : NULL;
+    int32_t *lsum = cfg->sigma_level ? pft_ws_take(&ws, ntx * 8u) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -269,6 +278,8 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     p->sage = sage;
     p->sline = sline;
     p->srow = srow;
+    p->tlev = tlev;
+    p->lsum = lsum;
     p->gm = gm;
     p->gcnt = gcnt;
     p->colq = colq;
@@ -352,6 +363,10 @@ pft_status_t pft_pre_reset(pft_pre_t *p)
         memset(p->gsum, 0, nt * 16u);
         memset(p->gm, 0, nt * 4u);
         memset(p->gcnt, 0, nt * 4u);
+    }
+    if (p->tlev != NULL) {
+        memset(p->tlev, 0, nt * 4u);
+        memset(p->lsum, 0, (size_t)p->ntx * 8u);
     }
     if (p->cfg.peak_max > 0u) {
         memset(p->peaks, 0, (size_t)p->cfg.peak_max * sizeof(pft_pre_peak_t));

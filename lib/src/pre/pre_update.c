@@ -365,6 +365,36 @@ static inline uint32_t bracket_add_(uint16_t *hist, const int16_t *r, uint32_t x
     return (x1 - x0) - cn;
 }
 
+/* sigma_level (docs/algorithms.md 9.6 [E]): one tile's span into its histogram as |r - c|, c the
+ * tile's level (R units, from the last frame that estimated the tile); on the rows of the
+ * column sums also the residual clipped at the column sums' clip (3 sigma) and its count into
+ * the tile column's sums, for the next level. A masked pixel lands in the extra bin as without
+ * the option and enters no sum; returns the masked pixels of the span. */
+static uint32_t level_add_(pft_pre_t *p, uint16_t *hist, const int16_t *r, uint32_t x0,
+                           uint32_t x1, uint32_t j, uint32_t i, bool colrow)
+{
+    const int32_t c = p->tlev[j * p->ntx + i];
+    uint32_t nm = 0u;
+    for (uint32_t x = x0; x < x1; ++x) {
+        const int32_t v = r[x];
+        const bool masked = v == PFT_RES16_MASKED;
+        hist[masked ? PFT_PRE_BINS : hist_bin_(pft_pre_rclamp_(v - c))]++;
+        nm += masked ? 1u : 0u;
+    }
+    if (colrow) {
+        const int32_t clip = pft_pre_clip_(p, j, i);
+        int32_t sum = 0; /* at most 64 rows of 255 pixels of 32767: within 31 bits */
+        for (uint32_t x = x0; x < x1; ++x) {
+            const int32_t v = r[x];
+            const int32_t cv = v < -clip ? -clip : (v > clip ? clip : v);
+            sum += v == PFT_RES16_MASKED ? 0 : cv;
+        }
+        p->lsum[2u * i] += sum;
+        p->lsum[2u * i + 1u] += (int32_t)((x1 - x0) - nm);
+    }
+    return nm;
+}
+
 uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
 {
     const uint32_t w = p->cfg.width, t = p->cfg.tile, j = y / t;
@@ -416,6 +446,10 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         }
         /* a masked pixel (|INT16_MIN| = 32768) lands in the extra bin PFT_PRE_BINS */
         uint16_t *hist = p->hist + (size_t)i * (PFT_PRE_BINS + 1u);
+        if (p->tlev != NULL) {
+            nm += level_add_(p, hist, r, x0, x1, j, i, colrow);
+            continue;
+        }
         const uint16_t before = hist[PFT_PRE_BINS];
         uint32_t x = x0;
         for (; x + 3u < x1; x += 4u) { /* four pixels per iteration: a quarter of the loop's own work */
@@ -469,6 +503,18 @@ void pft_pre_tilerow_done_(pft_pre_t *p, uint32_t j)
             *ts = (*ts & ~PFT_PRE_TILE_STALE_) | PFT_PRE_TILE_STALE_;
         }
         memset(hist, 0, (PFT_PRE_BINS + 1u) * 2u);
+        if (p->tlev != NULL) {
+            /* sigma_level: the tile's next level, the mean of its clipped residual (rounded
+             * half away from zero; kept when fewer than 16 pixels entered) */
+            const int32_t ls = p->lsum[2u * i], ln = p->lsum[2u * i + 1u];
+            if (ln >= 16) {
+                const int32_t a = ls < 0 ? -ls : ls;
+                const int32_t q = (a + ln / 2) / ln;
+                p->tlev[j * p->ntx + i] = ls < 0 ? -q : q;
+            }
+            p->lsum[2u * i] = 0;
+            p->lsum[2u * i + 1u] = 0;
+        }
     }
 }
 

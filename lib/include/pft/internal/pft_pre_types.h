@@ -34,6 +34,8 @@ struct pft_pre_s {
     int64_t *gsum;         /* bg_gate_local: per tile the sums of the innovation e and (relative) of the level B over the cells updated in this frame, U units, 2 * ntx * nty (NULL without it) */
     int32_t *gm;           /* bg_gate_local: per tile m of the last frame's update (mean: U units; relative: rho, Q16), ntx * nty */
     uint32_t *gcnt;        /* bg_gate_local: per tile the cells in gsum, ntx * nty */
+    int32_t *tlev;         /* sigma_level: per tile the level c its sigma is taken about (R units), ntx * nty (NULL without it) */
+    int32_t *lsum;         /* sigma_level: per tile column of the current tile row the sum of the clipped residual and the count, 2 * ntx */
     int32_t *colq;         /* column offsets, R units Q8 */
     int32_t *colnow;       /* this frame's column offsets in working units */
     int32_t *csum;         /* column sums of the clipped residual (R units) */
