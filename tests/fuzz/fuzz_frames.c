@@ -621,6 +621,7 @@ static void run_pre(fz_t *f)
             c.sigma_step = 1u; /* a tile of at least 8 x 8 samples */
         }
         c.sigma_every = (uint8_t)((s >> 3) % 4u);
+        c.sigma_level = c.sigma_step <= 1u && c.sigma_every <= 1u && (o & 0x20000000u) != 0u;
     }
     c.sigma_interp = (s & 32u) == 0u;
     c.sigma_current = (s & 64u) == 0u;
