@@ -46,6 +46,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_masked_taps = 0u;
     cfg->bg_stale_reinit = 0u;
     cfg->bg_young_clip = 0u;
+    cfg->bg_edge_narrow = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -156,6 +157,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     if (c->bg_young_clip != 0u && (c->bg_gate_young == 0u || c->bg_young_clip < PFT_PRE_MIN_BG_GATE ||
                                    c->bg_young_clip > PFT_PRE_MAX_BG_GATE)) {
         return "bg_young_clip"; /* acts on bg_gate_young's young cells */
+    }
+    if (c->bg_edge_narrow > 1u || (c->bg_edge_narrow != 0u && !c->bg_anchor)) {
+        return "bg_edge_narrow"; /* built in the anchored read and update */
     }
     return NULL;
 }

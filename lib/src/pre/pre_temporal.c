@@ -912,6 +912,13 @@ typedef struct {
     int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
     int32_t a15;
     bool gate; /* bg_gate set */
+    /* bg_edge_narrow: the 3-tap weights per axis, ex[0] / ey[0] without tap -1 (the low end),
+     * ex[1] / ey[1] without tap 2 (the high end), and the cells they observe (llo .. lhi; edge
+     * false: unused) */
+    bool edge;
+    agx_t ex[2];
+    agx_t ey[2];
+    int32_t llo[2], lhi[2];
 } anchor_geom_t;
 
 /* bg_gate (docs/algorithms.md 9.13): the tile of grid cell (j, jy), that of its nearest pixel
@@ -1546,6 +1553,232 @@ static void stale_anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy,
     p->srow[jy + 1] = (uint8_t)max_u8_(ar - 1, sw);
 }
 
+/* ------------------------------------------------------------------ bg_edge_narrow (9.12) */
+
+/* bg_edge_narrow: the quadratic (3-tap Lagrange) weights of taps -1, 0, 1, 2 for the
+ * fraction f/256, Q8, summing to 256: hi, nodes -1, 0, 1 (tap 2 weight 0); else nodes 0, 1, 2
+ * (tap -1 weight 0). Like the Catmull-Rom weights they reproduce quadratics, so a smooth scene
+ * is read nearly as well as through the 4 taps (a linear read of the texture of
+ * test_pre_edge_narrow leaves several sigma at its steep parts); f = 0: 0, 256, 0, 0. */
+static void quad_q8_(uint32_t f, bool hi, int32_t w[4])
+{
+    const int64_t t = f;
+    int64_t q[4];
+    if (hi) {
+        q[0] = t * (t - 256) * 128; /* t (t - 1) / 2, Q16 */
+        q[1] = 65536 * 256 - t * t * 256;
+        q[2] = t * (t + 256) * 128;
+        q[3] = 0;
+    } else {
+        q[0] = 0;
+        q[1] = (t - 256) * (t - 512) * 128; /* (t - 1)(t - 2) / 2 */
+        q[2] = t * (512 - t) * 256;
+        q[3] = t * (t - 256) * 128;
+    }
+    int32_t sum = 0;
+    for (uint32_t i = 0; i < 4u; ++i) {
+        w[i] = (int32_t)((q[i] >= 0 ? q[i] + 32768 : q[i] - 32768) / 65536);
+        sum += w[i];
+    }
+    w[f < 128u ? 1 : 2] += 256 - sum;
+}
+
+/* bg_edge_narrow: agx_of_ with the quadratic weights (quad_q8_, hi as there): the same k and
+ * ub, the read at the fraction and the update at the inverse one. */
+static void agx_edge_(int32_t phi, bool hi, agx_t *g)
+{
+    const int32_t u = (phi + 128) >> 8; /* 0 .. 256 */
+    const uint32_t fr = (uint32_t)(u & 255);
+    g->k = u >> 8;
+    quad_q8_(fr, hi, g->wr);
+    if (fr == 0u) {
+        g->ub = -g->k;
+        quad_q8_(0u, hi, g->wu);
+    } else {
+        g->ub = -g->k - 1;
+        quad_q8_(256u - fr, hi, g->wu);
+    }
+    g->rlo = g->wr[0] != 0 ? -1 : (g->wr[1] != 0 ? 0 : 1);
+    g->rhi = g->wr[3] != 0 ? 2 : (g->wr[2] != 0 ? 1 : 0);
+    g->ulo = g->wu[0] != 0 ? -1 : (g->wu[1] != 0 ? 0 : 1);
+    g->uhi = g->wu[3] != 0 ? 2 : (g->wu[2] != 0 ? 1 : 0);
+}
+
+/* bg_edge_narrow: the 3-tap weights of both axes at the position's fraction and the cells they
+ * observe in the update (those whose 3 update taps are in the frame: the low end's without tap
+ * -1, the high end's without tap 2). */
+static void edge_geom_(const pft_pre_t *p, anchor_geom_t *g)
+{
+    const int32_t nn[2] = {(int32_t)p->cfg.width, (int32_t)p->cfg.height};
+    for (uint32_t e = 0; e < 2u; ++e) {
+        agx_edge_(p->aphi[0], e == 1u, &g->ex[e]);
+        agx_edge_(p->aphi[1], e == 1u, &g->ey[e]);
+    }
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const agx_t *lo = a == 0u ? &g->ex[0] : &g->ey[0];
+        const agx_t *hi = a == 0u ? &g->ex[1] : &g->ey[1];
+        g->llo[a] = clampi_(-lo->ub - lo->ulo, -1, nn[a] + 2);
+        g->lhi[a] = clampi_(nn[a] - 1 - hi->ub - hi->uhi, -2, nn[a] + 1);
+    }
+}
+
+/* bg_edge_narrow: the read weights of pixel coordinate x along one axis (c: cubic taps, e: the
+ * 3-tap ones of the low and high ends) whose cells are held in lo .. hi: the cubic weights when
+ * their taps of non-zero weight are held, else the high end's, else the low end's, when theirs
+ * are; else NULL. */
+static const int32_t *edge_rw_(const agx_t *c, const agx_t e[2], int32_t x, int32_t lo, int32_t hi)
+{
+    if (x + c->k + c->rlo >= lo && x + c->k + c->rhi <= hi) {
+        return c->wr;
+    }
+    for (int32_t i = 1; i >= 0; --i) {
+        if (x + e[i].k + e[i].rlo >= lo && x + e[i].k + e[i].rhi <= hi) {
+            return e[i].wr;
+        }
+    }
+    return NULL;
+}
+
+/* bg_edge_narrow, residual row y (grid taps r0 - 1 .. r0 + 2): the pixels that the cubic read
+ * leaves masked (outside ca .. cb, the cubic span of the row; all of them when ca > cb) and
+ * whose 3-tap taps (edge_rw_) along x, y or both are held, read with those weights (the cubic
+ * ones along the other axis when its taps are held); with bg_stale_reinit a pixel reading a cell older
+ * than it stays masked, as stale_anchor_res_. */
+static void edge_res_row_(const pft_pre_t *p, const anchor_geom_t *g, int32_t r0, int32_t ca,
+                          int32_t cb, const int32_t *zl, uint32_t k1, int16_t *r)
+{
+    const int32_t w = (int32_t)p->cfg.width, sw = w + 3;
+    const int32_t *wy = edge_rw_(&g->gy, g->ey, r0 - g->gy.k, g->ovlo[1], g->ovhi[1]);
+    if (wy == NULL) {
+        return;
+    }
+    const uint32_t n = p->cfg.bg_stale_reinit;
+    /* the pixels whose 3-tap x taps (of the low end, of the high end) are held: xl .. xh */
+    const int32_t xl = clampi_(g->ovlo[0] - g->ex[0].k - g->ex[0].rlo, 0, w);
+    const int32_t xh = clampi_(g->ovhi[0] - g->ex[1].k - g->ex[1].rhi, -1, w - 1);
+    for (int32_t x = xl; x <= xh; ++x) {
+        if (x >= ca && x <= cb) {
+            continue; /* read by the cubic path */
+        }
+        const int32_t *wx = edge_rw_(&g->gx, g->ex, x, g->ovlo[0], g->ovhi[0]);
+        if (wx == NULL || zl[x] < 0) {
+            continue; /* masked */
+        }
+        int32_t sv = 2048;
+        bool stale = false;
+        for (int32_t i = 0; i < 4; ++i) {
+            if (wx[i] == 0) {
+                continue;
+            }
+            const int32_t col = x + g->gx.k + i; /* storage column of cell x + k - 1 + i */
+            int32_t vt = 8;
+            for (int32_t jj = 0; jj < 4; ++jj) {
+                if (wy[jj] == 0) {
+                    continue;
+                }
+                const size_t at = (size_t)(r0 + jj) * (size_t)sw + (size_t)col;
+                vt += wy[jj] * (int32_t)p->bg[at];
+                stale = stale || (p->sage != NULL && p->sage[at] > n);
+            }
+            sv += wx[i] * (vt >> 4);
+        }
+        if (stale) {
+            continue;
+        }
+        sv >>= 12;
+        const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        r[x] = (int16_t)pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+    }
+}
+
+/* bg_edge_narrow: the cells of ring row hz (anchor_hrow_'s, U * 16) that the 3-tap update taps
+ * along x observe but the cubic ones do not (llo .. olo - 1 and ohi + 1 .. lhi), interpolated
+ * from frame row zl with the 3-tap weights of that end (PFT_PRE_ANONE_ when a tap is masked). */
+static void edge_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t *hz)
+{
+    const int32_t a = g->olo[0] <= g->ohi[0] ? g->olo[0] : g->lhi[0] + 1;
+    const int32_t b = g->olo[0] <= g->ohi[0] ? g->ohi[0] : g->lhi[0];
+    for (int32_t j = g->llo[0]; j < a; ++j) {
+        hz[j + 1] = hcell_(&g->ex[0], zl, j);
+    }
+    for (int32_t j = b + 1; j <= g->lhi[0]; ++j) {
+        hz[j + 1] = hcell_(&g->ex[1], zl, j);
+    }
+}
+
+/* bg_edge_narrow: after grid row jy's update (anchor_urow_, stale_anchor_urow_), its cells that
+ * the 3-tap update observes and the cubic one does not (a cell of a row outside olo[1] ..
+ * ohi[1], or of a column outside olo[0] .. ohi[0]): the frame value from the ring (cubic along y
+ * in a row the cubic taps observe, else the 3 taps of that end), and the update of anchor_urow_'s cells after the
+ * fast span (a held cell blended or gated, one not held restarts from it); with
+ * bg_stale_reinit the cell's age as stale_anchor_urow_. */
+static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
+{
+    if (jy < g->llo[1] || jy > g->lhi[1]) {
+        return;
+    }
+    const int32_t w = (int32_t)p->cfg.width, sw = w + 3, a15 = g->a15;
+    const bool cy = jy >= g->olo[1] && jy <= g->ohi[1];
+    const agx_t *ya = cy ? &g->gy : (jy < g->olo[1] ? &g->ey[0] : &g->ey[1]);
+    const int32_t yb = jy + g->gy.ub;
+    const bool iny = jy >= g->ovlo[1] && jy <= g->ovhi[1];
+    uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+    uint8_t *ar = p->sage != NULL ? p->sage + (size_t)(jy + 1) * (size_t)sw + 1 : NULL;
+    const uint32_t n = p->cfg.bg_stale_reinit;
+    /* a row the cubic taps observe: only the columns outside olo[0] .. ohi[0] */
+    const bool cx = g->olo[0] <= g->ohi[0];
+    const int32_t ja = cy && cx ? g->olo[0] : g->lhi[0] + 1, jb = cy && cx ? g->ohi[0] + 1 : g->lhi[0] + 1;
+    uint32_t amax = ar != NULL ? p->srow[jy + 1] : 0u;
+    const int32_t j0 = g->llo[0] >= ja && g->llo[0] < jb ? jb : g->llo[0];
+    for (int32_t j = j0; j <= g->lhi[0]; j = j + 1 == ja ? jb : j + 1) {
+        int32_t sv = 0;
+        bool ok = true;
+        for (int32_t i = ya->ulo; i <= ya->uhi; ++i) {
+            const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
+            ok = ok && v != PFT_PRE_ANONE_;
+            sv += ok ? ya->wu[i + 1] * v : 0;
+        }
+        const bool old = iny && j >= g->ovlo[0] && j <= g->ovhi[0];
+        if (!ok) {
+            if (ar != NULL) { /* observed without a frame value: one frame older */
+                const uint32_t a1 = (uint32_t)ar[j] + 1u;
+                ar[j] = (uint8_t)(a1 > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a1);
+                amax = ar[j] > amax ? ar[j] : amax;
+            }
+            continue; /* kept, or (not held) anchor_urow_'s restart from the nearest pixel */
+        }
+        sv = (sv + 2048) >> 12;
+        const int32_t zt = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t bx = b[j + 1];
+        const int32_t e = zt - bx;
+        if (ar != NULL && ar[j] > n) {
+            b[j + 1] = (uint16_t)zt; /* stale: restarts from the frame value */
+        } else if (g->gate && old) {
+            const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
+                                                    p->agey[jy + 1] < p->cfg.bg_gate_young);
+            const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
+            const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
+            int32_t mc = 0;
+            if (p->gsum != NULL) {
+                const uint32_t ti = gate_tile_(p, jy, j);
+                mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
+                p->gsum[2u * ti] += e;
+                p->gsum[2u * ti + 1u] += bx;
+                p->gcnt[ti]++;
+            }
+            b[j + 1] = (uint16_t)gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+        } else {
+            b[j + 1] = (uint16_t)(old ? bx + ((e * a15 + 16384) >> 15) : zt);
+        }
+        if (ar != NULL) {
+            ar[j] = 0u;
+        }
+    }
+    if (ar != NULL) {
+        p->srow[jy + 1] = (uint8_t)amax;
+    }
+}
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -1636,13 +1869,19 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     g.gate = p->cfg.bg_gate != 0u;
     /* update: cells whose update taps are all inside the frame are observed */
     const int32_t nn[2] = {w, h};
+    g.edge = p->cfg.bg_edge_narrow != 0u;
+    if (g.edge) {
+        edge_geom_(p, &g);
+    }
     for (uint32_t a = 0; a < 2u; ++a) {
         const agx_t *ga = a == 0u ? &g.gx : &g.gy;
         g.olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
         g.ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
+        /* bg_edge_narrow: the cells of the 3-tap update are held after the update too */
+        const int32_t nlo = g.edge ? g.llo[a] : g.olo[a], nhi = g.edge ? g.lhi[a] : g.ohi[a];
         const bool empty = g.ovlo[a] > g.ovhi[a];
-        p->avlo[a] = empty || g.olo[a] < g.ovlo[a] ? g.olo[a] : g.ovlo[a];
-        p->avhi[a] = empty || g.ohi[a] > g.ovhi[a] ? g.ohi[a] : g.ovhi[a];
+        p->avlo[a] = empty || nlo < g.ovlo[a] ? nlo : g.ovlo[a];
+        p->avhi[a] = empty || nhi > g.ovhi[a] ? nhi : g.ovhi[a];
     }
     const agx_t *gx = &g.gx;
     const agx_t *gy = &g.gy;
@@ -1721,6 +1960,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         if (p->sage != NULL && covered) {
             stale_anchor_res_(p, gx, gy, r0, ca, cb, p->cfg.bg_stale_reinit, r);
         }
+        if (g.edge) {
+            edge_res_row_(p, &g, r0, covered ? xa : w, covered ? xb : w - 1, zl, k1, r);
+        }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
@@ -1730,10 +1972,16 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const bool young = p->cfg.bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && p->agex != NULL;
             anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
         }
+        if (g.edge) {
+            edge_hrow_(&g, zl, vb);
+        }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
             if (p->sage != NULL) {
                 stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+            }
+            if (g.edge) {
+                edge_urow_(p, &g, jn);
             }
         }
         int32_t *zs = zp;
@@ -1744,6 +1992,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         anchor_urow_(p, &g, jn, zp);
         if (p->sage != NULL) {
             stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+        }
+        if (g.edge) {
+            edge_urow_(p, &g, jn);
         }
     }
     if (p->agex != NULL) {
