@@ -912,12 +912,10 @@ typedef struct {
     int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
     int32_t a15;
     bool gate; /* bg_gate set */
-    /* bg_edge_narrow: the 3-tap weights per axis, ex[0] / ey[0] without tap -1 (the low end),
-     * ex[1] / ey[1] without tap 2 (the high end), and the cells they observe (llo .. lhi; edge
-     * false: unused) */
+    /* bg_edge_narrow: the cells its 3-tap update observes (llo .. lhi; edge false: unused); its
+     * weights are made where they are used (edge_uw_, edge_rw_), so that this struct, held
+     * through the whole pass, grows by these 20 bytes only (the stage's stack bound) */
     bool edge;
-    agx_t ex[2];
-    agx_t ey[2];
     int32_t llo[2], lhi[2];
 } anchor_geom_t;
 
@@ -1583,60 +1581,52 @@ static void quad_q8_(uint32_t f, bool hi, int32_t w[4])
     w[f < 128u ? 1 : 2] += 256 - sum;
 }
 
-/* bg_edge_narrow: agx_of_ with the quadratic weights (quad_q8_, hi as there): the same k and
- * ub, the read at the fraction and the update at the inverse one. */
-static void agx_edge_(int32_t phi, bool hi, agx_t *g)
+/* bg_edge_narrow: the update weights of the 3 taps of one end (hi: nodes -1, 0, 1; else 0, 1,
+ * 2) along an axis at position fraction phi (Q16), at the inverse fraction as agx_of_'s wu (the
+ * same ub), into w; the first and last tap of non-zero weight into *ulo, *uhi. */
+static void edge_uw_(int32_t phi, bool hi, int32_t w[4], int32_t *ulo, int32_t *uhi)
 {
-    const int32_t u = (phi + 128) >> 8; /* 0 .. 256 */
-    const uint32_t fr = (uint32_t)(u & 255);
-    g->k = u >> 8;
-    quad_q8_(fr, hi, g->wr);
-    if (fr == 0u) {
-        g->ub = -g->k;
-        quad_q8_(0u, hi, g->wu);
-    } else {
-        g->ub = -g->k - 1;
-        quad_q8_(256u - fr, hi, g->wu);
-    }
-    g->rlo = g->wr[0] != 0 ? -1 : (g->wr[1] != 0 ? 0 : 1);
-    g->rhi = g->wr[3] != 0 ? 2 : (g->wr[2] != 0 ? 1 : 0);
-    g->ulo = g->wu[0] != 0 ? -1 : (g->wu[1] != 0 ? 0 : 1);
-    g->uhi = g->wu[3] != 0 ? 2 : (g->wu[2] != 0 ? 1 : 0);
+    const uint32_t fr = (uint32_t)(((phi + 128) >> 8) & 255);
+    quad_q8_(fr == 0u ? 0u : 256u - fr, hi, w);
+    *ulo = w[0] != 0 ? -1 : (w[1] != 0 ? 0 : 1);
+    *uhi = w[3] != 0 ? 2 : (w[2] != 0 ? 1 : 0);
 }
 
-/* bg_edge_narrow: the 3-tap weights of both axes at the position's fraction and the cells they
- * observe in the update (those whose 3 update taps are in the frame: the low end's without tap
- * -1, the high end's without tap 2). */
+/* bg_edge_narrow: the cells its 3-tap update observes per axis (those whose 3 update taps of the
+ * low end, of the high end, are in the frame): llo .. lhi. */
 static void edge_geom_(const pft_pre_t *p, anchor_geom_t *g)
 {
     const int32_t nn[2] = {(int32_t)p->cfg.width, (int32_t)p->cfg.height};
-    for (uint32_t e = 0; e < 2u; ++e) {
-        agx_edge_(p->aphi[0], e == 1u, &g->ex[e]);
-        agx_edge_(p->aphi[1], e == 1u, &g->ey[e]);
-    }
     for (uint32_t a = 0; a < 2u; ++a) {
-        const agx_t *lo = a == 0u ? &g->ex[0] : &g->ey[0];
-        const agx_t *hi = a == 0u ? &g->ex[1] : &g->ey[1];
-        g->llo[a] = clampi_(-lo->ub - lo->ulo, -1, nn[a] + 2);
-        g->lhi[a] = clampi_(nn[a] - 1 - hi->ub - hi->uhi, -2, nn[a] + 1);
+        const int32_t ub = a == 0u ? g->gx.ub : g->gy.ub;
+        int32_t w[4], ulo = 0, uhi = 0;
+        edge_uw_(p->aphi[a], false, w, &ulo, &uhi);
+        g->llo[a] = clampi_(-ub - ulo, -1, nn[a] + 2);
+        edge_uw_(p->aphi[a], true, w, &ulo, &uhi);
+        g->lhi[a] = clampi_(nn[a] - 1 - ub - uhi, -2, nn[a] + 1);
     }
 }
 
-/* bg_edge_narrow: the read weights of pixel coordinate x along one axis (c: cubic taps, e: the
- * 3-tap ones of the low and high ends) whose cells are held in lo .. hi: the cubic weights when
- * their taps of non-zero weight are held, else the high end's, else the low end's, when theirs
- * are; else NULL. */
-static const int32_t *edge_rw_(const agx_t *c, const agx_t e[2], int32_t x, int32_t lo, int32_t hi)
+/* bg_edge_narrow: the read weights of pixel coordinate x along one axis (c: its cubic taps, phi
+ * its position fraction) whose cells are held in lo .. hi, into w: the cubic weights when their
+ * taps of non-zero weight are held, else the 3 taps of the high end's, else the low end's, when
+ * theirs are; false when none is. */
+static bool edge_rw_(const agx_t *c, int32_t phi, int32_t x, int32_t lo, int32_t hi, int32_t w[4])
 {
     if (x + c->k + c->rlo >= lo && x + c->k + c->rhi <= hi) {
-        return c->wr;
+        memcpy(w, c->wr, sizeof c->wr);
+        return true;
     }
-    for (int32_t i = 1; i >= 0; --i) {
-        if (x + e[i].k + e[i].rlo >= lo && x + e[i].k + e[i].rhi <= hi) {
-            return e[i].wr;
+    const uint32_t fr = (uint32_t)(((phi + 128) >> 8) & 255);
+    for (int32_t e = 1; e >= 0; --e) {
+        quad_q8_(fr, e == 1, w);
+        const int32_t rl = w[0] != 0 ? -1 : (w[1] != 0 ? 0 : 1);
+        const int32_t rh = w[3] != 0 ? 2 : (w[2] != 0 ? 1 : 0);
+        if (x + c->k + rl >= lo && x + c->k + rh <= hi) {
+            return true;
         }
     }
-    return NULL;
+    return false;
 }
 
 /* bg_edge_narrow, residual row y (grid taps r0 - 1 .. r0 + 2): the pixels that the cubic read
@@ -1648,20 +1638,19 @@ static void edge_res_row_(const pft_pre_t *p, const anchor_geom_t *g, int32_t r0
                           int32_t cb, const int32_t *zl, uint32_t k1, int16_t *r)
 {
     const int32_t w = (int32_t)p->cfg.width, sw = w + 3;
-    const int32_t *wy = edge_rw_(&g->gy, g->ey, r0 - g->gy.k, g->ovlo[1], g->ovhi[1]);
-    if (wy == NULL) {
+    int32_t wy[4], wx[4];
+    if (!edge_rw_(&g->gy, p->aphi[1], r0 - g->gy.k, g->ovlo[1], g->ovhi[1], wy)) {
         return;
     }
     const uint32_t n = p->cfg.bg_stale_reinit;
-    /* the pixels whose 3-tap x taps (of the low end, of the high end) are held: xl .. xh */
-    const int32_t xl = clampi_(g->ovlo[0] - g->ex[0].k - g->ex[0].rlo, 0, w);
-    const int32_t xh = clampi_(g->ovhi[0] - g->ex[1].k - g->ex[1].rhi, -1, w - 1);
+    /* the pixels whose 3 taps of the low end, of the high end, could be held (edge_rw_ tells) */
+    const int32_t xl = clampi_(g->ovlo[0] - g->gx.k, 0, w);
+    const int32_t xh = clampi_(g->ovhi[0] - g->gx.k, -1, w - 1);
     for (int32_t x = xl; x <= xh; ++x) {
         if (x >= ca && x <= cb) {
             continue; /* read by the cubic path */
         }
-        const int32_t *wx = edge_rw_(&g->gx, g->ex, x, g->ovlo[0], g->ovhi[0]);
-        if (wx == NULL || zl[x] < 0) {
+        if (zl[x] < 0 || !edge_rw_(&g->gx, p->aphi[0], x, g->ovlo[0], g->ovhi[0], wx)) {
             continue; /* masked */
         }
         int32_t sv = 2048;
@@ -1694,15 +1683,25 @@ static void edge_res_row_(const pft_pre_t *p, const anchor_geom_t *g, int32_t r0
 /* bg_edge_narrow: the cells of ring row hz (anchor_hrow_'s, U * 16) that the 3-tap update taps
  * along x observe but the cubic ones do not (llo .. olo - 1 and ohi + 1 .. lhi), interpolated
  * from frame row zl with the 3-tap weights of that end (PFT_PRE_ANONE_ when a tap is masked). */
-static void edge_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t *hz)
+static void edge_hrow_(const anchor_geom_t *g, int32_t phi, const int32_t *zl, int32_t *hz)
 {
     const int32_t a = g->olo[0] <= g->ohi[0] ? g->olo[0] : g->lhi[0] + 1;
     const int32_t b = g->olo[0] <= g->ohi[0] ? g->ohi[0] : g->lhi[0];
-    for (int32_t j = g->llo[0]; j < a; ++j) {
-        hz[j + 1] = hcell_(&g->ex[0], zl, j);
-    }
-    for (int32_t j = b + 1; j <= g->lhi[0]; ++j) {
-        hz[j + 1] = hcell_(&g->ex[1], zl, j);
+    for (uint32_t e = 0; e < 2u; ++e) {
+        int32_t w[4], ulo = 0, uhi = 0;
+        edge_uw_(phi, e == 1u, w, &ulo, &uhi);
+        const int32_t ja = e == 0u ? g->llo[0] : b + 1, jb = e == 0u ? a - 1 : g->lhi[0];
+        for (int32_t j = ja; j <= jb; ++j) { /* hcell_ with these weights */
+            const int32_t xb0 = j + g->gx.ub;
+            int32_t sv = 0;
+            bool ok = true;
+            for (int32_t i = ulo; i <= uhi; ++i) {
+                const int32_t z = zl[xb0 + i];
+                ok = ok && z >= 0;
+                sv += w[i + 1] * z;
+            }
+            hz[j + 1] = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+        }
     }
 }
 
@@ -1719,7 +1718,12 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
     }
     const int32_t w = (int32_t)p->cfg.width, sw = w + 3, a15 = g->a15;
     const bool cy = jy >= g->olo[1] && jy <= g->ohi[1];
-    const agx_t *ya = cy ? &g->gy : (jy < g->olo[1] ? &g->ey[0] : &g->ey[1]);
+    int32_t wy[4], ylo = g->gy.ulo, yhi = g->gy.uhi;
+    if (cy) {
+        memcpy(wy, g->gy.wu, sizeof wy);
+    } else {
+        edge_uw_(p->aphi[1], jy >= g->olo[1], wy, &ylo, &yhi);
+    }
     const int32_t yb = jy + g->gy.ub;
     const bool iny = jy >= g->ovlo[1] && jy <= g->ovhi[1];
     uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
@@ -1733,10 +1737,10 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
     for (int32_t j = j0; j <= g->lhi[0]; j = j + 1 == ja ? jb : j + 1) {
         int32_t sv = 0;
         bool ok = true;
-        for (int32_t i = ya->ulo; i <= ya->uhi; ++i) {
+        for (int32_t i = ylo; i <= yhi; ++i) {
             const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
             ok = ok && v != PFT_PRE_ANONE_;
-            sv += ok ? ya->wu[i + 1] * v : 0;
+            sv += ok ? wy[i + 1] * v : 0;
         }
         const bool old = iny && j >= g->ovlo[0] && j <= g->ovhi[0];
         if (!ok) {
@@ -1973,7 +1977,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
         }
         if (g.edge) {
-            edge_hrow_(&g, zl, vb);
+            edge_hrow_(&g, p->aphi[0], zl, vb);
         }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
