@@ -47,6 +47,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_stale_reinit = 0u;
     cfg->bg_young_clip = 0u;
     cfg->sigma_level = false;
+    cfg->bg_edge_narrow = 0u;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -160,6 +161,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->sigma_level && (c->sigma_step > 1u || c->sigma_every > 1u || c->sigma_bracket)) {
         return "sigma_level"; /* built in the histogram of every pixel of every frame */
+    }
+    if (c->bg_edge_narrow > 1u || (c->bg_edge_narrow != 0u && !c->bg_anchor)) {
+        return "bg_edge_narrow"; /* built in the anchored read and update */
     }
     return NULL;
 }

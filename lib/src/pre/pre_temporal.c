@@ -912,6 +912,11 @@ typedef struct {
     int32_t ovlo[2], ovhi[2], olo[2], ohi[2];
     int32_t a15;
     bool gate; /* bg_gate set */
+    /* bg_edge_narrow: the cells its 3-tap update observes (llo .. lhi; edge false: unused); its
+     * weights are made where they are used (edge_uw_, edge_rw_), so that this struct, held
+     * through the whole pass, grows by these 20 bytes only (the stage's stack bound) */
+    bool edge;
+    int32_t llo[2], lhi[2];
 } anchor_geom_t;
 
 /* bg_gate (docs/algorithms.md 9.13): the tile of grid cell (j, jy), that of its nearest pixel
@@ -1546,6 +1551,238 @@ static void stale_anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy,
     p->srow[jy + 1] = (uint8_t)max_u8_(ar - 1, sw);
 }
 
+/* ------------------------------------------------------------------ bg_edge_narrow (9.12) */
+
+/* bg_edge_narrow: the quadratic (3-tap Lagrange) weights of taps -1, 0, 1, 2 for the
+ * fraction f/256, Q8, summing to 256: hi, nodes -1, 0, 1 (tap 2 weight 0); else nodes 0, 1, 2
+ * (tap -1 weight 0). Like the Catmull-Rom weights they reproduce quadratics, so a smooth scene
+ * is read nearly as well as through the 4 taps (a linear read of the texture of
+ * test_pre_edge_narrow leaves several sigma at its steep parts); f = 0: 0, 256, 0, 0. */
+static void quad_q8_(uint32_t f, bool hi, int32_t w[4])
+{
+    const int64_t t = f;
+    int64_t q[4];
+    if (hi) {
+        q[0] = t * (t - 256) * 128; /* t (t - 1) / 2, Q16 */
+        q[1] = 65536 * 256 - t * t * 256;
+        q[2] = t * (t + 256) * 128;
+        q[3] = 0;
+    } else {
+        q[0] = 0;
+        q[1] = (t - 256) * (t - 512) * 128; /* (t - 1)(t - 2) / 2 */
+        q[2] = t * (512 - t) * 256;
+        q[3] = t * (t - 256) * 128;
+    }
+    int32_t sum = 0;
+    for (uint32_t i = 0; i < 4u; ++i) {
+        w[i] = (int32_t)((q[i] >= 0 ? q[i] + 32768 : q[i] - 32768) / 65536);
+        sum += w[i];
+    }
+    w[f < 128u ? 1 : 2] += 256 - sum;
+}
+
+/* bg_edge_narrow: the update weights of the 3 taps of one end (hi: nodes -1, 0, 1; else 0, 1,
+ * 2) along an axis at position fraction phi (Q16), at the inverse fraction as agx_of_'s wu (the
+ * same ub), into w; the first and last tap of non-zero weight into *ulo, *uhi. */
+static void edge_uw_(int32_t phi, bool hi, int32_t w[4], int32_t *ulo, int32_t *uhi)
+{
+    const uint32_t fr = (uint32_t)(((phi + 128) >> 8) & 255);
+    quad_q8_(fr == 0u ? 0u : 256u - fr, hi, w);
+    *ulo = w[0] != 0 ? -1 : (w[1] != 0 ? 0 : 1);
+    *uhi = w[3] != 0 ? 2 : (w[2] != 0 ? 1 : 0);
+}
+
+/* bg_edge_narrow: the cells its 3-tap update observes per axis (those whose 3 update taps of the
+ * low end, of the high end, are in the frame): llo .. lhi. */
+static void edge_geom_(const pft_pre_t *p, anchor_geom_t *g)
+{
+    const int32_t nn[2] = {(int32_t)p->cfg.width, (int32_t)p->cfg.height};
+    for (uint32_t a = 0; a < 2u; ++a) {
+        const int32_t ub = a == 0u ? g->gx.ub : g->gy.ub;
+        int32_t w[4], ulo = 0, uhi = 0;
+        edge_uw_(p->aphi[a], false, w, &ulo, &uhi);
+        g->llo[a] = clampi_(-ub - ulo, -1, nn[a] + 2);
+        edge_uw_(p->aphi[a], true, w, &ulo, &uhi);
+        g->lhi[a] = clampi_(nn[a] - 1 - ub - uhi, -2, nn[a] + 1);
+    }
+}
+
+/* bg_edge_narrow: the read weights of pixel coordinate x along one axis (c: its cubic taps, phi
+ * its position fraction) whose cells are held in lo .. hi, into w: the cubic weights when their
+ * taps of non-zero weight are held, else the 3 taps of the high end's, else the low end's, when
+ * theirs are; false when none is. */
+static bool edge_rw_(const agx_t *c, int32_t phi, int32_t x, int32_t lo, int32_t hi, int32_t w[4])
+{
+    if (x + c->k + c->rlo >= lo && x + c->k + c->rhi <= hi) {
+        memcpy(w, c->wr, sizeof c->wr);
+        return true;
+    }
+    const uint32_t fr = (uint32_t)(((phi + 128) >> 8) & 255);
+    for (int32_t e = 1; e >= 0; --e) {
+        quad_q8_(fr, e == 1, w);
+        const int32_t rl = w[0] != 0 ? -1 : (w[1] != 0 ? 0 : 1);
+        const int32_t rh = w[3] != 0 ? 2 : (w[2] != 0 ? 1 : 0);
+        if (x + c->k + rl >= lo && x + c->k + rh <= hi) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* bg_edge_narrow, residual row y (grid taps r0 - 1 .. r0 + 2): the pixels that the cubic read
+ * leaves masked (outside ca .. cb, the cubic span of the row; all of them when ca > cb) and
+ * whose 3-tap taps (edge_rw_) along x, y or both are held, read with those weights (the cubic
+ * ones along the other axis when its taps are held); with bg_stale_reinit a pixel reading a cell older
+ * than it stays masked, as stale_anchor_res_. */
+static void edge_res_row_(const pft_pre_t *p, const anchor_geom_t *g, int32_t r0, int32_t ca,
+                          int32_t cb, const int32_t *zl, uint32_t k1, int16_t *r)
+{
+    const int32_t w = (int32_t)p->cfg.width, sw = w + 3;
+    int32_t wy[4], wx[4];
+    if (!edge_rw_(&g->gy, p->aphi[1], r0 - g->gy.k, g->ovlo[1], g->ovhi[1], wy)) {
+        return;
+    }
+    const uint32_t n = p->cfg.bg_stale_reinit;
+    /* the pixels whose 3 taps of the low end, of the high end, could be held (edge_rw_ tells) */
+    const int32_t xl = clampi_(g->ovlo[0] - g->gx.k, 0, w);
+    const int32_t xh = clampi_(g->ovhi[0] - g->gx.k, -1, w - 1);
+    for (int32_t x = xl; x <= xh; ++x) {
+        if (x >= ca && x <= cb) {
+            continue; /* read by the cubic path */
+        }
+        if (zl[x] < 0 || !edge_rw_(&g->gx, p->aphi[0], x, g->ovlo[0], g->ovhi[0], wx)) {
+            continue; /* masked */
+        }
+        int32_t sv = 2048;
+        bool stale = false;
+        for (int32_t i = 0; i < 4; ++i) {
+            if (wx[i] == 0) {
+                continue;
+            }
+            const int32_t col = x + g->gx.k + i; /* storage column of cell x + k - 1 + i */
+            int32_t vt = 8;
+            for (int32_t jj = 0; jj < 4; ++jj) {
+                if (wy[jj] == 0) {
+                    continue;
+                }
+                const size_t at = (size_t)(r0 + jj) * (size_t)sw + (size_t)col;
+                vt += wy[jj] * (int32_t)p->bg[at];
+                stale = stale || (p->sage != NULL && p->sage[at] > n);
+            }
+            sv += wx[i] * (vt >> 4);
+        }
+        if (stale) {
+            continue;
+        }
+        sv >>= 12;
+        const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        r[x] = (int16_t)pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+    }
+}
+
+/* bg_edge_narrow: the cells of ring row hz (anchor_hrow_'s, U * 16) that the 3-tap update taps
+ * along x observe but the cubic ones do not (llo .. olo - 1 and ohi + 1 .. lhi), interpolated
+ * from frame row zl with the 3-tap weights of that end (PFT_PRE_ANONE_ when a tap is masked). */
+static void edge_hrow_(const anchor_geom_t *g, int32_t phi, const int32_t *zl, int32_t *hz)
+{
+    const int32_t a = g->olo[0] <= g->ohi[0] ? g->olo[0] : g->lhi[0] + 1;
+    const int32_t b = g->olo[0] <= g->ohi[0] ? g->ohi[0] : g->lhi[0];
+    for (uint32_t e = 0; e < 2u; ++e) {
+        int32_t w[4], ulo = 0, uhi = 0;
+        edge_uw_(phi, e == 1u, w, &ulo, &uhi);
+        const int32_t ja = e == 0u ? g->llo[0] : b + 1, jb = e == 0u ? a - 1 : g->lhi[0];
+        for (int32_t j = ja; j <= jb; ++j) { /* hcell_ with these weights */
+            const int32_t xb0 = j + g->gx.ub;
+            int32_t sv = 0;
+            bool ok = true;
+            for (int32_t i = ulo; i <= uhi; ++i) {
+                const int32_t z = zl[xb0 + i];
+                ok = ok && z >= 0;
+                sv += w[i + 1] * z;
+            }
+            hz[j + 1] = ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
+        }
+    }
+}
+
+/* bg_edge_narrow: after grid row jy's update (anchor_urow_, stale_anchor_urow_), its cells that
+ * the 3-tap update observes and the cubic one does not (a cell of a row outside olo[1] ..
+ * ohi[1], or of a column outside olo[0] .. ohi[0]): the frame value from the ring (cubic along y
+ * in a row the cubic taps observe, else the 3 taps of that end), and the update of anchor_urow_'s cells after the
+ * fast span (a held cell blended or gated, one not held restarts from it); with
+ * bg_stale_reinit the cell's age as stale_anchor_urow_. */
+static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
+{
+    if (jy < g->llo[1] || jy > g->lhi[1]) {
+        return;
+    }
+    const int32_t w = (int32_t)p->cfg.width, sw = w + 3, a15 = g->a15;
+    const bool cy = jy >= g->olo[1] && jy <= g->ohi[1];
+    int32_t wy[4], ylo = g->gy.ulo, yhi = g->gy.uhi;
+    if (cy) {
+        memcpy(wy, g->gy.wu, sizeof wy);
+    } else {
+        edge_uw_(p->aphi[1], jy >= g->olo[1], wy, &ylo, &yhi);
+    }
+    const int32_t yb = jy + g->gy.ub;
+    const bool iny = jy >= g->ovlo[1] && jy <= g->ovhi[1];
+    uint16_t *b = p->bg + (size_t)(jy + 1) * (size_t)sw;
+    uint8_t *ar = p->sage != NULL ? p->sage + (size_t)(jy + 1) * (size_t)sw + 1 : NULL;
+    const uint32_t n = p->cfg.bg_stale_reinit;
+    /* a row the cubic taps observe: only the columns outside olo[0] .. ohi[0] */
+    const bool cx = g->olo[0] <= g->ohi[0];
+    const int32_t ja = cy && cx ? g->olo[0] : g->lhi[0] + 1, jb = cy && cx ? g->ohi[0] + 1 : g->lhi[0] + 1;
+    uint32_t amax = ar != NULL ? p->srow[jy + 1] : 0u;
+    const int32_t j0 = g->llo[0] >= ja && g->llo[0] < jb ? jb : g->llo[0];
+    for (int32_t j = j0; j <= g->lhi[0]; j = j + 1 == ja ? jb : j + 1) {
+        int32_t sv = 0;
+        bool ok = true;
+        for (int32_t i = ylo; i <= yhi; ++i) {
+            const int32_t v = p->aring[(size_t)((yb + i) & 3) * (size_t)sw + (size_t)(j + 1)];
+            ok = ok && v != PFT_PRE_ANONE_;
+            sv += ok ? wy[i + 1] * v : 0;
+        }
+        const bool old = iny && j >= g->ovlo[0] && j <= g->ovhi[0];
+        if (!ok) {
+            if (ar != NULL) { /* observed without a frame value: one frame older */
+                const uint32_t a1 = (uint32_t)ar[j] + 1u;
+                ar[j] = (uint8_t)(a1 > PFT_PRE_AGE_NEVER_ ? PFT_PRE_AGE_NEVER_ : a1);
+                amax = ar[j] > amax ? ar[j] : amax;
+            }
+            continue; /* kept, or (not held) anchor_urow_'s restart from the nearest pixel */
+        }
+        sv = (sv + 2048) >> 12;
+        const int32_t zt = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t bx = b[j + 1];
+        const int32_t e = zt - bx;
+        if (ar != NULL && ar[j] > n) {
+            b[j + 1] = (uint16_t)zt; /* stale: restarts from the frame value */
+        } else if (g->gate && old) {
+            const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
+                                                    p->agey[jy + 1] < p->cfg.bg_gate_young);
+            const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
+            const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
+            int32_t mc = 0;
+            if (p->gsum != NULL) {
+                const uint32_t ti = gate_tile_(p, jy, j);
+                mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
+                p->gsum[2u * ti] += e;
+                p->gsum[2u * ti + 1u] += bx;
+                p->gcnt[ti]++;
+            }
+            b[j + 1] = (uint16_t)gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+        } else {
+            b[j + 1] = (uint16_t)(old ? bx + ((e * a15 + 16384) >> 15) : zt);
+        }
+        if (ar != NULL) {
+            ar[j] = 0u;
+        }
+    }
+    if (ar != NULL) {
+        p->srow[jy + 1] = (uint8_t)amax;
+    }
+}
+
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
@@ -1636,13 +1873,19 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     g.gate = p->cfg.bg_gate != 0u;
     /* update: cells whose update taps are all inside the frame are observed */
     const int32_t nn[2] = {w, h};
+    g.edge = p->cfg.bg_edge_narrow != 0u;
+    if (g.edge) {
+        edge_geom_(p, &g);
+    }
     for (uint32_t a = 0; a < 2u; ++a) {
         const agx_t *ga = a == 0u ? &g.gx : &g.gy;
         g.olo[a] = clampi_(-ga->ub - ga->ulo, -1, nn[a] + 2);
         g.ohi[a] = clampi_(nn[a] - 1 - ga->ub - ga->uhi, -2, nn[a] + 1);
+        /* bg_edge_narrow: the cells of the 3-tap update are held after the update too */
+        const int32_t nlo = g.edge ? g.llo[a] : g.olo[a], nhi = g.edge ? g.lhi[a] : g.ohi[a];
         const bool empty = g.ovlo[a] > g.ovhi[a];
-        p->avlo[a] = empty || g.olo[a] < g.ovlo[a] ? g.olo[a] : g.ovlo[a];
-        p->avhi[a] = empty || g.ohi[a] > g.ovhi[a] ? g.ohi[a] : g.ovhi[a];
+        p->avlo[a] = empty || nlo < g.ovlo[a] ? nlo : g.ovlo[a];
+        p->avhi[a] = empty || nhi > g.ovhi[a] ? nhi : g.ovhi[a];
     }
     const agx_t *gx = &g.gx;
     const agx_t *gy = &g.gy;
@@ -1721,6 +1964,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         if (p->sage != NULL && covered) {
             stale_anchor_res_(p, gx, gy, r0, ca, cb, p->cfg.bg_stale_reinit, r);
         }
+        if (g.edge) {
+            edge_res_row_(p, &g, r0, covered ? xa : w, covered ? xb : w - 1, zl, k1, r);
+        }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
@@ -1730,10 +1976,16 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const bool young = p->cfg.bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && p->agex != NULL;
             anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
         }
+        if (g.edge) {
+            edge_hrow_(&g, p->aphi[0], zl, vb);
+        }
         for (; jn <= y + gy->k - 1; ++jn) { /* at most 2 rows (k <= 1) */
             anchor_urow_(p, &g, jn, clampi_(jn - gy->k, 0, h - 1) == y ? zl : zp);
             if (p->sage != NULL) {
                 stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+            }
+            if (g.edge) {
+                edge_urow_(p, &g, jn);
             }
         }
         int32_t *zs = zp;
@@ -1744,6 +1996,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         anchor_urow_(p, &g, jn, zp);
         if (p->sage != NULL) {
             stale_anchor_urow_(p, &g, jn, p->cfg.bg_stale_reinit, mrow);
+        }
+        if (g.edge) {
+            edge_urow_(p, &g, jn);
         }
     }
     if (p->agex != NULL) {
