@@ -320,6 +320,8 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.width = static_cast<uint32_t>(width);
     c.height = static_cast<uint32_t>(height);
     c.hold_frames = static_cast<uint32_t>(t.scene_hold);
+    c.spread_px = to_real(t.scene_spread_px);
+    c.spread_hold = static_cast<uint32_t>(t.scene_spread_px > 0 ? t.scene_spread_hold : 1);
     return c;
 }
 
@@ -335,13 +337,16 @@ void IrPipeline::scene_test(tbd::FrameOut &out, int32_t shift_x, int32_t shift_y
         in[i].x = to_real(t.x);  // exact: t.x is the manager's pft_real_t
         in[i].y = to_real(t.y);
         in[i].tentative = tentative;
+        in[i].pos_var = to_real(t.pos_var);  // exact: the manager's pos_cov[0] + pos_cov[2] (tracker.cpp)
     }
     std::vector<pft_tbd_scene_out_t> dec(n_all);
     const pft_status_t st = pft_tbd_scene_update(&scene_, in.data(), n_all, shift_x, shift_y, dec.data());
     if (st != PFT_OK)
         throw InputError(std::string("pft_tbd_scene_update: ") + pft_status_str(st));
     std::vector<tbd::TrackOut> kept;
+    scene_dec_.clear();
     for (std::size_t i = 0; i < n_all; ++i) {
+        scene_dec_.emplace_back(dec[i].id, static_cast<int>(dec[i].decision));
         if (dec[i].decision == PFT_TBD_SCENE_CLUTTER && !cm_.work.empty())
             (void)pft_pre_clutter_raise(&cm_.c, dec[i].px, dec[i].py, 16u * 1024u);  // 16 sigma^2 (4 sigma)
         if (i < n_rep && dec[i].decision == PFT_TBD_SCENE_REPORT)

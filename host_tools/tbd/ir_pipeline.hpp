@@ -98,6 +98,15 @@ public:
     std::size_t scene_workspace_bytes() const { return scene_bytes_; } ///< the scene-motion test's workspace (0 without it)
     /** The scene's cumulative shift (the stage's measured shifts summed), px. */
     std::array<double, 2> scene_shift() const { return {scene_x_, scene_y_}; }
+    /** The scene-motion test's decision on track `id` at the last frame (pft_tbd_scene_decision_t),
+     *  -1 when it was not fed to the test (diagnostics, ir_trace.hpp). */
+    int scene_decision(uint32_t id) const
+    {
+        for (const auto &d : scene_dec_)
+            if (d.first == id)
+                return d.second;
+        return -1;
+    }
     const pft_pre_config_t &pre_config() const { return pre_cfg_; }
     double dbt_threshold_sigma() const { return dbt_thr_; }
     /** Whether DBT reads its own preprocessing (dbt.preprocess) instead of the TBD pipeline's
@@ -141,6 +150,7 @@ private:
     std::vector<uint64_t> scene_work_;
     std::size_t scene_bytes_ = 0;
     double scene_x_ = 0, scene_y_ = 0;  // the scene's cumulative shift (scene_shift)
+    std::vector<std::pair<uint32_t, int>> scene_dec_;  // the last frame's decisions (scene_decision)
     void scene_test(tbd::FrameOut &out, int32_t shift_x, int32_t shift_y);
     double sigma_ = 0;
     int masked_ = 0;

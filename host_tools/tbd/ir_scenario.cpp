@@ -28,7 +28,7 @@ const char *const kTrackerOnlyFields[] = {
     "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
     "confirm_frames", "birth_correction", "scene_frames", "scene_gate_px", "scene_fit_px",
     "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
-    "integ_alpha", "integ_shift", "scene_hold", "end_grace_frames", "theta_end_grace", "end_persist",
+    "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "end_grace_frames", "theta_end_grace", "end_persist",
     "handover_in_scale", "q2", nullptr};
 
 namespace {
@@ -200,6 +200,12 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.scene_fit_px = t.number_in("scene_fit_px", T.scene_fit_px, 0.0, 100.0);
     T.scene_early_px = t.number_in("scene_early_px", T.scene_early_px, 0.0, 100.0);
     T.scene_hold = static_cast<int>(t.integer_in("scene_hold", T.scene_hold, 1, PFT_TBD_SCENE_MAX_HOLD));  // the library's bound (pft_tbd_scene.h)
+    T.scene_spread_px = t.number_in("scene_spread_px", T.scene_spread_px, 0.0, 256.0);  // the library's bound
+    T.scene_spread_hold = static_cast<int>(t.integer_in("scene_spread_hold", T.scene_spread_hold, 1, PFT_TBD_SCENE_MAX_HOLD));
+    if (T.scene_spread_px > 0 && !t.has("scene_spread_hold"))
+        t.at("scene_spread_px").fail("needs scene_spread_hold (1..scene_hold)");
+    if (T.scene_spread_px > 0 && T.scene_spread_hold > T.scene_hold)
+        t.at("scene_spread_hold").fail("must be at most scene_hold");
     if (t.has("scene_tentative"))
         T.scene_tentative = t.at("scene_tentative").as_bool();
     T.clutter_thr = t.number_in("clutter_thr", T.clutter_thr, 1.0, 64.0);

@@ -173,6 +173,8 @@ struct TrackerSettings {
     bool flat_relative = false;                 ///< the offset is a sensor-fixed factor times the raw frame's level (the form a sensor-fixed gain leaves under a drifting scene)
     bool flat_rescale = false;                  ///< the flat-field step divides its output by a running robust sd per block (pft_pre_flat_config_t.rescale): the stage's tile sigma is inflated by the offset the step removes (docs/algorithms.md 9.10)
     bool flat_level_blocks = false;             ///< host experiment: with flat_relative, the level frame at the blocks' resolution (block means, bilinear) instead of the raw frame
+    double scene_spread_px = 0.0;               ///< spread-dependent report hold (pft_tbd_scene_config_t.spread_px; 0: off): a track passing the test with a position spread sqrt(xx + yy) of at most this (px) is reported from its scene_spread_hold-th pass instead of its scene_hold-th (docs/results/ir_clutter.md, "Branch irfit")
+    int scene_spread_hold = 1;                  ///< the hold of such frames (pft_tbd_scene_config_t.spread_hold): 1..scene_hold; needed with scene_spread_px
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };
 

@@ -185,7 +185,10 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                               num(from_real(r.p_exist), 4) + "," + num(from_real(r.intensity), 2) + "," +
                               num(from_real(r.log_mean_lr), 3) + "," + (r.first_frame == 0u ? "1" : "0") + "," +
                               (rep ? "1" : "0") + "," + std::to_string(tid) + "," + (lab ? "1" : "0") + "," +
-                              (tid ? num(td, 2) : std::string()));
+                              (tid ? num(td, 2) : std::string()) + "," + num(scene_x_, 4) + "," +
+                              num(scene_y_, 4) + "," + std::to_string(pl.scene_decision(r.id)) + "," +
+                              num(from_real(r.pos_cov[0]), 4) + "," + num(from_real(r.pos_cov[2]), 4) + "," +
+                              num(x + dx, 5) + "," + num(y + dy, 5));
     }
     for (const tbd::TrackOut &t : out.tracks) {
         auto it = life_.find(t.id);
@@ -322,7 +325,7 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
     });
     write_text_atomic(base + "_tracks.csv", [&](std::ostream &f) { write_tracks_(f, ev); });
     write_text_atomic(base + "_layers.csv", [&](std::ostream &f) {
-        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d\n";
+        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d,scene_x,scene_y,scene_dec,cov_xx,cov_yy,rx,ry\n";
         for (const std::string &r : layer_rows_)
             f << r << "\n";
     });

@@ -272,6 +272,7 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
         t.vy = from_real(tr[i].vy);
         t.intensity = from_real(tr[i].intensity);
         t.p_exist = from_real(tr[i].p_exist);
+        t.pos_var = from_real(pft_add(tr[i].pos_cov[0], tr[i].pos_cov[2]));
         t.first_frame = tr[i].first_frame;
         out.tracks.push_back(t);
     }
@@ -291,6 +292,7 @@ FrameOut Tracker::update_multi(const pft_frame_t &frame)
         t.vy = from_real(r.vy);
         t.intensity = from_real(r.intensity);
         t.p_exist = from_real(r.p_exist);
+        t.pos_var = from_real(pft_add(r.pos_cov[0], r.pos_cov[2]));
         out.tentative.push_back(t);
     }
     std::vector<pft_tbd_event_t> ev(static_cast<std::size_t>(cfg_.max_targets) + 1u);

@@ -25,6 +25,7 @@ using ::pft::host::to_real;
 struct TrackOut {
     uint32_t id = 0;
     double x = 0, y = 0, vx = 0, vy = 0, intensity = 0, p_exist = 0;
+    double pos_var = 0;  ///< the position spread xx + yy (pft_tbd_track_t pos_cov[0] + pos_cov[2]), px^2
     uint32_t first_frame = 0;
 };
 

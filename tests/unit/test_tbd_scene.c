@@ -9,7 +9,9 @@
  * tentative track is held, and found CLUTTER like the others; a full table gives NO_SLOT and
  * takes over the slot of the id fed least recently; a history is forgotten forget_frames
  * frames after its last frame; the report hold (hold_frames k) reports a track from the k-th
- * frame it passes the tests, counting no tentative frame, and leaves CLUTTER as it is. Positions and shifts are multiples of 2^-16 px, so that both
+ * frame it passes the tests, counting no tentative frame, and leaves CLUTTER as it is; the
+ * spread-dependent hold (spread_px, spread_hold) shortens it for frames with a small position
+ * spread, reads pos_var only when on, and refuses a negative one. Positions and shifts are multiples of 2^-16 px, so that both
  * builds give the same answers exactly.
  */
 #include <string.h>
@@ -71,6 +73,8 @@ static void test_config_and_workspace(void)
     TEST_ASSERT_EQUAL_UINT32(5u, cfg.frames);
     TEST_ASSERT_EQUAL_UINT32(64u, cfg.forget_frames);
     TEST_ASSERT_EQUAL_UINT32(1u, cfg.hold_frames);
+    TEST_ASSERT_EQUAL_UINT32(1u, cfg.spread_hold);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, pft_test_to_double(cfg.spread_px));
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
     TEST_ASSERT_NULL(field);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_config_check(NULL, &field));
@@ -81,7 +85,8 @@ static void test_config_and_workspace(void)
     } bad[] = {{"frames", 0}, {"frames", 1}, {"max_tracks", 2}, {"max_tracks", 3}, {"gate_px", 4},
                {"gate_px", 5}, {"fit_px", 6}, {"fit_px", 7}, {"early_px", 8}, {"early_px", 9},
                {"forget_frames", 10}, {"forget_frames", 11}, {"width", 12}, {"width", 13},
-               {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17}};
+               {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17},
+               {"spread_px", 18}, {"spread_px", 19}, {"spread_hold", 20}, {"spread_hold", 21}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -102,7 +107,11 @@ static void test_config_and_workspace(void)
         case 14: b.height = 0u; break;
         case 15: b.height = PFT_CFG_MAX_IMAGE_SIDE + 1u; break;
         case 16: b.hold_frames = 0u; break;
-        default: b.hold_frames = PFT_TBD_SCENE_MAX_HOLD + 1u; break;
+        case 17: b.hold_frames = PFT_TBD_SCENE_MAX_HOLD + 1u; break;
+        case 18: b.spread_px = PFT_C(-0.5); break;
+        case 19: b.spread_px = PFT_C(256.5); break;
+        case 20: b.spread_hold = 0u; break;
+        default: b.hold_frames = 3u; b.spread_hold = 4u; break; /* more than hold_frames */
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -285,6 +294,72 @@ static void test_report_hold(void)
     }
 }
 
+/* the spread-dependent hold (spread_px 0.5, spread_hold 2, hold_frames 4): a track at 0.75 px
+ * per frame against the scene passes from its 4th frame (early); with a position variance of
+ * 0.2 px^2 (spread 0.447 px) it is reported from its 2nd pass (frame 5), with exactly 0.25
+ * (0.5 px: at most spread_px) too, with 0.3 (0.548 px) from its 4th (frame 7); a spread that
+ * falls to 0.2 at frame 6 reports it there (its 3rd pass); with spread_px 0 (off) pos_var is not
+ * read (a negative one is accepted) and the hold is hold_frames */
+static void test_spread_hold(void)
+{
+    static const struct {
+        pft_real_t spread_px;
+        pft_real_t var_early; /* pos_var on frames 1..5 */
+        pft_real_t var_late;  /* from frame 6 on */
+        uint32_t first;       /* the first frame reported */
+    } cases[] = {{PFT_C(0.5), PFT_C(0.2), PFT_C(0.2), 5u},  {PFT_C(0.5), PFT_C(0.25), PFT_C(0.25), 5u},
+                 {PFT_C(0.5), PFT_C(0.3), PFT_C(0.3), 7u},  {PFT_C(0.5), PFT_C(0.3), PFT_C(0.2), 6u},
+                 {PFT_C(0.0), PFT_C(-1.0), PFT_C(-1.0), 7u}, {PFT_C(0.0), PFT_C(0.2), PFT_C(0.2), 7u}};
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    for (size_t c = 0u; c < sizeof cases / sizeof cases[0]; ++c) {
+        pft_tbd_scene_config_default(&cfg);
+        cfg.max_tracks = SLOTS;
+        cfg.hold_frames = 4u;
+        cfg.spread_px = cases[c].spread_px;
+        cfg.spread_hold = 2u;
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 10u; ++k) {
+            pft_tbd_scene_track_t t = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
+            t.pos_var = k <= 5u ? cases[c].var_early : cases[c].var_late;
+            const pft_tbd_scene_out_t o = one(&s, t, Q(0.25), 0);
+            TEST_ASSERT_EQUAL_INT(k < cases[c].first ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+        }
+    }
+    /* refused with spread_px > 0: a negative pos_var (float: a NaN too), nothing written */
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    cfg.hold_frames = 4u;
+    cfg.spread_px = PFT_C(0.5);
+    cfg.spread_hold = 2u;
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 3u; ++k) {
+        pft_tbd_scene_track_t t = trk(1u, pft_from_int(10 + (int32_t)k), PFT_C(10.0), false);
+        (void)one(&s, t, 0, 0);
+    }
+    pft_tbd_scene_t s1 = s;
+    static uint64_t w1[sizeof(g_work) / 8u];
+    memcpy(w1, g_work, sizeof g_work);
+    pft_tbd_scene_track_t t[2];
+    pft_tbd_scene_out_t o[2], o0[2];
+    memset(o, 0x3C, sizeof o);
+    memcpy(o0, o, sizeof o);
+    t[0] = trk(1u, PFT_C(14.0), PFT_C(10.0), false);
+    t[1] = trk(2u, PFT_C(30.0), PFT_C(10.0), false);
+    t[1].pos_var = PFT_C(-0.25);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+#ifdef PFT_NUMERIC_FLOAT
+    volatile float zero = 0.0f;
+    t[1].pos_var = zero / zero; /* NaN */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+#endif
+    TEST_ASSERT_EQUAL_MEMORY(&s1, &s, sizeof s);
+    TEST_ASSERT_EQUAL_MEMORY(w1, g_work, sizeof g_work);
+    TEST_ASSERT_EQUAL_MEMORY(o0, o, sizeof o);
+    t[1].pos_var = PFT_C(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
+}
+
 /* x = 100 + k + 0.25 k^2: rms about the fitted line 0.25 px over 4 frames, 0.418 over 5, 0.624
  * over 6 (every window of 6): never within 0.2; with the fit off, reported from the 4th frame
  * (early); with fit 0.25, reported at the 4th (rms exactly 0.25), held at the 5th and on */
@@ -439,6 +514,7 @@ int main(void)
     RUN_TEST(test_with_scene_marked_after_n_plus_1);
     RUN_TEST(test_against_scene_reported_early);
     RUN_TEST(test_report_hold);
+    RUN_TEST(test_spread_hold);
     RUN_TEST(test_curved_path_fails_the_fit);
     RUN_TEST(test_full_table);
     RUN_TEST(test_forget);

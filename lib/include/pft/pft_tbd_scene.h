@@ -19,6 +19,10 @@
  *   track whose displacement against the scene over its last 3 frames is at least
  *   3 * early_px (early_px > 0, n >= 4); either way only while its positions (up to n + 1) fit
  *   a straight line at constant speed within an rms of fit_px (fit_px > 0).
+ * - With hold_frames k > 1 a track that passes the above is reported only from the k-th frame
+ *   it passes them on (the report hold); with spread_px > 0, at a frame it passes with a
+ *   position spread sqrt(pos_var) of at most spread_px, from its spread_hold-th pass instead
+ *   (a layer concentrated on a point is reported sooner; docs/algorithms.md 9.11 step 5).
  * - HOLD: neither yet (too few positions, or the line fit fails); tentative tracks (with the
  *   manager's sequential test, fed with tentative = true) are never reported, but their
  *   positions count and they can be found CLUTTER.
@@ -82,6 +86,8 @@ typedef struct {
     uint32_t width;         /**< frame width, px (default 384): clamps px; 1..PFT_CFG_MAX_IMAGE_SIDE */
     uint32_t height;        /**< frame height, px (default 288): clamps py; 1..PFT_CFG_MAX_IMAGE_SIDE */
     uint32_t hold_frames;   /**< report hold k (default 1: none): a track is reported from the k-th frame it passes the tests on; 1..PFT_TBD_SCENE_MAX_HOLD */
+    pft_real_t spread_px;   /**< [E] spread-dependent hold (default 0: off): at a frame a track passes the tests with its position spread sqrt(pos_var) at most spread_px, it needs only spread_hold passes instead of hold_frames (docs/algorithms.md 9.11 step 5); [0, 256] px */
+    uint32_t spread_hold;   /**< the hold of such frames (default 1; read only with spread_px > 0): 1..hold_frames */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -90,6 +96,7 @@ typedef struct {
     pft_real_t x;     /**< column position, px */
     pft_real_t y;     /**< row position, px */
     bool tentative;   /**< a tentative track (sequential test running): never REPORT */
+    pft_real_t pos_var; /**< the estimate's position variance xx + yy, px^2 (pft_tbd_track_t pos_cov[0] + pos_cov[2]); read only with cfg.spread_px > 0, then >= 0 (and not NaN) */
 } pft_tbd_scene_track_t;
 
 /** The decision on one track. */
@@ -124,11 +131,12 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
      PFT_WS_ROUND((size_t)(max_tracks) * ((size_t)(frames) + 1u) * PFT_TBD_SCENE_POS_BYTES_))
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
- *  forget 64 frames, 384 x 288, hold 1 frame: no hold). */
+ *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
- *  "forget_frames", "width", "height", "hold_frames"); NULL on success. */
+ *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold"); NULL on
+ *  success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);
@@ -145,7 +153,8 @@ pft_status_t pft_tbd_scene_reset(pft_tbd_scene_t *s);
  * 0, 0 for a frame without detection evidence or the spatial method); out[0..n): the decisions,
  * in the order of tracks (may be NULL when n is 0). Refused, with nothing written (instance,
  * workspace and out unchanged): PFT_ERR_INVAL for a NULL s, a NULL tracks or out with n > 0,
- * an id 0, an id given twice in the list or (float build) a NaN position. n may exceed
+ * an id 0, an id given twice in the list, (float build) a NaN position, or with cfg.spread_px > 0
+ * a negative (float build: or NaN) pos_var. n may exceed
  * max_tracks: the tracks that find no slot get NO_SLOT. Work: O(n max_tracks) to find the
  * slots, O(n frames) for the tests.
  */

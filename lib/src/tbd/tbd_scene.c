@@ -25,6 +25,8 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->width = 384u;
     cfg->height = 288u;
     cfg->hold_frames = 1u;
+    cfg->spread_px = PFT_C(0.0);
+    cfg->spread_hold = 1u;
 }
 
 /* a threshold in [0, 256] px (0: the test it sets is off) */
@@ -57,6 +59,10 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "height";
     } else if (cfg->hold_frames < 1u || cfg->hold_frames > PFT_TBD_SCENE_MAX_HOLD) {
         bad = "hold_frames";
+    } else if (!sc_thr_ok_(cfg->spread_px)) {
+        bad = "spread_px";
+    } else if (cfg->spread_hold < 1u || cfg->spread_hold > cfg->hold_frames) {
+        bad = "spread_hold";
     } else {
         /* accepted */
     }
@@ -126,6 +132,7 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     s->gate_q = sc_q16_(cfg->gate_px);
     s->early_q = sc_q16_(cfg->early_px);
     s->fit_q = sc_q16_(cfg->fit_px);
+    s->spread_q = sc_q16_(cfg->spread_px);
     return pft_tbd_scene_reset(s);
 }
 
@@ -241,6 +248,15 @@ static bool sc_fit_ok_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl,
     return ss <= m * fit2;
 }
 
+/* whether the position spread sqrt(var) is at most spread_px: var (px^2) taken to Q16.16
+ * (saturated at 32768 px^2) and compared exactly in Q32.32 with spread_q^2 (spread_px <= 256
+ * px: < 2^48; var_q < 2^31, shifted < 2^47) */
+static bool sc_spread_ok_(const pft_tbd_scene_t *s, pft_real_t var)
+{
+    const int64_t v = (int64_t)sc_q16_(var);
+    return v * 65536 <= (int64_t)s->spread_q * s->spread_q;
+}
+
 /* round(q) (Q16.16) clamped to [0, side - 1] */
 static uint32_t sc_pix_(int32_t q, uint32_t side)
 {
@@ -267,6 +283,9 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
     for (i = 0u; i < n; ++i) {
         if (tracks[i].id == 0u || !sc_finite_(tracks[i].x) || !sc_finite_(tracks[i].y)) {
             return PFT_ERR_INVAL;
+        }
+        if (s->spread_q > 0 && !(tracks[i].pos_var >= PFT_C(0.0))) {
+            return PFT_ERR_INVAL; /* negative (float build: or NaN) */
         }
         for (j = 0u; j < i; ++j) {
             if (tracks[j].id == tracks[i].id) {
@@ -347,11 +366,16 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             early = sc_disp2_(&ring[(sl->head + sl->count - 4u) % mm], p) >= e * e;
         }
         if ((sl->count >= mm || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
-            /* the report hold: reported from the hold_frames-th frame that passes */
+            /* the report hold: reported from the hold_frames-th frame that passes (from the
+             * spread_hold-th with a position spread of at most spread_px) */
+            uint32_t need = s->cfg.hold_frames;
+            if (s->spread_q > 0 && sc_spread_ok_(s, t->pos_var)) {
+                need = s->cfg.spread_hold;
+            }
             if (sl->passed < s->cfg.hold_frames) {
                 sl->passed = (uint16_t)(sl->passed + 1u);
             }
-            o->decision = sl->passed >= s->cfg.hold_frames ? PFT_TBD_SCENE_REPORT : PFT_TBD_SCENE_HOLD;
+            o->decision = sl->passed >= need ? PFT_TBD_SCENE_REPORT : PFT_TBD_SCENE_HOLD;
         } else {
             o->decision = PFT_TBD_SCENE_HOLD;
         }

@@ -44,6 +44,7 @@ struct pft_tbd_scene_s {
     int32_t gate_q;             /* gate_px, early_px, fit_px in Q16.16 */
     int32_t early_q;
     int32_t fit_q;
+    int32_t spread_q;           /* spread_px in Q16.16 */
     uint32_t frame;             /* updates since init/reset */
     uint32_t overflows;         /* NO_SLOT decisions since init/reset */
 };
