@@ -4,9 +4,12 @@
 # shipped file with a small sequence (128x96, 40 frames, 3 targets at 15 dB, 3000 search
 # particles; every other tracker field as shipped) is simulated once and run by `pft run` as
 # shipped and with one field of its block undone at a time:
-#  - scene_hold 5 against 1: the held run's tracks.csv is the unheld run's rows less the first
-#    4 reported rows of every track (and the unheld run has a track of at least 5 rows, so the
-#    check can fail);
+#  - scene_hold 5 against 1 (both without the spread-dependent hold): the held run's tracks.csv
+#    is the unheld run's rows less the first 4 reported rows of every track (and the unheld run
+#    has a track of at least 5 rows, so the check can fail);
+#  - the spread-dependent hold (scene_spread_px 0.4, scene_spread_hold 3) removed: the tracks
+#    change, and the shipped run reports at least as many rows (its hold is shorter for steady
+#    tracks);
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
 #  - integ_alpha removed: the tracks change (the births come from the integration);
 #  - bg_anchor, clutter_anchor toggled (bg_anchor off with the fields that need it): the
@@ -50,7 +53,7 @@ endfunction()
 set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "bg_anchor=ON"
            "theta_end=0.20000000000000001" "particles=24000" "bg_stale_reinit=32")
-check_block(${shipped} ${common} "scene_hold=5" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
+check_block(${shipped} ${common} "scene_hold=5" "scene_spread_px=0.40000000000000002" "scene_spread_hold=3" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=5" "scene_spread_px=0.45000000000000001" "scene_spread_hold=3" "bg_gate=0.25"
@@ -58,7 +61,8 @@ check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "s
 # its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
 # and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all"), the flat-field
 # step's output over its running robust sd (flat_rescale, branch irshade3) with scene_hold 6
-check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=6" "bg_gate=0.25"
+check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=6"
+            "scene_spread_px=0.45000000000000001" "scene_spread_hold=4" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative"
             "bg_masked_taps=all" "flat_rescale=ON")
 
@@ -78,7 +82,11 @@ string(JSON js SET "${js}" targets snr_db 15)
 string(JSON js SET "${js}" targets count 3)
 string(JSON js SET "${js}" tracker particles 3000)
 file(WRITE ${WORK}/lf.json "${js}")
-string(JSON v SET "${js}" tracker scene_hold 1)
+# the fixed hold alone (the spread-dependent hold removed), and with scene_hold 1
+string(JSON nospread REMOVE "${js}" tracker scene_spread_px)
+string(JSON nospread REMOVE "${nospread}" tracker scene_spread_hold)
+file(WRITE ${WORK}/nospread.json "${nospread}")
+string(JSON v SET "${nospread}" tracker scene_hold 1)
 file(WRITE ${WORK}/hold1.json "${v}")
 string(JSON v SET "${js}" tracker flat_block 0)
 string(JSON v REMOVE "${v}" tracker flat_rescale)
@@ -116,7 +124,7 @@ foreach(f bg_gate_young bg_gate_local bg_masked_taps handover_in_scale flat_resc
 endforeach()
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
-foreach(c lf hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local
+foreach(c lf nospread hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local
           no_bg_masked_taps no_handover_in_scale no_flat_rescale)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
@@ -143,7 +151,6 @@ function(rows_by_track file prefix)
 endfunction()
 
 rows_by_track(${WORK}/run_hold1/tracks.csv k1)
-rows_by_track(${WORK}/run_lf/tracks.csv k5)
 set(expect "")
 set(long 0)
 foreach(id ${k1_ids})
@@ -157,16 +164,26 @@ endforeach()
 if(long EQUAL 0)
   message(FATAL_ERROR "scene_hold 1 gave no track of 5 or more reported rows: the hold cannot be seen")
 endif()
-file(STRINGS ${WORK}/run_lf/tracks.csv got)
+file(STRINGS ${WORK}/run_nospread/tracks.csv got)
 list(REMOVE_AT got 0)
 list(SORT expect)
 list(SORT got)
 if(NOT expect STREQUAL got)
-  message(FATAL_ERROR "the shipped file's tracks are not scene_hold 1's less the first 4 reported rows of "
+  message(FATAL_ERROR "the fixed hold's tracks are not scene_hold 1's less the first 4 reported rows of "
                       "each track (scene_hold 5 not in effect?)\nexpected: ${expect}\ngot: ${got}")
 endif()
 list(LENGTH got ngot)
 message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
+# the spread-dependent hold reaches the scene-motion test: the shipped run's tracks differ, with more rows
+file(STRINGS ${WORK}/run_lf/tracks.csv shipped_rows)
+list(REMOVE_AT shipped_rows 0)
+list(SORT shipped_rows)
+list(LENGTH shipped_rows nship)
+if(shipped_rows STREQUAL got OR nship LESS ngot)
+  message(FATAL_ERROR "the spread-dependent hold: the shipped run has ${nship} rows against the fixed hold's ${ngot} "
+                      "(expected more: scene_spread_px not in effect?)")
+endif()
+message(STATUS "scene_spread_px 0.4: ${nship} rows against the fixed hold's ${ngot}")
 
 foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local no_bg_masked_taps
           no_flat_rescale)
