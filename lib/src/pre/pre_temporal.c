@@ -1117,6 +1117,26 @@ static inline int32_t gate_nb_(int32_t bx, int32_t e, int32_t mc, int32_t lim, i
     return nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
 }
 
+/* bg_gate: gate_run_'s or gate_local_span_'s update of one old grid cell (jy, j) of value bx with
+ * innovation e, for the paths that take cells one at a time (the short rows, bg_edge_narrow's
+ * cells): the young or the tile's limit, bg_gate_local's part and its tile sums; the new value. */
+static int32_t gate_cell_(const pft_pre_t *p, int32_t jy, int32_t j, int32_t bx, int32_t e, int32_t a15)
+{
+    const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
+                                            p->agey[jy + 1] < p->cfg.bg_gate_young);
+    const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
+    const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
+    int32_t mc = 0;
+    if (p->gsum != NULL) {
+        const uint32_t ti = gate_tile_(p, jy, j);
+        mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
+        p->gsum[2u * ti] += e;
+        p->gsum[2u * ti + 1u] += bx;
+        p->gcnt[ti]++;
+    }
+    return gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+}
+
 /* bg_gate: the ring rows of one grid row's update, their vertical weights, the values marking
  * an invalid tap, and the weights inside and beyond the gate. */
 typedef struct {
@@ -1287,20 +1307,7 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
         if (zt != PFT_PRE_ANONE_) {
             const int32_t e = zt - bx;
             if (g->gate && old) {
-                /* gate_run_'s or gate_local_span_'s update of this one cell */
-                const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
-                                                        p->agey[jy + 1] < p->cfg.bg_gate_young);
-                const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
-                const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
-                int32_t mc = 0;
-                if (p->gsum != NULL) {
-                    const uint32_t ti = gate_tile_(p, jy, j);
-                    mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
-                    p->gsum[2u * ti] += e;
-                    p->gsum[2u * ti + 1u] += bx;
-                    p->gcnt[ti]++;
-                }
-                b[j + 1] = (uint16_t)gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+                b[j + 1] = (uint16_t)gate_cell_(p, jy, j, bx, e, a15);
             } else {
                 b[j + 1] = (uint16_t)(old ? bx + ((e * a15 + 16384) >> 15) : zt);
             }
@@ -1758,19 +1765,7 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
         if (ar != NULL && ar[j] > n) {
             b[j + 1] = (uint16_t)zt; /* stale: restarts from the frame value */
         } else if (g->gate && old) {
-            const bool young = p->agex != NULL && (p->agex[j + 1] < p->cfg.bg_gate_young ||
-                                                    p->agey[jy + 1] < p->cfg.bg_gate_young);
-            const int32_t lim = young ? young_lim_(p, jy, j) : gate_lim_(p, jy, j);
-            const int32_t wsh = (int32_t)p->cfg.bg_gate_shift;
-            int32_t mc = 0;
-            if (p->gsum != NULL) {
-                const uint32_t ti = gate_tile_(p, jy, j);
-                mc = gate_m_(p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE, p->gm[ti], bx);
-                p->gsum[2u * ti] += e;
-                p->gsum[2u * ti + 1u] += bx;
-                p->gcnt[ti]++;
-            }
-            b[j + 1] = (uint16_t)gate_nb_(bx, e, mc, lim, a15, wsh == 0 ? a15 : a15 >> wsh, wsh);
+            b[j + 1] = (uint16_t)gate_cell_(p, jy, j, bx, e, a15);
         } else {
             b[j + 1] = (uint16_t)(old ? bx + ((e * a15 + 16384) >> 15) : zt);
         }
