@@ -213,6 +213,18 @@ void pft_test_texture(uint16_t *img, int w, int h, const pft_test_texture_t *t, 
     }
 }
 
+void pft_test_pre_gated_config(pft_pre_config_t *c, uint16_t w, uint16_t h, uint8_t tile)
+{
+    pft_pre_config_default(c);
+    c->width = w;
+    c->height = h;
+    c->tile = tile;
+    c->sigma_interp = false;
+    c->bg_anchor = true;
+    c->bg_gate = 64u;
+    c->bg_gate_young = 16u;
+}
+
 void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *work, size_t need,
                                void *copy)
 {

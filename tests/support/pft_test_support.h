@@ -34,6 +34,11 @@ double pft_test_pre_res_counts(const pft_pre_t *p, int x, int y);
  * p and the workspace byte-identical (copy: need bytes of scratch). */
 void pft_test_pre_init_refused(pft_pre_t *p, const pft_pre_config_t *d, void *work, size_t need,
                                void *copy);
+/* The real-frame block's anchored background for the stage tests (test_pre_edge_narrow,
+ * test_pre_young_clip): the defaults with a w x h frame, tiles of `tile`, sigma held per tile
+ * (sigma_interp false: the residual in counts is exact), bg_anchor, bg_gate 0.25 sigma and
+ * bg_gate_young 16. */
+void pft_test_pre_gated_config(pft_pre_config_t *c, uint16_t w, uint16_t h, uint8_t tile);
 /* The stage's last residual squared in units of sd counts over rows y0 .. y1 - 1 of a frame w
  * wide: columns x < xe added to *se (count *ne), columns x >= xi to *si (count *ni); masked
  * pixels skipped (the entering-edge strip tests). */

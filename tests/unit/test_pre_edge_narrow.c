@@ -43,14 +43,7 @@ static void render(double sx, double sy, double tx, double ty, double amp)
  * bg_edge_narrow `edge`, bg_stale_reinit `stale`. */
 static void config(pft_pre_config_t *c, uint8_t edge, uint8_t stale)
 {
-    pft_pre_config_default(c);
-    c->width = W;
-    c->height = H;
-    c->tile = TILE;
-    c->sigma_interp = false; /* sigma held per tile: the residual in counts is exact */
-    c->bg_anchor = true;
-    c->bg_gate = 64u;
-    c->bg_gate_young = 16u;
+    pft_test_pre_gated_config(c, W, H, TILE);
     c->bg_stale_reinit = stale;
     c->bg_edge_narrow = edge;
 }

@@ -43,14 +43,7 @@ static void render(double sx, double tx, double ty, double amp)
  * bg_young_clip `clip` (Q8.8 sigma); bg_gate_local `local` (the shaded file's relative form). */
 static void config_local(pft_pre_config_t *c, uint16_t clip, uint8_t local)
 {
-    pft_pre_config_default(c);
-    c->width = W;
-    c->height = H;
-    c->tile = TILE;
-    c->sigma_interp = false; /* sigma held per tile: the residual in counts is exact */
-    c->bg_anchor = true;
-    c->bg_gate = 64u;
-    c->bg_gate_young = 16u;
+    pft_test_pre_gated_config(c, W, H, TILE);
     c->bg_young_clip = clip;
     c->bg_gate_local = local;
 }
