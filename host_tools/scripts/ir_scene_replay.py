@@ -20,32 +20,16 @@ position fed). Needs numpy. Not a test.
 """
 import argparse
 import collections
-import csv
 import json
 import math
 import os
+import sys
 
 import numpy as np
 
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def fit_rms(pts):
-    m = len(pts)
-    if m < 3:
-        return 0.0
-    a = np.asarray(pts, dtype=float)
-    t = np.arange(m) - (m - 1) / 2.0
-    ss = 0.0
-    for c in range(2):
-        v = a[:, c]
-        b = (t * v).sum() / (t * t).sum()
-        r = v - v.mean() - b * t
-        ss += (r * r).sum()
-    return math.sqrt(ss / m)
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from ir_scene_diag import read_csv, fit_rms  # noqa: E402
 
 
 def parse_rule(s):
