@@ -320,6 +320,13 @@ static inline fl_seg_t fl_seg_(const int32_t *rv, uint32_t s, uint32_t x, uint32
     return g;
 }
 
+/* The end of block blk's span in a segment ending at xe: the next block's first column or xe. */
+static inline uint32_t fl_blk_end_(uint32_t blk, uint32_t lb, uint32_t xe)
+{
+    const uint32_t xb = (blk + 1u) << lb;
+    return xb > xe ? xe : xb;
+}
+
 static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
                     uint32_t jb)
 {
@@ -337,13 +344,8 @@ static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8
         const fl_seg_t g = fl_seg_(rv, s, x, nbx, lb, w, d, k);
         const uint32_t xe = g.xe, st = g.st;
         uint32_t u = g.u;
-        if (x >= xe) {
-            continue;
-        }
         while (x < xe) {
-            const uint32_t blk = x >> lb;
-            uint32_t xb = (blk + 1u) << lb;
-            xb = xb > xe ? xe : xb;
+            const uint32_t blk = x >> lb, xb = fl_blk_end_(blk, lb, xe);
             fl_acc_t acc = {0, 0u, 0u};
             fl_span_(r, lrow, u8, x, xb, &u, st, k, gate, &acc);
             if (learn) {
@@ -422,13 +424,8 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
         const fl_seg_t g = fl_seg_(rq, sg, x, nbx, lb, w, d, k);
         const uint32_t xe = g.xe, st = g.st;
         uint32_t u = g.u;
-        if (x >= xe) {
-            continue;
-        }
         while (x < xe) {
-            const uint32_t blk = x >> lb;
-            uint32_t xb = (blk + 1u) << lb;
-            xb = xb > xe ? xe : xb;
+            const uint32_t blk = x >> lb, xb = fl_blk_end_(blk, lb, xe);
             /* the block's median threshold 0.6745 s in Q8.8 (0 < s Q16 <= 2^20: the product < 2^36) */
             const int32_t thr = (int32_t)(((uint64_t)(uint32_t)sc[blk] * (uint64_t)FL_MADQ_ + 8388608u) >> 24u);
             uint32_t na = 0u, nl = 0u;
