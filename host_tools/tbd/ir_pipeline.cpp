@@ -51,6 +51,8 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.theta_end_grace, c.theta_end_grace);
     c.end_persist = static_cast<uint8_t>(t.end_persist);
     set_real_if(t.handover_in_scale, c.handover_in_scale);
+    set_real_if(t.split_px, c.split_px);
+    set_real_if(t.split_share, c.split_share);
     set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);

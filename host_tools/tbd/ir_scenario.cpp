@@ -29,7 +29,7 @@ const char *const kTrackerOnlyFields[] = {
     "confirm_frames", "birth_correction", "scene_frames", "scene_gate_px", "scene_fit_px",
     "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
     "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "end_grace_frames", "theta_end_grace", "end_persist",
-    "handover_in_scale", "q2", nullptr};
+    "handover_in_scale", "q2", "split_px", "split_share", nullptr};
 
 namespace {
 
@@ -186,6 +186,12 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     num("theta_end_grace", 0.0, 1.0, T.theta_end_grace);
     num("q2", 0.0, 100.0, T.q2);
     num("handover_in_scale", 0.0, 1.0, T.handover_in_scale);  // the library's range (pft_tbd.h)
+    num("split_px", 0.0, 16.0, T.split_px);                    // the library's range (pft_tbd.h)
+    num("split_share", 0.0, 0.5, T.split_share);
+    if (T.split_px && *T.split_px > 0.0 && *T.split_px < 0.5)
+        t.at("split_px").fail("must be 0 (off) or within 0.5..16 px");
+    if (T.split_px && *T.split_px > 0.0 && !(T.split_share && *T.split_share > 0.0))
+        t.at("split_px").fail("needs split_share above 0 (at most 0.5)");
     T.end_persist = static_cast<int>(t.integer_in("end_persist", T.end_persist, 0, PFT_TBD_MAX_END_PERSIST));  // the library's bound (pft_tbd.h)
     if (T.theta_end_grace && T.end_grace_frames == 0)
         t.at("theta_end_grace").fail("needs end_grace_frames of at least 1");

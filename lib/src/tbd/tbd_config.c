@@ -74,6 +74,8 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->theta_end_grace = PFT_C(0.0);
     cfg->end_persist = 0u;
     cfg->handover_in_scale = PFT_C(0.0);
+    cfg->split_px = PFT_C(0.0);
+    cfg->split_share = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -183,6 +185,9 @@ static const char *refused_birth_(const pft_tbd_config_t *c)
     return NULL;
 }
 
+/* v == 0, written without an equality test of reals (NaN is not 0). */
+static bool is_off_(pft_real_t v) { return v >= PFT_C(0.0) && v <= PFT_C(0.0); }
+
 /* The first refused field of the existence, birth and decision settings, NULL if none. */
 static const char *refused_decisions_(const pft_tbd_config_t *c)
 {
@@ -267,6 +272,13 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (!(c->handover_in_scale >= PFT_C(0.0) && c->handover_in_scale <= PFT_REAL_ONE)) {
         return "handover_in_scale";
+    }
+    if (!(is_off_(c->split_px) || (c->split_px >= PFT_C(0.5) && c->split_px <= PFT_C(16.0)))) {
+        return "split_px";
+    }
+    if (!(c->split_share >= PFT_C(0.0) && c->split_share <= PFT_C(0.5)) ||
+        (!is_off_(c->split_px) && !(c->split_share > PFT_C(0.0)))) {
+        return "split_share";
     }
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {

@@ -973,6 +973,235 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
     return true;
 }
 
+/* ---------------------------------- split (docs/algorithms.md 2.7 [E]) -------------------- */
+
+/* Offset of particle s from (rx, ry), each axis limited to +-32 px (q16: the squares and
+ * their sums below stay under 2^14). */
+static void split_off_(const pft_tbd_particles_t *P, uint32_t s, pft_real_t rx, pft_real_t ry,
+                       pft_real_t *dx, pft_real_t *dy)
+{
+    *dx = pft_clamp(pft_sub(P->x[s], rx), PFT_C(-32.0), PFT_C(32.0));
+    *dy = pft_clamp(pft_sub(P->y[s], ry), PFT_C(-32.0), PFT_C(32.0));
+}
+
+static pft_real_t split_d2_(pft_real_t ax, pft_real_t ay, pft_real_t bx, pft_real_t by)
+{
+    return pft_add(pft_sq(pft_sub(ax, bx)), pft_sq(pft_sub(ay, by)));
+}
+
+/* Two-means: every live particle labelled 1 or 2 (its nearer centroid; 0 dead) in w[s].n, the
+ * centroids moved to their groups' means; false when a group is empty. */
+static bool split_assign_(pft_tbd_filter_t *f, pft_real_t rx, pft_real_t ry, pft_real_t c[4],
+                          uint32_t cnt[2])
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_slot_t *w = f->cur.w;
+    const pft_weight_t one = (pft_weight_t)1;
+    pft_acc_t_ sm[4] = {PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_};
+    cnt[0] = 0u;
+    cnt[1] = 0u;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        w[s].n = 0u;
+        if (P->e[s] == 0u) {
+            continue;
+        }
+        pft_real_t dx, dy;
+        split_off_(P, s, rx, ry, &dx, &dy);
+        const uint32_t g = split_d2_(dx, dy, c[0], c[1]) <= split_d2_(dx, dy, c[2], c[3]) ? 0u : 1u;
+        w[s].n = g + 1u;
+        ++cnt[g];
+        sm[2u * g] += pft_acc_wx_(one, dx);
+        sm[2u * g + 1u] += pft_acc_wx_(one, dy);
+    }
+    if (cnt[0] == 0u || cnt[1] == 0u) {
+        return false;
+    }
+    for (uint32_t k = 0; k < 4u; ++k) {
+        c[k] = pft_acc_div_(sm[k], (pft_wacc_t)cnt[k / 2u]);
+    }
+    return true;
+}
+
+bool pft_tbd_filter_parts_(pft_tbd_filter_t *f, pft_real_t min_sep, pft_real_t min_share,
+                           pft_real_t *sx, pft_real_t *sy)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    pft_tbd_slot_t *w = f->cur.w;
+    const pft_real_t rx = f->est.x;
+    const pft_real_t ry = f->est.y;
+    /* seeds: the live particle farthest from the estimate, then the one farthest from it */
+    uint32_t a = f->n;
+    uint32_t nl = 0u;
+    pft_real_t best = PFT_C(-1.0);
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            pft_real_t dx, dy;
+            split_off_(P, s, rx, ry, &dx, &dy);
+            const pft_real_t d2 = split_d2_(dx, dy, PFT_C(0.0), PFT_C(0.0));
+            ++nl;
+            if (d2 > best) {
+                best = d2;
+                a = s;
+            }
+        }
+    }
+    if (nl < 2u || !f->est.valid) {
+        return false;
+    }
+    pft_real_t c[4];
+    split_off_(P, a, rx, ry, &c[0], &c[1]);
+    best = PFT_C(-1.0);
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            pft_real_t dx, dy;
+            split_off_(P, s, rx, ry, &dx, &dy);
+            const pft_real_t d2 = split_d2_(dx, dy, c[0], c[1]);
+            if (d2 > best) {
+                best = d2;
+                c[2] = dx;
+                c[3] = dy;
+            }
+        }
+    }
+    uint32_t cnt[2];
+    for (int it = 0; it < 3; ++it) {
+        if (!split_assign_(f, rx, ry, c, cnt)) {
+            return false;
+        }
+    }
+    /* the groups' mean squared spreads about their centroids (the labels of the last pass,
+     * whose means the centroids are) */
+    const pft_weight_t one = (pft_weight_t)1;
+    pft_acc_t_ sp[2] = {PFT_ACC_ZERO_, PFT_ACC_ZERO_};
+    for (uint32_t s = 0; s < f->n; ++s) {
+        const uint32_t g = w[s].n;
+        if (g != 0u) {
+            pft_real_t dx, dy;
+            split_off_(P, s, rx, ry, &dx, &dy);
+            sp[g - 1u] += pft_acc_wx_(one, split_d2_(dx, dy, c[2u * (g - 1u)], c[2u * (g - 1u) + 1u]));
+        }
+    }
+    const pft_real_t s1 = pft_acc_div_(sp[0], (pft_wacc_t)cnt[0]);
+    const pft_real_t s2 = pft_acc_div_(sp[1], (pft_wacc_t)cnt[1]);
+    const pft_real_t sep2 = split_d2_(c[0], c[1], c[2], c[3]);
+    const uint32_t small = cnt[0] < cnt[1] ? 1u : 2u; /* the smaller group's label */
+    const uint32_t n_small = cnt[small - 1u];
+    if (!(pft_ratio((int32_t)n_small, (int32_t)nl) >= min_share) ||
+        !(sep2 >= pft_sq(min_sep)) || !(sep2 >= pft_mul_i(pft_add(s1, s2), 2))) {
+        return false;
+    }
+    if (small == 1u) {
+        /* the larger group takes label 1 */
+        for (uint32_t s = 0; s < f->n; ++s) {
+            w[s].n = w[s].n == 0u ? 0u : 3u - w[s].n;
+        }
+    }
+    *sx = pft_add(rx, c[2u * (small - 1u)]);
+    *sy = pft_add(ry, c[2u * (small - 1u) + 1u]);
+    return true;
+}
+
+/* The slots of P labelled `into` (in w) refilled with copies of those labelled `from`, equal
+ * weights, by systematic resampling with rng; the `from` particles and every other slot
+ * untouched. */
+static void split_refill_(pft_tbd_particles_t *P, const pft_tbd_slot_t *w, uint32_t n,
+                          uint32_t from, uint32_t into, pft_rng_t *rng)
+{
+    uint32_t n_from = 0u;
+    uint32_t n_into = 0u;
+    for (uint32_t s = 0; s < n; ++s) {
+        n_from += w[s].n == from ? 1u : 0u;
+        n_into += w[s].n == into ? 1u : 0u;
+    }
+    if (n_from == 0u || n_into == 0u) {
+        return;
+    }
+    pft_sys_t sys;
+    pft_wacc_t cum = 0;
+    uint32_t j = 0u;
+    uint32_t last = n;
+    pft_sys_init_(&sys, (pft_wacc_t)n_from, n_into, pft_rng_next_(rng));
+    for (uint32_t s = 0; s < n && j < n; ++s) {
+        if (w[s].n != from) {
+            continue;
+        }
+        last = s;
+        cum += (pft_wacc_t)1;
+        for (uint32_t c = pft_sys_take_(&sys, cum); c > 0u; --c) {
+            while (j < n && w[j].n != into) {
+                ++j;
+            }
+            if (j >= n) {
+                break;
+            }
+            copy_particle_(P, j, P, s);
+            ++j;
+        }
+    }
+    for (; j < n && last < n; ++j) {
+        if (w[j].n == into) {
+            copy_particle_(P, j, P, last); /* float rounding only */
+        }
+    }
+}
+
+/* The estimate of a layer from its live particles, equal weights (p_exist, log_mean_lr and
+ * n_eff kept). */
+static void split_estimate_(pft_tbd_filter_t *f)
+{
+    const pft_tbd_particles_t *P = &f->cur;
+    const pft_weight_t one = (pft_weight_t)1;
+    pft_acc_t_ sm[5] = {PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_};
+    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
+    uint32_t nl = 0u;
+    pft_tbd_estimate_t *e = &f->est;
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            ++nl;
+            sm[0] += pft_acc_wx_(one, P->x[s]);
+            sm[1] += pft_acc_wx_(one, P->y[s]);
+            sm[2] += pft_acc_wx_(one, P->vx[s]);
+            sm[3] += pft_acc_wx_(one, P->vy[s]);
+            sm[4] += pft_acc_wx_(one, P->in[s]);
+        }
+    }
+    if (nl == 0u) {
+        return;
+    }
+    e->x = pft_acc_div_(sm[0], (pft_wacc_t)nl);
+    e->y = pft_acc_div_(sm[1], (pft_wacc_t)nl);
+    e->vx = pft_acc_div_(sm[2], (pft_wacc_t)nl);
+    e->vy = pft_acc_div_(sm[3], (pft_wacc_t)nl);
+    e->intensity = pft_acc_div_(sm[4], (pft_wacc_t)nl);
+    for (uint32_t s = 0; s < f->n; ++s) {
+        if (P->e[s] != 0u) {
+            pft_real_t dx, dy;
+            split_off_(P, s, e->x, e->y, &dx, &dy);
+            cxx += pft_acc_wx_(one, pft_sq(dx));
+            cxy += pft_acc_wx_(one, pft_mul(dx, dy));
+            cyy += pft_acc_wx_(one, pft_sq(dy));
+        }
+    }
+    e->pos_cov[0] = pft_acc_div_(cxx, (pft_wacc_t)nl);
+    e->pos_cov[1] = pft_acc_div_(cxy, (pft_wacc_t)nl);
+    e->pos_cov[2] = pft_acc_div_(cyy, (pft_wacc_t)nl);
+    e->valid = true;
+}
+
+void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d)
+{
+    const pft_tbd_slot_t *w = f->cur.w;
+    const uint32_t n = f->n < d->n ? f->n : d->n;
+    for (uint32_t s = 0; s < n; ++s) {
+        copy_particle_(&d->cur, s, &f->cur, s);
+    }
+    split_refill_(&d->cur, w, n, 2u, 1u, &d->rng);
+    split_refill_(&f->cur, w, f->n, 1u, 2u, &f->rng);
+    d->est = f->est;
+    split_estimate_(d);
+    split_estimate_(f);
+}
+
 /* ---------------------------------- public API -------------------------------------------- */
 
 size_t pft_tbd_filter_workspace_size(const pft_tbd_config_t *cfg)

@@ -197,6 +197,19 @@ void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods);
 bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
                               const pft_tbd_region_t *gate);
 
+/* The split test of a track layer (cfg.split_px, docs/algorithms.md 2.7 [E]): true when its
+ * live particles part into two groups as cfg.split_px and split_share ask; the groups are then
+ * left in f's weight slots (1 the larger, 2 the smaller) and (*sx, *sy) is the smaller's
+ * centroid. Reads f only (the weight slots apart: free between updates). */
+bool pft_tbd_filter_parts_(pft_tbd_filter_t *f, pft_real_t min_sep, pft_real_t min_share,
+                           pft_real_t *sx, pft_real_t *sy);
+/* After pft_tbd_filter_parts_ returned true: d (a track layer of as many particles) takes f's
+ * particles with the larger group's slots refilled from the smaller group, f keeps the larger
+ * group with the smaller's slots refilled from it (systematic resampling, each with its own
+ * generator); both estimates from their live particles, existence and frame log likelihood
+ * ratio f's. */
+void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d);
+
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */
 void pft_tbd_est_pub_(const pft_tbd_meas_t *m, const pft_tbd_estimate_t *in,

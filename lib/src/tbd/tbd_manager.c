@@ -649,6 +649,68 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
     }
 }
 
+/* 2b. Split (cfg.split_px, docs/algorithms.md 2.7 [E]): each track layer that lived before this
+ * frame's splits, whose live particles have parted into two groups (pft_tbd_filter_parts_), and
+ * whose smaller group's centroid is farther than split_px from every other track, hands that
+ * group to a new track layer in a free slot; the new track starts as a hand-over does (a new id,
+ * confirmed or tentative, the sequential test from the parent's sum). */
+static void split_tracks_(pft_tbd_t *t)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    if (!(cfg->split_px > PFT_C(0.0))) {
+        return;
+    }
+    const uint32_t id_new = t->next_id; /* tracks made here have ids from this one on */
+    const pft_real_t sep2 = pft_sq(cfg->split_px);
+    for (uint32_t k = 0; k < cfg->max_targets && t->n_tracks < cfg->max_targets; ++k) {
+        pft_tbd_track_t *rec = &t->records[k];
+        if (rec->id == 0u || rec->id >= id_new) {
+            continue;
+        }
+        pft_tbd_filter_t *tf = &t->tracks[k];
+        pft_real_t sx = PFT_C(0.0);
+        pft_real_t sy = PFT_C(0.0);
+        if (!pft_tbd_filter_parts_(tf, cfg->split_px, cfg->split_share, &sx, &sy)) {
+            continue;
+        }
+        bool near = false;
+        for (uint32_t u = 0; u < cfg->max_targets && !near; ++u) {
+            const pft_tbd_track_t *o = &t->records[u];
+            if (u != k && o->id != 0u) {
+                const pft_real_t dx = pft_clamp(pft_sub(o->x, sx), PFT_C(-32.0), PFT_C(32.0));
+                const pft_real_t dy = pft_clamp(pft_sub(o->y, sy), PFT_C(-32.0), PFT_C(32.0));
+                near = pft_add(pft_sq(dx), pft_sq(dy)) < sep2;
+            }
+        }
+        if (near) {
+            continue;
+        }
+        uint32_t u = 0;
+        while (u < cfg->max_targets && t->records[u].id != 0u) {
+            ++u;
+        }
+        pft_tbd_filter_t *nf = &t->tracks[u];
+        pft_rng_seed(&nf->rng, cfg->seed + t->next_id);
+        pft_tbd_filter_reset_stats_(nf);
+        pft_tbd_filter_split_(tf, nf);
+        nf->frames = 0u;
+        record_from_est_(rec, &tf->est);
+        pft_tbd_track_t *nr = &t->records[u];
+        memset(nr, 0, sizeof(*nr));
+        nr->id = t->next_id++;
+        record_from_est_(nr, &nf->est);
+        nr->last_seq = t->last_seq;
+        nr->last_timestamp_us = t->last_ts;
+        nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
+        nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
+        ++t->n_tracks;
+        if (nr->first_frame != 0u) {
+            push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
+        }
+        add_region_(cfg, t->mask, nr->x, nr->y);
+    }
+}
+
 /* The Bernoulli search layer's share of a fixed particle budget (docs/algorithms.md 2.11,
  * issue #12): with `stepped` track layers stepped at this frame, the search layer moves and
  * weighs n_search - stepped n_track particles (its first ones), at least n_search / 4, so that
@@ -1000,6 +1062,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     const uint32_t stepped = t->n_tracks; /* track layers stepped at this frame */
     update_tracks_(t, frame, res_tracks);
     end_or_keep_tracks_(t);
+    split_tracks_(t);
     update_search_(t, frame, res_search, stepped);
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;
