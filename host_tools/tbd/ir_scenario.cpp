@@ -211,7 +211,7 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.scene_slow_low_px = t.number_in("scene_slow_low_px", T.scene_slow_low_px, 0.0, 10.0);
     T.scene_slow_gate_px = t.number_in("scene_slow_gate_px", T.scene_slow_gate_px, 0.001, 256.0);  // the library's (0, 256]
     if (T.scene_slow_frames > 0 && T.scene_slow_frames < 2 * T.scene_frames)
-        t.at("scene_slow_frames").fail("must be 0 (off) or at least 2 * scene_frames");
+        t.at("scene_slow_frames").fail("must be 0 or at least twice scene_frames");
     if (T.scene_slow_frames > 0 && T.scene_slow_low_px > T.scene_gate_px)
         t.at("scene_slow_low_px").fail("must be at most scene_gate_px");
     if (t.has("scene_tentative"))
