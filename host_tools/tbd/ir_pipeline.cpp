@@ -324,6 +324,9 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.hold_frames = static_cast<uint32_t>(t.scene_hold);
     c.spread_px = to_real(t.scene_spread_px);
     c.spread_hold = static_cast<uint32_t>(t.scene_spread_px > 0 ? t.scene_spread_hold : 1);
+    c.slow_frames = static_cast<uint32_t>(t.scene_slow_frames);
+    c.slow_low_px = to_real(t.scene_slow_low_px);
+    c.slow_gate_px = to_real(t.scene_slow_gate_px);
     return c;
 }
 

@@ -177,6 +177,9 @@ struct TrackerSettings {
     bool flat_level_blocks = false;             ///< host experiment: with flat_relative, the level frame at the blocks' resolution (block means, bilinear) instead of the raw frame
     double scene_spread_px = 0.0;               ///< spread-dependent report hold (pft_tbd_scene_config_t.spread_px; 0: off): a track passing the test with a position spread sqrt(xx + yy) of at most this (px) is reported from its scene_spread_hold-th pass instead of its scene_hold-th (docs/results/ir_clutter.md, "Branch irfit")
     int scene_spread_hold = 1;                  ///< the hold of such frames (pft_tbd_scene_config_t.spread_hold): 1..scene_hold; needed with scene_spread_px
+    int scene_slow_frames = 0;                  ///< the scene-motion test's longer look (pft_tbd_scene_config_t.slow_frames; 0: off): a track failing the gate over scene_frames frames with a displacement of at least scene_frames * scene_slow_low_px is undecided instead of clutter, and tested again over its longest window m (2 scene_frames..this) against sqrt(m scene_frames) * scene_slow_gate_px (docs/results/ir_clutter.md, "Branch irslow2")
+    double scene_slow_low_px = 0.0;             ///< px per frame (pft_tbd_scene_config_t.slow_low_px): below it over scene_frames frames a track is clutter at once; 0..scene_gate_px
+    double scene_slow_gate_px = 0.15;           ///< px (pft_tbd_scene_config_t.slow_gate_px): the longer windows' gate, sqrt(m scene_frames) times this
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };
 

@@ -11,7 +11,10 @@
  * frames after its last frame; the report hold (hold_frames k) reports a track from the k-th
  * frame it passes the tests, counting no tentative frame, and leaves CLUTTER as it is; the
  * spread-dependent hold (spread_px, spread_hold) shortens it for frames with a small position
- * spread, reads pos_var only when on, and refuses a negative one. Positions and shifts are multiples of 2^-16 px, so that both
+ * spread, reads pos_var only when on, and refuses a negative one; the longer look (slow_frames)
+ * keeps a slow track undecided until its window shows it moving (reported at the frame its
+ * displacement reaches the sqrt-scaled gate, exactly at the bound) or static (CLUTTER at
+ * slow_frames), and a track below slow_low_px CLUTTER at once. Positions and shifts are multiples of 2^-16 px, so that both
  * builds give the same answers exactly.
  */
 #include <string.h>
@@ -86,7 +89,9 @@ static void test_config_and_workspace(void)
                {"gate_px", 5}, {"fit_px", 6}, {"fit_px", 7}, {"early_px", 8}, {"early_px", 9},
                {"forget_frames", 10}, {"forget_frames", 11}, {"width", 12}, {"width", 13},
                {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17},
-               {"spread_px", 18}, {"spread_px", 19}, {"spread_hold", 20}, {"spread_hold", 21}};
+               {"spread_px", 18}, {"spread_px", 19}, {"spread_hold", 20}, {"spread_hold", 21},
+               {"slow_frames", 22}, {"slow_frames", 23}, {"slow_low_px", 24}, {"slow_low_px", 25},
+               {"slow_gate_px", 26}, {"slow_gate_px", 27}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -111,7 +116,13 @@ static void test_config_and_workspace(void)
         case 18: b.spread_px = PFT_C(-0.5); break;
         case 19: b.spread_px = PFT_C(256.5); break;
         case 20: b.spread_hold = 0u; break;
-        default: b.hold_frames = 3u; b.spread_hold = 4u; break; /* more than hold_frames */
+        case 21: b.hold_frames = 3u; b.spread_hold = 4u; break; /* more than hold_frames */
+        case 22: b.slow_frames = 9u; break;                      /* less than 2 * frames */
+        case 23: b.slow_frames = PFT_TBD_SCENE_MAX_FRAMES + 1u; break;
+        case 24: b.slow_frames = 10u; b.slow_low_px = PFT_C(-0.125); break;
+        case 25: b.slow_frames = 10u; b.slow_low_px = PFT_C(0.25); break; /* above gate_px 0.15 */
+        case 26: b.slow_frames = 10u; b.slow_gate_px = PFT_C(0.0); break;
+        default: b.slow_frames = 10u; b.slow_gate_px = PFT_C(256.5); break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -149,6 +160,19 @@ static void test_config_and_workspace(void)
     TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_overflows(NULL));
     TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_positions(NULL, 1u));
     TEST_ASSERT_FALSE(pft_tbd_scene_is_clutter(NULL, 1u));
+    /* the longer look: off by default, read only when on; slow_frames 20 keeps 21 positions */
+    pft_tbd_scene_config_default(&cfg);
+    TEST_ASSERT_EQUAL_UINT32(0u, cfg.slow_frames);
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, pft_test_to_double(cfg.slow_low_px));
+    cfg.slow_low_px = PFT_C(-1.0);
+    cfg.slow_gate_px = PFT_C(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    cfg.slow_frames = 20u;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)PFT_TBD_SCENE_WORKSPACE_BYTES(SLOTS, 20u),
+                             (uint32_t)pft_tbd_scene_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)(7u + 4u * 24u + 4u * 21u * 24u), (uint32_t)pft_tbd_scene_workspace_size(&cfg));
 }
 
 /* moves exactly with the scene (0.25, -0.125 px per frame): CLUTTER at the 6th frame, HOLD
@@ -363,6 +387,58 @@ static void test_spread_hold(void)
 /* x = 100 + k + 0.25 k^2: rms about the fitted line 0.25 px over 4 frames, 0.418 over 5, 0.624
  * over 6 (every window of 6): never within 0.2; with the fit off, reported from the 4th frame
  * (early); with fit 0.25, reported at the 4th (rms exactly 0.25), held at the 5th and on */
+/* the longer look (n 5, gate 0.15 px, slow_frames L, slow_low_px 0.05, slow_gate_px 0.25), scene
+ * 0.25 px per frame: track 1 at 0.125 px per frame against the scene (0.625 px over 5 frames:
+ * below the gate's 0.75, above slow_low's 0.25) is undecided (HOLD) until its window m = 20
+ * (frame 21), where 0.125 m = sqrt(5 m) 0.25 exactly (2.5 px: the bound passes), then REPORT;
+ * with L 19 it is CLUTTER at frame 20 instead (m = L = 19: 2.375 < 2.44 px); track 2 at
+ * 0.0625 px per frame (0.3125 px over 5) is undecided to frame 20 and CLUTTER at frame 21; track
+ * 3 moving with the scene is CLUTTER at frame 6 (below slow_low); with the option off, track 1 is
+ * CLUTTER at frame 6. */
+static void test_slow_look(void)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    cfg.slow_frames = 20u;
+    cfg.slow_low_px = PFT_C(0.05);
+    cfg.slow_gate_px = PFT_C(0.25);
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 30u; ++k) {
+        pft_tbd_scene_track_t t[3];
+        pft_tbd_scene_out_t o[3];
+        t[0] = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.375), (int32_t)k)), PFT_C(40.0), false);
+        t[1] = trk(2u, pft_add(PFT_C(60.0), pft_mul_i(PFT_C(0.3125), (int32_t)k)), PFT_C(40.0), false);
+        t[2] = trk(3u, pft_add(PFT_C(100.0), pft_mul_i(PFT_C(0.25), (int32_t)k)), PFT_C(40.0), false);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 3u, Q(0.25), 0, o));
+        TEST_ASSERT_EQUAL_INT(k <= 20u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o[0].decision);
+        TEST_ASSERT_EQUAL_INT(k <= 20u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o[1].decision);
+        TEST_ASSERT_EQUAL_INT(k <= 5u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o[2].decision);
+        TEST_ASSERT_EQUAL_UINT32(k < 21u ? k : 21u, o[0].positions);
+    }
+    TEST_ASSERT_FALSE(pft_tbd_scene_is_clutter(&s, 1u));
+    TEST_ASSERT_TRUE(pft_tbd_scene_is_clutter(&s, 2u));
+    TEST_ASSERT_EQUAL_UINT32(21u, pft_tbd_scene_positions(&s, 1u));
+    /* L 19: track 1 never reaches its gate */
+    cfg.slow_frames = 19u;
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 22u; ++k) {
+        pft_tbd_scene_out_t o =
+            one(&s, trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.375), (int32_t)k)), PFT_C(40.0), false), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 20u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o.decision);
+    }
+    /* off: CLUTTER at the 6th frame, 6 positions kept */
+    cfg.slow_frames = 0u;
+    init(&s, &cfg);
+    for (uint32_t k = 1u; k <= 8u; ++k) {
+        pft_tbd_scene_out_t o =
+            one(&s, trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.375), (int32_t)k)), PFT_C(40.0), false), Q(0.25), 0);
+        TEST_ASSERT_EQUAL_INT(k < 6u ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_CLUTTER, o.decision);
+        TEST_ASSERT_EQUAL_UINT32(k < 6u ? k : 6u, o.positions);
+    }
+}
+
 static void test_curved_path_fails_the_fit(void)
 {
     pft_tbd_scene_config_t cfg;
@@ -515,6 +591,7 @@ int main(void)
     RUN_TEST(test_against_scene_reported_early);
     RUN_TEST(test_report_hold);
     RUN_TEST(test_spread_hold);
+    RUN_TEST(test_slow_look);
     RUN_TEST(test_curved_path_fails_the_fit);
     RUN_TEST(test_full_table);
     RUN_TEST(test_forget);

@@ -23,7 +23,15 @@
  *   it passes them on (the report hold); with spread_px > 0, at a frame it passes with a
  *   position spread sqrt(pos_var) of at most spread_px, from its spread_hold-th pass instead
  *   (a layer concentrated on a point is reported sooner; docs/algorithms.md 9.11 step 5).
- * - HOLD: neither yet (too few positions, or the line fit fails); tentative tracks (with the
+ * - With slow_frames L > 0 (the longer look, [E]; docs/algorithms.md 9.11 step 1) a track that
+ *   fails the gate over n frames is CLUTTER only if its displacement there is below
+ *   n * slow_low_px; otherwise it is undecided (HOLD, not CLUTTER; it does not count as a pass of
+ *   the hold) and is tested again, on every frame, over the longest window it holds,
+ *   m = min(positions - 1, L) frames from m = 2n on: at least sqrt(m n) * slow_gate_px against the
+ *   scene, it passes the gate at that frame (it goes on to the fit and the hold); below it with
+ *   m = L, it is CLUTTER. The history then keeps L + 1 positions per slot (the fit and the early
+ *   report still read the last n + 1).
+ * - HOLD: neither yet (too few positions, the line fit fails, or undecided); tentative tracks (with the
  *   manager's sequential test, fed with tentative = true) are never reported, but their
  *   positions count and they can be found CLUTTER.
  * - NO_SLOT: the table is full (see below); the track is not tested.
@@ -88,6 +96,9 @@ typedef struct {
     uint32_t hold_frames;   /**< report hold k (default 1: none): a track is reported from the k-th frame it passes the tests on; 1..PFT_TBD_SCENE_MAX_HOLD */
     pft_real_t spread_px;   /**< [E] spread-dependent hold (default 0: off): at a frame a track passes the tests with its position spread sqrt(pos_var) at most spread_px, it needs only spread_hold passes instead of hold_frames (docs/algorithms.md 9.11 step 5); [0, 256] px */
     uint32_t spread_hold;   /**< the hold of such frames (default 1; read only with spread_px > 0): 1..hold_frames */
+    uint32_t slow_frames;   /**< [E] the longer look's longest window L (default 0: off, a track failing the gate is CLUTTER at once): 2 * frames..PFT_TBD_SCENE_MAX_FRAMES; the history keeps max(frames, L) + 1 positions (docs/algorithms.md 9.11 step 1) */
+    pft_real_t slow_low_px; /**< px per frame (default 0; read only with slow_frames > 0): a track failing the gate with a displacement below n * slow_low_px is CLUTTER at once; [0, gate_px] */
+    pft_real_t slow_gate_px; /**< px (default 0.15; read only with slow_frames > 0): the gate over a window of m frames (2n <= m <= L) is sqrt(m n) * slow_gate_px; (0, 256] */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -113,7 +124,7 @@ typedef struct {
     pft_tbd_scene_decision_t decision; /**< see pft_tbd_scene_decision_t */
     uint32_t px;                       /**< the track's pixel: round(x) clamped to [0, width - 1] */
     uint32_t py;                       /**< round(y) clamped to [0, height - 1] */
-    uint32_t positions;                /**< positions in its history after this frame (0 with NO_SLOT) */
+    uint32_t positions;                /**< positions in its history after this frame (0 with NO_SLOT; at most max(frames, slow_frames) + 1) */
 } pft_tbd_scene_out_t;
 
 /** The scene-motion test's instance (declare it statically; its layout is not API). */
@@ -125,18 +136,20 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 /** @endcond */
 
 /** Workspace bytes for max_tracks slots of frames + 1 positions (the same as
- *  pft_tbd_scene_workspace_size). */
+ *  pft_tbd_scene_workspace_size; with cfg.slow_frames > 0 pass max(cfg.frames, cfg.slow_frames)
+ *  as frames). */
 #define PFT_TBD_SCENE_WORKSPACE_BYTES(max_tracks, frames)                                          \
     ((size_t)PFT_WS_ALIGN - 1u + PFT_WS_ROUND((size_t)(max_tracks) * PFT_TBD_SCENE_SLOT_BYTES_) +   \
      PFT_WS_ROUND((size_t)(max_tracks) * ((size_t)(frames) + 1u) * PFT_TBD_SCENE_POS_BYTES_))
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
- *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1). */
+ *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1,
+ *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
- *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold"); NULL on
- *  success. */
+ *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold",
+ *  "slow_frames", "slow_low_px", "slow_gate_px"); NULL on success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);
@@ -160,7 +173,7 @@ pft_status_t pft_tbd_scene_reset(pft_tbd_scene_t *s);
  */
 pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_t *tracks, size_t n,
                                   int32_t shift_x, int32_t shift_y, pft_tbd_scene_out_t *out);
-/** Positions held for id (0..frames + 1; 0 for NULL or an id without history). */
+/** Positions held for id (0..max(frames, slow_frames) + 1; 0 for NULL or an id without history). */
 uint32_t pft_tbd_scene_positions(const pft_tbd_scene_t *s, uint32_t id);
 /** Whether id was found moving with the scene (false for NULL or an id without history). */
 bool pft_tbd_scene_is_clutter(const pft_tbd_scene_t *s, uint32_t id);

@@ -27,6 +27,9 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->hold_frames = 1u;
     cfg->spread_px = PFT_C(0.0);
     cfg->spread_hold = 1u;
+    cfg->slow_frames = 0u;
+    cfg->slow_low_px = PFT_C(0.0);
+    cfg->slow_gate_px = PFT_C(0.15);
 }
 
 /* a threshold in [0, 256] px (0: the test it sets is off) */
@@ -63,10 +66,23 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "spread_px";
     } else if (cfg->spread_hold < 1u || cfg->spread_hold > cfg->hold_frames) {
         bad = "spread_hold";
+    } else if (cfg->slow_frames != 0u &&
+               (cfg->slow_frames < 2u * cfg->frames || cfg->slow_frames > PFT_TBD_SCENE_MAX_FRAMES)) {
+        bad = "slow_frames";
+    } else if (cfg->slow_frames != 0u && !(cfg->slow_low_px >= PFT_C(0.0) && cfg->slow_low_px <= cfg->gate_px)) {
+        bad = "slow_low_px";
+    } else if (cfg->slow_frames != 0u && !(cfg->slow_gate_px > PFT_C(0.0) && cfg->slow_gate_px <= PFT_C(256.0))) {
+        bad = "slow_gate_px";
     } else {
         /* accepted */
     }
     return pft_config_verdict_(true, bad, field);
+}
+
+/* positions kept per slot: frames + 1, or slow_frames + 1 with the longer look on */
+static uint32_t sc_ring_(const pft_tbd_scene_config_t *cfg)
+{
+    return (cfg->slow_frames > cfg->frames ? cfg->slow_frames : cfg->frames) + 1u;
 }
 
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg)
@@ -74,7 +90,7 @@ size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg)
     if (pft_tbd_scene_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
-    return PFT_TBD_SCENE_WORKSPACE_BYTES(cfg->max_tracks, cfg->frames);
+    return PFT_TBD_SCENE_WORKSPACE_BYTES(cfg->max_tracks, sc_ring_(cfg) - 1u);
 }
 
 /* v (px) in Q16.16, rounded to nearest; saturated to +-(2^31 - 1) (+-32768 px) */
@@ -121,7 +137,7 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     pft_ws_init(&ws, work, work_len);
     pft_tbd_scene_slot_t *slot = pft_ws_take(&ws, (size_t)cfg->max_tracks * sizeof(pft_tbd_scene_slot_t));
     pft_tbd_scene_pos_t *pos =
-        pft_ws_take(&ws, (size_t)cfg->max_tracks * ((size_t)cfg->frames + 1u) * sizeof(pft_tbd_scene_pos_t));
+        pft_ws_take(&ws, (size_t)cfg->max_tracks * (size_t)sc_ring_(cfg) * sizeof(pft_tbd_scene_pos_t));
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -133,6 +149,9 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     s->early_q = sc_q16_(cfg->early_px);
     s->fit_q = sc_q16_(cfg->fit_px);
     s->spread_q = sc_q16_(cfg->spread_px);
+    s->ring = sc_ring_(cfg);
+    s->slow_low_q = sc_q16_(cfg->slow_low_px);
+    s->slow_q = sc_q16_(cfg->slow_gate_px);
     return pft_tbd_scene_reset(s);
 }
 
@@ -142,7 +161,7 @@ pft_status_t pft_tbd_scene_reset(pft_tbd_scene_t *s)
         return PFT_ERR_INVAL;
     }
     memset(s->slot, 0, (size_t)s->cfg.max_tracks * sizeof(pft_tbd_scene_slot_t));
-    memset(s->pos, 0, (size_t)s->cfg.max_tracks * ((size_t)s->cfg.frames + 1u) * sizeof(pft_tbd_scene_pos_t));
+    memset(s->pos, 0, (size_t)s->cfg.max_tracks * (size_t)s->ring * sizeof(pft_tbd_scene_pos_t));
     s->scene_x = 0;
     s->scene_y = 0;
     s->frame = 0u;
@@ -206,26 +225,28 @@ static int64_t sc_disp2_(const pft_tbd_scene_pos_t *a, const pft_tbd_scene_pos_t
     return dx * dx + dy * dy;
 }
 
-/* whether the m positions h(0..m) (ring of slot sl) fit a straight line at constant speed
- * within rms fit: sum of squared residuals <= m fit^2. With k_i = 2 i - (m - 1), K = sum k_i^2,
+/* whether the last m = min(count, frames + 1) positions of slot sl (ring of s->ring entries)
+ * fit a straight line at constant speed within rms fit: sum of squared residuals <= m fit^2. With k_i = 2 i - (m - 1), K = sum k_i^2,
  * u_i = x_i - x_0, the residual is r_i = (m K u_i - K sum u - m (sum k u) k_i) / (m K), exact
  * before its rounding to Q16.16: m <= 32, K <= 10912, |u| < 2^32, so every term is below 2^53. */
 static bool sc_fit_ok_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring)
 {
-    const uint32_t mm = s->cfg.frames + 1u;
-    const int64_t m = (int64_t)sl->count;
+    const uint32_t mm = s->ring;
+    const uint32_t cnt = sl->count < s->cfg.frames + 1u ? sl->count : s->cfg.frames + 1u;
+    const uint32_t h0 = (sl->head + sl->count - cnt) % mm; /* the first of the last cnt */
+    const int64_t m = (int64_t)cnt;
     const int64_t rlim = (int64_t)67108864; /* 2^26: 1024 px */
     int64_t kk = 0, ss = 0, fit2;
     int64_t su[2] = {0, 0}, sku[2] = {0, 0};
     int32_t x0[2];
     uint32_t i, c;
-    if (sl->count < 3u) {
+    if (cnt < 3u) {
         return true;
     }
-    x0[0] = ring[sl->head].x;
-    x0[1] = ring[sl->head].y;
-    for (i = 0u; i < sl->count; ++i) {
-        const pft_tbd_scene_pos_t *p = &ring[(sl->head + i) % mm];
+    x0[0] = ring[h0].x;
+    x0[1] = ring[h0].y;
+    for (i = 0u; i < cnt; ++i) {
+        const pft_tbd_scene_pos_t *p = &ring[(h0 + i) % mm];
         const int64_t k = 2 * (int64_t)i - (m - 1);
         const int64_t u[2] = {(int64_t)p->x - x0[0], (int64_t)p->y - x0[1]};
         kk += k * k;
@@ -234,8 +255,8 @@ static bool sc_fit_ok_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl,
             sku[c] += k * u[c];
         }
     }
-    for (i = 0u; i < sl->count; ++i) {
-        const pft_tbd_scene_pos_t *p = &ring[(sl->head + i) % mm];
+    for (i = 0u; i < cnt; ++i) {
+        const pft_tbd_scene_pos_t *p = &ring[(h0 + i) % mm];
         const int64_t k = 2 * (int64_t)i - (m - 1);
         const int64_t u[2] = {(int64_t)p->x - x0[0], (int64_t)p->y - x0[1]};
         for (c = 0u; c < 2u; ++c) {
@@ -257,6 +278,36 @@ static bool sc_spread_ok_(const pft_tbd_scene_t *s, pft_real_t var)
     return v * 65536 <= (int64_t)s->spread_q * s->spread_q;
 }
 
+/* The longer look (cfg.slow_frames > 0) at a track whose displacement over the last n frames
+ * (d2: squared, Q32.32) is below n * gate_px: 2 (CLUTTER) below n * slow_low_px; else, over the
+ * longest window held, m = min(count - 1, slow_frames) frames: 0 (moving) if m >= 2 n and the
+ * displacement against the scene is at least sqrt(m n) * slow_gate_px, 2 (CLUTTER) if it is not
+ * and m = slow_frames, 1 (undecided) otherwise. Exact in Q32.32: n slow_low_q < 2^29 (n <= 31,
+ * slow_low_px <= gate_px <= 256 px), m n slow_q^2 < 2^10 * 2^48. */
+static uint32_t sc_slow_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring,
+                         int64_t d2)
+{
+    const int64_t n = (int64_t)s->cfg.frames;
+    const int64_t lo = n * s->slow_low_q;
+    uint32_t m;
+    int64_t dm2;
+    if (d2 < lo * lo) {
+        return 2u;
+    }
+    m = sl->count - 1u;
+    if (m > s->cfg.slow_frames) {
+        m = s->cfg.slow_frames;
+    }
+    if (m < 2u * s->cfg.frames) {
+        return 1u;
+    }
+    dm2 = sc_disp2_(&ring[(sl->head + sl->count - 1u - m) % s->ring], &ring[(sl->head + sl->count - 1u) % s->ring]);
+    if (dm2 >= (int64_t)m * n * ((int64_t)s->slow_q * s->slow_q)) {
+        return 0u;
+    }
+    return m == s->cfg.slow_frames ? 2u : 1u;
+}
+
 /* round(q) (Q16.16) clamped to [0, side - 1] */
 static uint32_t sc_pix_(int32_t q, uint32_t side)
 {
@@ -276,7 +327,8 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
     if (s == NULL) {
         return PFT_ERR_INVAL;
     }
-    const uint32_t mm = s->cfg.frames + 1u;
+    const uint32_t mm = s->ring;            /* positions kept per slot */
+    const uint32_t n1 = s->cfg.frames + 1u; /* positions of the test over n frames */
     if (n > 0u && (tracks == NULL || out == NULL)) {
         return PFT_ERR_INVAL;
     }
@@ -313,6 +365,7 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         pft_tbd_scene_pos_t *ring, *p;
         pft_tbd_scene_pos_t pnew;
         bool early = false;
+        uint32_t slow = 0u; /* the longer look: 1 while undecided */
         pnew.x = sc_q16_(t->x);
         pnew.y = sc_q16_(t->y);
         pnew.sx = s->scene_x;
@@ -344,28 +397,37 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             sl->head = (sl->head + 1u) % mm;
         }
         o->positions = sl->count;
-        if (sl->clutter == 0u && sl->count == mm) {
+        if (sl->clutter == 0u && sl->count >= n1) {
             /* displacement over the last n frames against the scene below n * gate */
             const int64_t g = (int64_t)s->cfg.frames * s->gate_q; /* < 2^31 */
-            if (sc_disp2_(&ring[sl->head], &ring[(sl->head + mm - 1u) % mm]) < g * g) {
-                sl->clutter = 1u;
+            const int64_t d2 =
+                sc_disp2_(&ring[(sl->head + sl->count - n1) % mm], &ring[(sl->head + sl->count - 1u) % mm]);
+            if (d2 < g * g) {
+                slow = s->cfg.slow_frames == 0u ? 2u : sc_slow_(s, sl, ring, d2);
+                if (slow == 2u) {
+                    sl->clutter = 1u;
+                }
             }
         }
         if (sl->clutter != 0u) {
             o->decision = PFT_TBD_SCENE_CLUTTER;
             continue;
         }
+        if (slow != 0u) {
+            o->decision = PFT_TBD_SCENE_HOLD; /* undecided: not reported, not CLUTTER */
+            continue;
+        }
         if (t->tentative) {
             o->decision = PFT_TBD_SCENE_HOLD;
             continue;
         }
-        if (s->early_q > 0 && sl->count >= 4u && sl->count < mm) {
+        if (s->early_q > 0 && sl->count >= 4u && sl->count < n1) {
             /* early report: against the scene by at least 3 early_px over the last 3 frames */
             const int64_t e = 3 * (int64_t)s->early_q; /* < 2^27 */
             p = &ring[(sl->head + sl->count - 1u) % mm];
             early = sc_disp2_(&ring[(sl->head + sl->count - 4u) % mm], p) >= e * e;
         }
-        if ((sl->count >= mm || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
+        if ((sl->count >= n1 || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
             /* the report hold: reported from the hold_frames-th frame that passes (from the
              * spread_hold-th with a position spread of at most spread_px) */
             uint32_t need = s->cfg.hold_frames;

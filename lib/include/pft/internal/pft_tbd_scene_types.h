@@ -27,7 +27,7 @@ typedef struct {
 typedef struct {
     uint32_t id;
     uint32_t last;     /* frame count of the last update that fed it */
-    uint32_t count;    /* positions held, 0..frames + 1 */
+    uint32_t count;    /* positions held, 0..ring */
     uint32_t head;     /* ring index of the oldest position */
     uint32_t clutter;  /* 1: found moving with the scene */
     uint16_t mark;     /* scratch of one update: 1 while its id is in the update's list */
@@ -38,13 +38,16 @@ typedef struct {
 struct pft_tbd_scene_s {
     pft_tbd_scene_config_t cfg;
     pft_tbd_scene_slot_t *slot; /* cfg.max_tracks */
-    pft_tbd_scene_pos_t *pos;   /* cfg.max_tracks * (cfg.frames + 1), slot k at k * (frames + 1) */
+    pft_tbd_scene_pos_t *pos;   /* cfg.max_tracks * ring, slot k at k * ring */
     int64_t scene_x;            /* the scene's cumulative shift, Q16.16 px */
     int64_t scene_y;
     int32_t gate_q;             /* gate_px, early_px, fit_px in Q16.16 */
     int32_t early_q;
     int32_t fit_q;
     int32_t spread_q;           /* spread_px in Q16.16 */
+    int32_t slow_low_q;         /* slow_low_px, slow_gate_px in Q16.16 */
+    int32_t slow_q;
+    uint32_t ring;              /* positions kept per slot: max(frames, slow_frames) + 1 */
     uint32_t frame;             /* updates since init/reset */
     uint32_t overflows;         /* NO_SLOT decisions since init/reset */
 };
