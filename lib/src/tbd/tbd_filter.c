@@ -1007,7 +1007,10 @@ static bool split_assign_(pft_tbd_filter_t *f, pft_real_t rx, pft_real_t ry, pft
         }
         pft_real_t dx, dy;
         split_off_(P, s, rx, ry, &dx, &dy);
-        const uint32_t g = split_d2_(dx, dy, c[0], c[1]) <= split_d2_(dx, dy, c[2], c[3]) ? 0u : 1u;
+        uint32_t g = 0u; /* the nearer centroid's group */
+        if (split_d2_(dx, dy, c[0], c[1]) > split_d2_(dx, dy, c[2], c[3])) {
+            g = 1u;
+        }
         w[s].n = g + 1u;
         ++cnt[g];
         sm[2u * g] += pft_acc_wx_(one, dx);
@@ -1084,7 +1087,10 @@ bool pft_tbd_filter_parts_(pft_tbd_filter_t *f, pft_real_t min_sep, pft_real_t m
     const pft_real_t s1 = pft_acc_div_(sp[0], (pft_wacc_t)cnt[0]);
     const pft_real_t s2 = pft_acc_div_(sp[1], (pft_wacc_t)cnt[1]);
     const pft_real_t sep2 = split_d2_(c[0], c[1], c[2], c[3]);
-    const uint32_t small = cnt[0] < cnt[1] ? 1u : 2u; /* the smaller group's label */
+    uint32_t small = 2u; /* the smaller group's label */
+    if (cnt[0] < cnt[1]) {
+        small = 1u;
+    }
     const uint32_t n_small = cnt[small - 1u];
     if (!(pft_ratio((int32_t)n_small, (int32_t)nl) >= min_share) ||
         !(sep2 >= pft_sq(min_sep)) || !(sep2 >= pft_mul_i(pft_add(s1, s2), 2))) {
