@@ -65,9 +65,12 @@ def per_seed(per, kind=None):
             continue
         ts = [t for t in r['targets'] if t['kind'] == 'injected']
         d = [t for t in ts if t['detected']]
-        out[r['seed']] = (len(ts), len(d), sum(t['appearance_delay'] for t in d),
-                          1000.0 * r['false_tracks'] / r['frames'])
-    return out
+        out.setdefault(r['seed'], []).append((len(ts), len(d), sum(t['appearance_delay'] for t in d),
+                                              1000.0 * r['false_tracks'] / r['frames']))
+    # several evaluations of one seed (other manager seeds, `seed_offset`) are pooled: their
+    # counts summed, their false-track rates averaged
+    return {k: (sum(x[0] for x in v), sum(x[1] for x in v), sum(x[2] for x in v),
+                sum(x[3] for x in v) / len(v)) for k, v in out.items()}
 
 
 def stats(s):
