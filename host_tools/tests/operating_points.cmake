@@ -56,7 +56,7 @@ set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist
 check_block(${shipped} ${common} "scene_hold=5" "scene_spread_px=0.40000000000000002" "scene_spread_hold=3" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
-check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=5" "scene_spread_px=0.45000000000000001" "scene_spread_hold=3" "bg_gate=0.25"
+check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=7" "scene_spread_px=0.40000000000000002" "scene_spread_hold=3" "bg_gate=0.25" "clutter_mean_floor=1.0"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004")
 # its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
 # and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all"), the flat-field
