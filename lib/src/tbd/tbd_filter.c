@@ -874,34 +874,57 @@ void pft_tbd_filter_coast_(pft_tbd_filter_t *f, uint32_t periods)
     }
 }
 
-/* Estimates of a set with equal weights (the handed-over set): means, then the spread about
- * them. Sums of n <= 2^22 values (q16: each < 2^31, so < 2^53). */
-static void equal_weight_estimate_(pft_tbd_filter_t *f)
+/* Offsets of particle s from (rx, ry), each clamped to +-32 px (q16: squares stay < 2^10). */
+static void split_off_(const pft_tbd_particles_t *P, uint32_t s, pft_real_t rx, pft_real_t ry,
+                       pft_real_t *dx, pft_real_t *dy)
+{
+    *dx = pft_clamp(pft_sub(P->x[s], rx), PFT_C(-32.0), PFT_C(32.0));
+    *dy = pft_clamp(pft_sub(P->y[s], ry), PFT_C(-32.0), PFT_C(32.0));
+}
+
+/* Estimates of a set with equal weights: means, then the spread about them. `live_only` takes
+ * the particles with E = 1 only and clamps the offsets of the spread (split_off_); otherwise
+ * every particle, offsets unclamped (the handed-over set, all live). p_exist, log_mean_lr and
+ * n_eff are left to the caller. False, with the estimate untouched, when no particle counts.
+ * Sums of n <= 2^22 values (q16: each < 2^31, so < 2^53). */
+static bool equal_estimate_(pft_tbd_filter_t *f, bool live_only)
 {
     const pft_tbd_particles_t *P = &f->cur;
-    const pft_wacc_t nw = (pft_wacc_t)f->n;
     const pft_weight_t one = (pft_weight_t)1;
-    pft_acc_t_ s[5];
+    pft_acc_t_ s[5] = {PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_};
     pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
     pft_tbd_estimate_t *e = &f->est;
-    for (int c = 0; c < 5; ++c) {
-        s[c] = PFT_ACC_ZERO_;
-    }
+    uint32_t nl = 0u;
     for (uint32_t i = 0; i < f->n; ++i) {
-        s[0] += pft_acc_wx_(one, P->x[i]);
-        s[1] += pft_acc_wx_(one, P->y[i]);
-        s[2] += pft_acc_wx_(one, P->vx[i]);
-        s[3] += pft_acc_wx_(one, P->vy[i]);
-        s[4] += pft_acc_wx_(one, P->in[i]);
+        if (!live_only || P->e[i] != 0u) {
+            ++nl;
+            s[0] += pft_acc_wx_(one, P->x[i]);
+            s[1] += pft_acc_wx_(one, P->y[i]);
+            s[2] += pft_acc_wx_(one, P->vx[i]);
+            s[3] += pft_acc_wx_(one, P->vy[i]);
+            s[4] += pft_acc_wx_(one, P->in[i]);
+        }
     }
+    if (nl == 0u) {
+        return false;
+    }
+    const pft_wacc_t nw = (pft_wacc_t)nl;
     e->x = pft_acc_div_(s[0], nw);
     e->y = pft_acc_div_(s[1], nw);
     e->vx = pft_acc_div_(s[2], nw);
     e->vy = pft_acc_div_(s[3], nw);
     e->intensity = pft_acc_div_(s[4], nw);
     for (uint32_t i = 0; i < f->n; ++i) {
-        const pft_real_t dx = pft_sub(P->x[i], e->x);
-        const pft_real_t dy = pft_sub(P->y[i], e->y);
+        pft_real_t dx, dy;
+        if (live_only) {
+            if (P->e[i] == 0u) {
+                continue;
+            }
+            split_off_(P, i, e->x, e->y, &dx, &dy);
+        } else {
+            dx = pft_sub(P->x[i], e->x);
+            dy = pft_sub(P->y[i], e->y);
+        }
         cxx += pft_acc_wx_(one, pft_sq(dx));
         cxy += pft_acc_wx_(one, pft_mul(dx, dy));
         cyy += pft_acc_wx_(one, pft_sq(dy));
@@ -909,8 +932,8 @@ static void equal_weight_estimate_(pft_tbd_filter_t *f)
     e->pos_cov[0] = pft_acc_div_(cxx, nw);
     e->pos_cov[1] = pft_acc_div_(cxy, nw);
     e->pos_cov[2] = pft_acc_div_(cyy, nw);
-    e->n_eff = pft_from_int(f->n > 32767u ? 32767 : (int32_t)f->n);
     e->valid = true;
+    return true;
 }
 
 /* Whether particle s of src may be handed over: E = 1 and, with a gate, its window-centre pixel
@@ -967,7 +990,8 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
     }
     pft_real_t lmlr = src->est.log_mean_lr;
     pft_real_t pex = src->est.p_exist;
-    equal_weight_estimate_(dst);
+    (void)equal_estimate_(dst, false); /* dst->n > 0 particles, every one counted */
+    dst->est.n_eff = pft_from_int(dst->n > 32767u ? 32767 : (int32_t)dst->n);
     dst->est.log_mean_lr = lmlr;
     dst->est.p_exist = pex;
     return true;
@@ -977,12 +1001,6 @@ bool pft_tbd_filter_handover_(pft_tbd_filter_t *dst, pft_tbd_filter_t *src,
 
 /* Offset of particle s from (rx, ry), each axis limited to +-32 px (q16: the squares and
  * their sums below stay under 2^14). */
-static void split_off_(const pft_tbd_particles_t *P, uint32_t s, pft_real_t rx, pft_real_t ry,
-                       pft_real_t *dx, pft_real_t *dy)
-{
-    *dx = pft_clamp(pft_sub(P->x[s], rx), PFT_C(-32.0), PFT_C(32.0));
-    *dy = pft_clamp(pft_sub(P->y[s], ry), PFT_C(-32.0), PFT_C(32.0));
-}
 
 static pft_real_t split_d2_(pft_real_t ax, pft_real_t ay, pft_real_t bx, pft_real_t by)
 {
@@ -1151,49 +1169,6 @@ static void split_refill_(pft_tbd_particles_t *P, const pft_tbd_slot_t *w, uint3
     }
 }
 
-/* The estimate of a layer from its live particles, equal weights (p_exist, log_mean_lr and
- * n_eff kept). */
-static void split_estimate_(pft_tbd_filter_t *f)
-{
-    const pft_tbd_particles_t *P = &f->cur;
-    const pft_weight_t one = (pft_weight_t)1;
-    pft_acc_t_ sm[5] = {PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_, PFT_ACC_ZERO_};
-    pft_acc_t_ cxx = PFT_ACC_ZERO_, cxy = PFT_ACC_ZERO_, cyy = PFT_ACC_ZERO_;
-    uint32_t nl = 0u;
-    pft_tbd_estimate_t *e = &f->est;
-    for (uint32_t s = 0; s < f->n; ++s) {
-        if (P->e[s] != 0u) {
-            ++nl;
-            sm[0] += pft_acc_wx_(one, P->x[s]);
-            sm[1] += pft_acc_wx_(one, P->y[s]);
-            sm[2] += pft_acc_wx_(one, P->vx[s]);
-            sm[3] += pft_acc_wx_(one, P->vy[s]);
-            sm[4] += pft_acc_wx_(one, P->in[s]);
-        }
-    }
-    if (nl == 0u) {
-        return;
-    }
-    e->x = pft_acc_div_(sm[0], (pft_wacc_t)nl);
-    e->y = pft_acc_div_(sm[1], (pft_wacc_t)nl);
-    e->vx = pft_acc_div_(sm[2], (pft_wacc_t)nl);
-    e->vy = pft_acc_div_(sm[3], (pft_wacc_t)nl);
-    e->intensity = pft_acc_div_(sm[4], (pft_wacc_t)nl);
-    for (uint32_t s = 0; s < f->n; ++s) {
-        if (P->e[s] != 0u) {
-            pft_real_t dx, dy;
-            split_off_(P, s, e->x, e->y, &dx, &dy);
-            cxx += pft_acc_wx_(one, pft_sq(dx));
-            cxy += pft_acc_wx_(one, pft_mul(dx, dy));
-            cyy += pft_acc_wx_(one, pft_sq(dy));
-        }
-    }
-    e->pos_cov[0] = pft_acc_div_(cxx, (pft_wacc_t)nl);
-    e->pos_cov[1] = pft_acc_div_(cxy, (pft_wacc_t)nl);
-    e->pos_cov[2] = pft_acc_div_(cyy, (pft_wacc_t)nl);
-    e->valid = true;
-}
-
 void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d)
 {
     const pft_tbd_slot_t *w = f->cur.w;
@@ -1204,8 +1179,8 @@ void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d)
     split_refill_(&d->cur, w, n, 2u, 1u, &d->rng);
     split_refill_(&f->cur, w, f->n, 1u, 2u, &f->rng);
     d->est = f->est;
-    split_estimate_(d);
-    split_estimate_(f);
+    (void)equal_estimate_(d, true); /* no live particle: the estimate is kept */
+    (void)equal_estimate_(f, true);
 }
 
 /* ---------------------------------- public API -------------------------------------------- */
