@@ -27,6 +27,20 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def pair_frames(trace, seed, pair):
+    """The targets file of run `seed` by frame and target id, the pair's separation (px) in
+    every frame where both are in view, and the frame of their closest approach (None when
+    they never share a frame)."""
+    by = collections.defaultdict(dict)
+    for r in read_csv(f'{trace}/s{seed}_targets.csv'):
+        by[int(r['frame'])][int(r['tid'])] = r
+    ida, idb = pair[0]['id'], pair[1]['id']
+    both = [f for f in sorted(by) if ida in by[f] and idb in by[f]]
+    sep = {f: math.hypot(float(by[f][ida]['x']) - float(by[f][idb]['x']),
+                         float(by[f][ida]['y']) - float(by[f][idb]['y'])) for f in both}
+    return by, sep, (min(sep, key=sep.get) if sep else None)
+
+
 def near_ids(s):
     return {int(p.split(':')[0]) for p in s.split(';') if p}
 
@@ -54,17 +68,12 @@ def main():
         pair = inj[-2:]
         others += [(t['detected'], t['appearance_delay']) for t in inj[:-2]]
         pair_det[sum(bool(t['detected']) for t in pair)] += 1
-        by = collections.defaultdict(dict)
-        for r in read_csv(f'{a.trace}/s{seed}_targets.csv'):
-            by[int(r['frame'])][int(r['tid'])] = r
+        by, sep, kc = pair_frames(a.trace, seed, pair)
+        both = list(sep)  # frames with both in view, in order
         layers = read_csv(f'{a.trace}/s{seed}_tracks.csv')
         ida, idb = pair[0]['id'], pair[1]['id']
-        both = [f for f in sorted(by) if ida in by[f] and idb in by[f]]
-        sep = {f: math.hypot(float(by[f][ida]['x']) - float(by[f][idb]['x']),
-                             float(by[f][ida]['y']) - float(by[f][idb]['y'])) for f in both}
-        if not sep:
+        if kc is None:
             continue
-        kc = min(sep, key=sep.get)
         for t in pair:
             if t['detected']:
                 pair_first.append(t['first_frame'] + t['appearance_delay'] - kc)

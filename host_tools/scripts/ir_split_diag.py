@@ -19,14 +19,10 @@ layers file's scene_dec (0 hold, 1 report, 2 clutter, -1 not fed). Not a test.
 """
 import argparse
 import collections
-import csv
 import json
 import math
 
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from ir_cross_diag import pair_frames, read_csv
 
 
 def fnum(v):
@@ -54,20 +50,14 @@ def main():
         if len(inj) < 2:
             continue
         pair = inj[-2:]
-        by = collections.defaultdict(dict)
-        for r in read_csv(f'{a.trace}/s{seed}_targets.csv'):
-            by[int(r['frame'])][int(r['tid'])] = r
+        by, sep, kc = pair_frames(a.trace, seed, pair)
+        if kc is None:
+            continue
         lay = collections.defaultdict(dict)  # frame -> id -> layer row
         for r in read_csv(f'{a.trace}/s{seed}_layers.csv'):
             lay[int(r['frame'])][int(r['id'])] = r
         life = {int(r['id']): r for r in read_csv(f'{a.trace}/s{seed}_tracks.csv')}
         ida, idb = pair[0]['id'], pair[1]['id']
-        both = [f for f in sorted(by) if ida in by[f] and idb in by[f]]
-        sep = {f: math.hypot(fnum(by[f][ida]['x']) - fnum(by[f][idb]['x']),
-                             fnum(by[f][ida]['y']) - fnum(by[f][idb]['y'])) for f in both}
-        if not sep:
-            continue
-        kc = min(sep, key=sep.get)
         for t in pair:
             tid = t['id']
             par = idb if tid == ida else ida
