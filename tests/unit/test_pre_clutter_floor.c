@@ -132,6 +132,75 @@ static void test_output_is_r_less_mu_above_floor(void)
     }
 }
 
+/* The floor with the anchored map (anchor, docs/algorithms.md 9.9): the scene moves 0.6 px per
+ * frame in x and -0.4 px in y; the map's arrays move by whole pixels when the rounded position
+ * of the summed shifts moves, the cells that enter holding mu 0; the floor then reads the moved
+ * mean. The 3 x 3 blob of 1 sigma is fixed to the scene's grid (it moves with the rounded
+ * position), so its cells' mean settles near 1 sigma, above the floor of 0.5 sigma. Every pixel
+ * against the reference c = r - (|mu'| > floor ? mu' : 0), mu' the mean read before the frame
+ * moved as the anchor moves it (out(x, y) = mu(x - dx, y - dy), 0 where the source is outside).
+ * Fails if the floor were skipped on the anchored path (the blob's pixels) or read the mean
+ * before its move (every pixel near the blob and the entering edges). */
+static void test_floor_reads_the_anchored_mean(void)
+{
+    static uint16_t mv[NPIX];
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    cfg.thr = 65535u;
+    cfg.anchor = true;
+    cfg.mean_floor = 128u;
+    pft_pre_clutter_t c;
+    pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
+    const int32_t sx = 39322, sy = -26214; /* 0.6 and -0.4 px in Q16.16 */
+    int64_t ax = 0, ay = 0, px = 0, py = 0;
+    uint32_t n_above = 0u, n_below = 0u, n_moves = 0u;
+    for (uint32_t k = 0; k < 40u; ++k) {
+        ax += sx;
+        ay += sy;
+        /* the rounded position, halves upwards (floor((a + 2^15) / 2^16)) */
+        const int64_t nx = (ax + 32768 >= 0) ? (ax + 32768) / 65536 : -((-(ax + 32768) + 65535) / 65536);
+        const int64_t ny = (ay + 32768 >= 0) ? (ay + 32768) / 65536 : -((-(ay + 32768) + 65535) / 65536);
+        const int32_t dx = k == 0u ? 0 : (int32_t)(nx - px), dy = k == 0u ? 0 : (int32_t)(ny - py);
+        n_moves += (dx != 0 || dy != 0) ? 1u : 0u;
+        px = nx;
+        py = ny;
+        for (int i = 0; i < NPIX; ++i) {
+            g_res[i] = (int16_t)pft_test_noise_q88(&g_rs);
+        }
+        for (int y = 20; y < 23; ++y) {
+            for (int x = 20; x < 23; ++x) {
+                const int64_t yy = y + ny, xx = x + nx; /* the scene-fixed blob, in frame pixels */
+                g_res[yy * W + xx] = (int16_t)(g_res[yy * W + xx] + 256);
+            }
+        }
+        for (int y = 0; y < H; ++y) {
+            for (int x = 0; x < W; ++x) {
+                const int sxp = x - dx, syp = y - dy;
+                const bool in = sxp >= 0 && sxp < W && syp >= 0 && syp < H;
+                mv[y * W + x] = in ? c.mu[syp * W + sxp] : (uint16_t)32768u;
+            }
+        }
+        pft_frame_t f = res_frame(k + 1u);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, sy, true));
+        const int16_t *o = pft_test_clutter_out(&c);
+        for (int i = 0; i < NPIX; ++i) {
+            const int32_t mq = mu_q88(mv[i]);
+            const bool take = (mq < 0 ? -mq : mq) > (int32_t)cfg.mean_floor;
+            if (k >= 10u) {
+                n_above += take ? 1u : 0u;
+                n_below += take ? 0u : 1u;
+            }
+            TEST_ASSERT_EQUAL_INT16((int16_t)(g_res[i] - (take ? mq : 0)), o[i]);
+        }
+    }
+    /* the anchor moved on most frames (0.6 px a frame in x), the blob's 9 cells above the floor
+     * in frames 11..40, most noise cells below it */
+    TEST_ASSERT_TRUE(n_moves >= 20u);
+    TEST_ASSERT_TRUE(n_above >= 9u * 30u);
+    TEST_ASSERT_TRUE(n_below > (uint32_t)NPIX * 30u / 2u);
+}
+
 static void test_refused_input_changes_nothing(void)
 {
     pft_pre_clutter_config_t cfg;
@@ -165,6 +234,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_config);
     RUN_TEST(test_output_is_r_less_mu_above_floor);
+    RUN_TEST(test_floor_reads_the_anchored_mean);
     RUN_TEST(test_refused_input_changes_nothing);
     return UNITY_END();
 }
