@@ -1780,6 +1780,81 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
 
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
+/* ------------------------------------------------------------------ bg_young_scale (9.13) */
+
+/* bg_young_scale: one axis's read weights as shares of their sum of squares, Q16 (q), and
+ * the pixels (lo .. hi) whose 4 taps along it are all old (age >= PFT_PRE_YOUNG_AGES_): taps
+ * of pixel x are the ages age[x + k .. x + k + 3] (clamped to n entries); lo > hi: none. */
+typedef struct {
+    int32_t qx[4], qy[4];
+    int32_t xlo, xhi;
+} young_geom_t;
+
+static void young_q_(const int32_t wr[4], int32_t q[4])
+{
+    int32_t ss = 0;
+    for (int32_t i = 0; i < 4; ++i) {
+        ss += wr[i] * wr[i];
+    }
+    for (int32_t i = 0; i < 4; ++i) {
+        q[i] = (int32_t)(((int64_t)wr[i] * wr[i] * 65536 + ss / 2) / ss);
+    }
+}
+
+/* the mean excess of the 4 taps from age[i0 .. i0 + 3] (clamped to 0 .. n - 1), Q16 */
+static int32_t young_exc_(const pft_pre_t *p, const uint8_t *age, int32_t i0, int32_t n, const int32_t q[4])
+{
+    int64_t e = 0;
+    for (int32_t i = 0; i < 4; ++i) {
+        const uint32_t a = age[clampi_(i0 + i, 0, n - 1)];
+        e += (int64_t)q[i] * (a < PFT_PRE_YOUNG_AGES_ ? p->yexc[a] : 0u);
+    }
+    return (int32_t)((e + 32768) >> 16);
+}
+
+static void young_geom_(const pft_pre_t *p, const anchor_geom_t *g, young_geom_t *y)
+{
+    const int32_t w = p->cfg.width, sw = w + 3;
+    young_q_(g->gx.wr, y->qx);
+    young_q_(g->gy.wr, y->qy);
+    int32_t lo = 0, hi = w - 1;
+    while (lo < w && young_exc_(p, p->agex, lo + g->gx.k, sw, y->qx) > 0) {
+        ++lo;
+    }
+    while (hi >= lo && young_exc_(p, p->agex, hi + g->gx.k, sw, y->qx) > 0) {
+        --hi;
+    }
+    y->xlo = lo;
+    y->xhi = hi;
+}
+
+/* bg_young_scale: residual row y (R units, before the whitening) divided by
+ * sqrt(1 + E), E the larger of its column's and its row's excess; masked pixels kept. Young
+ * columns are at the ends of the held range only (as bg_gate_young's spans), so a row on old
+ * rows is scaled outside xlo .. xhi only. */
+static void young_row_(const pft_pre_t *p, const anchor_geom_t *g, const young_geom_t *yg, int32_t y, int16_t *r)
+{
+    const int32_t w = p->cfg.width, sw = w + 3, sh = p->cfg.height + 3;
+    const int32_t ey = young_exc_(p, p->agey, y + g->gy.k, sh, yg->qy);
+    const int32_t seg[2][2] = {{0, ey > 0 ? w : yg->xlo}, {ey > 0 ? w : yg->xhi + 1, w}};
+    for (int32_t s = 0; s < 2; ++s) {
+        for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
+            if (r[x] == PFT_RES16_MASKED) {
+                continue;
+            }
+            const int32_t ex = young_exc_(p, p->agex, x + g->gx.k, sw, yg->qx);
+            const int32_t e = ex > ey ? ex : ey;
+            if (e <= 0) {
+                continue;
+            }
+            const int32_t j = (e > 65535 ? 65535 : e) >> 10, fr = e & 1023;
+            const int32_t s0 = p->ysc[j], s1 = p->ysc[j + 1];
+            const int32_t sc = s0 - (((s0 - s1) * fr + 512) >> 10);
+            r[x] = (int16_t)(((int32_t)r[x] * sc + 16384) >> 15);
+        }
+    }
+}
+
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                          pft_pre_acc_t *acc, bool first, int32_t a15, uint32_t k1)
 {
@@ -1882,6 +1957,11 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->avlo[a] = empty || nlo < g.ovlo[a] ? nlo : g.ovlo[a];
         p->avhi[a] = empty || nhi > g.ovhi[a] ? nhi : g.ovhi[a];
     }
+    young_geom_t yg;
+    const bool yscale = p->cfg.bg_young_scale && p->agex != NULL;
+    if (yscale) {
+        young_geom_(p, &g, &yg);
+    }
     const agx_t *gx = &g.gx;
     const agx_t *gy = &g.gy;
     const int16_t gw0 = (int16_t)gy->wr[0], gw1 = (int16_t)gy->wr[1], gw2 = (int16_t)gy->wr[2];
@@ -1961,6 +2041,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         }
         if (g.edge) {
             edge_res_row_(p, &g, r0, covered ? xa : w, covered ? xb : w - 1, zl, k1, r);
+        }
+        if (yscale) {
+            young_row_(p, &g, &yg, y, r);
         }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {

@@ -16,6 +16,9 @@ extern "C" {
 /** @cond internal */
 /* Tiles along a side of n pixels. */
 #define PFT_PRE_NT_(n, t) (((size_t)(n) + (size_t)(t) - 1u) / (size_t)(t))
+/* bg_young_scale: the ages of the table of excess variances (64 on: old) and the scale table's entries */
+#define PFT_PRE_YOUNG_AGES_ 64u
+#define PFT_PRE_YOUNG_SC_ 65u
 /** @endcond */
 
 struct pft_pre_s {
@@ -57,6 +60,8 @@ struct pft_pre_s {
     uint32_t rawmask;      /* 2^bits - 1 */
     uint8_t rs;            /* fraction bits of the residual */
     uint8_t bf;            /* fraction bits of the background */
+    uint16_t yexc[PFT_PRE_YOUNG_AGES_]; /* bg_young_scale: per age a the excess variance of a young cell's residual, (1 - alpha)^(2a + 1), Q16 */
+    uint16_t ysc[PFT_PRE_YOUNG_SC_];    /* bg_young_scale: the scale 1 / sqrt(1 + E) at E = 1024 j / 65536, Q15 (32768 = 1) */
     /* state */
     uint32_t frames;       /* accepted since init/reset */
     uint32_t bg_frames;    /* frames in the background since it was (re)started */
