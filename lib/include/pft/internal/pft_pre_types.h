@@ -51,7 +51,7 @@ struct pft_pre_s {
     int32_t *line;         /* one row: TEMPORAL z - c in U units (-1: masked), LOCAL b (R units) */
     int32_t *vb;           /* TEMPORAL vertical blend of the tap rows of one row; bg_anchor: with bwl, the converted frame rows y and y - 1 (in turns) */
     int32_t *bwl;          /* TEMPORAL background prediction of one row; bg_anchor: with vb, the converted frame rows y and y - 1 */
-    uint16_t *prev;        /* TEMPORAL former values of the background row written last */
+    uint16_t *prev;        /* TEMPORAL former values of the background row written last; bg_anchor with bg_young_scale: the columns' excess of this frame (Q16) */
     uint32_t *colo, *colg; /* LOCAL column sums (outer, guard), padded by ro + 1 each side */
     uint32_t *ring;        /* LOCAL packed rows, (2 ro + 2) * w */
     pft_pre_peak_t *peaks; /* heap during a frame, sorted after it */
