@@ -323,7 +323,10 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
         const uint32_t q = 65536u - cfg->bg_alpha, q2 = (q * q + 32768u) >> 16;
         uint32_t ex = q;
         for (uint32_t i = 0u; i < PFT_PRE_YOUNG_AGES_; ++i) {
-            p->yexc[i] = (uint16_t)(cfg->bg_young_scale ? ex : 0u);
+            /* an excess of 2/65536 or less scales by 1 in Q15 (the table of 1/sqrt(1 + E) between
+             * its first two values): 0, so that old cells are not visited (the rounded recursion
+             * would stay at 1 for ever) */
+            p->yexc[i] = (uint16_t)(cfg->bg_young_scale && ex > 2u ? ex : 0u);
             ex = (ex * q2 + 32768u) >> 16;
         }
         for (uint32_t j = 0u; j < PFT_PRE_YOUNG_SC_; ++j) {
