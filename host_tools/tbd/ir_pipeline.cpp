@@ -114,6 +114,7 @@ pft_pre_config_t make_pre_config(const TrackerSettings &t, int width, int height
                                                    : uint8_t{0};
     c.bg_stale_reinit = static_cast<uint8_t>(t.bg_stale_reinit);
     c.bg_edge_narrow = t.bg_edge_narrow ? uint8_t{1} : uint8_t{0};
+    c.bg_young_scale = t.bg_young_scale;
     c.bg_anchor = t.bg_anchor;  // with the spatial method refused: by the scenario reader, else by pft_pre_config_check
     // the residual over the pipeline's own copy of the frame (pft_pre_update_inplace): the
     // stage's workspace holds no residual (docs/porting.md); bg_anchor has no in-place form

@@ -18,7 +18,7 @@ const char *const kPreprocessFields[] = {
     "preprocess", "bg_alpha", "col_alpha", "background_radius", "guard_radius", "tile", "edge_k",
     "reg_step", "reg_iters", "warp_cubic", "sigma_step", "sigma_interp", "sigma_every", "reg_bin",
     "sigma_current", "sigma_bracket", "sigma_level", "bg_anchor", "bg_gate", "bg_gate_shift", "bg_gate_young",
-    "bg_young_clip", "bg_edge_narrow", "bg_stale_reinit", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
+    "bg_young_clip", "bg_young_scale", "bg_edge_narrow", "bg_stale_reinit", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
     "flat_rescale", "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
     "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor",
     "clutter_block", "clutter_map8", "clutter_anchor", "note", nullptr};
@@ -281,6 +281,10 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("bg_masked_taps").fail("renormalises the anchored background's update taps: needs bg_anchor");
     if (T.bg_masked_taps == "young" && T.bg_gate_young == 0)
         t.at("bg_masked_taps").fail("young acts in bg_gate_young's young columns: needs bg_gate_young");
+    if (t.has("bg_young_scale"))
+        T.bg_young_scale = t.at("bg_young_scale").as_bool();
+    if (T.bg_young_scale && T.bg_gate_young == 0)
+        t.at("bg_young_scale").fail("scales the residual of bg_gate_young's young cells: needs bg_gate_young");
     if (t.has("bg_edge_narrow"))
         T.bg_edge_narrow = t.at("bg_edge_narrow").as_bool();
     if (T.bg_edge_narrow && !T.bg_anchor)

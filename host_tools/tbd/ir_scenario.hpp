@@ -115,6 +115,7 @@ struct TrackerSettings {
     double bg_young_clip = 0.0;                 ///< with bg_gate_young: a cell that enters the scene starts within this many tile sigmas of the nearest cell held so far, and young cells are updated with this clip instead of no gate (pft_pre bg_young_clip, 0 off or 0.25..16)
     std::string bg_gate_local = "off";          ///< with bg_gate: "mean" or "relative" gates the innovation less its tile's part from the last frame (pft_pre bg_gate_local), "off"
     std::string bg_masked_taps = "off";         ///< with bg_anchor: "young" (needs bg_gate_young) or "all" updates a grid cell with a masked horizontal tap from its valid taps renormalised (pft_pre bg_masked_taps), "off" keeps it
+    bool bg_young_scale = false;                ///< with bg_gate_young: the residual of pixels on young grid cells divided by sqrt(1 + (1 - alpha)^(2 age + 1)), their background's own error (pft_pre bg_young_scale, docs/algorithms.md 9.13)
     bool bg_edge_narrow = false;                ///< with bg_anchor: the entering band narrowed from about 3 to 1-2 px by 3-tap (quadratic) reads and updates where the cubic taps are not all held (pft_pre bg_edge_narrow, docs/algorithms.md 9.12)
     int bg_stale_reinit = 0;                    ///< temporal: a background value not learnt for more than N frames (or never) because its pixel was masked restarts from the frame, the residual reading it masked (pft_pre bg_stale_reinit, 0 off or 1..126)
     uint64_t seed_offset = 0;

@@ -48,6 +48,7 @@ void pft_pre_config_default(pft_pre_config_t *cfg)
     cfg->bg_young_clip = 0u;
     cfg->sigma_level = false;
     cfg->bg_edge_narrow = 0u;
+    cfg->bg_young_scale = false;
 }
 
 /* 2^bits - 1 of a configuration whose format and bit depth are valid. */
@@ -164,6 +165,9 @@ static const char *refused_field_(const pft_pre_config_t *c)
     }
     if (c->bg_edge_narrow > 1u || (c->bg_edge_narrow != 0u && !c->bg_anchor)) {
         return "bg_edge_narrow"; /* built in the anchored read and update */
+    }
+    if (c->bg_young_scale && c->bg_gate_young == 0u) {
+        return "bg_young_scale"; /* reads bg_gate_young's ages */
     }
     return NULL;
 }
@@ -313,6 +317,22 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
     const uint32_t bits = cfg->format == PFT_PIX_U8 ? 8u : cfg->bit_depth;
     p->rs = (uint8_t)(bits >= 15u ? 0u : 15u - bits);
     p->bf = (uint8_t)(16u - bits);
+    /* bg_young_scale: (1 - alpha)^(2a + 1) per age a (Q16), and 1 / sqrt(1 + E) (Q15) at
+     * E = j / 64, j = 0 .. 64 (docs/algorithms.md 9.13) */
+    {
+        const uint32_t q = 65536u - cfg->bg_alpha, q2 = (q * q + 32768u) >> 16;
+        uint32_t ex = q;
+        for (uint32_t i = 0u; i < PFT_PRE_YOUNG_AGES_; ++i) {
+            /* an excess of 2/65536 or less scales by 1 in Q15 (the table of 1/sqrt(1 + E) between
+             * its first two values): 0, so that old cells are not visited (the rounded recursion
+             * would stay at 1 for ever) */
+            p->yexc[i] = (uint16_t)(cfg->bg_young_scale && ex > 2u ? ex : 0u);
+            ex = (ex * q2 + 32768u) >> 16;
+        }
+        for (uint32_t j = 0u; j < PFT_PRE_YOUNG_SC_; ++j) {
+            p->ysc[j] = (uint16_t)(cfg->bg_young_scale ? pft_pre_isqrt64_(((uint64_t)1 << 46) / (65536u + 1024u * j)) : 0u);
+        }
+    }
     (void)pft_pre_reset(p);
     return PFT_OK;
 }

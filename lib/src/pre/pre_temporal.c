@@ -1780,6 +1780,86 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
 
 /* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
  * fraction, then B updated with the frame interpolated into the grid. */
+/* ------------------------------------------------------------------ bg_young_scale (9.13) */
+
+/* bg_young_scale: the row axis's read weights as shares of their sum of squares (Q16), and the
+ * pixels xlo .. xhi whose 4 column taps are all old (age >= PFT_PRE_YOUNG_AGES_; xlo > xhi:
+ * none). The columns' excess is in p->prev (the re-warped path's row copy, unused with
+ * bg_anchor), one per pixel, Q16. */
+typedef struct {
+    int32_t qy[4];
+    int32_t xlo, xhi;
+} young_geom_t;
+
+static void young_q_(const int32_t wr[4], int32_t q[4])
+{
+    int32_t ss = 0;
+    for (int32_t i = 0; i < 4; ++i) {
+        ss += wr[i] * wr[i];
+    }
+    for (int32_t i = 0; i < 4; ++i) {
+        q[i] = (int32_t)(((int64_t)wr[i] * wr[i] * 65536 + ss / 2) / ss);
+    }
+}
+
+/* the mean excess of the 4 taps from age[i0 .. i0 + 3] (clamped to 0 .. n - 1), weighted by
+ * q, Q16 (at most 65535) */
+static uint32_t young_exc_(const pft_pre_t *p, const uint8_t *age, int32_t i0, int32_t n, const int32_t q[4])
+{
+    int64_t e = 0;
+    for (int32_t i = 0; i < 4; ++i) {
+        const uint32_t a = age[clampi_(i0 + i, 0, n - 1)];
+        e += (int64_t)q[i] * (a < PFT_PRE_YOUNG_AGES_ ? p->yexc[a] : 0u);
+    }
+    e = (e + 32768) >> 16;
+    return (uint32_t)(e > 65535 ? 65535 : e);
+}
+
+static void young_geom_(pft_pre_t *p, const anchor_geom_t *g, young_geom_t *y)
+{
+    const int32_t w = p->cfg.width, sw = w + 3;
+    int32_t qx[4];
+    young_q_(g->gx.wr, qx);
+    young_q_(g->gy.wr, y->qy);
+    uint16_t *cx = p->prev;
+    int32_t lo = w, hi = -1;
+    for (int32_t x = 0; x < w; ++x) {
+        cx[x] = (uint16_t)young_exc_(p, p->agex, x + g->gx.k, sw, qx);
+        if (cx[x] == 0u) {
+            lo = lo < x ? lo : x;
+            hi = x;
+        }
+    }
+    /* young columns are at the ends of the held range only (as bg_gate_young's spans): the
+     * pixels between the first and the last old one are old */
+    y->xlo = lo;
+    y->xhi = hi;
+}
+
+/* bg_young_scale: residual row y (R units, before the whitening) divided by sqrt(1 + E), E
+ * the larger of its column's and its row's excess; masked pixels kept. A row on old rows is
+ * scaled outside xlo .. xhi only. */
+static void young_row_(const pft_pre_t *p, const anchor_geom_t *g, const young_geom_t *yg, int32_t y, int16_t *r)
+{
+    const int32_t w = p->cfg.width, sh = p->cfg.height + 3;
+    const uint32_t ey = young_exc_(p, p->agey, y + g->gy.k, sh, yg->qy);
+    const bool all = ey > 0u || yg->xlo > yg->xhi; /* a young row, or no old column */
+    const int32_t seg[2][2] = {{0, all ? w : yg->xlo}, {all ? w : yg->xhi + 1, w}};
+    const uint16_t *cx = p->prev;
+    for (int32_t s = 0; s < 2; ++s) {
+        for (int32_t x = seg[s][0]; x < seg[s][1]; ++x) {
+            const uint32_t e = cx[x] > ey ? cx[x] : ey;
+            if (e == 0u || r[x] == PFT_RES16_MASKED) {
+                continue;
+            }
+            const uint32_t j = e >> 10, fr = e & 1023u;
+            const int32_t s0 = p->ysc[j], s1 = p->ysc[j + 1];
+            const int32_t sc = s0 - (((s0 - s1) * (int32_t)fr + 512) >> 10);
+            r[x] = (int16_t)(((int32_t)r[x] * sc + 16384) >> 15);
+        }
+    }
+}
+
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                          pft_pre_acc_t *acc, bool first, int32_t a15, uint32_t k1)
 {
@@ -1882,6 +1962,11 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         p->avlo[a] = empty || nlo < g.ovlo[a] ? nlo : g.ovlo[a];
         p->avhi[a] = empty || nhi > g.ovhi[a] ? nhi : g.ovhi[a];
     }
+    young_geom_t yg;
+    const bool yscale = p->cfg.bg_young_scale && p->agex != NULL;
+    if (yscale) {
+        young_geom_(p, &g, &yg);
+    }
     const agx_t *gx = &g.gx;
     const agx_t *gy = &g.gy;
     const int16_t gw0 = (int16_t)gy->wr[0], gw1 = (int16_t)gy->wr[1], gw2 = (int16_t)gy->wr[2];
@@ -1961,6 +2046,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         }
         if (g.edge) {
             edge_res_row_(p, &g, r0, covered ? xa : w, covered ? xb : w - 1, zl, k1, r);
+        }
+        if (yscale) {
+            young_row_(p, &g, &yg, y, r);
         }
         acc->n_masked += pft_pre_row_out_(p, (uint32_t)y);
         if (y + 1 == h || (y + 1) % t == 0) {

@@ -16,6 +16,9 @@ extern "C" {
 /** @cond internal */
 /* Tiles along a side of n pixels. */
 #define PFT_PRE_NT_(n, t) (((size_t)(n) + (size_t)(t) - 1u) / (size_t)(t))
+/* bg_young_scale: the ages of the table of excess variances (64 on: old) and the scale table's entries */
+#define PFT_PRE_YOUNG_AGES_ 64u
+#define PFT_PRE_YOUNG_SC_ 65u
 /** @endcond */
 
 struct pft_pre_s {
@@ -48,7 +51,7 @@ struct pft_pre_s {
     int32_t *line;         /* one row: TEMPORAL z - c in U units (-1: masked), LOCAL b (R units) */
     int32_t *vb;           /* TEMPORAL vertical blend of the tap rows of one row; bg_anchor: with bwl, the converted frame rows y and y - 1 (in turns) */
     int32_t *bwl;          /* TEMPORAL background prediction of one row; bg_anchor: with vb, the converted frame rows y and y - 1 */
-    uint16_t *prev;        /* TEMPORAL former values of the background row written last */
+    uint16_t *prev;        /* TEMPORAL former values of the background row written last; bg_anchor with bg_young_scale: the columns' excess of this frame (Q16) */
     uint32_t *colo, *colg; /* LOCAL column sums (outer, guard), padded by ro + 1 each side */
     uint32_t *ring;        /* LOCAL packed rows, (2 ro + 2) * w */
     pft_pre_peak_t *peaks; /* heap during a frame, sorted after it */
@@ -57,6 +60,8 @@ struct pft_pre_s {
     uint32_t rawmask;      /* 2^bits - 1 */
     uint8_t rs;            /* fraction bits of the residual */
     uint8_t bf;            /* fraction bits of the background */
+    uint16_t yexc[PFT_PRE_YOUNG_AGES_]; /* bg_young_scale: per age a the excess variance of a young cell's residual, (1 - alpha)^(2a + 1), Q16 */
+    uint16_t ysc[PFT_PRE_YOUNG_SC_];    /* bg_young_scale: the scale 1 / sqrt(1 + E) at E = 1024 j / 65536, Q15 (32768 = 1) */
     /* state */
     uint32_t frames;       /* accepted since init/reset */
     uint32_t bg_frames;    /* frames in the background since it was (re)started */
