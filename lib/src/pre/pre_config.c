@@ -330,7 +330,8 @@ pft_status_t pft_pre_init(pft_pre_t *p, const pft_pre_config_t *cfg, void *work,
             ex = (ex * q2 + 32768u) >> 16;
         }
         for (uint32_t j = 0u; j < PFT_PRE_YOUNG_SC_; ++j) {
-            p->ysc[j] = (uint16_t)(cfg->bg_young_scale ? pft_pre_isqrt64_(((uint64_t)1 << 46) / (65536u + 1024u * j)) : 0u);
+            const uint64_t den = (uint64_t)(65536u + 1024u * j);
+            p->ysc[j] = (uint16_t)(cfg->bg_young_scale ? pft_pre_isqrt64_(((uint64_t)1 << 46) / den) : 0u);
         }
     }
     (void)pft_pre_reset(p);
