@@ -1778,8 +1778,6 @@ static void edge_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy)
     }
 }
 
-/* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
- * fraction, then B updated with the frame interpolated into the grid. */
 /* ------------------------------------------------------------------ bg_young_scale (9.13) */
 
 /* bg_young_scale: the row axis's read weights as shares of their sum of squares (Q16), and the
@@ -1860,6 +1858,8 @@ static void young_row_(const pft_pre_t *p, const anchor_geom_t *g, const young_g
     }
 }
 
+/* The temporal pass with bg_anchor (not held): the residual z - c - B read at the position's
+ * fraction, then B updated with the frame interpolated into the grid. */
 static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t *c,
                          pft_pre_acc_t *acc, bool first, int32_t a15, uint32_t k1)
 {
