@@ -576,7 +576,9 @@ static void fuzz_pre_stage(fz_t *f)
     c.reg_bin = (o & 16384u) != 0u;
     bool bad = (o & 32768u) != 0u;
     c.sigma_level = d >= 192u; /* o's bits are all used */
+    c.bg_young_scale = (d & 64u) != 0u; /* refused without bg_gate_young (o's bit 16) */
     FZ_PATCH(f, c, 12u);
+    FZ_BOOL(c.bg_young_scale);
     FZ_BOOL(c.sigma_level);
     FZ_BOOL(c.warp_cubic);
     FZ_BOOL(c.sigma_interp);
