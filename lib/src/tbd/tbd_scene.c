@@ -278,6 +278,13 @@ static bool sc_spread_ok_(const pft_tbd_scene_t *s, pft_real_t var)
     return v * 65536 <= (int64_t)s->spread_q * s->spread_q;
 }
 
+/* the position of slot sl `back` frames before its newest (back < count) */
+static const pft_tbd_scene_pos_t *sc_back_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl,
+                                           const pft_tbd_scene_pos_t *ring, uint32_t back)
+{
+    return &ring[(sl->head + sl->count - 1u - back) % s->ring];
+}
+
 /* The longer look (cfg.slow_frames > 0) at a track whose displacement over the last n frames
  * (d2: squared, Q32.32) is below n * gate_px: 2 (CLUTTER) below n * slow_low_px; else, over the
  * longest window held, m = min(count - 1, slow_frames) frames: 0 (moving) if m >= 2 n and the
@@ -301,7 +308,7 @@ static uint32_t sc_slow_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *s
     if (m < 2u * s->cfg.frames) {
         return 1u;
     }
-    dm2 = sc_disp2_(&ring[(sl->head + sl->count - 1u - m) % s->ring], &ring[(sl->head + sl->count - 1u) % s->ring]);
+    dm2 = sc_disp2_(sc_back_(s, sl, ring, m), sc_back_(s, sl, ring, 0u));
     if (dm2 >= (int64_t)m * n * ((int64_t)s->slow_q * s->slow_q)) {
         return 0u;
     }
@@ -362,7 +369,7 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         const pft_tbd_scene_track_t *t = &tracks[i];
         pft_tbd_scene_out_t *o = &out[i];
         pft_tbd_scene_slot_t *sl;
-        pft_tbd_scene_pos_t *ring, *p;
+        pft_tbd_scene_pos_t *ring;
         pft_tbd_scene_pos_t pnew;
         bool early = false;
         uint32_t slow = 0u; /* the longer look: 1 while undecided */
@@ -400,8 +407,7 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         if (sl->clutter == 0u && sl->count >= n1) {
             /* displacement over the last n frames against the scene below n * gate */
             const int64_t g = (int64_t)s->cfg.frames * s->gate_q; /* < 2^31 */
-            const int64_t d2 =
-                sc_disp2_(&ring[(sl->head + sl->count - n1) % mm], &ring[(sl->head + sl->count - 1u) % mm]);
+            const int64_t d2 = sc_disp2_(sc_back_(s, sl, ring, s->cfg.frames), sc_back_(s, sl, ring, 0u));
             if (d2 < g * g) {
                 slow = s->cfg.slow_frames == 0u ? 2u : sc_slow_(s, sl, ring, d2);
                 if (slow == 2u) {
@@ -424,8 +430,7 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         if (s->early_q > 0 && sl->count >= 4u && sl->count < n1) {
             /* early report: against the scene by at least 3 early_px over the last 3 frames */
             const int64_t e = 3 * (int64_t)s->early_q; /* < 2^27 */
-            p = &ring[(sl->head + sl->count - 1u) % mm];
-            early = sc_disp2_(&ring[(sl->head + sl->count - 4u) % mm], p) >= e * e;
+            early = sc_disp2_(sc_back_(s, sl, ring, 3u), sc_back_(s, sl, ring, 0u)) >= e * e;
         }
         if ((sl->count >= n1 || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
             /* the report hold: reported from the hold_frames-th frame that passes (from the
