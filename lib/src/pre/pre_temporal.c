@@ -1146,13 +1146,17 @@ typedef struct {
 } gate_row_t;
 
 /* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, gate_nb_
- * without a local part; lim 65535: no gate. A cell with an invalid tap is kept. */
-static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
+ * without a local part; lim 65535: no gate. A cell with an invalid tap is kept. clip (a
+ * constant of each call: the loop is inlined twice) is bg_gate_shift 0, where the innovation
+ * beyond the gate is clipped to +-lim and the weight is a15 on both sides of it: e clamped to
+ * [-lim, lim] is that value (lim >= 1), in fewer instructions than the test of |e|. */
+static inline void gate_run_loop_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb,
+                                  int32_t lim, const bool clip)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
     const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
     const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
-    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15, nlim = -lim;
     for (int32_t j = ja; j <= jb; ++j) { /* vectorisable */
         const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
         const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
@@ -1162,10 +1166,26 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
         /* gate_nb_ with mc 0, written out: without the clamp, which cannot act, the loop costs
          * about 0.26 M instructions less per 384 x 288 frame (x86-64) */
         int32_t e = sv - bx;
-        const int32_t ae = e < 0 ? -e : e;
-        e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
-        const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+        int32_t nb;
+        if (clip) {
+            e = e > lim ? lim : e;
+            e = e < nlim ? nlim : e;
+            nb = bx + ((e * a15 + 16384) >> 15);
+        } else {
+            const int32_t ae = e < 0 ? -e : e;
+            e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
+            nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+        }
         b[j + 1] = (uint16_t)(inv ? bx : nb);
+    }
+}
+
+static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
+{
+    if (g->wsh == 0) {
+        gate_run_loop_(g, b, ja, jb, lim, true);
+    } else {
+        gate_run_loop_(g, b, ja, jb, lim, false);
     }
 }
 
@@ -1174,13 +1194,13 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
  * |gr bx| <= 2^14 (2^16 - 1) < 2^30), and the cells' e and B added to this frame's sums of the
  * tile. An invalid cell is stored back unchanged and adds 0 to the sums (selects, so that the
  * loop vectorises; its values stay in gate_nb_'s bounds). */
-static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
-                             int32_t ja, int32_t jb, int32_t lim)
+static inline void gate_local_loop_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
+                                    int32_t ja, int32_t jb, int32_t lim, const bool clip)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
     const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
     const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
-    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15, nlim = -lim;
     const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
     const int32_t gr = rel ? p->gm[ti] : 0, gc = rel ? 0 : p->gm[ti];
     int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
@@ -1191,7 +1211,18 @@ static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uin
         sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
         const int32_t bx = b[j + 1];
         const int32_t e = sv - bx;
-        const int32_t nb = gate_nb_(bx, e, ((gr * bx + 32768) >> 16) + gc, lim, a15, ag, wsh);
+        const int32_t mc = ((gr * bx + 32768) >> 16) + gc;
+        int32_t nb;
+        if (clip) {
+            /* gate_nb_ with wsh 0 (ag = a15): e - mc clamped to [-lim, lim] */
+            int32_t d = e - mc;
+            d = d > lim ? lim : d;
+            d = d < nlim ? nlim : d;
+            nb = bx + ((mc * a15 + 16384) >> 15) + ((d * a15 + 16384) >> 15);
+            nb = nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
+        } else {
+            nb = gate_nb_(bx, e, mc, lim, a15, ag, wsh);
+        }
         se += inv ? 0 : e;
         sl += inv ? 0 : bx;
         n += inv ? 0 : 1;
@@ -1200,6 +1231,17 @@ static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uin
     p->gsum[2u * ti] += se;
     p->gsum[2u * ti + 1u] += sl;
     p->gcnt[ti] += (uint32_t)n;
+}
+
+/* clip: bg_gate_shift 0 (gate_run_loop_'s form). */
+static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
+                             int32_t ja, int32_t jb, int32_t lim)
+{
+    if (g->wsh == 0) {
+        gate_local_loop_(p, g, ti, b, ja, jb, lim, true);
+    } else {
+        gate_local_loop_(p, g, ti, b, ja, jb, lim, false);
+    }
 }
 
 /* The update of grid row jy from the ring (the frame rows interpolated along x, taps
