@@ -988,7 +988,8 @@ static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
 
 /* Frame row zl (U units, -1 masked) interpolated along x at the update's fraction into hz
  * (w + 3 cells, U * 16; PFT_PRE_ANONE_ where a tap is masked or the cell is not observed). */
-static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz)
+static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz,
+                         int16_t *zs)
 {
     const agx_t *gx = &g->gx;
     const int32_t olo = g->olo[0], ohi = g->ohi[0];
@@ -1000,7 +1001,15 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     const int32_t fb = ohi < w - 3 - gx->ub ? ohi : w - 3 - gx->ub;
     if (fa <= fb) {
         const int32_t *zb = zl + gx->ub;
-        const int32_t w0 = gx->wu[0], w1 = gx->wu[1], w2 = gx->wu[2], w3 = gx->wu[3];
+        /* the taps' values biased by -32768 into int16 (a masked one's 65535 - 32768: its
+         * cell is tested below), so that the blend takes 16 x 16-bit products as vtap_: the
+         * bias comes back as 32768 times the weights' sum (256) */
+        for (int32_t x = fa + gx->ub - 1; x <= fb + gx->ub + 2; ++x) { /* vectorisable */
+            zs[x] = (int16_t)((int32_t)((uint32_t)zl[x] & 0xFFFFu) - 32768);
+        }
+        const int16_t *sb = zs + gx->ub;
+        const int16_t w0 = (int16_t)gx->wu[0], w1 = (int16_t)gx->wu[1], w2 = (int16_t)gx->wu[2];
+        const int16_t w3 = (int16_t)gx->wu[3];
         const int32_t m0 = gx->ulo == -1 ? -1 : 0, m2 = gx->uhi >= 1 ? -1 : 0;
         const int32_t m3 = gx->uhi == 2 ? -1 : 0;
         for (int32_t j = -1; j < olo; ++j) {
@@ -1011,7 +1020,8 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
         }
         for (int32_t j = fa; j <= fb; ++j) { /* vectorisable */
             const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
-            const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
+            const int32_t v = (w0 * sb[j - 1] + w1 * sb[j] + w2 * sb[j + 1] + w3 * sb[j + 2] +
+                               256 * 32768 + 8) >> 4;
             hz[j + 1] = ((z0 & m0) | z1 | (z2 & m2) | (z3 & m3)) < 0 ? PFT_PRE_ANONE_ : v;
         }
         for (int32_t j = fb + 1; j <= ohi; ++j) {
@@ -2026,6 +2036,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     /* two rows that the whitening (pft_pre_row_out_, which uses p->line) leaves alone */
     zl = p->vb;
     int32_t *zp = p->bwl;
+    /* anchor_hrow_'s int16 copy of a row (w values) in the column projections, which only the
+     * registration reads (projections_ makes them anew each frame) */
+    int16_t *zs16 = (int16_t *)(void *)p->pzc;
     for (int32_t y = 0; y < h; ++y) {
         const bool masked = zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u;
         mrow[y & 3] = masked;
@@ -2096,7 +2109,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
         }
-        anchor_hrow_(&g, zl, w, vb);
+        anchor_hrow_(&g, zl, w, vb, zs16);
         if (masked && p->cfg.bg_masked_taps != 0u) {
             const bool young = p->cfg.bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && p->agex != NULL;
             anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
