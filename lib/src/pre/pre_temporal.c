@@ -1203,8 +1203,9 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
  * written ((gr bx + 32768) >> 16) + gc: relative gr rho, gc 0; mean gr 0, gc the mean;
  * |gr bx| <= 2^14 (2^16 - 1) < 2^30), and the cells' e and B added to this frame's sums of the
  * tile. An invalid cell is stored back unchanged and adds 0 to the sums (selects, so that the
- * loop vectorises; its values stay in gate_nb_'s bounds). */
-static inline void gate_local_loop_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
+ * loop vectorises; its values stay in gate_nb_'s bounds). clip: bg_gate_shift 0 (g->wsh 0), as
+ * in gate_run_loop_; a constant of each call (no wrapper: the stage's stack). */
+static inline void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
                                     int32_t ja, int32_t jb, int32_t lim, const bool clip)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
@@ -1241,17 +1242,6 @@ static inline void gate_local_loop_(pft_pre_t *p, const gate_row_t *g, uint32_t 
     p->gsum[2u * ti] += se;
     p->gsum[2u * ti + 1u] += sl;
     p->gcnt[ti] += (uint32_t)n;
-}
-
-/* clip: bg_gate_shift 0 (gate_run_loop_'s form). */
-static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
-                             int32_t ja, int32_t jb, int32_t lim)
-{
-    if (g->wsh == 0) {
-        gate_local_loop_(p, g, ti, b, ja, jb, lim, true);
-    } else {
-        gate_local_loop_(p, g, ti, b, ja, jb, lim, false);
-    }
 }
 
 /* The update of grid row jy from the ring (the frame rows interpolated along x, taps
@@ -1326,9 +1316,16 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                 }
                 if (p->gsum != NULL) { /* bg_gate_local */
                     const uint32_t ti = gate_tile_(p, jy, ja0);
-                    gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim);
-                    gate_local_span_(p, &gr, ti, b, ma, mb, lim);
-                    gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim);
+                    /* clip: bg_gate_shift 0 (gate_run_'s form), a constant of each call */
+                    if (wsh == 0) {
+                        gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim, true);
+                        gate_local_span_(p, &gr, ti, b, ma, mb, lim, true);
+                        gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim, true);
+                    } else {
+                        gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim, false);
+                        gate_local_span_(p, &gr, ti, b, ma, mb, lim, false);
+                        gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim, false);
+                    }
                     continue;
                 }
                 gate_run_(&gr, b, ja0, ma - 1, ylim);
