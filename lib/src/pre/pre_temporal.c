@@ -988,7 +988,8 @@ static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
 
 /* Frame row zl (U units, -1 masked) interpolated along x at the update's fraction into hz
  * (w + 3 cells, U * 16; PFT_PRE_ANONE_ where a tap is masked or the cell is not observed). */
-static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz)
+static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz,
+                         int16_t *zs)
 {
     const agx_t *gx = &g->gx;
     const int32_t olo = g->olo[0], ohi = g->ohi[0];
@@ -1000,7 +1001,15 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
     const int32_t fb = ohi < w - 3 - gx->ub ? ohi : w - 3 - gx->ub;
     if (fa <= fb) {
         const int32_t *zb = zl + gx->ub;
-        const int32_t w0 = gx->wu[0], w1 = gx->wu[1], w2 = gx->wu[2], w3 = gx->wu[3];
+        /* the taps' values biased by -32768 into int16 (a masked one's 65535 - 32768: its
+         * cell is tested below), so that the blend takes 16 x 16-bit products as vtap_: the
+         * bias comes back as 32768 times the weights' sum (256) */
+        for (int32_t x = fa + gx->ub - 1; x <= fb + gx->ub + 2; ++x) { /* vectorisable */
+            zs[x] = (int16_t)((int32_t)((uint32_t)zl[x] & 0xFFFFu) - 32768);
+        }
+        const int16_t *sb = zs + gx->ub;
+        const int16_t w0 = (int16_t)gx->wu[0], w1 = (int16_t)gx->wu[1], w2 = (int16_t)gx->wu[2];
+        const int16_t w3 = (int16_t)gx->wu[3];
         const int32_t m0 = gx->ulo == -1 ? -1 : 0, m2 = gx->uhi >= 1 ? -1 : 0;
         const int32_t m3 = gx->uhi == 2 ? -1 : 0;
         for (int32_t j = -1; j < olo; ++j) {
@@ -1011,7 +1020,8 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
         }
         for (int32_t j = fa; j <= fb; ++j) { /* vectorisable */
             const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
-            const int32_t v = (w0 * z0 + w1 * z1 + w2 * z2 + w3 * z3 + 8) >> 4;
+            const int32_t v = (w0 * sb[j - 1] + w1 * sb[j] + w2 * sb[j + 1] + w3 * sb[j + 2] +
+                               256 * 32768 + 8) >> 4;
             hz[j + 1] = ((z0 & m0) | z1 | (z2 & m2) | (z3 & m3)) < 0 ? PFT_PRE_ANONE_ : v;
         }
         for (int32_t j = fb + 1; j <= ohi; ++j) {
@@ -1146,13 +1156,17 @@ typedef struct {
 } gate_row_t;
 
 /* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, gate_nb_
- * without a local part; lim 65535: no gate. A cell with an invalid tap is kept. */
-static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
+ * without a local part; lim 65535: no gate. A cell with an invalid tap is kept. clip (a
+ * constant of each call: the loop is inlined twice) is bg_gate_shift 0, where the innovation
+ * beyond the gate is clipped to +-lim and the weight is a15 on both sides of it: e clamped to
+ * [-lim, lim] is that value (lim >= 1), in fewer instructions than the test of |e|. */
+static inline void gate_run_loop_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb,
+                                  int32_t lim, const bool clip)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
     const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
     const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
-    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15, nlim = -lim;
     for (int32_t j = ja; j <= jb; ++j) { /* vectorisable */
         const int32_t v0 = q0[j], v1 = q1[j], v2 = q2[j], v3 = q3[j];
         const bool inv = (v0 == n0) | (v1 == n1) | (v2 == n2) | (v3 == n3);
@@ -1162,10 +1176,26 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
         /* gate_nb_ with mc 0, written out: without the clamp, which cannot act, the loop costs
          * about 0.26 M instructions less per 384 x 288 frame (x86-64) */
         int32_t e = sv - bx;
-        const int32_t ae = e < 0 ? -e : e;
-        e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
-        const int32_t nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+        int32_t nb;
+        if (clip) {
+            e = e > lim ? lim : e;
+            e = e < nlim ? nlim : e;
+            nb = bx + ((e * a15 + 16384) >> 15);
+        } else {
+            const int32_t ae = e < 0 ? -e : e;
+            e = wsh == 0 && ae > lim ? (e < 0 ? -lim : lim) : e;
+            nb = bx + ((e * (ae > lim ? ag : a15) + 16384) >> 15);
+        }
         b[j + 1] = (uint16_t)(inv ? bx : nb);
+    }
+}
+
+static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
+{
+    if (g->wsh == 0) {
+        gate_run_loop_(g, b, ja, jb, lim, true);
+    } else {
+        gate_run_loop_(g, b, ja, jb, lim, false);
     }
 }
 
@@ -1173,14 +1203,15 @@ static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
  * written ((gr bx + 32768) >> 16) + gc: relative gr rho, gc 0; mean gr 0, gc the mean;
  * |gr bx| <= 2^14 (2^16 - 1) < 2^30), and the cells' e and B added to this frame's sums of the
  * tile. An invalid cell is stored back unchanged and adds 0 to the sums (selects, so that the
- * loop vectorises; its values stay in gate_nb_'s bounds). */
-static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
-                             int32_t ja, int32_t jb, int32_t lim)
+ * loop vectorises; its values stay in gate_nb_'s bounds). clip: bg_gate_shift 0 (g->wsh 0), as
+ * in gate_run_loop_; a constant of each call (no wrapper: the stage's stack). */
+static inline void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uint16_t *b,
+                                    int32_t ja, int32_t jb, int32_t lim, const bool clip)
 {
     const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
     const int32_t w0 = g->w[0], w1 = g->w[1], w2 = g->w[2], w3 = g->w[3];
     const int32_t n0 = g->n[0], n1 = g->n[1], n2 = g->n[2], n3 = g->n[3];
-    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15;
+    const int32_t wsh = g->wsh, ag = g->ag, a15 = g->a15, nlim = -lim;
     const bool rel = p->cfg.bg_gate_local == PFT_PRE_GATE_LOCAL_RELATIVE;
     const int32_t gr = rel ? p->gm[ti] : 0, gc = rel ? 0 : p->gm[ti];
     int32_t se = 0, sl = 0, n = 0; /* at most 258 cells: |se|, sl < 2^25 */
@@ -1191,7 +1222,18 @@ static void gate_local_span_(pft_pre_t *p, const gate_row_t *g, uint32_t ti, uin
         sv = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
         const int32_t bx = b[j + 1];
         const int32_t e = sv - bx;
-        const int32_t nb = gate_nb_(bx, e, ((gr * bx + 32768) >> 16) + gc, lim, a15, ag, wsh);
+        const int32_t mc = ((gr * bx + 32768) >> 16) + gc;
+        int32_t nb;
+        if (clip) {
+            /* gate_nb_ with wsh 0 (ag = a15): e - mc clamped to [-lim, lim] */
+            int32_t d = e - mc;
+            d = d > lim ? lim : d;
+            d = d < nlim ? nlim : d;
+            nb = bx + ((mc * a15 + 16384) >> 15) + ((d * a15 + 16384) >> 15);
+            nb = nb < 0 ? 0 : (nb > 65535 ? 65535 : nb);
+        } else {
+            nb = gate_nb_(bx, e, mc, lim, a15, ag, wsh);
+        }
         se += inv ? 0 : e;
         sl += inv ? 0 : bx;
         n += inv ? 0 : 1;
@@ -1274,9 +1316,16 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
                 }
                 if (p->gsum != NULL) { /* bg_gate_local */
                     const uint32_t ti = gate_tile_(p, jy, ja0);
-                    gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim);
-                    gate_local_span_(p, &gr, ti, b, ma, mb, lim);
-                    gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim);
+                    /* clip: bg_gate_shift 0 (gate_run_'s form), a constant of each call */
+                    if (wsh == 0) {
+                        gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim, true);
+                        gate_local_span_(p, &gr, ti, b, ma, mb, lim, true);
+                        gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim, true);
+                    } else {
+                        gate_local_span_(p, &gr, ti, b, ja0, ma - 1, ylim, false);
+                        gate_local_span_(p, &gr, ti, b, ma, mb, lim, false);
+                        gate_local_span_(p, &gr, ti, b, mb + 1, je, ylim, false);
+                    }
                     continue;
                 }
                 gate_run_(&gr, b, ja0, ma - 1, ylim);
@@ -1984,6 +2033,9 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     /* two rows that the whitening (pft_pre_row_out_, which uses p->line) leaves alone */
     zl = p->vb;
     int32_t *zp = p->bwl;
+    /* anchor_hrow_'s int16 copy of a row (w values) in the column projections, which only the
+     * registration reads (projections_ makes them anew each frame) */
+    int16_t *zs16 = (int16_t *)(void *)p->pzc;
     for (int32_t y = 0; y < h; ++y) {
         const bool masked = zrow_(c, f, (uint32_t)y, p->bf, p->colnow, zl) > 0u;
         mrow[y & 3] = masked;
@@ -2054,7 +2106,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
         if (y + 1 == h || (y + 1) % t == 0) {
             pft_pre_tilerow_done_(p, (uint32_t)(y / t));
         }
-        anchor_hrow_(&g, zl, w, vb);
+        anchor_hrow_(&g, zl, w, vb, zs16);
         if (masked && p->cfg.bg_masked_taps != 0u) {
             const bool young = p->cfg.bg_masked_taps == PFT_PRE_MASKED_TAPS_YOUNG && p->agex != NULL;
             anchor_hrow_masked_(&g, zl, w, vb, young ? p->agex + 1 : NULL, p->cfg.bg_gate_young);
