@@ -53,6 +53,9 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.handover_in_scale, c.handover_in_scale);
     set_real_if(t.split_px, c.split_px);
     set_real_if(t.split_share, c.split_share);
+    set_real_if(t.resid_split, c.resid_split);
+    c.resid_split_frames = static_cast<uint8_t>(t.resid_split_frames);
+    c.resid_split_age = static_cast<uint8_t>(t.resid_split_age);
     set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);

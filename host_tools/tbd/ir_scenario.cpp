@@ -30,7 +30,8 @@ const char *const kTrackerOnlyFields[] = {
     "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
     "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_slow_frames",
     "scene_slow_low_px", "scene_slow_gate_px", "end_grace_frames", "theta_end_grace", "end_persist",
-    "handover_in_scale", "q2", "split_px", "split_share", nullptr};
+    "handover_in_scale", "q2", "split_px", "split_share", "resid_split", "resid_split_frames",
+    "resid_split_age", nullptr};
 
 namespace {
 
@@ -193,6 +194,11 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("split_px").fail("must be 0 (off) or within 0.5..16 px");
     if (T.split_px && *T.split_px > 0.0 && !(T.split_share && *T.split_share > 0.0))
         t.at("split_px").fail("needs split_share above 0 (at most 0.5)");
+    num("resid_split", 0.0, 50.0, T.resid_split);  // the library's range (pft_tbd.h)
+    if (T.resid_split && *T.resid_split > 0.0 && *T.resid_split < 1.0)
+        t.at("resid_split").fail("must be 0 (off) or within 1..50 sigmas");
+    T.resid_split_frames = static_cast<int>(t.integer_in("resid_split_frames", T.resid_split_frames, 0, 8));
+    T.resid_split_age = static_cast<int>(t.integer_in("resid_split_age", T.resid_split_age, 0, 255));
     T.end_persist = static_cast<int>(t.integer_in("end_persist", T.end_persist, 0, PFT_TBD_MAX_END_PERSIST));  // the library's bound (pft_tbd.h)
     if (T.theta_end_grace && T.end_grace_frames == 0)
         t.at("theta_end_grace").fail("needs end_grace_frames of at least 1");

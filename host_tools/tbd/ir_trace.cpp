@@ -180,6 +180,21 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
         bool rep = false;
         for (const tbd::TrackOut &t : out.tracks)
             rep = rep || t.id == r.id;
+        // cfg.resid_split: the layer's largest matched residual beside it and the truth point
+        // nearest to that peak (0 when not tested)
+        const pft_tbd_filter_t &lf = m.tracks[k2];
+        const double rm = from_real(lf.resid_m);
+        const double qx = from_real(lf.resid_x) - dx, qy = from_real(lf.resid_y) - dy;
+        double qd = 1e9;
+        int qtid = 0;
+        for (const TruthRow *t : truth) {
+            const double d = std::hypot(qx - t->x, qy - t->y);
+            if (d < qd) {
+                qd = d;
+                qtid = t->id;
+            }
+        }
+        const bool tested = rm != 0.0;
         layer_rows_.push_back(std::to_string(seed_) + "," + std::to_string(k) + "," + std::to_string(r.id) + "," +
                               std::to_string(k - life_[r.id].handover) + "," + num(x, 2) + "," + num(y, 2) + "," +
                               num(from_real(r.p_exist), 4) + "," + num(from_real(r.intensity), 2) + "," +
@@ -188,7 +203,10 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                               (tid ? num(td, 2) : std::string()) + "," + num(scene_x_, 4) + "," +
                               num(scene_y_, 4) + "," + std::to_string(pl.scene_decision(r.id)) + "," +
                               num(from_real(r.pos_cov[0]), 4) + "," + num(from_real(r.pos_cov[2]), 4) + "," +
-                              num(x + dx, 5) + "," + num(y + dy, 5));
+                              num(x + dx, 5) + "," + num(y + dy, 5) + "," + num(rm, 3) + "," +
+                              (tested ? num(qx, 1) + "," + num(qy, 1) : std::string(",")) + "," +
+                              std::to_string(static_cast<int>(lf.resid_n)) + "," +
+                              (tested && qtid ? std::to_string(qtid) + "," + num(qd, 2) : std::string(",")));
     }
     for (const tbd::TrackOut &t : out.tracks) {
         auto it = life_.find(t.id);
@@ -325,7 +343,7 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
     });
     write_text_atomic(base + "_tracks.csv", [&](std::ostream &f) { write_tracks_(f, ev); });
     write_text_atomic(base + "_layers.csv", [&](std::ostream &f) {
-        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d,scene_x,scene_y,scene_dec,cov_xx,cov_yy,rx,ry\n";
+        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d,scene_x,scene_y,scene_dec,cov_xx,cov_yy,rx,ry,resid_m,resid_x,resid_y,resid_n,resid_tid,resid_d\n";
         for (const std::string &r : layer_rows_)
             f << r << "\n";
     });

@@ -76,6 +76,9 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->handover_in_scale = PFT_C(0.0);
     cfg->split_px = PFT_C(0.0);
     cfg->split_share = PFT_C(0.0);
+    cfg->resid_split = PFT_C(0.0);
+    cfg->resid_split_frames = 0u;
+    cfg->resid_split_age = 0u;
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -279,6 +282,13 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     if (!(c->split_share >= PFT_C(0.0) && c->split_share <= PFT_C(0.5)) ||
         (!is_off_(c->split_px) && !(c->split_share > PFT_C(0.0)))) {
         return "split_share";
+    }
+    if (!(is_off_(c->resid_split) ||
+          (c->resid_split >= PFT_REAL_ONE && c->resid_split <= PFT_C(50.0)))) {
+        return "resid_split";
+    }
+    if (c->resid_split_frames > 8u) {
+        return "resid_split_frames";
     }
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {

@@ -49,6 +49,10 @@ void pft_tbd_filter_reset_stats_(pft_tbd_filter_t *f)
     f->gone = false;
     f->birth_lw = PFT_C(0.0);
     f->bq = PFT_C(0.0);
+    f->resid_n = 0u;
+    f->resid_m = PFT_C(0.0);
+    f->resid_x = PFT_C(0.0);
+    f->resid_y = PFT_C(0.0);
 }
 
 void pft_tbd_filter_setup_(pft_tbd_filter_t *f, const pft_tbd_config_t *cfg, uint32_t n,
@@ -1181,6 +1185,38 @@ void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d)
     d->est = f->est;
     (void)equal_estimate_(d, true); /* no live particle: the estimate is kept */
     (void)equal_estimate_(f, true);
+}
+
+/* ---------------------------------- a layer started beside another (cfg.resid_split) ------ */
+
+void pft_tbd_filter_seed_at_(const pft_tbd_filter_t *f, pft_tbd_filter_t *d, pft_real_t ox,
+                             pft_real_t oy)
+{
+    const uint32_t n = f->n < d->n ? f->n : d->n;
+    const bool rb = d->kind == PFT_TBD_RBPF;
+    for (uint32_t s = 0; s < n; ++s) {
+        copy_particle_(&d->cur, s, &f->cur, s);
+        if (d->cur.e[s] == 0u) {
+            continue;
+        }
+        d->cur.x[s] = pft_add(d->cur.x[s], ox);
+        d->cur.y[s] = pft_add(d->cur.y[s], oy);
+        d->cur.e[s] = 1u; /* born now: age 0 */
+        if (rb) {
+            d->cur.vx[s] = d->cfg.vel_mean[0];
+            d->cur.vy[s] = d->cfg.vel_mean[1];
+        } else {
+            d->cur.vx[s] = pft_kmad1_(d->cfg.vel_mean[0], d->dyn.vel_sd[0], pft_rng_zig_(&d->rng));
+            d->cur.vy[s] = pft_kmad1_(d->cfg.vel_mean[1], d->dyn.vel_sd[1], pft_rng_zig_(&d->rng));
+        }
+    }
+    for (uint32_t s = n; s < d->n; ++s) {
+        d->cur.e[s] = 0u;
+    }
+    d->est = f->est;
+    (void)equal_estimate_(d, true); /* no live particle: the parent's estimate is kept */
+    d->est.p_exist = f->est.p_exist;
+    d->est.log_mean_lr = f->est.log_mean_lr;
 }
 
 /* ---------------------------------- public API -------------------------------------------- */

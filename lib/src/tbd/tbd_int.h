@@ -209,6 +209,13 @@ bool pft_tbd_filter_parts_(pft_tbd_filter_t *f, pft_real_t min_sep, pft_real_t m
  * generator); both estimates from their live particles, existence and frame log likelihood
  * ratio f's. */
 void pft_tbd_filter_split_(pft_tbd_filter_t *f, pft_tbd_filter_t *d);
+/* A new track layer d beside layer f (cfg.resid_split, docs/algorithms.md 2.7 [E]): f's
+ * particles copied, each live one moved by (ox, oy) and born anew (state byte 1: age 0; the
+ * velocity at cfg.vel_mean, sampled about it with vel_var's sd in the PF kind, d's generator);
+ * d's estimate from its live particles, existence probability and frame log likelihood ratio
+ * f's. */
+void pft_tbd_filter_seed_at_(const pft_tbd_filter_t *f, pft_tbd_filter_t *d, pft_real_t ox,
+                             pft_real_t oy);
 
 /* The public copy of an estimate: positions in the 0-based frame when valid (an estimate that
  * was never valid stays all zero). */

@@ -711,6 +711,186 @@ static void split_tracks_(pft_tbd_t *t)
     }
 }
 
+/* The residual test of cfg.resid_split (docs/algorithms.md 2.7 [E]): its ring about a layer,
+ * 1.5 to 5 px (squared 2.25 and 25), the least distance of a peak from another track (3 px,
+ * squared 9), the largest step of the peak between frames that keeps its count (2 px, squared
+ * 4), and the half-size of the scanned square (5 px). */
+#define RESID_IN2_ PFT_C(2.25)
+#define RESID_OUT2_ PFT_C(25.0)
+#define RESID_OTHER2_ PFT_C(9.0)
+#define RESID_STEP2_ PFT_C(4.0)
+#define RESID_HALF_ 5
+#define RESID_SPAN_ (2 * RESID_HALF_ + 1)
+
+/* Squared distance of two points, each axis clamped to +-32 px (q16: the squares stay small). */
+static pft_real_t d2_(pft_real_t ax, pft_real_t ay, pft_real_t bx, pft_real_t by)
+{
+    const pft_real_t dx = pft_clamp(pft_sub(ax, bx), PFT_C(-32.0), PFT_C(32.0));
+    const pft_real_t dy = pft_clamp(pft_sub(ay, by), PFT_C(-32.0), PFT_C(32.0));
+    return pft_add(pft_sq(dx), pft_sq(dy));
+}
+
+/* exp(-d^2 / (2 S^2)) of the model's PSF, d clamped to +-32 px. */
+static pft_real_t gauss_(const pft_tbd_meas_t *m, pft_real_t d)
+{
+    const pft_real_t c = pft_clamp(d, PFT_C(-32.0), PFT_C(32.0));
+    return pft_exp(pft_neg(pft_mul(pft_sq(c), m->inv_2s2)));
+}
+
+/* Whether pixel (i, j) (internal 1-based) may hold a second target of track k: on its ring and
+ * at least 3 px from every other track. */
+static bool resid_cand_(const pft_tbd_t *t, uint32_t k, pft_real_t px, pft_real_t py)
+{
+    const pft_tbd_track_t *rec = &t->records[k];
+    const pft_real_t d2 = d2_(px, py, rec->x, rec->y);
+    if (d2 < RESID_IN2_ || d2 > RESID_OUT2_) {
+        return false;
+    }
+    for (uint32_t u = 0; u < t->cfg.max_targets; ++u) {
+        const pft_tbd_track_t *o = &t->records[u];
+        if (u != k && o->id != 0u && d2_(px, py, o->x, o->y) < RESID_OTHER2_) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The largest matched residual beside track k: the frame minus the track's PSF (its intensity
+ * at its estimate), filtered with the PSF's 3 x 3 taps at a zero offset, g, as
+ * m = sum g r / sqrt(sum g^2), at the pixel centres of resid_cand_ in the square of half-size
+ * RESID_HALF_ about the track's pixel (those whose 3 x 3 lies inside the image). Rows are read
+ * one at a time; the 3-tap row sums of the last three rows are kept. Returns 0 with no pixel
+ * (*px, *py untouched), else m with its pixel centre in (*px, *py). */
+static pft_real_t resid_peak_(const pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t k,
+                              pft_real_t *px, pft_real_t *py)
+{
+    const pft_tbd_meas_t *m = &t->search.model;
+    const pft_tbd_track_t *rec = &t->records[k];
+    const int32_t w = (int32_t)t->cfg.width;
+    const int32_t h = (int32_t)t->cfg.height;
+    const int32_t i0 = pft_tbd_pix_(rec->x, m->inv_dx);
+    const int32_t j0 = pft_tbd_pix_(rec->y, m->inv_dy);
+    const int32_t ilo = i0 - RESID_HALF_ < 2 ? 2 : i0 - RESID_HALF_;
+    const int32_t ihi = i0 + RESID_HALF_ > w - 1 ? w - 1 : i0 + RESID_HALF_;
+    const int32_t jlo = j0 - RESID_HALF_ < 2 ? 2 : j0 - RESID_HALF_;
+    const int32_t jhi = j0 + RESID_HALF_ > h - 1 ? h - 1 : j0 + RESID_HALF_;
+    pft_real_t best = PFT_C(0.0);
+    if (ilo > ihi || jlo > jhi) {
+        return best;
+    }
+    const pft_real_t gx = gauss_(m, m->dx);
+    const pft_real_t gy = gauss_(m, m->dy);
+    const pft_real_t norm = pft_sqrt(pft_mul(pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gx), 2)),
+                                             pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gy), 2))));
+    const pft_real_t amp = pft_mul(rec->intensity, m->kc);
+    pft_real_t ex[RESID_SPAN_ + 2];
+    pft_real_t hs[3][RESID_SPAN_];
+    for (int32_t i = ilo - 1; i <= ihi + 1; ++i) {
+        ex[i - ilo + 1] = gauss_(m, pft_sub(pft_mul_i(m->dx, i), rec->x));
+    }
+    bool found = false;
+    for (int32_t j = jlo - 1; j <= jhi + 1; ++j) {
+        const pft_real_t *row = pft_tbd_row_(sc, (uint32_t)(j - 1)) + 1;
+        const pft_real_t ay = pft_mul(amp, gauss_(m, pft_sub(pft_mul_i(m->dy, j), rec->y)));
+        pft_real_t *hr = hs[(uint32_t)(j - jlo + 1) % 3u];
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            const pft_real_t rl = pft_sub(row[i - 2], pft_mul(ay, ex[i - ilo]));
+            const pft_real_t rc = pft_sub(row[i - 1], pft_mul(ay, ex[i - ilo + 1]));
+            const pft_real_t rr = pft_sub(row[i], pft_mul(ay, ex[i - ilo + 2]));
+            hr[i - ilo] = pft_add(rc, pft_mul(gx, pft_add(rl, rr)));
+        }
+        const int32_t jc = j - 1; /* the candidates' row: its rows above and below are in hs */
+        if (jc < jlo) {
+            continue;
+        }
+        const pft_real_t *ha = hs[(uint32_t)(jc - 1 - jlo + 1) % 3u];
+        const pft_real_t *hc = hs[(uint32_t)(jc - jlo + 1) % 3u];
+        const pft_real_t cy = pft_mul_i(m->dy, jc);
+        for (int32_t i = ilo; i <= ihi; ++i) {
+            const pft_real_t cx = pft_mul_i(m->dx, i);
+            if (!resid_cand_(t, k, cx, cy)) {
+                continue;
+            }
+            const pft_real_t v =
+                pft_div(pft_add(hc[i - ilo], pft_mul(gy, pft_add(ha[i - ilo], hr[i - ilo]))), norm);
+            if (!found || v > best) {
+                best = v;
+                *px = cx;
+                *py = cy;
+                found = true;
+            }
+        }
+    }
+    return best;
+}
+
+/* 2c. A second target beside a track (cfg.resid_split, docs/algorithms.md 2.7 [E]): each track
+ * layer that lived before this frame (and, with resid_split_age, is young) counts the frames in
+ * a row with its residual peak (resid_peak_) at least resid_split, the peak within 2 px of the
+ * last one; at resid_split_frames a new track layer starts at the peak from the layer's
+ * particles (pft_tbd_filter_seed_at_) as a hand-over does, and the count restarts. */
+static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    if (!(cfg->resid_split > PFT_C(0.0))) {
+        return;
+    }
+    const uint8_t need = cfg->resid_split_frames > 1u ? cfg->resid_split_frames : 1u;
+    const uint32_t id_new = t->next_id; /* tracks made here have ids from this one on */
+    pft_tbd_scene_t_ sc;
+    scene_src_(t, frame, &sc);
+    for (uint32_t k = 0; k < cfg->max_targets; ++k) {
+        pft_tbd_track_t *rec = &t->records[k];
+        pft_tbd_filter_t *tf = &t->tracks[k];
+        if (rec->id == 0u || rec->id >= id_new) {
+            continue;
+        }
+        if (cfg->resid_split_age > 0u && tf->frames > (uint32_t)cfg->resid_split_age) {
+            tf->resid_n = 0u;
+            tf->resid_m = PFT_C(0.0);
+            continue;
+        }
+        pft_real_t x = PFT_C(0.0);
+        pft_real_t y = PFT_C(0.0);
+        const pft_real_t v = resid_peak_(t, &sc, k, &x, &y);
+        const bool near = tf->resid_n > 0u && !(d2_(x, y, tf->resid_x, tf->resid_y) > RESID_STEP2_);
+        tf->resid_m = v;
+        tf->resid_x = x;
+        tf->resid_y = y;
+        if (!(v >= cfg->resid_split)) {
+            tf->resid_n = 0u;
+            continue;
+        }
+        tf->resid_n = near ? (uint8_t)(tf->resid_n < UINT8_MAX ? tf->resid_n + 1u : tf->resid_n) : 1u;
+        if (tf->resid_n < need || t->n_tracks >= cfg->max_targets) {
+            continue;
+        }
+        uint32_t u = 0;
+        while (u < cfg->max_targets && t->records[u].id != 0u) {
+            ++u;
+        }
+        pft_tbd_filter_t *nf = &t->tracks[u];
+        pft_rng_seed(&nf->rng, cfg->seed + t->next_id);
+        pft_tbd_filter_reset_stats_(nf);
+        pft_tbd_filter_seed_at_(tf, nf, pft_sub(x, rec->x), pft_sub(y, rec->y));
+        nf->frames = 0u;
+        tf->resid_n = 0u;
+        pft_tbd_track_t *nr = &t->records[u];
+        memset(nr, 0, sizeof(*nr));
+        nr->id = t->next_id++;
+        record_from_est_(nr, &nf->est);
+        nr->last_seq = t->last_seq;
+        nr->last_timestamp_us = t->last_ts;
+        nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
+        nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
+        ++t->n_tracks;
+        if (nr->first_frame != 0u) {
+            push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
+        }
+        add_region_(cfg, t->mask, nr->x, nr->y);
+    }
+}
+
 /* The Bernoulli search layer's share of a fixed particle budget (docs/algorithms.md 2.11,
  * issue #12): with `stepped` track layers stepped at this frame, the search layer moves and
  * weighs n_search - stepped n_track particles (its first ones), at least n_search / 4, so that
@@ -1063,6 +1243,7 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     update_tracks_(t, frame, res_tracks);
     end_or_keep_tracks_(t);
     split_tracks_(t);
+    resid_split_tracks_(t, frame);
     update_search_(t, frame, res_search, stepped);
     t->search.est.last_seq = frame->seq;
     t->search.est.last_timestamp_us = frame->timestamp_us;

@@ -104,6 +104,9 @@ struct pft_tbd_filter_s {
     pft_real_t win_hist[PFT_TBD_MAX_DIS_PREV];  /* previous window statistics (newest first) */
     uint32_t n_lr, n_win;
     bool gone;               /* disappearance declared at the last update */
+    uint8_t resid_n;         /* manager, cfg.resid_split > 0: frames in a row with a residual peak beside the layer */
+    pft_real_t resid_m;      /* ... the largest matched residual beside it at the last update (0: not tested) */
+    pft_real_t resid_x, resid_y; /* ... and its pixel centre (internal frame) */
     bool seq_set;            /* standalone: last_seq holds the reference (cfg.seq_mode) */
     uint32_t last_seq;       /* standalone: seq of the last accepted frame */
 };
