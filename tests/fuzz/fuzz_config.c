@@ -694,6 +694,7 @@ static void fuzz_pre_clutter(fz_t *f)
     c.map8 = c.block == 0u && (o & 64u) != 0u;
     c.anchor = c.block == 0u && (o & 128u) != 0u;
     c.mean_floor = (c.mean && c.block == 0u && (o & 2u)) ? 128u : 0u;
+    c.floor_age = (c.mean_floor != 0u && (o & 4u)) ? 3u : 0u;
     FZ_PATCH(f, c, 12u);
     FZ_BOOL(c.box);
     FZ_BOOL(c.mean);
