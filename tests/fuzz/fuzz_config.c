@@ -719,6 +719,8 @@ static void fuzz_pre_clutter(fz_t *f)
                                      : PFT_PRE_CLUTTER_WORKSPACE_BYTES(c.width, c.height, c.mean,
                                                                        c.blur, c.persist != 0u)));
     }
+    /* floor_age: the ages' bytes on top of every form */
+    macro += c.floor_age != 0u ? PFT_PRE_CLUTTER_WORKSPACE_BYTES_AGE(c.width, c.height) : 0u;
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;
