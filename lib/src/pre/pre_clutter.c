@@ -768,6 +768,28 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
     *ov = msk != 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
 }
 
+/* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
+ * before the mean pass writes it) and whether the mean takes this residual (*learn). */
+static inline void cl_gate_px_(int32_t v, uint16_t *p, uint32_t exc, uint32_t pk, uint32_t pcap,
+                               uint32_t *learn)
+{
+    const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+    const uint32_t p0 = *p;
+    const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
+    const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
+    const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
+    const uint32_t p1 = ex != 0u ? pu : pd;
+    *p = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
+    *learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+}
+
+/* floor_age: the floor of a column of age a (ka the age it needs), branch-free: mfl, or 0 (the
+ * plain mean) while a < ka. */
+static inline int32_t cl_age_floor_(uint8_t a, uint8_t ka, int32_t mfl)
+{
+    return (int32_t)((uint32_t)mfl & (0u - (uint32_t)(a >= ka ? 1u : 0u)));
+}
+
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
  * residual (or r's own buffer, inplace; each pass reads and writes o at the same column
@@ -789,22 +811,17 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
     if (o != r) {
         memcpy(o, r, (size_t)w * 2u);
     }
-    if (pc != NULL) {
+    if (pc != NULL && ca == NULL) {
         for (int32_t x = 0; x < w; ++x) {
-            /* the gate reads the stage's residual v (o[x] before the mean pass writes it) */
-            const int32_t v = o[x];
-            const uint32_t av = (uint32_t)(v < 0 ? -v : v);
-            const uint32_t p0 = pc[x];
-            const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
-            const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
-            const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
-            const uint32_t p1 = ex != 0u ? pu : pd;
-            pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
-            /* whether the mean takes this residual: the same pixel's mean pass, fused */
-            const uint32_t learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
-            /* floor_age: a column younger than ka takes no floor */
-            const int32_t f = ca != NULL && ca[x] < ka ? 0 : mfl;
-            cl_mean_px_(&o[x], learn, a16, full, f, &mrow[x], &mu[x], &cs[x]);
+            uint32_t learn;
+            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
+            cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+        }
+    } else if (pc != NULL) {
+        for (int32_t x = 0; x < w; ++x) {
+            uint32_t learn;
+            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
+            cl_mean_px_(&o[x], learn, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
         }
     } else if (ca == NULL) {
         for (int32_t x = 0; x < w; ++x) {
@@ -812,7 +829,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, ca[x] < ka ? 0 : mfl, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
         }
     }
     const int32_t sthr = (int32_t)thr;
