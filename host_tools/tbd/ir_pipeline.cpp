@@ -216,6 +216,7 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     c.persist = static_cast<uint8_t>(t.clutter_persist);
     c.excess = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_excess * 256.0), 1L, 32767L));
     c.mean_floor = static_cast<uint16_t>(std::clamp(std::lround(t.clutter_mean_floor * 256.0), 0L, 2048L));
+    c.floor_age = static_cast<uint8_t>(t.clutter_floor_age);
     c.block = static_cast<uint8_t>(t.clutter_block);
     c.map8 = t.clutter_map8;
     c.anchor = t.clutter_anchor;

@@ -21,7 +21,7 @@ const char *const kPreprocessFields[] = {
     "bg_young_clip", "bg_young_scale", "bg_edge_narrow", "bg_stale_reinit", "bg_gate_local", "bg_masked_taps", "flat_block", "flat_alpha", "flat_gate", "flat_relative",
     "flat_rescale", "flat_level_blocks", "residual_hp", "clutter_alpha", "clutter_blur", "clutter_mean", "clutter_thr",
     "clutter_veto", "clutter_box", "clutter_persist", "clutter_excess", "clutter_mean_floor",
-    "clutter_block", "clutter_map8", "clutter_anchor", "note", nullptr};
+    "clutter_floor_age", "clutter_block", "clutter_map8", "clutter_anchor", "note", nullptr};
 
 const char *const kTrackerOnlyFields[] = {
     "preset", "particles", "track_particles", "max_targets", "snr_min_db", "snr_max_db", "seed_offset",
@@ -315,6 +315,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.clutter_mean_floor = t.number_in("clutter_mean_floor", T.clutter_mean_floor, 0.0, 8.0);
     if (T.clutter_mean_floor > 0 && !T.clutter_mean)
         t.at("clutter_mean_floor").fail("a floor of the map's mean: needs clutter_mean true");
+    T.clutter_floor_age = static_cast<int>(t.integer_in("clutter_floor_age", T.clutter_floor_age, 0, 255));
+    if (T.clutter_floor_age > 0 && !(T.clutter_mean_floor > 0))
+        t.at("clutter_floor_age").fail("the age from which the mean's floor applies: needs clutter_mean_floor > 0");
     T.clutter_block = static_cast<int>(t.integer_in("clutter_block", T.clutter_block, 0, 4));
     if (T.clutter_block != 0 && T.clutter_block != 2 && T.clutter_block != 4)
         t.at("clutter_block").fail("must be 0 (per pixel), 2 or 4");

@@ -163,6 +163,7 @@ struct TrackerSettings {
     int clutter_persist = 0;                    ///< map's persistence gate (frames; 0: off): a residual beyond clutter_excess is learnt only once it has held this long at the same scene position
     double clutter_excess = 1.5;                ///< level of the persistence gate (sigma)
     double clutter_mean_floor = 0;              ///< with clutter_mean: the mean is subtracted only where its magnitude exceeds this (sigma; pft_pre_clutter_config_t.mean_floor; 0: off)
+    int clutter_floor_age = 0;                  ///< with clutter_mean_floor: the floor only where the map's cell has learnt this many frames, younger cells take the plain mean (pft_pre_clutter_config_t.floor_age; 0: off)
     int clutter_block = 0;                      ///< map held on B x B blocks of the scene (pft_pre_clutter_config_t.block): 0 (per pixel), 2 or 4
     bool clutter_map8 = false;                  ///< map held in 8 bits per pixel (pft_pre_clutter_config_t.map8; per pixel only: clutter_block 0)
     bool clutter_anchor = false;                ///< map held on an integer grid of the scene, moved by whole pixels, instead of carried by a bilinear warp (pft_pre_clutter_config_t.anchor; per pixel only: clutter_block 0)

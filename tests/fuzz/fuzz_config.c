@@ -694,6 +694,7 @@ static void fuzz_pre_clutter(fz_t *f)
     c.map8 = c.block == 0u && (o & 64u) != 0u;
     c.anchor = c.block == 0u && (o & 128u) != 0u;
     c.mean_floor = (c.mean && c.block == 0u && (o & 2u)) ? 128u : 0u;
+    c.floor_age = (c.mean_floor != 0u && (o & 4u)) ? 3u : 0u;
     FZ_PATCH(f, c, 12u);
     FZ_BOOL(c.box);
     FZ_BOOL(c.mean);
@@ -718,6 +719,8 @@ static void fuzz_pre_clutter(fz_t *f)
                                      : PFT_PRE_CLUTTER_WORKSPACE_BYTES(c.width, c.height, c.mean,
                                                                        c.blur, c.persist != 0u)));
     }
+    /* floor_age: the ages' bytes on top of every form */
+    macro += c.floor_age != 0u ? PFT_PRE_CLUTTER_WORKSPACE_BYTES_AGE(c.width, c.height) : 0u;
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;

@@ -653,6 +653,7 @@ static void run_pre(fz_t *f)
     mc.map8 = mc.block == 0u && (mo & 64u) != 0u;
     mc.anchor = mc.block == 0u && (mo & 128u) != 0u;
     mc.mean_floor = (mc.mean && mc.block == 0u && (mo & 32u)) ? 256u : 0u;
+    mc.floor_age = (mc.mean_floor != 0u && (mo & 64u)) ? 4u : 0u;
     mc.box = (mo & 2u) == 0u;
     mc.blur = (uint8_t)(fz_u8(f) % (PFT_PRE_CLUTTER_MAX_BLUR + 1u));
     built_valid_(pft_pre_clutter_config_check(&mc, &bad_field), "mc", &bad_field);

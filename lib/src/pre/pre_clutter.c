@@ -42,6 +42,7 @@ void pft_pre_clutter_config_default(pft_pre_clutter_config_t *cfg)
     cfg->map8 = false;
     cfg->anchor = false;
     cfg->mean_floor = 0u;
+    cfg->floor_age = 0u;
 }
 
 pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, const char **field)
@@ -74,6 +75,8 @@ pft_status_t pft_pre_clutter_config_check(const pft_pre_clutter_config_t *cfg, c
         bad = "anchor"; /* the anchored grid is the pixels' (a block grid would need its own rounding) */
     } else if (cfg->mean_floor != 0u && (!cfg->mean || cfg->block != 0u || cfg->mean_floor > CL_FLOORMAX_)) {
         bad = "mean_floor";
+    } else if (cfg->floor_age != 0u && cfg->mean_floor == 0u) {
+        bad = "floor_age"; /* the age gates the floor: without one it would change nothing */
     } else {
         /* accepted */
     }
@@ -85,14 +88,15 @@ size_t pft_pre_clutter_workspace_size(const pft_pre_clutter_config_t *cfg)
     if (pft_pre_clutter_config_check(cfg, NULL) != PFT_OK) {
         return 0u;
     }
+    const size_t ages = cfg->floor_age != 0u ? PFT_PRE_CLUTTER_WORKSPACE_BYTES_AGE(cfg->width, cfg->height) : 0u;
     if (cfg->map8) {
-        return PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
-                                                    cfg->blur, cfg->persist != 0u ? 1u : 0u,
-                                                    cfg->inplace ? 1u : 0u);
+        return ages + PFT_PRE_CLUTTER_WORKSPACE_BYTES_MAP8(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                                           cfg->blur, cfg->persist != 0u ? 1u : 0u,
+                                                           cfg->inplace ? 1u : 0u);
     }
-    return PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
-                                                 cfg->blur, cfg->persist != 0u ? 1u : 0u,
-                                                 cfg->block, cfg->inplace ? 1u : 0u);
+    return ages + PFT_PRE_CLUTTER_WORKSPACE_BYTES_BLOCK(cfg->width, cfg->height, cfg->mean ? 1u : 0u,
+                                                        cfg->blur, cfg->persist != 0u ? 1u : 0u,
+                                                        cfg->block, cfg->inplace ? 1u : 0u);
 }
 
 pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_config_t *cfg,
@@ -132,6 +136,8 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     /* blocks: the per-block sums; map8: the fused warp's two horizontal passes (cl_fuse8_) */
     uint32_t *acc = lb != 0u || cfg->map8 ? pft_ws_take(&ws, gw * 8u) : NULL;
     int32_t *sacc = lb != 0u ? pft_ws_take(&ws, gw * 8u) : NULL;
+    /* floor_age (block 0: the grid is the frame): the columns' ages, then the rows' */
+    uint8_t *age = cfg->floor_age != 0u ? pft_ws_take(&ws, gw + gh) : NULL;
     if (pft_ws_status(&ws) != PFT_OK) {
         return PFT_ERR_NOMEM;
     }
@@ -142,6 +148,7 @@ pft_status_t pft_pre_clutter_init(pft_pre_clutter_t *c, const pft_pre_clutter_co
     c->lb = lb;
     c->acc = acc;
     c->sacc = sacc;
+    c->age = age;
     c->m = m;
     c->m8 = m8;
     c->row = row;
@@ -195,6 +202,9 @@ pft_status_t pft_pre_clutter_reset(pft_pre_clutter_t *c)
     }
     if (c->sacc != NULL) {
         memset(c->sacc, 0, gw * 8u);
+    }
+    if (c->age != NULL) {
+        memset(c->age, 0, gw + (size_t)c->gh);
     }
     c->ax = 0;
     c->ay = 0;
@@ -758,6 +768,28 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
     *ov = msk != 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
 }
 
+/* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
+ * before the mean pass writes it) and whether the mean takes this residual (*learn). */
+static inline void cl_gate_px_(int32_t v, uint16_t *p, uint32_t exc, uint32_t pk, uint32_t pcap,
+                               uint32_t *learn)
+{
+    const uint32_t av = (uint32_t)(v < 0 ? -v : v);
+    const uint32_t p0 = *p;
+    const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
+    const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
+    const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
+    const uint32_t p1 = ex != 0u ? pu : pd;
+    *p = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
+    *learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+}
+
+/* floor_age: the floor of a column of age a (ka the age it needs), branch-free: mfl, or 0 (the
+ * plain mean) while a < ka. */
+static inline int32_t cl_age_floor_(uint8_t a, uint8_t ka, int32_t mfl)
+{
+    return (int32_t)((uint32_t)mfl & (0u - (uint32_t)(a >= ka ? 1u : 0u)));
+}
+
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
  * residual (or r's own buffer, inplace; each pass reads and writes o at the same column
@@ -771,31 +803,33 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
  * step (|tv - mv| <= 2^15); the cl_scale_ and cl_div_ roundings written out. */
 static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc,
                          uint32_t *cs, const uint32_t *hs, int32_t w, uint32_t a, uint32_t thr,
-                         uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap, int32_t mfl)
+                         uint32_t veto, uint32_t area, uint32_t exc, uint32_t pk, uint32_t pcap, int32_t mfl,
+                         const uint8_t *ca, uint8_t ka)
 {
     const uint16_t a16 = (uint16_t)(a > 65535u ? 65535u : a), full = (uint16_t)(a > 65535u ? 1u : 0u);
     /* the passes read and write o at the same column only (o may be r, inplace) */
     if (o != r) {
         memcpy(o, r, (size_t)w * 2u);
     }
-    if (pc != NULL) {
+    if (pc != NULL && ca == NULL) {
         for (int32_t x = 0; x < w; ++x) {
-            /* the gate reads the stage's residual v (o[x] before the mean pass writes it) */
-            const int32_t v = o[x];
-            const uint32_t av = (uint32_t)(v < 0 ? -v : v);
-            const uint32_t p0 = pc[x];
-            const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
-            const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
-            const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
-            const uint32_t p1 = ex != 0u ? pu : pd;
-            pc[x] = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
-            /* whether the mean takes this residual: the same pixel's mean pass, fused */
-            const uint32_t learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+            uint32_t learn;
+            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
             cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+        }
+    } else if (pc != NULL) {
+        for (int32_t x = 0; x < w; ++x) {
+            uint32_t learn;
+            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
+            cl_mean_px_(&o[x], learn, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
+        }
+    } else if (ca == NULL) {
+        for (int32_t x = 0; x < w; ++x) {
+            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
         }
     }
     const int32_t sthr = (int32_t)thr;
@@ -1048,6 +1082,29 @@ static void cl_move_(uint8_t *base, size_t es, int32_t w, int32_t h, int32_t dx,
     }
 }
 
+/* floor_age, the bilinear carry of one axis's n ages by i + f / 256 px (cl_warp_'s sources):
+ * out(x) = the younger of a(x - i) and, with f > 0, a(x - i - 1), a source outside 0 (it
+ * enters). In place: descending for i >= 0 (both sources at or below x), else ascending (both
+ * at or above x). */
+static void cl_age_carry_(uint8_t *a, int32_t n, int32_t i, uint32_t f)
+{
+    for (int32_t k = 0; k < n; ++k) {
+        const int32_t x = i >= 0 ? n - 1 - k : k;
+        const int32_t s1 = x - i, s0 = s1 - 1;
+        const uint8_t a1 = s1 >= 0 && s1 < n ? a[s1] : 0u;
+        const uint8_t a0 = f == 0u ? a1 : (s0 >= 0 && s0 < n ? a[s0] : 0u);
+        a[x] = a0 < a1 ? a0 : a1;
+    }
+}
+
+/* floor_age, after an update with evidence: every column and row one frame older (capped). */
+static void cl_age_step_(uint8_t *a, size_t n, uint8_t cap)
+{
+    for (size_t x = 0u; x < n; ++x) {
+        a[x] = a[x] < cap ? (uint8_t)(a[x] + 1u) : cap;
+    }
+}
+
 /* anchor, at an update with evidence: the arrays moved to the rounded position of the summed
  * shifts (set without a move at the first frame, when every cell holds the reset's values). */
 static void cl_anchor_(pft_pre_clutter_t *c)
@@ -1069,6 +1126,11 @@ static void cl_anchor_(pft_pre_clutter_t *c)
         }
         if (c->pc != NULL) {
             cl_move_((uint8_t *)c->pc, 2u, w, h, dx, dy, 0u);
+        }
+        if (c->age != NULL) {
+            /* the columns' ages as one row moved by dx, the rows' by dy; those that enter at 0 */
+            cl_move_(c->age, 1u, w, 1, dx, 0, 0u);
+            cl_move_(c->age + w, 1u, h, 1, dy, 0, 0u);
         }
     }
     c->px = nx;
@@ -1121,6 +1183,10 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             if (c->pc != NULL) {
                 cl_warp_(c->pc, c->vs, c->hs, gw, gh, ix, fx, iy, fy, 0u);
             }
+            if (c->age != NULL) {
+                cl_age_carry_(c->age, gw, ix, fx);
+                cl_age_carry_(c->age + gw, gh, iy, fy);
+            }
         }
     } else {
         /* the first frame with evidence: nothing to carry */
@@ -1158,12 +1224,18 @@ static void cl_update_(pft_pre_clutter_t *c, const pft_frame_t *res, int32_t shi
             cl_row_plain_(r, o, mrow, c->hs, w, a, thr, veto, area);
         } else {
             /* the vertical sums c->vs are spent: they keep c */
+            /* floor_age: a young row takes no floor; an old one reads its columns' ages */
+            const uint8_t ka = c->cfg.floor_age;
+            const bool rold = c->age == NULL || c->age[(size_t)w + (size_t)y] >= ka;
             cl_row_mean_(r, o, mrow, mu, pc, c->vs, c->hs, w, a, thr, veto, area, exc, pk, pcap,
-                         (int32_t)c->cfg.mean_floor);
+                         rold ? (int32_t)c->cfg.mean_floor : 0, rold ? c->age : NULL, ka);
         }
         if (c->m8 != NULL) {
             cl_row8_end_(c, y);
         }
+    }
+    if (c->age != NULL) {
+        cl_age_step_(c->age, (size_t)w + (size_t)h, c->cfg.floor_age);
     }
 }
 

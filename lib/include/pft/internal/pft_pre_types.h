@@ -90,6 +90,7 @@ struct pft_pre_clutter_s {
     uint32_t *hs;          /* the square's sums (or maxima) of one row; the warp's row buffer */
     uint32_t *acc;         /* block: per block of a row, the sum of t and the count; per pixel with map8: the fused warp's two carried rows (NULL per pixel without map8) */
     int32_t *sacc;         /* block: per block of a row, the sums of clamp(8 r) and r (NULL per pixel) */
+    uint8_t *age;          /* floor_age: the ages of the w columns, then of the h rows, frames capped at floor_age (NULL without) */
     uint32_t gw, gh;       /* the map's grid: w x h, or the blocks' ceil(w / B) x ceil(h / B) */
     uint32_t lb;           /* log2(B), 0 per pixel */
     int64_t ax, ay;        /* anchor: the sum of the shifts given since init/reset, Q16.16 px */
