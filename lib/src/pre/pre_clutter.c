@@ -783,11 +783,23 @@ static inline void cl_gate_px_(int32_t v, uint16_t *p, uint32_t exc, uint32_t pk
     *learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
 }
 
-/* floor_age: the floor of a column of age a (ka the age it needs), branch-free: mfl, or 0 (the
- * plain mean) while a < ka. */
-static inline int32_t cl_age_floor_(uint8_t a, uint8_t ka, int32_t mfl)
+/* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
+ * all of them (a constant, so that the loops vectorise). */
+static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
+                                 int32_t x0, int32_t x1, uint16_t a16, uint16_t full, uint32_t exc,
+                                 uint32_t pk, uint32_t pcap, int32_t mfl)
 {
-    return (int32_t)((uint32_t)mfl & (0u - (uint32_t)(a >= ka ? 1u : 0u)));
+    if (pc != NULL) {
+        for (int32_t x = x0; x < x1; ++x) {
+            uint32_t learn;
+            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
+            cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+        }
+    } else {
+        for (int32_t x = x0; x < x1; ++x) {
+            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+        }
+    }
 }
 
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
@@ -811,25 +823,19 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
     if (o != r) {
         memcpy(o, r, (size_t)w * 2u);
     }
-    if (pc != NULL && ca == NULL) {
-        for (int32_t x = 0; x < w; ++x) {
-            uint32_t learn;
-            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
-        }
-    } else if (pc != NULL) {
-        for (int32_t x = 0; x < w; ++x) {
-            uint32_t learn;
-            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
-        }
-    } else if (ca == NULL) {
-        for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
-        }
+    if (ca == NULL) {
+        cl_mean_span_(o, mrow, mu, pc, cs, 0, w, a16, full, exc, pk, pcap, mfl);
     } else {
-        for (int32_t x = 0; x < w; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, cl_age_floor_(ca[x], ka, mfl), &mrow[x], &mu[x], &cs[x]);
+        /* floor_age: runs of columns on the same side of ka, each with its floor constant */
+        int32_t x0 = 0;
+        while (x0 < w) {
+            const bool old = ca[x0] >= ka;
+            int32_t x1 = x0 + 1;
+            while (x1 < w && (ca[x1] >= ka) == old) {
+                ++x1;
+            }
+            cl_mean_span_(o, mrow, mu, pc, cs, x0, x1, a16, full, exc, pk, pcap, old ? mfl : 0);
+            x0 = x1;
         }
     }
     const int32_t sthr = (int32_t)thr;
