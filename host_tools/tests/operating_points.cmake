@@ -4,10 +4,10 @@
 # shipped file with a small sequence (128x96, 40 frames, 3 targets at 15 dB, 3000 search
 # particles; every other tracker field as shipped) is simulated once and run by `pft run` as
 # shipped and with one field of its block undone at a time:
-#  - scene_hold 5 against 1 (both without the spread-dependent hold): the held run's tracks.csv
-#    is the unheld run's rows less the first 4 reported rows of every track (and the unheld run
-#    has a track of at least 5 rows, so the check can fail);
-#  - the spread-dependent hold (scene_spread_px 0.4, scene_spread_hold 3) removed: the tracks
+#  - scene_hold 7 against 1 (both without the spread-dependent hold): the held run's tracks.csv
+#    is the unheld run's rows less the first 6 reported rows of every track (and the unheld run
+#    has a track of at least 7 rows, so the check can fail);
+#  - the spread-dependent hold (scene_spread_px 0.35, scene_spread_hold 3) removed: the tracks
 #    change, and the shipped run reports at least as many rows (its hold is shorter for steady
 #    tracks);
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
@@ -18,7 +18,10 @@
 #    "relative", the shaded real-frame twin's) removed: the residual changes; bg_gate_young,
 #    bg_gate_local and bg_masked_taps "all" each removed alone: the residual changes;
 #  - handover_in_scale 0.8 removed: the tracks change;
-#  - flat_rescale removed: the residual changes (flat_block 0 removes it too: it needs flat_block).
+#  - flat_rescale removed: the residual changes (flat_block 0 removes it too: it needs flat_block);
+#  - the clutter map's mean floor (clutter_mean_floor 1 after clutter_floor_age 30 frames, twenty-
+#    second round) removed, and its age removed alone (the floor from the first frame): the residual
+#    changes.
 # The real-frame twins (real_frames_low_false_rate.json and real_frames_shaded_low_false_rate.json)
 # need real backgrounds to run; only their documented blocks are checked here, and the three
 # files' dbt.preprocess (DBT on their default twins' preprocessing).
@@ -53,7 +56,8 @@ endfunction()
 set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "bg_anchor=ON"
            "theta_end=0.20000000000000001" "particles=24000" "bg_stale_reinit=32")
-check_block(${shipped} ${common} "scene_hold=5" "scene_spread_px=0.40000000000000002" "scene_spread_hold=3" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
+check_block(${shipped} ${common} "scene_hold=7" "scene_spread_px=0.34999999999999998" "scene_spread_hold=3"
+            "clutter_mean_floor=1.0" "clutter_floor_age=30" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=7" "scene_spread_px=0.40000000000000002" "scene_spread_hold=3" "bg_gate=0.25" "clutter_mean_floor=1.0"
@@ -93,6 +97,8 @@ string(JSON v REMOVE "${v}" tracker flat_rescale)
 file(WRITE ${WORK}/noflat.json "${v}")
 string(JSON v SET "${js}" tracker clutter_mean false)
 string(JSON v SET "${v}" tracker clutter_persist 0)
+string(JSON v REMOVE "${v}" tracker clutter_mean_floor)  # the floor and its age need the mean
+string(JSON v REMOVE "${v}" tracker clutter_floor_age)
 file(WRITE ${WORK}/nomean.json "${v}")
 string(JSON v REMOVE "${js}" tracker integ_alpha)
 file(WRITE ${WORK}/nointeg.json "${v}")
@@ -118,14 +124,18 @@ string(JSON v REMOVE "${js}" tracker bg_gate)
 string(JSON v REMOVE "${v}" tracker bg_gate_young)
 string(JSON v REMOVE "${v}" tracker bg_gate_local)
 file(WRITE ${WORK}/nogate.json "${v}")
-foreach(f bg_gate_young bg_gate_local bg_masked_taps handover_in_scale flat_rescale)
+foreach(f bg_gate_young bg_gate_local bg_masked_taps handover_in_scale flat_rescale clutter_floor_age)
   string(JSON v REMOVE "${js}" tracker ${f})
   file(WRITE ${WORK}/no_${f}.json "${v}")
 endforeach()
+# the mean floor undone (its age needs it)
+string(JSON v REMOVE "${js}" tracker clutter_mean_floor)
+string(JSON v REMOVE "${v}" tracker clutter_floor_age)
+file(WRITE ${WORK}/nofloor.json "${v}")
 
 run_ok(${PFT} sim --scenario ${WORK}/lf.json --seed 1 --out ${WORK}/seq -q)
 foreach(c lf nospread hold1 noflat nomean nointeg tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local
-          no_bg_masked_taps no_handover_in_scale no_flat_rescale)
+          no_bg_masked_taps no_handover_in_scale no_flat_rescale nofloor no_clutter_floor_age)
   run_ok(${PFT} run --scenario ${WORK}/${c}.json --sequence ${WORK}/seq --out ${WORK}/run_${c} --no-video -q
          --residual-out ${WORK}/run_${c}/res.i16)
 endforeach()
@@ -155,25 +165,25 @@ set(expect "")
 set(long 0)
 foreach(id ${k1_ids})
   list(LENGTH k1_${id} n)
-  if(n GREATER 4)
+  if(n GREATER 6)
     math(EXPR long "${long} + 1")
-    list(SUBLIST k1_${id} 4 -1 kept)
+    list(SUBLIST k1_${id} 6 -1 kept)
     list(APPEND expect ${kept})
   endif()
 endforeach()
 if(long EQUAL 0)
-  message(FATAL_ERROR "scene_hold 1 gave no track of 5 or more reported rows: the hold cannot be seen")
+  message(FATAL_ERROR "scene_hold 1 gave no track of 7 or more reported rows: the hold cannot be seen")
 endif()
 file(STRINGS ${WORK}/run_nospread/tracks.csv got)
 list(REMOVE_AT got 0)
 list(SORT expect)
 list(SORT got)
 if(NOT expect STREQUAL got)
-  message(FATAL_ERROR "the fixed hold's tracks are not scene_hold 1's less the first 4 reported rows of "
-                      "each track (scene_hold 5 not in effect?)\nexpected: ${expect}\ngot: ${got}")
+  message(FATAL_ERROR "the fixed hold's tracks are not scene_hold 1's less the first 6 reported rows of "
+                      "each track (scene_hold 7 not in effect?)\nexpected: ${expect}\ngot: ${got}")
 endif()
 list(LENGTH got ngot)
-message(STATUS "scene_hold 5: ${ngot} rows of ${long} track(s), the unheld run's less 4 per track")
+message(STATUS "scene_hold 7: ${ngot} rows of ${long} track(s), the unheld run's less 6 per track")
 # the spread-dependent hold reaches the scene-motion test: the shipped run's tracks differ, with more rows
 file(STRINGS ${WORK}/run_lf/tracks.csv shipped_rows)
 list(REMOVE_AT shipped_rows 0)
@@ -183,10 +193,10 @@ if(shipped_rows STREQUAL got OR nship LESS ngot)
   message(FATAL_ERROR "the spread-dependent hold: the shipped run has ${nship} rows against the fixed hold's ${ngot} "
                       "(expected more: scene_spread_px not in effect?)")
 endif()
-message(STATUS "scene_spread_px 0.4: ${nship} rows against the fixed hold's ${ngot}")
+message(STATUS "scene_spread_px 0.35: ${nship} rows against the fixed hold's ${ngot}")
 
 foreach(c noflat nomean tog_bg_anchor tog_clutter_anchor nogate no_bg_gate_young no_bg_gate_local no_bg_masked_taps
-          no_flat_rescale)
+          no_flat_rescale nofloor no_clutter_floor_age)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK}/run_lf/res.i16 ${WORK}/run_${c}/res.i16
                   RESULT_VARIABLE same)
   if(same EQUAL 0)
