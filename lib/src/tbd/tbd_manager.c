@@ -649,6 +649,42 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
     }
 }
 
+/* A track layer started beside another (split_px, resid_split): the first free slot (the caller
+ * has checked n_tracks < max_targets), its generator seeded from the id it will get and its
+ * statistics reset. */
+static uint32_t child_slot_(pft_tbd_t *t)
+{
+    uint32_t u = 0;
+    while (u < t->cfg.max_targets && t->records[u].id != 0u) {
+        ++u;
+    }
+    pft_tbd_filter_t *nf = &t->tracks[u];
+    pft_rng_seed(&nf->rng, t->cfg.seed + t->next_id);
+    pft_tbd_filter_reset_stats_(nf);
+    return u;
+}
+
+/* ... and its record in slot u from its layer's estimate: a new id, this frame's seq and time,
+ * confirmed (or tentative with sprt_accept > 0, carrying the statistic of a tentative parent
+ * rec) as at a hand-over, its event, its region in the birth mask. */
+static void child_record_(pft_tbd_t *t, const pft_tbd_track_t *rec, uint32_t u)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    pft_tbd_track_t *nr = &t->records[u];
+    memset(nr, 0, sizeof(*nr));
+    nr->id = t->next_id++;
+    record_from_est_(nr, &t->tracks[u].est);
+    nr->last_seq = t->last_seq;
+    nr->last_timestamp_us = t->last_ts;
+    nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
+    nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
+    ++t->n_tracks;
+    if (nr->first_frame != 0u) {
+        push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
+    }
+    add_region_(cfg, t->mask, nr->x, nr->y);
+}
+
 /* 2b. Split (cfg.split_px, docs/algorithms.md 2.7 [E]): each track layer that lived before this
  * frame's splits, whose live particles have parted into two groups (pft_tbd_filter_parts_), and
  * whose smaller group's centroid is farther than split_px from every other track, hands that
@@ -685,29 +721,12 @@ static void split_tracks_(pft_tbd_t *t)
         if (near) {
             continue;
         }
-        uint32_t u = 0;
-        while (u < cfg->max_targets && t->records[u].id != 0u) {
-            ++u;
-        }
+        const uint32_t u = child_slot_(t);
         pft_tbd_filter_t *nf = &t->tracks[u];
-        pft_rng_seed(&nf->rng, cfg->seed + t->next_id);
-        pft_tbd_filter_reset_stats_(nf);
         pft_tbd_filter_split_(tf, nf);
         nf->frames = 0u;
         record_from_est_(rec, &tf->est);
-        pft_tbd_track_t *nr = &t->records[u];
-        memset(nr, 0, sizeof(*nr));
-        nr->id = t->next_id++;
-        record_from_est_(nr, &nf->est);
-        nr->last_seq = t->last_seq;
-        nr->last_timestamp_us = t->last_ts;
-        nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
-        nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
-        ++t->n_tracks;
-        if (nr->first_frame != 0u) {
-            push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
-        }
-        add_region_(cfg, t->mask, nr->x, nr->y);
+        child_record_(t, rec, u);
     }
 }
 
@@ -865,29 +884,12 @@ static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
         if (tf->resid_n < need || t->n_tracks >= cfg->max_targets) {
             continue;
         }
-        uint32_t u = 0;
-        while (u < cfg->max_targets && t->records[u].id != 0u) {
-            ++u;
-        }
+        const uint32_t u = child_slot_(t);
         pft_tbd_filter_t *nf = &t->tracks[u];
-        pft_rng_seed(&nf->rng, cfg->seed + t->next_id);
-        pft_tbd_filter_reset_stats_(nf);
         pft_tbd_filter_seed_at_(tf, nf, pft_sub(x, rec->x), pft_sub(y, rec->y));
         nf->frames = 0u;
         tf->resid_n = 0u;
-        pft_tbd_track_t *nr = &t->records[u];
-        memset(nr, 0, sizeof(*nr));
-        nr->id = t->next_id++;
-        record_from_est_(nr, &nf->est);
-        nr->last_seq = t->last_seq;
-        nr->last_timestamp_us = t->last_ts;
-        nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
-        nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
-        ++t->n_tracks;
-        if (nr->first_frame != 0u) {
-            push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
-        }
-        add_region_(cfg, t->mask, nr->x, nr->y);
+        child_record_(t, rec, u);
     }
 }
 
