@@ -27,6 +27,13 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def crossing_pair(run):
+    """The run's injected targets sorted by id: the last two (the pair the simulation makes
+    cross) and the others; (None, all of them) with fewer than two."""
+    inj = sorted((t for t in run['targets'] if t['kind'] == 'injected'), key=lambda t: t['id'])
+    return (inj[-2:], inj[:-2]) if len(inj) >= 2 else (None, inj)
+
+
 def pair_frames(trace, seed, pair):
     """The targets file of run `seed` by frame and target id, the pair's separation (px) in
     every frame where both are in view, and the frame of their closest approach (None when
@@ -62,11 +69,10 @@ def main():
     dlist = []
     for run in summ['per_run']:
         seed = run['seed']
-        inj = sorted((t for t in run['targets'] if t['kind'] == 'injected'), key=lambda t: t['id'])
-        if len(inj) < 2:
+        pair, rest = crossing_pair(run)
+        if pair is None:
             continue
-        pair = inj[-2:]
-        others += [(t['detected'], t['appearance_delay']) for t in inj[:-2]]
+        others += [(t['detected'], t['appearance_delay']) for t in rest]
         pair_det[sum(bool(t['detected']) for t in pair)] += 1
         by, sep, kc = pair_frames(a.trace, seed, pair)
         both = list(sep)  # frames with both in view, in order

@@ -28,7 +28,7 @@ import collections
 import json
 import math
 
-from ir_cross_diag import pair_frames, read_csv
+from ir_cross_diag import crossing_pair, pair_frames, read_csv
 
 
 def fnum(v):
@@ -74,10 +74,9 @@ def main():
                 clutter.append(m)
             per_layer[int(r['id'])].append((int(r['frame']), m, fnum(r['resid_x']), fnum(r['resid_y']), is_cl))
         clutter_seq.extend(per_layer.values())
-        inj = sorted((t for t in run['targets'] if t['kind'] == 'injected'), key=lambda t: t['id'])
-        if len(inj) < 2:
+        pair, _ = crossing_pair(run)
+        if pair is None:
             continue
-        pair = inj[-2:]
         by, sep, kc = pair_frames(a.trace, seed, pair)
         if kc is None:
             continue

@@ -22,7 +22,7 @@ import collections
 import json
 import math
 
-from ir_cross_diag import pair_frames, read_csv
+from ir_cross_diag import crossing_pair, pair_frames, read_csv
 
 
 def fnum(v):
@@ -46,10 +46,9 @@ def main():
     out = []
     for run in summ['per_run']:
         seed = run['seed']
-        inj = sorted((t for t in run['targets'] if t['kind'] == 'injected'), key=lambda t: t['id'])
-        if len(inj) < 2:
+        pair, _ = crossing_pair(run)
+        if pair is None:
             continue
-        pair = inj[-2:]
         by, sep, kc = pair_frames(a.trace, seed, pair)
         if kc is None:
             continue
