@@ -83,6 +83,32 @@ void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma)
     c->pixel_offset = pft_test_from_double(-64.0);
 }
 
+void pft_test_tbd_put_record(pft_tbd_t *t, uint32_t slot, uint32_t id, pft_real_t x, pft_real_t y,
+                             pft_real_t in)
+{
+    pft_tbd_filter_t *tf = &t->tracks[slot];
+    memset(&tf->est, 0, sizeof tf->est);
+    tf->est.x = x;
+    tf->est.y = y;
+    tf->est.intensity = in;
+    tf->est.p_exist = PFT_REAL_ONE;
+    tf->est.valid = true;
+    tf->frames = 3u;
+    pft_tbd_track_t *r = &t->records[slot];
+    memset(r, 0, sizeof *r);
+    r->id = id;
+    r->x = tf->est.x;
+    r->y = tf->est.y;
+    r->intensity = tf->est.intensity;
+    r->p_exist = tf->est.p_exist;
+    r->first_frame = 1u;
+    r->age = 3u;
+    t->n_tracks += 1u;
+    if (t->next_id <= id) {
+        t->next_id = id + 1u;
+    }
+}
+
 int32_t pft_test_noise_sum4(uint32_t *state)
 {
     int32_t v = 0;

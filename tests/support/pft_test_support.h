@@ -66,6 +66,12 @@ void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t m
 /* The recommended TBD preset on side x side PFT_PIX_U16 frames read as z = raw / 256 - 64 (zero
  * background at raw 16384) with noise sd sigma (the TBD manager tests' frames). */
 void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma);
+/* A TBD manager test's planted track: slot `slot` of t holds track `id`, its layer's estimate at
+ * (x, y) (internal coordinates) with intensity `in`, existence 1, valid, 3 updates old, and
+ * its record from that estimate, confirmed at frame 1 (next_id moved past id). The layer's
+ * particles are the caller's. */
+void pft_test_tbd_put_record(pft_tbd_t *t, uint32_t slot, uint32_t id, pft_real_t x, pft_real_t y,
+                             pft_real_t in);
 /* Size of one LSB of pft_real_t around v (q16: 2^-16; float: ulp of v). */
 double pft_test_lsb(double v);
 

@@ -78,26 +78,7 @@ static void put_track(uint32_t slot, uint32_t id, double x)
         tf->cur.in[s] = R(IN);
         tf->cur.e[s] = 3u;
     }
-    memset(&tf->est, 0, sizeof tf->est);
-    tf->est.x = pft_add(R(x), d);
-    tf->est.y = pft_add(R(Y0), d);
-    tf->est.intensity = R(IN);
-    tf->est.p_exist = R(1.0);
-    tf->est.valid = true;
-    tf->frames = 3u;
-    pft_tbd_track_t *r = &g_t.records[slot];
-    memset(r, 0, sizeof *r);
-    r->id = id;
-    r->x = tf->est.x;
-    r->y = tf->est.y;
-    r->intensity = tf->est.intensity;
-    r->p_exist = tf->est.p_exist;
-    r->first_frame = 1u;
-    r->age = 3u;
-    g_t.n_tracks += 1u;
-    if (g_t.next_id <= id) {
-        g_t.next_id = id + 1u;
-    }
+    pft_test_tbd_put_record(&g_t, slot, id, pft_add(R(x), d), pft_add(R(Y0), d), R(IN));
 }
 
 typedef struct {
