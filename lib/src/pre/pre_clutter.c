@@ -733,22 +733,31 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
 
 /* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v = *ov, c
  * + 2^16 into *cs (0 where v is masked: nothing changes there) and the output before scoring,
- * the masked value or clamp(c), over v in *ov. In 16-bit lanes: |c| <= 2^15 +
- * 2^11 < 2^16, t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of c^2 as in
- * cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535, |tv - mv| <= 2^15; the signs
- * applied by two's complement in 16 bits (m + -q and mv + -qe stay in range). */
-static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16_t full, int32_t mfl,
+ * the masked value or clamp(c), over v in *ov. Every value in 16-bit lanes, so that the loop
+ * takes 8 pixels per 16-byte vector: mv = mu - 2^15 in [-2^14, 2^14] and the signed shift
+ * sdm = +-dm (|dm| <= 2^11) fit int16, and c = v - sdm (|c| <= 2^15 + 2^11, 17 bits) is
+ * kept as its low 16 bits c16 and its sign (c < 0 exactly when v < sdm, a 16-bit compare):
+ * |c| = c16 or -c16 (mod 2^16, exact: |c| < 2^16), clamp(c) = +-min(|c|, 2^15 - 1) and c +
+ * 2^16 = c16 (c < 0) or c16 + 2^16. t = min((c^2 + 32) >> 6, 65535) from the 16-bit halves of
+ * |c|^2 as in cl_row_plain_ (|c| >= 2048: the clamp), |t - m| <= 65535; the mean's target
+ * clamp(8 v, +-2^14) as 8 clamp(v, +-2^11), e = tv - mv with |e| <= 2^15 and its sign from a
+ * 16-bit compare; the signs applied by two's complement in 16 bits (m + -q and mv + -qe stay
+ * in range). The same values as the 32-bit form it replaced (branch ircost15). */
+static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16_t full, uint16_t mfl,
                                uint16_t *m, uint16_t *mu, uint32_t *cs)
 {
-    const int32_t v = *ov;
-    const uint32_t msk = (uint32_t)(v == PFT_RES16_MASKED ? 1u : 0u);
+    const int16_t v = *ov;
+    const uint16_t msk = (uint16_t)(v == PFT_RES16_MASKED ? 0xFFFFu : 0u);
     const uint16_t mu0 = *mu;
-    const int32_t mv = (int32_t)mu0 - (int32_t)CL_MUOFF_;
-    const uint32_t amv = (uint32_t)(mv < 0 ? -mv : mv);
-    const int32_t dr = (int32_t)((amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
-    const int32_t dm = dr > mfl ? dr : 0;        /* mean_floor (0: dm = dr) */
-    const int32_t cv = v - (mv < 0 ? -dm : dm);
-    const uint16_t ac = (uint16_t)(cv < 0 ? -cv : cv);
+    const int16_t mv = (int16_t)(uint16_t)(mu0 ^ CL_MUOFF_);
+    const uint16_t mvn = (uint16_t)(mv < 0 ? 0xFFFFu : 0u);
+    const uint16_t amv = (uint16_t)((uint16_t)((uint16_t)mv ^ mvn) - mvn);
+    const uint16_t dr = (uint16_t)((uint16_t)(amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
+    const uint16_t dm = dr > mfl ? dr : 0u;                     /* mean_floor (0: dm = dr) */
+    const int16_t sdm = (int16_t)(uint16_t)((uint16_t)(dm ^ mvn) - mvn); /* mv < 0: -dm */
+    const uint16_t cn = (uint16_t)(v < sdm ? 0xFFFFu : 0u);  /* c < 0 */
+    const uint16_t c16 = (uint16_t)((uint16_t)v - (uint16_t)sdm); /* c mod 2^16 */
+    const uint16_t ac = (uint16_t)((uint16_t)(c16 ^ cn) - cn); /* |c| */
     const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
     const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
     const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
@@ -757,30 +766,38 @@ static inline void cl_mean_px_(int16_t *ov, uint32_t learn, uint16_t a16, uint16
     const uint16_t neg = (uint16_t)(t >= m0 ? 0u : 0xFFFFu); /* t < m */
     const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m0) ^ neg) - neg); /* |t - m| */
     const uint16_t q = cl_round_scale_(d, a16, full);
-    *m = msk != 0u ? m0 : (uint16_t)(m0 + (uint16_t)((uint16_t)(q ^ neg) - neg));
-    const int32_t tv = v * 8 > CL_MUMAX_ ? CL_MUMAX_ : (v * 8 < -CL_MUMAX_ ? -CL_MUMAX_ : v * 8);
-    const int32_t e = tv - mv;
-    const uint16_t ne = (uint16_t)(e < 0 ? 0xFFFFu : 0u);
-    const uint16_t qe = cl_round_scale_((uint16_t)(e < 0 ? -e : e), a16, full);
+    const uint16_t nm = (uint16_t)(m0 + (uint16_t)((uint16_t)(q ^ neg) - neg));
+    *m = (uint16_t)((m0 & msk) | (nm & (uint16_t)~msk));
+    const int16_t vc = v > 2048 ? (int16_t)2048 : (v < -2048 ? (int16_t)-2048 : v);
+    const int16_t tv = (int16_t)(uint16_t)((uint16_t)vc << 3); /* clamp(8 v, +-CL_MUMAX_) */
+    const uint16_t ne = (uint16_t)(tv < mv ? 0xFFFFu : 0u);   /* e < 0 */
+    const uint16_t ae = (uint16_t)((uint16_t)((uint16_t)((uint16_t)tv - (uint16_t)mv) ^ ne) - ne);
+    const uint16_t qe = cl_round_scale_(ae, a16, full);
     const uint16_t nmu = (uint16_t)(mu0 + (uint16_t)((uint16_t)(qe ^ ne) - ne));
-    *mu = (msk | (learn ^ 1u)) != 0u ? mu0 : nmu;
-    *cs = msk != 0u ? 0u : (uint32_t)(cv + 65536);
-    *ov = msk != 0u ? (int16_t)PFT_RES16_MASKED : (int16_t)pft_pre_rclamp_(cv);
+    const uint16_t keep = (uint16_t)(msk | (uint16_t)(learn - 1u)); /* masked or not learnt */
+    *mu = (uint16_t)((mu0 & keep) | (nmu & (uint16_t)~keep));
+    const uint16_t acl = ac > (uint16_t)PFT_PRE_RMAX_ ? (uint16_t)PFT_PRE_RMAX_ : ac;
+    const uint16_t oc = (uint16_t)((uint16_t)(acl ^ cn) - cn); /* clamp(c) */
+    *cs = msk != 0u ? 0u : (uint32_t)c16 + (cn != 0u ? 0u : 65536u);
+    *ov = (int16_t)(uint16_t)((oc & (uint16_t)~msk) | ((uint16_t)PFT_RES16_MASKED & msk));
 }
 
 /* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
- * before the mean pass writes it) and whether the mean takes this residual (*learn). */
-static inline void cl_gate_px_(int32_t v, uint16_t *p, uint32_t exc, uint32_t pk, uint32_t pcap,
-                               uint32_t *learn)
+ * before the mean pass writes it) and whether the mean takes this residual (*learn, 1 or 0).
+ * In 16-bit lanes: exc <= 32767, pk <= 2^13, pcap = 2 pk, so p + 256 is tested against pcap
+ * without forming it (plim = pcap - 256 >= 256). */
+static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk, uint16_t pcap,
+                               uint16_t plim, uint16_t *learn)
 {
-    const uint32_t av = (uint32_t)(v < 0 ? -v : v);
-    const uint32_t p0 = *p;
-    const uint32_t pu = p0 + 256u > pcap ? pcap : p0 + 256u;
-    const uint32_t pd = p0 > 128u ? p0 - 128u : 0u;
-    const uint32_t ex = (uint32_t)(av > exc ? 1u : 0u);
-    const uint32_t p1 = ex != 0u ? pu : pd;
-    *p = (uint16_t)(v == PFT_RES16_MASKED ? p0 : p1);
-    *learn = (ex ^ 1u) | (p1 >= pk ? 1u : 0u);
+    const uint16_t vn = (uint16_t)(v < 0 ? 0xFFFFu : 0u);
+    const uint16_t av = (uint16_t)((uint16_t)((uint16_t)v ^ vn) - vn); /* |v|, 2^15 for the mask */
+    const uint16_t p0 = *p;
+    const uint16_t pu = p0 > plim ? pcap : (uint16_t)(p0 + 256u);
+    const uint16_t pd = p0 > 128u ? (uint16_t)(p0 - 128u) : 0u;
+    const uint16_t ex = (uint16_t)(av > exc ? 1u : 0u);
+    const uint16_t p1 = ex != 0u ? pu : pd;
+    *p = v == PFT_RES16_MASKED ? p0 : p1;
+    *learn = (uint16_t)((ex ^ 1u) | (p1 >= pk ? 1u : 0u));
 }
 
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
@@ -789,15 +806,19 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
                                  int32_t x0, int32_t x1, uint16_t a16, uint16_t full, uint32_t exc,
                                  uint32_t pk, uint32_t pcap, int32_t mfl)
 {
+    const uint16_t f16 = (uint16_t)mfl; /* 0..CL_FLOORMAX_ */
     if (pc != NULL) {
+        /* exc 1..32767, pk 256..PFT_PRE_CLUTTER_MAX_PERSIST 256 (the config check) */
+        const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
+        const uint16_t plim = (uint16_t)(c16 - 256u);
         for (int32_t x = x0; x < x1; ++x) {
-            uint32_t learn;
-            cl_gate_px_(o[x], &pc[x], exc, pk, pcap, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+            uint16_t learn;
+            cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
+            cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = x0; x < x1; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, mfl, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
     }
 }
