@@ -808,7 +808,8 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
 {
     const uint16_t f16 = (uint16_t)mfl; /* 0..CL_FLOORMAX_ */
     if (pc != NULL) {
-        /* exc 1..32767, pk 256..PFT_PRE_CLUTTER_MAX_PERSIST 256 (the config check) */
+        /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
+         * (the config check), pcap = 2 pk <= 2^14 */
         const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
         const uint16_t plim = (uint16_t)(c16 - 256u);
         for (int32_t x = x0; x < x1; ++x) {
