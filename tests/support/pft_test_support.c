@@ -314,6 +314,13 @@ const int16_t *pft_test_clutter_out(const pft_pre_clutter_t *c)
     return (const int16_t *)o.data;
 }
 
+int32_t pft_test_clutter_mu_q88(uint16_t s)
+{
+    const int32_t mv = (int32_t)s - 32768;
+    const int32_t a = ((mv < 0 ? -mv : mv) + 4) >> 3;
+    return mv < 0 ? -a : a;
+}
+
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts)
 {

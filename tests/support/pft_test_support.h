@@ -60,6 +60,9 @@ void pft_test_texture(uint16_t *img, int w, int h, const pft_test_texture_t *t, 
 void pft_test_clutter_init(pft_pre_clutter_t *c, pft_pre_clutter_config_t *cfg, uint16_t w, uint16_t h,
                            void *work, size_t len);
 const int16_t *pft_test_clutter_out(const pft_pre_clutter_t *c);
+/* The clutter map's running mean mu as stored (Q4.11 + 2^15) to the Q8.8 value that c = r - mu
+ * takes off: round half away from 0. */
+int32_t pft_test_clutter_mu_q88(uint16_t s);
 
 void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t maxt, uint32_t n,
                          uint8_t pts);

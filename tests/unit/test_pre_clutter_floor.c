@@ -62,14 +62,6 @@ static void test_config(void)
     }
 }
 
-/* mu in Q4.11 (stored + 2^15) to the Q8.8 value c = r - mu takes off: round half away from 0 */
-static int32_t mu_q88(uint16_t s)
-{
-    const int32_t mv = (int32_t)s - 32768;
-    const int32_t a = ((mv < 0 ? -mv : mv) + 4) >> 3;
-    return mv < 0 ? -a : a;
-}
-
 /* Frames of unit noise with a 3 x 3 blob of 1 sigma (its mean settles near 1 sigma, above a
  * floor of 0.5, while the noise's mean mostly stays under it); thr at its largest, so that the
  * output is c exactly: every pixel against the reference c = r - (|mu| > floor ? mu : 0), mu
@@ -103,7 +95,7 @@ static void test_output_is_r_less_mu_above_floor(void)
             const int16_t *o = pft_test_clutter_out(&c);
             const uint32_t a = k + 1u < 10u ? (65536u + (k + 1u) / 2u) / (k + 1u) : 6554u; /* max(alpha, 1/n) */
             for (int i = 0; i < NPIX; ++i) {
-                const int32_t mq = mu_q88(g_mu0[i]);
+                const int32_t mq = pft_test_clutter_mu_q88(g_mu0[i]);
                 const int32_t am = mq < 0 ? -mq : mq;
                 const bool take = am > (int32_t)floors[fi];
                 if (k >= 10u) {
@@ -185,7 +177,7 @@ static void test_floor_reads_the_anchored_mean(void)
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sx, sy, true));
         const int16_t *o = pft_test_clutter_out(&c);
         for (int i = 0; i < NPIX; ++i) {
-            const int32_t mq = mu_q88(mv[i]);
+            const int32_t mq = pft_test_clutter_mu_q88(mv[i]);
             const bool take = (mq < 0 ? -mq : mq) > (int32_t)cfg.mean_floor;
             if (k >= 10u) {
                 n_above += take ? 1u : 0u;

@@ -69,14 +69,6 @@ static void test_config(void)
     TEST_ASSERT_EQUAL_STRING("mean_floor", field);
 }
 
-/* mu in Q4.11 (stored + 2^15) to the Q8.8 value c = r - mu takes off: round half away from 0 */
-static int32_t mu_q88(uint16_t s)
-{
-    const int32_t mv = (int32_t)s - 32768;
-    const int32_t a = ((mv < 0 ? -mv : mv) + 4) >> 3;
-    return mv < 0 ? -a : a;
-}
-
 /* out(i) = v(i - d), fill 0 where the source is outside (n values) */
 static void move_ages(uint8_t *a, int n, int d)
 {
@@ -164,7 +156,7 @@ static counts_t run_case(bool anchor, int32_t sx, int32_t sy)
         for (int y = 0; y < H; ++y) {
             for (int x = 0; x < W; ++x) {
                 const int i = y * W + x;
-                const int32_t mq = mu_q88(g_muv[i]);
+                const int32_t mq = pft_test_clutter_mu_q88(g_muv[i]);
                 const int32_t am = mq < 0 ? -mq : mq;
                 const uint8_t age = ca[x] < ra[y] ? ca[x] : ra[y];
                 const bool young = age < K;
@@ -238,7 +230,7 @@ static void test_reset_makes_every_cell_young(void)
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
         const int16_t *o = pft_test_clutter_out(&c);
         for (int i = 0; i < NPIX; ++i) {
-            const int32_t mq = mu_q88(g_mu0[i]);
+            const int32_t mq = pft_test_clutter_mu_q88(g_mu0[i]);
             nd += (mq != 0 && (mq < 0 ? -mq : mq) <= 128) ? 1u : 0u;
             TEST_ASSERT_EQUAL_INT16((int16_t)(g_res[i] - mq), o[i]);
         }
