@@ -650,8 +650,8 @@ static void end_or_keep_tracks_(pft_tbd_t *t)
 }
 
 /* A track layer started beside another (split_px, resid_split): the first free slot (the caller
- * has checked n_tracks < max_targets), its generator seeded from the id it will get and its
- * statistics reset. */
+ * has checked n_tracks < max_targets), its generator seeded from the id it will get, its
+ * statistics reset and its frame count at 0 (the particles' hand-over does not read it). */
 static uint32_t child_slot_(pft_tbd_t *t)
 {
     uint32_t u = 0;
@@ -661,6 +661,7 @@ static uint32_t child_slot_(pft_tbd_t *t)
     pft_tbd_filter_t *nf = &t->tracks[u];
     pft_rng_seed(&nf->rng, t->cfg.seed + t->next_id);
     pft_tbd_filter_reset_stats_(nf);
+    nf->frames = 0u;
     return u;
 }
 
@@ -724,7 +725,6 @@ static void split_tracks_(pft_tbd_t *t)
         const uint32_t u = child_slot_(t);
         pft_tbd_filter_t *nf = &t->tracks[u];
         pft_tbd_filter_split_(tf, nf);
-        nf->frames = 0u;
         record_from_est_(rec, &tf->est);
         child_record_(t, rec, u);
     }
@@ -887,7 +887,6 @@ static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
         const uint32_t u = child_slot_(t);
         pft_tbd_filter_t *nf = &t->tracks[u];
         pft_tbd_filter_seed_at_(tf, nf, pft_sub(x, rec->x), pft_sub(y, rec->y));
-        nf->frames = 0u;
         tf->resid_n = 0u;
         child_record_(t, rec, u);
     }
