@@ -355,15 +355,74 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
     }
 }
 
+/* cl_warp_'s horizontal pass in 16-bit lanes: the value H = v[sy][x - ix] (256 - fx) +
+ * v[sy][x - ix - 1] fx of cl_warp_h_ (< 2^24) kept as hh = H >> 8 (<= 65535) and hl = H & 255.
+ * With fx > 0 both weights g = 256 - fx and f = fx fit 8 bits, and a product u g (u <= 65535)
+ * is 256 floor(u g / 256) + (u g mod 256): the floor is the high half of the 16 x 16-bit
+ * product u (g << 8), the remainder the low byte of the low half u g, so H = 256 (qa + qb) + lo
+ * with lo = ra + rb <= 510 and hh = qa + qb + (lo >> 8), hl = lo & 255 (no 32-bit lane, no
+ * pmuludq). fx = 0: H = 256 v, hh = v, hl = 0. */
+static void cl_warp_h16_(const uint16_t *v, uint16_t *hh, uint16_t *hl, int32_t sy, int32_t w,
+                         int32_t h, int32_t ix, uint32_t fx, uint32_t b, int32_t xlo, int32_t xhi)
+{
+    if (sy < 0 || sy >= h) {
+        for (int32_t x = 0; x < w; ++x) {
+            hh[x] = (uint16_t)b; /* H = b 256 */
+            hl[x] = 0u;
+        }
+        return;
+    }
+    const uint16_t *row = v + (size_t)sy * (size_t)w;
+    if (xlo < xhi) {
+        /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i (>= 0) */
+        const uint16_t *r = row + (size_t)(xlo - ix - 1);
+        uint16_t *oh = hh + xlo, *ol = hl + xlo;
+        const int32_t n = xhi - xlo;
+        if (fx == 0u) {
+            for (int32_t i = 0; i < n; ++i) {
+                oh[i] = r[i + 1];
+                ol[i] = 0u;
+            }
+        } else {
+            const uint16_t g = (uint16_t)(256u - fx), f = (uint16_t)fx;
+            const uint16_t g8 = (uint16_t)(g << 8), f8 = (uint16_t)(f << 8);
+            for (int32_t i = 0; i < n; ++i) {
+                const uint16_t u1 = r[i + 1], u0 = r[i];
+                const uint16_t q1 = (uint16_t)(((uint32_t)u1 * (uint32_t)g8) >> 16);
+                const uint16_t q0 = (uint16_t)(((uint32_t)u0 * (uint32_t)f8) >> 16);
+                const uint16_t lo = (uint16_t)((uint16_t)((uint16_t)(u1 * g) & 255u) +
+                                               (uint16_t)((uint16_t)(u0 * f) & 255u));
+                oh[i] = (uint16_t)(q1 + q0 + (uint16_t)(lo >> 8));
+                ol[i] = (uint16_t)(lo & 255u);
+            }
+        }
+    }
+    /* the edge columns: sources beyond the frame count b */
+    const uint32_t gx = 256u - fx;
+    for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
+        const int32_t x = e < xlo ? e : xhi + (e - xlo);
+        const int32_t s1 = x - ix, s0 = s1 - 1;
+        const uint32_t v1 = s1 >= 0 && s1 < w ? (uint32_t)row[s1] : b;
+        const uint32_t v0 = s0 >= 0 && s0 < w ? (uint32_t)row[s0] : b;
+        const uint32_t hv = v1 * gx + v0 * fx;
+        hh[x] = (uint16_t)(hv >> 8);
+        hl[x] = (uint16_t)(hv & 255u);
+    }
+}
+
 /* Warps v (u16 values, w x h) in place by (ix + fx / 256, iy + fy / 256) px: out(p) =
  * v(p - shift), bilinear, b outside:
  *   out(x, y) = (H(y - iy)[x] (256 - fy) + H(y - iy - 1)[x] fy + 2^15) >> 16
- * with H the horizontal pass (cl_warp_h_), made once per source row: the rows are visited in
- * the order that reads every source row before it is overwritten (descending where the
- * sources lie at lower rows), so one row's second source row is the next row's first, kept
- * in ta or tb (w values each). The sum <= 65535 * 2^16 + 2^15 < 2^32, so it is computed as
- * H1 2^8 + (H0 - H1) fy + 2^15 modulo 2^32 (unsigned: one multiply a pixel instead of two, the
- * same value). */
+ * with H the horizontal pass (cl_warp_h16_: hh = H >> 8, hl = H & 255), made once per source
+ * row: the rows are visited in the order that reads every source row before it is overwritten
+ * (descending where the sources lie at lower rows), so one row's second source row is the next
+ * row's first, kept in ta or tb (w 32-bit words each, used as hh and hl: w 16-bit values each).
+ * In 16-bit lanes: with H1, H0 the two source rows' values, gy = 256 - fy and X = hh1 gy + hh0
+ * fy, L = hl1 gy + hl0 fy (<= 255 * 256), the sum is 256 X + L + 2^15 and out = floor((X +
+ * (L >> 8) + 128) / 256) (X an integer); for fy > 0, X = 256 (q1 + q0) + r1 + r0 with q, r
+ * the floor and remainder of each product by 256 (as in cl_warp_h16_), so out = q1 + q0 + ((r1
+ * + r0 + (L >> 8) + 128) >> 8) (the bracket <= 893); fy = 0: out = hh1 + ((hl1 + 128) >> 8).
+ * The same value as (H1 2^8 + (H0 - H1) fy + 2^15) >> 16 in 32-bit lanes (cl_fuse8_row_). */
 static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
                      uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
 {
@@ -371,19 +430,35 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
     const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
-    uint32_t *hc = ta, *hn = tb; /* hc: the source row shared with the row before */
+    /* hc: the source row shared with the row before; each buffer holds hh, then hl */
+    uint16_t *hc = (uint16_t *)(void *)ta, *hn = (uint16_t *)(void *)tb;
     int32_t y = ydown ? h - 1 : 0;
+    const uint16_t gy = (uint16_t)(256u - fy), f = (uint16_t)fy;
+    const uint16_t g8 = (uint16_t)(gy << 8), f8 = (uint16_t)(f << 8);
     /* descending, row y's first source y - iy; ascending, its second y - iy - 1 */
-    cl_warp_h_(v, hc, ydown ? y - iy : y - iy - 1, w, h, ix, fx, b, xlo, xhi);
+    cl_warp_h16_(v, hc, hc + w, ydown ? y - iy : y - iy - 1, w, h, ix, fx, b, xlo, xhi);
     for (int32_t k = 0; k < h; ++k) {
         /* the other source row: not yet overwritten (below y descending, above ascending) */
-        cl_warp_h_(v, hn, ydown ? y - iy - 1 : y - iy, w, h, ix, fx, b, xlo, xhi);
-        const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
+        cl_warp_h16_(v, hn, hn + w, ydown ? y - iy - 1 : y - iy, w, h, ix, fx, b, xlo, xhi);
+        const uint16_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
+        const uint16_t *l1 = h1 + w, *l0 = h0 + w;
         uint16_t *o = v + (size_t)y * (size_t)w;
-        for (int32_t x = 0; x < w; ++x) {
-            o[x] = (uint16_t)(((h1[x] << 8) + (h0[x] - h1[x]) * fy + 32768u) >> 16);
+        if (fy == 0u) {
+            for (int32_t x = 0; x < w; ++x) {
+                o[x] = (uint16_t)(h1[x] + (uint16_t)((uint16_t)(l1[x] + 128u) >> 8));
+            }
+        } else {
+            for (int32_t x = 0; x < w; ++x) {
+                const uint16_t q1 = (uint16_t)(((uint32_t)h1[x] * (uint32_t)g8) >> 16);
+                const uint16_t q0 = (uint16_t)(((uint32_t)h0[x] * (uint32_t)f8) >> 16);
+                const uint16_t rr = (uint16_t)((uint16_t)((uint16_t)(h1[x] * gy) & 255u) +
+                                               (uint16_t)((uint16_t)(h0[x] * f) & 255u));
+                const uint16_t l = (uint16_t)((uint16_t)(l1[x] * gy) + (uint16_t)(l0[x] * f));
+                o[x] = (uint16_t)(q1 + q0 +
+                                  (uint16_t)((uint16_t)(rr + (uint16_t)(l >> 8) + 128u) >> 8));
+            }
         }
-        uint32_t *t = hc;
+        uint16_t *t = hc;
         hc = hn;
         hn = t;
         y = ydown ? y - 1 : y + 1;
