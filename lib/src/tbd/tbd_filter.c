@@ -361,6 +361,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
     const pft_real_t dead = bern ? BERN_DROP_ : PFT_C(0.0);
     const pft_real_t l1 = bern ? lb : f->birth_lw;
     const uint32_t n = f->n;
+    const pft_tbd_r16_inv_t rv = pft_tbd_llr3_r16_inv_(tab, sc);
     pft_real_t lmax = bern ? BERN_DROP_ : PFT_REAL_MIN;
     for (uint32_t s = 0; s < n; ++s) {
         pft_real_t lw = dead;
@@ -372,7 +373,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
                             (int32_t)m->height, &c.i, &c.fx, &c.j, &c.fy) &&
                 (mask == NULL ||
                  !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
-                lw = pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
+                lw = pft_tbd_llr3_r16_v_(m, tab, sc, &rv, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, l1);
                 } else if (bern) {

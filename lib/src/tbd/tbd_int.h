@@ -301,22 +301,51 @@ pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *t
  * the same arithmetic. Inside the image away from the patches (the common case) the window
  * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
  * else pft_tbd_llr3_r16_out_. */
-static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
-                                           const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
-                                           pft_real_t intensity)
+/* What pft_tbd_llr3_r16_ reads of the scene and the table for every window: a particle loop
+ * reads them once (pft_tbd_llr3_r16_inv_) instead of through the pointers per particle. */
+typedef struct {
+    const uint8_t *r16;
+    const uint8_t *pflag; /* NULL when no patch lies on the frame */
+    size_t st;
+    bool sum; /* tab->r16_sum != 0 */
+} pft_tbd_r16_inv_t;
+
+static inline pft_tbd_r16_inv_t pft_tbd_llr3_r16_inv_(const pft_tbd_tab_t *tab,
+                                                      const pft_tbd_scene_t_ *sc)
+{
+    pft_tbd_r16_inv_t v;
+    v.r16 = sc->r16;
+    v.pflag = sc->n_patch > 0u ? sc->pflag : NULL;
+    v.st = sc->r16_stride;
+    v.sum = tab->r16_sum != 0u;
+    return v;
+}
+
+/* pft_tbd_llr3_r16_ with those values read (v) */
+static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                             const pft_tbd_scene_t_ *sc,
+                                             const pft_tbd_r16_inv_t *v, const pft_tbd_cell_t *c,
+                                             pft_real_t intensity)
 {
     const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
     const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
     const pft_real_t amp = pft_kmulq_(intensity, m->kc);
-    if (!(ex || ey) && tab->r16_sum != 0u && !(sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u)) {
-        const size_t st = sc->r16_stride;
+    if (!(ex || ey) && v->sum && !(v->pflag != NULL && v->pflag[c->j - 1] != 0u)) {
         pft_real_t tx[4], ty[4];
         pft_ktaps_(tab->taps[0], c->fx, tx);
         pft_ktaps_(tab->taps[1], c->fy, ty);
-        return pft_kspot3_r16_(sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2), st,
-                               tx, ty, amp);
+        return pft_kspot3_r16_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
+                               v->st, tx, ty, amp);
     }
     return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
+}
+
+static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                           const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
+                                           pft_real_t intensity)
+{
+    const pft_tbd_r16_inv_t v = pft_tbd_llr3_r16_inv_(tab, sc);
+    return pft_tbd_llr3_r16_v_(m, tab, sc, &v, c, intensity);
 }
 
 /* pft_tbd_llr3_r16_ called (tbd_meas.c): the inline kernel has one call site in the filters'
