@@ -411,10 +411,20 @@ static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
 static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
 {
     pft_tbd_slot_t *restrict w = f->cur.w;
-    const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
     const uint32_t n = f->n;
     pft_wacc_t sum = 0;
     uint32_t s = 0u;
+#if defined(PFT_KWEXP_LANES_)
+    /* float with 16-byte vectors: the weights in one vectorised pass (pft_kwexp_lanes_, the
+     * same bits; an E = 0 particle's lw = 0 gets pft_kwexp_(0, lmax), the e0 below), then
+     * their sum in the particles' order (the same sum) */
+    pft_kwexp_lanes_(w, n, lmax);
+    for (; s < n; ++s) {
+        sum += w[s].w;
+    }
+    return sum;
+#else
+    const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
     /* two particles at a time (pft_kwexp2_: in the float build their two exponentials
      * overlap), summed in the particles' order: the same bits */
     for (; s + 1u < n; s += 2u) {
@@ -439,6 +449,7 @@ static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
         sum += e;
     }
     return sum;
+#endif
 }
 
 /* ---------------------------------- pass 3: estimates and counts -------------------------- */
