@@ -421,6 +421,19 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
  * without a list, its n-th allowed pixel (pft_tbd_scene_pick_). */
 void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
                         bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* A birth's coordinate in pixel c (0-based) at the uniform offset u in [0, 1) for the pitch d:
+ * (c + 1/2 + u) d with pft_add's and pft_mul's bits, without their saturation. The config
+ * check gives n d < 16384 for n = width, height (pft_span_ok_) and n <= 8192; a birth's pixel
+ * p is one of the frame's, p < width height (every caller's candidate list, or the n-th allowed
+ * pixel), so c < n: the sum is below n + 1/2, exact, and the product below n d + d / 2 <
+ * 16384 + 8192 (d < 16384 as n >= 1), positive: in q16 the 64-bit product stays below
+ * 1.5 2^46, so pft_mul's rounded value fits 31 bits (docs/fixed_point.md, "Particle
+ * kernels"). */
+static inline pft_real_t pft_tbd_birth_coord_(uint32_t c, pft_real_t u, pft_real_t d)
+{
+    return pft_kmula_(pft_kaddr_(pft_kaddr_(pft_from_int((int32_t)c), PFT_C(0.5)), u), d);
+}
+
 /* pft_tbd_birth_pix_ inline (the search layer's births: its draws inline too, so that the
  * layer's generator, a local of the move pass, stays in registers). */
 static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
@@ -433,8 +446,8 @@ static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tb
     const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
     const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
     /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    *k->x = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
+    *k->x = pft_tbd_birth_coord_(col, ux, c->dx);
+    *k->y = pft_tbd_birth_coord_(row, uy, c->dy);
     *k->in = pft_rng_uniform_range_(rng, c->i_min, c->i_max);
     if (sample_vel) {
         *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
