@@ -58,9 +58,10 @@ static inline int32_t pft_kr16_int_(const uint8_t *p)
 /* The same value as an addition to the pixel: x, or x + 2^15 = 0 for the masked value (gcc
  * 12 makes the constant's select a flag, no branch). The float build's pft_kspot3_r16_ reads
  * its pixels with it where the compiler has no 16-byte vectors (with them: its ninth pixel):
- * there gcc (12, AArch64 and x86-64) turned pft_kr16_int_'s select into a branch around each pixel's conversion, nine per 3 x 3
- * window, and no instruction is scheduled across a branch, so an in-order core (the
- * Cortex-A53) waited on each pixel's load, conversion and product in turn. The q16 build keeps
+ * there gcc (12, AArch64 and x86-64) turned pft_kr16_int_'s select into a branch around each
+ * pixel's conversion, nine per 3 x 3 window, and no instruction is scheduled across a branch,
+ * so an in-order core (the Cortex-A53) waited on each pixel's load, conversion and product in
+ * turn. The q16 build keeps
  * pft_kr16_int_ (its products take the integer, and a mask form there cost more). */
 static inline int32_t pft_kr16_intb_(const uint8_t *p)
 {

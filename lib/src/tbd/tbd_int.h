@@ -297,10 +297,6 @@ pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *t
                                  const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
                                  pft_kfrac_t fy, pft_real_t amp);
 
-/* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
- * the same arithmetic. Inside the image away from the patches (the common case) the window
- * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
- * else pft_tbd_llr3_r16_out_. */
 /* What pft_tbd_llr3_r16_ reads of the scene and the table for every window: a particle loop
  * reads them once (pft_tbd_llr3_r16_inv_) instead of through the pointers per particle. */
 typedef struct {
@@ -321,7 +317,7 @@ static inline pft_tbd_r16_inv_t pft_tbd_llr3_r16_inv_(const pft_tbd_tab_t *tab,
     return v;
 }
 
-/* pft_tbd_llr3_r16_ with those values read (v) */
+/* pft_tbd_llr3_r16_ (below) with those values read (v) */
 static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
                                              const pft_tbd_scene_t_ *sc,
                                              const pft_tbd_r16_inv_t *v, const pft_tbd_cell_t *c,
@@ -340,6 +336,10 @@ static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_
     return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
 }
 
+/* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
+ * the same arithmetic. Inside the image away from the patches (the common case) the window
+ * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
+ * else pft_tbd_llr3_r16_out_. */
 static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)
