@@ -19,7 +19,11 @@
  * resampling, so any other rounding would change the tracks): 6000 windows of random pixels
  * (extremes, the masked code, small and large values) with separable PSF taps of sigma 0.5,
  * 0.7, 1.0 and 2.0 at window offsets across [-1/2, 1/2] (all of which pass
- * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200.
+ * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200. In float with 16-byte
+ * vectors (SSE2, NEON) pft_kspot3_r16_ reads the window's first eight pixels in 16-bit lanes.
+ *
+ * The weights' pass (tbd_filter.c, weights_) in float with 16-byte vectors: pft_kwexp_lanes_
+ * is pft_kwexp_ of every value bit for bit (below).
  */
 #include <math.h>
 #include <stdio.h>
@@ -179,11 +183,68 @@ static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
+/* The weights' pass in 16-byte vectors (float with SSE2 or NEON; tbd_filter.c, weights_):
+ * pft_kwexp_lanes_ of a row is pft_kwexp_ of each value bit for bit, no tolerance (the weights
+ * drive the resampling): rows of 0 and -0 (an E = 0 particle's log-weight), the maximum itself,
+ * values above it, just inside and outside (-87, 0) from it, the Bernoulli form's drop value,
+ * -infinity, and spread values, for maxima 0, positive, negative and the drop value; rows of
+ * odd lengths, so that the vector loop's remainder runs too. */
+static void test_kwexp_lanes_is_kwexp(void)
+{
+#if defined(PFT_KWEXP_LANES_)
+    static const float ms[5] = {0.0f, 12.625f, -3.5f, 61.0f, -30000.0f};
+    float row[67];
+    float want[67];
+    uint32_t st = 777u;
+    uint32_t bad = 0u;
+    uint32_t ones = 0u, zeros = 0u, mids = 0u;
+    for (uint32_t rep = 0; rep < 3000u; ++rep) {
+        const float m = ms[rep % 5u];
+        const uint32_t n = 1u + lcg_(&st) % 67u;
+        for (uint32_t s = 0; s < n; ++s) {
+            const uint32_t r = lcg_(&st);
+            const float u = (float)(r >> 8) / 16777216.0f; /* [0, 1) */
+            float v;
+            switch (r % 11u) {
+            case 0u: v = 0.0f; break;
+            case 1u: v = -0.0f; break;
+            case 2u: v = m; break;
+            case 3u: v = m + 1.0f + u; break;
+            case 4u: v = m - 87.0f + (u - 0.5f) * 1e-3f; break;
+            case 5u: v = m - 87.0f; break;
+            case 6u: v = -30000.0f; break;
+            case 7u: v = -INFINITY; break;
+            case 8u: v = m - u * 1e-5f; break;
+            default: v = m - u * 100.0f; break;
+            }
+            row[s] = v;
+            want[s] = pft_kwexp_(v, m);
+            ones += want[s] == 1.0f ? 1u : 0u;
+            zeros += want[s] == 0.0f ? 1u : 0u;
+            mids += want[s] > 0.0f && want[s] < 1.0f ? 1u : 0u;
+        }
+        pft_kwexp_lanes_(row, n, m);
+        for (uint32_t s = 0; s < n; ++s) {
+            if (memcmp(&row[s], &want[s], sizeof want[s]) != 0 && bad++ == 0u) {
+                snprintf(msg_, sizeof msg_, "row %u value %u (max %.3f): %.9g, pft_kwexp_ %.9g",
+                         (unsigned)rep, (unsigned)s, (double)m, (double)row[s], (double)want[s]);
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    /* every outcome of the tests was met */
+    TEST_ASSERT_TRUE(ones > 1000u && zeros > 1000u && mids > 1000u);
+#else
+    TEST_IGNORE_MESSAGE("no vector form of the weights in this build");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
+    RUN_TEST(test_kwexp_lanes_is_kwexp);
     return UNITY_END();
 }

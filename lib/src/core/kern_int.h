@@ -26,7 +26,10 @@
  *   pft_kmula_ of a tap in [0, 1] and a value below 2^14 in 32-bit arithmetic.
  * - pft_kspot3_r16_: pft_kspot3_ on a 3 x 3 window of RES16 pixels read in place, the same
  *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
- *   float only where pft_kr16_sum_ok_ holds for every tap the window can get).
+ *   float only where pft_kr16_sum_ok_ holds for every tap the window can get); in float with
+ *   16-byte vectors (SSE2, NEON) the window's first eight pixels in one array of 16-bit lanes.
+ * - pft_kwexp_lanes_ (float with 16-byte vectors): pft_kwexp_ of a row of values in place,
+ *   every test as a bit mask, so that the row vectorises (the same bits).
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
  * - pft_kround64_: pft_round_int(pft_mul_i(pft_clamp(a, -257, 257), 64)) (the integration's
  *   bins, tbd_meas.c), the same value in plain 32-bit lanes (no int64, no floorf, float
@@ -53,10 +56,12 @@ static inline int32_t pft_kr16_int_(const uint8_t *p)
     return v != INT16_MIN ? (int32_t)v : 0; /* INT16_MIN: PFT_RES16_MASKED */
 }
 /* The same value as an addition to the pixel: x, or x + 2^15 = 0 for the masked value (gcc
- * 12 makes the constant's select a flag, no branch). The float build's pft_kspot3_r16_ reads its pixels with it: there gcc (12, AArch64 and x86-64)
- * turned pft_kr16_int_'s select into a branch around each pixel's conversion, nine per 3 x 3
- * window, and no instruction is scheduled across a branch, so an in-order core (the
- * Cortex-A53) waited on each pixel's load, conversion and product in turn. The q16 build keeps
+ * 12 makes the constant's select a flag, no branch). The float build's pft_kspot3_r16_ reads
+ * its pixels with it where the compiler has no 16-byte vectors (with them: its ninth pixel):
+ * there gcc (12, AArch64 and x86-64) turned pft_kr16_int_'s select into a branch around each
+ * pixel's conversion, nine per 3 x 3 window, and no instruction is scheduled across a branch,
+ * so an in-order core (the Cortex-A53) waited on each pixel's load, conversion and product in
+ * turn. The q16 build keeps
  * pft_kr16_int_ (its products take the integer, and a mask form there cost more). */
 static inline int32_t pft_kr16_intb_(const uint8_t *p)
 {
@@ -416,6 +421,57 @@ static inline pft_weight_t pft_kwexp_poly_(float x)
     memcpy(&sc, &bits, sizeof sc);
     return p * sc;
 }
+
+#if defined(__SSE2__) || defined(__ARM_NEON)
+/* Where the compiler has 16-byte vectors (SSE2, NEON): pft_kwexp_(v, m) of a row of values v
+ * in place (tbd_filter.c, weights_: a slot's log-weight in, its weight out, both 32-bit
+ * floats, read and written through memcpy). Every value's polynomial and every test's outcome
+ * as a bit mask, so that gcc vectorises the row (about 11 x86-64 instructions per value
+ * against about 30 for the tests' branches and the polynomial one value at a time). The
+ * polynomial's argument is x = v - m where x lies in (-87, 0), else 0 (its value then
+ * unused); its operations are pft_kwexp_poly_'s in the same order, so every weight has
+ * pft_kwexp_'s bits (1 for x >= 0, 0 for x <= -87 or NaN). Without vectors (Cortex-M) the
+ * masks and the polynomial of every value would cost more than the branches: weights_ keeps
+ * pft_kwexp2_ there. */
+#define PFT_KWEXP_LANES_ 1
+static inline void pft_kwexp_lanes_(void *slots, uint32_t n, float m)
+{
+    unsigned char *q = (unsigned char *)slots;
+    uint32_t one;
+    const float f1 = 1.0f;
+    memcpy(&one, &f1, 4u);
+    for (uint32_t s = 0; s < n; ++s) {
+        float lw, xs, y, f, p, sc, e;
+        uint32_t xb, eb, scb, r;
+        int32_t k;
+        memcpy(&lw, q + 4u * (size_t)s, 4u);
+        {
+            const float x = lw - m;
+            const uint32_t in = (x > -87.0f) ? 0xFFFFFFFFu : 0u;
+            const uint32_t neg = (x < 0.0f) ? 0xFFFFFFFFu : 0u;
+            const uint32_t ok = in & neg;
+            memcpy(&xb, &x, 4u);
+            xb &= ok;
+            memcpy(&xs, &xb, 4u);
+            y = xs * 1.44269504f;
+            k = (int32_t)y;
+            f = y - (float)k;
+            p = 0.000946877000387758f;
+            p = p * f + 0.009209180250763893f;
+            p = p * f + 0.05529811978340149f;
+            p = p * f + 0.24017895758152008f;
+            p = p * f + 0.6931431293487549f;
+            p = p * f + 0.9999999403953552f;
+            scb = (uint32_t)(k + 127) << 23;
+            memcpy(&sc, &scb, sizeof sc);
+            e = p * sc;
+            memcpy(&eb, &e, 4u);
+            r = (eb & ok) | (one & in & ~neg);
+        }
+        memcpy(q + 4u * (size_t)s, &r, 4u);
+    }
+}
+#endif
 static inline pft_krecip_t pft_krecip_(pft_wacc_t s) { return s > 0.0f ? 1.0f / s : 0.0f; }
 static inline pft_weight_t pft_kwnorm_(pft_weight_t e, pft_krecip_t r) { return e * r; }
 static inline pft_real_t pft_kess_(pft_wacc_t w, pft_wacc_t w2)
@@ -575,6 +631,45 @@ static inline bool pft_kr16_sum_ok_(pft_real_t t, pft_real_t d)
 /* pft_kspot3_ on a 3 x 3 RES16 window (pixels v as integers, z = v 2^-8): the window sum from
  * the integers, scaled by 2^-8 once, is pft_kspot3_'s s1 to the bit when every tap passed
  * pft_kr16_sum_ok_ (the same operations in the same order). */
+#if defined(__SSE2__) || defined(__ARM_NEON)
+/* Where the compiler has 16-byte vectors (SSE2, NEON): the window's first eight pixels go
+ * through one array of 16-bit lanes, so that the masked value's 0 (the value times 1 or 0, as
+ * peak_hrow_r16_ in tbd_meas.c) and the conversion to float are vector operations (gcc 12
+ * x86-64: pcmpeqw, pandn, two cvtdq2ps) instead of five integer instructions and a conversion
+ * per pixel; the ninth pixel as pft_kr16_intb_. Every z is the pixel's integer (or 0), exact
+ * in a float, and the sums below take them in pft_kr16_intb_'s form's order: the same bits.
+ * Without vectors (Cortex-M) the array would go through memory: the form after #else. */
+/* gcc unrolls the eight-pixel loop before its vectoriser sees it when the kernel is inlined
+ * into a particle loop (the scalar code then is no cheaper than the form after #else): kept
+ * rolled, it becomes one vector of eight lanes */
+#if defined(__GNUC__) && !defined(__clang__)
+#define PFT_KLANES_LOOP_ _Pragma("GCC unroll 1")
+#else
+#define PFT_KLANES_LOOP_
+#endif
+static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_real_t tx[4],
+                                         const pft_real_t ty[4], pft_real_t a)
+{
+    int16_t v[8];
+    float z[9];
+    memcpy(v, p, 6u);
+    memcpy(v + 3, p + st, 6u);
+    memcpy(v + 6, p + 2u * st, 4u);
+    PFT_KLANES_LOOP_
+    for (uint32_t k = 0; k < 8u; ++k) {
+        const int16_t y = (int16_t)((int32_t)v[k] * (v[k] != INT16_MIN ? 1 : 0));
+        z[k] = (float)y;
+    }
+    z[8] = (float)pft_kr16_intb_(p + 2u * st + 4u);
+    {
+        const float r0 = tx[0] * z[0] + tx[1] * z[1] + tx[2] * z[2];
+        const float r1 = tx[0] * z[3] + tx[1] * z[4] + tx[2] * z[5];
+        const float r2 = tx[0] * z[6] + tx[1] * z[7] + tx[2] * z[8];
+        const float s1 = (ty[0] * r0 + ty[1] * r1 + ty[2] * r2) * 0.00390625f;
+        return a * (s1 - 0.5f * a * tx[3] * ty[3]);
+    }
+}
+#else
 static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_real_t tx[4],
                                          const pft_real_t ty[4], pft_real_t a)
 {
@@ -589,6 +684,7 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
     const float s1 = (ty[0] * r0 + ty[1] * r1 + ty[2] * r2) * 0.00390625f;
     return a * (s1 - 0.5f * a * tx[3] * ty[3]);
 }
+#endif
 
 static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,
                                     uint32_t nx, const pft_real_t *ty, uint32_t ny, pft_real_t a)

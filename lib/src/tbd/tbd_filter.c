@@ -361,6 +361,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
     const pft_real_t dead = bern ? BERN_DROP_ : PFT_C(0.0);
     const pft_real_t l1 = bern ? lb : f->birth_lw;
     const uint32_t n = f->n;
+    const pft_tbd_r16_inv_t rv = pft_tbd_llr3_r16_inv_(tab, sc);
     pft_real_t lmax = bern ? BERN_DROP_ : PFT_REAL_MIN;
     for (uint32_t s = 0; s < n; ++s) {
         pft_real_t lw = dead;
@@ -372,7 +373,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
                             (int32_t)m->height, &c.i, &c.fx, &c.j, &c.fy) &&
                 (mask == NULL ||
                  !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
-                lw = pft_tbd_llr3_r16_(m, tab, sc, &c, pin[s]);
+                lw = pft_tbd_llr3_r16_v_(m, tab, sc, &rv, &c, pin[s]);
                 if (e == 1u) {
                     lw = pft_add(lw, l1);
                 } else if (bern) {
@@ -410,10 +411,20 @@ static pft_real_t weigh_(pft_tbd_filter_t *f, const step_ctx_t *x)
 static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
 {
     pft_tbd_slot_t *restrict w = f->cur.w;
-    const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
     const uint32_t n = f->n;
     pft_wacc_t sum = 0;
     uint32_t s = 0u;
+#if defined(PFT_KWEXP_LANES_)
+    /* float with 16-byte vectors: the weights in one vectorised pass (pft_kwexp_lanes_, the
+     * same bits; an E = 0 particle's lw = 0 gets pft_kwexp_(0, lmax), the e0 below), then
+     * their sum in the particles' order (the same sum) */
+    pft_kwexp_lanes_(w, n, lmax);
+    for (; s < n; ++s) {
+        sum += w[s].w;
+    }
+    return sum;
+#else
+    const pft_weight_t e0 = pft_kwexp_(PFT_C(0.0), lmax);
     /* two particles at a time (pft_kwexp2_: in the float build their two exponentials
      * overlap), summed in the particles' order: the same bits */
     for (; s + 1u < n; s += 2u) {
@@ -438,6 +449,7 @@ static pft_wacc_t weights_(pft_tbd_filter_t *f, pft_real_t lmax)
         sum += e;
     }
     return sum;
+#endif
 }
 
 /* ---------------------------------- pass 3: estimates and counts -------------------------- */

@@ -297,6 +297,45 @@ pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *t
                                  const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
                                  pft_kfrac_t fy, pft_real_t amp);
 
+/* What pft_tbd_llr3_r16_ reads of the scene and the table for every window: a particle loop
+ * reads them once (pft_tbd_llr3_r16_inv_) instead of through the pointers per particle. */
+typedef struct {
+    const uint8_t *r16;
+    const uint8_t *pflag; /* NULL when no patch lies on the frame */
+    size_t st;
+    bool sum; /* tab->r16_sum != 0 */
+} pft_tbd_r16_inv_t;
+
+static inline pft_tbd_r16_inv_t pft_tbd_llr3_r16_inv_(const pft_tbd_tab_t *tab,
+                                                      const pft_tbd_scene_t_ *sc)
+{
+    pft_tbd_r16_inv_t v;
+    v.r16 = sc->r16;
+    v.pflag = sc->n_patch > 0u ? sc->pflag : NULL;
+    v.st = sc->r16_stride;
+    v.sum = tab->r16_sum != 0u;
+    return v;
+}
+
+/* pft_tbd_llr3_r16_ (below) with those values read (v) */
+static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *tab,
+                                             const pft_tbd_scene_t_ *sc,
+                                             const pft_tbd_r16_inv_t *v, const pft_tbd_cell_t *c,
+                                             pft_real_t intensity)
+{
+    const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
+    const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
+    const pft_real_t amp = pft_kmulq_(intensity, m->kc);
+    if (!(ex || ey) && v->sum && !(v->pflag != NULL && v->pflag[c->j - 1] != 0u)) {
+        pft_real_t tx[4], ty[4];
+        pft_ktaps_(tab->taps[0], c->fx, tx);
+        pft_ktaps_(tab->taps[1], c->fy, ty);
+        return pft_kspot3_r16_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
+                               v->st, tx, ty, amp);
+    }
+    return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
+}
+
 /* pft_tbd_llr3_ on a scene's RES16 frame read in place (sc->img NULL): the same 3 x 3 values,
  * the same arithmetic. Inside the image away from the patches (the common case) the window
  * is summed from the frame's integers with one base index (pft_kspot3_r16_, the same bits);
@@ -305,18 +344,8 @@ static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tb
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)
 {
-    const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
-    const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
-    const pft_real_t amp = pft_kmulq_(intensity, m->kc);
-    if (!(ex || ey) && tab->r16_sum != 0u && !(sc->n_patch > 0u && sc->pflag[c->j - 1] != 0u)) {
-        const size_t st = sc->r16_stride;
-        pft_real_t tx[4], ty[4];
-        pft_ktaps_(tab->taps[0], c->fx, tx);
-        pft_ktaps_(tab->taps[1], c->fy, ty);
-        return pft_kspot3_r16_(sc->r16 + (size_t)(c->j - 2) * st + 2u * (size_t)(c->i - 2), st,
-                               tx, ty, amp);
-    }
-    return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
+    const pft_tbd_r16_inv_t v = pft_tbd_llr3_r16_inv_(tab, sc);
+    return pft_tbd_llr3_r16_v_(m, tab, sc, &v, c, intensity);
 }
 
 /* pft_tbd_llr3_r16_ called (tbd_meas.c): the inline kernel has one call site in the filters'
@@ -392,6 +421,19 @@ void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uin
  * without a list, its n-th allowed pixel (pft_tbd_scene_pick_). */
 void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
                         bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k);
+/* A birth's coordinate in pixel c (0-based) at the uniform offset u in [0, 1) for the pitch d:
+ * (c + 1/2 + u) d with pft_add's and pft_mul's bits, without their saturation. The config
+ * check gives n d < 16384 for n = width, height (pft_span_ok_) and n <= 8192; a birth's pixel
+ * p is one of the frame's, p < width height (every caller's candidate list, or the n-th allowed
+ * pixel), so c < n: the sum is below n + 1/2, exact, and the product below n d + d / 2 <
+ * 16384 + 8192 (d < 16384 as n >= 1), positive: in q16 the 64-bit product stays below
+ * 1.5 2^46, so pft_mul's rounded value fits 31 bits (docs/fixed_point.md, "Particle
+ * kernels"). */
+static inline pft_real_t pft_tbd_birth_coord_(uint32_t c, pft_real_t u, pft_real_t d)
+{
+    return pft_kmula_(pft_kaddr_(pft_kaddr_(pft_from_int((int32_t)c), PFT_C(0.5)), u), d);
+}
+
 /* pft_tbd_birth_pix_ inline (the search layer's births: its draws inline too, so that the
  * layer's generator, a local of the move pass, stays in registers). */
 static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
@@ -404,8 +446,8 @@ static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tb
     const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
     const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
     /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    *k->x = pft_mul(pft_add(pft_add(pft_from_int((int32_t)col), PFT_C(0.5)), ux), c->dx);
-    *k->y = pft_mul(pft_add(pft_add(pft_from_int((int32_t)row), PFT_C(0.5)), uy), c->dy);
+    *k->x = pft_tbd_birth_coord_(col, ux, c->dx);
+    *k->y = pft_tbd_birth_coord_(row, uy, c->dy);
     *k->in = pft_rng_uniform_range_(rng, c->i_min, c->i_max);
     if (sample_vel) {
         *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
