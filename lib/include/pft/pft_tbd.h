@@ -489,12 +489,14 @@ typedef struct {
 #define PFT_TBD_INTEG_BYTES(w, h)                                                               \
     (2u * PFT_WS_ROUND((((size_t)(w) + 1u) / 2u) * (((size_t)(h) + 1u) / 2u) * sizeof(uint16_t)))
 
+/** cfg.resid_fan's lines per anchor: w = (a, b) / 4 px per frame with a^2 + b^2 <= 36. */
+#define PFT_TBD_FAN_LINES 113u
+/** cfg.resid_fan's reach about a layer (px): the half-size of its matched square. */
+#define PFT_TBD_FAN_REACH 10u
 /** Workspace bytes of cfg.resid_fan = k > 0 with max_targets track layers (constant expression;
  *  pft_tbd_workspace_size adds it, after every other buffer: 0 when off): per layer its id and
  *  k anchors' counts and k x PFT_TBD_FAN_LINES running sums, and one residual square and one
  *  matched square of the fan's reach (docs/algorithms.md 2.7). */
-#define PFT_TBD_FAN_LINES 113u
-#define PFT_TBD_FAN_REACH 10u
 #define PFT_TBD_FAN_BYTES(max_targets, k)                                                       \
     (PFT_WS_ROUND((size_t)(max_targets) * sizeof(uint32_t)) +                                  \
      PFT_WS_ROUND((size_t)(max_targets) * (size_t)(k)) +                                        \
