@@ -18,7 +18,15 @@
  *   not reach 3. (Id 2's layer carries A's intensities, pft_tbd_filter_seed_at_, and ends on the
  *   existence test at frame 6: not asserted here);
  * - A alone with the fan: the tracks of the run without the option, bit for bit, over 6 frames;
- * - resid_fan 1, 7, or without resid_split refused by name, and the option off by default.
+ * - resid_fan 1, 7, or without resid_split refused by name, and the option off by default;
+ * - over 10 frames, id 2 with the parent's start carries A's intensities and is gone from frame
+ *   6 on; with resid_fan_in 1 (the line's own intensity estimate, about 9 for B's 11) it lives
+ *   from frame 5 to 10 on B with its intensity within half of B's and its existence above 0.9;
+ * - resid_fan_exist 0.9 (0.25) leaves 180 (50) of id 2's 200 particles live at its start (its
+ *   existence 0.9), the parent's start all 200;
+ * - resid_fan_vtol 0.5 starts id 2 as without it (B's line, |w| 0.75, is a candidate); 1.25
+ *   refuses B's line and no faster line reaches 3: one track in frames 1-6;
+ * - the three new fields refused by name out of range or without resid_fan, off by default.
  */
 #include <math.h>
 #include <string.h>
@@ -36,6 +44,7 @@ void tearDown(void) {}
 #define MAXT 3u
 #define KP 8u
 #define FRAMES 6
+#define FR_MAX 10
 
 static pft_real_t R(double v) { return pft_test_from_double(v); }
 static double D(pft_real_t v) { return pft_test_to_double(v); }
@@ -81,22 +90,24 @@ static void put_track(void)
 }
 
 typedef struct {
-    size_t n[FRAMES];                 /* tracks listed after frame k */
-    pft_tbd_track_t tk[FRAMES][MAXT]; /* by id */
-    int confirmed2[FRAMES];           /* CONFIRMED events of id 2 after frame k */
-    double vx2[FRAMES];               /* the column velocity estimate of id 2's layer (0: none) */
+    size_t n[FR_MAX];                 /* tracks listed after frame k */
+    pft_tbd_track_t tk[FR_MAX][MAXT]; /* by id */
+    int confirmed2[FR_MAX];           /* CONFIRMED events of id 2 after frame k */
+    double vx2[FR_MAX];               /* the column velocity estimate of id 2's layer (0: none) */
+    double in2[FR_MAX];               /* the intensity estimate of id 2's layer (0: none) */
+    uint32_t live2[FR_MAX];           /* the live particles of id 2's layer (0: none) */
 } run_t;
 
-static void run(const pft_tbd_config_t *c, bool two, run_t *o)
+static void run_n(const pft_tbd_config_t *c, bool two, run_t *o, int frames)
 {
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&g_t, c, g_ws, sizeof g_ws));
     put_track();
     memset(o, 0, sizeof *o);
     pft_rng_t sim;
     pft_rng_seed(&sim, 9u);
-    const pft_sim_truth_t tr[2] = {{1, FRAMES, AX, Y0, 0.0, 0.0, IA},
-                                   {1, FRAMES, AX, Y0, VB, 0.0, IB}};
-    for (int k = 1; k <= FRAMES; ++k) {
+    const pft_sim_truth_t tr[2] = {{1, frames, AX, Y0, 0.0, 0.0, IA},
+                                   {1, frames, AX, Y0, VB, 0.0, IB}};
+    for (int k = 1; k <= frames; ++k) {
         pft_frame_t fr;
         pft_sim_render_u16(&sim, tr, two ? 2 : 1, k, 0.0, IMG, IMG, g_raw, &fr);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&g_t, &fr));
@@ -104,6 +115,10 @@ static void run(const pft_tbd_config_t *c, bool two, run_t *o)
         for (uint32_t u = 0; u < MAXT; ++u) {
             if (g_t.records[u].id == 2u) {
                 o->vx2[k - 1] = D(g_t.tracks[u].est.vx);
+                o->in2[k - 1] = D(g_t.tracks[u].est.intensity);
+                for (uint32_t s = 0; s < g_t.tracks[u].n; ++s) {
+                    o->live2[k - 1] += g_t.tracks[u].cur.e[s] != 0u ? 1u : 0u;
+                }
             }
         }
         pft_tbd_event_t ev[MAXT + 1u];
@@ -113,6 +128,8 @@ static void run(const pft_tbd_config_t *c, bool two, run_t *o)
         }
     }
 }
+
+static void run(const pft_tbd_config_t *c, bool two, run_t *o) { run_n(c, two, o, FRAMES); }
 
 static double dist_to(const pft_tbd_track_t *t, double x, double y)
 {
@@ -213,6 +230,129 @@ static void test_out_of_range_refused_by_name(void)
     }
 }
 
+/* id 2 in the list of frame k (0-based), or NULL */
+static const pft_tbd_track_t *id2(const run_t *r, int k)
+{
+    for (size_t i = 0; i < r->n[k]; ++i) {
+        if (r->tk[k][i].id == 2u) {
+            return &r->tk[k][i];
+        }
+    }
+    return NULL;
+}
+
+static void test_new_start_from_the_line_lives(void)
+{
+    static run_t par, own;
+    pft_tbd_config_t c;
+    cfg_of(&c);
+    c.resid_split = R(3.0);
+    c.resid_fan = 4u;
+    run_n(&c, true, &par, FR_MAX);
+    c.resid_fan_in = 1u;
+    run_n(&c, true, &own, FR_MAX);
+    /* the parent's start: id 2 on B at frame 5 with A's intensity, gone from frame 6 on */
+    TEST_ASSERT_NOT_NULL(id2(&par, 4));
+    TEST_ASSERT_TRUE_MESSAGE(D(id2(&par, 4)->intensity) > 0.8 * IA, "the parent's intensities");
+    for (int k = 5; k < FR_MAX; ++k) {
+        TEST_ASSERT_NULL_MESSAGE(id2(&par, k), "with the parent's intensities id 2 ends");
+    }
+    /* the line's start: id 2 from frame 5 to the last, on B, with about B's intensity, and no
+     * other new id (the layer is not started again) */
+    for (int k = 4; k < FR_MAX; ++k) {
+        const pft_tbd_track_t *b = id2(&own, k);
+        TEST_ASSERT_NOT_NULL_MESSAGE(b, "id 2 lives with the line's intensities");
+        TEST_ASSERT_TRUE_MESSAGE(dist_to(b, bx(k + 1), Y0) < 1.0, "id 2 on B");
+        TEST_ASSERT_TRUE_MESSAGE(D(b->intensity) > 0.5 * IB && D(b->intensity) < 1.5 * IB,
+                                 "id 2's intensity near B's");
+        TEST_ASSERT_EQUAL_UINT(2u, (unsigned)own.n[k]);
+        TEST_ASSERT_TRUE_MESSAGE(D(b->p_exist) > 0.9, "id 2's existence stays high");
+    }
+    TEST_ASSERT_EQUAL_INT(1, own.confirmed2[4]);
+    TEST_ASSERT_TRUE(dist_to(&own.tk[FR_MAX - 1][0], AX, Y0) < 0.5);
+}
+
+static void test_existence_start(void)
+{
+    static run_t r;
+    pft_tbd_config_t c;
+    cfg_of(&c);
+    c.resid_split = R(3.0);
+    c.resid_fan = 4u;
+    c.resid_fan_in = 1u;
+    run_n(&c, true, &r, FRAMES);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(NT, r.live2[4], "the parent's particles, all live");
+    c.resid_fan_exist = R(0.9);
+    run_n(&c, true, &r, FRAMES);
+    TEST_ASSERT_EQUAL_UINT32(180u, r.live2[4]); /* round(0.9 x 200) */
+    TEST_ASSERT_NOT_NULL(id2(&r, 4));
+    TEST_ASSERT_TRUE(id2(&r, 4)->p_exist == R(0.9));
+    c.resid_fan_exist = R(0.25);
+    run_n(&c, true, &r, FRAMES);
+    TEST_ASSERT_EQUAL_UINT32(50u, r.live2[4]);
+}
+
+static void test_velocity_tolerance(void)
+{
+    static run_t off, lo, hi;
+    pft_tbd_config_t c;
+    cfg_of(&c);
+    c.resid_split = R(3.0);
+    c.resid_fan = 4u;
+    run(&c, true, &off);
+    c.resid_fan_vtol = R(0.5); /* B's line, |w| 0.75, stays a candidate */
+    run(&c, true, &lo);
+    c.resid_fan_vtol = R(1.25); /* B's line is no candidate, and no faster line reaches 3 */
+    run(&c, true, &hi);
+    TEST_ASSERT_NOT_NULL(id2(&lo, 4));
+    TEST_ASSERT_TRUE(id2(&off, 4)->x == id2(&lo, 4)->x && id2(&off, 4)->y == id2(&lo, 4)->y);
+    for (int k = 0; k < FRAMES; ++k) {
+        TEST_ASSERT_EQUAL_UINT((unsigned)off.n[k], (unsigned)lo.n[k]);
+        TEST_ASSERT_EQUAL_UINT_MESSAGE(1u, (unsigned)hi.n[k], "B's line refused");
+    }
+}
+
+static void test_new_fields_refused_by_name(void)
+{
+    pft_tbd_config_t c;
+    const char *field = NULL;
+    pft_tbd_config_default(&c);
+    TEST_ASSERT_EQUAL_UINT(0u, c.resid_fan_in);
+    TEST_ASSERT_TRUE(c.resid_fan_exist == R(0.0) && c.resid_fan_vtol == R(0.0));
+    cfg_of(&c);
+    c.resid_split = R(3.0);
+    c.resid_fan_in = 1u; /* without resid_fan */
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_in", field);
+    c.resid_fan = 4u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    c.resid_fan_in = 2u;
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_in", field);
+    c.resid_fan_in = 0u;
+    c.resid_fan_exist = R(1.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_exist", field);
+    c.resid_fan_exist = R(-0.1);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_exist", field);
+    c.resid_fan_exist = R(1.0);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    c.resid_fan_vtol = R(1.6);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_vtol", field);
+    c.resid_fan_vtol = R(1.5);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&c, &field));
+    c.resid_fan = 0u; /* the three need the fan */
+    c.resid_fan_exist = R(0.0);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_vtol", field);
+    c.resid_fan_vtol = R(0.0);
+    c.resid_fan_exist = R(0.5);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_config_check(&c, &field));
+    TEST_ASSERT_EQUAL_STRING("resid_fan_exist", field);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -221,5 +361,9 @@ int main(void)
     RUN_TEST(test_fan_finds_b_on_its_line);
     RUN_TEST(test_one_target_runs_as_off);
     RUN_TEST(test_out_of_range_refused_by_name);
+    RUN_TEST(test_new_start_from_the_line_lives);
+    RUN_TEST(test_existence_start);
+    RUN_TEST(test_velocity_tolerance);
+    RUN_TEST(test_new_fields_refused_by_name);
     return UNITY_END();
 }

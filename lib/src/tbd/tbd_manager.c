@@ -1007,6 +1007,9 @@ static pft_real_t fan_best_(pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t k
     pft_real_t best = PFT_C(0.0);
     bool found = false;
     bool anchored = false;
+    /* cfg.resid_fan_vtol: lines of |w| (the line's velocity less the layer's) below it are no
+     * candidates, in (4 w)^2 = a^2 + b^2 units; 0 when off */
+    const pft_real_t vt16 = pft_mul_i(pft_sq(t->cfg.resid_fan_vtol), 16);
     for (uint32_t s = 0; s < nk; ++s) {
         if (cnt[s] != nk) {
             continue;
@@ -1020,7 +1023,8 @@ static pft_real_t fan_best_(pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t k
                     continue;
                 }
                 const uint32_t l = n++;
-                if ((a * a + b * b) * kk * kk < FAN_END16_ || (found && !(ls[l] > best))) {
+                if ((a * a + b * b) * kk * kk < FAN_END16_ || (found && !(ls[l] > best)) ||
+                    pft_from_int(a * a + b * b) < vt16) {
                     continue;
                 }
                 const pft_real_t ex = pft_add(rec->x, pft_mul(pft_mul_i(PFT_C(0.25), a * kk), m->dx));
@@ -1072,6 +1076,74 @@ static void fan_velocity_(const pft_tbd_filter_t *f, pft_tbd_filter_t *d, pft_re
     }
     d->est.vx = pft_add(d->est.vx, sx); /* every live particle moved by the same amount */
     d->est.vy = pft_add(d->est.vy, sy);
+}
+
+/* A layer d started by the fan with cfg.resid_fan_in 1: each live particle's intensity drawn
+ * from the line's own estimate instead of the parent's. The line's mean matched value per frame
+ * is v / sqrt(K) (v: the best sum in the sum's sigmas), the amplitude of a point on a pixel
+ * centre is that divided by sqrt(sum g^2) of the 3 x 3 taps, and the intensity that amplitude
+ * divided by kc (the whitened PSF peak per unit intensity); the spread is one sigma of the mean,
+ * 1 / (sqrt(K) sqrt(sum g^2) kc). Each draw is kept in [0, i_max] (the particle kernels' range). */
+static void fan_intensity_(pft_tbd_filter_t *d, pft_real_t v, uint32_t nk)
+{
+    const pft_tbd_meas_t *m = &d->model;
+    const pft_real_t gx = gauss_(m, m->dx);
+    const pft_real_t gy = gauss_(m, m->dy);
+    const pft_real_t gn = pft_sqrt(pft_mul(pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gx), 2)),
+                                           pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gy), 2))));
+    const pft_real_t sd =
+        pft_div(PFT_REAL_ONE, pft_mul(pft_mul(gn, pft_sqrt(pft_from_int((int32_t)nk))), m->kc));
+    const pft_real_t mean = pft_clamp(pft_mul(v, sd), PFT_C(0.0), d->cfg.i_max);
+    for (uint32_t s = 0; s < d->n; ++s) {
+        if (d->cur.e[s] != 0u) {
+            d->cur.in[s] =
+                pft_clamp(pft_kmad1_(mean, sd, pft_rng_zig_(&d->rng)), PFT_C(0.0), d->cfg.i_max);
+        }
+    }
+    d->est.intensity = mean;
+}
+
+/* A layer d started by the fan with cfg.resid_fan_exist = p0 > 0: round(p0 n) of its n particles
+ * live (the live ones copied from the parent first, then copies of them in turn in the dead
+ * slots; or the last live ones ended), so that its existence probability, the weighted share of
+ * its live particles at the next frame, starts at p0 instead of the parent's. */
+static void fan_exist_(pft_tbd_filter_t *d, pft_real_t p0)
+{
+    pft_tbd_particles_t *P = &d->cur;
+    const uint32_t n = d->n;
+    uint32_t nl = 0u;
+    for (uint32_t s = 0; s < n; ++s) {
+        nl += P->e[s] != 0u ? 1u : 0u;
+    }
+    const int32_t w = pft_round_int(pft_mul_i(p0, (int32_t)n));
+    const uint32_t want = w < 1 ? 1u : ((uint32_t)w > n ? n : (uint32_t)w);
+    if (nl == 0u) {
+        return; /* nothing to copy: the layer as the parent left it */
+    }
+    uint32_t src = 0u;
+    for (uint32_t s = 0; s < n && nl < want; ++s) {
+        if (P->e[s] != 0u) {
+            continue;
+        }
+        while (P->e[src] == 0u) {
+            src = src + 1u < n ? src + 1u : 0u;
+        }
+        P->x[s] = P->x[src];
+        P->y[s] = P->y[src];
+        P->vx[s] = P->vx[src];
+        P->vy[s] = P->vy[src];
+        P->in[s] = P->in[src];
+        P->e[s] = P->e[src];
+        src = src + 1u < n ? src + 1u : 0u;
+        ++nl;
+    }
+    for (uint32_t s = n; s > 0u && nl > want; --s) {
+        if (P->e[s - 1u] != 0u) {
+            P->e[s - 1u] = 0u;
+            --nl;
+        }
+    }
+    d->est.p_exist = p0;
 }
 
 /* 2c. A second target beside a track (cfg.resid_split, docs/algorithms.md 2.7 [E]): each track
@@ -1126,6 +1198,12 @@ static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
         pft_tbd_filter_seed_at_(tf, nf, pft_sub(x, rec->x), pft_sub(y, rec->y));
         if (cfg->resid_fan > 0u) {
             fan_velocity_(tf, nf, wx, wy);
+            if (cfg->resid_fan_exist > PFT_C(0.0)) {
+                fan_exist_(nf, cfg->resid_fan_exist); /* before the draws: copies take new ones */
+            }
+            if (cfg->resid_fan_in > 0u) {
+                fan_intensity_(nf, v, cfg->resid_fan);
+            }
         }
         tf->resid_n = 0u;
         child_record_(t, rec, u);
