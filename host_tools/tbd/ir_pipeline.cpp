@@ -56,10 +56,6 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.resid_split, c.resid_split);
     c.resid_split_frames = static_cast<uint8_t>(t.resid_split_frames);
     c.resid_split_age = static_cast<uint8_t>(t.resid_split_age);
-    c.resid_fan = static_cast<uint8_t>(t.resid_fan);
-    c.resid_fan_in = static_cast<uint8_t>(t.resid_fan_in);
-    set_real_if(t.resid_fan_exist, c.resid_fan_exist);
-    set_real_if(t.resid_fan_vtol, c.resid_fan_vtol);
     set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);

@@ -31,7 +31,7 @@ const char *const kTrackerOnlyFields[] = {
     "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_slow_frames",
     "scene_slow_low_px", "scene_slow_gate_px", "end_grace_frames", "theta_end_grace", "end_persist",
     "handover_in_scale", "q2", "split_px", "split_share", "resid_split", "resid_split_frames",
-    "resid_split_age", "resid_fan", "resid_fan_in", "resid_fan_exist", "resid_fan_vtol", nullptr};
+    "resid_split_age", nullptr};
 
 namespace {
 
@@ -199,20 +199,6 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("resid_split").fail("must be 0 (off) or within 1..50 sigmas");
     T.resid_split_frames = static_cast<int>(t.integer_in("resid_split_frames", T.resid_split_frames, 0, 8));
     T.resid_split_age = static_cast<int>(t.integer_in("resid_split_age", T.resid_split_age, 0, 255));
-    T.resid_fan = static_cast<int>(t.integer_in("resid_fan", T.resid_fan, 0, 6));  // the library's range (pft_tbd.h)
-    if (T.resid_fan == 1)
-        t.at("resid_fan").fail("must be 0 (off) or within 2..6 frames");
-    if (T.resid_fan > 0 && !(T.resid_split && *T.resid_split > 0.0))
-        t.at("resid_fan").fail("needs resid_split > 0");
-    T.resid_fan_in = static_cast<int>(t.integer_in("resid_fan_in", T.resid_fan_in, 0, 1));  // the library's range (pft_tbd.h)
-    if (T.resid_fan_in > 0 && T.resid_fan == 0)
-        t.at("resid_fan_in").fail("needs resid_fan > 0");
-    num("resid_fan_exist", 0.0, 1.0, T.resid_fan_exist);
-    if (T.resid_fan_exist && *T.resid_fan_exist > 0.0 && T.resid_fan == 0)
-        t.at("resid_fan_exist").fail("needs resid_fan > 0");
-    num("resid_fan_vtol", 0.0, 1.5, T.resid_fan_vtol);
-    if (T.resid_fan_vtol && *T.resid_fan_vtol > 0.0 && T.resid_fan == 0)
-        t.at("resid_fan_vtol").fail("needs resid_fan > 0");
     T.end_persist = static_cast<int>(t.integer_in("end_persist", T.end_persist, 0, PFT_TBD_MAX_END_PERSIST));  // the library's bound (pft_tbd.h)
     if (T.theta_end_grace && T.end_grace_frames == 0)
         t.at("theta_end_grace").fail("needs end_grace_frames of at least 1");

@@ -141,10 +141,6 @@ struct TrackerSettings {
     std::optional<double> resid_split;              ///< a second target beside a track layer: the matched residual's threshold (pft_tbd resid_split; absent: the library default, 0: off; else 1..50)
     int resid_split_frames = 0;                     ///< its frames in a row (pft_tbd resid_split_frames; 0 or 1: one)
     int resid_split_age = 0;                        ///< only layers with at most this many updates since their hand-over (pft_tbd resid_split_age; 0: every layer)
-    int resid_fan = 0;                              ///< resid_split from a fan of straight lines over this many frames (pft_tbd resid_fan; 0: off, else 2..6)
-    int resid_fan_in = 0;                           ///< a fan-started layer's intensities from the line's own estimate (pft_tbd resid_fan_in; 0: the parent's, 1: the line's)
-    std::optional<double> resid_fan_exist;          ///< a fan-started layer's first existence probability (pft_tbd resid_fan_exist; absent: the library default, 0: the parent's)
-    std::optional<double> resid_fan_vtol;           ///< the fan's lines within this of the layer's velocity (px per frame) are no candidates (pft_tbd resid_fan_vtol; absent: 0, off)
     bool integ_shift = false;                       ///< give the manager the stage's measured shift per frame (pft_tbd_set_shift) for the integration
     int sprt_start = 0;                             ///< what the sequential test starts from (pft_tbd sprt_start: 0 zero, 1 the search layer's ratios over its confirmation, 2 its log odds)
     // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,

@@ -158,10 +158,6 @@ static void fuzz_tbd(fz_t *f, bool manager)
         /* the header's rule: the integration adds PFT_TBD_INTEG_BYTES to the figure */
         macro += PFT_TBD_INTEG_BYTES(c.width, c.height);
     }
-    if (manager && c.resid_fan > 0u) {
-        /* the header's rule: the fan adds PFT_TBD_FAN_BYTES to the figure */
-        macro += PFT_TBD_FAN_BYTES(c.max_targets, c.resid_fan);
-    }
     FZ_CHECK(macro == ws);
     if (ws > WS_CAP) {
         return;

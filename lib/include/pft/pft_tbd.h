@@ -200,10 +200,6 @@ typedef struct {
     pft_real_t resid_split;  /**< 0 (default): off. In [1, 50] (matched unit-noise sigmas): after the end tests (and split_px's splits), around each track layer that lived before this frame (with resid_split_age > 0 only those with at most resid_split_age updates since their hand-over), the frame minus that layer's own PSF (its intensity at its estimate, untruncated) is filtered with the PSF's 3 x 3 taps (m = sum g z / sqrt(sum g^2) at each pixel centre) on the pixels 1.5 to 5 px from the layer's estimate and at least 3 px from every other track's; when the largest m is at least resid_split in resid_split_frames frames in a row (each frame's peak within 2 px of the last one's), a new track layer starts there in a free slot: the layer's particles copied, moved by the peak's offset from the layer's estimate, born anew (age 0: the velocity mean at vel_mean and its variance at vel_var, as a birth), the layer's existence probability and frame log likelihood ratio copied; a new id, confirmed (or tentative with sprt_accept > 0) as at a hand-over (docs/algorithms.md 2.7). The layer's count restarts after it [E] */
     uint8_t resid_split_frames; /**< with resid_split > 0: the frames in a row the residual peak needs, 1..8 (0, the default, counts as 1); at most 8 [E] */
     uint8_t resid_split_age; /**< with resid_split > 0: only track layers with at most this many updates since their hand-over (or since they were started beside another) are tested; 0 (default): every track layer [E] */
-    uint8_t resid_fan;       /**< 0 (default): off, resid_split tests the 3 x 3 peak beside the layer as above. K in [2, 6] (needs resid_split > 0): resid_split's per-frame value is instead the best straight line of a fan from the layer's position K frames ago (a second target leaving a crossing): each track layer keeps the running sums of the matched residual m (as above: the frame minus the layer's own PSF, 3 x 3 PSF taps, unit noise) at the pixel centre nearest to its estimate plus w j, j = 1..K frames after an anchor frame, for each relative velocity w = (a, b) / 4 px per frame with a^2 + b^2 <= 36 (|w| <= 1.5) and |w| K >= 1.5 px (lines that leave the layer); one anchor per frame, K running at once (PFT_TBD_FAN_BYTES of workspace). At each frame the anchor of K frames ago completes: its best sum over the lines whose end lies at least 3 px from every other track, divided by sqrt(K) (unit sigma on noise), is compared with resid_split (resid_split_frames frames in a row as above, the ends within 2 px); a new layer starts at the best line's end with the layer's velocity estimate plus w (docs/algorithms.md 2.7 [E]) */
-    uint8_t resid_fan_in;    /**< with resid_fan > 0: 0 (default): a layer the fan starts carries its parent's particle intensities (as resid_split's). 1: each of its live particles' intensity is drawn from the line's own estimate instead: the line's mean matched value per frame (its sum / K) over sqrt(sum g^2) of the 3 x 3 taps is the amplitude of a point on a pixel centre, divided by the whitened PSF peak per unit intensity (c0 / noise_sigma); spread one sigma of that mean, 1 / (sqrt(K) sqrt(sum g^2) c0 / noise_sigma); each draw kept in [0, i_max] (docs/algorithms.md 2.7 [E]). At most 1 */
-    pft_real_t resid_fan_exist; /**< with resid_fan > 0: 0 (default): a layer the fan starts carries its parent's existence probability (its live and dead particles as the parent's). In (0, 1]: round(resid_fan_exist n_track) of its particles live (the parent's live ones, then copies of them in the dead slots in turn, or the last live ones ended), so that its existence probability starts at this value (docs/algorithms.md 2.7 [E]) */
-    pft_real_t resid_fan_vtol; /**< with resid_fan > 0: 0 (default): every line of the fan that leaves the layer is a candidate. In (0, 1.5] (px per frame): the lines whose velocity is within this of the layer's own (|w| < resid_fan_vtol: a second layer on the target the layer already follows) are no candidates (docs/algorithms.md 2.7 [E]) */
 } pft_tbd_config_t;
 
 /**
@@ -491,21 +487,6 @@ typedef struct {
  *  pixel). */
 #define PFT_TBD_INTEG_BYTES(w, h)                                                               \
     (2u * PFT_WS_ROUND((((size_t)(w) + 1u) / 2u) * (((size_t)(h) + 1u) / 2u) * sizeof(uint16_t)))
-
-/** cfg.resid_fan's lines per anchor: w = (a, b) / 4 px per frame with a^2 + b^2 <= 36. */
-#define PFT_TBD_FAN_LINES 113u
-/** cfg.resid_fan's reach about a layer (px): the half-size of its matched square. */
-#define PFT_TBD_FAN_REACH 10u
-/** Workspace bytes of cfg.resid_fan = k > 0 with max_targets track layers (constant expression;
- *  pft_tbd_workspace_size adds it, after every other buffer: 0 when off): per layer its id and
- *  k anchors' counts and k x PFT_TBD_FAN_LINES running sums, and one residual square and one
- *  matched square of the fan's reach (docs/algorithms.md 2.7). */
-#define PFT_TBD_FAN_BYTES(max_targets, k)                                                       \
-    (PFT_WS_ROUND((size_t)(max_targets) * sizeof(uint32_t)) +                                  \
-     PFT_WS_ROUND((size_t)(max_targets) * (size_t)(k)) +                                        \
-     PFT_WS_ROUND((size_t)(max_targets) * (size_t)(k) * PFT_TBD_FAN_LINES * sizeof(pft_real_t)) + \
-     PFT_WS_ROUND((2u * PFT_TBD_FAN_REACH + 3u) * (2u * PFT_TBD_FAN_REACH + 3u) * sizeof(pft_real_t)) + \
-     PFT_WS_ROUND((2u * PFT_TBD_FAN_REACH + 1u) * (2u * PFT_TBD_FAN_REACH + 1u) * sizeof(pft_real_t)))
 
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);

@@ -79,10 +79,6 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->resid_split = PFT_C(0.0);
     cfg->resid_split_frames = 0u;
     cfg->resid_split_age = 0u;
-    cfg->resid_fan = 0u;
-    cfg->resid_fan_in = 0u;
-    cfg->resid_fan_exist = PFT_C(0.0);
-    cfg->resid_fan_vtol = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -293,20 +289,6 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     }
     if (c->resid_split_frames > 8u) {
         return "resid_split_frames";
-    }
-    if (c->resid_fan != 0u && (c->resid_fan < 2u || c->resid_fan > 6u || is_off_(c->resid_split))) {
-        return "resid_fan";
-    }
-    if (c->resid_fan_in > 1u || (c->resid_fan_in != 0u && c->resid_fan == 0u)) {
-        return "resid_fan_in";
-    }
-    if (!(c->resid_fan_exist >= PFT_C(0.0) && c->resid_fan_exist <= PFT_REAL_ONE) ||
-        (c->resid_fan_exist > PFT_C(0.0) && c->resid_fan == 0u)) {
-        return "resid_fan_exist";
-    }
-    if (!(c->resid_fan_vtol >= PFT_C(0.0) && c->resid_fan_vtol <= PFT_C(1.5)) ||
-        (c->resid_fan_vtol > PFT_C(0.0) && c->resid_fan == 0u)) {
-        return "resid_fan_vtol";
     }
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {

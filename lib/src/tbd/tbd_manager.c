@@ -11,8 +11,7 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
         return 0u;
     }
     const size_t integ =
-        (cfg->integ_alpha > PFT_C(0.0) ? PFT_TBD_INTEG_BYTES(cfg->width, cfg->height) : 0u) +
-        (cfg->resid_fan > 0u ? PFT_TBD_FAN_BYTES(cfg->max_targets, cfg->resid_fan) : 0u);
+        cfg->integ_alpha > PFT_C(0.0) ? PFT_TBD_INTEG_BYTES(cfg->width, cfg->height) : 0u;
     if (cfg->frame_format == PFT_PIX_RES16) {
         return PFT_TBD_WORKSPACE_BYTES_RES16(cfg->n_search, cfg->n_track, cfg->max_targets,
                                              cfg->kind, cfg->width, cfg->height,
@@ -52,12 +51,6 @@ static size_t img_n_(const pft_tbd_config_t *cfg)
 {
     return in_place_(cfg) ? 0u : pft_tbd_img_len_(cfg->width, cfg->height);
 }
-
-/* cfg.resid_fan's squares about a layer: residual (reach + 1 each side) and matched values. */
-#define FAN_RES_W_ (2u * PFT_TBD_FAN_REACH + 3u)
-#define FAN_MAP_W_ (2u * PFT_TBD_FAN_REACH + 1u)
-#define FAN_RES_N_ ((size_t)FAN_RES_W_ * FAN_RES_W_)
-#define FAN_MAP_N_ ((size_t)FAN_MAP_W_ * FAN_MAP_W_)
 
 /* Carves every buffer of the manager from ws. With commit == false nothing is written
  * anywhere (a dry run that only checks the size). */
@@ -115,26 +108,7 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         integ0 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
         integ1 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
     }
-    uint32_t *fan_id = NULL;
-    uint8_t *fan_cnt = NULL;
-    pft_real_t *fan_sum = NULL;
-    pft_real_t *fan_res = NULL;
-    pft_real_t *fan_map = NULL;
-    if (cfg->resid_fan > 0u) {
-        /* after every other buffer: the layout without the fan is unchanged */
-        const size_t nk = (size_t)cfg->max_targets * cfg->resid_fan;
-        fan_id = (uint32_t *)pft_ws_take(ws, (size_t)cfg->max_targets * sizeof(uint32_t));
-        fan_cnt = (uint8_t *)pft_ws_take(ws, nk);
-        fan_sum = (pft_real_t *)pft_ws_take(ws, nk * PFT_TBD_FAN_LINES * sizeof(pft_real_t));
-        fan_res = (pft_real_t *)pft_ws_take(ws, FAN_RES_N_ * sizeof(pft_real_t));
-        fan_map = (pft_real_t *)pft_ws_take(ws, FAN_MAP_N_ * sizeof(pft_real_t));
-    }
     if (commit) {
-        t->fan_id = fan_id;
-        t->fan_cnt = fan_cnt;
-        t->fan_sum = fan_sum;
-        t->fan_res = fan_res;
-        t->fan_map = fan_map;
         t->integ[0] = integ0;
         t->integ[1] = integ1;
         t->base = nimg > 0u ? (void *)img : (void *)mask;
@@ -210,14 +184,6 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     if (cfg->birth_peaks > 0u) {
         memset(t->peak_rows, 0, 6u * (size_t)cfg->width * sizeof(pft_real_t));
         memset(t->peak_val, 0, (size_t)cfg->birth_peaks * sizeof(pft_real_t));
-    }
-    if (cfg->resid_fan > 0u) {
-        const size_t nk = (size_t)cfg->max_targets * cfg->resid_fan;
-        memset(t->fan_id, 0, (size_t)cfg->max_targets * sizeof(uint32_t));
-        memset(t->fan_cnt, 0xFF, nk);
-        memset(t->fan_sum, 0, nk * PFT_TBD_FAN_LINES * sizeof(pft_real_t));
-        memset(t->fan_res, 0, FAN_RES_N_ * sizeof(pft_real_t));
-        memset(t->fan_map, 0, FAN_MAP_N_ * sizeof(pft_real_t));
     }
     if (integ_n_(cfg) > 0u) {
         memset(t->integ[0], 0, integ_n_(cfg) * sizeof(uint16_t));
@@ -877,275 +843,6 @@ static pft_real_t resid_peak_(const pft_tbd_t *t, const pft_tbd_scene_t_ *sc, ui
     return best;
 }
 
-/* cfg.resid_fan (docs/algorithms.md 2.7 [E]): the fan's lines, relative velocities
- * w = (a, b) / 4 px per frame with a^2 + b^2 <= FAN_STEP_^2 (a outer, b inner: PFT_TBD_FAN_LINES
- * of them), and the least squared end distance of a line from its layer in 1/16 px^2 (1.5 px). */
-#define FAN_STEP_ 6
-#define FAN_END16_ 36
-
-/* Fills t->fan_map with the matched residual of track k (the frame minus the track's PSF,
- * filtered with the PSF's 3 x 3 taps as in resid_peak_) on the pixel centres of the square of
- * half-size PFT_TBD_FAN_REACH about pixel (i0, j0); 0 where the 3 x 3 leaves the image. */
-static void fan_map_(pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t k, int32_t i0, int32_t j0)
-{
-    const pft_tbd_meas_t *m = &t->search.model;
-    const pft_tbd_track_t *rec = &t->records[k];
-    const int32_t w = (int32_t)t->cfg.width;
-    const int32_t h = (int32_t)t->cfg.height;
-    const int32_t r0 = (int32_t)PFT_TBD_FAN_REACH;
-    const int32_t rw = (int32_t)FAN_RES_W_;
-    const int32_t mw = (int32_t)FAN_MAP_W_;
-    pft_real_t *res = t->fan_res;
-    pft_real_t *map = t->fan_map;
-    pft_real_t ex[FAN_RES_W_];
-    for (int32_t a = 0; a < rw; ++a) {
-        ex[a] = gauss_(m, pft_sub(pft_mul_i(m->dx, i0 - r0 - 1 + a), rec->x));
-    }
-    const pft_real_t amp = pft_mul(rec->intensity, m->kc);
-    for (int32_t b = 0; b < rw; ++b) {
-        const int32_t j = j0 - r0 - 1 + b;
-        pft_real_t *rr = res + b * rw;
-        if (j < 1 || j > h) {
-            memset(rr, 0, (size_t)rw * sizeof(pft_real_t));
-            continue;
-        }
-        const pft_real_t *row = pft_tbd_row_(sc, (uint32_t)(j - 1)) + 1; /* pixel i at i - 1 */
-        const pft_real_t ay = pft_mul(amp, gauss_(m, pft_sub(pft_mul_i(m->dy, j), rec->y)));
-        for (int32_t a = 0; a < rw; ++a) {
-            const int32_t i = i0 - r0 - 1 + a;
-            rr[a] = (i < 1 || i > w) ? PFT_C(0.0) : pft_sub(row[i - 1], pft_mul(ay, ex[a]));
-        }
-    }
-    const pft_real_t gx = gauss_(m, m->dx);
-    const pft_real_t gy = gauss_(m, m->dy);
-    const pft_real_t inv = pft_div(PFT_REAL_ONE,
-                                   pft_sqrt(pft_mul(pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gx), 2)),
-                                                    pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gy), 2)))));
-    for (int32_t b = 0; b < mw; ++b) {
-        const int32_t j = j0 - r0 + b;
-        for (int32_t a = 0; a < mw; ++a) {
-            const int32_t i = i0 - r0 + a;
-            if (i < 2 || i > w - 1 || j < 2 || j > h - 1) {
-                map[b * mw + a] = PFT_C(0.0);
-                continue;
-            }
-            const pft_real_t *p0 = res + b * rw + a; /* pixel (i - 1, j - 1) */
-            const pft_real_t *p1 = p0 + rw;
-            const pft_real_t *p2 = p1 + rw;
-            const pft_real_t h0 = pft_add(p0[1], pft_mul(gx, pft_add(p0[0], p0[2])));
-            const pft_real_t h1 = pft_add(p1[1], pft_mul(gx, pft_add(p1[0], p1[2])));
-            const pft_real_t h2 = pft_add(p2[1], pft_mul(gx, pft_add(p2[0], p2[2])));
-            map[b * mw + a] = pft_mul(pft_add(h1, pft_mul(gy, pft_add(h0, h2))), inv);
-        }
-    }
-}
-
-/* Whether the point (px, py) lies at least 3 px from every track but k. */
-static bool fan_free_(const pft_tbd_t *t, uint32_t k, pft_real_t px, pft_real_t py)
-{
-    for (uint32_t u = 0; u < t->cfg.max_targets; ++u) {
-        const pft_tbd_track_t *o = &t->records[u];
-        if (u != k && o->id != 0u && d2_(px, py, o->x, o->y) < RESID_OTHER2_) {
-            return false;
-        }
-    }
-    return true;
-}
-
-/* The fan of track k (cfg.resid_fan = K): its anchors' running sums take this frame's matched
- * residual at the pixel centre nearest to the track's estimate plus w j (j the frames since the
- * anchor), the anchor that reaches K frames is tested and anchored again at this frame (or,
- * while fewer than K run, a free one is). Returns the completed anchor's best sum over the lines
- * that end at least 1.5 px from the track and 3 px from every other, divided by sqrt(K), with the
- * line's end in (*px, *py) and its w in px per frame in (*wx, *wy); 0 with nothing tested
- * (outputs untouched). */
-static pft_real_t fan_best_(pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t k, pft_real_t *px,
-                            pft_real_t *py, pft_real_t *wx, pft_real_t *wy)
-{
-    const pft_tbd_meas_t *m = &t->search.model;
-    const pft_tbd_track_t *rec = &t->records[k];
-    const uint32_t nk = t->cfg.resid_fan;
-    const int32_t r0 = (int32_t)PFT_TBD_FAN_REACH;
-    const int32_t mw = (int32_t)FAN_MAP_W_;
-    uint8_t *cnt = t->fan_cnt + (size_t)k * nk;
-    pft_real_t *sum = t->fan_sum + (size_t)k * nk * PFT_TBD_FAN_LINES;
-    if (t->fan_id[k] != rec->id) {
-        t->fan_id[k] = rec->id;
-        memset(cnt, 0xFF, nk);
-    }
-    const int32_t i0 = pft_tbd_pix_(rec->x, m->inv_dx);
-    const int32_t j0 = pft_tbd_pix_(rec->y, m->inv_dy);
-    bool mapped = false;
-    for (uint32_t s = 0; s < nk; ++s) {
-        if (cnt[s] >= nk) {
-            continue; /* no anchor (0xFF) */
-        }
-        if (!mapped) {
-            fan_map_(t, sc, k, i0, j0);
-            mapped = true;
-        }
-        const int32_t jj = (int32_t)cnt[s] + 1;
-        pft_real_t *ls = sum + (size_t)s * PFT_TBD_FAN_LINES;
-        uint32_t n = 0;
-        for (int32_t a = -FAN_STEP_; a <= FAN_STEP_; ++a) {
-            const pft_real_t ox = pft_mul(pft_mul_i(PFT_C(0.25), a * jj), m->dx);
-            const int32_t ia = pft_tbd_pix_(pft_add(rec->x, ox), m->inv_dx) - (i0 - r0);
-            for (int32_t b = -FAN_STEP_; b <= FAN_STEP_; ++b) {
-                if (a * a + b * b > FAN_STEP_ * FAN_STEP_) {
-                    continue;
-                }
-                const pft_real_t oy = pft_mul(pft_mul_i(PFT_C(0.25), b * jj), m->dy);
-                const int32_t jb = pft_tbd_pix_(pft_add(rec->y, oy), m->inv_dy) - (j0 - r0);
-                if (ia >= 0 && ia < mw && jb >= 0 && jb < mw) {
-                    ls[n] = pft_add(ls[n], t->fan_map[jb * mw + ia]);
-                }
-                ++n;
-            }
-        }
-        cnt[s] = (uint8_t)jj;
-    }
-    pft_real_t best = PFT_C(0.0);
-    bool found = false;
-    bool anchored = false;
-    /* cfg.resid_fan_vtol: lines of |w| (the line's velocity less the layer's) below it are no
-     * candidates, in (4 w)^2 = a^2 + b^2 units; 0 when off */
-    const pft_real_t vt16 = pft_mul_i(pft_sq(t->cfg.resid_fan_vtol), 16);
-    for (uint32_t s = 0; s < nk; ++s) {
-        if (cnt[s] != nk) {
-            continue;
-        }
-        pft_real_t *ls = sum + (size_t)s * PFT_TBD_FAN_LINES;
-        uint32_t n = 0;
-        const int32_t kk = (int32_t)nk;
-        for (int32_t a = -FAN_STEP_; a <= FAN_STEP_; ++a) {
-            for (int32_t b = -FAN_STEP_; b <= FAN_STEP_; ++b) {
-                if (a * a + b * b > FAN_STEP_ * FAN_STEP_) {
-                    continue;
-                }
-                const uint32_t l = n++;
-                if ((a * a + b * b) * kk * kk < FAN_END16_ || (found && !(ls[l] > best)) ||
-                    pft_from_int(a * a + b * b) < vt16) {
-                    continue;
-                }
-                const pft_real_t ex = pft_add(rec->x, pft_mul(pft_mul_i(PFT_C(0.25), a * kk), m->dx));
-                const pft_real_t ey = pft_add(rec->y, pft_mul(pft_mul_i(PFT_C(0.25), b * kk), m->dy));
-                if (!fan_free_(t, k, ex, ey)) {
-                    continue;
-                }
-                best = ls[l];
-                *px = ex;
-                *py = ey;
-                *wx = pft_mul_i(PFT_C(0.25), a);
-                *wy = pft_mul_i(PFT_C(0.25), b);
-                found = true;
-            }
-        }
-        cnt[s] = 0u; /* anchored again at this frame */
-        memset(ls, 0, PFT_TBD_FAN_LINES * sizeof(pft_real_t));
-        anchored = true;
-    }
-    for (uint32_t s = 0; s < nk && !anchored; ++s) {
-        if (cnt[s] == 0xFFu) {
-            cnt[s] = 0u;
-            memset(sum + (size_t)s * PFT_TBD_FAN_LINES, 0, PFT_TBD_FAN_LINES * sizeof(pft_real_t));
-            anchored = true;
-        }
-    }
-    if (!found) {
-        return PFT_C(0.0);
-    }
-    return pft_div(best, pft_sqrt(pft_from_int((int32_t)nk)));
-}
-
-/* A layer d started by the fan (cfg.resid_fan): each live particle's velocity moved from
- * cfg.vel_mean (pft_tbd_filter_seed_at_) to its parent f's estimate plus the line's w (px per
- * frame). */
-static void fan_velocity_(const pft_tbd_filter_t *f, pft_tbd_filter_t *d, pft_real_t wx,
-                          pft_real_t wy)
-{
-    const pft_tbd_meas_t *m = &d->model;
-    const pft_real_t tx = pft_div(pft_mul(wx, m->dx), d->cfg.T);
-    const pft_real_t ty = pft_div(pft_mul(wy, m->dy), d->cfg.T);
-    const pft_real_t sx = pft_sub(pft_add(f->est.vx, tx), d->cfg.vel_mean[0]);
-    const pft_real_t sy = pft_sub(pft_add(f->est.vy, ty), d->cfg.vel_mean[1]);
-    for (uint32_t s = 0; s < d->n; ++s) {
-        if (d->cur.e[s] != 0u) {
-            d->cur.vx[s] = pft_add(d->cur.vx[s], sx);
-            d->cur.vy[s] = pft_add(d->cur.vy[s], sy);
-        }
-    }
-    d->est.vx = pft_add(d->est.vx, sx); /* every live particle moved by the same amount */
-    d->est.vy = pft_add(d->est.vy, sy);
-}
-
-/* A layer d started by the fan with cfg.resid_fan_in 1: each live particle's intensity drawn
- * from the line's own estimate instead of the parent's. The line's mean matched value per frame
- * is v / sqrt(K) (v: the best sum in the sum's sigmas), the amplitude of a point on a pixel
- * centre is that divided by sqrt(sum g^2) of the 3 x 3 taps, and the intensity that amplitude
- * divided by kc (the whitened PSF peak per unit intensity); the spread is one sigma of the mean,
- * 1 / (sqrt(K) sqrt(sum g^2) kc). Each draw is kept in [0, i_max] (the particle kernels' range). */
-static void fan_intensity_(pft_tbd_filter_t *d, pft_real_t v, uint32_t nk)
-{
-    const pft_tbd_meas_t *m = &d->model;
-    const pft_real_t gx = gauss_(m, m->dx);
-    const pft_real_t gy = gauss_(m, m->dy);
-    const pft_real_t gn = pft_sqrt(pft_mul(pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gx), 2)),
-                                           pft_add(PFT_REAL_ONE, pft_mul_i(pft_sq(gy), 2))));
-    const pft_real_t sd =
-        pft_div(PFT_REAL_ONE, pft_mul(pft_mul(gn, pft_sqrt(pft_from_int((int32_t)nk))), m->kc));
-    const pft_real_t mean = pft_clamp(pft_mul(v, sd), PFT_C(0.0), d->cfg.i_max);
-    for (uint32_t s = 0; s < d->n; ++s) {
-        if (d->cur.e[s] != 0u) {
-            d->cur.in[s] =
-                pft_clamp(pft_kmad1_(mean, sd, pft_rng_zig_(&d->rng)), PFT_C(0.0), d->cfg.i_max);
-        }
-    }
-    d->est.intensity = mean;
-}
-
-/* A layer d started by the fan with cfg.resid_fan_exist = p0 > 0: round(p0 n) of its n particles
- * live (the live ones copied from the parent first, then copies of them in turn in the dead
- * slots; or the last live ones ended), so that its existence probability, the weighted share of
- * its live particles at the next frame, starts at p0 instead of the parent's. */
-static void fan_exist_(pft_tbd_filter_t *d, pft_real_t p0)
-{
-    pft_tbd_particles_t *P = &d->cur;
-    const uint32_t n = d->n;
-    uint32_t nl = 0u;
-    for (uint32_t s = 0; s < n; ++s) {
-        nl += P->e[s] != 0u ? 1u : 0u;
-    }
-    const int32_t w = pft_round_int(pft_mul_i(p0, (int32_t)n));
-    const uint32_t want = w < 1 ? 1u : ((uint32_t)w > n ? n : (uint32_t)w);
-    if (nl == 0u) {
-        return; /* nothing to copy: the layer as the parent left it */
-    }
-    uint32_t src = 0u;
-    for (uint32_t s = 0; s < n && nl < want; ++s) {
-        if (P->e[s] != 0u) {
-            continue;
-        }
-        while (P->e[src] == 0u) {
-            src = src + 1u < n ? src + 1u : 0u;
-        }
-        P->x[s] = P->x[src];
-        P->y[s] = P->y[src];
-        P->vx[s] = P->vx[src];
-        P->vy[s] = P->vy[src];
-        P->in[s] = P->in[src];
-        P->e[s] = P->e[src];
-        src = src + 1u < n ? src + 1u : 0u;
-        ++nl;
-    }
-    for (uint32_t s = n; s > 0u && nl > want; --s) {
-        if (P->e[s - 1u] != 0u) {
-            P->e[s - 1u] = 0u;
-            --nl;
-        }
-    }
-    d->est.p_exist = p0;
-}
-
 /* 2c. A second target beside a track (cfg.resid_split, docs/algorithms.md 2.7 [E]): each track
  * layer that lived before this frame (and, with resid_split_age, is young) counts the frames in
  * a row with its residual peak (resid_peak_) at least resid_split, the peak within 2 px of the
@@ -1168,19 +865,13 @@ static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
             continue;
         }
         if (cfg->resid_split_age > 0u && tf->frames > (uint32_t)cfg->resid_split_age) {
-            if (cfg->resid_fan > 0u) {
-                t->fan_id[k] = 0u; /* its sums start again if it is tested again */
-            }
             tf->resid_n = 0u;
             tf->resid_m = PFT_C(0.0);
             continue;
         }
         pft_real_t x = PFT_C(0.0);
         pft_real_t y = PFT_C(0.0);
-        pft_real_t wx = PFT_C(0.0);
-        pft_real_t wy = PFT_C(0.0);
-        const pft_real_t v = cfg->resid_fan > 0u ? fan_best_(t, &sc, k, &x, &y, &wx, &wy)
-                                                 : resid_peak_(t, &sc, k, &x, &y);
+        const pft_real_t v = resid_peak_(t, &sc, k, &x, &y);
         const bool near = tf->resid_n > 0u && !(d2_(x, y, tf->resid_x, tf->resid_y) > RESID_STEP2_);
         tf->resid_m = v;
         tf->resid_x = x;
@@ -1196,15 +887,6 @@ static void resid_split_tracks_(pft_tbd_t *t, const pft_frame_t *frame)
         const uint32_t u = child_slot_(t);
         pft_tbd_filter_t *nf = &t->tracks[u];
         pft_tbd_filter_seed_at_(tf, nf, pft_sub(x, rec->x), pft_sub(y, rec->y));
-        if (cfg->resid_fan > 0u) {
-            fan_velocity_(tf, nf, wx, wy);
-            if (cfg->resid_fan_exist > PFT_C(0.0)) {
-                fan_exist_(nf, cfg->resid_fan_exist); /* before the draws: copies take new ones */
-            }
-            if (cfg->resid_fan_in > 0u) {
-                fan_intensity_(nf, v, cfg->resid_fan);
-            }
-        }
         tf->resid_n = 0u;
         child_record_(t, rec, u);
     }

@@ -143,11 +143,6 @@ struct pft_tbd_s {
     uint32_t gap;                /* frame periods of the current update (1 without a gap) */
     uint16_t *integ[2];          /* cfg.integ_alpha > 0: the integrated sums S of the last frame and of this one, per 2 x 2 bin ((S << 2) | the bin's best pixel) */
     uint8_t integ_i;             /* which of integ[] holds the last frame's sums */
-    uint32_t *fan_id;            /* cfg.resid_fan > 0: per track slot the id whose sums fan_sum holds (0: none) */
-    uint8_t *fan_cnt;            /* ... per slot and anchor the frames summed (0xFF: no anchor) */
-    pft_real_t *fan_sum;         /* ... per slot, anchor and line the running sum of m */
-    pft_real_t *fan_res;         /* ... the residual square about the layer being tested */
-    pft_real_t *fan_map;         /* ... and its matched values */
     pft_real_t shift_next[2];    /* pft_tbd_set_shift's shift to the next frame (pixels) */
     pft_real_t shift_acc[2];     /* the shift not yet applied in whole bins (pixels) */
 };
