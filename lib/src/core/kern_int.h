@@ -441,9 +441,8 @@ static inline void pft_kwexp_lanes_(void *slots, uint32_t n, float m)
     const float f1 = 1.0f;
     memcpy(&one, &f1, 4u);
     for (uint32_t s = 0; s < n; ++s) {
-        float lw, xs, y, f, p, sc, e;
-        uint32_t xb, eb, scb, r;
-        int32_t k;
+        float lw, xs, e;
+        uint32_t xb, eb, r;
         memcpy(&lw, q + 4u * (size_t)s, 4u);
         {
             const float x = lw - m;
@@ -453,18 +452,7 @@ static inline void pft_kwexp_lanes_(void *slots, uint32_t n, float m)
             memcpy(&xb, &x, 4u);
             xb &= ok;
             memcpy(&xs, &xb, 4u);
-            y = xs * 1.44269504f;
-            k = (int32_t)y;
-            f = y - (float)k;
-            p = 0.000946877000387758f;
-            p = p * f + 0.009209180250763893f;
-            p = p * f + 0.05529811978340149f;
-            p = p * f + 0.24017895758152008f;
-            p = p * f + 0.6931431293487549f;
-            p = p * f + 0.9999999403953552f;
-            scb = (uint32_t)(k + 127) << 23;
-            memcpy(&sc, &scb, sizeof sc);
-            e = p * sc;
+            e = pft_kwexp_poly_(xs);
             memcpy(&eb, &e, 4u);
             r = (eb & ok) | (one & in & ~neg);
         }
