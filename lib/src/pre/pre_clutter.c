@@ -321,6 +321,17 @@ static void cl_dec8_row_(const uint8_t *src, uint16_t *dst, int32_t w)
     }
 }
 
+/* The warp's horizontal value at an edge column x of a source row (cl_warp_h_, cl_warp_h16_):
+ * v[x - ix] (256 - fx) + v[x - ix - 1] fx, a source outside the row counting b. */
+static uint32_t cl_warp_edge_(const uint16_t *row, int32_t w, int32_t x, int32_t ix, uint32_t fx,
+                              uint32_t b)
+{
+    const int32_t s1 = x - ix, s0 = s1 - 1;
+    const uint32_t v1 = s1 >= 0 && s1 < w ? (uint32_t)row[s1] : b;
+    const uint32_t v0 = s0 >= 0 && s0 < w ? (uint32_t)row[s0] : b;
+    return v1 * (256u - fx) + v0 * fx;
+}
+
 /* The warp's horizontal pass over source row sy (the map's grid w x h): hr[x] =
  * v[sy][x - ix] (256 - fx) + v[sy][x - ix - 1] fx, a source outside the frame counting b (a row
  * outside: b 256 in every column, which the vertical pass turns back into b). Columns [xlo,
@@ -348,10 +359,7 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
     /* the edge columns: sources beyond the frame count b */
     for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
         const int32_t x = e < xlo ? e : xhi + (e - xlo);
-        const int32_t s1 = x - ix, s0 = s1 - 1;
-        const uint32_t v1 = s1 >= 0 && s1 < w ? (uint32_t)row[s1] : b;
-        const uint32_t v0 = s0 >= 0 && s0 < w ? (uint32_t)row[s0] : b;
-        hr[x] = v1 * (uint32_t)gx + v0 * fx;
+        hr[x] = cl_warp_edge_(row, w, x, ix, fx, b);
     }
 }
 
@@ -398,13 +406,9 @@ static void cl_warp_h16_(const uint16_t *v, uint16_t *hh, uint16_t *hl, int32_t 
         }
     }
     /* the edge columns: sources beyond the frame count b */
-    const uint32_t gx = 256u - fx;
     for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
         const int32_t x = e < xlo ? e : xhi + (e - xlo);
-        const int32_t s1 = x - ix, s0 = s1 - 1;
-        const uint32_t v1 = s1 >= 0 && s1 < w ? (uint32_t)row[s1] : b;
-        const uint32_t v0 = s0 >= 0 && s0 < w ? (uint32_t)row[s0] : b;
-        const uint32_t hv = v1 * gx + v0 * fx;
+        const uint32_t hv = cl_warp_edge_(row, w, x, ix, fx, b);
         hh[x] = (uint16_t)(hv >> 8);
         hl[x] = (uint16_t)(hv & 255u);
     }
