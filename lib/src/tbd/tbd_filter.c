@@ -144,6 +144,12 @@ typedef struct {
     uint32_t p_birth; /* 0 when no birth is possible (u < 0 never holds) */
     uint32_t e_max;
     uint32_t n;
+    /* the births': the scene's candidates (NULL and 0 without births: x->sc is not read then)
+     * and the configuration (pft_tbd_birth_inv_t) */
+    const uint32_t *cand;
+    uint32_t n_cand;
+    pft_tbd_birth_inv_t birth;
+    bool sample_vel; /* PF births draw their velocity (!x->rb) */
 } move_inv_t;
 
 static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *x)
@@ -161,20 +167,24 @@ static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *
     v.p_birth = x->can_birth ? x->p_birth : 0u;
     v.e_max = x->e_max;
     v.n = f->n;
+    v.cand = x->can_birth ? x->sc->cand : NULL;
+    v.n_cand = x->can_birth ? x->sc->n_cand : 0u;
+    v.birth = pft_tbd_birth_inv_(&f->cfg, &f->dyn);
+    v.sample_vel = !x->rb;
     return v;
 }
 
 /* A birth into particle s (the generator passed by value and back, so that the caller's
- * never has its address taken). */
-static inline pft_rng_t move_birth_(const pft_tbd_filter_t *f, const step_ctx_t *x,
-                                    const move_inv_t *v, uint32_t s, pft_rng_t rng)
+ * never has its address taken); the scene's candidates and the configuration from the pass's
+ * locals v (pft_tbd_birth_pix_v_: pft_tbd_birth_pix_in_'s draws and values). */
+static inline pft_rng_t move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
+                                    pft_rng_t rng)
 {
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
     pft_rng_t t = rng;
-    const pft_tbd_scene_t_ *sc = x->sc;
-    const uint32_t n = pft_rng_below_(&t, sc->n_cand); /* the pixel's draw comes first */
-    const uint32_t p = sc->cand != NULL ? sc->cand[n] : pft_tbd_scene_pick_(sc, n);
-    pft_tbd_birth_pix_in_(&f->cfg, &f->dyn, p, !x->rb, &t, &k);
+    const uint32_t n = pft_rng_below_(&t, v->n_cand); /* the pixel's draw comes first */
+    const uint32_t p = v->cand != NULL ? v->cand[n] : pft_tbd_scene_pick_(x->sc, n);
+    pft_tbd_birth_pix_v_(&v->birth, p, v->sample_vel, &t, &k);
     return t;
 }
 
@@ -197,7 +207,7 @@ static void move_rbpf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(f, x, &v, s, rng);
+            rng = move_birth_(x, &v, s, rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -223,7 +233,7 @@ static void move_pf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(f, x, &v, s, rng);
+            rng = move_birth_(x, &v, s, rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -713,7 +723,7 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
         if ((e == 0u || u < p16_share) && !can_birth) {
             e = 0u; /* no pixel to be born in: the slot stays empty */
         } else if (e == 0u || u < p16_share) {
-            rng = move_birth_(f, x, &v, s, rng);
+            rng = move_birth_(x, &v, s, rng);
             e = 1u;
             ++b;
         } else {

@@ -457,6 +457,97 @@ static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tb
         *k->vy = c->vel_mean[1];
     }
 }
+/* A birth's configuration and the intensity draw's range tests, read once per move pass into a
+ * local (pft_tbd_birth_inv_) instead of through the config pointer per birth: the stores of a
+ * birth to the particle arrays (floats, or int32_t in q16, and the state bytes) may alias the
+ * config's fields, so pft_tbd_birth_pix_in_ reloads them each time. pft_tbd_birth_pix_v_ gives
+ * pft_tbd_birth_pix_in_'s values and draws bit for bit. */
+typedef struct {
+    pft_real_t dx, dy;
+    pft_real_t vel_mean[2], vel_sd[2];
+    pft_real_t i_lo, i_hi;
+#ifdef PFT_NUMERIC_Q16
+    int64_t i_span; /* i_max - i_min when i_min < i_max, else 0 (the draw is then i_min) */
+#else
+    pft_real_t i_span; /* i_max - i_min (i_fast only) */
+    pft_real_t i_top;  /* the float below i_max towards i_min: a draw that rounds up to i_max */
+    bool i_fast;       /* i_min < i_max and i_max - i_min finite */
+#endif
+    uint32_t width;
+} pft_tbd_birth_inv_t;
+
+static inline pft_tbd_birth_inv_t pft_tbd_birth_inv_(const pft_tbd_config_t *c,
+                                                     const pft_tbd_dyn_t *d)
+{
+    pft_tbd_birth_inv_t b;
+    b.dx = c->dx;
+    b.dy = c->dy;
+    b.vel_mean[0] = c->vel_mean[0];
+    b.vel_mean[1] = c->vel_mean[1];
+    b.vel_sd[0] = d->vel_sd[0];
+    b.vel_sd[1] = d->vel_sd[1];
+    b.i_lo = c->i_min;
+    b.i_hi = c->i_max;
+#ifdef PFT_NUMERIC_Q16
+    b.i_span = b.i_lo < b.i_hi ? (int64_t)b.i_hi - (int64_t)b.i_lo : 0;
+#else
+    b.i_span = pft_sub(b.i_hi, b.i_lo);
+    b.i_fast = b.i_lo < b.i_hi && b.i_span <= PFT_REAL_MAX;
+    b.i_top = b.i_fast ? nextafterf(b.i_hi, b.i_lo) : b.i_hi;
+#endif
+    b.width = c->width;
+    return b;
+}
+
+/* pft_rng_uniform_range_(rng, i_min, i_max) with its range tests decided once per pass. q16:
+ * with a span of 0 when i_min >= i_max the sum is i_min, what the test there returns; the
+ * same product and shift otherwise. float, i_min < i_max with a finite span (i_fast): the same
+ * sum lo + span f, and its test against lo dropped: span > 0 and f >= 0 make span f >= 0, and
+ * round-to-nearest is monotone, so lo + span f >= lo (with lo = -0 the sum is +0, and +0 < -0
+ * is false too); the other cases take pft_rng_uniform_range_'s code after the same draw. */
+static inline pft_real_t pft_tbd_birth_in_draw_(const pft_tbd_birth_inv_t *b, pft_rng_t *rng)
+{
+    const uint32_t u = pft_rng_next_(rng);
+#ifdef PFT_NUMERIC_Q16
+    return (pft_real_t)((int64_t)b->i_lo + ((b->i_span * (int64_t)(u >> 16)) >> 16));
+#else
+    if (b->i_fast) {
+        const pft_real_t r = pft_add(b->i_lo, pft_mul(b->i_span, pft_from_u32_frac(u)));
+        return r < b->i_hi ? r : b->i_top;
+    } else {
+        const pft_real_t lo = b->i_lo;
+        const pft_real_t hi = b->i_hi;
+        if (!(lo < hi)) {
+            return lo;
+        }
+        {
+            const pft_real_t f = pft_from_u32_frac(u);
+            const pft_real_t r = pft_add(pft_mul(lo, pft_sub(PFT_REAL_ONE, f)), pft_mul(hi, f));
+            return r < hi ? (r < lo ? lo : r) : nextafterf(hi, lo);
+        }
+    }
+#endif
+}
+
+/* pft_tbd_birth_pix_in_ from the pass's locals b (the same draws and values). */
+static inline void pft_tbd_birth_pix_v_(const pft_tbd_birth_inv_t *b, uint32_t p, bool sample_vel,
+                                        pft_rng_t *rng, const pft_tbd_kin_t *k)
+{
+    const uint32_t col = p % b->width;
+    const uint32_t row = p / b->width;
+    const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
+    const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
+    *k->x = pft_tbd_birth_coord_(col, ux, b->dx);
+    *k->y = pft_tbd_birth_coord_(row, uy, b->dy);
+    *k->in = pft_tbd_birth_in_draw_(b, rng);
+    if (sample_vel) {
+        *k->vx = pft_kmad1_(b->vel_mean[0], b->vel_sd[0], pft_rng_zig_(rng));
+        *k->vy = pft_kmad1_(b->vel_mean[1], b->vel_sd[1], pft_rng_zig_(rng));
+    } else {
+        *k->vx = b->vel_mean[0];
+        *k->vy = b->vel_mean[1];
+    }
+}
 /* A survivor's PF move: X = F X + chol(V) n on the full state (five ziggurat draws: x axis,
  * y axis, intensity), each component rounded once. */
 static inline void pft_tbd_pf_move_(const pft_tbd_dyn_t *d, pft_real_t T, pft_rng_t *rng,
