@@ -512,6 +512,18 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
 #define EST_TWO_LOOPS_ 0
 #endif
 
+/* Whether pass 3's eight weighted sums of an E = 1 particle (x, y, vx, vy, I and the three
+ * second moments) go through one array of eight floats, so that gcc adds them as two 4-lane
+ * vectors (float where the compiler has 16-byte vectors: SSE2, NEON). Each lane is one sum
+ * with its own terms in the particles' order and each term is the same product (wn v, the
+ * moments wn (dx dx), wn (dx dy), wn (dy dy)), so every sum has the scalar form's bits. Without
+ * vectors (Cortex-M) the array would go through memory: the scalar form. */
+#if !defined(PFT_NUMERIC_Q16) && (defined(__SSE2__) || defined(__ARM_NEON))
+#define EST_LANES_ 1
+#else
+#define EST_LANES_ 0
+#endif
+
 /* One step of pass 3's walk: slot s (weight e; cum: the weights before it, then with it)
  * takes its replication count, and when that is 0 joins the chain of empty slots after the
  * one link names; returns where the next empty slot's index goes. */
@@ -569,6 +581,45 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
         a.ry = pft_mul(f->model.hi_y, pft_mul(f->model.dy, PFT_C(0.5)));
     }
     pft_sys_init_(&sys, sum, n, pft_rng_next_(&f->rng));
+#if EST_LANES_
+    {
+        /* lanes 0-4: x, y, vx, vy, I; 5-7: the moments xx, xy, yy (a.s, a.cxx, a.cxy, a.cyy) */
+        float acc[8] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+        for (uint32_t s = 0; s < n; ++s) {
+            const pft_weight_t e = w[s].w;
+            link = walk_slot_(w, s, e, &sys, &cum, link);
+            if (pe[s] == 0u) {
+                ++n0; /* weight e0 (pass 2): its terms are added once below */
+            } else {
+                const pft_weight_t wn = pft_kwnorm_(e, r);
+                const float dx = px[s] - a.rx;
+                const float dy = py[s] - a.ry;
+                float t[8];
+                a.w += wn;
+                a.w2 += wn * wn;
+                a.we += wn;
+                t[0] = px[s];
+                t[1] = py[s];
+                t[2] = pvx[s];
+                t[3] = pvy[s];
+                t[4] = pin[s];
+                t[5] = dx * dx;
+                t[6] = dx * dy;
+                t[7] = dy * dy;
+                PFT_KLANES_LOOP_
+                for (int c = 0; c < 8; ++c) {
+                    acc[c] += wn * t[c];
+                }
+            }
+        }
+        for (int c = 0; c < 5; ++c) {
+            a.s[c] = acc[c];
+        }
+        a.cxx = acc[5];
+        a.cxy = acc[6];
+        a.cyy = acc[7];
+    }
+#else
     for (uint32_t s = 0; s < n; ++s) {
         const pft_weight_t e = w[s].w;
 #if !EST_TWO_LOOPS_
@@ -595,6 +646,7 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
             a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
         }
     }
+#endif
     {
         /* every E = 0 particle has weight e0, so the same normalised weight wn0: n0 wn0 <=
          * 2^30 and n0 wn0^2 <= 2^60 (q16), the same sums as particle by particle */
