@@ -1044,17 +1044,47 @@ static uint32_t integ_at_(const pft_tbd_integ_t_ *ig, int32_t br, int32_t bc)
 /* The peaks of the integration into the heap: the 3 x 3 local maxima of the bins' sums (a
  * plateau's first bin in raster order, as peak_is_max_) above ps->thr, each at its bin's
  * largest pixel of this frame, when that pixel is allowed. */
+/* The threshold te of integ_scan_ as a bound on a bin's 16-bit word: a bin's v = word >> 2
+ * (below 2^14) has pft_from_int(v) > te exactly when word > the returned bound. v is an
+ * integer, exact in both builds: float, v > te holds for every v when te < 0 (or -inf), for
+ * none when te is NaN or at least 2^14 (bound 4 16383 + 3 = 65535), and else exactly when
+ * v > floor(te); q16, v 2^16 > te exactly when v > floor(te / 2^16), every v when te < 0. v >
+ * L is word > 4 L + 3 (the word's low two bits are its pixel's index). */
+static int32_t integ_bound_(pft_real_t te)
+{
+    int32_t l;
+#ifdef PFT_NUMERIC_Q16
+    l = te < 0 ? -1 : te / 65536;
+#else
+    if (te < 0.0f) {
+        l = -1;
+    } else if (te < 16384.0f) {
+        l = (int32_t)te; /* floor: te >= 0 */
+    } else {
+        l = 16383; /* te >= 2^14, +inf or NaN: no v is above it */
+    }
+#endif
+    return 4 * (l < 16383 ? l : 16383) + 3;
+}
+
 static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
 {
     pft_real_t te = peak_te_(ps);
+    int32_t bound = integ_bound_(te); /* a bin passes the threshold when its word is above it */
     for (uint32_t br = 0; br < ig->bh; ++br) {
         const uint16_t *row = ig->cur + (size_t)br * ig->bw;
-        for (uint32_t bc = 0; bc < ig->bw; ++bc) {
+        const uint32_t bw = ig->bw;
+        for (uint32_t bc = 0; bc < bw; ++bc) {
+            /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
+             * their own (most bins fail it) */
+            while (bc < bw && (int32_t)row[bc] <= bound) {
+                ++bc;
+            }
+            if (bc >= bw) {
+                break;
+            }
             const uint32_t v = (uint32_t)row[bc] >> 2;
             const pft_real_t vr = pft_from_int((int32_t)v);
-            if (!(vr > te)) {
-                continue;
-            }
             bool is_max = true;
             for (int32_t a = -1; a <= 1 && is_max; ++a) {
                 for (int32_t b = -1; b <= 1 && is_max; ++b) {
@@ -1075,6 +1105,7 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
             }
             peak_keep_(ps, pr * ps->w + pc, vr);
             te = peak_te_(ps);
+            bound = integ_bound_(te);
         }
     }
 }
