@@ -24,6 +24,13 @@
  *
  * The weights' pass (tbd_filter.c, weights_) in float with 16-byte vectors: pft_kwexp_lanes_
  * is pft_kwexp_ of every value bit for bit (below).
+ *
+ * The search layer's births (lib/src/tbd/tbd_int.h): pft_tbd_birth_pix_v_ with the pass's
+ * locals (pft_tbd_birth_inv_) gives pft_tbd_birth_pix_in_'s position, intensity and velocity
+ * bits and leaves the generator in the same state, for 4000 random births: frame widths 1 to
+ * 512, pitches, intensity ranges of equal ends, the default (10, 30), wide and narrow spans
+ * (float: spans of one to three ulps, so that draws round up to i_max and take the float
+ * below it), velocities drawn and not.
  */
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +39,7 @@
 #include "pft_test_support.h"
 #include "pft/pft_real.h"
 #include "../../lib/src/core/kern_int.h"
+#include "../../lib/src/tbd/tbd_int.h"
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -239,6 +247,74 @@ static void test_kwexp_lanes_is_kwexp(void)
 #endif
 }
 
+void test_birth_pix_v_is_birth_pix_in(void)
+{
+    uint32_t st = 4242u;
+    uint32_t bad = 0u;
+    uint32_t tops = 0u; /* float: draws at the float below i_max (rounded up to it, or on it) */
+    for (uint32_t rep = 0; rep < 4000u; ++rep) {
+        pft_tbd_config_t c;
+        pft_tbd_dyn_t d;
+        pft_real_t o[2][5];
+        pft_rng_t r0, r1;
+        memset(&c, 0, sizeof c);
+        memset(&d, 0, sizeof d);
+        c.width = 1u + lcg_(&st) % 512u;
+        const uint32_t h = 1u + lcg_(&st) % 512u;
+        c.dx = pft_test_from_double(0.25 + (double)(lcg_(&st) % 1000u) / 256.0);
+        c.dy = pft_test_from_double(0.25 + (double)(lcg_(&st) % 1000u) / 256.0);
+        switch (lcg_(&st) % 5u) {
+        case 0u: c.i_min = PFT_C(10.0); c.i_max = PFT_C(30.0); break;
+        case 1u: c.i_min = pft_test_from_double((double)(lcg_(&st) % 400u) / 8.0); c.i_max = c.i_min; break;
+        case 2u: c.i_min = PFT_C(0.0); c.i_max = pft_test_from_double((double)(1u + lcg_(&st) % 30000u)); break;
+        case 3u:
+            c.i_min = pft_test_from_double((double)(lcg_(&st) % 4000u) / 16.0);
+#ifdef PFT_NUMERIC_Q16
+            c.i_max = c.i_min + (pft_real_t)(1u + lcg_(&st) % 3u);
+#else
+            c.i_max = c.i_min;
+            for (uint32_t q = 1u + lcg_(&st) % 3u; q > 0u; --q) {
+                c.i_max = nextafterf(c.i_max, INFINITY);
+            }
+#endif
+            break;
+        default: c.i_min = pft_test_from_double((double)(lcg_(&st) % 400u) / 8.0);
+                 c.i_max = pft_test_from_double((double)(lcg_(&st) % 400u) / 8.0); break;
+        }
+        c.vel_mean[0] = pft_test_from_double((double)(lcg_(&st) % 600u) / 100.0 - 3.0);
+        c.vel_mean[1] = pft_test_from_double((double)(lcg_(&st) % 600u) / 100.0 - 3.0);
+        d.vel_sd[0] = pft_test_from_double((double)(lcg_(&st) % 200u) / 100.0);
+        d.vel_sd[1] = pft_test_from_double((double)(lcg_(&st) % 200u) / 100.0);
+        {
+            const bool sv = (lcg_(&st) & 1u) != 0u;
+            const uint32_t p = lcg_(&st) % (c.width * h);
+            pft_tbd_kin_t k0 = {&o[0][0], &o[0][1], &o[0][2], &o[0][3], &o[0][4]};
+            pft_tbd_kin_t k1 = {&o[1][0], &o[1][1], &o[1][2], &o[1][3], &o[1][4]};
+            pft_tbd_birth_inv_t b;
+            memset(o, 0x55, sizeof o);
+            pft_rng_seed(&r0, lcg_(&st));
+            r1 = r0;
+            pft_tbd_birth_pix_in_(&c, &d, p, sv, &r0, &k0);
+            b = pft_tbd_birth_inv_(&c, &d);
+            pft_tbd_birth_pix_v_(&b, p, sv, &r1, &k1);
+        }
+        if ((memcmp(o[0], o[1], sizeof o[0]) != 0 || memcmp(&r0, &r1, sizeof r0) != 0) &&
+            bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "birth %u: x %.9g %.9g, intensity %.9g %.9g", (unsigned)rep,
+                     (double)o[0][0], (double)o[1][0], (double)o[0][4], (double)o[1][4]);
+        }
+#ifndef PFT_NUMERIC_Q16
+        tops += c.i_min < c.i_max && o[0][4] == nextafterf(c.i_max, c.i_min) ? 1u : 0u;
+#endif
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+#ifndef PFT_NUMERIC_Q16
+    TEST_ASSERT_TRUE(tops > 50u); /* the narrow spans were met */
+#else
+    (void)tops;
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -246,5 +322,6 @@ int main(void)
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kwexp_lanes_is_kwexp);
+    RUN_TEST(test_birth_pix_v_is_birth_pix_in);
     return UNITY_END();
 }
