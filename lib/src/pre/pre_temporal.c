@@ -866,6 +866,18 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
     }
 }
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), anchor_view_'s horizontal 4-tap pass takes 16 x 16-bit
+ * products: each vertical blend vb is kept as two int16 halves, vh = vb >> 15 and
+ * vl = vb & 32767 (vb = 32768 vh + vl), and the pass forms hs = sum of w vh in 16-bit lanes and
+ * ls = sum of w vl from widening 16 x 16-bit products, with the clamp in 16-bit lanes, instead
+ * of 32 x 32-bit products, 32-bit clamps and the narrowing to 16 bits, which SSE2 lacks
+ * (pmuludq and shuffles). NEON has them (32-bit mla, shrn: the 32-bit pass is 39 AArch64
+ * instructions per 8 pixels), and a scalar core (Cortex-M) would pay twice the multiplies:
+ * those keep the 32-bit form (the same object code as before). */
+#define PFT_PRE_VIEW_SPLIT_ 1
+#endif
+
 static void anchor_view_(pft_pre_t *p)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
@@ -873,10 +885,68 @@ static void anchor_view_(pft_pre_t *p)
     agx_t gy;
     agx_of_(p->aphi[0], p->cfg.warp_cubic, &gx);
     agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
-    int32_t *vb = p->aring;
     uint16_t *out = (uint16_t *)(void *)p->res;
     const int16_t gw0 = (int16_t)gy.wr[0], gw1 = (int16_t)gy.wr[1], gw2 = (int16_t)gy.wr[2];
     const int16_t gw3 = (int16_t)gy.wr[3];
+#ifdef PFT_PRE_VIEW_SPLIT_
+    /* The ranges (every bit depth: the grid holds U values, 0 .. 65535; the bound is per pixel,
+     * so for any frame size and width): the weights are Q8 summing to
+     * 256, bilinear in [0, 256], Catmull-Rom (cubic_q8_, all 256 fractions) in [-19, 256] with
+     * the positive ones summing to at most 288 and the negative ones to at least -32. So
+     * vb = (sum of w t + 8) >> 4 lies in [(-32 * 65535 + 8) >> 4, (288 * 65535 + 8) >> 4] =
+     * [-131070, 1179630], vh = vb >> 15 in [-4, 35] and vl in [0, 32767]; each product w vh
+     * within +-256 * 35 = 8960 and hs within [-32 * 35 - 288 * 4, 288 * 35 + 32 * 4] =
+     * [-2272, 10208] (int16); ls = sum of w vl within [-32 * 32767, 288 * 32767] (< 2^24, int32).
+     * The sum of w vb is 32768 hs + ls, so (sum + 2048) >> 12 = 8 hs + ((ls + 2048) >> 12)
+     * exactly (32768 = 8 * 4096): the same value as the 32-bit form below. The halves take the
+     * scratch's first sw int32 words (2 sw int16 values), as the 32-bit row did. */
+    int16_t *vh = (int16_t *)(void *)p->aring;
+    int16_t *vl = vh + sw;
+    const int16_t w0 = (int16_t)gx.wr[0], w1 = (int16_t)gx.wr[1], w2 = (int16_t)gx.wr[2];
+    const int16_t w3 = (int16_t)gx.wr[3];
+    const int32_t xe = w - gx.k; /* x < xe: x + k + 3 <= w + 2 */
+    for (int32_t y = 0; y < h; ++y) {
+        const uint16_t *t[4];
+        for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
+            t[i] = p->bg + (size_t)clampi_(y + gy.k + i, 0, h + 2) * (size_t)sw;
+        }
+        for (int32_t i = 0; i < sw; ++i) { /* vectorisable */
+            const int32_t v = vtap_(t[0], t[1], t[2], t[3], gw0, gw1, gw2, gw3, i);
+            vh[i] = (int16_t)(v >> 15);
+            vl[i] = (int16_t)(v & 32767);
+        }
+        uint16_t *o = out + (size_t)y * (size_t)w;
+        /* storage columns x + k .. x + k + 3; the last pixel's fourth tap (k = 1) clamped */
+        const int16_t *a = vh + gx.k, *l = vl + gx.k;
+        /* sv = 8 hs + qs with qs = (ls + 2048) >> 12 in [-256, 2304], clamped to [0, 65535]
+         * in 16-bit lanes (SSE2 has no 32-bit min, max or unsigned pack): hs clamped to
+         * hc in [-289, 8224] first changes no output (hs >= 8224: sv >= 65792 - 256 = 65536;
+         * hs <= -289: sv <= -2312 + 2304 < 0); then sv = 2 u + (qs & 1) with
+         * u = 4 hc + (qs >> 1) in [-1284, 34048], held as uo = u - 16384 (int16). u < 0 gives
+         * sv < 0 (output 0 = 2 * 0 + 0), u > 32767 gives sv > 65535 (65535 = 2 * 32767 + 1),
+         * else the output is sv itself. */
+        for (int32_t x = 0; x < xe; ++x) { /* vectorisable: 16-bit lanes */
+            const int16_t hs = (int16_t)(w0 * a[x] + w1 * a[x + 1] + w2 * a[x + 2] + w3 * a[x + 3]);
+            const int32_t ls = w0 * l[x] + w1 * l[x + 1] + w2 * l[x + 2] + w3 * l[x + 3];
+            const int16_t hc = hs < -289 ? -289 : (hs > 8224 ? 8224 : hs);
+            const int16_t qs = (int16_t)((ls + 2048) >> 12);
+            const int16_t uo = (int16_t)(4 * hc - 16384 + (qs >> 1));
+            const int16_t uc = uo < -16384 ? -16384 : (uo > 16383 ? 16383 : uo);
+            const int16_t bit = (int16_t)(uo > 16383 ? 1 : (uo < -16384 ? 0 : (qs & 1)));
+            o[x] = (uint16_t)(2 * (uc + 16384) + bit);
+        }
+        for (int32_t x = xe; x < w; ++x) {
+            int32_t sv = 2048;
+            for (int32_t i = 0; i < 4; ++i) {
+                const int32_t c = clampi_(x + gx.k + i, 0, sw - 1);
+                sv += gx.wr[i] * (vh[c] * 32768 + vl[c]);
+            }
+            sv >>= 12;
+            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+    }
+#else
+    int32_t *vb = p->aring;
     for (int32_t y = 0; y < h; ++y) {
         const uint16_t *t[4];
         for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
@@ -902,6 +972,7 @@ static void anchor_view_(pft_pre_t *p)
             o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
         }
     }
+#endif
 }
 
 /* The geometry of one frame's anchored pass: the read and update taps per axis, the valid
