@@ -523,6 +523,10 @@ static void est_finish_(pft_tbd_estimate_t *e, const est_sums_t *a)
 #else
 #define EST_LANES_ 0
 #endif
+/* The lanes form runs the walk in its loop (one loop, as the float build does). */
+#if EST_LANES_ && EST_TWO_LOOPS_
+#error "EST_LANES_ has no two-loop form: set one of EST_LANES_ and EST_TWO_LOOPS_"
+#endif
 
 /* One step of pass 3's walk: slot s (weight e; cum: the weights before it, then with it)
  * takes its replication count, and when that is 0 joins the chain of empty slots after the
