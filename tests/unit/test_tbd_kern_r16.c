@@ -26,7 +26,8 @@
  * is pft_kwexp_ of every value bit for bit (below).
  *
  * The search layer's births (lib/src/tbd/tbd_int.h): pft_tbd_birth_pix_v_ with the pass's
- * locals (pft_tbd_birth_inv_) gives pft_tbd_birth_pix_in_'s position, intensity and velocity
+ * locals (pft_tbd_birth_inv_) gives the per-call form's (birth_pix_ref_ below: the config read
+ * through its pointer, the intensity by pft_rng_uniform_range_) position, intensity and velocity
  * bits and leaves the generator in the same state, for 4000 random births: frame widths 1 to
  * 512, pitches, intensity ranges of equal ends, the default (10, 30), wide and narrow spans
  * (float: spans of one to three ulps, so that draws round up to i_max and take the float
@@ -47,6 +48,27 @@ void tearDown(void) {}
 static pft_real_t taps_[12];
 static char msg_[160];
 static uint32_t n_taps_;
+
+/* The per-call birth, the reference of test_birth_pix_v_is_birth_pix_in: every value read
+ * through the config, the intensity drawn by pft_rng_uniform_range_ with its own range tests. */
+static void birth_pix_ref_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
+                           bool sample_vel, pft_rng_t *rng, const pft_tbd_kin_t *k)
+{
+    const uint32_t col = p % c->width;
+    const uint32_t row = p / c->width;
+    const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
+    const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
+    *k->x = pft_tbd_birth_coord_(col, ux, c->dx);
+    *k->y = pft_tbd_birth_coord_(row, uy, c->dy);
+    *k->in = pft_rng_uniform_range_(rng, c->i_min, c->i_max);
+    if (sample_vel) {
+        *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
+        *k->vy = pft_kmad1_(c->vel_mean[1], d->vel_sd[1], pft_rng_zig_(rng));
+    } else {
+        *k->vx = c->vel_mean[0];
+        *k->vy = c->vel_mean[1];
+    }
+}
 
 static void make_taps_(void)
 {
@@ -294,7 +316,7 @@ void test_birth_pix_v_is_birth_pix_in(void)
             memset(o, 0x55, sizeof o);
             pft_rng_seed(&r0, lcg_(&st));
             r1 = r0;
-            pft_tbd_birth_pix_in_(&c, &d, p, sv, &r0, &k0);
+            birth_pix_ref_(&c, &d, p, sv, &r0, &k0);
             b = pft_tbd_birth_inv_(&c, &d);
             pft_tbd_birth_pix_v_(&b, p, sv, &r1, &k1);
         }

@@ -38,7 +38,8 @@ pft_real_t pft_tbd_birth_lw_(const pft_tbd_config_t *cfg, const pft_tbd_scene_t_
 void pft_tbd_birth_pix_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, uint32_t p,
                         bool sample_vel, pft_rng_t *rng, pft_tbd_kin_t *k)
 {
-    pft_tbd_birth_pix_in_(c, d, p, sample_vel, rng, k);
+    const pft_tbd_birth_inv_t b = pft_tbd_birth_inv_(c, d);
+    pft_tbd_birth_pix_v_(&b, p, sample_vel, rng, k);
 }
 
 void pft_tbd_birth_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d, const uint32_t *cand,

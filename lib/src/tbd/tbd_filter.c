@@ -176,7 +176,7 @@ static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *
 
 /* A birth into particle s (the generator passed by value and back, so that the caller's
  * never has its address taken); the scene's candidates and the configuration from the pass's
- * locals v (pft_tbd_birth_pix_v_: pft_tbd_birth_pix_in_'s draws and values). */
+ * locals v (pft_tbd_birth_pix_v_). */
 static inline pft_rng_t move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
                                     pft_rng_t rng)
 {

@@ -434,34 +434,12 @@ static inline pft_real_t pft_tbd_birth_coord_(uint32_t c, pft_real_t u, pft_real
     return pft_kmula_(pft_kaddr_(pft_kaddr_(pft_from_int((int32_t)c), PFT_C(0.5)), u), d);
 }
 
-/* pft_tbd_birth_pix_ inline (the search layer's births: its draws inline too, so that the
- * layer's generator, a local of the move pass, stays in registers). */
-static inline void pft_tbd_birth_pix_in_(const pft_tbd_config_t *c, const pft_tbd_dyn_t *d,
-                                         uint32_t p, bool sample_vel, pft_rng_t *rng,
-                                         const pft_tbd_kin_t *k)
-{
-    const uint32_t col = p % c->width;
-    const uint32_t row = p / c->width;
-    /* pft_rng_uniform, inline */
-    const pft_real_t ux = pft_from_u32_frac(pft_rng_next_(rng));
-    const pft_real_t uy = pft_from_u32_frac(pft_rng_next_(rng));
-    /* pixel i = col + 1 covers [(i - 0.5) dx, (i + 0.5) dx) */
-    *k->x = pft_tbd_birth_coord_(col, ux, c->dx);
-    *k->y = pft_tbd_birth_coord_(row, uy, c->dy);
-    *k->in = pft_rng_uniform_range_(rng, c->i_min, c->i_max);
-    if (sample_vel) {
-        *k->vx = pft_kmad1_(c->vel_mean[0], d->vel_sd[0], pft_rng_zig_(rng));
-        *k->vy = pft_kmad1_(c->vel_mean[1], d->vel_sd[1], pft_rng_zig_(rng));
-    } else {
-        *k->vx = c->vel_mean[0];
-        *k->vy = c->vel_mean[1];
-    }
-}
-/* A birth's configuration and the intensity draw's range tests, read once per move pass into a
- * local (pft_tbd_birth_inv_) instead of through the config pointer per birth: the stores of a
- * birth to the particle arrays (floats, or int32_t in q16, and the state bytes) may alias the
- * config's fields, so pft_tbd_birth_pix_in_ reloads them each time. pft_tbd_birth_pix_v_ gives
- * pft_tbd_birth_pix_in_'s values and draws bit for bit. */
+/* A birth's configuration and the intensity draw's range tests in a local
+ * (pft_tbd_birth_inv_): the search layer's move pass reads them once per pass instead of
+ * through the config pointer per birth (the stores of a birth to the particle arrays, floats or
+ * int32_t in q16 and the state bytes, may alias the config's fields, so a read through the
+ * pointer is repeated at each birth); pft_tbd_birth_pix_ builds it per call. The draws and
+ * values are those of the per-call form with pft_rng_uniform_range_ (test_tbd_kern_r16). */
 typedef struct {
     pft_real_t dx, dy;
     pft_real_t vel_mean[2], vel_sd[2];
@@ -470,7 +448,6 @@ typedef struct {
     int64_t i_span; /* i_max - i_min when i_min < i_max, else 0 (the draw is then i_min) */
 #else
     pft_real_t i_span; /* i_max - i_min (i_fast only) */
-    pft_real_t i_top;  /* the float below i_max towards i_min: a draw that rounds up to i_max */
     bool i_fast;       /* i_min < i_max and i_max - i_min finite */
 #endif
     uint32_t width;
@@ -493,7 +470,6 @@ static inline pft_tbd_birth_inv_t pft_tbd_birth_inv_(const pft_tbd_config_t *c,
 #else
     b.i_span = pft_sub(b.i_hi, b.i_lo);
     b.i_fast = b.i_lo < b.i_hi && b.i_span <= PFT_REAL_MAX;
-    b.i_top = b.i_fast ? nextafterf(b.i_hi, b.i_lo) : b.i_hi;
 #endif
     b.width = c->width;
     return b;
@@ -513,7 +489,7 @@ static inline pft_real_t pft_tbd_birth_in_draw_(const pft_tbd_birth_inv_t *b, pf
 #else
     if (b->i_fast) {
         const pft_real_t r = pft_add(b->i_lo, pft_mul(b->i_span, pft_from_u32_frac(u)));
-        return r < b->i_hi ? r : b->i_top;
+        return r < b->i_hi ? r : nextafterf(b->i_hi, b->i_lo); /* rounded up to i_max: rare */
     } else {
         const pft_real_t lo = b->i_lo;
         const pft_real_t hi = b->i_hi;
@@ -529,7 +505,10 @@ static inline pft_real_t pft_tbd_birth_in_draw_(const pft_tbd_birth_inv_t *b, pf
 #endif
 }
 
-/* pft_tbd_birth_pix_in_ from the pass's locals b (the same draws and values). */
+/* A birth in pixel p from the locals b: its position uniform in the pixel, its intensity
+ * uniform in [i_min, i_max), its velocity drawn around vel_mean (sample_vel: PF births) or
+ * vel_mean itself; inline, so that the search layer's generator, a local of the move pass,
+ * stays in registers. */
 static inline void pft_tbd_birth_pix_v_(const pft_tbd_birth_inv_t *b, uint32_t p, bool sample_vel,
                                         pft_rng_t *rng, const pft_tbd_kin_t *k)
 {
