@@ -21,6 +21,8 @@
  * 0.7, 1.0 and 2.0 at window offsets across [-1/2, 1/2] (all of which pass
  * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200. In float with 16-byte
  * vectors (SSE2, NEON) pft_kspot3_r16_ reads the window's first eight pixels in 16-bit lanes.
+ * pft_kspot3_r16t_ (the taps and the window in one; float with SSE2 in vector lanes) is
+ * pft_ktaps_ and then pft_kspot3_r16_ bit for bit on random windows and tap tables (below).
  *
  * The weights' pass (tbd_filter.c, weights_) in float with 16-byte vectors: pft_kwexp_lanes_
  * is pft_kwexp_ of every value bit for bit (below).
@@ -213,6 +215,80 @@ static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
+/* pft_kspot3_r16t_ (the weighing loop's kernel: the taps of both axes and the window in one;
+ * float with SSE2: the taps as vectors, the window's rows as lanes) is pft_ktaps_ of both tables'
+ * rows and then pft_kspot3_r16_ bit for bit, no tolerance: 6000 windows of random pixels (the
+ * masked code, extremes, 0, small and large values) at random row strides, random tables (64
+ * rows; values in [0, 1.2), differences in +-0.05, some 0) at random rows and fractions (0, 1
+ * and between), amplitudes 0 and -5 to 35. */
+static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
+{
+    enum { W = 30, H = 3, ROWS = 64 };
+    static pft_real_t tab[2][ROWS][8];
+    uint8_t frame[2u * W * H];
+    uint32_t st = 4242u;
+    uint32_t bad = 0u, masked = 0u;
+    for (uint32_t rep = 0; rep < 6000u; ++rep) {
+        for (uint32_t t = 0; t < 2u; ++t) {
+            for (uint32_t r = 0; r < (uint32_t)ROWS; ++r) {
+                for (uint32_t k = 0; k < 8u; ++k) {
+                    const uint32_t u = lcg_(&st);
+                    const double x = (double)(u % 65536u) / 65536.0;
+                    tab[t][r][k] = (u >> 16) % 8u == 0u ? PFT_C(0.0)
+                                   : k < 4u         ? pft_test_from_double(1.2 * x)
+                                                    : pft_test_from_double(0.1 * (x - 0.5));
+                }
+            }
+        }
+        for (uint32_t q = 0; q < (uint32_t)(W * H); ++q) {
+            const uint32_t r = lcg_(&st);
+            int16_t v;
+            switch (r % 8u) {
+            case 0u: v = INT16_MIN; break; /* PFT_RES16_MASKED */
+            case 1u: v = (r & 256u) != 0u ? (int16_t)32767 : (int16_t)-32767; break;
+            case 2u: v = (int16_t)((int32_t)(r >> 9) % 64 - 32); break;
+            case 3u: v = 0; break;
+            default: v = (int16_t)((int32_t)(r >> 4) % 6000 - 3000); break;
+            }
+            memcpy(frame + 2u * q, &v, 2u);
+        }
+        pft_kfrac_t g[2];
+        for (uint32_t t = 0; t < 2u; ++t) {
+            const uint32_t u = lcg_(&st);
+#ifdef PFT_NUMERIC_Q16
+            g[t] = u % 65536u;
+#else
+            g[t].n = (int32_t)(u % (uint32_t)ROWS);
+            g[t].r = (u >> 6) % 4u == 0u ? (float)((u >> 8) % 2u) : (float)((u >> 8) % 1024u) / 1024.0f;
+#endif
+        }
+        const uint32_t ua = lcg_(&st);
+        const pft_real_t a = ua % 5u == 0u ? PFT_C(0.0)
+                                           : pft_test_from_double((double)(ua % 4000u) / 100.0 - 5.0);
+        const size_t stride = 2u * (3u + lcg_(&st) % (uint32_t)(W - 3)); /* 6 to 2 (W - 1) bytes */
+        const uint8_t *p = frame + 2u * (lcg_(&st) % 3u);
+        pft_real_t tx[4], ty[4];
+        for (uint32_t b = 0; b < 3u; ++b) {
+            for (uint32_t c = 0; c < 3u; ++c) {
+                int16_t v;
+                memcpy(&v, p + (size_t)b * stride + 2u * c, 2u);
+                masked += v == INT16_MIN ? 1u : 0u;
+            }
+        }
+        pft_ktaps_((const pft_real_t(*)[8])tab[0], g[0], tx);
+        pft_ktaps_((const pft_real_t(*)[8])tab[1], g[1], ty);
+        const pft_real_t want = pft_kspot3_r16_(p, stride, tx, ty, a);
+        const pft_real_t got = pft_kspot3_r16t_(p, stride, (const pft_real_t(*)[8])tab[0], g[0],
+                                                (const pft_real_t(*)[8])tab[1], g[1], a);
+        if (memcmp(&want, &got, sizeof want) != 0 && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "window %u: %.9g, pft_ktaps_ and pft_kspot3_r16_ %.9g",
+                     (unsigned)rep, pft_test_to_double(got), pft_test_to_double(want));
+        }
+    }
+    TEST_ASSERT_TRUE(masked > 1000u);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+}
+
 /* The weights' pass in 16-byte vectors (float with SSE2 or NEON; tbd_filter.c, weights_):
  * pft_kwexp_lanes_ of a row is pft_kwexp_ of each value bit for bit, no tolerance (the weights
  * drive the resampling): rows of 0 and -0 (an E = 0 particle's log-weight), the maximum itself,
@@ -343,6 +419,7 @@ int main(void)
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
+    RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);
     RUN_TEST(test_kwexp_lanes_is_kwexp);
     RUN_TEST(test_birth_pix_v_is_birth_pix_in);
     return UNITY_END();
