@@ -21,7 +21,7 @@
  * 0.7, 1.0 and 2.0 at window offsets across [-1/2, 1/2] (all of which pass
  * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200. In float with 16-byte
  * vectors (SSE2, NEON) pft_kspot3_r16_ reads the window's first eight pixels in 16-bit lanes.
- * pft_kspot3_r16t_ (the taps and the window in one; float with SSE2 in vector lanes) is
+ * pft_kspot3_r16t_ (the taps and the window in one, in vector lanes; float with SSE2 only) is
  * pft_ktaps_ and then pft_kspot3_r16_ bit for bit on random windows and tap tables (below).
  *
  * The weights' pass (tbd_filter.c, weights_) in float with 16-byte vectors: pft_kwexp_lanes_
@@ -215,14 +215,15 @@ static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
-/* pft_kspot3_r16t_ (the weighing loop's kernel: the taps of both axes and the window in one;
- * float with SSE2: the taps as vectors, the window's rows as lanes) is pft_ktaps_ of both tables'
+/* pft_kspot3_r16t_ (the weighing loop's kernel in float with SSE2: the taps of both axes and
+ * the window in one, the taps as vectors, the window's rows as lanes; ignored elsewhere) is pft_ktaps_ of both tables'
  * rows and then pft_kspot3_r16_ bit for bit, no tolerance: 6000 windows of random pixels (the
  * masked code, extremes, 0, small and large values) at random row strides, random tables (64
  * rows; values in [0, 1.2), differences in +-0.05, some 0) at random rows and fractions (0, 1
  * and between), amplitudes 0 and -5 to 35. */
 static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
 {
+#if defined(PFT_KSPOT3_R16T_LANES_)
     enum { W = 30, H = 3, ROWS = 64 };
     static pft_real_t tab[2][ROWS][8];
     uint8_t frame[2u * W * H];
@@ -255,12 +256,8 @@ static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
         pft_kfrac_t g[2];
         for (uint32_t t = 0; t < 2u; ++t) {
             const uint32_t u = lcg_(&st);
-#ifdef PFT_NUMERIC_Q16
-            g[t] = u % 65536u;
-#else
             g[t].n = (int32_t)(u % (uint32_t)ROWS);
             g[t].r = (u >> 6) % 4u == 0u ? (float)((u >> 8) % 2u) : (float)((u >> 8) % 1024u) / 1024.0f;
-#endif
         }
         const uint32_t ua = lcg_(&st);
         const pft_real_t a = ua % 5u == 0u ? PFT_C(0.0)
@@ -287,6 +284,9 @@ static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
     }
     TEST_ASSERT_TRUE(masked > 1000u);
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+#else
+    TEST_IGNORE_MESSAGE("pft_kspot3_r16t_ is built in float with SSE2 only");
+#endif
 }
 
 /* The weights' pass in 16-byte vectors (float with SSE2 or NEON; tbd_filter.c, weights_):

@@ -28,9 +28,9 @@
  *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
  *   float only where pft_kr16_sum_ok_ holds for every tap the window can get); in float with
  *   16-byte vectors (SSE2, NEON) the window's first eight pixels in one array of 16-bit lanes.
- * - pft_kspot3_r16t_: pft_ktaps_ of both axes' table rows and pft_kspot3_r16_ in one (the
- *   weighing loop's kernel); in float with SSE2 the taps as vectors and the window's rows as the
- *   lanes of its columns (intrinsics), the same bits.
+ * - pft_kspot3_r16t_ (float with SSE2 only): pft_ktaps_ of both axes' table rows and
+ *   pft_kspot3_r16_ in one, the taps as vectors and the window's rows as the lanes of its
+ *   columns (intrinsics), the same bits.
  * - pft_kwexp_lanes_ (float with 16-byte vectors): pft_kwexp_ of a row of values in place,
  *   every test as a bit mask, so that the row vectorises (the same bits).
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
@@ -691,8 +691,9 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
  * and (ty0 r0 + ty1 r1) + ty2 r2 its window sum in its order: every operation the same IEEE
  * single operation on the same values (lane 3 is not used), so the same bits. About 60
  * instructions per window against about 120 for the taps and the eight-lane form (gcc 12,
- * whose vectoriser found no such form in plain C). AArch64 (NEON) and the Cortex-M builds
- * keep pft_ktaps_ and pft_kspot3_r16_ (pft_kspot3_r16t_ after the float section). */
+ * whose vectoriser found no such form in plain C). Defined only here (PFT_KSPOT3_R16T_LANES_):
+ * AArch64 (NEON), the Cortex-M builds and q16 keep pft_ktaps_ and pft_kspot3_r16_ (tbd_int.h,
+ * pft_tbd_llr3_r16_v_), the same code as before. */
 #define PFT_KSPOT3_R16T_LANES_ 1
 static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
                                           pft_kfrac_t gx, const pft_real_t (*taby)[8],
@@ -764,20 +765,6 @@ static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pf
     return a * (s1 - 0.5f * a * sx2 * sy2);
 }
 
-#endif
-
-/* pft_ktaps_ of the tables' rows at gx and gy, then pft_kspot3_r16_ (both builds); float with
- * SSE2 has its own form above (the same bits). */
-#ifndef PFT_KSPOT3_R16T_LANES_
-static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
-                                          pft_kfrac_t gx, const pft_real_t (*taby)[8],
-                                          pft_kfrac_t gy, pft_real_t a)
-{
-    pft_real_t tx[4], ty[4];
-    pft_ktaps_(tabx, gx, tx);
-    pft_ktaps_(taby, gy, ty);
-    return pft_kspot3_r16_(p, st, tx, ty, a);
-}
 #endif
 
 #endif

@@ -327,8 +327,17 @@ static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_
     const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
     const pft_real_t amp = pft_kmulq_(intensity, m->kc);
     if (!(ex || ey) && v->sum && !(v->pflag != NULL && v->pflag[c->j - 1] != 0u)) {
+#ifdef PFT_KSPOT3_R16T_LANES_
+        /* float with SSE2: the taps and the window in vector lanes (the same bits) */
         return pft_kspot3_r16t_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
                                 v->st, tab->taps[0], c->fx, tab->taps[1], c->fy, amp);
+#else
+        pft_real_t tx[4], ty[4];
+        pft_ktaps_(tab->taps[0], c->fx, tx);
+        pft_ktaps_(tab->taps[1], c->fy, ty);
+        return pft_kspot3_r16_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
+                               v->st, tx, ty, amp);
+#endif
     }
     return pft_tbd_llr3_r16_out_(m, tab, sc, c->i, c->j, c->fx, c->fy, amp);
 }
