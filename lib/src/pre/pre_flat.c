@@ -237,6 +237,14 @@ static inline int32_t fl_lev32_(int32_t k, uint32_t l)
     return (kh * (int32_t)l) + lo;
 }
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), the relative form's 16-bit level row takes fl_lev32_'s
+ * products as 16 x 16-bit products (pmullw, pmulhuw, pmulhw) instead of 32 x 32-bit ones,
+ * which SSE2 lacks (pmuludq and shuffles); other targets keep fl_lev32_ (a scalar core pays
+ * one 32-bit multiply per product). */
+#define FL_LEV_SPLIT_ 1
+#endif
+
 /* One pixel of a span without a branch: v (the residual) less off, clamped, written to *rx and
  * booked into the sums when within the gate; a masked pixel left as it is and not booked. */
 static inline void fl_px_bf_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate,
@@ -278,6 +286,28 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
             fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
     } else {
+#ifdef FL_LEV_SPLIT_
+        /* fl_lev32_ with 16 x 16-bit products (FL_LEV_SPLIT_): kl l from the unsigned 16-bit kl
+         * and l; kh l as kh (l - 32768) + 32768 kh, kh in [-8, 8] and l - 32768 in
+         * [-32768, 32767] (int16), |32768 kh| <= 2^18: the same integers. The interpolation
+         * stepped by st per pixel (modulo 2^32: u0 + (x - x0) st, the same values). */
+        uint32_t uu = u0;
+        for (uint32_t x = x0; x < x1; ++x) { /* vectorisable */
+            const int32_t kv = (int32_t)(uu >> k) - cb;
+            uu += st;
+            uint16_t l16;
+            memcpy(&l16, lrow + 2u * x, 2u);
+            const uint32_t l = l16;
+            const int16_t kh = (int16_t)((int32_t)((uint32_t)(kv + FL_MMAX_) >> 16) - 8);
+            const uint16_t kl = (uint16_t)((uint32_t)kv & 0xFFFFu);
+            const uint32_t neg = ((uint32_t)kv >> 31) & ((0u - l) >> 31);
+            const uint32_t pl = (uint32_t)kl * (uint32_t)l16;
+            const int16_t ls = (int16_t)((int32_t)l16 - 32768);
+            const int32_t ph = (int32_t)kh * (int32_t)ls + 32768 * (int32_t)kh;
+            const int32_t lev = ph + (int32_t)((pl + 32768u - neg) >> 16);
+            fl_px_bf_(&r[x], r[x], lev, l, gate, &sum, &cnt, &lsum);
+        }
+#else
         for (uint32_t x = x0; x < x1; ++x) {
             const int32_t kv = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
             uint16_t l16;
@@ -285,6 +315,7 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
             const uint32_t l = l16;
             fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
+#endif
     }
     *u = u0 + (x1 - x0) * st;
     acc->sum = sum;
