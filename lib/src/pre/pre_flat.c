@@ -237,6 +237,17 @@ static inline int32_t fl_lev32_(int32_t k, uint32_t l)
     return (kh * (int32_t)l) + lo;
 }
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), the relative form's 16-bit level row takes fl_lev32_'s
+ * products as 16 x 16-bit products (pmullw, pmulhw) instead of 32 x 32-bit ones, which SSE2
+ * lacks (pmuludq and shuffles), and rescale's per-pixel multiplication (fl_mulq_, a 64-bit
+ * product in a loop with a branch, not vectorised) becomes a vectorised loop of 16 x 16-bit
+ * products (fl_scale_span_). Other targets keep fl_lev32_ and fl_mulq_ (a scalar core pays one
+ * 32-bit multiply, or one 32 x 32 -> 64-bit multiply, per product): their object code is as
+ * before. */
+#define FL_LEV_SPLIT_ 1
+#endif
+
 /* One pixel of a span without a branch: v (the residual) less off, clamped, written to *rx and
  * booked into the sums when within the gate; a masked pixel left as it is and not booked. */
 static inline void fl_px_bf_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate,
@@ -278,6 +289,28 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
             fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
     } else {
+#ifdef FL_LEV_SPLIT_
+        /* fl_lev32_ with 16 x 16-bit products (FL_LEV_SPLIT_): kl l from the unsigned 16-bit kl
+         * and l; kh l as kh (l - 32768) + 32768 kh, kh in [-8, 8] and l - 32768 in
+         * [-32768, 32767] (int16), |32768 kh| <= 2^18: the same integers. The interpolation
+         * stepped by st per pixel (modulo 2^32: u0 + (x - x0) st, the same values). */
+        uint32_t uu = u0;
+        for (uint32_t x = x0; x < x1; ++x) { /* vectorisable */
+            const int32_t kv = (int32_t)(uu >> k) - cb;
+            uu += st;
+            uint16_t l16;
+            memcpy(&l16, lrow + 2u * x, 2u);
+            const uint32_t l = l16;
+            const int16_t kh = (int16_t)((int32_t)((uint32_t)(kv + FL_MMAX_) >> 16) - 8);
+            const uint16_t kl = (uint16_t)((uint32_t)kv & 0xFFFFu);
+            const uint32_t neg = ((uint32_t)kv >> 31) & ((0u - l) >> 31);
+            const uint32_t pl = (uint32_t)kl * (uint32_t)l16;
+            const int16_t ls = (int16_t)((int32_t)l16 - 32768);
+            const int32_t ph = (int32_t)kh * (int32_t)ls + 32768 * (int32_t)kh;
+            const int32_t lev = ph + (int32_t)((pl + 32768u - neg) >> 16);
+            fl_px_bf_(&r[x], r[x], lev, l, gate, &sum, &cnt, &lsum);
+        }
+#else
         for (uint32_t x = x0; x < x1; ++x) {
             const int32_t kv = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
             uint16_t l16;
@@ -285,6 +318,7 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
             const uint32_t l = l16;
             fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
+#endif
     }
     *u = u0 + (x1 - x0) * st;
     acc->sum = sum;
@@ -389,6 +423,7 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
     }
 }
 
+#ifndef FL_LEV_SPLIT_
 /* v q / 2^16 rounded half away from zero (|v| <= 2^15, 0 < q <= 2^20: |v q| < 2^39), the
  * floor taken on the product biased to a non-negative value, as fl_lev_ (the same integers as
  * a rounded division). */
@@ -398,6 +433,41 @@ static int32_t fl_mulq_(int32_t v, int32_t q)
     const uint64_t u = (uint64_t)(p + (FL_QBIAS_ + 32768)) - (p < 0 ? 1u : 0u);
     return (int32_t)(u >> 16u) - FL_QBIAS16_;
 }
+#endif
+
+#ifdef FL_LEV_SPLIT_
+/* rescale: pixels x0 .. x1 - 1 of row r, the multiplier's interpolation u0 stepped by st, as
+ * the loop of fl_scale_row_ below; fl_mulq_ in 16 x 16-bit products, branch-free: q = 65536 qh
+ * + ql with qh = q >> 16 in [0, 16] and ql in [0, 65535]; v in [-32767, 32767] (an unmasked
+ * pixel). v q = 65536 v qh + v ql, and v ql = v (ql - 32768) + 32768 v (int16 products;
+ * |v ql| <= 32767 * 65535 < 2^31 - 32768), so floor((v q + 32768 - [v < 0]) / 2^16) =
+ * v qh + ((v ql + 32768 - [v < 0]) >> 16), the same integer as fl_mulq_ (q > 0: v q < 0 exactly
+ * when v < 0). A masked pixel is stored back unchanged and counted nowhere. */
+static void fl_scale_span_(int16_t *r, uint32_t x0, uint32_t x1, uint32_t u0, uint32_t st,
+                           uint32_t k, int32_t cb, int32_t thr, uint32_t *na, uint32_t *nl)
+{
+    uint32_t u = u0, a = 0u, n = 0u;
+    int16_t *rx = r + x0;
+    const uint32_t m = x1 - x0;
+    for (uint32_t i = 0u; i < m; ++i) { /* vectorisable */
+        const int32_t q = (int32_t)(u >> k) - cb;
+        u += st;
+        const int16_t v = rx[i];
+        const uint32_t ok = v != PFT_RES16_MASKED ? 1u : 0u;
+        a += ok;
+        /* |v| <= thr (0 <= thr < 2^12) as one unsigned compare: the loop vectorises so */
+        n += ok & ((uint32_t)((int32_t)v + thr) <= 2u * (uint32_t)thr ? 1u : 0u);
+        const int16_t qh = (int16_t)((uint32_t)q >> 16);
+        const int16_t qs = (int16_t)((int32_t)((uint32_t)q & 0xFFFFu) - 32768);
+        const int32_t pl = (int32_t)v * (int32_t)qs + 32768 * (int32_t)v;
+        int32_t o = (int32_t)v * (int32_t)qh + ((pl + 32768 - (v < 0 ? 1 : 0)) >> 16);
+        o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+        rx[i] = (int16_t)(ok != 0u ? o : v);
+    }
+    *na = a;
+    *nl = n;
+}
+#endif
 
 /* rescale: row r (w pixels, corrected) times the multipliers 1/s interpolated bilinearly (the
  * block rows' values in fl->rowq, then per pixel between the block columns, walked segment by
@@ -429,6 +499,11 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
             /* the block's median threshold 0.6745 s in Q8.8 (0 < s Q16 <= 2^20: the product < 2^36) */
             const int32_t thr = (int32_t)(((uint64_t)(uint32_t)sc[blk] * (uint64_t)FL_MADQ_ + 8388608u) >> 24u);
             uint32_t na = 0u, nl = 0u;
+#ifdef FL_LEV_SPLIT_
+            fl_scale_span_(r, x, xb, u, st, k, cb, thr, &na, &nl);
+            u += (xb - x) * st;
+            x = xb;
+#else
             for (; x < xb; ++x) {
                 const int32_t q = (int32_t)(u >> k) - cb;
                 u += st;
@@ -442,6 +517,7 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
                 o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
                 r[x] = (int16_t)o;
             }
+#endif
             if (learn) {
                 nall[blk] += na;
                 nlo[blk] += nl;
