@@ -24,6 +24,7 @@ void tearDown(void) {}
 #define NPIX (W * H)
 #define FRAMES 100
 #define FIRST 60 /* frames FIRST..FRAMES are measured */
+#define RESCALE_HASH 0xc67410d00b77de96u /* test_rescale_bit_exact */
 
 static int16_t g_res[NPIX];
 static int16_t g_ref[NPIX];
@@ -170,6 +171,58 @@ static void test_spread_known_answer(void)
     }
 }
 
+/*
+ * Bit-exact across targets: 40 frames with rescale on and learning, the outputs folded into
+ * a 64-bit FNV-1a hash against a constant. The frames mix the known answer's noise with a
+ * sparse set of large values (about +-20000 and +-30000: the multiplication's clamp at
+ * +-32767 once the multipliers exceed 1) and masked pixels. x86-64 runs the rescale's 16-bit
+ * product form (pre_flat.c, FL_LEV_SPLIT_), AArch64 and the Cortex-M presets the 64-bit
+ * product: the same constant on every preset is the proof that the two forms give the same
+ * integers, half-way values and clamps included. Any change to the flat step's integers
+ * changes the hash; a deliberate change regenerates the constant (the printed value) and says
+ * why in its commit.
+ */
+static void test_rescale_bit_exact(void)
+{
+    pft_pre_flat_t fl;
+    init(&fl, g_work, sizeof g_work, true);
+    uint32_t rs = 20261206u;
+    uint64_t h = 14695981039346656037u;
+    uint32_t clamped = 0u, masked = 0u;
+    for (uint32_t f = 1; f <= 40u; ++f) {
+        for (int p = 0; p < NPIX; ++p) {
+            const int32_t n = pft_test_noise_q88(&rs);
+            const int32_t s = 40000 + (int32_t)((uint32_t)(p % W) * 200u);
+            int32_t v = (int32_t)(((int64_t)n * s) / 65536) - 64;
+            if ((rs & 511u) == 7u) {
+                v = (rs & 1024u) != 0u ? 20000 + (n & 0x3FFF) / 2 : -20000 - (n & 0x3FFF) / 2;
+            } else if ((rs & 1023u) == 9u) {
+                v = (rs & 2048u) != 0u ? 30000 : -30000;
+            } else if ((rs & 2047u) == 11u) {
+                v = PFT_RES16_MASKED;
+            }
+            g_res[p] = (int16_t)v;
+        }
+        pft_frame_t a = res_frame(g_res, f);
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &a, g_res, NULL, true));
+        for (int p = 0; p < NPIX; ++p) {
+            const uint16_t u = (uint16_t)g_res[p];
+            clamped += (g_res[p] == 32767 || g_res[p] == -32767) ? 1u : 0u;
+            masked += g_res[p] == PFT_RES16_MASKED ? 1u : 0u;
+            h = (h ^ (u & 0xFFu)) * 1099511628211u;
+            h = (h ^ (u >> 8)) * 1099511628211u;
+        }
+    }
+    char msg[120];
+    snprintf(msg, sizeof msg, "hash 0x%08lx%08lx, %lu clamped, %lu masked", (unsigned long)(h >> 32),
+             (unsigned long)(h & 0xFFFFFFFFu), (unsigned long)clamped, (unsigned long)masked);
+    UnityPrint(msg);
+    UNITY_PRINT_EOL();
+    TEST_ASSERT_TRUE_MESSAGE(clamped > 0u, "the frames must reach the clamp");
+    TEST_ASSERT_TRUE_MESSAGE(masked > 0u, "the frames must hold masked pixels");
+    TEST_ASSERT_TRUE_MESSAGE(h == RESCALE_HASH, msg);
+}
+
 /* Refused input with rescale: nothing changes (instance, workspace, frame buffer). */
 static void test_refused_input(void)
 {
@@ -199,6 +252,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_defaults_and_workspace);
     RUN_TEST(test_spread_known_answer);
+    RUN_TEST(test_rescale_bit_exact);
     RUN_TEST(test_refused_input);
     return UNITY_END();
 }
