@@ -329,6 +329,7 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.hold_frames = static_cast<uint32_t>(t.scene_hold);
     c.spread_px = to_real(t.scene_spread_px);
     c.spread_hold = static_cast<uint32_t>(t.scene_spread_px > 0 ? t.scene_spread_hold : 1);
+    c.spread_exist = to_real(t.scene_spread_exist);
     c.slow_frames = static_cast<uint32_t>(t.scene_slow_frames);
     c.slow_low_px = to_real(t.scene_slow_low_px);
     c.slow_gate_px = to_real(t.scene_slow_gate_px);
@@ -348,6 +349,7 @@ void IrPipeline::scene_test(tbd::FrameOut &out, int32_t shift_x, int32_t shift_y
         in[i].y = to_real(t.y);
         in[i].tentative = tentative;
         in[i].pos_var = to_real(t.pos_var);  // exact: the manager's pos_cov[0] + pos_cov[2] (tracker.cpp)
+        in[i].p_exist = to_real(t.p_exist);  // exact: the manager's p_exist (tracker.cpp)
     }
     std::vector<pft_tbd_scene_out_t> dec(n_all);
     const pft_status_t st = pft_tbd_scene_update(&scene_, in.data(), n_all, shift_x, shift_y, dec.data());

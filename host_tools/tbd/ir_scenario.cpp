@@ -28,8 +28,8 @@ const char *const kTrackerOnlyFields[] = {
     "birth_peaks", "peak_gamma", "peak_tile", "peak_quota", "birth_share", "theta1", "pb", "theta_end",
     "confirm_frames", "birth_correction", "scene_frames", "scene_gate_px", "scene_fit_px",
     "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
-    "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_slow_frames",
-    "scene_slow_low_px", "scene_slow_gate_px", "end_grace_frames", "theta_end_grace", "end_persist",
+    "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_spread_exist",
+    "scene_slow_frames", "scene_slow_low_px", "scene_slow_gate_px", "end_grace_frames", "theta_end_grace", "end_persist",
     "handover_in_scale", "q2", "split_px", "split_share", "resid_split", "resid_split_frames",
     "resid_split_age", nullptr};
 
@@ -219,6 +219,9 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("scene_spread_px").fail("needs scene_spread_hold (1..scene_hold)");
     if (T.scene_spread_px > 0 && T.scene_spread_hold > T.scene_hold)
         t.at("scene_spread_hold").fail("must be at most scene_hold");
+    T.scene_spread_exist = t.number_in("scene_spread_exist", T.scene_spread_exist, 0.0, 1.0);  // the library's bound
+    if (T.scene_spread_exist > 0 && T.scene_spread_px <= 0)
+        t.at("scene_spread_exist").fail("needs scene_spread_px > 0");
     T.scene_slow_frames = static_cast<int>(t.integer_in("scene_slow_frames", T.scene_slow_frames, 0, PFT_TBD_SCENE_MAX_FRAMES));  // the library's bound
     T.scene_slow_low_px = t.number_in("scene_slow_low_px", T.scene_slow_low_px, 0.0, 10.0);
     T.scene_slow_gate_px = t.number_in("scene_slow_gate_px", T.scene_slow_gate_px, 0.001, 256.0);  // the library's (0, 256]

@@ -422,6 +422,7 @@ int main(int argc, char **argv)
             sin[i].y = tr[i].y;
             sin[i].tentative = false;
             sin[i].pos_var = PFT_C(0.0);
+            sin[i].p_exist = PFT_C(0.0);
         }
         s = pft_tbd_scene_update(&scn, sin, n, ev ? st.shift[0] : 0, ev ? st.shift[1] : 0, sout);
         if (s != PFT_OK) {

@@ -11,7 +11,9 @@
  * frames after its last frame; the report hold (hold_frames k) reports a track from the k-th
  * frame it passes the tests, counting no tentative frame, and leaves CLUTTER as it is; the
  * spread-dependent hold (spread_px, spread_hold) shortens it for frames with a small position
- * spread, reads pos_var only when on, and refuses a negative one; the longer look (slow_frames)
+ * spread, reads pos_var only when on, and refuses a negative one; its existence bound
+ * (spread_exist) keeps the short hold from frames whose p_exist is below it, reads p_exist only
+ * when on; the longer look (slow_frames)
  * keeps a slow track undecided until its window shows it moving (reported at the frame its
  * displacement reaches the sqrt-scaled gate, exactly at the bound) or static (CLUTTER at
  * slow_frames), and a track below slow_low_px CLUTTER at once. Positions and shifts are multiples of 2^-16 px, so that both
@@ -91,7 +93,7 @@ static void test_config_and_workspace(void)
                {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17},
                {"spread_px", 18}, {"spread_px", 19}, {"spread_hold", 20}, {"spread_hold", 21},
                {"slow_frames", 22}, {"slow_frames", 23}, {"slow_low_px", 24}, {"slow_low_px", 25},
-               {"slow_gate_px", 26}, {"slow_gate_px", 27}};
+               {"slow_gate_px", 26}, {"slow_gate_px", 27}, {"spread_exist", 28}, {"spread_exist", 29}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -122,7 +124,9 @@ static void test_config_and_workspace(void)
         case 24: b.slow_frames = 10u; b.slow_low_px = PFT_C(-0.125); break;
         case 25: b.slow_frames = 10u; b.slow_low_px = PFT_C(0.25); break; /* above gate_px 0.15 */
         case 26: b.slow_frames = 10u; b.slow_gate_px = PFT_C(0.0); break;
-        default: b.slow_frames = 10u; b.slow_gate_px = PFT_C(256.5); break;
+        case 27: b.slow_frames = 10u; b.slow_gate_px = PFT_C(256.5); break;
+        case 28: b.spread_exist = PFT_C(-0.125); break;
+        default: b.spread_exist = PFT_C(1.5); break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -384,6 +388,66 @@ static void test_spread_hold(void)
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, t, 2u, 0, 0, o));
 }
 
+/* the existence bound of the spread-dependent hold (spread_px 0.5, spread_hold 2, hold_frames 4,
+ * spread_exist 0.75; pos_var 0.2 px^2 on every frame, so every pass is compact): a track at 0.75 px
+ * per frame against the scene passes from its 4th frame; with p_exist 0.875 it is reported from
+ * its 2nd pass (frame 5), with exactly 0.75 too (at least the bound), with 0.625 from its 4th
+ * (frame 7, the wide tracks' hold), with 0.625 to frame 5 and 0.875 from frame 6 at frame 6 (its
+ * 3rd pass, the first at the bound); with spread_exist 0 (off) p_exist is not read (a NaN is
+ * accepted in the float build) and the track is reported at frame 5; with spread_px 0 the bound
+ * is not read either (frame 7); with the bound on, a NaN p_exist is refused (float build) */
+static void test_spread_exist(void)
+{
+    static const struct {
+        pft_real_t spread_px;
+        pft_real_t exist;   /* spread_exist */
+        pft_real_t p_early; /* p_exist on frames 1..5 */
+        pft_real_t p_late;  /* from frame 6 on */
+        uint32_t first;     /* the first frame reported */
+    } cases[] = {{PFT_C(0.5), PFT_C(0.75), PFT_C(0.875), PFT_C(0.875), 5u},
+                 {PFT_C(0.5), PFT_C(0.75), PFT_C(0.75), PFT_C(0.75), 5u},
+                 {PFT_C(0.5), PFT_C(0.75), PFT_C(0.625), PFT_C(0.625), 7u},
+                 {PFT_C(0.5), PFT_C(0.75), PFT_C(0.625), PFT_C(0.875), 6u},
+                 {PFT_C(0.5), PFT_C(0.0), PFT_C(0.125), PFT_C(0.125), 5u},
+                 {PFT_C(0.0), PFT_C(0.75), PFT_C(0.875), PFT_C(0.875), 7u}};
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    for (size_t c = 0u; c < sizeof cases / sizeof cases[0]; ++c) {
+        pft_tbd_scene_config_default(&cfg);
+        cfg.max_tracks = SLOTS;
+        cfg.hold_frames = 4u;
+        cfg.spread_px = cases[c].spread_px;
+        cfg.spread_hold = 2u;
+        cfg.spread_exist = cases[c].exist;
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 10u; ++k) {
+            pft_tbd_scene_track_t t = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
+            t.pos_var = PFT_C(0.2);
+            t.p_exist = k <= 5u ? cases[c].p_early : cases[c].p_late;
+            const pft_tbd_scene_out_t o = one(&s, t, Q(0.25), 0);
+            TEST_ASSERT_EQUAL_INT(k < cases[c].first ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+        }
+    }
+#ifdef PFT_NUMERIC_FLOAT
+    volatile float zero = 0.0f;
+    pft_tbd_scene_out_t o;
+    pft_tbd_scene_track_t t = trk(1u, PFT_C(20.0), PFT_C(40.0), false);
+    t.pos_var = PFT_C(0.2);
+    t.p_exist = zero / zero; /* NaN */
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    cfg.hold_frames = 4u;
+    cfg.spread_px = PFT_C(0.5);
+    cfg.spread_hold = 2u;
+    init(&s, &cfg); /* the bound off: not read */
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, &t, 1u, 0, 0, &o));
+    cfg.spread_exist = PFT_C(0.75);
+    init(&s, &cfg);
+    TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_update(&s, &t, 1u, 0, 0, &o));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_tbd_scene_frame(&s));
+#endif
+}
+
 /* x = 100 + k + 0.25 k^2: rms about the fitted line 0.25 px over 4 frames, 0.418 over 5, 0.624
  * over 6 (every window of 6): never within 0.2; with the fit off, reported from the 4th frame
  * (early); with fit 0.25, reported at the 4th (rms exactly 0.25), held at the 5th and on */
@@ -591,6 +655,7 @@ int main(void)
     RUN_TEST(test_against_scene_reported_early);
     RUN_TEST(test_report_hold);
     RUN_TEST(test_spread_hold);
+    RUN_TEST(test_spread_exist);
     RUN_TEST(test_slow_look);
     RUN_TEST(test_curved_path_fails_the_fit);
     RUN_TEST(test_full_table);

@@ -22,7 +22,9 @@
  * - With hold_frames k > 1 a track that passes the above is reported only from the k-th frame
  *   it passes them on (the report hold); with spread_px > 0, at a frame it passes with a
  *   position spread sqrt(pos_var) of at most spread_px, from its spread_hold-th pass instead
- *   (a layer concentrated on a point is reported sooner; docs/algorithms.md 9.11 step 5).
+ *   (a layer concentrated on a point is reported sooner; docs/algorithms.md 9.11 step 5);
+ *   with spread_exist > 0 ([E]) such a frame takes the short hold only if the track's
+ *   existence probability p_exist is at least spread_exist.
  * - With slow_frames L > 0 (the longer look, [E]; docs/algorithms.md 9.11 step 1) a track that
  *   fails the gate over n frames is CLUTTER only if its displacement there is below
  *   n * slow_low_px; otherwise it is undecided (HOLD, not CLUTTER; it does not count as a pass of
@@ -99,6 +101,7 @@ typedef struct {
     uint32_t slow_frames;   /**< [E] the longer look's longest window L (default 0: off, a track failing the gate is CLUTTER at once): 2 * frames..PFT_TBD_SCENE_MAX_FRAMES; the history keeps max(frames, L) + 1 positions (docs/algorithms.md 9.11 step 1) */
     pft_real_t slow_low_px; /**< px per frame (default 0; read only with slow_frames > 0): a track failing the gate with a displacement below n * slow_low_px is CLUTTER at once; [0, gate_px] */
     pft_real_t slow_gate_px; /**< px (default 0.15; read only with slow_frames > 0): the gate over a window of m frames (2n <= m <= L) is sqrt(m n) * slow_gate_px; (0, 256] */
+    pft_real_t spread_exist; /**< [E] existence bound of the spread-dependent hold (default 0: off; read only with spread_px > 0): a frame takes the short hold (spread_hold) only if the track's existence probability p_exist is at least spread_exist, compared in Q16.16; otherwise the frame needs hold_frames passes as a wide track's (docs/algorithms.md 9.11 step 5); [0, 1] */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -108,6 +111,7 @@ typedef struct {
     pft_real_t y;     /**< row position, px */
     bool tentative;   /**< a tentative track (sequential test running): never REPORT */
     pft_real_t pos_var; /**< the estimate's position variance xx + yy, px^2 (pft_tbd_track_t pos_cov[0] + pos_cov[2]); read only with cfg.spread_px > 0, then >= 0 (and not NaN) */
+    pft_real_t p_exist; /**< the track layer's existence probability (pft_tbd_track_t p_exist); read only with cfg.spread_px > 0 and cfg.spread_exist > 0, then not NaN (any other value is taken as it is) */
 } pft_tbd_scene_track_t;
 
 /** The decision on one track. */
@@ -144,12 +148,12 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
  *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1,
- *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15). */
+ *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15, spread_exist 0: off). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
  *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold",
- *  "slow_frames", "slow_low_px", "slow_gate_px"); NULL on success. */
+ *  "slow_frames", "slow_low_px", "slow_gate_px", "spread_exist"); NULL on success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);
@@ -166,8 +170,9 @@ pft_status_t pft_tbd_scene_reset(pft_tbd_scene_t *s);
  * 0, 0 for a frame without detection evidence or the spatial method); out[0..n): the decisions,
  * in the order of tracks (may be NULL when n is 0). Refused, with nothing written (instance,
  * workspace and out unchanged): PFT_ERR_INVAL for a NULL s, a NULL tracks or out with n > 0,
- * an id 0, an id given twice in the list, (float build) a NaN position, or with cfg.spread_px > 0
- * a negative (float build: or NaN) pos_var. n may exceed
+ * an id 0, an id given twice in the list, (float build) a NaN position, with cfg.spread_px > 0
+ * a negative (float build: or NaN) pos_var, or (float build) with cfg.spread_px > 0 and
+ * cfg.spread_exist > 0 a NaN p_exist. n may exceed
  * max_tracks: the tracks that find no slot get NO_SLOT. Work: O(n max_tracks) to find the
  * slots, O(n frames) for the tests.
  */

@@ -30,6 +30,7 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->slow_frames = 0u;
     cfg->slow_low_px = PFT_C(0.0);
     cfg->slow_gate_px = PFT_C(0.15);
+    cfg->spread_exist = PFT_C(0.0);
 }
 
 /* a threshold in [0, 256] px (0: the test it sets is off) */
@@ -73,6 +74,8 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "slow_low_px";
     } else if (cfg->slow_frames != 0u && !(cfg->slow_gate_px > PFT_C(0.0) && cfg->slow_gate_px <= PFT_C(256.0))) {
         bad = "slow_gate_px";
+    } else if (!(cfg->spread_exist >= PFT_C(0.0) && cfg->spread_exist <= PFT_C(1.0))) {
+        bad = "spread_exist";
     } else {
         /* accepted */
     }
@@ -152,6 +155,7 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     s->ring = sc_ring_(cfg);
     s->slow_low_q = sc_q16_(cfg->slow_low_px);
     s->slow_q = sc_q16_(cfg->slow_gate_px);
+    s->exist_q = cfg->spread_px > PFT_C(0.0) ? sc_q16_(cfg->spread_exist) : 0;
     return pft_tbd_scene_reset(s);
 }
 
@@ -346,6 +350,9 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         if (s->spread_q > 0 && !(tracks[i].pos_var >= PFT_C(0.0))) {
             return PFT_ERR_INVAL; /* negative (float build: or NaN) */
         }
+        if (s->exist_q > 0 && !sc_finite_(tracks[i].p_exist)) {
+            return PFT_ERR_INVAL; /* (float build) NaN */
+        }
         for (j = 0u; j < i; ++j) {
             if (tracks[j].id == tracks[i].id) {
                 return PFT_ERR_INVAL;
@@ -436,8 +443,9 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             /* the report hold: reported from the hold_frames-th frame that passes (from the
              * spread_hold-th with a position spread of at most spread_px) */
             uint32_t need = s->cfg.hold_frames;
-            if (s->spread_q > 0 && sc_spread_ok_(s, t->pos_var)) {
-                need = s->cfg.spread_hold;
+            if (s->spread_q > 0 && sc_spread_ok_(s, t->pos_var) &&
+                (s->exist_q == 0 || sc_q16_(t->p_exist) >= s->exist_q)) {
+                need = s->cfg.spread_hold; /* with spread_exist: only at an existence of at least it */
             }
             if (sl->passed < s->cfg.hold_frames) {
                 sl->passed = (uint16_t)(sl->passed + 1u);
