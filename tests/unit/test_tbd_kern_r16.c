@@ -165,6 +165,24 @@ static uint32_t lcg_(uint32_t *st)
     return *st >> 8;
 }
 
+/* a random RES16 pixel from the draw r: masked, the clamp's +-32767, small, zero (with zeros;
+ * else the wide case), or within +-3000 */
+static int16_t rand_res16_(uint32_t r, bool zeros)
+{
+    switch (r % 8u) {
+    case 0u: return INT16_MIN; /* PFT_RES16_MASKED */
+    case 1u: return (r & 256u) != 0u ? (int16_t)32767 : (int16_t)-32767;
+    case 2u: return (int16_t)((int32_t)(r >> 9) % 64 - 32);
+    case 3u:
+        if (zeros) {
+            return 0;
+        }
+        break;
+    default: break;
+    }
+    return (int16_t)((int32_t)(r >> 4) % 6000 - 3000);
+}
+
 static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
 {
     enum { W = 5, H = 3 };
@@ -176,14 +194,7 @@ static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
     uint32_t bad = 0u;
     for (uint32_t rep = 0; rep < 6000u; ++rep) {
         for (uint32_t q = 0; q < (uint32_t)(W * H); ++q) {
-            const uint32_t r = lcg_(&st);
-            int16_t v;
-            switch (r % 8u) {
-            case 0u: v = INT16_MIN; break; /* PFT_RES16_MASKED */
-            case 1u: v = (r & 256u) != 0u ? (int16_t)32767 : (int16_t)-32767; break;
-            case 2u: v = (int16_t)((int32_t)(r >> 9) % 64 - 32); break;
-            default: v = (int16_t)((int32_t)(r >> 4) % 6000 - 3000); break;
-            }
+            const int16_t v = rand_res16_(lcg_(&st), false);
             memcpy(frame + 2u * q, &v, 2u);
         }
         pft_real_t tx[4], ty[4];
@@ -242,15 +253,7 @@ static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
             }
         }
         for (uint32_t q = 0; q < (uint32_t)(W * H); ++q) {
-            const uint32_t r = lcg_(&st);
-            int16_t v;
-            switch (r % 8u) {
-            case 0u: v = INT16_MIN; break; /* PFT_RES16_MASKED */
-            case 1u: v = (r & 256u) != 0u ? (int16_t)32767 : (int16_t)-32767; break;
-            case 2u: v = (int16_t)((int32_t)(r >> 9) % 64 - 32); break;
-            case 3u: v = 0; break;
-            default: v = (int16_t)((int32_t)(r >> 4) % 6000 - 3000); break;
-            }
+            const int16_t v = rand_res16_(lcg_(&st), true);
             memcpy(frame + 2u * q, &v, 2u);
         }
         pft_kfrac_t g[2];
