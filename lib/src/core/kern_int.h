@@ -708,7 +708,7 @@ static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft
     const uint8_t *p1 = p + st;
     const uint8_t *p2 = p1 + st;
     int32_t w0, w1, w2;
-    uint16_t e0, e1, e2;
+    int16_t e0, e1, e2; /* signed: the lane insert takes a short (GCC -O0 builds it as a macro) */
     memcpy(&w0, p, 4u);
     memcpy(&w1, p1, 4u);
     memcpy(&w2, p2, 4u);
