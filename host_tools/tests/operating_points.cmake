@@ -7,7 +7,7 @@
 #  - scene_hold 7 against 1 (both without the spread-dependent hold): the held run's tracks.csv
 #    is the unheld run's rows less the first 6 reported rows of every track (and the unheld run
 #    has a track of at least 7 rows, so the check can fail);
-#  - the spread-dependent hold (scene_spread_px 0.35, scene_spread_hold 3) removed: the tracks
+#  - the spread-dependent hold (scene_spread_px 0.35, scene_spread_hold 2, scene_spread_exist 0.99) removed: the tracks
 #    change, and the shipped run reports at least as many rows (its hold is shorter for steady
 #    tracks);
 #  - flat_block 0, clutter_mean false: the residual the manager sees (--residual-out) changes;
@@ -56,7 +56,7 @@ endfunction()
 set(common "flat_block=32" "flat_relative=ON" "clutter_mean=ON" "clutter_persist=4"
            "clutter_alpha=0.20000000000000001" "integ_alpha=0.69999999999999996" "bg_anchor=ON"
            "theta_end=0.20000000000000001" "particles=24000" "bg_stale_reinit=32")
-check_block(${shipped} ${common} "scene_hold=7" "scene_spread_px=0.34999999999999998" "scene_spread_hold=3"
+check_block(${shipped} ${common} "scene_hold=7" "scene_spread_px=0.34999999999999998" "scene_spread_hold=2" "scene_spread_exist=0.98999999999999999"
             "clutter_mean_floor=1.0" "clutter_floor_age=30" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
 # the real-frame twin (real backgrounds needed to run it: only its block is checked)
@@ -89,6 +89,7 @@ file(WRITE ${WORK}/lf.json "${js}")
 # the fixed hold alone (the spread-dependent hold removed), and with scene_hold 1
 string(JSON nospread REMOVE "${js}" tracker scene_spread_px)
 string(JSON nospread REMOVE "${nospread}" tracker scene_spread_hold)
+string(JSON nospread REMOVE "${nospread}" tracker scene_spread_exist)  # needs scene_spread_px
 file(WRITE ${WORK}/nospread.json "${nospread}")
 string(JSON v SET "${nospread}" tracker scene_hold 1)
 file(WRITE ${WORK}/hold1.json "${v}")
