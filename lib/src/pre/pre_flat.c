@@ -248,6 +248,23 @@ static inline int32_t fl_lev32_(int32_t k, uint32_t l)
 #define FL_LEV_SPLIT_ 1
 #endif
 
+#ifdef FL_LEV_SPLIT_
+/* fl_lev32_ with 16 x 16-bit products: kl l from the unsigned 16-bit kl and l; kh l as
+ * kh (l - 32768) + 32768 kh, kh in [-8, 8] and l - 32768 in [-32768, 32767] (int16),
+ * |32768 kh| <= 2^18: the same integers. */
+static inline int32_t fl_lev16_(int32_t kv, uint16_t l16)
+{
+    const uint32_t l = l16;
+    const int16_t kh = (int16_t)((int32_t)((uint32_t)(kv + FL_MMAX_) >> 16) - 8);
+    const uint16_t kl = (uint16_t)((uint32_t)kv & 0xFFFFu);
+    const uint32_t neg = ((uint32_t)kv >> 31) & ((0u - l) >> 31);
+    const uint32_t pl = (uint32_t)kl * l;
+    const int16_t ls = (int16_t)((int32_t)l16 - 32768);
+    const int32_t ph = (int32_t)kh * (int32_t)ls + 32768 * (int32_t)kh;
+    return ph + (int32_t)((pl + 32768u - neg) >> 16);
+}
+#endif
+
 /* One pixel of a span without a branch: v (the residual) less off, clamped, written to *rx and
  * booked into the sums when within the gate; a masked pixel left as it is and not booked. */
 static inline void fl_px_bf_(int16_t *rx, int32_t v, int32_t off, uint32_t l, int32_t gate,
@@ -290,25 +307,15 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
         }
     } else {
 #ifdef FL_LEV_SPLIT_
-        /* fl_lev32_ with 16 x 16-bit products (FL_LEV_SPLIT_): kl l from the unsigned 16-bit kl
-         * and l; kh l as kh (l - 32768) + 32768 kh, kh in [-8, 8] and l - 32768 in
-         * [-32768, 32767] (int16), |32768 kh| <= 2^18: the same integers. The interpolation
-         * stepped by st per pixel (modulo 2^32: u0 + (x - x0) st, the same values). */
+        /* fl_lev16_ for fl_lev32_ (FL_LEV_SPLIT_); the interpolation stepped by st per pixel
+         * (modulo 2^32: u0 + (x - x0) st, the same values). */
         uint32_t uu = u0;
         for (uint32_t x = x0; x < x1; ++x) { /* vectorisable */
             const int32_t kv = (int32_t)(uu >> k) - cb;
             uu += st;
             uint16_t l16;
             memcpy(&l16, lrow + 2u * x, 2u);
-            const uint32_t l = l16;
-            const int16_t kh = (int16_t)((int32_t)((uint32_t)(kv + FL_MMAX_) >> 16) - 8);
-            const uint16_t kl = (uint16_t)((uint32_t)kv & 0xFFFFu);
-            const uint32_t neg = ((uint32_t)kv >> 31) & ((0u - l) >> 31);
-            const uint32_t pl = (uint32_t)kl * (uint32_t)l16;
-            const int16_t ls = (int16_t)((int32_t)l16 - 32768);
-            const int32_t ph = (int32_t)kh * (int32_t)ls + 32768 * (int32_t)kh;
-            const int32_t lev = ph + (int32_t)((pl + 32768u - neg) >> 16);
-            fl_px_bf_(&r[x], r[x], lev, l, gate, &sum, &cnt, &lsum);
+            fl_px_bf_(&r[x], r[x], fl_lev16_(kv, l16), l16, gate, &sum, &cnt, &lsum);
         }
 #else
         for (uint32_t x = x0; x < x1; ++x) {
