@@ -322,6 +322,20 @@ static void test_report_hold(void)
     }
 }
 
+/* the spread-dependent hold's configuration of the two tests below: hold_frames 4,
+ * spread_hold 2, the given spread_px and spread_exist */
+static pft_tbd_scene_config_t spread_cfg_(pft_real_t spread_px, pft_real_t exist)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.max_tracks = SLOTS;
+    cfg.hold_frames = 4u;
+    cfg.spread_px = spread_px;
+    cfg.spread_hold = 2u;
+    cfg.spread_exist = exist;
+    return cfg;
+}
+
 /* the spread-dependent hold (spread_px 0.5, spread_hold 2, hold_frames 4): a track at 0.75 px
  * per frame against the scene passes from its 4th frame (early); with a position variance of
  * 0.2 px^2 (spread 0.447 px) it is reported from its 2nd pass (frame 5), with exactly 0.25
@@ -341,11 +355,7 @@ static void test_spread_hold(void)
     pft_tbd_scene_config_t cfg;
     pft_tbd_scene_t s;
     for (size_t c = 0u; c < sizeof cases / sizeof cases[0]; ++c) {
-        pft_tbd_scene_config_default(&cfg);
-        cfg.max_tracks = SLOTS;
-        cfg.hold_frames = 4u;
-        cfg.spread_px = cases[c].spread_px;
-        cfg.spread_hold = 2u;
+        cfg = spread_cfg_(cases[c].spread_px, PFT_C(0.0));
         init(&s, &cfg);
         for (uint32_t k = 1u; k <= 10u; ++k) {
             pft_tbd_scene_track_t t = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
@@ -355,11 +365,7 @@ static void test_spread_hold(void)
         }
     }
     /* refused with spread_px > 0: a negative pos_var (float: a NaN too), nothing written */
-    pft_tbd_scene_config_default(&cfg);
-    cfg.max_tracks = SLOTS;
-    cfg.hold_frames = 4u;
-    cfg.spread_px = PFT_C(0.5);
-    cfg.spread_hold = 2u;
+    cfg = spread_cfg_(PFT_C(0.5), PFT_C(0.0));
     init(&s, &cfg);
     for (uint32_t k = 1u; k <= 3u; ++k) {
         pft_tbd_scene_track_t t = trk(1u, pft_from_int(10 + (int32_t)k), PFT_C(10.0), false);
@@ -413,12 +419,7 @@ static void test_spread_exist(void)
     pft_tbd_scene_config_t cfg;
     pft_tbd_scene_t s;
     for (size_t c = 0u; c < sizeof cases / sizeof cases[0]; ++c) {
-        pft_tbd_scene_config_default(&cfg);
-        cfg.max_tracks = SLOTS;
-        cfg.hold_frames = 4u;
-        cfg.spread_px = cases[c].spread_px;
-        cfg.spread_hold = 2u;
-        cfg.spread_exist = cases[c].exist;
+        cfg = spread_cfg_(cases[c].spread_px, cases[c].exist);
         init(&s, &cfg);
         for (uint32_t k = 1u; k <= 10u; ++k) {
             pft_tbd_scene_track_t t = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(PFT_C(0.75), (int32_t)k)), PFT_C(40.0), false);
@@ -434,11 +435,7 @@ static void test_spread_exist(void)
     pft_tbd_scene_track_t t = trk(1u, PFT_C(20.0), PFT_C(40.0), false);
     t.pos_var = PFT_C(0.2);
     t.p_exist = zero / zero; /* NaN */
-    pft_tbd_scene_config_default(&cfg);
-    cfg.max_tracks = SLOTS;
-    cfg.hold_frames = 4u;
-    cfg.spread_px = PFT_C(0.5);
-    cfg.spread_hold = 2u;
+    cfg = spread_cfg_(PFT_C(0.5), PFT_C(0.0));
     init(&s, &cfg); /* the bound off: not read */
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_update(&s, &t, 1u, 0, 0, &o));
     cfg.spread_exist = PFT_C(0.75);
