@@ -18,7 +18,8 @@ Each missed injected target gets ONE category, the first that applies, in this o
               docs/algorithms.md 9.11): hold (passed the gate and the line fit, too few
               passes: the passes it had, and on how many of them the frame was compact but
               below the existence bound / wider than the spread bound) > fit (the straight-line
-              fit failed) > short (fewer than n + 1 positions and no early report) > clutter
+              fit failed; hold:exist_bound / hold:wide when some pass was compact but below the
+              bound / wide, hold:compact when every pass took the short hold) > short (fewer than n + 1 positions and no early report) > clutter
               (the gate found it moving with the scene: CLUTTER, the clutter map raised) >
               not_fed (tentative); with the way that layer ended (existence below theta_end,
               the disappearance test, alive at the run's end, ...);
@@ -132,6 +133,7 @@ def main():
     ap.add_argument('--spread-hold', type=int, default=2)
     ap.add_argument('--spread-exist', type=float, default=0.99)
     ap.add_argument('--drift', default='0.3,0.1')
+    ap.add_argument('--theta1', type=float, default=0.6, help='the search layer\'s hand-over threshold (preset recommended)')
     ap.add_argument('--list', action='store_true')
     ap.add_argument('--csv', help='one row per injected target')
     R = ap.parse_args()
@@ -202,6 +204,15 @@ def main():
                 t_on = on_fr[0] if on_fr else None
                 t_pass = pass_fr[0] if pass_fr else None
                 t_rep = t['first_frame'] + t['appearance_delay'] if t['detected'] else None
+                # the search layer's existence probability on the frames before that first layer
+                p_before = [fnum(fr[t_on - d]['search_p']) if t_on is not None and (t_on - d) in fr else None
+                            for d in (1, 2)]
+                run_hi = 0
+                if t_on is not None:
+                    k = t_on - 1
+                    while k in fr and fnum(fr[k]['search_p']) >= R.theta1:
+                        run_hi += 1
+                        k -= 1
                 c, sub, detail = '', '', ''
                 if t['detected']:
                     c = 'detected'
@@ -231,7 +242,7 @@ def main():
                             ps = [r for r in layers[bl] if r['step'] in ('hold', 'report')]
                             nb = sum(1 for r in ps if r.get('compact') and not r.get('exist_ok'))
                             nw = sum(1 for r in ps if not r.get('compact'))
-                            why = ('exist_bound' if nb else 'wide') if (nb or nw) else 'none'
+                            why = ('exist_bound' if nb else 'wide') if (nb or nw) else 'compact'
                             detail = f'passes {best["passes"]} (compact<bound {nb}, wide {nw})'
                             sub = f'hold:{why}'
                         sub += '|' + end
@@ -246,7 +257,7 @@ def main():
                                 detail=detail, speed=sp, present=t['present_frames'], first=t['first_frame'],
                                 last=t['last_frame'], entry=t.get('entry', ''), border=bd,
                                 pair=tid in pair_ids, zmed=zmed, weak=weak, weak_stage=weak_stage,
-                                t_on=t_on, t_pass=t_pass, t_rep=t_rep))
+                                t_on=t_on, t_pass=t_pass, t_rep=t_rep, p_before=p_before, run_hi=run_hi))
     tot = sum(agree.values())
     print(f'replay against the trace\'s reported column: {agree[(True, True)] + agree[(False, False)]} of {tot} '
           f'layer-frames agree (replay report / trace not: {agree[(True, False)]}, trace report / replay not: {agree[(False, True)]})')
@@ -322,6 +333,19 @@ def main():
     print(f'  missed with fewer than 25 frames present: {len(m)}; a layer on it {sum(o["t_on"] is not None for o in m)}, '
           f'median first frame {med([o["first"] for o in m]):.0f}, median frames present {med([o["present"] for o in m]):.0f}; '
           f'ends at the run\'s last frame {sum(o["last"] == 100 for o in m)}')
+    # how the search layer's existence probability P reaches theta1 before the first layer on a target
+    m = [o for o in out if o['t_on'] is not None]
+    print(f'\nthe {len(m)} targets with a layer within 3 px (detected or not): P on the frames before the first such layer')
+    bins = ((0.0, 0.2), (0.2, 0.4), (0.4, R.theta1), (R.theta1, 1.01))
+    for d in (1, 2):
+        cnt = collections.Counter()
+        for o in m:
+            v = o['p_before'][d - 1]
+            cnt['none' if v is None else next(f'{a:.1f}-{b:.2f}' for a, b in bins if a <= v < b)] += 1
+        print(f'  P at (first layer - {d}): ' + ', '.join(f'{k} {v}' for k, v in sorted(cnt.items())))
+    cnt = collections.Counter(min(o['run_hi'], 4) for o in m)
+    print(f'  frames in a row with P >= {R.theta1} just before the first layer (4: 4 or more): ' +
+          ', '.join(f'{k}: {v}' for k, v in sorted(cnt.items())))
     if R.list:
         for o in miss:
             print('  seed %(seed)d tid %(tid)d img %(img)d %(kind)s %(cat)s:%(sub)s speed %(speed).2f present %(present)d '
