@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Why the injected targets of a traced IR run are missed, stage by stage, with the shipped
-report rule replayed per track layer (docs/results/ir_clutter.md, "Branch irmiss
-(2026-12-06)"). Reads the traces of `pft eval --trace DIR` (docs/host_tools.md) and the same
+report rule replayed per track layer (docs/results/ir_clutter.md, "Branch irmiss,
+the second"). Reads the traces of `pft eval --trace DIR` (docs/host_tools.md) and the same
 runs' summary.json; several NAME=TRACE_DIR,SUMMARY pairs are pooled (e.g. two manager seeds).
 
   ir_miss_why.py TRACE_DIR,SUMMARY [TRACE_DIR,SUMMARY ...] [--hold 7 --spread-px 0.4
