@@ -838,6 +838,35 @@ static pft_real_t weigh_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, pft_real
 /* log(a) for a > 0, else the drop value. */
 static pft_real_t log_or_drop_(pft_real_t a) { return a > PFT_C(0.0) ? pft_log(a) : BERN_DROP_; }
 
+/* log(m c) with m the predicted birth mass (eta on the first frame, pb (1 - q) after) and c the
+ * share of it counted, num / den of the allowed pixels (the proposal's candidates, or the rest;
+ * share, that ratio as a real); the drop value when it is 0. float: the log of the rounded
+ * products, as written. q16: the sum of the logs of the factors (the counts' logs by
+ * pft_log_count_), because the products and the ratio fall below or near the LSB where they
+ * matter: at the existence probability's ceiling 1 / (1 + e^-10) (1 - q = 3 LSB),
+ * pb (1 - q) is 0.15 LSB for pb = 0.05 and rounded to 0, which took every birth's weight away
+ * (the search layer could not move to a new target while q sat there; test_tbd_bern_move);
+ * pb c is 0.4 LSB at 256 x 256 with 8 peaks. */
+static pft_real_t log_birth_mass_(const pft_tbd_config_t *c, bool first, pft_real_t q,
+                                  pft_real_t share, uint32_t num, uint32_t den)
+{
+#ifdef PFT_NUMERIC_Q16
+    const pft_real_t a = first ? c->eta : c->pb;
+    const pft_real_t b = pft_sub(PFT_C(1.0), q);
+    (void)share;
+    if (!(a > PFT_C(0.0) && num > 0u && den > 0u && (first || b > PFT_C(0.0)))) {
+        return BERN_DROP_;
+    }
+    const pft_real_t l = pft_add(pft_log(a), pft_sub(pft_log_count_(num), pft_log_count_(den)));
+    return first ? l : pft_add(l, pft_log(b));
+#else
+    const pft_real_t mb = first ? c->eta : pft_mul(c->pb, pft_sub(PFT_C(1.0), q));
+    (void)num;
+    (void)den;
+    return log_or_drop_(pft_mul(mb, share));
+#endif
+}
+
 /* log(e^a + e^b), the larger first. */
 static pft_real_t log_add_(pft_real_t a, pft_real_t b)
 {
@@ -861,20 +890,25 @@ static uint32_t step_bern_(pft_tbd_filter_t *f, const step_ctx_t *x)
     const pft_real_t qp = pft_min(pft_add(mb, ms), PFT_C(1.0));
     pft_real_t share = PFT_C(1.0);
     uint32_t nb = 0u, np = 0u, head;
+    uint32_t num = 1u, den = 1u; /* share = num / den */
     if (x->sc->cand_is_b && x->sc->n_allowed > 0u) {
         share = pft_ratio((int32_t)x->sc->n_cand, (int32_t)x->sc->n_allowed);
+        num = x->sc->n_cand;
+        den = x->sc->n_allowed;
     }
     move_bern_(f, x, pft_p16_(c->birth_share), &nb, &np);
     {
-        const pft_real_t lb = nb > 0u ? pft_sub(log_or_drop_(pft_mul(mb, share)), pft_log_count_(nb))
+        const pft_real_t lb = nb > 0u ? pft_sub(log_birth_mass_(c, first, q, share, num, den),
+                                                pft_log_count_(nb))
                                       : BERN_DROP_;
         const pft_real_t lp = np > 0u ? pft_sub(log_or_drop_(ms), pft_log_count_(np)) : BERN_DROP_;
         const pft_real_t lmax = weigh_bern_(f, x, lb, lp);
         const pft_wacc_t sum = weights_(f, lmax);
         pft_real_t ll = pft_add(lmax, pft_wacc_log(sum));
-        const pft_real_t m0 = pft_mul(mb, pft_sub(PFT_C(1.0), share));
-        if (m0 > PFT_C(0.0)) {
-            ll = log_add_(ll, pft_log(m0));
+        const pft_real_t l0 = log_birth_mass_(c, first, q, pft_sub(PFT_C(1.0), share),
+                                              num <= den ? den - num : 0u, den);
+        if (l0 > BERN_DROP_) {
+            ll = log_add_(ll, l0);
         }
         f->est.log_mean_lr = pft_sub(ll, log_or_drop_(qp));
         /* E = 0 particles have lw = BERN_DROP_ */
