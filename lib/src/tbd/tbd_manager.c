@@ -975,29 +975,31 @@ static void search_budget_(pft_tbd_t *t, uint32_t stepped)
     }
 }
 
-/* The birth candidates of search layer h (cfg.search_layers >= 2, docs/algorithms.md 2.14):
- * those of the scene farther than search_sep from the last frame's estimate (xs[g], ys[g]) of
- * every other layer g with on[g] (its existence probability above search_hold), into
- * t->cand_x; the scene's own list when it has none (every allowed pixel) or nothing bars. */
-static void layer_scene_(pft_tbd_t *t, const pft_tbd_scene_t_ *sc, uint32_t h,
+/* The birth candidates of search layer h (cfg.search_layers >= 2, docs/algorithms.md 2.14)
+ * into out's cand and n_cand (the rest of the scene as it is): those of the frame's (cand,
+ * n_cand) farther than search_sep from the estimate (xs[g], ys[g]) of every other layer g with
+ * on[g] (its existence probability above search_hold), in t->cand_x; the frame's own list when
+ * it has none (every allowed pixel) or nothing bars. */
+static void layer_scene_(pft_tbd_t *t, const uint32_t *cand, uint32_t n_cand, uint32_t h,
                          const pft_real_t *xs, const pft_real_t *ys, const bool *on,
                          pft_tbd_scene_t_ *out)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const uint32_t nl = layers_n_(cfg);
-    *out = *sc;
+    out->cand = cand;
+    out->n_cand = n_cand;
     bool any = false;
     for (uint32_t g = 0; g < nl; ++g) {
         any = any || (g != h && on[g]);
     }
-    if (!any || sc->cand == NULL) {
+    if (!any || cand == NULL) {
         return;
     }
     const pft_real_t sep2 = pft_sq(cfg->search_sep);
     const uint32_t w = cfg->width;
     uint32_t n = 0u;
-    for (uint32_t k = 0; k < sc->n_cand; ++k) {
-        const uint32_t p = sc->cand[k];
+    for (uint32_t k = 0; k < n_cand; ++k) {
+        const uint32_t p = cand[k];
         const pft_real_t cx = pft_mul_i(cfg->dx, (int32_t)(p % w) + 1);
         const pft_real_t cy = pft_mul_i(cfg->dy, (int32_t)(p / w) + 1);
         bool barred = false;
@@ -1122,16 +1124,19 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
             }
             order[i] = h;
         }
+        const uint32_t *cand = ssc.cand; /* the frame's candidates (ssc's, put back after) */
+        const uint32_t n_cand = ssc.n_cand;
         for (uint32_t i = 0; i < nl; ++i) {
             const uint32_t h = order[i];
             pft_tbd_filter_t *f = layer_(t, h);
-            pft_tbd_scene_t_ lsc;
-            layer_scene_(t, &ssc, h, xs, ys, on, &lsc);
-            pft_tbd_filter_step_(f, &lsc);
+            layer_scene_(t, cand, n_cand, h, xs, ys, on, &ssc);
+            pft_tbd_filter_step_(f, &ssc);
             xs[h] = f->est.x;
             ys[h] = f->est.y;
             on[h] = f->est.valid && f->bq > cfg->search_hold;
         }
+        ssc.cand = cand;
+        ssc.n_cand = n_cand;
     } else {
         pft_tbd_filter_step_(&t->search, &ssc);
     }
