@@ -56,6 +56,11 @@ pft_tbd_config_t pipeline_config(const TrackerSettings &t, double psf_sigma, int
     set_real_if(t.resid_split, c.resid_split);
     c.resid_split_frames = static_cast<uint8_t>(t.resid_split_frames);
     c.resid_split_age = static_cast<uint8_t>(t.resid_split_age);
+    c.search_layers = static_cast<uint8_t>(t.search_layers);
+    if (t.search_layers >= 2) {
+        c.search_sep = to_real(t.search_sep.value_or(3.0));
+        c.search_hold = to_real(t.search_hold.value_or(0.5));
+    }
     set_real_if(t.q2, c.q2);
     c.birth_share = to_real(t.birth_share);
     c.confirm_frames = static_cast<uint8_t>(t.confirm_frames);

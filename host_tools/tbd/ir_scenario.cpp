@@ -31,7 +31,7 @@ const char *const kTrackerOnlyFields[] = {
     "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_spread_exist",
     "scene_slow_frames", "scene_slow_low_px", "scene_slow_gate_px", "end_grace_frames", "theta_end_grace", "end_persist",
     "handover_in_scale", "q2", "split_px", "split_share", "resid_split", "resid_split_frames",
-    "resid_split_age", nullptr};
+    "resid_split_age", "search_layers", "search_sep", "search_hold", nullptr};
 
 namespace {
 
@@ -199,6 +199,13 @@ void parse_tracker(const Field &t, TrackerSettings &T)
         t.at("resid_split").fail("must be 0 (off) or within 1..50 sigmas");
     T.resid_split_frames = static_cast<int>(t.integer_in("resid_split_frames", T.resid_split_frames, 0, 8));
     T.resid_split_age = static_cast<int>(t.integer_in("resid_split_age", T.resid_split_age, 0, 255));
+    T.search_layers = static_cast<int>(t.integer_in("search_layers", T.search_layers, 0, PFT_TBD_MAX_SEARCH));
+    num("search_sep", 1.0, 16.0, T.search_sep);   // the library's range (pft_tbd.h)
+    num("search_hold", 0.0, 0.999, T.search_hold);
+    if ((T.search_sep || T.search_hold) && T.search_layers < 2)
+        t.at(T.search_sep ? "search_sep" : "search_hold").fail("needs search_layers of at least 2");
+    if (T.search_layers >= 2 && !(T.birth_share > 0.0))
+        t.at("search_layers").fail("needs birth_share above 0 (the Bernoulli search layer)");
     T.end_persist = static_cast<int>(t.integer_in("end_persist", T.end_persist, 0, PFT_TBD_MAX_END_PERSIST));  // the library's bound (pft_tbd.h)
     if (T.theta_end_grace && T.end_grace_frames == 0)
         t.at("theta_end_grace").fail("needs end_grace_frames of at least 1");

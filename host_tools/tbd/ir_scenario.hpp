@@ -141,6 +141,9 @@ struct TrackerSettings {
     std::optional<double> resid_split;              ///< a second target beside a track layer: the matched residual's threshold (pft_tbd resid_split; absent: the library default, 0: off; else 1..50)
     int resid_split_frames = 0;                     ///< its frames in a row (pft_tbd resid_split_frames; 0 or 1: one)
     int resid_split_age = 0;                        ///< only layers with at most this many updates since their hand-over (pft_tbd resid_split_age; 0: every layer)
+    int search_layers = 0;                          ///< search layers H (pft_tbd search_layers; 0 or 1: one)
+    std::optional<double> search_sep;               ///< with search_layers >= 2: births barred within this many px of another layer's estimate (pft_tbd search_sep, 1..16; absent: 3)
+    std::optional<double> search_hold;              ///< ... while that layer's existence probability is above this (pft_tbd search_hold, 0..1; absent: 0.5)
     bool integ_shift = false;                       ///< give the manager the stage's measured shift per frame (pft_tbd_set_shift) for the integration
     int sprt_start = 0;                             ///< what the sequential test starts from (pft_tbd sprt_start: 0 zero, 1 the search layer's ratios over its confirmation, 2 its log odds)
     // clutter map (the library's pft_pre_clutter_*, called by ir_pipeline.cpp): per-pixel mean square of the whitened residual,

@@ -88,6 +88,8 @@ typedef struct pft_tbd_s pft_tbd_t;               /**< the multi-target manager 
 #define PFT_TBD_MAX_DIS_PREV 15u
 /** Largest number of end tests in a row that cfg.end_persist can ask for. */
 #define PFT_TBD_MAX_END_PERSIST 16u
+/** Largest number of search layers (cfg.search_layers). */
+#define PFT_TBD_MAX_SEARCH 4u
 /** Largest number of birth peaks (cfg.birth_peaks). */
 #define PFT_TBD_MAX_PEAKS 4096u
 
@@ -200,6 +202,10 @@ typedef struct {
     pft_real_t resid_split;  /**< 0 (default): off. In [1, 50] (matched unit-noise sigmas): after the end tests (and split_px's splits), around each track layer that lived before this frame (with resid_split_age > 0 only those with at most resid_split_age updates since their hand-over), the frame minus that layer's own PSF (its intensity at its estimate, untruncated) is filtered with the PSF's 3 x 3 taps (m = sum g z / sqrt(sum g^2) at each pixel centre) on the pixels 1.5 to 5 px from the layer's estimate and at least 3 px from every other track's; when the largest m is at least resid_split in resid_split_frames frames in a row (each frame's peak within 2 px of the last one's), a new track layer starts there in a free slot: the layer's particles copied, moved by the peak's offset from the layer's estimate, born anew (age 0: the velocity mean at vel_mean and its variance at vel_var, as a birth), the layer's existence probability and frame log likelihood ratio copied; a new id, confirmed (or tentative with sprt_accept > 0) as at a hand-over (docs/algorithms.md 2.7). The layer's count restarts after it [E] */
     uint8_t resid_split_frames; /**< with resid_split > 0: the frames in a row the residual peak needs, 1..8 (0, the default, counts as 1); at most 8 [E] */
     uint8_t resid_split_age; /**< with resid_split > 0: only track layers with at most this many updates since their hand-over (or since they were started beside another) are tested; 0 (default): every track layer [E] */
+    /* a search layer of several hypotheses (manager) */
+    uint8_t search_layers;   /**< 0 or 1 (default): one search layer (one Bernoulli hypothesis for the whole frame). H in 2..PFT_TBD_MAX_SEARCH (needs birth_share > 0 and n_search >= 4 H): H Bernoulli search layers share the n_search particle budget (each runs on a 1/H share of the search layer's particles of that frame, see birth_share), each with its own existence probability and confirmation count; a layer draws its births only from the birth candidates farther than search_sep from the estimate of every other search layer whose existence probability is above search_hold (the layers are stepped from the lowest existence probability of the last frame up, and the estimates of those stepped before a layer are this frame's, the others' the last frame's), so that the layers hold different spots; a layer that passes the hand-over tests (confirm_frames frames above theta1, shape_ring, handover_gate) hands over as the one search layer does, the one with the largest existence probability when several pass at a frame (one hand-over per frame), and it and every other layer whose estimate lies within search_sep of it start over (docs/algorithms.md 2.14). pft_tbd_search_estimate then copies the estimate of the layer with the largest existence probability; pft_tbd_search_layer_estimate copies one layer's [E] */
+    pft_real_t search_sep;   /**< with search_layers >= 2: the distance (position units) within which another layer's estimate bars a birth candidate, in [1, 16] (default 0: only with search_layers < 2) [E] */
+    pft_real_t search_hold;  /**< with search_layers >= 2: a layer's estimate bars the candidates near it only while its existence probability is above this level, in [0, 1) (default 0) [E] */
 } pft_tbd_config_t;
 
 /**
@@ -488,6 +494,17 @@ typedef struct {
 #define PFT_TBD_INTEG_BYTES(w, h)                                                               \
     (2u * PFT_WS_ROUND((((size_t)(w) + 1u) / 2u) * (((size_t)(h) + 1u) / 2u) * sizeof(uint16_t)))
 
+/** Workspace bytes that cfg.search_layers = layers >= 2 adds to the PFT_TBD_WORKSPACE_BYTES*
+ *  (and PFT_TBD_INTEG_BYTES) figure of a w x h image with cfg.birth_peaks = peaks (constant
+ *  expression): the layers beyond the first (one filter record each; their particles are
+ *  slices of the n_search particles) and one list of the birth candidates a layer may draw
+ *  from. 0 for layers < 2. */
+#define PFT_TBD_SEARCH_BYTES(layers, w, h, peaks)                                               \
+    ((size_t)(layers) >= 2u                                                                     \
+         ? PFT_WS_ROUND(((size_t)(layers) - 1u) * sizeof(pft_tbd_filter_t)) +                   \
+               PFT_WS_ROUND(PFT_TBD_CAND_N_(w, h, peaks) * sizeof(uint32_t))                    \
+         : 0u)
+
 /** Workspace bytes pft_tbd_init needs for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg);
 
@@ -547,8 +564,13 @@ size_t pft_tbd_tentative(const pft_tbd_t *t, pft_tbd_track_t *out, size_t max);
 size_t pft_tbd_events(const pft_tbd_t *t, pft_tbd_event_t *out, size_t max);
 
 /** Copies the search layer's estimate at the last frame (p_exist is the appearance
- *  statistic). */
+ *  statistic). With cfg.search_layers = H >= 2: the estimate of the layer with the largest
+ *  existence probability (the first such layer). */
 pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out);
+
+/** Copies search layer h's estimate at the last frame (h < cfg.search_layers, or h = 0 with
+ *  one search layer). PFT_ERR_INVAL for NULL arguments or h out of range. */
+pft_status_t pft_tbd_search_layer_estimate(const pft_tbd_t *t, uint32_t h, pft_tbd_estimate_t *out);
 
 /**
  * Copies up to max birth candidate pixels of the search layer at the last update into out

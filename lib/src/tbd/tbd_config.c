@@ -79,6 +79,9 @@ void pft_tbd_config_default(pft_tbd_config_t *cfg)
     cfg->resid_split = PFT_C(0.0);
     cfg->resid_split_frames = 0u;
     cfg->resid_split_age = 0u;
+    cfg->search_layers = 0u;
+    cfg->search_sep = PFT_C(0.0);
+    cfg->search_hold = PFT_C(0.0);
 }
 
 void pft_tbd_config_recommended(pft_tbd_config_t *cfg)
@@ -293,6 +296,19 @@ static const char *refused_decisions_(const pft_tbd_config_t *c)
     if (!(c->integ_alpha >= PFT_C(0.0) && c->integ_alpha < PFT_REAL_ONE) ||
         (c->integ_alpha > PFT_C(0.0) && (c->birth_peaks == 0u || c->peak_quota > 0u))) {
         return "integ_alpha";
+    }
+    if (c->search_layers > PFT_TBD_MAX_SEARCH ||
+        (c->search_layers >= 2u &&
+         (!(c->birth_share > PFT_C(0.0)) || c->n_search < 4u * (uint32_t)c->search_layers))) {
+        return "search_layers";
+    }
+    if (c->search_layers >= 2u ? !(c->search_sep >= PFT_REAL_ONE && c->search_sep <= PFT_C(16.0))
+                               : !is_off_(c->search_sep)) {
+        return "search_sep";
+    }
+    if (!(c->search_hold >= PFT_C(0.0) && c->search_hold < PFT_REAL_ONE) ||
+        (c->search_layers < 2u && !is_off_(c->search_hold))) {
+        return "search_hold";
     }
     return NULL;
 }

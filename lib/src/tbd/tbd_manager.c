@@ -12,15 +12,40 @@ size_t pft_tbd_workspace_size(const pft_tbd_config_t *cfg)
     }
     const size_t integ =
         cfg->integ_alpha > PFT_C(0.0) ? PFT_TBD_INTEG_BYTES(cfg->width, cfg->height) : 0u;
+    const size_t layers =
+        PFT_TBD_SEARCH_BYTES(cfg->search_layers, cfg->width, cfg->height, cfg->birth_peaks);
     if (cfg->frame_format == PFT_PIX_RES16) {
         return PFT_TBD_WORKSPACE_BYTES_RES16(cfg->n_search, cfg->n_track, cfg->max_targets,
                                              cfg->kind, cfg->width, cfg->height,
                                              cfg->birth_peaks) +
-               integ;
+               integ + layers;
     }
     return PFT_TBD_WORKSPACE_BYTES_PEAKS(cfg->n_search, cfg->n_track, cfg->max_targets,
                                          cfg->kind, cfg->width, cfg->height, cfg->birth_peaks) +
-           integ;
+           integ + layers;
+}
+
+/* Search layers (cfg.search_layers, docs/algorithms.md 2.14): H >= 1. */
+static uint32_t layers_n_(const pft_tbd_config_t *cfg)
+{
+    return cfg->search_layers >= 2u ? (uint32_t)cfg->search_layers : 1u;
+}
+
+/* Search layer h (0: t->search). */
+static pft_tbd_filter_t *layer_(pft_tbd_t *t, uint32_t h)
+{
+    return h == 0u ? &t->search : &t->search_x[h - 1u];
+}
+
+static const pft_tbd_filter_t *layer_c_(const pft_tbd_t *t, uint32_t h)
+{
+    return h == 0u ? &t->search : &t->search_x[h - 1u];
+}
+
+/* Its confirmation count. */
+static uint8_t *above_(pft_tbd_t *t, uint32_t h)
+{
+    return h == 0u ? &t->above : &t->above_x[h - 1u];
 }
 
 /* The integration's bins (cfg.integ_alpha > 0): 2 x 2 pixels each, 0 when off. */
@@ -108,7 +133,17 @@ static void carve_all_(pft_tbd_t *t, const pft_tbd_config_t *cfg, pft_ws_t *ws, 
         integ0 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
         integ1 = (uint16_t *)pft_ws_take(ws, integ_n_(cfg) * sizeof(uint16_t));
     }
+    pft_tbd_filter_t *search_x = NULL;
+    uint32_t *cand_x = NULL;
+    if (layers_n_(cfg) > 1u) {
+        /* after every other buffer: the layout with one search layer is unchanged */
+        search_x = (pft_tbd_filter_t *)pft_ws_take(
+            ws, (size_t)(layers_n_(cfg) - 1u) * sizeof(pft_tbd_filter_t));
+        cand_x = (uint32_t *)pft_ws_take(ws, cand_n_(cfg) * sizeof(uint32_t));
+    }
     if (commit) {
+        t->search_x = search_x;
+        t->cand_x = cand_x;
         t->integ[0] = integ0;
         t->integ[1] = integ1;
         t->base = nimg > 0u ? (void *)img : (void *)mask;
@@ -192,6 +227,29 @@ static void build_(pft_tbd_t *t, const pft_tbd_config_t *cfg, void *work, size_t
     pft_tbd_filter_clear_(&t->search);
     for (uint32_t k = 0; k < cfg->max_targets; ++k) {
         pft_tbd_filter_clear_(&t->tracks[k]);
+    }
+    const uint32_t nl = layers_n_(cfg);
+    if (nl > 1u) {
+        /* the search layers (docs/algorithms.md 2.14): layer h runs on the h-th of nl equal
+         * slices of the n_search particles (cleared above), its generator seeded apart */
+        const uint32_t m = cfg->n_search / nl;
+        memset(t->cand_x, 0, cand_n_(cfg) * sizeof(uint32_t));
+        for (uint32_t h = 1u; h < nl; ++h) {
+            pft_tbd_filter_t *f = &t->search_x[h - 1u];
+            pft_tbd_filter_setup_(f, cfg, m, cfg->kind, true, cfg->force_constraint,
+                                  cfg->seed + ((uint64_t)h << 32));
+            const size_t o = (size_t)h * m;
+            f->cur.x = t->search.cur.x + o;
+            f->cur.y = t->search.cur.y + o;
+            f->cur.in = t->search.cur.in + o;
+            f->cur.vx = t->search.cur.vx + o;
+            f->cur.vy = t->search.cur.vy + o;
+            f->cur.e = t->search.cur.e + o;
+            f->cur.w = t->search.cur.w + o;
+            f->tab = t->tab;
+        }
+        t->search.n = m;
+        t->search.log_n = pft_log_count_(m);
     }
     t->next_id = 1u;
 }
@@ -453,10 +511,9 @@ static uint32_t gate_row_(const pft_tbd_filter_t *sf, const uint32_t *head, uint
  * running sum of 2p + 1 column counts. A row whose band holds no particle is skipped (its box
  * sums are 0 and cannot beat the best). The same box sums, and the same first maximum, as a
  * summed-area table of the whole image, with per-line memory instead of one count per pixel. */
-static pft_tbd_region_t build_gate_(pft_tbd_t *t)
+static pft_tbd_region_t build_gate_(pft_tbd_t *t, pft_tbd_filter_t *sf)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
-    pft_tbd_filter_t *sf = &t->search;
     const uint32_t w = cfg->width;
     const uint32_t h = cfg->height;
     const uint32_t p = cfg->window;
@@ -906,12 +963,55 @@ static void search_budget_(pft_tbd_t *t, uint32_t stepped)
     }
     const uint32_t n_min = cfg->n_search / 4u > 0u ? cfg->n_search / 4u : 1u;
     const uint64_t used = (uint64_t)stepped * cfg->n_track;
-    const uint32_t n = used + n_min >= cfg->n_search ? n_min : cfg->n_search - (uint32_t)used;
-    pft_tbd_filter_t *sf = &t->search;
-    if (n > sf->n) {
-        memset(sf->cur.e + sf->n, 0, (size_t)(n - sf->n));
+    const uint32_t n0 = used + n_min >= cfg->n_search ? n_min : cfg->n_search - (uint32_t)used;
+    const uint32_t nl = layers_n_(cfg);
+    const uint32_t n = n0 / nl; /* each layer's share (search_layers) */
+    for (uint32_t h = 0; h < nl; ++h) {
+        pft_tbd_filter_t *sf = layer_(t, h);
+        if (n > sf->n) {
+            memset(sf->cur.e + sf->n, 0, (size_t)(n - sf->n));
+        }
+        sf->n = n;
     }
-    sf->n = n;
+}
+
+/* The birth candidates of search layer h (cfg.search_layers >= 2, docs/algorithms.md 2.14)
+ * into out's cand and n_cand (the rest of the scene as it is): those of the frame's (cand,
+ * n_cand) farther than search_sep from the estimate (xs[g], ys[g]) of every other layer g with
+ * on[g] (its existence probability above search_hold), in t->cand_x; the frame's own list when
+ * it has none (every allowed pixel) or nothing bars. */
+static void layer_scene_(pft_tbd_t *t, const uint32_t *cand, uint32_t n_cand, uint32_t h,
+                         const pft_real_t *xs, const pft_real_t *ys, const bool *on,
+                         pft_tbd_scene_t_ *out)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    const uint32_t nl = layers_n_(cfg);
+    out->cand = cand;
+    out->n_cand = n_cand;
+    bool any = false;
+    for (uint32_t g = 0; g < nl; ++g) {
+        any = any || (g != h && on[g]);
+    }
+    if (!any || cand == NULL) {
+        return;
+    }
+    const pft_real_t sep2 = pft_sq(cfg->search_sep);
+    const uint32_t w = cfg->width;
+    uint32_t n = 0u;
+    for (uint32_t k = 0; k < n_cand; ++k) {
+        const uint32_t p = cand[k];
+        const pft_real_t cx = pft_mul_i(cfg->dx, (int32_t)(p % w) + 1);
+        const pft_real_t cy = pft_mul_i(cfg->dy, (int32_t)(p / w) + 1);
+        bool barred = false;
+        for (uint32_t g = 0; g < nl && !barred; ++g) {
+            barred = g != h && on[g] && !(d2_(cx, cy, xs[g], ys[g]) > sep2);
+        }
+        if (!barred) {
+            t->cand_x[n++] = p;
+        }
+    }
+    out->cand = t->cand_x;
+    out->n_cand = n;
 }
 
 /* The integration of this frame (docs/algorithms.md 2.13): the last frame's sums, this frame's
@@ -998,7 +1098,48 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
     }
     t->n_cand = ssc.n_cand;
     t->cand_listed = ssc.cand != NULL;
-    pft_tbd_filter_step_(&t->search, &ssc);
+    const uint32_t nl = layers_n_(cfg);
+    if (nl > 1u) {
+        /* docs/algorithms.md 2.14: each layer on the same frame, its births barred near the
+         * last frame's estimates of the others that hold mass */
+        pft_real_t xs[PFT_TBD_MAX_SEARCH];
+        pft_real_t ys[PFT_TBD_MAX_SEARCH];
+        bool on[PFT_TBD_MAX_SEARCH];
+        for (uint32_t h = 0; h < nl; ++h) {
+            const pft_tbd_filter_t *f = layer_(t, h);
+            xs[h] = f->est.x;
+            ys[h] = f->est.y;
+            on[h] = f->est.valid && f->bq > cfg->search_hold; /* bq: 0 after a hand-over */
+        }
+        /* the layers from the lowest existence probability up (ties in layer order), each
+         * barred near the estimates of this frame of those stepped before it: an empty layer
+         * takes the strongest spot no other layer holds, and the layers that hold a spot are
+         * then barred from it */
+        uint32_t order[PFT_TBD_MAX_SEARCH];
+        for (uint32_t h = 0; h < nl; ++h) {
+            uint32_t i = h;
+            while (i > 0u && layer_(t, order[i - 1u])->bq > layer_(t, h)->bq) {
+                order[i] = order[i - 1u];
+                --i;
+            }
+            order[i] = h;
+        }
+        const uint32_t *cand = ssc.cand; /* the frame's candidates (ssc's, put back after) */
+        const uint32_t n_cand = ssc.n_cand;
+        for (uint32_t i = 0; i < nl; ++i) {
+            const uint32_t h = order[i];
+            pft_tbd_filter_t *f = layer_(t, h);
+            layer_scene_(t, cand, n_cand, h, xs, ys, on, &ssc);
+            pft_tbd_filter_step_(f, &ssc);
+            xs[h] = f->est.x;
+            ys[h] = f->est.y;
+            on[h] = f->est.valid && f->bq > cfg->search_hold;
+        }
+        ssc.cand = cand;
+        ssc.n_cand = n_cand;
+    } else {
+        pft_tbd_filter_step_(&t->search, &ssc);
+    }
     patch_drop_(t, &ssc);
     for (uint32_t uu = cfg->max_targets; sub && simg != NULL && uu > 0u; --uu) {
         const pft_tbd_track_t *rec = &t->records[uu - 1u];
@@ -1016,12 +1157,12 @@ static void update_search_(pft_tbd_t *t, const pft_frame_t *frame, bool residual
  * a = sum g z / sum g^2 (g the PSF's taps at a zero sub-pixel offset), and the mean m of the
  * ring of pixels at distance 2 (Chebyshev; those inside the image). True (a point) when
  * m <= shape_ring * a; a step, a ridge or a blob wider than the PSF raises the ring. */
-static bool shape_ok_(const pft_tbd_t *t, const pft_frame_t *frame)
+static bool shape_ok_(const pft_tbd_t *t, const pft_frame_t *frame, const pft_tbd_filter_t *sf)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     size_t pix = 0u;
     if (!(cfg->shape_ring > PFT_C(0.0)) ||
-        !pft_tbd_centre_(&t->search.model, t->search.est.x, t->search.est.y, &pix)) {
+        !pft_tbd_centre_(&sf->model, sf->est.x, sf->est.y, &pix)) {
         return true;
     }
     const int32_t w = (int32_t)cfg->width;
@@ -1068,10 +1209,9 @@ static bool shape_ok_(const pft_tbd_t *t, const pft_frame_t *frame)
 /* The sum the sequential test of a new track starts from (cfg.sprt_start, docs/algorithms.md
  * 2.12), read from the search layer before it is cleared: 0; its frame log likelihood ratios over
  * the frames of its confirmation; or its log odds of existence. Never below 0. */
-static pft_real_t sprt_start_(const pft_tbd_t *t)
+static pft_real_t sprt_start_(const pft_tbd_t *t, const pft_tbd_filter_t *sf)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
-    const pft_tbd_filter_t *sf = &t->search;
     pft_real_t s = PFT_C(0.0);
     if (!(cfg->sprt_accept > PFT_C(0.0))) {
         return s;
@@ -1093,28 +1233,41 @@ static pft_real_t sprt_start_(const pft_tbd_t *t)
     return pft_max(s, PFT_C(0.0));
 }
 
-/* 4. Appearance: when the search layer's P has exceeded theta1 on confirm_frames consecutive
- * frames (docs/algorithms.md 2.11) and a slot is free, hand its particles over to a new track
- * layer (docs/algorithms.md 2.7) and clear the search layer. */
-static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
+/* Search layer h's confirmation count at this frame: frames in a row with P > theta1. True
+ * when it has reached confirm_frames. */
+static bool count_(pft_tbd_t *t, uint32_t h)
 {
     const pft_tbd_config_t *cfg = &t->cfg;
     const uint32_t need = cfg->confirm_frames > 1u ? cfg->confirm_frames : 1u;
-    if (!(t->search.est.p_exist > cfg->theta1)) {
-        t->above = 0u;
-        return;
+    uint8_t *above = above_(t, h);
+    if (!(layer_(t, h)->est.p_exist > cfg->theta1)) {
+        *above = 0u;
+        return false;
     }
-    if (t->above < UINT8_MAX) {
-        ++t->above;
+    if (*above < UINT8_MAX) {
+        ++*above;
     }
-    if ((uint32_t)t->above < need || t->n_tracks >= cfg->max_targets) {
-        return;
-    }
-    if (!shape_ok_(t, frame)) {
+    return (uint32_t)*above >= need;
+}
+
+/* Search layer h starts over (its particles cleared, as at a hand-over). */
+static void layer_clear_(pft_tbd_t *t, uint32_t h)
+{
+    pft_tbd_filter_t *sf = layer_(t, h);
+    memset(sf->cur.e, 0, sf->n);
+    sf->bq = PFT_C(0.0); /* birth_share: the search layer starts over */
+    *above_(t, h) = 0u;
+}
+
+/* Hand-over of search layer h (its count reached, a slot free): the shape test, then its
+ * particles to a new track layer (docs/algorithms.md 2.7) and the search layer cleared. */
+static void handover_(pft_tbd_t *t, const pft_frame_t *frame, uint32_t h)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    pft_tbd_filter_t *sf = layer_(t, h);
+    if (!shape_ok_(t, frame, sf)) {
         /* not a point: the hypothesis is dropped and the search layer starts over */
-        memset(t->search.cur.e, 0, t->search.n);
-        t->search.bq = PFT_C(0.0);
-        t->above = 0u;
+        layer_clear_(t, h);
         return;
     }
     uint32_t k = 0;
@@ -1127,18 +1280,18 @@ static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
     pft_tbd_region_t gate_box;
     const pft_tbd_region_t *gate = NULL;
     if (cfg->handover_gate > 0u) {
-        gate_box = build_gate_(t);
+        gate_box = build_gate_(t, sf);
         gate = &gate_box;
         t->n_cand = 0u; /* pft_tbd_birth_candidates: none after a gated hand-over, as before */
     }
-    if (!pft_tbd_filter_handover_(tf, &t->search, gate)) {
+    if (!pft_tbd_filter_handover_(tf, sf, gate)) {
         return;
     }
     pft_tbd_track_t *rec = &t->records[k];
     memset(rec, 0, sizeof(*rec));
     rec->id = t->next_id++;
     if (gate == NULL) {
-        tf->est = t->search.est; /* docs/algorithms.md 2.7: the search layer's estimate */
+        tf->est = sf->est; /* docs/algorithms.md 2.7: the search layer's estimate */
     }
     if (cfg->handover_in_scale > PFT_C(0.0) && cfg->handover_in_scale < PFT_REAL_ONE) {
         /* docs/algorithms.md 2.7 [E]: the new layer starts from a lower intensity */
@@ -1152,15 +1305,43 @@ static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
     rec->last_timestamp_us = t->last_ts;
     rec->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
     rec->age = 0u;
-    rec->sprt_llr = sprt_start_(t);
+    rec->sprt_llr = sprt_start_(t, sf);
     tf->frames = 0u;
-    memset(t->search.cur.e, 0, t->search.n);
-    t->search.bq = PFT_C(0.0); /* birth_share: the search layer starts over */
-    t->above = 0u;
+    layer_clear_(t, h);
+    /* search_layers: the other layers on the same spot start over too (docs/algorithms.md 2.14) */
+    const pft_real_t sep2 = pft_sq(cfg->search_sep);
+    for (uint32_t g = 0; g < layers_n_(cfg); ++g) {
+        const pft_tbd_filter_t *o = layer_(t, g);
+        if (g != h && o->est.valid && !(d2_(o->est.x, o->est.y, sf->est.x, sf->est.y) > sep2)) {
+            layer_clear_(t, g);
+        }
+    }
     ++t->n_tracks;
     if (rec->first_frame != 0u) {
         push_event_(t, PFT_TBD_EV_CONFIRMED, rec->id, rec->x, rec->y);
     } /* else confirmed (and reported) when its sequential test accepts it */
+}
+
+/* 4. Appearance: when a search layer's P has exceeded theta1 on confirm_frames consecutive
+ * frames (docs/algorithms.md 2.11) and a slot is free, hand its particles over to a new track
+ * layer (docs/algorithms.md 2.7) and clear that search layer. With search_layers, every
+ * layer counts, and of those whose count is reached the one with the largest P hands over
+ * (one hand-over per frame; docs/algorithms.md 2.14). */
+static void confirm_(pft_tbd_t *t, const pft_frame_t *frame)
+{
+    const pft_tbd_config_t *cfg = &t->cfg;
+    const uint32_t nl = layers_n_(cfg);
+    uint32_t best = nl;
+    for (uint32_t h = 0; h < nl; ++h) {
+        if (count_(t, h) &&
+            (best == nl || layer_(t, h)->est.p_exist > layer_(t, best)->est.p_exist)) {
+            best = h;
+        }
+    }
+    if (best == nl || t->n_tracks >= cfg->max_targets) {
+        return;
+    }
+    handover_(t, frame, best);
 }
 
 /* periods lost frames (a seq gap): every live layer moves that many times without a frame. */
@@ -1171,7 +1352,9 @@ static void coast_(pft_tbd_t *t, uint32_t periods)
             pft_tbd_filter_coast_(&t->tracks[k], periods);
         }
     }
-    pft_tbd_filter_coast_(&t->search, periods);
+    for (uint32_t h = 0; h < layers_n_(&t->cfg); ++h) {
+        pft_tbd_filter_coast_(layer_(t, h), periods);
+    }
 }
 
 /* A seq gap above max_gap: every track ends (an ENDED event at its last estimate), the search
@@ -1188,10 +1371,13 @@ static void restart_(pft_tbd_t *t)
         }
     }
     t->n_tracks = 0u;
-    t->above = 0u;
-    memset(t->search.cur.e, 0, t->search.n);
-    pft_tbd_filter_reset_stats_(&t->search);
-    t->search.frames = 0u; /* births with eta, as on the first frame */
+    for (uint32_t h = 0; h < layers_n_(&t->cfg); ++h) {
+        pft_tbd_filter_t *sf = layer_(t, h);
+        *above_(t, h) = 0u;
+        memset(sf->cur.e, 0, sf->n);
+        pft_tbd_filter_reset_stats_(sf);
+        sf->frames = 0u; /* births with eta, as on the first frame */
+    }
     if (integ_n_(&t->cfg) > 0u) {
         /* the integration starts over too (the scene may have moved anywhere) */
         memset(t->integ[t->integ_i], 0, integ_n_(&t->cfg) * sizeof(uint16_t));
@@ -1246,9 +1432,12 @@ pft_status_t pft_tbd_update(pft_tbd_t *t, const pft_frame_t *frame)
     split_tracks_(t);
     resid_split_tracks_(t, frame);
     update_search_(t, frame, res_search, stepped);
-    t->search.est.last_seq = frame->seq;
-    t->search.est.last_timestamp_us = frame->timestamp_us;
-    t->search.est.gap = seen;
+    for (uint32_t h = 0; h < layers_n_(cfg); ++h) {
+        pft_tbd_filter_t *sf = layer_(t, h);
+        sf->est.last_seq = frame->seq;
+        sf->est.last_timestamp_us = frame->timestamp_us;
+        sf->est.gap = seen;
+    }
     confirm_(t, frame);
     return PFT_OK;
 }
@@ -1322,7 +1511,24 @@ pft_status_t pft_tbd_search_estimate(const pft_tbd_t *t, pft_tbd_estimate_t *out
     if (t == NULL || out == NULL) {
         return PFT_ERR_INVAL;
     }
-    pft_tbd_est_pub_(&t->search.model, &t->search.est, out);
+    uint32_t best = 0u;
+    for (uint32_t h = 1u; h < layers_n_(&t->cfg); ++h) {
+        if (layer_c_(t, h)->est.p_exist > layer_c_(t, best)->est.p_exist) {
+            best = h;
+        }
+    }
+    const pft_tbd_filter_t *sf = layer_c_(t, best);
+    pft_tbd_est_pub_(&sf->model, &sf->est, out);
+    return PFT_OK;
+}
+
+pft_status_t pft_tbd_search_layer_estimate(const pft_tbd_t *t, uint32_t h, pft_tbd_estimate_t *out)
+{
+    if (t == NULL || out == NULL || h >= layers_n_(&t->cfg)) {
+        return PFT_ERR_INVAL;
+    }
+    const pft_tbd_filter_t *sf = layer_c_(t, h);
+    pft_tbd_est_pub_(&sf->model, &sf->est, out);
     return PFT_OK;
 }
 

@@ -145,6 +145,9 @@ struct pft_tbd_s {
     uint8_t integ_i;             /* which of integ[] holds the last frame's sums */
     pft_real_t shift_next[2];    /* pft_tbd_set_shift's shift to the next frame (pixels) */
     pft_real_t shift_acc[2];     /* the shift not yet applied in whole bins (pixels) */
+    pft_tbd_filter_t *search_x;  /* cfg.search_layers = H >= 2: search layers 1 .. H - 1 (workspace; their particles are slices of search's) */
+    uint32_t *cand_x;            /* cfg.search_layers >= 2: the birth candidates one layer may draw from */
+    uint8_t above_x[PFT_TBD_MAX_SEARCH - 1u]; /* consecutive frames with layer h's P > theta1 (h >= 1) */
 };
 
 #ifdef __cplusplus
