@@ -83,6 +83,20 @@ void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma)
     c->pixel_offset = pft_test_from_double(-64.0);
 }
 
+void pft_test_tbd_bern_config(pft_tbd_config_t *c, uint16_t side, double sigma, uint32_t n_search,
+                              uint32_t n_track, uint32_t max_targets, uint16_t peaks, uint32_t seed)
+{
+    pft_test_tbd_u16_config(c, side, sigma);
+    c->n_search = n_search;
+    c->n_track = n_track;
+    c->max_targets = max_targets;
+    c->birth_peaks = peaks;
+    c->birth_share = pft_test_from_double(0.5);
+    c->theta1 = pft_test_from_double(0.6);
+    c->confirm_frames = 2u;
+    c->seed = seed;
+}
+
 void pft_test_tbd_put_record(pft_tbd_t *t, uint32_t slot, uint32_t id, pft_real_t x, pft_real_t y,
                              pft_real_t in)
 {

@@ -69,6 +69,11 @@ void pft_test_tsa_config(pft_tsa_config_t *c, uint16_t w, uint16_t h, uint16_t m
 /* The recommended TBD preset on side x side PFT_PIX_U16 frames read as z = raw / 256 - 64 (zero
  * background at raw 16384) with noise sd sigma (the TBD manager tests' frames). */
 void pft_test_tbd_u16_config(pft_tbd_config_t *c, uint16_t side, double sigma);
+/* pft_test_tbd_u16_config with a Bernoulli search layer (birth_share 0.5) drawing its births from
+ * `peaks` peaks, theta1 0.6 over confirm_frames 2, and the given sizes and seed (the search
+ * layer tests' scene: test_tbd_bern_move, test_tbd_layers). */
+void pft_test_tbd_bern_config(pft_tbd_config_t *c, uint16_t side, double sigma, uint32_t n_search,
+                              uint32_t n_track, uint32_t max_targets, uint16_t peaks, uint32_t seed);
 /* A TBD manager test's planted track: slot `slot` of t holds track `id`, its layer's estimate at
  * (x, y) (internal coordinates) with intensity `in`, existence 1, valid, 3 updates old, and
  * its record from that estimate, confirmed at frame 1 (next_id moved past id). The layer's

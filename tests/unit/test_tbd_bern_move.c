@@ -40,15 +40,7 @@ static const double AX = 8.0, AY = 8.0, BX = 24.0, BY = 24.0, IN = 60.0;
 
 static void cfg_of(pft_tbd_config_t *c, uint32_t seed)
 {
-    pft_test_tbd_u16_config(c, IMG, 2.0);
-    c->n_search = NS;
-    c->n_track = NT;
-    c->max_targets = MAXT;
-    c->birth_peaks = KP;
-    c->birth_share = R(0.5);
-    c->theta1 = R(0.6);
-    c->confirm_frames = 2u;
-    c->seed = seed;
+    pft_test_tbd_bern_config(c, IMG, 2.0, NS, NT, MAXT, KP, seed);
 }
 
 typedef struct {

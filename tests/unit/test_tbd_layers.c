@@ -43,16 +43,8 @@ static const double AX = 8.0, AY = 8.0, BX = 24.0, BY = 24.0;
 
 static void cfg_of(pft_tbd_config_t *c, uint32_t seed, uint8_t layers)
 {
-    pft_test_tbd_u16_config(c, IMG, 2.0);
-    c->n_search = NS;
-    c->n_track = NT;
-    c->max_targets = MAXT;
-    c->birth_peaks = KP;
-    c->birth_share = R(0.5);
-    c->theta1 = R(0.6);
-    c->confirm_frames = 2u;
+    pft_test_tbd_bern_config(c, IMG, 2.0, NS, NT, MAXT, KP, seed);
     c->shape_ring = R(0.15);
-    c->seed = seed;
     c->search_layers = layers;
     if (layers >= 2u) {
         c->search_sep = R(3.0);
