@@ -657,11 +657,13 @@ static void test_refused_input_and_reset(void)
 
 /* The entering-edge hold: frame 346 x 270, n 5, no report hold, edge_px 6 (x >= 339 at the far
  * border), edge_still_px 0.1, edge_shift_px 0.2; the scene shifts by -0.25 px per frame in x (new
- * content enters at the right border) and ysh per frame in y. A track fixed in the frame moves
+ * content enters at the right border) and ysh per frame in y; the track moves by (vx, vy) per
+ * frame in the frame. A track fixed in the frame moves
  * at +0.25 px/frame against the scene (1.25 px over 5 frames, above the gate 0.75; below the early
  * report's 1.5 px over 3): without the option REPORT from its 6th frame on. Returns the frame
  * (1-based) of the first REPORT within `frames`, 0 for none. */
-static uint32_t edge_first_report(pft_real_t edge, int32_t x0, int32_t vx, int32_t y0, int32_t ysh, uint32_t frames)
+static uint32_t edge_first_report(pft_real_t edge, int32_t x0, int32_t vx, int32_t y0, int32_t vy, int32_t ysh,
+                                  uint32_t frames)
 {
     pft_tbd_scene_config_t cfg;
     pft_tbd_scene_t s;
@@ -675,7 +677,8 @@ static uint32_t edge_first_report(pft_real_t edge, int32_t x0, int32_t vx, int32
     init(&s, &cfg);
     for (f = 1u; f <= frames; ++f) {
         const int32_t x = x0 + (int32_t)(f - 1u) * vx;
-        const pft_tbd_scene_out_t o = one(&s, trk(7u, rq(x), rq(y0), false), -Q(0.25), ysh);
+        const int32_t y = y0 + (int32_t)(f - 1u) * vy;
+        const pft_tbd_scene_out_t o = one(&s, trk(7u, rq(x), rq(y), false), -Q(0.25), ysh);
         TEST_ASSERT_TRUE(o.decision == PFT_TBD_SCENE_HOLD || o.decision == PFT_TBD_SCENE_REPORT);
         if (o.decision == PFT_TBD_SCENE_REPORT && first == 0u) {
             first = f;
@@ -691,25 +694,28 @@ static void test_edge_hold(void)
 {
     /* fixed in the frame at x 341 (4 px from the border 345): held with the option, reported
      * from the 6th frame without it */
-    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(341.0), 0, Q(100.0), 0, 40u));
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(341.0), 0, Q(100.0), 0, 40u));
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(341.0), 0, Q(100.0), 0, 0, 40u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(341.0), 0, Q(100.0), 0, 0, 40u));
     /* just inside and just outside edge_px: x 339 (6 px) held, x 338.5 reported */
-    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(339.0), 0, Q(100.0), 0, 20u));
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(338.5), 0, Q(100.0), 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(339.0), 0, Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(338.5), 0, Q(100.0), 0, 0, 20u));
     /* the same track mid-frame, and at the leaving border (x 3): reported (a constant bearing) */
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(100.0), 0, 20u));
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(3.0), 0, Q(100.0), 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(3.0), 0, Q(100.0), 0, 0, 20u));
     /* entering at the right border (x 344) and moving inward at 0.5 px/frame in the frame: reported
      * at the 6th frame (x 341.5, inside the band) with and without the option */
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(344.0), -Q(0.5), Q(100.0), 0, 20u));
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(344.0), -Q(0.5), Q(100.0), 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(344.0), -Q(0.5), Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(344.0), -Q(0.5), Q(100.0), 0, 0, 20u));
+    /* fixed in x at x 341 while it drifts in y (0.25 px/frame, 1.25 px over 5 frames, above
+     * 5 edge_still_px): x alone decides, held */
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(341.0), 0, Q(100.0), -Q(0.25), 0, 20u));
     /* the y axis: the scene also shifts by +0.25 px per frame in y (content enters at the top):
      * mid-frame in x at y 3 held, at y 266 (the leaving border in y) reported */
-    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), Q(0.25), 20u));
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(266.0), Q(0.25), 20u));
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), 0, Q(0.25), 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(266.0), 0, Q(0.25), 20u));
     /* the scene's shift below edge_shift_px (0.125 px/frame in y only; x still -0.25): y 3 is not
      * an entering border, so only x could hold, and x 170 is mid-frame: reported */
-    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), Q(0.125), 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), 0, Q(0.125), 20u));
 }
 
 int main(void)

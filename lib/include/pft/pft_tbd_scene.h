@@ -27,12 +27,12 @@
  *   existence probability p_exist is at least spread_exist.
  * - With edge_px > 0 (the entering-edge hold, [E]; docs/algorithms.md 9.11 step 6) a track that
  *   passes the above is HOLD instead (and the frame is not counted as a pass of the hold) when,
- *   over its last m = min(positions - 1, n) frames, its displacement in frame coordinates is
- *   below m * edge_still_px while along an axis the scene's cumulative shift is at least
- *   m * edge_shift_px in magnitude and its newest position lies within edge_px of the border
- *   that axis's shift brings new content in from (shift < 0: x >= width - 1 - edge_px, or y >=
- *   height - 1 - edge_px; shift > 0: x <= edge_px, or y <= edge_px). A track still in the frame
- *   elsewhere (a constant bearing) is not held.
+ *   over its last m = min(positions - 1, n) frames, along an axis (x or y) its displacement in
+ *   frame coordinates is below m * edge_still_px in magnitude while the scene's cumulative shift
+ *   along that axis is at least m * edge_shift_px in magnitude and its newest position lies
+ *   within edge_px of the border that shift brings new content in from (x: shift < 0, x >=
+ *   width - 1 - edge_px; shift > 0, x <= edge_px; y alike with height). A track still in the
+ *   frame elsewhere (a constant bearing) is not held.
  * - With slow_frames L > 0 (the longer look, [E]; docs/algorithms.md 9.11 step 1) a track that
  *   fails the gate over n frames is CLUTTER only if its displacement there is below
  *   n * slow_low_px; otherwise it is undecided (HOLD, not CLUTTER; it does not count as a pass of
@@ -111,7 +111,7 @@ typedef struct {
     pft_real_t slow_gate_px; /**< px (default 0.15; read only with slow_frames > 0): the gate over a window of m frames (2n <= m <= L) is sqrt(m n) * slow_gate_px; (0, 256] */
     pft_real_t spread_exist; /**< [E] existence bound of the spread-dependent hold (default 0: off; read only with spread_px > 0): a frame takes the short hold (spread_hold) only if the track's existence probability p_exist is at least spread_exist, compared in Q16.16; otherwise the frame needs hold_frames passes as a wide track's (docs/algorithms.md 9.11 step 5); [0, 1] */
     pft_real_t edge_px;      /**< [E] the entering-edge hold (default 0: off): a track within edge_px of the frame border on the side the scene's motion brings new content in from, still in the frame while the scene moves, is HOLD (docs/algorithms.md 9.11 step 6; see edge_still_px, edge_shift_px); [0, 256] px */
-    pft_real_t edge_still_px; /**< px per frame (default 0.1; read only with edge_px > 0): a track is still in the frame when its frame displacement over its last m = min(positions - 1, frames) frames is below m * edge_still_px; [0, 256] */
+    pft_real_t edge_still_px; /**< px per frame (default 0.1; read only with edge_px > 0): a track is still in the frame along an axis when its frame displacement along it over its last m = min(positions - 1, frames) frames is below m * edge_still_px in magnitude; [0, 256] */
     pft_real_t edge_shift_px; /**< px per frame (default 0.2; read only with edge_px > 0): an axis has an entering side when the scene's cumulative shift along it over those m frames is at least m * edge_shift_px in magnitude (its sign gives the side: a negative shift brings content in at the far border, width - 1 or height - 1); [0, 256] */
 } pft_tbd_scene_config_t;
 

@@ -331,12 +331,18 @@ static uint32_t sc_slow_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *s
     return m == s->cfg.slow_frames ? 2u : 1u;
 }
 
-/* whether, along one axis, the newest position p (Q16.16) lies within edge_q of the border the
- * scene's shift ds over the window (Q16.16, |ds| < 2^37: 31 frames of < 2^31) brings new content in
- * from, with |ds| >= lim (lim < 2^29): ds < 0 the far border side - 1, ds > 0 the near one, 0 */
-static bool sc_edge_axis_(int64_t p, int64_t ds, int64_t lim, int64_t edge_q, uint32_t side)
+/* whether, along one axis, the track moved less than still (Q16.16, < 2^29) in the frame, d its
+ * frame displacement over the window (|d| < 2^32), while the scene's shift ds over the window
+ * (Q16.16, |ds| < 2^37: 31 frames of < 2^31) is at least lim (< 2^29) in magnitude and the newest
+ * position p (Q16.16) lies within edge_q of the border that shift brings new content in from:
+ * ds < 0 the far border side - 1, ds > 0 the near one, 0 */
+static bool sc_edge_axis_(int64_t p, int64_t d, int64_t ds, int64_t still, int64_t lim, int64_t edge_q,
+                          uint32_t side)
 {
     const int64_t far = ((int64_t)side - 1) * 65536; /* side <= PFT_CFG_MAX_IMAGE_SIDE: < 2^31 */
+    if (d >= still || -d >= still) {
+        return false; /* moves in the frame along this axis */
+    }
     if (ds < 0 && -ds >= lim) {
         return p >= far - edge_q;
     }
@@ -347,17 +353,15 @@ static bool sc_edge_axis_(int64_t p, int64_t ds, int64_t lim, int64_t edge_q, ui
 }
 
 /* The entering-edge hold (cfg.edge_px > 0): whether the track of slot sl, over its last m =
- * min(count - 1, frames) frames, moved less than m * edge_still_px in frame coordinates while
- * along an axis the scene moved at least m * edge_shift_px and its newest position lies within
- * edge_px of that axis's entering border. Exact: m edge_still_q < 2^29, its square < 2^58; frame
- * displacements limited to 2^30 per component as in sc_disp2_. */
+ * min(count - 1, frames) frames, along an axis moved less than m * edge_still_px in frame
+ * coordinates while the scene moved at least m * edge_shift_px along it, its newest position
+ * within edge_px of that axis's entering border. m edge_still_q and m edge_shift_q < 2^29. */
 static bool sc_edge_hold_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring)
 {
-    const int64_t lim30 = (int64_t)1073741824; /* 2^30 */
     uint32_t m = sl->count - 1u;
     const pft_tbd_scene_pos_t *a;
     const pft_tbd_scene_pos_t *b;
-    int64_t dx, dy, still, shift;
+    int64_t still, shift;
     if (m > s->cfg.frames) {
         m = s->cfg.frames;
     }
@@ -366,15 +370,10 @@ static bool sc_edge_hold_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *
     }
     a = sc_back_(s, sl, ring, m);
     b = sc_back_(s, sl, ring, 0u);
-    dx = sc_clamp_((int64_t)b->x - a->x, lim30);
-    dy = sc_clamp_((int64_t)b->y - a->y, lim30);
     still = (int64_t)m * s->edge_still_q;
-    if (dx * dx + dy * dy >= still * still) {
-        return false; /* moves in the frame */
-    }
     shift = (int64_t)m * s->edge_shift_q;
-    return sc_edge_axis_(b->x, b->sx - a->sx, shift, s->edge_q, s->cfg.width) ||
-           sc_edge_axis_(b->y, b->sy - a->sy, shift, s->edge_q, s->cfg.height);
+    return sc_edge_axis_(b->x, (int64_t)b->x - a->x, b->sx - a->sx, still, shift, s->edge_q, s->cfg.width) ||
+           sc_edge_axis_(b->y, (int64_t)b->y - a->y, b->sy - a->sy, still, shift, s->edge_q, s->cfg.height);
 }
 
 /* round(q) (Q16.16) clamped to [0, side - 1] */
