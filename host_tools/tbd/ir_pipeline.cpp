@@ -338,6 +338,9 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.slow_frames = static_cast<uint32_t>(t.scene_slow_frames);
     c.slow_low_px = to_real(t.scene_slow_low_px);
     c.slow_gate_px = to_real(t.scene_slow_gate_px);
+    c.edge_px = to_real(t.scene_edge_px);
+    c.edge_still_px = to_real(t.scene_edge_still_px);
+    c.edge_shift_px = to_real(t.scene_edge_shift_px);
     return c;
 }
 

@@ -189,6 +189,9 @@ struct TrackerSettings {
     int scene_slow_frames = 0;                  ///< the scene-motion test's longer look (pft_tbd_scene_config_t.slow_frames; 0: off): a track failing the gate over scene_frames frames with a displacement of at least scene_frames * scene_slow_low_px is undecided instead of clutter, and tested again over its longest window m (2 scene_frames..this) against sqrt(m scene_frames) * scene_slow_gate_px (docs/results/ir_clutter.md, "Branch irslow2")
     double scene_slow_low_px = 0.0;             ///< px per frame (pft_tbd_scene_config_t.slow_low_px): below it over scene_frames frames a track is clutter at once; 0..scene_gate_px
     double scene_slow_gate_px = 0.15;           ///< px (pft_tbd_scene_config_t.slow_gate_px): the longer windows' gate, sqrt(m scene_frames) times this
+    double scene_edge_px = 0.0;                 ///< the entering-edge hold (pft_tbd_scene_config_t.edge_px; 0: off; needs scene_frames > 0): a track within this (px) of the border the scene's drift brings new content in from, still in the frame while the scene moves, is held (docs/algorithms.md 9.11 step 6); 0..256
+    double scene_edge_still_px = 0.1;           ///< px per frame (pft_tbd_scene_config_t.edge_still_px): still in the frame below m times this over its last m frames; 0..256
+    double scene_edge_shift_px = 0.2;           ///< px per frame (pft_tbd_scene_config_t.edge_shift_px): an axis's entering side needs the scene's shift over those m frames to be at least m times this; 0..256
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };
 

@@ -16,7 +16,10 @@
  * when on; the longer look (slow_frames)
  * keeps a slow track undecided until its window shows it moving (reported at the frame its
  * displacement reaches the sqrt-scaled gate, exactly at the bound) or static (CLUTTER at
- * slow_frames), and a track below slow_low_px CLUTTER at once. Positions and shifts are multiples of 2^-16 px, so that both
+ * slow_frames), and a track below slow_low_px CLUTTER at once; the entering-edge hold (edge_px)
+ * holds a track still in the frame within edge_px of the border the scene's shift brings content
+ * in from (reported without the option), but not the same track mid-frame, at the leaving
+ * border, or one that enters at that border and moves inward. Positions and shifts are multiples of 2^-16 px, so that both
  * builds give the same answers exactly.
  */
 #include <string.h>
@@ -93,7 +96,9 @@ static void test_config_and_workspace(void)
                {"height", 14}, {"height", 15}, {"hold_frames", 16}, {"hold_frames", 17},
                {"spread_px", 18}, {"spread_px", 19}, {"spread_hold", 20}, {"spread_hold", 21},
                {"slow_frames", 22}, {"slow_frames", 23}, {"slow_low_px", 24}, {"slow_low_px", 25},
-               {"slow_gate_px", 26}, {"slow_gate_px", 27}, {"spread_exist", 28}, {"spread_exist", 29}};
+               {"slow_gate_px", 26}, {"slow_gate_px", 27}, {"spread_exist", 28}, {"spread_exist", 29},
+               {"edge_px", 30}, {"edge_px", 31}, {"edge_still_px", 32}, {"edge_still_px", 33},
+               {"edge_shift_px", 34}, {"edge_shift_px", 35}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -126,7 +131,13 @@ static void test_config_and_workspace(void)
         case 26: b.slow_frames = 10u; b.slow_gate_px = PFT_C(0.0); break;
         case 27: b.slow_frames = 10u; b.slow_gate_px = PFT_C(256.5); break;
         case 28: b.spread_exist = PFT_C(-0.125); break;
-        default: b.spread_exist = PFT_C(1.5); break;
+        case 29: b.spread_exist = PFT_C(1.5); break;
+        case 30: b.edge_px = PFT_C(-0.125); break;
+        case 31: b.edge_px = PFT_C(256.5); break;
+        case 32: b.edge_still_px = PFT_C(-0.125); break;
+        case 33: b.edge_still_px = PFT_C(256.5); break;
+        case 34: b.edge_shift_px = PFT_C(-0.125); break;
+        default: b.edge_shift_px = PFT_C(256.5); break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -644,6 +655,69 @@ static void test_refused_input_and_reset(void)
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, sizeof g_work);
 }
 
+/* The entering-edge hold: frame 346 x 270, n 5, no report hold, edge_px 6 (x >= 339 at the far
+ * border), edge_still_px 0.1, edge_shift_px 0.2; the scene shifts by -0.25 px per frame in x (new
+ * content enters at the right border) and ysh per frame in y; the track moves by (vx, vy) per
+ * frame in the frame. A track fixed in the frame moves
+ * at +0.25 px/frame against the scene (1.25 px over 5 frames, above the gate 0.75; below the early
+ * report's 1.5 px over 3): without the option REPORT from its 6th frame on. Returns the frame
+ * (1-based) of the first REPORT within `frames`, 0 for none. */
+static uint32_t edge_first_report(pft_real_t edge, int32_t x0, int32_t vx, int32_t y0, int32_t vy, int32_t ysh,
+                                  uint32_t frames)
+{
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    uint32_t f, first = 0u;
+    pft_tbd_scene_config_default(&cfg);
+    cfg.width = 346u;
+    cfg.height = 270u;
+    cfg.edge_px = edge;
+    cfg.edge_still_px = PFT_C(0.1);
+    cfg.edge_shift_px = PFT_C(0.2);
+    init(&s, &cfg);
+    for (f = 1u; f <= frames; ++f) {
+        const int32_t x = x0 + (int32_t)(f - 1u) * vx;
+        const int32_t y = y0 + (int32_t)(f - 1u) * vy;
+        const pft_tbd_scene_out_t o = one(&s, trk(7u, rq(x), rq(y), false), -Q(0.25), ysh);
+        TEST_ASSERT_TRUE(o.decision == PFT_TBD_SCENE_HOLD || o.decision == PFT_TBD_SCENE_REPORT);
+        if (o.decision == PFT_TBD_SCENE_REPORT && first == 0u) {
+            first = f;
+        }
+        if (first != 0u) {
+            TEST_ASSERT_EQUAL_INT(PFT_TBD_SCENE_REPORT, o.decision); /* once reported, on every frame */
+        }
+    }
+    return first;
+}
+
+static void test_edge_hold(void)
+{
+    /* fixed in the frame at x 341 (4 px from the border 345): held with the option, reported
+     * from the 6th frame without it */
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(341.0), 0, Q(100.0), 0, 0, 40u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(341.0), 0, Q(100.0), 0, 0, 40u));
+    /* just inside and just outside edge_px: x 339 (6 px) held, x 338.5 reported */
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(339.0), 0, Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(338.5), 0, Q(100.0), 0, 0, 20u));
+    /* the same track mid-frame, and at the leaving border (x 3): reported (a constant bearing) */
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(3.0), 0, Q(100.0), 0, 0, 20u));
+    /* entering at the right border (x 344) and moving inward at 0.5 px/frame in the frame: reported
+     * at the 6th frame (x 341.5, inside the band) with and without the option */
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(344.0), -Q(0.5), Q(100.0), 0, 0, 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(0.0), Q(344.0), -Q(0.5), Q(100.0), 0, 0, 20u));
+    /* fixed in x at x 341 while it drifts in y (0.25 px/frame, 1.25 px over 5 frames, above
+     * 5 edge_still_px): x alone decides, held */
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(341.0), 0, Q(100.0), -Q(0.25), 0, 20u));
+    /* the y axis: the scene also shifts by +0.25 px per frame in y (content enters at the top):
+     * mid-frame in x at y 3 held, at y 266 (the leaving border in y) reported */
+    TEST_ASSERT_EQUAL_UINT32(0u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), 0, Q(0.25), 20u));
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(266.0), 0, Q(0.25), 20u));
+    /* the scene's shift below edge_shift_px (0.125 px/frame in y only; x still -0.25): y 3 is not
+     * an entering border, so only x could hold, and x 170 is mid-frame: reported */
+    TEST_ASSERT_EQUAL_UINT32(6u, edge_first_report(PFT_C(6.0), Q(170.0), 0, Q(3.0), 0, Q(0.125), 20u));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -654,6 +728,7 @@ int main(void)
     RUN_TEST(test_spread_hold);
     RUN_TEST(test_spread_exist);
     RUN_TEST(test_slow_look);
+    RUN_TEST(test_edge_hold);
     RUN_TEST(test_curved_path_fails_the_fit);
     RUN_TEST(test_full_table);
     RUN_TEST(test_forget);

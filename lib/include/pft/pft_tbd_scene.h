@@ -25,6 +25,14 @@
  *   (a layer concentrated on a point is reported sooner; docs/algorithms.md 9.11 step 5);
  *   with spread_exist > 0 ([E]) such a frame takes the short hold only if the track's
  *   existence probability p_exist is at least spread_exist.
+ * - With edge_px > 0 (the entering-edge hold, [E]; docs/algorithms.md 9.11 step 6) a track that
+ *   passes the above is HOLD instead (and the frame is not counted as a pass of the hold) when,
+ *   over its last m = min(positions - 1, n) frames, along an axis (x or y) its displacement in
+ *   frame coordinates is below m * edge_still_px in magnitude while the scene's cumulative shift
+ *   along that axis is at least m * edge_shift_px in magnitude and its newest position lies
+ *   within edge_px of the border that shift brings new content in from (x: shift < 0, x >=
+ *   width - 1 - edge_px; shift > 0, x <= edge_px; y alike with height). A track still in the
+ *   frame elsewhere (a constant bearing) is not held.
  * - With slow_frames L > 0 (the longer look, [E]; docs/algorithms.md 9.11 step 1) a track that
  *   fails the gate over n frames is CLUTTER only if its displacement there is below
  *   n * slow_low_px; otherwise it is undecided (HOLD, not CLUTTER; it does not count as a pass of
@@ -102,6 +110,9 @@ typedef struct {
     pft_real_t slow_low_px; /**< px per frame (default 0; read only with slow_frames > 0): a track failing the gate with a displacement below n * slow_low_px is CLUTTER at once; [0, gate_px] */
     pft_real_t slow_gate_px; /**< px (default 0.15; read only with slow_frames > 0): the gate over a window of m frames (2n <= m <= L) is sqrt(m n) * slow_gate_px; (0, 256] */
     pft_real_t spread_exist; /**< [E] existence bound of the spread-dependent hold (default 0: off; read only with spread_px > 0): a frame takes the short hold (spread_hold) only if the track's existence probability p_exist is at least spread_exist, compared in Q16.16; otherwise the frame needs hold_frames passes as a wide track's (docs/algorithms.md 9.11 step 5); [0, 1] */
+    pft_real_t edge_px;      /**< [E] the entering-edge hold (default 0: off): a track within edge_px of the frame border on the side the scene's motion brings new content in from, still in the frame while the scene moves, is HOLD (docs/algorithms.md 9.11 step 6; see edge_still_px, edge_shift_px); [0, 256] px */
+    pft_real_t edge_still_px; /**< px per frame (default 0.1; read only with edge_px > 0): a track is still in the frame along an axis when its frame displacement along it over its last m = min(positions - 1, frames) frames is below m * edge_still_px in magnitude; [0, 256] */
+    pft_real_t edge_shift_px; /**< px per frame (default 0.2; read only with edge_px > 0): an axis has an entering side when the scene's cumulative shift along it over those m frames is at least m * edge_shift_px in magnitude (its sign gives the side: a negative shift brings content in at the far border, width - 1 or height - 1); [0, 256] */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -148,12 +159,14 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
  *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1,
- *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15, spread_exist 0: off). */
+ *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15, spread_exist 0: off, edge_px 0: off,
+ *  edge_still_px 0.1, edge_shift_px 0.2). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
  *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold",
- *  "slow_frames", "slow_low_px", "slow_gate_px", "spread_exist"); NULL on success. */
+ *  "slow_frames", "slow_low_px", "slow_gate_px", "spread_exist", "edge_px", "edge_still_px",
+ *  "edge_shift_px"); NULL on success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);

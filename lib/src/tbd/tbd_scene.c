@@ -31,6 +31,9 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->slow_low_px = PFT_C(0.0);
     cfg->slow_gate_px = PFT_C(0.15);
     cfg->spread_exist = PFT_C(0.0);
+    cfg->edge_px = PFT_C(0.0);
+    cfg->edge_still_px = PFT_C(0.1);
+    cfg->edge_shift_px = PFT_C(0.2);
 }
 
 /* a threshold in [0, 256] px (0: the test it sets is off) */
@@ -76,6 +79,12 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "slow_gate_px";
     } else if (!(cfg->spread_exist >= PFT_C(0.0) && cfg->spread_exist <= PFT_C(1.0))) {
         bad = "spread_exist";
+    } else if (!sc_thr_ok_(cfg->edge_px)) {
+        bad = "edge_px";
+    } else if (!sc_thr_ok_(cfg->edge_still_px)) {
+        bad = "edge_still_px";
+    } else if (!sc_thr_ok_(cfg->edge_shift_px)) {
+        bad = "edge_shift_px";
     } else {
         /* accepted */
     }
@@ -156,6 +165,9 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     s->slow_low_q = sc_q16_(cfg->slow_low_px);
     s->slow_q = sc_q16_(cfg->slow_gate_px);
     s->exist_q = cfg->spread_px > PFT_C(0.0) ? sc_q16_(cfg->spread_exist) : 0;
+    s->edge_q = sc_q16_(cfg->edge_px);
+    s->edge_still_q = sc_q16_(cfg->edge_still_px);
+    s->edge_shift_q = sc_q16_(cfg->edge_shift_px);
     return pft_tbd_scene_reset(s);
 }
 
@@ -319,6 +331,51 @@ static uint32_t sc_slow_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *s
     return m == s->cfg.slow_frames ? 2u : 1u;
 }
 
+/* whether, along one axis, the track moved less than still (Q16.16, < 2^29) in the frame, d its
+ * frame displacement over the window (|d| < 2^32), while the scene's shift ds over the window
+ * (Q16.16, |ds| < 2^37: 31 frames of < 2^31) is at least lim (< 2^29) in magnitude and the newest
+ * position p (Q16.16) lies within edge_q of the border that shift brings new content in from:
+ * ds < 0 the far border side - 1, ds > 0 the near one, 0 */
+static bool sc_edge_axis_(int64_t p, int64_t d, int64_t ds, int64_t still, int64_t lim, int64_t edge_q,
+                          uint32_t side)
+{
+    const int64_t far = ((int64_t)side - 1) * 65536; /* side <= PFT_CFG_MAX_IMAGE_SIDE: < 2^31 */
+    if (d >= still || -d >= still) {
+        return false; /* moves in the frame along this axis */
+    }
+    if (ds < 0 && -ds >= lim) {
+        return p >= far - edge_q;
+    }
+    if (ds > 0 && ds >= lim) {
+        return p <= edge_q;
+    }
+    return false;
+}
+
+/* The entering-edge hold (cfg.edge_px > 0): whether the track of slot sl, over its last m =
+ * min(count - 1, frames) frames, along an axis moved less than m * edge_still_px in frame
+ * coordinates while the scene moved at least m * edge_shift_px along it, its newest position
+ * within edge_px of that axis's entering border. m edge_still_q and m edge_shift_q < 2^29. */
+static bool sc_edge_hold_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring)
+{
+    uint32_t m = sl->count - 1u;
+    const pft_tbd_scene_pos_t *a;
+    const pft_tbd_scene_pos_t *b;
+    int64_t still, shift;
+    if (m > s->cfg.frames) {
+        m = s->cfg.frames;
+    }
+    if (m < 1u) {
+        return false;
+    }
+    a = sc_back_(s, sl, ring, m);
+    b = sc_back_(s, sl, ring, 0u);
+    still = (int64_t)m * s->edge_still_q;
+    shift = (int64_t)m * s->edge_shift_q;
+    return sc_edge_axis_(b->x, (int64_t)b->x - a->x, b->sx - a->sx, still, shift, s->edge_q, s->cfg.width) ||
+           sc_edge_axis_(b->y, (int64_t)b->y - a->y, b->sy - a->sy, still, shift, s->edge_q, s->cfg.height);
+}
+
 /* round(q) (Q16.16) clamped to [0, side - 1] */
 static uint32_t sc_pix_(int32_t q, uint32_t side)
 {
@@ -379,6 +436,7 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
         pft_tbd_scene_pos_t *ring;
         pft_tbd_scene_pos_t pnew;
         bool early = false;
+        bool pass;
         uint32_t slow = 0u; /* the longer look: 1 while undecided */
         pnew.x = sc_q16_(t->x);
         pnew.y = sc_q16_(t->y);
@@ -439,7 +497,10 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             const int64_t e = 3 * (int64_t)s->early_q; /* < 2^27 */
             early = sc_disp2_(sc_back_(s, sl, ring, 3u), sc_back_(s, sl, ring, 0u)) >= e * e;
         }
-        if ((sl->count >= n1 || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring))) {
+        pass = (sl->count >= n1 || early) && (s->fit_q == 0 || sc_fit_ok_(s, sl, ring));
+        if (pass && s->edge_q > 0 && sc_edge_hold_(s, sl, ring)) {
+            o->decision = PFT_TBD_SCENE_HOLD; /* still at the entering edge: not a pass */
+        } else if (pass) {
             /* the report hold: reported from the hold_frames-th frame that passes (from the
              * spread_hold-th with a position spread of at most spread_px) */
             uint32_t need = s->cfg.hold_frames;
