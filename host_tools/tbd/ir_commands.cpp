@@ -1297,20 +1297,28 @@ public:
         sh.tag = o.tag.empty() ? "TBD (pft_pre " + s.tracker.preprocess + ")" : o.tag;
         sh.scenario_json = s.raw;
         json head = summary_header(o, camp, sh, threads, timing);
+        json tracker_rec = {{"preprocess", s.tracker.preprocess}, {"bg_alpha", s.tracker.bg_alpha},
+                            {"edge_k", s.tracker.edge_k},
+                            {"preset", s.tracker.preset}, {"particles", s.tracker.particles},
+                            {"track_particles", s.tracker.track_particles},
+                            {"max_targets", s.tracker.max_targets},
+                            {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
+                            {"background_radius", s.tracker.background_radius},
+                            {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}};
+        // every other field the scenario's tracker block sets (its note aside), as written
+        // there: which manager and stage options a summary was run with, without reading
+        // scenario_json (the fields above keep their effective values)
+        if (s.raw.contains("tracker") && s.raw["tracker"].is_object())
+            for (const auto &kv : s.raw["tracker"].items())
+                if (kv.key() != "note" && !tracker_rec.contains(kv.key()))
+                    tracker_rec[kv.key()] = kv.value();
         head.update(json{{"snr_db", 0.5 * (s.targets.snr_db[0] + s.targets.snr_db[1])},
                      {"snr_db_range", s.targets.snr_db}, {"frames", s.frames},
                      {"base_seed", base}, {"seeds", seeds}, {"threads", threads},
                      {"numeric", numeric_name()}, {"d_c", s.eval.d_c}, {"d_assoc", s.eval.d_assoc},
                      {"drop_prob", s.eval.loss.drop_prob}, {"drop_frames", s.eval.loss.drop_frames},
                      {"background", s.background.source == "folder" ? s.background.folder : "procedural"},
-                     {"tracker", {{"preprocess", s.tracker.preprocess}, {"bg_alpha", s.tracker.bg_alpha},
-                                  {"edge_k", s.tracker.edge_k},
-                                  {"preset", s.tracker.preset}, {"particles", s.tracker.particles},
-                                  {"track_particles", s.tracker.track_particles},
-                                  {"max_targets", s.tracker.max_targets},
-                                  {"snr_min_db", s.tracker.snr_min_db}, {"snr_max_db", s.tracker.snr_max_db},
-                                  {"background_radius", s.tracker.background_radius},
-                                  {"guard_radius", s.tracker.guard_radius}, {"tile", s.tracker.tile}}},
+                     {"tracker", tracker_rec},
                      {"dbt_preprocess", s.dbt.preprocess ? "own" : "shared"}});
         sum["dbt"]["settings"] = {{"pfa", s.dbt.pfa}, {"threshold_sigma", dbt_threshold(s.dbt.pfa)},
                                   {"m", s.dbt.m}, {"n", s.dbt.n}, {"max_misses", s.dbt.max_misses},
