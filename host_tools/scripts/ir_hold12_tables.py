@@ -104,6 +104,8 @@ def paired_cells(st, ref):
     """The two paired-difference cells of a row against the reference row (None: the first)."""
     if ref is None:
         return '–', '–'
+    if len(set(st['seeds']) & set(ref['seeds'])) < 2:
+        return 'no common seeds', 'no common seeds'
     (a, b), (c, d) = paired(st, ref)
     return '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)
 

@@ -13,6 +13,8 @@ Usage:
       POINT = LABEL=tbd:DIR (or dbt:DIR; DIR1,DIR2 pools evaluations), as in ir_hold12_tables.py
       --fine: the false-track rates with two decimals and a column of the mean delay to the first
       report (frames, over the detected targets)
+  The paired cells read "no common seeds" where a point shares fewer than two seeds with the
+  first (points over other seed ranges can share one table).
 """
 import os
 import sys
@@ -57,7 +59,7 @@ def main():
                 lab, st['runs'], st['targets'], fmt(st['pd'], 100, ' %'), nf, fmt(st['false']),
                 st['false'][0] + st['false'][1], dd, df))
             continue
-        if ref_before is not None:
+        if ref_before is not None and len(set(st['seeds']) & set(ref_before['seeds'])) >= 2:
             (a, b), (c, d) = paired(st, ref_before)
             dd, df = '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.2f ± %.2f' % (c, d)
         print('| %s | %d | %d | %.1f %% (± %.1f) | %d | %.2f (± %.2f) | %.2f | %.1f | %s | %s |' % (
