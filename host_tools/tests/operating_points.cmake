@@ -70,7 +70,8 @@ check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "s
 # and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all"), the flat-field
 # step's output over its running robust sd (flat_rescale, branch irshade3) with scene_hold 6
 check_block(${SRC}/scenarios/tbd_ir/real_frames_shaded_low_false_rate.json ${common} "scene_hold=6"
-            "scene_spread_px=0.45000000000000001" "scene_spread_hold=2" "scene_spread_exist=0.98999999999999999" "bg_gate=0.25"
+            "search_layers=2" "scene_edge_px=6.0" "scene_edge_still_px=0.20000000000000001" "scene_edge_shift_px=0.20000000000000001"
+            "scene_spread_px=0.45000000000000001" "scene_spread_hold=3" "scene_spread_exist=0.98999999999999999" "bg_gate=0.25"
             "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "bg_gate_local=relative"
             "bg_masked_taps=all" "flat_rescale=ON")
 
