@@ -79,6 +79,11 @@ def stats(s):
             'delay': ratio([x[2] for x in v], [x[1] for x in v]), 'false': mean_se([x[3] for x in v]), 'seeds': s}
 
 
+def pairable(st, ref):
+    """Whether two points share the two seeds or more a paired difference needs."""
+    return len(set(st['seeds']) & set(ref['seeds'])) >= 2
+
+
 def paired(st, ref):
     common = sorted(set(st['seeds']) & set(ref['seeds']))
     a = [st['seeds'][k] for k in common]
@@ -104,7 +109,7 @@ def paired_cells(st, ref):
     """The two paired-difference cells of a row against the reference row (None: the first)."""
     if ref is None:
         return '–', '–'
-    if len(set(st['seeds']) & set(ref['seeds'])) < 2:
+    if not pairable(st, ref):
         return 'no common seeds', 'no common seeds'
     (a, b), (c, d) = paired(st, ref)
     return '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.1f ± %.1f' % (c, d)

@@ -21,7 +21,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from ir_hold12_tables import load, parse, paired, paired_cells, per_seed, stats, fmt  # noqa: E402
+from ir_hold12_tables import load, pairable, parse, paired, paired_cells, per_seed, stats, fmt  # noqa: E402
 
 
 def main():
@@ -59,7 +59,7 @@ def main():
                 lab, st['runs'], st['targets'], fmt(st['pd'], 100, ' %'), nf, fmt(st['false']),
                 st['false'][0] + st['false'][1], dd, df))
             continue
-        if ref_before is not None and len(set(st['seeds']) & set(ref_before['seeds'])) >= 2:
+        if ref_before is not None and pairable(st, ref_before):
             (a, b), (c, d) = paired(st, ref_before)
             dd, df = '%+.1f ± %.1f' % (100 * a, 100 * b), '%+.2f ± %.2f' % (c, d)
         print('| %s | %d | %d | %.1f %% (± %.1f) | %d | %.2f (± %.2f) | %.2f | %.1f | %s | %s |' % (
