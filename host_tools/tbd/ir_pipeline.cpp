@@ -341,6 +341,8 @@ pft_tbd_scene_config_t make_scene_config(const TrackerSettings &t, int width, in
     c.edge_px = to_real(t.scene_edge_px);
     c.edge_still_px = to_real(t.scene_edge_still_px);
     c.edge_shift_px = to_real(t.scene_edge_shift_px);
+    c.move_px = to_real(t.scene_move_px);
+    c.move_hold = static_cast<uint32_t>(t.scene_move_hold);
     return c;
 }
 

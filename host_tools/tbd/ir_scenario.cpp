@@ -29,7 +29,7 @@ const char *const kTrackerOnlyFields[] = {
     "confirm_frames", "birth_correction", "scene_frames", "scene_gate_px", "scene_fit_px",
     "scene_early_px", "scene_tentative", "sprt_accept", "sprt_reject", "shape_ring", "sprt_start",
     "integ_alpha", "integ_shift", "scene_hold", "scene_spread_px", "scene_spread_hold", "scene_spread_exist",
-    "scene_slow_frames", "scene_slow_low_px", "scene_slow_gate_px", "scene_edge_px", "scene_edge_still_px", "scene_edge_shift_px", "end_grace_frames", "theta_end_grace", "end_persist",
+    "scene_slow_frames", "scene_slow_low_px", "scene_slow_gate_px", "scene_edge_px", "scene_edge_still_px", "scene_edge_shift_px", "scene_move_px", "scene_move_hold", "end_grace_frames", "theta_end_grace", "end_persist",
     "handover_in_scale", "q2", "split_px", "split_share", "resid_split", "resid_split_frames",
     "resid_split_age", "search_layers", "search_sep", "search_hold", nullptr};
 
@@ -235,6 +235,14 @@ void parse_tracker(const Field &t, TrackerSettings &T)
     T.scene_edge_px = t.number_in("scene_edge_px", T.scene_edge_px, 0.0, 256.0);  // the library's bound
     T.scene_edge_still_px = t.number_in("scene_edge_still_px", T.scene_edge_still_px, 0.0, 256.0);
     T.scene_edge_shift_px = t.number_in("scene_edge_shift_px", T.scene_edge_shift_px, 0.0, 256.0);
+    T.scene_move_px = t.number_in("scene_move_px", T.scene_move_px, 0.0, 256.0);  // the library's bound
+    if (T.scene_move_px > 0 && T.scene_spread_px <= 0)
+        t.at("scene_move_px").fail("needs scene_spread_px > 0");
+    T.scene_move_hold = static_cast<int>(t.integer_in("scene_move_hold", T.scene_move_hold, 0, PFT_TBD_SCENE_MAX_HOLD));
+    if (T.scene_move_hold > 0 && T.scene_move_px <= 0)
+        t.at("scene_move_hold").fail("needs scene_move_px > 0");
+    if (T.scene_move_hold > 0 && (T.scene_move_hold < T.scene_spread_hold || T.scene_move_hold > T.scene_hold))
+        t.at("scene_move_hold").fail("must be 0 or scene_spread_hold..scene_hold");
     if (T.scene_slow_frames > 0 && T.scene_slow_frames < 2 * T.scene_frames)
         t.at("scene_slow_frames").fail("must be 0 or at least twice scene_frames");
     if (T.scene_slow_frames > 0 && T.scene_slow_low_px > T.scene_gate_px)

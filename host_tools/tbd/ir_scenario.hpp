@@ -192,6 +192,8 @@ struct TrackerSettings {
     double scene_edge_px = 0.0;                 ///< the entering-edge hold (pft_tbd_scene_config_t.edge_px; 0: off; needs scene_frames > 0): a track within this (px) of the border the scene's drift brings new content in from, still in the frame while the scene moves, is held (docs/algorithms.md 9.11 step 6); 0..256
     double scene_edge_still_px = 0.1;           ///< px per frame (pft_tbd_scene_config_t.edge_still_px): still in the frame below m times this over its last m frames; 0..256
     double scene_edge_shift_px = 0.2;           ///< px per frame (pft_tbd_scene_config_t.edge_shift_px): an axis's entering side needs the scene's shift over those m frames to be at least m times this; 0..256
+    double scene_move_px = 0.0;                 ///< speed bound of the short hold (pft_tbd_scene_config_t.move_px; 0: off; needs scene_spread_px > 0): a frame takes scene_spread_hold only if the track moved at least m times this (px per frame) against the scene over its last m frames (docs/algorithms.md 9.11 step 5); 0..256
+    int scene_move_hold = 0;                    ///< the hold of a slower track's compact frames (pft_tbd_scene_config_t.move_hold; 0: scene_hold): 0 or scene_spread_hold..scene_hold
     int scene_hold = 1;                         ///< report hold of the scene-motion test (pft_tbd_scene_config_t.hold_frames, needs scene_frames > 0): a track is reported from the k-th frame it passes the test on (1: no hold; docs/results/ir_clutter.md, "Branch irhold")
 };
 

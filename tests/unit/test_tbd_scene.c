@@ -19,7 +19,9 @@
  * slow_frames), and a track below slow_low_px CLUTTER at once; the entering-edge hold (edge_px)
  * holds a track still in the frame within edge_px of the border the scene's shift brings content
  * in from (reported without the option), but not the same track mid-frame, at the leaving
- * border, or one that enters at that border and moves inward. Positions and shifts are multiples of 2^-16 px, so that both
+ * border, or one that enters at that border and moves inward; the short hold's speed bound
+ * (move_px, move_hold) keeps a compact track slower than it against the scene on the longer
+ * hold, exactly at the bound not. Positions and shifts are multiples of 2^-16 px, so that both
  * builds give the same answers exactly.
  */
 #include <string.h>
@@ -83,6 +85,8 @@ static void test_config_and_workspace(void)
     TEST_ASSERT_EQUAL_UINT32(1u, cfg.hold_frames);
     TEST_ASSERT_EQUAL_UINT32(1u, cfg.spread_hold);
     TEST_ASSERT_EQUAL_DOUBLE(0.0, pft_test_to_double(cfg.spread_px));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, pft_test_to_double(cfg.move_px));
+    TEST_ASSERT_EQUAL_UINT32(0u, cfg.move_hold);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_scene_config_check(&cfg, &field));
     TEST_ASSERT_NULL(field);
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_scene_config_check(NULL, &field));
@@ -98,7 +102,8 @@ static void test_config_and_workspace(void)
                {"slow_frames", 22}, {"slow_frames", 23}, {"slow_low_px", 24}, {"slow_low_px", 25},
                {"slow_gate_px", 26}, {"slow_gate_px", 27}, {"spread_exist", 28}, {"spread_exist", 29},
                {"edge_px", 30}, {"edge_px", 31}, {"edge_still_px", 32}, {"edge_still_px", 33},
-               {"edge_shift_px", 34}, {"edge_shift_px", 35}};
+               {"edge_shift_px", 34}, {"edge_shift_px", 35}, {"move_px", 36}, {"move_px", 37},
+               {"move_hold", 38}, {"move_hold", 39}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         pft_tbd_scene_config_t b = cfg;
         switch (bad[i].which) {
@@ -137,7 +142,15 @@ static void test_config_and_workspace(void)
         case 32: b.edge_still_px = PFT_C(-0.125); break;
         case 33: b.edge_still_px = PFT_C(256.5); break;
         case 34: b.edge_shift_px = PFT_C(-0.125); break;
-        default: b.edge_shift_px = PFT_C(256.5); break;
+        case 35: b.edge_shift_px = PFT_C(256.5); break;
+        case 36: b.move_px = PFT_C(-0.125); break;
+        case 37: b.move_px = PFT_C(256.5); break;
+        case 38: b.move_hold = 2u; break; /* above hold_frames 1 */
+        default:
+            b.hold_frames = 4u;
+            b.spread_hold = 2u;
+            b.move_hold = 1u; /* below spread_hold */
+            break;
         }
         TEST_ASSERT_EQUAL_INT(PFT_ERR_CONFIG, pft_tbd_scene_config_check(&b, &field));
         TEST_ASSERT_EQUAL_STRING(bad[i].name, field);
@@ -456,6 +469,49 @@ static void test_spread_exist(void)
 #endif
 }
 
+/* the speed bound of the short hold (spread_px 0.5, spread_hold 2, hold_frames 4; pos_var 0.2 px^2
+ * and p_exist 1 on every frame, so every pass is compact): track A moves 0.75 px per frame in the
+ * frame, the scene 0.25 (0.5 px per frame against it: passes from its 4th frame, early), track B
+ * 0.5 px per frame (0.25 against the scene: passes from its 6th frame, n + 1). Without the bound
+ * A is reported from frame 5 (2nd pass), B from frame 7; with move_px 0.5, A moved exactly m
+ * 0.5 px over its m frames (at least the bound): frame 5; with move_px 0.5 + 2^-16 it needs
+ * hold_frames passes (frame 7), with move_hold 3 three (frame 6); B under move_px 0.3 needs four
+ * (frame 9), under 0.25 exactly it keeps frame 7; with spread_px 0 the bound is not read (both at
+ * hold_frames: frames 7 and 9). */
+static void test_move_bound(void)
+{
+    static const struct {
+        pft_real_t spread_px;
+        int32_t move_q;    /* move_px, Q16.16 */
+        uint32_t move_hold;
+        pft_real_t speed;  /* px per frame in the frame */
+        uint32_t first;    /* the first frame reported */
+    } cases[] = {{PFT_C(0.5), 0, 0u, PFT_C(0.75), 5u},
+                 {PFT_C(0.5), Q(0.5), 0u, PFT_C(0.75), 5u},
+                 {PFT_C(0.5), Q(0.5) + 1, 0u, PFT_C(0.75), 7u},
+                 {PFT_C(0.5), Q(0.5) + 1, 3u, PFT_C(0.75), 6u},
+                 {PFT_C(0.5), 0, 0u, PFT_C(0.5), 7u},
+                 {PFT_C(0.5), Q(0.3), 0u, PFT_C(0.5), 9u},
+                 {PFT_C(0.5), Q(0.25), 0u, PFT_C(0.5), 7u},
+                 {PFT_C(0.0), Q(0.5) + 1, 0u, PFT_C(0.75), 7u},
+                 {PFT_C(0.0), Q(0.3), 0u, PFT_C(0.5), 9u}};
+    pft_tbd_scene_config_t cfg;
+    pft_tbd_scene_t s;
+    for (size_t c = 0u; c < sizeof cases / sizeof cases[0]; ++c) {
+        cfg = spread_cfg_(cases[c].spread_px, PFT_C(0.0));
+        cfg.move_px = rq(cases[c].move_q);
+        cfg.move_hold = cases[c].move_hold;
+        init(&s, &cfg);
+        for (uint32_t k = 1u; k <= 12u; ++k) {
+            pft_tbd_scene_track_t t = trk(1u, pft_add(PFT_C(20.0), pft_mul_i(cases[c].speed, (int32_t)k)), PFT_C(40.0), false);
+            t.pos_var = PFT_C(0.2);
+            t.p_exist = PFT_C(1.0);
+            const pft_tbd_scene_out_t o = one(&s, t, Q(0.25), 0);
+            TEST_ASSERT_EQUAL_INT(k < cases[c].first ? PFT_TBD_SCENE_HOLD : PFT_TBD_SCENE_REPORT, o.decision);
+        }
+    }
+}
+
 /* x = 100 + k + 0.25 k^2: rms about the fitted line 0.25 px over 4 frames, 0.418 over 5, 0.624
  * over 6 (every window of 6): never within 0.2; with the fit off, reported from the 4th frame
  * (early); with fit 0.25, reported at the 4th (rms exactly 0.25), held at the 5th and on */
@@ -727,6 +783,7 @@ int main(void)
     RUN_TEST(test_report_hold);
     RUN_TEST(test_spread_hold);
     RUN_TEST(test_spread_exist);
+    RUN_TEST(test_move_bound);
     RUN_TEST(test_slow_look);
     RUN_TEST(test_edge_hold);
     RUN_TEST(test_curved_path_fails_the_fit);

@@ -113,6 +113,8 @@ typedef struct {
     pft_real_t edge_px;      /**< [E] the entering-edge hold (default 0: off): a track within edge_px of the frame border on the side the scene's motion brings new content in from, still in the frame while the scene moves, is HOLD (docs/algorithms.md 9.11 step 6; see edge_still_px, edge_shift_px); [0, 256] px */
     pft_real_t edge_still_px; /**< px per frame (default 0.1; read only with edge_px > 0): a track is still in the frame along an axis when its frame displacement along it over its last m = min(positions - 1, frames) frames is below m * edge_still_px in magnitude; [0, 256] */
     pft_real_t edge_shift_px; /**< px per frame (default 0.2; read only with edge_px > 0): an axis has an entering side when the scene's cumulative shift along it over those m frames is at least m * edge_shift_px in magnitude (its sign gives the side: a negative shift brings content in at the far border, width - 1 or height - 1); [0, 256] */
+    pft_real_t move_px;       /**< [E] speed bound of the short hold (default 0: off; read only with spread_px > 0): a frame that would take the short hold (spread_hold: compact, and with spread_exist at that existence) takes it only if the track's displacement against the scene over its last m = min(positions - 1, frames) frames is at least m * move_px; a slower track needs move_hold passes there (docs/algorithms.md 9.11 step 5); [0, 256] px per frame */
+    uint32_t move_hold;       /**< the hold of such slow compact frames (default 0: hold_frames; read only with move_px > 0 and spread_px > 0): 0 or spread_hold..hold_frames */
 } pft_tbd_scene_config_t;
 
 /** A track fed to the test. */
@@ -160,13 +162,13 @@ typedef struct pft_tbd_scene_s pft_tbd_scene_t;
 /** Fills every field with its default (n 5, 16 slots, gate 0.15, fit 0.2, early 0.5 px,
  *  forget 64 frames, 384 x 288, hold 1 frame: no hold, spread_px 0: off, spread_hold 1,
  *  slow_frames 0: off, slow_low_px 0, slow_gate_px 0.15, spread_exist 0: off, edge_px 0: off,
- *  edge_still_px 0.1, edge_shift_px 0.2). */
+ *  edge_still_px 0.1, edge_shift_px 0.2, move_px 0: off, move_hold 0: hold_frames). */
 void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg);
 /** PFT_OK, PFT_ERR_INVAL (NULL) or PFT_ERR_CONFIG with *field (if field is not NULL) naming
  *  the first refused field ("frames", "max_tracks", "gate_px", "fit_px", "early_px",
  *  "forget_frames", "width", "height", "hold_frames", "spread_px", "spread_hold",
  *  "slow_frames", "slow_low_px", "slow_gate_px", "spread_exist", "edge_px", "edge_still_px",
- *  "edge_shift_px"); NULL on success. */
+ *  "edge_shift_px", "move_px", "move_hold"); NULL on success. */
 pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const char **field);
 /** Exact workspace bytes for cfg; 0 for a NULL or refused cfg. */
 size_t pft_tbd_scene_workspace_size(const pft_tbd_scene_config_t *cfg);

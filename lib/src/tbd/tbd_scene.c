@@ -34,6 +34,8 @@ void pft_tbd_scene_config_default(pft_tbd_scene_config_t *cfg)
     cfg->edge_px = PFT_C(0.0);
     cfg->edge_still_px = PFT_C(0.1);
     cfg->edge_shift_px = PFT_C(0.2);
+    cfg->move_px = PFT_C(0.0);
+    cfg->move_hold = 0u;
 }
 
 /* a threshold in [0, 256] px (0: the test it sets is off) */
@@ -85,6 +87,10 @@ pft_status_t pft_tbd_scene_config_check(const pft_tbd_scene_config_t *cfg, const
         bad = "edge_still_px";
     } else if (!sc_thr_ok_(cfg->edge_shift_px)) {
         bad = "edge_shift_px";
+    } else if (!sc_thr_ok_(cfg->move_px)) {
+        bad = "move_px";
+    } else if (cfg->move_hold != 0u && (cfg->move_hold < cfg->spread_hold || cfg->move_hold > cfg->hold_frames)) {
+        bad = "move_hold";
     } else {
         /* accepted */
     }
@@ -168,6 +174,8 @@ pft_status_t pft_tbd_scene_init(pft_tbd_scene_t *s, const pft_tbd_scene_config_t
     s->edge_q = sc_q16_(cfg->edge_px);
     s->edge_still_q = sc_q16_(cfg->edge_still_px);
     s->edge_shift_q = sc_q16_(cfg->edge_shift_px);
+    s->move_q = cfg->spread_px > PFT_C(0.0) ? sc_q16_(cfg->move_px) : 0;
+    s->move_need = cfg->move_hold != 0u ? cfg->move_hold : cfg->hold_frames;
     return pft_tbd_scene_reset(s);
 }
 
@@ -376,6 +384,24 @@ static bool sc_edge_hold_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *
            sc_edge_axis_(b->y, (int64_t)b->y - a->y, b->sy - a->sy, still, shift, s->edge_q, s->cfg.height);
 }
 
+/* The speed bound of the short hold (cfg.move_px > 0): whether the track of slot sl moved less
+ * than m * move_px against the scene over its last m = min(count - 1, frames) frames (compared
+ * squared, exactly in Q32.32: m move_q < 2^5 * 2^24 = 2^29; the displacement's components are
+ * clamped at 2^30 by sc_disp2_). */
+static bool sc_slow_mover_(const pft_tbd_scene_t *s, const pft_tbd_scene_slot_t *sl, const pft_tbd_scene_pos_t *ring)
+{
+    uint32_t m = sl->count - 1u;
+    int64_t lim;
+    if (m > s->cfg.frames) {
+        m = s->cfg.frames;
+    }
+    if (m < 1u) {
+        return true; /* one position: no displacement shown yet */
+    }
+    lim = (int64_t)m * s->move_q;
+    return sc_disp2_(sc_back_(s, sl, ring, m), sc_back_(s, sl, ring, 0u)) < lim * lim;
+}
+
 /* round(q) (Q16.16) clamped to [0, side - 1] */
 static uint32_t sc_pix_(int32_t q, uint32_t side)
 {
@@ -507,6 +533,9 @@ pft_status_t pft_tbd_scene_update(pft_tbd_scene_t *s, const pft_tbd_scene_track_
             if (s->spread_q > 0 && sc_spread_ok_(s, t->pos_var) &&
                 (s->exist_q == 0 || sc_q16_(t->p_exist) >= s->exist_q)) {
                 need = s->cfg.spread_hold; /* with spread_exist: only at an existence of at least it */
+                if (s->move_q > 0 && sc_slow_mover_(s, sl, ring)) {
+                    need = s->move_need; /* with move_px: only for a track not slow against the scene */
+                }
             }
             if (sl->passed < s->cfg.hold_frames) {
                 sl->passed = (uint16_t)(sl->passed + 1u);

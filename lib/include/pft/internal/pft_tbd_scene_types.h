@@ -51,6 +51,8 @@ struct pft_tbd_scene_s {
     int32_t edge_q;             /* edge_px, edge_still_px, edge_shift_px in Q16.16 (edge_q 0: off) */
     int32_t edge_still_q;
     int32_t edge_shift_q;
+    int32_t move_q;             /* move_px in Q16.16 (0: off, also with spread_px 0) */
+    uint32_t move_need;         /* move_hold, or hold_frames for 0 */
     uint32_t ring;              /* positions kept per slot: max(frames, slow_frames) + 1 */
     uint32_t frame;             /* updates since init/reset */
     uint32_t overflows;         /* NO_SLOT decisions since init/reset */
