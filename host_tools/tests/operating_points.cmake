@@ -62,10 +62,13 @@ check_block(${shipped} ${common} "scene_hold=7" "scene_spread_px=0.3499999999999
             "search_layers=2" "scene_edge_px=6.0" "scene_edge_still_px=0.20000000000000001" "scene_edge_shift_px=0.20000000000000001"
             "clutter_mean_floor=1.0" "clutter_floor_age=30" "clutter_anchor=ON" "bg_gate=0.25" "bg_gate_young=16"
             "bg_gate_local=relative" "bg_masked_taps=all" "handover_in_scale=0.80000000000000004" "flat_rescale=ON")
-# the real-frame twin (real backgrounds needed to run it: only its block is checked)
+# the real-frame twin (real backgrounds needed to run it: only its block is checked); since the
+# thirtieth round three search layers with the short hold's speed bound (scene_move_px, scene_move_hold;
+# its rule is test_move_bound's)
 check_block(${SRC}/scenarios/tbd_ir/real_frames_low_false_rate.json ${common} "scene_hold=7" "scene_spread_px=0.40000000000000002" "scene_spread_hold=2" "scene_spread_exist=0.98999999999999999" "bg_gate=0.25" "clutter_mean_floor=1.0" "clutter_floor_age=15"
-            "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "search_layers=2" "scene_edge_px=6.0"
-            "scene_edge_still_px=0.20000000000000001" "scene_edge_shift_px=0.20000000000000001")
+            "bg_gate_young=16" "handover_in_scale=0.80000000000000004" "search_layers=3" "scene_edge_px=6.0"
+            "scene_edge_still_px=0.20000000000000001" "scene_edge_shift_px=0.20000000000000001"
+            "scene_move_px=0.34999999999999998" "scene_move_hold=3")
 # its twin for a shaded sensor: the same block with the gate on the innovation less its tile's share
 # and the cells next to masked pixels updated from their valid taps (bg_masked_taps "all"), the flat-field
 # step's output over its running robust sd (flat_rescale, branch irshade3) with scene_hold 6
