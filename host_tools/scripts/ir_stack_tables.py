@@ -26,6 +26,12 @@ from ir_hold12_tables import load, pairable, parse, paired, paired_cells, per_se
 
 def main():
     args = sys.argv[1:]
+    if args and args[0] in ('-h', '--help'):
+        print(__doc__)
+        return
+    bad = [a for a in args if not a.startswith('--') and '=' not in a and not a[:1].isdigit()]
+    if bad:
+        sys.exit('ir_stack_tables.py: %r is not a POINT (LABEL=tbd:DIR)\n%s' % (bad[0], __doc__))
     lo, hi = 1, 10 ** 9
     fine = False
     while args and args[0] in ('--seeds', '--fine'):
