@@ -241,12 +241,14 @@ def analyse(summ_path, trace):
             elif on:
                 # each layer on it: its last frame within 3 px of the target and the state there
                 best = None
+                d['held_pass'] = set()
                 for tr in on:
                     lid = int(tr['id'])
                     es = [e for e in ev.get(lid, []) if e['r']['near_tid'] == str(tid)
                           and e['r']['near_d'] != '' and float(e['r']['near_d']) <= 3.0]
                     if not es:
                         continue
+                    d['held_pass'] |= {e['st'] for e in es if e['st'] in ('held7', 'heldmove', 'heldshort', 'edge')}
                     lastf = es[-1]['frame']
                     end = int(tr['end']) if tr['end'] not in ('', '0') else 0
                     ended_on = end and end <= last_in_view and tr['reason'] not in ('',)
@@ -371,6 +373,11 @@ def main(argv):
         print(f'| {k} | {len(v)} | {100.0 * len(v) / len(miss):.1f} % | '
               f"{sum(d['entry'] in ('right', 'bottom') for d in v)} | {sum(d['kind'] == 'structures' for d in v)} | "
               f"{sum(d['frames'] <= 40 for d in v)} | {sum(d['pair'] for d in v)} | {sum(d['v'] < 0.35 for d in v)} |")
+    # the most any hold could give back: misses with a frame, within 3 px of the target, on
+    # which one of its layers passed step 2 of the test but a hold kept it from the report
+    hp = [d for d in miss if d.get('held_pass')]
+    print(f'\nmissed targets with a held pass within 3 px (any layer): {len(hp)}; by hold: ' +
+          ', '.join(f"{k} {sum(k in d['held_pass'] for d in hp)}" for k in ('held7', 'heldmove', 'heldshort', 'edge')))
     ws = sorted(d['wait'] for d in miss if 'wait' in d and d['wait'] >= 0)
     if ws:
         print(f'frames in view before a layer reached the target (ended / held): median {ws[len(ws) // 2]}, '
