@@ -34,7 +34,13 @@ edge hold 6 px / 0.2 / 0.2 on the 346 x 270 frame); its mismatches against the t
 column are printed. Speed against the scene: the truth path's displacement over its frames in view
 less the scene's cumulative shift over them (the layers file's scene_x/scene_y, interpolated over
 frames without a layer), per frame. The crossing pair: a run's two injected targets of largest id
-(host_tools/tbd/ir_sim.cpp). Not a test.
+(host_tools/tbd/ir_sim.cpp). For ended / held the layer read is the one with the most frames
+within 3 px of the target (layers.csv near_tid / near_d). Printed besides the category table: one
+cause per missed target (the category, with a layer that reached the target with 6 or fewer
+frames in view left, and one the gate found CLUTTER, split out), and the missed targets on which
+any layer had a held pass within 3 px (passed step 2, kept from the report by the 7-pass hold,
+the speed bound, the short hold or the edge hold): the most any hold rule could give back.
+Not a test.
 """
 import collections
 import csv
