@@ -65,6 +65,41 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
     const pft_tbd_t &m = pl.tracker().manager();
     const pft_tbd_config_t &c = m.cfg;
     const double dx = from_real(c.dx), dy = from_real(c.dy);
+    // the search layers (cfg.search_layers = H >= 2: layers 1 .. H - 1 in search_x) and their
+    // confirmation counts
+    const uint32_t nl = c.search_layers >= 2u ? static_cast<uint32_t>(c.search_layers) : 1u;
+    auto slayer = [&m](uint32_t h) -> const pft_tbd_filter_t & { return h == 0u ? m.search : m.search_x[h - 1u]; };
+    auto sabove = [&m](uint32_t h) -> uint8_t { return h == 0u ? m.above : m.above_x[h - 1u]; };
+    if (above_prev_.empty())
+        above_prev_.assign(nl, 0u);
+    // the search layer that handed over at this frame: the manager keeps no record of it, so the
+    // rule of its confirmation step is replayed (the counts of the last frame plus this frame's
+    // P > theta1; of the layers whose count reaches confirm_frames the largest P, the lowest
+    // index on a tie); the layers' estimates are kept when a layer starts over, and the one
+    // chosen must have started over (count 0, no live particle). -1: none (no hand-over, or the
+    // replay disagrees)
+    int hand = -1;
+    {
+        const uint32_t need = c.confirm_frames > 1u ? c.confirm_frames : 1u;
+        uint32_t best = nl;
+        for (uint32_t h = 0; h < nl; ++h) {
+            const pft_tbd_filter_t &f = slayer(h);
+            const uint32_t cnt = std::min<uint32_t>(above_prev_[h] + 1u, 255u);
+            if (f.est.p_exist > c.theta1 && cnt >= need &&
+                (best == nl || f.est.p_exist > slayer(best).est.p_exist))
+                best = h;
+        }
+        if (best < nl && sabove(best) == 0u) {
+            const pft_tbd_filter_t &f = slayer(best);
+            uint32_t live = 0;
+            for (uint32_t p = 0; p < f.n; ++p)
+                live += f.cur.e[p] != 0u ? 1u : 0u;
+            if (live == 0u)
+                hand = static_cast<int>(best);
+        }
+    }
+    for (uint32_t h = 0; h < nl; ++h)
+        above_prev_[h] = sabove(h);
     const cv::Mat &res = pl.residual();
     const int W = res.cols, H = res.rows;
     cv::Mat mf, dil;
@@ -134,6 +169,7 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
             TrackLife &L = life_[id];
             L.id = id;
             L.handover = k;
+            L.hlayer = hand;
             L.hx = from_real(m.records[k2].x) - dx;
             L.hy = from_real(m.records[k2].y) - dy;
             L.hp = from_real(m.records[k2].p_exist);
@@ -206,7 +242,8 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                               num(x + dx, 5) + "," + num(y + dy, 5) + "," + num(rm, 3) + "," +
                               (tested ? num(qx, 1) + "," + num(qy, 1) : std::string(",")) + "," +
                               std::to_string(static_cast<int>(lf.resid_n)) + "," +
-                              (tested && qtid ? std::to_string(qtid) + "," + num(qd, 2) : std::string(",")));
+                              (tested && qtid ? std::to_string(qtid) + "," + num(qd, 2) : std::string(",")) + "," +
+                              std::to_string(life_[r.id].hlayer));
     }
     for (const tbd::TrackOut &t : out.tracks) {
         auto it = life_.find(t.id);
@@ -223,8 +260,28 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
     }
 
     // per truth point: the residual, the search layer, births, track layers, reports
-    const pft_tbd_filter_t &sf = m.search;
+    std::vector<pft_tbd_estimate_t> sest(nl);
+    for (uint32_t h = 0; h < nl; ++h)
+        pft_tbd_search_layer_estimate(&m, h, &sest[h]);
     for (const TruthRow *t : truth) {
+        // the search layer whose estimate is nearest to the point (layer 0 when no layer has
+        // one; with one layer, that layer), and the largest P over the layers whose estimate
+        // lies within 3 px of it
+        uint32_t sl = 0;
+        double sd = NAN, spmax = NAN;
+        for (uint32_t h = 0; h < nl; ++h) {
+            if (!sest[h].valid)
+                continue;
+            const double d = std::hypot(from_real(sest[h].x) - t->x, from_real(sest[h].y) - t->y);
+            if (std::isnan(sd) || d < sd) {
+                sd = d;
+                sl = h;
+            }
+            if (d <= 3.0 && !(from_real(sest[h].p_exist) <= spmax))
+                spmax = from_real(sest[h].p_exist);
+        }
+        const pft_tbd_filter_t &sf = slayer(sl);
+        const double sp = from_real(sest[sl].p_exist);
         const long xi = std::lround(t->x), yi = std::lround(t->y);
         if (xi < 0 || yi < 0 || xi >= W || yi >= H)
             continue;
@@ -314,19 +371,18 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
                 rid = r.id;
             }
         }
-        const double sd = out.search_valid ? std::hypot(out.search_x - t->x, out.search_y - t->y) : NAN;
         std::string row = std::to_string(seed_) + "," + std::to_string(k) + "," + std::to_string(t->id) + "," +
                           (t->labelled ? "1" : "0") + "," + num(t->x, 2) + "," + num(t->y, 2) + "," + num(mf_at) +
                           "," + num(mf3) + "," + num(lmed) + "," + num(lsd) + "," + num(rsd) + "," +
-                          std::to_string(rank) + "," + std::to_string(peaks.size()) + "," + num(out.search_p, 4) +
+                          std::to_string(rank) + "," + std::to_string(peaks.size()) + "," + num(sp, 4) +
                           "," + num(sd, 2) + "," + std::to_string(sf.n) + "," + std::to_string(alive) + "," +
                           std::to_string(near) + "," + std::to_string(b1) + "," + std::to_string(b3) + "," +
                           std::to_string(out.births.size()) + "," + (tid ? num(td, 2) : std::string()) + "," +
                           std::to_string(tid) + "," + (tent ? "1" : "0") + "," + (rid ? num(rd, 2) : std::string()) +
                           "," + std::to_string(rid) + "," + std::to_string(m.n_tracks) + "," +
-                          std::to_string(m.above) + "," + num(from_real(sf.est.intensity), 2) + "," + num(tin, 2) + "," +
+                          std::to_string(sabove(sl)) + "," + num(from_real(sf.est.intensity), 2) + "," + num(tin, 2) + "," +
                           num(mf_stage) + "," + num(smed) + "," + num(ssd) + "," + num(srsd) + "," + num(sub_map) + "," +
-                          num(sub_stage);
+                          num(sub_stage) + "," + std::to_string(sl) + "," + num(spmax, 4);
         rows_.push_back(row);
     }
 }
@@ -337,13 +393,13 @@ void IrTrace::write(const std::string &dir, const IrRunEval &ev) const
     write_text_atomic(base + "_targets.csv", [&](std::ostream &f) {
         f << "seed,frame,tid,labelled,x,y,mf_at,mf3,loc_med,loc_sd,res_sd,rank,n_peaks,search_p,search_d,"
              "search_n,alive,alive_near,births1,births3,n_births,trk_d,trk_id,trk_tentative,rep_d,rep_id,"
-             "n_tracks,above,search_int,trk_int,mf_stage,loc_med_stage,loc_sd_stage,res_sd_stage,mfsub_at,mfsub_stage\n";
+             "n_tracks,above,search_int,trk_int,mf_stage,loc_med_stage,loc_sd_stage,res_sd_stage,mfsub_at,mfsub_stage,search_layer,search_p_max\n";
         for (const std::string &r : rows_)
             f << r << "\n";
     });
     write_text_atomic(base + "_tracks.csv", [&](std::ostream &f) { write_tracks_(f, ev); });
     write_text_atomic(base + "_layers.csv", [&](std::ostream &f) {
-        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d,scene_x,scene_y,scene_dec,cov_xx,cov_yy,rx,ry,resid_m,resid_x,resid_y,resid_n,resid_tid,resid_d\n";
+        f << "seed,frame,id,age,x,y,p_exist,intensity,log_mean_lr,tentative,reported,near_tid,near_labelled,near_d,scene_x,scene_y,scene_dec,cov_xx,cov_yy,rx,ry,resid_m,resid_x,resid_y,resid_n,resid_tid,resid_d,handover_layer\n";
         for (const std::string &r : layer_rows_)
             f << r << "\n";
     });
@@ -353,7 +409,7 @@ void IrTrace::write_tracks_(std::ostream &f, const IrRunEval &ev) const
 {
     f << "seed,id,handover,hx,hy,hp,hi,li,end,reason,merged,alive,scene_flag,reported,first_reported,last_reported,"
          "lx,ly,scene_dx,scene_dy,near_tid,near_frames,near_rep_tid,near_rep_frames,near_all,near_rep_all,is_false,false_x,false_y,"
-         "false_scene_x,false_scene_y\n";
+         "false_scene_x,false_scene_y,handover_layer\n";
     for (const auto &kv : life_) {
         const TrackLife &L = kv.second;
         int nt = 0, nf = 0, rt = 0, rf = 0;
@@ -382,7 +438,7 @@ void IrTrace::write_tracks_(std::ostream &f, const IrRunEval &ev) const
           << (fals ? 1 : 0) << ","
           << (ft ? num(ft->x, 2) : std::string()) << "," << (ft ? num(ft->y, 2) : std::string()) << ","
           << (ft ? num(ft->scene_x, 2) : std::string()) << "," << (ft ? num(ft->scene_y, 2) : std::string())
-          << "\n";
+          << "," << L.hlayer << "\n";
     }
 }
 

@@ -50,6 +50,7 @@ private:
         std::map<int, int> near_rep;  // truth id -> reported frames within 3 px
         double scene_dx = 0, scene_dy = 0;  // the scene's shift over its life
         double sx0 = 0, sy0 = 0;  // the scene's position at its hand-over
+        int hlayer = -1;          // the search layer it was handed over from (-1: not known)
     };
     const IrScenario &s_;
     const IrSequence &q_;
@@ -60,6 +61,7 @@ private:
     std::vector<uint32_t> slot_id_;
     std::map<uint32_t, TrackLife> life_;
     double scene_x_ = 0, scene_y_ = 0;
+    std::vector<uint8_t> above_prev_;  // the search layers' confirmation counts after the last frame
 };
 
 }  // namespace pft::host::tbd_ir

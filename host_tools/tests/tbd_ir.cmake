@@ -60,6 +60,12 @@ add_test(NAME host_tbd_ir_stage_out
          COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/stage_out
                  -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/stage_out.cmake)
 set_tests_properties(host_tbd_ir_stage_out PROPERTIES LABELS "host")
+# `pft eval --trace DIR` reads every search layer (search_layers 3 and 1: the new columns, the
+# summary the same without --trace): host_tools/tests/eval_trace.cmake
+add_test(NAME host_tbd_ir_eval_trace
+         COMMAND ${CMAKE_COMMAND} -DPFT=$<TARGET_FILE:pft> -DWORK=${CMAKE_CURRENT_BINARY_DIR}/eval_trace
+                 -DSRC=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/tests/eval_trace.cmake)
+set_tests_properties(host_tbd_ir_eval_trace PROPERTIES LABELS "host")
 # `pft run` stopped by a bad frame part-way: exit 2, the frame named, the streamed outputs
 # (--stage-out, --residual-out, the overlay) closed with the frames before it:
 # host_tools/tests/run_stop.cmake
