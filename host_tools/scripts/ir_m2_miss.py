@@ -20,13 +20,14 @@ What happened to a missed target (the first rule that holds, in this order):
                 (7-pass hold of a wide or low-existence layer, the speed bound's 3-pass hold of a
                 compact slow one, the edge hold, no pass of the line fit or early test, the
                 scene gate's clutter, tentative);
-  no_handover   no track layer on it, but the first search layer held it (>= 50 % of its live
-                particles within 3 px) in some frame;
+  no_handover   no track layer on it, but a search layer held it (>= 50 % of its live particles
+                within 3 px) in some frame;
   no_birth      neither: no birth candidate within 3 px in any frame (targets.csv births3);
-  birth_only    birth candidates within 3 px in some frame, but no hypothesis of the first search
-                layer (the trace reads the manager's first search layer only: with search_layers
-                > 1 a hypothesis of the others is not seen, so no_handover and birth_only are one
-                group there, "no track layer").
+  birth_only    birth candidates within 3 px in some frame, but no search layer's hypothesis.
+                The search columns are the layer's nearest to the point in traces made since
+                branch irtrace3; older traces read the manager's first search layer only, so with
+                search_layers > 1 no_handover and birth_only are one group there ("no track
+                layer", as branch irm2miss reported them).
 The report rule is replayed in double precision from the layers file (algorithms.md 9.11 steps
 2, 4-6 with the shipped file's values: n 5, fit 0.2 px, early 0.5 px, hold 7, short hold 2 at a
 spread of at most 0.4 px and p_exist >= 0.99, speed bound 0.35 px per frame with a 3-pass hold,
