@@ -309,13 +309,20 @@ CATS = ['no_birth', 'birth_only', 'no_handover', 'ended', 'held', 'shared', 'lat
 
 
 def main(argv):
+    if any(a in ('-h', '--help') for a in argv):
+        print(__doc__)
+        return
     lst = '--list' in argv
     res = []
     for a in argv:
         if a.startswith('--'):
             continue
-        s, t = a.split(':')
+        if ':' not in a:
+            sys.exit('ir_m2_miss.py: %r is not SUMMARY.json:TRACE_DIR\n%s' % (a, __doc__))
+        s, t = a.split(':', 1)
         res += analyse(s, t)
+    if not res:
+        sys.exit('ir_m2_miss.py: no injected targets in the summaries given')
     miss = [d for d in res if not d['detected']]
     print(f'{len(res)} injected targets, {len(miss)} missed ({100.0 * len(miss) / len(res):.1f} %)\n')
     groups = [('frames in view', lambda d: fbin(d['frames']), ['<= 20', '21-40', '41-70', '> 70']),
