@@ -421,6 +421,19 @@ void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0,
     }
 }
 
+bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0)
+{
+    /* patch_over_'s rectangles: an empty one (col_hi < col_lo) may count as covering, which
+     * only sends the window to the general form (the same values) */
+    for (uint32_t k = 0; k < sc->n_patch; ++k) {
+        const int32_t *pr = sc->prect + 4u * k;
+        if (!(pr[1] < col0 || pr[0] > col0 + 2 || pr[3] < row0 || pr[2] > row0 + 2)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r)
 {
     const uint32_t w = sc->width;
