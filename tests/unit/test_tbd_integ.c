@@ -8,10 +8,10 @@
  * and the same frames; a point moving 4 px per frame (outside the integration's 3 x 3 bin gate)
  * is found with pft_tbd_set_shift(4, 0) and not without. The peak scan of the sums on
  * noise-free frames: one lit pixel anywhere is the one candidate, two equal ones in
- * neighbouring bins give the first in raster order (inner and border bins). The workspace formula with the
- * integration equals the function and init needs every byte of it. Refused config values
- * (integ_alpha out of [0, 1), with no birth peaks or with a tile quota), a refused frame and a
- * refused shift leave everything byte-identical.
+ * neighbouring bins give the first in raster order (inner and border bins). The workspace
+ * formula with the integration equals the function and init needs every byte of it. Refused
+ * config values (integ_alpha out of [0, 1), with no birth peaks or with a tile quota), a
+ * refused frame and a refused shift leave everything byte-identical.
  */
 #include <math.h>
 #include <stdlib.h>
