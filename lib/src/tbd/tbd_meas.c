@@ -1090,7 +1090,7 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         for (uint32_t bc = 0; bc < bw; ++bc) {
             /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in loops of
              * their own (most bins fail it): eight at a time while none of the eight passes
-             * (a flag from eight compares, a block the compiler vectorises), then one by one */
+             * (one flag from eight compares, one branch per eight bins), then one by one */
             while (bc + 8u <= bw) {
                 uint32_t above = 0u;
                 for (uint32_t k = 0; k < 8u; ++k) {
