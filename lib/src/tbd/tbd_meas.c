@@ -1088,19 +1088,8 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         const uint16_t *row = ig->cur + (size_t)br * ig->bw;
         const uint32_t bw = ig->bw;
         for (uint32_t bc = 0; bc < bw; ++bc) {
-            /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in loops of
-             * their own (most bins fail it): eight at a time while none of the eight passes
-             * (one flag from eight compares, one branch per eight bins), then one by one */
-            while (bc + 8u <= bw) {
-                uint32_t above = 0u;
-                for (uint32_t k = 0; k < 8u; ++k) {
-                    above |= (int32_t)row[bc + k] > bound ? 1u : 0u;
-                }
-                if (above != 0u) {
-                    break;
-                }
-                bc += 8u;
-            }
+            /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
+             * their own (most bins fail it) */
             while (bc < bw && (int32_t)row[bc] <= bound) {
                 ++bc;
             }
