@@ -6,10 +6,12 @@
  * Gaussian noise (64 x 64, unit sigma) is among the K = 4 birth peaks after 8 frames far more
  * often with the integration than with the current frame's peaks alone, over the same 32 seeds
  * and the same frames; a point moving 4 px per frame (outside the integration's 3 x 3 bin gate)
- * is found with pft_tbd_set_shift(4, 0) and not without. The workspace formula with the
- * integration equals the function and init needs every byte of it. Refused config values
- * (integ_alpha out of [0, 1), with no birth peaks or with a tile quota), a refused frame and a
- * refused shift leave everything byte-identical.
+ * is found with pft_tbd_set_shift(4, 0) and not without. The peak scan of the sums on
+ * noise-free frames: one lit pixel anywhere is the one candidate, two equal ones in
+ * neighbouring bins give the first in raster order (inner and border bins). The workspace
+ * formula with the integration equals the function and init needs every byte of it. Refused
+ * config values (integ_alpha out of [0, 1), with no birth peaks or with a tile quota), a
+ * refused frame and a refused shift leave everything byte-identical.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -255,6 +257,78 @@ static void test_refused_input_leaves_state_untouched(void)
     TEST_ASSERT_EQUAL_MEMORY(g_snap, g_ws64, need);
 }
 
+/* One noise-free frame (z = 0) with amplitude a at the n pixels of px (0-based row-major), the
+ * first update of a fresh manager: its birth candidates into cand, their count returned. */
+static size_t peaks_of(const int *px, int n, double a, uint32_t *cand)
+{
+    static pft_tbd_t t;
+    pft_tbd_config_t c;
+    cfg_integ(&c, 0.7);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws64, pft_tbd_workspace_size(&c)));
+    for (int i = 0; i < IMG * IMG; ++i) {
+        g_raw[i] = 16384u;
+    }
+    for (int k = 0; k < n; ++k) {
+        g_raw[px[k]] = (uint16_t)(16384 + (int)lround(a * 256.0));
+    }
+    pft_frame_t f;
+    memset(&f, 0, sizeof f);
+    f.data = g_raw;
+    f.width = IMG;
+    f.height = IMG;
+    f.stride_bytes = IMG * 2u;
+    f.format = PFT_PIX_U16;
+    f.bit_depth = 16u;
+    f.seq = 1u;
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
+    return pft_tbd_birth_candidates(&t, cand, KMAX);
+}
+
+/* Known answers of the integration's peak scan (the bins above the threshold, each a 3 x 3
+ * local maximum of the bins' sums, at its largest pixel): one lit pixel anywhere in the frame
+ * (every column of rows 0, 1, 30, 31 and 63, every row of columns 0, 17 and 63) is the one
+ * candidate, so no bin is passed over; two equal lit pixels in neighbouring bins (across a
+ * bin column, a bin row or a diagonal; inner bins and bins on the frame's border) give one
+ * candidate, the first in raster order (a plateau's first bin wins: > the bins before it, >=
+ * those after). Noise-free frames: the two pixels' PSF-matched values are the same sums in the
+ * same order, so the two bins' sums are equal in both builds. */
+static void test_integ_scan_every_bin_and_ties(void)
+{
+    uint32_t cand[KMAX];
+    const int rows[5] = {0, 1, 30, 31, IMG - 1};
+    for (int q = 0; q < 5; ++q) {
+        for (int x = 0; x < IMG; ++x) {
+            const int p = rows[q] * IMG + x;
+            TEST_ASSERT_EQUAL_UINT_MESSAGE(1u, (unsigned)peaks_of(&p, 1, 6.0, cand), "row");
+            TEST_ASSERT_EQUAL_UINT_MESSAGE((unsigned)p, cand[0], "row");
+        }
+    }
+    const int cols[3] = {0, 17, IMG - 1};
+    for (int q = 0; q < 3; ++q) {
+        for (int y = 0; y < IMG; ++y) {
+            const int p = y * IMG + cols[q];
+            TEST_ASSERT_EQUAL_UINT_MESSAGE(1u, (unsigned)peaks_of(&p, 1, 6.0, cand), "column");
+            TEST_ASSERT_EQUAL_UINT_MESSAGE((unsigned)p, cand[0], "column");
+        }
+    }
+    /* pairs: (x, y) with x and y odd is a bin's last column and row, so (x + 1, y), (x, y + 1)
+     * and (x + 1, y + 1) lie in the bins after its bin; (x + 1, y) and (x, y + 1) pair a bin
+     * with the one below and to the left of it */
+    const int at[4][2] = {{21, 25}, {1, 1}, {IMG - 3, IMG - 3}, {1, IMG - 3}};
+    const int pair[4][4] = {{0, 0, 1, 0}, {0, 0, 0, 1}, {0, 0, 1, 1}, {1, 0, 0, 1}};
+    for (int q = 0; q < 4; ++q) {
+        for (int d = 0; d < 4; ++d) {
+            const int x = at[q][0];
+            const int y = at[q][1];
+            const int px[2] = {(y + pair[d][1]) * IMG + x + pair[d][0],
+                               (y + pair[d][3]) * IMG + x + pair[d][2]};
+            const int first = px[0] < px[1] ? px[0] : px[1];
+            TEST_ASSERT_EQUAL_UINT_MESSAGE(1u, (unsigned)peaks_of(px, 2, 6.0, cand), "pair");
+            TEST_ASSERT_EQUAL_UINT_MESSAGE((unsigned)first, cand[0], "pair");
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -263,5 +337,6 @@ int main(void)
     RUN_TEST(test_workspace_with_integration_is_exact);
     RUN_TEST(test_integ_alpha_refused_by_name);
     RUN_TEST(test_refused_input_leaves_state_untouched);
+    RUN_TEST(test_integ_scan_every_bin_and_ties);
     return UNITY_END();
 }

@@ -97,6 +97,9 @@ void pft_tbd_fetch_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint
 /* The patches' values over the window z of pft_tbd_fetch_ (the frame's values already in z). */
 void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
                          uint32_t ny, pft_real_t *z);
+/* Whether a patch of sc may cover a pixel of the 3 x 3 window at columns col0 .. col0 + 2,
+ * rows row0 .. row0 + 2 (0-based): false when every patch's rectangle lies apart from it. */
+bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0);
 /* Row r (0-based) of the scene with its zero border: element 0 is the border, 1 .. w the
  * pixels, w + 1 the border (img's own row, or the scene's row buffer filled). */
 const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r);
@@ -326,7 +329,11 @@ static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_
     const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
     const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
     const pft_real_t amp = pft_kmulq_(intensity, m->kc);
-    if (!(ex || ey) && v->sum && !(v->pflag != NULL && v->pflag[c->j - 1] != 0u)) {
+    /* a row that pflag names may hold a patch: the window read in place unless one covers
+     * a pixel of it (pft_tbd_llr3_r16_out_ then reads the frame's values as they are) */
+    if (!(ex || ey) && v->sum &&
+        !(v->pflag != NULL && v->pflag[c->j - 1] != 0u &&
+          pft_tbd_patch_in_win_(sc, c->i - 2, c->j - 2))) {
 #ifdef PFT_KSPOT3_R16T_LANES_
         /* float with SSE2: the taps and the window in vector lanes (the same bits) */
         return pft_kspot3_r16t_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),

@@ -421,6 +421,19 @@ void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0,
     }
 }
 
+bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0)
+{
+    /* patch_over_'s rectangles: an empty one (col_hi < col_lo) may count as covering, which
+     * only sends the window to the general form (the same values) */
+    for (uint32_t k = 0; k < sc->n_patch; ++k) {
+        const int32_t *pr = sc->prect + 4u * k;
+        if (!(pr[1] < col0 || pr[0] > col0 + 2 || pr[3] < row0 || pr[2] > row0 + 2)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r)
 {
     const uint32_t w = sc->width;
@@ -1086,11 +1099,23 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
             const uint32_t v = (uint32_t)row[bc] >> 2;
             const pft_real_t vr = pft_from_int((int32_t)v);
             bool is_max = true;
-            for (int32_t a = -1; a <= 1 && is_max; ++a) {
-                for (int32_t b = -1; b <= 1 && is_max; ++b) {
-                    const uint32_t n = integ_at_(ig, (int32_t)br + a, (int32_t)bc + b);
-                    const bool before = a < 0 || (a == 0 && b < 0);
-                    is_max = (a == 0 && b == 0) || (before ? v > n : v >= n);
+            if (br >= 1u && br + 1u < ig->bh && bc >= 1u && bc + 1u < bw) {
+                /* an inner bin: its eight neighbours read in place (integ_at_'s values), the
+                 * same tests as the general form below */
+                const uint16_t *up = row - bw;
+                const uint16_t *dn = row + bw;
+                is_max = v > ((uint32_t)up[bc - 1u] >> 2) && v > ((uint32_t)up[bc] >> 2) &&
+                         v > ((uint32_t)up[bc + 1u] >> 2) && v > ((uint32_t)row[bc - 1u] >> 2) &&
+                         v >= ((uint32_t)row[bc + 1u] >> 2) &&
+                         v >= ((uint32_t)dn[bc - 1u] >> 2) && v >= ((uint32_t)dn[bc] >> 2) &&
+                         v >= ((uint32_t)dn[bc + 1u] >> 2);
+            } else {
+                for (int32_t a = -1; a <= 1 && is_max; ++a) {
+                    for (int32_t b = -1; b <= 1 && is_max; ++b) {
+                        const uint32_t n = integ_at_(ig, (int32_t)br + a, (int32_t)bc + b);
+                        const bool before = a < 0 || (a == 0 && b < 0);
+                        is_max = (a == 0 && b == 0) || (before ? v > n : v >= n);
+                    }
                 }
             }
             if (!is_max) {
