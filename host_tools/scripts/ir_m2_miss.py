@@ -44,13 +44,15 @@ the speed bound, the short hold or the edge hold): the most any hold rule could 
 Not a test.
 """
 import collections
-import csv
 import json
 import math
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from ir_miss_diag import near_map, read_csv  # noqa: E402  (the trace's CSV reader and near-list parser)
+
 W, H = 346, 270
 N = 5
 HOLD = 7
@@ -61,15 +63,6 @@ FIT = 0.2
 EARLY = 0.5
 EDGE, STILL, SHIFT = 6.0, 0.2, 0.2
 MOVE, MOVE_HOLD = 0.35, 3
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def near_map(s):
-    return {int(a): int(b) for a, b in (p.split(':') for p in s.split(';') if p)}
 
 
 def fit_ok(h):
