@@ -52,6 +52,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from ir_miss_diag import near_map, read_csv  # noqa: E402  (the trace's CSV reader and near-list parser)
+from ir_short_why import edge_hold, fit_ok  # noqa: E402  (steps 2 and 6 of the rule; its values: fit 0.2 px, edge 6 / 0.2 / 0.2)
 
 W, H = 346, 270
 N = 5
@@ -59,42 +60,8 @@ HOLD = 7
 SH = 2
 SP2 = 0.4 ** 2
 PE = 0.99
-FIT = 0.2
 EARLY = 0.5
-EDGE, STILL, SHIFT = 6.0, 0.2, 0.2
 MOVE, MOVE_HOLD = 0.35, 3
-
-
-def fit_ok(h):
-    k = len(h)
-    if k < 3:
-        return True
-    ss = 0.0
-    ts = [i - (k - 1) / 2 for i in range(k)]
-    tt = sum(t * t for t in ts)
-    for c in (0, 1):
-        xs = [p[c] for p in h]
-        m = sum(xs) / k
-        v = sum(t * x for t, x in zip(ts, xs)) / tt
-        ss += sum((x - m - v * t) ** 2 for x, t in zip(xs, ts))
-    return ss <= k * FIT * FIT + 1e-12
-
-
-def edge_hold(h):
-    m = min(len(h) - 1, N)
-    if m < 1:
-        return False
-    a, b = h[-1 - m], h[-1]
-    for c, side in ((0, W), (1, H)):
-        d = b[c] - a[c]
-        ds = b[c + 2] - a[c + 2]
-        if abs(d) >= m * STILL:
-            continue
-        if ds < 0 and -ds >= m * SHIFT and b[c] >= side - 1 - EDGE:
-            return True
-        if ds > 0 and ds >= m * SHIFT and b[c] <= EDGE:
-            return True
-    return False
 
 
 def replay(rows):
