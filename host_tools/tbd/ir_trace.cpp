@@ -70,36 +70,6 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
     const uint32_t nl = c.search_layers >= 2u ? static_cast<uint32_t>(c.search_layers) : 1u;
     auto slayer = [&m](uint32_t h) -> const pft_tbd_filter_t & { return h == 0u ? m.search : m.search_x[h - 1u]; };
     auto sabove = [&m](uint32_t h) -> uint8_t { return h == 0u ? m.above : m.above_x[h - 1u]; };
-    if (above_prev_.empty())
-        above_prev_.assign(nl, 0u);
-    // the search layer that handed over at this frame: the manager keeps no record of it, so the
-    // rule of its confirmation step is replayed (the counts of the last frame plus this frame's
-    // P > theta1; of the layers whose count reaches confirm_frames the largest P, the lowest
-    // index on a tie); the layers' estimates are kept when a layer starts over, and the one
-    // chosen must have started over (count 0, no live particle). -1: none (no hand-over, or the
-    // replay disagrees)
-    int hand = -1;
-    {
-        const uint32_t need = c.confirm_frames > 1u ? c.confirm_frames : 1u;
-        uint32_t best = nl;
-        for (uint32_t h = 0; h < nl; ++h) {
-            const pft_tbd_filter_t &f = slayer(h);
-            const uint32_t cnt = std::min<uint32_t>(above_prev_[h] + 1u, 255u);
-            if (f.est.p_exist > c.theta1 && cnt >= need &&
-                (best == nl || f.est.p_exist > slayer(best).est.p_exist))
-                best = h;
-        }
-        if (best < nl && sabove(best) == 0u) {
-            const pft_tbd_filter_t &f = slayer(best);
-            uint32_t live = 0;
-            for (uint32_t p = 0; p < f.n; ++p)
-                live += f.cur.e[p] != 0u ? 1u : 0u;
-            if (live == 0u)
-                hand = static_cast<int>(best);
-        }
-    }
-    for (uint32_t h = 0; h < nl; ++h)
-        above_prev_[h] = sabove(h);
     const cv::Mat &res = pl.residual();
     const int W = res.cols, H = res.rows;
     cv::Mat mf, dil;
@@ -169,7 +139,8 @@ void IrTrace::frame(int k, const IrPipeline &pl, const tbd::FrameOut &out)
             TrackLife &L = life_[id];
             L.id = id;
             L.handover = k;
-            L.hlayer = hand;
+            // the search layer that handed it over, from its record (-1: made by a split)
+            L.hlayer = m.records[k2].search_layer == PFT_TBD_LAYER_NONE ? -1 : static_cast<int>(m.records[k2].search_layer);
             L.hx = from_real(m.records[k2].x) - dx;
             L.hy = from_real(m.records[k2].y) - dy;
             L.hp = from_real(m.records[k2].p_exist);

@@ -61,7 +61,6 @@ private:
     std::vector<uint32_t> slot_id_;
     std::map<uint32_t, TrackLife> life_;
     double scene_x_ = 0, scene_y_ = 0;
-    std::vector<uint8_t> above_prev_;  // the search layers' confirmation counts after the last frame
 };
 
 }  // namespace pft::host::tbd_ir

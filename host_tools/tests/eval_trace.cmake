@@ -12,8 +12,8 @@
 #    whose estimate lies within 3 px) is given exactly when search_d is at most 3 px, and is then
 #    at least search_p; with H = 1 every search_layer is 0 and search_p_max is search_p;
 #  - s<seed>_tracks.csv and s<seed>_layers.csv end with handover_layer: every track layer's
-#    search layer is found (0 .. H - 1; -1 would say the trace's replay of the manager's
-#    hand-over rule disagreed with the manager's counts), there is at least one hand-over, and
+#    search layer is found (0 .. H - 1, from the track record's search_layer; -1 would be a
+#    track made by a split, which this scenario does not enable), there is at least one hand-over, and
 #    with H = 3 some track layer comes from a layer >= 1.
 # That the columns which existed keep their values with H = 1 was checked against main's binary
 # by hand (docs/results/ir_clutter.md, "Branch irtrace3"). Needs nothing outside the source tree.

@@ -61,6 +61,7 @@ typedef struct {
     size_t n[FRAMES];
     pft_tbd_track_t tk[FRAMES][MAXT];
     double p[FRAMES];
+    unsigned near_b[FRAMES]; /* bit h: layer h's estimate within 1.5 px of B with P > theta1 */
 } run_t;
 
 static void scene(pft_sim_truth_t *t)
@@ -113,6 +114,9 @@ static void run(uint32_t seed, uint8_t layers, run_t *o)
             TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_layer_estimate(&g_t, h, &le));
             pmax = D(le.p_exist) > pmax ? D(le.p_exist) : pmax;
             held = held || (D(le.p_exist) > 0.5 && dist(D(le.x), D(le.y), AX, AY) < 3.0);
+            if (le.valid && D(le.p_exist) > 0.6 && dist(D(le.x), D(le.y), BX, BY) < 1.5) {
+                o->near_b[k - 1] |= 1u << h;
+            }
         }
         /* pft_tbd_search_estimate: the layer of the largest existence probability */
         TEST_ASSERT_EQUAL_DOUBLE(pmax, o->p[k - 1]);
@@ -136,6 +140,25 @@ static void test_two_layers_confirm_the_dim_target(void)
         TEST_ASSERT_TRUE_MESSAGE(two.first_b >= 1 && two.first_b <= 8, "two layers: B confirmed");
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, two.tracks_a, "two layers: no track on the blob");
         TEST_ASSERT_TRUE_MESSAGE(two.a_held >= FRAMES / 2, "two layers: the blob holds a layer");
+        /* the B track's record names the layer that handed it over: one that held B above
+         * theta1 at the frame before (confirm_frames 2); with one layer every record says 0 */
+        const int kb = two.first_b - 1;
+        const pft_tbd_track_t *b = NULL;
+        for (size_t i = 0; i < two.n[kb] && i < MAXT; ++i) {
+            if (dist(D(two.tk[kb][i].x), D(two.tk[kb][i].y), BX, BY) < 1.5) {
+                b = &two.tk[kb][i];
+            }
+        }
+        TEST_ASSERT_NOT_NULL(b);
+        TEST_ASSERT_TRUE_MESSAGE(kb >= 1, "hand-over after two frames above theta1");
+        TEST_ASSERT_TRUE_MESSAGE(b->search_layer < 2u, "a layer of the two");
+        TEST_ASSERT_TRUE_MESSAGE(((two.near_b[kb - 1] >> b->search_layer) & 1u) != 0u,
+                                 "the named layer held B the frame before");
+        for (int k = 0; k < FRAMES; ++k) {
+            for (size_t i = 0; i < one.n[k] && i < MAXT; ++i) {
+                TEST_ASSERT_EQUAL_UINT8(0u, one.tk[k][i].search_layer);
+            }
+        }
     }
 }
 

@@ -157,6 +157,8 @@ static void test_two_groups_split_into_two_tracks(void)
                              "one track on each target");
     /* the new track takes the layer's existence probability */
     TEST_ASSERT_TRUE(on.tk[0][1].p_exist == on.tk[0][0].p_exist);
+    /* no search layer handed it over: its record says so */
+    TEST_ASSERT_EQUAL_UINT8(PFT_TBD_LAYER_NONE, on.tk[0][1].search_layer);
 }
 
 static void test_smaller_share_needs_split_share(void)

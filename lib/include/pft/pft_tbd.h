@@ -404,7 +404,11 @@ typedef struct {
     uint64_t last_timestamp_us; /**< timestamp_us of that frame */
     pft_real_t sprt_llr;    /**< with cfg.sprt_accept > 0: the sum of the layer's frame log likelihood ratios from the frame after its hand-over to its confirmation (then kept), started from the value cfg.sprt_start gives (0 by default); 0 otherwise */
     uint8_t end_below;      /**< with cfg.end_persist >= 2: the end tests in a row, up to this frame, at which its layer's existence probability was below its threshold; 0 otherwise */
+    uint8_t search_layer;   /**< the search layer that handed the track over: 0 .. cfg.search_layers - 1 (0 with one search layer; docs/algorithms.md 2.14); PFT_TBD_LAYER_NONE for a track made by a split of a track layer (cfg.split_px, cfg.resid_split) */
 } pft_tbd_track_t;
+
+/** pft_tbd_track_t.search_layer of a track that no search layer handed over (a split). */
+#define PFT_TBD_LAYER_NONE 255u
 
 /** What an event reports. */
 typedef enum {

@@ -736,6 +736,7 @@ static void child_record_(pft_tbd_t *t, const pft_tbd_track_t *rec, uint32_t u)
     nr->last_timestamp_us = t->last_ts;
     nr->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
     nr->sprt_llr = rec->first_frame == 0u ? rec->sprt_llr : PFT_C(0.0);
+    nr->search_layer = (uint8_t)PFT_TBD_LAYER_NONE; /* made by a split, not by a search layer */
     ++t->n_tracks;
     if (nr->first_frame != 0u) {
         push_event_(t, PFT_TBD_EV_CONFIRMED, nr->id, nr->x, nr->y);
@@ -1306,6 +1307,7 @@ static void handover_(pft_tbd_t *t, const pft_frame_t *frame, uint32_t h)
     rec->first_frame = cfg->sprt_accept > PFT_C(0.0) ? 0u : t->frame; /* 0: tentative */
     rec->age = 0u;
     rec->sprt_llr = sprt_start_(t, sf);
+    rec->search_layer = (uint8_t)h;
     tf->frames = 0u;
     layer_clear_(t, h);
     /* search_layers: the other layers on the same spot start over too (docs/algorithms.md 2.14) */
