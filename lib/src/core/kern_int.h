@@ -23,7 +23,8 @@
  *   caller proves the range); pft_kres16_: a RES16 pixel (Q8.8) as a real, exactly;
  *   pft_kmul_r16_: pft_kmula_ of a tap (prepared by pft_kr16_tap_) and a RES16 value (or the
  *   sum of two) given as integers, the same bits without converting them; pft_kmul_u_:
- *   pft_kmula_ of a tap in [0, 1] and a value below 2^14 in 32-bit arithmetic.
+ *   pft_kmula_ of a tap in [0, 1] and a value below 2^14 in 32-bit arithmetic;
+ *   pft_kr16_one_pays_: whether pft_kres16_ should stand for pft_kmul_r16_ of the tap 1.
  * - pft_kspot3_r16_: pft_kspot3_ on a 3 x 3 window of RES16 pixels read in place, the same
  *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
  *   float only where pft_kr16_sum_ok_ holds for every tap the window can get); in float with
@@ -233,6 +234,10 @@ static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b)
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 /* A RES16 value (Q8.8 sigma) as a real, exactly (res / 256). */
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)((int32_t)res * 256); }
+/* Whether a caller should take pft_kres16_(a) for pft_kmul_r16_(pft_kr16_tap_(1), a, 0) (the
+ * same value in both builds): q16 yes (one shift against two widening products and the
+ * rounding); float no (one product either way, so the caller keeps one loop). */
+static inline bool pft_kr16_one_pays_(void) { return true; }
 /* A tap prepared for pft_kmul_r16_ (q16: the tap itself), and whether the helpers below apply
  * to it (q16: 0 <= t <= 1). */
 static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t; }
@@ -559,6 +564,7 @@ static inline pft_real_t pft_kmulr_(pft_real_t a, pft_real_t b) { return a * b; 
 static inline pft_real_t pft_kmula_(pft_real_t a, pft_real_t b) { return a * b; }
 static inline pft_real_t pft_kaddr_(pft_real_t a, pft_real_t b) { return a + b; }
 static inline pft_real_t pft_kres16_(int16_t res) { return (pft_real_t)res * 0.00390625f; }
+static inline bool pft_kr16_one_pays_(void) { return false; }
 /* t 2^-8: then t' (a + b) is t ((a + b) 2^-8) to the bit (the same real number, rounded once),
  * when t' is exact (pft_kr16_tap_ok_: t 2^-8 is not a subnormal that lost bits). */
 static inline pft_real_t pft_kr16_tap_(pft_real_t t) { return t * 0.00390625f; }

@@ -633,21 +633,28 @@ static uint32_t estimate_and_count_(pft_tbd_filter_t *f, pft_wacc_t sum, pft_wei
             ++n0; /* weight e0 (pass 2): its terms are added once below */
         } else {
             const pft_weight_t wn = pft_kwnorm_(e, r);
-            a.w += wn;
-            a.w2 += (pft_wacc_t)wn * wn;
-            /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below stay
-             * inside the number range (a particle beyond 181 px counts as 181 px away) */
-            const pft_real_t dx = pft_kspread_(px[s] - a.rx);
-            const pft_real_t dy = pft_kspread_(py[s] - a.ry);
-            a.we += wn;
-            a.s[0] += pft_acc_wx_(wn, px[s]);
-            a.s[1] += pft_acc_wx_(wn, py[s]);
-            a.s[2] += pft_acc_wx_(wn, pvx[s]);
-            a.s[3] += pft_acc_wx_(wn, pvy[s]);
-            a.s[4] += pft_acc_wx_(wn, pin[s]);
-            a.cxx += pft_acc_wx_(wn, pft_kmulr_(dx, dx));
-            a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
-            a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
+            /* a normalised weight of 0 (q16: e r < 2^32, e.g. e = 0 from pft_kwexp_ 22 or more
+             * below the largest log-weight) adds 0 to every sum below, which leaves each as it
+             * is (q16: integers; float: a sum of finite terms that starts at +0 is never -0,
+             * so adding +0 or -0 keeps its bits): its terms are skipped */
+            if (wn > (pft_weight_t)0) {
+                a.w += wn;
+                a.w2 += (pft_wacc_t)wn * wn;
+                /* |x - r| < 2^14 (above); q16: limited to 181 px so that the products below
+                 * stay inside the number range (a particle beyond 181 px counts as 181 px
+                 * away) */
+                const pft_real_t dx = pft_kspread_(px[s] - a.rx);
+                const pft_real_t dy = pft_kspread_(py[s] - a.ry);
+                a.we += wn;
+                a.s[0] += pft_acc_wx_(wn, px[s]);
+                a.s[1] += pft_acc_wx_(wn, py[s]);
+                a.s[2] += pft_acc_wx_(wn, pvx[s]);
+                a.s[3] += pft_acc_wx_(wn, pvy[s]);
+                a.s[4] += pft_acc_wx_(wn, pin[s]);
+                a.cxx += pft_acc_wx_(wn, pft_kmulr_(dx, dx));
+                a.cxy += pft_acc_wx_(wn, pft_kmulr_(dx, dy));
+                a.cyy += pft_acc_wx_(wn, pft_kmulr_(dy, dy));
+            }
         }
     }
 #endif

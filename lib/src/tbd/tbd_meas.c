@@ -664,6 +664,29 @@ static inline int16_t r16_int_(const uint8_t *src, size_t c)
     return v != PFT_RES16_MASKED ? v : (int16_t)0;
 }
 
+/* The inner columns of peak_hrow_r16_ (1 .. w - 2; w >= 2). one: t1 is pft_kr16_tap_ of the
+ * centre tap 1 (the taps at offset 0), where pft_kmul_r16_(t1, v, 0) is pft_kres16_(v) in both
+ * builds (q16: 256 v + (128 - [v < 0]) >> 8 = 256 v; float: v 2^-8 exactly), so that column's
+ * products are skipped (q16: two widening multiplies per pixel; float keeps one form,
+ * pft_kr16_one_pays_). The same values either way; the caller passes a constant, so each form
+ * is its own loop. */
+static inline void peak_hrow_r16_in_(const uint8_t *src, uint32_t w, pft_real_t t0,
+                                     pft_real_t t1, bool one, pft_real_t *hs)
+{
+    for (size_t c = 1u; c + 1u < (size_t)w; ++c) {
+        /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises) */
+        int16_t a, b, d;
+        memcpy(&a, src + 2u * (c - 1u), 2u);
+        memcpy(&b, src + 2u * c, 2u);
+        memcpy(&d, src + 2u * (c + 1u), 2u);
+        const int16_t zl = (int16_t)((int32_t)a * (a != PFT_RES16_MASKED ? 1 : 0));
+        const int16_t zc = (int16_t)((int32_t)b * (b != PFT_RES16_MASKED ? 1 : 0));
+        const int16_t zr = (int16_t)((int32_t)d * (d != PFT_RES16_MASKED ? 1 : 0));
+        const pft_real_t mc = one ? pft_kres16_(zc) : pft_kmul_r16_(t1, zc, 0);
+        hs[c] = pft_kaddr_(mc, pft_kmul_r16_(t0, zl, zr));
+    }
+}
+
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
  * so the clamp at PEAK_CLIP_ never acts, z(c - 1) + z(c + 1) is (v(c - 1) + v(c + 1)) / 256
  * exactly, and pft_kmul_r16_ gives pft_kmula_'s bits (kern_int.h); t0, t1 prepared by
@@ -678,16 +701,10 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
     }
     hs[0] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, 0u), 0),
                        pft_kmul_r16_(t0, r16_int_(src, 1u), 0));
-    for (size_t c = 1u; c + 1u < (size_t)w; ++c) {
-        /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises) */
-        int16_t a, b, d;
-        memcpy(&a, src + 2u * (c - 1u), 2u);
-        memcpy(&b, src + 2u * c, 2u);
-        memcpy(&d, src + 2u * (c + 1u), 2u);
-        const int16_t zl = (int16_t)((int32_t)a * (a != PFT_RES16_MASKED ? 1 : 0));
-        const int16_t zc = (int16_t)((int32_t)b * (b != PFT_RES16_MASKED ? 1 : 0));
-        const int16_t zr = (int16_t)((int32_t)d * (d != PFT_RES16_MASKED ? 1 : 0));
-        hs[c] = pft_kaddr_(pft_kmul_r16_(t1, zc, 0), pft_kmul_r16_(t0, zl, zr));
+    if (pft_kr16_one_pays_() && t1 == pft_kr16_tap_(PFT_REAL_ONE)) {
+        peak_hrow_r16_in_(src, w, t0, t1, true, hs);
+    } else {
+        peak_hrow_r16_in_(src, w, t0, t1, false, hs);
     }
     hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
