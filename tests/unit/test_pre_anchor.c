@@ -5,7 +5,9 @@
  * standard deviation over the noise's stays within a stated bound and below the re-warped
  * one's; an integer move of the anchor leaves the stored values unchanged (exact); constant,
  * all-dead and all-saturated frames stay finite and are reported; refused input leaves the
- * instance and the workspace byte-identical. Frames are 96 x 72 (every target, Cortex-M under
+ * instance and the workspace byte-identical. The pass's residual row (pft_pre_ares_span_,
+ * internal, declared here) in its plain and split forms (the split one 8 pixels at a time with
+ * SSE2 on x86-64) against known answers and a 64-bit reference, both k1. Frames are 96 x 72 (every target, Cortex-M under
  * QEMU included); scenes are made with per-column and per-row tables and integer products.
  */
 #include <math.h>
@@ -13,6 +15,10 @@
 
 #include "pft_test_support.h"
 #include "pft/pft_pre.h"
+
+int32_t pft_pre_vsplit_(int32_t v);
+void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
+                        const int32_t wr[4], uint32_t k1, bool split);
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -366,6 +372,101 @@ static void test_refused_input_changes_nothing(void)
     TEST_ASSERT_EQUAL_MEMORY(g_copy, g_work, need);
 }
 
+/* The residual row of r[x] = ((zl - bx + k1) >> k1) clamped to +-32767 (masked: INT16_MIN), bx
+ * the 4-tap blend of v (U * 16) rounded and clamped to [0, 65535], in 64 bits. */
+static int16_t ares_ref(const int32_t *v, const int32_t *zl, int32_t x, const int32_t w[4], uint32_t k1)
+{
+    int64_t s = 2048;
+    for (int32_t i = 0; i < 4; ++i) {
+        s += (int64_t)w[i] * v[x + i];
+    }
+    s = s >= 0 ? s / 4096 : -((-s + 4095) / 4096); /* floor */
+    const int64_t bx = s < 0 ? 0 : (s > 65535 ? 65535 : s);
+    if (zl[x] < 0) {
+        return INT16_MIN;
+    }
+    int64_t e = (int64_t)zl[x] - bx;
+    if (k1 != 0u) {
+        e = e >= 0 ? (e + 1) / 2 : -((-e) / 2); /* ceil(e / 2) = (e + 1) >> 1 */
+    }
+    return (int16_t)(e > 32767 ? 32767 : (e < -32767 ? -32767 : e));
+}
+
+static void test_residual_span_split_and_plain(void)
+{
+    enum { N = 27 }; /* three blocks of 8 and a remainder of 3 */
+    int32_t v[N + 3], vs[N + 3], zl[N];
+    int16_t rp[N], rs[N];
+    /* known answers: the tap of weight 256 alone (fraction 0), v = 16 bx */
+    {
+        const int32_t w[4] = {0, 256, 0, 0};
+        const int32_t vv[8] = {0, 16000, 0, 65535 * 16, 0, 16 * 100 + 8, 0, 0};
+        const int32_t zz[6] = {1500, 0, 65535, -1, 101, 0};
+        /* x 0: bx 1000, e 500; x 1: bx 0, e 0; x 2: bx 65535, e 0; x 3: masked; x 4: bx 101
+         * (100.5 rounded up), e 0; x 5: bx 0 */
+        const int16_t want0[6] = {500, 0, 0, INT16_MIN, 0, 0};
+        for (int32_t i = 0; i < N + 3; ++i) {
+            v[i] = i < 8 ? vv[i] : 0;
+        }
+        for (int32_t i = 0; i < N; ++i) {
+            zl[i] = i < 6 ? zz[i] : 65535; /* bx 0: e 65535 */
+        }
+        zl[20] = 0;
+        v[21] = 65535 * 16; /* x 20: bx 65535, e -65535 */
+        for (int32_t i = 0; i < N + 3; ++i) {
+            vs[i] = pft_pre_vsplit_(v[i]);
+        }
+        for (uint32_t k1 = 0u; k1 <= 1u; ++k1) {
+            pft_pre_ares_span_(v, zl, rp, 0, N - 1, w, k1, false);
+            pft_pre_ares_span_(vs, zl, rs, 0, N - 1, w, k1, true);
+            for (int32_t x = 0; x < 6; ++x) {
+                const int16_t want = k1 != 0u && want0[x] == 500 ? 250 : want0[x];
+                TEST_ASSERT_EQUAL_INT16(want, rp[x]);
+                TEST_ASSERT_EQUAL_INT16(want, rs[x]);
+            }
+            /* e 65535: 32767 clamped (k1 1: 32768 clamped); e -65535: -32767 (k1 1: -32767) */
+            TEST_ASSERT_EQUAL_INT16(32767, rp[6]);
+            TEST_ASSERT_EQUAL_INT16(32767, rs[6]);
+            TEST_ASSERT_EQUAL_INT16(32767, rs[N - 1]);
+            TEST_ASSERT_EQUAL_INT16(-32767, rp[20]);
+            TEST_ASSERT_EQUAL_INT16(-32767, rs[20]);
+        }
+    }
+    /* the cubic's negative lobes at the blends' extremes, and random rows: both forms against
+     * the reference, both k1, spans starting at every offset of a block */
+    {
+        const int32_t wc[4][4] = {{-19, 147, 147, -19}, {0, 256, 0, 0}, {0, 77, 179, 0},
+                                  {-9, 200, 72, -7}};
+        uint32_t rng = 12345u;
+        for (int32_t t = 0; t < 400; ++t) {
+            const int32_t *w = wc[(t / 4) % 4];
+            for (int32_t i = 0; i < N + 3; ++i) {
+                rng = rng * 1664525u + 1013904223u;
+                const uint32_t u = rng >> 8;
+                v[i] = (t & 1) != 0 ? ((u & 1u) != 0u ? 1179630 : -131070)
+                                    : (int32_t)(u % 1310701u) - 131070;
+                vs[i] = pft_pre_vsplit_(v[i]);
+            }
+            for (int32_t i = 0; i < N; ++i) {
+                rng = rng * 1664525u + 1013904223u;
+                const uint32_t u = rng >> 8;
+                zl[i] = u % 8u == 0u ? -1 : (u % 8u == 1u ? 65535 : (int32_t)((u >> 3) % 65536u));
+            }
+            const int32_t x0 = t % 8, x1 = N - 1 - (t / 8) % 4;
+            const uint32_t k1 = (uint32_t)(t / 2) % 2u;
+            memset(rp, 0, sizeof(rp));
+            memset(rs, 0, sizeof(rs));
+            pft_pre_ares_span_(v, zl, rp, x0, x1, w, k1, false);
+            pft_pre_ares_span_(vs, zl, rs, x0, x1, w, k1, true);
+            for (int32_t x = 0; x < N; ++x) {
+                const int16_t want = x >= x0 && x <= x1 ? ares_ref(v, zl, x, w, k1) : 0;
+                TEST_ASSERT_EQUAL_INT16(want, rp[x]);
+                TEST_ASSERT_EQUAL_INT16(want, rs[x]);
+            }
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -374,5 +475,6 @@ int main(void)
     RUN_TEST(test_integer_move_exact);
     RUN_TEST(test_degenerate_frames_flagged);
     RUN_TEST(test_refused_input_changes_nothing);
+    RUN_TEST(test_residual_span_split_and_plain);
     return UNITY_END();
 }

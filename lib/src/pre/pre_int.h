@@ -153,6 +153,12 @@ void pft_pre_local_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
 /* TEMPORAL: registration of f against the background (sets p->st.shift*, flags in acc). */
 void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
 void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
+/* The anchored pass's residual of row pixels [x0, x1] (pre_temporal.c, exported for its unit
+ * test): r[x] from the vertical blends v (U * 16; with split, held as 128 vh + vl in the form of
+ * pft_pre_vsplit_), the read weights wr and the frame row zl. */
+int32_t pft_pre_vsplit_(int32_t v);
+void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
+                        const int32_t wr[4], uint32_t k1, bool split);
 
 /* Integer square root of a 64-bit value (floor). */
 uint32_t pft_pre_isqrt64_(uint64_t v);

@@ -8,6 +8,10 @@
 
 #include "pre_int.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
 #define PFT_PRE_SD_MAX_ 3277
 
@@ -750,6 +754,145 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
                            w2 * vb[clampi_(c + 1, 0, w - 1)] + w3 * vb[clampi_(c + 2, 0, w - 1)] +
                            2048) >> 12;
         bw[x] = s < 0 ? 0 : (s > 65535 ? 65535 : s);
+    }
+}
+
+/* ------------------------------------------------------------------ the anchored residual */
+
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), the anchored pass's residual (pft_pre_ares_span_) reads
+ * its vertical blends in a split form and takes its horizontal 4-tap blend as one 16-bit
+ * multiply-add (pmaddwd) per tap and 4 pixels, with the clamps and the residual in 16-bit
+ * lanes, instead of 32 x 32-bit products (SSE2 has none: pmuludq pairs and shuffles), 32-bit
+ * clamps and the narrowing to 16 bits. AArch64 and the Cortex-M builds keep the 32-bit loop
+ * (the same object code as before for the pass). */
+#define PFT_PRE_RES_SPLIT_ 1
+#endif
+
+/* A vertical blend v (U * 16) as vl = v & 127 in the word's low 16 bits and vh = v >> 7 in its
+ * high 16 bits: v = 128 vh + vl. v lies within [-2^21, 2^21) when the vertical weights' absolute
+ * sum is at most 512 (grid values 0 .. 65535: |v| <= 512 * 65535 / 16 < 2^21; the Q8 weights of
+ * warp_q8_ sum to at most 294), so vh is within [-16384, 16383] and the word is vl + 65536 vh;
+ * a 16-bit multiply-add of the word with the pair (-w, -128 w) is -w v, exact in 32 bits for
+ * w in [-255, 256] (-128 w within int16). */
+static inline int32_t vsplit_(int32_t v)
+{
+    return (v & 127) | (int32_t)((uint32_t)(v >> 7) << 16);
+}
+
+int32_t pft_pre_vsplit_(int32_t v)
+{
+    return vsplit_(v);
+}
+
+/* v of a word made by vsplit_. */
+static inline int32_t vjoin_(int32_t s)
+{
+    return (s >> 16) * 128 + (s & 65535);
+}
+
+#if defined(PFT_PRE_RES_SPLIT_)
+/* Whether the pass can take the split form: the read weights wx within [-255, 256] and both
+ * axes' absolute sums at most 512 (vsplit_'s bounds, and |S| < 2^30 below; the Q8 weights of
+ * warp_q8_ always are). */
+static bool res_split_ok_(const int32_t wx[4], const int32_t wy[4])
+{
+    int32_t sx = 0, sy = 0;
+    bool ok = true;
+    for (int32_t i = 0; i < 4; ++i) {
+        ok = ok && wx[i] >= -255 && wx[i] <= 256;
+        sx += wx[i] < 0 ? -wx[i] : wx[i];
+        sy += wy[i] < 0 ? -wy[i] : wy[i];
+    }
+    return ok && sx <= 512 && sy <= 512;
+}
+
+/* The weight pair (-w, -128 w) of a tap as a 32-bit word (low, high 16 bits). */
+static inline int32_t wpair_(int32_t w)
+{
+    return (int32_t)(((uint32_t)(-128 * w) << 16) | ((uint32_t)(-w) & 65535u));
+}
+
+/* pft_pre_ares_span_'s pixels x .. x + 8 n - 1 (n blocks of 8) from split words, k1 a constant
+ * of each call. T = sum of the multiply-adds = -S (S the 4-tap sum of the 32-bit loop), and
+ * s - 32768 = (2048 - 2^27 - T) >> 12 (|S| < 2^30, so no overflow), saturated to int16: that is
+ * bx - 32768 with bx = s clamped to [0, 65535]. With a = zl - 32768 (exact for an unmasked
+ * pixel, zl in [0, 65535]) the residual e = zl - bx is a - (bx - 32768): for k1 0 the
+ * saturating difference then the lower clamp at -32767 is e clamped to +-32767; for k1 1 the
+ * unsigned rounding average of bx and 65535 - zl is (65536 - e) >> 1 = 32768 - ceil(e / 2), so
+ * its top bit flipped is q = -ceil(e / 2) within int16, and (e + 1) >> 1 = ceil(e / 2) clamped
+ * to +-32767 is -max(q, -32767). A masked pixel (zl < 0): PFT_RES16_MASKED. */
+static inline void ares_blocks_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x,
+                                int32_t n, const int32_t wr[4], const uint32_t k1)
+{
+    const __m128i m0 = _mm_set1_epi32(wpair_(wr[0])), m1 = _mm_set1_epi32(wpair_(wr[1]));
+    const __m128i m2 = _mm_set1_epi32(wpair_(wr[2])), m3 = _mm_set1_epi32(wpair_(wr[3]));
+    const __m128i c27 = _mm_set1_epi32(2048 - 134217728), c15 = _mm_set1_epi32(32768);
+    const __m128i zero = _mm_setzero_si128(), top = _mm_set1_epi16(INT16_MIN);
+    const __m128i low = _mm_set1_epi16(INT16_MAX), rmin = _mm_set1_epi16(-PFT_PRE_RMAX_);
+    for (int32_t i = 0; i < n; ++i, x += 8) {
+        const int32_t *q = v + x;
+        __m128i ta = _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)q), m0);
+        ta = _mm_add_epi32(ta, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 1)), m1));
+        ta = _mm_add_epi32(ta, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 2)), m2));
+        ta = _mm_add_epi32(ta, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 3)), m3));
+        __m128i tb = _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 4)), m0);
+        tb = _mm_add_epi32(tb, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 5)), m1));
+        tb = _mm_add_epi32(tb, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 6)), m2));
+        tb = _mm_add_epi32(tb, _mm_madd_epi16(_mm_loadu_si128((const __m128i *)(const void *)(q + 7)), m3));
+        const __m128i b16 = _mm_packs_epi32(_mm_srai_epi32(_mm_sub_epi32(c27, ta), 12),
+                                            _mm_srai_epi32(_mm_sub_epi32(c27, tb), 12));
+        const __m128i za = _mm_loadu_si128((const __m128i *)(const void *)(zl + x));
+        const __m128i zb = _mm_loadu_si128((const __m128i *)(const void *)(zl + x + 4));
+        const __m128i msk = _mm_packs_epi32(_mm_cmplt_epi32(za, zero), _mm_cmplt_epi32(zb, zero));
+        const __m128i a16 = _mm_packs_epi32(_mm_sub_epi32(za, c15), _mm_sub_epi32(zb, c15));
+        __m128i rr;
+        if (k1 == 0u) {
+            rr = _mm_max_epi16(_mm_subs_epi16(a16, b16), rmin);
+        } else {
+            const __m128i pa = _mm_avg_epu16(_mm_xor_si128(b16, top), _mm_xor_si128(a16, low));
+            rr = _mm_sub_epi16(zero, _mm_max_epi16(_mm_xor_si128(pa, top), rmin));
+        }
+        rr = _mm_or_si128(_mm_and_si128(msk, top), _mm_andnot_si128(msk, rr));
+        _mm_storeu_si128((__m128i *)(void *)(r + x), rr);
+    }
+}
+#endif
+
+/* The anchored pass's residual of row pixels [x0, x1]: the background bx (the 4-tap blend of
+ * v[x] .. v[x + 3] with the read weights wr, clamped to [0, 65535]) and r[x] =
+ * ((zl[x] - bx + k1) >> k1) clamped to +-PFT_PRE_RMAX_, PFT_RES16_MASKED where zl[x] < 0. With
+ * split the words of v are vsplit_'s (res_split_ok_'s weights), taken 8 pixels at a time with
+ * SSE2 where the compiler has it; the same values. */
+void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
+                        const int32_t wr[4], uint32_t k1, bool split)
+{
+    const int32_t w0 = wr[0], w1 = wr[1], w2 = wr[2], w3 = wr[3];
+    int32_t x = x0;
+    if (split) {
+#if defined(PFT_PRE_RES_SPLIT_)
+        const int32_t nb = x1 >= x0 ? (x1 - x0 + 1) / 8 : 0;
+        if (k1 == 0u) {
+            ares_blocks_(v, zl, r, x0, nb, wr, 0u);
+        } else {
+            ares_blocks_(v, zl, r, x0, nb, wr, 1u);
+        }
+        x += 8 * nb;
+#endif
+        for (; x <= x1; ++x) {
+            const int32_t sv = (w0 * vjoin_(v[x]) + w1 * vjoin_(v[x + 1]) + w2 * vjoin_(v[x + 2]) +
+                                w3 * vjoin_(v[x + 3]) + 2048) >> 12;
+            const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+            const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+            r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
+        }
+        return;
+    }
+    for (; x <= x1; ++x) { /* vectorisable */
+        const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+        const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+        const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+        r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
     }
 }
 
@@ -2094,6 +2237,12 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     const int32_t *ovlo = g.ovlo, *ovhi = g.ovhi;
     /* residual: pixels whose read taps are all valid cells */
     const int32_t xa = clampi_(ovlo[0] - gx->k - gx->rlo, 0, w), xb = clampi_(ovhi[0] - gx->k - gx->rhi, -1, w - 1);
+    /* the residual's vertical blends in pft_pre_ares_span_'s split form (x86-64 only) */
+#if defined(PFT_PRE_RES_SPLIT_)
+    const bool rsplit = res_split_ok_(gx->wr, gy->wr);
+#else
+    const bool rsplit = false;
+#endif
     /* One pass over the frame rows: row y is converted once (into zl, the row before kept in
      * zp), its residual made from the grid as it was, its horizontal interpolation put in the
      * ring, and then grid row y + k - 1, which no later residual row reads and whose update
@@ -2129,8 +2278,17 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const uint16_t *t0 = tr[0], *t1 = tr[1], *t2 = tr[2], *t3 = tr[3];
             /* storage columns of the taps (x + k .. x + k + 3), at most w + 2 */
             const int32_t c0 = xa + gx->k, c1 = xb + gx->k + 3 > w + 2 ? w + 2 : xb + gx->k + 3;
-            for (int32_t i = c0; i <= c1; ++i) { /* vectorisable: U * 16, as anchor_view_ */
-                vb[i] = vtap_(t0, t1, t2, t3, gw0, gw1, gw2, gw3, i);
+#if defined(PFT_PRE_RES_SPLIT_)
+            if (rsplit) { /* the split words of pft_pre_ares_span_ */
+                for (int32_t i = c0; i <= c1; ++i) { /* vectorisable */
+                    vb[i] = vsplit_(vtap_(t0, t1, t2, t3, gw0, gw1, gw2, gw3, i));
+                }
+            } else
+#endif
+            {
+                for (int32_t i = c0; i <= c1; ++i) { /* vectorisable: U * 16, as anchor_view_ */
+                    vb[i] = vtap_(t0, t1, t2, t3, gw0, gw1, gw2, gw3, i);
+                }
             }
         }
         /* masked outside the covered span [xa, xb] (or the whole row), and where z is */
@@ -2144,16 +2302,23 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const int32_t *v = vb + gx->k;
             const int32_t w0 = gx->wr[0], w1 = gx->wr[1], w2 = gx->wr[2], w3 = gx->wr[3];
             const int32_t xe = cb < w - 1 - gx->k ? cb : w - 1 - gx->k;
-            for (int32_t x = ca; x <= xe; ++x) { /* vectorisable */
-                const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
-                const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
-                const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
-                r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
+#if defined(PFT_PRE_RES_SPLIT_)
+            if (rsplit) {
+                pft_pre_ares_span_(v, zl, r, ca, xe, gx->wr, k1, true);
+            } else
+#endif
+            {
+                for (int32_t x = ca; x <= xe; ++x) { /* vectorisable */
+                    const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
+                    const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+                    const int32_t rr = pft_pre_rclamp_((zl[x] - bx + (int32_t)k1) >> k1);
+                    r[x] = (int16_t)(zl[x] < 0 ? PFT_RES16_MASKED : rr);
+                }
             }
             for (int32_t x = (xe + 1 > ca ? xe + 1 : ca); x <= cb; ++x) {
                 int32_t sv = 2048;
                 for (int32_t i = 0; i < 4 && x + gx->k + i <= w + 2; ++i) {
-                    sv += gx->wr[i] * v[x + i];
+                    sv += gx->wr[i] * (rsplit ? vjoin_(v[x + i]) : v[x + i]);
                 }
                 sv >>= 12;
                 const int32_t bx = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
