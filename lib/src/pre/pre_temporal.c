@@ -67,8 +67,15 @@ static void projections_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
  * when its cost is below the prediction's by more than 6/sqrt(m) of it, several times the
  * cost's relative noise (the best of up to 65 noisy candidates): a flat or one-directional
  * scene has no shift to find, and its noise must not make one up. dz carries the column offsets off (cofs, NULL for rows, times
- * the rows summed). Sets *edge when the shift taken is at the end of the searched range. */
-static int32_t search_axis_(const int32_t *pz, const int32_t *pb, uint32_t n, uint32_t bf,
+ * the rows summed). Sets *edge when the shift taken is at the end of the searched range.
+ * The differences are formed once, in place (pz and pb are not read again): dz(x) for x in
+ * [x0, x1) into pz[x], db(j) = pb[j + 1] - pb[j] for j in [x0 - hi, x1 - lo) into pb[j], each
+ * read before it is overwritten. Both fit int32: a projection sums at most 8192 values
+ * (PFT_CFG_MAX_IMAGE_SIDE) of at most 65535 U (counts times 2^bf), so |pz[x + 1] - pz[x]| 2^bf
+ * and |pb[j + 1] - pb[j]| stay below 2^29; a column offset lies within +-65535 U (colq is
+ * clamped to +-32767 * 256, colnow = colq 2^k / 256 with k <= 1), so the offsets' term
+ * |cofs[x + 1] - cofs[x]| nsum stays below 2^30, and |dz| below 2^29 + 2^30 < 2^31. */
+static int32_t search_axis_(int32_t *pz, int32_t *pb, uint32_t n, uint32_t bf,
                             const int32_t *cofs, int32_t nsum, int32_t centre, int32_t radius,
                             bool *edge)
 {
@@ -78,17 +85,22 @@ static int32_t search_axis_(const int32_t *pz, const int32_t *pb, uint32_t n, ui
     const int32_t lo = c - rad, hi = c + rad;
     /* x and x - i inside [2, n - 3) for every candidate i */
     const int32_t x0 = 2 + (hi > 0 ? hi : 0), x1 = (int32_t)n - 3 + (lo < 0 ? lo : 0);
+    for (int32_t x = x0; x < x1; ++x) {
+        int64_t dz = ((int64_t)pz[x + 1] - pz[x]) * (1 << bf);
+        if (cofs != NULL) {
+            dz -= ((int64_t)cofs[x + 1] - cofs[x]) * nsum;
+        }
+        pz[x] = (int32_t)dz;
+    }
+    for (int32_t j = x0 - hi; j < x1 - lo; ++j) {
+        pb[j] = pb[j + 1] - pb[j];
+    }
     int32_t best = c;
     int64_t best_cost = -1, centre_cost = 0;
     for (int32_t i = lo; i <= hi; ++i) {
         int64_t cost = 0;
         for (int32_t x = x0; x < x1; ++x) {
-            int64_t dz = ((int64_t)pz[x + 1] - pz[x]) * (1 << bf);
-            if (cofs != NULL) {
-                dz -= ((int64_t)cofs[x + 1] - cofs[x]) * nsum;
-            }
-            const int64_t db = (int64_t)pb[x - i + 1] - pb[x - i];
-            cost += abs64_(dz - db);
+            cost += abs64_((int64_t)pz[x] - pb[x - i]);
         }
         if (i == c) {
             centre_cost = cost;
