@@ -8,6 +8,10 @@
 
 #include "pre_int.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_) */
+#endif
+
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
 #define PFT_PRE_SD_MAX_ 3277
 
@@ -891,7 +895,6 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
  * and their sum in one instruction, and the saturating pack makes the clamp; the last pixels
  * of a row (fewer than 8) take the same values from the scalar form. */
 #define PFT_PRE_VIEW_SPLIT_ 1
-#include <emmintrin.h>
 
 /* Two Q8 weights as the int16 pair (lo, hi) of each 32-bit lane: pmaddwd's second operand. */
 static __m128i view_wpair_(int32_t lo, int32_t hi)
