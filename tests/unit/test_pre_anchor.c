@@ -467,6 +467,147 @@ static void test_residual_span_split_and_plain(void)
     }
 }
 
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 only); the test declares them. */
+void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
+                        const uint16_t *t3, const int32_t w[4], int16_t *vh, int16_t *vl,
+                        int32_t n);
+void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
+                        const int32_t w[4], uint16_t *o, int32_t n);
+
+#define VW 389 /* the longest row tested (storage columns) */
+
+/* Catmull-Rom weights of fraction f / 256 in Q8 (docs/algorithms.md 9.12), summing to 256. */
+static void view_cubic(int32_t f, int32_t w[4])
+{
+    const double t = f / 256.0, t2 = t * t, t3 = t2 * t;
+    const double q[4] = {(-t3 + 2.0 * t2 - t) / 2.0, (3.0 * t3 - 5.0 * t2 + 2.0) / 2.0,
+                         (-3.0 * t3 + 4.0 * t2 + t) / 2.0, (t3 - t2) / 2.0};
+    int32_t sum = 0;
+    for (int i = 0; i < 4; ++i) {
+        w[i] = (int32_t)(q[i] >= 0.0 ? floor(q[i] * 256.0 + 0.5) : -floor(-q[i] * 256.0 + 0.5));
+        sum += w[i];
+    }
+    w[f < 128 ? 1 : 2] += 256 - sum;
+}
+
+/* The registration's view of one row in the 32-bit form (the form of every other target):
+ * vb = (sum of wy (t - 32768) + 256 * 32768 + 8) >> 4, then
+ * (sum of wx vb[x + k + i] + 2048) >> 12 clamped to [0, 65535], taps past sw - 1 clamped. */
+static void view_ref(const uint16_t *const t[4], const int32_t wy[4], const int32_t wx[4],
+                     int32_t sw, int32_t k, int32_t n, uint16_t *o)
+{
+    static int32_t vb[VW];
+    for (int32_t i = 0; i < sw; ++i) {
+        int32_t v = 0;
+        for (int j = 0; j < 4; ++j) {
+            v += wy[j] * ((int32_t)t[j][i] - 32768);
+        }
+        vb[i] = (v + 256 * 32768 + 8) >> 4;
+    }
+    for (int32_t x = 0; x < n; ++x) {
+        int32_t sv = 2048;
+        for (int32_t i = 0; i < 4; ++i) {
+            const int32_t c = x + k + i < sw - 1 ? x + k + i : sw - 1;
+            sv += wx[i] * vb[c];
+        }
+        sv >>= 12;
+        o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+    }
+}
+
+/* One row through both kernels: vector body (8 pixels) and scalar rest. */
+static void view_row(const uint16_t *const t[4], const int32_t wy[4], const int32_t wx[4],
+                     int32_t sw, int32_t k, int32_t n, uint16_t *o)
+{
+    static int16_t vh[VW], vl[VW];
+    pft_pre_view_vrow_(t[0], t[1], t[2], t[3], wy, vh, vl, sw);
+    pft_pre_view_hrow_(vh, vl, sw, k, wx, o, n);
+}
+#endif
+
+/* x86-64's view of the anchored grid (pft_pre_view_vrow_, pft_pre_view_hrow_: SSE2 lanes of 8
+ * pixels, the last pixels of a row in the scalar form): known answers (the identity weights
+ * return the grid; a constant 65535 stays 65535; the cubic's overshoot on 0, 65535, 65535, 0
+ * clamps to 65535 and 0), then every row equal to the 32-bit form on random, extreme and
+ * checkerboard grids, every fraction of both weight kinds, k 0 and 1, widths 1 .. 40 and 384
+ * (rows shorter than 8 pixels take the scalar form only). */
+static void test_view_rows_sse2(void)
+{
+#if defined(__SSE2__)
+    static uint16_t rows[4][VW];
+    static uint16_t o[VW], want[VW];
+    const uint16_t *const t[4] = {rows[0], rows[1], rows[2], rows[3]};
+    const int32_t id[4] = {0, 256, 0, 0}, cub[4] = {-16, 144, 144, -16};
+    int32_t c2[4];
+    view_cubic(128, c2);
+    TEST_ASSERT_EQUAL_INT32_ARRAY(cub, c2, 4);
+    for (int32_t i = 0; i < VW; ++i) {
+        for (int j = 0; j < 4; ++j) {
+            rows[j][i] = (uint16_t)(pft_test_xorshift32(&g_rs) & 65535u);
+        }
+    }
+    view_row(t, id, id, 387, 0, 384, o); /* identity: pixel x is row 1's column x + 1 */
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(rows[1] + 1, o, 384);
+    view_row(t, id, id, 387, 1, 384, o); /* k 1: column x + 2 (the last fourth tap clamped, weight 0) */
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(rows[1] + 2, o, 384);
+    for (int32_t i = 0; i < VW; ++i) {
+        for (int j = 0; j < 4; ++j) {
+            rows[j][i] = 65535u;
+        }
+    }
+    view_row(t, cub, cub, 387, 0, 384, o);
+    for (int32_t x = 0; x < 384; ++x) {
+        TEST_ASSERT_EQUAL_UINT16(65535u, o[x]);
+    }
+    for (int32_t i = 0; i < VW; ++i) { /* columns 0, 65535, 65535, 0, ... */
+        for (int j = 0; j < 4; ++j) {
+            rows[j][i] = (i & 3) == 1 || (i & 3) == 2 ? 65535u : 0u;
+        }
+    }
+    view_row(t, cub, cub, 387, 0, 384, o); /* taps x .. x + 3 */
+    for (int32_t x = 0; x < 380; ++x) {
+        const uint16_t k_want[4] = {65535u, 32768u, 0u, 32768u};
+        TEST_ASSERT_EQUAL_UINT16(k_want[x & 3], o[x]);
+    }
+    uint32_t cases = 0u;
+    for (int32_t kind = 0; kind < 7; ++kind) {
+        for (int32_t f = 0; f < 256; ++f) {
+            int32_t wy[4], wx[4];
+            if ((kind & 1) != 0) {
+                view_cubic(f, wy);
+                view_cubic((f * 37 + 11) & 255, wx);
+            } else {
+                wy[0] = 0; wy[1] = 256 - f; wy[2] = f; wy[3] = 0;
+                wx[0] = 0; wx[1] = 256 - ((f * 37 + 11) & 255); wx[2] = (f * 37 + 11) & 255; wx[3] = 0;
+            }
+            const int32_t n = f < 200 ? 1 + f % 40 : 384, k = f & 1, sw = n + 3;
+            for (int32_t i = 0; i < sw; ++i) {
+                for (int j = 0; j < 4; ++j) {
+                    const uint32_t r = pft_test_xorshift32(&g_rs);
+                    uint32_t v = r & 65535u;
+                    if (kind == 2 || kind == 3) { /* 0 / 65535 at random */
+                        v = (r >> 16 & 1u) != 0u ? 65535u : 0u;
+                    } else if (kind == 4 || kind == 5) { /* checkerboard */
+                        v = ((i + j) & 1) != 0 ? 65535u : 0u;
+                    } else if (kind == 6) { /* near 65535 and near 0 */
+                        v = (r >> 16 & 1u) != 0u ? 65535u - (r >> 17 & 15u) : (r >> 17 & 15u);
+                    }
+                    rows[j][i] = (uint16_t)v;
+                }
+            }
+            view_ref(t, wy, wx, sw, k, n, want);
+            view_row(t, wy, wx, sw, k, n, o);
+            TEST_ASSERT_EQUAL_UINT16_ARRAY(want, o, (uint32_t)n);
+            cases++;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(7u * 256u, cases);
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep the 32-bit form");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -476,5 +617,6 @@ int main(void)
     RUN_TEST(test_degenerate_frames_flagged);
     RUN_TEST(test_refused_input_changes_nothing);
     RUN_TEST(test_residual_span_split_and_plain);
+    RUN_TEST(test_view_rows_sse2);
     return UNITY_END();
 }

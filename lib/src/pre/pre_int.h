@@ -159,6 +159,15 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
 int32_t pft_pre_vsplit_(int32_t v);
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split);
+#if defined(__SSE2__)
+/* bg_anchor on x86-64 (SSE2): one row of the registration's view of the anchored grid, its
+ * vertical pass into int16 halves and its horizontal pass from them (pre_temporal.c). */
+void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
+                        const uint16_t *t3, const int32_t w[4], int16_t *vh, int16_t *vl,
+                        int32_t n);
+void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
+                        const int32_t w[4], uint16_t *o, int32_t n);
+#endif
 
 /* Integer square root of a 64-bit value (floor). */
 uint32_t pft_pre_isqrt64_(uint64_t v);

@@ -9,7 +9,7 @@
 #include "pre_int.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_) */
 #endif
 
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
@@ -71,8 +71,15 @@ static void projections_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
  * when its cost is below the prediction's by more than 6/sqrt(m) of it, several times the
  * cost's relative noise (the best of up to 65 noisy candidates): a flat or one-directional
  * scene has no shift to find, and its noise must not make one up. dz carries the column offsets off (cofs, NULL for rows, times
- * the rows summed). Sets *edge when the shift taken is at the end of the searched range. */
-static int32_t search_axis_(const int32_t *pz, const int32_t *pb, uint32_t n, uint32_t bf,
+ * the rows summed). Sets *edge when the shift taken is at the end of the searched range.
+ * The differences are formed once, in place (pz and pb are not read again): dz(x) for x in
+ * [x0, x1) into pz[x], db(j) = pb[j + 1] - pb[j] for j in [x0 - hi, x1 - lo) into pb[j], each
+ * read before it is overwritten. Both fit int32: a projection sums at most 8192 values
+ * (PFT_CFG_MAX_IMAGE_SIDE) of at most 65535 U (counts times 2^bf), so |pz[x + 1] - pz[x]| 2^bf
+ * and |pb[j + 1] - pb[j]| stay below 2^29; a column offset lies within +-65535 U (colq is
+ * clamped to +-32767 * 256, colnow = colq 2^k / 256 with k <= 1), so the offsets' term
+ * |cofs[x + 1] - cofs[x]| nsum stays below 2^30, and |dz| below 2^29 + 2^30 < 2^31. */
+static int32_t search_axis_(int32_t *pz, int32_t *pb, uint32_t n, uint32_t bf,
                             const int32_t *cofs, int32_t nsum, int32_t centre, int32_t radius,
                             bool *edge)
 {
@@ -82,17 +89,22 @@ static int32_t search_axis_(const int32_t *pz, const int32_t *pb, uint32_t n, ui
     const int32_t lo = c - rad, hi = c + rad;
     /* x and x - i inside [2, n - 3) for every candidate i */
     const int32_t x0 = 2 + (hi > 0 ? hi : 0), x1 = (int32_t)n - 3 + (lo < 0 ? lo : 0);
+    for (int32_t x = x0; x < x1; ++x) {
+        int64_t dz = ((int64_t)pz[x + 1] - pz[x]) * (1 << bf);
+        if (cofs != NULL) {
+            dz -= ((int64_t)cofs[x + 1] - cofs[x]) * nsum;
+        }
+        pz[x] = (int32_t)dz;
+    }
+    for (int32_t j = x0 - hi; j < x1 - lo; ++j) {
+        pb[j] = pb[j + 1] - pb[j];
+    }
     int32_t best = c;
     int64_t best_cost = -1, centre_cost = 0;
     for (int32_t i = lo; i <= hi; ++i) {
         int64_t cost = 0;
         for (int32_t x = x0; x < x1; ++x) {
-            int64_t dz = ((int64_t)pz[x + 1] - pz[x]) * (1 << bf);
-            if (cofs != NULL) {
-                dz -= ((int64_t)cofs[x + 1] - cofs[x]) * nsum;
-            }
-            const int64_t db = (int64_t)pb[x - i + 1] - pb[x - i];
-            cost += abs64_(dz - db);
+            cost += abs64_((int64_t)pz[x] - pb[x - i]);
         }
         if (i == c) {
             centre_cost = cost;
@@ -1013,12 +1025,171 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
 /* Where the compiler has SSE2 (x86-64), anchor_view_'s horizontal 4-tap pass takes 16 x 16-bit
  * products: each vertical blend vb is kept as two int16 halves, vh = vb >> 15 and
  * vl = vb & 32767 (vb = 32768 vh + vl), and the pass forms hs = sum of w vh in 16-bit lanes and
- * ls = sum of w vl from widening 16 x 16-bit products, with the clamp in 16-bit lanes, instead
+ * ls = sum of w vl from 16 x 16-bit products, with the clamp in 16-bit lanes, instead
  * of 32 x 32-bit products, 32-bit clamps and the narrowing to 16 bits, which SSE2 lacks
  * (pmuludq and shuffles). NEON has them (32-bit mla, shrn: the 32-bit pass is 39 AArch64
  * instructions per 8 pixels), and a scalar core (Cortex-M) would pay twice the multiplies:
- * those keep the 32-bit form (the same object code as before). */
+ * those keep the 32-bit form (the same object code as before). Both passes are written with
+ * SSE2 intrinsics (view_vrow_, view_hrow_): pmaddwd takes two taps' products
+ * and their sum in one instruction, and the saturating pack makes the clamp; the last pixels
+ * of a row (fewer than 8) take the same values from the scalar form. */
 #define PFT_PRE_VIEW_SPLIT_ 1
+
+/* Two Q8 weights as the int16 pair (lo, hi) of each 32-bit lane: pmaddwd's second operand. */
+static __m128i view_wpair_(int32_t lo, int32_t hi)
+{
+    return _mm_set1_epi32((int)((uint32_t)(uint16_t)(int16_t)lo | ((uint32_t)(uint16_t)(int16_t)hi << 16)));
+}
+
+/* The vertical pass of 8 columns i .. i + 7: v = vtap_ of the storage rows t0 .. t3 (weight
+ * pairs w01, w23) as the halves vh = v >> 15 and vl = v & 32767. The taps biased by -32768
+ * (t xor 0x8000 as int16: the same bits as vtap_'s s), pmaddwd forms w0 s0 + w1 s1 and
+ * w2 s2 + w3 s3 (each product within +-256 * 32768, no overflow), the bias and rounding added
+ * as vtap_'s; vh in [-4, 35] and vl in [0, 32767] pack to int16 unsaturated (packssdw). */
+static inline void view_v8_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
+                            const uint16_t *t3, __m128i w01, __m128i w23, int16_t *vh, int16_t *vl,
+                            int32_t i)
+{
+    const __m128i flip = _mm_set1_epi16((short)-32768);
+    const __m128i add = _mm_set1_epi32(256 * 32768 + 8), m15 = _mm_set1_epi32(32767);
+    const __m128i s0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t0 + i)), flip);
+    const __m128i s1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t1 + i)), flip);
+    const __m128i s2 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t2 + i)), flip);
+    const __m128i s3 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t3 + i)), flip);
+    __m128i lo = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(s0, s1), w01),
+                               _mm_madd_epi16(_mm_unpacklo_epi16(s2, s3), w23));
+    __m128i hi = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(s0, s1), w01),
+                               _mm_madd_epi16(_mm_unpackhi_epi16(s2, s3), w23));
+    lo = _mm_srai_epi32(_mm_add_epi32(lo, add), 4);
+    hi = _mm_srai_epi32(_mm_add_epi32(hi, add), 4);
+    _mm_storeu_si128((__m128i *)(void *)(vh + i),
+                     _mm_packs_epi32(_mm_srai_epi32(lo, 15), _mm_srai_epi32(hi, 15)));
+    _mm_storeu_si128((__m128i *)(void *)(vl + i),
+                     _mm_packs_epi32(_mm_and_si128(lo, m15), _mm_and_si128(hi, m15)));
+}
+
+/* The vertical pass of one row, columns 0 .. n - 1 (view_v8_; a row of 8 or more columns
+ * ends with the 8 up to n - 1 again, overlapping, a shorter one is taken by vtap_). */
+static inline void view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
+                              const uint16_t *t3, const int32_t w[4], int16_t *vh, int16_t *vl,
+                              int32_t n)
+{
+    const __m128i w01 = view_wpair_(w[0], w[1]), w23 = view_wpair_(w[2], w[3]);
+    if (n >= 8) {
+        for (int32_t i = 0; i + 8 <= n; i += 8) {
+            view_v8_(t0, t1, t2, t3, w01, w23, vh, vl, i);
+        }
+        if ((n & 7) != 0) {
+            view_v8_(t0, t1, t2, t3, w01, w23, vh, vl, n - 8);
+        }
+        return;
+    }
+    const int16_t g0 = (int16_t)w[0], g1 = (int16_t)w[1], g2 = (int16_t)w[2], g3 = (int16_t)w[3];
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t v = vtap_(t0, t1, t2, t3, g0, g1, g2, g3, i);
+        vh[i] = (int16_t)(v >> 15);
+        vl[i] = (int16_t)(v & 32767);
+    }
+}
+
+void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
+                        const uint16_t *t3, const int32_t w[4], int16_t *vh, int16_t *vl,
+                        int32_t n)
+{
+    view_vrow_(t0, t1, t2, t3, w, vh, vl, n);
+}
+
+/* Weights of the horizontal pass: each of the four in 16-bit lanes, and as pmaddwd pairs. */
+typedef struct {
+    __m128i h0, h1, h2, h3, w01, w23;
+} view_hw_t;
+
+/* The horizontal pass of pixels x .. x + 7 from a = vh + k, l = vl + k (no clamped tap): the
+ * ranges and the form at pft_pre_view_hrow_. */
+static inline void view_h8_(const int16_t *a, const int16_t *l, const view_hw_t *g, uint16_t *o,
+                            int32_t x)
+{
+    const __m128i add = _mm_set1_epi32(2048 - 134217728), zero = _mm_setzero_si128();
+    const __m128i flip = _mm_set1_epi16((short)-32768);
+    const __m128i a0 = _mm_loadu_si128((const __m128i *)(const void *)(a + x));
+    const __m128i a1 = _mm_loadu_si128((const __m128i *)(const void *)(a + x + 1));
+    const __m128i a2 = _mm_loadu_si128((const __m128i *)(const void *)(a + x + 2));
+    const __m128i a3 = _mm_loadu_si128((const __m128i *)(const void *)(a + x + 3));
+    const __m128i hs = _mm_add_epi16(_mm_add_epi16(_mm_mullo_epi16(a0, g->h0), _mm_mullo_epi16(a1, g->h1)),
+                                     _mm_add_epi16(_mm_mullo_epi16(a2, g->h2), _mm_mullo_epi16(a3, g->h3)));
+    const __m128i l0 = _mm_loadu_si128((const __m128i *)(const void *)(l + x));
+    const __m128i l1 = _mm_loadu_si128((const __m128i *)(const void *)(l + x + 1));
+    const __m128i l2 = _mm_loadu_si128((const __m128i *)(const void *)(l + x + 2));
+    const __m128i l3 = _mm_loadu_si128((const __m128i *)(const void *)(l + x + 3));
+    __m128i lo = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(l0, l1), g->w01),
+                               _mm_madd_epi16(_mm_unpacklo_epi16(l2, l3), g->w23));
+    __m128i hi = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(l0, l1), g->w01),
+                               _mm_madd_epi16(_mm_unpackhi_epi16(l2, l3), g->w23));
+    /* 8 hs in int32: hs in the high half of a lane, shifted down by 13 */
+    lo = _mm_add_epi32(_mm_srai_epi32(_mm_add_epi32(lo, add), 12),
+                       _mm_srai_epi32(_mm_unpacklo_epi16(zero, hs), 13));
+    hi = _mm_add_epi32(_mm_srai_epi32(_mm_add_epi32(hi, add), 12),
+                       _mm_srai_epi32(_mm_unpackhi_epi16(zero, hs), 13));
+    _mm_storeu_si128((__m128i *)(void *)(o + x), _mm_xor_si128(_mm_packs_epi32(lo, hi), flip));
+}
+
+/* The horizontal pass of one row: o[x] = (sum over i of w[i] vb[x + k + i] + 2048) >> 12,
+ * clamped to [0, 65535], for x in [0, n), with vb = 32768 vh + vl of sw storage columns (the
+ * taps past sw - 1 clamped to it). The ranges (every bit depth: the grid holds U values,
+ * 0 .. 65535; the bound is per pixel, so for any frame size and width): the weights are Q8
+ * summing to 256, bilinear in [0, 256], Catmull-Rom (cubic_q8_, all 256 fractions) in
+ * [-19, 256] with the positive ones summing to at most 288 and the negative ones to at least
+ * -32. So vb = (sum of w t + 8) >> 4 lies in [(-32 * 65535 + 8) >> 4, (288 * 65535 + 8) >> 4] =
+ * [-131070, 1179630], vh = vb >> 15 in [-4, 35] and vl in [0, 32767]; each product w vh within
+ * +-256 * 35 = 8960 and hs = sum of w vh within [-32 * 35 - 288 * 4, 288 * 35 + 32 * 4] =
+ * [-2272, 10208] (int16: pmullw's low halves summed mod 2^16 are hs itself); ls = sum of w vl
+ * within [-32 * 32767, 288 * 32767] (< 2^24, int32; pmaddwd: w0 l0 + w1 l1, w2 l2 + w3 l3).
+ * The sum of w vb is 32768 hs + ls, so (sum + 2048) >> 12 = 8 hs + ((ls + 2048) >> 12)
+ * exactly (32768 = 8 * 4096). The clamp: sv - 32768 = 8 hs + ((ls + 2048 - 2^27) >> 12)
+ * (2^27 = 32768 * 4096: exact) in int32, packed with signed saturation to int16 (clamp to
+ * [-32768, 32767]) and the sign bit flipped: the clamp of sv to [0, 65535] as uint16. The
+ * pixels whose taps stay below sw (x < xv) go 8 at a time, the last 8 of them again
+ * (overlapping) when xv is not a multiple of 8; the rest, and rows shorter than 8, in the
+ * scalar form. */
+static inline void view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
+                              const int32_t w[4], uint16_t *o, int32_t n)
+{
+    const int16_t *a = vh + k, *l = vl + k;
+    view_hw_t g;
+    g.h0 = _mm_set1_epi16((short)w[0]);
+    g.h1 = _mm_set1_epi16((short)w[1]);
+    g.h2 = _mm_set1_epi16((short)w[2]);
+    g.h3 = _mm_set1_epi16((short)w[3]);
+    g.w01 = view_wpair_(w[0], w[1]);
+    g.w23 = view_wpair_(w[2], w[3]);
+    /* x + 7 + k + 3 <= sw - 1: the vector form reads no clamped tap */
+    const int32_t xv = sw - 3 - k < n ? sw - 3 - k : n;
+    int32_t x = 0;
+    if (xv >= 8) {
+        for (; x + 8 <= xv; x += 8) {
+            view_h8_(a, l, &g, o, x);
+        }
+        if (x < xv) {
+            view_h8_(a, l, &g, o, xv - 8);
+            x = xv;
+        }
+    }
+    for (; x < n; ++x) {
+        int32_t sv = 2048;
+        for (int32_t i = 0; i < 4; ++i) {
+            const int32_t c = clampi_(x + k + i, 0, sw - 1);
+            sv += w[i] * (vh[c] * 32768 + vl[c]);
+        }
+        sv >>= 12;
+        o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+    }
+}
+
+void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
+                        const int32_t w[4], uint16_t *o, int32_t n)
+{
+    view_hrow_(vh, vl, sw, k, w, o, n);
+}
 #endif
 
 static void anchor_view_(pft_pre_t *p)
@@ -1029,66 +1200,23 @@ static void anchor_view_(pft_pre_t *p)
     agx_of_(p->aphi[0], p->cfg.warp_cubic, &gx);
     agx_of_(p->aphi[1], p->cfg.warp_cubic, &gy);
     uint16_t *out = (uint16_t *)(void *)p->res;
-    const int16_t gw0 = (int16_t)gy.wr[0], gw1 = (int16_t)gy.wr[1], gw2 = (int16_t)gy.wr[2];
-    const int16_t gw3 = (int16_t)gy.wr[3];
 #ifdef PFT_PRE_VIEW_SPLIT_
-    /* The ranges (every bit depth: the grid holds U values, 0 .. 65535; the bound is per pixel,
-     * so for any frame size and width): the weights are Q8 summing to
-     * 256, bilinear in [0, 256], Catmull-Rom (cubic_q8_, all 256 fractions) in [-19, 256] with
-     * the positive ones summing to at most 288 and the negative ones to at least -32. So
-     * vb = (sum of w t + 8) >> 4 lies in [(-32 * 65535 + 8) >> 4, (288 * 65535 + 8) >> 4] =
-     * [-131070, 1179630], vh = vb >> 15 in [-4, 35] and vl in [0, 32767]; each product w vh
-     * within +-256 * 35 = 8960 and hs within [-32 * 35 - 288 * 4, 288 * 35 + 32 * 4] =
-     * [-2272, 10208] (int16); ls = sum of w vl within [-32 * 32767, 288 * 32767] (< 2^24, int32).
-     * The sum of w vb is 32768 hs + ls, so (sum + 2048) >> 12 = 8 hs + ((ls + 2048) >> 12)
-     * exactly (32768 = 8 * 4096): the same value as the 32-bit form below. The halves take the
-     * scratch's first sw int32 words (2 sw int16 values), as the 32-bit row did. */
+    /* The halves take the scratch's first sw int32 words (2 sw int16 values), as the 32-bit
+     * row did (the ranges: pft_pre_view_hrow_). */
     int16_t *vh = (int16_t *)(void *)p->aring;
     int16_t *vl = vh + sw;
-    const int16_t w0 = (int16_t)gx.wr[0], w1 = (int16_t)gx.wr[1], w2 = (int16_t)gx.wr[2];
-    const int16_t w3 = (int16_t)gx.wr[3];
-    const int32_t xe = w - gx.k; /* x < xe: x + k + 3 <= w + 2 */
     for (int32_t y = 0; y < h; ++y) {
         const uint16_t *t[4];
         for (int32_t i = 0; i < 4; ++i) { /* storage rows y + k .. y + k + 3, clamped */
             t[i] = p->bg + (size_t)clampi_(y + gy.k + i, 0, h + 2) * (size_t)sw;
         }
-        for (int32_t i = 0; i < sw; ++i) { /* vectorisable */
-            const int32_t v = vtap_(t[0], t[1], t[2], t[3], gw0, gw1, gw2, gw3, i);
-            vh[i] = (int16_t)(v >> 15);
-            vl[i] = (int16_t)(v & 32767);
-        }
-        uint16_t *o = out + (size_t)y * (size_t)w;
+        view_vrow_(t[0], t[1], t[2], t[3], gy.wr, vh, vl, sw);
         /* storage columns x + k .. x + k + 3; the last pixel's fourth tap (k = 1) clamped */
-        const int16_t *a = vh + gx.k, *l = vl + gx.k;
-        /* sv = 8 hs + qs with qs = (ls + 2048) >> 12 in [-256, 2304], clamped to [0, 65535]
-         * in 16-bit lanes (SSE2 has no 32-bit min, max or unsigned pack): hs clamped to
-         * hc in [-289, 8224] first changes no output (hs >= 8224: sv >= 65792 - 256 = 65536;
-         * hs <= -289: sv <= -2312 + 2304 < 0); then sv = 2 u + (qs & 1) with
-         * u = 4 hc + (qs >> 1) in [-1284, 34048], held as uo = u - 16384 (int16). u < 0 gives
-         * sv < 0 (output 0 = 2 * 0 + 0), u > 32767 gives sv > 65535 (65535 = 2 * 32767 + 1),
-         * else the output is sv itself. */
-        for (int32_t x = 0; x < xe; ++x) { /* vectorisable: 16-bit lanes */
-            const int16_t hs = (int16_t)(w0 * a[x] + w1 * a[x + 1] + w2 * a[x + 2] + w3 * a[x + 3]);
-            const int32_t ls = w0 * l[x] + w1 * l[x + 1] + w2 * l[x + 2] + w3 * l[x + 3];
-            const int16_t hc = hs < -289 ? -289 : (hs > 8224 ? 8224 : hs);
-            const int16_t qs = (int16_t)((ls + 2048) >> 12);
-            const int16_t uo = (int16_t)(4 * hc - 16384 + (qs >> 1));
-            const int16_t uc = uo < -16384 ? -16384 : (uo > 16383 ? 16383 : uo);
-            const int16_t bit = (int16_t)(uo > 16383 ? 1 : (uo < -16384 ? 0 : (qs & 1)));
-            o[x] = (uint16_t)(2 * (uc + 16384) + bit);
-        }
-        for (int32_t x = xe; x < w; ++x) {
-            int32_t sv = 2048;
-            for (int32_t i = 0; i < 4; ++i) {
-                const int32_t c = clampi_(x + gx.k + i, 0, sw - 1);
-                sv += gx.wr[i] * (vh[c] * 32768 + vl[c]);
-            }
-            sv >>= 12;
-            o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
-        }
+        view_hrow_(vh, vl, sw, gx.k, gx.wr, out + (size_t)y * (size_t)w, w);
     }
 #else
+    const int16_t gw0 = (int16_t)gy.wr[0], gw1 = (int16_t)gy.wr[1], gw2 = (int16_t)gy.wr[2];
+    const int16_t gw3 = (int16_t)gy.wr[3];
     int32_t *vb = p->aring;
     for (int32_t y = 0; y < h; ++y) {
         const uint16_t *t[4];
