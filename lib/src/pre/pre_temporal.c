@@ -9,7 +9,7 @@
 #include "pre_int.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_) */
+#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_), the anchored residual (pft_pre_ares_span_) */
 #endif
 
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
