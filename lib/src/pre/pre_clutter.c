@@ -880,7 +880,10 @@ static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk
 }
 
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
- * all of them (a constant, so that the loops vectorise). */
+ * all of them (a constant, so that the loops vectorise); full (a = 2^16, the first frame with
+ * evidence) a constant in each loop, so that cl_round_scale_'s choice leaves the loops (the
+ * same values; on x86-64 the persist loop 214 -> 195 instructions per 8 pixels, fewer
+ * register spills). */
 static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
                                  int32_t x0, int32_t x1, uint16_t a16, uint16_t full, uint32_t exc,
                                  uint32_t pk, uint32_t pcap, int32_t mfl)
@@ -891,14 +894,26 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
          * (the config check), pcap = 2 pk <= 2^14 */
         const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
         const uint16_t plim = (uint16_t)(c16 - 256u);
+        if (full != 0u) {
+            for (int32_t x = x0; x < x1; ++x) {
+                uint16_t learn;
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
+                cl_mean_px_(&o[x], learn, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
+            }
+        } else {
+            for (int32_t x = x0; x < x1; ++x) {
+                uint16_t learn;
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
+                cl_mean_px_(&o[x], learn, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
+            }
+        }
+    } else if (full != 0u) {
         for (int32_t x = x0; x < x1; ++x) {
-            uint16_t learn;
-            cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
         for (int32_t x = x0; x < x1; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
+            cl_mean_px_(&o[x], 1u, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
         }
     }
 }
