@@ -832,7 +832,8 @@ static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16
     const uint16_t mvn = (uint16_t)(mv < 0 ? 0xFFFFu : 0u);
     const uint16_t amv = (uint16_t)((uint16_t)((uint16_t)mv ^ mvn) - mvn);
     const uint16_t dr = (uint16_t)((uint16_t)(amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
-    const uint16_t dm = dr > mfl ? dr : 0u;                     /* mean_floor (0: dm = dr) */
+    /* mean_floor (0: dm = dr); dr, mfl <= 2048: a signed compare */
+    const uint16_t dm = (int16_t)dr > (int16_t)mfl ? dr : 0u;
     const int16_t sdm = (int16_t)(uint16_t)((uint16_t)(dm ^ mvn) - mvn); /* mv < 0: -dm */
     const uint16_t cn = (uint16_t)(v < sdm ? 0xFFFFu : 0u);  /* c < 0 */
     const uint16_t c16 = (uint16_t)((uint16_t)v - (uint16_t)sdm); /* c mod 2^16 */
@@ -863,20 +864,25 @@ static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16
 
 /* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
  * before the mean pass writes it) and whether the mean takes this residual (*learn, 1 or 0).
- * In 16-bit lanes: exc <= 32767, pk <= 2^13, pcap = 2 pk, so p + 256 is tested against pcap
- * without forming it (plim = pcap - 256 >= 256). */
+ * In 16-bit lanes with signed compares (SSE2 has no unsigned 16-bit compare or min): exc <=
+ * 32767, pk <= 2^13, pcap = 2 pk <= 2^14 and the counter p <= pcap (every writer caps it there,
+ * the warp interpolates, a move or reset fills 0), so p + 256 <= 2^14 + 256, p1 and pk fit
+ * int16 and min(p + 256, pcap) is a signed min; |v| of a pixel that is not masked fits int16,
+ * and the mask's |v| = 2^15 (-2^15 as int16: ex = 0) changes only *learn, which the mean pass
+ * does not read at a masked pixel (it keeps m and mu there), and not *p (kept). */
 static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk, uint16_t pcap,
-                               uint16_t plim, uint16_t *learn)
+                               uint16_t *learn)
 {
     const uint16_t vn = (uint16_t)(v < 0 ? 0xFFFFu : 0u);
     const uint16_t av = (uint16_t)((uint16_t)((uint16_t)v ^ vn) - vn); /* |v|, 2^15 for the mask */
     const uint16_t p0 = *p;
-    const uint16_t pu = p0 > plim ? pcap : (uint16_t)(p0 + 256u);
+    const int16_t pp = (int16_t)(uint16_t)(p0 + 256u);
+    const uint16_t pu = pp < (int16_t)pcap ? (uint16_t)pp : pcap;
     const uint16_t pd = p0 > 128u ? (uint16_t)(p0 - 128u) : 0u;
-    const uint16_t ex = (uint16_t)(av > exc ? 1u : 0u);
+    const uint16_t ex = (uint16_t)((int16_t)av > (int16_t)exc ? 1u : 0u);
     const uint16_t p1 = ex != 0u ? pu : pd;
     *p = v == PFT_RES16_MASKED ? p0 : p1;
-    *learn = (uint16_t)((ex ^ 1u) | (p1 >= pk ? 1u : 0u));
+    *learn = (uint16_t)((ex ^ 1u) | ((int16_t)p1 >= (int16_t)pk ? 1u : 0u));
 }
 
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
@@ -893,17 +899,16 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
         /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
          * (the config check), pcap = 2 pk <= 2^14 */
         const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
-        const uint16_t plim = (uint16_t)(c16 - 256u);
         if (full != 0u) {
             for (int32_t x = x0; x < x1; ++x) {
                 uint16_t learn;
-                cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
                 cl_mean_px_(&o[x], learn, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
             }
         } else {
             for (int32_t x = x0; x < x1; ++x) {
                 uint16_t learn;
-                cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
                 cl_mean_px_(&o[x], learn, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
             }
         }
