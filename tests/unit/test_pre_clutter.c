@@ -7,7 +7,8 @@
  * removes a persistent offset, the map moves with the scene (integer and half-pixel shifts), a
  * frame without evidence changes nothing, masked pixels stay masked, the veto zeroes a learnt
  * blob from the documented frame on, the persistence gate learns a blob that stays put in the
- * scene and not a point that moves against it. 64 x 48 frames, integer
+ * scene and not a point that moves against it, and the running mean with and without the gate
+ * matches a reference of its formulas on every pixel of 12 frames. 64 x 48 frames, integer
  * residuals made per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -555,6 +556,121 @@ static void test_row_passes_match_reference(void)
     }
 }
 
+/* Known answers of the running mean with and without the persistence gate (mean, persist;
+ * docs/algorithms.md 9.9), every pixel of every frame against a reference written from the
+ * formulas: thr at its largest, so that the output is clamp(c, +-32767), c = r - mu (mu read
+ * before the frame, Q8.8 rounded half away from zero); m <- m + a (min(c^2, 64) - m) and mu <-
+ * mu + a (clamp(r, -8, 8) - mu), products rounded half away from zero, a = max(alpha, 1/n) (the
+ * first frame: a = 1, m = t and mu = the target); with the gate p <- min(p + 1, 2k) where |r| >
+ * excess, else max(p - 1/2, 0), and mu learns where |r| <= excess or p >= k; a masked pixel
+ * changes nothing. Residuals: unit noise, a 4 sigma blob that stays (its counter reaches the
+ * cap), values at and just over excess, near the mean's clamp (8 sigma), large ones (31 sigma
+ * and 32767, whose c and t clamp) and masked pixels. Persist 0 and 2; frames 1 (a = 1) to 12. */
+static uint16_t g_mu0[NPIX], g_p0[NPIX];
+
+static int64_t ref_step(int64_t x, int64_t target, uint32_t a)
+{
+    if (a >= 65536u) {
+        return target;
+    }
+    const int64_t d = target - x;
+    const int64_t q = ((int64_t)a * (d < 0 ? -d : d) + 32768) / 65536;
+    return x + (d < 0 ? -q : q);
+}
+
+static void test_gated_mean_matches_reference(void)
+{
+    static const uint8_t persists[2] = {0u, 2u};
+    for (uint32_t pi = 0u; pi < 2u; ++pi) {
+        pft_pre_clutter_config_t cfg;
+        pft_pre_clutter_config_default(&cfg);
+        cfg.mean = true;
+        cfg.thr = 65535u; /* nothing scored: the output is clamp(c) */
+        cfg.alpha = 13107u;
+        cfg.persist = persists[pi];
+        pft_pre_clutter_t c;
+        pft_test_clutter_init(&c, &cfg, W, H, g_work, sizeof g_work);
+        const int32_t pk = (int32_t)cfg.persist * 256, exc = (int32_t)cfg.excess;
+        uint32_t n_cap = 0u, n_held = 0u, n_tclamp = 0u, n_big1 = 0u, n_big = 0u, n_mask = 0u;
+        for (uint32_t k = 0u; k < 12u; ++k) {
+            const int32_t sg = (k & 1u) != 0u ? -1 : 1;
+            for (int i = 0; i < NPIX; ++i) {
+                int32_t v = noise_q88();
+                if (i % 101 == 0) {
+                    v = PFT_RES16_MASKED;
+                } else if (i % 97 == 0) {
+                    v = (k & 1u) == 0u ? 8000 + 3 * (int32_t)k : 0; /* m swings by 2^15 and more */
+                } else if (i % 89 == 0) {
+                    v = sg * 32767;
+                } else if (i % 83 == 0) {
+                    v = sg * (exc + (int32_t)(k & 1u));
+                } else if (i % 79 == 0) {
+                    v = -sg * (2047 + (int32_t)(k % 3u));
+                } else if ((i / W) >= 10 && (i / W) < 13 && (i % W) >= 10 && (i % W) < 13) {
+                    v += 1024; /* the blob: 4 sigma, over excess every frame */
+                }
+                g_res[i] = (int16_t)v;
+            }
+            memcpy(g_m0, c.m, sizeof g_m0);
+            memcpy(g_mu0, c.mu, sizeof g_mu0);
+            if (c.pc != NULL) {
+                memcpy(g_p0, c.pc, sizeof g_p0);
+            }
+            pft_frame_t f = res_frame(k + 1u);
+            TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+            const int16_t *o = pft_test_clutter_out(&c);
+            const uint32_t n = k + 1u, a1 = (65536u + n / 2u) / n;
+            const uint32_t a = a1 > cfg.alpha ? a1 : cfg.alpha;
+            for (int i = 0; i < NPIX; ++i) {
+                const int32_t v = g_res[i];
+                if (v == PFT_RES16_MASKED) {
+                    ++n_mask;
+                    TEST_ASSERT_EQUAL_INT16(PFT_RES16_MASKED, o[i]);
+                    TEST_ASSERT_EQUAL_UINT16(g_m0[i], c.m[i]);
+                    TEST_ASSERT_EQUAL_UINT16(g_mu0[i], c.mu[i]);
+                    if (c.pc != NULL) {
+                        TEST_ASSERT_EQUAL_UINT16(g_p0[i], c.pc[i]);
+                    }
+                    continue;
+                }
+                const int32_t cv = v - pft_test_clutter_mu_q88(g_mu0[i]);
+                TEST_ASSERT_EQUAL_INT16((int16_t)(cv > 32767 ? 32767 : (cv < -32767 ? -32767 : cv)), o[i]);
+                const int64_t sq = (int64_t)cv * cv;
+                const int64_t t = (sq + 32) / 64 > 65535 ? 65535 : (sq + 32) / 64;
+                n_tclamp += t == 65535 ? 1u : 0u;
+                const bool big = t - (int64_t)g_m0[i] >= 32768 || (int64_t)g_m0[i] - t >= 32768;
+                n_big1 += big && k == 0u ? 1u : 0u;
+                n_big += big && k > 0u ? 1u : 0u;
+                TEST_ASSERT_EQUAL_UINT16((uint16_t)ref_step(g_m0[i], t, a), c.m[i]);
+                bool learn = true;
+                if (c.pc != NULL) {
+                    const int32_t p0 = g_p0[i];
+                    const bool ex = (v < 0 ? -v : v) > exc;
+                    const int32_t p1 = ex ? (p0 + 256 > 2 * pk ? 2 * pk : p0 + 256) : (p0 > 128 ? p0 - 128 : 0);
+                    TEST_ASSERT_EQUAL_UINT16((uint16_t)p1, c.pc[i]);
+                    n_cap += p1 == 2 * pk ? 1u : 0u;
+                    learn = !ex || p1 >= pk;
+                }
+                const int32_t mv0 = (int32_t)g_mu0[i] - 32768;
+                const int32_t tv = 8 * (v > 2048 ? 2048 : (v < -2048 ? -2048 : v));
+                const int64_t mv = learn ? ref_step(mv0, tv, a) : mv0;
+                n_held += learn ? 0u : 1u;
+                TEST_ASSERT_EQUAL_UINT16((uint16_t)(mv + 32768), c.mu[i]);
+            }
+        }
+        /* the cases were met: masked pixels, the t clamp, steps of m of 2^15 or more (on the
+         * first frame and after), and with the gate the counter's cap and a held mean */
+        TEST_ASSERT_TRUE(n_mask > 0u);
+        TEST_ASSERT_TRUE(n_tclamp > 0u);
+        TEST_ASSERT_TRUE(n_big1 > 30u);
+        TEST_ASSERT_TRUE(n_big > 30u);
+        if (cfg.persist != 0u) {
+            TEST_ASSERT_TRUE(n_cap >= 9u * 8u);
+            TEST_ASSERT_TRUE(n_held > 0u);
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -569,5 +685,6 @@ int main(void)
     RUN_TEST(test_no_evidence_masked_and_raise);
     RUN_TEST(test_row_passes_match_reference);
     RUN_TEST(test_persistence_gate_learns_what_stays_put);
+    RUN_TEST(test_gated_mean_matches_reference);
     return UNITY_END();
 }

@@ -810,6 +810,17 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
     return full != 0u ? d : q;
 }
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), the gated mean's pixel (cl_mean_px_, cl_gate_px_)
+ * takes its compares and clamps in the forms SSE2 has (signed 16-bit compares and min; no
+ * unsigned 16-bit compare or min, which the compiler emulates with several instructions) and
+ * cl_mean_span_ runs a loop per value of full, so that cl_round_scale_'s per-pixel choice
+ * leaves the loops (the same values; fewer register spills). Other targets keep the forms
+ * below the #else (their object code as before: a scalar core pays no more for an unsigned
+ * compare, and at -Os a second loop would call the pixel functions out of line). */
+#define CL_SSE2_ 1
+#endif
+
 /* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v = *ov, c
  * + 2^16 into *cs (0 where v is masked: nothing changes there) and the output before scoring,
  * the masked value or clamp(c), over v in *ov. Every value in 16-bit lanes, so that the loop
@@ -832,7 +843,12 @@ static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16
     const uint16_t mvn = (uint16_t)(mv < 0 ? 0xFFFFu : 0u);
     const uint16_t amv = (uint16_t)((uint16_t)((uint16_t)mv ^ mvn) - mvn);
     const uint16_t dr = (uint16_t)((uint16_t)(amv + 4u) >> 3); /* cl_div_(mv, 8) in magnitude */
+#ifdef CL_SSE2_
+    /* mean_floor (0: dm = dr); dr, mfl <= 2048: a signed compare */
+    const uint16_t dm = (int16_t)dr > (int16_t)mfl ? dr : 0u;
+#else
     const uint16_t dm = dr > mfl ? dr : 0u;                     /* mean_floor (0: dm = dr) */
+#endif
     const int16_t sdm = (int16_t)(uint16_t)((uint16_t)(dm ^ mvn) - mvn); /* mv < 0: -dm */
     const uint16_t cn = (uint16_t)(v < sdm ? 0xFFFFu : 0u);  /* c < 0 */
     const uint16_t c16 = (uint16_t)((uint16_t)v - (uint16_t)sdm); /* c mod 2^16 */
@@ -840,7 +856,11 @@ static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16
     const uint16_t hi = (uint16_t)(((uint32_t)ac * (uint32_t)ac) >> 16);
     const uint16_t lo = (uint16_t)((uint32_t)ac * (uint32_t)ac);
     const uint16_t tl = (uint16_t)((uint16_t)(hi << 10) + (uint16_t)(lo >> 6) + (uint16_t)((lo >> 5) & 1u));
+#ifdef CL_SSE2_
+    const uint16_t t = (uint16_t)(ac >> 11) != 0u ? (uint16_t)CL_MMAX_ : tl; /* ac >= 2048: the clamp */
+#else
     const uint16_t t = ac >= 2048u ? (uint16_t)CL_MMAX_ : tl;
+#endif
     const uint16_t m0 = *m;
     const uint16_t neg = (uint16_t)(t >= m0 ? 0u : 0xFFFFu); /* t < m */
     const uint16_t d = (uint16_t)((uint16_t)((uint16_t)(t - m0) ^ neg) - neg); /* |t - m| */
@@ -855,12 +875,41 @@ static inline void cl_mean_px_(int16_t *ov, uint16_t learn, uint16_t a16, uint16
     const uint16_t nmu = (uint16_t)(mu0 + (uint16_t)((uint16_t)(qe ^ ne) - ne));
     const uint16_t keep = (uint16_t)(msk | (uint16_t)(learn - 1u)); /* masked or not learnt */
     *mu = (uint16_t)((mu0 & keep) | (nmu & (uint16_t)~keep));
+#ifdef CL_SSE2_
+    /* min(ac, 32767) as ac less its saturated excess (SSE2 has no unsigned 16-bit min) */
+    const uint16_t acl = (uint16_t)(ac - (ac > (uint16_t)PFT_PRE_RMAX_ ? (uint16_t)(ac - (uint16_t)PFT_PRE_RMAX_) : 0u));
+#else
     const uint16_t acl = ac > (uint16_t)PFT_PRE_RMAX_ ? (uint16_t)PFT_PRE_RMAX_ : ac;
+#endif
     const uint16_t oc = (uint16_t)((uint16_t)(acl ^ cn) - cn); /* clamp(c) */
     *cs = msk != 0u ? 0u : (uint32_t)c16 + (cn != 0u ? 0u : 65536u);
     *ov = (int16_t)(uint16_t)((oc & (uint16_t)~msk) | ((uint16_t)PFT_RES16_MASKED & msk));
 }
 
+#ifdef CL_SSE2_
+/* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
+ * before the mean pass writes it) and whether the mean takes this residual (*learn, 1 or 0).
+ * In 16-bit lanes with signed compares (SSE2 has no unsigned 16-bit compare or min): exc <=
+ * 32767, pk <= 2^13, pcap = 2 pk <= 2^14 and the counter p <= pcap (every writer caps it there,
+ * the warp interpolates, a move or reset fills 0), so p + 256 <= 2^14 + 256, p1 and pk fit
+ * int16 and min(p + 256, pcap) is a signed min; |v| of a pixel that is not masked fits int16,
+ * and the mask's |v| = 2^15 (-2^15 as int16: ex = 0) changes only *learn, which the mean pass
+ * does not read at a masked pixel (it keeps m and mu there), and not *p (kept). */
+static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk, uint16_t pcap,
+                               uint16_t *learn)
+{
+    const uint16_t vn = (uint16_t)(v < 0 ? 0xFFFFu : 0u);
+    const uint16_t av = (uint16_t)((uint16_t)((uint16_t)v ^ vn) - vn); /* |v|, 2^15 for the mask */
+    const uint16_t p0 = *p;
+    const int16_t pp = (int16_t)(uint16_t)(p0 + 256u);
+    const uint16_t pu = pp < (int16_t)pcap ? (uint16_t)pp : pcap;
+    const uint16_t pd = p0 > 128u ? (uint16_t)(p0 - 128u) : 0u;
+    const uint16_t ex = (uint16_t)((int16_t)av > (int16_t)exc ? 1u : 0u);
+    const uint16_t p1 = ex != 0u ? pu : pd;
+    *p = v == PFT_RES16_MASKED ? p0 : p1;
+    *learn = (uint16_t)((ex ^ 1u) | ((int16_t)p1 >= (int16_t)pk ? 1u : 0u));
+}
+#else
 /* One pixel of cl_row_mean_'s gate (persist): the counter *p from the stage's residual v (o[x]
  * before the mean pass writes it) and whether the mean takes this residual (*learn, 1 or 0).
  * In 16-bit lanes: exc <= 32767, pk <= 2^13, pcap = 2 pk, so p + 256 is tested against pcap
@@ -878,7 +927,46 @@ static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk
     *p = v == PFT_RES16_MASKED ? p0 : p1;
     *learn = (uint16_t)((ex ^ 1u) | (p1 >= pk ? 1u : 0u));
 }
+#endif
 
+#ifdef CL_SSE2_
+/* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
+ * all of them (a constant, so that the loops vectorise); full (a = 2^16, the first frame with
+ * evidence) a constant in each loop, so that cl_round_scale_'s choice leaves the loops (the
+ * same values). */
+static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
+                                 int32_t x0, int32_t x1, uint16_t a16, uint16_t full, uint32_t exc,
+                                 uint32_t pk, uint32_t pcap, int32_t mfl)
+{
+    const uint16_t f16 = (uint16_t)mfl; /* 0..CL_FLOORMAX_ */
+    if (pc != NULL) {
+        /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
+         * (the config check), pcap = 2 pk <= 2^14 */
+        const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
+        if (full != 0u) {
+            for (int32_t x = x0; x < x1; ++x) {
+                uint16_t learn;
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
+                cl_mean_px_(&o[x], learn, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
+            }
+        } else {
+            for (int32_t x = x0; x < x1; ++x) {
+                uint16_t learn;
+                cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
+                cl_mean_px_(&o[x], learn, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
+            }
+        }
+    } else if (full != 0u) {
+        for (int32_t x = x0; x < x1; ++x) {
+            cl_mean_px_(&o[x], 1u, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
+        }
+    } else {
+        for (int32_t x = x0; x < x1; ++x) {
+            cl_mean_px_(&o[x], 1u, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
+        }
+    }
+}
+#else
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
  * all of them (a constant, so that the loops vectorise). */
 static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
@@ -902,6 +990,7 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
         }
     }
 }
+#endif
 
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
