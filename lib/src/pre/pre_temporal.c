@@ -399,7 +399,13 @@ static void lk_sums_(const pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls
         return;
     }
     if (!c->u8 && c->map == NULL) {
-        lk_loop_(p, f, c, g, st, s, true);
+        if (st == 2) { /* the last iteration's step at reg_step 2 (the default), as a
+                        * constant: the loop's strides are immediates and free registers
+                        * (the same sums) */
+            lk_loop_(p, f, c, g, 2, s, true);
+        } else {
+            lk_loop_(p, f, c, g, st, s, true);
+        }
     } else {
         lk_loop_(p, f, c, g, st, s, false);
     }
