@@ -7,7 +7,8 @@
  * all-dead and all-saturated frames stay finite and are reported; refused input leaves the
  * instance and the workspace byte-identical. The pass's residual row (pft_pre_ares_span_,
  * internal, declared here) in its plain and split forms (the split one 8 pixels at a time with
- * SSE2 on x86-64) against known answers and a 64-bit reference, both k1. Frames are 96 x 72 (every target, Cortex-M under
+ * SSE2 on x86-64) against known answers and a 64-bit reference, both k1; the update's clipped
+ * gate (pft_pre_gate_clip_, internal) likewise in its plain and split forms. Frames are 96 x 72 (every target, Cortex-M under
  * QEMU included); scenes are made with per-column and per-row tables and integer products.
  */
 #include <math.h>
@@ -19,6 +20,8 @@
 int32_t pft_pre_vsplit_(int32_t v);
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split);
+void pft_pre_gate_clip_(const int32_t *const q[4], const int32_t w[4], const int32_t n[4], int32_t a15,
+                        uint16_t *b, int32_t ja, int32_t jb, int32_t lim, bool split);
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -467,6 +470,111 @@ static void test_residual_span_split_and_plain(void)
     }
 }
 
+/* The clipped gate of one cell, in 64 bits: the blend of the 4 taps (kept when a tap equals its
+ * marker), clamped, its innovation clipped to [-lim, lim] and weighted a15 / 2^15. */
+static uint16_t gate_ref(const int32_t *const q[4], const int32_t w[4], const int32_t n[4], int32_t a15,
+                         int32_t j, uint16_t bx, int32_t lim)
+{
+    int64_t s = 2048;
+    bool inv = false;
+    for (int32_t i = 0; i < 4; ++i) {
+        inv = inv || q[i][j] == n[i];
+        s += (int64_t)w[i] * q[i][j];
+    }
+    if (inv) {
+        return bx;
+    }
+    const int64_t sv = s >= 0 ? s / 4096 : -((-s + 4095) / 4096); /* floor */
+    const int64_t c = sv < 0 ? 0 : (sv > 65535 ? 65535 : sv);
+    int64_t e = c - (int64_t)bx;
+    e = e > lim ? lim : (e < -lim ? -lim : e);
+    const int64_t d = e * a15 + 16384;
+    return (uint16_t)((int64_t)bx + (d >= 0 ? d / 32768 : -((-d + 32767) / 32768)));
+}
+
+static void test_gate_clip_split_and_plain(void)
+{
+    enum { N = 19 }; /* two blocks of 8 and a remainder of 3 */
+    const int32_t none = -4194304; /* the ring's invalid value */
+    int32_t r[4][N];
+    const int32_t *const q[4] = {r[0], r[1], r[2], r[3]};
+    uint16_t bp[N + 2], bs[N + 2];
+    /* known answers: the tap of weight 256 alone, v = 16 U, lim 50, a15 16384 */
+    {
+        const int32_t w[4] = {0, 256, 0, 0}, n[4] = {none + 1, none, none + 1, none + 1};
+        memset(r, 0, sizeof(r));
+        for (int32_t j = 0; j < N + 2; ++j) {
+            bp[j] = 7u;
+        }
+        r[1][0] = 16000; /* U 1000, bx 900: e 100 clipped to 50, 900 + 25 */
+        bp[1] = 900u;
+        r[1][1] = -80; /* U -5 clamped to 0, bx 10: e -10, 10 + floor(-4.5) */
+        bp[2] = 10u;
+        r[1][2] = none; /* invalid: kept */
+        bp[3] = 1234u;
+        r[1][3] = 16 * 70000; /* clamped to 65535 = bx: kept */
+        bp[4] = 65535u;
+        r[1][17] = 16 * 60000; /* a remainder cell: bx 7, e clipped to 50 */
+        memcpy(bs, bp, sizeof(bp));
+        pft_pre_gate_clip_(q, w, n, 16384, bp, 0, N - 1, 50, false);
+        pft_pre_gate_clip_(q, w, n, 16384, bs, 0, N - 1, 50, true);
+        const uint16_t want[5] = {925u, 5u, 1234u, 65535u, 4u}; /* j 4: v 0, bx 7: e -7, 7 - 3 */
+        for (int32_t j = 0; j < 5; ++j) {
+            TEST_ASSERT_EQUAL_UINT16(want[j], bp[j + 1]);
+            TEST_ASSERT_EQUAL_UINT16(want[j], bs[j + 1]);
+        }
+        TEST_ASSERT_EQUAL_UINT16(32u, bp[18]); /* 7 + ((50 * 16384 + 16384) >> 15) */
+        TEST_ASSERT_EQUAL_UINT16(32u, bs[18]);
+        TEST_ASSERT_EQUAL_UINT16(4u, bp[6]); /* v 0: e -7, 7 + (-98304 >> 15) */
+        TEST_ASSERT_EQUAL_UINT16(4u, bs[6]);
+        TEST_ASSERT_EQUAL_UINT16(7u, bs[0]); /* outside the span */
+        TEST_ASSERT_EQUAL_UINT16(7u, bs[N + 1]);
+    }
+    /* random rows (invalid taps, the cubic's lobes, values beyond the clamps), every offset of
+     * a block, lims up to 65535 (no clip), a15 within [0, 32768] (0 and 32768 by the plain loop):
+     * both forms against the reference */
+    {
+        const int32_t wc[4][4] = {{-19, 147, 147, -19}, {0, 256, 0, 0}, {0, 77, 179, 0},
+                                  {-9, 200, 72, -7}};
+        const int32_t lims[5] = {1, 300, 32767, 32768, 65535};
+        const int32_t a15s[5] = {1, 9830, 32767, 32768, 0}; /* 32768, 0: the plain loop */
+        uint32_t rng = 777u;
+        for (int32_t t = 0; t < 400; ++t) {
+            const int32_t *w = wc[t % 4];
+            int32_t n[4];
+            for (int32_t i = 0; i < 4; ++i) {
+                n[i] = w[i] != 0 ? none : none + 1;
+            }
+            for (int32_t i = 0; i < 4; ++i) {
+                for (int32_t j = 0; j < N; ++j) {
+                    rng = rng * 1664525u + 1013904223u;
+                    const uint32_t u = rng >> 8;
+                    r[i][j] = u % 16u == 0u ? none
+                                           : (u % 16u == 1u ? (int32_t)((u >> 4) % 262144u) - 262144
+                                                            : (int32_t)((u >> 4) % 1114096u));
+                }
+            }
+            for (int32_t j = 0; j < N + 2; ++j) {
+                rng = rng * 1664525u + 1013904223u;
+                const uint32_t u = rng >> 8;
+                bp[j] = (uint16_t)(u % 8u == 0u ? 0u : (u % 8u == 1u ? 65535u : (u >> 3) % 65536u));
+            }
+            memcpy(bs, bp, sizeof(bp));
+            uint16_t b0[N + 2];
+            memcpy(b0, bp, sizeof(bp));
+            const int32_t ja = t % 8, jb = N - 1 - (t / 8) % 4;
+            const int32_t lim = lims[(t / 4) % 5], a15 = a15s[(t / 20) % 5];
+            pft_pre_gate_clip_(q, w, n, a15, bp, ja, jb, lim, false);
+            pft_pre_gate_clip_(q, w, n, a15, bs, ja, jb, lim, true);
+            for (int32_t j = -1; j <= N; ++j) {
+                const uint16_t want = j >= ja && j <= jb ? gate_ref(q, w, n, a15, j, b0[j + 1], lim) : b0[j + 1];
+                TEST_ASSERT_EQUAL_UINT16(want, bp[j + 1]);
+                TEST_ASSERT_EQUAL_UINT16(want, bs[j + 1]);
+            }
+        }
+    }
+}
+
 #if defined(__SSE2__)
 /* Internal to the library (lib/src/pre/pre_int.h, x86-64 only); the test declares them. */
 void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2,
@@ -617,6 +725,7 @@ int main(void)
     RUN_TEST(test_degenerate_frames_flagged);
     RUN_TEST(test_refused_input_changes_nothing);
     RUN_TEST(test_residual_span_split_and_plain);
+    RUN_TEST(test_gate_clip_split_and_plain);
     RUN_TEST(test_view_rows_sse2);
     return UNITY_END();
 }

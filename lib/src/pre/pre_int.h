@@ -159,6 +159,11 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
 int32_t pft_pre_vsplit_(int32_t v);
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split);
+/* The anchored update's clipped gate (bg_gate_shift 0) of cells [ja, jb] of grid row b (storage
+ * entry j + 1) from ring rows q (pre_temporal.c, exported for its unit test), in the plain form
+ * or (split, x86-64) the split form where it applies. */
+void pft_pre_gate_clip_(const int32_t *const q[4], const int32_t w[4], const int32_t n[4], int32_t a15,
+                        uint16_t *b, int32_t ja, int32_t jb, int32_t lim, bool split);
 #if defined(__SSE2__)
 /* bg_anchor on x86-64 (SSE2): one row of the registration's view of the anchored grid, its
  * vertical pass into int16 halves and its horizontal pass from them (pre_temporal.c). */

@@ -9,7 +9,8 @@
 #include "pre_int.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_), the anchored residual (pft_pre_ares_span_) */
+#include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_), the anchored residual (pft_pre_ares_span_),
+                        * the gated update (PFT_PRE_GATE_SPLIT_) */
 #endif
 
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
@@ -1501,6 +1502,7 @@ typedef struct {
     const int32_t *q[4];
     int32_t w[4], n[4];
     int32_t wsh, ag, a15;
+    bool split; /* x86-64: gate_clip_split_ applies (gate_split_ok_) */
 } gate_row_t;
 
 /* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, gate_nb_
@@ -1538,10 +1540,139 @@ static inline void gate_run_loop_(const gate_row_t *g, uint16_t *b, int32_t ja, 
     }
 }
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), gate_run_loop_'s clipped form (bg_gate_shift 0) takes 8
+ * cells at a time in 16-bit lanes: each ring value v split as v = 65536 vh + vl (vh = (v + 32768)
+ * >> 16, vl = v - 65536 vh within [-32768, 32767]), the vertical blend two 16-bit multiply-adds
+ * (pmaddwd) per tap pair, joined as 65536 H + L: the same 32-bit sum, modulo 2^32, as the 32-bit
+ * loop (instead of its 32 x 32-bit products, which SSE2 lacks: pmuludq pairs and shuffles). The
+ * value clamped to [0, 65535] is the sum minus 32768 saturated to int16 (biased), the innovation's
+ * clip to [-lim, lim] the value c clamped to [bx - lim, bx + lim] (saturated in 16 bits), and
+ * bx + ((e a15 + 16384) >> 15) = (bx (32768 - a15) + c a15 + 16384) >> 15 one multiply-add of
+ * the biased pair (bx - 32768, c - 32768) with (32768 - a15, a15): the biases add 2^30, which the
+ * shift turns into the 32768 of the biased result (|sum| <= 2^30, no overflow). Taken when the
+ * weights are within [-32767, 32767] and a15 within [1, 32767] (both pairs int16), any lim in
+ * [1, 65535]; else, and for the last cells of a span, the 32-bit loop. The weights are Q8 with |sum| < 512
+ * and a valid ring value within [-2^21, 2^21), so |S| < 2^30 and S + 2048 - 2^27 stays in int32;
+ * a lane with an invalid tap may wrap, and is stored back unchanged. AArch64 and the Cortex-M builds keep
+ * the 32-bit loop (the same object code as before for the update). */
+#define PFT_PRE_GATE_SPLIT_ 1
+#endif
+
+#if defined(PFT_PRE_GATE_SPLIT_)
+/* The pair (a, b) of 16-bit values as a 32-bit word (low, high). */
+static inline int32_t pair16_(int32_t a, int32_t b)
+{
+    return (int32_t)(((uint32_t)b << 16) | ((uint32_t)a & 65535u));
+}
+
+/* Eight ring values at q: their split halves vh, vl (8 x int16 each) and the lanes equal to n
+ * or-ed into inv (8 x 16-bit masks). */
+static inline void gate_split8_(const int32_t *q, __m128i n, __m128i *vh, __m128i *vl, __m128i *inv)
+{
+    const __m128i a = _mm_loadu_si128((const __m128i *)(const void *)q);
+    const __m128i c = _mm_loadu_si128((const __m128i *)(const void *)(q + 4));
+    const __m128i h = _mm_set1_epi32(32768);
+    *inv = _mm_or_si128(*inv, _mm_packs_epi32(_mm_cmpeq_epi32(a, n), _mm_cmpeq_epi32(c, n)));
+    *vh = _mm_packs_epi32(_mm_srai_epi32(_mm_add_epi32(a, h), 16), _mm_srai_epi32(_mm_add_epi32(c, h), 16));
+    *vl = _mm_packs_epi32(_mm_srai_epi32(_mm_slli_epi32(a, 16), 16), _mm_srai_epi32(_mm_slli_epi32(c, 16), 16));
+}
+
+/* gate_run_loop_ (clip) of cells ja .. ja + 8 n - 1 in the split form above. */
+static void gate_clip_split_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t n, int32_t lim)
+{
+    const __m128i w01 = _mm_set1_epi32(pair16_(g->w[0], g->w[1]));
+    const __m128i w23 = _mm_set1_epi32(pair16_(g->w[2], g->w[3]));
+    const __m128i ar = _mm_set1_epi32(pair16_(32768 - g->a15, g->a15));
+    const __m128i n0 = _mm_set1_epi32(g->n[0]), n1 = _mm_set1_epi32(g->n[1]);
+    const __m128i n2 = _mm_set1_epi32(g->n[2]), n3 = _mm_set1_epi32(g->n[3]);
+    const __m128i bias = _mm_set1_epi16((int16_t)-32768), lv = _mm_set1_epi16((int16_t)lim);
+    const __m128i rb = _mm_set1_epi32(2048 - 134217728), r15 = _mm_set1_epi32(16384);
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t j = ja + 8 * i;
+        __m128i inv = _mm_setzero_si128(), h0, l0, h1, l1, h2, l2, h3, l3;
+        gate_split8_(g->q[0] + j, n0, &h0, &l0, &inv);
+        gate_split8_(g->q[1] + j, n1, &h1, &l1, &inv);
+        gate_split8_(g->q[2] + j, n2, &h2, &l2, &inv);
+        gate_split8_(g->q[3] + j, n3, &h3, &l3, &inv);
+        const __m128i hl = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(h0, h1), w01),
+                                         _mm_madd_epi16(_mm_unpacklo_epi16(h2, h3), w23));
+        const __m128i hh = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(h0, h1), w01),
+                                         _mm_madd_epi16(_mm_unpackhi_epi16(h2, h3), w23));
+        const __m128i ll = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(l0, l1), w01),
+                                         _mm_madd_epi16(_mm_unpacklo_epi16(l2, l3), w23));
+        const __m128i lh = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(l0, l1), w01),
+                                         _mm_madd_epi16(_mm_unpackhi_epi16(l2, l3), w23));
+        /* ((S + 2048) >> 12) - 32768 = (S + 2048 - 2^27) >> 12, saturated: the clamped value
+         * minus 32768 */
+        const __m128i sl = _mm_srai_epi32(_mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(hl, 16), ll), rb), 12);
+        const __m128i sh = _mm_srai_epi32(_mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(hh, 16), lh), rb), 12);
+        __m128i sv = _mm_packs_epi32(sl, sh);
+        const __m128i bx = _mm_loadu_si128((const __m128i *)(const void *)(b + j + 1));
+        const __m128i lo = _mm_xor_si128(_mm_subs_epu16(bx, lv), bias);
+        const __m128i hi = _mm_xor_si128(_mm_adds_epu16(bx, lv), bias);
+        sv = _mm_max_epi16(_mm_min_epi16(sv, hi), lo);
+        const __m128i bb = _mm_xor_si128(bx, bias);
+        const __m128i pl = _mm_srai_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(bb, sv), ar), r15), 15);
+        const __m128i ph = _mm_srai_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(bb, sv), ar), r15), 15);
+        const __m128i nb = _mm_xor_si128(_mm_packs_epi32(pl, ph), bias); /* the blend, biased back */
+        _mm_storeu_si128((__m128i *)(void *)(b + j + 1),
+                         _mm_or_si128(_mm_and_si128(inv, bx), _mm_andnot_si128(inv, nb)));
+    }
+}
+
+#endif
+
+/* Whether gate_clip_split_ applies (see PFT_PRE_GATE_SPLIT_): false without SSE2. */
+static bool gate_split_ok_(const int32_t w[4], int32_t a15)
+{
+#if defined(PFT_PRE_GATE_SPLIT_)
+    bool ok = a15 >= 1 && a15 <= 32767;
+    for (int32_t i = 0; i < 4; ++i) {
+        ok = ok && w[i] >= -32767 && w[i] <= 32767;
+    }
+    return ok;
+#else
+    (void)w;
+    (void)a15;
+    return false;
+#endif
+}
+
+/* gate_run_loop_'s clipped form (bg_gate_shift 0) of cells ja .. jb: with split (x86-64 where
+ * gate_split_ok_) the split form for whole blocks of 8 cells, the 32-bit loop for the rest. */
+static inline void gate_clip_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim, bool split)
+{
+#if defined(PFT_PRE_GATE_SPLIT_)
+    const int32_t nblk = split && jb >= ja ? (jb - ja + 1) / 8 : 0;
+    if (nblk > 0) {
+        gate_clip_split_(g, b, ja, nblk, lim);
+    }
+    gate_run_loop_(g, b, ja + 8 * nblk, jb, lim, true);
+#else
+    (void)split;
+    gate_run_loop_(g, b, ja, jb, lim, true);
+#endif
+}
+
+/* gate_clip_ for a test: ring rows q, weights w, markers n, a15, in the plain (split false) or,
+ * where it applies, the split form. */
+void pft_pre_gate_clip_(const int32_t *const q[4], const int32_t w[4], const int32_t n[4], int32_t a15,
+                        uint16_t *b, int32_t ja, int32_t jb, int32_t lim, bool split)
+{
+    const gate_row_t g = {{q[0], q[1], q[2], q[3]}, {w[0], w[1], w[2], w[3]}, {n[0], n[1], n[2], n[3]},
+                          0, a15, a15, split && gate_split_ok_(w, a15)};
+    gate_clip_(&g, b, ja, jb, lim, g.split);
+}
+
 static inline void gate_run_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t jb, int32_t lim)
 {
     if (g->wsh == 0) {
+#if defined(PFT_PRE_GATE_SPLIT_)
+        gate_clip_(g, b, ja, jb, lim, g->split);
+#else
         gate_run_loop_(g, b, ja, jb, lim, true);
+#endif
     } else {
         gate_run_loop_(g, b, ja, jb, lim, false);
     }
@@ -1643,7 +1774,8 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             const uint8_t *ax = p->agex != NULL ? p->agex + 1 : NULL; /* ax[j]: column j */
             const uint32_t ny = p->cfg.bg_gate_young;
             const bool ryoung = ax != NULL && p->agey[jy + 1] < ny;
-            const gate_row_t gr = {{q0, q1, q2, q3}, {w0, w1, w2, w3}, {n0, n1, n2, n3}, wsh, ag, a15};
+            const gate_row_t gr = {{q0, q1, q2, q3}, {w0, w1, w2, w3}, {n0, n1, n2, n3}, wsh, ag, a15,
+                                   gate_split_ok_(gy->wu, a15)};
             int32_t je = fs0 - 1; /* the span's last cell: at least its first */
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
