@@ -1774,8 +1774,9 @@ static void anchor_urow_(pft_pre_t *p, const anchor_geom_t *g, int32_t jy, const
             const uint8_t *ax = p->agex != NULL ? p->agex + 1 : NULL; /* ax[j]: column j */
             const uint32_t ny = p->cfg.bg_gate_young;
             const bool ryoung = ax != NULL && p->agey[jy + 1] < ny;
+            /* the split form only without bg_gate_local (whose spans take gate_local_span_) */
             const gate_row_t gr = {{q0, q1, q2, q3}, {w0, w1, w2, w3}, {n0, n1, n2, n3}, wsh, ag, a15,
-                                   gate_split_ok_(gy->wu, a15)};
+                                   p->gsum == NULL && gate_split_ok_(gy->wu, a15)};
             int32_t je = fs0 - 1; /* the span's last cell: at least its first */
             for (int32_t ja0 = fs0; ja0 <= fs1; ja0 = je + 1) {
                 const int32_t se = gate_span_end_(p, ja0);
