@@ -82,19 +82,6 @@ static uint32_t rnd(uint64_t *st)
  * variance 1, Gaussian to within 0.01 of its distribution function), drawn in integers
  * (raw units of 1/256: 12 uniforms on 0..255) so that it costs no floating-point operation on
  * the soft-float targets. */
-/* The frame header of g_raw (IMG x IMG, 16-bit) with sequence number seq. */
-static void frame_of(pft_frame_t *f, uint32_t seq)
-{
-    memset(f, 0, sizeof(*f));
-    f->data = g_raw;
-    f->width = IMG;
-    f->height = IMG;
-    f->stride_bytes = IMG * 2u;
-    f->format = PFT_PIX_U16;
-    f->bit_depth = 16u;
-    f->seq = seq;
-}
-
 static void render(uint64_t *st, int k, int x0, int y0, int v, pft_frame_t *f)
 {
     const int x = x0 + v * (k - 1);
@@ -116,7 +103,7 @@ static void render(uint64_t *st, int k, int x0, int y0, int v, pft_frame_t *f)
             }
         }
     }
-    frame_of(f, (uint32_t)k);
+    *f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, (uint32_t)k);
 }
 
 /* Runs LFR frames of seed s; true when a birth peak of the last frame is within 1 px
@@ -277,8 +264,7 @@ static size_t peaks_of(const int *px, int n, double a, uint32_t *cand)
     for (int k = 0; k < n; ++k) {
         g_raw[px[k]] = (uint16_t)(16384 + (int)lround(a * 256.0));
     }
-    pft_frame_t f;
-    frame_of(&f, 1u);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
     return pft_tbd_birth_candidates(&t, cand, KMAX);
 }

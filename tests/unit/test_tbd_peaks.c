@@ -55,18 +55,6 @@ static void cfg_peaks(pft_tbd_config_t *c, uint16_t k)
     c->seed = 3u;
 }
 
-static void frame_of(pft_frame_t *f)
-{
-    memset(f, 0, sizeof(*f));
-    f->data = g_raw;
-    f->width = IMG;
-    f->height = IMG;
-    f->stride_bytes = IMG * 2u;
-    f->format = PFT_PIX_U16;
-    f->bit_depth = 16u;
-    f->seq = 1u;
-}
-
 static void clear_raw(void)
 {
     for (int i = 0; i < IMG * IMG; ++i) {
@@ -100,8 +88,7 @@ static void update_on_points(pft_tbd_t *t)
     for (int p = 0; p < NPTS; ++p) {
         set_px(g_pts[p][0], g_pts[p][1], g_val[p]);
     }
-    pft_frame_t f;
-    frame_of(&f);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(t, &f));
 }
 
@@ -140,8 +127,7 @@ static void test_plateau_gives_one_peak_and_threshold_counts(void)
     set_px(13, 12, 10.0); /* equal neighbour: one peak, the first in raster order */
     set_px(3, 20, 10.0);
     set_px(3, 21, 10.0);
-    pft_frame_t f;
-    frame_of(&f);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
     uint32_t cand[KMAX];
     size_t n = pft_tbd_birth_candidates(&t, cand, KMAX);
@@ -197,8 +183,7 @@ static void test_tile_quota_keeps_the_strongest_per_tile(void)
     c.peak_quota = 0u;
     c.peak_tile = 16u;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
-    pft_frame_t f;
-    frame_of(&f);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
     TEST_ASSERT_EQUAL_UINT(7u, (unsigned)pft_tbd_birth_candidates(&t, NULL, 0u));
 }
@@ -217,8 +202,7 @@ static void test_without_peaks_candidates_are_b(void)
     set_px(12, 12, 10.0);
     set_px(13, 12, 10.0);
     set_px(4, 4, 1.5);
-    pft_frame_t f;
-    frame_of(&f);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
     uint32_t cand[4];
     TEST_ASSERT_EQUAL_UINT(2u, (unsigned)pft_tbd_birth_candidates(&t, cand, 4u));
@@ -257,8 +241,7 @@ static void test_workspace_with_peaks_is_exact(void)
             set_px(2 + 7 * p, 2 + 7 * q, 5.0 + p + 4 * q);
         }
     }
-    pft_frame_t f;
-    frame_of(&f);
+    pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
     TEST_ASSERT_EQUAL_UINT(KMAX, (unsigned)pft_tbd_birth_candidates(&t, NULL, 0u));
 }
@@ -321,11 +304,10 @@ static void test_refused_frame_leaves_state_untouched(void)
     }
     t_snap = t;
     memcpy(g_snap, g_ws, need);
-    pft_frame_t bad;
-    frame_of(&bad);
+    pft_frame_t bad = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     bad.width = IMG - 1; /* wrong size */
     TEST_ASSERT_NOT_EQUAL(PFT_OK, pft_tbd_update(&t, &bad));
-    frame_of(&bad);
+    bad = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     bad.stride_bytes = 3u; /* stride too small */
     TEST_ASSERT_NOT_EQUAL(PFT_OK, pft_tbd_update(&t, &bad));
     TEST_ASSERT_EQUAL_INT(PFT_ERR_INVAL, pft_tbd_update(&t, NULL));
@@ -410,8 +392,7 @@ static void test_birth_share_existence(void)
         c.kind = (pft_tbd_kind_t)kind;
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
         clear_raw();
-        pft_frame_t f;
-        frame_of(&f);
+        pft_frame_t f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
         pft_tbd_estimate_t e;
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_search_estimate(&t, &e));
@@ -451,8 +432,7 @@ static void test_birth_share_standalone(void)
     TEST_ASSERT_TRUE(need > 0u && need <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_init(&f, &c, g_ws, need));
     clear_raw();
-    pft_frame_t fr;
-    frame_of(&fr);
+    pft_frame_t fr = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     for (int k = 0; k < 3; ++k) {
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_filter_update(&f, &fr));
     }
@@ -505,7 +485,7 @@ static void test_uniform_births_skip_region(void)
     c.d_region = PFT_TBD_D_WINDOW;  /* 3 x 3 window grown by d_margin 1: 5 x 5 pixels */
     c.force_constraint = false;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
-    frame_of(&f);
+    f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     points(1);
     for (int k = 0; k < 30 && pft_tbd_tracks(&t, NULL, 0u) == 0u; ++k) {
         TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_update(&t, &f));
@@ -565,7 +545,7 @@ static void test_birth_share_budget(void)
     c.theta1 = R(0.6);
     c.birth_share = R(0.5);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_init(&t, &c, g_ws, sizeof g_ws));
-    frame_of(&f);
+    f = pft_test_u16_frame(g_raw, IMG, IMG, 16u, 1u);
     uint32_t seen[3] = {0u, 0u, 0u}; /* frames seen with 0, 1, 2 layers stepped */
     for (int k = 0; k < 40; ++k) {
         points(k < 8 ? 1 : (k < 20 ? 2 : 0));
