@@ -56,6 +56,7 @@ struct Options {
     std::string residual_out;   ///< --residual-out FILE (run, tbd_ir): the residual the TBD manager sees, every frame
     std::string stage_out;      ///< --stage-out FILE (run, tbd_ir): the stage's pft_pre_stats per frame, CSV
     std::string trace;          ///< --trace DIR (eval, tbd_ir): per-run diagnostic trace of the TBD manager (ir_trace.hpp)
+    std::string probe_out;      ///< --probe-out DIR (bench, tbd_ir): frames, configurations and expected outputs for tests/tools/ir_probe (ir_probe_out.hpp)
     bool quiet = false;         ///< --quiet
     std::string format;         ///< --format pgm|raw (sim)
     int scale = 0;              ///< --scale: overlay upscale factor (run)

@@ -217,6 +217,7 @@ int main(int argc, char **argv)
     be->add_option("--out", o.out, "directory for bench.json");
     filter_opts(be);
     be->add_option("--backgrounds", o.backgrounds, "tbd_ir: folder of background images (replaces the scenario's background.folder)");
+    be->add_option("--probe-out", o.probe_out, "tbd_ir: write the simulated frames (frames.u16), the pipeline's library configurations (probe.cfg) and its outputs per frame (expect.txt) for tests/tools/ir_probe -c into this folder");
     common(be);
 
     CLI::App *de = app.add_subcommand("demo", "simulate the default two-target scenario (or take --sequence), track it, print tracks and summary");

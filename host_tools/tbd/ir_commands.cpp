@@ -29,6 +29,7 @@ extern "C" {
 #include "../common/sequence_input.hpp"
 #include "ir_eval.hpp"
 #include "ir_pipeline.hpp"
+#include "ir_probe_out.hpp"
 #include "ir_scenario.hpp"
 #include "ir_scene.hpp"
 #include "ir_sim.hpp"
@@ -1348,11 +1349,34 @@ public:
         IrSequence q = simulate_ir(s, seed);
         double t_sim = seconds_since(t0);
         IrPipeline pl(s.tracker, s.dbt, s.targets.psf_sigma, q.width, q.height, q.bit_depth, seed);
+        // --probe-out: the frames, configurations and per-frame outputs for tests/tools/ir_probe
+        // (ir_probe_out.hpp), written outside the timed steps
+        std::ofstream probe_frames, probe_expect;
+        if (!o.probe_out.empty()) {
+            ensure_dir(o.probe_out);
+            write_probe_config(join_path(o.probe_out, "probe.cfg"), pl);
+            probe_frames.open(join_path(o.probe_out, "frames.u16"), std::ios::binary);
+            probe_expect.open(join_path(o.probe_out, "expect.txt"));
+            if (!probe_frames || !probe_expect)
+                throw InputError("cannot write into " + o.probe_out);
+            for (const cv::Mat &m : q.images) {
+                cv::Mat c = m.isContinuous() ? m : m.clone();
+                probe_frames.write(reinterpret_cast<const char *>(c.data), static_cast<std::streamsize>(c.total() * 2u));
+            }
+        }
         std::vector<double> times;
         for (int k = 0; k < q.frames; ++k) {
             auto t1 = Clock::now();
-            pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth, static_cast<uint32_t>(k + 1)));
+            PipelineOut po = pl.step(u16_frame(q.images[static_cast<std::size_t>(k)], q.bit_depth, static_cast<uint32_t>(k + 1)));
             times.push_back(seconds_since(t1));
+            if (probe_expect.is_open())
+                probe_expect << probe_expect_line(static_cast<uint32_t>(k + 1), pl, po);
+        }
+        if (probe_frames.is_open()) {
+            probe_frames.close();
+            probe_expect.close();
+            if (!probe_frames || !probe_expect)
+                throw InputError("cannot write into " + o.probe_out);
         }
         std::sort(times.begin(), times.end());
         double med = times[times.size() / 2];

@@ -228,6 +228,33 @@ pft_pre_clutter_config_t make_clutter_config(const TrackerSettings &t, int width
     return c;
 }
 
+IrPipeline::ProbeSetup IrPipeline::probe_setup() const
+{
+    if (T_.residual_hp > 0)
+        throw InputError("--probe-out: residual_hp is a host step (OpenCV) between the library calls; ir_probe has none");
+    if (T_.flat_block > 0 && T_.flat_relative && T_.flat_level_blocks)
+        throw InputError("--probe-out: flat_level_blocks is a host experiment; ir_probe has none");
+    ProbeSetup p;
+    p.pre = pre_cfg_;
+    p.flat = T_.flat_block > 0;
+    if (p.flat)
+        p.flat_cfg = make_flat_config(T_, w_, h_);
+    p.flat_relative = p.flat && T_.flat_relative;
+    p.clutter = T_.clutter_alpha > 0;
+    if (p.clutter) {
+        p.clutter_cfg = make_clutter_config(T_, w_, h_);
+        p.clutter_cfg.inplace = pre_cfg_.inplace;  // as preprocess() calls clutter_step
+    }
+    p.tbd = tracker_->config();
+    p.scene = T_.scene_frames > 0;
+    if (p.scene)
+        p.scene_cfg = make_scene_config(T_, w_, h_);
+    p.scene_tentative = T_.scene_tentative;
+    p.integ_shift = T_.integ_shift;
+    p.bits = bits_;
+    return p;
+}
+
 void clutter_step(ClutterMap &c, const TrackerSettings &T_, const int16_t *res, std::size_t stride, bool ev,
                   double sx, double sy, cv::Mat &resid_, bool inplace)
 {

@@ -108,6 +108,29 @@ public:
         return -1;
     }
     const pft_pre_config_t &pre_config() const { return pre_cfg_; }
+    /** The library configurations this pipeline runs with and what it passes between the
+     *  calls (tests/tools/ir_probe_fields.h; written by `pft bench --probe-out`, read by
+     *  tests/tools/ir_probe -c): built by the same functions the pipeline's own calls use. */
+    struct ProbeSetup {
+        pft_pre_config_t pre{};
+        bool flat = false;  ///< flat_block > 0: pft_pre_flat_update after the stage
+        pft_pre_flat_config_t flat_cfg{};
+        bool flat_relative = false;  ///< its level frame is the raw frame
+        bool clutter = false;        ///< clutter_alpha > 0: the clutter map after the flat step
+        pft_pre_clutter_config_t clutter_cfg{};
+        pft_tbd_config_t tbd{};
+        bool scene = false;  ///< scene_frames > 0: the scene-motion test after the manager
+        pft_tbd_scene_config_t scene_cfg{};
+        bool scene_tentative = false;
+        bool integ_shift = false;
+        int bits = 0;
+    };
+    /** The setup above; throws InputError for a pipeline with a host-only step between the
+     *  calls (residual_hp, flat_level_blocks), which the probe does not reproduce. */
+    ProbeSetup probe_setup() const;
+    /** The clutter map's last output (the manager's input on a frame with evidence), stride =
+     *  width; nullptr without the map. */
+    const int16_t *clutter_output() const { return cm_.out; }
     double dbt_threshold_sigma() const { return dbt_thr_; }
     /** Whether DBT reads its own preprocessing (dbt.preprocess) instead of the TBD pipeline's
      *  residual. */

@@ -35,6 +35,28 @@
  * fields (all their bits, not the 3 decimals), so that two builds' outputs can be compared bit
  * for bit under QEMU. Memory: one static arena of IRP_ARENA_BYTES (the
  * bare-metal builds set it to what the board's 4 MiB of RAM leaves); too small is reported.
+ *
+ *   ir_probe -c PROBE.CFG IN.u16 FRAMES
+ *   (the flight build of any tbd_ir scenario, docs/results/ir_clutter.md "Branch ircost31":
+ *   `pft bench --scenario F --frames N --seed S --probe-out DIR [--backgrounds DIR]` writes
+ *   DIR/frames.u16 and DIR/probe.cfg, the library configurations the host pipeline
+ *   (host_tools/tbd/ir_pipeline.cpp) builds from the scenario and its settings between the
+ *   calls, key value lines (tests/tools/ir_probe_fields.h; a file of the other numeric is
+ *   refused). Per frame the probe makes the pipeline's library calls as IrPipeline::step makes
+ *   them: the stage (pft_pre_update, or pft_pre_update_inplace on its own copy of the frame),
+ *   the flat field (pft_pre_flat_update over the residual, or a copy of it, with the raw frame
+ *   as its level frame under flat_relative), the clutter map (pft_pre_clutter_update or
+ *   _inplace with the stage's shift), the manager (pft_tbd_set_shift under integ_shift, then
+ *   pft_tbd_update on the map's output, or on an all-masked frame without evidence) and after it
+ *   pft_tbd_tracks (pft_tbd_tentative with scene_tentative), pft_tbd_scene_update and
+ *   pft_pre_clutter_raise under the tracks found moving with the scene: five measured slots
+ *   per frame, stage, flat, map, manager, after (a call the configuration does not make leaves
+ *   its slot nearly empty). Prints per frame "F seq flags F shift X Y ev E map H tracks N" and
+ *   each reported track's id and the bits of x, y, vx, vy, intensity, p_exist, the lines
+ *   DIR/expect.txt holds from the host pipeline (ctest host_ir_probe_flight compares them),
+ *   and at the end FNV-1a checksums of the stage's residual, the flat field's and the map's
+ *   outputs and the reported tracks. host_tools/scripts/ir_cost_targets.sh with IRC_FLIGHT
+ *   drives it on every target.)
  */
 #include <math.h>
 #include <stdint.h>
@@ -46,6 +68,7 @@
 #include "pft/pft_tbd.h"
 #include "pft/pft_tbd_scene.h"
 #include "pft_work_marks.h"
+#include "ir_probe_fields.h"
 
 #ifndef IRP_ARENA_BYTES
 #define IRP_ARENA_BYTES (96u * 1024u * 1024u)
@@ -140,6 +163,8 @@ typedef struct {
     int ev;          /* map: evidence */
     int inplace;     /* map: pft_pre_clutter_update_inplace */
     int unmarked;    /* no work markers around this call (MARKS 2: the map; 1: the stage) */
+    pft_status_t (*fn)(void *ctx); /* mode -c: the call (or none: NULL with pre, cl and tbd NULL) */
+    void *ctx;
 } irp_call_t;
 
 /* The three measured calls go through one function that callgrind toggles on and dumps after
@@ -154,7 +179,11 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
     if (!c->unmarked) {
         pft_work_mark_begin();
     }
-    if (c->pre != NULL) {
+    if (c->fn != NULL) {
+        s = c->fn(c->ctx);
+    } else if (c->pre == NULL && c->cl == NULL && c->tbd == NULL) {
+        s = PFT_OK; /* mode -c: a call the configuration does not make (its slot still counted) */
+    } else if (c->pre != NULL) {
         s = pft_pre_update_inplace(c->pre, c->f, c->buf);
     } else if (c->cl != NULL) {
         s = c->inplace ? pft_pre_clutter_update_inplace(c->cl, c->f, (int16_t *)(void *)c->buf,
@@ -169,8 +198,496 @@ __attribute__((noinline, noclone)) pft_status_t irp_measured(const irp_call_t *c
     return s;
 }
 
+/* ---- mode -c: the flight build of any tbd_ir scenario ----------------------------------- */
+
+/* The configurations of probe.cfg (`pft bench --probe-out`, host_tools/tbd/ir_probe_out.cpp):
+ * the library's structs as the host pipeline builds them and its settings between the calls. */
+typedef struct {
+    pft_pre_config_t pre;
+    pft_pre_flat_config_t flat;
+    pft_pre_clutter_config_t cl;
+    pft_tbd_config_t tbd;
+    pft_tbd_scene_config_t sc;
+    unsigned long long pipe[16]; /* IRP_PIPELINE_FIELDS in order */
+    unsigned n_pre, n_flat, n_cl, n_tbd, n_sc, n_pipe; /* keys read per section */
+} irp_setup_t;
+
+enum {
+#define IRP_PIPE_ENUM(name) IRP_PIPE_##name,
+    IRP_PIPELINE_FIELDS(IRP_PIPE_ENUM) IRP_PIPE_COUNT
+};
+#define IRP_COUNT(F, K, T) +1u
+
+/* one "key value" line into s; 0 when the key is known and its value read */
+static int irp_read_field(irp_setup_t *s, const char *key, const char *val)
+{
+    char *e = NULL;
+    const char *dot = strchr(key, '.');
+    if (dot == NULL) {
+        return 1;
+    }
+    const size_t sl = (size_t)(dot - key);
+    const char *f = dot + 1;
+#define IRP_SEC(name) (sl == sizeof(name) - 1u && strncmp(key, name, sl) == 0)
+#define IRP_RD_U(c, F, T) (c).F = (T)strtoull(val, &e, 10)
+#define IRP_RD_I(c, F, T) (c).F = (T)strtoll(val, &e, 10)
+#define IRP_RD_R(c, F, T)                                   \
+    do {                                                    \
+        const uint32_t u_ = (uint32_t)strtoul(val, &e, 16); \
+        memcpy(&(c).F, &u_, sizeof u_);                     \
+    } while (0)
+    if (IRP_SEC("pipeline")) {
+        unsigned k = 0u;
+#define IRP_RD_PIPE(name)                          \
+    if (strcmp(f, #name) == 0) {                   \
+        s->pipe[k] = strtoull(val, &e, 10);        \
+        s->n_pipe++;                               \
+        return e == val;                           \
+    }                                              \
+    k++;
+        IRP_PIPELINE_FIELDS(IRP_RD_PIPE)
+        return 1;
+    }
+#define IRP_RD_PRE(F, K, T)      \
+    if (strcmp(f, #F) == 0) {    \
+        IRP_RD_##K(s->pre, F, T); \
+        s->n_pre++;              \
+        return e == val;         \
+    }
+#define IRP_RD_FLAT(F, K, T)      \
+    if (strcmp(f, #F) == 0) {     \
+        IRP_RD_##K(s->flat, F, T); \
+        s->n_flat++;              \
+        return e == val;          \
+    }
+#define IRP_RD_CL(F, K, T)      \
+    if (strcmp(f, #F) == 0) {   \
+        IRP_RD_##K(s->cl, F, T); \
+        s->n_cl++;              \
+        return e == val;        \
+    }
+#define IRP_RD_TBD(F, K, T)      \
+    if (strcmp(f, #F) == 0) {    \
+        IRP_RD_##K(s->tbd, F, T); \
+        s->n_tbd++;              \
+        return e == val;         \
+    }
+#define IRP_RD_SC(F, K, T)      \
+    if (strcmp(f, #F) == 0) {   \
+        IRP_RD_##K(s->sc, F, T); \
+        s->n_sc++;              \
+        return e == val;        \
+    }
+    if (IRP_SEC("pre")) {
+        IRP_PRE_FIELDS(IRP_RD_PRE)
+    } else if (IRP_SEC("flat")) {
+        IRP_FLAT_FIELDS(IRP_RD_FLAT)
+    } else if (IRP_SEC("clutter")) {
+        IRP_CLUTTER_FIELDS(IRP_RD_CL)
+    } else if (IRP_SEC("tbd")) {
+        IRP_TBD_FIELDS(IRP_RD_TBD)
+    } else if (IRP_SEC("scene")) {
+        IRP_SCENE_FIELDS(IRP_RD_SC)
+    }
+    return 1;
+}
+
+/* probe.cfg into s (every struct from its defaults, then every listed field of the sections
+ * the pipeline runs); 0 on success */
+static int irp_read_setup(const char *path, irp_setup_t *s)
+{
+    memset(s, 0, sizeof *s);
+    pft_pre_config_default(&s->pre);
+    pft_pre_flat_config_default(&s->flat);
+    pft_pre_clutter_config_default(&s->cl);
+    pft_tbd_config_default(&s->tbd);
+    pft_tbd_scene_config_default(&s->sc);
+    FILE *in = fopen(path, "r");
+    if (in == NULL) {
+        fprintf(stderr, "ir_probe: cannot open %s\n", path);
+        return 1;
+    }
+    char line[256];
+    int ended = 0, numeric_ok = 0;
+#ifdef PFT_NUMERIC_Q16
+    const char *numeric = "q16";
+#else
+    const char *numeric = "float";
+#endif
+    while (!ended && fgets(line, (int)sizeof line, in) != NULL) {
+        char key[96], val[64];
+        if (line[0] == '#' || line[0] == '\n' || line[0] == '\r') {
+            continue;
+        }
+        if (strncmp(line, "end", 3u) == 0) {
+            ended = 1;
+            continue;
+        }
+        if (sscanf(line, "%95s %63s", key, val) != 2) {
+            fprintf(stderr, "ir_probe: %s: cannot read the line: %s", path, line);
+            fclose(in);
+            return 1;
+        }
+        if (strcmp(key, "numeric") == 0) {
+            if (strcmp(val, numeric) != 0) {
+                fprintf(stderr, "ir_probe: %s was written by a %s build, this is %s\n", path, val, numeric);
+                fclose(in);
+                return 1;
+            }
+            numeric_ok = 1;
+            continue;
+        }
+        if (irp_read_field(s, key, val) != 0) {
+            fprintf(stderr, "ir_probe: %s: unknown key or bad value: %s %s\n", path, key, val);
+            fclose(in);
+            return 1;
+        }
+    }
+    fclose(in);
+    const unsigned want_pre = 0u IRP_PRE_FIELDS(IRP_COUNT), want_flat = 0u IRP_FLAT_FIELDS(IRP_COUNT),
+                   want_cl = 0u IRP_CLUTTER_FIELDS(IRP_COUNT), want_tbd = 0u IRP_TBD_FIELDS(IRP_COUNT),
+                   want_sc = 0u IRP_SCENE_FIELDS(IRP_COUNT);
+    if (!ended || !numeric_ok || s->n_pipe != (unsigned)IRP_PIPE_COUNT || s->n_pre != want_pre ||
+        s->n_tbd != want_tbd || s->n_flat != (s->pipe[IRP_PIPE_flat] ? want_flat : 0u) ||
+        s->n_cl != (s->pipe[IRP_PIPE_clutter] ? want_cl : 0u) ||
+        s->n_sc != (s->pipe[IRP_PIPE_scene] ? want_sc : 0u)) {
+        fprintf(stderr, "ir_probe: %s is incomplete (keys: pipeline %u/%u, pre %u/%u, flat %u, clutter %u, tbd %u/%u, scene %u; end %d, numeric %d)\n",
+                path, s->n_pipe, (unsigned)IRP_PIPE_COUNT, s->n_pre, want_pre, s->n_flat, s->n_cl, s->n_tbd,
+                want_tbd, s->n_sc, ended, numeric_ok);
+        return 1;
+    }
+    return 0;
+}
+
+/* the state of one frame of mode -c, shared by its measured calls */
+typedef struct {
+    irp_setup_t *s;
+    pft_pre_t *pre;
+    pft_pre_flat_t *flat;
+    pft_pre_clutter_t *cl;
+    pft_tbd_t *tbd;
+    pft_tbd_scene_t *scn;
+    pft_frame_t raw;     /* the frame as the sensor gives it (U16) */
+    uint16_t *buf;       /* the stage's input copy and residual (pre.inplace), else the flat step's copy of the residual */
+    pft_frame_t res;     /* the residual after the last call */
+    pft_frame_t mf, tf;  /* the map's and the manager's frames (clutter_step, IrPipeline::step) */
+    pft_pre_stats_t st;
+    int ev;
+    pft_tbd_track_t *tr, *tent;     /* max_targets each */
+    pft_tbd_scene_track_t *sin;     /* 2 max_targets */
+    pft_tbd_scene_out_t *sout;
+    size_t n_rep;                   /* reported tracks after the scene test, in tr[0..n_rep) */
+} irp_flight_t;
+
+static pft_status_t irp_f_stage(void *ctx)
+{
+    irp_flight_t *F = (irp_flight_t *)ctx;
+    if (F->s->pre.inplace) {
+        pft_frame_t in = F->raw;
+        in.data = F->buf;
+        return pft_pre_update_inplace(F->pre, &in, F->buf);
+    }
+    return pft_pre_update(F->pre, &F->raw);
+}
+
+static pft_status_t irp_f_flat(void *ctx)
+{
+    irp_flight_t *F = (irp_flight_t *)ctx;
+    return pft_pre_flat_update(F->flat, &F->res, (int16_t *)(void *)F->buf,
+                               F->s->pipe[IRP_PIPE_flat_relative] ? &F->raw : NULL, F->ev != 0);
+}
+
+static pft_status_t irp_f_map(void *ctx)
+{
+    irp_flight_t *F = (irp_flight_t *)ctx;
+    return F->s->cl.inplace ? pft_pre_clutter_update_inplace(F->cl, &F->mf, (int16_t *)(uintptr_t)F->mf.data,
+                                                             F->st.shift[0], F->st.shift[1], F->ev != 0)
+                            : pft_pre_clutter_update(F->cl, &F->mf, F->st.shift[0], F->st.shift[1], F->ev != 0);
+}
+
+static pft_status_t irp_f_manager(void *ctx)
+{
+    irp_flight_t *F = (irp_flight_t *)ctx;
+    return pft_tbd_update(F->tbd, &F->tf);
+}
+
+/* after the manager (IrPipeline::step and scene_test): its reported (and with scene_tentative
+ * its tentative, age > 0) tracks through the scene-motion test, the map raised under those
+ * found moving with the scene, the reported ones kept in tr[0..n_rep) */
+static pft_status_t irp_f_after(void *ctx)
+{
+    irp_flight_t *F = (irp_flight_t *)ctx;
+    const size_t mt = F->s->tbd.max_targets;
+    size_t n = pft_tbd_tracks(F->tbd, F->tr, mt);
+    if (n > mt) {
+        n = mt;
+    }
+    F->n_rep = n;
+    if (!F->s->pipe[IRP_PIPE_scene]) {
+        return PFT_OK;
+    }
+    size_t n_all = n;
+    for (size_t i = 0; i < n; ++i) {
+        F->sin[i].id = F->tr[i].id;
+        F->sin[i].x = F->tr[i].x;
+        F->sin[i].y = F->tr[i].y;
+        F->sin[i].tentative = false;
+        F->sin[i].pos_var = pft_add(F->tr[i].pos_cov[0], F->tr[i].pos_cov[2]);
+        F->sin[i].p_exist = F->tr[i].p_exist;
+    }
+    if (F->s->pipe[IRP_PIPE_scene_tentative]) {
+        size_t nt = pft_tbd_tentative(F->tbd, F->tent, mt);
+        if (nt > mt) {
+            nt = mt;
+        }
+        for (size_t k = 0; k < nt; ++k) {
+            const pft_tbd_track_t *r = &F->tent[k];
+            if (r->age == 0u) {
+                continue;
+            }
+            F->sin[n_all].id = r->id;
+            F->sin[n_all].x = r->x;
+            F->sin[n_all].y = r->y;
+            F->sin[n_all].tentative = true;
+            F->sin[n_all].pos_var = pft_add(r->pos_cov[0], r->pos_cov[2]);
+            F->sin[n_all].p_exist = r->p_exist;
+            n_all++;
+        }
+    }
+    const pft_status_t s = pft_tbd_scene_update(F->scn, F->sin, n_all, F->ev ? F->st.shift[0] : 0,
+                                                F->ev ? F->st.shift[1] : 0, F->sout);
+    if (s != PFT_OK) {
+        return s;
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < n_all; ++i) {
+        if (F->sout[i].decision == PFT_TBD_SCENE_CLUTTER && F->s->pipe[IRP_PIPE_clutter]) {
+            (void)pft_pre_clutter_raise(F->cl, F->sout[i].px, F->sout[i].py, 16u * 1024u);
+        }
+        if (i < n && F->sout[i].decision == PFT_TBD_SCENE_REPORT) {
+            F->tr[kept++] = F->tr[i];
+        }
+    }
+    F->n_rep = kept;
+    return PFT_OK;
+}
+
+static uint32_t irp_bits(pft_real_t v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
+/* ir_probe -c PROBE.CFG IN.u16 FRAMES: see the top of the file */
+static int run_flight(int argc, char **argv)
+{
+    if (argc != 5) {
+        fprintf(stderr, "usage: ir_probe -c PROBE.CFG IN.u16 FRAMES\n");
+        return 2;
+    }
+    static irp_setup_t S;
+    if (irp_read_setup(argv[2], &S) != 0) {
+        return 2;
+    }
+    const uint32_t frames = (uint32_t)strtoul(argv[4], NULL, 10);
+    const uint16_t W = S.pre.width, H = S.pre.height;
+    const size_t npix = (size_t)W * H;
+    const char *field = NULL;
+    if (pft_pre_config_check(&S.pre, &field) != PFT_OK ||
+        (S.pipe[IRP_PIPE_flat] && pft_pre_flat_config_check(&S.flat, &field) != PFT_OK) ||
+        (S.pipe[IRP_PIPE_clutter] && pft_pre_clutter_config_check(&S.cl, &field) != PFT_OK) ||
+        pft_tbd_config_check(&S.tbd, &field) != PFT_OK ||
+        (S.pipe[IRP_PIPE_scene] && pft_tbd_scene_config_check(&S.sc, &field) != PFT_OK)) {
+        fprintf(stderr, "ir_probe: configuration refused (field %s)\n", field ? field : "?");
+        return 2;
+    }
+    const size_t pre_b = pft_pre_workspace_size(&S.pre);
+    const size_t flat_b = S.pipe[IRP_PIPE_flat] ? pft_pre_flat_workspace_size(&S.flat) : 0u;
+    const size_t cl_b = S.pipe[IRP_PIPE_clutter] ? pft_pre_clutter_workspace_size(&S.cl) : 0u;
+    const size_t tbd_b = pft_tbd_workspace_size(&S.tbd);
+    const size_t scn_b = S.pipe[IRP_PIPE_scene] ? pft_tbd_scene_workspace_size(&S.sc) : 0u;
+    const size_t mt = S.tbd.max_targets;
+    printf("workspace bytes: stage %lu, flat field %lu, clutter map %lu, manager %lu, scene test %lu, frame and copy %lu\n",
+           (unsigned long)pre_b, (unsigned long)flat_b, (unsigned long)cl_b, (unsigned long)tbd_b,
+           (unsigned long)scn_b, (unsigned long)(npix * 4u));
+    static irp_flight_t F;
+    memset(&F, 0, sizeof F);
+    F.s = &S;
+    uint16_t *raw = arena_take(npix * 2u);
+    F.buf = arena_take(npix * 2u);
+    void *pre_w = arena_take(pre_b), *flat_w = flat_b ? arena_take(flat_b) : raw,
+         *cl_w = cl_b ? arena_take(cl_b) : raw, *tbd_w = arena_take(tbd_b),
+         *scn_w = scn_b ? arena_take(scn_b) : raw;
+    F.tr = arena_take(mt * sizeof *F.tr);
+    F.tent = arena_take(mt * sizeof *F.tent);
+    F.sin = arena_take(2u * mt * sizeof *F.sin);
+    F.sout = arena_take(2u * mt * sizeof *F.sout);
+    if (raw == NULL || F.buf == NULL || pre_w == NULL || flat_w == NULL || cl_w == NULL || tbd_w == NULL ||
+        scn_w == NULL || F.tr == NULL || F.tent == NULL || F.sin == NULL || F.sout == NULL) {
+        fprintf(stderr, "ir_probe: arena of %lu bytes too small (needs about %lu)\n", (unsigned long)IRP_ARENA_BYTES,
+                (unsigned long)(npix * 4u + pre_b + flat_b + cl_b + tbd_b + scn_b +
+                                mt * (2u * sizeof *F.tr + 2u * sizeof *F.sin + 2u * sizeof *F.sout) + 96u));
+        return 3;
+    }
+    static pft_pre_t pre;
+    static pft_pre_flat_t flat;
+    static pft_pre_clutter_t cl;
+    static pft_tbd_t tbd;
+    static pft_tbd_scene_t scn;
+    if (pft_pre_init(&pre, &S.pre, pre_w, pre_b) != PFT_OK ||
+        (flat_b && pft_pre_flat_init(&flat, &S.flat, flat_w, flat_b) != PFT_OK) ||
+        (scn_b && pft_tbd_scene_init(&scn, &S.sc, scn_w, scn_b) != PFT_OK) ||
+        (cl_b && pft_pre_clutter_init(&cl, &S.cl, cl_w, cl_b) != PFT_OK) ||
+        pft_tbd_init(&tbd, &S.tbd, tbd_w, tbd_b) != PFT_OK) {
+        fprintf(stderr, "ir_probe: init failed\n");
+        return 1;
+    }
+    F.pre = &pre;
+    F.flat = &flat;
+    F.cl = &cl;
+    F.tbd = &tbd;
+    F.scn = &scn;
+    FILE *in = fopen(argv[3], "rb");
+    if (in == NULL) {
+        fprintf(stderr, "ir_probe: cannot open %s\n", argv[3]);
+        return 1;
+    }
+    uint64_t h_res = 14695981039346656037ull, h_flat = h_res, h_map = h_res, h_trk = h_res;
+    static const char *const names[5] = {"stage", "flat", "map", "manager", "after"};
+    for (uint32_t seq = 1; seq <= frames; ++seq) {
+        if (fread(raw, 2u, npix, in) != npix) {
+            fprintf(stderr, "ir_probe: %s holds fewer than %lu frames\n", argv[3], (unsigned long)frames);
+            return 1;
+        }
+        /* the frame as the host's u16_frame makes it (ir_commands.cpp) */
+        memset(&F.raw, 0, sizeof F.raw);
+        F.raw.data = raw;
+        F.raw.width = W;
+        F.raw.height = H;
+        F.raw.stride_bytes = 2u * W;
+        F.raw.format = PFT_PIX_U16;
+        F.raw.bit_depth = (uint8_t)S.pipe[IRP_PIPE_bits];
+        F.raw.seq = seq;
+        F.raw.timestamp_us = (uint64_t)(seq - 1u) * 40000u;
+        if (S.pre.inplace) {
+            memcpy(F.buf, raw, npix * 2u); /* the pipeline's own copy (IrPipeline::preprocess) */
+        }
+        pft_status_t s = PFT_OK;
+        uint64_t h_map_frame = 14695981039346656037ull;
+        for (int k = 0; k < 5 && s == PFT_OK; ++k) {
+            irp_call_t call;
+            memset(&call, 0, sizeof call);
+            call.ctx = &F;
+            if (k == 0) {
+                call.fn = irp_f_stage;
+            } else if (k == 1 && S.pipe[IRP_PIPE_flat]) {
+                call.fn = irp_f_flat;
+            } else if (k == 2 && S.pipe[IRP_PIPE_clutter]) {
+                call.fn = irp_f_map;
+            } else if (k == 3) {
+                call.fn = irp_f_manager;
+            } else if (k == 4) {
+                call.fn = irp_f_after;
+            }
+            if (k == 2) {
+                /* the map's frame (clutter_step) */
+                memset(&F.mf, 0, sizeof F.mf);
+                F.mf.data = F.res.data;
+                F.mf.width = W;
+                F.mf.height = H;
+                F.mf.stride_bytes = F.res.stride_bytes;
+                F.mf.format = PFT_PIX_RES16;
+                F.mf.bit_depth = 16u;
+            } else if (k == 3) {
+                /* the manager's frame (IrPipeline::step): the residual, or all masked without
+                 * evidence (the buffer is not read again this frame); the stage's shift first
+                 * with integ_shift */
+                memset(&F.tf, 0, sizeof F.tf);
+                F.tf.data = F.res.data;
+                F.tf.stride_bytes = F.res.stride_bytes;
+                if (!F.ev) {
+                    int16_t *b = (int16_t *)(void *)F.buf;
+                    for (size_t i = 0; i < npix; ++i) {
+                        b[i] = PFT_RES16_MASKED;
+                    }
+                    F.tf.data = F.buf;
+                    F.tf.stride_bytes = 2u * W;
+                }
+                F.tf.width = W;
+                F.tf.height = H;
+                F.tf.format = PFT_PIX_RES16;
+                F.tf.bit_depth = 16u;
+                F.tf.seq = seq;
+                F.tf.timestamp_us = (uint64_t)seq * 1000000u;
+                if (S.pipe[IRP_PIPE_integ_shift] && F.ev) {
+                    s = pft_tbd_set_shift(&tbd, to_real(F.st.shift[0] / 65536.0), to_real(F.st.shift[1] / 65536.0));
+                    if (s != PFT_OK) {
+                        break;
+                    }
+                }
+            }
+            s = irp_measured(&call);
+            if (s != PFT_OK) {
+                fprintf(stderr, "ir_probe: frame %lu: %s: %s\n", (unsigned long)seq, names[k], pft_status_str(s));
+                return 1;
+            }
+            if (k == 0) {
+                pft_pre_stats(&pre, &F.st);
+                pft_pre_frame(&pre, &F.res);
+                h_res = fnv1a_frame(h_res, &F.res);
+                F.ev = (F.st.flags & (PFT_PRE_FLAG_CONSTANT | PFT_PRE_FLAG_ALL_MASKED | PFT_PRE_FLAG_REG_LOST)) == 0u;
+                if (S.pipe[IRP_PIPE_flat] && !S.pre.inplace) {
+                    /* the flat step corrects a copy of the residual (IrPipeline::preprocess) */
+                    for (uint32_t r = 0; r < H; ++r) {
+                        memcpy(F.buf + (size_t)r * W, (const unsigned char *)F.res.data + (size_t)r * F.res.stride_bytes,
+                               2u * (size_t)W);
+                    }
+                }
+                if (S.pipe[IRP_PIPE_flat]) {
+                    F.res.data = F.buf;
+                    F.res.stride_bytes = 2u * W;
+                }
+            } else if (k == 1 && S.pipe[IRP_PIPE_flat]) {
+                h_flat = fnv1a_frame(h_flat, &F.res);
+            } else if (k == 2 && S.pipe[IRP_PIPE_clutter]) {
+                pft_frame_t co;
+                s = pft_pre_clutter_frame(&cl, &co);
+                if (s != PFT_OK) {
+                    fprintf(stderr, "ir_probe: frame %lu: clutter map: %s\n", (unsigned long)seq, pft_status_str(s));
+                    return 1;
+                }
+                h_map = fnv1a_frame(h_map, &co);
+                h_map_frame = fnv1a_frame(h_map_frame, &co);
+                F.res.data = co.data;
+                F.res.stride_bytes = co.stride_bytes;
+            }
+        }
+        printf("F %lu flags %lu shift %ld %ld ev %d map %016llx tracks %lu", (unsigned long)seq,
+               (unsigned long)F.st.flags, (long)F.st.shift[0], (long)F.st.shift[1], F.ev,
+               (unsigned long long)h_map_frame, (unsigned long)F.n_rep);
+        for (size_t i = 0; i < F.n_rep; ++i) {
+            const pft_tbd_track_t *t = &F.tr[i];
+            printf(" %lu:%08lx,%08lx,%08lx,%08lx,%08lx,%08lx", (unsigned long)t->id, (unsigned long)irp_bits(t->x),
+                   (unsigned long)irp_bits(t->y), (unsigned long)irp_bits(t->vx), (unsigned long)irp_bits(t->vy),
+                   (unsigned long)irp_bits(t->intensity), (unsigned long)irp_bits(t->p_exist));
+            h_trk = fnv1a_track(h_trk, t);
+        }
+        printf("\n");
+    }
+    fclose(in);
+    printf("ir_probe: checksums (FNV-1a 64) residual %016llx, flat %016llx, map %016llx, tracks %016llx\n",
+           (unsigned long long)h_res, (unsigned long long)h_flat, (unsigned long long)h_map,
+           (unsigned long long)h_trk);
+    printf("ir_probe: done, %lu frames\n", (unsigned long)frames);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 2 && strcmp(argv[1], "-c") == 0) {
+        return run_flight(argc, argv);
+    }
     if (argc < 8) {
         fprintf(stderr, "usage: ir_probe IN.u16 W H BITS FRAMES SEED PARTICLES [inplace|copy [BLOCK [3|2|1 [MEAN PERSIST ALPHA [MAP8 [ANCHOR]]]]]]\n");
         return 2;
