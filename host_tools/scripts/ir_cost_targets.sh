@@ -41,7 +41,8 @@
 #                 The table gives each call's mean per frame over frames 1..IRC_SPLIT and
 #                 IRC_SPLIT+1..N (default 13) and whether the checksums of every call's outputs
 #                 equal x86 float's / q16's (expect.txt of the host pipeline is compared on x86).
-#   IRC_SEED=1  IRC_BACKGROUNDS=DIR (passed to pft bench as --backgrounds DIR when set)
+#   IRC_SEED=1  IRC_BACKGROUNDS=DIR (passed to pft bench as --backgrounds DIR for the scenarios
+#                 whose background source is "folder")
 # Every long job runs under nice; one job at a time.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -113,7 +114,9 @@ if [ -n "${IRC_FLIGHT:-}" ]; then
       name=$(basename "$sc" .json)
       d=$out/probe-$name-$n
       if [ ! -f "$d/probe.cfg" ]; then
-        nice -n 10 "$p" bench --scenario "$sc" --frames "$N" --seed "$seed" -q "${bgs[@]}" --probe-out "$d" >/dev/null
+        b=("${bgs[@]}")   # --backgrounds only for a scenario of background images
+        grep -q '"source": *"folder"' "$sc" || b=()
+        nice -n 10 "$p" bench --scenario "$sc" --frames "$N" --seed "$seed" -q "${b[@]}" --probe-out "$d" >/dev/null
       fi
     done
   done
