@@ -7,8 +7,9 @@
  * all-dead and all-saturated frames stay finite and are reported; refused input leaves the
  * instance and the workspace byte-identical. The pass's residual row (pft_pre_ares_span_,
  * internal, declared here) in its plain and split forms (the split one 8 pixels at a time with
- * SSE2 on x86-64) against known answers and a 64-bit reference, both k1; the update's clipped
- * gate (pft_pre_gate_clip_, internal) likewise in its plain and split forms. Frames are 96 x 72 (every target, Cortex-M under
+ * SSE2 on x86-64, NEON on AArch64) against known answers and a 64-bit reference, both k1; the
+ * update's clipped gate (pft_pre_gate_clip_, internal) likewise in its plain and split forms;
+ * the registration's view of the grid in its SSE2 (x86-64) and NEON (AArch64) forms. Frames are 96 x 72 (every target, Cortex-M under
  * QEMU included); scenes are made with per-column and per-row tables and integer products.
  */
 #include <math.h>
@@ -716,6 +717,78 @@ static void test_view_rows_sse2(void)
 #endif
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe);
+#endif
+
+/* AArch64's horizontal pass of the view of the anchored grid (pft_pre_view_h32_: NEON lanes of 8
+ * pixels on the 32-bit vertical blends, the pixels past the last whole block left to the
+ * caller's loop): known answers (the identity weights return v / 16 rounded, clamped to 0 and
+ * 65535), then every pixel equal to the 32-bit loop's (o[x] = (sum of w[i] v[x + i] + 2048) >> 12
+ * clamped) on random and extreme blends (the range of anchor_view_'s vertical pass,
+ * [-131070, 1179630], and beyond it), bilinear and cubic weights, rows of 0 .. 40 and 384
+ * pixels; the pixels it leaves keep their values. */
+static void test_view_h32_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { NX = 384 };
+    static int32_t v[NX + 3];
+    static uint16_t o[NX], want[NX];
+    const int32_t id[4] = {0, 256, 0, 0};
+    for (int32_t i = 0; i < NX + 3; ++i) {
+        v[i] = 16 * 100 * i; /* pixel x: tap x + 1, 100 (x + 1) */
+    }
+    v[3] = 16 * 70000; /* x 2: clamped to 65535 */
+    v[4] = -16 * 5;    /* x 3: clamped to 0 */
+    v[5] = 8;          /* x 4: (256 * 8 + 2048) >> 12 = 1 */
+    v[6] = 7;          /* x 5: (256 * 7 + 2048) >> 12 = 0 */
+    v[7] = 16 * 65535; /* x 6: 65535 */
+    memset(o, 0, sizeof(o));
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_view_h32_(v, id, o, 21)); /* 2 blocks */
+    const uint16_t k_want[8] = {100u, 200u, 65535u, 0u, 1u, 0u, 65535u, 800u};
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(k_want, o, 8);
+    for (int32_t x = 8; x < 16; ++x) {
+        TEST_ASSERT_EQUAL_UINT16((uint16_t)(100 * (x + 1)), o[x]);
+    }
+    for (int32_t x = 16; x < 22; ++x) {
+        TEST_ASSERT_EQUAL_UINT16(0u, o[x]); /* the loop's pixels: left */
+    }
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_view_h32_(v, id, o + 32, 7)); /* fewer than 8: none */
+    TEST_ASSERT_EQUAL_UINT16(0u, o[32]);
+    const int32_t wc[6][4] = {{-19, 147, 147, -19}, {0, 256, 0, 0}, {0, 77, 179, 0},
+                              {-9, 200, 72, -7}, {-16, 144, 144, -16}, {0, 0, 256, 0}};
+    uint32_t cases = 0u;
+    for (int32_t t = 0; t < 6 * 48; ++t) {
+        const int32_t *w = wc[t % 6];
+        const int32_t xe = t < 6 * 41 ? t / 6 : NX;
+        for (int32_t i = 0; i < NX + 3; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            const int32_t kind = (t / 6) % 4;
+            v[i] = kind == 0 ? (int32_t)(r % 1310701u) - 131070
+                             : (kind == 1 ? ((r & 1u) != 0u ? 1179630 : -131070)
+                                          : (kind == 2 ? ((r & 1u) != 0u ? 65535 * 16 : 0)
+                                                       : (int32_t)(r % 4194304u) - 2097152));
+        }
+        for (int32_t x = 0; x < NX; ++x) {
+            o[x] = 12345u;
+            want[x] = 12345u;
+        }
+        const int32_t nd = xe / 8 * 8; /* the pixels it does */
+        for (int32_t x = 0; x < nd; ++x) {
+            const int32_t sv = (w[0] * v[x] + w[1] * v[x + 1] + w[2] * v[x + 2] + w[3] * v[x + 3] + 2048) >> 12;
+            want[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
+        }
+        TEST_ASSERT_EQUAL_INT32(nd, pft_pre_view_h32_(v, w, o, xe));
+        TEST_ASSERT_EQUAL_UINT16_ARRAY(want, o, NX);
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(6u * 48u, cases);
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the 32-bit loop");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -727,5 +800,6 @@ int main(void)
     RUN_TEST(test_residual_span_split_and_plain);
     RUN_TEST(test_gate_clip_split_and_plain);
     RUN_TEST(test_view_rows_sse2);
+    RUN_TEST(test_view_h32_neon);
     return UNITY_END();
 }

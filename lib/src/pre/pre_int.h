@@ -154,14 +154,15 @@ void pft_pre_local_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc)
 void pft_pre_register_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
 void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *acc);
 /* The anchored pass's residual of row pixels [x0, x1] (pre_temporal.c, exported for its unit
- * test): r[x] from the vertical blends v (U * 16; with split, held as 128 vh + vl in the form of
- * pft_pre_vsplit_), the read weights wr and the frame row zl. */
+ * test): r[x] from the vertical blends v (U * 16; with split, held in the form of
+ * pft_pre_vsplit_: 128 vh + vl, on AArch64 with NEON the values themselves), the read weights wr
+ * and the frame row zl. */
 int32_t pft_pre_vsplit_(int32_t v);
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split);
 /* The anchored update's clipped gate (bg_gate_shift 0) of cells [ja, jb] of grid row b (storage
  * entry j + 1) from ring rows q (pre_temporal.c, exported for its unit test), in the plain form
- * or (split, x86-64) the split form where it applies. */
+ * or (split, x86-64 and AArch64) the split form where it applies. */
 void pft_pre_gate_clip_(const int32_t *const q[4], const int32_t w[4], const int32_t n[4], int32_t a15,
                         uint16_t *b, int32_t ja, int32_t jb, int32_t lim, bool split);
 #if defined(__SSE2__)
@@ -172,6 +173,10 @@ void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *
                         int32_t n);
 void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
                         const int32_t w[4], uint16_t *o, int32_t n);
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+/* bg_anchor on AArch64 (NEON): the registration's view's horizontal pass of the 32-bit form,
+ * pixels 0 .. 8 (xe / 8) - 1 from the vertical blends v; returns 8 (xe / 8) (pre_temporal.c). */
+int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe);
 #endif
 
 /* Integer square root of a 64-bit value (floor). */

@@ -11,6 +11,11 @@
 #if defined(__SSE2__)
 #include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_), the anchored residual (pft_pre_ares_span_),
                         * the gated update (PFT_PRE_GATE_SPLIT_) */
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 (the Cortex-A53 class): the same three kernels in NEON's forms on the 32-bit values
+ * (PFT_PRE_NEON_: anchor_view_'s horizontal pass, pft_pre_ares_span_, gate_clip_split_) */
+#include <arm_neon.h>
+#define PFT_PRE_NEON_ 1
 #endif
 
 /* Largest predicted standard deviation of a sub-pixel shift that is used (Q16.16 px). */
@@ -778,13 +783,15 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
 
 /* ------------------------------------------------------------------ the anchored residual */
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || defined(PFT_PRE_NEON_)
 /* Where the compiler has SSE2 (x86-64), the anchored pass's residual (pft_pre_ares_span_) reads
  * its vertical blends in a split form and takes its horizontal 4-tap blend as one 16-bit
  * multiply-add (pmaddwd) per tap and 4 pixels, with the clamps and the residual in 16-bit
  * lanes, instead of 32 x 32-bit products (SSE2 has none: pmuludq pairs and shuffles), 32-bit
- * clamps and the narrowing to 16 bits. AArch64 and the Cortex-M builds keep the 32-bit loop
- * (the same object code as before for the pass). */
+ * clamps and the narrowing to 16 bits. With NEON (AArch64) the "split" words are the 32-bit
+ * values themselves (vsplit_, vjoin_: the identity; NEON has 32-bit mla) and the blend's
+ * clamp, the narrowing and the residual take 16-bit lanes (sqrshrun, see ares_blocks_). The
+ * Cortex-M builds keep the 32-bit loop (the same object code as before for the pass). */
 #define PFT_PRE_RES_SPLIT_ 1
 #endif
 
@@ -796,7 +803,11 @@ static void hcubic_(const int32_t *vb, int32_t kx, const int32_t wx[4], int32_t 
  * w in [-255, 256] (-128 w within int16). */
 static inline int32_t vsplit_(int32_t v)
 {
+#if defined(PFT_PRE_NEON_)
+    return v; /* NEON's form reads the values themselves */
+#else
     return (v & 127) | (int32_t)((uint32_t)(v >> 7) << 16);
+#endif
 }
 
 int32_t pft_pre_vsplit_(int32_t v)
@@ -807,7 +818,11 @@ int32_t pft_pre_vsplit_(int32_t v)
 /* v of a word made by vsplit_. */
 static inline int32_t vjoin_(int32_t s)
 {
+#if defined(PFT_PRE_NEON_)
+    return s;
+#else
     return (s >> 16) * 128 + (s & 65535);
+#endif
 }
 
 #if defined(PFT_PRE_RES_SPLIT_)
@@ -816,6 +831,11 @@ static inline int32_t vjoin_(int32_t s)
  * warp_q8_ always are). */
 static bool res_split_ok_(const int32_t wx[4], const int32_t wy[4])
 {
+#if defined(PFT_PRE_NEON_)
+    (void)wx; /* NEON's form is the 32-bit loop's arithmetic: any weights */
+    (void)wy;
+    return true;
+#else
     int32_t sx = 0, sy = 0;
     bool ok = true;
     for (int32_t i = 0; i < 4; ++i) {
@@ -824,8 +844,54 @@ static bool res_split_ok_(const int32_t wx[4], const int32_t wy[4])
         sy += wy[i] < 0 ? -wy[i] : wy[i];
     }
     return ok && sx <= 512 && sy <= 512;
+#endif
 }
 
+#if defined(PFT_PRE_NEON_)
+/* pft_pre_ares_span_'s pixels x .. x + 8 n - 1 (n blocks of 8) with NEON, k1 a constant of each
+ * call: the 4-tap sum S of the 32-bit loop (mul, mla: the same int32 arithmetic), bx =
+ * (S + 2048) >> 12 clamped to [0, 65535] in one rounding, saturating narrowing to uint16
+ * (sqrshrun; its rounding is done before the saturation, in wider precision, as the loop's
+ * int32 add: |S| < 2^30). zl's low halves (uzp1) are zl for an unmasked pixel (0 .. 65535),
+ * its high halves' sign (uzp2, cmlt) is zl's. k1 0: with both biased by -32768 into int16 the
+ * saturating difference is e = zl - bx clamped to [-32768, 32767], then the lower clamp at
+ * -32767. k1 1: the unsigned halving difference (bx - zl) >> 1 (uhsub, exact before the
+ * narrowing: within [-32768, 32767]) is -ceil(e / 2) = t, so (e + 1) >> 1 clamped to +-32767 is
+ * -max(t, -32767). A masked pixel (zl < 0): PFT_RES16_MASKED. */
+static inline void ares_blocks_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x,
+                                int32_t n, const int32_t wr[4], const uint32_t k1)
+{
+    const int32x4_t w0 = vdupq_n_s32(wr[0]), w1 = vdupq_n_s32(wr[1]);
+    const int32x4_t w2 = vdupq_n_s32(wr[2]), w3 = vdupq_n_s32(wr[3]);
+    const uint16x8_t bias = vdupq_n_u16(32768u);
+    const int16x8_t rmin = vdupq_n_s16(-PFT_PRE_RMAX_), msk = vdupq_n_s16(PFT_RES16_MASKED);
+    for (int32_t i = 0; i < n; ++i, x += 8) {
+        const int32_t *q = v + x;
+        int32x4_t sa = vmulq_s32(vld1q_s32(q), w0);
+        int32x4_t sb = vmulq_s32(vld1q_s32(q + 4), w0);
+        sa = vmlaq_s32(sa, vld1q_s32(q + 1), w1);
+        sb = vmlaq_s32(sb, vld1q_s32(q + 5), w1);
+        sa = vmlaq_s32(sa, vld1q_s32(q + 2), w2);
+        sb = vmlaq_s32(sb, vld1q_s32(q + 6), w2);
+        sa = vmlaq_s32(sa, vld1q_s32(q + 3), w3);
+        sb = vmlaq_s32(sb, vld1q_s32(q + 7), w3);
+        const uint16x8_t bx = vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12);
+        const uint16x8_t za = vreinterpretq_u16_s32(vld1q_s32(zl + x));
+        const uint16x8_t zb = vreinterpretq_u16_s32(vld1q_s32(zl + x + 4));
+        const uint16x8_t zlo = vuzp1q_u16(za, zb);
+        const uint16x8_t masked = vcltzq_s16(vreinterpretq_s16_u16(vuzp2q_u16(za, zb)));
+        int16x8_t rr;
+        if (k1 == 0u) {
+            rr = vqsubq_s16(vreinterpretq_s16_u16(veorq_u16(zlo, bias)),
+                            vreinterpretq_s16_u16(veorq_u16(bx, bias)));
+            rr = vmaxq_s16(rr, rmin);
+        } else {
+            rr = vnegq_s16(vmaxq_s16(vreinterpretq_s16_u16(vhsubq_u16(bx, zlo)), rmin));
+        }
+        vst1q_s16(r + x, vbslq_s16(masked, msk, rr));
+    }
+}
+#else
 /* The weight pair (-w, -128 w) of a tap as a 32-bit word (low, high 16 bits). */
 static inline int32_t wpair_(int32_t w)
 {
@@ -877,12 +943,13 @@ static inline void ares_blocks_(const int32_t *v, const int32_t *zl, int16_t *r,
     }
 }
 #endif
+#endif
 
 /* The anchored pass's residual of row pixels [x0, x1]: the background bx (the 4-tap blend of
  * v[x] .. v[x + 3] with the read weights wr, clamped to [0, 65535]) and r[x] =
  * ((zl[x] - bx + k1) >> k1) clamped to +-PFT_PRE_RMAX_, PFT_RES16_MASKED where zl[x] < 0. With
  * split the words of v are vsplit_'s (res_split_ok_'s weights), taken 8 pixels at a time with
- * SSE2 where the compiler has it; the same values. */
+ * SSE2 or NEON where the compiler has it; the same values. */
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split)
 {
@@ -1035,8 +1102,9 @@ static void anchor_move_(pft_pre_t *p, int32_t dx, int32_t dy)
  * ls = sum of w vl from 16 x 16-bit products, with the clamp in 16-bit lanes, instead
  * of 32 x 32-bit products, 32-bit clamps and the narrowing to 16 bits, which SSE2 lacks
  * (pmuludq and shuffles). NEON has them (32-bit mla, shrn: the 32-bit pass is 39 AArch64
- * instructions per 8 pixels), and a scalar core (Cortex-M) would pay twice the multiplies:
- * those keep the 32-bit form (the same object code as before). Both passes are written with
+ * instructions per 8 pixels; view_h32_ takes its horizontal pass in 22), and a scalar core
+ * (Cortex-M) would pay twice the multiplies: those keep the 32-bit form (the same object code
+ * as before). Both passes are written with
  * SSE2 intrinsics (view_vrow_, view_hrow_): pmaddwd takes two taps' products
  * and their sum in one instruction, and the saturating pack makes the clamp; the last pixels
  * of a row (fewer than 8) take the same values from the scalar form. */
@@ -1199,6 +1267,46 @@ void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_
 }
 #endif
 
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), anchor_view_'s horizontal pass of the 32-bit form for pixels 0 .. 8 m - 1
+ * (m = xe / 8 blocks): o[x] = (sum of w[i] v[x + i] + 2048) >> 12 clamped to [0, 65535], the
+ * same int32 sum (mul, mla) and the rounding, clamp and narrowing in one instruction
+ * (sqrshrun: the rounding add in wider precision, then the unsigned saturation to 16 bits)
+ * instead of the add, shift, two clamps and narrowing of the loop gcc makes; reads
+ * v[0 .. 8 m + 2]. Returns 8 m, the first pixel left to the loop. */
+static inline void view_h8n_(const int32_t *q, int32x4_t w0, int32x4_t w1, int32x4_t w2,
+                             int32x4_t w3, uint16_t *o)
+{
+    int32x4_t sa = vmulq_s32(vld1q_s32(q), w0);
+    int32x4_t sb = vmulq_s32(vld1q_s32(q + 4), w0);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 1), w1);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 5), w1);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 2), w2);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 6), w2);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 3), w3);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 7), w3);
+    vst1q_u16(o, vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12));
+}
+
+static inline int32_t view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe)
+{
+    const int32x4_t w0 = vdupq_n_s32(w[0]), w1 = vdupq_n_s32(w[1]);
+    const int32x4_t w2 = vdupq_n_s32(w[2]), w3 = vdupq_n_s32(w[3]);
+    int32_t x = 0;
+    for (; x + 8 <= xe; x += 8) {
+        view_h8n_(v + x, w0, w1, w2, w3, o + x);
+    }
+    return x;
+}
+
+/* view_h32_ for a test: pixels 0 .. 8 (xe / 8) - 1 of a row of vertical blends v
+ * (v[0 .. xe + 2]), the rest (xe mod 8 pixels) left as they are; returns the pixels done. */
+int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe)
+{
+    return view_h32_(v, w, o, xe);
+}
+#endif
+
 static void anchor_view_(pft_pre_t *p)
 {
     const int32_t w = p->cfg.width, h = p->cfg.height, sw = w + 3;
@@ -1239,7 +1347,11 @@ static void anchor_view_(pft_pre_t *p)
         const int32_t *v = vb + gx.k;
         const int32_t w0 = gx.wr[0], w1 = gx.wr[1], w2 = gx.wr[2], w3 = gx.wr[3];
         const int32_t xe = w - gx.k; /* x < xe: x + k + 3 <= w + 2 */
-        for (int32_t x = 0; x < xe; ++x) { /* vectorisable */
+        int32_t xs = 0; /* the first pixel of the loop */
+#if defined(PFT_PRE_NEON_)
+        xs = view_h32_(v, gx.wr, o, xe);
+#endif
+        for (int32_t x = xs; x < xe; ++x) { /* vectorisable */
             const int32_t sv = (w0 * v[x] + w1 * v[x + 1] + w2 * v[x + 2] + w3 * v[x + 3] + 2048) >> 12;
             o[x] = (uint16_t)(sv < 0 ? 0 : (sv > 65535 ? 65535 : sv));
         }
@@ -1502,7 +1614,7 @@ typedef struct {
     const int32_t *q[4];
     int32_t w[4], n[4];
     int32_t wsh, ag, a15;
-    bool split; /* x86-64: gate_clip_split_ applies (gate_split_ok_) */
+    bool split; /* x86-64, AArch64: gate_clip_split_ applies (gate_split_ok_) */
 } gate_row_t;
 
 /* bg_gate: cells ja..jb of grid row b (storage entry j + 1) blended with the ring, gate_nb_
@@ -1554,12 +1666,66 @@ static inline void gate_run_loop_(const gate_row_t *g, uint16_t *b, int32_t ja, 
  * weights are within [-32767, 32767] and a15 within [1, 32767] (both pairs int16), any lim in
  * [1, 65535]; else, and for the last cells of a span, the 32-bit loop. The weights are Q8 with |sum| < 512
  * and a valid ring value within [-2^21, 2^21), so |S| < 2^30 and S + 2048 - 2^27 stays in int32;
- * a lane with an invalid tap may wrap, and is stored back unchanged. AArch64 and the Cortex-M builds keep
- * the 32-bit loop (the same object code as before for the update). */
+ * a lane with an invalid tap may wrap, and is stored back unchanged. AArch64 takes NEON's form
+ * below; the Cortex-M builds keep the 32-bit loop (the same object code as before for the update). */
+#define PFT_PRE_GATE_SPLIT_ 1
+#elif defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), gate_clip_split_ takes 8 cells at a time on the 32-bit ring values
+ * themselves (NEON has 32-bit mla: the loop's own int32 sum), with the rest in 16-bit lanes:
+ * the value rounded, clamped to [0, 65535] and narrowed in one instruction (sqrshrun), the
+ * innovation's clip as the value c clamped to [bx - lim, bx + lim] (unsigned saturating
+ * bounds: beyond 0 or 65535 the bound cannot act on c in [0, 65535], nor does the loop's clip
+ * of e = c - bx act there), e = c - bx widened to int32 (usubl), e a15 (|e| <= 65535,
+ * a15 <= 32768: within int32, as in the loop), (e a15 + 16384) >> 15 narrowed (rshrn: the
+ * low 16 bits, which are all the sum with bx modulo 2^16 needs). Any weights, a15 and lim of the
+ * loop (gate_split_ok_ is true); a lane with an invalid tap is stored back unchanged. */
 #define PFT_PRE_GATE_SPLIT_ 1
 #endif
 
-#if defined(PFT_PRE_GATE_SPLIT_)
+#if defined(PFT_PRE_GATE_SPLIT_) && defined(PFT_PRE_NEON_)
+/* The lanes of 8 ring values at q (two int32x4) equal to n, as 8 x 16-bit masks. */
+static inline uint16x8_t gate_inv8_(int32x4_t a, int32x4_t c, int32x4_t n)
+{
+    return vuzp1q_u16(vreinterpretq_u16_u32(vceqq_s32(a, n)), vreinterpretq_u16_u32(vceqq_s32(c, n)));
+}
+
+/* gate_run_loop_ (clip) of cells ja .. ja + 8 n - 1 in NEON's form above. */
+static void gate_clip_split_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t n, int32_t lim)
+{
+    const int32x4_t w0 = vdupq_n_s32(g->w[0]), w1 = vdupq_n_s32(g->w[1]);
+    const int32x4_t w2 = vdupq_n_s32(g->w[2]), w3 = vdupq_n_s32(g->w[3]);
+    const int32x4_t n0 = vdupq_n_s32(g->n[0]), n1 = vdupq_n_s32(g->n[1]);
+    const int32x4_t n2 = vdupq_n_s32(g->n[2]), n3 = vdupq_n_s32(g->n[3]);
+    const uint16x8_t lv = vdupq_n_u16((uint16_t)lim);
+    const int32_t a15 = g->a15;
+    const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t j = ja + 8 * i;
+        const int32x4_t a0 = vld1q_s32(q0 + j), c0 = vld1q_s32(q0 + j + 4);
+        const int32x4_t a1 = vld1q_s32(q1 + j), c1 = vld1q_s32(q1 + j + 4);
+        const int32x4_t a2 = vld1q_s32(q2 + j), c2 = vld1q_s32(q2 + j + 4);
+        const int32x4_t a3 = vld1q_s32(q3 + j), c3 = vld1q_s32(q3 + j + 4);
+        const uint16x8_t inv = vorrq_u16(vorrq_u16(gate_inv8_(a0, c0, n0), gate_inv8_(a1, c1, n1)),
+                                         vorrq_u16(gate_inv8_(a2, c2, n2), gate_inv8_(a3, c3, n3)));
+        int32x4_t sa = vmulq_s32(a0, w0);
+        int32x4_t sb = vmulq_s32(c0, w0);
+        sa = vmlaq_s32(sa, a1, w1);
+        sb = vmlaq_s32(sb, c1, w1);
+        sa = vmlaq_s32(sa, a2, w2);
+        sb = vmlaq_s32(sb, c2, w2);
+        sa = vmlaq_s32(sa, a3, w3);
+        sb = vmlaq_s32(sb, c3, w3);
+        const uint16x8_t bx = vld1q_u16(b + j + 1);
+        uint16x8_t sv = vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12);
+        sv = vminq_u16(vmaxq_u16(sv, vqsubq_u16(bx, lv)), vqaddq_u16(bx, lv));
+        const int32x4_t ea = vreinterpretq_s32_u32(vsubl_u16(vget_low_u16(sv), vget_low_u16(bx)));
+        const int32x4_t eb = vreinterpretq_s32_u32(vsubl_high_u16(sv, bx));
+        const int16x8_t d = vrshrn_high_n_s32(vrshrn_n_s32(vmulq_n_s32(ea, a15), 15), vmulq_n_s32(eb, a15), 15);
+        const uint16x8_t nb = vaddq_u16(bx, vreinterpretq_u16_s16(d));
+        vst1q_u16(b + j + 1, vbslq_u16(inv, bx, nb));
+    }
+}
+#elif defined(PFT_PRE_GATE_SPLIT_)
 /* The pair (a, b) of 16-bit values as a 32-bit word (low, high). */
 static inline int32_t pair16_(int32_t a, int32_t b)
 {
@@ -1623,10 +1789,14 @@ static void gate_clip_split_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
 
 #endif
 
-/* Whether gate_clip_split_ applies (see PFT_PRE_GATE_SPLIT_): false without SSE2. */
+/* Whether gate_clip_split_ applies (see PFT_PRE_GATE_SPLIT_): false without SSE2 or NEON. */
 static bool gate_split_ok_(const int32_t w[4], int32_t a15)
 {
-#if defined(PFT_PRE_GATE_SPLIT_)
+#if defined(PFT_PRE_NEON_)
+    (void)w; /* NEON's form is the loop's arithmetic */
+    (void)a15;
+    return true;
+#elif defined(PFT_PRE_GATE_SPLIT_)
     bool ok = a15 >= 1 && a15 <= 32767;
     for (int32_t i = 0; i < 4; ++i) {
         ok = ok && w[i] >= -32767 && w[i] <= 32767;
@@ -2504,7 +2674,7 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
     const int32_t *ovlo = g.ovlo, *ovhi = g.ovhi;
     /* residual: pixels whose read taps are all valid cells */
     const int32_t xa = clampi_(ovlo[0] - gx->k - gx->rlo, 0, w), xb = clampi_(ovhi[0] - gx->k - gx->rhi, -1, w - 1);
-    /* the residual's vertical blends in pft_pre_ares_span_'s split form (x86-64 only) */
+    /* the residual's vertical blends in pft_pre_ares_span_'s split form (x86-64, AArch64) */
 #if defined(PFT_PRE_RES_SPLIT_)
     const bool rsplit = res_split_ok_(gx->wr, gy->wr);
 #else
