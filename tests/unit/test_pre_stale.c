@@ -190,6 +190,52 @@ static void test_same_rewarped_dead(void) { same_without_block(false, true); }
 static void test_same_anchored(void) { same_without_block(true, false); }
 static void test_same_anchored_dead(void) { same_without_block(true, true); }
 
+/* The anchored grid's ages under the block, known answers: a still scene (the registration
+ * off: shift 0, the grid on the frame), so that cell (j, y) reads pixel (j, y). On the first
+ * frame a masked cell's age is its distance to the last unmasked pixel of its row (cell BX0 + i:
+ * i + 1); each later frame adds one to a cell whose tap is masked, at most 127 (never learnt),
+ * and the largest age of the row (srow) follows; a cell without a masked tap stays 0. The
+ * frames past 118 take the inner cells across 127 one by one. (stale_anchor_urow_'s age update
+ * and its row maximum: in byte lanes on x86-64 and AArch64, in 32-bit form on Cortex-M; the
+ * same answers on every target.) */
+static void test_anchored_ages_known(void)
+{
+    pft_pre_config_t c;
+    config(&c, true, false, 16u);
+    c.reg_search = 0u;
+    c.reg_iters = 0u;
+    pft_pre_t p;
+    init(&p, &c);
+    g_rs = 2463534242u;
+    const int sw = W + 3, y = BY0 + 4;
+    const uint8_t *ar = NULL;
+    for (uint32_t k = 1u; k <= 131u; ++k) {
+        render(0.0, 0.0, true, false);
+        pft_frame_t f = pft_test_u16_frame(g_img, W, H, 14u, k);
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_update(&p, &f));
+        ar = p.sage + (size_t)(y + 1) * (size_t)sw + 1u; /* ar[j]: cell j of grid row y */
+        if (k != 1u && k != 2u && k != 60u && k != 118u && k != 121u && k != 124u && k != 131u) {
+            continue;
+        }
+        for (int i = 2; i <= BX1 - BX0 - 3; ++i) { /* the inner cells: every tap masked */
+            const uint32_t want = i + k > 127u ? 127u : (uint32_t)i + k;
+            TEST_ASSERT_EQUAL_UINT32_MESSAGE(want, ar[BX0 + i], "age of an inner cell of the block");
+        }
+        TEST_ASSERT_EQUAL_UINT8(0u, ar[10]); /* the block's row, left of it */
+        TEST_ASSERT_EQUAL_UINT8(0u, ar[BX1 + 6]);
+        TEST_ASSERT_EQUAL_UINT8(0u, p.sage[(size_t)(10 + 1) * (size_t)sw + 1u + 50u]); /* row 10 */
+        TEST_ASSERT_EQUAL_UINT8(0u, p.srow[10 + 1]);
+        uint32_t mx = 0u; /* the row's largest age, as srow */
+        for (int j = -1; j <= W + 1; ++j) {
+            mx = ar[j] > mx ? ar[j] : mx;
+        }
+        TEST_ASSERT_EQUAL_UINT32(mx, p.srow[y + 1]);
+        TEST_ASSERT_TRUE(mx >= (BX1 - BX0 - 3u + k > 127u ? 127u : BX1 - BX0 - 3u + k));
+    }
+    TEST_ASSERT_EQUAL_UINT8(127u, ar[BX0 + 2]); /* the last frame: all at 127 */
+    TEST_ASSERT_EQUAL_UINT8(127u, p.srow[y + 1]);
+}
+
 static void test_config(void)
 {
     pft_pre_config_t c;
@@ -252,5 +298,6 @@ int main(void)
     RUN_TEST(test_same_anchored);
     RUN_TEST(test_same_anchored_dead);
     RUN_TEST(test_refused_changes_nothing);
+    RUN_TEST(test_anchored_ages_known);
     return UNITY_END();
 }
