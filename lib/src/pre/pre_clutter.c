@@ -12,6 +12,10 @@
 #include "../core/config_int.h"
 #include "pre_int.h"
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h> /* CL_NEON_ below */
+#endif
+
 #define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
 #define CL_MMAX_ 65535u        /* largest map value (64 sigma^2 less one unit) */
 #define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
@@ -829,7 +833,6 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
  * narrowing shift), absolute differences, unsigned saturating steps of the counter; the same
  * values as the plain pixel functions, which take the columns left over. */
 #define CL_NEON_ 1
-#include <arm_neon.h>
 #endif
 
 /* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v = *ov, c
