@@ -4,7 +4,8 @@
  * 0.6 .. 1.0 times the whitening's unit (a sd that falls linearly across the frame, the
  * under-dispersion that an inflated tile sigma leaves) comes out at the unit spread with
  * rescale and at its own spread without; the offset map is the same with and without it;
- * masked pixels stay masked; refused input leaves instance, workspace and frame unchanged.
+ * masked pixels stay masked; the multiplication's known answer for every residual value at
+ * fixed multipliers; refused input leaves instance, workspace and frame unchanged.
  * 128 x 96 frames, 16 x 16 blocks, integer residuals made per pixel (every target).
  */
 #include <math.h>
@@ -175,8 +176,8 @@ static void test_spread_known_answer(void)
  * Bit-exact across targets: 40 frames with rescale on and learning, the outputs folded into
  * a 64-bit FNV-1a hash against a constant. The frames mix the known answer's noise with a
  * sparse set of large values (about +-20000 and +-30000: the multiplication's clamp at
- * +-32767 once the multipliers exceed 1) and masked pixels. x86-64 runs the rescale's 16-bit
- * product form (pre_flat.c, FL_LEV_SPLIT_), AArch64 and the Cortex-M presets the 64-bit
+ * +-32767 once the multipliers exceed 1) and masked pixels. x86-64 and AArch64 (NEON) run the
+ * rescale's 16-bit product form (pre_flat.c, FL_SCALE_SPLIT_), the Cortex-M presets the 64-bit
  * product: the same constant on every preset is the proof that the two forms give the same
  * integers, half-way values and clamps included. Any change to the flat step's integers
  * changes the hash; a deliberate change regenerates the constant (the printed value) and says
@@ -223,6 +224,63 @@ static void test_rescale_bit_exact(void)
     TEST_ASSERT_TRUE_MESSAGE(h == RESCALE_HASH, msg);
 }
 
+/*
+ * The multiplication's known answer, every residual value: with the offset map 0 and every
+ * block's multiplier q set to one value (the instance's layout, pft_pre_types.h), the
+ * interpolation gives q at every pixel, and a frame without evidence must come out as
+ * v q / 2^16 rounded half away from zero, clamped to +-32767 (masked pixels unchanged), for
+ * every v in -32767..32767 and q at the clamps of 1/s (2^12, 2^20), about 1 and between.
+ * pre_flat.c's 16-bit product form (FL_SCALE_SPLIT_: x86-64, AArch64) splits q at 2^16 and the
+ * product's low part at 2^15: q = 65535, 65536, 65537 and v near +-2^15 are its edges; the
+ * Cortex-M presets run the 64-bit product (fl_mulq_). Both must give these integers.
+ */
+static void test_multiply_known_answer(void)
+{
+    static const int32_t qs[] = {4096, 4097, 32767, 32768, 49151, 65535, 65536, 65537, 98304,
+                                 131071, 524289, 1048575, 1048576};
+    uint32_t n_clamped = 0u, n_half = 0u;
+    for (size_t qi = 0u; qi < sizeof qs / sizeof qs[0]; ++qi) {
+        const int32_t q = qs[qi];
+        pft_pre_flat_t fl;
+        init(&fl, g_work, sizeof g_work, true);
+        for (uint32_t b = 0u; b < fl.nbx * fl.nby; ++b) {
+            fl.sq[b] = q;
+        }
+        /* v = -32767 .. 32767 in frame order, a masked pixel every 997th */
+        int32_t v = -32767;
+        uint32_t seq = 1u;
+        while (v <= 32767) {
+            for (int p = 0; p < NPIX; ++p) {
+                g_ref[p] = (p % 997) == 5 ? (int16_t)PFT_RES16_MASKED : (int16_t)(v <= 32767 ? v : 0);
+                v += (p % 997) == 5 ? 0 : 1;
+            }
+            memcpy(g_res, g_ref, sizeof g_res);
+            pft_frame_t a = res_frame(g_res, seq++);
+            TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &a, g_res, NULL, false));
+            for (int p = 0; p < NPIX; ++p) {
+                int32_t want = PFT_RES16_MASKED;
+                if (g_ref[p] != PFT_RES16_MASKED) {
+                    const int64_t prod = (int64_t)g_ref[p] * q;
+                    const int64_t mag = (prod < 0 ? -prod : prod) + 32768;
+                    int64_t o = prod < 0 ? -(mag / 65536) : mag / 65536;
+                    n_half += ((prod < 0 ? -prod : prod) % 65536) == 32768 ? 1u : 0u;
+                    n_clamped += (o > 32767 || o < -32767) ? 1u : 0u;
+                    o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+                    want = (int32_t)o;
+                }
+                if (want != g_res[p]) {
+                    char msg[96];
+                    snprintf(msg, sizeof msg, "q %ld, v %d: %d, want %ld", (long)q, (int)g_ref[p],
+                             (int)g_res[p], (long)want);
+                    TEST_FAIL_MESSAGE(msg);
+                }
+            }
+        }
+    }
+    TEST_ASSERT_TRUE_MESSAGE(n_clamped > 0u, "the values must reach the clamp");
+    TEST_ASSERT_TRUE_MESSAGE(n_half > 0u, "the values must hold half-way products");
+}
+
 /* Refused input with rescale: nothing changes (instance, workspace, frame buffer). */
 static void test_refused_input(void)
 {
@@ -253,6 +311,7 @@ int main(void)
     RUN_TEST(test_defaults_and_workspace);
     RUN_TEST(test_spread_known_answer);
     RUN_TEST(test_rescale_bit_exact);
+    RUN_TEST(test_multiply_known_answer);
     RUN_TEST(test_refused_input);
     return UNITY_END();
 }

@@ -12,6 +12,10 @@
 #include "../core/config_int.h"
 #include "pre_int.h"
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h> /* CL_NEON_ below */
+#endif
+
 #define CL_ONE_ 1024u          /* 1 sigma^2 in Q6.10: the map's value where nothing is known */
 #define CL_MMAX_ 65535u        /* largest map value (64 sigma^2 less one unit) */
 #define CL_SQMAX_ 4194304u     /* 64 sigma^2 in Q16 (a squared Q8.8 value) */
@@ -821,6 +825,16 @@ static inline uint16_t cl_round_scale_(uint16_t d, uint16_t a16, uint16_t full)
 #define CL_SSE2_ 1
 #endif
 
+#if !defined(CL_SSE2_) && defined(__aarch64__) && defined(__ARM_NEON) && defined(__BYTE_ORDER__) && \
+    (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+/* Where the compiler has AArch64's Advanced SIMD (NEON; little-endian), cl_mean_span_ takes 8
+ * pixels at a time in NEON's forms (cl_mean8_neon_): saturating and rounding narrowing shifts
+ * (t = min((c^2 + 32) >> 6, 65535) and (d a + 2^15) >> 16 each a widening product and one
+ * narrowing shift), absolute differences, unsigned saturating steps of the counter; the same
+ * values as the plain pixel functions, which take the columns left over. */
+#define CL_NEON_ 1
+#endif
+
 /* One pixel of cl_row_mean_'s pass 1: m and mu (mu where learn) from the residual v = *ov, c
  * + 2^16 into *cs (0 where v is masked: nothing changes there) and the output before scoring,
  * the masked value or clamp(c), over v in *ov. Every value in 16-bit lanes, so that the loop
@@ -967,6 +981,86 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
     }
 }
 #else
+#ifdef CL_NEON_
+/* (d a + 2^15) >> 16 per lane (d, a < 2^16: the product < 2^32, the rounding taken in the
+ * narrowing shift, exact), or d where full (a = 2^16). */
+static inline uint16x8_t cl_scale8_neon_(uint16x8_t d, uint16x8_t a, bool full)
+{
+    if (full) {
+        return d;
+    }
+    const uint32x4_t lo = vmull_u16(vget_low_u16(d), vget_low_u16(a));
+    const uint32x4_t hi = vmull_high_u16(d, a);
+    return vrshrn_high_n_u32(vrshrn_n_u32(lo, 16), hi, 16);
+}
+
+/* Columns x0 .. x0 + 8 n - 1 of cl_mean_span_ (n blocks of 8): cl_gate_px_ (pc != NULL) and
+ * cl_mean_px_ per lane, the same values for any input: |v| and |mv| as vabsq_s16 (-2^15 stays
+ * 2^15 as uint16, the plain form's two's complement), the counter's min(p + 256, pcap) with a
+ * saturating add (p > pcap - 256 exactly when p + 256 > pcap, also where the add saturates) and
+ * max(p - 128, 0) as a saturating subtraction; t = min((|c|^2 + 32) >> 6, 65535) as a
+ * saturating rounding narrowing shift of the 32-bit square (|c| < 2^16: no overflow; below 2048
+ * the plain form's hi 2^10 + (lo >> 6) + bit 5 of lo, above it its clamp); |t - m| and
+ * |tv - mv| (mod 2^16) as absolute differences; c + 2^16 (0 at a masked pixel) as the two
+ * 16-bit halves c16 and [c >= 0] stored interleaved (little-endian). */
+static void cl_mean8_neon_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
+                           int32_t x0, int32_t n, uint16_t a16, bool full, uint16_t exc, uint16_t pk,
+                           uint16_t pcap, uint16_t mfl)
+{
+    const uint16x8_t va = vdupq_n_u16(a16), vmfl = vdupq_n_u16(mfl);
+    const uint16x8_t vexc = vdupq_n_u16(exc), vpk = vdupq_n_u16(pk), vpcap = vdupq_n_u16(pcap);
+    const uint16x8_t one = vdupq_n_u16(1u), rmax = vdupq_n_u16((uint16_t)PFT_PRE_RMAX_);
+    const int16x8_t vmask = vdupq_n_s16((int16_t)PFT_RES16_MASKED);
+    const int16x8_t lim = vdupq_n_s16(2048), nlim = vdupq_n_s16(-2048);
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t x = x0 + 8 * i;
+        const int16x8_t v = vld1q_s16(o + x);
+        const uint16x8_t msk = vceqq_s16(v, vmask);
+        uint16x8_t learn = vdupq_n_u16(0xFFFFu);
+        if (pc != NULL) {
+            const uint16x8_t av = vreinterpretq_u16_s16(vabsq_s16(v));
+            const uint16x8_t p0 = vld1q_u16(pc + x);
+            const uint16x8_t pu = vminq_u16(vqaddq_u16(p0, vdupq_n_u16(256u)), vpcap);
+            const uint16x8_t pd = vqsubq_u16(p0, vdupq_n_u16(128u));
+            const uint16x8_t ex = vcgtq_u16(av, vexc);
+            const uint16x8_t p1 = vbslq_u16(ex, pu, pd);
+            vst1q_u16(pc + x, vbslq_u16(msk, p0, p1));
+            learn = vorrq_u16(vmvnq_u16(ex), vcgeq_u16(p1, vpk));
+        }
+        const uint16x8_t mu0 = vld1q_u16(mu + x);
+        const int16x8_t mv = vreinterpretq_s16_u16(veorq_u16(mu0, vdupq_n_u16((uint16_t)CL_MUOFF_)));
+        const uint16x8_t mvn = vcltzq_s16(mv);
+        const uint16x8_t amv = vreinterpretq_u16_s16(vabsq_s16(mv));
+        const uint16x8_t dr = vshrq_n_u16(vaddq_u16(amv, vdupq_n_u16(4u)), 3);
+        const uint16x8_t dm = vandq_u16(dr, vcgtq_u16(dr, vmfl));
+        const int16x8_t sdm = vreinterpretq_s16_u16(vsubq_u16(veorq_u16(dm, mvn), mvn));
+        const uint16x8_t cn = vcltq_s16(v, sdm);
+        const uint16x8_t c16 = vreinterpretq_u16_s16(vsubq_s16(v, sdm));
+        const uint16x8_t ac = vsubq_u16(veorq_u16(c16, cn), cn);
+        const uint32x4_t sqlo = vmull_u16(vget_low_u16(ac), vget_low_u16(ac));
+        const uint32x4_t sqhi = vmull_high_u16(ac, ac);
+        const uint16x8_t t = vqrshrn_high_n_u32(vqrshrn_n_u32(sqlo, 6), sqhi, 6);
+        const uint16x8_t m0 = vld1q_u16(mrow + x);
+        const uint16x8_t neg = vcltq_u16(t, m0);
+        const uint16x8_t q = cl_scale8_neon_(vabdq_u16(t, m0), va, full);
+        const uint16x8_t nm = vaddq_u16(m0, vsubq_u16(veorq_u16(q, neg), neg));
+        vst1q_u16(mrow + x, vbslq_u16(msk, m0, nm));
+        const int16x8_t tv = vshlq_n_s16(vmaxq_s16(vminq_s16(v, lim), nlim), 3);
+        const uint16x8_t ne = vcltq_s16(tv, mv);
+        const uint16x8_t qe = cl_scale8_neon_(vreinterpretq_u16_s16(vabdq_s16(tv, mv)), va, full);
+        const uint16x8_t nmu = vaddq_u16(mu0, vsubq_u16(veorq_u16(qe, ne), ne));
+        vst1q_u16(mu + x, vbslq_u16(vornq_u16(msk, learn), mu0, nmu));
+        const uint16x8_t acl = vminq_u16(ac, rmax);
+        const uint16x8_t oc = vsubq_u16(veorq_u16(acl, cn), cn);
+        vst1q_s16(o + x, vreinterpretq_s16_u16(vbslq_u16(msk, vreinterpretq_u16_s16(vmask), oc)));
+        uint16x8x2_t cw;
+        cw.val[0] = vbicq_u16(c16, msk);
+        cw.val[1] = vbicq_u16(vaddq_u16(cn, one), msk);
+        vst2q_u16((uint16_t *)(void *)(cs + x), cw);
+    }
+}
+#endif
+
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
  * all of them (a constant, so that the loops vectorise). */
 static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
@@ -974,18 +1068,27 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
                                  uint32_t pk, uint32_t pcap, int32_t mfl)
 {
     const uint16_t f16 = (uint16_t)mfl; /* 0..CL_FLOORMAX_ */
+#ifdef CL_NEON_
+    /* whole blocks of 8 columns in NEON's forms, the columns left over below */
+    const int32_t n8 = (x1 - x0) / 8;
+    cl_mean8_neon_(o, mrow, mu, pc, cs, x0, n8, a16, full != 0u, (uint16_t)exc, (uint16_t)pk,
+                   (uint16_t)pcap, f16);
+    const int32_t xs = x0 + 8 * n8;
+#else
+    const int32_t xs = x0;
+#endif
     if (pc != NULL) {
         /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
          * (the config check), pcap = 2 pk <= 2^14 */
         const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
         const uint16_t plim = (uint16_t)(c16 - 256u);
-        for (int32_t x = x0; x < x1; ++x) {
+        for (int32_t x = xs; x < x1; ++x) {
             uint16_t learn;
             cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
             cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
-        for (int32_t x = x0; x < x1; ++x) {
+        for (int32_t x = xs; x < x1; ++x) {
             cl_mean_px_(&o[x], 1u, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
     }

@@ -242,10 +242,19 @@ static inline int32_t fl_lev32_(int32_t k, uint32_t l)
  * products as 16 x 16-bit products (pmullw, pmulhw) instead of 32 x 32-bit ones, which SSE2
  * lacks (pmuludq and shuffles), and rescale's per-pixel multiplication (fl_mulq_, a 64-bit
  * product in a loop with a branch, not vectorised) becomes a vectorised loop of 16 x 16-bit
- * products (fl_scale_span_). Other targets keep fl_lev32_ and fl_mulq_ (a scalar core pays one
- * 32-bit multiply, or one 32 x 32 -> 64-bit multiply, per product): their object code is as
- * before. */
+ * products (fl_scale_span_; AArch64 takes that loop too, FL_SCALE_SPLIT_ below). Other targets
+ * keep fl_lev32_ and fl_mulq_ (a scalar core pays one 32-bit multiply, or one 32 x 32 -> 64-bit
+ * multiply, per product): their object code is as before. */
 #define FL_LEV_SPLIT_ 1
+#endif
+
+#if defined(FL_LEV_SPLIT_) || (defined(__aarch64__) && defined(__ARM_NEON))
+/* rescale's branch-free loop of 16 x 16-bit products (fl_scale_span_) where the compiler
+ * vectorises it: x86-64 (SSE2, with FL_LEV_SPLIT_) and AArch64 with NEON (Advanced SIMD), where
+ * gcc leaves the loop of fl_mulq_ (a 64-bit product and a branch per pixel) scalar. AArch64
+ * keeps fl_lev32_ (NEON has a 32 x 32-bit product). Other targets (a scalar core) keep
+ * fl_mulq_'s loop: their object code as before. */
+#define FL_SCALE_SPLIT_ 1
 #endif
 
 #ifdef FL_LEV_SPLIT_
@@ -430,7 +439,7 @@ static void fl_learn_(pft_pre_flat_t *fl, uint32_t a)
     }
 }
 
-#ifndef FL_LEV_SPLIT_
+#ifndef FL_SCALE_SPLIT_
 /* v q / 2^16 rounded half away from zero (|v| <= 2^15, 0 < q <= 2^20: |v q| < 2^39), the
  * floor taken on the product biased to a non-negative value, as fl_lev_ (the same integers as
  * a rounded division). */
@@ -442,7 +451,7 @@ static int32_t fl_mulq_(int32_t v, int32_t q)
 }
 #endif
 
-#ifdef FL_LEV_SPLIT_
+#ifdef FL_SCALE_SPLIT_
 /* rescale: pixels x0 .. x1 - 1 of row r, the multiplier's interpolation u0 stepped by st, as
  * the loop of fl_scale_row_ below; fl_mulq_ in 16 x 16-bit products, branch-free: q = 65536 qh
  * + ql with qh = q >> 16 in [0, 16] and ql in [0, 65535]; v in [-32767, 32767] (an unmasked
@@ -506,7 +515,7 @@ static void fl_scale_row_(pft_pre_flat_t *fl, int16_t *r, uint32_t y, bool learn
             /* the block's median threshold 0.6745 s in Q8.8 (0 < s Q16 <= 2^20: the product < 2^36) */
             const int32_t thr = (int32_t)(((uint64_t)(uint32_t)sc[blk] * (uint64_t)FL_MADQ_ + 8388608u) >> 24u);
             uint32_t na = 0u, nl = 0u;
-#ifdef FL_LEV_SPLIT_
+#ifdef FL_SCALE_SPLIT_
             fl_scale_span_(r, x, xb, u, st, k, cb, thr, &na, &nl);
             u += (xb - x) * st;
             x = xb;
