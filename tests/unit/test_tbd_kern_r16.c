@@ -115,6 +115,74 @@ static void test_kmul_r16_is_kmula_of_the_converted_pixels(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
+/* A RES16 pixel for the row test: extremes, the masked code, 0, small and full-range values. */
+static int16_t hrow_pix_(uint32_t *st)
+{
+    *st = *st * 1664525u + 1013904223u;
+    const uint32_t r = *st >> 8;
+    switch (r % 8u) {
+    case 0u: return (int16_t)32767;
+    case 1u: return (int16_t)-32767;
+    case 2u: return PFT_RES16_MASKED;
+    case 3u: return (int16_t)0;
+    case 4u: return (int16_t)((int32_t)((r >> 3) % 1025u) - 512);
+    default: return (int16_t)((int32_t)((r >> 3) % 65535u) - 32767);
+    }
+}
+
+/* pft_tbd_hrow_r16_ (peak_hrow_r16_: the scan's horizontal sums on a RES16 row read in place;
+ * in q16 with SSE2 the centre tap 1's columns eight at a time by 16-bit multiply-adds) is
+ * peak_hrow_ of the converted row bit for bit: hs[c] = pft_kaddr_(pft_kmula_(t1, z(c)),
+ * pft_kmula_(t0, pft_kaddr_(z(c - 1), z(c + 1)))), z = pft_kres16_ of the pixel, a masked pixel
+ * and the pixels outside the row 0. Widths 1 to 41 and 64 (whole eight-pixel steps, the tail,
+ * rows shorter than a step), every tap as t0, t1 = 1 (the centre tap at offset 0, the fast
+ * columns) and t1 = the tap of sigma 1 (the general columns), 60 random rows each. */
+static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
+{
+    make_taps_();
+    static uint8_t src[2u * 64u];
+    static pft_real_t z[64];
+    static pft_real_t got[64];
+    uint32_t st = 12345u;
+    uint32_t bad = 0u;
+    uint32_t rows = 0u;
+    const pft_real_t t1s[2] = {PFT_REAL_ONE, pft_test_from_double(exp(-0.5))};
+    for (uint32_t w = 1u; w <= 64u; w = w < 41u ? w + 1u : 64u) {
+        for (uint32_t k = 0; k < n_taps_; ++k) {
+            for (uint32_t q = 0; q < 2u; ++q) {
+                const pft_real_t t0 = taps_[k];
+                const pft_real_t t1 = t1s[q];
+                for (uint32_t n = 0; n < 60u; ++n) {
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const int16_t v = hrow_pix_(&st);
+                        memcpy(src + 2u * c, &v, 2u);
+                        z[c] = v == PFT_RES16_MASKED ? PFT_C(0.0) : pft_kres16_(v);
+                    }
+                    pft_tbd_hrow_r16_(src, w, pft_kr16_tap_(t0), pft_kr16_tap_(t1), got);
+                    ++rows;
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const pft_real_t zl = c > 0u ? z[c - 1u] : PFT_C(0.0);
+                        const pft_real_t zr = c + 1u < w ? z[c + 1u] : PFT_C(0.0);
+                        const pft_real_t want =
+                            pft_kaddr_(pft_kmula_(t1, z[c]), pft_kmula_(t0, pft_kaddr_(zl, zr)));
+                        if (memcmp(&want, &got[c], sizeof want) != 0 && bad++ == 0u) {
+                            snprintf(msg_, sizeof msg_, "w %u c %u t0 %.9g t1 %.9g: %.9g, want %.9g",
+                                     (unsigned)w, (unsigned)c, pft_test_to_double(t0),
+                                     pft_test_to_double(t1), pft_test_to_double(got[c]),
+                                     pft_test_to_double(want));
+                        }
+                    }
+                }
+            }
+        }
+        if (w == 64u) {
+            break;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_EQUAL_UINT32(42u * 2u * 60u * n_taps_, rows);
+}
+
 static void test_kmul_u_is_kmula(void)
 {
     make_taps_();
@@ -421,6 +489,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
+    RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);
     RUN_TEST(test_kwexp_lanes_is_kwexp);

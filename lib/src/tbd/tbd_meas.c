@@ -3,6 +3,16 @@
 
 #include "tbd_int.h"
 
+#if defined(PFT_NUMERIC_Q16) && defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), q16's scene scan takes a RES16 row's horizontal sums
+ * (peak_hrow_r16_, the centre tap 1) as 16-bit multiply-adds (pmaddwd) of each pixel's two
+ * neighbours, eight pixels per step (peak_hrow_r16_madd_), instead of the widening products
+ * the compiler makes of pft_kmul_r16_. The same values; float, AArch64 and the Cortex-M builds
+ * keep the plain loop. */
+#include <emmintrin.h>
+#define PFT_TBD_HROW_MADD_ 1
+#endif
+
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
 {
     pft_real_t r = pft_clamp(pft_mul(v, inv_d), PFT_C(-30000.0), PFT_C(30000.0));
@@ -670,10 +680,10 @@ static inline int16_t r16_int_(const uint8_t *src, size_t c)
  * products are skipped (q16: two widening multiplies per pixel; float keeps one form,
  * pft_kr16_one_pays_). The same values either way; the caller passes a constant, so each form
  * is its own loop. */
-static inline void peak_hrow_r16_in_(const uint8_t *src, uint32_t w, pft_real_t t0,
+static inline void peak_hrow_r16_in_(const uint8_t *src, size_t c0, uint32_t w, pft_real_t t0,
                                      pft_real_t t1, bool one, pft_real_t *hs)
 {
-    for (size_t c = 1u; c + 1u < (size_t)w; ++c) {
+    for (size_t c = c0; c + 1u < (size_t)w; ++c) {
         /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises) */
         int16_t a, b, d;
         memcpy(&a, src + 2u * (c - 1u), 2u);
@@ -686,6 +696,52 @@ static inline void peak_hrow_r16_in_(const uint8_t *src, uint32_t w, pft_real_t 
         hs[c] = pft_kaddr_(mc, pft_kmul_r16_(t0, zl, zr));
     }
 }
+
+#if defined(PFT_TBD_HROW_MADD_)
+/* peak_hrow_r16_in_'s columns 1 .. with the centre tap 1 (one), eight at a time while a whole
+ * step lies inside 1 .. w - 2; returns the first column not done. Per pixel: pft_kres16_(zc) =
+ * 256 zc (zc in a 32-bit lane's high half, shifted down by 8), and pft_kmul_r16_(t0, zl, zr) =
+ * th (zl + zr) + (tl (zl + zr) + 128 - [zl + zr < 0]) >> 8 (t0 = 256 th + tl) with the two
+ * products of each pair (zl, zr) as one multiply-add of the pair with (th, th) and with
+ * (tl, tl): th <= 256, tl <= 255 and |zl|, |zr| <= 32767 (a masked pixel, the only -32768,
+ * reads 0), so each sum is exact in 32 bits. The sign of tl (zl + zr) is that of zl + zr when
+ * tl > 0; when tl = 0 the rounded term is 0 with either sign. */
+static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t *hs)
+{
+    const uint32_t tu = (uint32_t)t0; /* 0 .. 65536 (pft_kr16_tap_ok_) */
+    const uint32_t th = tu >> 8;
+    const uint32_t tl = tu & 255u;
+    const __m128i wh = _mm_set1_epi32((int32_t)((th << 16) | th));
+    const __m128i wl = _mm_set1_epi32((int32_t)((tl << 16) | tl));
+    const __m128i masked = _mm_set1_epi16(PFT_RES16_MASKED);
+    const __m128i half = _mm_set1_epi32(128);
+    const __m128i zero = _mm_setzero_si128();
+    size_t c = 1u;
+    for (; c + 8u < (size_t)w; c += 8u) {
+        __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
+        __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
+        __m128i d = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
+        a = _mm_andnot_si128(_mm_cmpeq_epi16(a, masked), a);
+        b = _mm_andnot_si128(_mm_cmpeq_epi16(b, masked), b);
+        d = _mm_andnot_si128(_mm_cmpeq_epi16(d, masked), d);
+        const __m128i plo = _mm_unpacklo_epi16(a, d); /* (zl, zr) of pixels c .. c + 3 */
+        const __m128i phi = _mm_unpackhi_epi16(a, d); /* and of c + 4 .. c + 7 */
+        const __m128i llo = _mm_madd_epi16(plo, wl);
+        const __m128i lhi = _mm_madd_epi16(phi, wl);
+        const __m128i rlo = _mm_srai_epi32(
+            _mm_add_epi32(_mm_add_epi32(llo, half), _mm_srai_epi32(llo, 31)), 8);
+        const __m128i rhi = _mm_srai_epi32(
+            _mm_add_epi32(_mm_add_epi32(lhi, half), _mm_srai_epi32(lhi, 31)), 8);
+        const __m128i clo = _mm_srai_epi32(_mm_unpacklo_epi16(zero, b), 8); /* 256 zc */
+        const __m128i chi = _mm_srai_epi32(_mm_unpackhi_epi16(zero, b), 8);
+        const __m128i olo = _mm_add_epi32(_mm_add_epi32(clo, _mm_madd_epi16(plo, wh)), rlo);
+        const __m128i ohi = _mm_add_epi32(_mm_add_epi32(chi, _mm_madd_epi16(phi, wh)), rhi);
+        _mm_storeu_si128((__m128i *)(void *)(hs + c), olo);
+        _mm_storeu_si128((__m128i *)(void *)(hs + c + 4u), ohi);
+    }
+    return c;
+}
+#endif
 
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
  * so the clamp at PEAK_CLIP_ never acts, z(c - 1) + z(c + 1) is (v(c - 1) + v(c + 1)) / 256
@@ -702,12 +758,22 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
     hs[0] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, 0u), 0),
                        pft_kmul_r16_(t0, r16_int_(src, 1u), 0));
     if (pft_kr16_one_pays_() && t1 == pft_kr16_tap_(PFT_REAL_ONE)) {
-        peak_hrow_r16_in_(src, w, t0, t1, true, hs);
+        size_t c0 = 1u;
+#if defined(PFT_TBD_HROW_MADD_)
+        c0 = peak_hrow_r16_madd_(src, w, t0, hs);
+#endif
+        peak_hrow_r16_in_(src, c0, w, t0, t1, true, hs);
     } else {
-        peak_hrow_r16_in_(src, w, t0, t1, false, hs);
+        peak_hrow_r16_in_(src, 1u, w, t0, t1, false, hs);
     }
     hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
+}
+
+void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+                       pft_real_t *hs)
+{
+    peak_hrow_r16_(src, w, t0, t1, hs);
 }
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). mf is
