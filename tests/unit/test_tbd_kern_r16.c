@@ -183,6 +183,89 @@ static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
     TEST_ASSERT_EQUAL_UINT32(42u * 2u * 60u * n_taps_, rows);
 }
 
+/* A PSF-matched value for the integration's row test: ties, halves of 1/64 (the rounding's
+ * ties), values beyond the clamp at 257 sigmas, extremes, zeros (float: both signs, NaN). */
+static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
+{
+    *st = *st * 1664525u + 1013904223u;
+    const uint32_t r = *st >> 8;
+    const double u = (double)((r >> 4) % 100000u) / 100000.0;
+    switch (r % 12u) {
+    case 0u: return prev != NULL ? *prev : PFT_C(0.0); /* a tie with the pixel before */
+    case 1u: return pft_test_from_double((double)((int32_t)((r >> 4) % 2001u) - 1000) / 64.0 + 1.0 / 128.0);
+    case 2u: return pft_test_from_double((u - 0.5) * 700.0); /* beyond +-257 sigmas now and then */
+    case 3u: return pft_test_from_double(u < 0.5 ? 256.99 + u : -257.01 - u);
+#ifdef PFT_NUMERIC_Q16
+    case 4u: return u < 0.5 ? (pft_real_t)INT32_MAX : (pft_real_t)(INT32_MIN + 1);
+    case 5u: return PFT_C(0.0);
+#else
+    case 4u: return u < 0.3 ? 1e30f : (u < 0.6 ? -1e30f : (u < 0.8 ? NAN : INFINITY));
+    case 5u: return u < 0.5 ? 0.0f : -0.0f;
+#endif
+    default: return pft_test_from_double((u - 0.5) * 40.0);
+    }
+}
+
+/* pft_tbd_integ_row_ (integ_row_: the inner bins through a branch-free loop, in float and q16
+ * with SSE2 eight at a time in 16-bit lanes) is its general form (every bin by integ_bin_) word
+ * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
+ * 70, odd and even), last-frame sums (the whole 16-bit range), shifts -4 .. 4 bins either way,
+ * every bin row of a 5-row grid (the last without its second pixel row when the height is
+ * odd), a_q 0, 1, 77, 128, 255 and 256. */
+static void test_integ_row_is_its_general_form(void)
+{
+    static pft_real_t r0[72], r1[72];
+    static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];
+    static uint32_t vm_a[40], vm_b[40];
+    static const uint32_t aqs[6] = {0u, 1u, 77u, 128u, 255u, 256u};
+    uint32_t st = 777u;
+    uint32_t bad = 0u;
+    uint32_t fast = 0u;
+    for (uint32_t n = 0; n < 3000u; ++n) {
+        st = st * 1664525u + 1013904223u;
+        const uint32_t w = 1u + (st >> 8) % 70u;
+        const uint32_t bw = (w + 1u) / 2u;
+        pft_tbd_integ_t_ ig;
+        ig.prev = prev;
+        ig.cur = cur_a;
+        ig.bw = bw;
+        ig.bh = 5u;
+        ig.sx = (int32_t)((st >> 16) % 9u) - 4;
+        ig.sy = (int32_t)((st >> 20) % 9u) - 4;
+        ig.a_q = aqs[(st >> 24) % 6u];
+        const uint32_t br = (st >> 27) % 5u;
+        const bool last_alone = br == 4u && ((st >> 3) & 1u) != 0u;
+        for (uint32_t i = 0; i < bw * 5u; ++i) {
+            st = st * 1664525u + 1013904223u;
+            prev[i] = (uint16_t)(st >> 16);
+        }
+        for (uint32_t c = 0; c < w; ++c) {
+            r0[c] = integ_val_(&st, c > 0u ? &r0[c - 1u] : NULL);
+            r1[c] = integ_val_(&st, &r0[c]);
+        }
+        memset(cur_a, 0, sizeof cur_a);
+        memset(cur_b, 0, sizeof cur_b);
+        uint64_t sa[2] = {5u, 7u};
+        uint64_t sb[2] = {5u, 7u};
+        pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_a, sa, false);
+        ig.cur = cur_b;
+        pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_b, sb, true);
+        fast += (!last_alone && bw >= 8u) ? 1u : 0u;
+        if ((memcmp(cur_a, cur_b, sizeof cur_a) != 0 || sa[0] != sb[0] || sa[1] != sb[1]) &&
+            bad++ == 0u) {
+            uint32_t c = 0u;
+            while (c + 1u < bw && cur_a[br * bw + c] == cur_b[br * bw + c]) {
+                ++c;
+            }
+            snprintf(msg_, sizeof msg_, "row %u w %u bin %u sx %d a_q %u: %u, general %u",
+                     (unsigned)n, (unsigned)w, (unsigned)c, (int)ig.sx, (unsigned)ig.a_q,
+                     (unsigned)cur_a[br * bw + c], (unsigned)cur_b[br * bw + c]);
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_TRUE(fast > 1000u); /* rows long enough for eight inner bins at a time */
+}
+
 static void test_kmul_u_is_kmula(void)
 {
     make_taps_();
@@ -490,6 +573,7 @@ int main(void)
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
+    RUN_TEST(test_integ_row_is_its_general_form);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);
     RUN_TEST(test_kwexp_lanes_is_kwexp);

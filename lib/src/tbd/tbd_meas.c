@@ -3,14 +3,18 @@
 
 #include "tbd_int.h"
 
-#if defined(PFT_NUMERIC_Q16) && defined(__SSE2__)
-/* Where the compiler has SSE2 (x86-64), q16's scene scan takes a RES16 row's horizontal sums
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64): q16's scene scan takes a RES16 row's horizontal sums
  * (peak_hrow_r16_, the centre tap 1) as 16-bit multiply-adds (pmaddwd) of each pixel's two
  * neighbours, eight pixels per step (peak_hrow_r16_madd_), instead of the widening products
- * the compiler makes of pft_kmul_r16_. The same values; float, AArch64 and the Cortex-M builds
- * keep the plain loop. */
+ * the compiler makes of pft_kmul_r16_; both builds take the integration's inner bins
+ * (integ_row_) eight per step with the sums' rounding, clamps and the bin word in 16-bit lanes
+ * (integ_fast8_). The same values; AArch64 and the Cortex-M builds keep the plain loops. */
 #include <emmintrin.h>
+#define PFT_TBD_INTEG_FAST8_ 1
+#if defined(PFT_NUMERIC_Q16)
 #define PFT_TBD_HROW_MADD_ 1
+#endif
 #endif
 
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
@@ -1001,6 +1005,138 @@ static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
     return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
 }
 
+#if defined(PFT_TBD_INTEG_FAST8_)
+/* Four bins' largest pixel of x0 .. x3 (ties to the earlier) as pft_kround64_ of it, or a
+ * value beyond +-16448 of the same sign where pft_kround64_ gives +-16448 (the caller's clamp
+ * of the sum to 0 .. INTEG_MAX_ then gives the same bin); g[k] the lanes where x(k + 1) was
+ * taken (the index's masks). q16: the compares and selections in 32-bit lanes; the rounding
+ * floor((a + 512) / 1024) = (a >> 10) + bit 9 of a, pft_kround64_'s (64 a + 2^15) >> 16 for
+ * the clamped a (the clamp moves a only beyond it, where the result keeps its side). */
+#if defined(PFT_NUMERIC_Q16)
+static inline __m128i integ_pick_(__m128i x, __m128i b, __m128i *g)
+{
+    *g = _mm_cmpgt_epi32(x, b);
+    return _mm_or_si128(_mm_and_si128(*g, x), _mm_andnot_si128(*g, b));
+}
+
+static inline __m128i integ_best4_(__m128i x0, __m128i x1, __m128i x2, __m128i x3, __m128i *g)
+{
+    __m128i b = integ_pick_(x1, x0, &g[0]);
+    b = integ_pick_(x2, b, &g[1]);
+    b = integ_pick_(x3, b, &g[2]);
+    return _mm_add_epi32(_mm_srai_epi32(b, 10),
+                         _mm_and_si128(_mm_srai_epi32(b, 9), _mm_set1_epi32(1)));
+}
+
+static inline __m128i integ_ld_(const pft_real_t *p)
+{
+    return _mm_loadu_si128((const __m128i *)(const void *)p);
+}
+
+/* The even (sel 0x88) or odd (0xDD) elements of a then b. */
+static inline __m128i integ_half_(__m128i a, __m128i b, bool odd)
+{
+    const __m128 fa = _mm_castsi128_ps(a);
+    const __m128 fb = _mm_castsi128_ps(b);
+    return _mm_castps_si128(odd ? _mm_shuffle_ps(fa, fb, 0xDD) : _mm_shuffle_ps(fa, fb, 0x88));
+}
+typedef __m128i integ_v_;
+#else
+/* float: maxps(x, b) is x > b ? x : b (b on a tie or a NaN), the selection of integ_bin_; then
+ * pft_kround64_: x = 64 best, a NaN 0, clamped to +-16448 (min/max, no NaN left), and
+ * floor(x + 1/2) (exact: |x| < 2^22) as the truncation less 1 where it exceeds x + 1/2. */
+static inline __m128i integ_best4_(__m128 x0, __m128 x1, __m128 x2, __m128 x3, __m128i *g)
+{
+    g[0] = _mm_castps_si128(_mm_cmpgt_ps(x1, x0));
+    __m128 b = _mm_max_ps(x1, x0);
+    g[1] = _mm_castps_si128(_mm_cmpgt_ps(x2, b));
+    b = _mm_max_ps(x2, b);
+    g[2] = _mm_castps_si128(_mm_cmpgt_ps(x3, b));
+    b = _mm_max_ps(x3, b);
+    const __m128 x = _mm_mul_ps(b, _mm_set1_ps(64.0f));
+    const __m128 xn = _mm_and_ps(x, _mm_cmpeq_ps(x, x));
+    const __m128 xc = _mm_min_ps(_mm_max_ps(xn, _mm_set1_ps(-16448.0f)), _mm_set1_ps(16448.0f));
+    const __m128 y = _mm_add_ps(xc, _mm_set1_ps(0.5f));
+    const __m128i t = _mm_cvttps_epi32(y);
+    return _mm_add_epi32(t, _mm_castps_si128(_mm_cmplt_ps(y, _mm_cvtepi32_ps(t))));
+}
+
+static inline __m128 integ_ld_(const pft_real_t *p) { return _mm_loadu_ps(p); }
+
+static inline __m128 integ_half_(__m128 a, __m128 b, bool odd)
+{
+    return odd ? _mm_shuffle_ps(a, b, 0xDD) : _mm_shuffle_ps(a, b, 0x88);
+}
+typedef __m128 integ_v_;
+#endif
+
+/* integ_row_'s inner bins bc = b0 .. eight at a time while bc + 8 <= b1 (r1 not NULL, vm[bc -
+ * sx .. bc - sx + 2] inside); returns the first bin not done. Per bin as the plain loop: the
+ * largest pixel and its index (ties to the earlier), m = pft_kround64_ of it (integ_best4_),
+ * mx the largest of the three vm words (< 2^14), sq = m + (a_q mx + 128) >> 8 clamped to 0 ..
+ * INTEG_MAX_, the word sq << 2 | idx. In 16-bit lanes after m: m packed with saturation (a
+ * value beyond +-16448 stays beyond it), a_q mx = 2^16 hi + lo (a_q <= 1024: hi < 2^8), so
+ * (a_q mx + 128) >> 8 = 256 hi + (lo >> 8) + bit 7 of lo, below 2^14; m plus it with
+ * saturation then clamped: the same as in 32 bits, since beyond +-16448 the sum is below 0 or
+ * above INTEG_MAX_ either way. */
+static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const uint32_t *vm,
+                            int32_t sx, int32_t b0, int32_t b1, uint32_t a_q, uint16_t *out)
+{
+    const __m128i aq = _mm_set1_epi16((int16_t)a_q);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i top = _mm_set1_epi16(INTEG_MAX_);
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i two = _mm_set1_epi16(2);
+    const __m128i three = _mm_set1_epi16(3);
+    int32_t bc = b0;
+    for (; bc + 8 <= b1; bc += 8) {
+        const pft_real_t *p0 = r0 + 2 * bc;
+        const pft_real_t *p1 = r1 + 2 * bc;
+        const integ_v_ a0 = integ_ld_(p0);
+        const integ_v_ a1 = integ_ld_(p0 + 4);
+        const integ_v_ a2 = integ_ld_(p0 + 8);
+        const integ_v_ a3 = integ_ld_(p0 + 12);
+        const integ_v_ c0 = integ_ld_(p1);
+        const integ_v_ c1 = integ_ld_(p1 + 4);
+        const integ_v_ c2 = integ_ld_(p1 + 8);
+        const integ_v_ c3 = integ_ld_(p1 + 12);
+        __m128i glo[3];
+        __m128i ghi[3];
+        const __m128i mlo = integ_best4_(integ_half_(a0, a1, false), integ_half_(a0, a1, true),
+                                         integ_half_(c0, c1, false), integ_half_(c0, c1, true),
+                                         glo);
+        const __m128i mhi = integ_best4_(integ_half_(a2, a3, false), integ_half_(a2, a3, true),
+                                         integ_half_(c2, c3, false), integ_half_(c2, c3, true),
+                                         ghi);
+        /* the index: 1, then 2, then 3 where that pixel was taken (masks 0 / -1 pack exactly) */
+        const __m128i g1 = _mm_packs_epi32(glo[0], ghi[0]);
+        const __m128i g2 = _mm_packs_epi32(glo[1], ghi[1]);
+        const __m128i g3 = _mm_packs_epi32(glo[2], ghi[2]);
+        __m128i idx = _mm_and_si128(g1, one);
+        idx = _mm_or_si128(_mm_andnot_si128(g2, idx), _mm_and_si128(g2, two));
+        idx = _mm_or_si128(_mm_andnot_si128(g3, idx), _mm_and_si128(g3, three));
+        /* mx: the three vm words (< 2^14, packed exactly) */
+        const uint32_t *v = vm + (bc - sx);
+        const __m128i v0 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)v),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 4)));
+        const __m128i v1 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(v + 1)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 5)));
+        const __m128i v2 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(v + 2)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 6)));
+        const __m128i mx = _mm_max_epi16(_mm_max_epi16(v0, v1), v2);
+        const __m128i lo = _mm_mullo_epi16(mx, aq);
+        const __m128i hi = _mm_mulhi_epu16(mx, aq);
+        const __m128i add = _mm_add_epi16(
+            _mm_add_epi16(_mm_slli_epi16(hi, 8), _mm_srli_epi16(lo, 8)),
+            _mm_and_si128(_mm_srli_epi16(lo, 7), one));
+        __m128i sq = _mm_adds_epi16(_mm_packs_epi32(mlo, mhi), add);
+        sq = _mm_min_epi16(_mm_max_epi16(sq, zero), top);
+        _mm_storeu_si128((__m128i *)(void *)(out + bc), _mm_or_si128(_mm_slli_epi16(sq, 2), idx));
+    }
+    return bc;
+}
+#endif
+
 /* Bin bc of row br in general (any column, r1 NULL past the last row). */
 static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const pft_real_t *r1,
                        uint32_t w, const uint32_t *vm, uint32_t bc, uint16_t *out)
@@ -1035,7 +1171,8 @@ static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const p
  * (the same selections as integ_bin_, ties to the earlier pixel), the others through
  * integ_bin_; the sums after the row, over its stored values. */
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
-                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
+                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
+                       bool general)
 {
     const int32_t pr = (int32_t)br - ig->sy;
     const int32_t bw = (int32_t)ig->bw;
@@ -1069,13 +1206,19 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     const int32_t nfull = (int32_t)(w / 2u);
     int32_t b0 = sx < 0 ? 0 : (sx > bw ? bw : sx);
     int32_t b1 = sx > nfull - bw ? nfull : sx + bw;
-    b1 = r1 == NULL || b1 < b0 ? b0 : b1;
+    b1 = r1 == NULL || b1 < b0 || general ? b0 : b1; /* general: every bin by integ_bin_ */
     for (int32_t bc = 0; bc < b0; ++bc) {
         integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
     }
     if (r1 != NULL) { /* always when b0 < b1 (b1 = b0 without r1) */
         const uint32_t a_q = ig->a_q;
-        for (int32_t bc = b0; bc < b1; ++bc) {
+        int32_t bf = b0;
+#if defined(PFT_TBD_INTEG_FAST8_)
+        if (a_q <= 1024u) {
+            bf = integ_fast8_(r0, r1, vm, sx, b0, b1, a_q, out);
+        }
+#endif
+        for (int32_t bc = bf; bc < b1; ++bc) {
             const pft_real_t x0 = r0[2 * bc];
             const pft_real_t x1 = r0[2 * bc + 1];
             const pft_real_t x2 = r1[2 * bc];
@@ -1113,6 +1256,13 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     sum[0] += s0;
     sum[1] += s1;
+}
+
+void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
+                        bool general)
+{
+    integ_row_(ig, br, r0, r1, w, vm, sum, general);
 }
 
 /* floor(sqrt(v)), bit by bit (32 steps). */
@@ -1353,9 +1503,9 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
             if (r % 2u == 1u) {
-                integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum);
+                integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum, false);
             } else if (r + 1u == h) {
-                integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum);
+                integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum, false);
             } else {
                 /* the first row of a pair: its bin row comes with the next row */
             }
