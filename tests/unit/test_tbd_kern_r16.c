@@ -13,6 +13,14 @@
  * values just below and above each multiple of 2^-16 boundary in q16, i.e. every 16-bit low
  * half near 0 and 2^15).
  *
+ * The scan's rows on x86-64 (SSE2; the hooks pft_tbd_hrow_r16_ and pft_tbd_integ_row_ exist
+ * there only, elsewhere the two tests are ignored): the horizontal sums of a RES16 row
+ * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
+ * bit, and the integration's bin row (integ_row_, the inner bins eight at a time) is its general
+ * form's (every bin by integ_bin_) word for word, with its sums: random rows with extremes, the
+ * masked code, ties, the rounding's halves, values beyond the clamp (float: NaN, infinities,
+ * both zeros).
+ *
  * The particle kernel on a RES16 window (lib/src/tbd/tbd_int.h, pft_tbd_llr3_r16_):
  * pft_kspot3_r16_ on the frame's int16 pixels is pft_kspot3_ on the converted window (each
  * pixel pft_kres16_, a masked one 0) bit for bit, no tolerance (the log-weights decide
@@ -115,6 +123,7 @@ static void test_kmul_r16_is_kmula_of_the_converted_pixels(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
+#if defined(__SSE2__)
 /* A RES16 pixel for the row test: extremes, the masked code, 0, small and full-range values. */
 static int16_t hrow_pix_(uint32_t *st)
 {
@@ -130,6 +139,8 @@ static int16_t hrow_pix_(uint32_t *st)
     }
 }
 
+#endif
+
 /* pft_tbd_hrow_r16_ (peak_hrow_r16_: the scan's horizontal sums on a RES16 row read in place;
  * in q16 with SSE2 the centre tap 1's columns eight at a time by 16-bit multiply-adds) is
  * peak_hrow_ of the converted row bit for bit: hs[c] = pft_kaddr_(pft_kmula_(t1, z(c)),
@@ -139,6 +150,9 @@ static int16_t hrow_pix_(uint32_t *st)
  * columns) and t1 = the tap of sigma 1 (the general columns), 60 random rows each. */
 static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
 {
+#if !defined(__SSE2__)
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_hrow_r16_ is built on x86-64 (SSE2) only");
+#else
     make_taps_();
     static uint8_t src[2u * 64u];
     static pft_real_t z[64];
@@ -181,8 +195,10 @@ static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
     TEST_ASSERT_EQUAL_UINT32(42u * 2u * 60u * n_taps_, rows);
+#endif
 }
 
+#if defined(__SSE2__)
 /* A PSF-matched value for the integration's row test: ties, halves of 1/64 (the rounding's
  * ties), values beyond the clamp at 257 sigmas, extremes, zeros (float: both signs, NaN). */
 static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
@@ -206,6 +222,8 @@ static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
     }
 }
 
+#endif
+
 /* pft_tbd_integ_row_ (integ_row_: the inner bins through a branch-free loop, in float and q16
  * with SSE2 eight at a time in 16-bit lanes) is its general form (every bin by integ_bin_) word
  * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
@@ -214,6 +232,9 @@ static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
  * odd), a_q 0, 1, 77, 128, 255 and 256. */
 static void test_integ_row_is_its_general_form(void)
 {
+#if !defined(__SSE2__)
+    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) only");
+#else
     static pft_real_t r0[72], r1[72];
     static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];
     static uint32_t vm_a[40], vm_b[40];
@@ -264,6 +285,7 @@ static void test_integ_row_is_its_general_form(void)
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
     TEST_ASSERT_TRUE(fast > 1000u); /* rows long enough for eight inner bins at a time */
+#endif
 }
 
 static void test_kmul_u_is_kmula(void)

@@ -774,11 +774,13 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
 }
 
+#if defined(__SSE2__)
 void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs)
 {
     peak_hrow_r16_(src, w, t0, t1, hs);
 }
+#endif
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). mf is
  * none of the three rows (scene_scan_rows_: ss->mf and ss->hs are apart). */
@@ -1170,10 +1172,18 @@ static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const p
  * lies inside the last frame's row (bc - sx in 0 .. bw - 1) go through one branch-free loop
  * (the same selections as integ_bin_, ties to the earlier pixel), the others through
  * integ_bin_; the sums after the row, over its stored values. */
+#if defined(PFT_TBD_INTEG_FAST8_)
+/* general: every bin by integ_bin_ (pft_tbd_integ_row_, the unit tests' hook) */
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
                        bool general)
 {
+#else
+static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
+{
+    const bool general = false;
+#endif
     const int32_t pr = (int32_t)br - ig->sy;
     const int32_t bw = (int32_t)ig->bw;
     const int32_t bh = (int32_t)ig->bh;
@@ -1258,12 +1268,14 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     sum[1] += s1;
 }
 
+#if defined(PFT_TBD_INTEG_FAST8_)
 void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                         const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
                         bool general)
 {
     integ_row_(ig, br, r0, r1, w, vm, sum, general);
 }
+#endif
 
 /* floor(sqrt(v)), bit by bit (32 steps). */
 static uint32_t isqrt64_(uint64_t v)
@@ -1503,9 +1515,17 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
             if (r % 2u == 1u) {
+#if defined(PFT_TBD_INTEG_FAST8_)
                 integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum, false);
+#else
+                integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum);
+#endif
             } else if (r + 1u == h) {
+#if defined(PFT_TBD_INTEG_FAST8_)
                 integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum, false);
+#else
+                integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum);
+#endif
             } else {
                 /* the first row of a pair: its bin row comes with the next row */
             }
