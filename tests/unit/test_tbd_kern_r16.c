@@ -16,7 +16,9 @@
  * The scan's rows on x86-64 (SSE2; the hooks pft_tbd_hrow_r16_ and pft_tbd_integ_row_ exist
  * there only, elsewhere the two tests are ignored): the horizontal sums of a RES16 row
  * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
- * bit, and the integration's bin row (integ_row_, the inner bins eight at a time) is its general
+ * bit, the vertical sums (peak_vrow_; the hook pft_tbd_vrow_ in q16 only, the centre tap 1's
+ * rows by 64-bit products of the magnitudes) are pft_kmula_'s, and the integration's bin row
+ * (integ_row_, the inner bins eight at a time) is its general
  * form's (every bin by integ_bin_) word for word, with its sums: random rows with extremes, the
  * masked code, ties, the rounding's halves, values beyond the clamp (float: NaN, infinities,
  * both zeros).
@@ -285,6 +287,63 @@ static void test_integ_row_is_its_general_form(void)
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
     TEST_ASSERT_TRUE(fast > 1000u); /* rows long enough for eight inner bins at a time */
+#endif
+}
+
+/* pft_tbd_vrow_ (peak_vrow_: the scan's vertical sums; in q16 with SSE2 the centre tap 1's rows
+ * four columns at a time by 32 x 32 -> 64-bit products of the magnitudes) is
+ * pft_kaddr_(pft_kmula_(u1, mid), pft_kmula_(u0, pft_kaddr_(up, dn))) bit for bit: every tap
+ * as u0 with u1 = 1 (the fast rows) and u1 = the tap of sigma 1 (the general rows), widths 1 to
+ * 41, 40 random rows each with |up + dn| < 2^30 (q16: values below 2^14): both signs, zeros,
+ * the products' halves (u0 z = 2^15 mod 2^16 for u0 = 1/2), the range's ends. */
+static void test_vrow_is_kmula(void)
+{
+#if !(defined(__SSE2__) && defined(PFT_NUMERIC_Q16))
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_vrow_ is built in q16 on x86-64 (SSE2) only");
+#else
+    make_taps_();
+    static pft_real_t up[48], mid[48], dn[48], got[48];
+    const pft_real_t u1s[2] = {PFT_REAL_ONE, pft_test_from_double(exp(-0.5))};
+    uint32_t st = 99u;
+    uint32_t bad = 0u;
+    for (uint32_t w = 1u; w <= 41u; ++w) {
+        for (uint32_t k = 0; k < n_taps_; ++k) {
+            for (uint32_t q = 0; q < 2u; ++q) {
+                const pft_real_t u0 = taps_[k];
+                const pft_real_t u1 = u1s[q];
+                for (uint32_t n = 0; n < 40u; ++n) {
+                    for (uint32_t c = 0; c < w; ++c) {
+                        pft_real_t v[3];
+                        for (uint32_t i = 0; i < 3u; ++i) {
+                            st = st * 1664525u + 1013904223u;
+                            const int32_t r = (int32_t)(st >> 2) - (int32_t)(1u << 29); /* +-2^29 */
+                            switch ((st >> 27) % 6u) {
+                            case 0u: v[i] = 0; break;
+                            case 1u: v[i] = (pft_real_t)(((r >> 1) & ~65535) | 32768); break;
+                            case 2u: v[i] = r < 0 ? -(pft_real_t)((1 << 29) - 1) : (pft_real_t)((1 << 29) - 1); break;
+                            case 3u: v[i] = r % 70000; break;
+                            default: v[i] = r; break;
+                            }
+                        }
+                        up[c] = v[0];
+                        mid[c] = v[1] / 4;
+                        dn[c] = v[2];
+                    }
+                    pft_tbd_vrow_(up, mid, dn, w, u0, u1, got);
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const pft_real_t want = pft_kaddr_(pft_kmula_(u1, mid[c]),
+                                                           pft_kmula_(u0, pft_kaddr_(up[c], dn[c])));
+                        if (want != got[c] && bad++ == 0u) {
+                            snprintf(msg_, sizeof msg_, "w %u c %u u0 %d u1 %d z %d: %d, want %d",
+                                     (unsigned)w, (unsigned)c, (int)u0, (int)u1,
+                                     (int)(up[c] + dn[c]), (int)got[c], (int)want);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 #endif
 }
 
@@ -596,6 +655,7 @@ int main(void)
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
     RUN_TEST(test_integ_row_is_its_general_form);
+    RUN_TEST(test_vrow_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);
     RUN_TEST(test_kwexp_lanes_is_kwexp);

@@ -108,6 +108,12 @@ bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row
 void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs);
 #endif
+#if defined(__SSE2__) && defined(PFT_NUMERIC_Q16)
+/* The scene scan's vertical sums mf[c] = u1 mid[c] + u0 (up[c] + dn[c]) (tbd_meas.c,
+ * peak_vrow_; up and dn may be NULL, zero rows; for the unit tests, q16 x86-64 builds only). */
+void pft_tbd_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn, uint32_t w,
+                   pft_real_t u0, pft_real_t u1, pft_real_t *mf);
+#endif
 /* Row r (0-based) of the scene with its zero border: element 0 is the border, 1 .. w the
  * pixels, w + 1 the border (img's own row, or the scene's row buffer filled). */
 const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r);

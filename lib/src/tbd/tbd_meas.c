@@ -9,11 +9,15 @@
  * neighbours, eight pixels per step (peak_hrow_r16_madd_), instead of the widening products
  * the compiler makes of pft_kmul_r16_; both builds take the integration's inner bins
  * (integ_row_) eight per step with the sums' rounding, clamps and the bin word in 16-bit lanes
- * (integ_fast8_). The same values; AArch64 and the Cortex-M builds keep the plain loops. */
+ * (integ_fast8_); q16's vertical sums (peak_vrow_, the centre tap 1) take each product of a
+ * tap and a 32-bit value as one 32 x 32 -> 64-bit multiply (pmuludq) of its magnitude
+ * (peak_vrow_mul_) instead of two 32-bit products, which SSE2 forms of pmuludq pairs and
+ * shuffles. The same values; AArch64 and the Cortex-M builds keep the plain loops. */
 #include <emmintrin.h>
 #define PFT_TBD_INTEG_FAST8_ 1
 #if defined(PFT_NUMERIC_Q16)
 #define PFT_TBD_HROW_MADD_ 1
+#define PFT_TBD_VROW_MUL_ 1
 #endif
 #endif
 
@@ -782,6 +786,36 @@ void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t
 }
 #endif
 
+#if defined(PFT_TBD_VROW_MUL_)
+/* peak_vrow_'s columns with the centre tap 1, four at a time from column 0 while a whole step
+ * lies inside the row; returns the first column not done. mf = mid + pft_kmul_u_(u0, z), z =
+ * up + dn, which is pft_kmula_(u0, z) (0 <= u0 <= 2^16, |z| < 2^30): rounded to nearest, ties
+ * away from zero, i.e. sign(z) floor((u0 |z| + 2^15) / 2^16). u0 |z| < 2^46 is exact in a
+ * 64-bit lane of pmuludq (the even lanes, then the odd ones shifted down), the quotient below
+ * 2^30 in its low 32 bits. */
+static uint32_t peak_vrow_mul_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+                               uint32_t w, pft_real_t u0, pft_real_t *restrict mf)
+{
+    const __m128i t = _mm_set1_epi32(u0);
+    const __m128i half = _mm_set_epi32(0, 32768, 0, 32768);
+    uint32_t c = 0u;
+    for (; c + 4u <= w; c += 4u) {
+        const __m128i z = _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(up + c)),
+                                        _mm_loadu_si128((const __m128i *)(const void *)(dn + c)));
+        const __m128i m = _mm_srai_epi32(z, 31); /* -1 where z < 0 */
+        const __m128i a = _mm_sub_epi32(_mm_xor_si128(z, m), m);
+        const __m128i pe = _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(a, t), half), 16);
+        const __m128i po =
+            _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(a, 32), t), half), 16);
+        const __m128i q = _mm_or_si128(pe, _mm_slli_epi64(po, 32));
+        const __m128i r = _mm_sub_epi32(_mm_xor_si128(q, m), m);
+        _mm_storeu_si128((__m128i *)(void *)(mf + c),
+                         _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(mid + c)), r));
+    }
+    return c;
+}
+#endif
+
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). mf is
  * none of the three rows (scene_scan_rows_: ss->mf and ss->hs are apart). */
 static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
@@ -796,6 +830,11 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
         const uint32_t h = w / 2u;
         if (u1 == PFT_REAL_ONE) {
             /* the centre tap at offset 0 is exp(0) = 1: pft_kmula_(1, v) is v in both builds */
+#if defined(PFT_TBD_VROW_MUL_)
+            for (uint32_t c = peak_vrow_mul_(up, mid, dn, w, u0, mf); c < w; ++c) {
+                mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+            }
+#else
             for (uint32_t c = 0; c < h; ++c) {
                 const uint32_t d = c + h;
                 mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
@@ -804,6 +843,7 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
             for (uint32_t c = 2u * h; c < w; ++c) {
                 mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
             }
+#endif
             return;
         }
         for (uint32_t c = 0; c < h; ++c) {
@@ -827,6 +867,14 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
         }
     }
 }
+
+#if defined(PFT_TBD_VROW_MUL_)
+void pft_tbd_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn, uint32_t w,
+                   pft_real_t u0, pft_real_t u1, pft_real_t *mf)
+{
+    peak_vrow_(up, mid, dn, w, u0, u1, mf);
+}
+#endif
 
 /* A strict local maximum of its 3 x 3 neighbourhood (neighbours outside the image ignored); on
  * a plateau the first pixel in raster order wins: v > the neighbours before it, >= after. */
