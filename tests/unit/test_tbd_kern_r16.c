@@ -13,6 +13,16 @@
  * values just below and above each multiple of 2^-16 boundary in q16, i.e. every 16-bit low
  * half near 0 and 2^15).
  *
+ * The scan's rows on x86-64 (SSE2; the hooks pft_tbd_hrow_r16_ and pft_tbd_integ_row_ exist
+ * there only, elsewhere the two tests are ignored): the horizontal sums of a RES16 row
+ * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
+ * bit, the vertical sums (peak_vrow_; the hook pft_tbd_vrow_ in q16 only, the centre tap 1's
+ * rows by 64-bit products of the magnitudes) are pft_kmula_'s, and the integration's bin row
+ * (integ_row_, the inner bins eight at a time) is its general
+ * form's (every bin by integ_bin_) word for word, with its sums: random rows with extremes, the
+ * masked code, ties, the rounding's halves, values beyond the clamp (float: NaN, infinities,
+ * both zeros).
+ *
  * The particle kernel on a RES16 window (lib/src/tbd/tbd_int.h, pft_tbd_llr3_r16_):
  * pft_kspot3_r16_ on the frame's int16 pixels is pft_kspot3_ on the converted window (each
  * pixel pft_kres16_, a masked one 0) bit for bit, no tolerance (the log-weights decide
@@ -113,6 +123,228 @@ static void test_kmul_r16_is_kmula_of_the_converted_pixels(void)
         }
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+}
+
+#if defined(__SSE2__)
+/* A RES16 pixel for the row test: extremes, the masked code, 0, small and full-range values. */
+static int16_t hrow_pix_(uint32_t *st)
+{
+    *st = *st * 1664525u + 1013904223u;
+    const uint32_t r = *st >> 8;
+    switch (r % 8u) {
+    case 0u: return (int16_t)32767;
+    case 1u: return (int16_t)-32767;
+    case 2u: return PFT_RES16_MASKED;
+    case 3u: return (int16_t)0;
+    case 4u: return (int16_t)((int32_t)((r >> 3) % 1025u) - 512);
+    default: return (int16_t)((int32_t)((r >> 3) % 65535u) - 32767);
+    }
+}
+
+#endif
+
+/* pft_tbd_hrow_r16_ (peak_hrow_r16_: the scan's horizontal sums on a RES16 row read in place;
+ * in q16 with SSE2 the centre tap 1's columns eight at a time by 16-bit multiply-adds) is
+ * peak_hrow_ of the converted row bit for bit: hs[c] = pft_kaddr_(pft_kmula_(t1, z(c)),
+ * pft_kmula_(t0, pft_kaddr_(z(c - 1), z(c + 1)))), z = pft_kres16_ of the pixel, a masked pixel
+ * and the pixels outside the row 0. Widths 1 to 41 and 64 (whole eight-pixel steps, the tail,
+ * rows shorter than a step), every tap as t0, t1 = 1 (the centre tap at offset 0, the fast
+ * columns) and t1 = the tap of sigma 1 (the general columns), 60 random rows each. */
+static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
+{
+#if !defined(__SSE2__)
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_hrow_r16_ is built on x86-64 (SSE2) only");
+#else
+    make_taps_();
+    static uint8_t src[2u * 64u];
+    static pft_real_t z[64];
+    static pft_real_t got[64];
+    uint32_t st = 12345u;
+    uint32_t bad = 0u;
+    uint32_t rows = 0u;
+    const pft_real_t t1s[2] = {PFT_REAL_ONE, pft_test_from_double(exp(-0.5))};
+    for (uint32_t w = 1u; w <= 64u; w = w < 41u ? w + 1u : 64u) {
+        for (uint32_t k = 0; k < n_taps_; ++k) {
+            for (uint32_t q = 0; q < 2u; ++q) {
+                const pft_real_t t0 = taps_[k];
+                const pft_real_t t1 = t1s[q];
+                for (uint32_t n = 0; n < 60u; ++n) {
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const int16_t v = hrow_pix_(&st);
+                        memcpy(src + 2u * c, &v, 2u);
+                        z[c] = v == PFT_RES16_MASKED ? PFT_C(0.0) : pft_kres16_(v);
+                    }
+                    pft_tbd_hrow_r16_(src, w, pft_kr16_tap_(t0), pft_kr16_tap_(t1), got);
+                    ++rows;
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const pft_real_t zl = c > 0u ? z[c - 1u] : PFT_C(0.0);
+                        const pft_real_t zr = c + 1u < w ? z[c + 1u] : PFT_C(0.0);
+                        const pft_real_t want =
+                            pft_kaddr_(pft_kmula_(t1, z[c]), pft_kmula_(t0, pft_kaddr_(zl, zr)));
+                        if (memcmp(&want, &got[c], sizeof want) != 0 && bad++ == 0u) {
+                            snprintf(msg_, sizeof msg_, "w %u c %u t0 %.9g t1 %.9g: %.9g, want %.9g",
+                                     (unsigned)w, (unsigned)c, pft_test_to_double(t0),
+                                     pft_test_to_double(t1), pft_test_to_double(got[c]),
+                                     pft_test_to_double(want));
+                        }
+                    }
+                }
+            }
+        }
+        if (w == 64u) {
+            break;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_EQUAL_UINT32(42u * 2u * 60u * n_taps_, rows);
+#endif
+}
+
+#if defined(__SSE2__)
+/* A PSF-matched value for the integration's row test: ties, halves of 1/64 (the rounding's
+ * ties), values beyond the clamp at 257 sigmas, extremes, zeros (float: both signs, NaN). */
+static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
+{
+    *st = *st * 1664525u + 1013904223u;
+    const uint32_t r = *st >> 8;
+    const double u = (double)((r >> 4) % 100000u) / 100000.0;
+    switch (r % 12u) {
+    case 0u: return prev != NULL ? *prev : PFT_C(0.0); /* a tie with the pixel before */
+    case 1u: return pft_test_from_double((double)((int32_t)((r >> 4) % 2001u) - 1000) / 64.0 + 1.0 / 128.0);
+    case 2u: return pft_test_from_double((u - 0.5) * 700.0); /* beyond +-257 sigmas now and then */
+    case 3u: return pft_test_from_double(u < 0.5 ? 256.99 + u : -257.01 - u);
+#ifdef PFT_NUMERIC_Q16
+    case 4u: return u < 0.5 ? (pft_real_t)INT32_MAX : (pft_real_t)(INT32_MIN + 1);
+    case 5u: return PFT_C(0.0);
+#else
+    case 4u: return u < 0.3 ? 1e30f : (u < 0.6 ? -1e30f : (u < 0.8 ? NAN : INFINITY));
+    case 5u: return u < 0.5 ? 0.0f : -0.0f;
+#endif
+    default: return pft_test_from_double((u - 0.5) * 40.0);
+    }
+}
+
+#endif
+
+/* pft_tbd_integ_row_ (integ_row_: the inner bins through a branch-free loop, in float and q16
+ * with SSE2 eight at a time in 16-bit lanes) is its general form (every bin by integ_bin_) word
+ * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
+ * 70, odd and even), last-frame sums (the whole 16-bit range), shifts -4 .. 4 bins either way,
+ * every bin row of a 5-row grid (the last without its second pixel row when the height is
+ * odd), a_q 0, 1, 77, 128, 255 and 256. */
+static void test_integ_row_is_its_general_form(void)
+{
+#if !defined(__SSE2__)
+    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) only");
+#else
+    static pft_real_t r0[72], r1[72];
+    static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];
+    static uint32_t vm_a[40], vm_b[40];
+    static const uint32_t aqs[6] = {0u, 1u, 77u, 128u, 255u, 256u};
+    uint32_t st = 777u;
+    uint32_t bad = 0u;
+    uint32_t fast = 0u;
+    for (uint32_t n = 0; n < 3000u; ++n) {
+        st = st * 1664525u + 1013904223u;
+        const uint32_t w = 1u + (st >> 8) % 70u;
+        const uint32_t bw = (w + 1u) / 2u;
+        pft_tbd_integ_t_ ig;
+        ig.prev = prev;
+        ig.cur = cur_a;
+        ig.bw = bw;
+        ig.bh = 5u;
+        ig.sx = (int32_t)((st >> 16) % 9u) - 4;
+        ig.sy = (int32_t)((st >> 20) % 9u) - 4;
+        ig.a_q = aqs[(st >> 24) % 6u];
+        const uint32_t br = (st >> 27) % 5u;
+        const bool last_alone = br == 4u && ((st >> 3) & 1u) != 0u;
+        for (uint32_t i = 0; i < bw * 5u; ++i) {
+            st = st * 1664525u + 1013904223u;
+            prev[i] = (uint16_t)(st >> 16);
+        }
+        for (uint32_t c = 0; c < w; ++c) {
+            r0[c] = integ_val_(&st, c > 0u ? &r0[c - 1u] : NULL);
+            r1[c] = integ_val_(&st, &r0[c]);
+        }
+        memset(cur_a, 0, sizeof cur_a);
+        memset(cur_b, 0, sizeof cur_b);
+        uint64_t sa[2] = {5u, 7u};
+        uint64_t sb[2] = {5u, 7u};
+        pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_a, sa, false);
+        ig.cur = cur_b;
+        pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_b, sb, true);
+        fast += (!last_alone && bw >= 8u) ? 1u : 0u;
+        if ((memcmp(cur_a, cur_b, sizeof cur_a) != 0 || sa[0] != sb[0] || sa[1] != sb[1]) &&
+            bad++ == 0u) {
+            uint32_t c = 0u;
+            while (c + 1u < bw && cur_a[br * bw + c] == cur_b[br * bw + c]) {
+                ++c;
+            }
+            snprintf(msg_, sizeof msg_, "row %u w %u bin %u sx %d a_q %u: %u, general %u",
+                     (unsigned)n, (unsigned)w, (unsigned)c, (int)ig.sx, (unsigned)ig.a_q,
+                     (unsigned)cur_a[br * bw + c], (unsigned)cur_b[br * bw + c]);
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_TRUE(fast > 1000u); /* rows long enough for eight inner bins at a time */
+#endif
+}
+
+/* pft_tbd_vrow_ (peak_vrow_: the scan's vertical sums; in q16 with SSE2 the centre tap 1's rows
+ * four columns at a time by 32 x 32 -> 64-bit products of the magnitudes) is
+ * pft_kaddr_(pft_kmula_(u1, mid), pft_kmula_(u0, pft_kaddr_(up, dn))) bit for bit: every tap
+ * as u0 with u1 = 1 (the fast rows) and u1 = the tap of sigma 1 (the general rows), widths 1 to
+ * 41, 40 random rows each with |up + dn| < 2^30 (q16: values below 2^14): both signs, zeros,
+ * the products' halves (u0 z = 2^15 mod 2^16 for u0 = 1/2), the range's ends. */
+static void test_vrow_is_kmula(void)
+{
+#if !(defined(__SSE2__) && defined(PFT_NUMERIC_Q16))
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_vrow_ is built in q16 on x86-64 (SSE2) only");
+#else
+    make_taps_();
+    static pft_real_t up[48], mid[48], dn[48], got[48];
+    const pft_real_t u1s[2] = {PFT_REAL_ONE, pft_test_from_double(exp(-0.5))};
+    uint32_t st = 99u;
+    uint32_t bad = 0u;
+    for (uint32_t w = 1u; w <= 41u; ++w) {
+        for (uint32_t k = 0; k < n_taps_; ++k) {
+            for (uint32_t q = 0; q < 2u; ++q) {
+                const pft_real_t u0 = taps_[k];
+                const pft_real_t u1 = u1s[q];
+                for (uint32_t n = 0; n < 40u; ++n) {
+                    for (uint32_t c = 0; c < w; ++c) {
+                        pft_real_t v[3];
+                        for (uint32_t i = 0; i < 3u; ++i) {
+                            st = st * 1664525u + 1013904223u;
+                            const int32_t r = (int32_t)(st >> 2) - (int32_t)(1u << 29); /* +-2^29 */
+                            switch ((st >> 27) % 6u) {
+                            case 0u: v[i] = 0; break;
+                            case 1u: v[i] = (pft_real_t)(((r >> 1) & ~65535) | 32768); break;
+                            case 2u: v[i] = r < 0 ? -(pft_real_t)((1 << 29) - 1) : (pft_real_t)((1 << 29) - 1); break;
+                            case 3u: v[i] = r % 70000; break;
+                            default: v[i] = r; break;
+                            }
+                        }
+                        up[c] = v[0];
+                        mid[c] = v[1] / 4;
+                        dn[c] = v[2];
+                    }
+                    pft_tbd_vrow_(up, mid, dn, w, u0, u1, got);
+                    for (uint32_t c = 0; c < w; ++c) {
+                        const pft_real_t want = pft_kaddr_(pft_kmula_(u1, mid[c]),
+                                                           pft_kmula_(u0, pft_kaddr_(up[c], dn[c])));
+                        if (want != got[c] && bad++ == 0u) {
+                            snprintf(msg_, sizeof msg_, "w %u c %u u0 %d u1 %d z %d: %d, want %d",
+                                     (unsigned)w, (unsigned)c, (int)u0, (int)u1,
+                                     (int)(up[c] + dn[c]), (int)got[c], (int)want);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+#endif
 }
 
 static void test_kmul_u_is_kmula(void)
@@ -421,6 +653,9 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_kmul_r16_is_kmula_of_the_converted_pixels);
     RUN_TEST(test_kmul_u_is_kmula);
+    RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
+    RUN_TEST(test_integ_row_is_its_general_form);
+    RUN_TEST(test_vrow_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);
     RUN_TEST(test_kwexp_lanes_is_kwexp);

@@ -100,6 +100,20 @@ void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0,
 /* Whether a patch of sc may cover a pixel of the 3 x 3 window at columns col0 .. col0 + 2,
  * rows row0 .. row0 + 2 (0-based): false when every patch's rectangle lies apart from it. */
 bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0);
+#if defined(__SSE2__)
+/* The scene scan's horizontal sums of a RES16 row of w pixels (src: the row's bytes, int16
+ * pixels) with the taps t0, t1 prepared by pft_kr16_tap_: hs[c] = t1 z(c) + t0 (z(c - 1) +
+ * z(c + 1)), z a pixel / 256, a masked one or one outside the row 0 (tbd_meas.c,
+ * peak_hrow_r16_; for the unit tests, x86-64 builds only). */
+void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+                       pft_real_t *hs);
+#endif
+#if defined(__SSE2__) && defined(PFT_NUMERIC_Q16)
+/* The scene scan's vertical sums mf[c] = u1 mid[c] + u0 (up[c] + dn[c]) (tbd_meas.c,
+ * peak_vrow_; up and dn may be NULL, zero rows; for the unit tests, q16 x86-64 builds only). */
+void pft_tbd_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn, uint32_t w,
+                   pft_real_t u0, pft_real_t u1, pft_real_t *mf);
+#endif
 /* Row r (0-based) of the scene with its zero border: element 0 is the border, 1 .. w the
  * pixels, w + 1 the border (img's own row, or the scene's row buffer filled). */
 const pft_real_t *pft_tbd_row_(const pft_tbd_scene_t_ *sc, uint32_t r);
@@ -164,6 +178,16 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
                           const pft_tbd_integ_t_ *ig);
+#if defined(__SSE2__)
+/* One bin row br of the integration (tbd_meas.c, integ_row_) from the PSF-matched rows r0, r1
+ * (r1 NULL past the last row) into ig->cur with ig->prev's sums, vm bw + 2 words of scratch,
+ * the row's sums and squares added to sum[0], sum[1]; general: every bin by the general code
+ * (integ_bin_) instead of the inner bins' loops (for the unit tests, x86-64 builds
+ * only). */
+void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
+                        bool general);
+#endif
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand
  * NULL): a binary search of row_pre, then the row's mask. */
 uint32_t pft_tbd_scene_pick_(const pft_tbd_scene_t_ *sc, uint32_t n);

@@ -3,6 +3,24 @@
 
 #include "tbd_int.h"
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64): q16's scene scan takes a RES16 row's horizontal sums
+ * (peak_hrow_r16_, the centre tap 1) as 16-bit multiply-adds (pmaddwd) of each pixel's two
+ * neighbours, eight pixels per step (peak_hrow_r16_madd_), instead of the widening products
+ * the compiler makes of pft_kmul_r16_; both builds take the integration's inner bins
+ * (integ_row_) eight per step with the sums' rounding, clamps and the bin word in 16-bit lanes
+ * (integ_fast8_); q16's vertical sums (peak_vrow_, the centre tap 1) take each product of a
+ * tap and a 32-bit value as one 32 x 32 -> 64-bit multiply (pmuludq) of its magnitude
+ * (peak_vrow_mul_) instead of two 32-bit products, which SSE2 forms of pmuludq pairs and
+ * shuffles. The same values; AArch64 and the Cortex-M builds keep the plain loops. */
+#include <emmintrin.h>
+#define PFT_TBD_INTEG_FAST8_ 1
+#if defined(PFT_NUMERIC_Q16)
+#define PFT_TBD_HROW_MADD_ 1
+#define PFT_TBD_VROW_MUL_ 1
+#endif
+#endif
+
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
 {
     pft_real_t r = pft_clamp(pft_mul(v, inv_d), PFT_C(-30000.0), PFT_C(30000.0));
@@ -670,10 +688,10 @@ static inline int16_t r16_int_(const uint8_t *src, size_t c)
  * products are skipped (q16: two widening multiplies per pixel; float keeps one form,
  * pft_kr16_one_pays_). The same values either way; the caller passes a constant, so each form
  * is its own loop. */
-static inline void peak_hrow_r16_in_(const uint8_t *src, uint32_t w, pft_real_t t0,
+static inline void peak_hrow_r16_in_(const uint8_t *src, size_t c0, uint32_t w, pft_real_t t0,
                                      pft_real_t t1, bool one, pft_real_t *hs)
 {
-    for (size_t c = 1u; c + 1u < (size_t)w; ++c) {
+    for (size_t c = c0; c + 1u < (size_t)w; ++c) {
         /* a masked pixel reads 0: the value times 1 or 0 (no branch, so the loop vectorises) */
         int16_t a, b, d;
         memcpy(&a, src + 2u * (c - 1u), 2u);
@@ -686,6 +704,52 @@ static inline void peak_hrow_r16_in_(const uint8_t *src, uint32_t w, pft_real_t 
         hs[c] = pft_kaddr_(mc, pft_kmul_r16_(t0, zl, zr));
     }
 }
+
+#if defined(PFT_TBD_HROW_MADD_)
+/* peak_hrow_r16_in_'s columns 1 .. with the centre tap 1 (one), eight at a time while a whole
+ * step lies inside 1 .. w - 2; returns the first column not done. Per pixel: pft_kres16_(zc) =
+ * 256 zc (zc in a 32-bit lane's high half, shifted down by 8), and pft_kmul_r16_(t0, zl, zr) =
+ * th (zl + zr) + (tl (zl + zr) + 128 - [zl + zr < 0]) >> 8 (t0 = 256 th + tl) with the two
+ * products of each pair (zl, zr) as one multiply-add of the pair with (th, th) and with
+ * (tl, tl): th <= 256, tl <= 255 and |zl|, |zr| <= 32767 (a masked pixel, the only -32768,
+ * reads 0), so each sum is exact in 32 bits. The sign of tl (zl + zr) is that of zl + zr when
+ * tl > 0; when tl = 0 the rounded term is 0 with either sign. */
+static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t *hs)
+{
+    const uint32_t tu = (uint32_t)t0; /* 0 .. 65536 (pft_kr16_tap_ok_) */
+    const uint32_t th = tu >> 8;
+    const uint32_t tl = tu & 255u;
+    const __m128i wh = _mm_set1_epi32((int32_t)((th << 16) | th));
+    const __m128i wl = _mm_set1_epi32((int32_t)((tl << 16) | tl));
+    const __m128i masked = _mm_set1_epi16(PFT_RES16_MASKED);
+    const __m128i half = _mm_set1_epi32(128);
+    const __m128i zero = _mm_setzero_si128();
+    size_t c = 1u;
+    for (; c + 8u < (size_t)w; c += 8u) {
+        __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
+        __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
+        __m128i d = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
+        a = _mm_andnot_si128(_mm_cmpeq_epi16(a, masked), a);
+        b = _mm_andnot_si128(_mm_cmpeq_epi16(b, masked), b);
+        d = _mm_andnot_si128(_mm_cmpeq_epi16(d, masked), d);
+        const __m128i plo = _mm_unpacklo_epi16(a, d); /* (zl, zr) of pixels c .. c + 3 */
+        const __m128i phi = _mm_unpackhi_epi16(a, d); /* and of c + 4 .. c + 7 */
+        const __m128i llo = _mm_madd_epi16(plo, wl);
+        const __m128i lhi = _mm_madd_epi16(phi, wl);
+        const __m128i rlo = _mm_srai_epi32(
+            _mm_add_epi32(_mm_add_epi32(llo, half), _mm_srai_epi32(llo, 31)), 8);
+        const __m128i rhi = _mm_srai_epi32(
+            _mm_add_epi32(_mm_add_epi32(lhi, half), _mm_srai_epi32(lhi, 31)), 8);
+        const __m128i clo = _mm_srai_epi32(_mm_unpacklo_epi16(zero, b), 8); /* 256 zc */
+        const __m128i chi = _mm_srai_epi32(_mm_unpackhi_epi16(zero, b), 8);
+        const __m128i olo = _mm_add_epi32(_mm_add_epi32(clo, _mm_madd_epi16(plo, wh)), rlo);
+        const __m128i ohi = _mm_add_epi32(_mm_add_epi32(chi, _mm_madd_epi16(phi, wh)), rhi);
+        _mm_storeu_si128((__m128i *)(void *)(hs + c), olo);
+        _mm_storeu_si128((__m128i *)(void *)(hs + c + 4u), ohi);
+    }
+    return c;
+}
+#endif
 
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
  * so the clamp at PEAK_CLIP_ never acts, z(c - 1) + z(c + 1) is (v(c - 1) + v(c + 1)) / 256
@@ -702,13 +766,55 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
     hs[0] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, 0u), 0),
                        pft_kmul_r16_(t0, r16_int_(src, 1u), 0));
     if (pft_kr16_one_pays_() && t1 == pft_kr16_tap_(PFT_REAL_ONE)) {
-        peak_hrow_r16_in_(src, w, t0, t1, true, hs);
+        size_t c0 = 1u;
+#if defined(PFT_TBD_HROW_MADD_)
+        c0 = peak_hrow_r16_madd_(src, w, t0, hs);
+#endif
+        peak_hrow_r16_in_(src, c0, w, t0, t1, true, hs);
     } else {
-        peak_hrow_r16_in_(src, w, t0, t1, false, hs);
+        peak_hrow_r16_in_(src, 1u, w, t0, t1, false, hs);
     }
     hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
 }
+
+#if defined(__SSE2__)
+void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+                       pft_real_t *hs)
+{
+    peak_hrow_r16_(src, w, t0, t1, hs);
+}
+#endif
+
+#if defined(PFT_TBD_VROW_MUL_)
+/* peak_vrow_'s columns with the centre tap 1, four at a time from column 0 while a whole step
+ * lies inside the row; returns the first column not done. mf = mid + pft_kmul_u_(u0, z), z =
+ * up + dn, which is pft_kmula_(u0, z) (0 <= u0 <= 2^16, |z| < 2^30): rounded to nearest, ties
+ * away from zero, i.e. sign(z) floor((u0 |z| + 2^15) / 2^16). u0 |z| < 2^46 is exact in a
+ * 64-bit lane of pmuludq (the even lanes, then the odd ones shifted down), the quotient below
+ * 2^30 in its low 32 bits. */
+static uint32_t peak_vrow_mul_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
+                               uint32_t w, pft_real_t u0, pft_real_t *restrict mf)
+{
+    const __m128i t = _mm_set1_epi32(u0);
+    const __m128i half = _mm_set_epi32(0, 32768, 0, 32768);
+    uint32_t c = 0u;
+    for (; c + 4u <= w; c += 4u) {
+        const __m128i z = _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(up + c)),
+                                        _mm_loadu_si128((const __m128i *)(const void *)(dn + c)));
+        const __m128i m = _mm_srai_epi32(z, 31); /* -1 where z < 0 */
+        const __m128i a = _mm_sub_epi32(_mm_xor_si128(z, m), m);
+        const __m128i pe = _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(a, t), half), 16);
+        const __m128i po =
+            _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(a, 32), t), half), 16);
+        const __m128i q = _mm_or_si128(pe, _mm_slli_epi64(po, 32));
+        const __m128i r = _mm_sub_epi32(_mm_xor_si128(q, m), m);
+        _mm_storeu_si128((__m128i *)(void *)(mf + c),
+                         _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(mid + c)), r));
+    }
+    return c;
+}
+#endif
 
 /* mf[c] = u1 hs(r, c) + u0 (hs(r - 1, c) + hs(r + 1, c)); a NULL row is zero (outside). mf is
  * none of the three rows (scene_scan_rows_: ss->mf and ss->hs are apart). */
@@ -724,6 +830,11 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
         const uint32_t h = w / 2u;
         if (u1 == PFT_REAL_ONE) {
             /* the centre tap at offset 0 is exp(0) = 1: pft_kmula_(1, v) is v in both builds */
+#if defined(PFT_TBD_VROW_MUL_)
+            for (uint32_t c = peak_vrow_mul_(up, mid, dn, w, u0, mf); c < w; ++c) {
+                mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
+            }
+#else
             for (uint32_t c = 0; c < h; ++c) {
                 const uint32_t d = c + h;
                 mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
@@ -732,6 +843,7 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
             for (uint32_t c = 2u * h; c < w; ++c) {
                 mf[c] = pft_kaddr_(mid[c], pft_kmul_u_(u0, pft_kaddr_(up[c], dn[c])));
             }
+#endif
             return;
         }
         for (uint32_t c = 0; c < h; ++c) {
@@ -755,6 +867,14 @@ static inline void peak_vrow_(const pft_real_t *up, const pft_real_t *mid, const
         }
     }
 }
+
+#if defined(PFT_TBD_VROW_MUL_)
+void pft_tbd_vrow_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn, uint32_t w,
+                   pft_real_t u0, pft_real_t u1, pft_real_t *mf)
+{
+    peak_vrow_(up, mid, dn, w, u0, u1, mf);
+}
+#endif
 
 /* A strict local maximum of its 3 x 3 neighbourhood (neighbours outside the image ignored); on
  * a plateau the first pixel in raster order wins: v > the neighbours before it, >= after. */
@@ -935,6 +1055,138 @@ static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
     return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
 }
 
+#if defined(PFT_TBD_INTEG_FAST8_)
+/* Four bins' largest pixel of x0 .. x3 (ties to the earlier) as pft_kround64_ of it, or a
+ * value beyond +-16448 of the same sign where pft_kround64_ gives +-16448 (the caller's clamp
+ * of the sum to 0 .. INTEG_MAX_ then gives the same bin); g[k] the lanes where x(k + 1) was
+ * taken (the index's masks). q16: the compares and selections in 32-bit lanes; the rounding
+ * floor((a + 512) / 1024) = (a >> 10) + bit 9 of a, pft_kround64_'s (64 a + 2^15) >> 16 for
+ * the clamped a (the clamp moves a only beyond it, where the result keeps its side). */
+#if defined(PFT_NUMERIC_Q16)
+static inline __m128i integ_pick_(__m128i x, __m128i b, __m128i *g)
+{
+    *g = _mm_cmpgt_epi32(x, b);
+    return _mm_or_si128(_mm_and_si128(*g, x), _mm_andnot_si128(*g, b));
+}
+
+static inline __m128i integ_best4_(__m128i x0, __m128i x1, __m128i x2, __m128i x3, __m128i *g)
+{
+    __m128i b = integ_pick_(x1, x0, &g[0]);
+    b = integ_pick_(x2, b, &g[1]);
+    b = integ_pick_(x3, b, &g[2]);
+    return _mm_add_epi32(_mm_srai_epi32(b, 10),
+                         _mm_and_si128(_mm_srai_epi32(b, 9), _mm_set1_epi32(1)));
+}
+
+static inline __m128i integ_ld_(const pft_real_t *p)
+{
+    return _mm_loadu_si128((const __m128i *)(const void *)p);
+}
+
+/* The even (sel 0x88) or odd (0xDD) elements of a then b. */
+static inline __m128i integ_half_(__m128i a, __m128i b, bool odd)
+{
+    const __m128 fa = _mm_castsi128_ps(a);
+    const __m128 fb = _mm_castsi128_ps(b);
+    return _mm_castps_si128(odd ? _mm_shuffle_ps(fa, fb, 0xDD) : _mm_shuffle_ps(fa, fb, 0x88));
+}
+typedef __m128i integ_v_;
+#else
+/* float: maxps(x, b) is x > b ? x : b (b on a tie or a NaN), the selection of integ_bin_; then
+ * pft_kround64_: x = 64 best, a NaN 0, clamped to +-16448 (min/max, no NaN left), and
+ * floor(x + 1/2) (exact: |x| < 2^22) as the truncation less 1 where it exceeds x + 1/2. */
+static inline __m128i integ_best4_(__m128 x0, __m128 x1, __m128 x2, __m128 x3, __m128i *g)
+{
+    g[0] = _mm_castps_si128(_mm_cmpgt_ps(x1, x0));
+    __m128 b = _mm_max_ps(x1, x0);
+    g[1] = _mm_castps_si128(_mm_cmpgt_ps(x2, b));
+    b = _mm_max_ps(x2, b);
+    g[2] = _mm_castps_si128(_mm_cmpgt_ps(x3, b));
+    b = _mm_max_ps(x3, b);
+    const __m128 x = _mm_mul_ps(b, _mm_set1_ps(64.0f));
+    const __m128 xn = _mm_and_ps(x, _mm_cmpeq_ps(x, x));
+    const __m128 xc = _mm_min_ps(_mm_max_ps(xn, _mm_set1_ps(-16448.0f)), _mm_set1_ps(16448.0f));
+    const __m128 y = _mm_add_ps(xc, _mm_set1_ps(0.5f));
+    const __m128i t = _mm_cvttps_epi32(y);
+    return _mm_add_epi32(t, _mm_castps_si128(_mm_cmplt_ps(y, _mm_cvtepi32_ps(t))));
+}
+
+static inline __m128 integ_ld_(const pft_real_t *p) { return _mm_loadu_ps(p); }
+
+static inline __m128 integ_half_(__m128 a, __m128 b, bool odd)
+{
+    return odd ? _mm_shuffle_ps(a, b, 0xDD) : _mm_shuffle_ps(a, b, 0x88);
+}
+typedef __m128 integ_v_;
+#endif
+
+/* integ_row_'s inner bins bc = b0 .. eight at a time while bc + 8 <= b1 (r1 not NULL, vm[bc -
+ * sx .. bc - sx + 2] inside); returns the first bin not done. Per bin as the plain loop: the
+ * largest pixel and its index (ties to the earlier), m = pft_kround64_ of it (integ_best4_),
+ * mx the largest of the three vm words (< 2^14), sq = m + (a_q mx + 128) >> 8 clamped to 0 ..
+ * INTEG_MAX_, the word sq << 2 | idx. In 16-bit lanes after m: m packed with saturation (a
+ * value beyond +-16448 stays beyond it), a_q mx = 2^16 hi + lo (a_q <= 1024: hi < 2^8), so
+ * (a_q mx + 128) >> 8 = 256 hi + (lo >> 8) + bit 7 of lo, below 2^14; m plus it with
+ * saturation then clamped: the same as in 32 bits, since beyond +-16448 the sum is below 0 or
+ * above INTEG_MAX_ either way. */
+static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const uint32_t *vm,
+                            int32_t sx, int32_t b0, int32_t b1, uint32_t a_q, uint16_t *out)
+{
+    const __m128i aq = _mm_set1_epi16((int16_t)a_q);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i top = _mm_set1_epi16(INTEG_MAX_);
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i two = _mm_set1_epi16(2);
+    const __m128i three = _mm_set1_epi16(3);
+    int32_t bc = b0;
+    for (; bc + 8 <= b1; bc += 8) {
+        const pft_real_t *p0 = r0 + 2 * bc;
+        const pft_real_t *p1 = r1 + 2 * bc;
+        const integ_v_ a0 = integ_ld_(p0);
+        const integ_v_ a1 = integ_ld_(p0 + 4);
+        const integ_v_ a2 = integ_ld_(p0 + 8);
+        const integ_v_ a3 = integ_ld_(p0 + 12);
+        const integ_v_ c0 = integ_ld_(p1);
+        const integ_v_ c1 = integ_ld_(p1 + 4);
+        const integ_v_ c2 = integ_ld_(p1 + 8);
+        const integ_v_ c3 = integ_ld_(p1 + 12);
+        __m128i glo[3];
+        __m128i ghi[3];
+        const __m128i mlo = integ_best4_(integ_half_(a0, a1, false), integ_half_(a0, a1, true),
+                                         integ_half_(c0, c1, false), integ_half_(c0, c1, true),
+                                         glo);
+        const __m128i mhi = integ_best4_(integ_half_(a2, a3, false), integ_half_(a2, a3, true),
+                                         integ_half_(c2, c3, false), integ_half_(c2, c3, true),
+                                         ghi);
+        /* the index: 1, then 2, then 3 where that pixel was taken (masks 0 / -1 pack exactly) */
+        const __m128i g1 = _mm_packs_epi32(glo[0], ghi[0]);
+        const __m128i g2 = _mm_packs_epi32(glo[1], ghi[1]);
+        const __m128i g3 = _mm_packs_epi32(glo[2], ghi[2]);
+        __m128i idx = _mm_and_si128(g1, one);
+        idx = _mm_or_si128(_mm_andnot_si128(g2, idx), _mm_and_si128(g2, two));
+        idx = _mm_or_si128(_mm_andnot_si128(g3, idx), _mm_and_si128(g3, three));
+        /* mx: the three vm words (< 2^14, packed exactly) */
+        const uint32_t *v = vm + (bc - sx);
+        const __m128i v0 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)v),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 4)));
+        const __m128i v1 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(v + 1)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 5)));
+        const __m128i v2 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(v + 2)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(v + 6)));
+        const __m128i mx = _mm_max_epi16(_mm_max_epi16(v0, v1), v2);
+        const __m128i lo = _mm_mullo_epi16(mx, aq);
+        const __m128i hi = _mm_mulhi_epu16(mx, aq);
+        const __m128i add = _mm_add_epi16(
+            _mm_add_epi16(_mm_slli_epi16(hi, 8), _mm_srli_epi16(lo, 8)),
+            _mm_and_si128(_mm_srli_epi16(lo, 7), one));
+        __m128i sq = _mm_adds_epi16(_mm_packs_epi32(mlo, mhi), add);
+        sq = _mm_min_epi16(_mm_max_epi16(sq, zero), top);
+        _mm_storeu_si128((__m128i *)(void *)(out + bc), _mm_or_si128(_mm_slli_epi16(sq, 2), idx));
+    }
+    return bc;
+}
+#endif
+
 /* Bin bc of row br in general (any column, r1 NULL past the last row). */
 static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const pft_real_t *r1,
                        uint32_t w, const uint32_t *vm, uint32_t bc, uint16_t *out)
@@ -968,9 +1220,18 @@ static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const p
  * lies inside the last frame's row (bc - sx in 0 .. bw - 1) go through one branch-free loop
  * (the same selections as integ_bin_, ties to the earlier pixel), the others through
  * integ_bin_; the sums after the row, over its stored values. */
+#if defined(PFT_TBD_INTEG_FAST8_)
+/* general: every bin by integ_bin_ (pft_tbd_integ_row_, the unit tests' hook) */
+static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                       const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
+                       bool general)
+{
+#else
 static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum)
 {
+    const bool general = false;
+#endif
     const int32_t pr = (int32_t)br - ig->sy;
     const int32_t bw = (int32_t)ig->bw;
     const int32_t bh = (int32_t)ig->bh;
@@ -1003,13 +1264,19 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     const int32_t nfull = (int32_t)(w / 2u);
     int32_t b0 = sx < 0 ? 0 : (sx > bw ? bw : sx);
     int32_t b1 = sx > nfull - bw ? nfull : sx + bw;
-    b1 = r1 == NULL || b1 < b0 ? b0 : b1;
+    b1 = r1 == NULL || b1 < b0 || general ? b0 : b1; /* general: every bin by integ_bin_ */
     for (int32_t bc = 0; bc < b0; ++bc) {
         integ_bin_(ig, r0, r1, w, vm, (uint32_t)bc, out);
     }
     if (r1 != NULL) { /* always when b0 < b1 (b1 = b0 without r1) */
         const uint32_t a_q = ig->a_q;
-        for (int32_t bc = b0; bc < b1; ++bc) {
+        int32_t bf = b0;
+#if defined(PFT_TBD_INTEG_FAST8_)
+        if (a_q <= 1024u) {
+            bf = integ_fast8_(r0, r1, vm, sx, b0, b1, a_q, out);
+        }
+#endif
+        for (int32_t bc = bf; bc < b1; ++bc) {
             const pft_real_t x0 = r0[2 * bc];
             const pft_real_t x1 = r0[2 * bc + 1];
             const pft_real_t x2 = r1[2 * bc];
@@ -1048,6 +1315,15 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     sum[0] += s0;
     sum[1] += s1;
 }
+
+#if defined(PFT_TBD_INTEG_FAST8_)
+void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
+                        const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
+                        bool general)
+{
+    integ_row_(ig, br, r0, r1, w, vm, sum, general);
+}
+#endif
 
 /* floor(sqrt(v)), bit by bit (32 steps). */
 static uint32_t isqrt64_(uint64_t v)
@@ -1287,9 +1563,17 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
              * row alone (h odd) */
             const uint32_t r = rr - 1u;
             if (r % 2u == 1u) {
+#if defined(PFT_TBD_INTEG_FAST8_)
+                integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum, false);
+#else
                 integ_row_(ig, r / 2u, ss.mf[(r + 2u) % 3u], ss.mf[r % 3u], w, lines, isum);
+#endif
             } else if (r + 1u == h) {
+#if defined(PFT_TBD_INTEG_FAST8_)
+                integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum, false);
+#else
                 integ_row_(ig, r / 2u, ss.mf[r % 3u], NULL, w, lines, isum);
+#endif
             } else {
                 /* the first row of a pair: its bin row comes with the next row */
             }
