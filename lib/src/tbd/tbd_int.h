@@ -335,7 +335,8 @@ static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_
         !(v->pflag != NULL && v->pflag[c->j - 1] != 0u &&
           pft_tbd_patch_in_win_(sc, c->i - 2, c->j - 2))) {
 #ifdef PFT_KSPOT3_R16T_LANES_
-        /* float with SSE2: the taps and the window in vector lanes (the same bits) */
+        /* float with SSE2 or AArch64 NEON: the taps and the window in vector lanes (the same
+         * bits) */
         return pft_kspot3_r16t_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
                                 v->st, tab->taps[0], c->fx, tab->taps[1], c->fy, amp);
 #else
