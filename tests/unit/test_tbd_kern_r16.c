@@ -31,8 +31,9 @@
  * 0.7, 1.0 and 2.0 at window offsets across [-1/2, 1/2] (all of which pass
  * pft_kr16_sum_ok_, the float condition) and amplitudes 0.5 to 200. In float with 16-byte
  * vectors (SSE2, NEON) pft_kspot3_r16_ reads the window's first eight pixels in 16-bit lanes.
- * pft_kspot3_r16t_ (the taps and the window in one, in vector lanes; float with SSE2 only) is
- * pft_ktaps_ and then pft_kspot3_r16_ bit for bit on random windows and tap tables (below).
+ * pft_kspot3_r16t_ (the taps and the window in one, in vector lanes; float with SSE2 or AArch64
+ * NEON only) is pft_ktaps_ and then pft_kspot3_r16_ bit for bit on random windows and tap
+ * tables (below).
  *
  * The weights' pass (tbd_filter.c, weights_) in float with 16-byte vectors: pft_kwexp_lanes_
  * is pft_kwexp_ of every value bit for bit (below).
@@ -458,12 +459,14 @@ static void test_kspot3_r16_is_kspot3_of_the_converted_window(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
-/* pft_kspot3_r16t_ (the weighing loop's kernel in float with SSE2: the taps of both axes and
- * the window in one, the taps as vectors, the window's rows as lanes; ignored elsewhere) is pft_ktaps_ of both tables'
- * rows and then pft_kspot3_r16_ bit for bit, no tolerance: 6000 windows of random pixels (the
- * masked code, extremes, 0, small and large values) at random row strides, random tables (64
- * rows; values in [0, 1.2), differences in +-0.05, some 0) at random rows and fractions (0, 1
- * and between), amplitudes 0 and -5 to 35. */
+/* pft_kspot3_r16t_ (the weighing loop's kernel in float with SSE2 or AArch64 NEON: the taps of
+ * both axes and the window in one, the taps as vectors, the window's rows as lanes; ignored
+ * elsewhere) is pft_ktaps_ of both tables' rows and then pft_kspot3_r16_ bit for bit, no
+ * tolerance: 6000 windows of random pixels (the masked code, extremes, 0, small and large
+ * values) at random row strides, random tables (64 rows; values in [0, 1.2), differences in
+ * +-0.05, some 0) at random rows and fractions (0, 1 and between), amplitudes 0 and -5 to 35;
+ * then windows whose every row sum is -0 (zero taps, pixels below 0 or masked), where a form
+ * that added a +0 for an unused lane would give +0 (the NEON form's pairwise sums add -0). */
 static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
 {
 #if defined(PFT_KSPOT3_R16T_LANES_)
@@ -471,7 +474,7 @@ static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
     static pft_real_t tab[2][ROWS][8];
     uint8_t frame[2u * W * H];
     uint32_t st = 4242u;
-    uint32_t bad = 0u, masked = 0u;
+    uint32_t bad = 0u, masked = 0u, negz = 0u;
     for (uint32_t rep = 0; rep < 6000u; ++rep) {
         for (uint32_t t = 0; t < 2u; ++t) {
             for (uint32_t r = 0; r < (uint32_t)ROWS; ++r) {
@@ -519,8 +522,41 @@ static void test_kspot3_r16t_is_taps_then_kspot3_r16(void)
     }
     TEST_ASSERT_TRUE(masked > 1000u);
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    /* every tap 0: each product tx v of a pixel v < 0 is -0, so is each row sum, the window
+     * sum and the result (a (s1 - 0): -0 for a >= 0); a masked pixel's +0 times 0 is +0, and a
+     * row with one keeps -0 only where another product is -0 (-0 + +0 is +0) */
+    memset(tab, 0, sizeof tab);
+    for (uint32_t rep = 0; rep < 64u; ++rep) {
+        for (uint32_t q = 0; q < (uint32_t)(W * H); ++q) {
+            const uint32_t u = lcg_(&st);
+            const int16_t v = u % 16u == 0u ? INT16_MIN : (int16_t)(-1 - (int32_t)((u >> 8) % 32767u));
+            memcpy(frame + 2u * q, &v, 2u);
+        }
+        pft_kfrac_t g[2];
+        for (uint32_t t = 0; t < 2u; ++t) {
+            g[t].n = (int32_t)(lcg_(&st) % (uint32_t)ROWS);
+            g[t].r = (float)(rep % 3u) / 2.0f;
+        }
+        const pft_real_t a = rep % 2u == 0u ? PFT_C(0.0) : PFT_C(1.5);
+        const size_t stride = 2u * (3u + lcg_(&st) % (uint32_t)(W - 3));
+        const uint8_t *p = frame + 2u * (lcg_(&st) % 3u);
+        pft_real_t tx[4], ty[4];
+        pft_ktaps_((const pft_real_t(*)[8])tab[0], g[0], tx);
+        pft_ktaps_((const pft_real_t(*)[8])tab[1], g[1], ty);
+        const pft_real_t want = pft_kspot3_r16_(p, stride, tx, ty, a);
+        const pft_real_t got = pft_kspot3_r16t_(p, stride, (const pft_real_t(*)[8])tab[0], g[0],
+                                                (const pft_real_t(*)[8])tab[1], g[1], a);
+        negz += signbit(want) ? 1u : 0u;
+        if (memcmp(&want, &got, sizeof want) != 0 && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "zero taps, window %u: %.9g (sign %d), want %.9g (sign %d)",
+                     (unsigned)rep, pft_test_to_double(got), signbit(got) ? 1 : 0,
+                     pft_test_to_double(want), signbit(want) ? 1 : 0);
+        }
+    }
+    TEST_ASSERT_TRUE(negz > 16u);
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 #else
-    TEST_IGNORE_MESSAGE("pft_kspot3_r16t_ is built in float with SSE2 only");
+    TEST_IGNORE_MESSAGE("pft_kspot3_r16t_ is built in float with SSE2 or AArch64 NEON only");
 #endif
 }
 

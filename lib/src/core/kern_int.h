@@ -29,9 +29,9 @@
  *   bits from the integers (the scale 1/256 applied once per window instead of per pixel; in
  *   float only where pft_kr16_sum_ok_ holds for every tap the window can get); in float with
  *   16-byte vectors (SSE2, NEON) the window's first eight pixels in one array of 16-bit lanes.
- * - pft_kspot3_r16t_ (float with SSE2 only): pft_ktaps_ of both axes' table rows and
- *   pft_kspot3_r16_ in one, the taps as vectors and the window's rows as the lanes of its
- *   columns (intrinsics), the same bits.
+ * - pft_kspot3_r16t_ (float with SSE2 or AArch64 NEON only): pft_ktaps_ of both axes' table
+ *   rows and pft_kspot3_r16_ in one, the taps as vectors and the window's rows as lanes
+ *   (intrinsics), the same bits.
  * - pft_kwexp_lanes_ (float with 16-byte vectors): pft_kwexp_ of a row of values in place,
  *   every test as a bit mask, so that the row vectorises (the same bits).
  * - pft_kfrom_f32_: pft_from_f32 inline where it is the identity (float).
@@ -48,6 +48,8 @@
 
 #if !defined(PFT_NUMERIC_Q16) && defined(__SSE2__)
 #include <emmintrin.h>
+#elif !defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
 #endif
 
 /** Rows of a tap table per pixel: offsets f = -1/2 + n / PFT_KTAP_STEPS, n = 0..STEPS - 1; a
@@ -697,9 +699,9 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
  * and (ty0 r0 + ty1 r1) + ty2 r2 its window sum in its order: every operation the same IEEE
  * single operation on the same values (lane 3 is not used), so the same bits. About 60
  * instructions per window against about 120 for the taps and the eight-lane form (gcc 12,
- * whose vectoriser found no such form in plain C). Defined only here (PFT_KSPOT3_R16T_LANES_):
- * AArch64 (NEON), the Cortex-M builds and q16 keep pft_ktaps_ and pft_kspot3_r16_ (tbd_int.h,
- * pft_tbd_llr3_r16_v_), the same code as before. */
+ * whose vectoriser found no such form in plain C). Defined here and for AArch64 (below,
+ * PFT_KSPOT3_R16T_LANES_): the Cortex-M builds and q16 keep pft_ktaps_ and pft_kspot3_r16_
+ * (tbd_int.h, pft_tbd_llr3_r16_v_), the same code as before. */
 #define PFT_KSPOT3_R16T_LANES_ 1
 static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
                                           pft_kfrac_t gx, const pft_real_t (*taby)[8],
@@ -751,6 +753,56 @@ static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft
         }
     }
 }
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+/* The same on AArch64 (NEON intrinsics, float; the Cortex-A53 presets), in the rows' order: the
+ * taps as one vector per axis (a + r d, lane by lane, a product then a sum: no fused
+ * multiply-add, as in pft_ktaps_), each of the window's rows read with a 32-bit and a 16-bit
+ * load into the lanes 0-2 of a vector of four 16-bit lanes (lane 3 zero), the masked value's 0
+ * by a compare and a bit clear, the lanes widened and converted. Row b's products with the taps
+ * with lane 3 set to -0 are tx0 z0, tx1 z1, tx2 z2 and -0 (-0 times the +0 of lane 3); two
+ * pairwise additions give (tx0 z0 + tx1 z1) + (tx2 z2 + -0), and x + -0 is x for every x
+ * (also for x = +0 and -0), so each lane of r is row b's sum in pft_kspot3_r16_'s order; then
+ * (ty0 r0 + ty1 r1) + ty2 r2 and the rest as written there: the same IEEE single operations on
+ * the same values, so the same bits. No fused multiply-add anywhere: vmulq_f32 and vaddq_f32
+ * are separate operations, and -std=c99 keeps gcc from contracting the scalar ones. */
+static inline int16x4_t pft_kr16_row3_(const uint8_t *q)
+{
+    uint32_t w;
+    uint16_t e;
+    memcpy(&w, q, 4u);
+    memcpy(&e, q + 4u, 2u);
+    /* little-endian lanes: z0 z1 in w, z2 in e, lane 3 zero */
+    return vreinterpret_s16_u64(vcreate_u64((uint64_t)w | ((uint64_t)e << 32)));
+}
+static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
+                                          pft_kfrac_t gx, const pft_real_t (*taby)[8],
+                                          pft_kfrac_t gy, pft_real_t a)
+{
+    const float *ax = tabx[gx.n];
+    const float *ay = taby[gy.n];
+    const float32x4_t tx = vaddq_f32(vld1q_f32(ax), vmulq_f32(vdupq_n_f32(gx.r), vld1q_f32(ax + 4)));
+    const float32x4_t ty = vaddq_f32(vld1q_f32(ay), vmulq_f32(vdupq_n_f32(gy.r), vld1q_f32(ay + 4)));
+    const float32x4_t txm = vsetq_lane_f32(-0.0f, tx, 3);
+    const int16x8_t mk = vdupq_n_s16(INT16_MIN); /* PFT_RES16_MASKED */
+    int16x8_t v01 = vcombine_s16(pft_kr16_row3_(p), pft_kr16_row3_(p + st));
+    int16x4_t v2 = pft_kr16_row3_(p + 2u * st);
+    v01 = vbicq_s16(v01, vreinterpretq_s16_u16(vceqq_s16(v01, mk)));
+    v2 = vbic_s16(v2, vreinterpret_s16_u16(vceq_s16(v2, vget_low_s16(mk))));
+    {
+        const float32x4_t p0 = vmulq_f32(txm, vcvtq_f32_s32(vmovl_s16(vget_low_s16(v01))));
+        const float32x4_t p1 = vmulq_f32(txm, vcvtq_f32_s32(vmovl_high_s16(v01)));
+        const float32x4_t p2 = vmulq_f32(txm, vcvtq_f32_s32(vmovl_s16(v2)));
+        const float32x4_t h2 = vpaddq_f32(p2, p2);
+        const float32x4_t r = vpaddq_f32(vpaddq_f32(p0, p1), h2); /* r0 r1 r2 r2 */
+        const float32x4_t t = vmulq_f32(ty, r);
+        const float s = (vgetq_lane_f32(t, 0) + vgetq_lane_f32(t, 1)) + vgetq_lane_f32(t, 2);
+        const float s1 = s * 0.00390625f;
+        const float tx3 = vgetq_lane_f32(tx, 3);
+        const float ty3 = vgetq_lane_f32(ty, 3);
+        return a * (s1 - 0.5f * a * tx3 * ty3);
+    }
+}
+#define PFT_KSPOT3_R16T_LANES_ 1
 #endif
 
 static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,

@@ -371,7 +371,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
     const pft_real_t dead = bern ? BERN_DROP_ : PFT_C(0.0);
     const pft_real_t l1 = bern ? lb : f->birth_lw;
     const uint32_t n = f->n;
-    const pft_tbd_r16_inv_t rv = pft_tbd_llr3_r16_inv_(tab, sc);
+    const pft_tbd_r16_inv_t rv = pft_tbd_llr3_r16_inv_(m, tab, sc);
     pft_real_t lmax = bern ? BERN_DROP_ : PFT_REAL_MIN;
     for (uint32_t s = 0; s < n; ++s) {
         pft_real_t lw = dead;

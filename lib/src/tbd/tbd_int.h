@@ -324,23 +324,31 @@ pft_real_t pft_tbd_llr3_r16_out_(const pft_tbd_meas_t *m, const pft_tbd_tab_t *t
                                  const pft_tbd_scene_t_ *sc, int32_t i, int32_t j, pft_kfrac_t fx,
                                  pft_kfrac_t fy, pft_real_t amp);
 
-/* What pft_tbd_llr3_r16_ reads of the scene and the table for every window: a particle loop
- * reads them once (pft_tbd_llr3_r16_inv_) instead of through the pointers per particle. */
+/* What pft_tbd_llr3_r16_ reads of the scene, the table and the model for every window: a
+ * particle loop reads them once (pft_tbd_llr3_r16_inv_) instead of through the pointers per
+ * particle. The window is summed in place when (uint32_t)(i - 2) < wi and (uint32_t)(j - 2) <
+ * hj: wi and hj are width - 2 and height - 2 (the inner pixels' test) when the table's taps
+ * allow it (tab->r16_sum), else 0, which no unsigned value is below; the same test as
+ * !(i - 2 >= width - 2 || j - 2 >= height - 2) && r16_sum, with the subtractions and the
+ * flag's test once per pass instead of per window. */
 typedef struct {
     const uint8_t *r16;
     const uint8_t *pflag; /* NULL when no patch lies on the frame */
     size_t st;
-    bool sum; /* tab->r16_sum != 0 */
+    uint32_t wi, hj;
 } pft_tbd_r16_inv_t;
 
-static inline pft_tbd_r16_inv_t pft_tbd_llr3_r16_inv_(const pft_tbd_tab_t *tab,
+static inline pft_tbd_r16_inv_t pft_tbd_llr3_r16_inv_(const pft_tbd_meas_t *m,
+                                                      const pft_tbd_tab_t *tab,
                                                       const pft_tbd_scene_t_ *sc)
 {
     pft_tbd_r16_inv_t v;
+    const bool sum = tab->r16_sum != 0u;
     v.r16 = sc->r16;
     v.pflag = sc->n_patch > 0u ? sc->pflag : NULL;
     v.st = sc->r16_stride;
-    v.sum = tab->r16_sum != 0u;
+    v.wi = sum ? (uint32_t)m->width - 2u : 0u;
+    v.hj = sum ? (uint32_t)m->height - 2u : 0u;
     return v;
 }
 
@@ -350,16 +358,16 @@ static inline pft_real_t pft_tbd_llr3_r16_v_(const pft_tbd_meas_t *m, const pft_
                                              const pft_tbd_r16_inv_t *v, const pft_tbd_cell_t *c,
                                              pft_real_t intensity)
 {
-    const bool ex = (uint32_t)(c->i - 2) >= (uint32_t)m->width - 2u;
-    const bool ey = (uint32_t)(c->j - 2) >= (uint32_t)m->height - 2u;
+    /* i = 1 or i = n (i in [1, n]): one unsigned comparison, i - 2 wraps for i = 1 */
+    const bool in = (uint32_t)(c->i - 2) < v->wi && (uint32_t)(c->j - 2) < v->hj;
     const pft_real_t amp = pft_kmulq_(intensity, m->kc);
     /* a row that pflag names may hold a patch: the window read in place unless one covers
      * a pixel of it (pft_tbd_llr3_r16_out_ then reads the frame's values as they are) */
-    if (!(ex || ey) && v->sum &&
-        !(v->pflag != NULL && v->pflag[c->j - 1] != 0u &&
+    if (in && !(v->pflag != NULL && v->pflag[c->j - 1] != 0u &&
           pft_tbd_patch_in_win_(sc, c->i - 2, c->j - 2))) {
 #ifdef PFT_KSPOT3_R16T_LANES_
-        /* float with SSE2: the taps and the window in vector lanes (the same bits) */
+        /* float with SSE2 or AArch64 NEON: the taps and the window in vector lanes (the same
+         * bits) */
         return pft_kspot3_r16t_(v->r16 + (size_t)(c->j - 2) * v->st + 2u * (size_t)(c->i - 2),
                                 v->st, tab->taps[0], c->fx, tab->taps[1], c->fy, amp);
 #else
@@ -381,7 +389,7 @@ static inline pft_real_t pft_tbd_llr3_r16_(const pft_tbd_meas_t *m, const pft_tb
                                            const pft_tbd_scene_t_ *sc, const pft_tbd_cell_t *c,
                                            pft_real_t intensity)
 {
-    const pft_tbd_r16_inv_t v = pft_tbd_llr3_r16_inv_(tab, sc);
+    const pft_tbd_r16_inv_t v = pft_tbd_llr3_r16_inv_(m, tab, sc);
     return pft_tbd_llr3_r16_v_(m, tab, sc, &v, c, intensity);
 }
 
