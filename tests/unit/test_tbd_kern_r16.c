@@ -126,7 +126,7 @@ static void test_kmul_r16_is_kmula_of_the_converted_pixels(void)
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
 }
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON))
 /* A RES16 pixel for the row test: extremes, the masked code, 0, small and full-range values. */
 static int16_t hrow_pix_(uint32_t *st)
 {
@@ -145,7 +145,8 @@ static int16_t hrow_pix_(uint32_t *st)
 #endif
 
 /* pft_tbd_hrow_r16_ (peak_hrow_r16_: the scan's horizontal sums on a RES16 row read in place;
- * in q16 with SSE2 the centre tap 1's columns eight at a time by 16-bit multiply-adds) is
+ * in q16 with SSE2 the centre tap 1's columns eight at a time by 16-bit multiply-adds, with
+ * AArch64 NEON by a widened pair sum and 32-bit multiply-adds) is
  * peak_hrow_ of the converted row bit for bit: hs[c] = pft_kaddr_(pft_kmula_(t1, z(c)),
  * pft_kmula_(t0, pft_kaddr_(z(c - 1), z(c + 1)))), z = pft_kres16_ of the pixel, a masked pixel
  * and the pixels outside the row 0. Widths 1 to 41 and 64 (whole eight-pixel steps, the tail,
@@ -153,8 +154,8 @@ static int16_t hrow_pix_(uint32_t *st)
  * columns) and t1 = the tap of sigma 1 (the general columns), 60 random rows each. */
 static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
 {
-#if !defined(__SSE2__)
-    TEST_IGNORE_MESSAGE("the hook pft_tbd_hrow_r16_ is built on x86-64 (SSE2) only");
+#if !(defined(__SSE2__) || (defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON)))
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_hrow_r16_ is built on x86-64 (SSE2) and AArch64 q16 only");
 #else
     make_taps_();
     static uint8_t src[2u * 64u];

@@ -100,11 +100,11 @@ void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0,
 /* Whether a patch of sc may cover a pixel of the 3 x 3 window at columns col0 .. col0 + 2,
  * rows row0 .. row0 + 2 (0-based): false when every patch's rectangle lies apart from it. */
 bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0);
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON))
 /* The scene scan's horizontal sums of a RES16 row of w pixels (src: the row's bytes, int16
  * pixels) with the taps t0, t1 prepared by pft_kr16_tap_: hs[c] = t1 z(c) + t0 (z(c - 1) +
  * z(c + 1)), z a pixel / 256, a masked one or one outside the row 0 (tbd_meas.c,
- * peak_hrow_r16_; for the unit tests, x86-64 builds only). */
+ * peak_hrow_r16_; for the unit tests, x86-64 builds and AArch64 q16 only). */
 void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs);
 #endif

@@ -19,6 +19,13 @@
 #define PFT_TBD_HROW_MADD_ 1
 #define PFT_TBD_VROW_MUL_ 1
 #endif
+#elif defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 with NEON (q16): the RES16 row sums with the centre tap 1 eight pixels per step in
+ * 32-bit lanes (peak_hrow_r16_madd_'s NEON form: the pair sum widened, a multiply-add by th and
+ * the rounded product by tl) instead of gcc's widening products of pft_kmul_r16_. The same
+ * values; the integration's bins and the vertical sums keep the plain loops here. */
+#include <arm_neon.h>
+#define PFT_TBD_HROW_MADD_ 1
 #endif
 
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
@@ -705,7 +712,7 @@ static inline void peak_hrow_r16_in_(const uint8_t *src, size_t c0, uint32_t w, 
     }
 }
 
-#if defined(PFT_TBD_HROW_MADD_)
+#if defined(PFT_TBD_HROW_MADD_) && defined(__SSE2__)
 /* peak_hrow_r16_in_'s columns 1 .. with the centre tap 1 (one), eight at a time while a whole
  * step lies inside 1 .. w - 2; returns the first column not done. Per pixel: pft_kres16_(zc) =
  * 256 zc (zc in a 32-bit lane's high half, shifted down by 8), and pft_kmul_r16_(t0, zl, zr) =
@@ -749,6 +756,39 @@ static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0,
     }
     return c;
 }
+#elif defined(PFT_TBD_HROW_MADD_)
+/* The NEON form of the above (AArch64, q16): the same values per pixel, 256 zc + th s +
+ * (tl s + 128 - [s < 0]) >> 8 with s = zl + zr widened to 32 bits (|s| <= 65534, so every
+ * product and sum is exact in 32 bits); the rounding as a rounding shift (+ 128, >> 8) of
+ * tl s - [tl s < 0], whose sign is that of s when tl > 0 (when tl = 0 the term is 0 either
+ * way). The rows are read as bytes (no alignment asked of src). */
+static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t *hs)
+{
+    const uint32_t tu = (uint32_t)t0; /* 0 .. 65536 (pft_kr16_tap_ok_) */
+    const int32x4_t th = vdupq_n_s32((int32_t)(tu >> 8));
+    const int32x4_t tl = vdupq_n_s32((int32_t)(tu & 255u));
+    const int16x8_t masked = vdupq_n_s16(PFT_RES16_MASKED);
+    size_t c = 1u;
+    for (; c + 8u < (size_t)w; c += 8u) {
+        int16x8_t a = vreinterpretq_s16_u8(vld1q_u8(src + 2u * (c - 1u)));
+        int16x8_t b = vreinterpretq_s16_u8(vld1q_u8(src + 2u * c));
+        int16x8_t d = vreinterpretq_s16_u8(vld1q_u8(src + 2u * (c + 1u)));
+        a = vbicq_s16(a, vreinterpretq_s16_u16(vceqq_s16(a, masked)));
+        b = vbicq_s16(b, vreinterpretq_s16_u16(vceqq_s16(b, masked)));
+        d = vbicq_s16(d, vreinterpretq_s16_u16(vceqq_s16(d, masked)));
+        const int32x4_t slo = vaddl_s16(vget_low_s16(a), vget_low_s16(d)); /* pixels c .. c + 3 */
+        const int32x4_t shi = vaddl_high_s16(a, d);                       /* c + 4 .. c + 7 */
+        const int32x4_t llo = vmulq_s32(slo, tl);
+        const int32x4_t lhi = vmulq_s32(shi, tl);
+        const int32x4_t rlo = vrshrq_n_s32(vsraq_n_s32(llo, llo, 31), 8);
+        const int32x4_t rhi = vrshrq_n_s32(vsraq_n_s32(lhi, lhi, 31), 8);
+        const int32x4_t clo = vshll_n_s16(vget_low_s16(b), 8); /* 256 zc */
+        const int32x4_t chi = vshll_high_n_s16(b, 8);
+        vst1q_s32(hs + c, vmlaq_s32(vaddq_s32(clo, rlo), slo, th));
+        vst1q_s32(hs + c + 4u, vmlaq_s32(vaddq_s32(chi, rhi), shi, th));
+    }
+    return c;
+}
 #endif
 
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
@@ -778,7 +818,7 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
 }
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON))
 void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
                        pft_real_t *hs)
 {
