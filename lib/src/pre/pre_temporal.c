@@ -951,6 +951,23 @@ static bool res_split_ok_(const int32_t wx[4], const int32_t wy[4])
 }
 
 #if defined(PFT_PRE_NEON_)
+/* NEON: the 4-tap sums of eight pixels, S = sum of w_i q[x + i] in int32 (mul, mla), then
+ * (S + 2048) >> 12 clamped to [0, 65535] in one rounding, saturating narrowing (sqrshrun); the
+ * anchored residual (ares_blocks_) and the view's horizontal pass (view_h8n_) share it. */
+static inline uint16x8_t tap4_u16n_(const int32_t *q, int32x4_t w0, int32x4_t w1, int32x4_t w2,
+                                    int32x4_t w3)
+{
+    int32x4_t sa = vmulq_s32(vld1q_s32(q), w0);
+    int32x4_t sb = vmulq_s32(vld1q_s32(q + 4), w0);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 1), w1);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 5), w1);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 2), w2);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 6), w2);
+    sa = vmlaq_s32(sa, vld1q_s32(q + 3), w3);
+    sb = vmlaq_s32(sb, vld1q_s32(q + 7), w3);
+    return vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12);
+}
+
 /* pft_pre_ares_span_'s pixels x .. x + 8 n - 1 (n blocks of 8) with NEON, k1 a constant of each
  * call: the 4-tap sum S of the 32-bit loop (mul, mla: the same int32 arithmetic), bx =
  * (S + 2048) >> 12 clamped to [0, 65535] in one rounding, saturating narrowing to uint16
@@ -970,15 +987,7 @@ static inline void ares_blocks_(const int32_t *v, const int32_t *zl, int16_t *r,
     const int16x8_t rmin = vdupq_n_s16(-PFT_PRE_RMAX_), msk = vdupq_n_s16(PFT_RES16_MASKED);
     for (int32_t i = 0; i < n; ++i, x += 8) {
         const int32_t *q = v + x;
-        int32x4_t sa = vmulq_s32(vld1q_s32(q), w0);
-        int32x4_t sb = vmulq_s32(vld1q_s32(q + 4), w0);
-        sa = vmlaq_s32(sa, vld1q_s32(q + 1), w1);
-        sb = vmlaq_s32(sb, vld1q_s32(q + 5), w1);
-        sa = vmlaq_s32(sa, vld1q_s32(q + 2), w2);
-        sb = vmlaq_s32(sb, vld1q_s32(q + 6), w2);
-        sa = vmlaq_s32(sa, vld1q_s32(q + 3), w3);
-        sb = vmlaq_s32(sb, vld1q_s32(q + 7), w3);
-        const uint16x8_t bx = vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12);
+        const uint16x8_t bx = tap4_u16n_(q, w0, w1, w2, w3);
         const uint16x8_t za = vreinterpretq_u16_s32(vld1q_s32(zl + x));
         const uint16x8_t zb = vreinterpretq_u16_s32(vld1q_s32(zl + x + 4));
         const uint16x8_t zlo = vuzp1q_u16(za, zb);
@@ -1380,15 +1389,7 @@ void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_
 static inline void view_h8n_(const int32_t *q, int32x4_t w0, int32x4_t w1, int32x4_t w2,
                              int32x4_t w3, uint16_t *o)
 {
-    int32x4_t sa = vmulq_s32(vld1q_s32(q), w0);
-    int32x4_t sb = vmulq_s32(vld1q_s32(q + 4), w0);
-    sa = vmlaq_s32(sa, vld1q_s32(q + 1), w1);
-    sb = vmlaq_s32(sb, vld1q_s32(q + 5), w1);
-    sa = vmlaq_s32(sa, vld1q_s32(q + 2), w2);
-    sb = vmlaq_s32(sb, vld1q_s32(q + 6), w2);
-    sa = vmlaq_s32(sa, vld1q_s32(q + 3), w3);
-    sb = vmlaq_s32(sb, vld1q_s32(q + 7), w3);
-    vst1q_u16(o, vqrshrun_high_n_s32(vqrshrun_n_s32(sa, 12), sb, 12));
+    vst1q_u16(o, tap4_u16n_(q, w0, w1, w2, w3));
 }
 
 static inline int32_t view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe)
