@@ -5,7 +5,7 @@
  * all-saturated frames finite and flagged), registration of a textured scene shifted by known
  * sub-pixel and integer amounts, column fixed-pattern removal, peaks, the RES16 frame and its
  * conversion. The temporal pass's frame row (pft_pre_zspan_, internal, declared here) in its
- * 8-pixel form (SSE2 on x86-64, NEON on AArch64; the plain loop elsewhere) and its plain form against known
+ * 8-pixel form (SSE2 on x86-64; the plain loop elsewhere) and its plain form against known
  * answers and a 64-bit reference on random rows. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it;
  * scenes are made with integer arithmetic per pixel for the same reason.
  */

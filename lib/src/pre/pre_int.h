@@ -163,8 +163,7 @@ void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t
 /* The temporal pass's frame row in U units (zspan_, pre_temporal.c, exported for its unit test):
  * pixels [x0, x1) of row y of a U16 frame without a bad-pixel map, classified by lo, span and
  * mask, shifted by bf, less the column offsets cn, clamped to [0, 65535] (-1 masked), into zl;
- * returns the masked pixels. vec: the 8-pixel form of SSE2 (x86-64) or NEON (AArch64); elsewhere
- * the plain loop. */
+ * returns the masked pixels. vec: SSE2's 8-pixel form on x86-64 (elsewhere the plain loop). */
 uint32_t pft_pre_zspan_(const pft_frame_t *f, uint32_t y, uint32_t lo, uint32_t span, uint32_t mask,
                         uint32_t bf, const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec);
 /* The anchored update's clipped gate (bg_gate_shift 0) of cells [ja, jb] of grid row b (storage

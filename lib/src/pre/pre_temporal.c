@@ -10,11 +10,10 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h> /* anchor_view_'s passes (PFT_PRE_VIEW_SPLIT_), the anchored residual (pft_pre_ares_span_),
-                        * the gated update (PFT_PRE_GATE_SPLIT_), the frame row (zspan_sse_) */
+                        * the gated update (PFT_PRE_GATE_SPLIT_) */
 #elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (the Cortex-A53 class): the same three kernels in NEON's forms on the 32-bit values
- * (PFT_PRE_NEON_: anchor_view_'s horizontal pass, pft_pre_ares_span_, gate_clip_split_; and the
- * frame row, zspan_neon_) */
+ * (PFT_PRE_NEON_: anchor_view_'s horizontal pass, pft_pre_ares_span_, gate_clip_split_) */
 #include <arm_neon.h>
 #define PFT_PRE_NEON_ 1
 #endif
@@ -652,8 +651,7 @@ static inline int32_t vtap_(const uint16_t *t0, const uint16_t *t1, const uint16
  * v - lo < span (unsigned) as a signed compare of both sides with the sign bit flipped, the
  * invalid lanes' -1 or-ed in and their count taken from the compare masks. Pixels x0 .. x0 +
  * 8 n - 1 (n = (x1 - x0) / 8); returns their masked pixels and sets *xe to x0 + 8 n. The same
- * values as the plain loop; AArch64 takes NEON's form below, the Cortex-M builds keep the plain
- * loop. */
+ * values as the plain loop; the Cortex-M and AArch64 builds keep the plain loop. */
 static uint32_t zspan_sse_(const uint8_t *row, const pft_pre_cls_t *c, uint32_t bf, const int32_t *cn,
                            int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *xe)
 {
@@ -685,43 +683,11 @@ static uint32_t zspan_sse_(const uint8_t *row, const pft_pre_cls_t *c, uint32_t 
     *xe = x;
     return (uint32_t)_mm_cvtsi128_si32(acc);
 }
-#elif defined(PFT_PRE_NEON_)
-/* With NEON (AArch64), the U16 row's conversion of zspan_ takes 8 pixels at a time: the raw
- * value v masked and shifted by bf in 16-bit lanes (mask << bf <= 65535), widened, less the
- * column offset in 32-bit lanes, clamped to [0, 65535] and narrowed in one instruction (sqxtun:
- * the signed saturation to unsigned 16 bits), widened again; the validity v - lo < span as an
- * unsigned 32-bit compare, the invalid lanes' -1 or-ed in and counted from the masks. Pixels x0
- * .. x0 + 8 n - 1 (n = (x1 - x0) / 8); returns their masked pixels and sets *xe to x0 + 8 n.
- * The same values as the plain loop (gcc 12 leaves that loop scalar, with a branch per pixel). */
-static uint32_t zspan_neon_(const uint8_t *row, const pft_pre_cls_t *c, uint32_t bf, const int32_t *cn,
-                            int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *xe)
-{
-    const uint16x8_t vm = vdupq_n_u16((uint16_t)c->mask);
-    const int16x8_t sh = vdupq_n_s16((int16_t)bf);
-    const uint32x4_t vlo = vdupq_n_u32(c->lo), vspan = vdupq_n_u32(c->span);
-    uint32x4_t acc = vdupq_n_u32(0u);
-    uint32_t x = x0;
-    for (; x + 8u <= x1; x += 8u) {
-        const uint16x8_t v16 = vandq_u16(vreinterpretq_u16_u8(vld1q_u8(row + 2u * x)), vm);
-        const uint16x8_t a16 = vshlq_u16(v16, sh);
-        const int32x4_t el = vsubq_s32(vreinterpretq_s32_u32(vmovl_u16(vget_low_u16(a16))), vld1q_s32(cn + x));
-        const int32x4_t eh = vsubq_s32(vreinterpretq_s32_u32(vmovl_high_u16(a16)), vld1q_s32(cn + x + 4u));
-        const uint16x8_t u = vqmovun_high_s32(vqmovun_s32(el), eh);
-        /* all ones where invalid: v - lo >= span (unsigned) */
-        const uint32x4_t nl = vcgeq_u32(vsubq_u32(vmovl_u16(vget_low_u16(v16)), vlo), vspan);
-        const uint32x4_t nh = vcgeq_u32(vsubq_u32(vmovl_high_u16(v16), vlo), vspan);
-        vst1q_s32(zl + x, vreinterpretq_s32_u32(vorrq_u32(vmovl_u16(vget_low_u16(u)), nl)));
-        vst1q_s32(zl + x + 4u, vreinterpretq_s32_u32(vorrq_u32(vmovl_high_u16(u), nh)));
-        acc = vsubq_u32(vsubq_u32(acc, nl), nh);
-    }
-    *xe = x;
-    return vaddvq_u32(acc);
-}
 #endif
 
 /* Row y of the frame in U units with the column offsets off, clamped to [0, 65535]; -1 for a
- * masked pixel. Returns the number of masked pixels. With vec (and SSE2 or NEON, a U16 frame)
- * the columns 8 at a time in zspan_sse_'s or zspan_neon_'s form, the same values. */
+ * masked pixel. Returns the number of masked pixels. With vec (and SSE2, a U16 frame) the
+ * columns 8 at a time in zspan_sse_'s form, the same values. */
 static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
                        const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec)
 {
@@ -732,10 +698,6 @@ static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
 #if defined(__SSE2__)
     if (vec && !c->u8) {
         ninv = zspan_sse_(row, c, bf, cn, zl, x0, x1, &xs);
-    }
-#elif defined(PFT_PRE_NEON_)
-    if (vec && !c->u8) {
-        ninv = zspan_neon_(row, c, bf, cn, zl, x0, x1, &xs);
     }
 #else
     (void)vec;
