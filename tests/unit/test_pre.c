@@ -4,9 +4,7 @@
  * gradient keeps its SNR, dead / saturated / listed pixels masked, constant and all-zero and
  * all-saturated frames finite and flagged), registration of a textured scene shifted by known
  * sub-pixel and integer amounts, column fixed-pattern removal, peaks, the RES16 frame and its
- * conversion. The temporal pass's frame row (pft_pre_zspan_, internal, declared here) in its
- * 8-pixel form (SSE2 on x86-64; the plain loop elsewhere) and its plain form against known
- * answers and a 64-bit reference on random rows. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it;
+ * conversion. Frames are 96 x 72 so that every target (Cortex-M under QEMU included) runs it;
  * scenes are made with integer arithmetic per pixel for the same reason.
  */
 #include <math.h>
@@ -16,9 +14,6 @@
 #include "pft_test_support.h"
 #include "pft/pft_pre.h"
 #include "pft/pft_tbd.h"
-
-uint32_t pft_pre_zspan_(const pft_frame_t *f, uint32_t y, uint32_t lo, uint32_t span, uint32_t mask,
-                        uint32_t bf, const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec);
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -1233,77 +1228,6 @@ static void test_sigma_options(void)
     }
 }
 
-/* The temporal pass's frame row (pft_pre_zspan_): 12 pixels of a 14-bit row (8 in the 8-pixel
- * form, 4 in the loop after it) with known answers: masked below lo and from lo + span up, the
- * bits above the depth ignored, the clamps to 0 and 65535 on both sides of their bounds; then
- * random rows of random depths (12 - 16 bits), limits, offsets within +-65534 and spans against
- * a 64-bit reference, both forms. */
-static uint32_t g_zs = 88675123u;
-static uint32_t xs32(void)
-{
-    g_zs ^= g_zs << 13;
-    g_zs ^= g_zs >> 17;
-    g_zs ^= g_zs << 5;
-    return g_zs;
-}
-
-static void test_zspan_forms_known_answers(void)
-{
-    static const uint16_t raw[12] = {100u, 0u, 16001u, 16000u, 0xC005u, 10000u, 50u, 1u, 16000u, 8192u, 8191u, 2u};
-    static const int32_t cn[12] = {0, 0, 0, 0, 3, -30000, 300, -1, 1000, -32768, -32771, 8};
-    static const int32_t want[12] = {400, -1, -1, 64000, 17, 65535, 0, 5, 63000, 65535, 65535, 0};
-    memset(g_img, 0, sizeof(g_img));
-    memcpy(&g_img[3 * W], raw, sizeof(raw));
-    pft_frame_t f = frame_of(g_img, 0);
-    for (int vec = 0; vec < 2; ++vec) {
-        int32_t zl[W];
-        memset(zl, 0x55, sizeof(zl));
-        TEST_ASSERT_EQUAL_UINT32(2u, pft_pre_zspan_(&f, 3u, 1u, 16000u, 0x3FFFu, 2u, cn, zl, 0u, 12u, vec != 0));
-        TEST_ASSERT_EQUAL_INT32_ARRAY(want, zl, 12);
-        TEST_ASSERT_EQUAL_INT32(0x55555555, zl[12]);
-        memset(zl, 0x55, sizeof(zl));
-        TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_zspan_(&f, 3u, 1u, 16000u, 0x3FFFu, 2u, cn, zl, 3u, 12u, vec != 0));
-        TEST_ASSERT_EQUAL_INT32_ARRAY(want + 3, zl + 3, 9);
-        TEST_ASSERT_EQUAL_INT32(0x55555555, zl[2]);
-    }
-    static int32_t cnr[W];
-    uint32_t nmasked = 0u, nlow = 0u, nhigh = 0u;
-    for (int it = 0; it < 60; ++it) {
-        const uint32_t bits = 12u + xs32() % 5u, bf = 16u - bits, mask = (1u << bits) - 1u;
-        const uint32_t lo = xs32() % 3u != 0u ? 1u : xs32() % 200u;
-        const uint32_t span = xs32() % 3u != 0u ? mask - 1u : xs32() % (mask + 2u);
-        for (uint32_t i = 0; i < W * 4u; ++i) {
-            g_img[i] = (uint16_t)(xs32() % 5u == 0u ? xs32() : xs32() % (mask + 1u));
-        }
-        for (uint32_t x = 0; x < W; ++x) {
-            cnr[x] = xs32() % 4u != 0u ? (int32_t)(xs32() % 200u) - 100 : (int32_t)(xs32() % 131069u) - 65534;
-        }
-        pft_frame_t g = pft_test_u16_frame(g_img, W, H, (uint8_t)bits, 0u);
-        for (uint32_t y = 0; y < 4u; ++y) {
-            const uint32_t x0 = xs32() % 20u, x1 = W - xs32() % 20u;
-            int32_t ref[W], zp[W], zv[W];
-            uint32_t nref = 0u;
-            for (uint32_t x = x0; x < x1; ++x) {
-                const uint32_t v = (uint32_t)g_img[y * W + x] & mask;
-                int64_t e = ((int64_t)v << bf) - cnr[x];
-                e = e < 0 ? 0 : (e > 65535 ? 65535 : e);
-                const bool ok = v >= lo && (uint64_t)v - lo < span;
-                ref[x] = ok ? (int32_t)e : -1;
-                nref += ok ? 0u : 1u;
-                nlow += ok && e == 0 ? 1u : 0u;
-                nhigh += ok && e == 65535 ? 1u : 0u;
-            }
-            nmasked += nref;
-            TEST_ASSERT_EQUAL_UINT32(nref, pft_pre_zspan_(&g, y, lo, span, mask, bf, cnr, zp, x0, x1, false));
-            TEST_ASSERT_EQUAL_UINT32(nref, pft_pre_zspan_(&g, y, lo, span, mask, bf, cnr, zv, x0, x1, true));
-            TEST_ASSERT_EQUAL_INT32_ARRAY(ref + x0, zp + x0, x1 - x0);
-            TEST_ASSERT_EQUAL_INT32_ARRAY(ref + x0, zv + x0, x1 - x0);
-        }
-    }
-    /* the random rows reach every branch: masked pixels and both clamps */
-    TEST_ASSERT_TRUE(nmasked > 100u && nlow > 100u && nhigh > 100u);
-}
-
 int main(void)
 {
     noise_init();
@@ -1328,6 +1252,5 @@ int main(void)
     RUN_TEST(test_residual_to_tbd_as_res16);
     RUN_TEST(test_u8_and_bit_depths);
     RUN_TEST(test_sigma_options);
-    RUN_TEST(test_zspan_forms_known_answers);
     return UNITY_END();
 }

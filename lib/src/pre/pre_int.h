@@ -160,12 +160,6 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
 int32_t pft_pre_vsplit_(int32_t v);
 void pft_pre_ares_span_(const int32_t *v, const int32_t *zl, int16_t *r, int32_t x0, int32_t x1,
                         const int32_t wr[4], uint32_t k1, bool split);
-/* The temporal pass's frame row in U units (zspan_, pre_temporal.c, exported for its unit test):
- * pixels [x0, x1) of row y of a U16 frame without a bad-pixel map, classified by lo, span and
- * mask, shifted by bf, less the column offsets cn, clamped to [0, 65535] (-1 masked), into zl;
- * returns the masked pixels. vec: SSE2's 8-pixel form on x86-64 (elsewhere the plain loop). */
-uint32_t pft_pre_zspan_(const pft_frame_t *f, uint32_t y, uint32_t lo, uint32_t span, uint32_t mask,
-                        uint32_t bf, const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec);
 /* The anchored update's clipped gate (bg_gate_shift 0) of cells [ja, jb] of grid row b (storage
  * entry j + 1) from ring rows q (pre_temporal.c, exported for its unit test), in the plain form
  * or (split, x86-64 and AArch64) the split form where it applies. */

@@ -642,67 +642,15 @@ static inline int32_t vtap_(const uint16_t *t0, const uint16_t *t1, const uint16
 
 /* ------------------------------------------------------------------ update pass */
 
-#if defined(__SSE2__)
-/* Where the compiler has SSE2 (x86-64), the U16 row's conversion of zspan_ takes 8 pixels at a
- * time: the raw value v masked and shifted by bf in 16-bit lanes (mask << bf <= 65535: mask =
- * 2^bits - 1, bf = 16 - bits), the value minus the column offset and minus 32768 in 32-bit
- * lanes (|cn| < 2^30: no overflow), its clamp to [0, 65535] as the signed 16-bit saturation of
- * that biased value with the bias flipped back (SSE2 has no 32-bit min / max), the validity
- * v - lo < span (unsigned) as a signed compare of both sides with the sign bit flipped, the
- * invalid lanes' -1 or-ed in and their count taken from the compare masks. Pixels x0 .. x0 +
- * 8 n - 1 (n = (x1 - x0) / 8); returns their masked pixels and sets *xe to x0 + 8 n. The same
- * values as the plain loop; the Cortex-M and AArch64 builds keep the plain loop. */
-static uint32_t zspan_sse_(const uint8_t *row, const pft_pre_cls_t *c, uint32_t bf, const int32_t *cn,
-                           int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *xe)
-{
-    const __m128i vm = _mm_set1_epi16((short)c->mask), z0 = _mm_setzero_si128();
-    const __m128i b32 = _mm_set1_epi32(32768), f16 = _mm_set1_epi16((short)-32768);
-    const __m128i sg = _mm_set1_epi32((int)INT32_MIN);
-    const __m128i vlo = _mm_set1_epi32((int)c->lo);
-    const __m128i sx = _mm_xor_si128(_mm_set1_epi32((int)c->span), sg);
-    const __m128i cnt = _mm_cvtsi32_si128((int)bf);
-    __m128i acc = z0;
-    uint32_t x = x0;
-    for (; x + 8u <= x1; x += 8u) {
-        const __m128i v16 = _mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(row + 2u * x)), vm);
-        const __m128i a16 = _mm_sll_epi16(v16, cnt);
-        const __m128i vl = _mm_unpacklo_epi16(v16, z0), vh = _mm_unpackhi_epi16(v16, z0);
-        const __m128i al = _mm_unpacklo_epi16(a16, z0), ah = _mm_unpackhi_epi16(a16, z0);
-        const __m128i el = _mm_sub_epi32(_mm_sub_epi32(al, _mm_loadu_si128((const __m128i *)(const void *)(cn + x))), b32);
-        const __m128i eh = _mm_sub_epi32(_mm_sub_epi32(ah, _mm_loadu_si128((const __m128i *)(const void *)(cn + x + 4u))), b32);
-        const __m128i u = _mm_xor_si128(_mm_packs_epi32(el, eh), f16);
-        /* all ones where invalid: not (span > v - lo), both with the sign bit flipped */
-        const __m128i nl = _mm_cmpeq_epi32(_mm_cmpgt_epi32(sx, _mm_xor_si128(_mm_sub_epi32(vl, vlo), sg)), z0);
-        const __m128i nh = _mm_cmpeq_epi32(_mm_cmpgt_epi32(sx, _mm_xor_si128(_mm_sub_epi32(vh, vlo), sg)), z0);
-        _mm_storeu_si128((__m128i *)(void *)(zl + x), _mm_or_si128(_mm_unpacklo_epi16(u, z0), nl));
-        _mm_storeu_si128((__m128i *)(void *)(zl + x + 4u), _mm_or_si128(_mm_unpackhi_epi16(u, z0), nh));
-        acc = _mm_sub_epi32(_mm_sub_epi32(acc, nl), nh);
-    }
-    acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, 0x4E));
-    acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, 0xB1));
-    *xe = x;
-    return (uint32_t)_mm_cvtsi128_si32(acc);
-}
-#endif
-
 /* Row y of the frame in U units with the column offsets off, clamped to [0, 65535]; -1 for a
- * masked pixel. Returns the number of masked pixels. With vec (and SSE2, a U16 frame) the
- * columns 8 at a time in zspan_sse_'s form, the same values. */
+ * masked pixel. Returns the number of masked pixels. */
 static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
-                       const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec)
+                       const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1)
 {
     const uint8_t *row = pft_frame_row(f, y);
     const uint32_t lo = c->lo, span = c->span, mask = c->mask;
     uint32_t ninv = 0u;
-    uint32_t xs = x0;
-#if defined(__SSE2__)
-    if (vec && !c->u8) {
-        ninv = zspan_sse_(row, c, bf, cn, zl, x0, x1, &xs);
-    }
-#else
-    (void)vec;
-#endif
-    for (uint32_t x = xs; x < x1; ++x) {
+    for (uint32_t x = x0; x < x1; ++x) {
         const uint32_t v = pft_pre_raw_(row, x, c) & mask;
         int32_t zu = (int32_t)(v << bf) - cn[x];
         zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
@@ -721,23 +669,10 @@ static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
     return ninv;
 }
 
-uint32_t pft_pre_zspan_(const pft_frame_t *f, uint32_t y, uint32_t lo, uint32_t span, uint32_t mask,
-                        uint32_t bf, const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, bool vec)
-{
-    pft_pre_cls_t c;
-    c.lo = lo;
-    c.span = span;
-    c.mask = mask;
-    c.u8 = false;
-    c.map = NULL;
-    c.map_stride = 0u;
-    return zspan_(&c, f, y, bf, cn, zl, x0, x1, vec);
-}
-
 static uint32_t zrow_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
                       const int32_t *cn, int32_t *zl)
 {
-    return zspan_(c, f, y, bf, cn, zl, 0u, f->width, true);
+    return zspan_(c, f, y, bf, cn, zl, 0u, f->width);
 }
 
 /* The covered columns [x0, x1) of a U16 row without a bad-pixel map in one pass (the frame
@@ -2991,8 +2926,8 @@ void pft_pre_temporal_pass_(pft_pre_t *p, const pft_frame_t *f, pft_pre_acc_t *a
         /* bg_stale_reinit: a row with stale pixels is made without the fused span (zl whole) */
         const bool srow_stale = p->sage != NULL && !first && (p->srow[y] & PFT_PRE_AGE_STALE_) != 0u;
         const bool fast = !first && covered && ia < ib && c.map == NULL && !c.u8 && !srow_stale;
-        uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia, true) +
-                                   zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w, true)
+        uint32_t ninv = fast ? zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, 0u, (uint32_t)ia) +
+                                   zspan_(&c, f, (uint32_t)y, p->bf, p->colnow, zl, (uint32_t)ib, (uint32_t)w)
                              : zrow_(&c, f, (uint32_t)y, p->bf, p->colnow, zl);
         if (fast && ninv > 0u) { /* the columns outside the fused span, counted by cause now */
             count_span_(&c, f, (uint32_t)y, 0u, (uint32_t)ia, acc);
