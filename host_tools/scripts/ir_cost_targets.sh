@@ -96,6 +96,34 @@ build() {  # build <target> <numeric>: prints the ir_probe path
   echo "$dir/tests/tools/ir_probe"
 }
 
+# run_probe <target> <ir_probe> <arguments> <run dir>: runs one build of ir_probe, its log, err
+# and per-region instruction counts (callgrind's dumps or the QEMU plugin's) in the run dir;
+# prints ok, fail or no-fit (the arena too small for the frame on the board)
+run_probe() {
+  local t=$1 exe=$2 args=$3 r=$4 status=ok board
+  case "$t" in
+    x86|x86v2)
+      nice -n 10 valgrind --tool=callgrind --callgrind-out-file="$r/cg.out" --collect-atstart=no \
+        --toggle-collect=irp_measured --dump-after=irp_measured "$exe" $args >"$r/log" 2>"$r/err" || status=fail
+      for ((i = 1; ; i++)); do
+        [ -f "$r/cg.out.$i" ] || break
+        awk '/^(summary|totals):/ {print $2; exit}' "$r/cg.out.$i"
+      done >"$r/counts"
+      rm -f "$r"/cg.out*;;
+    aarch64)
+      nice -n 10 qemu-aarch64 -L /usr/aarch64-linux-gnu -plugin "$plug,out=$r/counts" "$exe" $args \
+        >"$r/log" 2>"$r/err" || status=fail;;
+    m7|m3)
+      board=mps2-an500; [ "$t" = m3 ] && board=mps2-an385
+      nice -n 10 timeout 3600 qemu-system-arm -M $board -nographic -monitor none \
+        -semihosting-config enable=on,target=native -plugin "$plug,out=$r/counts" -kernel "$exe" \
+        -append "$args" >"$r/log" 2>"$r/err" || status=fail;;
+  esac
+  if grep -q "arena of .* too small" "$r/log" "$r/err"; then status=no-fit; fi
+  if [ $status = ok ] && ! grep -q "ir_probe: done" "$r/log"; then status=fail; fi
+  echo $status
+}
+
 if [ -n "${IRC_FLIGHT:-}" ]; then
   pft_q=${PFT_Q:-build/host-q16/host_tools/pft}
   split=${IRC_SPLIT:-13}
@@ -133,27 +161,7 @@ if [ -n "${IRC_FLIGHT:-}" ]; then
         d=$out/probe-$name-$n
         r=$out/flight-$t-$n-$name$tag; rm -rf "$r"; mkdir -p "$r"
         args="-c $d/probe.cfg $d/frames.u16 $N"
-        status=ok
-        case "$t" in
-          x86|x86v2)
-            nice -n 10 valgrind --tool=callgrind --callgrind-out-file="$r/cg.out" --collect-atstart=no \
-              --toggle-collect=irp_measured --dump-after=irp_measured "$exe" $args >"$r/log" 2>"$r/err" || status=fail
-            for ((i = 1; ; i++)); do
-              [ -f "$r/cg.out.$i" ] || break
-              awk '/^(summary|totals):/ {print $2; exit}' "$r/cg.out.$i"
-            done >"$r/counts"
-            rm -f "$r"/cg.out*;;
-          aarch64)
-            nice -n 10 qemu-aarch64 -L /usr/aarch64-linux-gnu -plugin "$plug,out=$r/counts" "$exe" $args \
-              >"$r/log" 2>"$r/err" || status=fail;;
-          m7|m3)
-            board=mps2-an500; [ "$t" = m3 ] && board=mps2-an385
-            nice -n 10 timeout 3600 qemu-system-arm -M $board -nographic -monitor none \
-              -semihosting-config enable=on,target=native -plugin "$plug,out=$r/counts" -kernel "$exe" \
-              -append "$args" >"$r/log" 2>"$r/err" || status=fail;;
-        esac
-        if grep -q "arena of .* too small" "$r/log" "$r/err"; then status=no-fit; fi
-        if [ $status = ok ] && ! grep -q "ir_probe: done" "$r/log"; then status=fail; fi
+        status=$(run_probe "$t" "$exe" "$args" "$r")
         echo "$t,$n,$name,$status,$r,$d" >>"$out/flight_rows.csv"
         echo "$t $n $name: $status" >&2
       done
@@ -216,26 +224,7 @@ for t in $targets; do
       r=$out/run-$t-$n-$sz$tag; rm -rf "$r"; mkdir -p "$r"
       args="$in $w $h 14 $N 1 12000 $map $block"
       [ -n "$clutter" ] && args="$args 3 $clutter"
-      status=ok
-      case "$t" in
-        x86|x86v2)
-          nice -n 10 valgrind --tool=callgrind --callgrind-out-file="$r/cg.out" --collect-atstart=no \
-            --toggle-collect=irp_measured --dump-after=irp_measured "$exe" $args >"$r/log" 2>"$r/err" || status=fail
-          for ((i = 1; ; i++)); do
-            [ -f "$r/cg.out.$i" ] || break
-            awk '/^(summary|totals):/ {print $2; exit}' "$r/cg.out.$i"
-          done >"$r/counts"
-          rm -f "$r"/cg.out*;;
-        aarch64)
-          nice -n 10 qemu-aarch64 -L /usr/aarch64-linux-gnu -plugin "$plug,out=$r/counts" "$exe" $args \
-            >"$r/log" 2>"$r/err" || status=fail;;
-        m7)
-          nice -n 10 timeout 3600 qemu-system-arm -M mps2-an500 -nographic -monitor none \
-            -semihosting-config enable=on,target=native -plugin "$plug,out=$r/counts" -kernel "$exe" \
-            -append "$args" >"$r/log" 2>"$r/err" || status=fail;;
-      esac
-      if grep -q "arena of .* too small" "$r/log" "$r/err"; then status=no-fit; fi
-      if [ $status = ok ] && ! grep -q "ir_probe: done" "$r/log"; then status=fail; fi
+      status=$(run_probe "$t" "$exe" "$args" "$r")
       echo "$t,$n,$sz,$status,$r" >>"$out/rows.csv"
       echo "$t $n $sz: $status" >&2
     done
