@@ -12,7 +12,8 @@
  * (integ_fast8_); q16's vertical sums (peak_vrow_, the centre tap 1) take each product of a
  * tap and a 32-bit value as one 32 x 32 -> 64-bit multiply (pmuludq) of its magnitude
  * (peak_vrow_mul_) instead of two 32-bit products, which SSE2 forms of pmuludq pairs and
- * shuffles. The same values; AArch64 and the Cortex-M builds keep the plain loops. */
+ * shuffles. The same values; the Cortex-M builds keep the plain loops, and AArch64 q16 has only
+ * the row sums' form (below). */
 #include <emmintrin.h>
 #define PFT_TBD_INTEG_FAST8_ 1
 #if defined(PFT_NUMERIC_Q16)
