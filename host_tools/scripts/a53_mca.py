@@ -28,6 +28,19 @@ turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It 
    calls' modelled cycles per frame; the manager's counts must agree between the two runs.
 4. `check`: llvm-mca on small kernels whose A53 timing is known (the dual-issue rule and
    published measurements on an A53), to show where the model is right and where it is not.
+5. `model --regions A,B,C,...` with K names other than two: a run whose work markers bracket K
+   calls in turn each frame, as `ir_probe -c` (the flight build, docs/results/ir_clutter.md
+   "Branch ircost31" and "Branch ircost44") brackets stage, flat, map, manager, after. The
+   plugin's block counts come in two columns (odd and even regions), which with K odd do not
+   follow the regions, so they are summed and each function goes to the region whose root
+   function reaches it by direct calls in the disassembly (--roots, default irp_f_NAME for each
+   NAME: ir_probe -c's); the instructions a region's out= count holds beyond its own functions
+   (shared functions, the C library, the markers) are reported and charged in proportion. The
+   report adds a table per call (each region's instructions, cycles and CPI, and the total) to
+   the per-frame one; --calls must cover whole frames (run --calls 66-200 with K = 5: frames
+   14-40), and --frames-from numbers the frames of the whole run (the tables start at it or at
+   the first profiled frame, whichever is later). The default two regions give the reports
+   they gave before.
 
   bash tests/soak/run_soak.sh plugin
   python3 host_tools/scripts/a53_mca.py run --build build/aarch64-float \
@@ -36,6 +49,11 @@ turns them into modelled cycles with llvm-mca's Cortex-A53 scheduling model. It 
       [--debug-exe build/a53-g-float/tests/tools/ir_probe]
   python3 host_tools/scripts/a53_mca.py three --run-stage R2 --model-stage R2.md --run-map R1 --model-map R1.md
   python3 host_tools/scripts/a53_mca.py check
+  # the flight build (ir_cost_targets.sh with IRC_FLIGHT made DIR/probe.cfg, DIR/frames.u16):
+  python3 host_tools/scripts/a53_mca.py run --build build/irc-aarch64-float \
+      --args "-c DIR/probe.cfg DIR/frames.u16 40" --calls 66-200 --mem --out build/a53-mca/flight
+  python3 host_tools/scripts/a53_mca.py model --build build/irc-aarch64-float --run build/a53-mca/flight \
+      --regions stage,flat,map,manager,after --calls 66-200 --frames-from 14
 
 (--debug-exe: the same preset built with -DCMAKE_C_FLAGS=-g into another directory; the script
 checks its code is instruction for instruction the same and names each loop's source line.)
@@ -337,6 +355,8 @@ def cmd_model(a):
     exe = a.exe or os.path.join(a.build, 'tests', 'tools', 'ir_probe')
     cpus = a.cpus.split(',')
     regions = a.regions.split(',')
+    if len(regions) != 2:
+        return cmd_model_k(a, exe, cpus, regions)
     funcs = disassemble(exe)
     cnt = load_blocks(os.path.join(a.run, 'blocks.txt'), funcs)
     counts = [int(x) for x in open(os.path.join(a.run, 'counts.txt')).read().split()]
@@ -527,6 +547,292 @@ def cmd_model(a):
     print('\n'.join(out))
 
 
+# ------------------------------------------------------------------- K regions per frame
+def call_graph(funcs):
+    """{function: the functions it calls or branches into directly}: a bl, or a b / conditional
+    branch to another function's first instruction (a tail call, a jump into a .cold part)."""
+    entry = {ins[0][0]: n for n, ins in funcs.items() if ins}
+    g = {}
+    for n, ins in funcs.items():
+        s = set()
+        for addr, mn, ops in ins:
+            t = branch_target(mn, ops)
+            if t is not None and t in entry and entry[t] != n:
+                s.add(entry[t])
+        g[n] = s
+    return g
+
+
+def reach(g, root):
+    seen, todo = {root}, [root]
+    while todo:
+        for m in g.get(todo.pop(), ()):
+            if m not in seen:
+                seen.add(m)
+                todo.append(m)
+    return seen
+
+
+def cmd_model_k(a, exe, cpus, regions):
+    """K regions per frame (K = len(--regions), not 2): the work markers bracket K calls in turn
+    each frame (ir_probe -c: stage, flat, map, manager, after). The plugin counts blocks in odd
+    and even regions only, and with K odd a region's parity changes from frame to frame, so the
+    two columns are summed and each function is given to the region whose root function
+    (--roots, default irp_f_NAME for each region name) reaches it through direct calls in the
+    disassembly. A function reached from several roots (or none: the probe's own wrapper) is
+    shared: its instructions, those outside the executable (the C library) and the markers' are
+    what the region's count (out=, exact) holds beyond its own functions, and they are charged
+    per region in that proportion (the shared functions at their own modelled CPI, the rest at the
+    region's mean). A function's loops are found and modelled on its counts over all regions."""
+    K = len(regions)
+    roots = a.roots.split(',') if a.roots else ['irp_f_' + r for r in regions]
+    if len(roots) != K:
+        sys.exit('a53_mca.py: --roots names %d functions for %d regions' % (len(roots), K))
+    funcs = disassemble(exe)
+    for r in roots:
+        if r not in funcs:
+            sys.exit('a53_mca.py: root function %s not in %s' % (r, exe))
+    cnt2 = load_blocks(os.path.join(a.run, 'blocks.txt'), funcs)
+    cnt = {ad: [c[0] + c[1], 0] for ad, c in cnt2.items()}  # all regions, in column 0
+    counts = [int(x) for x in open(os.path.join(a.run, 'counts.txt')).read().split()]
+    first = 1
+    if a.calls:  # the run profiled only these calls (run --calls)
+        first, last = (int(x) for x in a.calls.split('-'))
+        counts = counts[first - 1:last]
+    if (first - 1) % K or len(counts) % K:
+        sys.exit('a53_mca.py: the profiled calls must be whole frames of %d calls' % K)
+    f0 = (first - 1) // K  # frames before the first profiled one
+    nf = len(counts) // K
+    per = [counts[k::K] for k in range(K)]
+    ctot = [sum(per[k]) for k in range(K)]
+    ptot = 0
+    for line in open(os.path.join(a.run, 'prof.txt')):
+        o, e, name = line.split(None, 2)
+        ptot += int(o) + int(e)
+    g = call_graph(funcs)
+    owner = {}
+    for k, r in enumerate(roots):
+        for f in reach(g, r):
+            owner.setdefault(f, set()).add(k)
+
+    loops, fns = [], []
+    shared_min = a.min_share * sum(ctot)
+    for name, ins in funcs.items():
+        tot = sum(cnt.get(addr, (0, 0))[0] for addr, _, _ in ins)
+        if tot == 0:
+            continue
+        ks = owner.get(name, set())
+        reg = next(iter(ks)) if len(ks) == 1 else -1  # -1: shared
+        fl = []
+        if tot >= (a.min_share * ctot[reg] if reg >= 0 else shared_min):
+            for s, p, it, cov, dep in find_loops(ins, cnt, 0, tot):
+                text = mca_text(p)
+                m = {c: llvm_mca(text, a.mca, c) for c in cpus}
+                fl.append({'fn': name, 'reg': reg, 'start': ins[s][0], 'n': len(p), 'iters': it,
+                           'body': p[-1][1] == 'ret', 'cov': cov, 'dep': dep, 'mca': m,
+                           'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
+                           'bn': bottleneck(m[cpus[0]], len(p))})
+        fns.append({'fn': name, 'reg': reg, 'ks': ks, 'tot': tot, 'loops': fl})
+        loops.extend(fl)
+    # fallback CPI: a region's modelled loops (the shared functions': every loop's)
+    fb = {}
+    for r in list(range(K)) + [-1]:
+        sel = [l for l in loops if l['reg'] == r or r == -1]
+        cv = sum(l['cov'] for l in sel)
+        for c in cpus:
+            fb[r, c] = sum(l['cov'] * l['cpi'][c] for l in sel) / cv if cv else fb[-1, c] if (-1, c) in fb else 1.0
+    for r in range(K):  # a region without a modelled loop of its own: every loop's
+        if not any(l['reg'] == r for l in loops):
+            for c in cpus:
+                sel = loops
+                fb[r, c] = sum(l['cov'] * l['cpi'][c] for l in sel) / sum(l['cov'] for l in sel)
+    cyc = {(r, c): 0.0 for r in list(range(K)) + [-1] for c in cpus}
+    itot = {r: 0 for r in list(range(K)) + [-1]}
+    for f in fns:
+        cv = min(sum(l['cov'] for l in f['loops']), f['tot'])
+        scale = cv / sum(l['cov'] for l in f['loops']) if f['loops'] else 0.0
+        f['cv'] = cv
+        f['cpi'] = {}
+        itot[f['reg']] += f['tot']
+        for c in cpus:
+            y = sum(l['cov'] * l['cpi'][c] for l in f['loops']) * scale + (f['tot'] - cv) * fb[f['reg'], c]
+            cyc[f['reg'], c] += y
+            f['cpi'][c] = y / f['tot']
+    # each region's count beyond its own functions: the shared functions, the C library, the
+    # markers; the shared functions' instructions given out in proportion to it
+    resid = [ctot[r] - itot[r] for r in range(K)]
+    if min(resid) < 0:
+        sys.exit('a53_mca.py: a region\'s own functions exceed its count (%s): wrong roots?' % resid)
+    rs = sum(resid)
+    share = [x / rs if rs else 0.0 for x in resid]
+    cpi = {}
+    for r in range(K):
+        for c in cpus:
+            own = cyc[r, c] / itot[r] if itot[r] else fb[r, c]
+            shr = itot[-1] * share[r]
+            sh_cpi = cyc[-1, c] / itot[-1] if itot[-1] else own
+            rest = max(0.0, resid[r] - shr)  # outside the executable's functions: the region's CPI
+            cpi[r, c] = (itot[r] * own + shr * sh_cpi + rest * own) / ctot[r] if ctot[r] else 0.0
+    where = {}
+    if a.debug_exe:
+        if [x[1:] for f in disassemble(a.debug_exe).values() for x in f] != [x[1:] for f in funcs.values() for x in f]:
+            sys.exit('a53_mca.py: %s is not the same code as %s' % (a.debug_exe, exe))
+        for l in loops:
+            o = sh(['aarch64-linux-gnu-addr2line', '-e', a.debug_exe, '-f', '-i', '0x%x' % l['start']]).split('\n')
+            fn, fl = o[0], o[1]
+            where[l['start']] = '%s:%s' % (os.path.basename(fl.split(' ')[0]).split(':')[0] if ':' in fl else fl,
+                                           fl.split(':')[1].split(' ')[0] if ':' in fl else '?') + (' (%s)' % fn)
+
+    def rname(f):
+        return regions[f['reg']] if f['reg'] >= 0 else 'shared (%s)' % ('+'.join(regions[k] for k in sorted(f['ks'])) or 'none')
+    out = []
+    P = out.append
+    c0 = cpus[0]
+    P('%s, run %s: %d frames (%d to %d) of %d calls each (%s; roots %s); instructions of the '
+      'profiled calls from out= %.0f, from the block profile %.0f, from prof= %.0f.'
+      % (exe, a.run, nf, f0 + 1, f0 + nf, K, ', '.join(regions), ', '.join(roots), sum(ctot),
+         sum(itot.values()), ptot))
+    P('')
+    P('Loops (per frame: instructions of the function, iterations; share = the function\'s '
+      'instructions the loop covers; cycles per iteration and IPC of llvm-mca %s, its bottleneck; '
+      '%s for comparison):' % (c0, ', '.join(cpus[1:])))
+    P('')
+    P('| region | function | instructions / frame | loop at | instructions / iteration | iterations / frame | share | %s cycles / iteration | IPC | bottleneck | %s |'
+      % (c0, ' | '.join('%s cycles / iteration' % c for c in cpus[1:])))
+    P('|---|---|---:|---|---:|---:|---:|---:|---:|---|%s' % ('---:|' * (len(cpus) - 1)))
+    order = lambda f: (f['reg'] if f['reg'] >= 0 else K, -f['tot'])
+    for f in sorted(fns, key=order):
+        for l in f['loops']:
+            m = l['mca']
+            P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
+              % (rname(f), l['fn'], f['tot'] / nf / 1e6, l['start'],
+                 (' ' + where[l['start']] if l['start'] in where else '') + (' [entry to return]' if l['body'] else ''),
+                 l['n'], l['iters'] / nf, 100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'],
+                 l['bn'], ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
+    P('')
+    P('Functions (the part outside the modelled loops at its region\'s mean loop CPI):')
+    P('')
+    P('| region | function | instructions / frame | in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
+    P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
+    for f in sorted(fns, key=lambda f: -f['tot']):
+        if f['tot'] >= a.min_share * (ctot[f['reg']] if f['reg'] >= 0 else sum(ctot)):
+            P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (rname(f), f['fn'], f['tot'] / nf / 1e6,
+                                                      100.0 * f['cv'] / f['tot'],
+                                                      ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
+    P('')
+    P('Where each region\'s instructions are (per call): its own functions (reached from its root '
+      'only), the rest (shared functions, the C library, the markers) and the shared functions\' '
+      'part of it given to the region (%.4f M per frame in all, at CPI %s):'
+      % (itot[-1] / nf / 1e6, ' / '.join('%.2f' % (cyc[-1, c] / itot[-1] if itot[-1] else 0.0) for c in cpus)))
+    P('')
+    P('| region | instructions / call | own functions | rest | of it shared functions |')
+    P('|---|---:|---:|---:|---:|')
+    for r in range(K):
+        P('| %s | %.4f M | %.4f M | %.4f M | %.4f M |' % (regions[r], ctot[r] / nf / 1e6, itot[r] / nf / 1e6,
+                                                         resid[r] / nf / 1e6, itot[-1] * share[r] / nf / 1e6))
+    P('')
+    cov_r = []
+    for r in range(K):
+        cv = sum(f['cv'] for f in fns if f['reg'] == r) + sum(f['cv'] for f in fns if f['reg'] == -1) * share[r]
+        cov_r.append(cv / ctot[r] if ctot[r] else 0.0)
+    P('| region | instructions in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
+    P('|---|---:|%s' % ('---:|' * len(cpus)))
+    for r in range(K):
+        P('| %s | %.1f %% | %s |' % (regions[r], 100 * cov_r[r], ' | '.join('%.3f' % cpi[r, c] for c in cpus)))
+    P('')
+
+    # what the model leaves out: cache misses (the plugin's mem=, both parities summed) and
+    # mispredictions; a shared function's (or one outside the executable) in the same proportion
+    mem = {}
+    mpath = os.path.join(a.run, 'mem.txt')
+    if os.path.exists(mpath):
+        for line in open(mpath):
+            f = line.split()
+            mem[f[0]] = [x + int(y) for x, y in zip(mem.get(f[0], [0] * 5), f[2:7])]
+    regof = {f['fn']: f['reg'] for f in fns}
+    lat = a.dram_ns * 1e-9 * CLOCK
+    extra, memr = {}, {}
+    for r in range(K):
+        v5 = [0.0] * 5
+        for name, v in mem.items():
+            w = 1.0 if regof.get(name, -1) == r else share[r] if regof.get(name, -1) == -1 else 0.0
+            v5 = [x + w * y for x, y in zip(v5, v)]
+        acc, l1, l1s, l2, l2s = v5
+        npf = (l1 - l2) * a.l2_cycles + l2 * lat
+        pf = ((l1 - l1s) - (l2 - l2s)) * a.l2_cycles + (l2 - l2s) * lat
+        dep = sum(l['dep'] * (1.0 if l['reg'] == r else share[r] if l['reg'] == -1 else 0.0) for l in loops)
+        extra[r] = (pf / nf, npf / nf, dep * a.mispredict / nf)
+        memr[r] = (acc / nf, l1 / nf, l1s / nf, l2 / nf, l2s / nf, dep / nf)
+    if mem:
+        P('Cache model (the plugin\'s mem=: L1 %s, L2 %s; per frame; strided = within 2 lines of the same '
+          'instruction\'s previous miss):' % (a.l1_label, a.l2_label))
+        P('')
+        P('| region | function | accesses | L1 misses | of them strided | L2 misses | of them strided |')
+        P('|---|---|---:|---:|---:|---:|---:|')
+        for name, v in sorted(mem.items(), key=lambda kv: (regof.get(kv[0], -1) % (K + 1), -kv[1][1])):
+            if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000:
+                r = regof.get(name, -1)
+                P('| %s | `%s` | %.0f | %.0f | %.0f %% | %.0f | %.0f %% |'
+                  % (regions[r] if r >= 0 else 'shared', name, v[0] / nf, v[1] / nf, 100.0 * v[2] / max(v[1], 1),
+                     v[3] / nf, 100.0 * v[4] / max(v[3], 1)))
+        P('')
+    P('Left out by llvm-mca, estimated per call (assumptions: an L1 miss that hits the L2 waits %d '
+      'cycles, an L2 miss %.0f ns = %.0f cycles, a mispredicted branch %d cycles; each departure from a '
+      'modelled loop\'s dominant path counted as one misprediction; in-order: nothing hides a wait):'
+      % (a.l2_cycles, a.dram_ns, lat, a.mispredict))
+    P('')
+    P('| region | L1 misses | L2 misses | stall, no prefetch | stall, strided misses prefetched | departures | their cost |')
+    P('|---|---:|---:|---:|---:|---:|---:|')
+    for r in range(K):
+        pf, npf, mp = extra[r]
+        P('| %s | %.0f | %.0f | %.2f M cycles | %.2f M cycles | %.0f | %.2f M cycles |'
+          % (regions[r], memr[r][1], memr[r][3], npf / 1e6, pf / 1e6, memr[r][5], mp / 1e6))
+    P('')
+
+    # per call and per frame over frames N..end (absolute frame numbers)
+    lo = max(a.frames_from, f0 + 1) - f0 - 1
+    fr = list(range(lo, nf))
+    allm = [ctot[r] / nf for r in range(K)]
+    P('Per call, mean of frames %d..%d at %.1f GHz (cycles = instructions x the region\'s modelled CPI; '
+      'the stalls scaled by the call\'s instructions against the mean of the profiled frames):'
+      % (f0 + lo + 1, f0 + nf, CLOCK / 1e9))
+    P('')
+    P('| call | model | instructions | cycles | CPI | + stalls, strided misses prefetched: cycles | CPI | + stalls, no prefetch: cycles | CPI |')
+    P('|---|---|---:|---:|---:|---:|---:|---:|---:|')
+    for r in list(range(K)) + [None]:
+        for c in cpus:
+            rr = range(K) if r is None else [r]
+            ins = sum(sum(per[q][i] for i in fr) / len(fr) for q in rr)
+            base = sum(sum(per[q][i] for i in fr) / len(fr) * cpi[q, c] for q in rr)
+            sc = {q: (sum(per[q][i] for i in fr) / len(fr) / allm[q] if allm[q] else 0.0) for q in rr}
+            e1 = sum((extra[q][0] + extra[q][2]) * sc[q] for q in rr)
+            e2 = sum((extra[q][1] + extra[q][2]) * sc[q] for q in rr)
+            P('| %s | %s | %.3f M | %.3f M | %.2f | %.3f M | %.2f | %.3f M | %.2f |'
+              % ('**total**' if r is None else regions[r], c, ins / 1e6, base / 1e6, base / ins if ins else 0.0,
+                 (base + e1) / 1e6, (base + e1) / ins if ins else 0.0, (base + e2) / 1e6,
+                 (base + e2) / ins if ins else 0.0))
+    P('')
+    tot_f = [sum(per[q][i] for q in range(K)) for i in range(nf)]
+    big = max(fr, key=lambda i: tot_f[i])
+    rows = [('mean of frames %d..%d' % (f0 + lo + 1, f0 + nf), [sum(per[q][i] for i in fr) / len(fr) for q in range(K)]),
+            ('largest (frame %d)' % (f0 + big + 1), [per[q][big] for q in range(K)])]
+    P('Per frame at %.1f GHz (the stalls scaled by the frame\'s instructions against the mean of the profiled frames; the largest frame at the mean\'s CPI):' % (CLOCK / 1e9))
+    P('')
+    P('| frame | model | instructions | cycles | CPI | frames/s | + stalls, strided misses prefetched: CPI | frames/s | + stalls, no prefetch: CPI | frames/s |')
+    P('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
+    for label, ins in rows:
+        for c in cpus:
+            base = sum(ins[q] * cpi[q, c] for q in range(K))
+            sc = [ins[q] / allm[q] if allm[q] else 0.0 for q in range(K)]
+            e1 = sum((extra[q][0] + extra[q][2]) * sc[q] for q in range(K))
+            e2 = sum((extra[q][1] + extra[q][2]) * sc[q] for q in range(K))
+            n = sum(ins)
+            P('| %s | %s | %.2f M | %.2f M | %.2f | %.1f | %.2f | %.1f | %.2f | %.1f |'
+              % (label, c, n / 1e6, base / 1e6, base / n, CLOCK / base, (base + e1) / n, CLOCK / (base + e1),
+                 (base + e2) / n, CLOCK / (base + e2)))
+    print('\n'.join(out))
+
+
 # ----------------------------------------------------------------------------------- check
 # Small kernels, llvm-mca's steady state per iteration against what the A53 does. "expected":
 # from the pipeline's dual-issue rule (two ALU instructions a cycle) and from measurements on
@@ -623,10 +929,15 @@ def main():
     m.add_argument('--build', help='an aarch64 build: its tests/tools/ir_probe')
     m.add_argument('--exe', help='the executable that ran (default: BUILD/tests/tools/ir_probe)')
     m.add_argument('--debug-exe', help='the same program built with -g: each loop\'s source line')
-    m.add_argument('--regions', default='stage,manager', help='names of the odd and the even regions')
+    m.add_argument('--regions', default='stage,manager',
+                   help='names of the odd and the even regions; K names other than 2: K calls per frame '
+                        '(ir_probe -c: stage,flat,map,manager,after)')
+    m.add_argument('--roots', help='with K regions: the function each region\'s call runs, comma-separated '
+                                   '(default irp_f_NAME, ir_probe -c\'s)')
     m.add_argument('--cpus', default='cortex-a53,cortex-a55', help='llvm-mca models, the first is the model')
     m.add_argument('--frames-from', type=int, default=2,
-                   help='per-frame table (stage + manager) over frames N..end; 0: a per-call table instead')
+                   help='per-frame table (stage + manager) over frames N..end; 0: a per-call table instead '
+                        '(with K regions: the tables over frames N..end, N a frame of the whole run)')
     m.add_argument('--calls', help='I-J: the calls the run profiled (run --calls)')
     m.add_argument('--skip', type=int, default=0, help='with --frames-from 0: calls left out at the start')
     m.add_argument('--run', required=True)
