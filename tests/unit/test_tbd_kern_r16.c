@@ -13,8 +13,9 @@
  * values just below and above each multiple of 2^-16 boundary in q16, i.e. every 16-bit low
  * half near 0 and 2^15).
  *
- * The scan's rows on x86-64 (SSE2; the hooks pft_tbd_hrow_r16_ and pft_tbd_integ_row_ exist
- * there only, elsewhere the two tests are ignored): the horizontal sums of a RES16 row
+ * The scan's rows on x86-64 (SSE2) and AArch64 (NEON; the hook pft_tbd_hrow_r16_ exists on
+ * x86-64 and AArch64 q16, pft_tbd_integ_row_ on both in both builds, elsewhere the tests are
+ * ignored): the horizontal sums of a RES16 row
  * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
  * bit, the vertical sums (peak_vrow_; the hook pft_tbd_vrow_ in q16 only, the centre tap 1's
  * rows by 64-bit products of the magnitudes) are pft_kmula_'s, and the integration's bin row
@@ -202,7 +203,7 @@ static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
 #endif
 }
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* A PSF-matched value for the integration's row test: ties, halves of 1/64 (the rounding's
  * ties), values beyond the clamp at 257 sigmas, extremes, zeros (float: both signs, NaN). */
 static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
@@ -229,15 +230,15 @@ static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
 #endif
 
 /* pft_tbd_integ_row_ (integ_row_: the inner bins through a branch-free loop, in float and q16
- * with SSE2 eight at a time in 16-bit lanes) is its general form (every bin by integ_bin_) word
+ * with SSE2 or NEON eight at a time, the word in 16-bit lanes) is its general form (every bin by integ_bin_) word
  * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
  * 70, odd and even), last-frame sums (the whole 16-bit range), shifts -4 .. 4 bins either way,
  * every bin row of a 5-row grid (the last without its second pixel row when the height is
  * odd), a_q 0, 1, 77, 128, 255 and 256. */
 static void test_integ_row_is_its_general_form(void)
 {
-#if !defined(__SSE2__)
-    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) only");
+#if !(defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON)))
+    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) and AArch64 (NEON) only");
 #else
     static pft_real_t r0[72], r1[72];
     static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];

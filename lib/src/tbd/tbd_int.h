@@ -178,12 +178,12 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
                           const pft_tbd_integ_t_ *ig);
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* One bin row br of the integration (tbd_meas.c, integ_row_) from the PSF-matched rows r0, r1
  * (r1 NULL past the last row) into ig->cur with ig->prev's sums, vm bw + 2 words of scratch,
  * the row's sums and squares added to sum[0], sum[1]; general: every bin by the general code
- * (integ_bin_) instead of the inner bins' loops (for the unit tests, x86-64 builds
- * only). */
+ * (integ_bin_) instead of the inner bins' loops (for the unit tests, x86-64 and AArch64
+ * builds only). */
 void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                         const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
                         bool general);
