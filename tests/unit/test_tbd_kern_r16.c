@@ -293,6 +293,60 @@ static void test_integ_row_is_its_general_form(void)
 #endif
 }
 
+/* pft_tbd_integ_skip_ (integ_scan_'s skip of the bins under the threshold; on AArch64 eight
+ * 16-bit words per step by one compare) is the first bin from bc on whose word is above bound,
+ * or bw, as the plain loop finds it: 20000 rows (widths 1 to 100) of words mostly at or below
+ * the bound with a few above it (the bound's own value, one above it, the 16-bit range's ends),
+ * bounds -1, 3, 65535 and random 4 l + 3, start bins anywhere in the row. */
+static void test_integ_skip_is_the_plain_skip(void)
+{
+#if !(defined(__aarch64__) && defined(__ARM_NEON))
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_integ_skip_ is built on AArch64 (NEON) only");
+#else
+    static uint16_t row[100];
+    uint32_t st = 4242u;
+    uint32_t bad = 0u;
+    uint32_t far = 0u;
+    uint32_t found = 0u;
+    for (uint32_t n = 0; n < 20000u; ++n) {
+        st = st * 1664525u + 1013904223u;
+        const uint32_t bw = 1u + (st >> 8) % 100u;
+        const uint32_t kind = (st >> 16) % 8u;
+        const int32_t bound = kind == 0u ? -1 : (kind == 1u ? 3 : (kind == 2u ? 65535 :
+                              4 * (int32_t)((st >> 4) % 16384u) + 3));
+        const uint32_t rare = 1u + (st >> 20) % 64u; /* about one word in rare above */
+        for (uint32_t c = 0; c < bw; ++c) {
+            st = st * 1664525u + 1013904223u;
+            const uint32_t r = st >> 8;
+            int32_t v;
+            if (r % rare == 0u) {
+                v = (r >> 8) % 3u == 0u ? bound + 1 : ((r >> 8) % 3u == 1u ? 65535 : bound + 1 + (int32_t)((r >> 12) % 1000u));
+            } else {
+                v = (r >> 8) % 4u == 0u ? bound : ((r >> 8) % 4u == 1u ? 0 : bound - (int32_t)((r >> 12) % 70000u));
+            }
+            v = v < 0 ? 0 : (v > 65535 ? 65535 : v);
+            row[c] = (uint16_t)v;
+        }
+        st = st * 1664525u + 1013904223u;
+        const uint32_t bc = (st >> 8) % (bw + 1u);
+        uint32_t want = bc;
+        while (want < bw && (int32_t)row[want] <= bound) {
+            ++want;
+        }
+        const uint32_t got = pft_tbd_integ_skip_(row, bc, bw, bound);
+        far += want >= bc + 8u ? 1u : 0u;
+        found += want < bw ? 1u : 0u;
+        if (got != want && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "row %u bw %u bc %u bound %d: %u, plain %u", (unsigned)n,
+                     (unsigned)bw, (unsigned)bc, (int)bound, (unsigned)got, (unsigned)want);
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_TRUE(far > 2000u);   /* skips of eight words and more */
+    TEST_ASSERT_TRUE(found > 2000u); /* a word above the bound found inside the row */
+#endif
+}
+
 /* pft_tbd_vrow_ (peak_vrow_: the scan's vertical sums; in q16 with SSE2 the centre tap 1's rows
  * four columns at a time by 32 x 32 -> 64-bit products of the magnitudes) is
  * pft_kaddr_(pft_kmula_(u1, mid), pft_kmula_(u0, pft_kaddr_(up, dn))) bit for bit: every tap
@@ -693,6 +747,7 @@ int main(void)
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
     RUN_TEST(test_integ_row_is_its_general_form);
+    RUN_TEST(test_integ_skip_is_the_plain_skip);
     RUN_TEST(test_vrow_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);

@@ -27,7 +27,8 @@
  * one rounding shift in q16, the bin word's sum and clamps in 16-bit lanes); q16 takes the
  * RES16 row sums with the centre tap 1 eight pixels per step in 32-bit lanes
  * (peak_hrow_r16_madd_'s NEON form: the pair sum widened, a multiply-add by th and the rounded
- * product by tl) instead of gcc's widening products of pft_kmul_r16_. The same values; the
+ * product by tl) instead of gcc's widening products of pft_kmul_r16_; both builds skip the
+ * bins under the peak scan's threshold eight at a time (integ_skip8_). The same values; the
  * vertical sums keep the plain loop here. */
 #include <arm_neon.h>
 #define PFT_TBD_INTEG_FAST8_ 1
@@ -1514,6 +1515,33 @@ static int32_t integ_bound_(pft_real_t te)
     return 4 * (l < 16383 ? l : 16383) + 3;
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 (NEON): the first bin from bc on whose word is above bound, or the first of eight
+ * that holds one, or the last step's end: integ_scan_'s skip of the bins under the threshold
+ * eight words per step (one compare of eight unsigned 16-bit lanes and their largest), the
+ * rest by the plain loop after it. bound < 0: every word is above it, nothing skipped; bound
+ * <= 65535 (integ_bound_), so (uint16_t)bound compares as bound does. */
+static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    if (bound >= 0) {
+        const uint16x8_t b = vdupq_n_u16((uint16_t)bound);
+        while (bc + 8u <= bw && vmaxvq_u16(vcgtq_u16(vld1q_u16(row + bc), b)) == 0u) {
+            bc += 8u;
+        }
+    }
+    return bc;
+}
+
+uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    bc = integ_skip8_(row, bc, bw, bound);
+    while (bc < bw && (int32_t)row[bc] <= bound) {
+        ++bc;
+    }
+    return bc;
+}
+#endif
+
 static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
 {
     pft_real_t te = peak_te_(ps);
@@ -1524,6 +1552,9 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         for (uint32_t bc = 0; bc < bw; ++bc) {
             /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
              * their own (most bins fail it) */
+#if defined(__aarch64__) && defined(__ARM_NEON)
+            bc = integ_skip8_(row, bc, bw, bound);
+#endif
             while (bc < bw && (int32_t)row[bc] <= bound) {
                 ++bc;
             }
