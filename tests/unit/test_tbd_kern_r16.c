@@ -276,6 +276,19 @@ static void test_integ_row_is_its_general_form(void)
         pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_a, sa, false);
         ig.cur = cur_b;
         pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_b, sb, true);
+        /* the sums and squares added: the known answer from the row's stored words */
+        uint64_t k0 = 5u;
+        uint64_t k1 = 7u;
+        for (uint32_t c = 0; c < bw; ++c) {
+            const uint64_t v = (uint64_t)(cur_a[br * bw + c] >> 2);
+            k0 += v;
+            k1 += v * v;
+        }
+        if ((sa[0] != k0 || sa[1] != k1) && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "row %u w %u: sums %llu %llu, known %llu %llu", (unsigned)n,
+                     (unsigned)w, (unsigned long long)sa[0], (unsigned long long)sa[1],
+                     (unsigned long long)k0, (unsigned long long)k1);
+        }
         fast += (!last_alone && bw >= 8u) ? 1u : 0u;
         if ((memcmp(cur_a, cur_b, sizeof cur_a) != 0 || sa[0] != sb[0] || sa[1] != sb[1]) &&
             bad++ == 0u) {

@@ -28,7 +28,8 @@
  * RES16 row sums with the centre tap 1 eight pixels per step in 32-bit lanes
  * (peak_hrow_r16_madd_'s NEON form: the pair sum widened, a multiply-add by th and the rounded
  * product by tl) instead of gcc's widening products of pft_kmul_r16_; both builds skip the
- * bins under the peak scan's threshold eight at a time (integ_skip8_). The same values; the
+ * bins under the peak scan's threshold eight at a time (integ_skip8_) and take a bin row's
+ * sums and squares eight words per step (integ_sums8_). The same values; the
  * vertical sums keep the plain loop here. */
 #include <arm_neon.h>
 #define PFT_TBD_INTEG_FAST8_ 1
@@ -1329,6 +1330,30 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
 }
 #endif
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 (NEON): the sums of a bin row's values sq = word >> 2 and of their squares, eight
+ * words per step, into *s0 and *s1; returns the first bin not done. The values' sums pairwise
+ * into four 32-bit lanes (each below 2^15 per step, a row at most PFT_CFG_MAX_IMAGE_SIDE / 16
+ * steps: below 2^24), the squares (below 2^28) pairwise into two 64-bit lanes; the same
+ * integers as the plain loop's. */
+static uint32_t integ_sums8_(const uint16_t *out, uint32_t n, uint64_t *s0, uint64_t *s1)
+{
+    uint32x4_t a0 = vdupq_n_u32(0u);
+    uint64x2_t a1 = vdupq_n_u64(0u);
+    const uint16_t *p = out;
+    for (uint32_t k = n / 8u; k > 0u; --k) {
+        const uint16x8_t q = vshrq_n_u16(vld1q_u16(p), 2);
+        a0 = vpadalq_u16(a0, q);
+        a1 = vpadalq_u32(a1, vmull_u16(vget_low_u16(q), vget_low_u16(q)));
+        a1 = vpadalq_u32(a1, vmull_high_u16(q, q));
+        p += 8;
+    }
+    *s0 += vaddlvq_u32(a0);
+    *s1 += vaddvq_u64(a1);
+    return n & ~7u;
+}
+#endif
+
 /* Bin bc of row br in general (any column, r1 NULL past the last row). */
 static void integ_bin_(const pft_tbd_integ_t_ *ig, const pft_real_t *r0, const pft_real_t *r1,
                        uint32_t w, const uint32_t *vm, uint32_t bc, uint16_t *out)
@@ -1449,7 +1474,11 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     uint64_t s0 = 0u;
     uint64_t s1 = 0u;
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    for (uint32_t bc = integ_sums8_(out, bwu, &s0, &s1); bc < bwu; ++bc) {
+#else
     for (uint32_t bc = 0; bc < bwu; ++bc) {
+#endif
         const uint32_t sq = (uint32_t)out[bc] >> 2;
         s0 += sq;
         s1 += (uint64_t)sq * sq;
@@ -1517,17 +1546,23 @@ static int32_t integ_bound_(pft_real_t te)
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (NEON): the first bin from bc on whose word is above bound, or the first of eight
- * that holds one, or the last step's end: integ_scan_'s skip of the bins under the threshold
- * eight words per step (one compare of eight unsigned 16-bit lanes and their largest), the
- * rest by the plain loop after it. bound < 0: every word is above it, nothing skipped; bound
+ * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
+ * threshold eight words per step (one compare of eight unsigned 16-bit lanes), the rest by the
+ * plain loop after it. bound < 0: every word is above it, nothing skipped; bound
  * <= 65535 (integ_bound_), so (uint16_t)bound compares as bound does. */
 static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
 {
-    if (bound >= 0) {
+    if (bound >= 0 && bc < bw) {
         const uint16x8_t b = vdupq_n_u16((uint16_t)bound);
-        while (bc + 8u <= bw && vmaxvq_u16(vcgtq_u16(vld1q_u16(row + bc), b)) == 0u) {
-            bc += 8u;
+        const uint16_t *p = row + bc;
+        uint32_t k = (bw - bc) / 8u;
+        /* the eight lanes' masks narrowed to bytes: one 64-bit word, 0 when none is above */
+        while (k > 0u &&
+               vget_lane_u64(vreinterpret_u64_u8(vmovn_u16(vcgtq_u16(vld1q_u16(p), b))), 0) == 0u) {
+            p += 8;
+            --k;
         }
+        bc = bw - 8u * k - (bw - bc) % 8u;
     }
     return bc;
 }
