@@ -13,8 +13,9 @@
  * values just below and above each multiple of 2^-16 boundary in q16, i.e. every 16-bit low
  * half near 0 and 2^15).
  *
- * The scan's rows on x86-64 (SSE2; the hooks pft_tbd_hrow_r16_ and pft_tbd_integ_row_ exist
- * there only, elsewhere the two tests are ignored): the horizontal sums of a RES16 row
+ * The scan's rows on x86-64 (SSE2) and AArch64 (NEON; the hook pft_tbd_hrow_r16_ exists on
+ * x86-64 and AArch64 q16, pft_tbd_integ_row_ on both in both builds, elsewhere the tests are
+ * ignored): the horizontal sums of a RES16 row
  * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
  * bit, the vertical sums (peak_vrow_; the hook pft_tbd_vrow_ in q16 only, the centre tap 1's
  * rows by 64-bit products of the magnitudes) are pft_kmula_'s, and the integration's bin row
@@ -202,7 +203,7 @@ static void test_hrow_r16_is_peak_hrow_of_the_converted_row(void)
 #endif
 }
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* A PSF-matched value for the integration's row test: ties, halves of 1/64 (the rounding's
  * ties), values beyond the clamp at 257 sigmas, extremes, zeros (float: both signs, NaN). */
 static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
@@ -229,15 +230,15 @@ static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
 #endif
 
 /* pft_tbd_integ_row_ (integ_row_: the inner bins through a branch-free loop, in float and q16
- * with SSE2 eight at a time in 16-bit lanes) is its general form (every bin by integ_bin_) word
+ * with SSE2 or NEON eight at a time, the word in 16-bit lanes) is its general form (every bin by integ_bin_) word
  * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
  * 70, odd and even), last-frame sums (the whole 16-bit range), shifts -4 .. 4 bins either way,
  * every bin row of a 5-row grid (the last without its second pixel row when the height is
  * odd), a_q 0, 1, 77, 128, 255 and 256. */
 static void test_integ_row_is_its_general_form(void)
 {
-#if !defined(__SSE2__)
-    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) only");
+#if !(defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON)))
+    TEST_IGNORE_MESSAGE("the eight-bin form and the hook pft_tbd_integ_row_ are x86-64 (SSE2) and AArch64 (NEON) only");
 #else
     static pft_real_t r0[72], r1[72];
     static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];
@@ -275,6 +276,19 @@ static void test_integ_row_is_its_general_form(void)
         pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_a, sa, false);
         ig.cur = cur_b;
         pft_tbd_integ_row_(&ig, br, r0, last_alone ? NULL : r1, w, vm_b, sb, true);
+        /* the sums and squares added: the known answer from the row's stored words */
+        uint64_t k0 = 5u;
+        uint64_t k1 = 7u;
+        for (uint32_t c = 0; c < bw; ++c) {
+            const uint64_t v = (uint64_t)(cur_a[br * bw + c] >> 2);
+            k0 += v;
+            k1 += v * v;
+        }
+        if ((sa[0] != k0 || sa[1] != k1) && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "row %u w %u: sums %llu %llu, known %llu %llu", (unsigned)n,
+                     (unsigned)w, (unsigned long long)sa[0], (unsigned long long)sa[1],
+                     (unsigned long long)k0, (unsigned long long)k1);
+        }
         fast += (!last_alone && bw >= 8u) ? 1u : 0u;
         if ((memcmp(cur_a, cur_b, sizeof cur_a) != 0 || sa[0] != sb[0] || sa[1] != sb[1]) &&
             bad++ == 0u) {
@@ -289,6 +303,60 @@ static void test_integ_row_is_its_general_form(void)
     }
     TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
     TEST_ASSERT_TRUE(fast > 1000u); /* rows long enough for eight inner bins at a time */
+#endif
+}
+
+/* pft_tbd_integ_skip_ (integ_scan_'s skip of the bins under the threshold; on AArch64 eight
+ * 16-bit words per step by one compare) is the first bin from bc on whose word is above bound,
+ * or bw, as the plain loop finds it: 20000 rows (widths 1 to 100) of words mostly at or below
+ * the bound with a few above it (the bound's own value, one above it, the 16-bit range's ends),
+ * bounds -1, 3, 65535 and random 4 l + 3, start bins anywhere in the row. */
+static void test_integ_skip_is_the_plain_skip(void)
+{
+#if !(defined(__aarch64__) && defined(__ARM_NEON))
+    TEST_IGNORE_MESSAGE("the hook pft_tbd_integ_skip_ is built on AArch64 (NEON) only");
+#else
+    static uint16_t row[100];
+    uint32_t st = 4242u;
+    uint32_t bad = 0u;
+    uint32_t far = 0u;
+    uint32_t found = 0u;
+    for (uint32_t n = 0; n < 20000u; ++n) {
+        st = st * 1664525u + 1013904223u;
+        const uint32_t bw = 1u + (st >> 8) % 100u;
+        const uint32_t kind = (st >> 16) % 8u;
+        const int32_t bound = kind == 0u ? -1 : (kind == 1u ? 3 : (kind == 2u ? 65535 :
+                              4 * (int32_t)((st >> 4) % 16384u) + 3));
+        const uint32_t rare = 1u + (st >> 20) % 64u; /* about one word in rare above */
+        for (uint32_t c = 0; c < bw; ++c) {
+            st = st * 1664525u + 1013904223u;
+            const uint32_t r = st >> 8;
+            int32_t v;
+            if (r % rare == 0u) {
+                v = (r >> 8) % 3u == 0u ? bound + 1 : ((r >> 8) % 3u == 1u ? 65535 : bound + 1 + (int32_t)((r >> 12) % 1000u));
+            } else {
+                v = (r >> 8) % 4u == 0u ? bound : ((r >> 8) % 4u == 1u ? 0 : bound - (int32_t)((r >> 12) % 70000u));
+            }
+            v = v < 0 ? 0 : (v > 65535 ? 65535 : v);
+            row[c] = (uint16_t)v;
+        }
+        st = st * 1664525u + 1013904223u;
+        const uint32_t bc = (st >> 8) % (bw + 1u);
+        uint32_t want = bc;
+        while (want < bw && (int32_t)row[want] <= bound) {
+            ++want;
+        }
+        const uint32_t got = pft_tbd_integ_skip_(row, bc, bw, bound);
+        far += want >= bc + 8u ? 1u : 0u;
+        found += want < bw ? 1u : 0u;
+        if (got != want && bad++ == 0u) {
+            snprintf(msg_, sizeof msg_, "row %u bw %u bc %u bound %d: %u, plain %u", (unsigned)n,
+                     (unsigned)bw, (unsigned)bc, (int)bound, (unsigned)got, (unsigned)want);
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32_MESSAGE(0u, bad, msg_);
+    TEST_ASSERT_TRUE(far > 2000u);   /* skips of eight words and more */
+    TEST_ASSERT_TRUE(found > 2000u); /* a word above the bound found inside the row */
 #endif
 }
 
@@ -692,6 +760,7 @@ int main(void)
     RUN_TEST(test_kmul_u_is_kmula);
     RUN_TEST(test_hrow_r16_is_peak_hrow_of_the_converted_row);
     RUN_TEST(test_integ_row_is_its_general_form);
+    RUN_TEST(test_integ_skip_is_the_plain_skip);
     RUN_TEST(test_vrow_is_kmula);
     RUN_TEST(test_kspot3_r16_is_kspot3_of_the_converted_window);
     RUN_TEST(test_kspot3_r16t_is_taps_then_kspot3_r16);

@@ -178,15 +178,21 @@ void pft_tbd_scene_integ_(const pft_tbd_config_t *cfg, const pft_tbd_tab_t *tab,
                           const pft_real_t *img, const uint32_t *mask, pft_real_t *rows,
                           pft_real_t *val, uint32_t *cand, uint32_t *lines, pft_tbd_scene_t_ *sc,
                           const pft_tbd_integ_t_ *ig);
-#if defined(__SSE2__)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* One bin row br of the integration (tbd_meas.c, integ_row_) from the PSF-matched rows r0, r1
  * (r1 NULL past the last row) into ig->cur with ig->prev's sums, vm bw + 2 words of scratch,
  * the row's sums and squares added to sum[0], sum[1]; general: every bin by the general code
- * (integ_bin_) instead of the inner bins' loops (for the unit tests, x86-64 builds
- * only). */
+ * (integ_bin_) instead of the inner bins' loops (for the unit tests, x86-64 and AArch64
+ * builds only). */
 void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t *r0,
                         const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
                         bool general);
+#endif
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* The first bin from bc on (bc .. bw - 1) of a row of the integration's words above bound, or
+ * bw: the peak scan's skip (tbd_meas.c, integ_scan_: eight words per step, then one at a time;
+ * for the unit tests, AArch64 builds only). */
+uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound);
 #endif
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand
  * NULL): a binary search of row_pre, then the row's mask. */

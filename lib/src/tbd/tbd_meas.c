@@ -12,21 +12,31 @@
  * (integ_fast8_); q16's vertical sums (peak_vrow_, the centre tap 1) take each product of a
  * tap and a 32-bit value as one 32 x 32 -> 64-bit multiply (pmuludq) of its magnitude
  * (peak_vrow_mul_) instead of two 32-bit products, which SSE2 forms of pmuludq pairs and
- * shuffles. The same values; the Cortex-M builds keep the plain loops, and AArch64 q16 has only
- * the row sums' form (below). */
+ * shuffles. The same values; the Cortex-M builds keep the plain loops, and AArch64 has NEON
+ * forms of the bins and of q16's row sums (below). */
 #include <emmintrin.h>
 #define PFT_TBD_INTEG_FAST8_ 1
 #if defined(PFT_NUMERIC_Q16)
 #define PFT_TBD_HROW_MADD_ 1
 #define PFT_TBD_VROW_MUL_ 1
 #endif
-#elif defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON)
-/* AArch64 with NEON (q16): the RES16 row sums with the centre tap 1 eight pixels per step in
- * 32-bit lanes (peak_hrow_r16_madd_'s NEON form: the pair sum widened, a multiply-add by th and
- * the rounded product by tl) instead of gcc's widening products of pft_kmul_r16_. The same
- * values; the integration's bins and the vertical sums keep the plain loops here. */
+#define PFT_TBD_INTEG_AQ_MAX_ 1024u
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 with NEON: both builds take the integration's inner bins eight per step
+ * (integ_fast8_'s NEON form: the rounding as one conversion toward minus infinity in float and
+ * one rounding shift in q16, the bin word's sum and clamps in 16-bit lanes); q16 takes the
+ * RES16 row sums with the centre tap 1 eight pixels per step in 32-bit lanes
+ * (peak_hrow_r16_madd_'s NEON form: the pair sum widened, a multiply-add by th and the rounded
+ * product by tl) instead of gcc's widening products of pft_kmul_r16_; both builds skip the
+ * bins under the peak scan's threshold eight at a time (integ_skip8_) and take a bin row's
+ * sums and squares eight words per step (integ_sums8_). The same values; the
+ * vertical sums keep the plain loop here. */
 #include <arm_neon.h>
+#define PFT_TBD_INTEG_FAST8_ 1
+#define PFT_TBD_INTEG_AQ_MAX_ 256u
+#if defined(PFT_NUMERIC_Q16)
 #define PFT_TBD_HROW_MADD_ 1
+#endif
 #endif
 
 int32_t pft_tbd_pix_(pft_real_t v, pft_real_t inv_d)
@@ -1096,7 +1106,7 @@ static inline uint32_t integ_sq_(pft_real_t best, uint32_t mx, uint32_t a_q)
     return (uint32_t)(sq < 0 ? 0 : (sq > INTEG_MAX_ ? INTEG_MAX_ : sq));
 }
 
-#if defined(PFT_TBD_INTEG_FAST8_)
+#if defined(PFT_TBD_INTEG_FAST8_) && defined(__SSE2__)
 /* Four bins' largest pixel of x0 .. x3 (ties to the earlier) as pft_kround64_ of it, or a
  * value beyond +-16448 of the same sign where pft_kround64_ gives +-16448 (the caller's clamp
  * of the sum to 0 .. INTEG_MAX_ then gives the same bin); g[k] the lanes where x(k + 1) was
@@ -1226,6 +1236,122 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
     }
     return bc;
 }
+#elif defined(PFT_TBD_INTEG_FAST8_)
+/* The NEON form (AArch64): four bins' largest pixel of x0 .. x3 (ties to the earlier; g[k] the
+ * lanes where x(k + 1) was taken) as m, which is pft_kround64_ of it where that lies inside
+ * +-16448 and beyond +-16448 on the same side where pft_kround64_ gives +-16448: with a_q <= 256
+ * the bin's addend (a_q mx + 128) >> 8 is at most 16383 (mx < 2^14), so the caller's clamp of
+ * the sum to 0 .. INTEG_MAX_ gives the same bin either way. q16: m = (a + 512) >> 10 (a
+ * rounding shift, no overflow), pft_kround64_'s (64 a + 2^15) >> 16 for the clamped a. */
+#if defined(PFT_NUMERIC_Q16)
+typedef int32x4_t integ_v_;
+typedef int32x4x2_t integ_v2_;
+static inline integ_v2_ integ_ld2_(const pft_real_t *p) { return vld2q_s32(p); }
+
+static inline int32x4_t integ_best4_(int32x4_t x0, int32x4_t x1, int32x4_t x2, int32x4_t x3,
+                                     uint32x4_t *g)
+{
+    g[0] = vcgtq_s32(x1, x0);
+    int32x4_t b = vmaxq_s32(x1, x0);
+    g[1] = vcgtq_s32(x2, b);
+    b = vmaxq_s32(x2, b);
+    g[2] = vcgtq_s32(x3, b);
+    b = vmaxq_s32(x3, b);
+    return vrshrq_n_s32(b, 10);
+}
+#else
+typedef float32x4_t integ_v_;
+typedef float32x4x2_t integ_v2_;
+static inline integ_v2_ integ_ld2_(const pft_real_t *p) { return vld2q_f32(p); }
+
+/* float: the selection x > b ? x : b by the compare's mask (b on a tie or a NaN, the bits
+ * kept), then m = floor(64 b + 1/2) by a conversion toward minus infinity (fcvtms): 64 b is
+ * exact (an infinity on overflow), and so is 64 b + 1/2 for |64 b| <= 16448, where this is
+ * pft_round_int's value; beyond, on the side of 64 b, it stays beyond +-16448 (saturated at the
+ * 32-bit range); a NaN converts to 0, pft_kround64_'s 0. */
+static inline int32x4_t integ_best4_(float32x4_t x0, float32x4_t x1, float32x4_t x2,
+                                     float32x4_t x3, uint32x4_t *g)
+{
+    g[0] = vcgtq_f32(x1, x0);
+    float32x4_t b = vbslq_f32(g[0], x1, x0);
+    g[1] = vcgtq_f32(x2, b);
+    b = vbslq_f32(g[1], x2, b);
+    g[2] = vcgtq_f32(x3, b);
+    b = vbslq_f32(g[2], x3, b);
+    return vcvtmq_s32_f32(vaddq_f32(vmulq_f32(b, vdupq_n_f32(64.0f)), vdupq_n_f32(0.5f)));
+}
+#endif
+
+/* integ_row_'s inner bins bc = b0 .. eight at a time while bc + 8 <= b1 (r1 not NULL, vm[bc -
+ * sx .. bc - sx + 2] inside, a_q <= 256); returns the first bin not done. The pixels read
+ * deinterleaved (val[0] the bins' left pixels, val[1] their right ones), m per bin by
+ * integ_best4_, mx the largest of the three vm words in 32-bit lanes, (a_q mx + 128) >> 8 by a
+ * rounding narrowing shift (below 2^14); m narrowed with saturation (beyond +-16448 it stays
+ * beyond), the sum with saturation, clamped to 0 .. INTEG_MAX_, and the word sq << 2 | idx by
+ * a shift and insert. */
+static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const uint32_t *vm,
+                            int32_t sx, int32_t b0, int32_t b1, uint32_t a_q, uint16_t *out)
+{
+    const uint32x4_t aq = vdupq_n_u32(a_q);
+    const int16x8_t zero = vdupq_n_s16(0);
+    const int16x8_t top = vdupq_n_s16(INTEG_MAX_);
+    const uint16x8_t one = vdupq_n_u16(1u);
+    const uint16x8_t two = vdupq_n_u16(2u);
+    const uint16x8_t three = vdupq_n_u16(3u);
+    int32_t bc = b0;
+    for (; bc + 8 <= b1; bc += 8) {
+        const integ_v2_ a0 = integ_ld2_(r0 + 2 * bc); /* bins bc .. bc + 3 */
+        const integ_v2_ a1 = integ_ld2_(r0 + 2 * bc + 8);
+        const integ_v2_ c0 = integ_ld2_(r1 + 2 * bc);
+        const integ_v2_ c1 = integ_ld2_(r1 + 2 * bc + 8);
+        uint32x4_t glo[3];
+        uint32x4_t ghi[3];
+        const int32x4_t mlo = integ_best4_(a0.val[0], a0.val[1], c0.val[0], c0.val[1], glo);
+        const int32x4_t mhi = integ_best4_(a1.val[0], a1.val[1], c1.val[0], c1.val[1], ghi);
+        /* the index: 1, then 2, then 3 where that pixel was taken (the masks' low halves) */
+        const uint16x8_t g1 = vuzp1q_u16(vreinterpretq_u16_u32(glo[0]), vreinterpretq_u16_u32(ghi[0]));
+        const uint16x8_t g2 = vuzp1q_u16(vreinterpretq_u16_u32(glo[1]), vreinterpretq_u16_u32(ghi[1]));
+        const uint16x8_t g3 = vuzp1q_u16(vreinterpretq_u16_u32(glo[2]), vreinterpretq_u16_u32(ghi[2]));
+        uint16x8_t idx = vandq_u16(g1, one);
+        idx = vbslq_u16(g2, two, idx);
+        idx = vbslq_u16(g3, three, idx);
+        /* mx: the largest of the three vm words (< 2^14) */
+        const uint32_t *v = vm + (bc - sx);
+        const uint32x4_t xlo = vmaxq_u32(vmaxq_u32(vld1q_u32(v), vld1q_u32(v + 1)), vld1q_u32(v + 2));
+        const uint32x4_t xhi =
+            vmaxq_u32(vmaxq_u32(vld1q_u32(v + 4), vld1q_u32(v + 5)), vld1q_u32(v + 6));
+        const uint16x8_t add =
+            vrshrn_high_n_u32(vrshrn_n_u32(vmulq_u32(xlo, aq), 8), vmulq_u32(xhi, aq), 8);
+        int16x8_t sq = vqaddq_s16(vqmovn_high_s32(vqmovn_s32(mlo), mhi), vreinterpretq_s16_u16(add));
+        sq = vminq_s16(vmaxq_s16(sq, zero), top);
+        vst1q_u16(out + bc, vsliq_n_u16(idx, vreinterpretq_u16_s16(sq), 2));
+    }
+    return bc;
+}
+#endif
+
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 (NEON): the sums of a bin row's values sq = word >> 2 and of their squares, eight
+ * words per step, into *s0 and *s1; returns the first bin not done. The values' sums pairwise
+ * into four 32-bit lanes (each below 2^15 per step, a row at most PFT_CFG_MAX_IMAGE_SIDE / 16
+ * steps: below 2^24), the squares (below 2^28) pairwise into two 64-bit lanes; the same
+ * integers as the plain loop's. */
+static uint32_t integ_sums8_(const uint16_t *out, uint32_t n, uint64_t *s0, uint64_t *s1)
+{
+    uint32x4_t a0 = vdupq_n_u32(0u);
+    uint64x2_t a1 = vdupq_n_u64(0u);
+    const uint16_t *p = out;
+    for (uint32_t k = n / 8u; k > 0u; --k) {
+        const uint16x8_t q = vshrq_n_u16(vld1q_u16(p), 2);
+        a0 = vpadalq_u16(a0, q);
+        a1 = vpadalq_u32(a1, vmull_u16(vget_low_u16(q), vget_low_u16(q)));
+        a1 = vpadalq_u32(a1, vmull_high_u16(q, q));
+        p += 8;
+    }
+    *s0 += vaddlvq_u32(a0);
+    *s1 += vaddvq_u64(a1);
+    return n & ~7u;
+}
 #endif
 
 /* Bin bc of row br in general (any column, r1 NULL past the last row). */
@@ -1313,7 +1439,7 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
         const uint32_t a_q = ig->a_q;
         int32_t bf = b0;
 #if defined(PFT_TBD_INTEG_FAST8_)
-        if (a_q <= 1024u) {
+        if (a_q <= PFT_TBD_INTEG_AQ_MAX_) {
             bf = integ_fast8_(r0, r1, vm, sx, b0, b1, a_q, out);
         }
 #endif
@@ -1348,7 +1474,11 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     uint64_t s0 = 0u;
     uint64_t s1 = 0u;
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    for (uint32_t bc = integ_sums8_(out, bwu, &s0, &s1); bc < bwu; ++bc) {
+#else
     for (uint32_t bc = 0; bc < bwu; ++bc) {
+#endif
         const uint32_t sq = (uint32_t)out[bc] >> 2;
         s0 += sq;
         s1 += (uint64_t)sq * sq;
@@ -1414,6 +1544,39 @@ static int32_t integ_bound_(pft_real_t te)
     return 4 * (l < 16383 ? l : 16383) + 3;
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* AArch64 (NEON): the first bin from bc on whose word is above bound, or the first of eight
+ * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
+ * threshold eight words per step (one compare of eight unsigned 16-bit lanes), the rest by the
+ * plain loop after it. bound < 0: every word is above it, nothing skipped; bound
+ * <= 65535 (integ_bound_), so (uint16_t)bound compares as bound does. */
+static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    if (bound >= 0 && bc < bw) {
+        const uint16x8_t b = vdupq_n_u16((uint16_t)bound);
+        const uint16_t *p = row + bc;
+        uint32_t k = (bw - bc) / 8u;
+        /* the eight lanes' masks narrowed to bytes: one 64-bit word, 0 when none is above */
+        while (k > 0u &&
+               vget_lane_u64(vreinterpret_u64_u8(vmovn_u16(vcgtq_u16(vld1q_u16(p), b))), 0) == 0u) {
+            p += 8;
+            --k;
+        }
+        bc = bw - 8u * k - (bw - bc) % 8u;
+    }
+    return bc;
+}
+
+uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    bc = integ_skip8_(row, bc, bw, bound);
+    while (bc < bw && (int32_t)row[bc] <= bound) {
+        ++bc;
+    }
+    return bc;
+}
+#endif
+
 static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
 {
     pft_real_t te = peak_te_(ps);
@@ -1424,6 +1587,9 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         for (uint32_t bc = 0; bc < bw; ++bc) {
             /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
              * their own (most bins fail it) */
+#if defined(__aarch64__) && defined(__ARM_NEON)
+            bc = integ_skip8_(row, bc, bw, bound);
+#endif
             while (bc < bw && (int32_t)row[bc] <= bound) {
                 ++bc;
             }
