@@ -234,7 +234,8 @@ static pft_real_t integ_val_(uint32_t *st, const pft_real_t *prev)
  * for word, sums and squares included: 3000 bin rows of random PSF-matched rows (widths 1 to
  * 70, odd and even), last-frame sums (the whole 16-bit range), shifts -4 .. 4 bins either way,
  * every bin row of a 5-row grid (the last without its second pixel row when the height is
- * odd), a_q 0, 1, 77, 128, 255 and 256. */
+ * odd), a_q 0, 1, 77, 128, 255 and 256, and 257 and 1000, above the fast form's bound (the
+ * general path must be taken there: the 16-bit addend wraps from a_q mx >= 2^23). */
 static void test_integ_row_is_its_general_form(void)
 {
 #if !(defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON)))
@@ -243,7 +244,7 @@ static void test_integ_row_is_its_general_form(void)
     static pft_real_t r0[72], r1[72];
     static uint16_t prev[36 * 5], cur_a[36 * 5], cur_b[36 * 5];
     static uint32_t vm_a[40], vm_b[40];
-    static const uint32_t aqs[6] = {0u, 1u, 77u, 128u, 255u, 256u};
+    static const uint32_t aqs[8] = {0u, 1u, 77u, 128u, 255u, 256u, 257u, 1000u};
     uint32_t st = 777u;
     uint32_t bad = 0u;
     uint32_t fast = 0u;
@@ -258,7 +259,7 @@ static void test_integ_row_is_its_general_form(void)
         ig.bh = 5u;
         ig.sx = (int32_t)((st >> 16) % 9u) - 4;
         ig.sy = (int32_t)((st >> 20) % 9u) - 4;
-        ig.a_q = aqs[(st >> 24) % 6u];
+        ig.a_q = aqs[(st >> 24) % 8u];
         const uint32_t br = (st >> 27) % 5u;
         const bool last_alone = br == 4u && ((st >> 3) & 1u) != 0u;
         for (uint32_t i = 0; i < bw * 5u; ++i) {

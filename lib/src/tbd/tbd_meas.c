@@ -20,7 +20,7 @@
 #define PFT_TBD_HROW_MADD_ 1
 #define PFT_TBD_VROW_MUL_ 1
 #endif
-#define PFT_TBD_INTEG_AQ_MAX_ 1024u
+#define PFT_TBD_INTEG_AQ_MAX_ 256u
 #elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 with NEON: both builds take the integration's inner bins eight per step
  * (integ_fast8_'s NEON form: the rounding as one conversion toward minus infinity in float and
@@ -1176,7 +1176,7 @@ typedef __m128 integ_v_;
  * largest pixel and its index (ties to the earlier), m = pft_kround64_ of it (integ_best4_),
  * mx the largest of the three vm words (< 2^14), sq = m + (a_q mx + 128) >> 8 clamped to 0 ..
  * INTEG_MAX_, the word sq << 2 | idx. In 16-bit lanes after m: m packed with saturation (a
- * value beyond +-16448 stays beyond it), a_q mx = 2^16 hi + lo (a_q <= 1024: hi < 2^8), so
+ * value beyond +-16448 stays beyond it), a_q mx = 2^16 hi + lo (a_q <= 256: hi < 2^6), so
  * (a_q mx + 128) >> 8 = 256 hi + (lo >> 8) + bit 7 of lo, below 2^14; m plus it with
  * saturation then clamped: the same as in 32 bits, since beyond +-16448 the sum is below 0 or
  * above INTEG_MAX_ either way. */
