@@ -619,9 +619,9 @@ static inline uint32_t fl_blk_end_(uint32_t blk, uint32_t lb, uint32_t xe)
 #ifdef FL_LEV_VEC_
 /* fl_row_ for the relative form with a 16-bit level row and blocks of 16 pixels or more
  * (FL_LEV_VEC_): block by block, each whole block in view as 2 runs of 8-pixel groups (its
- * halves before and after its centre lie in two segments: each run's interpolation from
- * fl_seg_ at its first column, the same numerator as the walk's steps modulo 2^32), its sums
- * added up once; a block the row's end cuts, the walk of fl_row_ with fl_span_. The same
+ * halves before and after its centre lie in two segments: the second run's interpolation from
+ * fl_seg_ at its first column, the first run's the last block's second segment stepped on by
+ * b / 2 pixels: the same numerators as the walk's steps modulo 2^32), its sums added up once; a block the row's end cuts, the walk of fl_row_ with fl_span_. The same
  * values and sums as fl_row_. */
 static void fl_row_l16_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool learn,
                         uint32_t jb)
@@ -637,14 +637,17 @@ static void fl_row_l16_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, boo
     fl_l16c_t c;
     fl_l16_init_(&c, k, cb, gate);
     uint32_t blk = 0u;
+    /* the block's first half continues the segment of the last block's second half */
+    fl_seg_t ga = fl_seg_(rv, 0u, 0u, nbx, lb, w, d, k);
     for (; blk < nbx && ((blk + 1u) << lb) <= w; ++blk) {
         const uint32_t x0 = blk << lb;
-        const fl_seg_t ga = fl_seg_(rv, blk, x0, nbx, lb, w, d, k);
         const fl_seg_t gb = fl_seg_(rv, blk + 1u, x0 + hb, nbx, lb, w, d, k);
         fl_l16a_t va;
         fl_l16_zero_(&va);
         fl_l16_run_(r, lrow, x0, hb / 8u, ga.u, ga.st, &c, &va);
         fl_l16_run_(r, lrow, x0 + hb, hb / 8u, gb.u, gb.st, &c, &va);
+        ga.u = gb.u + hb * gb.st;
+        ga.st = gb.st;
         if (learn) {
             fl_acc_t acc = {0, 0u, 0u};
             fl_l16_sum_(&va, 2u * hb, &acc);
