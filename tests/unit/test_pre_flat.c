@@ -262,6 +262,39 @@ static void test_masked_and_no_evidence(void)
     TEST_ASSERT_EQUAL_INT32(0, pft_pre_flat_at(&fl, 50u, 50u));
 }
 
+/* The sums a learning update books (fl->sum, cnt, lsum per block, this frame's), from the
+ * input g_in and the output g_res of a w-wide frame: every unmasked pixel whose corrected
+ * value o lies within +-gate, o and (relative) its level into its block. */
+static void check_sums(const pft_pre_flat_t *fl, int w, int h, const uint16_t *lev16,
+                       const uint8_t *lev8)
+{
+    static int32_t sum[1024];
+    static uint32_t cnt[1024], lsum[1024];
+    const uint32_t nb = fl->nbx * fl->nby, b = fl->cfg.block;
+    TEST_ASSERT_TRUE(nb <= 1024u);
+    memset(sum, 0, sizeof sum);
+    memset(cnt, 0, sizeof cnt);
+    memset(lsum, 0, sizeof lsum);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const int i = y * w + x;
+            const int32_t o = g_res[i];
+            if (g_in[i] == PFT_RES16_MASKED || o > (int32_t)fl->cfg.gate || o < -(int32_t)fl->cfg.gate) {
+                continue;
+            }
+            const uint32_t k = ((uint32_t)y / b) * fl->nbx + (uint32_t)x / b;
+            sum[k] += o;
+            cnt[k] += 1u;
+            lsum[k] += lev16 != NULL ? lev16[i] : (lev8 != NULL ? lev8[i] : 0u);
+        }
+    }
+    for (uint32_t k = 0u; k < nb; ++k) {
+        TEST_ASSERT_EQUAL_INT32(sum[k], fl->sum[k]);
+        TEST_ASSERT_EQUAL_UINT32(cnt[k], fl->cnt[k]);
+        TEST_ASSERT_EQUAL_UINT32(lsum[k], fl->lsum[k]);
+    }
+}
+
 /* Every pixel of one update against the per-pixel definition: the output is r less the
  * offset pft_pre_flat_at reports at (x, y) (offset form: Q8.8; relative: the factor, Q24,
  * times the level, rounded half away from zero), clamped to +-32767; masked pixels stay
@@ -332,8 +365,90 @@ static void test_every_pixel_against_at(void)
             for (int i = 0; i < w * h; ++i) {
                 TEST_ASSERT_EQUAL_INT32(want[i], g_res[i]);
             }
+            check_sums(&fl, w, h, form == 1 ? g_lev : NULL, form == 2 ? lev8 : NULL);
         }
     }
+}
+
+/* Known answers of the relative form with a 16-bit level row (on AArch64 its spans take 8
+ * pixels at a time in NEON's forms, the rest per pixel; elsewhere the plain or SSE2 loop):
+ * every block's factor set to one value k (the interpolation is then k at every pixel) for 22
+ * values of k over -2^19 .. 2^19 (0, +-1, +-32768, +-65535, +-65536, +-3 2^15 among them) and
+ * levels l from a list of edge values (0, 1, 32767, 32768, 65535, ...) and random ones, so that
+ * the product k l / 2^16 is rounded half away from zero at exact halves of both signs (counted)
+ * and the clamp at +-32767 occurs; each pixel's output and each block's sums against the
+ * integers computed here. Widths 128 (spans of 8 and 16 pixels: whole groups of 8) and 123 (a
+ * last span of 11: the per-pixel rest), blocks 16 and 32. */
+static void test_relative_u16_known_answer(void)
+{
+    static const int32_t ks[22] = {0, 1, -1, 32768, -32768, 65535, -65535, 65536, -65536,
+                                   98304, -98304, 12345, -12345, 131071, -131073, 300001,
+                                   -300001, 524287, -524287, 524288, -524288, -2};
+    static const uint16_t ls[10] = {0u, 1u, 2u, 3u, 32767u, 32768u, 32769u, 65534u, 65535u, 4096u};
+    static const int ws[2] = {128, 123};
+    static const uint8_t bs[2] = {16u, 32u};
+    const int h = 16;
+    uint32_t halves_neg = 0u, halves_pos = 0u, clamped = 0u;
+    for (int c = 0; c < 2; ++c) {
+        const int w = ws[c];
+        pft_pre_flat_config_t cfg;
+        pft_pre_flat_config_default(&cfg);
+        cfg.width = (uint16_t)w;
+        cfg.height = (uint16_t)h;
+        cfg.block = bs[c];
+        cfg.relative = true;
+        for (int ki = 0; ki < 22; ++ki) {
+            pft_pre_flat_t fl;
+            TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
+            const int32_t kv = ks[ki];
+            for (uint32_t i = 0u; i < fl.nbx * fl.nby; ++i) {
+                fl.m[i] = kv;
+            }
+            for (int i = 0; i < w * h; ++i) {
+                (void)pft_test_xorshift32(&g_rs);
+                int32_t v = (int32_t)(g_rs % 2049u) - 1024;
+                v = (g_rs >> 26) == 0u ? PFT_RES16_MASKED : v;
+                v = (g_rs >> 26) == 1u ? 32767 : ((g_rs >> 26) == 2u ? -32767 : v);
+                g_res[i] = (int16_t)v;
+                g_lev[i] = (i % 3) == 0 ? ls[(i / 3) % 10] : (uint16_t)(g_rs >> 7);
+            }
+            memcpy(g_in, g_res, sizeof g_res);
+            static int32_t want[NPIX];
+            for (int i = 0; i < w * h; ++i) {
+                const int64_t q = (int64_t)kv * g_lev[i];
+                const int64_t mag = (q < 0 ? -q : q) + 32768;
+                const int64_t off = q < 0 ? -(mag / 65536) : mag / 65536;
+                if ((q < 0 ? -q : q) % 65536 == 32768) {
+                    halves_neg += q < 0 ? 1u : 0u;
+                    halves_pos += q > 0 ? 1u : 0u;
+                }
+                int64_t o = (int64_t)g_in[i] - off;
+                const bool masked = g_in[i] == PFT_RES16_MASKED;
+                clamped += !masked && (o > 32767 || o < -32767) ? 1u : 0u;
+                o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
+                want[i] = masked ? PFT_RES16_MASKED : (int32_t)o;
+            }
+            pft_frame_t f = res_frame(1u);
+            f.width = (uint16_t)w;
+            f.height = (uint16_t)h;
+            f.stride_bytes = 2u * (uint32_t)w;
+            pft_frame_t lev;
+            memset(&lev, 0, sizeof lev);
+            lev.data = g_lev;
+            lev.width = (uint16_t)w;
+            lev.height = (uint16_t)h;
+            lev.stride_bytes = 2u * (uint32_t)w;
+            lev.format = PFT_PIX_U16;
+            TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
+            for (int i = 0; i < w * h; ++i) {
+                TEST_ASSERT_EQUAL_INT32(want[i], g_res[i]);
+            }
+            check_sums(&fl, w, h, g_lev, NULL);
+        }
+    }
+    TEST_ASSERT_TRUE(halves_neg > 100u);
+    TEST_ASSERT_TRUE(halves_pos > 100u);
+    TEST_ASSERT_TRUE(clamped > 1000u);
 }
 
 /* Refused input: NULL, a foreign buffer, a wrong frame: nothing changes. */
@@ -383,6 +498,7 @@ int main(void)
     RUN_TEST(test_relative_learnt);
     RUN_TEST(test_masked_and_no_evidence);
     RUN_TEST(test_every_pixel_against_at);
+    RUN_TEST(test_relative_u16_known_answer);
     RUN_TEST(test_refused_input);
     return UNITY_END();
 }

@@ -5,6 +5,13 @@
 
 #include "pre_int.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h> /* fl_l16_run_ below (FL_LEV_SPLIT_) */
+#elif defined(__aarch64__) && defined(__ARM_NEON) && defined(__BYTE_ORDER__) && \
+    (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+#include <arm_neon.h> /* fl_l16_run_ below (FL_LEV_NEON_) */
+#endif
+
 #define FL_MMAX_ (8 * 65536)      /* the map's clamp: 8 sigma in Q16 (relative: 1/32 sigma per count) */
 #define FL_BIAS_ 1073741824       /* 2^30: a bias that makes a shifted value non-negative */
 #define FL_QBIAS_ ((int64_t)1099511627776) /* 2^40: the same for a level product (|k l| < 2^39) */
@@ -257,6 +264,225 @@ static inline int32_t fl_lev32_(int32_t k, uint32_t l)
 #define FL_SCALE_SPLIT_ 1
 #endif
 
+#if !defined(FL_LEV_SPLIT_) && defined(__aarch64__) && defined(__ARM_NEON) && defined(__BYTE_ORDER__) && \
+    (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+/* Where the compiler has AArch64's Advanced SIMD (NEON; little-endian), the relative form with a
+ * 16-bit level row takes 8 pixels at a time in NEON's forms (fl_l16_run_ below): gcc's loop of
+ * fl_lev32_ and fl_px_bf_ works in 32-bit lanes throughout. Other targets: object code as
+ * before. */
+#define FL_LEV_NEON_ 1
+#endif
+
+#if defined(FL_LEV_SPLIT_) || defined(FL_LEV_NEON_)
+/* The relative form's 16-bit level row 8 pixels at a time (x86-64 with SSE2, AArch64 with NEON),
+ * the same integers as fl_px_bf_ with fl_lev32_ (or fl_lev16_): with u the interpolation's
+ * biased numerator at a pixel, kv = (u >> k) - cb (|kv| <= 2^19) is kh 2^16 + kl, kh = kv >> 16
+ * (-8 .. 8) and kl its lower 16 bits, both in 16-bit lanes; fl_lev32_(kv, l) = kh l + lo with
+ * lo = (kl l + 32768 - [kv < 0 and l > 0]) >> 16 (kl l + 32768 < 2^32; lo <= 65535); then
+ * o = v - (kh l + lo) in 32-bit lanes (|o| < 2^21), clamped to +-32767 by a saturating
+ * narrowing and a max; a masked pixel (v = INT16_MIN) is stored back unchanged and booked
+ * nowhere; the gate is |o| <= gate (o >= -32767, gate <= 32767). The sums go to vector lanes
+ * (fl_l16a_t) that fl_l16_sum_ adds up once per span or block, the same totals modulo 2^32.
+ * fl_l16_run_ takes n groups of 8 pixels from column x, the interpolation u0 at x stepped by
+ * st per pixel (modulo 2^32: u0 + i st, as the plain loop). */
+#define FL_LEV_VEC_ 1
+#endif
+
+#ifdef FL_LEV_NEON_
+/* NEON: kl and kh are the lower and upper 16-bit halves of the 32-bit lanes (uzp1, uzp2); kl l
+ * a widening product (umull) and lo its high half after one add (addhn) of 32768 - neg;
+ * kh l = (kh + 8) l - 8 l as unsigned widening products subtracted and added to v - lo
+ * (usubw, umlsl, umlal, modulo 2^32); the clamp sqxtn and a max; the gate |o| (abs) <= gate;
+ * the sums pairwise widening adds (sadalp, uadalp) and the count 16-bit lanes (at most 8 per
+ * lane per block of at most 64 pixels). */
+typedef struct {
+    int32x4_t nk, cb, c15;
+    int16x8_t h8, omin, msk;
+    uint16x8_t g;
+} fl_l16c_t;
+typedef struct {
+    int32x4_t s;
+    uint32x4_t l;
+    uint16x8_t n;
+} fl_l16a_t;
+
+static inline void fl_l16_init_(fl_l16c_t *c, uint32_t k, int32_t cb, int32_t gate)
+{
+    c->nk = vdupq_n_s32(-(int32_t)k);
+    c->cb = vdupq_n_s32(cb);
+    c->c15 = vdupq_n_s32(32768);
+    c->h8 = vdupq_n_s16(8);
+    c->omin = vdupq_n_s16(-32767);
+    c->msk = vdupq_n_s16(PFT_RES16_MASKED);
+    c->g = vdupq_n_u16((uint16_t)gate);
+}
+
+static inline void fl_l16_zero_(fl_l16a_t *a)
+{
+    a->s = vdupq_n_s32(0);
+    a->l = vdupq_n_u32(0u);
+    a->n = vdupq_n_u16(0u);
+}
+
+static inline void fl_l16_run_(int16_t *r, const uint8_t *lrow, uint32_t x, uint32_t n,
+                               uint32_t u0, uint32_t st, const fl_l16c_t *c, fl_l16a_t *a)
+{
+    static const uint32_t i03[4] = {0u, 1u, 2u, 3u};
+    uint32x4_t ua = vmlaq_n_u32(vdupq_n_u32(u0), vld1q_u32(i03), st);
+    uint32x4_t ub = vaddq_u32(ua, vdupq_n_u32(4u * st));
+    const uint32x4_t st8 = vdupq_n_u32(8u * st);
+    int32x4_t as = a->s;
+    uint32x4_t al = a->l;
+    uint16x8_t an = a->n;
+    int16_t *rx = r + x;
+    const uint8_t *lx = lrow + 2u * x;
+    for (uint32_t i = 0u; i < n; ++i) {
+        const int32x4_t ka = vsubq_s32(vreinterpretq_s32_u32(vshlq_u32(ua, c->nk)), c->cb);
+        const int32x4_t kb = vsubq_s32(vreinterpretq_s32_u32(vshlq_u32(ub, c->nk)), c->cb);
+        ua = vaddq_u32(ua, st8);
+        ub = vaddq_u32(ub, st8);
+        const uint16x8_t kl = vuzp1q_u16(vreinterpretq_u16_s32(ka), vreinterpretq_u16_s32(kb));
+        const int16x8_t kh = vuzp2q_s16(vreinterpretq_s16_s32(ka), vreinterpretq_s16_s32(kb));
+        const uint16x8_t l = vreinterpretq_u16_u8(vld1q_u8(lx));
+        const int16x8_t v = vld1q_s16(rx);
+        /* 32768 - [kv < 0] per 32-bit lane (where l = 0, kl l = 0 and the term changes nothing) */
+        const int16x8_t ng = vreinterpretq_s16_u16(vcltzq_s16(kh));
+        const uint32x4_t ca = vreinterpretq_u32_s32(vaddw_s16(c->c15, vget_low_s16(ng)));
+        const uint32x4_t cc = vreinterpretq_u32_s32(vaddw_high_s16(c->c15, ng));
+        const uint16x4_t loa = vaddhn_u32(vmull_u16(vget_low_u16(kl), vget_low_u16(l)), ca);
+        const uint16x8_t lo = vaddhn_high_u32(loa, vmull_high_u16(kl, l), cc);
+        const uint16x8_t kh8 = vreinterpretq_u16_s16(vaddq_s16(kh, c->h8));
+        uint32x4_t oa = vreinterpretq_u32_s32(vmovl_s16(vget_low_s16(v)));
+        oa = vsubw_u16(oa, vget_low_u16(lo));
+        oa = vmlsl_u16(oa, vget_low_u16(kh8), vget_low_u16(l));
+        oa = vmlal_n_u16(oa, vget_low_u16(l), 8u);
+        uint32x4_t ob = vreinterpretq_u32_s32(vmovl_high_s16(v));
+        ob = vsubw_high_u16(ob, lo);
+        ob = vmlsl_high_u16(ob, kh8, l);
+        ob = vmlal_high_n_u16(ob, l, 8u);
+        const int16x8_t o = vmaxq_s16(
+            vqmovn_high_s32(vqmovn_s32(vreinterpretq_s32_u32(oa)), vreinterpretq_s32_u32(ob)), c->omin);
+        const uint16x8_t ms = vceqq_s16(v, c->msk);
+        vst1q_s16(rx, vbslq_s16(ms, v, o));
+        const uint16x8_t in = vbicq_u16(vcleq_u16(vreinterpretq_u16_s16(vabsq_s16(o)), c->g), ms);
+        as = vpadalq_s16(as, vandq_s16(o, vreinterpretq_s16_u16(in)));
+        al = vpadalq_u16(al, vandq_u16(l, in));
+        an = vsubq_u16(an, in);
+        rx += 8;
+        lx += 16;
+    }
+    a->s = as;
+    a->l = al;
+    a->n = an;
+}
+
+/* The lanes' totals added to acc (np: the pixels the lanes took, not needed here). */
+static inline void fl_l16_sum_(const fl_l16a_t *a, uint32_t np, fl_acc_t *acc)
+{
+    (void)np;
+    acc->sum += vaddvq_s32(a->s);
+    acc->cnt += vaddlvq_u16(a->n);
+    acc->lsum += vaddvq_u32(a->l);
+}
+#endif
+
+#ifdef FL_LEV_SPLIT_
+/* SSE2: kl and kh packed from the 32-bit lanes (kl sign-extended from bit 15 first, so that
+ * the signed pack keeps its bits); kl l = 2^16 ph + pl (pmulhuw, pmullw), so
+ * lo = ph + [pl >= 32768 + neg] (one signed compare of pl - 32768 with -1 + neg; where l = 0,
+ * pl = 0 and neg changes nothing, so neg = [kh < 0]); kh l from pmullw and pmulhw with l read
+ * as signed, whose high half gains kh where l >= 32768; v - (kh l + lo) in 32-bit lanes, the
+ * clamp packssdw and a max; the store min(o, 32767 or INT16_MIN); the sums o in pairs
+ * (pmaddwd), l - 32768 in pairs (every lane, 0 out of the gate: 32768 per pixel taken back in
+ * fl_l16_sum_) and the count as 16-bit lanes of -1 per pixel out of the gate (np - those). */
+typedef struct {
+    __m128i kc, cb, ones, allb, h8, omin, o7f, g, ng;
+} fl_l16c_t;
+typedef struct {
+    __m128i s, l, n;
+} fl_l16a_t;
+
+static inline void fl_l16_init_(fl_l16c_t *c, uint32_t k, int32_t cb, int32_t gate)
+{
+    c->kc = _mm_cvtsi32_si128((int32_t)k);
+    c->cb = _mm_set1_epi32(cb);
+    c->ones = _mm_set1_epi16(1);
+    c->allb = _mm_set1_epi16(-1);
+    c->h8 = _mm_set1_epi16(PFT_RES16_MASKED);
+    c->omin = _mm_set1_epi16(-32767);
+    c->o7f = _mm_set1_epi16(32767);
+    c->g = _mm_set1_epi16((int16_t)gate);
+    c->ng = _mm_set1_epi16((int16_t)-gate);
+}
+
+static inline void fl_l16_zero_(fl_l16a_t *a)
+{
+    a->s = _mm_setzero_si128();
+    a->l = _mm_setzero_si128();
+    a->n = _mm_setzero_si128();
+}
+
+static inline void fl_l16_run_(int16_t *r, const uint8_t *lrow, uint32_t x, uint32_t n,
+                               uint32_t u0, uint32_t st, const fl_l16c_t *c, fl_l16a_t *a)
+{
+    __m128i ua = _mm_add_epi32(_mm_set1_epi32((int32_t)u0),
+                               _mm_set_epi32((int32_t)(3u * st), (int32_t)(2u * st), (int32_t)st, 0));
+    __m128i ub = _mm_add_epi32(ua, _mm_set1_epi32((int32_t)(4u * st)));
+    const __m128i st8 = _mm_set1_epi32((int32_t)(8u * st));
+    const __m128i zero = _mm_setzero_si128();
+    __m128i as = a->s, al = a->l, an = a->n;
+    int16_t *rx = r + x;
+    const uint8_t *lx = lrow + 2u * x;
+    for (uint32_t i = 0u; i < n; ++i) {
+        const __m128i ka = _mm_sub_epi32(_mm_srl_epi32(ua, c->kc), c->cb);
+        const __m128i kb = _mm_sub_epi32(_mm_srl_epi32(ub, c->kc), c->cb);
+        ua = _mm_add_epi32(ua, st8);
+        ub = _mm_add_epi32(ub, st8);
+        const __m128i kl = _mm_packs_epi32(_mm_srai_epi32(_mm_slli_epi32(ka, 16), 16),
+                                           _mm_srai_epi32(_mm_slli_epi32(kb, 16), 16));
+        const __m128i kh = _mm_packs_epi32(_mm_srai_epi32(ka, 16), _mm_srai_epi32(kb, 16));
+        const __m128i l = _mm_loadu_si128((const __m128i *)(const void *)lx);
+        const __m128i v = _mm_loadu_si128((const __m128i *)(const void *)rx);
+        const __m128i pl = _mm_mullo_epi16(kl, l), ph = _mm_mulhi_epu16(kl, l);
+        /* -1 + neg: -1 where kh >= 0, 0 where kh < 0 */
+        const __m128i cy = _mm_cmpgt_epi16(_mm_xor_si128(pl, c->h8), _mm_cmpgt_epi16(kh, c->allb));
+        const __m128i lo = _mm_sub_epi16(ph, cy);
+        const __m128i ql = _mm_mullo_epi16(kh, l);
+        const __m128i qh = _mm_add_epi16(_mm_mulhi_epi16(kh, l), _mm_and_si128(kh, _mm_srai_epi16(l, 15)));
+        const __m128i lea = _mm_add_epi32(_mm_unpacklo_epi16(ql, qh), _mm_unpacklo_epi16(lo, zero));
+        const __m128i leb = _mm_add_epi32(_mm_unpackhi_epi16(ql, qh), _mm_unpackhi_epi16(lo, zero));
+        const __m128i oa = _mm_sub_epi32(_mm_srai_epi32(_mm_unpacklo_epi16(v, v), 16), lea);
+        const __m128i ob = _mm_sub_epi32(_mm_srai_epi32(_mm_unpackhi_epi16(v, v), 16), leb);
+        const __m128i o = _mm_max_epi16(_mm_packs_epi32(oa, ob), c->omin);
+        const __m128i ms = _mm_cmpeq_epi16(v, c->h8);
+        _mm_storeu_si128((__m128i *)(void *)rx, _mm_min_epi16(o, _mm_xor_si128(ms, c->o7f)));
+        const __m128i out = _mm_or_si128(_mm_or_si128(_mm_cmpgt_epi16(o, c->g), _mm_cmpgt_epi16(c->ng, o)), ms);
+        as = _mm_add_epi32(as, _mm_madd_epi16(_mm_andnot_si128(out, o), c->ones));
+        al = _mm_add_epi32(al, _mm_madd_epi16(_mm_xor_si128(_mm_andnot_si128(out, l), c->h8), c->ones));
+        an = _mm_add_epi16(an, out);
+        rx += 8;
+        lx += 16;
+    }
+    a->s = as;
+    a->l = al;
+    a->n = an;
+}
+
+/* The lanes' totals added to acc; np: the pixels the lanes took (the count's and the level
+ * sum's bias). The sum and the level sum side by side: (s0 + s2, l0 + l2, s1 + s3, l1 + l3). */
+static inline void fl_l16_sum_(const fl_l16a_t *a, uint32_t np, fl_acc_t *acc)
+{
+    __m128i t = _mm_add_epi32(_mm_unpacklo_epi32(a->s, a->l), _mm_unpackhi_epi32(a->s, a->l));
+    t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0x4E));
+    __m128i m = _mm_madd_epi16(a->n, _mm_set1_epi16(1));
+    m = _mm_add_epi32(m, _mm_shuffle_epi32(m, 0x4E));
+    m = _mm_add_epi32(m, _mm_shuffle_epi32(m, 0xB1));
+    acc->sum += _mm_cvtsi128_si32(t);
+    acc->lsum += (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(t, 0x55)) + 32768u * np;
+    acc->cnt += np - (uint32_t)-_mm_cvtsi128_si32(m);
+}
+#endif
+
 #ifdef FL_LEV_SPLIT_
 /* fl_lev32_ with 16 x 16-bit products: kl l from the unsigned 16-bit kl and l; kh l as
  * kh (l - 32768) + 32768 kh, kh in [-8, 8] and l - 32768 in [-32768, 32767] (int16),
@@ -315,16 +541,29 @@ static void fl_span_(int16_t *r, const uint8_t *lrow, bool u8, uint32_t x0, uint
             fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l), l, gate, &sum, &cnt, &lsum);
         }
     } else {
-#ifdef FL_LEV_SPLIT_
-        /* fl_lev16_ for fl_lev32_ (FL_LEV_SPLIT_); the interpolation stepped by st per pixel
-         * (modulo 2^32: u0 + (x - x0) st, the same values). */
-        uint32_t uu = u0;
-        for (uint32_t x = x0; x < x1; ++x) { /* vectorisable */
-            const int32_t kv = (int32_t)(uu >> k) - cb;
-            uu += st;
+#ifdef FL_LEV_VEC_
+        /* 8 pixels at a time (fl_l16_run_), the rest per pixel (fl_lev16_ for fl_lev32_ with
+         * SSE2); the interpolation stepped by st per pixel (modulo 2^32: u0 + (x - x0) st) */
+        fl_l16c_t c;
+        fl_l16a_t va;
+        fl_l16_init_(&c, k, cb, gate);
+        fl_l16_zero_(&va);
+        const uint32_t n8 = (x1 - x0) / 8u, xs = x0 + 8u * n8;
+        fl_l16_run_(r, lrow, x0, n8, u0, st, &c, &va);
+        fl_acc_t vacc = {sum, cnt, lsum};
+        fl_l16_sum_(&va, 8u * n8, &vacc);
+        sum = vacc.sum;
+        cnt = vacc.cnt;
+        lsum = vacc.lsum;
+        for (uint32_t x = xs; x < x1; ++x) {
+            const int32_t kv = (int32_t)((u0 + (x - x0) * st) >> k) - cb;
             uint16_t l16;
             memcpy(&l16, lrow + 2u * x, 2u);
+#ifdef FL_LEV_SPLIT_
             fl_px_bf_(&r[x], r[x], fl_lev16_(kv, l16), l16, gate, &sum, &cnt, &lsum);
+#else
+            fl_px_bf_(&r[x], r[x], fl_lev32_(kv, l16), l16, gate, &sum, &cnt, &lsum);
+#endif
         }
 #else
         for (uint32_t x = x0; x < x1; ++x) {
@@ -377,9 +616,75 @@ static inline uint32_t fl_blk_end_(uint32_t blk, uint32_t lb, uint32_t xe)
     return xb > xe ? xe : xb;
 }
 
+#ifdef FL_LEV_VEC_
+/* fl_row_ for the relative form with a 16-bit level row and blocks of 16 pixels or more
+ * (FL_LEV_VEC_): block by block, each whole block in view as 2 runs of 8-pixel groups (its
+ * halves before and after its centre lie in two segments: the second run's interpolation from
+ * fl_seg_ at its first column, the first run's the last block's second segment stepped on by
+ * b / 2 pixels: the same numerators as the walk's steps modulo 2^32), its sums added up once; a block the row's end cuts, the walk of fl_row_ with fl_span_. The same
+ * values and sums as fl_row_. */
+static void fl_row_l16_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool learn,
+                        uint32_t jb)
+{
+    const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx, hb = (1u << lb) / 2u;
+    const uint32_t k = lb + 1u;
+    const int32_t d = (int32_t)(2u << lb), gate = (int32_t)fl->cfg.gate;
+    const int32_t cb = (int32_t)((uint32_t)FL_BIAS_ >> k);
+    int32_t *sum = fl->sum + (size_t)jb * nbx;
+    uint32_t *cnt = fl->cnt + (size_t)jb * nbx;
+    uint32_t *lsum = fl->lsum + (size_t)jb * nbx;
+    const int32_t *rv = fl->rowv;
+    fl_l16c_t c;
+    fl_l16_init_(&c, k, cb, gate);
+    uint32_t blk = 0u;
+    /* the block's first half continues the segment of the last block's second half */
+    fl_seg_t ga = fl_seg_(rv, 0u, 0u, nbx, lb, w, d, k);
+    for (; blk < nbx && ((blk + 1u) << lb) <= w; ++blk) {
+        const uint32_t x0 = blk << lb;
+        const fl_seg_t gb = fl_seg_(rv, blk + 1u, x0 + hb, nbx, lb, w, d, k);
+        fl_l16a_t va;
+        fl_l16_zero_(&va);
+        fl_l16_run_(r, lrow, x0, hb / 8u, ga.u, ga.st, &c, &va);
+        fl_l16_run_(r, lrow, x0 + hb, hb / 8u, gb.u, gb.st, &c, &va);
+        ga.u = gb.u + hb * gb.st;
+        ga.st = gb.st;
+        if (learn) {
+            fl_acc_t acc = {0, 0u, 0u};
+            fl_l16_sum_(&va, 2u * hb, &acc);
+            sum[blk] += acc.sum;
+            cnt[blk] += acc.cnt;
+            lsum[blk] += acc.lsum;
+        }
+    }
+    uint32_t x = blk << lb;
+    for (uint32_t s = blk; s <= nbx && x < w; ++s) {
+        const fl_seg_t g = fl_seg_(rv, s, x, nbx, lb, w, d, k);
+        const uint32_t xe = g.xe, st = g.st;
+        uint32_t u = g.u;
+        while (x < xe) {
+            const uint32_t bk = x >> lb, xb = fl_blk_end_(bk, lb, xe);
+            fl_acc_t acc = {0, 0u, 0u};
+            fl_span_(r, lrow, false, x, xb, &u, st, k, gate, &acc);
+            if (learn) {
+                sum[bk] += acc.sum;
+                cnt[bk] += acc.cnt;
+                lsum[bk] += acc.lsum;
+            }
+            x = xb;
+        }
+    }
+}
+#endif
+
 static void fl_row_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, bool u8, bool learn,
                     uint32_t jb)
 {
+#ifdef FL_LEV_VEC_
+    if (lrow != NULL && !u8 && fl->lb >= 4u) {
+        fl_row_l16_(fl, r, lrow, learn, jb);
+        return;
+    }
+#endif
     const uint32_t w = fl->cfg.width, lb = fl->lb, nbx = fl->nbx;
     const uint32_t d2 = 2u << lb;
     const uint32_t k = lrow != NULL ? lb + 1u : lb + 9u;
