@@ -1126,20 +1126,18 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
 #else
     const int32_t xs = x0;
 #endif
-    if (pc != NULL) {
-        /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
-         * (the config check), pcap = 2 pk <= 2^14 */
-        const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
-        const uint16_t plim = (uint16_t)(c16 - 256u);
-        for (int32_t x = xs; x < x1; ++x) {
-            uint16_t learn;
+    /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
+     * (the config check), pcap = 2 pk <= 2^14 (without persist pk = pcap = 0, not read) */
+    const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
+    const uint16_t plim = (uint16_t)(c16 - 256u);
+    /* one loop, the gate per pixel where pc is set: one call of each pixel function, so that a
+     * compiler inlines it also where it optimises for size (the Cortex-M presets' -Os) */
+    for (int32_t x = xs; x < x1; ++x) {
+        uint16_t learn = 1u;
+        if (pc != NULL) {
             cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
-    } else {
-        for (int32_t x = xs; x < x1; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
-        }
+        cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
     }
 }
 #endif
