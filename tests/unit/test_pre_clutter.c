@@ -9,7 +9,8 @@
  * blob from the documented frame on, the persistence gate learns a blob that stays put in the
  * scene and not a point that moves against it, and the running mean with and without the gate
  * matches a reference of its formulas on every pixel of 12 frames, and the warp of the map,
- * the mean and the counter matches the bilinear formula on every cell. 64 x 48 frames, integer
+ * the mean and the counter matches the bilinear formula on every cell, and floor_age's runs of
+ * old and young columns take the floor where the reference does. 64 x 48 frames, integer
  * residuals made per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -791,6 +792,72 @@ static void test_warp_matches_reference(void)
     warp_case(61);
 }
 
+/* floor_age's runs of columns (pre_clutter.c cl_age_run_end_: an old run passed 4 columns at a
+ * time for floor_age <= 128, per column otherwise): the columns' and rows' ages set before each
+ * of 10 frames to a pattern of old (floor_age, 255) and young (0, floor_age - 1) runs of 1 to
+ * 31 columns, shifted each frame, a few young rows; the mean (mean_floor 1 sigma, thr at its
+ * largest, no shift) on unit noise must give c = r where the cell is old (column and row) and
+ * |mu| <= the floor, else c = r - mu, on every pixel. floor_age 15, 128 (the word test's
+ * largest) and 200 (per column only); widths 64 and 61. */
+static void floor_age_runs_case(int w, uint8_t ka)
+{
+    static const int32_t runs[10] = {1, 2, 3, 4, 5, 7, 8, 9, 13, 31};
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    cfg.thr = 65535u; /* nothing scored: the output is clamp(c) */
+    cfg.alpha = 13107u;
+    cfg.mean_floor = 256u;
+    cfg.floor_age = ka;
+    pft_pre_clutter_t c;
+    pft_test_clutter_init(&c, &cfg, (uint16_t)w, H, g_work, sizeof g_work);
+    uint32_t n_kept = 0u, n_off = 0u;
+    for (uint32_t k = 0u; k < 10u; ++k) {
+        int32_t x = 0, r = (int32_t)k;
+        bool old = (k & 1u) != 0u;
+        while (x < w) {
+            const int32_t n = runs[r % 10];
+            for (int32_t i = 0; i < n && x < w; ++i, ++x) {
+                c.age[x] = old ? (i % 3 == 1 ? 255u : ka) : (i % 2 == 1 ? 0u : (uint8_t)(ka - 1u));
+            }
+            old = !old;
+            r += 3;
+        }
+        for (int32_t y = 0; y < H; ++y) {
+            c.age[w + y] = y % 11 == 5 ? (uint8_t)(ka - 1u) : ka;
+        }
+        memcpy(g_p0, c.age, (size_t)(w + H)); /* the ages this frame reads */
+        const uint8_t *ages = (const uint8_t *)g_p0;
+        for (int i = 0; i < w * H; ++i) {
+            g_res[i] = noise_q88();
+        }
+        memcpy(g_mu0, c.mu, sizeof(uint16_t) * (size_t)(w * H));
+        pft_frame_t f = pft_test_res16_frame(g_res, (uint16_t)w, H, k + 1u, 1000u * (k + 1u));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        const int16_t *o = pft_test_clutter_out(&c);
+        for (int i = 0; i < w * H; ++i) {
+            const bool cold = ages[i % w] >= ka && ages[w + i / w] >= ka;
+            const int32_t muq = pft_test_clutter_mu_q88(g_mu0[i]);
+            const bool floor = cold && (muq < 0 ? -muq : muq) <= (int32_t)cfg.mean_floor;
+            const int32_t cv = g_res[i] - (floor ? 0 : muq);
+            TEST_ASSERT_EQUAL_INT16((int16_t)cv, o[i]);
+            n_kept += floor && muq != 0 ? 1u : 0u;
+            n_off += !cold && muq != 0 ? 1u : 0u;
+        }
+    }
+    /* both sides met where it matters: a mean kept by the floor, a young cell's taken off */
+    TEST_ASSERT_TRUE(n_kept > (uint32_t)(w * H));
+    TEST_ASSERT_TRUE(n_off > (uint32_t)(w * H));
+}
+
+static void test_floor_age_runs_match_reference(void)
+{
+    floor_age_runs_case(W, 15u);
+    floor_age_runs_case(61, 128u);
+    floor_age_runs_case(W, 200u);
+    floor_age_runs_case(61, 15u);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -808,5 +875,6 @@ int main(void)
     RUN_TEST(test_gated_mean_matches_reference);
     RUN_TEST(test_gated_mean_widths_and_floor);
     RUN_TEST(test_warp_matches_reference);
+    RUN_TEST(test_floor_age_runs_match_reference);
     return UNITY_END();
 }

@@ -1142,6 +1142,32 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
 }
 #endif
 
+/* floor_age: the end of the run of columns from x0 on whose ages ca lie on the same side of ka
+ * (>= ka: old) as ca[x0]. An old run is passed 4 columns at a time while none of the 4 ages is
+ * below ka, tested on the 4 bytes as one 32-bit word: (q - 0x01010101 ka) & ~q & 0x80808080 is
+ * nonzero exactly when some byte of q is below ka, for 1 <= ka <= 128 (a byte below ka borrows
+ * into its own top bit, not set in q; the lowest such byte is exact, a borrow can only mark
+ * bytes above it); the rest per column. The same run ends as the per-column scan. */
+static int32_t cl_age_run_end_(const uint8_t *ca, int32_t x0, int32_t w, uint8_t ka, bool old)
+{
+    int32_t x1 = x0 + 1;
+    if (old && ka <= 128u) {
+        const uint32_t kk = 0x01010101u * (uint32_t)ka;
+        while (x1 <= w - 4) {
+            uint32_t q;
+            memcpy(&q, ca + x1, 4u);
+            if (((q - kk) & ~q & 0x80808080u) != 0u) {
+                break; /* some age of the 4 is below ka */
+            }
+            x1 += 4;
+        }
+    }
+    while (x1 < w && (ca[x1] >= ka) == old) {
+        ++x1;
+    }
+    return x1;
+}
+
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
  * residual (or r's own buffer, inplace; each pass reads and writes o at the same column
@@ -1170,10 +1196,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
         int32_t x0 = 0;
         while (x0 < w) {
             const bool old = ca[x0] >= ka;
-            int32_t x1 = x0 + 1;
-            while (x1 < w && (ca[x1] >= ka) == old) {
-                ++x1;
-            }
+            const int32_t x1 = cl_age_run_end_(ca, x0, w, ka, old);
             cl_mean_span_(o, mrow, mu, pc, cs, x0, x1, a16, full, exc, pk, pcap, old ? mfl : 0);
             x0 = x1;
         }
