@@ -8,7 +8,9 @@
  * frame without evidence changes nothing, masked pixels stay masked, the veto zeroes a learnt
  * blob from the documented frame on, the persistence gate learns a blob that stays put in the
  * scene and not a point that moves against it, and the running mean with and without the gate
- * matches a reference of its formulas on every pixel of 12 frames. 64 x 48 frames, integer
+ * matches a reference of its formulas on every pixel of 12 frames, and the warp of the map,
+ * the mean and the counter matches the bilinear formula on every cell, and floor_age's runs of
+ * old and young columns take the floor where the reference does. 64 x 48 frames, integer
  * residuals made per pixel, so that it runs on every target.
  */
 #include <math.h>
@@ -708,6 +710,154 @@ static void test_gated_mean_widths_and_floor(void)
 }
 
 
+/* Known answers of the warp (a shift with evidence; docs/algorithms.md 9.9): every residual
+ * masked, so that the update keeps the warped map, mean and counter; each plane filled with
+ * pseudo-random values over the whole 16-bit range before the shift, then compared on every
+ * cell with the bilinear formula out(x, y) = (sum of v(x - ix - i, y - iy - j) wx_i wy_j +
+ * 2^15) >> 16 (i, j in 0..1, weights 256 - f and f in Q8, a source outside the frame counting
+ * the plane's fill: 1 sigma^2 for m, the offset 2^15 for mu, 0 for the counter). Shifts in
+ * whole Q8 steps (the split exact) with fx 0, fy 0, both fractional, both signs and sources
+ * beyond every edge; widths 64 and 61 (columns over a multiple of 8). The x86-64 build runs
+ * the 16-bit form of pre_clutter.c (SSE2), the other targets its 32-bit form. */
+static uint16_t ref_warp_at(const uint16_t *v, int w, int x, int y, int32_t ix, uint32_t fx, int32_t iy,
+                            uint32_t fy, uint32_t b)
+{
+    uint64_t sum = 0u;
+    for (int32_t j = 0; j < 2; ++j) {
+        for (int32_t i = 0; i < 2; ++i) {
+            const int32_t sx = x - ix - i, sy = y - iy - j;
+            const uint64_t val = sx >= 0 && sx < w && sy >= 0 && sy < H ? v[sy * w + sx] : b;
+            const uint64_t wx = i != 0 ? fx : 256u - fx, wy = j != 0 ? fy : 256u - fy;
+            sum += val * wx * wy;
+        }
+    }
+    return (uint16_t)((sum + 32768u) >> 16);
+}
+
+static void warp_case(int w)
+{
+    /* shifts in Q8 px (x, y): the Q16.16 shift is 256 times them */
+    static const int32_t sh[7][2] = {{77, -300}, {0, 133},  {-600, 0},   {517, 1018},
+                                     {-1, 1},    {-4000, 2900}, {15000, -11000}};
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    cfg.persist = 2u;
+    pft_pre_clutter_t c;
+    pft_test_clutter_init(&c, &cfg, (uint16_t)w, H, g_work, sizeof g_work);
+    for (int i = 0; i < w * H; ++i) {
+        g_res[i] = PFT_RES16_MASKED;
+    }
+    pft_frame_t f = pft_test_res16_frame(g_res, (uint16_t)w, H, 1u, 1000u);
+    TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+    uint32_t n_edge = 0u, n_in = 0u;
+    for (uint32_t k = 0u; k < 7u; ++k) {
+        uint16_t *pl[3] = {c.m, c.mu, c.pc};
+        static const uint32_t fill[3] = {1024u, 32768u, 0u};
+        for (uint32_t p = 0u; p < 3u; ++p) {
+            for (int i = 0; i < w * H; ++i) {
+                g_rs = g_rs * 1664525u + 1013904223u;
+                pl[p][i] = (uint16_t)(g_rs >> 16);
+            }
+        }
+        memcpy(g_m0, c.m, sizeof(uint16_t) * (size_t)(w * H));
+        memcpy(g_mu0, c.mu, sizeof(uint16_t) * (size_t)(w * H));
+        memcpy(g_p0, c.pc, sizeof(uint16_t) * (size_t)(w * H));
+        const uint16_t *before[3] = {g_m0, g_mu0, g_p0};
+        f = pft_test_res16_frame(g_res, (uint16_t)w, H, k + 2u, 1000u * (k + 2u));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, sh[k][0] * 256, sh[k][1] * 256, true));
+        /* the split: whole grid steps (floor) and the Q8 fraction */
+        const int32_t ix = sh[k][0] >= 0 ? sh[k][0] / 256 : -((-sh[k][0] + 255) / 256);
+        const int32_t iy = sh[k][1] >= 0 ? sh[k][1] / 256 : -((-sh[k][1] + 255) / 256);
+        const uint32_t fx = (uint32_t)(sh[k][0] - ix * 256), fy = (uint32_t)(sh[k][1] - iy * 256);
+        for (uint32_t p = 0u; p < 3u; ++p) {
+            for (int y = 0; y < H; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    const uint16_t want = ref_warp_at(before[p], w, x, y, ix, fx, iy, fy, fill[p]);
+                    TEST_ASSERT_EQUAL_UINT16(want, pl[p][y * w + x]);
+                    const bool edge = x - ix - 1 < 0 || x - ix >= w || y - iy - 1 < 0 || y - iy >= H;
+                    n_edge += edge ? 1u : 0u;
+                    n_in += edge ? 0u : 1u;
+                }
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(n_edge > 0u);
+    TEST_ASSERT_TRUE(n_in > 0u);
+}
+
+static void test_warp_matches_reference(void)
+{
+    warp_case(W);
+    warp_case(61);
+}
+
+/* floor_age's runs of columns (pre_clutter.c cl_age_run_end_: an old run passed 4 columns at a
+ * time for floor_age <= 128, per column otherwise): the columns' and rows' ages set before each
+ * of 10 frames to a pattern of old (floor_age, 255) and young (0, floor_age - 1) runs of 1 to
+ * 31 columns, shifted each frame, a few young rows; the mean (mean_floor 1 sigma, thr at its
+ * largest, no shift) on unit noise must give c = r where the cell is old (column and row) and
+ * |mu| <= the floor, else c = r - mu, on every pixel. floor_age 15, 128 (the word test's
+ * largest) and 200 (per column only); widths 64 and 61. */
+static void floor_age_runs_case(int w, uint8_t ka)
+{
+    static const int32_t runs[10] = {1, 2, 3, 4, 5, 7, 8, 9, 13, 31};
+    pft_pre_clutter_config_t cfg;
+    pft_pre_clutter_config_default(&cfg);
+    cfg.mean = true;
+    cfg.thr = 65535u; /* nothing scored: the output is clamp(c) */
+    cfg.alpha = 13107u;
+    cfg.mean_floor = 256u;
+    cfg.floor_age = ka;
+    pft_pre_clutter_t c;
+    pft_test_clutter_init(&c, &cfg, (uint16_t)w, H, g_work, sizeof g_work);
+    uint32_t n_kept = 0u, n_off = 0u;
+    for (uint32_t k = 0u; k < 10u; ++k) {
+        int32_t x = 0, r = (int32_t)k;
+        bool old = (k & 1u) != 0u;
+        while (x < w) {
+            const int32_t n = runs[r % 10];
+            for (int32_t i = 0; i < n && x < w; ++i, ++x) {
+                c.age[x] = old ? (i % 3 == 1 ? 255u : ka) : (i % 2 == 1 ? 0u : (uint8_t)(ka - 1u));
+            }
+            old = !old;
+            r += 3;
+        }
+        for (int32_t y = 0; y < H; ++y) {
+            c.age[w + y] = y % 11 == 5 ? (uint8_t)(ka - 1u) : ka;
+        }
+        memcpy(g_p0, c.age, (size_t)(w + H)); /* the ages this frame reads */
+        const uint8_t *ages = (const uint8_t *)g_p0;
+        for (int i = 0; i < w * H; ++i) {
+            g_res[i] = noise_q88();
+        }
+        memcpy(g_mu0, c.mu, sizeof(uint16_t) * (size_t)(w * H));
+        pft_frame_t f = pft_test_res16_frame(g_res, (uint16_t)w, H, k + 1u, 1000u * (k + 1u));
+        TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
+        const int16_t *o = pft_test_clutter_out(&c);
+        for (int i = 0; i < w * H; ++i) {
+            const bool cold = ages[i % w] >= ka && ages[w + i / w] >= ka;
+            const int32_t muq = pft_test_clutter_mu_q88(g_mu0[i]);
+            const bool floor = cold && (muq < 0 ? -muq : muq) <= (int32_t)cfg.mean_floor;
+            const int32_t cv = g_res[i] - (floor ? 0 : muq);
+            TEST_ASSERT_EQUAL_INT16((int16_t)cv, o[i]);
+            n_kept += floor && muq != 0 ? 1u : 0u;
+            n_off += !cold && muq != 0 ? 1u : 0u;
+        }
+    }
+    /* both sides met where it matters: a mean kept by the floor, a young cell's taken off */
+    TEST_ASSERT_TRUE(n_kept > (uint32_t)(w * H));
+    TEST_ASSERT_TRUE(n_off > (uint32_t)(w * H));
+}
+
+static void test_floor_age_runs_match_reference(void)
+{
+    floor_age_runs_case(W, 15u);
+    floor_age_runs_case(61, 128u);
+    floor_age_runs_case(W, 200u);
+    floor_age_runs_case(61, 15u);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -724,5 +874,7 @@ int main(void)
     RUN_TEST(test_persistence_gate_learns_what_stays_put);
     RUN_TEST(test_gated_mean_matches_reference);
     RUN_TEST(test_gated_mean_widths_and_floor);
+    RUN_TEST(test_warp_matches_reference);
+    RUN_TEST(test_floor_age_runs_match_reference);
     return UNITY_END();
 }

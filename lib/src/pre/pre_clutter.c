@@ -367,6 +367,11 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
     }
 }
 
+#if defined(__SSE2__)
+/* The warp's two passes in 16-bit lanes (cl_warp_h16_, cl_warp_ below) where the compiler has
+ * SSE2 (x86-64: no 32 x 32-bit product in lanes before SSE4.1); other targets take the 32-bit
+ * form after the #else (the same values: a scalar core pays for every 16-bit split, and
+ * AArch64's NEON has the widening 16 x 16 -> 32-bit products and 32-bit lanes). */
 /* cl_warp_'s horizontal pass in 16-bit lanes: the value H = v[sy][x - ix] (256 - fx) +
  * v[sy][x - ix - 1] fx of cl_warp_h_ (< 2^24) kept as hh = H >> 8 (<= 65535) and hl = H & 255.
  * With fx > 0 both weights g = 256 - fx and f = fx fit 8 bits, and a product u g (u <= 65535)
@@ -472,6 +477,50 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
         y = ydown ? y - 1 : y + 1;
     }
 }
+#else
+/* Warps v (u16 values, w x h) in place by (ix + fx / 256, iy + fy / 256) px: out(p) =
+ * v(p - shift), bilinear, b outside:
+ *   out(x, y) = (H(y - iy)[x] (256 - fy) + H(y - iy - 1)[x] fy + 2^15) >> 16
+ * with H the horizontal pass (cl_warp_h_, < 2^24 in 32 bits), made once per source row in the
+ * order of the 16-bit form above (descending where the sources lie at lower rows), one row's
+ * second source row the next row's first, kept in ta or tb (w 32-bit words each). The sum is
+ * at most (2^24 - 256) 256 + 2^15 < 2^32: a 32-bit product and multiply-add per pixel; fy = 0:
+ * out = (H1 2^8 + 2^15) >> 16 = (H1 + 128) >> 8. The same values as the 16-bit form (whose
+ * comment derives it from this sum) and as cl_fuse8_row_'s (H1 2^8 + (H0 - H1) fy + 2^15) >> 16
+ * (the same sum mod 2^32). */
+static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
+                     uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
+{
+    const bool ydown = iy >= 0;
+    /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
+    const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
+    const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
+    uint32_t *hc = ta, *hn = tb; /* hc: the source row shared with the row before */
+    int32_t y = ydown ? h - 1 : 0;
+    const uint32_t gy = 256u - fy;
+    /* descending, row y's first source y - iy; ascending, its second y - iy - 1 */
+    cl_warp_h_(v, hc, ydown ? y - iy : y - iy - 1, w, h, ix, fx, b, xlo, xhi);
+    for (int32_t k = 0; k < h; ++k) {
+        /* the other source row: not yet overwritten (below y descending, above ascending) */
+        cl_warp_h_(v, hn, ydown ? y - iy - 1 : y - iy, w, h, ix, fx, b, xlo, xhi);
+        const uint32_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
+        uint16_t *o = v + (size_t)y * (size_t)w;
+        if (fy == 0u) {
+            for (int32_t x = 0; x < w; ++x) {
+                o[x] = (uint16_t)((h1[x] + 128u) >> 8);
+            }
+        } else {
+            for (int32_t x = 0; x < w; ++x) {
+                o[x] = (uint16_t)((h1[x] * gy + h0[x] * fy + 32768u) >> 16);
+            }
+        }
+        uint32_t *t = hc;
+        hc = hn;
+        hn = t;
+        y = ydown ? y - 1 : y + 1;
+    }
+}
+#endif
 
 /* map8: the value of v's nearest code, pft_pre_clutter_dec8_(pft_pre_clutter_enc8_(v,
  * CL_HALF8_)) for every v (test_pre_clutter_map8 compares the two for every v): with v clamped
@@ -1077,23 +1126,47 @@ static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint1
 #else
     const int32_t xs = x0;
 #endif
-    if (pc != NULL) {
-        /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
-         * (the config check), pcap = 2 pk <= 2^14 */
-        const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
-        const uint16_t plim = (uint16_t)(c16 - 256u);
-        for (int32_t x = xs; x < x1; ++x) {
-            uint16_t learn;
+    /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
+     * (the config check), pcap = 2 pk <= 2^14 (without persist pk = pcap = 0, not read) */
+    const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
+    const uint16_t plim = (uint16_t)(c16 - 256u);
+    /* one loop, the gate per pixel where pc is set: one call of each pixel function, so that a
+     * compiler inlines it also where it optimises for size (the Cortex-M presets' -Os) */
+    for (int32_t x = xs; x < x1; ++x) {
+        uint16_t learn = 1u;
+        if (pc != NULL) {
             cl_gate_px_(o[x], &pc[x], e16, k16, c16, plim, &learn);
-            cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
         }
-    } else {
-        for (int32_t x = xs; x < x1; ++x) {
-            cl_mean_px_(&o[x], 1u, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
-        }
+        cl_mean_px_(&o[x], learn, a16, full, f16, &mrow[x], &mu[x], &cs[x]);
     }
 }
 #endif
+
+/* floor_age: the end of the run of columns from x0 on whose ages ca lie on the same side of ka
+ * (>= ka: old) as ca[x0]. An old run is passed 4 columns at a time while none of the 4 ages is
+ * below ka, tested on the 4 bytes as one 32-bit word: (q - 0x01010101 ka) & ~q & 0x80808080 is
+ * nonzero exactly when some byte of q is below ka, for 1 <= ka <= 128 (a byte below ka borrows
+ * into its own top bit, not set in q; the lowest such byte is exact, a borrow can only mark
+ * bytes above it); the rest per column. The same run ends as the per-column scan. */
+static int32_t cl_age_run_end_(const uint8_t *ca, int32_t x0, int32_t w, uint8_t ka, bool old)
+{
+    int32_t x1 = x0 + 1;
+    if (old && ka <= 128u) {
+        const uint32_t kk = 0x01010101u * (uint32_t)ka;
+        while (x1 <= w - 4) {
+            uint32_t q;
+            memcpy(&q, ca + x1, 4u);
+            if (((q - kk) & ~q & 0x80808080u) != 0u) {
+                break; /* some age of the 4 is below ka */
+            }
+            x1 += 4;
+        }
+    }
+    while (x1 < w && (ca[x1] >= ka) == old) {
+        ++x1;
+    }
+    return x1;
+}
 
 /* Row y with the running mean (mean; the gate with persist): the per-pixel formulas of
  * pft_pre.h (docs/algorithms.md 9.9) in plain passes over the output row o, a copy of the
@@ -1123,10 +1196,7 @@ static void cl_row_mean_(const int16_t *r, int16_t *o, uint16_t *mrow, uint16_t 
         int32_t x0 = 0;
         while (x0 < w) {
             const bool old = ca[x0] >= ka;
-            int32_t x1 = x0 + 1;
-            while (x1 < w && (ca[x1] >= ka) == old) {
-                ++x1;
-            }
+            const int32_t x1 = cl_age_run_end_(ca, x0, w, ka, old);
             cl_mean_span_(o, mrow, mu, pc, cs, x0, x1, a16, full, exc, pk, pcap, old ? mfl : 0);
             x0 = x1;
         }
