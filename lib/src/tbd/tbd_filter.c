@@ -174,18 +174,18 @@ static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *
     return v;
 }
 
-/* A birth into particle s (the generator passed by value and back, so that the caller's
- * never has its address taken); the scene's candidates and the configuration from the pass's
- * locals v (pft_tbd_birth_pix_v_). */
-static inline pft_rng_t move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
-                                    pft_rng_t rng)
+/* A birth into particle s with the pass's generator; the scene's candidates and the
+ * configuration from the pass's locals v (pft_tbd_birth_pix_v_). Inline with every draw
+ * inline (the ziggurat's slow path takes the words by value), so the generator, a local of
+ * the pass, stays in registers: no copy of it is made (a copy passed in and returned by value
+ * went through the stack at every birth on AArch64). */
+static inline void move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
+                               pft_rng_t *rng)
 {
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
-    pft_rng_t t = rng;
-    const uint32_t n = pft_rng_below_(&t, v->n_cand); /* the pixel's draw comes first */
+    const uint32_t n = pft_rng_below_(rng, v->n_cand); /* the pixel's draw comes first */
     const uint32_t p = v->cand != NULL ? v->cand[n] : pft_tbd_scene_pick_(x->sc, n);
-    pft_tbd_birth_pix_v_(&v->birth, p, v->sample_vel, &t, &k);
-    return t;
+    pft_tbd_birth_pix_v_(&v->birth, p, v->sample_vel, rng, &k);
 }
 
 /* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
@@ -207,7 +207,7 @@ static void move_rbpf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -233,7 +233,7 @@ static void move_pf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -786,7 +786,7 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
         if ((e == 0u || u < p16_share) && !can_birth) {
             e = 0u; /* no pixel to be born in: the slot stays empty */
         } else if (e == 0u || u < p16_share) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
             ++b;
         } else {
