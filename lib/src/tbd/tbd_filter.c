@@ -375,7 +375,7 @@ static inline pft_real_t group_lw_(pft_real_t llr, uint32_t e, bool bern, pft_re
 
 /* Whether weigh_r16_ runs its particles in a loop that makes no call (AArch64 float): the inner
  * loop stops at a window that needs a call (r16_no_call_ false: the image's edges and the
- * rows a patch may cover, about one window in seven on the real file), which the outer loop
+ * rows a patch may cover, about one window in nine on the real file), which the outer loop
  * weighs with the kernel's full form before the inner loop goes on from the next particle;
  * the particles in their order, each with the same operations, so the same values. The loop
  * invariants then need not survive a call in the inner loop: on AArch64 float gcc keeps them
