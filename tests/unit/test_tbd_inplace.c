@@ -7,9 +7,10 @@
  * in-place subtraction), so every output is bit for bit the same: tracks, events, the search
  * layer's estimate and the birth candidates after every frame (memcmp, no tolerance). The
  * frames have targets entering at the left border, along the bottom edge and two whose
- * subtracted PSFs overlap, masked pixels inside and on the border; three configurations: the
+ * subtracted PSFs overlap, masked pixels inside and on the border; four configurations: the
  * recommended preset with birth peaks (the 3 x 3 kernel and the peak scan), with B_k (births
- * above gamma) and with window 2 (the exact kernel). The test requires two or more tracks at
+ * above gamma), with window 2 (the exact kernel) and with peaks and a Bernoulli search layer
+ * (birth_share 0.5, the groups' prior weights in every log-weight). The test requires two or more tracks at
  * once (so patches are built, overlap and are read). The workspace is PFT_TBD_WORKSPACE_BYTES_RES16
  * and smaller than the converted manager's by the frame less what reading in place adds; a
  * frame of another format is refused with the instance and the workspace byte-identical; a
@@ -144,11 +145,17 @@ static size_t same_outputs(const pft_tbd_t *a, const pft_tbd_t *b, int k)
     return na;
 }
 
-static void run_pair(uint16_t peaks, uint8_t window)
+/* share > 0: the search layer in the Bernoulli form (docs/algorithms.md 2.11) with that birth
+ * share, as pft_tbd_config_bounded sets it (its log-weights add the groups' prior weights) */
+static void run_pair_share(uint16_t peaks, uint8_t window, double share)
 {
     static pft_tbd_t a, b;
     pft_tbd_config_t ca, cb;
     cfg_of(&ca, peaks, window);
+    if (share > 0.0) {
+        ca.birth_share = R(share);
+        ca.theta1 = R(0.475);
+    }
     cb = ca;
     cb.frame_format = PFT_PIX_RES16;
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_tbd_config_check(&cb, NULL));
@@ -174,9 +181,15 @@ static void run_pair(uint16_t peaks, uint8_t window)
     TEST_ASSERT_TRUE_MESSAGE(most >= 2u, "fewer than two tracks at once: the patches untested");
 }
 
+static void run_pair(uint16_t peaks, uint8_t window) { run_pair_share(peaks, window, 0.0); }
+
 static void test_same_outputs_with_peaks(void) { run_pair(KMAX, 1u); }
 static void test_same_outputs_with_bk(void) { run_pair(0u, 1u); }
 static void test_same_outputs_exact_kernel(void) { run_pair(KMAX, 2u); }
+/* the Bernoulli search layer: births and survivors weighed with their groups' prior weights,
+ * also at the edges and on the patches' rows (on AArch64 float the windows that call out of
+ * line are weighed outside weigh_r16_'s inner loop, tbd_filter.c WEIGH_SPLIT_) */
+static void test_same_outputs_bernoulli(void) { run_pair_share(KMAX, 1u, 0.5); }
 
 static void test_workspace_without_the_frame(void)
 {
@@ -247,6 +260,7 @@ int main(void)
     RUN_TEST(test_same_outputs_with_peaks);
     RUN_TEST(test_same_outputs_with_bk);
     RUN_TEST(test_same_outputs_exact_kernel);
+    RUN_TEST(test_same_outputs_bernoulli);
     RUN_TEST(test_workspace_without_the_frame);
     RUN_TEST(test_refusals);
     return UNITY_END();

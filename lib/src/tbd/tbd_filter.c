@@ -174,18 +174,18 @@ static inline move_inv_t move_inv_(const pft_tbd_filter_t *f, const step_ctx_t *
     return v;
 }
 
-/* A birth into particle s (the generator passed by value and back, so that the caller's
- * never has its address taken); the scene's candidates and the configuration from the pass's
- * locals v (pft_tbd_birth_pix_v_). */
-static inline pft_rng_t move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
-                                    pft_rng_t rng)
+/* A birth into particle s with the pass's generator; the scene's candidates and the
+ * configuration from the pass's locals v (pft_tbd_birth_pix_v_). Inline with every draw
+ * inline (the ziggurat's slow path takes the words by value), so the generator, a local of
+ * the pass, stays in registers: no copy of it is made (a copy passed in and returned by value
+ * went through the stack at every birth on AArch64). */
+static inline void move_birth_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
+                               pft_rng_t *rng)
 {
     pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
-    pft_rng_t t = rng;
-    const uint32_t n = pft_rng_below_(&t, v->n_cand); /* the pixel's draw comes first */
+    const uint32_t n = pft_rng_below_(rng, v->n_cand); /* the pixel's draw comes first */
     const uint32_t p = v->cand != NULL ? v->cand[n] : pft_tbd_scene_pick_(x->sc, n);
-    pft_tbd_birth_pix_v_(&v->birth, p, v->sample_vel, &t, &k);
-    return t;
+    pft_tbd_birth_pix_v_(&v->birth, p, v->sample_vel, rng, &k);
 }
 
 /* Steps 1-2 of docs/algorithms.md 2.5 for every particle: existence, then the survivor's move
@@ -207,7 +207,7 @@ static void move_rbpf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -233,7 +233,7 @@ static void move_pf_(pft_tbd_filter_t *f, const step_ctx_t *x)
                 e = e < v.e_max ? e + 1u : e;
             }
         } else if (u < v.p_birth) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
         } else {
             /* an empty slot without a birth stays empty */
@@ -348,10 +348,52 @@ static bool weigh_r16_case_(const pft_tbd_filter_t *f, const step_ctx_t *x)
     return m->p == 1u && x->sc->img == NULL && m->dx == PFT_REAL_ONE && m->dy == PFT_REAL_ONE;
 }
 
+/* Whether the window of cell c is summed in place by pft_tbd_llr3_r16_v_ without a call:
+ * inside the edges (wi, hj) on a row that no patch may cover. The other windows (the edges,
+ * a flagged row: pft_tbd_patch_in_win_, pft_tbd_llr3_r16_out_) call out of line. */
+static inline bool r16_no_call_(const pft_tbd_r16_inv_t *v, const pft_tbd_cell_t *c)
+{
+    return (uint32_t)(c->i - 2) < v->wi && (uint32_t)(c->j - 2) < v->hj &&
+           (v->pflag == NULL || v->pflag[c->j - 1] == 0u);
+}
+
+/* A live particle's log-weight from its likelihood ratio llr and state byte e: births (e = 1)
+ * add l1, survivors of the Bernoulli form lp, survivors of the paper's form nothing. */
+static inline pft_real_t group_lw_(pft_real_t llr, uint32_t e, bool bern, pft_real_t l1,
+                                   pft_real_t lp)
+{
+    pft_real_t lw = llr;
+    if (e == 1u) {
+        lw = pft_add(lw, l1);
+    } else if (bern) {
+        lw = pft_add(lw, lp);
+    } else {
+        /* a survivor of the paper's form: the likelihood ratio alone */
+    }
+    return lw;
+}
+
+/* Whether weigh_r16_ runs its particles in a loop that makes no call (AArch64 float): the inner
+ * loop stops at a window that needs a call (r16_no_call_ false: the image's edges and the
+ * rows a patch may cover, about one window in nine on the real file), which the outer loop
+ * weighs with the kernel's full form before the inner loop goes on from the next particle;
+ * the particles in their order, each with the same operations, so the same values. The loop
+ * invariants then need not survive a call in the inner loop: on AArch64 float gcc keeps them
+ * in registers there instead of the stack (weigh_r16_ 3.48 -> 3.23 M instructions per frame
+ * on the real file; docs/results/ir_clutter.md, "Branch ircost40"). q16 on AArch64 got
+ * dearer (4.40 -> 4.49 M: its plain window leaves no registers free); x86-64 and the
+ * Cortex-M builds keep the one loop. test_tbd_inplace compares this path with the
+ * converting manager's (edges, patches, masked pixels) on every preset. */
+#if !defined(PFT_NUMERIC_Q16) && defined(__aarch64__)
+#define WEIGH_SPLIT_ 1
+#else
+#define WEIGH_SPLIT_ 0
+#endif
+
 /* weigh_any_ (bern false) and weigh_bern_any_ (bern true, the group log prior weights lb and
- * lp) in that case, the mask tested when set: one loop for both forms, so that the kernel
- * (pft_tbd_llr3_r16_) has one call site and is inlined in both builds, with the loop
- * invariants in locals. The same values as those two. */
+ * lp) in that case, the mask tested when set: one loop for both forms (WEIGH_SPLIT_: two
+ * nested), so that the kernel (pft_tbd_llr3_r16_) has one call site and is inlined in both
+ * builds, with the loop invariants in locals. The same values as those two. */
 static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern, pft_real_t lb,
                              pft_real_t lp)
 {
@@ -373,6 +415,46 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
     const uint32_t n = f->n;
     const pft_tbd_r16_inv_t rv = pft_tbd_llr3_r16_inv_(m, tab, sc);
     pft_real_t lmax = bern ? BERN_DROP_ : PFT_REAL_MIN;
+#if WEIGH_SPLIT_
+    /* the inner loop's copy of the model: its address goes to no call (the stopped slot's
+     * kernel takes m), so its fields stay in registers */
+    const pft_tbd_meas_t mi = f->model;
+    const pft_real_t hi_x = mi.hi_x, hi_y = mi.hi_y;
+    const int32_t wd = (int32_t)mi.width, ht = (int32_t)mi.height;
+    uint32_t s = 0u;
+    while (s < n) {
+        uint32_t e = 0u;
+        pft_tbd_cell_t c;
+        pft_real_t lw;
+        for (; s < n; ++s) {
+            lw = dead;
+            e = pe[s];
+            if (e != 0u) {
+                /* pft_tbd_cell_ with dx = dy = 1 */
+                if (pft_kcell2_(px[s], py[s], hi_x, hi_y, wd, ht, &c.i, &c.fx, &c.j, &c.fy) &&
+                    (mask == NULL ||
+                     !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
+                    if (!r16_no_call_(&rv, &c)) {
+                        break; /* slot s: weighed below */
+                    }
+                    lw = group_lw_(pft_tbd_llr3_r16_v_(&mi, tab, sc, &rv, &c, pin[s]), e, bern,
+                                   l1, lp);
+                } else {
+                    pe[s] = 0u;
+                }
+            }
+            pw[s].lw = lw;
+            lmax = pft_max(lmax, lw);
+        }
+        if (s < n) {
+            /* the slot the inner loop stopped at: live, its cell c inside and not masked */
+            lw = group_lw_(pft_tbd_llr3_r16_v_(m, tab, sc, &rv, &c, pin[s]), e, bern, l1, lp);
+            pw[s].lw = lw;
+            lmax = pft_max(lmax, lw);
+            ++s;
+        }
+    }
+#else
     for (uint32_t s = 0; s < n; ++s) {
         pft_real_t lw = dead;
         const uint32_t e = pe[s];
@@ -383,14 +465,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
                             (int32_t)m->height, &c.i, &c.fx, &c.j, &c.fy) &&
                 (mask == NULL ||
                  !pft_tbd_masked_(mask, mwords, (uint32_t)(c.i - 1), (uint32_t)(c.j - 1)))) {
-                lw = pft_tbd_llr3_r16_v_(m, tab, sc, &rv, &c, pin[s]);
-                if (e == 1u) {
-                    lw = pft_add(lw, l1);
-                } else if (bern) {
-                    lw = pft_add(lw, lp);
-                } else {
-                    /* a survivor of the paper's form: the likelihood ratio alone */
-                }
+                lw = group_lw_(pft_tbd_llr3_r16_v_(m, tab, sc, &rv, &c, pin[s]), e, bern, l1, lp);
             } else {
                 pe[s] = 0u;
             }
@@ -398,6 +473,7 @@ static pft_real_t weigh_r16_(pft_tbd_filter_t *f, const step_ctx_t *x, bool bern
         pw[s].lw = lw;
         lmax = pft_max(lmax, lw);
     }
+#endif
     return lmax;
 }
 
@@ -786,7 +862,7 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
         if ((e == 0u || u < p16_share) && !can_birth) {
             e = 0u; /* no pixel to be born in: the slot stays empty */
         } else if (e == 0u || u < p16_share) {
-            rng = move_birth_(x, &v, s, rng);
+            move_birth_(x, &v, s, &rng);
             e = 1u;
             ++b;
         } else {
