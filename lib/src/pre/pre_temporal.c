@@ -260,6 +260,84 @@ static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
     w[3] = 0;
 }
 
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), lk_loop_'s samples i, i + 2, i + 4, i + 6 of a row (reg_step 2, a U16
+ * frame without a bad-pixel map) in 32-bit lanes, for i = 0, 8, 16, ... while i + 7 <= n (the
+ * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
+ * the loop's own reads for samples up to n): the same gx, gy, e as the loop in int32 (the
+ * bilinear sample bw = (h0 gy0 + h1 fy + 32768) >> 16 below 2^32 before the shift, so the
+ * rounding narrowing rshrn gives it), an invalid sample's gx, gy, e set to 0 instead of skipped
+ * (its products add 0), and the products summed in 64-bit lanes (smlal): integer sums in
+ * another order, the same totals. par: mask, lo, span, bf, fx, fy. Adds to s; returns the
+ * first sample left to the loop. */
+static inline int32_t lk_row2n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    const uint16x4_t vm = vdup_n_u16((uint16_t)(par[0] & 0xFFFFu));
+    const uint32x4_t vlo = vdupq_n_u32(par[1]), vspan = vdupq_n_u32(par[2]);
+    const int32x4_t vbf = vdupq_n_s32((int32_t)par[3]);
+    const uint16x4_t vgx0 = vdup_n_u16((uint16_t)(256u - par[4])), vfx = vdup_n_u16((uint16_t)par[4]);
+    const uint32x4_t vgy0 = vdupq_n_u32(256u - par[5]), vfy = vdupq_n_u32(par[5]);
+    int64x2_t sxx = vdupq_n_s64(0), sxy = sxx, syy = sxx, sxe = sxx, sye = sxx, see = sxx;
+    uint32x4_t cnt = vdupq_n_u32(0u);
+    int32_t i = 0;
+    for (; i + 7 <= n; i += 8) {
+        const uint16x8_t r16 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i));
+        const uint32x4_t v = vmovl_u16(vand_u16(vget_low_u16(vuzp1q_u16(r16, r16)), vm));
+        const uint32x4_t ok = vcltq_u32(vsubq_u32(v, vlo), vspan);
+        const int32x4_t okm = vreinterpretq_s32_u32(ok);
+        const uint16x4x2_t p0 = vld2_u16(b0 + i), q0 = vld2_u16(b0 + i + 2); /* b0[i .. i + 3] */
+        const uint16x4x2_t p1 = vld2_u16(b1 + i), q1 = vld2_u16(b1 + i + 2);
+        const uint16x4x2_t pm = vld2_u16(bm + i + 1), p2 = vld2_u16(b2 + i + 1); /* [i + 1], [i + 2] */
+        const uint32x4_t h0 = vmlal_u16(vmull_u16(p0.val[1], vgx0), q0.val[0], vfx);
+        const uint32x4_t h1 = vmlal_u16(vmull_u16(p1.val[1], vgx0), q1.val[0], vfx);
+        const uint16x4_t bw = vrshrn_n_u32(vmlaq_u32(vmulq_u32(h0, vgy0), h1, vfy), 16);
+        const int32x4_t czv = vld2q_s32(cz + i).val[0];
+        const int32x4_t e = vandq_s32(vsubq_s32(vreinterpretq_s32_u32(vsubw_u16(vshlq_u32(v, vbf), bw)), czv), okm);
+        const int32x4_t gx = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(q0.val[1], p0.val[0]),
+                                                                       vsubl_u16(q1.val[1], p1.val[0]))), okm);
+        const int32x4_t gy = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(p2.val[0], pm.val[0]),
+                                                                       vsubl_u16(p2.val[1], pm.val[1]))), okm);
+        const int32x2_t gxl = vget_low_s32(gx), gyl = vget_low_s32(gy), el = vget_low_s32(e);
+        cnt = vsubq_u32(cnt, ok);
+        sxx = vmlal_high_s32(vmlal_s32(sxx, gxl, gxl), gx, gx);
+        sxy = vmlal_high_s32(vmlal_s32(sxy, gxl, gyl), gx, gy);
+        syy = vmlal_high_s32(vmlal_s32(syy, gyl, gyl), gy, gy);
+        sxe = vmlal_high_s32(vmlal_s32(sxe, gxl, el), gx, e);
+        sye = vmlal_high_s32(vmlal_s32(sye, gyl, el), gy, e);
+        see = vmlal_high_s32(vmlal_s32(see, el, el), e, e);
+    }
+    s->sxx += vaddvq_s64(sxx);
+    s->sxy += vaddvq_s64(sxy);
+    s->syy += vaddvq_s64(syy);
+    s->sxe += vaddvq_s64(sxe);
+    s->sye += vaddvq_s64(sye);
+    s->see += vaddvq_s64(see);
+    s->n += vaddvq_u32(cnt);
+    return i;
+}
+
+/* lk_row2n_ for a test: the sums of a row's samples 0, 2, ..., up to the last whole block of
+ * four (rz: the row's pixels from the first sample, cz: colnow from it, bm: the background's
+ * row y + ky - 1 from column c0 with stride bs, par: mask, lo, span, bf, fx, fy); sums: sxx,
+ * sxy, syy, sxe, sye, see added to, *cnt likewise; returns the first sample left. */
+int32_t pft_pre_lk_row2_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t n, int64_t sums[6], uint32_t *cnt)
+{
+    lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
+    const int32_t i = lk_row2n_(rz, cz, bm, bs, par, n, &a);
+    sums[0] = a.sxx;
+    sums[1] = a.sxy;
+    sums[2] = a.syy;
+    sums[3] = a.sxe;
+    sums[4] = a.sye;
+    sums[5] = a.see;
+    *cnt = a.n;
+    return i;
+}
+#endif
+
 /* One pass of sums over the sampled pixels whose taps are inside the image. The gradient of
  * the 2 x 2 cell of the bilinear taps is taken across it, from the columns (rows) just
  * outside: gx = b[.][x0 + 2] - b[.][x0 - 1] summed over the cell's two rows, 6 times the
@@ -294,7 +372,14 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
          * the last tap column are in [0, w - 1]) */
         const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
         const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
-        for (int32_t i = 0; i <= xb - x0; i += st) {
+#if defined(PFT_PRE_NEON_)
+        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2, plain) */
+        const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
+        const int32_t ia = (plain && st == 2) ? lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc) : 0;
+#else
+        const int32_t ia = 0;
+#endif
+        for (int32_t i = ia; i <= xb - x0; i += st) {
             uint32_t v;
             if (plain) {
                 uint16_t raw;
