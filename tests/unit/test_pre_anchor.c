@@ -791,17 +791,17 @@ static void test_view_h32_neon(void)
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
-int32_t pft_pre_lk_row2_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                         const uint32_t par[6], int32_t n, int64_t sums[6], uint32_t *cnt);
+int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 
-/* The registration's plain loop (lk_loop_ at reg_step 2 on a U16 frame) over samples
- * 0, 2, ..., ie - 2 of one row, in 64-bit arithmetic. */
+/* The registration's plain loop (lk_loop_ on a U16 frame) over samples 0, st, ..., below ie of
+ * one row, in 64-bit arithmetic. */
 static void lk_row_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                       const uint32_t par[6], int32_t ie, int64_t sums[6], uint32_t *cnt)
+                       const uint32_t par[6], int32_t st, int32_t ie, int64_t sums[6], uint32_t *cnt)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
     const int64_t fx = par[4], fy = par[5];
-    for (int32_t i = 0; i < ie; i += 2) {
+    for (int32_t i = 0; i < ie; i += st) {
         const uint32_t v = z[i] & par[0];
         if (v - par[1] >= par[2]) {
             continue;
@@ -822,14 +822,14 @@ static void lk_row_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm,
 }
 #endif
 
-/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_row2_: samples 0, 2, 4, 6 of
- * each whole block of 8 pixels, an invalid sample's terms 0): known answers (a background
- * 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a masked
- * sample, the samples after the last whole block left), then the sums, the count and the
- * samples done equal to the plain loop's in 64-bit arithmetic on 400 random rows (bit depths
- * 12 .. 16 with their bf, random lo, span, fractions 0 .. 255, colnow within +-2^20,
- * backgrounds random or at 0 and 65535, rows of 0 .. 40 and 360 samples). */
-static void test_lk_row2_neon(void)
+/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_rown_, steps 2 and 4: four
+ * samples of each whole block of 4 st pixels, an invalid sample's terms 0): known answers (a
+ * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a
+ * masked sample, the samples after the last whole block left), then the sums, the count and
+ * the samples done equal to the plain loop's in 64-bit arithmetic on 800 random rows, both
+ * steps (bit depths 12 .. 16 with their bf, random lo, span, fractions 0 .. 255, colnow within
+ * +-2^20, backgrounds random or at 0 and 65535, rows of 0 .. 40 and 360 pixels). */
+static void test_lk_rown_neon(void)
 {
 #if defined(__aarch64__) && defined(__ARM_NEON)
     enum { NX = 400, BS = 408 };
@@ -850,7 +850,7 @@ static void test_lk_row2_neon(void)
     int64_t s[6] = {0, 0, 0, 0, 0, 0};
     uint32_t n = 0u;
     /* n 14: samples 0 .. 6 in the block (8 + 7 > 14), e = 5000 - (1000 + 10 (i + 1)) */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_row2_(rz, cz, bg, BS, par, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_all[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15840, 6000 * 15840, 62728400};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_all, s, 6);
     TEST_ASSERT_EQUAL_UINT32(4u, n);
@@ -858,19 +858,29 @@ static void test_lk_row2_neon(void)
     memcpy(rz, z, sizeof(z));
     memset(s, 0, sizeof(s));
     n = 7u; /* added to */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_row2_(rz, cz, bg, BS, par, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_one[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11870, 6000 * 11870, 46967500};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_one, s, 6);
     TEST_ASSERT_EQUAL_UINT32(10u, n);
-    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_row2_(rz, cz, bg, BS, par, 6, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(10u, n);
+    /* step 4, n 30: samples 0, 4, 8, 12 (16 + 15 > 30; pixel 2, masked, is not a sample) */
+    memset(s, 0, sizeof(s));
+    n = 0u;
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 30, s, &n));
+    const int64_t k_st4[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15720, 6000 * 15720, 61787600};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_st4, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
     uint32_t cases = 0u, masked = 0u;
-    for (int32_t t = 0; t < 400; ++t) {
+    for (int32_t t = 0; t < 800; ++t) {
+        const int32_t st = t < 400 ? 2 : 4;
         const uint32_t bits = 12u + (uint32_t)t % 5u;
         const uint32_t lo = pft_test_xorshift32(&g_rs) % 64u, span = (1u << bits) - lo - pft_test_xorshift32(&g_rs) % 64u;
         const uint32_t pr[6] = {(1u << bits) - 1u, lo, span, 16u - bits, pft_test_xorshift32(&g_rs) % 256u,
                                 pft_test_xorshift32(&g_rs) % 256u};
-        const int32_t ns = t < 370 ? t % 41 : 360;
+        const int32_t ns = t % 400 < 370 ? t % 41 : 360;
         const int32_t kind = (t / 5) % 3;
         for (int32_t i = 0; i < NX; ++i) {
             z[i] = (uint16_t)pft_test_xorshift32(&g_rs); /* bits above the depth too */
@@ -883,15 +893,15 @@ static void test_lk_row2_neon(void)
         memcpy(rz, z, sizeof(z));
         int64_t got[6] = {1, -2, 3, -4, 5, -6}, want[6] = {1, -2, 3, -4, 5, -6};
         uint32_t gn = 3u, wn = 3u;
-        const int32_t ie = (ns + 1) / 8 * 8;
-        lk_row_ref(z, cz, bg, BS, pr, ie, want, &wn);
-        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_row2_(rz, cz, bg, BS, pr, ns, got, &gn));
+        const int32_t ie = (ns + 1) / (4 * st) * (4 * st);
+        lk_row_ref(z, cz, bg, BS, pr, st, ie, want, &wn);
+        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rown_(rz, cz, bg, BS, pr, st, ns, got, &gn));
         TEST_ASSERT_EQUAL_INT64_ARRAY(want, got, 6);
         TEST_ASSERT_EQUAL_UINT32(wn, gn);
-        masked += (uint32_t)(ie / 2) - (wn - 3u);
+        masked += (uint32_t)(ie / st) - (wn - 3u);
         cases++;
     }
-    TEST_ASSERT_EQUAL_UINT32(400u, cases);
+    TEST_ASSERT_EQUAL_UINT32(800u, cases);
     TEST_ASSERT_TRUE(masked > 0u); /* the invalid samples were reached */
 #else
     TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loop");
@@ -910,6 +920,6 @@ int main(void)
     RUN_TEST(test_gate_clip_split_and_plain);
     RUN_TEST(test_view_rows_sse2);
     RUN_TEST(test_view_h32_neon);
-    RUN_TEST(test_lk_row2_neon);
+    RUN_TEST(test_lk_rown_neon);
     return UNITY_END();
 }

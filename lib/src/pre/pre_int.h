@@ -177,11 +177,11 @@ void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_
 /* bg_anchor on AArch64 (NEON): the registration's view's horizontal pass of the 32-bit form,
  * pixels 0 .. 8 (xe / 8) - 1 from the vertical blends v; returns 8 (xe / 8) (pre_temporal.c). */
 int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe);
-/* bg registration on AArch64 (NEON): the Lucas-Kanade sums of a row's samples 0, 2, ... in
- * whole blocks of four (reg_step 2, U16 frame, no bad-pixel map); returns the first sample
+/* bg registration on AArch64 (NEON): the Lucas-Kanade sums of a row's samples 0, st, 2 st, ...
+ * (st 2 or 4) in whole blocks of four (U16 frame, no bad-pixel map); returns the first sample
  * left to the plain loop (pre_temporal.c). */
-int32_t pft_pre_lk_row2_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                         const uint32_t par[6], int32_t n, int64_t sums[6], uint32_t *cnt);
+int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 #endif
 
 /* Integer square root of a 64-bit value (floor). */

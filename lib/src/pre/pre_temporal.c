@@ -261,72 +261,142 @@ static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
 }
 
 #if defined(PFT_PRE_NEON_)
-/* With NEON (AArch64), lk_loop_'s samples i, i + 2, i + 4, i + 6 of a row (reg_step 2, a U16
- * frame without a bad-pixel map) in 32-bit lanes, for i = 0, 8, 16, ... while i + 7 <= n (the
+/* With NEON (AArch64), lk_loop_'s sums (a U16 frame without a bad-pixel map) four samples at a
+ * time in 32-bit lanes: the same gx, gy, e as the loop in int32 (the bilinear sample
+ * bw = (h0 gy0 + h1 fy + 32768) >> 16 is below 2^32 before the shift, so the rounding
+ * narrowing rshrn gives it), an invalid sample's gx, gy, e set to 0 instead of skipped (its
+ * products add 0), the products summed in 64-bit lanes (smlal): integer sums in another order,
+ * the same totals. par: mask, lo, span, bf, fx, fy. */
+typedef struct {
+    uint16x4_t vm, vgx0, vfx;
+    uint32x4_t vlo, vspan, vgy0, vfy;
+    int32x4_t vbf;
+} lk_npar_t;
+
+typedef struct {
+    int64x2_t sxx, sxy, syy, sxe, sye, see;
+    uint32x4_t n;
+} lk_nacc_t;
+
+static inline void lk_npar_(const uint32_t par[6], lk_npar_t *q, lk_nacc_t *a)
+{
+    q->vm = vdup_n_u16((uint16_t)(par[0] & 0xFFFFu));
+    q->vlo = vdupq_n_u32(par[1]);
+    q->vspan = vdupq_n_u32(par[2]);
+    q->vbf = vdupq_n_s32((int32_t)par[3]);
+    q->vgx0 = vdup_n_u16((uint16_t)(256u - par[4]));
+    q->vfx = vdup_n_u16((uint16_t)par[4]);
+    q->vgy0 = vdupq_n_u32(256u - par[5]);
+    q->vfy = vdupq_n_u32(par[5]);
+    a->sxx = vdupq_n_s64(0);
+    a->sxy = a->sxx;
+    a->syy = a->sxx;
+    a->sxe = a->sxx;
+    a->sye = a->sxx;
+    a->see = a->sxx;
+    a->n = vdupq_n_u32(0u);
+}
+
+/* The taps of four samples: t0 .. t3 = b0[i], b0[i + 1], b0[i + 2], b0[i + 3] of each, u0 .. u3
+ * the same of b1, m1, m2 = bm[i + 1], bm[i + 2], d1, d2 = b2[i + 1], b2[i + 2] (values, not an
+ * array: gcc 12 keeps an array of vectors on the stack). */
+typedef struct {
+    uint16x4_t t0, t1, t2, t3, u0, u1, u2, u3, m1, m2, d1, d2;
+} lk_ntaps_t;
+
+/* Four samples: raw their pixels, k their taps, czv colnow. */
+static inline void lk_block_n_(const lk_npar_t *q, uint16x4_t raw, lk_ntaps_t k, int32x4_t czv, lk_nacc_t *a)
+{
+    const uint32x4_t v = vmovl_u16(vand_u16(raw, q->vm));
+    const uint32x4_t ok = vcltq_u32(vsubq_u32(v, q->vlo), q->vspan);
+    const int32x4_t okm = vreinterpretq_s32_u32(ok);
+    const uint32x4_t h0 = vmlal_u16(vmull_u16(k.t1, q->vgx0), k.t2, q->vfx);
+    const uint32x4_t h1 = vmlal_u16(vmull_u16(k.u1, q->vgx0), k.u2, q->vfx);
+    const uint16x4_t bw = vrshrn_n_u32(vmlaq_u32(vmulq_u32(h0, q->vgy0), h1, q->vfy), 16);
+    const int32x4_t e = vandq_s32(vsubq_s32(vreinterpretq_s32_u32(vsubw_u16(vshlq_u32(v, q->vbf), bw)), czv), okm);
+    const int32x4_t gx = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(k.t3, k.t0), vsubl_u16(k.u3, k.u0))), okm);
+    const int32x4_t gy = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(k.d1, k.m1), vsubl_u16(k.d2, k.m2))), okm);
+    const int32x2_t gxl = vget_low_s32(gx), gyl = vget_low_s32(gy), el = vget_low_s32(e);
+    a->n = vsubq_u32(a->n, ok);
+    a->sxx = vmlal_high_s32(vmlal_s32(a->sxx, gxl, gxl), gx, gx);
+    a->sxy = vmlal_high_s32(vmlal_s32(a->sxy, gxl, gyl), gx, gy);
+    a->syy = vmlal_high_s32(vmlal_s32(a->syy, gyl, gyl), gy, gy);
+    a->sxe = vmlal_high_s32(vmlal_s32(a->sxe, gxl, el), gx, e);
+    a->sye = vmlal_high_s32(vmlal_s32(a->sye, gyl, el), gy, e);
+    a->see = vmlal_high_s32(vmlal_s32(a->see, el, el), e, e);
+}
+
+static inline void lk_nsum_(const lk_nacc_t *a, lk_sums_t *s)
+{
+    s->sxx += vaddvq_s64(a->sxx);
+    s->sxy += vaddvq_s64(a->sxy);
+    s->syy += vaddvq_s64(a->syy);
+    s->sxe += vaddvq_s64(a->sxe);
+    s->sye += vaddvq_s64(a->sye);
+    s->see += vaddvq_s64(a->see);
+    s->n += vaddvq_u32(a->n);
+}
+
+/* Step 2: samples i, i + 2, i + 4, i + 6 of a row for i = 0, 8, 16, ... while i + 7 <= n (the
  * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
- * the loop's own reads for samples up to n): the same gx, gy, e as the loop in int32 (the
- * bilinear sample bw = (h0 gy0 + h1 fy + 32768) >> 16 below 2^32 before the shift, so the
- * rounding narrowing rshrn gives it), an invalid sample's gx, gy, e set to 0 instead of skipped
- * (its products add 0), and the products summed in 64-bit lanes (smlal): integer sums in
- * another order, the same totals. par: mask, lo, span, bf, fx, fy. Adds to s; returns the
- * first sample left to the loop. */
+ * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
+ * loop. */
 static inline int32_t lk_row2n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                                 const uint32_t par[6], int32_t n, lk_sums_t *s)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
-    const uint16x4_t vm = vdup_n_u16((uint16_t)(par[0] & 0xFFFFu));
-    const uint32x4_t vlo = vdupq_n_u32(par[1]), vspan = vdupq_n_u32(par[2]);
-    const int32x4_t vbf = vdupq_n_s32((int32_t)par[3]);
-    const uint16x4_t vgx0 = vdup_n_u16((uint16_t)(256u - par[4])), vfx = vdup_n_u16((uint16_t)par[4]);
-    const uint32x4_t vgy0 = vdupq_n_u32(256u - par[5]), vfy = vdupq_n_u32(par[5]);
-    int64x2_t sxx = vdupq_n_s64(0), sxy = sxx, syy = sxx, sxe = sxx, sye = sxx, see = sxx;
-    uint32x4_t cnt = vdupq_n_u32(0u);
+    lk_npar_t q;
+    lk_nacc_t a;
+    lk_npar_(par, &q, &a);
     int32_t i = 0;
     for (; i + 7 <= n; i += 8) {
         const uint16x8_t r16 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i));
-        const uint32x4_t v = vmovl_u16(vand_u16(vget_low_u16(vuzp1q_u16(r16, r16)), vm));
-        const uint32x4_t ok = vcltq_u32(vsubq_u32(v, vlo), vspan);
-        const int32x4_t okm = vreinterpretq_s32_u32(ok);
         const uint16x4x2_t p0 = vld2_u16(b0 + i), q0 = vld2_u16(b0 + i + 2); /* b0[i .. i + 3] */
         const uint16x4x2_t p1 = vld2_u16(b1 + i), q1 = vld2_u16(b1 + i + 2);
         const uint16x4x2_t pm = vld2_u16(bm + i + 1), p2 = vld2_u16(b2 + i + 1); /* [i + 1], [i + 2] */
-        const uint32x4_t h0 = vmlal_u16(vmull_u16(p0.val[1], vgx0), q0.val[0], vfx);
-        const uint32x4_t h1 = vmlal_u16(vmull_u16(p1.val[1], vgx0), q1.val[0], vfx);
-        const uint16x4_t bw = vrshrn_n_u32(vmlaq_u32(vmulq_u32(h0, vgy0), h1, vfy), 16);
-        const int32x4_t czv = vld2q_s32(cz + i).val[0];
-        const int32x4_t e = vandq_s32(vsubq_s32(vreinterpretq_s32_u32(vsubw_u16(vshlq_u32(v, vbf), bw)), czv), okm);
-        const int32x4_t gx = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(q0.val[1], p0.val[0]),
-                                                                       vsubl_u16(q1.val[1], p1.val[0]))), okm);
-        const int32x4_t gy = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(p2.val[0], pm.val[0]),
-                                                                       vsubl_u16(p2.val[1], pm.val[1]))), okm);
-        const int32x2_t gxl = vget_low_s32(gx), gyl = vget_low_s32(gy), el = vget_low_s32(e);
-        cnt = vsubq_u32(cnt, ok);
-        sxx = vmlal_high_s32(vmlal_s32(sxx, gxl, gxl), gx, gx);
-        sxy = vmlal_high_s32(vmlal_s32(sxy, gxl, gyl), gx, gy);
-        syy = vmlal_high_s32(vmlal_s32(syy, gyl, gyl), gy, gy);
-        sxe = vmlal_high_s32(vmlal_s32(sxe, gxl, el), gx, e);
-        sye = vmlal_high_s32(vmlal_s32(sye, gyl, el), gy, e);
-        see = vmlal_high_s32(vmlal_s32(see, el, el), e, e);
+        const lk_ntaps_t k = {p0.val[0], p0.val[1], q0.val[0], q0.val[1], p1.val[0], p1.val[1],
+                              q1.val[0], q1.val[1], pm.val[0], pm.val[1], p2.val[0], p2.val[1]};
+        lk_block_n_(&q, vget_low_u16(vuzp1q_u16(r16, r16)), k, vld2q_s32(cz + i).val[0], &a);
     }
-    s->sxx += vaddvq_s64(sxx);
-    s->sxy += vaddvq_s64(sxy);
-    s->syy += vaddvq_s64(syy);
-    s->sxe += vaddvq_s64(sxe);
-    s->sye += vaddvq_s64(sye);
-    s->see += vaddvq_s64(see);
-    s->n += vaddvq_u32(cnt);
+    lk_nsum_(&a, s);
     return i;
 }
 
-/* lk_row2n_ for a test: the sums of a row's samples 0, 2, ..., up to the last whole block of
- * four (rz: the row's pixels from the first sample, cz: colnow from it, bm: the background's
- * row y + ky - 1 from column c0 with stride bs, par: mask, lo, span, bf, fx, fy); sums: sxx,
- * sxy, syy, sxe, sye, see added to, *cnt likewise; returns the first sample left. */
-int32_t pft_pre_lk_row2_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                         const uint32_t par[6], int32_t n, int64_t sums[6], uint32_t *cnt)
+/* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
+ * i = 0, 16, 32, ... while i + 15 <= n (reads pixels, colnow and the background's row
+ * columns to i + 15, inside the loop's own reads for samples up to n). */
+static inline int32_t lk_row4n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_npar_t q;
+    lk_nacc_t a;
+    lk_npar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 15 <= n; i += 16) {
+        const uint16x8_t r0 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i));
+        const uint16x8_t r1 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i + 16));
+        const uint16x8_t r02 = vuzp1q_u16(r0, r1); /* pixels i, i + 2, ..., i + 14 */
+        const uint16x4x4_t p0 = vld4_u16(b0 + i), p1 = vld4_u16(b1 + i); /* [i .. i + 3] */
+        const uint16x4x4_t pm = vld4_u16(bm + i), p2 = vld4_u16(b2 + i);
+        const lk_ntaps_t k = {p0.val[0], p0.val[1], p0.val[2], p0.val[3], p1.val[0], p1.val[1],
+                              p1.val[2], p1.val[3], pm.val[1], pm.val[2], p2.val[1], p2.val[2]};
+        lk_block_n_(&q, vget_low_u16(vuzp1q_u16(r02, r02)), k, vld4q_s32(cz + i).val[0], &a);
+    }
+    lk_nsum_(&a, s);
+    return i;
+}
+
+/* lk_row2n_ (st 2) or lk_row4n_ (st 4) for a test: the sums of a row's samples 0, st, 2 st,
+ * ..., up to the last whole block of four (rz: the row's pixels from the first sample, cz:
+ * colnow from it, bm: the background's row y + ky - 1 from column c0 with stride bs, par: mask,
+ * lo, span, bf, fx, fy); sums: sxx, sxy, syy, sxe, sye, see added to, *cnt likewise; returns
+ * the first sample left. */
+int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt)
 {
     lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
-    const int32_t i = lk_row2n_(rz, cz, bm, bs, par, n, &a);
+    const int32_t i = st == 4 ? lk_row4n_(rz, cz, bm, bs, par, n, &a) : lk_row2n_(rz, cz, bm, bs, par, n, &a);
     sums[0] = a.sxx;
     sums[1] = a.sxy;
     sums[2] = a.syy;
@@ -373,9 +443,14 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
         const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
         const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
 #if defined(PFT_PRE_NEON_)
-        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2, plain) */
+        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2 or 4, plain) */
         const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
-        const int32_t ia = (plain && st == 2) ? lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc) : 0;
+        int32_t ia = 0;
+        if (plain && st == 2) {
+            ia = lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc);
+        } else if (plain && st == 4) {
+            ia = lk_row4n_(rz, cz, bm, bs, par, xb - x0, &acc);
+        }
 #else
         const int32_t ia = 0;
 #endif
