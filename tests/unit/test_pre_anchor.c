@@ -908,6 +908,69 @@ static void test_lk_rown_neon(void)
 #endif
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
+#endif
+
+/* AArch64's count of a row's masked pixels by cause in NEON lanes (pft_pre_count_rown_, the
+ * whole blocks of 8 pixels of a U16 row without a bad-pixel map): known answers (dead below lo,
+ * saturated at lo + span and above, bits above the depth ignored, the pixels after the last
+ * whole block left), then the counts and the pixels done equal to the plain rule (v - lo >=
+ * span: dead if v < lo, else saturated) on 300 random rows (depths 12 .. 16, random lo and
+ * span, rows of 0 .. 40 and 384 pixels, values near lo and lo + span). */
+static void test_count_rown_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { NX = 384 };
+    static uint16_t z[NX];
+    static uint8_t rz[2 * NX];
+    /* depth 14 (mask 16383), lo 100, span 16000: valid 100 .. 16099 */
+    const uint16_t k_row[20] = {99u, 100u, 16099u, 16100u, 16383u, 0u, 16384u + 50u, 16384u + 500u,
+                                5u, 16200u, 7u, 7u, 7u, 7u, 7u, 7u, 0u, 0u, 0u, 0u};
+    memcpy(z, k_row, sizeof(k_row));
+    memcpy(rz, z, sizeof(k_row));
+    uint32_t cnt[2] = {10u, 20u}; /* added to */
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rown_(rz, 20u, 16383u, 100u, 16000u, cnt));
+    /* dead: 99, 0, 50 (16434 & 16383), 5, six 7s: 10; saturated: 16100, 16383, 16200: 3;
+     * 100, 16099 and 500 (16884 & 16383) valid; pixels 16 .. 19 left */
+    TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(23u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rown_(rz, 7u, 16383u, 100u, 16000u, cnt)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
+    uint32_t cases = 0u, nd = 0u, ns = 0u;
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t bits = 12u + (uint32_t)t % 5u, mask = (1u << bits) - 1u;
+        const uint32_t lo = pft_test_xorshift32(&g_rs) % 300u;
+        const uint32_t span = (1u << bits) - lo - pft_test_xorshift32(&g_rs) % 300u;
+        const uint32_t w = t < 280 ? (uint32_t)t % 41u : NX;
+        for (uint32_t i = 0; i < NX; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            z[i] = (uint16_t)((r & 3u) == 0u ? r >> 16 : ((r & 3u) == 1u ? lo + (r >> 8) % 5u - 2u : lo + span + (r >> 8) % 5u - 2u));
+        }
+        memcpy(rz, z, sizeof(z));
+        uint32_t got[2] = {3u, 4u}, want[2] = {3u, 4u};
+        const uint32_t xe = w / 8u * 8u;
+        for (uint32_t i = 0; i < xe; ++i) {
+            const uint32_t v = z[i] & mask;
+            if (v - lo >= span) {
+                want[v < lo ? 0 : 1]++;
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rown_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
+        nd += want[0] - 3u;
+        ns += want[1] - 4u;
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(300u, cases);
+    TEST_ASSERT_TRUE(nd > 0u && ns > 0u); /* both causes reached */
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loop");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -921,5 +984,6 @@ int main(void)
     RUN_TEST(test_view_rows_sse2);
     RUN_TEST(test_view_h32_neon);
     RUN_TEST(test_lk_rown_neon);
+    RUN_TEST(test_count_rown_neon);
     return UNITY_END();
 }

@@ -182,6 +182,11 @@ int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int
  * left to the plain loop (pre_temporal.c). */
 int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
+/* The masked pixels of a U16 row without a bad-pixel map by cause, pixels 0 .. 8 (w / 8) - 1
+ * (count_row_'s NEON form): cnt[0] dead, cnt[1] saturated added to; returns the pixels done
+ * (pre_temporal.c). */
+uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
 #endif
 
 /* Integer square root of a 64-bit value (floor). */

@@ -905,11 +905,62 @@ static void count_span_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y
 }
 
 /* Counts the masked pixels of row y by cause (rows with masked pixels only). */
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), count_row_ of a U16 frame without a bad-pixel map for pixels
+ * 0 .. 8 (w / 8) - 1 in 32-bit lanes: a pixel v (masked by mask) is counted iff
+ * v - lo >= span (unsigned), dead if v < lo, else saturated (pft_pre_count_masked_ without
+ * the map's case). Adds to n_dead, n_sat; returns the first pixel left to the loop. */
+static uint32_t count_row_n_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+{
+    const uint16x8_t vm = vdupq_n_u16((uint16_t)(c->mask & 0xFFFFu));
+    const uint32x4_t vlo = vdupq_n_u32(c->lo), vspan = vdupq_n_u32(c->span);
+    uint32x4_t nd = vdupq_n_u32(0u), ns = nd;
+    uint32_t x = 0u;
+    for (; x + 8u <= w; x += 8u) {
+        const uint16x8_t v16 = vandq_u16(vreinterpretq_u16_u8(vld1q_u8(row + 2u * x)), vm);
+        const uint32x4_t va = vmovl_u16(vget_low_u16(v16)), vb = vmovl_high_u16(v16);
+        const uint32x4_t ma = vcgeq_u32(vsubq_u32(va, vlo), vspan), mb = vcgeq_u32(vsubq_u32(vb, vlo), vspan);
+        const uint32x4_t da = vcltq_u32(va, vlo), db = vcltq_u32(vb, vlo);
+        nd = vsubq_u32(vsubq_u32(nd, vandq_u32(ma, da)), vandq_u32(mb, db));
+        ns = vsubq_u32(vsubq_u32(ns, vbicq_u32(ma, da)), vbicq_u32(mb, db));
+    }
+    acc->n_dead += vaddvq_u32(nd);
+    acc->n_sat += vaddvq_u32(ns);
+    return x;
+}
+
+/* count_row_n_ for a test: pixels 0 .. 8 (w / 8) - 1 of a U16 row (mask, lo, span); adds to
+ * cnt[0] (dead) and cnt[1] (saturated); returns the pixels done. */
+uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2])
+{
+    pft_pre_cls_t c;
+    pft_pre_acc_t a;
+    memset(&c, 0, sizeof(c));
+    memset(&a, 0, sizeof(a));
+    c.mask = mask;
+    c.lo = lo;
+    c.span = span;
+    c.map = NULL;
+    a.n_dead = cnt[0];
+    a.n_sat = cnt[1];
+    const uint32_t x = count_row_n_(row, w, &c, &a);
+    cnt[0] = a.n_dead;
+    cnt[1] = a.n_sat;
+    return x;
+}
+#endif
+
 static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
                        pft_pre_acc_t *acc)
 {
     const uint8_t *row = pft_frame_row(f, y);
-    for (uint32_t x = 0; x < f->width; ++x) {
+#if defined(PFT_PRE_NEON_)
+    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_n_(row, f->width, c, acc) : 0u;
+#else
+    const uint32_t xa = 0u;
+#endif
+    for (uint32_t x = xa; x < f->width; ++x) {
         const uint32_t v = pft_pre_raw_(row, x, c);
         if (!pft_pre_valid_(c, v, x, y)) {
             pft_pre_count_masked_(c, v, acc);
