@@ -971,6 +971,107 @@ static void test_count_rown_neon(void)
 #endif
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r);
+
+/* stale_anchor_res_'s loops as the library's plain form writes them (the clamped indices). */
+static void stale_res_ref(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    for (int32_t c = 0; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = 0; i < nr; ++i) {
+            m = a[i][c] > m ? a[i][c] : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+    }
+    for (int32_t x = ca; x <= cb; ++x) {
+        bool st = false;
+        for (int32_t i = xlo; i <= xhi; ++i) {
+            const int32_t j = x + k1 + i;
+            st = st || hm[j < 0 ? 0 : (j > sw - 1 ? sw - 1 : j)] != 0u;
+        }
+        r[x] = st ? PFT_RES16_MASKED : r[x];
+    }
+}
+#endif
+
+/* AArch64's stale columns of the anchored residual (pft_pre_stale_res_n_: the largest age of
+ * up to four rows per column in byte lanes, the residual's pixels masked 8 at a time where no
+ * tap index is clamped): known answers (one stale cell masks the pixels whose taps reach it, at
+ * the row's start, inside and at its end, n 255 masks nothing), then hm and the residual row
+ * equal to the plain loops' on 600 random cases (1 .. 4 rows, tap ranges -1 .. 2, shifts k1
+ * -1 .. 2, rows of 1 .. 40 and 387 columns, ages 0 .. 127 and 255 around n). */
+static void test_stale_res_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { SW = 387, RW = 384 };
+    static uint8_t ag[4][SW], hm[SW], hw[SW];
+    static int16_t r[RW], rw[RW];
+    const uint8_t *a[4] = {ag[0], ag[1], ag[2], ag[3]};
+    memset(ag, 0, sizeof(ag));
+    ag[1][0] = 40u;   /* column 0: pixels x with x + 1 + i = 0: x = -1 - i, i.e. x 0 at i = -1 */
+    ag[2][100] = 33u; /* column 100: x 97 .. 100 (taps -1 .. 2, k1 1) */
+    ag[0][386] = 90u; /* the last column: x 383 (the row ends there) */
+    ag[3][200] = 32u; /* not above n: none */
+    for (int32_t x = 0; x < RW; ++x) {
+        r[x] = (int16_t)x;
+    }
+    pft_pre_stale_res_n_(a, 4, SW, 32u, hm, 1, -1, 2, 0, RW - 1, r);
+    for (int32_t x = 0; x < RW; ++x) {
+        const bool st = x == 0 || (x >= 97 && x <= 100) || x >= 383;
+        TEST_ASSERT_EQUAL_INT16(st ? PFT_RES16_MASKED : (int16_t)x, r[x]);
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, hm[100]);
+    TEST_ASSERT_EQUAL_UINT8(0u, hm[200]);
+    for (int32_t x = 0; x < RW; ++x) {
+        r[x] = (int16_t)x;
+    }
+    pft_pre_stale_res_n_(a, 4, SW, 255u, hm, 1, -1, 2, 0, RW - 1, r); /* nothing above 255 */
+    for (int32_t x = 0; x < RW; ++x) {
+        TEST_ASSERT_EQUAL_INT16((int16_t)x, r[x]);
+    }
+    uint32_t cases = 0u, masked = 0u;
+    for (int32_t t = 0; t < 600; ++t) {
+        const int32_t nr = 1 + t % 4;
+        const int32_t sw = t % 3 == 0 ? SW : 4 + (int32_t)(pft_test_xorshift32(&g_rs) % 37u);
+        const int32_t w = sw - 3;
+        const uint32_t n = (t / 4) % 5 == 4 ? 300u : 30u + pft_test_xorshift32(&g_rs) % 8u;
+        const int32_t xlo = -(int32_t)(pft_test_xorshift32(&g_rs) % 2u);
+        const int32_t xhi = xlo + (int32_t)(pft_test_xorshift32(&g_rs) % (uint32_t)(4 + xlo));
+        const int32_t k1 = (int32_t)(pft_test_xorshift32(&g_rs) % 4u) - 1;
+        const int32_t ca = (int32_t)(pft_test_xorshift32(&g_rs) % 3u);
+        const int32_t cb = w - 1 - (int32_t)(pft_test_xorshift32(&g_rs) % 3u);
+        for (int32_t i = 0; i < 4; ++i) {
+            for (int32_t c = 0; c < SW; ++c) {
+                const uint32_t v = pft_test_xorshift32(&g_rs);
+                ag[i][c] = (uint8_t)((v & 31u) == 0u ? 30u + (v >> 8) % 10u : ((v & 255u) == 1u ? 255u : (v >> 8) % 30u));
+            }
+        }
+        for (int32_t x = 0; x < RW; ++x) {
+            r[x] = (int16_t)pft_test_xorshift32(&g_rs);
+            rw[x] = r[x];
+        }
+        memset(hm, 7, sizeof(hm));
+        memset(hw, 7, sizeof(hw));
+        stale_res_ref(a, nr, sw, n, hw, k1, xlo, xhi, ca, cb, rw);
+        pft_pre_stale_res_n_(a, nr, sw, n, hm, k1, xlo, xhi, ca, cb, r);
+        TEST_ASSERT_EQUAL_UINT8_ARRAY(hw, hm, SW);
+        TEST_ASSERT_EQUAL_INT16_ARRAY(rw, r, RW);
+        for (int32_t x = ca; x <= cb; ++x) {
+            masked += r[x] == PFT_RES16_MASKED ? 1u : 0u;
+        }
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(600u, cases);
+    TEST_ASSERT_TRUE(masked > 0u);
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loops");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -985,5 +1086,6 @@ int main(void)
     RUN_TEST(test_view_h32_neon);
     RUN_TEST(test_lk_rown_neon);
     RUN_TEST(test_count_rown_neon);
+    RUN_TEST(test_stale_res_neon);
     return UNITY_END();
 }

@@ -187,6 +187,10 @@ int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *b
  * (pre_temporal.c). */
 uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
                              uint32_t cnt[2]);
+/* bg_stale_reinit with bg_anchor: the stale columns of nr (1 .. 4) age rows (hm) and the
+ * residual row's pixels [ca, cb] they mask (stale_anchor_res_'s NEON form, pre_temporal.c). */
+void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r);
 #endif
 
 /* Integer square root of a 64-bit value (floor). */

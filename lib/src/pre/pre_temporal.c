@@ -2400,6 +2400,62 @@ static void stale_plain_row_(pft_pre_t *p, int32_t y, const int32_t *zl, uint16_
  * taps of non-zero weight (grid rows r0 - 1 + i, columns x + k - 1 + i, storage + 1) reach a
  * cell older than n is masked. Nothing to do when those rows hold no such cell (srow: an upper
  * bound of each grid row's largest age). */
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), stale_anchor_res_'s two loops for nr (1 .. 4) age rows a[0 .. nr - 1]
+ * (the rows rlo .. rhi of the read, clamped): hm[c] = 1 where the largest of a[.][c] exceeds n,
+ * else 0, for c in [0, sw), 16 columns at a time (the byte maximum and compare; n above 255
+ * is 255 for the compare: ages are bytes); then r[x] = PFT_RES16_MASKED for x in [ca, cb] where
+ * hm[x + k1 + i] is set for an i in [xlo, xhi], 8 pixels at a time where no index needs the
+ * clamp to [0, sw - 1], the others as the loop. */
+static void stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                         int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    const uint8x16_t vn = vdupq_n_u8((uint8_t)(n > 255u ? 255u : n)), one = vdupq_n_u8(1u);
+    int32_t c = 0;
+    for (; c + 16 <= sw; c += 16) {
+        uint8x16_t m = vld1q_u8(a[0] + c);
+        for (int32_t i = 1; i < nr; ++i) {
+            m = vmaxq_u8(m, vld1q_u8(a[i] + c));
+        }
+        vst1q_u8(hm + c, vandq_u8(vcgtq_u8(m, vn), one));
+    }
+    for (; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = 0; i < nr; ++i) {
+            m = a[i][c] > m ? a[i][c] : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+    }
+    const int16x8_t vmk = vdupq_n_s16((int16_t)PFT_RES16_MASKED);
+    int32_t x = ca;
+    while (x <= cb) {
+        if (x + k1 + xlo >= 0 && x + 7 <= cb && x + 7 + k1 + xhi <= sw - 1) {
+            uint8x8_t o = vld1_u8(hm + x + k1 + xlo);
+            for (int32_t i = xlo + 1; i <= xhi; ++i) {
+                o = vorr_u8(o, vld1_u8(hm + x + k1 + i));
+            }
+            const uint16x8_t o16 = vmovl_u8(o);
+            vst1q_s16(r + x, vbslq_s16(vtstq_u16(o16, o16), vmk, vld1q_s16(r + x)));
+            x += 8;
+        } else {
+            bool st = false;
+            for (int32_t i = xlo; i <= xhi; ++i) {
+                st = st || hm[clampi_(x + k1 + i, 0, sw - 1)] != 0u;
+            }
+            r[x] = st ? PFT_RES16_MASKED : r[x];
+            x++;
+        }
+    }
+}
+
+/* stale_res_n_ for a test (the same arguments). */
+void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    stale_res_n_(a, nr, sw, n, hm, k1, xlo, xhi, ca, cb, r);
+}
+#endif
+
 static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, int32_t r0,
                               int32_t ca, int32_t cb, uint32_t n, int16_t *r)
 {
@@ -2413,6 +2469,16 @@ static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, in
         return;
     }
     uint8_t *hm = p->sline;
+#if defined(PFT_PRE_NEON_)
+    if (gy->rlo <= gy->rhi && gy->rhi - gy->rlo < 4 && gx->rlo <= gx->rhi) {
+        const uint8_t *a[4] = {NULL, NULL, NULL, NULL};
+        for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
+            a[i - gy->rlo] = p->sage + (size_t)clampi_(r0 + i + 1, 0, h + 2) * (size_t)sw;
+        }
+        stale_res_n_(a, gy->rhi - gy->rlo + 1, sw, n, hm, gx->k + 1, gx->rlo, gx->rhi, ca, cb, r);
+        return;
+    }
+#endif
     for (int32_t c = 0; c < sw; ++c) {
         uint32_t m = 0u;
         for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
