@@ -789,6 +789,289 @@ static void test_view_h32_neon(void)
 #endif
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
+
+/* The registration's plain loop (lk_loop_ on a U16 frame) over samples 0, st, ..., below ie of
+ * one row, in 64-bit arithmetic. */
+static void lk_row_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                       const uint32_t par[6], int32_t st, int32_t ie, int64_t sums[6], uint32_t *cnt)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    const int64_t fx = par[4], fy = par[5];
+    for (int32_t i = 0; i < ie; i += st) {
+        const uint32_t v = z[i] & par[0];
+        if (v - par[1] >= par[2]) {
+            continue;
+        }
+        const int64_t h0 = b0[i + 1] * (256 - fx) + b0[i + 2] * fx, h1 = b1[i + 1] * (256 - fx) + b1[i + 2] * fx;
+        const int64_t bw = (h0 * (256 - fy) + h1 * fy + 32768) >> 16;
+        const int64_t e = ((int64_t)v << par[3]) - cz[i] - bw;
+        const int64_t gx = ((int64_t)b0[i + 3] - b0[i]) + ((int64_t)b1[i + 3] - b1[i]);
+        const int64_t gy = ((int64_t)b2[i + 1] - bm[i + 1]) + ((int64_t)b2[i + 2] - bm[i + 2]);
+        sums[0] += gx * gx;
+        sums[1] += gx * gy;
+        sums[2] += gy * gy;
+        sums[3] += gx * e;
+        sums[4] += gy * e;
+        sums[5] += e * e;
+        (*cnt)++;
+    }
+}
+#endif
+
+/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_rown_, steps 2 and 4: four
+ * samples of each whole block of 4 st pixels, an invalid sample's terms 0): known answers (a
+ * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a
+ * masked sample, the samples after the last whole block left), then the sums, the count and
+ * the samples done equal to the plain loop's in 64-bit arithmetic on 800 random rows, both
+ * steps (bit depths 12 .. 16 with their bf, random lo, span, fractions 0 .. 255, colnow within
+ * +-2^20, backgrounds random or at 0 and 65535, rows of 0 .. 40 and 360 pixels). */
+static void test_lk_rown_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { NX = 400, BS = 408 };
+    static uint16_t z[NX], bg[4 * BS];
+    static int32_t cz[NX];
+    static uint8_t rz[2 * NX];
+    for (int32_t r = 0; r < 4; ++r) {
+        for (int32_t c = 0; c < BS; ++c) {
+            bg[r * BS + c] = (uint16_t)(10 * c + 1000 * r);
+        }
+    }
+    for (int32_t i = 0; i < NX; ++i) {
+        z[i] = 5000u;
+        cz[i] = 0;
+    }
+    memcpy(rz, z, sizeof(z));
+    const uint32_t par[6] = {0xFFFFu, 1u, 65535u, 0u, 0u, 0u};
+    int64_t s[6] = {0, 0, 0, 0, 0, 0};
+    uint32_t n = 0u;
+    /* n 14: samples 0 .. 6 in the block (8 + 7 > 14), e = 5000 - (1000 + 10 (i + 1)) */
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    const int64_t k_all[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15840, 6000 * 15840, 62728400};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_all, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    z[2] = 0u; /* below lo: sample 2 (e 3970) masked */
+    memcpy(rz, z, sizeof(z));
+    memset(s, 0, sizeof(s));
+    n = 7u; /* added to */
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    const int64_t k_one[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11870, 6000 * 11870, 46967500};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_one, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(10u, n);
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(10u, n);
+    /* step 4, n 30: samples 0, 4, 8, 12 (16 + 15 > 30; pixel 2, masked, is not a sample) */
+    memset(s, 0, sizeof(s));
+    n = 0u;
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 30, s, &n));
+    const int64_t k_st4[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15720, 6000 * 15720, 61787600};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_st4, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    uint32_t cases = 0u, masked = 0u;
+    for (int32_t t = 0; t < 800; ++t) {
+        const int32_t st = t < 400 ? 2 : 4;
+        const uint32_t bits = 12u + (uint32_t)t % 5u;
+        const uint32_t lo = pft_test_xorshift32(&g_rs) % 64u, span = (1u << bits) - lo - pft_test_xorshift32(&g_rs) % 64u;
+        const uint32_t pr[6] = {(1u << bits) - 1u, lo, span, 16u - bits, pft_test_xorshift32(&g_rs) % 256u,
+                                pft_test_xorshift32(&g_rs) % 256u};
+        const int32_t ns = t % 400 < 370 ? t % 41 : 360;
+        const int32_t kind = (t / 5) % 3;
+        for (int32_t i = 0; i < NX; ++i) {
+            z[i] = (uint16_t)pft_test_xorshift32(&g_rs); /* bits above the depth too */
+            cz[i] = (int32_t)(pft_test_xorshift32(&g_rs) % 2097153u) - 1048576;
+        }
+        for (int32_t i = 0; i < 4 * BS; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            bg[i] = kind == 0 ? (uint16_t)r : (kind == 1 ? ((r & 1u) != 0u ? 65535u : 0u) : (uint16_t)(65535u - r % 8u));
+        }
+        memcpy(rz, z, sizeof(z));
+        int64_t got[6] = {1, -2, 3, -4, 5, -6}, want[6] = {1, -2, 3, -4, 5, -6};
+        uint32_t gn = 3u, wn = 3u;
+        const int32_t ie = (ns + 1) / (4 * st) * (4 * st);
+        lk_row_ref(z, cz, bg, BS, pr, st, ie, want, &wn);
+        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rown_(rz, cz, bg, BS, pr, st, ns, got, &gn));
+        TEST_ASSERT_EQUAL_INT64_ARRAY(want, got, 6);
+        TEST_ASSERT_EQUAL_UINT32(wn, gn);
+        masked += (uint32_t)(ie / st) - (wn - 3u);
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(800u, cases);
+    TEST_ASSERT_TRUE(masked > 0u); /* the invalid samples were reached */
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loop");
+#endif
+}
+
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
+#endif
+
+/* AArch64's count of a row's masked pixels by cause in NEON lanes (pft_pre_count_rown_, the
+ * whole blocks of 8 pixels of a U16 row without a bad-pixel map): known answers (dead below lo,
+ * saturated at lo + span and above, bits above the depth ignored, the pixels after the last
+ * whole block left), then the counts and the pixels done equal to the plain rule (v - lo >=
+ * span: dead if v < lo, else saturated) on 300 random rows (depths 12 .. 16, random lo and
+ * span, rows of 0 .. 40 and 384 pixels, values near lo and lo + span). */
+static void test_count_rown_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { NX = 384 };
+    static uint16_t z[NX];
+    static uint8_t rz[2 * NX];
+    /* depth 14 (mask 16383), lo 100, span 16000: valid 100 .. 16099 */
+    const uint16_t k_row[20] = {99u, 100u, 16099u, 16100u, 16383u, 0u, 16384u + 50u, 16384u + 500u,
+                                5u, 16200u, 7u, 7u, 7u, 7u, 7u, 7u, 0u, 0u, 0u, 0u};
+    memcpy(z, k_row, sizeof(k_row));
+    memcpy(rz, z, sizeof(k_row));
+    uint32_t cnt[2] = {10u, 20u}; /* added to */
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rown_(rz, 20u, 16383u, 100u, 16000u, cnt));
+    /* dead: 99, 0, 50 (16434 & 16383), 5, six 7s: 10; saturated: 16100, 16383, 16200: 3;
+     * 100, 16099 and 500 (16884 & 16383) valid; pixels 16 .. 19 left */
+    TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(23u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rown_(rz, 7u, 16383u, 100u, 16000u, cnt)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
+    uint32_t cases = 0u, nd = 0u, ns = 0u;
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t bits = 12u + (uint32_t)t % 5u, mask = (1u << bits) - 1u;
+        const uint32_t lo = pft_test_xorshift32(&g_rs) % 300u;
+        const uint32_t span = (1u << bits) - lo - pft_test_xorshift32(&g_rs) % 300u;
+        const uint32_t w = t < 280 ? (uint32_t)t % 41u : NX;
+        for (uint32_t i = 0; i < NX; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            z[i] = (uint16_t)((r & 3u) == 0u ? r >> 16 : ((r & 3u) == 1u ? lo + (r >> 8) % 5u - 2u : lo + span + (r >> 8) % 5u - 2u));
+        }
+        memcpy(rz, z, sizeof(z));
+        uint32_t got[2] = {3u, 4u}, want[2] = {3u, 4u};
+        const uint32_t xe = w / 8u * 8u;
+        for (uint32_t i = 0; i < xe; ++i) {
+            const uint32_t v = z[i] & mask;
+            if (v - lo >= span) {
+                want[v < lo ? 0 : 1]++;
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rown_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
+        nd += want[0] - 3u;
+        ns += want[1] - 4u;
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(300u, cases);
+    TEST_ASSERT_TRUE(nd > 0u && ns > 0u); /* both causes reached */
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loop");
+#endif
+}
+
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r);
+
+/* stale_anchor_res_'s loops as the library's plain form writes them (the clamped indices). */
+static void stale_res_ref(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    for (int32_t c = 0; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = 0; i < nr; ++i) {
+            m = a[i][c] > m ? a[i][c] : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+    }
+    for (int32_t x = ca; x <= cb; ++x) {
+        bool st = false;
+        for (int32_t i = xlo; i <= xhi; ++i) {
+            const int32_t j = x + k1 + i;
+            st = st || hm[j < 0 ? 0 : (j > sw - 1 ? sw - 1 : j)] != 0u;
+        }
+        r[x] = st ? PFT_RES16_MASKED : r[x];
+    }
+}
+#endif
+
+/* AArch64's stale columns of the anchored residual (pft_pre_stale_res_n_: the largest age of
+ * up to four rows per column in byte lanes, the residual's pixels masked 8 at a time where no
+ * tap index is clamped): known answers (one stale cell masks the pixels whose taps reach it, at
+ * the row's start, inside and at its end, n 255 masks nothing), then hm and the residual row
+ * equal to the plain loops' on 600 random cases (1 .. 4 rows, tap ranges -1 .. 2, shifts k1
+ * -1 .. 2, rows of 1 .. 40 and 387 columns, ages 0 .. 127 and 255 around n). */
+static void test_stale_res_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { SW = 387, RW = 384 };
+    static uint8_t ag[4][SW], hm[SW], hw[SW];
+    static int16_t r[RW], rw[RW];
+    const uint8_t *a[4] = {ag[0], ag[1], ag[2], ag[3]};
+    memset(ag, 0, sizeof(ag));
+    ag[1][0] = 40u;   /* column 0: pixels x with x + 1 + i = 0: x = -1 - i, i.e. x 0 at i = -1 */
+    ag[2][100] = 33u; /* column 100: x 97 .. 100 (taps -1 .. 2, k1 1) */
+    ag[0][386] = 90u; /* the last column: x 383 (the row ends there) */
+    ag[3][200] = 32u; /* not above n: none */
+    for (int32_t x = 0; x < RW; ++x) {
+        r[x] = (int16_t)x;
+    }
+    pft_pre_stale_res_n_(a, 4, SW, 32u, hm, 1, -1, 2, 0, RW - 1, r);
+    for (int32_t x = 0; x < RW; ++x) {
+        const bool st = x == 0 || (x >= 97 && x <= 100) || x >= 383;
+        TEST_ASSERT_EQUAL_INT16(st ? PFT_RES16_MASKED : (int16_t)x, r[x]);
+    }
+    TEST_ASSERT_EQUAL_UINT8(1u, hm[100]);
+    TEST_ASSERT_EQUAL_UINT8(0u, hm[200]);
+    for (int32_t x = 0; x < RW; ++x) {
+        r[x] = (int16_t)x;
+    }
+    pft_pre_stale_res_n_(a, 4, SW, 255u, hm, 1, -1, 2, 0, RW - 1, r); /* nothing above 255 */
+    for (int32_t x = 0; x < RW; ++x) {
+        TEST_ASSERT_EQUAL_INT16((int16_t)x, r[x]);
+    }
+    uint32_t cases = 0u, masked = 0u;
+    for (int32_t t = 0; t < 600; ++t) {
+        const int32_t nr = 1 + t % 4;
+        const int32_t sw = t % 3 == 0 ? SW : 4 + (int32_t)(pft_test_xorshift32(&g_rs) % 37u);
+        const int32_t w = sw - 3;
+        const uint32_t n = (t / 4) % 5 == 4 ? 300u : 30u + pft_test_xorshift32(&g_rs) % 8u;
+        const int32_t xlo = -(int32_t)(pft_test_xorshift32(&g_rs) % 2u);
+        const int32_t xhi = xlo + (int32_t)(pft_test_xorshift32(&g_rs) % (uint32_t)(4 + xlo));
+        const int32_t k1 = (int32_t)(pft_test_xorshift32(&g_rs) % 4u) - 1;
+        const int32_t ca = (int32_t)(pft_test_xorshift32(&g_rs) % 3u);
+        const int32_t cb = w - 1 - (int32_t)(pft_test_xorshift32(&g_rs) % 3u);
+        for (int32_t i = 0; i < 4; ++i) {
+            for (int32_t c = 0; c < SW; ++c) {
+                const uint32_t v = pft_test_xorshift32(&g_rs);
+                ag[i][c] = (uint8_t)((v & 31u) == 0u ? 30u + (v >> 8) % 10u : ((v & 255u) == 1u ? 255u : (v >> 8) % 30u));
+            }
+        }
+        for (int32_t x = 0; x < RW; ++x) {
+            r[x] = (int16_t)pft_test_xorshift32(&g_rs);
+            rw[x] = r[x];
+        }
+        memset(hm, 7, sizeof(hm));
+        memset(hw, 7, sizeof(hw));
+        stale_res_ref(a, nr, sw, n, hw, k1, xlo, xhi, ca, cb, rw);
+        pft_pre_stale_res_n_(a, nr, sw, n, hm, k1, xlo, xhi, ca, cb, r);
+        TEST_ASSERT_EQUAL_UINT8_ARRAY(hw, hm, SW);
+        TEST_ASSERT_EQUAL_INT16_ARRAY(rw, r, RW);
+        for (int32_t x = ca; x <= cb; ++x) {
+            masked += r[x] == PFT_RES16_MASKED ? 1u : 0u;
+        }
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(600u, cases);
+    TEST_ASSERT_TRUE(masked > 0u);
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loops");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -801,5 +1084,8 @@ int main(void)
     RUN_TEST(test_gate_clip_split_and_plain);
     RUN_TEST(test_view_rows_sse2);
     RUN_TEST(test_view_h32_neon);
+    RUN_TEST(test_lk_rown_neon);
+    RUN_TEST(test_count_rown_neon);
+    RUN_TEST(test_stale_res_neon);
     return UNITY_END();
 }

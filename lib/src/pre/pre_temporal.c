@@ -260,6 +260,154 @@ static void warp_q8_(uint32_t f, bool cubic, int32_t w[4])
     w[3] = 0;
 }
 
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), lk_loop_'s sums (a U16 frame without a bad-pixel map) four samples at a
+ * time in 32-bit lanes: the same gx, gy, e as the loop in int32 (the bilinear sample
+ * bw = (h0 gy0 + h1 fy + 32768) >> 16 is below 2^32 before the shift, so the rounding
+ * narrowing rshrn gives it), an invalid sample's gx, gy, e set to 0 instead of skipped (its
+ * products add 0), the products summed in 64-bit lanes (smlal): integer sums in another order,
+ * the same totals. par: mask, lo, span, bf, fx, fy. */
+typedef struct {
+    uint16x4_t vm, vgx0, vfx;
+    uint32x4_t vlo, vspan, vgy0, vfy;
+    int32x4_t vbf;
+} lk_npar_t;
+
+typedef struct {
+    int64x2_t sxx, sxy, syy, sxe, sye, see;
+    uint32x4_t n;
+} lk_nacc_t;
+
+static inline void lk_npar_(const uint32_t par[6], lk_npar_t *q, lk_nacc_t *a)
+{
+    q->vm = vdup_n_u16((uint16_t)(par[0] & 0xFFFFu));
+    q->vlo = vdupq_n_u32(par[1]);
+    q->vspan = vdupq_n_u32(par[2]);
+    q->vbf = vdupq_n_s32((int32_t)par[3]);
+    q->vgx0 = vdup_n_u16((uint16_t)(256u - par[4]));
+    q->vfx = vdup_n_u16((uint16_t)par[4]);
+    q->vgy0 = vdupq_n_u32(256u - par[5]);
+    q->vfy = vdupq_n_u32(par[5]);
+    a->sxx = vdupq_n_s64(0);
+    a->sxy = a->sxx;
+    a->syy = a->sxx;
+    a->sxe = a->sxx;
+    a->sye = a->sxx;
+    a->see = a->sxx;
+    a->n = vdupq_n_u32(0u);
+}
+
+/* The taps of four samples: t0 .. t3 = b0[i], b0[i + 1], b0[i + 2], b0[i + 3] of each, u0 .. u3
+ * the same of b1, m1, m2 = bm[i + 1], bm[i + 2], d1, d2 = b2[i + 1], b2[i + 2] (values, not an
+ * array: gcc 12 keeps an array of vectors on the stack). */
+typedef struct {
+    uint16x4_t t0, t1, t2, t3, u0, u1, u2, u3, m1, m2, d1, d2;
+} lk_ntaps_t;
+
+/* Four samples: raw their pixels, k their taps, czv colnow. */
+static inline void lk_block_n_(const lk_npar_t *q, uint16x4_t raw, lk_ntaps_t k, int32x4_t czv, lk_nacc_t *a)
+{
+    const uint32x4_t v = vmovl_u16(vand_u16(raw, q->vm));
+    const uint32x4_t ok = vcltq_u32(vsubq_u32(v, q->vlo), q->vspan);
+    const int32x4_t okm = vreinterpretq_s32_u32(ok);
+    const uint32x4_t h0 = vmlal_u16(vmull_u16(k.t1, q->vgx0), k.t2, q->vfx);
+    const uint32x4_t h1 = vmlal_u16(vmull_u16(k.u1, q->vgx0), k.u2, q->vfx);
+    const uint16x4_t bw = vrshrn_n_u32(vmlaq_u32(vmulq_u32(h0, q->vgy0), h1, q->vfy), 16);
+    const int32x4_t e = vandq_s32(vsubq_s32(vreinterpretq_s32_u32(vsubw_u16(vshlq_u32(v, q->vbf), bw)), czv), okm);
+    const int32x4_t gx = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(k.t3, k.t0), vsubl_u16(k.u3, k.u0))), okm);
+    const int32x4_t gy = vandq_s32(vreinterpretq_s32_u32(vaddq_u32(vsubl_u16(k.d1, k.m1), vsubl_u16(k.d2, k.m2))), okm);
+    const int32x2_t gxl = vget_low_s32(gx), gyl = vget_low_s32(gy), el = vget_low_s32(e);
+    a->n = vsubq_u32(a->n, ok);
+    a->sxx = vmlal_high_s32(vmlal_s32(a->sxx, gxl, gxl), gx, gx);
+    a->sxy = vmlal_high_s32(vmlal_s32(a->sxy, gxl, gyl), gx, gy);
+    a->syy = vmlal_high_s32(vmlal_s32(a->syy, gyl, gyl), gy, gy);
+    a->sxe = vmlal_high_s32(vmlal_s32(a->sxe, gxl, el), gx, e);
+    a->sye = vmlal_high_s32(vmlal_s32(a->sye, gyl, el), gy, e);
+    a->see = vmlal_high_s32(vmlal_s32(a->see, el, el), e, e);
+}
+
+static inline void lk_nsum_(const lk_nacc_t *a, lk_sums_t *s)
+{
+    s->sxx += vaddvq_s64(a->sxx);
+    s->sxy += vaddvq_s64(a->sxy);
+    s->syy += vaddvq_s64(a->syy);
+    s->sxe += vaddvq_s64(a->sxe);
+    s->sye += vaddvq_s64(a->sye);
+    s->see += vaddvq_s64(a->see);
+    s->n += vaddvq_u32(a->n);
+}
+
+/* Step 2: samples i, i + 2, i + 4, i + 6 of a row for i = 0, 8, 16, ... while i + 7 <= n (the
+ * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
+ * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
+ * loop. */
+static inline int32_t lk_row2n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_npar_t q;
+    lk_nacc_t a;
+    lk_npar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 7 <= n; i += 8) {
+        const uint16x8_t r16 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i));
+        const uint16x4x2_t p0 = vld2_u16(b0 + i), q0 = vld2_u16(b0 + i + 2); /* b0[i .. i + 3] */
+        const uint16x4x2_t p1 = vld2_u16(b1 + i), q1 = vld2_u16(b1 + i + 2);
+        const uint16x4x2_t pm = vld2_u16(bm + i + 1), p2 = vld2_u16(b2 + i + 1); /* [i + 1], [i + 2] */
+        const lk_ntaps_t k = {p0.val[0], p0.val[1], q0.val[0], q0.val[1], p1.val[0], p1.val[1],
+                              q1.val[0], q1.val[1], pm.val[0], pm.val[1], p2.val[0], p2.val[1]};
+        lk_block_n_(&q, vget_low_u16(vuzp1q_u16(r16, r16)), k, vld2q_s32(cz + i).val[0], &a);
+    }
+    lk_nsum_(&a, s);
+    return i;
+}
+
+/* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
+ * i = 0, 16, 32, ... while i + 15 <= n (reads pixels, colnow and the background's row
+ * columns to i + 15, inside the loop's own reads for samples up to n). */
+static inline int32_t lk_row4n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_npar_t q;
+    lk_nacc_t a;
+    lk_npar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 15 <= n; i += 16) {
+        const uint16x8_t r0 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i));
+        const uint16x8_t r1 = vreinterpretq_u16_u8(vld1q_u8(rz + 2 * i + 16));
+        const uint16x8_t r02 = vuzp1q_u16(r0, r1); /* pixels i, i + 2, ..., i + 14 */
+        const uint16x4x4_t p0 = vld4_u16(b0 + i), p1 = vld4_u16(b1 + i); /* [i .. i + 3] */
+        const uint16x4x4_t pm = vld4_u16(bm + i), p2 = vld4_u16(b2 + i);
+        const lk_ntaps_t k = {p0.val[0], p0.val[1], p0.val[2], p0.val[3], p1.val[0], p1.val[1],
+                              p1.val[2], p1.val[3], pm.val[1], pm.val[2], p2.val[1], p2.val[2]};
+        lk_block_n_(&q, vget_low_u16(vuzp1q_u16(r02, r02)), k, vld4q_s32(cz + i).val[0], &a);
+    }
+    lk_nsum_(&a, s);
+    return i;
+}
+
+/* lk_row2n_ (st 2) or lk_row4n_ (st 4) for a test: the sums of a row's samples 0, st, 2 st,
+ * ..., up to the last whole block of four (rz: the row's pixels from the first sample, cz:
+ * colnow from it, bm: the background's row y + ky - 1 from column c0 with stride bs, par: mask,
+ * lo, span, bf, fx, fy); sums: sxx, sxy, syy, sxe, sye, see added to, *cnt likewise; returns
+ * the first sample left. */
+int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt)
+{
+    lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
+    const int32_t i = st == 4 ? lk_row4n_(rz, cz, bm, bs, par, n, &a) : lk_row2n_(rz, cz, bm, bs, par, n, &a);
+    sums[0] = a.sxx;
+    sums[1] = a.sxy;
+    sums[2] = a.syy;
+    sums[3] = a.sxe;
+    sums[4] = a.sye;
+    sums[5] = a.see;
+    *cnt = a.n;
+    return i;
+}
+#endif
+
 /* One pass of sums over the sampled pixels whose taps are inside the image. The gradient of
  * the 2 x 2 cell of the bilinear taps is taken across it, from the columns (rows) just
  * outside: gx = b[.][x0 + 2] - b[.][x0 - 1] summed over the cell's two rows, 6 times the
@@ -294,7 +442,19 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
          * the last tap column are in [0, w - 1]) */
         const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
         const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
-        for (int32_t i = 0; i <= xb - x0; i += st) {
+#if defined(PFT_PRE_NEON_)
+        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2 or 4, plain) */
+        const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
+        int32_t ia = 0;
+        if (plain && st == 2) {
+            ia = lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc);
+        } else if (plain && st == 4) {
+            ia = lk_row4n_(rz, cz, bm, bs, par, xb - x0, &acc);
+        }
+#else
+        const int32_t ia = 0;
+#endif
+        for (int32_t i = ia; i <= xb - x0; i += st) {
             uint32_t v;
             if (plain) {
                 uint16_t raw;
@@ -745,11 +905,62 @@ static void count_span_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y
 }
 
 /* Counts the masked pixels of row y by cause (rows with masked pixels only). */
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), count_row_ of a U16 frame without a bad-pixel map for pixels
+ * 0 .. 8 (w / 8) - 1 in 32-bit lanes: a pixel v (masked by mask) is counted iff
+ * v - lo >= span (unsigned), dead if v < lo, else saturated (pft_pre_count_masked_ without
+ * the map's case). Adds to n_dead, n_sat; returns the first pixel left to the loop. */
+static uint32_t count_row_n_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+{
+    const uint16x8_t vm = vdupq_n_u16((uint16_t)(c->mask & 0xFFFFu));
+    const uint32x4_t vlo = vdupq_n_u32(c->lo), vspan = vdupq_n_u32(c->span);
+    uint32x4_t nd = vdupq_n_u32(0u), ns = nd;
+    uint32_t x = 0u;
+    for (; x + 8u <= w; x += 8u) {
+        const uint16x8_t v16 = vandq_u16(vreinterpretq_u16_u8(vld1q_u8(row + 2u * x)), vm);
+        const uint32x4_t va = vmovl_u16(vget_low_u16(v16)), vb = vmovl_high_u16(v16);
+        const uint32x4_t ma = vcgeq_u32(vsubq_u32(va, vlo), vspan), mb = vcgeq_u32(vsubq_u32(vb, vlo), vspan);
+        const uint32x4_t da = vcltq_u32(va, vlo), db = vcltq_u32(vb, vlo);
+        nd = vsubq_u32(vsubq_u32(nd, vandq_u32(ma, da)), vandq_u32(mb, db));
+        ns = vsubq_u32(vsubq_u32(ns, vbicq_u32(ma, da)), vbicq_u32(mb, db));
+    }
+    acc->n_dead += vaddvq_u32(nd);
+    acc->n_sat += vaddvq_u32(ns);
+    return x;
+}
+
+/* count_row_n_ for a test: pixels 0 .. 8 (w / 8) - 1 of a U16 row (mask, lo, span); adds to
+ * cnt[0] (dead) and cnt[1] (saturated); returns the pixels done. */
+uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2])
+{
+    pft_pre_cls_t c;
+    pft_pre_acc_t a;
+    memset(&c, 0, sizeof(c));
+    memset(&a, 0, sizeof(a));
+    c.mask = mask;
+    c.lo = lo;
+    c.span = span;
+    c.map = NULL;
+    a.n_dead = cnt[0];
+    a.n_sat = cnt[1];
+    const uint32_t x = count_row_n_(row, w, &c, &a);
+    cnt[0] = a.n_dead;
+    cnt[1] = a.n_sat;
+    return x;
+}
+#endif
+
 static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
                        pft_pre_acc_t *acc)
 {
     const uint8_t *row = pft_frame_row(f, y);
-    for (uint32_t x = 0; x < f->width; ++x) {
+#if defined(PFT_PRE_NEON_)
+    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_n_(row, f->width, c, acc) : 0u;
+#else
+    const uint32_t xa = 0u;
+#endif
+    for (uint32_t x = xa; x < f->width; ++x) {
         const uint32_t v = pft_pre_raw_(row, x, c);
         if (!pft_pre_valid_(c, v, x, y)) {
             pft_pre_count_masked_(c, v, acc);
@@ -2189,6 +2400,62 @@ static void stale_plain_row_(pft_pre_t *p, int32_t y, const int32_t *zl, uint16_
  * taps of non-zero weight (grid rows r0 - 1 + i, columns x + k - 1 + i, storage + 1) reach a
  * cell older than n is masked. Nothing to do when those rows hold no such cell (srow: an upper
  * bound of each grid row's largest age). */
+#if defined(PFT_PRE_NEON_)
+/* With NEON (AArch64), stale_anchor_res_'s two loops for nr (1 .. 4) age rows a[0 .. nr - 1]
+ * (the rows rlo .. rhi of the read, clamped): hm[c] = 1 where the largest of a[.][c] exceeds n,
+ * else 0, for c in [0, sw), 16 columns at a time (the byte maximum and compare; n above 255
+ * is 255 for the compare: ages are bytes); then r[x] = PFT_RES16_MASKED for x in [ca, cb] where
+ * hm[x + k1 + i] is set for an i in [xlo, xhi], 8 pixels at a time where no index needs the
+ * clamp to [0, sw - 1], the others as the loop. */
+static void stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                         int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    const uint8x16_t vn = vdupq_n_u8((uint8_t)(n > 255u ? 255u : n)), one = vdupq_n_u8(1u);
+    int32_t c = 0;
+    for (; c + 16 <= sw; c += 16) {
+        uint8x16_t m = vld1q_u8(a[0] + c);
+        for (int32_t i = 1; i < nr; ++i) {
+            m = vmaxq_u8(m, vld1q_u8(a[i] + c));
+        }
+        vst1q_u8(hm + c, vandq_u8(vcgtq_u8(m, vn), one));
+    }
+    for (; c < sw; ++c) {
+        uint32_t m = 0u;
+        for (int32_t i = 0; i < nr; ++i) {
+            m = a[i][c] > m ? a[i][c] : m;
+        }
+        hm[c] = (uint8_t)(m > n ? 1u : 0u);
+    }
+    const int16x8_t vmk = vdupq_n_s16((int16_t)PFT_RES16_MASKED);
+    int32_t x = ca;
+    while (x <= cb) {
+        if (x + k1 + xlo >= 0 && x + 7 <= cb && x + 7 + k1 + xhi <= sw - 1) {
+            uint8x8_t o = vld1_u8(hm + x + k1 + xlo);
+            for (int32_t i = xlo + 1; i <= xhi; ++i) {
+                o = vorr_u8(o, vld1_u8(hm + x + k1 + i));
+            }
+            const uint16x8_t o16 = vmovl_u8(o);
+            vst1q_s16(r + x, vbslq_s16(vtstq_u16(o16, o16), vmk, vld1q_s16(r + x)));
+            x += 8;
+        } else {
+            bool st = false;
+            for (int32_t i = xlo; i <= xhi; ++i) {
+                st = st || hm[clampi_(x + k1 + i, 0, sw - 1)] != 0u;
+            }
+            r[x] = st ? PFT_RES16_MASKED : r[x];
+            x++;
+        }
+    }
+}
+
+/* stale_res_n_ for a test (the same arguments). */
+void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
+                          int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r)
+{
+    stale_res_n_(a, nr, sw, n, hm, k1, xlo, xhi, ca, cb, r);
+}
+#endif
+
 static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, int32_t r0,
                               int32_t ca, int32_t cb, uint32_t n, int16_t *r)
 {
@@ -2202,6 +2469,16 @@ static void stale_anchor_res_(pft_pre_t *p, const agx_t *gx, const agx_t *gy, in
         return;
     }
     uint8_t *hm = p->sline;
+#if defined(PFT_PRE_NEON_)
+    if (gy->rlo <= gy->rhi && gy->rhi - gy->rlo < 4 && gx->rlo <= gx->rhi) {
+        const uint8_t *a[4] = {NULL, NULL, NULL, NULL};
+        for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
+            a[i - gy->rlo] = p->sage + (size_t)clampi_(r0 + i + 1, 0, h + 2) * (size_t)sw;
+        }
+        stale_res_n_(a, gy->rhi - gy->rlo + 1, sw, n, hm, gx->k + 1, gx->rlo, gx->rhi, ca, cb, r);
+        return;
+    }
+#endif
     for (int32_t c = 0; c < sw; ++c) {
         uint32_t m = 0u;
         for (int32_t i = gy->rlo; i <= gy->rhi; ++i) {
