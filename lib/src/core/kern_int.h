@@ -48,7 +48,7 @@
 
 #if !defined(PFT_NUMERIC_Q16) && defined(__SSE2__)
 #include <emmintrin.h>
-#elif defined(__aarch64__) && defined(__ARM_NEON)
+#elif !defined(PFT_NUMERIC_Q16) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
 #endif
 
@@ -81,21 +81,6 @@ static inline int32_t pft_kr16_intb_(const uint8_t *p)
     x = (int32_t)v;
     return x + (x == (int32_t)INT16_MIN ? 32768 : 0);
 }
-
-#if defined(__aarch64__) && defined(__ARM_NEON)
-/* AArch64 NEON (both number types' pft_kspot3_r16t_): a row of a RES16 window, its three
- * pixels read with a 32-bit and a 16-bit load into the lanes 0-2 of a vector of four 16-bit
- * lanes, lane 3 zero. */
-static inline int16x4_t pft_kr16_row3_(const uint8_t *q)
-{
-    uint32_t w;
-    uint16_t e;
-    memcpy(&w, q, 4u);
-    memcpy(&e, q + 4u, 2u);
-    /* little-endian lanes: z0 z1 in w, z2 in e, lane 3 zero */
-    return vreinterpret_s16_u64(vcreate_u64((uint64_t)w | ((uint64_t)e << 32)));
-}
-#endif
 
 #ifdef PFT_NUMERIC_Q16
 
@@ -368,53 +353,6 @@ static inline pft_real_t pft_kspot3_r16_(const uint8_t *p, size_t st, const pft_
     }
     return pft_kspot_end_(s1, tx[3], ty[3], a);
 }
-
-#if defined(__aarch64__) && defined(__ARM_NEON)
-/* pft_ktaps_ of both axes and pft_kspot3_r16_ in one (AArch64 NEON intrinsics, q16), the same
- * integers: the taps as one vector per axis, a + ((d r) >> 10) lane by lane (a 32-bit product,
- * an arithmetic shift and an addition: vsraq_n_s32, pft_ktaps_'s operations); the window's rows
- * read as in the float form (lanes 0-2, lane 3 zero), the masked value's 0 by a compare and a
- * bit clear, each lane widened to 32 bits. Row b's products tx_k v_k are exact in 64-bit lanes
- * (vmull_s32, vmlal_high_s32: lanes 0, 1 and 2, 3 of the row, lane 3's product tx3 0 = 0), two
- * lanes' sums and a pairwise sum give S = tx0 v0 + tx1 v1 + tx2 v2 exactly (integers: the order
- * does not matter, |S| < 3 2^48), and the rounding shift vrshrq_n_s64(S, 8) is (S + 128) >> 8
- * (computed without overflow); the window sum ty0 r0 + ty1 r1 + ty2 r2 in int64 and
- * pft_kspot_end_ as in pft_kspot3_r16_: the same value for every input. The scalar form reads
- * each pixel, tests it and multiplies it on its own (27 instructions for the nine pixels before
- * the products) and each tap with three instructions. */
-static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
-                                          pft_kfrac_t gx, const pft_real_t (*taby)[8],
-                                          pft_kfrac_t gy, pft_real_t a)
-{
-    const pft_real_t *ax = tabx[gx >> 10];
-    const pft_real_t *ay = taby[gy >> 10];
-    const int32x4_t tx =
-        vsraq_n_s32(vld1q_s32(ax), vmulq_s32(vld1q_s32(ax + 4), vdupq_n_s32((int32_t)(gx & 1023u))), 10);
-    const int32x4_t ty =
-        vsraq_n_s32(vld1q_s32(ay), vmulq_s32(vld1q_s32(ay + 4), vdupq_n_s32((int32_t)(gy & 1023u))), 10);
-    const int16x8_t mk = vdupq_n_s16(INT16_MIN); /* PFT_RES16_MASKED */
-    int16x8_t v01 = vcombine_s16(pft_kr16_row3_(p), pft_kr16_row3_(p + st));
-    int16x4_t v2 = pft_kr16_row3_(p + 2u * st);
-    v01 = vbicq_s16(v01, vreinterpretq_s16_u16(vceqq_s16(v01, mk)));
-    v2 = vbic_s16(v2, vreinterpret_s16_u16(vceq_s16(v2, vget_low_s16(mk))));
-    {
-        const int32x4_t z0 = vmovl_s16(vget_low_s16(v01));
-        const int32x4_t z1 = vmovl_high_s16(v01);
-        const int32x4_t z2 = vmovl_s16(v2);
-        const int32x2_t tl = vget_low_s32(tx);
-        const int64x2_t p0 = vmlal_high_s32(vmull_s32(vget_low_s32(z0), tl), z0, tx);
-        const int64x2_t p1 = vmlal_high_s32(vmull_s32(vget_low_s32(z1), tl), z1, tx);
-        const int64x2_t p2 = vmlal_high_s32(vmull_s32(vget_low_s32(z2), tl), z2, tx);
-        const int64x2_t r01 = vrshrq_n_s64(vpaddq_s64(p0, p1), 8); /* r0 r1 */
-        const int64_t r2 = vgetq_lane_s64(vrshrq_n_s64(vpaddq_s64(p2, p2), 8), 0);
-        const int64_t s1 = (int64_t)vgetq_lane_s32(ty, 0) * vgetq_lane_s64(r01, 0) +
-                           (int64_t)vgetq_lane_s32(ty, 1) * vgetq_lane_s64(r01, 1) +
-                           (int64_t)vgetq_lane_s32(ty, 2) * r2;
-        return pft_kspot_end_(s1, vgetq_lane_s32(tx, 3), vgetq_lane_s32(ty, 3), a);
-    }
-}
-#define PFT_KSPOT3_R16T_LANES_ 1
-#endif
 
 /* The same for an nx x ny window (n <= 9): the arithmetic of pft_kspot3_ exactly. */
 static inline pft_real_t pft_kspot_(const pft_real_t *z, size_t stride, const pft_real_t *tx,
@@ -827,6 +765,15 @@ static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft
  * (ty0 r0 + ty1 r1) + ty2 r2 and the rest as written there: the same IEEE single operations on
  * the same values, so the same bits. No fused multiply-add anywhere: vmulq_f32 and vaddq_f32
  * are separate operations, and -std=c99 keeps gcc from contracting the scalar ones. */
+static inline int16x4_t pft_kr16_row3_(const uint8_t *q)
+{
+    uint32_t w;
+    uint16_t e;
+    memcpy(&w, q, 4u);
+    memcpy(&e, q + 4u, 2u);
+    /* little-endian lanes: z0 z1 in w, z2 in e, lane 3 zero */
+    return vreinterpret_s16_u64(vcreate_u64((uint64_t)w | ((uint64_t)e << 32)));
+}
 static inline pft_real_t pft_kspot3_r16t_(const uint8_t *p, size_t st, const pft_real_t (*tabx)[8],
                                           pft_kfrac_t gx, const pft_real_t (*taby)[8],
                                           pft_kfrac_t gy, pft_real_t a)
