@@ -1043,141 +1043,6 @@ static inline uint16x8_t cl_scale8_neon_(uint16x8_t d, uint16x8_t a, bool full)
     return vrshrn_high_n_u32(vrshrn_n_u32(lo, 16), hi, 16);
 }
 
-/* The constants of cl_mean8_neon_'s lanes. */
-typedef struct {
-    uint16x8_t a, mfl, exc, pk, pcap, full; /* full: all ones where a = 2^16 */
-} cl_m8k_t;
-
-/* cl_scale8_neon_ with full as a lane mask (k->full): d where it is set, without a branch on
- * the blocks' chains. */
-static inline uint16x8_t cl_scale8f_neon_(uint16x8_t d, const cl_m8k_t *k)
-{
-    return vbslq_u16(k->full, d, cl_scale8_neon_(d, k->a, false));
-}
-
-/* Two blocks of 8 columns of cl_mean_span_ in registers, each step taken for block 0 and
- * then block 1 (j), so that the compiler's order alternates between two independent chains:
- * the inputs v (o), p0 (pc; read only where gate), m0 (mrow), mu0 (mu), the outputs vo, po,
- * mo, muo and the two halves of cs (c0, c1). gate is a constant at each call. */
-static inline void cl_mean16_blk_(const int16x8_t *v, const uint16x8_t *p0, const uint16x8_t *m0,
-                                  const uint16x8_t *mu0, const cl_m8k_t *k, bool gate,
-                                  int16x8_t *vo, uint16x8_t *po, uint16x8_t *mo, uint16x8_t *muo,
-                                  uint16x8_t *c0, uint16x8_t *c1)
-{
-    const int16x8_t vmask = vdupq_n_s16((int16_t)PFT_RES16_MASKED);
-    uint16x8_t msk[2], learn[2], mv[2], mvn[2], dm[2], cn[2], c16[2], ac[2], t[2], neg[2], q[2];
-    int16x8_t tv[2];
-    uint16x8_t ne[2], qe[2];
-    for (int32_t j = 0; j < 2; ++j) {
-        msk[j] = vceqq_s16(v[j], vmask);
-        learn[j] = vdupq_n_u16(0xFFFFu);
-        po[j] = p0[j];
-    }
-    if (gate) {
-        uint16x8_t ex[2], p1[2];
-        for (int32_t j = 0; j < 2; ++j) {
-            ex[j] = vcgtq_u16(vreinterpretq_u16_s16(vabsq_s16(v[j])), k->exc);
-        }
-        for (int32_t j = 0; j < 2; ++j) {
-            const uint16x8_t pu = vminq_u16(vqaddq_u16(p0[j], vdupq_n_u16(256u)), k->pcap);
-            const uint16x8_t pd = vqsubq_u16(p0[j], vdupq_n_u16(128u));
-            p1[j] = vbslq_u16(ex[j], pu, pd);
-        }
-        for (int32_t j = 0; j < 2; ++j) {
-            po[j] = vbslq_u16(msk[j], p0[j], p1[j]);
-            learn[j] = vorrq_u16(vmvnq_u16(ex[j]), vcgeq_u16(p1[j], k->pk));
-        }
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        mv[j] = veorq_u16(mu0[j], vdupq_n_u16((uint16_t)CL_MUOFF_));
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        mvn[j] = vcltzq_s16(vreinterpretq_s16_u16(mv[j]));
-        const uint16x8_t amv = vreinterpretq_u16_s16(vabsq_s16(vreinterpretq_s16_u16(mv[j])));
-        const uint16x8_t dr = vshrq_n_u16(vaddq_u16(amv, vdupq_n_u16(4u)), 3);
-        dm[j] = vandq_u16(dr, vcgtq_u16(dr, k->mfl));
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const int16x8_t sdm = vreinterpretq_s16_u16(vsubq_u16(veorq_u16(dm[j], mvn[j]), mvn[j]));
-        cn[j] = vcltq_s16(v[j], sdm);
-        c16[j] = vreinterpretq_u16_s16(vsubq_s16(v[j], sdm));
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        ac[j] = vsubq_u16(veorq_u16(c16[j], cn[j]), cn[j]);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const uint32x4_t sqlo = vmull_u16(vget_low_u16(ac[j]), vget_low_u16(ac[j]));
-        const uint32x4_t sqhi = vmull_high_u16(ac[j], ac[j]);
-        t[j] = vqrshrn_high_n_u32(vqrshrn_n_u32(sqlo, 6), sqhi, 6);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        neg[j] = vcltq_u16(t[j], m0[j]);
-        q[j] = cl_scale8f_neon_(vabdq_u16(t[j], m0[j]), k);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const uint16x8_t nm = vaddq_u16(m0[j], vsubq_u16(veorq_u16(q[j], neg[j]), neg[j]));
-        mo[j] = vbslq_u16(msk[j], m0[j], nm);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        tv[j] = vshlq_n_s16(vmaxq_s16(vminq_s16(v[j], vdupq_n_s16(2048)), vdupq_n_s16(-2048)), 3);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const int16x8_t smv = vreinterpretq_s16_u16(mv[j]);
-        ne[j] = vcltq_s16(tv[j], smv);
-        qe[j] = cl_scale8f_neon_(vreinterpretq_u16_s16(vabdq_s16(tv[j], smv)), k);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const uint16x8_t nmu = vaddq_u16(mu0[j], vsubq_u16(veorq_u16(qe[j], ne[j]), ne[j]));
-        muo[j] = vbslq_u16(vornq_u16(msk[j], learn[j]), mu0[j], nmu);
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        const uint16x8_t acl = vminq_u16(ac[j], vdupq_n_u16((uint16_t)PFT_PRE_RMAX_));
-        const uint16x8_t oc = vsubq_u16(veorq_u16(acl, cn[j]), cn[j]);
-        vo[j] = vreinterpretq_s16_u16(vbslq_u16(msk[j], vreinterpretq_u16_s16(vmask), oc));
-    }
-    for (int32_t j = 0; j < 2; ++j) {
-        c0[j] = vbicq_u16(c16[j], msk[j]);
-        c1[j] = vbicq_u16(vaddq_u16(cn[j], vdupq_n_u16(1u)), msk[j]);
-    }
-}
-
-/* n blocks of 8 from column x0 (cl_mean8_neon_) with gate a constant: two blocks per
- * step, both read before either is written; an odd last block taken as both blocks of a step
- * (the same inputs twice) and stored once. */
-static inline void cl_mean8_loop_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
-                                  int32_t x0, int32_t n, const cl_m8k_t *k, bool gate)
-{
-    for (int32_t i = 0; i < n; i += 2) {
-        const int32_t x = x0 + 8 * i;
-        const int32_t xb = i + 1 < n ? x + 8 : x; /* the second block (the first again if odd) */
-        int16x8_t v[2], vo[2];
-        uint16x8_t p0[2], m0[2], mu0[2], po[2], mo[2], muo[2], c0[2], c1[2];
-        v[0] = vld1q_s16(o + x);
-        v[1] = vld1q_s16(o + xb);
-        p0[0] = gate ? vld1q_u16(pc + x) : vdupq_n_u16(0u);
-        p0[1] = gate ? vld1q_u16(pc + xb) : vdupq_n_u16(0u);
-        m0[0] = vld1q_u16(mrow + x);
-        m0[1] = vld1q_u16(mrow + xb);
-        mu0[0] = vld1q_u16(mu + x);
-        mu0[1] = vld1q_u16(mu + xb);
-        cl_mean16_blk_(v, p0, m0, mu0, k, gate, vo, po, mo, muo, c0, c1);
-        const int32_t nb = xb != x ? 2 : 1;
-        for (int32_t j = 0; j < nb; ++j) {
-            const int32_t xj = x + 8 * j;
-            if (gate) {
-                vst1q_u16(pc + xj, po[j]);
-            }
-            vst1q_u16(mrow + xj, mo[j]);
-            vst1q_u16(mu + xj, muo[j]);
-            vst1q_s16(o + xj, vo[j]);
-            uint16x8x2_t cw;
-            cw.val[0] = c0[j];
-            cw.val[1] = c1[j];
-            vst2q_u16((uint16_t *)(void *)(cs + xj), cw);
-        }
-    }
-}
-
 /* Columns x0 .. x0 + 8 n - 1 of cl_mean_span_ (n blocks of 8): cl_gate_px_ (pc != NULL) and
  * cl_mean_px_ per lane, the same values for any input: |v| and |mv| as vabsq_s16 (-2^15 stays
  * 2^15 as uint16, the plain form's two's complement), the counter's min(p + 256, pcap) with a
@@ -1186,25 +1051,62 @@ static inline void cl_mean8_loop_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint
  * saturating rounding narrowing shift of the 32-bit square (|c| < 2^16: no overflow; below 2048
  * the plain form's hi 2^10 + (lo >> 6) + bit 5 of lo, above it its clamp); |t - m| and
  * |tv - mv| (mod 2^16) as absolute differences; c + 2^16 (0 at a masked pixel) as the two
- * 16-bit halves c16 and [c >= 0] stored interleaved (little-endian). Two blocks (16 columns)
- * per step, both read before either is written, their steps alternating: each block is one
- * long chain of dependent NEON operations, which an in-order core (the Cortex-A53) waits on
- * one by one; two independent chains let it issue one block's operation while the other's
- * result is pending. Every pixel's values are its own (o, mrow, mu, pc and cs are separate
- * rows, each column read and written once), so the blocks' order changes nothing. One loop per
- * value of the gate; full as a lane mask. */
+ * 16-bit halves c16 and [c >= 0] stored interleaved (little-endian). */
 static void cl_mean8_neon_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
                            int32_t x0, int32_t n, uint16_t a16, bool full, uint16_t exc, uint16_t pk,
                            uint16_t pcap, uint16_t mfl)
 {
-    cl_m8k_t k;
-    k.a = vdupq_n_u16(a16);
-    k.mfl = vdupq_n_u16(mfl);
-    k.exc = vdupq_n_u16(exc);
-    k.pk = vdupq_n_u16(pk);
-    k.pcap = vdupq_n_u16(pcap);
-    k.full = vdupq_n_u16(full ? 0xFFFFu : 0u);
-    cl_mean8_loop_(o, mrow, mu, pc, cs, x0, n, &k, pc != NULL);
+    const uint16x8_t va = vdupq_n_u16(a16), vmfl = vdupq_n_u16(mfl);
+    const uint16x8_t vexc = vdupq_n_u16(exc), vpk = vdupq_n_u16(pk), vpcap = vdupq_n_u16(pcap);
+    const uint16x8_t one = vdupq_n_u16(1u), rmax = vdupq_n_u16((uint16_t)PFT_PRE_RMAX_);
+    const int16x8_t vmask = vdupq_n_s16((int16_t)PFT_RES16_MASKED);
+    const int16x8_t lim = vdupq_n_s16(2048), nlim = vdupq_n_s16(-2048);
+    for (int32_t i = 0; i < n; ++i) {
+        const int32_t x = x0 + 8 * i;
+        const int16x8_t v = vld1q_s16(o + x);
+        const uint16x8_t msk = vceqq_s16(v, vmask);
+        uint16x8_t learn = vdupq_n_u16(0xFFFFu);
+        if (pc != NULL) {
+            const uint16x8_t av = vreinterpretq_u16_s16(vabsq_s16(v));
+            const uint16x8_t p0 = vld1q_u16(pc + x);
+            const uint16x8_t pu = vminq_u16(vqaddq_u16(p0, vdupq_n_u16(256u)), vpcap);
+            const uint16x8_t pd = vqsubq_u16(p0, vdupq_n_u16(128u));
+            const uint16x8_t ex = vcgtq_u16(av, vexc);
+            const uint16x8_t p1 = vbslq_u16(ex, pu, pd);
+            vst1q_u16(pc + x, vbslq_u16(msk, p0, p1));
+            learn = vorrq_u16(vmvnq_u16(ex), vcgeq_u16(p1, vpk));
+        }
+        const uint16x8_t mu0 = vld1q_u16(mu + x);
+        const int16x8_t mv = vreinterpretq_s16_u16(veorq_u16(mu0, vdupq_n_u16((uint16_t)CL_MUOFF_)));
+        const uint16x8_t mvn = vcltzq_s16(mv);
+        const uint16x8_t amv = vreinterpretq_u16_s16(vabsq_s16(mv));
+        const uint16x8_t dr = vshrq_n_u16(vaddq_u16(amv, vdupq_n_u16(4u)), 3);
+        const uint16x8_t dm = vandq_u16(dr, vcgtq_u16(dr, vmfl));
+        const int16x8_t sdm = vreinterpretq_s16_u16(vsubq_u16(veorq_u16(dm, mvn), mvn));
+        const uint16x8_t cn = vcltq_s16(v, sdm);
+        const uint16x8_t c16 = vreinterpretq_u16_s16(vsubq_s16(v, sdm));
+        const uint16x8_t ac = vsubq_u16(veorq_u16(c16, cn), cn);
+        const uint32x4_t sqlo = vmull_u16(vget_low_u16(ac), vget_low_u16(ac));
+        const uint32x4_t sqhi = vmull_high_u16(ac, ac);
+        const uint16x8_t t = vqrshrn_high_n_u32(vqrshrn_n_u32(sqlo, 6), sqhi, 6);
+        const uint16x8_t m0 = vld1q_u16(mrow + x);
+        const uint16x8_t neg = vcltq_u16(t, m0);
+        const uint16x8_t q = cl_scale8_neon_(vabdq_u16(t, m0), va, full);
+        const uint16x8_t nm = vaddq_u16(m0, vsubq_u16(veorq_u16(q, neg), neg));
+        vst1q_u16(mrow + x, vbslq_u16(msk, m0, nm));
+        const int16x8_t tv = vshlq_n_s16(vmaxq_s16(vminq_s16(v, lim), nlim), 3);
+        const uint16x8_t ne = vcltq_s16(tv, mv);
+        const uint16x8_t qe = cl_scale8_neon_(vreinterpretq_u16_s16(vabdq_s16(tv, mv)), va, full);
+        const uint16x8_t nmu = vaddq_u16(mu0, vsubq_u16(veorq_u16(qe, ne), ne));
+        vst1q_u16(mu + x, vbslq_u16(vornq_u16(msk, learn), mu0, nmu));
+        const uint16x8_t acl = vminq_u16(ac, rmax);
+        const uint16x8_t oc = vsubq_u16(veorq_u16(acl, cn), cn);
+        vst1q_s16(o + x, vreinterpretq_s16_u16(vbslq_u16(msk, vreinterpretq_u16_s16(vmask), oc)));
+        uint16x8x2_t cw;
+        cw.val[0] = vbicq_u16(c16, msk);
+        cw.val[1] = vbicq_u16(vaddq_u16(cn, one), msk);
+        vst2q_u16((uint16_t *)(void *)(cs + x), cw);
+    }
 }
 #endif
 
