@@ -1228,6 +1228,87 @@ static void test_sigma_options(void)
     }
 }
 
+#if defined(__aarch64__) && defined(__ARM_NEON)
+/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
+
+/* The tile histogram's bin of a residual as the library's general form defines it
+ * (pft_pre_bin_ of |v|: v below 16, then 8 bins per octave; a masked pixel, |INT16_MIN|,
+ * in the last bin PFT_PRE_BINS). */
+static uint32_t bin_ref(int32_t v)
+{
+    const uint32_t a = (uint32_t)(v < 0 ? -v : v);
+    uint32_t e = 0u;
+    while (((a | 8u) >> (e + 1u)) != 0u) {
+        e++;
+    }
+    return ((e - 3u) << 3) + (a >> (e - 3u));
+}
+#endif
+
+/* AArch64's tile histogram 8 residuals at a time (pft_pre_hist_rown_, pft_pre_book_row_'s
+ * NEON form): known answers (the table's ends -1023 .. 1023, a block with one value beyond
+ * it, a masked pixel, the pixels after the last whole block left), then the counts equal to
+ * the general rule's on 300 random rows (0 .. 40 and 384 residuals, near 0, near +-1023 and
+ * anywhere in int16, some masked). */
+static void test_hist_rown_neon(void)
+{
+#if defined(__aarch64__) && defined(__ARM_NEON)
+    enum { NX = 384, NB = PFT_PRE_BINS + 1 };
+    static int16_t r[NX];
+    static uint16_t got[NB], want[NB];
+    const int16_t k_row[19] = {0, 1, -1, 15, -16, 1023, -1023, 100,      /* in the table */
+                               1024, -1024, 5, 32767, INT16_MIN, -32767, 8, 9, /* beyond */
+                               3, 3, 3};                                    /* left */
+    memcpy(r, k_row, sizeof(k_row));
+    memset(got, 0, sizeof(got));
+    got[0] = 7u; /* added to */
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_hist_rown_(got, r, 19u));
+    memset(want, 0, sizeof(want));
+    want[0] = 8u;   /* 7 + the 0 */
+    want[1] = 2u;   /* 1, -1 */
+    want[15] = 1u;  /* 15 */
+    want[16] = 1u;  /* -16: e 4, 8 + 16 / 2 */
+    want[63] = 2u;  /* +-1023: e 9, 48 + 1023 / 64 */
+    want[36] = 1u;  /* 100: e 6, 24 + 100 / 8 */
+    want[64] = 2u;  /* +-1024: e 10, 56 + 1024 / 128 */
+    want[5] = 1u;
+    want[103] = 2u; /* 32767, -32767: e 14, 88 + 32767 / 2048 */
+    want[PFT_PRE_BINS] = 1u; /* the masked pixel: 96 + 32768 / 4096 */
+    want[8] = 1u;
+    want[9] = 1u;
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(want, got, NB);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_hist_rown_(got, r, 7u)); /* no whole block */
+    TEST_ASSERT_EQUAL_UINT16_ARRAY(want, got, NB);
+    uint32_t beyond = 0u, masked = 0u;
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t w = t < 280 ? (uint32_t)t % 41u : NX;
+        for (uint32_t i = 0; i < NX; ++i) {
+            const uint32_t q = pft_test_xorshift32(&g_rs);
+            const uint32_t kind = q % 16u;
+            r[i] = (int16_t)(kind < 12u ? (int32_t)((q >> 8) % 201u) - 100
+                                        : (kind < 14u ? (int32_t)((q >> 8) % 9u) + 1019 - (int32_t)(q >> 20 & 1u) * 2046
+                                                      : (kind < 15u ? (int32_t)(int16_t)(uint16_t)(q >> 8) : INT16_MIN)));
+        }
+        for (uint32_t b = 0; b < (uint32_t)NB; ++b) {
+            got[b] = (uint16_t)(b * 3u);
+            want[b] = got[b];
+        }
+        const uint32_t xe = w / 8u * 8u;
+        for (uint32_t i = 0; i < xe; ++i) {
+            want[bin_ref(r[i])]++;
+            beyond += r[i] < -1023 || r[i] > 1023 ? 1u : 0u;
+            masked += r[i] == INT16_MIN ? 1u : 0u;
+        }
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_hist_rown_(got, r, w));
+        TEST_ASSERT_EQUAL_UINT16_ARRAY(want, got, NB);
+    }
+    TEST_ASSERT_TRUE(beyond > 0u && masked > 0u); /* both slow cases reached */
+#else
+    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the 4-pixel loop");
+#endif
+}
+
 int main(void)
 {
     noise_init();
@@ -1252,5 +1333,6 @@ int main(void)
     RUN_TEST(test_residual_to_tbd_as_res16);
     RUN_TEST(test_u8_and_bit_depths);
     RUN_TEST(test_sigma_options);
+    RUN_TEST(test_hist_rown_neon);
     return UNITY_END();
 }
