@@ -351,8 +351,158 @@ def find_loops(ins, cnt, r, tot):
     return chosen
 
 
+def model_loops(a, cpus, name, reg, ins, cnt, col, tot):
+    """The modelled loops of one function (its counts in column col, tot instructions)."""
+    fl = []
+    for s, p, it, cov, dep in find_loops(ins, cnt, col, tot):
+        m = {c: llvm_mca(mca_text(p), a.mca, c) for c in cpus}
+        fl.append({'fn': name, 'reg': reg, 'start': ins[s][0], 'n': len(p), 'iters': it,
+                   'body': p[-1][1] == 'ret', 'cov': cov, 'dep': dep, 'mca': m,
+                   'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
+                   'bn': bottleneck(m[cpus[0]], len(p))})
+    return fl
+
+
+def charge(fns, fb, cpus, cyc):
+    """Each function's cycles: its modelled loops at their CPI, the rest at fb[region, cpu];
+    sets f['cv'] (instructions in modelled loops) and f['cpi'], adds the cycles to cyc."""
+    for f in fns:
+        cv = min(sum(l['cov'] for l in f['loops']), f['tot'])
+        scale = cv / sum(l['cov'] for l in f['loops']) if f['loops'] else 0.0
+        f['cv'] = cv
+        f['cpi'] = {}
+        for c in cpus:
+            y = sum(l['cov'] * l['cpi'][c] for l in f['loops']) * scale + (f['tot'] - cv) * fb[f['reg'], c]
+            cyc[f['reg'], c] += y
+            f['cpi'][c] = y / f['tot']
+
+
+def loop_sources(a, funcs, loops):
+    """--debug-exe: each loop's source line (the same code built with -g: gcc's -g changes no
+    instruction; checked), by start address."""
+    where = {}
+    if not a.debug_exe:
+        return where
+    if [x[1:] for f in disassemble(a.debug_exe).values() for x in f] != [x[1:] for f in funcs.values() for x in f]:
+        sys.exit('a53_mca.py: %s is not the same code as %s' % (a.debug_exe, a.exe_used))
+    for l in loops:
+        # -i prints the inline chain (innermost first): one address at a time
+        o = sh(['aarch64-linux-gnu-addr2line', '-e', a.debug_exe, '-f', '-i', '0x%x' % l['start']]).split('\n')
+        fn, fl = o[0], o[1]
+        where[l['start']] = '%s:%s' % (os.path.basename(fl.split(' ')[0]).split(':')[0] if ':' in fl else fl,
+                                       fl.split(':')[1].split(' ')[0] if ':' in fl else '?') + (' (%s)' % fn)
+    return where
+
+
+def load_mem(run, key):
+    """The plugin's cache model (RUN/mem.txt, if the run had --mem): the five counts (accesses,
+    L1 misses, of them strided, L2 misses, of them strided) summed by key(fields of the line)."""
+    mem = {}
+    mpath = os.path.join(run, 'mem.txt')
+    if os.path.exists(mpath):
+        for line in open(mpath):
+            f = line.split()
+            k = key(f)
+            mem[k] = [x + int(y) for x, y in zip(mem.get(k, [0] * 5), f[2:7])]
+    return mem
+
+
+def stalls(a, lat, l1, l1s, l2, l2s):
+    """(strided misses prefetched, no prefetch) stall cycles: without prefetch every L1 miss
+    waits the L2 and every L2 miss the DRAM; with a stride prefetcher that keeps up, only the
+    misses off a stride wait."""
+    npf = (l1 - l2) * a.l2_cycles + l2 * lat
+    pf = ((l1 - l1s) - (l2 - l2s)) * a.l2_cycles + (l2 - l2s) * lat
+    return pf, npf
+
+
+def print_fn_tables(P, fns, order, rname, big_enough, cpus, nf, where, unit):
+    """The loops table and the functions table (per `unit`: call or frame)."""
+    c0 = cpus[0]
+    P('| region | function | instructions / %s | loop at | instructions / iteration | iterations / %s | share | %s cycles / iteration | IPC | bottleneck | %s |'
+      % (unit, unit, c0, ' | '.join('%s cycles / iteration' % c for c in cpus[1:])))
+    P('|---|---|---:|---|---:|---:|---:|---:|---:|---|%s' % ('---:|' * (len(cpus) - 1)))
+    for f in sorted(fns, key=order):
+        for l in f['loops']:
+            m = l['mca']
+            P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
+              % (rname(f), l['fn'], f['tot'] / nf / 1e6, l['start'],
+                 (' ' + where[l['start']] if l['start'] in where else '') + (' [entry to return]' if l['body'] else ''),
+                 l['n'], l['iters'] / nf, 100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'],
+                 l['bn'], ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
+    P('')
+    P('Functions (the part outside the modelled loops at its region\'s mean loop CPI):')
+    P('')
+    P('| region | function | instructions / %s | in modelled loops | %s |' % (unit, ' | '.join('CPI %s' % c for c in cpus)))
+    P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
+    for f in sorted(fns, key=lambda f: -f['tot']):
+        if big_enough(f):
+            P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (rname(f), f['fn'], f['tot'] / nf / 1e6,
+                                                      100.0 * f['cv'] / f['tot'],
+                                                      ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
+    P('')
+
+
+def print_cov(P, names, cov_r, cpi, cpus):
+    P('| region | instructions in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
+    P('|---|---:|%s' % ('---:|' * len(cpus)))
+    for r, name in enumerate(names):
+        P('| %s | %.1f %% | %s |' % (name, 100 * cov_r[r], ' | '.join('%.3f' % cpi[r, c] for c in cpus)))
+    P('')
+
+
+def print_mem(P, a, unit, nf, rows):
+    """rows: (region name, function, [accesses, L1, L1 strided, L2, L2 strided] over nf units)."""
+    P('Cache model (the plugin\'s mem=: L1 %s, L2 %s; per %s; strided = within 2 lines of the same '
+      'instruction\'s previous miss):' % (a.l1_label, a.l2_label, unit))
+    P('')
+    P('| region | function | accesses | L1 misses | of them strided | L2 misses | of them strided |')
+    P('|---|---|---:|---:|---:|---:|---:|')
+    for rn, name, v in rows:
+        P('| %s | `%s` | %.0f | %.0f | %.0f %% | %.0f | %.0f %% |'
+          % (rn, name, v[0] / nf, v[1] / nf, 100.0 * v[2] / max(v[1], 1), v[3] / nf, 100.0 * v[4] / max(v[3], 1)))
+    P('')
+
+
+def print_left_out(P, a, lat, rows):
+    """rows: (region, L1 misses, L2 misses, stall no prefetch, stall prefetched, departures, their
+    cost) per call."""
+    P('Left out by llvm-mca, estimated per call (assumptions: an L1 miss that hits the L2 waits %d '
+      'cycles, an L2 miss %.0f ns = %.0f cycles, a mispredicted branch %d cycles; each departure from a '
+      'modelled loop\'s dominant path counted as one misprediction; in-order: nothing hides a wait):'
+      % (a.l2_cycles, a.dram_ns, lat, a.mispredict))
+    P('')
+    P('| region | L1 misses | L2 misses | stall, no prefetch | stall, strided misses prefetched | departures | their cost |')
+    P('|---|---:|---:|---:|---:|---:|---:|')
+    for name, l1, l2, npf, pf, dep, mp in rows:
+        P('| %s | %.0f | %.0f | %.2f M cycles | %.2f M cycles | %.0f | %.2f M cycles |'
+          % (name, l1, l2, npf / 1e6, pf / 1e6, dep, mp / 1e6))
+    P('')
+
+
+def print_per_frame(P, against, rows, cpus, cpi, extra, allm):
+    """Per frame: rows of (label, instructions per region); extra[r] = (prefetched stalls, no
+    prefetch stalls, mispredictions) per call at the mean allm[r] instructions."""
+    K = len(allm)
+    P('Per frame at %.1f GHz (the stalls scaled by the frame\'s instructions against the mean of %s; the largest frame at the mean\'s CPI):' % (CLOCK / 1e9, against))
+    P('')
+    P('| frame | model | instructions | cycles | CPI | frames/s | + stalls, strided misses prefetched: CPI | frames/s | + stalls, no prefetch: CPI | frames/s |')
+    P('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
+    for label, ins in rows:
+        for c in cpus:
+            base = sum(ins[q] * cpi[q, c] for q in range(K))
+            sc = [ins[q] / allm[q] if allm[q] else 0.0 for q in range(K)]
+            e1 = sum((extra[q][0] + extra[q][2]) * sc[q] for q in range(K))  # strided prefetched
+            e2 = sum((extra[q][1] + extra[q][2]) * sc[q] for q in range(K))  # no prefetch
+            n = sum(ins)
+            P('| %s | %s | %.2f M | %.2f M | %.2f | %.1f | %.2f | %.1f | %.2f | %.1f |'
+              % (label, c, n / 1e6, base / 1e6, base / n, CLOCK / base, (base + e1) / n, CLOCK / (base + e1),
+                 (base + e2) / n, CLOCK / (base + e2)))
+
+
 def cmd_model(a):
     exe = a.exe or os.path.join(a.build, 'tests', 'tools', 'ir_probe')
+    a.exe_used = exe
     cpus = a.cpus.split(',')
     regions = a.regions.split(',')
     if len(regions) != 2:
@@ -381,16 +531,7 @@ def cmd_model(a):
             if tot == 0:
                 continue
             rtot[r] += tot
-            fl = []
-            if tot >= a.min_share * ptot[r]:
-                for s, p, it, cov, dep in find_loops(ins, cnt, r, tot):
-                    text = mca_text(p)
-                    m = {c: llvm_mca(text, a.mca, c) for c in cpus}
-                    fl.append({'fn': name, 'reg': r, 'start': ins[s][0], 'n': len(p), 'iters': it,
-                               'body': p[-1][1] == 'ret',
-                               'cov': cov, 'dep': dep, 'mca': m,
-                               'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
-                               'bn': bottleneck(m[cpus[0]], len(p))})
+            fl = model_loops(a, cpus, name, r, ins, cnt, r, tot) if tot >= a.min_share * ptot[r] else []
             fns.append({'fn': name, 'reg': r, 'tot': tot, 'loops': fl})
             loops.extend(fl)
     # fallback CPI: the region's modelled loops, weighted by the instructions they cover
@@ -400,29 +541,9 @@ def cmd_model(a):
         for c in cpus:
             fb[r, c] = sum(l['cov'] * l['cpi'][c] for l in loops if l['reg'] == r) / cv
     cyc = {(r, c): 0.0 for r in (0, 1) for c in cpus}
-    for f in fns:
-        cv = min(sum(l['cov'] for l in f['loops']), f['tot'])
-        scale = cv / sum(l['cov'] for l in f['loops']) if f['loops'] else 0.0
-        f['cv'] = cv
-        f['cpi'] = {}
-        for c in cpus:
-            y = sum(l['cov'] * l['cpi'][c] for l in f['loops']) * scale + (f['tot'] - cv) * fb[f['reg'], c]
-            cyc[f['reg'], c] += y
-            f['cpi'][c] = y / f['tot']
+    charge(fns, fb, cpus, cyc)
     cpi = {(r, c): cyc[r, c] / rtot[r] for r in (0, 1) for c in cpus}
-    where = {}
-    if a.debug_exe:
-        # the same code built with -g (gcc's -g changes no instruction; the script checks the
-        # disassembly is identical) gives each loop's source line
-        if [x[1:] for f in disassemble(a.debug_exe).values() for x in f] != [x[1:] for f in funcs.values() for x in f]:
-            sys.exit('a53_mca.py: %s is not the same code as %s' % (a.debug_exe, exe))
-        addrs = ['0x%x' % l['start'] for l in loops]
-        # -i prints the inline chain (innermost first): one address at a time
-        for ad in addrs:
-            o = sh(['aarch64-linux-gnu-addr2line', '-e', a.debug_exe, '-f', '-i', ad]).split('\n')
-            fn, fl = o[0], o[1]
-            where[int(ad, 16)] = '%s:%s' % (os.path.basename(fl.split(' ')[0]).split(':')[0] if ':' in fl else fl,
-                                            fl.split(':')[1].split(' ')[0] if ':' in fl else '?') + (' (%s)' % fn)
+    where = loop_sources(a, funcs, loops)
     cov_r = [sum(f['cv'] for f in fns if f['reg'] == r) / rtot[r] for r in (0, 1)]
 
     out = []
@@ -436,97 +557,31 @@ def cmd_model(a):
       'function\'s instructions the loop covers; cycles per iteration and IPC of llvm-mca %s, '
       'its bottleneck; %s for comparison):' % (c0, ', '.join(cpus[1:])))
     P('')
-    P('| region | function | instructions / call | loop at | instructions / iteration | iterations / call | share | %s cycles / iteration | IPC | bottleneck | %s |'
-      % (c0, ' | '.join('%s cycles / iteration' % c for c in cpus[1:])))
-    P('|---|---|---:|---|---:|---:|---:|---:|---:|---|%s' % ('---:|' * (len(cpus) - 1)))
-    for f in sorted(fns, key=lambda f: (f['reg'], -f['tot'])):
-        for l in f['loops']:
-            m = l['mca']
-            P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
-              % (regions[l['reg']], l['fn'], f['tot'] / nf / 1e6, l['start'],
-                 (' ' + where[l['start']] if l['start'] in where else '') + (' [entry to return]' if l['body'] else ''),
-                 l['n'], l['iters'] / nf,
-                 100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'], l['bn'],
-                 ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
-    P('')
-    P('Functions (the part outside the modelled loops at its region\'s mean loop CPI):')
-    P('')
-    P('| region | function | instructions / call | in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
-    P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
-    for f in sorted(fns, key=lambda f: -f['tot']):
-        if f['tot'] >= a.min_share * ptot[f['reg']]:
-            P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (regions[f['reg']], f['fn'], f['tot'] / nf / 1e6,
-                                                      100.0 * f['cv'] / f['tot'],
-                                                      ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
-    P('')
-    P('| region | instructions in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
-    P('|---|---:|%s' % ('---:|' * len(cpus)))
-    for r in (0, 1):
-        P('| %s | %.1f %% | %s |' % (regions[r], 100 * cov_r[r], ' | '.join('%.3f' % cpi[r, c] for c in cpus)))
-    P('')
+    print_fn_tables(P, fns, lambda f: (f['reg'], -f['tot']), lambda f: regions[f['reg']],
+                    lambda f: f['tot'] >= a.min_share * ptot[f['reg']], cpus, nf, where, 'call')
+    print_cov(P, regions, cov_r, cpi, cpus)
 
     # what the model leaves out: cache misses (the plugin's cache model, mem=) and mispredictions
-    mem = {}
-    mpath = os.path.join(a.run, 'mem.txt')
-    if os.path.exists(mpath):
-        for line in open(mpath):
-            f = line.split()
-            k = (f[0], int(f[1]))
-            mem[k] = [x + int(y) for x, y in zip(mem.get(k, [0] * 5), f[2:7])]
+    mem = load_mem(a.run, lambda f: (f[0], int(f[1])))
     lat = a.dram_ns * 1e-9 * CLOCK
     extra = {}
     for r in (0, 1):
         acc, l1, l1s, l2, l2s = [sum(v[i] for k, v in mem.items() if k[1] == r) for i in range(5)]
-        # no prefetch: every L1 miss waits the L2, every L2 miss the DRAM; with a stride
-        # prefetcher that keeps up, only the misses off a stride wait
-        npf = (l1 - l2) * a.l2_cycles + l2 * lat
-        pf = ((l1 - l1s) - (l2 - l2s)) * a.l2_cycles + (l2 - l2s) * lat
+        pf, npf = stalls(a, lat, l1, l1s, l2, l2s)
         mp = sum(l['dep'] for l in loops if l['reg'] == r) * a.mispredict
         extra[r] = (pf / nf, npf / nf, mp / nf, (acc, l1, l1s, l2, l2s))
     if mem:
-        P('Cache model (the plugin\'s mem=: L1 %s, L2 %s; per call; strided = within 2 lines of the same '
-          'instruction\'s previous miss):' % (a.l1_label, a.l2_label))
-        P('')
-        P('| region | function | accesses | L1 misses | of them strided | L2 misses | of them strided |')
-        P('|---|---|---:|---:|---:|---:|---:|')
-        for (name, r), v in sorted(mem.items(), key=lambda kv: (kv[0][1], -kv[1][1])):
-            if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000:
-                P('| %s | `%s` | %.0f | %.0f | %.0f %% | %.0f | %.0f %% |'
-                  % (regions[r], name, v[0] / nf, v[1] / nf, 100.0 * v[2] / max(v[1], 1), v[3] / nf,
-                     100.0 * v[4] / max(v[3], 1)))
-        P('')
-    P('Left out by llvm-mca, estimated per call (assumptions: an L1 miss that hits the L2 waits %d '
-      'cycles, an L2 miss %.0f ns = %.0f cycles, a mispredicted branch %d cycles; each departure from a '
-      'modelled loop\'s dominant path counted as one misprediction; in-order: nothing hides a wait):'
-      % (a.l2_cycles, a.dram_ns, lat, a.mispredict))
-    P('')
-    P('| region | L1 misses | L2 misses | stall, no prefetch | stall, strided misses prefetched | departures | their cost |')
-    P('|---|---:|---:|---:|---:|---:|---:|')
-    for r in (0, 1):
-        pf, npf, mp, (acc, l1, l1s, l2, l2s) = extra[r]
-        P('| %s | %.0f | %.0f | %.2f M cycles | %.2f M cycles | %.0f | %.2f M cycles |'
-          % (regions[r], l1 / nf, l2 / nf, npf / 1e6, pf / 1e6, mp / a.mispredict, mp / 1e6))
-    P('')
+        print_mem(P, a, 'call', nf, [(regions[r], name, v)
+                                 for (name, r), v in sorted(mem.items(), key=lambda kv: (kv[0][1], -kv[1][1]))
+                                 if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000])
+    print_left_out(P, a, lat, [(regions[r], extra[r][3][1] / nf, extra[r][3][3] / nf, extra[r][1], extra[r][0],
+                                extra[r][2] / a.mispredict, extra[r][2]) for r in (0, 1)])
     if a.frames_from > 0:
         fr = list(range(a.frames_from - 1, nf))
         big = max(fr, key=lambda i: per[0][i] + per[1][i])
         rows = [('mean of calls %d..%d' % (a.frames_from, nf), [sum(per[r][i] for i in fr) / len(fr) for r in (0, 1)]),
                 ('largest (call %d)' % (big + 1), [per[0][big], per[1][big]])]
-        allm = [sum(per[r]) / nf for r in (0, 1)]
-        P('Per frame at %.1f GHz (the stalls scaled by the frame\'s instructions against the mean of all calls; the largest frame at the mean\'s CPI):' % (CLOCK / 1e9))
-        P('')
-        P('| frame | model | instructions | cycles | CPI | frames/s | + stalls, strided misses prefetched: CPI | frames/s | + stalls, no prefetch: CPI | frames/s |')
-        P('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
-        for label, ins in rows:
-            for c in cpus:
-                base = sum(ins[r] * cpi[r, c] for r in (0, 1))
-                sc = [ins[r] / allm[r] for r in (0, 1)]
-                e1 = sum((extra[r][0] + extra[r][2]) * sc[r] for r in (0, 1))  # strided prefetched
-                e2 = sum((extra[r][1] + extra[r][2]) * sc[r] for r in (0, 1))  # no prefetch
-                n = sum(ins)
-                P('| %s | %s | %.2f M | %.2f M | %.2f | %.1f | %.2f | %.1f | %.2f | %.1f |'
-                  % (label, c, n / 1e6, base / 1e6, base / n, CLOCK / base, (base + e1) / n, CLOCK / (base + e1),
-                     (base + e2) / n, CLOCK / (base + e2)))
+        print_per_frame(P, 'all calls', rows, cpus, cpi, extra, [sum(per[r]) / nf for r in (0, 1)])
     else:
         # every call the same kind (e.g. one tracker of pft_soak): per call, both parities
         allc = [(counts[i], i % 2) for i in range(a.skip, len(counts))]
@@ -623,15 +678,8 @@ def cmd_model_k(a, exe, cpus, regions):
             continue
         ks = owner.get(name, set())
         reg = next(iter(ks)) if len(ks) == 1 else -1  # -1: shared
-        fl = []
-        if tot >= (a.min_share * ctot[reg] if reg >= 0 else shared_min):
-            for s, p, it, cov, dep in find_loops(ins, cnt, 0, tot):
-                text = mca_text(p)
-                m = {c: llvm_mca(text, a.mca, c) for c in cpus}
-                fl.append({'fn': name, 'reg': reg, 'start': ins[s][0], 'n': len(p), 'iters': it,
-                           'body': p[-1][1] == 'ret', 'cov': cov, 'dep': dep, 'mca': m,
-                           'cpi': {c: m[c]['cycles'] / MCA_ITER / len(p) for c in cpus},
-                           'bn': bottleneck(m[cpus[0]], len(p))})
+        big = tot >= (a.min_share * ctot[reg] if reg >= 0 else shared_min)
+        fl = model_loops(a, cpus, name, reg, ins, cnt, 0, tot) if big else []
         fns.append({'fn': name, 'reg': reg, 'ks': ks, 'tot': tot, 'loops': fl})
         loops.extend(fl)
     # fallback CPI: a region's modelled loops (the shared functions': every loop's)
@@ -649,15 +697,8 @@ def cmd_model_k(a, exe, cpus, regions):
     cyc = {(r, c): 0.0 for r in list(range(K)) + [-1] for c in cpus}
     itot = {r: 0 for r in list(range(K)) + [-1]}
     for f in fns:
-        cv = min(sum(l['cov'] for l in f['loops']), f['tot'])
-        scale = cv / sum(l['cov'] for l in f['loops']) if f['loops'] else 0.0
-        f['cv'] = cv
-        f['cpi'] = {}
         itot[f['reg']] += f['tot']
-        for c in cpus:
-            y = sum(l['cov'] * l['cpi'][c] for l in f['loops']) * scale + (f['tot'] - cv) * fb[f['reg'], c]
-            cyc[f['reg'], c] += y
-            f['cpi'][c] = y / f['tot']
+    charge(fns, fb, cpus, cyc)
     # each region's count beyond its own functions: the shared functions, the C library, the
     # markers; the shared functions' instructions given out in proportion to it
     resid = [ctot[r] - itot[r] for r in range(K)]
@@ -673,15 +714,7 @@ def cmd_model_k(a, exe, cpus, regions):
             sh_cpi = cyc[-1, c] / itot[-1] if itot[-1] else own
             rest = max(0.0, resid[r] - shr)  # outside the executable's functions: the region's CPI
             cpi[r, c] = (itot[r] * own + shr * sh_cpi + rest * own) / ctot[r] if ctot[r] else 0.0
-    where = {}
-    if a.debug_exe:
-        if [x[1:] for f in disassemble(a.debug_exe).values() for x in f] != [x[1:] for f in funcs.values() for x in f]:
-            sys.exit('a53_mca.py: %s is not the same code as %s' % (a.debug_exe, exe))
-        for l in loops:
-            o = sh(['aarch64-linux-gnu-addr2line', '-e', a.debug_exe, '-f', '-i', '0x%x' % l['start']]).split('\n')
-            fn, fl = o[0], o[1]
-            where[l['start']] = '%s:%s' % (os.path.basename(fl.split(' ')[0]).split(':')[0] if ':' in fl else fl,
-                                           fl.split(':')[1].split(' ')[0] if ':' in fl else '?') + (' (%s)' % fn)
+    where = loop_sources(a, funcs, loops)
 
     def rname(f):
         return regions[f['reg']] if f['reg'] >= 0 else 'shared (%s)' % ('+'.join(regions[k] for k in sorted(f['ks'])) or 'none')
@@ -697,29 +730,9 @@ def cmd_model_k(a, exe, cpus, regions):
       'instructions the loop covers; cycles per iteration and IPC of llvm-mca %s, its bottleneck; '
       '%s for comparison):' % (c0, ', '.join(cpus[1:])))
     P('')
-    P('| region | function | instructions / frame | loop at | instructions / iteration | iterations / frame | share | %s cycles / iteration | IPC | bottleneck | %s |'
-      % (c0, ' | '.join('%s cycles / iteration' % c for c in cpus[1:])))
-    P('|---|---|---:|---|---:|---:|---:|---:|---:|---|%s' % ('---:|' * (len(cpus) - 1)))
-    order = lambda f: (f['reg'] if f['reg'] >= 0 else K, -f['tot'])
-    for f in sorted(fns, key=order):
-        for l in f['loops']:
-            m = l['mca']
-            P('| %s | `%s` | %.3f M | 0x%x%s | %d | %.0f | %.0f %% | %.1f | %.2f | %s | %s |'
-              % (rname(f), l['fn'], f['tot'] / nf / 1e6, l['start'],
-                 (' ' + where[l['start']] if l['start'] in where else '') + (' [entry to return]' if l['body'] else ''),
-                 l['n'], l['iters'] / nf, 100.0 * l['cov'] / f['tot'], m[c0]['cycles'] / MCA_ITER, m[c0]['ipc'],
-                 l['bn'], ' | '.join('%.1f' % (m[c]['cycles'] / MCA_ITER) for c in cpus[1:])))
-    P('')
-    P('Functions (the part outside the modelled loops at its region\'s mean loop CPI):')
-    P('')
-    P('| region | function | instructions / frame | in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
-    P('|---|---|---:|---:|%s' % ('---:|' * len(cpus)))
-    for f in sorted(fns, key=lambda f: -f['tot']):
-        if f['tot'] >= a.min_share * (ctot[f['reg']] if f['reg'] >= 0 else sum(ctot)):
-            P('| %s | `%s` | %.3f M | %.0f %% | %s |' % (rname(f), f['fn'], f['tot'] / nf / 1e6,
-                                                      100.0 * f['cv'] / f['tot'],
-                                                      ' | '.join('%.2f' % f['cpi'][c] for c in cpus)))
-    P('')
+    print_fn_tables(P, fns, lambda f: (f['reg'] if f['reg'] >= 0 else K, -f['tot']), rname,
+                    lambda f: f['tot'] >= a.min_share * (ctot[f['reg']] if f['reg'] >= 0 else sum(ctot)),
+                    cpus, nf, where, 'frame')
     P('Where each region\'s instructions are (per call): its own functions (reached from its root '
       'only), the rest (shared functions, the C library, the markers) and the shared functions\' '
       'part of it given to the region (%.4f M per frame in all, at CPI %s):'
@@ -735,20 +748,11 @@ def cmd_model_k(a, exe, cpus, regions):
     for r in range(K):
         cv = sum(f['cv'] for f in fns if f['reg'] == r) + sum(f['cv'] for f in fns if f['reg'] == -1) * share[r]
         cov_r.append(cv / ctot[r] if ctot[r] else 0.0)
-    P('| region | instructions in modelled loops | %s |' % ' | '.join('CPI %s' % c for c in cpus))
-    P('|---|---:|%s' % ('---:|' * len(cpus)))
-    for r in range(K):
-        P('| %s | %.1f %% | %s |' % (regions[r], 100 * cov_r[r], ' | '.join('%.3f' % cpi[r, c] for c in cpus)))
-    P('')
+    print_cov(P, regions, cov_r, cpi, cpus)
 
     # what the model leaves out: cache misses (the plugin's mem=, both parities summed) and
     # mispredictions; a shared function's (or one outside the executable) in the same proportion
-    mem = {}
-    mpath = os.path.join(a.run, 'mem.txt')
-    if os.path.exists(mpath):
-        for line in open(mpath):
-            f = line.split()
-            mem[f[0]] = [x + int(y) for x, y in zip(mem.get(f[0], [0] * 5), f[2:7])]
+    mem = load_mem(a.run, lambda f: f[0])
     regof = {f['fn']: f['reg'] for f in fns}
     lat = a.dram_ns * 1e-9 * CLOCK
     extra, memr = {}, {}
@@ -758,36 +762,16 @@ def cmd_model_k(a, exe, cpus, regions):
             w = 1.0 if regof.get(name, -1) == r else share[r] if regof.get(name, -1) == -1 else 0.0
             v5 = [x + w * y for x, y in zip(v5, v)]
         acc, l1, l1s, l2, l2s = v5
-        npf = (l1 - l2) * a.l2_cycles + l2 * lat
-        pf = ((l1 - l1s) - (l2 - l2s)) * a.l2_cycles + (l2 - l2s) * lat
+        pf, npf = stalls(a, lat, l1, l1s, l2, l2s)
         dep = sum(l['dep'] * (1.0 if l['reg'] == r else share[r] if l['reg'] == -1 else 0.0) for l in loops)
         extra[r] = (pf / nf, npf / nf, dep * a.mispredict / nf)
         memr[r] = (acc / nf, l1 / nf, l1s / nf, l2 / nf, l2s / nf, dep / nf)
     if mem:
-        P('Cache model (the plugin\'s mem=: L1 %s, L2 %s; per frame; strided = within 2 lines of the same '
-          'instruction\'s previous miss):' % (a.l1_label, a.l2_label))
-        P('')
-        P('| region | function | accesses | L1 misses | of them strided | L2 misses | of them strided |')
-        P('|---|---|---:|---:|---:|---:|---:|')
-        for name, v in sorted(mem.items(), key=lambda kv: (regof.get(kv[0], -1) % (K + 1), -kv[1][1])):
-            if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000:
-                r = regof.get(name, -1)
-                P('| %s | `%s` | %.0f | %.0f | %.0f %% | %.0f | %.0f %% |'
-                  % (regions[r] if r >= 0 else 'shared', name, v[0] / nf, v[1] / nf, 100.0 * v[2] / max(v[1], 1),
-                     v[3] / nf, 100.0 * v[4] / max(v[3], 1)))
-        P('')
-    P('Left out by llvm-mca, estimated per call (assumptions: an L1 miss that hits the L2 waits %d '
-      'cycles, an L2 miss %.0f ns = %.0f cycles, a mispredicted branch %d cycles; each departure from a '
-      'modelled loop\'s dominant path counted as one misprediction; in-order: nothing hides a wait):'
-      % (a.l2_cycles, a.dram_ns, lat, a.mispredict))
-    P('')
-    P('| region | L1 misses | L2 misses | stall, no prefetch | stall, strided misses prefetched | departures | their cost |')
-    P('|---|---:|---:|---:|---:|---:|---:|')
-    for r in range(K):
-        pf, npf, mp = extra[r]
-        P('| %s | %.0f | %.0f | %.2f M cycles | %.2f M cycles | %.0f | %.2f M cycles |'
-          % (regions[r], memr[r][1], memr[r][3], npf / 1e6, pf / 1e6, memr[r][5], mp / 1e6))
-    P('')
+        print_mem(P, a, 'frame', nf, [(regions[regof.get(name, -1)] if regof.get(name, -1) >= 0 else 'shared', name, v)
+                                      for name, v in sorted(mem.items(), key=lambda kv: (regof.get(kv[0], -1) % (K + 1), -kv[1][1]))
+                                      if v[1] >= 0.02 * nf * 1000 or v[3] >= 0.02 * nf * 1000])
+    print_left_out(P, a, lat, [(regions[r], memr[r][1], memr[r][3], extra[r][1], extra[r][0], memr[r][5], extra[r][2])
+                               for r in range(K)])
 
     # per call and per frame over frames N..end (absolute frame numbers)
     lo = max(a.frames_from, f0 + 1) - f0 - 1
@@ -816,20 +800,7 @@ def cmd_model_k(a, exe, cpus, regions):
     big = max(fr, key=lambda i: tot_f[i])
     rows = [('mean of frames %d..%d' % (f0 + lo + 1, f0 + nf), [sum(per[q][i] for i in fr) / len(fr) for q in range(K)]),
             ('largest (frame %d)' % (f0 + big + 1), [per[q][big] for q in range(K)])]
-    P('Per frame at %.1f GHz (the stalls scaled by the frame\'s instructions against the mean of the profiled frames; the largest frame at the mean\'s CPI):' % (CLOCK / 1e9))
-    P('')
-    P('| frame | model | instructions | cycles | CPI | frames/s | + stalls, strided misses prefetched: CPI | frames/s | + stalls, no prefetch: CPI | frames/s |')
-    P('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|')
-    for label, ins in rows:
-        for c in cpus:
-            base = sum(ins[q] * cpi[q, c] for q in range(K))
-            sc = [ins[q] / allm[q] if allm[q] else 0.0 for q in range(K)]
-            e1 = sum((extra[q][0] + extra[q][2]) * sc[q] for q in range(K))
-            e2 = sum((extra[q][1] + extra[q][2]) * sc[q] for q in range(K))
-            n = sum(ins)
-            P('| %s | %s | %.2f M | %.2f M | %.2f | %.1f | %.2f | %.1f | %.2f | %.1f |'
-              % (label, c, n / 1e6, base / 1e6, base / n, CLOCK / base, (base + e1) / n, CLOCK / (base + e1),
-                 (base + e2) / n, CLOCK / (base + e2)))
+    print_per_frame(P, 'the profiled frames', rows, cpus, cpi, extra, allm)
     print('\n'.join(out))
 
 
