@@ -699,9 +699,10 @@ static void test_gated_mean_matches_reference(void)
 }
 
 /* The same known answers at widths that leave columns over a vector's 8 (AArch64's NEON form
- * of the mean pass, pre_clutter.c CL_NEON_, takes whole blocks of 8 columns and the per-pixel
- * form the rest; other targets run one form) and with the mean's floor (1 sigma, and 1/16
- * sigma so that most of the learnt means pass it). */
+ * of the mean pass, pre_clutter.c CL_NEON_, and x86-64's SSE2 form, CL_SSE2_'s cl_mean8_sse2_,
+ * take whole blocks of 8 columns and the per-pixel form the rest; the Cortex-M targets run one
+ * form) and with the mean's floor (1 sigma, and 1/16 sigma so that most of the learnt means
+ * pass it). */
 static void test_gated_mean_widths_and_floor(void)
 {
     gated_mean_case(61, 2u, 256u);

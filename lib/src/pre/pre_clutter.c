@@ -12,7 +12,9 @@
 #include "../core/config_int.h"
 #include "pre_int.h"
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__)
+#include <emmintrin.h> /* CL_SSE2_ below */
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h> /* CL_NEON_ below */
 #endif
 
@@ -993,38 +995,157 @@ static inline void cl_gate_px_(int16_t v, uint16_t *p, uint16_t exc, uint16_t pk
 #endif
 
 #ifdef CL_SSE2_
+/* The constants of cl_mean8_sse2_'s lanes (each a 16-bit value in all 8 lanes). */
+typedef struct {
+    __m128i a, mfl, exc, nexc, pk, pcap; /* a16, mean_floor, excess and -excess, pk, pcap */
+    __m128i zero, one, four, h8, rmax, nrmax, lim, nlim, p256, p128;
+} cl_sse2k_t;
+
+/* (d a + 2^15) >> 16 per lane (d, a < 2^16): the product's high half (pmulhuw) plus bit 15 of
+ * its low half (pmullw), cl_round_scale16_'s form; d where full (a = 2^16). */
+static inline __m128i cl_scale8_sse2_(__m128i d, __m128i a, bool full)
+{
+    return full ? d : _mm_add_epi16(_mm_mulhi_epu16(d, a), _mm_srli_epi16(_mm_mullo_epi16(d, a), 15));
+}
+
+/* Columns x .. x + 7 of cl_mean_span_ (x86-64 with SSE2): cl_gate_px_ (gate: pc != NULL) and
+ * cl_mean_px_ of their SSE2 forms above in 8 lanes, the same values for any input. |mv|, |c|
+ * and |e| as (u ^ s) - s with s the lane's sign from a signed 16-bit compare or shift (SSE2 has
+ * no pabsw); the signed compares and mins of the pixel forms as pcmpgtw, pminsw and pmaxsw;
+ * max(p - 128, 0) as an unsigned saturating subtraction; t >= m where m - t saturates to 0, |t
+ * - m| the OR of the two saturating differences (one of them 0); the products' high and low
+ * halves as pmulhuw and pmullw. A masked pixel keeps m, mu and p: its steps are zeroed before
+ * they are applied (a zero step, either sign, leaves the value), its counter selected. The gate's
+ * |v| > exc as v > exc or v < -exc: the same for every v but the mask (-2^15, whose |v| is 2^15,
+ * -2^15 as int16: not over exc in the pixel form), where it changes only learn, which the mean
+ * does not read there (masked: kept). The output clamp(c) = max(min(c, 32767), -32767) with the
+ * signed saturating v - sdm (c's range is +-(2^15 + 2^11)), then min'ed with -2^15 where masked
+ * (32767 ^ msk: 32767, or -2^15); c + 2^16 (0 where masked) as the 16-bit halves c16 and [c >=
+ * 0] interleaved. */
+static inline void cl_mean8_sse2_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
+                                  int32_t x, const cl_sse2k_t *k, bool gate, bool full)
+{
+    const __m128i v = _mm_loadu_si128((const __m128i *)(const void *)(o + x));
+    const __m128i msk = _mm_cmpeq_epi16(v, k->h8);
+    __m128i keep = msk; /* mu kept: masked, or not learnt */
+    if (gate) {
+        const __m128i p0 = _mm_loadu_si128((const __m128i *)(const void *)(pc + x));
+        const __m128i pu = _mm_min_epi16(_mm_add_epi16(p0, k->p256), k->pcap);
+        const __m128i pd = _mm_subs_epu16(p0, k->p128);
+        const __m128i ex = _mm_or_si128(_mm_cmpgt_epi16(v, k->exc), _mm_cmpgt_epi16(k->nexc, v));
+        const __m128i p1 = _mm_or_si128(_mm_and_si128(ex, pu), _mm_andnot_si128(ex, pd));
+        _mm_storeu_si128((__m128i *)(void *)(pc + x),
+                         _mm_or_si128(_mm_and_si128(msk, p0), _mm_andnot_si128(msk, p1)));
+        /* not learnt: ex and p1 < pk */
+        keep = _mm_or_si128(msk, _mm_and_si128(ex, _mm_cmpgt_epi16(k->pk, p1)));
+    }
+    const __m128i mu0 = _mm_loadu_si128((const __m128i *)(const void *)(mu + x));
+    const __m128i mv = _mm_xor_si128(mu0, k->h8); /* mu - 2^15 */
+    const __m128i mvn = _mm_srai_epi16(mv, 15);
+    const __m128i amv = _mm_sub_epi16(_mm_xor_si128(mv, mvn), mvn);
+    const __m128i dr = _mm_srli_epi16(_mm_add_epi16(amv, k->four), 3);
+    const __m128i dm = _mm_and_si128(dr, _mm_cmpgt_epi16(dr, k->mfl));
+    const __m128i sdm = _mm_sub_epi16(_mm_xor_si128(dm, mvn), mvn);
+    const __m128i cn = _mm_cmpgt_epi16(sdm, v); /* c < 0 */
+    const __m128i c16 = _mm_sub_epi16(v, sdm);
+    const __m128i ac = _mm_sub_epi16(_mm_xor_si128(c16, cn), cn);
+    const __m128i hi = _mm_mulhi_epu16(ac, ac), lo = _mm_mullo_epi16(ac, ac);
+    const __m128i tl = _mm_add_epi16(_mm_add_epi16(_mm_slli_epi16(hi, 10), _mm_srli_epi16(lo, 6)),
+                                     _mm_and_si128(_mm_srli_epi16(lo, 5), k->one));
+    const __m128i big = _mm_cmpgt_epi16(_mm_srli_epi16(ac, 11), k->zero); /* ac >= 2048 */
+    const __m128i t = _mm_or_si128(tl, big);
+    const __m128i m0 = _mm_loadu_si128((const __m128i *)(const void *)(mrow + x));
+    const __m128i dmt = _mm_subs_epu16(m0, t);
+    const __m128i nn = _mm_cmpeq_epi16(dmt, k->zero); /* t >= m */
+    const __m128i d = _mm_andnot_si128(msk, _mm_or_si128(dmt, _mm_subs_epu16(t, m0)));
+    const __m128i q = cl_scale8_sse2_(d, k->a, full);
+    _mm_storeu_si128((__m128i *)(void *)(mrow + x),
+                     _mm_sub_epi16(_mm_add_epi16(m0, _mm_and_si128(nn, q)), _mm_andnot_si128(nn, q)));
+    const __m128i tv = _mm_slli_epi16(_mm_max_epi16(_mm_min_epi16(v, k->lim), k->nlim), 3);
+    const __m128i ne = _mm_cmpgt_epi16(mv, tv); /* e < 0 */
+    const __m128i e = _mm_sub_epi16(tv, mv);
+    const __m128i ae = _mm_andnot_si128(keep, _mm_sub_epi16(_mm_xor_si128(e, ne), ne));
+    const __m128i qe = cl_scale8_sse2_(ae, k->a, full);
+    _mm_storeu_si128((__m128i *)(void *)(mu + x), _mm_add_epi16(mu0, _mm_sub_epi16(_mm_xor_si128(qe, ne), ne)));
+    const __m128i oc = _mm_max_epi16(_mm_subs_epi16(v, sdm), k->nrmax);
+    _mm_storeu_si128((__m128i *)(void *)(o + x), _mm_min_epi16(oc, _mm_xor_si128(msk, k->rmax)));
+    const __m128i cl = _mm_andnot_si128(msk, c16);
+    const __m128i ch = _mm_andnot_si128(_mm_or_si128(msk, cn), k->one);
+    _mm_storeu_si128((__m128i *)(void *)(cs + x), _mm_unpacklo_epi16(cl, ch));
+    _mm_storeu_si128((__m128i *)(void *)(cs + x + 4), _mm_unpackhi_epi16(cl, ch));
+}
+
 /* Columns x0..x1-1 of cl_row_mean_'s gate (pc, persist) and mean pass with one floor mfl for
- * all of them (a constant, so that the loops vectorise); full (a = 2^16, the first frame with
- * evidence) a constant in each loop, so that cl_round_scale_'s choice leaves the loops (the
+ * all of them: whole blocks of 8 columns in SSE2's lanes (cl_mean8_sse2_, full a constant in
+ * each loop), the columns left over in the per-pixel loops below, with one floor (a constant)
+ * and full a constant in each loop, so that cl_round_scale_'s choice leaves the loops (the
  * same values). */
 static inline void cl_mean_span_(int16_t *o, uint16_t *mrow, uint16_t *mu, uint16_t *pc, uint32_t *cs,
                                  int32_t x0, int32_t x1, uint16_t a16, uint16_t full, uint32_t exc,
                                  uint32_t pk, uint32_t pcap, int32_t mfl)
 {
     const uint16_t f16 = (uint16_t)mfl; /* 0..CL_FLOORMAX_ */
+    /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
+     * (the config check), pcap = 2 pk <= 2^14 (without persist pk = pcap = 0, not read) */
+    const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
+    const int32_t xs = x0 + ((x1 - x0) & ~7);
+    if (xs > x0) {
+        cl_sse2k_t k;
+        k.a = _mm_set1_epi16((int16_t)a16);
+        k.mfl = _mm_set1_epi16((int16_t)f16);
+        k.exc = _mm_set1_epi16((int16_t)e16);
+        k.nexc = _mm_set1_epi16((int16_t)(-(int32_t)e16));
+        k.pk = _mm_set1_epi16((int16_t)k16);
+        k.pcap = _mm_set1_epi16((int16_t)c16);
+        k.zero = _mm_setzero_si128();
+        k.one = _mm_set1_epi16(1);
+        k.four = _mm_set1_epi16(4);
+        k.h8 = _mm_set1_epi16((int16_t)PFT_RES16_MASKED); /* also mu's offset 2^15 */
+        k.rmax = _mm_set1_epi16((int16_t)PFT_PRE_RMAX_);
+        k.nrmax = _mm_set1_epi16((int16_t)-PFT_PRE_RMAX_);
+        k.lim = _mm_set1_epi16(2048);
+        k.nlim = _mm_set1_epi16(-2048);
+        k.p256 = _mm_set1_epi16(256);
+        k.p128 = _mm_set1_epi16(128);
+        /* the gate and full constants in each loop (the first frame: full) */
+        if (pc != NULL && full == 0u) {
+            for (int32_t x = x0; x < xs; x += 8) {
+                cl_mean8_sse2_(o, mrow, mu, pc, cs, x, &k, true, false);
+            }
+        } else if (pc != NULL) {
+            for (int32_t x = x0; x < xs; x += 8) {
+                cl_mean8_sse2_(o, mrow, mu, pc, cs, x, &k, true, true);
+            }
+        } else if (full == 0u) {
+            for (int32_t x = x0; x < xs; x += 8) {
+                cl_mean8_sse2_(o, mrow, mu, pc, cs, x, &k, false, false);
+            }
+        } else {
+            for (int32_t x = x0; x < xs; x += 8) {
+                cl_mean8_sse2_(o, mrow, mu, pc, cs, x, &k, false, true);
+            }
+        }
+    }
     if (pc != NULL) {
-        /* exc 1..32767, pk = persist * 256 in 256..PFT_PRE_CLUTTER_MAX_PERSIST * 256 = 2^13
-         * (the config check), pcap = 2 pk <= 2^14 */
-        const uint16_t e16 = (uint16_t)exc, k16 = (uint16_t)pk, c16 = (uint16_t)pcap;
         if (full != 0u) {
-            for (int32_t x = x0; x < x1; ++x) {
+            for (int32_t x = xs; x < x1; ++x) {
                 uint16_t learn;
                 cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
                 cl_mean_px_(&o[x], learn, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
             }
         } else {
-            for (int32_t x = x0; x < x1; ++x) {
+            for (int32_t x = xs; x < x1; ++x) {
                 uint16_t learn;
                 cl_gate_px_(o[x], &pc[x], e16, k16, c16, &learn);
                 cl_mean_px_(&o[x], learn, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
             }
         }
     } else if (full != 0u) {
-        for (int32_t x = x0; x < x1; ++x) {
+        for (int32_t x = xs; x < x1; ++x) {
             cl_mean_px_(&o[x], 1u, a16, 1u, f16, &mrow[x], &mu[x], &cs[x]);
         }
     } else {
-        for (int32_t x = x0; x < x1; ++x) {
+        for (int32_t x = xs; x < x1; ++x) {
             cl_mean_px_(&o[x], 1u, a16, 0u, f16, &mrow[x], &mu[x], &cs[x]);
         }
     }
