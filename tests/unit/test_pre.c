@@ -1365,6 +1365,80 @@ static void test_lk_rows_sse2(void)
 #endif
 }
 
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares it. */
+uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
+#endif
+
+/* x86-64's count of a row's masked pixels in SSE2 lanes (pft_pre_count_rows_, count_row_'s
+ * form: 8 pixels at a time in 16-bit lanes): known answers (pixels at lo - 1, lo, the top of
+ * the span and past it, bits above the depth, the pixels after the last whole block left; lo 0
+ * with a span to 65536; limits outside the form's, left whole), then the counts and the
+ * pixels done equal to the rule of pft_pre_count_masked_ (v - lo >= span unsigned: dead below
+ * lo, else saturated) on 300 random rows (0 .. 40, 384 and 8192 pixels, bit depths 8 .. 16,
+ * lo and span random and at their ends). */
+static void test_count_rows_sse2(void)
+{
+#if defined(__SSE2__)
+    enum { NX = 8192 };
+    static uint16_t z[NX];
+    static uint8_t rz[2 * NX];
+    const uint16_t k_row[19] = {99, 100, 3999, 4000, 4001, 0, 4095, 0xF063, /* 0xF063 & 4095: 99 */
+                                200, 201, 202, 203, 204, 205, 206, 4000,    /* one saturated */
+                                0, 4095, 0};                                /* left */
+    memcpy(rz, k_row, sizeof(k_row));
+    uint32_t cnt[2] = {5u, 7u}; /* added to */
+    /* lo 100, span 3900: valid 100 .. 3999 */
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rows_(rz, 19u, 4095u, 100u, 3900u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(5u + 3u, cnt[0]); /* 99, 0, 99 */
+    TEST_ASSERT_EQUAL_UINT32(7u + 4u, cnt[1]); /* 4000, 4001, 4095, 4000 */
+    const uint16_t k_full[8] = {0, 1, 65535, 65534, 32768, 32767, 100, 0};
+    memcpy(rz, k_full, sizeof(k_full));
+    cnt[0] = 0u;
+    cnt[1] = 0u;
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 65536u, cnt)); /* none */
+    TEST_ASSERT_EQUAL_UINT32(0u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(0u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 1u, 65534u, cnt)); /* 1 .. 65534 */
+    TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 65536u, 10u, cnt)); /* left */
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 5u, 0xFFFFFFF0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
+    uint32_t seen = 0u;
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t bits = 8u + (uint32_t)t % 9u, mask = (1u << bits) - 1u;
+        const uint32_t r0 = pft_test_xorshift32(&g_rs), r1 = pft_test_xorshift32(&g_rs);
+        const uint32_t lo = t % 5 == 0 ? 0u : r0 % (mask + 1u);
+        const uint32_t span = t % 7 == 0 ? mask + 1u - lo : 1u + r1 % (mask + 1u - lo);
+        const uint32_t w = t == 150 || t == 299 ? (uint32_t)NX : (t % 10 == 0 ? 384u : (uint32_t)t % 41u);
+        for (uint32_t i = 0; i < w; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            /* bits above the depth too; some pixels near lo and the span's top */
+            z[i] = (uint16_t)((r & 3u) == 0u ? lo + (r >> 16) % 3u - 1u : ((r & 3u) == 1u ? lo + span - 1u + (r >> 16) % 3u : r >> 8));
+        }
+        memcpy(rz, z, sizeof(z));
+        uint32_t got[2] = {1u, 2u}, want[2] = {1u, 2u};
+        const uint32_t xe = w / 8u * 8u;
+        for (uint32_t i = 0; i < xe; ++i) {
+            const uint32_t v = z[i] & mask;
+            if (v - lo >= span) {
+                want[v < lo ? 0 : 1]++;
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rows_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
+        seen += want[0] + want[1];
+    }
+    TEST_ASSERT_TRUE(seen > 1000u);
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep their own forms");
+#endif
+}
+
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
 uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
@@ -1472,5 +1546,6 @@ int main(void)
     RUN_TEST(test_sigma_options);
     RUN_TEST(test_hist_rown_neon);
     RUN_TEST(test_lk_rows_sse2);
+    RUN_TEST(test_count_rows_sse2);
     return UNITY_END();
 }

@@ -1161,12 +1161,73 @@ uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint
 }
 #endif
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), count_row_ of a U16 frame without a bad-pixel map for
+ * pixels 0 .. 8 (w / 8) - 1 in 16-bit lanes: a pixel v (masked by mask, so below 2^16) is
+ * counted iff v - lo >= span (unsigned), that is iff v < lo (dead) or v >= t = lo + span
+ * (saturated), when lo < 2^16, span >= 1 and span <= 2^32 - 2^16 (then v < lo wraps v - lo to
+ * at least 2^32 - 65535 > span, and t > lo); pft_pre_count_masked_ without the map's case. The
+ * unsigned compares are the signed ones of both sides xor 0x8000 (t above 65535 as 65536: no
+ * pixel saturated); a lane counts at most w / 8 <= 1024 pixels (PFT_CFG_MAX_IMAGE_SIDE). Other
+ * limits leave the row to the loop (returns 0). Adds to n_dead, n_sat; returns the first pixel
+ * left to the loop. */
+static uint32_t count_row_s_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+{
+    if (c->lo > 65535u || c->span < 1u || c->span > 0xFFFF0000u) {
+        return 0u;
+    }
+    const uint64_t t = (uint64_t)c->lo + c->span;
+    const uint32_t tm = t > 65536u ? 65535u : (uint32_t)t - 1u; /* t - 1, at most 65535 */
+    const __m128i vm = _mm_set1_epi16((short)(int32_t)(c->mask & 0xFFFFu));
+    const __m128i flip = _mm_set1_epi16((short)-32768);
+    const __m128i vlo = _mm_set1_epi16((short)((int32_t)c->lo - 32768));
+    const __m128i vtm = _mm_set1_epi16((short)((int32_t)tm - 32768));
+    __m128i nd = _mm_setzero_si128(), ns = nd;
+    uint32_t x = 0u;
+    for (; x + 8u <= w; x += 8u) {
+        const __m128i v = _mm_xor_si128(_mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(row + 2u * x)), vm), flip);
+        nd = _mm_sub_epi16(nd, _mm_cmplt_epi16(v, vlo));
+        ns = _mm_sub_epi16(ns, _mm_cmpgt_epi16(v, vtm));
+    }
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i d4 = _mm_madd_epi16(nd, one), s4 = _mm_madd_epi16(ns, one);
+    __m128i s = _mm_add_epi32(_mm_unpacklo_epi32(d4, s4), _mm_unpackhi_epi32(d4, s4));
+    s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0x4E)); /* lanes 0, 1: dead, saturated */
+    acc->n_dead += (uint32_t)_mm_cvtsi128_si32(s);
+    acc->n_sat += (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(s, 0x55));
+    return x;
+}
+
+/* count_row_s_ for a test: the arguments and results of pft_pre_count_rown_ (AArch64's form),
+ * pixels 0 .. 8 (w / 8) - 1 where the limits allow (else none). */
+uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2])
+{
+    pft_pre_cls_t c;
+    pft_pre_acc_t a;
+    memset(&c, 0, sizeof(c));
+    memset(&a, 0, sizeof(a));
+    c.mask = mask;
+    c.lo = lo;
+    c.span = span;
+    c.map = NULL;
+    a.n_dead = cnt[0];
+    a.n_sat = cnt[1];
+    const uint32_t x = count_row_s_(row, w, &c, &a);
+    cnt[0] = a.n_dead;
+    cnt[1] = a.n_sat;
+    return x;
+}
+#endif
+
 static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
                        pft_pre_acc_t *acc)
 {
     const uint8_t *row = pft_frame_row(f, y);
 #if defined(PFT_PRE_NEON_)
     const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_n_(row, f->width, c, acc) : 0u;
+#elif defined(__SSE2__)
+    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_s_(row, f->width, c, acc) : 0u;
 #else
     const uint32_t xa = 0u;
 #endif
