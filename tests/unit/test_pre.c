@@ -1228,6 +1228,217 @@ static void test_sigma_options(void)
     }
 }
 
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares it. */
+int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
+
+/* The Lucas-Kanade sums of one row as the registration's plain loop defines them (lk_loop_ on
+ * a U16 frame without a bad-pixel map: samples 0, st, ... below ie; the bilinear sample, error
+ * and gradients across the cell), in 64-bit arithmetic. par: mask, lo, span, bf, fx, fy. */
+static void lk_sums_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                        const uint32_t par[6], int32_t st, int32_t ie, int64_t sums[6], uint32_t *cnt)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    const int64_t fx = par[4], fy = par[5];
+    for (int32_t i = 0; i < ie; i += st) {
+        const int64_t v = z[i] & par[0];
+        if (v < par[1] || v - par[1] >= par[2]) {
+            continue;
+        }
+        const int64_t h0 = (256 - fx) * b0[i + 1] + fx * b0[i + 2];
+        const int64_t h1 = (256 - fx) * b1[i + 1] + fx * b1[i + 2];
+        const int64_t e = v * ((int64_t)1 << par[3]) - cz[i] - (((256 - fy) * h0 + fy * h1 + 32768) >> 16);
+        const int64_t gx = (int64_t)b0[i + 3] + b1[i + 3] - b0[i] - b1[i];
+        const int64_t gy = (int64_t)b2[i + 1] + b2[i + 2] - bm[i + 1] - bm[i + 2];
+        const int64_t t[6] = {gx * gx, gx * gy, gy * gy, gx * e, gy * e, e * e};
+        for (int32_t j = 0; j < 6; ++j) {
+            sums[j] += t[j];
+        }
+        (*cnt)++;
+    }
+}
+#endif
+
+/* x86-64's Lucas-Kanade sums of a row in SSE2 lanes (pft_pre_lk_rows_, steps 2 and 4: four
+ * samples of each whole block of 4 st pixels, the bilinear sample from 16-bit pmaddwd pairs,
+ * the products summed in double lanes, an invalid sample's terms 0): known answers (a
+ * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0 and fx = fy = 128,
+ * with and without a masked sample, the samples after the last whole block left), then the
+ * sums, the count and the samples done equal to the plain loop's in 64-bit arithmetic on 600
+ * random rows of both steps (bit depths 12 .. 16 with their bf, random lo and span, fractions
+ * 0 .. 255 with 0 and 255 among them, colnow within +-65535 U as the library's, backgrounds
+ * random, at 0 and 65535 or near 65535; rows of 0 .. 40, 384 and 8191 pixels, the longest with
+ * the largest products the library can form). */
+static void test_lk_rows_sse2(void)
+{
+#if defined(__SSE2__)
+    enum { NX = 8192, BS = 8208 };
+    static uint16_t z[NX], bg[4 * BS];
+    static int32_t cz[NX];
+    static uint8_t rz[2 * NX];
+    for (int32_t r = 0; r < 4; ++r) {
+        for (int32_t c = 0; c < BS; ++c) {
+            bg[r * BS + c] = (uint16_t)(10 * c + 1000 * r);
+        }
+    }
+    for (int32_t i = 0; i < NX; ++i) {
+        z[i] = 5000u;
+        cz[i] = 0;
+    }
+    memcpy(rz, z, sizeof(z));
+    const uint32_t par[6] = {0xFFFFu, 1u, 65535u, 0u, 0u, 0u};
+    int64_t s[6] = {0, 0, 0, 0, 0, 0};
+    uint32_t n = 0u;
+    /* n 14: samples 0, 2, 4, 6 in the block (8 + 7 > 14); b0 is row 1, so with fx = fy = 0
+     * e = 5000 - 1010 - 10 i: 3990, 3970, 3950, 3930 */
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    const int64_t k_all[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15840, 6000 * 15840,
+                              3990 * 3990 + 3970 * 3970 + 3950 * 3950 + 3930 * 3930};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_all, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    z[4] = 0u; /* below lo: sample 4 masked */
+    memcpy(rz, z, sizeof(z));
+    memset(s, 0, sizeof(s));
+    n = 7u; /* added to */
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    const int64_t k_one[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11890, 6000 * 11890,
+                              3990 * 3990 + 3970 * 3970 + 3930 * 3930};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_one, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(10u, n);
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(10u, n);
+    /* fx = fy = 128: the cell's mean, 1015 + 10 i + 500 (rows 1, 2): e = 3485, 3465, (4 masked),
+     * 3425 */
+    const uint32_t par_h[6] = {0xFFFFu, 1u, 65535u, 0u, 128u, 128u};
+    memset(s, 0, sizeof(s));
+    n = 0u;
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par_h, 2, 7, s, &n));
+    const int64_t k_half[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 10375, 6000 * 10375,
+                               3485 * 3485 + 3465 * 3465 + 3425 * 3425};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_half, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(3u, n);
+    /* step 4, n 30: samples 0, 4 (masked), 8, 12 (16 + 15 > 30): e = 3990, 3910, 3870 */
+    memset(s, 0, sizeof(s));
+    n = 0u;
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rows_(rz, cz, bg, BS, par, 4, 30, s, &n));
+    const int64_t k_st4[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11770, 6000 * 11770,
+                              3990 * 3990 + 3910 * 3910 + 3870 * 3870};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_st4, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(3u, n);
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rows_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(3u, n);
+    uint32_t masked = 0u;
+    for (int32_t t = 0; t < 600; ++t) {
+        const int32_t st = t < 300 ? 2 : 4;
+        const uint32_t bits = 12u + (uint32_t)t % 5u;
+        const uint32_t lo = pft_test_xorshift32(&g_rs) % 64u;
+        const uint32_t span = (1u << bits) - lo - pft_test_xorshift32(&g_rs) % 64u;
+        const uint32_t fr = t % 7 == 0 ? 0u : (t % 7 == 1 ? 255u : pft_test_xorshift32(&g_rs) % 256u);
+        const uint32_t pr[6] = {(1u << bits) - 1u, lo, span, 16u - bits, fr, 255u - fr / 2u};
+        const int32_t ns = t % 300 == 299 ? NX - 1 : (t % 300 < 280 ? t % 41 : 384);
+        const int32_t kind = ns == NX - 1 ? 1 : (t / 5) % 3;
+        for (int32_t i = 0; i < NX; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            /* bits above the depth too; every other row half its pixels near 0 (some below lo) */
+            z[i] = (t & 1) != 0 && (r & 0x20000u) != 0u ? (uint16_t)(r % 128u) : (uint16_t)r;
+            cz[i] = kind == 1 ? ((r & 0x10000u) != 0u ? 65535 : -65535)
+                              : (int32_t)(pft_test_xorshift32(&g_rs) % 131071u) - 65535;
+        }
+        for (int32_t i = 0; i < 4 * BS; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            bg[i] = kind == 0 ? (uint16_t)r : (kind == 1 ? ((r & 1u) != 0u ? 65535u : 0u) : (uint16_t)(65535u - r % 8u));
+        }
+        memcpy(rz, z, sizeof(z));
+        int64_t got[6] = {1, -2, 3, -4, 5, -6}, want[6] = {1, -2, 3, -4, 5, -6};
+        uint32_t gn = 3u, wn = 3u;
+        const int32_t ie = (ns + 1) / (4 * st) * (4 * st);
+        lk_sums_ref(z, cz, bg, BS, pr, st, ie, want, &wn);
+        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rows_(rz, cz, bg, BS, pr, st, ns, got, &gn));
+        TEST_ASSERT_EQUAL_INT64_ARRAY(want, got, 6);
+        TEST_ASSERT_EQUAL_UINT32(wn, gn);
+        masked += (uint32_t)(ie / st) + 3u - wn;
+    }
+    TEST_ASSERT_TRUE(masked > 1000u); /* the masks acted */
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep their own forms");
+#endif
+}
+
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares it. */
+uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
+#endif
+
+/* x86-64's count of a row's masked pixels in SSE2 lanes (pft_pre_count_rows_, count_row_'s
+ * form: 8 pixels at a time in 16-bit lanes): known answers (pixels at lo - 1, lo, the top of
+ * the span and past it, bits above the depth, the pixels after the last whole block left; lo 0
+ * with a span to 65536; limits outside the form's, left whole), then the counts and the
+ * pixels done equal to the rule of pft_pre_count_masked_ (v - lo >= span unsigned: dead below
+ * lo, else saturated) on 300 random rows (0 .. 40, 384 and 8192 pixels, bit depths 8 .. 16,
+ * lo and span random and at their ends). */
+static void test_count_rows_sse2(void)
+{
+#if defined(__SSE2__)
+    enum { NX = 8192 };
+    static uint16_t z[NX];
+    static uint8_t rz[2 * NX];
+    const uint16_t k_row[19] = {99, 100, 3999, 4000, 4001, 0, 4095, 0xF063, /* 0xF063 & 4095: 99 */
+                                200, 201, 202, 203, 204, 205, 206, 4000,    /* one saturated */
+                                0, 4095, 0};                                /* left */
+    memcpy(rz, k_row, sizeof(k_row));
+    uint32_t cnt[2] = {5u, 7u}; /* added to */
+    /* lo 100, span 3900: valid 100 .. 3999 */
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rows_(rz, 19u, 4095u, 100u, 3900u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(5u + 3u, cnt[0]); /* 99, 0, 99 */
+    TEST_ASSERT_EQUAL_UINT32(7u + 4u, cnt[1]); /* 4000, 4001, 4095, 4000 */
+    const uint16_t k_full[8] = {0, 1, 65535, 65534, 32768, 32767, 100, 0};
+    memcpy(rz, k_full, sizeof(k_full));
+    cnt[0] = 0u;
+    cnt[1] = 0u;
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 65536u, cnt)); /* none */
+    TEST_ASSERT_EQUAL_UINT32(0u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(0u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 1u, 65534u, cnt)); /* 1 .. 65534 */
+    TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 65536u, 10u, cnt)); /* left */
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 5u, 0xFFFFFFF0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
+    TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
+    uint32_t seen = 0u;
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t bits = 8u + (uint32_t)t % 9u, mask = (1u << bits) - 1u;
+        const uint32_t r0 = pft_test_xorshift32(&g_rs), r1 = pft_test_xorshift32(&g_rs);
+        const uint32_t lo = t % 5 == 0 ? 0u : r0 % (mask + 1u);
+        const uint32_t span = t % 7 == 0 ? mask + 1u - lo : 1u + r1 % (mask + 1u - lo);
+        const uint32_t w = t == 150 || t == 299 ? (uint32_t)NX : (t % 10 == 0 ? 384u : (uint32_t)t % 41u);
+        for (uint32_t i = 0; i < w; ++i) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            /* bits above the depth too; some pixels near lo and the span's top */
+            z[i] = (uint16_t)((r & 3u) == 0u ? lo + (r >> 16) % 3u - 1u : ((r & 3u) == 1u ? lo + span - 1u + (r >> 16) % 3u : r >> 8));
+        }
+        memcpy(rz, z, sizeof(z));
+        uint32_t got[2] = {1u, 2u}, want[2] = {1u, 2u};
+        const uint32_t xe = w / 8u * 8u;
+        for (uint32_t i = 0; i < xe; ++i) {
+            const uint32_t v = z[i] & mask;
+            if (v - lo >= span) {
+                want[v < lo ? 0 : 1]++;
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rows_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
+        seen += want[0] + want[1];
+    }
+    TEST_ASSERT_TRUE(seen > 1000u);
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep their own forms");
+#endif
+}
+
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
 uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
@@ -1334,5 +1545,7 @@ int main(void)
     RUN_TEST(test_u8_and_bit_depths);
     RUN_TEST(test_sigma_options);
     RUN_TEST(test_hist_rown_neon);
+    RUN_TEST(test_lk_rows_sse2);
+    RUN_TEST(test_count_rows_sse2);
     return UNITY_END();
 }

@@ -173,6 +173,16 @@ void pft_pre_view_vrow_(const uint16_t *t0, const uint16_t *t1, const uint16_t *
                         int32_t n);
 void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_t k,
                         const int32_t w[4], uint16_t *o, int32_t n);
+/* bg registration on x86-64 (SSE2): the Lucas-Kanade sums of a row's samples 0, st, 2 st, ...
+ * (st 2 or 4) in whole blocks of four (U16 frame, no bad-pixel map), the arguments of
+ * pft_pre_lk_rown_; returns the first sample left to the plain loop (pre_temporal.c). */
+int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
+/* The masked pixels of a U16 row without a bad-pixel map by cause, pixels 0 .. 8 (w / 8) - 1
+ * where lo and span allow (count_row_'s SSE2 form): the arguments and results of
+ * pft_pre_count_rown_ (pre_temporal.c). */
+uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
 #elif defined(__aarch64__) && defined(__ARM_NEON)
 /* bg_anchor on AArch64 (NEON): the registration's view's horizontal pass of the 32-bit form,
  * pixels 0 .. 8 (xe / 8) - 1 from the vertical blends v; returns 8 (xe / 8) (pre_temporal.c). */

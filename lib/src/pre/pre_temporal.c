@@ -408,6 +408,207 @@ int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *b
 }
 #endif
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), lk_loop_'s sums (a U16 frame without a bad-pixel map)
+ * four samples at a time in 32-bit lanes, the same gx, gy, e as the loop, an invalid sample's
+ * gx, gy, e set to 0 instead of skipped (its products add 0). SSE2 has no 32-bit lane
+ * multiply, so the bilinear sample goes through pmaddwd on 16-bit pairs: a lane holds the
+ * sample's two taps (b[i + 1], b[i + 2]) of a background row, biased by -32768 into int16
+ * (xor 0x8000), and pmaddwd with the pair (256 - fx, fx) gives P = h - 2^23 (h = the loop's h0
+ * or h1, below 2^24), exactly. P = 2^15 ph + pl (ph = P >> 15 in [-256, 255], pl in
+ * [0, 32767]); the pairs (ph0, ph1) and (pl0, pl1) with (256 - fy, fy) give A and B, and
+ * h0 (256 - fy) + h1 fy = 2^15 A + B + 2^31 (the weights sum to 256). So the loop's
+ * bw = (that + 32768) >> 16 = ((A + ((B + 32768) >> 15)) >> 1) + 32768 exactly (B + 32768 >= 0;
+ * for any integer Q and 0 <= r < 2^15, floor((2^15 Q + r) / 2^16) = floor(Q / 2)). gy is two
+ * pmaddwd of the biased pairs of rows b2 and bm with (1, 1) (the biases cancel), gx the 16-bit
+ * halves of b0, b1 at i and i + 3. v - lo < span (unsigned) is the signed compare of both sides
+ * xor 2^31. The six products are summed in double lanes, each exact: |gx|, |gy| < 2^17 and
+ * |e| < 2^18 (v 2^bf, colnow and bw each within 65535 U: colnow's clamp at search_axis_), so a
+ * product is below 2^36 and a lane's sum over one row (at most 2048 samples: 8192 pixels,
+ * PFT_CFG_MAX_IMAGE_SIDE, at step 2, two lanes of each of the 4 samples) below 2^47 < 2^53; each
+ * row's sums go to the int64 totals. Integer sums in another order, the same totals. par: mask,
+ * lo, span, bf, fx, fy. */
+typedef struct {
+    __m128i vm, vlo, vspan, vbf, wx, wy, flip, ones, m16, m15, k15, sgn;
+} lk_spar_t;
+
+typedef struct {
+    __m128d sxx, sxy, syy, sxe, sye, see;
+    __m128i n;
+} lk_sacc_t;
+
+static inline void lk_spar_(const uint32_t par[6], lk_spar_t *q, lk_sacc_t *a)
+{
+    q->vm = _mm_set1_epi32((int)(par[0] & 0xFFFFu));
+    q->vlo = _mm_set1_epi32((int)par[1]);
+    q->sgn = _mm_set1_epi32((int)INT32_MIN);
+    q->vspan = _mm_xor_si128(_mm_set1_epi32((int)par[2]), q->sgn);
+    q->vbf = _mm_cvtsi32_si128((int)par[3]);
+    q->wx = _mm_set1_epi32((int)((256u - par[4]) | (par[4] << 16)));
+    q->wy = _mm_set1_epi32((int)((256u - par[5]) | (par[5] << 16)));
+    q->flip = _mm_set1_epi16((short)-32768);
+    q->ones = _mm_set1_epi16(1);
+    q->m16 = _mm_set1_epi32(0xFFFF);
+    q->m15 = _mm_set1_epi32(32767);
+    q->k15 = _mm_set1_epi32(32768);
+    a->sxx = _mm_setzero_pd();
+    a->sxy = a->sxx;
+    a->syy = a->sxx;
+    a->sxe = a->sxx;
+    a->sye = a->sxx;
+    a->see = a->sxx;
+    a->n = _mm_setzero_si128();
+}
+
+/* The taps of four samples, one per 32-bit lane: p0, p1 the pairs (b[i + 1], b[i + 2]) of rows
+ * b0, b1; r0, r1 with b[i] in the low halves; t0, t1 with b[i + 3] in the high halves; pm, p2
+ * the pairs (b[i + 1], b[i + 2]) of rows bm, b2. */
+typedef struct {
+    __m128i p0, p1, r0, r1, t0, t1, pm, p2;
+} lk_staps_t;
+
+/* Four samples: raw their pixels (the low half of each lane), czv colnow. */
+static inline void lk_block_s_(const lk_spar_t *q, __m128i raw, const lk_staps_t *k, __m128i czv, lk_sacc_t *a)
+{
+    const __m128i v = _mm_and_si128(raw, q->vm);
+    const __m128i ok = _mm_cmplt_epi32(_mm_xor_si128(_mm_sub_epi32(v, q->vlo), q->sgn), q->vspan);
+    const __m128i p0 = _mm_madd_epi16(_mm_xor_si128(k->p0, q->flip), q->wx);
+    const __m128i p1 = _mm_madd_epi16(_mm_xor_si128(k->p1, q->flip), q->wx);
+    const __m128i ph = _mm_or_si128(_mm_and_si128(_mm_srai_epi32(p0, 15), q->m16),
+                                    _mm_slli_epi32(_mm_srai_epi32(p1, 15), 16));
+    const __m128i pl = _mm_or_si128(_mm_and_si128(p0, q->m15), _mm_slli_epi32(_mm_and_si128(p1, q->m15), 16));
+    const __m128i qa = _mm_madd_epi16(ph, q->wy), qb = _mm_madd_epi16(pl, q->wy);
+    const __m128i bw = _mm_add_epi32(_mm_srai_epi32(_mm_add_epi32(qa, _mm_srai_epi32(_mm_add_epi32(qb, q->k15), 15)), 1),
+                                     q->k15);
+    const __m128i e = _mm_and_si128(_mm_sub_epi32(_mm_sub_epi32(_mm_sll_epi32(v, q->vbf), czv), bw), ok);
+    const __m128i gx = _mm_and_si128(_mm_sub_epi32(_mm_add_epi32(_mm_srli_epi32(k->t0, 16), _mm_srli_epi32(k->t1, 16)),
+                                                   _mm_add_epi32(_mm_and_si128(k->r0, q->m16), _mm_and_si128(k->r1, q->m16))),
+                                     ok);
+    const __m128i gy = _mm_and_si128(_mm_sub_epi32(_mm_madd_epi16(_mm_xor_si128(k->p2, q->flip), q->ones),
+                                                   _mm_madd_epi16(_mm_xor_si128(k->pm, q->flip), q->ones)),
+                                     ok);
+    a->n = _mm_sub_epi32(a->n, ok);
+    const __m128d xl = _mm_cvtepi32_pd(gx), xh = _mm_cvtepi32_pd(_mm_shuffle_epi32(gx, 0xEE));
+    const __m128d yl = _mm_cvtepi32_pd(gy), yh = _mm_cvtepi32_pd(_mm_shuffle_epi32(gy, 0xEE));
+    const __m128d el = _mm_cvtepi32_pd(e), eh = _mm_cvtepi32_pd(_mm_shuffle_epi32(e, 0xEE));
+    a->sxx = _mm_add_pd(a->sxx, _mm_add_pd(_mm_mul_pd(xl, xl), _mm_mul_pd(xh, xh)));
+    a->sxy = _mm_add_pd(a->sxy, _mm_add_pd(_mm_mul_pd(xl, yl), _mm_mul_pd(xh, yh)));
+    a->syy = _mm_add_pd(a->syy, _mm_add_pd(_mm_mul_pd(yl, yl), _mm_mul_pd(yh, yh)));
+    a->sxe = _mm_add_pd(a->sxe, _mm_add_pd(_mm_mul_pd(xl, el), _mm_mul_pd(xh, eh)));
+    a->sye = _mm_add_pd(a->sye, _mm_add_pd(_mm_mul_pd(yl, el), _mm_mul_pd(yh, eh)));
+    a->see = _mm_add_pd(a->see, _mm_add_pd(_mm_mul_pd(el, el), _mm_mul_pd(eh, eh)));
+}
+
+/* A double lane pair's sum as an integer (exact: below 2^53, see above). */
+static inline int64_t lk_sdsum_(__m128d v)
+{
+    return (int64_t)_mm_cvtsd_f64(_mm_add_sd(v, _mm_unpackhi_pd(v, v)));
+}
+
+static inline void lk_ssum_(const lk_sacc_t *a, lk_sums_t *s)
+{
+    s->sxx += lk_sdsum_(a->sxx);
+    s->sxy += lk_sdsum_(a->sxy);
+    s->syy += lk_sdsum_(a->syy);
+    s->sxe += lk_sdsum_(a->sxe);
+    s->sye += lk_sdsum_(a->sye);
+    s->see += lk_sdsum_(a->see);
+    const __m128i n2 = _mm_add_epi32(a->n, _mm_shuffle_epi32(a->n, 0xEE));
+    s->n += (uint32_t)_mm_cvtsi128_si32(_mm_add_epi32(n2, _mm_shuffle_epi32(n2, 0x55)));
+}
+
+static inline __m128i lk_ld_(const void *p)
+{
+    return _mm_loadu_si128((const __m128i *)p);
+}
+
+/* Lanes 0 and 2 of the 16 bytes at p, then of those at p + 16: the 32-bit words at bytes 0, 8,
+ * 16, 24 (step 4's samples). */
+static inline __m128i lk_ld4_(const void *p)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    return _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(lk_ld_(b)), _mm_castsi128_ps(lk_ld_(b + 16)),
+                                           _MM_SHUFFLE(2, 0, 2, 0)));
+}
+
+/* Step 2: samples i, i + 2, i + 4, i + 6 of a row for i = 0, 8, 16, ... while i + 7 <= n (the
+ * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
+ * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
+ * loop. */
+static inline int32_t lk_row2s_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_spar_t q;
+    lk_sacc_t a;
+    lk_spar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 7 <= n; i += 8) {
+        lk_staps_t k;
+        k.p0 = lk_ld_(b0 + i + 1);
+        k.p1 = lk_ld_(b1 + i + 1);
+        k.r0 = lk_ld_(b0 + i);
+        k.r1 = lk_ld_(b1 + i);
+        k.t0 = lk_ld_(b0 + i + 2);
+        k.t1 = lk_ld_(b1 + i + 2);
+        k.pm = lk_ld_(bm + i + 1);
+        k.p2 = lk_ld_(b2 + i + 1);
+        const __m128i czv = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(lk_ld_(cz + i)),
+                                                            _mm_castsi128_ps(lk_ld_(cz + i + 4)),
+                                                            _MM_SHUFFLE(2, 0, 2, 0)));
+        lk_block_s_(&q, lk_ld_(rz + 2 * i), &k, czv, &a);
+    }
+    lk_ssum_(&a, s);
+    return i;
+}
+
+/* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
+ * i = 0, 16, 32, ... while i + 15 <= n (reads pixels and colnow to i + 15, the background's
+ * row columns to i + 17, inside the loop's own reads for samples up to n). */
+static inline int32_t lk_row4s_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_spar_t q;
+    lk_sacc_t a;
+    lk_spar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 15 <= n; i += 16) {
+        lk_staps_t k;
+        k.p0 = lk_ld4_(b0 + i + 1);
+        k.p1 = lk_ld4_(b1 + i + 1);
+        k.r0 = lk_ld4_(b0 + i);
+        k.r1 = lk_ld4_(b1 + i);
+        k.t0 = lk_ld4_(b0 + i + 2);
+        k.t1 = lk_ld4_(b1 + i + 2);
+        k.pm = lk_ld4_(bm + i + 1);
+        k.p2 = lk_ld4_(b2 + i + 1);
+        const __m128i c01 = _mm_unpacklo_epi32(_mm_cvtsi32_si128(cz[i]), _mm_cvtsi32_si128(cz[i + 4]));
+        const __m128i c23 = _mm_unpacklo_epi32(_mm_cvtsi32_si128(cz[i + 8]), _mm_cvtsi32_si128(cz[i + 12]));
+        lk_block_s_(&q, lk_ld4_(rz + 2 * i), &k, _mm_unpacklo_epi64(c01, c23), &a);
+    }
+    lk_ssum_(&a, s);
+    return i;
+}
+
+/* lk_row2s_ (st 2) or lk_row4s_ (st 4) for a test: the arguments and results of
+ * pft_pre_lk_rown_ (AArch64's form). */
+int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt)
+{
+    lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
+    const int32_t i = st == 4 ? lk_row4s_(rz, cz, bm, bs, par, n, &a) : lk_row2s_(rz, cz, bm, bs, par, n, &a);
+    sums[0] = a.sxx;
+    sums[1] = a.sxy;
+    sums[2] = a.syy;
+    sums[3] = a.sxe;
+    sums[4] = a.sye;
+    sums[5] = a.see;
+    *cnt = a.n;
+    return i;
+}
+#endif
+
 /* One pass of sums over the sampled pixels whose taps are inside the image. The gradient of
  * the 2 x 2 cell of the bilinear taps is taken across it, from the columns (rows) just
  * outside: gx = b[.][x0 + 2] - b[.][x0 - 1] summed over the cell's two rows, 6 times the
@@ -450,6 +651,15 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
             ia = lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc);
         } else if (plain && st == 4) {
             ia = lk_row4n_(rz, cz, bm, bs, par, xb - x0, &acc);
+        }
+#elif defined(__SSE2__)
+        /* x86-64: the same in SSE2's lanes */
+        const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
+        int32_t ia = 0;
+        if (plain && st == 2) {
+            ia = lk_row2s_(rz, cz, bm, bs, par, xb - x0, &acc);
+        } else if (plain && st == 4) {
+            ia = lk_row4s_(rz, cz, bm, bs, par, xb - x0, &acc);
         }
 #else
         const int32_t ia = 0;
@@ -951,12 +1161,73 @@ uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint
 }
 #endif
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), count_row_ of a U16 frame without a bad-pixel map for
+ * pixels 0 .. 8 (w / 8) - 1 in 16-bit lanes: a pixel v (masked by mask, so below 2^16) is
+ * counted iff v - lo >= span (unsigned), that is iff v < lo (dead) or v >= t = lo + span
+ * (saturated), when lo < 2^16, span >= 1 and span <= 2^32 - 2^16 (then v < lo wraps v - lo to
+ * at least 2^32 - 65535 > span, and t > lo); pft_pre_count_masked_ without the map's case. The
+ * unsigned compares are the signed ones of both sides xor 0x8000 (t above 65535 as 65536: no
+ * pixel saturated); a lane counts at most w / 8 <= 1024 pixels (PFT_CFG_MAX_IMAGE_SIDE). Other
+ * limits leave the row to the loop (returns 0). Adds to n_dead, n_sat; returns the first pixel
+ * left to the loop. */
+static uint32_t count_row_s_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+{
+    if (c->lo > 65535u || c->span < 1u || c->span > 0xFFFF0000u) {
+        return 0u;
+    }
+    const uint64_t t = (uint64_t)c->lo + c->span;
+    const uint32_t tm = t > 65536u ? 65535u : (uint32_t)t - 1u; /* t - 1, at most 65535 */
+    const __m128i vm = _mm_set1_epi16((short)(int32_t)(c->mask & 0xFFFFu));
+    const __m128i flip = _mm_set1_epi16((short)-32768);
+    const __m128i vlo = _mm_set1_epi16((short)((int32_t)c->lo - 32768));
+    const __m128i vtm = _mm_set1_epi16((short)((int32_t)tm - 32768));
+    __m128i nd = _mm_setzero_si128(), ns = nd;
+    uint32_t x = 0u;
+    for (; x + 8u <= w; x += 8u) {
+        const __m128i v = _mm_xor_si128(_mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(row + 2u * x)), vm), flip);
+        nd = _mm_sub_epi16(nd, _mm_cmplt_epi16(v, vlo));
+        ns = _mm_sub_epi16(ns, _mm_cmpgt_epi16(v, vtm));
+    }
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i d4 = _mm_madd_epi16(nd, one), s4 = _mm_madd_epi16(ns, one);
+    __m128i s = _mm_add_epi32(_mm_unpacklo_epi32(d4, s4), _mm_unpackhi_epi32(d4, s4));
+    s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0x4E)); /* lanes 0, 1: dead, saturated */
+    acc->n_dead += (uint32_t)_mm_cvtsi128_si32(s);
+    acc->n_sat += (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(s, 0x55));
+    return x;
+}
+
+/* count_row_s_ for a test: the arguments and results of pft_pre_count_rown_ (AArch64's form),
+ * pixels 0 .. 8 (w / 8) - 1 where the limits allow (else none). */
+uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2])
+{
+    pft_pre_cls_t c;
+    pft_pre_acc_t a;
+    memset(&c, 0, sizeof(c));
+    memset(&a, 0, sizeof(a));
+    c.mask = mask;
+    c.lo = lo;
+    c.span = span;
+    c.map = NULL;
+    a.n_dead = cnt[0];
+    a.n_sat = cnt[1];
+    const uint32_t x = count_row_s_(row, w, &c, &a);
+    cnt[0] = a.n_dead;
+    cnt[1] = a.n_sat;
+    return x;
+}
+#endif
+
 static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
                        pft_pre_acc_t *acc)
 {
     const uint8_t *row = pft_frame_row(f, y);
 #if defined(PFT_PRE_NEON_)
     const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_n_(row, f->width, c, acc) : 0u;
+#elif defined(__SSE2__)
+    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_s_(row, f->width, c, acc) : 0u;
 #else
     const uint32_t xa = 0u;
 #endif
