@@ -1439,8 +1439,9 @@ static void test_count_rows_sse2(void)
 #endif
 }
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
-/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 and AArch64 with NEON only);
+ * the test declares it. */
 uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
 
 /* The tile histogram's bin of a residual as the library's general form defines it
@@ -1457,14 +1458,14 @@ static uint32_t bin_ref(int32_t v)
 }
 #endif
 
-/* AArch64's tile histogram 8 residuals at a time (pft_pre_hist_rown_, pft_pre_book_row_'s
- * NEON form): known answers (the table's ends -1023 .. 1023, a block with one value beyond
+/* The tile histogram 8 residuals at a time (pft_pre_hist_rown_, pft_pre_book_row_'s NEON form
+ * on AArch64, its SSE2 form on x86-64): known answers (the table's ends -1023 .. 1023, a block with one value beyond
  * it, a masked pixel, the pixels after the last whole block left), then the counts equal to
  * the general rule's on 300 random rows (0 .. 40 and 384 residuals, near 0, near +-1023 and
  * anywhere in int16, some masked). */
-static void test_hist_rown_neon(void)
+static void test_hist_rown_vec(void)
 {
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     enum { NX = 384, NB = PFT_PRE_BINS + 1 };
     static int16_t r[NX];
     static uint16_t got[NB], want[NB];
@@ -1516,7 +1517,103 @@ static void test_hist_rown_neon(void)
     }
     TEST_ASSERT_TRUE(beyond > 0u && masked > 0u); /* both slow cases reached */
 #else
-    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the 4-pixel loop");
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) and AArch64 (NEON) only: the other targets keep the 4-pixel loop");
+#endif
+}
+
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares them. */
+uint32_t pft_pre_mline_n_(int16_t *m, uint32_t n, uint32_t s, uint32_t st);
+uint32_t pft_pre_whiten_rown_(int16_t *r, const int16_t *m, uint32_t n, uint32_t sh);
+#endif
+
+/* whiten_row_'s SSE2 forms (x86-64) against their general forms: the multipliers of
+ * mline_span_ (the signed upper half of s + i st, modulo 2^32) and the whitening without the
+ * clamp ((v m + 2^(sh - 1)) >> sh, floor; a masked pixel kept): known answers (rounding both
+ * ways, the ends of int16, a masked pixel, the pixels after the last whole block untouched),
+ * then 300 random rows (0 .. 40 and 384 pixels, sh 1 .. 16, values whose results lie in int16,
+ * some masked; s and st anywhere). */
+static void test_whiten_rown_sse2(void)
+{
+#if defined(__SSE2__)
+    enum { NX = 384 };
+    static int16_t r[NX], m[NX], want[NX];
+    const int16_t k_v[10] = {3, -3, -32767, 32767, 100, -100, INT16_MIN, 0, 5, 5};
+    const int16_t k_m[10] = {32767, 32767, 32767, 32767, 16384, 16384, 32767, 32767, 1, 1};
+    const int16_t k_w[10] = {1, -1, -16383, 16383, 25, -25, INT16_MIN, 0, 5, 5};
+    memcpy(r, k_v, sizeof(k_v));
+    memcpy(m, k_m, sizeof(k_m));
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_whiten_rown_(r, m, 10u, 16u));
+    TEST_ASSERT_EQUAL_INT16_ARRAY(k_w, r, 10); /* the last two left */
+    const int16_t k_v2[8] = {-1, -3, 7, -7, 1000, -1000, 1, -2};
+    const int16_t k_m2[8] = {1, 1, 9, 9, 20000, 20000, 1, 1};
+    const int16_t k_w3[8] = {0, -1, 16, -16, 4883, -4883, 1, -1};
+    memcpy(r, k_v2, sizeof(k_v2));
+    memcpy(m, k_m2, sizeof(k_m2));
+    (void)pft_pre_whiten_rown_(r, m, 8u, 1u); /* sh 1: (-1 + 1) >> 1 = 0, (-3 + 1) >> 1 = -1 */
+    TEST_ASSERT_EQUAL_INT16(0, r[0]);
+    TEST_ASSERT_EQUAL_INT16(-1, r[1]);
+    TEST_ASSERT_EQUAL_INT16(32, r[2]);  /* (63 + 1) >> 1 */
+    TEST_ASSERT_EQUAL_INT16(-31, r[3]); /* (-63 + 1) >> 1 */
+    TEST_ASSERT_EQUAL_INT16(1, r[6]);   /* (1 + 1) >> 1 */
+    TEST_ASSERT_EQUAL_INT16(-1, r[7]);  /* (-2 + 1) >> 1 */
+    memcpy(r, k_v2, sizeof(k_v2));
+    (void)pft_pre_whiten_rown_(r, m, 8u, 2u);
+    TEST_ASSERT_EQUAL_INT16(16, r[2]);  /* (63 + 2) >> 2 */
+    TEST_ASSERT_EQUAL_INT16(-16, r[3]); /* (-63 + 2) >> 2 */
+    memcpy(r, k_v2, sizeof(k_v2));
+    (void)pft_pre_whiten_rown_(r, m, 8u, 12u);
+    TEST_ASSERT_EQUAL_INT16(k_w3[4], r[4]); /* (2e7 + 2048) >> 12 */
+    TEST_ASSERT_EQUAL_INT16(k_w3[5], r[5]); /* (-2e7 + 2048) >> 12: floor */
+    /* the multipliers: s = 2^15 + i 2^16 gives i; a negative sum its floor; wrapping */
+    m[8] = 77;
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_mline_n_(m, 11u, 32768u, 65536u));
+    for (int32_t i = 0; i < 8; ++i) {
+        TEST_ASSERT_EQUAL_INT16(i, m[i]);
+    }
+    TEST_ASSERT_EQUAL_INT16(77, m[8]); /* after the last whole block: untouched */
+    (void)pft_pre_mline_n_(m, 8u, 0xFFFF8000u, 0xFFFF0000u); /* -0.5, -1.5, ...: floor */
+    for (int32_t i = 0; i < 8; ++i) {
+        TEST_ASSERT_EQUAL_INT16(-1 - i, m[i]);
+    }
+    (void)pft_pre_mline_n_(m, 8u, 0x7FFF0000u, 0x00010000u); /* 32767, then wraps to -32768 */
+    TEST_ASSERT_EQUAL_INT16(32767, m[0]);
+    TEST_ASSERT_EQUAL_INT16(INT16_MIN, m[1]);
+    TEST_ASSERT_EQUAL_INT16(-32763, m[6]);
+    for (int32_t t = 0; t < 300; ++t) {
+        const uint32_t w = t < 280 ? (uint32_t)t % 41u : NX;
+        const uint32_t sh = 1u + pft_test_xorshift32(&g_rs) % 16u;
+        const uint32_t s0 = pft_test_xorshift32(&g_rs), st = pft_test_xorshift32(&g_rs) >> (t % 20);
+        for (uint32_t i = 0; i < NX; ++i) {
+            m[i] = (int16_t)0x5A5A;
+            want[i] = (int16_t)0x5A5A;
+        }
+        const uint32_t ne = w / 8u * 8u;
+        for (uint32_t i = 0; i < ne; ++i) {
+            const uint32_t u = s0 + i * st;
+            want[i] = (int16_t)(uint16_t)(u >> 16);
+        }
+        TEST_ASSERT_EQUAL_UINT32(ne, pft_pre_mline_n_(m, w, s0, st));
+        TEST_ASSERT_EQUAL_INT16_ARRAY(want, m, NX);
+        /* values with |v m| < 2^(15 + sh) - 2^(sh - 1): results within int16 */
+        for (uint32_t i = 0; i < NX; ++i) {
+            const uint32_t q = pft_test_xorshift32(&g_rs);
+            m[i] = (int16_t)(q % 32768u);
+            const int64_t lim = ((int64_t)1 << (15u + sh)) - ((int64_t)1 << (sh - 1u));
+            int64_t vmax = m[i] == 0 ? 32767 : (lim - 1) / m[i];
+            vmax = vmax > 32767 ? 32767 : vmax;
+            const int64_t v = (int64_t)((q >> 15) % (uint32_t)(2 * vmax + 1)) - vmax;
+            r[i] = (q & 15u) == 0u ? (int16_t)INT16_MIN : (int16_t)v;
+            want[i] = r[i];
+            if (i < ne && r[i] != INT16_MIN) {
+                want[i] = (int16_t)(((int32_t)r[i] * m[i] + (1 << (sh - 1u))) >> sh);
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(ne, pft_pre_whiten_rown_(r, m, w, sh));
+        TEST_ASSERT_EQUAL_INT16_ARRAY(want, r, NX);
+    }
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep the plain loops");
 #endif
 }
 
@@ -1544,8 +1641,9 @@ int main(void)
     RUN_TEST(test_residual_to_tbd_as_res16);
     RUN_TEST(test_u8_and_bit_depths);
     RUN_TEST(test_sigma_options);
-    RUN_TEST(test_hist_rown_neon);
     RUN_TEST(test_lk_rows_sse2);
     RUN_TEST(test_count_rows_sse2);
+    RUN_TEST(test_hist_rown_vec);
+    RUN_TEST(test_whiten_rown_sse2);
     return UNITY_END();
 }

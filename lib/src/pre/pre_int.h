@@ -201,10 +201,20 @@ uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint
  * residual row's pixels [ca, cb] they mask (stale_anchor_res_'s NEON form, pre_temporal.c). */
 void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
                           int32_t k1, int32_t xlo, int32_t xhi, int32_t ca, int32_t cb, int16_t *r);
-/* sigma_mad's tile histogram (pft_pre_book_row_'s NEON form): the bins of residuals
+#endif
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
+/* sigma_mad's tile histogram (pft_pre_book_row_'s NEON and SSE2 forms): the bins of residuals
  * r[0 .. 8 (n / 8) - 1] added to hist (PFT_PRE_BINS + 1 counts, a masked pixel in the last);
  * returns the pixels done (pre_update.c). */
 uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
+#endif
+#if defined(__SSE2__)
+/* whiten_row_ on x86-64 (SSE2), pre_update.c: the multipliers m[0 .. 8 (n / 8) - 1] as the
+ * signed upper halves of s + i st (mline_span_'s running sum), and the whitening without the
+ * clamp r[x] = (r[x] m[x] + 2^(sh - 1)) >> sh of pixels 0 .. 8 (n / 8) - 1 (a masked pixel
+ * kept; every unmasked result within int16); both return 8 (n / 8). */
+uint32_t pft_pre_mline_n_(int16_t *m, uint32_t n, uint32_t s, uint32_t st);
+uint32_t pft_pre_whiten_rown_(int16_t *r, const int16_t *m, uint32_t n, uint32_t sh);
 #endif
 
 /* Integer square root of a 64-bit value (floor). */

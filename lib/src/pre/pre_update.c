@@ -9,6 +9,10 @@
  * (pft_pre_hist_rown_) */
 #include <arm_neon.h>
 #define PFT_PRE_UPD_NEON_ 1
+#elif defined(__SSE2__)
+/* x86-64 (SSE2): the same 8-pixel form of the tile histogram (pft_pre_hist_rown_) */
+#include <emmintrin.h>
+#define PFT_PRE_UPD_SSE2_ 1
 #endif
 
 uint32_t pft_pre_isqrt64_(uint64_t v)
@@ -381,6 +385,45 @@ uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n)
     }
     return ne;
 }
+#elif defined(PFT_PRE_UPD_SSE2_)
+/* SSE2's twin of the NEON form above: the table indices in 16-bit lanes (paddw, wrapping), all
+ * 8 below PFT_PRE_BIN_N_ exactly when their unsigned saturating difference with
+ * PFT_PRE_BIN_N_ - 1 is 0 in every lane (psubusw, pcmpeqw, pmovmskb: one test), then the 8 lanes
+ * (pextrw) and their table reads before the 8 counts; a block with a value beyond the table
+ * takes hist_add_. The same counts. */
+uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n)
+{
+    const __m128i off = _mm_set1_epi16((int16_t)(PFT_PRE_BIN_LUT_ - 1));
+    const __m128i top = _mm_set1_epi16((int16_t)(PFT_PRE_BIN_N_ - 1u));
+    const __m128i zero = _mm_setzero_si128();
+    const uint32_t ne = n / 8u * 8u;
+    for (uint32_t x = 0; x < ne; x += 8u) {
+        const __m128i k = _mm_add_epi16(_mm_loadu_si128((const __m128i *)(const void *)&r[x]), off);
+        if (_mm_movemask_epi8(_mm_cmpeq_epi16(_mm_subs_epu16(k, top), zero)) == 0xFFFF) {
+            const uint32_t b0 = bin_lut_[_mm_extract_epi16(k, 0)];
+            const uint32_t b1 = bin_lut_[_mm_extract_epi16(k, 1)];
+            const uint32_t b2 = bin_lut_[_mm_extract_epi16(k, 2)];
+            const uint32_t b3 = bin_lut_[_mm_extract_epi16(k, 3)];
+            const uint32_t b4 = bin_lut_[_mm_extract_epi16(k, 4)];
+            const uint32_t b5 = bin_lut_[_mm_extract_epi16(k, 5)];
+            const uint32_t b6 = bin_lut_[_mm_extract_epi16(k, 6)];
+            const uint32_t b7 = bin_lut_[_mm_extract_epi16(k, 7)];
+            hist[b0]++;
+            hist[b1]++;
+            hist[b2]++;
+            hist[b3]++;
+            hist[b4]++;
+            hist[b5]++;
+            hist[b6]++;
+            hist[b7]++;
+        } else {
+            for (uint32_t i = 0; i < 8u; ++i) {
+                hist_add_(hist, r[x + i]);
+            }
+        }
+    }
+    return ne;
+}
 #endif
 
 /* sigma_bracket: the counts of one tile's span below the tile's five thresholds, and of its
@@ -497,7 +540,7 @@ uint32_t pft_pre_book_row_(pft_pre_t *p, uint32_t y)
         }
         const uint16_t before = hist[PFT_PRE_BINS];
         uint32_t x = x0;
-#if defined(PFT_PRE_UPD_NEON_)
+#if defined(PFT_PRE_UPD_NEON_) || defined(PFT_PRE_UPD_SSE2_)
         x += pft_pre_hist_rown_(hist, &r[x0], x1 - x0);
 #endif
         for (; x + 3u < x1; x += 4u) { /* four pixels per iteration: a quarter of the loop's own work */
@@ -807,6 +850,54 @@ static void row_multipliers_(pft_pre_t *p, uint32_t y)
     }
 }
 
+#if defined(PFT_PRE_UPD_SSE2_)
+/* x86-64 (SSE2): mline_span_'s running sum 8 pixels at a time: m[i] = the upper half of
+ * s + i st (modulo 2^32) read as a signed 16-bit number (psrad 16, then packssdw, exact: the
+ * shifted lanes are within int16), i < 8 (n / 8); returns 8 (n / 8). gcc's loop of the plain
+ * form takes the halves apart with 7 shuffles per 8 pixels. */
+uint32_t pft_pre_mline_n_(int16_t *m, uint32_t n, uint32_t s, uint32_t st)
+{
+    __m128i sa = _mm_add_epi32(_mm_set1_epi32((int32_t)s),
+                               _mm_set_epi32((int32_t)(3u * st), (int32_t)(2u * st), (int32_t)st, 0));
+    __m128i sb = _mm_add_epi32(sa, _mm_set1_epi32((int32_t)(4u * st)));
+    const __m128i st8 = _mm_set1_epi32((int32_t)(8u * st));
+    const uint32_t ne = n / 8u * 8u;
+    for (uint32_t x = 0; x < ne; x += 8u) {
+        _mm_storeu_si128((__m128i *)(void *)&m[x],
+                         _mm_packs_epi32(_mm_srai_epi32(sa, 16), _mm_srai_epi32(sb, 16)));
+        sa = _mm_add_epi32(sa, st8);
+        sb = _mm_add_epi32(sb, st8);
+    }
+    return ne;
+}
+
+/* x86-64 (SSE2): whiten_row_'s loop without the clamp 8 pixels at a time: r[x] =
+ * (r[x] m[x] + 2^(sh - 1)) >> sh (1 <= sh <= 16), a masked pixel left as it is, x < 8 (n / 8);
+ * returns 8 (n / 8). For a row where every unmasked pixel's value lies in int16 (whiten_row_'s
+ * test): the 32-bit products from pmullw and pmulhw, the shift psrad, the narrowing packssdw
+ * (exact within int16) and the masked pixels by a min with INT16_MIN there (32767 elsewhere),
+ * the same values as the plain loop (whose SSE2 form narrows with 7 shuffles). */
+uint32_t pft_pre_whiten_rown_(int16_t *r, const int16_t *m, uint32_t n, uint32_t sh)
+{
+    const __m128i rnd = _mm_set1_epi32((int32_t)(1u << (sh - 1u)));
+    const __m128i cnt = _mm_cvtsi32_si128((int32_t)sh);
+    const __m128i o7f = _mm_set1_epi16(32767);
+    const __m128i msk = _mm_set1_epi16(PFT_RES16_MASKED);
+    const uint32_t ne = n / 8u * 8u;
+    for (uint32_t x = 0; x < ne; x += 8u) {
+        const __m128i v = _mm_loadu_si128((const __m128i *)(const void *)&r[x]);
+        const __m128i mm = _mm_loadu_si128((const __m128i *)(const void *)&m[x]);
+        const __m128i lo = _mm_mullo_epi16(v, mm), hi = _mm_mulhi_epi16(v, mm);
+        const __m128i qa = _mm_sra_epi32(_mm_add_epi32(_mm_unpacklo_epi16(lo, hi), rnd), cnt);
+        const __m128i qb = _mm_sra_epi32(_mm_add_epi32(_mm_unpackhi_epi16(lo, hi), rnd), cnt);
+        const __m128i ms = _mm_cmpeq_epi16(v, msk);
+        _mm_storeu_si128((__m128i *)(void *)&r[x],
+                         _mm_min_epi16(_mm_packs_epi32(qa, qb), _mm_xor_si128(ms, o7f)));
+    }
+    return ne;
+}
+#endif
+
 /* Multipliers of pixels [x0, x1) (scaled, below 2^15) into m: from ma at doubled coordinate
  * x2a linearly to mb at x2b (ma alone when x2a == x2b). */
 static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_t mb,
@@ -828,7 +919,12 @@ static void mline_span_(int16_t *m, uint32_t x0, uint32_t x1, int32_t ma, int32_
      * arithmetic shift, the same value */
     uint32_t s = (uint32_t)base + 32768u;
     const uint32_t st = (uint32_t)step2;
-    for (uint32_t x = x0; x < x1; ++x) {
+    uint32_t xs = x0;
+#if defined(PFT_PRE_UPD_SSE2_)
+    xs += pft_pre_mline_n_(&m[x0], x1 - x0, s, st);
+    s += (xs - x0) * st;
+#endif
+    for (uint32_t x = xs; x < x1; ++x) {
         const int32_t hi = (int32_t)(s >> 16) - (int32_t)((s >> 15) & 0x10000u);
         m[x] = (int16_t)hi;
         s += st;
@@ -968,6 +1064,15 @@ static void whiten_row_(pft_pre_t *p, uint32_t y)
     }
     const int32_t amax = -(int32_t)vlo > (int32_t)vhi ? -(int32_t)vlo : (int32_t)vhi;
     if ((int64_t)amax * mhi + rnd < ((int64_t)1 << (15u + sh))) {
+#if defined(PFT_PRE_UPD_SSE2_)
+        /* x86-64: 8 pixels at a time (pft_pre_whiten_rown_), the rest as the loop below */
+        for (uint32_t x = pft_pre_whiten_rown_(r, m, w, sh); x < w; ++x) {
+            const int16_t v = r[x];
+            const int32_t q = ((int32_t)v * (int32_t)m[x] + rnd) >> sh;
+            r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
+        }
+        return;
+#else
         /* vectorisable: 16 x 16 bit products; the row in two halves, a pixel of each per
          * iteration, so that the vector loop has two independent chains for an in-order core
          * to overlap (the same value per pixel) */
@@ -986,6 +1091,7 @@ static void whiten_row_(pft_pre_t *p, uint32_t y)
             r[x] = v == PFT_RES16_MASKED ? (int16_t)PFT_RES16_MASKED : (int16_t)q;
         }
         return;
+#endif
     }
     for (uint32_t x = 0; x < w; ++x) { /* vectorisable: 16 x 16 bit products, saturation */
         const int16_t v = r[x];
