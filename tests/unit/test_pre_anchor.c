@@ -531,6 +531,42 @@ static void test_gate_clip_split_and_plain(void)
         TEST_ASSERT_EQUAL_UINT16(7u, bs[0]); /* outside the span */
         TEST_ASSERT_EQUAL_UINT16(7u, bs[N + 1]);
     }
+    /* known answers in one block of 8 (the vector form where it applies) with the cubic's
+     * weights: ring values at both ends of [-2^21, 2^21), products of both signs in even and
+     * odd lanes, a sum below 0, invalid first and last taps; lim 50, a15 16384 */
+    {
+        const int32_t w[4] = {-19, 147, 147, -19}, n[4] = {none, none, none, none};
+        const int32_t v[8][4] = {{2097151, 2097151, 2097151, 2097151}, /* 65535: e 535 clipped */
+                                 {-2097152, 16000, 16000, -2097152},   /* (84395776 + 2048) >> 12 */
+                                 {1600, -800, 4800, 3200},             /* 121 */
+                                 {16000, -16000, -16000, 16000},       /* below 0: 0 */
+                                 {none, 16, 16, 16},                   /* kept */
+                                 {16, 16, 16, none},                   /* kept */
+                                 {0, 0, 0, 0},
+                                 {0, 0, 0, 0}};
+        const uint16_t bx[8] = {65000u, 20600u, 100u, 30u, 1234u, 4321u, 7u, 7u};
+        /* 65000 + 25, 20600 + ((4 * 16384 + 16384) >> 15), 100 + ((21 * 16384 + 16384) >> 15),
+         * 30 + ((-30 * 16384 + 16384) >> 15), kept, kept, 7 + (-98304 >> 15) */
+        const uint16_t want[8] = {65025u, 20602u, 111u, 15u, 1234u, 4321u, 4u, 4u};
+        memset(r, 0, sizeof(r));
+        bp[0] = 9u;
+        bp[9] = 9u;
+        for (int32_t j = 0; j < 8; ++j) {
+            for (int32_t i = 0; i < 4; ++i) {
+                r[i][j] = v[j][i];
+            }
+            bp[j + 1] = bx[j];
+        }
+        memcpy(bs, bp, sizeof(bp));
+        pft_pre_gate_clip_(q, w, n, 16384, bp, 0, 7, 50, false);
+        pft_pre_gate_clip_(q, w, n, 16384, bs, 0, 7, 50, true);
+        for (int32_t j = 0; j < 8; ++j) {
+            TEST_ASSERT_EQUAL_UINT16(want[j], bp[j + 1]);
+            TEST_ASSERT_EQUAL_UINT16(want[j], bs[j + 1]);
+        }
+        TEST_ASSERT_EQUAL_UINT16(9u, bs[0]); /* outside the span */
+        TEST_ASSERT_EQUAL_UINT16(9u, bs[9]);
+    }
     /* random rows (invalid taps, the cubic's lobes, values beyond the clamps), every offset of
      * a block, lims up to 65535 (no clip), a15 within [0, 32768] (0 and 32768 by the plain loop):
      * both forms against the reference */

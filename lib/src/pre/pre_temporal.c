@@ -2137,20 +2137,23 @@ static inline void gate_run_loop_(const gate_row_t *g, uint16_t *b, int32_t ja, 
 
 #if defined(__SSE2__)
 /* Where the compiler has SSE2 (x86-64), gate_run_loop_'s clipped form (bg_gate_shift 0) takes 8
- * cells at a time in 16-bit lanes: each ring value v split as v = 65536 vh + vl (vh = (v + 32768)
- * >> 16, vl = v - 65536 vh within [-32768, 32767]), the vertical blend two 16-bit multiply-adds
- * (pmaddwd) per tap pair, joined as 65536 H + L: the same 32-bit sum, modulo 2^32, as the 32-bit
- * loop (instead of its 32 x 32-bit products, which SSE2 lacks: pmuludq pairs and shuffles). The
- * value clamped to [0, 65535] is the sum minus 32768 saturated to int16 (biased), the innovation's
- * clip to [-lim, lim] the value c clamped to [bx - lim, bx + lim] (saturated in 16 bits), and
- * bx + ((e a15 + 16384) >> 15) = (bx (32768 - a15) + c a15 + 16384) >> 15 one multiply-add of
- * the biased pair (bx - 32768, c - 32768) with (32768 - a15, a15): the biases add 2^30, which the
- * shift turns into the 32768 of the biased result (|sum| <= 2^30, no overflow). Taken when the
- * weights are within [-32767, 32767] and a15 within [1, 32767] (both pairs int16), any lim in
- * [1, 65535]; else, and for the last cells of a span, the 32-bit loop. The weights are Q8 with |sum| < 512
- * and a valid ring value within [-2^21, 2^21), so |S| < 2^30 and S + 2048 - 2^27 stays in int32;
- * a lane with an invalid tap may wrap, and is stored back unchanged. AArch64 takes NEON's form
- * below; the Cortex-M builds keep the 32-bit loop (the same object code as before for the update). */
+ * cells at a time: the vertical blend on the 32-bit ring values themselves, each product by
+ * pmuludq (the low 32 bits of the unsigned 32 x 32-bit product are the int32 product modulo
+ * 2^32; the even lanes as they are, the odd ones shuffled down), summed in 32-bit lanes: the
+ * same 32-bit sum, modulo 2^32, as the 32-bit loop. The value clamped to [0, 65535] is the sum
+ * plus 2048 - 2^27, shifted by 12 and saturated to int16 (that value minus 32768), the
+ * innovation's clip to [-lim, lim] the value c clamped to [bx - lim, bx + lim] (saturated in 16
+ * bits), and bx + ((e a15 + 16384) >> 15) = (bx (32768 - a15) + c a15 + 16384) >> 15 one
+ * multiply-add of the biased pair (bx - 32768, c - 32768) with (32768 - a15, a15): the biases
+ * add 2^30, which the shift turns into the 32768 of the biased result (|sum| <= 2^30, no
+ * overflow). Taken when the weights are within [-32767, 32767] and a15 within [1, 32767] (the
+ * pair (32768 - a15, a15) int16), any lim in [1, 65535]; else, and for the last cells of a
+ * span, the 32-bit loop. The weights are Q8 with |sum| < 512 and a valid ring value within
+ * [-2^21, 2^21), so |S| < 2^30 and S + 2048 - 2^27 stays in int32; a lane with an invalid tap
+ * may wrap, and is stored back unchanged. (Until ircost49 the blend split each value into two
+ * 16-bit halves for pmaddwd: the same sums in about a quarter more instructions.) AArch64 takes
+ * NEON's form below; the Cortex-M builds keep the 32-bit loop (the same object code as before
+ * for the update). */
 #define PFT_PRE_GATE_SPLIT_ 1
 #elif defined(PFT_PRE_NEON_)
 /* With NEON (AArch64), gate_clip_split_ takes 8 cells at a time on the 32-bit ring values
@@ -2215,47 +2218,53 @@ static inline int32_t pair16_(int32_t a, int32_t b)
     return (int32_t)(((uint32_t)b << 16) | ((uint32_t)a & 65535u));
 }
 
-/* Eight ring values at q: their split halves vh, vl (8 x int16 each) and the lanes equal to n
- * or-ed into inv (8 x 16-bit masks). */
-static inline void gate_split8_(const int32_t *q, __m128i n, __m128i *vh, __m128i *vl, __m128i *inv)
+/* Four ring values at q times w (pmuludq: the low 32 bits of each product are the int32
+ * product modulo 2^32, signed or not) added to the sums of their even lanes (e: lanes 0, 2 in
+ * the low words of its 64-bit halves) and odd lanes (o: lanes 1, 3), and the lanes equal to n
+ * or-ed into inv (4 x 32-bit masks). */
+static inline void gate_mul4_(const int32_t *q, __m128i w, __m128i n, __m128i *e, __m128i *o, __m128i *inv)
 {
     const __m128i a = _mm_loadu_si128((const __m128i *)(const void *)q);
-    const __m128i c = _mm_loadu_si128((const __m128i *)(const void *)(q + 4));
-    const __m128i h = _mm_set1_epi32(32768);
-    *inv = _mm_or_si128(*inv, _mm_packs_epi32(_mm_cmpeq_epi32(a, n), _mm_cmpeq_epi32(c, n)));
-    *vh = _mm_packs_epi32(_mm_srai_epi32(_mm_add_epi32(a, h), 16), _mm_srai_epi32(_mm_add_epi32(c, h), 16));
-    *vl = _mm_packs_epi32(_mm_srai_epi32(_mm_slli_epi32(a, 16), 16), _mm_srai_epi32(_mm_slli_epi32(c, 16), 16));
+    *inv = _mm_or_si128(*inv, _mm_cmpeq_epi32(a, n));
+    *e = _mm_add_epi32(*e, _mm_mul_epu32(a, w));
+    *o = _mm_add_epi32(*o, _mm_mul_epu32(_mm_shuffle_epi32(a, 0xF5), w));
 }
 
-/* gate_run_loop_ (clip) of cells ja .. ja + 8 n - 1 in the split form above. */
+/* The 4 lanes' sums from gate_mul4_'s even and odd halves, in lane order. */
+static inline __m128i gate_join4_(__m128i e, __m128i o)
+{
+    return _mm_unpacklo_epi32(_mm_shuffle_epi32(e, 0x08), _mm_shuffle_epi32(o, 0x08));
+}
+
+/* gate_run_loop_ (clip) of cells ja .. ja + 8 n - 1 in the SSE2 form above. */
 static void gate_clip_split_(const gate_row_t *g, uint16_t *b, int32_t ja, int32_t n, int32_t lim)
 {
-    const __m128i w01 = _mm_set1_epi32(pair16_(g->w[0], g->w[1]));
-    const __m128i w23 = _mm_set1_epi32(pair16_(g->w[2], g->w[3]));
+    const __m128i w0 = _mm_set1_epi32(g->w[0]), w1 = _mm_set1_epi32(g->w[1]);
+    const __m128i w2 = _mm_set1_epi32(g->w[2]), w3 = _mm_set1_epi32(g->w[3]);
     const __m128i ar = _mm_set1_epi32(pair16_(32768 - g->a15, g->a15));
     const __m128i n0 = _mm_set1_epi32(g->n[0]), n1 = _mm_set1_epi32(g->n[1]);
     const __m128i n2 = _mm_set1_epi32(g->n[2]), n3 = _mm_set1_epi32(g->n[3]);
     const __m128i bias = _mm_set1_epi16((int16_t)-32768), lv = _mm_set1_epi16((int16_t)lim);
     const __m128i rb = _mm_set1_epi32(2048 - 134217728), r15 = _mm_set1_epi32(16384);
+    const int32_t *q0 = g->q[0], *q1 = g->q[1], *q2 = g->q[2], *q3 = g->q[3];
     for (int32_t i = 0; i < n; ++i) {
         const int32_t j = ja + 8 * i;
-        __m128i inv = _mm_setzero_si128(), h0, l0, h1, l1, h2, l2, h3, l3;
-        gate_split8_(g->q[0] + j, n0, &h0, &l0, &inv);
-        gate_split8_(g->q[1] + j, n1, &h1, &l1, &inv);
-        gate_split8_(g->q[2] + j, n2, &h2, &l2, &inv);
-        gate_split8_(g->q[3] + j, n3, &h3, &l3, &inv);
-        const __m128i hl = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(h0, h1), w01),
-                                         _mm_madd_epi16(_mm_unpacklo_epi16(h2, h3), w23));
-        const __m128i hh = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(h0, h1), w01),
-                                         _mm_madd_epi16(_mm_unpackhi_epi16(h2, h3), w23));
-        const __m128i ll = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(l0, l1), w01),
-                                         _mm_madd_epi16(_mm_unpacklo_epi16(l2, l3), w23));
-        const __m128i lh = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(l0, l1), w01),
-                                         _mm_madd_epi16(_mm_unpackhi_epi16(l2, l3), w23));
+        __m128i ia = _mm_setzero_si128(), ic = _mm_setzero_si128();
+        __m128i ea = _mm_setzero_si128(), oa = _mm_setzero_si128();
+        __m128i ec = _mm_setzero_si128(), oc = _mm_setzero_si128();
+        gate_mul4_(q0 + j, w0, n0, &ea, &oa, &ia);
+        gate_mul4_(q1 + j, w1, n1, &ea, &oa, &ia);
+        gate_mul4_(q2 + j, w2, n2, &ea, &oa, &ia);
+        gate_mul4_(q3 + j, w3, n3, &ea, &oa, &ia);
+        gate_mul4_(q0 + j + 4, w0, n0, &ec, &oc, &ic);
+        gate_mul4_(q1 + j + 4, w1, n1, &ec, &oc, &ic);
+        gate_mul4_(q2 + j + 4, w2, n2, &ec, &oc, &ic);
+        gate_mul4_(q3 + j + 4, w3, n3, &ec, &oc, &ic);
+        const __m128i inv = _mm_packs_epi32(ia, ic);
         /* ((S + 2048) >> 12) - 32768 = (S + 2048 - 2^27) >> 12, saturated: the clamped value
          * minus 32768 */
-        const __m128i sl = _mm_srai_epi32(_mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(hl, 16), ll), rb), 12);
-        const __m128i sh = _mm_srai_epi32(_mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(hh, 16), lh), rb), 12);
+        const __m128i sl = _mm_srai_epi32(_mm_add_epi32(gate_join4_(ea, oa), rb), 12);
+        const __m128i sh = _mm_srai_epi32(_mm_add_epi32(gate_join4_(ec, oc), rb), 12);
         __m128i sv = _mm_packs_epi32(sl, sh);
         const __m128i bx = _mm_loadu_si128((const __m128i *)(const void *)(b + j + 1));
         const __m128i lo = _mm_xor_si128(_mm_subs_epu16(bx, lv), bias);
