@@ -1330,7 +1330,37 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
 }
 #endif
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__)
+/* x86-64 (SSE2): the sums of a bin row's values sq = word >> 2 (below 2^14) and of their
+ * squares, eight words per step, into *s0 and *s1; returns the first bin not done. The values
+ * pairwise by a multiply-add with 1 into four 32-bit lanes (each below 2^15 per step, a row at
+ * most PFT_CFG_MAX_IMAGE_SIDE / 16 steps: below 2^24), the squares pairwise by a multiply-add
+ * of the values with themselves (below 2^29, exact in a signed 32-bit lane) widened into two
+ * 64-bit lanes; the same integers as the plain loop's. */
+static uint32_t integ_sums8_(const uint16_t *out, uint32_t n, uint64_t *s0, uint64_t *s1)
+{
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i zero = _mm_setzero_si128();
+    __m128i a0 = zero;
+    __m128i a1 = zero;
+    const uint16_t *p = out;
+    for (uint32_t k = n / 8u; k > 0u; --k) {
+        const __m128i q = _mm_srli_epi16(_mm_loadu_si128((const __m128i *)(const void *)p), 2);
+        const __m128i qq = _mm_madd_epi16(q, q);
+        a0 = _mm_add_epi32(a0, _mm_madd_epi16(q, one));
+        a1 = _mm_add_epi64(a1, _mm_add_epi64(_mm_unpacklo_epi32(qq, zero),
+                                             _mm_unpackhi_epi32(qq, zero)));
+        p += 8;
+    }
+    uint32_t l0[4];
+    uint64_t l1[2];
+    _mm_storeu_si128((__m128i *)(void *)l0, a0);
+    _mm_storeu_si128((__m128i *)(void *)l1, a1);
+    *s0 += (uint64_t)l0[0] + l0[1] + l0[2] + l0[3];
+    *s1 += l1[0] + l1[1];
+    return n & ~7u;
+}
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (NEON): the sums of a bin row's values sq = word >> 2 and of their squares, eight
  * words per step, into *s0 and *s1; returns the first bin not done. The values' sums pairwise
  * into four 32-bit lanes (each below 2^15 per step, a row at most PFT_CFG_MAX_IMAGE_SIDE / 16
@@ -1474,7 +1504,7 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     uint64_t s0 = 0u;
     uint64_t s1 = 0u;
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     for (uint32_t bc = integ_sums8_(out, bwu, &s0, &s1); bc < bwu; ++bc) {
 #else
     for (uint32_t bc = 0; bc < bwu; ++bc) {
@@ -1544,7 +1574,34 @@ static int32_t integ_bound_(pft_real_t te)
     return 4 * (l < 16383 ? l : 16383) + 3;
 }
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__)
+/* x86-64 (SSE2): the first bin from bc on whose word is above bound, or the first of eight
+ * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
+ * threshold eight words per step, the rest by the plain loop after it. SSE2 has no unsigned
+ * 16-bit compare: a word is above bound exactly where the saturated difference word - bound
+ * is not 0 (one subtraction, one compare with 0, the byte mask all ones when none is above).
+ * bound < 0: every word is above it, nothing skipped; bound <= 65535 (integ_bound_), so its
+ * low 16 bits compare as bound does. */
+static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    if (bound >= 0 && bc < bw) {
+        const __m128i b0 = _mm_shufflelo_epi16(_mm_cvtsi32_si128(bound), 0);
+        const __m128i b = _mm_unpacklo_epi64(b0, b0); /* bound in every 16-bit lane */
+        const __m128i zero = _mm_setzero_si128();
+        const uint16_t *p = row + bc;
+        uint32_t k = (bw - bc) / 8u;
+        while (k > 0u &&
+               _mm_movemask_epi8(_mm_cmpeq_epi16(
+                   _mm_subs_epu16(_mm_loadu_si128((const __m128i *)(const void *)p), b), zero)) ==
+                   0xFFFF) {
+            p += 8;
+            --k;
+        }
+        bc = bw - 8u * k - (bw - bc) % 8u;
+    }
+    return bc;
+}
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (NEON): the first bin from bc on whose word is above bound, or the first of eight
  * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
  * threshold eight words per step (one compare of eight unsigned 16-bit lanes), the rest by the
@@ -1566,7 +1623,9 @@ static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int3
     }
     return bc;
 }
+#endif
 
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
 {
     bc = integ_skip8_(row, bc, bw, bound);
@@ -1587,7 +1646,7 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         for (uint32_t bc = 0; bc < bw; ++bc) {
             /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
              * their own (most bins fail it) */
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
             bc = integ_skip8_(row, bc, bw, bound);
 #endif
             while (bc < bw && (int32_t)row[bc] <= bound) {
