@@ -188,10 +188,10 @@ void pft_tbd_integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_
                         const pft_real_t *r1, uint32_t w, uint32_t *vm, uint64_t *sum,
                         bool general);
 #endif
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 /* The first bin from bc on (bc .. bw - 1) of a row of the integration's words above bound, or
  * bw: the peak scan's skip (tbd_meas.c, integ_scan_: eight words per step, then one at a time;
- * for the unit tests, AArch64 builds only). */
+ * for the unit tests, x86-64 and AArch64 builds only). */
 uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound);
 #endif
 /* The n-th (0-based, n < sc->n_allowed) allowed pixel of a scene in raster order (sc->cand

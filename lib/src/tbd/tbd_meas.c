@@ -802,6 +802,42 @@ static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0,
 }
 #endif
 
+#if defined(__SSE2__) && !defined(PFT_NUMERIC_Q16)
+/* float, x86-64 (SSE2): peak_hrow_r16_in_'s columns 1 .. with any centre tap (one false),
+ * eight at a time while a whole step lies inside 1 .. w - 2; returns the first column not
+ * done. Per pixel as the plain loop: t1 (float)zc + t0 (float)(zl + zr), a masked pixel 0;
+ * the pair sum zl + zr in 32 bits by one multiply-add of the interleaved pair with (1, 1)
+ * (exact), zc widened by an interleave with itself and an arithmetic shift, each integer
+ * converted exactly, the products and the sum rounded as the scalar float operations (no
+ * fused multiply-add on baseline x86-64). */
+static size_t peak_hrow_r16_f8_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t t1,
+                                pft_real_t *hs)
+{
+    const __m128 v0 = _mm_set1_ps(t0);
+    const __m128 v1 = _mm_set1_ps(t1);
+    const __m128i masked = _mm_set1_epi16(PFT_RES16_MASKED);
+    const __m128i one = _mm_set1_epi16(1);
+    size_t c = 1u;
+    for (; c + 8u < (size_t)w; c += 8u) {
+        __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
+        __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
+        __m128i d = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
+        a = _mm_andnot_si128(_mm_cmpeq_epi16(a, masked), a);
+        b = _mm_andnot_si128(_mm_cmpeq_epi16(b, masked), b);
+        d = _mm_andnot_si128(_mm_cmpeq_epi16(d, masked), d);
+        const __m128i slo = _mm_madd_epi16(_mm_unpacklo_epi16(a, d), one); /* c .. c + 3 */
+        const __m128i shi = _mm_madd_epi16(_mm_unpackhi_epi16(a, d), one); /* c + 4 .. c + 7 */
+        const __m128i zlo = _mm_srai_epi32(_mm_unpacklo_epi16(b, b), 16);
+        const __m128i zhi = _mm_srai_epi32(_mm_unpackhi_epi16(b, b), 16);
+        _mm_storeu_ps(hs + c, _mm_add_ps(_mm_mul_ps(v1, _mm_cvtepi32_ps(zlo)),
+                                         _mm_mul_ps(v0, _mm_cvtepi32_ps(slo))));
+        _mm_storeu_ps(hs + c + 4u, _mm_add_ps(_mm_mul_ps(v1, _mm_cvtepi32_ps(zhi)),
+                                              _mm_mul_ps(v0, _mm_cvtepi32_ps(shi))));
+    }
+    return c;
+}
+#endif
+
 /* peak_hrow_ of a RES16 row without a patch, from the integers: z = v / 256 with |z| < 128,
  * so the clamp at PEAK_CLIP_ never acts, z(c - 1) + z(c + 1) is (v(c - 1) + v(c + 1)) / 256
  * exactly, and pft_kmul_r16_ gives pft_kmula_'s bits (kern_int.h); t0, t1 prepared by
@@ -823,7 +859,11 @@ static inline void peak_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0,
 #endif
         peak_hrow_r16_in_(src, c0, w, t0, t1, true, hs);
     } else {
+#if defined(__SSE2__) && !defined(PFT_NUMERIC_Q16)
+        peak_hrow_r16_in_(src, peak_hrow_r16_f8_(src, w, t0, t1, hs), w, t0, t1, false, hs);
+#else
         peak_hrow_r16_in_(src, 1u, w, t0, t1, false, hs);
+#endif
     }
     hs[w - 1u] = pft_kaddr_(pft_kmul_r16_(t1, r16_int_(src, (size_t)w - 1u), 0),
                             pft_kmul_r16_(t0, r16_int_(src, (size_t)w - 2u), 0));
@@ -1176,14 +1216,15 @@ typedef __m128 integ_v_;
  * largest pixel and its index (ties to the earlier), m = pft_kround64_ of it (integ_best4_),
  * mx the largest of the three vm words (< 2^14), sq = m + (a_q mx + 128) >> 8 clamped to 0 ..
  * INTEG_MAX_, the word sq << 2 | idx. In 16-bit lanes after m: m packed with saturation (a
- * value beyond +-16448 stays beyond it), a_q mx = 2^16 hi + lo (a_q <= 256: hi < 2^6), so
- * (a_q mx + 128) >> 8 = 256 hi + (lo >> 8) + bit 7 of lo, below 2^14; m plus it with
+ * value beyond +-16448 stays beyond it), (a_q mx + 128) >> 8 (a_q <= 256) as
+ * (floor(a_q mx / 128) + 1) >> 1, below 2^14; m plus it with
  * saturation then clamped: the same as in 32 bits, since beyond +-16448 the sum is below 0 or
  * above INTEG_MAX_ either way. */
 static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const uint32_t *vm,
                             int32_t sx, int32_t b0, int32_t b1, uint32_t a_q, uint16_t *out)
 {
-    const __m128i aq = _mm_set1_epi16((int16_t)a_q);
+    const __m128i aq0 = _mm_shufflelo_epi16(_mm_cvtsi32_si128((int32_t)(a_q << 7)), 0);
+    const __m128i aq = _mm_unpacklo_epi64(aq0, aq0); /* 128 a_q in every 16-bit lane */
     const __m128i zero = _mm_setzero_si128();
     const __m128i top = _mm_set1_epi16(INTEG_MAX_);
     const __m128i one = _mm_set1_epi16(1);
@@ -1213,9 +1254,9 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
         const __m128i g1 = _mm_packs_epi32(glo[0], ghi[0]);
         const __m128i g2 = _mm_packs_epi32(glo[1], ghi[1]);
         const __m128i g3 = _mm_packs_epi32(glo[2], ghi[2]);
-        __m128i idx = _mm_and_si128(g1, one);
-        idx = _mm_or_si128(_mm_andnot_si128(g2, idx), _mm_and_si128(g2, two));
-        idx = _mm_or_si128(_mm_andnot_si128(g3, idx), _mm_and_si128(g3, three));
+        /* (the last pixel taken has the largest index of those taken: their largest) */
+        const __m128i idx = _mm_max_epi16(
+            _mm_max_epi16(_mm_and_si128(g1, one), _mm_and_si128(g2, two)), _mm_and_si128(g3, three));
         /* mx: the three vm words (< 2^14, packed exactly) */
         const uint32_t *v = vm + (bc - sx);
         const __m128i v0 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)v),
@@ -1225,11 +1266,9 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
         const __m128i v2 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(v + 2)),
                                            _mm_loadu_si128((const __m128i *)(const void *)(v + 6)));
         const __m128i mx = _mm_max_epi16(_mm_max_epi16(v0, v1), v2);
-        const __m128i lo = _mm_mullo_epi16(mx, aq);
-        const __m128i hi = _mm_mulhi_epu16(mx, aq);
-        const __m128i add = _mm_add_epi16(
-            _mm_add_epi16(_mm_slli_epi16(hi, 8), _mm_srli_epi16(lo, 8)),
-            _mm_and_si128(_mm_srli_epi16(lo, 7), one));
+        /* (a_q mx + 128) >> 8 = (floor(a_q mx / 128) + 1) >> 1: the high half of 4 mx (below
+         * 2^16) times 128 a_q (at most 2^15), then the rounding average with 0 */
+        const __m128i add = _mm_avg_epu16(_mm_mulhi_epu16(_mm_slli_epi16(mx, 2), aq), zero);
         __m128i sq = _mm_adds_epi16(_mm_packs_epi32(mlo, mhi), add);
         sq = _mm_min_epi16(_mm_max_epi16(sq, zero), top);
         _mm_storeu_si128((__m128i *)(void *)(out + bc), _mm_or_si128(_mm_slli_epi16(sq, 2), idx));
@@ -1330,7 +1369,37 @@ static int32_t integ_fast8_(const pft_real_t *r0, const pft_real_t *r1, const ui
 }
 #endif
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__)
+/* x86-64 (SSE2): the sums of a bin row's values sq = word >> 2 (below 2^14) and of their
+ * squares, eight words per step, into *s0 and *s1; returns the first bin not done. The values
+ * pairwise by a multiply-add with 1 into four 32-bit lanes (each below 2^15 per step, a row at
+ * most PFT_CFG_MAX_IMAGE_SIDE / 16 steps: below 2^24), the squares pairwise by a multiply-add
+ * of the values with themselves (below 2^29, exact in a signed 32-bit lane) widened into two
+ * 64-bit lanes; the same integers as the plain loop's. */
+static uint32_t integ_sums8_(const uint16_t *out, uint32_t n, uint64_t *s0, uint64_t *s1)
+{
+    const __m128i one = _mm_set1_epi16(1);
+    const __m128i zero = _mm_setzero_si128();
+    __m128i a0 = zero;
+    __m128i a1 = zero;
+    const uint16_t *p = out;
+    for (uint32_t k = n / 8u; k > 0u; --k) {
+        const __m128i q = _mm_srli_epi16(_mm_loadu_si128((const __m128i *)(const void *)p), 2);
+        const __m128i qq = _mm_madd_epi16(q, q);
+        a0 = _mm_add_epi32(a0, _mm_madd_epi16(q, one));
+        a1 = _mm_add_epi64(a1, _mm_add_epi64(_mm_unpacklo_epi32(qq, zero),
+                                             _mm_unpackhi_epi32(qq, zero)));
+        p += 8;
+    }
+    uint32_t l0[4];
+    uint64_t l1[2];
+    _mm_storeu_si128((__m128i *)(void *)l0, a0);
+    _mm_storeu_si128((__m128i *)(void *)l1, a1);
+    *s0 += (uint64_t)l0[0] + l0[1] + l0[2] + l0[3];
+    *s1 += l1[0] + l1[1];
+    return n & ~7u;
+}
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (NEON): the sums of a bin row's values sq = word >> 2 and of their squares, eight
  * words per step, into *s0 and *s1; returns the first bin not done. The values' sums pairwise
  * into four 32-bit lanes (each below 2^15 per step, a row at most PFT_CFG_MAX_IMAGE_SIDE / 16
@@ -1474,7 +1543,7 @@ static void integ_row_(const pft_tbd_integ_t_ *ig, uint32_t br, const pft_real_t
     }
     uint64_t s0 = 0u;
     uint64_t s1 = 0u;
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     for (uint32_t bc = integ_sums8_(out, bwu, &s0, &s1); bc < bwu; ++bc) {
 #else
     for (uint32_t bc = 0; bc < bwu; ++bc) {
@@ -1544,7 +1613,34 @@ static int32_t integ_bound_(pft_real_t te)
     return 4 * (l < 16383 ? l : 16383) + 3;
 }
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__)
+/* x86-64 (SSE2): the first bin from bc on whose word is above bound, or the first of eight
+ * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
+ * threshold eight words per step, the rest by the plain loop after it. SSE2 has no unsigned
+ * 16-bit compare: a word is above bound exactly where the saturated difference word - bound
+ * is not 0 (one subtraction, one compare with 0, the byte mask all ones when none is above).
+ * bound < 0: every word is above it, nothing skipped; bound <= 65535 (integ_bound_), so its
+ * low 16 bits compare as bound does. */
+static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
+{
+    if (bound >= 0 && bc < bw) {
+        const __m128i b0 = _mm_shufflelo_epi16(_mm_cvtsi32_si128(bound), 0);
+        const __m128i b = _mm_unpacklo_epi64(b0, b0); /* bound in every 16-bit lane */
+        const __m128i zero = _mm_setzero_si128();
+        const uint16_t *p = row + bc;
+        uint32_t k = (bw - bc) / 8u;
+        while (k > 0u &&
+               _mm_movemask_epi8(_mm_cmpeq_epi16(
+                   _mm_subs_epu16(_mm_loadu_si128((const __m128i *)(const void *)p), b), zero)) ==
+                   0xFFFF) {
+            p += 8;
+            --k;
+        }
+        bc = bw - 8u * k - (bw - bc) % 8u;
+    }
+    return bc;
+}
+#elif defined(__aarch64__) && defined(__ARM_NEON)
 /* AArch64 (NEON): the first bin from bc on whose word is above bound, or the first of eight
  * that holds one, or the last whole step's end: integ_scan_'s skip of the bins under the
  * threshold eight words per step (one compare of eight unsigned 16-bit lanes), the rest by the
@@ -1566,7 +1662,9 @@ static uint32_t integ_skip8_(const uint16_t *row, uint32_t bc, uint32_t bw, int3
     }
     return bc;
 }
+#endif
 
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
 uint32_t pft_tbd_integ_skip_(const uint16_t *row, uint32_t bc, uint32_t bw, int32_t bound)
 {
     bc = integ_skip8_(row, bc, bw, bound);
@@ -1587,7 +1685,7 @@ static void integ_scan_(peak_scan_t *ps, const pft_tbd_integ_t_ *ig)
         for (uint32_t bc = 0; bc < bw; ++bc) {
             /* the bins whose pft_from_int(word >> 2) > te fails (integ_bound_), in a loop of
              * their own (most bins fail it) */
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
             bc = integ_skip8_(row, bc, bw, bound);
 #endif
             while (bc < bw && (int32_t)row[bc] <= bound) {
