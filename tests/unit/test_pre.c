@@ -1367,11 +1367,11 @@ static void test_lk_rows_sse2(void)
 
 #if defined(__SSE2__)
 /* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares it. */
-uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
                              uint32_t cnt[2]);
 #endif
 
-/* x86-64's count of a row's masked pixels in SSE2 lanes (pft_pre_count_rows_, count_row_'s
+/* x86-64's count of a row's masked pixels in SSE2 lanes (pft_pre_count_rowv_, count_row_'s
  * form: 8 pixels at a time in 16-bit lanes): known answers (pixels at lo - 1, lo, the top of
  * the span and past it, bits above the depth, the pixels after the last whole block left; lo 0
  * with a span to 65536; limits outside the form's, left whole), then the counts and the
@@ -1390,22 +1390,22 @@ static void test_count_rows_sse2(void)
     memcpy(rz, k_row, sizeof(k_row));
     uint32_t cnt[2] = {5u, 7u}; /* added to */
     /* lo 100, span 3900: valid 100 .. 3999 */
-    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rows_(rz, 19u, 4095u, 100u, 3900u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rowv_(rz, 19u, 4095u, 100u, 3900u, cnt));
     TEST_ASSERT_EQUAL_UINT32(5u + 3u, cnt[0]); /* 99, 0, 99 */
     TEST_ASSERT_EQUAL_UINT32(7u + 4u, cnt[1]); /* 4000, 4001, 4095, 4000 */
     const uint16_t k_full[8] = {0, 1, 65535, 65534, 32768, 32767, 100, 0};
     memcpy(rz, k_full, sizeof(k_full));
     cnt[0] = 0u;
     cnt[1] = 0u;
-    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 65536u, cnt)); /* none */
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rowv_(rz, 8u, 65535u, 0u, 65536u, cnt)); /* none */
     TEST_ASSERT_EQUAL_UINT32(0u, cnt[0]);
     TEST_ASSERT_EQUAL_UINT32(0u, cnt[1]);
-    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rows_(rz, 8u, 65535u, 1u, 65534u, cnt)); /* 1 .. 65534 */
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_count_rowv_(rz, 8u, 65535u, 1u, 65534u, cnt)); /* 1 .. 65534 */
     TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
     TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
-    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 65536u, 10u, cnt)); /* left */
-    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 0u, 0u, cnt));
-    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rows_(rz, 8u, 65535u, 5u, 0xFFFFFFF0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rowv_(rz, 8u, 65535u, 65536u, 10u, cnt)); /* left */
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rowv_(rz, 8u, 65535u, 0u, 0u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rowv_(rz, 8u, 65535u, 5u, 0xFFFFFFF0u, cnt));
     TEST_ASSERT_EQUAL_UINT32(2u, cnt[0]);
     TEST_ASSERT_EQUAL_UINT32(1u, cnt[1]);
     uint32_t seen = 0u;
@@ -1429,7 +1429,7 @@ static void test_count_rows_sse2(void)
                 want[v < lo ? 0 : 1]++;
             }
         }
-        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rows_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rowv_(rz, w, mask, lo, span, got));
         TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
         seen += want[0] + want[1];
     }

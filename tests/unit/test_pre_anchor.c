@@ -946,11 +946,11 @@ static void test_lk_rown_neon(void)
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
-uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
                              uint32_t cnt[2]);
 #endif
 
-/* AArch64's count of a row's masked pixels by cause in NEON lanes (pft_pre_count_rown_, the
+/* AArch64's count of a row's masked pixels by cause in NEON lanes (pft_pre_count_rowv_, the
  * whole blocks of 8 pixels of a U16 row without a bad-pixel map): known answers (dead below lo,
  * saturated at lo + span and above, bits above the depth ignored, the pixels after the last
  * whole block left), then the counts and the pixels done equal to the plain rule (v - lo >=
@@ -968,12 +968,12 @@ static void test_count_rown_neon(void)
     memcpy(z, k_row, sizeof(k_row));
     memcpy(rz, z, sizeof(k_row));
     uint32_t cnt[2] = {10u, 20u}; /* added to */
-    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rown_(rz, 20u, 16383u, 100u, 16000u, cnt));
+    TEST_ASSERT_EQUAL_UINT32(16u, pft_pre_count_rowv_(rz, 20u, 16383u, 100u, 16000u, cnt));
     /* dead: 99, 0, 50 (16434 & 16383), 5, six 7s: 10; saturated: 16100, 16383, 16200: 3;
      * 100, 16099 and 500 (16884 & 16383) valid; pixels 16 .. 19 left */
     TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
     TEST_ASSERT_EQUAL_UINT32(23u, cnt[1]);
-    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rown_(rz, 7u, 16383u, 100u, 16000u, cnt)); /* no block */
+    TEST_ASSERT_EQUAL_UINT32(0u, pft_pre_count_rowv_(rz, 7u, 16383u, 100u, 16000u, cnt)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(20u, cnt[0]);
     uint32_t cases = 0u, nd = 0u, ns = 0u;
     for (int32_t t = 0; t < 300; ++t) {
@@ -994,7 +994,7 @@ static void test_count_rown_neon(void)
                 want[v < lo ? 0 : 1]++;
             }
         }
-        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rown_(rz, w, mask, lo, span, got));
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_count_rowv_(rz, w, mask, lo, span, got));
         TEST_ASSERT_EQUAL_UINT32_ARRAY(want, got, 2);
         nd += want[0] - 3u;
         ns += want[1] - 4u;

@@ -178,11 +178,6 @@ void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_
  * pft_pre_lk_rown_; returns the first sample left to the plain loop (pre_temporal.c). */
 int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
-/* The masked pixels of a U16 row without a bad-pixel map by cause, pixels 0 .. 8 (w / 8) - 1
- * where lo and span allow (count_row_'s SSE2 form): the arguments and results of
- * pft_pre_count_rown_ (pre_temporal.c). */
-uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
-                             uint32_t cnt[2]);
 #elif defined(__aarch64__) && defined(__ARM_NEON)
 /* bg_anchor on AArch64 (NEON): the registration's view's horizontal pass of the 32-bit form,
  * pixels 0 .. 8 (xe / 8) - 1 from the vertical blends v; returns 8 (xe / 8) (pre_temporal.c). */
@@ -192,11 +187,6 @@ int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int
  * left to the plain loop (pre_temporal.c). */
 int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
-/* The masked pixels of a U16 row without a bad-pixel map by cause, pixels 0 .. 8 (w / 8) - 1
- * (count_row_'s NEON form): cnt[0] dead, cnt[1] saturated added to; returns the pixels done
- * (pre_temporal.c). */
-uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
-                             uint32_t cnt[2]);
 /* bg_stale_reinit with bg_anchor: the stale columns of nr (1 .. 4) age rows (hm) and the
  * residual row's pixels [ca, cb] they mask (stale_anchor_res_'s NEON form, pre_temporal.c). */
 void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
@@ -207,6 +197,12 @@ void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uin
  * r[0 .. 8 (n / 8) - 1] added to hist (PFT_PRE_BINS + 1 counts, a masked pixel in the last);
  * returns the pixels done (pre_update.c). */
 uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
+/* The masked pixels of a U16 row without a bad-pixel map by cause (count_row_'s NEON and SSE2
+ * forms), pixels 0 .. 8 (w / 8) - 1 where the form takes them (the SSE2 form only for lo below
+ * 2^16 and span in 1 .. 2^32 - 2^16, else none): cnt[0] dead, cnt[1] saturated added to;
+ * returns the pixels done (pre_temporal.c). */
+uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+                             uint32_t cnt[2]);
 #endif
 #if defined(__SSE2__)
 /* whiten_row_ on x86-64 (SSE2), pre_update.c: the multipliers m[0 .. 8 (n / 8) - 1] as the

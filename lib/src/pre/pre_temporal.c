@@ -1120,7 +1120,7 @@ static void count_span_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y
  * 0 .. 8 (w / 8) - 1 in 32-bit lanes: a pixel v (masked by mask) is counted iff
  * v - lo >= span (unsigned), dead if v < lo, else saturated (pft_pre_count_masked_ without
  * the map's case). Adds to n_dead, n_sat; returns the first pixel left to the loop. */
-static uint32_t count_row_n_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+static uint32_t count_row_v_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
 {
     const uint16x8_t vm = vdupq_n_u16((uint16_t)(c->mask & 0xFFFFu));
     const uint32x4_t vlo = vdupq_n_u32(c->lo), vspan = vdupq_n_u32(c->span);
@@ -1138,30 +1138,7 @@ static uint32_t count_row_n_(const uint8_t *row, uint32_t w, const pft_pre_cls_t
     acc->n_sat += vaddvq_u32(ns);
     return x;
 }
-
-/* count_row_n_ for a test: pixels 0 .. 8 (w / 8) - 1 of a U16 row (mask, lo, span); adds to
- * cnt[0] (dead) and cnt[1] (saturated); returns the pixels done. */
-uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
-                             uint32_t cnt[2])
-{
-    pft_pre_cls_t c;
-    pft_pre_acc_t a;
-    memset(&c, 0, sizeof(c));
-    memset(&a, 0, sizeof(a));
-    c.mask = mask;
-    c.lo = lo;
-    c.span = span;
-    c.map = NULL;
-    a.n_dead = cnt[0];
-    a.n_sat = cnt[1];
-    const uint32_t x = count_row_n_(row, w, &c, &a);
-    cnt[0] = a.n_dead;
-    cnt[1] = a.n_sat;
-    return x;
-}
-#endif
-
-#if defined(__SSE2__)
+#elif defined(__SSE2__)
 /* Where the compiler has SSE2 (x86-64), count_row_ of a U16 frame without a bad-pixel map for
  * pixels 0 .. 8 (w / 8) - 1 in 16-bit lanes: a pixel v (masked by mask, so below 2^16) is
  * counted iff v - lo >= span (unsigned), that is iff v < lo (dead) or v >= t = lo + span
@@ -1171,7 +1148,7 @@ uint32_t pft_pre_count_rown_(const uint8_t *row, uint32_t w, uint32_t mask, uint
  * pixel saturated); a lane counts at most w / 8 <= 1024 pixels (PFT_CFG_MAX_IMAGE_SIDE). Other
  * limits leave the row to the loop (returns 0). Adds to n_dead, n_sat; returns the first pixel
  * left to the loop. */
-static uint32_t count_row_s_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
+static uint32_t count_row_v_(const uint8_t *row, uint32_t w, const pft_pre_cls_t *c, pft_pre_acc_t *acc)
 {
     if (c->lo > 65535u || c->span < 1u || c->span > 0xFFFF0000u) {
         return 0u;
@@ -1197,10 +1174,13 @@ static uint32_t count_row_s_(const uint8_t *row, uint32_t w, const pft_pre_cls_t
     acc->n_sat += (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(s, 0x55));
     return x;
 }
+#endif
 
-/* count_row_s_ for a test: the arguments and results of pft_pre_count_rown_ (AArch64's form),
- * pixels 0 .. 8 (w / 8) - 1 where the limits allow (else none). */
-uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+/* count_row_v_ (count_row_'s NEON or SSE2 form) for a test: pixels 0 .. 8 (w / 8) - 1 of a U16
+ * row (mask, lo, span) where the form takes them (the SSE2 form only within its limits, else
+ * none); adds to cnt[0] (dead) and cnt[1] (saturated); returns the pixels done. */
+uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
                              uint32_t cnt[2])
 {
     pft_pre_cls_t c;
@@ -1213,7 +1193,7 @@ uint32_t pft_pre_count_rows_(const uint8_t *row, uint32_t w, uint32_t mask, uint
     c.map = NULL;
     a.n_dead = cnt[0];
     a.n_sat = cnt[1];
-    const uint32_t x = count_row_s_(row, w, &c, &a);
+    const uint32_t x = count_row_v_(row, w, &c, &a);
     cnt[0] = a.n_dead;
     cnt[1] = a.n_sat;
     return x;
@@ -1224,10 +1204,8 @@ static void count_row_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
                        pft_pre_acc_t *acc)
 {
     const uint8_t *row = pft_frame_row(f, y);
-#if defined(PFT_PRE_NEON_)
-    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_n_(row, f->width, c, acc) : 0u;
-#elif defined(__SSE2__)
-    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_s_(row, f->width, c, acc) : 0u;
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+    const uint32_t xa = (!c->u8 && c->map == NULL) ? count_row_v_(row, f->width, c, acc) : 0u;
 #else
     const uint32_t xa = 0u;
 #endif
