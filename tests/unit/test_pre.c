@@ -1230,7 +1230,7 @@ static void test_sigma_options(void)
 
 #if defined(__SSE2__)
 /* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 only); the test declares it. */
-int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 
 /* The Lucas-Kanade sums of one row as the registration's plain loop defines them (lk_loop_ on
@@ -1260,7 +1260,7 @@ static void lk_sums_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm
 }
 #endif
 
-/* x86-64's Lucas-Kanade sums of a row in SSE2 lanes (pft_pre_lk_rows_, steps 2 and 4: four
+/* x86-64's Lucas-Kanade sums of a row in SSE2 lanes (pft_pre_lk_rowv_, steps 2 and 4: four
  * samples of each whole block of 4 st pixels, the bilinear sample from 16-bit pmaddwd pairs,
  * the products summed in double lanes, an invalid sample's terms 0): known answers (a
  * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0 and fx = fy = 128,
@@ -1292,7 +1292,7 @@ static void test_lk_rows_sse2(void)
     uint32_t n = 0u;
     /* n 14: samples 0, 2, 4, 6 in the block (8 + 7 > 14); b0 is row 1, so with fx = fy = 0
      * e = 5000 - 1010 - 10 i: 3990, 3970, 3950, 3930 */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_all[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15840, 6000 * 15840,
                               3990 * 3990 + 3970 * 3970 + 3950 * 3950 + 3930 * 3930};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_all, s, 6);
@@ -1301,19 +1301,19 @@ static void test_lk_rows_sse2(void)
     memcpy(rz, z, sizeof(z));
     memset(s, 0, sizeof(s));
     n = 7u; /* added to */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_one[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11890, 6000 * 11890,
                               3990 * 3990 + 3970 * 3970 + 3930 * 3930};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_one, s, 6);
     TEST_ASSERT_EQUAL_UINT32(10u, n);
-    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rows_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(10u, n);
     /* fx = fy = 128: the cell's mean, 1015 + 10 i + 500 (rows 1, 2): e = 3485, 3465, (4 masked),
      * 3425 */
     const uint32_t par_h[6] = {0xFFFFu, 1u, 65535u, 0u, 128u, 128u};
     memset(s, 0, sizeof(s));
     n = 0u;
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rows_(rz, cz, bg, BS, par_h, 2, 7, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par_h, 2, 7, s, &n));
     const int64_t k_half[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 10375, 6000 * 10375,
                                3485 * 3485 + 3465 * 3465 + 3425 * 3425};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_half, s, 6);
@@ -1321,12 +1321,12 @@ static void test_lk_rows_sse2(void)
     /* step 4, n 30: samples 0, 4 (masked), 8, 12 (16 + 15 > 30): e = 3990, 3910, 3870 */
     memset(s, 0, sizeof(s));
     n = 0u;
-    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rows_(rz, cz, bg, BS, par, 4, 30, s, &n));
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 4, 30, s, &n));
     const int64_t k_st4[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11770, 6000 * 11770,
                               3990 * 3990 + 3910 * 3910 + 3870 * 3870};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_st4, s, 6);
     TEST_ASSERT_EQUAL_UINT32(3u, n);
-    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rows_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(3u, n);
     uint32_t masked = 0u;
     for (int32_t t = 0; t < 600; ++t) {
@@ -1354,7 +1354,7 @@ static void test_lk_rows_sse2(void)
         uint32_t gn = 3u, wn = 3u;
         const int32_t ie = (ns + 1) / (4 * st) * (4 * st);
         lk_sums_ref(z, cz, bg, BS, pr, st, ie, want, &wn);
-        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rows_(rz, cz, bg, BS, pr, st, ns, got, &gn));
+        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rowv_(rz, cz, bg, BS, pr, st, ns, got, &gn));
         TEST_ASSERT_EQUAL_INT64_ARRAY(want, got, 6);
         TEST_ASSERT_EQUAL_UINT32(wn, gn);
         masked += (uint32_t)(ie / st) + 3u - wn;

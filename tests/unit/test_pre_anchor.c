@@ -827,7 +827,7 @@ static void test_view_h32_neon(void)
 
 #if defined(__aarch64__) && defined(__ARM_NEON)
 /* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
-int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 
 /* The registration's plain loop (lk_loop_ on a U16 frame) over samples 0, st, ..., below ie of
@@ -858,7 +858,7 @@ static void lk_row_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm,
 }
 #endif
 
-/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_rown_, steps 2 and 4: four
+/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_rowv_, steps 2 and 4: four
  * samples of each whole block of 4 st pixels, an invalid sample's terms 0): known answers (a
  * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a
  * masked sample, the samples after the last whole block left), then the sums, the count and
@@ -886,7 +886,7 @@ static void test_lk_rown_neon(void)
     int64_t s[6] = {0, 0, 0, 0, 0, 0};
     uint32_t n = 0u;
     /* n 14: samples 0 .. 6 in the block (8 + 7 > 14), e = 5000 - (1000 + 10 (i + 1)) */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_all[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15840, 6000 * 15840, 62728400};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_all, s, 6);
     TEST_ASSERT_EQUAL_UINT32(4u, n);
@@ -894,20 +894,20 @@ static void test_lk_rown_neon(void)
     memcpy(rz, z, sizeof(z));
     memset(s, 0, sizeof(s));
     n = 7u; /* added to */
-    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 14, s, &n));
     const int64_t k_one[6] = {3 * 3600, 3 * 360000, 3 * 36000000, 60 * 11870, 6000 * 11870, 46967500};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_one, s, 6);
     TEST_ASSERT_EQUAL_UINT32(10u, n);
-    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 6, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(10u, n);
     /* step 4, n 30: samples 0, 4, 8, 12 (16 + 15 > 30; pixel 2, masked, is not a sample) */
     memset(s, 0, sizeof(s));
     n = 0u;
-    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 30, s, &n));
+    TEST_ASSERT_EQUAL_INT32(16, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 4, 30, s, &n));
     const int64_t k_st4[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 15720, 6000 * 15720, 61787600};
     TEST_ASSERT_EQUAL_INT64_ARRAY(k_st4, s, 6);
     TEST_ASSERT_EQUAL_UINT32(4u, n);
-    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rown_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
+    TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(4u, n);
     uint32_t cases = 0u, masked = 0u;
     for (int32_t t = 0; t < 800; ++t) {
@@ -931,7 +931,7 @@ static void test_lk_rown_neon(void)
         uint32_t gn = 3u, wn = 3u;
         const int32_t ie = (ns + 1) / (4 * st) * (4 * st);
         lk_row_ref(z, cz, bg, BS, pr, st, ie, want, &wn);
-        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rown_(rz, cz, bg, BS, pr, st, ns, got, &gn));
+        TEST_ASSERT_EQUAL_INT32(ie, pft_pre_lk_rowv_(rz, cz, bg, BS, pr, st, ns, got, &gn));
         TEST_ASSERT_EQUAL_INT64_ARRAY(want, got, 6);
         TEST_ASSERT_EQUAL_UINT32(wn, gn);
         masked += (uint32_t)(ie / st) - (wn - 3u);

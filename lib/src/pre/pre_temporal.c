@@ -341,7 +341,7 @@ static inline void lk_nsum_(const lk_nacc_t *a, lk_sums_t *s)
  * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
  * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
  * loop. */
-static inline int32_t lk_row2n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+static inline int32_t lk_row2v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                                 const uint32_t par[6], int32_t n, lk_sums_t *s)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
@@ -365,7 +365,7 @@ static inline int32_t lk_row2n_(const uint8_t *rz, const int32_t *cz, const uint
 /* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
  * i = 0, 16, 32, ... while i + 15 <= n (reads pixels, colnow and the background's row
  * columns to i + 15, inside the loop's own reads for samples up to n). */
-static inline int32_t lk_row4n_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+static inline int32_t lk_row4v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                                 const uint32_t par[6], int32_t n, lk_sums_t *s)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
@@ -386,29 +386,7 @@ static inline int32_t lk_row4n_(const uint8_t *rz, const int32_t *cz, const uint
     lk_nsum_(&a, s);
     return i;
 }
-
-/* lk_row2n_ (st 2) or lk_row4n_ (st 4) for a test: the sums of a row's samples 0, st, 2 st,
- * ..., up to the last whole block of four (rz: the row's pixels from the first sample, cz:
- * colnow from it, bm: the background's row y + ky - 1 from column c0 with stride bs, par: mask,
- * lo, span, bf, fx, fy); sums: sxx, sxy, syy, sxe, sye, see added to, *cnt likewise; returns
- * the first sample left. */
-int32_t pft_pre_lk_rown_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt)
-{
-    lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
-    const int32_t i = st == 4 ? lk_row4n_(rz, cz, bm, bs, par, n, &a) : lk_row2n_(rz, cz, bm, bs, par, n, &a);
-    sums[0] = a.sxx;
-    sums[1] = a.sxy;
-    sums[2] = a.syy;
-    sums[3] = a.sxe;
-    sums[4] = a.sye;
-    sums[5] = a.see;
-    *cnt = a.n;
-    return i;
-}
-#endif
-
-#if defined(__SSE2__)
+#elif defined(__SSE2__)
 /* Where the compiler has SSE2 (x86-64), lk_loop_'s sums (a U16 frame without a bad-pixel map)
  * four samples at a time in 32-bit lanes, the same gx, gy, e as the loop, an invalid sample's
  * gx, gy, e set to 0 instead of skipped (its products add 0). SSE2 has no 32-bit lane
@@ -535,7 +513,7 @@ static inline __m128i lk_ld4_(const void *p)
  * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
  * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
  * loop. */
-static inline int32_t lk_row2s_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+static inline int32_t lk_row2v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                                 const uint32_t par[6], int32_t n, lk_sums_t *s)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
@@ -565,7 +543,7 @@ static inline int32_t lk_row2s_(const uint8_t *rz, const int32_t *cz, const uint
 /* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
  * i = 0, 16, 32, ... while i + 15 <= n (reads pixels and colnow to i + 15, the background's
  * row columns to i + 17, inside the loop's own reads for samples up to n). */
-static inline int32_t lk_row4s_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+static inline int32_t lk_row4v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                                 const uint32_t par[6], int32_t n, lk_sums_t *s)
 {
     const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
@@ -590,14 +568,19 @@ static inline int32_t lk_row4s_(const uint8_t *rz, const int32_t *cz, const uint
     lk_ssum_(&a, s);
     return i;
 }
+#endif
 
-/* lk_row2s_ (st 2) or lk_row4s_ (st 4) for a test: the arguments and results of
- * pft_pre_lk_rown_ (AArch64's form). */
-int32_t pft_pre_lk_rows_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+/* lk_row2v_ (st 2) or lk_row4v_ (st 4), the NEON or SSE2 form, for a test: the sums of a row's
+ * samples 0, st, 2 st, ..., up to the last whole block of four (rz: the row's pixels from the first sample, cz:
+ * colnow from it, bm: the background's row y + ky - 1 from column c0 with stride bs, par: mask,
+ * lo, span, bf, fx, fy); sums: sxx, sxy, syy, sxe, sye, see added to, *cnt likewise; returns
+ * the first sample left. */
+int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt)
 {
     lk_sums_t a = {sums[0], sums[1], sums[2], sums[3], sums[4], sums[5], *cnt};
-    const int32_t i = st == 4 ? lk_row4s_(rz, cz, bm, bs, par, n, &a) : lk_row2s_(rz, cz, bm, bs, par, n, &a);
+    const int32_t i = st == 4 ? lk_row4v_(rz, cz, bm, bs, par, n, &a) : lk_row2v_(rz, cz, bm, bs, par, n, &a);
     sums[0] = a.sxx;
     sums[1] = a.sxy;
     sums[2] = a.syy;
@@ -643,23 +626,15 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
          * the last tap column are in [0, w - 1]) */
         const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
         const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
-#if defined(PFT_PRE_NEON_)
-        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2 or 4, plain) */
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+        /* AArch64 and x86-64: the samples of the whole blocks of four in NEON's or SSE2's lanes
+         * (st 2 or 4, plain) */
         const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
         int32_t ia = 0;
         if (plain && st == 2) {
-            ia = lk_row2n_(rz, cz, bm, bs, par, xb - x0, &acc);
+            ia = lk_row2v_(rz, cz, bm, bs, par, xb - x0, &acc);
         } else if (plain && st == 4) {
-            ia = lk_row4n_(rz, cz, bm, bs, par, xb - x0, &acc);
-        }
-#elif defined(__SSE2__)
-        /* x86-64: the same in SSE2's lanes */
-        const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
-        int32_t ia = 0;
-        if (plain && st == 2) {
-            ia = lk_row2s_(rz, cz, bm, bs, par, xb - x0, &acc);
-        } else if (plain && st == 4) {
-            ia = lk_row4s_(rz, cz, bm, bs, par, xb - x0, &acc);
+            ia = lk_row4v_(rz, cz, bm, bs, par, xb - x0, &acc);
         }
 #else
         const int32_t ia = 0;

@@ -723,6 +723,21 @@ static inline void peak_hrow_r16_in_(const uint8_t *src, size_t c0, uint32_t w, 
     }
 }
 
+#if defined(__SSE2__)
+/* The RES16 row's pixels c - 1 .., c .. and c + 1 .. (eight each) in a, b and d, a masked pixel
+ * (the only PFT_RES16_MASKED, as masked's lanes) read as 0 (peak_hrow_r16_madd_'s and
+ * peak_hrow_r16_f8_'s SSE2 forms). */
+static inline void r16_ld3_(const uint8_t *src, size_t c, __m128i masked, __m128i *a, __m128i *b, __m128i *d)
+{
+    const __m128i va = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
+    const __m128i vb = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
+    const __m128i vd = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
+    *a = _mm_andnot_si128(_mm_cmpeq_epi16(va, masked), va);
+    *b = _mm_andnot_si128(_mm_cmpeq_epi16(vb, masked), vb);
+    *d = _mm_andnot_si128(_mm_cmpeq_epi16(vd, masked), vd);
+}
+#endif
+
 #if defined(PFT_TBD_HROW_MADD_) && defined(__SSE2__)
 /* peak_hrow_r16_in_'s columns 1 .. with the centre tap 1 (one), eight at a time while a whole
  * step lies inside 1 .. w - 2; returns the first column not done. Per pixel: pft_kres16_(zc) =
@@ -744,12 +759,8 @@ static size_t peak_hrow_r16_madd_(const uint8_t *src, uint32_t w, pft_real_t t0,
     const __m128i zero = _mm_setzero_si128();
     size_t c = 1u;
     for (; c + 8u < (size_t)w; c += 8u) {
-        __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
-        __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
-        __m128i d = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
-        a = _mm_andnot_si128(_mm_cmpeq_epi16(a, masked), a);
-        b = _mm_andnot_si128(_mm_cmpeq_epi16(b, masked), b);
-        d = _mm_andnot_si128(_mm_cmpeq_epi16(d, masked), d);
+        __m128i a, b, d;
+        r16_ld3_(src, c, masked, &a, &b, &d);
         const __m128i plo = _mm_unpacklo_epi16(a, d); /* (zl, zr) of pixels c .. c + 3 */
         const __m128i phi = _mm_unpackhi_epi16(a, d); /* and of c + 4 .. c + 7 */
         const __m128i llo = _mm_madd_epi16(plo, wl);
@@ -819,12 +830,8 @@ static size_t peak_hrow_r16_f8_(const uint8_t *src, uint32_t w, pft_real_t t0, p
     const __m128i one = _mm_set1_epi16(1);
     size_t c = 1u;
     for (; c + 8u < (size_t)w; c += 8u) {
-        __m128i a = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c - 1u)));
-        __m128i b = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * c));
-        __m128i d = _mm_loadu_si128((const __m128i *)(const void *)(src + 2u * (c + 1u)));
-        a = _mm_andnot_si128(_mm_cmpeq_epi16(a, masked), a);
-        b = _mm_andnot_si128(_mm_cmpeq_epi16(b, masked), b);
-        d = _mm_andnot_si128(_mm_cmpeq_epi16(d, masked), d);
+        __m128i a, b, d;
+        r16_ld3_(src, c, masked, &a, &b, &d);
         const __m128i slo = _mm_madd_epi16(_mm_unpacklo_epi16(a, d), one); /* c .. c + 3 */
         const __m128i shi = _mm_madd_epi16(_mm_unpackhi_epi16(a, d), one); /* c + 4 .. c + 7 */
         const __m128i zlo = _mm_srai_epi32(_mm_unpacklo_epi16(b, b), 16);
