@@ -717,9 +717,11 @@ static void test_gated_mean_widths_and_floor(void)
  * cell with the bilinear formula out(x, y) = (sum of v(x - ix - i, y - iy - j) wx_i wy_j +
  * 2^15) >> 16 (i, j in 0..1, weights 256 - f and f in Q8, a source outside the frame counting
  * the plane's fill: 1 sigma^2 for m, the offset 2^15 for mu, 0 for the counter). Shifts in
- * whole Q8 steps (the split exact) with fx 0, fy 0, both fractional, both signs and sources
- * beyond every edge; widths 64 and 61 (columns over a multiple of 8). The x86-64 build runs
- * the 16-bit form of pre_clutter.c (SSE2), the other targets its 32-bit form. */
+ * whole Q8 steps (the split exact) with fx 0, fy 0, both fractional, both signs, sources
+ * beyond every edge and a source row that is the output row itself (iy 0 and -1), the last
+ * shift with values only 0, 2^15 - 1, 2^15 and 65535; widths 64 and 61 (columns over a
+ * multiple of 8). The x86-64 build runs the one-pass SSE2 form of pre_clutter.c (pmaddwd), the
+ * other targets its two-pass 32-bit form. */
 static uint16_t ref_warp_at(const uint16_t *v, int w, int x, int y, int32_t ix, uint32_t fx, int32_t iy,
                             uint32_t fy, uint32_t b)
 {
@@ -738,8 +740,9 @@ static uint16_t ref_warp_at(const uint16_t *v, int w, int x, int y, int32_t ix, 
 static void warp_case(int w)
 {
     /* shifts in Q8 px (x, y): the Q16.16 shift is 256 times them */
-    static const int32_t sh[7][2] = {{77, -300}, {0, 133},  {-600, 0},   {517, 1018},
-                                     {-1, 1},    {-4000, 2900}, {15000, -11000}};
+    static const int32_t sh[9][2] = {{77, -300}, {0, 133},  {-600, 0},   {517, 1018},
+                                     {-1, 1},    {-4000, 2900}, {15000, -11000}, {300, -100},
+                                     {-200, 77}};
     pft_pre_clutter_config_t cfg;
     pft_pre_clutter_config_default(&cfg);
     cfg.mean = true;
@@ -752,13 +755,15 @@ static void warp_case(int w)
     pft_frame_t f = pft_test_res16_frame(g_res, (uint16_t)w, H, 1u, 1000u);
     TEST_ASSERT_EQUAL_INT(PFT_OK, pft_pre_clutter_update(&c, &f, 0, 0, true));
     uint32_t n_edge = 0u, n_in = 0u;
-    for (uint32_t k = 0u; k < 7u; ++k) {
+    for (uint32_t k = 0u; k < 9u; ++k) {
         uint16_t *pl[3] = {c.m, c.mu, c.pc};
         static const uint32_t fill[3] = {1024u, 32768u, 0u};
+        /* the last shift: only the range's ends and the middle (sums at their largest) */
+        static const uint16_t ends[4] = {0u, 32767u, 32768u, 65535u};
         for (uint32_t p = 0u; p < 3u; ++p) {
             for (int i = 0; i < w * H; ++i) {
                 g_rs = g_rs * 1664525u + 1013904223u;
-                pl[p][i] = (uint16_t)(g_rs >> 16);
+                pl[p][i] = k == 8u ? ends[g_rs >> 30] : (uint16_t)(g_rs >> 16);
             }
         }
         memcpy(g_m0, c.m, sizeof(uint16_t) * (size_t)(w * H));

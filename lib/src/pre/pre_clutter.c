@@ -327,7 +327,7 @@ static void cl_dec8_row_(const uint8_t *src, uint16_t *dst, int32_t w)
     }
 }
 
-/* The warp's horizontal value at an edge column x of a source row (cl_warp_h_, cl_warp_h16_):
+/* The warp's horizontal value at an edge column x of a source row (cl_warp_h_):
  * v[x - ix] (256 - fx) + v[x - ix - 1] fx, a source outside the row counting b. */
 static uint32_t cl_warp_edge_(const uint16_t *row, int32_t w, int32_t x, int32_t ix, uint32_t fx,
                               uint32_t b)
@@ -370,74 +370,70 @@ static void cl_warp_h_(const uint16_t *v, uint32_t *hr, int32_t sy, int32_t w, i
 }
 
 #if defined(__SSE2__)
-/* The warp's two passes in 16-bit lanes (cl_warp_h16_, cl_warp_ below) where the compiler has
- * SSE2 (x86-64: no 32 x 32-bit product in lanes before SSE4.1); other targets take the 32-bit
- * form after the #else (the same values: a scalar core pays for every 16-bit split, and
- * AArch64's NEON has the widening 16 x 16 -> 32-bit products and 32-bit lanes). */
-/* cl_warp_'s horizontal pass in 16-bit lanes: the value H = v[sy][x - ix] (256 - fx) +
- * v[sy][x - ix - 1] fx of cl_warp_h_ (< 2^24) kept as hh = H >> 8 (<= 65535) and hl = H & 255.
- * With fx > 0 both weights g = 256 - fx and f = fx fit 8 bits, and a product u g (u <= 65535)
- * is 256 floor(u g / 256) + (u g mod 256): the floor is the high half of the 16 x 16-bit
- * product u (g << 8), the remainder the low byte of the low half u g, so H = 256 (qa + qb) + lo
- * with lo = ra + rb <= 510 and hh = qa + qb + (lo >> 8), hl = lo & 255 (no 32-bit lane, no
- * pmuludq). fx = 0: H = 256 v, hh = v, hl = 0. */
-static void cl_warp_h16_(const uint16_t *v, uint16_t *hh, uint16_t *hl, int32_t sy, int32_t w,
-                         int32_t h, int32_t ix, uint32_t fx, uint32_t b, int32_t xlo, int32_t xhi)
+/* The warp in one pass of 16 x 16-bit multiply-adds (pmaddwd) where the compiler has SSE2
+ * (x86-64: no widening 16 x 16 -> 32-bit multiply-accumulate as AArch64's NEON has, which its
+ * two-pass 32-bit form after the #else takes; a scalar core also takes that form). The same
+ * values: out(x, y) = (S + 2^15) >> 16 with S = H1 (256 - fy) + H0 fy the two-pass sum and H1,
+ * H0 the horizontal values of the two source rows, that is S = sum over the four sources v_ij
+ * (row y - iy - j, column x - ix - i, i, j in 0..1) of v_ij w_ij with w_ij = wx_i wy_j (wx_0 =
+ * 256 - fx, wx_1 = fx, wy_0 = 256 - fy, wy_1 = fy; the weights sum to 2^16, so S <= 65535 2^16
+ * and S + 2^15 < 2^32), the integer sum in another order. */
+/* One output value of cl_warp_ at column x from source rows r1 (y - iy) and r0 (y - iy - 1),
+ * a source column outside the row counting b; wt: the weights of r1's columns x - ix and x -
+ * ix - 1, then r0's (w_00, w_10, w_01, w_11). */
+static uint16_t cl_warp_px_(const uint16_t *r1, const uint16_t *r0, int32_t w, int32_t x, int32_t ix,
+                            const uint32_t *wt, uint32_t b)
 {
-    if (sy < 0 || sy >= h) {
-        for (int32_t x = 0; x < w; ++x) {
-            hh[x] = (uint16_t)b; /* H = b 256 */
-            hl[x] = 0u;
-        }
-        return;
-    }
-    const uint16_t *row = v + (size_t)sy * (size_t)w;
-    if (xlo < xhi) {
-        /* r[i] is column xlo - ix - 1 + i: x0 of x = xlo + i (>= 0) */
-        const uint16_t *r = row + (size_t)(xlo - ix - 1);
-        uint16_t *oh = hh + xlo, *ol = hl + xlo;
-        const int32_t n = xhi - xlo;
-        if (fx == 0u) {
-            for (int32_t i = 0; i < n; ++i) {
-                oh[i] = r[i + 1];
-                ol[i] = 0u;
-            }
-        } else {
-            const uint16_t g = (uint16_t)(256u - fx), f = (uint16_t)fx;
-            const uint16_t g8 = (uint16_t)(g << 8), f8 = (uint16_t)(f << 8);
-            for (int32_t i = 0; i < n; ++i) {
-                const uint16_t u1 = r[i + 1], u0 = r[i];
-                const uint16_t q1 = (uint16_t)(((uint32_t)u1 * (uint32_t)g8) >> 16);
-                const uint16_t q0 = (uint16_t)(((uint32_t)u0 * (uint32_t)f8) >> 16);
-                const uint16_t lo = (uint16_t)((uint16_t)((uint16_t)(u1 * g) & 255u) +
-                                               (uint16_t)((uint16_t)(u0 * f) & 255u));
-                oh[i] = (uint16_t)(q1 + q0 + (uint16_t)(lo >> 8));
-                ol[i] = (uint16_t)(lo & 255u);
-            }
-        }
-    }
-    /* the edge columns: sources beyond the frame count b */
-    for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
-        const int32_t x = e < xlo ? e : xhi + (e - xlo);
-        const uint32_t hv = cl_warp_edge_(row, w, x, ix, fx, b);
-        hh[x] = (uint16_t)(hv >> 8);
-        hl[x] = (uint16_t)(hv & 255u);
-    }
+    const int32_t s1 = x - ix, s0 = s1 - 1;
+    const bool in1 = s1 >= 0 && s1 < w, in0 = s0 >= 0 && s0 < w;
+    const uint32_t a1 = in1 ? (uint32_t)r1[s1] : b, b1 = in0 ? (uint32_t)r1[s0] : b;
+    const uint32_t a0 = in1 ? (uint32_t)r0[s1] : b, b0 = in0 ? (uint32_t)r0[s0] : b;
+    const uint32_t s = a1 * wt[0] + b1 * wt[1] + a0 * wt[2] + b0 * wt[3];
+    return (uint16_t)((s + 32768u) >> 16);
+}
+
+/* cl_warp_'s constants in SSE2's lanes: the weights' high and low parts of the source rows r1
+ * (k1h, k1l) and r0 (k0h, k0l) as 16-bit pairs (column x - ix - 1, column x - ix), the values'
+ * offset 2^15 (16-bit lanes), the rounding 2^31 + 2^15 and the high halves' mask (32-bit). */
+typedef struct {
+    __m128i k1h, k1l, k0h, k0l, off, rnd, hmask;
+} cl_warpk_t;
+
+/* Columns x .. x + 7 of cl_warp_'s output row o from the source rows r1, r0 (a = x - ix - 1,
+ * the first source column: a >= 0 and a + 8 < w), as cl_warp_'s comment below. */
+static inline void cl_warp8_sse2_(const uint16_t *r1, const uint16_t *r0, uint16_t *o, int32_t x, int32_t a,
+                                  const cl_warpk_t *k)
+{
+    const __m128i e1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(r1 + a)), k->off);
+    const __m128i d1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(r1 + a + 1)), k->off);
+    const __m128i e0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(r0 + a)), k->off);
+    const __m128i d0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(r0 + a + 1)), k->off);
+    /* the even columns' (e) and odd columns' (d) sums of the high and low products */
+    const __m128i xhe = _mm_add_epi32(_mm_madd_epi16(e1, k->k1h), _mm_madd_epi16(e0, k->k0h));
+    const __m128i xle = _mm_add_epi32(_mm_madd_epi16(e1, k->k1l), _mm_madd_epi16(e0, k->k0l));
+    const __m128i xhd = _mm_add_epi32(_mm_madd_epi16(d1, k->k1h), _mm_madd_epi16(d0, k->k0h));
+    const __m128i xld = _mm_add_epi32(_mm_madd_epi16(d1, k->k1l), _mm_madd_epi16(d0, k->k0l));
+    const __m128i te = _mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(xhe, 8), xle), k->rnd);
+    const __m128i td = _mm_add_epi32(_mm_add_epi32(_mm_slli_epi32(xhd, 8), xld), k->rnd);
+    _mm_storeu_si128((__m128i *)(void *)(o + x), _mm_or_si128(_mm_srli_epi32(te, 16), _mm_and_si128(td, k->hmask)));
 }
 
 /* Warps v (u16 values, w x h) in place by (ix + fx / 256, iy + fy / 256) px: out(p) =
- * v(p - shift), bilinear, b outside:
- *   out(x, y) = (H(y - iy)[x] (256 - fy) + H(y - iy - 1)[x] fy + 2^15) >> 16
- * with H the horizontal pass (cl_warp_h16_: hh = H >> 8, hl = H & 255), made once per source
- * row: the rows are visited in the order that reads every source row before it is overwritten
- * (descending where the sources lie at lower rows), so one row's second source row is the next
- * row's first, kept in ta or tb (w 32-bit words each, used as hh and hl: w 16-bit values each).
- * In 16-bit lanes: with H1, H0 the two source rows' values, gy = 256 - fy and X = hh1 gy + hh0
- * fy, L = hl1 gy + hl0 fy (<= 255 * 256), the sum is 256 X + L + 2^15 and out = floor((X +
- * (L >> 8) + 128) / 256) (X an integer); for fy > 0, X = 256 (q1 + q0) + r1 + r0 with q, r
- * the floor and remainder of each product by 256 (as in cl_warp_h16_), so out = q1 + q0 + ((r1
- * + r0 + (L >> 8) + 128) >> 8) (the bracket <= 893); fy = 0: out = hh1 + ((hl1 + 128) >> 8).
- * The same value as (H1 2^8 + (H0 - H1) fy + 2^15) >> 16 in 32-bit lanes (cl_fuse8_row_). */
+ * v(p - shift), bilinear, b outside (the sum above). A source row outside the frame is tb
+ * filled with b (its horizontal value b 256, as the two-pass form's); the rows are visited in
+ * the two-pass form's order (descending where the sources lie at lower rows), so that every
+ * source row but the output row itself (iy 0 descending, -1 ascending) is not yet
+ * overwritten; that one is copied into ta first. Columns [xlo, xhi), whose two sources are
+ * inside the row, 8 at a time: a row's 16-bit values loaded from column x - ix - 1 hold in
+ * their 32-bit lanes the pairs (column x' - ix - 1, column x' - ix) of the even columns x' = x,
+ * x + 2, .., loaded from one column further those of the odd ones, so that each pair times its
+ * two weights is one pmaddwd: each weight w = 256 wh + wl (wh <= 256, wl <= 255: int16, >= 0,
+ * no overflow), each value taken as v - 2^15 (int16: v xor 2^15), S = 256 Xh + Xl + 2^31 (Xh,
+ * Xl the sums of the two rows' products with wh and wl; the offsets' sum 2^15 2^16) and T = S +
+ * 2^15 < 2^32 in 32-bit lanes mod 2^32 (exact); out = T >> 16, the even columns' in the low
+ * halves of their lanes (a logical shift), the odd ones' in the high halves (T with its low
+ * half cleared), one OR (cl_warp8_sse2_); columns left over from the blocks of 8 as the last 8
+ * columns again, the edge columns per pixel (cl_warp_px_). */
 static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
                      uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
 {
@@ -445,37 +441,53 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
     /* columns whose two sources are inside: x - ix - 1 >= 0 and x - ix < w */
     const int32_t xlo = ix + 1 < 0 ? 0 : (ix + 1 > w ? w : ix + 1);
     const int32_t xhi = ix > 0 ? w : (w + ix < xlo ? xlo : w + ix);
-    /* hc: the source row shared with the row before; each buffer holds hh, then hl */
-    uint16_t *hc = (uint16_t *)(void *)ta, *hn = (uint16_t *)(void *)tb;
+    uint16_t *cp = (uint16_t *)(void *)ta, *brow = (uint16_t *)(void *)tb;
+    for (int32_t x = 0; x < w; ++x) {
+        brow[x] = (uint16_t)b;
+    }
+    const uint32_t g = 256u - fx, gy = 256u - fy;
+    /* w_00 (r1, column x - ix), w_10 (r1, x - ix - 1), w_01 (r0, x - ix), w_11 (r0, x - ix - 1) */
+    const uint32_t wt[4] = {g * gy, fx * gy, g * fy, fx * fy};
+    /* the lanes' pairs: column x - ix - 1 (low half), x - ix (high half) */
+    cl_warpk_t kw;
+    kw.k1h = _mm_set1_epi32((int32_t)(((wt[0] >> 8) << 16) | (wt[1] >> 8)));
+    kw.k1l = _mm_set1_epi32((int32_t)(((wt[0] & 255u) << 16) | (wt[1] & 255u)));
+    kw.k0h = _mm_set1_epi32((int32_t)(((wt[2] >> 8) << 16) | (wt[3] >> 8)));
+    kw.k0l = _mm_set1_epi32((int32_t)(((wt[2] & 255u) << 16) | (wt[3] & 255u)));
+    kw.off = _mm_set1_epi16((int16_t)-32768);
+    kw.rnd = _mm_set1_epi32((int32_t)-2147450880); /* 2^31 + 2^15 mod 2^32 */
+    kw.hmask = _mm_set1_epi32((int32_t)-65536);    /* 0xFFFF0000 */
     int32_t y = ydown ? h - 1 : 0;
-    const uint16_t gy = (uint16_t)(256u - fy), f = (uint16_t)fy;
-    const uint16_t g8 = (uint16_t)(gy << 8), f8 = (uint16_t)(f << 8);
-    /* descending, row y's first source y - iy; ascending, its second y - iy - 1 */
-    cl_warp_h16_(v, hc, hc + w, ydown ? y - iy : y - iy - 1, w, h, ix, fx, b, xlo, xhi);
     for (int32_t k = 0; k < h; ++k) {
-        /* the other source row: not yet overwritten (below y descending, above ascending) */
-        cl_warp_h16_(v, hn, hn + w, ydown ? y - iy - 1 : y - iy, w, h, ix, fx, b, xlo, xhi);
-        const uint16_t *h1 = ydown ? hc : hn, *h0 = ydown ? hn : hc; /* weights 256 - fy, fy */
-        const uint16_t *l1 = h1 + w, *l0 = h0 + w;
+        const int32_t s1 = y - iy, s0 = s1 - 1; /* weights 256 - fy, fy */
+        const uint16_t *r1 = s1 < 0 || s1 >= h ? brow : v + (size_t)s1 * (size_t)w;
+        const uint16_t *r0 = s0 < 0 || s0 >= h ? brow : v + (size_t)s0 * (size_t)w;
         uint16_t *o = v + (size_t)y * (size_t)w;
-        if (fy == 0u) {
-            for (int32_t x = 0; x < w; ++x) {
-                o[x] = (uint16_t)(h1[x] + (uint16_t)((uint16_t)(l1[x] + 128u) >> 8));
+        if (s1 == y || s0 == y) {
+            memcpy(cp, o, sizeof(uint16_t) * (size_t)w);
+            r1 = s1 == y ? cp : r1;
+            r0 = s0 == y ? cp : r0;
+        }
+        if (xhi - xlo >= 8) {
+            /* whole blocks of 8, then the last 8 columns again where some are left over (the
+             * sources are not the output row: the same values written twice) */
+            const int32_t xe = xlo + ((xhi - xlo) & ~7);
+            for (int32_t x = xlo; x < xe; x += 8) {
+                cl_warp8_sse2_(r1, r0, o, x, x - ix - 1, &kw);
+            }
+            if (xe < xhi) {
+                cl_warp8_sse2_(r1, r0, o, xhi - 8, xhi - 8 - ix - 1, &kw);
             }
         } else {
-            for (int32_t x = 0; x < w; ++x) {
-                const uint16_t q1 = (uint16_t)(((uint32_t)h1[x] * (uint32_t)g8) >> 16);
-                const uint16_t q0 = (uint16_t)(((uint32_t)h0[x] * (uint32_t)f8) >> 16);
-                const uint16_t rr = (uint16_t)((uint16_t)((uint16_t)(h1[x] * gy) & 255u) +
-                                               (uint16_t)((uint16_t)(h0[x] * f) & 255u));
-                const uint16_t l = (uint16_t)((uint16_t)(l1[x] * gy) + (uint16_t)(l0[x] * f));
-                o[x] = (uint16_t)(q1 + q0 +
-                                  (uint16_t)((uint16_t)(rr + (uint16_t)(l >> 8) + 128u) >> 8));
+            for (int32_t x = xlo; x < xhi; ++x) {
+                o[x] = cl_warp_px_(r1, r0, w, x, ix, wt, b);
             }
         }
-        uint16_t *t = hc;
-        hc = hn;
-        hn = t;
+        /* the edge columns: sources beyond the frame count b */
+        for (int32_t e = 0; e < xlo + (w - xhi); ++e) {
+            const int32_t xc = e < xlo ? e : xhi + (e - xlo);
+            o[xc] = cl_warp_px_(r1, r0, w, xc, ix, wt, b);
+        }
         y = ydown ? y - 1 : y + 1;
     }
 }
@@ -484,11 +496,11 @@ static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t
  * v(p - shift), bilinear, b outside:
  *   out(x, y) = (H(y - iy)[x] (256 - fy) + H(y - iy - 1)[x] fy + 2^15) >> 16
  * with H the horizontal pass (cl_warp_h_, < 2^24 in 32 bits), made once per source row in the
- * order of the 16-bit form above (descending where the sources lie at lower rows), one row's
+ * order of the SSE2 form above (descending where the sources lie at lower rows), one row's
  * second source row the next row's first, kept in ta or tb (w 32-bit words each). The sum is
  * at most (2^24 - 256) 256 + 2^15 < 2^32: a 32-bit product and multiply-add per pixel; fy = 0:
- * out = (H1 2^8 + 2^15) >> 16 = (H1 + 128) >> 8. The same values as the 16-bit form (whose
- * comment derives it from this sum) and as cl_fuse8_row_'s (H1 2^8 + (H0 - H1) fy + 2^15) >> 16
+ * out = (H1 2^8 + 2^15) >> 16 = (H1 + 128) >> 8. The same values as the SSE2 form (the same
+ * integer sum in another order) and as cl_fuse8_row_'s (H1 2^8 + (H0 - H1) fy + 2^15) >> 16
  * (the same sum mod 2^32). */
 static void cl_warp_(uint16_t *v, uint32_t *ta, uint32_t *tb, int32_t w, int32_t h, int32_t ix,
                      uint32_t fx, int32_t iy, uint32_t fy, uint32_t b)
