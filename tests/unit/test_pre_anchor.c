@@ -1136,11 +1136,11 @@ static int32_t hcell_ref(const int32_t *zl, int32_t ub, const int32_t w[4], int3
 
 /* x86-64's blend of the anchored update's row (pft_pre_hrow8_: 8 cells per SSE2 block, the
  * rest left to the loop) against hcell_'s general form: known answers (a constant row; the
- * cubic on 0, 65535, 65535, 0; a masked pixel making the four cells that tap it, or the three
- * that test it, PFT_PRE_ANONE_), then random rows with masked pixels, extreme values, both tap
- * offsets and every tested-tap set; and the residual's vertical blends in the split form
- * (pft_pre_vsplit8_) against pft_pre_vsplit_ of the blend of 16 x 16-bit products, with known
- * answers. */
+ * cubic on 0, 65535, 65535, 0; a masked pixel making the four cells that tap it, or the two
+ * that test it with linear weights, PFT_PRE_ANONE_), then random rows with masked pixels,
+ * extreme values, both tap offsets and every tested-tap set; and the residual's vertical
+ * blends in the split form (pft_pre_vsplit8_) against pft_pre_vsplit_ of the blend of
+ * 16 x 16-bit products, with known answers. */
 static void test_update_rows_sse2(void)
 {
 #if defined(__SSE2__)
