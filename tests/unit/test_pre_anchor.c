@@ -1108,6 +1108,218 @@ static void test_stale_res_neon(void)
 #endif
 }
 
+#if defined(__SSE2__)
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 only); the test declares them. */
+int32_t pft_pre_hrow8_(const int32_t *zl, const int16_t *zs, int32_t ub, const int32_t w[4], int32_t ulo,
+                       int32_t uhi, int32_t *hz, int32_t ja, int32_t jb);
+int32_t pft_pre_vsplit8_(const uint16_t *const t[4], const int32_t w[4], int32_t *vb, int32_t i0, int32_t c1);
+uint32_t pft_pre_zspan8_(const uint8_t *row, uint32_t mask, uint32_t lo, uint32_t span, uint32_t bf,
+                         const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *ninv);
+
+#define HN 200 /* frame columns of the update pass's rows tested */
+
+/* anchor_hrow_'s cell j in its general form (hcell_): PFT_PRE_ANONE_ (-2^22) when one of the
+ * taps ulo .. uhi is masked, else (sum of w zl + 8) >> 4 (the weights sum to 256). */
+static int32_t hcell_ref(const int32_t *zl, int32_t ub, const int32_t w[4], int32_t ulo, int32_t uhi, int32_t j)
+{
+    int64_t sv = 0;
+    for (int32_t i = -1; i <= 2; ++i) {
+        const int32_t z = zl[j + ub + i];
+        if (z < 0 && i >= ulo && i <= uhi) {
+            return -4194304;
+        }
+        sv += (int64_t)w[i + 1] * (z < 0 ? 0 : z);
+    }
+    return (int32_t)((sv + 8) >> 4);
+}
+#endif
+
+/* x86-64's blend of the anchored update's row (pft_pre_hrow8_: 8 cells per SSE2 block, the
+ * rest left to the loop) against hcell_'s general form: known answers (a constant row; the
+ * cubic on 0, 65535, 65535, 0; a masked pixel making the four cells that tap it, or the two
+ * that test it with linear weights, PFT_PRE_ANONE_), then random rows with masked pixels,
+ * extreme values, both tap offsets and every tested-tap set; and the residual's vertical
+ * blends in the split form (pft_pre_vsplit8_) against pft_pre_vsplit_ of the blend of
+ * 16 x 16-bit products, with known answers. */
+static void test_update_rows_sse2(void)
+{
+#if defined(__SSE2__)
+    static int32_t zl[HN], hz[HN + 3];
+    static int16_t zs[HN];
+    const int32_t cub[4] = {-16, 144, 144, -16};
+    for (int32_t x = 0; x < HN; ++x) {
+        zl[x] = 1000;
+        zs[x] = (int16_t)(zl[x] - 32768);
+    }
+    TEST_ASSERT_EQUAL_INT32(2 + 8 * 24, pft_pre_hrow8_(zl, zs, -1, cub, -1, 2, hz, 2, 196));
+    for (int32_t j = 2; j < 2 + 8 * 24; ++j) {
+        TEST_ASSERT_EQUAL_INT32(16000, hz[j + 1]); /* (256 * 1000 + 8) >> 4 */
+    }
+    for (int32_t x = 0; x < HN; ++x) { /* 0, 65535, 65535, 0, ... */
+        zl[x] = (x & 3) == 1 || (x & 3) == 2 ? 65535 : 0;
+        zs[x] = (int16_t)(zl[x] - 32768);
+    }
+    TEST_ASSERT_EQUAL_INT32(10, pft_pre_hrow8_(zl, zs, -1, cub, -1, 2, hz, 2, 9));
+    for (int32_t j = 2; j < 10; ++j) { /* taps j - 2 .. j + 1 */
+        /* (288 65535 + 8) >> 4, (128 65535 + 8) >> 4, (-32 65535 + 8) >> 4 */
+        const int32_t k_want[4] = {1179630, 524280, -131070, 524280};
+        TEST_ASSERT_EQUAL_INT32(k_want[(j + 2) & 3], hz[j + 1]);
+    }
+    for (int32_t x = 0; x < HN; ++x) {
+        zl[x] = 1000;
+        zs[x] = (int16_t)(zl[x] - 32768);
+    }
+    zl[20] = -1; /* masked: its int16 copy 32767, as anchor_hrow_'s */
+    zs[20] = 32767;
+    TEST_ASSERT_EQUAL_INT32(34, pft_pre_hrow8_(zl, zs, -1, cub, -1, 2, hz, 10, 35));
+    for (int32_t j = 10; j < 34; ++j) { /* cells 19 .. 22 tap column 20 */
+        TEST_ASSERT_EQUAL_INT32(j >= 19 && j <= 22 ? -4194304 : 16000, hz[j + 1]);
+    }
+    const int32_t lin[4] = {0, 200, 56, 0}; /* taps 0 .. 1 tested: cells 20, 21 */
+    TEST_ASSERT_EQUAL_INT32(34, pft_pre_hrow8_(zl, zs, -1, lin, 0, 1, hz, 10, 35));
+    for (int32_t j = 10; j < 34; ++j) {
+        TEST_ASSERT_EQUAL_INT32(j == 20 || j == 21 ? -4194304 : 16000, hz[j + 1]);
+    }
+    TEST_ASSERT_EQUAL_INT32(5, pft_pre_hrow8_(zl, zs, -1, cub, -1, 2, hz, 5, 11)); /* no block */
+    uint32_t cases = 0u;
+    for (int32_t it = 0; it < 600; ++it) {
+        int32_t w[4];
+        const int32_t f = (int32_t)(pft_test_xorshift32(&g_rs) & 255u);
+        if ((it & 1) != 0) {
+            view_cubic(f, w);
+        } else {
+            w[0] = 0; w[1] = 256 - f; w[2] = f; w[3] = 0;
+        }
+        const int32_t ulo = w[0] != 0 ? -1 : 0, uhi = w[3] != 0 ? 2 : (w[2] != 0 ? 1 : 0);
+        const int32_t ub = (it & 2) != 0 ? -1 : -2;
+        const uint32_t kind = (uint32_t)it % 3u;
+        for (int32_t x = 0; x < HN; ++x) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            int32_t z = (int32_t)(r & 65535u);
+            if (kind == 1u) {
+                z = (r >> 16 & 1u) != 0u ? 65535 : 0;
+            }
+            if ((r >> 20 & 15u) == 0u) {
+                z = -1;
+            }
+            zl[x] = z;
+            zs[x] = (int16_t)((int32_t)((uint32_t)z & 0xFFFFu) - 32768);
+        }
+        const int32_t ja = 3 + (int32_t)(pft_test_xorshift32(&g_rs) % 20u);
+        const int32_t jb = HN - 3 - (int32_t)(pft_test_xorshift32(&g_rs) % 40u);
+        for (int32_t j = 0; j < HN + 3; ++j) {
+            hz[j] = 12345;
+        }
+        const int32_t je = pft_pre_hrow8_(zl, zs, ub, w, ulo, uhi, hz, ja, jb);
+        TEST_ASSERT_EQUAL_INT32(ja + 8 * ((jb - ja + 1) / 8), je);
+        for (int32_t j = 0; j < HN + 2; ++j) {
+            TEST_ASSERT_EQUAL_INT32(j >= ja && j < je ? hcell_ref(zl, ub, w, ulo, uhi, j) : 12345, hz[j + 1]);
+        }
+        cases++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(600u, cases);
+
+    static uint16_t rows[4][HN];
+    static int32_t vb[HN];
+    const uint16_t *const t[4] = {rows[0], rows[1], rows[2], rows[3]};
+    for (int32_t i = 0; i < HN; ++i) {
+        for (int j = 0; j < 4; ++j) {
+            rows[j][i] = 65535u;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT32(192, pft_pre_vsplit8_(t, cub, vb, 0, 197));
+    TEST_ASSERT_EQUAL_INT32(536805488, pft_pre_vsplit_(1048560)); /* 65535 * 16 = 128 * 8191 + 112 */
+    for (int32_t i = 0; i < 192; ++i) {
+        TEST_ASSERT_EQUAL_INT32(pft_pre_vsplit_(1048560), vb[i]);
+    }
+    for (int32_t i = 0; i < HN; ++i) {
+        rows[0][i] = rows[3][i] = (i & 1) != 0 ? 65535u : 0u;
+        rows[1][i] = rows[2][i] = (i & 1) != 0 ? 0u : 65535u;
+    }
+    TEST_ASSERT_EQUAL_INT32(17, pft_pre_vsplit8_(t, cub, vb, 1, 17));
+    for (int32_t i = 1; i < 17; ++i) { /* 1179630 and -131070, as above */
+        TEST_ASSERT_EQUAL_INT32(pft_pre_vsplit_((i & 1) != 0 ? -131070 : 1179630), vb[i]);
+    }
+    for (int32_t it = 0; it < 400; ++it) {
+        int32_t w[4];
+        view_cubic((int32_t)(pft_test_xorshift32(&g_rs) & 255u), w);
+        for (int32_t i = 0; i < HN; ++i) {
+            for (int j = 0; j < 4; ++j) {
+                const uint32_t r = pft_test_xorshift32(&g_rs);
+                rows[j][i] = (uint16_t)((it & 1) != 0 ? r & 65535u : ((r >> 16 & 1u) != 0u ? 65535u : 0u));
+            }
+        }
+        const int32_t i0 = (int32_t)(pft_test_xorshift32(&g_rs) % 16u);
+        const int32_t c1 = HN - 1 - (int32_t)(pft_test_xorshift32(&g_rs) % 16u);
+        for (int32_t i = 0; i < HN; ++i) {
+            vb[i] = 7;
+        }
+        const int32_t ie = pft_pre_vsplit8_(t, w, vb, i0, c1);
+        TEST_ASSERT_EQUAL_INT32(i0 + 8 * ((c1 - i0 + 1) / 8), ie);
+        for (int32_t i = 0; i < HN; ++i) {
+            int32_t v = 0;
+            for (int j = 0; j < 4; ++j) {
+                v += w[j] * ((int32_t)rows[j][i] - 32768);
+            }
+            TEST_ASSERT_EQUAL_INT32(i >= i0 && i < ie ? pft_pre_vsplit_((v + 256 * 32768 + 8) >> 4) : 7, vb[i]);
+        }
+    }
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep the loops");
+#endif
+}
+
+/* x86-64's conversion of a U16 frame row (pft_pre_zspan8_: 8 pixels per SSE2 block) against
+ * zspan_'s loop: known answers (both clamps, dead, saturated and out-of-mask pixels), then
+ * random rows, column offsets, masks, limits (span 0, lo above 65535, the widest span) and
+ * shifts. */
+static void test_zspan_sse2(void)
+{
+#if defined(__SSE2__)
+    static uint16_t raw[HN];
+    static int32_t cn[HN], zl[HN], want[HN];
+    /* mask 16383, lo 100, span 16000 (valid 100 .. 16099), bf 2 */
+    const uint16_t k_raw[8] = {100u, 99u, 16099u, 16100u, 5000u, 5000u, 16383u | 16384u, 0u};
+    const int32_t k_cn[8] = {0, 0, 0, 0, 30000, -60000, 0, 0};
+    const int32_t k_want[8] = {400, -1, 64396, -1, 0, 65535, -1, -1};
+    memcpy(raw, k_raw, sizeof(k_raw));
+    memcpy(cn, k_cn, sizeof(k_cn));
+    uint32_t ninv = 3u;
+    TEST_ASSERT_EQUAL_UINT32(8u, pft_pre_zspan8_((const uint8_t *)raw, 16383u, 100u, 16000u, 2u, cn, zl, 0u, 9u, &ninv));
+    TEST_ASSERT_EQUAL_INT32_ARRAY(k_want, zl, 8);
+    TEST_ASSERT_EQUAL_UINT32(3u + 4u, ninv);
+    TEST_ASSERT_EQUAL_UINT32(1u, pft_pre_zspan8_((const uint8_t *)raw, 16383u, 100u, 16000u, 2u, cn, zl, 1u, 8u, &ninv));
+    const uint32_t lims[5][2] = {{100u, 16000u}, {0u, 0u}, {70000u, 5u}, {0u, 0xFFFFFFFFu}, {1u, 65534u}};
+    for (int32_t it = 0; it < 500; ++it) {
+        const uint32_t mask = (it & 1) != 0 ? 16383u : 65535u, bf = (uint32_t)it % 3u;
+        const uint32_t lo = lims[it % 5][0], span = lims[it % 5][1];
+        for (int32_t x = 0; x < HN; ++x) {
+            const uint32_t r = pft_test_xorshift32(&g_rs);
+            raw[x] = (uint16_t)((r & 1u) != 0u ? (r >> 1 & 65535u) : ((r >> 1 & 1u) != 0u ? 65535u : (r >> 2 & 127u)));
+            cn[x] = (int32_t)(pft_test_xorshift32(&g_rs) % 200001u) - 100000;
+            zl[x] = 7;
+        }
+        const uint32_t x0 = pft_test_xorshift32(&g_rs) % 16u, x1 = HN - pft_test_xorshift32(&g_rs) % 16u;
+        uint32_t nwant = 0u;
+        const uint32_t xe = x0 + 8u * ((x1 - x0) / 8u);
+        for (uint32_t x = 0u; x < (uint32_t)HN; ++x) {
+            const uint32_t v = (uint32_t)raw[x] & mask;
+            int32_t zu = (int32_t)(v << bf) - cn[x];
+            zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
+            const bool ok = v - lo < span;
+            want[x] = x < x0 || x >= xe ? 7 : (ok ? zu : -1);
+            nwant += x >= x0 && x < xe && !ok ? 1u : 0u;
+        }
+        ninv = 0u;
+        TEST_ASSERT_EQUAL_UINT32(xe, pft_pre_zspan8_((const uint8_t *)raw, mask, lo, span, bf, cn, zl, x0, x1, &ninv));
+        TEST_ASSERT_EQUAL_INT32_ARRAY(want, zl, HN);
+        TEST_ASSERT_EQUAL_UINT32(nwant, ninv);
+    }
+#else
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) only: the other targets keep the loop");
+#endif
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1123,5 +1335,7 @@ int main(void)
     RUN_TEST(test_lk_rown_neon);
     RUN_TEST(test_count_rown_neon);
     RUN_TEST(test_stale_res_neon);
+    RUN_TEST(test_update_rows_sse2);
+    RUN_TEST(test_zspan_sse2);
     return UNITY_END();
 }

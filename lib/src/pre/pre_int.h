@@ -207,6 +207,21 @@ uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint
 uint32_t pft_pre_mline_n_(int16_t *m, uint32_t n, uint32_t s, uint32_t st);
 uint32_t pft_pre_whiten_rown_(int16_t *r, const int16_t *m, uint32_t n, uint32_t sh);
 #endif
+#if defined(__SSE2__)
+/* bg_anchor's update pass on x86-64 (SSE2), pre_temporal.c: anchor_hrow_'s blend of cells
+ * ja .. jb in blocks of 8 (frame row zl, its biased int16 copy zs, tap offset ub, weights w,
+ * tested taps ulo .. uhi) into hz, and the residual's vertical blends in the split form
+ * (pft_pre_vsplit_ of each) of columns i0 .. c1 in blocks of 8; both return the first cell or
+ * column left to the plain loop. */
+int32_t pft_pre_hrow8_(const int32_t *zl, const int16_t *zs, int32_t ub, const int32_t w[4], int32_t ulo,
+                       int32_t uhi, int32_t *hz, int32_t ja, int32_t jb);
+int32_t pft_pre_vsplit8_(const uint16_t *const t[4], const int32_t w[4], int32_t *vb, int32_t i0, int32_t c1);
+/* zspan_'s conversion of a U16 row (mask, lo, span, bf, column offsets cn) on x86-64 (SSE2):
+ * pixels x0 .. x1 - 1 in blocks of 8 into zl (U units clamped to [0, 65535], -1 masked), the
+ * masked ones added to *ninv; returns the first pixel left to the loop (pre_temporal.c). */
+uint32_t pft_pre_zspan8_(const uint8_t *row, uint32_t mask, uint32_t lo, uint32_t span, uint32_t bf,
+                         const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *ninv);
+#endif
 
 /* Integer square root of a 64-bit value (floor). */
 uint32_t pft_pre_isqrt64_(uint64_t v);

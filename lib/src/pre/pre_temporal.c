@@ -802,6 +802,58 @@ static inline int32_t vtap_(const uint16_t *t0, const uint16_t *t1, const uint16
 
 /* ------------------------------------------------------------------ update pass */
 
+#if defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), zspan_'s loop for pixels x0 .. x1 - 1 of a U16 row in
+ * blocks of 8: v = raw & mask in 16-bit lanes, widened to 32 bits; zu = (v << bf) - cn[x] in
+ * int32 lanes (the loop's wrapping 32-bit arithmetic), clamped to [0, 65535] without pmaxsd /
+ * pminsd: a negative zu cleared by its own sign, one above 65535 or-ed with all ones, then the
+ * low 16 bits kept; valid iff v - lo < span unsigned (the signed compare of both sides xor
+ * 2^31); an invalid pixel -1 (all ones or-ed in) and counted into *ninv. The same values as
+ * the loop. Returns the first pixel left to it. */
+static inline uint32_t zspan8_(const uint8_t *row, const pft_pre_cls_t *c, uint32_t bf, const int32_t *cn,
+                               int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *ninv)
+{
+    const __m128i vm = _mm_set1_epi16((int16_t)(c->mask & 0xFFFFu)), sh = _mm_cvtsi32_si128((int32_t)bf);
+    const __m128i top = _mm_set1_epi32(INT32_MIN), vlo = _mm_set1_epi32((int32_t)c->lo);
+    const __m128i vsp = _mm_set1_epi32((int32_t)(c->span ^ 0x80000000u)), k16 = _mm_set1_epi32(65535);
+    const __m128i zero = _mm_setzero_si128(), ones = _mm_cmpeq_epi32(zero, zero);
+    __m128i nb = zero;
+    uint32_t x = x0;
+    for (; x + 8u <= x1; x += 8u) {
+        const __m128i r = _mm_and_si128(_mm_loadu_si128((const __m128i *)(const void *)(row + 2u * x)), vm);
+        const __m128i v2[2] = {_mm_unpacklo_epi16(r, zero), _mm_unpackhi_epi16(r, zero)};
+        for (uint32_t h = 0u; h < 2u; ++h) {
+            const __m128i v = v2[h];
+            const __m128i zu = _mm_sub_epi32(_mm_sll_epi32(v, sh),
+                                             _mm_loadu_si128((const __m128i *)(const void *)(cn + x + 4u * h)));
+            const __m128i zc = _mm_and_si128(_mm_or_si128(_mm_andnot_si128(_mm_srai_epi32(zu, 31), zu),
+                                                          _mm_cmpgt_epi32(zu, k16)), k16);
+            const __m128i bad = _mm_xor_si128(_mm_cmplt_epi32(_mm_xor_si128(_mm_sub_epi32(v, vlo), top), vsp), ones);
+            _mm_storeu_si128((__m128i *)(void *)(zl + x + 4u * h), _mm_or_si128(zc, bad));
+            nb = _mm_sub_epi32(nb, bad);
+        }
+    }
+    nb = _mm_add_epi32(nb, _mm_shuffle_epi32(nb, 0x4E));
+    nb = _mm_add_epi32(nb, _mm_shuffle_epi32(nb, 0xB1));
+    *ninv += (uint32_t)_mm_cvtsi128_si32(nb);
+    return x;
+}
+
+/* zspan8_ for a test: pixels x0 .. x1 - 1 of a U16 row (mask, lo, span) in blocks of 8 into zl,
+ * their masked pixels added to *ninv; returns the first pixel not done. */
+uint32_t pft_pre_zspan8_(const uint8_t *row, uint32_t mask, uint32_t lo, uint32_t span, uint32_t bf,
+                         const int32_t *cn, int32_t *zl, uint32_t x0, uint32_t x1, uint32_t *ninv)
+{
+    pft_pre_cls_t c;
+    memset(&c, 0, sizeof(c));
+    c.mask = mask;
+    c.lo = lo;
+    c.span = span;
+    c.map = NULL;
+    return zspan8_(row, &c, bf, cn, zl, x0, x1, ninv);
+}
+#endif
+
 /* Row y of the frame in U units with the column offsets off, clamped to [0, 65535]; -1 for a
  * masked pixel. Returns the number of masked pixels. */
 static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y, uint32_t bf,
@@ -810,7 +862,12 @@ static uint32_t zspan_(const pft_pre_cls_t *c, const pft_frame_t *f, uint32_t y,
     const uint8_t *row = pft_frame_row(f, y);
     const uint32_t lo = c->lo, span = c->span, mask = c->mask;
     uint32_t ninv = 0u;
-    for (uint32_t x = x0; x < x1; ++x) {
+#if defined(__SSE2__)
+    const uint32_t xs = c->u8 ? x0 : zspan8_(row, c, bf, cn, zl, x0, x1, &ninv);
+#else
+    const uint32_t xs = x0;
+#endif
+    for (uint32_t x = xs; x < x1; ++x) {
         const uint32_t v = pft_pre_raw_(row, x, c) & mask;
         int32_t zu = (int32_t)(v << bf) - cn[x];
         zu = zu < 0 ? 0 : (zu > 65535 ? 65535 : zu);
@@ -1698,6 +1755,109 @@ static int32_t hcell_(const agx_t *gx, const int32_t *zl, int32_t j)
     return ok ? (sv + 8) >> 4 : PFT_PRE_ANONE_;
 }
 
+#if defined(__SSE2__)
+/* The pair (a, b) of 16-bit values as a 32-bit word (low, high). */
+static inline int32_t pair16_(int32_t a, int32_t b)
+{
+    return (int32_t)(((uint32_t)b << 16) | ((uint32_t)a & 65535u));
+}
+
+/* Where the compiler has SSE2 (x86-64), anchor_hrow_'s blend of cells j .. j + 7 (n blocks of
+ * 8 from ja) in 16-bit lanes: its four biased int16 taps sb (weights w, the row's int16 casts)
+ * as two pmaddwd of interleaved pairs, w0 sb[j - 1] + w1 sb[j] and w2 sb[j + 1] + w3 sb[j + 2],
+ * exact in int32 as the loop's sum of 16 x 16-bit products, then (+ 256 * 32768 + 8) >> 4; a
+ * cell is PFT_PRE_ANONE_ where one of its tested taps zb (m0, m2, m3 as in anchor_hrow_; the
+ * second always) is negative: the signs of the int32 taps survive the saturating pack to
+ * int16, so the test is on 8 cells' signs at once. The same values as the loop; the other
+ * targets keep the loop. Returns the first cell left to it. */
+static inline int32_t hrow8_(const int32_t *zb, const int16_t *sb, const int16_t w[4], int32_t m0,
+                             int32_t m2, int32_t m3, int32_t *hz, int32_t ja, int32_t jb)
+{
+    const __m128i w01 = _mm_set1_epi32(pair16_(w[0], w[1])), w23 = _mm_set1_epi32(pair16_(w[2], w[3]));
+    const __m128i kb = _mm_set1_epi32(256 * 32768 + 8), none = _mm_set1_epi32(PFT_PRE_ANONE_);
+    const __m128i t0 = _mm_set1_epi16((int16_t)m0), t2 = _mm_set1_epi16((int16_t)m2);
+    const __m128i t3 = _mm_set1_epi16((int16_t)m3);
+    int32_t j = ja;
+    for (; j + 7 <= jb; j += 8) {
+        const int32_t *z = zb + j;
+        const __m128i z0 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(z - 1)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(z + 3)));
+        const __m128i z1 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)z),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(z + 4)));
+        const __m128i z2 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(z + 1)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(z + 5)));
+        const __m128i z3 = _mm_packs_epi32(_mm_loadu_si128((const __m128i *)(const void *)(z + 2)),
+                                           _mm_loadu_si128((const __m128i *)(const void *)(z + 6)));
+        const __m128i inv = _mm_srai_epi16(_mm_or_si128(_mm_or_si128(_mm_and_si128(z0, t0), z1),
+                                                        _mm_or_si128(_mm_and_si128(z2, t2), _mm_and_si128(z3, t3))),
+                                           15);
+        const int16_t *s = sb + j;
+        const __m128i s0 = _mm_loadu_si128((const __m128i *)(const void *)(s - 1));
+        const __m128i s1 = _mm_loadu_si128((const __m128i *)(const void *)s);
+        const __m128i s2 = _mm_loadu_si128((const __m128i *)(const void *)(s + 1));
+        const __m128i s3 = _mm_loadu_si128((const __m128i *)(const void *)(s + 2));
+        __m128i lo = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(s0, s1), w01),
+                                   _mm_madd_epi16(_mm_unpacklo_epi16(s2, s3), w23));
+        __m128i hi = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(s0, s1), w01),
+                                   _mm_madd_epi16(_mm_unpackhi_epi16(s2, s3), w23));
+        lo = _mm_srai_epi32(_mm_add_epi32(lo, kb), 4);
+        hi = _mm_srai_epi32(_mm_add_epi32(hi, kb), 4);
+        const __m128i il = _mm_unpacklo_epi16(inv, inv), ih = _mm_unpackhi_epi16(inv, inv);
+        _mm_storeu_si128((__m128i *)(void *)(hz + j + 1), _mm_or_si128(_mm_andnot_si128(il, lo), _mm_and_si128(il, none)));
+        _mm_storeu_si128((__m128i *)(void *)(hz + j + 5), _mm_or_si128(_mm_andnot_si128(ih, hi), _mm_and_si128(ih, none)));
+    }
+    return j;
+}
+
+/* hrow8_ for a test: cells ja .. jb of a row (zl, its biased int16 copy zs, both indexed by
+ * frame column, cell j's taps at j + ub - 1 .. j + ub + 2) into hz (entry j + 1) with the
+ * weights w and the tested taps ulo .. uhi; returns the first cell not done. */
+int32_t pft_pre_hrow8_(const int32_t *zl, const int16_t *zs, int32_t ub, const int32_t w[4], int32_t ulo,
+                       int32_t uhi, int32_t *hz, int32_t ja, int32_t jb)
+{
+    const int16_t w16[4] = {(int16_t)w[0], (int16_t)w[1], (int16_t)w[2], (int16_t)w[3]};
+    return hrow8_(zl + ub, zs + ub, w16, ulo == -1 ? -1 : 0, uhi >= 1 ? -1 : 0, uhi == 2 ? -1 : 0, hz, ja, jb);
+}
+
+/* Where the compiler has SSE2 (x86-64), the anchored pass's vertical blends of its residual in
+ * pft_pre_ares_span_'s split form, vb[i] = vsplit_(vtap_(...)) for i = i0 .. c1 in blocks of 8:
+ * the taps biased by -32768 into int16 (xor of the top bit), vtap_'s sum of 16 x 16-bit products
+ * as two pmaddwd of interleaved pairs (exact in int32), v = (sum + 256 * 32768 + 8) >> 4, and
+ * the word (v & 127) | ((v >> 7) << 16) with v >> 7 = (sum + ...) >> 11: the same values as the
+ * loop. Returns the first column left to it. */
+static inline int32_t vsplit8_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2, const uint16_t *t3,
+                               const int16_t w[4], int32_t *vb, int32_t i0, int32_t c1)
+{
+    const __m128i w01 = _mm_set1_epi32(pair16_(w[0], w[1])), w23 = _mm_set1_epi32(pair16_(w[2], w[3]));
+    const __m128i kb = _mm_set1_epi32(256 * 32768 + 8), m7 = _mm_set1_epi32(127);
+    const __m128i bias = _mm_set1_epi16((int16_t)-32768);
+    int32_t i = i0;
+    for (; i + 7 <= c1; i += 8) {
+        const __m128i a0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t0 + i)), bias);
+        const __m128i a1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t1 + i)), bias);
+        const __m128i a2 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t2 + i)), bias);
+        const __m128i a3 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t3 + i)), bias);
+        const __m128i lo = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(a0, a1), w01),
+                                                       _mm_madd_epi16(_mm_unpacklo_epi16(a2, a3), w23)), kb);
+        const __m128i hi = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(a0, a1), w01),
+                                                       _mm_madd_epi16(_mm_unpackhi_epi16(a2, a3), w23)), kb);
+        _mm_storeu_si128((__m128i *)(void *)(vb + i), _mm_or_si128(_mm_and_si128(_mm_srai_epi32(lo, 4), m7),
+                                                                   _mm_slli_epi32(_mm_srai_epi32(lo, 11), 16)));
+        _mm_storeu_si128((__m128i *)(void *)(vb + i + 4), _mm_or_si128(_mm_and_si128(_mm_srai_epi32(hi, 4), m7),
+                                                                       _mm_slli_epi32(_mm_srai_epi32(hi, 11), 16)));
+    }
+    return i;
+}
+
+/* vsplit8_ for a test: columns i0 .. c1 of the tap rows t with the weights w into vb; returns
+ * the first column not done. */
+int32_t pft_pre_vsplit8_(const uint16_t *const t[4], const int32_t w[4], int32_t *vb, int32_t i0, int32_t c1)
+{
+    const int16_t w16[4] = {(int16_t)w[0], (int16_t)w[1], (int16_t)w[2], (int16_t)w[3]};
+    return vsplit8_(t[0], t[1], t[2], t[3], w16, vb, i0, c1);
+}
+#endif
+
 /* Frame row zl (U units, -1 masked) interpolated along x at the update's fraction into hz
  * (w + 3 cells, U * 16; PFT_PRE_ANONE_ where a tap is masked or the cell is not observed). */
 static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, int32_t *hz,
@@ -1730,7 +1890,13 @@ static void anchor_hrow_(const anchor_geom_t *g, const int32_t *zl, int32_t w, i
         for (int32_t j = olo; j < fa; ++j) {
             hz[j + 1] = hcell_(gx, zl, j);
         }
-        for (int32_t j = fa; j <= fb; ++j) { /* vectorisable */
+#if defined(__SSE2__)
+        const int16_t w16[4] = {w0, w1, w2, w3};
+        const int32_t fj = hrow8_(zb, sb, w16, m0, m2, m3, hz, fa, fb);
+#else
+        const int32_t fj = fa;
+#endif
+        for (int32_t j = fj; j <= fb; ++j) { /* vectorisable */
             const int32_t z0 = zb[j - 1], z1 = zb[j], z2 = zb[j + 1], z3 = zb[j + 2];
             const int32_t v = (w0 * sb[j - 1] + w1 * sb[j] + w2 * sb[j + 1] + w3 * sb[j + 2] +
                                256 * 32768 + 8) >> 4;
@@ -1980,12 +2146,6 @@ static void gate_clip_split_(const gate_row_t *g, uint16_t *b, int32_t ja, int32
     }
 }
 #elif defined(PFT_PRE_GATE_SPLIT_)
-/* The pair (a, b) of 16-bit values as a 32-bit word (low, high). */
-static inline int32_t pair16_(int32_t a, int32_t b)
-{
-    return (int32_t)(((uint32_t)b << 16) | ((uint32_t)a & 65535u));
-}
-
 /* Four ring values at q times w (pmuludq: the low 32 bits of each product are the int32
  * product modulo 2^32, signed or not) added to the sums of their even lanes (e: lanes 0, 2 in
  * the low words of its 64-bit halves) and odd lanes (o: lanes 1, 3), and the lanes equal to n
@@ -3063,7 +3223,13 @@ static void anchor_pass_(pft_pre_t *p, const pft_frame_t *f, const pft_pre_cls_t
             const int32_t c0 = xa + gx->k, c1 = xb + gx->k + 3 > w + 2 ? w + 2 : xb + gx->k + 3;
 #if defined(PFT_PRE_RES_SPLIT_)
             if (rsplit) { /* the split words of pft_pre_ares_span_ */
-                for (int32_t i = c0; i <= c1; ++i) { /* vectorisable */
+#if defined(__SSE2__)
+                const int16_t gw[4] = {gw0, gw1, gw2, gw3};
+                const int32_t i0 = vsplit8_(t0, t1, t2, t3, gw, vb, c0, c1);
+#else
+                const int32_t i0 = c0;
+#endif
+                for (int32_t i = i0; i <= c1; ++i) { /* vectorisable */
                     vb[i] = vsplit_(vtap_(t0, t1, t2, t3, gw0, gw1, gw2, gw3, i));
                 }
             } else
