@@ -825,8 +825,9 @@ static void test_view_h32_neon(void)
 #endif
 }
 
-#if defined(__aarch64__) && defined(__ARM_NEON)
-/* Internal to the library (lib/src/pre/pre_int.h, AArch64 with NEON only); the test declares it. */
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
+/* Internal to the library (lib/src/pre/pre_int.h, x86-64 with SSE2 and AArch64 with NEON only);
+ * the test declares it. */
 int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
                          const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 
@@ -858,16 +859,19 @@ static void lk_row_ref(const uint16_t *z, const int32_t *cz, const uint16_t *bm,
 }
 #endif
 
-/* AArch64's Lucas-Kanade sums of a row in NEON lanes (pft_pre_lk_rowv_, steps 2 and 4: four
- * samples of each whole block of 4 st pixels, an invalid sample's terms 0): known answers (a
- * background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a
- * masked sample, the samples after the last whole block left), then the sums, the count and
- * the samples done equal to the plain loop's in 64-bit arithmetic on 800 random rows, both
- * steps (bit depths 12 .. 16 with their bf, random lo, span, fractions 0 .. 255, colnow within
- * +-2^20, backgrounds random or at 0 and 65535, rows of 0 .. 40 and 360 pixels). */
+/* The Lucas-Kanade sums of a row in NEON lanes on AArch64 and SSE2 lanes on x86-64
+ * (pft_pre_lk_rowv_, steps 2 and 4: four samples of each whole block of 4 st pixels, an invalid
+ * sample's terms 0; SSE2's signed products from unsigned ones and a correction): known answers
+ * (a background 10 c + 1000 r, so gx 60 and gy 6000 everywhere, fx = fy = 0, with and without a
+ * masked sample, the samples after the last whole block left; the background reversed, gx -60
+ * and gy -6000, with colnow +-2^30, so e near +-2^30 of both signs in one block and products
+ * beyond 2^32), then the sums, the count and the samples done equal to the plain loop's in
+ * 64-bit arithmetic on 800 random rows, both steps (bit depths 12 .. 16 with their bf, random
+ * lo, span, fractions 0 .. 255, colnow within +-2^20 or +-2^27, backgrounds random or at 0 and
+ * 65535, rows of 0 .. 40 and 360 pixels). */
 static void test_lk_rown_neon(void)
 {
-#if defined(__aarch64__) && defined(__ARM_NEON)
+#if defined(__SSE2__) || (defined(__aarch64__) && defined(__ARM_NEON))
     enum { NX = 400, BS = 408 };
     static uint16_t z[NX], bg[4 * BS];
     static int32_t cz[NX];
@@ -909,6 +913,25 @@ static void test_lk_rown_neon(void)
     TEST_ASSERT_EQUAL_UINT32(4u, n);
     TEST_ASSERT_EQUAL_INT32(0, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 4, 14, s, &n)); /* no block */
     TEST_ASSERT_EQUAL_UINT32(4u, n);
+    /* negative gradients, e near +-2^30: bg 65535 - (10 c + 1000 r), z 5000, colnow -2^30 at
+     * samples 0 and 4, 2^30 at 2 and 6, e = 5000 - colnow - (64535 - 10 (i + 1)) */
+    for (int32_t r = 0; r < 4; ++r) {
+        for (int32_t c = 0; c < BS; ++c) {
+            bg[r * BS + c] = (uint16_t)(65535 - 10 * c - 1000 * r);
+        }
+    }
+    for (int32_t i = 0; i < NX; ++i) {
+        z[i] = 5000u;
+        cz[i] = (i % 4 == 0 ? -1 : 1) * 1073741824;
+    }
+    memcpy(rz, z, sizeof(z));
+    memset(s, 0, sizeof(s));
+    n = 0u;
+    TEST_ASSERT_EQUAL_INT32(8, pft_pre_lk_rowv_(rz, cz, bg, BS, par, 2, 14, s, &n));
+    /* e = 1073682299, -1073801329, 1073682339, -1073801289 (sum -237980) */
+    const int64_t k_neg[6] = {4 * 3600, 4 * 360000, 4 * 36000000, 60 * 237980, 6000 * 237980, 4611685946686664084};
+    TEST_ASSERT_EQUAL_INT64_ARRAY(k_neg, s, 6);
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
     uint32_t cases = 0u, masked = 0u;
     for (int32_t t = 0; t < 800; ++t) {
         const int32_t st = t < 400 ? 2 : 4;
@@ -920,7 +943,8 @@ static void test_lk_rown_neon(void)
         const int32_t kind = (t / 5) % 3;
         for (int32_t i = 0; i < NX; ++i) {
             z[i] = (uint16_t)pft_test_xorshift32(&g_rs); /* bits above the depth too */
-            cz[i] = (int32_t)(pft_test_xorshift32(&g_rs) % 2097153u) - 1048576;
+            cz[i] = t % 3 == 0 ? (int32_t)(pft_test_xorshift32(&g_rs) % 268435457u) - 134217728
+                               : (int32_t)(pft_test_xorshift32(&g_rs) % 2097153u) - 1048576;
         }
         for (int32_t i = 0; i < 4 * BS; ++i) {
             const uint32_t r = pft_test_xorshift32(&g_rs);
@@ -940,7 +964,7 @@ static void test_lk_rown_neon(void)
     TEST_ASSERT_EQUAL_UINT32(800u, cases);
     TEST_ASSERT_TRUE(masked > 0u); /* the invalid samples were reached */
 #else
-    TEST_IGNORE_MESSAGE("AArch64 (NEON) only: the other targets keep the plain loop");
+    TEST_IGNORE_MESSAGE("x86-64 (SSE2) and AArch64 (NEON) only: the other targets keep the plain loop");
 #endif
 }
 

@@ -177,11 +177,6 @@ void pft_pre_view_hrow_(const int16_t *vh, const int16_t *vl, int32_t sw, int32_
 /* bg_anchor on AArch64 (NEON): the registration's view's horizontal pass of the 32-bit form,
  * pixels 0 .. 8 (xe / 8) - 1 from the vertical blends v; returns 8 (xe / 8) (pre_temporal.c). */
 int32_t pft_pre_view_h32_(const int32_t *v, const int32_t w[4], uint16_t *o, int32_t xe);
-/* bg registration on AArch64 (NEON): the Lucas-Kanade sums of a row's samples 0, st, 2 st, ...
- * (st 2 or 4) in whole blocks of four (U16 frame, no bad-pixel map); returns the first sample
- * left to the plain loop (pre_temporal.c). */
-int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
-                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 /* bg_stale_reinit with bg_anchor: the stale columns of nr (1 .. 4) age rows (hm) and the
  * residual row's pixels [ca, cb] they mask (stale_anchor_res_'s NEON form, pre_temporal.c). */
 void pft_pre_stale_res_n_(const uint8_t *const a[4], int32_t nr, int32_t sw, uint32_t n, uint8_t *hm,
@@ -198,6 +193,11 @@ uint32_t pft_pre_hist_rown_(uint16_t *hist, const int16_t *r, uint32_t n);
  * returns the pixels done (pre_temporal.c). */
 uint32_t pft_pre_count_rowv_(const uint8_t *row, uint32_t w, uint32_t mask, uint32_t lo, uint32_t span,
                              uint32_t cnt[2]);
+/* bg registration (NEON and SSE2 forms): the Lucas-Kanade sums of a row's samples 0, st, 2 st,
+ * ... (st 2 or 4) in whole blocks of four (U16 frame, no bad-pixel map); returns the first sample
+ * left to the plain loop (pre_temporal.c). */
+int32_t pft_pre_lk_rowv_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                         const uint32_t par[6], int32_t st, int32_t n, int64_t sums[6], uint32_t *cnt);
 #endif
 #if defined(__SSE2__)
 /* whiten_row_ on x86-64 (SSE2), pre_update.c: the multipliers m[0 .. 8 (n / 8) - 1] as the

@@ -386,8 +386,230 @@ static inline int32_t lk_row4v_(const uint8_t *rz, const int32_t *cz, const uint
     lk_nsum_(&a, s);
     return i;
 }
+#elif defined(__SSE2__)
+/* Where the compiler has SSE2 (x86-64), lk_loop_'s sums (a U16 frame without a bad-pixel map)
+ * four samples at a time in 32-bit lanes, the same gx, gy, e as the loop, an invalid sample's
+ * gx, gy, e set to 0 instead of skipped (its products add 0). SSE2 has no 32-bit lane
+ * multiply, so the bilinear sample goes through pmaddwd on 16-bit pairs: a lane holds the
+ * sample's two taps (b[i + 1], b[i + 2]) of a background row, biased by -32768 into int16
+ * (xor 0x8000), and pmaddwd with the pair (256 - fx, fx) gives P = h - 2^23 (h = the loop's h0
+ * or h1, below 2^24), exactly. P = 2^15 ph + pl (ph = P >> 15 in [-256, 255], pl in
+ * [0, 32767]); the pairs (ph0, ph1) and (pl0, pl1) with (256 - fy, fy) give A and B, and
+ * h0 (256 - fy) + h1 fy = 2^15 A + B + 2^31 (the weights sum to 256). So the loop's
+ * bw = (that + 32768) >> 16 = ((A + ((B + 32768) >> 15)) >> 1) + 32768 exactly (B + 32768 >= 0;
+ * for any integer Q and 0 <= r < 2^15, floor((2^15 Q + r) / 2^16) = floor(Q / 2)). gy is two
+ * pmaddwd of the biased pairs of rows b2 and bm with (1, 1) (the biases cancel), gx the 16-bit
+ * halves of b0, b1 at i and i + 3. v - lo < span (unsigned) is the signed compare of both sides
+ * xor 2^31.
+ * The six products are summed as integers mod 2^64 in 64-bit lanes (paddq) from pmuludq, the
+ * unsigned 32 x 32 -> 64 product of lanes 0 and 2 (lanes 1 and 3 moved there by pshufd), on
+ * biased values that are never negative: ux = gx + B, uy = gy + B (B = 2^17; |gx|, |gy| <= 131070,
+ * two u16 differences each, so 0 < ux, uy < 2^18) and ue = e + C (C = 2^31: e xor 2^31, the
+ * unsigned pattern of any int32 e). Each product is exact, and
+ * ux uy = gx gy + B (gx + gy) + B^2, ux ue = gx e + C gx + B e + B C, ue ue = e e + 2 C e + C^2
+ * (likewise the others), so with N the lanes taken (4 a block, an invalid sample's lanes too:
+ * its gx, gy, e are 0) and Sx = sum ux - B N, Sy = sum uy - B N, Se = sum ue - C N the sums of
+ * gx, gy, e: sxx = sum ux ux - 2 B Sx - B^2 N, sxy = sum ux uy - B (Sx + Sy) - B^2 N,
+ * sxe = sum ux ue - C Sx - B Se - B C N, see = sum ue ue - 2 C Se - C^2 N, the same for y, all
+ * mod 2^64 (uint64 arithmetic), which gives the loop's int64 sums exactly (integer sums in
+ * another order). sum ux and sum uy are kept in 32-bit lanes (exact: a lane takes at most
+ * n / 8 + 1 samples of ux < 2^18, below 2^32 for rows below 2^17 pixels; a row has at most
+ * PFT_CFG_MAX_IMAGE_SIDE = 8192), sum ue in 64-bit lanes. par: mask, lo, span, bf, fx, fy. */
+typedef struct {
+    __m128i vm, vlo, vspan, vbf, wx, wy, flip, ones, m16, m15, k15, sgn, bias, lo32;
+} lk_spar_t;
 
-/* lk_row2v_ (st 2) or lk_row4v_ (st 4), the NEON form, for a test: the sums of a row's
+typedef struct {
+    __m128i sxx, sxy, syy, sxe, sye, see; /* 64-bit lanes: sums of the biased products */
+    __m128i ux, uy;                       /* 32-bit lanes: sums of ux, uy */
+    __m128i ue;                           /* 64-bit lanes: the sum of ue */
+    __m128i n;
+} lk_sacc_t;
+
+static inline void lk_spar_(const uint32_t par[6], lk_spar_t *q, lk_sacc_t *a)
+{
+    q->vm = _mm_set1_epi32((int)(par[0] & 0xFFFFu));
+    q->vlo = _mm_set1_epi32((int)par[1]);
+    q->sgn = _mm_set1_epi32((int)INT32_MIN);
+    q->vspan = _mm_xor_si128(_mm_set1_epi32((int)par[2]), q->sgn);
+    q->vbf = _mm_cvtsi32_si128((int)par[3]);
+    q->wx = _mm_set1_epi32((int)((256u - par[4]) | (par[4] << 16)));
+    q->wy = _mm_set1_epi32((int)((256u - par[5]) | (par[5] << 16)));
+    q->flip = _mm_set1_epi16((short)-32768);
+    q->ones = _mm_set1_epi16(1);
+    q->m16 = _mm_set1_epi32(0xFFFF);
+    q->m15 = _mm_set1_epi32(32767);
+    q->k15 = _mm_set1_epi32(32768);
+    q->bias = _mm_set1_epi32(131072);
+    q->lo32 = _mm_set_epi32(0, -1, 0, -1);
+    a->sxx = _mm_setzero_si128();
+    a->sxy = a->sxx;
+    a->syy = a->sxx;
+    a->sxe = a->sxx;
+    a->sye = a->sxx;
+    a->see = a->sxx;
+    a->ux = a->sxx;
+    a->uy = a->sxx;
+    a->ue = a->sxx;
+    a->n = a->sxx;
+}
+
+/* The taps of four samples, one per 32-bit lane: p0, p1 the pairs (b[i + 1], b[i + 2]) of rows
+ * b0, b1; r0, r1 with b[i] in the low halves; t0, t1 with b[i + 3] in the high halves; pm, p2
+ * the pairs (b[i + 1], b[i + 2]) of rows bm, b2. */
+typedef struct {
+    __m128i p0, p1, r0, r1, t0, t1, pm, p2;
+} lk_staps_t;
+
+/* The products a b of lanes 0, 2 and of lanes 1, 3 (ao, bo: a, b with lanes 1, 3 moved to 0, 2)
+ * as unsigned 32-bit values, added in 64-bit lanes to s. */
+static inline __m128i lk_smul2_(__m128i s, __m128i a, __m128i b, __m128i ao, __m128i bo)
+{
+    return _mm_add_epi64(_mm_add_epi64(s, _mm_mul_epu32(a, b)), _mm_mul_epu32(ao, bo));
+}
+
+/* Four samples: raw their pixels (the low half of each lane), czv colnow. */
+static inline void lk_block_s_(const lk_spar_t *q, __m128i raw, const lk_staps_t *k, __m128i czv, lk_sacc_t *a)
+{
+    const __m128i v = _mm_and_si128(raw, q->vm);
+    const __m128i ok = _mm_cmplt_epi32(_mm_xor_si128(_mm_sub_epi32(v, q->vlo), q->sgn), q->vspan);
+    const __m128i p0 = _mm_madd_epi16(_mm_xor_si128(k->p0, q->flip), q->wx);
+    const __m128i p1 = _mm_madd_epi16(_mm_xor_si128(k->p1, q->flip), q->wx);
+    const __m128i ph = _mm_or_si128(_mm_and_si128(_mm_srai_epi32(p0, 15), q->m16),
+                                    _mm_slli_epi32(_mm_srai_epi32(p1, 15), 16));
+    const __m128i pl = _mm_or_si128(_mm_and_si128(p0, q->m15), _mm_slli_epi32(_mm_and_si128(p1, q->m15), 16));
+    const __m128i qa = _mm_madd_epi16(ph, q->wy), qb = _mm_madd_epi16(pl, q->wy);
+    const __m128i bw = _mm_add_epi32(_mm_srai_epi32(_mm_add_epi32(qa, _mm_srai_epi32(_mm_add_epi32(qb, q->k15), 15)), 1),
+                                     q->k15);
+    const __m128i e = _mm_and_si128(_mm_sub_epi32(_mm_sub_epi32(_mm_sll_epi32(v, q->vbf), czv), bw), ok);
+    const __m128i gx = _mm_and_si128(_mm_sub_epi32(_mm_add_epi32(_mm_srli_epi32(k->t0, 16), _mm_srli_epi32(k->t1, 16)),
+                                                   _mm_add_epi32(_mm_and_si128(k->r0, q->m16), _mm_and_si128(k->r1, q->m16))),
+                                     ok);
+    const __m128i gy = _mm_and_si128(_mm_sub_epi32(_mm_madd_epi16(_mm_xor_si128(k->p2, q->flip), q->ones),
+                                                   _mm_madd_epi16(_mm_xor_si128(k->pm, q->flip), q->ones)),
+                                     ok);
+    a->n = _mm_sub_epi32(a->n, ok);
+    const __m128i ux = _mm_add_epi32(gx, q->bias), uy = _mm_add_epi32(gy, q->bias), ue = _mm_xor_si128(e, q->sgn);
+    const __m128i xo = _mm_shuffle_epi32(ux, 0xF5), yo = _mm_shuffle_epi32(uy, 0xF5), eo = _mm_shuffle_epi32(ue, 0xF5);
+    a->ux = _mm_add_epi32(a->ux, ux);
+    a->uy = _mm_add_epi32(a->uy, uy);
+    a->ue = _mm_add_epi64(_mm_add_epi64(a->ue, _mm_and_si128(ue, q->lo32)), _mm_srli_epi64(ue, 32));
+    a->sxx = lk_smul2_(a->sxx, ux, ux, xo, xo);
+    a->sxy = lk_smul2_(a->sxy, ux, uy, xo, yo);
+    a->syy = lk_smul2_(a->syy, uy, uy, yo, yo);
+    a->sxe = lk_smul2_(a->sxe, ux, ue, xo, eo);
+    a->sye = lk_smul2_(a->sye, uy, ue, yo, eo);
+    a->see = lk_smul2_(a->see, ue, ue, eo, eo);
+}
+
+/* The sum of a vector's four 32-bit lanes (unsigned; exact for the sums of ux, uy and n). */
+static inline uint32_t lk_s32sum_(__m128i c)
+{
+    const __m128i c2 = _mm_add_epi32(c, _mm_shuffle_epi32(c, 0xEE));
+    return (uint32_t)_mm_cvtsi128_si32(_mm_add_epi32(c2, _mm_shuffle_epi32(c2, 0x55)));
+}
+
+/* The sum of a vector's two 64-bit lanes, mod 2^64 (a store: the forms 32-bit x86 also has). */
+static inline uint64_t lk_s64sum_(__m128i s)
+{
+    uint64_t l[2];
+    _mm_storeu_si128((__m128i *)(void *)l, s);
+    return l[0] + l[1];
+}
+
+/* The biased sums of nb blocks (4 nb lanes) to the loop's sums, added to s (see above). */
+static inline void lk_ssum_(const lk_sacc_t *a, int32_t nb, lk_sums_t *s)
+{
+    const uint64_t B = 131072u, C = 2147483648u, N = 4u * (uint64_t)(uint32_t)nb;
+    const uint64_t sx = (uint64_t)lk_s32sum_(a->ux) - B * N, sy = (uint64_t)lk_s32sum_(a->uy) - B * N;
+    const uint64_t se = lk_s64sum_(a->ue) - C * N;
+    s->sxx = (int64_t)((uint64_t)s->sxx + lk_s64sum_(a->sxx) - 2u * B * sx - B * B * N);
+    s->sxy = (int64_t)((uint64_t)s->sxy + lk_s64sum_(a->sxy) - B * (sx + sy) - B * B * N);
+    s->syy = (int64_t)((uint64_t)s->syy + lk_s64sum_(a->syy) - 2u * B * sy - B * B * N);
+    s->sxe = (int64_t)((uint64_t)s->sxe + lk_s64sum_(a->sxe) - C * sx - B * se - B * C * N);
+    s->sye = (int64_t)((uint64_t)s->sye + lk_s64sum_(a->sye) - C * sy - B * se - B * C * N);
+    s->see = (int64_t)((uint64_t)s->see + lk_s64sum_(a->see) - 2u * C * se - C * C * N);
+    s->n += lk_s32sum_(a->n);
+}
+
+static inline __m128i lk_ld_(const void *p)
+{
+    return _mm_loadu_si128((const __m128i *)p);
+}
+
+/* Lanes 0 and 2 of the 16 bytes at p, then of those at p + 16: the 32-bit words at bytes 0, 8,
+ * 16, 24 (step 4's samples). */
+static inline __m128i lk_ld4_(const void *p)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    return _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(lk_ld_(b)), _mm_castsi128_ps(lk_ld_(b + 16)),
+                                           _MM_SHUFFLE(2, 0, 2, 0)));
+}
+
+/* Step 2: samples i, i + 2, i + 4, i + 6 of a row for i = 0, 8, 16, ... while i + 7 <= n (the
+ * block reads pixels and colnow to i + 7, the background's row columns to i + 9, all inside
+ * the loop's own reads for samples up to n). Adds to s; returns the first sample left to the
+ * loop. */
+static inline int32_t lk_row2v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_spar_t q;
+    lk_sacc_t a;
+    lk_spar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 7 <= n; i += 8) {
+        lk_staps_t k;
+        k.p0 = lk_ld_(b0 + i + 1);
+        k.p1 = lk_ld_(b1 + i + 1);
+        k.r0 = lk_ld_(b0 + i);
+        k.r1 = lk_ld_(b1 + i);
+        k.t0 = lk_ld_(b0 + i + 2);
+        k.t1 = lk_ld_(b1 + i + 2);
+        k.pm = lk_ld_(bm + i + 1);
+        k.p2 = lk_ld_(b2 + i + 1);
+        const __m128i czv = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(lk_ld_(cz + i)),
+                                                            _mm_castsi128_ps(lk_ld_(cz + i + 4)),
+                                                            _MM_SHUFFLE(2, 0, 2, 0)));
+        lk_block_s_(&q, lk_ld_(rz + 2 * i), &k, czv, &a);
+    }
+    lk_ssum_(&a, i / 8, s);
+    return i;
+}
+
+/* Step 4 (reg_step 2's iterations before the last): samples i, i + 4, i + 8, i + 12 for
+ * i = 0, 16, 32, ... while i + 15 <= n (reads pixels and colnow to i + 15, the background's
+ * row columns to i + 17, inside the loop's own reads for samples up to n). */
+static inline int32_t lk_row4v_(const uint8_t *rz, const int32_t *cz, const uint16_t *bm, int32_t bs,
+                                const uint32_t par[6], int32_t n, lk_sums_t *s)
+{
+    const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
+    lk_spar_t q;
+    lk_sacc_t a;
+    lk_spar_(par, &q, &a);
+    int32_t i = 0;
+    for (; i + 15 <= n; i += 16) {
+        lk_staps_t k;
+        k.p0 = lk_ld4_(b0 + i + 1);
+        k.p1 = lk_ld4_(b1 + i + 1);
+        k.r0 = lk_ld4_(b0 + i);
+        k.r1 = lk_ld4_(b1 + i);
+        k.t0 = lk_ld4_(b0 + i + 2);
+        k.t1 = lk_ld4_(b1 + i + 2);
+        k.pm = lk_ld4_(bm + i + 1);
+        k.p2 = lk_ld4_(b2 + i + 1);
+        const __m128i c01 = _mm_unpacklo_epi32(_mm_cvtsi32_si128(cz[i]), _mm_cvtsi32_si128(cz[i + 4]));
+        const __m128i c23 = _mm_unpacklo_epi32(_mm_cvtsi32_si128(cz[i + 8]), _mm_cvtsi32_si128(cz[i + 12]));
+        lk_block_s_(&q, lk_ld4_(rz + 2 * i), &k, _mm_unpacklo_epi64(c01, c23), &a);
+    }
+    lk_ssum_(&a, i / 16, s);
+    return i;
+}
+#endif
+
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+
+/* lk_row2v_ (st 2) or lk_row4v_ (st 4), the NEON or SSE2 form, for a test: the sums of a row's
  * samples 0, st, 2 st, ..., up to the last whole block of four (rz: the row's pixels from the
  * first sample, cz: colnow from it, bm: the background's row y + ky - 1 from column c0 with stride bs, par: mask,
  * lo, span, bf, fx, fy); sums: sxx, sxy, syy, sxe, sye, see added to, *cnt likewise; returns
@@ -442,8 +664,9 @@ static inline void lk_loop_(const pft_pre_t *p, const pft_frame_t *f, const pft_
          * the last tap column are in [0, w - 1]) */
         const uint16_t *bm = p->bgv + (size_t)(y + g->ky - 1) * (size_t)bs + (size_t)c0;
         const uint16_t *b0 = bm + bs, *b1 = b0 + bs, *b2 = b1 + bs;
-#if defined(PFT_PRE_NEON_)
-        /* AArch64: the samples of the whole blocks of four in NEON's lanes (st 2 or 4, plain) */
+#if defined(PFT_PRE_NEON_) || defined(__SSE2__)
+        /* AArch64 and x86-64: the samples of the whole blocks of four in NEON's or SSE2's lanes
+         * (st 2 or 4, plain) */
         const uint32_t par[6] = {mask, lo, span, bf, fx, fy};
         int32_t ia = 0;
         if (plain && st == 2) {
