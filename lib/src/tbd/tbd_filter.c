@@ -116,10 +116,12 @@ typedef struct {
 /* RBPF survivor of state byte e (age e - 1): the position is sampled from N(x + T m, N_a)
  * per axis, the velocity mean takes the Kalman update of that step (tbd_dyn.c), the intensity
  * a random walk. k points at the particle's state, the tables are tab's for that age. */
-static inline void rbpf_move_g_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
-                                pft_real_t ch_int, uint32_t age, pft_real_t gx, pft_real_t gy,
-                                pft_real_t gi)
+static inline void rbpf_move_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
+                              pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
 {
+    const pft_real_t gx = pft_rng_zig_(rng);
+    const pft_real_t gy = pft_rng_zig_(rng);
+    const pft_real_t gi = pft_rng_zig_(rng);
     const pft_real_t vx = *k->vx;
     const pft_real_t vy = *k->vy;
     *k->x = pft_kmad2_(*k->x, T, vx, tab->kf_sd[0][age], gx);
@@ -127,16 +129,6 @@ static inline void rbpf_move_g_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab
     *k->y = pft_kmad2_(*k->y, T, vy, tab->kf_sd[1][age], gy);
     *k->vy = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
     *k->in = pft_kmad1_(*k->in, ch_int, gi);
-}
-
-/* The same with its three draws (x axis, y axis, intensity, in that order). */
-static inline void rbpf_move_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
-                              pft_real_t ch_int, uint32_t age, pft_rng_t *rng)
-{
-    const pft_real_t gx = pft_rng_zig_(rng);
-    const pft_real_t gy = pft_rng_zig_(rng);
-    const pft_real_t gi = pft_rng_zig_(rng);
-    rbpf_move_g_(k, tab, T, ch_int, age, gx, gy, gi);
 }
 
 /* The loop invariants of the move passes, read once per pass into locals: no store of the
@@ -852,22 +844,24 @@ static void disappearance_(pft_tbd_filter_t *f)
 
 /* ---------------------------------- Bernoulli form (docs/algorithms.md 2.11) -------------- */
 
-/* Whether move_bern_ runs its particles in a loop that makes no call (AArch64, x86-64): the
+/* Whether move_bern_ runs its particles in a loop that makes no call (AArch64, x86-64 float): the
  * inner loop stops at the first ziggurat word that needs the slow path and at a birth's
  * intensity that needs nextafterf, and the outer loop finishes that particle from there (the
  * slow path with that word, the particle's later draws in the general form) before the inner
  * loop goes on. The particles in their order, each with the same words and the same
  * operations, so the same values. Without a call in the inner loop its invariants and the
- * generator need not survive one there. The Cortex-M builds keep the one loop.
- * test_tbd_filter compares the two forms (pft_tbd_move_bern_hook_). */
-#if defined(__aarch64__) || defined(__x86_64__)
+ * generator need not survive one there (AArch64: move_bern_ 3.40 -> about 3.2 M instructions
+ * per frame in q16 on the real file, docs/results/ir_clutter.md, "Branch ircost59"). x86-64
+ * q16 (slightly dearer split) and the Cortex-M builds keep the one loop. test_tbd_filter
+ * compares the two forms (pft_tbd_move_bern_hook_). */
+#if defined(__aarch64__) || (defined(__x86_64__) && !defined(PFT_NUMERIC_Q16))
 #define MOVE_SPLIT_ 1
 #else
 #define MOVE_SPLIT_ 0
 #endif
 
-/* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
- * the others move. One particle of move_bern_ in its general form (every draw whole): draws
+#if MOVE_SPLIT_
+/* One particle of move_bern_ in its general form (every draw whole): draws
  * its existence word, writes its state and byte; returns the byte, counts a birth in *b. */
 static inline uint32_t bern_one_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
                                  uint32_t p16_share, bool rb, bool can_birth, pft_rng_t *rng,
@@ -894,7 +888,20 @@ static inline uint32_t bern_one_(const step_ctx_t *x, const move_inv_t *v, uint3
     return e;
 }
 
-#if MOVE_SPLIT_
+/* rbpf_move_ with its three draws made (gx, gy, gi). */
+static inline void rbpf_move_g_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
+                                pft_real_t ch_int, uint32_t age, pft_real_t gx, pft_real_t gy,
+                                pft_real_t gi)
+{
+    const pft_real_t vx = *k->vx;
+    const pft_real_t vy = *k->vy;
+    *k->x = pft_kmad2_(*k->x, T, vx, tab->kf_sd[0][age], gx);
+    *k->vx = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
+    *k->y = pft_kmad2_(*k->y, T, vy, tab->kf_sd[1][age], gy);
+    *k->vy = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
+    *k->in = pft_kmad1_(*k->in, ch_int, gi);
+}
+
 /* pft_rng_zig_'s fast path alone: true with its draw in *g; false when its word (*w) needs the slow
  * path (zig_rest_). */
 static inline bool zig_fast_only_(pft_rng_t *rng, pft_real_t *g, uint32_t *w)
@@ -1059,8 +1066,9 @@ void pft_tbd_move_bern_hook_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc, ui
     move_bern_form_(f, &x, p16_share, nb, np, split);
 }
 #else
-/* Counts the births and the survivors. Loop invariants in locals (move_inv_t; two callers
- * here too: the update and the coast). */
+/* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
+ * the others move. Counts the births and the survivors. Loop invariants in locals (move_inv_t;
+ * two callers here too: the update and the coast). */
 static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share, uint32_t *nb,
                        uint32_t *np)
 {
@@ -1071,7 +1079,25 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
     uint32_t b = 0u;
     uint32_t surv = 0u;
     for (uint32_t s = 0; s < v.n; ++s) {
-        surv += bern_one_(x, &v, s, p16_share, rb, can_birth, &rng, &b) > 1u ? 1u : 0u;
+        const uint32_t u = pft_tbd_exist_draw_(&rng);
+        uint32_t e = v.e[s];
+        if ((e == 0u || u < p16_share) && !can_birth) {
+            e = 0u; /* no pixel to be born in: the slot stays empty */
+        } else if (e == 0u || u < p16_share) {
+            move_birth_(x, &v, s, &rng);
+            e = 1u;
+            ++b;
+        } else {
+            const pft_tbd_kin_t k = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s], &v.in[s]};
+            if (rb) {
+                rbpf_move_(&k, v.tab, v.T, v.dyn.ch_int, e - 1u, &rng);
+            } else {
+                pft_tbd_pf_move_(&v.dyn, v.T, &rng, &k);
+            }
+            e = e < v.e_max ? e + 1u : e;
+        }
+        v.e[s] = (uint8_t)e;
+        surv += e > 1u ? 1u : 0u;
     }
     f->rng = rng;
     *nb = b;
