@@ -844,6 +844,229 @@ static void disappearance_(pft_tbd_filter_t *f)
 
 /* ---------------------------------- Bernoulli form (docs/algorithms.md 2.11) -------------- */
 
+/* Whether move_bern_ runs its particles in a loop that makes no call (AArch64, x86-64 float): the
+ * inner loop stops at the first ziggurat word that needs the slow path and at a birth's
+ * intensity that needs nextafterf, and the outer loop finishes that particle from there (the
+ * slow path with that word, the particle's later draws in the general form) before the inner
+ * loop goes on. The particles in their order, each with the same words and the same
+ * operations, so the same values. Without a call in the inner loop its invariants and the
+ * generator need not survive one there (AArch64, the real file's flight build, frames 14-40:
+ * the manager 13.21 -> 13.05 M instructions per frame in q16, 10.24 -> 10.03 in float;
+ * docs/results/ir_clutter.md, "Branch ircost59"). x86-64 q16 (slightly dearer split) and the
+ * Cortex-M builds keep the one loop. test_tbd_filter compares the two forms
+ * (pft_tbd_move_bern_hook_). */
+#if defined(__aarch64__) || (defined(__x86_64__) && !defined(PFT_NUMERIC_Q16))
+#define MOVE_SPLIT_ 1
+#else
+#define MOVE_SPLIT_ 0
+#endif
+
+#if MOVE_SPLIT_
+/* One particle of move_bern_ in its general form (every draw whole): draws
+ * its existence word, writes its state and byte; returns the byte, counts a birth in *b. */
+static inline uint32_t bern_one_(const step_ctx_t *x, const move_inv_t *v, uint32_t s,
+                                 uint32_t p16_share, bool rb, bool can_birth, pft_rng_t *rng,
+                                 uint32_t *b)
+{
+    const uint32_t u = pft_tbd_exist_draw_(rng);
+    uint32_t e = v->e[s];
+    if ((e == 0u || u < p16_share) && !can_birth) {
+        e = 0u; /* no pixel to be born in: the slot stays empty */
+    } else if (e == 0u || u < p16_share) {
+        move_birth_(x, v, s, rng);
+        e = 1u;
+        ++*b;
+    } else {
+        const pft_tbd_kin_t k = {&v->x[s], &v->y[s], &v->vx[s], &v->vy[s], &v->in[s]};
+        if (rb) {
+            rbpf_move_(&k, v->tab, v->T, v->dyn.ch_int, e - 1u, rng);
+        } else {
+            pft_tbd_pf_move_(&v->dyn, v->T, rng, &k);
+        }
+        e = e < v->e_max ? e + 1u : e;
+    }
+    v->e[s] = (uint8_t)e;
+    return e;
+}
+
+/* rbpf_move_ with its three draws made (gx, gy, gi). */
+static inline void rbpf_move_g_(const pft_tbd_kin_t *k, const pft_tbd_tab_t *tab, pft_real_t T,
+                                pft_real_t ch_int, uint32_t age, pft_real_t gx, pft_real_t gy,
+                                pft_real_t gi)
+{
+    const pft_real_t vx = *k->vx;
+    const pft_real_t vy = *k->vy;
+    *k->x = pft_kmad2_(*k->x, T, vx, tab->kf_sd[0][age], gx);
+    *k->vx = pft_kmad1_(vx, tab->kf_gsd[0][age], gx);
+    *k->y = pft_kmad2_(*k->y, T, vy, tab->kf_sd[1][age], gy);
+    *k->vy = pft_kmad1_(vy, tab->kf_gsd[1][age], gy);
+    *k->in = pft_kmad1_(*k->in, ch_int, gi);
+}
+
+/* pft_rng_zig_'s fast path alone: true with its draw in *g; false when its word (*w) needs the slow
+ * path (zig_rest_). */
+static inline bool zig_fast_only_(pft_rng_t *rng, pft_real_t *g, uint32_t *w)
+{
+    const uint32_t u = pft_rng_next_(rng);
+    const uint32_t m = u >> 8;
+    const int32_t *kw = pft_zig_ksw[u & (2u * PFT_ZIG_LAYERS - 1u)];
+    *w = u;
+    *g = pft_zig_sfast_((int64_t)m * kw[1]);
+    return m < (uint32_t)kw[0];
+}
+
+/* The rest of pft_rng_zig_ for its word u when the fast path did not take it. */
+static pft_real_t zig_rest_(pft_rng_t *rng, uint32_t u)
+{
+    const pft_zig_slow_t r = pft_rng_zig_slow_(rng->s[0], rng->s[1], rng->s[2], rng->s[3], u);
+    rng->s[0] = r.s[0];
+    rng->s[1] = r.s[1];
+    rng->s[2] = r.s[2];
+    rng->s[3] = r.s[3];
+    return r.v;
+}
+
+/* An RBPF birth's state (pft_tbd_birth_pix_v_ without velocity draws) in pixel p at the
+ * offsets ux, uy with the intensity in. */
+static inline void bern_birth_put_(const move_inv_t *v, const pft_tbd_birth_inv_t *bi, uint32_t s,
+                                   uint32_t p, pft_real_t ux, pft_real_t uy, pft_real_t in)
+{
+    v->x[s] = pft_tbd_birth_coord_(p % bi->width, ux, bi->dx);
+    v->y[s] = pft_tbd_birth_coord_(p / bi->width, uy, bi->dy);
+    v->in[s] = in;
+    v->vx[s] = bi->vel_mean[0];
+    v->vy[s] = bi->vel_mean[1];
+}
+
+/* Counts the births and the survivors. Loop invariants in locals (move_inv_t; two callers
+ * here too: the update and the coast). split: MOVE_SPLIT_'s loops where they apply (RBPF
+ * moves, births from a candidate list, float: an intensity range of pft_tbd_birth_inv_'s
+ * i_fast); false: the general loop (the test hook's reference). */
+static void move_bern_form_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share,
+                            uint32_t *nb, uint32_t *np, bool split)
+{
+    const move_inv_t v = move_inv_(f, x);
+    const bool rb = x->rb;
+    const bool can_birth = x->can_birth;
+    pft_rng_t rng = f->rng;
+    uint32_t b = 0u;
+    uint32_t surv = 0u;
+    uint32_t s = 0u;
+#ifdef PFT_NUMERIC_Q16
+    const bool in_fast = true;
+#else
+    const bool in_fast = v.birth.i_fast;
+#endif
+    if (split && rb && (!can_birth || (v.cand != NULL && in_fast))) {
+        const pft_tbd_birth_inv_t bi = v.birth;
+        while (s < v.n) {
+            /* where the inner loop stopped: the draw k (0-2: a survivor's gx, gy, gi; 3: a
+             * birth's intensity) with word w, the draws before it */
+            uint32_t k = 0u;
+            uint32_t w = 0u;
+            uint32_t e = 0u;
+            uint32_t p = 0u;
+            pft_real_t g0 = PFT_C(0.0);
+            pft_real_t g1 = PFT_C(0.0);
+            pft_real_t g2 = PFT_C(0.0);
+            for (; s < v.n; ++s) {
+                const uint32_t u = pft_tbd_exist_draw_(&rng);
+                e = v.e[s];
+                if ((e == 0u || u < p16_share) && !can_birth) {
+                    e = 0u;
+                } else if (e == 0u || u < p16_share) {
+                    /* move_birth_ with RBPF's velocity (vel_mean) */
+                    p = v.cand[pft_rng_below_(&rng, v.n_cand)];
+                    g0 = pft_from_u32_frac(pft_rng_next_(&rng));
+                    g1 = pft_from_u32_frac(pft_rng_next_(&rng));
+#ifdef PFT_NUMERIC_Q16
+                    g2 = pft_tbd_birth_in_draw_(&bi, &rng);
+#else
+                    g2 = pft_add(bi.i_lo,
+                                 pft_mul(bi.i_span, pft_from_u32_frac(pft_rng_next_(&rng))));
+                    if (!(g2 < bi.i_hi)) {
+                        k = 3u; /* rounded up to i_max */
+                        break;
+                    }
+#endif
+                    bern_birth_put_(&v, &bi, s, p, g0, g1, g2);
+                    e = 1u;
+                    ++b;
+                } else {
+                    if (!zig_fast_only_(&rng, &g0, &w)) {
+                        k = 0u;
+                        break;
+                    }
+                    if (!zig_fast_only_(&rng, &g1, &w)) {
+                        k = 1u;
+                        break;
+                    }
+                    if (!zig_fast_only_(&rng, &g2, &w)) {
+                        k = 2u;
+                        break;
+                    }
+                    {
+                        const pft_tbd_kin_t kn = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s],
+                                                  &v.in[s]};
+                        rbpf_move_g_(&kn, v.tab, v.T, v.dyn.ch_int, e - 1u, g0, g1, g2);
+                    }
+                    e = e < v.e_max ? e + 1u : e;
+                }
+                v.e[s] = (uint8_t)e;
+                surv += e > 1u ? 1u : 0u;
+            }
+            if (s < v.n) {
+                /* particle s from its stopped draw on */
+#ifndef PFT_NUMERIC_Q16
+                if (k == 3u) {
+                    bern_birth_put_(&v, &bi, s, p, g0, g1, nextafterf(bi.i_hi, bi.i_lo));
+                    e = 1u;
+                    ++b;
+                } else
+#endif
+                {
+                    const pft_tbd_kin_t kn = {&v.x[s], &v.y[s], &v.vx[s], &v.vy[s], &v.in[s]};
+                    g0 = k == 0u ? zig_rest_(&rng, w) : g0;
+                    g1 = k == 1u ? zig_rest_(&rng, w) : (k < 1u ? pft_rng_zig_(&rng) : g1);
+                    g2 = k == 2u ? zig_rest_(&rng, w) : pft_rng_zig_(&rng);
+                    rbpf_move_g_(&kn, v.tab, v.T, v.dyn.ch_int, e - 1u, g0, g1, g2);
+                    e = e < v.e_max ? e + 1u : e;
+                }
+                v.e[s] = (uint8_t)e;
+                surv += e > 1u ? 1u : 0u;
+                ++s;
+            }
+        }
+    }
+    for (; s < v.n; ++s) {
+        surv += bern_one_(x, &v, s, p16_share, rb, can_birth, &rng, &b) > 1u ? 1u : 0u;
+    }
+    f->rng = rng;
+    *nb = b;
+    *np = surv;
+}
+
+static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_share, uint32_t *nb,
+                       uint32_t *np)
+{
+    move_bern_form_(f, x, p16_share, nb, np, true);
+}
+
+void pft_tbd_move_bern_hook_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc, uint32_t p16_share,
+                             bool split, uint32_t *nb, uint32_t *np)
+{
+    step_ctx_t x;
+    memset(&x, 0, sizeof x);
+    x.sc = sc;
+    x.tab = f->tab;
+    x.T = f->cfg.T;
+    x.p_birth = pft_tbd_p_birth_(&f->dyn, f->frames == 0u);
+    x.e_max = (uint8_t)(f->tab->age_cap + 1u);
+    x.can_birth = sc->n_cand > 0u;
+    x.rb = f->kind == PFT_TBD_RBPF;
+    move_bern_form_(f, &x, p16_share, nb, np, split);
+}
+#else
 /* Every particle is a position hypothesis: a share of them (and every empty slot) become births,
  * the others move. Counts the births and the survivors. Loop invariants in locals (move_inv_t;
  * two callers here too: the update and the coast). */
@@ -881,6 +1104,7 @@ static void move_bern_(pft_tbd_filter_t *f, const step_ctx_t *x, uint32_t p16_sh
     *nb = b;
     *np = surv;
 }
+#endif
 
 /* Log-weights: the likelihood ratio plus the log prior weight of the particle's group (lb for
  * births, lp for survivors); dropped particles get BERN_DROP_ and E = 0 (a birth slot next

@@ -97,6 +97,13 @@ void pft_tbd_fetch_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint
 /* The patches' values over the window z of pft_tbd_fetch_ (the frame's values already in z). */
 void pft_tbd_patch_over_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0, uint32_t nx,
                          uint32_t ny, pft_real_t *z);
+#if defined(__aarch64__) || (defined(__x86_64__) && !defined(PFT_NUMERIC_Q16))
+/* The Bernoulli search layer's move pass (tbd_filter.c, move_bern_) on f's particles for the
+ * scene sc (births from its candidates), in its split form (split) or the general form: *nb
+ * births, *np survivors (for the unit tests; AArch64 and x86-64 float builds only). */
+void pft_tbd_move_bern_hook_(pft_tbd_filter_t *f, const pft_tbd_scene_t_ *sc, uint32_t p16_share,
+                             bool split, uint32_t *nb, uint32_t *np);
+#endif
 /* Whether a patch of sc may cover a pixel of the 3 x 3 window at columns col0 .. col0 + 2,
  * rows row0 .. row0 + 2 (0-based): false when every patch's rectangle lies apart from it. */
 bool pft_tbd_patch_in_win_(const pft_tbd_scene_t_ *sc, int32_t col0, int32_t row0);
