@@ -451,6 +451,67 @@ static void test_relative_u16_known_answer(void)
     TEST_ASSERT_TRUE(clamped > 1000u);
 }
 
+/* The gate's edges in the relative form with a 16-bit level row (on x86-64 its SSE2 form tests
+ * |o| > gate as one wrapped 16-bit compare, o + gate - 32768 > 2 gate - 32768, and the count
+ * from the pixels out of the gate or masked): a map of 0, so that every offset is 0 and o = v;
+ * residuals gate - 1, gate, gate + 1 and their negatives, +-32767, 0 and masked pixels over
+ * levels 0 .. 65535; gates 1, 512, 16384 and 32767 (2 gate - 32768 at both ends of the 16-bit
+ * range); each pixel unchanged, and each block's sums against those counted here (check_sums),
+ * with pixels both within and out of the gate (gate 32767: every unmasked pixel within). */
+static void test_relative_u16_gate_edges(void)
+{
+    static const uint16_t gates[4] = {1u, 512u, 16384u, 32767u};
+    const int w = 64, h = 16;
+    for (int gi = 0; gi < 4; ++gi) {
+        pft_pre_flat_config_t cfg;
+        pft_pre_flat_config_default(&cfg);
+        cfg.width = (uint16_t)w;
+        cfg.height = (uint16_t)h;
+        cfg.block = 16u;
+        cfg.relative = true;
+        cfg.gate = gates[gi];
+        pft_pre_flat_t fl;
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_init(&fl, &cfg, g_work, sizeof g_work));
+        const int32_t g = (int32_t)gates[gi];
+        const int32_t vals[10] = {g - 1, g, g + 1, 1 - g, -g, -g - 1, 32767, -32767, 0,
+                                  PFT_RES16_MASKED};
+        uint32_t in = 0u, out = 0u;
+        for (int i = 0; i < w * h; ++i) {
+            int32_t v = vals[(i * 7 + i / w) % 10];
+            v = v > 32767 ? 32767 : v;
+            g_res[i] = (int16_t)v;
+            g_lev[i] = (uint16_t)((uint32_t)i * 1031u);
+            if (v != PFT_RES16_MASKED) {
+                in += (v <= g && v >= -g) ? 1u : 0u;
+                out += (v > g || v < -g) ? 1u : 0u;
+            }
+        }
+        TEST_ASSERT_TRUE(in > 100u && (g < 32767 ? out > 100u : out == 0u)); /* 32767: all in */
+        memcpy(g_in, g_res, sizeof g_res);
+        pft_frame_t f = res_frame(1u);
+        f.width = (uint16_t)w;
+        f.height = (uint16_t)h;
+        f.stride_bytes = 2u * (uint32_t)w;
+        pft_frame_t lev;
+        memset(&lev, 0, sizeof lev);
+        lev.data = g_lev;
+        lev.width = (uint16_t)w;
+        lev.height = (uint16_t)h;
+        lev.stride_bytes = 2u * (uint32_t)w;
+        lev.format = PFT_PIX_U16;
+        TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
+        for (int i = 0; i < w * h; ++i) {
+            TEST_ASSERT_EQUAL_INT16(g_in[i], g_res[i]);
+        }
+        uint32_t cnt = 0u;
+        for (uint32_t k = 0u; k < fl.nbx * fl.nby; ++k) {
+            cnt += fl.cnt[k];
+        }
+        TEST_ASSERT_EQUAL_UINT32(in, cnt);
+        check_sums(&fl, w, h, g_lev, NULL);
+    }
+}
+
 /* Refused input: NULL, a foreign buffer, a wrong frame: nothing changes. */
 static void test_refused_input(void)
 {
@@ -499,6 +560,7 @@ int main(void)
     RUN_TEST(test_masked_and_no_evidence);
     RUN_TEST(test_every_pixel_against_at);
     RUN_TEST(test_relative_u16_known_answer);
+    RUN_TEST(test_relative_u16_gate_edges);
     RUN_TEST(test_refused_input);
     return UNITY_END();
 }

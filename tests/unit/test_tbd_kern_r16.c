@@ -18,7 +18,7 @@
  * ignored): the horizontal sums of a RES16 row
  * (peak_hrow_r16_, in q16 by 16-bit multiply-adds) are peak_hrow_'s of the converted row bit for
  * bit, the vertical sums (peak_vrow_; the hook pft_tbd_vrow_ in q16 only, the centre tap 1's
- * rows by 64-bit products of the magnitudes) are pft_kmula_'s, and the integration's bin row
+ * rows from 16-bit products of the halves) are pft_kmula_'s, and the integration's bin row
  * (integ_row_, the inner bins eight at a time) is its general
  * form's (every bin by integ_bin_) word for word, with its sums: random rows with extremes, the
  * masked code, ties, the rounding's halves, values beyond the clamp (float: NaN, infinities,
@@ -362,7 +362,8 @@ static void test_integ_skip_is_the_plain_skip(void)
 }
 
 /* pft_tbd_vrow_ (peak_vrow_: the scan's vertical sums; in q16 with SSE2 the centre tap 1's rows
- * four columns at a time by 32 x 32 -> 64-bit products of the magnitudes) is
+ * four columns at a time from 16-bit products of the values' halves: taps below 1/2, from 1/2
+ * and 1 itself take three different corrections) is
  * pft_kaddr_(pft_kmula_(u1, mid), pft_kmula_(u0, pft_kaddr_(up, dn))) bit for bit: every tap
  * as u0 with u1 = 1 (the fast rows) and u1 = the tap of sigma 1 (the general rows), widths 1 to
  * 41, 40 random rows each with |up + dn| < 2^30 (q16: values below 2^14): both signs, zeros,

@@ -387,16 +387,24 @@ static inline void fl_l16_sum_(const fl_l16a_t *a, uint32_t np, fl_acc_t *acc)
 #endif
 
 #ifdef FL_LEV_SPLIT_
-/* SSE2: kl and kh packed from the 32-bit lanes (kl sign-extended from bit 15 first, so that
- * the signed pack keeps its bits); kl l = 2^16 ph + pl (pmulhuw, pmullw), so
- * lo = ph + [pl >= 32768 + neg] (one signed compare of pl - 32768 with -1 + neg; where l = 0,
- * pl = 0 and neg changes nothing, so neg = [kh < 0]); kh l from pmullw and pmulhw with l read
- * as signed, whose high half gains kh where l >= 32768; v - (kh l + lo) in 32-bit lanes, the
- * clamp packssdw and a max; the store min(o, 32767 or INT16_MIN); the sums o in pairs
- * (pmaddwd), l - 32768 in pairs (every lane, 0 out of the gate: 32768 per pixel taken back in
- * fl_l16_sum_) and the count as 16-bit lanes of -1 per pixel out of the gate (np - those). */
+/* SSE2: the interpolation less FL_BIAS_ (the signed numerator plus 2^(k-1), |.| < 2^27) times
+ * 2^(7 - k) (k = lb + 1 <= 7: |.| < 2^29), so that kv (fl_shr_'s floor) is its arithmetic shift
+ * by 7, kh = kv >> 16 its shift by 23 and kl (kv's lower 16 bits, sign-extended so that the
+ * signed pack keeps its bits) its shift left by 9 and right by 16, all by constants; kl l =
+ * 2^16 ph + pl (pmulhuw, pmullw), so lo = ph + [pl >= 32768 + neg] (one signed compare of neg
+ * with pl - 32768: where l = 0, pl = 0 and neg changes nothing, so neg = [kh < 0]). Then
+ * o = v - kh l - lo in 32-bit lanes as two multiply-adds (pmaddwd) of 16-bit pairs:
+ * (kh, kh + 1) . (32767 - l, -32767) = -kh (l - 32767) - 32767 kh - 32767 = -kh l - 32767 and
+ * (v, lo - 32767) . (1, -1) = v - lo + 32767 (kh + 1 in -7 .. 9; 32767 - l and lo - 32767 in
+ * -32768 .. 32767: lo <= 65534); the clamp packssdw and a max; the store min(o, 32767 or
+ * INT16_MIN); out of the gate (|o| > gate) as o + gate - 32768 > 2 gate - 32768 in 16-bit lanes
+ * (o + gate in -32767 .. 65534: a negative one wraps to at least 1 > 2 gate - 32768 - 65536);
+ * the sums o in pairs (pmaddwd), l - 32768 in pairs (every lane, 0 out of the gate: 32768 per
+ * pixel taken back in fl_l16_sum_) and the count as 16-bit lanes of -1 per pixel out of the
+ * gate or masked (np - those). */
 typedef struct {
-    __m128i kc, cb, ones, allb, h8, omin, o7f, g, ng;
+    __m128i ones, h8, omin, o7f, gx, g2x, m1, c2;
+    uint32_t sh;
 } fl_l16c_t;
 typedef struct {
     __m128i s, l, n;
@@ -404,15 +412,16 @@ typedef struct {
 
 static inline void fl_l16_init_(fl_l16c_t *c, uint32_t k, int32_t cb, int32_t gate)
 {
-    c->kc = _mm_cvtsi32_si128((int32_t)k);
-    c->cb = _mm_set1_epi32(cb);
+    (void)cb;
+    c->sh = 7u - k;
     c->ones = _mm_set1_epi16(1);
-    c->allb = _mm_set1_epi16(-1);
     c->h8 = _mm_set1_epi16(PFT_RES16_MASKED);
     c->omin = _mm_set1_epi16(-32767);
     c->o7f = _mm_set1_epi16(32767);
-    c->g = _mm_set1_epi16((int16_t)gate);
-    c->ng = _mm_set1_epi16((int16_t)-gate);
+    c->gx = _mm_set1_epi16((int16_t)(gate - 32768));
+    c->g2x = _mm_set1_epi16((int16_t)(2 * gate - 32768));
+    c->m1 = _mm_set1_epi32(-65535); /* the 16-bit pair (1, -1) */
+    c->c2 = _mm_set1_epi16(-32766);
 }
 
 static inline void fl_l16_zero_(fl_l16a_t *a)
@@ -422,50 +431,72 @@ static inline void fl_l16_zero_(fl_l16a_t *a)
     a->n = _mm_setzero_si128();
 }
 
-static inline void fl_l16_run_(int16_t *r, const uint8_t *lrow, uint32_t x, uint32_t n,
-                               uint32_t u0, uint32_t st, const fl_l16c_t *c, fl_l16a_t *a)
+/* The interpolation's lanes of 8 pixels from u0 (fl_shr_'s biased numerator, stepped by st per
+ * pixel): pixels 0 .. 3 in ua, 4 .. 7 in ub, both stepped by st8 per group of 8. */
+typedef struct {
+    __m128i ua, ub, st8;
+} fl_l16u_t;
+
+static inline fl_l16u_t fl_l16_uv_(uint32_t u0, uint32_t st, const fl_l16c_t *c)
 {
-    __m128i ua = _mm_add_epi32(_mm_set1_epi32((int32_t)u0),
-                               _mm_set_epi32((int32_t)(3u * st), (int32_t)(2u * st), (int32_t)st, 0));
-    __m128i ub = _mm_add_epi32(ua, _mm_set1_epi32((int32_t)(4u * st)));
-    const __m128i st8 = _mm_set1_epi32((int32_t)(8u * st));
-    const __m128i zero = _mm_setzero_si128();
+    const uint32_t s0 = (u0 - (uint32_t)FL_BIAS_) << c->sh, s1 = st << c->sh;
+    fl_l16u_t q;
+    q.ua = _mm_add_epi32(_mm_set1_epi32((int32_t)s0),
+                         _mm_set_epi32((int32_t)(3u * s1), (int32_t)(2u * s1), (int32_t)s1, 0));
+    q.ub = _mm_add_epi32(q.ua, _mm_set1_epi32((int32_t)(4u * s1)));
+    q.st8 = _mm_set1_epi32((int32_t)(8u * s1));
+    return q;
+}
+
+/* n groups of 8 pixels from column x with the lanes q (left at the next group's). */
+static inline void fl_l16_grps_(int16_t *r, const uint8_t *lrow, uint32_t x, uint32_t n,
+                                fl_l16u_t *q, const fl_l16c_t *c, fl_l16a_t *a)
+{
+    __m128i ua = q->ua, ub = q->ub;
+    const __m128i st8 = q->st8;
     __m128i as = a->s, al = a->l, an = a->n;
     int16_t *rx = r + x;
     const uint8_t *lx = lrow + 2u * x;
     for (uint32_t i = 0u; i < n; ++i) {
-        const __m128i ka = _mm_sub_epi32(_mm_srl_epi32(ua, c->kc), c->cb);
-        const __m128i kb = _mm_sub_epi32(_mm_srl_epi32(ub, c->kc), c->cb);
+        const __m128i kl = _mm_packs_epi32(_mm_srai_epi32(_mm_slli_epi32(ua, 9), 16),
+                                           _mm_srai_epi32(_mm_slli_epi32(ub, 9), 16));
+        const __m128i kh = _mm_packs_epi32(_mm_srai_epi32(ua, 23), _mm_srai_epi32(ub, 23));
         ua = _mm_add_epi32(ua, st8);
         ub = _mm_add_epi32(ub, st8);
-        const __m128i kl = _mm_packs_epi32(_mm_srai_epi32(_mm_slli_epi32(ka, 16), 16),
-                                           _mm_srai_epi32(_mm_slli_epi32(kb, 16), 16));
-        const __m128i kh = _mm_packs_epi32(_mm_srai_epi32(ka, 16), _mm_srai_epi32(kb, 16));
         const __m128i l = _mm_loadu_si128((const __m128i *)(const void *)lx);
         const __m128i v = _mm_loadu_si128((const __m128i *)(const void *)rx);
         const __m128i pl = _mm_mullo_epi16(kl, l), ph = _mm_mulhi_epu16(kl, l);
-        /* -1 + neg: -1 where kh >= 0, 0 where kh < 0 */
-        const __m128i cy = _mm_cmpgt_epi16(_mm_xor_si128(pl, c->h8), _mm_cmpgt_epi16(kh, c->allb));
-        const __m128i lo = _mm_sub_epi16(ph, cy);
-        const __m128i ql = _mm_mullo_epi16(kh, l);
-        const __m128i qh = _mm_add_epi16(_mm_mulhi_epi16(kh, l), _mm_and_si128(kh, _mm_srai_epi16(l, 15)));
-        const __m128i lea = _mm_add_epi32(_mm_unpacklo_epi16(ql, qh), _mm_unpacklo_epi16(lo, zero));
-        const __m128i leb = _mm_add_epi32(_mm_unpackhi_epi16(ql, qh), _mm_unpackhi_epi16(lo, zero));
-        const __m128i oa = _mm_sub_epi32(_mm_srai_epi32(_mm_unpacklo_epi16(v, v), 16), lea);
-        const __m128i ob = _mm_sub_epi32(_mm_srai_epi32(_mm_unpackhi_epi16(v, v), 16), leb);
+        /* -1 where no carry: pl - 32768 < neg */
+        const __m128i nc = _mm_cmpgt_epi16(_mm_srli_epi16(kh, 15), _mm_xor_si128(pl, c->h8));
+        const __m128i lo = _mm_add_epi16(_mm_add_epi16(ph, nc), c->c2); /* lo - 32767 */
+        const __m128i nl = _mm_xor_si128(l, c->o7f);                     /* 32767 - l */
+        const __m128i k1 = _mm_add_epi16(kh, c->ones);                   /* kh + 1 */
+        const __m128i qa = _mm_madd_epi16(_mm_unpacklo_epi16(kh, k1), _mm_unpacklo_epi16(nl, c->omin));
+        const __m128i qb = _mm_madd_epi16(_mm_unpackhi_epi16(kh, k1), _mm_unpackhi_epi16(nl, c->omin));
+        const __m128i oa = _mm_add_epi32(qa, _mm_madd_epi16(_mm_unpacklo_epi16(v, lo), c->m1));
+        const __m128i ob = _mm_add_epi32(qb, _mm_madd_epi16(_mm_unpackhi_epi16(v, lo), c->m1));
         const __m128i o = _mm_max_epi16(_mm_packs_epi32(oa, ob), c->omin);
         const __m128i ms = _mm_cmpeq_epi16(v, c->h8);
         _mm_storeu_si128((__m128i *)(void *)rx, _mm_min_epi16(o, _mm_xor_si128(ms, c->o7f)));
-        const __m128i out = _mm_or_si128(_mm_or_si128(_mm_cmpgt_epi16(o, c->g), _mm_cmpgt_epi16(c->ng, o)), ms);
+        const __m128i out = _mm_or_si128(_mm_cmpgt_epi16(_mm_add_epi16(o, c->gx), c->g2x), ms);
         as = _mm_add_epi32(as, _mm_madd_epi16(_mm_andnot_si128(out, o), c->ones));
         al = _mm_add_epi32(al, _mm_madd_epi16(_mm_xor_si128(_mm_andnot_si128(out, l), c->h8), c->ones));
         an = _mm_add_epi16(an, out);
         rx += 8;
         lx += 16;
     }
+    q->ua = ua;
+    q->ub = ub;
     a->s = as;
     a->l = al;
     a->n = an;
+}
+
+static inline void fl_l16_run_(int16_t *r, const uint8_t *lrow, uint32_t x, uint32_t n,
+                               uint32_t u0, uint32_t st, const fl_l16c_t *c, fl_l16a_t *a)
+{
+    fl_l16u_t q = fl_l16_uv_(u0, st, c);
+    fl_l16_grps_(r, lrow, x, n, &q, c, a);
 }
 
 /* The lanes' totals added to acc; np: the pixels the lanes took (the count's and the level
@@ -639,13 +670,23 @@ static void fl_row_l16_(pft_pre_flat_t *fl, int16_t *r, const uint8_t *lrow, boo
     uint32_t blk = 0u;
     /* the block's first half continues the segment of the last block's second half */
     fl_seg_t ga = fl_seg_(rv, 0u, 0u, nbx, lb, w, d, k);
+#ifdef FL_LEV_SPLIT_
+    /* SSE2: the lanes of the block's first half carried on from the last block's second half */
+    fl_l16u_t q = fl_l16_uv_(ga.u, ga.st, &c);
+#endif
     for (; blk < nbx && ((blk + 1u) << lb) <= w; ++blk) {
         const uint32_t x0 = blk << lb;
         const fl_seg_t gb = fl_seg_(rv, blk + 1u, x0 + hb, nbx, lb, w, d, k);
         fl_l16a_t va;
         fl_l16_zero_(&va);
+#ifdef FL_LEV_SPLIT_
+        fl_l16_grps_(r, lrow, x0, hb / 8u, &q, &c, &va);
+        q = fl_l16_uv_(gb.u, gb.st, &c);
+        fl_l16_grps_(r, lrow, x0 + hb, hb / 8u, &q, &c, &va);
+#else
         fl_l16_run_(r, lrow, x0, hb / 8u, ga.u, ga.st, &c, &va);
         fl_l16_run_(r, lrow, x0 + hb, hb / 8u, gb.u, gb.st, &c, &va);
+#endif
         ga.u = gb.u + hb * gb.st;
         ga.st = gb.st;
         if (learn) {

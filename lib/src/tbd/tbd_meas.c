@@ -10,9 +10,9 @@
  * the compiler makes of pft_kmul_r16_; both builds take the integration's inner bins
  * (integ_row_) eight per step with the sums' rounding, clamps and the bin word in 16-bit lanes
  * (integ_fast8_); q16's vertical sums (peak_vrow_, the centre tap 1) take each product of a
- * tap and a 32-bit value as one 32 x 32 -> 64-bit multiply (pmuludq) of its magnitude
- * (peak_vrow_mul_) instead of two 32-bit products, which SSE2 forms of pmuludq pairs and
- * shuffles. The same values; the Cortex-M builds keep the plain loops, and AArch64 has NEON
+ * tap and a 32-bit value from 16-bit products of its halves (peak_vrow_mul_: one multiply-add
+ * and two 16 x 16-bit products) instead of two 32-bit products, which SSE2 lacks. The same
+ * values; the Cortex-M builds keep the plain loops, and AArch64 has NEON
  * forms of the bins and of q16's row sums (below). */
 #include <emmintrin.h>
 #define PFT_TBD_INTEG_FAST8_ 1
@@ -887,26 +887,34 @@ void pft_tbd_hrow_r16_(const uint8_t *src, uint32_t w, pft_real_t t0, pft_real_t
 #if defined(PFT_TBD_VROW_MUL_)
 /* peak_vrow_'s columns with the centre tap 1, four at a time from column 0 while a whole step
  * lies inside the row; returns the first column not done. mf = mid + pft_kmul_u_(u0, z), z =
- * up + dn, which is pft_kmula_(u0, z) (0 <= u0 <= 2^16, |z| < 2^30): rounded to nearest, ties
- * away from zero, i.e. sign(z) floor((u0 |z| + 2^15) / 2^16). u0 |z| < 2^46 is exact in a
- * 64-bit lane of pmuludq (the even lanes, then the odd ones shifted down), the quotient below
- * 2^30 in its low 32 bits. */
+ * up + dn (0 <= u0 <= 2^16, |z| < 2^30): u0 zh + (u0 zl + 32768 - [z < 0]) >> 16 with z's
+ * 32-bit lane read as its 16-bit halves zl (unsigned) and zh (z >> 16). With u0 = 2^16 uh +
+ * ul16 (ul16 its lower 16 bits, us = ul16 read as signed, us = ul16 - 2^16 [ul16 >= 2^15]):
+ * u0 zh = us zh + 2^16 zh ([ul16 >= 2^15] + uh) as one multiply-add of the halves with
+ * (0, us) (pmaddwd) and z's upper half where that bracket is 1; u0 zl = 2^16 uh zl + ul16 zl,
+ * whose rounded shift is uh zl + ph + ((pl + 32768 - [z < 0]) >> 16) (ph, pl: the halves of
+ * ul16 zl, pmulhuw and pmullw with (ul16, 0); pl + 32768 - 1 >= 0), uh zl = z's lower half
+ * where uh = 1 (u0 = 2^16, ul16 = 0). So r = that multiply-add + (z & msk) + ph +
+ * ((pl + 32768 + (z >> 31)) >> 16), msk = 0xFFFF0000 where ul16 >= 2^15, 0xFFFFFFFF where u0 =
+ * 2^16, 0 otherwise: the same integers in 32-bit lanes (|u0 zh| <= 2^30). */
 static uint32_t peak_vrow_mul_(const pft_real_t *up, const pft_real_t *mid, const pft_real_t *dn,
                                uint32_t w, pft_real_t u0, pft_real_t *restrict mf)
 {
-    const __m128i t = _mm_set1_epi32(u0);
-    const __m128i half = _mm_set_epi32(0, 32768, 0, 32768);
+    const uint32_t tu = (uint32_t)u0;
+    const uint32_t ul = tu & 0xFFFFu;
+    const uint32_t mk = (tu >> 16) != 0u ? 0xFFFFFFFFu : (ul >= 32768u ? 0xFFFF0000u : 0u);
+    const __m128i th = _mm_set1_epi32((int32_t)(ul << 16)); /* (0, us) */
+    const __m128i tl = _mm_set1_epi32((int32_t)ul);         /* (ul16, 0) */
+    const __m128i msk = _mm_set1_epi32((int32_t)mk);
+    const __m128i half = _mm_set1_epi32(32768);
     uint32_t c = 0u;
     for (; c + 4u <= w; c += 4u) {
         const __m128i z = _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(up + c)),
                                         _mm_loadu_si128((const __m128i *)(const void *)(dn + c)));
-        const __m128i m = _mm_srai_epi32(z, 31); /* -1 where z < 0 */
-        const __m128i a = _mm_sub_epi32(_mm_xor_si128(z, m), m);
-        const __m128i pe = _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(a, t), half), 16);
-        const __m128i po =
-            _mm_srli_epi64(_mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(a, 32), t), half), 16);
-        const __m128i q = _mm_or_si128(pe, _mm_slli_epi64(po, 32));
-        const __m128i r = _mm_sub_epi32(_mm_xor_si128(q, m), m);
+        const __m128i hi = _mm_add_epi32(_mm_madd_epi16(z, th), _mm_and_si128(z, msk));
+        const __m128i cy = _mm_srli_epi32(
+            _mm_add_epi32(_mm_add_epi32(_mm_mullo_epi16(z, tl), half), _mm_srai_epi32(z, 31)), 16);
+        const __m128i r = _mm_add_epi32(_mm_add_epi32(hi, _mm_mulhi_epu16(z, tl)), cy);
         _mm_storeu_si128((__m128i *)(void *)(mf + c),
                          _mm_add_epi32(_mm_loadu_si128((const __m128i *)(const void *)(mid + c)), r));
     }
