@@ -49,6 +49,29 @@ static pft_frame_t res_frame(uint32_t seq)
     return pft_test_res16_frame(g_res, W, H, seq, 0u);
 }
 
+/* The residual frame (seq 1) cut to w x h, rows packed. */
+static pft_frame_t res_frame_wh(int w, int h)
+{
+    pft_frame_t f = res_frame(1u);
+    f.width = (uint16_t)w;
+    f.height = (uint16_t)h;
+    f.stride_bytes = 2u * (uint32_t)w;
+    return f;
+}
+
+/* A w x h level frame over data, rows packed, U8 (u8) or U16. */
+static pft_frame_t lev_frame(const void *data, bool u8, int w, int h)
+{
+    pft_frame_t lev;
+    memset(&lev, 0, sizeof lev);
+    lev.data = data;
+    lev.width = (uint16_t)w;
+    lev.height = (uint16_t)h;
+    lev.stride_bytes = (u8 ? 1u : 2u) * (uint32_t)w;
+    lev.format = u8 ? PFT_PIX_U8 : PFT_PIX_U16;
+    return lev;
+}
+
 static void init_flat(pft_pre_flat_t *fl)
 {
     pft_pre_flat_config_t cfg;
@@ -334,17 +357,8 @@ static void test_every_pixel_against_at(void)
                 lev8[i] = (uint8_t)(g_rs >> 13);
             }
             memcpy(g_in, g_res, sizeof g_res);
-            pft_frame_t f = res_frame(1u);
-            f.width = (uint16_t)w;
-            f.height = (uint16_t)h;
-            f.stride_bytes = 2u * (uint32_t)w;
-            pft_frame_t lev;
-            memset(&lev, 0, sizeof lev);
-            lev.data = form == 2 ? (const void *)lev8 : (const void *)g_lev;
-            lev.width = (uint16_t)w;
-            lev.height = (uint16_t)h;
-            lev.stride_bytes = (form == 2 ? 1u : 2u) * (uint32_t)w;
-            lev.format = form == 2 ? PFT_PIX_U8 : PFT_PIX_U16;
+            pft_frame_t f = res_frame_wh(w, h);
+            pft_frame_t lev = lev_frame(form == 2 ? (const void *)lev8 : (const void *)g_lev, form == 2, w, h);
             static int32_t want[NPIX];
             for (int y = 0; y < h; ++y) {
                 for (int x = 0; x < w; ++x) {
@@ -428,17 +442,8 @@ static void test_relative_u16_known_answer(void)
                 o = o > 32767 ? 32767 : (o < -32767 ? -32767 : o);
                 want[i] = masked ? PFT_RES16_MASKED : (int32_t)o;
             }
-            pft_frame_t f = res_frame(1u);
-            f.width = (uint16_t)w;
-            f.height = (uint16_t)h;
-            f.stride_bytes = 2u * (uint32_t)w;
-            pft_frame_t lev;
-            memset(&lev, 0, sizeof lev);
-            lev.data = g_lev;
-            lev.width = (uint16_t)w;
-            lev.height = (uint16_t)h;
-            lev.stride_bytes = 2u * (uint32_t)w;
-            lev.format = PFT_PIX_U16;
+            pft_frame_t f = res_frame_wh(w, h);
+            pft_frame_t lev = lev_frame(g_lev, false, w, h);
             TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
             for (int i = 0; i < w * h; ++i) {
                 TEST_ASSERT_EQUAL_INT32(want[i], g_res[i]);
@@ -488,17 +493,8 @@ static void test_relative_u16_gate_edges(void)
         }
         TEST_ASSERT_TRUE(in > 100u && (g < 32767 ? out > 100u : out == 0u)); /* 32767: all in */
         memcpy(g_in, g_res, sizeof g_res);
-        pft_frame_t f = res_frame(1u);
-        f.width = (uint16_t)w;
-        f.height = (uint16_t)h;
-        f.stride_bytes = 2u * (uint32_t)w;
-        pft_frame_t lev;
-        memset(&lev, 0, sizeof lev);
-        lev.data = g_lev;
-        lev.width = (uint16_t)w;
-        lev.height = (uint16_t)h;
-        lev.stride_bytes = 2u * (uint32_t)w;
-        lev.format = PFT_PIX_U16;
+        pft_frame_t f = res_frame_wh(w, h);
+        pft_frame_t lev = lev_frame(g_lev, false, w, h);
         TEST_ASSERT_EQUAL(PFT_OK, pft_pre_flat_update(&fl, &f, g_res, &lev, true));
         for (int i = 0; i < w * h; ++i) {
             TEST_ASSERT_EQUAL_INT16(g_in[i], g_res[i]);
