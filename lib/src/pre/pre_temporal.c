@@ -1655,6 +1655,31 @@ static __m128i view_wpair_(int32_t lo, int32_t hi)
     return _mm_set1_epi32((int)((uint32_t)(uint16_t)(int16_t)lo | ((uint32_t)(uint16_t)(int16_t)hi << 16)));
 }
 
+/* The four-tap blend of 8 lanes of int16 taps s0 .. s3 with the weight pairs w01, w23
+ * (view_wpair_): w0 s0 + w1 s1 + w2 s2 + w3 s3 + k, as two pmaddwd of the interleaved pairs
+ * (exact in int32 while each product is within +-256 * 32768); lanes 0 .. 3 in *lo, 4 .. 7 in
+ * *hi. */
+static inline void blend4_8_(__m128i s0, __m128i s1, __m128i s2, __m128i s3, __m128i w01, __m128i w23,
+                             __m128i k, __m128i *lo, __m128i *hi)
+{
+    *lo = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(s0, s1), w01),
+                                      _mm_madd_epi16(_mm_unpacklo_epi16(s2, s3), w23)), k);
+    *hi = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(s0, s1), w01),
+                                      _mm_madd_epi16(_mm_unpackhi_epi16(s2, s3), w23)), k);
+}
+
+/* blend4_8_ of the storage rows t0 .. t3 at columns i .. i + 7, each tap biased by -32768 into
+ * int16 (t xor 0x8000: the same bits as vtap_'s s). */
+static inline void vblend8_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2, const uint16_t *t3,
+                            int32_t i, __m128i w01, __m128i w23, __m128i k, __m128i *lo, __m128i *hi)
+{
+    const __m128i flip = _mm_set1_epi16((short)-32768);
+    blend4_8_(_mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t0 + i)), flip),
+              _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t1 + i)), flip),
+              _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t2 + i)), flip),
+              _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t3 + i)), flip), w01, w23, k, lo, hi);
+}
+
 /* The vertical pass of 8 columns i .. i + 7: v = vtap_ of the storage rows t0 .. t3 (weight
  * pairs w01, w23) as the halves vh = v >> 15 and vl = v & 32767. The taps biased by -32768
  * (t xor 0x8000 as int16: the same bits as vtap_'s s), pmaddwd forms w0 s0 + w1 s1 and
@@ -1664,18 +1689,11 @@ static inline void view_v8_(const uint16_t *t0, const uint16_t *t1, const uint16
                             const uint16_t *t3, __m128i w01, __m128i w23, int16_t *vh, int16_t *vl,
                             int32_t i)
 {
-    const __m128i flip = _mm_set1_epi16((short)-32768);
     const __m128i add = _mm_set1_epi32(256 * 32768 + 8), m15 = _mm_set1_epi32(32767);
-    const __m128i s0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t0 + i)), flip);
-    const __m128i s1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t1 + i)), flip);
-    const __m128i s2 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t2 + i)), flip);
-    const __m128i s3 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t3 + i)), flip);
-    __m128i lo = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(s0, s1), w01),
-                               _mm_madd_epi16(_mm_unpacklo_epi16(s2, s3), w23));
-    __m128i hi = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(s0, s1), w01),
-                               _mm_madd_epi16(_mm_unpackhi_epi16(s2, s3), w23));
-    lo = _mm_srai_epi32(_mm_add_epi32(lo, add), 4);
-    hi = _mm_srai_epi32(_mm_add_epi32(hi, add), 4);
+    __m128i lo, hi;
+    vblend8_(t0, t1, t2, t3, i, w01, w23, add, &lo, &hi);
+    lo = _mm_srai_epi32(lo, 4);
+    hi = _mm_srai_epi32(hi, 4);
     _mm_storeu_si128((__m128i *)(void *)(vh + i),
                      _mm_packs_epi32(_mm_srai_epi32(lo, 15), _mm_srai_epi32(hi, 15)));
     _mm_storeu_si128((__m128i *)(void *)(vl + i),
@@ -1996,7 +2014,7 @@ static inline int32_t pair16_(int32_t a, int32_t b)
 static inline int32_t hrow8_(const int32_t *zb, const int16_t *sb, const int16_t w[4], int32_t m0,
                              int32_t m2, int32_t m3, int32_t *hz, int32_t ja, int32_t jb)
 {
-    const __m128i w01 = _mm_set1_epi32(pair16_(w[0], w[1])), w23 = _mm_set1_epi32(pair16_(w[2], w[3]));
+    const __m128i w01 = view_wpair_(w[0], w[1]), w23 = view_wpair_(w[2], w[3]);
     const __m128i kb = _mm_set1_epi32(256 * 32768 + 8), none = _mm_set1_epi32(PFT_PRE_ANONE_);
     const __m128i t0 = _mm_set1_epi16((int16_t)m0), t2 = _mm_set1_epi16((int16_t)m2);
     const __m128i t3 = _mm_set1_epi16((int16_t)m3);
@@ -2019,12 +2037,10 @@ static inline int32_t hrow8_(const int32_t *zb, const int16_t *sb, const int16_t
         const __m128i s1 = _mm_loadu_si128((const __m128i *)(const void *)s);
         const __m128i s2 = _mm_loadu_si128((const __m128i *)(const void *)(s + 1));
         const __m128i s3 = _mm_loadu_si128((const __m128i *)(const void *)(s + 2));
-        __m128i lo = _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(s0, s1), w01),
-                                   _mm_madd_epi16(_mm_unpacklo_epi16(s2, s3), w23));
-        __m128i hi = _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(s0, s1), w01),
-                                   _mm_madd_epi16(_mm_unpackhi_epi16(s2, s3), w23));
-        lo = _mm_srai_epi32(_mm_add_epi32(lo, kb), 4);
-        hi = _mm_srai_epi32(_mm_add_epi32(hi, kb), 4);
+        __m128i lo, hi;
+        blend4_8_(s0, s1, s2, s3, w01, w23, kb, &lo, &hi);
+        lo = _mm_srai_epi32(lo, 4);
+        hi = _mm_srai_epi32(hi, 4);
         const __m128i il = _mm_unpacklo_epi16(inv, inv), ih = _mm_unpackhi_epi16(inv, inv);
         _mm_storeu_si128((__m128i *)(void *)(hz + j + 1), _mm_or_si128(_mm_andnot_si128(il, lo), _mm_and_si128(il, none)));
         _mm_storeu_si128((__m128i *)(void *)(hz + j + 5), _mm_or_si128(_mm_andnot_si128(ih, hi), _mm_and_si128(ih, none)));
@@ -2051,19 +2067,12 @@ int32_t pft_pre_hrow8_(const int32_t *zl, const int16_t *zs, int32_t ub, const i
 static inline int32_t vsplit8_(const uint16_t *t0, const uint16_t *t1, const uint16_t *t2, const uint16_t *t3,
                                const int16_t w[4], int32_t *vb, int32_t i0, int32_t c1)
 {
-    const __m128i w01 = _mm_set1_epi32(pair16_(w[0], w[1])), w23 = _mm_set1_epi32(pair16_(w[2], w[3]));
+    const __m128i w01 = view_wpair_(w[0], w[1]), w23 = view_wpair_(w[2], w[3]);
     const __m128i kb = _mm_set1_epi32(256 * 32768 + 8), m7 = _mm_set1_epi32(127);
-    const __m128i bias = _mm_set1_epi16((int16_t)-32768);
     int32_t i = i0;
     for (; i + 7 <= c1; i += 8) {
-        const __m128i a0 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t0 + i)), bias);
-        const __m128i a1 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t1 + i)), bias);
-        const __m128i a2 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t2 + i)), bias);
-        const __m128i a3 = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(t3 + i)), bias);
-        const __m128i lo = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(a0, a1), w01),
-                                                       _mm_madd_epi16(_mm_unpacklo_epi16(a2, a3), w23)), kb);
-        const __m128i hi = _mm_add_epi32(_mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(a0, a1), w01),
-                                                       _mm_madd_epi16(_mm_unpackhi_epi16(a2, a3), w23)), kb);
+        __m128i lo, hi;
+        vblend8_(t0, t1, t2, t3, i, w01, w23, kb, &lo, &hi);
         _mm_storeu_si128((__m128i *)(void *)(vb + i), _mm_or_si128(_mm_and_si128(_mm_srai_epi32(lo, 4), m7),
                                                                    _mm_slli_epi32(_mm_srai_epi32(lo, 11), 16)));
         _mm_storeu_si128((__m128i *)(void *)(vb + i + 4), _mm_or_si128(_mm_and_si128(_mm_srai_epi32(hi, 4), m7),
